@@ -1,0 +1,45 @@
+//! `iridis`: a thin command-line shell over the iridis library crates. Each subcommand lives in its own
+//! module under `cmd/`; shared output helpers (atomic file writes, JSON) live in `output.rs`.
+
+mod args;
+mod cmd;
+mod output;
+
+use clap::{Parser, Subcommand};
+
+/// Structural colour: thin-film interference and diffraction from measured nanostructures.
+#[derive(Debug, Parser)]
+#[command(name = "iridis", version, about, long_about = None, after_help = "\
+Examples:
+  iridis demo --out gallery              build the gallery of built-in examples, open gallery/index.html
+  iridis color xyz data/examples/green_leaf.csv --json
+  iridis color delta-e 50,2.6772,-79.7751 50,0,-82.7485")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Run the main job on built-in data: a gallery of results with an index page.
+    Demo(cmd::demo::Args),
+    /// Colour science: spectrum → XYZ/sRGB/Lab, colour differences.
+    #[command(subcommand)]
+    Color(cmd::color::ColorCommand),
+    // New command groups are added here, one line each, with their module in cmd/.
+}
+
+fn main() -> std::process::ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Demo(a) => cmd::demo::run(a),
+        Command::Color(c) => cmd::color::run(c),
+    };
+    match result {
+        Ok(()) => std::process::ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            std::process::ExitCode::from(2)
+        }
+    }
+}

@@ -1,0 +1,312 @@
+//! Sampled spectra on arbitrary, strictly increasing wavelength grids.
+
+use std::path::Path;
+
+/// Why a spectrum could not be built or read. Messages name the source, line and value.
+#[derive(Debug, thiserror::Error)]
+pub enum SpectrumError {
+    #[error("{source_name}: cannot read: {message}")]
+    Io {
+        source_name: String,
+        message: String,
+    },
+    #[error("{source_name}:{line}: {message}")]
+    Parse {
+        source_name: String,
+        line: usize,
+        message: String,
+    },
+    #[error("{0}")]
+    Invalid(String),
+}
+
+/// A spectrum sampled at strictly increasing wavelengths (nm). Between samples it is linear; outside the
+/// sampled range [`Spectrum::value_at`] holds the end values (the convention colour-science uses).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Spectrum {
+    wavelengths_nm: Vec<f64>,
+    values: Vec<f64>,
+}
+
+impl Spectrum {
+    /// Builds a spectrum, checking that the grid has at least two samples, is strictly increasing and that
+    /// every number is finite.
+    pub fn new(wavelengths_nm: Vec<f64>, values: Vec<f64>) -> Result<Self, SpectrumError> {
+        if wavelengths_nm.len() != values.len() {
+            return Err(SpectrumError::Invalid(format!(
+                "{} wavelengths but {} values",
+                wavelengths_nm.len(),
+                values.len()
+            )));
+        }
+        if wavelengths_nm.len() < 2 {
+            return Err(SpectrumError::Invalid(
+                "a spectrum needs at least two samples".into(),
+            ));
+        }
+        for (i, (&w, &v)) in wavelengths_nm.iter().zip(&values).enumerate() {
+            if !w.is_finite() || !v.is_finite() {
+                return Err(SpectrumError::Invalid(format!(
+                    "sample {i} is not finite: ({w}, {v})"
+                )));
+            }
+            if i > 0 && w <= wavelengths_nm[i - 1] {
+                return Err(SpectrumError::Invalid(format!(
+                    "wavelengths must increase: {} nm follows {} nm",
+                    w,
+                    wavelengths_nm[i - 1]
+                )));
+            }
+        }
+        Ok(Self {
+            wavelengths_nm,
+            values,
+        })
+    }
+
+    /// A spectrum sampled from a function on a uniform grid `from, from + step, …, ≤ to`.
+    pub fn from_fn(
+        from_nm: f64,
+        to_nm: f64,
+        step_nm: f64,
+        f: impl Fn(f64) -> f64,
+    ) -> Result<Self, SpectrumError> {
+        let grid = uniform_grid(from_nm, to_nm, step_nm)?;
+        let values = grid.iter().map(|&w| f(w)).collect();
+        Self::new(grid, values)
+    }
+
+    /// Reads a CSV or whitespace-separated text with two columns, wavelength (nm) and value. Lines starting
+    /// with `#` and a non-numeric header line are skipped.
+    pub fn from_csv_str(text: &str, source_name: &str) -> Result<Self, SpectrumError> {
+        let mut wavelengths = Vec::new();
+        let mut values = Vec::new();
+        let mut header_allowed = true;
+        for (index, raw) in text.lines().enumerate() {
+            let line_no = index + 1;
+            let line = raw.trim();
+            if line.is_empty() || line.starts_with('#') {
+                continue;
+            }
+            let fields: Vec<&str> = line
+                .split(|c: char| c == ',' || c == ';' || c == '\t' || c == ' ')
+                .filter(|s| !s.is_empty())
+                .collect();
+            let parse = |s: &str| s.trim().parse::<f64>();
+            let parsed: Vec<_> = fields.iter().map(|f| parse(f)).collect();
+            if parsed.iter().any(|p| p.is_err()) {
+                if header_allowed && wavelengths.is_empty() {
+                    header_allowed = false;
+                    continue;
+                }
+                let bad = fields
+                    .iter()
+                    .zip(&parsed)
+                    .find(|(_, p)| p.is_err())
+                    .map(|(f, _)| *f)
+                    .unwrap_or("");
+                return Err(SpectrumError::Parse {
+                    source_name: source_name.into(),
+                    line: line_no,
+                    message: format!("'{bad}' is not a number (expected: wavelength_nm, value)"),
+                });
+            }
+            header_allowed = false;
+            if fields.len() < 2 {
+                return Err(SpectrumError::Parse {
+                    source_name: source_name.into(),
+                    line: line_no,
+                    message: format!("expected two columns (wavelength_nm, value), found '{line}'"),
+                });
+            }
+            let (w, v) = (
+                parsed[0].as_ref().copied().unwrap_or(f64::NAN),
+                parsed[1].as_ref().copied().unwrap_or(f64::NAN),
+            );
+            let err = |message: String| SpectrumError::Parse {
+                source_name: source_name.into(),
+                line: line_no,
+                message,
+            };
+            if !w.is_finite() || w <= 0.0 {
+                return Err(err(format!(
+                    "wavelength '{}' must be a positive finite number of nm",
+                    fields[0]
+                )));
+            }
+            if !v.is_finite() {
+                return Err(err(format!("value '{}' is not finite", fields[1])));
+            }
+            if let Some(&last) = wavelengths.last() {
+                if w <= last {
+                    return Err(err(format!(
+                        "wavelengths must increase: {w} nm follows {last} nm"
+                    )));
+                }
+            }
+            wavelengths.push(w);
+            values.push(v);
+        }
+        if wavelengths.len() < 2 {
+            return Err(SpectrumError::Parse {
+                source_name: source_name.into(),
+                line: text.lines().count(),
+                message: format!(
+                    "found {} data rows; a spectrum needs at least two",
+                    wavelengths.len()
+                ),
+            });
+        }
+        Self::new(wavelengths, values)
+    }
+
+    /// Reads a spectrum file (see [`Spectrum::from_csv_str`]).
+    pub fn from_csv_path(path: &Path) -> Result<Self, SpectrumError> {
+        let name = path.display().to_string();
+        let text = std::fs::read_to_string(path).map_err(|e| SpectrumError::Io {
+            source_name: name.clone(),
+            message: e.to_string(),
+        })?;
+        Self::from_csv_str(&text, &name)
+    }
+
+    pub fn wavelengths_nm(&self) -> &[f64] {
+        &self.wavelengths_nm
+    }
+    pub fn values(&self) -> &[f64] {
+        &self.values
+    }
+    /// First and last sampled wavelength (nm).
+    pub fn range_nm(&self) -> (f64, f64) {
+        (
+            self.wavelengths_nm[0],
+            *self
+                .wavelengths_nm
+                .last()
+                .unwrap_or(&self.wavelengths_nm[0]),
+        )
+    }
+
+    /// Linear interpolation; ends held constant outside the sampled range.
+    pub fn value_at(&self, wavelength_nm: f64) -> f64 {
+        interpolate_linear(&self.wavelengths_nm, &self.values, wavelength_nm)
+    }
+
+    /// The same spectrum sampled on another grid (linear interpolation, ends held).
+    pub fn resample(&self, grid_nm: &[f64]) -> Result<Self, SpectrumError> {
+        Self::new(
+            grid_nm.to_vec(),
+            grid_nm.iter().map(|&w| self.value_at(w)).collect(),
+        )
+    }
+
+    /// `∫ s(λ) dλ` over the sampled range by the trapezoid rule.
+    pub fn integrate(&self) -> f64 {
+        trapezoid_weights(&self.wavelengths_nm)
+            .iter()
+            .zip(&self.values)
+            .map(|(w, v)| w * v)
+            .sum()
+    }
+
+    /// Multiplies two spectra sample by sample on this spectrum's grid.
+    pub fn mul(&self, other: &Spectrum) -> Spectrum {
+        Spectrum {
+            wavelengths_nm: self.wavelengths_nm.clone(),
+            values: self
+                .wavelengths_nm
+                .iter()
+                .zip(&self.values)
+                .map(|(&w, &v)| v * other.value_at(w))
+                .collect(),
+        }
+    }
+}
+
+/// Linear interpolation in a table with strictly increasing `xs`; holds the end values outside.
+pub fn interpolate_linear(xs: &[f64], ys: &[f64], x: f64) -> f64 {
+    let n = xs.len();
+    if n == 0 {
+        return 0.0;
+    }
+    if x <= xs[0] {
+        return ys[0];
+    }
+    if x >= xs[n - 1] {
+        return ys[n - 1];
+    }
+    let i = xs.partition_point(|&v| v <= x) - 1;
+    let t = (x - xs[i]) / (xs[i + 1] - xs[i]);
+    ys[i] + t * (ys[i + 1] - ys[i])
+}
+
+/// Trapezoid-rule weights for a strictly increasing grid: `∫ f ≈ Σ wᵢ f(xᵢ)`.
+pub fn trapezoid_weights(xs: &[f64]) -> Vec<f64> {
+    let n = xs.len();
+    let mut w = vec![0.0; n];
+    for i in 0..n.saturating_sub(1) {
+        let h = 0.5 * (xs[i + 1] - xs[i]);
+        w[i] += h;
+        w[i + 1] += h;
+    }
+    w
+}
+
+/// `from, from + step, …` up to and including `to` (within a millionth of a step).
+pub fn uniform_grid(from_nm: f64, to_nm: f64, step_nm: f64) -> Result<Vec<f64>, SpectrumError> {
+    if !(from_nm.is_finite() && to_nm.is_finite() && step_nm.is_finite())
+        || step_nm <= 0.0
+        || to_nm < from_nm
+    {
+        return Err(SpectrumError::Invalid(format!(
+            "bad wavelength range {from_nm} nm to {to_nm} nm in steps of {step_nm} nm (need from ≤ to, step > 0)"
+        )));
+    }
+    let n = ((to_nm - from_nm) / step_nm + 1e-6).floor() as usize + 1;
+    if n > 10_000_000 {
+        return Err(SpectrumError::Invalid(format!("{n} samples is too many")));
+    }
+    Ok((0..n).map(|i| from_nm + i as f64 * step_nm).collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn trapezoid_integrates_a_line_exactly() {
+        let s = Spectrum::from_fn(400.0, 700.0, 7.0, |w| 2.0 * w + 1.0).unwrap();
+        let (a, b) = s.range_nm();
+        let exact = (b * b + b) - (a * a + a);
+        assert!((s.integrate() - exact).abs() < 1e-9 * exact);
+    }
+
+    #[test]
+    fn csv_with_header_and_comments() {
+        let s = Spectrum::from_csv_str(
+            "# a comment\nwavelength,value\n400, 0.5\n410,0.7\n\n420;0.9\n",
+            "t",
+        )
+        .unwrap();
+        assert_eq!(s.wavelengths_nm(), &[400.0, 410.0, 420.0]);
+        assert!((s.value_at(405.0) - 0.6).abs() < 1e-12);
+        assert_eq!(s.value_at(300.0), 0.5);
+    }
+
+    #[test]
+    fn csv_errors_name_line_and_value() {
+        let e = Spectrum::from_csv_str("400,0.5\n410,abc\n", "f.csv")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("f.csv:2") && e.contains("abc"), "{e}");
+        let e = Spectrum::from_csv_str("400,0.5\n390,0.1\n", "f.csv")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("f.csv:2") && e.contains("increase"), "{e}");
+        let e = Spectrum::from_csv_str("400,0.5\n410,NaN\n", "f.csv")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("f.csv:2") && e.contains("NaN"), "{e}");
+        assert!(Spectrum::from_csv_str("400,0.5\n", "f.csv").is_err());
+    }
+}
