@@ -13,11 +13,7 @@ pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<()
         _ => Path::new("."),
     };
     if !dir.is_dir() {
-        anyhow::bail!(
-            "cannot write {}: folder {} does not exist",
-            path.display(),
-            dir.display()
-        );
+        anyhow::bail!("cannot write {}: folder {} does not exist", path.display(), dir.display());
     }
     let mut tmp = tempfile::Builder::new()
         .prefix(".iridis-")
@@ -27,13 +23,9 @@ pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<()
     {
         let mut buffered = std::io::BufWriter::new(tmp.as_file_mut());
         write(&mut buffered)?;
-        buffered
-            .flush()
-            .with_context(|| format!("cannot write {}", path.display()))?;
+        buffered.flush().with_context(|| format!("cannot write {}", path.display()))?;
     }
-    tmp.persist(path)
-        .map_err(|e| e.error)
-        .with_context(|| format!("cannot write {}", path.display()))?;
+    tmp.persist(path).map_err(|e| e.error).with_context(|| format!("cannot write {}", path.display()))?;
     Ok(())
 }
 

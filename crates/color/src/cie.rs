@@ -39,15 +39,11 @@ pub struct Cmfs {
 impl Cmfs {
     /// (x̄, ȳ, z̄) at any wavelength, linear between the 1 nm samples and zero outside 360–830 nm.
     pub fn at(&self, wavelength_nm: f64) -> [f64; 3] {
-        let (lo, hi) = (
-            self.wavelengths_nm[0],
-            self.wavelengths_nm[self.wavelengths_nm.len() - 1],
-        );
+        let (lo, hi) = (self.wavelengths_nm[0], self.wavelengths_nm[self.wavelengths_nm.len() - 1]);
         if !(lo..=hi).contains(&wavelength_nm) {
             return [0.0; 3];
         }
-        let f =
-            |v: &[f64]| crate::spectrum::interpolate_linear(&self.wavelengths_nm, v, wavelength_nm);
+        let f = |v: &[f64]| crate::spectrum::interpolate_linear(&self.wavelengths_nm, v, wavelength_nm);
         [f(&self.x), f(&self.y), f(&self.z)]
     }
 }
@@ -58,12 +54,7 @@ fn parse_table(text: &str, columns: usize) -> Vec<Vec<f64>> {
     let mut out = vec![Vec::new(); columns];
     for line in text.lines().filter(|l| !l.starts_with('#')).skip(1) {
         for (col, field) in out.iter_mut().zip(line.split(',')) {
-            col.push(
-                field
-                    .trim()
-                    .parse::<f64>()
-                    .expect("malformed built-in CIE table"),
-            );
+            col.push(field.trim().parse::<f64>().expect("malformed built-in CIE table"));
         }
     }
     out
@@ -86,12 +77,7 @@ impl Observer {
             let y = t.pop().unwrap_or_default();
             let x = t.pop().unwrap_or_default();
             let w = t.pop().unwrap_or_default();
-            Cmfs {
-                wavelengths_nm: w,
-                x,
-                y,
-                z,
-            }
+            Cmfs { wavelengths_nm: w, x, y, z }
         })
     }
 
@@ -104,21 +90,11 @@ impl Observer {
 }
 
 impl Illuminant {
-    pub const ALL: [Illuminant; 4] = [
-        Illuminant::D65,
-        Illuminant::D50,
-        Illuminant::A,
-        Illuminant::E,
-    ];
+    pub const ALL: [Illuminant; 4] = [Illuminant::D65, Illuminant::D50, Illuminant::A, Illuminant::E];
 
     /// The relative spectral power distribution, as tabulated (5 nm for D65/D50/E, 1 nm for A, 300–830 nm).
     pub fn spd(self) -> &'static Spectrum {
-        static CELLS: [OnceLock<Spectrum>; 4] = [
-            OnceLock::new(),
-            OnceLock::new(),
-            OnceLock::new(),
-            OnceLock::new(),
-        ];
+        static CELLS: [OnceLock<Spectrum>; 4] = [OnceLock::new(), OnceLock::new(), OnceLock::new(), OnceLock::new()];
         let (i, text) = match self {
             Illuminant::D65 => (0, include_str!("../../../data/cie/d65.csv")),
             Illuminant::D50 => (1, include_str!("../../../data/cie/d50.csv")),
@@ -158,11 +134,7 @@ impl FromStr for Observer {
         match s.trim().to_ascii_lowercase().as_str() {
             "1931" | "2" | "2deg" | "cie1931" => Ok(Observer::Cie1931),
             "1964" | "10" | "10deg" | "cie1964" => Ok(Observer::Cie1964),
-            _ => Err(UnknownName {
-                kind: "observer",
-                given: s.into(),
-                expected: "1931, 1964",
-            }),
+            _ => Err(UnknownName { kind: "observer", given: s.into(), expected: "1931, 1964" }),
         }
     }
 }
@@ -175,11 +147,7 @@ impl FromStr for Illuminant {
             "d50" => Ok(Illuminant::D50),
             "a" => Ok(Illuminant::A),
             "e" => Ok(Illuminant::E),
-            _ => Err(UnknownName {
-                kind: "illuminant",
-                given: s.into(),
-                expected: "d65, d50, a, e",
-            }),
+            _ => Err(UnknownName { kind: "illuminant", given: s.into(), expected: "d65, d50, a, e" }),
         }
     }
 }

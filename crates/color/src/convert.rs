@@ -34,17 +34,9 @@ impl Xyz {
         let sum = self.x + self.y + self.z;
         if sum.abs() < 1e-300 {
             let (x, y) = D65_XY;
-            return Xyy {
-                x,
-                y,
-                big_y: self.y,
-            };
+            return Xyy { x, y, big_y: self.y };
         }
-        Xyy {
-            x: self.x / sum,
-            y: self.y / sum,
-            big_y: self.y,
-        }
+        Xyy { x: self.x / sum, y: self.y / sum, big_y: self.y }
     }
 
     /// Linear sRGB (no clipping, no transfer curve).
@@ -64,11 +56,7 @@ impl Xyy {
         if self.y.abs() < 1e-300 {
             return Xyz::new(0.0, 0.0, 0.0);
         }
-        Xyz::new(
-            self.x * self.big_y / self.y,
-            self.big_y,
-            (1.0 - self.x - self.y) * self.big_y / self.y,
-        )
+        Xyz::new(self.x * self.big_y / self.y, self.big_y, (1.0 - self.x - self.y) * self.big_y / self.y)
     }
 }
 
@@ -76,11 +64,7 @@ impl Xyy {
 pub const D65_XY: (f64, f64) = (0.3127, 0.3290);
 
 /// Linear sRGB → XYZ, IEC 61966-2-1:1999 eq. (F.7) (the standard's own four-digit matrix).
-pub const SRGB_TO_XYZ: [[f64; 3]; 3] = [
-    [0.4124, 0.3576, 0.1805],
-    [0.2126, 0.7152, 0.0722],
-    [0.0193, 0.1192, 0.9505],
-];
+pub const SRGB_TO_XYZ: [[f64; 3]; 3] = [[0.4124, 0.3576, 0.1805], [0.2126, 0.7152, 0.0722], [0.0193, 0.1192, 0.9505]];
 
 /// XYZ → linear sRGB: the exact inverse of [`SRGB_TO_XYZ`], so that round trips hold to rounding
 /// (the standard's printed inverse, 3.2406 …, agrees to its four digits).
@@ -93,21 +77,9 @@ const fn invert3(m: [[f64; 3]; 3]) -> [[f64; 3]; 3] {
     let det = m[0][0] * c00 + m[0][1] * c01 + m[0][2] * c02;
     let inv = 1.0 / det;
     [
-        [
-            c00 * inv,
-            (m[0][2] * m[2][1] - m[0][1] * m[2][2]) * inv,
-            (m[0][1] * m[1][2] - m[0][2] * m[1][1]) * inv,
-        ],
-        [
-            c01 * inv,
-            (m[0][0] * m[2][2] - m[0][2] * m[2][0]) * inv,
-            (m[0][2] * m[1][0] - m[0][0] * m[1][2]) * inv,
-        ],
-        [
-            c02 * inv,
-            (m[0][1] * m[2][0] - m[0][0] * m[2][1]) * inv,
-            (m[0][0] * m[1][1] - m[0][1] * m[1][0]) * inv,
-        ],
+        [c00 * inv, (m[0][2] * m[2][1] - m[0][1] * m[2][2]) * inv, (m[0][1] * m[1][2] - m[0][2] * m[1][1]) * inv],
+        [c01 * inv, (m[0][0] * m[2][2] - m[0][2] * m[2][0]) * inv, (m[0][2] * m[1][0] - m[0][0] * m[1][2]) * inv],
+        [c02 * inv, (m[0][1] * m[2][0] - m[0][0] * m[2][1]) * inv, (m[0][0] * m[1][1] - m[0][1] * m[1][0]) * inv],
     ]
 }
 
@@ -123,22 +95,14 @@ pub fn mat_mul(m: &[[f64; 3]; 3], v: [f64; 3]) -> [f64; 3] {
 /// are mirrored so the function is odd and invertible.
 pub fn srgb_encode(linear: f64) -> f64 {
     let a = linear.abs();
-    let e = if a <= 0.003_130_8 {
-        12.92 * a
-    } else {
-        1.055 * a.powf(1.0 / 2.4) - 0.055
-    };
+    let e = if a <= 0.003_130_8 { 12.92 * a } else { 1.055 * a.powf(1.0 / 2.4) - 0.055 };
     e.copysign(linear)
 }
 
 /// Inverse of [`srgb_encode`].
 pub fn srgb_decode(encoded: f64) -> f64 {
     let a = encoded.abs();
-    let l = if a <= 0.040_45 {
-        a / 12.92
-    } else {
-        ((a + 0.055) / 1.055).powf(2.4)
-    };
+    let l = if a <= 0.040_45 { a / 12.92 } else { ((a + 0.055) / 1.055).powf(2.4) };
     l.copysign(encoded)
 }
 
@@ -158,24 +122,14 @@ mod tests {
 
     #[test]
     fn matrix_agrees_with_the_printed_inverse() {
-        let printed = [
-            [3.2406, -1.5372, -0.4986],
-            [-0.9689, 1.8758, 0.0415],
-            [0.0557, -0.2040, 1.0570],
-        ];
+        let printed = [[3.2406, -1.5372, -0.4986], [-0.9689, 1.8758, 0.0415], [0.0557, -0.2040, 1.0570]];
         for r in 0..3 {
             for c in 0..3 {
                 assert!((XYZ_TO_SRGB[r][c] - printed[r][c]).abs() < 6e-4);
             }
         }
         // D65 white maps to RGB (1, 1, 1) to the matrix's precision.
-        let w = Xyy {
-            x: D65_XY.0,
-            y: D65_XY.1,
-            big_y: 1.0,
-        }
-        .to_xyz()
-        .to_linear_srgb();
+        let w = Xyy { x: D65_XY.0, y: D65_XY.1, big_y: 1.0 }.to_xyz().to_linear_srgb();
         for c in w {
             assert!((c - 1.0).abs() < 1e-3, "{w:?}");
         }

@@ -43,10 +43,7 @@ impl SpectralWeights {
                 }
             }
         }
-        Self {
-            wavelengths_nm: grid_nm.to_vec(),
-            weights,
-        }
+        Self { wavelengths_nm: grid_nm.to_vec(), weights }
     }
 
     pub fn wavelengths_nm(&self) -> &[f64] {
@@ -88,11 +85,7 @@ pub fn observer_grid(observer: Observer) -> &'static [f64] {
 
 /// XYZ of a reflectance (or transmittance) spectrum under an illuminant, integrated on the observer's 1 nm
 /// grid (the spectrum is interpolated linearly onto it, its end values held outside its range).
-pub fn reflectance_to_xyz(
-    reflectance: &Spectrum,
-    illuminant: Illuminant,
-    observer: Observer,
-) -> Xyz {
+pub fn reflectance_to_xyz(reflectance: &Spectrum, illuminant: Illuminant, observer: Observer) -> Xyz {
     let grid = observer_grid(observer);
     let w = SpectralWeights::new(grid, illuminant, observer);
     let values: Vec<f64> = grid.iter().map(|&l| reflectance.value_at(l)).collect();

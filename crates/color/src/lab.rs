@@ -49,11 +49,7 @@ impl Lab {
                 (116.0 * f - 16.0) / KAPPA
             }
         };
-        let yr = if self.l > KAPPA * EPSILON {
-            fy * fy * fy
-        } else {
-            self.l / KAPPA
-        };
+        let yr = if self.l > KAPPA * EPSILON { fy * fy * fy } else { self.l / KAPPA };
         Xyz::new(finv(fx) * white.x, yr * white.y, finv(fz) * white.z)
     }
 }

@@ -6,16 +6,9 @@ use std::path::Path;
 #[derive(Debug, thiserror::Error)]
 pub enum SpectrumError {
     #[error("{source_name}: cannot read: {message}")]
-    Io {
-        source_name: String,
-        message: String,
-    },
+    Io { source_name: String, message: String },
     #[error("{source_name}:{line}: {message}")]
-    Parse {
-        source_name: String,
-        line: usize,
-        message: String,
-    },
+    Parse { source_name: String, line: usize, message: String },
     #[error("{0}")]
     Invalid(String),
 }
@@ -40,15 +33,11 @@ impl Spectrum {
             )));
         }
         if wavelengths_nm.len() < 2 {
-            return Err(SpectrumError::Invalid(
-                "a spectrum needs at least two samples".into(),
-            ));
+            return Err(SpectrumError::Invalid("a spectrum needs at least two samples".into()));
         }
         for (i, (&w, &v)) in wavelengths_nm.iter().zip(&values).enumerate() {
             if !w.is_finite() || !v.is_finite() {
-                return Err(SpectrumError::Invalid(format!(
-                    "sample {i} is not finite: ({w}, {v})"
-                )));
+                return Err(SpectrumError::Invalid(format!("sample {i} is not finite: ({w}, {v})")));
             }
             if i > 0 && w <= wavelengths_nm[i - 1] {
                 return Err(SpectrumError::Invalid(format!(
@@ -58,19 +47,11 @@ impl Spectrum {
                 )));
             }
         }
-        Ok(Self {
-            wavelengths_nm,
-            values,
-        })
+        Ok(Self { wavelengths_nm, values })
     }
 
     /// A spectrum sampled from a function on a uniform grid `from, from + step, …, ≤ to`.
-    pub fn from_fn(
-        from_nm: f64,
-        to_nm: f64,
-        step_nm: f64,
-        f: impl Fn(f64) -> f64,
-    ) -> Result<Self, SpectrumError> {
+    pub fn from_fn(from_nm: f64, to_nm: f64, step_nm: f64, f: impl Fn(f64) -> f64) -> Result<Self, SpectrumError> {
         let grid = uniform_grid(from_nm, to_nm, step_nm)?;
         let values = grid.iter().map(|&w| f(w)).collect();
         Self::new(grid, values)
@@ -88,10 +69,8 @@ impl Spectrum {
             if line.is_empty() || line.starts_with('#') {
                 continue;
             }
-            let fields: Vec<&str> = line
-                .split(|c: char| c == ',' || c == ';' || c == '\t' || c == ' ')
-                .filter(|s| !s.is_empty())
-                .collect();
+            let fields: Vec<&str> =
+                line.split(|c: char| c == ',' || c == ';' || c == '\t' || c == ' ').filter(|s| !s.is_empty()).collect();
             let parse = |s: &str| s.trim().parse::<f64>();
             let parsed: Vec<_> = fields.iter().map(|f| parse(f)).collect();
             if parsed.iter().any(|p| p.is_err()) {
@@ -99,12 +78,7 @@ impl Spectrum {
                     header_allowed = false;
                     continue;
                 }
-                let bad = fields
-                    .iter()
-                    .zip(&parsed)
-                    .find(|(_, p)| p.is_err())
-                    .map(|(f, _)| *f)
-                    .unwrap_or("");
+                let bad = fields.iter().zip(&parsed).find(|(_, p)| p.is_err()).map(|(f, _)| *f).unwrap_or("");
                 return Err(SpectrumError::Parse {
                     source_name: source_name.into(),
                     line: line_no,
@@ -119,29 +93,19 @@ impl Spectrum {
                     message: format!("expected two columns (wavelength_nm, value), found '{line}'"),
                 });
             }
-            let (w, v) = (
-                parsed[0].as_ref().copied().unwrap_or(f64::NAN),
-                parsed[1].as_ref().copied().unwrap_or(f64::NAN),
-            );
-            let err = |message: String| SpectrumError::Parse {
-                source_name: source_name.into(),
-                line: line_no,
-                message,
-            };
+            let (w, v) =
+                (parsed[0].as_ref().copied().unwrap_or(f64::NAN), parsed[1].as_ref().copied().unwrap_or(f64::NAN));
+            let err =
+                |message: String| SpectrumError::Parse { source_name: source_name.into(), line: line_no, message };
             if !w.is_finite() || w <= 0.0 {
-                return Err(err(format!(
-                    "wavelength '{}' must be a positive finite number of nm",
-                    fields[0]
-                )));
+                return Err(err(format!("wavelength '{}' must be a positive finite number of nm", fields[0])));
             }
             if !v.is_finite() {
                 return Err(err(format!("value '{}' is not finite", fields[1])));
             }
             if let Some(&last) = wavelengths.last() {
                 if w <= last {
-                    return Err(err(format!(
-                        "wavelengths must increase: {w} nm follows {last} nm"
-                    )));
+                    return Err(err(format!("wavelengths must increase: {w} nm follows {last} nm")));
                 }
             }
             wavelengths.push(w);
@@ -151,10 +115,7 @@ impl Spectrum {
             return Err(SpectrumError::Parse {
                 source_name: source_name.into(),
                 line: text.lines().count(),
-                message: format!(
-                    "found {} data rows; a spectrum needs at least two",
-                    wavelengths.len()
-                ),
+                message: format!("found {} data rows; a spectrum needs at least two", wavelengths.len()),
             });
         }
         Self::new(wavelengths, values)
@@ -163,10 +124,8 @@ impl Spectrum {
     /// Reads a spectrum file (see [`Spectrum::from_csv_str`]).
     pub fn from_csv_path(path: &Path) -> Result<Self, SpectrumError> {
         let name = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|e| SpectrumError::Io {
-            source_name: name.clone(),
-            message: e.to_string(),
-        })?;
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| SpectrumError::Io { source_name: name.clone(), message: e.to_string() })?;
         Self::from_csv_str(&text, &name)
     }
 
@@ -178,13 +137,7 @@ impl Spectrum {
     }
     /// First and last sampled wavelength (nm).
     pub fn range_nm(&self) -> (f64, f64) {
-        (
-            self.wavelengths_nm[0],
-            *self
-                .wavelengths_nm
-                .last()
-                .unwrap_or(&self.wavelengths_nm[0]),
-        )
+        (self.wavelengths_nm[0], *self.wavelengths_nm.last().unwrap_or(&self.wavelengths_nm[0]))
     }
 
     /// Linear interpolation; ends held constant outside the sampled range.
@@ -194,31 +147,19 @@ impl Spectrum {
 
     /// The same spectrum sampled on another grid (linear interpolation, ends held).
     pub fn resample(&self, grid_nm: &[f64]) -> Result<Self, SpectrumError> {
-        Self::new(
-            grid_nm.to_vec(),
-            grid_nm.iter().map(|&w| self.value_at(w)).collect(),
-        )
+        Self::new(grid_nm.to_vec(), grid_nm.iter().map(|&w| self.value_at(w)).collect())
     }
 
     /// `∫ s(λ) dλ` over the sampled range by the trapezoid rule.
     pub fn integrate(&self) -> f64 {
-        trapezoid_weights(&self.wavelengths_nm)
-            .iter()
-            .zip(&self.values)
-            .map(|(w, v)| w * v)
-            .sum()
+        trapezoid_weights(&self.wavelengths_nm).iter().zip(&self.values).map(|(w, v)| w * v).sum()
     }
 
     /// Multiplies two spectra sample by sample on this spectrum's grid.
     pub fn mul(&self, other: &Spectrum) -> Spectrum {
         Spectrum {
             wavelengths_nm: self.wavelengths_nm.clone(),
-            values: self
-                .wavelengths_nm
-                .iter()
-                .zip(&self.values)
-                .map(|(&w, &v)| v * other.value_at(w))
-                .collect(),
+            values: self.wavelengths_nm.iter().zip(&self.values).map(|(&w, &v)| v * other.value_at(w)).collect(),
         }
     }
 }
@@ -254,10 +195,7 @@ pub fn trapezoid_weights(xs: &[f64]) -> Vec<f64> {
 
 /// `from, from + step, …` up to and including `to` (within a millionth of a step).
 pub fn uniform_grid(from_nm: f64, to_nm: f64, step_nm: f64) -> Result<Vec<f64>, SpectrumError> {
-    if !(from_nm.is_finite() && to_nm.is_finite() && step_nm.is_finite())
-        || step_nm <= 0.0
-        || to_nm < from_nm
-    {
+    if !(from_nm.is_finite() && to_nm.is_finite() && step_nm.is_finite()) || step_nm <= 0.0 || to_nm < from_nm {
         return Err(SpectrumError::Invalid(format!(
             "bad wavelength range {from_nm} nm to {to_nm} nm in steps of {step_nm} nm (need from ≤ to, step > 0)"
         )));
@@ -283,11 +221,7 @@ mod tests {
 
     #[test]
     fn csv_with_header_and_comments() {
-        let s = Spectrum::from_csv_str(
-            "# a comment\nwavelength,value\n400, 0.5\n410,0.7\n\n420;0.9\n",
-            "t",
-        )
-        .unwrap();
+        let s = Spectrum::from_csv_str("# a comment\nwavelength,value\n400, 0.5\n410,0.7\n\n420;0.9\n", "t").unwrap();
         assert_eq!(s.wavelengths_nm(), &[400.0, 410.0, 420.0]);
         assert!((s.value_at(405.0) - 0.6).abs() < 1e-12);
         assert_eq!(s.value_at(300.0), 0.5);
@@ -295,17 +229,11 @@ mod tests {
 
     #[test]
     fn csv_errors_name_line_and_value() {
-        let e = Spectrum::from_csv_str("400,0.5\n410,abc\n", "f.csv")
-            .unwrap_err()
-            .to_string();
+        let e = Spectrum::from_csv_str("400,0.5\n410,abc\n", "f.csv").unwrap_err().to_string();
         assert!(e.contains("f.csv:2") && e.contains("abc"), "{e}");
-        let e = Spectrum::from_csv_str("400,0.5\n390,0.1\n", "f.csv")
-            .unwrap_err()
-            .to_string();
+        let e = Spectrum::from_csv_str("400,0.5\n390,0.1\n", "f.csv").unwrap_err().to_string();
         assert!(e.contains("f.csv:2") && e.contains("increase"), "{e}");
-        let e = Spectrum::from_csv_str("400,0.5\n410,NaN\n", "f.csv")
-            .unwrap_err()
-            .to_string();
+        let e = Spectrum::from_csv_str("400,0.5\n410,NaN\n", "f.csv").unwrap_err().to_string();
         assert!(e.contains("f.csv:2") && e.contains("NaN"), "{e}");
         assert!(Spectrum::from_csv_str("400,0.5\n", "f.csv").is_err());
     }

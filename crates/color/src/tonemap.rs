@@ -32,9 +32,7 @@ impl Encoding {
             "linear" | "1" => Ok(Encoding::Linear),
             other => match other.parse::<f64>() {
                 Ok(g) if g.is_finite() && g > 0.0 => Ok(Encoding::Gamma(g)),
-                _ => Err(format!(
-                    "'{s}' is not an encoding: use srgb, linear or a gamma such as 2.2"
-                )),
+                _ => Err(format!("'{s}' is not an encoding: use srgb, linear or a gamma such as 2.2")),
             },
         }
     }
@@ -50,10 +48,7 @@ pub struct ToneMap {
 
 impl Default for ToneMap {
     fn default() -> Self {
-        Self {
-            exposure_ru: 1.0,
-            encoding: Encoding::Srgb,
-        }
+        Self { exposure_ru: 1.0, encoding: Encoding::Srgb }
     }
 }
 
@@ -61,16 +56,12 @@ impl ToneMap {
     /// Display values in [0, 1]: scale, convert to linear sRGB, clip to [0, 1], encode.
     pub fn to_display(&self, xyz: Xyz) -> [f64; 3] {
         let rgb = xyz.scale(self.exposure_ru).to_linear_srgb();
-        rgb.map(|c| {
-            self.encoding
-                .encode(if c.is_nan() { 0.0 } else { c.clamp(0.0, 1.0) })
-        })
+        rgb.map(|c| self.encoding.encode(if c.is_nan() { 0.0 } else { c.clamp(0.0, 1.0) }))
     }
 
     /// 8-bit display pixel.
     pub fn to_rgb8(&self, xyz: Xyz) -> [u8; 3] {
-        self.to_display(xyz)
-            .map(|c| (c * 255.0 + 0.5).floor().clamp(0.0, 255.0) as u8)
+        self.to_display(xyz).map(|c| (c * 255.0 + 0.5).floor().clamp(0.0, 255.0) as u8)
     }
 }
 

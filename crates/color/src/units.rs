@@ -7,49 +7,26 @@
 #[error("{0}")]
 pub struct UnitError(pub String);
 
-const LENGTH_UNITS: &[(&str, f64)] = &[
-    ("nm", 1.0),
-    ("um", 1e3),
-    ("µm", 1e3),
-    ("μm", 1e3),
-    ("micron", 1e3),
-    ("mm", 1e6),
-    ("pm", 1e-3),
-];
-const ANGLE_UNITS: &[(&str, f64)] = &[
-    ("deg", std::f64::consts::PI / 180.0),
-    ("°", std::f64::consts::PI / 180.0),
-    ("mrad", 1e-3),
-    ("rad", 1.0),
-];
+const LENGTH_UNITS: &[(&str, f64)] =
+    &[("nm", 1.0), ("um", 1e3), ("µm", 1e3), ("μm", 1e3), ("micron", 1e3), ("mm", 1e6), ("pm", 1e-3)];
+const ANGLE_UNITS: &[(&str, f64)] =
+    &[("deg", std::f64::consts::PI / 180.0), ("°", std::f64::consts::PI / 180.0), ("mrad", 1e-3), ("rad", 1.0)];
 
-fn parse_with(
-    s: &str,
-    kind: &str,
-    units: &[(&str, f64)],
-    accepted: &str,
-) -> Result<f64, UnitError> {
+fn parse_with(s: &str, kind: &str, units: &[(&str, f64)], accepted: &str) -> Result<f64, UnitError> {
     let t = s.trim();
     for &(suffix, factor) in units {
         if let Some(num) = t.strip_suffix(suffix) {
             let num = num.trim();
             return match num.parse::<f64>() {
                 Ok(v) if v.is_finite() => Ok(v * factor),
-                _ => Err(UnitError(format!(
-                    "'{s}' is not a {kind}: '{num}' is not a finite number"
-                ))),
+                _ => Err(UnitError(format!("'{s}' is not a {kind}: '{num}' is not a finite number"))),
             };
         }
     }
     if t.parse::<f64>().is_ok() {
-        Err(UnitError(format!(
-            "'{s}' has no unit; write a {kind} with a unit ({accepted}), e.g. '{t}{}'",
-            units[0].0
-        )))
+        Err(UnitError(format!("'{s}' has no unit; write a {kind} with a unit ({accepted}), e.g. '{t}{}'", units[0].0)))
     } else {
-        Err(UnitError(format!(
-            "'{s}' is not a {kind}; accepted units: {accepted}"
-        )))
+        Err(UnitError(format!("'{s}' is not a {kind}; accepted units: {accepted}")))
     }
 }
 
@@ -75,15 +52,10 @@ pub fn parse_positive_length_nm(s: &str) -> Result<f64, UnitError> {
 
 /// `from:to:step` with units on each part, e.g. `1deg:90deg:1deg` or `0nm:2000nm:2nm`; returns the
 /// inclusive list of values.
-pub fn parse_range(
-    s: &str,
-    parse: fn(&str) -> Result<f64, UnitError>,
-) -> Result<Vec<f64>, UnitError> {
+pub fn parse_range(s: &str, parse: fn(&str) -> Result<f64, UnitError>) -> Result<Vec<f64>, UnitError> {
     let parts: Vec<&str> = s.split(':').collect();
     if parts.len() != 3 {
-        return Err(UnitError(format!(
-            "'{s}' is not a range; write FROM:TO:STEP, e.g. 0nm:2000nm:2nm"
-        )));
+        return Err(UnitError(format!("'{s}' is not a range; write FROM:TO:STEP, e.g. 0nm:2000nm:2nm")));
     }
     let (a, b, step) = (parse(parts[0])?, parse(parts[1])?, parse(parts[2])?);
     if step <= 0.0 || b < a {

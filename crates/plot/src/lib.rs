@@ -19,11 +19,7 @@ pub struct RgbImage {
 
 impl RgbImage {
     pub fn new(width: u32, height: u32) -> Self {
-        Self {
-            width,
-            height,
-            data: vec![0; width as usize * height as usize * 3],
-        }
+        Self { width, height, data: vec![0; width as usize * height as usize * 3] }
     }
     pub fn put(&mut self, x: u32, y: u32, rgb: [u8; 3]) {
         let i = (y as usize * self.width as usize + x as usize) * 3;
@@ -108,11 +104,7 @@ pub struct LinePlot {
 }
 
 impl LinePlot {
-    pub fn new(
-        title: impl Into<String>,
-        x_label: impl Into<String>,
-        y_label: impl Into<String>,
-    ) -> Self {
+    pub fn new(title: impl Into<String>, x_label: impl Into<String>, y_label: impl Into<String>) -> Self {
         Self {
             title: title.into(),
             x_label: x_label.into(),
@@ -135,16 +127,8 @@ impl LinePlot {
         let (w, h) = self.size;
         let mut img = RgbImage::new(w, h);
         let finite = |v: &f64| v.is_finite();
-        let xs = self
-            .series
-            .iter()
-            .flat_map(|s| s.points.iter().map(|p| p.0))
-            .filter(finite);
-        let ys = self
-            .series
-            .iter()
-            .flat_map(|s| s.points.iter().map(|p| p.1))
-            .filter(finite);
+        let xs = self.series.iter().flat_map(|s| s.points.iter().map(|p| p.0)).filter(finite);
+        let ys = self.series.iter().flat_map(|s| s.points.iter().map(|p| p.1)).filter(finite);
         let (x0, x1) = self.x_range.unwrap_or_else(|| min_max(xs, 0.0));
         let (y0, y1) = self.y_range.unwrap_or_else(|| min_max(ys, 0.05));
         {
@@ -167,28 +151,15 @@ impl LinePlot {
                 .draw()
                 .map_err(err)?;
             for (i, s) in self.series.iter().enumerate() {
-                let color = s
-                    .color
-                    .map(|c| RGBColor(c[0], c[1], c[2]))
-                    .unwrap_or(PALETTE[i % PALETTE.len()]);
-                let style = if s.emphasis {
-                    color.stroke_width(2)
-                } else {
-                    color.stroke_width(1)
-                };
-                let pts: Vec<(f64, f64)> = s
-                    .points
-                    .iter()
-                    .copied()
-                    .filter(|p| p.0.is_finite() && p.1.is_finite())
-                    .collect();
+                let color = s.color.map(|c| RGBColor(c[0], c[1], c[2])).unwrap_or(PALETTE[i % PALETTE.len()]);
+                let style = if s.emphasis { color.stroke_width(2) } else { color.stroke_width(1) };
+                let pts: Vec<(f64, f64)> =
+                    s.points.iter().copied().filter(|p| p.0.is_finite() && p.1.is_finite()).collect();
                 chart
                     .draw_series(LineSeries::new(pts, style))
                     .map_err(err)?
                     .label(&s.name)
-                    .legend(move |(x, y)| {
-                        PathElement::new(vec![(x, y), (x + 24, y)], color.stroke_width(3))
-                    });
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], color.stroke_width(3)));
             }
             if self.series.len() > 1 || self.series.iter().any(|s| !s.name.is_empty()) {
                 chart
@@ -254,10 +225,7 @@ impl ImagePlot<'_> {
                 .margin(16)
                 .x_label_area_size(48)
                 .y_label_area_size(72)
-                .build_cartesian_2d(
-                    self.x_range.0..self.x_range.1,
-                    self.y_range.0..self.y_range.1,
-                )
+                .build_cartesian_2d(self.x_range.0..self.x_range.1, self.y_range.0..self.y_range.1)
                 .map_err(err)?;
             chart
                 .configure_mesh()
@@ -279,36 +247,22 @@ impl ImagePlot<'_> {
                 let sy = ((py as i64 * ih as i64) / ph as i64) as u32;
                 for px in 0..pw {
                     let sx = ((px as i64 * iw as i64) / pw as i64) as u32;
-                    let c = self.pixels.get(
-                        sx.min(self.pixels.width - 1),
-                        sy.min(self.pixels.height - 1),
-                    );
-                    root.draw_pixel((px0 + px, py0 + py), &RGBColor(c[0], c[1], c[2]))
-                        .map_err(err)?;
+                    let c = self.pixels.get(sx.min(self.pixels.width - 1), sy.min(self.pixels.height - 1));
+                    root.draw_pixel((px0 + px, py0 + py), &RGBColor(c[0], c[1], c[2])).map_err(err)?;
                 }
             }
             for (i, s) in self.overlays.iter().enumerate() {
-                let color = s.color.map(|c| RGBColor(c[0], c[1], c[2])).unwrap_or(
-                    [
-                        RGBColor(255, 255, 255),
-                        RGBColor(0, 0, 0),
-                        PALETTE[1],
-                        PALETTE[2],
-                    ][i % 4],
-                );
-                let pts: Vec<(f64, f64)> = s
-                    .points
-                    .iter()
-                    .copied()
-                    .filter(|p| p.0.is_finite() && p.1.is_finite())
-                    .collect();
+                let color = s
+                    .color
+                    .map(|c| RGBColor(c[0], c[1], c[2]))
+                    .unwrap_or([RGBColor(255, 255, 255), RGBColor(0, 0, 0), PALETTE[1], PALETTE[2]][i % 4]);
+                let pts: Vec<(f64, f64)> =
+                    s.points.iter().copied().filter(|p| p.0.is_finite() && p.1.is_finite()).collect();
                 chart
                     .draw_series(LineSeries::new(pts, color.stroke_width(2)))
                     .map_err(err)?
                     .label(&s.name)
-                    .legend(move |(x, y)| {
-                        PathElement::new(vec![(x, y), (x + 24, y)], color.stroke_width(3))
-                    });
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], color.stroke_width(3)));
             }
             if !self.overlays.is_empty() {
                 chart
@@ -364,11 +318,7 @@ pub fn magma(t: f64) -> [u8; 3] {
         [0.9945, 0.6240, 0.4276],
         [0.9870, 0.9914, 0.7495],
     ];
-    let t = if t.is_finite() {
-        t.clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
+    let t = if t.is_finite() { t.clamp(0.0, 1.0) } else { 0.0 };
     let x = t * (STOPS.len() - 1) as f64;
     let i = (x.floor() as usize).min(STOPS.len() - 2);
     let f = x - i as f64;
@@ -384,19 +334,14 @@ mod tests {
     fn line_plot_draws_its_curve() {
         let xs: Vec<f64> = (0..100).map(|i| i as f64).collect();
         let ys: Vec<f64> = xs.iter().map(|x| x * x).collect();
-        let img = LinePlot::new("t", "x (nm)", "y")
-            .series(Series::new("square", &xs, &ys))
-            .render()
-            .unwrap();
+        let img = LinePlot::new("t", "x (nm)", "y").series(Series::new("square", &xs, &ys)).render().unwrap();
         // The first palette colour must appear somewhere: the curve was drawn.
         let c = PALETTE[0];
         let found = img.data.chunks(3).any(|p| p == [c.0, c.1, c.2]);
         assert!(found);
         // And text was rendered (dark pixels near the top, where the title is).
-        let dark = (0..img.width)
-            .flat_map(|x| (0..40).map(move |y| (x, y)))
-            .filter(|&(x, y)| img.get(x, y)[0] < 100)
-            .count();
+        let dark =
+            (0..img.width).flat_map(|x| (0..40).map(move |y| (x, y))).filter(|&(x, y)| img.get(x, y)[0] < 100).count();
         assert!(dark > 10);
     }
 }

@@ -101,15 +101,9 @@ fn xyz(a: XyzArgs) -> Result<()> {
         );
     }
     let (xyz, white) = if a.emissive {
-        (
-            emission_to_xyz(&spectrum, observer),
-            white_point(Illuminant::D65, observer),
-        )
+        (emission_to_xyz(&spectrum, observer), white_point(Illuminant::D65, observer))
     } else {
-        (
-            reflectance_to_xyz(&spectrum, illuminant, observer),
-            white_point(illuminant, observer),
-        )
+        (reflectance_to_xyz(&spectrum, illuminant, observer), white_point(illuminant, observer))
     };
     let report = colour_report(xyz, white);
     if a.json {
@@ -118,19 +112,10 @@ fn xyz(a: XyzArgs) -> Result<()> {
     let f = |k: &str| -> String {
         report[k]
             .as_array()
-            .map(|v| {
-                v.iter()
-                    .map(|x| format!("{:.6}", x.as_f64().unwrap_or(f64::NAN)))
-                    .collect::<Vec<_>>()
-                    .join("  ")
-            })
+            .map(|v| v.iter().map(|x| format!("{:.6}", x.as_f64().unwrap_or(f64::NAN))).collect::<Vec<_>>().join("  "))
             .unwrap_or_default()
     };
-    println!(
-        "spectrum     {}  ({lo}–{hi} nm, {} samples)",
-        a.spectrum.display(),
-        spectrum.values().len()
-    );
+    println!("spectrum     {}  ({lo}–{hi} nm, {} samples)", a.spectrum.display(), spectrum.values().len());
     println!(
         "conditions   illuminant {illuminant}, CIE {observer} observer{}",
         if a.emissive { ", emissive" } else { "" }
@@ -153,10 +138,7 @@ fn parse_lab(s: &str, which: &str) -> Result<Lab> {
     for (i, p) in parts.iter().enumerate() {
         v[i] = match p.parse::<f64>() {
             Ok(x) if x.is_finite() => x,
-            _ => bail!(
-                "{which} colour '{s}': component {} ('{p}') is not a finite number",
-                i + 1
-            ),
+            _ => bail!("{which} colour '{s}': component {} ('{p}') is not a finite number", i + 1),
         };
     }
     Ok(Lab::new(v[0], v[1], v[2]))
@@ -209,10 +191,7 @@ pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
             let y = yr.1 - (py as f64 + 0.5) / h as f64 * (yr.1 - yr.0);
             let c = if inside(&locus, (x, y)) {
                 // Brightest displayable colour of this chromaticity.
-                let rgb = iridis_color::Xyy { x, y, big_y: 1.0 }
-                    .to_xyz()
-                    .to_linear_srgb()
-                    .map(|v| v.max(0.0));
+                let rgb = iridis_color::Xyy { x, y, big_y: 1.0 }.to_xyz().to_linear_srgb().map(|v| v.max(0.0));
                 let m = rgb.iter().cloned().fold(1e-12, f64::max);
                 rgb.map(|v| (iridis_color::convert::srgb_encode(v / m) * 255.0).round() as u8)
             } else {
@@ -223,18 +202,13 @@ pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
     }
     let mut closed = locus.clone();
     closed.push(locus[0]);
-    let srgb: Vec<(f64, f64)> = [
-        [1.0, 0.0, 0.0],
-        [0.0, 1.0, 0.0],
-        [0.0, 0.0, 1.0],
-        [1.0, 0.0, 0.0],
-    ]
-    .iter()
-    .map(|&c| {
-        let v = Xyz::from_linear_srgb(c).to_xyy();
-        (v.x, v.y)
-    })
-    .collect();
+    let srgb: Vec<(f64, f64)> = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]]
+        .iter()
+        .map(|&c| {
+            let v = Xyz::from_linear_srgb(c).to_xyy();
+            (v.x, v.y)
+        })
+        .collect();
     let mut overlays = vec![
         Series::new("spectral locus 360–700 nm", &[], &[]).with_color([60, 60, 60]),
         Series::new("sRGB gamut", &[], &[]).with_color([0, 0, 0]),
@@ -278,20 +252,9 @@ pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
         size: (760, 820),
     }
     .render()?;
-    crate::output::write_png_rgb8(
-        &g.path("cie1931_locus.png"),
-        plot.width,
-        plot.height,
-        &plot.data,
-    )?;
-    g.image(
-        "cie1931_locus.png",
-        "CIE 1931 spectral locus, sRGB gamut and illuminant white points",
-    );
-    g.table(
-        &["illuminant", "XYZ (Y = 1)", "xy", "sRGB (no adaptation)"],
-        &rows,
-    );
+    crate::output::write_png_rgb8(&g.path("cie1931_locus.png"), plot.width, plot.height, &plot.data)?;
+    g.image("cie1931_locus.png", "CIE 1931 spectral locus, sRGB gamut and illuminant white points");
+    g.table(&["illuminant", "XYZ (Y = 1)", "xy", "sRGB (no adaptation)"], &rows);
     Ok(())
 }
 

@@ -28,10 +28,7 @@ pub struct Gallery {
 impl Gallery {
     pub fn new(dir: &Path) -> Result<Self> {
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
-        Ok(Self {
-            dir: dir.to_path_buf(),
-            html: String::new(),
-        })
+        Ok(Self { dir: dir.to_path_buf(), html: String::new() })
     }
 
     /// Path of a file inside the gallery.
@@ -40,12 +37,7 @@ impl Gallery {
     }
 
     pub fn section(&mut self, title: &str, text: &str) {
-        let _ = write!(
-            self.html,
-            "<h2>{}</h2>\n<p>{}</p>\n",
-            escape(title),
-            escape(text)
-        );
+        let _ = write!(self.html, "<h2>{}</h2>\n<p>{}</p>\n", escape(title), escape(text));
     }
 
     /// Adds an image already written to `file` with a caption.
@@ -104,10 +96,7 @@ data only. Every image below can be regenerated with the command named in its ca
 }
 
 fn escape(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
+    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
 }
 
 pub fn run(args: Args) -> Result<()> {
