@@ -1,6 +1,8 @@
 //! clap value parsers for quantities with units; they delegate to `iridis_color::units`, the one place
 //! where units are parsed.
 
+#![allow(dead_code)] // not every command uses every parser
+
 use iridis_color::units;
 
 /// A length in nm (`65nm`, `0.43um`, `65µm`).

@@ -12,7 +12,7 @@ use clap::{Parser, Subcommand};
 #[command(name = "iridis", version, about, long_about = None, after_help = "\
 Examples:
   iridis demo --out gallery              build the gallery of built-in examples, open gallery/index.html
-  iridis color xyz data/examples/green_leaf.csv --json
+  iridis color xyz data/examples/colorchecker_green.csv --json
   iridis color delta-e 50,2.6772,-79.7751 50,0,-82.7485")]
 struct Cli {
     #[command(subcommand)]

@@ -70,7 +70,7 @@ impl Spectrum {
                 continue;
             }
             let fields: Vec<&str> =
-                line.split(|c: char| c == ',' || c == ';' || c == '\t' || c == ' ').filter(|s| !s.is_empty()).collect();
+                line.split([',', ';', '\t', ' ']).filter(|s| !s.is_empty()).collect();
             let parse = |s: &str| s.trim().parse::<f64>();
             let parsed: Vec<_> = fields.iter().map(|f| parse(f)).collect();
             if parsed.iter().any(|p| p.is_err()) {

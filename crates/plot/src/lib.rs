@@ -193,6 +193,16 @@ fn min_max(values: impl Iterator<Item = f64>, margin: f64) -> (f64, f64) {
     (lo - pad, hi + pad)
 }
 
+/// A colour bar beside an [`ImagePlot`]: its label (with units), the values at its ends, and the colour map
+/// from `t ∈ [0, 1]` to RGB.
+#[derive(Debug, Clone)]
+pub struct ColorBar {
+    pub label: String,
+    pub min: f64,
+    pub max: f64,
+    pub map: fn(f64) -> [u8; 3],
+}
+
 /// A picture (e.g. a colour chart or a BRDF map) framed by axes with units. `pixels` is drawn to fill the
 /// plotting area spanning `x_range × y_range`; row 0 of `pixels` is the top (largest y).
 #[derive(Debug, Clone)]
@@ -206,7 +216,7 @@ pub struct ImagePlot<'a> {
     /// Curves drawn over the picture, in data coordinates.
     pub overlays: Vec<Series>,
     /// A colour bar: (label, min, max, colour map) drawn on the right.
-    pub colorbar: Option<(String, f64, f64, fn(f64) -> [u8; 3])>,
+    pub colorbar: Option<ColorBar>,
     pub size: (u32, u32),
 }
 
@@ -273,7 +283,7 @@ impl ImagePlot<'_> {
                     .draw()
                     .map_err(err)?;
             }
-            if let Some((label, lo, hi, cmap)) = &self.colorbar {
+            if let Some(ColorBar { label, min: lo, max: hi, map: cmap }) = &self.colorbar {
                 let mut cb = ChartBuilder::on(&bar)
                     .margin_top(50)
                     .margin_bottom(64)

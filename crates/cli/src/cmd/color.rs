@@ -20,8 +20,8 @@ transmittance) lit by the illuminant and Y = 1 is a perfect white reflector; wit
 a light source and its colour is reported at Y = 1. CIELAB is relative to the illuminant's white.
 
 Examples:
-  iridis color xyz data/examples/green_leaf.csv
-  iridis color xyz data/examples/green_leaf.csv --illuminant d50 --observer 1964 --json
+  iridis color xyz data/examples/colorchecker_green.csv
+  iridis color xyz data/examples/colorchecker_green.csv --illuminant d50 --observer 1964 --json
   iridis color xyz data/cie/d65.csv --emissive")]
     Xyz(XyzArgs),
     /// Colour difference between two CIELAB colours.

@@ -43,9 +43,9 @@ impl Gallery {
     /// Adds an image already written to `file` with a caption.
     pub fn image(&mut self, file: &str, caption: &str) {
         println!("  wrote {}", self.path(file).display());
-        let _ = write!(
+        let _ = writeln!(
             self.html,
-            "<figure><a href=\"{f}\"><img src=\"{f}\" alt=\"{c}\"></a><figcaption>{c}</figcaption></figure>\n",
+            "<figure><a href=\"{f}\"><img src=\"{f}\" alt=\"{c}\"></a><figcaption>{c}</figcaption></figure>",
             f = escape(file),
             c = escape(caption)
         );

@@ -1,0 +1,74 @@
+//! The `iridis color` commands as a user runs them: output keys, values, and errors on bad input.
+
+use std::process::{Command, Output};
+
+fn iridis(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_iridis"))
+        .args(args)
+        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
+        .output()
+        .expect("cannot run iridis")
+}
+
+/// Asserts a clean failure: exit code 2, a single `error:` line that contains every `needle`, no panic.
+fn assert_fails(args: &[&str], needles: &[&str]) {
+    let out = iridis(args);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+    assert!(!stderr.contains("panicked"), "{args:?} panicked: {stderr}");
+    let errors: Vec<&str> = stderr.lines().filter(|l| l.starts_with("error:")).collect();
+    assert_eq!(errors.len(), 1, "{args:?}: {stderr}");
+    for n in needles {
+        assert!(errors[0].contains(n), "{args:?}: '{}' lacks '{n}'", errors[0]);
+    }
+}
+
+fn temp_csv(name: &str, text: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("iridis-cli-test-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+#[test]
+fn xyz_json_has_the_documented_keys_and_a_white_reflector_is_white() {
+    let p = temp_csv("white.csv", "wavelength_nm,value\n300,1\n900,1\n");
+    let out = iridis(&["color", "xyz", p.to_str().unwrap(), "--json"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    for key in ["XYZ", "xyY", "Lab", "linear_srgb", "srgb", "hex"] {
+        assert!(!v[key].is_null(), "missing {key}");
+    }
+    assert!((v["XYZ"][1].as_f64().unwrap() - 1.0).abs() < 1e-12);
+    assert!((v["Lab"][0].as_f64().unwrap() - 100.0).abs() < 1e-9);
+    // D65 white (CIE 1931, Y = 1) by colour-science: x, y = 0.31271, 0.32902.
+    assert!((v["xyY"][0].as_f64().unwrap() - 0.31271).abs() < 5e-5);
+    assert_eq!(v["hex"], "#ffffff");
+}
+
+#[test]
+fn delta_e_of_sharma_pair_1() {
+    let out = iridis(&["color", "delta-e", "50,2.6772,-79.7751", "50,0,-82.7485", "--json"]);
+    assert!(out.status.success());
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert!((v["delta_e"].as_f64().unwrap() - 2.0425).abs() < 1e-4);
+    let out = iridis(&["color", "delta-e", "-5,3,4", "-5,0,0", "--formula", "1976"]);
+    assert_eq!(String::from_utf8_lossy(&out.stdout).trim(), "5.0000");
+}
+
+#[test]
+fn bad_input_gives_one_clear_line() {
+    assert_fails(&["color", "xyz", "no/such/file.csv"], &["no/such/file.csv", "cannot read"]);
+    let p = temp_csv("bad.csv", "wavelength,value\n400,0.1\n410,oops\n");
+    assert_fails(&["color", "xyz", p.to_str().unwrap()], &["bad.csv:3", "oops"]);
+    let p = temp_csv("nan.csv", "400,0.1\n410,NaN\n");
+    assert_fails(&["color", "xyz", p.to_str().unwrap()], &["nan.csv:2", "NaN"]);
+    let p = temp_csv("order.csv", "400,0.1\n390,0.2\n");
+    assert_fails(&["color", "xyz", p.to_str().unwrap()], &["order.csv:2", "increase"]);
+    let p = temp_csv("ok.csv", "400,0.1\n700,0.2\n");
+    assert_fails(&["color", "xyz", p.to_str().unwrap(), "--illuminant", "f11"], &["f11", "d65"]);
+    assert_fails(&["color", "xyz", p.to_str().unwrap(), "--observer", "1999"], &["1999", "1931"]);
+    assert_fails(&["color", "delta-e", "50,1", "50,0,0"], &["50,1", "L,a,b"]);
+    assert_fails(&["color", "delta-e", "50,x,1", "50,0,0"], &["'x'"]);
+}
