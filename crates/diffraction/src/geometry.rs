@@ -1,0 +1,156 @@
+//! Directions and the shading factors of the paper (eq. 2–4): Fresnel, geometry, shadowing, normalisation.
+//!
+//! Directions `ω_i` (to the light) and `ω_r` (to the viewer) point away from the surface; `z` is the normal.
+
+use num_complex::Complex64;
+
+/// A unit vector.
+pub type Vec3 = [f64; 3];
+
+/// Direction from polar angle θ and azimuth φ (radians).
+pub fn direction(theta: f64, phi: f64) -> Vec3 {
+    [theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos()]
+}
+
+pub fn dot(a: Vec3, b: Vec3) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// `(u, v, w) = −ω_i − ω_r` (paper, after eq. 2).
+pub fn uvw(wi: Vec3, wr: Vec3) -> Vec3 {
+    [-wi[0] - wr[0], -wi[1] - wr[1], -wi[2] - wr[2]]
+}
+
+/// Where the Fresnel factor comes from.
+pub trait FresnelSource: Send + Sync + std::fmt::Debug {
+    /// Unpolarised reflectance at wavelength `λ` (nm) for the cosine of the angle of incidence.
+    fn reflectance(&self, wavelength_nm: f64, cos_theta: f64) -> f64;
+    /// Whether the value depends on λ (then it must stay inside the spectral integral).
+    fn depends_on_wavelength(&self) -> bool;
+    fn describe(&self) -> String;
+}
+
+/// The built-in Fresnel models.
+#[derive(Debug, Clone)]
+pub enum Fresnel {
+    /// Schlick's approximation `F_0 + (1 − F_0)(1 − cos θ)^5`, `F_0 = ((n − 1)/(n + 1))²` (thesis App. D).
+    Schlick { n: f64 },
+    /// Exact unpolarised Fresnel reflectance of a dielectric (or any complex index, e.g. gold) in air.
+    Index { n: Complex64 },
+}
+
+impl Default for Fresnel {
+    /// The paper's default: Schlick with n = 1.5 (`F_0 = 0.04`).
+    fn default() -> Self {
+        Fresnel::Schlick { n: 1.5 }
+    }
+}
+
+/// Unpolarised Fresnel reflectance from a medium of index 1 into `n̂` (complex cosines from Snell's law).
+pub fn fresnel_unpolarised(n: Complex64, cos_i: f64) -> f64 {
+    let cos_i = cos_i.clamp(0.0, 1.0);
+    let sin2 = 1.0 - cos_i * cos_i;
+    let cos_t = (Complex64::new(1.0, 0.0) - sin2 / (n * n)).sqrt();
+    let ci = Complex64::new(cos_i, 0.0);
+    let rs = (ci - n * cos_t) / (ci + n * cos_t);
+    let rp = (n * ci - cos_t) / (n * ci + cos_t);
+    0.5 * (rs.norm_sqr() + rp.norm_sqr())
+}
+
+impl FresnelSource for Fresnel {
+    fn reflectance(&self, _wavelength_nm: f64, cos_theta: f64) -> f64 {
+        match *self {
+            Fresnel::Schlick { n } => {
+                let f0 = ((n - 1.0) / (n + 1.0)).powi(2);
+                f0 + (1.0 - f0) * (1.0 - cos_theta.clamp(0.0, 1.0)).powi(5)
+            }
+            Fresnel::Index { n } => fresnel_unpolarised(n, cos_theta),
+        }
+    }
+    fn depends_on_wavelength(&self) -> bool {
+        false
+    }
+    fn describe(&self) -> String {
+        match self {
+            Fresnel::Schlick { n } => format!("Schlick, n = {n}"),
+            Fresnel::Index { n } => format!("Fresnel, n = {} + {}i", n.re, n.im),
+        }
+    }
+}
+
+/// The shading factors around |A|²: Fresnel, geometry, optional Cook–Torrance shadowing.
+#[derive(Debug, Clone)]
+pub struct Shading {
+    pub fresnel: std::sync::Arc<dyn FresnelSource>,
+    /// Multiply by the Cook–Torrance V-cavity shadowing–masking term.
+    pub shadowing: bool,
+}
+
+impl Default for Shading {
+    fn default() -> Self {
+        Self { fresnel: std::sync::Arc::new(Fresnel::default()), shadowing: true }
+    }
+}
+
+impl Shading {
+    /// The factor `C` of the relative reflectance `ρ_λ = C |A|²` (paper eq. 4 with `G` of eq. 2, as in
+    /// PHYSICS.md): `C = F² (1 + ω_i·ω_r)² / (F_0² (cos θ_i + cos θ_r)² cos θ_r)`, times the shadowing term.
+    /// `F` is taken at the half-vector angle, `F_0` at normal incidence, both at wavelength λ.
+    /// At normal incidence and mirror viewing `C = 1`. Zero below the horizon or when `w = 0`.
+    pub fn factor(&self, wavelength_nm: f64, wi: Vec3, wr: Vec3) -> f64 {
+        let (ci, cr) = (wi[2], wr[2]);
+        if ci <= 0.0 || cr <= 0.0 {
+            return 0.0;
+        }
+        let w = ci + cr;
+        let mut h = [wi[0] + wr[0], wi[1] + wr[1], wi[2] + wr[2]];
+        let hl = dot(h, h).sqrt();
+        if hl < 1e-300 {
+            return 0.0;
+        }
+        h = [h[0] / hl, h[1] / hl, h[2] / hl];
+        let f = self.fresnel.reflectance(wavelength_nm, dot(wi, h));
+        let f0 = self.fresnel.reflectance(wavelength_nm, 1.0);
+        let g = (1.0 + dot(wi, wr)).powi(2);
+        let mut c = (f * f) * g / (f0 * f0 * w * w * cr);
+        if self.shadowing {
+            c *= cook_torrance(wi, wr, h);
+        }
+        c
+    }
+}
+
+/// Cook–Torrance V-cavity shadowing–masking: `min(1, 2(n·h)(n·ω_r)/(ω_r·h), 2(n·h)(n·ω_i)/(ω_r·h))`.
+pub fn cook_torrance(wi: Vec3, wr: Vec3, h: Vec3) -> f64 {
+    let (nh, vh) = (h[2], dot(wr, h));
+    if vh <= 0.0 {
+        return 0.0;
+    }
+    (2.0 * nh * wr[2] / vh).min(2.0 * nh * wi[2] / vh).min(1.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mirror_at_normal_incidence_has_unit_factor() {
+        let n = [0.0, 0.0, 1.0];
+        for fresnel in [Fresnel::Schlick { n: 1.5 }, Fresnel::Index { n: Complex64::new(0.2, 3.4) }] {
+            let s = Shading { fresnel: std::sync::Arc::new(fresnel), shadowing: true };
+            assert!((s.factor(500.0, n, n) - 1.0).abs() < 1e-15);
+        }
+    }
+
+    #[test]
+    fn exact_fresnel_matches_textbook_values() {
+        // Glass n = 1.5 at normal incidence: ((n-1)/(n+1))² = 0.04; Brewster's angle: Rp = 0 so R = Rs/2.
+        assert!((fresnel_unpolarised(Complex64::new(1.5, 0.0), 1.0) - 0.04).abs() < 1e-15);
+        let tb = 1.5f64.atan();
+        let (ci, ct) = (tb.cos(), (1.0 - (tb.sin() / 1.5).powi(2)).sqrt());
+        let rs = ((ci - 1.5 * ct) / (ci + 1.5 * ct)).powi(2);
+        assert!((fresnel_unpolarised(Complex64::new(1.5, 0.0), ci) - rs / 2.0).abs() < 1e-14);
+        // Grazing incidence reflects everything.
+        assert!((fresnel_unpolarised(Complex64::new(1.5, 0.0), 0.0) - 1.0).abs() < 1e-12);
+    }
+}

@@ -1,0 +1,85 @@
+//! The height field as the diffraction model sees it: heights in nm on a regular grid, stored with `y` growing
+//! with the row index (so that DFT frequencies have the sign of `docs/PHYSICS.md`), mean height removed.
+
+use crate::DiffractionError;
+
+/// A height-field patch ready for the diffraction model.
+#[derive(Debug, Clone)]
+pub struct Patch {
+    /// Samples along y (rows) and x (columns).
+    pub rows: usize,
+    pub cols: usize,
+    /// Pixel sizes (nm).
+    pub dx: f64,
+    pub dy: f64,
+    /// Heights (nm), mean removed, index `j * cols + i` at `x = i·dx`, `y = j·dy` (y up).
+    pub heights: Vec<f64>,
+    /// `max |h|` after mean removal (nm); drives the number of Taylor terms.
+    pub max_abs_height: f64,
+}
+
+impl Patch {
+    /// Builds a patch from heights stored as in the rest of iridis: row-major, row 0 at the top of the image
+    /// (`y = (rows − 1 − row)·dy`). The mean height is subtracted: a constant phase leaves |A|² unchanged and a
+    /// smaller `|h|max` needs fewer Taylor terms.
+    pub fn from_row_major(
+        rows: usize,
+        cols: usize,
+        dx: f64,
+        dy: f64,
+        heights: &[f64],
+    ) -> Result<Self, DiffractionError> {
+        if rows < 2 || cols < 2 {
+            return Err(DiffractionError::Invalid(format!("a {rows}×{cols} height field is too small (need ≥ 2×2)")));
+        }
+        if heights.len() != rows * cols {
+            return Err(DiffractionError::Invalid(format!("{} heights for a {rows}×{cols} grid", heights.len())));
+        }
+        if !(dx.is_finite() && dy.is_finite() && dx > 0.0 && dy > 0.0) {
+            return Err(DiffractionError::Invalid(format!("pixel size {dx} × {dy} nm must be positive")));
+        }
+        if let Some(bad) = heights.iter().position(|h| !h.is_finite()) {
+            return Err(DiffractionError::Invalid(format!("height {bad} is not finite")));
+        }
+        let mean = heights.iter().sum::<f64>() / heights.len() as f64;
+        let mut flipped = Vec::with_capacity(heights.len());
+        for j in 0..rows {
+            let row = rows - 1 - j;
+            flipped.extend(heights[row * cols..(row + 1) * cols].iter().map(|h| h - mean));
+        }
+        let max_abs_height = flipped.iter().fold(0.0f64, |m, h| m.max(h.abs()));
+        Ok(Self { rows, cols, dx, dy, heights: flipped, max_abs_height })
+    }
+
+    /// Physical size (nm) along x and y.
+    pub fn extent(&self) -> (f64, f64) {
+        (self.cols as f64 * self.dx, self.rows as f64 * self.dy)
+    }
+
+    /// Warnings a user should see before trusting results (PHYSICS.md): pixels too coarse for the visible band
+    /// at grazing geometry, or a patch smaller than the coherence area (treated as periodic).
+    pub fn warnings(&self, coherence_nm: f64) -> Vec<String> {
+        let mut w = Vec::new();
+        let d = self.dx.max(self.dy);
+        if d > 95.0 {
+            w.push(format!(
+                "pixel size {d:.1} nm cannot represent the whole visible band at grazing geometry: frequencies above \
+                 1/(2·{d:.1} nm) need |u|/λ ≤ {:.5}/nm, i.e. |u| ≤ {:.2} at 380 nm (|u| reaches 2); resample to ≤ 95 nm",
+                0.5 / d,
+                380.0 * 0.5 / d
+            ));
+        }
+        let (ex, ey) = self.extent();
+        if ex.min(ey) < coherence_nm {
+            w.push(format!(
+                "patch {:.1} × {:.1} µm is smaller than the coherence length {:.1} µm: the DFT treats it as periodic, so \
+                 spectra become spikes {:.3}/µm apart (narrower than the window); tile a larger patch for smooth results",
+                ex / 1000.0,
+                ey / 1000.0,
+                coherence_nm / 1000.0,
+                1000.0 / ex.min(ey)
+            ));
+        }
+        w
+    }
+}

@@ -1,0 +1,398 @@
+//! Lookup tables `I_p(u, v)` and the lookup evaluator (paper eq. 10–12 and sec. 5).
+//!
+//! `X = C(ω_i, ω_r) Σ_{p=0}^{2N} w^p I_p(u, v)` with
+//! `I_p(u,v) = Σ_λ w_x(λ) Σ_{n+m=p} k^p/(n! m!) Re(F_n F_m*)` at `f = (−u/λ, −v/λ)` (PHYSICS.md's sign),
+//! tabulated on the non-linear grid `u_i = 2·sign(s_i)|s_i|^a`, `s_i` uniform in [−1, 1] (sec. 5, a = 5).
+//!
+//! File format (`.npz`, numpy-readable, stored uncompressed like `np.savez`): `I` (float64, shape
+//! `[res_v, res_u, 3, 2N+1]`: v index, u index, channel X/Y/Z, power p), `uv` (float64, the grid values of
+//! both axes, increasing), `wavelengths_nm`, and `metadata_json` (uint8, UTF-8 JSON; [`TableMeta`]).
+
+use std::io::{Read, Seek, Write};
+use std::path::Path;
+use std::sync::Arc;
+
+use iridis_color::{Illuminant, Observer, Xyz};
+use npyz::WriterBuilder;
+use num_complex::Complex64;
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+use crate::evaluator::Evaluator;
+use crate::geometry::{uvw, Shading, Vec3};
+use crate::spectral::SpectralSetup;
+use crate::taylor::TaylorTerms;
+use crate::DiffractionError;
+
+/// The table format this build reads and writes.
+pub const FORMAT: &str = "iridis-lookup-table";
+pub const FORMAT_VERSION: u32 = 1;
+
+/// Parameters of a table's u-v grid.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TableParams {
+    /// Samples per axis (the paper: up to 501).
+    pub uv_resolution: usize,
+    /// Exponent `a` of the non-linear grid; 1 is linear (the paper: 5).
+    pub uv_power: f64,
+}
+
+impl Default for TableParams {
+    fn default() -> Self {
+        Self { uv_resolution: 501, uv_power: 5.0 }
+    }
+}
+
+/// Everything needed to interpret (and reproduce) a table.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct TableMeta {
+    pub format: String,
+    pub version: u32,
+    /// Where the height field came from (a path or `builtin:NAME`).
+    pub surface: String,
+    pub rows: usize,
+    pub cols: usize,
+    pub dx_nm: f64,
+    pub dy_nm: f64,
+    pub max_abs_height_nm: f64,
+    /// Highest Taylor term `N`; the table holds `2N + 1` powers.
+    pub taylor_terms: usize,
+    pub coherence_nm: f64,
+    pub uv_resolution: usize,
+    pub uv_power: f64,
+    pub illuminant: String,
+    pub observer: String,
+    pub wavelength_step_nm: f64,
+    pub wavelength_min_nm: f64,
+    pub wavelength_max_nm: f64,
+    /// Human-readable layout of `I`.
+    pub layout: String,
+}
+
+/// A lookup table in memory.
+#[derive(Debug, Clone)]
+pub struct LookupTable {
+    pub meta: TableMeta,
+    /// Grid values along u (and v): increasing, length `uv_resolution`.
+    pub uv: Vec<f64>,
+    pub wavelengths_nm: Vec<f64>,
+    /// `I[((iv · res + iu) · 3 + c) · (2N+1) + p]`.
+    pub data: Vec<f64>,
+}
+
+/// Grid value of index `i` of `res` on the non-linear grid.
+pub fn grid_value(i: usize, res: usize, power: f64) -> f64 {
+    let s = -1.0 + 2.0 * i as f64 / (res - 1) as f64;
+    2.0 * s.signum() * s.abs().powf(power)
+}
+
+/// Continuous index of value `u ∈ [−2, 2]` on the grid (the inverse map the evaluator uses).
+pub fn grid_index(u: f64, res: usize, power: f64) -> f64 {
+    let s = u.signum() * (u.abs() / 2.0).min(1.0).powf(1.0 / power);
+    (s + 1.0) / 2.0 * (res - 1) as f64
+}
+
+impl LookupTable {
+    /// Computes `I_p` for every grid point, all cores, `f64` throughout (the Taylor terms grow to
+    /// ~`x^x/x!` before they shrink). `progress(rows_done)` is called as rows of the grid finish.
+    pub fn build(
+        terms: &TaylorTerms,
+        spectral: &SpectralSetup,
+        params: TableParams,
+        surface: &str,
+        progress: &(dyn Fn(usize) + Sync),
+    ) -> Result<Self, DiffractionError> {
+        let res = params.uv_resolution;
+        if !(3..=4001).contains(&res) {
+            return Err(DiffractionError::Invalid(format!("u-v resolution {res} must be between 3 and 4001")));
+        }
+        if !(params.uv_power.is_finite() && params.uv_power >= 1.0 && params.uv_power <= 20.0) {
+            return Err(DiffractionError::Invalid(format!("u-v power {} must be between 1 and 20", params.uv_power)));
+        }
+        let n = terms.n_max;
+        let np = 2 * n + 1;
+        let uv: Vec<f64> = (0..res).map(|i| grid_value(i, res, params.uv_power)).collect();
+        let lambdas = spectral.wavelengths().to_vec();
+        let weights = spectral.weights.weights().to_vec();
+        // k^n / n! per wavelength, for n = 0..=N.
+        let scale: Vec<Vec<f64>> = lambdas
+            .iter()
+            .map(|&l| {
+                let k = std::f64::consts::TAU / l;
+                let mut s = vec![1.0; n + 1];
+                for m in 1..=n {
+                    s[m] = s[m - 1] * k / m as f64;
+                }
+                s
+            })
+            .collect();
+        let done = std::sync::atomic::AtomicUsize::new(0);
+        let mut data = vec![0.0; res * res * 3 * np];
+        data.par_chunks_mut(res * 3 * np).enumerate().for_each(|(iv, row)| {
+            let v = uv[iv];
+            let mut f = vec![Complex64::new(0.0, 0.0); n + 1];
+            let mut d = vec![0.0; np];
+            for (iu, &u) in uv.iter().enumerate() {
+                let cell = &mut row[iu * 3 * np..(iu + 1) * 3 * np];
+                for (li, &l) in lambdas.iter().enumerate() {
+                    terms.windowed(-u / l, -v / l, &mut f);
+                    if f.iter().all(|z| z.re == 0.0 && z.im == 0.0) {
+                        continue;
+                    }
+                    for (z, s) in f.iter_mut().zip(&scale[li]) {
+                        *z *= s;
+                    }
+                    // d_p = Σ_{n+m=p} Re(G_n conj G_m), G_n = k^n/n! F_n (eq. 11–12).
+                    for (p, dp) in d.iter_mut().enumerate() {
+                        let lo = p.saturating_sub(n);
+                        let hi = p.min(n);
+                        let mut acc = 0.0;
+                        for a in lo..=hi {
+                            let (x, y) = (f[a], f[p - a]);
+                            acc += x.re * y.re + x.im * y.im;
+                        }
+                        *dp = acc;
+                    }
+                    let wt = weights[li];
+                    for c in 0..3 {
+                        let out = &mut cell[c * np..(c + 1) * np];
+                        for (o, dp) in out.iter_mut().zip(&d) {
+                            *o += wt[c] * dp;
+                        }
+                    }
+                }
+            }
+            progress(done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1);
+        });
+        let meta = TableMeta {
+            format: FORMAT.into(),
+            version: FORMAT_VERSION,
+            surface: surface.into(),
+            rows: terms.rows,
+            cols: terms.cols,
+            dx_nm: terms.dx,
+            dy_nm: terms.dy,
+            max_abs_height_nm: terms.max_abs_height,
+            taylor_terms: n,
+            coherence_nm: terms.coherence_nm,
+            uv_resolution: res,
+            uv_power: params.uv_power,
+            illuminant: spectral.illuminant.name().into(),
+            observer: spectral.observer.name().into(),
+            wavelength_step_nm: spectral.step_nm,
+            wavelength_min_nm: lambdas[0],
+            wavelength_max_nm: lambdas[lambdas.len() - 1],
+            layout: "I[v_index, u_index, channel (X, Y, Z), power p = 0..2N]; X = C * sum_p w^p I_p".into(),
+        };
+        Ok(Self { meta, uv, wavelengths_nm: lambdas, data })
+    }
+
+    pub fn powers(&self) -> usize {
+        2 * self.meta.taylor_terms + 1
+    }
+
+    /// Writes the table as `.npz` to any seekable writer.
+    pub fn write_npz<W: Write + Seek>(&self, w: W) -> Result<(), DiffractionError> {
+        let io = |e: zip::result::ZipError| DiffractionError::Io(std::io::Error::other(e));
+        let mut zip = zip::ZipWriter::new(w);
+        let large = self.data.len() * 8 > 2_000_000_000;
+        let opts = zip::write::SimpleFileOptions::default()
+            .compression_method(zip::CompressionMethod::Stored)
+            .large_file(large);
+        let res = self.meta.uv_resolution as u64;
+        zip.start_file(npyz::npz::file_name_from_array_name("I"), opts).map_err(io)?;
+        let mut wr = npyz::WriteOptions::new()
+            .default_dtype()
+            .shape(&[res, res, 3, self.powers() as u64])
+            .writer(&mut zip)
+            .begin_nd()?;
+        wr.extend(self.data.iter().copied())?;
+        wr.finish()?;
+        for (name, values) in [("uv", &self.uv), ("wavelengths_nm", &self.wavelengths_nm)] {
+            zip.start_file(npyz::npz::file_name_from_array_name(name), opts).map_err(io)?;
+            let mut wr =
+                npyz::WriteOptions::new().default_dtype().shape(&[values.len() as u64]).writer(&mut zip).begin_nd()?;
+            wr.extend(values.iter().copied())?;
+            wr.finish()?;
+        }
+        let json = serde_json::to_vec_pretty(&self.meta).map_err(|e| DiffractionError::Invalid(e.to_string()))?;
+        zip.start_file(npyz::npz::file_name_from_array_name("metadata_json"), opts).map_err(io)?;
+        let mut wr =
+            npyz::WriteOptions::new().default_dtype().shape(&[json.len() as u64]).writer(&mut zip).begin_nd()?;
+        wr.extend(json.iter().copied())?;
+        wr.finish()?;
+        zip.finish().map_err(io)?;
+        Ok(())
+    }
+
+    /// Reads a table written by [`LookupTable::write_npz`], checking format, version and shapes.
+    pub fn read_npz<R: Read + Seek>(r: R, path: &str) -> Result<Self, DiffractionError> {
+        let bad = |message: String| DiffractionError::Table { path: path.into(), message };
+        let mut zip = zip::ZipArchive::new(r).map_err(|e| bad(format!("not an npz (zip) file: {e}")))?;
+        type Npy = npyz::NpyFile<std::io::Cursor<Vec<u8>>>;
+        let mut array = |name: &str| -> Result<(Vec<u64>, Npy), DiffractionError> {
+            let mut f = zip
+                .by_name(&npyz::npz::file_name_from_array_name(name))
+                .map_err(|_| bad(format!("has no array '{name}': not an iridis lookup table")))?;
+            let mut bytes = Vec::new();
+            f.read_to_end(&mut bytes).map_err(|e| bad(format!("array '{name}' is unreadable: {e}")))?;
+            let npy = npyz::NpyFile::new(std::io::Cursor::new(bytes))
+                .map_err(|e| bad(format!("array '{name}' is corrupt: {e}")))?;
+            Ok((npy.shape().to_vec(), npy))
+        };
+        let (_, meta_npy) = array("metadata_json")?;
+        let meta_bytes: Vec<u8> = meta_npy.into_vec().map_err(|e| bad(format!("metadata is corrupt: {e}")))?;
+        let meta: TableMeta =
+            serde_json::from_slice(&meta_bytes).map_err(|e| bad(format!("metadata is not valid JSON: {e}")))?;
+        if meta.format != FORMAT {
+            return Err(bad(format!("format '{}' is not '{FORMAT}'", meta.format)));
+        }
+        if meta.version != FORMAT_VERSION {
+            return Err(bad(format!(
+                "format version {} but this iridis reads version {FORMAT_VERSION}; run `iridis precompute` again",
+                meta.version
+            )));
+        }
+        let res = meta.uv_resolution as u64;
+        let np = 2 * meta.taylor_terms as u64 + 1;
+        let (shape, i_npy) = array("I")?;
+        if shape != [res, res, 3, np] {
+            return Err(bad(format!("array I has shape {shape:?}, metadata says [{res}, {res}, 3, {np}]")));
+        }
+        let data: Vec<f64> = i_npy.into_vec().map_err(|e| bad(format!("array I is corrupt: {e}")))?;
+        let (_, uv_npy) = array("uv")?;
+        let uv: Vec<f64> = uv_npy.into_vec().map_err(|e| bad(format!("array uv is corrupt: {e}")))?;
+        let (_, wl_npy) = array("wavelengths_nm")?;
+        let wavelengths_nm: Vec<f64> =
+            wl_npy.into_vec().map_err(|e| bad(format!("array wavelengths is corrupt: {e}")))?;
+        if uv.len() as u64 != res || data.len() as u64 != res * res * 3 * np {
+            return Err(bad("array sizes disagree with the metadata".into()));
+        }
+        if data.iter().any(|v| !v.is_finite()) {
+            return Err(bad("table holds non-finite values".into()));
+        }
+        Ok(Self { meta, uv, wavelengths_nm, data })
+    }
+
+    /// Writes the table to a file (the caller makes it atomic).
+    pub fn save(&self, path: &Path) -> Result<(), DiffractionError> {
+        let f = std::fs::File::create(path)?;
+        self.write_npz(std::io::BufWriter::new(f))
+    }
+
+    /// Reads a table from a file.
+    pub fn load(path: &Path) -> Result<Self, DiffractionError> {
+        let name = path.display().to_string();
+        let f = std::fs::File::open(path)
+            .map_err(|e| DiffractionError::Table { path: name.clone(), message: e.to_string() })?;
+        Self::read_npz(std::io::BufReader::new(f), &name)
+    }
+
+    pub fn illuminant(&self) -> Result<Illuminant, DiffractionError> {
+        self.meta
+            .illuminant
+            .parse()
+            .map_err(|e: iridis_color::cie::UnknownName| DiffractionError::Invalid(e.to_string()))
+    }
+    pub fn observer(&self) -> Result<Observer, DiffractionError> {
+        self.meta.observer.parse().map_err(|e: iridis_color::cie::UnknownName| DiffractionError::Invalid(e.to_string()))
+    }
+}
+
+/// Numeric precision of the lookup sum.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Precision {
+    F64,
+    /// As a GPU shader would: table values and the sum in `f32`.
+    F32,
+}
+
+/// The lookup evaluator (paper sec. 5): bilinear interpolation of `I_p` in the non-linear grid's index
+/// space, Horner's rule in `w`, times `C(ω_i, ω_r)` (a wavelength-independent Fresnel factor only).
+#[derive(Debug, Clone)]
+pub struct Lookup {
+    pub table: Arc<LookupTable>,
+    pub shading: Shading,
+    precision: Precision,
+    data32: Option<Arc<Vec<f32>>>,
+}
+
+impl Lookup {
+    pub fn new(table: Arc<LookupTable>, shading: Shading, precision: Precision) -> Result<Self, DiffractionError> {
+        if shading.fresnel.depends_on_wavelength() {
+            return Err(DiffractionError::Invalid(format!(
+                "the lookup method integrates over wavelength in advance, so its Fresnel factor must not depend on \
+                 λ ({}); use --method reference or ground-truth",
+                shading.fresnel.describe()
+            )));
+        }
+        let data32 = (precision == Precision::F32).then(|| Arc::new(table.data.iter().map(|&v| v as f32).collect()));
+        Ok(Self { table, shading, precision, data32 })
+    }
+
+    /// `Σ_p w^p I_p(u, v)` for the three channels.
+    pub fn sum(&self, u: f64, v: f64, w: f64) -> [f64; 3] {
+        let t = &self.table;
+        let res = t.meta.uv_resolution;
+        let np = t.powers();
+        let a = t.meta.uv_power;
+        let (qu, qv) = (grid_index(u, res, a), grid_index(v, res, a));
+        let (iu, iv) = ((qu.floor() as usize).min(res - 2), (qv.floor() as usize).min(res - 2));
+        let (fu, fv) = (qu - iu as f64, qv - iv as f64);
+        let corners = [
+            (iv, iu, (1.0 - fu) * (1.0 - fv)),
+            (iv, iu + 1, fu * (1.0 - fv)),
+            (iv + 1, iu, (1.0 - fu) * fv),
+            (iv + 1, iu + 1, fu * fv),
+        ];
+        let mut out = [0.0; 3];
+        match (self.precision, &self.data32) {
+            (Precision::F32, Some(d32)) => {
+                let w32 = w as f32;
+                for (c, o) in out.iter_mut().enumerate() {
+                    let mut acc = 0.0f32;
+                    for p in (0..np).rev() {
+                        let mut ip = 0.0f32;
+                        for &(r, q, wt) in &corners {
+                            ip += wt as f32 * d32[((r * res + q) * 3 + c) * np + p];
+                        }
+                        acc = acc * w32 + ip;
+                    }
+                    *o = acc as f64;
+                }
+            }
+            _ => {
+                for (c, o) in out.iter_mut().enumerate() {
+                    let mut acc = 0.0;
+                    for p in (0..np).rev() {
+                        let mut ip = 0.0;
+                        for &(r, q, wt) in &corners {
+                            ip += wt * t.data[((r * res + q) * 3 + c) * np + p];
+                        }
+                        acc = acc * w + ip;
+                    }
+                    *o = acc;
+                }
+            }
+        }
+        out
+    }
+}
+
+impl Evaluator for Lookup {
+    fn name(&self) -> &'static str {
+        "lookup"
+    }
+    fn reflectance(&self, _wavelength_nm: f64, _wi: Vec3, _wr: Vec3) -> Option<f64> {
+        None
+    }
+    fn xyz(&self, wi: Vec3, wr: Vec3) -> Xyz {
+        if wi[2] <= 0.0 || wr[2] <= 0.0 {
+            return Xyz::default();
+        }
+        let [u, v, w] = uvw(wi, wr);
+        let c = self.shading.factor(500.0, wi, wr);
+        let s = self.sum(u, v, w);
+        Xyz::new(c * s[0], c * s[1], c * s[2])
+    }
+}

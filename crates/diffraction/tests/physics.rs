@@ -1,0 +1,211 @@
+//! Physical laws that every evaluator must obey: the grating equation, the flat mirror, the blaze direction,
+//! reciprocity of |A|², and agreement between the methods where their assumptions coincide.
+
+use std::sync::Arc;
+
+use iridis_color::{Illuminant, Observer};
+use iridis_diffraction::evaluator::{Evaluator, GroundTruth, Reference};
+use iridis_diffraction::geometry::{direction, Shading};
+use iridis_diffraction::table::{Lookup, LookupTable, Precision, TableParams};
+use iridis_diffraction::taylor::terms_for_bound;
+use iridis_diffraction::{Patch, SpectralSetup, TaylorTerms};
+
+/// A 1-D profile repeated over `rows` rows, `periods` periods of `period_px` samples.
+fn grating(profile: impl Fn(f64) -> f64, period_nm: f64, period_px: usize, periods: usize, rows: usize) -> Patch {
+    let cols = period_px * periods;
+    let dx = period_nm / period_px as f64;
+    let mut h = Vec::with_capacity(rows * cols);
+    for _ in 0..rows {
+        for i in 0..cols {
+            let phase = (i % period_px) as f64 / period_px as f64;
+            h.push(profile(phase));
+        }
+    }
+    Patch::from_row_major(rows, cols, dx, dx, &h).unwrap()
+}
+
+/// Light at θ_i in the x-z plane (azimuth 0); viewer at signed θ_r in the same plane, positive on the
+/// specular side (PHYSICS.md's test-bench frame).
+fn light(theta_i_deg: f64) -> [f64; 3] {
+    direction(theta_i_deg.to_radians(), 0.0)
+}
+fn viewer(theta_r_deg: f64) -> [f64; 3] {
+    let t = theta_r_deg.to_radians();
+    [-t.sin(), 0.0, t.cos()]
+}
+
+/// Viewing angle (deg) of the strongest response in `[from, to]`, sampled every `step` degrees.
+fn peak(f: impl Fn(f64) -> f64, from: f64, to: f64, step: f64) -> (f64, f64) {
+    let mut best = (from, f64::NEG_INFINITY);
+    let mut a = from;
+    while a <= to {
+        let v = f(a);
+        if v > best.1 {
+            best = (a, v);
+        }
+        a += step;
+    }
+    best
+}
+
+/// θ_r of order m from `m λ / d = sin θ_i − sin θ_r`.
+fn grating_angle(m: f64, lambda: f64, d: f64, theta_i_deg: f64) -> f64 {
+    (theta_i_deg.to_radians().sin() - m * lambda / d).asin().to_degrees()
+}
+
+const COHERENCE: f64 = 20_000.0;
+
+fn sine_patch() -> (Patch, f64) {
+    let d = 2000.0;
+    (grating(|t| 40.0 * (std::f64::consts::TAU * t).sin(), d, 40, 16, 4), d)
+}
+
+#[test]
+fn sinusoidal_grating_obeys_the_grating_equation_ground_truth_and_reference() {
+    let (patch, d) = sine_patch();
+    let spectral = SpectralSetup::default();
+    let n = terms_for_bound(patch.max_abs_height, 380.0, 1e-8);
+    let terms = Arc::new(TaylorTerms::compute(&patch, n, COHERENCE).unwrap());
+    let reference = Reference { terms, shading: Shading::default(), spectral: spectral.clone() };
+    let truth = GroundTruth::new(&patch, COHERENCE, Shading::default(), &spectral, 3).unwrap();
+    for theta_i in [0.0, 30.0, 75.0] {
+        for lambda in [420.0, 550.0, 680.0] {
+            for m in [1.0, -1.0] {
+                let expected = grating_angle(m, lambda, d, theta_i);
+                if !expected.is_finite() || expected.abs() > 85.0 {
+                    continue;
+                }
+                for e in [&reference as &dyn Evaluator, &truth] {
+                    let (got, _) = peak(
+                        |a| e.reflectance(lambda, light(theta_i), viewer(a)).unwrap(),
+                        expected - 3.0,
+                        expected + 3.0,
+                        0.02,
+                    );
+                    // Angular resolution: the window's width λσ_f in sin θ, i.e. λσ_f / cos θ_r in angle
+                    // (0.9°–3° here). The peak must sit well inside it.
+                    let sigma_f = 1.0 / (std::f64::consts::TAU * COHERENCE / 4.0);
+                    let resolution = (lambda * sigma_f / expected.to_radians().cos()).to_degrees();
+                    assert!(
+                        (got - expected).abs() < 0.1 * resolution,
+                        "{} θi={theta_i} λ={lambda} m={m}: peak at {got:.3}°, grating equation {expected:.3}°",
+                        e.name()
+                    );
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn sinusoidal_grating_obeys_the_grating_equation_lookup() {
+    let (patch, d) = sine_patch();
+    // A narrow band (550–555 nm) so the λ-integrated lookup has a sharp first order.
+    let spectral = SpectralSetup::with_range(Illuminant::E, Observer::Cie1931, 550.0, 555.0, 5.0).unwrap();
+    let n = terms_for_bound(patch.max_abs_height, 550.0, 1e-8);
+    let terms = TaylorTerms::compute(&patch, n, COHERENCE).unwrap();
+    let params = TableParams { uv_resolution: 801, uv_power: 1.0 };
+    let table = Arc::new(LookupTable::build(&terms, &spectral, params, "test", &|_| {}).unwrap());
+    let lookup = Lookup::new(table, Shading::default(), Precision::F64).unwrap();
+    for theta_i in [0.0, 30.0] {
+        for m in [1.0, -1.0] {
+            let expected = grating_angle(m, 552.5, d, theta_i);
+            let (got, _) = peak(|a| lookup.xyz(light(theta_i), viewer(a)).y, expected - 3.0, expected + 3.0, 0.02);
+            assert!((got - expected).abs() < 0.25, "lookup θi={theta_i} m={m}: {got:.3}° vs {expected:.3}°");
+        }
+    }
+}
+
+#[test]
+fn flat_mirror_reflects_only_specularly() {
+    // 12.8 µm patch, 8 µm coherence: the window falls to exp(−5) at the patch edges.
+    let patch = Patch::from_row_major(256, 256, 50.0, 50.0, &vec![7.0; 256 * 256]).unwrap();
+    let spectral = SpectralSetup::new(Illuminant::D65, Observer::Cie1931, 10.0).unwrap();
+    let terms = Arc::new(TaylorTerms::compute(&patch, 2, 8000.0).unwrap());
+    let reference = Reference { terms: terms.clone(), shading: Shading::default(), spectral: spectral.clone() };
+    let truth = GroundTruth::new(&patch, 8000.0, Shading::default(), &spectral, 41).unwrap();
+    let table = Arc::new(
+        LookupTable::build(&terms, &spectral, TableParams { uv_resolution: 65, uv_power: 5.0 }, "flat", &|_| {})
+            .unwrap(),
+    );
+    let lookup = Lookup::new(table, Shading::default(), Precision::F64).unwrap();
+    let normal = [0.0, 0.0, 1.0];
+    for e in [&reference as &dyn Evaluator, &truth, &lookup] {
+        let y = e.xyz(normal, normal).y;
+        assert!((y - 1.0).abs() < 1e-9, "{}: mirror Y = {y}", e.name());
+        if let Some(rho) = e.reflectance(500.0, normal, normal) {
+            assert!((rho - 1.0).abs() < 1e-12, "{}: ρ = {rho}", e.name());
+        }
+        // 20° off the mirror is > 5σ_f away at every visible λ: nothing but the truncated window's leakage.
+        let off = e.xyz(normal, viewer(20.0)).y;
+        assert!(off.abs() < 1e-6, "{}: off-specular Y = {off}", e.name());
+    }
+}
+
+#[test]
+fn blazed_grating_sends_light_to_the_side_its_facets_face() {
+    // Facets rise towards +x with slope tan β, so their normals lean to −x (PHYSICS.md): under normal
+    // incidence the brightest non-zero order is on the −x side (θ_r > 0 here) near θ_r = 2β.
+    let d = 2500.0;
+    let beta = (550.0f64 / d).asin() / 2.0; // blaze the first order at 550 nm
+    let depth = d * beta.tan();
+    let patch = grating(|t| depth * t, d, 50, 8, 4);
+    let lambda = 550.0;
+    let spectral = SpectralSetup::default();
+    let n = terms_for_bound(patch.max_abs_height, 380.0, 1e-8);
+    let terms = Arc::new(TaylorTerms::compute(&patch, n, COHERENCE).unwrap());
+    let reference = Reference { terms, shading: Shading::default(), spectral: spectral.clone() };
+    let truth = GroundTruth::new(&patch, COHERENCE, Shading::default(), &spectral, 3).unwrap();
+    for e in [&reference as &dyn Evaluator, &truth] {
+        let order = |m: f64| {
+            let a = grating_angle(m, lambda, d, 0.0);
+            peak(|t| e.reflectance(lambda, light(0.0), viewer(t)).unwrap(), a - 0.5, a + 0.5, 0.02).1
+        };
+        let (plus, minus) = (order(-1.0), order(1.0)); // m = −1 → θ_r > 0 (−x side)
+        assert!(plus > 5.0 * minus, "{}: −x side {plus:.4} vs +x side {minus:.4}", e.name());
+        assert!(plus > order(0.0), "{}: the blazed order beats the mirror direction", e.name());
+        assert!((grating_angle(-1.0, lambda, d, 0.0) - 2.0 * beta.to_degrees()).abs() < 0.01);
+    }
+}
+
+#[test]
+fn amplitude_is_reciprocal_and_methods_agree() {
+    // A rough random patch: reference (Taylor + DFT) and ground truth agree closely when the window fits in
+    // the patch, and |A|² is symmetric under exchanging light and viewer.
+    let (rows, cols, dx) = (48, 48, 60.0);
+    let mut seed = 7u64;
+    let mut rnd = || {
+        seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    };
+    let h: Vec<f64> = (0..rows * cols).map(|_| 60.0 * rnd()).collect();
+    let patch = Patch::from_row_major(rows, cols, dx, dx, &h).unwrap();
+    let spectral = SpectralSetup::default();
+    let n = terms_for_bound(patch.max_abs_height, 380.0, 1e-10);
+    let terms = Arc::new(TaylorTerms::compute(&patch, n, 2000.0).unwrap());
+    let reference = Reference { terms, shading: Shading::default(), spectral: spectral.clone() };
+    let mut scratch = vec![num_complex::Complex64::new(0.0, 0.0); n + 1];
+    let (wi, wr) = (direction(0.5, 0.3), direction(0.2, 2.0));
+    for lambda in [400.0, 550.0, 700.0] {
+        let a = reference.amplitude(lambda, wi, wr, &mut scratch).norm_sqr();
+        let b = reference.amplitude(lambda, wr, wi, &mut scratch).norm_sqr();
+        assert!((a - b).abs() <= 1e-12 * a.max(1e-30), "reciprocity at {lambda}: {a} vs {b}");
+    }
+    // With the window (σ_s = 250 nm) well inside the 2.9 µm patch, the windowed DFT with Taylor terms equals
+    // the direct windowed transform up to the 4σ_f cut-off of eq. 8 (a few 1e-3 of the amplitude).
+    let small = 1000.0;
+    let terms = Arc::new(TaylorTerms::compute(&patch, n, small).unwrap());
+    let reference = Reference { terms, shading: Shading::default(), spectral: spectral.clone() };
+    let truth = GroundTruth::new(&patch, small, Shading::default(), &spectral, 3).unwrap();
+    let mut checked = 0;
+    for (ti, pi, tr, pr) in [(0.0, 0.0, 0.3, 1.0), (0.5, 0.3, 0.2, 2.0), (0.9, 0.0, 0.6, 3.0), (0.2, 1.0, 1.2, 4.0)] {
+        let (wi, wr) = (direction(ti, pi), direction(tr, pr));
+        for lambda in [400.0, 550.0, 700.0] {
+            let a = reference.amplitude(lambda, wi, wr, &mut scratch);
+            let b = truth.amplitude(lambda, wi, wr);
+            assert!((a - b).norm() < 5e-3 * a.norm().max(0.05), "{lambda} nm: reference {a} vs truth {b}");
+            checked += 1;
+        }
+    }
+    assert_eq!(checked, 12);
+}
