@@ -1,0 +1,43 @@
+//! # iridis-thinfilm
+//!
+//! Multilayer thin-film interference: the smooth illumination model of Hirayama et al. as Sussenbach's
+//! thesis describes it (section 3.1, equations 3.1–3.13), with the real-time variant of chapter 4 as a fast
+//! path and spatially varying thickness (section 4.2).
+//!
+//! * [`material`]: complex refractive indices `n̂ = n + iκ` that may vary with wavelength — constants
+//!   (`n=1.33`, `n=0.2+3.4i`), a built-in library (`air`, `water`, `BK7`, `Au`, …) and measured data from
+//!   files (CSV and the refractiveindex.info YAML format), interpolated in λ and never extrapolated;
+//! * [`stack`]: incident medium | layers with thicknesses | substrate, parsed from
+//!   `"air | gasoline 216nm | water 220nm | asphalt"`;
+//! * [`recurrence`]: the physics — complex cosines from Snell's law (eq. 3.6), Fresnel amplitudes
+//!   (eq. 3.7–3.10), the recurrence (eq. 3.1–3.4) with a replaceable bottom seed (so the LSRS model's rough
+//!   seed, eq. 3.16, plugs in), and the amplitude → power conversion (eq. 3.12–3.13);
+//! * [`fast`]: the chapter 4 variant — per-interface values computed once for a fixed angle, real arithmetic
+//!   for dielectric stacks, the same numbers as the general path;
+//! * [`color`]: film colours (reflected / transmitted spectrum → XYZ through `iridis-color`).
+//!
+//! Conventions (`docs/PHYSICS.md`): lengths in nanometres, angles in radians, `κ ≥ 0` absorbs, the incident
+//! medium is lossless, and the transmittance into an absorbing substrate is zero.
+//!
+//! ```
+//! use iridis_thinfilm::Stack;
+//! let stack: Stack = "air | water 635nm | air".parse().unwrap();
+//! let rta = stack.evaluate(400.0, 1f64.to_radians()).unwrap();
+//! assert!((rta.r() - 0.0334109).abs() < 1e-6); // Sussenbach, Figure 3.8
+//! assert!((rta.r() + rta.t() - 1.0).abs() < 1e-12);
+//! ```
+
+pub mod color;
+pub mod error;
+pub mod fast;
+pub mod material;
+pub mod nkfile;
+pub mod recurrence;
+pub mod stack;
+
+pub use error::ThinFilmError;
+pub use fast::Prepared;
+pub use material::Material;
+pub use num_complex::Complex64;
+pub use recurrence::{Amplitudes, Rta};
+pub use stack::{Layer, Stack};

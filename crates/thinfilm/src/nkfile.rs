@@ -1,0 +1,276 @@
+//! Reading measured refractive indices: the refractiveindex.info YAML format (tabulated `nk`, `n`, `k` and
+//! dispersion formulas 1–9) and plain CSV (`wavelength_nm, n, κ`). Only the subset of YAML that the
+//! database uses is read (a `DATA:` list of entries with `type`, `wavelength_range`, `coefficients` and
+//! `data: |` blocks); anything else in the file (references, comments, specs) is ignored.
+
+use crate::error::ThinFilmError;
+use crate::material::{Material, Part};
+
+fn file_err(path: &str, line: Option<usize>, message: impl Into<String>) -> ThinFilmError {
+    ThinFilmError::File { path: path.to_string(), line, message: message.into() }
+}
+
+#[derive(Debug, Default)]
+struct Entry {
+    kind: String,
+    kind_line: usize,
+    range_um: Option<(f64, f64)>,
+    coefficients: Vec<f64>,
+    rows: Vec<(usize, Vec<f64>)>,
+}
+
+fn numbers(s: &str, path: &str, line: usize) -> Result<Vec<f64>, ThinFilmError> {
+    s.split_whitespace()
+        .map(|t| match t.parse::<f64>() {
+            Ok(v) if v.is_finite() => Ok(v),
+            _ => Err(file_err(path, Some(line), format!("'{t}' is not a finite number"))),
+        })
+        .collect()
+}
+
+fn unquote(s: &str) -> &str {
+    s.trim().trim_matches(|c| c == '"' || c == '\'').trim()
+}
+
+/// Parses a refractiveindex.info YAML file (wavelengths in µm in the file, nm in the result).
+pub fn parse_yaml(text: &str, path: &str) -> Result<Material, ThinFilmError> {
+    let lines: Vec<&str> = text.lines().collect();
+    let Some(start) = lines.iter().position(|l| l.trim_end() == "DATA:") else {
+        return Err(file_err(path, None, "no 'DATA:' section; is this a refractiveindex.info YAML file?"));
+    };
+    let mut entries: Vec<Entry> = Vec::new();
+    let mut i = start + 1;
+    while i < lines.len() {
+        let raw = lines[i];
+        let lineno = i + 1;
+        let t = raw.trim();
+        if t.is_empty() || t.starts_with('#') {
+            i += 1;
+            continue;
+        }
+        let indent = raw.len() - raw.trim_start().len();
+        if indent == 0 {
+            break; // the next top-level key (SPECS:, CONDITIONS:, …)
+        }
+        let (key_part, is_new) = match t.strip_prefix("- ") {
+            Some(rest) => (rest.trim(), true),
+            None => (t, false),
+        };
+        if is_new {
+            entries.push(Entry::default());
+        }
+        let Some(entry) = entries.last_mut() else {
+            return Err(file_err(path, Some(lineno), format!("expected '- type: …' in DATA, found '{t}'")));
+        };
+        let Some((key, value)) = key_part.split_once(':') else {
+            return Err(file_err(path, Some(lineno), format!("expected 'key: value', found '{t}'")));
+        };
+        let value = unquote(value);
+        match key.trim() {
+            "type" => {
+                entry.kind = value.to_string();
+                entry.kind_line = lineno;
+            }
+            "wavelength_range" | "range" => {
+                let v = numbers(value, path, lineno)?;
+                if v.len() != 2 || !(v[0] > 0.0 && v[1] > v[0]) {
+                    return Err(file_err(path, Some(lineno), "wavelength_range needs two increasing positive numbers (µm)"));
+                }
+                entry.range_um = Some((v[0], v[1]));
+            }
+            "coefficients" => entry.coefficients = numbers(value, path, lineno)?,
+            "data" => {
+                // A literal block: the following lines indented deeper than this key.
+                let key_indent = raw.len() - raw.trim_start().len() + if is_new { 2 } else { 0 };
+                let inline = value.trim_start_matches('|').trim();
+                if !inline.is_empty() {
+                    entry.rows.push((lineno, numbers(inline, path, lineno)?));
+                }
+                let mut j = i + 1;
+                while j < lines.len() {
+                    let r = lines[j];
+                    let rt = r.trim();
+                    let ri = r.len() - r.trim_start().len();
+                    if rt.is_empty() {
+                        j += 1;
+                        continue;
+                    }
+                    if ri <= key_indent {
+                        break;
+                    }
+                    entry.rows.push((j + 1, numbers(rt, path, j + 1)?));
+                    j += 1;
+                }
+                i = j;
+                continue;
+            }
+            _ => {} // other keys (e.g. comments inside an entry) are not needed
+        }
+        i += 1;
+    }
+    if entries.is_empty() {
+        return Err(file_err(path, Some(start + 1), "DATA has no entries"));
+    }
+    let mut n_part: Option<(Part, (f64, f64))> = None;
+    let mut k_part: Option<(Part, (f64, f64))> = None;
+    for e in &entries {
+        let kind = e.kind.trim().to_ascii_lowercase();
+        let line = Some(e.kind_line);
+        if let Some(f) = kind.strip_prefix("formula") {
+            let f: u8 = match f.trim().parse() {
+                Ok(v @ 1..=9) => v,
+                _ => return Err(file_err(path, line, format!("unsupported type '{}' (formulas 1–9 are read)", e.kind))),
+            };
+            let Some((lo, hi)) = e.range_um else {
+                return Err(file_err(path, line, format!("'{}' has no wavelength_range", e.kind)));
+            };
+            if e.coefficients.is_empty() {
+                return Err(file_err(path, line, format!("'{}' has no coefficients", e.kind)));
+            }
+            n_part = Some((Part::Formula { kind: f, c: e.coefficients.clone() }, (lo * 1000.0, hi * 1000.0)));
+            continue;
+        }
+        let cols = match kind.as_str() {
+            "tabulated nk" => 3,
+            "tabulated n" | "tabulated k" => 2,
+            _ => {
+                return Err(file_err(
+                    path,
+                    line,
+                    format!("unsupported type '{}' (read: tabulated nk, tabulated n, tabulated k, formula 1–9)", e.kind),
+                ))
+            }
+        };
+        let mut wl = Vec::with_capacity(e.rows.len());
+        let mut a = Vec::with_capacity(e.rows.len());
+        let mut b = Vec::with_capacity(e.rows.len());
+        for (ln, row) in &e.rows {
+            if row.len() != cols {
+                return Err(file_err(path, Some(*ln), format!("'{}' rows have {cols} numbers, this one has {}", e.kind, row.len())));
+            }
+            wl.push(row[0] * 1000.0);
+            a.push(row[1]);
+            if cols == 3 {
+                b.push(row[2]);
+            }
+        }
+        let (wl, a, b) = check_table(path, line, wl, a, b, kind.ends_with('k') && cols == 2)?;
+        let range = (wl[0], wl[wl.len() - 1]);
+        match kind.as_str() {
+            "tabulated nk" => {
+                n_part = Some((Part::Table { wl_nm: wl.clone(), v: a }, range));
+                k_part = Some((Part::Table { wl_nm: wl, v: b }, range));
+            }
+            "tabulated n" => n_part = Some((Part::Table { wl_nm: wl, v: a }, range)),
+            _ => k_part = Some((Part::Table { wl_nm: wl, v: a }, range)),
+        }
+    }
+    let Some((n, nr)) = n_part else {
+        return Err(file_err(path, None, "no refractive index n (only k) in DATA"));
+    };
+    let (k, kr) = k_part.unwrap_or((Part::Const(0.0), (0.0, f64::INFINITY)));
+    let range = (nr.0.max(kr.0), nr.1.min(kr.1));
+    if range.0 >= range.1 {
+        return Err(file_err(path, None, "the n and k data do not overlap in wavelength"));
+    }
+    Ok(Material::from_parts(path.to_string(), n, k, range))
+}
+
+type Table = (Vec<f64>, Vec<f64>, Vec<f64>);
+
+/// Sorts a table by wavelength and checks it: at least two rows, distinct wavelengths, n > 0, κ ≥ 0.
+fn check_table(path: &str, line: Option<usize>, wl: Vec<f64>, a: Vec<f64>, b: Vec<f64>, a_is_k: bool) -> Result<Table, ThinFilmError> {
+    if wl.len() < 2 {
+        return Err(file_err(path, line, "a table needs at least two rows"));
+    }
+    let mut idx: Vec<usize> = (0..wl.len()).collect();
+    idx.sort_by(|&i, &j| wl[i].total_cmp(&wl[j]));
+    let wl: Vec<f64> = idx.iter().map(|&i| wl[i]).collect();
+    let a: Vec<f64> = idx.iter().map(|&i| a[i]).collect();
+    let b: Vec<f64> = if b.is_empty() { b } else { idx.iter().map(|&i| b[i]).collect() };
+    if wl.windows(2).any(|w| w[1] <= w[0]) || wl[0] <= 0.0 {
+        return Err(file_err(path, line, "wavelengths must be positive and distinct"));
+    }
+    if a_is_k {
+        if let Some(v) = a.iter().find(|&&v| v < 0.0) {
+            return Err(file_err(path, line, format!("κ = {v} < 0 (gain) in the table; κ must be ≥ 0")));
+        }
+    } else if let Some(v) = a.iter().find(|&&v| v <= 0.0) {
+        return Err(file_err(path, line, format!("n = {v} ≤ 0 in the table; n must be > 0")));
+    }
+    if let Some(v) = b.iter().find(|&&v| v < 0.0) {
+        return Err(file_err(path, line, format!("κ = {v} < 0 (gain) in the table; κ must be ≥ 0")));
+    }
+    Ok((wl, a, b))
+}
+
+/// Parses CSV with columns `wavelength_nm, n[, κ]` (commas, semicolons, tabs or spaces; `#` comments and
+/// one header line allowed).
+pub fn parse_csv(text: &str, path: &str) -> Result<Material, ThinFilmError> {
+    let (mut wl, mut n, mut k) = (Vec::new(), Vec::new(), Vec::new());
+    let mut header_seen = false;
+    for (i, raw) in text.lines().enumerate() {
+        let t = raw.trim();
+        if t.is_empty() || t.starts_with('#') {
+            continue;
+        }
+        let fields: Vec<&str> =
+            t.split(|c: char| c == ',' || c == ';' || c == '\t' || c == ' ').filter(|s| !s.is_empty()).collect();
+        let parsed: Vec<Option<f64>> = fields.iter().map(|f| f.parse::<f64>().ok().filter(|v| v.is_finite())).collect();
+        if parsed.iter().any(Option::is_none) {
+            if !header_seen && wl.is_empty() {
+                header_seen = true;
+                continue;
+            }
+            let bad = fields.iter().zip(&parsed).find(|(_, p)| p.is_none()).map(|(f, _)| *f).unwrap_or("");
+            return Err(file_err(path, Some(i + 1), format!("'{bad}' is not a finite number")));
+        }
+        let v: Vec<f64> = parsed.into_iter().flatten().collect();
+        if !(v.len() == 2 || v.len() == 3) {
+            return Err(file_err(path, Some(i + 1), format!("expected 2 or 3 columns (wavelength_nm, n, κ), found {}", v.len())));
+        }
+        wl.push(v[0]);
+        n.push(v[1]);
+        k.push(v.get(2).copied().unwrap_or(0.0));
+    }
+    let (wl, n, k) = check_table(path, None, wl, n, k, false)?;
+    let range = (wl[0], wl[wl.len() - 1]);
+    Ok(Material::from_parts(path.to_string(), Part::Table { wl_nm: wl.clone(), v: n }, Part::Table { wl_nm: wl, v: k }, range))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn yaml_formula_plus_k_table() {
+        let text = "DATA:\n  - type: formula 2 \n    wavelength_range: 0.3 2.5\n    coefficients: 0 1.03961212 0.00600069867 0.231792344 0.0200179144 1.01046945 103.560653\n  - type: tabulated k\n    data: |\n        0.300 2.8607E-06\n        0.700 8.9305E-09\n        2.500 8.1300E-06\nSPECS:\n    nd: 1.5168\n";
+        let m = parse_yaml(text, "bk7.yml").unwrap();
+        assert_eq!(m.range_nm(), (300.0, 2500.0));
+        let n = m.index_at(700.0).unwrap();
+        assert!((n.im - 8.9305e-9).abs() < 1e-20);
+    }
+
+    #[test]
+    fn yaml_errors_name_the_line() {
+        let text = "DATA:\n  - type: tabulated nk\n    data: |\n        0.4 1.5 0.0\n        0.5 1.5 x\n";
+        let e = parse_yaml(text, "bad.yml").unwrap_err().to_string();
+        assert!(e.contains("bad.yml, line 5") && e.contains("'x'"), "{e}");
+        let text = "DATA:\n  - type: tabulated nk\n    data: |\n        0.4 1.5 0.0\n        0.5 1.5 -0.1\n";
+        let e = parse_yaml(text, "gain.yml").unwrap_err().to_string();
+        assert!(e.contains("κ = -0.1"), "{e}");
+        let e = parse_yaml("DATA:\n  - type: tabulated eps\n", "e.yml").unwrap_err().to_string();
+        assert!(e.contains("unsupported type 'tabulated eps'") && e.contains("line 2"), "{e}");
+        assert!(parse_yaml("REFERENCES: x\n", "n.yml").is_err());
+    }
+
+    #[test]
+    fn csv_with_header() {
+        let m = parse_csv("wavelength_nm,n,k\n400,1.5,0.1\n500,1.6,0.2\n", "x.csv").unwrap();
+        let n = m.index_at(450.0).unwrap();
+        assert!((n.re - 1.55).abs() < 1e-12 && (n.im - 0.15).abs() < 1e-12);
+        assert!(m.index_at(399.0).is_err());
+        let e = parse_csv("400,1.5\n500,abc\n", "y.csv").unwrap_err().to_string();
+        assert!(e.contains("line 2") && e.contains("abc"), "{e}");
+    }
+}
