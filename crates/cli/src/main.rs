@@ -4,6 +4,7 @@
 mod args;
 mod cmd;
 mod output;
+mod progress;
 
 use clap::{Parser, Subcommand};
 
@@ -26,6 +27,9 @@ enum Command {
     /// Colour science: spectrum → XYZ/sRGB/Lab, colour differences.
     #[command(subcommand)]
     Color(cmd::color::ColorCommand),
+    /// Speed, measured against a peer in the same run.
+    #[command(subcommand)]
+    Bench(cmd::bench::BenchCommand),
     // New command groups are added here, one line each, with their module in cmd/.
 }
 
@@ -34,6 +38,7 @@ fn main() -> std::process::ExitCode {
     let result = match cli.command {
         Command::Demo(a) => cmd::demo::run(a),
         Command::Color(c) => cmd::color::run(c),
+        Command::Bench(c) => cmd::bench::run(c),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,

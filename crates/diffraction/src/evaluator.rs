@@ -148,16 +148,29 @@ impl GroundTruth {
         let [u, v, w] = uvw(wi, wr);
         let mut acc = vec![Complex64::new(0.0, 0.0); count];
         let tau = std::f64::consts::TAU;
-        for j in 0..self.h.len() {
-            let d = w * self.h[j] + u * self.x[j] + v * self.y[j];
-            let (s, c) = (tau * s0 * d).sin_cos();
-            let (rs, rc) = (tau * ds * d).sin_cos();
-            let mut z = Complex64::new(c * self.g[j], s * self.g[j]);
-            let r = Complex64::new(rc, rs);
-            for a in acc.iter_mut() {
-                *a += z;
-                z *= r;
+        // Four samples at a time: four independent phasor recurrences keep the multipliers busy.
+        const LANES: usize = 4;
+        let n = self.h.len();
+        let mut j = 0;
+        while j < n {
+            let lanes = LANES.min(n - j);
+            let mut z = [Complex64::new(0.0, 0.0); LANES];
+            let mut r = [Complex64::new(1.0, 0.0); LANES];
+            for l in 0..lanes {
+                let k = j + l;
+                let d = w * self.h[k] + u * self.x[k] + v * self.y[k];
+                let (s, c) = (tau * s0 * d).sin_cos();
+                let (rs, rc) = (tau * ds * d).sin_cos();
+                z[l] = Complex64::new(c * self.g[k], s * self.g[k]);
+                r[l] = Complex64::new(rc, rs);
             }
+            for a in acc.iter_mut() {
+                *a += (z[0] + z[1]) + (z[2] + z[3]);
+                for l in 0..LANES {
+                    z[l] *= r[l];
+                }
+            }
+            j += LANES;
         }
         for (k, a) in acc.iter_mut().enumerate() {
             let lambda = 1.0 / (s0 + ds * k as f64);
@@ -166,6 +179,15 @@ impl GroundTruth {
             }
         }
         acc
+    }
+
+    /// The same yardstick lit by an arbitrary light spectrum `light(λ)` (a laser, a measured lamp) instead of
+    /// the setup's illuminant: the colour weights are rebuilt on the same wavelength grid with
+    /// [`SpectralWeights::with_light`] (a mirror at normal incidence keeps `Y = 1`).
+    pub fn with_light(mut self, light: impl Fn(f64) -> f64, observer: iridis_color::Observer) -> Self {
+        let grid = self.weights.wavelengths_nm().to_vec();
+        self.weights = SpectralWeights::with_light(&grid, light, observer);
+        self
     }
 
     /// `A(λ)` at one wavelength.

@@ -75,6 +75,21 @@ impl TaylorTerms {
         let fft_x = planner.plan_fft_forward(cols);
         let fft_y = planner.plan_fft_forward(rows);
         let norm = 1.0 / samples as f64;
+        // Centre the coherence window on the patch (as the ground truth does) rather than on its corner: by
+        // the shift theorem, c[s,t] · exp(2πi f_{s,t} · x_c), x_c the patch centre. Computed once for all terms,
+        // with the 1/samples normalisation folded in.
+        let phase_x: Vec<f64> =
+            (0..cols).map(|s| signed(s, cols) as f64 * (cols - 1) as f64 / (2 * cols) as f64).collect();
+        let centring: Vec<Complex64> = (0..rows)
+            .flat_map(|t| {
+                let ty = signed(t, rows) as f64 * (rows - 1) as f64 / (2 * rows) as f64;
+                let phase_x = &phase_x;
+                (0..cols).map(move |s| {
+                    let (sin, cos) = (std::f64::consts::TAU * (phase_x[s] + ty)).sin_cos();
+                    Complex64::new(cos * norm, sin * norm)
+                })
+            })
+            .collect();
         let done = std::sync::atomic::AtomicUsize::new(0);
         let terms: Vec<Vec<Complex64>> = (0..=n_max)
             .into_par_iter()
@@ -88,15 +103,8 @@ impl TaylorTerms {
                 };
                 let mut data: Vec<Complex64> = patch.heights.iter().map(|&h| i_n * h.powi(n as i32)).collect();
                 fft2(&mut data, rows, cols, fft_x.as_ref(), fft_y.as_ref());
-                // Centre the coherence window on the patch (as the ground truth does) rather than on its
-                // corner: by the shift theorem, c[s,t] · exp(2πi f_{s,t} · x_c), x_c the patch centre.
-                for t in 0..rows {
-                    let ts = signed(t, rows) as f64 * (rows - 1) as f64 / (2 * rows) as f64;
-                    for s in 0..cols {
-                        let ss = signed(s, cols) as f64 * (cols - 1) as f64 / (2 * cols) as f64;
-                        let (sin, cos) = (std::f64::consts::TAU * (ss + ts)).sin_cos();
-                        data[t * cols + s] *= Complex64::new(cos, sin) * norm;
-                    }
+                for (c, p) in data.iter_mut().zip(&centring) {
+                    *c *= p;
                 }
                 let d = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
                 progress(d);

@@ -1,0 +1,195 @@
+//! `iridis bench …`: speed measured against a peer in the same run (numpy for FFT work; the slower methods
+//! for the lookup path). Nothing here is a test: tests never depend on wall-clock time.
+
+use std::process::Command;
+use std::sync::Arc;
+use std::time::Instant;
+
+use anyhow::{Context, Result};
+use clap::{Args as ClapArgs, Subcommand};
+use iridis_diffraction::evaluator::{Evaluator, GroundTruth, Reference};
+use iridis_diffraction::table::{Lookup, LookupTable, Precision, TableParams};
+use iridis_diffraction::{Patch, Shading, SpectralSetup, TaylorTerms};
+use serde_json::json;
+
+#[derive(Debug, Subcommand)]
+pub enum BenchCommand {
+    /// Diffraction: precompute against numpy, BRDF maps per second for lookup, reference and ground truth.
+    #[command(after_help = "\
+Examples:
+  iridis bench diffraction                         1024² surface, 40 terms, maps at 512² and 1024²
+  iridis bench diffraction --size 512 --terms 20 --json")]
+    Diffraction(DiffractionBench),
+}
+
+#[derive(Debug, ClapArgs)]
+pub struct DiffractionBench {
+    /// Height-field samples per side.
+    #[arg(long, default_value_t = 1024)]
+    pub size: usize,
+    /// Taylor terms N (terms 0..N).
+    #[arg(long, default_value_t = 40)]
+    pub terms: usize,
+    /// BRDF map sizes for the lookup method.
+    #[arg(long, value_delimiter = ',', default_value = "512,1024")]
+    pub map_sizes: Vec<usize>,
+    /// u-v resolution of the lookup tables.
+    #[arg(long, default_value_t = 501)]
+    pub uv_resolution: usize,
+    /// Print JSON.
+    #[arg(long)]
+    pub json: bool,
+}
+
+pub fn run(c: BenchCommand) -> Result<()> {
+    match c {
+        BenchCommand::Diffraction(a) => diffraction(a),
+    }
+}
+
+/// A reproducible rough surface: a sum of random gratings (σ_h ≈ 60 nm) at 65 nm per pixel.
+fn bench_surface(n: usize) -> Result<Patch> {
+    let mut seed = 0x1d1du64;
+    let mut rnd = || {
+        seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let waves: Vec<[f64; 4]> = (0..24)
+        .map(|_| {
+            let period = 500.0 + 2500.0 * rnd();
+            let angle = std::f64::consts::PI * rnd();
+            [angle.cos() / period, angle.sin() / period, std::f64::consts::TAU * rnd(), 17.0 * (0.5 + rnd())]
+        })
+        .collect();
+    let dx = 65.0;
+    let mut h = vec![0.0; n * n];
+    for r in 0..n {
+        for c in 0..n {
+            let (x, y) = (c as f64 * dx, r as f64 * dx);
+            h[r * n + c] =
+                waves.iter().map(|w| w[3] * (std::f64::consts::TAU * (w[0] * x + w[1] * y) + w[2]).sin()).sum();
+        }
+    }
+    Ok(Patch::from_row_major(n, n, dx, dx, &h)?)
+}
+
+/// Times the same Taylor-term FFTs in numpy (one thread: numpy's FFT is single-threaded).
+fn numpy_fft_seconds(patch: &Patch, terms: usize) -> Result<Option<f64>> {
+    use npyz::WriterBuilder;
+    let dir = tempfile::tempdir()?;
+    let path = dir.path().join("h.npy");
+    {
+        let f = std::io::BufWriter::new(std::fs::File::create(&path)?);
+        let mut w = npyz::WriteOptions::new()
+            .default_dtype()
+            .shape(&[patch.rows as u64, patch.cols as u64])
+            .writer(f)
+            .begin_nd()?;
+        w.extend(patch.heights.iter().copied())?;
+        w.finish()?;
+    }
+    let script = format!(
+        "import time, numpy as np\nh = np.load(r'{}')\nh = h - h.mean()\nt = time.perf_counter()\n\
+         out = [np.fft.fft2((1j * h) ** n) / h.size for n in range({})]\nprint(time.perf_counter() - t)\n",
+        path.display(),
+        terms + 1
+    );
+    let out = match Command::new("python3").arg("-c").arg(&script).output() {
+        Ok(o) if o.status.success() => o,
+        _ => return Ok(None),
+    };
+    Ok(String::from_utf8_lossy(&out.stdout).trim().parse::<f64>().ok())
+}
+
+/// Pixels per second of a method on a map of `size²` (directions at normal incidence).
+fn map_rate(e: &dyn Evaluator, size: usize) -> f64 {
+    let start = Instant::now();
+    let map = iridis_diffraction::map::brdf_map(e, [0.0, 0.0, 1.0], size, &|_| {});
+    let secs = start.elapsed().as_secs_f64();
+    std::hint::black_box(map);
+    (size * size) as f64 / secs
+}
+
+fn diffraction(a: DiffractionBench) -> Result<()> {
+    let threads = rayon::current_num_threads();
+    eprintln!("surface {}², {} terms, {threads} threads …", a.size, a.terms);
+    let patch = bench_surface(a.size)?;
+    let coherence = 65_000.0;
+    let t = Instant::now();
+    let terms = TaylorTerms::compute(&patch, a.terms, coherence)?;
+    let ours_all = t.elapsed().as_secs_f64();
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().context("thread pool")?;
+    let t = Instant::now();
+    let one = pool.install(|| TaylorTerms::compute(&patch, a.terms, coherence))?;
+    let ours_one = t.elapsed().as_secs_f64();
+    drop(one);
+    eprintln!("numpy …");
+    let numpy = numpy_fft_seconds(&patch, a.terms)?;
+
+    let spectral = SpectralSetup::default();
+    eprintln!("lookup tables {}² …", a.uv_resolution);
+    let t = Instant::now();
+    let params = TableParams { uv_resolution: a.uv_resolution, uv_power: 5.0 };
+    let table = LookupTable::build(&terms, &spectral, params, "bench", &|_| {})?;
+    let table_secs = t.elapsed().as_secs_f64();
+    let lookup = Lookup::new(Arc::new(table), Shading::default(), Precision::F64)?;
+    let terms = Arc::new(terms);
+    let reference = Reference { terms, shading: Shading::default(), spectral: spectral.clone() };
+    let truth =
+        GroundTruth::new(&patch, coherence, Shading::default(), &spectral, 2 * spectral.wavelengths().len() - 1)?;
+
+    let mut maps = Vec::new();
+    for &s in &a.map_sizes {
+        eprintln!("lookup map {s}² …");
+        maps.push(json!({"method": "lookup", "size": s, "pixels_per_second": map_rate(&lookup, s)}));
+    }
+    eprintln!("reference map 48² …");
+    let ref_rate = map_rate(&reference, 48);
+    maps.push(json!({"method": "reference", "size": 48, "pixels_per_second": ref_rate}));
+    eprintln!("ground-truth map 8² …");
+    let gt_rate = map_rate(&truth, 8);
+    maps.push(json!({"method": "ground-truth", "size": 8, "pixels_per_second": gt_rate}));
+    let lookup_rate = maps[0]["pixels_per_second"].as_f64().unwrap_or(0.0);
+
+    let report = json!({
+        "threads": threads,
+        "surface": {"size": a.size, "terms": a.terms},
+        "precompute_fft_seconds": {"iridis_all_threads": ours_all, "iridis_one_thread": ours_one, "numpy": numpy},
+        "lookup_table_seconds": table_secs,
+        "uv_resolution": a.uv_resolution,
+        "maps": maps,
+        "lookup_over_reference": lookup_rate / ref_rate,
+        "lookup_over_ground_truth": lookup_rate / gt_rate,
+    });
+    if a.json {
+        return crate::output::print_json(&report);
+    }
+    println!("diffraction benchmark ({threads} threads)");
+    println!("  Taylor-term FFTs, {}², {} terms:", a.size, a.terms + 1);
+    println!("    iridis, all threads   {ours_all:8.2} s");
+    println!("    iridis, one thread    {ours_one:8.2} s");
+    match numpy {
+        Some(n) => println!(
+            "    numpy (same work)     {n:8.2} s   → iridis is {:.1}× faster (one thread {:.1}×)",
+            n / ours_all,
+            n / ours_one
+        ),
+        None => println!("    numpy                 not available (python3 with numpy not found)"),
+    }
+    println!("  lookup tables {}² × {} powers: {table_secs:.1} s", a.uv_resolution, 2 * a.terms + 1);
+    println!("  BRDF maps (pixels per second):");
+    for m in report["maps"].as_array().into_iter().flatten() {
+        println!(
+            "    {:<13} {:>5}²  {:>14.0}",
+            m["method"].as_str().unwrap_or(""),
+            m["size"],
+            m["pixels_per_second"].as_f64().unwrap_or(0.0)
+        );
+    }
+    println!(
+        "  lookup / reference: {:.0}×   lookup / ground truth: {:.0}×",
+        lookup_rate / ref_rate,
+        lookup_rate / gt_rate
+    );
+    Ok(())
+}
