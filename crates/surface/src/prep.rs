@@ -1,0 +1,255 @@
+//! Preparation: levelling (AFM scans carry a tilt and line-to-line offsets), cropping, resampling, tiling,
+//! padding. Every function returns a new field and appends what it did to `meta.notes`.
+
+use crate::{check_dims, check_pixel, HeightField, SurfaceError};
+
+fn with(hf: &HeightField, rows: usize, cols: usize, dx: f64, dy: f64, h: Vec<f64>, note: String) -> HeightField {
+    let mut meta = hf.meta.clone();
+    meta.notes.push(note);
+    HeightField { rows, cols, dx_nm: dx, dy_nm: dy, heights_nm: h, meta }
+}
+
+/// Subtracts the mean height (a constant phase for diffraction, but it shrinks `|h|max` and so the number
+/// of Taylor terms).
+pub fn remove_mean(hf: &HeightField) -> HeightField {
+    let m = hf.mean();
+    let h = hf.heights_nm.iter().map(|x| x - m).collect();
+    with(hf, hf.rows, hf.cols, hf.dx_nm, hf.dy_nm, h, format!("mean {m:.3} nm removed"))
+}
+
+/// Subtracts the least-squares plane `a + b·x + c·y` (the sample tilt of an AFM scan); the result has zero
+/// mean.
+pub fn level_plane(hf: &HeightField) -> HeightField {
+    // Centred coordinates make the normal equations diagonal: the three fits are independent.
+    let (rows, cols) = (hf.rows, hf.cols);
+    let (xc, yc) = ((cols as f64 - 1.0) / 2.0, (rows as f64 - 1.0) / 2.0);
+    let (mut sx, mut sy, mut sxx, mut syy) = (0.0, 0.0, 0.0, 0.0);
+    let mean = hf.mean();
+    for r in 0..rows {
+        let y = yc - r as f64;
+        for c in 0..cols {
+            let x = c as f64 - xc;
+            let h = hf.heights_nm[r * cols + c] - mean;
+            sx += x * h;
+            sy += y * h;
+            sxx += x * x;
+            syy += y * y;
+        }
+    }
+    let (b, c) = (sx / sxx, sy / syy);
+    let mut h = Vec::with_capacity(rows * cols);
+    for r in 0..rows {
+        let y = yc - r as f64;
+        for col in 0..cols {
+            let x = col as f64 - xc;
+            h.push(hf.heights_nm[r * cols + col] - mean - b * x - c * y);
+        }
+    }
+    with(
+        hf,
+        rows,
+        cols,
+        hf.dx_nm,
+        hf.dy_nm,
+        h,
+        format!("plane levelled (slopes {:.4e} along x, {:.4e} along y)", b / hf.dx_nm, c / hf.dy_nm),
+    )
+}
+
+/// Subtracts each row's mean (AFM scan-line levelling: every fast-scan line gets its own offset), then the
+/// overall mean. Destroys structure that varies only along y; use it on scans with visible line steps.
+pub fn level_rows(hf: &HeightField) -> HeightField {
+    let mut h = Vec::with_capacity(hf.heights_nm.len());
+    for r in 0..hf.rows {
+        let row = hf.row(r);
+        let m = row.iter().sum::<f64>() / row.len() as f64;
+        h.extend(row.iter().map(|x| x - m));
+    }
+    with(hf, hf.rows, hf.cols, hf.dx_nm, hf.dy_nm, h, "rows levelled by their means".into())
+}
+
+/// The block starting at `(row0, col0)` of `rows × cols` samples.
+pub fn crop(hf: &HeightField, row0: usize, col0: usize, rows: usize, cols: usize) -> Result<HeightField, SurfaceError> {
+    check_dims(rows, cols)?;
+    if row0.saturating_add(rows) > hf.rows || col0.saturating_add(cols) > hf.cols {
+        return Err(SurfaceError::invalid(format!(
+            "crop {rows}×{cols} at row {row0}, column {col0} does not fit in {}×{}",
+            hf.rows, hf.cols
+        )));
+    }
+    let mut h = Vec::with_capacity(rows * cols);
+    for r in row0..row0 + rows {
+        h.extend_from_slice(&hf.row(r)[col0..col0 + cols]);
+    }
+    Ok(with(hf, rows, cols, hf.dx_nm, hf.dy_nm, h, format!("cropped to {rows}×{cols} at ({row0}, {col0})")))
+}
+
+/// Resamples to new pixel sizes keeping the physical extent (rounded to whole pixels). Bilinear
+/// interpolation; when coarsening, each output sample first averages the input pixels it covers, so fine
+/// structure does not alias into false periods.
+pub fn resample(hf: &HeightField, dx_nm: f64, dy_nm: f64) -> Result<HeightField, SurfaceError> {
+    check_pixel(dx_nm, dy_nm)?;
+    let (ex, ey) = hf.extent_nm();
+    let cols_f = (ex / dx_nm).round();
+    let rows_f = (ey / dy_nm).round();
+    if cols_f > crate::MAX_DIM as f64 || rows_f > crate::MAX_DIM as f64 {
+        return Err(SurfaceError::invalid(format!("resampling to {dx_nm} nm gives too many samples")));
+    }
+    let (rows, cols) = (rows_f.max(0.0) as usize, cols_f.max(0.0) as usize);
+    check_dims(rows, cols)?;
+    let (dx, dy) = (ex / cols as f64, ey / rows as f64);
+    // Box pre-filter width in input pixels (≥ 1).
+    let (kx, ky) = ((dx / hf.dx_nm).max(1.0), (dy / hf.dy_nm).max(1.0));
+    let src = if kx > 1.5 || ky > 1.5 { box_blur(hf, kx.round() as usize, ky.round() as usize) } else { hf.heights_nm.clone() };
+    let sample = |r: f64, c: f64| -> f64 {
+        let r = r.clamp(0.0, (hf.rows - 1) as f64);
+        let c = c.clamp(0.0, (hf.cols - 1) as f64);
+        let (r0, c0) = (r.floor() as usize, c.floor() as usize);
+        let (r1, c1) = ((r0 + 1).min(hf.rows - 1), (c0 + 1).min(hf.cols - 1));
+        let (fr, fc) = (r - r0 as f64, c - c0 as f64);
+        let g = |r: usize, c: usize| src[r * hf.cols + c];
+        (1.0 - fr) * ((1.0 - fc) * g(r0, c0) + fc * g(r0, c1)) + fr * ((1.0 - fc) * g(r1, c0) + fc * g(r1, c1))
+    };
+    let mut h = Vec::with_capacity(rows * cols);
+    for r in 0..rows {
+        // Pixel centres: input pixel i covers [i·d, (i+1)·d].
+        let rin = (r as f64 + 0.5) * dy / hf.dy_nm - 0.5;
+        for c in 0..cols {
+            let cin = (c as f64 + 0.5) * dx / hf.dx_nm - 0.5;
+            h.push(sample(rin, cin));
+        }
+    }
+    Ok(with(
+        hf,
+        rows,
+        cols,
+        dx,
+        dy,
+        h,
+        format!("resampled from {}×{} nm to {dx:.3}×{dy:.3} nm pixels", hf.dx_nm, hf.dy_nm),
+    ))
+}
+
+fn box_blur(hf: &HeightField, kx: usize, ky: usize) -> Vec<f64> {
+    let (rows, cols) = (hf.rows, hf.cols);
+    let mean_of = |n: usize, k: usize, i: usize, get: &dyn Fn(usize) -> f64| -> f64 {
+        let lo = i.saturating_sub(k / 2);
+        let hi = (i + k - k / 2).min(n);
+        (lo..hi).map(get).sum::<f64>() / (hi - lo) as f64
+    };
+    let mut a = vec![0.0; rows * cols];
+    for r in 0..rows {
+        for c in 0..cols {
+            a[r * cols + c] = mean_of(cols, kx, c, &|j| hf.heights_nm[r * cols + j]);
+        }
+    }
+    let mut b = vec![0.0; rows * cols];
+    for r in 0..rows {
+        for c in 0..cols {
+            b[r * cols + c] = mean_of(rows, ky, r, &|j| a[j * cols + c]);
+        }
+    }
+    b
+}
+
+/// Repeats the field `ny` times down and `nx` times across (a patch smaller than the coherence area,
+/// made periodic on purpose).
+pub fn tile(hf: &HeightField, ny: usize, nx: usize) -> Result<HeightField, SurfaceError> {
+    if ny == 0 || nx == 0 {
+        return Err(SurfaceError::invalid("tile counts must be at least 1"));
+    }
+    let rows = hf.rows.checked_mul(ny).ok_or_else(|| SurfaceError::invalid("tiling overflows"))?;
+    let cols = hf.cols.checked_mul(nx).ok_or_else(|| SurfaceError::invalid("tiling overflows"))?;
+    check_dims(rows, cols)?;
+    let mut h = Vec::with_capacity(rows * cols);
+    for r in 0..rows {
+        let src = hf.row(r % hf.rows);
+        for _ in 0..nx {
+            h.extend_from_slice(src);
+        }
+    }
+    Ok(with(hf, rows, cols, hf.dx_nm, hf.dy_nm, h, format!("tiled {ny}×{nx}")))
+}
+
+/// Pads to `rows × cols` (centred) with the field's mean height, e.g. to a fast FFT size or to the coherence
+/// area without inventing structure.
+pub fn pad(hf: &HeightField, rows: usize, cols: usize) -> Result<HeightField, SurfaceError> {
+    check_dims(rows, cols)?;
+    if rows < hf.rows || cols < hf.cols {
+        return Err(SurfaceError::invalid(format!(
+            "cannot pad {}×{} to the smaller {rows}×{cols}; crop instead",
+            hf.rows, hf.cols
+        )));
+    }
+    let m = hf.mean();
+    let (r0, c0) = ((rows - hf.rows) / 2, (cols - hf.cols) / 2);
+    let mut h = vec![m; rows * cols];
+    for r in 0..hf.rows {
+        h[(r + r0) * cols + c0..(r + r0) * cols + c0 + hf.cols].copy_from_slice(hf.row(r));
+    }
+    Ok(with(hf, rows, cols, hf.dx_nm, hf.dy_nm, h, format!("padded to {rows}×{cols} with the mean {m:.3} nm")))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn field(rows: usize, cols: usize, f: impl Fn(usize, usize) -> f64) -> HeightField {
+        let h = (0..rows * cols).map(|i| f(i / cols, i % cols)).collect();
+        HeightField::new(rows, cols, 10.0, 20.0, h).unwrap()
+    }
+
+    #[test]
+    fn plane_levelling_removes_a_tilt_exactly() {
+        // A tilt plus a zero-mean, tilt-free pattern (symmetric in x and y about the centre).
+        let hf = field(9, 11, |r, c| 5.0 + 0.3 * c as f64 - 0.7 * r as f64 + if (r + c) % 2 == 0 { 1.0 } else { -1.0 });
+        let l = level_plane(&hf);
+        let pattern = field(9, 11, |r, c| if (r + c) % 2 == 0 { 1.0 } else { -1.0 });
+        let pm = pattern.mean();
+        for (a, b) in l.heights_nm.iter().zip(&pattern.heights_nm) {
+            assert!((a - (b - pm)).abs() < 1e-9, "{a} vs {b}");
+        }
+    }
+
+    #[test]
+    fn mean_and_rows() {
+        let hf = field(4, 5, |r, c| (r * 10 + c) as f64);
+        assert!(remove_mean(&hf).mean().abs() < 1e-12);
+        let l = level_rows(&hf);
+        for r in 0..4 {
+            assert!(l.row(r).iter().sum::<f64>().abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn crop_tile_pad() {
+        let hf = field(4, 5, |r, c| (r * 10 + c) as f64);
+        let c = crop(&hf, 1, 2, 2, 3).unwrap();
+        assert_eq!(c.heights_nm, vec![12.0, 13.0, 14.0, 22.0, 23.0, 24.0]);
+        assert!(crop(&hf, 3, 0, 2, 2).is_err());
+        let t = tile(&c, 2, 3).unwrap();
+        assert_eq!((t.rows, t.cols), (4, 9));
+        assert_eq!(t.get(3, 7), c.get(1, 1));
+        let p = pad(&c, 4, 5).unwrap();
+        assert_eq!(p.get(1, 1), 12.0);
+        assert_eq!(p.get(0, 0), c.mean());
+        assert!(pad(&c, 1, 5).is_err());
+    }
+
+    #[test]
+    fn resample_keeps_extent_and_linear_ramps() {
+        let hf = field(40, 60, |_, c| c as f64 * 10.0); // h = x in nm at pixel centres (x = c·dx, dx = 10)
+        let r = resample(&hf, 5.0, 20.0).unwrap();
+        assert_eq!((r.rows, r.cols), (40, 120));
+        assert_eq!(r.extent_nm(), hf.extent_nm());
+        // Output pixel c covers [5c, 5c+5]: centre 5c + 2.5 → input pixel coordinate 0.5c − 0.25.
+        for c in 2..110 {
+            let expect = (c as f64 * 0.5 - 0.25) * 10.0;
+            assert!((r.get(7, c) - expect).abs() < 1e-9, "col {c}: {} vs {expect}", r.get(7, c));
+        }
+        let coarse = resample(&hf, 40.0, 40.0).unwrap();
+        assert_eq!((coarse.rows, coarse.cols), (20, 15));
+        assert!(resample(&hf, 0.0, 1.0).is_err());
+        assert!(resample(&hf, f64::NAN, 1.0).is_err());
+    }
+}
