@@ -10,7 +10,9 @@ pub enum ThinFilmError {
     #[error("{path}{}: {message}", .line.map(|l| format!(", line {l}")).unwrap_or_default())]
     File { path: String, line: Option<usize>, message: String },
     /// A wavelength outside the data of a material: never extrapolated.
-    #[error("material '{material}' has data for {lo_nm}–{hi_nm} nm only; {wavelength_nm} nm is outside (no extrapolation)")]
+    #[error(
+        "material '{material}' has data for {lo_nm}–{hi_nm} nm only; {wavelength_nm} nm is outside (no extrapolation)"
+    )]
     OutOfRange { material: String, wavelength_nm: f64, lo_nm: f64, hi_nm: f64 },
     /// The incident medium must be lossless (Sussenbach, section 3.4, constraint 6).
     #[error("incident medium '{material}' absorbs (κ = {kappa} at {wavelength_nm} nm); the incident medium must be lossless")]

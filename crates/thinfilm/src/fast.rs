@@ -11,7 +11,7 @@
 use num_complex::Complex64;
 
 use crate::error::ThinFilmError;
-use crate::recurrence::{fresnel, recur, transmission_factor, Medium, Rta};
+use crate::recurrence::{fresnel, grazing_variants, recur, transmission_factor, Medium, Rta};
 use crate::stack::Stack;
 
 #[derive(Debug, Clone)]
@@ -25,7 +25,8 @@ enum Interfaces {
 /// A stack prepared for one incidence angle (and, for dispersive materials, one wavelength).
 #[derive(Debug, Clone)]
 pub struct Prepared {
-    interfaces: Interfaces,
+    /// One set, or two for a layer at its critical angle (averaged, see `recurrence::grazing_variants`).
+    sets: Vec<Interfaces>,
     thicknesses: Vec<f64>,
     t_factor: f64,
     /// `Some(λ)` when the indices were taken at one wavelength (dispersive stack).
@@ -53,21 +54,12 @@ impl Prepared {
     fn new(stack: &Stack, wavelength_nm: f64, angle_rad: f64, at: Option<f64>) -> Result<Self, ThinFilmError> {
         let media: Vec<Medium> = stack.media(wavelength_nm, angle_rad)?;
         let n = stack.layers.len();
-        let all_real = media.iter().all(|m| m.n.im == 0.0 && m.cos.im == 0.0);
-        let fr: Vec<_> = (1..=n + 1).map(|j| fresnel(media[j - 1], media[j])).collect();
-        let interfaces = if all_real {
-            Interfaces::Real {
-                rt: fr.iter().map(|f| [f.r_s.re, f.r_p.re, f.t_s.re, f.t_p.re]).collect(),
-                q: (1..=n).map(|j| (media[j].n * media[j].cos).re).collect(),
-            }
-        } else {
-            Interfaces::Complex {
-                rt: fr.iter().map(|f| [f.r_s, f.r_p, f.t_s, f.t_p]).collect(),
-                q: (1..=n).map(|j| media[j].n * media[j].cos).collect(),
-            }
+        let sets = match grazing_variants(&media) {
+            Some([plus, minus]) => vec![interfaces(&plus), interfaces(&minus)],
+            None => vec![interfaces(&media)],
         };
         Ok(Self {
-            interfaces,
+            sets,
             thicknesses: stack.thicknesses(),
             t_factor: transmission_factor(media[0], media[n + 1]),
             wavelength_nm: at,
@@ -76,7 +68,7 @@ impl Prepared {
 
     /// True when the real-arithmetic path is used (dielectric stack, no evanescent layer).
     pub fn is_real(&self) -> bool {
-        matches!(self.interfaces, Interfaces::Real { .. })
+        self.sets.iter().all(|s| matches!(s, Interfaces::Real { .. }))
     }
 
     fn check(&self, wavelength_nm: f64) -> Result<(), ThinFilmError> {
@@ -108,7 +100,9 @@ impl Prepared {
     /// R, T with other thicknesses (nm, one per layer).
     pub fn evaluate_thicknesses(&self, wavelength_nm: f64, thicknesses_nm: &[f64]) -> Result<Rta, ThinFilmError> {
         self.check(wavelength_nm)?;
-        if thicknesses_nm.len() != self.thicknesses.len() || thicknesses_nm.iter().any(|d| !(d.is_finite() && *d >= 0.0)) {
+        if thicknesses_nm.len() != self.thicknesses.len()
+            || thicknesses_nm.iter().any(|d| !(d.is_finite() && *d >= 0.0))
+        {
             return Err(ThinFilmError::Invalid(format!(
                 "need {} finite thicknesses ≥ 0, got {:?}",
                 self.thicknesses.len(),
@@ -120,51 +114,85 @@ impl Prepared {
 
     #[inline]
     fn run(&self, wavelength_nm: f64, d: impl Fn(usize) -> f64) -> Rta {
-        let k = 2.0 * std::f64::consts::PI / wavelength_nm;
+        let [gs, gp, ts, tp] = if self.sets.len() == 1 {
+            amplitudes(&self.sets[0], wavelength_nm, &d)
+        } else {
+            let a = amplitudes(&self.sets[0], wavelength_nm, &d);
+            let b = amplitudes(&self.sets[1], wavelength_nm, &d);
+            [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2]), 0.5 * (a[3] + b[3])]
+        };
         let f = self.t_factor;
-        match &self.interfaces {
-            Interfaces::Real { rt, q } => {
-                let n = q.len();
-                // Seed (eq. 3.3–3.4), then eq. 3.1–3.2 with real r, t and φ: only γ, τ are complex.
-                let b = rt[n];
-                let (mut gs, mut gp) = ((b[0], 0.0), (b[1], 0.0));
-                let (mut ts, mut tp) = ((b[2], 0.0), (b[3], 0.0));
-                for j in (0..n).rev() {
-                    let phi = k * q[j] * d(j); // eq. 3.5 with the precalculated n_j s_{z,j}
-                    let (s1, c1) = phi.sin_cos();
-                    let (s2, c2) = (2.0 * s1 * c1, c1 * c1 - s1 * s1);
-                    let [r_s, r_p, t_s, t_p] = rt[j];
-                    (gs, ts) = recur_real(r_s, t_s, gs, ts, (c1, s1), (c2, s2));
-                    (gp, tp) = recur_real(r_p, t_p, gp, tp, (c1, s1), (c2, s2));
-                }
-                Rta {
-                    r_s: gs.0 * gs.0 + gs.1 * gs.1,
-                    r_p: gp.0 * gp.0 + gp.1 * gp.1,
-                    t_s: f * (ts.0 * ts.0 + ts.1 * ts.1),
-                    t_p: f * (tp.0 * tp.0 + tp.1 * tp.1),
-                }
+        Rta { r_s: gs.norm_sqr(), r_p: gp.norm_sqr(), t_s: f * ts.norm_sqr(), t_p: f * tp.norm_sqr() }
+    }
+}
+
+/// The precalculation stage (Algorithm 3): Fresnel amplitudes per interface, `n̂_j s_{z,j}` per layer.
+fn interfaces(media: &[Medium]) -> Interfaces {
+    let n = media.len() - 2;
+    let all_real = media.iter().all(|m| m.n.im == 0.0 && m.cos.im == 0.0);
+    let fr: Vec<_> = (1..=n + 1).map(|j| fresnel(media[j - 1], media[j])).collect();
+    if all_real {
+        Interfaces::Real {
+            rt: fr.iter().map(|f| [f.r_s.re, f.r_p.re, f.t_s.re, f.t_p.re]).collect(),
+            q: (1..=n).map(|j| (media[j].n * media[j].cos).re).collect(),
+        }
+    } else {
+        Interfaces::Complex {
+            rt: fr.iter().map(|f| [f.r_s, f.r_p, f.t_s, f.t_p]).collect(),
+            q: (1..=n).map(|j| media[j].n * media[j].cos).collect(),
+        }
+    }
+}
+
+/// The simulation stage (Algorithm 4): composite amplitudes `[γ_s, γ_p, τ_s, τ_p]` at one wavelength.
+#[inline]
+fn amplitudes(set: &Interfaces, wavelength_nm: f64, d: &impl Fn(usize) -> f64) -> [Complex64; 4] {
+    let k = 2.0 * std::f64::consts::PI / wavelength_nm;
+    match set {
+        Interfaces::Real { rt, q } => {
+            let n = q.len();
+            // Seed (eq. 3.3–3.4), then eq. 3.1–3.2 with real r, t and φ: only γ, τ are complex.
+            let b = rt[n];
+            let (mut gs, mut gp) = ((b[0], 0.0), (b[1], 0.0));
+            let (mut ts, mut tp) = ((b[2], 0.0), (b[3], 0.0));
+            for j in (0..n).rev() {
+                let phi = k * q[j] * d(j); // eq. 3.5 with the precalculated n_j s_{z,j}
+                let (s1, c1) = phi.sin_cos();
+                let (s2, c2) = (2.0 * s1 * c1, c1 * c1 - s1 * s1);
+                let [r_s, r_p, t_s, t_p] = rt[j];
+                (gs, ts) = recur_real(r_s, t_s, gs, ts, (c1, s1), (c2, s2));
+                (gp, tp) = recur_real(r_p, t_p, gp, tp, (c1, s1), (c2, s2));
             }
-            Interfaces::Complex { rt, q } => {
-                let n = q.len();
-                let b = rt[n];
-                let (mut gs, mut gp, mut ts, mut tp) = (b[0], b[1], b[2], b[3]);
-                for j in (0..n).rev() {
-                    let phi = (k * d(j)) * q[j];
-                    let e1 = Complex64::from_polar((-phi.im).exp(), phi.re);
-                    let e2 = e1 * e1;
-                    let [r_s, r_p, t_s, t_p] = rt[j];
-                    (gs, ts) = recur(r_s, t_s, gs, ts, e1, e2);
-                    (gp, tp) = recur(r_p, t_p, gp, tp, e1, e2);
-                }
-                Rta { r_s: gs.norm_sqr(), r_p: gp.norm_sqr(), t_s: f * ts.norm_sqr(), t_p: f * tp.norm_sqr() }
+            let z = |v: (f64, f64)| Complex64::new(v.0, v.1);
+            [z(gs), z(gp), z(ts), z(tp)]
+        }
+        Interfaces::Complex { rt, q } => {
+            let n = q.len();
+            let b = rt[n];
+            let (mut gs, mut gp, mut ts, mut tp) = (b[0], b[1], b[2], b[3]);
+            for j in (0..n).rev() {
+                let phi = (k * d(j)) * q[j];
+                let e1 = Complex64::from_polar((-phi.im).exp(), phi.re);
+                let e2 = e1 * e1;
+                let [r_s, r_p, t_s, t_p] = rt[j];
+                (gs, ts) = recur(r_s, t_s, gs, ts, e1, e2);
+                (gp, tp) = recur(r_p, t_p, gp, tp, e1, e2);
             }
+            [gs, gp, ts, tp]
         }
     }
 }
 
 /// Eq. 3.1–3.2 with real `r`, `t`; `γ`, `τ` as (re, im); `e1 = e^{iφ}`, `e2 = e^{2iφ}` as (cos, sin).
 #[inline(always)]
-fn recur_real(r: f64, t: f64, g: (f64, f64), tau: (f64, f64), e1: (f64, f64), e2: (f64, f64)) -> ((f64, f64), (f64, f64)) {
+fn recur_real(
+    r: f64,
+    t: f64,
+    g: (f64, f64),
+    tau: (f64, f64),
+    e1: (f64, f64),
+    e2: (f64, f64),
+) -> ((f64, f64), (f64, f64)) {
     // γ e^{2iφ}
     let (a, b) = (g.0 * e2.0 - g.1 * e2.1, g.0 * e2.1 + g.1 * e2.0);
     // denominator 1 + r γ e^{2iφ}

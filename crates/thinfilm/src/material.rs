@@ -150,17 +150,61 @@ const LIBRARY: &[(&[&str], &str, Builtin)] = &[
     (&["glass"], "n = 1.5, constant (Sussenbach section 5.1)", Builtin::Const(1.5)),
     (&["gasoline", "oil"], "n = 1.4, constant (Sussenbach section 5.1)", Builtin::Const(1.4)),
     (&["asphalt"], "n = 1.635, constant (Sussenbach section 5.1)", Builtin::Const(1.635)),
-    (&["bk7", "n-bk7"], "SCHOTT N-BK7 Sellmeier, 300–2500 nm", Builtin::File("bk7_schott.yml", include_str!("../../../data/materials/bk7_schott.yml"))),
-    (&["fused-silica", "fused_silica", "silica", "sio2"], "fused silica, Malitson 1965 Sellmeier, 210–6700 nm", Builtin::File("sio2_malitson.yml", include_str!("../../../data/materials/sio2_malitson.yml"))),
-    (&["keratin"], "bird keratin, Leertouwer et al. 2011 Cauchy, 380–780 nm", Builtin::File("keratin_leertouwer.yml", include_str!("../../../data/materials/keratin_leertouwer.yml"))),
-    (&["chitin"], "butterfly chitin, Leertouwer et al. 2011 Cauchy, 380–780 nm", Builtin::File("chitin_leertouwer.yml", include_str!("../../../data/materials/chitin_leertouwer.yml"))),
-    (&["mgf2"], "MgF2 ordinary ray, Dodge 1984 Sellmeier, 200–7000 nm", Builtin::File("mgf2_dodge_o.yml", include_str!("../../../data/materials/mgf2_dodge_o.yml"))),
-    (&["tio2", "rutile"], "TiO2 (rutile) ordinary ray, Devore 1951, 430–1530 nm", Builtin::File("tio2_devore_o.yml", include_str!("../../../data/materials/tio2_devore_o.yml"))),
-    (&["si", "silicon"], "crystalline Si, Aspnes & Studna 1983, 207–827 nm", Builtin::File("si_aspnes.yml", include_str!("../../../data/materials/si_aspnes.yml"))),
-    (&["au", "gold"], "gold, Johnson & Christy 1972, 188–1937 nm", Builtin::File("au_johnson.yml", include_str!("../../../data/materials/au_johnson.yml"))),
-    (&["ag", "silver"], "silver, Johnson & Christy 1972, 188–1937 nm", Builtin::File("ag_johnson.yml", include_str!("../../../data/materials/ag_johnson.yml"))),
-    (&["cu", "copper"], "copper, Johnson & Christy 1972, 188–1937 nm", Builtin::File("cu_johnson.yml", include_str!("../../../data/materials/cu_johnson.yml"))),
-    (&["al", "aluminium", "aluminum"], "aluminium, Rakić 1995, 207–2066 nm", Builtin::File("al_rakic.yml", include_str!("../../../data/materials/al_rakic.yml"))),
+    (
+        &["bk7", "n-bk7"],
+        "SCHOTT N-BK7 Sellmeier, 300–2500 nm",
+        Builtin::File("bk7_schott.yml", include_str!("../../../data/materials/bk7_schott.yml")),
+    ),
+    (
+        &["fused-silica", "fused_silica", "silica", "sio2"],
+        "fused silica, Malitson 1965 Sellmeier, 210–6700 nm",
+        Builtin::File("sio2_malitson.yml", include_str!("../../../data/materials/sio2_malitson.yml")),
+    ),
+    (
+        &["keratin"],
+        "bird keratin, Leertouwer et al. 2011 Cauchy, 380–780 nm",
+        Builtin::File("keratin_leertouwer.yml", include_str!("../../../data/materials/keratin_leertouwer.yml")),
+    ),
+    (
+        &["chitin"],
+        "butterfly chitin, Leertouwer et al. 2011 Cauchy, 380–780 nm",
+        Builtin::File("chitin_leertouwer.yml", include_str!("../../../data/materials/chitin_leertouwer.yml")),
+    ),
+    (
+        &["mgf2"],
+        "MgF2 ordinary ray, Dodge 1984 Sellmeier, 200–7000 nm",
+        Builtin::File("mgf2_dodge_o.yml", include_str!("../../../data/materials/mgf2_dodge_o.yml")),
+    ),
+    (
+        &["tio2", "rutile"],
+        "TiO2 (rutile) ordinary ray, Devore 1951, 430–1530 nm",
+        Builtin::File("tio2_devore_o.yml", include_str!("../../../data/materials/tio2_devore_o.yml")),
+    ),
+    (
+        &["si", "silicon"],
+        "crystalline Si, Aspnes & Studna 1983, 207–827 nm",
+        Builtin::File("si_aspnes.yml", include_str!("../../../data/materials/si_aspnes.yml")),
+    ),
+    (
+        &["au", "gold"],
+        "gold, Johnson & Christy 1972, 188–1937 nm",
+        Builtin::File("au_johnson.yml", include_str!("../../../data/materials/au_johnson.yml")),
+    ),
+    (
+        &["ag", "silver"],
+        "silver, Johnson & Christy 1972, 188–1937 nm",
+        Builtin::File("ag_johnson.yml", include_str!("../../../data/materials/ag_johnson.yml")),
+    ),
+    (
+        &["cu", "copper"],
+        "copper, Johnson & Christy 1972, 188–1937 nm",
+        Builtin::File("cu_johnson.yml", include_str!("../../../data/materials/cu_johnson.yml")),
+    ),
+    (
+        &["al", "aluminium", "aluminum"],
+        "aluminium, Rakić 1995, 207–2066 nm",
+        Builtin::File("al_rakic.yml", include_str!("../../../data/materials/al_rakic.yml")),
+    ),
 ];
 
 #[derive(Debug, Clone, Copy)]
@@ -253,12 +297,7 @@ impl Material {
         let (lo, hi) = self.range_nm;
         let tol = 1e-9 * wavelength_nm;
         if wavelength_nm < lo - tol || wavelength_nm > hi + tol {
-            return Err(ThinFilmError::OutOfRange {
-                material: self.name.clone(),
-                wavelength_nm,
-                lo_nm: lo,
-                hi_nm: hi,
-            });
+            return Err(ThinFilmError::OutOfRange { material: self.name.clone(), wavelength_nm, lo_nm: lo, hi_nm: hi });
         }
         let w = wavelength_nm.clamp(lo, hi);
         let n = self.n.eval(w);

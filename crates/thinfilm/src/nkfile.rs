@@ -74,7 +74,11 @@ pub fn parse_yaml(text: &str, path: &str) -> Result<Material, ThinFilmError> {
             "wavelength_range" | "range" => {
                 let v = numbers(value, path, lineno)?;
                 if v.len() != 2 || !(v[0] > 0.0 && v[1] > v[0]) {
-                    return Err(file_err(path, Some(lineno), "wavelength_range needs two increasing positive numbers (µm)"));
+                    return Err(file_err(
+                        path,
+                        Some(lineno),
+                        "wavelength_range needs two increasing positive numbers (µm)",
+                    ));
                 }
                 entry.range_um = Some((v[0], v[1]));
             }
@@ -119,7 +123,9 @@ pub fn parse_yaml(text: &str, path: &str) -> Result<Material, ThinFilmError> {
         if let Some(f) = kind.strip_prefix("formula") {
             let f: u8 = match f.trim().parse() {
                 Ok(v @ 1..=9) => v,
-                _ => return Err(file_err(path, line, format!("unsupported type '{}' (formulas 1–9 are read)", e.kind))),
+                _ => {
+                    return Err(file_err(path, line, format!("unsupported type '{}' (formulas 1–9 are read)", e.kind)))
+                }
             };
             let Some((lo, hi)) = e.range_um else {
                 return Err(file_err(path, line, format!("'{}' has no wavelength_range", e.kind)));
@@ -137,7 +143,10 @@ pub fn parse_yaml(text: &str, path: &str) -> Result<Material, ThinFilmError> {
                 return Err(file_err(
                     path,
                     line,
-                    format!("unsupported type '{}' (read: tabulated nk, tabulated n, tabulated k, formula 1–9)", e.kind),
+                    format!(
+                        "unsupported type '{}' (read: tabulated nk, tabulated n, tabulated k, formula 1–9)",
+                        e.kind
+                    ),
                 ))
             }
         };
@@ -146,7 +155,11 @@ pub fn parse_yaml(text: &str, path: &str) -> Result<Material, ThinFilmError> {
         let mut b = Vec::with_capacity(e.rows.len());
         for (ln, row) in &e.rows {
             if row.len() != cols {
-                return Err(file_err(path, Some(*ln), format!("'{}' rows have {cols} numbers, this one has {}", e.kind, row.len())));
+                return Err(file_err(
+                    path,
+                    Some(*ln),
+                    format!("'{}' rows have {cols} numbers, this one has {}", e.kind, row.len()),
+                ));
             }
             wl.push(row[0] * 1000.0);
             a.push(row[1]);
@@ -179,7 +192,14 @@ pub fn parse_yaml(text: &str, path: &str) -> Result<Material, ThinFilmError> {
 type Table = (Vec<f64>, Vec<f64>, Vec<f64>);
 
 /// Sorts a table by wavelength and checks it: at least two rows, distinct wavelengths, n > 0, κ ≥ 0.
-fn check_table(path: &str, line: Option<usize>, wl: Vec<f64>, a: Vec<f64>, b: Vec<f64>, a_is_k: bool) -> Result<Table, ThinFilmError> {
+fn check_table(
+    path: &str,
+    line: Option<usize>,
+    wl: Vec<f64>,
+    a: Vec<f64>,
+    b: Vec<f64>,
+    a_is_k: bool,
+) -> Result<Table, ThinFilmError> {
     if wl.len() < 2 {
         return Err(file_err(path, line, "a table needs at least two rows"));
     }
@@ -214,8 +234,7 @@ pub fn parse_csv(text: &str, path: &str) -> Result<Material, ThinFilmError> {
         if t.is_empty() || t.starts_with('#') {
             continue;
         }
-        let fields: Vec<&str> =
-            t.split(|c: char| c == ',' || c == ';' || c == '\t' || c == ' ').filter(|s| !s.is_empty()).collect();
+        let fields: Vec<&str> = t.split([',', ';', '\t', ' ']).filter(|s| !s.is_empty()).collect();
         let parsed: Vec<Option<f64>> = fields.iter().map(|f| f.parse::<f64>().ok().filter(|v| v.is_finite())).collect();
         if parsed.iter().any(Option::is_none) {
             if !header_seen && wl.is_empty() {
@@ -227,7 +246,11 @@ pub fn parse_csv(text: &str, path: &str) -> Result<Material, ThinFilmError> {
         }
         let v: Vec<f64> = parsed.into_iter().flatten().collect();
         if !(v.len() == 2 || v.len() == 3) {
-            return Err(file_err(path, Some(i + 1), format!("expected 2 or 3 columns (wavelength_nm, n, κ), found {}", v.len())));
+            return Err(file_err(
+                path,
+                Some(i + 1),
+                format!("expected 2 or 3 columns (wavelength_nm, n, κ), found {}", v.len()),
+            ));
         }
         wl.push(v[0]);
         n.push(v[1]);
@@ -235,7 +258,12 @@ pub fn parse_csv(text: &str, path: &str) -> Result<Material, ThinFilmError> {
     }
     let (wl, n, k) = check_table(path, None, wl, n, k, false)?;
     let range = (wl[0], wl[wl.len() - 1]);
-    Ok(Material::from_parts(path.to_string(), Part::Table { wl_nm: wl.clone(), v: n }, Part::Table { wl_nm: wl, v: k }, range))
+    Ok(Material::from_parts(
+        path.to_string(),
+        Part::Table { wl_nm: wl.clone(), v: n },
+        Part::Table { wl_nm: wl, v: k },
+        range,
+    ))
 }
 
 #[cfg(test)]

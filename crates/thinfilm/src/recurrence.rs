@@ -14,8 +14,8 @@ use std::f64::consts::PI;
 use num_complex::Complex64;
 use serde::Serialize;
 
-/// The threshold below which a layer's complex cosine is treated as grazing (see [`layer_cosine`]).
-const GRAZING_COS: f64 = 1e-9;
+/// Below this `|s_z|` a layer counts as grazing (at its critical angle); see [`compose`].
+pub const GRAZING_COS: f64 = 1e-5;
 
 /// One medium at one wavelength and incidence: its index `n̂_j` and the cosine `s_{z,j}` of the
 /// propagation angle inside it.
@@ -48,14 +48,42 @@ pub fn cosine(n0_sin0: f64, n: Complex64) -> Complex64 {
     }
 }
 
-/// The cosine used inside a finite layer: [`cosine`], except that an exactly grazing wave (`|s_z|` below
-/// 1e-9, a layer at its critical angle) is moved to `s_z = 1e-9·i`. There the Fresnel amplitudes of the
-/// layer's two interfaces are ±1 and eq. 3.1 would divide 0 by 0; R and T are even functions of the layer's
-/// `n̂ s_z`, so the shift changes them by O(1e-18).
+/// The cosine inside a finite layer: [`cosine`] (kept as a separate name for the callers that build
+/// layers; grazing layers are handled in [`compose`]).
 pub fn layer_cosine(n0_sin0: f64, n: Complex64) -> Complex64 {
-    let c = cosine(n0_sin0, n);
-    if c.norm() < GRAZING_COS {
-        Complex64::new(0.0, GRAZING_COS)
+    cosine(n0_sin0, n)
+}
+
+/// For a stack with a layer at (or within ~1e-5 of) its critical angle, two copies of the media whose
+/// grazing layers have `s_z² ± δ²` (δ = [`GRAZING_COS`]) instead of `s_z²`; `None` when no layer grazes.
+///
+/// Why: at grazing incidence inside layer `j` the Fresnel amplitudes of its two interfaces tend to ±1 and
+/// eq. 3.1 divides two small differences (0/0 exactly at the critical angle), losing about
+/// `ε / |s_{z,j}|` of precision. The layer's effect on the stack (its characteristic matrix) is an even,
+/// analytic function of `s_{z,j}`, so the mean of the two shifted evaluations equals the true value to
+/// O(δ⁴) while each of them is well conditioned (precision ~ε/δ ≈ 1e-11).
+pub fn grazing_variants(media: &[Medium]) -> Option<[Vec<Medium>; 2]> {
+    let inner = 1..media.len().saturating_sub(1);
+    if !media[inner.clone()].iter().any(|m| m.cos.norm() < GRAZING_COS) {
+        return None;
+    }
+    let d2 = GRAZING_COS * GRAZING_COS;
+    let mut plus = media.to_vec();
+    let mut minus = media.to_vec();
+    for j in inner {
+        if media[j].cos.norm() < GRAZING_COS {
+            let c2 = media[j].cos * media[j].cos;
+            plus[j].cos = forward((c2 + d2).sqrt(), media[j].n);
+            minus[j].cos = forward((c2 - d2).sqrt(), media[j].n);
+        }
+    }
+    Some([plus, minus])
+}
+
+fn forward(c: Complex64, n: Complex64) -> Complex64 {
+    let q = n * c;
+    if q.im < 0.0 || (q.im == 0.0 && q.re < 0.0) {
+        -c
     } else {
         c
     }
@@ -126,7 +154,14 @@ impl Composite {
 
 /// Eq. 3.1 and 3.2 for one polarisation, with `e1 = e^{iφ}` and `e2 = e^{2iφ}`.
 #[inline]
-pub fn recur(r: Complex64, t: Complex64, gamma: Complex64, tau: Complex64, e1: Complex64, e2: Complex64) -> (Complex64, Complex64) {
+pub fn recur(
+    r: Complex64,
+    t: Complex64,
+    gamma: Complex64,
+    tau: Complex64,
+    e1: Complex64,
+    e2: Complex64,
+) -> (Complex64, Complex64) {
     let g = gamma * e2;
     let inv = 1.0 / (1.0 + r * g);
     ((r + g) * inv, t * tau * e1 * inv)
@@ -136,6 +171,21 @@ pub fn recur(r: Complex64, t: Complex64, gamma: Complex64, tau: Complex64, e1: C
 /// the `N` layer thicknesses in nm. `seed` replaces the bottom interface's Fresnel amplitudes (eq. 3.3–3.4)
 /// when given. Returns the composite amplitudes at the top, γ_N and τ_N.
 pub fn compose(media: &[Medium], thicknesses: &[f64], wavelength_nm: f64, seed: Option<Composite>) -> Composite {
+    if let Some([plus, minus]) = grazing_variants(media) {
+        let a = compose_plain(&plus, thicknesses, wavelength_nm, seed);
+        let b = compose_plain(&minus, thicknesses, wavelength_nm, seed);
+        return Composite {
+            gamma_s: 0.5 * (a.gamma_s + b.gamma_s),
+            gamma_p: 0.5 * (a.gamma_p + b.gamma_p),
+            tau_s: 0.5 * (a.tau_s + b.tau_s),
+            tau_p: 0.5 * (a.tau_p + b.tau_p),
+        };
+    }
+    compose_plain(media, thicknesses, wavelength_nm, seed)
+}
+
+/// [`compose`] without the grazing-layer treatment.
+pub fn compose_plain(media: &[Medium], thicknesses: &[f64], wavelength_nm: f64, seed: Option<Composite>) -> Composite {
     let n = thicknesses.len();
     debug_assert_eq!(media.len(), n + 2);
     let mut c = seed.unwrap_or_else(|| Composite::seed(fresnel(media[n], media[n + 1])));
@@ -175,7 +225,12 @@ impl Amplitudes {
     /// Reflectance and transmittance (eq. 3.12–3.13, per polarisation).
     pub fn powers(&self) -> Rta {
         let f = self.transmission_factor();
-        Rta { r_s: self.r_s.norm_sqr(), r_p: self.r_p.norm_sqr(), t_s: f * self.t_s.norm_sqr(), t_p: f * self.t_p.norm_sqr() }
+        Rta {
+            r_s: self.r_s.norm_sqr(),
+            r_p: self.r_p.norm_sqr(),
+            t_s: f * self.t_s.norm_sqr(),
+            t_p: f * self.t_p.norm_sqr(),
+        }
     }
 }
 

@@ -129,15 +129,24 @@ impl Stack {
             let is_layer = k != 0 && k != last;
             if is_layer {
                 if toks.len() == 1 {
-                    return Err(err(&toks[0], format!("layer {k} has no thickness; write e.g. '{} 100nm'", toks[0].text)));
+                    return Err(err(
+                        &toks[0],
+                        format!("layer {k} has no thickness; write e.g. '{} 100nm'", toks[0].text),
+                    ));
                 }
                 if toks.len() > 2 {
-                    return Err(err(&toks[2], format!("layer {k}: expected 'MATERIAL THICKNESS', found an extra word")));
+                    return Err(err(
+                        &toks[2],
+                        format!("layer {k}: expected 'MATERIAL THICKNESS', found an extra word"),
+                    ));
                 }
                 let t = &toks[1];
                 let d = if t.text == SWEEP_PLACEHOLDER {
                     if !allow_sweep {
-                        return Err(err(t, format!("{SWEEP_PLACEHOLDER} marks the swept layer of 'iridis thinfilm chart' only")));
+                        return Err(err(
+                            t,
+                            format!("{SWEEP_PLACEHOLDER} marks the swept layer of 'iridis thinfilm chart' only"),
+                        ));
                     }
                     if swept.is_some() {
                         return Err(err(t, format!("only one layer may have the thickness {SWEEP_PLACEHOLDER}")));
@@ -145,7 +154,8 @@ impl Stack {
                     swept = Some(k - 1);
                     0.0
                 } else {
-                    let d = iridis_color::units::parse_length_nm(t.text).map_err(|e| err(t, format!("bad thickness: {}", e.0)))?;
+                    let d = iridis_color::units::parse_length_nm(t.text)
+                        .map_err(|e| err(t, format!("bad thickness: {}", e.0)))?;
                     if d < 0.0 {
                         return Err(err(t, "thickness must not be negative".into()));
                     }
@@ -174,7 +184,9 @@ impl Stack {
 
     /// The media from top to bottom: incident, layers, substrate.
     pub fn materials(&self) -> impl Iterator<Item = &Material> {
-        std::iter::once(&self.incident).chain(self.layers.iter().map(|l| &l.material)).chain(std::iter::once(&self.substrate))
+        std::iter::once(&self.incident)
+            .chain(self.layers.iter().map(|l| &l.material))
+            .chain(std::iter::once(&self.substrate))
     }
 
     /// The layer thicknesses in nm, top first.
@@ -312,7 +324,9 @@ fn parse_complex(v: &str) -> Option<Complex64> {
     if let Some(body) = v.strip_suffix('i').or_else(|| v.strip_suffix('j')) {
         // Find the sign that separates the real and imaginary parts (not an exponent's sign).
         let bytes = body.as_bytes();
-        let split = (1..bytes.len()).rev().find(|&i| (bytes[i] == b'+' || bytes[i] == b'-') && !matches!(bytes[i - 1], b'e' | b'E'))?;
+        let split = (1..bytes.len())
+            .rev()
+            .find(|&i| (bytes[i] == b'+' || bytes[i] == b'-') && !matches!(bytes[i - 1], b'e' | b'E'))?;
         let re = num(&body[..split])?;
         let im_txt = &body[split..];
         let im = if im_txt == "+" || im_txt == "-" { None } else { num(im_txt) }?;
