@@ -30,6 +30,9 @@ enum Command {
     /// Speed, measured against a peer in the same run.
     #[command(subcommand)]
     Bench(cmd::bench::BenchCommand),
+    /// Thin-film interference: spectra, angle × wavelength tables, film colours, the soap-film chart.
+    #[command(subcommand)]
+    Thinfilm(cmd::thinfilm::ThinfilmCommand),
     // New command groups are added here, one line each, with their module in cmd/.
 }
 
@@ -38,6 +41,7 @@ fn main() -> std::process::ExitCode {
     let result = match cli.command {
         Command::Demo(a) => cmd::demo::run(a),
         Command::Color(c) => cmd::color::run(c),
+        Command::Thinfilm(c) => cmd::thinfilm::run(c),
         Command::Bench(c) => cmd::bench::run(c),
     };
     match result {

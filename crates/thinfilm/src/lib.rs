@@ -14,6 +14,7 @@
 //!   seed, eq. 3.16, plugs in), and the amplitude → power conversion (eq. 3.12–3.13);
 //! * [`fast`]: the chapter 4 variant — per-interface values computed once for a fixed angle, real arithmetic
 //!   for dielectric stacks, the same numbers as the general path;
+//! * [`grid`]: angle × wavelength tables (Figure 3.8), in parallel;
 //! * [`color`]: film colours (reflected / transmitted spectrum → XYZ through `iridis-color`).
 //!
 //! Conventions (`docs/PHYSICS.md`): lengths in nanometres, angles in radians, `κ ≥ 0` absorbs, the incident
@@ -30,6 +31,7 @@
 pub mod color;
 pub mod error;
 pub mod fast;
+pub mod grid;
 pub mod material;
 pub mod nkfile;
 pub mod recurrence;

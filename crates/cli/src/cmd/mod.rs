@@ -2,3 +2,4 @@
 pub mod bench;
 pub mod color;
 pub mod demo;
+pub mod thinfilm;

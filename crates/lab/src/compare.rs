@@ -1,0 +1,102 @@
+//! Method comparisons in CIELAB (paper sec. 6.3, Table 2).
+//!
+//! Both images are taken as a camera would record them at an exposure `E` (RU, PHYSICS.md): XYZ × E →
+//! linear sRGB (IEC 61966-2-1) → clipped to [0, 1] → back to XYZ → CIELAB relative to the sRGB/D65 white
+//! (Y = 1). The per-pixel difference is CIEDE2000 (Sharma et al. 2005). Pixels that see nothing in both images
+//! are left out. The clipping is why the errors depend on exposure: at 1 RU only the brightest highlights
+//! reach the display range, at 7500 RU the faint diffraction bands do too (the paper's reason for three
+//! exposures).
+
+use iridis_color::lab::delta_e_2000;
+use iridis_color::{Lab, Xyz};
+use serde::Serialize;
+
+/// The CIELAB colour of XYZ as displayed at `exposure_ru`.
+pub fn displayed_lab(xyz: Xyz, exposure_ru: f64) -> Lab {
+    let rgb = xyz.scale(exposure_ru).to_linear_srgb().map(|v| if v.is_finite() { v.clamp(0.0, 1.0) } else { 0.0 });
+    let white = Xyz::from_linear_srgb([1.0, 1.0, 1.0]);
+    Lab::from_xyz(Xyz::from_linear_srgb(rgb), white)
+}
+
+/// CIEDE2000 per pixel between `test` and `truth` at `exposure_ru` (`None` where neither sees anything).
+pub fn delta_e_map(test: &[Option<Xyz>], truth: &[Option<Xyz>], exposure_ru: f64) -> Vec<Option<f64>> {
+    test.iter()
+        .zip(truth)
+        .map(|(a, b)| match (a, b) {
+            (None, None) => None,
+            _ => {
+                let (a, b) = (a.unwrap_or_default(), b.unwrap_or_default());
+                Some(delta_e_2000(displayed_lab(a, exposure_ru), displayed_lab(b, exposure_ru)))
+            }
+        })
+        .collect()
+}
+
+/// Mean, 95th percentile and maximum of a ΔE map.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Stats {
+    pub mean: f64,
+    pub p95: f64,
+    pub max: f64,
+    pub pixels: usize,
+}
+
+/// Statistics of the pixels that have a value; the 95th percentile is the nearest-rank value
+/// (`⌈0.95 n⌉`-th smallest).
+pub fn stats(map: &[Option<f64>]) -> Stats {
+    let mut v: Vec<f64> = map.iter().flatten().copied().filter(|x| x.is_finite()).collect();
+    if v.is_empty() {
+        return Stats { mean: 0.0, p95: 0.0, max: 0.0, pixels: 0 };
+    }
+    v.sort_by(|a, b| a.total_cmp(b));
+    let n = v.len();
+    let rank = ((0.95 * n as f64).ceil() as usize).clamp(1, n);
+    Stats { mean: v.iter().sum::<f64>() / n as f64, p95: v[rank - 1], max: v[n - 1], pixels: n }
+}
+
+/// One row of Table 2.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ComparisonRow {
+    pub method: String,
+    pub exposure_ru: f64,
+    pub mean: f64,
+    pub p95: f64,
+    pub max: f64,
+}
+
+/// Table 2 for several methods' images against one ground truth: one row per method and exposure.
+pub fn table(methods: &[(String, Vec<Option<Xyz>>)], truth: &[Option<Xyz>], exposures: &[f64]) -> Vec<ComparisonRow> {
+    let mut rows = Vec::new();
+    for (name, img) in methods {
+        for &e in exposures {
+            let s = stats(&delta_e_map(img, truth, e));
+            rows.push(ComparisonRow { method: name.clone(), exposure_ru: e, mean: s.mean, p95: s.p95, max: s.max });
+        }
+    }
+    rows
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn identical_images_have_zero_error_and_percentile_is_nearest_rank() {
+        let img = vec![Some(Xyz::new(0.2, 0.3, 0.1)), None, Some(Xyz::new(0.0, 0.0, 0.0))];
+        let s = stats(&delta_e_map(&img, &img, 100.0));
+        assert_eq!((s.mean, s.p95, s.pixels), (0.0, 0.0, 2));
+        let values: Vec<Option<f64>> = (1..=20).map(|k| Some(k as f64)).collect();
+        let s = stats(&values);
+        assert_eq!((s.mean, s.p95, s.max), (10.5, 19.0, 20.0));
+    }
+
+    #[test]
+    fn saturated_white_has_lightness_100() {
+        // A perfect white reflector (D65 white, Y = 1) at 1 RU is display white: L* = 100, a* = b* = 0.
+        let lab = displayed_lab(Xyz::from_linear_srgb([1.0, 1.0, 1.0]), 1.0);
+        assert!((lab.l - 100.0).abs() < 1e-9 && lab.a.abs() < 1e-9 && lab.b.abs() < 1e-9, "{lab:?}");
+        // Far brighter light clips to the same white.
+        let lab2 = displayed_lab(Xyz::from_linear_srgb([1.0, 1.0, 1.0]), 1000.0);
+        assert!(delta_e_2000(lab, lab2) < 1e-9);
+    }
+}

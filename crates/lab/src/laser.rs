@@ -1,0 +1,270 @@
+//! The laser experiment of paper sec. 6.2 (Figures 8–10), simulated.
+//!
+//! A sample stands vertically; a horizontal supercontinuum beam falls on it at `θ_i = 45°` through a
+//! diaphragm whose aperture (65–100 µm) limits the coherent area, so the aperture is the coherence length
+//! `4σ_s` here. The mirror reflection leaves at 90° to the beam, and a white screen parallel to the beam, at
+//! distance `D` from the sample, catches it head-on. The camera records the screen.
+//!
+//! Geometry in the surface frame (PHYSICS.md), the sample rotated by `azimuth` about its normal as on the test
+//! bench: light `ω_i = (sin θ_i e_x', cos θ_i)`, mirror direction `s = (−sin θ_i e_x', cos θ_i)`,
+//! `e_x' = (cos φ, −sin φ, 0)` for azimuth `φ`. The screen point at image coordinates `(a, b)` (mm right, up)
+//! is `P = D s + a e₁ + b e₂` with `e₁ = −ω_i` (along the beam, to the right as the camera sees it from the
+//! sample's side) and `e₂` the normal of the plane of incidence (up); the pixel views `ω_r = P/|P|`.
+//!
+//! Screen brightness: the sample sends radiant intensity `∝ ρ cos θ_r` into `ω_r` (ρ the relative reflectance
+//! of PHYSICS.md, which carries the `cos θ_i` of the irradiance); the screen receives it over `r²` at the
+//! angle `acos(D/r)`, so a sample of the pixel weighs `ρ · (cos θ_r / cos θ_i) · (D/r)³`, normalised to `ρ` at
+//! the screen's centre. Each pixel averages `k × k` samples over its area — the average over the pixel's
+//! solid angle of sec. 6.2.
+//!
+//! Light and coating: the beam's spectrum `S(λ)` (CSV) replaces the illuminant. A gold coating enters through
+//! gold's complex index `n + iκ` (Johnson & Christy 1972, via `iridis-thinfilm`): its normal-incidence
+//! reflectance `R_Au(λ)` multiplies the light (the gold mirror's colour), and the Fresnel factor of the
+//! shading becomes gold's exact unpolarised Fresnel reflectance, so its angular change stays inside the
+//! spectral integral (paper: "a wavelength dependent Fresnel-term as part of the integrand"). The lookup
+//! method integrates over λ in advance and takes gold at normal incidence only (the paper notes the angular
+//! dependence is weak, Figure 9). Exposure: 1 RU saturates white for a perfect, uncoated mirror at normal
+//! incidence under the same beam, so a gold mirror is dimmer by `Σ S R_Au ȳ / Σ S ȳ`.
+
+use std::sync::Arc;
+
+use iridis_color::{Observer, Spectrum, Xyz};
+use iridis_diffraction::geometry::{fresnel_unpolarised, FresnelSource, Vec3};
+use iridis_thinfilm::Material;
+
+use crate::image::Pixels;
+use crate::methods::{spectral_with_light, Method, MethodConfig};
+use crate::LabError;
+
+/// The geometry of Figure 8.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LaserSetup {
+    /// Angle between the beam and the sample normal (rad); the paper: 45°.
+    pub incidence: f64,
+    /// Rotation of the sample about its normal (rad).
+    pub azimuth: f64,
+    /// Distance from the sample to the screen (nm); the paper's simulation: 100 mm.
+    pub distance_nm: f64,
+    /// Screen area shown (nm).
+    pub screen_width_nm: f64,
+    pub screen_height_nm: f64,
+    /// Image size (pixels); the paper's error analysis: 101 × 101.
+    pub width_px: usize,
+    pub height_px: usize,
+    /// Samples per pixel side (pixel solid-angle averaging).
+    pub subsamples: usize,
+}
+
+impl Default for LaserSetup {
+    fn default() -> Self {
+        Self {
+            incidence: std::f64::consts::FRAC_PI_4,
+            azimuth: 0.0,
+            distance_nm: 100e6,
+            screen_width_nm: 300e6,
+            screen_height_nm: 300e6,
+            width_px: 101,
+            height_px: 101,
+            subsamples: 3,
+        }
+    }
+}
+
+impl LaserSetup {
+    fn check(&self) -> Result<(), LabError> {
+        let pos = |v: f64| v.is_finite() && v > 0.0;
+        if !(self.incidence.is_finite() && self.incidence > 0.0 && self.incidence < std::f64::consts::FRAC_PI_2) {
+            return Err(LabError::invalid(format!(
+                "beam incidence {:.2}° must be between 0° and 90° (exclusive)",
+                self.incidence.to_degrees()
+            )));
+        }
+        if !(pos(self.distance_nm) && pos(self.screen_width_nm) && pos(self.screen_height_nm)) {
+            return Err(LabError::invalid("screen distance and size must be positive lengths"));
+        }
+        if !(1..=4096).contains(&self.width_px) || !(1..=4096).contains(&self.height_px) {
+            return Err(LabError::invalid("the image must be 1–4096 pixels on each side"));
+        }
+        if !(1..=16).contains(&self.subsamples) {
+            return Err(LabError::invalid("subsamples per pixel side must be 1–16"));
+        }
+        Ok(())
+    }
+
+    /// The light direction and the screen's frame `(s, e₁, e₂)` in the surface frame.
+    pub fn frame(&self) -> (Vec3, Vec3, Vec3, Vec3) {
+        let (st, ct) = self.incidence.sin_cos();
+        let (sp, cp) = (-self.azimuth).sin_cos();
+        let wi = [st * cp, st * sp, ct];
+        let s = [-st * cp, -st * sp, ct];
+        let e1 = [-wi[0], -wi[1], -wi[2]];
+        let e2 = [-sp, cp, 0.0];
+        (wi, s, e1, e2)
+    }
+
+    /// The view direction through screen point `(a, b)` (nm right, up of the centre) and its weight.
+    pub fn view(&self, a: f64, b: f64) -> Option<(Vec3, f64)> {
+        let (wi, s, e1, e2) = self.frame();
+        let d = self.distance_nm;
+        let p = [d * s[0] + a * e1[0] + b * e2[0], d * s[1] + a * e1[1] + b * e2[1], d * s[2] + a * e1[2] + b * e2[2]];
+        let r = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+        let wr = [p[0] / r, p[1] / r, p[2] / r];
+        if wr[2] <= 1e-9 {
+            return None; // behind the sample's plane
+        }
+        Some((wr, wr[2] / wi[2] * (d / r).powi(3)))
+    }
+
+    /// The screen's pixels, each with `k × k` direction samples.
+    pub fn pixels(&self) -> Result<Pixels, LabError> {
+        self.check()?;
+        let (wi, ..) = self.frame();
+        let k = self.subsamples;
+        let (w, h) = (self.width_px, self.height_px);
+        let mut samples = Vec::with_capacity(w * h);
+        for row in 0..h {
+            for col in 0..w {
+                let mut s = Vec::with_capacity(k * k);
+                for sy in 0..k {
+                    for sx in 0..k {
+                        let a = ((col as f64 + (sx as f64 + 0.5) / k as f64) / w as f64 - 0.5) * self.screen_width_nm;
+                        let b = (0.5 - (row as f64 + (sy as f64 + 0.5) / k as f64) / h as f64) * self.screen_height_nm;
+                        if let Some((wr, weight)) = self.view(a, b) {
+                            s.push((wi, wr, weight / (k * k) as f64));
+                        }
+                    }
+                }
+                samples.push(s);
+            }
+        }
+        Ok(Pixels { width: w, height: h, samples })
+    }
+}
+
+/// Gold (or any metal) as the Fresnel source: the exact unpolarised Fresnel reflectance of `n̂(λ)` in air.
+#[derive(Debug, Clone)]
+pub struct MetalFresnel {
+    pub material: Arc<Material>,
+}
+
+impl MetalFresnel {
+    /// Checks that the material covers `[from, to]` nm.
+    pub fn new(material: Material, from_nm: f64, to_nm: f64) -> Result<Self, LabError> {
+        for l in [from_nm, to_nm] {
+            material.index_at(l).map_err(|e| LabError::invalid(format!("coating: {e}")))?;
+        }
+        Ok(Self { material: Arc::new(material) })
+    }
+
+    pub fn index(&self, wavelength_nm: f64) -> num_complex::Complex64 {
+        // The range was checked at construction; outside it the nearest end is used.
+        let (lo, hi) = self.material.range_nm();
+        self.material.index_at(wavelength_nm.clamp(lo, hi)).unwrap_or(num_complex::Complex64::new(1.0, 0.0))
+    }
+
+    /// Normal-incidence reflectance `|(n̂ − 1)/(n̂ + 1)|²`.
+    pub fn normal_reflectance(&self, wavelength_nm: f64) -> f64 {
+        fresnel_unpolarised(self.index(wavelength_nm), 1.0)
+    }
+}
+
+impl FresnelSource for MetalFresnel {
+    fn reflectance(&self, wavelength_nm: f64, cos_theta: f64) -> f64 {
+        fresnel_unpolarised(self.index(wavelength_nm), cos_theta)
+    }
+    fn depends_on_wavelength(&self) -> bool {
+        true
+    }
+    fn describe(&self) -> String {
+        format!("{} (complex index, exact Fresnel)", self.material.name())
+    }
+}
+
+/// A Fresnel factor of 1 (the coating's colour is carried by the light instead).
+#[derive(Debug, Clone, Copy)]
+pub struct UnitFresnel;
+
+impl FresnelSource for UnitFresnel {
+    fn reflectance(&self, _: f64, _: f64) -> f64 {
+        1.0
+    }
+    fn depends_on_wavelength(&self) -> bool {
+        false
+    }
+    fn describe(&self) -> String {
+        "none (coating colour in the light)".into()
+    }
+}
+
+/// Sets a method configuration up for the experiment: the beam's spectrum as the light, the coating in the
+/// light and in the Fresnel factor (see the module notes). Returns the factor that converts the resulting
+/// XYZ to RU of a perfect mirror under the same beam.
+pub fn configure(
+    config: &mut MethodConfig,
+    method: Method,
+    spectrum: &Spectrum,
+    coating: Option<&MetalFresnel>,
+    observer: Observer,
+) -> Result<f64, LabError> {
+    if spectrum.values().iter().any(|v| *v < 0.0) || spectrum.values().iter().all(|v| *v == 0.0) {
+        return Err(LabError::invalid("the beam spectrum must be non-negative and not all zero"));
+    }
+    let grid = config.spectral.wavelengths().to_vec();
+    let (from, to, step) = (grid[0], grid[grid.len() - 1], config.spectral.step_nm);
+    let fine: Vec<f64> = (0..=((to - from).round() as usize)).map(|i| from + i as f64).collect();
+    let r0 = |l: f64| coating.map(|c| c.normal_reflectance(l)).unwrap_or(1.0);
+    let effective = Spectrum::new(fine.clone(), fine.iter().map(|&l| spectrum.value_at(l) * r0(l)).collect())
+        .map_err(|e| LabError::invalid(e.to_string()))?;
+    let plain = iridis_color::SpectralWeights::with_light(&fine, |l| spectrum.value_at(l), observer);
+    if plain.white().y <= 0.0 {
+        return Err(LabError::invalid("the beam spectrum has no visible light (380–780 nm)"));
+    }
+    let scale = plain.integrate(&fine.iter().map(|&l| r0(l)).collect::<Vec<_>>()).y;
+    config.spectral = spectral_with_light(&effective, observer, from, to, step)?;
+    config.light = Some(effective);
+    let fresnel: Arc<dyn FresnelSource> = match (coating, method.is_spectral()) {
+        (Some(c), true) => Arc::new(c.clone()),
+        _ => Arc::new(UnitFresnel),
+    };
+    config.shading.fresnel = fresnel;
+    Ok(scale)
+}
+
+/// Scales every pixel by `factor`.
+pub fn scale_image(image: &mut [Option<Xyz>], factor: f64) {
+    for p in image.iter_mut().flatten() {
+        *p = p.scale(factor);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_screen_centre_sees_the_mirror_direction_and_the_beam_axis_is_horizontal() {
+        let s = LaserSetup::default();
+        let (wi, mirror, e1, e2) = s.frame();
+        let (wr, w) = s.view(0.0, 0.0).unwrap();
+        for k in 0..3 {
+            assert!((wr[k] - mirror[k]).abs() < 1e-12);
+        }
+        assert!((w - 1.0).abs() < 1e-12);
+        // The screen is parallel to the beam: e₁ is the beam's direction and perpendicular to the mirror ray.
+        let dot = |a: Vec3, b: Vec3| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        assert!(dot(mirror, e1).abs() < 1e-12 && dot(mirror, e2).abs() < 1e-12 && dot(e1, e2).abs() < 1e-12);
+        assert!((dot(e1, wi) + 1.0).abs() < 1e-12);
+        // At 45° the mirror ray is perpendicular to the beam (the screen catches it head-on).
+        assert!(dot(mirror, [-wi[0], -wi[1], -wi[2]]).abs() < 1e-12);
+    }
+
+    #[test]
+    fn gold_is_yellow_red_in_reflection() {
+        // Johnson & Christy gold reflects far more red than blue at normal incidence (≈ 0.4 at 450 nm,
+        // ≈ 0.95 at 700 nm); the exact Fresnel formula on the tabulated index must reproduce that ordering
+        // and bounds (0 < R < 1).
+        let gold = MetalFresnel::new(Material::builtin("gold").unwrap(), 380.0, 780.0).unwrap();
+        let (b, r) = (gold.normal_reflectance(450.0), gold.normal_reflectance(700.0));
+        assert!(b > 0.2 && b < 0.6 && r > 0.9 && r < 1.0, "R(450) = {b}, R(700) = {r}");
+    }
+}

@@ -1,0 +1,296 @@
+//! One place that turns a method name into an evaluator for a patch, so every lab command offers the same
+//! methods with the same parameters: `ground-truth`, `reference`, `lookup` (iridis-diffraction), `nmm`, `pq`
+//! ([`crate::variants`]), `stam-periodic` / `stam-periodic-triangular`, `stam-gaussian` ([`crate::stam`]).
+
+use std::str::FromStr;
+use std::sync::{Arc, Mutex};
+
+use iridis_color::{Observer, Spectrum};
+use iridis_diffraction::table::{Lookup, LookupTable, Precision, TableParams};
+use iridis_diffraction::taylor::terms_for_bound;
+use iridis_diffraction::{Evaluator, GroundTruth, Patch, Reference, Shading, SpectralSetup, TaylorTerms};
+
+use crate::analysis::{dominant_period, Axis};
+use crate::stam::{Bump, StamGaussian, StamPeriodic};
+use crate::variants::{Nmm, Pq};
+use crate::{LabError, Progress};
+
+/// An evaluation method.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Method {
+    GroundTruth,
+    Reference,
+    Lookup,
+    Nmm,
+    Pq,
+    StamPeriodic(Bump),
+    StamGaussian,
+}
+
+impl Method {
+    /// Every method, with the name the command line uses.
+    pub const ALL: [Method; 8] = [
+        Method::GroundTruth,
+        Method::Reference,
+        Method::Lookup,
+        Method::Nmm,
+        Method::Pq,
+        Method::StamPeriodic(Bump::Rectangular),
+        Method::StamPeriodic(Bump::Triangular),
+        Method::StamGaussian,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::GroundTruth => "ground-truth",
+            Method::Reference => "reference",
+            Method::Lookup => "lookup",
+            Method::Nmm => "nmm",
+            Method::Pq => "pq",
+            Method::StamPeriodic(Bump::Rectangular) => "stam-periodic",
+            Method::StamPeriodic(Bump::Triangular) => "stam-periodic-triangular",
+            Method::StamGaussian => "stam-gaussian",
+        }
+    }
+
+    /// Whether the method answers spectral reflectance (needed by the test bench).
+    pub fn is_spectral(self) -> bool {
+        self != Method::Lookup
+    }
+}
+
+impl std::fmt::Display for Method {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Method {
+    type Err = LabError;
+    fn from_str(s: &str) -> Result<Self, LabError> {
+        let t = s.trim().to_ascii_lowercase();
+        let alias = match t.as_str() {
+            "truth" | "ground_truth" | "groundtruth" => "ground-truth",
+            "flss" => "reference",
+            "stam-periodic-rectangular" | "stam-periodic-rect" => "stam-periodic",
+            "stam-periodic-triangle" | "stam-periodic-tri" => "stam-periodic-triangular",
+            other => other,
+        };
+        Method::ALL.into_iter().find(|m| m.name() == alias).ok_or_else(|| {
+            LabError::invalid(format!(
+                "unknown method '{s}'; expected one of: {}",
+                Method::ALL.iter().map(|m| m.name()).collect::<Vec<_>>().join(", ")
+            ))
+        })
+    }
+}
+
+/// Parameters shared by all methods (each uses the ones it has).
+#[derive(Debug, Clone)]
+pub struct MethodConfig {
+    /// Coherence length `4σ_s` (nm).
+    pub coherence_nm: f64,
+    /// Taylor terms `N`; from the remainder bound with `term_epsilon` when `None`.
+    pub terms: Option<usize>,
+    pub term_epsilon: f64,
+    /// Wavelength grid and colour weights (illuminant or a custom light).
+    pub spectral: SpectralSetup,
+    /// A light spectrum replacing the illuminant (the laser); the ground truth rebuilds its weights from it.
+    pub light: Option<Spectrum>,
+    pub shading: Shading,
+    /// Lookup-table grid and precision.
+    pub table: TableParams,
+    pub precision: Precision,
+    /// A precomputed lookup table to use instead of building one.
+    pub table_path: Option<std::path::PathBuf>,
+    /// Wavenumber samples of the ground truth's spectral integral (0: twice the grid's count).
+    pub ground_truth_samples: usize,
+    /// Grating periods for NMM and Stam's lattice (estimated from the surface when `None`).
+    pub period_x_nm: Option<f64>,
+    pub period_y_nm: Option<f64>,
+    /// ε of Stam's wavelength selection (paper: 0.01).
+    pub stam_epsilon: f64,
+}
+
+impl Default for MethodConfig {
+    fn default() -> Self {
+        Self {
+            coherence_nm: iridis_diffraction::DEFAULT_COHERENCE_NM,
+            terms: None,
+            term_epsilon: 1e-6,
+            spectral: SpectralSetup::default(),
+            light: None,
+            shading: Shading::default(),
+            table: TableParams::default(),
+            precision: Precision::F64,
+            table_path: None,
+            ground_truth_samples: 0,
+            period_x_nm: None,
+            period_y_nm: None,
+            stam_epsilon: 0.01,
+        }
+    }
+}
+
+impl MethodConfig {
+    /// The Taylor-term count for a patch.
+    pub fn term_count(&self, patch: &Patch) -> usize {
+        self.terms.unwrap_or_else(|| {
+            terms_for_bound(patch.max_abs_height, self.spectral.wavelengths()[0], self.term_epsilon).max(1)
+        })
+    }
+}
+
+/// A patch with a configuration: builds evaluators, sharing the Taylor terms between the methods that use
+/// them.
+#[derive(Debug)]
+pub struct Workbench {
+    pub patch: Patch,
+    pub config: MethodConfig,
+    /// Name of the surface (for table metadata).
+    pub surface: String,
+    terms: Mutex<Option<Arc<TaylorTerms>>>,
+}
+
+impl Workbench {
+    pub fn new(patch: Patch, config: MethodConfig, surface: impl Into<String>) -> Result<Self, LabError> {
+        let c = &config;
+        if !(c.coherence_nm.is_finite() && c.coherence_nm > 0.0) {
+            return Err(LabError::invalid(format!("coherence length {} nm must be positive", c.coherence_nm)));
+        }
+        if c.terms == Some(0) {
+            return Err(LabError::invalid("the Taylor sum needs at least one term beyond the mirror (terms ≥ 1)"));
+        }
+        Ok(Self { patch, config, surface: surface.into(), terms: Mutex::new(None) })
+    }
+
+    /// The Taylor terms (computed once). `progress(terms_done)`.
+    pub fn terms(&self, progress: Progress) -> Result<Arc<TaylorTerms>, LabError> {
+        let mut guard = self.terms.lock().map_err(|_| LabError::invalid("internal: poisoned lock"))?;
+        if let Some(t) = guard.as_ref() {
+            return Ok(t.clone());
+        }
+        let n = self.config.term_count(&self.patch);
+        let t = Arc::new(TaylorTerms::compute_with_progress(&self.patch, n, self.config.coherence_nm, progress)?);
+        *guard = Some(t.clone());
+        Ok(t)
+    }
+
+    /// The reference evaluator (thesis FLSS).
+    pub fn reference(&self, progress: Progress) -> Result<Reference, LabError> {
+        Ok(Reference {
+            terms: self.terms(progress)?,
+            shading: self.config.shading.clone(),
+            spectral: self.config.spectral.clone(),
+        })
+    }
+
+    /// Grating periods for NMM and Stam: given, else the surface's dominant periods.
+    pub fn periods(&self) -> (Option<f64>, Option<f64>) {
+        let px = self.config.period_x_nm.or_else(|| dominant_period(&self.patch, Axis::X).map(|p| p.period_nm));
+        let py = self.config.period_y_nm.or_else(|| dominant_period(&self.patch, Axis::Y).map(|p| p.period_nm));
+        (px, py)
+    }
+
+    /// Builds the evaluator of `method`. `progress` reports the expensive step (terms or table rows).
+    pub fn evaluator(&self, method: Method, progress: Progress) -> Result<Box<dyn Evaluator>, LabError> {
+        let c = &self.config;
+        Ok(match method {
+            Method::GroundTruth => {
+                let samples = if c.ground_truth_samples > 0 {
+                    c.ground_truth_samples
+                } else {
+                    2 * c.spectral.wavelengths().len()
+                };
+                let mut gt = GroundTruth::new(&self.patch, c.coherence_nm, c.shading.clone(), &c.spectral, samples)?;
+                if let Some(light) = &c.light {
+                    gt = gt.with_light(|l| light.value_at(l), c.spectral.observer);
+                }
+                Box::new(gt)
+            }
+            Method::Reference => Box::new(self.reference(progress)?),
+            Method::Lookup => {
+                let table = match &c.table_path {
+                    Some(p) => {
+                        let t = LookupTable::load(p)?;
+                        check_table(&t, &self.patch, c)?;
+                        t
+                    }
+                    None => {
+                        let terms = self.terms(&crate::no_progress)?;
+                        LookupTable::build(&terms, &c.spectral, c.table, &self.surface, progress)?
+                    }
+                };
+                Box::new(Lookup::new(Arc::new(table), c.shading.clone(), c.precision)?)
+            }
+            Method::Nmm => {
+                let (px, py) = self.periods();
+                Box::new(Nmm::new(self.reference(progress)?, px, py)?)
+            }
+            Method::Pq => Box::new(Pq::new(self.terms(progress)?, c.shading.clone(), c.spectral.clone())),
+            Method::StamPeriodic(bump) => {
+                let mut s = StamPeriodic::fit(
+                    &self.patch,
+                    bump,
+                    c.stam_epsilon,
+                    c.coherence_nm,
+                    c.shading.clone(),
+                    c.spectral.clone(),
+                )?;
+                if let Some(px) = c.period_x_nm {
+                    let scale = px / s.lattice.period_x;
+                    s.lattice.period_x = px;
+                    s.lattice.width *= scale;
+                }
+                if let Some(py) = c.period_y_nm {
+                    s.lattice.period_y = Some(py);
+                    s.lattice.length = py / 2.0;
+                    s.lattice.height = 1.0;
+                    let rms = (self.patch.heights.iter().map(|h| h * h).sum::<f64>() / self.patch.heights.len() as f64)
+                        .sqrt();
+                    s.lattice.height = rms / s.lattice.unit_variance().sqrt();
+                }
+                Box::new(s)
+            }
+            Method::StamGaussian => {
+                Box::new(StamGaussian::new(&self.patch, c.coherence_nm, c.shading.clone(), c.spectral.clone())?)
+            }
+        })
+    }
+}
+
+/// A loaded table must describe this patch and these settings.
+fn check_table(t: &LookupTable, patch: &Patch, c: &MethodConfig) -> Result<(), LabError> {
+    let m = &t.meta;
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-6 * a.abs().max(b.abs()).max(1.0);
+    let mut problems = Vec::new();
+    if m.rows != patch.rows || m.cols != patch.cols || !close(m.dx_nm, patch.dx) || !close(m.dy_nm, patch.dy) {
+        problems.push(format!(
+            "it was made for a {}×{} surface with {}×{} nm pixels, this one is {}×{} with {}×{} nm",
+            m.rows, m.cols, m.dx_nm, m.dy_nm, patch.rows, patch.cols, patch.dx, patch.dy
+        ));
+    }
+    if !close(m.coherence_nm, c.coherence_nm) {
+        problems.push(format!("its coherence length is {} nm, not {} nm", m.coherence_nm, c.coherence_nm));
+    }
+    if problems.is_empty() {
+        Ok(())
+    } else {
+        Err(LabError::invalid(format!("lookup table does not match: {}", problems.join("; "))))
+    }
+}
+
+/// A spectral setup lit by an arbitrary light spectrum on a uniform grid (the illuminant label is kept only
+/// for table metadata; the weights are the light's).
+pub fn spectral_with_light(
+    light: &Spectrum,
+    observer: Observer,
+    from_nm: f64,
+    to_nm: f64,
+    step_nm: f64,
+) -> Result<SpectralSetup, LabError> {
+    let mut s = SpectralSetup::with_range(iridis_color::Illuminant::E, observer, from_nm, to_nm, step_nm)?;
+    let grid = s.wavelengths().to_vec();
+    s.weights = iridis_color::SpectralWeights::with_light(&grid, |l| light.value_at(l), observer);
+    Ok(s)
+}
