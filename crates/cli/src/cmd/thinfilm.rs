@@ -257,9 +257,18 @@ fn spectra(stack: &Stack, angle: f64, grid: &[f64]) -> Result<Vec<Rta>> {
 
 fn pick(pol: Polarization, x: &Rta) -> (f64, f64, f64) {
     match pol {
-        Polarization::Average => (x.r(), x.t(), x.a()),
-        Polarization::S => (x.r_s, x.t_s, x.a_s()),
-        Polarization::P => (x.r_p, x.t_p, x.a_p()),
+        Polarization::Average => (x.r(), x.t(), clean(x.a())),
+        Polarization::S => (x.r_s, x.t_s, clean(x.a_s())),
+        Polarization::P => (x.r_p, x.t_p, clean(x.a_p())),
+    }
+}
+
+/// `1 − R − T` of a lossless stack is rounding noise (~1e-16); print it as 0.
+fn clean(a: f64) -> f64 {
+    if a.abs() < 1e-14 {
+        0.0
+    } else {
+        a
     }
 }
 
@@ -330,7 +339,7 @@ fn table(a: TableArgs) -> Result<()> {
                 w,
                 x.r(),
                 x.t(),
-                x.a(),
+                clean(x.a()),
                 x.r_s,
                 x.r_p,
                 x.t_s,
@@ -410,7 +419,13 @@ fn color(a: ColorArgs) -> Result<()> {
 }
 
 /// Colours of a thickness sweep: (reflected, transmitted) XYZ per thickness.
-fn sweep(stack: &Stack, layer: usize, thicknesses: &[f64], angle: f64, meter: &FilmColorimeter) -> Result<Vec<(Xyz, Xyz)>> {
+fn sweep(
+    stack: &Stack,
+    layer: usize,
+    thicknesses: &[f64],
+    angle: f64,
+    meter: &FilmColorimeter,
+) -> Result<Vec<(Xyz, Xyz)>> {
     thicknesses
         .iter()
         .map(|&d| {
@@ -567,7 +582,9 @@ fn materials(a: MaterialsArgs) -> Result<()> {
         };
         println!("{:<36} {desc}{idx}", names.join(", "));
     }
-    println!("\nAlso: n=1.38, n=0.2+3.4i (constants) and file:PATH (refractiveindex.info YAML or CSV wavelength_nm,n,k).");
+    println!(
+        "\nAlso: n=1.38, n=0.2+3.4i (constants) and file:PATH (refractiveindex.info YAML or CSV wavelength_nm,n,k)."
+    );
     Ok(())
 }
 
@@ -606,7 +623,7 @@ while True:
         break
 dt = time.perf_counter() - t0
 print(json.dumps({"evals": count, "seconds": dt, "per_second": count / dt, "check": acc,
-                  "tmm": getattr(tmm, "__version__", "?"), "python": sys.version.split()[0]}))
+                  "tmm": __import__("importlib.metadata").metadata.version("tmm"), "python": sys.version.split()[0]}))
 "#;
 
 fn time_rust(stack: &Stack, angles: &[f64], wl: &[f64], path: GridPath, threads: bool, seconds: f64) -> Result<f64> {
@@ -657,13 +674,19 @@ fn bench(a: BenchArgs) -> Result<()> {
     let wl_py: Vec<f64> = wl.iter().step_by(8).copied().collect();
     let angles_py: Vec<f64> = angles.iter().step_by(9).copied().collect();
     let mut results = Vec::new();
-    for (label, text) in [("2 layers (oil slick)", BENCH_2.to_string()), ("20 layers (quarter-wave mirror)", bench_20())] {
+    for (label, text) in
+        [("2 layers (oil slick)", BENCH_2.to_string()), ("20 layers (quarter-wave mirror)", bench_20())]
+    {
         let stack = parse_stack(&text)?;
         let g1 = time_rust(&stack, &angles, &wl, GridPath::General, false, a.seconds)?;
         let gn = time_rust(&stack, &angles, &wl, GridPath::General, true, a.seconds)?;
         let f1 = time_rust(&stack, &angles, &wl, GridPath::Auto, false, a.seconds)?;
         let fnn = time_rust(&stack, &angles, &wl, GridPath::Auto, true, a.seconds)?;
-        let py = if a.no_python { Err("not run (--no-python)".to_string()) } else { time_tmm(&stack, &angles_py, &wl_py, a.seconds.max(1.0)) };
+        let py = if a.no_python {
+            Err("not run (--no-python)".to_string())
+        } else {
+            time_tmm(&stack, &angles_py, &wl_py, a.seconds.max(1.0))
+        };
         results.push(json!({
             "stack": label,
             "layers": stack.layers.len(),
@@ -678,10 +701,15 @@ fn bench(a: BenchArgs) -> Result<()> {
         }));
     }
     if a.json {
-        return crate::output::print_json(&json!({ "threads": threads, "unit": "(λ, θ) evaluations per second, R and T for s and p", "results": results }));
+        return crate::output::print_json(
+            &json!({ "threads": threads, "unit": "(λ, θ) evaluations per second, R and T for s and p", "results": results }),
+        );
     }
     println!("(λ, θ) evaluations per second (R and T, s and p); all threads = {threads}");
-    println!("{:<34} {:>14} {:>14} {:>14} {:>14} {:>12} {:>9}", "stack", "general 1 thr", "general all", "fast 1 thr", "fast all", "tmm (Python)", "× tmm");
+    println!(
+        "{:<34} {:>14} {:>14} {:>14} {:>14} {:>12} {:>9}",
+        "stack", "general 1 thr", "general all", "fast 1 thr", "fast all", "tmm (Python)", "× tmm"
+    );
     for r in &results {
         let tm = r["tmm_1_thread"].as_f64();
         println!(
@@ -748,7 +776,8 @@ pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
     let cols = sweep(&stack, layer, &ds, 0.0, &meter)?;
     let ymax = cols.iter().map(|c| c.0.y).fold(0.0, f64::max).max(1e-12);
     let tone = ToneMap { exposure_ru: 1.0 / ymax, ..ToneMap::default() };
-    let img = chart_image("air | water {d} | air", &ds, &cols, &tone, &ToneMap::default(), 0.0, Illuminant::D65, 1.0 / ymax)?;
+    let img =
+        chart_image("air | water {d} | air", &ds, &cols, &tone, &ToneMap::default(), 0.0, Illuminant::D65, 1.0 / ymax)?;
     write_png(&g.path("thinfilm_soap_chart.png"), &img)?;
     g.image(
         "thinfilm_soap_chart.png",
@@ -759,7 +788,12 @@ pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
     let mut rows = Vec::new();
     let white = iridis_color::integrate::white_point(Illuminant::D65, Observer::Cie1931);
     for (file, text, what, angle_deg) in [
-        ("thinfilm_oil_slick.png", "air | gasoline 216nm | water 220nm | asphalt", "oil slick (Sussenbach section 5.1)", 1.0),
+        (
+            "thinfilm_oil_slick.png",
+            "air | gasoline 216nm | water 220nm | asphalt",
+            "oil slick (Sussenbach section 5.1)",
+            1.0,
+        ),
         ("thinfilm_soap_348nm.png", "air | water 348nm | air", "soap film 348 nm (Sussenbach Fig. 5.1)", 1.0),
         ("thinfilm_coated_glass.png", "air | MgF2 100nm | BK7", "MgF2 anti-reflection coating on BK7", 0.0),
         ("thinfilm_si_on_glass.png", "air | Si 108nm | glass", "Si 108 nm on glass (Sussenbach Fig. 5.7)", 1.0),
@@ -771,28 +805,51 @@ pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
         let r: Vec<f64> = xs.iter().map(|x| x.r()).collect();
         let t: Vec<f64> = xs.iter().map(|x| x.t()).collect();
         let ab: Vec<f64> = xs.iter().map(|x| x.a()).collect();
-        let mut plot = LinePlot::new(format!("{what}: {text}, {angle_deg}°"), "wavelength (nm)", "fraction of incident power")
-            .series(Series::new("R (reflectance)", &wl, &r));
+        let mut plot =
+            LinePlot::new(format!("{what}: {text}, {angle_deg}°"), "wavelength (nm)", "fraction of incident power")
+                .series(Series::new("R (reflectance)", &wl, &r));
         if text.contains("Si") {
-            plot = plot.series(Series::new("T (transmittance)", &wl, &t)).series(Series::new("A (absorptance)", &wl, &ab));
+            plot =
+                plot.series(Series::new("T (transmittance)", &wl, &t)).series(Series::new("A (absorptance)", &wl, &ab));
         }
         plot.x_range = Some((400.0, 780.0));
         write_png(&g.path(file), &plot.render()?)?;
-        g.image(file, &format!("{what}: iridis thinfilm spectrum --stack \"{text}\" --angle {angle_deg}deg --from 400nm --plot {file}"));
+        g.image(
+            file,
+            &format!(
+                "{what}: iridis thinfilm spectrum --stack \"{text}\" --angle {angle_deg}deg --from 400nm --plot {file}"
+            ),
+        );
         // Colours need 380–780 nm; Si's data end at 827 nm, everything here covers it.
-        let c = FilmColorimeter::new(&grid, Illuminant::D65, Observer::Cie1931).color(&stack, angle, Polarization::Average)?;
+        let c = FilmColorimeter::new(&grid, Illuminant::D65, Observer::Cie1931).color(
+            &stack,
+            angle,
+            Polarization::Average,
+        )?;
         let lab_r = iridis_color::Lab::from_xyz(c.reflected, white);
         rows.push(vec![
             text.to_string(),
             format!("{:.4}", c.reflected.y),
             format!("{:.1}, {:.1}, {:.1}", lab_r.l, lab_r.a, lab_r.b),
             format!("swatch:{}", iridis_color::tonemap::hex(ToneMap::default().to_rgb8(c.reflected))),
-            format!("swatch:{}", iridis_color::tonemap::hex(ToneMap { exposure_ru: 1.0 / c.reflected.y.max(1e-9), ..ToneMap::default() }.to_rgb8(c.reflected))),
+            format!(
+                "swatch:{}",
+                iridis_color::tonemap::hex(
+                    ToneMap { exposure_ru: 1.0 / c.reflected.y.max(1e-9), ..ToneMap::default() }.to_rgb8(c.reflected)
+                )
+            ),
             format!("swatch:{}", iridis_color::tonemap::hex(ToneMap::default().to_rgb8(c.transmitted))),
         ]);
     }
     g.table(
-        &["stack", "reflected Y", "reflected L*a*b*", "reflected sRGB (1 RU)", "reflected hue (Y scaled to 1)", "transmitted sRGB"],
+        &[
+            "stack",
+            "reflected Y",
+            "reflected L*a*b*",
+            "reflected sRGB (1 RU)",
+            "reflected hue (Y scaled to 1)",
+            "transmitted sRGB",
+        ],
         &rows,
     );
     Ok(())
