@@ -20,6 +20,40 @@ Examples:
   iridis bench diffraction                         1024² surface, 40 terms, maps at 512² and 1024²
   iridis bench diffraction --size 512 --terms 20 --json")]
     Diffraction(DiffractionBench),
+    /// Diffraction accuracy: CIEDE2000 of lookup (f64, f32, linear grid) and reference against the ground truth,
+    /// and the Taylor convergence of the reference with N.
+    #[command(after_help = "\
+Examples:
+  iridis bench diffraction-accuracy                                  built-in surfaces, 24² maps
+  iridis bench diffraction-accuracy --surface builtin:blazed --map-size 48 --json
+  iridis bench diffraction-accuracy --convergence-plot docs/img/taylor_convergence.png")]
+    DiffractionAccuracy(AccuracyBench),
+}
+
+#[derive(Debug, ClapArgs)]
+pub struct AccuracyBench {
+    /// Surfaces to measure (repeat the flag); default: the built-in blazed, cd, elaphe and xenopeltis.
+    #[arg(long)]
+    pub surface: Vec<String>,
+    /// Side of the BRDF maps compared pixel by pixel (the ground truth is slow: keep it small).
+    #[arg(long, default_value_t = 24)]
+    pub map_size: usize,
+    /// Coherence length; the default (a quarter of the patch side) keeps the window inside the patch so
+    /// that the periodic DFT model and the patch-limited ground truth see the same surface.
+    #[arg(long, value_parser = crate::args::positive_length_nm)]
+    pub coherence: Option<f64>,
+    /// Exposures (RU) at which colours are compared.
+    #[arg(long, value_delimiter = ',', default_value = "1,1000,7500")]
+    pub exposures: Vec<f64>,
+    /// u-v resolution of the tables.
+    #[arg(long, default_value_t = 301)]
+    pub uv_resolution: usize,
+    /// Write the plot of error against the number of Taylor terms here.
+    #[arg(long)]
+    pub convergence_plot: Option<std::path::PathBuf>,
+    /// Print JSON.
+    #[arg(long)]
+    pub json: bool,
 }
 
 #[derive(Debug, ClapArgs)]
@@ -44,6 +78,7 @@ pub struct DiffractionBench {
 pub fn run(c: BenchCommand) -> Result<()> {
     match c {
         BenchCommand::Diffraction(a) => diffraction(a),
+        BenchCommand::DiffractionAccuracy(a) => accuracy(a),
     }
 }
 
@@ -191,5 +226,117 @@ fn diffraction(a: DiffractionBench) -> Result<()> {
         lookup_rate / ref_rate,
         lookup_rate / gt_rate
     );
+    Ok(())
+}
+
+/// Mean and 95th percentile of CIEDE2000 between two XYZ maps at an exposure (pixels inside the disk).
+pub fn delta_e_stats(a: &[iridis_color::Xyz], b: &[iridis_color::Xyz], exposure: f64, size: usize) -> (f64, f64) {
+    use iridis_color::integrate::white_point;
+    use iridis_color::{Illuminant, Lab, Observer};
+    let white = white_point(Illuminant::D65, Observer::Cie1931);
+    // Colours as displayed: exposure, clipped to the sRGB gamut's unit cube, back to XYZ.
+    let shown = |x: iridis_color::Xyz| {
+        let rgb = x.scale(exposure).to_linear_srgb().map(|c| c.clamp(0.0, 1.0));
+        Lab::from_xyz(iridis_color::Xyz::from_linear_srgb(rgb), white)
+    };
+    let mut d: Vec<f64> = (0..size * size)
+        .filter(|&i| iridis_diffraction::map::view_direction(i % size, i / size, size).is_some())
+        .map(|i| iridis_color::lab::delta_e_2000(shown(a[i]), shown(b[i])))
+        .collect();
+    d.sort_by(|x, y| x.total_cmp(y));
+    let mean = d.iter().sum::<f64>() / d.len().max(1) as f64;
+    let p95 = d.get(((d.len() as f64 * 0.95) as usize).min(d.len().saturating_sub(1))).copied().unwrap_or(0.0);
+    (mean, p95)
+}
+
+fn accuracy(a: AccuracyBench) -> Result<()> {
+    use crate::cmd::brdf::{load_patch, SurfaceOpts};
+    let surfaces = if a.surface.is_empty() {
+        vec!["builtin:blazed".to_string(), "builtin:cd".into(), "builtin:elaphe".into(), "builtin:xenopeltis".into()]
+    } else {
+        a.surface.clone()
+    };
+    let spectral = SpectralSetup::default();
+    let shading = Shading::default();
+    let mut rows = Vec::new();
+    let mut convergence = Vec::new();
+    let wi = [0.0, 0.0, 1.0];
+    let map = |e: &dyn Evaluator| iridis_diffraction::map::brdf_map(e, wi, a.map_size, &|_| {});
+    for spec in &surfaces {
+        let patch = load_patch(spec, &SurfaceOpts { pixel_size: None, max_height: None })?;
+        let (ex, ey) = patch.extent();
+        let coherence = a.coherence.unwrap_or(ex.min(ey) / 4.0);
+        eprintln!("{spec}: {}×{} samples, coherence {:.1} µm …", patch.cols, patch.rows, coherence / 1000.0);
+        let n = iridis_diffraction::taylor::terms_for_bound(patch.max_abs_height, 380.0, 1e-6);
+        let terms = TaylorTerms::compute(&patch, n, coherence)?;
+        let truth =
+            GroundTruth::new(&patch, coherence, shading.clone(), &spectral, 2 * spectral.wavelengths().len() - 1)?;
+        let gt = map(&truth);
+        let mut methods: Vec<(String, Vec<iridis_color::Xyz>)> = Vec::new();
+        for (label, power) in [("lookup", 5.0), ("lookup-linear-grid", 1.0)] {
+            let params = TableParams { uv_resolution: a.uv_resolution, uv_power: power };
+            let table = Arc::new(LookupTable::build(&terms, &spectral, params, spec, &|_| {})?);
+            methods.push((label.into(), map(&Lookup::new(table.clone(), shading.clone(), Precision::F64)?)));
+            if power == 5.0 {
+                methods.push(("lookup-f32".into(), map(&Lookup::new(table, shading.clone(), Precision::F32)?)));
+            }
+        }
+        let terms = Arc::new(terms);
+        let reference = Reference { terms: terms.clone(), shading: shading.clone(), spectral: spectral.clone() };
+        methods.push(("reference".into(), map(&reference)));
+        for (label, m) in &methods {
+            for &x in &a.exposures {
+                let (mean, p95) = delta_e_stats(m, &gt, x, a.map_size);
+                rows.push(json!({"surface": spec, "method": label, "exposure_ru": x, "mean": mean, "p95": p95}));
+            }
+        }
+        // Convergence of the Taylor sum: reference with N' terms against the ground truth at 1000 RU.
+        let mut curve = Vec::new();
+        for k in (0..=n).step_by((n / 10).max(1)).chain(std::iter::once(n)) {
+            let t = Arc::new(TaylorTerms::compute(&patch, k, coherence)?);
+            let r = Reference { terms: t, shading: shading.clone(), spectral: spectral.clone() };
+            let (mean, _) = delta_e_stats(&map(&r), &gt, 1000.0, a.map_size);
+            curve.push((k as f64, mean));
+        }
+        curve.dedup_by(|x, y| x.0 == y.0);
+        convergence.push((spec.clone(), curve));
+    }
+    if let Some(path) = &a.convergence_plot {
+        let mut plot = iridis_plot::LinePlot::new(
+            "Taylor series convergence (reference vs ground truth, 1000 RU)",
+            "Taylor terms N",
+            "mean CIEDE2000",
+        );
+        for (name, curve) in &convergence {
+            let xs: Vec<f64> = curve.iter().map(|p| p.0).collect();
+            let ys: Vec<f64> = curve.iter().map(|p| p.1.max(1e-4).log10()).collect();
+            plot = plot.series(iridis_plot::Series::new(name.clone(), &xs, &ys));
+        }
+        plot.y_label = "log10 mean CIEDE2000".into();
+        let img = plot.render()?;
+        crate::output::write_png_rgb8(path, img.width, img.height, &img.data)?;
+        eprintln!("wrote {}", path.display());
+    }
+    let report = json!({
+        "map_size": a.map_size,
+        "uv_resolution": a.uv_resolution,
+        "results": rows,
+        "convergence": convergence.iter().map(|(s, c)| json!({"surface": s, "terms_vs_mean_delta_e": c})).collect::<Vec<_>>(),
+    });
+    if a.json {
+        return crate::output::print_json(&report);
+    }
+    println!("CIEDE2000 against the ground truth ({}² maps, normal incidence)", a.map_size);
+    println!("{:<22} {:<20} {:>8} {:>10} {:>10}", "surface", "method", "RU", "mean", "p95");
+    for r in &rows {
+        println!(
+            "{:<22} {:<20} {:>8} {:>10.4} {:>10.4}",
+            r["surface"].as_str().unwrap_or(""),
+            r["method"].as_str().unwrap_or(""),
+            r["exposure_ru"],
+            r["mean"].as_f64().unwrap_or(f64::NAN),
+            r["p95"].as_f64().unwrap_or(f64::NAN)
+        );
+    }
     Ok(())
 }
