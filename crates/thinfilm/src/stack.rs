@@ -163,7 +163,10 @@ impl Stack {
                 };
                 thicknesses.push(d);
             } else if toks.len() > 1 {
-                return Err(err(&toks[1], format!("{role} is semi-infinite and takes no thickness")));
+                return Err(err(
+                    &toks[1],
+                    format!("{role} is semi-infinite and takes no thickness (a missing '|' between media?)"),
+                ));
             }
             let m = parse_material(toks[0].text).map_err(|m| err(&toks[0], m))?;
             if k == 0 {

@@ -1,0 +1,190 @@
+//! The `iridis thinfilm` commands as a user runs them: documented keys, values checked against Sussenbach's
+//! Figure 3.8, files written, and clean errors (exit code 2, one `error:` line naming the token) on bad input.
+
+use std::process::{Command, Output};
+
+fn iridis(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_iridis"))
+        .args(args)
+        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
+        .output()
+        .expect("cannot run iridis")
+}
+
+fn assert_fails(args: &[&str], needles: &[&str]) {
+    let out = iridis(args);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+    assert!(!stderr.contains("panicked"), "{args:?} panicked: {stderr}");
+    let errors: Vec<&str> = stderr.lines().filter(|l| l.starts_with("error:")).collect();
+    assert_eq!(errors.len(), 1, "{args:?}: {stderr}");
+    for n in needles {
+        assert!(errors[0].contains(n), "{args:?}: '{}' lacks '{n}'", errors[0]);
+    }
+}
+
+fn temp_dir() -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("iridis-thinfilm-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+#[test]
+fn spectrum_json_matches_figure_3_8() {
+    let out = iridis(&[
+        "thinfilm",
+        "spectrum",
+        "--stack",
+        "air | water 635nm | air",
+        "--angle",
+        "1deg",
+        "--from",
+        "400nm",
+        "--to",
+        "690nm",
+        "--step",
+        "10nm",
+        "--json",
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    for key in ["wavelength_nm", "R", "T", "A", "Rs", "Rp", "Ts", "Tp"] {
+        assert_eq!(v[key].as_array().map(Vec::len), Some(30), "{key}");
+    }
+    // Sussenbach Figure 3.8, first and last rows at 1°.
+    assert!((v["R"][0].as_f64().unwrap() - 0.0334109).abs() < 1e-6);
+    assert!((v["R"][29].as_f64().unwrap() - 0.0752091).abs() < 1e-6);
+    assert!((v["T"][2].as_f64().unwrap() - 0.999626).abs() < 1e-6);
+}
+
+#[test]
+fn table_csv_and_plots_are_written() {
+    let dir = temp_dir();
+    let csv = dir.join("t.csv");
+    let map = dir.join("map.png");
+    let out = iridis(&[
+        "thinfilm",
+        "table",
+        "--stack",
+        "air | water 635nm | air",
+        "--angles",
+        "1deg:90deg:1deg",
+        "--from",
+        "400nm",
+        "--to",
+        "690nm",
+        "--step",
+        "10nm",
+        "-o",
+        csv.to_str().unwrap(),
+        "--plot",
+        map.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines[0], "angle_deg,wavelength_nm,R,T,A,Rs,Rp,Ts,Tp");
+    assert_eq!(lines.len(), 1 + 90 * 30);
+    // Row "2, 410" of Figure 3.8: R = 0.0109059.
+    let row: Vec<f64> = lines[1 + 30 + 1].split(',').map(|x| x.parse().unwrap()).collect();
+    assert_eq!((row[0], row[1]), (2.0, 410.0));
+    assert!((row[2] - 0.0109059).abs() < 1e-6, "{row:?}");
+    assert!(std::fs::read(&map).unwrap().starts_with(b"\x89PNG"));
+    let spec = dir.join("oil.png");
+    let out = iridis(&[
+        "thinfilm",
+        "spectrum",
+        "--stack",
+        "air | gasoline 216nm | water 220nm | asphalt",
+        "--plot",
+        spec.to_str().unwrap(),
+        "--csv",
+    ]);
+    assert!(out.status.success());
+    assert!(String::from_utf8_lossy(&out.stdout).starts_with("wavelength_nm,R,T,A,Rs,Rp,Ts,Tp\n"));
+    assert!(std::fs::read(&spec).unwrap().starts_with(b"\x89PNG"));
+}
+
+#[test]
+fn color_json_keys_and_a_lossless_film_conserves_colour() {
+    let out = iridis(&["thinfilm", "color", "--stack", "air | water 348nm | air", "--json"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    for side in ["reflected", "transmitted"] {
+        for key in ["XYZ", "Lab", "srgb", "hex"] {
+            assert!(!v[side][key].is_null(), "{side}.{key}");
+        }
+    }
+    // R + T = 1 at every wavelength, so reflected + transmitted XYZ is the illuminant's white (Y = 1).
+    let y = v["reflected"]["XYZ"][1].as_f64().unwrap() + v["transmitted"]["XYZ"][1].as_f64().unwrap();
+    assert!((y - 1.0).abs() < 1e-12, "{y}");
+}
+
+#[test]
+fn chart_is_written() {
+    let dir = temp_dir();
+    let png = dir.join("chart.png");
+    let csv = dir.join("chart.csv");
+    let out = iridis(&[
+        "thinfilm",
+        "chart",
+        "--stack",
+        "air | water {d} | air",
+        "--thickness",
+        "0nm:1000nm:5nm",
+        "-o",
+        png.to_str().unwrap(),
+        "--csv",
+        csv.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(std::fs::read(&png).unwrap().starts_with(b"\x89PNG"));
+    let text = std::fs::read_to_string(&csv).unwrap();
+    assert_eq!(text.lines().count(), 1 + 201);
+    // A film of zero thickness reflects nothing: Y = 0 in the first row.
+    let first: Vec<&str> = text.lines().nth(1).unwrap().split(',').collect();
+    assert_eq!(first[0], "0");
+    assert!(first[2].parse::<f64>().unwrap().abs() < 1e-15);
+}
+
+#[test]
+fn bad_input_names_the_token() {
+    assert_fails(
+        &["thinfilm", "spectrum", "--stack", "air | wter 635nm | air"],
+        &["'wter'", "column 7", "unknown material"],
+    );
+    assert_fails(&["thinfilm", "spectrum", "--stack", "air | water | air"], &["no thickness", "column 7"]);
+    assert_fails(&["thinfilm", "spectrum", "--stack", "air | water -3nm | air"], &["'-3nm'", "negative"]);
+    assert_fails(
+        &["thinfilm", "spectrum", "--stack", "air | water 3nm air"],
+        &["no thickness", "missing '|'", "'3nm'"],
+    );
+    assert_fails(&["thinfilm", "spectrum", "--stack", "air | n=1.5-0.2i 10nm | air"], &["κ", "'n=1.5-0.2i'"]);
+    assert_fails(&["thinfilm", "spectrum", "--stack", "n=1.5+0.1i | water 10nm | air"], &["lossless", "column 1"]);
+    assert_fails(
+        &["thinfilm", "spectrum", "--stack", "air | Si 108nm | glass", "--to", "900nm"],
+        &["830 nm", "826.6", "no extrapolation"],
+    );
+    assert_fails(&["thinfilm", "color", "--stack", "air | TiO2 50nm | glass"], &["tio2", "430"]);
+    assert_fails(&["thinfilm", "chart", "--stack", "air | water 5nm | air"], &["{d}"]);
+    let dir = temp_dir();
+    let bad = dir.join("bad.yml");
+    std::fs::write(&bad, "DATA:\n  - type: tabulated nk\n    data: |\n        0.4 1.5 0\n        0.5 oops 0\n")
+        .unwrap();
+    let stack = format!("air | file:{} 40nm | glass", bad.display());
+    assert_fails(&["thinfilm", "spectrum", "--stack", &stack], &["line 5", "'oops'", "column 7"]);
+    let gain = dir.join("gain.csv");
+    std::fs::write(&gain, "wavelength_nm,n,k\n300,1.5,0\n900,1.5,-0.1\n").unwrap();
+    let stack = format!("air | file:{} 40nm | glass", gain.display());
+    assert_fails(&["thinfilm", "spectrum", "--stack", &stack], &["κ = -0.1"]);
+}
+
+#[test]
+fn measured_files_are_read() {
+    let out =
+        iridis(&["thinfilm", "spectrum", "--stack", "air | file:data/materials/au_johnson.yml 40nm | glass", "--json"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let a: Vec<f64> = v["A"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+    assert!(a.iter().all(|&x| x > 0.0 && x < 1.0), "a gold film absorbs");
+}
