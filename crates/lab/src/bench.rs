@@ -14,8 +14,8 @@
 //!
 //! The peak search, in spatial frequency `q = (sin θ_i − sin θ_r)/λ` (so order `m` of period `d` sits at
 //! `q = m/d`):
-//! 1. without a given period, the strongest response on the order's side of the mirror direction, away from
-//!    it (`|q| ≥ 1/max_period`), is taken at each λ and the median of `|q|` is read as the first order:
+//! 1. without a given period, the strongest local maximum on the order's side of the mirror direction, away
+//!    from it (`|q| ≥ 1/max_period`), is taken at each λ and the median of `|q|` is read as the first order:
 //!    `d₀ = 1/median`; with `--period`, `d₀` is the given period;
 //! 2. at each λ the maximum inside the order's window `|q − m/d₀| ≤ 1/(2d₀)` is refined to sub-sample accuracy
 //!    by a parabola through the logarithms of the three samples around it (exact for a Gaussian peak); a
@@ -315,13 +315,14 @@ pub fn analyse(matrix: &ReflectanceMatrix, setup: &BenchSetup) -> Result<BenchRe
             let mut qs: Vec<f64> = Vec::new();
             for (i, &l) in matrix.wavelengths_nm.iter().enumerate() {
                 let row = matrix.row(i);
+                // The strongest local maximum (the mirror lobe's tail falls monotonically and has none).
+                let n = row.len();
                 let best = matrix
                     .angles_deg
                     .iter()
                     .enumerate()
-                    .filter(|&(_, &a)| {
-                        let f = q(l, a);
-                        f * sign >= q_min
+                    .filter(|&(j, &a)| {
+                        q(l, a) * sign >= q_min && j > 0 && j + 1 < n && row[j] >= row[j - 1] && row[j] > row[j + 1]
                     })
                     .max_by(|x, y| row[x.0].total_cmp(&row[y.0]));
                 if let Some((j, &a)) = best {
@@ -479,14 +480,6 @@ pub fn plot(
         }
     }
     let ls: Vec<f64> = matrix.wavelengths_nm.clone();
-    let mut peak_curve = Series::new(
-        format!("peak viewing angle, order {}", setup.order),
-        &result.peaks.iter().map(|p| p.wavelength_nm).collect::<Vec<_>>(),
-        &result.peaks.iter().map(|p| p.angle_deg).collect::<Vec<_>>(),
-    )
-    .with_color([255, 255, 255]);
-    peak_curve.emphasis = true;
-    let mut overlays = vec![peak_curve];
     let grating: Vec<(f64, f64)> = ls
         .iter()
         .filter_map(|&l| setup.grating_angle(setup.order as f64, l, curve_period_nm).map(|a| (l, a)))
@@ -494,7 +487,15 @@ pub fn plot(
     let mut g =
         Series::new(format!("grating equation, d = {curve_period_nm:.2} nm"), &[], &[]).with_color([0, 200, 255]);
     g.points = grating;
-    overlays.push(g);
+    let mut overlays = vec![g];
+    let mut peak_curve = Series::new(
+        format!("peak viewing angle, order {}", setup.order),
+        &result.peaks.iter().map(|p| p.wavelength_nm).collect::<Vec<_>>(),
+        &result.peaks.iter().map(|p| p.angle_deg).collect::<Vec<_>>(),
+    )
+    .with_color([255, 255, 255]);
+    peak_curve.emphasis = false;
+    overlays.push(peak_curve);
     if result.ridges.len() > 1 {
         for (k, r) in result.ridges.iter().enumerate().take(4) {
             let mut s = Series::new(format!("ridge {}: d = {:.1} nm", k + 1, r.period_nm), &[], &[])

@@ -128,3 +128,46 @@ fn bad_setups_are_refused_with_reasons() {
     );
     assert!(r(BenchSetup::new(1.0, 0.0, 1, (380.0, 780.0, 5.0), (-95.0, 80.0, 0.1)).unwrap_err()).contains("90°"));
 }
+
+/// The bench's period along one direction of a built-in surface against the surface analysis' strongest
+/// period within 20° of that direction (issue 6: "agrees with `iridis surface info`"), projected onto the
+/// plane of incidence.
+fn bench_vs_analysis(spec: &str, azimuth_deg: f64, orientation_deg: f64) -> (f64, f64) {
+    let hf = iridis_surface::load_surface(spec, &iridis_surface::LoadOptions::default()).unwrap();
+    let peaks = iridis_surface::find_peaks(&hf, &iridis_surface::PeakOptions::default());
+    // The bench sees a grating vector tilted by Δ from its plane through its projection: period P / cos Δ.
+    let tilt = |p: &iridis_surface::Peak| {
+        let d = (p.orientation_deg - orientation_deg).rem_euclid(180.0);
+        d.min(180.0 - d)
+    };
+    let strongest = peaks
+        .iter()
+        .filter(|p| tilt(p) < 20.0)
+        .max_by(|a, b| a.power.total_cmp(&b.power))
+        .unwrap_or_else(|| panic!("{spec}: no period near {orientation_deg}° in {peaks:?}"));
+    let geometric = strongest.period_nm / tilt(strongest).to_radians().cos();
+    let patch = Patch::from_row_major(hf.rows, hf.cols, hf.dx_nm, hf.dy_nm, &hf.heights_nm).unwrap();
+    let e = reference(&patch, 8000.0);
+    let mut setup =
+        BenchSetup::new(75f64.to_radians(), azimuth_deg.to_radians(), 1, (400.0, 700.0, 25.0), (-60.0, 74.0, 0.05))
+            .unwrap();
+    setup.max_period_nm = 8000.0 / 2.55;
+    let (_, r) = bench::run(&e, &setup, &|_| {}).unwrap();
+    (r.periodicity.mean, geometric)
+}
+
+#[test]
+fn bench_agrees_with_the_surface_analysis_on_elaphe_and_xenopeltis() {
+    for (spec, azimuth, orientation) in [
+        ("builtin:elaphe?size=20um&pixel=50nm", 90.0, 90.0),
+        ("builtin:xenopeltis?size=20um&pixel=50nm", 0.0, 0.0),
+        ("builtin:xenopeltis?size=20um&pixel=50nm", 90.0, 90.0),
+    ] {
+        let (optical, geometric) = bench_vs_analysis(spec, azimuth, orientation);
+        eprintln!("{spec} azimuth {azimuth}°: bench {optical:.1} nm, surface analysis {geometric:.1} nm");
+        assert!(
+            (optical - geometric).abs() < 0.02 * geometric,
+            "{spec} at {azimuth}°: bench {optical} vs analysis {geometric}"
+        );
+    }
+}
