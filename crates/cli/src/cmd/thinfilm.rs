@@ -101,7 +101,7 @@ pub struct GridArgs {
 
 impl GridArgs {
     fn grid(&self) -> Result<Vec<f64>> {
-        if !(self.from > 0.0) {
+        if self.from.is_nan() || self.from <= 0.0 {
             bail!("--from must be a positive wavelength");
         }
         if self.to < self.from {
@@ -549,10 +549,7 @@ fn materials(a: MaterialsArgs) -> Result<()> {
     for (names, desc) in Material::library() {
         let m = Material::builtin(names[0]).context("built-in material failed to load")?;
         let (lo, hi) = m.range_nm();
-        let at = match a.at {
-            Some(w) => Some(m.index_at(w).map(|n| (n.re, n.im)).map_err(|e| e.to_string())),
-            None => None,
-        };
+        let at = a.at.map(|w| m.index_at(w).map(|n| (n.re, n.im)).map_err(|e| e.to_string()));
         rows.push((names, desc, lo, hi, at));
     }
     if a.json {
