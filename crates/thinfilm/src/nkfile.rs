@@ -293,6 +293,16 @@ mod tests {
     }
 
     #[test]
+    fn gas_formula_ciddor_air() {
+        // Ciddor 1996 (Appl. Opt. 35, 1566), standard air, as the database writes it (formula 6):
+        // n − 1 = 0.05792105/(238.0185 − λ⁻²) + 0.00167917/(57.362 − λ⁻²); n = 1.000277 at 587.6 nm.
+        let text = "DATA:\n  - type: formula 6\n    wavelength_range: 0.23 1.69\n    coefficients: 0 0.05792105 238.0185 0.00167917 57.362\n";
+        let m = parse_yaml(text, "air.yml").unwrap();
+        assert!((m.index_at(587.6).unwrap().re - 1.000277).abs() < 1e-6);
+        assert!(m.index_at(200.0).is_err());
+    }
+
+    #[test]
     fn csv_with_header() {
         let m = parse_csv("wavelength_nm,n,k\n400,1.5,0.1\n500,1.6,0.2\n", "x.csv").unwrap();
         let n = m.index_at(450.0).unwrap();
