@@ -33,6 +33,9 @@ enum Command {
     /// Thin-film interference: spectra, angle × wavelength tables, film colours, the soap-film chart.
     #[command(subcommand)]
     Thinfilm(cmd::thinfilm::ThinfilmCommand),
+    /// Height fields: inspect (sizes, periods), generate nanostructures, convert formats.
+    #[command(subcommand, after_help = cmd::surface::SURFACE_HELP)]
+    Surface(cmd::surface::SurfaceCommand),
     // New command groups are added here, one line each, with their module in cmd/.
 }
 
@@ -41,6 +44,7 @@ fn main() -> std::process::ExitCode {
     let result = match cli.command {
         Command::Demo(a) => cmd::demo::run(a),
         Command::Color(c) => cmd::color::run(c),
+        Command::Surface(c) => cmd::surface::run(c),
         Command::Thinfilm(c) => cmd::thinfilm::run(c),
         Command::Bench(c) => cmd::bench::run(c),
     };

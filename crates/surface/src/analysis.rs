@@ -182,13 +182,12 @@ pub fn find_peaks(hf: &HeightField, opts: &PeakOptions) -> Vec<Peak> {
         let fy0 = -(kr as f64) / (rows as f64 * hf.dy_nm);
         let (fx, fy) = win.refine(fx0, fy0);
         let f = fx.hypot(fy);
-        let mut ang = fy.atan2(fx).to_degrees();
-        if ang < 0.0 {
-            ang += 180.0;
+        // Fold into [0°, 180°): a grating vector and its opposite are the same grating.
+        let mut ang = fy.atan2(fx).to_degrees().rem_euclid(180.0);
+        if ang > 180.0 - 1e-9 {
+            ang = 0.0;
         }
-        if ang >= 180.0 {
-            ang -= 180.0;
-        }
+        ang += 0.0; // no −0
         // Both half-plane copies count: the share of variance is twice the half-plane share.
         peaks.push(Peak { period_nm: 1.0 / f, orientation_deg: ang, power: (2.0 * s / total).min(1.0) });
     }

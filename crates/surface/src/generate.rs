@@ -428,8 +428,8 @@ fn elaphe(f: &Frame, radius: f64, rng: &mut Rng, spacing: f64, finger: f64, rms:
 }
 
 /// Xenopeltis: a lattice of fingers, `along` long end to end in each row and rows `across` apart, in a
-/// warped frame (three long sinusoidal warps, 15–40 µm wavelengths, so fingers curve but neighbours stay
-/// parallel), cut into Voronoi grains ≈ 15 µm across, each with its own periods (±3 % along, ±8 % across)
+/// warped frame (three long sinusoidal warps, 20–40 µm wavelengths, 0.4–0.9 µm amplitudes, so fingers
+/// curve but neighbours stay parallel), cut into Voronoi grains ≈ 15 µm across, each with its own periods (±3 % along, ±8 % across)
 /// and phases. Along a finger the height rises like a blazed facet and drops at its tip (paper sec. 7:
 /// "vertical height profiles similar to a blazed grating").
 fn xenopeltis(f: &Frame, radius: f64, rng: &mut Rng, along: f64, across: f64, depth: f64) -> Vec<f64> {
@@ -439,6 +439,7 @@ fn xenopeltis(f: &Frame, radius: f64, rng: &mut Rng, along: f64, across: f64, de
         along: f64,
         across: f64,
         phase_v: f64,
+        phase_u: f64,
         key: u64,
     }
     let n_grains = ((2.0 * radius / 15_000.0).powi(2).ceil() as usize).clamp(1, 4096);
@@ -449,14 +450,17 @@ fn xenopeltis(f: &Frame, radius: f64, rng: &mut Rng, along: f64, across: f64, de
             along: along * (1.0 + 0.03 * rng.normal().clamp(-2.0, 2.0)),
             across: across * (1.0 + 0.08 * rng.normal().clamp(-2.0, 2.0)),
             phase_v: rng.uniform(),
+            phase_u: rng.uniform(),
             key: rng.next_u64(),
         })
         .collect();
+    // Warps vary mostly along the fingers (within ±15° of u): the rows bend (up to ≈ 20°) without their
+    // spacing being squeezed much.
     let warps: Vec<(f64, f64, f64, f64)> = (0..3)
         .map(|_| {
-            let lambda = rng.range(15_000.0, 40_000.0);
-            let dir = rng.range(0.0, PI);
-            (0.25 * across * rng.range(2.0, 4.0), TAU / lambda * dir.cos(), TAU / lambda * dir.sin(), rng.range(0.0, TAU))
+            let lambda = rng.range(20_000.0, 40_000.0);
+            let dir = rng.range(-0.25, 0.25);
+            (rng.range(400.0, 900.0), TAU / lambda * dir.cos(), TAU / lambda * dir.sin(), rng.range(0.0, TAU))
         })
         .collect();
     f.fill(|u, v| {
@@ -468,9 +472,10 @@ fn xenopeltis(f: &Frame, radius: f64, rng: &mut Rng, along: f64, across: f64, de
         let row_f = vw / g.across + g.phase_v;
         let row = row_f.floor();
         let t = row_f - row;
-        // Each row of fingers has its own phase along: a hash of (grain, row).
+        // Finger tips line up from row to row within a grain, with a small jitter per row (a hash of grain
+        // and row), so the period along the fingers is seen, as the paper's Xenopeltis diffracts along them.
         let mut hr = Rng::new(g.key ^ (row as i64 as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15));
-        let s_f = u / g.along + hr.uniform();
+        let s_f = u / g.along + g.phase_u + 0.08 * hr.normal();
         let s = s_f - s_f.floor();
         let along_p = if s < 0.85 { s / 0.85 } else { (1.0 - s) / 0.15 };
         let x = (t - 0.5) / 0.8;

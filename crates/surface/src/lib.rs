@@ -14,6 +14,7 @@ pub mod builtin;
 pub mod formats;
 pub mod generate;
 pub mod prep;
+pub mod render;
 pub mod rng;
 
 use serde::Serialize;
@@ -42,8 +43,8 @@ pub enum SurfaceError {
     /// A file that cannot be parsed as the format it claims to be.
     #[error("{path}: {message}")]
     Format { path: String, message: String },
-    #[error("{path}: {source}")]
-    Io { path: String, source: std::io::Error },
+    #[error("{path}: {err}")]
+    Io { path: String, err: std::io::Error },
 }
 
 impl SurfaceError {

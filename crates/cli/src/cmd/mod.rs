@@ -2,4 +2,5 @@
 pub mod bench;
 pub mod color;
 pub mod demo;
+pub mod surface;
 pub mod thinfilm;

@@ -113,7 +113,7 @@ pub fn load_surface(spec: &str, opts: &LoadOptions) -> Result<HeightField, Surfa
         return crate::builtin::builtin_surface(rest, opts);
     }
     let path = Path::new(spec);
-    let io = |e: std::io::Error| SurfaceError::Io { path: spec.to_string(), source: e };
+    let io = |e: std::io::Error| SurfaceError::Io { path: spec.to_string(), err: e };
     let meta = std::fs::metadata(path).map_err(io)?;
     if meta.is_dir() {
         return Err(SurfaceError::invalid(format!("{spec} is a folder, not a height-field file")));

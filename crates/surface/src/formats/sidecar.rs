@@ -35,7 +35,7 @@ impl Sidecar {
         for c in candidates {
             if c.is_file() {
                 let text = std::fs::read_to_string(&c)
-                    .map_err(|e| SurfaceError::Io { path: c.display().to_string(), source: e })?;
+                    .map_err(|e| SurfaceError::Io { path: c.display().to_string(), err: e })?;
                 return Sidecar::parse(&text, &c).map(Some);
             }
         }
