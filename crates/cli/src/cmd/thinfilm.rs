@@ -58,7 +58,7 @@ Examples:
     #[command(after_help = "\
 One layer's thickness is written {d}; it is swept over --thickness FROM:TO:STEP. The picture shows the
 reflected colour (top band) and the transmitted colour (bottom band) with a labelled thickness axis. Film
-reflectance is low (a soap film reflects at most ~15%), so by default the exposure is set so that the
+reflectance is low (a soap film reflects at most ~8%), so by default the exposure is set so that the
 brightest reflected colour of the chart reaches the top of the display range; --exposure fixes it instead
 (in relative units, 1 RU = a perfect mirror is just white).
 
