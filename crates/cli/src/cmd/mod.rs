@@ -1,6 +1,7 @@
 //! One module per command group.
 pub mod bench;
+pub mod brdf;
 pub mod color;
 pub mod demo;
-pub mod surface;
+pub mod lab;
 pub mod thinfilm;

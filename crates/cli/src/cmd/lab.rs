@@ -1,0 +1,965 @@
+//! `iridis testbench`, `iridis compare`, `iridis sweep`, `iridis experiment laser`: the virtual lab of issue 6
+//! (paper sec. 6–7, thesis ch. 5) over `iridis-lab`.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use anyhow::{bail, Context, Result};
+use clap::{Args as ClapArgs, Subcommand};
+use iridis_color::units::{parse_angle_rad, parse_length_nm};
+use iridis_color::{Illuminant, Observer, Spectrum, Xyz};
+use iridis_diffraction::geometry::{FresnelSource, Shading};
+use iridis_diffraction::table::TableParams;
+use iridis_diffraction::{Fresnel, Patch, SpectralSetup};
+use iridis_lab::bench::{self, BenchSetup};
+use iridis_lab::image::{render, Pixels};
+use iridis_lab::laser::{LaserSetup, MetalFresnel};
+use iridis_lab::methods::{Method, MethodConfig, Workbench};
+use iridis_lab::sweep::Param;
+use serde_json::json;
+
+use crate::args::{angle_rad, positive_length_nm};
+use crate::output::{print_json, write_png_rgb8};
+use crate::progress::bar;
+
+/// How to read SURFACE and the model's parameters, shared by the lab commands.
+#[derive(Debug, Clone, ClapArgs)]
+pub struct LabModel {
+    /// Pixel size for image surfaces without physical units (e.g. 65nm).
+    #[arg(long, value_parser = positive_length_nm)]
+    pub pixel_size: Option<f64>,
+    /// Height of full white for image surfaces (e.g. 300nm).
+    #[arg(long, value_parser = positive_length_nm)]
+    pub max_height: Option<f64>,
+    /// Coherence length 4σ_s of the window.
+    #[arg(long, value_parser = positive_length_nm, default_value = "65um")]
+    pub coherence: f64,
+    /// Taylor terms: auto (remainder bound 1e-6) or N.
+    #[arg(long, default_value = "auto")]
+    pub terms: String,
+    /// Fresnel factor: schlick[:N] (default schlick:1.5), index:N[+Ki], or gold.
+    #[arg(long, default_value = "schlick:1.5")]
+    pub fresnel: String,
+    /// Leave out the Cook–Torrance shadowing term.
+    #[arg(long)]
+    pub no_shadowing: bool,
+    /// ε of Stam's wavelength selection (paper: 0.01).
+    #[arg(long, default_value_t = 0.01)]
+    pub epsilon: f64,
+}
+
+impl LabModel {
+    fn config(&self) -> Result<MethodConfig> {
+        let terms = match self.terms.trim() {
+            "auto" => None,
+            t => match t.parse::<usize>() {
+                Ok(n) if (1..=200).contains(&n) => Some(n),
+                _ => bail!("--terms '{t}' must be 'auto' or a number of terms from 1 to 200"),
+            },
+        };
+        Ok(MethodConfig {
+            coherence_nm: self.coherence,
+            terms,
+            shading: Shading { fresnel: fresnel(&self.fresnel)?, shadowing: !self.no_shadowing },
+            stam_epsilon: self.epsilon,
+            ..MethodConfig::default()
+        })
+    }
+}
+
+fn fresnel(s: &str) -> Result<Arc<dyn FresnelSource>> {
+    let t = s.trim().to_ascii_lowercase();
+    if t == "gold" || t == "au" {
+        let m = iridis_thinfilm::Material::builtin("gold").context("the built-in gold data are missing")?;
+        return Ok(Arc::new(MetalFresnel::new(m, 380.0, 780.0)?));
+    }
+    let (kind, value) = t.split_once(':').unwrap_or((t.as_str(), ""));
+    match kind {
+        "schlick" => {
+            let n = if value.is_empty() {
+                1.5
+            } else {
+                value
+                    .parse::<f64>()
+                    .ok()
+                    .filter(|n| *n > 0.0 && *n != 1.0)
+                    .with_context(|| format!("--fresnel '{s}': schlick:N needs a positive N ≠ 1"))?
+            };
+            Ok(Arc::new(Fresnel::Schlick { n }))
+        }
+        "index" => {
+            let (re, im) = match value.strip_suffix('i') {
+                Some(body) => {
+                    let p = body.rfind(['+', '-']).filter(|&p| p > 0).context("write index:N+Ki")?;
+                    (body[..p].parse::<f64>().ok(), body[p..].parse::<f64>().ok())
+                }
+                None => (value.parse::<f64>().ok(), Some(0.0)),
+            };
+            match (re, im) {
+                (Some(re), Some(im)) if re > 0.0 && im >= 0.0 => {
+                    Ok(Arc::new(Fresnel::Index { n: num_complex::Complex64::new(re, im) }))
+                }
+                _ => bail!("--fresnel '{s}': write index:N or index:N+Ki with N > 0, K ≥ 0, e.g. index:0.47+2.4i"),
+            }
+        }
+        _ => bail!("--fresnel '{s}': expected schlick[:N], index:N[+Ki] or gold"),
+    }
+}
+
+/// Loads SURFACE (a file or builtin:NAME) as a patch, printing the model's warnings.
+fn load(spec: &str, m: &LabModel) -> Result<Patch> {
+    let opts =
+        iridis_surface::LoadOptions { pixel_size_nm: m.pixel_size, max_height_nm: m.max_height, ..Default::default() };
+    let hf = iridis_surface::load_surface(spec, &opts).with_context(|| format!("cannot load surface {spec}"))?;
+    let patch = Patch::from_row_major(hf.rows, hf.cols, hf.dx_nm, hf.dy_nm, &hf.heights_nm)?;
+    for w in patch.warnings(m.coherence) {
+        eprintln!("warning: {w}");
+    }
+    Ok(patch)
+}
+
+fn workbench(spec: &str, m: &LabModel, config: MethodConfig) -> Result<Workbench> {
+    let patch = load(spec, m)?;
+    eprintln!(
+        "{spec}: {}×{} samples at {:.1} × {:.1} nm ({:.1} × {:.1} µm), |h|max {:.1} nm, coherence {:.1} µm",
+        patch.cols,
+        patch.rows,
+        patch.dx,
+        patch.dy,
+        patch.cols as f64 * patch.dx / 1000.0,
+        patch.rows as f64 * patch.dy / 1000.0,
+        patch.max_abs_height,
+        config.coherence_nm / 1000.0
+    );
+    Ok(Workbench::new(patch, config, spec)?)
+}
+
+/// Builds an evaluator with a progress bar on its expensive step.
+fn evaluator(b: &Workbench, method: Method) -> Result<Box<dyn iridis_diffraction::Evaluator>> {
+    let (len, what) = match method {
+        Method::Lookup => (b.config.table.uv_resolution as u64, "lookup tables"),
+        Method::GroundTruth | Method::StamGaussian | Method::StamPeriodic(_) => (1, "preparing"),
+        _ => (b.config.term_count(&b.patch) as u64 + 1, "Taylor terms"),
+    };
+    let pb = bar(len, what);
+    let e = b.evaluator(method, &|d| pb.set_position(d as u64))?;
+    pb.finish_and_clear();
+    Ok(e)
+}
+
+fn render_bar(e: &dyn iridis_diffraction::Evaluator, pixels: &Pixels, what: &str) -> Vec<Option<Xyz>> {
+    let pb = bar(pixels.len() as u64, what);
+    let img = render(e, pixels, &|d| pb.set_position(d as u64));
+    pb.finish_and_clear();
+    img
+}
+
+/// A surface name short enough for a plot title.
+fn short(spec: &str) -> String {
+    let s = spec.strip_prefix("builtin:").unwrap_or(spec);
+    let s = std::path::Path::new(s).file_name().and_then(|f| f.to_str()).unwrap_or(s);
+    if s.chars().count() > 28 {
+        format!("{}…", s.chars().take(27).collect::<String>())
+    } else {
+        s.to_string()
+    }
+}
+
+fn parse_list<T>(s: &str, what: &str, f: impl Fn(&str) -> Result<T>) -> Result<Vec<T>> {
+    let v: Vec<T> = s.split(',').filter(|p| !p.trim().is_empty()).map(|p| f(p.trim())).collect::<Result<_>>()?;
+    if v.is_empty() {
+        bail!("{what}: give at least one value");
+    }
+    Ok(v)
+}
+
+fn exposures(s: &str) -> Result<Vec<f64>> {
+    parse_list(s, "--exposures", |p| match p.trim_end_matches("RU").trim_end_matches("ru").parse::<f64>() {
+        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
+        _ => bail!("--exposures: '{p}' is not a positive exposure in RU (e.g. 1,1000,7500)"),
+    })
+}
+
+fn parse_incidence(s: &str) -> Result<(f64, f64)> {
+    let mut parts = s.split(',');
+    let theta = parse_angle_rad(parts.next().unwrap_or("")).map_err(anyhow::Error::msg)?;
+    let phi = match parts.next() {
+        Some(p) => parse_angle_rad(p).map_err(anyhow::Error::msg)?,
+        None => 0.0,
+    };
+    if parts.next().is_some() {
+        bail!("--incidence '{s}': write θ or θ,φ, e.g. 20deg,0deg");
+    }
+    if !(0.0..std::f64::consts::FRAC_PI_2).contains(&theta) {
+        bail!("--incidence '{s}': θ_i must be in [0°, 90°)");
+    }
+    Ok((theta, phi))
+}
+
+fn check_output(path: &Path) -> Result<()> {
+    let dir = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    if !dir.is_dir() {
+        bail!("cannot write {}: folder {} does not exist", path.display(), dir.display());
+    }
+    Ok(())
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// testbench
+
+#[derive(Debug, ClapArgs)]
+#[command(after_help = "\
+The virtual test bench (paper sec. 6.1, Table 1, Figure 7; thesis ch. 5): light in the x-z plane at θ_i, the
+viewer in the same plane at signed θ_r (positive on the specular side). For each wavelength the reflectance
+over θ_r is computed (thesis eq. 5.5), the peak viewing angle of the chosen order found, and the periodicity
+d_λ = m λ / (sin θ_i − sin θ_r) (eq. 5.6 in this frame) reported with its mean and variance over λ. --azimuth
+rotates the surface about its normal: 0deg measures periods along x, 90deg along y. Without --period the
+strongest response away from the mirror direction is taken as the first order.
+
+JSON: {\"periodicity_nm\":{\"mean\",\"variance\"},\"order\",\"incidence_deg\",\"azimuth_deg\",
+       \"peaks\":[{\"wavelength_nm\",\"angle_deg\",\"period_nm\"}],\"ridges\":[{\"period_nm\",\"variance\",…}]}
+(ridges lists competing sub-structure periods when there is more than one, as for Xenopeltis.)
+
+Examples:
+  iridis testbench builtin:blazed --plot blazed_bench.png
+  iridis testbench 'builtin:elaphe?size=20um&pixel=50nm' --azimuth 90deg --coherence 10um --json
+  iridis testbench 'builtin:xenopeltis?size=20um&pixel=50nm' --azimuth 90deg --coherence 10um --plot x.png
+  iridis testbench scan.gwy --method ground-truth --from 400nm --to 700nm --step 20nm --min-angle 20deg")]
+pub struct TestbenchArgs {
+    /// Height field: a file (.gwy, .npy, PNG, TIFF, text) or builtin:NAME.
+    pub surface: String,
+    /// Method: reference (thesis FLSS), ground-truth (slow), nmm, pq, stam-periodic[-triangular], stam-gaussian.
+    #[arg(long, default_value = "reference")]
+    pub method: String,
+    /// Angle of incidence θ_i.
+    #[arg(long, value_parser = angle_rad, default_value = "75deg")]
+    pub incidence: f64,
+    /// Rotation of the surface about its normal.
+    #[arg(long, value_parser = angle_rad, default_value = "0deg", allow_hyphen_values = true)]
+    pub azimuth: f64,
+    /// Diffraction order m (non-zero; m > 0 lies between the mirror direction and the normal).
+    #[arg(long, default_value_t = 1, allow_hyphen_values = true)]
+    pub order: i32,
+    /// First wavelength.
+    #[arg(long, value_parser = positive_length_nm, default_value = "380nm")]
+    pub from: f64,
+    /// Last wavelength.
+    #[arg(long, value_parser = positive_length_nm, default_value = "780nm")]
+    pub to: f64,
+    /// Wavelength step.
+    #[arg(long, value_parser = positive_length_nm, default_value = "5nm")]
+    pub step: f64,
+    /// Viewing-angle step.
+    #[arg(long, value_parser = angle_rad, default_value = "0.05deg")]
+    pub angle_step: f64,
+    /// Smallest viewing angle.
+    #[arg(long, value_parser = angle_rad, default_value = "-89deg", allow_hyphen_values = true)]
+    pub min_angle: f64,
+    /// Largest viewing angle.
+    #[arg(long, value_parser = angle_rad, default_value = "89deg", allow_hyphen_values = true)]
+    pub max_angle: f64,
+    /// Known period: centre the order's window on it and draw its grating-equation curve.
+    #[arg(long, value_parser = positive_length_nm)]
+    pub period: Option<f64>,
+    /// Longest period considered (responses closer to the mirror direction are ignored); default the smaller
+    /// of 10 µm and coherence/2.55 (the mirror lobe's 4σ_f).
+    #[arg(long, value_parser = positive_length_nm)]
+    pub max_period: Option<f64>,
+    /// Write the Figure-7 plot (PNG).
+    #[arg(long)]
+    pub plot: Option<PathBuf>,
+    /// Print JSON.
+    #[arg(long)]
+    pub json: bool,
+    #[command(flatten)]
+    pub model: LabModel,
+}
+
+pub fn run_testbench(a: TestbenchArgs) -> Result<()> {
+    let method: Method = a.method.parse()?;
+    if !method.is_spectral() {
+        bail!(
+            "the {method} method integrates over wavelength in advance and has no spectral reflectance; the test \
+             bench needs one of: reference, ground-truth, nmm, pq, stam-periodic, stam-gaussian"
+        );
+    }
+    if let Some(p) = &a.plot {
+        check_output(p)?;
+    }
+    let mut setup = BenchSetup::new(
+        a.incidence,
+        a.azimuth,
+        a.order,
+        (a.from, a.to, a.step),
+        (a.min_angle.to_degrees(), a.max_angle.to_degrees(), a.angle_step.to_degrees()),
+    )?;
+    setup.period_hint_nm = a.period;
+    setup.max_period_nm = a.max_period.unwrap_or((a.model.coherence / 2.55).min(10_000.0));
+    let mut config = a.model.config()?;
+    if let Some(p) = a.period {
+        // NMM and Stam's lattice take the period along the measured direction.
+        if a.azimuth.sin().abs() > a.azimuth.cos().abs() {
+            config.period_y_nm = Some(p);
+        } else {
+            config.period_x_nm = Some(p);
+        }
+    }
+    let b = workbench(&a.surface, &a.model, config)?;
+    let e = evaluator(&b, method)?;
+    let pb = bar(setup.wavelengths_nm.len() as u64, "test bench");
+    let matrix = bench::reflectance_matrix(e.as_ref(), &setup, &|d| pb.set_position(d as u64))?;
+    pb.finish_and_clear();
+    let result = bench::analyse(&matrix, &setup)?;
+    let curve = a.period.unwrap_or(result.periodicity.mean);
+    if let Some(path) = &a.plot {
+        let name = short(&a.surface);
+        let title = format!(
+            "{name} ({method}), θi {:.0}°, φ {:.0}°: d = {:.2} nm, var {:.3}",
+            a.incidence.to_degrees(),
+            a.azimuth.to_degrees(),
+            result.periodicity.mean,
+            result.periodicity.variance
+        );
+        let img = bench::plot(&matrix, &setup, &result, curve, &title)?;
+        write_png_rgb8(path, img.width, img.height, &img.data)?;
+        eprintln!("wrote {}", path.display());
+    }
+    if a.json {
+        let mut j = result.to_json();
+        j["method"] = json!(method.name());
+        j["surface"] = json!(a.surface);
+        return print_json(&j);
+    }
+    println!(
+        "{} with {}: order {}, θi = {:.2}°, azimuth {:.2}°, {} of {} wavelengths with a peak",
+        a.surface,
+        method,
+        a.order,
+        a.incidence.to_degrees(),
+        a.azimuth.to_degrees(),
+        result.peaks.len(),
+        setup.wavelengths_nm.len()
+    );
+    println!(
+        "periodicity  mean {:.2} nm, variance {:.3} nm² (window centred on {:.1} nm)",
+        result.periodicity.mean, result.periodicity.variance, result.window_period_nm
+    );
+    if result.ridges.len() > 1 {
+        for (k, r) in result.ridges.iter().enumerate() {
+            println!(
+                "ridge {}      {:.2} nm, variance {:.3} nm², {} wavelengths, mean peak ρ {:.3e}",
+                k + 1,
+                r.period_nm,
+                r.variance,
+                r.wavelengths,
+                r.strength
+            );
+        }
+    }
+    println!("  λ (nm)   θr (deg)   d_λ (nm)");
+    let stride = (result.peaks.len() / 12).max(1);
+    for p in result.peaks.iter().step_by(stride) {
+        println!("  {:6.1}   {:8.3}   {:8.2}", p.wavelength_nm, p.angle_deg, p.period_nm);
+    }
+    Ok(())
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// compare
+
+#[derive(Debug, ClapArgs)]
+#[command(after_help = "\
+CIELAB errors between methods (paper sec. 6.3, Table 2): each method's BRDF map (light at --incidence, the
+paper's layout: pixel (x, y) views (x, y, √(1 − x² − y²))) is displayed at each exposure (XYZ × E → linear
+sRGB, clipped → CIELAB against the D65 white) and compared per pixel with the reference method by CIEDE2000.
+The table gives mean and 95th percentile per method and exposure, and the ratio of each method's mean to the
+first method's (Table 2's E2/E1).
+
+JSON: {\"results\":[{\"method\",\"exposure_ru\",\"mean\",\"p95\",\"max\",\"ratio\"}],\"against\",…}
+
+Examples:
+  iridis compare 'builtin:elaphe?size=12um&pixel=60nm' --coherence 4um --size 64
+  iridis compare 'builtin:elaphe?size=12um&pixel=60nm' --methods reference,stam-gaussian --json
+  iridis compare scan.gwy --methods lookup,reference --table scan.npz --maps errors/")]
+pub struct CompareArgs {
+    /// Height field: a file or builtin:NAME.
+    pub surface: String,
+    /// Methods to compare, comma-separated: ground-truth, reference, lookup, nmm, pq, stam-periodic,
+    /// stam-periodic-triangular, stam-gaussian.
+    #[arg(long, default_value = "lookup,reference,stam-periodic,stam-gaussian")]
+    pub methods: String,
+    /// The method taken as truth.
+    #[arg(long, default_value = "ground-truth")]
+    pub against: String,
+    /// Exposures in RU, comma-separated.
+    #[arg(long, default_value = "1,1000,7500")]
+    pub exposures: String,
+    /// Light direction θ[,φ].
+    #[arg(long, default_value = "0deg")]
+    pub incidence: String,
+    /// Map size in pixels (the paper: 101).
+    #[arg(long, default_value_t = 101)]
+    pub size: usize,
+    /// Wavelength step of the spectral integral.
+    #[arg(long, value_parser = positive_length_nm, default_value = "5nm")]
+    pub dlambda: f64,
+    /// Illuminant: d65, d50, a, e.
+    #[arg(long, default_value = "d65")]
+    pub illuminant: String,
+    /// u-v samples per axis of the lookup table built in memory.
+    #[arg(long, default_value_t = 501)]
+    pub uv_resolution: usize,
+    /// Exponent of the lookup table's u-v grid.
+    #[arg(long, default_value_t = 5.0)]
+    pub uv_power: f64,
+    /// A precomputed lookup table (from `iridis precompute`) for the lookup method.
+    #[arg(long)]
+    pub table: Option<PathBuf>,
+    /// Write the maps and ΔE heat maps into this folder.
+    #[arg(long)]
+    pub maps: Option<PathBuf>,
+    /// Print JSON.
+    #[arg(long)]
+    pub json: bool,
+    #[command(flatten)]
+    pub model: LabModel,
+}
+
+fn spectral(ill: &str, step: f64) -> Result<SpectralSetup> {
+    let ill: Illuminant = ill.parse()?;
+    if step > 5.0 {
+        eprintln!("warning: a wavelength step of {step} nm shows colour artefacts (the paper: use ≤ 5 nm)");
+    }
+    Ok(SpectralSetup::new(ill, Observer::Cie1931, step)?)
+}
+
+/// The results of `compare` (also used by the demo).
+pub struct Comparison {
+    pub rows: Vec<iridis_lab::compare::ComparisonRow>,
+    pub images: Vec<(String, Vec<Option<Xyz>>)>,
+    pub truth: Vec<Option<Xyz>>,
+}
+
+pub fn comparison(
+    b: &Workbench,
+    methods: &[Method],
+    against: Method,
+    pixels: &Pixels,
+    exps: &[f64],
+) -> Result<Comparison> {
+    let te = evaluator(b, against)?;
+    let truth = render_bar(te.as_ref(), pixels, against.name());
+    let mut images = Vec::new();
+    for &m in methods {
+        let e = evaluator(b, m)?;
+        images.push((m.name().to_string(), render_bar(e.as_ref(), pixels, m.name())));
+    }
+    let rows = iridis_lab::compare::table(&images, &truth, exps);
+    Ok(Comparison { rows, images, truth })
+}
+
+fn heat_plot(map: &[Option<f64>], size: usize, title: &str, max: f64) -> Result<iridis_plot::RgbImage> {
+    let px = iridis_lab::image::heat(map, size, size, max);
+    Ok(iridis_plot::ImagePlot {
+        title: title.into(),
+        x_label: "x = sin θr cos φr".into(),
+        y_label: "y = sin θr sin φr".into(),
+        x_range: (-1.0, 1.0),
+        y_range: (-1.0, 1.0),
+        pixels: &px,
+        overlays: Vec::new(),
+        colorbar: Some(iridis_plot::ColorBar { label: "ΔE00".into(), min: 0.0, max, map: iridis_plot::magma }),
+        size: (620, 520),
+    }
+    .render()?)
+}
+
+fn map_plot(img: &[Option<Xyz>], size: usize, exposure: f64, title: &str) -> Result<iridis_plot::RgbImage> {
+    let px = iridis_lab::image::to_rgb(img, size, size, exposure);
+    Ok(iridis_plot::ImagePlot {
+        title: title.into(),
+        x_label: "x = sin θr cos φr".into(),
+        y_label: "y = sin θr sin φr".into(),
+        x_range: (-1.0, 1.0),
+        y_range: (-1.0, 1.0),
+        pixels: &px,
+        overlays: Vec::new(),
+        colorbar: None,
+        size: (520, 520),
+    }
+    .render()?)
+}
+
+pub fn run_compare(a: CompareArgs) -> Result<()> {
+    let methods = parse_list(&a.methods, "--methods", |s| Ok(s.parse::<Method>()?))?;
+    let against: Method = a.against.parse()?;
+    let exps = exposures(&a.exposures)?;
+    let (theta, phi) = parse_incidence(&a.incidence)?;
+    if !(8..=2048).contains(&a.size) {
+        bail!("--size {} must be 8–2048 pixels", a.size);
+    }
+    if let Some(d) = &a.maps {
+        std::fs::create_dir_all(d).with_context(|| format!("cannot create {}", d.display()))?;
+    }
+    let mut config = a.model.config()?;
+    config.spectral = spectral(&a.illuminant, a.dlambda)?;
+    config.table = TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power };
+    config.table_path = a.table.clone();
+    let b = workbench(&a.surface, &a.model, config)?;
+    let pixels = Pixels::brdf_map(theta, phi, a.size);
+    let c = comparison(&b, &methods, against, &pixels, &exps)?;
+    if let Some(dir) = &a.maps {
+        for &e in &exps {
+            let t = map_plot(&c.truth, a.size, e, &format!("{} at {e} RU", against.name()))?;
+            write_png_rgb8(&dir.join(format!("{}_{e}RU.png", against.name())), t.width, t.height, &t.data)?;
+            for (name, img) in &c.images {
+                let m = map_plot(img, a.size, e, &format!("{name} at {e} RU"))?;
+                write_png_rgb8(&dir.join(format!("{name}_{e}RU.png",)), m.width, m.height, &m.data)?;
+                let de = iridis_lab::compare::delta_e_map(img, &c.truth, e);
+                let s = iridis_lab::compare::stats(&de);
+                let h = heat_plot(
+                    &de,
+                    a.size,
+                    &format!("ΔE00 {name} vs {} at {e} RU (mean {:.2})", against.name(), s.mean),
+                    s.max.max(1.0),
+                )?;
+                write_png_rgb8(&dir.join(format!("{name}_{e}RU_deltaE.png")), h.width, h.height, &h.data)?;
+            }
+        }
+        eprintln!("wrote maps to {}", dir.display());
+    }
+    let first = |e: f64| c.rows.iter().find(|r| r.exposure_ru == e).map(|r| r.mean).unwrap_or(f64::NAN);
+    if a.json {
+        let rows: Vec<_> = c
+            .rows
+            .iter()
+            .map(|r| {
+                json!({"method": r.method, "exposure_ru": r.exposure_ru, "mean": r.mean, "p95": r.p95, "max": r.max,
+                       "ratio": r.mean / first(r.exposure_ru)})
+            })
+            .collect();
+        return print_json(&json!({"surface": a.surface, "against": against.name(), "size": a.size,
+            "incidence_deg": theta.to_degrees(), "results": rows}));
+    }
+    println!("CIEDE2000 against {} ({}×{} BRDF map, θi = {:.1}°):", against.name(), a.size, a.size, theta.to_degrees());
+    println!("  {:<26} {:>10} {:>10} {:>10} {:>10}", "method", "exposure", "mean", "p95", "ratio");
+    for r in &c.rows {
+        println!(
+            "  {:<26} {:>8} RU {:>10.4} {:>10.4} {:>10.3}",
+            r.method,
+            r.exposure_ru,
+            r.mean,
+            r.p95,
+            r.mean / first(r.exposure_ru)
+        );
+    }
+    Ok(())
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// sweep
+
+#[derive(Debug, ClapArgs)]
+#[command(after_help = "\
+Convergence sweeps (paper sec. 7, Figures 14–17): the method's BRDF map for each value of one parameter, its
+CIEDE2000 error against the ground truth (mean and 95th percentile per exposure), a contact sheet of the maps
+and an error-against-parameter plot.
+
+Parameters: terms (reference, lookup, nmm, pq), dlambda (all but ground-truth; values with units, 1nm,5nm,…),
+coherence (all; with units, 5um,20um,65um; the ground truth follows), uv-power and uv-resolution (lookup).
+
+Examples:
+  iridis sweep 'builtin:xenopeltis?size=10um&pixel=50nm' --param terms --values 2,5,10,20 --coherence 3um -o terms.png
+  iridis sweep 'builtin:blazed?size=10um&pixel=50nm' --param coherence --values 2um,5um,10um -o coh.png
+  iridis sweep 'builtin:elaphe?size=10um&pixel=50nm' --method lookup --param uv-power --values 1,3,5 -o uv.png --json")]
+pub struct SweepArgs {
+    /// Height field: a file or builtin:NAME.
+    pub surface: String,
+    /// The parameter: terms, dlambda, coherence, uv-power, uv-resolution.
+    #[arg(long)]
+    pub param: String,
+    /// Values, comma-separated (lengths with units).
+    #[arg(long)]
+    pub values: String,
+    /// The method swept.
+    #[arg(long, default_value = "reference")]
+    pub method: String,
+    /// Exposures in RU for the error (the contact sheet uses the first).
+    #[arg(long, default_value = "1000")]
+    pub exposures: String,
+    /// Light direction θ[,φ].
+    #[arg(long, default_value = "0deg")]
+    pub incidence: String,
+    /// Map size in pixels.
+    #[arg(long, default_value_t = 64)]
+    pub size: usize,
+    /// Wavelength step (when not swept).
+    #[arg(long, value_parser = positive_length_nm, default_value = "5nm")]
+    pub dlambda: f64,
+    /// u-v samples per axis for lookup (when not swept).
+    #[arg(long, default_value_t = 201)]
+    pub uv_resolution: usize,
+    /// u-v exponent for lookup (when not swept).
+    #[arg(long, default_value_t = 5.0)]
+    pub uv_power: f64,
+    /// Contact sheet (PNG).
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Error-against-parameter plot (PNG); default: the contact sheet's name with _error.
+    #[arg(long)]
+    pub plot: Option<PathBuf>,
+    /// Print JSON.
+    #[arg(long)]
+    pub json: bool,
+    #[command(flatten)]
+    pub model: LabModel,
+}
+
+pub fn run_sweep(a: SweepArgs) -> Result<()> {
+    let method: Method = a.method.parse()?;
+    let param: Param = a.param.parse()?;
+    if !param.applies_to(method) {
+        let who: Vec<&str> = Method::ALL.iter().filter(|m| param.applies_to(**m)).map(|m| m.name()).collect();
+        bail!("the {method} method has no parameter '{}'; it applies to: {}", param.name(), who.join(", "));
+    }
+    let values = parse_list(&a.values, "--values", |s| match param {
+        Param::DLambda | Param::Coherence => parse_length_nm(s).map_err(anyhow::Error::msg),
+        _ => s.parse::<f64>().map_err(|_| anyhow::anyhow!("--values: '{s}' is not a number")),
+    })?;
+    iridis_lab::sweep::check_values(param, &values)?;
+    let exps = exposures(&a.exposures)?;
+    let (theta, phi) = parse_incidence(&a.incidence)?;
+    if !(8..=1024).contains(&a.size) {
+        bail!("--size {} must be 8–1024 pixels", a.size);
+    }
+    check_output(&a.output)?;
+    let plot_path = a.plot.clone().unwrap_or_else(|| {
+        let stem = a.output.file_stem().and_then(|s| s.to_str()).unwrap_or("sweep");
+        a.output.with_file_name(format!("{stem}_error.png"))
+    });
+    let mut config = a.model.config()?;
+    config.spectral = spectral("d65", a.dlambda)?;
+    config.table = TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power };
+    let b = workbench(&a.surface, &a.model, config)?;
+    let pixels = Pixels::brdf_map(theta, phi, a.size);
+    let pb = bar(values.len() as u64, &format!("sweep {}", param.name()));
+    let (_, points) =
+        iridis_lab::sweep::run(&b, method, param, &values, &pixels, &exps, &|d| pb.set_position(d as u64))?;
+    pb.finish_and_clear();
+    let sheet = iridis_lab::sweep::contact_sheet(param, method, &points, &pixels, exps[0])?;
+    let plot = iridis_lab::sweep::error_plot(param, method, &points)?;
+    write_png_rgb8(&a.output, sheet.width, sheet.height, &sheet.data)?;
+    write_png_rgb8(&plot_path, plot.width, plot.height, &plot.data)?;
+    eprintln!("wrote {} and {}", a.output.display(), plot_path.display());
+    if a.json {
+        let pts: Vec<_> = points
+            .iter()
+            .map(|p| {
+                json!({"value": p.value, "errors": p.errors.iter().map(|e| json!({"exposure_ru": e.0, "mean": e.1, "p95": e.2})).collect::<Vec<_>>()})
+            })
+            .collect();
+        return print_json(
+            &json!({"surface": a.surface, "method": method.name(), "param": param.name(), "points": pts}),
+        );
+    }
+    println!("{} against ground-truth, sweeping {}:", method, param.name());
+    for p in &points {
+        let errs: Vec<String> =
+            p.errors.iter().map(|e| format!("{} RU: mean {:.4}, p95 {:.4}", e.0, e.1, e.2)).collect();
+        println!("  {:>12}   {}", param.display(p.value), errs.join("; "));
+    }
+    Ok(())
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// experiment laser
+
+#[derive(Debug, Subcommand)]
+pub enum ExperimentCommand {
+    /// The laser experiment of the paper's Figure 8: the screen image a camera records.
+    #[command(after_help = "\
+A vertical sample, a horizontal supercontinuum beam at --incidence (45°) through a diaphragm whose aperture
+(65–100 µm) is the coherence window, a white screen parallel to the beam at --distance; the mirror reflection
+hits the screen's centre. Each pixel averages --subsamples² view directions (its solid angle). The beam's
+spectrum comes from a CSV (wavelength_nm, power); without one an equal-energy spectrum is used. --coating gold
+(default) puts gold's complex index (Johnson & Christy 1972) into the Fresnel term; --coating none leaves the
+surface uncoated with the --fresnel model. Exposure: 1 RU saturates white for an uncoated perfect mirror.
+The image's x axis runs along the beam, y up; one PNG per exposure (NAME_<E>RU.png when several).
+
+Examples:
+  iridis experiment laser 'builtin:elaphe?size=40um&pixel=80nm' --aperture 40um -o elaphe_screen.png
+  iridis experiment laser scan.gwy --spectrum fianium_sc450.csv --aperture 100um --exposures 1000,7500 -o s.png
+  iridis experiment laser 'builtin:xenopeltis?size=30um&pixel=60nm' --azimuth 90deg --size 151 -o x.png --json")]
+    Laser(LaserArgs),
+}
+
+#[derive(Debug, ClapArgs)]
+pub struct LaserArgs {
+    /// Height field: a file or builtin:NAME.
+    pub surface: String,
+    /// Evaluation method.
+    #[arg(long, default_value = "reference")]
+    pub method: String,
+    /// Angle between the beam and the sample normal.
+    #[arg(long, value_parser = angle_rad, default_value = "45deg")]
+    pub incidence: f64,
+    /// Rotation of the sample about its normal.
+    #[arg(long, value_parser = angle_rad, default_value = "0deg", allow_hyphen_values = true)]
+    pub azimuth: f64,
+    /// Diaphragm aperture: the coherence length of the window (overrides --coherence).
+    #[arg(long, value_parser = positive_length_nm, default_value = "65um")]
+    pub aperture: f64,
+    /// Distance from the sample to the screen.
+    #[arg(long, value_parser = positive_length_nm, default_value = "100mm")]
+    pub distance: f64,
+    /// Width (and height) of the screen area shown.
+    #[arg(long, value_parser = positive_length_nm, default_value = "300mm")]
+    pub screen: f64,
+    /// Image size in pixels (the paper: 101).
+    #[arg(long, default_value_t = 101)]
+    pub size: usize,
+    /// Samples per pixel side.
+    #[arg(long, default_value_t = 3)]
+    pub subsamples: usize,
+    /// The beam's spectrum (CSV: wavelength_nm, power).
+    #[arg(long)]
+    pub spectrum: Option<PathBuf>,
+    /// Coating: gold, none, or an n,k file (refractiveindex.info YAML or CSV wavelength_nm,n,k).
+    #[arg(long, default_value = "gold")]
+    pub coating: String,
+    /// Exposures in RU, comma-separated.
+    #[arg(long, default_value = "1,1000,7500")]
+    pub exposures: String,
+    /// Wavelength step of the spectral integral.
+    #[arg(long, value_parser = positive_length_nm, default_value = "5nm")]
+    pub dlambda: f64,
+    /// Output image (PNG).
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Print JSON.
+    #[arg(long)]
+    pub json: bool,
+    #[command(flatten)]
+    pub model: LabModel,
+}
+
+pub fn run_experiment(c: ExperimentCommand) -> Result<()> {
+    match c {
+        ExperimentCommand::Laser(a) => run_laser(a),
+    }
+}
+
+fn run_laser(a: LaserArgs) -> Result<()> {
+    let method: Method = a.method.parse()?;
+    let exps = exposures(&a.exposures)?;
+    check_output(&a.output)?;
+    let spectrum = match &a.spectrum {
+        Some(p) => Spectrum::from_csv_path(p)?,
+        None => {
+            eprintln!("note: no --spectrum given; using an equal-energy beam (give the laser's CSV for its colours)");
+            Spectrum::new(vec![300.0, 900.0], vec![1.0, 1.0])?
+        }
+    };
+    let coating = match a.coating.trim().to_ascii_lowercase().as_str() {
+        "none" => None,
+        "gold" | "au" => Some(MetalFresnel::new(
+            iridis_thinfilm::Material::builtin("gold").context("the built-in gold data are missing")?,
+            380.0,
+            780.0,
+        )?),
+        _ => {
+            let m = iridis_thinfilm::Material::from_file(Path::new(&a.coating))
+                .with_context(|| format!("--coating '{}': not gold, none or a readable n,k file", a.coating))?;
+            Some(MetalFresnel::new(m, 380.0, 780.0)?)
+        }
+    };
+    let setup = LaserSetup {
+        incidence: a.incidence,
+        azimuth: a.azimuth,
+        distance_nm: a.distance,
+        screen_width_nm: a.screen,
+        screen_height_nm: a.screen,
+        width_px: a.size,
+        height_px: a.size,
+        subsamples: a.subsamples,
+    };
+    let pixels = setup.pixels()?;
+    let mut model = a.model.clone();
+    model.coherence = a.aperture;
+    let mut config = model.config()?;
+    config.spectral = spectral("e", a.dlambda)?;
+    let scale = iridis_lab::laser::configure(&mut config, method, &spectrum, coating.as_ref(), Observer::Cie1931)?;
+    let b = workbench(&a.surface, &model, config)?;
+    let e = evaluator(&b, method)?;
+    let mut img = render_bar(e.as_ref(), &pixels, "screen");
+    iridis_lab::laser::scale_image(&mut img, scale);
+    let half = a.screen / 2e6;
+    let mut written = Vec::new();
+    for &x in &exps {
+        let path = if exps.len() == 1 {
+            a.output.clone()
+        } else {
+            let stem = a.output.file_stem().and_then(|s| s.to_str()).unwrap_or("screen");
+            a.output.with_file_name(format!("{stem}_{x}RU.png"))
+        };
+        let px = iridis_lab::image::to_rgb(&img, a.size, a.size, x);
+        let plot = iridis_plot::ImagePlot {
+            title: format!(
+                "{}: screen at {:.0} mm, beam {:.0}°, aperture {:.0} µm, {x} RU",
+                short(&a.surface),
+                a.distance / 1e6,
+                a.incidence.to_degrees(),
+                a.aperture / 1000.0
+            ),
+            x_label: "along the beam (mm)".into(),
+            y_label: "height (mm)".into(),
+            x_range: (-half, half),
+            y_range: (-half, half),
+            pixels: &px,
+            overlays: Vec::new(),
+            colorbar: None,
+            size: (720, 700),
+        }
+        .render()?;
+        write_png_rgb8(&path, plot.width, plot.height, &plot.data)?;
+        eprintln!("wrote {}", path.display());
+        written.push(path);
+    }
+    let ys: Vec<f64> = img.iter().flatten().map(|x| x.y).collect();
+    let peak = ys.iter().cloned().fold(0.0, f64::max);
+    if a.json {
+        return print_json(&json!({"surface": a.surface, "method": method.name(), "images": written,
+            "coating": a.coating, "gold_mirror_relative_brightness": scale, "max_y": peak,
+            "pixels": a.size, "screen_mm": a.screen / 1e6, "distance_mm": a.distance / 1e6}));
+    }
+    println!(
+        "{} pixels, brightest Y = {peak:.4e} (saturates at {:.3e} RU); coated mirror brightness {scale:.3} of an uncoated one",
+        a.size * a.size,
+        1.0 / peak.max(1e-300)
+    );
+    Ok(())
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// demo
+
+/// The demo's lab section: test-bench plots and Table-1-style numbers for the built-in blazed grating and
+/// Elaphe-like surface, and a Table-2-style comparison on a small Elaphe-like patch.
+pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
+    g.section(
+        "Virtual lab: test bench and method comparison (paper sec. 6.1 and 6.3)",
+        "The test bench shines light at θi = 75° and records the reflectance over viewing angle θr for each \
+         wavelength; the peak of the first order gives a period through the grating equation \
+         m λ / d = sin θi − sin θr (Table 1 of the paper: blazed grating 2500.34 nm, Elaphe 1144.28 nm). \
+         Below: the built-in blazed grating and Elaphe-like surface (small patches so the demo stays quick), \
+         then CIEDE2000 errors of several methods against the ground truth (Table 2).",
+    );
+    let model = LabModel {
+        pixel_size: None,
+        max_height: None,
+        coherence: 65_000.0,
+        terms: "auto".into(),
+        fresnel: "schlick:1.5".into(),
+        no_shadowing: false,
+        epsilon: 0.01,
+    };
+    let mut rows = Vec::new();
+    let cases = [
+        ("builtin:blazed?size=20um&pixel=50nm", 0.0f64, 65_000.0, "blazed grating (2500 nm)", "bench_blazed.png"),
+        (
+            "builtin:elaphe?size=20um&pixel=50nm",
+            90.0,
+            8_000.0,
+            "Elaphe-like (1100 nm rows, along y)",
+            "bench_elaphe.png",
+        ),
+    ];
+    for (spec, az, coherence, label, file) in cases {
+        let mut m = model.clone();
+        m.coherence = coherence;
+        let b = workbench(spec, &m, m.config()?)?;
+        let e = evaluator(&b, Method::Reference)?;
+        let setup = BenchSetup::new(75f64.to_radians(), az.to_radians(), 1, (380.0, 780.0, 10.0), (-60.0, 74.0, 0.05))?;
+        let matrix = bench::reflectance_matrix(e.as_ref(), &setup, &|_| {})?;
+        let r = bench::analyse(&matrix, &setup)?;
+        let img = bench::plot(&matrix, &setup, &r, r.periodicity.mean, &format!("{label}: test bench, θi = 75°"))?;
+        write_png_rgb8(&g.path(file), img.width, img.height, &img.data)?;
+        g.image(
+            file,
+            &format!(
+                "{label}: reflectance over viewing angle and wavelength, peak curve and grating equation \
+                 (iridis testbench '{spec}' --azimuth {az}deg --coherence {}um --plot {file})",
+                coherence / 1000.0
+            ),
+        );
+        let hf = iridis_surface::load_surface(spec, &iridis_surface::LoadOptions::default())?;
+        let analysis = iridis_surface::find_peaks(&hf, &iridis_surface::PeakOptions::default());
+        let geometric =
+            analysis.first().map(|p| format!("{:.1} nm at {:.0}°", p.period_nm, p.orientation_deg)).unwrap_or_default();
+        rows.push(vec![
+            label.to_string(),
+            format!("{:.2}", r.periodicity.mean),
+            format!("{:.3}", r.periodicity.variance),
+            format!("{}/{}", r.peaks.len(), setup.wavelengths_nm.len()),
+            geometric,
+        ]);
+    }
+    g.table(
+        &[
+            "surface",
+            "estimated period (nm)",
+            "variance (nm²)",
+            "wavelengths with a peak",
+            "surface analysis (strongest period)",
+        ],
+        &rows,
+    );
+    // Table 2 in kind: a small Elaphe-like patch, 48 × 48 map at normal incidence.
+    let spec = "builtin:elaphe?size=6um&pixel=60nm";
+    let mut m = model.clone();
+    m.coherence = 3_000.0;
+    let mut config = m.config()?;
+    config.spectral = SpectralSetup::new(Illuminant::D65, Observer::Cie1931, 5.0)?;
+    config.table = TableParams { uv_resolution: 201, uv_power: 5.0 };
+    let b = workbench(spec, &m, config)?;
+    let pixels = Pixels::brdf_map(0.0, 0.0, 48);
+    let methods = [
+        Method::Lookup,
+        Method::Reference,
+        Method::StamPeriodic(iridis_lab::stam::Bump::Rectangular),
+        Method::StamGaussian,
+    ];
+    let c = comparison(&b, &methods, Method::GroundTruth, &pixels, &[1.0, 1000.0, 7500.0])?;
+    let mut t = Vec::new();
+    for r in &c.rows {
+        let ours = c
+            .rows
+            .iter()
+            .find(|x| x.method == "lookup" && x.exposure_ru == r.exposure_ru)
+            .map(|x| x.mean)
+            .unwrap_or(f64::NAN);
+        t.push(vec![
+            r.method.clone(),
+            format!("{}", r.exposure_ru),
+            format!("{:.3}", r.mean),
+            format!("{:.3}", r.p95),
+            format!("{:.2}", r.mean / ours),
+        ]);
+    }
+    let img = map_plot(&c.truth, 48, 1000.0, "ground truth at 1000 RU")?;
+    write_png_rgb8(&g.path("compare_truth.png"), img.width, img.height, &img.data)?;
+    g.image("compare_truth.png", &format!("{spec}: ground truth BRDF map at normal incidence, 1000 RU"));
+    for (name, im) in &c.images {
+        let de = iridis_lab::compare::delta_e_map(im, &c.truth, 1000.0);
+        let s = iridis_lab::compare::stats(&de);
+        let h = heat_plot(&de, 48, &format!("ΔE00 {name} vs ground truth, 1000 RU"), s.max.max(1.0))?;
+        let file = format!("compare_{name}_deltaE.png");
+        write_png_rgb8(&g.path(&file), h.width, h.height, &h.data)?;
+        g.image(&file, &format!("CIEDE2000 of {name} against the ground truth at 1000 RU (mean {:.2})", s.mean));
+    }
+    g.table(&["method", "exposure (RU)", "mean ΔE00", "95th percentile", "ratio to lookup (Table 2: E2/E1)"], &t);
+    Ok(())
+}
