@@ -265,7 +265,7 @@ pub struct TestbenchArgs {
     #[arg(long, value_parser = positive_length_nm)]
     pub period: Option<f64>,
     /// Longest period considered (responses closer to the mirror direction are ignored); default the smaller
-    /// of 10 µm and coherence/2.55 (the mirror lobe's 4σ_f).
+    /// of 10 µm and 0.785 × coherence (the mirror lobe's 2σ_f).
     #[arg(long, value_parser = positive_length_nm)]
     pub max_period: Option<f64>,
     /// Write the Figure-7 plot (PNG).
@@ -297,7 +297,7 @@ pub fn run_testbench(a: TestbenchArgs) -> Result<()> {
         (a.min_angle.to_degrees(), a.max_angle.to_degrees(), a.angle_step.to_degrees()),
     )?;
     setup.period_hint_nm = a.period;
-    setup.max_period_nm = a.max_period.unwrap_or((a.model.coherence / 2.55).min(10_000.0));
+    setup.max_period_nm = a.max_period.unwrap_or((a.model.coherence * std::f64::consts::FRAC_PI_4).min(10_000.0));
     let mut config = a.model.config()?;
     if let Some(p) = a.period {
         // NMM and Stam's lattice take the period along the measured direction.
