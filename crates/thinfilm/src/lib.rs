@@ -32,9 +32,11 @@ pub mod color;
 pub mod error;
 pub mod fast;
 pub mod grid;
+pub mod htsg;
 pub mod material;
 pub mod nkfile;
 pub mod recurrence;
+pub mod rough;
 pub mod stack;
 
 pub use error::ThinFilmError;

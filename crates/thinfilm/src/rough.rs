@@ -1,0 +1,612 @@
+//! The locally-smooth-rough-surface (LSRS) illumination model of Hirayama et al. (Sussenbach section 3.2,
+//! eq. 3.15–3.20, Algorithm 2): the layers are smooth, the bottom interface (last layer | substrate) is a
+//! rough surface described by the HTSG BRDF ([`crate::htsg`]). The result is a composite **specular**
+//! reflectance `k_r(θ_v, λ)` (a fraction of the incident power, like the smooth model's `R`) and a composite
+//! **diffuse** reflectance `k_d(ω_l, ω_v, λ)` (a BRDF, sr⁻¹), combined by the illumination model of eq. 3.20,
+//! `I_e(λ) = k_r(θ_v, λ) I_r(λ) + Σ_m k_d(ω_l, ω_v, λ) cos θ_l L_m(λ)`.
+//!
+//! The recurrences, per polarisation, from the rough interface up (`j = N … 1`):
+//!
+//! * specular (eq. 3.15 = eq. 3.1): `γ_{s,N−j+1} = (r_j + γ_{s,N−j} e^{2iφ_j}) / (1 + r_j γ_{s,N−j} e^{2iφ_j})`,
+//!   seeded (eq. 3.16) by the rough interface's specular reflectivity `η(ω_{i,N}, ω_{i,N}, λ)`;
+//! * diffuse (eq. 3.18–3.19): `γ_{d,N−j+1} = Γ_j / (1 + r_j(θ_l) γ_{s,N−j}(θ_l) e^{2iφ_{l,j}})`,
+//!   `Γ_j = (n̂_j s_{z,j}/(n̂_{j−1} s_{z,j−1})) t_j(θ_i) t_j(θ_l) γ_{d,N−j} e^{i(φ_{l,j} + φ_{i,j})}`, seeded
+//!   (eq. 3.17) by the rough interface's diffuse reflectivity `η(ω_{l,N}, ω_{i,N}, λ)`.
+//!
+//! Powers by eq. 3.12, `k = (|γ_∥|² + |γ_⊥|²)/2`.
+//!
+//! **Choices the thesis leaves open** (the HTSG BRDF gives powers, the recurrence needs amplitudes):
+//! * specular seed: `γ_{s,0} = r_{N+1} · e^{−g/2} S(θ_N)`, the smooth Fresnel amplitude of the bottom
+//!   interface (eq. 3.7–3.8) scaled so that `|γ_{s,0}|² = |r|² e^{−g} S²` is the HTSG specular term (the
+//!   Kirchhoff coherent field of a Gaussian surface is `⟨e^{i v_z h}⟩ = e^{−g/2}`). As `σ → 0`, `g → 0` and
+//!   `S → 1`: the seed is eq. 3.3 and `k_r` is the smooth model's `R` (tested to 1e-9);
+//! * diffuse seed: `γ_{d,0} = r(θ_h) · √(G S D/(π cos θ_{l,N} cos θ_{i,N}))` per polarisation, so that the
+//!   unpolarised `|γ_{d,0}|²` is the HTSG directional-diffuse BRDF with `F` at the local (bisector) angle.
+//!   The recurrence of `γ_d` is linear in `γ_d`, so the seed's phase does not matter;
+//! * the HTSG geometry uses the real directions in medium `N` (the one above the rough interface), from
+//!   Snell's law with `Re n̂_N`, and the wavelength there, `λ/Re n̂_N`. Where light cannot propagate in
+//!   medium `N` (beyond its critical angle) the seed is the smooth `r` and the diffuse part is zero;
+//! * eq. 3.19's `(n̂_j s_{z,j}/(n̂_{j−1} s_{z,j−1})) t_j(θ_l)`, with the cosines of the light direction as the
+//!   thesis says, is the Fresnel transmissivity from medium `j` up into `j − 1` at the light angle
+//!   (eq. 3.9–3.10 with the media swapped; the identity is tested). It is computed in that form, which stays
+//!   finite at grazing light;
+//! * directions: the table (Algorithm 2) has no azimuth; light and view lie in one plane of incidence with
+//!   the relative azimuth `φ_l − φ_v` fixed per table, by default π (light on the far side of the normal, the
+//!   mirror configuration; then `θ_l = θ_v` is the peak of the diffuse lobe). Direct evaluation takes any
+//!   azimuth.
+//!
+//! As in the thesis, eq. 3.18 accounts for the multiple reflections of the light-side path only, and no
+//! solid-angle (radiance `n²`) factor enters at the interfaces: `k_d` is the thesis' model, not a rigorous
+//! rough-film BRDF. For a bare substrate (`N = 0`) it is exactly the HTSG BRDF.
+
+use std::f64::consts::PI;
+use std::io::Write;
+
+use num_complex::Complex64;
+use serde::Serialize;
+
+use crate::error::ThinFilmError;
+use crate::htsg::{local_fresnel, Htsg};
+use crate::recurrence::{fresnel, phase, Composite, Fresnel, Medium};
+use crate::stack::{check_angle, Stack};
+
+/// The default relative azimuth `φ_l − φ_v` of tables: light opposite the viewer in one plane.
+pub const MIRROR_AZIMUTH: f64 = PI;
+
+/// A thin-film stack whose bottom interface (last layer | substrate) is rough.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RoughStack {
+    pub stack: Stack,
+    pub htsg: Htsg,
+}
+
+/// Composite specular and diffuse reflectances at one view angle, light direction and wavelength.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Lsrs {
+    /// `|γ_{s,⊥}|²`, `|γ_{s,∥}|²` (eq. 3.15–3.16): fractions of the incident power.
+    pub specular_s: f64,
+    pub specular_p: f64,
+    /// `|γ_{d,⊥}|²`, `|γ_{d,∥}|²` (eq. 3.17–3.19): BRDF values, sr⁻¹.
+    pub diffuse_s: f64,
+    pub diffuse_p: f64,
+    /// Terms of the HTSG series and the bound on the diffuse value's truncation error (sr⁻¹, unpolarised).
+    pub terms: usize,
+    pub bound: f64,
+}
+
+impl Lsrs {
+    /// The composite specular reflectance `k_r` (eq. 3.12).
+    pub fn k_r(&self) -> f64 {
+        0.5 * (self.specular_s + self.specular_p)
+    }
+    /// The composite diffuse reflectance `k_d` (eq. 3.12 applied to `γ_d`), sr⁻¹.
+    pub fn k_d(&self) -> f64 {
+        0.5 * (self.diffuse_s + self.diffuse_p)
+    }
+}
+
+/// A light of eq. 3.20: its polar angle, azimuth relative to the viewer, and radiance `L_m(λ)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Light {
+    pub theta_rad: f64,
+    pub azimuth_rad: f64,
+    pub radiance: f64,
+}
+
+/// One angle at one wavelength: the media, the downward Fresnel amplitudes of every interface, the phases
+/// of every layer, and the real direction in medium `N`.
+struct Side {
+    media: Vec<Medium>,
+    /// Interface `B_j` (`j = 1 … N + 1`) at index `j − 1`, from medium `j − 1` into `j`.
+    down: Vec<Fresnel>,
+    /// `φ_j` (eq. 3.5) at index `j − 1`.
+    phi: Vec<Complex64>,
+    /// `(sin θ_N, cos θ_N)` in medium `N`, `None` where light is evanescent there.
+    dir: Option<(f64, f64)>,
+}
+
+impl Side {
+    fn new(stack: &Stack, wavelength_nm: f64, angle_rad: f64) -> Result<Self, ThinFilmError> {
+        let media = stack.media(wavelength_nm, angle_rad)?;
+        let n = stack.layers.len();
+        let down = (1..=n + 1).map(|j| fresnel(media[j - 1], media[j])).collect();
+        let phi = (1..=n).map(|j| phase(wavelength_nm, media[j], stack.layers[j - 1].thickness_nm)).collect();
+        let invariant = media[0].n.re * angle_rad.min(PI / 2.0).sin();
+        let sin_n = invariant / media[n].n.re;
+        // A grazing direction (cos below 1e-12, e.g. θ = 90° where cos(π/2) rounds to 6e-17) is exactly
+        // grazing: the rough interface is then fully shadowed (S = 0).
+        let dir = if sin_n <= 1.0 {
+            let cos = (1.0 - sin_n * sin_n).sqrt();
+            Some((sin_n, if cos < 1e-12 { 0.0 } else { cos }))
+        } else {
+            None
+        };
+        Ok(Self { media, down, phi, dir })
+    }
+
+    fn n(&self) -> usize {
+        self.phi.len()
+    }
+
+    /// The specular seed (eq. 3.16; module documentation).
+    fn seed(&self, htsg: &Htsg, k: f64) -> Composite {
+        let amp = match self.dir {
+            Some((_, cos)) => htsg.specular_amplitude(cos, k).0,
+            None => 1.0,
+        };
+        let b = &self.down[self.n()];
+        Composite { gamma_s: b.r_s * amp, gamma_p: b.r_p * amp, tau_s: b.t_s, tau_p: b.t_p }
+    }
+
+    /// Fresnel amplitudes of interface `B_j` from below (medium `j` into `j − 1`).
+    fn up(&self, j: usize) -> Fresnel {
+        fresnel(self.media[j], self.media[j - 1])
+    }
+}
+
+fn cis(phi: Complex64) -> Complex64 {
+    // e^{iφ}, |·| ≤ 1 on the forward branch (Im φ ≥ 0)
+    Complex64::from_polar((-phi.im).exp(), phi.re)
+}
+
+impl RoughStack {
+    pub fn new(stack: Stack, htsg: Htsg) -> Self {
+        Self { stack, htsg }
+    }
+
+    /// The real index of the medium above the rough interface and the wave number there, after checking the
+    /// HTSG validity at this wavelength.
+    fn upper(&self, wavelength_nm: f64) -> Result<(Complex64, f64), ThinFilmError> {
+        if !(wavelength_nm.is_finite() && wavelength_nm > 0.0) {
+            return Err(ThinFilmError::Invalid(format!("wavelength {wavelength_nm} nm must be positive")));
+        }
+        let n = self.stack.layers.len();
+        let nn = if n == 0 {
+            self.stack.incident.index_at(wavelength_nm)?
+        } else {
+            self.stack.layers[n - 1].material.index_at(wavelength_nm)?
+        };
+        self.htsg.roughness.check_wavelength(wavelength_nm, nn.re)?;
+        Ok((nn, 2.0 * PI * nn.re / wavelength_nm))
+    }
+
+    /// The composite specular reflectance alone (eq. 3.15–3.16) at view angle `θ_v`: `(|γ_⊥|², |γ_∥|²)`.
+    pub fn specular(&self, wavelength_nm: f64, view_rad: f64) -> Result<(f64, f64), ThinFilmError> {
+        let (_, k) = self.upper(wavelength_nm)?;
+        let v = Side::new(&self.stack, wavelength_nm, view_rad)?;
+        let mut gs = v.seed(&self.htsg, k);
+        for j in (1..=v.n()).rev() {
+            gs = gs.step(&v.down[j - 1], v.phi[j - 1]);
+        }
+        Ok((gs.gamma_s.norm_sqr(), gs.gamma_p.norm_sqr()))
+    }
+
+    /// Direct evaluation of the LSRS model (eq. 3.15–3.19) for the view angle `θ_v`, light angle `θ_l`
+    /// (both 0–90°, radians) and relative azimuth `φ_l − φ_v` (π: light opposite the viewer).
+    pub fn evaluate(
+        &self,
+        wavelength_nm: f64,
+        view_rad: f64,
+        light_rad: f64,
+        azimuth_rad: f64,
+    ) -> Result<Lsrs, ThinFilmError> {
+        if !azimuth_rad.is_finite() {
+            return Err(ThinFilmError::Invalid(format!("azimuth {azimuth_rad} must be finite")));
+        }
+        let (n_upper, k) = self.upper(wavelength_nm)?;
+        let v = Side::new(&self.stack, wavelength_nm, view_rad)?;
+        let l = Side::new(&self.stack, wavelength_nm, light_rad)?;
+        let n = v.n();
+        // Seeds: eq. 3.16 (view and light angle) and eq. 3.17.
+        let mut gs_v = v.seed(&self.htsg, k);
+        let mut gs_l = l.seed(&self.htsg, k);
+        let (mut gd_s, mut gd_p, mut terms, mut bound) = (Complex64::new(0.0, 0.0), Complex64::new(0.0, 0.0), 0, 0.0);
+        if let (Some((sv, cv)), Some((sl, cl))) = (v.dir, l.dir) {
+            let wv = [sv, 0.0, cv];
+            let wl = [sl * azimuth_rad.cos(), sl * azimuth_rad.sin(), cl];
+            let geo = self.htsg.diffuse_geometry(wl, wv, k)?;
+            let f = local_fresnel(n_upper, v.media[n + 1].n, geo.cos_local);
+            let amp = geo.factor.sqrt();
+            gd_s = f.r_s * amp;
+            gd_p = f.r_p * amp;
+            terms = geo.terms;
+            bound = geo.bound;
+        }
+        for j in (1..=n).rev() {
+            let (pv, pl) = (v.phi[j - 1], l.phi[j - 1]);
+            let (tv, rl, tu) = (v.down[j - 1], l.down[j - 1], l.up(j));
+            let e = cis(pv + pl);
+            let e2l = cis(2.0 * pl);
+            // Eq. 3.19 (the light-side ratio times t_j(θ_l) is tu, see the module documentation) and eq. 3.18,
+            // with γ_{s,N−j}(θ_l) the light-angle specular composite before this step.
+            gd_s = tv.t_s * tu.t_s * gd_s * e / (1.0 + rl.r_s * gs_l.gamma_s * e2l);
+            gd_p = tv.t_p * tu.t_p * gd_p * e / (1.0 + rl.r_p * gs_l.gamma_p * e2l);
+            gs_v = gs_v.step(&v.down[j - 1], pv); // eq. 3.15
+            gs_l = gs_l.step(&rl, pl);
+        }
+        Ok(Lsrs {
+            specular_s: gs_v.gamma_s.norm_sqr(),
+            specular_p: gs_v.gamma_p.norm_sqr(),
+            diffuse_s: gd_s.norm_sqr(),
+            diffuse_p: gd_p.norm_sqr(),
+            terms,
+            bound: bound * transport(&v, &l, &l.seed(&self.htsg, k)),
+        })
+    }
+
+    /// The illumination model of eq. 3.20 at one wavelength: `I_e = k_r(θ_v) I_r + Σ_m k_d(ω_l, ω_v) cos θ_l L_m`,
+    /// with `I_r` the radiance arriving from the mirror direction.
+    pub fn illumination(
+        &self,
+        wavelength_nm: f64,
+        view_rad: f64,
+        reflected: f64,
+        lights: &[Light],
+    ) -> Result<f64, ThinFilmError> {
+        let (s, p) = self.specular(wavelength_nm, view_rad)?;
+        let mut ie = 0.5 * (s + p) * reflected;
+        for light in lights {
+            check_angle(light.theta_rad)?;
+            let x = self.evaluate(wavelength_nm, view_rad, light.theta_rad, light.azimuth_rad)?;
+            ie += x.k_d() * light.theta_rad.cos().max(0.0) * light.radiance;
+        }
+        Ok(ie)
+    }
+
+    /// The tables of Algorithm 2: `k_r` per view angle and wavelength, `k_d` per view angle, light angle and
+    /// wavelength (angles in degrees, 0–90; relative azimuth fixed). The numbers are those of
+    /// [`RoughStack::evaluate`] at the nodes; the work is shared: per wavelength, every view angle's
+    /// downward path and every light angle's upward path (with its multiple reflections) are computed once, and
+    /// each (view, light) pair costs one HTSG directional-diffuse evaluation — the diffuse recurrence is a
+    /// product of a view-only and a light-only factor per polarisation.
+    pub fn table(
+        &self,
+        view_deg: &[f64],
+        light_deg: &[f64],
+        wavelengths_nm: &[f64],
+        azimuth_rad: f64,
+    ) -> Result<RoughTable, ThinFilmError> {
+        for (name, axis) in [("view angles", view_deg), ("light angles", light_deg), ("wavelengths", wavelengths_nm)] {
+            if axis.is_empty() || axis.windows(2).any(|w| w[1] <= w[0]) || axis.iter().any(|x| !x.is_finite()) {
+                return Err(ThinFilmError::Invalid(format!(
+                    "table {name} must be finite, strictly increasing and not empty"
+                )));
+            }
+        }
+        for &a in view_deg.iter().chain(light_deg) {
+            check_angle(a.to_radians())?;
+        }
+        if !azimuth_rad.is_finite() {
+            return Err(ThinFilmError::Invalid(format!("azimuth {azimuth_rad} must be finite")));
+        }
+        let (nv, nl, nw) = (view_deg.len(), light_deg.len(), wavelengths_nm.len());
+        let mut specular = vec![0.0; nv * nw];
+        let mut diffuse = vec![0.0; nv * nl * nw];
+        let (mut max_terms, mut max_bound) = (0usize, 0.0f64);
+        let r = &self.htsg.roughness;
+        for (w, &lambda) in wavelengths_nm.iter().enumerate() {
+            let (n_upper, k) = self.upper(lambda)?;
+            struct Pre {
+                side: Side,
+                /// view: Π|t_j e^{iφ_j}|² per polarisation; light: Π|t'_j e^{iφ_j}/(1 + r_j γ_s e^{2iφ_j})|²
+                factor: [f64; 2],
+                k_factor: f64,
+                shadow: f64,
+            }
+            let pre = |deg: f64, view: bool| -> Result<Pre, ThinFilmError> {
+                let side = Side::new(&self.stack, lambda, deg.to_radians())?;
+                let seed = side.seed(&self.htsg, k);
+                let factor = if view { down_factor(&side) } else { up_factor(&side, &seed) };
+                let (kf, sh) = match side.dir {
+                    Some((_, c)) => (r.k_factor(c), r.shadowing(c)),
+                    None => (0.0, 0.0),
+                };
+                Ok(Pre { side, factor, k_factor: kf, shadow: sh })
+            };
+            let views: Vec<Pre> = view_deg.iter().map(|&d| pre(d, true)).collect::<Result<_, _>>()?;
+            let lights: Vec<Pre> = light_deg.iter().map(|&d| pre(d, false)).collect::<Result<_, _>>()?;
+            let n_sub = views[0].side.media[views[0].side.n() + 1].n;
+            for (i, v) in views.iter().enumerate() {
+                let mut gs = v.side.seed(&self.htsg, k);
+                for j in (1..=v.side.n()).rev() {
+                    gs = gs.step(&v.side.down[j - 1], v.side.phi[j - 1]);
+                }
+                specular[i * nw + w] = 0.5 * (gs.gamma_s.norm_sqr() + gs.gamma_p.norm_sqr());
+                let Some((sv, cv)) = v.side.dir else { continue };
+                let wv = [sv, 0.0, cv];
+                for (j, l) in lights.iter().enumerate() {
+                    let Some((sl, cl)) = l.side.dir else { continue };
+                    let wl = [sl * azimuth_rad.cos(), sl * azimuth_rad.sin(), cl];
+                    let sigma0 = r.effective_sigma_from_k(v.k_factor + l.k_factor);
+                    let geo = self.htsg.diffuse_geometry_with(wl, wv, k, sigma0, v.shadow * l.shadow)?;
+                    let f = local_fresnel(n_upper, n_sub, geo.cos_local);
+                    let (ts, tp) = (v.factor[0] * l.factor[0], v.factor[1] * l.factor[1]);
+                    diffuse[(i * nl + j) * nw + w] = 0.5 * geo.factor * (f.r_s.norm_sqr() * ts + f.r_p.norm_sqr() * tp);
+                    max_terms = max_terms.max(geo.terms);
+                    max_bound = max_bound.max(geo.bound * ts.max(tp));
+                }
+            }
+        }
+        Ok(RoughTable {
+            view_deg: view_deg.to_vec(),
+            light_deg: light_deg.to_vec(),
+            wavelengths_nm: wavelengths_nm.to_vec(),
+            azimuth_rad,
+            specular,
+            diffuse,
+            max_terms,
+            max_bound,
+        })
+    }
+}
+
+/// `Π_j |t_j e^{iφ_j}|²` per polarisation (⊥, ∥): the view-side factor of eq. 3.19.
+fn down_factor(v: &Side) -> [f64; 2] {
+    let mut f = [1.0, 1.0];
+    for j in 1..=v.n() {
+        let e = (-2.0 * v.phi[j - 1].im).exp();
+        f[0] *= v.down[j - 1].t_s.norm_sqr() * e;
+        f[1] *= v.down[j - 1].t_p.norm_sqr() * e;
+    }
+    f
+}
+
+/// `Π_j |t'_j e^{iφ_j} / (1 + r_j γ_{s,N−j} e^{2iφ_j})|²` per polarisation: the light-side factor of eq. 3.18–3.19.
+fn up_factor(l: &Side, seed: &Composite) -> [f64; 2] {
+    let mut f = [1.0, 1.0];
+    let mut gs = *seed;
+    for j in (1..=l.n()).rev() {
+        let (rl, tu) = (l.down[j - 1], l.up(j));
+        let e = (-2.0 * l.phi[j - 1].im).exp();
+        let e2 = cis(2.0 * l.phi[j - 1]);
+        f[0] *= tu.t_s.norm_sqr() * e / (1.0 + rl.r_s * gs.gamma_s * e2).norm_sqr();
+        f[1] *= tu.t_p.norm_sqr() * e / (1.0 + rl.r_p * gs.gamma_p * e2).norm_sqr();
+        gs = gs.step(&rl, l.phi[j - 1]);
+    }
+    f
+}
+
+/// The largest factor (over the polarisations) by which the layers scale the diffuse seed's power: carries
+/// the HTSG series bound to `k_d`.
+fn transport(v: &Side, l: &Side, seed_l: &Composite) -> f64 {
+    let (a, b) = (down_factor(v), up_factor(l, seed_l));
+    (a[0] * b[0]).max(a[1] * b[1])
+}
+
+/// `n` angles from 0° to 90° inclusive, evenly spaced (the thesis' Listing 3.5 samples `(90/n)(i + 1)`, which
+/// leaves out 0° and cannot interpolate below `90/n`).
+pub fn angle_grid(samples: usize) -> Result<Vec<f64>, ThinFilmError> {
+    if samples < 2 {
+        return Err(ThinFilmError::Invalid(format!("an angle grid needs at least 2 samples, got {samples}")));
+    }
+    Ok((0..samples).map(|i| 90.0 * i as f64 / (samples - 1) as f64).collect())
+}
+
+/// The simulation tables of Algorithm 2 (Sussenbach section 3.3.4), with trilinear interpolation.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RoughTable {
+    pub view_deg: Vec<f64>,
+    pub light_deg: Vec<f64>,
+    pub wavelengths_nm: Vec<f64>,
+    /// The relative azimuth `φ_l − φ_v` of every entry.
+    pub azimuth_rad: f64,
+    /// `k_r`, index `[view][λ]` (it does not depend on the light).
+    pub specular: Vec<f64>,
+    /// `k_d` (sr⁻¹), index `[view][light][λ]`.
+    pub diffuse: Vec<f64>,
+    /// The most HTSG series terms used, and the largest bound on a `k_d` entry's truncation error (sr⁻¹).
+    pub max_terms: usize,
+    pub max_bound: f64,
+}
+
+/// The cell `(i, t)` of `x` in a sorted axis: `x ≈ (1 − t) a[i] + t a[i + 1]`.
+fn locate(axis: &[f64], x: f64, what: &str) -> Result<(usize, f64), ThinFilmError> {
+    let (lo, hi) = (axis[0], axis[axis.len() - 1]);
+    let eps = 1e-9 * (hi - lo).abs().max(1.0);
+    if !(x.is_finite() && x >= lo - eps && x <= hi + eps) {
+        return Err(ThinFilmError::Invalid(format!(
+            "{what} {x} is outside the table ({lo} to {hi}); no extrapolation"
+        )));
+    }
+    if axis.len() == 1 {
+        return Ok((0, 0.0));
+    }
+    let i = axis.partition_point(|&a| a <= x).clamp(1, axis.len() - 1) - 1;
+    Ok((i, ((x - axis[i]) / (axis[i + 1] - axis[i])).clamp(0.0, 1.0)))
+}
+
+impl RoughTable {
+    /// `(k_r, k_d)` at a view angle, light angle (radians) and wavelength, interpolated linearly in each
+    /// (Sussenbach section 3.3.4, "Rendering"); values outside the table are errors.
+    pub fn lookup(&self, view_rad: f64, light_rad: f64, wavelength_nm: f64) -> Result<(f64, f64), ThinFilmError> {
+        let (iv, tv) = locate(&self.view_deg, view_rad.to_degrees(), "view angle (°)")?;
+        let (il, tl) = locate(&self.light_deg, light_rad.to_degrees(), "light angle (°)")?;
+        let (iw, tw) = locate(&self.wavelengths_nm, wavelength_nm, "wavelength (nm)")?;
+        let (nl, nw) = (self.light_deg.len(), self.wavelengths_nm.len());
+        let next = |i: usize, len: usize| (i + 1).min(len - 1);
+        let (iv1, il1, iw1) = (next(iv, self.view_deg.len()), next(il, nl), next(iw, nw));
+        let lerp = |a: f64, b: f64, t: f64| a + t * (b - a);
+        let s = |v: usize, w: usize| self.specular[v * nw + w];
+        let kr = lerp(lerp(s(iv, iw), s(iv, iw1), tw), lerp(s(iv1, iw), s(iv1, iw1), tw), tv);
+        let d = |v: usize, l: usize, w: usize| self.diffuse[(v * nl + l) * nw + w];
+        let plane = |v: usize| lerp(lerp(d(v, il, iw), d(v, il, iw1), tw), lerp(d(v, il1, iw), d(v, il1, iw1), tw), tl);
+        Ok((kr, lerp(plane(iv), plane(iv1), tv)))
+    }
+
+    /// The table as CSV in the layout of the thesis' Figure 3.8, one row per (view, light, λ):
+    /// `view_deg,light_deg,wavelength_nm,specular,diffuse_per_sr`.
+    pub fn write_csv(&self, out: &mut dyn Write) -> std::io::Result<()> {
+        writeln!(out, "view_deg,light_deg,wavelength_nm,specular,diffuse_per_sr")?;
+        let (nl, nw) = (self.light_deg.len(), self.wavelengths_nm.len());
+        for (i, v) in self.view_deg.iter().enumerate() {
+            for (j, l) in self.light_deg.iter().enumerate() {
+                for (w, lambda) in self.wavelengths_nm.iter().enumerate() {
+                    writeln!(
+                        out,
+                        "{v},{l},{lambda},{:.9e},{:.9e}",
+                        self.specular[i * nw + w],
+                        self.diffuse[(i * nl + j) * nw + w]
+                    )?;
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::htsg::{Roughness, Series};
+
+    fn rough(stack: &str, sigma: f64, tau: f64) -> RoughStack {
+        RoughStack::new(Stack::parse(stack).unwrap(), Htsg::new(Roughness::new(sigma, tau).unwrap(), Series::default()))
+    }
+
+    const STACKS: [&str; 5] = [
+        "air | water 348nm | Si",
+        "air | n=1.38 100nm | n=0.2+3.4i",
+        "air | gasoline 216nm | water 220nm | asphalt",
+        "air | glass",
+        "n=1.5 | n=1.0 300nm | n=1.5",
+    ];
+
+    #[test]
+    fn smooth_limit_reproduces_the_smooth_model() {
+        for s in STACKS {
+            let r = rough(s, 1e-6, 300.0);
+            for deg in [0.0, 1.0, 20.0, 45.0, 60.0, 75.0, 89.0] {
+                let th = f64::to_radians(deg);
+                for wl in [400.0, 455.0, 550.0, 700.0] {
+                    let smooth = r.stack.evaluate(wl, th).unwrap();
+                    let x = r.evaluate(wl, th, th, MIRROR_AZIMUTH).unwrap();
+                    assert!((x.k_r() - smooth.r()).abs() < 1e-9, "{s} {deg}° {wl} nm: {} vs {}", x.k_r(), smooth.r());
+                    assert!((x.specular_s - smooth.r_s).abs() < 1e-9 && (x.specular_p - smooth.r_p).abs() < 1e-9);
+                    assert!(x.k_d() < 1e-12, "{s} {deg}° {wl} nm: diffuse {}", x.k_d());
+                }
+            }
+        }
+        // The diffuse part grows from zero with σ (σ² to first order, g ∝ σ²).
+        let th = f64::to_radians(30.0);
+        let a = rough(STACKS[0], 0.5, 300.0).evaluate(550.0, th, th, PI).unwrap().k_d();
+        let b = rough(STACKS[0], 1.0, 300.0).evaluate(550.0, th, th, PI).unwrap().k_d();
+        assert!(a > 0.0 && (b / a - 4.0).abs() < 0.01, "{a} {b}");
+    }
+
+    #[test]
+    fn light_side_factor_is_the_upward_transmissivity() {
+        // Eq. 3.19: (n̂_j s_{z,j} / n̂_{j−1} s_{z,j−1}) t_j(θ_l) = t'_j (from medium j into j − 1).
+        let stack = Stack::parse("air | n=1.38 100nm | n=2.1+0.3i 50nm | Si").unwrap();
+        for deg in [0.0, 30.0, 70.0] {
+            let side = Side::new(&stack, 500.0, f64::to_radians(deg)).unwrap();
+            for j in 1..=2 {
+                let (lo, hi) = (side.media[j], side.media[j - 1]);
+                let ratio = (lo.n * lo.cos) / (hi.n * hi.cos);
+                let (d, u) = (side.down[j - 1], side.up(j));
+                assert!((ratio * d.t_s - u.t_s).norm() < 1e-13 && (ratio * d.t_p - u.t_p).norm() < 1e-13);
+            }
+        }
+    }
+
+    #[test]
+    fn bare_substrate_is_the_htsg_brdf() {
+        let r = rough("air | n=0.2+3.4i", 25.0, 300.0);
+        let n2 = Complex64::new(0.2, 3.4);
+        for (v, l, az) in [(10.0, 10.0, PI), (30.0, 50.0, PI), (60.0, 20.0, 2.0), (45.0, 45.0, 0.0)] {
+            let (tv, tl) = (f64::to_radians(v), f64::to_radians(l));
+            let x = r.evaluate(550.0, tv, tl, az).unwrap();
+            let wv = [tv.sin(), 0.0, tv.cos()];
+            let wl = [tl.sin() * az.cos(), tl.sin() * az.sin(), tl.cos()];
+            let h = r.htsg.evaluate(1.0, n2, wl, wv, 550.0).unwrap();
+            assert!(((x.k_d() - h.diffuse) / h.diffuse).abs() < 1e-12, "{v} {l} {az}: {} vs {}", x.k_d(), h.diffuse);
+            let hs = r.htsg.evaluate(1.0, n2, wv, [-wv[0], 0.0, wv[2]], 550.0).unwrap();
+            assert!((x.k_r() - hs.specular).abs() < 1e-14);
+        }
+    }
+
+    #[test]
+    fn table_matches_direct_evaluation_and_interpolates() {
+        let r = rough("air | water 348nm | Si", 25.0, 300.0);
+        let views = angle_grid(10).unwrap();
+        let lights = angle_grid(7).unwrap();
+        let wls: Vec<f64> = (0..9).map(|i| 400.0 + 35.0 * i as f64).collect();
+        let t = r.table(&views, &lights, &wls, MIRROR_AZIMUTH).unwrap();
+        for (i, &v) in views.iter().enumerate() {
+            for (j, &l) in lights.iter().enumerate() {
+                for (w, &wl) in wls.iter().enumerate() {
+                    let x = r.evaluate(wl, v.to_radians(), l.to_radians(), MIRROR_AZIMUTH).unwrap();
+                    let (kr, kd) = (t.specular[i * wls.len() + w], t.diffuse[(i * lights.len() + j) * wls.len() + w]);
+                    assert!((kr - x.k_r()).abs() <= 1e-12 * x.k_r().max(1e-300), "{v} {l} {wl}: {kr} vs {}", x.k_r());
+                    assert!((kd - x.k_d()).abs() <= 1e-12 * x.k_d().max(1e-300), "{v} {l} {wl}: {kd} vs {}", x.k_d());
+                    let (a, b) = t.lookup(v.to_radians(), l.to_radians(), wl).unwrap();
+                    assert!((a - kr).abs() <= 1e-15 && (b - kd).abs() <= 1e-15 * kd.max(1.0));
+                }
+            }
+        }
+        // Between nodes: the interpolated value lies within the values of the cell's corners.
+        let (kr, kd) = t.lookup(f64::to_radians(17.0), f64::to_radians(22.0), 500.0).unwrap();
+        let corners: Vec<(f64, f64)> = [10.0, 20.0]
+            .iter()
+            .flat_map(|&v| [15.0, 30.0].map(move |l| (v, l)))
+            .flat_map(|(v, l)| [470.0, 505.0].map(move |w| (v, l, w)))
+            .map(|(v, l, w)| r.evaluate(w, f64::to_radians(v), f64::to_radians(l), PI).unwrap())
+            .map(|x| (x.k_r(), x.k_d()))
+            .collect();
+        let within = |x: f64, f: fn(&(f64, f64)) -> f64| {
+            let lo = corners.iter().map(f).fold(f64::INFINITY, f64::min);
+            let hi = corners.iter().map(f).fold(0.0, f64::max);
+            x >= lo - 1e-15 && x <= hi + 1e-15
+        };
+        assert!(within(kr, |c| c.0) && within(kd, |c| c.1));
+        // A fine table interpolates the direct values closely.
+        let fine = r.table(&angle_grid(91).unwrap(), &angle_grid(91).unwrap(), &[500.0, 501.0], PI).unwrap();
+        let (kr, kd) = fine.lookup(f64::to_radians(33.5), f64::to_radians(41.5), 500.5).unwrap();
+        let x = r.evaluate(500.5, f64::to_radians(33.5), f64::to_radians(41.5), PI).unwrap();
+        assert!(
+            ((kr - x.k_r()) / x.k_r()).abs() < 2e-3 && ((kd - x.k_d()) / x.k_d()).abs() < 2e-2,
+            "{kr} {kd} vs {x:?}"
+        );
+        // No extrapolation; bad axes are refused.
+        assert!(t.lookup(0.1, 0.1, 390.0).is_err());
+        assert!(t.lookup(0.1, 1.7, 500.0).is_err());
+        assert!(r.table(&[10.0, 5.0], &lights, &wls, PI).is_err());
+        assert!(r.table(&views, &[95.0], &wls, PI).is_err());
+        assert!(r.table(&views, &lights, &[], PI).is_err());
+    }
+
+    #[test]
+    fn eq_3_20_adds_specular_and_lights() {
+        let r = rough("air | water 348nm | Si", 25.0, 300.0);
+        let (v, wl) = (f64::to_radians(30.0), 550.0);
+        let lights = [
+            Light { theta_rad: f64::to_radians(30.0), azimuth_rad: PI, radiance: 2.0 },
+            Light { theta_rad: f64::to_radians(60.0), azimuth_rad: 1.0, radiance: 0.5 },
+        ];
+        let ie = r.illumination(wl, v, 3.0, &lights).unwrap();
+        let kr = r.evaluate(wl, v, 0.0, PI).unwrap().k_r();
+        let mut want = kr * 3.0;
+        for l in &lights {
+            want += r.evaluate(wl, v, l.theta_rad, l.azimuth_rad).unwrap().k_d() * l.theta_rad.cos() * l.radiance;
+        }
+        assert!((ie - want).abs() < 1e-15 * want && ie > kr * 3.0);
+    }
+
+    #[test]
+    fn invalid_input_is_an_error_not_a_panic() {
+        let r = rough("air | water 348nm | Si", 25.0, 300.0);
+        assert!(r.evaluate(550.0, 1.7, 0.3, PI).is_err());
+        assert!(r.evaluate(550.0, 0.3, -0.2, PI).is_err());
+        assert!(r.evaluate(-1.0, 0.3, 0.3, PI).is_err());
+        assert!(r.evaluate(900.0, 0.3, 0.3, PI).is_err()); // Si data end at 827 nm
+        assert!(r.evaluate(550.0, 0.3, 0.3, f64::NAN).is_err());
+        // Kirchhoff validity: radius of curvature 180 nm below the wavelength in water.
+        let e = rough("air | water 348nm | Si", 100.0, 250.0).evaluate(550.0, 0.3, 0.3, PI).unwrap_err().to_string();
+        assert!(e.contains("curvature"), "{e}");
+        // Grazing angles are allowed: (almost) no light enters the film, nothing is NaN; a bare rough
+        // substrate at grazing incidence is fully shadowed.
+        let x = r.evaluate(550.0, PI / 2.0, PI / 2.0, PI).unwrap();
+        assert!(x.k_d() < 1e-20 && (x.k_r() - 1.0).abs() < 1e-12, "{x:?}");
+        let x = rough("air | glass", 25.0, 300.0).evaluate(550.0, PI / 2.0, PI / 2.0, PI).unwrap();
+        assert!(x.k_d() == 0.0 && x.k_r() == 0.0, "{x:?}");
+    }
+}
