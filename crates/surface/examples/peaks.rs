@@ -19,7 +19,14 @@ fn main() {
         };
         let tg = t.elapsed();
         let peaks = find_peaks(&hf, &PeakOptions::default());
-        println!("{s}: {}×{} rms {:.1} nm, generated in {:.2?}, analysed in {:.2?}", hf.rows, hf.cols, hf.rms(), tg, t.elapsed() - tg);
+        println!(
+            "{s}: {}×{} rms {:.1} nm, generated in {:.2?}, analysed in {:.2?}",
+            hf.rows,
+            hf.cols,
+            hf.rms(),
+            tg,
+            t.elapsed() - tg
+        );
         for p in peaks {
             println!("   period {:9.2} nm  orientation {:7.2}°  power {:.4}", p.period_nm, p.orientation_deg, p.power);
         }

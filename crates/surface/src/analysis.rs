@@ -83,8 +83,9 @@ struct Windowed {
 impl Windowed {
     /// `|Σ w(r,c) e^{−2πi (fx·x + fy·y)}|²` with `x = c·dx`, `y = (rows−1−r)·dy`.
     fn power(&self, fx: f64, fy: f64) -> f64 {
-        let ex: Vec<Complex<f64>> =
-            (0..self.cols).map(|c| Complex::from_polar(1.0, -std::f64::consts::TAU * fx * c as f64 * self.dx)).collect();
+        let ex: Vec<Complex<f64>> = (0..self.cols)
+            .map(|c| Complex::from_polar(1.0, -std::f64::consts::TAU * fx * c as f64 * self.dx))
+            .collect();
         let mut total = Complex::new(0.0, 0.0);
         for r in 0..self.rows {
             let row = &self.w[r * self.cols..(r + 1) * self.cols];
@@ -126,8 +127,7 @@ pub fn find_peaks(hf: &HeightField, opts: &PeakOptions) -> Vec<Peak> {
     let (rows, cols) = (hf.rows, hf.cols);
     let levelled = crate::prep::level_plane(hf);
     let (wr, wc) = (hann(rows), hann(cols));
-    let w: Vec<f64> =
-        (0..rows * cols).map(|i| levelled.heights_nm[i] * wr[i / cols] * wc[i % cols]).collect();
+    let w: Vec<f64> = (0..rows * cols).map(|i| levelled.heights_nm[i] * wr[i / cols] * wc[i % cols]).collect();
     let mut spec: Vec<Complex<f64>> = w.iter().map(|&h| Complex::new(h, 0.0)).collect();
     fft2(&mut spec, rows, cols, false);
     let power: Vec<f64> = spec.iter().map(|z| z.norm_sqr()).collect();
@@ -137,7 +137,8 @@ pub fn find_peaks(hf: &HeightField, opts: &PeakOptions) -> Vec<Peak> {
     let signed = |k: usize, n: usize| if k <= n / 2 { k as i64 } else { k as i64 - n as i64 };
     let (ex, ey) = hf.extent_nm();
     let fmin = 1.0 / (opts.max_period_fraction * ex.min(ey));
-    let at = |kr: i64, kc: i64| power[(kr.rem_euclid(rows as i64) as usize) * cols + kc.rem_euclid(cols as i64) as usize];
+    let at =
+        |kr: i64, kc: i64| power[(kr.rem_euclid(rows as i64) as usize) * cols + kc.rem_euclid(cols as i64) as usize];
     let mut cands: Vec<(f64, i64, i64)> = Vec::new();
     for r in 0..rows {
         let kr = signed(r, rows);
@@ -188,7 +189,7 @@ pub fn find_peaks(hf: &HeightField, opts: &PeakOptions) -> Vec<Peak> {
             ang = 0.0;
         }
         ang += 0.0; // no −0
-        // Both half-plane copies count: the share of variance is twice the half-plane share.
+                    // Both half-plane copies count: the share of variance is twice the half-plane share.
         peaks.push(Peak { period_nm: 1.0 / f, orientation_deg: ang, power: (2.0 * s / total).min(1.0) });
     }
     peaks

@@ -49,9 +49,7 @@ pub fn from_params(kind: &str, params: &[(String, String)], base: &Grid) -> Resu
             "size-x" | "width" => grid.size_x_nm = len(&k, v)?,
             "size-y" => grid.size_y_nm = len(&k, v)?,
             "pixel" | "pixel-size" => grid.pixel_nm = len(&k, v)?,
-            "angle" => {
-                grid.angle_rad = parse_angle_rad(v).map_err(|e| SurfaceError::invalid(format!("angle: {e}")))?
-            }
+            "angle" => grid.angle_rad = parse_angle_rad(v).map_err(|e| SurfaceError::invalid(format!("angle: {e}")))?,
             "seed" => {
                 grid.seed =
                     v.parse().map_err(|_| SurfaceError::invalid(format!("seed '{v}' is not a whole number ≥ 0")))?
@@ -64,7 +62,9 @@ pub fn from_params(kind: &str, params: &[(String, String)], base: &Grid) -> Resu
     }
     if let (Some(b), Generator::Blazed { period_nm, depth_nm }) = (blaze, &mut gen) {
         if depth_given {
-            return Err(SurfaceError::invalid("give either blaze=ANGLE or depth=LENGTH for a blazed grating, not both"));
+            return Err(SurfaceError::invalid(
+                "give either blaze=ANGLE or depth=LENGTH for a blazed grating, not both",
+            ));
         }
         if !(b > 0.0 && b < std::f64::consts::FRAC_PI_2) {
             return Err(SurfaceError::invalid("blaze angle must be between 0° and 90°"));
@@ -107,7 +107,9 @@ fn set_param(gen: &mut Generator, key: &str, v: &str, blaze: &mut Option<f64>) -
         ))
     };
     match (gen, key) {
-        (Generator::Sine { period_nm, .. } | Generator::Blazed { period_nm, .. }, "period") => *period_nm = len(key, v)?,
+        (Generator::Sine { period_nm, .. } | Generator::Blazed { period_nm, .. }, "period") => {
+            *period_nm = len(key, v)?
+        }
         (Generator::Sine { depth_nm, .. } | Generator::Blazed { depth_nm, .. }, "depth") => *depth_nm = len(key, v)?,
         (Generator::Blazed { .. }, "blaze") => {
             *blaze = Some(parse_angle_rad(v).map_err(|e| SurfaceError::invalid(format!("blaze: {e}")))?)

@@ -111,12 +111,7 @@ impl Frame {
         if rmax < 0.0 || cmax < 0.0 || rmin > (self.rows - 1) as f64 || cmin > (self.cols - 1) as f64 {
             return None;
         }
-        Some((
-            rmin as usize,
-            (rmax as usize).min(self.rows - 1),
-            cmin as usize,
-            (cmax as usize).min(self.cols - 1),
-        ))
+        Some((rmin as usize, (rmax as usize).min(self.rows - 1), cmin as usize, (cmax as usize).min(self.cols - 1)))
     }
     fn fill(&self, f: impl Fn(f64, f64) -> f64) -> Vec<f64> {
         let mut h = Vec::with_capacity(self.rows * self.cols);

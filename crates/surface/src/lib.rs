@@ -103,7 +103,9 @@ pub fn check_dims(rows: usize, cols: usize) -> Result<(), SurfaceError> {
 pub fn check_pixel(dx_nm: f64, dy_nm: f64) -> Result<(), SurfaceError> {
     for (name, v) in [("dx", dx_nm), ("dy", dy_nm)] {
         if !(v.is_finite() && v > 0.0) {
-            return Err(SurfaceError::invalid(format!("pixel size {name} = {v} nm: it must be a finite positive length")));
+            return Err(SurfaceError::invalid(format!(
+                "pixel size {name} = {v} nm: it must be a finite positive length"
+            )));
         }
     }
     Ok(())

@@ -100,7 +100,11 @@ pub fn resample(hf: &HeightField, dx_nm: f64, dy_nm: f64) -> Result<HeightField,
     let (dx, dy) = (ex / cols as f64, ey / rows as f64);
     // Box pre-filter width in input pixels (≥ 1).
     let (kx, ky) = ((dx / hf.dx_nm).max(1.0), (dy / hf.dy_nm).max(1.0));
-    let src = if kx > 1.5 || ky > 1.5 { box_blur(hf, kx.round() as usize, ky.round() as usize) } else { hf.heights_nm.clone() };
+    let src = if kx > 1.5 || ky > 1.5 {
+        box_blur(hf, kx.round() as usize, ky.round() as usize)
+    } else {
+        hf.heights_nm.clone()
+    };
     let sample = |r: f64, c: f64| -> f64 {
         let r = r.clamp(0.0, (hf.rows - 1) as f64);
         let c = c.clamp(0.0, (hf.cols - 1) as f64);

@@ -67,7 +67,8 @@ pub fn shaded_relief(hf: &HeightField, max_side: usize, cmap: fn(f64) -> [u8; 3]
     let typical = mags[mags.len() * 9 / 10].max(1e-12);
     let exag = 1.0 / typical;
     // Light from the upper left (azimuth 135° from +x, y up), 45° above the horizon.
-    let l = [-(0.5f64).sqrt() * 0.7071, (0.5f64).sqrt() * 0.7071, 0.7071];
+    let r = std::f64::consts::FRAC_1_SQRT_2;
+    let l = [-0.5, 0.5, r];
     let mut rgb = vec![0u8; w * h * 3];
     for i in 0..w * h {
         let (gx, gy) = (grads[i].0 * exag, grads[i].1 * exag);

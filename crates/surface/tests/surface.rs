@@ -44,9 +44,12 @@ fn gwy_written_by_gwyfile() {
         let (r, c, v) = (p[0].as_u64().unwrap() as usize, p[1].as_u64().unwrap() as usize, p[2].as_f64().unwrap());
         assert!((c1.get(r, c) - v).abs() < 1e-9, "({r},{c}) {} vs {v}", c1.get(r, c));
     }
-    let e = load_surface(fixture("gwyfile_two_channels.gwy").to_str().unwrap(), &LoadOptions { channel: Some(7), ..Default::default() })
-        .unwrap_err()
-        .to_string();
+    let e = load_surface(
+        fixture("gwyfile_two_channels.gwy").to_str().unwrap(),
+        &LoadOptions { channel: Some(7), ..Default::default() },
+    )
+    .unwrap_err()
+    .to_string();
     assert!(e.contains("channels 0, 1"), "{e}");
     // No units in the file: metres assumed, and the user is told.
     let nu = load_surface(fixture("gwyfile_no_units.gwy").to_str().unwrap(), &LoadOptions::default()).unwrap();
@@ -127,7 +130,8 @@ fn periods_and_orientations_of_generated_gratings() {
         (Generator::Blazed { period_nm: 2500.0, depth_nm: 262.76 }, 90.0),
     ];
     for (g, deg) in cases {
-        let grid = Grid { size_x_nm: 24_000.0, size_y_nm: 20_000.0, pixel_nm: 40.0, angle_rad: f64::to_radians(deg), seed: 1 };
+        let grid =
+            Grid { size_x_nm: 24_000.0, size_y_nm: 20_000.0, pixel_nm: 40.0, angle_rad: f64::to_radians(deg), seed: 1 };
         let hf = gen(g.clone(), &grid);
         let pk = find_peaks(&hf, &PeakOptions::default());
         let p = &pk[0];
@@ -146,7 +150,10 @@ fn periods_and_orientations_of_generated_gratings() {
 fn snake_and_cd_periods_match_their_construction() {
     let grid = Grid { size_x_nm: 30_000.0, size_y_nm: 30_000.0, pixel_nm: 50.0, angle_rad: 0.0, seed: 2 };
     // Elaphe: rows 1100 nm apart along y → 90°.
-    let e = &find_peaks(&gen(Generator::Elaphe { spacing_nm: 1100.0, finger_nm: 4000.0, rms_nm: 60.0 }, &grid), &PeakOptions::default())[0];
+    let e = &find_peaks(
+        &gen(Generator::Elaphe { spacing_nm: 1100.0, finger_nm: 4000.0, rms_nm: 60.0 }, &grid),
+        &PeakOptions::default(),
+    )[0];
     assert!((e.period_nm / 1100.0 - 1.0).abs() < 0.02 && (e.orientation_deg - 90.0).abs() < 1.0, "{e:?}");
     // CD: tracks 1600 nm apart along y.
     let cd = Generator::Cd { pitch_nm: 1600.0, bit_nm: 231.0, pit_width_nm: 500.0, depth_nm: 110.0 };
@@ -155,7 +162,10 @@ fn snake_and_cd_periods_match_their_construction() {
     // Xenopeltis: a period within ±10 % of 1500 nm along the fingers (near 0°) among the peaks, and one
     // across them within ±15 % of 550 nm (near 90°); grains differ on purpose.
     let x = find_peaks(
-        &gen(Generator::Xenopeltis { along_nm: 1500.0, across_nm: 550.0, depth_nm: 120.0 }, &Grid { size_x_nm: 65_000.0, size_y_nm: 65_000.0, pixel_nm: 65.0, ..grid }),
+        &gen(
+            Generator::Xenopeltis { along_nm: 1500.0, across_nm: 550.0, depth_nm: 120.0 },
+            &Grid { size_x_nm: 65_000.0, size_y_nm: 65_000.0, pixel_nm: 65.0, ..grid },
+        ),
         &PeakOptions { max_peaks: 8, ..PeakOptions::default() },
     );
     let near = |deg: f64, p: &iridis_surface::Peak| {
@@ -223,7 +233,10 @@ fn bad_input_is_refused_with_reasons() {
         assert!(e.to_string().contains("positive"), "{e}");
     }
     // Non-finite heights, 1×N, length mismatch.
-    assert!(HeightField::new(2, 2, 1.0, 1.0, vec![0.0, f64::NAN, 0.0, 0.0]).unwrap_err().to_string().contains("row 0, column 1"));
+    assert!(HeightField::new(2, 2, 1.0, 1.0, vec![0.0, f64::NAN, 0.0, 0.0])
+        .unwrap_err()
+        .to_string()
+        .contains("row 0, column 1"));
     assert!(HeightField::new(1, 5, 1.0, 1.0, vec![0.0; 5]).unwrap_err().to_string().contains("2×2"));
     assert!(HeightField::new(2, 3, 1.0, 1.0, vec![0.0; 5]).is_err());
     // A 1×N numpy array.

@@ -249,12 +249,11 @@ pub fn read(bytes: &[u8], side: Option<&Sidecar>, opts: &LoadOptions) -> Result<
     let (kxy, uxy) = to_nm(unit(field, "si_unit_xy"), "lateral (xy)", &mut warnings)?;
     let (kz, uz) = to_nm(unit(field, "si_unit_z"), "height (z)", &mut warnings)?;
     let file_pixel = (xreal * kxy / cols as f64, yreal * kxy / rows as f64);
-    if !(file_pixel.0.is_finite() && file_pixel.0 > 0.0 && file_pixel.1.is_finite() && file_pixel.1 > 0.0) {
-        if opts.pixel_size_nm.is_none() && side.and_then(|s| s.pixel_nm()).is_none() {
-            return Err(SurfaceError::invalid(format!(
-                "the file's physical size {xreal} × {yreal} {uxy} gives no valid pixel size; give --pixel-size"
-            )));
-        }
+    let file_ok = file_pixel.0.is_finite() && file_pixel.0 > 0.0 && file_pixel.1.is_finite() && file_pixel.1 > 0.0;
+    if !file_ok && opts.pixel_size_nm.is_none() && side.and_then(|s| s.pixel_nm()).is_none() {
+        return Err(SurfaceError::invalid(format!(
+            "the file's physical size {xreal} × {yreal} {uxy} gives no valid pixel size; give --pixel-size"
+        )));
     }
     let (dx, dy) = super::pick_pixel(Some(file_pixel), side, opts, "this Gwyddion channel")?;
     let heights: Vec<f64> = data.iter().map(|v| v * kz).collect();

@@ -188,17 +188,14 @@ pub(crate) fn pick_pixel(
     opts: &LoadOptions,
     what: &str,
 ) -> Result<(f64, f64), SurfaceError> {
-    let p = opts
-        .pixel_size_nm
-        .map(|p| (p, p))
-        .or_else(|| side.and_then(|s| s.pixel_nm()))
-        .or(from_file)
-        .ok_or_else(|| {
+    let p = opts.pixel_size_nm.map(|p| (p, p)).or_else(|| side.and_then(|s| s.pixel_nm())).or(from_file).ok_or_else(
+        || {
             SurfaceError::invalid(format!(
                 "{what} has no pixel size: give --pixel-size (e.g. 65nm) or a sidecar FILE.json with \
                  {{\"pixel_size_nm\": 65}}"
             ))
-        })?;
+        },
+    )?;
     crate::check_pixel(p.0, p.1)?;
     Ok(p)
 }

@@ -26,7 +26,10 @@ pub fn read(bytes: &[u8], side: Option<&Sidecar>, opts: &LoadOptions) -> Result<
         }
     };
     if rows > crate::MAX_DIM as u64 || cols > crate::MAX_DIM as u64 {
-        return Err(SurfaceError::invalid(format!("array of shape {shape:?} is too large (at most {} per axis)", crate::MAX_DIM)));
+        return Err(SurfaceError::invalid(format!(
+            "array of shape {shape:?} is too large (at most {} per axis)",
+            crate::MAX_DIM
+        )));
     }
     let (rows, cols) = (rows as usize, cols as usize);
     crate::check_dims(rows, cols)?;
@@ -62,7 +65,8 @@ pub fn read(bytes: &[u8], side: Option<&Sidecar>, opts: &LoadOptions) -> Result<
     let scale = match side.and_then(|s| s.height_scale()) {
         Some(k) => k,
         None => {
-            warnings.push("the .npy gives no height unit; values taken as nm (add \"height_unit\" to a sidecar)".into());
+            warnings
+                .push("the .npy gives no height unit; values taken as nm (add \"height_unit\" to a sidecar)".into());
             1.0
         }
     };

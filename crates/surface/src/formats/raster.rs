@@ -15,7 +15,12 @@ fn bad(fmt: Format, m: impl std::fmt::Display) -> SurfaceError {
     SurfaceError::invalid(format!("not a readable {} height map: {m}", fmt.name().to_uppercase()))
 }
 
-pub fn read(bytes: &[u8], fmt: Format, side: Option<&Sidecar>, opts: &LoadOptions) -> Result<HeightField, SurfaceError> {
+pub fn read(
+    bytes: &[u8],
+    fmt: Format,
+    side: Option<&Sidecar>,
+    opts: &LoadOptions,
+) -> Result<HeightField, SurfaceError> {
     let ifmt = if fmt == Format::Png { ImageFormat::Png } else { ImageFormat::Tiff };
     // Dimensions first, from the header alone, so an absurd size is refused before decoding.
     let (w, h) = ImageReader::with_format(Cursor::new(bytes), ifmt).into_dimensions().map_err(|e| bad(fmt, e))?;
@@ -91,7 +96,8 @@ pub fn read(bytes: &[u8], fmt: Format, side: Option<&Sidecar>, opts: &LoadOption
 pub fn write_png16(hf: &HeightField) -> Result<Vec<u8>, SurfaceError> {
     let (lo, hi) = hf.min_max();
     let span = if hi > lo { hi - lo } else { 1.0 };
-    let px: Vec<u16> = hf.heights_nm.iter().map(|h| (((h - lo) / span) * 65535.0).round().clamp(0.0, 65535.0) as u16).collect();
+    let px: Vec<u16> =
+        hf.heights_nm.iter().map(|h| (((h - lo) / span) * 65535.0).round().clamp(0.0, 65535.0) as u16).collect();
     let img = image::ImageBuffer::<image::Luma<u16>, Vec<u16>>::from_raw(hf.cols as u32, hf.rows as u32, px)
         .ok_or_else(|| SurfaceError::invalid("image buffer size mismatch"))?;
     let mut out = Cursor::new(Vec::new());

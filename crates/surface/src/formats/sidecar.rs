@@ -82,7 +82,13 @@ impl Sidecar {
         };
         let max = num("height_max_nm")?.or(num("max_height_nm")?);
         let min = num("height_min_nm")?.or(if num("max_height_nm")?.is_some() { Some(0.0) } else { None });
-        Ok(Sidecar { path: path.to_path_buf(), pixel_size_nm: pixel, height_unit, height_min_nm: min, height_max_nm: max })
+        Ok(Sidecar {
+            path: path.to_path_buf(),
+            pixel_size_nm: pixel,
+            height_unit,
+            height_min_nm: min,
+            height_max_nm: max,
+        })
     }
 
     pub fn pixel_nm(&self) -> Option<(f64, f64)> {
