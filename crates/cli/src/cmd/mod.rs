@@ -4,4 +4,5 @@ pub mod brdf;
 pub mod color;
 pub mod demo;
 pub mod lab;
+pub mod rough;
 pub mod thinfilm;

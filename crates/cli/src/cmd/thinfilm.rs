@@ -137,6 +137,8 @@ pub struct SpectrumArgs {
     /// Write a plot of R, T and A against wavelength (PNG).
     #[arg(long)]
     pub plot: Option<PathBuf>,
+    #[command(flatten)]
+    pub rough: super::rough::RoughArgs,
 }
 
 #[derive(Debug, ClapArgs)]
@@ -155,6 +157,8 @@ pub struct TableArgs {
     /// Write the angle × wavelength map of R (PNG).
     #[arg(long)]
     pub plot: Option<PathBuf>,
+    #[command(flatten)]
+    pub rough: super::rough::RoughArgs,
 }
 
 #[derive(Debug, ClapArgs)]
@@ -179,6 +183,8 @@ pub struct ColorArgs {
     /// Print JSON.
     #[arg(long)]
     pub json: bool,
+    #[command(flatten)]
+    pub rough: super::rough::RoughArgs,
 }
 
 #[derive(Debug, ClapArgs)]
@@ -229,6 +235,9 @@ pub struct BenchArgs {
     /// Print JSON.
     #[arg(long)]
     pub json: bool,
+    /// With --roughness/--correlation: time the LSRS table of Listing 3.6 (80 × 80 angles, 81 wavelengths).
+    #[command(flatten)]
+    pub rough: super::rough::RoughArgs,
 }
 
 pub fn run(command: ThinfilmCommand) -> Result<()> {
@@ -275,6 +284,22 @@ fn clean(a: f64) -> f64 {
 fn spectrum(a: SpectrumArgs) -> Result<()> {
     let stack = parse_stack(&a.stack)?;
     let pol = parse_pol(&a.polarization)?;
+    if a.rough.is_set() {
+        if pol != Polarization::Average {
+            bail!("with --roughness the spectrum is unpolarised, with s and p columns in --csv/--json");
+        }
+        let grid = a.grid.grid()?;
+        return super::rough::spectrum(
+            stack,
+            &stack_title(&a.stack),
+            &a.rough,
+            a.angle,
+            &grid,
+            a.json,
+            a.csv,
+            a.plot.as_deref(),
+        );
+    }
     let grid = a.grid.grid()?;
     let xs = spectra(&stack, a.angle, &grid)?;
     let col = |f: &dyn Fn(&Rta) -> f64| xs.iter().map(f).collect::<Vec<f64>>();
@@ -318,6 +343,18 @@ fn spectrum(a: SpectrumArgs) -> Result<()> {
 
 fn table(a: TableArgs) -> Result<()> {
     let stack = parse_stack(&a.stack)?;
+    if a.rough.is_set() {
+        let grid = a.grid.grid()?;
+        return super::rough::table(
+            stack,
+            &stack_title(&a.stack),
+            &a.rough,
+            &a.angles,
+            &grid,
+            a.output.as_deref(),
+            a.plot.as_deref(),
+        );
+    }
     let angles = parse_range(&a.angles, parse_angle_rad).map_err(|e| anyhow::anyhow!("--angles: {e}"))?;
     if let Some(bad) = angles.iter().find(|t| !(**t >= 0.0 && **t <= std::f64::consts::FRAC_PI_2 + 1e-12)) {
         bail!("--angles: {}° is outside 0°–90°", fmt_deg(*bad));
@@ -388,6 +425,12 @@ fn color(a: ColorArgs) -> Result<()> {
     let observer: Observer = a.observer.parse()?;
     let pol = parse_pol(&a.polarization)?;
     let grid = a.grid.grid()?;
+    if a.rough.is_set() {
+        if pol != Polarization::Average {
+            bail!("with --roughness the colours are for unpolarised light");
+        }
+        return super::rough::color(stack, &a.rough, a.angle, &grid, illuminant, observer, a.json);
+    }
     let meter = FilmColorimeter::new(&grid, illuminant, observer);
     let c = meter.color(&stack, a.angle, pol)?;
     let white = iridis_color::integrate::white_point(illuminant, observer);
@@ -663,6 +706,9 @@ fn time_tmm(stack: &Stack, angles: &[f64], wl: &[f64], seconds: f64) -> std::res
 fn bench(a: BenchArgs) -> Result<()> {
     if !(a.seconds.is_finite() && a.seconds > 0.0) {
         bail!("--seconds must be positive");
+    }
+    if a.rough.is_set() {
+        return super::rough::bench(parse_stack(super::rough::LISTING_3_6_STACK)?, &a.rough, 80, a.seconds, a.json);
     }
     let threads = iridis_thinfilm::grid::threads();
     let wl: Vec<f64> = (0..81).map(|i| 380.0 + 5.0 * i as f64).collect();
