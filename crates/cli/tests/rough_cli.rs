@@ -1,0 +1,114 @@
+//! `iridis thinfilm … --roughness σ --correlation τ` (the LSRS model) as a user runs it: documented keys,
+//! the smooth limit, the specular part below the smooth R, the table's size, and clean errors (exit code 2,
+//! one `error:` line) for bad roughness and parameters outside the HTSG model's validity.
+
+use std::process::{Command, Output};
+
+fn iridis(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_iridis"))
+        .args(args)
+        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
+        .output()
+        .expect("cannot run iridis")
+}
+
+fn json(args: &[&str]) -> serde_json::Value {
+    let out = iridis(args);
+    assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+fn assert_fails(args: &[&str], needle: &str) {
+    let out = iridis(args);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+    assert!(!stderr.contains("panicked"), "{args:?} panicked: {stderr}");
+    let errors: Vec<&str> = stderr.lines().filter(|l| l.starts_with("error:")).collect();
+    assert_eq!(errors.len(), 1, "{args:?}: {stderr}");
+    assert!(errors[0].contains(needle), "{args:?}: '{}' lacks '{needle}'", errors[0]);
+}
+
+const STACK: &str = "air | water 348nm | Si";
+const GRID: [&str; 6] = ["--from", "400nm", "--to", "700nm", "--step", "50nm"];
+
+fn f(v: &serde_json::Value) -> Vec<f64> {
+    v.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect()
+}
+
+#[test]
+fn listing_3_6_spectrum_reports_specular_and_diffuse_separately() {
+    let mut args = vec!["thinfilm", "spectrum", "--stack", STACK, "--angle", "30deg", "--json"];
+    args.extend(GRID);
+    args.extend(["--roughness", "25nm", "--correlation", "300nm", "--d-iterations", "5"]);
+    let v = json(&args);
+    let (r, s, d) = (f(&v["R_smooth"]), f(&v["specular"]), f(&v["diffuse_per_sr"]));
+    assert_eq!(r.len(), 7);
+    for i in 0..r.len() {
+        assert!(s[i] < r[i] && s[i] > 0.0 && d[i] > 0.0, "{i}: {} {} {}", r[i], s[i], d[i]);
+    }
+    // Shorter wavelengths scatter more: (σ/λ)².
+    assert!(d[0] > d[6]);
+    assert!(v["diffuse_error_bound_per_sr"].as_f64().unwrap() < 1e-3);
+}
+
+#[test]
+fn vanishing_roughness_is_the_smooth_model() {
+    let mut args = vec!["thinfilm", "spectrum", "--stack", STACK, "--angle", "45deg", "--json"];
+    args.extend(GRID);
+    args.extend(["--roughness", "0.000001nm", "--correlation", "300nm"]);
+    let v = json(&args);
+    let mut smooth = vec!["thinfilm", "spectrum", "--stack", STACK, "--angle", "45deg", "--json"];
+    smooth.extend(GRID);
+    let w = json(&smooth);
+    for (a, b) in f(&v["specular"]).iter().zip(f(&w["R"])) {
+        assert!((a - b).abs() < 1e-9, "{a} vs {b}");
+    }
+    assert!(f(&v["diffuse_per_sr"]).iter().all(|d| *d < 1e-12));
+}
+
+#[test]
+fn table_has_every_view_light_wavelength() {
+    let out = iridis(&[
+        "thinfilm",
+        "table",
+        "--stack",
+        STACK,
+        "--angles",
+        "0deg:90deg:30deg",
+        "--light-angles",
+        "10deg:50deg:20deg",
+        "--from",
+        "400nm",
+        "--to",
+        "500nm",
+        "--step",
+        "50nm",
+        "--roughness",
+        "25nm",
+        "--correlation",
+        "300nm",
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8(out.stdout).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(lines.next(), Some("view_deg,light_deg,wavelength_nm,specular,diffuse_per_sr"));
+    assert_eq!(lines.count(), 4 * 3 * 3);
+}
+
+#[test]
+fn bad_roughness_is_a_clear_error() {
+    let base = ["thinfilm", "spectrum", "--stack", STACK];
+    let run = |extra: &[&str], needle: &str| {
+        let mut a = base.to_vec();
+        a.extend(extra);
+        assert_fails(&a, needle);
+    };
+    run(&["--roughness", "0nm", "--correlation", "300nm"], "σ = 0 nm");
+    run(&["--roughness=-5nm", "--correlation", "300nm"], "σ = -5 nm");
+    run(&["--roughness", "25nm", "--correlation", "0nm"], "τ = 0 nm");
+    run(&["--roughness", "25nm", "--correlation", "30nm"], "slope");
+    run(&["--roughness", "100nm", "--correlation", "250nm"], "curvature");
+    run(&["--roughness", "25nm"], "required"); // clap names --correlation on the next line
+    run(&["--roughness", "25", "--correlation", "300nm"], "unit");
+    run(&["--roughness", "25nm", "--correlation", "300nm", "--polarization", "s"], "unpolarised");
+}
