@@ -46,6 +46,9 @@ enum Command {
     /// Simulated lab experiments (the laser experiment of paper Figure 8).
     #[command(subcommand)]
     Experiment(cmd::lab::ExperimentCommand),
+    /// Height fields: inspect (sizes, periods), generate nanostructures, convert formats.
+    #[command(subcommand, after_help = cmd::surface::SURFACE_HELP)]
+    Surface(cmd::surface::SurfaceCommand),
     // New command groups are added here, one line each, with their module in cmd/.
 }
 
@@ -54,6 +57,7 @@ fn main() -> std::process::ExitCode {
     let result = match cli.command {
         Command::Demo(a) => cmd::demo::run(a),
         Command::Color(c) => cmd::color::run(c),
+        Command::Surface(c) => cmd::surface::run(c),
         Command::Thinfilm(c) => cmd::thinfilm::run(c),
         Command::Precompute(a) => cmd::brdf::run_precompute(a),
         Command::BrdfMap(a) => cmd::brdf::run_brdf_map(a),

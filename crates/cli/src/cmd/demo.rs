@@ -104,6 +104,7 @@ pub fn run(args: Args) -> Result<()> {
     let mut gallery = Gallery::new(&args.out)?;
     // Sections in the order a newcomer should read them; each command group adds its own.
     super::color::demo(&mut gallery)?;
+    super::surface::demo(&mut gallery)?;
     super::thinfilm::demo(&mut gallery)?;
     super::brdf::demo(&mut gallery)?;
     super::lab::demo(&mut gallery)?;
