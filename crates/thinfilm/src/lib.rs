@@ -16,6 +16,11 @@
 //!   for dielectric stacks, the same numbers as the general path;
 //! * [`grid`]: angle × wavelength tables (Figure 3.8), in parallel;
 //! * [`color`]: film colours (reflected / transmitted spectrum → XYZ through `iridis-color`).
+//! * [`htsg`]: the He–Torrance–Sillion–Greenberg BRDF of a rough interface (rms height σ, correlation
+//!   length τ): specular and directional-diffuse terms, Smith shadowing, effective roughness, the bounded
+//!   series of `D` (the thesis' "D-iterations");
+//! * [`rough`]: the LSRS model (section 3.2, eq. 3.15–3.20, Algorithm 2) — a stack whose bottom interface is
+//!   rough: composite specular `k_r` and diffuse `k_d` reflectances, tables with interpolation, eq. 3.20.
 //!
 //! Conventions (`docs/PHYSICS.md`): lengths in nanometres, angles in radians, `κ ≥ 0` absorbs, the incident
 //! medium is lossless, and the transmittance into an absorbing substrate is zero.
