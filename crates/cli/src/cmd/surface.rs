@@ -368,7 +368,9 @@ fn info(a: InfoArgs) -> Result<()> {
 
 fn output_format(path: &Path) -> Result<Format> {
     match Format::from_extension(path) {
-        Some(Format::Tiff) => bail!("{}: writing TIFF is not supported; use .png (16-bit), .gwy, .npy or .txt", path.display()),
+        Some(Format::Tiff) => {
+            bail!("{}: writing TIFF is not supported; use .png (16-bit), .gwy, .npy or .txt", path.display())
+        }
         Some(f) => Ok(f),
         None => bail!("{}: unknown output format; use the extension .gwy, .npy, .png (16-bit) or .txt", path.display()),
     }
@@ -519,7 +521,10 @@ pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
             .map(|p| format!("{:.0} nm at {:.1}°", p.period_nm, p.orientation_deg))
             .collect::<Vec<_>>()
             .join(", ");
-        g.image(&file, &format!("{spec}: rms {:.1} nm; periods {listed}. `iridis surface info {spec} --image {file}`", hf.rms()));
+        g.image(
+            &file,
+            &format!("{spec}: rms {:.1} nm; periods {listed}. `iridis surface info {spec} --image {file}`", hf.rms()),
+        );
         for p in &peaks {
             rows.push(vec![
                 spec.clone(),
