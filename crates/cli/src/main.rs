@@ -37,6 +37,9 @@ enum Command {
     /// Thin-film interference: spectra, angle × wavelength tables, film colours, the soap-film chart.
     #[command(subcommand)]
     Thinfilm(cmd::thinfilm::ThinfilmCommand),
+    /// Height fields: inspect (sizes, periods), generate nanostructures, convert formats.
+    #[command(subcommand, after_help = cmd::surface::SURFACE_HELP)]
+    Surface(cmd::surface::SurfaceCommand),
     /// Virtual test bench: peak viewing angles and periodicity per wavelength (paper sec. 6.1, Table 1).
     Testbench(cmd::lab::TestbenchArgs),
     /// CIELAB errors of methods against the ground truth (paper sec. 6.3, Table 2).
@@ -46,9 +49,6 @@ enum Command {
     /// Simulated lab experiments (the laser experiment of paper Figure 8).
     #[command(subcommand)]
     Experiment(cmd::lab::ExperimentCommand),
-    /// Height fields: inspect (sizes, periods), generate nanostructures, convert formats.
-    #[command(subcommand, after_help = cmd::surface::SURFACE_HELP)]
-    Surface(cmd::surface::SurfaceCommand),
     // New command groups are added here, one line each, with their module in cmd/.
 }
 
@@ -57,15 +57,15 @@ fn main() -> std::process::ExitCode {
     let result = match cli.command {
         Command::Demo(a) => cmd::demo::run(a),
         Command::Color(c) => cmd::color::run(c),
-        Command::Surface(c) => cmd::surface::run(c),
-        Command::Thinfilm(c) => cmd::thinfilm::run(c),
-        Command::Precompute(a) => cmd::brdf::run_precompute(a),
-        Command::BrdfMap(a) => cmd::brdf::run_brdf_map(a),
         Command::Testbench(a) => cmd::lab::run_testbench(a),
         Command::Compare(a) => cmd::lab::run_compare(a),
         Command::Sweep(a) => cmd::lab::run_sweep(a),
         Command::Experiment(c) => cmd::lab::run_experiment(c),
+        Command::Surface(c) => cmd::surface::run(c),
+        Command::Thinfilm(c) => cmd::thinfilm::run(c),
         Command::Bench(c) => cmd::bench::run(c),
+        Command::Precompute(a) => cmd::brdf::run_precompute(a),
+        Command::BrdfMap(a) => cmd::brdf::run_brdf_map(a),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,

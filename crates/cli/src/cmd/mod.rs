@@ -5,4 +5,5 @@ pub mod color;
 pub mod demo;
 pub mod lab;
 pub mod rough;
+pub mod surface;
 pub mod thinfilm;
