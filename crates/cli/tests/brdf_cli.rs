@@ -21,20 +21,12 @@ fn precompute_then_map_and_refusals() {
     let dir = tempfile::tempdir().unwrap();
     let table = dir.path().join("t.npz");
     let t = table.to_str().unwrap();
-    let out = iridis(&["precompute", SURFACE, "-o", t, "--uv-resolution", "41", "--coherence", "4um", "--step", "10nm"]);
+    let out =
+        iridis(&["precompute", SURFACE, "-o", t, "--uv-resolution", "41", "--coherence", "4um", "--step", "10nm"]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let png = dir.path().join("m.png");
     let raw = dir.path().join("m.npy");
-    let out = iridis(&[
-        "brdf-map",
-        t,
-        "-o",
-        png.to_str().unwrap(),
-        "--size",
-        "32",
-        "--raw",
-        raw.to_str().unwrap(),
-    ]);
+    let out = iridis(&["brdf-map", t, "-o", png.to_str().unwrap(), "--size", "32", "--raw", raw.to_str().unwrap()]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let img = image::open(&png).unwrap().to_rgb8();
     assert_eq!(img.dimensions(), (32, 32));

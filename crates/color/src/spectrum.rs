@@ -69,8 +69,7 @@ impl Spectrum {
             if line.is_empty() || line.starts_with('#') {
                 continue;
             }
-            let fields: Vec<&str> =
-                line.split([',', ';', '\t', ' ']).filter(|s| !s.is_empty()).collect();
+            let fields: Vec<&str> = line.split([',', ';', '\t', ' ']).filter(|s| !s.is_empty()).collect();
             let parse = |s: &str| s.trim().parse::<f64>();
             let parsed: Vec<_> = fields.iter().map(|f| parse(f)).collect();
             if parsed.iter().any(|p| p.is_err()) {

@@ -6,7 +6,8 @@ use iridis_diffraction::table::{LookupTable, TableParams};
 use iridis_diffraction::{Patch, SpectralSetup, TaylorTerms};
 
 fn small_table() -> LookupTable {
-    let h: Vec<f64> = (0..32 * 32).map(|k| 30.0 * ((k % 32) as f64 * 0.7).sin() + 10.0 * ((k / 32) as f64).cos()).collect();
+    let h: Vec<f64> =
+        (0..32 * 32).map(|k| 30.0 * ((k % 32) as f64 * 0.7).sin() + 10.0 * ((k / 32) as f64).cos()).collect();
     let patch = Patch::from_row_major(32, 32, 60.0, 60.0, &h).unwrap();
     let terms = TaylorTerms::compute(&patch, 6, 1000.0).unwrap();
     let spectral = SpectralSetup::new(iridis_color::Illuminant::D65, iridis_color::Observer::Cie1931, 20.0).unwrap();
