@@ -144,9 +144,11 @@ pub struct BrdfMapArgs {
 
 /// Loads a SURFACE argument as a diffraction patch, printing the model's warnings with numbers.
 pub fn load_patch(spec: &str, opts: &SurfaceOpts) -> Result<Patch> {
-    let mut load = iridis_surface::LoadOptions::default();
-    load.pixel_size_nm = opts.pixel_size;
-    load.max_height_nm = opts.max_height;
+    let load = iridis_surface::LoadOptions {
+        pixel_size_nm: opts.pixel_size,
+        max_height_nm: opts.max_height,
+        ..Default::default()
+    };
     let hf = iridis_surface::load_surface(spec, &load).with_context(|| format!("cannot load surface {spec}"))?;
     Ok(Patch::from_row_major(hf.rows, hf.cols, hf.dx_nm, hf.dy_nm, &hf.heights_nm)?)
 }
@@ -437,25 +439,6 @@ pub fn write_exr(path: &Path, xyz: &[Xyz], size: usize, exposure: f64) -> Result
     crate::output::write_bytes(path, bytes.get_ref())
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn fresnel_and_incidence_parse() {
-        assert!(matches!(parse_fresnel("schlick").unwrap(), Fresnel::Schlick { n } if n == 1.5));
-        match parse_fresnel("index:0.2+3.4i").unwrap() {
-            Fresnel::Index { n } => assert_eq!(n, Complex64::new(0.2, 3.4)),
-            f => panic!("{f:?}"),
-        }
-        assert!(parse_fresnel("index:abc").is_err());
-        assert!(parse_incidence("90deg").is_err());
-        assert!(parse_incidence("20deg,0deg,1deg").is_err());
-        let d = parse_incidence("0deg").unwrap();
-        assert!((d[2] - 1.0).abs() < 1e-15);
-    }
-}
-
 /// The demo's diffraction section: lookup BRDF maps of built-in surfaces (the kinds of the paper's Figs. 12–14).
 pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
     use iridis_plot::{ImagePlot, RgbImage};
@@ -502,4 +485,23 @@ pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
         );
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fresnel_and_incidence_parse() {
+        assert!(matches!(parse_fresnel("schlick").unwrap(), Fresnel::Schlick { n } if n == 1.5));
+        match parse_fresnel("index:0.2+3.4i").unwrap() {
+            Fresnel::Index { n } => assert_eq!(n, Complex64::new(0.2, 3.4)),
+            f => panic!("{f:?}"),
+        }
+        assert!(parse_fresnel("index:abc").is_err());
+        assert!(parse_incidence("90deg").is_err());
+        assert!(parse_incidence("20deg,0deg,1deg").is_err());
+        let d = parse_incidence("0deg").unwrap();
+        assert!((d[2] - 1.0).abs() < 1e-15);
+    }
 }

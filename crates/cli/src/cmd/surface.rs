@@ -20,6 +20,8 @@ Built-ins (blazed, sine, cd, elaphe, xenopeltis, gaussian) are generated on the 
 65 nm per pixel (1000 × 1000), seed 1; change them with --size/--pixel-size/--seed or a query string,
 e.g. builtin:elaphe?size=16um&pixel=50nm&seed=3&angle=10deg (parameters: iridis surface generate --help).";
 
+// Parsed once per run: the size difference between variants costs nothing worth boxing for.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Subcommand)]
 pub enum SurfaceCommand {
     /// Size, pixel size, heights and the dominant periods (with orientations) of a height field.
