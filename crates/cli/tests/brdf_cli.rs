@@ -1,18 +1,7 @@
 //! `iridis precompute` and `iridis brdf-map` as a user runs them, including their refusals.
 
-use std::process::{Command, Output};
-
-fn iridis(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_iridis")).args(args).output().expect("cannot run iridis")
-}
-
-fn assert_fails(args: &[&str], needle: &str) {
-    let out = iridis(args);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
-    assert!(!stderr.contains("panicked"), "{args:?}: {stderr}");
-    assert!(stderr.contains(needle), "{args:?}: '{stderr}' lacks '{needle}'");
-}
+mod common;
+use common::{assert_fails, iridis};
 
 const SURFACE: &str = "builtin:sine?size=8um&pixel=50nm";
 
@@ -37,20 +26,20 @@ fn precompute_then_map_and_refusals() {
     assert!(String::from_utf8_lossy(&bytes[..128]).contains("(32, 32, 3"));
 
     // The table and options that contradict it.
-    assert_fails(&["brdf-map", t, "-o", "x.png", "--coherence", "65um"], "other parameters");
-    assert_fails(&["brdf-map", t, "-o", "x.png", "--method", "reference"], "needs the height field");
-    assert_fails(&["brdf-map", t, "-o", "x.png", "--exposure", "0"], "exposure");
-    assert_fails(&["brdf-map", t, "-o", "x.png", "--incidence", "90deg"], "[0°, 90°)");
-    assert_fails(&["brdf-map", t, "-o", "x.png", "--incidence", "20"], "no unit");
+    assert_fails(&["brdf-map", t, "-o", "x.png", "--coherence", "65um"], &["other parameters"]);
+    assert_fails(&["brdf-map", t, "-o", "x.png", "--method", "reference"], &["needs the height field"]);
+    assert_fails(&["brdf-map", t, "-o", "x.png", "--exposure", "0"], &["exposure"]);
+    assert_fails(&["brdf-map", t, "-o", "x.png", "--incidence", "90deg"], &["[0°, 90°)"]);
+    assert_fails(&["brdf-map", t, "-o", "x.png", "--incidence", "20"], &["no unit"]);
     let junk = dir.path().join("junk.npz");
     std::fs::write(&junk, b"PK\x03\x04 garbage").unwrap();
-    assert_fails(&["brdf-map", junk.to_str().unwrap(), "-o", "x.png"], "junk.npz");
+    assert_fails(&["brdf-map", junk.to_str().unwrap(), "-o", "x.png"], &["junk.npz"]);
     // A failed run leaves no output behind.
     let never = dir.path().join("never.png");
-    assert_fails(&["brdf-map", junk.to_str().unwrap(), "-o", never.to_str().unwrap()], "junk.npz");
+    assert_fails(&["brdf-map", junk.to_str().unwrap(), "-o", never.to_str().unwrap()], &["junk.npz"]);
     assert!(!never.exists());
-    assert_fails(&["precompute", "no/such/surface.npy", "-o", t], "no/such/surface.npy");
-    assert_fails(&["precompute", SURFACE, "-o", t, "--terms", "many"], "--terms");
+    assert_fails(&["precompute", "no/such/surface.npy", "-o", t], &["no/such/surface.npy"]);
+    assert_fails(&["precompute", SURFACE, "-o", t, "--terms", "many"], &["--terms"]);
 }
 
 #[test]

@@ -1,27 +1,7 @@
 //! The `iridis color` commands as a user runs them: output keys, values, and errors on bad input.
 
-use std::process::{Command, Output};
-
-fn iridis(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_iridis"))
-        .args(args)
-        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
-        .output()
-        .expect("cannot run iridis")
-}
-
-/// Asserts a clean failure: exit code 2, a single `error:` line that contains every `needle`, no panic.
-fn assert_fails(args: &[&str], needles: &[&str]) {
-    let out = iridis(args);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
-    assert!(!stderr.contains("panicked"), "{args:?} panicked: {stderr}");
-    let errors: Vec<&str> = stderr.lines().filter(|l| l.starts_with("error:")).collect();
-    assert_eq!(errors.len(), 1, "{args:?}: {stderr}");
-    for n in needles {
-        assert!(errors[0].contains(n), "{args:?}: '{}' lacks '{n}'", errors[0]);
-    }
-}
+mod common;
+use common::{assert_fails, iridis};
 
 fn temp_csv(name: &str, text: &str) -> std::path::PathBuf {
     let dir = std::env::temp_dir().join(format!("iridis-cli-test-{}", std::process::id()));

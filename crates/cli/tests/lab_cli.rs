@@ -1,25 +1,8 @@
 //! The virtual-lab commands (`testbench`, `compare`) as a user runs them, including their refusals.
 //! Sizes are small so that each call takes about a second in release.
 
-use std::process::{Command, Output};
-
-fn iridis(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_iridis")).args(args).output().expect("cannot run iridis")
-}
-
-fn json_of(args: &[&str]) -> serde_json::Value {
-    let out = iridis(args);
-    assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
-    serde_json::from_slice(&out.stdout).unwrap_or_else(|e| panic!("{args:?}: not JSON ({e})"))
-}
-
-fn assert_fails(args: &[&str], needle: &str) {
-    let out = iridis(args);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
-    assert!(!stderr.contains("panicked"), "{args:?}: {stderr}");
-    assert!(stderr.contains(needle), "{args:?}: '{stderr}' lacks '{needle}'");
-}
+mod common;
+use common::{assert_fails, json_of};
 
 /// A 1500 nm sine grating: the bench must read the period back through the grating equation
 /// m λ / d = sin θ_i − sin θ_r, and write its plot.
@@ -87,9 +70,9 @@ fn compare_orders_methods_as_the_paper_does() {
 
 #[test]
 fn lab_commands_refuse_bad_input_clearly() {
-    assert_fails(&["testbench", "builtin:blazed", "--method", "lookup"], "no spectral reflectance");
-    assert_fails(&["testbench", "builtin:blazed", "--method", "magic"], "magic");
-    assert_fails(&["testbench", "builtin:blazed", "--incidence", "75"], "unit");
-    assert_fails(&["testbench", "/no/such/scan.gwy"], "/no/such/scan.gwy");
-    assert_fails(&["compare", "builtin:blazed", "--methods", "lookup", "--exposures", "bright"], "bright");
+    assert_fails(&["testbench", "builtin:blazed", "--method", "lookup"], &["no spectral reflectance"]);
+    assert_fails(&["testbench", "builtin:blazed", "--method", "magic"], &["magic"]);
+    assert_fails(&["testbench", "builtin:blazed", "--incidence", "75"], &["unit"]);
+    assert_fails(&["testbench", "/no/such/scan.gwy"], &["/no/such/scan.gwy"]);
+    assert_fails(&["compare", "builtin:blazed", "--methods", "lookup", "--exposures", "bright"], &["bright"]);
 }

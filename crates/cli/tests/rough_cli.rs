@@ -2,31 +2,8 @@
 //! the smooth limit, the specular part below the smooth R, the table's size, and clean errors (exit code 2,
 //! one `error:` line) for bad roughness and parameters outside the HTSG model's validity.
 
-use std::process::{Command, Output};
-
-fn iridis(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_iridis"))
-        .args(args)
-        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
-        .output()
-        .expect("cannot run iridis")
-}
-
-fn json(args: &[&str]) -> serde_json::Value {
-    let out = iridis(args);
-    assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
-    serde_json::from_slice(&out.stdout).unwrap()
-}
-
-fn assert_fails(args: &[&str], needle: &str) {
-    let out = iridis(args);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
-    assert!(!stderr.contains("panicked"), "{args:?} panicked: {stderr}");
-    let errors: Vec<&str> = stderr.lines().filter(|l| l.starts_with("error:")).collect();
-    assert_eq!(errors.len(), 1, "{args:?}: {stderr}");
-    assert!(errors[0].contains(needle), "{args:?}: '{}' lacks '{needle}'", errors[0]);
-}
+mod common;
+use common::{assert_fails, iridis, json_of};
 
 const STACK: &str = "air | water 348nm | Si";
 const GRID: [&str; 6] = ["--from", "400nm", "--to", "700nm", "--step", "50nm"];
@@ -40,7 +17,7 @@ fn listing_3_6_spectrum_reports_specular_and_diffuse_separately() {
     let mut args = vec!["thinfilm", "spectrum", "--stack", STACK, "--angle", "30deg", "--json"];
     args.extend(GRID);
     args.extend(["--roughness", "25nm", "--correlation", "300nm", "--d-iterations", "5"]);
-    let v = json(&args);
+    let v = json_of(&args);
     let (r, s, d) = (f(&v["R_smooth"]), f(&v["specular"]), f(&v["diffuse_per_sr"]));
     assert_eq!(r.len(), 7);
     for i in 0..r.len() {
@@ -56,10 +33,10 @@ fn vanishing_roughness_is_the_smooth_model() {
     let mut args = vec!["thinfilm", "spectrum", "--stack", STACK, "--angle", "45deg", "--json"];
     args.extend(GRID);
     args.extend(["--roughness", "0.000001nm", "--correlation", "300nm"]);
-    let v = json(&args);
+    let v = json_of(&args);
     let mut smooth = vec!["thinfilm", "spectrum", "--stack", STACK, "--angle", "45deg", "--json"];
     smooth.extend(GRID);
-    let w = json(&smooth);
+    let w = json_of(&smooth);
     for (a, b) in f(&v["specular"]).iter().zip(f(&w["R"])) {
         assert!((a - b).abs() < 1e-9, "{a} vs {b}");
     }
@@ -101,7 +78,7 @@ fn bad_roughness_is_a_clear_error() {
     let run = |extra: &[&str], needle: &str| {
         let mut a = base.to_vec();
         a.extend(extra);
-        assert_fails(&a, needle);
+        assert_fails(&a, &[needle]);
     };
     run(&["--roughness", "0nm", "--correlation", "300nm"], "σ = 0 nm");
     run(&["--roughness=-5nm", "--correlation", "300nm"], "σ = -5 nm");
