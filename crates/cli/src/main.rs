@@ -12,9 +12,17 @@ use clap::{Parser, Subcommand};
 #[derive(Debug, Parser)]
 #[command(name = "iridis", version, about, long_about = None, after_help = "\
 Examples:
-  iridis demo --out gallery              build the gallery of built-in examples, open gallery/index.html
+  iridis demo --out gallery                         gallery of built-in examples, with index.html
+  iridis surface info builtin:elaphe --image e.png  periods and orientations of a height field
+  iridis precompute builtin:elaphe -o elaphe.npz    lookup tables (Taylor terms + DFT)
+  iridis brdf-map elaphe.npz -o elaphe.png          BRDF map at normal incidence
+  iridis testbench builtin:blazed --plot b.png      period from the grating equation (paper 6.1)
+  iridis thinfilm color --stack \"air | water 348nm | air\" --json
   iridis color xyz data/examples/colorchecker_green.csv --json
-  iridis color delta-e 50,2.6772,-79.7751 50,0,-82.7485")]
+
+SURFACE arguments take a file (.gwy, .npy, PNG/TIFF, text) or a built-in:
+builtin:blazed|sine|cd|elaphe|xenopeltis|gaussian. Lengths and angles carry units:
+65nm, 0.43um, 65µm, 75deg.")]
 struct Cli {
     #[command(subcommand)]
     command: Command,
