@@ -1,0 +1,329 @@
+//! Materials: diffraction from a nanostructure (lookup tables of `iridis precompute`, an orientation field,
+//! the thesis' texture blending, Algorithm 4), thin films (Sussenbach's smooth illumination model, eq. 3.14,
+//! with spatially varying thickness, eq. 4.3–4.4), Lambert, and a GGX microfacet base.
+
+use std::sync::Arc;
+
+use iridis_color::{Illuminant, Observer, Xyz};
+use iridis_diffraction::Evaluator;
+use iridis_thinfilm::color::FilmColorimeter;
+use iridis_thinfilm::Stack;
+
+use crate::error::RenderError;
+use crate::geometry::Hit;
+use crate::light::Rgb;
+use crate::math::*;
+use crate::texture::Texture;
+
+/// A colour: a constant or a colour texture.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ColorSource {
+    Const(Rgb),
+    Texture(usize),
+}
+
+impl ColorSource {
+    pub fn at(&self, uv: [f64; 2], textures: &[Texture]) -> Rgb {
+        match *self {
+            ColorSource::Const(c) => c,
+            ColorSource::Texture(i) => textures[i].sample(uv),
+        }
+    }
+}
+
+/// Where the nanostructure's x axis lies on the surface (PHYSICS.md: the tangent `t` is `+x`, `b = n × t`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum OrientRule {
+    /// The mesh's tangent attribute (glTF TANGENT or MikkTSpace from the UVs; `∂P/∂u` on spheres and planes).
+    Tangent,
+    /// Along the body: the snake's spine direction; a sphere's meridian (north → south); a plane's tangent.
+    Along,
+    /// A fixed world direction projected onto the surface.
+    Direction(V3),
+    /// A vector texture in tangent space: `x = 2R − 1` along the tangent, `y = 2G − 1` along the bitangent.
+    Texture(usize),
+}
+
+/// An orientation field: a rule and an extra rotation about the normal.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Orientation {
+    pub rule: OrientRule,
+    pub angle: f64,
+}
+
+impl Orientation {
+    /// The unit tangent `t` (the nanostructure's `+x`) at a hit, perpendicular to the shading normal.
+    pub fn tangent(&self, hit: &Hit, textures: &[Texture]) -> V3 {
+        let n = hit.n;
+        let base = hit.tangent.unwrap_or_else(|| any_perpendicular(n));
+        let t = match self.rule {
+            OrientRule::Tangent => Some(base),
+            OrientRule::Along => hit.along.or(Some(base)),
+            OrientRule::Direction(d) => orthogonalize(d, n),
+            OrientRule::Texture(i) => {
+                let c = textures[i].sample(hit.uv);
+                let (x, y) = (2.0 * c[0] - 1.0, 2.0 * c[1] - 1.0);
+                let b = cross(n, base);
+                try_normalize(add(mul(base, x), mul(b, y)))
+            }
+        }
+        .unwrap_or(base);
+        if self.angle != 0.0 {
+            normalize(rotate_about(t, n, self.angle))
+        } else {
+            t
+        }
+    }
+}
+
+/// The diffraction material.
+#[derive(Clone)]
+pub struct Diffraction {
+    /// Colour (XYZ) for local directions `(ω_i, ω_r)` — the same evaluator `iridis brdf-map` uses.
+    pub evaluator: Arc<dyn Evaluator>,
+    pub orientation: Orientation,
+    /// Multiplier of the diffraction colour (RU): 1500 shows the table as `iridis brdf-map --exposure 1500`
+    /// does at scene exposure 1, while texture and diffuse terms keep the scene's brightness.
+    pub scale_ru: f64,
+    /// `w_diffuse` of Algorithm 4.
+    pub w_diffuse: f64,
+    /// `c_texture` of Algorithm 4 (lit as a Lambertian surface).
+    pub texture: ColorSource,
+    /// Ambient term: this fraction of the texture colour is added whatever the lights do.
+    pub ambient: f64,
+    /// Index for the Schlick Fresnel weight `α = |F|` of Algorithm 4.
+    pub fresnel_n: f64,
+    pub description: String,
+}
+
+impl std::fmt::Debug for Diffraction {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Diffraction")
+            .field("table", &self.description)
+            .field("orientation", &self.orientation)
+            .field("scale_ru", &self.scale_ru)
+            .field("w_diffuse", &self.w_diffuse)
+            .finish()
+    }
+}
+
+/// Schlick's Fresnel `F_0 + (1 − F_0)(1 − cos θ)^5`, `F_0 = ((n − 1)/(n + 1))²` (thesis App. D).
+pub fn schlick(n: f64, cos: f64) -> f64 {
+    let f0 = ((n - 1.0) / (n + 1.0)).powi(2);
+    f0 + (1.0 - f0) * (1.0 - cos.clamp(0.0, 1.0)).powi(5)
+}
+
+impl Diffraction {
+    /// Algorithm 4 for one light: `(1 − w_d)·c_diffraction + (1 − α)·c_texture + w_d·c_texture`, `α = min(|F|, 1)`,
+    /// where `c_diffraction` is the table's colour for the light and view directions in the local frame
+    /// `(t, n × t, n)` times the irradiance and `scale_ru`, and `c_texture` is the texture colour lit as a
+    /// Lambertian surface (`cos θ_i` × irradiance).
+    pub fn shade_light(&self, hit: &Hit, t: V3, wi: V3, wo: V3, e: Rgb, tex: Rgb) -> Rgb {
+        let n = hit.n;
+        let b = cross(n, t);
+        let local = |v: V3| [dot(v, t), dot(v, b), dot(v, n)];
+        let (li, lo) = (local(wi), local(wo));
+        if li[2] <= 0.0 || lo[2] <= 0.0 {
+            return [0.0; 3];
+        }
+        let xyz = self.evaluator.xyz(li, lo);
+        let c_diff = hadamard(xyz.to_linear_srgb(), mul(e, self.scale_ru));
+        let h = normalize(add(wi, wo));
+        let alpha = schlick(self.fresnel_n, dot(wi, h)).abs().min(1.0);
+        let c_tex = mul(hadamard(tex, e), li[2]);
+        let mut out = mul(c_diff, 1.0 - self.w_diffuse);
+        out = add(out, mul(c_tex, 1.0 - alpha));
+        add(out, mul(c_tex, self.w_diffuse))
+    }
+}
+
+/// Spatially varying thickness (Sussenbach sec. 4.2): every layer gets `d_rel · (2α − 1)` added, with `α` from
+/// a grey texture or generated noise (eq. 4.3–4.4).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Svt {
+    pub texture: usize,
+    pub d_rel_nm: f64,
+}
+
+/// A thin-film material: the composite reflectance `k_r` and transmittance `k_t` of a stack weight the light
+/// reflected and transmitted along the ray, `I_e = k_r I_r + k_t I_t` (Sussenbach eq. 3.14).
+#[derive(Debug, Clone)]
+pub struct ThinFilm {
+    pub stack: Stack,
+    pub svt: Option<Svt>,
+    /// Trace the transmitted ray too (bubbles); off for films on opaque bases.
+    pub transmission: bool,
+    /// A base material under the film (glTF iridescence over its base, oil over asphalt): lit by the lights
+    /// with the share of light the film does not reflect, `1 − Y(k_r)`.
+    pub base: Option<Microfacet>,
+    /// glTF `iridescenceFactor`: the film's reflection is scaled by it and the base shows through `1 − factor`.
+    pub factor: f64,
+    colorimeter: FilmColorimeter,
+    invariant: bool,
+}
+
+impl ThinFilm {
+    /// Checks that the stack covers 380–780 nm and sets up the colour integral (D65, CIE 1931, 5 nm — the
+    /// defaults of `iridis thinfilm color`).
+    pub fn new(stack: Stack, svt: Option<Svt>, transmission: bool) -> Result<Self, RenderError> {
+        for l in [380.0, 780.0] {
+            stack
+                .evaluate(l, 0.0)
+                .map_err(|e| RenderError::Input(format!("thin-film stack {stack}: it must cover 380–780 nm ({e})")))?;
+        }
+        let grid = iridis_color::spectrum::uniform_grid(380.0, 780.0, 5.0)
+            .map_err(|e| RenderError::Input(format!("wavelength grid: {e}")))?;
+        let invariant = stack.is_wavelength_invariant();
+        Ok(Self {
+            stack,
+            svt,
+            transmission,
+            base: None,
+            factor: 1.0,
+            colorimeter: FilmColorimeter::new(&grid, Illuminant::D65, Observer::Cie1931),
+            invariant,
+        })
+    }
+
+    /// The SVT thickness offset (nm) at a hit.
+    pub fn offset_nm(&self, uv: [f64; 2], textures: &[Texture]) -> f64 {
+        match self.svt {
+            Some(s) => iridis_thinfilm::stack::svt_offset(s.d_rel_nm, textures[s.texture].sample(uv)[0]),
+            None => 0.0,
+        }
+    }
+
+    /// Reflected and transmitted film colour (XYZ under D65, normalised so `R = 1` gives `Y = 1`) at the
+    /// cosine of the angle of incidence and a thickness offset: exactly `iridis thinfilm color` for that stack.
+    pub fn colors(&self, cos_theta: f64, offset_nm: f64) -> (Xyz, Xyz) {
+        let angle = cos_theta.clamp(0.0, 1.0).acos();
+        let grid = self.colorimeter.wavelengths_nm();
+        let mut r = Vec::with_capacity(grid.len());
+        let mut t = Vec::with_capacity(grid.len());
+        let prepared = if self.invariant { self.stack.prepare(angle).ok() } else { None };
+        for &l in grid {
+            let x = match &prepared {
+                Some(p) => p.evaluate_offset(l, offset_nm),
+                None => self.stack.evaluate_offset(l, angle, offset_nm),
+            };
+            match x {
+                Ok(x) => {
+                    r.push(x.r());
+                    t.push(x.t());
+                }
+                Err(_) => {
+                    r.push(0.0);
+                    t.push(0.0);
+                }
+            }
+        }
+        let c = self.colorimeter.from_spectra(&r, &t);
+        (c.reflected, c.transmitted)
+    }
+}
+
+/// A GGX microfacet surface with a Lambertian base (metallic = 0) or a coloured metal (metallic = 1).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Microfacet {
+    pub color: ColorSource,
+    /// GGX `α = roughness²`.
+    pub roughness: f64,
+    pub metallic: f64,
+    /// Index of refraction of the dielectric coat (F_0 = ((n − 1)/(n + 1))²).
+    pub ior: f64,
+}
+
+impl Microfacet {
+    /// `π · f(ω_i, ω_o) · cos θ_i` for unit irradiance: Lambert `(1 − m)(1 − F)·albedo` plus the specular lobe
+    /// `D G F / (4 cos θ_i cos θ_o)` with GGX `D`, Smith's separable `G` and Schlick's `F` (tinted by the
+    /// albedo for metals).
+    pub fn reflect(&self, n: V3, wi: V3, wo: V3, albedo: Rgb) -> Rgb {
+        let (ci, co) = (dot(n, wi), dot(n, wo));
+        if ci <= 0.0 || co <= 0.0 {
+            return [0.0; 3];
+        }
+        let h = normalize(add(wi, wo));
+        let a = (self.roughness * self.roughness).max(1e-4);
+        let a2 = a * a;
+        let nh = dot(n, h).max(0.0);
+        let d = a2 / (std::f64::consts::PI * (nh * nh * (a2 - 1.0) + 1.0).powi(2));
+        let g1 = |c: f64| 2.0 * c / (c + (a2 + (1.0 - a2) * c * c).sqrt());
+        let g = g1(ci) * g1(co);
+        let f0d = ((self.ior - 1.0) / (self.ior + 1.0)).powi(2);
+        let f0 = [0, 1, 2].map(|k| f0d * (1.0 - self.metallic) + albedo[k] * self.metallic);
+        let m = (1.0 - dot(wi, h).clamp(0.0, 1.0)).powi(5);
+        let f = f0.map(|x| x + (1.0 - x) * m);
+        let spec = d * g / (4.0 * ci * co) * std::f64::consts::PI * ci;
+        [0, 1, 2].map(|k| spec * f[k] + (1.0 - self.metallic) * (1.0 - f[k]) * albedo[k] * ci)
+    }
+
+    /// Fresnel reflectance towards the mirror direction (for environment reflections).
+    pub fn mirror_fresnel(&self, cos: f64, albedo: Rgb) -> Rgb {
+        let f0d = ((self.ior - 1.0) / (self.ior + 1.0)).powi(2);
+        let m = (1.0 - cos.clamp(0.0, 1.0)).powi(5);
+        [0, 1, 2].map(|k| {
+            let f0 = f0d * (1.0 - self.metallic) + albedo[k] * self.metallic;
+            f0 + (1.0 - f0) * m
+        })
+    }
+}
+
+/// A material of the scene.
+#[derive(Debug, Clone)]
+pub enum Material {
+    /// Lambertian: `albedo · cos θ_i` per RU of irradiance, plus `albedo` × the environment's mean radiance.
+    Lambert {
+        color: ColorSource,
+    },
+    Microfacet(Microfacet),
+    Diffraction(Box<Diffraction>),
+    ThinFilm(Box<ThinFilm>),
+}
+
+impl Material {
+    /// Whether light passes through (such objects cast no shadows).
+    pub fn transmissive(&self) -> bool {
+        matches!(self, Material::ThinFilm(f) if f.transmission)
+    }
+    /// Whether this material reads UV coordinates (then a mesh must have them).
+    pub fn needs_uv(&self) -> bool {
+        let tex = |c: &ColorSource| matches!(c, ColorSource::Texture(_));
+        match self {
+            Material::Lambert { color } => tex(color),
+            Material::Microfacet(m) => tex(&m.color),
+            Material::Diffraction(d) => tex(&d.texture) || matches!(d.orientation.rule, OrientRule::Texture(_)),
+            Material::ThinFilm(f) => f.svt.is_some(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn film_colours_match_the_colorimeter() {
+        let stack: Stack = "air | water 400nm | air".parse().unwrap();
+        let film = ThinFilm::new(stack.clone(), None, true).unwrap();
+        let grid = iridis_color::spectrum::uniform_grid(380.0, 780.0, 5.0).unwrap();
+        let cm = FilmColorimeter::new(&grid, Illuminant::D65, Observer::Cie1931);
+        for deg in [0.0f64, 30.0, 70.0] {
+            let want = cm.color(&stack.with_thickness(0, 450.0), deg.to_radians(), Default::default()).unwrap();
+            let (r, t) = film.colors(deg.to_radians().cos(), 50.0);
+            for (a, b) in [(r, want.reflected), (t, want.transmitted)] {
+                assert!((a.x - b.x).abs() < 1e-9 && (a.y - b.y).abs() < 1e-9 && (a.z - b.z).abs() < 1e-9);
+            }
+        }
+    }
+
+    #[test]
+    fn microfacet_is_bounded_and_lambert_like_when_rough() {
+        let m = Microfacet { color: ColorSource::Const([0.5; 3]), roughness: 1.0, metallic: 0.0, ior: 1.5 };
+        let n = [0.0, 0.0, 1.0];
+        let r = m.reflect(n, n, n, [0.5; 3]);
+        assert!(r[0] > 0.45 && r[0] < 0.6, "{r:?}");
+        let gold = Microfacet { color: ColorSource::Const([1.0, 0.8, 0.3]), roughness: 0.2, metallic: 1.0, ior: 1.5 };
+        let f = gold.mirror_fresnel(1.0, [1.0, 0.8, 0.3]);
+        assert_eq!(f, [1.0, 0.8, 0.3]);
+    }
+}

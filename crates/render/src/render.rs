@@ -1,0 +1,245 @@
+//! The renderer: ray casting through a BVH, all cores (rayon, one image row per task), `spp` samples per pixel
+//! on a rank-1 lattice (R2 sequence; one sample sits at the pixel centre), linear float output.
+
+use rayon::prelude::*;
+
+use iridis_color::{Encoding, ToneMap, Xyz};
+
+use crate::geometry::{triangle_hit, Hit};
+use crate::light::Rgb;
+use crate::material::{ColorSource, Material, Microfacet};
+use crate::math::*;
+use crate::scene::Scene;
+
+/// A rendered image: linear sRGB per pixel (D65 white = 1 at exposure 1), row 0 at the top.
+#[derive(Debug, Clone)]
+pub struct Image {
+    pub width: u32,
+    pub height: u32,
+    pub data: Vec<[f32; 3]>,
+}
+
+impl Image {
+    /// CIE XYZ of pixel `(col, row)` (before exposure).
+    pub fn xyz(&self, col: u32, row: u32) -> Xyz {
+        let p = self.data[(row * self.width + col) as usize];
+        Xyz::from_linear_srgb([p[0] as f64, p[1] as f64, p[2] as f64])
+    }
+
+    /// 8-bit display pixels: colours × exposure (RU), clipped, encoded (PHYSICS.md, "Exposure").
+    pub fn to_rgb8(&self, exposure: f64, encoding: Encoding) -> Vec<u8> {
+        let tone = ToneMap { exposure_ru: exposure, encoding };
+        self.data
+            .iter()
+            .flat_map(|p| tone.to_rgb8(Xyz::from_linear_srgb([p[0] as f64, p[1] as f64, p[2] as f64])))
+            .collect()
+    }
+
+    /// PNG bytes of the tone-mapped image.
+    pub fn encode_png(&self, exposure: f64, encoding: Encoding) -> Result<Vec<u8>, crate::RenderError> {
+        let img = image::RgbImage::from_raw(self.width, self.height, self.to_rgb8(exposure, encoding))
+            .ok_or_else(|| crate::RenderError::Input("image size".into()))?;
+        let mut out = std::io::Cursor::new(Vec::new());
+        img.write_to(&mut out, image::ImageFormat::Png)
+            .map_err(|e| crate::RenderError::Input(format!("cannot encode PNG: {e}")))?;
+        Ok(out.into_inner())
+    }
+
+    /// OpenEXR bytes: linear sRGB × exposure, unclipped (32-bit float).
+    pub fn encode_exr(&self, exposure: f64) -> Result<Vec<u8>, crate::RenderError> {
+        let data: Vec<f32> = self.data.iter().flat_map(|p| p.map(|c| c * exposure as f32)).collect();
+        let img = image::Rgb32FImage::from_raw(self.width, self.height, data)
+            .ok_or_else(|| crate::RenderError::Input("image size".into()))?;
+        let mut out = std::io::Cursor::new(Vec::new());
+        image::DynamicImage::ImageRgb32F(img)
+            .write_to(&mut out, image::ImageFormat::OpenExr)
+            .map_err(|e| crate::RenderError::Input(format!("cannot encode EXR: {e}")))?;
+        Ok(out.into_inner())
+    }
+}
+
+/// The `s`-th of `n` sample positions inside a pixel (`[0, 1)²`): the centre for `n = 1`, else the R2
+/// low-discrepancy sequence started at the centre.
+pub fn sample_offset(s: u32, n: u32) -> (f64, f64) {
+    if n <= 1 {
+        return (0.5, 0.5);
+    }
+    const G1: f64 = 0.754_877_666_246_692_7;
+    const G2: f64 = 0.569_840_290_998_053_2;
+    ((0.5 + s as f64 * G1).fract(), (0.5 + s as f64 * G2).fract())
+}
+
+/// Renders `scene` at `width × height` with `spp` samples per pixel. `progress(rows_done)` is called as rows
+/// finish (from worker threads).
+pub fn render(scene: &Scene, width: u32, height: u32, spp: u32, progress: &(dyn Fn(usize) + Sync)) -> Image {
+    let done = std::sync::atomic::AtomicUsize::new(0);
+    let aspect = width as f64 / height as f64;
+    let spp = spp.max(1);
+    let rows: Vec<Vec<[f32; 3]>> = (0..height)
+        .into_par_iter()
+        .map(|row| {
+            let out = (0..width)
+                .map(|col| {
+                    let mut acc = [0.0; 3];
+                    for s in 0..spp {
+                        let (jx, jy) = sample_offset(s, spp);
+                        let x = -1.0 + 2.0 * (col as f64 + jx) / width as f64;
+                        let y = 1.0 - 2.0 * (row as f64 + jy) / height as f64;
+                        if let Some((o, d)) = scene.camera.ray(x, y, aspect) {
+                            acc = add(acc, scene.primary(o, d));
+                        }
+                    }
+                    mul(acc, 1.0 / spp as f64).map(|c| c as f32)
+                })
+                .collect();
+            progress(done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1);
+            out
+        })
+        .collect();
+    Image { width, height, data: rows.into_iter().flatten().collect() }
+}
+
+impl Scene {
+    /// The nearest surface along a ray.
+    pub fn intersect(&self, o: V3, d: V3, t_max: f64) -> Option<Hit> {
+        let mut best: Option<Hit> = None;
+        let mut t_max = t_max;
+        for s in &self.spheres {
+            if let Some(h) = s.intersect(o, d, t_max) {
+                t_max = h.t;
+                best = Some(h);
+            }
+        }
+        for p in &self.planes {
+            if let Some(h) = p.intersect(o, d, t_max) {
+                t_max = h.t;
+                best = Some(h);
+            }
+        }
+        if let Some((t, b1, b2, r)) = self.bvh.intersect(&self.meshes, o, d, t_max) {
+            best = Some(triangle_hit(&self.meshes[r.mesh as usize], r.tri as usize, o, d, t, b1, b2));
+        }
+        best
+    }
+
+    /// Whether something opaque lies between `p` and a light `dist` away along `wi`.
+    fn occluded(&self, p: V3, wi: V3, dist: f64) -> bool {
+        let mut o = p;
+        let mut left = dist;
+        for _ in 0..16 {
+            match self.intersect(o, wi, left) {
+                None => return false,
+                Some(h) if self.materials[h.material].transmissive() => {
+                    o = add(h.p, mul(wi, eps(h.p)));
+                    left -= h.t;
+                }
+                Some(_) => return true,
+            }
+        }
+        true
+    }
+
+    /// Radiance (linear sRGB, RU) seen along a camera ray.
+    pub fn primary(&self, o: V3, d: V3) -> Rgb {
+        match self.intersect(o, d, f64::INFINITY) {
+            Some(h) => self.shade(&h, d, 0),
+            None if self.environment_visible => self.environment.radiance(d),
+            None => self.output.background,
+        }
+    }
+
+    fn trace(&self, o: V3, d: V3, depth: u32) -> Rgb {
+        if depth > self.output.max_depth {
+            return self.environment.radiance(d);
+        }
+        match self.intersect(o, d, f64::INFINITY) {
+            Some(h) => self.shade(&h, d, depth),
+            None => self.environment.radiance(d),
+        }
+    }
+
+    /// Lights visible from a hit: (direction to the light, irradiance).
+    fn lights_at(&self, h: &Hit) -> Vec<(V3, Rgb)> {
+        let o = add(h.p, mul(h.ng, eps(h.p)));
+        self.lights
+            .iter()
+            .filter_map(|l| {
+                let (wi, dist, e) = l.arrive(h.p);
+                (dot(wi, h.ng) > 0.0 && !self.occluded(o, wi, dist)).then_some((wi, e))
+            })
+            .collect()
+    }
+
+    fn color(&self, c: &ColorSource, uv: [f64; 2]) -> Rgb {
+        c.at(uv, &self.textures)
+    }
+
+    fn shade_microfacet(&self, m: &Microfacet, h: &Hit, wo: V3, depth: u32, with_env: bool) -> Rgb {
+        let albedo = self.color(&m.color, h.uv);
+        let mut out = [0.0; 3];
+        for (wi, e) in self.lights_at(h) {
+            out = add(out, hadamard(m.reflect(h.n, wi, wo, albedo), e));
+        }
+        let ambient = self.environment.mean();
+        out = add(out, mul(hadamard(albedo, ambient), 1.0 - m.metallic));
+        if with_env {
+            // Environment reflection: the mirror direction, blurred towards the mean radiance with roughness.
+            let f = m.mirror_fresnel(dot(h.n, wo), albedo);
+            let r = reflect(wo, h.n);
+            let mirror = if m.roughness < 0.6 && depth < self.output.max_depth {
+                self.trace(add(h.p, mul(h.ng, eps(h.p))), r, depth + 1)
+            } else {
+                ambient
+            };
+            let rough = (m.roughness / 0.6).min(1.0);
+            let l = [0, 1, 2].map(|k| mirror[k] * (1.0 - rough) + ambient[k] * rough);
+            out = add(out, hadamard(f, l));
+        }
+        out
+    }
+
+    fn shade(&self, h: &Hit, d: V3, depth: u32) -> Rgb {
+        let wo = mul(d, -1.0);
+        match &self.materials[h.material] {
+            Material::Lambert { color } => {
+                let albedo = self.color(color, h.uv);
+                let mut out = hadamard(albedo, self.environment.mean());
+                for (wi, e) in self.lights_at(h) {
+                    out = add(out, mul(hadamard(albedo, e), dot(h.n, wi).max(0.0)));
+                }
+                out
+            }
+            Material::Microfacet(m) => self.shade_microfacet(m, h, wo, depth, true),
+            Material::Diffraction(df) => {
+                let t = df.orientation.tangent(h, &self.textures);
+                let tex = self.color(&df.texture, h.uv);
+                let mut out = mul(tex, df.ambient);
+                for (wi, e) in self.lights_at(h) {
+                    out = add(out, df.shade_light(h, t, wi, wo, e, tex));
+                }
+                out
+            }
+            Material::ThinFilm(f) => {
+                let cos = dot(h.n, wo).clamp(0.0, 1.0);
+                let (r, t) = f.colors(cos, f.offset_nm(h.uv, &self.textures));
+                let r_rgb = mul(r.to_linear_srgb(), f.factor);
+                let refl = self.trace(add(h.p, mul(h.ng, eps(h.p))), reflect(wo, h.n), depth + 1);
+                let mut out = hadamard(r_rgb, refl);
+                if f.transmission {
+                    let through = self.trace(add(h.p, mul(h.ng, -eps(h.p))), d, depth + 1);
+                    out = add(out, hadamard(mul(t.to_linear_srgb(), f.factor), through));
+                }
+                if let Some(base) = &f.base {
+                    let below = self.shade_microfacet(base, h, wo, depth, f.factor < 1.0);
+                    out = add(out, mul(below, (1.0 - f.factor * r.y).max(0.0)));
+                }
+                out
+            }
+        }
+    }
+}
+
+/// Ray offset that clears the surface at `p` without skipping thin features.
+fn eps(p: V3) -> f64 {
+    1e-7 * (1.0 + p[0].abs().max(p[1].abs()).max(p[2].abs()))
+}

@@ -1,0 +1,814 @@
+//! The TOML scene format (documented with examples in `docs/render.md`) and the scene it builds.
+//!
+//! Every section is a flat table with a `kind` key; unknown keys are refused, and every error names the file,
+//! the line and the key. Paths are relative to the scene file.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use iridis_color::units::{parse_angle_rad, parse_length_nm};
+use iridis_color::{Encoding, Illuminant};
+use iridis_diffraction::table::{Lookup, Precision, TableParams};
+use iridis_diffraction::{Fresnel, Shading};
+use serde::Deserialize;
+use toml::Spanned;
+
+use crate::bvh::Bvh;
+use crate::camera::{frame, Camera};
+use crate::error::RenderError;
+use crate::geometry::{snake_mesh, Mesh, Plane, SnakeParams, Sphere};
+use crate::light::{equirect_mean, illuminant_tint, Environment, Light, Rgb};
+use crate::material::*;
+use crate::math::*;
+use crate::texture::{TexKind, Texture};
+
+/// Image settings.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Output {
+    pub width: u32,
+    pub height: u32,
+    pub spp: u32,
+    /// Exposure in RU (PHYSICS.md): linear colours are multiplied by it before clipping and encoding.
+    pub exposure: f64,
+    pub encoding: Encoding,
+    /// Linear sRGB shown where a primary ray leaves the scene and the environment is hidden.
+    pub background: Rgb,
+    /// Reflection/transmission bounces before the environment takes over.
+    pub max_depth: u32,
+}
+
+/// A scene ready to render.
+#[derive(Debug)]
+pub struct Scene {
+    pub camera: Camera,
+    pub lights: Vec<Light>,
+    pub environment: Environment,
+    /// Whether primary rays that miss show the environment (else `output.background`).
+    pub environment_visible: bool,
+    pub meshes: Vec<Mesh>,
+    pub spheres: Vec<Sphere>,
+    pub planes: Vec<Plane>,
+    pub materials: Vec<Material>,
+    pub material_names: Vec<String>,
+    pub textures: Vec<Texture>,
+    pub bvh: Bvh,
+    pub output: Output,
+    /// Notes for the user (normals computed, tangents generated, …).
+    pub notes: Vec<String>,
+}
+
+// ---------------------------------------------------------------- the file format (serde)
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SceneFile {
+    #[serde(default)]
+    output: OutputDef,
+    camera: Spanned<CameraDef>,
+    #[serde(default)]
+    light: Vec<Spanned<LightDef>>,
+    environment: Option<Spanned<EnvDef>>,
+    #[serde(default)]
+    textures: BTreeMap<String, Spanned<TextureDef>>,
+    #[serde(default)]
+    materials: BTreeMap<String, Spanned<MaterialDef>>,
+    #[serde(default)]
+    object: Vec<Spanned<ObjectDef>>,
+}
+
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct OutputDef {
+    size: Option<[u32; 2]>,
+    spp: Option<u32>,
+    exposure: Option<f64>,
+    encoding: Option<String>,
+    background: Option<[f64; 3]>,
+    max_depth: Option<u32>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CameraDef {
+    kind: Option<String>,
+    position: Option<[f64; 3]>,
+    look_at: Option<[f64; 3]>,
+    up: Option<[f64; 3]>,
+    fov: Option<String>,
+    height: Option<f64>,
+    target: Option<[f64; 3]>,
+    normal: Option<[f64; 3]>,
+    distance: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LightDef {
+    kind: String,
+    direction: Option<[f64; 3]>,
+    position: Option<[f64; 3]>,
+    intensity: Option<f64>,
+    spectrum: Option<String>,
+    color: Option<[f64; 3]>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct EnvDef {
+    kind: String,
+    color: Option<[f64; 3]>,
+    zenith: Option<[f64; 3]>,
+    horizon: Option<[f64; 3]>,
+    ground: Option<[f64; 3]>,
+    file: Option<String>,
+    intensity: Option<f64>,
+    rotation: Option<String>,
+    visible: Option<bool>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TextureDef {
+    kind: String,
+    file: Option<String>,
+    scale: Option<f64>,
+    octaves: Option<u32>,
+    seed: Option<u32>,
+    from: Option<f64>,
+    to: Option<f64>,
+    along: Option<String>,
+    base: Option<[f64; 3]>,
+    edge: Option<[f64; 3]>,
+    a: Option<[f64; 3]>,
+    b: Option<[f64; 3]>,
+    n: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MaterialDef {
+    kind: String,
+    color: Option<[f64; 3]>,
+    texture: Option<String>,
+    roughness: Option<f64>,
+    metallic: Option<f64>,
+    ior: Option<f64>,
+    table: Option<String>,
+    uv_resolution: Option<usize>,
+    orientation: Option<String>,
+    orientation_texture: Option<String>,
+    direction: Option<[f64; 3]>,
+    angle: Option<String>,
+    scale_ru: Option<f64>,
+    w_diffuse: Option<f64>,
+    ambient: Option<f64>,
+    fresnel_n: Option<f64>,
+    stack: Option<String>,
+    svt: Option<String>,
+    d_rel: Option<String>,
+    transmission: Option<bool>,
+    base: Option<String>,
+    factor: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ObjectDef {
+    kind: String,
+    material: Option<String>,
+    center: Option<[f64; 3]>,
+    radius: Option<f64>,
+    normal: Option<[f64; 3]>,
+    tangent: Option<[f64; 3]>,
+    size: Option<[f64; 2]>,
+    file: Option<String>,
+    translate: Option<[f64; 3]>,
+    scale: Option<f64>,
+    rotate: Option<[f64; 3]>,
+    length: Option<f64>,
+    waves: Option<f64>,
+    amplitude: Option<f64>,
+    rings: Option<usize>,
+    segments: Option<usize>,
+    tiles: Option<[f64; 2]>,
+}
+
+// ---------------------------------------------------------------- loading
+
+/// Reads a scene file (TOML, or a glTF 2.0 file `.gltf`/`.glb` rendered with a default camera and light).
+pub fn load_scene(path: &Path) -> Result<Scene, RenderError> {
+    let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
+    if ext == "gltf" || ext == "glb" {
+        return crate::gltf_io::scene_from_gltf(path);
+    }
+    let text = std::fs::read_to_string(path).map_err(|e| {
+        RenderError::Input(format!("cannot read scene {}: {e} (check the path; scenes are TOML files)", path.display()))
+    })?;
+    let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
+    parse_scene(&text, &path.display().to_string(), &base)
+}
+
+/// 1-based line of a byte offset.
+fn line_of(text: &str, offset: usize) -> usize {
+    text[..offset.min(text.len())].bytes().filter(|&b| b == b'\n').count() + 1
+}
+
+struct Ctx<'a> {
+    text: &'a str,
+    name: &'a str,
+    base: PathBuf,
+}
+
+impl Ctx<'_> {
+    fn err(&self, span: std::ops::Range<usize>, msg: impl Into<String>) -> RenderError {
+        RenderError::Scene { path: self.name.to_string(), line: line_of(self.text, span.start), message: msg.into() }
+    }
+    fn path(&self, p: &str) -> PathBuf {
+        self.base.join(p)
+    }
+}
+
+fn need<T: Copy>(
+    v: Option<T>,
+    ctx: &Ctx,
+    span: &std::ops::Range<usize>,
+    what: &str,
+    key: &str,
+) -> Result<T, RenderError> {
+    v.ok_or_else(|| ctx.err(span.clone(), format!("{what}: missing key `{key}`")))
+}
+
+fn angle(
+    s: &Option<String>,
+    ctx: &Ctx,
+    span: &std::ops::Range<usize>,
+    key: &str,
+    default: f64,
+) -> Result<f64, RenderError> {
+    match s {
+        None => Ok(default),
+        Some(s) => parse_angle_rad(s).map_err(|e| ctx.err(span.clone(), format!("`{key}` = \"{s}\": {e}"))),
+    }
+}
+
+/// Parses scene text. `name` is used in messages; relative paths are resolved against `base`.
+pub fn parse_scene(text: &str, name: &str, base: &Path) -> Result<Scene, RenderError> {
+    let file: SceneFile = toml::from_str(text).map_err(|e| {
+        let line = e.span().map(|s| line_of(text, s.start)).unwrap_or(1);
+        let src = text.lines().nth(line - 1).unwrap_or("").trim();
+        let message = if src.is_empty() { e.message().to_string() } else { format!("{} (in `{src}`)", e.message()) };
+        RenderError::Scene { path: name.to_string(), line, message }
+    })?;
+    let ctx = Ctx { text, name, base: base.to_path_buf() };
+    let mut notes = Vec::new();
+
+    // Output
+    let o = &file.output;
+    let [width, height] = o.size.unwrap_or([512, 512]);
+    let encoding = Encoding::parse(o.encoding.as_deref().unwrap_or("srgb"))
+        .map_err(|e| ctx.err(0..0, format!("[output] encoding: {e}")))?;
+    let output = Output {
+        width,
+        height,
+        spp: o.spp.unwrap_or(1),
+        exposure: o.exposure.unwrap_or(1.0),
+        encoding,
+        background: o.background.unwrap_or([0.0; 3]),
+        max_depth: o.max_depth.unwrap_or(6),
+    };
+    if !(output.exposure.is_finite() && output.exposure > 0.0) {
+        return Err(ctx.err(0..0, "[output] `exposure` must be a positive number of RU"));
+    }
+
+    let camera = build_camera(&file.camera, &ctx)?;
+
+    // Textures
+    let mut textures = Vec::new();
+    let mut tex_index = BTreeMap::new();
+    for (name, def) in &file.textures {
+        let span = def.span();
+        let t = build_texture(name, def.get_ref(), &span, &ctx)?;
+        tex_index.insert(name.clone(), (textures.len(), span));
+        textures.push(t);
+    }
+    let texture_ref = |tname: &str, kind: TexKind, span: &std::ops::Range<usize>, key: &str| {
+        let (i, _) = tex_index.get(tname).ok_or_else(|| {
+            ctx.err(span.clone(), format!("`{key}` = \"{tname}\": no texture of that name in [textures]"))
+        })?;
+        let k = textures[*i].kind();
+        if k != kind {
+            return Err(ctx.err(
+                span.clone(),
+                format!(
+                    "`{key}` = \"{tname}\": a {} texture is needed here, but \"{tname}\" is a {} texture",
+                    kind.name(),
+                    k.name()
+                ),
+            ));
+        }
+        Ok(*i)
+    };
+
+    // Materials
+    let mut materials = Vec::new();
+    let mut material_names = Vec::new();
+    let mut mat_index = BTreeMap::new();
+    // Thin films may name a base material defined anywhere: build the others first.
+    let mut order: Vec<_> = file.materials.iter().collect();
+    order.sort_by_key(|(_, d)| d.get_ref().base.is_some());
+    for (name, def) in order {
+        let span = def.span();
+        let m = build_material(name, def.get_ref(), &span, &ctx, &texture_ref, &mat_index, &materials)?;
+        mat_index.insert(name.clone(), materials.len());
+        materials.push(m);
+        material_names.push(name.clone());
+    }
+
+    // Lights
+    let mut lights = Vec::new();
+    for l in &file.light {
+        lights.push(build_light(l.get_ref(), &l.span(), &ctx)?);
+    }
+    let (environment, environment_visible) = match &file.environment {
+        None => (Environment::None, false),
+        Some(e) => build_env(e.get_ref(), &e.span(), &ctx)?,
+    };
+
+    // Objects
+    let mut meshes = Vec::new();
+    let mut spheres = Vec::new();
+    let mut planes = Vec::new();
+    for (k, obj) in file.object.iter().enumerate() {
+        let span = obj.span();
+        let d = obj.get_ref();
+        let what = format!("[[object]] #{} (kind \"{}\")", k + 1, d.kind);
+        let mat = |required: bool| -> Result<Option<usize>, RenderError> {
+            match &d.material {
+                Some(m) => mat_index.get(m).copied().map(Some).ok_or_else(|| {
+                    ctx.err(span.clone(), format!("{what}: `material` = \"{m}\" is not defined in [materials.*]"))
+                }),
+                None if required => Err(ctx.err(span.clone(), format!("{what}: missing key `material`"))),
+                None => Ok(None),
+            }
+        };
+        let transform = {
+            let rot = d.rotate.unwrap_or([0.0; 3]).map(f64::to_radians);
+            Transform {
+                rotation: euler_xyz(rot),
+                scale: d.scale.unwrap_or(1.0),
+                translation: d.translate.unwrap_or([0.0; 3]),
+            }
+        };
+        if !(transform.scale.is_finite() && transform.scale > 0.0) {
+            return Err(ctx.err(span.clone(), format!("{what}: `scale` must be positive")));
+        }
+        match d.kind.as_str() {
+            "sphere" => {
+                let radius = need(d.radius, &ctx, &span, &what, "radius")?;
+                if !(radius > 0.0 && radius.is_finite()) {
+                    return Err(ctx.err(span.clone(), format!("{what}: `radius` must be positive")));
+                }
+                spheres.push(Sphere {
+                    center: d.center.unwrap_or([0.0; 3]),
+                    radius,
+                    material: mat(true)?.unwrap_or(0),
+                });
+            }
+            "plane" => {
+                let normal = try_normalize(d.normal.unwrap_or([0.0, 1.0, 0.0]))
+                    .ok_or_else(|| ctx.err(span.clone(), format!("{what}: `normal` must not be zero")))?;
+                let tangent = orthogonalize(d.tangent.unwrap_or_else(|| any_perpendicular(normal)), normal)
+                    .ok_or_else(|| {
+                        ctx.err(span.clone(), format!("{what}: `tangent` must not be parallel to `normal`"))
+                    })?;
+                planes.push(Plane {
+                    center: d.center.unwrap_or([0.0; 3]),
+                    normal,
+                    tangent,
+                    size: d.size,
+                    material: mat(true)?.unwrap_or(0),
+                });
+            }
+            "snake" => {
+                let def = SnakeParams::default();
+                let p = SnakeParams {
+                    length: d.length.unwrap_or(def.length),
+                    radius: d.radius.unwrap_or(def.radius),
+                    waves: d.waves.unwrap_or(def.waves),
+                    amplitude: d.amplitude.unwrap_or(def.amplitude),
+                    rings: d.rings.unwrap_or(def.rings).clamp(8, 20_000),
+                    segments: d.segments.unwrap_or(def.segments).clamp(6, 2_000),
+                    tiles: d.tiles.unwrap_or(def.tiles),
+                };
+                let mut m = snake_mesh(&p, mat(true)?.unwrap_or(0));
+                m.transform(&transform);
+                meshes.push(m);
+            }
+            "obj" => {
+                let f = d.file.as_ref().ok_or_else(|| ctx.err(span.clone(), format!("{what}: missing key `file`")))?;
+                let m = mat(true)?.unwrap_or(0);
+                let mut ms = crate::obj_io::load_obj(&ctx.path(f), m, &mut notes)?;
+                for mesh in &mut ms {
+                    mesh.transform(&transform);
+                }
+                meshes.extend(ms);
+            }
+            "gltf" => {
+                let f = d.file.as_ref().ok_or_else(|| ctx.err(span.clone(), format!("{what}: missing key `file`")))?;
+                let over = mat(false)?;
+                let loaded = crate::gltf_io::load_gltf(
+                    &ctx.path(f),
+                    &mut materials,
+                    &mut material_names,
+                    &mut textures,
+                    over,
+                    &mut notes,
+                )?;
+                for mut mesh in loaded {
+                    mesh.transform(&transform);
+                    meshes.push(mesh);
+                }
+            }
+            other => {
+                return Err(ctx.err(
+                    span.clone(),
+                    format!("{what}: unknown kind \"{other}\"; use sphere, plane, obj, gltf or snake"),
+                ))
+            }
+        }
+    }
+    if spheres.is_empty() && planes.is_empty() && meshes.is_empty() {
+        notes.push("the scene has no objects: the image shows only the background".into());
+    }
+    // Meshes whose material needs UVs must have them.
+    for m in &meshes {
+        if m.uvs.is_none() && materials[m.material].needs_uv() {
+            return Err(RenderError::Input(format!(
+                "mesh \"{}\" has no texture coordinates (UVs), but its material \"{}\" reads a texture; add UVs \
+                 to the mesh (e.g. Blender: UV > Smart UV Project) or use a material without textures",
+                m.name, material_names[m.material]
+            )));
+        }
+    }
+    let bvh = Bvh::build(&meshes);
+    Ok(Scene {
+        camera,
+        lights,
+        environment,
+        environment_visible,
+        meshes,
+        spheres,
+        planes,
+        materials,
+        material_names,
+        textures,
+        bvh,
+        output,
+        notes,
+    })
+}
+
+fn build_camera(c: &Spanned<CameraDef>, ctx: &Ctx) -> Result<Camera, RenderError> {
+    let span = c.span();
+    let d = c.get_ref();
+    let kind = d.kind.as_deref().unwrap_or("perspective");
+    let up = d.up.unwrap_or([0.0, 1.0, 0.0]);
+    match kind {
+        "perspective" | "orthographic" => {
+            let position = need(d.position, ctx, &span, "[camera]", "position")?;
+            let look_at = d.look_at.unwrap_or([0.0; 3]);
+            let (forward, right, up) = frame(sub(look_at, position), up).ok_or_else(|| {
+                ctx.err(span.clone(), "[camera]: `look_at` must differ from `position` and not lie along `up`")
+            })?;
+            if kind == "perspective" {
+                let fov = angle(&d.fov, ctx, &span, "fov", 40f64.to_radians())?;
+                if !(fov > 0.0 && fov < std::f64::consts::PI) {
+                    return Err(ctx.err(span, "[camera]: `fov` must be between 0deg and 180deg"));
+                }
+                Ok(Camera::Perspective { position, forward, right, up, tan_half: (fov / 2.0).tan() })
+            } else {
+                let h = d.height.unwrap_or(2.0);
+                if !(h.is_finite() && h > 0.0) {
+                    return Err(ctx.err(span, "[camera]: `height` must be positive"));
+                }
+                Ok(Camera::Orthographic { position, forward, right, up, half_height: h / 2.0 })
+            }
+        }
+        "hemisphere" => {
+            let normal = try_normalize(d.normal.unwrap_or([0.0, 0.0, 1.0]))
+                .ok_or_else(|| ctx.err(span.clone(), "[camera]: `normal` must not be zero"))?;
+            let up = orthogonalize(d.up.unwrap_or([0.0, 1.0, 0.0]), normal)
+                .ok_or_else(|| ctx.err(span.clone(), "[camera]: `up` must not be parallel to `normal`"))?;
+            Ok(Camera::Hemisphere {
+                target: d.target.unwrap_or([0.0; 3]),
+                normal,
+                right: cross(up, normal),
+                up,
+                distance: d.distance.unwrap_or(10.0),
+            })
+        }
+        other => {
+            Err(ctx
+                .err(span, format!("[camera]: unknown kind \"{other}\"; use perspective, orthographic or hemisphere")))
+        }
+    }
+}
+
+fn spectrum_tint(s: &Option<String>, ctx: &Ctx, span: &std::ops::Range<usize>) -> Result<Rgb, RenderError> {
+    let name = s.as_deref().unwrap_or("d65");
+    let ill: Illuminant = name.parse().map_err(|e| ctx.err(span.clone(), format!("`spectrum` = \"{name}\": {e}")))?;
+    Ok(illuminant_tint(ill))
+}
+
+fn build_light(d: &LightDef, span: &std::ops::Range<usize>, ctx: &Ctx) -> Result<Light, RenderError> {
+    let what = format!("[[light]] (kind \"{}\")", d.kind);
+    let intensity = d.intensity.unwrap_or(1.0);
+    if !(intensity.is_finite() && intensity >= 0.0) {
+        return Err(ctx.err(span.clone(), format!("{what}: `intensity` must be ≥ 0 (RU)")));
+    }
+    let rgb = mul(hadamard(spectrum_tint(&d.spectrum, ctx, span)?, d.color.unwrap_or([1.0; 3])), intensity);
+    match d.kind.as_str() {
+        "directional" => {
+            let dir = try_normalize(need(d.direction, ctx, span, &what, "direction")?)
+                .ok_or_else(|| ctx.err(span.clone(), format!("{what}: `direction` must not be zero")))?;
+            Ok(Light::Directional { direction: dir, rgb })
+        }
+        "point" => Ok(Light::Point { position: need(d.position, ctx, span, &what, "position")?, rgb }),
+        other => Err(ctx.err(span.clone(), format!("[[light]]: unknown kind \"{other}\"; use directional or point"))),
+    }
+}
+
+fn build_env(d: &EnvDef, span: &std::ops::Range<usize>, ctx: &Ctx) -> Result<(Environment, bool), RenderError> {
+    let intensity = d.intensity.unwrap_or(1.0);
+    let visible = d.visible.unwrap_or(true);
+    let env = match d.kind.as_str() {
+        "uniform" => Environment::Uniform(mul(d.color.unwrap_or([1.0; 3]), intensity)),
+        "sky" => Environment::Sky {
+            zenith: mul(d.zenith.unwrap_or([0.25, 0.45, 0.9]), intensity),
+            horizon: mul(d.horizon.unwrap_or([0.9, 0.92, 0.95]), intensity),
+            ground: mul(d.ground.unwrap_or([0.2, 0.18, 0.15]), intensity),
+        },
+        "map" => {
+            let f = d
+                .file
+                .as_ref()
+                .ok_or_else(|| ctx.err(span.clone(), "[environment] kind \"map\": missing key `file`"))?;
+            let path = ctx.path(f);
+            let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
+            if ext != "exr" && ext != "hdr" {
+                return Err(ctx.err(
+                    span.clone(),
+                    format!("[environment] `file` = \"{f}\": an environment map must be a linear HDR image (.exr or .hdr, equirectangular), not .{ext}"),
+                ));
+            }
+            let tex = Texture::load(&path, TexKind::Color)?;
+            if let Texture::Image { width, height, .. } = &tex {
+                if width != &(2 * height) {
+                    return Err(ctx.err(
+                        span.clone(),
+                        format!("[environment] `file` = \"{f}\" is {width}×{height}; an equirectangular map is twice as wide as high"),
+                    ));
+                }
+            }
+            let mean = equirect_mean(&tex, intensity);
+            Environment::Map {
+                texture: Box::new(tex),
+                rotation: angle(&d.rotation, ctx, span, "rotation", 0.0)?,
+                intensity,
+                mean,
+            }
+        }
+        other => {
+            return Err(
+                ctx.err(span.clone(), format!("[environment]: unknown kind \"{other}\"; use uniform, sky or map"))
+            )
+        }
+    };
+    Ok((env, visible))
+}
+
+fn build_texture(name: &str, d: &TextureDef, span: &std::ops::Range<usize>, ctx: &Ctx) -> Result<Texture, RenderError> {
+    let what = format!("[textures.{name}]");
+    if let Some(kind) = TexKind::parse(&d.kind) {
+        let f = d.file.as_ref().ok_or_else(|| ctx.err(span.clone(), format!("{what}: missing key `file`")))?;
+        return Texture::load(&ctx.path(f), kind).map_err(|e| ctx.err(span.clone(), format!("{what}: {e}")));
+    }
+    Ok(match d.kind.as_str() {
+        "noise" => Texture::Noise { scale: d.scale.unwrap_or(4.0), octaves: d.octaves.unwrap_or(4), seed: d.seed.unwrap_or(1) },
+        "gradient" => Texture::Gradient {
+            from: d.from.unwrap_or(0.0),
+            to: d.to.unwrap_or(1.0),
+            along_u: match d.along.as_deref().unwrap_or("v") {
+                "u" => true,
+                "v" => false,
+                o => return Err(ctx.err(span.clone(), format!("{what}: `along` = \"{o}\": use \"u\" or \"v\""))),
+            },
+        },
+        "scales" => Texture::Scales { base: d.base.unwrap_or([0.05, 0.04, 0.03]), edge: d.edge.unwrap_or([0.01, 0.01, 0.01]) },
+        "checker" => Texture::Checker { a: d.a.unwrap_or([0.8; 3]), b: d.b.unwrap_or([0.2; 3]), n: d.n.unwrap_or(8.0) },
+        other => {
+            return Err(ctx.err(
+                span.clone(),
+                format!("{what}: unknown kind \"{other}\"; use color, grey or vector (with `file`), or noise, gradient, scales, checker"),
+            ))
+        }
+    })
+}
+
+type TexRef<'a> = dyn Fn(&str, TexKind, &std::ops::Range<usize>, &str) -> Result<usize, RenderError> + 'a;
+
+fn color_source(
+    d: &MaterialDef,
+    span: &std::ops::Range<usize>,
+    tex: &TexRef,
+    default: Rgb,
+) -> Result<ColorSource, RenderError> {
+    Ok(match &d.texture {
+        Some(t) => ColorSource::Texture(tex(t, TexKind::Color, span, "texture")?),
+        None => ColorSource::Const(d.color.unwrap_or(default)),
+    })
+}
+
+fn build_material(
+    name: &str,
+    d: &MaterialDef,
+    span: &std::ops::Range<usize>,
+    ctx: &Ctx,
+    tex: &TexRef,
+    mat_index: &BTreeMap<String, usize>,
+    built: &[Material],
+) -> Result<Material, RenderError> {
+    let what = format!("[materials.{name}]");
+    let unit = |v: Option<f64>, key: &str, default: f64| -> Result<f64, RenderError> {
+        let x = v.unwrap_or(default);
+        if !(0.0..=1.0).contains(&x) {
+            return Err(ctx.err(span.clone(), format!("{what}: `{key}` = {x} must lie in [0, 1]")));
+        }
+        Ok(x)
+    };
+    match d.kind.as_str() {
+        "lambert" => Ok(Material::Lambert { color: color_source(d, span, tex, [0.5; 3])? }),
+        "microfacet" => Ok(Material::Microfacet(Microfacet {
+            color: color_source(d, span, tex, [0.5; 3])?,
+            roughness: unit(d.roughness, "roughness", 0.3)?,
+            metallic: unit(d.metallic, "metallic", 0.0)?,
+            ior: d.ior.unwrap_or(1.5),
+        })),
+        "diffraction" => {
+            let table = d.table.as_ref().ok_or_else(|| {
+                ctx.err(
+                    span.clone(),
+                    format!("{what}: missing key `table` (a .npz from `iridis precompute`, or \"builtin:elaphe\")"),
+                )
+            })?;
+            let params = TableParams { uv_resolution: d.uv_resolution.unwrap_or(101), uv_power: 5.0 };
+            if !(16..=2001).contains(&params.uv_resolution) {
+                return Err(ctx.err(span.clone(), format!("{what}: `uv_resolution` must be between 16 and 2001")));
+            }
+            let t = crate::tables::load_table(table, &ctx.base, params)
+                .map_err(|e| ctx.err(span.clone(), format!("{what}: {e}")))?;
+            let fresnel_n = d.fresnel_n.unwrap_or(1.5);
+            let shading = Shading { fresnel: Arc::new(Fresnel::Schlick { n: fresnel_n }), shadowing: true };
+            let lookup =
+                Lookup::new(t, shading, Precision::F64).map_err(|e| ctx.err(span.clone(), format!("{what}: {e}")))?;
+            let rule = match d.orientation.as_deref().unwrap_or("tangent") {
+                "tangent" => OrientRule::Tangent,
+                "along" => OrientRule::Along,
+                "direction" => OrientRule::Direction(need(d.direction, ctx, span, &what, "direction")?),
+                "texture" => {
+                    let t = d.orientation_texture.as_ref().ok_or_else(|| {
+                        ctx.err(span.clone(), format!("{what}: orientation \"texture\" needs `orientation_texture`"))
+                    })?;
+                    OrientRule::Texture(tex(t, TexKind::Vector, span, "orientation_texture")?)
+                }
+                o => {
+                    return Err(ctx.err(
+                        span.clone(),
+                        format!("{what}: `orientation` = \"{o}\": use tangent, along, direction or texture"),
+                    ))
+                }
+            };
+            let scale_ru = d.scale_ru.unwrap_or(1.0);
+            if !(scale_ru.is_finite() && scale_ru >= 0.0) {
+                return Err(ctx.err(span.clone(), format!("{what}: `scale_ru` must be ≥ 0")));
+            }
+            Ok(Material::Diffraction(Box::new(Diffraction {
+                evaluator: Arc::new(lookup),
+                orientation: Orientation { rule, angle: angle(&d.angle, ctx, span, "angle", 0.0)? },
+                scale_ru,
+                w_diffuse: unit(d.w_diffuse, "w_diffuse", 0.0)?,
+                texture: color_source(d, span, tex, [0.0; 3])?,
+                ambient: d.ambient.unwrap_or(0.0).max(0.0),
+                fresnel_n,
+                description: table.clone(),
+            })))
+        }
+        "thinfilm" => {
+            let s = d.stack.as_ref().ok_or_else(|| {
+                ctx.err(span.clone(), format!("{what}: missing key `stack`, e.g. \"air | water 400nm | air\""))
+            })?;
+            let stack: iridis_thinfilm::Stack =
+                s.parse().map_err(|e| ctx.err(span.clone(), format!("{what}: `stack` = \"{s}\": {e}")))?;
+            let svt = match &d.svt {
+                None => None,
+                Some(t) => {
+                    let d_rel = match &d.d_rel {
+                        Some(x) => parse_length_nm(x)
+                            .map_err(|e| ctx.err(span.clone(), format!("{what}: `d_rel` = \"{x}\": {e}")))?,
+                        None => {
+                            return Err(ctx.err(
+                                span.clone(),
+                                format!("{what}: `svt` needs `d_rel`, the thickness variation, e.g. \"150nm\""),
+                            ))
+                        }
+                    };
+                    Some(Svt { texture: tex(t, TexKind::Grey, span, "svt")?, d_rel_nm: d_rel })
+                }
+            };
+            let base = match &d.base {
+                None => None,
+                Some(b) => match mat_index.get(b).map(|&i| &built[i]) {
+                    Some(Material::Lambert { color }) => {
+                        Some(Microfacet { color: *color, roughness: 1.0, metallic: 0.0, ior: 1.0 })
+                    }
+                    Some(Material::Microfacet(m)) => Some(*m),
+                    _ => {
+                        return Err(ctx.err(
+                            span.clone(),
+                            format!("{what}: `base` = \"{b}\" must name a lambert or microfacet material"),
+                        ))
+                    }
+                },
+            };
+            let mut film = ThinFilm::new(stack, svt, d.transmission.unwrap_or(false))
+                .map_err(|e| ctx.err(span.clone(), format!("{what}: {e}")))?;
+            film.base = base;
+            film.factor = unit(d.factor, "factor", 1.0)?;
+            Ok(Material::ThinFilm(Box::new(film)))
+        }
+        other => Err(ctx.err(
+            span.clone(),
+            format!("{what}: unknown kind \"{other}\"; use lambert, microfacet, diffraction or thinfilm"),
+        )),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(t: &str) -> Result<Scene, RenderError> {
+        parse_scene(t, "test.toml", Path::new("."))
+    }
+
+    const OK: &str = r#"
+[output]
+size = [32, 24]
+[camera]
+position = [0, 0, 5]
+[[light]]
+kind = "directional"
+direction = [0, 1, 1]
+[materials.grey]
+kind = "lambert"
+[[object]]
+kind = "sphere"
+radius = 1
+material = "grey"
+"#;
+
+    #[test]
+    fn a_minimal_scene_parses() {
+        let s = parse(OK).unwrap();
+        assert_eq!((s.output.width, s.output.height), (32, 24));
+        assert_eq!(s.spheres.len(), 1);
+    }
+
+    #[test]
+    fn errors_name_line_and_key() {
+        let e = parse(&OK.replace("radius = 1", "radius = \"big\"")).unwrap_err().to_string();
+        assert!(e.starts_with("test.toml:13:") && e.contains("invalid type") && e.contains("radius = \"big\""), "{e}");
+        let e = parse(&OK.replace("radius = 1", "radus = 1")).unwrap_err().to_string();
+        assert!(e.contains("radus") && e.contains("test.toml:13"), "{e}");
+        let e = parse(&OK.replace("material = \"grey\"", "material = \"gray\"")).unwrap_err().to_string();
+        assert!(e.contains("test.toml:11:") && e.contains("\"gray\" is not defined"), "{e}");
+        let e = parse(&OK.replace("radius = 1\n", "")).unwrap_err().to_string();
+        assert!(e.contains("missing key `radius`"), "{e}");
+        let e =
+            parse(&OK.replace("kind = \"lambert\"", "kind = \"lambert\"\ntexture = \"nope\"")).unwrap_err().to_string();
+        assert!(e.contains("no texture of that name"), "{e}");
+        let e = parse(&OK.replace("[camera]\nposition = [0, 0, 5]", "[camera]\nposition = [0, 0, 5\n"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("test.toml:"), "{e}");
+    }
+
+    #[test]
+    fn texture_kinds_are_checked() {
+        let t = OK.replace("kind = \"lambert\"", "kind = \"lambert\"\ntexture = \"n\"")
+            + "[textures.n]\nkind = \"noise\"\n";
+        let e = parse(&t).unwrap_err().to_string();
+        assert!(e.contains("a color texture is needed here") && e.contains("grey texture"), "{e}");
+    }
+}
