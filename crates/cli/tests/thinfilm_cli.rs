@@ -146,7 +146,7 @@ fn bad_input_names_the_token() {
         &["thinfilm", "spectrum", "--stack", "air | Si 108nm | glass", "--to", "900nm"],
         &["830 nm", "826.6", "no extrapolation"],
     );
-    assert_fails(&["thinfilm", "color", "--stack", "air | TiO2 50nm | glass"], &["tio2", "430"]);
+    assert_fails(&["thinfilm", "color", "--stack", "air | rutile 50nm | glass"], &["rutile", "430"]);
     assert_fails(&["thinfilm", "chart", "--stack", "air | water 5nm | air"], &["{d}"]);
     let dir = temp_dir();
     let bad = dir.join("bad.yml");

@@ -176,7 +176,14 @@ const LIBRARY: &[(&[&str], &str, Builtin)] = &[
         Builtin::File("mgf2_dodge_o.yml", include_str!("../../../data/materials/mgf2_dodge_o.yml")),
     ),
     (
-        &["tio2", "rutile"],
+        // A deposited film covers the whole visible band (and is what coatings are made of); bulk rutile
+        // starts at 430 nm, so it is not the default.
+        &["tio2"],
+        "TiO2 thin film (200 nm on glass), Sarkar et al. 2019, 300–1690 nm",
+        Builtin::File("tio2_sarkar.yml", include_str!("../../../data/materials/tio2_sarkar.yml")),
+    ),
+    (
+        &["rutile", "tio2-rutile"],
         "TiO2 (rutile) ordinary ray, Devore 1951, 430–1530 nm",
         Builtin::File("tio2_devore_o.yml", include_str!("../../../data/materials/tio2_devore_o.yml")),
     ),
@@ -343,9 +350,13 @@ mod tests {
         let n = au.index_at(0.5 * (616.8 + 659.5)).unwrap();
         assert!((n.re - 0.175).abs() < 1e-12 && (n.im - 3.4845).abs() < 1e-12);
         // Rutile (Devore): n² = 5.913 + 0.2441/(λ² − 0.0803) at 0.5 µm.
-        let tio2 = Material::builtin("TiO2").unwrap();
+        let rutile = Material::builtin("rutile").unwrap();
         let expect = (5.913f64 + 0.2441 / (0.25 - 0.0803)).sqrt();
-        assert!((tio2.index_at(500.0).unwrap().re - expect).abs() < 1e-12);
+        assert!((rutile.index_at(500.0).unwrap().re - expect).abs() < 1e-12);
+        // TiO2 film (Sarkar et al.): the table's rows at 550 nm and 330 nm (absorbing below ~365 nm).
+        let tio2 = Material::builtin("TiO2").unwrap();
+        assert!((tio2.index_at(550.0).unwrap() - Complex64::new(2.164358, 0.0)).norm() < 1e-12);
+        assert!((tio2.index_at(330.0).unwrap() - Complex64::new(2.747194, 0.179225)).norm() < 1e-12);
         // Chitin (Leertouwer et al.): 1.517 + 8800/λ² with λ in nm.
         let chitin = Material::builtin("chitin").unwrap();
         assert!((chitin.index_at(500.0).unwrap().re - (1.517 + 8800.0 / 250000.0)).abs() < 1e-12);
@@ -357,8 +368,8 @@ mod tests {
         let e = si.index_at(900.0).unwrap_err();
         assert!(matches!(e, ThinFilmError::OutOfRange { .. }), "{e}");
         assert!(e.to_string().contains("Si") || e.to_string().contains("si"), "{e}");
-        let tio2 = Material::builtin("tio2").unwrap();
-        assert!(tio2.index_at(400.0).is_err());
+        let rutile = Material::builtin("rutile").unwrap();
+        assert!(rutile.index_at(400.0).is_err());
     }
 
     #[test]

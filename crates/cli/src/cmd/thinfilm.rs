@@ -52,7 +52,7 @@ JSON: {\"reflected\":{\"XYZ\",\"xyY\",\"Lab\",\"linear_srgb\",\"srgb\",\"hex\"},
 Examples:
   iridis thinfilm color --stack \"air | water 348nm | air\"
   iridis thinfilm color --stack \"air | gasoline 216nm | water 220nm | asphalt\" --angle 30deg --json
-  iridis thinfilm color --stack \"air | TiO2 60nm | glass\" --from 430nm --to 780nm --illuminant d50")]
+  iridis thinfilm color --stack \"air | TiO2 60nm | glass\" --illuminant d50")]
     Color(ColorArgs),
     /// The soap-film colour chart (Sussenbach Figure 5.11): colour against the thickness of one layer.
     #[command(after_help = "\
