@@ -1,0 +1,311 @@
+//! The thin-film shader (`shaders/film.wgsl`): film colours over an image, after Sussenbach ch. 4.
+//!
+//! A [`FilmFrame`] puts the incidence angle on the x axis (linear from the first to the last column) and a
+//! thickness offset on the y axis (linear from the top row to the bottom row), plus optionally a spatially
+//! varying thickness texture: `offset += d_rel (2α − 1)` (eq. 4.3–4.4). Every layer's thickness is its
+//! stack thickness plus the offset, clamped at 0, exactly as [`iridis_thinfilm::Stack::evaluate_offset`].
+//! Per pixel and wavelength sample the shader runs the recurrence of eq. 3.1–3.10 with complex indices
+//! (absorbing and dispersive media: the indices are tabulated per wavelength sample on the CPU), and sums
+//! `XYZ = Σ_λ w(λ) R(λ)` (and the same for T) with the weights of [`iridis_color::SpectralWeights`].
+//!
+//! Not on the GPU: the CPU's treatment of a layer at exactly its critical angle (`|cos| < 1e-5`, averaged
+//! over `cos² ± δ²`; `iridis_thinfilm::recurrence::grazing_variants`) — in `f32` such a pixel is evaluated
+//! directly. It needs a layer of lower index than the incident medium (e.g. an air gap in glass).
+
+use std::time::Duration;
+
+use iridis_color::{SpectralWeights, ToneMap, Xyz};
+use iridis_thinfilm::Stack;
+use rayon::prelude::*;
+use wgpu::util::DeviceExt;
+
+use crate::lookup::{display_buffer, entry, storage_out};
+use crate::{unpack_rgb8, Gpu, GpuError, COMMON_WGSL};
+
+/// Angles and thicknesses over an image.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FilmFrame {
+    pub width: usize,
+    pub height: usize,
+    /// Incidence angle (rad) of the first and the last column, each in [0, π/2].
+    pub angle_rad: (f64, f64),
+    /// Thickness offset (nm) of the top and the bottom row, added to every layer.
+    pub offset_nm: (f64, f64),
+    /// Spatially varying thickness: `d_rel` (nm) and the grey texture α ∈ [0, 1], `width × height`, row-major.
+    pub svt: Option<(f64, Vec<f32>)>,
+}
+
+impl FilmFrame {
+    /// The incidence angle (rad) and thickness offset (nm) of a pixel: the definition the shader evaluates
+    /// in `f32` and the CPU reference in `f64`.
+    pub fn pixel(&self, col: usize, row: usize) -> (f64, f64) {
+        let fx = col as f64 / (self.width.max(2) - 1) as f64;
+        let fy = row as f64 / (self.height.max(2) - 1) as f64;
+        let theta = self.angle_rad.0 + (self.angle_rad.1 - self.angle_rad.0) * fx;
+        let mut offset = self.offset_nm.0 + (self.offset_nm.1 - self.offset_nm.0) * fy;
+        if let Some((d_rel, alpha)) = &self.svt {
+            offset += iridis_thinfilm::stack::svt_offset(*d_rel, alpha[row * self.width + col] as f64);
+        }
+        (theta, offset)
+    }
+
+    fn check(&self) -> Result<(), GpuError> {
+        if self.width == 0 || self.height == 0 || self.width > 16384 || self.height > 16384 {
+            return Err(GpuError::Invalid(format!(
+                "frame {}×{} must be between 1×1 and 16384×16384 pixels",
+                self.width, self.height
+            )));
+        }
+        let (a, b) = self.angle_rad;
+        let ok = |t: f64| t.is_finite() && (0.0..=std::f64::consts::FRAC_PI_2).contains(&t);
+        if !(ok(a) && ok(b)) {
+            return Err(GpuError::Invalid(format!(
+                "incidence angles {:.3}°…{:.3}° must lie in 0°–90°",
+                a.to_degrees(),
+                b.to_degrees()
+            )));
+        }
+        if !(self.offset_nm.0.is_finite() && self.offset_nm.1.is_finite()) {
+            return Err(GpuError::Invalid("thickness offsets must be finite".into()));
+        }
+        if let Some((d_rel, alpha)) = &self.svt {
+            if alpha.len() != self.width * self.height {
+                return Err(GpuError::Invalid(format!(
+                    "the SVT texture has {} values for a {}×{} frame",
+                    alpha.len(),
+                    self.width,
+                    self.height
+                )));
+            }
+            if !d_rel.is_finite() || alpha.iter().any(|a| !(0.0..=1.0).contains(a)) {
+                return Err(GpuError::Invalid("SVT: d_rel must be finite and every α in [0, 1]".into()));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Film colours read back: reflected and transmitted XYZ per pixel (row-major) and the displayed reflected
+/// colour as 8-bit sRGB.
+#[derive(Debug, Clone)]
+pub struct FilmOutput {
+    pub width: usize,
+    pub height: usize,
+    pub reflected: Vec<Xyz>,
+    pub transmitted: Vec<Xyz>,
+    pub rgb8: Vec<u8>,
+}
+
+/// A stack, its indices at every wavelength sample and the colour weights, on the GPU.
+#[derive(Debug)]
+pub struct GpuFilm<'g> {
+    gpu: &'g Gpu,
+    pipeline: wgpu::ComputePipeline,
+    media: wgpu::Buffer,
+    thickness: wgpu::Buffer,
+    weights: wgpu::Buffer,
+    n_media: u32,
+    n_lambda: u32,
+}
+
+/// Buffers for repeated frames (the benchmark's loop).
+#[derive(Debug)]
+pub struct FilmRun<'a, 'g> {
+    film: &'a GpuFilm<'g>,
+    width: usize,
+    height: usize,
+    bind: wgpu::BindGroup,
+    out_xyz: wgpu::Buffer,
+    out_rgba: wgpu::Buffer,
+}
+
+impl<'g> GpuFilm<'g> {
+    /// Tabulates the stack's complex indices at the weights' wavelengths (an error names a material without
+    /// data there) and compiles the shader.
+    pub fn new(gpu: &'g Gpu, stack: &Stack, weights: &SpectralWeights) -> Result<Self, GpuError> {
+        let grid = weights.wavelengths_nm();
+        let n_media = stack.layers.len() + 2;
+        let mut media = Vec::with_capacity(grid.len() * n_media * 2);
+        for &l in grid {
+            for (j, m) in stack.materials().enumerate() {
+                let n = m.index_at(l).map_err(|e| GpuError::Invalid(format!("stack {stack}: {e}")))?;
+                if j == 0 && n.im > 0.0 {
+                    return Err(GpuError::Invalid(format!(
+                        "stack {stack}: the incident medium must not absorb (κ = {} at {l} nm)",
+                        n.im
+                    )));
+                }
+                media.extend([n.re as f32, n.im as f32]);
+            }
+        }
+        let mut thick: Vec<f32> = stack.thicknesses().iter().map(|&d| d as f32).collect();
+        if thick.is_empty() {
+            thick.push(0.0);
+        }
+        let w: Vec<f32> = grid
+            .iter()
+            .zip(weights.weights())
+            .flat_map(|(&l, w)| [w[0] as f32, w[1] as f32, w[2] as f32, (std::f64::consts::TAU / l) as f32])
+            .collect();
+        let source = format!("{COMMON_WGSL}\n{}", include_str!("shaders/film.wgsl"));
+        let (media_buf, thick_buf, weights_buf, pipeline) = gpu.checked("uploading the stack", || {
+            let init = |label: &str, data: &[f32]| {
+                gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some(label),
+                    contents: bytemuck::cast_slice(data),
+                    usage: wgpu::BufferUsages::STORAGE,
+                })
+            };
+            let module = gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some("film.wgsl"),
+                source: wgpu::ShaderSource::Wgsl(source.into()),
+            });
+            let pipeline = gpu.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some("iridis film"),
+                layout: None,
+                module: &module,
+                entry_point: Some("film_frame"),
+                compilation_options: Default::default(),
+                cache: None,
+            });
+            (init("film media", &media), init("film thickness", &thick), init("film weights", &w), pipeline)
+        })?;
+        Ok(Self {
+            gpu,
+            pipeline,
+            media: media_buf,
+            thickness: thick_buf,
+            weights: weights_buf,
+            n_media: n_media as u32,
+            n_lambda: grid.len() as u32,
+        })
+    }
+
+    /// Uploads a frame's parameters and SVT texture and allocates its output.
+    pub fn frame(&self, frame: &FilmFrame, tone: ToneMap) -> Result<FilmRun<'_, 'g>, GpuError> {
+        frame.check()?;
+        let gpu = self.gpu;
+        let pixels = (frame.width * frame.height) as u64;
+        gpu.check_storage("the film frame", pixels * 32, "render a smaller frame")?;
+        let f = |v: f64| (v as f32).to_bits();
+        let (flags_svt, d_rel) = match &frame.svt {
+            Some((d, _)) => (1u32, *d),
+            None => (0, 0.0),
+        };
+        let words: [u32; 12] = [
+            frame.width as u32,
+            frame.height as u32,
+            self.n_media,
+            self.n_lambda,
+            f(frame.angle_rad.0),
+            f(frame.angle_rad.1),
+            f(frame.offset_nm.0),
+            f(frame.offset_nm.1),
+            f(d_rel),
+            flags_svt | 2,
+            0,
+            0,
+        ];
+        let alpha: &[f32] = match &frame.svt {
+            Some((_, a)) => a,
+            None => &[0.0],
+        };
+        gpu.checked("allocating the film frame", || {
+            let params = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("film params"),
+                contents: bytemuck::cast_slice(&words),
+                usage: wgpu::BufferUsages::UNIFORM,
+            });
+            let alpha = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("film svt"),
+                contents: bytemuck::cast_slice(alpha),
+                usage: wgpu::BufferUsages::STORAGE,
+            });
+            let display = display_buffer(gpu, tone);
+            let out_xyz = storage_out(gpu, "film xyz", pixels * 32);
+            let out_rgba = storage_out(gpu, "film rgba", pixels * 4);
+            let bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("film bindings"),
+                layout: &self.pipeline.get_bind_group_layout(0),
+                entries: &[
+                    entry(0, &params),
+                    entry(1, &display),
+                    entry(2, &self.media),
+                    entry(3, &self.thickness),
+                    entry(4, &self.weights),
+                    entry(5, &alpha),
+                    entry(6, &out_xyz),
+                    entry(7, &out_rgba),
+                ],
+            });
+            FilmRun { film: self, width: frame.width, height: frame.height, bind, out_xyz, out_rgba }
+        })
+    }
+
+    /// Renders one frame and reads it back.
+    pub fn render(&self, frame: &FilmFrame, tone: ToneMap) -> Result<FilmOutput, GpuError> {
+        let run = self.frame(frame, tone)?;
+        run.run()?;
+        run.read()
+    }
+}
+
+impl FilmRun<'_, '_> {
+    /// Renders the frame and waits for the GPU; returns the time from submission to completion.
+    pub fn run(&self) -> Result<Duration, GpuError> {
+        let gpu = self.film.gpu;
+        let mut enc = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("film") });
+        {
+            let mut pass =
+                enc.begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("film"), timestamp_writes: None });
+            pass.set_pipeline(&self.film.pipeline);
+            pass.set_bind_group(0, &self.bind, &[]);
+            pass.dispatch_workgroups((self.width as u32).div_ceil(8), (self.height as u32).div_ceil(8), 1);
+        }
+        let cmd = enc.finish();
+        gpu.checked("rendering the film frame", || gpu.submit_and_wait(cmd))?
+    }
+
+    /// Reads the last frame back.
+    pub fn read(&self) -> Result<FilmOutput, GpuError> {
+        let gpu = self.film.gpu;
+        let xyz: Vec<f32> = bytemuck::pod_collect_to_vec(&gpu.read_buffer(&self.out_xyz, self.out_xyz.size())?);
+        let words: Vec<u32> = bytemuck::pod_collect_to_vec(&gpu.read_buffer(&self.out_rgba, self.out_rgba.size())?);
+        let px: Vec<Xyz> = xyz.chunks_exact(4).map(|p| Xyz::new(p[0] as f64, p[1] as f64, p[2] as f64)).collect();
+        Ok(FilmOutput {
+            width: self.width,
+            height: self.height,
+            reflected: px.iter().step_by(2).copied().collect(),
+            transmitted: px.iter().skip(1).step_by(2).copied().collect(),
+            rgb8: unpack_rgb8(&words),
+        })
+    }
+}
+
+/// The CPU reference for chosen pixels of a frame (indices `row · width + col`): reflected and transmitted
+/// XYZ from [`Stack::evaluate_offset`] (the general `f64` path, eq. 3.1–3.13) and the same weights, in
+/// parallel.
+pub fn cpu_reference(
+    stack: &Stack,
+    weights: &SpectralWeights,
+    frame: &FilmFrame,
+    pixels: &[usize],
+) -> Result<Vec<(Xyz, Xyz)>, GpuError> {
+    frame.check()?;
+    pixels
+        .par_iter()
+        .map(|&i| {
+            let (theta, offset) = frame.pixel(i % frame.width, i / frame.width);
+            let mut r = Vec::with_capacity(weights.wavelengths_nm().len());
+            let mut t = Vec::with_capacity(r.capacity());
+            for &l in weights.wavelengths_nm() {
+                let x = stack
+                    .evaluate_offset(l, theta, offset)
+                    .map_err(|e| GpuError::Invalid(format!("stack {stack}: {e}")))?;
+                r.push(x.r());
+                t.push(x.t());
+            }
+            Ok((weights.integrate(&r), weights.integrate(&t)))
+        })
+        .collect()
+}

@@ -1,0 +1,216 @@
+//! # iridis-gpu
+//!
+//! The iridis models on the GPU, through [wgpu](https://wgpu.rs) (Vulkan) and WGSL compute shaders, headless:
+//! no window or surface, results are read back to the CPU.
+//!
+//! * [`lookup`]: the paper's lookup shader (Dhillon et al. 2014, eq. 10–12 and sec. 5; Single 2014,
+//!   Algorithm 3 with the tables of sec. 4.4.1): `X = C(ω_i, ω_r) Σ_p w^p I_p(u, v)` with the tables written by
+//!   `iridis precompute` in a storage buffer, bilinear interpolation in the non-linear u-v grid's index space,
+//!   Horner's rule in `w`, the shading factor `C` of eq. 2–4 (Fresnel, geometry, Cook–Torrance shadowing) —
+//!   the numbers of [`iridis_diffraction::Lookup`], evaluated in `f32`. It renders BRDF maps as
+//!   [`iridis_diffraction::map::brdf_map`] does.
+//! * [`film`]: Sussenbach's thin-film shader (ch. 4): per pixel and per wavelength sample, complex cosines from
+//!   Snell's law (eq. 3.6), Fresnel amplitudes (eq. 3.7–3.10), the composite recurrence (eq. 3.1–3.4), R and T
+//!   (eq. 3.12–3.13), and the colour integral `XYZ = Σ_λ w(λ) R(λ)` — the numbers of
+//!   [`iridis_thinfilm::Stack::evaluate_offset`] and [`iridis_thinfilm::color::FilmColorimeter`], in `f32`,
+//!   with a thickness gradient and a spatially varying thickness texture (SVT, eq. 4.3–4.4).
+//!
+//! Both shaders also write the displayed pixel (exposure in RU, XYZ → linear sRGB, clip, encode), so one
+//! dispatch is one finished frame.
+//!
+//! On a machine without a GPU, Mesa's software Vulkan driver (lavapipe, Debian package `mesa-vulkan-drivers`)
+//! provides an adapter. Without any adapter [`Gpu::new`] returns [`GpuError::NoAdapter`], whose message says
+//! how to install it.
+
+pub mod film;
+pub mod lookup;
+
+use std::time::{Duration, Instant};
+
+pub use film::{FilmFrame, FilmOutput, GpuFilm};
+pub use lookup::{GpuLookup, MapOutput};
+
+/// What the user reads when no adapter is found.
+pub const NO_ADAPTER_HELP: &str = "no GPU adapter found (iridis uses Vulkan through wgpu). Install a Vulkan driver; \
+on a machine without a GPU, Mesa's software driver works: `apt-get install mesa-vulkan-drivers` (Debian/Ubuntu; \
+the package is called `mesa-vulkan-drivers` on Fedora too, `vulkan-swrast` on Arch). Check with `vulkaninfo --summary`.";
+
+/// Errors of the GPU path; messages say what to do.
+#[derive(Debug, thiserror::Error)]
+pub enum GpuError {
+    /// No Vulkan adapter (hardware or software) could be opened.
+    #[error("{NO_ADAPTER_HELP} ({0})")]
+    NoAdapter(String),
+    /// The adapter was found but refused a device.
+    #[error("the GPU adapter {adapter} refused to open a device: {message}")]
+    Device { adapter: String, message: String },
+    /// The data does not fit the adapter's limits.
+    #[error("{0}")]
+    TooLarge(String),
+    /// Invalid input (sizes, stacks, wavelengths).
+    #[error("{0}")]
+    Invalid(String),
+    /// The driver reported an error (shader compilation, validation, out of memory, a lost device).
+    #[error("GPU error: {0}")]
+    Driver(String),
+}
+
+/// An open GPU: adapter, device and queue.
+#[derive(Debug)]
+pub struct Gpu {
+    pub device: wgpu::Device,
+    pub queue: wgpu::Queue,
+    pub info: wgpu::AdapterInfo,
+    pub limits: wgpu::Limits,
+}
+
+impl Gpu {
+    /// Opens the first suitable Vulkan adapter (high-performance preference; a software adapter such as
+    /// lavapipe when nothing else exists) with the adapter's own limits, so large tables fit where they can.
+    pub fn new() -> Result<Self, GpuError> {
+        let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
+        desc.backends = wgpu::Backends::VULKAN;
+        let instance = wgpu::Instance::new(desc);
+        let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+            power_preference: wgpu::PowerPreference::HighPerformance,
+            force_fallback_adapter: false,
+            compatible_surface: None,
+            apply_limit_buckets: false,
+        }))
+        .map_err(|e| GpuError::NoAdapter(e.to_string()))?;
+        let info = adapter.get_info();
+        let limits = adapter.limits();
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("iridis"),
+            required_features: wgpu::Features::empty(),
+            required_limits: limits.clone(),
+            ..Default::default()
+        }))
+        .map_err(|e| GpuError::Device { adapter: describe(&info), message: e.to_string() })?;
+        Ok(Self { device, queue, info, limits })
+    }
+
+    /// `name (backend, device type, driver)`, e.g. `llvmpipe (LLVM 15.0.6, 256 bits) (Vulkan, Cpu, Mesa …)`.
+    pub fn adapter_name(&self) -> String {
+        describe(&self.info)
+    }
+
+    /// True for a software adapter (lavapipe/llvmpipe): its timings say nothing about a real GPU.
+    pub fn is_software(&self) -> bool {
+        self.info.device_type == wgpu::DeviceType::Cpu
+    }
+
+    /// Runs `f` inside validation and out-of-memory error scopes and turns a captured error into
+    /// [`GpuError::Driver`].
+    pub(crate) fn checked<T>(&self, what: &str, f: impl FnOnce() -> T) -> Result<T, GpuError> {
+        let oom = self.device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
+        let validation = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let out = f();
+        let v = pollster::block_on(validation.pop());
+        let m = pollster::block_on(oom.pop());
+        match v.or(m) {
+            Some(e) => Err(GpuError::Driver(format!("{what}: {e}"))),
+            None => Ok(out),
+        }
+    }
+
+    /// Submits the command buffer and blocks until the GPU has finished it; returns the wall time from
+    /// submission to completion.
+    pub(crate) fn submit_and_wait(&self, cmd: wgpu::CommandBuffer) -> Result<Duration, GpuError> {
+        let start = Instant::now();
+        let index = self.queue.submit([cmd]);
+        self.device
+            .poll(wgpu::PollType::Wait { submission_index: Some(index), timeout: None })
+            .map_err(|e| GpuError::Driver(format!("waiting for the GPU: {e}")))?;
+        Ok(start.elapsed())
+    }
+
+    /// Checks that a storage buffer of `bytes` fits the device.
+    pub(crate) fn check_storage(&self, what: &str, bytes: u64, hint: &str) -> Result<(), GpuError> {
+        let max = (self.limits.max_storage_buffer_binding_size as u64).min(self.limits.max_buffer_size);
+        if bytes > max {
+            return Err(GpuError::TooLarge(format!(
+                "{what} needs {:.1} MB but the adapter {} binds at most {:.1} MB in one storage buffer; {hint}",
+                bytes as f64 / 1e6,
+                self.adapter_name(),
+                max as f64 / 1e6
+            )));
+        }
+        Ok(())
+    }
+
+    /// Copies `bytes` of a GPU buffer back to the CPU.
+    pub(crate) fn read_buffer(&self, src: &wgpu::Buffer, bytes: u64) -> Result<Vec<u8>, GpuError> {
+        let staging = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("iridis readback"),
+            size: bytes,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut enc = self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("readback") });
+        enc.copy_buffer_to_buffer(src, 0, &staging, 0, bytes);
+        self.submit_and_wait(enc.finish())?;
+        let slice = staging.slice(..);
+        let (tx, rx) = std::sync::mpsc::channel();
+        slice.map_async(wgpu::MapMode::Read, move |r| {
+            let _ = tx.send(r);
+        });
+        self.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| GpuError::Driver(format!("waiting for the readback: {e}")))?;
+        match rx.recv() {
+            Ok(Ok(())) => {}
+            Ok(Err(e)) => return Err(GpuError::Driver(format!("mapping the readback buffer: {e}"))),
+            Err(_) => return Err(GpuError::Driver("the readback was never mapped".into())),
+        }
+        let data = slice
+            .get_mapped_range()
+            .map_err(|e| GpuError::Driver(format!("reading the readback buffer: {e}")))?
+            .to_vec();
+        staging.unmap();
+        Ok(data)
+    }
+}
+
+fn describe(info: &wgpu::AdapterInfo) -> String {
+    let driver = [info.driver.as_str(), info.driver_info.as_str()]
+        .iter()
+        .filter(|s| !s.is_empty())
+        .copied()
+        .collect::<Vec<_>>()
+        .join(" ");
+    if driver.is_empty() {
+        format!("{} ({:?}, {:?})", info.name, info.backend, info.device_type)
+    } else {
+        format!("{} ({:?}, {:?}, {driver})", info.name, info.backend, info.device_type)
+    }
+}
+
+/// How the shaders encode the displayed pixel (mirrors [`iridis_color::Encoding`]): kind and parameter.
+pub(crate) fn encoding_words(e: iridis_color::Encoding) -> (u32, f32) {
+    match e {
+        iridis_color::Encoding::Srgb => (0, 0.0),
+        iridis_color::Encoding::Gamma(g) => (1, (1.0 / g) as f32),
+        iridis_color::Encoding::Linear => (2, 0.0),
+    }
+}
+
+/// The XYZ → linear sRGB matrix (IEC 61966-2-1, `iridis_color::convert::XYZ_TO_SRGB`) as three `vec4` rows.
+pub(crate) fn xyz_to_srgb_words() -> [f32; 12] {
+    let m = iridis_color::convert::XYZ_TO_SRGB;
+    let mut out = [0.0f32; 12];
+    for r in 0..3 {
+        for c in 0..3 {
+            out[r * 4 + c] = m[r][c] as f32;
+        }
+    }
+    out
+}
+
+/// Splits 8-bit RGBA words (`pack4x8unorm`) into RGB bytes.
+pub(crate) fn unpack_rgb8(words: &[u32]) -> Vec<u8> {
+    words.iter().flat_map(|w| [(*w & 0xff) as u8, ((*w >> 8) & 0xff) as u8, ((*w >> 16) & 0xff) as u8]).collect()
+}
+
+/// The WGSL helpers both shaders share (complex arithmetic, display encoding).
+pub(crate) const COMMON_WGSL: &str = include_str!("shaders/common.wgsl");

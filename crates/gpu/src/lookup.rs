@@ -1,0 +1,242 @@
+//! The lookup diffraction shader (`shaders/lookup.wgsl`): BRDF maps from the tables of `iridis precompute`.
+//!
+//! Per pixel `(col, row)` of a `size × size` map the view direction is that of
+//! [`iridis_diffraction::map::view_direction`]; the colour is `X = C(ω_i, ω_r) Σ_{p=0}^{2N} w^p I_p(u, v)`
+//! (paper eq. 10–12) with bilinear interpolation of `I_p` in the index space of the non-linear grid
+//! `u_i = 2·sign(s_i)|s_i|^a` (sec. 5) and `C` of eq. 2–4 ([`iridis_diffraction::Shading::factor`]): Fresnel
+//! (Schlick or the exact reflectance of a complex index) at the half-vector angle, the geometry term, and
+//! Cook–Torrance shadowing. The table lives in one `f32` storage buffer with the file's layout, so the shader
+//! is the CPU's `Lookup::sum` with `Precision::F32`.
+
+use std::time::Duration;
+
+use iridis_color::{ToneMap, Xyz};
+use iridis_diffraction::geometry::{Fresnel, FresnelSource};
+use iridis_diffraction::LookupTable;
+use wgpu::util::DeviceExt;
+
+use crate::{encoding_words, unpack_rgb8, xyz_to_srgb_words, Gpu, GpuError, COMMON_WGSL};
+
+/// A lookup table on the GPU with its pipeline and shading options.
+#[derive(Debug)]
+pub struct GpuLookup<'g> {
+    gpu: &'g Gpu,
+    pipeline: wgpu::ComputePipeline,
+    table: wgpu::Buffer,
+    res: u32,
+    np: u32,
+    inv_power: f32,
+    fresnel: Fresnel,
+    f0: f32,
+    shadowing: bool,
+}
+
+/// A rendered map read back: linear XYZ per pixel (row-major, row 0 at the top) and the displayed 8-bit sRGB.
+#[derive(Debug, Clone)]
+pub struct MapOutput {
+    pub size: usize,
+    pub xyz: Vec<Xyz>,
+    pub rgb8: Vec<u8>,
+}
+
+/// Buffers for repeated frames of one size (the benchmark's frame loop, a viewer's redraw).
+#[derive(Debug)]
+pub struct MapFrame<'a, 'g> {
+    lookup: &'a GpuLookup<'g>,
+    size: u32,
+    params: wgpu::Buffer,
+    bind: wgpu::BindGroup,
+    out_xyz: wgpu::Buffer,
+    out_rgba: wgpu::Buffer,
+}
+
+impl<'g> GpuLookup<'g> {
+    /// Uploads a table (as `f32`) and compiles the shader. `fresnel` must be one of the built-in,
+    /// wavelength-independent models (the lookup method integrates over λ in advance).
+    pub fn new(gpu: &'g Gpu, table: &LookupTable, fresnel: Fresnel, shadowing: bool) -> Result<Self, GpuError> {
+        let res = table.meta.uv_resolution;
+        let np = table.powers();
+        if res < 3 || table.uv.len() != res || table.data.len() != res * res * 3 * np {
+            return Err(GpuError::Invalid(format!(
+                "table {} is inconsistent: {} grid values and {} numbers for resolution {res} and {np} powers",
+                table.meta.surface,
+                table.uv.len(),
+                table.data.len()
+            )));
+        }
+        let bytes = (table.data.len() * 4) as u64;
+        gpu.check_storage(
+            "the lookup table",
+            bytes,
+            "precompute it with a smaller --uv-resolution or fewer --terms (the size grows with res² × (2N+1))",
+        )?;
+        let data: Vec<f32> = table.data.iter().map(|&v| v as f32).collect();
+        let source = format!("{COMMON_WGSL}\n{}", include_str!("shaders/lookup.wgsl"));
+        let (table_buf, pipeline) = gpu.checked("uploading the lookup table and compiling the shader", || {
+            let buf = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("iridis lookup table"),
+                contents: bytemuck::cast_slice(&data),
+                usage: wgpu::BufferUsages::STORAGE,
+            });
+            let module = gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some("lookup.wgsl"),
+                source: wgpu::ShaderSource::Wgsl(source.into()),
+            });
+            let pipeline = gpu.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some("iridis lookup"),
+                layout: None,
+                module: &module,
+                entry_point: Some("brdf_map"),
+                compilation_options: Default::default(),
+                cache: None,
+            });
+            (buf, pipeline)
+        })?;
+        let f0 = fresnel.reflectance(500.0, 1.0) as f32;
+        Ok(Self {
+            gpu,
+            pipeline,
+            table: table_buf,
+            res: res as u32,
+            np: np as u32,
+            inv_power: (1.0 / table.meta.uv_power) as f32,
+            fresnel,
+            f0,
+            shadowing,
+        })
+    }
+
+    /// The adapter this table lives on.
+    pub fn gpu(&self) -> &Gpu {
+        self.gpu
+    }
+
+    /// Bytes of the table on the GPU.
+    pub fn table_bytes(&self) -> u64 {
+        self.table.size()
+    }
+
+    /// Allocates the output of `size × size` maps.
+    pub fn frame(&self, size: usize, tone: ToneMap) -> Result<MapFrame<'_, 'g>, GpuError> {
+        if !(1..=16384).contains(&size) {
+            return Err(GpuError::Invalid(format!("map size {size} must be between 1 and 16384 pixels")));
+        }
+        let pixels = (size * size) as u64;
+        self.gpu.check_storage("the map", pixels * 16, "render a smaller map")?;
+        let gpu = self.gpu;
+        gpu.checked("allocating the map", || {
+            let params = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("lookup params"),
+                size: 48,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            });
+            let display = display_buffer(gpu, tone);
+            let out_xyz = storage_out(gpu, "map xyz", pixels * 16);
+            let out_rgba = storage_out(gpu, "map rgba", pixels * 4);
+            let bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("lookup bindings"),
+                layout: &self.pipeline.get_bind_group_layout(0),
+                entries: &[
+                    entry(0, &params),
+                    entry(1, &display),
+                    entry(2, &self.table),
+                    entry(3, &out_xyz),
+                    entry(4, &out_rgba),
+                ],
+            });
+            MapFrame { lookup: self, size: size as u32, params, bind, out_xyz, out_rgba }
+        })
+    }
+
+    /// Renders one map and reads it back (the GPU counterpart of `iridis_diffraction::map::brdf_map`).
+    pub fn render_map(&self, wi: [f64; 3], size: usize, tone: ToneMap) -> Result<MapOutput, GpuError> {
+        let frame = self.frame(size, tone)?;
+        frame.run(wi)?;
+        frame.read()
+    }
+
+    fn param_words(&self, wi: [f64; 3], size: u32) -> [u32; 12] {
+        let f = |v: f32| v.to_bits();
+        let (flags_fresnel, n_re, n_im) = match self.fresnel {
+            Fresnel::Schlick { n } => (0u32, n as f32, 0.0f32),
+            Fresnel::Index { n } => (2u32, n.re as f32, n.im as f32),
+        };
+        let flags = u32::from(self.shadowing) | flags_fresnel | 4;
+        [
+            f(wi[0] as f32),
+            f(wi[1] as f32),
+            f(wi[2] as f32),
+            0,
+            size,
+            self.res,
+            self.np,
+            flags,
+            f(self.inv_power),
+            f(self.f0),
+            f(n_re),
+            f(n_im),
+        ]
+    }
+}
+
+impl MapFrame<'_, '_> {
+    /// Renders the map for light direction `wi` (a unit vector, z = the surface normal) and waits for the GPU;
+    /// returns the time from submission to completion.
+    pub fn run(&self, wi: [f64; 3]) -> Result<Duration, GpuError> {
+        let gpu = self.lookup.gpu;
+        gpu.queue.write_buffer(&self.params, 0, bytemuck::cast_slice(&self.lookup.param_words(wi, self.size)));
+        let mut enc = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("map") });
+        {
+            let mut pass =
+                enc.begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("map"), timestamp_writes: None });
+            pass.set_pipeline(&self.lookup.pipeline);
+            pass.set_bind_group(0, &self.bind, &[]);
+            let groups = self.size.div_ceil(8);
+            pass.dispatch_workgroups(groups, groups, 1);
+        }
+        let cmd = enc.finish();
+        gpu.checked("rendering the map", || gpu.submit_and_wait(cmd))?
+    }
+
+    /// Reads the last rendered map back.
+    pub fn read(&self) -> Result<MapOutput, GpuError> {
+        let gpu = self.lookup.gpu;
+        let size = self.size as usize;
+        let xyz_bytes = gpu.read_buffer(&self.out_xyz, self.out_xyz.size())?;
+        let rgba_bytes = gpu.read_buffer(&self.out_rgba, self.out_rgba.size())?;
+        let xyz: Vec<f32> = bytemuck::pod_collect_to_vec(&xyz_bytes);
+        let words: Vec<u32> = bytemuck::pod_collect_to_vec(&rgba_bytes);
+        Ok(MapOutput {
+            size,
+            xyz: xyz.chunks_exact(4).map(|p| Xyz::new(p[0] as f64, p[1] as f64, p[2] as f64)).collect(),
+            rgb8: unpack_rgb8(&words),
+        })
+    }
+}
+
+pub(crate) fn entry(binding: u32, buffer: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
+    wgpu::BindGroupEntry { binding, resource: buffer.as_entire_binding() }
+}
+
+pub(crate) fn storage_out(gpu: &Gpu, label: &str, bytes: u64) -> wgpu::Buffer {
+    gpu.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some(label),
+        size: bytes.max(4),
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    })
+}
+
+/// The `Display` uniform of `common.wgsl`: XYZ → sRGB rows, exposure, encoding.
+pub(crate) fn display_buffer(gpu: &Gpu, tone: ToneMap) -> wgpu::Buffer {
+    let m = xyz_to_srgb_words();
+    let (kind, inv_gamma) = encoding_words(tone.encoding);
+    let mut words: Vec<u32> = m.iter().map(|v| v.to_bits()).collect();
+    words.extend([(tone.exposure_ru as f32).to_bits(), kind, inv_gamma.to_bits(), 0]);
+    gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("display"),
+        contents: bytemuck::cast_slice(&words),
+        usage: wgpu::BufferUsages::UNIFORM,
+    })
+}
