@@ -59,6 +59,8 @@ enum Command {
     /// Simulated lab experiments (the laser experiment of paper Figure 8).
     #[command(subcommand)]
     Experiment(cmd::lab::ExperimentCommand),
+    /// Render a scene (TOML or glTF) on the CPU: diffraction and thin-film materials on meshes (issue 7).
+    Render(cmd::render::RenderArgs),
     // New command groups are added here, one line each, with their module in cmd/.
 }
 
@@ -76,6 +78,7 @@ fn main() -> std::process::ExitCode {
         Command::Bench(c) => cmd::bench::run(c),
         Command::Precompute(a) => cmd::brdf::run_precompute(a),
         Command::BrdfMap(a) => cmd::brdf::run_brdf_map(a),
+        Command::Render(a) => cmd::render::run(a),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,

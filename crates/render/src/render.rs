@@ -142,18 +142,20 @@ impl Scene {
     /// Radiance (linear sRGB, RU) seen along a camera ray.
     pub fn primary(&self, o: V3, d: V3) -> Rgb {
         match self.intersect(o, d, f64::INFINITY) {
-            Some(h) => self.shade(&h, d, 0),
+            Some(h) => self.shade(&h, d, 0, 1.0),
             None if self.environment_visible => self.environment.radiance(d),
             None => self.output.background,
         }
     }
 
-    fn trace(&self, o: V3, d: V3, depth: u32) -> Rgb {
-        if depth > self.output.max_depth {
+    /// Radiance along a secondary ray whose contribution to the pixel is at most `weight`: rays that cannot
+    /// change the pixel by more than 1/500 (or past `max_depth`) take the environment's radiance instead.
+    fn trace(&self, o: V3, d: V3, depth: u32, weight: f64) -> Rgb {
+        if depth > self.output.max_depth || weight < 2e-3 {
             return self.environment.radiance(d);
         }
         match self.intersect(o, d, f64::INFINITY) {
-            Some(h) => self.shade(&h, d, depth),
+            Some(h) => self.shade(&h, d, depth, weight),
             None => self.environment.radiance(d),
         }
     }
@@ -174,7 +176,7 @@ impl Scene {
         c.at(uv, &self.textures)
     }
 
-    fn shade_microfacet(&self, m: &Microfacet, h: &Hit, wo: V3, depth: u32, with_env: bool) -> Rgb {
+    fn shade_microfacet(&self, m: &Microfacet, h: &Hit, wo: V3, depth: u32, weight: f64, with_env: bool) -> Rgb {
         let albedo = self.color(&m.color, h.uv);
         let mut out = [0.0; 3];
         for (wi, e) in self.lights_at(h) {
@@ -187,7 +189,12 @@ impl Scene {
             let f = m.mirror_fresnel(dot(h.n, wo), albedo);
             let r = reflect(wo, h.n);
             let mirror = if m.roughness < 0.6 && depth < self.output.max_depth {
-                self.trace(add(h.p, mul(h.ng, eps(h.p))), r, depth + 1)
+                self.trace(
+                    add(h.p, mul(h.ng, eps(h.p))),
+                    r,
+                    depth + 1,
+                    weight * f.iter().fold(0.0f64, |a, &b| a.max(b)),
+                )
             } else {
                 ambient
             };
@@ -198,7 +205,7 @@ impl Scene {
         out
     }
 
-    fn shade(&self, h: &Hit, d: V3, depth: u32) -> Rgb {
+    fn shade(&self, h: &Hit, d: V3, depth: u32, weight: f64) -> Rgb {
         let wo = mul(d, -1.0);
         match &self.materials[h.material] {
             Material::Lambert { color } => {
@@ -209,7 +216,7 @@ impl Scene {
                 }
                 out
             }
-            Material::Microfacet(m) => self.shade_microfacet(m, h, wo, depth, true),
+            Material::Microfacet(m) => self.shade_microfacet(m, h, wo, depth, weight, true),
             Material::Diffraction(df) => {
                 let t = df.orientation.tangent(h, &self.textures);
                 let tex = self.color(&df.texture, h.uv);
@@ -223,14 +230,17 @@ impl Scene {
                 let cos = dot(h.n, wo).clamp(0.0, 1.0);
                 let (r, t) = f.colors(cos, f.offset_nm(h.uv, &self.textures));
                 let r_rgb = mul(r.to_linear_srgb(), f.factor);
-                let refl = self.trace(add(h.p, mul(h.ng, eps(h.p))), reflect(wo, h.n), depth + 1);
+                let w_r = weight * r_rgb.iter().fold(0.0f64, |a, &b| a.max(b));
+                let refl = self.trace(add(h.p, mul(h.ng, eps(h.p))), reflect(wo, h.n), depth + 1, w_r);
                 let mut out = hadamard(r_rgb, refl);
                 if f.transmission {
-                    let through = self.trace(add(h.p, mul(h.ng, -eps(h.p))), d, depth + 1);
-                    out = add(out, hadamard(mul(t.to_linear_srgb(), f.factor), through));
+                    let t_rgb = mul(t.to_linear_srgb(), f.factor);
+                    let w_t = weight * t_rgb.iter().fold(0.0f64, |a, &b| a.max(b));
+                    let through = self.trace(add(h.p, mul(h.ng, -eps(h.p))), d, depth + 1, w_t);
+                    out = add(out, hadamard(t_rgb, through));
                 }
                 if let Some(base) = &f.base {
-                    let below = self.shade_microfacet(base, h, wo, depth, f.factor < 1.0);
+                    let below = self.shade_microfacet(base, h, wo, depth, weight, f.factor < 1.0);
                     out = add(out, mul(below, (1.0 - f.factor * r.y).max(0.0)));
                 }
                 out

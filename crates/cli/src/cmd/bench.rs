@@ -28,6 +28,9 @@ Examples:
   iridis bench diffraction-accuracy --surface builtin:blazed --map-size 48 --json
   iridis bench diffraction-accuracy --convergence-plot docs/img/taylor_convergence.png")]
     DiffractionAccuracy(AccuracyBench),
+    /// Rendering: load and render time of every example scene (default 1024², 1 spp, all cores).
+    #[command(after_help = "Examples:\n  iridis bench render\n  iridis bench render --size 512 --spp 4 --json")]
+    Render(super::render::RenderBench),
 }
 
 #[derive(Debug, ClapArgs)]
@@ -79,6 +82,7 @@ pub fn run(c: BenchCommand) -> Result<()> {
     match c {
         BenchCommand::Diffraction(a) => diffraction(a),
         BenchCommand::DiffractionAccuracy(a) => accuracy(a),
+        BenchCommand::Render(a) => super::render::bench(a),
     }
 }
 

@@ -108,6 +108,7 @@ pub fn run(args: Args) -> Result<()> {
     super::thinfilm::demo(&mut gallery)?;
     super::brdf::demo(&mut gallery)?;
     super::lab::demo(&mut gallery)?;
+    super::render::demo(&mut gallery)?;
     let index = gallery.finish()?;
     println!("done: open {}", index.display());
     Ok(())

@@ -4,6 +4,7 @@ pub mod brdf;
 pub mod color;
 pub mod demo;
 pub mod lab;
+pub mod render;
 pub mod rough;
 pub mod surface;
 pub mod thinfilm;

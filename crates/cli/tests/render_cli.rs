@@ -1,0 +1,260 @@
+//! `iridis render` as a user runs it: the two accuracy checks of issue 7 (a plane reproduces `iridis brdf-map`;
+//! a thin-film sphere shows `iridis thinfilm color` at each pixel's angle and thickness), the examples, and
+//! clean refusals of bad input that never leave a half-written image.
+
+mod common;
+use common::{assert_fails, iridis, json_of};
+
+use iridis_color::lab::delta_e_2000;
+use iridis_color::{Lab, Xyz};
+use std::path::Path;
+
+fn ok(args: &[&str]) -> String {
+    let out = iridis(args);
+    assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+    String::from_utf8_lossy(&out.stderr).to_string() + &String::from_utf8_lossy(&out.stdout)
+}
+
+fn lab_of(p: [u8; 3]) -> Lab {
+    let lin = p.map(|c| iridis_color::convert::srgb_decode(c as f64 / 255.0));
+    Lab::from_xyz(Xyz::from_linear_srgb(lin), Xyz::from_linear_srgb([1.0; 3]))
+}
+
+/// Mean CIEDE2000 between two PNGs of the same size, and the number of pixels that are not black in `a`.
+fn mean_delta_e(a: &Path, b: &Path) -> (f64, usize) {
+    let a = image::open(a).unwrap().to_rgb8();
+    let b = image::open(b).unwrap().to_rgb8();
+    assert_eq!(a.dimensions(), b.dimensions());
+    let mut sum = 0.0;
+    let mut lit = 0;
+    for (p, q) in a.pixels().zip(b.pixels()) {
+        sum += delta_e_2000(lab_of(p.0), lab_of(q.0));
+        if p.0.iter().any(|&c| c > 8) {
+            lit += 1;
+        }
+    }
+    (sum / (a.width() * a.height()) as f64, lit)
+}
+
+const PLANE_SCENE: &str = r#"
+[output]
+size = [64, 64]
+spp = 1
+exposure = 1500
+[camera]
+kind = "hemisphere"      # pixel (x, y) looks at the target from (x, y, sqrt(1 - x² - y²))
+target = [0, 0, 0]
+normal = [0, 0, 1]
+up = [0, 1, 0]
+[[light]]
+kind = "directional"
+direction = [0.35355339059327373, 0.35355339059327373, 0.8660254037844387]   # θ = 30°, φ = 45°
+intensity = 1
+[materials.grating]
+kind = "diffraction"
+table = "t.npz"
+orientation = "tangent"
+angle = "ANGLE"
+scale_ru = 1
+w_diffuse = 0
+color = [0, 0, 0]
+[[object]]
+kind = "plane"
+center = [0, 0, 0]
+normal = [0, 0, 1]
+tangent = [1, 0, 0]
+material = "grating"
+"#;
+
+/// Issue 7, "one shading path": a plane with a diffraction material under a matched camera and light gives the
+/// BRDF map of `iridis brdf-map` pixel for pixel (mean CIEDE2000 < 0.5). The blazed grating is asymmetric, so a
+/// wrong frame, sign or light direction shows; turning the orientation field by 90° must break the match.
+#[test]
+fn plane_reproduces_brdf_map() {
+    let dir = tempfile::tempdir().unwrap();
+    let t = dir.path().join("t.npz");
+    ok(&[
+        "precompute",
+        "builtin:blazed?size=8um&pixel=50nm",
+        "-o",
+        t.to_str().unwrap(),
+        "--uv-resolution",
+        "101",
+        "--coherence",
+        "4um",
+    ]);
+    let map = dir.path().join("map.png");
+    ok(&[
+        "brdf-map",
+        t.to_str().unwrap(),
+        "-o",
+        map.to_str().unwrap(),
+        "--size",
+        "64",
+        "--incidence",
+        "30deg,45deg",
+        "--exposure",
+        "1500",
+    ]);
+    let mut means = Vec::new();
+    for angle in ["0deg", "90deg"] {
+        let scene = dir.path().join(format!("plane_{angle}.toml"));
+        std::fs::write(&scene, PLANE_SCENE.replace("ANGLE", angle)).unwrap();
+        let img = dir.path().join(format!("plane_{angle}.png"));
+        ok(&["render", scene.to_str().unwrap(), "-o", img.to_str().unwrap()]);
+        let (mean, lit) = mean_delta_e(&img, &map);
+        eprintln!("orientation {angle}: mean CIEDE2000 against brdf-map = {mean:.4}, {lit} lit pixels");
+        assert!(lit > 100, "the map must show something ({lit} lit pixels)");
+        means.push(mean);
+    }
+    assert!(means[0] < 0.5, "plane vs brdf-map: mean ΔE00 {}", means[0]);
+    assert!(means[1] > 2.0, "a 90° turn of the grating must change the picture (ΔE00 {})", means[1]);
+}
+
+const FILM_SCENE: &str = r#"
+[output]
+size = [40, 40]
+spp = 1
+exposure = 1
+[camera]
+kind = "orthographic"
+position = [0, 0, 10]
+look_at = [0, 0, 0]
+up = [0, 1, 0]
+height = 2.2
+[environment]
+kind = "uniform"         # white (D65) light from every direction: a pixel shows the film's reflectance colour
+color = [1, 1, 1]
+visible = false
+[textures.drain]
+kind = "gradient"
+from = 0
+to = 1
+along = "v"
+[materials.film]
+kind = "thinfilm"
+stack = "air | water 400nm | n=1.5"
+svt = "drain"
+d_rel = "300nm"
+[[object]]
+kind = "sphere"
+center = [0, 0, 0]
+radius = 1
+material = "film"
+"#;
+
+/// Issue 7: the thin-film colour on a sphere at a pixel equals `iridis thinfilm color` for that pixel's angle of
+/// incidence and its thickness (SVT: 400 nm + 300 nm · (2v − 1), v from the top of the sphere).
+#[test]
+fn thin_film_sphere_pixels_equal_thinfilm_color() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("film.toml");
+    std::fs::write(&scene, FILM_SCENE).unwrap();
+    let exr = dir.path().join("film.exr");
+    ok(&["render", scene.to_str().unwrap(), "-o", exr.to_str().unwrap()]);
+    let img = image::open(&exr).unwrap().to_rgb32f();
+    let n = 40.0;
+    let mut checked = 0;
+    let mut worst: f64 = 0.0;
+    for (col, row) in [(20, 20), (5, 20), (20, 4), (30, 33), (12, 9), (34, 18), (20, 36), (9, 28)] {
+        // The orthographic ray through the pixel centre hits the unit sphere at (x, y, z).
+        let x = (-1.0 + (2.0 * col as f64 + 1.0) / n) * 1.1;
+        let y = (1.0 - (2.0 * row as f64 + 1.0) / n) * 1.1;
+        let r2 = x * x + y * y;
+        assert!(r2 < 0.98, "pixel ({col}, {row}) must lie on the sphere");
+        let z = (1.0 - r2).sqrt();
+        let angle_deg = z.acos().to_degrees();
+        let v = y.acos() / std::f64::consts::PI;
+        let d = 400.0 + 300.0 * (2.0 * v - 1.0);
+        let stack = format!("air | water {d:.6}nm | n=1.5");
+        let j = json_of(&["thinfilm", "color", "--stack", &stack, "--angle", &format!("{angle_deg:.9}deg"), "--json"]);
+        let want: Vec<f64> = j["reflected"]["XYZ"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+        let p = img.get_pixel(col, row).0;
+        let got = Xyz::from_linear_srgb([p[0] as f64, p[1] as f64, p[2] as f64]).to_array();
+        for k in 0..3 {
+            let err = (got[k] - want[k]).abs() / want[k].abs().max(1e-3);
+            worst = worst.max(err);
+            assert!(err < 2e-4, "pixel ({col}, {row}) θ = {angle_deg:.2}°, d = {d:.1} nm: XYZ {got:?} vs {want:?}");
+        }
+        checked += 1;
+    }
+    eprintln!("{checked} pixels: largest relative XYZ difference {worst:.2e} (EXR stores f32)");
+}
+
+#[test]
+fn examples_render_and_bad_input_is_refused_cleanly() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = |n: &str| dir.path().join(n).to_str().unwrap().to_string();
+    // The soap bubble and the glTF sample render at a small size, in both formats.
+    ok(&["render", "examples/soap_bubble.toml", "-o", &d("bubble.png"), "--size", "48x32", "--spp", "1"]);
+    assert_eq!(image::open(d("bubble.png")).unwrap().to_rgb8().dimensions(), (48, 32));
+    ok(&["render", "examples/iridescent_spheres.gltf", "-o", &d("g.exr"), "--size", "32x32", "--spp", "1"]);
+    ok(&["render", "examples/gltf_iridescence.toml", "-o", &d("g.png"), "--size", "32x16", "--spp", "1"]);
+
+    // An earlier result must survive a failed run, and no temporary file may be left behind.
+    let keep = d("keep.png");
+    std::fs::write(&keep, b"old").unwrap();
+    let write = |name: &str, text: &str| {
+        let p = d(name);
+        std::fs::write(&p, text).unwrap();
+        p
+    };
+    assert_fails(&["render", &d("missing.toml"), "-o", &keep], &["cannot read scene", "missing.toml"]);
+    let bad = write("bad.toml", "[camera]\nposition = [0, 0, 5]\n[[object]]\nkind = \"sphere\"\nradius = \"big\"\n");
+    assert_fails(&["render", &bad, "-o", &keep], &["bad.toml:5:", "radius = \"big\""]);
+    let bad = write("typo.toml", "[camera]\nposition = [0, 0, 5]\nfoc = \"40deg\"\n");
+    assert_fails(&["render", &bad, "-o", &keep], &["typo.toml:3:", "unknown field `foc`"]);
+    let bad = write("syntax.toml", "[camera]\nposition = [0, 0, 5\n");
+    assert_fails(&["render", &bad, "-o", &keep], &["syntax.toml:"]);
+    let bad = write(
+        "ref.toml",
+        "[camera]\nposition = [0, 0, 5]\n\n[[object]]\nkind = \"sphere\"\nradius = 1\nmaterial = \"nope\"\n",
+    );
+    assert_fails(&["render", &bad, "-o", &keep], &["ref.toml:4:", "`material` = \"nope\""]);
+    // Malformed glTF, directly and through a scene.
+    let gl = write("broken.gltf", "{\"asset\": {\"version\": \"2.0\"}, \"meshes\": [ }");
+    assert_fails(&["render", &gl, "-o", &keep], &["broken.gltf", "not a valid glTF"]);
+    let sc =
+        write("usegl.toml", "[camera]\nposition = [0, 0, 5]\n[[object]]\nkind = \"gltf\"\nfile = \"broken.gltf\"\n");
+    assert_fails(&["render", &sc, "-o", &keep], &["not a valid glTF"]);
+    // A texture of the wrong kind: a colour image as an SVT thickness map.
+    image::RgbImage::from_fn(8, 8, |x, y| image::Rgb([(x * 30) as u8, (y * 30) as u8, 100]))
+        .save(d("colour.png"))
+        .unwrap();
+    let sc = write(
+        "tex.toml",
+        "[camera]\nposition = [0, 0, 5]\n[textures.t]\nkind = \"grey\"\nfile = \"colour.png\"\n[materials.f]\nkind = \"thinfilm\"\nstack = \"air | water 300nm | air\"\nsvt = \"t\"\nd_rel = \"100nm\"\n",
+    );
+    assert_fails(&["render", &sc, "-o", &keep], &["tex.toml:3:", "colour image", "grey"]);
+    let sc =
+        write("env.toml", "[camera]\nposition = [0, 0, 5]\n[environment]\nkind = \"map\"\nfile = \"colour.png\"\n");
+    assert_fails(&["render", &sc, "-o", &keep], &["env.toml:3:", "linear HDR"]);
+    // A mesh without normals is fine (they are computed, with a note); without UVs under a textured material,
+    // the error says what to do.
+    std::fs::write(d("tri.obj"), "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+    let plain = write(
+        "obj.toml",
+        "[output]\nsize = [16, 16]\n[camera]\nposition = [0, 0, 5]\n[[light]]\nkind = \"directional\"\ndirection = [0, 0, 1]\n[materials.m]\nkind = \"lambert\"\n[[object]]\nkind = \"obj\"\nfile = \"tri.obj\"\nmaterial = \"m\"\n",
+    );
+    let log = ok(&["render", &plain, "-o", &d("tri.png")]);
+    assert!(log.contains("computed smooth vertex normals"), "{log}");
+    let textured = write(
+        "objtex.toml",
+        &(std::fs::read_to_string(&plain)
+            .unwrap()
+            .replace("kind = \"lambert\"", "kind = \"lambert\"\ntexture = \"c\"")
+            + "[textures.c]\nkind = \"checker\"\n"),
+    );
+    assert_fails(&["render", &textured, "-o", &keep], &["no texture coordinates", "add UVs"]);
+    // Options are checked before rendering.
+    assert_fails(&["render", "examples/soap_bubble.toml", "-o", &d("x.jpg")], &[".png", ".exr"]);
+    assert_fails(&["render", "examples/soap_bubble.toml", "-o", &keep, "--size", "64"], &["WIDTHxHEIGHT"]);
+    assert_fails(&["render", "examples/soap_bubble.toml", "-o", &keep, "--spp", "0"], &["--spp"]);
+    assert_eq!(std::fs::read(&keep).unwrap(), b"old", "a failed run must not touch an existing output");
+    let leftovers: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.file_name().to_string_lossy().ends_with(".tmp"))
+        .collect();
+    assert!(leftovers.is_empty(), "temporary files left: {leftovers:?}");
+}
