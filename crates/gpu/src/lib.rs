@@ -127,7 +127,7 @@ impl Gpu {
 
     /// Checks that a storage buffer of `bytes` fits the device.
     pub(crate) fn check_storage(&self, what: &str, bytes: u64, hint: &str) -> Result<(), GpuError> {
-        let max = (self.limits.max_storage_buffer_binding_size as u64).min(self.limits.max_buffer_size);
+        let max = self.limits.max_storage_buffer_binding_size.min(self.limits.max_buffer_size);
         if bytes > max {
             return Err(GpuError::TooLarge(format!(
                 "{what} needs {:.1} MB but the adapter {} binds at most {:.1} MB in one storage buffer; {hint}",

@@ -28,6 +28,8 @@ Examples:
   iridis bench diffraction-accuracy --surface builtin:blazed --map-size 48 --json
   iridis bench diffraction-accuracy --convergence-plot docs/img/taylor_convergence.png")]
     DiffractionAccuracy(AccuracyBench),
+    /// GPU frame times (min, median, p99) of the lookup diffraction map and the thin-film frame, headless.
+    Gpu(super::gpu::GpuBench),
     /// Rendering: load and render time of every example scene (default 1024², 1 spp, all cores).
     #[command(after_help = "Examples:\n  iridis bench render\n  iridis bench render --size 512 --spp 4 --json")]
     Render(super::render::RenderBench),
@@ -82,6 +84,7 @@ pub fn run(c: BenchCommand) -> Result<()> {
     match c {
         BenchCommand::Diffraction(a) => diffraction(a),
         BenchCommand::DiffractionAccuracy(a) => accuracy(a),
+        BenchCommand::Gpu(a) => super::gpu::bench(a),
         BenchCommand::Render(a) => super::render::bench(a),
     }
 }

@@ -92,7 +92,8 @@ Examples:
   iridis brdf-map builtin:blazed --method lookup -o blazed.png
   iridis precompute builtin:elaphe -o elaphe.npz && iridis brdf-map elaphe.npz -o elaphe.png --exposure 1500
   iridis brdf-map builtin:xenopeltis --method reference --incidence 20deg,0deg --size 256 -o x.png --raw x.npy
-  iridis brdf-map builtin:sine --method ground-truth --size 48 -o gt.png --gamma 2.2")]
+  iridis brdf-map builtin:sine --method ground-truth --size 48 -o gt.png --gamma 2.2
+  iridis brdf-map elaphe.npz --gpu --size 1024 -o elaphe_gpu.png")]
 pub struct BrdfMapArgs {
     /// A height field (file or builtin:NAME) or a lookup table (.npz).
     pub input: String,
@@ -130,6 +131,9 @@ pub struct BrdfMapArgs {
     /// Lookup sum in f32, as a GPU would evaluate it.
     #[arg(long)]
     pub f32: bool,
+    /// Render on the GPU (Vulkan; lavapipe without a GPU): the lookup method's shader, same image.
+    #[arg(long)]
+    pub gpu: bool,
     #[command(flatten)]
     pub model: ModelOpts,
     /// u-v resolution when a table must be built from a SURFACE.
@@ -285,12 +289,12 @@ pub fn parse_incidence(s: &str) -> Result<[f64; 3]> {
     Ok(direction(theta, phi))
 }
 
-fn is_table(input: &str) -> bool {
+pub(crate) fn is_table(input: &str) -> bool {
     input.to_ascii_lowercase().ends_with(".npz")
 }
 
 /// Rejects model options that contradict a table's metadata.
-fn check_against_table(t: &LookupTable, m: &ModelOpts) -> Result<()> {
+pub(crate) fn check_against_table(t: &LookupTable, m: &ModelOpts) -> Result<()> {
     let meta = &t.meta;
     let mut problems = Vec::new();
     if let Some(c) = m.coherence {
@@ -389,6 +393,9 @@ pub fn run_brdf_map(a: BrdfMapArgs) -> Result<()> {
     }
     let encoding = Encoding::parse(&a.gamma).map_err(anyhow::Error::msg)?;
     let wi = parse_incidence(&a.incidence)?;
+    if a.gpu {
+        return crate::cmd::gpu::run_brdf_map(a, wi, encoding);
+    }
     let shading = Shading { fresnel: parse_fresnel_source(&a.fresnel)?, shadowing: !a.no_shadowing };
     let params = TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power };
     let precision = if a.f32 { Precision::F32 } else { Precision::F64 };

@@ -1,0 +1,332 @@
+//! The GPU path (issue 8): `iridis brdf-map … --gpu` and `iridis bench gpu`, over `iridis-gpu`.
+
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::time::Duration;
+
+use anyhow::{bail, Context, Result};
+use clap::Args as ClapArgs;
+use iridis_color::{Encoding, SpectralWeights, ToneMap, Xyz};
+use iridis_diffraction::evaluator::Evaluator;
+use iridis_diffraction::geometry::direction;
+use iridis_diffraction::table::{Lookup, LookupTable, Precision, TableParams};
+use iridis_diffraction::{Fresnel, Shading};
+use iridis_gpu::{FilmFrame, Gpu, GpuFilm, GpuLookup};
+use serde_json::json;
+
+use crate::cmd::brdf::{self, BrdfMapArgs, ModelOpts, SurfaceOpts};
+
+/// Opens the GPU, with the driver hint when there is none.
+fn open_gpu() -> Result<Gpu> {
+    Ok(Gpu::new()?)
+}
+
+/// The lookup table of a TABLE (checked against the options) or built from a SURFACE.
+pub fn lookup_table(input: &str, model: &ModelOpts, params: TableParams, surface: &SurfaceOpts) -> Result<LookupTable> {
+    if brdf::is_table(input) {
+        let table = LookupTable::load(std::path::Path::new(input))?;
+        brdf::check_against_table(&table, model)?;
+        return Ok(table);
+    }
+    let patch = brdf::load_patch(input, surface)?;
+    let spectral = brdf::spectral_setup(model)?;
+    let terms = brdf::taylor_terms(&patch, model)?;
+    brdf::build_table(&terms, &spectral, params, input)
+}
+
+/// `iridis brdf-map … --gpu`: the lookup method on the GPU, written exactly like the CPU's map (the image is
+/// tone-mapped on the CPU from the GPU's XYZ, so `--raw` and `--exr` hold the shader's numbers).
+pub fn run_brdf_map(a: BrdfMapArgs, wi: [f64; 3], encoding: Encoding) -> Result<()> {
+    if a.method != "lookup" {
+        bail!("--gpu renders the lookup method (the paper's shader); --method {} runs on the CPU only", a.method);
+    }
+    if a.fresnel.trim().starts_with("stack:") {
+        bail!(
+            "--gpu renders the lookup method, whose Fresnel factor must not depend on λ; a thin-film stack as \
+             Fresnel source needs --method reference or ground-truth (CPU)"
+        );
+    }
+    let fresnel = brdf::parse_fresnel(&a.fresnel)?;
+    let params = TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power };
+    let table = lookup_table(&a.input, &a.model, params, &a.surface_opts)?;
+    let gpu = open_gpu()?;
+    let lookup = GpuLookup::new(&gpu, &table, fresnel, !a.no_shadowing)?;
+    let tone = ToneMap { exposure_ru: a.exposure, encoding };
+    let frame = lookup.frame(a.size, tone)?;
+    let secs = frame.run(wi)?.as_secs_f64();
+    let out = frame.read()?;
+    let rgb = brdf::map_to_rgb8(&out.xyz, tone);
+    crate::output::write_png_rgb8(&a.output, a.size as u32, a.size as u32, &rgb)?;
+    if let Some(raw) = &a.raw {
+        brdf::write_xyz_npy(raw, &out.xyz, a.size)?;
+    }
+    if let Some(exr) = &a.exr {
+        brdf::write_exr(exr, &out.xyz, a.size, a.exposure)?;
+    }
+    println!(
+        "wrote {} (lookup map on the GPU, {}², {:.2} ms on {})",
+        a.output.display(),
+        a.size,
+        secs * 1e3,
+        gpu.adapter_name()
+    );
+    Ok(())
+}
+
+#[derive(Debug, ClapArgs)]
+#[command(after_help = "\
+Times the two shaders headless (no window): the lookup diffraction BRDF map (paper eq. 10-12) and the
+thin-film frame (Sussenbach ch. 4: recurrence per wavelength sample, thickness gradient and SVT texture).
+A frame is one dispatch from submission to completion; the light circles the normal at 30° from frame to
+frame. Each shader runs --frames frames or --max-seconds, whichever ends first, after one warm-up frame,
+and the last frame is checked against the CPU (CIEDE2000 over up to 4096 pixels).
+
+Examples:
+  iridis bench gpu                                      built-in Elaphe table (201²), 1024² map, 1920×1080 film
+  iridis bench gpu --table elaphe.npz --size 1024x1024 --frames 500 --json
+  iridis bench gpu --stack \"air | gasoline 216nm | water 220nm | asphalt\" --film-size 1280x720")]
+pub struct GpuBench {
+    /// Lookup BRDF map size: 1024x1024 or 1024 (maps are square).
+    #[arg(long, default_value = "1024x1024")]
+    pub size: String,
+    /// Frames timed per shader.
+    #[arg(long, default_value_t = 500)]
+    pub frames: usize,
+    /// Stop a shader's loop after this many seconds (software drivers are slow).
+    #[arg(long, default_value_t = 30.0)]
+    pub max_seconds: f64,
+    /// Lookup table (.npz from `iridis precompute`); default: builtin:elaphe precomputed here at 201².
+    #[arg(long)]
+    pub table: Option<PathBuf>,
+    /// Thin-film frame size.
+    #[arg(long, default_value = "1920x1080")]
+    pub film_size: String,
+    /// Thin-film stack; every layer's thickness gets the frame's offset (gradient ±300 nm, SVT ±100 nm).
+    #[arg(long, default_value = "air | water 500nm | air")]
+    pub stack: String,
+    /// Print JSON.
+    #[arg(long)]
+    pub json: bool,
+}
+
+fn parse_size(s: &str, what: &str) -> Result<(usize, usize)> {
+    let t = s.trim().to_ascii_lowercase();
+    let parse = |v: &str| v.trim().parse::<usize>().ok().filter(|n| (1..=16384).contains(n));
+    let (w, h) = match t.split_once('x') {
+        Some((w, h)) => (parse(w), parse(h)),
+        None => (parse(&t), parse(&t)),
+    };
+    match (w, h) {
+        (Some(w), Some(h)) => Ok((w, h)),
+        _ => bail!("{what} '{s}': write WIDTHxHEIGHT (e.g. 1920x1080) or one number, 1 to 16384"),
+    }
+}
+
+/// min, median, p99 (nearest rank) and mean, in ms.
+fn stats(times: &[Duration]) -> [f64; 4] {
+    let mut ms: Vec<f64> = times.iter().map(|d| d.as_secs_f64() * 1e3).collect();
+    ms.sort_by(f64::total_cmp);
+    let rank = |q: f64| ms[((q * ms.len() as f64).ceil() as usize).clamp(1, ms.len()) - 1];
+    [ms[0], rank(0.5), rank(0.99), ms.iter().sum::<f64>() / ms.len() as f64]
+}
+
+fn time_frames(
+    frames: usize,
+    max_seconds: f64,
+    mut run: impl FnMut(usize) -> Result<Duration>,
+) -> Result<Vec<Duration>> {
+    run(0)?; // warm-up: pipeline caches, first-touch of the buffers
+    let start = std::time::Instant::now();
+    let mut times = Vec::with_capacity(frames);
+    while times.len() < frames.max(1) {
+        times.push(run(times.len())?);
+        if start.elapsed().as_secs_f64() > max_seconds {
+            break;
+        }
+    }
+    Ok(times)
+}
+
+/// Up to `n` pixel indices spread over `total`.
+fn sample(total: usize, n: usize) -> Vec<usize> {
+    let step = total.div_ceil(n).max(1);
+    (0..total).step_by(step).collect()
+}
+
+/// Mean and 99th percentile of CIEDE2000 between displayed colours.
+fn delta_e(a: &[Xyz], b: &[Xyz], exposure: f64) -> (f64, f64) {
+    use iridis_color::integrate::white_point;
+    use iridis_color::{Illuminant, Lab, Observer};
+    let white = white_point(Illuminant::D65, Observer::Cie1931);
+    let shown = |x: Xyz| {
+        let rgb = x.scale(exposure).to_linear_srgb().map(|c| if c.is_nan() { 0.0 } else { c.clamp(0.0, 1.0) });
+        Lab::from_xyz(Xyz::from_linear_srgb(rgb), white)
+    };
+    let mut d: Vec<f64> = a.iter().zip(b).map(|(p, q)| iridis_color::lab::delta_e_2000(shown(*p), shown(*q))).collect();
+    d.sort_by(f64::total_cmp);
+    let mean = d.iter().sum::<f64>() / d.len().max(1) as f64;
+    let p99 = d.get(((d.len() as f64 * 0.99) as usize).min(d.len().saturating_sub(1))).copied().unwrap_or(0.0);
+    (mean, p99)
+}
+
+/// A smooth, deterministic grey texture (value noise, three octaves) for spatially varying thickness.
+fn svt_noise(width: usize, height: usize) -> Vec<f32> {
+    let hash = |x: i64, y: i64, o: i64| {
+        let mut h = (x.wrapping_mul(374_761_393) ^ y.wrapping_mul(668_265_263) ^ o.wrapping_mul(2_147_483_647)) as u64;
+        h = (h ^ (h >> 13)).wrapping_mul(1_274_126_177);
+        ((h ^ (h >> 16)) & 0xffff) as f64 / 65535.0
+    };
+    let smooth = |t: f64| t * t * (3.0 - 2.0 * t);
+    let mut out = Vec::with_capacity(width * height);
+    for r in 0..height {
+        for c in 0..width {
+            let mut v = 0.0;
+            let mut amp = 0.5;
+            let mut scale = 1.0 / 160.0;
+            for o in 0..3 {
+                let (x, y) = (c as f64 * scale, r as f64 * scale);
+                let (x0, y0) = (x.floor(), y.floor());
+                let (fx, fy) = (smooth(x - x0), smooth(y - y0));
+                let (xi, yi) = (x0 as i64, y0 as i64);
+                let a = hash(xi, yi, o) * (1.0 - fx) + hash(xi + 1, yi, o) * fx;
+                let b = hash(xi, yi + 1, o) * (1.0 - fx) + hash(xi + 1, yi + 1, o) * fx;
+                v += amp * (a * (1.0 - fy) + b * fy);
+                amp *= 0.5;
+                scale *= 2.0;
+            }
+            out.push((v / 0.875).clamp(0.0, 1.0) as f32);
+        }
+    }
+    out
+}
+
+pub fn bench(a: GpuBench) -> Result<()> {
+    let (mw, mh) = parse_size(&a.size, "--size")?;
+    if mw != mh {
+        bail!("--size {}: BRDF maps are square (the unit disk of view directions); use e.g. 1024x1024", a.size);
+    }
+    let (fw, fh) = parse_size(&a.film_size, "--film-size")?;
+    if !(a.max_seconds.is_finite() && a.max_seconds > 0.0) {
+        bail!("--max-seconds {} must be positive", a.max_seconds);
+    }
+    let stack: iridis_thinfilm::Stack = a.stack.parse().with_context(|| format!("--stack '{}'", a.stack))?;
+    let gpu = open_gpu()?;
+    let adapter = gpu.adapter_name();
+    if !a.json {
+        println!("adapter: {adapter}");
+        if gpu.is_software() {
+            println!("  (a software adapter: these times measure the CPU, not a GPU)");
+        }
+    }
+
+    // Lookup diffraction.
+    let model = ModelOpts { terms: "auto".into(), coherence: None, illuminant: None, observer: None, step: None };
+    let table = match &a.table {
+        Some(p) => LookupTable::load(p)?,
+        None => {
+            if !a.json {
+                println!("building the lookup table of builtin:elaphe at 201² (pass --table to use your own) …");
+            }
+            let none = SurfaceOpts { pixel_size: None, max_height: None };
+            lookup_table("builtin:elaphe", &model, TableParams { uv_resolution: 201, uv_power: 5.0 }, &none)?
+        }
+    };
+    let fresnel = Fresnel::default();
+    let lookup = GpuLookup::new(&gpu, &table, fresnel.clone(), true)?;
+    let tone = ToneMap { exposure_ru: 1500.0, encoding: Encoding::Srgb };
+    let frame = lookup.frame(mw, tone)?;
+    let frames = a.frames;
+    let light = |i: usize| direction(30f64.to_radians(), i as f64 * std::f64::consts::TAU / frames.max(1) as f64);
+    let mut last_wi = light(0);
+    let map_times = time_frames(frames, a.max_seconds, |i| {
+        last_wi = light(i);
+        Ok(frame.run(last_wi)?)
+    })?;
+    let map = frame.read()?;
+    let cpu =
+        Lookup::new(Arc::new(table.clone()), Shading { fresnel: Arc::new(fresnel), shadowing: true }, Precision::F64)?;
+    let px: Vec<usize> = sample(mw * mw, 4096)
+        .into_iter()
+        .filter(|&i| iridis_diffraction::map::view_direction(i % mw, i / mw, mw).is_some())
+        .collect();
+    let cpu_px: Vec<Xyz> = px
+        .iter()
+        .map(|&i| {
+            let wr = iridis_diffraction::map::view_direction(i % mw, i / mw, mw).unwrap_or([0.0, 0.0, 1.0]);
+            cpu.xyz(last_wi, wr)
+        })
+        .collect();
+    let gpu_px: Vec<Xyz> = px.iter().map(|&i| map.xyz[i]).collect();
+    let map_de = delta_e(&gpu_px, &cpu_px, 1500.0);
+    let [mn, med, p99, mean] = stats(&map_times);
+
+    // Thin film.
+    let grid = iridis_color::spectrum::uniform_grid(380.0, 780.0, 5.0)?;
+    let weights = SpectralWeights::new(&grid, iridis_color::Illuminant::D65, iridis_color::Observer::Cie1931);
+    let film = GpuFilm::new(&gpu, &stack, &weights)?;
+    let film_frame = FilmFrame {
+        width: fw,
+        height: fh,
+        angle_rad: (0.0, 80f64.to_radians()),
+        offset_nm: (-300.0, 300.0),
+        svt: Some((100.0, svt_noise(fw, fh))),
+    };
+    let run = film.frame(&film_frame, ToneMap { exposure_ru: 5.0, encoding: Encoding::Srgb })?;
+    let film_times = time_frames(frames, a.max_seconds, |_| Ok(run.run()?))?;
+    let out = run.read()?;
+    let fpx = sample(fw * fh, 2048);
+    let cpu_film = iridis_gpu::film::cpu_reference(&stack, &weights, &film_frame, &fpx)?;
+    let cpu_r: Vec<Xyz> = cpu_film.iter().map(|p| p.0).collect();
+    let gpu_r: Vec<Xyz> = fpx.iter().map(|&i| out.reflected[i]).collect();
+    let ymax = cpu_r.iter().map(|x| x.y).fold(1e-6f64, f64::max);
+    let film_de = delta_e(&gpu_r, &cpu_r, 1.0 / ymax);
+    let [fmn, fmed, fp99, fmean] = stats(&film_times);
+
+    if a.json {
+        return crate::output::print_json(&json!({
+            "adapter": adapter,
+            "software_adapter": gpu.is_software(),
+            "lookup": {
+                "table": a.table.as_ref().map(|p| p.display().to_string()).unwrap_or_else(|| "builtin:elaphe (201²)".into()),
+                "uv_resolution": table.meta.uv_resolution,
+                "taylor_terms": table.meta.taylor_terms,
+                "table_mb": lookup.table_bytes() as f64 / 1e6,
+                "size": [mw, mh],
+                "frames": map_times.len(),
+                "ms": {"min": mn, "median": med, "p99": p99, "mean": mean},
+                "fps_median": 1e3 / med,
+                "vs_cpu": {"pixels": px.len(), "exposure_ru": 1500.0, "delta_e00_mean": map_de.0, "delta_e00_p99": map_de.1},
+            },
+            "film": {
+                "stack": stack.to_string(),
+                "wavelengths": grid.len(),
+                "size": [fw, fh],
+                "frames": film_times.len(),
+                "ms": {"min": fmn, "median": fmed, "p99": fp99, "mean": fmean},
+                "fps_median": 1e3 / fmed,
+                "vs_cpu": {"pixels": fpx.len(), "exposure_ru": 1.0 / ymax, "delta_e00_mean": film_de.0, "delta_e00_p99": film_de.1},
+            },
+        }));
+    }
+    println!(
+        "lookup diffraction, {mw}×{mh} map, table {}² × {} powers ({:.1} MB), {} frames:",
+        table.meta.uv_resolution,
+        table.powers(),
+        lookup.table_bytes() as f64 / 1e6,
+        map_times.len()
+    );
+    println!("  frame time min {mn:.2} ms, median {med:.2} ms, p99 {p99:.2} ms ({:.1} fps at the median)", 1e3 / med);
+    println!("  vs CPU (lookup, f64; {} pixels at 1500 RU): ΔE00 mean {:.4}, p99 {:.4}", px.len(), map_de.0, map_de.1);
+    println!("thin film {stack}, {fw}×{fh}, {} wavelengths, gradient + SVT, {} frames:", grid.len(), film_times.len());
+    println!(
+        "  frame time min {fmn:.2} ms, median {fmed:.2} ms, p99 {fp99:.2} ms ({:.1} fps at the median)",
+        1e3 / fmed
+    );
+    println!(
+        "  vs CPU (Stack::evaluate_offset, f64; {} pixels): ΔE00 mean {:.4}, p99 {:.4}",
+        fpx.len(),
+        film_de.0,
+        film_de.1
+    );
+    Ok(())
+}

@@ -1,0 +1,158 @@
+//! `iridis brdf-map --gpu` and `iridis bench gpu` (issue 8). The tests that render need a Vulkan adapter
+//! (lavapipe from `mesa-vulkan-drivers` on machines without a GPU); without one they fail, unless
+//! `IRIDIS_SKIP_GPU=1`. The no-adapter test hides every Vulkan driver and runs anywhere.
+
+mod common;
+
+use std::process::Command;
+
+use common::{assert_fails, iridis, json_of};
+use iridis_color::integrate::white_point;
+use iridis_color::{Illuminant, Lab, Observer, Xyz};
+
+/// True when the GPU tests may run; panics with the driver hint when there is no adapter and no skip.
+fn have_gpu() -> bool {
+    let out = iridis(&["bench", "gpu", "--size", "8", "--film-size", "8x8", "--frames", "1", "--table", "none.npz"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    if !stderr.contains("no GPU adapter") {
+        return true;
+    }
+    if std::env::var("IRIDIS_SKIP_GPU").as_deref() == Ok("1") {
+        eprintln!("GPU test skipped (IRIDIS_SKIP_GPU=1): {stderr}");
+        return false;
+    }
+    panic!("{stderr}\nThese tests need a Vulkan adapter; set IRIDIS_SKIP_GPU=1 to skip them.");
+}
+
+fn tmp() -> tempfile::TempDir {
+    tempfile::tempdir().unwrap()
+}
+
+/// A small table: 8 µm blazed grating at 50 nm, coherence 8 µm, 61² grid.
+fn small_table(dir: &std::path::Path) -> String {
+    let t = dir.join("blazed.npz").display().to_string();
+    let out = iridis(&[
+        "precompute",
+        "builtin:blazed?size=8um&pixel=50nm",
+        "-o",
+        &t,
+        "--coherence",
+        "8um",
+        "--uv-resolution",
+        "61",
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    t
+}
+
+#[test]
+fn no_adapter_is_a_clear_error_not_a_panic() {
+    // Point the Vulkan loader at no driver at all.
+    for args in [
+        vec!["bench", "gpu", "--frames", "1"],
+        vec!["brdf-map", "builtin:blazed?size=4um&pixel=50nm", "--gpu", "--size", "16", "-o", "/tmp/never.png"],
+    ] {
+        let out = Command::new(env!("CARGO_BIN_EXE_iridis"))
+            .args(&args)
+            .env("VK_ICD_FILENAMES", "/nonexistent/icd.json")
+            .env("VK_DRIVER_FILES", "/nonexistent/icd.json")
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(!stderr.contains("panicked"), "{args:?} panicked: {stderr}");
+        let error: Vec<&str> = stderr.lines().filter(|l| l.starts_with("error:")).collect();
+        assert_eq!(error.len(), 1, "{stderr}");
+        assert!(error[0].contains("no GPU adapter") && error[0].contains("mesa-vulkan-drivers"), "{}", error[0]);
+    }
+    assert!(!std::path::Path::new("/tmp/never.png").exists());
+}
+
+/// Displayed colours of an 8-bit sRGB PNG as CIELAB.
+fn png_lab(path: &std::path::Path) -> Vec<Lab> {
+    let img = image::open(path).unwrap().to_rgb8();
+    let white = white_point(Illuminant::D65, Observer::Cie1931);
+    img.pixels()
+        .map(|p| {
+            let lin = p.0.map(|v| iridis_color::convert::srgb_decode(v as f64 / 255.0));
+            Lab::from_xyz(Xyz::from_linear_srgb(lin), white)
+        })
+        .collect()
+}
+
+#[test]
+fn brdf_map_on_the_gpu_matches_the_cpu_image() {
+    if !have_gpu() {
+        return;
+    }
+    let dir = tmp();
+    let table = small_table(dir.path());
+    let cpu = dir.path().join("cpu.png");
+    let gpu = dir.path().join("gpu.png");
+    for (png, extra) in [(&cpu, None), (&gpu, Some("--gpu"))] {
+        let mut args = vec!["brdf-map", &table, "--incidence", "20deg,30deg", "--size", "80", "--exposure", "1500"];
+        let p = png.display().to_string();
+        args.extend(["-o", &p]);
+        args.extend(extra);
+        let out = iridis(&args);
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    }
+    let (a, b) = (png_lab(&cpu), png_lab(&gpu));
+    assert_eq!(a.len(), 80 * 80);
+    let mut d: Vec<f64> = a.iter().zip(&b).map(|(p, q)| iridis_color::lab::delta_e_2000(*p, *q)).collect();
+    d.sort_by(f64::total_cmp);
+    let mean = d.iter().sum::<f64>() / d.len() as f64;
+    let p99 = d[d.len() * 99 / 100];
+    eprintln!("brdf-map --gpu vs CPU (PNG): ΔE00 mean {mean:.4}, p99 {p99:.4}");
+    assert!(mean < 1.0 && p99 < 3.0, "mean {mean}, p99 {p99}");
+    // The map is lit, so the comparison is not between two black images.
+    assert!(a.iter().filter(|l| l.l > 20.0).count() > 200);
+}
+
+#[test]
+fn bench_gpu_reports_adapter_and_frame_times() {
+    if !have_gpu() {
+        return;
+    }
+    let dir = tmp();
+    let table = small_table(dir.path());
+    let v = json_of(&[
+        "bench",
+        "gpu",
+        "--table",
+        &table,
+        "--size",
+        "64x64",
+        "--film-size",
+        "96x48",
+        "--frames",
+        "4",
+        "--json",
+    ]);
+    assert!(!v["adapter"].as_str().unwrap().is_empty());
+    for part in ["lookup", "film"] {
+        let p = &v[part];
+        assert_eq!(p["frames"], 4, "{part}");
+        let ms = &p["ms"];
+        let (mn, med, p99) = (ms["min"].as_f64().unwrap(), ms["median"].as_f64().unwrap(), ms["p99"].as_f64().unwrap());
+        assert!(mn > 0.0 && mn <= med && med <= p99, "{part}: {ms}");
+        assert!(p["vs_cpu"]["delta_e00_mean"].as_f64().unwrap() < 1.0, "{part}: {p}");
+        assert!(p["vs_cpu"]["delta_e00_p99"].as_f64().unwrap() < 3.0, "{part}: {p}");
+    }
+    assert_eq!(v["lookup"]["size"], serde_json::json!([64, 64]));
+    assert_eq!(v["film"]["size"], serde_json::json!([96, 48]));
+}
+
+#[test]
+fn gpu_options_are_checked() {
+    assert_fails(&["bench", "gpu", "--size", "64x32"], &["square"]);
+    assert_fails(&["bench", "gpu", "--film-size", "big"], &["WIDTHxHEIGHT"]);
+    assert_fails(
+        &["brdf-map", "builtin:blazed", "--gpu", "--method", "reference", "-o", "/tmp/x.png"],
+        &["--gpu", "lookup"],
+    );
+    assert_fails(
+        &["brdf-map", "builtin:blazed", "--gpu", "--fresnel", "stack:air | water 300nm | air", "-o", "/tmp/x.png"],
+        &["--gpu", "λ"],
+    );
+}
