@@ -23,9 +23,10 @@ fn iridescence_maps_onto_thin_films() {
     assert_eq!(films[1].stack.thicknesses(), vec![500.0]);
     let svt = films[1].svt.expect("thickness texture → SVT");
     assert_eq!(svt.d_rel_nm, 300.0);
-    // The texture's G runs from 0 (top row) to 1 (bottom row).
-    let top = scene.textures[svt.texture].sample([0.5, 0.0])[0];
-    let bottom = scene.textures[svt.texture].sample([0.5, 0.999])[0];
+    // The texture's G runs from 0 (top row) to 1 (bottom row) of its 64 rows (sampled at texel centres:
+    // the glTF default sampler repeats, so the edges blend with the opposite row).
+    let top = scene.textures[svt.texture].sample([0.5, 0.5 / 64.0])[0];
+    let bottom = scene.textures[svt.texture].sample([0.5, 63.5 / 64.0])[0];
     assert!(top < 0.02 && bottom > 0.98, "{top} {bottom}");
     assert_eq!(films[2].factor, 0.5);
     assert!(films.iter().all(|f| f.base.is_some()));
