@@ -78,7 +78,7 @@ impl Environment {
             }
             Environment::Map { texture, rotation, intensity, .. } => {
                 let (u, v) = equirect_uv(d, *rotation);
-                mul(texture.sample([u, v]), *intensity)
+                mul(texture.sample_with([u, v], true), *intensity)
             }
         }
     }
@@ -125,7 +125,7 @@ pub fn equirect_mean(texture: &Texture, intensity: f64) -> Rgb {
         let theta = (r as f64 + 0.5) / h as f64 * std::f64::consts::PI;
         let s = theta.sin();
         for c in 0..w {
-            let v = texture.sample([(c as f64 + 0.5) / w as f64, (r as f64 + 0.5) / h as f64]);
+            let v = texture.sample_with([(c as f64 + 0.5) / w as f64, (r as f64 + 0.5) / h as f64], true);
             acc = add(acc, mul(v, s));
             wsum += s;
         }

@@ -129,17 +129,29 @@ impl Texture {
 
     /// The texture at `uv` (bilinear, repeating): RGB for colour and vector textures, `[a, a, a]` for grey ones.
     pub fn sample(&self, uv: [f64; 2]) -> [f64; 3] {
+        self.sample_with(uv, false)
+    }
+
+    /// As [`Texture::sample`], with `clamp_v` holding `v` at the first and last rows instead of repeating (the
+    /// poles of an equirectangular map must not blend with each other).
+    pub fn sample_with(&self, uv: [f64; 2], clamp_v: bool) -> [f64; 3] {
         match self {
             Texture::Image { width, height, channels, data, .. } => {
                 let x = uv[0].rem_euclid(1.0) * *width as f64 - 0.5;
-                let y = uv[1].rem_euclid(1.0) * *height as f64 - 0.5;
+                let v = if clamp_v { uv[1].clamp(0.0, 1.0) } else { uv[1].rem_euclid(1.0) };
+                let y = v * *height as f64 - 0.5;
                 let (x0, y0) = (x.floor(), y.floor());
                 let (fx, fy) = (x - x0, y - y0);
                 let wrap = |i: f64, n: usize| (i as i64).rem_euclid(n as i64) as usize;
                 let mut out = [0.0; 3];
                 for (dy, wy) in [(0.0, 1.0 - fy), (1.0, fy)] {
                     for (dx, wx) in [(0.0, 1.0 - fx), (1.0, fx)] {
-                        let (c, r) = (wrap(x0 + dx, *width), wrap(y0 + dy, *height));
+                        let r = if clamp_v {
+                            (y0 + dy).clamp(0.0, (*height - 1) as f64) as usize
+                        } else {
+                            wrap(y0 + dy, *height)
+                        };
+                        let c = wrap(x0 + dx, *width);
                         let base = (r * width + c) * channels;
                         for (k, o) in out.iter_mut().enumerate() {
                             *o += wx * wy * data[base + k.min(channels - 1)] as f64;
