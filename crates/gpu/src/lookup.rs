@@ -5,8 +5,9 @@
 //! (paper eq. 10–12) with bilinear interpolation of `I_p` in the index space of the non-linear grid
 //! `u_i = 2·sign(s_i)|s_i|^a` (sec. 5) and `C` of eq. 2–4 ([`iridis_diffraction::Shading::factor`]): Fresnel
 //! (Schlick or the exact reflectance of a complex index) at the half-vector angle, the geometry term, and
-//! Cook–Torrance shadowing. The table lives in one `f32` storage buffer with the file's layout, so the shader
-//! is the CPU's `Lookup::sum` with `Precision::F32`.
+//! Cook–Torrance shadowing. The table lives in `f32` storage buffers with the file's layout — one, or up to
+//! [`MAX_CHUNKS`] split by rows of v when it exceeds one binding (128 MiB on lavapipe; the paper's 501² table with
+//! N = 22 is 136 MB) — so the shader is the CPU's `Lookup::sum` with `Precision::F32`.
 
 use std::time::Duration;
 
@@ -17,12 +18,17 @@ use wgpu::util::DeviceExt;
 
 use crate::{encoding_words, unpack_rgb8, xyz_to_srgb_words, Gpu, GpuError, COMMON_WGSL};
 
+/// Storage buffers a table may be split into (by rows of v) when it exceeds one binding.
+pub const MAX_CHUNKS: usize = 4;
+
 /// A lookup table on the GPU with its pipeline and shading options.
 #[derive(Debug)]
 pub struct GpuLookup<'g> {
     gpu: &'g Gpu,
     pipeline: wgpu::ComputePipeline,
-    table: wgpu::Buffer,
+    /// The table split by rows of v (four bindings; unused ones hold one dummy value).
+    tables: Vec<wgpu::Buffer>,
+    rows_per_chunk: u32,
     res: u32,
     np: u32,
     inv_power: f32,
@@ -54,6 +60,18 @@ impl<'g> GpuLookup<'g> {
     /// Uploads a table (as `f32`) and compiles the shader. `fresnel` must be one of the built-in,
     /// wavelength-independent models (the lookup method integrates over λ in advance).
     pub fn new(gpu: &'g Gpu, table: &LookupTable, fresnel: Fresnel, shadowing: bool) -> Result<Self, GpuError> {
+        Self::with_binding_limit(gpu, table, fresnel, shadowing, u64::MAX)
+    }
+
+    /// As [`GpuLookup::new`], with table buffers of at most `max_binding_bytes` (or the device's limit, if
+    /// lower): a table larger than that is split by rows of v into up to [`MAX_CHUNKS`] buffers.
+    pub fn with_binding_limit(
+        gpu: &'g Gpu,
+        table: &LookupTable,
+        fresnel: Fresnel,
+        shadowing: bool,
+        max_binding_bytes: u64,
+    ) -> Result<Self, GpuError> {
         let res = table.meta.uv_resolution;
         let np = table.powers();
         if res < 3 || table.uv.len() != res || table.data.len() != res * res * 3 * np {
@@ -64,20 +82,43 @@ impl<'g> GpuLookup<'g> {
                 table.data.len()
             )));
         }
-        let bytes = (table.data.len() * 4) as u64;
-        gpu.check_storage(
-            "the lookup table",
-            bytes,
-            "precompute it with a smaller --uv-resolution or fewer --terms (the size grows with res² × (2N+1))",
-        )?;
-        let data: Vec<f32> = table.data.iter().map(|&v| v as f32).collect();
+        // Rows of v per buffer: a cell needs rows iv and iv + 1, so buffer k holds rows kR ..= kR + R.
+        let row = (res * 3 * np * 4) as u64;
+        let max = gpu.limits.max_storage_buffer_binding_size.min(gpu.limits.max_buffer_size).min(max_binding_bytes);
+        let rows_per_chunk = ((max / row).saturating_sub(1) as usize).min(res - 1);
+        let chunks = if rows_per_chunk == 0 { usize::MAX } else { (res - 1).div_ceil(rows_per_chunk) };
+        if chunks > MAX_CHUNKS {
+            return Err(GpuError::TooLarge(format!(
+                "the lookup table ({:.1} MB in f32) does not fit {MAX_CHUNKS} storage buffers of {:.1} MB on {}; \
+                 precompute it with a smaller --uv-resolution or fewer --terms (the size grows with res² × (2N+1))",
+                (table.data.len() * 4) as f64 / 1e6,
+                max as f64 / 1e6,
+                gpu.adapter_name()
+            )));
+        }
+        let per_row = res * 3 * np;
+        let parts: Vec<Vec<f32>> = (0..MAX_CHUNKS)
+            .map(|k| {
+                let first = k * rows_per_chunk;
+                if k >= chunks {
+                    return vec![0.0];
+                }
+                let last = (first + rows_per_chunk + 1).min(res);
+                table.data[first * per_row..last * per_row].iter().map(|&v| v as f32).collect()
+            })
+            .collect();
         let source = format!("{COMMON_WGSL}\n{}", include_str!("shaders/lookup.wgsl"));
-        let (table_buf, pipeline) = gpu.checked("uploading the lookup table and compiling the shader", || {
-            let buf = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("iridis lookup table"),
-                contents: bytemuck::cast_slice(&data),
-                usage: wgpu::BufferUsages::STORAGE,
-            });
+        let (tables, pipeline) = gpu.checked("uploading the lookup table and compiling the shader", || {
+            let bufs: Vec<wgpu::Buffer> = parts
+                .iter()
+                .map(|part| {
+                    gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                        label: Some("iridis lookup table"),
+                        contents: bytemuck::cast_slice(part),
+                        usage: wgpu::BufferUsages::STORAGE,
+                    })
+                })
+                .collect();
             let module = gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
                 label: Some("lookup.wgsl"),
                 source: wgpu::ShaderSource::Wgsl(source.into()),
@@ -90,13 +131,14 @@ impl<'g> GpuLookup<'g> {
                 compilation_options: Default::default(),
                 cache: None,
             });
-            (buf, pipeline)
+            (bufs, pipeline)
         })?;
         let f0 = fresnel.reflectance(500.0, 1.0) as f32;
         Ok(Self {
             gpu,
             pipeline,
-            table: table_buf,
+            tables,
+            rows_per_chunk: rows_per_chunk as u32,
             res: res as u32,
             np: np as u32,
             inv_power: (1.0 / table.meta.uv_power) as f32,
@@ -111,9 +153,14 @@ impl<'g> GpuLookup<'g> {
         self.gpu
     }
 
-    /// Bytes of the table on the GPU.
+    /// Number of storage buffers the table occupies.
+    pub fn table_buffers(&self) -> usize {
+        self.tables.iter().filter(|b| b.size() > 4).count()
+    }
+
+    /// Bytes of the table on the GPU (with the rows shared by neighbouring buffers).
     pub fn table_bytes(&self) -> u64 {
-        self.table.size()
+        self.tables.iter().map(|b| b.size()).filter(|&b| b > 4).sum()
     }
 
     /// Allocates the output of `size × size` maps.
@@ -127,7 +174,7 @@ impl<'g> GpuLookup<'g> {
         gpu.checked("allocating the map", || {
             let params = gpu.device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("lookup params"),
-                size: 48,
+                size: 64,
                 usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
                 mapped_at_creation: false,
             });
@@ -140,9 +187,12 @@ impl<'g> GpuLookup<'g> {
                 entries: &[
                     entry(0, &params),
                     entry(1, &display),
-                    entry(2, &self.table),
-                    entry(3, &out_xyz),
-                    entry(4, &out_rgba),
+                    entry(2, &out_xyz),
+                    entry(3, &out_rgba),
+                    entry(4, &self.tables[0]),
+                    entry(5, &self.tables[1]),
+                    entry(6, &self.tables[2]),
+                    entry(7, &self.tables[3]),
                 ],
             });
             MapFrame { lookup: self, size: size as u32, params, bind, out_xyz, out_rgba }
@@ -156,7 +206,7 @@ impl<'g> GpuLookup<'g> {
         frame.read()
     }
 
-    fn param_words(&self, wi: [f64; 3], size: u32) -> [u32; 12] {
+    fn param_words(&self, wi: [f64; 3], size: u32) -> [u32; 16] {
         let f = |v: f32| v.to_bits();
         let (flags_fresnel, n_re, n_im) = match self.fresnel {
             Fresnel::Schlick { n } => (0u32, n as f32, 0.0f32),
@@ -176,6 +226,10 @@ impl<'g> GpuLookup<'g> {
             f(self.f0),
             f(n_re),
             f(n_im),
+            self.rows_per_chunk,
+            0,
+            0,
+            0,
         ]
     }
 }

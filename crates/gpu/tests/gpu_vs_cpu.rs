@@ -119,6 +119,28 @@ fn lookup_brdf_maps_match_the_cpu() {
     }
 }
 
+#[test]
+fn a_table_split_over_several_buffers_gives_the_same_map() {
+    let Some(gpu) = gpu() else { return };
+    let table = small_table("elaphe");
+    let wi = direction(25f64.to_radians(), 60f64.to_radians());
+    let tone = ToneMap::default();
+    let whole = GpuLookup::new(&gpu, &table, Fresnel::default(), true).unwrap();
+    assert_eq!(whole.table_buffers(), 1);
+    let reference = whole.render_map(wi, 64, tone).unwrap();
+    let row = (table.meta.uv_resolution * 3 * table.powers() * 4) as u64;
+    // 40 rows per buffer: 121 rows need 3 buffers (rows 0-40, 40-80, 80-120); 30 rows: 4 buffers.
+    for (rows, buffers) in [(41u64, 3usize), (31, 4)] {
+        let split = GpuLookup::with_binding_limit(&gpu, &table, Fresnel::default(), true, rows * row).unwrap();
+        assert_eq!(split.table_buffers(), buffers);
+        let out = split.render_map(wi, 64, tone).unwrap();
+        assert_eq!(out.xyz, reference.xyz, "{buffers} buffers");
+    }
+    // More than four buffers' worth is refused with advice.
+    let e = GpuLookup::with_binding_limit(&gpu, &table, Fresnel::default(), true, 20 * row).unwrap_err().to_string();
+    assert!(e.contains("--uv-resolution"), "{e}");
+}
+
 /// A deterministic smooth grey texture in [0, 1] (sums of sines), as an SVT map.
 fn svt_texture(width: usize, height: usize) -> Vec<f32> {
     let mut a = Vec::with_capacity(width * height);

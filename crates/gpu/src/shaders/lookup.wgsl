@@ -13,14 +13,32 @@ struct LookupParams {
     f0: f32,            // Fresnel reflectance at normal incidence
     n_re: f32,          // Schlick: n; exact: Re n
     n_im: f32,          // exact: Im n
+    rows_per_chunk: u32, // grid rows (v) whose cells each table buffer serves; it holds one row more
+    pad0: u32,
+    pad1: u32,
+    pad2: u32,
 }
 
 @group(0) @binding(0) var<uniform> P: LookupParams;
 @group(0) @binding(1) var<uniform> D: Display;
-// I[((iv * res + iu) * 3 + c) * np + p], as in the table file.
-@group(0) @binding(2) var<storage, read> table: array<f32>;
-@group(0) @binding(3) var<storage, read_write> out_xyz: array<vec4<f32>>;
-@group(0) @binding(4) var<storage, read_write> out_rgba: array<u32>;
+// I[((iv * res + iu) * 3 + c) * np + p], as in the table file, split by rows of v into up to four buffers
+// so that a table larger than one storage binding (e.g. 128 MiB on lavapipe) still fits: buffer k holds rows
+// k R .. k R + R (R = rows_per_chunk, one row of overlap, so both rows of a cell are in one buffer).
+@group(0) @binding(2) var<storage, read_write> out_xyz: array<vec4<f32>>;
+@group(0) @binding(3) var<storage, read_write> out_rgba: array<u32>;
+@group(0) @binding(4) var<storage, read> table0: array<f32>;
+@group(0) @binding(5) var<storage, read> table1: array<f32>;
+@group(0) @binding(6) var<storage, read> table2: array<f32>;
+@group(0) @binding(7) var<storage, read> table3: array<f32>;
+
+fn fetch(chunk: u32, i: u32) -> f32 {
+    switch chunk {
+        case 0u: { return table0[i]; }
+        case 1u: { return table1[i]; }
+        case 2u: { return table2[i]; }
+        default: { return table3[i]; }
+    }
+}
 
 // Continuous index of u in [-2, 2] on the grid (iridis_diffraction::table::grid_index).
 fn grid_index(u: f32) -> f32 {
@@ -95,22 +113,24 @@ fn lookup_xyz(wi: vec3<f32>, wr: vec3<f32>) -> vec3<f32> {
     let iv = min(u32(floor(qv)), res - 2u);
     let fu = qu - f32(iu);
     let fv = qv - f32(iv);
+    let chunk = min(iv / P.rows_per_chunk, 3u);
+    let lv = iv - chunk * P.rows_per_chunk;
     let w00 = (1.0 - fu) * (1.0 - fv);
     let w01 = fu * (1.0 - fv);
     let w10 = (1.0 - fu) * fv;
     let w11 = fu * fv;
-    let b00 = (iv * res + iu) * 3u * np;
-    let b01 = (iv * res + iu + 1u) * 3u * np;
-    let b10 = ((iv + 1u) * res + iu) * 3u * np;
-    let b11 = ((iv + 1u) * res + iu + 1u) * 3u * np;
+    let b00 = (lv * res + iu) * 3u * np;
+    let b01 = (lv * res + iu + 1u) * 3u * np;
+    let b10 = ((lv + 1u) * res + iu) * 3u * np;
+    let b11 = ((lv + 1u) * res + iu + 1u) * 3u * np;
     var out = vec3<f32>(0.0);
     for (var c = 0u; c < 3u; c = c + 1u) {
         let o = c * np;
         var acc = 0.0;
         for (var k = 0u; k < np; k = k + 1u) {
             let p = np - 1u - k;
-            let ip = w00 * table[b00 + o + p] + w01 * table[b01 + o + p] + w10 * table[b10 + o + p]
-                + w11 * table[b11 + o + p];
+            let ip = w00 * fetch(chunk, b00 + o + p) + w01 * fetch(chunk, b01 + o + p)
+                + w10 * fetch(chunk, b10 + o + p) + w11 * fetch(chunk, b11 + o + p);
             acc = acc * w + ip;
         }
         out[c] = acc;
