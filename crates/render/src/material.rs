@@ -317,6 +317,32 @@ mod tests {
     }
 
     #[test]
+    fn orientation_rules_give_the_expected_axis() {
+        let hit = Hit {
+            t: 1.0,
+            p: [0.0; 3],
+            n: [0.0, 0.0, 1.0],
+            ng: [0.0, 0.0, 1.0],
+            front: true,
+            uv: [0.3, 0.3],
+            tangent: Some([1.0, 0.0, 0.0]),
+            along: Some([0.0, 1.0, 0.0]),
+            material: 0,
+        };
+        // A vector texture pointing along +G = the bitangent n × t = +y.
+        let tex = vec![Texture::Checker { a: [0.5, 1.0, 0.5], b: [0.5, 1.0, 0.5], n: 1.0 }];
+        let close = |a: V3, b: V3| (0..3).all(|k| (a[k] - b[k]).abs() < 1e-12);
+        let o = |rule, angle| Orientation { rule, angle }.tangent(&hit, &tex);
+        assert!(close(o(OrientRule::Texture(0), 0.0), [0.0, 1.0, 0.0]));
+        assert!(close(o(OrientRule::Tangent, 0.0), [1.0, 0.0, 0.0]));
+        assert!(close(o(OrientRule::Along, 0.0), [0.0, 1.0, 0.0]));
+        // +90° about the normal turns t into n × t.
+        assert!(close(o(OrientRule::Tangent, std::f64::consts::FRAC_PI_2), [0.0, 1.0, 0.0]));
+        // A world direction is projected onto the surface.
+        assert!(close(o(OrientRule::Direction([1.0, 1.0, 5.0]), 0.0), normalize([1.0, 1.0, 0.0])));
+    }
+
+    #[test]
     fn microfacet_is_bounded_and_lambert_like_when_rough() {
         let m = Microfacet { color: ColorSource::Const([0.5; 3]), roughness: 1.0, metallic: 0.0, ior: 1.5 };
         let n = [0.0, 0.0, 1.0];
