@@ -213,6 +213,30 @@ fn thin_film_colours_match_the_cpu() {
 }
 
 #[test]
+fn a_layer_at_its_critical_angle() {
+    // An air gap in glass: at θ = asin(1/1.5) the gap's cosine is 0 and eq. 3.1 is 0/0. The CPU averages two
+    // shifted evaluations there (recurrence::grazing_variants); the f32 shader evaluates directly — its cosine
+    // is never exactly 0 — and must still agree.
+    let Some(gpu) = gpu() else { return };
+    let grid = uniform_grid(380.0, 780.0, 5.0).unwrap();
+    let weights = SpectralWeights::new(&grid, Illuminant::D65, Observer::Cie1931);
+    let stack: Stack = "n=1.5 | n=1.0 300nm | n=1.5".parse().unwrap();
+    let crit = (1.0f64 / 1.5).asin();
+    let (w, h) = (201, 8);
+    let frame =
+        FilmFrame { width: w, height: h, angle_rad: (crit - 0.01, crit + 0.01), offset_nm: (-100.0, 100.0), svt: None };
+    assert!((frame.pixel(100, 0).0 - crit).abs() < 1e-15);
+    let out = GpuFilm::new(&gpu, &stack, &weights).unwrap().render(&frame, ToneMap::default()).unwrap();
+    let all: Vec<usize> = (0..w * h).collect();
+    let cpu = iridis_gpu::film::cpu_reference(&stack, &weights, &frame, &all).unwrap();
+    let worst = all.iter().map(|&i| (cpu[i].0.y - out.reflected[i].y).abs()).fold(0.0, f64::max);
+    let (cr, _): (Vec<Xyz>, Vec<Xyz>) = cpu.into_iter().unzip();
+    let (mean, p99, max) = delta_e(&out.reflected, &cr, 1.0, 0..w * h);
+    eprintln!("film at the critical angle ±0.57°: max |ΔY| {worst:.2e}, ΔE00 mean {mean:.5} p99 {p99:.5} max {max:.4}");
+    assert!(worst < 1e-4 && mean < 1.0 && p99 < 3.0, "|ΔY| {worst}, mean {mean}, p99 {p99}");
+}
+
+#[test]
 fn thin_film_frame_rejects_bad_input() {
     let Some(gpu) = gpu() else { return };
     let grid = uniform_grid(380.0, 780.0, 5.0).unwrap();
