@@ -127,6 +127,8 @@ fn bench_gpu_reports_adapter_and_frame_times() {
         "96x48",
         "--frames",
         "4",
+        "--save",
+        dir.path().to_str().unwrap(),
         "--json",
     ]);
     assert!(!v["adapter"].as_str().unwrap().is_empty());
@@ -141,6 +143,9 @@ fn bench_gpu_reports_adapter_and_frame_times() {
     }
     assert_eq!(v["lookup"]["size"], serde_json::json!([64, 64]));
     assert_eq!(v["film"]["size"], serde_json::json!([96, 48]));
+    let map = image::open(dir.path().join("lookup_map.png")).unwrap();
+    let film = image::open(dir.path().join("film_frame.png")).unwrap();
+    assert_eq!((map.width(), map.height(), film.width(), film.height()), (64, 64, 96, 48));
 }
 
 #[test]

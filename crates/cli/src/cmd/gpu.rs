@@ -84,7 +84,8 @@ and the last frame is checked against the CPU (CIEDE2000 over up to 4096 pixels)
 Examples:
   iridis bench gpu                                      built-in Elaphe table (201²), 1024² map, 1920×1080 film
   iridis bench gpu --table elaphe.npz --size 1024x1024 --frames 500 --json
-  iridis bench gpu --stack \"air | gasoline 216nm | water 220nm | asphalt\" --film-size 1280x720")]
+  iridis bench gpu --stack \"air | gasoline 216nm | water 220nm | asphalt\" --film-size 1280x720
+  iridis bench gpu --size 512 --film-size 960x540 --frames 5 --save out/")]
 pub struct GpuBench {
     /// Lookup BRDF map size: 1024x1024 or 1024 (maps are square).
     #[arg(long, default_value = "1024x1024")]
@@ -104,6 +105,9 @@ pub struct GpuBench {
     /// Thin-film stack; every layer's thickness gets the frame's offset (gradient ±300 nm, SVT ±100 nm).
     #[arg(long, default_value = "air | water 500nm | air")]
     pub stack: String,
+    /// Also write the last frames as PNG into this folder: lookup_map.png (1500 RU) and film_frame.png.
+    #[arg(long)]
+    pub save: Option<PathBuf>,
     /// Print JSON.
     #[arg(long)]
     pub json: bool,
@@ -281,6 +285,10 @@ pub fn bench(a: GpuBench) -> Result<()> {
     let ymax = cpu_r.iter().map(|x| x.y).fold(1e-6f64, f64::max);
     let film_de = delta_e(&gpu_r, &cpu_r, 1.0 / ymax);
     let [fmn, fmed, fp99, fmean] = stats(&film_times);
+    if let Some(dir) = &a.save {
+        crate::output::write_png_rgb8(&dir.join("lookup_map.png"), mw as u32, mw as u32, &map.rgb8)?;
+        crate::output::write_png_rgb8(&dir.join("film_frame.png"), fw as u32, fh as u32, &out.rgb8)?;
+    }
 
     if a.json {
         return crate::output::print_json(&json!({
