@@ -138,6 +138,11 @@ fn bench_gpu_reports_adapter_and_frame_times() {
         let ms = &p["ms"];
         let (mn, med, p99) = (ms["min"].as_f64().unwrap(), ms["median"].as_f64().unwrap(), ms["p99"].as_f64().unwrap());
         assert!(mn > 0.0 && mn <= med && med <= p99, "{part}: {ms}");
+        // The GPU's timestamps of the pass (where the adapter has them) lie inside submission → completion.
+        if let Some(g) = p["gpu_timestamp_ms"].as_object() {
+            let gmed = g["median"].as_f64().unwrap();
+            assert!(gmed > 0.0 && gmed <= med + 0.01, "{part}: timestamps {gmed} ms vs wall {med} ms");
+        }
         assert!(p["vs_cpu"]["delta_e00_mean"].as_f64().unwrap() < 1.0, "{part}: {p}");
         assert!(p["vs_cpu"]["delta_e00_p99"].as_f64().unwrap() < 3.0, "{part}: {p}");
     }

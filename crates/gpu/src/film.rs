@@ -13,15 +13,13 @@
 //! directly (its cosine is never exactly 0); for an air gap in glass at the critical angle the reflected Y
 //! differs from the CPU's by < 1e-4 (test `a_layer_at_its_critical_angle`).
 
-use std::time::Duration;
-
 use iridis_color::{SpectralWeights, ToneMap, Xyz};
 use iridis_thinfilm::Stack;
 use rayon::prelude::*;
 use wgpu::util::DeviceExt;
 
 use crate::lookup::{display_buffer, entry, storage_out};
-use crate::{unpack_rgb8, Gpu, GpuError, COMMON_WGSL};
+use crate::{dispatch, unpack_rgb8, FrameTime, Gpu, GpuError, Timer, COMMON_WGSL};
 
 /// Angles and thicknesses over an image.
 #[derive(Debug, Clone, PartialEq)]
@@ -118,6 +116,7 @@ pub struct FilmRun<'a, 'g> {
     bind: wgpu::BindGroup,
     out_xyz: wgpu::Buffer,
     out_rgba: wgpu::Buffer,
+    timer: Option<Timer>,
 }
 
 impl<'g> GpuFilm<'g> {
@@ -239,7 +238,15 @@ impl<'g> GpuFilm<'g> {
                     entry(7, &out_rgba),
                 ],
             });
-            FilmRun { film: self, width: frame.width, height: frame.height, bind, out_xyz, out_rgba }
+            FilmRun {
+                film: self,
+                width: frame.width,
+                height: frame.height,
+                bind,
+                out_xyz,
+                out_rgba,
+                timer: gpu.timer(),
+            }
         })
     }
 
@@ -252,19 +259,18 @@ impl<'g> GpuFilm<'g> {
 }
 
 impl FilmRun<'_, '_> {
-    /// Renders the frame and waits for the GPU; returns the time from submission to completion.
-    pub fn run(&self) -> Result<Duration, GpuError> {
-        let gpu = self.film.gpu;
-        let mut enc = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("film") });
-        {
-            let mut pass =
-                enc.begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("film"), timestamp_writes: None });
-            pass.set_pipeline(&self.film.pipeline);
-            pass.set_bind_group(0, &self.bind, &[]);
-            pass.dispatch_workgroups((self.width as u32).div_ceil(8), (self.height as u32).div_ceil(8), 1);
-        }
-        let cmd = enc.finish();
-        gpu.checked("rendering the film frame", || gpu.submit_and_wait(cmd))?
+    /// Renders the frame and waits for the GPU; returns the time from submission to completion (and the GPU's
+    /// timestamps where it has them).
+    pub fn run(&self) -> Result<FrameTime, GpuError> {
+        let groups = ((self.width as u32).div_ceil(8), (self.height as u32).div_ceil(8));
+        dispatch(
+            self.film.gpu,
+            self.timer.as_ref(),
+            &self.film.pipeline,
+            &self.bind,
+            groups,
+            "rendering the film frame",
+        )
     }
 
     /// Reads the last frame back.

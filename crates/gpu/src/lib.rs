@@ -27,8 +27,8 @@ pub mod lookup;
 
 use std::time::{Duration, Instant};
 
-pub use film::{FilmFrame, FilmOutput, GpuFilm};
-pub use lookup::{GpuLookup, MapOutput};
+pub use film::{FilmFrame, FilmOutput, FilmRun, GpuFilm};
+pub use lookup::{GpuLookup, MapFrame, MapOutput};
 
 /// What the user reads when no adapter is found.
 pub const NO_ADAPTER_HELP: &str = "no GPU adapter found (iridis uses Vulkan through wgpu). Install a Vulkan driver; \
@@ -80,9 +80,11 @@ impl Gpu {
         .map_err(|e| GpuError::NoAdapter(e.to_string()))?;
         let info = adapter.get_info();
         let limits = adapter.limits();
+        // GPU timestamps around each pass where the adapter has them (frame times without submission overhead).
+        let features = adapter.features() & wgpu::Features::TIMESTAMP_QUERY;
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("iridis"),
-            required_features: wgpu::Features::empty(),
+            required_features: features,
             required_limits: limits.clone(),
             ..Default::default()
         }))
@@ -98,6 +100,25 @@ impl Gpu {
     /// True for a software adapter (lavapipe/llvmpipe): its timings say nothing about a real GPU.
     pub fn is_software(&self) -> bool {
         self.info.device_type == wgpu::DeviceType::Cpu
+    }
+
+    /// Timestamp queries around one compute pass, or `None` when the adapter has no timestamps.
+    pub(crate) fn timer(&self) -> Option<Timer> {
+        if !self.device.features().contains(wgpu::Features::TIMESTAMP_QUERY) {
+            return None;
+        }
+        let query = self.device.create_query_set(&wgpu::QuerySetDescriptor {
+            label: Some("iridis pass timestamps"),
+            ty: wgpu::QueryType::Timestamp,
+            count: 2,
+        });
+        let resolve = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("iridis timestamps"),
+            size: 16,
+            usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        Some(Timer { query, resolve, period_ns: self.queue.get_timestamp_period() as f64 })
     }
 
     /// Runs `f` inside validation and out-of-memory error scopes and turns a captured error into
@@ -170,6 +191,75 @@ impl Gpu {
         staging.unmap();
         Ok(data)
     }
+}
+
+/// The time of one frame: wall clock from submission to completion, and the GPU's own timestamps around the
+/// compute pass where the adapter has them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FrameTime {
+    pub wall: Duration,
+    pub gpu: Option<Duration>,
+}
+
+/// Two timestamps around a compute pass.
+#[derive(Debug)]
+pub(crate) struct Timer {
+    query: wgpu::QuerySet,
+    resolve: wgpu::Buffer,
+    period_ns: f64,
+}
+
+impl Timer {
+    pub(crate) fn writes(&self) -> wgpu::ComputePassTimestampWrites<'_> {
+        wgpu::ComputePassTimestampWrites {
+            query_set: &self.query,
+            beginning_of_pass_write_index: Some(0),
+            end_of_pass_write_index: Some(1),
+        }
+    }
+
+    pub(crate) fn resolve(&self, enc: &mut wgpu::CommandEncoder) {
+        enc.resolve_query_set(&self.query, 0..2, &self.resolve, 0);
+    }
+
+    /// The pass's duration, after the command buffer with [`Timer::resolve`] has completed.
+    pub(crate) fn read(&self, gpu: &Gpu) -> Result<Duration, GpuError> {
+        let t: Vec<u64> = bytemuck::pod_collect_to_vec(&gpu.read_buffer(&self.resolve, 16)?);
+        Ok(Duration::from_nanos((t[1].saturating_sub(t[0]) as f64 * self.period_ns).round() as u64))
+    }
+}
+
+/// Records one compute dispatch (with timestamps when available), submits it, waits, and times it.
+pub(crate) fn dispatch(
+    gpu: &Gpu,
+    timer: Option<&Timer>,
+    pipeline: &wgpu::ComputePipeline,
+    bind: &wgpu::BindGroup,
+    groups: (u32, u32),
+    what: &str,
+) -> Result<FrameTime, GpuError> {
+    // Encoding, submission and completion inside the error scopes: a validation error becomes a GpuError.
+    let wall = gpu.checked(what, || {
+        let mut enc = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(what) });
+        {
+            let mut pass = enc.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some(what),
+                timestamp_writes: timer.map(Timer::writes),
+            });
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(0, bind, &[]);
+            pass.dispatch_workgroups(groups.0, groups.1, 1);
+        }
+        if let Some(t) = timer {
+            t.resolve(&mut enc);
+        }
+        gpu.submit_and_wait(enc.finish())
+    })??;
+    let gpu_time = match timer {
+        Some(t) => Some(t.read(gpu)?),
+        None => None,
+    };
+    Ok(FrameTime { wall, gpu: gpu_time })
 }
 
 fn describe(info: &wgpu::AdapterInfo) -> String {

@@ -9,14 +9,12 @@
 //! [`MAX_CHUNKS`] split by rows of v when it exceeds one binding (128 MiB on lavapipe; the paper's 501² table with
 //! N = 22 is 136 MB) — so the shader is the CPU's `Lookup::sum` with `Precision::F32`.
 
-use std::time::Duration;
-
 use iridis_color::{ToneMap, Xyz};
 use iridis_diffraction::geometry::{Fresnel, FresnelSource};
 use iridis_diffraction::LookupTable;
 use wgpu::util::DeviceExt;
 
-use crate::{encoding_words, unpack_rgb8, xyz_to_srgb_words, Gpu, GpuError, COMMON_WGSL};
+use crate::{dispatch, encoding_words, unpack_rgb8, xyz_to_srgb_words, FrameTime, Gpu, GpuError, Timer, COMMON_WGSL};
 
 /// Storage buffers a table may be split into (by rows of v) when it exceeds one binding.
 pub const MAX_CHUNKS: usize = 4;
@@ -54,6 +52,7 @@ pub struct MapFrame<'a, 'g> {
     bind: wgpu::BindGroup,
     out_xyz: wgpu::Buffer,
     out_rgba: wgpu::Buffer,
+    timer: Option<Timer>,
 }
 
 impl<'g> GpuLookup<'g> {
@@ -195,7 +194,7 @@ impl<'g> GpuLookup<'g> {
                     entry(7, &self.tables[3]),
                 ],
             });
-            MapFrame { lookup: self, size: size as u32, params, bind, out_xyz, out_rgba }
+            MapFrame { lookup: self, size: size as u32, params, bind, out_xyz, out_rgba, timer: gpu.timer() }
         })
     }
 
@@ -236,21 +235,12 @@ impl<'g> GpuLookup<'g> {
 
 impl MapFrame<'_, '_> {
     /// Renders the map for light direction `wi` (a unit vector, z = the surface normal) and waits for the GPU;
-    /// returns the time from submission to completion.
-    pub fn run(&self, wi: [f64; 3]) -> Result<Duration, GpuError> {
+    /// returns the time from submission to completion (and the GPU's timestamps where it has them).
+    pub fn run(&self, wi: [f64; 3]) -> Result<FrameTime, GpuError> {
         let gpu = self.lookup.gpu;
         gpu.queue.write_buffer(&self.params, 0, bytemuck::cast_slice(&self.lookup.param_words(wi, self.size)));
-        let mut enc = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("map") });
-        {
-            let mut pass =
-                enc.begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("map"), timestamp_writes: None });
-            pass.set_pipeline(&self.lookup.pipeline);
-            pass.set_bind_group(0, &self.bind, &[]);
-            let groups = self.size.div_ceil(8);
-            pass.dispatch_workgroups(groups, groups, 1);
-        }
-        let cmd = enc.finish();
-        gpu.checked("rendering the map", || gpu.submit_and_wait(cmd))?
+        let groups = self.size.div_ceil(8);
+        dispatch(gpu, self.timer.as_ref(), &self.lookup.pipeline, &self.bind, (groups, groups), "rendering the map")
     }
 
     /// Reads the last rendered map back.

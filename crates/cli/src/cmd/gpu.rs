@@ -11,7 +11,7 @@ use iridis_diffraction::evaluator::Evaluator;
 use iridis_diffraction::geometry::direction;
 use iridis_diffraction::table::{Lookup, LookupTable, Precision, TableParams};
 use iridis_diffraction::{Fresnel, Shading};
-use iridis_gpu::{FilmFrame, Gpu, GpuFilm, GpuLookup};
+use iridis_gpu::{FilmFrame, FrameTime, Gpu, GpuFilm, GpuLookup};
 use serde_json::json;
 
 use crate::cmd::brdf::{self, BrdfMapArgs, ModelOpts, SurfaceOpts};
@@ -53,7 +53,7 @@ pub fn run_brdf_map(a: BrdfMapArgs, wi: [f64; 3], encoding: Encoding) -> Result<
     let lookup = GpuLookup::new(&gpu, &table, fresnel, !a.no_shadowing)?;
     let tone = ToneMap { exposure_ru: a.exposure, encoding };
     let frame = lookup.frame(a.size, tone)?;
-    let secs = frame.run(wi)?.as_secs_f64();
+    let secs = frame.run(wi)?.wall.as_secs_f64();
     let out = frame.read()?;
     let rgb = brdf::map_to_rgb8(&out.xyz, tone);
     crate::output::write_png_rgb8(&a.output, a.size as u32, a.size as u32, &rgb)?;
@@ -77,7 +77,8 @@ pub fn run_brdf_map(a: BrdfMapArgs, wi: [f64; 3], encoding: Encoding) -> Result<
 #[command(after_help = "\
 Times the two shaders headless (no window): the lookup diffraction BRDF map (paper eq. 10-12) and the
 thin-film frame (Sussenbach ch. 4: recurrence per wavelength sample, thickness gradient and SVT texture).
-A frame is one dispatch from submission to completion; the light circles the normal at 30° from frame to
+A frame is one dispatch from submission to completion (wall clock; also the GPU's own timestamps around the
+pass where the adapter has them); the light circles the normal at 30° from frame to
 frame. Each shader runs --frames frames or --max-seconds, whichever ends first, after one warm-up frame,
 and the last frame is checked against the CPU (CIEDE2000 over up to 4096 pixels).
 
@@ -126,6 +127,16 @@ fn parse_size(s: &str, what: &str) -> Result<(usize, usize)> {
     }
 }
 
+/// The GPU's own timestamps of every frame, when the adapter has them.
+fn gpu_times(times: &[FrameTime]) -> Option<Vec<Duration>> {
+    times.iter().map(|t| t.gpu).collect()
+}
+
+/// Wall-clock frame times.
+fn wall_times(times: &[FrameTime]) -> Vec<Duration> {
+    times.iter().map(|t| t.wall).collect()
+}
+
 /// min, median, p99 (nearest rank) and mean, in ms.
 fn stats(times: &[Duration]) -> [f64; 4] {
     let mut ms: Vec<f64> = times.iter().map(|d| d.as_secs_f64() * 1e3).collect();
@@ -137,8 +148,8 @@ fn stats(times: &[Duration]) -> [f64; 4] {
 fn time_frames(
     frames: usize,
     max_seconds: f64,
-    mut run: impl FnMut(usize) -> Result<Duration>,
-) -> Result<Vec<Duration>> {
+    mut run: impl FnMut(usize) -> Result<FrameTime>,
+) -> Result<Vec<FrameTime>> {
     run(0)?; // warm-up: pipeline caches, first-touch of the buffers
     let start = std::time::Instant::now();
     let mut times = Vec::with_capacity(frames);
@@ -262,7 +273,8 @@ pub fn bench(a: GpuBench) -> Result<()> {
         .collect();
     let gpu_px: Vec<Xyz> = px.iter().map(|&i| map.xyz[i]).collect();
     let map_de = delta_e(&gpu_px, &cpu_px, 1500.0);
-    let [mn, med, p99, mean] = stats(&map_times);
+    let [mn, med, p99, mean] = stats(&wall_times(&map_times));
+    let map_gpu = gpu_times(&map_times).map(|t| stats(&t));
 
     // Thin film.
     let grid = iridis_color::spectrum::uniform_grid(380.0, 780.0, 5.0)?;
@@ -284,7 +296,9 @@ pub fn bench(a: GpuBench) -> Result<()> {
     let gpu_r: Vec<Xyz> = fpx.iter().map(|&i| out.reflected[i]).collect();
     let ymax = cpu_r.iter().map(|x| x.y).fold(1e-6f64, f64::max);
     let film_de = delta_e(&gpu_r, &cpu_r, 1.0 / ymax);
-    let [fmn, fmed, fp99, fmean] = stats(&film_times);
+    let [fmn, fmed, fp99, fmean] = stats(&wall_times(&film_times));
+    let film_gpu = gpu_times(&film_times).map(|t| stats(&t));
+    let ms_json = |s: Option<[f64; 4]>| s.map(|[a, b, c, d]| json!({"min": a, "median": b, "p99": c, "mean": d}));
     if let Some(dir) = &a.save {
         crate::output::write_png_rgb8(&dir.join("lookup_map.png"), mw as u32, mw as u32, &map.rgb8)?;
         crate::output::write_png_rgb8(&dir.join("film_frame.png"), fw as u32, fh as u32, &out.rgb8)?;
@@ -302,6 +316,7 @@ pub fn bench(a: GpuBench) -> Result<()> {
                 "size": [mw, mh],
                 "frames": map_times.len(),
                 "ms": {"min": mn, "median": med, "p99": p99, "mean": mean},
+                "gpu_timestamp_ms": ms_json(map_gpu),
                 "fps_median": 1e3 / med,
                 "vs_cpu": {"pixels": px.len(), "exposure_ru": 1500.0, "delta_e00_mean": map_de.0, "delta_e00_p99": map_de.1},
             },
@@ -311,6 +326,7 @@ pub fn bench(a: GpuBench) -> Result<()> {
                 "size": [fw, fh],
                 "frames": film_times.len(),
                 "ms": {"min": fmn, "median": fmed, "p99": fp99, "mean": fmean},
+                "gpu_timestamp_ms": ms_json(film_gpu),
                 "fps_median": 1e3 / fmed,
                 "vs_cpu": {"pixels": fpx.len(), "exposure_ru": 1.0 / ymax, "delta_e00_mean": film_de.0, "delta_e00_p99": film_de.1},
             },
@@ -324,12 +340,14 @@ pub fn bench(a: GpuBench) -> Result<()> {
         map_times.len()
     );
     println!("  frame time min {mn:.2} ms, median {med:.2} ms, p99 {p99:.2} ms ({:.1} fps at the median)", 1e3 / med);
+    print_gpu_times(map_gpu);
     println!("  vs CPU (lookup, f64; {} pixels at 1500 RU): ΔE00 mean {:.4}, p99 {:.4}", px.len(), map_de.0, map_de.1);
     println!("thin film {stack}, {fw}×{fh}, {} wavelengths, gradient + SVT, {} frames:", grid.len(), film_times.len());
     println!(
         "  frame time min {fmn:.2} ms, median {fmed:.2} ms, p99 {fp99:.2} ms ({:.1} fps at the median)",
         1e3 / fmed
     );
+    print_gpu_times(film_gpu);
     println!(
         "  vs CPU (Stack::evaluate_offset, f64; {} pixels): ΔE00 mean {:.4}, p99 {:.4}",
         fpx.len(),
@@ -337,4 +355,13 @@ pub fn bench(a: GpuBench) -> Result<()> {
         film_de.1
     );
     Ok(())
+}
+
+fn print_gpu_times(s: Option<[f64; 4]>) {
+    match s {
+        Some([mn, med, p99, _]) => {
+            println!("  GPU timestamps of the pass: min {mn:.2} ms, median {med:.2} ms, p99 {p99:.2} ms")
+        }
+        None => println!("  (the adapter has no timestamp queries: wall clock only)"),
+    }
 }
