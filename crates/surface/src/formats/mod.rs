@@ -6,11 +6,13 @@
 //! |---|---|---|---|
 //! | Gwyddion `.gwy` | yes | yes | in the file (`xreal`, `si_unit_xy`, `si_unit_z`) |
 //! | numpy `.npy` (f32, f64, integers) | yes | f64 | sidecar or options |
+//! | numpy `.npz` (`savez`, compressed or not) | yes | no | sidecar or options |
 //! | PNG, TIFF 8/16-bit grey | yes | PNG 16-bit | relative: `--max-height`, `--pixel-size` or sidecar |
 //! | text matrix | yes | yes | Gwyddion ASCII-export header (`# Width: 5 µm`), sidecar or options |
 
 pub mod gwy;
 pub mod npy;
+pub mod npz;
 pub mod raster;
 pub mod sidecar;
 pub mod text;
@@ -28,6 +30,7 @@ pub const MAX_FILE_BYTES: u64 = (crate::MAX_SAMPLES as u64) * 8 + (1 << 20);
 pub enum Format {
     Gwy,
     Npy,
+    Npz,
     Png,
     Tiff,
     Text,
@@ -38,6 +41,7 @@ impl Format {
         match self {
             Format::Gwy => "gwy",
             Format::Npy => "npy",
+            Format::Npz => "npz",
             Format::Png => "png",
             Format::Tiff => "tiff",
             Format::Text => "text",
@@ -50,6 +54,7 @@ impl Format {
         Some(match ext.as_str() {
             "gwy" => Format::Gwy,
             "npy" => Format::Npy,
+            "npz" => Format::Npz,
             "png" => Format::Png,
             "tif" | "tiff" => Format::Tiff,
             "txt" | "asc" | "csv" | "dat" | "xyz" => Format::Text,
@@ -81,6 +86,8 @@ pub fn detect_format(bytes: &[u8]) -> Option<Format> {
         Some(Format::Gwy)
     } else if bytes.starts_with(b"\x93NUMPY") {
         Some(Format::Npy)
+    } else if bytes.starts_with(b"PK\x03\x04") || bytes.starts_with(b"PK\x05\x06") {
+        Some(Format::Npz)
     } else if bytes.starts_with(b"\x89PNG\r\n\x1a\n") {
         Some(Format::Png)
     } else if bytes.starts_with(b"II*\0") || bytes.starts_with(b"MM\0*") {
@@ -95,8 +102,6 @@ pub fn detect_format(bytes: &[u8]) -> Option<Format> {
 fn describe_unknown(bytes: &[u8]) -> String {
     let kind = if bytes.starts_with(b"\xff\xd8\xff") {
         "a JPEG image: lossy compression destroys heights, export the scan as 16-bit PNG/TIFF, .gwy or .npy"
-    } else if bytes.starts_with(b"PK\x03\x04") {
-        "a zip archive (.npz?): extract the array as .npy first"
     } else if bytes.starts_with(b"II+\0") || bytes.starts_with(b"MM\0+") {
         "a BigTIFF, which is not supported: save as an ordinary TIFF"
     } else if bytes.is_empty() {
@@ -104,7 +109,7 @@ fn describe_unknown(bytes: &[u8]) -> String {
     } else {
         "not a recognised height-field format"
     };
-    format!("{kind} (recognised: Gwyddion .gwy, numpy .npy, PNG, TIFF, text matrix)")
+    format!("{kind} (recognised: Gwyddion .gwy, numpy .npy/.npz, PNG, TIFF, text matrix)")
 }
 
 /// Loads a height field from a file path or a `builtin:NAME[?key=value&…]` spec (see [`crate::builtin`]).
@@ -151,6 +156,7 @@ pub fn read_bytes(
     let mut hf = match fmt {
         Format::Gwy => gwy::read(bytes, side, opts),
         Format::Npy => npy::read(bytes, side, opts),
+        Format::Npz => npz::read(bytes, side, opts),
         Format::Png | Format::Tiff => raster::read(bytes, fmt, side, opts),
         Format::Text => text::read(bytes, side, opts),
     }
@@ -168,6 +174,9 @@ pub fn write_bytes(hf: &HeightField, fmt: Format) -> Result<(Vec<u8>, Option<Str
         Format::Npy => Ok((npy::write(hf)?, Some(Sidecar::for_field(hf, false).to_json()))),
         Format::Png => Ok((raster::write_png16(hf)?, Some(Sidecar::for_field(hf, true).to_json()))),
         Format::Text => Ok((text::write(hf).into_bytes(), None)),
+        Format::Npz => {
+            Err(SurfaceError::invalid("writing .npz is not supported; write .npy (numpy reads it directly)"))
+        }
         Format::Tiff => Err(SurfaceError::invalid(
             "writing TIFF is not supported (a 16-bit PNG holds the same data); write .png, .gwy, .npy or .txt",
         )),
