@@ -20,6 +20,11 @@ pub trait Evaluator: Send + Sync {
     fn reflectance(&self, wavelength_nm: f64, wi: Vec3, wr: Vec3) -> Option<f64>;
     /// CIE XYZ of the reflected light, `X = Σ_λ w_x(λ) ρ_λ` (paper eq. 9; a normal-incidence mirror has Y = 1).
     fn xyz(&self, wi: Vec3, wr: Vec3) -> Xyz;
+    /// The precomputed tables behind this evaluator, if it is the lookup method: what a GPU uploads to evaluate
+    /// the same numbers (`iridis-gpu`). Other methods have nothing to upload.
+    fn as_lookup(&self) -> Option<&crate::table::Lookup> {
+        None
+    }
 }
 
 /// The thesis' reference shader (FLSS, Algorithm 3): at each λ of a uniform grid, the windowed DFT of every

@@ -28,6 +28,10 @@ pub trait FresnelSource: Send + Sync + std::fmt::Debug {
     /// Whether the value depends on λ (then it must stay inside the spectral integral).
     fn depends_on_wavelength(&self) -> bool;
     fn describe(&self) -> String;
+    /// The built-in model this source is, if it is one (what a GPU shader can evaluate).
+    fn as_builtin(&self) -> Option<&Fresnel> {
+        None
+    }
 }
 
 /// The built-in Fresnel models.
@@ -75,6 +79,9 @@ impl FresnelSource for Fresnel {
             Fresnel::Schlick { n } => format!("Schlick, n = {n}"),
             Fresnel::Index { n } => format!("Fresnel, n = {} + {}i", n.re, n.im),
         }
+    }
+    fn as_builtin(&self) -> Option<&Fresnel> {
+        Some(self)
     }
 }
 

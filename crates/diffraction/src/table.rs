@@ -395,4 +395,7 @@ impl Evaluator for Lookup {
         let s = self.sum(u, v, w);
         Xyz::new(c * s[0], c * s[1], c * s[2])
     }
+    fn as_lookup(&self) -> Option<&Lookup> {
+        Some(self)
+    }
 }

@@ -19,7 +19,7 @@ use rayon::prelude::*;
 use wgpu::util::DeviceExt;
 
 use crate::lookup::{display_buffer, entry, storage_out};
-use crate::{dispatch, unpack_rgb8, FrameTime, Gpu, GpuError, Timer, COMMON_WGSL};
+use crate::{dispatch, unpack_rgb8, FrameTime, Gpu, GpuError, Timer, COMMON_WGSL, FILM_WGSL};
 
 /// Angles and thicknesses over an image.
 #[derive(Debug, Clone, PartialEq)]
@@ -147,7 +147,7 @@ impl<'g> GpuFilm<'g> {
             .zip(weights.weights())
             .flat_map(|(&l, w)| [w[0] as f32, w[1] as f32, w[2] as f32, (std::f64::consts::TAU / l) as f32])
             .collect();
-        let source = format!("{COMMON_WGSL}\n{}", include_str!("shaders/film.wgsl"));
+        let source = format!("{COMMON_WGSL}\n{FILM_WGSL}\n{}", include_str!("shaders/film.wgsl"));
         let (media_buf, thick_buf, weights_buf, pipeline) = gpu.checked("uploading the stack", || {
             let init = |label: &str, data: &[f32]| {
                 gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {

@@ -302,5 +302,9 @@ pub(crate) fn unpack_rgb8(words: &[u32]) -> Vec<u8> {
     words.iter().flat_map(|w| [(*w & 0xff) as u8, ((*w >> 8) & 0xff) as u8, ((*w >> 16) & 0xff) as u8]).collect()
 }
 
-/// The WGSL helpers both shaders share (complex arithmetic, display encoding).
+/// The WGSL helpers every shader shares (complex arithmetic, display encoding).
 pub(crate) const COMMON_WGSL: &str = include_str!("shaders/common.wgsl");
+/// The lookup diffraction model, shared by the BRDF-map and scene shaders.
+pub(crate) const LOOKUP_WGSL: &str = include_str!("shaders/lookup_math.wgsl");
+/// The multilayer thin-film recurrence, shared by the film and scene shaders.
+pub(crate) const FILM_WGSL: &str = include_str!("shaders/film_math.wgsl");

@@ -14,7 +14,9 @@ use iridis_diffraction::geometry::{Fresnel, FresnelSource};
 use iridis_diffraction::LookupTable;
 use wgpu::util::DeviceExt;
 
-use crate::{dispatch, encoding_words, unpack_rgb8, xyz_to_srgb_words, FrameTime, Gpu, GpuError, Timer, COMMON_WGSL};
+use crate::{
+    dispatch, encoding_words, unpack_rgb8, xyz_to_srgb_words, FrameTime, Gpu, GpuError, Timer, COMMON_WGSL, LOOKUP_WGSL,
+};
 
 /// Storage buffers a table may be split into (by rows of v) when it exceeds one binding.
 pub const MAX_CHUNKS: usize = 4;
@@ -106,7 +108,7 @@ impl<'g> GpuLookup<'g> {
                 table.data[first * per_row..last * per_row].iter().map(|&v| v as f32).collect()
             })
             .collect();
-        let source = format!("{COMMON_WGSL}\n{}", include_str!("shaders/lookup.wgsl"));
+        let source = format!("{COMMON_WGSL}\n{LOOKUP_WGSL}\n{}", include_str!("shaders/lookup.wgsl"));
         let (tables, pipeline) = gpu.checked("uploading the lookup table and compiling the shader", || {
             let bufs: Vec<wgpu::Buffer> = parts
                 .iter()

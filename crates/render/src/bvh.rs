@@ -12,14 +12,16 @@ pub struct TriRef {
     pub tri: u32,
 }
 
+/// A node of the flat array: its box, and either a leaf's primitives or its right child.
 #[derive(Debug, Clone, Copy)]
-struct Node {
-    lo: V3,
-    hi: V3,
-    /// Leaf: first primitive; inner: index of the right child (the left child follows the node).
-    start: u32,
+pub struct Node {
+    pub lo: V3,
+    pub hi: V3,
+    /// Leaf: first primitive (index into [`Bvh::prims`]); inner: index of the right child (the left child
+    /// follows the node).
+    pub start: u32,
     /// Number of primitives in a leaf; 0 for an inner node.
-    count: u32,
+    pub count: u32,
 }
 
 #[derive(Debug, Clone, Default)]
@@ -31,6 +33,11 @@ pub struct Bvh {
 const LEAF: usize = 4;
 
 impl Bvh {
+    /// The flat node array, root first (what a GPU traverses).
+    pub fn nodes(&self) -> &[Node] {
+        &self.nodes
+    }
+
     pub fn build(meshes: &[Mesh]) -> Self {
         let mut prims = Vec::new();
         for (mi, m) in meshes.iter().enumerate() {

@@ -62,11 +62,18 @@ fn clip01(v: f32) -> f32 {
     return min(v, 1.0);
 }
 
+// Linear sRGB (D65 white = 1) of an XYZ colour.
+fn xyz_to_rgb(xyz: vec3<f32>, d: Display) -> vec3<f32> {
+    return vec3<f32>(dot(d.m0.xyz, xyz), dot(d.m1.xyz, xyz), dot(d.m2.xyz, xyz));
+}
+
+// A linear sRGB colour times the exposure, clipped and encoded.
+fn display_rgb(rgb: vec3<f32>, d: Display) -> u32 {
+    let s = rgb * d.exposure;
+    return pack4x8unorm(vec4<f32>(encode(clip01(s.x), d.kind, d.inv_gamma), encode(clip01(s.y), d.kind, d.inv_gamma),
+                                  encode(clip01(s.z), d.kind, d.inv_gamma), 1.0));
+}
+
 fn display_pixel(xyz: vec3<f32>, d: Display) -> u32 {
-    let s = xyz * d.exposure;
-    let r = clip01(dot(d.m0.xyz, s));
-    let g = clip01(dot(d.m1.xyz, s));
-    let b = clip01(dot(d.m2.xyz, s));
-    return pack4x8unorm(vec4<f32>(encode(r, d.kind, d.inv_gamma), encode(g, d.kind, d.inv_gamma),
-                                  encode(b, d.kind, d.inv_gamma), 1.0));
+    return display_rgb(xyz_to_rgb(xyz, d), d);
 }
