@@ -1,0 +1,635 @@
+//! The scene renderer on the GPU (`shaders/scene.wgsl`): [`iridis_render`]'s ray caster — the same cameras,
+//! geometry, BVH, materials, lights, environments and textures — one pixel per invocation, in `f32`.
+//!
+//! [`GpuScene::new`] flattens a loaded [`Scene`] into storage buffers (the layout is documented record by
+//! record in the shader) and compiles the pipeline; [`GpuScene::frame`] allocates the output of one image size
+//! and [`SceneFrame::render`] renders it in bands of rows (so that a progress bar moves and no dispatch runs
+//! for long), returning the same linear [`Image`] the CPU renders — PNG and EXR encoding are shared.
+//!
+//! What the GPU does not evaluate, it refuses with a message at upload: diffraction materials whose evaluator
+//! is not a lookup table (the scene format only makes lookup ones), and tables larger than one storage binding.
+
+use iridis_color::{Illuminant, Observer, SpectralWeights, ToneMap};
+use iridis_diffraction::geometry::{Fresnel, FresnelSource};
+use iridis_render::camera::Camera;
+use iridis_render::light::{Environment, Light};
+use iridis_render::material::{ColorSource, Material, Microfacet, OrientRule};
+use iridis_render::render::sample_offset;
+use iridis_render::texture::Texture;
+use iridis_render::{Image, Scene};
+use wgpu::util::DeviceExt;
+
+use crate::lookup::{display_buffer, entry, storage_out};
+use crate::{
+    dispatch, unpack_rgb8, xyz_to_srgb_words, FrameTime, Gpu, GpuError, Timer, COMMON_WGSL, FILM_WGSL, LOOKUP_WGSL,
+};
+
+/// The scene shader's source: the shared helpers, both models and the renderer.
+pub(crate) fn scene_source() -> String {
+    format!("{COMMON_WGSL}\n{LOOKUP_WGSL}\n{FILM_WGSL}\n{}", include_str!("shaders/scene.wgsl"))
+}
+
+/// Rows rendered per dispatch.
+const BAND_ROWS: u32 = 32;
+/// Largest samples per pixel (the sample offsets live in the scene buffer).
+pub const MAX_SPP: u32 = 4096;
+
+const NONE: u32 = u32::MAX;
+
+/// `vec4<f32>` records with integer words bit-cast, as the shader reads them.
+#[derive(Default)]
+struct Records(Vec<[f32; 4]>);
+
+impl Records {
+    fn len(&self) -> u32 {
+        self.0.len() as u32
+    }
+    fn push(&mut self, v: [f32; 4]) {
+        self.0.push(v);
+    }
+    fn v3(&mut self, v: [f64; 3], w: f32) {
+        self.0.push([v[0] as f32, v[1] as f32, v[2] as f32, w]);
+    }
+    fn v3w(&mut self, v: [f64; 3], w: u32) {
+        self.v3(v, f32::from_bits(w));
+    }
+    fn words(&mut self, w: [u32; 4]) {
+        self.0.push(w.map(f32::from_bits));
+    }
+    fn color(&mut self, c: &ColorSource) {
+        match *c {
+            ColorSource::Const(rgb) => self.v3w(rgb, NONE),
+            ColorSource::Texture(i) => self.v3w([0.0; 3], i as u32),
+        }
+    }
+    fn pad_to(&mut self, start: u32, n: u32) {
+        while self.len() < start + n {
+            self.0.push([0.0; 4]);
+        }
+    }
+}
+
+/// A scene uploaded to the GPU with its pipeline.
+#[derive(Debug)]
+pub struct GpuScene<'g> {
+    gpu: &'g Gpu,
+    pipeline: wgpu::ComputePipeline,
+    scene: wgpu::Buffer,
+    texels: wgpu::Buffer,
+    media: wgpu::Buffer,
+    weights: wgpu::Buffer,
+    tables: wgpu::Buffer,
+    /// The uniform words after the camera (environment, matrix, counts, offsets).
+    layout: Layout,
+    camera: Camera,
+    /// Offset (in vec4) of the lights in the scene buffer and the scene's lights.
+    lights: Vec<Light>,
+    output: iridis_render::scene::Output,
+}
+
+#[derive(Debug, Clone, Copy, Default)]
+struct Layout {
+    env: [[f32; 4]; 4],
+    background: [f32; 4],
+    env_kind: u32,
+    env_tex: u32,
+    env_visible: u32,
+    n_spheres: u32,
+    sphere_base: u32,
+    n_planes: u32,
+    plane_base: u32,
+    n_lights: u32,
+    light_base: u32,
+    n_nodes: u32,
+    node_base: u32,
+    tri_base: u32,
+    mat_base: u32,
+    tex_base: u32,
+    sample_base: u32,
+    n_lambda: u32,
+}
+
+/// Output buffers for one image size (the benchmark's and the viewer's frame loop).
+#[derive(Debug)]
+pub struct SceneFrame<'a, 'g> {
+    scene: &'a GpuScene<'g>,
+    width: u32,
+    height: u32,
+    spp: u32,
+    params: wgpu::Buffer,
+    bind: wgpu::BindGroup,
+    out_rgb: wgpu::Buffer,
+    out_rgba: wgpu::Buffer,
+    timer: Option<Timer>,
+}
+
+impl<'g> GpuScene<'g> {
+    /// Flattens `scene` into GPU buffers and compiles the renderer. Fails with a clear message for what the
+    /// GPU path does not evaluate.
+    pub fn new(gpu: &'g Gpu, scene: &Scene) -> Result<Self, GpuError> {
+        let mut rec = Records::default();
+        let mut lay = Layout::default();
+
+        // Samples per pixel: the CPU's offsets, computed once in f64 (up to MAX_SPP, each spp its own set).
+        // The shader reads sample s of an spp-sample pixel at sample_base + s; the sets differ per spp, so
+        // the frame writes its own set (see SceneFrame::render); here only the room is reserved.
+        lay.sample_base = rec.len();
+        rec.pad_to(lay.sample_base, MAX_SPP);
+
+        lay.sphere_base = rec.len();
+        for s in &scene.spheres {
+            rec.v3(s.center, s.radius as f32);
+            rec.words([s.material as u32, 0, 0, 0]);
+        }
+        lay.n_spheres = scene.spheres.len() as u32;
+
+        lay.plane_base = rec.len();
+        for p in &scene.planes {
+            let [w, h] = p.size.unwrap_or([0.0, 0.0]);
+            rec.v3w(p.center, u32::from(p.size.is_some()));
+            rec.v3(p.normal, w as f32);
+            rec.v3(p.tangent, h as f32);
+            rec.words([p.material as u32, 0, 0, 0]);
+        }
+        lay.n_planes = scene.planes.len() as u32;
+
+        lay.light_base = rec.len();
+        push_lights(&mut rec, &scene.lights);
+        lay.n_lights = scene.lights.len() as u32;
+
+        lay.node_base = rec.len();
+        for n in scene.bvh.nodes() {
+            rec.v3w(n.lo, n.start);
+            rec.v3w(n.hi, n.count);
+        }
+        lay.n_nodes = scene.bvh.nodes().len() as u32;
+
+        // Triangles in the BVH's primitive order, so a leaf's range indexes them directly.
+        lay.tri_base = rec.len();
+        for p in &scene.bvh.prims {
+            let m = &scene.meshes[p.mesh as usize];
+            let tri = p.tri as usize;
+            let idx = m.triangles[tri].map(|i| i as usize);
+            let flags = u32::from(m.uvs.is_some())
+                | (u32::from(m.corner_tangents.is_some()) << 1)
+                | (u32::from(m.along.is_some()) << 2);
+            rec.v3w(m.positions[idx[0]], m.material as u32);
+            rec.v3w(m.positions[idx[1]], flags);
+            rec.v3(m.positions[idx[2]], 0.0);
+            for &i in &idx {
+                rec.v3(m.normals[i], 0.0);
+            }
+            let uv = |k: usize| m.uvs.as_ref().map(|u| u[idx[k]].map(|x| x as f32)).unwrap_or([0.0; 2]);
+            let (a, b, c) = (uv(0), uv(1), uv(2));
+            rec.push([a[0], a[1], b[0], b[1]]);
+            rec.push([c[0], c[1], 0.0, 0.0]);
+            for k in 0..3 {
+                let t = m.corner_tangents.as_ref().map(|t| t[tri * 3 + k]).unwrap_or([0.0; 4]);
+                rec.push(t.map(|x| x as f32));
+            }
+            for &i in &idx {
+                rec.v3(m.along.as_ref().map(|a| a[i]).unwrap_or([0.0; 3]), 0.0);
+            }
+        }
+
+        // Materials, their tables and films.
+        let grid = iridis_color::spectrum::uniform_grid(380.0, 780.0, 5.0)
+            .map_err(|e| GpuError::Invalid(format!("wavelength grid: {e}")))?;
+        let sw = SpectralWeights::new(&grid, Illuminant::D65, Observer::Cie1931);
+        lay.n_lambda = grid.len() as u32;
+        let mut tables: Vec<f32> = Vec::new();
+        let mut media: Vec<[f32; 2]> = Vec::new();
+        lay.mat_base = rec.len();
+        for (mi, m) in scene.materials.iter().enumerate() {
+            let start = rec.len();
+            let name = scene.material_names.get(mi).map(String::as_str).unwrap_or("?");
+            match m {
+                Material::Lambert { color } => {
+                    rec.words([0, 0, 0, 0]);
+                    rec.color(color);
+                }
+                Material::Microfacet(mf) => {
+                    rec.words([1, 0, 0, 0]);
+                    push_microfacet(&mut rec, mf);
+                }
+                Material::Diffraction(df) => {
+                    let lookup = df.evaluator.as_lookup().ok_or_else(|| {
+                        GpuError::Invalid(format!(
+                            "material `{name}`: the GPU renders diffraction from lookup tables only ({})",
+                            df.description
+                        ))
+                    })?;
+                    let fresnel = lookup.shading.fresnel.as_builtin().cloned().ok_or_else(|| {
+                        GpuError::Invalid(format!(
+                            "material `{name}`: its Fresnel factor ({}) has no GPU version",
+                            lookup.shading.fresnel.describe()
+                        ))
+                    })?;
+                    let t = &lookup.table;
+                    let base = tables.len() as u32;
+                    tables.extend(t.data.iter().map(|&v| v as f32));
+                    let (flag_f, n_re, n_im) = match fresnel {
+                        Fresnel::Schlick { n } => (0u32, n as f32, 0.0f32),
+                        Fresnel::Index { n } => (2u32, n.re as f32, n.im as f32),
+                    };
+                    let f0 = fresnel.reflectance(500.0, 1.0) as f32;
+                    let (rule, dir, otex) = match df.orientation.rule {
+                        OrientRule::Tangent => (0u32, [0.0; 3], NONE),
+                        OrientRule::Along => (1, [0.0; 3], NONE),
+                        OrientRule::Direction(d) => (2, d, NONE),
+                        OrientRule::Texture(i) => (3, [0.0; 3], i as u32),
+                    };
+                    rec.words([2, 0, 0, 0]);
+                    rec.color(&df.texture);
+                    rec.push([df.scale_ru as f32, df.w_diffuse as f32, df.ambient as f32, df.fresnel_n as f32]);
+                    rec.v3w(dir, rule);
+                    rec.push([df.orientation.angle as f32, f32::from_bits(otex), 0.0, 0.0]);
+                    rec.words([
+                        t.meta.uv_resolution as u32,
+                        t.powers() as u32,
+                        u32::from(lookup.shading.shadowing) | flag_f,
+                        base,
+                    ]);
+                    rec.push([(1.0 / t.meta.uv_power) as f32, f0, n_re, n_im]);
+                }
+                Material::ThinFilm(f) => {
+                    let n_media = f.stack.layers.len() + 2;
+                    let media_base = media.len() as u32;
+                    for &l in &grid {
+                        for m in f.stack.materials() {
+                            let n = m
+                                .index_at(l)
+                                .map_err(|e| GpuError::Invalid(format!("material `{name}`: stack {}: {e}", f.stack)))?;
+                            media.push([n.re as f32, n.im as f32]);
+                        }
+                    }
+                    let thick_base = media.len() as u32;
+                    media.extend(f.stack.thicknesses().iter().map(|&d| [d as f32, 0.0]));
+                    let flags = u32::from(f.svt.is_some())
+                        | (u32::from(f.transmission) << 1)
+                        | (u32::from(f.base.is_some()) << 2);
+                    rec.words([3, 0, 0, 0]);
+                    rec.words([n_media as u32, media_base, thick_base, flags]);
+                    let (svt_tex, d_rel) = f.svt.map(|s| (s.texture as u32, s.d_rel_nm as f32)).unwrap_or((NONE, 0.0));
+                    rec.push([f32::from_bits(svt_tex), d_rel, f.factor as f32, 0.0]);
+                    if let Some(b) = &f.base {
+                        push_microfacet(&mut rec, b);
+                    }
+                }
+            }
+            rec.pad_to(start, 8);
+        }
+
+        // Textures (the environment map last).
+        lay.tex_base = rec.len();
+        let mut textures: Vec<&Texture> = scene.textures.iter().collect();
+        let mut texels: Vec<f32> = Vec::new();
+        lay.env_visible = u32::from(scene.environment_visible);
+        let m = scene.environment.mean();
+        lay.env[3] = [m[0] as f32, m[1] as f32, m[2] as f32, 0.0];
+        let c = |v: [f64; 3], w: f64| [v[0] as f32, v[1] as f32, v[2] as f32, w as f32];
+        match &scene.environment {
+            Environment::None => lay.env_kind = 0,
+            Environment::Uniform(rgb) => {
+                lay.env_kind = 1;
+                lay.env[0] = c(*rgb, 0.0);
+            }
+            Environment::Sky { zenith, horizon, ground } => {
+                lay.env_kind = 2;
+                lay.env[0] = c(*zenith, 0.0);
+                lay.env[1] = c(*horizon, 0.0);
+                lay.env[2] = c(*ground, 0.0);
+            }
+            Environment::Map { texture, rotation, intensity, .. } => {
+                lay.env_kind = 3;
+                lay.env_tex = textures.len() as u32;
+                textures.push(texture);
+                lay.env[0] = c([0.0; 3], *intensity);
+                lay.env[1] = c([*rotation, 0.0, 0.0], 0.0);
+            }
+        }
+        for t in textures {
+            let start = rec.len();
+            match t {
+                Texture::Image { width, height, channels, data, .. } => {
+                    rec.words([0, *width as u32, *height as u32, *channels as u32]);
+                    rec.words([texels.len() as u32, 0, 0, 0]);
+                    texels.extend_from_slice(data);
+                }
+                Texture::Noise { scale, octaves, seed } => {
+                    rec.words([1, 0, 0, 0]);
+                    rec.push([*scale as f32, f32::from_bits(*octaves), f32::from_bits(*seed), 0.0]);
+                }
+                Texture::Gradient { from, to, along_u } => {
+                    rec.words([2, 0, 0, 0]);
+                    rec.push([*from as f32, *to as f32, f32::from_bits(u32::from(*along_u)), 0.0]);
+                }
+                Texture::Scales { base, edge } => {
+                    rec.words([3, 0, 0, 0]);
+                    rec.v3(*base, 0.0);
+                    rec.v3(*edge, 0.0);
+                }
+                Texture::Checker { a, b, n } => {
+                    rec.words([4, 0, 0, 0]);
+                    rec.v3(*a, *n as f32);
+                    rec.v3(*b, 0.0);
+                }
+            }
+            rec.pad_to(start, 3);
+        }
+        let bg = scene.output.background;
+        lay.background = [bg[0] as f32, bg[1] as f32, bg[2] as f32, 0.0];
+
+        let weights: Vec<[f32; 4]> = grid
+            .iter()
+            .zip(sw.weights())
+            .map(|(&l, w)| [w[0] as f32, w[1] as f32, w[2] as f32, (std::f64::consts::TAU / l) as f32])
+            .collect();
+
+        for (what, bytes) in [
+            ("the scene (geometry, materials, textures)", rec.0.len() as u64 * 16),
+            ("the scene's image textures", texels.len() as u64 * 4),
+            ("the scene's lookup tables", tables.len() as u64 * 4),
+        ] {
+            gpu.check_storage(
+                what,
+                bytes,
+                "use fewer or smaller meshes and textures, or tables with a smaller uv_resolution",
+            )?;
+        }
+        let nonempty = |v: &mut Vec<f32>| {
+            if v.is_empty() {
+                v.push(0.0);
+            }
+        };
+        nonempty(&mut texels);
+        nonempty(&mut tables);
+        if media.is_empty() {
+            media.push([0.0; 2]);
+        }
+        let source = scene_source();
+        let (scene_buf, texels_buf, media_buf, weights_buf, tables_buf, pipeline) =
+            gpu.checked("uploading the scene and compiling the renderer", || {
+                let init = |label: &str, data: &[u8], usage: wgpu::BufferUsages| {
+                    gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                        label: Some(label),
+                        contents: data,
+                        usage,
+                    })
+                };
+                let storage = wgpu::BufferUsages::STORAGE;
+                let module = gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                    label: Some("scene.wgsl"),
+                    source: wgpu::ShaderSource::Wgsl(source.into()),
+                });
+                let pipeline = gpu.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                    label: Some("iridis scene"),
+                    layout: None,
+                    module: &module,
+                    entry_point: Some("render_scene"),
+                    compilation_options: Default::default(),
+                    cache: None,
+                });
+                (
+                    init("scene records", bytemuck::cast_slice(&rec.0), storage | wgpu::BufferUsages::COPY_DST),
+                    init("scene texels", bytemuck::cast_slice(&texels), storage),
+                    init("scene film media", bytemuck::cast_slice(&media), storage),
+                    init("scene film weights", bytemuck::cast_slice(&weights), storage),
+                    init("scene tables", bytemuck::cast_slice(&tables), storage),
+                    pipeline,
+                )
+            })?;
+        Ok(Self {
+            gpu,
+            pipeline,
+            scene: scene_buf,
+            texels: texels_buf,
+            media: media_buf,
+            weights: weights_buf,
+            tables: tables_buf,
+            layout: lay,
+            camera: scene.camera.clone(),
+            lights: scene.lights.clone(),
+            output: scene.output.clone(),
+        })
+    }
+
+    /// The adapter the scene lives on.
+    pub fn gpu(&self) -> &Gpu {
+        self.gpu
+    }
+
+    /// The camera the next frames use.
+    pub fn camera(&self) -> &Camera {
+        &self.camera
+    }
+
+    /// Moves the camera (the viewer's orbit).
+    pub fn set_camera(&mut self, camera: Camera) {
+        self.camera = camera;
+    }
+
+    /// The scene's lights.
+    pub fn lights(&self) -> &[Light] {
+        &self.lights
+    }
+
+    /// Replaces the lights (same number as the scene has: the viewer drags them).
+    pub fn set_lights(&mut self, lights: &[Light]) -> Result<(), GpuError> {
+        if lights.len() != self.lights.len() {
+            return Err(GpuError::Invalid(format!(
+                "the scene has {} lights; {} given",
+                self.lights.len(),
+                lights.len()
+            )));
+        }
+        let mut rec = Records::default();
+        push_lights(&mut rec, lights);
+        self.gpu.queue.write_buffer(&self.scene, self.layout.light_base as u64 * 16, bytemuck::cast_slice(&rec.0));
+        self.lights = lights.to_vec();
+        Ok(())
+    }
+
+    /// The scene's output settings (size, spp, exposure, encoding).
+    pub fn output(&self) -> &iridis_render::scene::Output {
+        &self.output
+    }
+
+    /// Allocates the output of `width × height` images with `spp` samples per pixel, displayed with `tone`.
+    pub fn frame(&self, width: u32, height: u32, spp: u32, tone: ToneMap) -> Result<SceneFrame<'_, 'g>, GpuError> {
+        if !(1..=16384).contains(&width) || !(1..=16384).contains(&height) {
+            return Err(GpuError::Invalid(format!("image {width}×{height} must be between 1×1 and 16384×16384")));
+        }
+        if !(1..=MAX_SPP).contains(&spp) {
+            return Err(GpuError::Invalid(format!("{spp} samples per pixel: use 1 to {MAX_SPP}")));
+        }
+        let pixels = width as u64 * height as u64;
+        self.gpu.check_storage("the image", pixels * 16, "render a smaller image")?;
+        // This frame's sample offsets (the CPU's R2 set for spp samples).
+        let offsets: Vec<[f32; 4]> = (0..spp)
+            .map(|s| {
+                let (x, y) = sample_offset(s, spp);
+                [x as f32, y as f32, 0.0, 0.0]
+            })
+            .collect();
+        self.gpu.queue.write_buffer(&self.scene, self.layout.sample_base as u64 * 16, bytemuck::cast_slice(&offsets));
+        let gpu = self.gpu;
+        gpu.checked("allocating the image", || {
+            let params = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("scene params"),
+                size: (PARAM_WORDS * 4) as u64,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            });
+            let display = display_buffer(gpu, tone);
+            let out_rgb = storage_out(gpu, "scene rgb", pixels * 16);
+            let out_rgba = storage_out(gpu, "scene rgba", pixels * 4);
+            let bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("scene bindings"),
+                layout: &self.pipeline.get_bind_group_layout(0),
+                entries: &[
+                    entry(0, &params),
+                    entry(1, &display),
+                    entry(2, &self.scene),
+                    entry(3, &self.texels),
+                    entry(4, &self.media),
+                    entry(5, &self.weights),
+                    entry(6, &self.tables),
+                    entry(7, &out_rgb),
+                    entry(8, &out_rgba),
+                ],
+            });
+            SceneFrame { scene: self, width, height, spp, params, bind, out_rgb, out_rgba, timer: gpu.timer() }
+        })
+    }
+
+    /// Renders `width × height` with `spp` samples per pixel and reads the linear image back;
+    /// `progress(rows_done)` is called after each band of rows.
+    pub fn render(&self, width: u32, height: u32, spp: u32, progress: &dyn Fn(usize)) -> Result<Image, GpuError> {
+        let tone = ToneMap { exposure_ru: self.output.exposure, encoding: self.output.encoding };
+        let frame = self.frame(width, height, spp, tone)?;
+        let mut row = 0;
+        while row < height {
+            let rows = BAND_ROWS.min(height - row);
+            frame.run_rows(row, rows)?;
+            row += rows;
+            progress(row as usize);
+        }
+        frame.read_image()
+    }
+
+    fn param_words(&self, width: u32, height: u32, spp: u32, row0: u32) -> [u32; PARAM_WORDS] {
+        let f = |v: f64| (v as f32).to_bits();
+        let v4 = |v: [f64; 3], w: u32| [f(v[0]), f(v[1]), f(v[2]), w];
+        let (kind, pos, fwd, right, up, s) = match self.camera {
+            Camera::Perspective { position, forward, right, up, tan_half } => {
+                (0, position, forward, right, up, tan_half)
+            }
+            Camera::Orthographic { position, forward, right, up, half_height } => {
+                (1, position, forward, right, up, half_height)
+            }
+            Camera::Hemisphere { target, normal, right, up, distance } => (2, target, normal, right, up, distance),
+        };
+        let l = &self.layout;
+        let mut w = Vec::with_capacity(PARAM_WORDS);
+        w.extend(v4(pos, kind));
+        w.extend(v4(fwd, f(s)));
+        w.extend(v4(right, 0));
+        w.extend(v4(up, 0));
+        for e in &l.env {
+            w.extend(e.map(f32::to_bits));
+        }
+        w.extend(l.background.map(f32::to_bits));
+        let m = xyz_to_srgb_words();
+        w.extend(m.map(f32::to_bits));
+        w.extend([width, height, spp, row0]);
+        w.extend([l.env_kind, l.env_tex, l.env_visible, self.output.max_depth]);
+        w.extend([l.n_spheres, l.sphere_base, l.n_planes, l.plane_base]);
+        w.extend([l.n_lights, l.light_base, l.n_nodes, l.node_base]);
+        w.extend([l.tri_base, l.mat_base, l.tex_base, l.sample_base]);
+        w.extend([l.n_lambda, 0, 0, 0]);
+        w.try_into().expect("the Params struct of scene.wgsl")
+    }
+}
+
+/// `Params` of scene.wgsl: 12 vec4 and 24 u32.
+const PARAM_WORDS: usize = 12 * 4 + 24;
+
+fn push_lights(rec: &mut Records, lights: &[Light]) {
+    for l in lights {
+        match *l {
+            Light::Directional { direction, rgb } => {
+                rec.v3w(direction, 0);
+                rec.v3(rgb, 0.0);
+            }
+            Light::Point { position, rgb } => {
+                rec.v3w(position, 1);
+                rec.v3(rgb, 0.0);
+            }
+        }
+    }
+}
+
+fn push_microfacet(rec: &mut Records, m: &Microfacet) {
+    rec.color(&m.color);
+    rec.push([m.roughness as f32, m.metallic as f32, m.ior as f32, 0.0]);
+}
+
+impl SceneFrame<'_, '_> {
+    /// Image size.
+    pub fn size(&self) -> (u32, u32) {
+        (self.width, self.height)
+    }
+
+    /// Renders rows `row0 .. row0 + rows` and waits for the GPU.
+    fn run_rows(&self, row0: u32, rows: u32) -> Result<FrameTime, GpuError> {
+        let s = self.scene;
+        let words = s.param_words(self.width, self.height, self.spp, row0);
+        s.gpu.queue.write_buffer(&self.params, 0, bytemuck::cast_slice(&words));
+        dispatch(
+            s.gpu,
+            self.timer.as_ref(),
+            &s.pipeline,
+            &self.bind,
+            (self.width.div_ceil(8), rows.div_ceil(8)),
+            "rendering the scene",
+        )
+    }
+
+    /// Renders the whole image in one dispatch (the benchmark's and the viewer's frames) with the scene's
+    /// current camera and lights, and waits for the GPU.
+    pub fn run(&self) -> Result<FrameTime, GpuError> {
+        self.run_rows(0, self.height)
+    }
+
+    /// Reads the last image back as linear sRGB.
+    pub fn read_image(&self) -> Result<Image, GpuError> {
+        let gpu = self.scene.gpu;
+        let data: Vec<f32> = bytemuck::pod_collect_to_vec(&gpu.read_buffer(&self.out_rgb, self.out_rgb.size())?);
+        let pixels = (self.width * self.height) as usize;
+        Ok(Image {
+            width: self.width,
+            height: self.height,
+            data: data.chunks_exact(4).take(pixels).map(|p| [p[0], p[1], p[2]]).collect(),
+        })
+    }
+
+    /// Reads the last image back as displayed 8-bit sRGB (exposure and encoding of [`GpuScene::frame`]).
+    pub fn read_rgb8(&self) -> Result<Vec<u8>, GpuError> {
+        let gpu = self.scene.gpu;
+        let words: Vec<u32> = bytemuck::pod_collect_to_vec(&gpu.read_buffer(&self.out_rgba, self.out_rgba.size())?);
+        Ok(unpack_rgb8(&words))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn params_fill_the_uniform_exactly() {
+        // 12 vec4 then 24 u32 = 72 words = 288 bytes, a multiple of 16 as a uniform needs.
+        assert_eq!(PARAM_WORDS * 4 % 16, 0);
+        assert_eq!(PARAM_WORDS, 72);
+    }
+}

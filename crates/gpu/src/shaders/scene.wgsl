@@ -1,0 +1,940 @@
+// The scene renderer: iridis_render's ray caster (crates/render/src/render.rs) on the GPU, one pixel per
+// invocation. Cameras, spheres, planes and triangle meshes through a BVH, Lambert / GGX microfacet /
+// diffraction (lookup_math.wgsl, Algorithm 4) / thin-film (film_math.wgsl, Sussenbach eq. 3.14 with SVT)
+// materials, directional and point lights with shadows, uniform / sky / equirectangular environments and the
+// procedural textures -- the same formulas as the CPU, in f32. The CPU's recursion (reflected and transmitted
+// rays) is an explicit stack of rays, each with the throughput that multiplies its radiance and the CPU's
+// `weight` that decides when a ray is no longer worth tracing.
+//
+// Everything small lives in one array of vec4<f32> (`scene`), integers bit-cast; the layout is written by
+// crates/gpu/src/scene.rs, whose constants name each record's fields.
+
+struct Params {
+    cam_pos: vec4<f32>,    // perspective/orthographic: position; hemisphere: target. w: camera kind (bits)
+    cam_fwd: vec4<f32>,    // forward (hemisphere: normal); w: tan(fov/2) | half height | distance
+    cam_right: vec4<f32>,
+    cam_up: vec4<f32>,
+    env_a: vec4<f32>,      // uniform colour | sky zenith | map: w = intensity
+    env_b: vec4<f32>,      // sky horizon | map: x = rotation
+    env_c: vec4<f32>,      // sky ground
+    env_mean: vec4<f32>,   // mean radiance over the sphere (the ambient level)
+    background: vec4<f32>,
+    m0: vec4<f32>,         // XYZ -> linear sRGB rows
+    m1: vec4<f32>,
+    m2: vec4<f32>,
+    width: u32,
+    height: u32,
+    spp: u32,
+    row0: u32,             // first row of this dispatch (rendering in bands)
+    env_kind: u32,         // 0 none, 1 uniform, 2 sky, 3 map
+    env_tex: u32,
+    env_visible: u32,
+    max_depth: u32,
+    n_spheres: u32,
+    sphere_base: u32,
+    n_planes: u32,
+    plane_base: u32,
+    n_lights: u32,
+    light_base: u32,
+    n_nodes: u32,
+    node_base: u32,
+    tri_base: u32,
+    mat_base: u32,
+    tex_base: u32,
+    sample_base: u32,
+    n_lambda: u32,
+    pad0: u32,
+    pad1: u32,
+    pad2: u32,
+}
+
+@group(0) @binding(0) var<uniform> P: Params;
+@group(0) @binding(1) var<uniform> D: Display;
+@group(0) @binding(2) var<storage, read> scene: array<vec4<f32>>;
+@group(0) @binding(3) var<storage, read> texels: array<f32>;
+// Per film: its media at every wavelength sample (l * n_media + j), then its thicknesses (x).
+@group(0) @binding(4) var<storage, read> media: array<vec2<f32>>;
+// Per wavelength sample: XYZ weights (xyz) and 2 pi / lambda (w).
+@group(0) @binding(5) var<storage, read> weights: array<vec4<f32>>;
+@group(0) @binding(6) var<storage, read> tables: array<f32>;
+@group(0) @binding(7) var<storage, read_write> out_rgb: array<vec4<f32>>;
+@group(0) @binding(8) var<storage, read_write> out_rgba: array<u32>;
+
+const PI: f32 = 3.141592653589793;
+const TAU: f32 = 6.283185307179586;
+const FAR: f32 = 3.0e38;
+const NONE: u32 = 0xffffffffu;
+
+fn word(v: f32) -> u32 {
+    return bitcast<u32>(v);
+}
+
+// ------------------------------------------------------------------ the model hooks
+
+fn table_value(t: Table, iv: u32, dv: u32, off: u32) -> f32 {
+    return tables[t.base + (iv + dv) * t.res * 3u * t.np + off];
+}
+
+fn film_medium(f: Film, l: u32, j: u32) -> vec2<f32> {
+    return media[f.media + l * f.n_media + j];
+}
+
+fn film_thickness(f: Film, j: u32) -> f32 {
+    return media[f.thickness + j].x;
+}
+
+fn film_weight(l: u32) -> vec4<f32> {
+    return weights[l];
+}
+
+// ------------------------------------------------------------------ small vector helpers (render::math)
+
+fn safe_normalize(v: vec3<f32>) -> vec3<f32> {
+    let l = length(v);
+    if (l > 1e-30) {
+        return v / l;
+    }
+    return vec3<f32>(0.0);
+}
+
+fn any_perpendicular(n: vec3<f32>) -> vec3<f32> {
+    var a = vec3<f32>(0.0, 1.0, 0.0);
+    if (abs(n.x) < 0.9) {
+        a = vec3<f32>(1.0, 0.0, 0.0);
+    }
+    return safe_normalize(cross(n, a));
+}
+
+// The part of t perpendicular to n, normalised; zero when t is parallel to n.
+fn orthogonalize(t: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
+    return safe_normalize(t - n * dot(t, n));
+}
+
+fn reflect_dir(d: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
+    return n * (2.0 * dot(d, n)) - d;
+}
+
+fn rotate_about(v: vec3<f32>, k: vec3<f32>, angle: f32) -> vec3<f32> {
+    let s = sin(angle);
+    let c = cos(angle);
+    return v * c + cross(k, v) * s + k * (dot(k, v) * (1.0 - c));
+}
+
+fn max3(v: vec3<f32>) -> f32 {
+    return max(max(max(v.x, v.y), v.z), 0.0);
+}
+
+// Ray offset that clears the surface at p (larger than the CPU's 1e-7: f32 positions).
+fn eps(p: vec3<f32>) -> f32 {
+    return 2e-4 * (1.0 + max(max(abs(p.x), abs(p.y)), abs(p.z)));
+}
+
+fn to_rgb(xyz: vec3<f32>) -> vec3<f32> {
+    return vec3<f32>(dot(P.m0.xyz, xyz), dot(P.m1.xyz, xyz), dot(P.m2.xyz, xyz));
+}
+
+// ------------------------------------------------------------------ textures (render::texture)
+
+// 64-bit integers as (lo, hi) for the noise hash, which the CPU computes in u64.
+fn mul32(a: u32, b: u32) -> vec2<u32> {
+    let a0 = a & 0xffffu;
+    let a1 = a >> 16u;
+    let b0 = b & 0xffffu;
+    let b1 = b >> 16u;
+    let p00 = a0 * b0;
+    let p01 = a0 * b1;
+    let p10 = a1 * b0;
+    let p11 = a1 * b1;
+    let mid = (p00 >> 16u) + (p01 & 0xffffu) + (p10 & 0xffffu);
+    return vec2<u32>((p00 & 0xffffu) | (mid << 16u), p11 + (p01 >> 16u) + (p10 >> 16u) + (mid >> 16u));
+}
+
+fn mul64(a: vec2<u32>, b: vec2<u32>) -> vec2<u32> {
+    let lo = mul32(a.x, b.x);
+    return vec2<u32>(lo.x, lo.y + a.x * b.y + a.y * b.x);
+}
+
+fn from_i32(x: i32) -> vec2<u32> {
+    var hi = 0u;
+    if (x < 0) {
+        hi = 0xffffffffu;
+    }
+    return vec2<u32>(bitcast<u32>(x), hi);
+}
+
+// render::texture::hash: a 64-bit mix of the lattice point and the seed, as a number in [0, 1).
+fn hash(x: i32, y: i32, seed: u32) -> f32 {
+    let k1 = vec2<u32>(0x7F4A7C15u, 0x9E3779B9u);
+    let k2 = vec2<u32>(0x27D4EB4Fu, 0xC2B2AE3Du);
+    let k3 = vec2<u32>(0x9E3779F9u, 0x165667B1u);
+    let k4 = vec2<u32>(0xED558CCDu, 0xFF51AFD7u);
+    var h = mul64(from_i32(x), k1) ^ mul64(from_i32(y), k2) ^ mul64(vec2<u32>(seed, 0u), k3);
+    h = h ^ vec2<u32>(h.y >> 1u, 0u);
+    h = mul64(h, k4);
+    h = h ^ vec2<u32>(h.y >> 1u, 0u);
+    // (h >> 11) / 2^53: the top 53 bits; f32 keeps the top 24.
+    return f32(h.y) * 2.3283064365386963e-10 + f32(h.x >> 11u) * 1.1102230246251565e-16;
+}
+
+fn value_noise(x: f32, y: f32, seed: u32) -> f32 {
+    let x0 = floor(x);
+    let y0 = floor(y);
+    let fx = x - x0;
+    let fy = y - y0;
+    let sx = fx * fx * (3.0 - 2.0 * fx);
+    let sy = fy * fy * (3.0 - 2.0 * fy);
+    let i = i32(x0);
+    let j = i32(y0);
+    let h00 = hash(i, j, seed);
+    let a = h00 + (hash(i + 1, j, seed) - h00) * sx;
+    let h01 = hash(i, j + 1, seed);
+    let b = h01 + (hash(i + 1, j + 1, seed) - h01) * sx;
+    return a + (b - a) * sy;
+}
+
+fn fbm(x: f32, y: f32, octaves: u32, seed: u32) -> f32 {
+    var sum = 0.0;
+    var amp = 1.0;
+    var norm = 0.0;
+    var f = 1.0;
+    for (var o = 0u; o < max(octaves, 1u); o = o + 1u) {
+        sum = sum + amp * value_noise(x * f, y * f, seed + o * 7919u);
+        norm = norm + amp;
+        amp = amp * 0.5;
+        f = f * 2.0;
+    }
+    return sum / norm;
+}
+
+fn wrap(i: i32, n: i32) -> u32 {
+    return u32(((i % n) + n) % n);
+}
+
+fn euclid(x: f32, m: f32) -> f32 {
+    return x - m * floor(x / m);
+}
+
+// Texture record (3 vec4): [kind, a, b, c] then parameters. Kinds: 0 image [w, h, channels] + [texel base],
+// 1 noise [scale, octaves, seed], 2 gradient [from, to, along_u], 3 scales [base] [edge], 4 checker [a, n] [b].
+fn sample_texture(index: u32, uv: vec2<f32>, clamp_v: bool) -> vec3<f32> {
+    let r = P.tex_base + 3u * index;
+    let h = scene[r];
+    let a = scene[r + 1u];
+    let b = scene[r + 2u];
+    let kind = word(h.x);
+    if (kind == 0u) {
+        let width = i32(word(h.y));
+        let height = i32(word(h.z));
+        let channels = word(h.w);
+        let base = word(a.x);
+        let x = euclid(uv.x, 1.0) * f32(width) - 0.5;
+        var v = euclid(uv.y, 1.0);
+        if (clamp_v) {
+            v = clamp(uv.y, 0.0, 1.0);
+        }
+        let y = v * f32(height) - 0.5;
+        let x0 = floor(x);
+        let y0 = floor(y);
+        let fx = x - x0;
+        let fy = y - y0;
+        var out = vec3<f32>(0.0);
+        for (var dy = 0; dy < 2; dy = dy + 1) {
+            var wy = 1.0 - fy;
+            if (dy == 1) {
+                wy = fy;
+            }
+            var row = 0u;
+            if (clamp_v) {
+                row = u32(clamp(i32(y0) + dy, 0, height - 1));
+            } else {
+                row = wrap(i32(y0) + dy, height);
+            }
+            for (var dx = 0; dx < 2; dx = dx + 1) {
+                var wx = 1.0 - fx;
+                if (dx == 1) {
+                    wx = fx;
+                }
+                let col = wrap(i32(x0) + dx, width);
+                let t = base + (row * u32(width) + col) * channels;
+                let last = channels - 1u;
+                out = out + wx * wy * vec3<f32>(texels[t], texels[t + min(1u, last)], texels[t + min(2u, last)]);
+            }
+        }
+        return out;
+    }
+    if (kind == 1u) {
+        let s = a.x;
+        return vec3<f32>(fbm(uv.x * s, uv.y * s, word(a.y), word(a.z)));
+    }
+    if (kind == 2u) {
+        var s = uv.y;
+        if (word(a.z) != 0u) {
+            s = uv.x;
+        }
+        return vec3<f32>(a.x + (a.y - a.x) * clamp(s, 0.0, 1.0));
+    }
+    if (kind == 3u) {
+        let row = floor(uv.y);
+        var x = uv.x;
+        if (euclid(row, 2.0) == 1.0) {
+            x = x + 0.5;
+        }
+        let fx = euclid(x, 1.0) - 0.5;
+        let fy = euclid(uv.y, 1.0) - 0.5;
+        let rr = sqrt(fx * fx + fy * fy) * 2.0;
+        let t = pow(clamp((rr - 0.55) / 0.45, 0.0, 1.0), 1.5);
+        return a.xyz + (b.xyz - a.xyz) * t;
+    }
+    let n = a.w;
+    let s = euclid(floor(uv.x * n) + floor(uv.y * n), 2.0);
+    if (s == 0.0) {
+        return a.xyz;
+    }
+    return b.xyz;
+}
+
+// A colour source (one vec4): a constant (w = NONE) or texture number w.
+fn color_at(c: vec4<f32>, uv: vec2<f32>) -> vec3<f32> {
+    let t = word(c.w);
+    if (t == NONE) {
+        return c.xyz;
+    }
+    return sample_texture(t, uv, false);
+}
+
+// ------------------------------------------------------------------ lights and environment (render::light)
+
+fn environment(d: vec3<f32>) -> vec3<f32> {
+    if (P.env_kind == 1u) {
+        return P.env_a.xyz;
+    }
+    if (P.env_kind == 2u) {
+        if (d.y >= 0.0) {
+            let y = clamp(d.y, 0.0, 1.0);
+            var t = 0.0;
+            if (y > 0.0) {
+                t = pow(y, 0.6);
+            }
+            return P.env_b.xyz + (P.env_a.xyz - P.env_b.xyz) * t;
+        }
+        let t = clamp(-d.y * 8.0, 0.0, 1.0);
+        return P.env_b.xyz + (P.env_c.xyz - P.env_b.xyz) * t;
+    }
+    if (P.env_kind == 3u) {
+        let phi = atan2(d.x, -d.z) - P.env_b.x;
+        let u = euclid(0.5 + phi / TAU, 1.0);
+        let v = acos(clamp(d.y, -1.0, 1.0)) / PI;
+        return sample_texture(P.env_tex, vec2<f32>(u, v), true) * P.env_a.w;
+    }
+    return vec3<f32>(0.0);
+}
+
+struct Arrival {
+    wi: vec3<f32>,
+    dist: f32,
+    e: vec3<f32>,
+}
+
+// Light record (2 vec4): [direction | position, kind (0 directional, 1 point)], [irradiance rgb].
+fn arrive(i: u32, p: vec3<f32>) -> Arrival {
+    let r = P.light_base + 2u * i;
+    let a = scene[r];
+    let e = scene[r + 1u].xyz;
+    if (word(a.w) == 0u) {
+        return Arrival(a.xyz, FAR, e);
+    }
+    let d = a.xyz - p;
+    let r2 = max(dot(d, d), 1e-12);
+    let dist = sqrt(r2);
+    return Arrival(d / dist, dist, e / r2);
+}
+
+// ------------------------------------------------------------------ geometry (render::geometry, render::bvh)
+
+struct Prim {
+    t: f32,
+    kind: u32,  // 0 none, 1 sphere, 2 plane, 3 triangle
+    index: u32,
+    b1: f32,
+    b2: f32,
+}
+
+fn sphere_t(i: u32, o: vec3<f32>, d: vec3<f32>, t_max: f32) -> f32 {
+    let s = scene[P.sphere_base + 2u * i];
+    let oc = o - s.xyz;
+    let a = dot(d, d);
+    let hb = dot(oc, d);
+    let c = dot(oc, oc) - s.w * s.w;
+    let disc = hb * hb - a * c;
+    if (disc < 0.0) {
+        return -1.0;
+    }
+    let sq = sqrt(disc);
+    let e = 1e-6 * max(s.w, 1.0);
+    let t0 = (-hb - sq) / a;
+    if (t0 > e && t0 < t_max) {
+        return t0;
+    }
+    let t1 = (-hb + sq) / a;
+    if (t1 > e && t1 < t_max) {
+        return t1;
+    }
+    return -1.0;
+}
+
+// Plane record (4 vec4): [centre, has size], [normal, width], [tangent, height], [material].
+fn plane_t(i: u32, o: vec3<f32>, d: vec3<f32>, t_max: f32) -> f32 {
+    let r = P.plane_base + 4u * i;
+    let c = scene[r];
+    let n = scene[r + 1u];
+    let tg = scene[r + 2u];
+    let den = dot(d, n.xyz);
+    if (abs(den) < 1e-20) {
+        return -1.0;
+    }
+    let t = dot(c.xyz - o, n.xyz) / den;
+    if (!(t > 0.0 && t < t_max)) {
+        return -1.0;
+    }
+    if (word(c.w) != 0u) {
+        let rel = o + d * t - c.xyz;
+        let b = cross(n.xyz, tg.xyz);
+        if (abs(dot(rel, tg.xyz)) > n.w * 0.5 || abs(dot(rel, b)) > tg.w * 0.5) {
+            return -1.0;
+        }
+    }
+    return t;
+}
+
+// Moller-Trumbore: (t, b1, b2), t < 0 for a miss.
+fn triangle_t(i: u32, o: vec3<f32>, d: vec3<f32>, t_max: f32) -> vec3<f32> {
+    let r = P.tri_base + 14u * i;
+    let a = scene[r].xyz;
+    let e1 = scene[r + 1u].xyz - a;
+    let e2 = scene[r + 2u].xyz - a;
+    let p = cross(d, e2);
+    let det = dot(e1, p);
+    if (abs(det) < 1e-12 * length(e1) * length(e2)) {
+        return vec3<f32>(-1.0, 0.0, 0.0);
+    }
+    let inv = 1.0 / det;
+    let s = o - a;
+    let u = dot(s, p) * inv;
+    if (u < 0.0 || u > 1.0) {
+        return vec3<f32>(-1.0, 0.0, 0.0);
+    }
+    let q = cross(s, e1);
+    let v = dot(d, q) * inv;
+    if (v < 0.0 || u + v > 1.0) {
+        return vec3<f32>(-1.0, 0.0, 0.0);
+    }
+    let t = dot(e2, q) * inv;
+    if (t > 0.0 && t < t_max) {
+        return vec3<f32>(t, u, v);
+    }
+    return vec3<f32>(-1.0, 0.0, 0.0);
+}
+
+// Entry distance into a BVH node's box, or -1.
+fn slab(i: u32, o: vec3<f32>, inv: vec3<f32>, t_max: f32) -> f32 {
+    let lo = scene[P.node_base + 2u * i].xyz;
+    let hi = scene[P.node_base + 2u * i + 1u].xyz;
+    let a = (lo - o) * inv;
+    let b = (hi - o) * inv;
+    let t0 = max(max(max(min(a.x, b.x), min(a.y, b.y)), min(a.z, b.z)), 0.0);
+    let t1 = min(min(min(max(a.x, b.x), max(a.y, b.y)), max(a.z, b.z)), t_max);
+    if (t0 <= t1) {
+        return t0;
+    }
+    return -1.0;
+}
+
+// The nearest primitive along a ray before t_max.
+fn intersect(o: vec3<f32>, d: vec3<f32>, t_max_in: f32) -> Prim {
+    var best = Prim(t_max_in, 0u, 0u, 0.0, 0.0);
+    for (var i = 0u; i < P.n_spheres; i = i + 1u) {
+        let t = sphere_t(i, o, d, best.t);
+        if (t > 0.0) {
+            best = Prim(t, 1u, i, 0.0, 0.0);
+        }
+    }
+    for (var i = 0u; i < P.n_planes; i = i + 1u) {
+        let t = plane_t(i, o, d, best.t);
+        if (t > 0.0) {
+            best = Prim(t, 2u, i, 0.0, 0.0);
+        }
+    }
+    if (P.n_nodes > 0u) {
+        // Axis-parallel rays: 1/0 = inf, and 0 * inf = NaN drops out of min/max like the CPU's comparisons.
+        let inv = 1.0 / d;
+        var stack: array<u32, 64>;
+        var sp = 1u;
+        stack[0] = 0u;
+        while (sp > 0u) {
+            sp = sp - 1u;
+            let node = stack[sp];
+            if (slab(node, o, inv, best.t) < 0.0) {
+                continue;
+            }
+            let meta_lo = scene[P.node_base + 2u * node];
+            let meta_hi = scene[P.node_base + 2u * node + 1u];
+            let start = word(meta_lo.w);
+            let count = word(meta_hi.w);
+            if (count > 0u) {
+                for (var k = start; k < start + count; k = k + 1u) {
+                    let h = triangle_t(k, o, d, best.t);
+                    if (h.x > 0.0) {
+                        best = Prim(h.x, 3u, k, h.y, h.z);
+                    }
+                }
+            } else {
+                let left = node + 1u;
+                let right = start;
+                let tl = slab(left, o, inv, best.t);
+                let tr = slab(right, o, inv, best.t);
+                if (tl >= 0.0 && tr >= 0.0) {
+                    if (tl <= tr) {
+                        stack[sp] = right;
+                        stack[sp + 1u] = left;
+                    } else {
+                        stack[sp] = left;
+                        stack[sp + 1u] = right;
+                    }
+                    sp = sp + 2u;
+                } else if (tl >= 0.0) {
+                    stack[sp] = left;
+                    sp = sp + 1u;
+                } else if (tr >= 0.0) {
+                    stack[sp] = right;
+                    sp = sp + 1u;
+                }
+                sp = min(sp, 62u);
+            }
+        }
+    }
+    return best;
+}
+
+struct Hit {
+    t: f32,
+    p: vec3<f32>,
+    n: vec3<f32>,
+    ng: vec3<f32>,
+    uv: vec2<f32>,
+    tangent: vec3<f32>,  // zero: none
+    along: vec3<f32>,    // zero: none
+    material: u32,
+}
+
+fn make_hit(h: Prim, o: vec3<f32>, d: vec3<f32>) -> Hit {
+    let p = o + d * h.t;
+    if (h.kind == 1u) {
+        let s = scene[P.sphere_base + 2u * h.index];
+        let material = word(scene[P.sphere_base + 2u * h.index + 1u].x);
+        let n0 = (p - s.xyz) / s.w;
+        var n = n0;
+        if (dot(n0, d) >= 0.0) {
+            n = -n0;
+        }
+        let u = euclid(atan2(n0.x, n0.z) / TAU, 1.0);
+        let v = acos(clamp(n0.y, -1.0, 1.0)) / PI;
+        var east = safe_normalize(vec3<f32>(n0.z, 0.0, -n0.x));
+        if (dot(east, east) == 0.0) {
+            east = vec3<f32>(1.0, 0.0, 0.0);
+        }
+        var south = cross(east, n0);
+        let so = orthogonalize(south, n);
+        if (dot(so, so) > 0.0) {
+            south = so;
+        }
+        return Hit(h.t, p, n, n, vec2<f32>(u, v), orthogonalize(east, n), south, material);
+    }
+    if (h.kind == 2u) {
+        let r = P.plane_base + 4u * h.index;
+        let c = scene[r];
+        let nw = scene[r + 1u];
+        let tg = scene[r + 2u];
+        let material = word(scene[r + 3u].x);
+        let b = cross(nw.xyz, tg.xyz);
+        let rel = p - c.xyz;
+        let x = dot(rel, tg.xyz);
+        let y = dot(rel, b);
+        var uv = vec2<f32>(x, -y);
+        if (word(c.w) != 0u) {
+            uv = vec2<f32>(x / nw.w + 0.5, 0.5 - y / tg.w);
+        }
+        var n = nw.xyz;
+        if (dot(d, nw.xyz) >= 0.0) {
+            n = -n;
+        }
+        return Hit(h.t, p, n, n, uv, tg.xyz, tg.xyz, material);
+    }
+    // Triangle record (14 vec4): p0 [material], p1 [flags: 1 uv, 2 tangents, 4 along], p2, n0..n2,
+    // [uv0, uv1], [uv2], t0..t2 (xyz, sign), a0..a2.
+    let r = P.tri_base + 14u * h.index;
+    let w = vec3<f32>(1.0 - h.b1 - h.b2, h.b1, h.b2);
+    let a = scene[r];
+    let b = scene[r + 1u];
+    let c = scene[r + 2u].xyz;
+    let material = word(a.w);
+    let flags = word(b.w);
+    let ng0 = safe_normalize(cross(b.xyz - a.xyz, c - a.xyz));
+    var n = safe_normalize(scene[r + 3u].xyz * w.x + scene[r + 4u].xyz * w.y + scene[r + 5u].xyz * w.z);
+    if (dot(n, n) == 0.0) {
+        n = ng0;
+    }
+    var ng = ng0;
+    if (dot(ng0, d) >= 0.0) {
+        ng = -ng0;
+    }
+    if (dot(n, ng) < 0.0) {
+        n = -n;
+    }
+    var uv = vec2<f32>(0.0);
+    if ((flags & 1u) != 0u) {
+        let q01 = scene[r + 6u];
+        let q2 = scene[r + 7u];
+        uv = q01.xy * w.x + q01.zw * w.y + q2.xy * w.z;
+    }
+    var tangent = vec3<f32>(0.0);
+    if ((flags & 2u) != 0u) {
+        tangent = orthogonalize(scene[r + 8u].xyz * w.x + scene[r + 9u].xyz * w.y + scene[r + 10u].xyz * w.z, n);
+    }
+    var along = vec3<f32>(0.0);
+    if ((flags & 4u) != 0u) {
+        along = orthogonalize(scene[r + 11u].xyz * w.x + scene[r + 12u].xyz * w.y + scene[r + 13u].xyz * w.z, n);
+    }
+    return Hit(h.t, p, n, ng, uv, tangent, along, material);
+}
+
+fn mat_kind(m: u32) -> u32 {
+    return word(scene[P.mat_base + 8u * m].x);
+}
+
+// Material record (8 vec4); word 0 of the first: 0 Lambert, 1 microfacet, 2 diffraction, 3 thin film.
+fn transmissive(m: u32) -> bool {
+    let h = scene[P.mat_base + 8u * m];
+    return word(h.x) == 3u && (word(scene[P.mat_base + 8u * m + 1u].w) & 2u) != 0u;
+}
+
+fn material_of(h: Prim) -> u32 {
+    if (h.kind == 1u) {
+        return word(scene[P.sphere_base + 2u * h.index + 1u].x);
+    }
+    if (h.kind == 2u) {
+        return word(scene[P.plane_base + 4u * h.index + 3u].x);
+    }
+    return word(scene[P.tri_base + 14u * h.index].w);
+}
+
+// Whether something opaque lies between p and a light dist away along wi (transmissive films cast no shadow).
+fn occluded(p: vec3<f32>, wi: vec3<f32>, dist: f32) -> bool {
+    var o = p;
+    var left = dist;
+    for (var k = 0; k < 16; k = k + 1) {
+        let h = intersect(o, wi, left);
+        if (h.kind == 0u) {
+            return false;
+        }
+        if (!transmissive(material_of(h))) {
+            return true;
+        }
+        let q = o + wi * h.t;
+        o = q + wi * eps(q);
+        left = left - h.t;
+    }
+    return true;
+}
+
+// ------------------------------------------------------------------ materials (render::material)
+
+struct Microfacet {
+    color: vec4<f32>,
+    roughness: f32,
+    metallic: f32,
+    ior: f32,
+}
+
+fn microfacet_reflect(m: Microfacet, n: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>, albedo: vec3<f32>) -> vec3<f32> {
+    let ci = dot(n, wi);
+    let co = dot(n, wo);
+    if (ci <= 0.0 || co <= 0.0) {
+        return vec3<f32>(0.0);
+    }
+    let h = safe_normalize(wi + wo);
+    let a = max(m.roughness * m.roughness, 1e-4);
+    let a2 = a * a;
+    let nh = max(dot(n, h), 0.0);
+    let q = nh * nh * (a2 - 1.0) + 1.0;
+    let dd = a2 / (PI * q * q);
+    let g = 2.0 * ci / (ci + sqrt(a2 + (1.0 - a2) * ci * ci)) * 2.0 * co / (co + sqrt(a2 + (1.0 - a2) * co * co));
+    let f0d = ((m.ior - 1.0) / (m.ior + 1.0)) * ((m.ior - 1.0) / (m.ior + 1.0));
+    let f0 = vec3<f32>(f0d * (1.0 - m.metallic)) + albedo * m.metallic;
+    let x = 1.0 - clamp(dot(wi, h), 0.0, 1.0);
+    let f = f0 + (vec3<f32>(1.0) - f0) * (x * x * x * x * x);
+    let spec = dd * g / (4.0 * ci * co) * PI * ci;
+    return spec * f + (1.0 - m.metallic) * (vec3<f32>(1.0) - f) * albedo * ci;
+}
+
+fn mirror_fresnel(m: Microfacet, cosv: f32, albedo: vec3<f32>) -> vec3<f32> {
+    let f0d = ((m.ior - 1.0) / (m.ior + 1.0)) * ((m.ior - 1.0) / (m.ior + 1.0));
+    let x = 1.0 - clamp(cosv, 0.0, 1.0);
+    let f0 = vec3<f32>(f0d * (1.0 - m.metallic)) + albedo * m.metallic;
+    return f0 + (vec3<f32>(1.0) - f0) * (x * x * x * x * x);
+}
+
+fn schlick(n: f32, cosv: f32) -> f32 {
+    let f0 = ((n - 1.0) / (n + 1.0)) * ((n - 1.0) / (n + 1.0));
+    let x = 1.0 - clamp(cosv, 0.0, 1.0);
+    return f0 + (1.0 - f0) * (x * x * x * x * x);
+}
+
+// The nanostructure's x axis at a hit (render::material::Orientation::tangent).
+fn orientation(h: Hit, rule: u32, dir: vec3<f32>, tex: u32, angle: f32) -> vec3<f32> {
+    let n = h.n;
+    var base = h.tangent;
+    if (dot(base, base) == 0.0) {
+        base = any_perpendicular(n);
+    }
+    var t = base;
+    if (rule == 1u) {
+        if (dot(h.along, h.along) > 0.0) {
+            t = h.along;
+        }
+    } else if (rule == 2u) {
+        t = orthogonalize(dir, n);
+    } else if (rule == 3u) {
+        let c = sample_texture(tex, h.uv, false);
+        let b = cross(n, base);
+        t = safe_normalize(base * (2.0 * c.x - 1.0) + b * (2.0 * c.y - 1.0));
+    }
+    if (dot(t, t) == 0.0) {
+        t = base;
+    }
+    if (angle != 0.0) {
+        t = safe_normalize(rotate_about(t, n, angle));
+    }
+    return t;
+}
+
+// ------------------------------------------------------------------ the ray stack
+
+struct Ray {
+    o: vec3<f32>,
+    d: vec3<f32>,
+    throughput: vec3<f32>,
+    depth: u32,
+    weight: f32,
+}
+
+const STACK: u32 = 24u;
+var<private> rays: array<Ray, STACK>;
+var<private> n_rays: u32;
+var<private> radiance: vec3<f32>;
+
+// Queues a secondary ray; if the stack is full, the environment's radiance stands in (as for a ray past
+// max_depth on the CPU).
+fn push_ray(o: vec3<f32>, d: vec3<f32>, throughput: vec3<f32>, depth: u32, weight: f32) {
+    if (max3(throughput) <= 0.0) {
+        return;
+    }
+    if (n_rays < STACK) {
+        rays[n_rays] = Ray(o, d, throughput, depth, weight);
+        n_rays = n_rays + 1u;
+    } else {
+        radiance = radiance + throughput * environment(d);
+    }
+}
+
+// Direct light on a microfacet surface plus, with_env, its environment reflection (a ray when smooth enough).
+fn shade_microfacet(m: Microfacet, h: Hit, wo: vec3<f32>, depth: u32, weight: f32, with_env: bool,
+                    thr: vec3<f32>) {
+    let albedo = color_at(m.color, h.uv);
+    var out = vec3<f32>(0.0);
+    let o = h.p + h.ng * eps(h.p);
+    for (var i = 0u; i < P.n_lights; i = i + 1u) {
+        let l = arrive(i, h.p);
+        if (dot(l.wi, h.ng) > 0.0 && !occluded(o, l.wi, l.dist)) {
+            out = out + microfacet_reflect(m, h.n, l.wi, wo, albedo) * l.e;
+        }
+    }
+    let ambient = P.env_mean.xyz;
+    out = out + albedo * ambient * (1.0 - m.metallic);
+    if (with_env) {
+        let f = mirror_fresnel(m, dot(h.n, wo), albedo);
+        let rough = min(m.roughness / 0.6, 1.0);
+        if (m.roughness < 0.6 && depth < P.max_depth) {
+            push_ray(o, reflect_dir(wo, h.n), thr * f * (1.0 - rough), depth + 1u, weight * max3(f));
+            out = out + f * ambient * rough;
+        } else {
+            out = out + f * ambient;
+        }
+    }
+    radiance = radiance + thr * out;
+}
+
+fn microfacet_at(r: u32) -> Microfacet {
+    let p = scene[r + 1u];
+    return Microfacet(scene[r], p.x, p.y, p.z);
+}
+
+fn shade(h: Hit, d: vec3<f32>, depth: u32, weight: f32, thr: vec3<f32>) {
+    let wo = -d;
+    let r = P.mat_base + 8u * h.material;
+    let kind = word(scene[r].x);
+    if (kind == 0u) {
+        let albedo = color_at(scene[r + 1u], h.uv);
+        var out = albedo * P.env_mean.xyz;
+        let o = h.p + h.ng * eps(h.p);
+        for (var i = 0u; i < P.n_lights; i = i + 1u) {
+            let l = arrive(i, h.p);
+            if (dot(l.wi, h.ng) > 0.0 && !occluded(o, l.wi, l.dist)) {
+                out = out + albedo * l.e * max(dot(h.n, l.wi), 0.0);
+            }
+        }
+        radiance = radiance + thr * out;
+        return;
+    }
+    if (kind == 1u) {
+        shade_microfacet(microfacet_at(r + 1u), h, wo, depth, weight, true, thr);
+        return;
+    }
+    if (kind == 2u) {
+        // Diffraction: [kind], texture colour, [scale_ru, w_diffuse, ambient, fresnel_n],
+        // [direction, rule], [angle, orientation texture], table words, table numbers.
+        let k = scene[r + 2u];
+        let od = scene[r + 3u];
+        let oa = scene[r + 4u];
+        let tw = scene[r + 5u];
+        let tf = scene[r + 6u];
+        let table = Table(word(tw.x), word(tw.y), word(tw.z), word(tw.w), tf.x, tf.y, tf.z, tf.w);
+        let t = orientation(h, word(od.w), od.xyz, word(oa.y), oa.x);
+        let tex = color_at(scene[r + 1u], h.uv);
+        var out = tex * k.z;
+        let n = h.n;
+        let b = cross(n, t);
+        let lo = vec3<f32>(dot(wo, t), dot(wo, b), dot(wo, n));
+        let o = h.p + h.ng * eps(h.p);
+        for (var i = 0u; i < P.n_lights; i = i + 1u) {
+            let l = arrive(i, h.p);
+            if (dot(l.wi, h.ng) > 0.0 && !occluded(o, l.wi, l.dist)) {
+                // Algorithm 4: (1 - w_d) c_diffraction + (1 - alpha) c_texture + w_d c_texture.
+                let li = vec3<f32>(dot(l.wi, t), dot(l.wi, b), dot(l.wi, n));
+                if (li.z > 0.0 && lo.z > 0.0) {
+                    let c_diff = to_rgb(lookup_xyz(table, li, lo)) * l.e * k.x;
+                    let hv = safe_normalize(l.wi + wo);
+                    let alpha = min(abs(schlick(k.w, dot(l.wi, hv))), 1.0);
+                    let c_tex = tex * l.e * li.z;
+                    out = out + c_diff * (1.0 - k.y) + c_tex * (1.0 - alpha) + c_tex * k.y;
+                }
+            }
+        }
+        radiance = radiance + thr * out;
+        return;
+    }
+    // Thin film: [kind], [n_media, media, thickness, flags: 1 SVT, 2 transmission, 4 base],
+    // [SVT texture, d_rel, factor], base colour, base [roughness, metallic, ior].
+    let fw = scene[r + 1u];
+    let sv = scene[r + 2u];
+    let flags = word(fw.w);
+    let factor = sv.z;
+    let cosv = clamp(dot(h.n, wo), 0.0, 1.0);
+    var offset = 0.0;
+    if ((flags & 1u) != 0u) {
+        let alpha = sample_texture(word(sv.x), h.uv, false).x;
+        offset = sv.y * (alpha / 0.5 - 1.0);
+    }
+    let film = Film(word(fw.x), P.n_lambda, word(fw.y), word(fw.z));
+    let c = film_xyz(film, sqrt(max(1.0 - cosv * cosv, 0.0)), cosv, offset);
+    let r_rgb = to_rgb(c.r) * factor;
+    push_ray(h.p + h.ng * eps(h.p), reflect_dir(wo, h.n), thr * r_rgb, depth + 1u, weight * max3(r_rgb));
+    if ((flags & 2u) != 0u) {
+        let t_rgb = to_rgb(c.t) * factor;
+        push_ray(h.p - h.ng * eps(h.p), d, thr * t_rgb, depth + 1u, weight * max3(t_rgb));
+    }
+    if ((flags & 4u) != 0u) {
+        let below = max(1.0 - factor * c.r.y, 0.0);
+        shade_microfacet(microfacet_at(r + 3u), h, wo, depth, weight, factor < 1.0, thr * below);
+    }
+}
+
+// Radiance (linear sRGB, RU) along a camera ray, its reflections and transmissions.
+fn primary(o: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
+    radiance = vec3<f32>(0.0);
+    n_rays = 0u;
+    let first = intersect(o, d, FAR);
+    if (first.kind == 0u) {
+        if (P.env_visible != 0u) {
+            return environment(d);
+        }
+        return P.background.xyz;
+    }
+    shade(make_hit(first, o, d), d, 0u, 1.0, vec3<f32>(1.0));
+    while (n_rays > 0u) {
+        n_rays = n_rays - 1u;
+        let ray = rays[n_rays];
+        if (ray.depth > P.max_depth || ray.weight < 2e-3) {
+            radiance = radiance + ray.throughput * environment(ray.d);
+            continue;
+        }
+        let h = intersect(ray.o, ray.d, FAR);
+        if (h.kind == 0u) {
+            radiance = radiance + ray.throughput * environment(ray.d);
+        } else {
+            shade(make_hit(h, ray.o, ray.d), ray.d, ray.depth, ray.weight, ray.throughput);
+        }
+    }
+    return radiance;
+}
+
+// ------------------------------------------------------------------ cameras (render::camera)
+
+struct CamRay {
+    o: vec3<f32>,
+    d: vec3<f32>,
+    ok: bool,
+}
+
+fn camera_ray(x: f32, y: f32, aspect: f32) -> CamRay {
+    let kind = word(P.cam_pos.w);
+    let f = P.cam_fwd.xyz;
+    let r = P.cam_right.xyz;
+    let u = P.cam_up.xyz;
+    let s = P.cam_fwd.w;
+    if (kind == 0u) {
+        return CamRay(P.cam_pos.xyz, normalize(f + r * (x * aspect * s) + u * (y * s)), true);
+    }
+    if (kind == 1u) {
+        return CamRay(P.cam_pos.xyz + r * (x * aspect * s) + u * (y * s), f, true);
+    }
+    let r2 = x * x + y * y;
+    if (r2 >= 1.0) {
+        return CamRay(vec3<f32>(0.0), vec3<f32>(0.0), false);
+    }
+    let v = r * x + u * y + f * sqrt(1.0 - r2);
+    return CamRay(P.cam_pos.xyz + v * s, -v, true);
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn render_scene(@builtin(global_invocation_id) id: vec3<u32>) {
+    let col = id.x;
+    let row = P.row0 + id.y;
+    if (col >= P.width || row >= P.height) {
+        return;
+    }
+    let aspect = f32(P.width) / f32(P.height);
+    var acc = vec3<f32>(0.0);
+    for (var s = 0u; s < P.spp; s = s + 1u) {
+        let j = scene[P.sample_base + s].xy;
+        let x = -1.0 + 2.0 * (f32(col) + j.x) / f32(P.width);
+        let y = 1.0 - 2.0 * (f32(row) + j.y) / f32(P.height);
+        let ray = camera_ray(x, y, aspect);
+        if (ray.ok) {
+            acc = acc + primary(ray.o, ray.d);
+        }
+    }
+    let rgb = acc / f32(P.spp);
+    let idx = row * P.width + col;
+    out_rgb[idx] = vec4<f32>(rgb, 1.0);
+    out_rgba[idx] = display_rgb(rgb, D);
+}

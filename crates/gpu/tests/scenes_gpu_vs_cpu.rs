@@ -1,0 +1,80 @@
+//! `iridis render --gpu` against the CPU renderer: every example scene in `examples/` rendered both ways must
+//! agree as displayed colours (issue 8: mean CIEDE2000 < 1, 99th percentile < 3).
+//!
+//! Needs a Vulkan adapter (lavapipe on machines without a GPU); `IRIDIS_SKIP_GPU=1` skips.
+
+use std::path::PathBuf;
+
+use iridis_color::integrate::white_point;
+use iridis_color::lab::delta_e_2000;
+use iridis_color::{Illuminant, Lab, Observer, Xyz};
+use iridis_gpu::{Gpu, GpuScene};
+use iridis_render::{load_scene, render, Image};
+
+fn gpu() -> Option<Gpu> {
+    match Gpu::new() {
+        Ok(g) => Some(g),
+        Err(e) if std::env::var("IRIDIS_SKIP_GPU").as_deref() == Ok("1") => {
+            eprintln!("GPU test skipped (IRIDIS_SKIP_GPU=1): {e}");
+            None
+        }
+        Err(e) => panic!("{e}\nThe GPU tests need a Vulkan adapter; set IRIDIS_SKIP_GPU=1 to skip them."),
+    }
+}
+
+fn examples() -> Vec<PathBuf> {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../examples");
+    let mut v: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    v.sort();
+    v
+}
+
+/// Per-pixel CIEDE2000 between the displayed images (exposure, clipped to the sRGB cube), sorted.
+fn delta_e(a: &Image, b: &Image, exposure: f64) -> Vec<f64> {
+    let white = white_point(Illuminant::D65, Observer::Cie1931);
+    let shown = |p: [f32; 3]| {
+        let rgb = p.map(|c| {
+            let c = c as f64 * exposure;
+            if c.is_nan() {
+                0.0
+            } else {
+                c.clamp(0.0, 1.0)
+            }
+        });
+        Lab::from_xyz(Xyz::from_linear_srgb(rgb), white)
+    };
+    let mut d: Vec<f64> = a.data.iter().zip(&b.data).map(|(&p, &q)| delta_e_2000(shown(p), shown(q))).collect();
+    d.sort_by(|x, y| x.total_cmp(y));
+    d
+}
+
+#[test]
+fn every_example_scene_matches_the_cpu() {
+    let Some(gpu) = gpu() else { return };
+    let scenes = examples();
+    assert!(scenes.len() >= 8, "examples/ has {} scenes", scenes.len());
+    let mut report = Vec::new();
+    for path in scenes {
+        let scene = load_scene(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let (w, h) = (96, (96.0 * scene.output.height as f64 / scene.output.width as f64).round() as u32);
+        let cpu = render(&scene, w, h, 1, &|_| {});
+        let g = GpuScene::new(&gpu, &scene).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let img = g.render(w, h, 1, &|_| {}).unwrap();
+        let d = delta_e(&cpu, &img, scene.output.exposure);
+        let mean = d.iter().sum::<f64>() / d.len() as f64;
+        let p99 = d[((d.len() as f64 * 0.99) as usize).min(d.len() - 1)];
+        let name = path.file_name().unwrap().to_string_lossy().to_string();
+        eprintln!("{name:<32} {w}×{h}: mean ΔE00 {mean:.3}, p99 {p99:.3}, max {:.2}", d[d.len() - 1]);
+        // The image must show something (a black GPU image would agree with a black CPU image).
+        let lit = cpu.data.iter().filter(|p| p.iter().any(|&c| c > 1e-3)).count();
+        assert!(lit > cpu.data.len() / 10, "{name}: the CPU image is nearly black");
+        report.push((name, mean, p99));
+    }
+    for (name, mean, p99) in &report {
+        assert!(*mean < 1.0 && *p99 < 3.0, "{name}: mean ΔE00 {mean:.3}, p99 {p99:.3}");
+    }
+}
