@@ -11,10 +11,27 @@ use iridis_diffraction::evaluator::Evaluator;
 use iridis_diffraction::geometry::direction;
 use iridis_diffraction::table::{Lookup, LookupTable, Precision, TableParams};
 use iridis_diffraction::{Fresnel, Shading};
-use iridis_gpu::{FilmFrame, FrameTime, Gpu, GpuFilm, GpuLookup};
+use iridis_gpu::{FilmFrame, FrameTime, Gpu, GpuFilm, GpuLookup, GpuScene};
 use serde_json::json;
 
 use crate::cmd::brdf::{self, BrdfMapArgs, ModelOpts, SurfaceOpts};
+
+/// `iridis render --gpu`: the scene on the GPU with a progress bar over bands of rows; the image, the seconds
+/// (upload, compile, render and read-back) and the adapter's name.
+pub fn render_scene(
+    scene: &iridis_render::Scene,
+    w: u32,
+    h: u32,
+    spp: u32,
+) -> Result<(iridis_render::Image, f64, String)> {
+    let t = std::time::Instant::now();
+    let gpu = open_gpu()?;
+    let g = GpuScene::new(&gpu, scene)?;
+    let pb = crate::progress::bar(h as u64, "render (GPU)");
+    let img = g.render(w, h, spp, &|rows| pb.set_position(rows as u64));
+    pb.finish_and_clear();
+    Ok((img?, t.elapsed().as_secs_f64(), gpu.adapter_name()))
+}
 
 /// Opens the GPU, with the driver hint when there is none.
 fn open_gpu() -> Result<Gpu> {
@@ -82,13 +99,21 @@ pass where the adapter has them); the light circles the normal at 30° from fram
 frame. Each shader runs --frames frames or --max-seconds, whichever ends first, after one warm-up frame,
 and the last frame is checked against the CPU (CIEDE2000 over up to 4096 pixels).
 
+With a SCENE (TOML or glTF), times the scene renderer instead (iridis render --gpu): --frames frames of
+--size with 1 sample per pixel, min/median/p99, against one CPU render of the same image in the same run
+(speed-up and CIEDE2000 between the two).
+
 Examples:
+  iridis bench gpu examples/snake_elaphe.toml --size 1024x1024 --frames 500
+  iridis bench gpu examples/soap_bubble.toml --size 1920x1080 --frames 50 --json
   iridis bench gpu                                      built-in Elaphe table (201²), 1024² map, 1920×1080 film
   iridis bench gpu --table elaphe.npz --size 1024x1024 --frames 500 --json
   iridis bench gpu --stack \"air | gasoline 216nm | water 220nm | asphalt\" --film-size 1280x720
   iridis bench gpu --size 512 --film-size 960x540 --frames 5 --save out/")]
 pub struct GpuBench {
-    /// Lookup BRDF map size: 1024x1024 or 1024 (maps are square).
+    /// A scene (TOML or glTF) to time instead of the two shaders.
+    pub scene: Option<PathBuf>,
+    /// Lookup BRDF map size: 1024x1024 or 1024 (maps are square); with a SCENE, the image size.
     #[arg(long, default_value = "1024x1024")]
     pub size: String,
     /// Frames timed per shader.
@@ -215,7 +240,77 @@ fn svt_noise(width: usize, height: usize) -> Vec<f32> {
     out
 }
 
+/// `iridis bench gpu SCENE`: frame times of the scene renderer against one CPU render of the same image.
+fn bench_scene(a: &GpuBench, path: &std::path::Path) -> Result<()> {
+    let (w, h) = parse_size(&a.size, "--size")?;
+    let (w, h) = (w as u32, h as u32);
+    let scene = crate::cmd::render::load(path)?;
+    let gpu = open_gpu()?;
+    let adapter = gpu.adapter_name();
+    let t = std::time::Instant::now();
+    let g = GpuScene::new(&gpu, &scene)?;
+    let setup_s = t.elapsed().as_secs_f64();
+    let tone = ToneMap { exposure_ru: scene.output.exposure, encoding: scene.output.encoding };
+    let frame = g.frame(w, h, 1, tone)?;
+    if !a.json {
+        println!("adapter: {adapter}");
+        if gpu.is_software() {
+            println!("  (a software adapter: these times measure the CPU, not a GPU)");
+        }
+        println!("scene {}: {w}×{h}, 1 spp; upload and shader compilation {setup_s:.2} s", path.display());
+    }
+    let times = time_frames(a.frames, a.max_seconds, |_| Ok(frame.run()?))?;
+    let img = frame.read_image()?;
+    let (cpu, cpu_s) = crate::cmd::render::render_with_bar(&scene, w, h, 1);
+    let xyz = |i: &iridis_render::Image| -> Vec<Xyz> {
+        i.data.iter().map(|p| Xyz::from_linear_srgb(p.map(|c| c as f64))).collect()
+    };
+    let (de_mean, de_p99) = delta_e(&xyz(&img), &xyz(&cpu), scene.output.exposure);
+    let [mn, med, p99, mean] = stats(&wall_times(&times));
+    let gts = gpu_times(&times).map(|t| stats(&t));
+    let name = path.display().to_string();
+    if let Some(dir) = &a.save {
+        crate::output::write_png_rgb8(&dir.join("scene_gpu.png"), w, h, &frame.read_rgb8()?)?;
+    }
+    if a.json {
+        return crate::output::print_json(&json!({
+            "adapter": adapter,
+            "software_adapter": gpu.is_software(),
+            "scene": name,
+            "size": [w, h],
+            "spp": 1,
+            "setup_s": setup_s,
+            "frames": times.len(),
+            "ms": {"min": mn, "median": med, "p99": p99, "mean": mean},
+            "gpu_timestamp_ms": gts.map(|[a, b, c, d]| json!({"min": a, "median": b, "p99": c, "mean": d})),
+            "fps_median": 1e3 / med,
+            "cpu": {"threads": rayon::current_num_threads(), "render_s": cpu_s, "cpu_over_gpu_median": cpu_s * 1e3 / med},
+            "vs_cpu": {"pixels": (w * h), "exposure_ru": scene.output.exposure, "delta_e00_mean": de_mean, "delta_e00_p99": de_p99},
+        }));
+    }
+    println!(
+        "  {} frames: min {mn:.2} ms, median {med:.2} ms, p99 {p99:.2} ms ({:.1} fps at the median)",
+        times.len(),
+        1e3 / med
+    );
+    print_gpu_times(gts);
+    println!(
+        "  CPU renderer, same image ({} threads): {:.1} ms — CPU time / GPU median frame = {:.2}",
+        rayon::current_num_threads(),
+        cpu_s * 1e3,
+        cpu_s * 1e3 / med
+    );
+    println!("  vs CPU ({} pixels at {} RU): ΔE00 mean {de_mean:.4}, p99 {de_p99:.4}", w * h, scene.output.exposure);
+    Ok(())
+}
+
 pub fn bench(a: GpuBench) -> Result<()> {
+    if !(a.max_seconds.is_finite() && a.max_seconds > 0.0) {
+        bail!("--max-seconds {} must be positive", a.max_seconds);
+    }
+    if let Some(p) = a.scene.clone() {
+        return bench_scene(&a, &p);
+    }
     let (mw, mh) = parse_size(&a.size, "--size")?;
     if mw != mh {
         bail!("--size {}: BRDF maps are square (the unit disk of view directions); use e.g. 1024x1024", a.size);
