@@ -61,6 +61,8 @@ enum Command {
     Experiment(cmd::lab::ExperimentCommand),
     /// Render a scene (TOML or glTF) on the CPU: diffraction and thin-film materials on meshes (issue 7).
     Render(cmd::render::RenderArgs),
+    /// Interactive window: a scene or a BRDF map rendered on the GPU, with an egui panel (issue 8).
+    View(cmd::gpu::ViewArgs),
     // New command groups are added here, one line each, with their module in cmd/.
 }
 
@@ -79,6 +81,7 @@ fn main() -> std::process::ExitCode {
         Command::Precompute(a) => cmd::brdf::run_precompute(a),
         Command::BrdfMap(a) => cmd::brdf::run_brdf_map(a),
         Command::Render(a) => cmd::render::run(a),
+        Command::View(a) => cmd::gpu::run_view(a),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,

@@ -25,6 +25,8 @@
 pub mod film;
 pub mod lookup;
 pub mod scene;
+#[cfg(feature = "viewer")]
+pub mod viewer;
 
 use std::time::{Duration, Instant};
 
@@ -92,6 +94,12 @@ impl Gpu {
         }))
         .map_err(|e| GpuError::Device { adapter: describe(&info), message: e.to_string() })?;
         Ok(Self { device, queue, info, limits })
+    }
+
+    /// Wraps a device opened elsewhere (the viewer's window integration opens one that can present).
+    pub fn from_parts(device: wgpu::Device, queue: wgpu::Queue, info: wgpu::AdapterInfo) -> Self {
+        let limits = device.limits();
+        Self { device, queue, info, limits }
     }
 
     /// `name (backend, device type, driver)`, e.g. `llvmpipe (LLVM 15.0.6, 256 bits) (Vulkan, Cpu, Mesa …)`.

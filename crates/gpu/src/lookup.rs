@@ -275,14 +275,19 @@ pub(crate) fn storage_out(gpu: &Gpu, label: &str, bytes: u64) -> wgpu::Buffer {
 }
 
 /// The `Display` uniform of `common.wgsl`: XYZ → sRGB rows, exposure, encoding.
-pub(crate) fn display_buffer(gpu: &Gpu, tone: ToneMap) -> wgpu::Buffer {
+pub(crate) fn display_words(tone: ToneMap) -> Vec<u32> {
     let m = xyz_to_srgb_words();
     let (kind, inv_gamma) = encoding_words(tone.encoding);
     let mut words: Vec<u32> = m.iter().map(|v| v.to_bits()).collect();
     words.extend([(tone.exposure_ru as f32).to_bits(), kind, inv_gamma.to_bits(), 0]);
+    words
+}
+
+/// A `Display` uniform buffer (rewritable: the viewer changes exposure and gamma).
+pub(crate) fn display_buffer(gpu: &Gpu, tone: ToneMap) -> wgpu::Buffer {
     gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("display"),
-        contents: bytemuck::cast_slice(&words),
-        usage: wgpu::BufferUsages::UNIFORM,
+        contents: bytemuck::cast_slice(&display_words(tone)),
+        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
     })
 }

@@ -82,9 +82,39 @@ pub struct GpuScene<'g> {
     /// The uniform words after the camera (environment, matrix, counts, offsets).
     layout: Layout,
     camera: Camera,
-    /// Offset (in vec4) of the lights in the scene buffer and the scene's lights.
     lights: Vec<Light>,
     output: iridis_render::scene::Output,
+    /// The films' media as uploaded (the viewer's thickness, IOR and SVT controls rewrite copies of them).
+    media_cpu: Vec<[f32; 2]>,
+    films: Vec<FilmSlot>,
+}
+
+/// Where a thin-film material lives in the buffers.
+#[derive(Debug, Clone)]
+struct FilmSlot {
+    /// vec4 index of its `[SVT texture, d_rel, factor]` record.
+    svt_record: u32,
+    svt: [f32; 4],
+    media_base: usize,
+    thick_base: usize,
+    n_media: usize,
+}
+
+/// Interactive changes to every thin-film material of a scene (the viewer's panel).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FilmControls {
+    /// Every layer's thickness is multiplied by this.
+    pub thickness_scale: f64,
+    /// A real refractive index for the first film layer at every wavelength, instead of its material.
+    pub layer_ior: Option<f64>,
+    /// The SVT amplitude `d_rel` is multiplied by this.
+    pub svt_scale: f64,
+}
+
+impl Default for FilmControls {
+    fn default() -> Self {
+        Self { thickness_scale: 1.0, layer_ior: None, svt_scale: 1.0 }
+    }
 }
 
 #[derive(Debug, Clone, Copy, Default)]
@@ -109,14 +139,15 @@ struct Layout {
     n_lambda: u32,
 }
 
-/// Output buffers for one image size (the benchmark's and the viewer's frame loop).
+/// Output buffers for one image size (the benchmark's and the viewer's frame loop), used with the
+/// [`GpuScene`] that made it.
 #[derive(Debug)]
-pub struct SceneFrame<'a, 'g> {
-    scene: &'a GpuScene<'g>,
+pub struct SceneFrame {
     width: u32,
     height: u32,
     spp: u32,
     params: wgpu::Buffer,
+    display: wgpu::Buffer,
     bind: wgpu::BindGroup,
     out_rgb: wgpu::Buffer,
     out_rgba: wgpu::Buffer,
@@ -199,6 +230,7 @@ impl<'g> GpuScene<'g> {
         lay.n_lambda = grid.len() as u32;
         let mut tables: Vec<f32> = Vec::new();
         let mut media: Vec<[f32; 2]> = Vec::new();
+        let mut films = Vec::new();
         lay.mat_base = rec.len();
         for (mi, m) in scene.materials.iter().enumerate() {
             let start = rec.len();
@@ -271,7 +303,15 @@ impl<'g> GpuScene<'g> {
                     rec.words([3, 0, 0, 0]);
                     rec.words([n_media as u32, media_base, thick_base, flags]);
                     let (svt_tex, d_rel) = f.svt.map(|s| (s.texture as u32, s.d_rel_nm as f32)).unwrap_or((NONE, 0.0));
-                    rec.push([f32::from_bits(svt_tex), d_rel, f.factor as f32, 0.0]);
+                    let svt = [f32::from_bits(svt_tex), d_rel, f.factor as f32, 0.0];
+                    films.push(FilmSlot {
+                        svt_record: rec.len(),
+                        svt,
+                        media_base: media_base as usize,
+                        thick_base: thick_base as usize,
+                        n_media,
+                    });
+                    rec.push(svt);
                     if let Some(b) = &f.base {
                         push_microfacet(&mut rec, b);
                     }
@@ -393,7 +433,7 @@ impl<'g> GpuScene<'g> {
                 (
                     init("scene records", bytemuck::cast_slice(&rec.0), storage | wgpu::BufferUsages::COPY_DST),
                     init("scene texels", bytemuck::cast_slice(&texels), storage),
-                    init("scene film media", bytemuck::cast_slice(&media), storage),
+                    init("scene film media", bytemuck::cast_slice(&media), storage | wgpu::BufferUsages::COPY_DST),
                     init("scene film weights", bytemuck::cast_slice(&weights), storage),
                     init("scene tables", bytemuck::cast_slice(&tables), storage),
                     pipeline,
@@ -411,7 +451,36 @@ impl<'g> GpuScene<'g> {
             camera: scene.camera.clone(),
             lights: scene.lights.clone(),
             output: scene.output.clone(),
+            media_cpu: media,
+            films,
         })
+    }
+
+    /// Whether the scene has thin-film materials (for which [`GpuScene::set_film_controls`] does something).
+    pub fn has_films(&self) -> bool {
+        !self.films.is_empty()
+    }
+
+    /// Applies the viewer's thin-film controls to every thin-film material (from the scene's own values).
+    pub fn set_film_controls(&self, c: FilmControls) {
+        let mut media = self.media_cpu.clone();
+        let q = &self.gpu.queue;
+        for f in &self.films {
+            let layers = f.n_media - 2;
+            for j in 0..layers {
+                media[f.thick_base + j][0] = (self.media_cpu[f.thick_base + j][0] as f64 * c.thickness_scale) as f32;
+            }
+            if let (Some(n), true) = (c.layer_ior, layers > 0) {
+                let n_lambda = (f.thick_base - f.media_base) / f.n_media;
+                for l in 0..n_lambda {
+                    media[f.media_base + l * f.n_media + 1] = [n as f32, 0.0];
+                }
+            }
+            let mut svt = f.svt;
+            svt[1] = (svt[1] as f64 * c.svt_scale) as f32;
+            q.write_buffer(&self.scene, f.svt_record as u64 * 16, bytemuck::cast_slice(&[svt]));
+        }
+        q.write_buffer(&self.media, 0, bytemuck::cast_slice(&media));
     }
 
     /// The adapter the scene lives on.
@@ -456,7 +525,7 @@ impl<'g> GpuScene<'g> {
     }
 
     /// Allocates the output of `width × height` images with `spp` samples per pixel, displayed with `tone`.
-    pub fn frame(&self, width: u32, height: u32, spp: u32, tone: ToneMap) -> Result<SceneFrame<'_, 'g>, GpuError> {
+    pub fn frame(&self, width: u32, height: u32, spp: u32, tone: ToneMap) -> Result<SceneFrame, GpuError> {
         if !(1..=16384).contains(&width) || !(1..=16384).contains(&height) {
             return Err(GpuError::Invalid(format!("image {width}×{height} must be between 1×1 and 16384×16384")));
         }
@@ -499,7 +568,7 @@ impl<'g> GpuScene<'g> {
                     entry(8, &out_rgba),
                 ],
             });
-            SceneFrame { scene: self, width, height, spp, params, bind, out_rgb, out_rgba, timer: gpu.timer() }
+            SceneFrame { width, height, spp, params, display, bind, out_rgb, out_rgba, timer: gpu.timer() }
         })
     }
 
@@ -511,11 +580,11 @@ impl<'g> GpuScene<'g> {
         let mut row = 0;
         while row < height {
             let rows = BAND_ROWS.min(height - row);
-            frame.run_rows(row, rows)?;
+            frame.run_rows(self, row, rows)?;
             row += rows;
             progress(row as usize);
         }
-        frame.read_image()
+        frame.read_image(self)
     }
 
     fn param_words(&self, width: u32, height: u32, spp: u32, row0: u32) -> [u32; PARAM_WORDS] {
@@ -575,15 +644,19 @@ fn push_microfacet(rec: &mut Records, m: &Microfacet) {
     rec.push([m.roughness as f32, m.metallic as f32, m.ior as f32, 0.0]);
 }
 
-impl SceneFrame<'_, '_> {
+impl SceneFrame {
     /// Image size.
     pub fn size(&self) -> (u32, u32) {
         (self.width, self.height)
     }
 
+    /// Changes the display (exposure in RU, encoding) of the next frames.
+    pub fn set_tone(&self, s: &GpuScene, tone: ToneMap) {
+        s.gpu.queue.write_buffer(&self.display, 0, bytemuck::cast_slice(&crate::lookup::display_words(tone)));
+    }
+
     /// Renders rows `row0 .. row0 + rows` and waits for the GPU.
-    fn run_rows(&self, row0: u32, rows: u32) -> Result<FrameTime, GpuError> {
-        let s = self.scene;
+    fn run_rows(&self, s: &GpuScene, row0: u32, rows: u32) -> Result<FrameTime, GpuError> {
         let words = s.param_words(self.width, self.height, self.spp, row0);
         s.gpu.queue.write_buffer(&self.params, 0, bytemuck::cast_slice(&words));
         dispatch(
@@ -598,13 +671,13 @@ impl SceneFrame<'_, '_> {
 
     /// Renders the whole image in one dispatch (the benchmark's and the viewer's frames) with the scene's
     /// current camera and lights, and waits for the GPU.
-    pub fn run(&self) -> Result<FrameTime, GpuError> {
-        self.run_rows(0, self.height)
+    pub fn run(&self, s: &GpuScene) -> Result<FrameTime, GpuError> {
+        self.run_rows(s, 0, self.height)
     }
 
     /// Reads the last image back as linear sRGB.
-    pub fn read_image(&self) -> Result<Image, GpuError> {
-        let gpu = self.scene.gpu;
+    pub fn read_image(&self, s: &GpuScene) -> Result<Image, GpuError> {
+        let gpu = s.gpu;
         let data: Vec<f32> = bytemuck::pod_collect_to_vec(&gpu.read_buffer(&self.out_rgb, self.out_rgb.size())?);
         let pixels = (self.width * self.height) as usize;
         Ok(Image {
@@ -615,8 +688,8 @@ impl SceneFrame<'_, '_> {
     }
 
     /// Reads the last image back as displayed 8-bit sRGB (exposure and encoding of [`GpuScene::frame`]).
-    pub fn read_rgb8(&self) -> Result<Vec<u8>, GpuError> {
-        let gpu = self.scene.gpu;
+    pub fn read_rgb8(&self, s: &GpuScene) -> Result<Vec<u8>, GpuError> {
+        let gpu = s.gpu;
         let words: Vec<u32> = bytemuck::pod_collect_to_vec(&gpu.read_buffer(&self.out_rgba, self.out_rgba.size())?);
         Ok(unpack_rgb8(&words))
     }

@@ -259,8 +259,8 @@ fn bench_scene(a: &GpuBench, path: &std::path::Path) -> Result<()> {
         }
         println!("scene {}: {w}×{h}, 1 spp; upload and shader compilation {setup_s:.2} s", path.display());
     }
-    let times = time_frames(a.frames, a.max_seconds, |_| Ok(frame.run()?))?;
-    let img = frame.read_image()?;
+    let times = time_frames(a.frames, a.max_seconds, |_| Ok(frame.run(&g)?))?;
+    let img = frame.read_image(&g)?;
     let (cpu, cpu_s) = crate::cmd::render::render_with_bar(&scene, w, h, 1);
     let xyz = |i: &iridis_render::Image| -> Vec<Xyz> {
         i.data.iter().map(|p| Xyz::from_linear_srgb(p.map(|c| c as f64))).collect()
@@ -270,7 +270,7 @@ fn bench_scene(a: &GpuBench, path: &std::path::Path) -> Result<()> {
     let gts = gpu_times(&times).map(|t| stats(&t));
     let name = path.display().to_string();
     if let Some(dir) = &a.save {
-        crate::output::write_png_rgb8(&dir.join("scene_gpu.png"), w, h, &frame.read_rgb8()?)?;
+        crate::output::write_png_rgb8(&dir.join("scene_gpu.png"), w, h, &frame.read_rgb8(&g)?)?;
     }
     if a.json {
         return crate::output::print_json(&json!({
@@ -459,4 +459,92 @@ fn print_gpu_times(s: Option<[f64; 4]>) {
         }
         None => println!("  (the adapter has no timestamp queries: wall clock only)"),
     }
+}
+
+#[derive(Debug, ClapArgs)]
+#[command(after_help = "\
+Opens a window that renders on the GPU (the shaders of `iridis render --gpu` and `brdf-map --gpu`): a
+scene (.toml, .gltf, .glb), reloaded when the file changes, or the BRDF map of a lookup table (.npz from
+`iridis precompute`) or of a SURFACE (its table is built first). The panel sets the exposure (RU) and gamma,
+the thin films' thickness, layer IOR and SVT strength, and shows each diffraction table's BRDF map at a
+chosen incidence; the frame time is shown below. Drag to orbit, right-drag (or shift-drag) to move the
+light, wheel to zoom, R resets, H toggles the help, Esc quits.
+
+Needs a display and a Vulkan driver; on a headless machine: xvfb-run -a iridis view SCENE.
+--check drives the window with synthetic input (a drag to orbit, a right-drag for the light, the wheel,
+the H key), checks that each changed what is shown, saves a screenshot of the window and exits (non-zero
+if an input did nothing): the scripted check that CI runs under Xvfb with lavapipe.
+
+Examples:
+  iridis view examples/snake_elaphe.toml
+  iridis view examples/soap_bubble.toml
+  iridis view elaphe.npz                       BRDF map of a precomputed table
+  iridis view builtin:blazed                   builds a 201² table first
+  xvfb-run -a iridis view examples/soap_bubble.toml --check docs/img/viewer.png --json")]
+pub struct ViewArgs {
+    /// A scene (.toml, .gltf, .glb), a lookup table (.npz) or a SURFACE.
+    pub input: String,
+    /// u-v resolution of the table built when INPUT is a surface.
+    #[arg(long, default_value_t = 201)]
+    pub uv_resolution: usize,
+    /// Scripted check: drive the window with synthetic input, save a screenshot (PNG) here, exit.
+    #[arg(long)]
+    pub check: Option<PathBuf>,
+    /// With --check: print the check's report as JSON.
+    #[arg(long)]
+    pub json: bool,
+}
+
+fn load_for_view(p: &std::path::Path) -> std::result::Result<iridis_render::Scene, String> {
+    iridis_render::load_scene(p).map_err(|e| e.to_string())
+}
+
+pub fn run_view(a: ViewArgs) -> Result<()> {
+    use iridis_gpu::viewer::{run, ViewInput, ViewOptions};
+    if let Some(c) = &a.check {
+        if c.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() != Some("png") {
+            bail!("--check {}: name the screenshot .png", c.display());
+        }
+    }
+    let path = std::path::Path::new(&a.input);
+    let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+    let input = if matches!(ext.as_deref(), Some("toml" | "gltf" | "glb")) {
+        if !path.exists() {
+            bail!("scene {} does not exist", path.display());
+        }
+        ViewInput::Scene(path.to_path_buf())
+    } else {
+        let model = ModelOpts { terms: "auto".into(), coherence: None, illuminant: None, observer: None, step: None };
+        let none = SurfaceOpts { pixel_size: None, max_height: None };
+        let params = TableParams { uv_resolution: a.uv_resolution, uv_power: 5.0 };
+        let table = lookup_table(&a.input, &model, params, &none)?;
+        ViewInput::Table { table, name: a.input.clone() }
+    };
+    let report = run(input, ViewOptions { check: a.check.clone() }, load_for_view).map_err(anyhow::Error::msg)?;
+    let (Some(r), Some(shot)) = (report, &a.check) else { return Ok(()) };
+    if let Some((w, h, rgba)) = &r.screenshot {
+        let rgb: Vec<u8> = rgba.chunks_exact(4).flat_map(|p| [p[0], p[1], p[2]]).collect();
+        crate::output::write_png_rgb8(shot, *w as u32, *h as u32, &rgb)?;
+    }
+    let ok = r.steps.len() == 4 && r.steps.iter().all(|(_, d)| *d > 0.0);
+    if a.json {
+        crate::output::print_json(&json!({
+            "adapter": r.adapter,
+            "frames": r.frames,
+            "frame_ms_median": r.frame_ms,
+            "steps": r.steps.iter().map(|(n, d)| json!({"input": n, "change": d})).collect::<Vec<_>>(),
+            "screenshot": shot.display().to_string(),
+            "ok": ok,
+        }))?;
+    } else {
+        println!("viewer check on {}: {} frames, median {:.1} ms", r.adapter, r.frames, r.frame_ms);
+        for (n, d) in &r.steps {
+            println!("  {n}: change {d:.3}");
+        }
+        println!("wrote {}", shot.display());
+    }
+    if !ok {
+        bail!("the viewer did not answer every input (a change of 0 above)");
+    }
+    Ok(())
 }
