@@ -51,9 +51,12 @@ fn no_adapter_is_a_clear_error_not_a_panic() {
     for args in [
         vec!["bench", "gpu", "--frames", "1"],
         vec!["brdf-map", "builtin:blazed?size=4um&pixel=50nm", "--gpu", "--size", "16", "-o", "/tmp/never.png"],
+        vec!["render", "examples/gold_sphere.toml", "--gpu", "--size", "16x16", "-o", "/tmp/never.png"],
+        vec!["bench", "gpu", "examples/gold_sphere.toml", "--size", "16x16", "--frames", "1"],
     ] {
         let out = Command::new(env!("CARGO_BIN_EXE_iridis"))
             .args(&args)
+            .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
             .env("VK_ICD_FILENAMES", "/nonexistent/icd.json")
             .env("VK_DRIVER_FILES", "/nonexistent/icd.json")
             .output()
@@ -165,4 +168,91 @@ fn gpu_options_are_checked() {
         &["brdf-map", "builtin:blazed", "--gpu", "--fresnel", "stack:air | water 300nm | air", "-o", "/tmp/x.png"],
         &["--gpu", "λ"],
     );
+    assert_fails(&["view", "no_such_scene.toml"], &["no_such_scene.toml", "does not exist"]);
+    assert_fails(&["view", "examples/gold_sphere.toml", "--check", "/tmp/shot.jpg"], &[".png"]);
+    assert_fails(&["bench", "gpu", "no_such_scene.toml"], &["no_such_scene.toml"]);
+}
+
+#[test]
+fn render_on_the_gpu_writes_the_cpu_image() {
+    if !have_gpu() {
+        return;
+    }
+    let dir = tmp();
+    for scene in ["soap_bubble", "snake_xenopeltis"] {
+        let cpu = dir.path().join(format!("{scene}_cpu.png"));
+        let gpu = dir.path().join(format!("{scene}_gpu.png"));
+        let toml = format!("examples/{scene}.toml");
+        for (png, extra) in [(&cpu, None), (&gpu, Some("--gpu"))] {
+            let p = png.display().to_string();
+            let mut args = vec!["render", &toml, "--size", "64x48", "--spp", "2", "-o", &p];
+            args.extend(extra);
+            let out = iridis(&args);
+            assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+            if extra.is_some() {
+                assert!(String::from_utf8_lossy(&out.stdout).contains("on the GPU"));
+            }
+        }
+        let (a, b) = (png_lab(&cpu), png_lab(&gpu));
+        assert_eq!(a.len(), 64 * 48);
+        let mut d: Vec<f64> = a.iter().zip(&b).map(|(p, q)| iridis_color::lab::delta_e_2000(*p, *q)).collect();
+        d.sort_by(f64::total_cmp);
+        let mean = d.iter().sum::<f64>() / d.len() as f64;
+        let p99 = d[d.len() * 99 / 100];
+        eprintln!("{scene}: render --gpu vs CPU (PNG, 2 spp): ΔE00 mean {mean:.4}, p99 {p99:.4}");
+        assert!(mean < 1.0 && p99 < 3.0, "{scene}: mean {mean}, p99 {p99}");
+        assert!(a.iter().filter(|l| l.l > 10.0).count() > 300, "{scene}: the image must show something");
+    }
+}
+
+#[test]
+fn bench_gpu_times_a_scene_against_the_cpu() {
+    if !have_gpu() {
+        return;
+    }
+    let v = json_of(&["bench", "gpu", "examples/soap_bubble.toml", "--size", "40x30", "--frames", "3", "--json"]);
+    assert!(!v["adapter"].as_str().unwrap().is_empty());
+    assert_eq!(v["size"], serde_json::json!([40, 30]));
+    assert_eq!(v["frames"], 3);
+    let ms = &v["ms"];
+    let (mn, med, p99) = (ms["min"].as_f64().unwrap(), ms["median"].as_f64().unwrap(), ms["p99"].as_f64().unwrap());
+    assert!(mn > 0.0 && mn <= med && med <= p99, "{ms}");
+    assert!(v["cpu"]["render_s"].as_f64().unwrap() > 0.0);
+    assert!(v["vs_cpu"]["delta_e00_mean"].as_f64().unwrap() < 1.0, "{v}");
+}
+
+/// The viewer under a virtual X server (Xvfb) with lavapipe: `--check` drags, scrolls and presses keys through
+/// egui's input path, and each input must change what the window shows; the screenshot is the whole window.
+#[test]
+fn viewer_starts_renders_and_answers_input_under_xvfb() {
+    if !have_gpu() {
+        return;
+    }
+    if Command::new("xvfb-run").arg("--help").output().is_err() {
+        if std::env::var("IRIDIS_SKIP_GPU").as_deref() == Ok("1") {
+            eprintln!("viewer test skipped: no xvfb-run (IRIDIS_SKIP_GPU=1)");
+            return;
+        }
+        panic!("the viewer test needs xvfb-run (apt-get install xvfb xauth); IRIDIS_SKIP_GPU=1 skips it");
+    }
+    let dir = tmp();
+    let shot = dir.path().join("viewer.png");
+    let out = Command::new("xvfb-run")
+        .args(["-a", "-s", "-screen 0 1280x800x24", env!("CARGO_BIN_EXE_iridis"), "view"])
+        .args(["examples/snake_elaphe.toml", "--check", shot.to_str().unwrap(), "--json"])
+        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
+        .env("XDG_RUNTIME_DIR", dir.path())
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["ok"], true, "{v}");
+    let steps = v["steps"].as_array().unwrap();
+    assert_eq!(steps.len(), 4, "{v}");
+    for s in steps {
+        assert!(s["change"].as_f64().unwrap() > 0.0, "{s}");
+    }
+    let img = image::open(&shot).unwrap();
+    assert!(img.width() >= 600 && img.height() >= 400, "{}×{}", img.width(), img.height());
 }
