@@ -626,7 +626,7 @@ pub fn run_sweep(a: SweepArgs) -> Result<()> {
         bail!("the {method} method has no parameter '{}'; it applies to: {}", param.name(), who.join(", "));
     }
     let values = parse_list(&a.values, "--values", |s| match param {
-        Param::DLambda | Param::Coherence => parse_length_nm(s).map_err(anyhow::Error::msg),
+        Param::DLambda | Param::Coherence => parse_length_nm(s).map_err(|e| anyhow::anyhow!("--values: {e}")),
         _ => s.parse::<f64>().map_err(|_| anyhow::anyhow!("--values: '{s}' is not a number")),
     })?;
     iridis_lab::sweep::check_values(param, &values)?;
