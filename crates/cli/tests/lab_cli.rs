@@ -280,3 +280,81 @@ fn sweep_refuses_bad_input_clearly() {
     assert_fails(&["sweep", s, "--param", "coherence", "--values", ",", "-o", o], &["--values"]);
     assert!(!out.exists(), "a refused sweep left a file behind");
 }
+
+/// `experiment laser` with a tiny laser spectrum (a 530–535 nm band) on a 1000 nm sine grating, two
+/// exposures. Gold's normal-incidence reflectance at 532.5 nm from Johnson & Christy's table (n, k interpolated
+/// between 520.9 nm: 0.62 + 2.081i and 548.6 nm: 0.43 + 2.455i, so n = 0.540, k = 2.238) by Fresnel's
+/// R = ((n − 1)² + k²)/((n + 1)² + k²) = 0.7073 must be the coated mirror's relative brightness, and the
+/// brightest pixel must dim by about as much (gold's reflectance changes little with angle, paper Figure 9).
+#[test]
+fn experiment_laser_with_a_green_beam_on_gold() {
+    let dir = tempfile::tempdir().unwrap();
+    let csv = dir.path().join("green.csv");
+    std::fs::write(&csv, "wavelength_nm,power\n520,0\n529,0\n530,1\n535,1\n536,0\n545,0\n").unwrap();
+    let run = |coating: &str, exposures: &str, name: &str| {
+        let out = dir.path().join(name);
+        let j = json_of(&[
+            "experiment",
+            "laser",
+            "builtin:sine?size=12um&pixel=50nm&period=1000nm",
+            "--spectrum",
+            csv.to_str().unwrap(),
+            "--aperture",
+            "6um",
+            "--size",
+            "21",
+            "--subsamples",
+            "1",
+            "--dlambda",
+            "1nm",
+            "--coating",
+            coating,
+            "--exposures",
+            exposures,
+            "-o",
+            out.to_str().unwrap(),
+            "--json",
+        ]);
+        for key in ["surface", "method", "images", "coating", "gold_mirror_relative_brightness", "max_y", "pixels"] {
+            assert!(!j[key].is_null(), "no '{key}' in {j}");
+        }
+        assert_eq!(j["pixels"], 21, "{j}");
+        j
+    };
+    let gold = run("gold", "1000,7500", "screen.png");
+    let images: Vec<&str> = gold["images"].as_array().unwrap().iter().filter_map(|v| v.as_str()).collect();
+    assert_eq!(images.len(), 2, "{gold}");
+    for (img, ru) in images.iter().zip(["1000", "7500"]) {
+        assert!(img.ends_with(&format!("screen_{ru}RU.png")), "{img}");
+        assert!(image::open(img).is_ok(), "{img} is not a readable image");
+    }
+    let r_gold = {
+        let (n, k) = (0.540f64, 2.238f64);
+        ((n - 1.0).powi(2) + k * k) / ((n + 1.0).powi(2) + k * k)
+    };
+    let scale = gold["gold_mirror_relative_brightness"].as_f64().unwrap();
+    assert!((scale - r_gold).abs() < 0.005, "gold mirror {scale} vs Fresnel {r_gold:.4}");
+    let bare = run("none", "1000", "bare.png");
+    assert_eq!(bare["gold_mirror_relative_brightness"].as_f64(), Some(1.0), "{bare}");
+    let dim = gold["max_y"].as_f64().unwrap() / bare["max_y"].as_f64().unwrap();
+    assert!((dim - r_gold).abs() < 0.05 * r_gold, "brightest pixel dims by {dim:.4}, gold reflects {r_gold:.4}");
+}
+
+#[test]
+fn experiment_laser_refuses_bad_input_clearly() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("s.png");
+    let o = out.to_str().unwrap();
+    let (bad, empty) = (dir.path().join("bad.csv"), dir.path().join("empty.csv"));
+    std::fs::write(&bad, "wavelength_nm,power\n520,0\n530,abc\n").unwrap();
+    std::fs::write(&empty, "wavelength_nm,power\n").unwrap();
+    let s = "builtin:sine?size=6um&pixel=100nm";
+    let missing = dir.path().join("no_such_laser.csv");
+    let m = missing.to_str().unwrap();
+    assert_fails(&["experiment", "laser", s, "--spectrum", m, "-o", o], &["no_such_laser.csv", "cannot read"]);
+    assert_fails(&["experiment", "laser", s, "--spectrum", bad.to_str().unwrap(), "-o", o], &["bad.csv:3", "'abc'"]);
+    assert_fails(&["experiment", "laser", s, "--spectrum", empty.to_str().unwrap(), "-o", o], &["at least two"]);
+    assert_fails(&["experiment", "laser", s, "--coating", "no_such_nk.yml", "-o", o], &["--coating", "no_such_nk.yml"]);
+    assert_fails(&["experiment", "laser", s, "--exposures", "1000,dim", "-o", o], &["dim"]);
+    assert!(!out.exists() && std::fs::read_dir(dir.path()).unwrap().count() == 2, "a refused run left a file");
+}
