@@ -358,3 +358,26 @@ fn experiment_laser_refuses_bad_input_clearly() {
     assert_fails(&["experiment", "laser", s, "--exposures", "1000,dim", "-o", o], &["dim"]);
     assert!(!out.exists() && std::fs::read_dir(dir.path()).unwrap().count() == 2, "a refused run left a file");
 }
+
+/// The paper's Table 1 setup on the built-in blazed grating (65 µm patch, 2500 nm period, θ_i = 75°, first
+/// order, 380–780 nm in 5 nm steps): the bench must give 2500 ± 1 nm with a variance no larger than the
+/// paper's 0.16 nm² (measured: 2500.81 nm, 0.0084 nm²), and every peak must sit on the grating equation
+/// sin θ_r = sin 75° − λ / 2500 nm.
+#[test]
+fn testbench_measures_the_builtin_blazed_grating_at_2500nm() {
+    let j = json_of(&["testbench", "builtin:blazed", "--json"]);
+    assert_eq!(j["order"], 1, "{j}");
+    assert_eq!(j["incidence_deg"].as_f64(), Some(75.0), "{j}");
+    let (mean, variance) =
+        (j["periodicity_nm"]["mean"].as_f64().unwrap(), j["periodicity_nm"]["variance"].as_f64().unwrap());
+    assert!((mean - 2500.0).abs() <= 1.0, "period {mean} nm");
+    assert!(variance <= 0.16, "variance {variance} nm²");
+    let peaks = j["peaks"].as_array().unwrap();
+    assert_eq!(peaks.len(), 81, "one peak per wavelength 380–780 nm: {j}");
+    for p in peaks {
+        let (lambda, angle) = (p["wavelength_nm"].as_f64().unwrap(), p["angle_deg"].as_f64().unwrap());
+        let predicted = (75f64.to_radians().sin() - lambda / 2500.0).asin().to_degrees();
+        assert!((angle - predicted).abs() < 0.02, "λ {lambda}: peak at {angle}°, grating equation {predicted}°");
+        assert!((p["period_nm"].as_f64().unwrap() - 2500.0).abs() < 2.0, "{p}");
+    }
+}
