@@ -426,3 +426,44 @@ fn testbench_on_elaphe_across_and_along_the_fingers() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(stderr.contains("no definite period"), "{stderr}");
 }
+
+/// `compare --maps DIR` writes, per exposure, the truth's map and each method's map and CIEDE2000 heat map,
+/// all readable images (a map plot is larger than the map itself: axes and title around it).
+#[test]
+fn compare_writes_maps_and_delta_e_heat_maps() {
+    let dir = tempfile::tempdir().unwrap();
+    let maps = dir.path().join("maps");
+    let j = json_of(&[
+        "compare",
+        "builtin:elaphe?size=6um&pixel=60nm",
+        "--methods",
+        "reference,stam-gaussian",
+        "--exposures",
+        "1,1000",
+        "--coherence",
+        "2um",
+        "--size",
+        "16",
+        "--maps",
+        maps.to_str().unwrap(),
+        "--json",
+    ]);
+    assert_eq!(j["results"].as_array().map(Vec::len), Some(4), "{j}");
+    let mut expected = Vec::new();
+    for ru in ["1", "1000"] {
+        expected.push(format!("ground-truth_{ru}RU.png"));
+        for m in ["reference", "stam-gaussian"] {
+            expected.push(format!("{m}_{ru}RU.png"));
+            expected.push(format!("{m}_{ru}RU_deltaE.png"));
+        }
+    }
+    let mut found: Vec<String> =
+        std::fs::read_dir(&maps).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+    found.sort();
+    expected.sort();
+    assert_eq!(found, expected);
+    for f in &expected {
+        let img = image::open(maps.join(f)).unwrap_or_else(|e| panic!("{f} is not a readable image: {e}"));
+        assert!(img.width() > 16 && img.height() > 16, "{f}: {}×{}", img.width(), img.height());
+    }
+}
