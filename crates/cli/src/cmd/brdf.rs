@@ -412,7 +412,7 @@ fn lab_evaluator(
     let pb = bar(if uses_terms { bench.config.term_count(&bench.patch) as u64 + 1 } else { 1 }, "preparing");
     let e = bench.evaluator(method, &|d| pb.set_position(d as u64));
     pb.finish_and_clear();
-    Ok(e.with_context(|| format!("--method {method} cannot make a map of {input}"))?)
+    e.with_context(|| format!("--method {method} cannot make a map of {input}"))
 }
 
 /// Renders a BRDF map with a progress bar: linear XYZ per pixel.
