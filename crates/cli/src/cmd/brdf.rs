@@ -85,13 +85,14 @@ pub struct PrecomputeArgs {
 Renders the colour reflected towards every view direction for one light direction (paper sec. 7): pixel
 (x, y) in [-1, 1]^2 shows the view direction (x, y, sqrt(1 - x^2 - y^2)); x right, y up.
 
-Methods: ground-truth (direct windowed transform of exp(ikwh), slow: use --size 64 on big surfaces),
-reference (the thesis' FLSS shader: windowed DFT of the Taylor terms per wavelength), lookup (the paper's
-fast path: precomputed tables; pass a TABLE from `iridis precompute`, or a SURFACE to build one first), and
-the lab's comparison models (docs/lab.md): nmm and pq (the thesis' variants), stam-periodic,
-stam-periodic-triangular (Stam's bumps on a lattice fitted to the surface's dominant periods, ε = 0.01) and
-stam-gaussian (Stam's Gaussian random surface from the height field's correlation function). Every method
-but lookup needs the height field.
+Methods: ground-truth (direct windowed transform of exp(ikwh), slow: use --size 64 on big
+surfaces), reference (the thesis' FLSS shader: windowed DFT of the Taylor terms per wavelength),
+lookup (the paper's fast path: precomputed tables; pass a TABLE from `iridis precompute`, or a
+SURFACE to build one first), and the lab's comparison models (docs/lab.md): nmm and pq (the
+thesis' variants), stam-periodic and stam-periodic-triangular (Stam's bumps on a lattice fitted
+to the surface's dominant periods, ε = 0.01; a 1-D grating's orders lie on y = 0 only, so use an
+odd --size) and stam-gaussian (Stam's Gaussian random surface from the height field's
+correlation function). Every method but lookup needs the height field.
 
 Examples:
   iridis brdf-map builtin:blazed --method lookup -o blazed.png
