@@ -259,7 +259,10 @@ impl StamPeriodic {
 
 impl Evaluator for StamPeriodic {
     fn name(&self) -> &'static str {
-        "stam-periodic"
+        match self.lattice.bump {
+            Bump::Rectangular => "stam-periodic",
+            Bump::Triangular => "stam-periodic-triangular",
+        }
     }
     fn reflectance(&self, wavelength_nm: f64, wi: Vec3, wr: Vec3) -> Option<f64> {
         let [u, v, w] = uvw(wi, wr);

@@ -48,7 +48,10 @@ impl Nmm {
             }
         }
         if period_x.is_none() && period_y.is_none() {
-            return Err(LabError::invalid("the NMM variant needs a grating period along x or y (give --period)"));
+            return Err(LabError::invalid(
+                "the NMM variant needs a grating period along x or y, and the surface has none (it is flat); give one \
+                 with --period where the command has it",
+            ));
         }
         let grid = reference.spectral.wavelengths();
         let trap = trapezoid_weights(grid);

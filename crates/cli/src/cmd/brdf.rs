@@ -11,6 +11,7 @@ use iridis_diffraction::geometry::{direction, FilmFresnel, FresnelSource, Shadin
 use iridis_diffraction::table::{Lookup, LookupTable, Precision, TableParams};
 use iridis_diffraction::taylor::terms_for_bound;
 use iridis_diffraction::{Fresnel, Patch, SpectralSetup, TaylorTerms, DEFAULT_COHERENCE_NM};
+use iridis_lab::methods::{Method, MethodConfig, Workbench};
 use num_complex::Complex64;
 
 use crate::args::{angle_rad, positive_length_nm};
@@ -84,20 +85,26 @@ pub struct PrecomputeArgs {
 Renders the colour reflected towards every view direction for one light direction (paper sec. 7): pixel
 (x, y) in [-1, 1]^2 shows the view direction (x, y, sqrt(1 - x^2 - y^2)); x right, y up.
 
-Methods: ground-truth (direct windowed transform of exp(ikwh), slow: use --size 64 on big surfaces),
-reference (the thesis' FLSS shader: windowed DFT of the Taylor terms per wavelength) and lookup (the paper's
-fast path: precomputed tables; pass a TABLE from `iridis precompute`, or a SURFACE to build one first).
+Methods: ground-truth (direct windowed transform of exp(ikwh), slow: use --size 64 on big
+surfaces), reference (the thesis' FLSS shader: windowed DFT of the Taylor terms per wavelength),
+lookup (the paper's fast path: precomputed tables; pass a TABLE from `iridis precompute`, or a
+SURFACE to build one first), and the lab's comparison models (docs/lab.md): nmm and pq (the
+thesis' variants), stam-periodic and stam-periodic-triangular (Stam's bumps on a lattice fitted
+to the surface's dominant periods, ε = 0.01; a 1-D grating's orders lie on y = 0 only, so use an
+odd --size) and stam-gaussian (Stam's Gaussian random surface from the height field's
+correlation function). Every method but lookup needs the height field.
 
 Examples:
   iridis brdf-map builtin:blazed --method lookup -o blazed.png
   iridis precompute builtin:elaphe -o elaphe.npz && iridis brdf-map elaphe.npz -o elaphe.png --exposure 1500
   iridis brdf-map builtin:xenopeltis --method reference --incidence 20deg,0deg --size 256 -o x.png --raw x.npy
   iridis brdf-map builtin:sine --method ground-truth --size 48 -o gt.png --gamma 2.2
+  iridis brdf-map 'builtin:elaphe?size=10um&pixel=50nm' --method stam-gaussian --coherence 5um -o stam.png
   iridis brdf-map elaphe.npz --gpu --size 1024 -o elaphe_gpu.png")]
 pub struct BrdfMapArgs {
     /// A height field (file or builtin:NAME) or a lookup table (.npz).
     pub input: String,
-    /// ground-truth, reference or lookup.
+    /// ground-truth, reference, lookup, nmm, pq, stam-periodic, stam-periodic-triangular or stam-gaussian.
     #[arg(long, default_value = "lookup")]
     pub method: String,
     /// Light direction: polar angle θ_i[,azimuth φ_i].
@@ -347,10 +354,11 @@ pub fn make_evaluator(
         check_against_table(&table, model)?;
         return Ok(Box::new(Lookup::new(Arc::new(table), shading, precision)?));
     }
+    let parsed: Method = method.parse()?;
     let patch = load_patch(input, surface_opts)?;
     let spectral = spectral_setup(model)?;
-    match method {
-        "ground-truth" => {
+    match parsed {
+        Method::GroundTruth => {
             let coherence = model.coherence.unwrap_or(DEFAULT_COHERENCE_NM);
             for w in patch.warnings(coherence) {
                 eprintln!("warning: {w}");
@@ -358,17 +366,54 @@ pub fn make_evaluator(
             let samples = 2 * spectral.wavelengths().len() - 1;
             Ok(Box::new(GroundTruth::new(&patch, coherence, shading, &spectral, samples)?))
         }
-        "reference" => {
+        Method::Reference => {
             let terms = Arc::new(taylor_terms(&patch, model)?);
             Ok(Box::new(Reference { terms, shading, spectral }))
         }
-        "lookup" => {
+        Method::Lookup => {
             let terms = taylor_terms(&patch, model)?;
             let table = build_table(&terms, &spectral, params, input)?;
             Ok(Box::new(Lookup::new(Arc::new(table), shading, precision)?))
         }
-        other => bail!("unknown method '{other}'; expected ground-truth, reference or lookup"),
+        // The lab's variants (NMM, PQ) and Stam's analytic models, built as `iridis compare` builds them.
+        lab => lab_evaluator(lab, input, patch, model, shading, spectral),
     }
+}
+
+/// NMM, PQ and Stam's models from `iridis-lab`, with the same Taylor terms and window as `reference`.
+fn lab_evaluator(
+    method: Method,
+    input: &str,
+    patch: Patch,
+    model: &ModelOpts,
+    shading: Shading,
+    spectral: SpectralSetup,
+) -> Result<Box<dyn Evaluator>> {
+    let coherence = model.coherence.unwrap_or(DEFAULT_COHERENCE_NM);
+    for w in patch.warnings(coherence) {
+        eprintln!("warning: {w}");
+    }
+    let terms = match model.terms.trim() {
+        "auto" => None,
+        t => match t.parse::<usize>() {
+            Ok(n) if (1..=200).contains(&n) => Some(n),
+            _ => bail!("--terms '{t}' must be 'auto' or a number of terms from 1 to 200 for --method {method}"),
+        },
+    };
+    let config = MethodConfig {
+        coherence_nm: coherence,
+        terms,
+        term_epsilon: DEFAULT_EPSILON,
+        spectral,
+        shading,
+        ..Default::default()
+    };
+    let bench = Workbench::new(patch, config, input)?;
+    let uses_terms = matches!(method, Method::Nmm | Method::Pq);
+    let pb = bar(if uses_terms { bench.config.term_count(&bench.patch) as u64 + 1 } else { 1 }, "preparing");
+    let e = bench.evaluator(method, &|d| pb.set_position(d as u64));
+    pb.finish_and_clear();
+    e.with_context(|| format!("--method {method} cannot make a map of {input}"))
 }
 
 /// Renders a BRDF map with a progress bar: linear XYZ per pixel.

@@ -219,13 +219,17 @@ d_λ = m λ / (sin θ_i − sin θ_r) (eq. 5.6 in this frame) reported with its 
 rotates the surface about its normal: 0deg measures periods along x, 90deg along y. Without --period the
 strongest response away from the mirror direction is taken as the first order.
 
-JSON: {\"periodicity_nm\":{\"mean\",\"variance\"},\"order\",\"incidence_deg\",\"azimuth_deg\",
-       \"peaks\":[{\"wavelength_nm\",\"angle_deg\",\"period_nm\"}],\"ridges\":[{\"period_nm\",\"variance\",…}]}
-(ridges lists competing sub-structure periods when there is more than one, as for Xenopeltis.)
+JSON: {\"periodicity_nm\":{\"mean\",\"variance\",\"relative_spread\",\"definite\"},\"order\",
+       \"incidence_deg\",\"azimuth_deg\",\"peaks\":[{\"wavelength_nm\",\"angle_deg\",\"period_nm\"}],
+       \"ridges\":[{\"period_nm\",\"variance\",…}]}
+(ridges lists competing sub-structure periods when there is more than one, as for Xenopeltis; definite is
+false, with a warning, when d_λ spreads by more than 1 % of its mean: the direction has no period, as along
+the Elaphe-like fingers.)
 
 Examples:
   iridis testbench builtin:blazed --plot blazed_bench.png
   iridis testbench 'builtin:elaphe?size=20um&pixel=50nm' --azimuth 90deg --coherence 10um --json
+  iridis testbench builtin:elaphe --azimuth 0deg   # along the fingers: no definite period (a warning)
   iridis testbench 'builtin:xenopeltis?size=20um&pixel=50nm' --azimuth 90deg --coherence 10um --plot x.png
   iridis testbench scan.gwy --method ground-truth --from 400nm --to 700nm --step 20nm --min-angle 20deg")]
 pub struct TestbenchArgs {
@@ -313,6 +317,15 @@ pub fn run_testbench(a: TestbenchArgs) -> Result<()> {
     let matrix = bench::reflectance_matrix(e.as_ref(), &setup, &|d| pb.set_position(d as u64))?;
     pb.finish_and_clear();
     let result = bench::analyse(&matrix, &setup)?;
+    if !result.periodicity.is_definite() {
+        eprintln!(
+            "warning: the peaks do not follow one period in this direction (d_λ spreads by {:.1} % of its mean, \
+             more than {:.0} %): the surface has no definite period along azimuth {:.0}°; the mean is not a period",
+            100.0 * result.periodicity.relative_spread(),
+            100.0 * bench::DEFINITE_SPREAD,
+            a.azimuth.to_degrees()
+        );
+    }
     let curve = a.period.unwrap_or(result.periodicity.mean);
     if let Some(path) = &a.plot {
         let name = short(&a.surface);
@@ -626,7 +639,7 @@ pub fn run_sweep(a: SweepArgs) -> Result<()> {
         bail!("the {method} method has no parameter '{}'; it applies to: {}", param.name(), who.join(", "));
     }
     let values = parse_list(&a.values, "--values", |s| match param {
-        Param::DLambda | Param::Coherence => parse_length_nm(s).map_err(anyhow::Error::msg),
+        Param::DLambda | Param::Coherence => parse_length_nm(s).map_err(|e| anyhow::anyhow!("--values: {e}")),
         _ => s.parse::<f64>().map_err(|_| anyhow::anyhow!("--values: '{s}' is not a number")),
     })?;
     iridis_lab::sweep::check_values(param, &values)?;
