@@ -169,3 +169,30 @@ fn measured_files_are_read() {
     let a: Vec<f64> = v["A"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
     assert!(a.iter().all(|&x| x > 0.0 && x < 1.0), "a gold film absorbs");
 }
+
+/// `iridis … --json | head -c 10`: the reader closes the pipe after a few bytes; iridis must end cleanly
+/// (exit 0, no panic message), not panic in `println!`. The output (~4000 wavelengths × 8 keys) is far larger
+/// than a pipe's buffer, so the write is still under way when the pipe closes.
+#[test]
+fn closed_stdout_pipe_is_a_clean_exit() {
+    use std::io::Read;
+    use std::process::{Command, Stdio};
+    for extra in [&["--json"][..], &["--csv"][..]] {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_iridis"))
+            .args(["thinfilm", "spectrum", "--stack", "air | water 348nm | air", "--step", "0.1nm"])
+            .args(["--from", "380nm", "--to", "780nm"])
+            .args(extra)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .expect("cannot run iridis");
+        let mut stdout = child.stdout.take().unwrap();
+        let mut first = [0u8; 10];
+        stdout.read_exact(&mut first).unwrap();
+        drop(stdout); // what `head -c 10` does after 10 bytes
+        let out = child.wait_with_output().unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(0), "{extra:?}: {stderr}");
+        assert!(!stderr.contains("panicked") && !stderr.contains("error"), "{extra:?}: {stderr}");
+    }
+}

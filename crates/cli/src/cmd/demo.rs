@@ -42,7 +42,8 @@ impl Gallery {
 
     /// Adds an image already written to `file` with a caption.
     pub fn image(&mut self, file: &str, caption: &str) {
-        println!("  wrote {}", self.path(file).display());
+        // A progress line; the gallery is the product, so a closed standard output does not stop it.
+        let _ = crate::outln!("  wrote {}", self.path(file).display());
         let _ = writeln!(
             self.html,
             "<figure><a href=\"{f}\"><img src=\"{f}\" alt=\"{c}\"></a><figcaption>{c}</figcaption></figure>",
@@ -100,7 +101,7 @@ fn escape(s: &str) -> String {
 }
 
 pub fn run(args: Args) -> Result<()> {
-    println!("iridis demo: writing the gallery to {}", args.out.display());
+    crate::outln!("iridis demo: writing the gallery to {}", args.out.display())?;
     let mut gallery = Gallery::new(&args.out)?;
     // Sections in the order a newcomer should read them; each command group adds its own.
     super::color::demo(&mut gallery)?;
@@ -110,6 +111,6 @@ pub fn run(args: Args) -> Result<()> {
     super::lab::demo(&mut gallery)?;
     super::render::demo(&mut gallery)?;
     let index = gallery.finish()?;
-    println!("done: open {}", index.display());
+    crate::outln!("done: open {}", index.display())?;
     Ok(())
 }

@@ -7,7 +7,6 @@
 
 use std::f64::consts::PI;
 use std::fmt::Write as _;
-use std::io::Write as _;
 use std::path::Path;
 use std::time::Instant;
 
@@ -117,7 +116,7 @@ pub fn spectrum(
         let img = plot.render()?;
         crate::output::write_png_rgb8(p, img.width, img.height, &img.data)?;
         if !json_out && !csv {
-            println!("wrote {}", p.display());
+            crate::outln!("wrote {}", p.display())?;
         }
     }
     let bound = xs.iter().map(|x| x.1.bound).fold(0.0, f64::max);
@@ -174,7 +173,7 @@ pub fn spectrum(
             let _ = writeln!(out, "{:>10.2}  {:>10.7}  {:>12.7}  {:>12.7}", grid[i], r, x.k_r(), x.k_d());
         }
     }
-    std::io::stdout().write_all(out.as_bytes())?;
+    crate::output::write_stdout_bytes(out.as_bytes())?;
     Ok(())
 }
 
@@ -220,26 +219,26 @@ pub fn color(
             .map(|v| v.iter().map(|x| format!("{:.5}", x.as_f64().unwrap_or(f64::NAN))).collect::<Vec<_>>().join("  "))
             .unwrap_or_default()
     };
-    println!("stack        {}", rough.stack);
-    println!(
+    crate::outln!("stack        {}", rough.stack)?;
+    crate::outln!(
         "rough        σ = {} nm, τ = {} nm at the substrate (HTSG, {})",
         rough.htsg.roughness.sigma_nm(),
         rough.htsg.roughness.tau_nm(),
         args.series_label()
-    );
-    println!(
+    )?;
+    crate::outln!(
         "conditions   view {}°, light {}°, azimuth {}°, illuminant {illuminant}, CIE {observer} observer, {}–{} nm",
         deg(view),
         deg(light),
         deg(args.azimuth),
         grid[0],
         grid[grid.len() - 1]
-    );
+    )?;
     for (_, name, r) in &reports {
-        println!("{name}");
-        println!("  XYZ        {}", f(&r["XYZ"]));
-        println!("  L*a*b*     {}", f(&r["Lab"]));
-        println!("  sRGB       {}   {}", f(&r["srgb"]), r["hex"].as_str().unwrap_or(""));
+        crate::outln!("{name}")?;
+        crate::outln!("  XYZ        {}", f(&r["XYZ"]))?;
+        crate::outln!("  L*a*b*     {}", f(&r["Lab"]))?;
+        crate::outln!("  sRGB       {}   {}", f(&r["srgb"]), r["hex"].as_str().unwrap_or(""))?;
     }
     Ok(())
 }
@@ -325,7 +324,7 @@ pub fn table(
             crate::output::write_bytes(p, &csv)?;
             eprintln!("wrote {}", p.display());
         }
-        None => std::io::stdout().write_all(&csv)?,
+        None => crate::output::write_stdout_bytes(&csv)?,
     }
     Ok(())
 }
@@ -378,24 +377,24 @@ pub fn bench(stack: Stack, args: &RoughArgs, samples: usize, seconds: f64, json_
     if json_out {
         return crate::output::print_json(&v);
     }
-    println!(
+    crate::outln!(
         "LSRS table (Algorithm 2), {}, σ {} nm, τ {} nm, {}",
         rough.stack,
         rough.htsg.roughness.sigma_nm(),
         rough.htsg.roughness.tau_nm(),
         args.series_label()
-    );
-    println!(
+    )?;
+    crate::outln!(
         "{} views × {} lights × {} wavelengths = {entries} entries, one thread",
         views.len(),
         views.len(),
         grid.len()
-    );
-    println!("  shared generation  {shared_s:.3} s per table  ({shared_per_s:.3e} entries/s, {runs} runs)");
-    println!(
+    )?;
+    crate::outln!("  shared generation  {shared_s:.3} s per table  ({shared_per_s:.3e} entries/s, {runs} runs)")?;
+    crate::outln!(
         "  direct evaluation  {direct_per_s:.3e} entries/s ({n} entries timed) → table {:.1} s",
         entries / direct_per_s
-    );
-    println!("  speed-up ×{:.1}; largest relative difference of k_d {max_rel:.1e}", shared_per_s / direct_per_s);
+    )?;
+    crate::outln!("  speed-up ×{:.1}; largest relative difference of k_d {max_rel:.1e}", shared_per_s / direct_per_s)?;
     Ok(())
 }

@@ -3,7 +3,6 @@
 //! the Python `tmm` package.
 
 use std::fmt::Write as _;
-use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -314,7 +313,7 @@ fn spectrum(a: SpectrumArgs) -> Result<()> {
         let img = plot.render()?;
         write_png(p, &img)?;
         if !a.json && !a.csv {
-            println!("wrote {}", p.display());
+            crate::outln!("wrote {}", p.display())?;
         }
     }
     if a.json {
@@ -337,7 +336,7 @@ fn spectrum(a: SpectrumArgs) -> Result<()> {
             let _ = writeln!(out, "{:>10.2}  {:>10.7}  {:>10.7}  {:>10.7}", grid[i], r[i], t[i], ab[i]);
         }
     }
-    std::io::stdout().write_all(out.as_bytes())?;
+    crate::output::write_stdout_bytes(out.as_bytes())?;
     Ok(())
 }
 
@@ -414,7 +413,7 @@ fn table(a: TableArgs) -> Result<()> {
             crate::output::write_bytes(p, csv.as_bytes())?;
             eprintln!("wrote {} ({} angles × {} wavelengths)", p.display(), angles.len(), grid.len());
         }
-        None => std::io::stdout().write_all(csv.as_bytes())?,
+        None => crate::output::write_stdout_bytes(csv.as_bytes())?,
     }
     Ok(())
 }
@@ -444,19 +443,19 @@ fn color(a: ColorArgs) -> Result<()> {
             .map(|v| v.iter().map(|x| format!("{:.5}", x.as_f64().unwrap_or(f64::NAN))).collect::<Vec<_>>().join("  "))
             .unwrap_or_default()
     };
-    println!("stack        {stack}");
-    println!(
+    crate::outln!("stack        {stack}")?;
+    crate::outln!(
         "conditions   {}° incidence{}, illuminant {illuminant}, CIE {observer} observer, {}–{} nm",
         fmt_deg(a.angle),
         pol_label(pol),
         grid[0],
         grid[grid.len() - 1]
-    );
+    )?;
     for (name, r) in [("reflected", &refl), ("transmitted", &trans)] {
-        println!("{name}");
-        println!("  XYZ        {}", f(&r["XYZ"]));
-        println!("  L*a*b*     {}", f(&r["Lab"]));
-        println!("  sRGB       {}   {}", f(&r["srgb"]), r["hex"].as_str().unwrap_or(""));
+        crate::outln!("{name}")?;
+        crate::outln!("  XYZ        {}", f(&r["XYZ"]))?;
+        crate::outln!("  L*a*b*     {}", f(&r["Lab"]))?;
+        crate::outln!("  sRGB       {}   {}", f(&r["srgb"]), r["hex"].as_str().unwrap_or(""))?;
     }
     Ok(())
 }
@@ -507,13 +506,13 @@ fn chart(a: ChartArgs) -> Result<()> {
     let trans_tone = ToneMap::default();
     let img = chart_image(&a.stack, &ds, &cols, &tone, &trans_tone, a.angle, illuminant, exposure)?;
     write_png(&a.output, &img)?;
-    println!(
+    crate::outln!(
         "wrote {} ({} thicknesses, {}–{} nm; reflected at exposure {exposure:.3} RU, transmitted at 1 RU)",
         a.output.display(),
         ds.len(),
         ds[0],
         ds[ds.len() - 1]
-    );
+    )?;
     if let Some(p) = &a.csv {
         let mut csv = String::from("thickness_nm,R_X,R_Y,R_Z,R_hex,T_X,T_Y,T_Z,T_hex\n");
         for (d, (r, t)) in ds.iter().zip(&cols) {
@@ -531,7 +530,7 @@ fn chart(a: ChartArgs) -> Result<()> {
             );
         }
         crate::output::write_bytes(p, csv.as_bytes())?;
-        println!("wrote {}", p.display());
+        crate::outln!("wrote {}", p.display())?;
     }
     Ok(())
 }
@@ -620,11 +619,11 @@ fn materials(a: MaterialsArgs) -> Result<()> {
             Some(Err(_)) => format!("   (no data at {} nm)", a.at.unwrap_or(0.0)),
             None => String::new(),
         };
-        println!("{:<36} {desc}{idx}", names.join(", "));
+        crate::outln!("{:<36} {desc}{idx}", names.join(", "))?;
     }
-    println!(
+    crate::outln!(
         "\nAlso: n=1.38, n=0.2+3.4i (constants) and file:PATH (refractiveindex.info YAML or CSV wavelength_nm,n,k)."
-    );
+    )?;
     Ok(())
 }
 
@@ -748,14 +747,20 @@ fn bench(a: BenchArgs) -> Result<()> {
             &json!({ "threads": threads, "unit": "(λ, θ) evaluations per second, R and T for s and p", "results": results }),
         );
     }
-    println!("(λ, θ) evaluations per second (R and T, s and p); all threads = {threads}");
-    println!(
+    crate::outln!("(λ, θ) evaluations per second (R and T, s and p); all threads = {threads}")?;
+    crate::outln!(
         "{:<34} {:>14} {:>14} {:>14} {:>14} {:>12} {:>9}",
-        "stack", "general 1 thr", "general all", "fast 1 thr", "fast all", "tmm (Python)", "× tmm"
-    );
+        "stack",
+        "general 1 thr",
+        "general all",
+        "fast 1 thr",
+        "fast all",
+        "tmm (Python)",
+        "× tmm"
+    )?;
     for r in &results {
         let tm = r["tmm_1_thread"].as_f64();
-        println!(
+        crate::outln!(
             "{:<34} {:>14.0} {:>14.0} {:>14.0} {:>14.0} {:>12} {:>9}",
             r["stack"].as_str().unwrap_or(""),
             r["rust_general_1_thread"].as_f64().unwrap_or(0.0),
@@ -764,12 +769,12 @@ fn bench(a: BenchArgs) -> Result<()> {
             r["rust_fast_all_threads"].as_f64().unwrap_or(0.0),
             tm.map(|v| format!("{v:.0}")).unwrap_or_else(|| "—".into()),
             r["speedup_general_1_thread"].as_f64().map(|v| format!("{v:.0}")).unwrap_or_else(|| "—".into()),
-        );
+        )?;
     }
     if let Some(note) = results.first().and_then(|r| r["tmm_note"].as_str()) {
-        println!("tmm: {note}");
+        crate::outln!("tmm: {note}")?;
     }
-    println!("× tmm compares the general path on one thread with tmm on one thread.");
+    crate::outln!("× tmm compares the general path on one thread with tmm on one thread.")?;
     Ok(())
 }
 
