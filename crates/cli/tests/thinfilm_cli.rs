@@ -144,9 +144,16 @@ fn bad_input_names_the_token() {
     assert_fails(&["thinfilm", "spectrum", "--stack", "n=1.5+0.1i | water 10nm | air"], &["lossless", "column 1"]);
     assert_fails(
         &["thinfilm", "spectrum", "--stack", "air | Si 108nm | glass", "--to", "900nm"],
-        &["830 nm", "826.6", "no extrapolation"],
+        &["layer 1 of 1: material 'si'", "830 nm", "206.6–826.6 nm", "no extrapolation"],
     );
-    assert_fails(&["thinfilm", "color", "--stack", "air | rutile 50nm | glass"], &["rutile", "430"]);
+    assert_fails(
+        &["thinfilm", "color", "--stack", "air | water 100nm | rutile 50nm | glass"],
+        &["layer 2 of 2: material 'rutile'", "430"],
+    );
+    assert_fails(
+        &["thinfilm", "spectrum", "--stack", "Au | water 100nm | glass"],
+        &["incident medium 'au' (gold, Johnson & Christy 1972", "built-in library", "absorbs", "lossless"],
+    );
     assert_fails(&["thinfilm", "chart", "--stack", "air | water 5nm | air"], &["{d}"]);
     let dir = temp_dir();
     let bad = dir.join("bad.yml");
@@ -157,7 +164,12 @@ fn bad_input_names_the_token() {
     let gain = dir.join("gain.csv");
     std::fs::write(&gain, "wavelength_nm,n,k\n300,1.5,0\n900,1.5,-0.1\n").unwrap();
     let stack = format!("air | file:{} 40nm | glass", gain.display());
-    assert_fails(&["thinfilm", "spectrum", "--stack", &stack], &["κ = -0.1"]);
+    assert_fails(&["thinfilm", "spectrum", "--stack", &stack], &["gain.csv, line 3", "κ = -0.1"]);
+    let gain = dir.join("gain.yml");
+    std::fs::write(&gain, "DATA:\n  - type: tabulated nk\n    data: |\n        0.3 1.5 0\n        0.9 1.5 -0.1\n")
+        .unwrap();
+    let stack = format!("air | file:{} 40nm | glass", gain.display());
+    assert_fails(&["thinfilm", "spectrum", "--stack", &stack], &["gain.yml, line 5", "κ = -0.1"]);
 }
 
 #[test]
