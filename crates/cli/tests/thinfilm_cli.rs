@@ -182,6 +182,28 @@ fn measured_files_are_read() {
     assert!(a.iter().all(|&x| x > 0.0 && x < 1.0), "a gold film absorbs");
 }
 
+/// Issue 3's example stack, exactly as written there, from the repository root: `data/gold.yml` is a link to
+/// `data/materials/au_johnson.yml` (Johnson & Christy 1972), so it gives the built-in `Au` to the last digit.
+#[test]
+fn issue_example_gold_file_works() {
+    let spectrum = |stack: &str| {
+        let out = iridis(&["thinfilm", "spectrum", "--stack", stack, "--json"]);
+        assert!(out.status.success(), "{stack}: {}", String::from_utf8_lossy(&out.stderr));
+        serde_json::from_slice::<serde_json::Value>(&out.stdout).unwrap()
+    };
+    let file = spectrum("air | file:data/gold.yml 40nm | glass");
+    let builtin = spectrum("air | Au 40nm | glass");
+    assert_eq!(file, builtin);
+    // 40 nm of gold on glass: a partial mirror, reflecting red (700 nm) far more than blue (400 nm), which it
+    // absorbs (gold's interband absorption below ~500 nm).
+    let r = |nm: f64| {
+        let i = file["wavelength_nm"].as_array().unwrap().iter().position(|w| w.as_f64() == Some(nm)).unwrap();
+        (file["R"][i].as_f64().unwrap(), file["A"][i].as_f64().unwrap())
+    };
+    assert!(r(700.0).0 > 0.8 && r(400.0).0 < 0.5, "{:?} {:?}", r(400.0), r(700.0));
+    assert!(r(400.0).1 > 0.4 && r(700.0).1 < 0.1, "{:?} {:?}", r(400.0), r(700.0));
+}
+
 /// `iridis … --json | head -c 10`: the reader closes the pipe after a few bytes; iridis must end cleanly
 /// (exit 0, no panic message), not panic in `println!`. The output (~4000 wavelengths × 8 keys) is far larger
 /// than a pipe's buffer, so the write is still under way when the pipe closes.
