@@ -230,3 +230,79 @@ fn closed_stdout_pipe_is_a_clean_exit() {
         assert!(!stderr.contains("panicked") && !stderr.contains("error"), "{extra:?}: {stderr}");
     }
 }
+
+fn spectrum_at(stack: &str, angle: &str, nm: f64, pol: &str) -> serde_json::Value {
+    let w = format!("{nm}nm");
+    let out = iridis(&[
+        "thinfilm",
+        "spectrum",
+        "--stack",
+        stack,
+        "--angle",
+        angle,
+        "--from",
+        &w,
+        "--to",
+        &w,
+        "--polarization",
+        pol,
+        "--json",
+    ]);
+    assert!(out.status.success(), "{stack} {pol}: {}", String::from_utf8_lossy(&out.stderr));
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+fn first(v: &serde_json::Value, key: &str) -> f64 {
+    v[key][0].as_f64().unwrap_or_else(|| panic!("{key} in {v}"))
+}
+
+/// `--polarization s|p`: R and T are the chosen polarisation's, equal to the Fresnel equations for a bare
+/// interface (air → n = 1.5 at 60°, and Rp = 0 at Brewster's angle atan 1.5).
+#[test]
+fn polarization_s_and_p_follow_fresnel_at_a_bare_interface() {
+    let (n, theta) = (1.5f64, 60f64.to_radians());
+    let (ci, si) = (theta.cos(), theta.sin());
+    let ct = (1.0 - (si / n).powi(2)).sqrt();
+    let rs = ((ci - n * ct) / (ci + n * ct)).powi(2);
+    let rp = ((n * ci - ct) / (n * ci + ct)).powi(2);
+    for (pol, want) in [("s", rs), ("p", rp)] {
+        let v = spectrum_at("air | n=1.5", "60deg", 500.0, pol);
+        assert!((first(&v, "R") - want).abs() < 1e-12, "{pol}: {} vs Fresnel {want}", first(&v, "R"));
+        assert!((first(&v, "T") - (1.0 - want)).abs() < 1e-12, "{pol}: lossless, T = 1 − R");
+        assert_eq!(first(&v, "R"), first(&v, &format!("R{pol}")));
+    }
+    let brewster = format!("{}rad", 1.5f64.atan());
+    let v = spectrum_at("air | n=1.5", &brewster, 500.0, "p");
+    assert!(first(&v, "R") < 1e-20, "Rp at Brewster's angle: {}", first(&v, "R"));
+    assert!(first(&spectrum_at("air | n=1.5", &brewster, 500.0, "s"), "R") > 0.1);
+}
+
+/// `--polarization s|p` on multilayer stacks: R and T against the `tmm` package (fixture from
+/// tools/gen_thinfilm_fixtures.py), lossless and absorbing, at oblique incidence.
+#[test]
+fn polarization_s_and_p_agree_with_tmm() {
+    let doc: serde_json::Value =
+        serde_json::from_str(include_str!("../../thinfilm/tests/fixtures/tmm_reference.json")).unwrap();
+    let cases: Vec<&serde_json::Value> = doc["cases"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|c| c["kind"] == "random" && c["angle_rad"].as_f64().unwrap() > 0.3)
+        .filter(|c| c["layers"].as_u64().unwrap() <= 4 && c["absorbing_substrate"] == false)
+        .take(4)
+        .collect();
+    assert_eq!(cases.len(), 4);
+    for c in cases {
+        let stack = c["stack"].as_str().unwrap();
+        let angle = format!("{}rad", c["angle_rad"].as_f64().unwrap());
+        let nm = c["wavelength_nm"].as_f64().unwrap();
+        for pol in ["s", "p"] {
+            let v = spectrum_at(stack, &angle, nm, pol);
+            for key in ["R", "T"] {
+                let want = c[pol][key].as_f64().unwrap();
+                let got = first(&v, key);
+                assert!((got - want).abs() < 1e-9, "{stack} at {angle}, {nm} nm, {pol}: {key} {got} vs tmm {want}");
+            }
+        }
+    }
+}
