@@ -241,7 +241,7 @@ fn tick_format(span: f64) -> impl Fn(&f64) -> String {
     let decimals = if step > 0.0 && step.is_finite() { (-step.log10() - 1e-9).ceil().max(0.0) as usize } else { 1 };
     move |v: &f64| {
         let a = v.abs();
-        if a != 0.0 && (a < 1e-3 || a >= 1e6) || decimals > 4 {
+        if a != 0.0 && !(1e-3..1e6).contains(&a) || decimals > 4 {
             if a == 0.0 {
                 "0".to_string()
             } else {
