@@ -162,3 +162,37 @@ fn bare_rough_specular_follows_the_roughness_factor() {
         assert!((s[i] / r[i] - (-g).exp()).abs() < 1e-12, "{} nm: {} vs {}", w[i], s[i] / r[i], (-g).exp());
     }
 }
+
+fn chart_csv(extra: &[&str], name: &str) -> Vec<Vec<String>> {
+    let dir = std::env::temp_dir().join(format!("iridis-rough-chart-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (png, csv) = (dir.join(format!("{name}.png")), dir.join(format!("{name}.csv")));
+    let mut args = vec!["thinfilm", "chart", "--stack", "air | water {d} | Si", "--thickness", "0nm:600nm:20nm"];
+    args.extend(["-o", png.to_str().unwrap(), "--csv", csv.to_str().unwrap()]);
+    args.extend(extra);
+    let out = iridis(&args);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(std::fs::read(&png).unwrap().starts_with(b"\x89PNG"));
+    std::fs::read_to_string(&csv).unwrap().lines().map(|l| l.split(',').map(str::to_string).collect()).collect()
+}
+
+/// `thinfilm chart --roughness σ --correlation τ`: the bands are the specular and the diffuse colour; as σ → 0
+/// the specular band is the smooth chart's reflected band (to 1e-9) and the diffuse band is black.
+#[test]
+fn chart_with_roughness_and_its_smooth_limit() {
+    let rough = chart_csv(&["--roughness", "25nm", "--correlation", "300nm"], "rough");
+    assert_eq!(rough[0].join(","), "thickness_nm,S_X,S_Y,S_Z,S_hex,D_X,D_Y,D_Z,D_hex");
+    assert_eq!(rough.len(), 1 + 31);
+    assert!(rough[1..].iter().all(|r| r[6].parse::<f64>().unwrap() > 0.01), "a rough film scatters");
+    let limit = chart_csv(&["--roughness", "0.000001nm", "--correlation", "300nm"], "limit");
+    let smooth = chart_csv(&[], "smooth");
+    assert_eq!(smooth[0].join(","), "thickness_nm,R_X,R_Y,R_Z,R_hex,T_X,T_Y,T_Z,T_hex");
+    for (l, s) in limit[1..].iter().zip(&smooth[1..]) {
+        assert_eq!(l[0], s[0]);
+        for c in 1..4 {
+            let (a, b): (f64, f64) = (l[c].parse().unwrap(), s[c].parse().unwrap());
+            assert!((a - b).abs() < 1e-9, "d = {} nm: {a} vs smooth {b}", l[0]);
+            assert!(l[c + 4].parse::<f64>().unwrap().abs() < 1e-12, "diffuse vanishes");
+        }
+    }
+}

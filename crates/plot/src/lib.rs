@@ -300,6 +300,16 @@ pub struct ImagePlot<'a> {
 
 impl ImagePlot<'_> {
     pub fn render(&self) -> Result<RgbImage, PlotError> {
+        self.render_with(true)
+    }
+
+    /// Renders without numbers on the y axis: for pictures whose y axis is not a quantity (the film chart's
+    /// two bands, named by the y label).
+    pub fn render_without_y_ticks(&self) -> Result<RgbImage, PlotError> {
+        self.render_with(false)
+    }
+
+    fn render_with(&self, y_ticks: bool) -> Result<RgbImage, PlotError> {
         register_font();
         let (w, h) = self.size;
         let mut img = RgbImage::new(w, h);
@@ -315,15 +325,20 @@ impl ImagePlot<'_> {
                 .y_label_area_size(72)
                 .build_cartesian_2d(self.x_range.0..self.x_range.1, self.y_range.0..self.y_range.1)
                 .map_err(err)?;
-            chart
-                .configure_mesh()
-                .disable_mesh()
+            let x_fmt = tick_format(self.x_range.1 - self.x_range.0);
+            let y_fmt = tick_format(self.y_range.1 - self.y_range.0);
+            let mut mesh = chart.configure_mesh();
+            mesh.disable_mesh()
                 .x_desc(&self.x_label)
                 .y_desc(&self.y_label)
+                .x_label_formatter(&x_fmt)
+                .y_label_formatter(&y_fmt)
                 .label_style((FONT, 15))
-                .axis_desc_style((FONT, 17))
-                .draw()
-                .map_err(err)?;
+                .axis_desc_style((FONT, 17));
+            if !y_ticks {
+                mesh.y_labels(0);
+            }
+            mesh.draw().map_err(err)?;
             let area = chart.plotting_area();
             let ((px0, py0), (px1, py1)) = {
                 let r = area.get_pixel_range();

@@ -1,4 +1,4 @@
-//! The rough-substrate (LSRS) branch of `iridis thinfilm spectrum|color|table|bench`: the flags
+//! The rough-substrate (LSRS) branch of `iridis thinfilm spectrum|color|table|chart|bench`: the flags
 //! `--roughness σ --correlation τ` switch a command from Sussenbach's smooth model to the LSRS model
 //! (`iridis_thinfilm::rough`, thesis eq. 3.15–3.20) with the HTSG BRDF at the substrate
 //! (`iridis_thinfilm::htsg`). Specular (`k_r`, a fraction of the incident power) and diffuse (`k_d`, sr⁻¹;
@@ -13,7 +13,7 @@ use std::time::Instant;
 use anyhow::{bail, Result};
 use clap::Args as ClapArgs;
 use iridis_color::units::{parse_angle_rad, parse_range};
-use iridis_color::{Illuminant, Observer, SpectralWeights};
+use iridis_color::{Illuminant, Observer, SpectralWeights, Xyz};
 use iridis_plot::{magma, ColorBar, ImagePlot, LinePlot, RgbImage, Series as PlotSeries};
 use iridis_thinfilm::htsg::{Htsg, Roughness, Series};
 use iridis_thinfilm::rough::{angle_grid, Lsrs, RoughStack};
@@ -23,7 +23,7 @@ use serde_json::json;
 /// The stack of Sussenbach's Listing 3.6: a 348 nm water film on (rough) silicon, in air.
 pub const LISTING_3_6_STACK: &str = "air | water 348nm | Si";
 
-/// Flags of the rough model, flattened into `spectrum`, `color`, `table` and `bench`.
+/// Flags of the rough model, flattened into `spectrum`, `color`, `table`, `chart` and `bench`.
 #[derive(Debug, Clone, ClapArgs)]
 pub struct RoughArgs {
     /// Rough substrate (LSRS model with the HTSG BRDF): rms roughness σ of the last interface, e.g. 25nm.
@@ -77,6 +77,38 @@ impl RoughArgs {
 
 fn deg(rad: f64) -> String {
     format!("{}", (rad.to_degrees() * 1e6).round() / 1e6)
+}
+
+/// `iridis thinfilm chart … --roughness σ --correlation τ`: for every thickness of the swept layer, the XYZ of
+/// the rough film's specular part (`k_r`, like the smooth chart's reflected band) and of its diffuse part
+/// (`π k_d`, the radiance factor: Y = 1 is a white Lambertian surface under the same light).
+#[allow(clippy::too_many_arguments)]
+pub fn chart_colours(
+    stack: &Stack,
+    layer: usize,
+    thicknesses: &[f64],
+    args: &RoughArgs,
+    view: f64,
+    grid: &[f64],
+    illuminant: Illuminant,
+    observer: Observer,
+) -> Result<Vec<(Xyz, Xyz)>> {
+    use rayon::prelude::*;
+    if args.light_angles.is_some() {
+        bail!("--light-angles is for 'table'; use --light-angle here");
+    }
+    let light = args.light_angle.unwrap_or(view);
+    let weights = SpectralWeights::new(grid, illuminant, observer);
+    thicknesses
+        .par_iter()
+        .map(|&d| {
+            let rough = args.build(stack.with_thickness(layer, d))?;
+            let xs = evaluate(&rough, grid, view, light, args.azimuth)?;
+            let spec = weights.integrate(&xs.iter().map(|x| x.1.k_r()).collect::<Vec<_>>());
+            let diff = weights.integrate(&xs.iter().map(|x| PI * x.1.k_d()).collect::<Vec<_>>());
+            Ok((spec, diff))
+        })
+        .collect()
 }
 
 /// One wavelength: the smooth model's R and the LSRS values.
