@@ -35,20 +35,51 @@ enum Command {
     /// Run the main job on built-in data: a gallery of results with an index page.
     Demo(cmd::demo::Args),
     /// Colour science: spectrum → XYZ/sRGB/Lab, colour differences.
-    #[command(subcommand)]
+    #[command(
+        subcommand,
+        after_help = "\
+Examples:
+  iridis color xyz data/examples/colorchecker_green.csv --json     XYZ, xyY, CIELAB, sRGB of a reflectance
+  iridis color xyz data/cie/d65.csv --emissive                     colour of a light source
+  iridis color delta-e 50,2.6772,-79.7751 50,0,-82.7485            CIEDE2000 between two CIELAB colours"
+    )]
     Color(cmd::color::ColorCommand),
     /// Lookup tables for a height field: DFTs of the Taylor terms and I_p(u, v) (paper eq. 5–12).
     Precompute(cmd::brdf::PrecomputeArgs),
     /// BRDF map of a height field or table: colour for every view direction (paper sec. 7).
     BrdfMap(cmd::brdf::BrdfMapArgs),
     /// Speed, measured against a peer in the same run.
-    #[command(subcommand)]
+    #[command(
+        subcommand,
+        after_help = "\
+Examples:
+  iridis bench diffraction --size 512 --terms 20      precompute against numpy, BRDF maps per second
+  iridis bench diffraction-accuracy --json            CIEDE2000 of lookup and reference against ground truth
+  iridis bench gpu                                    GPU frame times: diffraction map and thin-film frame
+  iridis bench render --size 512                      render time of every example scene
+  iridis thinfilm bench                               thin-film evaluations per second against Python tmm"
+    )]
     Bench(cmd::bench::BenchCommand),
     /// Thin-film interference: spectra, angle × wavelength tables, film colours, the soap-film chart.
-    #[command(subcommand)]
+    #[command(
+        subcommand,
+        after_help = "\
+Examples:
+  iridis thinfilm spectrum --stack \"air | water 348nm | air\" --plot soap.png
+  iridis thinfilm color --stack \"air | water 348nm | air\" --json
+  iridis thinfilm color --stack \"air | water 348nm | Si\" --roughness 25nm --correlation 300nm
+  iridis thinfilm chart --stack \"air | water {d} | air\" --thickness 0nm:2000nm:2nm -o chart.png
+  iridis thinfilm materials --at 550nm"
+    )]
     Thinfilm(cmd::thinfilm::ThinfilmCommand),
     /// Height fields: inspect (sizes, periods), generate nanostructures, convert formats.
-    #[command(subcommand, after_help = cmd::surface::SURFACE_HELP)]
+    #[command(subcommand, after_help = format!("\
+Examples:
+  iridis surface info builtin:elaphe --image elaphe.png      sizes, periods and orientations
+  iridis surface generate blazed --period 2500nm -o b.npy    a nanostructure height field
+  iridis surface convert scan.gwy scan.npy                   between formats
+
+{}", cmd::surface::SURFACE_HELP))]
     Surface(cmd::surface::SurfaceCommand),
     /// Virtual test bench: peak viewing angles and periodicity per wavelength (paper sec. 6.1, Table 1).
     Testbench(cmd::lab::TestbenchArgs),
@@ -57,7 +88,12 @@ enum Command {
     /// Convergence sweeps over terms, Δλ, coherence, u-v power or resolution (paper Figures 14–17).
     Sweep(cmd::lab::SweepArgs),
     /// Simulated lab experiments (the laser experiment of paper Figure 8).
-    #[command(subcommand)]
+    #[command(
+        subcommand,
+        after_help = "\
+Examples:
+  iridis experiment laser 'builtin:elaphe?size=40um&pixel=80nm' --aperture 40um -o elaphe_screen.png"
+    )]
     Experiment(cmd::lab::ExperimentCommand),
     /// Render a scene (TOML or glTF) on the CPU: diffraction and thin-film materials on meshes (issue 7).
     Render(cmd::render::RenderArgs),
@@ -85,9 +121,42 @@ fn main() -> std::process::ExitCode {
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,
+        // The reader of our standard output has gone (`iridis … | head`): that is how pipes end, not an error.
+        Err(e) if output::is_broken_pipe(&e) => std::process::ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e:#}");
             std::process::ExitCode::from(2)
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Cli;
+    use clap::CommandFactory;
+
+    /// Every command and subcommand (group pages included) shows examples in its `--help`.
+    #[test]
+    fn every_help_page_has_examples() {
+        fn walk(cmd: &mut clap::Command, path: &str, missing: &mut Vec<String>, seen: &mut usize) {
+            let path = if path.is_empty() { cmd.get_name().to_string() } else { format!("{path} {}", cmd.get_name()) };
+            let help = cmd.render_long_help().to_string();
+            *seen += 1;
+            if !help.contains("Examples:") || !help.contains("iridis ") {
+                missing.push(path.clone());
+            }
+            for sub in cmd.get_subcommands_mut() {
+                if sub.get_name() == "help" {
+                    continue; // clap's own `help` subcommand
+                }
+                walk(sub, &path, missing, seen);
+            }
+        }
+        let mut cli = Cli::command();
+        cli.build();
+        let (mut missing, mut seen) = (Vec::new(), 0);
+        walk(&mut cli, "", &mut missing, &mut seen);
+        assert!(seen > 20, "walked only {seen} commands");
+        assert!(missing.is_empty(), "help pages without an Examples section: {missing:?}");
     }
 }

@@ -51,8 +51,38 @@ pub fn write_png_rgb8(path: &Path, width: u32, height: u32, rgb: &[u8]) -> Resul
 
 use image::ImageEncoder;
 
-/// Prints a value as pretty JSON on stdout.
+/// Prints a value as pretty JSON on stdout (see [`write_stdout`] for a closed pipe).
 pub fn print_json(value: &serde_json::Value) -> Result<()> {
-    println!("{}", serde_json::to_string_pretty(value)?);
+    write_stdout(format_args!("{}\n", serde_json::to_string_pretty(value)?))
+}
+
+/// Writes to standard output through the locked handle and flushes. Unlike `println!`, a failed write is
+/// an error, not a panic; when the reader has gone away (`iridis … --json | head -c 10`) the error is an
+/// `io::Error` of kind `BrokenPipe`, which `main` turns into a clean exit (see [`is_broken_pipe`]).
+pub fn write_stdout(args: std::fmt::Arguments<'_>) -> Result<()> {
+    let mut out = std::io::stdout().lock();
+    out.write_fmt(args)?;
+    out.flush()?;
     Ok(())
+}
+
+/// Writes raw bytes to standard output, like [`write_stdout`].
+pub fn write_stdout_bytes(bytes: &[u8]) -> Result<()> {
+    let mut out = std::io::stdout().lock();
+    out.write_all(bytes)?;
+    out.flush()?;
+    Ok(())
+}
+
+/// True when an error comes from writing to a pipe whose reader has closed it.
+pub fn is_broken_pipe(e: &anyhow::Error) -> bool {
+    e.chain().any(|c| c.downcast_ref::<std::io::Error>().is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe))
+}
+
+/// `println!` that returns a `Result` instead of panicking when standard output is closed:
+/// `outln!("x = {x}")?;`.
+#[macro_export]
+macro_rules! outln {
+    () => { $crate::output::write_stdout(format_args!("\n")) };
+    ($($arg:tt)*) => { $crate::output::write_stdout(format_args!("{}\n", format_args!($($arg)*))) };
 }

@@ -51,4 +51,9 @@ fn bad_input_gives_one_clear_line() {
     assert_fails(&["color", "xyz", p.to_str().unwrap(), "--observer", "1999"], &["1999", "1931"]);
     assert_fails(&["color", "delta-e", "50,1", "50,0,0"], &["50,1", "L,a,b"]);
     assert_fails(&["color", "delta-e", "50,x,1", "50,0,0"], &["'x'"]);
+    // Only the first line that is not a comment may be a header; rows need exactly two columns.
+    let p = temp_csv("late_header.csv", "# c\n400,0.5\n410,0.6\nwavelength,value\n420,0.7\n");
+    assert_fails(&["color", "xyz", p.to_str().unwrap()], &["late_header.csv:4", "'wavelength'"]);
+    let p = temp_csv("three.csv", "wavelength,value\n400,0.5\n410,0.6,0.9\n420,0.7\n");
+    assert_fails(&["color", "xyz", p.to_str().unwrap()], &["three.csv:3", "two columns", "found 3"]);
 }

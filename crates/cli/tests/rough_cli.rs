@@ -89,3 +89,110 @@ fn bad_roughness_is_a_clear_error() {
     run(&["--roughness", "25", "--correlation", "300nm"], "unit");
     run(&["--roughness", "25nm", "--correlation", "300nm", "--polarization", "s"], "unpolarised");
 }
+
+fn xyz(v: &serde_json::Value) -> Vec<f64> {
+    f(&v["XYZ"])
+}
+
+/// `thinfilm color --roughness 25nm --correlation 300nm` (Listing 3.6's σ and τ): the smooth film's colour,
+/// the rough film's specular colour and its diffuse colour are reported separately; the specular part is
+/// darker than the smooth film (light goes into the diffuse lobe), and the smooth part is exactly the colour
+/// `thinfilm color` reports without roughness.
+#[test]
+fn color_reports_smooth_specular_and_diffuse() {
+    let v =
+        json_of(&["thinfilm", "color", "--stack", STACK, "--roughness", "25nm", "--correlation", "300nm", "--json"]);
+    for part in ["smooth", "specular", "diffuse"] {
+        for key in ["XYZ", "xyY", "Lab", "linear_srgb", "srgb", "hex"] {
+            assert!(!v[part][key].is_null(), "{part}.{key} in {v}");
+        }
+    }
+    assert_eq!((v["roughness_nm"].as_f64(), v["correlation_nm"].as_f64()), (Some(25.0), Some(300.0)));
+    let plain = json_of(&["thinfilm", "color", "--stack", STACK, "--json"]);
+    assert_eq!(xyz(&v["smooth"]), xyz(&plain["reflected"]));
+    let (smooth, spec, diff) = (xyz(&v["smooth"]), xyz(&v["specular"]), xyz(&v["diffuse"]));
+    for c in 0..3 {
+        assert!(spec[c] > 0.0 && spec[c] < smooth[c], "{spec:?} vs {smooth:?}");
+        assert!(diff[c] > 0.0, "{diff:?}");
+    }
+    // The text output names the three parts too.
+    let out = iridis(&["thinfilm", "color", "--stack", STACK, "--roughness", "25nm", "--correlation", "300nm"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    for needle in ["smooth film, reflected", "rough film, specular", "rough film, diffuse"] {
+        assert!(text.contains(needle), "{text}");
+    }
+}
+
+/// σ → 0: the rough film's specular colour is the smooth colour (to 1e-9) and the diffuse colour vanishes.
+#[test]
+fn color_smooth_limit() {
+    let v = json_of(&[
+        "thinfilm",
+        "color",
+        "--stack",
+        STACK,
+        "--angle",
+        "30deg",
+        "--roughness",
+        "0.000001nm",
+        "--correlation",
+        "300nm",
+        "--json",
+    ]);
+    let smooth = json_of(&["thinfilm", "color", "--stack", STACK, "--angle", "30deg", "--json"]);
+    let (a, b) = (xyz(&v["specular"]), xyz(&smooth["reflected"]));
+    for c in 0..3 {
+        assert!((a[c] - b[c]).abs() < 1e-9, "{a:?} vs {b:?}");
+        assert!(xyz(&v["diffuse"])[c].abs() < 1e-12);
+    }
+    assert_eq!(v["specular"]["hex"], smooth["reflected"]["hex"]);
+}
+
+/// A bare rough substrate at normal incidence: HTSG's specular term is the smooth Fresnel reflectance times
+/// exp(−(4πσ cos θ/λ)²) (He et al. 1991; the shadowing factor is 1 at normal incidence).
+#[test]
+fn bare_rough_specular_follows_the_roughness_factor() {
+    let mut args = vec!["thinfilm", "spectrum", "--stack", "air | Si", "--json"];
+    args.extend(GRID);
+    args.extend(["--roughness", "25nm", "--correlation", "300nm"]);
+    let v = json_of(&args);
+    let (w, s, r) = (f(&v["wavelength_nm"]), f(&v["specular"]), f(&v["R_smooth"]));
+    for i in 0..w.len() {
+        let g = (4.0 * std::f64::consts::PI * 25.0 / w[i]).powi(2);
+        assert!((s[i] / r[i] - (-g).exp()).abs() < 1e-12, "{} nm: {} vs {}", w[i], s[i] / r[i], (-g).exp());
+    }
+}
+
+fn chart_csv(extra: &[&str], name: &str) -> Vec<Vec<String>> {
+    let dir = std::env::temp_dir().join(format!("iridis-rough-chart-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (png, csv) = (dir.join(format!("{name}.png")), dir.join(format!("{name}.csv")));
+    let mut args = vec!["thinfilm", "chart", "--stack", "air | water {d} | Si", "--thickness", "0nm:600nm:20nm"];
+    args.extend(["-o", png.to_str().unwrap(), "--csv", csv.to_str().unwrap()]);
+    args.extend(extra);
+    let out = iridis(&args);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(std::fs::read(&png).unwrap().starts_with(b"\x89PNG"));
+    std::fs::read_to_string(&csv).unwrap().lines().map(|l| l.split(',').map(str::to_string).collect()).collect()
+}
+
+/// `thinfilm chart --roughness σ --correlation τ`: the bands are the specular and the diffuse colour; as σ → 0
+/// the specular band is the smooth chart's reflected band (to 1e-9) and the diffuse band is black.
+#[test]
+fn chart_with_roughness_and_its_smooth_limit() {
+    let rough = chart_csv(&["--roughness", "25nm", "--correlation", "300nm"], "rough");
+    assert_eq!(rough[0].join(","), "thickness_nm,S_X,S_Y,S_Z,S_hex,D_X,D_Y,D_Z,D_hex");
+    assert_eq!(rough.len(), 1 + 31);
+    assert!(rough[1..].iter().all(|r| r[6].parse::<f64>().unwrap() > 0.01), "a rough film scatters");
+    let limit = chart_csv(&["--roughness", "0.000001nm", "--correlation", "300nm"], "limit");
+    let smooth = chart_csv(&[], "smooth");
+    assert_eq!(smooth[0].join(","), "thickness_nm,R_X,R_Y,R_Z,R_hex,T_X,T_Y,T_Z,T_hex");
+    for (l, s) in limit[1..].iter().zip(&smooth[1..]) {
+        assert_eq!(l[0], s[0]);
+        for c in 1..4 {
+            let (a, b): (f64, f64) = (l[c].parse().unwrap(), s[c].parse().unwrap());
+            assert!((a - b).abs() < 1e-9, "d = {} nm: {a} vs smooth {b}", l[0]);
+            assert!(l[c + 4].parse::<f64>().unwrap().abs() < 1e-12, "diffuse vanishes");
+        }
+    }
+}

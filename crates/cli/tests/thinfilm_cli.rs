@@ -144,9 +144,16 @@ fn bad_input_names_the_token() {
     assert_fails(&["thinfilm", "spectrum", "--stack", "n=1.5+0.1i | water 10nm | air"], &["lossless", "column 1"]);
     assert_fails(
         &["thinfilm", "spectrum", "--stack", "air | Si 108nm | glass", "--to", "900nm"],
-        &["830 nm", "826.6", "no extrapolation"],
+        &["layer 1 of 1: material 'si'", "830 nm", "206.6–826.6 nm", "no extrapolation"],
     );
-    assert_fails(&["thinfilm", "color", "--stack", "air | rutile 50nm | glass"], &["rutile", "430"]);
+    assert_fails(
+        &["thinfilm", "color", "--stack", "air | water 100nm | rutile 50nm | glass"],
+        &["layer 2 of 2: material 'rutile'", "430"],
+    );
+    assert_fails(
+        &["thinfilm", "spectrum", "--stack", "Au | water 100nm | glass"],
+        &["incident medium 'au' (gold, Johnson & Christy 1972", "built-in library", "absorbs", "lossless"],
+    );
     assert_fails(&["thinfilm", "chart", "--stack", "air | water 5nm | air"], &["{d}"]);
     let dir = temp_dir();
     let bad = dir.join("bad.yml");
@@ -157,7 +164,12 @@ fn bad_input_names_the_token() {
     let gain = dir.join("gain.csv");
     std::fs::write(&gain, "wavelength_nm,n,k\n300,1.5,0\n900,1.5,-0.1\n").unwrap();
     let stack = format!("air | file:{} 40nm | glass", gain.display());
-    assert_fails(&["thinfilm", "spectrum", "--stack", &stack], &["κ = -0.1"]);
+    assert_fails(&["thinfilm", "spectrum", "--stack", &stack], &["gain.csv, line 3", "κ = -0.1"]);
+    let gain = dir.join("gain.yml");
+    std::fs::write(&gain, "DATA:\n  - type: tabulated nk\n    data: |\n        0.3 1.5 0\n        0.9 1.5 -0.1\n")
+        .unwrap();
+    let stack = format!("air | file:{} 40nm | glass", gain.display());
+    assert_fails(&["thinfilm", "spectrum", "--stack", &stack], &["gain.yml, line 5", "κ = -0.1"]);
 }
 
 #[test]
@@ -168,4 +180,129 @@ fn measured_files_are_read() {
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let a: Vec<f64> = v["A"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
     assert!(a.iter().all(|&x| x > 0.0 && x < 1.0), "a gold film absorbs");
+}
+
+/// Issue 3's example stack, exactly as written there, from the repository root: `data/gold.yml` is a link to
+/// `data/materials/au_johnson.yml` (Johnson & Christy 1972), so it gives the built-in `Au` to the last digit.
+#[test]
+fn issue_example_gold_file_works() {
+    let spectrum = |stack: &str| {
+        let out = iridis(&["thinfilm", "spectrum", "--stack", stack, "--json"]);
+        assert!(out.status.success(), "{stack}: {}", String::from_utf8_lossy(&out.stderr));
+        serde_json::from_slice::<serde_json::Value>(&out.stdout).unwrap()
+    };
+    let file = spectrum("air | file:data/gold.yml 40nm | glass");
+    let builtin = spectrum("air | Au 40nm | glass");
+    assert_eq!(file, builtin);
+    // 40 nm of gold on glass: a partial mirror, reflecting red (700 nm) far more than blue (400 nm), which it
+    // absorbs (gold's interband absorption below ~500 nm).
+    let r = |nm: f64| {
+        let i = file["wavelength_nm"].as_array().unwrap().iter().position(|w| w.as_f64() == Some(nm)).unwrap();
+        (file["R"][i].as_f64().unwrap(), file["A"][i].as_f64().unwrap())
+    };
+    assert!(r(700.0).0 > 0.8 && r(400.0).0 < 0.5, "{:?} {:?}", r(400.0), r(700.0));
+    assert!(r(400.0).1 > 0.4 && r(700.0).1 < 0.1, "{:?} {:?}", r(400.0), r(700.0));
+}
+
+/// `iridis … --json | head -c 10`: the reader closes the pipe after a few bytes; iridis must end cleanly
+/// (exit 0, no panic message), not panic in `println!`. The output (~4000 wavelengths × 8 keys) is far larger
+/// than a pipe's buffer, so the write is still under way when the pipe closes.
+#[test]
+fn closed_stdout_pipe_is_a_clean_exit() {
+    use std::io::Read;
+    use std::process::{Command, Stdio};
+    for extra in [&["--json"][..], &["--csv"][..]] {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_iridis"))
+            .args(["thinfilm", "spectrum", "--stack", "air | water 348nm | air", "--step", "0.1nm"])
+            .args(["--from", "380nm", "--to", "780nm"])
+            .args(extra)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .expect("cannot run iridis");
+        let mut stdout = child.stdout.take().unwrap();
+        let mut first = [0u8; 10];
+        stdout.read_exact(&mut first).unwrap();
+        drop(stdout); // what `head -c 10` does after 10 bytes
+        let out = child.wait_with_output().unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(0), "{extra:?}: {stderr}");
+        assert!(!stderr.contains("panicked") && !stderr.contains("error"), "{extra:?}: {stderr}");
+    }
+}
+
+fn spectrum_at(stack: &str, angle: &str, nm: f64, pol: &str) -> serde_json::Value {
+    let w = format!("{nm}nm");
+    let out = iridis(&[
+        "thinfilm",
+        "spectrum",
+        "--stack",
+        stack,
+        "--angle",
+        angle,
+        "--from",
+        &w,
+        "--to",
+        &w,
+        "--polarization",
+        pol,
+        "--json",
+    ]);
+    assert!(out.status.success(), "{stack} {pol}: {}", String::from_utf8_lossy(&out.stderr));
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+fn first(v: &serde_json::Value, key: &str) -> f64 {
+    v[key][0].as_f64().unwrap_or_else(|| panic!("{key} in {v}"))
+}
+
+/// `--polarization s|p`: R and T are the chosen polarisation's, equal to the Fresnel equations for a bare
+/// interface (air → n = 1.5 at 60°, and Rp = 0 at Brewster's angle atan 1.5).
+#[test]
+fn polarization_s_and_p_follow_fresnel_at_a_bare_interface() {
+    let (n, theta) = (1.5f64, 60f64.to_radians());
+    let (ci, si) = (theta.cos(), theta.sin());
+    let ct = (1.0 - (si / n).powi(2)).sqrt();
+    let rs = ((ci - n * ct) / (ci + n * ct)).powi(2);
+    let rp = ((n * ci - ct) / (n * ci + ct)).powi(2);
+    for (pol, want) in [("s", rs), ("p", rp)] {
+        let v = spectrum_at("air | n=1.5", "60deg", 500.0, pol);
+        assert!((first(&v, "R") - want).abs() < 1e-12, "{pol}: {} vs Fresnel {want}", first(&v, "R"));
+        assert!((first(&v, "T") - (1.0 - want)).abs() < 1e-12, "{pol}: lossless, T = 1 − R");
+        assert_eq!(first(&v, "R"), first(&v, &format!("R{pol}")));
+    }
+    let brewster = format!("{}rad", 1.5f64.atan());
+    let v = spectrum_at("air | n=1.5", &brewster, 500.0, "p");
+    assert!(first(&v, "R") < 1e-20, "Rp at Brewster's angle: {}", first(&v, "R"));
+    assert!(first(&spectrum_at("air | n=1.5", &brewster, 500.0, "s"), "R") > 0.1);
+}
+
+/// `--polarization s|p` on multilayer stacks: R and T against the `tmm` package (fixture from
+/// tools/gen_thinfilm_fixtures.py), lossless and absorbing, at oblique incidence.
+#[test]
+fn polarization_s_and_p_agree_with_tmm() {
+    let doc: serde_json::Value =
+        serde_json::from_str(include_str!("../../thinfilm/tests/fixtures/tmm_reference.json")).unwrap();
+    let cases: Vec<&serde_json::Value> = doc["cases"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|c| c["kind"] == "random" && c["angle_rad"].as_f64().unwrap() > 0.3)
+        .filter(|c| c["layers"].as_u64().unwrap() <= 4 && c["absorbing_substrate"] == false)
+        .take(4)
+        .collect();
+    assert_eq!(cases.len(), 4);
+    for c in cases {
+        let stack = c["stack"].as_str().unwrap();
+        let angle = format!("{}rad", c["angle_rad"].as_f64().unwrap());
+        let nm = c["wavelength_nm"].as_f64().unwrap();
+        for pol in ["s", "p"] {
+            let v = spectrum_at(stack, &angle, nm, pol);
+            for key in ["R", "T"] {
+                let want = c[pol][key].as_f64().unwrap();
+                let got = first(&v, key);
+                assert!((got - want).abs() < 1e-9, "{stack} at {angle}, {nm} nm, {pol}: {key} {got} vs tmm {want}");
+            }
+        }
+    }
 }

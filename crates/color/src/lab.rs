@@ -12,6 +12,14 @@ pub struct Lab {
     pub b: f64,
 }
 
+/// CIELAB's default white: the XYZ of a perfect reflector under CIE D65 for the CIE 1931 2° observer, `Y = 1`,
+/// integrated from the committed CIE tables like every other white ([`crate::integrate::white_point`]), so
+/// that the colour of a spectrum under D65 and its CIELAB agree. (0.95047, 1, 1.08883); computed once.
+pub fn d65_white() -> Xyz {
+    static WHITE: std::sync::OnceLock<Xyz> = std::sync::OnceLock::new();
+    *WHITE.get_or_init(|| crate::integrate::white_point(crate::Illuminant::D65, crate::Observer::Cie1931))
+}
+
 const EPSILON: f64 = 216.0 / 24389.0; // (6/29)^3
 const KAPPA: f64 = 24389.0 / 27.0; // (29/3)^3
 
@@ -34,6 +42,17 @@ impl Lab {
         };
         let (fx, fy, fz) = (f(xyz.x / white.x), f(xyz.y / white.y), f(xyz.z / white.z));
         Lab::new(116.0 * fy - 16.0, 500.0 * (fx - fy), 200.0 * (fy - fz))
+    }
+
+    /// XYZ → L*a*b* relative to the default white, D65 for the CIE 1931 observer ([`d65_white`]): the
+    /// usual choice, and the white of sRGB.
+    pub fn from_xyz_d65(xyz: Xyz) -> Self {
+        Self::from_xyz(xyz, d65_white())
+    }
+
+    /// L*a*b* → XYZ relative to the default white ([`d65_white`]); the inverse of [`Lab::from_xyz_d65`].
+    pub fn to_xyz_d65(self) -> Xyz {
+        self.to_xyz(d65_white())
     }
 
     /// L*a*b* → XYZ relative to `white`; the exact inverse of [`Lab::from_xyz`].

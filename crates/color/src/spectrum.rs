@@ -57,8 +57,9 @@ impl Spectrum {
         Self::new(grid, values)
     }
 
-    /// Reads a CSV or whitespace-separated text with two columns, wavelength (nm) and value. Lines starting
-    /// with `#` and a non-numeric header line are skipped.
+    /// Reads a CSV or whitespace-separated text with exactly two columns, wavelength (nm) and value. Blank
+    /// lines and lines starting with `#` are skipped; the first other line may be a non-numeric header. Any
+    /// later non-numeric row, or a row with other than two columns, is an error naming its line.
     pub fn from_csv_str(text: &str, source_name: &str) -> Result<Self, SpectrumError> {
         let mut wavelengths = Vec::new();
         let mut values = Vec::new();
@@ -85,11 +86,11 @@ impl Spectrum {
                 });
             }
             header_allowed = false;
-            if fields.len() < 2 {
+            if fields.len() != 2 {
                 return Err(SpectrumError::Parse {
                     source_name: source_name.into(),
                     line: line_no,
-                    message: format!("expected two columns (wavelength_nm, value), found '{line}'"),
+                    message: format!("expected two columns (wavelength_nm, value), found {} in '{line}'", fields.len()),
                 });
             }
             let (w, v) =
@@ -235,5 +236,27 @@ mod tests {
         let e = Spectrum::from_csv_str("400,0.5\n410,NaN\n", "f.csv").unwrap_err().to_string();
         assert!(e.contains("f.csv:2") && e.contains("NaN"), "{e}");
         assert!(Spectrum::from_csv_str("400,0.5\n", "f.csv").is_err());
+    }
+
+    #[test]
+    fn csv_header_only_on_the_first_line() {
+        // A header after a comment is still the first line that counts.
+        assert!(Spectrum::from_csv_str("# c\n\nnm,R\n400,0.5\n410,0.7\n", "f.csv").is_ok());
+        // A non-numeric row after the data is not a second header.
+        let e = Spectrum::from_csv_str("400,0.5\n410,0.7\nnm,R\n420,0.9\n", "f.csv").unwrap_err().to_string();
+        assert!(e.contains("f.csv:3") && e.contains("'nm'"), "{e}");
+        // Two header lines: the second is an error.
+        let e = Spectrum::from_csv_str("nm,R\nunits,percent\n400,0.5\n410,0.7\n", "f.csv").unwrap_err().to_string();
+        assert!(e.contains("f.csv:2") && e.contains("'units'"), "{e}");
+    }
+
+    #[test]
+    fn csv_rows_need_exactly_two_columns() {
+        let e = Spectrum::from_csv_str("400,0.5\n410,0.7,0.1\n420,0.9\n", "f.csv").unwrap_err().to_string();
+        assert!(e.contains("f.csv:2") && e.contains("found 3"), "{e}");
+        let e = Spectrum::from_csv_str("400,0.5\n410\n420,0.9\n", "f.csv").unwrap_err().to_string();
+        assert!(e.contains("f.csv:2") && e.contains("found 1"), "{e}");
+        // Whitespace-separated with several spaces is still two columns.
+        assert!(Spectrum::from_csv_str("400   0.5\n410\t0.7\n", "f.csv").is_ok());
     }
 }

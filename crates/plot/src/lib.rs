@@ -141,10 +141,13 @@ impl LinePlot {
                 .y_label_area_size(72)
                 .build_cartesian_2d(x0..x1, y0..y1)
                 .map_err(err)?;
+            let (x_fmt, y_fmt) = (tick_format(x1 - x0), tick_format(y1 - y0));
             chart
                 .configure_mesh()
                 .x_desc(&self.x_label)
                 .y_desc(&self.y_label)
+                .x_label_formatter(&x_fmt)
+                .y_label_formatter(&y_fmt)
                 .label_style((FONT, 15))
                 .axis_desc_style((FONT, 17))
                 .light_line_style(RGBColor(235, 235, 235))
@@ -167,13 +170,88 @@ impl LinePlot {
                     .label_font((FONT, 15))
                     .background_style(WHITE.mix(0.85))
                     .border_style(BLACK)
-                    .position(SeriesLabelPosition::UpperRight)
+                    .position(self.legend_position((x0, x1), (y0, y1)))
                     .draw()
                     .map_err(err)?;
             }
             root.present().map_err(err)?;
         }
         Ok(img)
+    }
+}
+
+impl LinePlot {
+    /// Where the legend hides the least of the curves: the candidate box (corners first, then edge middles)
+    /// that covers the fewest points of the curves, sampled densely along each segment. The box size is
+    /// estimated from the labels' length and the plot size (15 px font, as drawn).
+    fn legend_position(&self, (x0, x1): (f64, f64), (y0, y1): (f64, f64)) -> SeriesLabelPosition {
+        use SeriesLabelPosition::*;
+        let (w, h) = (self.size.0 as f64 - 120.0, self.size.1 as f64 - 120.0);
+        let chars = self.series.iter().map(|s| s.name.chars().count()).max().unwrap_or(0) as f64;
+        let bw = ((chars * 8.5 + 60.0) / w).min(1.0);
+        let bh = ((self.series.len() as f64 * 20.0 + 16.0) / h).min(1.0);
+        // Boxes in plot fractions (0 = left/bottom), with the few pixels of padding plotters leaves.
+        let candidates = [
+            (UpperRight, 1.0 - bw, 1.0 - bh),
+            (UpperLeft, 0.0, 1.0 - bh),
+            (LowerRight, 1.0 - bw, 0.0),
+            (LowerLeft, 0.0, 0.0),
+            (MiddleRight, 1.0 - bw, 0.5 - bh / 2.0),
+            (MiddleLeft, 0.0, 0.5 - bh / 2.0),
+            (UpperMiddle, 0.5 - bw / 2.0, 1.0 - bh),
+            (LowerMiddle, 0.5 - bw / 2.0, 0.0),
+        ];
+        let (sx, sy) = (x1 - x0, y1 - y0);
+        let mut covered = [0usize; 8];
+        for s in &self.series {
+            let pts: Vec<(f64, f64)> = s
+                .points
+                .iter()
+                .filter(|p| p.0.is_finite() && p.1.is_finite())
+                .map(|p| ((p.0 - x0) / sx, (p.1 - y0) / sy))
+                .collect();
+            for seg in pts.windows(2) {
+                for k in 0..8 {
+                    let t = k as f64 / 8.0;
+                    let (u, v) = (seg[0].0 + t * (seg[1].0 - seg[0].0), seg[0].1 + t * (seg[1].1 - seg[0].1));
+                    for (c, &(_, bx, by)) in candidates.iter().enumerate() {
+                        if u >= bx && u <= bx + bw && v >= by && v <= by + bh {
+                            covered[c] += 1;
+                        }
+                    }
+                }
+            }
+            if let [p] = pts[..] {
+                for (c, &(_, bx, by)) in candidates.iter().enumerate() {
+                    covered[c] += usize::from(p.0 >= bx && p.0 <= bx + bw && p.1 >= by && p.1 <= by + bh);
+                }
+            }
+        }
+        // The first of the least-covered candidates (the order above is the preference).
+        let best = (0..8).min_by_key(|&c| covered[c]).unwrap_or(0);
+        candidates.into_iter().nth(best).map_or(UpperRight, |c| c.0)
+    }
+}
+
+/// Tick labels with as many decimals as the tick spacing needs (`400`, not `400.0`; `0.25`, not
+/// `0.250000`), switching to exponents for very small or large values.
+fn tick_format(span: f64) -> impl Fn(&f64) -> String {
+    // plotters puts up to ~10 ticks on an axis at 1, 2 or 5 × 10^k: the spacing is about span/8.
+    let step = span.abs() / 8.0;
+    let decimals = if step > 0.0 && step.is_finite() { (-step.log10() - 1e-9).ceil().max(0.0) as usize } else { 1 };
+    move |v: &f64| {
+        let a = v.abs();
+        if a != 0.0 && !(1e-3..1e6).contains(&a) || decimals > 4 {
+            if a == 0.0 {
+                "0".to_string()
+            } else {
+                format!("{v:.1e}")
+            }
+        } else if a < 0.5 * 10f64.powi(-(decimals as i32)) {
+            "0".to_string() // −0.000 and friends
+        } else {
+            format!("{v:.decimals$}")
+        }
     }
 }
 
@@ -222,6 +300,16 @@ pub struct ImagePlot<'a> {
 
 impl ImagePlot<'_> {
     pub fn render(&self) -> Result<RgbImage, PlotError> {
+        self.render_with(true)
+    }
+
+    /// Renders without numbers on the y axis: for pictures whose y axis is not a quantity (the film chart's
+    /// two bands, named by the y label).
+    pub fn render_without_y_ticks(&self) -> Result<RgbImage, PlotError> {
+        self.render_with(false)
+    }
+
+    fn render_with(&self, y_ticks: bool) -> Result<RgbImage, PlotError> {
         register_font();
         let (w, h) = self.size;
         let mut img = RgbImage::new(w, h);
@@ -237,15 +325,20 @@ impl ImagePlot<'_> {
                 .y_label_area_size(72)
                 .build_cartesian_2d(self.x_range.0..self.x_range.1, self.y_range.0..self.y_range.1)
                 .map_err(err)?;
-            chart
-                .configure_mesh()
-                .disable_mesh()
+            let x_fmt = tick_format(self.x_range.1 - self.x_range.0);
+            let y_fmt = tick_format(self.y_range.1 - self.y_range.0);
+            let mut mesh = chart.configure_mesh();
+            mesh.disable_mesh()
                 .x_desc(&self.x_label)
                 .y_desc(&self.y_label)
+                .x_label_formatter(&x_fmt)
+                .y_label_formatter(&y_fmt)
                 .label_style((FONT, 15))
-                .axis_desc_style((FONT, 17))
-                .draw()
-                .map_err(err)?;
+                .axis_desc_style((FONT, 17));
+            if !y_ticks {
+                mesh.y_labels(0);
+            }
+            mesh.draw().map_err(err)?;
             let area = chart.plotting_area();
             let ((px0, py0), (px1, py1)) = {
                 let r = area.get_pixel_range();
@@ -353,5 +446,44 @@ mod tests {
         let dark =
             (0..img.width).flat_map(|x| (0..40).map(move |y| (x, y))).filter(|&(x, y)| img.get(x, y)[0] < 100).count();
         assert!(dark > 10);
+    }
+
+    fn plot_with(points: &[(f64, f64)]) -> LinePlot {
+        let xs: Vec<f64> = points.iter().map(|p| p.0).collect();
+        let ys: Vec<f64> = points.iter().map(|p| p.1).collect();
+        LinePlot::new("t", "x", "y").series(Series::new("R (reflectance)", &xs, &ys)).series(Series::new(
+            "flat",
+            &[0.0, 1.0],
+            &[0.0, 0.0],
+        ))
+    }
+
+    #[test]
+    fn legend_avoids_the_curves() {
+        // A curve that rises to the upper right: the legend goes to the upper left.
+        let rising: Vec<(f64, f64)> = (0..=100).map(|i| (i as f64 / 100.0, (i as f64 / 100.0).powi(4))).collect();
+        let p = plot_with(&rising);
+        assert!(matches!(p.legend_position((0.0, 1.0), (0.0, 1.0)), SeriesLabelPosition::UpperLeft));
+        // The oil-slick picture: a curve along the top, others along the bottom: the legend sits at mid height.
+        let top: Vec<(f64, f64)> =
+            (0..=100).map(|i| (i as f64 / 100.0, 0.93 + 0.04 * (i as f64 / 7.0).sin())).collect();
+        let p = plot_with(&top);
+        assert!(matches!(p.legend_position((0.0, 1.0), (0.0, 1.0)), SeriesLabelPosition::MiddleRight));
+        // Nothing in the way: the usual upper right.
+        let low: Vec<(f64, f64)> = (0..=100).map(|i| (i as f64 / 100.0, 0.1)).collect();
+        assert!(matches!(plot_with(&low).legend_position((0.0, 1.0), (0.0, 1.0)), SeriesLabelPosition::UpperRight));
+    }
+
+    #[test]
+    fn tick_labels_have_the_decimals_their_spacing_needs() {
+        let f = tick_format(400.0); // 380–780 nm: ticks every 50
+        assert_eq!((f(&400.0), f(&750.0)), ("400".to_string(), "750".to_string()));
+        let f = tick_format(1.07); // a reflectance axis: ticks every 0.1
+        assert_eq!((f(&0.1), f(&1.0), f(&-0.0)), ("0.1".to_string(), "1.0".to_string(), "0".to_string()));
+        let f = tick_format(0.08); // ticks every 0.01
+        assert_eq!(f(&0.05), "0.05");
+        let f = tick_format(2e-5);
+        assert_eq!(f(&1.5e-5), "1.5e-5");
+        assert_eq!(tick_format(1e7)(&5e6), "5.0e6");
     }
 }

@@ -9,15 +9,41 @@ pub enum ThinFilmError {
     /// A refractive-index file that cannot be read; `line` is 1-based when known.
     #[error("{path}{}: {message}", .line.map(|l| format!(", line {l}")).unwrap_or_default())]
     File { path: String, line: Option<usize>, message: String },
-    /// A wavelength outside the data of a material: never extrapolated.
+    /// A wavelength outside the data of a material: never extrapolated. `place` says where the material is
+    /// in a stack ("layer 2 of 3", "incident medium", "substrate"); it is empty for a material on its own.
     #[error(
-        "material '{material}' has data for {lo_nm}–{hi_nm} nm only; {wavelength_nm} nm is outside (no extrapolation)"
+        "{}material '{material}' has data for {lo_nm}–{hi_nm} nm only; {wavelength_nm} nm is outside (no extrapolation)",
+        prefix(place)
     )]
-    OutOfRange { material: String, wavelength_nm: f64, lo_nm: f64, hi_nm: f64 },
-    /// The incident medium must be lossless (Sussenbach, section 3.4, constraint 6).
-    #[error("incident medium '{material}' absorbs (κ = {kappa} at {wavelength_nm} nm); the incident medium must be lossless")]
-    AbsorbingIncident { material: String, kappa: f64, wavelength_nm: f64 },
+    OutOfRange { material: String, place: String, wavelength_nm: f64, lo_nm: f64, hi_nm: f64 },
+    /// The incident medium must be lossless (Sussenbach, section 3.4, constraint 6): in an absorbing medium
+    /// the incident wave decays, so neither its angle nor the reflectance relative to it is defined.
+    /// `origin` describes a library material ("gold, Johnson & Christy 1972, …"), else it is empty.
+    #[error(
+        "incident medium '{material}'{} absorbs (κ = {kappa:.4} at {wavelength_nm} nm), but light must arrive \
+         through a lossless medium: in an absorbing one the incident wave decays, so its angle and the \
+         reflectance are not defined (Sussenbach 3.4, constraint 6). Put '{material}' below a lossless \
+         medium, e.g. \"air | {material} 40nm | glass\"",
+        in_parens(origin)
+    )]
+    AbsorbingIncident { material: String, origin: String, kappa: f64, wavelength_nm: f64 },
     /// Any other invalid argument (a wavelength ≤ 0, an angle outside 0°–90°, …).
     #[error("{0}")]
     Invalid(String),
+}
+
+fn prefix(place: &str) -> String {
+    if place.is_empty() {
+        String::new()
+    } else {
+        format!("{place}: ")
+    }
+}
+
+fn in_parens(source: &str) -> String {
+    if source.is_empty() {
+        String::new()
+    } else {
+        format!(" ({source})")
+    }
 }

@@ -286,6 +286,15 @@ impl Material {
         &self.name
     }
 
+    /// The library's description of this material ("gold, Johnson & Christy 1972, 188–1937 nm, from the
+    /// built-in library") when it came from [`Material::builtin`]; `None` for constants and files.
+    pub fn library_source(&self) -> Option<String> {
+        LIBRARY
+            .iter()
+            .find(|(names, _, b)| names[0] == self.name && matches!(b, Builtin::File(..)))
+            .map(|(_, d, _)| format!("{d}, from the built-in library"))
+    }
+
     /// The wavelengths (nm) where the index is defined, inclusive; `(0, ∞)` for constants.
     pub fn range_nm(&self) -> (f64, f64) {
         self.range_nm
@@ -304,7 +313,13 @@ impl Material {
         let (lo, hi) = self.range_nm;
         let tol = 1e-9 * wavelength_nm;
         if wavelength_nm < lo - tol || wavelength_nm > hi + tol {
-            return Err(ThinFilmError::OutOfRange { material: self.name.clone(), wavelength_nm, lo_nm: lo, hi_nm: hi });
+            return Err(ThinFilmError::OutOfRange {
+                material: self.name.clone(),
+                place: String::new(),
+                wavelength_nm,
+                lo_nm: lo,
+                hi_nm: hi,
+            });
         }
         let w = wavelength_nm.clamp(lo, hi);
         let n = self.n.eval(w);

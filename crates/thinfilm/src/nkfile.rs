@@ -153,6 +153,7 @@ pub fn parse_yaml(text: &str, path: &str) -> Result<Material, ThinFilmError> {
         let mut wl = Vec::with_capacity(e.rows.len());
         let mut a = Vec::with_capacity(e.rows.len());
         let mut b = Vec::with_capacity(e.rows.len());
+        let k_only = kind == "tabulated k";
         for (ln, row) in &e.rows {
             if row.len() != cols {
                 return Err(file_err(
@@ -161,6 +162,12 @@ pub fn parse_yaml(text: &str, path: &str) -> Result<Material, ThinFilmError> {
                     format!("'{}' rows have {cols} numbers, this one has {}", e.kind, row.len()),
                 ));
             }
+            let (n_val, k_val) = match (cols, k_only) {
+                (3, _) => (Some(row[1]), Some(row[2])),
+                (_, true) => (None, Some(row[1])),
+                _ => (Some(row[1]), None),
+            };
+            check_row(path, *ln, row[0], n_val, k_val)?;
             wl.push(row[0] * 1000.0);
             a.push(row[1]);
             if cols == 3 {
@@ -190,6 +197,27 @@ pub fn parse_yaml(text: &str, path: &str) -> Result<Material, ThinFilmError> {
 }
 
 type Table = (Vec<f64>, Vec<f64>, Vec<f64>);
+
+/// Checks one table row where it is read, so that the message names its line: a positive wavelength,
+/// n > 0 and κ ≥ 0. (Order is not required: [`check_table`] sorts the rows and refuses repeated wavelengths.)
+fn check_row(
+    path: &str,
+    line: usize,
+    wavelength: f64,
+    n: Option<f64>,
+    kappa: Option<f64>,
+) -> Result<(), ThinFilmError> {
+    if wavelength <= 0.0 {
+        return Err(file_err(path, Some(line), format!("wavelength {wavelength} ≤ 0; wavelengths must be positive")));
+    }
+    if let Some(n) = n.filter(|&n| n <= 0.0) {
+        return Err(file_err(path, Some(line), format!("n = {n} ≤ 0; n must be > 0")));
+    }
+    if let Some(k) = kappa.filter(|&k| k < 0.0) {
+        return Err(file_err(path, Some(line), format!("κ = {k} < 0 (gain); κ must be ≥ 0")));
+    }
+    Ok(())
+}
 
 /// Sorts a table by wavelength and checks it: at least two rows, distinct wavelengths, n > 0, κ ≥ 0.
 fn check_table(
@@ -228,7 +256,7 @@ fn check_table(
 /// one header line allowed).
 pub fn parse_csv(text: &str, path: &str) -> Result<Material, ThinFilmError> {
     let (mut wl, mut n, mut k) = (Vec::new(), Vec::new(), Vec::new());
-    let mut header_seen = false;
+    let mut first_line = true;
     for (i, raw) in text.lines().enumerate() {
         let t = raw.trim();
         if t.is_empty() || t.starts_with('#') {
@@ -236,10 +264,10 @@ pub fn parse_csv(text: &str, path: &str) -> Result<Material, ThinFilmError> {
         }
         let fields: Vec<&str> = t.split([',', ';', '\t', ' ']).filter(|s| !s.is_empty()).collect();
         let parsed: Vec<Option<f64>> = fields.iter().map(|f| f.parse::<f64>().ok().filter(|v| v.is_finite())).collect();
+        let header_allowed = std::mem::replace(&mut first_line, false);
         if parsed.iter().any(Option::is_none) {
-            if !header_seen && wl.is_empty() {
-                header_seen = true;
-                continue;
+            if header_allowed {
+                continue; // the first line that is not a comment may name the columns
             }
             let bad = fields.iter().zip(&parsed).find(|(_, p)| p.is_none()).map(|(f, _)| *f).unwrap_or("");
             return Err(file_err(path, Some(i + 1), format!("'{bad}' is not a finite number")));
@@ -252,9 +280,11 @@ pub fn parse_csv(text: &str, path: &str) -> Result<Material, ThinFilmError> {
                 format!("expected 2 or 3 columns (wavelength_nm, n, κ), found {}", v.len()),
             ));
         }
+        let kappa = v.get(2).copied().unwrap_or(0.0);
+        check_row(path, i + 1, v[0], Some(v[1]), Some(kappa))?;
         wl.push(v[0]);
         n.push(v[1]);
-        k.push(v.get(2).copied().unwrap_or(0.0));
+        k.push(kappa);
     }
     let (wl, n, k) = check_table(path, None, wl, n, k, false)?;
     let range = (wl[0], wl[wl.len() - 1]);
@@ -310,5 +340,34 @@ mod tests {
         assert!(m.index_at(399.0).is_err());
         let e = parse_csv("400,1.5\n500,abc\n", "y.csv").unwrap_err().to_string();
         assert!(e.contains("line 2") && e.contains("abc"), "{e}");
+    }
+
+    #[test]
+    fn csv_errors_name_the_line() {
+        let e = parse_csv("# nk\nwavelength_nm,n,k\n400,1.5,0.1\n500,1.6,-0.2\n600,1.6,0.1\n", "g.csv").unwrap_err();
+        assert_eq!(e.to_string(), "g.csv, line 4: κ = -0.2 < 0 (gain); κ must be ≥ 0");
+        let e = parse_csv("400,1.5\n500,0\n", "n.csv").unwrap_err().to_string();
+        assert!(e.starts_with("n.csv, line 2: n = 0 ≤ 0"), "{e}");
+        // Only the first line that is not a comment may be a header.
+        let e = parse_csv("400,1.5\nwavelength_nm,n\n500,1.6\n", "h.csv").unwrap_err().to_string();
+        assert!(e.starts_with("h.csv, line 2: 'wavelength_nm'"), "{e}");
+        let e = parse_csv("400,1.5,0,7\n500,1.6\n", "c.csv").unwrap_err().to_string();
+        assert!(e.starts_with("c.csv, line 1: expected 2 or 3 columns") && e.contains("found 4"), "{e}");
+    }
+
+    #[test]
+    fn yaml_row_errors_name_the_row_line() {
+        let text = "DATA:\n  - type: tabulated nk\n    data: |\n        0.4 1.5 0.0\n        0.5 1.5 -0.1\n        0.6 1.5 0.0\n";
+        let e = parse_yaml(text, "gain.yml").unwrap_err().to_string();
+        assert_eq!(e, "gain.yml, line 5: κ = -0.1 < 0 (gain); κ must be ≥ 0");
+        let text = "DATA:\n  - type: tabulated n\n    data: |\n        0.4 1.5\n        0.5 -1.5\n";
+        let e = parse_yaml(text, "n.yml").unwrap_err().to_string();
+        assert!(e.starts_with("n.yml, line 5: n = -1.5 ≤ 0"), "{e}");
+        let text = "DATA:\n  - type: tabulated k\n    data: |\n        0.4 0.1\n        0.5 0.2 0.3\n";
+        let e = parse_yaml(text, "k.yml").unwrap_err().to_string();
+        assert!(e.starts_with("k.yml, line 5: 'tabulated k' rows have 2 numbers, this one has 3"), "{e}");
+        let text = "DATA:\n  - type: tabulated k\n    data: |\n        0.4 0.1\n        -0.5 0.2\n";
+        let e = parse_yaml(text, "w.yml").unwrap_err().to_string();
+        assert!(e.starts_with("w.yml, line 5: wavelength -0.5 ≤ 0"), "{e}");
     }
 }

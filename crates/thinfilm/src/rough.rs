@@ -162,9 +162,9 @@ impl RoughStack {
         }
         let n = self.stack.layers.len();
         let nn = if n == 0 {
-            self.stack.incident.index_at(wavelength_nm)?
+            self.stack.incident.index_at(wavelength_nm).map_err(|e| self.stack.place(e, 0))?
         } else {
-            self.stack.layers[n - 1].material.index_at(wavelength_nm)?
+            self.stack.layers[n - 1].material.index_at(wavelength_nm).map_err(|e| self.stack.place(e, n))?
         };
         self.htsg.roughness.check_wavelength(wavelength_nm, nn.re)?;
         Ok((nn, 2.0 * PI * nn.re / wavelength_nm))

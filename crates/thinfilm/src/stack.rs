@@ -210,10 +210,11 @@ impl Stack {
     /// The `N + 2` media at one wavelength and incidence angle (checks λ, θ and the incident medium).
     pub fn media(&self, wavelength_nm: f64, angle_rad: f64) -> Result<Vec<Medium>, ThinFilmError> {
         check_angle(angle_rad)?;
-        let n0 = self.incident.index_at(wavelength_nm)?;
+        let n0 = self.incident.index_at(wavelength_nm).map_err(|e| self.place(e, 0))?;
         if n0.im > 0.0 {
             return Err(ThinFilmError::AbsorbingIncident {
                 material: self.incident.name().to_string(),
+                origin: self.incident.library_source().unwrap_or_default(),
                 kappa: n0.im,
                 wavelength_nm,
             });
@@ -221,12 +222,29 @@ impl Stack {
         let s = n0.re * angle_rad.min(std::f64::consts::FRAC_PI_2).sin();
         let mut media = Vec::with_capacity(self.layers.len() + 2);
         media.push(Medium { n: n0, cos: Complex64::new(angle_rad.min(std::f64::consts::FRAC_PI_2).cos(), 0.0) });
-        for l in &self.layers {
-            let n = l.material.index_at(wavelength_nm)?;
+        for (i, l) in self.layers.iter().enumerate() {
+            let n = l.material.index_at(wavelength_nm).map_err(|e| self.place(e, i + 1))?;
             media.push(Medium { n, cos: layer_cosine(s, n) });
         }
-        media.push(Medium::new(self.substrate.index_at(wavelength_nm)?, s));
+        let last = self.layers.len() + 1;
+        media.push(Medium::new(self.substrate.index_at(wavelength_nm).map_err(|e| self.place(e, last))?, s));
         Ok(media)
+    }
+
+    /// Names the place of medium `i` (0 = incident, 1..=N layers, N + 1 = substrate) in an out-of-range error.
+    pub(crate) fn place(&self, e: ThinFilmError, i: usize) -> ThinFilmError {
+        match e {
+            ThinFilmError::OutOfRange { material, wavelength_nm, lo_nm, hi_nm, .. } => {
+                let n = self.layers.len();
+                let place = match i {
+                    0 => "incident medium".to_string(),
+                    i if i > n => "substrate".to_string(),
+                    i => format!("layer {i} of {n}"),
+                };
+                ThinFilmError::OutOfRange { material, place, wavelength_nm, lo_nm, hi_nm }
+            }
+            e => e,
+        }
     }
 
     /// Complex amplitude coefficients `r_s, r_p, t_s, t_p` at one wavelength (nm) and incidence angle (rad).
@@ -427,6 +445,37 @@ mod tests {
         assert!(matches!(s.evaluate(900.0, 0.0), Err(ThinFilmError::OutOfRange { .. })));
         assert!(s.evaluate(500.0, 1.7).is_err());
         assert!(s.evaluate(-1.0, 0.0).is_err());
+    }
+
+    #[test]
+    fn out_of_range_names_the_layer_and_the_data_range() {
+        // Aspnes & Studna Si: 206.6–826.6 nm (data/materials/si_aspnes.yml); Au (Johnson & Christy) from 187.9 nm.
+        let s = Stack::parse("air | water 100nm | Si 108nm | glass").unwrap();
+        let e = s.evaluate(900.0, 0.0).unwrap_err().to_string();
+        assert!(e.starts_with("layer 2 of 2: material 'si' has data for 206.6–826.6 nm only; 900 nm"), "{e}");
+        let e = Stack::parse("air | water 100nm | Au").unwrap().evaluate(150.0, 0.0).unwrap_err().to_string();
+        assert!(e.starts_with("substrate: material 'au' has data for 187.9"), "{e}");
+        let e = Stack::parse("Si | air 100nm | glass").unwrap().evaluate(150.0, 0.0).unwrap_err().to_string();
+        assert!(e.starts_with("incident medium: material 'si'"), "{e}");
+    }
+
+    #[test]
+    fn absorbing_library_incident_medium_says_which_and_why() {
+        let e = Stack::parse("Au | water 100nm | glass").unwrap().evaluate(550.0, 0.0).unwrap_err();
+        assert!(matches!(e, ThinFilmError::AbsorbingIncident { .. }));
+        let e = e.to_string();
+        for needle in [
+            "incident medium 'au' (gold, Johnson & Christy 1972",
+            "from the built-in library",
+            "κ = ",
+            "lossless",
+            "air | au 40nm | glass",
+        ] {
+            assert!(e.contains(needle), "'{e}' lacks '{needle}'");
+        }
+        // An absorbing constant is refused when the stack is read, before any wavelength.
+        let e = Stack::parse("n=1.5+0.1i | glass").unwrap_err().to_string();
+        assert!(e.contains("the incident medium must be lossless (κ = 0.1 > 0)"), "{e}");
     }
 
     #[test]

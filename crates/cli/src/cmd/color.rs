@@ -115,17 +115,17 @@ fn xyz(a: XyzArgs) -> Result<()> {
             .map(|v| v.iter().map(|x| format!("{:.6}", x.as_f64().unwrap_or(f64::NAN))).collect::<Vec<_>>().join("  "))
             .unwrap_or_default()
     };
-    println!("spectrum     {}  ({lo}–{hi} nm, {} samples)", a.spectrum.display(), spectrum.values().len());
-    println!(
+    crate::outln!("spectrum     {}  ({lo}–{hi} nm, {} samples)", a.spectrum.display(), spectrum.values().len())?;
+    crate::outln!(
         "conditions   illuminant {illuminant}, CIE {observer} observer{}",
         if a.emissive { ", emissive" } else { "" }
-    );
-    println!("XYZ          {}", f("XYZ"));
-    println!("xyY          {}", f("xyY"));
-    println!("L*a*b*       {}", f("Lab"));
-    println!("linear sRGB  {}", f("linear_srgb"));
-    println!("sRGB         {}", f("srgb"));
-    println!("hex          {}", report["hex"].as_str().unwrap_or(""));
+    )?;
+    crate::outln!("XYZ          {}", f("XYZ"))?;
+    crate::outln!("xyY          {}", f("xyY"))?;
+    crate::outln!("L*a*b*       {}", f("Lab"))?;
+    crate::outln!("linear sRGB  {}", f("linear_srgb"))?;
+    crate::outln!("sRGB         {}", f("srgb"))?;
+    crate::outln!("hex          {}", report["hex"].as_str().unwrap_or(""))?;
     Ok(())
 }
 
@@ -155,7 +155,7 @@ fn delta_e(a: DeltaEArgs) -> Result<()> {
     if a.json {
         crate::output::print_json(&json!({ "delta_e": d, "formula": a.formula.trim() }))
     } else {
-        println!("{d:.4}");
+        crate::outln!("{d:.4}")?;
         Ok(())
     }
 }

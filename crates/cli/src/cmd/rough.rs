@@ -1,4 +1,4 @@
-//! The rough-substrate (LSRS) branch of `iridis thinfilm spectrum|color|table|bench`: the flags
+//! The rough-substrate (LSRS) branch of `iridis thinfilm spectrum|color|table|chart|bench`: the flags
 //! `--roughness σ --correlation τ` switch a command from Sussenbach's smooth model to the LSRS model
 //! (`iridis_thinfilm::rough`, thesis eq. 3.15–3.20) with the HTSG BRDF at the substrate
 //! (`iridis_thinfilm::htsg`). Specular (`k_r`, a fraction of the incident power) and diffuse (`k_d`, sr⁻¹;
@@ -7,14 +7,13 @@
 
 use std::f64::consts::PI;
 use std::fmt::Write as _;
-use std::io::Write as _;
 use std::path::Path;
 use std::time::Instant;
 
 use anyhow::{bail, Result};
 use clap::Args as ClapArgs;
 use iridis_color::units::{parse_angle_rad, parse_range};
-use iridis_color::{Illuminant, Observer, SpectralWeights};
+use iridis_color::{Illuminant, Observer, SpectralWeights, Xyz};
 use iridis_plot::{magma, ColorBar, ImagePlot, LinePlot, RgbImage, Series as PlotSeries};
 use iridis_thinfilm::htsg::{Htsg, Roughness, Series};
 use iridis_thinfilm::rough::{angle_grid, Lsrs, RoughStack};
@@ -24,7 +23,7 @@ use serde_json::json;
 /// The stack of Sussenbach's Listing 3.6: a 348 nm water film on (rough) silicon, in air.
 pub const LISTING_3_6_STACK: &str = "air | water 348nm | Si";
 
-/// Flags of the rough model, flattened into `spectrum`, `color`, `table` and `bench`.
+/// Flags of the rough model, flattened into `spectrum`, `color`, `table`, `chart` and `bench`.
 #[derive(Debug, Clone, ClapArgs)]
 pub struct RoughArgs {
     /// Rough substrate (LSRS model with the HTSG BRDF): rms roughness σ of the last interface, e.g. 25nm.
@@ -80,6 +79,38 @@ fn deg(rad: f64) -> String {
     format!("{}", (rad.to_degrees() * 1e6).round() / 1e6)
 }
 
+/// `iridis thinfilm chart … --roughness σ --correlation τ`: for every thickness of the swept layer, the XYZ of
+/// the rough film's specular part (`k_r`, like the smooth chart's reflected band) and of its diffuse part
+/// (`π k_d`, the radiance factor: Y = 1 is a white Lambertian surface under the same light).
+#[allow(clippy::too_many_arguments)]
+pub fn chart_colours(
+    stack: &Stack,
+    layer: usize,
+    thicknesses: &[f64],
+    args: &RoughArgs,
+    view: f64,
+    grid: &[f64],
+    illuminant: Illuminant,
+    observer: Observer,
+) -> Result<Vec<(Xyz, Xyz)>> {
+    use rayon::prelude::*;
+    if args.light_angles.is_some() {
+        bail!("--light-angles is for 'table'; use --light-angle here");
+    }
+    let light = args.light_angle.unwrap_or(view);
+    let weights = SpectralWeights::new(grid, illuminant, observer);
+    thicknesses
+        .par_iter()
+        .map(|&d| {
+            let rough = args.build(stack.with_thickness(layer, d))?;
+            let xs = evaluate(&rough, grid, view, light, args.azimuth)?;
+            let spec = weights.integrate(&xs.iter().map(|x| x.1.k_r()).collect::<Vec<_>>());
+            let diff = weights.integrate(&xs.iter().map(|x| PI * x.1.k_d()).collect::<Vec<_>>());
+            Ok((spec, diff))
+        })
+        .collect()
+}
+
 /// One wavelength: the smooth model's R and the LSRS values.
 fn evaluate(rough: &RoughStack, grid: &[f64], view: f64, light: f64, azimuth: f64) -> Result<Vec<(f64, Lsrs)>> {
     grid.iter().map(|&w| Ok((rough.stack.evaluate(w, view)?.r(), rough.evaluate(w, view, light, azimuth)?))).collect()
@@ -117,7 +148,7 @@ pub fn spectrum(
         let img = plot.render()?;
         crate::output::write_png_rgb8(p, img.width, img.height, &img.data)?;
         if !json_out && !csv {
-            println!("wrote {}", p.display());
+            crate::outln!("wrote {}", p.display())?;
         }
     }
     let bound = xs.iter().map(|x| x.1.bound).fold(0.0, f64::max);
@@ -174,7 +205,7 @@ pub fn spectrum(
             let _ = writeln!(out, "{:>10.2}  {:>10.7}  {:>12.7}  {:>12.7}", grid[i], r, x.k_r(), x.k_d());
         }
     }
-    std::io::stdout().write_all(out.as_bytes())?;
+    crate::output::write_stdout_bytes(out.as_bytes())?;
     Ok(())
 }
 
@@ -220,26 +251,26 @@ pub fn color(
             .map(|v| v.iter().map(|x| format!("{:.5}", x.as_f64().unwrap_or(f64::NAN))).collect::<Vec<_>>().join("  "))
             .unwrap_or_default()
     };
-    println!("stack        {}", rough.stack);
-    println!(
+    crate::outln!("stack        {}", rough.stack)?;
+    crate::outln!(
         "rough        σ = {} nm, τ = {} nm at the substrate (HTSG, {})",
         rough.htsg.roughness.sigma_nm(),
         rough.htsg.roughness.tau_nm(),
         args.series_label()
-    );
-    println!(
+    )?;
+    crate::outln!(
         "conditions   view {}°, light {}°, azimuth {}°, illuminant {illuminant}, CIE {observer} observer, {}–{} nm",
         deg(view),
         deg(light),
         deg(args.azimuth),
         grid[0],
         grid[grid.len() - 1]
-    );
+    )?;
     for (_, name, r) in &reports {
-        println!("{name}");
-        println!("  XYZ        {}", f(&r["XYZ"]));
-        println!("  L*a*b*     {}", f(&r["Lab"]));
-        println!("  sRGB       {}   {}", f(&r["srgb"]), r["hex"].as_str().unwrap_or(""));
+        crate::outln!("{name}")?;
+        crate::outln!("  XYZ        {}", f(&r["XYZ"]))?;
+        crate::outln!("  L*a*b*     {}", f(&r["Lab"]))?;
+        crate::outln!("  sRGB       {}   {}", f(&r["srgb"]), r["hex"].as_str().unwrap_or(""))?;
     }
     Ok(())
 }
@@ -325,7 +356,7 @@ pub fn table(
             crate::output::write_bytes(p, &csv)?;
             eprintln!("wrote {}", p.display());
         }
-        None => std::io::stdout().write_all(&csv)?,
+        None => crate::output::write_stdout_bytes(&csv)?,
     }
     Ok(())
 }
@@ -378,24 +409,24 @@ pub fn bench(stack: Stack, args: &RoughArgs, samples: usize, seconds: f64, json_
     if json_out {
         return crate::output::print_json(&v);
     }
-    println!(
+    crate::outln!(
         "LSRS table (Algorithm 2), {}, σ {} nm, τ {} nm, {}",
         rough.stack,
         rough.htsg.roughness.sigma_nm(),
         rough.htsg.roughness.tau_nm(),
         args.series_label()
-    );
-    println!(
+    )?;
+    crate::outln!(
         "{} views × {} lights × {} wavelengths = {entries} entries, one thread",
         views.len(),
         views.len(),
         grid.len()
-    );
-    println!("  shared generation  {shared_s:.3} s per table  ({shared_per_s:.3e} entries/s, {runs} runs)");
-    println!(
+    )?;
+    crate::outln!("  shared generation  {shared_s:.3} s per table  ({shared_per_s:.3e} entries/s, {runs} runs)")?;
+    crate::outln!(
         "  direct evaluation  {direct_per_s:.3e} entries/s ({n} entries timed) → table {:.1} s",
         entries / direct_per_s
-    );
-    println!("  speed-up ×{:.1}; largest relative difference of k_d {max_rel:.1e}", shared_per_s / direct_per_s);
+    )?;
+    crate::outln!("  speed-up ×{:.1}; largest relative difference of k_d {max_rel:.1e}", shared_per_s / direct_per_s)?;
     Ok(())
 }

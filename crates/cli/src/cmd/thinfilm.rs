@@ -3,7 +3,6 @@
 //! the Python `tmm` package.
 
 use std::fmt::Write as _;
-use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -57,7 +56,9 @@ Examples:
     /// The soap-film colour chart (Sussenbach Figure 5.11): colour against the thickness of one layer.
     #[command(after_help = "\
 One layer's thickness is written {d}; it is swept over --thickness FROM:TO:STEP. The picture shows the
-reflected colour (top band) and the transmitted colour (bottom band) with a labelled thickness axis. Film
+reflected colour (top band) and the transmitted colour (bottom band) with a labelled thickness axis. With
+--roughness/--correlation (a rough substrate, LSRS model) the bands are the specular colour k_r (top, exposed
+like the reflected band) and the diffuse colour π·k_d (bottom, at 1 RU: Y = 1 is a white matte surface). Film
 reflectance is low (a soap film reflects at most ~8%), so by default the exposure is set so that the
 brightest reflected colour of the chart reaches the top of the display range; --exposure fixes it instead
 (in relative units, 1 RU = a perfect mirror is just white).
@@ -65,7 +66,8 @@ brightest reflected colour of the chart reaches the top of the display range; --
 Examples:
   iridis thinfilm chart --stack \"air | water {d} | air\" --thickness 0nm:2000nm:2nm -o soap_chart.png
   iridis thinfilm chart --stack \"air | gasoline {d} | water 220nm | asphalt\" --thickness 0nm:1000nm:2nm --angle 30deg -o oil.png
-  iridis thinfilm chart --stack \"air | water {d} | air\" --thickness 0nm:1000nm:1nm --exposure 4 --csv chart.csv -o chart.png")]
+  iridis thinfilm chart --stack \"air | water {d} | air\" --thickness 0nm:1000nm:1nm --exposure 4 --csv chart.csv -o chart.png
+  iridis thinfilm chart --stack \"air | water {d} | Si\" --thickness 0nm:1000nm:2nm --roughness 25nm --correlation 300nm -o rough.png")]
     Chart(ChartArgs),
     /// The built-in materials and their sources.
     #[command(after_help = "\
@@ -209,9 +211,12 @@ pub struct ChartArgs {
     /// Output PNG.
     #[arg(short = 'o', long, default_value = "thinfilm_chart.png")]
     pub output: PathBuf,
-    /// Also write the numbers (thickness_nm, reflected X Y Z and hex, transmitted X Y Z and hex) as CSV.
+    /// Also write the numbers (thickness_nm, reflected X Y Z and hex, transmitted X Y Z and hex) as CSV;
+    /// with --roughness the two parts are specular and diffuse (columns S_… and D_…).
     #[arg(long)]
     pub csv: Option<PathBuf>,
+    #[command(flatten)]
+    pub rough: super::rough::RoughArgs,
 }
 
 #[derive(Debug, ClapArgs)]
@@ -314,7 +319,7 @@ fn spectrum(a: SpectrumArgs) -> Result<()> {
         let img = plot.render()?;
         write_png(p, &img)?;
         if !a.json && !a.csv {
-            println!("wrote {}", p.display());
+            crate::outln!("wrote {}", p.display())?;
         }
     }
     if a.json {
@@ -337,7 +342,7 @@ fn spectrum(a: SpectrumArgs) -> Result<()> {
             let _ = writeln!(out, "{:>10.2}  {:>10.7}  {:>10.7}  {:>10.7}", grid[i], r[i], t[i], ab[i]);
         }
     }
-    std::io::stdout().write_all(out.as_bytes())?;
+    crate::output::write_stdout_bytes(out.as_bytes())?;
     Ok(())
 }
 
@@ -414,7 +419,7 @@ fn table(a: TableArgs) -> Result<()> {
             crate::output::write_bytes(p, csv.as_bytes())?;
             eprintln!("wrote {} ({} angles × {} wavelengths)", p.display(), angles.len(), grid.len());
         }
-        None => std::io::stdout().write_all(csv.as_bytes())?,
+        None => crate::output::write_stdout_bytes(csv.as_bytes())?,
     }
     Ok(())
 }
@@ -444,19 +449,19 @@ fn color(a: ColorArgs) -> Result<()> {
             .map(|v| v.iter().map(|x| format!("{:.5}", x.as_f64().unwrap_or(f64::NAN))).collect::<Vec<_>>().join("  "))
             .unwrap_or_default()
     };
-    println!("stack        {stack}");
-    println!(
+    crate::outln!("stack        {stack}")?;
+    crate::outln!(
         "conditions   {}° incidence{}, illuminant {illuminant}, CIE {observer} observer, {}–{} nm",
         fmt_deg(a.angle),
         pol_label(pol),
         grid[0],
         grid[grid.len() - 1]
-    );
+    )?;
     for (name, r) in [("reflected", &refl), ("transmitted", &trans)] {
-        println!("{name}");
-        println!("  XYZ        {}", f(&r["XYZ"]));
-        println!("  L*a*b*     {}", f(&r["Lab"]));
-        println!("  sRGB       {}   {}", f(&r["srgb"]), r["hex"].as_str().unwrap_or(""));
+        crate::outln!("{name}")?;
+        crate::outln!("  XYZ        {}", f(&r["XYZ"]))?;
+        crate::outln!("  L*a*b*     {}", f(&r["Lab"]))?;
+        crate::outln!("  sRGB       {}   {}", f(&r["srgb"]), r["hex"].as_str().unwrap_or(""))?;
     }
     Ok(())
 }
@@ -489,8 +494,16 @@ fn chart(a: ChartArgs) -> Result<()> {
     }
     let illuminant: Illuminant = a.illuminant.parse()?;
     let grid = a.grid.grid()?;
-    let meter = FilmColorimeter::new(&grid, illuminant, Observer::Cie1931);
-    let cols = sweep(&stack, layer, &ds, a.angle, &meter)?;
+    let cols = if a.rough.is_set() {
+        super::rough::chart_colours(&stack, layer, &ds, &a.rough, a.angle, &grid, illuminant, Observer::Cie1931)?
+    } else {
+        sweep(&stack, layer, &ds, a.angle, &FilmColorimeter::new(&grid, illuminant, Observer::Cie1931))?
+    };
+    let (top, bottom, prefix) = if a.rough.is_set() {
+        ("specular k_r", "diffuse π·k_d", ["S", "D"])
+    } else {
+        ("reflected", "transmitted", ["R", "T"])
+    };
     let exposure = match a.exposure {
         Some(e) if e.is_finite() && e > 0.0 => e,
         Some(e) => bail!("--exposure {e} must be a positive number (RU)"),
@@ -505,17 +518,23 @@ fn chart(a: ChartArgs) -> Result<()> {
     };
     let tone = ToneMap { exposure_ru: exposure, ..ToneMap::default() };
     let trans_tone = ToneMap::default();
-    let img = chart_image(&a.stack, &ds, &cols, &tone, &trans_tone, a.angle, illuminant, exposure)?;
+    let title = match (a.rough.roughness, a.rough.correlation) {
+        (Some(sigma), Some(tau)) => format!("{}, rough σ {sigma} nm, τ {tau} nm", stack_title(&a.stack)),
+        _ => stack_title(&a.stack),
+    };
+    let bands = ChartBands { title: &title, top, bottom };
+    let img = chart_image(&bands, &ds, &cols, &tone, &trans_tone, a.angle, illuminant, exposure)?;
     write_png(&a.output, &img)?;
-    println!(
-        "wrote {} ({} thicknesses, {}–{} nm; reflected at exposure {exposure:.3} RU, transmitted at 1 RU)",
+    crate::outln!(
+        "wrote {} ({} thicknesses, {}–{} nm; {top} at exposure {exposure:.3} RU, {bottom} at 1 RU)",
         a.output.display(),
         ds.len(),
         ds[0],
         ds[ds.len() - 1]
-    );
+    )?;
     if let Some(p) = &a.csv {
-        let mut csv = String::from("thickness_nm,R_X,R_Y,R_Z,R_hex,T_X,T_Y,T_Z,T_hex\n");
+        let [t, b] = prefix;
+        let mut csv = format!("thickness_nm,{t}_X,{t}_Y,{t}_Z,{t}_hex,{b}_X,{b}_Y,{b}_Z,{b}_hex\n");
         for (d, (r, t)) in ds.iter().zip(&cols) {
             let _ = writeln!(
                 csv,
@@ -531,14 +550,21 @@ fn chart(a: ChartArgs) -> Result<()> {
             );
         }
         crate::output::write_bytes(p, csv.as_bytes())?;
-        println!("wrote {}", p.display());
+        crate::outln!("wrote {}", p.display())?;
     }
     Ok(())
 }
 
 #[allow(clippy::too_many_arguments)]
+/// What a chart's two bands show, and its title's stack part.
+struct ChartBands<'a> {
+    title: &'a str,
+    top: &'a str,
+    bottom: &'a str,
+}
+
 fn chart_image(
-    stack_text: &str,
+    bands: &ChartBands,
     ds: &[f64],
     cols: &[(Xyz, Xyz)],
     tone: &ToneMap,
@@ -554,7 +580,8 @@ fn chart_image(
         let k = (x as usize).min(cols.len() - 1);
         let (r, t) = (tone.to_rgb8(cols[k].0), trans_tone.to_rgb8(cols[k].1));
         for y in 0..h {
-            // Top half: reflected (y from 1 down to 0.5), bottom half: transmitted; a thin white gap.
+            // Top half: reflected or specular (y from 1 down to 0.5), bottom half: transmitted or diffuse;
+            // a thin white gap.
             let c = if y < h / 2 - 1 {
                 r
             } else if y > h / 2 {
@@ -568,14 +595,15 @@ fn chart_image(
     let x_range = (ds[0], ds[ds.len() - 1].max(ds[0] + 1e-9));
     let img = ImagePlot {
         title: format!(
-            "Film colours: {}  ({}°, {}, reflected ×{:.2} RU)",
-            stack_title(stack_text),
+            "Film colours: {}  ({}°, {}, {} ×{:.2} RU)",
+            bands.title,
             fmt_deg(angle),
             illuminant,
+            bands.top,
             exposure
         ),
         x_label: "thickness of the {d} layer (nm)".into(),
-        y_label: "transmitted | reflected".into(),
+        y_label: format!("{} | {}", bands.bottom, bands.top),
         x_range,
         y_range: (0.0, 1.0),
         pixels: &px,
@@ -583,7 +611,7 @@ fn chart_image(
         colorbar: None,
         size: (1200, 360),
     }
-    .render()?;
+    .render_without_y_ticks()?;
     Ok(img)
 }
 
@@ -620,11 +648,11 @@ fn materials(a: MaterialsArgs) -> Result<()> {
             Some(Err(_)) => format!("   (no data at {} nm)", a.at.unwrap_or(0.0)),
             None => String::new(),
         };
-        println!("{:<36} {desc}{idx}", names.join(", "));
+        crate::outln!("{:<36} {desc}{idx}", names.join(", "))?;
     }
-    println!(
+    crate::outln!(
         "\nAlso: n=1.38, n=0.2+3.4i (constants) and file:PATH (refractiveindex.info YAML or CSV wavelength_nm,n,k)."
-    );
+    )?;
     Ok(())
 }
 
@@ -748,14 +776,20 @@ fn bench(a: BenchArgs) -> Result<()> {
             &json!({ "threads": threads, "unit": "(λ, θ) evaluations per second, R and T for s and p", "results": results }),
         );
     }
-    println!("(λ, θ) evaluations per second (R and T, s and p); all threads = {threads}");
-    println!(
+    crate::outln!("(λ, θ) evaluations per second (R and T, s and p); all threads = {threads}")?;
+    crate::outln!(
         "{:<34} {:>14} {:>14} {:>14} {:>14} {:>12} {:>9}",
-        "stack", "general 1 thr", "general all", "fast 1 thr", "fast all", "tmm (Python)", "× tmm"
-    );
+        "stack",
+        "general 1 thr",
+        "general all",
+        "fast 1 thr",
+        "fast all",
+        "tmm (Python)",
+        "× tmm"
+    )?;
     for r in &results {
         let tm = r["tmm_1_thread"].as_f64();
-        println!(
+        crate::outln!(
             "{:<34} {:>14.0} {:>14.0} {:>14.0} {:>14.0} {:>12} {:>9}",
             r["stack"].as_str().unwrap_or(""),
             r["rust_general_1_thread"].as_f64().unwrap_or(0.0),
@@ -764,12 +798,12 @@ fn bench(a: BenchArgs) -> Result<()> {
             r["rust_fast_all_threads"].as_f64().unwrap_or(0.0),
             tm.map(|v| format!("{v:.0}")).unwrap_or_else(|| "—".into()),
             r["speedup_general_1_thread"].as_f64().map(|v| format!("{v:.0}")).unwrap_or_else(|| "—".into()),
-        );
+        )?;
     }
     if let Some(note) = results.first().and_then(|r| r["tmm_note"].as_str()) {
-        println!("tmm: {note}");
+        crate::outln!("tmm: {note}")?;
     }
-    println!("× tmm compares the general path on one thread with tmm on one thread.");
+    crate::outln!("× tmm compares the general path on one thread with tmm on one thread.")?;
     Ok(())
 }
 
@@ -829,8 +863,8 @@ pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
     let cols = sweep(&stack, layer, &ds, 0.0, &meter)?;
     let ymax = cols.iter().map(|c| c.0.y).fold(0.0, f64::max).max(1e-12);
     let tone = ToneMap { exposure_ru: 1.0 / ymax, ..ToneMap::default() };
-    let img =
-        chart_image("air | water {d} | air", &ds, &cols, &tone, &ToneMap::default(), 0.0, Illuminant::D65, 1.0 / ymax)?;
+    let soap = ChartBands { title: "air | water {d} | air", top: "reflected", bottom: "transmitted" };
+    let img = chart_image(&soap, &ds, &cols, &tone, &ToneMap::default(), 0.0, Illuminant::D65, 1.0 / ymax)?;
     write_png(&g.path("thinfilm_soap_chart.png"), &img)?;
     g.image(
         "thinfilm_soap_chart.png",

@@ -1,0 +1,72 @@
+//! CIELAB with the default white (D65, CIE 1931): `Lab::from_xyz_d65` / `to_xyz_d65` against colour-science
+//! (fixture from tools/gen_color_fixtures.py) and the definition of CIELAB.
+
+use iridis_color::integrate::{reflectance_to_xyz, white_point};
+use iridis_color::lab::d65_white;
+use iridis_color::{Illuminant, Lab, Observer, Spectrum, Xyz};
+use serde_json::Value;
+
+fn fixture() -> Value {
+    serde_json::from_str(include_str!("fixtures/colour_science.json")).unwrap()
+}
+
+fn arr3(v: &Value) -> [f64; 3] {
+    let a: Vec<f64> = v.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+    [a[0], a[1], a[2]]
+}
+
+#[test]
+fn default_white_is_colour_science_d65() {
+    let doc = fixture();
+    let d65 = doc["illuminants"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|e| e["illuminant"] == "D65" && e["observer"] == "1931")
+        .unwrap();
+    let want = arr3(&d65["XYZ"]);
+    let w = d65_white();
+    assert!((w.y - 1.0).abs() < 1e-12);
+    for (got, want) in w.to_array().iter().zip(want) {
+        assert!((got - want).abs() < 2e-5, "{w:?} vs colour-science {want}");
+    }
+    assert_eq!(w, white_point(Illuminant::D65, Observer::Cie1931));
+    // The white itself is L* = 100, a* = b* = 0; half its luminance is L* = 116·0.5^(1/3) − 16 = 76.0693.
+    let l = Lab::from_xyz_d65(w);
+    assert!((l.l - 100.0).abs() < 1e-12 && l.a.abs() < 1e-12 && l.b.abs() < 1e-12, "{l:?}");
+    let half = Lab::from_xyz_d65(w.scale(0.5));
+    assert!((half.l - (116.0 * 0.5f64.cbrt() - 16.0)).abs() < 1e-12 && half.a.abs() < 1e-12);
+}
+
+#[test]
+fn d65_lab_matches_colour_science_and_round_trips() {
+    let doc = fixture();
+    let wl: Vec<f64> = doc["wavelengths_nm"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+    let mut checked = 0;
+    for e in doc["spectra"].as_array().unwrap() {
+        if e["illuminant"] != "D65" || e["observer"] != "1931" {
+            continue;
+        }
+        let name = e["name"].as_str().unwrap();
+        let values: Vec<f64> =
+            doc["spectrum_values"][name].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+        let xyz = reflectance_to_xyz(&Spectrum::new(wl.clone(), values).unwrap(), Illuminant::D65, Observer::Cie1931);
+        let lab = Lab::from_xyz_d65(xyz);
+        // Same as naming the white explicitly, and as colour-science (tolerance as in against_references.rs:
+        // rectangle against trapezoid rule on the 1 nm grid).
+        assert_eq!(lab, Lab::from_xyz(xyz, white_point(Illuminant::D65, Observer::Cie1931)));
+        let want = arr3(&e["Lab"]);
+        for c in 0..3 {
+            assert!((lab.to_array()[c] - want[c]).abs() < 2e-3, "{name}: {lab:?} vs colour-science {want:?}");
+        }
+        let back = lab.to_xyz_d65();
+        for c in 0..3 {
+            assert!((back.to_array()[c] - xyz.to_array()[c]).abs() < 1e-12, "{name}: {back:?} vs {xyz:?}");
+        }
+        checked += 1;
+    }
+    assert!(checked >= 9, "{checked} D65 spectra");
+    // Dark colours take the linear branch of CIELAB (Y/Yw ≤ (6/29)³): L* = (29/3)³ Y.
+    let dark = Xyz::new(0.001, 0.001, 0.001);
+    assert!((Lab::from_xyz_d65(dark).l - 24389.0 / 27.0 * 0.001).abs() < 1e-12);
+}
