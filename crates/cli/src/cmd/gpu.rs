@@ -80,13 +80,13 @@ pub fn run_brdf_map(a: BrdfMapArgs, wi: [f64; 3], encoding: Encoding) -> Result<
     if let Some(exr) = &a.exr {
         brdf::write_exr(exr, &out.xyz, a.size, a.exposure)?;
     }
-    println!(
+    crate::outln!(
         "wrote {} (lookup map on the GPU, {}², {:.2} ms on {})",
         a.output.display(),
         a.size,
         secs * 1e3,
         gpu.adapter_name()
-    );
+    )?;
     Ok(())
 }
 
@@ -253,11 +253,11 @@ fn bench_scene(a: &GpuBench, path: &std::path::Path) -> Result<()> {
     let tone = ToneMap { exposure_ru: scene.output.exposure, encoding: scene.output.encoding };
     let frame = g.frame(w, h, 1, tone)?;
     if !a.json {
-        println!("adapter: {adapter}");
+        crate::outln!("adapter: {adapter}")?;
         if gpu.is_software() {
-            println!("  (a software adapter: these times measure the CPU, not a GPU)");
+            crate::outln!("  (a software adapter: these times measure the CPU, not a GPU)")?;
         }
-        println!("scene {}: {w}×{h}, 1 spp; upload and shader compilation {setup_s:.2} s", path.display());
+        crate::outln!("scene {}: {w}×{h}, 1 spp; upload and shader compilation {setup_s:.2} s", path.display())?;
     }
     let times = time_frames(a.frames, a.max_seconds, |_| Ok(frame.run(&g)?))?;
     let img = frame.read_image(&g)?;
@@ -288,19 +288,23 @@ fn bench_scene(a: &GpuBench, path: &std::path::Path) -> Result<()> {
             "vs_cpu": {"pixels": (w * h), "exposure_ru": scene.output.exposure, "delta_e00_mean": de_mean, "delta_e00_p99": de_p99},
         }));
     }
-    println!(
+    crate::outln!(
         "  {} frames: min {mn:.2} ms, median {med:.2} ms, p99 {p99:.2} ms ({:.1} fps at the median)",
         times.len(),
         1e3 / med
-    );
-    print_gpu_times(gts);
-    println!(
+    )?;
+    print_gpu_times(gts)?;
+    crate::outln!(
         "  CPU renderer, same image ({} threads): {:.1} ms — CPU time / GPU median frame = {:.2}",
         rayon::current_num_threads(),
         cpu_s * 1e3,
         cpu_s * 1e3 / med
-    );
-    println!("  vs CPU ({} pixels at {} RU): ΔE00 mean {de_mean:.4}, p99 {de_p99:.4}", w * h, scene.output.exposure);
+    )?;
+    crate::outln!(
+        "  vs CPU ({} pixels at {} RU): ΔE00 mean {de_mean:.4}, p99 {de_p99:.4}",
+        w * h,
+        scene.output.exposure
+    )?;
     Ok(())
 }
 
@@ -323,9 +327,9 @@ pub fn bench(a: GpuBench) -> Result<()> {
     let gpu = open_gpu()?;
     let adapter = gpu.adapter_name();
     if !a.json {
-        println!("adapter: {adapter}");
+        crate::outln!("adapter: {adapter}")?;
         if gpu.is_software() {
-            println!("  (a software adapter: these times measure the CPU, not a GPU)");
+            crate::outln!("  (a software adapter: these times measure the CPU, not a GPU)")?;
         }
     }
 
@@ -335,7 +339,7 @@ pub fn bench(a: GpuBench) -> Result<()> {
         Some(p) => LookupTable::load(p)?,
         None => {
             if !a.json {
-                println!("building the lookup table of builtin:elaphe at 201² (pass --table to use your own) …");
+                crate::outln!("building the lookup table of builtin:elaphe at 201² (pass --table to use your own) …")?;
             }
             let none = SurfaceOpts { pixel_size: None, max_height: None };
             lookup_table("builtin:elaphe", &model, TableParams { uv_resolution: 201, uv_power: 5.0 }, &none)?
@@ -427,37 +431,49 @@ pub fn bench(a: GpuBench) -> Result<()> {
             },
         }));
     }
-    println!(
+    crate::outln!(
         "lookup diffraction, {mw}×{mh} map, table {}² × {} powers ({:.1} MB), {} frames:",
         table.meta.uv_resolution,
         table.powers(),
         lookup.table_bytes() as f64 / 1e6,
         map_times.len()
-    );
-    println!("  frame time min {mn:.2} ms, median {med:.2} ms, p99 {p99:.2} ms ({:.1} fps at the median)", 1e3 / med);
-    print_gpu_times(map_gpu);
-    println!("  vs CPU (lookup, f64; {} pixels at 1500 RU): ΔE00 mean {:.4}, p99 {:.4}", px.len(), map_de.0, map_de.1);
-    println!("thin film {stack}, {fw}×{fh}, {} wavelengths, gradient + SVT, {} frames:", grid.len(), film_times.len());
-    println!(
+    )?;
+    crate::outln!(
+        "  frame time min {mn:.2} ms, median {med:.2} ms, p99 {p99:.2} ms ({:.1} fps at the median)",
+        1e3 / med
+    )?;
+    print_gpu_times(map_gpu)?;
+    crate::outln!(
+        "  vs CPU (lookup, f64; {} pixels at 1500 RU): ΔE00 mean {:.4}, p99 {:.4}",
+        px.len(),
+        map_de.0,
+        map_de.1
+    )?;
+    crate::outln!(
+        "thin film {stack}, {fw}×{fh}, {} wavelengths, gradient + SVT, {} frames:",
+        grid.len(),
+        film_times.len()
+    )?;
+    crate::outln!(
         "  frame time min {fmn:.2} ms, median {fmed:.2} ms, p99 {fp99:.2} ms ({:.1} fps at the median)",
         1e3 / fmed
-    );
-    print_gpu_times(film_gpu);
-    println!(
+    )?;
+    print_gpu_times(film_gpu)?;
+    crate::outln!(
         "  vs CPU (Stack::evaluate_offset, f64; {} pixels): ΔE00 mean {:.4}, p99 {:.4}",
         fpx.len(),
         film_de.0,
         film_de.1
-    );
+    )?;
     Ok(())
 }
 
-fn print_gpu_times(s: Option<[f64; 4]>) {
+fn print_gpu_times(s: Option<[f64; 4]>) -> Result<()> {
     match s {
         Some([mn, med, p99, _]) => {
-            println!("  GPU timestamps of the pass: min {mn:.2} ms, median {med:.2} ms, p99 {p99:.2} ms")
+            crate::outln!("  GPU timestamps of the pass: min {mn:.2} ms, median {med:.2} ms, p99 {p99:.2} ms")
         }
-        None => println!("  (the adapter has no timestamp queries: wall clock only)"),
+        None => crate::outln!("  (the adapter has no timestamp queries: wall clock only)"),
     }
 }
 
@@ -537,11 +553,11 @@ pub fn run_view(a: ViewArgs) -> Result<()> {
             "ok": ok,
         }))?;
     } else {
-        println!("viewer check on {}: {} frames, median {:.1} ms", r.adapter, r.frames, r.frame_ms);
+        crate::outln!("viewer check on {}: {} frames, median {:.1} ms", r.adapter, r.frames, r.frame_ms)?;
         for (n, d) in &r.steps {
-            println!("  {n}: change {d:.3}");
+            crate::outln!("  {n}: change {d:.3}")?;
         }
-        println!("wrote {}", shot.display());
+        crate::outln!("wrote {}", shot.display())?;
     }
     if !ok {
         bail!("the viewer did not answer every input (a change of 0 above)");

@@ -346,7 +346,7 @@ pub fn run_testbench(a: TestbenchArgs) -> Result<()> {
         j["surface"] = json!(a.surface);
         return print_json(&j);
     }
-    println!(
+    crate::outln!(
         "{} with {}: order {}, θi = {:.2}°, azimuth {:.2}°, {} of {} wavelengths with a peak",
         a.surface,
         method,
@@ -355,27 +355,29 @@ pub fn run_testbench(a: TestbenchArgs) -> Result<()> {
         a.azimuth.to_degrees(),
         result.peaks.len(),
         setup.wavelengths_nm.len()
-    );
-    println!(
+    )?;
+    crate::outln!(
         "periodicity  mean {:.2} nm, variance {:.3} nm² (window centred on {:.1} nm)",
-        result.periodicity.mean, result.periodicity.variance, result.window_period_nm
-    );
+        result.periodicity.mean,
+        result.periodicity.variance,
+        result.window_period_nm
+    )?;
     if result.ridges.len() > 1 {
         for (k, r) in result.ridges.iter().enumerate() {
-            println!(
+            crate::outln!(
                 "ridge {}      {:.2} nm, variance {:.3} nm², {} wavelengths, mean peak ρ {:.3e}",
                 k + 1,
                 r.period_nm,
                 r.variance,
                 r.wavelengths,
                 r.strength
-            );
+            )?;
         }
     }
-    println!("  λ (nm)   θr (deg)   d_λ (nm)");
+    crate::outln!("  λ (nm)   θr (deg)   d_λ (nm)")?;
     let stride = (result.peaks.len() / 12).max(1);
     for p in result.peaks.iter().step_by(stride) {
-        println!("  {:6.1}   {:8.3}   {:8.2}", p.wavelength_nm, p.angle_deg, p.period_nm);
+        crate::outln!("  {:6.1}   {:8.3}   {:8.2}", p.wavelength_nm, p.angle_deg, p.period_nm)?;
     }
     Ok(())
 }
@@ -557,17 +559,23 @@ pub fn run_compare(a: CompareArgs) -> Result<()> {
         return print_json(&json!({"surface": a.surface, "against": against.name(), "size": a.size,
             "incidence_deg": theta.to_degrees(), "results": rows}));
     }
-    println!("CIEDE2000 against {} ({}×{} BRDF map, θi = {:.1}°):", against.name(), a.size, a.size, theta.to_degrees());
-    println!("  {:<26} {:>10} {:>10} {:>10} {:>10}", "method", "exposure", "mean", "p95", "ratio");
+    crate::outln!(
+        "CIEDE2000 against {} ({}×{} BRDF map, θi = {:.1}°):",
+        against.name(),
+        a.size,
+        a.size,
+        theta.to_degrees()
+    )?;
+    crate::outln!("  {:<26} {:>10} {:>10} {:>10} {:>10}", "method", "exposure", "mean", "p95", "ratio")?;
     for r in &c.rows {
-        println!(
+        crate::outln!(
             "  {:<26} {:>8} RU {:>10.4} {:>10.4} {:>10.3}",
             r.method,
             r.exposure_ru,
             r.mean,
             r.p95,
             r.mean / first(r.exposure_ru)
-        );
+        )?;
     }
     Ok(())
 }
@@ -678,11 +686,11 @@ pub fn run_sweep(a: SweepArgs) -> Result<()> {
             &json!({"surface": a.surface, "method": method.name(), "param": param.name(), "points": pts}),
         );
     }
-    println!("{} against ground-truth, sweeping {}:", method, param.name());
+    crate::outln!("{} against ground-truth, sweeping {}:", method, param.name())?;
     for p in &points {
         let errs: Vec<String> =
             p.errors.iter().map(|e| format!("{} RU: mean {:.4}, p95 {:.4}", e.0, e.1, e.2)).collect();
-        println!("  {:>12}   {}", param.display(p.value), errs.join("; "));
+        crate::outln!("  {:>12}   {}", param.display(p.value), errs.join("; "))?;
     }
     Ok(())
 }
@@ -848,11 +856,11 @@ fn run_laser(a: LaserArgs) -> Result<()> {
             "coating": a.coating, "gold_mirror_relative_brightness": scale, "max_y": peak,
             "pixels": a.size, "screen_mm": a.screen / 1e6, "distance_mm": a.distance / 1e6}));
     }
-    println!(
+    crate::outln!(
         "{} pixels, brightest Y = {peak:.4e} (saturates at {:.3e} RU); coated mirror brightness {scale:.3} of an uncoated one",
         a.size * a.size,
         1.0 / peak.max(1e-300)
-    );
+    )?;
     Ok(())
 }
 

@@ -133,7 +133,7 @@ pub fn run(a: RenderArgs) -> Result<()> {
     if let Some(e) = &a.exr {
         crate::output::write_bytes(e, &img.encode_exr(exposure)?)?;
     }
-    println!("wrote {} ({w}×{h}, {spp} spp, {secs:.2} s on {device})", a.output.display());
+    crate::outln!("wrote {} ({w}×{h}, {spp} spp, {secs:.2} s on {device})", a.output.display())?;
     Ok(())
 }
 
@@ -190,7 +190,7 @@ pub fn bench(a: RenderBench) -> Result<()> {
     let threads = rayon::current_num_threads();
     let mut rows = Vec::new();
     if !a.json {
-        println!("render benchmark: {0}×{0}, {1} spp, {threads} threads", a.size, a.spp);
+        crate::outln!("render benchmark: {0}×{0}, {1} spp, {threads} threads", a.size, a.spp)?;
     }
     for p in &scenes {
         let t = Instant::now();
@@ -200,10 +200,10 @@ pub fn bench(a: RenderBench) -> Result<()> {
         let name = p.file_name().and_then(|n| n.to_str()).unwrap_or("?").to_string();
         let tris: usize = scene.meshes.iter().map(|m| m.triangles.len()).sum();
         if !a.json {
-            println!(
+            crate::outln!(
                 "  {name:<28} load {load_s:6.2} s   render {secs:7.2} s   {:6.2} Mpixel/s   {tris} triangles",
                 (a.size as f64).powi(2) / secs / 1e6
-            );
+            )?;
         }
         rows.push(serde_json::json!({"scene": name, "load_s": load_s, "render_s": secs, "triangles": tris}));
     }
