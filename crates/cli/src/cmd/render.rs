@@ -138,6 +138,7 @@ pub const EXAMPLES: &[(&str, &str)] = &[
     ("oil_spill.toml", include_str!("../../../../examples/oil_spill.toml")),
     ("gold_sphere.toml", include_str!("../../../../examples/gold_sphere.toml")),
     ("gltf_iridescence.toml", include_str!("../../../../examples/gltf_iridescence.toml")),
+    ("rough_film.toml", include_str!("../../../../examples/rough_film.toml")),
 ];
 /// Files the example scenes refer to.
 pub const EXAMPLE_FILES: &[(&str, &[u8])] =
