@@ -708,7 +708,7 @@ fn key_line(text: &str, span: &std::ops::Range<usize>, key: &str) -> usize {
         for (i, _) in t.match_indices(key) {
             let before = t[..i].chars().next_back();
             let after = t[i + key.len()..].trim_start();
-            if before.map_or(true, |c| c == ' ' || c == '{' || c == ',') && after.starts_with('=') {
+            if before.is_none_or(|c| c == ' ' || c == '{' || c == ',') && after.starts_with('=') {
                 return first + k;
             }
         }

@@ -43,7 +43,7 @@ fn triangle_bytes() -> Vec<u8> {
 /// chunk padded with zeros, every chunk 4-byte aligned.
 fn glb(json: &str, bin: &[u8]) -> Vec<u8> {
     let pad = |mut v: Vec<u8>, fill: u8| {
-        while v.len() % 4 != 0 {
+        while !v.len().is_multiple_of(4) {
             v.push(fill);
         }
         v
