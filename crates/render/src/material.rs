@@ -238,13 +238,15 @@ impl ThinFilm {
     pub fn set_rough(&mut self, htsg: Htsg) -> Result<(), RenderError> {
         if self.transmission {
             return Err(RenderError::Input(
-                "a rough substrate (`roughness`) reflects only: the LSRS model has no transmitted part, so                  `transmission = true` cannot be combined with it"
+                "a rough substrate (`roughness`) reflects only: the LSRS model has no transmitted part, so \
+                 `transmission = true` cannot be combined with it"
                     .into(),
             ));
         }
         if self.base.is_some() {
             return Err(RenderError::Input(
-                "a rough film's substrate is the last medium of its `stack` (its diffuse light comes from there),                  so it takes no `base` material"
+                "a rough film's substrate is the last medium of its `stack` (its diffuse light comes from there), \
+                 so it takes no `base` material"
                     .into(),
             ));
         }

@@ -1023,6 +1023,13 @@ material = "grey"
             let e = parse(&film(extra)).unwrap_err().to_string();
             assert!(e.starts_with("test.toml:") && e.contains(needle), "{extra}: {e}");
         }
+        let e = parse(
+            &(film("roughness = \"25nm\"\ncorrelation = \"300nm\"\nbase = \"under\"")
+                + "[materials.under]\nkind = \"lambert\"\n"),
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("takes no `base` material"), "{e}");
         let e = parse(&OK.replace("kind = \"lambert\"", "kind = \"microfacet\"\nroughness = \"25nm\""))
             .unwrap_err()
             .to_string();
