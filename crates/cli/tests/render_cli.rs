@@ -411,3 +411,89 @@ fn vanishing_roughness_renders_the_smooth_film() {
     assert!(tiny_max < 0.05, "σ → 0 must give the smooth film (max ΔE00 {tiny_max})");
     assert!(rough_mean > 1.0, "σ = 20 nm must change the picture (mean ΔE00 {rough_mean})");
 }
+
+/// The same plane seen at θ_v = 30° and lit at θ_l = 40° from an azimuth 150° away from the viewer's (about the
+/// normal): every pixel shows π·k_d·cos θ_l, with π·k_d the "diffuse" colour of `iridis thinfilm color --angle
+/// 30deg --light-angle 40deg --azimuth 150deg`. This checks the angles and the relative azimuth the renderer
+/// hands to the LSRS model.
+#[test]
+fn rough_film_oblique_view_and_light_follow_the_azimuth() {
+    let dir = tempfile::tempdir().unwrap();
+    let (tv, tl) = (30f64.to_radians(), 40f64.to_radians());
+    // View from azimuth −90° (towards −y), light from azimuth −90° + 150° = 60°.
+    let view = [0.0, -tv.sin(), tv.cos()];
+    let (a, b) = (60f64.to_radians(), tl.sin());
+    let light = [b * a.cos(), b * a.sin(), tl.cos()];
+    let scene = ROUGH_PLANE
+        .replace("ENVIRONMENT", "")
+        .replace(
+            "position = [0, 0, 10]",
+            &format!("position = [{}, {}, {}]", 10.0 * view[0], 10.0 * view[1], 10.0 * view[2]),
+        )
+        .replace("up = [0, 1, 0]", "up = [0, 0, 1]")
+        .replace("direction = [0, 0, 1]", &format!("direction = [{}, {}, {}]", light[0], light[1], light[2]));
+    let path = dir.path().join("oblique.toml");
+    std::fs::write(&path, scene).unwrap();
+    let exr = dir.path().join("oblique.exr");
+    ok(&["render", path.to_str().unwrap(), "-o", exr.to_str().unwrap()]);
+    let (_, _, px) = exr_pixels(&exr);
+    let mut want = [0.0; 3];
+    for (azimuth, weight) in [("150deg", 1.0), ("180deg", 0.0)] {
+        let j = json_of(&[
+            "thinfilm",
+            "color",
+            "--stack",
+            "air | water 348nm | Si",
+            "--roughness",
+            "25nm",
+            "--correlation",
+            "300nm",
+            "--angle",
+            "30deg",
+            "--light-angle",
+            "40deg",
+            "--azimuth",
+            azimuth,
+            "--json",
+        ]);
+        let v: Vec<f64> = j["diffuse"]["XYZ"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+        if weight == 1.0 {
+            want = [v[0] * tl.cos(), v[1] * tl.cos(), v[2] * tl.cos()];
+        } else {
+            // The mirror azimuth gives another colour: the test would see a wrong azimuth.
+            let other = Xyz::new(v[0] * tl.cos(), v[1] * tl.cos(), v[2] * tl.cos()).to_linear_srgb();
+            let de = delta_e_rgb(other, Xyz::new(want[0], want[1], want[2]).to_linear_srgb());
+            assert!(de > 1.0, "azimuth 150° and 180° must differ (ΔE00 {de})");
+        }
+    }
+    let want_rgb = Xyz::new(want[0], want[1], want[2]).to_linear_srgb();
+    let worst = px.iter().map(|p| delta_e_rgb(*p, want_rgb)).fold(0.0, f64::max);
+    let got = Xyz::from_linear_srgb(px[0]).to_array();
+    eprintln!("oblique rough plane: largest ΔE00 {worst:.2e}; XYZ {got:?} vs {want:?}");
+    assert!(worst < 0.01, "largest ΔE00 {worst}");
+    for k in 0..3 {
+        assert!((got[k] - want[k]).abs() / want[k].abs().max(1e-3) < 2e-4, "{got:?} vs {want:?}");
+    }
+}
+
+/// Bad material keys through the command line: a clean exit 2 naming file, line, key and kind.
+#[test]
+fn foreign_and_bad_rough_keys_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let write = |name: &str, text: &str| {
+        let p = dir.path().join(name);
+        std::fs::write(&p, text).unwrap();
+        p.to_str().unwrap().to_string()
+    };
+    let out = dir.path().join("x.png");
+    let out = out.to_str().unwrap();
+    let base = "[camera]\nposition = [0, 0, 5]\n[materials.m]\n";
+    let s = write("lambert.toml", &format!("{base}kind = \"lambert\"\ncolor = [1, 1, 1]\nd_rel = \"10nm\"\n"));
+    assert_fails(&["render", &s, "-o", out], &["lambert.toml:6:", "`d_rel`", "lambert material", "thinfilm"]);
+    let s = write(
+        "rough.toml",
+        &format!("{base}kind = \"thinfilm\"\nstack = \"air | water 348nm | Si\"\nroughness = \"25nm\"\ncorrelation = \"60nm\"\n"),
+    );
+    assert_fails(&["render", &s, "-o", out], &["rough.toml:6:", "[materials.m]", "radius of curvature", "raise τ"]);
+    assert!(!dir.path().join("x.png").exists());
+}

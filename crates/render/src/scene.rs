@@ -260,6 +260,10 @@ impl Ctx<'_> {
     fn err(&self, span: std::ops::Range<usize>, msg: impl Into<String>) -> RenderError {
         RenderError::Scene { path: self.name.to_string(), line: line_of(self.text, span.start), message: msg.into() }
     }
+    /// An error at the line where `key` is written in the table at `span`.
+    fn err_key(&self, span: &std::ops::Range<usize>, key: &str, msg: impl Into<String>) -> RenderError {
+        RenderError::Scene { path: self.name.to_string(), line: key_line(self.text, span, key), message: msg.into() }
+    }
     fn path(&self, p: &str) -> PathBuf {
         self.base.join(p)
     }
@@ -879,13 +883,14 @@ fn build_material(
             film.base = base;
             film.factor = unit(d.factor, "factor", 1.0)?;
             let length = |key: &str, v: &str| {
-                parse_length_nm(v).map_err(|e| ctx.err(span.clone(), format!("{what}: `{key}` = \"{v}\": {e}")))
+                parse_length_nm(v).map_err(|e| ctx.err_key(span, key, format!("{what}: `{key}` = \"{v}\": {e}")))
             };
             match (&d.roughness, &d.correlation) {
                 (None, None) => {}
                 (Some(NumOrText::Num(x)), _) => {
-                    return Err(ctx.err(
-                        span.clone(),
+                    return Err(ctx.err_key(
+                        span,
+                        "roughness",
                         format!(
                             "{what}: `roughness` = {x}: a thin film's roughness is the rms height of its substrate, \
                              a length with its unit, e.g. \"25nm\""
@@ -894,19 +899,21 @@ fn build_material(
                 }
                 (Some(NumOrText::Text(s)), Some(c)) => {
                     let r = Roughness::new(length("roughness", s)?, length("correlation", c)?)
-                        .map_err(|e| ctx.err(span.clone(), format!("{what}: `roughness`/`correlation`: {e}")))?;
+                        .map_err(|e| ctx.err_key(span, "roughness", format!("{what}: `roughness`/`correlation`: {e}")))?;
                     film.set_rough(Htsg::new(r, Series::default()))
-                        .map_err(|e| ctx.err(span.clone(), format!("{what}: {e}")))?;
+                        .map_err(|e| ctx.err_key(span, "roughness", format!("{what}: {e}")))?;
                 }
                 (Some(_), None) => {
-                    return Err(ctx.err(
-                        span.clone(),
+                    return Err(ctx.err_key(
+                        span,
+                        "roughness",
                         format!("{what}: `roughness` needs `correlation`, the substrate's autocorrelation length, e.g. \"300nm\""),
                     ))
                 }
                 (None, Some(_)) => {
-                    return Err(ctx.err(
-                        span.clone(),
+                    return Err(ctx.err_key(
+                        span,
+                        "correlation",
                         format!("{what}: `correlation` needs `roughness`, the substrate's rms height, e.g. \"25nm\""),
                     ))
                 }
