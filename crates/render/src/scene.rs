@@ -674,7 +674,8 @@ fn color_source(
     })
 }
 
-/// The keys each material kind reads, besides `kind` (one list per kind, shared with `docs/render.md`).
+/// The keys each material kind reads, besides `kind`: the one list the scene loader checks against (the
+/// material tables of `docs/render.md` describe the same keys).
 pub const MATERIAL_KEYS: &[(&str, &[&str])] = &[
     ("lambert", &["color", "texture"]),
     ("microfacet", &["color", "texture", "roughness", "metallic", "ior"]),
