@@ -258,3 +258,242 @@ fn examples_render_and_bad_input_is_refused_cleanly() {
         .collect();
     assert!(leftovers.is_empty(), "temporary files left: {leftovers:?}");
 }
+
+/// Linear sRGB of every pixel of an EXR written by `iridis render`.
+fn exr_pixels(p: &Path) -> (u32, u32, Vec<[f64; 3]>) {
+    let img = image::open(p).unwrap().to_rgb32f();
+    let px = img.pixels().map(|q| q.0.map(|c| c as f64)).collect();
+    (img.width(), img.height(), px)
+}
+
+/// CIEDE2000 between two linear-sRGB colours, relative to D65 white `[1, 1, 1]`.
+fn delta_e_rgb(a: [f64; 3], b: [f64; 3]) -> f64 {
+    let white = Xyz::from_linear_srgb([1.0; 3]);
+    delta_e_2000(Lab::from_xyz(Xyz::from_linear_srgb(a), white), Lab::from_xyz(Xyz::from_linear_srgb(b), white))
+}
+
+const ROUGH_PLANE: &str = r#"
+[output]
+size = [8, 8]
+spp = 1
+exposure = 1
+[camera]
+kind = "orthographic"
+position = [0, 0, 10]
+look_at = [0, 0, 0]
+up = [0, 1, 0]
+height = 2
+[[light]]
+kind = "directional"
+direction = [0, 0, 1]    # head-on, from behind the camera
+intensity = 1
+ENVIRONMENT
+[materials.film]
+kind = "thinfilm"
+stack = "air | water 348nm | Si"
+roughness = "25nm"
+correlation = "300nm"
+[[object]]
+kind = "plane"
+center = [0, 0, 0]
+normal = [0, 0, 1]
+tangent = [1, 0, 0]
+material = "film"
+"#;
+
+/// Issue 9 in the renderer: a flat rough-film plane (Listing 3.6: water 348 nm on Si, σ 25 nm, τ 300 nm) seen
+/// and lit head-on by a 1 RU light shows the diffuse colour π·k_d that `iridis thinfilm color --roughness
+/// --correlation --angle 0deg` reports; under a white environment as well, it shows diffuse + specular (k_r
+/// weighting the mirror ray).
+#[test]
+fn rough_film_plane_shows_thinfilm_color() {
+    let dir = tempfile::tempdir().unwrap();
+    let j = json_of(&[
+        "thinfilm",
+        "color",
+        "--stack",
+        "air | water 348nm | Si",
+        "--roughness",
+        "25nm",
+        "--correlation",
+        "300nm",
+        "--angle",
+        "0deg",
+        "--json",
+    ]);
+    let xyz = |k: &str| -> [f64; 3] {
+        let v: Vec<f64> = j[k]["XYZ"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+        [v[0], v[1], v[2]]
+    };
+    let (spec, diff) = (xyz("specular"), xyz("diffuse"));
+    assert!(diff[1] > 0.01 && spec[1] > 0.01, "both parts must show: {spec:?} {diff:?}");
+    let both = [spec[0] + diff[0], spec[1] + diff[1], spec[2] + diff[2]];
+    let env = "[environment]\nkind = \"uniform\"\ncolor = [1, 1, 1]\nvisible = false";
+    for (name, environment, want) in [("dark", "", diff), ("white", env, both)] {
+        let scene = dir.path().join(format!("{name}.toml"));
+        std::fs::write(&scene, ROUGH_PLANE.replace("ENVIRONMENT", environment)).unwrap();
+        let exr = dir.path().join(format!("{name}.exr"));
+        ok(&["render", scene.to_str().unwrap(), "-o", exr.to_str().unwrap()]);
+        let (_, _, px) = exr_pixels(&exr);
+        let want_rgb = Xyz::new(want[0], want[1], want[2]).to_linear_srgb();
+        let (mut worst_de, mut worst_rel) = (0.0f64, 0.0f64);
+        for p in &px {
+            let got = Xyz::from_linear_srgb(*p).to_array();
+            for k in 0..3 {
+                worst_rel = worst_rel.max((got[k] - want[k]).abs() / want[k].abs().max(1e-3));
+            }
+            worst_de = worst_de.max(delta_e_rgb(*p, want_rgb));
+        }
+        eprintln!("rough plane, {name} environment: largest ΔE00 {worst_de:.2e}, relative XYZ {worst_rel:.2e}");
+        assert!(worst_rel < 2e-4 && worst_de < 0.01, "{name}: ΔE00 {worst_de}, relative {worst_rel}");
+    }
+}
+
+const ROUGH_SPHERE: &str = r#"
+[output]
+size = [24, 24]
+spp = 1
+[camera]
+kind = "orthographic"
+position = [0, 0, 10]
+look_at = [0, 0, 0]
+up = [0, 1, 0]
+height = 2.2
+[[light]]
+kind = "directional"
+direction = [0.3, 0.4, 1]
+[environment]
+kind = "sky"
+visible = false
+[materials.film]
+kind = "thinfilm"
+stack = "air | TiO2 150nm | Al"
+ROUGH
+[[object]]
+kind = "sphere"
+radius = 1
+material = "film"
+"#;
+
+/// σ → 0: a rough film with σ = 0.01 nm renders the smooth film's picture (the LSRS specular part tends to the
+/// smooth reflectance, the diffuse part vanishes); σ = 20 nm visibly does not.
+#[test]
+fn vanishing_roughness_renders_the_smooth_film() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut imgs = Vec::new();
+    for (name, rough) in [
+        ("smooth", ""),
+        ("tiny", "roughness = \"0.01nm\"\ncorrelation = \"300nm\""),
+        ("rough", "roughness = \"20nm\"\ncorrelation = \"300nm\""),
+    ] {
+        let scene = dir.path().join(format!("{name}.toml"));
+        std::fs::write(&scene, ROUGH_SPHERE.replace("ROUGH", rough)).unwrap();
+        let exr = dir.path().join(format!("{name}.exr"));
+        ok(&["render", scene.to_str().unwrap(), "-o", exr.to_str().unwrap()]);
+        imgs.push(exr_pixels(&exr).2);
+    }
+    let compare = |a: &[[f64; 3]], b: &[[f64; 3]]| {
+        let (mut mean, mut max, mut n) = (0.0, 0.0f64, 0);
+        for (p, q) in a.iter().zip(b) {
+            if p.iter().chain(q).any(|&c| c > 0.0) {
+                let de = delta_e_rgb(*p, *q);
+                mean += de;
+                max = max.max(de);
+                n += 1;
+            }
+        }
+        assert!(n > 300, "the sphere must cover the picture ({n} pixels)");
+        (mean / n as f64, max)
+    };
+    let (tiny_mean, tiny_max) = compare(&imgs[0], &imgs[1]);
+    let (rough_mean, _) = compare(&imgs[0], &imgs[2]);
+    eprintln!("σ = 0.01 nm vs smooth: mean ΔE00 {tiny_mean:.2e}, max {tiny_max:.2e}; σ = 20 nm: mean {rough_mean:.2}");
+    assert!(tiny_max < 0.05, "σ → 0 must give the smooth film (max ΔE00 {tiny_max})");
+    assert!(rough_mean > 1.0, "σ = 20 nm must change the picture (mean ΔE00 {rough_mean})");
+}
+
+/// The same plane seen at θ_v = 30° and lit at θ_l = 40° from an azimuth 150° away from the viewer's (about the
+/// normal): every pixel shows π·k_d·cos θ_l, with π·k_d the "diffuse" colour of `iridis thinfilm color --angle
+/// 30deg --light-angle 40deg --azimuth 150deg`. This checks the angles and the relative azimuth the renderer
+/// hands to the LSRS model.
+#[test]
+fn rough_film_oblique_view_and_light_follow_the_azimuth() {
+    let dir = tempfile::tempdir().unwrap();
+    let (tv, tl) = (30f64.to_radians(), 40f64.to_radians());
+    // View from azimuth −90° (towards −y), light from azimuth −90° + 150° = 60°.
+    let view = [0.0, -tv.sin(), tv.cos()];
+    let (a, b) = (60f64.to_radians(), tl.sin());
+    let light = [b * a.cos(), b * a.sin(), tl.cos()];
+    let scene = ROUGH_PLANE
+        .replace("ENVIRONMENT", "")
+        .replace(
+            "position = [0, 0, 10]",
+            &format!("position = [{}, {}, {}]", 10.0 * view[0], 10.0 * view[1], 10.0 * view[2]),
+        )
+        .replace("up = [0, 1, 0]", "up = [0, 0, 1]")
+        .replace("direction = [0, 0, 1]", &format!("direction = [{}, {}, {}]", light[0], light[1], light[2]));
+    let path = dir.path().join("oblique.toml");
+    std::fs::write(&path, scene).unwrap();
+    let exr = dir.path().join("oblique.exr");
+    ok(&["render", path.to_str().unwrap(), "-o", exr.to_str().unwrap()]);
+    let (_, _, px) = exr_pixels(&exr);
+    let mut want = [0.0; 3];
+    for (azimuth, weight) in [("150deg", 1.0), ("180deg", 0.0)] {
+        let j = json_of(&[
+            "thinfilm",
+            "color",
+            "--stack",
+            "air | water 348nm | Si",
+            "--roughness",
+            "25nm",
+            "--correlation",
+            "300nm",
+            "--angle",
+            "30deg",
+            "--light-angle",
+            "40deg",
+            "--azimuth",
+            azimuth,
+            "--json",
+        ]);
+        let v: Vec<f64> = j["diffuse"]["XYZ"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+        if weight == 1.0 {
+            want = [v[0] * tl.cos(), v[1] * tl.cos(), v[2] * tl.cos()];
+        } else {
+            // The mirror azimuth gives another colour: the test would see a wrong azimuth.
+            let other = Xyz::new(v[0] * tl.cos(), v[1] * tl.cos(), v[2] * tl.cos()).to_linear_srgb();
+            let de = delta_e_rgb(other, Xyz::new(want[0], want[1], want[2]).to_linear_srgb());
+            assert!(de > 1.0, "azimuth 150° and 180° must differ (ΔE00 {de})");
+        }
+    }
+    let want_rgb = Xyz::new(want[0], want[1], want[2]).to_linear_srgb();
+    let worst = px.iter().map(|p| delta_e_rgb(*p, want_rgb)).fold(0.0, f64::max);
+    let got = Xyz::from_linear_srgb(px[0]).to_array();
+    eprintln!("oblique rough plane: largest ΔE00 {worst:.2e}; XYZ {got:?} vs {want:?}");
+    assert!(worst < 0.01, "largest ΔE00 {worst}");
+    for k in 0..3 {
+        assert!((got[k] - want[k]).abs() / want[k].abs().max(1e-3) < 2e-4, "{got:?} vs {want:?}");
+    }
+}
+
+/// Bad material keys through the command line: a clean exit 2 naming file, line, key and kind.
+#[test]
+fn foreign_and_bad_rough_keys_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let write = |name: &str, text: &str| {
+        let p = dir.path().join(name);
+        std::fs::write(&p, text).unwrap();
+        p.to_str().unwrap().to_string()
+    };
+    let out = dir.path().join("x.png");
+    let out = out.to_str().unwrap();
+    let base = "[camera]\nposition = [0, 0, 5]\n[materials.m]\n";
+    let s = write("lambert.toml", &format!("{base}kind = \"lambert\"\ncolor = [1, 1, 1]\nd_rel = \"10nm\"\n"));
+    assert_fails(&["render", &s, "-o", out], &["lambert.toml:6:", "`d_rel`", "lambert material", "thinfilm"]);
+    let s = write(
+        "rough.toml",
+        &format!("{base}kind = \"thinfilm\"\nstack = \"air | water 348nm | Si\"\nroughness = \"25nm\"\ncorrelation = \"60nm\"\n"),
+    );
+    assert_fails(&["render", &s, "-o", out], &["rough.toml:6:", "[materials.m]", "radius of curvature", "raise τ"]);
+    assert!(!dir.path().join("x.png").exists());
+}

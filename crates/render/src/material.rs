@@ -1,12 +1,15 @@
 //! Materials: diffraction from a nanostructure (lookup tables of `iridis precompute`, an orientation field,
 //! the thesis' texture blending, Algorithm 4), thin films (Sussenbach's smooth illumination model, eq. 3.14,
-//! with spatially varying thickness, eq. 4.3–4.4), Lambert, and a GGX microfacet base.
+//! with spatially varying thickness, eq. 4.3–4.4; on a rough substrate, the LSRS model, eq. 3.15–3.20),
+//! Lambert, and a GGX microfacet base.
 
 use std::sync::Arc;
 
 use iridis_color::{Illuminant, Observer, Xyz};
 use iridis_diffraction::Evaluator;
 use iridis_thinfilm::color::FilmColorimeter;
+use iridis_thinfilm::htsg::Htsg;
+use iridis_thinfilm::rough::RoughStack;
 use iridis_thinfilm::Stack;
 
 use crate::error::RenderError;
@@ -146,7 +149,9 @@ pub struct Svt {
 }
 
 /// A thin-film material: the composite reflectance `k_r` and transmittance `k_t` of a stack weight the light
-/// reflected and transmitted along the ray, `I_e = k_r I_r + k_t I_t` (Sussenbach eq. 3.14).
+/// reflected and transmitted along the ray, `I_e = k_r I_r + k_t I_t` (Sussenbach eq. 3.14). On a rough
+/// substrate (`rough`), eq. 3.20: `I_e = k_r I_r + Σ_m k_d cos θ_l L_m`, the composite specular reflectance
+/// weighting the mirror ray and the composite diffuse BRDF lit by the lights.
 #[derive(Debug, Clone)]
 pub struct ThinFilm {
     pub stack: Stack,
@@ -158,6 +163,11 @@ pub struct ThinFilm {
     pub base: Option<Microfacet>,
     /// glTF `iridescenceFactor`: the film's reflection is scaled by it and the base shows through `1 − factor`.
     pub factor: f64,
+    /// A rough substrate: the bottom interface (last layer | substrate) has rms height σ and correlation
+    /// length τ, and the film follows Hirayama's LSRS model with the HTSG BRDF (Sussenbach sec. 3.2,
+    /// eq. 3.15–3.20; `iridis_thinfilm::rough`). Set it with [`ThinFilm::set_rough`], which checks the model's
+    /// validity over 380–780 nm. `None`: the smooth model.
+    pub rough: Option<Htsg>,
     colorimeter: FilmColorimeter,
     invariant: bool,
 }
@@ -180,6 +190,7 @@ impl ThinFilm {
             transmission,
             base: None,
             factor: 1.0,
+            rough: None,
             colorimeter: FilmColorimeter::new(&grid, Illuminant::D65, Observer::Cie1931),
             invariant,
         })
@@ -219,6 +230,79 @@ impl ThinFilm {
         }
         let c = self.colorimeter.from_spectra(&r, &t);
         (c.reflected, c.transmitted)
+    }
+
+    /// Makes the substrate rough (LSRS). Refused where the film transmits (the LSRS model describes
+    /// reflection only) or has a `base` (the rough substrate of the stack is the base), and where the HTSG
+    /// model is not valid at some wavelength of 380–780 nm (the message says which condition fails).
+    pub fn set_rough(&mut self, htsg: Htsg) -> Result<(), RenderError> {
+        if self.transmission {
+            return Err(RenderError::Input(
+                "a rough substrate (`roughness`) reflects only: the LSRS model has no transmitted part, so \
+                 `transmission = true` cannot be combined with it"
+                    .into(),
+            ));
+        }
+        if self.base.is_some() {
+            return Err(RenderError::Input(
+                "a rough film's substrate is the last medium of its `stack` (its diffuse light comes from there), \
+                 so it takes no `base` material"
+                    .into(),
+            ));
+        }
+        let rough = RoughStack::new(self.stack.clone(), htsg);
+        for &l in self.colorimeter.wavelengths_nm() {
+            rough.specular(l, 0.0).map_err(|e| RenderError::Input(format!("rough substrate at {l} nm: {e}")))?;
+        }
+        self.rough = Some(htsg);
+        Ok(())
+    }
+
+    /// The rough film's colours at a hit (LSRS, Sussenbach eq. 3.15–3.19, evaluated directly at every
+    /// wavelength of the 5 nm grid): the composite specular reflectance `k_r` at the view angle (`cos_view`),
+    /// and for each light, given as (`cos θ_l`, azimuth of the light relative to the viewer about the normal),
+    /// the diffuse radiance factor `π k_d` (zero where `cos θ_l ≤ 0`). XYZ under D65 normalised like
+    /// [`ThinFilm::colors`]: exactly the "specular" and "diffuse" colours of `iridis thinfilm color --roughness σ
+    /// --correlation τ --angle θ_v --light-angle θ_l --azimuth φ`. Layers are offset by `offset_nm` (SVT).
+    /// Returns `None` for a smooth film.
+    pub fn rough_colors(&self, cos_view: f64, offset_nm: f64, lights: &[(f64, f64)]) -> Option<(Xyz, Vec<Xyz>)> {
+        let htsg = self.rough?;
+        let mut stack = self.stack.clone();
+        for l in &mut stack.layers {
+            l.thickness_nm = (l.thickness_nm + offset_nm).max(0.0);
+        }
+        let rough = RoughStack::new(stack, htsg);
+        let view = cos_view.clamp(0.0, 1.0).acos();
+        let grid = self.colorimeter.wavelengths_nm();
+        let mut spec = vec![0.0; grid.len()];
+        let mut diff = vec![vec![0.0; grid.len()]; lights.len()];
+        let lit: Vec<usize> = (0..lights.len()).filter(|&j| lights[j].0 > 0.0).collect();
+        for (w, &l) in grid.iter().enumerate() {
+            if lit.is_empty() {
+                spec[w] = rough.specular(l, view).map(|(s, p)| 0.5 * (s + p)).unwrap_or(0.0);
+            }
+            for (k, &j) in lit.iter().enumerate() {
+                let (cos_l, azimuth) = lights[j];
+                if let Ok(x) = rough.evaluate(l, view, cos_l.min(1.0).acos(), azimuth) {
+                    if k == 0 {
+                        spec[w] = x.k_r();
+                    }
+                    diff[j][w] = std::f64::consts::PI * x.k_d();
+                }
+            }
+        }
+        let xyz = |s: &[f64]| self.colorimeter.from_spectra(s, s).reflected;
+        Some((xyz(&spec), diff.iter().map(|d| xyz(d)).collect()))
+    }
+}
+
+/// The azimuth of `wi` relative to `wo` about the normal `n`, in [0, π] (π: on opposite sides of the normal,
+/// the mirror configuration). Where either direction is along the normal, the azimuth is immaterial; π.
+pub fn relative_azimuth(n: V3, wi: V3, wo: V3) -> f64 {
+    let project = |v: V3| try_normalize(sub(v, mul(n, dot(n, v))));
+    match (project(wi), project(wo)) {
+        (Some(a), Some(b)) => dot(a, b).clamp(-1.0, 1.0).acos(),
+        _ => std::f64::consts::PI,
     }
 }
 

@@ -7,7 +7,7 @@ use iridis_color::{Encoding, ToneMap, Xyz};
 
 use crate::geometry::{triangle_hit, Hit};
 use crate::light::Rgb;
-use crate::material::{ColorSource, Material, Microfacet};
+use crate::material::{relative_azimuth, ColorSource, Material, Microfacet};
 use crate::math::*;
 use crate::scene::Scene;
 
@@ -228,11 +228,25 @@ impl Scene {
             }
             Material::ThinFilm(f) => {
                 let cos = dot(h.n, wo).clamp(0.0, 1.0);
-                let (r, t) = f.colors(cos, f.offset_nm(h.uv, &self.textures));
+                let offset = f.offset_nm(h.uv, &self.textures);
+                let mut out = [0.0; 3];
+                let (r, t) = if f.rough.is_some() {
+                    // Eq. 3.20: the diffuse part π·k_d·cos θ_l per RU of irradiance, for every light.
+                    let lights = self.lights_at(h);
+                    let dirs: Vec<(f64, f64)> =
+                        lights.iter().map(|(wi, _)| (dot(h.n, *wi), relative_azimuth(h.n, *wi, wo))).collect();
+                    let (spec, diffuse) = f.rough_colors(cos, offset, &dirs).unwrap_or_default();
+                    for (((_, e), (cos_l, _)), d) in lights.iter().zip(&dirs).zip(&diffuse) {
+                        out = add(out, mul(hadamard(d.to_linear_srgb(), *e), cos_l.max(0.0) * f.factor));
+                    }
+                    (spec, Xyz::default())
+                } else {
+                    f.colors(cos, offset)
+                };
                 let r_rgb = mul(r.to_linear_srgb(), f.factor);
                 let w_r = weight * r_rgb.iter().fold(0.0f64, |a, &b| a.max(b));
                 let refl = self.trace(add(h.p, mul(h.ng, eps(h.p))), reflect(wo, h.n), depth + 1, w_r);
-                let mut out = hadamard(r_rgb, refl);
+                out = add(out, hadamard(r_rgb, refl));
                 if f.transmission {
                     let t_rgb = mul(t.to_linear_srgb(), f.factor);
                     let w_t = weight * t_rgb.iter().fold(0.0f64, |a, &b| a.max(b));

@@ -11,6 +11,7 @@ use iridis_color::units::{parse_angle_rad, parse_length_nm};
 use iridis_color::{Encoding, Illuminant};
 use iridis_diffraction::table::{Lookup, Precision, TableParams};
 use iridis_diffraction::{Fresnel, Shading};
+use iridis_thinfilm::htsg::{Htsg, Roughness, Series};
 use serde::Deserialize;
 use toml::Spanned;
 
@@ -151,7 +152,10 @@ struct MaterialDef {
     kind: String,
     color: Option<[f64; 3]>,
     texture: Option<String>,
-    roughness: Option<f64>,
+    /// microfacet: GGX roughness in [0, 1]; thinfilm: rms height of the rough substrate, a length ("25nm").
+    roughness: Option<NumOrText>,
+    /// thinfilm: autocorrelation length of the rough substrate ("300nm").
+    correlation: Option<String>,
     metallic: Option<f64>,
     ior: Option<f64>,
     table: Option<String>,
@@ -170,6 +174,38 @@ struct MaterialDef {
     transmission: Option<bool>,
     base: Option<String>,
     factor: Option<f64>,
+}
+
+/// A value that is a number for one material kind and a length with its unit for another (`roughness`).
+#[derive(Debug, Clone, PartialEq)]
+enum NumOrText {
+    Num(f64),
+    Text(String),
+}
+
+impl<'de> Deserialize<'de> for NumOrText {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct V;
+        impl serde::de::Visitor<'_> for V {
+            type Value = NumOrText;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a number (microfacet roughness, 0–1) or a length with its unit (thin film, e.g. \"25nm\")")
+            }
+            fn visit_f64<E>(self, v: f64) -> Result<NumOrText, E> {
+                Ok(NumOrText::Num(v))
+            }
+            fn visit_i64<E>(self, v: i64) -> Result<NumOrText, E> {
+                Ok(NumOrText::Num(v as f64))
+            }
+            fn visit_u64<E>(self, v: u64) -> Result<NumOrText, E> {
+                Ok(NumOrText::Num(v as f64))
+            }
+            fn visit_str<E>(self, v: &str) -> Result<NumOrText, E> {
+                Ok(NumOrText::Text(v.to_string()))
+            }
+        }
+        d.deserialize_any(V)
+    }
 }
 
 #[derive(Debug, Deserialize)]
@@ -223,6 +259,10 @@ struct Ctx<'a> {
 impl Ctx<'_> {
     fn err(&self, span: std::ops::Range<usize>, msg: impl Into<String>) -> RenderError {
         RenderError::Scene { path: self.name.to_string(), line: line_of(self.text, span.start), message: msg.into() }
+    }
+    /// An error at the line where `key` is written in the table at `span`.
+    fn err_key(&self, span: &std::ops::Range<usize>, key: &str, msg: impl Into<String>) -> RenderError {
+        RenderError::Scene { path: self.name.to_string(), line: key_line(self.text, span, key), message: msg.into() }
     }
     fn path(&self, p: &str) -> PathBuf {
         self.base.join(p)
@@ -317,8 +357,12 @@ pub fn parse_scene(text: &str, name: &str, base: &Path) -> Result<Scene, RenderE
     // Thin films may name a base material defined anywhere: build the others first.
     let mut order: Vec<_> = file.materials.iter().collect();
     order.sort_by_key(|(_, d)| d.get_ref().base.is_some());
+    // The keys as written, to refuse those that belong to another kind of material (serde only knows the union).
+    let raw: toml::Table = toml::from_str(text).unwrap_or_default();
     for (name, def) in order {
         let span = def.span();
+        let written = raw.get("materials").and_then(|m| m.get(name)).and_then(|t| t.as_table());
+        check_material_keys(name, &def.get_ref().kind, written, &span, &ctx)?;
         let m = build_material(name, def.get_ref(), &span, &ctx, &texture_ref, &mat_index, &materials)?;
         mat_index.insert(name.clone(), materials.len());
         materials.push(m);
@@ -630,6 +674,84 @@ fn color_source(
     })
 }
 
+/// The keys each material kind reads, besides `kind`: the one list the scene loader checks against (the
+/// material tables of `docs/render.md` describe the same keys).
+pub const MATERIAL_KEYS: &[(&str, &[&str])] = &[
+    ("lambert", &["color", "texture"]),
+    ("microfacet", &["color", "texture", "roughness", "metallic", "ior"]),
+    (
+        "diffraction",
+        &[
+            "table",
+            "uv_resolution",
+            "orientation",
+            "orientation_texture",
+            "direction",
+            "angle",
+            "scale_ru",
+            "w_diffuse",
+            "color",
+            "texture",
+            "ambient",
+            "fresnel_n",
+        ],
+    ),
+    ("thinfilm", &["stack", "svt", "d_rel", "transmission", "base", "factor", "roughness", "correlation"]),
+];
+
+/// The 1-based line where `key` is written in the table that starts at `span` (the table's first line when
+/// it cannot be found, e.g. a quoted key).
+fn key_line(text: &str, span: &std::ops::Range<usize>, key: &str) -> usize {
+    let first = line_of(text, span.start);
+    let start = text[..span.start.min(text.len())].rfind('\n').map_or(0, |i| i + 1);
+    for (k, line) in text[start..].lines().enumerate() {
+        let t = line.trim_start();
+        if k > 0 && t.starts_with('[') {
+            break;
+        }
+        // `key = …`, also inside an inline table `{ kind = "lambert", key = … }`.
+        for (i, _) in t.match_indices(key) {
+            let before = t[..i].chars().next_back();
+            let after = t[i + key.len()..].trim_start();
+            if before.is_none_or(|c| c == ' ' || c == '{' || c == ',') && after.starts_with('=') {
+                return first + k;
+            }
+        }
+    }
+    first
+}
+
+/// Refuses keys that the material's kind does not read (`stack` on a lambert material, say), naming the key,
+/// the kind and the line.
+fn check_material_keys(
+    name: &str,
+    kind: &str,
+    written: Option<&toml::Table>,
+    span: &std::ops::Range<usize>,
+    ctx: &Ctx,
+) -> Result<(), RenderError> {
+    let (Some(keys), Some((_, allowed))) = (written, MATERIAL_KEYS.iter().find(|(k, _)| *k == kind)) else {
+        return Ok(());
+    };
+    for key in keys.keys() {
+        if key != "kind" && !allowed.contains(&key.as_str()) {
+            let owners: Vec<&str> =
+                MATERIAL_KEYS.iter().filter(|(_, ks)| ks.contains(&key.as_str())).map(|(k, _)| *k).collect();
+            return Err(RenderError::Scene {
+                path: ctx.name.to_string(),
+                line: key_line(ctx.text, span, key),
+                message: format!(
+                    "[materials.{name}]: `{key}` is not a key of a {kind} material (it belongs to {}); a {kind} \
+                     material takes {}",
+                    owners.join(" and "),
+                    allowed.join(", ")
+                ),
+            });
+        }
+    }
+    Ok(())
+}
+
 fn build_material(
     name: &str,
     d: &MaterialDef,
@@ -651,7 +773,23 @@ fn build_material(
         "lambert" => Ok(Material::Lambert { color: color_source(d, span, tex, [0.5; 3])? }),
         "microfacet" => Ok(Material::Microfacet(Microfacet {
             color: color_source(d, span, tex, [0.5; 3])?,
-            roughness: unit(d.roughness, "roughness", 0.3)?,
+            roughness: unit(
+                match &d.roughness {
+                    None => None,
+                    Some(NumOrText::Num(x)) => Some(*x),
+                    Some(NumOrText::Text(t)) => {
+                        return Err(ctx.err(
+                            span.clone(),
+                            format!(
+                                "{what}: `roughness` = \"{t}\": a microfacet roughness is a number in [0, 1] (GGX α = \
+                                 roughness²); lengths such as \"25nm\" are for a thinfilm's rough substrate"
+                            ),
+                        ))
+                    }
+                },
+                "roughness",
+                0.3,
+            )?,
             metallic: unit(d.metallic, "metallic", 0.0)?,
             ior: d.ior.unwrap_or(1.5),
         })),
@@ -745,6 +883,42 @@ fn build_material(
                 .map_err(|e| ctx.err(span.clone(), format!("{what}: {e}")))?;
             film.base = base;
             film.factor = unit(d.factor, "factor", 1.0)?;
+            let length = |key: &str, v: &str| {
+                parse_length_nm(v).map_err(|e| ctx.err_key(span, key, format!("{what}: `{key}` = \"{v}\": {e}")))
+            };
+            match (&d.roughness, &d.correlation) {
+                (None, None) => {}
+                (Some(NumOrText::Num(x)), _) => {
+                    return Err(ctx.err_key(
+                        span,
+                        "roughness",
+                        format!(
+                            "{what}: `roughness` = {x}: a thin film's roughness is the rms height of its substrate, \
+                             a length with its unit, e.g. \"25nm\""
+                        ),
+                    ))
+                }
+                (Some(NumOrText::Text(s)), Some(c)) => {
+                    let r = Roughness::new(length("roughness", s)?, length("correlation", c)?)
+                        .map_err(|e| ctx.err_key(span, "roughness", format!("{what}: `roughness`/`correlation`: {e}")))?;
+                    film.set_rough(Htsg::new(r, Series::default()))
+                        .map_err(|e| ctx.err_key(span, "roughness", format!("{what}: {e}")))?;
+                }
+                (Some(_), None) => {
+                    return Err(ctx.err_key(
+                        span,
+                        "roughness",
+                        format!("{what}: `roughness` needs `correlation`, the substrate's autocorrelation length, e.g. \"300nm\""),
+                    ))
+                }
+                (None, Some(_)) => {
+                    return Err(ctx.err_key(
+                        span,
+                        "correlation",
+                        format!("{what}: `correlation` needs `roughness`, the substrate's rms height, e.g. \"25nm\""),
+                    ))
+                }
+            }
             Ok(Material::ThinFilm(Box::new(film)))
         }
         other => Err(ctx.err(
@@ -802,6 +976,72 @@ material = "grey"
             .unwrap_err()
             .to_string();
         assert!(e.starts_with("test.toml:"), "{e}");
+    }
+
+    #[test]
+    fn keys_of_another_material_kind_are_refused() {
+        let e = parse(&OK.replace(
+            "kind = \"lambert\"",
+            "kind = \"lambert\"\ncolor = [1, 0, 0]\nstack = \"air | water 300nm | air\"",
+        ))
+        .unwrap_err()
+        .to_string();
+        assert!(e.starts_with("test.toml:12:"), "{e}");
+        assert!(e.contains("`stack` is not a key of a lambert material") && e.contains("belongs to thinfilm"), "{e}");
+        assert!(e.contains("takes color, texture"), "{e}");
+        // A thin film with a diffraction key; an inline table names the line of the key too.
+        let film = "[camera]\nposition = [0, 0, 5]\n[materials]\nf = { kind = \"thinfilm\", stack = \"air | water 300nm | air\", w_diffuse = 0.5 }\n";
+        let e = parse(film).unwrap_err().to_string();
+        assert!(
+            e.starts_with("test.toml:4:")
+                && e.contains("`w_diffuse` is not a key of a thinfilm material")
+                && e.contains("belongs to diffraction"),
+            "{e}"
+        );
+        // `roughness` is shared by microfacet and thinfilm, not by lambert.
+        let e =
+            parse(&OK.replace("kind = \"lambert\"", "kind = \"lambert\"\n\nroughness = 0.2")).unwrap_err().to_string();
+        assert!(e.starts_with("test.toml:12:") && e.contains("belongs to microfacet and thinfilm"), "{e}");
+        // The keys of the kind itself are fine.
+        parse(&OK.replace("kind = \"lambert\"", "kind = \"microfacet\"\nroughness = 0.2\nmetallic = 1")).unwrap();
+    }
+
+    #[test]
+    fn rough_film_keys_are_checked() {
+        let film = |extra: &str| {
+            OK.replace(
+                "kind = \"lambert\"",
+                &format!("kind = \"thinfilm\"\nstack = \"air | water 348nm | Si\"\n{extra}"),
+            )
+        };
+        let s = parse(&film("roughness = \"25nm\"\ncorrelation = \"300nm\"")).unwrap();
+        let Material::ThinFilm(f) = &s.materials[0] else { panic!("a thin film") };
+        let r = f.rough.expect("rough");
+        assert_eq!((r.roughness.sigma_nm(), r.roughness.tau_nm()), (25.0, 300.0));
+        for (extra, needle) in [
+            ("roughness = \"25nm\"", "`roughness` needs `correlation`"),
+            ("correlation = \"300nm\"", "`correlation` needs `roughness`"),
+            ("roughness = 0.3\ncorrelation = \"300nm\"", "a length with its unit"),
+            ("roughness = \"25\"\ncorrelation = \"300nm\"", "`roughness` = \"25\""),
+            ("roughness = \"-5nm\"\ncorrelation = \"300nm\"", "must be finite and > 0"),
+            ("roughness = \"200nm\"\ncorrelation = \"300nm\"", "rms facet slope"),
+            ("roughness = \"25nm\"\ncorrelation = \"100nm\"", "radius of curvature"),
+            ("roughness = \"25nm\"\ncorrelation = \"300nm\"\ntransmission = true", "no transmitted part"),
+        ] {
+            let e = parse(&film(extra)).unwrap_err().to_string();
+            assert!(e.starts_with("test.toml:") && e.contains(needle), "{extra}: {e}");
+        }
+        let e = parse(
+            &(film("roughness = \"25nm\"\ncorrelation = \"300nm\"\nbase = \"under\"")
+                + "[materials.under]\nkind = \"lambert\"\n"),
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("takes no `base` material"), "{e}");
+        let e = parse(&OK.replace("kind = \"lambert\"", "kind = \"microfacet\"\nroughness = \"25nm\""))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("a microfacet roughness is a number in [0, 1]"), "{e}");
     }
 
     #[test]

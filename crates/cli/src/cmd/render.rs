@@ -21,12 +21,14 @@ Examples:
   iridis render examples/soap_bubble.toml -o bubble.png
   iridis render examples/snake_elaphe.toml -o snake.png --size 1024x768 --spp 4
   iridis render examples/gold_sphere.toml -o gold.exr
+  iridis render examples/rough_film.toml -o rough.png --size 480x320   # films on rough substrates (LSRS)
   iridis render examples/iridescent_spheres.gltf -o gltf.png --size 512x512
   iridis render examples/snake_elaphe.toml -o snake_gpu.png --gpu      on the GPU (lavapipe without one)
 
 --gpu renders the same scene with the WGSL port of the renderer (iridis-gpu) through Vulkan; its colours
-match the CPU's (mean CIEDE2000 < 1 on every example scene, tested). Without a GPU, Mesa's software driver
-works: apt-get install mesa-vulkan-drivers.")]
+match the CPU's (mean CIEDE2000 < 1 on every example scene it renders, tested). Rough films (roughness,
+correlation) render on the CPU only. Without a GPU, Mesa's software driver works:
+apt-get install mesa-vulkan-drivers.")]
 pub struct RenderArgs {
     /// Scene: TOML (.toml) or glTF 2.0 (.gltf, .glb).
     pub scene: PathBuf,
@@ -147,6 +149,7 @@ pub const EXAMPLES: &[(&str, &str)] = &[
     ("oil_spill.toml", include_str!("../../../../examples/oil_spill.toml")),
     ("gold_sphere.toml", include_str!("../../../../examples/gold_sphere.toml")),
     ("gltf_iridescence.toml", include_str!("../../../../examples/gltf_iridescence.toml")),
+    ("rough_film.toml", include_str!("../../../../examples/rough_film.toml")),
 ];
 /// Files the example scenes refer to.
 pub const EXAMPLE_FILES: &[(&str, &[u8])] =
@@ -223,7 +226,8 @@ pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
          Elaphe-like and Xenopeltis-like nanostructures (lookup tables of builtin:elaphe / builtin:xenopeltis, \
          nanostructure x axis along the body, the thesis' texture blending) under two light directions, a soap \
          bubble draining (thin at the top, thick at the bottom), an oil film on wet asphalt, a gold sphere, and \
-         a glTF file with KHR_materials_iridescence. The scene files are written next to the images: \
+         a glTF file with KHR_materials_iridescence, and a thin film on a smooth and on a rough substrate \
+         (the LSRS model: a dimmer mirror image and a coloured glossy lobe). The scene files are written next to the images: \
          `iridis render scenes/NAME.toml -o NAME.png --size 1024x768`.",
     );
     let scenes = write_examples(&g.path("scenes"))?;
