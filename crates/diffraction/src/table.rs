@@ -270,10 +270,10 @@ impl LookupTable {
                 meta.version
             )));
         }
-        if !(3..=4001).contains(&meta.uv_resolution)
-            || !(meta.uv_power.is_finite() && (1.0..=20.0).contains(&meta.uv_power))
-            || meta.taylor_terms > 1000
-        {
+        let in_range = (3..=4001).contains(&meta.uv_resolution)
+            && (1.0..=20.0).contains(&meta.uv_power)
+            && meta.taylor_terms <= 1000;
+        if !in_range {
             return Err(bad(format!(
                 "metadata out of range (u-v resolution {}, power {}, N = {}): not a table iridis wrote",
                 meta.uv_resolution, meta.uv_power, meta.taylor_terms
