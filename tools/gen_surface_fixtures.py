@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Writes the height-field fixtures for crates/surface/tests with independent writers:
-Gwyddion files by the `gwyfile` package, .npy files by numpy. Expected values go to expected.json.
+Gwyddion files by the `gwyfile` package, .npy and .npz files by numpy (`np.save`, `np.savez`,
+`np.savez_compressed`). Expected values go to expected.json.
 
 Regenerate: pip install gwyfile numpy && python3 tools/gen_surface_fixtures.py
 """
@@ -44,12 +45,24 @@ np.save(os.path.join(OUT, "numpy_f64_bigendian.npy"), h_nm.astype(">f8"))
 with open(os.path.join(OUT, "numpy_f64.npy.json"), "w") as f:
     json.dump({"pixel_size_nm": [dx_nm, dy_nm], "height_unit": "nm"}, f)
 
+# .npz archives as numpy writes them. savez (stored): one 2-D array and a 1-D axis, which is not a height
+# field, so the 2-D one is picked without --channel; a sidecar gives the units.
+np.savez(os.path.join(OUT, "numpy_savez.npz"), x_nm=x, heights=h_nm)
+with open(os.path.join(OUT, "numpy_savez.npz.json"), "w") as f:
+    json.dump({"pixel_size_nm": [dx_nm, dy_nm], "height_unit": "nm"}, f)
+# savez_compressed (deflated): two 2-D arrays, so --channel must choose; in name order "amplitude" (the
+# second grating, as float32) is 0 and "height" is 1; plus 1-D axes and a scalar, which are not candidates.
+np.savez_compressed(os.path.join(OUT, "numpy_savez_compressed.npz"), height=h_nm, amplitude=h2_nm.astype("<f4"),
+                    x_nm=x, y_nm=y, scale=np.float64(1.0))
+
 expected = {
     "rows": rows, "cols": cols, "dx_nm": dx_nm, "dy_nm": dy_nm,
     "sum_nm": float(h_nm.sum()), "sum_sq_nm2": float((h_nm ** 2).sum()),
+    "height_min_nm": float(h_nm.min()), "height_max_nm": float(h_nm.max()), "rms_nm": float(h_nm.std()),
     "probe": [[r, cc, float(h_nm[r, cc])] for r, cc in [(0, 0), (0, 5), (7, 3), (47, 63), (20, 41)]],
     "channel1_probe": [[r, cc, float(h2_nm[r, cc])] for r, cc in [(0, 0), (3, 9), (47, 63)]],
     "period_x_nm": 800.0, "period_y_nm": 640.0,
+    "npz_2d_arrays": {"numpy_savez.npz": ["heights"], "numpy_savez_compressed.npz": ["amplitude", "height"]},
 }
 with open(os.path.join(OUT, "expected.json"), "w") as f:
     json.dump(expected, f, indent=1)

@@ -1,7 +1,10 @@
 //! `iridis precompute` and `iridis brdf-map` as a user runs them, including their refusals.
 
 mod common;
+use std::path::Path;
+
 use common::{assert_fails, iridis};
+use iridis_diffraction::table::{LookupTable, FORMAT_VERSION};
 
 const SURFACE: &str = "builtin:sine?size=8um&pixel=50nm";
 
@@ -39,6 +42,34 @@ fn precompute_then_map_and_refusals() {
     assert_fails(&["brdf-map", junk.to_str().unwrap(), "-o", never.to_str().unwrap()], &["junk.npz"]);
     assert!(!never.exists());
     assert_fails(&["precompute", "no/such/surface.npy", "-o", t], &["no/such/surface.npy"]);
+
+    // Options that only shape how a table is built, or how a surface is read, would be ignored: refused.
+    let x = dir.path().join("x.png");
+    let x = x.to_str().unwrap();
+    for (opt, value) in
+        [("--uv-resolution", "101"), ("--uv-power", "1"), ("--pixel-size", "50nm"), ("--max-height", "300nm")]
+    {
+        assert_fails(&["brdf-map", t, "-o", x, opt, value], &["finished lookup table", opt, "iridis precompute"]);
+    }
+    assert!(!Path::new(x).exists());
+
+    // A table is recognised by content, not by its name.
+    let renamed = dir.path().join("table.bin");
+    std::fs::copy(&table, &renamed).unwrap();
+    let out = iridis(&["brdf-map", renamed.to_str().unwrap(), "-o", x, "--size", "16"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+
+    // A table written by another format version: a clear refusal naming both versions.
+    let mut other = LookupTable::load(&table).unwrap();
+    other.meta.version = FORMAT_VERSION + 1;
+    let old = dir.path().join("other_version.npz");
+    other.save(&old).unwrap();
+    let want_version = format!("version {}", FORMAT_VERSION + 1);
+    let reads = format!("reads version {FORMAT_VERSION}");
+    assert_fails(
+        &["brdf-map", old.to_str().unwrap(), "-o", x],
+        &["other_version.npz", &want_version, &reads, "iridis precompute"],
+    );
     assert_fails(&["precompute", SURFACE, "-o", t, "--terms", "many"], &["--terms"]);
 }
 
@@ -69,4 +100,201 @@ fn all_three_methods_agree_on_a_mirror_like_surface() {
         let c = img.get_pixel(4, 4).0;
         assert!(c.iter().all(|&v| v >= 245), "{method}: centre {c:?}");
     }
+}
+
+/// A height field saved as .npz (like `np.savez`) is a surface, not a table: brdf-map reads it as one.
+#[test]
+fn an_npz_height_field_is_a_surface() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = dir.path().join("shallow.npz");
+    let out = iridis(&[
+        "surface",
+        "generate",
+        "sine",
+        "--size",
+        "6um",
+        "--pixel",
+        "60nm",
+        "--depth",
+        "2nm",
+        "-o",
+        s.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let png = dir.path().join("m.png");
+    let out = iridis(&[
+        "brdf-map",
+        s.to_str().unwrap(),
+        "--method",
+        "reference",
+        "--coherence",
+        "3um",
+        "--size",
+        "9",
+        "--exposure",
+        "1",
+        "-o",
+        png.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    // Nearly a mirror: the centre (specular at normal incidence) is white.
+    let c = image::open(&png).unwrap().to_rgb8().get_pixel(4, 4).0;
+    assert!(c.iter().all(|&v| v >= 245), "centre {c:?}");
+}
+
+/// The model's warnings (pixel too coarse, patch smaller than the coherence length) appear once each when a
+/// table is computed, and again, once each, whenever the table is used.
+#[test]
+fn warnings_once_when_computed_and_again_from_the_table() {
+    let dir = tempfile::tempdir().unwrap();
+    let t = dir.path().join("coarse.npz");
+    let t = t.to_str().unwrap();
+    let out = iridis(&[
+        "precompute",
+        "builtin:sine?size=3um&pixel=100nm",
+        "-o",
+        t,
+        "--coherence",
+        "4um",
+        "--uv-resolution",
+        "21",
+        "--step",
+        "5nm",
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr).to_string();
+    assert!(out.status.success(), "{err}");
+    let count = |text: &str, needle: &str| text.matches(needle).count();
+    assert_eq!(count(&err, "pixel size 100.0 nm cannot represent"), 1, "{err}");
+    assert_eq!(count(&err, "smaller than the coherence length 4.0 µm"), 1, "{err}");
+    let png = dir.path().join("m.png");
+    let out = iridis(&["brdf-map", t, "-o", png.to_str().unwrap(), "--size", "8"]);
+    let err = String::from_utf8_lossy(&out.stderr).to_string();
+    assert!(out.status.success(), "{err}");
+    assert_eq!(count(&err, "pixel size 100.0 nm cannot represent"), 1, "{err}");
+    assert_eq!(count(&err, "patch 3.0 × 3.0 µm is smaller than the coherence length 4.0 µm"), 1, "{err}");
+    assert_eq!(count(&err, "the table was computed from a surface with this problem"), 2, "{err}");
+}
+
+/// Linear XYZ per pixel from a `--raw` .npy of shape [size, size, 3].
+fn raw_xyz(path: &Path) -> Vec<[f64; 3]> {
+    let bytes = std::fs::read(path).unwrap();
+    let v: Vec<f64> = npyz::NpyFile::new(&bytes[..]).unwrap().into_vec().unwrap();
+    v.chunks(3).map(|c| [c[0], c[1], c[2]]).collect()
+}
+
+/// XYZ → linear sRGB, IEC 61966-2-1 (written out here, independent of iridis-color).
+fn srgb_linear(p: [f64; 3]) -> [f64; 3] {
+    [
+        3.2406 * p[0] - 1.5372 * p[1] - 0.4986 * p[2],
+        -0.9689 * p[0] + 1.8758 * p[1] + 0.0415 * p[2],
+        0.0557 * p[0] - 0.2040 * p[1] + 1.0570 * p[2],
+    ]
+}
+
+/// The view direction (x, y) at the centre of pixel `k` of a `size²` map (PHYSICS.md: x right, y up).
+fn pixel_xy(k: usize, size: usize) -> (f64, f64) {
+    let (row, col) = (k / size, k % size);
+    (-1.0 + (2 * col + 1) as f64 / size as f64, 1.0 - (2 * row + 1) as f64 / size as f64)
+}
+
+const MIRROR: &str = "builtin:sine?size=6um&pixel=60nm&depth=2nm";
+
+fn map(dir: &Path, name: &str, extra: &[&str]) -> Vec<[f64; 3]> {
+    let png = dir.join(format!("{name}.png"));
+    let raw = dir.join(format!("{name}.npy"));
+    let mut args = vec![
+        "brdf-map",
+        MIRROR,
+        "--coherence",
+        "3um",
+        "--uv-resolution",
+        "61",
+        "-o",
+        png.to_str().unwrap(),
+        "--raw",
+        raw.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    let out = iridis(&args);
+    assert!(out.status.success(), "{extra:?}: {}", String::from_utf8_lossy(&out.stderr));
+    raw_xyz(&raw)
+}
+
+#[test]
+fn two_angle_incidence_gamma_and_exr() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let size = 24;
+    let exr = d.join("a.exr");
+    let args = ["--size", "24", "--exposure", "2", "--gamma", "2.2", "--incidence", "30deg,90deg"];
+    let xyz = map(d, "a", &[&args[..], &["--exr", exr.to_str().unwrap()]].concat());
+    // A near-mirror's brightest pixel is the specular direction (−sin θ_i cos φ_i, −sin θ_i sin φ_i):
+    // for θ_i = 30°, φ_i = 90° that is (0, −0.5), within half a pixel (1/24).
+    let brightest = |m: &[[f64; 3]]| (0..m.len()).max_by(|&a, &b| m[a][1].total_cmp(&m[b][1])).unwrap();
+    let (x, y) = pixel_xy(brightest(&xyz), size);
+    assert!(x.abs() <= 1.0 / 24.0 + 1e-9 && (y + 0.5).abs() <= 1.0 / 24.0 + 1e-9, "peak at ({x}, {y})");
+    let phi0 = map(d, "b", &["--size", "24", "--incidence", "30deg,0deg"]);
+    let (x, y) = pixel_xy(brightest(&phi0), size);
+    assert!((x + 0.5).abs() <= 1.0 / 24.0 + 1e-9 && y.abs() <= 1.0 / 24.0 + 1e-9, "φ=0 peak at ({x}, {y})");
+
+    // --gamma 2.2: each 8-bit value is 255 · clip(linear sRGB of 2·XYZ)^(1/2.2), ±1 for matrix rounding.
+    let img = image::open(d.join("a.png")).unwrap().to_rgb8();
+    let mut checked = 0;
+    for (k, p) in xyz.iter().enumerate() {
+        let want = srgb_linear(p.map(|c| 2.0 * c)).map(|c| 255.0 * c.clamp(0.0, 1.0).powf(1.0 / 2.2));
+        let got = img.get_pixel((k % size) as u32, (k / size) as u32).0;
+        for c in 0..3 {
+            assert!((got[c] as f64 - want[c]).abs() <= 1.0, "pixel {k}: {got:?} vs {want:?}");
+        }
+        checked += usize::from(want.iter().any(|&w| w > 10.0 && w < 245.0));
+    }
+    assert!(checked > 0, "no mid-tone pixel tested the curve");
+
+    // --exr: linear sRGB of 2·XYZ, unclipped; its luminance (Rec. 709 weights) is 2·Y.
+    let e = image::open(&exr).unwrap().to_rgb32f();
+    assert_eq!(e.dimensions(), (24, 24));
+    let ymax = xyz.iter().map(|p| p[1]).fold(0.0, f64::max);
+    for (k, p) in xyz.iter().enumerate() {
+        let [r, g, b] = e.get_pixel((k % size) as u32, (k / size) as u32).0.map(f64::from);
+        let lum = 0.2126 * r + 0.7152 * g + 0.0722 * b;
+        assert!((lum - 2.0 * p[1]).abs() <= 1e-3 * 2.0 * ymax, "pixel {k}: {lum} vs {}", 2.0 * p[1]);
+    }
+    assert!(ymax > 0.5, "the specular peak should be bright: {ymax}");
+}
+
+#[test]
+fn no_shadowing_only_ever_brightens() {
+    // Cook–Torrance G ≤ 1: leaving it out never darkens a pixel, and at 60° incidence it must brighten some.
+    let dir = tempfile::tempdir().unwrap();
+    let args = ["--size", "24", "--incidence", "60deg"];
+    let with = map(dir.path(), "g", &args);
+    let without = map(dir.path(), "n", &[&args[..], &["--no-shadowing"]].concat());
+    let mut brighter = 0;
+    for (a, b) in with.iter().zip(&without) {
+        assert!(b[1] >= a[1] * (1.0 - 1e-12), "{b:?} < {a:?}");
+        brighter += usize::from(a[1] > 0.0 && b[1] > a[1] * 1.01);
+    }
+    assert!(brighter > 10, "only {brighter} pixels changed");
+}
+
+#[test]
+fn a_thin_film_fresnel_changes_the_colour_schlick_keeps_the_illuminant() {
+    // Near-mirror at normal incidence, specular pixel: with Schlick (λ-independent, divided by F_0) the
+    // reflected light is the illuminant, D65 at (x, y) = (0.3127, 0.3290); a 300 nm keratin film on n = 1.56
+    // colours it. The lookup method refuses a λ-dependent Fresnel factor.
+    let dir = tempfile::tempdir().unwrap();
+    let chroma = |p: [f64; 3]| (p[0] / (p[0] + p[1] + p[2]), p[1] / (p[0] + p[1] + p[2]));
+    let common = ["--size", "9", "--method", "reference"];
+    let schlick = map(dir.path(), "s", &common);
+    let (x, y) = chroma(schlick[4 * 9 + 4]);
+    assert!((x - 0.3127).abs() < 0.002 && (y - 0.3290).abs() < 0.002, "Schlick specular at ({x}, {y})");
+    let stack = "stack:air | keratin 300nm | n=1.56";
+    let film = map(dir.path(), "f", &[&common[..], &["--fresnel", stack]].concat());
+    let (fx, fy) = chroma(film[4 * 9 + 4]);
+    assert!((fx - x).hypot(fy - y) > 0.01, "film specular at ({fx}, {fy}) vs Schlick ({x}, {y})");
+    let png = dir.path().join("l.png");
+    assert_fails(
+        &["brdf-map", MIRROR, "--fresnel", stack, "--size", "9", "-o", png.to_str().unwrap()],
+        &["must not depend on", "reference"],
+    );
 }

@@ -10,7 +10,7 @@ fn iridis() -> Command {
 #[test]
 fn generate_then_info_recovers_the_period() {
     let dir = tempfile::tempdir().unwrap();
-    for ext in ["gwy", "npy", "png", "txt"] {
+    for ext in ["gwy", "npy", "npz", "png", "txt"] {
         let out = dir.path().join(format!("g.{ext}"));
         let st = iridis()
             .args(["surface", "generate", "blazed", "--period", "1300nm", "--angle", "30deg", "--size", "16um"])
@@ -53,4 +53,270 @@ fn bad_input_fails_cleanly() {
         .file_name()
         .to_string_lossy()
         .starts_with(".iridis-")));
+}
+
+fn fixture(name: &str) -> String {
+    format!("{}/../surface/tests/fixtures/{name}", env!("CARGO_MANIFEST_DIR"))
+}
+
+fn expected() -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(fixture("expected.json")).unwrap()).unwrap()
+}
+
+/// Runs `iridis ARGS`, which must succeed; returns stdout parsed as JSON when `json`.
+fn ok(args: &[&str]) -> std::process::Output {
+    let o = iridis().args(args).output().unwrap();
+    assert!(o.status.success(), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
+    o
+}
+
+fn info_json(args: &[&str]) -> serde_json::Value {
+    let mut a = vec!["surface", "info", "--json"];
+    a.extend_from_slice(args);
+    serde_json::from_slice(&ok(&a).stdout).unwrap()
+}
+
+fn load(path: &std::path::Path) -> iridis_surface::HeightField {
+    iridis_surface::load_surface(path.to_str().unwrap(), &Default::default()).unwrap()
+}
+
+fn close(a: f64, b: f64, tol: f64) -> bool {
+    (a - b).abs() <= tol
+}
+
+#[test]
+fn info_json_has_the_documented_keys_and_the_numpy_values() {
+    let e = expected();
+    let v = info_json(&[&fixture("numpy_f64.npy")]);
+    let keys: std::collections::BTreeSet<&str> = v.as_object().unwrap().keys().map(String::as_str).collect();
+    // The issue's keys, plus provenance (source, format, z unit, notes), mean and warnings.
+    let documented =
+        ["rows", "cols", "pixel_size_nm", "extent_nm", "height_min_nm", "height_max_nm", "rms_nm", "peaks"];
+    let extra = ["source", "format", "mean_nm", "z_unit_in_file", "notes", "warnings"];
+    assert_eq!(keys, documented.iter().chain(&extra).copied().collect(), "{v}");
+    for p in v["peaks"].as_array().unwrap() {
+        let pk: std::collections::BTreeSet<&str> = p.as_object().unwrap().keys().map(String::as_str).collect();
+        assert_eq!(pk, ["orientation_deg", "period_nm", "power"].into_iter().collect(), "{p}");
+    }
+    // Values against numpy's (tools/gen_surface_fixtures.py).
+    assert_eq!((v["rows"].as_u64(), v["cols"].as_u64()), (Some(48), Some(64)));
+    assert_eq!(v["pixel_size_nm"], serde_json::json!([100.0, 80.0]));
+    assert_eq!(v["extent_nm"], serde_json::json!([6400.0, 3840.0]));
+    for k in ["height_min_nm", "height_max_nm", "rms_nm"] {
+        assert!(close(v[k].as_f64().unwrap(), e[k].as_f64().unwrap(), 1e-9), "{k}: {} vs {}", v[k], e[k]);
+    }
+    let p0 = &v["peaks"][0];
+    assert!(
+        close(p0["period_nm"].as_f64().unwrap(), 800.0, 4.0) && p0["orientation_deg"].as_f64().unwrap() < 0.5,
+        "{p0}"
+    );
+    assert_eq!(v["format"], "npy");
+}
+
+#[test]
+fn info_image_writes_a_png() {
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("relief.png");
+    ok(&["surface", "info", "builtin:sine?size=4um&pixel=50nm", "--image", png.to_str().unwrap()]);
+    let bytes = std::fs::read(&png).unwrap();
+    assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n");
+    let img = image::load_from_memory(&bytes).unwrap();
+    assert_eq!(img.width(), 900);
+    assert!(img.height() >= 300);
+}
+
+#[test]
+fn convert_crop_resample_tile_pad_level() {
+    let dir = tempfile::tempdir().unwrap();
+    let src = std::path::PathBuf::from(fixture("numpy_f64.npy"));
+    let orig = load(&src);
+    let out = |n: &str| dir.path().join(n);
+    let s = src.to_str().unwrap();
+
+    ok(&["surface", "convert", s, out("crop.npy").to_str().unwrap(), "--crop", "4,8,20,30"]);
+    let c = load(&out("crop.npy"));
+    assert_eq!((c.rows, c.cols, c.dx_nm, c.dy_nm), (20, 30, 100.0, 80.0));
+    for (r, col) in [(0, 0), (7, 11), (19, 29)] {
+        assert_eq!(c.get(r, col), orig.get(r + 4, col + 8));
+    }
+
+    ok(&["surface", "convert", s, out("tile.gwy").to_str().unwrap(), "--tile", "2x3"]);
+    let t = load(&out("tile.gwy"));
+    assert_eq!((t.rows, t.cols), (96, 192));
+    for (r, col) in [(0, 0), (5, 9), (47, 63)] {
+        for (dr, dc) in [(0, 0), (48, 0), (0, 128), (48, 64)] {
+            assert!(close(t.get(r + dr, col + dc), orig.get(r, col), 1e-9));
+        }
+    }
+
+    ok(&["surface", "convert", s, out("pad.txt").to_str().unwrap(), "--pad", "60x80"]);
+    let p = load(&out("pad.txt"));
+    assert_eq!((p.rows, p.cols), (60, 80));
+    assert!(close(p.get(0, 0), orig.mean(), 1e-9) && close(p.get(59, 79), orig.mean(), 1e-9));
+    assert!(close(p.get(6, 8), orig.get(0, 0), 1e-9) && close(p.get(53, 71), orig.get(47, 63), 1e-9));
+
+    // Resampling to 200 nm keeps the extent (6400 × 3840 nm) and the 800 nm period along x.
+    ok(&["surface", "convert", s, out("res.npy").to_str().unwrap(), "--resample", "200nm"]);
+    let r = load(&out("res.npy"));
+    assert_eq!((r.rows, r.cols), (19, 32));
+    assert!(close(r.dx_nm * 32.0, 6400.0, 1e-6) && close(r.dy_nm * 19.0, 3840.0, 1e-6));
+    let v = info_json(&[out("res.npy").to_str().unwrap()]);
+    assert!(close(v["peaks"][0]["period_nm"].as_f64().unwrap(), 800.0, 8.0), "{}", v["peaks"][0]);
+
+    // Plane levelling removes the fixture's tilt of 0.01 nm per nm along y: mean 0, and no row-to-row trend.
+    ok(&["surface", "convert", s, out("lev.npy").to_str().unwrap(), "--level", "plane"]);
+    let l = load(&out("lev.npy"));
+    assert!(l.mean().abs() < 1e-9);
+    let row_mean = |h: &iridis_surface::HeightField, r: usize| h.row(r).iter().sum::<f64>() / h.cols as f64;
+    assert!(close(row_mean(&orig, 0) - row_mean(&orig, 47), 0.01 * 47.0 * 80.0, 1e-6));
+    assert!(close(row_mean(&l, 0), row_mean(&l, 47), 1e-6), "{} {}", row_mean(&l, 0), row_mean(&l, 47));
+
+    // Bad step values: clear refusals, no file.
+    for (opt, val, needle) in
+        [("--crop", "1,2,3", "ROW,COL,ROWS,COLS"), ("--tile", "3", "3x3"), ("--level", "tilt", "unknown levelling")]
+    {
+        let o = iridis().args(["surface", "convert", s, out("bad.npy").to_str().unwrap(), opt, val]).output().unwrap();
+        assert_eq!(o.status.code(), Some(2), "{opt}");
+        assert!(String::from_utf8_lossy(&o.stderr).contains(needle), "{opt}: {}", String::from_utf8_lossy(&o.stderr));
+        assert!(!out("bad.npy").exists());
+    }
+}
+
+#[test]
+fn png_and_tiff_at_8_and_16_bit_with_pixel_size_and_max_height() {
+    use image::{ImageBuffer, ImageFormat, Luma};
+    let dir = tempfile::tempdir().unwrap();
+    // A ramp along x: column c holds c·step grey levels; white stands for 300 nm, black for 0.
+    let img8 = ImageBuffer::from_fn(16, 10, |x, _| Luma([(x * 17) as u8]));
+    let img16 = ImageBuffer::from_fn(16, 10, |x, _| Luma([(x * 4369) as u16]));
+    for (name, fmt, full) in [
+        ("g8.png", ImageFormat::Png, 255.0),
+        ("g16.png", ImageFormat::Png, 65535.0),
+        ("g8.tif", ImageFormat::Tiff, 255.0),
+        ("g16.tif", ImageFormat::Tiff, 65535.0),
+    ] {
+        let path = dir.path().join(name);
+        if full == 255.0 {
+            img8.save_with_format(&path, fmt).unwrap();
+        } else {
+            img16.save_with_format(&path, fmt).unwrap();
+        }
+        let p = path.to_str().unwrap();
+        // Without --pixel-size: refused, saying what to give.
+        let o = iridis().args(["surface", "info", p]).output().unwrap();
+        assert_eq!(o.status.code(), Some(2), "{name}");
+        assert!(String::from_utf8_lossy(&o.stderr).contains("--pixel-size"), "{name}");
+        let v = info_json(&[p, "--pixel-size", "50nm", "--max-height", "300nm"]);
+        assert_eq!((v["rows"].as_u64(), v["cols"].as_u64()), (Some(10), Some(16)), "{name}");
+        assert_eq!(v["pixel_size_nm"], serde_json::json!([50.0, 50.0]), "{name}");
+        assert_eq!(v["height_min_nm"].as_f64(), Some(0.0), "{name}");
+        assert!(close(v["height_max_nm"].as_f64().unwrap(), 300.0, 1e-9), "{name}: {}", v["height_max_nm"]);
+        // Column 5: 85/255 or 21845/65535 of 300 nm = 100 nm, read back exactly through a .npy.
+        let npy = dir.path().join(format!("{name}.npy"));
+        ok(&["surface", "convert", p, npy.to_str().unwrap(), "--pixel-size", "50nm", "--max-height", "300nm"]);
+        let h = load(&npy);
+        let grey = if full == 255.0 { 85.0 } else { 21845.0 };
+        let want = grey / full * 300.0; // both a third of full scale
+        assert!(close(h.get(3, 5), want, 1e-9), "{name}: {} vs {want}", h.get(3, 5));
+    }
+}
+
+#[test]
+fn bump_lattices_and_blazed_refusal() {
+    let dir = tempfile::tempdir().unwrap();
+    for kind in ["rect-bumps", "tri-bumps"] {
+        let out = dir.path().join(format!("{kind}.npy"));
+        let o = ok(&[
+            "surface",
+            "generate",
+            kind,
+            "--period",
+            "1000nm",
+            "--depth",
+            "80nm",
+            "--fill",
+            "0.5",
+            "--size",
+            "20um",
+            "--pixel",
+            "25nm",
+            "-o",
+            out.to_str().unwrap(),
+            "--json",
+        ]);
+        let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        // Peak-to-valley is the depth; a pyramid's apex may fall between samples, at most half a pixel
+        // (12.5 nm) from the nearest one on each axis, which lowers it by depth · 12.5/250 (half-width 250 nm).
+        let pv = v["height_max_nm"].as_f64().unwrap() - v["height_min_nm"].as_f64().unwrap();
+        let lowest = if kind == "rect-bumps" { 80.0 } else { 80.0 * (1.0 - 12.5 / 250.0) };
+        assert!(pv <= 80.0 + 1e-9 && pv >= lowest - 1e-9, "{kind}: peak-to-valley {pv}");
+        // A square lattice: the 1000 nm period along x (0°) and along y (90°) are the two strongest peaks.
+        let peaks = v["peaks"].as_array().unwrap();
+        for deg in [0.0, 90.0] {
+            assert!(
+                peaks[..2].iter().any(|p| close(p["period_nm"].as_f64().unwrap(), 1000.0, 5.0)
+                    && close(p["orientation_deg"].as_f64().unwrap(), deg, 0.5)),
+                "{kind}: no 1000 nm peak at {deg}°: {peaks:?}"
+            );
+        }
+        // Boxes of fill 0.5 cover a quarter of the area at full height, pyramids on the same footprint
+        // hold a third of the boxes' volume: mean heights depth/4 and depth/12 above the floor.
+        let mean_above_floor = load(&out).mean() - v["height_min_nm"].as_f64().unwrap();
+        let want = if kind == "rect-bumps" { 80.0 / 4.0 } else { 80.0 / 12.0 };
+        assert!(close(mean_above_floor, want, 0.02 * want), "{kind}: mean above floor {mean_above_floor}, want {want}");
+    }
+    let out = dir.path().join("never.npy");
+    let o = iridis()
+        .args(["surface", "generate", "blazed", "--blaze", "6deg", "--depth", "200nm", "-o", out.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("either blaze=ANGLE or depth=LENGTH") && !err.contains("panicked"), "{err}");
+    assert!(!out.exists());
+}
+
+#[test]
+fn z_unit_round_trip_through_the_sidecar() {
+    let dir = tempfile::tempdir().unwrap();
+    // Heights stored in micrometres, as the sidecar says.
+    let src = dir.path().join("um.npy");
+    let values: Vec<f64> = (0..24).map(|k| 0.001 * (k as f64 - 10.0) * 3.5).collect();
+    {
+        use npyz::WriterBuilder;
+        let mut f = std::fs::File::create(&src).unwrap();
+        let mut w = npyz::WriteOptions::new().default_dtype().shape(&[4, 6]).writer(&mut f).begin_nd().unwrap();
+        w.extend(values.iter().copied()).unwrap();
+        w.finish().unwrap();
+    }
+    std::fs::write(dir.path().join("um.npy.json"), r#"{"pixel_size_nm": 40, "height_unit": "um"}"#).unwrap();
+    let v = info_json(&[src.to_str().unwrap()]);
+    assert_eq!(v["z_unit_in_file"], "um");
+    assert!(
+        close(v["height_min_nm"].as_f64().unwrap(), -35.0, 1e-9)
+            && close(v["height_max_nm"].as_f64().unwrap(), 45.5, 1e-9)
+    );
+    // Converted: the heights are written in nm and the new sidecar says so; reading it back gives the same nm.
+    for ext in ["npy", "npz", "png", "gwy", "txt"] {
+        let out = dir.path().join(format!("nm.{ext}"));
+        ok(&["surface", "convert", src.to_str().unwrap(), out.to_str().unwrap()]);
+        if matches!(ext, "npy" | "npz") {
+            let side: serde_json::Value =
+                serde_json::from_str(&std::fs::read_to_string(dir.path().join(format!("nm.{ext}.json"))).unwrap())
+                    .unwrap();
+            assert_eq!(side["height_unit"], "nm", "{ext}");
+            assert_eq!(side["pixel_size_nm"], 40.0, "{ext}");
+        }
+        let back = load(&out);
+        let tol = if ext == "png" { 80.5 / 65535.0 / 2.0 + 1e-9 } else { 1e-9 };
+        for (k, &um) in values.iter().enumerate() {
+            assert!(
+                close(back.heights_nm[k], um * 1000.0, tol),
+                "{ext} [{k}]: {} vs {}",
+                back.heights_nm[k],
+                um * 1000.0
+            );
+        }
+        assert!(close(back.dx_nm, 40.0, 1e-9), "{ext}");
+    }
 }

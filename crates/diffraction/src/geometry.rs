@@ -28,6 +28,12 @@ pub trait FresnelSource: Send + Sync + std::fmt::Debug {
     /// Whether the value depends on λ (then it must stay inside the spectral integral).
     fn depends_on_wavelength(&self) -> bool;
     fn describe(&self) -> String;
+    /// `F_0` of the normalisation in `C` (paper eq. 4: "BRDFs normalized by reflectance at normal
+    /// incidence"): one number for all λ. A λ-independent source gives its normal-incidence reflectance;
+    /// a λ-dependent one must not divide by its own `F(λ, 0)`, which would cancel the colour it adds.
+    fn normal_reflectance(&self) -> f64 {
+        self.reflectance(560.0, 1.0)
+    }
     /// The built-in model this source is, if it is one (what a GPU shader can evaluate).
     fn as_builtin(&self) -> Option<&Fresnel> {
         None
@@ -91,6 +97,8 @@ impl FresnelSource for Fresnel {
 #[derive(Debug, Clone)]
 pub struct FilmFresnel {
     stack: iridis_thinfilm::Stack,
+    /// Mean normal-incidence reflectance over 380–780 nm (5 nm steps): the λ-independent `F_0`.
+    f0_mean: f64,
 }
 
 impl FilmFresnel {
@@ -101,7 +109,17 @@ impl FilmFresnel {
                 crate::DiffractionError::Invalid(format!("the Fresnel stack must cover 380–780 nm: {e}"))
             })?;
         }
-        Ok(Self { stack })
+        let samples: Vec<f64> = (0..=80)
+            .map(|k| stack.evaluate(380.0 + 5.0 * k as f64, 0.0).map(|r| r.r()))
+            .collect::<Result<_, _>>()
+            .map_err(|e| crate::DiffractionError::Invalid(format!("the Fresnel stack: {e}")))?;
+        let f0_mean = samples.iter().sum::<f64>() / samples.len() as f64;
+        if !(f0_mean.is_finite() && f0_mean > 0.0) {
+            return Err(crate::DiffractionError::Invalid(format!(
+                "the Fresnel stack reflects nothing at normal incidence (mean R = {f0_mean}): nothing to normalise by"
+            )));
+        }
+        Ok(Self { stack, f0_mean })
     }
 }
 
@@ -112,6 +130,9 @@ impl FresnelSource for FilmFresnel {
     }
     fn depends_on_wavelength(&self) -> bool {
         true
+    }
+    fn normal_reflectance(&self) -> f64 {
+        self.f0_mean
     }
     fn describe(&self) -> String {
         format!("thin-film stack {}", self.stack)
@@ -135,8 +156,12 @@ impl Default for Shading {
 impl Shading {
     /// The factor `C` of the relative reflectance `ρ_λ = C |A|²` (paper eq. 4 with `G` of eq. 2, as in
     /// PHYSICS.md): `C = F² (1 + ω_i·ω_r)² / (F_0² (cos θ_i + cos θ_r)² cos θ_r)`, times the shadowing term.
-    /// `F` is taken at the half-vector angle, `F_0` at normal incidence, both at wavelength λ.
-    /// At normal incidence and mirror viewing `C = 1`. Zero below the horizon or when `w = 0`.
+    /// `F` is taken at the half-vector angle and wavelength λ; `F_0` is [`FresnelSource::normal_reflectance`],
+    /// the same for all λ. With a λ-independent source, normal incidence and mirror viewing give `C = 1`.
+    /// Zero below the horizon or when `w = 0`.
+    ///
+    /// No separate `cos θ_i`: the paper's eq. 9 multiplies its `C = F²G/(F_0² w²)` by `cos θ_i`, and its `G`
+    /// (eq. 2) divides by `cos θ_i cos θ_r`; the two cancel, leaving `cos θ_r` alone (docs/diffraction.md).
     pub fn factor(&self, wavelength_nm: f64, wi: Vec3, wr: Vec3) -> f64 {
         let (ci, cr) = (wi[2], wr[2]);
         if ci <= 0.0 || cr <= 0.0 {
@@ -150,7 +175,7 @@ impl Shading {
         }
         h = [h[0] / hl, h[1] / hl, h[2] / hl];
         let f = self.fresnel.reflectance(wavelength_nm, dot(wi, h));
-        let f0 = self.fresnel.reflectance(wavelength_nm, 1.0);
+        let f0 = self.fresnel.normal_reflectance();
         let g = (1.0 + dot(wi, wr)).powi(2);
         let mut c = (f * f) * g / (f0 * f0 * w * w * cr);
         if self.shadowing {

@@ -56,30 +56,36 @@ impl Patch {
         (self.cols as f64 * self.dx, self.rows as f64 * self.dy)
     }
 
-    /// Warnings a user should see before trusting results (PHYSICS.md): pixels too coarse for the visible band
-    /// at grazing geometry, or a patch smaller than the coherence area (treated as periodic).
+    /// Warnings a user should see before trusting results ([`model_warnings`]).
     pub fn warnings(&self, coherence_nm: f64) -> Vec<String> {
-        let mut w = Vec::new();
-        let d = self.dx.max(self.dy);
-        if d > 95.0 {
-            w.push(format!(
-                "pixel size {d:.1} nm cannot represent the whole visible band at grazing geometry: frequencies above \
-                 1/(2·{d:.1} nm) need |u|/λ ≤ {:.5}/nm, i.e. |u| ≤ {:.2} at 380 nm (|u| reaches 2); resample to ≤ 95 nm",
-                0.5 / d,
-                380.0 * 0.5 / d
-            ));
-        }
-        let (ex, ey) = self.extent();
-        if ex.min(ey) < coherence_nm {
-            w.push(format!(
-                "patch {:.1} × {:.1} µm is smaller than the coherence length {:.1} µm: the DFT treats it as periodic, so \
-                 spectra become spikes {:.3}/µm apart (narrower than the window); tile a larger patch for smooth results",
-                ex / 1000.0,
-                ey / 1000.0,
-                coherence_nm / 1000.0,
-                1000.0 / ex.min(ey)
-            ));
-        }
-        w
+        model_warnings(self.rows, self.cols, self.dx, self.dy, coherence_nm)
     }
+}
+
+/// Warnings about a `rows × cols` grid of `dx × dy` nm pixels under a coherence length (PHYSICS.md), each at
+/// most once: pixels too coarse for the visible band at grazing geometry (one warning for both axes), or a
+/// patch smaller than the coherence area (treated as periodic). Also stored in a lookup table's metadata.
+pub fn model_warnings(rows: usize, cols: usize, dx: f64, dy: f64, coherence_nm: f64) -> Vec<String> {
+    let mut w = Vec::new();
+    let d = dx.max(dy);
+    if d > 95.0 {
+        w.push(format!(
+            "pixel size {d:.1} nm cannot represent the whole visible band at grazing geometry: frequencies above \
+             1/(2·{d:.1} nm) need |u|/λ ≤ {:.5}/nm, i.e. |u| ≤ {:.2} at 380 nm (|u| reaches 2); resample to ≤ 95 nm",
+            0.5 / d,
+            380.0 * 0.5 / d
+        ));
+    }
+    let (ex, ey) = (cols as f64 * dx, rows as f64 * dy);
+    if ex.min(ey) < coherence_nm {
+        w.push(format!(
+            "patch {:.1} × {:.1} µm is smaller than the coherence length {:.1} µm: the DFT treats it as periodic, so \
+             spectra become spikes {:.3}/µm apart (narrower than the window); tile a larger patch for smooth results",
+            ex / 1000.0,
+            ey / 1000.0,
+            coherence_nm / 1000.0,
+            1000.0 / ex.min(ey)
+        ));
+    }
+    w
 }

@@ -67,6 +67,10 @@ pub struct TableMeta {
     pub wavelength_max_nm: f64,
     /// Human-readable layout of `I`.
     pub layout: String,
+    /// What the user was warned about when the table was computed ([`crate::Patch::warnings`]): shown again
+    /// whenever the table is used. Absent in tables written before it existed.
+    #[serde(default)]
+    pub warnings: Vec<String>,
 }
 
 /// A lookup table in memory.
@@ -183,6 +187,7 @@ impl LookupTable {
             wavelength_min_nm: lambdas[0],
             wavelength_max_nm: lambdas[lambdas.len() - 1],
             layout: "I[v_index, u_index, channel (X, Y, Z), power p = 0..2N]; X = C * sum_p w^p I_p".into(),
+            warnings: crate::patch::model_warnings(terms.rows, terms.cols, terms.dx, terms.dy, terms.coherence_nm),
         };
         Ok(Self { meta, uv, wavelengths_nm: lambdas, data })
     }
@@ -236,6 +241,18 @@ impl LookupTable {
                 .map_err(|_| bad(format!("has no array '{name}': not an iridis lookup table")))?;
             let mut bytes = Vec::new();
             f.read_to_end(&mut bytes).map_err(|e| bad(format!("array '{name}' is unreadable: {e}")))?;
+            // The .npy header length is declared in the file (up to 4 GiB in version 2): check it against the
+            // bytes present before the parser sizes a buffer from it.
+            let declared = match bytes.get(6) {
+                Some(1) if bytes.len() >= 10 => 10 + u16::from_le_bytes([bytes[8], bytes[9]]) as usize,
+                Some(_) if bytes.len() >= 12 => {
+                    12 + u32::from_le_bytes([bytes[8], bytes[9], bytes[10], bytes[11]]) as usize
+                }
+                _ => 0,
+            };
+            if declared > bytes.len() {
+                return Err(bad(format!("array '{name}' is corrupt: its header runs past the end of the data")));
+            }
             let npy = npyz::NpyFile::new(std::io::Cursor::new(bytes))
                 .map_err(|e| bad(format!("array '{name}' is corrupt: {e}")))?;
             Ok((npy.shape().to_vec(), npy))
@@ -253,8 +270,17 @@ impl LookupTable {
                 meta.version
             )));
         }
+        let in_range = (3..=4001).contains(&meta.uv_resolution)
+            && (1.0..=20.0).contains(&meta.uv_power)
+            && meta.taylor_terms <= 1000;
+        if !in_range {
+            return Err(bad(format!(
+                "metadata out of range (u-v resolution {}, power {}, N = {}): not a table iridis wrote",
+                meta.uv_resolution, meta.uv_power, meta.taylor_terms
+            )));
+        }
         let res = meta.uv_resolution as u64;
-        let np = 2 * meta.taylor_terms as u64 + 1;
+        let np = (meta.taylor_terms as u64).saturating_mul(2).saturating_add(1);
         let (shape, i_npy) = array("I")?;
         if shape != [res, res, 3, np] {
             return Err(bad(format!("array I has shape {shape:?}, metadata says [{res}, {res}, 3, {np}]")));
@@ -265,7 +291,7 @@ impl LookupTable {
         let (_, wl_npy) = array("wavelengths_nm")?;
         let wavelengths_nm: Vec<f64> =
             wl_npy.into_vec().map_err(|e| bad(format!("array wavelengths is corrupt: {e}")))?;
-        if uv.len() as u64 != res || data.len() as u64 != res * res * 3 * np {
+        if uv.len() as u64 != res || data.len() as u64 != res.saturating_mul(res).saturating_mul(3).saturating_mul(np) {
             return Err(bad("array sizes disagree with the metadata".into()));
         }
         if data.iter().any(|v| !v.is_finite()) {
@@ -278,6 +304,21 @@ impl LookupTable {
     pub fn save(&self, path: &Path) -> Result<(), DiffractionError> {
         let f = std::fs::File::create(path)?;
         self.write_npz(std::io::BufWriter::new(f))
+    }
+
+    /// Whether the file at `path` is a lookup table, by content rather than extension: a zip archive (`.npz`)
+    /// holding the array `metadata_json`, which a height field saved with `np.savez` does not have. A file that
+    /// is not a readable zip is not a table (the caller then reports why it is not a surface either).
+    pub fn is_table_file(path: &Path) -> bool {
+        let Ok(mut f) = std::fs::File::open(path) else { return false };
+        let mut magic = [0u8; 4];
+        if f.read_exact(&mut magic).is_err() || &magic[..2] != b"PK" {
+            return false;
+        }
+        let Ok(f) = f.rewind().map(|_| f) else { return false };
+        zip::ZipArchive::new(std::io::BufReader::new(f))
+            .map(|z| z.index_for_name(&npyz::npz::file_name_from_array_name("metadata_json")).is_some())
+            .unwrap_or(false)
     }
 
     /// Reads a table from a file.

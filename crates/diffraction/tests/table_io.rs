@@ -75,3 +75,60 @@ fn damaged_and_foreign_files_are_refused() {
     let e = LookupTable::read_npz(buf, "n.npz").unwrap_err().to_string();
     assert!(e.contains("non-finite"), "{e}");
 }
+
+/// Mutated table files (bit flips, truncation, extreme size fields, splices: `iridis_surface::fuzz::mutate`)
+/// are refused or read, never a panic. Seeded, so deterministic; the long run is
+/// `cargo run --release -p iridis-diffraction --example fuzz_table -- 1000000 7`.
+#[test]
+fn mutated_tables_never_panic() {
+    use iridis_surface::{fuzz::mutate, rng::Rng};
+    let t = small_table();
+    let mut buf = Cursor::new(Vec::new());
+    t.write_npz(&mut buf).unwrap();
+    let good = buf.into_inner();
+    let hook = std::panic::take_hook();
+    std::panic::set_hook(Box::new(|_| {}));
+    let mut rng = Rng::new(5);
+    let (mut panics, mut refused) = (Vec::new(), 0);
+    for i in 0..3000 {
+        let data = mutate(&mut rng, &good, &good);
+        match std::panic::catch_unwind(|| LookupTable::read_npz(Cursor::new(data), "fuzz.npz")) {
+            Ok(r) => refused += usize::from(r.is_err()),
+            Err(_) => panics.push(i),
+        }
+    }
+    std::panic::set_hook(hook);
+    assert!(panics.is_empty(), "panics at iterations {panics:?}");
+    assert!(refused > 300, "only {refused} of 3000 mutated tables refused: the mutations miss the reader");
+}
+
+/// Patch::warnings: each problem once (one pixel warning even when both axes are too coarse), with its
+/// numbers; nothing for a fine, large patch. A table carries the warnings of its patch through the file, and a
+/// table written before the field existed still reads (no warnings).
+#[test]
+fn patch_warnings_once_each_and_carried_by_tables() {
+    let coarse = Patch::from_row_major(40, 50, 120.0, 110.0, &vec![0.0; 2000]).unwrap();
+    let w = coarse.warnings(65_000.0);
+    assert_eq!(w.len(), 2, "{w:?}");
+    assert!(w[0].contains("pixel size 120.0 nm") && w[0].contains("≤ 95 nm"), "{w:?}");
+    assert!(w[1].contains("patch 6.0 × 4.4 µm") && w[1].contains("65.0 µm"), "{w:?}");
+    let fine = Patch::from_row_major(100, 100, 65.0, 65.0, &vec![0.0; 10_000]).unwrap();
+    assert!(fine.warnings(6_000.0).is_empty());
+    assert_eq!(fine.warnings(6_600.0).len(), 1, "6.5 µm patch, 6.6 µm coherence");
+
+    // small_table(): 32 × 60 nm = 1.92 µm patch under a 1 µm window, pixels fine: no warning.
+    assert!(small_table().meta.warnings.is_empty());
+    let terms = TaylorTerms::compute(&coarse, 2, 65_000.0).unwrap();
+    let spectral = SpectralSetup::new(iridis_color::Illuminant::D65, iridis_color::Observer::Cie1931, 20.0).unwrap();
+    let t =
+        LookupTable::build(&terms, &spectral, TableParams { uv_resolution: 5, uv_power: 5.0 }, "c", &|_| {}).unwrap();
+    assert_eq!(t.meta.warnings, w);
+    let mut buf = Cursor::new(Vec::new());
+    t.write_npz(&mut buf).unwrap();
+    buf.set_position(0);
+    assert_eq!(LookupTable::read_npz(buf, "c.npz").unwrap().meta.warnings, w);
+    let mut json = serde_json::to_value(&t.meta).unwrap();
+    json.as_object_mut().unwrap().remove("warnings");
+    let old: iridis_diffraction::table::TableMeta = serde_json::from_value(json).unwrap();
+    assert!(old.warnings.is_empty());
+}

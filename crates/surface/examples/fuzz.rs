@@ -8,6 +8,7 @@
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
 use iridis_surface::formats::{read_bytes, write_bytes, Format};
+use iridis_surface::fuzz::mutate;
 use iridis_surface::generate::{Generator, Grid};
 use iridis_surface::rng::Rng;
 use iridis_surface::LoadOptions;
@@ -27,50 +28,10 @@ fn seeds() -> Vec<(&'static str, Vec<Vec<u8>>)> {
     vec![
         ("gwy", vec![enc(Format::Gwy), file("gwyfile_two_channels.gwy")]),
         ("npy", vec![enc(Format::Npy), file("numpy_f32_fortran.npy"), file("numpy_f64_bigendian.npy")]),
+        ("npz", vec![enc(Format::Npz), file("numpy_savez.npz"), file("numpy_savez_compressed.npz")]),
         ("png/tiff", vec![enc(Format::Png), tiff]),
         ("text", vec![enc(Format::Text), b"# Width: 2 um\n# Value units: m\n1e-9 2e-9\n3e-9 4e-9\n".to_vec()]),
     ]
-}
-
-const INTERESTING: [u8; 10] = [0, 1, 0x7f, 0x80, 0xff, b'0', b'9', b'\n', b'.', b'e'];
-
-fn mutate(rng: &mut Rng, src: &[u8], other: &[u8]) -> Vec<u8> {
-    let mut b = src.to_vec();
-    let n_ops = 1 + rng.int(0, 7);
-    for _ in 0..n_ops {
-        let len = b.len().max(1);
-        let at = (rng.next_u64() as usize) % len;
-        match rng.int(0, 6) {
-            0 if !b.is_empty() => b[at] ^= 1 << rng.int(0, 7),
-            1 if !b.is_empty() => b[at] = INTERESTING[rng.int(0, 9) as usize],
-            2 => b.truncate(at),
-            3 if !b.is_empty() => {
-                // Overwrite 4 bytes with a large or negative 32-bit value (sizes and counts).
-                let v = [u32::MAX, 0x7fff_ffff, 0x8000_0000, 0, 1 << 20][rng.int(0, 4) as usize].to_le_bytes();
-                for (k, byte) in v.iter().enumerate() {
-                    if at + k < b.len() {
-                        b[at + k] = *byte;
-                    }
-                }
-            }
-            4 if !other.is_empty() => {
-                let from = (rng.next_u64() as usize) % other.len();
-                let n = ((rng.next_u64() as usize) % 64).min(other.len() - from);
-                b.splice(at.min(b.len())..at.min(b.len()), other[from..from + n].iter().copied());
-            }
-            5 if !b.is_empty() => {
-                let n = ((rng.next_u64() as usize) % 32).min(b.len() - at);
-                let chunk: Vec<u8> = b[at..at + n].to_vec();
-                b.splice(at..at, chunk);
-            }
-            _ if !b.is_empty() => {
-                let n = ((rng.next_u64() as usize) % 32).min(b.len() - at);
-                b.drain(at..at + n);
-            }
-            _ => {}
-        }
-    }
-    b
 }
 
 fn main() {

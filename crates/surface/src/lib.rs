@@ -12,6 +12,7 @@
 pub mod analysis;
 pub mod builtin;
 pub mod formats;
+pub mod fuzz;
 pub mod generate;
 pub mod prep;
 pub mod render;

@@ -85,6 +85,102 @@ fn npy_written_by_numpy() {
     }
 }
 
+#[test]
+fn npz_written_by_numpy_savez_and_savez_compressed() {
+    let e = expected();
+    // np.savez: the one 2-D array ("heights") beside a 1-D axis; units from the sidecar, exact values.
+    let hf = load_surface(fixture("numpy_savez.npz").to_str().unwrap(), &LoadOptions::default()).unwrap();
+    check_against_expected(&hf, 0.0);
+    assert_eq!(hf.meta.format, "npz");
+    assert!(hf.meta.warnings.is_empty(), "{:?}", hf.meta.warnings);
+    assert!(hf.meta.notes.iter().any(|n| n.contains("'heights'")), "{:?}", hf.meta.notes);
+    assert_eq!(e["npz_2d_arrays"]["numpy_savez.npz"][0], "heights");
+
+    // np.savez_compressed (deflated) with two 2-D arrays: without --channel a clear refusal listing both.
+    let path = fixture("numpy_savez_compressed.npz");
+    let p = path.to_str().unwrap();
+    let o = |channel| LoadOptions { pixel_size_nm: Some(100.0), channel, ..Default::default() };
+    let err = load_surface(p, &o(None)).unwrap_err().to_string();
+    let names: Vec<&str> = e["npz_2d_arrays"]["numpy_savez_compressed.npz"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_str().unwrap())
+        .collect();
+    assert_eq!(names, ["amplitude", "height"]);
+    for needle in ["0: amplitude (48 × 64 <f4)", "1: height (48 × 64 <f8)", "--channel N", "numpy_savez_compressed"] {
+        assert!(err.contains(needle), "'{err}' lacks '{needle}'");
+    }
+    // The 1-D axes and the scalar are not offered.
+    assert!(!err.contains("x_nm") && !err.contains("scale"), "{err}");
+    // --channel 1 is "height": the same field as the .npy fixtures (dy from the options is dx here).
+    let mut h = load_surface(p, &o(Some(1))).unwrap();
+    h.dy_nm = 80.0;
+    check_against_expected(&h, 0.0);
+    // --channel 0 is "amplitude": the second grating, stored as float32.
+    let a = load_surface(p, &o(Some(0))).unwrap();
+    for q in e["channel1_probe"].as_array().unwrap() {
+        let (r, c, v) = (q[0].as_u64().unwrap() as usize, q[1].as_u64().unwrap() as usize, q[2].as_f64().unwrap());
+        assert!((a.get(r, c) - v).abs() <= 4e-6 * v.abs().max(1.0), "({r},{c}) {} vs {v}", a.get(r, c));
+    }
+    let err = load_surface(p, &o(Some(2))).unwrap_err().to_string();
+    assert!(err.contains("--channel 2") && err.contains("0: amplitude") && err.contains("1: height"), "{err}");
+}
+
+/// Builds a zip archive holding `members` (name, bytes), stored.
+fn zip_of(members: &[(&str, Vec<u8>)]) -> Vec<u8> {
+    use std::io::Write;
+    let mut zw = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
+    for (name, data) in members {
+        zw.start_file(*name, zip::write::SimpleFileOptions::default()).unwrap();
+        zw.write_all(data).unwrap();
+    }
+    zw.finish().unwrap().into_inner()
+}
+
+fn npy_header(descr: &str, shape: &str, version: u8) -> Vec<u8> {
+    let header = format!("{{'descr': '{descr}', 'fortran_order': False, 'shape': {shape}, }}");
+    let mut b = b"\x93NUMPY".to_vec();
+    b.extend_from_slice(&[version, 0]);
+    let pre = if version == 1 { 10 } else { 12 };
+    let text = format!("{header}{}\n", " ".repeat(64 - (pre + header.len() + 1) % 64));
+    if version == 1 {
+        b.extend_from_slice(&(text.len() as u16).to_le_bytes());
+    } else {
+        b.extend_from_slice(&(text.len() as u32).to_le_bytes());
+    }
+    b.extend_from_slice(text.as_bytes());
+    b
+}
+
+#[test]
+fn npz_sizes_are_not_trusted() {
+    let o = LoadOptions { pixel_size_nm: Some(10.0), ..Default::default() };
+    // A member whose header claims a 60000 × 60000 float64 array (28.8 GB) is refused before reading data.
+    let z = zip_of(&[("big.npy", npy_header("<f8", "(60000, 60000)", 1))]);
+    let e = read_bytes(&z, "big.npz", None, &o).unwrap_err().to_string();
+    assert!(e.contains("too large") && e.contains("big"), "{e}");
+    // A version-2 header that declares 4 GiB of header text: refused without sizing a buffer from it.
+    let mut lying = npy_header("<f8", "(4, 4)", 2);
+    lying[8..12].copy_from_slice(&u32::MAX.to_le_bytes());
+    let e = read_bytes(&zip_of(&[("h.npy", lying)]), "lying.npz", None, &o).unwrap_err().to_string();
+    assert!(e.contains("header"), "{e}");
+    // A header promising more data than the member holds: truncated, said so.
+    let mut short = npy_header("<f8", "(4, 4)", 1);
+    short.extend_from_slice(&[0u8; 40]);
+    let e = read_bytes(&zip_of(&[("h.npy", short)]), "short.npz", None, &o).unwrap_err().to_string();
+    assert!(e.contains("truncated"), "{e}");
+    // No 2-D array at all: the message lists what is there.
+    let z = zip_of(&[("x.npy", npy_header("<f8", "(3,)", 1).into_iter().chain([0u8; 24]).collect())]);
+    let e = read_bytes(&z, "axes.npz", None, &o).unwrap_err().to_string();
+    assert!(e.contains("no 2-D array") && e.contains("x (3 <f8)"), "{e}");
+    // The numpy fixture cut anywhere: an error, never a panic.
+    let good = std::fs::read(fixture("numpy_savez_compressed.npz")).unwrap();
+    for n in [0, 4, 30, 100, good.len() / 2, good.len() - 22, good.len() - 1] {
+        assert!(read_bytes(&good[..n], "cut.npz", None, &o).is_err(), "cut at {n}");
+    }
+}
+
 fn gen(g: Generator, grid: &Grid) -> HeightField {
     g.generate(grid).unwrap()
 }
@@ -98,6 +194,7 @@ fn round_trips_through_every_writable_format() {
     for (ext, fmt, tol) in [
         ("gwy", Format::Gwy, 1e-9),
         ("npy", Format::Npy, 0.0),
+        ("npz", Format::Npz, 0.0),
         ("txt", Format::Text, 0.0),
         ("png", Format::Png, (hi - lo) / 65535.0 / 2.0 + 1e-9),
     ] {

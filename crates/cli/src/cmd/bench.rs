@@ -28,6 +28,17 @@ Examples:
   iridis bench diffraction-accuracy --surface builtin:blazed --map-size 48 --json
   iridis bench diffraction-accuracy --convergence-plot docs/img/taylor_convergence.png")]
     DiffractionAccuracy(AccuracyBench),
+    /// Reference against ground truth at equal size: the same surfaces (512² and 1024² samples), the same
+    /// map size, maps per second of each, all cores.
+    #[command(after_help = "\
+The ground truth sums the windowed exp(i k w h) directly over every sample for every pixel and wavenumber;
+the reference evaluates the Taylor-term DFTs near each pixel's frequency (after computing them once, which
+is timed separately). Both run on all cores (rayon over map rows).
+
+Examples:
+  iridis bench diffraction-methods                              512² and 1024² patches, 16² maps
+  iridis bench diffraction-methods --patch-sizes 256,512 --map-size 24 --json")]
+    DiffractionMethods(MethodsBench),
     /// GPU frame times (min, median, p99) of the lookup diffraction map and the thin-film frame, headless.
     Gpu(super::gpu::GpuBench),
     /// Rendering: load and render time of every example scene (default 1024², 1 spp, all cores).
@@ -62,6 +73,19 @@ pub struct AccuracyBench {
 }
 
 #[derive(Debug, ClapArgs)]
+pub struct MethodsBench {
+    /// Height-field samples per side (65 nm per pixel), one measurement each.
+    #[arg(long, value_delimiter = ',', default_value = "512,1024")]
+    pub patch_sizes: Vec<usize>,
+    /// Side of the BRDF maps both methods render.
+    #[arg(long, default_value_t = 16)]
+    pub map_size: usize,
+    /// Print JSON.
+    #[arg(long)]
+    pub json: bool,
+}
+
+#[derive(Debug, ClapArgs)]
 pub struct DiffractionBench {
     /// Height-field samples per side.
     #[arg(long, default_value_t = 1024)]
@@ -84,6 +108,7 @@ pub fn run(c: BenchCommand) -> Result<()> {
     match c {
         BenchCommand::Diffraction(a) => diffraction(a),
         BenchCommand::DiffractionAccuracy(a) => accuracy(a),
+        BenchCommand::DiffractionMethods(a) => methods(a),
         BenchCommand::Gpu(a) => super::gpu::bench(a),
         BenchCommand::Render(a) => super::render::bench(a),
     }
@@ -233,6 +258,66 @@ fn diffraction(a: DiffractionBench) -> Result<()> {
         lookup_rate / ref_rate,
         lookup_rate / gt_rate
     );
+    Ok(())
+}
+
+/// Reference and ground truth on the same patches and map size: seconds per map and maps per second.
+fn methods(a: MethodsBench) -> Result<()> {
+    use iridis_diffraction::taylor::terms_for_bound;
+    if !(4..=256).contains(&a.map_size) {
+        anyhow::bail!("--map-size {} must be between 4 and 256 (the ground truth is slow)", a.map_size);
+    }
+    let threads = rayon::current_num_threads();
+    let spectral = SpectralSetup::default();
+    let mut rows = Vec::new();
+    for &n in &a.patch_sizes {
+        if !(64..=4096).contains(&n) {
+            anyhow::bail!("--patch-sizes: {n} must be between 64 and 4096");
+        }
+        let patch = bench_surface(n)?;
+        // The window a quarter of the patch side, as in `bench diffraction-accuracy`: inside the patch, so both
+        // methods see the same surface.
+        let coherence = n as f64 * patch.dx / 4.0;
+        let terms_n = terms_for_bound(patch.max_abs_height, 380.0, 1e-6);
+        eprintln!("{n}² patch: Taylor terms (N = {terms_n}) …");
+        let t = Instant::now();
+        let terms = Arc::new(TaylorTerms::compute(&patch, terms_n, coherence)?);
+        let terms_secs = t.elapsed().as_secs_f64();
+        let reference = Reference { terms, shading: Shading::default(), spectral: spectral.clone() };
+        let samples = 2 * spectral.wavelengths().len() - 1;
+        let truth = GroundTruth::new(&patch, coherence, Shading::default(), &spectral, samples)?;
+        eprintln!("{n}² patch: reference map {}² …", a.map_size);
+        let ref_secs = a.map_size.pow(2) as f64 / map_rate(&reference, a.map_size);
+        eprintln!("{n}² patch: ground-truth map {}² …", a.map_size);
+        let gt_secs = a.map_size.pow(2) as f64 / map_rate(&truth, a.map_size);
+        rows.push(json!({
+            "patch": n, "taylor_terms": terms_n, "coherence_nm": coherence, "wavenumbers": samples,
+            "map_size": a.map_size, "reference_precompute_seconds": terms_secs,
+            "reference_seconds_per_map": ref_secs, "ground_truth_seconds_per_map": gt_secs,
+            "reference_maps_per_second": 1.0 / ref_secs, "ground_truth_maps_per_second": 1.0 / gt_secs,
+            "reference_over_ground_truth": gt_secs / ref_secs,
+        }));
+    }
+    let report = json!({ "threads": threads, "results": rows });
+    if a.json {
+        return crate::output::print_json(&report);
+    }
+    println!("reference vs ground truth, {}² maps, {threads} threads", a.map_size);
+    println!("  patch   N   precompute   reference          ground truth       reference faster by");
+    for r in rows {
+        let f = |k: &str| r[k].as_f64().unwrap_or(f64::NAN);
+        println!(
+            "  {:>5}² {:>3}   {:>7.2} s   {:>8.3} s/map ({:>7.3}/s)   {:>8.1} s/map ({:>7.4}/s)   {:>8.0}×",
+            r["patch"],
+            r["taylor_terms"],
+            f("reference_precompute_seconds"),
+            f("reference_seconds_per_map"),
+            f("reference_maps_per_second"),
+            f("ground_truth_seconds_per_map"),
+            f("ground_truth_maps_per_second"),
+            f("reference_over_ground_truth")
+        );
+    }
     Ok(())
 }
 

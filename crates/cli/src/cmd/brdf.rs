@@ -63,7 +63,7 @@ Examples:
   iridis precompute scan.gwy -o scan.npz --terms 30 --coherence 65um --uv-resolution 501 --uv-power 5
   iridis precompute relief.png --pixel-size 65nm --max-height 300nm -o relief.npz --uv-power 1")]
 pub struct PrecomputeArgs {
-    /// Height field: a file (.gwy, .npy, PNG, TIFF, text) or builtin:NAME.
+    /// Height field: a file (.gwy, .npy, .npz, PNG, TIFF, text) or builtin:NAME.
     pub surface: String,
     /// Output table (.npz).
     #[arg(short, long)]
@@ -102,7 +102,8 @@ Examples:
   iridis brdf-map 'builtin:elaphe?size=10um&pixel=50nm' --method stam-gaussian --coherence 5um -o stam.png
   iridis brdf-map elaphe.npz --gpu --size 1024 -o elaphe_gpu.png")]
 pub struct BrdfMapArgs {
-    /// A height field (file or builtin:NAME) or a lookup table (.npz).
+    /// A height field (file or builtin:NAME) or a lookup table from `iridis precompute`, told apart by content
+    /// (a height field may be an .npz too).
     pub input: String,
     /// ground-truth, reference, lookup, nmm, pq, stam-periodic, stam-periodic-triangular or stam-gaussian.
     #[arg(long, default_value = "lookup")]
@@ -143,17 +144,24 @@ pub struct BrdfMapArgs {
     pub gpu: bool,
     #[command(flatten)]
     pub model: ModelOpts,
-    /// u-v resolution when a table must be built from a SURFACE.
-    #[arg(long, default_value_t = 501)]
+    /// u-v resolution when a table must be built from a SURFACE [default: 501]; refused with a TABLE.
+    #[arg(long = "uv-resolution", value_name = "N")]
+    pub uv_resolution_arg: Option<usize>,
+    /// u-v power when a table must be built from a SURFACE [default: 5]; refused with a TABLE.
+    #[arg(long = "uv-power", value_name = "A")]
+    pub uv_power_arg: Option<f64>,
+    /// The u-v resolution in effect (from --uv-resolution or the default), set by `run_brdf_map`.
+    #[arg(skip = 501usize)]
     pub uv_resolution: usize,
-    /// u-v power when a table must be built from a SURFACE.
-    #[arg(long, default_value_t = 5.0)]
+    /// The u-v power in effect, set by `run_brdf_map`.
+    #[arg(skip = 5.0)]
     pub uv_power: f64,
     #[command(flatten)]
     pub surface_opts: SurfaceOpts,
 }
 
-/// Loads a SURFACE argument as a diffraction patch, printing the model's warnings with numbers.
+/// Loads a SURFACE argument as a diffraction patch, printing what the reader warned about (e.g. heights of
+/// unknown unit); the model's own warnings come with the Taylor terms or the ground truth.
 pub fn load_patch(spec: &str, opts: &SurfaceOpts) -> Result<Patch> {
     let load = iridis_surface::LoadOptions {
         pixel_size_nm: opts.pixel_size,
@@ -161,6 +169,9 @@ pub fn load_patch(spec: &str, opts: &SurfaceOpts) -> Result<Patch> {
         ..Default::default()
     };
     let hf = iridis_surface::load_surface(spec, &load).with_context(|| format!("cannot load surface {spec}"))?;
+    for w in &hf.meta.warnings {
+        eprintln!("warning: {spec}: {w}");
+    }
     Ok(Patch::from_row_major(hf.rows, hf.cols, hf.dx_nm, hf.dy_nm, &hf.heights_nm)?)
 }
 
@@ -296,12 +307,45 @@ pub fn parse_incidence(s: &str) -> Result<[f64; 3]> {
     Ok(direction(theta, phi))
 }
 
+/// Whether INPUT is a lookup table from `iridis precompute` rather than a height field, by content: a height
+/// field may be an `.npz` too (`np.savez`), a table is the archive with iridis' `metadata_json`.
 pub(crate) fn is_table(input: &str) -> bool {
-    input.to_ascii_lowercase().ends_with(".npz")
+    !input.starts_with("builtin:") && LookupTable::is_table_file(Path::new(input))
 }
 
-/// Rejects model options that contradict a table's metadata.
+/// Refuses options that only shape how a table is built (or how a surface is read) when INPUT is a finished
+/// table: they would be silently ignored.
+pub(crate) fn refuse_build_options_for_table(a: &BrdfMapArgs) -> Result<()> {
+    let mut given = Vec::new();
+    if let Some(r) = a.uv_resolution_arg {
+        given.push(format!("--uv-resolution {r}"));
+    }
+    if let Some(p) = a.uv_power_arg {
+        given.push(format!("--uv-power {p}"));
+    }
+    if let Some(p) = a.surface_opts.pixel_size {
+        given.push(format!("--pixel-size {p}nm"));
+    }
+    if let Some(h) = a.surface_opts.max_height {
+        given.push(format!("--max-height {h}nm"));
+    }
+    if !given.is_empty() {
+        bail!(
+            "{} is a finished lookup table, so {} would be ignored: these options shape how a table is built \
+             from a SURFACE; pass them to `iridis precompute` (or give brdf-map the surface itself)",
+            a.input,
+            given.join(", ")
+        );
+    }
+    Ok(())
+}
+
+/// Rejects model options that contradict a table's metadata, and repeats the warnings the table was built
+/// with (pixel size, patch size against the coherence length).
 pub(crate) fn check_against_table(t: &LookupTable, m: &ModelOpts) -> Result<()> {
+    for w in &t.meta.warnings {
+        eprintln!("warning: the table was computed from a surface with this problem: {w}");
+    }
     let meta = &t.meta;
     let mut problems = Vec::new();
     if let Some(c) = m.coherence {
@@ -355,6 +399,14 @@ pub fn make_evaluator(
         return Ok(Box::new(Lookup::new(Arc::new(table), shading, precision)?));
     }
     let parsed: Method = method.parse()?;
+    if method == "lookup" && shading.fresnel.depends_on_wavelength() {
+        // Refused before the (long) table build rather than after it.
+        bail!(
+            "the lookup method integrates over wavelength in advance, so its Fresnel factor must not depend on λ \
+             ({}); use --method reference or ground-truth",
+            shading.fresnel.describe()
+        );
+    }
     let patch = load_patch(input, surface_opts)?;
     let spectral = spectral_setup(model)?;
     match parsed {
@@ -438,6 +490,12 @@ pub fn run_brdf_map(a: BrdfMapArgs) -> Result<()> {
     }
     let encoding = Encoding::parse(&a.gamma).map_err(anyhow::Error::msg)?;
     let wi = parse_incidence(&a.incidence)?;
+    let mut a = a;
+    a.uv_resolution = a.uv_resolution_arg.unwrap_or(501);
+    a.uv_power = a.uv_power_arg.unwrap_or(5.0);
+    if is_table(&a.input) {
+        refuse_build_options_for_table(&a)?;
+    }
     if a.gpu {
         return crate::cmd::gpu::run_brdf_map(a, wi, encoding);
     }

@@ -13,7 +13,8 @@ use serde_json::json;
 
 pub const SURFACE_HELP: &str = "\
 SURFACE is a file or builtin:NAME. Files are recognised by content: Gwyddion .gwy (units from the file),
-numpy .npy, 8/16-bit greyscale PNG or TIFF (relative heights: give --max-height and --pixel-size), or a text
+numpy .npy or .npz (np.savez / np.savez_compressed: the only 2-D array, or --channel N among several, in name
+order), 8/16-bit greyscale PNG or TIFF (relative heights: give --max-height and --pixel-size), or a text
 matrix (Gwyddion ASCII export header understood). Units missing from a file can come from a JSON sidecar
 FILE.EXT.json or FILE.json: {\"pixel_size_nm\": 65, \"height_unit\": \"nm\", \"max_height_nm\": 250}.
 Built-ins (blazed, sine, cd, elaphe, xenopeltis, gaussian) are generated on the fly: a 65 µm patch at
@@ -48,6 +49,7 @@ Examples:
   iridis surface info builtin:elaphe --json --image elaphe.png
   iridis surface info scan.gwy --level plane
   iridis surface info scan.png --pixel-size 65nm --max-height 300nm
+  iridis surface info scan.npz --channel 1 --pixel-size 20nm
   iridis surface info 'builtin:sine?period=1500nm&angle=30deg&size=20um&pixel=20nm'";
 
 const GENERATE_HELP: &str = "\
@@ -61,8 +63,9 @@ Common: --size 65um (or --size-x/--size-y), --pixel 65nm, --seed 1, --angle 0deg
   gaussian    --rms 30nm --corr 500nm                   correlation rms²·exp(−r²/corr²), tiles seamlessly
   elaphe      --spacing 1100nm --finger 4000nm --rms 60nm   overlapping nanofinger layers along x
   xenopeltis  --along 1500nm --across 550nm --depth 120nm   curving fingers, grains of other periods
-The output format follows the extension: .gwy (with units), .npy (+ .npy.json sidecar), .png (16-bit,
-+ .png.json sidecar with pixel size and height range) or .txt (Gwyddion-style header).
+The output format follows the extension: .gwy (with units), .npy (+ .npy.json sidecar), .npz (like
+np.savez: one array 'heights', + .npz.json sidecar), .png (16-bit, + .png.json sidecar with pixel size and
+height range) or .txt (Gwyddion-style header).
 
 Examples:
   iridis surface generate blazed -o blazed.gwy
@@ -72,13 +75,14 @@ Examples:
 
 const CONVERT_HELP: &str = "\
 Steps run in this order: --level, --crop, --resample, --tile, --pad. Writing: .gwy, .npy (+ sidecar),
-.png (16-bit + sidecar), .txt. TIFF is read but not written.
+.npz (array 'heights' + sidecar), .png (16-bit + sidecar), .txt. TIFF is read but not written.
 
 Examples:
   iridis surface convert scan.gwy scan.npy
   iridis surface convert scan.png scan.gwy --pixel-size 65nm --max-height 250nm --level plane
   iridis surface convert builtin:xenopeltis xeno.gwy --crop 0,0,500,500 --resample 50nm
-  iridis surface convert small.npy tiled.npy --tile 4x4";
+  iridis surface convert small.npy tiled.npy --tile 4x4
+  iridis surface convert afm.npz afm.gwy --channel 0 --pixel-size 10nm";
 
 /// How to read a SURFACE (shared by every subcommand).
 #[derive(Debug, Clone, ClapArgs)]
@@ -89,7 +93,8 @@ pub struct LoadArgs {
     /// Images: the height that white stands for (black is 0), e.g. 250nm.
     #[arg(long, value_parser = crate::args::positive_length_nm)]
     pub max_height: Option<f64>,
-    /// Gwyddion files: channel number (default: the lowest).
+    /// Gwyddion: channel number (default the lowest); .npz: which 2-D array, counted from 0 in name order
+    /// (needed when there are several; the error lists them).
     #[arg(long)]
     pub channel: Option<u32>,
     /// Built-ins: edge of the square patch (default 65um).
@@ -140,7 +145,7 @@ pub struct InfoArgs {
 pub struct GenerateArgs {
     /// sine, blazed, rect-bumps, tri-bumps, cd, gaussian, elaphe or xenopeltis.
     pub kind: String,
-    /// Output file (.gwy, .npy, .png or .txt).
+    /// Output file (.gwy, .npy, .npz, .png or .txt).
     #[arg(short, long)]
     pub output: PathBuf,
     /// Also write a shaded-relief preview (PNG).
@@ -218,7 +223,7 @@ pub struct GenerateArgs {
 pub struct ConvertArgs {
     /// Input file or builtin:NAME.
     pub input: String,
-    /// Output file (.gwy, .npy, .png or .txt).
+    /// Output file (.gwy, .npy, .npz, .png or .txt).
     pub output: PathBuf,
     #[command(flatten)]
     pub load: LoadArgs,
@@ -371,10 +376,13 @@ fn info(a: InfoArgs) -> Result<()> {
 fn output_format(path: &Path) -> Result<Format> {
     match Format::from_extension(path) {
         Some(Format::Tiff) => {
-            bail!("{}: writing TIFF is not supported; use .png (16-bit), .gwy, .npy or .txt", path.display())
+            bail!("{}: writing TIFF is not supported; use .png (16-bit), .gwy, .npy, .npz or .txt", path.display())
         }
         Some(f) => Ok(f),
-        None => bail!("{}: unknown output format; use the extension .gwy, .npy, .png (16-bit) or .txt", path.display()),
+        None => bail!(
+            "{}: unknown output format; use the extension .gwy, .npy, .npz, .png (16-bit) or .txt",
+            path.display()
+        ),
     }
 }
 

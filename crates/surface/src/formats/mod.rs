@@ -6,7 +6,7 @@
 //! |---|---|---|---|
 //! | Gwyddion `.gwy` | yes | yes | in the file (`xreal`, `si_unit_xy`, `si_unit_z`) |
 //! | numpy `.npy` (f32, f64, integers) | yes | f64 | sidecar or options |
-//! | numpy `.npz` (`savez`, compressed or not) | yes | no | sidecar or options |
+//! | numpy `.npz` (`savez`, compressed or not; `--channel N` among several 2-D arrays) | yes | f64, array `heights` | sidecar or options |
 //! | PNG, TIFF 8/16-bit grey | yes | PNG 16-bit | relative: `--max-height`, `--pixel-size` or sidecar |
 //! | text matrix | yes | yes | Gwyddion ASCII-export header (`# Width: 5 µm`), sidecar or options |
 
@@ -70,7 +70,8 @@ pub struct LoadOptions {
     pub pixel_size_nm: Option<f64>,
     /// Images: the height (nm) that full white stands for; black is 0.
     pub max_height_nm: Option<f64>,
-    /// Gwyddion: the channel number (`/N/data`); default the lowest.
+    /// Gwyddion: the channel number (`/N/data`), default the lowest; `.npz`: the index of the 2-D array in
+    /// name order, needed when the archive holds several.
     pub channel: Option<u32>,
     /// Built-in surfaces: edge length of the square patch (nm); default 65 µm.
     pub size_nm: Option<f64>,
@@ -174,9 +175,7 @@ pub fn write_bytes(hf: &HeightField, fmt: Format) -> Result<(Vec<u8>, Option<Str
         Format::Npy => Ok((npy::write(hf)?, Some(Sidecar::for_field(hf, false).to_json()))),
         Format::Png => Ok((raster::write_png16(hf)?, Some(Sidecar::for_field(hf, true).to_json()))),
         Format::Text => Ok((text::write(hf).into_bytes(), None)),
-        Format::Npz => {
-            Err(SurfaceError::invalid("writing .npz is not supported; write .npy (numpy reads it directly)"))
-        }
+        Format::Npz => Ok((npz::write(hf)?, Some(Sidecar::for_field(hf, false).to_json()))),
         Format::Tiff => Err(SurfaceError::invalid(
             "writing TIFF is not supported (a 16-bit PNG holds the same data); write .png, .gwy, .npy or .txt",
         )),

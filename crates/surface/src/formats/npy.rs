@@ -13,6 +13,7 @@ fn bad(m: impl Into<String>) -> SurfaceError {
 }
 
 pub fn read(bytes: &[u8], side: Option<&Sidecar>, opts: &LoadOptions) -> Result<HeightField, SurfaceError> {
+    check_header_length(bytes).map_err(bad)?;
     let npy = npyz::NpyFile::new(bytes).map_err(|e| bad(format!("header: {e}")))?;
     let shape = npy.shape().to_vec();
     let dims: Vec<u64> = shape.iter().copied().filter(|&d| d != 1).collect();
@@ -86,8 +87,22 @@ pub fn read(bytes: &[u8], side: Option<&Sidecar>, opts: &LoadOptions) -> Result<
     Ok(hf.with_meta(meta))
 }
 
+/// Refuses a header whose declared length runs past the end of `bytes` before the parser sizes a buffer from
+/// it (a version-2 header may claim up to 4 GiB).
+pub(crate) fn check_header_length(bytes: &[u8]) -> Result<(), String> {
+    let end = header_len(bytes);
+    if bytes.len() < 10 || end > bytes.len() {
+        return Err(format!(
+            "header truncated: it declares {} bytes, the data holds {}",
+            end.saturating_sub(10),
+            bytes.len().saturating_sub(10)
+        ));
+    }
+    Ok(())
+}
+
 /// Bytes before the data: magic (6), version (2), header length (2 bytes in v1, 4 in v2/v3), header.
-fn header_len(bytes: &[u8]) -> usize {
+pub(crate) fn header_len(bytes: &[u8]) -> usize {
     match bytes.get(6) {
         Some(1) if bytes.len() >= 10 => 10 + u16::from_le_bytes([bytes[8], bytes[9]]) as usize,
         Some(_) if bytes.len() >= 12 => 12 + u32::from_le_bytes([bytes[8], bytes[9], bytes[10], bytes[11]]) as usize,
