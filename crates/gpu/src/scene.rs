@@ -7,7 +7,8 @@
 //! for long), returning the same linear [`Image`] the CPU renders — PNG and EXR encoding are shared.
 //!
 //! What the GPU does not evaluate, it refuses with a message at upload: diffraction materials whose evaluator
-//! is not a lookup table (the scene format only makes lookup ones), and tables larger than one storage binding.
+//! is not a lookup table (the scene format only makes lookup ones), thin films on a rough substrate (the LSRS
+//! model: the CPU evaluates HTSG per hit, light and wavelength), and tables larger than one storage binding.
 
 use iridis_color::{Illuminant, Observer, SpectralWeights, ToneMap};
 use iridis_diffraction::geometry::{Fresnel, FresnelSource};
@@ -285,6 +286,12 @@ impl<'g> GpuScene<'g> {
                     rec.push([(1.0 / t.meta.uv_power) as f32, f0, n_re, n_im]);
                 }
                 Material::ThinFilm(f) => {
+                    if f.rough.is_some() {
+                        return Err(GpuError::Invalid(format!(
+                            "material `{name}`: thin films on a rough substrate (`roughness`, `correlation`: the \
+                             LSRS model) render on the CPU only; render this scene without --gpu"
+                        )));
+                    }
                     let n_media = f.stack.layers.len() + 2;
                     let media_base = media.len() as u32;
                     for &l in &grid {
