@@ -298,3 +298,15 @@ fn a_thin_film_fresnel_changes_the_colour_schlick_keeps_the_illuminant() {
         &["must not depend on", "reference"],
     );
 }
+
+/// An .npz with several 2-D arrays: brdf-map picks one with --channel, and without it the refusal lists them.
+#[test]
+fn brdf_map_reads_one_array_of_a_multi_array_npz() {
+    let dir = tempfile::tempdir().unwrap();
+    let npz = "crates/surface/tests/fixtures/numpy_savez_compressed.npz";
+    let png = dir.path().join("npz.png").display().to_string();
+    let out = iridis(&["brdf-map", npz, "--channel", "1", "--pixel-size", "50nm", "--size", "16", "-o", &png]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(std::path::Path::new(&png).exists());
+    assert_fails(&["brdf-map", npz, "--pixel-size", "50nm", "--size", "16", "-o", &png], &["--channel"]);
+}

@@ -160,12 +160,11 @@ impl<'g> GpuScene<'g> {
     /// GPU path does not evaluate.
     pub fn new(gpu: &'g Gpu, scene: &Scene) -> Result<Self, GpuError> {
         let mut rec = Records::default();
-        let mut lay = Layout::default();
+        let mut lay = Layout { sample_base: rec.len(), ..Default::default() };
 
         // Samples per pixel: the CPU's offsets, computed once in f64 (up to MAX_SPP, each spp its own set).
         // The shader reads sample s of an spp-sample pixel at sample_base + s; the sets differ per spp, so
         // the frame writes its own set (see SceneFrame::render); here only the room is reserved.
-        lay.sample_base = rec.len();
         rec.pad_to(lay.sample_base, MAX_SPP);
 
         lay.sphere_base = rec.len();

@@ -34,7 +34,7 @@ pub enum ViewInput {
     /// A scene file (TOML or glTF), reloaded when it changes.
     Scene(PathBuf),
     /// A lookup table's BRDF map (`name` for the title).
-    Table { table: LookupTable, name: String },
+    Table { table: Box<LookupTable>, name: String },
 }
 
 /// Window options.
@@ -658,7 +658,7 @@ impl Viewer {
                 raw.events.push(egui::Event::PointerMoved(centre));
                 raw.events.push(egui::Event::PointerButton { pos: centre, button, pressed: true, modifiers: m });
             }
-            1 | 2 | 3 => raw.events.push(egui::Event::PointerMoved(centre + egui::vec2(25.0 * tick as f32, 12.0))),
+            1..=3 => raw.events.push(egui::Event::PointerMoved(centre + egui::vec2(25.0 * tick as f32, 12.0))),
             4 => raw.events.push(egui::Event::PointerButton {
                 pos: centre + egui::vec2(75.0, 12.0),
                 button,

@@ -29,6 +29,9 @@ pub struct SurfaceOpts {
     /// Height of the brightest grey value for image surfaces (e.g. 300nm).
     #[arg(long, value_parser = positive_length_nm)]
     pub max_height: Option<f64>,
+    /// Gwyddion: channel number (default the lowest); .npz: which 2-D array, counted from 0 in name order.
+    #[arg(long)]
+    pub channel: Option<u32>,
 }
 
 /// Options shared by the commands that build Taylor terms.
@@ -166,6 +169,7 @@ pub fn load_patch(spec: &str, opts: &SurfaceOpts) -> Result<Patch> {
     let load = iridis_surface::LoadOptions {
         pixel_size_nm: opts.pixel_size,
         max_height_nm: opts.max_height,
+        channel: opts.channel,
         ..Default::default()
     };
     let hf = iridis_surface::load_surface(spec, &load).with_context(|| format!("cannot load surface {spec}"))?;
@@ -560,7 +564,7 @@ pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
          Xenopeltis). Each map: `iridis brdf-map builtin:NAME -o map.png`.",
     );
     let model = ModelOpts { terms: "auto".into(), coherence: None, illuminant: None, observer: None, step: None };
-    let none = SurfaceOpts { pixel_size: None, max_height: None };
+    let none = SurfaceOpts { pixel_size: None, max_height: None, channel: None };
     let size = 320;
     for (name, theta_deg) in [("blazed", 0.0), ("cd", 0.0), ("elaphe", 0.0), ("xenopeltis", 20.0)] {
         let spec = format!("builtin:{name}");
