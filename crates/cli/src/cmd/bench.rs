@@ -231,33 +231,33 @@ fn diffraction(a: DiffractionBench) -> Result<()> {
     if a.json {
         return crate::output::print_json(&report);
     }
-    println!("diffraction benchmark ({threads} threads)");
-    println!("  Taylor-term FFTs, {}², {} terms:", a.size, a.terms + 1);
-    println!("    iridis, all threads   {ours_all:8.2} s");
-    println!("    iridis, one thread    {ours_one:8.2} s");
+    crate::outln!("diffraction benchmark ({threads} threads)")?;
+    crate::outln!("  Taylor-term FFTs, {}², {} terms:", a.size, a.terms + 1)?;
+    crate::outln!("    iridis, all threads   {ours_all:8.2} s")?;
+    crate::outln!("    iridis, one thread    {ours_one:8.2} s")?;
     match numpy {
-        Some(n) => println!(
+        Some(n) => crate::outln!(
             "    numpy (same work)     {n:8.2} s   → iridis is {:.1}× faster (one thread {:.1}×)",
             n / ours_all,
             n / ours_one
         ),
-        None => println!("    numpy                 not available (python3 with numpy not found)"),
-    }
-    println!("  lookup tables {}² × {} powers: {table_secs:.1} s", a.uv_resolution, 2 * a.terms + 1);
-    println!("  BRDF maps (pixels per second):");
+        None => crate::outln!("    numpy                 not available (python3 with numpy not found)"),
+    }?;
+    crate::outln!("  lookup tables {}² × {} powers: {table_secs:.1} s", a.uv_resolution, 2 * a.terms + 1)?;
+    crate::outln!("  BRDF maps (pixels per second):")?;
     for m in report["maps"].as_array().into_iter().flatten() {
-        println!(
+        crate::outln!(
             "    {:<13} {:>5}²  {:>14.0}",
             m["method"].as_str().unwrap_or(""),
             m["size"],
             m["pixels_per_second"].as_f64().unwrap_or(0.0)
-        );
+        )?;
     }
-    println!(
+    crate::outln!(
         "  lookup / reference: {:.0}×   lookup / ground truth: {:.0}×",
         lookup_rate / ref_rate,
         lookup_rate / gt_rate
-    );
+    )?;
     Ok(())
 }
 
@@ -302,11 +302,11 @@ fn methods(a: MethodsBench) -> Result<()> {
     if a.json {
         return crate::output::print_json(&report);
     }
-    println!("reference vs ground truth, {}² maps, {threads} threads", a.map_size);
-    println!("  patch   N   precompute   reference          ground truth       reference faster by");
+    crate::outln!("reference vs ground truth, {}² maps, {threads} threads", a.map_size)?;
+    crate::outln!("  patch   N   precompute   reference          ground truth       reference faster by")?;
     for r in rows {
         let f = |k: &str| r[k].as_f64().unwrap_or(f64::NAN);
-        println!(
+        crate::outln!(
             "  {:>5}² {:>3}   {:>7.2} s   {:>8.3} s/map ({:>7.3}/s)   {:>8.1} s/map ({:>7.4}/s)   {:>8.0}×",
             r["patch"],
             r["taylor_terms"],
@@ -316,7 +316,7 @@ fn methods(a: MethodsBench) -> Result<()> {
             f("ground_truth_seconds_per_map"),
             f("ground_truth_maps_per_second"),
             f("reference_over_ground_truth")
-        );
+        )?;
     }
     Ok(())
 }
@@ -418,17 +418,17 @@ fn accuracy(a: AccuracyBench) -> Result<()> {
     if a.json {
         return crate::output::print_json(&report);
     }
-    println!("CIEDE2000 against the ground truth ({}² maps, normal incidence)", a.map_size);
-    println!("{:<22} {:<20} {:>8} {:>10} {:>10}", "surface", "method", "RU", "mean", "p95");
+    crate::outln!("CIEDE2000 against the ground truth ({}² maps, normal incidence)", a.map_size)?;
+    crate::outln!("{:<22} {:<20} {:>8} {:>10} {:>10}", "surface", "method", "RU", "mean", "p95")?;
     for r in &rows {
-        println!(
+        crate::outln!(
             "{:<22} {:<20} {:>8} {:>10.4} {:>10.4}",
             r["surface"].as_str().unwrap_or(""),
             r["method"].as_str().unwrap_or(""),
             r["exposure_ru"],
             r["mean"].as_f64().unwrap_or(f64::NAN),
             r["p95"].as_f64().unwrap_or(f64::NAN)
-        );
+        )?;
     }
     Ok(())
 }

@@ -243,14 +243,14 @@ pub fn run_precompute(a: PrecomputeArgs) -> Result<()> {
         w.write_all(buf.get_ref())?;
         Ok(())
     })?;
-    println!(
+    crate::outln!(
         "wrote {} ({} tables of {}², N = {}, {:.1} MB)",
         a.output.display(),
         table.powers(),
         a.uv_resolution,
         table.meta.taylor_terms,
         std::fs::metadata(&a.output).map(|m| m.len() as f64 / 1e6).unwrap_or(0.0)
-    );
+    )?;
     Ok(())
 }
 
@@ -519,14 +519,14 @@ pub fn run_brdf_map(a: BrdfMapArgs) -> Result<()> {
     if let Some(exr) = &a.exr {
         write_exr(exr, &xyz, a.size, a.exposure)?;
     }
-    println!(
+    crate::outln!(
         "wrote {} ({} map, {}², {:.2} s, {:.0} pixels/s)",
         a.output.display(),
         e.name(),
         a.size,
         secs,
         (a.size * a.size) as f64 / secs
-    );
+    )?;
     Ok(())
 }
 
@@ -568,7 +568,7 @@ pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
     let size = 320;
     for (name, theta_deg) in [("blazed", 0.0), ("cd", 0.0), ("elaphe", 0.0), ("xenopeltis", 20.0)] {
         let spec = format!("builtin:{name}");
-        println!("  {spec}: Taylor terms and lookup tables …");
+        crate::outln!("  {spec}: Taylor terms and lookup tables …")?;
         let patch = load_patch(&spec, &none)?;
         let spectral = spectral_setup(&model)?;
         let terms = taylor_terms(&patch, &model)?;

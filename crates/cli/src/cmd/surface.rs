@@ -290,40 +290,41 @@ pub fn report(hf: &HeightField, n_peaks: usize, coherence_nm: f64) -> serde_json
     })
 }
 
-fn print_report(r: &serde_json::Value) {
+fn print_report(r: &serde_json::Value) -> Result<()> {
     let f = |k: &str, i: usize| r[k][i].as_f64().unwrap_or(f64::NAN);
     let g = |k: &str| r[k].as_f64().unwrap_or(f64::NAN);
-    println!("surface      {} ({})", r["source"].as_str().unwrap_or(""), r["format"].as_str().unwrap_or(""));
-    println!("samples      {} rows × {} columns", r["rows"], r["cols"]);
-    println!("pixel size   {:.4} × {:.4} nm (x × y)", f("pixel_size_nm", 0), f("pixel_size_nm", 1));
-    println!("extent       {:.3} × {:.3} µm", f("extent_nm", 0) / 1000.0, f("extent_nm", 1) / 1000.0);
-    println!(
+    crate::outln!("surface      {} ({})", r["source"].as_str().unwrap_or(""), r["format"].as_str().unwrap_or(""))?;
+    crate::outln!("samples      {} rows × {} columns", r["rows"], r["cols"])?;
+    crate::outln!("pixel size   {:.4} × {:.4} nm (x × y)", f("pixel_size_nm", 0), f("pixel_size_nm", 1))?;
+    crate::outln!("extent       {:.3} × {:.3} µm", f("extent_nm", 0) / 1000.0, f("extent_nm", 1) / 1000.0)?;
+    crate::outln!(
         "height       min {:.2} nm, max {:.2} nm, mean {:.2} nm, rms {:.2} nm",
         g("height_min_nm"),
         g("height_max_nm"),
         g("mean_nm"),
         g("rms_nm")
-    );
+    )?;
     let peaks = r["peaks"].as_array().cloned().unwrap_or_default();
     if peaks.is_empty() {
-        println!("periods      none found");
+        crate::outln!("periods      none found")?;
     } else {
-        println!("periods      period (nm)   orientation   power (share of variance)");
+        crate::outln!("periods      period (nm)   orientation   power (share of variance)")?;
         for p in peaks {
-            println!(
+            crate::outln!(
                 "             {:>11.2}   {:>9.2}°     {:.4}",
                 p["period_nm"].as_f64().unwrap_or(f64::NAN),
                 p["orientation_deg"].as_f64().unwrap_or(f64::NAN),
                 p["power"].as_f64().unwrap_or(f64::NAN)
-            );
+            )?;
         }
     }
     for n in r["notes"].as_array().into_iter().flatten() {
-        println!("note         {}", n.as_str().unwrap_or(""));
+        crate::outln!("note         {}", n.as_str().unwrap_or(""))?;
     }
     for w in r["warnings"].as_array().into_iter().flatten() {
         eprintln!("warning: {}", w.as_str().unwrap_or(""));
     }
+    Ok(())
 }
 
 /// Writes a shaded-relief preview framed by axes in µm, with a height colour bar and a scale bar.
@@ -365,9 +366,9 @@ fn info(a: InfoArgs) -> Result<()> {
         }
         Ok(())
     } else {
-        print_report(&r);
+        print_report(&r)?;
         if let Some(p) = &a.image {
-            println!("preview      {}", p.display());
+            crate::outln!("preview      {}", p.display())?;
         }
         Ok(())
     }
@@ -442,7 +443,7 @@ fn generate(a: GenerateArgs) -> Result<()> {
         crate::output::print_json(&report(&hf, 5, DEFAULT_COHERENCE_NM))?;
     } else {
         let (ex, ey) = hf.extent_nm();
-        println!(
+        crate::outln!(
             "wrote {}: {} {}×{} samples, {:.3}×{:.3} µm at {} nm/pixel, rms {:.2} nm",
             a.output.display(),
             a.kind,
@@ -452,7 +453,7 @@ fn generate(a: GenerateArgs) -> Result<()> {
             ey / 1000.0,
             hf.dx_nm,
             hf.rms()
-        );
+        )?;
     }
     Ok(())
 }
@@ -497,14 +498,14 @@ fn convert(a: ConvertArgs) -> Result<()> {
     for w in hf.meta.warnings.iter().chain(&hf.physics_warnings(DEFAULT_COHERENCE_NM)) {
         eprintln!("warning: {w}");
     }
-    println!(
+    crate::outln!(
         "wrote {}: {}×{} samples at {:.4}×{:.4} nm/pixel",
         a.output.display(),
         hf.rows,
         hf.cols,
         hf.dx_nm,
         hf.dy_nm
-    );
+    )?;
     Ok(())
 }
 
