@@ -2,7 +2,7 @@
 //! Sizes are small so that each call takes about a second in release.
 
 mod common;
-use common::{assert_fails, json_of};
+use common::{assert_fails, iridis, json_of};
 
 /// A 1500 nm sine grating: the bench must read the period back through the grating equation
 /// m λ / d = sin θ_i − sin θ_r, and write its plot.
@@ -162,7 +162,12 @@ fn brdf_map_refuses_lab_methods_it_cannot_serve() {
     assert_fails(&["brdf-map", f, "--method", "nmm", "--coherence", "1um", "-o", o], &["nmm", "grating period"]);
     assert_fails(&["brdf-map", f, "--method", "stam-periodic", "--coherence", "1um", "-o", o], &["period along x"]);
     assert_fails(&["brdf-map", "builtin:sine", "--method", "pq", "--terms", "0", "-o", o], &["--terms"]);
-    assert_fails(&["brdf-map", "x.npz", "--method", "stam-gaussian", "-o", o], &["needs the height field"]);
+    // A real table (recognised by content): the lab's methods need the height field behind it.
+    let table = dir.path().join("t.npz");
+    let t = table.to_str().unwrap();
+    let out = iridis(&["precompute", "builtin:sine?size=4um&pixel=100nm", "--uv-resolution", "31", "-o", t]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert_fails(&["brdf-map", t, "--method", "stam-gaussian", "-o", o], &["needs the height field"]);
     assert_fails(&["brdf-map", "builtin:sine", "--method", "stam", "-o", o], &["unknown method 'stam'", "nmm"]);
     assert!(!png.exists(), "a refused map left a file behind");
 }

@@ -180,6 +180,28 @@ impl FresnelSource for MetalFresnel {
     }
 }
 
+/// The coating's Fresnel factor relative to its own normal incidence, `F(λ, cos θ) / F(λ, 1)`: the angular
+/// shape only, because [`configure`] already carries the coating's normal-incidence colour in the light (and
+/// reports its brightness as the mirror scale). With the plain [`MetalFresnel`] the shading's λ-independent
+/// `F_0` would apply the coating's colour a second time.
+#[derive(Debug, Clone)]
+pub struct CoatingShape(pub MetalFresnel);
+
+impl FresnelSource for CoatingShape {
+    fn reflectance(&self, wavelength_nm: f64, cos_theta: f64) -> f64 {
+        self.0.reflectance(wavelength_nm, cos_theta) / self.0.normal_reflectance(wavelength_nm).max(1e-300)
+    }
+    fn depends_on_wavelength(&self) -> bool {
+        true
+    }
+    fn describe(&self) -> String {
+        format!("{} relative to normal incidence (colour in the light)", self.0.material.name())
+    }
+    fn normal_reflectance(&self) -> f64 {
+        1.0
+    }
+}
+
 /// A Fresnel factor of 1 (the coating's colour is carried by the light instead).
 #[derive(Debug, Clone, Copy)]
 pub struct UnitFresnel;
@@ -223,7 +245,7 @@ pub fn configure(
     config.spectral = spectral_with_light(&effective, observer, from, to, step)?;
     config.light = Some(effective);
     let fresnel: Arc<dyn FresnelSource> = match (coating, method.is_spectral()) {
-        (Some(c), true) => Arc::new(c.clone()),
+        (Some(c), true) => Arc::new(CoatingShape(c.clone())),
         _ => Arc::new(UnitFresnel),
     };
     config.shading.fresnel = fresnel;
