@@ -208,7 +208,6 @@ enum Mode {
 
 /// The scripted check's state machine.
 struct Check {
-    path: PathBuf,
     step: usize,
     /// Frame counter inside the current step.
     tick: usize,
@@ -380,8 +379,7 @@ impl Viewer {
             status: Vec::new(),
             last_poll: Instant::now(),
             image_rect: None,
-            check: opts.check.map(|path| Check {
-                path,
+            check: opts.check.map(|_| Check {
                 step: 0,
                 tick: 0,
                 before: None,
@@ -415,7 +413,7 @@ impl Viewer {
         match (self.load)(&path).and_then(|cpu| SceneView::new(self.gpu, path.clone(), cpu)) {
             Ok(mut new) => {
                 // Keep the user's view where the scene's camera did not change.
-                if new.cpu.camera.clone_eq(&sv.cpu.camera) {
+                if new.cpu.camera == sv.cpu.camera {
                     new.orbit = sv.orbit;
                 }
                 new.light_yaw = sv.light_yaw;
@@ -764,20 +762,9 @@ impl Viewer {
                     frame_ms: ms.get(ms.len() / 2).copied().unwrap_or(f64::NAN),
                     screenshot: Some((img.size[0], img.size[1], rgba)),
                 });
-                let _ = &c.path;
                 ctx.send_viewport_cmd(egui::ViewportCommand::Close);
             }
         }
-    }
-}
-
-trait CameraEq {
-    fn clone_eq(&self, other: &Self) -> bool;
-}
-
-impl CameraEq for Camera {
-    fn clone_eq(&self, other: &Self) -> bool {
-        format!("{self:?}") == format!("{other:?}")
     }
 }
 

@@ -2,7 +2,7 @@
 
 use crate::math::*;
 
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum Camera {
     /// A pinhole at `position` looking along `forward`; `tan_half` = tan(vertical fov / 2).
     Perspective { position: V3, forward: V3, right: V3, up: V3, tan_half: f64 },
