@@ -199,6 +199,9 @@ struct SceneView {
     light_pitch: f64,
     maps: Vec<MapView>,
     films: usize,
+    /// What was last uploaded: lights and film controls are rewritten only when they change.
+    uploaded_lights: Vec<Light>,
+    uploaded_film: FilmControls,
 }
 
 enum Mode {
@@ -295,6 +298,8 @@ impl SceneView {
             light_yaw: 0.0,
             light_pitch: 0.0,
             films,
+            uploaded_lights: cpu.lights.clone(),
+            uploaded_film: FilmControls::default(),
             cpu,
         })
     }
@@ -439,10 +444,16 @@ impl Viewer {
                     sv.gpu.set_camera(cam);
                 }
                 let lights = sv.lights();
-                sv.gpu.set_lights(&lights).map_err(|e| e.to_string())?;
+                if lights != sv.uploaded_lights {
+                    sv.gpu.set_lights(&lights).map_err(|e| e.to_string())?;
+                    sv.uploaded_lights = lights;
+                }
                 let mut film = self.film;
                 film.layer_ior = self.ior_on.then_some(self.ior);
-                sv.gpu.set_film_controls(film);
+                if film != sv.uploaded_film {
+                    sv.gpu.set_film_controls(film);
+                    sv.uploaded_film = film;
+                }
                 let frame = sv.frame.as_ref().ok_or("no frame")?;
                 frame.set_tone(&sv.gpu, tone);
                 let ft = frame.run(&sv.gpu).map_err(|e| e.to_string())?;

@@ -24,7 +24,7 @@ pub fn illuminant_tint(ill: Illuminant) -> Rgb {
 }
 
 /// A light source.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum Light {
     /// Parallel light from `direction` (unit, pointing towards the light), irradiance `rgb` (RU).
     Directional { direction: V3, rgb: Rgb },
