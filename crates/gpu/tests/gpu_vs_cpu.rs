@@ -5,8 +5,11 @@
 //! (`apt-get install mesa-vulkan-drivers`, lavapipe). Without an adapter they fail, unless
 //! `IRIDIS_SKIP_GPU=1` says to skip them.
 
+mod common;
+
 use std::sync::Arc;
 
+use common::gpu;
 use iridis_color::integrate::white_point;
 use iridis_color::lab::delta_e_2000;
 use iridis_color::spectrum::uniform_grid;
@@ -15,23 +18,8 @@ use iridis_diffraction::geometry::direction;
 use iridis_diffraction::table::{Lookup, LookupTable, Precision, TableParams};
 use iridis_diffraction::taylor::terms_for_bound;
 use iridis_diffraction::{Fresnel, Patch, Shading, SpectralSetup, TaylorTerms};
-use iridis_gpu::{FilmFrame, Gpu, GpuFilm, GpuLookup};
+use iridis_gpu::{FilmFrame, GpuFilm, GpuLookup};
 use iridis_thinfilm::{Complex64, Stack};
-
-/// The adapter, or `None` when the user asked to skip; a clear failure otherwise.
-fn gpu() -> Option<Gpu> {
-    match Gpu::new() {
-        Ok(g) => {
-            eprintln!("adapter: {}", g.adapter_name());
-            Some(g)
-        }
-        Err(e) if std::env::var("IRIDIS_SKIP_GPU").as_deref() == Ok("1") => {
-            eprintln!("GPU test skipped (IRIDIS_SKIP_GPU=1): {e}");
-            None
-        }
-        Err(e) => panic!("{e}\nThe GPU tests need a Vulkan adapter; set IRIDIS_SKIP_GPU=1 to skip them."),
-    }
-}
 
 /// CIEDE2000 between displayed colours (exposure, clipped to the sRGB cube), over the given pixels:
 /// (mean, 99th percentile, max).

@@ -3,25 +3,17 @@
 //!
 //! Needs a Vulkan adapter (lavapipe on machines without a GPU); `IRIDIS_SKIP_GPU=1` skips.
 
+mod common;
+
 use std::path::PathBuf;
 
+use common::gpu;
 use iridis_color::integrate::white_point;
 use iridis_color::lab::delta_e_2000;
 use iridis_color::{Illuminant, Lab, Observer, Xyz};
-use iridis_gpu::{Gpu, GpuScene};
+use iridis_gpu::GpuScene;
 use iridis_render::material::Material;
 use iridis_render::{load_scene, render, Image};
-
-fn gpu() -> Option<Gpu> {
-    match Gpu::new() {
-        Ok(g) => Some(g),
-        Err(e) if std::env::var("IRIDIS_SKIP_GPU").as_deref() == Ok("1") => {
-            eprintln!("GPU test skipped (IRIDIS_SKIP_GPU=1): {e}");
-            None
-        }
-        Err(e) => panic!("{e}\nThe GPU tests need a Vulkan adapter; set IRIDIS_SKIP_GPU=1 to skip them."),
-    }
-}
 
 fn examples() -> Vec<PathBuf> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../examples");
