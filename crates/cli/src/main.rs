@@ -48,6 +48,14 @@ Examples:
     Precompute(cmd::brdf::PrecomputeArgs),
     /// BRDF map of a height field or table: colour for every view direction (paper sec. 7).
     BrdfMap(cmd::brdf::BrdfMapArgs),
+    /// Point queries of the diffraction BRDF: ρ(λ) and XYZ for one pair of directions.
+    #[command(
+        subcommand,
+        after_help = "\
+Examples:
+  iridis brdf eval builtin:sine --light 30deg --view 10deg,180deg --json"
+    )]
+    Brdf(cmd::brdf::BrdfCommand),
     /// Speed, measured against a peer in the same run.
     #[command(
         subcommand,
@@ -116,6 +124,7 @@ fn main() -> std::process::ExitCode {
         Command::Bench(c) => cmd::bench::run(c),
         Command::Precompute(a) => cmd::brdf::run_precompute(a),
         Command::BrdfMap(a) => cmd::brdf::run_brdf_map(a),
+        Command::Brdf(c) => cmd::brdf::run_brdf(c),
         Command::Render(a) => cmd::render::run(a),
         Command::View(a) => cmd::gpu::run_view(a),
     };

@@ -3,7 +3,7 @@
 mod common;
 use std::path::Path;
 
-use common::{assert_fails, iridis};
+use common::{assert_fails, iridis, json_of};
 use iridis_diffraction::table::{LookupTable, FORMAT_VERSION};
 
 const SURFACE: &str = "builtin:sine?size=8um&pixel=50nm";
@@ -309,4 +309,42 @@ fn brdf_map_reads_one_array_of_a_multi_array_npz() {
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     assert!(std::path::Path::new(&png).exists());
     assert_fails(&["brdf-map", npz, "--pixel-size", "50nm", "--size", "16", "-o", &png], &["--channel"]);
+}
+
+/// Issue 14: point queries. A 1100 nm sine grating lit at normal incidence, seen at 30°: the grating equation
+/// sin θ_r = λ/d puts the first order at exactly 550 nm, so ρ(λ) must peak there.
+#[test]
+fn brdf_eval_peaks_where_the_grating_equation_says() {
+    let v = json_of(&[
+        "brdf",
+        "eval",
+        "builtin:sine?size=8um&pixel=50nm",
+        "--method",
+        "ground-truth",
+        "--coherence",
+        "6um",
+        "--light",
+        "0deg",
+        "--view",
+        "30deg,0deg",
+        "--json",
+    ]);
+    assert_eq!(v["method"], "ground-truth");
+    assert_eq!(v["fresnel_convention"], "physical");
+    let l: Vec<f64> = v["wavelength_nm"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+    let rho: Vec<f64> = v["reflectance"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+    assert_eq!(l.len(), rho.len());
+    let (k, _) = rho.iter().enumerate().fold((0, f64::MIN), |b, (i, &r)| if r > b.1 { (i, r) } else { b });
+    assert!((l[k] - 550.0).abs() <= 5.0, "peak at {} nm", l[k]);
+    let at = |w: f64| rho[l.iter().position(|&x| (x - w).abs() < 1e-9).unwrap()];
+    assert!(at(420.0) < 0.05 * at(550.0) && at(700.0) < 0.05 * at(550.0), "{} {} {}", at(420.0), at(550.0), at(700.0));
+    let xyz: Vec<f64> = v["xyz"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+    assert!(xyz[1] > 0.0 && xyz[1] < 1.0, "{xyz:?}");
+    // Below the horizon and malformed directions are refused with the flag's name.
+    assert_fails(&["brdf", "eval", "builtin:sine", "--light", "95deg", "--view", "0deg"], &["--light", "[0°, 90°)"]);
+    assert_fails(&["brdf", "eval", "builtin:sine", "--light", "0deg", "--view", "1,2,3"], &["--view"]);
+    assert_fails(
+        &["brdf", "eval", "builtin:sine", "--light", "0deg", "--view", "0deg", "--fresnel-convention", "squared"],
+        &["physical", "paper"],
+    );
 }

@@ -495,5 +495,12 @@ fn foreign_and_bad_rough_keys_are_refused() {
         &format!("{base}kind = \"thinfilm\"\nstack = \"air | water 348nm | Si\"\nroughness = \"25nm\"\ncorrelation = \"60nm\"\n"),
     );
     assert_fails(&["render", &s, "-o", out], &["rough.toml:6:", "[materials.m]", "radius of curvature", "raise τ"]);
+    // Issue 14: a rough substrate whose HTSG series cannot be summed (σ = 10 µm: g ≈ 1.1e5 at 380 nm) is refused
+    // at load with the material's name, instead of rendering a zero diffuse part.
+    let s = write(
+        "series.toml",
+        &format!("{base}kind = \"thinfilm\"\nstack = \"air | water 348nm | Si\"\nroughness = \"10um\"\ncorrelation = \"25um\"\n"),
+    );
+    assert_fails(&["render", &s, "-o", out], &["series.toml:6:", "[materials.m]", "380 nm", "phase variance"]);
     assert!(!dir.path().join("x.png").exists());
 }

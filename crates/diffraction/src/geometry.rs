@@ -139,25 +139,75 @@ impl FresnelSource for FilmFresnel {
     }
 }
 
+/// How the Fresnel reflectance enters `C` (docs/PHYSICS.md, "The Fresnel factor").
+///
+/// In Stam's Kirchhoff derivation (the paper's eq. 2–4) `F` is the Fresnel *amplitude* coefficient, so `F²` is
+/// the power reflectance `R` — once. The paper puts Schlick's power reflectance in place of `F`, which squares
+/// `R`: at a 75° half-angle (n = 1.5) the angular brightening is `(R/R₀)² ≈ 41` instead of `R/R₀ ≈ 6.4`, and a
+/// wavelength-dependent source (a film) enters as `R(λ)²`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum FresnelConvention {
+    /// `C ∝ R/R₀`: the power reflectance once (physically right; the default).
+    #[default]
+    Physical,
+    /// `C ∝ (R/R₀)²`: the paper's printed use of Schlick's `R` as the amplitude `F` (to reproduce its figures).
+    Paper,
+}
+
+impl FresnelConvention {
+    /// Parses `physical` or `paper`.
+    pub fn parse(s: &str) -> Result<Self, crate::DiffractionError> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "physical" => Ok(Self::Physical),
+            "paper" => Ok(Self::Paper),
+            other => Err(crate::DiffractionError::Invalid(format!(
+                "Fresnel convention '{other}': expected 'physical' (R once, the default) or 'paper' (R², as printed)"
+            ))),
+        }
+    }
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Physical => "physical",
+            Self::Paper => "paper",
+        }
+    }
+    /// The Fresnel part of `C`: `R/R₀`, or its square under the paper's convention.
+    pub fn ratio(self, r: f64, r0: f64) -> f64 {
+        let x = r / r0;
+        match self {
+            Self::Physical => x,
+            Self::Paper => x * x,
+        }
+    }
+}
+
 /// The shading factors around |A|²: Fresnel, geometry, optional Cook–Torrance shadowing.
 #[derive(Debug, Clone)]
 pub struct Shading {
     pub fresnel: std::sync::Arc<dyn FresnelSource>,
     /// Multiply by the Cook–Torrance V-cavity shadowing–masking term.
     pub shadowing: bool,
+    /// `R` once (physical) or `R²` (the paper's formula as printed).
+    pub convention: FresnelConvention,
 }
 
 impl Default for Shading {
     fn default() -> Self {
-        Self { fresnel: std::sync::Arc::new(Fresnel::default()), shadowing: true }
+        Self {
+            fresnel: std::sync::Arc::new(Fresnel::default()),
+            shadowing: true,
+            convention: FresnelConvention::Physical,
+        }
     }
 }
 
 impl Shading {
     /// The factor `C` of the relative reflectance `ρ_λ = C |A|²` (paper eq. 4 with `G` of eq. 2, as in
-    /// PHYSICS.md): `C = F² (1 + ω_i·ω_r)² / (F_0² (cos θ_i + cos θ_r)² cos θ_r)`, times the shadowing term.
-    /// `F` is taken at the half-vector angle and wavelength λ; `F_0` is [`FresnelSource::normal_reflectance`],
-    /// the same for all λ. With a λ-independent source, normal incidence and mirror viewing give `C = 1`.
+    /// PHYSICS.md): `C = (R/R₀) (1 + ω_i·ω_r)² / ((cos θ_i + cos θ_r)² cos θ_r)`, times the shadowing term,
+    /// with `R` the power reflectance at the half-vector angle and wavelength λ — Stam's `F²` with `F` the
+    /// amplitude coefficient — and `R₀` [`FresnelSource::normal_reflectance`], the same for all λ. Under
+    /// [`FresnelConvention::Paper`] the ratio is squared, as the paper prints it (`F² / F₀²` with `F` Schlick's
+    /// power reflectance). With a λ-independent source, normal incidence and mirror viewing give `C = 1`.
     /// Zero below the horizon or when `w = 0`.
     ///
     /// No separate `cos θ_i`: the paper's eq. 9 multiplies its `C = F²G/(F_0² w²)` by `cos θ_i`, and its `G`
@@ -177,7 +227,7 @@ impl Shading {
         let f = self.fresnel.reflectance(wavelength_nm, dot(wi, h));
         let f0 = self.fresnel.normal_reflectance();
         let g = (1.0 + dot(wi, wr)).powi(2);
-        let mut c = (f * f) * g / (f0 * f0 * w * w * cr);
+        let mut c = self.convention.ratio(f, f0) * g / (w * w * cr);
         if self.shadowing {
             c *= cook_torrance(wi, wr, h);
         }
@@ -202,7 +252,7 @@ mod tests {
     fn mirror_at_normal_incidence_has_unit_factor() {
         let n = [0.0, 0.0, 1.0];
         for fresnel in [Fresnel::Schlick { n: 1.5 }, Fresnel::Index { n: Complex64::new(0.2, 3.4) }] {
-            let s = Shading { fresnel: std::sync::Arc::new(fresnel), shadowing: true };
+            let s = Shading { fresnel: std::sync::Arc::new(fresnel), ..Shading::default() };
             assert!((s.factor(500.0, n, n) - 1.0).abs() < 1e-15);
         }
     }

@@ -17,13 +17,15 @@ pub mod evaluator;
 pub mod geometry;
 pub mod map;
 pub mod patch;
+pub mod point;
 pub mod spectral;
 pub mod table;
 pub mod taylor;
 
 pub use evaluator::{Evaluator, GroundTruth, Reference};
-pub use geometry::{Fresnel, Shading};
+pub use geometry::{Fresnel, FresnelConvention, Shading};
 pub use patch::Patch;
+pub use point::{point_query, PointQuery};
 pub use spectral::SpectralSetup;
 pub use table::{Lookup, LookupTable, TableParams};
 pub use taylor::TaylorTerms;

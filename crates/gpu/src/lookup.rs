@@ -10,7 +10,7 @@
 //! N = 22 is 136 MB) — so the shader is the CPU's `Lookup::sum` with `Precision::F32`.
 
 use iridis_color::{ToneMap, Xyz};
-use iridis_diffraction::geometry::{Fresnel, FresnelSource};
+use iridis_diffraction::geometry::{Fresnel, FresnelConvention, FresnelSource};
 use iridis_diffraction::LookupTable;
 use wgpu::util::DeviceExt;
 
@@ -35,6 +35,7 @@ pub struct GpuLookup<'g> {
     fresnel: Fresnel,
     f0: f32,
     shadowing: bool,
+    convention: FresnelConvention,
 }
 
 /// A rendered map read back: linear XYZ per pixel (row-major, row 0 at the top) and the displayed 8-bit sRGB.
@@ -146,6 +147,7 @@ impl<'g> GpuLookup<'g> {
             fresnel,
             f0,
             shadowing,
+            convention: FresnelConvention::Physical,
         })
     }
 
@@ -200,6 +202,12 @@ impl<'g> GpuLookup<'g> {
         })
     }
 
+    /// The Fresnel convention of `C` (default: physical, `R` once; [`FresnelConvention::Paper`]: `R²`).
+    pub fn with_convention(mut self, convention: FresnelConvention) -> Self {
+        self.convention = convention;
+        self
+    }
+
     /// Renders one map and reads it back (the GPU counterpart of `iridis_diffraction::map::brdf_map`).
     pub fn render_map(&self, wi: [f64; 3], size: usize, tone: ToneMap) -> Result<MapOutput, GpuError> {
         let frame = self.frame(size, tone)?;
@@ -213,7 +221,7 @@ impl<'g> GpuLookup<'g> {
             Fresnel::Schlick { n } => (0u32, n as f32, 0.0f32),
             Fresnel::Index { n } => (2u32, n.re as f32, n.im as f32),
         };
-        let flags = u32::from(self.shadowing) | flags_fresnel | 4;
+        let flags = u32::from(self.shadowing) | flags_fresnel | 4 | convention_flag(self.convention);
         [
             f(wi[0] as f32),
             f(wi[1] as f32),
@@ -290,4 +298,12 @@ pub(crate) fn display_buffer(gpu: &Gpu, tone: ToneMap) -> wgpu::Buffer {
         contents: bytemuck::cast_slice(&display_words(tone)),
         usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
     })
+}
+
+/// Flag bit 3 of the shaders' `Table.flags`: the paper's `R²` Fresnel convention (lookup_math.wgsl).
+pub(crate) fn convention_flag(c: FresnelConvention) -> u32 {
+    match c {
+        FresnelConvention::Physical => 0,
+        FresnelConvention::Paper => 8,
+    }
 }

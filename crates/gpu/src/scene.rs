@@ -279,7 +279,9 @@ impl<'g> GpuScene<'g> {
                     rec.words([
                         t.meta.uv_resolution as u32,
                         t.powers() as u32,
-                        u32::from(lookup.shading.shadowing) | flag_f,
+                        u32::from(lookup.shading.shadowing)
+                            | flag_f
+                            | crate::lookup::convention_flag(lookup.shading.convention),
                         base,
                     ]);
                     rec.push([(1.0 / t.meta.uv_power) as f32, f0, n_re, n_im]);

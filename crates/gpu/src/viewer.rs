@@ -261,7 +261,9 @@ fn map_views(gpu: &'static Gpu, scene: &Scene) -> Result<Vec<MapView>, String> {
             let t = &l.table;
             out.push(MapView {
                 name: scene.material_names.get(i).cloned().unwrap_or_else(|| format!("material {i}")),
-                lookup: GpuLookup::new(gpu, t, f.clone(), l.shading.shadowing).map_err(|e| e.to_string())?,
+                lookup: GpuLookup::new(gpu, t, f.clone(), l.shading.shadowing)
+                    .map_err(|e| e.to_string())?
+                    .with_convention(l.shading.convention),
                 scale_ru: d.scale_ru,
                 info: table_info(t),
             });

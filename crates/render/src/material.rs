@@ -176,13 +176,21 @@ impl ThinFilm {
     /// Checks that the stack covers 380–780 nm and sets up the colour integral (D65, CIE 1931, 5 nm — the
     /// defaults of `iridis thinfilm color`).
     pub fn new(stack: Stack, svt: Option<Svt>, transmission: bool) -> Result<Self, RenderError> {
-        for l in [380.0, 780.0] {
-            stack
-                .evaluate(l, 0.0)
-                .map_err(|e| RenderError::Input(format!("thin-film stack {stack}: it must cover 380–780 nm ({e})")))?;
-        }
         let grid = iridis_color::spectrum::uniform_grid(380.0, 780.0, 5.0)
             .map_err(|e| RenderError::Input(format!("wavelength grid: {e}")))?;
+        // Every wavelength of the colour integral, at both ends of the SVT thickness range: a stack that
+        // cannot be evaluated is refused here, never rendered as R = T = 0 (a silently black film).
+        let offsets = match svt {
+            Some(s) => vec![-s.d_rel_nm, 0.0, s.d_rel_nm],
+            None => vec![0.0],
+        };
+        for &l in &grid {
+            for &o in &offsets {
+                stack.evaluate_offset(l, 0.0, o).map_err(|e| {
+                    RenderError::Input(format!("thin-film stack {stack}: cannot be evaluated at {l} nm ({e})"))
+                })?;
+            }
+        }
         let invariant = stack.is_wavelength_invariant();
         Ok(Self {
             stack,
@@ -251,8 +259,12 @@ impl ThinFilm {
             ));
         }
         let rough = RoughStack::new(self.stack.clone(), htsg);
+        // Normal light and view give the HTSG series its largest phase variance g = (2kσ)²: a series that
+        // converges there converges at every angle, so no pixel falls back to a zero diffuse part.
         for &l in self.colorimeter.wavelengths_nm() {
-            rough.specular(l, 0.0).map_err(|e| RenderError::Input(format!("rough substrate at {l} nm: {e}")))?;
+            rough
+                .evaluate(l, 0.0, 0.0, std::f64::consts::PI)
+                .map_err(|e| RenderError::Input(format!("rough substrate at {l} nm: {e}")))?;
         }
         self.rough = Some(htsg);
         Ok(())

@@ -807,7 +807,7 @@ fn build_material(
             let t = crate::tables::load_table(table, &ctx.base, params)
                 .map_err(|e| ctx.err(span.clone(), format!("{what}: {e}")))?;
             let fresnel_n = d.fresnel_n.unwrap_or(1.5);
-            let shading = Shading { fresnel: Arc::new(Fresnel::Schlick { n: fresnel_n }), shadowing: true };
+            let shading = Shading { fresnel: Arc::new(Fresnel::Schlick { n: fresnel_n }), ..Shading::default() };
             let lookup =
                 Lookup::new(t, shading, Precision::F64).map_err(|e| ctx.err(span.clone(), format!("{what}: {e}")))?;
             let rule = match d.orientation.as_deref().unwrap_or("tangent") {

@@ -9,9 +9,21 @@
 //!
 //! * specular (eq. 3.15 = eq. 3.1): `γ_{s,N−j+1} = (r_j + γ_{s,N−j} e^{2iφ_j}) / (1 + r_j γ_{s,N−j} e^{2iφ_j})`,
 //!   seeded (eq. 3.16) by the rough interface's specular reflectivity `η(ω_{i,N}, ω_{i,N}, λ)`;
-//! * diffuse (eq. 3.18–3.19): `γ_{d,N−j+1} = Γ_j / (1 + r_j(θ_l) γ_{s,N−j}(θ_l) e^{2iφ_{l,j}})`,
+//! * diffuse, **reciprocal transport** (the default, [`DiffuseTransport::Reciprocal`]; docs/rough-films.md
+//!   derives it, eq. R1–R6): per polarisation
+//!   `k_d = (n₀/n_N)² · T(θ_l) · f_N(ω_{l,N}, ω_{v,N}) · T(θ_v)`, with `f_N` the HTSG BRDF of the rough
+//!   interface seen from medium `N` (eq. 3.17's `η`), `T(θ)` the power transmittance from medium 0 down to the
+//!   rough interface *with* the multiple reflections between the stack and the interface's specular
+//!   reflection, `T = |D||U|`, `D = Π_j t_j e^{iφ_j}/(1 + r_j γ_{s,N−j} e^{2iφ_j})` the downward amplitude and
+//!   `U` the same product with the upward `t'_j` (same denominators), and `(n₀/n_N)²` the radiance change
+//!   across the interfaces (`L/n²` is invariant). Symmetric in light and view by construction;
+//! * diffuse, **as printed** ([`DiffuseTransport::ThesisPrinted`], a compatibility option that neither
+//!   conserves energy nor is reciprocal): eq. 3.18–3.19,
+//!   `γ_{d,N−j+1} = Γ_j / (1 + r_j(θ_l) γ_{s,N−j}(θ_l) e^{2iφ_{l,j}})`,
 //!   `Γ_j = (n̂_j s_{z,j}/(n̂_{j−1} s_{z,j−1})) t_j(θ_i) t_j(θ_l) γ_{d,N−j} e^{i(φ_{l,j} + φ_{i,j})}`, seeded
-//!   (eq. 3.17) by the rough interface's diffuse reflectivity `η(ω_{l,N}, ω_{i,N}, λ)`.
+//!   (eq. 3.17) by the rough interface's diffuse reflectivity `η(ω_{l,N}, ω_{i,N}, λ)`: multiple reflections
+//!   on the light side only, the upward transmission on the light's path and the downward one on the view's,
+//!   no radiance factor.
 //!
 //! Powers by eq. 3.12, `k = (|γ_∥|² + |γ_⊥|²)/2`.
 //!
@@ -35,9 +47,9 @@
 //!   mirror configuration; then `θ_l = θ_v` is the peak of the diffuse lobe). Direct evaluation takes any
 //!   azimuth.
 //!
-//! As in the thesis, eq. 3.18 accounts for the multiple reflections of the light-side path only, and no
-//! solid-angle (radiance `n²`) factor enters at the interfaces: `k_d` is the thesis' model, not a rigorous
-//! rough-film BRDF. For a bare substrate (`N = 0`) it is exactly the HTSG BRDF.
+//! For a bare substrate (`N = 0`) both transports give exactly the HTSG BRDF. The reciprocal transport is
+//! single scattering: diffuse light that the stack reflects back down to the rough interface is not scattered
+//! a second time (docs/rough-films.md, "Energy").
 
 use std::f64::consts::PI;
 use std::io::Write;
@@ -53,11 +65,43 @@ use crate::stack::{check_angle, Stack};
 /// The default relative azimuth `φ_l − φ_v` of tables: light opposite the viewer in one plane.
 pub const MIRROR_AZIMUTH: f64 = PI;
 
+/// How the diffuse light crosses the smooth layers above the rough interface (module documentation).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum DiffuseTransport {
+    /// Power transmittances down at `θ_l` and up at `θ_v`, multiple reflections on both paths, the `n²`
+    /// radiance factor: reciprocal, and energy-conserving up to the HTSG interface's own balance.
+    #[default]
+    Reciprocal,
+    /// Sussenbach's eq. 3.18–3.19 as printed (compatibility only: creates energy, not reciprocal).
+    ThesisPrinted,
+}
+
+impl DiffuseTransport {
+    /// Parses `reciprocal` or `thesis`.
+    pub fn parse(s: &str) -> Result<Self, ThinFilmError> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "reciprocal" => Ok(Self::Reciprocal),
+            "thesis" | "thesis-printed" => Ok(Self::ThesisPrinted),
+            other => Err(ThinFilmError::Invalid(format!(
+                "diffuse transport '{other}': expected 'reciprocal' (the default) or 'thesis' (eq. 3.18–3.19 as \
+                 printed; not energy-conserving)"
+            ))),
+        }
+    }
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Reciprocal => "reciprocal",
+            Self::ThesisPrinted => "thesis",
+        }
+    }
+}
+
 /// A thin-film stack whose bottom interface (last layer | substrate) is rough.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RoughStack {
     pub stack: Stack,
     pub htsg: Htsg,
+    pub transport: DiffuseTransport,
 }
 
 /// Composite specular and diffuse reflectances at one view angle, light direction and wavelength.
@@ -82,6 +126,21 @@ impl Lsrs {
     /// The composite diffuse reflectance `k_d` (eq. 3.12 applied to `γ_d`), sr⁻¹.
     pub fn k_d(&self) -> f64 {
         0.5 * (self.diffuse_s + self.diffuse_p)
+    }
+}
+
+/// The reflected power of one incident direction ([`RoughStack::albedo`]), as fractions of the incident power.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Albedo {
+    /// `k_r`, into the mirror direction.
+    pub specular: f64,
+    /// `∫ k_d cos θ_v dω_v` over the hemisphere.
+    pub diffuse: f64,
+}
+
+impl Albedo {
+    pub fn total(&self) -> f64 {
+        self.specular + self.diffuse
     }
 }
 
@@ -150,8 +209,21 @@ fn cis(phi: Complex64) -> Complex64 {
 }
 
 impl RoughStack {
+    /// A rough stack with the reciprocal diffuse transport.
     pub fn new(stack: Stack, htsg: Htsg) -> Self {
-        Self { stack, htsg }
+        Self { stack, htsg, transport: DiffuseTransport::Reciprocal }
+    }
+
+    /// The same stack with another diffuse transport.
+    pub fn with_transport(mut self, transport: DiffuseTransport) -> Self {
+        self.transport = transport;
+        self
+    }
+
+    /// `(n₀/n_N)²`: the radiance factor between the incident medium and medium `N` above the rough interface
+    /// (real parts; 1 for a bare substrate).
+    fn radiance_factor(side: &Side) -> f64 {
+        (side.media[0].n.re / side.media[side.n()].n.re).powi(2)
     }
 
     /// The real index of the medium above the rough interface and the wave number there, after checking the
@@ -212,6 +284,22 @@ impl RoughStack {
             terms = geo.terms;
             bound = geo.bound;
         }
+        if self.transport == DiffuseTransport::Reciprocal {
+            // Eq. R5 of docs/rough-films.md: k_d = (n₀/n_N)² T(θ_l) f_N T(θ_v) per polarisation.
+            let (tv, tl) = (side_transmittance(&v, &gs_v), side_transmittance(&l, &gs_l));
+            let rad = Self::radiance_factor(&v);
+            for j in (1..=n).rev() {
+                gs_v = gs_v.step(&v.down[j - 1], v.phi[j - 1]); // eq. 3.15
+            }
+            return Ok(Lsrs {
+                specular_s: gs_v.gamma_s.norm_sqr(),
+                specular_p: gs_v.gamma_p.norm_sqr(),
+                diffuse_s: rad * gd_s.norm_sqr() * tv[0] * tl[0],
+                diffuse_p: rad * gd_p.norm_sqr() * tv[1] * tl[1],
+                terms,
+                bound: bound * rad * (tv[0] * tl[0]).max(tv[1] * tl[1]),
+            });
+        }
         for j in (1..=n).rev() {
             let (pv, pl) = (v.phi[j - 1], l.phi[j - 1]);
             let (tv, rl, tu) = (v.down[j - 1], l.down[j - 1], l.up(j));
@@ -232,6 +320,29 @@ impl RoughStack {
             terms,
             bound: bound * transport(&v, &l, &l.seed(&self.htsg, k)),
         })
+    }
+
+    /// Where the light of one incident direction goes, at one wavelength: the specular reflectance `k_r`
+    /// and the hemispherical integral of the diffuse BRDF, `∫ k_d cos θ_v dω_v` (midpoint rule, `steps` polar
+    /// and `2·steps` azimuthal cells over the hemisphere; the plane of incidence is a mirror plane, so half the
+    /// azimuths are evaluated). Their sum is the reflected fraction of the incident power.
+    pub fn albedo(&self, wavelength_nm: f64, light_rad: f64, steps: usize) -> Result<Albedo, ThinFilmError> {
+        check_angle(light_rad)?;
+        if steps < 2 {
+            return Err(ThinFilmError::Invalid(format!("albedo integration needs at least 2 steps, got {steps}")));
+        }
+        let (dt, dp) = (0.5 * PI / steps as f64, PI / steps as f64);
+        let mut diffuse = 0.0;
+        for i in 0..steps {
+            let tv = (i as f64 + 0.5) * dt;
+            let w = tv.cos() * tv.sin() * dt * dp;
+            for j in 0..steps {
+                let az = (j as f64 + 0.5) * dp;
+                diffuse += 2.0 * w * self.evaluate(wavelength_nm, tv, light_rad, az)?.k_d();
+            }
+        }
+        let (s, p) = self.specular(wavelength_nm, light_rad)?;
+        Ok(Albedo { specular: 0.5 * (s + p), diffuse })
     }
 
     /// The illumination model of eq. 3.20 at one wavelength: `I_e = k_r(θ_v) I_r + Σ_m k_d(ω_l, ω_v) cos θ_l L_m`,
@@ -296,7 +407,11 @@ impl RoughStack {
             let pre = |deg: f64, view: bool| -> Result<Pre, ThinFilmError> {
                 let side = Side::new(&self.stack, lambda, deg.to_radians())?;
                 let seed = side.seed(&self.htsg, k);
-                let factor = if view { down_factor(&side) } else { up_factor(&side, &seed) };
+                let factor = match (self.transport, view) {
+                    (DiffuseTransport::Reciprocal, _) => side_transmittance(&side, &seed),
+                    (DiffuseTransport::ThesisPrinted, true) => down_factor(&side),
+                    (DiffuseTransport::ThesisPrinted, false) => up_factor(&side, &seed),
+                };
                 let (kf, sh) = match side.dir {
                     Some((_, c)) => (r.k_factor(c), r.shadowing(c)),
                     None => (0.0, 0.0),
@@ -306,6 +421,10 @@ impl RoughStack {
             let views: Vec<Pre> = view_deg.iter().map(|&d| pre(d, true)).collect::<Result<_, _>>()?;
             let lights: Vec<Pre> = light_deg.iter().map(|&d| pre(d, false)).collect::<Result<_, _>>()?;
             let n_sub = views[0].side.media[views[0].side.n() + 1].n;
+            let rad = match self.transport {
+                DiffuseTransport::Reciprocal => Self::radiance_factor(&views[0].side),
+                DiffuseTransport::ThesisPrinted => 1.0,
+            };
             for (i, v) in views.iter().enumerate() {
                 let mut gs = v.side.seed(&self.htsg, k);
                 for j in (1..=v.side.n()).rev() {
@@ -320,7 +439,7 @@ impl RoughStack {
                     let sigma0 = r.effective_sigma_from_k(v.k_factor + l.k_factor);
                     let geo = self.htsg.diffuse_geometry_with(wl, wv, k, sigma0, v.shadow * l.shadow)?;
                     let f = local_fresnel(n_upper, n_sub, geo.cos_local);
-                    let (ts, tp) = (v.factor[0] * l.factor[0], v.factor[1] * l.factor[1]);
+                    let (ts, tp) = (rad * v.factor[0] * l.factor[0], rad * v.factor[1] * l.factor[1]);
                     diffuse[(i * nl + j) * nw + w] = 0.5 * geo.factor * (f.r_s.norm_sqr() * ts + f.r_p.norm_sqr() * tp);
                     max_terms = max_terms.max(geo.terms);
                     max_bound = max_bound.max(geo.bound * ts.max(tp));
@@ -340,7 +459,26 @@ impl RoughStack {
     }
 }
 
-/// `Π_j |t_j e^{iφ_j}|²` per polarisation (⊥, ∥): the view-side factor of eq. 3.19.
+/// `T = |D||U|` per polarisation (⊥, ∥): the power transmittance between medium 0 and the rough interface at
+/// this side's angle, with the multiple reflections between the stack and the interface's specular
+/// reflection `seed` (docs/rough-films.md eq. R3–R4). Per layer, from the rough interface up:
+/// `|t_j t'_j| |e^{iφ_j}|² / |1 + r_j γ_{s,N−j} e^{2iφ_j}|²`, `t'_j` the upward amplitude. `|D||U|` rather than
+/// `|D|² Re(n_N cos θ_N)/(n₀ cos θ₀)`: the same for real indices, and finite at grazing incidence.
+fn side_transmittance(side: &Side, seed: &Composite) -> [f64; 2] {
+    let mut f = [1.0, 1.0];
+    let mut gs = *seed;
+    for j in (1..=side.n()).rev() {
+        let (down, up) = (side.down[j - 1], side.up(j));
+        let e = (-2.0 * side.phi[j - 1].im).exp();
+        let e2 = cis(2.0 * side.phi[j - 1]);
+        f[0] *= down.t_s.norm() * up.t_s.norm() * e / (1.0 + down.r_s * gs.gamma_s * e2).norm_sqr();
+        f[1] *= down.t_p.norm() * up.t_p.norm() * e / (1.0 + down.r_p * gs.gamma_p * e2).norm_sqr();
+        gs = gs.step(&down, side.phi[j - 1]);
+    }
+    f
+}
+
+/// `Π_j |t_j e^{iφ_j}|²` per polarisation (⊥, ∥): the view-side factor of eq. 3.19 as printed.
 fn down_factor(v: &Side) -> [f64; 2] {
     let mut f = [1.0, 1.0];
     for j in 1..=v.n() {
@@ -491,6 +629,160 @@ mod tests {
         let a = rough(STACKS[0], 0.5, 300.0).evaluate(550.0, th, th, PI).unwrap().k_d();
         let b = rough(STACKS[0], 1.0, 300.0).evaluate(550.0, th, th, PI).unwrap().k_d();
         assert!(a > 0.0 && (b / a - 4.0).abs() < 0.01, "{a} {b}");
+    }
+
+    /// Stacks of issue 14 (lossless films on a metal-like substrate) and absorbing ones.
+    const ENERGY_STACKS: [&str; 6] = [
+        "air | n=2.0 80nm | n=0.2+3.4i",
+        "air | water 100nm | n=0.2+3.4i",
+        "air | n=1.38 100nm | n=2.1+0.3i 50nm | Si",
+        "air | water 348nm | Si",
+        "air | n=1.5 250nm | n=2.4",
+        "air | n=2.3 120nm | n=1.46 90nm | n=0.2+3.4i",
+    ];
+
+    #[test]
+    fn diffuse_transport_is_reciprocal() {
+        // Helmholtz reciprocity: k_d(ω_l, ω_v) = k_d(ω_v, ω_l), on lossless and absorbing stacks, to 1e-9.
+        for s in ENERGY_STACKS {
+            let r = rough(s, 25.0, 300.0);
+            for (a, b, az) in
+                [(20.0, 70.0, PI), (10.0, 45.0, 2.0), (0.0, 35.0, 0.5), (60.0, 61.0, PI), (5.0, 85.0, 1.0)]
+            {
+                let (ta, tb) = (f64::to_radians(a), f64::to_radians(b));
+                for wl in [420.0, 550.0, 700.0] {
+                    let x = r.evaluate(wl, ta, tb, az).unwrap();
+                    let y = r.evaluate(wl, tb, ta, az).unwrap();
+                    assert!(x.k_d() > 1e-8, "{s}: nothing to compare at {a}°/{b}°: {x:?}");
+                    for (p, q) in [(x.diffuse_s, y.diffuse_s), (x.diffuse_p, y.diffuse_p)] {
+                        assert!((p - q).abs() <= 1e-9 * p.max(q), "{s} {wl} nm {a}°↔{b}°: {p} vs {q}");
+                    }
+                }
+            }
+        }
+        // The thesis' printed transport is not reciprocal (issue 14 measured a ratio of 6.8 at 20°/70°).
+        let t = rough(ENERGY_STACKS[0], 25.0, 300.0).with_transport(DiffuseTransport::ThesisPrinted);
+        let (a, b) = (f64::to_radians(20.0), f64::to_radians(70.0));
+        let ratio = t.evaluate(400.0, a, b, PI).unwrap().k_d() / t.evaluate(400.0, b, a, PI).unwrap().k_d();
+        assert!(ratio > 2.0 || ratio < 0.5, "printed transport ratio {ratio}");
+    }
+
+    /// `P(θ) = (1 − k_r)/(1 − |γ_{s,0}|²)` per polarisation: the power reaching the rough interface, from the
+    /// energy balance of the coherent (specular) field through lossless layers — an independent route to
+    /// the transmittance: the net flux into the rough interface is all that the specular reflection loses.
+    fn delivered(r: &RoughStack, wl: f64, theta: f64) -> [f64; 2] {
+        let x = r.evaluate(wl, theta, theta, PI).unwrap();
+        let side = Side::new(&r.stack, wl, theta).unwrap();
+        let (_, k) = r.upper(wl).unwrap();
+        let seed = side.seed(&r.htsg, k);
+        [(1.0 - x.specular_s) / (1.0 - seed.gamma_s.norm_sqr()), (1.0 - x.specular_p) / (1.0 - seed.gamma_p.norm_sqr())]
+    }
+
+    #[test]
+    fn lossless_films_deliver_what_the_specular_loses() {
+        // For lossless layers, k_d = (n₀/n_N)² P(θ_l) f_N P(θ_v) per polarisation with P from the energy balance
+        // of the specular field, f_N the HTSG BRDF of the interface in medium N (its own Fresnel amplitudes
+        // at the bisector): the transport is the power transmittance, with the radiance factor.
+        for s in ["air | n=2.0 80nm | n=0.2+3.4i", "air | water 100nm | n=0.2+3.4i", "air | n=1.5 250nm | n=2.4"] {
+            let r = rough(s, 25.0, 300.0);
+            for (a, b, az) in [(0.0, 30.0, PI), (20.0, 70.0, 2.5), (45.0, 45.0, PI)] {
+                let (tl, tv) = (f64::to_radians(a), f64::to_radians(b));
+                for wl in [400.0, 550.0, 700.0] {
+                    let x = r.evaluate(wl, tv, tl, az).unwrap();
+                    let n = r.stack.layers.len();
+                    let nn = r.stack.layers[n - 1].material.index_at(wl).unwrap().re;
+                    let nsub = r.stack.substrate.index_at(wl).unwrap();
+                    let dir = |t: f64| {
+                        let sn = t.sin() / nn;
+                        (sn, (1.0 - sn * sn).sqrt())
+                    };
+                    let ((sl, cl), (sv, cv)) = (dir(tl), dir(tv));
+                    let wl_n = [sl * az.cos(), sl * az.sin(), cl];
+                    let geo = r.htsg.diffuse_geometry(wl_n, [sv, 0.0, cv], 2.0 * PI * nn / wl).unwrap();
+                    let f = local_fresnel(Complex64::new(nn, 0.0), nsub, geo.cos_local);
+                    let (pl, pv) = (delivered(&r, wl, tl), delivered(&r, wl, tv));
+                    let rad = (1.0 / nn).powi(2);
+                    let want = [
+                        rad * f.r_s.norm_sqr() * geo.factor * pl[0] * pv[0],
+                        rad * f.r_p.norm_sqr() * geo.factor * pl[1] * pv[1],
+                    ];
+                    for (got, want) in [(x.diffuse_s, want[0]), (x.diffuse_p, want[1])] {
+                        assert!((got - want).abs() <= 1e-9 * want, "{s} {wl} nm {a}°/{b}°: {got} vs {want}");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn specular_plus_hemispherical_diffuse_never_exceeds_the_incident_power() {
+        // Issue 14 measured 1.94 and 1.24 for the first two stacks at normal incidence, 400 nm, with the
+        // printed transport; the bare metal gives 0.935 against its smooth R of 0.9385.
+        for s in ENERGY_STACKS {
+            let r = rough(s, 25.0, 300.0);
+            for deg in [0.0, 30.0, 60.0] {
+                for wl in [400.0, 550.0, 700.0] {
+                    let a = r.albedo(wl, f64::to_radians(deg), 90).unwrap();
+                    eprintln!(
+                        "{s:45} {deg:4}° {wl} nm: k_r {:.4} + diffuse {:.4} = {:.4}",
+                        a.specular,
+                        a.diffuse,
+                        a.total()
+                    );
+                    assert!(a.total() <= 1.0, "{s} {deg}° {wl} nm: {a:?}");
+                }
+            }
+        }
+        // Through the film's fringes (thickness 20–400 nm, where the cavity between the film's top and the
+        // rough interface resonates at some thicknesses), and a rougher, steeper interface.
+        for d in (1..=20).map(|i| 20.0 * i as f64) {
+            for (sigma, tau) in [(25.0, 300.0), (60.0, 400.0)] {
+                let r = rough(&format!("air | n=2.0 {d}nm | n=0.2+3.4i"), sigma, tau);
+                for wl in [450.0, 650.0] {
+                    let a = r.albedo(wl, 0.0, 60).unwrap();
+                    assert!(a.total() <= 1.0, "{d} nm, σ {sigma}, τ {tau}, {wl} nm: {a:?}");
+                }
+            }
+        }
+        let printed = rough(ENERGY_STACKS[0], 25.0, 300.0).with_transport(DiffuseTransport::ThesisPrinted);
+        let a = printed.albedo(400.0, 0.0, 90).unwrap();
+        assert!((a.total() - 1.94).abs() < 0.03, "the printed transport's excess (issue 14: 1.94): {a:?}");
+    }
+
+    #[test]
+    fn escaping_diffuse_is_what_leaves_the_interface_inside_the_escape_cone() {
+        // Lossless film on a good conductor, light at 20°: the diffuse power leaving into air (the BRDF
+        // integrated over the outer hemisphere) equals P(θ_l) ∫ f_N P(θ_N) cos θ_N dω_N over the escape cone in
+        // the film — the radiance factor (n₀/n_N)² and the Jacobian of Snell's law must cancel exactly.
+        let r = rough("air | n=2.0 80nm | n=0.2+3.4i", 25.0, 300.0);
+        let (wl, tl) = (550.0, f64::to_radians(20.0));
+        let outside = r.albedo(wl, tl, 120).unwrap().diffuse;
+        let nn = 2.0;
+        let (sl, cl) = (tl.sin() / nn, (1.0 - (tl.sin() / nn).powi(2)).sqrt());
+        let pl = delivered(&r, wl, tl);
+        let nsub = Complex64::new(0.2, 3.4);
+        let crit = (1.0 / nn).asin();
+        let steps = 120;
+        let (dt, dp) = (crit / steps as f64, PI / steps as f64);
+        let mut inside = 0.0;
+        for i in 0..steps {
+            let tn = (i as f64 + 0.5) * dt;
+            let theta0 = (nn * tn.sin()).asin();
+            let pv = delivered(&r, wl, theta0);
+            for j in 0..steps {
+                let az = (j as f64 + 0.5) * dp;
+                let geo = r
+                    .htsg
+                    .diffuse_geometry([sl * az.cos(), sl * az.sin(), cl], [tn.sin(), 0.0, tn.cos()], 2.0 * PI * nn / wl)
+                    .unwrap();
+                let f = local_fresnel(Complex64::new(nn, 0.0), nsub, geo.cos_local);
+                let fn_pol = [f.r_s.norm_sqr() * geo.factor, f.r_p.norm_sqr() * geo.factor];
+                let kd = 0.5 * (fn_pol[0] * pl[0] * pv[0] + fn_pol[1] * pl[1] * pv[1]);
+                inside += 2.0 * kd * tn.cos() * tn.sin() * dt * dp;
+            }
+        }
+        assert!(outside > 0.05, "{outside}");
+        assert!((outside / inside - 1.0).abs() < 5e-3, "outside {outside} vs inside {inside}");
     }
 
     #[test]

@@ -7,7 +7,7 @@ use anyhow::{bail, Context, Result};
 use clap::Args as ClapArgs;
 use iridis_color::{Encoding, Illuminant, Observer, ToneMap, Xyz};
 use iridis_diffraction::evaluator::{Evaluator, GroundTruth, Reference};
-use iridis_diffraction::geometry::{direction, FilmFresnel, FresnelSource, Shading};
+use iridis_diffraction::geometry::{direction, FilmFresnel, FresnelConvention, FresnelSource, Shading};
 use iridis_diffraction::table::{Lookup, LookupTable, Precision, TableParams};
 use iridis_diffraction::taylor::terms_for_bound;
 use iridis_diffraction::{Fresnel, Patch, SpectralSetup, TaylorTerms, DEFAULT_COHERENCE_NM};
@@ -136,6 +136,10 @@ pub struct BrdfMapArgs {
     /// thin-film stack, e.g. "stack:air | keratin 300nm | n=1.56" (λ-dependent: reference or ground-truth).
     #[arg(long, default_value = "schlick:1.5")]
     pub fresnel: String,
+    /// How the Fresnel reflectance enters: physical (R once, the default) or paper (R², the paper's formula as
+    /// printed, to reproduce its figures; docs/PHYSICS.md).
+    #[arg(long, value_name = "physical|paper", default_value = "physical", value_parser = fresnel_convention)]
+    pub fresnel_convention: FresnelConvention,
     /// Leave out the Cook-Torrance shadowing term.
     #[arg(long)]
     pub no_shadowing: bool,
@@ -252,6 +256,11 @@ pub fn run_precompute(a: PrecomputeArgs) -> Result<()> {
         std::fs::metadata(&a.output).map(|m| m.len() as f64 / 1e6).unwrap_or(0.0)
     )?;
     Ok(())
+}
+
+/// Parses `--fresnel-convention`.
+pub fn fresnel_convention(s: &str) -> Result<FresnelConvention, String> {
+    FresnelConvention::parse(s).map_err(|e| e.to_string())
 }
 
 /// Parses `--fresnel` into a Fresnel source (a thin-film stack too: `stack:air | keratin 400nm | …`).
@@ -384,6 +393,137 @@ pub(crate) fn check_against_table(t: &LookupTable, m: &ModelOpts) -> Result<()> 
     Ok(())
 }
 
+/// `iridis brdf …`: point queries of the diffraction BRDF.
+#[derive(Debug, clap::Subcommand)]
+pub enum BrdfCommand {
+    /// ρ(λ) and XYZ of one method for one pair of directions (the evaluator interface, for scripts).
+    Eval(BrdfEvalArgs),
+}
+
+#[derive(Debug, ClapArgs)]
+#[command(after_help = "\
+Directions point away from the surface: θ from the normal, φ the azimuth from +x. The mirror direction of
+light at (θ, φ) is (θ, φ + 180deg). ρ(λ) = C |A(λ)|² is the paper's relative reflectance (eq. 4): 1 for a
+mirror at normal incidence; XYZ is its colour (eq. 9, a normal-incidence mirror has Y = 1). The lookup method
+integrates over λ in advance, so it answers XYZ only. Default method: reference for a SURFACE, lookup for a
+TABLE.
+
+Examples:
+  iridis brdf eval builtin:sine --light 30deg --view 10deg,180deg --json
+  iridis brdf eval builtin:blazed --method ground-truth --light 0deg --view 20deg,180deg
+  iridis brdf eval elaphe.npz --light 20deg,0deg --view 35deg,180deg --json")]
+pub struct BrdfEvalArgs {
+    /// A height field (file or builtin:NAME) or a lookup table from `iridis precompute`.
+    pub input: String,
+    /// Light direction θ[,φ] (towards the light).
+    #[arg(long)]
+    pub light: String,
+    /// View direction θ[,φ] (towards the viewer).
+    #[arg(long)]
+    pub view: String,
+    /// ground-truth, reference, lookup, nmm, pq, stam-periodic, stam-periodic-triangular or stam-gaussian
+    /// [default: reference for a SURFACE, lookup for a TABLE].
+    #[arg(long)]
+    pub method: Option<String>,
+    /// Fresnel factor: schlick[:N] (default schlick:1.5), index:N or index:N+Ki, or "stack:…" (a thin film).
+    #[arg(long, default_value = "schlick:1.5")]
+    pub fresnel: String,
+    /// How the Fresnel reflectance enters: physical (R once, the default) or paper (R², as printed).
+    #[arg(long, value_name = "physical|paper", default_value = "physical", value_parser = fresnel_convention)]
+    pub fresnel_convention: FresnelConvention,
+    /// Leave out the Cook-Torrance shadowing term.
+    #[arg(long)]
+    pub no_shadowing: bool,
+    /// u-v resolution when the lookup method builds a table from a SURFACE.
+    #[arg(long, default_value_t = 501)]
+    pub uv_resolution: usize,
+    /// u-v power when the lookup method builds a table from a SURFACE.
+    #[arg(long, default_value_t = 5.0)]
+    pub uv_power: f64,
+    #[command(flatten)]
+    pub model: ModelOpts,
+    #[command(flatten)]
+    pub surface_opts: SurfaceOpts,
+    /// Print JSON: the inputs, the wavelength grid, ρ(λ) (null for lookup) and XYZ.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Parses `θ[,φ]` of `--light`/`--view` into (θ, φ) in radians, θ in [0°, 90°).
+fn parse_direction(flag: &str, s: &str) -> Result<(f64, f64)> {
+    let mut parts = s.split(',');
+    let theta = angle_rad(parts.next().unwrap_or("")).map_err(|e| anyhow::anyhow!("--{flag} '{s}': {e}"))?;
+    let phi = match parts.next() {
+        Some(p) => angle_rad(p).map_err(|e| anyhow::anyhow!("--{flag} '{s}': {e}"))?,
+        None => 0.0,
+    };
+    if parts.next().is_some() {
+        bail!("--{flag} '{s}': write θ or θ,φ, e.g. 30deg,180deg");
+    }
+    if !(0.0..std::f64::consts::FRAC_PI_2).contains(&theta) {
+        bail!("--{flag} '{s}': θ must be in [0°, 90°) (above the surface)");
+    }
+    Ok((theta, phi))
+}
+
+pub fn run_brdf(c: BrdfCommand) -> Result<()> {
+    match c {
+        BrdfCommand::Eval(a) => run_eval(a),
+    }
+}
+
+fn run_eval(a: BrdfEvalArgs) -> Result<()> {
+    let (tl, pl) = parse_direction("light", &a.light)?;
+    let (tv, pv) = parse_direction("view", &a.view)?;
+    let (wi, wr) = (direction(tl, pl), direction(tv, pv));
+    let method = a.method.clone().unwrap_or_else(|| if is_table(&a.input) { "lookup" } else { "reference" }.into());
+    let shading = Shading {
+        fresnel: parse_fresnel_source(&a.fresnel)?,
+        shadowing: !a.no_shadowing,
+        convention: a.fresnel_convention,
+    };
+    let params = TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power };
+    let e = make_evaluator(&a.input, &method, &a.model, shading, params, Precision::F64, &a.surface_opts)?;
+    let spectral = spectral_setup(&a.model)?;
+    let q = iridis_diffraction::point_query(e.as_ref(), spectral.wavelengths(), wi, wr)?;
+    let deg = |r: f64| (r.to_degrees() * 1e9).round() / 1e9;
+    if a.json {
+        return crate::output::print_json(&serde_json::json!({
+            "input": a.input,
+            "method": e.name(),
+            "light": { "theta_deg": deg(tl), "phi_deg": deg(pl), "direction": wi },
+            "view": { "theta_deg": deg(tv), "phi_deg": deg(pv), "direction": wr },
+            "fresnel": a.fresnel,
+            "fresnel_convention": a.fresnel_convention.name(),
+            "shadowing": !a.no_shadowing,
+            "illuminant": a.model.illuminant.as_deref().unwrap_or("d65"),
+            "observer": a.model.observer.as_deref().unwrap_or("1931"),
+            "wavelength_nm": q.wavelengths_nm,
+            "reflectance": q.reflectance,
+            "xyz": [q.xyz.x, q.xyz.y, q.xyz.z],
+        }));
+    }
+    crate::outln!(
+        "{} · {} · light θ {}° φ {}° · view θ {}° φ {}°",
+        a.input,
+        e.name(),
+        deg(tl),
+        deg(pl),
+        deg(tv),
+        deg(pv)
+    )?;
+    match &q.reflectance {
+        Some(rho) => {
+            crate::outln!("    λ (nm)        ρ(λ)")?;
+            for (l, r) in q.wavelengths_nm.iter().zip(rho) {
+                crate::outln!("{l:10.1}  {r:10.4e}")?;
+            }
+        }
+        None => crate::outln!("ρ(λ): not available — the {} method integrates over λ in advance", e.name())?,
+    }
+    crate::outln!("XYZ {:.6e} {:.6e} {:.6e}  (a normal-incidence mirror: Y = 1)", q.xyz.x, q.xyz.y, q.xyz.z)
+}
+
 /// An evaluator for `--method` on a surface or table.
 pub fn make_evaluator(
     input: &str,
@@ -503,7 +643,11 @@ pub fn run_brdf_map(a: BrdfMapArgs) -> Result<()> {
     if a.gpu {
         return crate::cmd::gpu::run_brdf_map(a, wi, encoding);
     }
-    let shading = Shading { fresnel: parse_fresnel_source(&a.fresnel)?, shadowing: !a.no_shadowing };
+    let shading = Shading {
+        fresnel: parse_fresnel_source(&a.fresnel)?,
+        shadowing: !a.no_shadowing,
+        convention: a.fresnel_convention,
+    };
     let params = TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power };
     let precision = if a.f32 { Precision::F32 } else { Precision::F64 };
     let e = make_evaluator(&a.input, &a.method, &a.model, shading, params, precision, &a.surface_opts)?;

@@ -67,7 +67,7 @@ pub fn run_brdf_map(a: BrdfMapArgs, wi: [f64; 3], encoding: Encoding) -> Result<
     let params = TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power };
     let table = lookup_table(&a.input, &a.model, params, &a.surface_opts)?;
     let gpu = open_gpu()?;
-    let lookup = GpuLookup::new(&gpu, &table, fresnel, !a.no_shadowing)?;
+    let lookup = GpuLookup::new(&gpu, &table, fresnel, !a.no_shadowing)?.with_convention(a.fresnel_convention);
     let tone = ToneMap { exposure_ru: a.exposure, encoding };
     let frame = lookup.frame(a.size, tone)?;
     let secs = frame.run(wi)?.wall.as_secs_f64();
@@ -357,8 +357,11 @@ pub fn bench(a: GpuBench) -> Result<()> {
         Ok(frame.run(last_wi)?)
     })?;
     let map = frame.read()?;
-    let cpu =
-        Lookup::new(Arc::new(table.clone()), Shading { fresnel: Arc::new(fresnel), shadowing: true }, Precision::F64)?;
+    let cpu = Lookup::new(
+        Arc::new(table.clone()),
+        Shading { fresnel: Arc::new(fresnel), ..Shading::default() },
+        Precision::F64,
+    )?;
     let px: Vec<usize> = sample(mw * mw, 4096)
         .into_iter()
         .filter(|&i| iridis_diffraction::map::view_direction(i % mw, i / mw, mw).is_some())

@@ -8,7 +8,7 @@ use anyhow::{bail, Context, Result};
 use clap::{Args as ClapArgs, Subcommand};
 use iridis_color::units::{parse_angle_rad, parse_length_nm};
 use iridis_color::{Illuminant, Observer, Spectrum, Xyz};
-use iridis_diffraction::geometry::{FresnelSource, Shading};
+use iridis_diffraction::geometry::{FresnelConvention, FresnelSource, Shading};
 use iridis_diffraction::table::TableParams;
 use iridis_diffraction::{Fresnel, Patch, SpectralSetup};
 use iridis_lab::bench::{self, BenchSetup};
@@ -40,6 +40,10 @@ pub struct LabModel {
     /// Fresnel factor: schlick[:N] (default schlick:1.5), index:N[+Ki], or gold.
     #[arg(long, default_value = "schlick:1.5")]
     pub fresnel: String,
+    /// How the Fresnel reflectance enters: physical (R once, the default) or paper (R², the paper's formula as
+    /// printed, to reproduce its figures; docs/PHYSICS.md).
+    #[arg(long, value_name = "physical|paper", default_value = "physical", value_parser = crate::cmd::brdf::fresnel_convention)]
+    pub fresnel_convention: FresnelConvention,
     /// Leave out the Cook–Torrance shadowing term.
     #[arg(long)]
     pub no_shadowing: bool,
@@ -60,7 +64,11 @@ impl LabModel {
         Ok(MethodConfig {
             coherence_nm: self.coherence,
             terms,
-            shading: Shading { fresnel: fresnel(&self.fresnel)?, shadowing: !self.no_shadowing },
+            shading: Shading {
+                fresnel: fresnel(&self.fresnel)?,
+                shadowing: !self.no_shadowing,
+                convention: self.fresnel_convention,
+            },
             stam_epsilon: self.epsilon,
             ..MethodConfig::default()
         })
@@ -884,6 +892,7 @@ pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
         coherence: 65_000.0,
         terms: "auto".into(),
         fresnel: "schlick:1.5".into(),
+        fresnel_convention: FresnelConvention::Physical,
         no_shadowing: false,
         epsilon: 0.01,
     };

@@ -16,7 +16,7 @@ use iridis_color::units::{parse_angle_rad, parse_range};
 use iridis_color::{Illuminant, Observer, SpectralWeights, Xyz};
 use iridis_plot::{magma, ColorBar, ImagePlot, LinePlot, RgbImage, Series as PlotSeries};
 use iridis_thinfilm::htsg::{Htsg, Roughness, Series};
-use iridis_thinfilm::rough::{angle_grid, Lsrs, RoughStack};
+use iridis_thinfilm::rough::{angle_grid, DiffuseTransport, Lsrs, RoughStack};
 use iridis_thinfilm::Stack;
 use serde_json::json;
 
@@ -47,6 +47,15 @@ pub struct RoughArgs {
     /// as many as needed for an error bound of 1e-6 of the lobe's peak.
     #[arg(long, help_heading = "Rough substrate (LSRS)")]
     pub d_iterations: Option<usize>,
+    /// How diffuse light crosses the layers: reciprocal (the default: power transmittances both ways, the n²
+    /// radiance factor; docs/rough-films.md) or thesis (eq. 3.18–3.19 as printed; creates energy, not
+    /// reciprocal — for comparison with the thesis only).
+    #[arg(long, default_value = "reciprocal", value_name = "reciprocal|thesis", value_parser = diffuse_transport, help_heading = "Rough substrate (LSRS)")]
+    pub diffuse_transport: DiffuseTransport,
+}
+
+fn diffuse_transport(s: &str) -> Result<DiffuseTransport, String> {
+    DiffuseTransport::parse(s).map_err(|e| e.to_string())
 }
 
 impl RoughArgs {
@@ -64,7 +73,7 @@ impl RoughArgs {
             None => Series::default(),
         };
         let r = Roughness::new(sigma, tau).map_err(|e| anyhow::anyhow!("--roughness/--correlation: {e}"))?;
-        Ok(RoughStack::new(stack, Htsg::new(r, series)))
+        Ok(RoughStack::new(stack, Htsg::new(r, series)).with_transport(self.diffuse_transport))
     }
 
     fn series_label(&self) -> String {
@@ -156,6 +165,7 @@ pub fn spectrum(
     if json_out {
         return crate::output::print_json(&json!({
             "model": "LSRS (Sussenbach eq. 3.15-3.20) with the HTSG BRDF",
+            "diffuse_transport": args.diffuse_transport.name(),
             "roughness_nm": sigma, "correlation_nm": tau,
             "view_deg": view.to_degrees(), "light_deg": light.to_degrees(), "azimuth_deg": args.azimuth.to_degrees(),
             "wavelength_nm": grid,
@@ -190,8 +200,9 @@ pub fn spectrum(
         let _ = writeln!(out, "stack     {}", rough.stack);
         let _ = writeln!(
             out,
-            "rough     substrate interface σ = {sigma} nm, τ = {tau} nm (HTSG, {}; max {terms} terms, error ≤ {bound:.1e} sr⁻¹)",
-            args.series_label()
+            "rough     substrate interface σ = {sigma} nm, τ = {tau} nm (HTSG, {}; max {terms} terms, error ≤ {bound:.1e} sr⁻¹; {} diffuse transport)",
+            args.series_label(),
+            args.diffuse_transport.name()
         );
         let _ = writeln!(
             out,

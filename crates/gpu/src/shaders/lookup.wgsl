@@ -5,7 +5,8 @@ struct LookupParams {
     size: u32,          // map side in pixels
     res: u32,           // table samples per axis
     np: u32,            // powers per channel, 2N + 1
-    flags: u32,         // bit 0: Cook-Torrance shadowing; bit 1: exact Fresnel of a complex index; bit 2: display
+    flags: u32,         // bit 0: Cook-Torrance shadowing; bit 1: exact Fresnel of a complex index; bit 2: display;
+                        // bit 3: the paper's R^2 Fresnel convention
     inv_power: f32,     // 1 / a of the non-linear grid
     f0: f32,            // Fresnel reflectance at normal incidence
     n_re: f32,          // Schlick: n; exact: Re n
@@ -60,7 +61,7 @@ fn brdf_map(@builtin(global_invocation_id) id: vec3<u32>) {
     if (rest > 0) {
         let fs = f32(size);
         let wr = vec3<f32>(f32(a) / fs, f32(b) / fs, sqrt(f32(rest)) / fs);
-        let t = Table(P.res, P.np, P.flags & 3u, 0u, P.inv_power, P.f0, P.n_re, P.n_im);
+        let t = Table(P.res, P.np, P.flags & 11u, 0u, P.inv_power, P.f0, P.n_re, P.n_im);
         xyz = lookup_xyz(t, P.wi.xyz, wr);
     }
     out_xyz[idx] = vec4<f32>(xyz, 0.0);

@@ -12,7 +12,7 @@
 struct Table {
     res: u32,        // samples per axis
     np: u32,         // powers per channel, 2N + 1
-    flags: u32,      // bit 0: Cook-Torrance shadowing; bit 1: exact Fresnel of a complex index
+    flags: u32,      // bit 0: Cook-Torrance shadowing; bit 1: exact Fresnel of a complex index; bit 3: paper's R^2
     base: u32,       // where the table starts in its buffer (used by table_value)
     inv_power: f32,  // 1 / a of the non-linear grid
     f0: f32,         // Fresnel reflectance at normal incidence
@@ -52,8 +52,9 @@ fn lookup_fresnel(t: Table, cos_in: f32) -> f32 {
     return t.f0 + (1.0 - t.f0) * m * m * m * m * m;
 }
 
-// C = F^2 (1 + wi.wr)^2 / (F0^2 (cos_i + cos_r)^2 cos_r) times the Cook-Torrance term (paper eq. 2-4,
-// PHYSICS.md), F at the half-vector angle.
+// C = (R/R0) (1 + wi.wr)^2 / ((cos_i + cos_r)^2 cos_r) times the Cook-Torrance term (paper eq. 2-4 with Stam's
+// F^2 = the power reflectance R, PHYSICS.md), R at the half-vector angle; (R/R0)^2 under the paper's convention
+// (flag bit 3), as iridis_diffraction::Shading::factor.
 fn lookup_shading(t: Table, wi: vec3<f32>, wr: vec3<f32>) -> f32 {
     let ci = wi.z;
     let cr = wr.z;
@@ -66,7 +67,11 @@ fn lookup_shading(t: Table, wi: vec3<f32>, wr: vec3<f32>) -> f32 {
     h = h / hl;
     let f = lookup_fresnel(t, dot(wi, h));
     let g1 = 1.0 + dot(wi, wr);
-    var c = (f * f) * (g1 * g1) / (t.f0 * t.f0 * w * w * cr);
+    var fr = f / t.f0;
+    if ((t.flags & 8u) != 0u) {
+        fr = fr * fr;
+    }
+    var c = fr * (g1 * g1) / (w * w * cr);
     if ((t.flags & 1u) != 0u) {
         let nh = h.z;
         let vh = dot(wr, h);
