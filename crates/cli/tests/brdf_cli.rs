@@ -291,7 +291,15 @@ fn a_thin_film_fresnel_changes_the_colour_schlick_keeps_the_illuminant() {
     let stack = "stack:air | keratin 300nm | n=1.56";
     let film = map(dir.path(), "f", &[&common[..], &["--fresnel", stack]].concat());
     let (fx, fy) = chroma(film[4 * 9 + 4]);
-    assert!((fx - x).hypot(fy - y) > 0.01, "film specular at ({fx}, {fy}) vs Schlick ({x}, {y})");
+    assert!((fx - x).hypot(fy - y) > 0.005, "film specular at ({fx}, {fy}) vs Schlick ({x}, {y})");
+    // Issue 14: the film's reflectance enters once, so the specular light has the film's own reflected colour
+    // (`iridis thinfilm color`, the smooth film at normal incidence); the paper's R² over-saturates it.
+    let own = json_of(&["thinfilm", "color", "--stack", &stack["stack:".len()..], "--json"]);
+    let (ox, oy) = (own["reflected"]["xyY"][0].as_f64().unwrap(), own["reflected"]["xyY"][1].as_f64().unwrap());
+    assert!((fx - ox).hypot(fy - oy) < 1e-3, "film specular at ({fx}, {fy}), the film's colour ({ox}, {oy})");
+    let paper = map(dir.path(), "p", &[&common[..], &["--fresnel", stack, "--fresnel-convention", "paper"]].concat());
+    let (px, py) = chroma(paper[4 * 9 + 4]);
+    assert!((px - ox).hypot(py - oy) > (fx - ox).hypot(fy - oy) + 0.003, "R² at ({px}, {py})");
     let png = dir.path().join("l.png");
     assert_fails(
         &["brdf-map", MIRROR, "--fresnel", stack, "--size", "9", "-o", png.to_str().unwrap()],

@@ -17,7 +17,7 @@ use iridis_color::{Encoding, Illuminant, Lab, Observer, SpectralWeights, ToneMap
 use iridis_diffraction::geometry::direction;
 use iridis_diffraction::table::{Lookup, LookupTable, Precision, TableParams};
 use iridis_diffraction::taylor::terms_for_bound;
-use iridis_diffraction::{Fresnel, Patch, Shading, SpectralSetup, TaylorTerms};
+use iridis_diffraction::{Fresnel, FresnelConvention, Patch, Shading, SpectralSetup, TaylorTerms};
 use iridis_gpu::{FilmFrame, GpuFilm, GpuLookup};
 use iridis_thinfilm::{Complex64, Stack};
 
@@ -55,15 +55,18 @@ fn lookup_brdf_maps_match_the_cpu() {
     let inside: Vec<usize> = (0..size * size)
         .filter(|&i| iridis_diffraction::map::view_direction(i % size, i / size, size).is_some())
         .collect();
-    let cases: [(&str, Fresnel, bool, f64, f64); 5] = [
-        ("blazed", Fresnel::Schlick { n: 1.5 }, true, 0.0, 0.0),
-        ("cd", Fresnel::Schlick { n: 1.5 }, true, 0.0, 0.0),
-        ("elaphe", Fresnel::Schlick { n: 1.5 }, true, 30.0, 40.0),
-        ("xenopeltis", Fresnel::Schlick { n: 1.5 }, true, 20.0, 0.0),
-        ("elaphe", Fresnel::Index { n: Complex64::new(0.2, 3.4) }, false, 45.0, 180.0),
+    let paper = FresnelConvention::Paper;
+    let cases: [(&str, Fresnel, bool, f64, f64, FresnelConvention); 6] = [
+        ("blazed", Fresnel::Schlick { n: 1.5 }, true, 0.0, 0.0, FresnelConvention::Physical),
+        ("cd", Fresnel::Schlick { n: 1.5 }, true, 0.0, 0.0, FresnelConvention::Physical),
+        ("elaphe", Fresnel::Schlick { n: 1.5 }, true, 30.0, 40.0, FresnelConvention::Physical),
+        ("xenopeltis", Fresnel::Schlick { n: 1.5 }, true, 20.0, 0.0, FresnelConvention::Physical),
+        ("elaphe", Fresnel::Index { n: Complex64::new(0.2, 3.4) }, false, 45.0, 180.0, FresnelConvention::Physical),
+        // The paper's R² (flag bit 3 of the shader) at oblique light, where R/R₀ is far from 1.
+        ("elaphe", Fresnel::Schlick { n: 1.5 }, true, 60.0, 0.0, paper),
     ];
     let mut tables: Vec<(&str, Arc<LookupTable>)> = Vec::new();
-    for (name, fresnel, shadowing, theta, phi) in cases {
+    for (name, fresnel, shadowing, theta, phi, convention) in cases {
         let table = match tables.iter().find(|(n, _)| *n == name) {
             Some((_, t)) => t.clone(),
             None => {
@@ -73,11 +76,11 @@ fn lookup_brdf_maps_match_the_cpu() {
             }
         };
         let wi = direction(theta.to_radians(), phi.to_radians());
-        let shading = Shading { fresnel: Arc::new(fresnel.clone()), shadowing, ..Shading::default() };
+        let shading = Shading { fresnel: Arc::new(fresnel.clone()), shadowing, convention };
         let cpu = Lookup::new(table.clone(), shading, Precision::F64).unwrap();
         let cpu_map = iridis_diffraction::map::brdf_map(&cpu, wi, size, &|_| {});
         let tone = ToneMap { exposure_ru: 1500.0, encoding: Encoding::Srgb };
-        let g = GpuLookup::new(&gpu, &table, fresnel.clone(), shadowing).unwrap();
+        let g = GpuLookup::new(&gpu, &table, fresnel.clone(), shadowing).unwrap().with_convention(convention);
         let out = g.render_map(wi, size, tone).unwrap();
         assert_eq!(out.xyz.len(), size * size);
         // Outside the disk the map is black on both.
@@ -90,11 +93,13 @@ fn lookup_brdf_maps_match_the_cpu() {
         for exposure in [1.0, 1500.0, 7500.0] {
             let (mean, p99, max) = delta_e(&out.xyz, &cpu_map, exposure, inside.iter().copied());
             eprintln!(
-                "lookup {name} N={} θi={theta}° φi={phi}° {:?} shadowing={shadowing} at {exposure} RU: \
-                 ΔE00 mean {mean:.5} p99 {p99:.5} max {max:.4}",
+                "lookup {name} N={} θi={theta}° φi={phi}° {:?} shadowing={shadowing} {convention:?} at {exposure} \
+                 RU: ΔE00 mean {mean:.5} p99 {p99:.5} max {max:.4}",
                 table.meta.taylor_terms, fresnel
             );
-            assert!(mean < 1.0 && p99 < 3.0, "{name} at {exposure} RU: mean {mean}, p99 {p99}");
+            // Issue 14: measured on lavapipe, mean ≤ 1.2e-4 and p99 ≤ 1.1e-3; the bound leaves room for other
+            // GPUs' f32 arithmetic while still failing on any real regression.
+            assert!(mean < 0.01 && p99 < 0.1, "{name} at {exposure} RU: mean {mean}, p99 {p99}");
         }
         // The displayed pixels the shader writes are ToneMap::to_rgb8 of its own XYZ (±1 level for rounding).
         for (i, p) in out.xyz.iter().enumerate() {
@@ -183,12 +188,12 @@ fn thin_film_colours_match_the_cpu() {
         assert!(ymax > 0.01, "{name}: the film reflects almost nothing ({ymax})");
         let (mean, p99, max) = delta_e(&out.reflected, &cr, 1.0 / ymax, 0..w * h);
         eprintln!("film {name}: reflected at {:.2} RU: ΔE00 mean {mean:.5} p99 {p99:.5} max {max:.4}", 1.0 / ymax);
-        assert!(mean < 1.0 && p99 < 3.0, "{name} reflected: mean {mean}, p99 {p99}");
+        assert!(mean < 0.01 && p99 < 0.1, "{name} reflected: mean {mean}, p99 {p99}");
         let tmax = ct.iter().map(|x| x.y).fold(0.0f64, f64::max);
         if tmax > 0.01 {
             let (mean, p99, max) = delta_e(&out.transmitted, &ct, 1.0 / tmax, 0..w * h);
             eprintln!("film {name}: transmitted: ΔE00 mean {mean:.5} p99 {p99:.5} max {max:.4}");
-            assert!(mean < 1.0 && p99 < 3.0, "{name} transmitted: mean {mean}, p99 {p99}");
+            assert!(mean < 0.01 && p99 < 0.1, "{name} transmitted: mean {mean}, p99 {p99}");
         } else {
             // An opaque substrate: the shader must transmit nothing too.
             assert!(out.transmitted.iter().all(|x| x.y.abs() < 1e-6), "{name}: light through an absorber");
@@ -221,7 +226,7 @@ fn a_layer_at_its_critical_angle() {
     let (cr, _): (Vec<Xyz>, Vec<Xyz>) = cpu.into_iter().unzip();
     let (mean, p99, max) = delta_e(&out.reflected, &cr, 1.0, 0..w * h);
     eprintln!("film at the critical angle ±0.57°: max |ΔY| {worst:.2e}, ΔE00 mean {mean:.5} p99 {p99:.5} max {max:.4}");
-    assert!(worst < 1e-4 && mean < 1.0 && p99 < 3.0, "|ΔY| {worst}, mean {mean}, p99 {p99}");
+    assert!(worst < 1e-4 && mean < 0.01 && p99 < 0.1, "|ΔY| {worst}, mean {mean}, p99 {p99}");
 }
 
 #[test]

@@ -77,6 +77,10 @@ fn every_example_scene_matches_the_cpu() {
     }
     assert!(report.len() >= 8, "{} scenes compared", report.len());
     for (name, mean, p99) in &report {
-        assert!(*mean < 1.0 && *p99 < 3.0, "{name}: mean ΔE00 {mean:.3}, p99 {p99:.3}");
+        // Issue 14: measured on lavapipe at 96 px, mean ≤ 0.009 and p99 ≤ 0.007 on every example but the soap
+        // bubble (0.061 / 1.68: rays refracted through two thin shells, where f32 and f64 intersections part),
+        // with a few silhouette pixels apart (max ≈ 24) where one renderer's ray hits and the other's misses.
+        let (mean_max, p99_max) = if name.starts_with("soap_bubble") { (0.2, 3.0) } else { (0.05, 0.05) };
+        assert!(*mean < mean_max && *p99 < p99_max, "{name}: mean ΔE00 {mean:.3}, p99 {p99:.3}");
     }
 }
