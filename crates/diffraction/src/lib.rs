@@ -21,7 +21,7 @@ pub mod spectral;
 pub mod table;
 pub mod taylor;
 
-pub use evaluator::{Evaluator, GroundTruth, Reference};
+pub use evaluator::{Aperture, Evaluator, GroundTruth, Reference};
 pub use geometry::{Fresnel, Shading};
 pub use patch::Patch;
 pub use spectral::SpectralSetup;
