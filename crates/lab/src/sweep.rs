@@ -88,6 +88,9 @@ impl std::str::FromStr for Param {
     }
 }
 
+/// An error at one exposure: (exposure in RU, mean ΔE00, 95th percentile).
+pub type ErrorAt = (f64, f64, f64);
+
 /// One value of the sweep.
 #[derive(Debug, Clone, Serialize)]
 pub struct Point {
@@ -166,7 +169,7 @@ pub fn run(
         Ok(render(gt.as_ref(), pixels, &crate::no_progress))
     };
     // The truth and the periodic-extension error at one setting.
-    let truths_of = |b: &Workbench| -> Result<(Vec<Option<Xyz>>, Vec<(f64, f64, f64)>), LabError> {
+    let truths_of = |b: &Workbench| -> Result<(Vec<Option<Xyz>>, Vec<ErrorAt>), LabError> {
         let periodic = image_of(b, Method::GroundTruthPeriodic)?;
         let finite = image_of(b, Method::GroundTruth)?;
         let extension = exposures

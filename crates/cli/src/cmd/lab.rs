@@ -809,7 +809,13 @@ The image's x axis runs along the beam, y up; one PNG per exposure (NAME_<E>RU.p
 Examples:
   iridis experiment laser 'builtin:elaphe?size=40um&pixel=80nm' --aperture 40um -o elaphe_screen.png
   iridis experiment laser scan.gwy --spectrum fianium_sc450.csv --aperture 100um --exposures 1000,7500 -o s.png
-  iridis experiment laser 'builtin:xenopeltis?size=30um&pixel=60nm' --azimuth 90deg --size 151 -o x.png --json")]
+  iridis experiment laser 'builtin:xenopeltis?size=30um&pixel=60nm' --azimuth 90deg --size 151 -o x.png --json
+  iridis experiment laser scan.gwy --spectrum sc450.csv --method lookup --save-table scan_sc450.npz -o s.png
+  iridis experiment laser scan.gwy --spectrum sc450.csv --method lookup --table scan_sc450.npz -o s2.png
+
+With --method lookup the table integrates the beam's spectrum (times the coating's normal-incidence
+reflectance) in advance and records it; --save-table keeps it, --table reuses one, which must have been made
+for this surface, aperture, beam and coating (any other table is refused, naming what differs).")]
     Laser(LaserArgs),
 }
 
@@ -856,6 +862,12 @@ pub struct LaserArgs {
     /// Output image (PNG).
     #[arg(short, long)]
     pub output: PathBuf,
+    /// A lookup table made for this surface, aperture and beam (by --save-table), for --method lookup.
+    #[arg(long)]
+    pub table: Option<PathBuf>,
+    /// Write the lookup table built for this beam here (--method lookup).
+    #[arg(long)]
+    pub save_table: Option<PathBuf>,
     /// Print JSON.
     #[arg(long)]
     pub json: bool,
@@ -873,6 +885,15 @@ fn run_laser(a: LaserArgs) -> Result<()> {
     let method: Method = a.method.parse()?;
     let exps = exposures(&a.exposures)?;
     check_output(&a.output)?;
+    if (a.table.is_some() || a.save_table.is_some()) && method != Method::Lookup {
+        bail!("--table and --save-table are lookup tables: use them with --method lookup, not {method}");
+    }
+    if a.table.is_some() && a.save_table.is_some() {
+        bail!("--table reuses a table and --save-table writes the one built here: give one of them");
+    }
+    if let Some(p) = &a.save_table {
+        check_output(p)?;
+    }
     let spectrum = match &a.spectrum {
         Some(p) => Spectrum::from_csv_path(p)?,
         None => {
@@ -909,8 +930,18 @@ fn run_laser(a: LaserArgs) -> Result<()> {
     let mut config = model.config()?;
     config.spectral = spectral("e", a.dlambda)?;
     let scale = iridis_lab::laser::configure(&mut config, method, &spectrum, coating.as_ref(), Observer::Cie1931)?;
+    config.table_path = a.table.clone();
     let b = workbench(&a.surface, &model, config)?;
     let e = evaluator(&b, method)?;
+    if let (Some(path), Some(lookup)) = (&a.save_table, e.as_lookup()) {
+        crate::output::write_atomic(path, |w| {
+            let mut buf = std::io::Cursor::new(Vec::new());
+            lookup.table.write_npz(&mut buf)?;
+            std::io::Write::write_all(w, buf.get_ref())?;
+            Ok(())
+        })?;
+        eprintln!("wrote {}", path.display());
+    }
     let mut img = render_bar(e.as_ref(), &pixels, "screen");
     iridis_lab::laser::scale_image(&mut img, scale);
     let half = a.screen / 2e6;
