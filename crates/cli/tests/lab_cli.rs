@@ -456,7 +456,10 @@ fn compare_writes_maps_and_delta_e_heat_maps() {
     assert_eq!(j["results"].as_array().map(Vec::len), Some(4), "{j}");
     let mut expected = Vec::new();
     for ru in ["1", "1000"] {
+        // Both ground truths: the periodic one the methods are compared with, the finite aperture for the
+        // periodic-extension error.
         expected.push(format!("ground-truth_{ru}RU.png"));
+        expected.push(format!("ground-truth-periodic_{ru}RU.png"));
         for m in ["reference", "stam-gaussian"] {
             expected.push(format!("{m}_{ru}RU.png"));
             expected.push(format!("{m}_{ru}RU_deltaE.png"));
@@ -519,12 +522,15 @@ fn compare_refuses_a_table_that_does_not_match_naming_the_field() {
     let out = common::iridis(&pre);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let run = |surface: &str, extra: &[&str]| -> Vec<String> {
-        let mut v: Vec<String> = ["compare", surface, "--methods", "lookup", "--table", t, "--size", "8"]
-            .iter()
-            .map(|s| s.to_string())
-            .collect();
-        let mut opts: Vec<(&str, &str)> =
-            vec![("--coherence", "4um"), ("--dlambda", "10nm"), ("--uv-resolution", "41"), ("--exposures", "1000")];
+        let mut v: Vec<String> =
+            ["compare", surface, "--methods", "lookup", "--size", "8"].iter().map(|s| s.to_string()).collect();
+        let mut opts: Vec<(&str, &str)> = vec![
+            ("--table", t),
+            ("--coherence", "4um"),
+            ("--dlambda", "10nm"),
+            ("--uv-resolution", "41"),
+            ("--exposures", "1000"),
+        ];
         for pair in extra.chunks(2) {
             opts.retain(|o| o.0 != pair[0]);
             opts.push((pair[0], pair[1]));
