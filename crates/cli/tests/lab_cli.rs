@@ -456,7 +456,10 @@ fn compare_writes_maps_and_delta_e_heat_maps() {
     assert_eq!(j["results"].as_array().map(Vec::len), Some(4), "{j}");
     let mut expected = Vec::new();
     for ru in ["1", "1000"] {
+        // Both ground truths: the periodic one the methods are compared with, the finite aperture for the
+        // periodic-extension error.
         expected.push(format!("ground-truth_{ru}RU.png"));
+        expected.push(format!("ground-truth-periodic_{ru}RU.png"));
         for m in ["reference", "stam-gaussian"] {
             expected.push(format!("{m}_{ru}RU.png"));
             expected.push(format!("{m}_{ru}RU_deltaE.png"));
@@ -471,4 +474,163 @@ fn compare_writes_maps_and_delta_e_heat_maps() {
         let img = image::open(maps.join(f)).unwrap_or_else(|e| panic!("{f} is not a readable image: {e}"));
         assert!(img.width() > 16 && img.height() > 16, "{f}: {}×{}", img.width(), img.height());
     }
+}
+
+/// `compare` measures each method against the ground truth of its own model (the periodic extension) and
+/// prints the periodic-extension error beside it. With the window twice as wide as the patch the two models
+/// part by several ΔE00 — which the reference, an approximation of the periodic model, must not be charged
+/// with: against its own ground truth it is within a small fraction of one ΔE00.
+#[test]
+fn compare_measures_each_method_against_its_own_model() {
+    let base = ["compare", "builtin:blazed?size=6um&pixel=50nm", "--methods", "reference", "--exposures", "1000"];
+    let args = |extra: &[&'static str]| -> Vec<&'static str> {
+        let mut v: Vec<&str> = base.to_vec();
+        v.extend_from_slice(&["--coherence", "12um", "--size", "16", "--json"]);
+        v.extend_from_slice(extra);
+        v
+    };
+    let j = json_of(&args(&[]));
+    assert_eq!(j["against"], "model", "{j}");
+    let row = &j["results"][0];
+    assert_eq!(row["against"], "ground-truth-periodic", "{j}");
+    let own = row["mean"].as_f64().unwrap();
+    let ext = j["periodic_extension_error"][0]["mean"].as_f64().unwrap_or_else(|| panic!("no extension error: {j}"));
+    assert!(own < 0.2, "reference vs its own model's ground truth: {own} ({j})");
+    assert!(ext > 1.0, "periodic vs finite aperture with a window twice the patch: {ext} ({j})");
+    // Against the finite aperture: the model mismatch shows up as the method's error.
+    let f = json_of(&args(&["--against", "ground-truth"]));
+    assert_eq!(f["results"][0]["against"], "ground-truth", "{f}");
+    let finite = f["results"][0]["mean"].as_f64().unwrap();
+    assert!(
+        finite > 0.5 * ext && finite > 5.0 * own,
+        "reference vs finite aperture {finite}, extension {ext}, own {own}"
+    );
+    assert_fails(&["compare", "builtin:blazed", "--against", "nothing"], &["--against", "nothing", "model"]);
+}
+
+/// A table from `precompute` is checked against everything `compare` would build it from; each mismatch is
+/// refused, naming the field. The matching table is accepted.
+#[test]
+fn compare_refuses_a_table_that_does_not_match_naming_the_field() {
+    let dir = tempfile::tempdir().unwrap();
+    let t = dir.path().join("t.npz");
+    let t = t.to_str().unwrap();
+    let surface = "builtin:sine?size=4um&pixel=100nm&period=1000nm";
+    let build = ["--coherence", "4um", "--step", "10nm", "--uv-resolution", "41"];
+    let mut pre = vec!["precompute", surface, "-o", t];
+    pre.extend_from_slice(&build);
+    let out = common::iridis(&pre);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let run = |surface: &str, extra: &[&str]| -> Vec<String> {
+        let mut v: Vec<String> =
+            ["compare", surface, "--methods", "lookup", "--size", "8"].iter().map(|s| s.to_string()).collect();
+        let mut opts: Vec<(&str, &str)> = vec![
+            ("--table", t),
+            ("--coherence", "4um"),
+            ("--dlambda", "10nm"),
+            ("--uv-resolution", "41"),
+            ("--exposures", "1000"),
+        ];
+        for pair in extra.chunks(2) {
+            opts.retain(|o| o.0 != pair[0]);
+            opts.push((pair[0], pair[1]));
+        }
+        for (k, val) in opts {
+            v.push(k.into());
+            v.push(val.into());
+        }
+        v
+    };
+    let ok = run(surface, &[]);
+    let ok: Vec<&str> = ok.iter().map(|s| s.as_str()).collect();
+    let out = common::iridis(&ok);
+    assert!(out.status.success(), "the matching table was refused: {}", String::from_utf8_lossy(&out.stderr));
+    for (surf, extra, field) in [
+        ("builtin:sine?size=4um&pixel=100nm&period=800nm", vec![], "surface fingerprint"),
+        ("builtin:sine?size=5um&pixel=100nm&period=1000nm", vec![], "size"),
+        ("builtin:sine?size=4um&pixel=80nm&period=1000nm", vec![], "pixel size"),
+        (surface, vec!["--coherence", "5um"], "coherence"),
+        (surface, vec!["--illuminant", "a"], "illuminant"),
+        (surface, vec!["--dlambda", "5nm"], "wavelength step"),
+        (surface, vec!["--terms", "3"], "Taylor terms"),
+        (surface, vec!["--uv-resolution", "31"], "u-v grid"),
+        (surface, vec!["--uv-power", "2"], "u-v grid"),
+    ] {
+        let args = run(surf, &extra);
+        let args: Vec<&str> = args.iter().map(|s| s.as_str()).collect();
+        assert_fails(&args, &[field, "t.npz", "iridis precompute"]);
+    }
+    // The observer: compare always uses CIE 1931, a table made for 1964 is refused.
+    let t64 = dir.path().join("t64.npz");
+    let mut pre = vec!["precompute", surface, "-o", t64.to_str().unwrap(), "--observer", "1964"];
+    pre.extend_from_slice(&build);
+    assert!(common::iridis(&pre).status.success());
+    let args = run(surface, &["--table", t64.to_str().unwrap()]);
+    let args: Vec<&str> = args.iter().map(|s| s.as_str()).collect();
+    assert_fails(&args, &["observer", "t64.npz"]);
+}
+
+/// `experiment laser --method lookup` builds its table for the beam and records the beam's spectrum (not
+/// illuminant E): saved with --save-table it is accepted for the same beam, refused for another beam and a
+/// D65 table from `precompute` is refused by its illuminant.
+#[test]
+fn laser_tables_record_the_beam_and_are_checked() {
+    let dir = tempfile::tempdir().unwrap();
+    let (green, red) = (dir.path().join("green.csv"), dir.path().join("red.csv"));
+    std::fs::write(&green, "wavelength_nm,power\n520,0\n529,0\n530,1\n535,1\n536,0\n545,0\n").unwrap();
+    std::fs::write(&red, "wavelength_nm,power\n620,0\n629,0\n630,1\n635,1\n636,0\n645,0\n").unwrap();
+    let surface = "builtin:sine?size=4um&pixel=100nm&period=1000nm";
+    let table = dir.path().join("laser.npz");
+    let out = dir.path().join("s.png");
+    let laser = |spectrum: &std::path::Path, extra: &[&str]| -> std::process::Output {
+        let mut v = vec![
+            "experiment",
+            "laser",
+            surface,
+            "--method",
+            "lookup",
+            "--spectrum",
+            spectrum.to_str().unwrap(),
+            "--aperture",
+            "4um",
+            "--dlambda",
+            "10nm",
+            "--size",
+            "9",
+            "--subsamples",
+            "1",
+            "--exposures",
+            "1000",
+            "-o",
+            out.to_str().unwrap(),
+        ];
+        v.extend_from_slice(extra);
+        common::iridis(&v)
+    };
+    let r = laser(&green, &["--save-table", table.to_str().unwrap()]);
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    let t = iridis_diffraction::table::LookupTable::load(&table).unwrap();
+    assert_eq!(t.meta.illuminant, "light", "{:?}", t.meta);
+    let light = t.meta.light_spectrum.as_ref().expect("the beam's spectrum is recorded");
+    // The green band (times gold's reflectance) and nothing at 600 nm.
+    let at = |l: f64| light[t.wavelengths_nm.iter().position(|&x| (x - l).abs() < 1e-9).unwrap()];
+    assert!(at(530.0) > 0.5 && at(600.0) == 0.0, "{light:?}");
+    let r = laser(&green, &["--table", table.to_str().unwrap()]);
+    assert!(r.status.success(), "the same beam's table was refused: {}", String::from_utf8_lossy(&r.stderr));
+    let mut args = vec!["experiment", "laser", surface, "--method", "lookup", "--spectrum", red.to_str().unwrap()];
+    let tail = ["--aperture", "4um", "--dlambda", "10nm", "--size", "9", "--subsamples", "1", "-o"];
+    args.extend_from_slice(&tail);
+    args.extend_from_slice(&[out.to_str().unwrap(), "--table", table.to_str().unwrap()]);
+    assert_fails(&args, &["light spectrum", "laser.npz"]);
+    let d65 = dir.path().join("d65.npz");
+    let pre = ["precompute", surface, "-o", d65.to_str().unwrap(), "--coherence", "4um", "--step", "10nm"];
+    assert!(common::iridis(&pre).status.success());
+    let mut args = vec!["experiment", "laser", surface, "--method", "lookup", "--spectrum", green.to_str().unwrap()];
+    args.extend_from_slice(&tail);
+    args.extend_from_slice(&[out.to_str().unwrap(), "--table", d65.to_str().unwrap()]);
+    assert_fails(&args, &["illuminant", "d65.npz"]);
+    assert_fails(
+        &["experiment", "laser", surface, "--table", d65.to_str().unwrap(), "-o", out.to_str().unwrap()],
+        &["--method lookup"],
+    );
 }

@@ -81,23 +81,73 @@ impl Evaluator for Reference {
     }
 }
 
+/// Which continuation of the patch the ground truth's window sees.
+///
+/// * `Finite`: the window is cut at the patch edge (nothing outside the measured area): a finite aperture,
+///   what a sample exactly the size of the scan would reflect.
+/// * `Periodic`: the patch repeated without end (images at `x + m·Lx, y + n·Ly`, `L = samples · pixel`): the
+///   surface the DFT sees, so the model that the reference and lookup methods approximate (their windowed
+///   Fourier-series coefficients, eq. 8, are this sum up to the 4σ_f cut and the Taylor remainder).
+///
+/// While the window (`4σ_s`) stays well inside the patch the two agree; once it is as wide as the patch they
+/// part (spikes `1/L` apart for `Periodic`, the edge's diffraction for `Finite`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Aperture {
+    Finite,
+    #[default]
+    Periodic,
+}
+
+impl Aperture {
+    pub fn name(self) -> &'static str {
+        match self {
+            Aperture::Finite => "finite",
+            Aperture::Periodic => "periodic",
+        }
+    }
+}
+
+impl std::str::FromStr for Aperture {
+    type Err = DiffractionError;
+    fn from_str(s: &str) -> Result<Self, DiffractionError> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "finite" | "patch" => Ok(Aperture::Finite),
+            "periodic" | "periodic-extension" => Ok(Aperture::Periodic),
+            _ => Err(DiffractionError::Invalid(format!(
+                "aperture '{s}': expected finite (the window cut at the patch edge) or periodic (the patch \
+                 repeated, as the DFT sees it)"
+            ))),
+        }
+    }
+}
+
+/// The most images of the patch per axis the periodic ground truth sums (a window ~2700 patches wide).
+pub const MAX_IMAGES_PER_AXIS: usize = 20_001;
+
+/// Window weights below this fraction of the peak are left out of the ground truth's sums.
+const WINDOW_CUT: f64 = 1e-12;
+
 /// The yardstick (the paper's "benchmark implementation", sec. 6.3): the coherence-windowed Fourier transform
 /// of `p = exp(i k w h)` summed directly over the height samples at exactly the frequency each `(λ, ω_i, ω_r)`
 /// needs — no Taylor series, no DFT grid:
 /// `A(λ) = Σ_j g_j exp(i (2π/λ) D_j) / Σ_j g_j`, `D_j = w h_j + u x_j + v y_j` (PHYSICS.md's sign), with the
-/// Gaussian window `g` (`4σ_s` = coherence length) centred on the patch and limited to it.
+/// Gaussian window `g` (`4σ_s` = coherence length) centred on the patch. The sum runs over the patch alone
+/// ([`Aperture::Finite`]) or over the sample lattice of the periodically continued patch
+/// ([`Aperture::Periodic`]).
 ///
 /// Speed: `D_j` does not depend on λ, so on a grid uniform in wavenumber `1/λ` the phasors of successive
 /// wavelengths follow by one complex multiplication: one `sin_cos` per sample and direction pair instead of one
 /// per sample and wavelength. The spectral integral uses that grid (trapezoid rule, twice as many samples as
 /// the reference's 5 nm grid by default).
+///
+/// The periodic sum is not expanded image by image: the Gaussian is separable, `g(x, y) = g_x(x) g_y(y)`, and
+/// an image of sample `(i, t)` differs from it only by `x + m·Lx`, `y + n·Ly` (same height), so
+/// `A(s) = Σ_t W_y[t](s) Σ_i W_x[i](s) e^{2πi s D_ti}` with `W_x[i](s) = Σ_m g_x(x_i + m Lx) e^{2πi s u m Lx}`
+/// (and `W_y` likewise): the same lattice sum, term for term, at the cost of the patch's samples plus one short
+/// sum over images per column and row — no lattice in memory.
 #[derive(Debug, Clone)]
 pub struct GroundTruth {
-    /// Sample positions relative to the patch centre and heights (nm), and window weights normalised to Σ g = 1.
-    x: Vec<f64>,
-    y: Vec<f64>,
-    h: Vec<f64>,
-    g: Vec<f64>,
+    samples: Samples,
     dx: f64,
     dy: f64,
     pub shading: Shading,
@@ -106,14 +156,187 @@ pub struct GroundTruth {
     weights: SpectralWeights,
 }
 
+#[derive(Debug, Clone)]
+enum Samples {
+    /// Sample positions relative to the patch centre and heights (nm), and window weights normalised to Σ g = 1.
+    Finite { x: Vec<f64>, y: Vec<f64>, h: Vec<f64>, g: Vec<f64> },
+    /// The patch's samples (row-major, positions relative to its centre) and, per column and per row, the
+    /// images that carry window weight: `(m·Lx, g_x(x_i + m·Lx) / S_x)`, `S_x` the window's sum along x over
+    /// the whole lattice (so that the lattice's `Σ g = 1`).
+    Periodic { xs: Vec<f64>, ys: Vec<f64>, h: Vec<f64>, cols: Vec<Vec<(f64, f64)>>, rows: Vec<Vec<(f64, f64)>> },
+}
+
+/// The images along one axis: for each sample position `pos[i]` (relative to the patch centre), the shifts
+/// `m·period` and weights `exp(−(pos + m·period)²/(2σ²))` at or above [`WINDOW_CUT`], normalised by the sum over
+/// every sample and image (those cut included).
+fn axis_images(pos: &[f64], period: f64, sigma: f64) -> Result<Vec<Vec<(f64, f64)>>, DiffractionError> {
+    // exp(−r²/2σ²) ≥ 1e-12 needs |r| ≤ σ √(2 ln 1e12) ≈ 7.43 σ; one period more covers every sample; ten more
+    // σ make the normalisation's left-out tail < e^{-150}.
+    let reach = sigma * (2.0 * (1.0 / WINDOW_CUT).ln()).sqrt();
+    let m_max = ((reach + 10.0 * sigma + period) / period).ceil();
+    if 2.0 * m_max + 1.0 > MAX_IMAGES_PER_AXIS as f64 {
+        return Err(DiffractionError::Invalid(format!(
+            "the coherence window (4σ_s = {:.1} µm) is {:.0} times the patch side ({:.2} µm): the periodic ground \
+             truth would sum {:.0} images of the patch per axis (at most {MAX_IMAGES_PER_AXIS}); lower \
+             --coherence, or use the finite aperture",
+            4.0 * sigma / 1000.0,
+            4.0 * sigma / period,
+            period / 1000.0,
+            2.0 * m_max + 1.0
+        )));
+    }
+    let m_max = m_max as i64;
+    let mut total = 0.0;
+    let mut out = Vec::with_capacity(pos.len());
+    for &p in pos {
+        let mut kept = Vec::new();
+        for m in -m_max..=m_max {
+            let r = p + m as f64 * period;
+            let g = (-(r * r) / (2.0 * sigma * sigma)).exp();
+            total += g;
+            if g >= WINDOW_CUT {
+                kept.push((m as f64 * period, g));
+            }
+        }
+        out.push(kept);
+    }
+    for (_, g) in out.iter_mut().flatten() {
+        *g /= total;
+    }
+    Ok(out)
+}
+
+/// `W[i][k] = Σ_m g_m exp(2πi (s0 + k·ds) · a · shift_m)` for each position's images, row-major
+/// `[i · count + k]`, with one extra row of zeros at the end (for padding lanes).
+fn image_factors(images: &[Vec<(f64, f64)>], a: f64, s0: f64, ds: f64, count: usize) -> Vec<Complex64> {
+    let tau = std::f64::consts::TAU;
+    let mut out = vec![Complex64::new(0.0, 0.0); (images.len() + 1) * count];
+    for (i, list) in images.iter().enumerate() {
+        let row = &mut out[i * count..(i + 1) * count];
+        for &(shift, g) in list {
+            let (s, c) = (tau * s0 * a * shift).sin_cos();
+            let (rs, rc) = (tau * ds * a * shift).sin_cos();
+            let mut z = Complex64::new(c * g, s * g);
+            let r = Complex64::new(rc, rs);
+            for o in row.iter_mut() {
+                *o += z;
+                z *= r;
+            }
+        }
+    }
+    out
+}
+
+/// Four samples at a time: four independent phasor recurrences keep the multipliers busy.
+const LANES: usize = 4;
+
+#[allow(clippy::too_many_arguments)]
+/// The finite aperture's sum `Σ_j g_j e^{2πi s D_j}` at `count` wavenumbers `s0 + k·ds`.
+fn finite_sum(x: &[f64], y: &[f64], h: &[f64], g: &[f64], uvw: Vec3, s0: f64, ds: f64, count: usize) -> Vec<Complex64> {
+    let [u, v, w] = uvw;
+    let mut acc = vec![Complex64::new(0.0, 0.0); count];
+    let tau = std::f64::consts::TAU;
+    let n = h.len();
+    let mut j = 0;
+    while j < n {
+        let lanes = LANES.min(n - j);
+        let mut z = [Complex64::new(0.0, 0.0); LANES];
+        let mut r = [Complex64::new(1.0, 0.0); LANES];
+        for l in 0..lanes {
+            let k = j + l;
+            let d = w * h[k] + u * x[k] + v * y[k];
+            let (s, c) = (tau * s0 * d).sin_cos();
+            let (rs, rc) = (tau * ds * d).sin_cos();
+            z[l] = Complex64::new(c * g[k], s * g[k]);
+            r[l] = Complex64::new(rc, rs);
+        }
+        for a in acc.iter_mut() {
+            *a += (z[0] + z[1]) + (z[2] + z[3]);
+            for l in 0..LANES {
+                z[l] *= r[l];
+            }
+        }
+        j += LANES;
+    }
+    acc
+}
+
+/// The periodic lattice's sum `Σ_t W_y[t] Σ_i W_x[i] e^{2πi s D_ti}` (see [`GroundTruth`]), `wx` and `wy` from
+/// [`image_factors`].
+#[allow(clippy::too_many_arguments)]
+fn periodic_sum(
+    xs: &[f64],
+    ys: &[f64],
+    h: &[f64],
+    wx: &[Complex64],
+    wy: &[Complex64],
+    uvw: Vec3,
+    s0: f64,
+    ds: f64,
+    count: usize,
+) -> Vec<Complex64> {
+    let [u, v, w] = uvw;
+    let tau = std::f64::consts::TAU;
+    let cols = xs.len();
+    let zero_row = cols; // the padding row of wx
+                         // Columns and rows whose images all fall below the window cut contribute nothing.
+    let live = |f: &[Complex64], i: usize| f[i * count..(i + 1) * count].iter().any(|z| z.re != 0.0 || z.im != 0.0);
+    let active: Vec<usize> = (0..cols).filter(|&i| live(wx, i)).collect();
+    let mut acc = vec![Complex64::new(0.0, 0.0); count];
+    let mut row_acc = vec![Complex64::new(0.0, 0.0); count];
+    for (t, &y) in ys.iter().enumerate() {
+        if !live(wy, t) {
+            continue;
+        }
+        row_acc.iter_mut().for_each(|a| *a = Complex64::new(0.0, 0.0));
+        for chunk in active.chunks(LANES) {
+            let mut z = [Complex64::new(0.0, 0.0); LANES];
+            let mut r = [Complex64::new(1.0, 0.0); LANES];
+            let mut idx = [zero_row; LANES];
+            for (l, &i) in chunk.iter().enumerate() {
+                let d = w * h[t * cols + i] + u * xs[i] + v * y;
+                let (s, c) = (tau * s0 * d).sin_cos();
+                let (rs, rc) = (tau * ds * d).sin_cos();
+                z[l] = Complex64::new(c, s);
+                r[l] = Complex64::new(rc, rs);
+                idx[l] = i;
+            }
+            let rows_of = idx.map(|i| &wx[i * count..(i + 1) * count]);
+            for (k, a) in row_acc.iter_mut().enumerate() {
+                *a += (rows_of[0][k] * z[0] + rows_of[1][k] * z[1]) + (rows_of[2][k] * z[2] + rows_of[3][k] * z[3]);
+                for l in 0..LANES {
+                    z[l] *= r[l];
+                }
+            }
+        }
+        for (k, a) in acc.iter_mut().enumerate() {
+            *a += wy[t * count + k] * row_acc[k];
+        }
+    }
+    acc
+}
+
 impl GroundTruth {
-    /// Prepares the direct evaluation; `spectral_samples` points uniform in `1/λ` over the setup's range.
+    /// Prepares the direct evaluation over the patch alone (the finite aperture); `spectral_samples` points
+    /// uniform in `1/λ` over the setup's range.
     pub fn new(
         patch: &Patch,
         coherence_nm: f64,
         shading: Shading,
         spectral: &SpectralSetup,
         spectral_samples: usize,
+    ) -> Result<Self, DiffractionError> {
+        Self::with_aperture(patch, coherence_nm, shading, spectral, spectral_samples, Aperture::Finite)
+    }
+
+    /// Prepares the direct evaluation over the chosen [`Aperture`].
+    pub fn with_aperture(
+        patch: &Patch,
+        coherence_nm: f64,
+        shading: Shading,
+        spectral: &SpectralSetup,
+        spectral_samples: usize,
+        aperture: Aperture,
     ) -> Result<Self, DiffractionError> {
         if !(coherence_nm.is_finite() && coherence_nm > 0.0) {
             return Err(DiffractionError::Invalid(format!("coherence length {coherence_nm} nm must be positive")));
@@ -123,25 +346,40 @@ impl GroundTruth {
         }
         let sigma_s = coherence_nm / 4.0;
         let (xc, yc) = ((patch.cols - 1) as f64 * patch.dx / 2.0, (patch.rows - 1) as f64 * patch.dy / 2.0);
-        let (mut x, mut y, mut g) = (Vec::new(), Vec::new(), Vec::new());
-        for j in 0..patch.rows {
-            for i in 0..patch.cols {
-                let (px, py) = (i as f64 * patch.dx - xc, j as f64 * patch.dy - yc);
-                x.push(px);
-                y.push(py);
-                g.push((-(px * px + py * py) / (2.0 * sigma_s * sigma_s)).exp());
+        let samples = match aperture {
+            Aperture::Finite => {
+                let (mut x, mut y, mut g) = (Vec::new(), Vec::new(), Vec::new());
+                for j in 0..patch.rows {
+                    for i in 0..patch.cols {
+                        let (px, py) = (i as f64 * patch.dx - xc, j as f64 * patch.dy - yc);
+                        x.push(px);
+                        y.push(py);
+                        g.push((-(px * px + py * py) / (2.0 * sigma_s * sigma_s)).exp());
+                    }
+                }
+                let gs: f64 = g.iter().sum();
+                g.iter_mut().for_each(|v| *v /= gs);
+                // Samples where the window has fallen below 1e-12 of its peak (beyond 7.4 σ_s) are left out of
+                // the sum: together they change A by less than 1e-12 × (their count × peak weight), far below
+                // the f64 rounding of a million-term sum, and with a window smaller than the patch they are
+                // most of the work (a quarter-patch coherence length keeps 67 % of the samples). The
+                // normalisation above still counts them.
+                let cut = WINDOW_CUT * g.iter().fold(0.0f64, |m, &v| m.max(v));
+                let keep: Vec<usize> = (0..g.len()).filter(|&k| g[k] >= cut).collect();
+                let pick = |v: &[f64]| keep.iter().map(|&k| v[k]).collect::<Vec<f64>>();
+                Samples::Finite { x: pick(&x), y: pick(&y), h: pick(&patch.heights), g: pick(&g) }
             }
-        }
-        let gs: f64 = g.iter().sum();
-        g.iter_mut().for_each(|v| *v /= gs);
-        // Samples where the window has fallen below 1e-12 of its peak (beyond 7.4 σ_s) are left out of the sum:
-        // together they change A by less than 1e-12 × (their count × peak weight), far below the f64 rounding
-        // of a million-term sum, and with a window smaller than the patch they are most of the work (a
-        // quarter-patch coherence length keeps 67 % of the samples). The normalisation above still counts them.
-        let cut = 1e-12 * g.iter().fold(0.0f64, |m, &v| m.max(v));
-        let keep: Vec<usize> = (0..g.len()).filter(|&k| g[k] >= cut).collect();
-        let pick = |v: &[f64]| keep.iter().map(|&k| v[k]).collect::<Vec<f64>>();
-        let (x, y, h, g) = (pick(&x), pick(&y), pick(&patch.heights), pick(&g));
+            Aperture::Periodic => {
+                let xs: Vec<f64> = (0..patch.cols).map(|i| i as f64 * patch.dx - xc).collect();
+                let ys: Vec<f64> = (0..patch.rows).map(|j| j as f64 * patch.dy - yc).collect();
+                let (lx, ly) = patch.extent();
+                // The same 1e-12 cut, per axis (g = g_x g_y, peak 1): the lattice kept is the square around the
+                // finite aperture's disk.
+                let cols = axis_images(&xs, lx, sigma_s)?;
+                let rows = axis_images(&ys, ly, sigma_s)?;
+                Samples::Periodic { xs, ys, h: patch.heights.clone(), cols, rows }
+            }
+        };
         let lam = spectral.wavelengths();
         let (s_lo, s_hi) = (1.0 / lam[lam.len() - 1], 1.0 / lam[0]);
         let wavenumbers: Vec<f64> =
@@ -149,7 +387,15 @@ impl GroundTruth {
         let mut grid: Vec<f64> = wavenumbers.iter().map(|s| 1.0 / s).collect();
         grid.reverse(); // increasing λ
         let weights = SpectralWeights::new(&grid, spectral.illuminant, spectral.observer);
-        Ok(Self { x, y, h, g, dx: patch.dx, dy: patch.dy, shading, wavenumbers, weights })
+        Ok(Self { samples, dx: patch.dx, dy: patch.dy, shading, wavenumbers, weights })
+    }
+
+    /// The aperture this ground truth sums over.
+    pub fn aperture(&self) -> Aperture {
+        match self.samples {
+            Samples::Finite { .. } => Aperture::Finite,
+            Samples::Periodic { .. } => Aperture::Periodic,
+        }
     }
 
     fn nyquist_ok(&self, u: f64, v: f64, wavelength_nm: f64) -> bool {
@@ -158,36 +404,18 @@ impl GroundTruth {
 
     /// `A` at each of the given wavenumbers (1/nm), equally spaced, by the phasor recurrence.
     fn amplitudes(&self, wi: Vec3, wr: Vec3, s0: f64, ds: f64, count: usize) -> Vec<Complex64> {
-        let [u, v, w] = uvw(wi, wr);
-        let mut acc = vec![Complex64::new(0.0, 0.0); count];
-        let tau = std::f64::consts::TAU;
-        // Four samples at a time: four independent phasor recurrences keep the multipliers busy.
-        const LANES: usize = 4;
-        let n = self.h.len();
-        let mut j = 0;
-        while j < n {
-            let lanes = LANES.min(n - j);
-            let mut z = [Complex64::new(0.0, 0.0); LANES];
-            let mut r = [Complex64::new(1.0, 0.0); LANES];
-            for l in 0..lanes {
-                let k = j + l;
-                let d = w * self.h[k] + u * self.x[k] + v * self.y[k];
-                let (s, c) = (tau * s0 * d).sin_cos();
-                let (rs, rc) = (tau * ds * d).sin_cos();
-                z[l] = Complex64::new(c * self.g[k], s * self.g[k]);
-                r[l] = Complex64::new(rc, rs);
+        let uvw = uvw(wi, wr);
+        let mut acc = match &self.samples {
+            Samples::Finite { x, y, h, g } => finite_sum(x, y, h, g, uvw, s0, ds, count),
+            Samples::Periodic { xs, ys, h, cols, rows } => {
+                let wx = image_factors(cols, uvw[0], s0, ds, count);
+                let wy = image_factors(rows, uvw[1], s0, ds, count);
+                periodic_sum(xs, ys, h, &wx, &wy, uvw, s0, ds, count)
             }
-            for a in acc.iter_mut() {
-                *a += (z[0] + z[1]) + (z[2] + z[3]);
-                for l in 0..LANES {
-                    z[l] *= r[l];
-                }
-            }
-            j += LANES;
-        }
+        };
         for (k, a) in acc.iter_mut().enumerate() {
             let lambda = 1.0 / (s0 + ds * k as f64);
-            if !self.nyquist_ok(u, v, lambda) {
+            if !self.nyquist_ok(uvw[0], uvw[1], lambda) {
                 *a = Complex64::new(0.0, 0.0);
             }
         }
@@ -211,7 +439,10 @@ impl GroundTruth {
 
 impl Evaluator for GroundTruth {
     fn name(&self) -> &'static str {
-        "ground-truth"
+        match self.aperture() {
+            Aperture::Finite => "ground-truth",
+            Aperture::Periodic => "ground-truth-periodic",
+        }
     }
     fn reflectance(&self, wavelength_nm: f64, wi: Vec3, wr: Vec3) -> Option<f64> {
         Some(self.shading.factor(wavelength_nm, wi, wr) * self.amplitude(wavelength_nm, wi, wr).norm_sqr())

@@ -22,7 +22,7 @@ pub mod spectral;
 pub mod table;
 pub mod taylor;
 
-pub use evaluator::{Evaluator, GroundTruth, Reference};
+pub use evaluator::{Aperture, Evaluator, GroundTruth, Reference};
 pub use geometry::{Fresnel, FresnelConvention, Shading};
 pub use patch::Patch;
 pub use point::{point_query, PointQuery};

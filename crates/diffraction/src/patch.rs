@@ -56,6 +56,27 @@ impl Patch {
         (self.cols as f64 * self.dx, self.rows as f64 * self.dy)
     }
 
+    /// A fingerprint of the height field as the model sees it (grid, pixel sizes, every height's bits): FNV-1a,
+    /// 64 bit (Fowler–Noll–Vo, the published offset basis and prime), written `fnv1a64:` and 16 hex digits.
+    /// Recorded in lookup tables so that a table is never applied to another surface.
+    pub fn fingerprint(&self) -> String {
+        let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+        let mut eat = |bytes: [u8; 8]| {
+            for b in bytes {
+                h ^= b as u64;
+                h = h.wrapping_mul(0x0000_0100_0000_01b3);
+            }
+        };
+        eat((self.rows as u64).to_le_bytes());
+        eat((self.cols as u64).to_le_bytes());
+        eat(self.dx.to_bits().to_le_bytes());
+        eat(self.dy.to_bits().to_le_bytes());
+        for v in &self.heights {
+            eat(v.to_bits().to_le_bytes());
+        }
+        format!("fnv1a64:{h:016x}")
+    }
+
     /// Warnings a user should see before trusting results ([`model_warnings`]).
     pub fn warnings(&self, coherence_nm: f64) -> Vec<String> {
         model_warnings(self.rows, self.cols, self.dx, self.dy, coherence_nm)

@@ -13,6 +13,9 @@ pub struct SpectralSetup {
     pub observer: Observer,
     pub step_nm: f64,
     pub weights: SpectralWeights,
+    /// A light that replaces the illuminant (a laser, a lamp): its relative power at each grid wavelength,
+    /// recorded in lookup tables built with it. `None`: the illuminant's weights.
+    pub light: Option<Vec<f64>>,
 }
 
 impl SpectralSetup {
@@ -32,11 +35,26 @@ impl SpectralSetup {
         if grid.len() < 2 {
             return Err(DiffractionError::Invalid("the wavelength grid needs at least two samples".into()));
         }
-        Ok(Self { illuminant, observer, step_nm, weights: SpectralWeights::new(&grid, illuminant, observer) })
+        Ok(Self {
+            illuminant,
+            observer,
+            step_nm,
+            weights: SpectralWeights::new(&grid, illuminant, observer),
+            light: None,
+        })
     }
 
     pub fn wavelengths(&self) -> &[f64] {
         self.weights.wavelengths_nm()
+    }
+
+    /// What lights the scene, as a table records it: the illuminant's name, or `light` for a custom spectrum.
+    pub fn light_name(&self) -> &'static str {
+        if self.light.is_some() {
+            "light"
+        } else {
+            self.illuminant.name()
+        }
     }
 }
 

@@ -71,6 +71,66 @@ pub struct TableMeta {
     /// whenever the table is used. Absent in tables written before it existed.
     #[serde(default)]
     pub warnings: Vec<String>,
+    /// [`crate::Patch::fingerprint`] of the height field; absent in tables written before it existed.
+    #[serde(default)]
+    pub surface_fingerprint: Option<String>,
+    /// The light's relative power at each of `wavelengths_nm` when a custom spectrum (a laser) replaced the
+    /// illuminant (`illuminant` is then `light`); absent otherwise.
+    #[serde(default)]
+    pub light_spectrum: Option<Vec<f64>>,
+}
+
+/// What a table must have been made from, to be used for a surface and settings. `None` fields are not
+/// checked: `brdf-map` on a table alone checks the options a user gave; the lab, which has the surface, all.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Provenance {
+    pub surface_fingerprint: Option<String>,
+    /// Samples `(rows, cols)`.
+    pub size: Option<(usize, usize)>,
+    /// Pixel size `(dx, dy)` (nm).
+    pub pixel_nm: Option<(f64, f64)>,
+    pub coherence_nm: Option<f64>,
+    /// An illuminant name (`D65`, …) or `light`.
+    pub illuminant: Option<String>,
+    /// The custom light's relative power on the wavelength grid (with `illuminant` = `light`).
+    pub light_spectrum: Option<Vec<f64>>,
+    pub observer: Option<String>,
+    pub wavelength_step_nm: Option<f64>,
+    /// First and last wavelength (nm).
+    pub wavelength_range_nm: Option<(f64, f64)>,
+    pub taylor_terms: Option<usize>,
+    pub uv: Option<TableParams>,
+}
+
+impl Provenance {
+    /// Everything a table built from `patch` with these settings records.
+    pub fn of(
+        patch: &crate::Patch,
+        coherence_nm: f64,
+        taylor_terms: usize,
+        spectral: &SpectralSetup,
+        uv: TableParams,
+    ) -> Self {
+        let l = spectral.wavelengths();
+        Self {
+            surface_fingerprint: Some(patch.fingerprint()),
+            size: Some((patch.rows, patch.cols)),
+            pixel_nm: Some((patch.dx, patch.dy)),
+            coherence_nm: Some(coherence_nm),
+            illuminant: Some(spectral.light_name().into()),
+            light_spectrum: spectral.light.clone(),
+            observer: Some(spectral.observer.name().into()),
+            wavelength_step_nm: Some(spectral.step_nm),
+            wavelength_range_nm: Some((l[0], l[l.len() - 1])),
+            taylor_terms: Some(taylor_terms),
+            uv: Some(uv),
+        }
+    }
+}
+
+/// Equal to 1e-9 relative (values written as JSON text and read back).
+fn same(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-9 * a.abs().max(b.abs()).max(1e-300)
 }
 
 /// A lookup table in memory.
@@ -181,19 +241,128 @@ impl LookupTable {
             coherence_nm: terms.coherence_nm,
             uv_resolution: res,
             uv_power: params.uv_power,
-            illuminant: spectral.illuminant.name().into(),
+            illuminant: spectral.light_name().into(),
             observer: spectral.observer.name().into(),
             wavelength_step_nm: spectral.step_nm,
             wavelength_min_nm: lambdas[0],
             wavelength_max_nm: lambdas[lambdas.len() - 1],
             layout: "I[v_index, u_index, channel (X, Y, Z), power p = 0..2N]; X = C * sum_p w^p I_p".into(),
             warnings: crate::patch::model_warnings(terms.rows, terms.cols, terms.dx, terms.dy, terms.coherence_nm),
+            surface_fingerprint: Some(terms.fingerprint.clone()),
+            light_spectrum: spectral.light.clone(),
         };
         Ok(Self { meta, uv, wavelengths_nm: lambdas, data })
     }
 
     pub fn powers(&self) -> usize {
         2 * self.meta.taylor_terms + 1
+    }
+
+    /// Each field in which the table differs from `expected`, named, with both values.
+    pub fn mismatches(&self, e: &Provenance) -> Vec<String> {
+        let m = &self.meta;
+        let mut out = Vec::new();
+        if let Some(f) = &e.surface_fingerprint {
+            match &m.surface_fingerprint {
+                None => out.push(format!(
+                    "surface fingerprint: the table records none (written before iridis recorded it), this surface \
+                     is {f}"
+                )),
+                Some(t) if t != f => out.push(format!(
+                    "surface fingerprint: the table's height field is {t}, this one {f} (another surface, or the \
+                     same one read differently)"
+                )),
+                _ => {}
+            }
+        }
+        if let Some((r, c)) = e.size {
+            if (m.rows, m.cols) != (r, c) {
+                out.push(format!("size: the table's {}×{} samples, here {r}×{c}", m.rows, m.cols));
+            }
+        }
+        if let Some((dx, dy)) = e.pixel_nm {
+            if !(same(m.dx_nm, dx) && same(m.dy_nm, dy)) {
+                out.push(format!("pixel size: the table's {} × {} nm, here {dx} × {dy} nm", m.dx_nm, m.dy_nm));
+            }
+        }
+        if let Some(c) = e.coherence_nm {
+            if !same(m.coherence_nm, c) {
+                out.push(format!("coherence: the table's {} nm, here {c} nm", m.coherence_nm));
+            }
+        }
+        if let Some(i) = &e.illuminant {
+            if !i.eq_ignore_ascii_case(&m.illuminant) {
+                out.push(format!("illuminant: the table's {}, here {i}", m.illuminant));
+            }
+        }
+        if let Some(l) = &e.light_spectrum {
+            let differs = match &m.light_spectrum {
+                Some(t) => {
+                    t.len() != l.len()
+                        || t.iter().zip(l).any(|(a, b)| (a - b).abs() > 1e-9 * a.abs().max(b.abs()).max(1e-12))
+                }
+                None => true,
+            };
+            if differs {
+                out.push(format!(
+                    "light spectrum: {} the one given here",
+                    if m.light_spectrum.is_some() {
+                        "the table's differs from"
+                    } else {
+                        "the table records none, unlike"
+                    }
+                ));
+            }
+        }
+        if let Some(o) = &e.observer {
+            let parse = |s: &str| s.parse::<Observer>().ok();
+            if parse(o).is_none() || parse(o) != parse(&m.observer) {
+                out.push(format!("observer: the table's {}, here {o}", m.observer));
+            }
+        }
+        if let Some(s) = e.wavelength_step_nm {
+            if !same(m.wavelength_step_nm, s) {
+                out.push(format!("wavelength step Δλ: the table's {} nm, here {s} nm", m.wavelength_step_nm));
+            }
+        }
+        if let Some((a, b)) = e.wavelength_range_nm {
+            if !(same(m.wavelength_min_nm, a) && same(m.wavelength_max_nm, b)) {
+                out.push(format!(
+                    "wavelength range: the table's {}–{} nm, here {a}–{b} nm",
+                    m.wavelength_min_nm, m.wavelength_max_nm
+                ));
+            }
+        }
+        if let Some(n) = e.taylor_terms {
+            if m.taylor_terms != n {
+                out.push(format!("Taylor terms N: the table's {}, here {n}", m.taylor_terms));
+            }
+        }
+        if let Some(p) = e.uv {
+            if m.uv_resolution != p.uv_resolution || !same(m.uv_power, p.uv_power) {
+                out.push(format!(
+                    "u-v grid: the table's {} samples per axis at power {}, here {} at power {}",
+                    m.uv_resolution, m.uv_power, p.uv_resolution, p.uv_power
+                ));
+            }
+        }
+        out
+    }
+
+    /// Refuses a table made from another surface or with other settings, naming every field that differs.
+    pub fn check(&self, expected: &Provenance, path: &str) -> Result<(), DiffractionError> {
+        let problems = self.mismatches(expected);
+        if problems.is_empty() {
+            return Ok(());
+        }
+        Err(DiffractionError::Table {
+            path: path.into(),
+            message: format!(
+                "was not made from this surface with these settings ({}); run `iridis precompute` with them, or \
+                 give the table's settings",
+                problems.join("; ")
+            ),
+        })
     }
 
     /// Writes the table as `.npz` to any seekable writer.

@@ -41,6 +41,8 @@ pub struct TaylorTerms {
     pub coherence_nm: f64,
     /// `max |h|` of the patch (nm).
     pub max_abs_height: f64,
+    /// [`Patch::fingerprint`] of the patch the terms were computed from.
+    pub fingerprint: String,
     /// `c_n[s,t]`, interleaved: index `(t · cols + s) · (N + 1) + n`, `s`, `t` the DFT bins along x and y.
     coeffs: Vec<Complex64>,
 }
@@ -128,6 +130,7 @@ impl TaylorTerms {
             sigma_f: 1.0 / (std::f64::consts::TAU * sigma_s),
             coherence_nm,
             max_abs_height: patch.max_abs_height,
+            fingerprint: patch.fingerprint(),
             coeffs,
         })
     }

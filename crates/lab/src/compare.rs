@@ -58,22 +58,43 @@ pub fn stats(map: &[Option<f64>]) -> Stats {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ComparisonRow {
     pub method: String,
+    /// The image compared against (a ground truth's name).
+    pub against: String,
     pub exposure_ru: f64,
     pub mean: f64,
     pub p95: f64,
     pub max: f64,
 }
 
-/// Table 2 for several methods' images against one ground truth: one row per method and exposure.
-pub fn table(methods: &[(String, Vec<Option<Xyz>>)], truth: &[Option<Xyz>], exposures: &[f64]) -> Vec<ComparisonRow> {
+/// Table 2 for several methods' images against one ground truth (named `against`): one row per method and
+/// exposure.
+pub fn table(
+    methods: &[(String, Vec<Option<Xyz>>)],
+    truth: &[Option<Xyz>],
+    against: &str,
+    exposures: &[f64],
+) -> Vec<ComparisonRow> {
     let mut rows = Vec::new();
     for (name, img) in methods {
         for &e in exposures {
             let s = stats(&delta_e_map(img, truth, e));
-            rows.push(ComparisonRow { method: name.clone(), exposure_ru: e, mean: s.mean, p95: s.p95, max: s.max });
+            rows.push(ComparisonRow {
+                method: name.clone(),
+                against: against.into(),
+                exposure_ru: e,
+                mean: s.mean,
+                p95: s.p95,
+                max: s.max,
+            });
         }
     }
     rows
+}
+
+/// The periodic-extension error: the periodic ground truth's image against the finite aperture's, per exposure
+/// — how far the two models of the same patch part, the floor under any comparison across them.
+pub fn extension_error(periodic: &[Option<Xyz>], finite: &[Option<Xyz>], exposures: &[f64]) -> Vec<ComparisonRow> {
+    table(&[("periodic-extension".into(), periodic.to_vec())], finite, "ground-truth", exposures)
 }
 
 #[cfg(test)]

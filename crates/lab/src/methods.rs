@@ -1,14 +1,15 @@
 //! One place that turns a method name into an evaluator for a patch, so every lab command offers the same
-//! methods with the same parameters: `ground-truth`, `reference`, `lookup` (iridis-diffraction), `nmm`, `pq`
-//! ([`crate::variants`]), `stam-periodic` / `stam-periodic-triangular`, `stam-gaussian` ([`crate::stam`]).
+//! methods with the same parameters: `ground-truth` (finite aperture) and `ground-truth-periodic` (the patch's
+//! periodic extension), `reference`, `lookup` (iridis-diffraction), `nmm`, `pq` ([`crate::variants`]),
+//! `stam-periodic` / `stam-periodic-triangular`, `stam-gaussian` ([`crate::stam`]).
 
 use std::str::FromStr;
 use std::sync::{Arc, Mutex};
 
 use iridis_color::{Observer, Spectrum};
-use iridis_diffraction::table::{Lookup, LookupTable, Precision, TableParams};
+use iridis_diffraction::table::{Lookup, LookupTable, Precision, Provenance, TableParams};
 use iridis_diffraction::taylor::terms_for_bound;
-use iridis_diffraction::{Evaluator, GroundTruth, Patch, Reference, Shading, SpectralSetup, TaylorTerms};
+use iridis_diffraction::{Aperture, Evaluator, GroundTruth, Patch, Reference, Shading, SpectralSetup, TaylorTerms};
 
 use crate::analysis::{dominant_period, Axis};
 use crate::stam::{Bump, StamGaussian, StamPeriodic};
@@ -18,7 +19,10 @@ use crate::{LabError, Progress};
 /// An evaluation method.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Method {
+    /// The direct windowed sum over the patch alone (the window cut at its edge).
     GroundTruth,
+    /// The direct windowed sum over the patch's periodic extension: the model the DFT-based methods approximate.
+    GroundTruthPeriodic,
     Reference,
     Lookup,
     Nmm,
@@ -29,8 +33,9 @@ pub enum Method {
 
 impl Method {
     /// Every method, with the name the command line uses.
-    pub const ALL: [Method; 8] = [
+    pub const ALL: [Method; 9] = [
         Method::GroundTruth,
+        Method::GroundTruthPeriodic,
         Method::Reference,
         Method::Lookup,
         Method::Nmm,
@@ -43,6 +48,7 @@ impl Method {
     pub fn name(self) -> &'static str {
         match self {
             Method::GroundTruth => "ground-truth",
+            Method::GroundTruthPeriodic => "ground-truth-periodic",
             Method::Reference => "reference",
             Method::Lookup => "lookup",
             Method::Nmm => "nmm",
@@ -51,6 +57,32 @@ impl Method {
             Method::StamPeriodic(Bump::Triangular) => "stam-periodic-triangular",
             Method::StamGaussian => "stam-gaussian",
         }
+    }
+
+    /// The ground truth with the given aperture.
+    pub fn ground_truth(aperture: Aperture) -> Method {
+        match aperture {
+            Aperture::Finite => Method::GroundTruth,
+            Aperture::Periodic => Method::GroundTruthPeriodic,
+        }
+    }
+
+    /// Whether this is one of the two ground truths.
+    pub fn is_ground_truth(self) -> bool {
+        matches!(self, Method::GroundTruth | Method::GroundTruthPeriodic)
+    }
+
+    /// The ground truth of the model this method approximates, the one its error is measured against by default:
+    ///
+    /// * reference, lookup, NMM, PQ: the windowed Fourier-series coefficients of the patch (DFT / samples,
+    ///   eq. 8) are the transform of its periodic extension, so their exact answer is the periodic ground truth;
+    /// * Stam's models: infinite surfaces (a lattice, a stationary random field) with no edge, whose parameters
+    ///   are taken from the patch through its DFT — the periodogram's dominant periods, the circular
+    ///   autocorrelation — that is, from the statistics of the periodic extension. The finite aperture would
+    ///   add an edge these models cannot have, so they too are compared with the periodic ground truth;
+    /// * the finite-aperture ground truth, compared this way, gives the periodic-extension error itself.
+    pub fn model_truth(self) -> Method {
+        Method::GroundTruthPeriodic
     }
 
     /// Whether the method answers spectral reflectance (needed by the test bench).
@@ -70,7 +102,8 @@ impl FromStr for Method {
     fn from_str(s: &str) -> Result<Self, LabError> {
         let t = s.trim().to_ascii_lowercase();
         let alias = match t.as_str() {
-            "truth" | "ground_truth" | "groundtruth" => "ground-truth",
+            "truth" | "ground_truth" | "groundtruth" | "ground-truth-finite" => "ground-truth",
+            "ground-truth-periodic-extension" | "ground_truth_periodic" => "ground-truth-periodic",
             "flss" => "reference",
             "stam-periodic-rectangular" | "stam-periodic-rect" => "stam-periodic",
             "stam-periodic-triangle" | "stam-periodic-tri" => "stam-periodic-triangular",
@@ -196,13 +229,21 @@ impl Workbench {
     pub fn evaluator(&self, method: Method, progress: Progress) -> Result<Box<dyn Evaluator>, LabError> {
         let c = &self.config;
         Ok(match method {
-            Method::GroundTruth => {
+            Method::GroundTruth | Method::GroundTruthPeriodic => {
+                let aperture = if method == Method::GroundTruth { Aperture::Finite } else { Aperture::Periodic };
                 let samples = if c.ground_truth_samples > 0 {
                     c.ground_truth_samples
                 } else {
                     2 * c.spectral.wavelengths().len()
                 };
-                let mut gt = GroundTruth::new(&self.patch, c.coherence_nm, c.shading.clone(), &c.spectral, samples)?;
+                let mut gt = GroundTruth::with_aperture(
+                    &self.patch,
+                    c.coherence_nm,
+                    c.shading.clone(),
+                    &c.spectral,
+                    samples,
+                    aperture,
+                )?;
                 if let Some(light) = &c.light {
                     gt = gt.with_light(|l| light.value_at(l), c.spectral.observer);
                 }
@@ -213,7 +254,7 @@ impl Workbench {
                 let table = match &c.table_path {
                     Some(p) => {
                         let t = LookupTable::load(p)?;
-                        check_table(&t, &self.patch, c)?;
+                        check_table(&t, &p.display().to_string(), &self.patch, c)?;
                         t
                     }
                     None => {
@@ -259,29 +300,16 @@ impl Workbench {
     }
 }
 
-/// A loaded table must describe this patch and these settings.
-fn check_table(t: &LookupTable, patch: &Patch, c: &MethodConfig) -> Result<(), LabError> {
-    let m = &t.meta;
-    let close = |a: f64, b: f64| (a - b).abs() <= 1e-6 * a.abs().max(b.abs()).max(1.0);
-    let mut problems = Vec::new();
-    if m.rows != patch.rows || m.cols != patch.cols || !close(m.dx_nm, patch.dx) || !close(m.dy_nm, patch.dy) {
-        problems.push(format!(
-            "it was made for a {}×{} surface with {}×{} nm pixels, this one is {}×{} with {}×{} nm",
-            m.rows, m.cols, m.dx_nm, m.dy_nm, patch.rows, patch.cols, patch.dx, patch.dy
-        ));
-    }
-    if !close(m.coherence_nm, c.coherence_nm) {
-        problems.push(format!("its coherence length is {} nm, not {} nm", m.coherence_nm, c.coherence_nm));
-    }
-    if problems.is_empty() {
-        Ok(())
-    } else {
-        Err(LabError::invalid(format!("lookup table does not match: {}", problems.join("; "))))
-    }
+/// A loaded table must describe this patch and these settings: its whole provenance (surface fingerprint,
+/// size, pixel size, coherence, illuminant or light spectrum, observer, Δλ and range, N, u-v grid), every
+/// mismatch named ([`LookupTable::check`], the check `brdf-map` makes on the options a user gives).
+pub fn check_table(t: &LookupTable, path: &str, patch: &Patch, c: &MethodConfig) -> Result<(), LabError> {
+    let expected = Provenance::of(patch, c.coherence_nm, c.term_count(patch), &c.spectral, c.table);
+    Ok(t.check(&expected, path)?)
 }
 
-/// A spectral setup lit by an arbitrary light spectrum on a uniform grid (the illuminant label is kept only
-/// for table metadata; the weights are the light's).
+/// A spectral setup lit by an arbitrary light spectrum on a uniform grid: the weights are the light's, and
+/// the light's power on the grid is kept ([`SpectralSetup::light`]) so that a table built with it records it.
 pub fn spectral_with_light(
     light: &Spectrum,
     observer: Observer,
@@ -292,5 +320,6 @@ pub fn spectral_with_light(
     let mut s = SpectralSetup::with_range(iridis_color::Illuminant::E, observer, from_nm, to_nm, step_nm)?;
     let grid = s.wavelengths().to_vec();
     s.weights = iridis_color::SpectralWeights::with_light(&grid, |l| light.value_at(l), observer);
+    s.light = Some(grid.iter().map(|&l| light.value_at(l)).collect());
     Ok(s)
 }

@@ -12,9 +12,15 @@
 //!   eq. 15 is the first-order (Born) form of `|c_{nm}|²`, `(a b / Δx Δy)² |Φ(2πna/Δx, 2πmb/Δy)|²` times
 //!   `(k w H)²`; here `c_{nm}` is the exact Kirchhoff coefficient for the bump's closed form (rectangular box
 //!   or triangular ridge), which reduces to eq. 15 when `k w H ≪ 1` ([`StamPeriodic::born`] gives that form).
-//!   The deltas are realised by the paper's ε selection of wavelengths: at wavelength λ the order numbers
-//!   `n = −u Δx / λ` and `m = −v Δy / λ` must both lie within `ε` of integers, otherwise that λ contributes
-//!   nothing (paper sec. 6.3, Figure 11a–c: ε = 0.01 leaves gaps in the colour bands).
+//!   The deltas are realised by the paper's ε selection of wavelengths: the order numbers `n = −u Δx / λ` and
+//!   `m = −v Δy / λ` must both lie within `ε` of integers, otherwise λ contributes nothing (paper sec. 6.3,
+//!   Figure 11a–c: ε = 0.01 leaves gaps in the colour bands). The paper finds those wavelengths from the
+//!   grating condition of each order, not on a wavelength grid; so does [`StamPeriodic::orders`]: for order
+//!   `(n, m)` the condition `|−uΔx/λ − n| ≤ ε` holds on the interval `λ ∈ [a/(n+ε), a/(n−ε)]`, `a = −uΔx`,
+//!   around the exact solution `λ_n = a/n` of `n λ = −u Δx` (the grating equation), likewise for `m`; the
+//!   order shows on the intersection, and the colour integrates the weights over it in closed-form intervals
+//!   ([`StamPeriodic::xyz`]) — the continuum limit of testing ε at grid wavelengths, which made the orders
+//!   seen depend on Δλ (an order whose ε-band falls between two grid wavelengths vanished).
 //! * [`StamGaussian`] — a Gaussian random surface (Stam eq. 12 as the paper uses it): for jointly Gaussian
 //!   heights `⟨e^{ikw(h(r₁) − h(r₂))}⟩ = e^{−g(1 − C(r₁ − r₂))}`, `g = (k w σ_h)²`, `C` the normalised
 //!   correlation function, so `S = e^{−g} Σ_m g^m/m! · FT{C^m}`. As in the paper, `C` is the measured height
@@ -157,6 +163,37 @@ impl Lattice {
     }
 }
 
+/// One diffraction order seen in a direction: its numbers, the exact wavelength of its grating condition, and
+/// the band of wavelengths (within the setup's range) over which both order numbers are within ε of `(n, m)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Order {
+    pub n: i64,
+    pub m: i64,
+    /// `λ` with `n λ = −u Δx` (or `m λ = −v Δy` when `n = 0`); `None` when neither has a solution (`n = m = 0`).
+    pub wavelength_nm: Option<f64>,
+    /// `[lo, hi]` (nm), `lo < hi`.
+    pub band_nm: (f64, f64),
+}
+
+/// The wavelengths at which `a/λ` lies within `ε` of the integer `n`: an interval (possibly unbounded above).
+fn order_interval(a: f64, n: i64, eps: f64) -> Option<(f64, f64)> {
+    if n == 0 {
+        return Some(if a == 0.0 { (0.0, f64::INFINITY) } else { (a.abs() / eps, f64::INFINITY) });
+    }
+    let nf = n as f64;
+    if a == 0.0 || a.signum() != nf.signum() {
+        return None;
+    }
+    let (e1, e2) = (a / (nf + eps), a / (nf - eps));
+    Some((e1.min(e2), e1.max(e2)))
+}
+
+/// The integers `n` for which `a/λ` comes within `ε` of `n` for some `λ` in `[lo, hi]`.
+fn order_range(a: f64, lo: f64, hi: f64, eps: f64) -> std::ops::RangeInclusive<i64> {
+    let (x, y) = (a / lo, a / hi);
+    ((x.min(y) - eps).ceil() as i64)..=((x.max(y) + eps).floor() as i64)
+}
+
 /// Stam's periodic-bump model with the paper's ε selection of wavelengths.
 #[derive(Debug, Clone)]
 pub struct StamPeriodic {
@@ -235,6 +272,35 @@ impl StamPeriodic {
         Ok(Self { lattice, epsilon, coherence_nm, born: false, shading, spectral })
     }
 
+    /// The orders seen from `(wi, wr)` within the wavelength range `[lo, hi]` (nm), each with its grating
+    /// wavelength and ε band (see the module's notes). Without a y period the ridge's transform along y is
+    /// `δ_{m0}`, and the selection along y uses the coherence length as the scale (as [`Self::density`]).
+    pub fn orders(&self, wi: Vec3, wr: Vec3, lo: f64, hi: f64) -> Vec<Order> {
+        let [u, v, _] = uvw(wi, wr);
+        let (ax, ay) = (-u * self.lattice.period_x, -v * self.lattice.period_y.unwrap_or(self.coherence_nm));
+        let ms = if self.lattice.period_y.is_some() { order_range(ay, lo, hi, self.epsilon) } else { 0..=0 };
+        let mut out = Vec::new();
+        for n in order_range(ax, lo, hi, self.epsilon) {
+            let Some((xl, xh)) = order_interval(ax, n, self.epsilon) else { continue };
+            for m in ms.clone() {
+                let Some((yl, yh)) = order_interval(ay, m, self.epsilon) else { continue };
+                let (bl, bh) = (xl.max(yl).max(lo), xh.min(yh).min(hi));
+                if bh <= bl {
+                    continue;
+                }
+                let wavelength_nm = if n != 0 {
+                    Some(ax / n as f64)
+                } else if m != 0 {
+                    Some(ay / m as f64)
+                } else {
+                    None
+                };
+                out.push(Order { n, m, wavelength_nm, band_nm: (bl, bh) });
+            }
+        }
+        out
+    }
+
     /// The spectral density at frequency `f` (cycles/nm) for `α = k w H`: `|c_{nm}|²` when both order numbers
     /// are within ε of integers `(n, m)`, else 0.
     pub fn density(&self, fx: f64, fy: f64, alpha: f64) -> f64 {
@@ -269,8 +335,49 @@ impl Evaluator for StamPeriodic {
         let alpha = std::f64::consts::TAU / wavelength_nm * w * self.lattice.height;
         Some(self.shading.factor(wavelength_nm, wi, wr) * self.density(-u / wavelength_nm, -v / wavelength_nm, alpha))
     }
+    /// `X = ∫ w̄_x(λ) ρ_λ dλ` over each order's ε band ([`Self::orders`]), `w̄` the colour weights per nm
+    /// (the setup's weights over their trapezoid widths, linear between grid wavelengths), by two-point
+    /// Gauss–Legendre on pieces at most 1 nm wide: the grid only carries the weights' shape, never decides which
+    /// orders show.
     fn xyz(&self, wi: Vec3, wr: Vec3) -> Xyz {
-        spectral_xyz(self, &self.spectral, &self.shading, wi, wr)
+        if wi[2] <= 0.0 || wr[2] <= 0.0 {
+            return Xyz::default();
+        }
+        let grid = self.spectral.wavelengths();
+        let (lo, hi) = (grid[0], grid[grid.len() - 1]);
+        let trap = iridis_color::spectrum::trapezoid_weights(grid);
+        let weights = self.spectral.weights.weights();
+        let density = |l: f64| -> [f64; 3] {
+            let k = grid.partition_point(|&g| g <= l).clamp(1, grid.len() - 1);
+            let t = ((l - grid[k - 1]) / (grid[k] - grid[k - 1])).clamp(0.0, 1.0);
+            let d = |j: usize, c: usize| weights[j][c] / trap[j];
+            [0, 1, 2].map(|c| d(k - 1, c) * (1.0 - t) + d(k, c) * t)
+        };
+        let [_, _, w] = uvw(wi, wr);
+        let mut acc = [0.0; 3];
+        let g = 0.5 / 3f64.sqrt();
+        for o in self.orders(wi, wr, lo, hi) {
+            let (a, b) = o.band_nm;
+            let pieces = ((b - a) / 1.0).ceil().max(1.0) as usize;
+            let h = (b - a) / pieces as f64;
+            for p in 0..pieces {
+                let mid = a + (p as f64 + 0.5) * h;
+                for l in [mid - g * h, mid + g * h] {
+                    let alpha = std::f64::consts::TAU / l * w * self.lattice.height;
+                    let c = if self.born {
+                        self.lattice.born_coefficient(o.n, o.m, alpha)
+                    } else {
+                        self.lattice.coefficient(o.n, o.m, alpha)
+                    };
+                    let rho = self.shading.factor(l, wi, wr) * c.norm_sqr();
+                    let d = density(l);
+                    for ch in 0..3 {
+                        acc[ch] += 0.5 * h * d[ch] * rho;
+                    }
+                }
+            }
+        }
+        Xyz::new(acc[0], acc[1], acc[2])
     }
 }
 

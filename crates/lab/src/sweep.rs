@@ -1,5 +1,7 @@
 //! Convergence sweeps (paper sec. 7, Figures 14–17): one method's BRDF map for each value of one parameter,
-//! its CIEDE2000 error against the ground truth, a contact sheet and an error-against-parameter plot.
+//! its CIEDE2000 error against a ground truth (by default that of the method's own model,
+//! [`Method::model_truth`]), the periodic-extension error (periodic against finite-aperture ground truth) beside
+//! it, a contact sheet and an error-against-parameter plot.
 //!
 //! Parameters and the methods that have them:
 //! * `terms` — Taylor terms `N` (eq. 6, 10): reference, lookup, nmm, pq;
@@ -57,7 +59,7 @@ impl Param {
         use Method::*;
         match self {
             Param::Terms => matches!(method, Reference | Lookup | Nmm | Pq),
-            Param::DLambda => !matches!(method, GroundTruth),
+            Param::DLambda => !method.is_ground_truth(),
             Param::Coherence => true,
             Param::UvPower | Param::UvResolution => method == Lookup,
         }
@@ -86,12 +88,19 @@ impl std::str::FromStr for Param {
     }
 }
 
+/// An error at one exposure: (exposure in RU, mean ΔE00, 95th percentile).
+pub type ErrorAt = (f64, f64, f64);
+
 /// One value of the sweep.
 #[derive(Debug, Clone, Serialize)]
 pub struct Point {
     pub value: f64,
     /// CIEDE2000 against the ground truth at each exposure: (exposure, mean, p95).
     pub errors: Vec<(f64, f64, f64)>,
+    /// The periodic-extension error at each exposure, (exposure, mean, p95): the periodic ground truth against
+    /// the finite-aperture one at this point's settings — how far the two models of the patch part, whatever
+    /// the method.
+    pub extension: Vec<(f64, f64, f64)>,
     #[serde(skip)]
     pub image: Vec<Option<Xyz>>,
 }
@@ -126,8 +135,10 @@ pub fn check_values(param: Param, values: &[f64]) -> Result<(), LabError> {
     Ok(())
 }
 
-/// Runs the sweep: the ground-truth image (once, or per value for `coherence`), then the method's image and
-/// error at each value. `progress(values_done)`.
+/// Runs the sweep: the ground-truth images `against` and, for the periodic-extension error, the other aperture's
+/// (once, or per value for `coherence`), then the method's image and error at each value. `against` is a ground
+/// truth, usually `method.model_truth()`. `progress(values_done)`.
+#[allow(clippy::too_many_arguments)]
 pub fn run(
     bench: &Workbench,
     method: Method,
@@ -135,8 +146,14 @@ pub fn run(
     values: &[f64],
     pixels: &Pixels,
     exposures: &[f64],
+    against: Method,
     progress: Progress,
 ) -> Result<(Vec<Option<Xyz>>, Vec<Point>), LabError> {
+    if !against.is_ground_truth() {
+        return Err(LabError::invalid(format!(
+            "a sweep measures against a ground truth (ground-truth or ground-truth-periodic), not {against}"
+        )));
+    }
     if !param.applies_to(method) {
         let who: Vec<&str> = Method::ALL.iter().filter(|m| param.applies_to(**m)).map(|m| m.name()).collect();
         return Err(LabError::invalid(format!(
@@ -147,11 +164,25 @@ pub fn run(
         )));
     }
     check_values(param, values)?;
-    let truth_of = |b: &Workbench| -> Result<Vec<Option<Xyz>>, LabError> {
-        let gt = b.evaluator(Method::GroundTruth, &crate::no_progress)?;
+    let image_of = |b: &Workbench, m: Method| -> Result<Vec<Option<Xyz>>, LabError> {
+        let gt = b.evaluator(m, &crate::no_progress)?;
         Ok(render(gt.as_ref(), pixels, &crate::no_progress))
     };
-    let base_truth = if param == Param::Coherence { Vec::new() } else { truth_of(bench)? };
+    // The truth and the periodic-extension error at one setting.
+    let truths_of = |b: &Workbench| -> Result<(Vec<Option<Xyz>>, Vec<ErrorAt>), LabError> {
+        let periodic = image_of(b, Method::GroundTruthPeriodic)?;
+        let finite = image_of(b, Method::GroundTruth)?;
+        let extension = exposures
+            .iter()
+            .map(|&x| {
+                let s = stats(&delta_e_map(&periodic, &finite, x));
+                (x, s.mean, s.p95)
+            })
+            .collect();
+        Ok((if against == Method::GroundTruth { finite } else { periodic }, extension))
+    };
+    let (base_truth, base_extension) =
+        if param == Param::Coherence { (Vec::new(), Vec::new()) } else { truths_of(bench)? };
     let mut points = Vec::new();
     for (k, &v) in values.iter().enumerate() {
         let mut config = bench.config.clone();
@@ -173,7 +204,8 @@ pub fn run(
         let b = Workbench::new(bench.patch.clone(), config, bench.surface.clone())?;
         let e = b.evaluator(method, &crate::no_progress)?;
         let image = render(e.as_ref(), pixels, &crate::no_progress);
-        let truth = if param == Param::Coherence { truth_of(&b)? } else { base_truth.clone() };
+        let (truth, extension) =
+            if param == Param::Coherence { truths_of(&b)? } else { (base_truth.clone(), base_extension.clone()) };
         let errors = exposures
             .iter()
             .map(|&x| {
@@ -181,7 +213,7 @@ pub fn run(
                 (x, s.mean, s.p95)
             })
             .collect();
-        points.push(Point { value: v, errors, image });
+        points.push(Point { value: v, errors, extension, image });
         progress(k + 1);
     }
     Ok((base_truth, points))
@@ -237,8 +269,21 @@ pub fn error_plot(param: Param, method: Method, points: &[Point]) -> Result<irid
         s.emphasis = false;
         plot = plot.series(s);
     }
+    if let Some(first) = exposures.first() {
+        // The periodic-extension error at the first exposure, for scale: the models' own difference.
+        let ext: Vec<f64> = points.iter().map(|p| p.extension.first().map(|e| e.1).unwrap_or(f64::NAN)).collect();
+        let mut s = Series::new(format!("periodic vs finite ground truth, mean, {first} RU"), &xs, &ext)
+            .with_color([120, 120, 120]);
+        s.emphasis = false;
+        plot = plot.series(s);
+    }
     let lo = 0.0;
-    let hi = points.iter().flat_map(|p| p.errors.iter().map(|e| e.2)).fold(0.0f64, f64::max).max(1e-3) * 1.1;
+    let hi = points
+        .iter()
+        .flat_map(|p| p.errors.iter().map(|e| e.2).chain(p.extension.first().map(|e| e.1)))
+        .fold(0.0f64, f64::max)
+        .max(1e-3)
+        * 1.1;
     plot.y_range = Some((lo, hi));
     Ok(plot.render()?)
 }

@@ -188,6 +188,7 @@ fn comparison_and_terms_sweep_behave() {
         &[1.0, 4.0, 20.0],
         &pixels,
         &[1000.0],
+        Method::GroundTruth,
         &|_| {},
     )
     .unwrap();
@@ -202,6 +203,7 @@ fn comparison_and_terms_sweep_behave() {
         &[2.0],
         &pixels,
         &[1.0],
+        Method::Reference.model_truth(),
         &|_| {},
     )
     .unwrap_err()
@@ -254,4 +256,81 @@ fn laser_spot_lands_where_the_grating_equation_puts_it() {
     let a = setup.distance_nm * dot(wr, e1) / dot(wr, s);
     let expected_col = (a / setup.screen_width_nm + 0.5) * 101.0 - 0.5;
     assert!((best as f64 - expected_col).abs() <= 1.0, "spot at column {best}, grating equation {expected_col:.2}");
+}
+
+/// Stam's periodic model finds each order's wavelengths from its grating condition: for a 1-D grating
+/// (d = 1500 nm) lit at 30°, the view where the grating equation `n λ / d = sin θ_i − sin θ_r` puts order 1 at
+/// 550 nm sees order 1 at exactly 550 nm, inside its ε band `[a/(1+ε), a/(1−ε)]`, `a = d (sin θ_i − sin θ_r)`;
+/// order 2 would need 275 nm, outside the visible range, and is absent.
+#[test]
+fn stam_periodic_orders_follow_the_grating_equation() {
+    let (d, eps) = (1500.0, 0.01);
+    let lattice =
+        Lattice { period_x: d, period_y: None, width: 750.0, length: 0.0, height: 60.0, bump: Bump::Rectangular };
+    let stam = StamPeriodic::new(lattice, eps, 20_000.0, Shading::default(), SpectralSetup::default()).unwrap();
+    let ti = 30f64.to_radians();
+    let wi = direction(ti, 0.0);
+    let sin_r = ti.sin() - 550.0 / d;
+    let wr = [-sin_r, 0.0, (1.0 - sin_r * sin_r).sqrt()];
+    let orders = stam.orders(wi, wr, 380.0, 780.0);
+    assert_eq!(orders.len(), 1, "{orders:?}");
+    let o = orders[0];
+    assert_eq!((o.n, o.m), (1, 0));
+    let a = d * (ti.sin() - sin_r);
+    assert!((o.wavelength_nm.unwrap() - 550.0).abs() < 1e-9, "{o:?}");
+    assert!((o.band_nm.0 - a / (1.0 + eps)).abs() < 1e-9 && (o.band_nm.1 - a / (1.0 - eps)).abs() < 1e-9, "{o:?}");
+    // Every order listed anywhere on the plane of incidence satisfies the grating equation at its wavelength.
+    for k in 0..60 {
+        let s = -0.95 + k as f64 * 0.032;
+        let wr = [-s, 0.0, (1.0 - s * s).sqrt()];
+        for o in stam.orders(wi, wr, 380.0, 780.0) {
+            if let Some(l) = o.wavelength_nm {
+                assert!((o.n as f64 * l / d - (ti.sin() - s)).abs() < 1e-12, "{o:?} at sin θr = {s}");
+                assert!((380.0..=780.0).contains(&l) || o.band_nm.0 <= 380.0 || o.band_nm.1 >= 780.0, "{o:?}");
+            }
+        }
+    }
+}
+
+/// The orders a map shows do not depend on the wavelength step: at Δλ = 5 nm and 1 nm the same pixels light
+/// up and their colours agree. Testing ε at grid wavelengths instead (what `reflectance` answers per λ, summed
+/// over the grid) loses orders whose ε band falls between two 5 nm samples — the control below.
+#[test]
+fn stam_periodic_maps_show_the_same_orders_at_5nm_and_1nm() {
+    let lattice = Lattice {
+        period_x: 1200.0,
+        period_y: Some(900.0),
+        width: 600.0,
+        length: 450.0,
+        height: 60.0,
+        bump: Bump::Rectangular,
+    };
+    let setup = |step: f64| SpectralSetup::new(Illuminant::D65, Observer::Cie1931, step).unwrap();
+    let model = |step: f64| StamPeriodic::new(lattice, 0.01, 20_000.0, Shading::default(), setup(step)).unwrap();
+    let (coarse, fine) = (model(5.0), model(1.0));
+    let pixels = Pixels::brdf_map(0.4, 0.0, 61);
+    let (a, b) = (render(&coarse, &pixels, &|_| {}), render(&fine, &pixels, &|_| {}));
+    let lit =
+        |img: &[Option<iridis_color::Xyz>]| -> Vec<bool> { img.iter().map(|p| p.is_some_and(|x| x.y > 0.0)).collect() };
+    let (la, lb) = (lit(&a), lit(&b));
+    let shown = la.iter().filter(|&&l| l).count();
+    assert!(shown > 40, "only {shown} pixels show an order");
+    assert_eq!(la, lb, "the pixels that show an order differ between 5 nm and 1 nm");
+    let s = iridis_lab::compare::stats(&iridis_lab::compare::delta_e_map(&a, &b, 1000.0));
+    assert!(s.mean < 0.05 && s.max < 1.0, "5 nm vs 1 nm: {s:?}");
+    // Control: the grid-sampled ε test at 5 nm misses orders that it finds at 1 nm.
+    let grid = |m: &StamPeriodic| -> Vec<bool> {
+        pixels
+            .samples
+            .iter()
+            .map(|s| {
+                s.iter().any(|&(wi, wr, _)| {
+                    m.spectral.wavelengths().iter().any(|&l| m.reflectance(l, wi, wr).unwrap_or(0.0) > 0.0)
+                })
+            })
+            .collect()
+    };
+    let (ga, gb) = (grid(&coarse), grid(&fine));
+    let missed = ga.iter().zip(&gb).filter(|(a, b)| !**a && **b).count();
+    assert!(missed > 0, "the control should show the grid-sampled test losing orders at 5 nm");
 }

@@ -8,7 +8,7 @@ use clap::Args as ClapArgs;
 use iridis_color::{Encoding, Illuminant, Observer, ToneMap, Xyz};
 use iridis_diffraction::evaluator::{Evaluator, GroundTruth, Reference};
 use iridis_diffraction::geometry::{direction, FilmFresnel, FresnelConvention, FresnelSource, Shading};
-use iridis_diffraction::table::{Lookup, LookupTable, Precision, TableParams};
+use iridis_diffraction::table::{Lookup, LookupTable, Precision, Provenance, TableParams};
 use iridis_diffraction::taylor::terms_for_bound;
 use iridis_diffraction::{Fresnel, Patch, SpectralSetup, TaylorTerms, DEFAULT_COHERENCE_NM};
 use iridis_lab::methods::{Method, MethodConfig, Workbench};
@@ -353,37 +353,30 @@ pub(crate) fn refuse_build_options_for_table(a: &BrdfMapArgs) -> Result<()> {
     Ok(())
 }
 
-/// Rejects model options that contradict a table's metadata, and repeats the warnings the table was built
+/// Rejects model options that contradict a table's metadata (the library's provenance check, on the fields
+/// the user gave: the table alone has no surface to fingerprint), and repeats the warnings the table was built
 /// with (pixel size, patch size against the coherence length).
 pub(crate) fn check_against_table(t: &LookupTable, m: &ModelOpts) -> Result<()> {
     for w in &t.meta.warnings {
         eprintln!("warning: the table was computed from a surface with this problem: {w}");
     }
-    let meta = &t.meta;
-    let mut problems = Vec::new();
-    if let Some(c) = m.coherence {
-        if (c - meta.coherence_nm).abs() > 1e-6 * c {
-            problems.push(format!("coherence {c} nm vs the table's {} nm", meta.coherence_nm));
-        }
-    }
-    if m.terms != "auto" && m.terms.parse::<usize>().ok() != Some(meta.taylor_terms) {
-        problems.push(format!("terms {} vs the table's {}", m.terms, meta.taylor_terms));
-    }
-    if let Some(i) = &m.illuminant {
-        if !i.eq_ignore_ascii_case(&meta.illuminant) {
-            problems.push(format!("illuminant {i} vs the table's {}", meta.illuminant));
-        }
-    }
-    if let Some(o) = &m.observer {
-        if o.trim() != meta.observer {
-            problems.push(format!("observer {o} vs the table's {}", meta.observer));
-        }
-    }
-    if let Some(s) = m.step {
-        if (s - meta.wavelength_step_nm).abs() > 1e-9 {
-            problems.push(format!("step {s} nm vs the table's {} nm", meta.wavelength_step_nm));
-        }
-    }
+    let terms = match m.terms.trim() {
+        "auto" => None,
+        s => Some(s.parse::<usize>().map_err(|_| anyhow::anyhow!("--terms '{s}' must be 'auto' or a number"))?),
+    };
+    let illuminant = match &m.illuminant {
+        Some(i) => Some(i.parse::<Illuminant>()?.name().to_string()),
+        None => None,
+    };
+    let expected = Provenance {
+        coherence_nm: m.coherence,
+        illuminant,
+        observer: m.observer.clone(),
+        wavelength_step_nm: m.step,
+        taylor_terms: terms,
+        ..Provenance::default()
+    };
+    let problems = t.mismatches(&expected);
     if !problems.is_empty() {
         bail!(
             "the table was computed with other parameters ({}); run `iridis precompute` with the ones you want",

@@ -146,7 +146,9 @@ fn workbench(spec: &str, m: &LabModel, config: MethodConfig) -> Result<Workbench
 fn evaluator(b: &Workbench, method: Method) -> Result<Box<dyn iridis_diffraction::Evaluator>> {
     let (len, what) = match method {
         Method::Lookup => (b.config.table.uv_resolution as u64, "lookup tables"),
-        Method::GroundTruth | Method::StamGaussian | Method::StamPeriodic(_) => (1, "preparing"),
+        Method::GroundTruth | Method::GroundTruthPeriodic | Method::StamGaussian | Method::StamPeriodic(_) => {
+            (1, "preparing")
+        }
         _ => (b.config.term_count(&b.patch) as u64 + 1, "Taylor terms"),
     };
     let pb = bar(len, what);
@@ -397,15 +399,25 @@ pub fn run_testbench(a: TestbenchArgs) -> Result<()> {
 #[command(after_help = "\
 CIELAB errors between methods (paper sec. 6.3, Table 2): each method's BRDF map (light at --incidence, the
 paper's layout: pixel (x, y) views (x, y, √(1 − x² − y²))) is displayed at each exposure (XYZ × E → linear
-sRGB, clipped → CIELAB against the D65 white) and compared per pixel with the reference method by CIEDE2000.
-The table gives mean and 95th percentile per method and exposure, and the ratio of each method's mean to the
-first method's (Table 2's E2/E1).
+sRGB, clipped → CIELAB against the D65 white) and compared per pixel by CIEDE2000. The table gives mean and
+95th percentile per method and exposure, and the ratio of each method's mean to the first method's (Table 2's
+E2/E1).
 
-JSON: {\"results\":[{\"method\",\"exposure_ru\",\"mean\",\"p95\",\"max\",\"ratio\"}],\"against\",…}
+Against what: by default (--against model) each method against the ground truth of the model it approximates:
+the periodic extension of the patch (ground-truth-periodic) for all of them — reference, lookup, NMM and PQ use
+the patch's DFT, which sees it repeated; Stam's models are fitted through its DFT (periodogram, circular
+autocorrelation) and have no edge. --against ground-truth compares with the finite aperture instead (the
+window cut at the patch edge), --against METHOD with any method. The periodic-extension error (periodic
+against finite-aperture ground truth) is printed on its own line: where the window is as wide as the patch it
+is the models' own difference, which no approximation of either can remove.
+
+JSON: {\"results\":[{\"method\",\"against\",\"exposure_ru\",\"mean\",\"p95\",\"max\",\"ratio\"}],
+       \"periodic_extension_error\":[{\"exposure_ru\",\"mean\",\"p95\",\"max\"}],\"against\",…}
 
 Examples:
   iridis compare 'builtin:elaphe?size=12um&pixel=60nm' --coherence 4um --size 64
   iridis compare 'builtin:elaphe?size=12um&pixel=60nm' --methods reference,stam-gaussian --json
+  iridis compare 'builtin:elaphe?size=12um&pixel=60nm' --against ground-truth   # the finite aperture
   iridis compare scan.gwy --methods lookup,reference --table scan.npz --maps errors/")]
 pub struct CompareArgs {
     /// Height field: a file or builtin:NAME.
@@ -414,8 +426,9 @@ pub struct CompareArgs {
     /// stam-periodic-triangular, stam-gaussian.
     #[arg(long, default_value = "lookup,reference,stam-periodic,stam-gaussian")]
     pub methods: String,
-    /// The method taken as truth.
-    #[arg(long, default_value = "ground-truth")]
+    /// What each method is compared with: model (the ground truth of the method's own model, the periodic
+    /// extension), ground-truth (the finite aperture), ground-truth-periodic, or any method.
+    #[arg(long, default_value = "model")]
     pub against: String,
     /// Exposures in RU, comma-separated.
     #[arg(long, default_value = "1,1000,7500")]
@@ -461,27 +474,52 @@ fn spectral(ill: &str, step: f64) -> Result<SpectralSetup> {
 
 /// The results of `compare` (also used by the demo).
 pub struct Comparison {
+    /// One row per method and exposure, each against its own truth (`row.against`).
     pub rows: Vec<iridis_lab::compare::ComparisonRow>,
     pub images: Vec<(String, Vec<Option<Xyz>>)>,
-    pub truth: Vec<Option<Xyz>>,
+    /// The images compared against, by method: both ground truths, and `--against METHOD` if given.
+    pub truths: Vec<(Method, Vec<Option<Xyz>>)>,
+    /// The periodic ground truth against the finite-aperture one, per exposure.
+    pub extension: Vec<iridis_lab::compare::ComparisonRow>,
 }
 
+impl Comparison {
+    pub fn truth(&self, m: Method) -> &[Option<Xyz>] {
+        self.truths.iter().find(|t| t.0 == m).map(|t| t.1.as_slice()).unwrap_or(&[])
+    }
+}
+
+/// Each method against `against`, or against the ground truth of its own model ([`Method::model_truth`]) when
+/// `None`; both ground truths are rendered for the periodic-extension error.
 pub fn comparison(
     b: &Workbench,
     methods: &[Method],
-    against: Method,
+    against: Option<Method>,
     pixels: &Pixels,
     exps: &[f64],
 ) -> Result<Comparison> {
-    let te = evaluator(b, against)?;
-    let truth = render_bar(te.as_ref(), pixels, against.name());
-    let mut images = Vec::new();
+    let mut truths = Vec::new();
+    let mut needed = vec![Method::GroundTruthPeriodic, Method::GroundTruth];
+    if let Some(a) = against.filter(|a| !a.is_ground_truth()) {
+        needed.push(a);
+    }
+    for m in needed {
+        let e = evaluator(b, m)?;
+        truths.push((m, render_bar(e.as_ref(), pixels, m.name())));
+    }
+    let mut c = Comparison { rows: Vec::new(), images: Vec::new(), truths, extension: Vec::new() };
     for &m in methods {
         let e = evaluator(b, m)?;
-        images.push((m.name().to_string(), render_bar(e.as_ref(), pixels, m.name())));
+        let img = render_bar(e.as_ref(), pixels, m.name());
+        let t = against.unwrap_or(m.model_truth());
+        let one = [(m.name().to_string(), img)];
+        c.rows.extend(iridis_lab::compare::table(&one, c.truth(t), t.name(), exps));
+        let [(name, img)] = one;
+        c.images.push((name, img));
     }
-    let rows = iridis_lab::compare::table(&images, &truth, exps);
-    Ok(Comparison { rows, images, truth })
+    c.extension =
+        iridis_lab::compare::extension_error(c.truth(Method::GroundTruthPeriodic), c.truth(Method::GroundTruth), exps);
+    Ok(c)
 }
 
 fn heat_plot(map: &[Option<f64>], size: usize, title: &str, max: f64) -> Result<iridis_plot::RgbImage> {
@@ -518,7 +556,10 @@ fn map_plot(img: &[Option<Xyz>], size: usize, exposure: f64, title: &str) -> Res
 
 pub fn run_compare(a: CompareArgs) -> Result<()> {
     let methods = parse_list(&a.methods, "--methods", |s| Ok(s.parse::<Method>()?))?;
-    let against: Method = a.against.parse()?;
+    let against: Option<Method> = match a.against.trim().to_ascii_lowercase().as_str() {
+        "model" | "own" => None,
+        other => Some(other.parse().map_err(|e| anyhow::anyhow!("--against: {e}, or model"))?),
+    };
     let exps = exposures(&a.exposures)?;
     let (theta, phi) = parse_incidence(&a.incidence)?;
     if !(8..=2048).contains(&a.size) {
@@ -534,19 +575,23 @@ pub fn run_compare(a: CompareArgs) -> Result<()> {
     let b = workbench(&a.surface, &a.model, config)?;
     let pixels = Pixels::brdf_map(theta, phi, a.size);
     let c = comparison(&b, &methods, against, &pixels, &exps)?;
+    let against_name = against.map(|m| m.name()).unwrap_or("model");
     if let Some(dir) = &a.maps {
         for &e in &exps {
-            let t = map_plot(&c.truth, a.size, e, &format!("{} at {e} RU", against.name()))?;
-            write_png_rgb8(&dir.join(format!("{}_{e}RU.png", against.name())), t.width, t.height, &t.data)?;
+            for (m, img) in &c.truths {
+                let t = map_plot(img, a.size, e, &format!("{} at {e} RU", m.name()))?;
+                write_png_rgb8(&dir.join(format!("{}_{e}RU.png", m.name())), t.width, t.height, &t.data)?;
+            }
             for (name, img) in &c.images {
                 let m = map_plot(img, a.size, e, &format!("{name} at {e} RU"))?;
                 write_png_rgb8(&dir.join(format!("{name}_{e}RU.png",)), m.width, m.height, &m.data)?;
-                let de = iridis_lab::compare::delta_e_map(img, &c.truth, e);
+                let truth = name.parse::<Method>().map(|m| against.unwrap_or(m.model_truth()))?;
+                let de = iridis_lab::compare::delta_e_map(img, c.truth(truth), e);
                 let s = iridis_lab::compare::stats(&de);
                 let h = heat_plot(
                     &de,
                     a.size,
-                    &format!("ΔE00 {name} vs {} at {e} RU (mean {:.2})", against.name(), s.mean),
+                    &format!("ΔE00 {name} vs {} at {e} RU (mean {:.2})", truth.name(), s.mean),
                     s.max.max(1.0),
                 )?;
                 write_png_rgb8(&dir.join(format!("{name}_{e}RU_deltaE.png")), h.width, h.height, &h.data)?;
@@ -560,31 +605,55 @@ pub fn run_compare(a: CompareArgs) -> Result<()> {
             .rows
             .iter()
             .map(|r| {
-                json!({"method": r.method, "exposure_ru": r.exposure_ru, "mean": r.mean, "p95": r.p95, "max": r.max,
-                       "ratio": r.mean / first(r.exposure_ru)})
+                json!({"method": r.method, "against": r.against, "exposure_ru": r.exposure_ru, "mean": r.mean,
+                       "p95": r.p95, "max": r.max, "ratio": r.mean / first(r.exposure_ru)})
             })
             .collect();
-        return print_json(&json!({"surface": a.surface, "against": against.name(), "size": a.size,
-            "incidence_deg": theta.to_degrees(), "results": rows}));
+        let ext: Vec<_> = c
+            .extension
+            .iter()
+            .map(|r| json!({"exposure_ru": r.exposure_ru, "mean": r.mean, "p95": r.p95, "max": r.max}))
+            .collect();
+        return print_json(&json!({"surface": a.surface, "against": against_name, "size": a.size,
+            "incidence_deg": theta.to_degrees(), "coherence_nm": b.config.coherence_nm, "results": rows,
+            "periodic_extension_error": ext}));
     }
     crate::outln!(
         "CIEDE2000 against {} ({}×{} BRDF map, θi = {:.1}°):",
-        against.name(),
+        match against {
+            None => "the ground truth of each method's model".to_string(),
+            Some(m) => m.name().to_string(),
+        },
         a.size,
         a.size,
         theta.to_degrees()
     )?;
-    crate::outln!("  {:<26} {:>10} {:>10} {:>10} {:>10}", "method", "exposure", "mean", "p95", "ratio")?;
+    crate::outln!(
+        "  {:<26} {:<22} {:>10} {:>10} {:>10} {:>10}",
+        "method",
+        "against",
+        "exposure",
+        "mean",
+        "p95",
+        "ratio"
+    )?;
     for r in &c.rows {
         crate::outln!(
-            "  {:<26} {:>8} RU {:>10.4} {:>10.4} {:>10.3}",
+            "  {:<26} {:<22} {:>7} RU {:>10.4} {:>10.4} {:>10.3}",
             r.method,
+            r.against,
             r.exposure_ru,
             r.mean,
             r.p95,
             r.mean / first(r.exposure_ru)
         )?;
     }
+    let ext: Vec<String> =
+        c.extension.iter().map(|r| format!("{} RU: mean {:.4}, p95 {:.4}", r.exposure_ru, r.mean, r.p95)).collect();
+    crate::outln!(
+        "periodic-extension error (ground-truth-periodic vs ground-truth, finite aperture): {}",
+        ext.join("; ")
+    )?;
     Ok(())
 }
 
@@ -595,7 +664,9 @@ pub fn run_compare(a: CompareArgs) -> Result<()> {
 #[command(after_help = "\
 Convergence sweeps (paper sec. 7, Figures 14–17): the method's BRDF map for each value of one parameter, its
 CIEDE2000 error against the ground truth (mean and 95th percentile per exposure), a contact sheet of the maps
-and an error-against-parameter plot.
+and an error-against-parameter plot. The ground truth is by default that of the method's own model, the
+patch's periodic extension (see `iridis compare --help`); --against ground-truth takes the finite aperture.
+Each value also reports the periodic-extension error (periodic against finite-aperture ground truth).
 
 Parameters: terms (reference, lookup, nmm, pq), dlambda (all but ground-truth; values with units, 1nm,5nm,…),
 coherence (all; with units, 5um,20um,65um; the ground truth follows), uv-power and uv-resolution (lookup).
@@ -616,6 +687,10 @@ pub struct SweepArgs {
     /// The method swept.
     #[arg(long, default_value = "reference")]
     pub method: String,
+    /// The ground truth: model (that of the method's own model, the periodic extension), ground-truth (the
+    /// finite aperture) or ground-truth-periodic.
+    #[arg(long, default_value = "model")]
+    pub against: String,
     /// Exposures in RU for the error (the contact sheet uses the first).
     #[arg(long, default_value = "1000")]
     pub exposures: String,
@@ -659,6 +734,13 @@ pub fn run_sweep(a: SweepArgs) -> Result<()> {
         _ => s.parse::<f64>().map_err(|_| anyhow::anyhow!("--values: '{s}' is not a number")),
     })?;
     iridis_lab::sweep::check_values(param, &values)?;
+    let against = match a.against.trim().to_ascii_lowercase().as_str() {
+        "model" | "own" => method.model_truth(),
+        other => match other.parse::<Method>() {
+            Ok(m) if m.is_ground_truth() => m,
+            _ => bail!("--against '{}': expected model, ground-truth or ground-truth-periodic", a.against),
+        },
+    };
     let exps = exposures(&a.exposures)?;
     let (theta, phi) = parse_incidence(&a.incidence)?;
     if !(8..=1024).contains(&a.size) {
@@ -676,7 +758,7 @@ pub fn run_sweep(a: SweepArgs) -> Result<()> {
     let pixels = Pixels::brdf_map(theta, phi, a.size);
     let pb = bar(values.len() as u64, &format!("sweep {}", param.name()));
     let (_, points) =
-        iridis_lab::sweep::run(&b, method, param, &values, &pixels, &exps, &|d| pb.set_position(d as u64))?;
+        iridis_lab::sweep::run(&b, method, param, &values, &pixels, &exps, against, &|d| pb.set_position(d as u64))?;
     pb.finish_and_clear();
     let sheet = iridis_lab::sweep::contact_sheet(param, method, &points, &pixels, exps[0])?;
     let plot = iridis_lab::sweep::error_plot(param, method, &points)?;
@@ -687,18 +769,32 @@ pub fn run_sweep(a: SweepArgs) -> Result<()> {
         let pts: Vec<_> = points
             .iter()
             .map(|p| {
-                json!({"value": p.value, "errors": p.errors.iter().map(|e| json!({"exposure_ru": e.0, "mean": e.1, "p95": e.2})).collect::<Vec<_>>()})
+                let e3 = |v: &[(f64, f64, f64)]| {
+                    v.iter().map(|e| json!({"exposure_ru": e.0, "mean": e.1, "p95": e.2})).collect::<Vec<_>>()
+                };
+                json!({"value": p.value, "errors": e3(&p.errors), "periodic_extension_error": e3(&p.extension)})
             })
             .collect();
-        return print_json(
-            &json!({"surface": a.surface, "method": method.name(), "param": param.name(), "points": pts}),
-        );
+        return print_json(&json!({"surface": a.surface, "method": method.name(), "against": against.name(),
+            "param": param.name(), "points": pts}));
     }
-    crate::outln!("{} against ground-truth, sweeping {}:", method, param.name())?;
+    crate::outln!("{} against {}, sweeping {}:", method, against.name(), param.name())?;
+    let line = |v: &[(f64, f64, f64)]| {
+        v.iter().map(|e| format!("{} RU: mean {:.4}, p95 {:.4}", e.0, e.1, e.2)).collect::<Vec<_>>().join("; ")
+    };
     for p in &points {
-        let errs: Vec<String> =
-            p.errors.iter().map(|e| format!("{} RU: mean {:.4}, p95 {:.4}", e.0, e.1, e.2)).collect();
-        crate::outln!("  {:>12}   {}", param.display(p.value), errs.join("; "))?;
+        crate::outln!("  {:>12}   {}", param.display(p.value), line(&p.errors))?;
+    }
+    if param == Param::Coherence {
+        crate::outln!("periodic-extension error (ground-truth-periodic vs ground-truth, finite aperture):")?;
+        for p in &points {
+            crate::outln!("  {:>12}   {}", param.display(p.value), line(&p.extension))?;
+        }
+    } else if let Some(p) = points.first() {
+        crate::outln!(
+            "periodic-extension error (ground-truth-periodic vs ground-truth, finite aperture): {}",
+            line(&p.extension)
+        )?;
     }
     Ok(())
 }
@@ -721,7 +817,13 @@ The image's x axis runs along the beam, y up; one PNG per exposure (NAME_<E>RU.p
 Examples:
   iridis experiment laser 'builtin:elaphe?size=40um&pixel=80nm' --aperture 40um -o elaphe_screen.png
   iridis experiment laser scan.gwy --spectrum fianium_sc450.csv --aperture 100um --exposures 1000,7500 -o s.png
-  iridis experiment laser 'builtin:xenopeltis?size=30um&pixel=60nm' --azimuth 90deg --size 151 -o x.png --json")]
+  iridis experiment laser 'builtin:xenopeltis?size=30um&pixel=60nm' --azimuth 90deg --size 151 -o x.png --json
+  iridis experiment laser scan.gwy --spectrum sc450.csv --method lookup --save-table scan_sc450.npz -o s.png
+  iridis experiment laser scan.gwy --spectrum sc450.csv --method lookup --table scan_sc450.npz -o s2.png
+
+With --method lookup the table integrates the beam's spectrum (times the coating's normal-incidence
+reflectance) in advance and records it; --save-table keeps it, --table reuses one, which must have been made
+for this surface, aperture, beam and coating (any other table is refused, naming what differs).")]
     Laser(LaserArgs),
 }
 
@@ -768,6 +870,12 @@ pub struct LaserArgs {
     /// Output image (PNG).
     #[arg(short, long)]
     pub output: PathBuf,
+    /// A lookup table made for this surface, aperture and beam (by --save-table), for --method lookup.
+    #[arg(long)]
+    pub table: Option<PathBuf>,
+    /// Write the lookup table built for this beam here (--method lookup).
+    #[arg(long)]
+    pub save_table: Option<PathBuf>,
     /// Print JSON.
     #[arg(long)]
     pub json: bool,
@@ -785,6 +893,15 @@ fn run_laser(a: LaserArgs) -> Result<()> {
     let method: Method = a.method.parse()?;
     let exps = exposures(&a.exposures)?;
     check_output(&a.output)?;
+    if (a.table.is_some() || a.save_table.is_some()) && method != Method::Lookup {
+        bail!("--table and --save-table are lookup tables: use them with --method lookup, not {method}");
+    }
+    if a.table.is_some() && a.save_table.is_some() {
+        bail!("--table reuses a table and --save-table writes the one built here: give one of them");
+    }
+    if let Some(p) = &a.save_table {
+        check_output(p)?;
+    }
     let spectrum = match &a.spectrum {
         Some(p) => Spectrum::from_csv_path(p)?,
         None => {
@@ -821,8 +938,18 @@ fn run_laser(a: LaserArgs) -> Result<()> {
     let mut config = model.config()?;
     config.spectral = spectral("e", a.dlambda)?;
     let scale = iridis_lab::laser::configure(&mut config, method, &spectrum, coating.as_ref(), Observer::Cie1931)?;
+    config.table_path = a.table.clone();
     let b = workbench(&a.surface, &model, config)?;
     let e = evaluator(&b, method)?;
+    if let (Some(path), Some(lookup)) = (&a.save_table, e.as_lookup()) {
+        crate::output::write_atomic(path, |w| {
+            let mut buf = std::io::Cursor::new(Vec::new());
+            lookup.table.write_npz(&mut buf)?;
+            std::io::Write::write_all(w, buf.get_ref())?;
+            Ok(())
+        })?;
+        eprintln!("wrote {}", path.display());
+    }
     let mut img = render_bar(e.as_ref(), &pixels, "screen");
     iridis_lab::laser::scale_image(&mut img, scale);
     let half = a.screen / 2e6;
@@ -962,7 +1089,7 @@ pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
         Method::StamPeriodic(iridis_lab::stam::Bump::Rectangular),
         Method::StamGaussian,
     ];
-    let c = comparison(&b, &methods, Method::GroundTruth, &pixels, &[1.0, 1000.0, 7500.0])?;
+    let c = comparison(&b, &methods, None, &pixels, &[1.0, 1000.0, 7500.0])?;
     let mut t = Vec::new();
     for r in &c.rows {
         let ours = c
@@ -979,11 +1106,24 @@ pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
             format!("{:.2}", r.mean / ours),
         ]);
     }
-    let img = map_plot(&c.truth, 48, 1000.0, "ground truth at 1000 RU")?;
+    for r in &c.extension {
+        t.push(vec![
+            "periodic vs finite-aperture ground truth".into(),
+            format!("{}", r.exposure_ru),
+            format!("{:.3}", r.mean),
+            format!("{:.3}", r.p95),
+            String::new(),
+        ]);
+    }
+    let truth = c.truth(Method::GroundTruthPeriodic);
+    let img = map_plot(truth, 48, 1000.0, "ground truth (periodic extension) at 1000 RU")?;
     write_png_rgb8(&g.path("compare_truth.png"), img.width, img.height, &img.data)?;
-    g.image("compare_truth.png", &format!("{spec}: ground truth BRDF map at normal incidence, 1000 RU"));
+    g.image(
+        "compare_truth.png",
+        &format!("{spec}: ground truth (the patch's periodic extension) BRDF map at normal incidence, 1000 RU"),
+    );
     for (name, im) in &c.images {
-        let de = iridis_lab::compare::delta_e_map(im, &c.truth, 1000.0);
+        let de = iridis_lab::compare::delta_e_map(im, truth, 1000.0);
         let s = iridis_lab::compare::stats(&de);
         let h = heat_plot(&de, 48, &format!("ΔE00 {name} vs ground truth, 1000 RU"), s.max.max(1.0))?;
         let file = format!("compare_{name}_deltaE.png");
