@@ -102,11 +102,13 @@ impl Stack {
             )));
         }
         let media = self.media(wavelength_nm, angle_rad)?;
-        let thicknesses = self.thicknesses();
-        let s = waves(&media, &thicknesses, wavelength_nm, false);
-        let p = waves(&media, &thicknesses, wavelength_nm, true);
-        let invariant = (media[0].n * (Complex64::new(1.0, 0.0) - media[0].cos * media[0].cos).sqrt()).re;
-        Ok(Fields { media, thicknesses, wavelength_nm, s, p, invariant })
+        Ok(Fields::new(media, self.thicknesses(), wavelength_nm))
+    }
+
+    /// The fraction of the incident power absorbed in each layer (coherent or `inc:`) and in an absorbing
+    /// substrate, with R and T; for mixed stacks as `tmm.inc_absorp_in_each_layer`.
+    pub fn absorption(&self, wavelength_nm: f64, angle_rad: f64) -> Result<Absorption, ThinFilmError> {
+        crate::incoherent::absorption(self, wavelength_nm, angle_rad, &self.thicknesses())
     }
 
     /// Ellipsometric angles `(ψ, Δ)` in radians with tmm's `ellips` convention:
@@ -122,6 +124,18 @@ impl Stack {
 pub fn psi_delta(r_s: Complex64, r_p: Complex64) -> (f64, f64) {
     let rho = -r_p / r_s;
     (rho.norm().atan(), rho.arg())
+}
+
+/// What one polarisation does in a coherent stack (or group), per unit incident power, with tmm's flux
+/// conventions (which also hold when the top medium absorbs, as inside a mixed stack):
+/// `r` = |r|², `t` = flux into the last medium, `entering` = flux into the first layer, `layers` = absorbed
+/// in each layer (flux in at its top minus flux out at its bottom).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PolPowers {
+    pub r: f64,
+    pub t: f64,
+    pub entering: f64,
+    pub layers: Vec<f64>,
 }
 
 /// The composite reflectivities below every interface, then the amplitudes from the top down.
@@ -163,6 +177,37 @@ fn waves(media: &[Medium], d: &[f64], wavelength_nm: f64, p: bool) -> Waves {
 }
 
 impl Fields {
+    /// The fields of the media (incident first; it may absorb inside a mixed stack) with these thicknesses.
+    pub fn new(media: Vec<Medium>, thicknesses: Vec<f64>, wavelength_nm: f64) -> Self {
+        let s = waves(&media, &thicknesses, wavelength_nm, false);
+        let p = waves(&media, &thicknesses, wavelength_nm, true);
+        let invariant = (media[0].n * (Complex64::new(1.0, 0.0) - media[0].cos * media[0].cos).sqrt()).re;
+        Fields { media, thicknesses, wavelength_nm, s, p, invariant }
+    }
+
+    /// [`PolPowers`] for s (`p = false`) or p.
+    pub fn powers(&self, p: bool) -> PolPowers {
+        let wv = if p { &self.p } else { &self.s };
+        let n = self.thicknesses.len();
+        let m0 = self.media[0];
+        if (if p { (m0.n * m0.cos.conj()).re } else { (m0.n * m0.cos).re }) <= 0.0 {
+            // Lit from an evanescent medium (a group seen from a substrate beyond its critical angle): no
+            // power arrives, and the fluxes relative to the incident one are undefined.
+            return PolPowers { r: 0.0, t: 0.0, entering: 0.0, layers: vec![0.0; n] };
+        }
+        // Flux at the top of media 1..=N+1, and leaving medium 0 (equal to the first by continuity; tmm's
+        // `power_entering`, used for the first layer as tmm does).
+        let flux: Vec<f64> = (1..=n + 1).map(|j| self.one(wv, j, 0.0).0).collect();
+        let entering = self.one(wv, 0, 0.0).0;
+        let mut layers = Vec::with_capacity(n);
+        let mut above = entering;
+        for &below in &flux[1..] {
+            layers.push(above - below);
+            above = below;
+        }
+        PolPowers { r: wv.w[0].norm_sqr(), t: flux[n], entering, layers }
+    }
+
     /// The depth (nm) of the top of medium `j` below the first interface (0 for media 0 and 1).
     fn top(&self, j: usize) -> f64 {
         self.thicknesses[..j.saturating_sub(1).min(self.thicknesses.len())].iter().sum()
@@ -234,37 +279,26 @@ impl Fields {
 
     /// Power absorbed per layer (flux in at the top minus flux out at the bottom), into the substrate, R, T.
     pub fn absorption(&self) -> Absorption {
-        let n = self.thicknesses.len();
-        let last = self.media[n + 1];
-        let opaque = last.n.im > 0.0;
-        let mut out = Absorption {
-            layers_s: Vec::with_capacity(n),
-            layers_p: Vec::with_capacity(n),
-            substrate_s: 0.0,
-            substrate_p: 0.0,
-            r_s: self.s.w[0].norm_sqr(),
-            r_p: self.p.w[0].norm_sqr(),
-            t_s: 0.0,
-            t_p: 0.0,
-        };
-        for (wv, layers, sub, t) in [
-            (&self.s, &mut out.layers_s, &mut out.substrate_s, &mut out.t_s),
-            (&self.p, &mut out.layers_p, &mut out.substrate_p, &mut out.t_p),
-        ] {
-            // Flux just inside the top of each medium 1..=N+1; into medium 1 it is 1 − R (lossless incidence).
-            let flux: Vec<f64> = (1..=n + 1).map(|j| self.one(wv, j, 0.0).0).collect();
-            let mut above = 1.0 - wv.w[0].norm_sqr();
-            for f in &flux[..n] {
-                layers.push(above - f);
-                above = *f;
-            }
-            if opaque {
-                *sub = above;
-            } else {
-                *t = above;
-            }
+        let opaque = self.media[self.media.len() - 1].n.im > 0.0;
+        Absorption::from_powers(self.powers(false), self.powers(true), opaque)
+    }
+}
+
+impl Absorption {
+    /// From the powers of s and p; the flux into an absorbing substrate counts as its absorption (T = 0).
+    pub fn from_powers(s: PolPowers, p: PolPowers, opaque_substrate: bool) -> Self {
+        let split = |t: f64| if opaque_substrate { (t, 0.0) } else { (0.0, t) };
+        let ((substrate_s, t_s), (substrate_p, t_p)) = (split(s.t), split(p.t));
+        Absorption {
+            layers_s: s.layers,
+            layers_p: p.layers,
+            substrate_s,
+            substrate_p,
+            r_s: s.r,
+            r_p: p.r,
+            t_s,
+            t_p,
         }
-        out
     }
 }
 

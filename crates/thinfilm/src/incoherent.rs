@@ -15,6 +15,7 @@
 use num_complex::Complex64;
 
 use crate::error::ThinFilmError;
+use crate::field::{Absorption, Fields, PolPowers};
 use crate::recurrence::{compose, Medium, Rta};
 use crate::stack::Stack;
 
@@ -113,6 +114,76 @@ pub fn evaluate(stack: &Stack, wavelength_nm: f64, angle_rad: f64, thicknesses_n
     let opaque = media[media.len() - 1].n.im > 0.0;
     let z = |t: f64| if opaque { 0.0 } else { t };
     Ok(Rta { r_s, r_p, t_s: z(t_s), t_p: z(t_p) })
+}
+
+/// Absorption per layer (coherent and incoherent) and in an absorbing substrate, with R and T, as
+/// `tmm.inc_absorp_in_each_layer` (Byrnes section 5.3): each group is lit from above by the forward intensity
+/// `F` arriving at it and from below by the backward intensity `B`; its layers absorb `F A_fwd + B A_bwd`
+/// (the coherent per-layer absorption of [`Fields`] run forwards and backwards); an incoherent layer absorbs
+/// the flux entering it at its top minus the flux leaving it at its bottom.
+pub fn absorption(
+    stack: &Stack,
+    wavelength_nm: f64,
+    angle_rad: f64,
+    thicknesses_nm: &[f64],
+) -> Result<Absorption, ThinFilmError> {
+    if thicknesses_nm.len() != stack.layers.len() || thicknesses_nm.iter().any(|d| !(d.is_finite() && *d >= 0.0)) {
+        return Err(ThinFilmError::Invalid(format!(
+            "need {} finite thicknesses ≥ 0, got {thicknesses_nm:?}",
+            stack.layers.len()
+        )));
+    }
+    let media = stack.media(wavelength_nm, angle_rad)?;
+    let inc = incoherent_media(stack);
+    let m = inc.len() - 1;
+    let pass: Vec<f64> = inc.iter().map(|&i| pass_of(&media, thicknesses_nm, i, wavelength_nm)).collect();
+    let fields: Vec<(Fields, Fields)> = inc
+        .windows(2)
+        .map(|w| {
+            let gm = media[w[0]..=w[1]].to_vec();
+            let gd = thicknesses_nm[w[0]..w[1] - 1].to_vec();
+            let rev_m = gm.iter().rev().copied().collect();
+            let rev_d = gd.iter().rev().copied().collect();
+            (Fields::new(gm, gd, wavelength_nm), Fields::new(rev_m, rev_d, wavelength_nm))
+        })
+        .collect();
+    let one = |p: bool| -> PolPowers {
+        let f: Vec<PolPowers> = fields.iter().map(|x| x.0.powers(p)).collect();
+        let b: Vec<PolPowers> = fields.iter().map(|x| x.1.powers(p)).collect();
+        // rc[k]: reflectance of everything below the bottom of incoherent medium k, seen from inside it.
+        let mut rc = vec![0.0; m + 1];
+        for k in (0..m).rev() {
+            let pp = pass[k + 1] * pass[k + 1];
+            rc[k] = f[k].r + f[k].t * b[k].t * pp * rc[k + 1] / (1.0 - b[k].r * pp * rc[k + 1]);
+        }
+        // down[k]: forward intensity at the bottom of medium k; up[k]: backward intensity at its top.
+        let (mut down, mut up) = (vec![0.0; m + 1], vec![0.0; m + 1]);
+        down[0] = 1.0;
+        for k in 0..m {
+            let pk = pass[k + 1];
+            down[k + 1] = pk * f[k].t * down[k] / (1.0 - b[k].r * pk * pk * rc[k + 1]);
+            up[k + 1] = pk * rc[k + 1] * down[k + 1];
+        }
+        // Net flux entering incoherent medium k at its top and leaving it at its bottom (tmm's conventions:
+        // a bare interface passes T both ways; a coherent group is entered with its `entering` flux).
+        let mut entering = vec![1.0; m + 1];
+        let mut exiting = vec![0.0; m + 1];
+        let mut layers = Vec::with_capacity(stack.layers.len());
+        for g in 0..m {
+            let (fw, bw) = (down[g], up[g + 1]);
+            let bare = f[g].layers.is_empty();
+            entering[g + 1] = fw * f[g].t - bw * if bare { b[g].t } else { b[g].entering };
+            exiting[g] = if bare { entering[g + 1] } else { fw * f[g].entering - bw * b[g].t };
+            if g > 0 {
+                layers.push(entering[g] - exiting[g]);
+            }
+            let n = f[g].layers.len();
+            layers.extend((0..n).map(|i| fw * f[g].layers[i] + bw * b[g].layers[n - 1 - i]));
+        }
+        PolPowers { r: rc[0], t: down[m], entering: 1.0 - rc[0], layers }
+    };
+    let opaque = media[media.len() - 1].n.im > 0.0;
+    Ok(Absorption::from_powers(one(false), one(true), opaque))
 }
 
 /// `P` of incoherent medium `i` (1 for the semi-infinite ends).

@@ -480,6 +480,23 @@ mod tests {
     }
 
     #[test]
+    fn incoherent_layers() {
+        let s = Stack::parse("air | MgF2 100nm | inc:BK7 1mm | air").unwrap();
+        assert_eq!(s.layers.iter().map(|l| l.incoherent).collect::<Vec<_>>(), [false, true]);
+        assert_eq!(s.layers[1].thickness_nm, 1e6);
+        assert!(s.to_string().contains("inc:bk7 1000000nm"), "{s}");
+        assert!(s.amplitudes(550.0, 0.0).is_err() && s.prepare(0.0).is_err());
+        let (t, c, m) = column_of(Stack::parse("inc:air | BK7 1mm | air").unwrap_err());
+        assert_eq!((t.as_str(), c), ("inc:air", 1));
+        assert!(m.contains("incident medium is semi-infinite, so already incoherent"), "{m}");
+        let (t, _, m) = column_of(Stack::parse("air | water 1um | inc:glass").unwrap_err());
+        assert_eq!(t, "inc:glass");
+        assert!(m.contains("substrate is semi-infinite"), "{m}");
+        let (_, _, m) = column_of(Stack::parse("air | inc: 1mm | air").unwrap_err());
+        assert!(m.contains("inc: needs a material"), "{m}");
+    }
+
+    #[test]
     fn sweep_placeholder() {
         let (s, i) = Stack::parse_sweep("air | gasoline 216nm | water {d} | asphalt").unwrap();
         assert_eq!((i, s.layers.len()), (1, 2));
