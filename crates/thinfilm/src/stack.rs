@@ -373,6 +373,18 @@ fn parse_material(t: &str) -> Result<Material, String> {
             other => other.to_string(),
         });
     }
+    for (prefix, f) in [
+        ("cauchy:", Material::cauchy as fn(String, &[f64]) -> Result<Material, ThinFilmError>),
+        ("sellmeier:", Material::sellmeier),
+    ] {
+        if let Some(list) = t.strip_prefix(prefix) {
+            let c: Vec<f64> = list
+                .split(',')
+                .map(|x| x.trim().parse::<f64>().map_err(|_| format!("'{x}' in {t} is not a number")))
+                .collect::<Result<_, _>>()?;
+            return f(t.to_string(), &c).map_err(|e| e.to_string());
+        }
+    }
     if let Some(p) = t.strip_prefix("file:") {
         if p.is_empty() {
             return Err("file: needs a path, e.g. file:data/materials/au_johnson.yml".into());
@@ -445,6 +457,14 @@ mod tests {
         assert!((s.layers[0].thickness_nm - 100.0).abs() < 1e-9);
         assert!(Stack::parse("air | Si 108nm | glass").is_ok());
         assert!(Stack::parse("glass|air").unwrap().layers.is_empty());
+        // Cauchy n = A + B/λ² (λ in µm) and Sellmeier n² = 1 + B λ²/(λ² − C).
+        let s = Stack::parse("air | cauchy:1.45,0.0036 100nm | sellmeier:1.2,0.01").unwrap();
+        let n = s.layers[0].material.index_at(600.0).unwrap().re;
+        assert!((n - (1.45 + 0.0036 / 0.36)).abs() < 1e-14);
+        let n = s.substrate.index_at(500.0).unwrap().re;
+        assert!((n - (1.0 + 1.2 * 0.25 / (0.25 - 0.01)).sqrt()).abs() < 1e-14);
+        assert!(Stack::parse("air | cauchy:1.4,x 10nm | air").is_err());
+        assert!(Stack::parse("air | sellmeier:1.2 10nm | air").is_err());
     }
 
     #[test]
