@@ -18,6 +18,7 @@
 //! * [`incoherent`]: stacks with incoherent layers (`inc:BK7 1mm`), as `tmm.inc_tmm`;
 //! * [`field`]: amplitudes inside the stack, position-resolved flux / absorption / |E|², absorption per
 //!   layer, ellipsometric ψ and Δ;
+//! * [`sampling`]: warnings when a wavelength grid cannot resolve the fringes of a thick layer;
 //! * [`color`]: film colours (reflected / transmitted spectrum → XYZ through `iridis-color`).
 //! * [`htsg`]: the He–Torrance–Sillion–Greenberg BRDF of a rough interface (rms height σ, correlation
 //!   length τ): specular and directional-diffuse terms, Smith shadowing, effective roughness, the bounded
@@ -47,6 +48,7 @@ pub mod material;
 pub mod nkfile;
 pub mod recurrence;
 pub mod rough;
+pub mod sampling;
 pub mod stack;
 
 pub use error::ThinFilmError;

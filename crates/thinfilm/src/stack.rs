@@ -462,7 +462,7 @@ mod tests {
         let n = s.layers[0].material.index_at(600.0).unwrap().re;
         assert!((n - (1.45 + 0.0036 / 0.36)).abs() < 1e-14);
         let n = s.substrate.index_at(500.0).unwrap().re;
-        assert!((n - (1.0 + 1.2 * 0.25 / (0.25 - 0.01)).sqrt()).abs() < 1e-14);
+        assert!((n - (1.0f64 + 1.2 * 0.25 / (0.25 - 0.01)).sqrt()).abs() < 1e-14);
         assert!(Stack::parse("air | cauchy:1.4,x 10nm | air").is_err());
         assert!(Stack::parse("air | sellmeier:1.2 10nm | air").is_err());
     }
