@@ -21,12 +21,16 @@ impl Measured {
     /// names separated by a comma (or one column used for both).
     pub fn from_csv(text: &str, path: &str, quantity: Quantity, sigma_column: Option<&str>) -> Result<Self, FitError> {
         let err = |line: usize, m: String| FitError::Data(format!("{path}, line {line}: {m}"));
-        let mut rows = text.lines().enumerate().filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
+        let mut rows =
+            text.lines().enumerate().filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
         let (hl, header) = rows.next().ok_or_else(|| FitError::Data(format!("{path}: no header row and no data")))?;
         let names: Vec<String> = header.split(',').map(|h| h.trim().trim_matches('"').to_string()).collect();
         let find = |want: &[&str]| names.iter().position(|n| want.iter().any(|w| n.eq_ignore_ascii_case(w)));
         let wl = find(WAVELENGTH).ok_or_else(|| {
-            err(hl + 1, format!("no wavelength column (wavelength_nm) among {names:?}; the header must name the columns"))
+            err(
+                hl + 1,
+                format!("no wavelength column (wavelength_nm) among {names:?}; the header must name the columns"),
+            )
         })?;
         let wanted: Vec<(&str, &[&str])> = match quantity {
             Quantity::R => vec![("R", &["R", "reflectance"])],
@@ -56,7 +60,9 @@ impl Measured {
                 }
                 parts
                     .iter()
-                    .map(|p| find(&[p]).ok_or_else(|| err(hl + 1, format!("no uncertainty column '{p}' among {names:?}"))))
+                    .map(|p| {
+                        find(&[p]).ok_or_else(|| err(hl + 1, format!("no uncertainty column '{p}' among {names:?}")))
+                    })
                     .collect()
             })
             .transpose()?;
@@ -99,8 +105,13 @@ mod tests {
 
     #[test]
     fn reads_and_refuses() {
-        let m = Measured::from_csv("# test\nwavelength_nm,R,sR\n400,0.1,0.01\n500,0.2,0.01\n", "x.csv", Quantity::R, Some("sR"))
-            .unwrap();
+        let m = Measured::from_csv(
+            "# test\nwavelength_nm,R,sR\n400,0.1,0.01\n500,0.2,0.01\n",
+            "x.csv",
+            Quantity::R,
+            Some("sR"),
+        )
+        .unwrap();
         assert_eq!(m.wavelength_nm, [400.0, 500.0]);
         assert_eq!(m.values, [0.1, 0.2]);
         assert_eq!(m.sigma, Some(vec![0.01, 0.01]));

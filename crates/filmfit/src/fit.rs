@@ -185,10 +185,11 @@ pub fn fit(template: &Template, data: &Measured, opt: &FitOptions) -> Result<Fit
         return Err(FitError::Data("the measured values do not match the quantity".into()));
     }
     if n <= np {
-        return Err(FitError::Data(format!("{n} measured values cannot determine {np} parameters (need more than {np})")));
+        return Err(FitError::Data(format!(
+            "{n} measured values cannot determine {np} parameters (need more than {np})"
+        )));
     }
-    let mut problem =
-        Problem { template, data, opt, x: template.starts(), evaluations: std::cell::Cell::new(0) };
+    let mut problem = Problem { template, data, opt, x: template.starts(), evaluations: std::cell::Cell::new(0) };
     // The model must evaluate at the start (e.g. every wavelength inside every material's data).
     model(template, &template.starts(), &data.wavelength_nm, opt)?;
     let candidates = starts(template, opt);
@@ -222,9 +223,7 @@ pub fn fit(template: &Template, data: &Measured, opt: &FitOptions) -> Result<Fit
         )
     })? * scale;
     let sigma: Vec<f64> = (0..np).map(|k| cov[(k, k)].max(0.0).sqrt()).collect();
-    let correlation = (0..np)
-        .map(|a| (0..np).map(|b| cov[(a, b)] / (sigma[a] * sigma[b])).collect())
-        .collect();
+    let correlation = (0..np).map(|a| (0..np).map(|b| cov[(a, b)] / (sigma[a] * sigma[b])).collect()).collect();
     let at_bound = template
         .params
         .iter()

@@ -117,7 +117,9 @@ impl Template {
                 }
                 if wi == 1 && k != 0 && k != last {
                     if inside.len() != 1 || found[inside[0]].0 != woff || found[inside[0]].1 != woff + w.len() {
-                        return Err(FitError::Template(format!("thickness '{w}': write the whole thickness as one {{…}}")));
+                        return Err(FitError::Template(format!(
+                            "thickness '{w}': write the whole thickness as one {{…}}"
+                        )));
                     }
                     roles.push((inside[0], Role::Thickness { layer: k - 1 }));
                     continue;
@@ -125,7 +127,10 @@ impl Template {
                 let mat = w.strip_prefix("inc:").unwrap_or(w);
                 let mat_off = woff + (w.len() - mat.len());
                 if let Some(v) = mat.strip_prefix("n=") {
-                    if inside.len() == 1 && found[inside[0]].0 == mat_off + 2 && found[inside[0]].1 == mat_off + 2 + v.len() {
+                    if inside.len() == 1
+                        && found[inside[0]].0 == mat_off + 2
+                        && found[inside[0]].1 == mat_off + 2 + v.len()
+                    {
                         roles.push((inside[0], Role::Index { medium: k }));
                         continue;
                     }
@@ -248,15 +253,17 @@ fn parse_param(inner: &str, role: Role) -> Result<Param, FitError> {
             "parameter '{name}' has no range: the fit searches between two bounds; write e.g. {example}"
         )));
     };
-    let (lo, hi) = range
-        .split_once("..")
-        .ok_or_else(|| FitError::Template(format!("parameter '{name}': range '{range}' is not LOW..HIGH, e.g. {example}")))?;
+    let (lo, hi) = range.split_once("..").ok_or_else(|| {
+        FitError::Template(format!("parameter '{name}': range '{range}' is not LOW..HIGH, e.g. {example}"))
+    })?;
     let value = |t: &str| -> Result<f64, FitError> {
         let t = t.trim();
         let v = match role {
             Role::Thickness { .. } => iridis_color::units::parse_length_nm(t)
                 .map_err(|e| FitError::Template(format!("parameter '{name}': '{t}': {}", e.0)))?,
-            _ => t.parse::<f64>().map_err(|_| FitError::Template(format!("parameter '{name}': '{t}' is not a number")))?,
+            _ => t
+                .parse::<f64>()
+                .map_err(|_| FitError::Template(format!("parameter '{name}': '{t}' is not a number")))?,
         };
         if v.is_finite() {
             Ok(v)
@@ -266,17 +273,23 @@ fn parse_param(inner: &str, role: Role) -> Result<Param, FitError> {
     };
     let (start, lo, hi) = (value(start)?, value(lo)?, value(hi)?);
     if lo >= hi {
-        return Err(FitError::Template(format!("parameter '{name}': the range {lo}..{hi} is empty (LOW must be below HIGH)")));
+        return Err(FitError::Template(format!(
+            "parameter '{name}': the range {lo}..{hi} is empty (LOW must be below HIGH)"
+        )));
     }
     if !(lo..=hi).contains(&start) {
-        return Err(FitError::Template(format!("parameter '{name}': the start {start} is outside its range {lo}..{hi}")));
+        return Err(FitError::Template(format!(
+            "parameter '{name}': the start {start} is outside its range {lo}..{hi}"
+        )));
     }
     match role {
         Role::Thickness { .. } if lo < 0.0 => {
             return Err(FitError::Template(format!("parameter '{name}': a thickness cannot be negative ({lo} nm)")))
         }
         Role::Index { .. } if lo <= 0.0 => {
-            return Err(FitError::Template(format!("parameter '{name}': a refractive index must be > 0 (range starts at {lo})")))
+            return Err(FitError::Template(format!(
+                "parameter '{name}': a refractive index must be > 0 (range starts at {lo})"
+            )))
         }
         _ => {}
     }
@@ -289,7 +302,10 @@ mod tests {
 
     #[test]
     fn roles_and_values() {
-        let t = Template::parse("air | SiO2 {d1=100nm:50nm..0.5um} | n={n=1.7:1.5..2} 30nm | cauchy:{A=1.5:1.4..1.6},0.004").unwrap();
+        let t = Template::parse(
+            "air | SiO2 {d1=100nm:50nm..0.5um} | n={n=1.7:1.5..2} 30nm | cauchy:{A=1.5:1.4..1.6},0.004",
+        )
+        .unwrap();
         assert_eq!(t.params.len(), 3);
         assert_eq!(t.params[0].role, Role::Thickness { layer: 0 });
         assert_eq!((t.params[0].lo, t.params[0].hi), (50.0, 500.0));

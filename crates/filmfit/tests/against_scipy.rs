@@ -18,7 +18,10 @@ fn same_optimum_as_scipy_least_squares() {
     // One local fit from scipy's start, and the default multi-start search: both land on scipy's optimum.
     for grid in [1, 0] {
         let r = fit(&t, &data, &FitOptions { angle_rad: 0.0, quantity: Quantity::R, grid, refine: 4 }).unwrap();
-        eprintln!("grid {grid}: {:?} ± {:?}, χ² {} (scipy {want:?} ± {want_sigma:?}, χ² {chi2})", r.values, r.sigma, r.chi2);
+        eprintln!(
+            "grid {grid}: {:?} ± {:?}, χ² {} (scipy {want:?} ± {want_sigma:?}, χ² {chi2})",
+            r.values, r.sigma, r.chi2
+        );
         for k in 0..3 {
             // Within 1e-4 of a standard deviation: the same minimum, not merely a nearby one.
             assert!((r.values[k] - want[k]).abs() < 1e-4 * want_sigma[k], "param {k}: {} vs {}", r.values[k], want[k]);

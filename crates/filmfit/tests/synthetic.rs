@@ -13,7 +13,14 @@ fn gauss(rng: &mut StdRng) -> f64 {
     (-2.0 * u.ln()).sqrt() * (2.0 * std::f64::consts::PI * v).cos()
 }
 
-fn synthetic(template: &Template, truth: &[f64], wl: &[f64], opt: &FitOptions, sigma: f64, rng: &mut StdRng) -> Measured {
+fn synthetic(
+    template: &Template,
+    truth: &[f64],
+    wl: &[f64],
+    opt: &FitOptions,
+    sigma: f64,
+    rng: &mut StdRng,
+) -> Measured {
     let clean = model(template, truth, wl, opt).unwrap();
     let values: Vec<f64> = clean.iter().map(|v| v + sigma * gauss(rng)).collect();
     Measured { wavelength_nm: wl.to_vec(), sigma: Some(vec![sigma; values.len()]), values }
@@ -30,14 +37,20 @@ fn coverage_of_200_noisy_trials() {
     let mut within = [0usize; 3];
     let (mut joint, mut chi2_sum) = (0usize, 0.0);
     for seed in 0..trials {
-        let mut rng = StdRng::seed_from_u64(std::env::var("FIT_SEED0").ok().and_then(|v| v.parse().ok()).unwrap_or(1000) + seed);
+        let mut rng =
+            StdRng::seed_from_u64(std::env::var("FIT_SEED0").ok().and_then(|v| v.parse().ok()).unwrap_or(1000) + seed);
         let data = synthetic(&t, &truth, &wl, &opt, 0.002, &mut rng);
         let r = fit(&t, &data, &opt).unwrap();
         let mut all = true;
         for k in 0..3 {
             let ok = (r.values[k] - truth[k]).abs() <= 2.0 * r.sigma[k];
             if !ok && std::env::var("FIT_DEBUG").is_ok() {
-                eprintln!("seed {seed} param {k}: {:.2} σ, chi2 {:.1}, {:?}", (r.values[k] - truth[k]) / r.sigma[k], r.chi2, r.values);
+                eprintln!(
+                    "seed {seed} param {k}: {:.2} σ, chi2 {:.1}, {:?}",
+                    (r.values[k] - truth[k]) / r.sigma[k],
+                    r.chi2,
+                    r.values
+                );
             }
             within[k] += usize::from(ok);
             all &= ok;

@@ -268,8 +268,7 @@ impl Fields {
         } else {
             let norm = (m0.n * m0.cos.conj()).re;
             let poyn = (m.n * m.cos.conj() * (ef + eb) * (ef - eb).conj()).re / norm;
-            let absor =
-                (m.n * m.cos.conj() * (kz * (ef - eb).norm_sqr() - kz.conj() * (ef + eb).norm_sqr())).im / norm;
+            let absor = (m.n * m.cos.conj() * (kz * (ef - eb).norm_sqr() - kz.conj() * (ef + eb).norm_sqr())).im / norm;
             let sin = Complex64::new(self.invariant, 0.0) / m.n;
             let ex = (ef - eb) * m.cos;
             let ez = (-ef - eb) * sin;
@@ -289,16 +288,7 @@ impl Absorption {
     pub fn from_powers(s: PolPowers, p: PolPowers, opaque_substrate: bool) -> Self {
         let split = |t: f64| if opaque_substrate { (t, 0.0) } else { (0.0, t) };
         let ((substrate_s, t_s), (substrate_p, t_p)) = (split(s.t), split(p.t));
-        Absorption {
-            layers_s: s.layers,
-            layers_p: p.layers,
-            substrate_s,
-            substrate_p,
-            r_s: s.r,
-            r_p: p.r,
-            t_s,
-            t_p,
-        }
+        Absorption { layers_s: s.layers, layers_p: p.layers, substrate_s, substrate_p, r_s: s.r, r_p: p.r, t_s, t_p }
     }
 }
 

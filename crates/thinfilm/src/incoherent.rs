@@ -99,7 +99,12 @@ pub fn groups(
 /// Reflectance and transmittance of a stack with incoherent layers (any stack: a coherent one gives the
 /// powers of [`Stack::evaluate`]), with the given layer thicknesses. As everywhere in iridis, T into an
 /// absorbing substrate is 0 (the light entering it is absorbed; `docs/PHYSICS.md`).
-pub fn evaluate(stack: &Stack, wavelength_nm: f64, angle_rad: f64, thicknesses_nm: &[f64]) -> Result<Rta, ThinFilmError> {
+pub fn evaluate(
+    stack: &Stack,
+    wavelength_nm: f64,
+    angle_rad: f64,
+    thicknesses_nm: &[f64],
+) -> Result<Rta, ThinFilmError> {
     if thicknesses_nm.len() != stack.layers.len() || thicknesses_nm.iter().any(|d| !(d.is_finite() && *d >= 0.0)) {
         return Err(ThinFilmError::Invalid(format!(
             "need {} finite thicknesses ≥ 0, got {thicknesses_nm:?}",

@@ -43,7 +43,9 @@ fn mixed_stacks_agree_with_inc_tmm() {
         }
         // Per-layer absorption (iridis) against inc_absorp_in_each_layer: [incident, layers…, substrate].
         let a = stack.absorption(w, th).unwrap();
-        for (pol, layers, sub, t) in [("s", &a.layers_s, a.substrate_s, a.t_s), ("p", &a.layers_p, a.substrate_p, a.t_p)] {
+        for (pol, layers, sub, t) in
+            [("s", &a.layers_s, a.substrate_s, a.t_s), ("p", &a.layers_p, a.substrate_p, a.t_p)]
+        {
             let refa: Vec<f64> = case[pol]["absorp"].as_array().unwrap().iter().map(f).collect();
             assert_eq!(refa.len(), layers.len() + 2);
             for (i, (mine, theirs)) in layers.iter().zip(&refa[1..refa.len() - 1]).enumerate() {
@@ -89,10 +91,9 @@ fn profiles_and_absorption_agree_with_tmm() {
         for (i, pt) in points.iter().enumerate() {
             let j = pt["medium"].as_u64().unwrap() as usize;
             let got = fields.in_medium(j, f(&pt["dz"]));
-            for (pol, poyn, absor, e2) in [
-                ("s", got.poynting_s, got.absorption_s, got.e2_s),
-                ("p", got.poynting_p, got.absorption_p, got.e2_p),
-            ] {
+            for (pol, poyn, absor, e2) in
+                [("s", got.poynting_s, got.absorption_s, got.e2_s), ("p", got.poynting_p, got.absorption_p, got.e2_p)]
+            {
                 let r = &case[pol]["points"][i];
                 let (rp, ra, re) = (f(&r[0]), f(&r[1]), f(&r[2]));
                 // Relative to the size of the quantity where it is large (|E|² can exceed 1 near resonances).
@@ -105,7 +106,9 @@ fn profiles_and_absorption_agree_with_tmm() {
             }
         }
         let a = fields.absorption();
-        for (pol, layers, sub, t) in [("s", &a.layers_s, a.substrate_s, a.t_s), ("p", &a.layers_p, a.substrate_p, a.t_p)] {
+        for (pol, layers, sub, t) in
+            [("s", &a.layers_s, a.substrate_s, a.t_s), ("p", &a.layers_p, a.substrate_p, a.t_p)]
+        {
             let refa: Vec<f64> = case[pol]["absorp"].as_array().unwrap().iter().map(f).collect();
             for (mine, theirs) in layers.iter().zip(&refa[1..refa.len() - 1]) {
                 worst = worst.max((mine - theirs).abs());
