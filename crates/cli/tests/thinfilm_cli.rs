@@ -64,7 +64,7 @@ fn table_csv_and_plots_are_written() {
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let text = std::fs::read_to_string(&csv).unwrap();
     let lines: Vec<&str> = text.lines().collect();
-    assert_eq!(lines[0], "angle_deg,wavelength_nm,R,T,A,Rs,Rp,Ts,Tp");
+    assert_eq!(lines[0], "angle_deg,wavelength_nm,R,T,A,Rs,Rp,Ts,Tp,psi_deg,delta_deg");
     assert_eq!(lines.len(), 1 + 90 * 30);
     // Row "2, 410" of Figure 3.8: R = 0.0109059.
     let row: Vec<f64> = lines[1 + 30 + 1].split(',').map(|x| x.parse().unwrap()).collect();
@@ -82,7 +82,7 @@ fn table_csv_and_plots_are_written() {
         "--csv",
     ]);
     assert!(out.status.success());
-    assert!(String::from_utf8_lossy(&out.stdout).starts_with("wavelength_nm,R,T,A,Rs,Rp,Ts,Tp\n"));
+    assert!(String::from_utf8_lossy(&out.stdout).starts_with("wavelength_nm,R,T,A,Rs,Rp,Ts,Tp,psi_deg,delta_deg\n"));
     assert!(std::fs::read(&spec).unwrap().starts_with(b"\x89PNG"));
 }
 

@@ -56,7 +56,7 @@ pub struct FitArgs {
     pub quantity: String,
     /// 1σ measurement uncertainty: a number (same for every point) or the name of a CSV column (for
     /// psi-delta two names, "spsi,sdelta"). The weights are 1/σ². Without it σ is estimated from the scatter.
-    #[arg(long, alias = "weights")]
+    #[arg(long)]
     pub sigma: Option<String>,
     /// Grid points per thickness range for the multi-start search (0: automatic, about one per 10 nm;
     /// 1: a single local fit from the start values).
