@@ -259,7 +259,10 @@ impl Material {
     /// formula 2), lossless. Stack syntax `sellmeier:B1,C1,B2,C2,…`.
     pub fn sellmeier(name: impl Into<String>, coefficients: &[f64]) -> Result<Self, ThinFilmError> {
         let name = name.into();
-        if coefficients.is_empty() || !coefficients.len().is_multiple_of(2) || coefficients.iter().any(|c| !c.is_finite()) {
+        if coefficients.is_empty()
+            || !coefficients.len().is_multiple_of(2)
+            || coefficients.iter().any(|c| !c.is_finite())
+        {
             return Err(ThinFilmError::Invalid(format!(
                 "material '{name}': Sellmeier takes pairs B1,C1,B2,C2,… (n² = 1 + Σ B λ²/(λ² − C), λ in µm)"
             )));

@@ -57,7 +57,7 @@ fn mixed_stacks_agree_with_inc_tmm() {
         }
         assert!(a.balance().abs() < 1e-9, "{s}: R + T + ΣA − 1 = {}", a.balance());
     }
-    assert!(n_inc > 300 && n_multi > 80 && n_abs > 20, "incoherent {n_inc}, ≥2 incoherent {n_multi}, abs {n_abs}");
+    assert!(n_inc > 300 && n_multi > 200 && n_abs > 40, "incoherent {n_inc}, ≥2 incoherent {n_multi}, abs {n_abs}");
     eprintln!("inc_tmm: worst difference {worst:.2e} over {} cases", cases.len());
 }
 

@@ -88,7 +88,9 @@ pub fn profile(a: ProfileArgs) -> Result<()> {
         _ => 0.5 * (s + p),
     };
     let abs = stack.absorption(a.wavelength, a.angle)?;
-    let layers: Vec<f64> = abs.layers_s.iter().zip(&abs.layers_p).map(|(s, p)| pick(*s, *p)).collect();
+    // Rounding leaves ±1e-17 in lossless layers: print those as 0.
+    let clean = |v: f64| if v.abs() < 1e-14 { 0.0 } else { v };
+    let layers: Vec<f64> = abs.layers_s.iter().zip(&abs.layers_p).map(|(s, p)| clean(pick(*s, *p))).collect();
     let (r, t, sub) = (pick(abs.r_s, abs.r_p), pick(abs.t_s, abs.t_p), pick(abs.substrate_s, abs.substrate_p));
     let balance = r + t + layers.iter().sum::<f64>() + sub - 1.0;
     // The energy balance is an identity of the flux formulas; more than rounding means a bug, not bad input.
@@ -114,7 +116,7 @@ pub fn profile(a: ProfileArgs) -> Result<()> {
         let e2: Vec<f64> = pts.iter().map(|p| pick(p.e2_s, p.e2_p)).collect();
         let ab: Vec<f64> = pts.iter().map(|p| 1000.0 * pick(p.absorption_s, p.absorption_p)).collect();
         let mut plot = LinePlot::new(
-            format!("{}  at {} nm, {:.6}°", super::thinfilm::stack_title(&a.stack), a.wavelength, a.angle.to_degrees()),
+            format!("{}  at {} nm, {}°", super::thinfilm::stack_title(&a.stack), a.wavelength, deg(a.angle)),
             format!("depth below the first interface (nm); layers end at 0 and {depth} nm"),
             "|E|² (incident = 1); absorbed power (fraction per µm)",
         )
@@ -164,7 +166,7 @@ pub fn profile(a: ProfileArgs) -> Result<()> {
         return crate::output::write_stdout_bytes(out.as_bytes());
     }
     crate::outln!("stack  {stack}")?;
-    crate::outln!("{} nm at {:.6}°, {}", a.wavelength, a.angle.to_degrees(), pol)?;
+    crate::outln!("{} nm at {}°, {}", a.wavelength, deg(a.angle), pol)?;
     crate::outln!("{:<40} {:>12}", "where the light goes", "fraction")?;
     crate::outln!("{:<40} {:>12.7}", "reflected (R)", r)?;
     for (i, (n, v)) in names.iter().zip(&layers).enumerate() {
@@ -218,7 +220,7 @@ pub fn fit_cmd(a: FitArgs) -> Result<()> {
         let k = quantity.width();
         let labels: &[&str] = if k == 2 { &["ψ (°)", "Δ (°)"] } else { &[quantity.name()] };
         let mut plot = LinePlot::new(
-            format!("fit: {}  (χ²/dof = {:.3})", super::thinfilm::stack_title(&a.stack), r.reduced_chi2),
+            format!("measured and fitted {}, χ²/dof = {:.3}", quantity.name(), r.reduced_chi2),
             "wavelength (nm)",
             if k == 2 { "ψ, Δ (degrees)" } else { "fraction of incident power" },
         );
@@ -252,11 +254,11 @@ pub fn fit_cmd(a: FitArgs) -> Result<()> {
     }
     crate::outln!("stack     {}", a.stack)?;
     crate::outln!(
-        "data      {} ({} wavelengths, {} at {:.6}°)",
+        "data      {} ({} wavelengths, {} at {}°)",
         shown,
         data.wavelength_nm.len(),
         quantity.name(),
-        a.angle.to_degrees()
+        deg(a.angle)
     )?;
     crate::outln!("{:<12} {:>16} {:>14}", "parameter", "value", "1σ")?;
     for (k, p) in params.iter().enumerate() {
@@ -288,6 +290,11 @@ pub fn fit_cmd(a: FitArgs) -> Result<()> {
         crate::outln!("wrote {}", p.display())?;
     }
     Ok(())
+}
+
+/// Degrees, rounded to 1e-6 (prints `30`, not `30.000000`).
+fn deg(rad: f64) -> f64 {
+    (rad.to_degrees() * 1e6).round() / 1e6
 }
 
 fn sorted(v: &[f64]) -> Vec<f64> {
