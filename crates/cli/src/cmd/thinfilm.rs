@@ -86,6 +86,9 @@ Examples:
 One evaluation is R and T for s and p at one (λ, θ). Rust is timed on one thread and on all threads, on the
 general path (Stack::evaluate) and on the chapter 4 fast path (Stack::prepare). The same work is timed in the
 Python tmm package (two coh_tmm calls, s and p, per evaluation) by spawning python3, when it is installed.
+Then a fit of 3 parameters on 401 wavelengths (the data of tools/fit_scipy_compare.py, which times scipy's
+least_squares on the same problem) from one start and with the multi-start search, and a batch of 10⁶
+(λ, θ) points of the 20-layer stack on all threads (fast and general path).
 
 Examples:
   iridis thinfilm bench
