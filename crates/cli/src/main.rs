@@ -68,12 +68,15 @@ Examples:
   iridis thinfilm bench                               thin-film evaluations per second against Python tmm"
     )]
     Bench(cmd::bench::BenchCommand),
-    /// Thin-film interference: spectra, angle × wavelength tables, film colours, the soap-film chart.
+    /// Thin-film interference: spectra, tables, colours, the soap-film chart, absorption profiles, fitting.
     #[command(
         subcommand,
         after_help = "\
 Examples:
   iridis thinfilm spectrum --stack \"air | water 348nm | air\" --plot soap.png
+  iridis thinfilm spectrum --stack \"air | MgF2 100nm | inc:BK7 1mm | air\" --json
+  iridis thinfilm profile --stack \"air | Au 30nm | glass\" --wavelength 500nm --plot au.png
+  iridis thinfilm fit measured.csv --stack \"air | SiO2 {d1=100nm:50nm..500nm} | Si\" --plot fit.png
   iridis thinfilm color --stack \"air | water 348nm | air\" --json
   iridis thinfilm color --stack \"air | water 348nm | Si\" --roughness 25nm --correlation 300nm
   iridis thinfilm chart --stack \"air | water {d} | air\" --thickness 0nm:2000nm:2nm -o chart.png

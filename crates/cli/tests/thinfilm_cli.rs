@@ -2,7 +2,7 @@
 //! Figure 3.8, files written, and clean errors (exit code 2, one `error:` line naming the token) on bad input.
 
 mod common;
-use common::{assert_fails, iridis};
+use common::{assert_fails, iridis, json_of};
 
 fn temp_dir() -> std::path::PathBuf {
     let dir = std::env::temp_dir().join(format!("iridis-thinfilm-cli-{}", std::process::id()));
@@ -64,7 +64,7 @@ fn table_csv_and_plots_are_written() {
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let text = std::fs::read_to_string(&csv).unwrap();
     let lines: Vec<&str> = text.lines().collect();
-    assert_eq!(lines[0], "angle_deg,wavelength_nm,R,T,A,Rs,Rp,Ts,Tp");
+    assert_eq!(lines[0], "angle_deg,wavelength_nm,R,T,A,Rs,Rp,Ts,Tp,psi_deg,delta_deg");
     assert_eq!(lines.len(), 1 + 90 * 30);
     // Row "2, 410" of Figure 3.8: R = 0.0109059.
     let row: Vec<f64> = lines[1 + 30 + 1].split(',').map(|x| x.parse().unwrap()).collect();
@@ -82,7 +82,7 @@ fn table_csv_and_plots_are_written() {
         "--csv",
     ]);
     assert!(out.status.success());
-    assert!(String::from_utf8_lossy(&out.stdout).starts_with("wavelength_nm,R,T,A,Rs,Rp,Ts,Tp\n"));
+    assert!(String::from_utf8_lossy(&out.stdout).starts_with("wavelength_nm,R,T,A,Rs,Rp,Ts,Tp,psi_deg,delta_deg\n"));
     assert!(std::fs::read(&spec).unwrap().starts_with(b"\x89PNG"));
 }
 
@@ -305,4 +305,159 @@ fn polarization_s_and_p_agree_with_tmm() {
             }
         }
     }
+}
+
+#[test]
+fn incoherent_slide_and_psi_delta_in_spectrum() {
+    // A bare 1 mm slide, incoherent: R = 2ρ/(1 + ρ) with ρ = 0.04 (n = 1.5) at normal incidence.
+    let v = json_of(&[
+        "thinfilm",
+        "spectrum",
+        "--stack",
+        "air | inc:n=1.5 1mm | air",
+        "--from",
+        "500nm",
+        "--to",
+        "520nm",
+        "--json",
+    ]);
+    assert!((v["R"][0].as_f64().unwrap() - 0.08 / 1.04).abs() < 1e-12, "{}", v["R"][0]);
+    assert!(v["psi_deg"].is_null(), "no ψ/Δ for an incoherent stack");
+    // ψ/Δ of a bare n = 1.5 substrate at 60° (beyond Brewster: Δ = 180°), tan ψ = |r_p/r_s| from Fresnel.
+    let v = json_of(&[
+        "thinfilm",
+        "spectrum",
+        "--stack",
+        "air | n=1.5",
+        "--angle",
+        "60deg",
+        "--from",
+        "500nm",
+        "--to",
+        "500nm",
+        "--json",
+    ]);
+    let th = 60f64.to_radians();
+    let ct = (1.0 - (th.sin() / 1.5).powi(2)).sqrt();
+    let rs = (th.cos() - 1.5 * ct) / (th.cos() + 1.5 * ct);
+    let rp = (1.5 * th.cos() - ct) / (1.5 * th.cos() + ct);
+    assert!((v["psi_deg"][0].as_f64().unwrap() - (rp / rs).abs().atan().to_degrees()).abs() < 1e-10);
+    assert!((v["delta_deg"][0].as_f64().unwrap().abs() - 180.0).abs() < 1e-10);
+}
+
+#[test]
+fn aliasing_and_thick_layers_are_warned_about() {
+    let out = iridis(&["thinfilm", "spectrum", "--stack", "air | water 20um | air", "--csv"]);
+    assert!(out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("warning: layer 1 (water 20000 nm)") && err.contains("--step 1.3nm"), "{err}");
+    let out = iridis(&["thinfilm", "color", "--stack", "air | MgF2 100nm | BK7 1mm | air"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("inc:bk7 1000000nm") && err.contains("coherence length"), "{err}");
+    // Fine grids and incoherent slides say nothing.
+    let out = iridis(&["thinfilm", "color", "--stack", "air | MgF2 100nm | inc:BK7 1mm | air"]);
+    assert!(out.status.success() && out.stderr.is_empty(), "{}", String::from_utf8_lossy(&out.stderr));
+}
+
+#[test]
+fn profile_balances_energy() {
+    let v = json_of(&["thinfilm", "profile", "--stack", "air | Au 30nm | glass", "--wavelength", "500nm", "--json"]);
+    let a: f64 = v["A_layers"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).sum();
+    let (r, t) = (v["R"].as_f64().unwrap(), v["T"].as_f64().unwrap());
+    assert!((r + t + a - 1.0).abs() < 1e-12 && a > 0.2, "R {r} T {t} A {a}");
+    // Same R and T as the spectrum command.
+    let s = json_of(&[
+        "thinfilm",
+        "spectrum",
+        "--stack",
+        "air | Au 30nm | glass",
+        "--from",
+        "500nm",
+        "--to",
+        "500nm",
+        "--json",
+    ]);
+    assert!((s["R"][0].as_f64().unwrap() - r).abs() < 1e-12 && (s["T"][0].as_f64().unwrap() - t).abs() < 1e-12);
+    // The profile's absorbed density integrates to the layer's absorption (trapezoid, 2000 points).
+    let v = json_of(&[
+        "thinfilm",
+        "profile",
+        "--stack",
+        "air | Au 30nm | glass",
+        "--wavelength",
+        "500nm",
+        "--points",
+        "2301",
+        "--json",
+    ]);
+    let z: Vec<f64> = v["profile"]["z_nm"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+    let d: Vec<f64> =
+        v["profile"]["absorption_per_nm"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+    let integral: f64 = (1..z.len()).map(|i| 0.5 * (d[i] + d[i - 1]) * (z[i] - z[i - 1])).sum();
+    assert!((integral - a).abs() < 5e-3 * a, "∫ {integral} vs {a}");
+    // Mixed stacks: absorption per layer, no profile.
+    let v = json_of(&[
+        "thinfilm",
+        "profile",
+        "--stack",
+        "air | Si 50nm | inc:n=1.5+0.0001i 1mm | air",
+        "--wavelength",
+        "550nm",
+        "--json",
+    ]);
+    assert!(v["profile"].is_null() && v["balance"].as_f64().unwrap().abs() < 1e-12);
+    let dir = temp_dir();
+    let png = dir.join("profile.png");
+    let out = iridis(&[
+        "thinfilm",
+        "profile",
+        "--stack",
+        "air | Si 108nm | glass",
+        "--wavelength",
+        "450nm",
+        "--plot",
+        png.to_str().unwrap(),
+    ]);
+    assert!(out.status.success() && std::fs::metadata(&png).unwrap().len() > 1000);
+}
+
+#[test]
+fn fit_recovers_the_scipy_optimum_and_refuses_bad_input() {
+    let csv = concat!(env!("CARGO_MANIFEST_DIR"), "/../filmfit/tests/fixtures/scipy_fit.csv");
+    let stack = "air | cauchy:{A=1.5:1.3..1.7},{B=0.004:0..0.02} {d=330nm:100nm..600nm} | n=3.88+0.02i";
+    let v = json_of(&["thinfilm", "fit", csv, "--stack", stack, "--sigma", "0.002", "--json"]);
+    // scipy least_squares on the same data (crates/filmfit/tests/fixtures/scipy_fit.json).
+    let d = v["values"][2].as_f64().unwrap();
+    assert!((d - 312.16741253638287).abs() < 1e-4, "{v}");
+    assert!((v["sigma"][2].as_f64().unwrap() - 0.12091036442066286).abs() < 1e-6);
+    assert_eq!(v["dof"], 398);
+    let dir = temp_dir();
+    let png = dir.join("fit.png");
+    let out = iridis(&["thinfilm", "fit", csv, "--stack", stack, "--plot", png.to_str().unwrap()]);
+    assert!(out.status.success());
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains("correlation") && text.contains("χ²") && std::fs::metadata(&png).unwrap().len() > 1000,
+        "{text}"
+    );
+    // Bad input: a clear message each.
+    let t_only = dir.join("t_only.csv");
+    std::fs::write(&t_only, "wavelength_nm,T\n400,0.9\n500,0.91\n").unwrap();
+    assert_fails(
+        &["thinfilm", "fit", t_only.to_str().unwrap(), "--stack", stack],
+        &["no measured column 'R'", "line 1"],
+    );
+    assert_fails(&["thinfilm", "fit", csv, "--stack", "air | SiO2 {d1=100nm} | Si"], &["'d1' has no range"]);
+    assert_fails(&["thinfilm", "fit", csv, "--stack", "air | SiO2 {d1=100nm:500nm..50nm} | Si"], &["is empty"]);
+    assert_fails(
+        &["thinfilm", "fit", csv, "--stack", "air | SiO2 {d1=100nm:-5nm..500nm} | Si"],
+        &["cannot be negative"],
+    );
+    assert_fails(
+        &["thinfilm", "fit", csv, "--stack", "inc:air | SiO2 {d1=100nm:5nm..500nm} | Si"],
+        &["incident medium is semi-infinite"],
+    );
+    assert_fails(&["thinfilm", "fit", "/nonexistent.csv", "--stack", stack], &["cannot read /nonexistent.csv"]);
+    assert_fails(&["thinfilm", "fit", csv, "--stack", stack, "--quantity", "X"], &["use R, T or psi-delta"]);
+    assert_fails(&["thinfilm", "spectrum", "--stack", "inc:air | BK7 1mm | air"], &["semi-infinite", "column 1"]);
 }

@@ -123,6 +123,11 @@ impl<'g> GpuFilm<'g> {
     /// Tabulates the stack's complex indices at the weights' wavelengths (an error names a material without
     /// data there) and compiles the shader.
     pub fn new(gpu: &'g Gpu, stack: &Stack, weights: &SpectralWeights) -> Result<Self, GpuError> {
+        if stack.has_incoherent() {
+            return Err(GpuError::Invalid(format!(
+                "stack {stack}: incoherent (inc:) layers are evaluated on the CPU only; run without --gpu"
+            )));
+        }
         let grid = weights.wavelengths_nm();
         let n_media = stack.layers.len() + 2;
         let mut media = Vec::with_capacity(grid.len() * n_media * 2);

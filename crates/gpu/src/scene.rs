@@ -293,6 +293,12 @@ impl<'g> GpuScene<'g> {
                              LSRS model) render on the CPU only; render this scene without --gpu"
                         )));
                     }
+                    if f.stack.has_incoherent() {
+                        return Err(GpuError::Invalid(format!(
+                            "material `{name}`: incoherent (inc:) layers render on the CPU only; render this \
+                             scene without --gpu"
+                        )));
+                    }
                     let n_media = f.stack.layers.len() + 2;
                     let media_base = media.len() as u32;
                     for &l in &grid {

@@ -52,6 +52,11 @@ impl Stack {
 
 impl Prepared {
     fn new(stack: &Stack, wavelength_nm: f64, angle_rad: f64, at: Option<f64>) -> Result<Self, ThinFilmError> {
+        if stack.has_incoherent() {
+            return Err(ThinFilmError::Invalid(
+                "the fast path is for coherent stacks; a stack with an inc: layer uses Stack::evaluate".into(),
+            ));
+        }
         let media: Vec<Medium> = stack.media(wavelength_nm, angle_rad)?;
         let n = stack.layers.len();
         let sets = match grazing_variants(&media) {

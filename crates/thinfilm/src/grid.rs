@@ -25,7 +25,7 @@ pub fn evaluate_grid(
     path: Path,
     threads: bool,
 ) -> Result<Vec<Rta>, ThinFilmError> {
-    let fast = path == Path::Auto && stack.is_wavelength_invariant();
+    let fast = path == Path::Auto && stack.is_wavelength_invariant() && !stack.has_incoherent();
     let row = |&th: &f64| -> Result<Vec<Rta>, ThinFilmError> {
         if fast {
             let p = stack.prepare(th)?;

@@ -15,6 +15,10 @@
 //! * [`fast`]: the chapter 4 variant — per-interface values computed once for a fixed angle, real arithmetic
 //!   for dielectric stacks, the same numbers as the general path;
 //! * [`grid`]: angle × wavelength tables (Figure 3.8), in parallel;
+//! * [`incoherent`]: stacks with incoherent layers (`inc:BK7 1mm`), as `tmm.inc_tmm`;
+//! * [`field`]: amplitudes inside the stack, position-resolved flux / absorption / |E|², absorption per
+//!   layer, ellipsometric ψ and Δ;
+//! * [`sampling`]: warnings when a wavelength grid cannot resolve the fringes of a thick layer;
 //! * [`color`]: film colours (reflected / transmitted spectrum → XYZ through `iridis-color`).
 //! * [`htsg`]: the He–Torrance–Sillion–Greenberg BRDF of a rough interface (rms height σ, correlation
 //!   length τ): specular and directional-diffuse terms, Smith shadowing, effective roughness, the bounded
@@ -36,12 +40,15 @@
 pub mod color;
 pub mod error;
 pub mod fast;
+pub mod field;
 pub mod grid;
 pub mod htsg;
+pub mod incoherent;
 pub mod material;
 pub mod nkfile;
 pub mod recurrence;
 pub mod rough;
+pub mod sampling;
 pub mod stack;
 
 pub use error::ThinFilmError;

@@ -239,6 +239,39 @@ impl Material {
         Ok(Self { name, n: Part::Const(index.re), k: Part::Const(index.im), range_nm: (0.0, f64::INFINITY) })
     }
 
+    /// Cauchy's formula `n = A + B/λ² + C/λ⁴` (λ in µm; refractiveindex.info formula 5), lossless. Stack
+    /// syntax `cauchy:A,B,C` (fewer coefficients: the rest are 0).
+    pub fn cauchy(name: impl Into<String>, coefficients: &[f64]) -> Result<Self, ThinFilmError> {
+        let name = name.into();
+        if coefficients.is_empty() || coefficients.len() > 3 || coefficients.iter().any(|c| !c.is_finite()) {
+            return Err(ThinFilmError::Invalid(format!(
+                "material '{name}': Cauchy takes 1 to 3 finite coefficients A,B,C (n = A + B/λ² + C/λ⁴, λ in µm)"
+            )));
+        }
+        let mut c = vec![coefficients[0]];
+        for (i, &v) in coefficients.iter().enumerate().skip(1) {
+            c.extend([v, -2.0 * i as f64]);
+        }
+        Ok(Self { name, n: Part::Formula { kind: 5, c }, k: Part::Const(0.0), range_nm: (0.0, f64::INFINITY) })
+    }
+
+    /// Sellmeier's formula `n² = 1 + Σ B_i λ² / (λ² − C_i)` (λ in µm, C_i in µm²; refractiveindex.info
+    /// formula 2), lossless. Stack syntax `sellmeier:B1,C1,B2,C2,…`.
+    pub fn sellmeier(name: impl Into<String>, coefficients: &[f64]) -> Result<Self, ThinFilmError> {
+        let name = name.into();
+        if coefficients.is_empty()
+            || !coefficients.len().is_multiple_of(2)
+            || coefficients.iter().any(|c| !c.is_finite())
+        {
+            return Err(ThinFilmError::Invalid(format!(
+                "material '{name}': Sellmeier takes pairs B1,C1,B2,C2,… (n² = 1 + Σ B λ²/(λ² − C), λ in µm)"
+            )));
+        }
+        let mut c = vec![0.0];
+        c.extend_from_slice(coefficients);
+        Ok(Self { name, n: Part::Formula { kind: 2, c }, k: Part::Const(0.0), range_nm: (0.0, f64::INFINITY) })
+    }
+
     pub(crate) fn from_parts(name: String, n: Part, k: Part, range_nm: (f64, f64)) -> Self {
         Self { name, n, k, range_nm }
     }

@@ -10,6 +10,10 @@
 //! A medium is a library name ([`Material::builtin`]), `n=REAL` or `n=REAL+IMAGi` (κ ≥ 0), or
 //! `file:PATH` (refractiveindex.info YAML or CSV). Each layer between the two ends carries a thickness with
 //! a unit (`635nm`, `0.2um`); the ends carry none. Errors name the token and its column.
+//!
+//! A layer written `inc:MATERIAL THICKNESS` (`air | MgF2 100nm | inc:BK7 1mm | air`) is *incoherent*: thicker
+//! than the light's coherence length, it adds intensities instead of amplitudes (a 1 mm glass slide), as
+//! `tmm.inc_tmm` does (Byrnes, arXiv:1603.02720, section 5); see [`crate::incoherent`].
 
 use std::str::FromStr;
 
@@ -24,6 +28,8 @@ use crate::recurrence::{compose, layer_cosine, Amplitudes, Composite, Medium, Rt
 pub struct Layer {
     pub material: Material,
     pub thickness_nm: f64,
+    /// Written `inc:…`: intensities, not amplitudes, add across this layer ([`crate::incoherent`]).
+    pub incoherent: bool,
 }
 
 /// A thin-film stack: a lossless incident medium, `N ≥ 0` layers (top first) and a substrate.
@@ -111,6 +117,7 @@ impl Stack {
         let last = segments.len() - 1;
         let mut media: Vec<Material> = Vec::with_capacity(segments.len());
         let mut thicknesses = Vec::new();
+        let mut incoherent = Vec::new();
         let mut swept = None;
         for (k, &(off, seg)) in segments.iter().enumerate() {
             let words = tokens(s, off, seg);
@@ -168,7 +175,26 @@ impl Stack {
                     format!("{role} is semi-infinite and takes no thickness (a missing '|' between media?)"),
                 ));
             }
-            let m = parse_material(toks[0].text).map_err(|m| err(&toks[0], m))?;
+            let (inc, name) = match toks[0].text.strip_prefix("inc:") {
+                Some(rest) => (true, rest),
+                None => (false, toks[0].text),
+            };
+            if inc && !is_layer {
+                return Err(err(
+                    &toks[0],
+                    format!(
+                        "{role} is semi-infinite, so already incoherent: 'inc:' marks a finite layer between \
+                         the ends, e.g. \"air | MgF2 100nm | inc:BK7 1mm | air\" for a coated 1 mm slide"
+                    ),
+                ));
+            }
+            if inc && name.is_empty() {
+                return Err(err(&toks[0], "inc: needs a material, e.g. inc:BK7 1mm".into()));
+            }
+            if is_layer {
+                incoherent.push(inc);
+            }
+            let m = parse_material(name).map_err(|m| err(&toks[0], m))?;
             if k == 0 {
                 if let crate::material::Part::Const(kappa) = m.k {
                     if kappa > 0.0 {
@@ -181,7 +207,11 @@ impl Stack {
         let substrate = media.pop().expect("at least two media");
         let mut it = media.into_iter();
         let incident = it.next().expect("at least two media");
-        let layers = it.zip(thicknesses).map(|(material, thickness_nm)| Layer { material, thickness_nm }).collect();
+        let layers = it
+            .zip(thicknesses)
+            .zip(incoherent)
+            .map(|((material, thickness_nm), incoherent)| Layer { material, thickness_nm, incoherent })
+            .collect();
         Ok((Self { incident, layers, substrate }, swept))
     }
 
@@ -195,6 +225,11 @@ impl Stack {
     /// The layer thicknesses in nm, top first.
     pub fn thicknesses(&self) -> Vec<f64> {
         self.layers.iter().map(|l| l.thickness_nm).collect()
+    }
+
+    /// True when some layer is incoherent (`inc:`): R and T then come from [`crate::incoherent`].
+    pub fn has_incoherent(&self) -> bool {
+        self.layers.iter().any(|l| l.incoherent)
     }
 
     /// True when no material depends on wavelength (the chapter 4 fast path then precomputes everything).
@@ -271,6 +306,11 @@ impl Stack {
         if let Some(d) = thicknesses_nm.iter().find(|d| !(d.is_finite() && **d >= 0.0)) {
             return Err(ThinFilmError::Invalid(format!("thickness {d} nm must be finite and ≥ 0")));
         }
+        if self.has_incoherent() {
+            return Err(ThinFilmError::Invalid(format!(
+                "\"{self}\" has an incoherent (inc:) layer: it has intensities, not amplitudes (no r, t, ψ, Δ)"
+            )));
+        }
         let media = self.media(wavelength_nm, angle_rad)?;
         let c = compose(&media, thicknesses_nm, wavelength_nm, seed);
         Ok(Amplitudes::new(c, media[0], media[media.len() - 1]))
@@ -278,7 +318,11 @@ impl Stack {
 
     /// Reflectance and transmittance (s, p; `r()`, `t()`, `a()` unpolarised) at one wavelength (nm) and
     /// incidence angle (rad, 0 to π/2).
+    /// Stacks with incoherent (`inc:`) layers are evaluated by [`crate::incoherent::evaluate`].
     pub fn evaluate(&self, wavelength_nm: f64, angle_rad: f64) -> Result<Rta, ThinFilmError> {
+        if self.has_incoherent() {
+            return crate::incoherent::evaluate(self, wavelength_nm, angle_rad, &self.thicknesses());
+        }
         Ok(self.amplitudes(wavelength_nm, angle_rad)?.powers())
     }
 
@@ -286,6 +330,9 @@ impl Stack {
     /// (`d = d_avg + d_rel Δ_rel(x)`, so `offset_nm = d_rel Δ_rel(x)`), clamped at 0.
     pub fn evaluate_offset(&self, wavelength_nm: f64, angle_rad: f64, offset_nm: f64) -> Result<Rta, ThinFilmError> {
         let d: Vec<f64> = self.layers.iter().map(|l| (l.thickness_nm + offset_nm).max(0.0)).collect();
+        if self.has_incoherent() {
+            return crate::incoherent::evaluate(self, wavelength_nm, angle_rad, &d);
+        }
         Ok(self.amplitudes_with(wavelength_nm, angle_rad, &d, None)?.powers())
     }
 
@@ -325,6 +372,18 @@ fn parse_material(t: &str) -> Result<Material, String> {
             ThinFilmError::Invalid(m) => m,
             other => other.to_string(),
         });
+    }
+    for (prefix, f) in [
+        ("cauchy:", Material::cauchy as fn(String, &[f64]) -> Result<Material, ThinFilmError>),
+        ("sellmeier:", Material::sellmeier),
+    ] {
+        if let Some(list) = t.strip_prefix(prefix) {
+            let c: Vec<f64> = list
+                .split(',')
+                .map(|x| x.trim().parse::<f64>().map_err(|_| format!("'{x}' in {t} is not a number")))
+                .collect::<Result<_, _>>()?;
+            return f(t.to_string(), &c).map_err(|e| e.to_string());
+        }
     }
     if let Some(p) = t.strip_prefix("file:") {
         if p.is_empty() {
@@ -368,7 +427,8 @@ impl std::fmt::Display for Stack {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(f, "{}", self.incident.name())?;
         for l in &self.layers {
-            write!(f, " | {} {}nm", l.material.name(), l.thickness_nm)?;
+            let inc = if l.incoherent { "inc:" } else { "" };
+            write!(f, " | {inc}{} {}nm", l.material.name(), l.thickness_nm)?;
         }
         write!(f, " | {}", self.substrate.name())
     }
@@ -397,6 +457,14 @@ mod tests {
         assert!((s.layers[0].thickness_nm - 100.0).abs() < 1e-9);
         assert!(Stack::parse("air | Si 108nm | glass").is_ok());
         assert!(Stack::parse("glass|air").unwrap().layers.is_empty());
+        // Cauchy n = A + B/λ² (λ in µm) and Sellmeier n² = 1 + B λ²/(λ² − C).
+        let s = Stack::parse("air | cauchy:1.45,0.0036 100nm | sellmeier:1.2,0.01").unwrap();
+        let n = s.layers[0].material.index_at(600.0).unwrap().re;
+        assert!((n - (1.45 + 0.0036 / 0.36)).abs() < 1e-14);
+        let n = s.substrate.index_at(500.0).unwrap().re;
+        assert!((n - (1.0f64 + 1.2 * 0.25 / (0.25 - 0.01)).sqrt()).abs() < 1e-14);
+        assert!(Stack::parse("air | cauchy:1.4,x 10nm | air").is_err());
+        assert!(Stack::parse("air | sellmeier:1.2 10nm | air").is_err());
     }
 
     #[test]
@@ -429,6 +497,23 @@ mod tests {
         // Multi-byte characters before the token: the column counts characters.
         let (_, c, _) = column_of(Stack::parse("air | water 1µm | wäter").unwrap_err());
         assert_eq!(c, 19);
+    }
+
+    #[test]
+    fn incoherent_layers() {
+        let s = Stack::parse("air | MgF2 100nm | inc:BK7 1mm | air").unwrap();
+        assert_eq!(s.layers.iter().map(|l| l.incoherent).collect::<Vec<_>>(), [false, true]);
+        assert_eq!(s.layers[1].thickness_nm, 1e6);
+        assert!(s.to_string().contains("inc:bk7 1000000nm"), "{s}");
+        assert!(s.amplitudes(550.0, 0.0).is_err() && s.prepare(0.0).is_err());
+        let (t, c, m) = column_of(Stack::parse("inc:air | BK7 1mm | air").unwrap_err());
+        assert_eq!((t.as_str(), c), ("inc:air", 1));
+        assert!(m.contains("incident medium is semi-infinite, so already incoherent"), "{m}");
+        let (t, _, m) = column_of(Stack::parse("air | water 1um | inc:glass").unwrap_err());
+        assert_eq!(t, "inc:glass");
+        assert!(m.contains("substrate is semi-infinite"), "{m}");
+        let (_, _, m) = column_of(Stack::parse("air | inc: 1mm | air").unwrap_err());
+        assert!(m.contains("inc: needs a material"), "{m}");
     }
 
     #[test]

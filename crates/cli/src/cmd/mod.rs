@@ -3,6 +3,7 @@ pub mod bench;
 pub mod brdf;
 pub mod color;
 pub mod demo;
+pub mod filmfit;
 pub mod gpu;
 pub mod lab;
 pub mod render;

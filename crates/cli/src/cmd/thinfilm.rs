@@ -23,19 +23,25 @@ pub enum ThinfilmCommand {
     #[command(after_help = "\
 Stack syntax: media from the incident side to the substrate, separated by '|'; every layer between them has a
 thickness with a unit. A medium is a library name (see 'iridis thinfilm materials'), n=1.38, n=0.2+3.4i
-(κ ≥ 0 absorbs) or file:PATH (refractiveindex.info YAML, or CSV with wavelength_nm,n,k).
+(κ ≥ 0 absorbs), cauchy:A,B,C (n = A + B/λ² + C/λ⁴, λ in µm), sellmeier:B1,C1,… or file:PATH
+(refractiveindex.info YAML, or CSV with wavelength_nm,n,k). A layer written inc:MATERIAL is incoherent
+(intensities add across it, as for a 1 mm glass slide; tmm's inc_tmm).
 
-JSON keys: wavelength_nm, R, T, A (the chosen polarisation), Rs, Rp, Ts, Tp. CSV has the same columns.
+JSON keys: wavelength_nm, R, T, A (the chosen polarisation), Rs, Rp, Ts, Tp, psi_deg, delta_deg (ellipsometric
+angles, tan ψ e^{iΔ} = −r_p/r_s as tmm.ellips; null for a stack with inc: layers). CSV has the same columns.
+A warning goes to stderr when the wavelength step is too coarse for the fringes of a thick layer.
 
 Examples:
   iridis thinfilm spectrum --stack \"air | water 635nm | air\" --angle 1deg --from 400nm --to 690nm --step 10nm
   iridis thinfilm spectrum --stack \"air | gasoline 216nm | water 220nm | asphalt\" --plot oil.png
   iridis thinfilm spectrum --stack \"air | Si 108nm | glass\" --from 400nm --to 700nm --csv
-  iridis thinfilm spectrum --stack \"air | n=1.38 100nm | n=0.2+3.4i\" --angle 45deg --polarization p --json")]
+  iridis thinfilm spectrum --stack \"air | n=1.38 100nm | n=0.2+3.4i\" --angle 45deg --polarization p --json
+  iridis thinfilm spectrum --stack \"air | MgF2 100nm | inc:BK7 1mm | air\" --csv")]
     Spectrum(SpectrumArgs),
     /// The angle × wavelength simulation table (Sussenbach Figure 3.8) as CSV, optionally a map image.
     #[command(after_help = "\
-Columns: angle_deg, wavelength_nm, R, T, A, Rs, Rp, Ts, Tp (unpolarised R, T, A). Without -o the table goes to
+Columns: angle_deg, wavelength_nm, R, T, A, Rs, Rp, Ts, Tp, psi_deg, delta_deg (unpolarised R, T, A;
+ellipsometric ψ, Δ as tmm.ellips, empty for a stack with inc: layers). Without -o the table goes to
 standard output. --plot draws R as an angle × wavelength map with a colour bar.
 
 Examples:
@@ -80,12 +86,45 @@ Examples:
 One evaluation is R and T for s and p at one (λ, θ). Rust is timed on one thread and on all threads, on the
 general path (Stack::evaluate) and on the chapter 4 fast path (Stack::prepare). The same work is timed in the
 Python tmm package (two coh_tmm calls, s and p, per evaluation) by spawning python3, when it is installed.
+Then a fit of 3 parameters on 401 wavelengths (the data of tools/fit_scipy_compare.py, which times scipy's
+least_squares on the same problem) from one start and with the multi-start search, and a batch of 10⁶
+(λ, θ) points of the 20-layer stack on all threads (fast and general path).
 
 Examples:
   iridis thinfilm bench
   iridis thinfilm bench --seconds 0.5 --json
   iridis thinfilm bench --no-python")]
     Bench(BenchArgs),
+    /// Where the light goes: absorption in each layer and |E|², absorbed power and flux against depth.
+    #[command(after_help = "\
+At one wavelength and angle: the fraction of the incident power reflected, absorbed in each layer (and in an
+absorbing substrate) and transmitted, with the energy balance R + T + ΣA − 1 (zero up to rounding); for a
+coherent stack also the depth profile from 100 nm above the first interface to 100 nm into the substrate:
+|E|² relative to the incident wave, absorbed power density (fraction of the incident power per nm) and the
+normal Poynting flux (tmm's position_resolved; Byrnes, arXiv:1603.02720). Stacks with inc: layers give the
+absorption per layer only (as tmm's inc_absorp_in_each_layer).
+JSON keys: R, T, layers, A_layers, A_substrate, balance, profile {z_nm, medium, E2, absorption_per_nm, flux}.
+
+Examples:
+  iridis thinfilm profile --stack \"air | Au 30nm | glass\" --wavelength 500nm
+  iridis thinfilm profile --stack \"air | Si 108nm | glass\" --wavelength 450nm --angle 30deg --plot si_profile.png
+  iridis thinfilm profile --stack \"air | TiO2 60nm | Si 50nm | inc:glass 1mm | air\" --wavelength 550nm --json")]
+    Profile(super::filmfit::ProfileArgs),
+    /// Fit a stack's free parameters to a measured R, T or ψ/Δ spectrum.
+    #[command(after_help = "\
+Free parameters are written into the stack as {NAME=START:LOW..HIGH}: a layer thickness (with a unit), a
+constant index n={n1=1.45:1.3..1.7}, or a coefficient of cauchy:A,B,C / sellmeier:B1,C1,… e.g.
+cauchy:{A=1.46:1.3..1.7},{B=0.004:0..0.05}. The fit is Levenberg–Marquardt (the levenberg-marquardt crate)
+from the best points of a grid over the thickness ranges (fringes make χ² periodic in thickness; --grid 1 fits
+from the start values only), with numerical derivatives. It prints the values with 1σ uncertainties from the
+covariance (JᵀWJ)⁻¹, χ², and the correlation matrix. The CSV needs a header: wavelength_nm and R, T, or psi
+and delta (degrees); --sigma gives the 1σ noise (a number or a column), else σ is estimated from the scatter.
+
+Examples:
+  iridis thinfilm fit measured.csv --stack \"air | SiO2 {d1=100nm:50nm..500nm} | Si\"
+  iridis thinfilm fit slide.csv --stack \"air | n=2.1 {d=150nm:50nm..400nm} | inc:BK7 1mm | air\" --quantity T --sigma 0.002 --plot fit.png
+  iridis thinfilm fit ellips.csv --stack \"air | n={n=1.5:1.3..1.7} {d=100nm:10nm..400nm} | Si\" --angle 70deg --quantity psi-delta --json")]
+    Fit(super::filmfit::FitArgs),
 }
 
 #[derive(Debug, Clone, ClapArgs)]
@@ -253,6 +292,8 @@ pub fn run(command: ThinfilmCommand) -> Result<()> {
         ThinfilmCommand::Chart(a) => chart(a),
         ThinfilmCommand::Materials(a) => materials(a),
         ThinfilmCommand::Bench(a) => bench(a),
+        ThinfilmCommand::Profile(a) => super::filmfit::profile(a),
+        ThinfilmCommand::Fit(a) => super::filmfit::fit_cmd(a),
     }
 }
 
@@ -274,6 +315,29 @@ fn pick(pol: Polarization, x: &Rta) -> (f64, f64, f64) {
         Polarization::Average => (x.r(), x.t(), clean(x.a())),
         Polarization::S => (x.r_s, x.t_s, clean(x.a_s())),
         Polarization::P => (x.r_p, x.t_p, clean(x.a_p())),
+    }
+}
+
+/// Ellipsometric (ψ, Δ) in degrees per wavelength; `None` for a stack with inc: layers (no amplitudes).
+fn psi_delta(stack: &Stack, angle: f64, grid: &[f64]) -> Result<Option<Vec<(f64, f64)>>> {
+    if stack.has_incoherent() {
+        return Ok(None);
+    }
+    let v = grid
+        .iter()
+        .map(|&w| stack.ellipsometry(w, angle).map(|(p, d)| (p.to_degrees(), d.to_degrees())))
+        .collect::<std::result::Result<Vec<_>, _>>()?;
+    Ok(Some(v))
+}
+
+fn ellips_cells(e: &Option<Vec<(f64, f64)>>, i: usize) -> (String, String) {
+    e.as_ref().map(|v| (v[i].0.to_string(), v[i].1.to_string())).unwrap_or_default()
+}
+
+/// Says on stderr when the grid cannot resolve the fringes of a thick layer (`iridis_thinfilm::sampling`).
+fn warn_sampling(stack: &Stack, angle: f64, grid: &[f64]) {
+    if let Some(w) = iridis_thinfilm::sampling::check(stack, angle, grid) {
+        eprintln!("warning: {}", w.message);
     }
 }
 
@@ -306,7 +370,9 @@ fn spectrum(a: SpectrumArgs) -> Result<()> {
         );
     }
     let grid = a.grid.grid()?;
+    warn_sampling(&stack, a.angle, &grid);
     let xs = spectra(&stack, a.angle, &grid)?;
+    let ellips = psi_delta(&stack, a.angle, &grid)?;
     let col = |f: &dyn Fn(&Rta) -> f64| xs.iter().map(f).collect::<Vec<f64>>();
     let (r, t, ab) = (col(&|x| pick(pol, x).0), col(&|x| pick(pol, x).1), col(&|x| pick(pol, x).2));
     if let Some(p) = &a.plot {
@@ -327,13 +393,20 @@ fn spectrum(a: SpectrumArgs) -> Result<()> {
             "wavelength_nm": grid,
             "R": r, "T": t, "A": ab,
             "Rs": col(&|x| x.r_s), "Rp": col(&|x| x.r_p), "Ts": col(&|x| x.t_s), "Tp": col(&|x| x.t_p),
+            "psi_deg": ellips.as_ref().map(|v| v.iter().map(|p| p.0).collect::<Vec<_>>()),
+            "delta_deg": ellips.as_ref().map(|v| v.iter().map(|p| p.1).collect::<Vec<_>>()),
         }));
     }
     let mut out = String::new();
     if a.csv {
-        out.push_str("wavelength_nm,R,T,A,Rs,Rp,Ts,Tp\n");
+        out.push_str("wavelength_nm,R,T,A,Rs,Rp,Ts,Tp,psi_deg,delta_deg\n");
         for (i, x) in xs.iter().enumerate() {
-            let _ = writeln!(out, "{},{},{},{},{},{},{},{}", grid[i], r[i], t[i], ab[i], x.r_s, x.r_p, x.t_s, x.t_p);
+            let (psi, delta) = ellips_cells(&ellips, i);
+            let _ = writeln!(
+                out,
+                "{},{},{},{},{},{},{},{},{psi},{delta}",
+                grid[i], r[i], t[i], ab[i], x.r_s, x.r_p, x.t_s, x.t_p
+            );
         }
     } else {
         let _ = writeln!(out, "stack  {stack}\nangle  {}°{}", fmt_deg(a.angle), pol_label(pol));
@@ -368,15 +441,20 @@ fn table(a: TableArgs) -> Result<()> {
     if angles.len() * grid.len() > 20_000_000 {
         bail!("{} × {} samples is too many for a table", angles.len(), grid.len());
     }
+    if let Some(th) = angles.first() {
+        warn_sampling(&stack, *th, &grid);
+    }
     let xs = evaluate_grid(&stack, &angles, &grid, GridPath::Auto, true)?;
-    let mut csv = String::with_capacity(xs.len() * 80);
-    csv.push_str("angle_deg,wavelength_nm,R,T,A,Rs,Rp,Ts,Tp\n");
+    let mut csv = String::with_capacity(xs.len() * 100);
+    csv.push_str("angle_deg,wavelength_nm,R,T,A,Rs,Rp,Ts,Tp,psi_deg,delta_deg\n");
     for (i, th) in angles.iter().enumerate() {
+        let ellips = psi_delta(&stack, *th, &grid)?;
         for (j, w) in grid.iter().enumerate() {
             let x = &xs[i * grid.len() + j];
+            let (psi, delta) = ellips_cells(&ellips, j);
             let _ = writeln!(
                 csv,
-                "{},{},{},{},{},{},{},{},{}",
+                "{},{},{},{},{},{},{},{},{},{psi},{delta}",
                 round_deg(*th),
                 w,
                 x.r(),
@@ -436,6 +514,7 @@ fn color(a: ColorArgs) -> Result<()> {
         }
         return super::rough::color(stack, &a.rough, a.angle, &grid, illuminant, observer, a.json);
     }
+    warn_sampling(&stack, a.angle, &grid);
     let meter = FilmColorimeter::new(&grid, illuminant, observer);
     let c = meter.color(&stack, a.angle, pol)?;
     let white = iridis_color::integrate::white_point(illuminant, observer);
@@ -771,10 +850,13 @@ fn bench(a: BenchArgs) -> Result<()> {
             "speedup_fast_1_thread": py.as_ref().ok().and_then(|v| v["per_second"].as_f64()).map(|t| f1 / t),
         }));
     }
+    let fit = bench_fit(a.seconds)?;
+    let batch = bench_batch()?;
     if a.json {
-        return crate::output::print_json(
-            &json!({ "threads": threads, "unit": "(λ, θ) evaluations per second, R and T for s and p", "results": results }),
-        );
+        return crate::output::print_json(&json!({
+            "threads": threads, "unit": "(λ, θ) evaluations per second, R and T for s and p", "results": results,
+            "fit": fit, "batch": batch,
+        }));
     }
     crate::outln!("(λ, θ) evaluations per second (R and T, s and p); all threads = {threads}")?;
     crate::outln!(
@@ -804,7 +886,60 @@ fn bench(a: BenchArgs) -> Result<()> {
         crate::outln!("tmm: {note}")?;
     }
     crate::outln!("× tmm compares the general path on one thread with tmm on one thread.")?;
+    crate::outln!(
+        "fit, 3 parameters on 401 wavelengths (tools/fit_scipy_compare.py's data): {:.2} ms from one start, \
+         {:.2} ms with the multi-start search ({} starts); scipy least_squares + tmm: see docs/thinfilm.md",
+        1e3 * fit["single_start_seconds"].as_f64().unwrap_or(f64::NAN),
+        1e3 * fit["multi_start_seconds"].as_f64().unwrap_or(f64::NAN),
+        fit["multi_start_starts"]
+    )?;
+    crate::outln!(
+        "batch of 10⁶ (λ, θ) points, 20 layers, all threads: fast path {:.3} s, general path {:.3} s",
+        batch["fast_seconds"].as_f64().unwrap_or(f64::NAN),
+        batch["general_seconds"].as_f64().unwrap_or(f64::NAN)
+    )?;
     Ok(())
+}
+
+/// The fit of tools/fit_scipy_compare.py (the same CSV), timed from one start and with the search.
+fn bench_fit(seconds: f64) -> Result<serde_json::Value> {
+    use iridis_filmfit::{fit, FitOptions, Measured, Quantity, Template};
+    const CSV: &str = include_str!("../../../filmfit/tests/fixtures/scipy_fit.csv");
+    const STACK: &str = "air | cauchy:{A=1.5:1.3..1.7},{B=0.004:0..0.02} {d=330nm:100nm..600nm} | n=3.88+0.02i";
+    let t = Template::parse(STACK)?;
+    let mut data = Measured::from_csv(CSV, "scipy_fit.csv", Quantity::R, None)?;
+    data.sigma = Some(vec![0.002; data.values.len()]);
+    let mut out = json!({ "stack": STACK, "wavelengths": data.values.len(), "parameters": 3 });
+    for (key, grid) in [("single_start", 1), ("multi_start", 0)] {
+        let opt = FitOptions { grid, ..FitOptions::default() };
+        let (mut n, t0) = (0usize, Instant::now());
+        let mut last = None;
+        while n == 0 || t0.elapsed().as_secs_f64() < seconds {
+            last = Some(fit(&t, &data, &opt)?);
+            n += 1;
+        }
+        let r = last.expect("ran at least once");
+        out[format!("{key}_seconds")] = json!(t0.elapsed().as_secs_f64() / n as f64);
+        out[format!("{key}_starts")] = json!(r.starts_tried);
+        out[format!("{key}_values")] = json!(r.values);
+        out[format!("{key}_evaluations")] = json!(r.evaluations);
+    }
+    Ok(out)
+}
+
+/// 10⁶ (λ, θ) evaluations of the 20-layer stack: 1000 angles × 1000 wavelengths, all threads.
+fn bench_batch() -> Result<serde_json::Value> {
+    let stack = parse_stack(&bench_20())?;
+    let angles: Vec<f64> = (0..1000).map(|i| f64::to_radians(89.0 * i as f64 / 999.0)).collect();
+    let wl: Vec<f64> = (0..1000).map(|i| 380.0 + 0.4 * i as f64).collect();
+    let mut out = json!({ "points": angles.len() * wl.len(), "layers": stack.layers.len(), "threads": iridis_thinfilm::grid::threads() });
+    for (key, path) in [("fast_seconds", GridPath::Auto), ("general_seconds", GridPath::General)] {
+        let t0 = Instant::now();
+        let xs = evaluate_grid(&stack, &angles, &wl, path, true)?;
+        std::hint::black_box(xs.iter().map(|x| x.r()).sum::<f64>());
+        out[key] = json!(t0.elapsed().as_secs_f64());
+    }
+    Ok(out)
 }
 
 // ----------------------------------------------------------------------------------------------------------
@@ -832,7 +967,7 @@ fn pol_label(p: Polarization) -> &'static str {
     }
 }
 
-fn stack_title(s: &str) -> String {
+pub(crate) fn stack_title(s: &str) -> String {
     s.split('|').map(str::trim).collect::<Vec<_>>().join(" | ")
 }
 

@@ -1,0 +1,304 @@
+//! `iridis thinfilm profile` (where the light goes: absorption per layer, |E|² and absorption against depth)
+//! and `iridis thinfilm fit` (fitting a stack to a measured spectrum), thin shells over
+//! `iridis_thinfilm::field` and `iridis-filmfit`.
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+use std::time::Instant;
+
+use anyhow::{bail, Context, Result};
+use clap::Args as ClapArgs;
+use iridis_filmfit::{fit, FitOptions, Measured, Quantity, Template};
+use iridis_plot::{LinePlot, Series};
+use iridis_thinfilm::Stack;
+use serde_json::json;
+
+#[derive(Debug, ClapArgs)]
+pub struct ProfileArgs {
+    /// The stack, e.g. "air | Au 30nm | glass" (inc: layers: absorption per layer only).
+    #[arg(long)]
+    pub stack: String,
+    /// Vacuum wavelength (with unit).
+    #[arg(long, value_parser = crate::args::length_nm)]
+    pub wavelength: f64,
+    /// Angle of incidence (0deg–90deg).
+    #[arg(long, default_value = "0deg", value_parser = crate::args::angle_rad)]
+    pub angle: f64,
+    /// avg (unpolarised), s or p.
+    #[arg(long, default_value = "avg")]
+    pub polarization: String,
+    /// Number of depth samples of the profile (from 100 nm above the stack to 100 nm into the substrate).
+    #[arg(long, default_value_t = 400)]
+    pub points: usize,
+    /// Print JSON (absorption per layer and the profile).
+    #[arg(long, conflicts_with = "csv")]
+    pub json: bool,
+    /// Print the profile as CSV (z_nm, medium, E2, absorption_per_nm, flux).
+    #[arg(long)]
+    pub csv: bool,
+    /// Plot |E|² and the absorbed power density against depth (PNG).
+    #[arg(long)]
+    pub plot: Option<PathBuf>,
+}
+
+#[derive(Debug, ClapArgs)]
+pub struct FitArgs {
+    /// The measured spectrum: CSV with a header naming wavelength_nm and R, T, or psi and delta (degrees).
+    pub measured: PathBuf,
+    /// The stack with free parameters {NAME=START:LOW..HIGH}, e.g. "air | SiO2 {d1=100nm:50nm..500nm} | Si".
+    #[arg(long)]
+    pub stack: String,
+    /// Angle of incidence (0deg–90deg).
+    #[arg(long, default_value = "0deg", value_parser = crate::args::angle_rad)]
+    pub angle: f64,
+    /// What was measured: R, T (unpolarised) or psi-delta (ellipsometry, degrees).
+    #[arg(long, default_value = "R")]
+    pub quantity: String,
+    /// 1σ measurement uncertainty: a number (same for every point) or the name of a CSV column (for
+    /// psi-delta two names, "spsi,sdelta"). The weights are 1/σ². Without it σ is estimated from the scatter.
+    #[arg(long)]
+    pub sigma: Option<String>,
+    /// Grid points per thickness range for the multi-start search (0: automatic, about one per 10 nm;
+    /// 1: a single local fit from the start values).
+    #[arg(long, default_value_t = 0)]
+    pub grid: usize,
+    /// Plot measured against fitted (PNG).
+    #[arg(long)]
+    pub plot: Option<PathBuf>,
+    /// Write the fitted curve as CSV (wavelength_nm, measured, fitted, residual).
+    #[arg(long)]
+    pub output: Option<PathBuf>,
+    /// Print JSON.
+    #[arg(long)]
+    pub json: bool,
+}
+
+pub fn profile(a: ProfileArgs) -> Result<()> {
+    let stack = Stack::parse(&a.stack).map_err(|e| anyhow::anyhow!("{e}"))?;
+    let pol = a.polarization.to_ascii_lowercase();
+    if !matches!(pol.as_str(), "avg" | "s" | "p") {
+        bail!("--polarization '{}': use avg, s or p", a.polarization);
+    }
+    if !(2..=1_000_000).contains(&a.points) {
+        bail!("--points must be between 2 and 1000000");
+    }
+    let pick = |s: f64, p: f64| match pol.as_str() {
+        "s" => s,
+        "p" => p,
+        _ => 0.5 * (s + p),
+    };
+    let abs = stack.absorption(a.wavelength, a.angle)?;
+    // Rounding leaves ±1e-17 in lossless layers: print those as 0.
+    let clean = |v: f64| if v.abs() < 1e-14 { 0.0 } else { v };
+    let layers: Vec<f64> = abs.layers_s.iter().zip(&abs.layers_p).map(|(s, p)| clean(pick(*s, *p))).collect();
+    let (r, t, sub) = (pick(abs.r_s, abs.r_p), pick(abs.t_s, abs.t_p), pick(abs.substrate_s, abs.substrate_p));
+    let balance = r + t + layers.iter().sum::<f64>() + sub - 1.0;
+    // The energy balance is an identity of the flux formulas; more than rounding means a bug, not bad input.
+    if balance.abs() > 1e-9 {
+        bail!("internal error: R + T + ΣA − 1 = {balance:e} (please report with the stack)");
+    }
+    let profile = if stack.has_incoherent() {
+        None
+    } else {
+        let f = stack.fields(a.wavelength, a.angle)?;
+        let depth = f.depth_nm();
+        let (z0, z1) = (-100.0, depth + 100.0);
+        let pts: Vec<_> = (0..a.points).map(|i| f.at(z0 + (z1 - z0) * i as f64 / (a.points - 1) as f64)).collect();
+        Some((pts, depth))
+    };
+    let names: Vec<String> = stack
+        .layers
+        .iter()
+        .map(|l| format!("{}{} {} nm", if l.incoherent { "inc:" } else { "" }, l.material.name(), l.thickness_nm))
+        .collect();
+    if let (Some(path), Some((pts, depth))) = (&a.plot, &profile) {
+        let z: Vec<f64> = pts.iter().map(|p| p.z_nm).collect();
+        let e2: Vec<f64> = pts.iter().map(|p| pick(p.e2_s, p.e2_p)).collect();
+        let ab: Vec<f64> = pts.iter().map(|p| 1000.0 * pick(p.absorption_s, p.absorption_p)).collect();
+        let mut plot = LinePlot::new(
+            format!("{}  at {} nm, {}°", super::thinfilm::stack_title(&a.stack), a.wavelength, deg(a.angle)),
+            format!("depth below the first interface (nm); layers end at 0 and {depth} nm"),
+            "|E|² (incident = 1); absorbed power (fraction per µm)",
+        )
+        .series(Series::new("|E|²", &z, &e2))
+        .series(Series::new("absorbed power density (1/µm)", &z, &ab));
+        plot.x_range = Some((z[0], z[z.len() - 1]));
+        let img = plot.render()?;
+        crate::output::write_png_rgb8(path, img.width, img.height, &img.data)?;
+        if !a.json && !a.csv {
+            crate::outln!("wrote {}", path.display())?;
+        }
+    } else if a.plot.is_some() {
+        eprintln!("warning: no profile plot for a stack with inc: layers (intensities, not fields, in them)");
+    }
+    if a.json {
+        let prof = profile.as_ref().map(|(pts, _)| {
+            json!({
+                "z_nm": pts.iter().map(|p| p.z_nm).collect::<Vec<_>>(),
+                "medium": pts.iter().map(|p| p.medium).collect::<Vec<_>>(),
+                "E2": pts.iter().map(|p| pick(p.e2_s, p.e2_p)).collect::<Vec<_>>(),
+                "absorption_per_nm": pts.iter().map(|p| pick(p.absorption_s, p.absorption_p)).collect::<Vec<_>>(),
+                "flux": pts.iter().map(|p| pick(p.poynting_s, p.poynting_p)).collect::<Vec<_>>(),
+            })
+        });
+        return crate::output::print_json(&json!({
+            "stack": stack.to_string(), "wavelength_nm": a.wavelength, "angle_deg": a.angle.to_degrees(),
+            "polarization": pol, "R": r, "T": t, "layers": names, "A_layers": layers, "A_substrate": sub,
+            "balance": balance, "profile": prof,
+        }));
+    }
+    if a.csv {
+        let Some((pts, _)) = &profile else {
+            bail!("--csv prints the depth profile, which needs a coherent stack (no inc: layer); use --json");
+        };
+        let mut out = String::from("z_nm,medium,E2,absorption_per_nm,flux\n");
+        for p in pts {
+            let _ = writeln!(
+                out,
+                "{},{},{},{},{}",
+                p.z_nm,
+                p.medium,
+                pick(p.e2_s, p.e2_p),
+                pick(p.absorption_s, p.absorption_p),
+                pick(p.poynting_s, p.poynting_p)
+            );
+        }
+        return crate::output::write_stdout_bytes(out.as_bytes());
+    }
+    crate::outln!("stack  {stack}")?;
+    crate::outln!("{} nm at {}°, {}", a.wavelength, deg(a.angle), pol)?;
+    crate::outln!("{:<40} {:>12}", "where the light goes", "fraction")?;
+    crate::outln!("{:<40} {:>12.7}", "reflected (R)", r)?;
+    for (i, (n, v)) in names.iter().zip(&layers).enumerate() {
+        crate::outln!("{:<40} {:>12.7}", format!("absorbed in layer {} ({n})", i + 1), v)?;
+    }
+    if abs.substrate_s > 0.0 || abs.substrate_p > 0.0 {
+        crate::outln!("{:<40} {:>12.7}", "absorbed in the substrate", sub)?;
+    }
+    crate::outln!("{:<40} {:>12.7}", "transmitted (T)", t)?;
+    crate::outln!("{:<40} {:>12.1e}", "R + T + ΣA − 1", balance)?;
+    Ok(())
+}
+
+pub fn fit_cmd(a: FitArgs) -> Result<()> {
+    let quantity: Quantity = a.quantity.parse()?;
+    let template = Template::parse(&a.stack)?;
+    let text = std::fs::read_to_string(&a.measured).with_context(|| format!("cannot read {}", a.measured.display()))?;
+    let shown = a.measured.display().to_string();
+    let (column, constant) = match &a.sigma {
+        None => (None, None),
+        Some(s) => match s.trim().parse::<f64>() {
+            Ok(v) if v.is_finite() && v > 0.0 => (None, Some(v)),
+            Ok(v) => bail!("--sigma {v}: an uncertainty must be a positive number (or a column name)"),
+            Err(_) => (Some(s.as_str()), None),
+        },
+    };
+    let mut data = Measured::from_csv(&text, &shown, quantity, column)?;
+    if let Some(v) = constant {
+        data.sigma = Some(vec![v; data.values.len()]);
+    }
+    if let Some(w) = iridis_thinfilm::sampling::check(&template.base, a.angle, &sorted(&data.wavelength_nm)) {
+        eprintln!("warning: the measured wavelengths: {}", w.message);
+    }
+    let opt = FitOptions { angle_rad: a.angle, quantity, grid: a.grid, ..FitOptions::default() };
+    let t0 = Instant::now();
+    let r = fit(&template, &data, &opt)?;
+    let seconds = t0.elapsed().as_secs_f64();
+    let params = &template.params;
+    if let Some(path) = &a.output {
+        let mut out = String::from("wavelength_nm,measured,fitted,residual\n");
+        let k = quantity.width();
+        for (i, w) in data.wavelength_nm.iter().enumerate() {
+            for j in 0..k {
+                let (m, f) = (data.values[i * k + j], r.fitted[i * k + j]);
+                let _ = writeln!(out, "{w},{m},{f},{}", m - f);
+            }
+        }
+        crate::output::write_bytes(path, out.as_bytes())?;
+    }
+    if let Some(path) = &a.plot {
+        let k = quantity.width();
+        let labels: &[&str] = if k == 2 { &["ψ (°)", "Δ (°)"] } else { &[quantity.name()] };
+        let mut plot = LinePlot::new(
+            format!("measured and fitted {}, χ²/dof = {:.3}", quantity.name(), r.reduced_chi2),
+            "wavelength (nm)",
+            if k == 2 { "ψ, Δ (degrees)" } else { "fraction of incident power" },
+        );
+        for (j, label) in labels.iter().enumerate() {
+            let m: Vec<f64> = (0..data.wavelength_nm.len()).map(|i| data.values[i * k + j]).collect();
+            let f: Vec<f64> = (0..data.wavelength_nm.len()).map(|i| r.fitted[i * k + j]).collect();
+            let mut meas = Series::new(format!("measured {label}"), &data.wavelength_nm, &m);
+            meas.emphasis = false;
+            plot = plot.series(meas).series(Series::new(format!("fitted {label}"), &data.wavelength_nm, &f));
+        }
+        let img = plot.render()?;
+        crate::output::write_png_rgb8(path, img.width, img.height, &img.data)?;
+    }
+    for (p, at) in params.iter().zip(&r.at_bound) {
+        if *at {
+            eprintln!(
+                "warning: {} ended on a bound of its range {}..{}: widen the range; its uncertainty is not meaningful",
+                p.name, p.lo, p.hi
+            );
+        }
+    }
+    if a.json {
+        return crate::output::print_json(&json!({
+            "stack": a.stack, "quantity": quantity.name(), "angle_deg": a.angle.to_degrees(),
+            "names": r.names, "units": params.iter().map(|p| p.unit()).collect::<Vec<_>>(),
+            "values": r.values, "sigma": r.sigma, "correlation": r.correlation,
+            "chi2": r.chi2, "dof": r.dof, "reduced_chi2": r.reduced_chi2, "sigma_given": r.sigma_given,
+            "at_bound": r.at_bound, "starts": r.starts_tried, "evaluations": r.evaluations, "seconds": seconds,
+            "fitted": r.fitted,
+        }));
+    }
+    crate::outln!("stack     {}", a.stack)?;
+    crate::outln!(
+        "data      {} ({} wavelengths, {} at {}°)",
+        shown,
+        data.wavelength_nm.len(),
+        quantity.name(),
+        deg(a.angle)
+    )?;
+    crate::outln!("{:<12} {:>16} {:>14}", "parameter", "value", "1σ")?;
+    for (k, p) in params.iter().enumerate() {
+        crate::outln!("{:<12} {:>16.6} {:>14.3e} {}", p.name, r.values[k], r.sigma[k], p.unit())?;
+    }
+    crate::outln!("χ² = {:.4} for {} degrees of freedom (χ²/dof = {:.4})", r.chi2, r.dof, r.reduced_chi2)?;
+    if !r.sigma_given {
+        crate::outln!(
+            "no --sigma: χ² uses σ = 1 and the uncertainties are scaled by √(χ²/dof), i.e. σ is estimated from the scatter"
+        )?;
+    }
+    if params.len() > 1 {
+        crate::outln!("correlation")?;
+        let mut head = format!("{:<12}", "");
+        for p in params {
+            let _ = write!(head, " {:>8}", p.name);
+        }
+        crate::outln!("{head}")?;
+        for (k, p) in params.iter().enumerate() {
+            let mut row = format!("{:<12}", p.name);
+            for v in &r.correlation[k] {
+                let _ = write!(row, " {v:>8.3}");
+            }
+            crate::outln!("{row}")?;
+        }
+    }
+    crate::outln!("{} starts searched, {} spectra evaluated, {:.3} s", r.starts_tried, r.evaluations, seconds)?;
+    if let Some(p) = &a.plot {
+        crate::outln!("wrote {}", p.display())?;
+    }
+    Ok(())
+}
+
+/// Degrees, rounded to 1e-6 (prints `30`, not `30.000000`).
+fn deg(rad: f64) -> f64 {
+    (rad.to_degrees() * 1e6).round() / 1e6
+}
+
+fn sorted(v: &[f64]) -> Vec<f64> {
+    let mut v = v.to_vec();
+    v.sort_by(f64::total_cmp);
+    v
+}

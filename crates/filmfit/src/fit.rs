@@ -1,0 +1,248 @@
+//! The fit: weighted residuals `(model − measured)/σ`, Levenberg–Marquardt from several starts, covariance.
+
+use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt};
+use nalgebra::{storage::Owned, DMatrix, DVector, Dyn};
+
+use crate::{FitError, Measured, Quantity, Template};
+
+/// How to fit.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FitOptions {
+    pub angle_rad: f64,
+    pub quantity: Quantity,
+    /// Grid points per thickness parameter for the multi-start search (0: automatic, ~1 per 10 nm, ≤ 64;
+    /// 1: no search, one local fit from the start values).
+    pub grid: usize,
+    /// How many of the best grid points are refined by Levenberg–Marquardt.
+    pub refine: usize,
+}
+
+impl Default for FitOptions {
+    fn default() -> Self {
+        Self { angle_rad: 0.0, quantity: Quantity::R, grid: 0, refine: 4 }
+    }
+}
+
+/// The outcome: values, 1σ uncertainties, correlations, χ², the fitted curve.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct FitResult {
+    pub names: Vec<String>,
+    pub values: Vec<f64>,
+    pub sigma: Vec<f64>,
+    pub correlation: Vec<Vec<f64>>,
+    /// Σ ((model − measured)/σ)²; with no σ given, σ = 1.
+    pub chi2: f64,
+    pub dof: usize,
+    /// χ² / dof. With no σ given the uncertainties are scaled by √(χ²/dof) (σ estimated from the scatter).
+    pub reduced_chi2: f64,
+    pub sigma_given: bool,
+    /// Parameters that ended on a bound of their range (their uncertainty is then not meaningful).
+    pub at_bound: Vec<bool>,
+    pub fitted: Vec<f64>,
+    pub starts_tried: usize,
+    pub evaluations: usize,
+}
+
+/// The model values on the measured wavelengths: R or T (unpolarised), or ψ, Δ in degrees interleaved.
+pub fn model(template: &Template, values: &[f64], wavelengths: &[f64], opt: &FitOptions) -> Result<Vec<f64>, FitError> {
+    let stack = template.stack(values)?;
+    let mut out = Vec::with_capacity(wavelengths.len() * opt.quantity.width());
+    for &w in wavelengths {
+        match opt.quantity {
+            Quantity::R | Quantity::T => {
+                let x = stack.evaluate(w, opt.angle_rad).map_err(|e| FitError::Model(e.to_string()))?;
+                out.push(if opt.quantity == Quantity::R { x.r() } else { x.t() });
+            }
+            Quantity::PsiDelta => {
+                let (psi, delta) = stack.ellipsometry(w, opt.angle_rad).map_err(|e| FitError::Model(e.to_string()))?;
+                out.push(psi.to_degrees());
+                out.push(delta.to_degrees());
+            }
+        }
+    }
+    Ok(out)
+}
+
+struct Problem<'a> {
+    template: &'a Template,
+    data: &'a Measured,
+    opt: &'a FitOptions,
+    x: Vec<f64>,
+    evaluations: std::cell::Cell<usize>,
+}
+
+impl Problem<'_> {
+    fn residuals_at(&self, x: &[f64]) -> Option<Vec<f64>> {
+        self.evaluations.set(self.evaluations.get() + 1);
+        let m = model(self.template, x, &self.data.wavelength_nm, self.opt).ok()?;
+        let psi_delta = self.opt.quantity == Quantity::PsiDelta;
+        Some(
+            m.iter()
+                .zip(&self.data.values)
+                .enumerate()
+                .map(|(i, (m, d))| {
+                    // Δ is an angle: the residual is the difference on the circle, in (−180°, 180°].
+                    let mut r = m - d;
+                    if psi_delta && i % 2 == 1 {
+                        r = (r + 180.0).rem_euclid(360.0) - 180.0;
+                    }
+                    r / self.data.sigma.as_ref().map_or(1.0, |s| s[i])
+                })
+                .collect(),
+        )
+    }
+
+    /// Central differences, one-sided at a bound; steps ~1e-6 of the parameter's scale.
+    fn jacobian_at(&self, x: &[f64]) -> Option<DMatrix<f64>> {
+        let n = self.data.values.len();
+        let mut j = DMatrix::zeros(n, x.len());
+        for (k, p) in self.template.params.iter().enumerate() {
+            let h = 1e-6 * x[k].abs().max(1e-3 * (p.hi - p.lo)).max(1e-9);
+            let (a, b) = ((x[k] - h).max(p.lo), (x[k] + h).min(p.hi));
+            let mut xa = x.to_vec();
+            let mut xb = x.to_vec();
+            xa[k] = a;
+            xb[k] = b;
+            let (ra, rb) = (self.residuals_at(&xa)?, self.residuals_at(&xb)?);
+            for i in 0..n {
+                j[(i, k)] = (rb[i] - ra[i]) / (b - a);
+            }
+        }
+        Some(j)
+    }
+}
+
+impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
+    type ResidualStorage = Owned<f64, Dyn>;
+    type JacobianStorage = Owned<f64, Dyn, Dyn>;
+    type ParameterStorage = Owned<f64, Dyn>;
+
+    /// Parameters are kept inside their ranges by projection.
+    fn set_params(&mut self, x: &DVector<f64>) {
+        for (k, p) in self.template.params.iter().enumerate() {
+            self.x[k] = x[k].clamp(p.lo, p.hi);
+        }
+    }
+    fn params(&self) -> DVector<f64> {
+        DVector::from_vec(self.x.clone())
+    }
+    fn residuals(&self) -> Option<DVector<f64>> {
+        self.residuals_at(&self.x).map(DVector::from_vec)
+    }
+    fn jacobian(&self) -> Option<DMatrix<f64>> {
+        self.jacobian_at(&self.x)
+    }
+}
+
+fn chi2(r: &[f64]) -> f64 {
+    r.iter().map(|v| v * v).sum()
+}
+
+/// The multi-start points: a grid over every thickness range (other parameters at their start), the start
+/// values included.
+fn starts(template: &Template, opt: &FitOptions) -> Vec<Vec<f64>> {
+    let thick: Vec<usize> = template
+        .params
+        .iter()
+        .enumerate()
+        .filter(|(_, p)| matches!(p.role, crate::Role::Thickness { .. }))
+        .map(|(i, _)| i)
+        .collect();
+    let mut out = vec![template.starts()];
+    if thick.is_empty() || opt.grid == 1 {
+        return out;
+    }
+    // Fringes repeat every λ/(2n) ≈ 100–200 nm of thickness: a point every ~10 nm lands within reach of the
+    // right fringe order; at most ~4000 points in all.
+    let cap = (4000f64.powf(1.0 / thick.len() as f64)).floor().max(2.0) as usize;
+    let per: Vec<usize> = thick
+        .iter()
+        .map(|&i| {
+            let p = &template.params[i];
+            let auto = ((p.hi - p.lo) / 10.0).ceil() as usize + 1;
+            (if opt.grid > 0 { opt.grid } else { auto.clamp(2, 64) }).min(cap).max(2)
+        })
+        .collect();
+    let total: usize = per.iter().product();
+    for mut idx in 0..total {
+        let mut x = template.starts();
+        for (t, &i) in thick.iter().enumerate() {
+            let p = &template.params[i];
+            let k = idx % per[t];
+            idx /= per[t];
+            x[i] = p.lo + (p.hi - p.lo) * k as f64 / (per[t] - 1) as f64;
+        }
+        out.push(x);
+    }
+    out
+}
+
+/// Fits the template's parameters to the measured data.
+pub fn fit(template: &Template, data: &Measured, opt: &FitOptions) -> Result<FitResult, FitError> {
+    let n = data.values.len();
+    let np = template.params.len();
+    if data.values.len() != data.wavelength_nm.len() * opt.quantity.width() {
+        return Err(FitError::Data("the measured values do not match the quantity".into()));
+    }
+    if n <= np {
+        return Err(FitError::Data(format!(
+            "{n} measured values cannot determine {np} parameters (need more than {np})"
+        )));
+    }
+    let mut problem = Problem { template, data, opt, x: template.starts(), evaluations: std::cell::Cell::new(0) };
+    // The model must evaluate at the start (e.g. every wavelength inside every material's data).
+    model(template, &template.starts(), &data.wavelength_nm, opt)?;
+    let candidates = starts(template, opt);
+    let mut scored: Vec<(f64, Vec<f64>)> =
+        candidates.iter().filter_map(|x| problem.residuals_at(x).map(|r| (chi2(&r), x.clone()))).collect();
+    scored.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let lm = LevenbergMarquardt::new().with_ftol(1e-14).with_xtol(1e-14).with_gtol(1e-14).with_patience(200);
+    let mut best: Option<(f64, Vec<f64>)> = None;
+    for (_, x0) in scored.iter().take(opt.refine.max(1)) {
+        problem.x = x0.clone();
+        let (p, _report) = lm.minimize(problem);
+        problem = p;
+        if let Some(r) = problem.residuals_at(&problem.x) {
+            let c = chi2(&r);
+            if best.as_ref().is_none_or(|b| c < b.0) {
+                best = Some((c, problem.x.clone()));
+            }
+        }
+    }
+    let (chi2v, x) = best.ok_or_else(|| FitError::Model("the model could not be evaluated at any start".into()))?;
+    let j = problem.jacobian_at(&x).ok_or_else(|| FitError::Model("the model failed at the optimum".into()))?;
+    let dof = n - np;
+    let sigma_given = data.sigma.is_some();
+    let scale = if sigma_given { 1.0 } else { chi2v / dof as f64 };
+    let jtj = j.transpose() * &j;
+    let cov = jtj.clone().try_inverse().filter(|c| c.iter().all(|v| v.is_finite())).ok_or_else(|| {
+        FitError::Model(
+            "the data do not determine the parameters (JᵀJ is singular): some parameter has no effect on the \
+             spectrum, or two have the same effect; fix one of them"
+                .into(),
+        )
+    })? * scale;
+    let sigma: Vec<f64> = (0..np).map(|k| cov[(k, k)].max(0.0).sqrt()).collect();
+    let correlation = (0..np).map(|a| (0..np).map(|b| cov[(a, b)] / (sigma[a] * sigma[b])).collect()).collect();
+    let at_bound = template
+        .params
+        .iter()
+        .zip(&x)
+        .map(|(p, v)| (v - p.lo).abs() <= 1e-9 * (p.hi - p.lo) || (p.hi - v).abs() <= 1e-9 * (p.hi - p.lo))
+        .collect();
+    let fitted = model(template, &x, &data.wavelength_nm, opt)?;
+    Ok(FitResult {
+        names: template.params.iter().map(|p| p.name.clone()).collect(),
+        values: x,
+        sigma,
+        correlation,
+        chi2: chi2v,
+        dof,
+        reduced_chi2: chi2v / dof as f64,
+        sigma_given,
+        at_bound,
+        fitted,
+        starts_tried: candidates.len(),
+        evaluations: problem.evaluations.get(),
+    })
+}

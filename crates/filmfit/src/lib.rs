@@ -1,0 +1,71 @@
+//! # iridis-filmfit
+//!
+//! Fitting thin-film stacks to measured spectra: reflectance, transmittance or ellipsometric ψ/Δ against
+//! wavelength, at one angle. Free parameters are written into the stack (`{d1=100nm:50nm..500nm}`, see
+//! [`template`]); the fit is Levenberg–Marquardt (the `levenberg-marquardt` crate, MINPACK's algorithm)
+//! started from the best points of a grid over the thickness ranges (interference makes χ²(d) periodic, so a
+//! local fit from one start finds the nearest fringe order, not the best one), with the 1σ uncertainties and
+//! correlations of the parameters from the covariance `(JᵀWJ)⁻¹` at the optimum.
+
+pub mod data;
+pub mod fit;
+pub mod template;
+
+pub use data::Measured;
+pub use fit::{fit, model, FitOptions, FitResult};
+pub use template::{Param, Role, Template};
+
+/// What was measured.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Quantity {
+    /// Unpolarised reflectance.
+    R,
+    /// Unpolarised transmittance.
+    T,
+    /// Ellipsometric ψ and Δ in degrees (tmm's `ellips` convention, `tan ψ e^{iΔ} = −r_p/r_s`).
+    PsiDelta,
+}
+
+impl Quantity {
+    pub fn name(self) -> &'static str {
+        match self {
+            Quantity::R => "R",
+            Quantity::T => "T",
+            Quantity::PsiDelta => "psi-delta",
+        }
+    }
+    /// Values per wavelength.
+    pub fn width(self) -> usize {
+        if self == Quantity::PsiDelta {
+            2
+        } else {
+            1
+        }
+    }
+}
+
+impl std::str::FromStr for Quantity {
+    type Err = FitError;
+    fn from_str(s: &str) -> Result<Self, FitError> {
+        match s.to_ascii_lowercase().as_str() {
+            "r" => Ok(Quantity::R),
+            "t" => Ok(Quantity::T),
+            "psi-delta" | "psi_delta" | "ellipsometry" => Ok(Quantity::PsiDelta),
+            _ => Err(FitError::Data(format!("--quantity '{s}': use R, T or psi-delta"))),
+        }
+    }
+}
+
+/// Everything that can go wrong, with a message for people.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum FitError {
+    /// The stack template (parameters, ranges, the stack itself).
+    #[error("--stack: {0}")]
+    Template(String),
+    /// The measured data.
+    #[error("{0}")]
+    Data(String),
+    /// The model cannot be evaluated (a wavelength outside a material's data, an invalid index).
+    #[error("{0}")]
+    Model(String),
+}

@@ -1,0 +1,259 @@
+//! Stacks with incoherent layers (`inc:` in the stack syntax): a layer much thicker than the coherence length
+//! of the light (a 1 mm glass slide under a lamp) does not interfere; the waves reflected at its two faces add
+//! as intensities. The method is the one of `tmm.inc_tmm` (S. J. Byrnes, "Multilayer optical calculations",
+//! arXiv:1603.02720, section 5): the stack is cut at its incoherent media into coherent groups; each group is
+//! a coherent stack (the recurrence of [`crate::recurrence`]) with power coefficients `R`, `T` forwards and
+//! backwards; an incoherent layer of thickness `d` passes the fraction `P = exp(−4π d Im(n̂ s_z) / λ)` of the
+//! intensity per crossing; and the intensities bounce between the groups.
+//!
+//! Instead of Byrnes' 2 × 2 intensity transfer matrices (which divide by each group's `T`, undefined under
+//! total internal reflection), the groups are combined from the bottom up by the incoherent analogue of
+//! Sussenbach eq. 3.1–3.2, the sum of the geometric series of bounces:
+//! `R' = R_f + T_f T_b P² R / (1 − R_b P² R)`, `T' = T_f P T / (1 − R_b P² R)`,
+//! which is the same quantity (the fixtures of `tools/gen_incoherent_fixtures.py` compare it with `inc_tmm`).
+
+use num_complex::Complex64;
+
+use crate::error::ThinFilmError;
+use crate::field::{Absorption, Fields, PolPowers};
+use crate::recurrence::{compose, Medium, Rta};
+use crate::stack::Stack;
+
+/// Power coefficients of one coherent group (or bare interface) between two incoherent media, for s and p:
+/// `[R_f, T_f, R_b, T_b]` (forwards: from the upper medium; backwards: from the lower one).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GroupPowers {
+    pub s: [f64; 4],
+    pub p: [f64; 4],
+}
+
+/// `Re(n̂ s_z)` (s) or `Re(n̂ conj(s_z))` (p): the normal power flux of a unit wave, as in tmm's `T_from_t`
+/// (Byrnes eq. 21–22); they differ only in absorbing media.
+fn flux(m: Medium, p: bool) -> f64 {
+    if p {
+        (m.n * m.cos.conj()).re
+    } else {
+        (m.n * m.cos).re
+    }
+}
+
+/// `|t|²` times the ratio of fluxes, or 0 where no power flows (an evanescent medium).
+fn power_t(t: Complex64, upper: Medium, lower: Medium, p: bool) -> f64 {
+    let (a, b) = (flux(upper, p), flux(lower, p));
+    if a <= 0.0 || b <= 0.0 {
+        0.0
+    } else {
+        t.norm_sqr() * b / a
+    }
+}
+
+/// The powers of the coherent group `media` (its incoherent ends included) with the inner thicknesses.
+pub fn group_powers(media: &[Medium], thicknesses_nm: &[f64], wavelength_nm: f64) -> GroupPowers {
+    let f = compose(media, thicknesses_nm, wavelength_nm, None);
+    let rev_media: Vec<Medium> = media.iter().rev().copied().collect();
+    let rev_d: Vec<f64> = thicknesses_nm.iter().rev().copied().collect();
+    let b = compose(&rev_media, &rev_d, wavelength_nm, None);
+    let (top, bottom) = (media[0], media[media.len() - 1]);
+    GroupPowers {
+        s: [
+            f.gamma_s.norm_sqr(),
+            power_t(f.tau_s, top, bottom, false),
+            b.gamma_s.norm_sqr(),
+            power_t(b.tau_s, bottom, top, false),
+        ],
+        p: [
+            f.gamma_p.norm_sqr(),
+            power_t(f.tau_p, top, bottom, true),
+            b.gamma_p.norm_sqr(),
+            power_t(b.tau_p, bottom, top, true),
+        ],
+    }
+}
+
+/// The single-pass intensity transmission of an incoherent layer, `exp(−4π d Im(n̂ s_z) / λ)`
+/// (Byrnes section 5; `Im(n̂ s_z) ≥ 0` on the forward branch).
+pub fn single_pass(m: Medium, thickness_nm: f64, wavelength_nm: f64) -> f64 {
+    (-4.0 * std::f64::consts::PI * thickness_nm * (m.n * m.cos).im / wavelength_nm).exp()
+}
+
+/// The indices (into the `N + 2` media) of the incoherent media: 0, every `inc:` layer, `N + 1`.
+pub fn incoherent_media(stack: &Stack) -> Vec<usize> {
+    let mut v = vec![0];
+    v.extend(stack.layers.iter().enumerate().filter(|(_, l)| l.incoherent).map(|(i, _)| i + 1));
+    v.push(stack.layers.len() + 1);
+    v
+}
+
+/// The groups between consecutive incoherent media, top first: their powers.
+pub fn groups(
+    stack: &Stack,
+    media: &[Medium],
+    thicknesses_nm: &[f64],
+    wavelength_nm: f64,
+) -> (Vec<usize>, Vec<GroupPowers>) {
+    let inc = incoherent_media(stack);
+    let g = inc.windows(2).map(|w| group_powers(&media[w[0]..=w[1]], &thicknesses_nm[w[0]..w[1] - 1], wavelength_nm));
+    (inc.clone(), g.collect())
+}
+
+/// Reflectance and transmittance of a stack with incoherent layers (any stack: a coherent one gives the
+/// powers of [`Stack::evaluate`]), with the given layer thicknesses. As everywhere in iridis, T into an
+/// absorbing substrate is 0 (the light entering it is absorbed; `docs/PHYSICS.md`).
+pub fn evaluate(
+    stack: &Stack,
+    wavelength_nm: f64,
+    angle_rad: f64,
+    thicknesses_nm: &[f64],
+) -> Result<Rta, ThinFilmError> {
+    if thicknesses_nm.len() != stack.layers.len() || thicknesses_nm.iter().any(|d| !(d.is_finite() && *d >= 0.0)) {
+        return Err(ThinFilmError::Invalid(format!(
+            "need {} finite thicknesses ≥ 0, got {thicknesses_nm:?}",
+            stack.layers.len()
+        )));
+    }
+    let media = stack.media(wavelength_nm, angle_rad)?;
+    let (inc, g) = groups(stack, &media, thicknesses_nm, wavelength_nm);
+    let pass: Vec<f64> = inc.iter().map(|&i| pass_of(&media, thicknesses_nm, i, wavelength_nm)).collect();
+    let (r_s, t_s) = cascade(g.iter().map(|x| x.s), &pass);
+    let (r_p, t_p) = cascade(g.iter().map(|x| x.p), &pass);
+    let opaque = media[media.len() - 1].n.im > 0.0;
+    let z = |t: f64| if opaque { 0.0 } else { t };
+    Ok(Rta { r_s, r_p, t_s: z(t_s), t_p: z(t_p) })
+}
+
+/// Absorption per layer (coherent and incoherent) and in an absorbing substrate, with R and T, as
+/// `tmm.inc_absorp_in_each_layer` (Byrnes section 5.3): each group is lit from above by the forward intensity
+/// `F` arriving at it and from below by the backward intensity `B`; its layers absorb `F A_fwd + B A_bwd`
+/// (the coherent per-layer absorption of [`Fields`] run forwards and backwards); an incoherent layer absorbs
+/// the flux entering it at its top minus the flux leaving it at its bottom.
+pub fn absorption(
+    stack: &Stack,
+    wavelength_nm: f64,
+    angle_rad: f64,
+    thicknesses_nm: &[f64],
+) -> Result<Absorption, ThinFilmError> {
+    if thicknesses_nm.len() != stack.layers.len() || thicknesses_nm.iter().any(|d| !(d.is_finite() && *d >= 0.0)) {
+        return Err(ThinFilmError::Invalid(format!(
+            "need {} finite thicknesses ≥ 0, got {thicknesses_nm:?}",
+            stack.layers.len()
+        )));
+    }
+    let media = stack.media(wavelength_nm, angle_rad)?;
+    let inc = incoherent_media(stack);
+    let m = inc.len() - 1;
+    let pass: Vec<f64> = inc.iter().map(|&i| pass_of(&media, thicknesses_nm, i, wavelength_nm)).collect();
+    let fields: Vec<(Fields, Fields)> = inc
+        .windows(2)
+        .map(|w| {
+            let gm = media[w[0]..=w[1]].to_vec();
+            let gd = thicknesses_nm[w[0]..w[1] - 1].to_vec();
+            let rev_m = gm.iter().rev().copied().collect();
+            let rev_d = gd.iter().rev().copied().collect();
+            (Fields::new(gm, gd, wavelength_nm), Fields::new(rev_m, rev_d, wavelength_nm))
+        })
+        .collect();
+    let one = |p: bool| -> PolPowers {
+        let f: Vec<PolPowers> = fields.iter().map(|x| x.0.powers(p)).collect();
+        let b: Vec<PolPowers> = fields.iter().map(|x| x.1.powers(p)).collect();
+        // rc[k]: reflectance of everything below the bottom of incoherent medium k, seen from inside it.
+        let mut rc = vec![0.0; m + 1];
+        for k in (0..m).rev() {
+            let pp = pass[k + 1] * pass[k + 1];
+            rc[k] = f[k].r + f[k].t * b[k].t * pp * rc[k + 1] / (1.0 - b[k].r * pp * rc[k + 1]);
+        }
+        // down[k]: forward intensity at the bottom of medium k; up[k]: backward intensity at its top.
+        let (mut down, mut up) = (vec![0.0; m + 1], vec![0.0; m + 1]);
+        down[0] = 1.0;
+        for k in 0..m {
+            let pk = pass[k + 1];
+            down[k + 1] = pk * f[k].t * down[k] / (1.0 - b[k].r * pk * pk * rc[k + 1]);
+            up[k + 1] = pk * rc[k + 1] * down[k + 1];
+        }
+        // Net flux entering incoherent medium k at its top and leaving it at its bottom (tmm's conventions:
+        // a bare interface passes T both ways; a coherent group is entered with its `entering` flux).
+        let mut entering = vec![1.0; m + 1];
+        let mut exiting = vec![0.0; m + 1];
+        let mut layers = Vec::with_capacity(stack.layers.len());
+        for g in 0..m {
+            let (fw, bw) = (down[g], up[g + 1]);
+            let bare = f[g].layers.is_empty();
+            entering[g + 1] = fw * f[g].t - bw * if bare { b[g].t } else { b[g].entering };
+            exiting[g] = if bare { entering[g + 1] } else { fw * f[g].entering - bw * b[g].t };
+            if g > 0 {
+                layers.push(entering[g] - exiting[g]);
+            }
+            let n = f[g].layers.len();
+            layers.extend((0..n).map(|i| fw * f[g].layers[i] + bw * b[g].layers[n - 1 - i]));
+        }
+        PolPowers { r: rc[0], t: down[m], entering: 1.0 - rc[0], layers }
+    };
+    let opaque = media[media.len() - 1].n.im > 0.0;
+    Ok(Absorption::from_powers(one(false), one(true), opaque))
+}
+
+/// `P` of incoherent medium `i` (1 for the semi-infinite ends).
+fn pass_of(media: &[Medium], thicknesses_nm: &[f64], i: usize, wavelength_nm: f64) -> f64 {
+    if i == 0 || i == media.len() - 1 {
+        1.0
+    } else {
+        single_pass(media[i], thicknesses_nm[i - 1], wavelength_nm)
+    }
+}
+
+/// Combines the groups from the bottom up (module documentation); `pass[k]` is `P` of incoherent medium `k`.
+fn cascade(groups: impl DoubleEndedIterator<Item = [f64; 4]> + ExactSizeIterator, pass: &[f64]) -> (f64, f64) {
+    let m = groups.len();
+    let mut it = groups.rev();
+    let [rf, tf, _, _] = it.next().expect("at least one group");
+    let (mut r, mut t) = (rf, tf);
+    for (k, [rf, tf, rb, tb]) in (0..m - 1).rev().zip(it) {
+        let p = pass[k + 1];
+        let inv = 1.0 / (1.0 - rb * p * p * r);
+        (r, t) = (rf + tf * tb * p * p * r * inv, tf * p * t * inv);
+    }
+    (r, t)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_bare_slide_adds_intensities() {
+        // A lossless slab in air at normal incidence, incoherently: R = 2ρ / (1 + ρ) with ρ the single-face
+        // reflectance ((n − 1)/(n + 1))² (the geometric series of bounces; e.g. Born & Wolf §7.6 limit).
+        let s = Stack::parse("air | inc:n=1.5 1mm | air").unwrap();
+        let x = s.evaluate(550.0, 0.0).unwrap();
+        let rho: f64 = 0.04;
+        assert!((x.r() - 2.0 * rho / (1.0 + rho)).abs() < 1e-15, "{x:?}");
+        assert!((x.r() + x.t() - 1.0).abs() < 1e-15);
+        // Its thickness does not matter when it does not absorb.
+        let y = Stack::parse("air | inc:n=1.5 3nm | air").unwrap().evaluate(550.0, 0.0).unwrap();
+        assert!((x.r() - y.r()).abs() < 1e-15);
+    }
+
+    #[test]
+    fn absorbing_slab_closed_form() {
+        // Absorbing slab (κ small), normal incidence: R = ρ + (1 − ρ)² P² ρ / (1 − ρ² P²), T = (1 − ρ)² P / (1 − ρ² P²)
+        // with ρ the face reflectance |(n̂ − 1)/(n̂ + 1)|² and P = exp(−4π κ d / λ).
+        let (n, k, d, w) = (1.5, 1e-4, 1e6, 600.0);
+        let s = Stack::parse(&format!("air | inc:n={n}+{k}i {d}nm | air")).unwrap();
+        let x = s.evaluate(w, 0.0).unwrap();
+        let nn = Complex64::new(n, k);
+        let rho = ((nn - 1.0) / (nn + 1.0)).norm_sqr();
+        let p = (-4.0 * std::f64::consts::PI * k * d / w).exp();
+        // Into the slab the transmitted flux is (1 − ρ) only when n̂ is real; Byrnes' T_from_t gives
+        // |t|² Re(n̂)/1 = 1 − ρ − (cross term); for κ = 1e-4 the difference is below 1e-8.
+        let r = rho + (1.0 - rho).powi(2) * p * p * rho / (1.0 - rho * rho * p * p);
+        let t = (1.0 - rho).powi(2) * p / (1.0 - rho * rho * p * p);
+        assert!((x.r() - r).abs() < 1e-8 && (x.t() - t).abs() < 1e-8, "{x:?} vs {r} {t}");
+    }
+
+    #[test]
+    fn coherent_stack_gives_the_coherent_answer() {
+        let s = Stack::parse("air | n=1.38 100nm | n=2.1 80nm | n=1.5").unwrap();
+        let a = s.evaluate(512.0, 0.4).unwrap();
+        let b = evaluate(&s, 512.0, 0.4, &s.thicknesses()).unwrap();
+        assert!((a.r_s - b.r_s).abs() < 1e-15 && (a.t_p - b.t_p).abs() < 1e-15);
+    }
+}

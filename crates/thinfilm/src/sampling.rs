@@ -1,0 +1,136 @@
+//! When a computed spectrum cannot be trusted: the fringes of a thick coherent layer closer together than
+//! the wavelength grid can sample (aliasing), and layers so thick that ordinary light does not interfere in
+//! them at all.
+//!
+//! A coherent group of optical thickness `L = Σ n_j d_j cos θ_j` has reflectance fringes `λ²/(2L)` apart
+//! (the phase `4πL/λ` advances by 2π); the grid samples them faithfully only with at least two samples per
+//! fringe (Nyquist). Light of bandwidth `δλ` has the coherence length `λ²/δλ` (e.g. Born & Wolf §7.5.8); a
+//! layer whose round trip `2L` is longer shows no fringes and belongs in the stack as `inc:`.
+
+use crate::stack::Stack;
+
+/// A warning about the sampling of a spectrum of a stack.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SamplingWarning {
+    /// The thickest layer of the worst coherent group (1-based, top first).
+    pub layer: usize,
+    /// The fringe spacing (nm) at the shortest wavelength of the grid.
+    pub fringe_nm: f64,
+    pub at_nm: f64,
+    /// The largest step (nm) that gives two samples per fringe.
+    pub step_nm: f64,
+    /// The round trip `2L` is longer than the coherence length of 1 nm-bandwidth light at `at_nm`
+    /// (`λ²/1 nm`, ~0.14 mm at 380 nm): no spectrometer of ordinary resolution sees these fringes.
+    pub suggest_incoherent: bool,
+    pub message: String,
+}
+
+/// The bandwidth (nm) whose coherence length decides "thicker than the coherence length".
+pub const COHERENCE_BANDWIDTH_NM: f64 = 1.0;
+
+/// Checks a wavelength grid (nm, increasing) against the fringes of every coherent group of the stack at
+/// this angle; `None` when every group is sampled at least twice per fringe.
+pub fn check(stack: &Stack, angle_rad: f64, wavelengths_nm: &[f64]) -> Option<SamplingWarning> {
+    if wavelengths_nm.len() < 2 {
+        return None;
+    }
+    let step = wavelengths_nm.windows(2).map(|w| (w[1] - w[0]).abs()).fold(0.0, f64::max);
+    let at = wavelengths_nm.iter().copied().fold(f64::INFINITY, f64::min);
+    let media = stack.media(at, angle_rad).ok()?;
+    // Coherent groups: runs of coherent layers between incoherent media.
+    let mut worst: Option<(f64, usize)> = None; // (optical thickness, thickest layer)
+    let mut group = (0.0, 0usize, 0.0f64);
+    let flush = |g: &mut (f64, usize, f64), worst: &mut Option<(f64, usize)>| {
+        if g.0 > worst.map_or(0.0, |w| w.0) {
+            *worst = Some((g.0, g.1));
+        }
+        *g = (0.0, 0, 0.0);
+    };
+    for (i, l) in stack.layers.iter().enumerate() {
+        let m = media[i + 1];
+        let optical = l.thickness_nm * (m.n * m.cos).re.max(0.0);
+        if l.incoherent {
+            flush(&mut group, &mut worst);
+            // An incoherent layer's own thickness matters only through its absorption.
+            continue;
+        }
+        group.0 += optical;
+        if optical > group.2 {
+            group.1 = i + 1;
+            group.2 = optical;
+        }
+    }
+    flush(&mut group, &mut worst);
+    let (optical, layer) = worst?;
+    let fringe = at * at / (2.0 * optical);
+    if fringe >= 2.0 * step {
+        return None;
+    }
+    let step_nm = fringe / 2.0;
+    let suggest_incoherent = 2.0 * optical > at * at / COHERENCE_BANDWIDTH_NM;
+    let l = &stack.layers[layer - 1];
+    let mut message = format!(
+        "layer {layer} ({} {} nm) makes interference fringes {} nm apart at {at} nm, closer than two samples of \
+         the {step} nm grid: the spectrum is aliased (a smooth curve where the fringes are). Use --step {}nm or \
+         smaller",
+        l.material.name(),
+        l.thickness_nm,
+        round_sig(fringe),
+        round_down(step_nm)
+    );
+    if suggest_incoherent {
+        message += &format!(
+            "; or, since it is thicker than the coherence length of ordinary light ({} µm for a \
+             {COHERENCE_BANDWIDTH_NM} nm band at {at} nm), write it as incoherent: inc:{} {}nm",
+            round_sig(at * at / COHERENCE_BANDWIDTH_NM / 1000.0),
+            l.material.name(),
+            l.thickness_nm
+        );
+    }
+    Some(SamplingWarning { layer, fringe_nm: fringe, at_nm: at, step_nm, suggest_incoherent, message })
+}
+
+fn round_sig(x: f64) -> f64 {
+    let p = 10f64.powf(x.abs().log10().floor() - 2.0);
+    (x / p).round() * p
+}
+
+/// `x` rounded down to 2 significant digits (a step that still resolves).
+fn round_down(x: f64) -> f64 {
+    let p = 10f64.powf(x.abs().log10().floor() - 1.0);
+    (x / p).floor() * p
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn grid(step: f64) -> Vec<f64> {
+        (0..).map(|i| 380.0 + step * i as f64).take_while(|w| *w <= 780.0).collect()
+    }
+
+    #[test]
+    fn water_20um_at_5nm_is_aliased() {
+        // Fringe spacing λ²/(2 n d) = 380² / (2 · 1.33 · 20000) = 2.714 nm < 2 × 5 nm.
+        let s = Stack::parse("air | water 20um | air").unwrap();
+        let w = check(&s, 0.0, &grid(5.0)).unwrap();
+        assert!((w.fringe_nm - 380.0 * 380.0 / (2.0 * 1.33 * 20000.0)).abs() < 1e-9);
+        assert_eq!(w.layer, 1);
+        assert!(!w.suggest_incoherent);
+        assert!(w.message.contains("--step 1.3nm"), "{}", w.message);
+        // At that step the grid resolves the fringes.
+        assert!(check(&s, 0.0, &grid(1.3)).is_none());
+        // A soap film is fine at 5 nm.
+        assert!(check(&Stack::parse("air | water 635nm | air").unwrap(), 0.0, &grid(5.0)).is_none());
+    }
+
+    #[test]
+    fn a_millimetre_suggests_inc() {
+        let s = Stack::parse("air | MgF2 100nm | BK7 1mm | air").unwrap();
+        let w = check(&s, 0.0, &grid(5.0)).unwrap();
+        assert_eq!(w.layer, 2);
+        assert!(w.suggest_incoherent && w.message.contains("inc:bk7 1000000nm"), "{}", w.message);
+        // Written incoherent, the remaining coherent group (100 nm) is fine.
+        assert!(check(&Stack::parse("air | MgF2 100nm | inc:BK7 1mm | air").unwrap(), 0.0, &grid(5.0)).is_none());
+    }
+}
