@@ -53,8 +53,6 @@ pub struct LabModel {
 }
 
 impl LabModel {
-    // `..Shading::default()` keeps this compiling when `Shading` gains fields (the Fresnel convention).
-    #[allow(clippy::needless_update)]
     fn config(&self) -> Result<MethodConfig> {
         let terms = match self.terms.trim() {
             "auto" => None,
