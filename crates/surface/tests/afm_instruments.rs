@@ -191,3 +191,49 @@ fn nanonis_sxm_as_pyspm() {
             .to_string();
     assert!(e.contains("in A, not a length"), "{e}");
 }
+
+mod common;
+
+/// The synthetic files (always present): each format's orientation (row 0 on top) and scaling.
+#[test]
+fn synthetic_instrument_files_read_exactly() {
+    use common::{code, COLS, ROWS};
+    let cases: [(&str, Vec<u8>, f64, f64, (f64, f64)); 4] = [
+        // (name, bytes, nm per code, offset nm, pixel nm)
+        ("nanoscope", common::nanoscope(), 0.008, 0.0, (6.25, 6.25)),
+        ("ibw", common::ibw(), 0.1, 0.0, (100.0, 100.0)),
+        ("wsxm", common::wsxm_top(), 0.01, 0.0, (10.0, 10.0)),
+        ("jpk", common::jpk(), 0.1, 2.0, (10.0, 10.0)),
+    ];
+    for (name, bytes, k, off, (dx, dy)) in cases {
+        let hf = load(&bytes, name, None);
+        assert_eq!((hf.rows, hf.cols), (ROWS, COLS), "{name}");
+        assert_eq!(hf.meta.format, name);
+        assert!(
+            (hf.dx_nm - dx).abs() < 1e-9 && (hf.dy_nm - dy).abs() < 1e-9,
+            "{name}: pixel {} × {}",
+            hf.dx_nm,
+            hf.dy_nm
+        );
+        for r in 0..ROWS {
+            for c in 0..COLS {
+                let want = f64::from(code(r, c)) * k + off;
+                assert!(
+                    (hf.get(r, c) - want).abs() < 1e-6 * want.abs().max(1.0),
+                    "{name} ({r}, {c}) {} vs {want}",
+                    hf.get(r, c)
+                );
+            }
+        }
+    }
+    // The IBW's second layer is a phase (deg): by name, refused as a height with the list.
+    let e = read_bytes(
+        &common::ibw(),
+        "x.ibw",
+        None,
+        &LoadOptions { channel: Some("phase".parse().unwrap()), ..Default::default() },
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("in deg, not a length") && e.contains("0: HeightTrace (m, trace)"), "{e}");
+}

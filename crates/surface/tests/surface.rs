@@ -117,17 +117,22 @@ fn npz_written_by_numpy_savez_and_savez_compressed() {
     // The 1-D axes and the scalar are not offered.
     assert!(!err.contains("x_nm") && !err.contains("scale"), "{err}");
     // --channel 1 is "height": the same field as the .npy fixtures (dy from the options is dx here).
-    let mut h = load_surface(p, &o(Some(1))).unwrap();
+    let mut h = load_surface(p, &o(Some(ChannelSel::Index(1)))).unwrap();
     h.dy_nm = 80.0;
     check_against_expected(&h, 0.0);
     // --channel 0 is "amplitude": the second grating, stored as float32.
-    let a = load_surface(p, &o(Some(0))).unwrap();
+    let a = load_surface(p, &o(Some(ChannelSel::Index(0)))).unwrap();
     for q in e["channel1_probe"].as_array().unwrap() {
         let (r, c, v) = (q[0].as_u64().unwrap() as usize, q[1].as_u64().unwrap() as usize, q[2].as_f64().unwrap());
         assert!((a.get(r, c) - v).abs() <= 4e-6 * v.abs().max(1.0), "({r},{c}) {} vs {v}", a.get(r, c));
     }
-    let err = load_surface(p, &o(Some(2))).unwrap_err().to_string();
+    let err = load_surface(p, &o(Some(ChannelSel::Index(2)))).unwrap_err().to_string();
     assert!(err.contains("--channel 2") && err.contains("0: amplitude") && err.contains("1: height"), "{err}");
+    // By name, as numpy saved it.
+    let by_name = load_surface(p, &o(Some(ChannelSel::Name("height".into())))).unwrap();
+    assert_eq!(by_name.heights_nm, load_surface(p, &o(Some(ChannelSel::Index(1)))).unwrap().heights_nm);
+    let err = load_surface(p, &o(Some(ChannelSel::Name("phase".into())))).unwrap_err().to_string();
+    assert!(err.contains("no such array") && err.contains("1: height"), "{err}");
 }
 
 /// Builds a zip archive holding `members` (name, bytes), stored.

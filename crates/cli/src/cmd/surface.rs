@@ -12,8 +12,9 @@ use iridis_surface::{find_peaks, load_surface, prep, HeightField, LoadOptions, P
 use serde_json::json;
 
 pub const SURFACE_HELP: &str = "\
-SURFACE is a file or builtin:NAME. Files are recognised by content: Gwyddion .gwy (units from the file),
-numpy .npy or .npz (np.savez / np.savez_compressed: the only 2-D array, or --channel N among several, in name
+SURFACE is a file or builtin:NAME. Files are recognised by content: instrument files with their units
+(Bruker NanoScope .spm/.000, Asylum .ibw, JPK .jpk, WSxM .stp/.top, Nanonis .sxm, Gwyddion .gwy/.gsf; pick a
+channel with --channel NAME or --channel N, listed by `iridis surface channels FILE`), numpy .npy or .npz (np.savez / np.savez_compressed: the only 2-D array, or --channel N among several, in name
 order), 8/16-bit greyscale PNG or TIFF (relative heights: give --max-height and --pixel-size), or a text
 matrix (Gwyddion ASCII export header understood). Units missing from a file can come from a JSON sidecar
 FILE.EXT.json or FILE.json: {\"pixel_size_nm\": 65, \"height_unit\": \"nm\", \"max_height_nm\": 250}.
@@ -28,6 +29,9 @@ pub enum SurfaceCommand {
     /// Size, pixel size, heights and the dominant periods (with orientations) of a height field.
     #[command(after_help = INFO_HELP)]
     Info(InfoArgs),
+    /// The channels (images) a file holds: index, name, scan direction, size and unit.
+    #[command(after_help = CHANNELS_HELP)]
+    Channels(ChannelsArgs),
     /// Generate a nanostructure (gratings, bump lattices, CD, random, snake skins) and write it.
     #[command(after_help = GENERATE_HELP)]
     Generate(GenerateArgs),
@@ -50,7 +54,21 @@ Examples:
   iridis surface info scan.gwy --level plane
   iridis surface info scan.png --pixel-size 65nm --max-height 300nm
   iridis surface info scan.npz --channel 1 --pixel-size 20nm
+  iridis surface info scan.spm --channel Height
+  iridis surface info scan.npy --pixel-size 10nm --height-unit m
   iridis surface info 'builtin:sine?period=1500nm&angle=30deg&size=20um&pixel=20nm'";
+
+const CHANNELS_HELP: &str = "\
+Instrument files hold several images (height trace and retrace, amplitude, phase, …). Every command that
+reads a SURFACE takes --channel with the index or the name shown here (names match without regard to case
+or punctuation; NAME_DIRECTION, e.g. height_retrace, picks a direction). Without --channel the first
+height channel (a length unit, named like a height) is read. Only channels in a length unit are heights.
+
+Examples:
+  iridis surface channels scan.spm
+  iridis surface channels scan.ibw --json
+  iridis surface info scan.jpk --channel height_retrace
+  iridis surface info scan.spm --channel 7";
 
 const GENERATE_HELP: &str = "\
 Kinds and their parameters (defaults shown; lengths need units):
@@ -93,10 +111,13 @@ pub struct LoadArgs {
     /// Images: the height that white stands for (black is 0), e.g. 250nm.
     #[arg(long, value_parser = crate::args::positive_length_nm)]
     pub max_height: Option<f64>,
-    /// Gwyddion: channel number (default the lowest); .npz: which 2-D array, counted from 0 in name order
-    /// (needed when there are several; the error lists them).
+    /// Channel of a multi-channel file, by index or name (`iridis surface channels FILE` lists them);
+    /// default the first height channel (.gwy: the lowest number; .npz: the only 2-D array).
     #[arg(long)]
-    pub channel: Option<u32>,
+    pub channel: Option<iridis_surface::formats::channel::ChannelSel>,
+    /// Unit of heights in files that do not give one (.npy, text, a unitless channel), e.g. m or nm.
+    #[arg(long)]
+    pub height_unit: Option<String>,
     /// Built-ins: edge of the square patch (default 65um).
     #[arg(long, value_parser = crate::args::positive_length_nm)]
     pub size: Option<f64>,
@@ -110,7 +131,8 @@ impl LoadArgs {
         LoadOptions {
             pixel_size_nm: self.pixel_size,
             max_height_nm: self.max_height,
-            channel: self.channel,
+            channel: self.channel.clone(),
+            height_unit: self.height_unit.clone(),
             size_nm: self.size,
             seed: self.seed,
             ignore_sidecar: false,
@@ -136,6 +158,15 @@ pub struct InfoArgs {
     /// Write a shaded-relief preview with a scale bar (PNG).
     #[arg(long)]
     pub image: Option<PathBuf>,
+    /// Print JSON.
+    #[arg(long)]
+    pub json: bool,
+}
+
+#[derive(Debug, ClapArgs)]
+pub struct ChannelsArgs {
+    /// The file.
+    pub file: PathBuf,
     /// Print JSON.
     #[arg(long)]
     pub json: bool,
@@ -247,6 +278,7 @@ pub struct ConvertArgs {
 pub fn run(command: SurfaceCommand) -> Result<()> {
     match command {
         SurfaceCommand::Info(a) => info(a),
+        SurfaceCommand::Channels(a) => channels(a),
         SurfaceCommand::Generate(a) => generate(a),
         SurfaceCommand::Convert(a) => convert(a),
     }
@@ -374,10 +406,49 @@ fn info(a: InfoArgs) -> Result<()> {
     }
 }
 
+fn channels(a: ChannelsArgs) -> Result<()> {
+    let name = a.file.display().to_string();
+    let meta = std::fs::metadata(&a.file).with_context(|| format!("cannot read {name}"))?;
+    if meta.len() > formats::MAX_FILE_BYTES {
+        bail!("{name} is {} MB, larger than any height-field file iridis reads", meta.len() >> 20);
+    }
+    let bytes = std::fs::read(&a.file).with_context(|| format!("cannot read {name}"))?;
+    let list = formats::list_channels(&bytes, &name)?;
+    let fmt = formats::detect_format(&bytes).map_or("?", Format::name);
+    if a.json {
+        return crate::output::print_json(&json!({ "file": name, "format": fmt, "channels": list }));
+    }
+    crate::outln!("{name} ({fmt}): {} channel{}", list.len(), if list.len() == 1 { "" } else { "s" })?;
+    crate::outln!("  index  name                           direction  size         unit")?;
+    for c in &list {
+        let unit = if c.z_unit.is_empty() { "?" } else { c.z_unit.as_str() };
+        crate::outln!(
+            "  {:>5}  {:<30} {:<10} {:<12} {}{}",
+            c.index,
+            if c.alias.is_empty() { c.name.clone() } else { format!("{} (or {})", c.name, c.alias) },
+            if c.direction.is_empty() { "-" } else { c.direction.as_str() },
+            format!("{}×{}", c.cols, c.rows),
+            unit,
+            if c.is_length() { "" } else { "  (not a height)" }
+        )?;
+    }
+    Ok(())
+}
+
 fn output_format(path: &Path) -> Result<Format> {
     match Format::from_extension(path) {
         Some(Format::Tiff) => {
-            bail!("{}: writing TIFF is not supported; use .png (16-bit), .gwy, .npy, .npz or .txt", path.display())
+            bail!(
+                "{}: writing TIFF is not supported; use .png (16-bit), .gwy, .gsf, .npy, .npz or .txt",
+                path.display()
+            )
+        }
+        Some(f @ (Format::Nanoscope | Format::Ibw | Format::Jpk | Format::Wsxm | Format::Sxm)) => {
+            bail!(
+                "{}: writing {} files is not supported; use .gwy, .gsf, .npy, .npz, .png or .txt",
+                path.display(),
+                f.name()
+            )
         }
         Some(f) => Ok(f),
         None => bail!(
