@@ -65,6 +65,49 @@ def summary(image, pixel_nm, reader, channel, **extra):
     return out
 
 
+def roughness_numpy(image, pixel_nm):
+    """Gwyddion-style statistics of the least-squares-plane-levelled image, by numpy alone.
+
+    Sq, Sa, skewness, excess kurtosis, Sz; the ACF G(m, n) = sum z z' / ((R-|m|)(C-|n|)) through a zero-padded
+    FFT, its radial average in annuli of one pixel, and the lag where that falls to G(0)/e.
+    """
+    z = np.asarray(image, dtype=np.float64)
+    rows, cols = z.shape
+    y, x = np.mgrid[0:rows, 0:cols]
+    a = np.column_stack([np.ones(z.size), x.ravel(), y.ravel()])
+    coef, *_ = np.linalg.lstsq(a, z.ravel(), rcond=None)
+    z = z - (a @ coef).reshape(rows, cols)
+    z = z - z.mean()
+    sq = np.sqrt(np.mean(z**2))
+    f = np.fft.fft2(z, s=(2 * rows, 2 * cols))
+    g = np.real(np.fft.ifft2(np.abs(f) ** 2))
+    hr, hc = rows // 2, cols // 2
+    m = np.arange(-hr, hr + 1)
+    n = np.arange(-hc, hc + 1)
+    gm = g[np.ix_(m % (2 * rows), n % (2 * cols))]
+    counts = np.outer(rows - np.abs(m), cols - np.abs(n))
+    acf = gm / counts
+    r = np.hypot(*np.meshgrid(m, n, indexing="ij"))
+    idx = np.floor(r + 0.5).astype(int)
+    nbins = min(hr, hc) + 1
+    radial = np.array([acf[idx == i].mean() for i in range(nbins)])
+    t = radial[0] / np.e
+    tau = None
+    for i in range(1, nbins):
+        if radial[i] <= t:
+            tau = pixel_nm * ((i - 1) + (radial[i - 1] - t) / (radial[i - 1] - radial[i]))
+            break
+    return {
+        "sq_nm": float(sq),
+        "sa_nm": float(np.mean(np.abs(z))),
+        "skewness": float(np.mean(z**3) / sq**3),
+        "excess_kurtosis": float(np.mean(z**4) / sq**4 - 3.0),
+        "sz_nm": float(z.max() - z.min()),
+        "correlation_length_nm": tau,
+        "acf_lags_px": [[int(a_), int(b_), float(acf[hr + a_, hc + b_])] for a_, b_ in [(0, 0), (0, 5), (3, 0), (-7, 11)]],
+    }
+
+
 def spm_channels(path):
     scan = pySPM.Bruker(path)
     names = []
@@ -127,7 +170,7 @@ def main():
     ref["jpk"] = summary(image, px, "AFMReader.jpk.load_jpk (tifffile)", "height_trace", channels=jpk_channels(f))
     f = SAMPLES / "sample_0.gwy"
     image, px = gwy.load_gwy(f, channel="ZSensor")
-    ref["gwy"] = summary(image, px, "AFMReader.gwy.load_gwy", "ZSensor")
+    ref["gwy"] = summary(image, px, "AFMReader.gwy.load_gwy", "ZSensor", roughness=roughness_numpy(image, px))
     f = SAMPLES / "sample_0.stp"
     stp_image, px = stp.load_stp(f)
     ref["stp"] = summary(stp_image, px, "AFMReader.stp.load_stp", "Topography")

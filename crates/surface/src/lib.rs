@@ -17,6 +17,7 @@ pub mod generate;
 pub mod prep;
 pub mod render;
 pub mod rng;
+pub mod stats;
 
 use serde::Serialize;
 

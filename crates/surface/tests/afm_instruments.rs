@@ -237,3 +237,31 @@ fn synthetic_instrument_files_read_exactly() {
     .to_string();
     assert!(e.contains("in deg, not a length") && e.contains("0: HeightTrace (m, trace)"), "{e}");
 }
+
+/// Roughness, ACF and correlation length of the real .gwy scan against numpy (tools/gen_afm_fixtures.py).
+#[test]
+fn roughness_of_the_real_gwy_scan_as_numpy() {
+    let Some(b) = sample("sample_0.gwy") else { return };
+    let r = &reference()["gwy"]["roughness"];
+    let hf = iridis_surface::prep::level_plane(&load(&b, "sample_0.gwy", Some("ZSensor")));
+    let got = iridis_surface::stats::roughness(&hf);
+    for (k, v) in [
+        ("sq_nm", got.sq_nm),
+        ("sa_nm", got.sa_nm),
+        ("skewness", got.skewness),
+        ("excess_kurtosis", got.excess_kurtosis),
+        ("sz_nm", got.sz_nm),
+        ("correlation_length_nm", got.correlation_length_nm.unwrap()),
+    ] {
+        let want = r[k].as_f64().unwrap();
+        assert!(close(v, want, want.abs()), "{k}: {v} vs numpy {want}");
+    }
+    let acf = iridis_surface::stats::acf(&hf);
+    let (hr, hc) = (acf.rows / 2, acf.cols / 2);
+    let g0 = r["acf_lags_px"][0][2].as_f64().unwrap();
+    for l in r["acf_lags_px"].as_array().unwrap() {
+        let (m, n, want) = (l[0].as_i64().unwrap(), l[1].as_i64().unwrap(), l[2].as_f64().unwrap());
+        let v = acf.values[(hr as i64 + m) as usize * acf.cols + (hc as i64 + n) as usize];
+        assert!(close(v, want, g0), "ACF ({m}, {n}): {v} vs numpy {want}");
+    }
+}

@@ -36,6 +36,10 @@ pub struct SurfaceOpts {
     /// Unit of heights in files that do not give one (.npy, text, a unitless channel), e.g. m or nm.
     #[arg(long)]
     pub height_unit: Option<String>,
+    /// Levelling before the model: plane (default for files), poly, lines (median line correction), rows,
+    /// mean or none (built-ins are used as generated unless this is given).
+    #[arg(long)]
+    pub level: Option<String>,
 }
 
 /// Options shared by the commands that build Taylor terms.
@@ -181,6 +185,8 @@ pub fn load_patch(spec: &str, opts: &SurfaceOpts) -> Result<Patch> {
     for w in &hf.meta.warnings {
         eprintln!("warning: {spec}: {w}");
     }
+    let (hf, levelling) = iridis_surface::prep::level_for_model(spec, hf, opts.level.as_deref())?;
+    eprintln!("{spec}: {levelling}");
     Ok(Patch::from_row_major(hf.rows, hf.cols, hf.dx_nm, hf.dy_nm, &hf.heights_nm)?)
 }
 

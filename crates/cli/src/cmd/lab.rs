@@ -37,6 +37,10 @@ pub struct LabModel {
     /// Unit of heights in files that do not give one (.npy, text), e.g. m or nm.
     #[arg(long)]
     pub height_unit: Option<String>,
+    /// Levelling before the model: plane (default for files), poly, lines, rows, mean or none (built-ins are
+    /// used as generated unless this is given).
+    #[arg(long)]
+    pub level: Option<String>,
     /// Coherence length 4σ_s of the window.
     #[arg(long, value_parser = positive_length_nm, default_value = "65um")]
     pub coherence: f64,
@@ -125,6 +129,8 @@ fn load(spec: &str, m: &LabModel) -> Result<Patch> {
     for w in &hf.meta.warnings {
         eprintln!("warning: {spec}: {w}");
     }
+    let (hf, levelling) = iridis_surface::prep::level_for_model(spec, hf, m.level.as_deref())?;
+    eprintln!("{spec}: {levelling}");
     let patch = Patch::from_row_major(hf.rows, hf.cols, hf.dx_nm, hf.dy_nm, &hf.heights_nm)?;
     for w in patch.warnings(m.coherence) {
         eprintln!("warning: {w}");
@@ -897,6 +903,7 @@ pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
         max_height: None,
         channel: None,
         height_unit: None,
+        level: None,
         coherence: 65_000.0,
         terms: "auto".into(),
         fresnel: "schlick:1.5".into(),

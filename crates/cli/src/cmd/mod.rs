@@ -6,6 +6,7 @@ pub mod demo;
 pub mod gpu;
 pub mod lab;
 pub mod render;
+pub mod report;
 pub mod rough;
 pub mod surface;
 pub mod thinfilm;

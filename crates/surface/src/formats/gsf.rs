@@ -107,6 +107,30 @@ pub fn write(hf: &HeightField) -> Vec<u8> {
 mod tests {
     use super::*;
 
+    /// A file without lateral units asks for --pixel-size; NaN lines are reported and filled with the mean.
+    #[test]
+    fn no_units_and_nan_lines() {
+        let mut head = String::from_utf8_lossy(MAGIC).into_owned();
+        head += "XRes = 4\nYRes = 3\nXReal = 2\nYReal = 1.5\n";
+        let mut b = head.into_bytes();
+        let pad = 4 - b.len() % 4;
+        b.resize(b.len() + pad, 0);
+        let vals = [1.0f32, 2.0, 3.0, 4.0, f32::NAN, f32::NAN, f32::NAN, f32::NAN, 5.0, 6.0, 7.0, 8.0];
+        for v in vals {
+            b.extend_from_slice(&v.to_le_bytes());
+        }
+        let e = read(&b, None, &LoadOptions::default()).unwrap_err().to_string();
+        assert!(e.contains("--height-unit"), "{e}");
+        let o = LoadOptions { height_unit: Some("nm".into()), ..Default::default() };
+        let e = read(&b, None, &o).unwrap_err().to_string();
+        assert!(e.contains("without XYUnits has no pixel size") && e.contains("--pixel-size"), "{e}");
+        let o = LoadOptions { height_unit: Some("nm".into()), pixel_size_nm: Some(5.0), ..Default::default() };
+        let hf = read(&b, None, &o).unwrap();
+        assert_eq!(hf.get(1, 2), 4.5);
+        let w = hf.meta.warnings.join(" ");
+        assert!(w.contains("4 of 12 samples are not numbers") && w.contains("1 of 3 rows"), "{w}");
+    }
+
     #[test]
     fn round_trip_to_f32_precision() {
         let hf = super::super::sample_field();
