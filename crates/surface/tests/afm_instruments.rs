@@ -198,7 +198,9 @@ mod common;
 #[test]
 fn synthetic_instrument_files_read_exactly() {
     use common::{code, COLS, ROWS};
-    let cases: [(&str, Vec<u8>, f64, f64, (f64, f64)); 4] = [
+    // (name, bytes, nm per code, offset nm, pixel nm)
+    type Case = (&'static str, Vec<u8>, f64, f64, (f64, f64));
+    let cases: [Case; 4] = [
         // (name, bytes, nm per code, offset nm, pixel nm)
         ("nanoscope", common::nanoscope(), 0.008, 0.0, (6.25, 6.25)),
         ("ibw", common::ibw(), 0.1, 0.0, (100.0, 100.0)),

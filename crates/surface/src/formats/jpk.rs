@@ -79,7 +79,10 @@ struct Page {
     offset: f64,
 }
 
-fn pages(bytes: &[u8]) -> Result<(Vec<Page>, Option<(f64, f64)>), SurfaceError> {
+/// The channel pages and the pixel size (nm) from the first page's grid.
+type Pages = (Vec<Page>, Option<(f64, f64)>);
+
+fn pages(bytes: &[u8]) -> Result<Pages, SurfaceError> {
     let mut d = decoder(bytes)?;
     let pixel = match (number(&mut d, 32834), number(&mut d, 32835), number(&mut d, 32838), number(&mut d, 32839)) {
         (Some(u), Some(v), Some(i), Some(j)) if i >= 1.0 && j >= 1.0 && u > 0.0 && v > 0.0 => {

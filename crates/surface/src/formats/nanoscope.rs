@@ -186,7 +186,7 @@ pub fn read(bytes: &[u8], side: Option<&Sidecar>, opts: &LoadOptions) -> Result<
     let im = &images[channel::pick(&list, opts.channel.as_ref())?];
     let (rows, cols) = (im.info.rows, im.info.cols);
     let need = rows * cols * im.bpp;
-    if im.offset.checked_add(need).map_or(true, |end| end > bytes.len()) {
+    if im.offset.checked_add(need).is_none_or(|end| end > bytes.len()) {
         return Err(bad(format!(
             "image '{}' needs {need} bytes at offset {}, the file has {} (truncated?)",
             im.info.name,

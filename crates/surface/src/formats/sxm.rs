@@ -63,7 +63,7 @@ fn parse(bytes: &[u8]) -> Result<Parsed, SurfaceError> {
         let r: Vec<f64> = v.split_whitespace().filter_map(|x| x.parse().ok()).collect();
         (r.len() == 2 && r[0] > 0.0 && r[1] > 0.0).then(|| (r[0] * 1e9, r[1] * 1e9))
     });
-    let up = first("SCAN_DIR").map_or(true, |d| d.eq_ignore_ascii_case("up"));
+    let up = first("SCAN_DIR").is_none_or(|d| d.eq_ignore_ascii_case("up"));
     let info = get("DATA_INFO").ok_or_else(|| bad("no :DATA_INFO: table of channels"))?;
     let mut list = Vec::new();
     for line in info.iter().skip(1).filter(|l| !l.trim().is_empty()) {

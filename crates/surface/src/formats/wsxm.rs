@@ -69,15 +69,15 @@ fn parse(bytes: &[u8]) -> Result<Parsed, SurfaceError> {
         Some(other) => return Err(bad(format!("image data type '{other}' is not supported"))),
     };
     let len = |key: &str| {
+        // Latin-1 decoding maps WSxM's µ (0xB5) to U+00B5, which unit_to_nm knows.
         let (v, u) = quantity(get(key)?)?;
-        let u = u.replace('\u{b5}', "µ");
         Some(v * super::unit_to_nm(&u)?)
     };
     let extent = match (len("X Amplitude"), len("Y Amplitude")) {
         (Some(x), Some(y)) if x > 0.0 && y > 0.0 => Some((x, y)),
         _ => None,
     };
-    let z_amp = get("Z Amplitude").and_then(quantity).map(|(v, u)| (v, u.replace('\u{b5}', "µ")));
+    let z_amp = get("Z Amplitude").and_then(quantity);
     let min_max = match (get("Minimum").and_then(|v| v.parse().ok()), get("Maximum").and_then(|v| v.parse().ok())) {
         (Some(a), Some(b)) => Some((a, b)),
         _ => None,

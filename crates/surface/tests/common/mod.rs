@@ -52,12 +52,12 @@ pub fn ibw() -> Vec<u8> {
     let layers = 2;
     let npnts = COLS * ROWS * layers;
     let note = b"ScanSize: 1.6e-06\rFastScanSize: 1.6e-06\rSlowScanSize: 1.2e-06\rScanPoints: 16\r".to_vec();
-    let labels = 3 * 32; // the dimension's own label, then one per layer
+    let labels: i32 = 3 * 32; // the dimension's own label, then one per layer
     let mut bin = vec![0u8; 64];
     bin[0..2].copy_from_slice(&5i16.to_le_bytes());
     bin[4..8].copy_from_slice(&((320 + npnts * 4) as i32).to_le_bytes());
     bin[12..16].copy_from_slice(&(note.len() as i32).to_le_bytes());
-    bin[36 + 8..36 + 12].copy_from_slice(&(labels as i32).to_le_bytes());
+    bin[36 + 8..36 + 12].copy_from_slice(&labels.to_le_bytes());
     let mut wave = vec![0u8; 320];
     wave[12..16].copy_from_slice(&(npnts as i32).to_le_bytes());
     wave[16..18].copy_from_slice(&2u16.to_le_bytes()); // f32
