@@ -520,3 +520,26 @@ fn report_on_an_instrument_file() {
     // 0.4 µm is far below the 65 µm coherence area: the warning carries its numbers.
     assert!(r["warnings"].as_array().unwrap().iter().any(|w| w.as_str().unwrap().contains("coherence area")), "{r}");
 }
+
+/// The small scan: a 1000 nm sine on a 6.4 µm patch. The test bench reads 6400/6 = 1066.7 nm off the
+/// DFT grid; the report states its quantisation ± d²/L and that it sits on L/6, while surface info finds 1000.
+#[test]
+fn report_states_the_quantisation_of_a_small_patch() {
+    let dir = tempfile::tempdir().unwrap();
+    let g = dir.path().join("s.gwy");
+    let gs = g.to_str().unwrap();
+    ok(&["surface", "generate", "sine", "--size", "6400nm", "--pixel", "50nm", "--period", "1000nm", "-o", gs]);
+    let out = dir.path().join("rep");
+    ok(&["report", gs, "--size", "16", "-o", out.to_str().unwrap()]);
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    let d = r["testbench"]["periodicity_nm"]["mean"].as_f64().unwrap();
+    let q = d * d / 6400.0;
+    let info = r["info"]["peaks"][0]["period_nm"].as_f64().unwrap();
+    assert!(close(info, 1000.0, 0.5), "surface info {info}");
+    // Both agree within the stated uncertainty, and the report says where the test-bench number comes from.
+    assert!((d - info).abs() <= q, "test bench {d} ± {q} vs surface info {info}");
+    let w: Vec<&str> = r["warnings"].as_array().unwrap().iter().map(|w| w.as_str().unwrap()).collect();
+    assert!(w.iter().any(|w| w.contains(&format!("± d²/L = {q:.2} nm")) && w.contains("L/6")), "{w:?}");
+    assert!(w.iter().all(|w| !w.contains("(--tile)")), "no advice to tile: {w:?}");
+}
