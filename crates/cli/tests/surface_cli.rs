@@ -543,3 +543,41 @@ fn report_states_the_quantisation_of_a_small_patch() {
     assert!(w.iter().any(|w| w.contains(&format!("± d²/L = {q:.2} nm")) && w.contains("L/6")), "{w:?}");
     assert!(w.iter().all(|w| !w.contains("(--tile)")), "no advice to tile: {w:?}");
 }
+
+/// `iridis report` on every real instrument file (small maps), when the samples have been fetched.
+#[test]
+fn report_on_each_real_instrument_file() {
+    let reference: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(fixture("afm_reference.json")).unwrap()).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    for (key, file) in [
+        ("spm", "sample_0.spm"),
+        ("ibw", "sample_0.ibw"),
+        ("jpk", "sample_0.jpk"),
+        ("stp", "sample_0.stp"),
+        ("gsf", "sample_0.gsf"),
+        ("gwy", "sample_0.gwy"),
+    ] {
+        let Some(path) = samples(file) else { return };
+        let out = dir.path().join(key);
+        ok(&["report", &path, "--size", "16", "-o", out.to_str().unwrap()]);
+        let r: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+        assert_eq!(r["info"]["rows"], reference[key]["rows"], "{file}");
+        let lo = reference[key]["min_nm"].as_f64().unwrap();
+        assert!((r["info"]["height_min_nm"].as_f64().unwrap() - lo).abs() <= 1e-6 * lo.abs().max(1.0), "{file}");
+        if key == "gwy" {
+            // numpy's Sq of the plane-levelled scan (tools/gen_afm_fixtures.py).
+            let sq = reference["gwy"]["roughness"]["sq_nm"].as_f64().unwrap();
+            assert!((r["info"]["roughness"]["sq_nm"].as_f64().unwrap() - sq).abs() <= 1e-6 * sq, "{file}");
+        }
+        for f in ["index.html", "relief.png", "psdf.png", "brdf_0deg.png", "brdf_45deg.png"] {
+            assert!(out.join(f).exists(), "{file}: {f}");
+        }
+        // Sub-micrometre scans: the coherence warning with its numbers.
+        assert!(
+            r["warnings"].as_array().unwrap().iter().any(|w| w.as_str().unwrap().contains("coherence area")),
+            "{file}"
+        );
+    }
+}
