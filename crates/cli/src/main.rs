@@ -110,6 +110,8 @@ Examples:
     Render(cmd::render::RenderArgs),
     /// Interactive window: a scene or a BRDF map rendered on the GPU, with an egui panel (issue 8).
     View(cmd::gpu::ViewArgs),
+    /// From a scan to its colours: relief, roughness, periods, PSDF, BRDF maps, test bench in DIR/index.html.
+    Report(cmd::report::ReportArgs),
     // New command groups are added here, one line each, with their module in cmd/.
 }
 
@@ -130,6 +132,7 @@ fn main() -> std::process::ExitCode {
         Command::Brdf(c) => cmd::brdf::run_brdf(c),
         Command::Render(a) => cmd::render::run(a),
         Command::View(a) => cmd::gpu::run_view(a),
+        Command::Report(a) => cmd::report::run(a),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,

@@ -92,7 +92,7 @@ fn info_json_has_the_documented_keys_and_the_numpy_values() {
     // The keys, plus provenance (source, format, z unit, notes), mean and warnings.
     let documented =
         ["rows", "cols", "pixel_size_nm", "extent_nm", "height_min_nm", "height_max_nm", "rms_nm", "peaks"];
-    let extra = ["source", "format", "mean_nm", "z_unit_in_file", "notes", "warnings"];
+    let extra = ["source", "format", "mean_nm", "z_unit_in_file", "notes", "warnings", "roughness"];
     assert_eq!(keys, documented.iter().chain(&extra).copied().collect(), "{v}");
     for p in v["peaks"].as_array().unwrap() {
         let pk: std::collections::BTreeSet<&str> = p.as_object().unwrap().keys().map(String::as_str).collect();
@@ -318,5 +318,267 @@ fn z_unit_round_trip_through_the_sidecar() {
             );
         }
         assert!(close(back.dx_nm, 40.0, 1e-9), "{ext}");
+    }
+}
+
+fn samples(name: &str) -> Option<String> {
+    let p = std::env::var_os("IRIDIS_AFM_SAMPLES")
+        .map(std::path::PathBuf::from)
+        .unwrap_or_else(|| std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../target/afm-samples"))
+        .join(name);
+    if p.exists() {
+        Some(p.to_str().unwrap().to_string())
+    } else {
+        eprintln!("SKIPPED: {} absent; run tools/fetch_afm_samples.sh", p.display());
+        None
+    }
+}
+
+fn fails(args: &[&str]) -> String {
+    let o = iridis().args(args).output().unwrap();
+    assert_eq!(o.status.code(), Some(2), "{args:?} should fail: {}", String::from_utf8_lossy(&o.stdout));
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+#[test]
+fn channels_are_listed_and_picked_by_name_or_index() {
+    let sxm = fixture("nanonis_synthetic.sxm");
+    let out = String::from_utf8(ok(&["surface", "channels", &sxm]).stdout).unwrap();
+    for needle in ["4 channels", "Z", "Current", "backward", "40×24", "(not a height)"] {
+        assert!(out.contains(needle), "'{needle}' missing in:\n{out}");
+    }
+    let v: serde_json::Value = serde_json::from_slice(&ok(&["surface", "channels", &sxm, "--json"]).stdout).unwrap();
+    assert_eq!(v["format"], "sxm");
+    assert_eq!(v["channels"][1]["name"], "Z");
+    assert_eq!(v["channels"][1]["direction"], "backward");
+    assert_eq!(v["channels"][2]["z_unit"], "A");
+    // By name and by index: the same image.
+    let a = info_json(&[&sxm, "--channel", "z_backward"]);
+    let b = info_json(&[&sxm, "--channel", "1"]);
+    assert_eq!(a["height_min_nm"], b["height_min_nm"]);
+    for k in 0..2 {
+        assert!(close(a["pixel_size_nm"][k].as_f64().unwrap(), 10.0, 1e-9), "{a}");
+    }
+    // An unknown channel and a channel that is not a height: exit 2 and the list.
+    let e = fails(&["surface", "info", &sxm, "--channel", "Friction"]);
+    assert!(e.contains("no channel named 'Friction'") && e.contains("2: Current (A, forward)"), "{e}");
+    let e = fails(&["surface", "info", &sxm, "--channel", "Current"]);
+    assert!(e.contains("not a length") && e.contains("0: Z (m, forward)"), "{e}");
+    // brdf-map takes --channel too, and works on the instrument file.
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("m.png");
+    ok(&[
+        "brdf-map",
+        &sxm,
+        "--channel",
+        "Z_forward",
+        "--method",
+        "reference",
+        "--size",
+        "16",
+        "-o",
+        png.to_str().unwrap(),
+    ]);
+    assert!(png.exists());
+}
+
+#[test]
+fn height_unit_and_metres_warning() {
+    let dir = tempfile::tempdir().unwrap();
+    let npy = dir.path().join("m.npy");
+    // Heights in metres (a 50 nm sine): taken as nm the relief would be sub-picometre.
+    let hf = iridis_surface::load_surface("builtin:sine?size=4um&pixel=50nm&depth=50nm", &Default::default()).unwrap();
+    let metres: Vec<f64> = hf.heights_nm.iter().map(|h| h * 1e-9).collect();
+    let m = iridis_surface::HeightField::new(hf.rows, hf.cols, hf.dx_nm, hf.dy_nm, metres).unwrap();
+    // The .npy alone, without the sidecar that would give its unit.
+    let (bytes, _sidecar) = iridis_surface::formats::write_bytes(&m, iridis_surface::Format::Npy).unwrap();
+    std::fs::write(&npy, bytes).unwrap();
+    let p = npy.to_str().unwrap();
+    let o = ok(&["surface", "info", p, "--pixel-size", "50nm"]);
+    assert!(String::from_utf8_lossy(&o.stderr).contains("look like metres"), "{}", String::from_utf8_lossy(&o.stderr));
+    let v = info_json(&[p, "--pixel-size", "50nm", "--height-unit", "m"]);
+    assert!(close(v["height_max_nm"].as_f64().unwrap(), 25.0, 0.01), "{v}");
+    assert!(v["warnings"].as_array().unwrap().iter().all(|w| !w.as_str().unwrap().contains("metres")), "{v}");
+    let e = fails(&["surface", "info", p, "--pixel-size", "50nm", "--height-unit", "kg"]);
+    assert!(e.contains("not a length unit"), "{e}");
+}
+
+#[test]
+fn psdf_and_acf_images_and_roughness_numbers() {
+    let dir = tempfile::tempdir().unwrap();
+    let (psd, acf) = (dir.path().join("psdf.png"), dir.path().join("acf.png"));
+    let v = info_json(&[
+        "builtin:sine?size=8um&pixel=50nm&period=800nm&depth=20nm",
+        "--psdf",
+        psd.to_str().unwrap(),
+        "--acf",
+        acf.to_str().unwrap(),
+    ]);
+    // A sine of amplitude 10 nm: Sq = 10/√2 nm (the plane fit takes < 1 %). Its radial ACF is
+    // (A²/2) J0(2π r / period), which falls to 1/e at r = 1.75199 · 800 nm / 2π = 223.07 nm (scipy).
+    let ro = &v["roughness"];
+    assert!(close(ro["sq_nm"].as_f64().unwrap(), 10.0 / 2f64.sqrt(), 0.01 * 7.07), "{v}");
+    assert!(close(ro["correlation_length_nm"].as_f64().unwrap(), 223.07, 0.03 * 223.07), "{v}");
+    for p in [&psd, &acf] {
+        assert_eq!(&std::fs::read(p).unwrap()[..8], b"\x89PNG\r\n\x1a\n");
+    }
+}
+
+#[test]
+fn real_instrument_files_through_the_cli() {
+    let reference: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(fixture("afm_reference.json")).unwrap()).unwrap();
+    for (key, file, channel) in [
+        ("spm", "sample_0.spm", "Height"),
+        ("ibw", "sample_0.ibw", "HeightTracee"),
+        ("jpk", "sample_0.jpk", "height_trace"),
+        ("stp", "sample_0.stp", "0"),
+        ("gsf", "sample_0.gsf", "0"),
+    ] {
+        let Some(path) = samples(file) else { return };
+        let v = info_json(&[&path, "--channel", channel]);
+        let r = &reference[key];
+        assert_eq!(v["rows"], r["rows"], "{file}");
+        let lo = r["min_nm"].as_f64().unwrap();
+        assert!((v["height_min_nm"].as_f64().unwrap() - lo).abs() <= 1e-6 * lo.abs().max(1.0), "{file}: {v}");
+        let px = r["pixel_nm"].as_f64().unwrap();
+        assert!((v["pixel_size_nm"][0].as_f64().unwrap() - px).abs() <= 1e-6 * px, "{file}");
+    }
+}
+
+/// A tilted scan (128 nm across) puts a false streak into a BRDF map; files are plane-levelled by default,
+/// so the tilted and the flat grating give the same map, and `--level none` shows the difference.
+#[test]
+fn files_are_plane_levelled_by_default_before_the_model() {
+    use iridis_surface::{formats, Format, HeightField};
+    let dir = tempfile::tempdir().unwrap();
+    let flat = iridis_surface::load_surface(
+        "builtin:sine?size=6400nm&pixel=50nm&period=800nm&depth=60nm",
+        &Default::default(),
+    )
+    .unwrap();
+    let (rows, cols) = (flat.rows, flat.cols);
+    let tilted: Vec<f64> =
+        flat.heights_nm.iter().enumerate().map(|(i, h)| h + 128.0 * (i % cols) as f64 / (cols - 1) as f64).collect();
+    let t = HeightField::new(rows, cols, flat.dx_nm, flat.dy_nm, tilted).unwrap();
+    let write = |hf: &HeightField, name: &str| {
+        let p = dir.path().join(name);
+        std::fs::write(&p, formats::write_bytes(hf, Format::Gwy).unwrap().0).unwrap();
+        p.to_str().unwrap().to_string()
+    };
+    let (f, tl) = (write(&flat, "flat.gwy"), write(&t, "tilted.gwy"));
+    // Linear XYZ of the map (--raw), compared as numbers.
+    let map = |input: &str, extra: &[&str], name: &str| {
+        let (png, raw) = (dir.path().join(format!("{name}.png")), dir.path().join(format!("{name}.npy")));
+        // A coherence that fits the 6.4 µm patch (the default 65 µm leaves a patch this small dark).
+        let mut args = vec!["brdf-map", input, "--method", "reference", "--size", "24", "--coherence", "2um"];
+        args.extend_from_slice(&["-o", png.to_str().unwrap()]);
+        args.extend_from_slice(&["--raw", raw.to_str().unwrap()]);
+        args.extend_from_slice(extra);
+        let o = ok(&args);
+        let xyz: Vec<f64> = npyz::NpyFile::new(&std::fs::read(&raw).unwrap()[..]).unwrap().into_vec().unwrap();
+        (xyz, String::from_utf8_lossy(&o.stderr).into_owned())
+    };
+    let (a, msg) = map(&f, &[], "flat");
+    assert!(msg.contains("levelling: plane (the default for files"), "{msg}");
+    let (b, _) = map(&tl, &[], "tilted");
+    let (c, msg) = map(&tl, &["--level", "none"], "tilted_raw");
+    assert!(msg.contains("levelling: none (as asked"), "{msg}");
+    // Directions outside the hemisphere are NaN in all three maps alike.
+    let peak = a.iter().filter(|v| v.is_finite()).fold(0.0f64, |m, v| m.max(v.abs()));
+    let worst = |x: &[f64], y: &[f64]| {
+        x.iter().zip(y).fold(0.0f64, |m, (p, q)| match (p.is_finite(), q.is_finite()) {
+            (true, true) => m.max((p - q).abs()),
+            (false, false) => m,
+            _ => f64::INFINITY,
+        }) / peak
+    };
+    assert!(worst(&a, &b) < 1e-6, "levelled tilted map differs from the flat one by {}", worst(&a, &b));
+    assert!(worst(&a, &c) > 0.01, "the tilt should change the unlevelled map: {}", worst(&a, &c));
+}
+
+/// `iridis report` on an instrument file: index.html and report.json with the figures and the commands.
+#[test]
+fn report_on_an_instrument_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("rep");
+    let sxm = fixture("nanonis_synthetic.sxm");
+    ok(&["report", &sxm, "--channel", "Z_forward", "--size", "16", "-o", out.to_str().unwrap()]);
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    // The synthetic scan is 5 nm · sin(2π x / 10 px) + 0.3 nm · y over 40 × 24 px of 10 nm; numpy's
+    // least-squares plane leaves Sq = 3.4721342 nm.
+    assert_eq!((r["info"]["cols"].as_u64(), r["info"]["rows"].as_u64()), (Some(40), Some(24)));
+    let sq = r["info"]["roughness"]["sq_nm"].as_f64().unwrap();
+    assert!(close(sq, 3.472_134_206_7, 1e-4), "{sq}");
+    let html = std::fs::read_to_string(out.join("index.html")).unwrap();
+    for f in ["relief.png", "psdf.png", "acf.png", "brdf_0deg.png", "brdf_45deg.png"] {
+        assert!(out.join(f).exists(), "{f}");
+        assert!(html.contains(f), "{f} not in the page");
+    }
+    assert!(html.contains("iridis brdf-map") && html.contains("--channel Z_forward"), "commands missing");
+    // 0.4 µm is far below the 65 µm coherence area: the warning carries its numbers.
+    assert!(r["warnings"].as_array().unwrap().iter().any(|w| w.as_str().unwrap().contains("coherence area")), "{r}");
+}
+
+/// The small scan: a 1000 nm sine on a 6.4 µm patch. The test bench reads 6400/6 = 1066.7 nm off the
+/// DFT grid; the report states its quantisation ± d²/L and that it sits on L/6, while surface info finds 1000.
+#[test]
+fn report_states_the_quantisation_of_a_small_patch() {
+    let dir = tempfile::tempdir().unwrap();
+    let g = dir.path().join("s.gwy");
+    let gs = g.to_str().unwrap();
+    ok(&["surface", "generate", "sine", "--size", "6400nm", "--pixel", "50nm", "--period", "1000nm", "-o", gs]);
+    let out = dir.path().join("rep");
+    ok(&["report", gs, "--size", "16", "-o", out.to_str().unwrap()]);
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    let d = r["testbench"]["periodicity_nm"]["mean"].as_f64().unwrap();
+    let q = d * d / 6400.0;
+    let info = r["info"]["peaks"][0]["period_nm"].as_f64().unwrap();
+    assert!(close(info, 1000.0, 0.5), "surface info {info}");
+    // Both agree within the stated uncertainty, and the report says where the test-bench number comes from.
+    assert!((d - info).abs() <= q, "test bench {d} ± {q} vs surface info {info}");
+    let w: Vec<&str> = r["warnings"].as_array().unwrap().iter().map(|w| w.as_str().unwrap()).collect();
+    assert!(w.iter().any(|w| w.contains(&format!("± d²/L = {q:.2} nm")) && w.contains("L/6")), "{w:?}");
+    assert!(w.iter().all(|w| !w.contains("(--tile)")), "no advice to tile: {w:?}");
+}
+
+/// `iridis report` on every real instrument file (small maps), when the samples have been fetched.
+#[test]
+fn report_on_each_real_instrument_file() {
+    let reference: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(fixture("afm_reference.json")).unwrap()).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    for (key, file) in [
+        ("spm", "sample_0.spm"),
+        ("ibw", "sample_0.ibw"),
+        ("jpk", "sample_0.jpk"),
+        ("stp", "sample_0.stp"),
+        ("gsf", "sample_0.gsf"),
+        ("gwy", "sample_0.gwy"),
+    ] {
+        let Some(path) = samples(file) else { return };
+        let out = dir.path().join(key);
+        ok(&["report", &path, "--size", "16", "-o", out.to_str().unwrap()]);
+        let r: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+        assert_eq!(r["info"]["rows"], reference[key]["rows"], "{file}");
+        // The report's heights are plane-levelled; the pixel size is the file's.
+        let px = reference[key]["pixel_nm"].as_f64().unwrap();
+        assert!((r["info"]["pixel_size_nm"][0].as_f64().unwrap() - px).abs() <= 1e-6 * px, "{file}");
+        if key == "gwy" {
+            // numpy's Sq of the plane-levelled scan (tools/gen_afm_fixtures.py).
+            let sq = reference["gwy"]["roughness"]["sq_nm"].as_f64().unwrap();
+            assert!((r["info"]["roughness"]["sq_nm"].as_f64().unwrap() - sq).abs() <= 1e-6 * sq, "{file}");
+        }
+        for f in ["index.html", "relief.png", "psdf.png", "brdf_0deg.png", "brdf_45deg.png"] {
+            assert!(out.join(f).exists(), "{file}: {f}");
+        }
+        // Sub-micrometre scans: the coherence warning with its numbers.
+        assert!(
+            r["warnings"].as_array().unwrap().iter().any(|w| w.as_str().unwrap().contains("coherence area")),
+            "{file}"
+        );
     }
 }

@@ -31,6 +31,8 @@ fn seeds() -> Vec<(&'static str, Vec<Vec<u8>>)> {
         ("npz", vec![enc(Format::Npz), file("numpy_savez.npz"), file("numpy_savez_compressed.npz")]),
         ("png/tiff", vec![enc(Format::Png), tiff]),
         ("text", vec![enc(Format::Text), b"# Width: 2 um\n# Value units: m\n1e-9 2e-9\n3e-9 4e-9\n".to_vec()]),
+        ("gsf", vec![enc(Format::Gsf)]),
+        ("sxm", vec![file("nanonis_synthetic.sxm")]),
     ]
 }
 

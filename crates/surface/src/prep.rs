@@ -68,6 +68,115 @@ pub fn level_rows(hf: &HeightField) -> HeightField {
     with(hf, hf.rows, hf.cols, hf.dx_nm, hf.dy_nm, h, "rows levelled by their means".into())
 }
 
+/// Median line correction (Gwyddion's "Align Rows", median): subtracts each scan line's median, then the
+/// overall mean. Unlike the row mean, a median is not pulled by a particle or a spike on the line.
+pub fn level_lines_median(hf: &HeightField) -> HeightField {
+    let mut h = Vec::with_capacity(hf.heights_nm.len());
+    for r in 0..hf.rows {
+        let row = hf.row(r);
+        let mut s = row.to_vec();
+        s.sort_by(f64::total_cmp);
+        let n = s.len();
+        let med = if n % 2 == 1 { s[n / 2] } else { 0.5 * (s[n / 2 - 1] + s[n / 2]) };
+        h.extend(row.iter().map(|x| x - med));
+    }
+    let m = h.iter().sum::<f64>() / h.len() as f64;
+    h.iter_mut().for_each(|x| *x -= m);
+    with(hf, hf.rows, hf.cols, hf.dx_nm, hf.dy_nm, h, "scan lines levelled by their medians".into())
+}
+
+/// Subtracts the least-squares polynomial of total degree 2 in x and y (`1, x, y, x², xy, y²`): the bow of a
+/// piezo scanner's arc on top of the tilt.
+pub fn level_poly(hf: &HeightField) -> HeightField {
+    let (rows, cols) = (hf.rows, hf.cols);
+    // Coordinates scaled to [-1, 1] keep the normal equations well conditioned.
+    let sx = 2.0 / (cols.max(2) - 1) as f64;
+    let sy = 2.0 / (rows.max(2) - 1) as f64;
+    let basis = |r: usize, c: usize| {
+        let (x, y) = (c as f64 * sx - 1.0, 1.0 - r as f64 * sy);
+        [1.0, x, y, x * x, x * y, y * y]
+    };
+    let mut a = [[0.0f64; 7]; 6];
+    for r in 0..rows {
+        for c in 0..cols {
+            let b = basis(r, c);
+            let z = hf.heights_nm[r * cols + c];
+            for i in 0..6 {
+                for j in 0..6 {
+                    a[i][j] += b[i] * b[j];
+                }
+                a[i][6] += b[i] * z;
+            }
+        }
+    }
+    // Gauss–Jordan with partial pivoting; a degenerate system (a 2-row field) keeps those terms at 0.
+    for col in 0..6 {
+        let piv = (col..6).max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs())).unwrap_or(col);
+        a.swap(col, piv);
+        let p = a[col][col];
+        if p.abs() < 1e-12 {
+            continue;
+        }
+        for k in col..7 {
+            a[col][k] /= p;
+        }
+        for i in 0..6 {
+            if i != col {
+                let f = a[i][col];
+                for k in col..7 {
+                    a[i][k] -= f * a[col][k];
+                }
+            }
+        }
+    }
+    let coef: Vec<f64> = (0..6).map(|i| if a[i][i].abs() > 0.5 { a[i][6] } else { 0.0 }).collect();
+    let mut h = Vec::with_capacity(rows * cols);
+    for r in 0..rows {
+        for c in 0..cols {
+            let b = basis(r, c);
+            h.push(hf.heights_nm[r * cols + c] - (0..6).map(|i| coef[i] * b[i]).sum::<f64>());
+        }
+    }
+    with(hf, rows, cols, hf.dx_nm, hf.dy_nm, h, "polynomial (degree 2) levelled".into())
+}
+
+/// Levelling by name: `none`, `mean`, `plane`, `poly` (degree 2), `lines` (median line correction) or `rows`
+/// (line means).
+pub fn level_by_name(hf: &HeightField, how: &str) -> Result<HeightField, SurfaceError> {
+    Ok(match how.trim() {
+        "none" => hf.clone(),
+        "mean" => remove_mean(hf),
+        "plane" => level_plane(hf),
+        "poly" => level_poly(hf),
+        "lines" => level_lines_median(hf),
+        "rows" => level_rows(hf),
+        other => {
+            return Err(SurfaceError::invalid(format!(
+                "unknown levelling '{other}'; expected none, mean, plane, poly, lines or rows"
+            )))
+        }
+    })
+}
+
+/// Levelling before the diffraction model, as Gwyddion users expect: a file is plane-levelled unless the
+/// user asks otherwise (a scan's tilt puts a false streak and lobes into BRDF maps); a built-in is left as
+/// generated. Returns the field and a sentence saying what was done, for the command's output.
+pub fn level_for_model(
+    spec: &str,
+    hf: HeightField,
+    requested: Option<&str>,
+) -> Result<(HeightField, String), SurfaceError> {
+    let builtin = spec.starts_with("builtin:");
+    let how = requested.unwrap_or(if builtin { "none" } else { "plane" });
+    let out = level_by_name(&hf, how)?;
+    let why = match (requested, builtin) {
+        (Some(_), _) => "as asked (--level)",
+        (None, false) => "the default for files; --level none keeps the tilt",
+        (None, true) => "built-ins are used as generated",
+    };
+    Ok((out, format!("levelling: {how} ({why})")))
+}
+
 /// The block starting at `(row0, col0)` of `rows × cols` samples.
 pub fn crop(hf: &HeightField, row0: usize, col0: usize, rows: usize, cols: usize) -> Result<HeightField, SurfaceError> {
     check_dims(rows, cols)?;
@@ -196,6 +305,40 @@ pub fn pad(hf: &HeightField, rows: usize, cols: usize) -> Result<HeightField, Su
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn poly_and_median_lines_remove_what_they_model() {
+        let (rows, cols) = (20, 30);
+        let bump = |r: usize, c: usize| if (r, c) == (7, 9) { 50.0 } else { 0.0 };
+        // A quadratic bow plus tilt plus one spike: the polynomial leaves the spike (less its share).
+        let h: Vec<f64> = (0..rows * cols)
+            .map(|i| {
+                let (r, c) = ((i / cols) as f64, (i % cols) as f64);
+                3.0 + 0.2 * c - 0.1 * r + 0.01 * c * c + 0.02 * r * c - 0.03 * r * r + bump(i / cols, i % cols)
+            })
+            .collect();
+        let hf = HeightField::new(rows, cols, 10.0, 10.0, h).unwrap();
+        let p = level_poly(&hf);
+        let smooth = HeightField::new(
+            rows,
+            cols,
+            10.0,
+            10.0,
+            hf.heights_nm.iter().enumerate().map(|(i, v)| v - bump(i / cols, i % cols)).collect(),
+        )
+        .unwrap();
+        for v in &level_poly(&smooth).heights_nm {
+            assert!(v.abs() < 1e-9, "{v}");
+        }
+        assert!(p.get(7, 9) > 45.0);
+        // Line offsets plus a spike: the medians remove the offsets exactly, the spike stays whole.
+        let lines: Vec<f64> = (0..rows * cols).map(|i| 5.0 * (i / cols) as f64 + bump(i / cols, i % cols)).collect();
+        let l = level_lines_median(&HeightField::new(rows, cols, 10.0, 10.0, lines).unwrap());
+        let off = l.get(0, 0);
+        assert!((l.get(7, 9) - off - 50.0).abs() < 1e-9 && (l.get(19, 29) - off).abs() < 1e-9);
+        assert!(level_by_name(&hf, "wobble").unwrap_err().to_string().contains("poly, lines"));
+    }
+
     use super::*;
 
     fn field(rows: usize, cols: usize, f: impl Fn(usize, usize) -> f64) -> HeightField {

@@ -9,6 +9,8 @@ use iridis_surface::generate::{Generator, Grid};
 use iridis_surface::rng::Rng;
 use iridis_surface::LoadOptions;
 
+mod common;
+
 const PER_SEED: usize = 1500;
 
 fn fixture(name: &str) -> Vec<u8> {
@@ -38,6 +40,12 @@ fn mutated_files_of_every_format_never_panic() {
         ("png16", enc(Format::Png)),
         ("tiff16", tiff),
         ("text", enc(Format::Text)),
+        ("gsf", enc(Format::Gsf)),
+        ("nanoscope", common::nanoscope()),
+        ("ibw", common::ibw()),
+        ("jpk", common::jpk()),
+        ("wsxm", common::wsxm_top()),
+        ("sxm", fixture("nanonis_synthetic.sxm")),
     ];
     let opts = LoadOptions { pixel_size_nm: Some(10.0), max_height_nm: Some(100.0), ..Default::default() };
     let mut panics = Vec::new();

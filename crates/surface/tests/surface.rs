@@ -3,6 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
+use iridis_surface::formats::channel::ChannelSel;
 use iridis_surface::formats::{read_bytes, sidecar_path, write_bytes, Format};
 use iridis_surface::generate::{Generator, Grid};
 use iridis_surface::{find_peaks, load_surface, prep, HeightField, LoadOptions, PeakOptions};
@@ -37,7 +38,7 @@ fn gwy_written_by_gwyfile() {
     assert_eq!(hf.meta.z_unit, "m");
     assert!(hf.meta.notes.iter().any(|n| n.contains("'Height'")), "{:?}", hf.meta.notes);
     // Channel 1 is stored in µm, lateral and vertical: the units must be applied.
-    let o = LoadOptions { channel: Some(1), ..Default::default() };
+    let o = LoadOptions { channel: Some(ChannelSel::Index(1)), ..Default::default() };
     let c1 = load_surface(fixture("gwyfile_two_channels.gwy").to_str().unwrap(), &o).unwrap();
     assert!((c1.dx_nm - 100.0).abs() < 1e-9 && (c1.dy_nm - 80.0).abs() < 1e-9);
     for p in expected()["channel1_probe"].as_array().unwrap() {
@@ -46,11 +47,11 @@ fn gwy_written_by_gwyfile() {
     }
     let e = load_surface(
         fixture("gwyfile_two_channels.gwy").to_str().unwrap(),
-        &LoadOptions { channel: Some(7), ..Default::default() },
+        &LoadOptions { channel: Some(ChannelSel::Index(7)), ..Default::default() },
     )
     .unwrap_err()
     .to_string();
-    assert!(e.contains("channels 0, 1"), "{e}");
+    assert!(e.contains("no channel 7") && e.contains("0: Height (m)"), "{e}");
     // No units in the file: metres assumed, and the user is told.
     let nu = load_surface(fixture("gwyfile_no_units.gwy").to_str().unwrap(), &LoadOptions::default()).unwrap();
     check_against_expected(&nu, 1e-12);
@@ -64,7 +65,9 @@ fn gwy_fixture_periods_along_x_and_y() {
     let c0 = load_surface(p.to_str().unwrap(), &LoadOptions::default()).unwrap();
     let pk = &find_peaks(&c0, &PeakOptions::default())[0];
     assert!((pk.period_nm - 800.0).abs() < 4.0 && pk.orientation_deg.min(180.0 - pk.orientation_deg) < 0.5, "{pk:?}");
-    let c1 = load_surface(p.to_str().unwrap(), &LoadOptions { channel: Some(1), ..Default::default() }).unwrap();
+    let c1 =
+        load_surface(p.to_str().unwrap(), &LoadOptions { channel: Some(ChannelSel::Index(1)), ..Default::default() })
+            .unwrap();
     let pk = &find_peaks(&c1, &PeakOptions::default())[0];
     assert!((pk.period_nm - 640.0).abs() < 3.2 && (pk.orientation_deg - 90.0).abs() < 0.5, "{pk:?}");
 }
@@ -114,17 +117,22 @@ fn npz_written_by_numpy_savez_and_savez_compressed() {
     // The 1-D axes and the scalar are not offered.
     assert!(!err.contains("x_nm") && !err.contains("scale"), "{err}");
     // --channel 1 is "height": the same field as the .npy fixtures (dy from the options is dx here).
-    let mut h = load_surface(p, &o(Some(1))).unwrap();
+    let mut h = load_surface(p, &o(Some(ChannelSel::Index(1)))).unwrap();
     h.dy_nm = 80.0;
     check_against_expected(&h, 0.0);
     // --channel 0 is "amplitude": the second grating, stored as float32.
-    let a = load_surface(p, &o(Some(0))).unwrap();
+    let a = load_surface(p, &o(Some(ChannelSel::Index(0)))).unwrap();
     for q in e["channel1_probe"].as_array().unwrap() {
         let (r, c, v) = (q[0].as_u64().unwrap() as usize, q[1].as_u64().unwrap() as usize, q[2].as_f64().unwrap());
         assert!((a.get(r, c) - v).abs() <= 4e-6 * v.abs().max(1.0), "({r},{c}) {} vs {v}", a.get(r, c));
     }
-    let err = load_surface(p, &o(Some(2))).unwrap_err().to_string();
+    let err = load_surface(p, &o(Some(ChannelSel::Index(2)))).unwrap_err().to_string();
     assert!(err.contains("--channel 2") && err.contains("0: amplitude") && err.contains("1: height"), "{err}");
+    // By name, as numpy saved it.
+    let by_name = load_surface(p, &o(Some(ChannelSel::Name("height".into())))).unwrap();
+    assert_eq!(by_name.heights_nm, load_surface(p, &o(Some(ChannelSel::Index(1)))).unwrap().heights_nm);
+    let err = load_surface(p, &o(Some(ChannelSel::Name("phase".into())))).unwrap_err().to_string();
+    assert!(err.contains("no such array") && err.contains("1: height"), "{err}");
 }
 
 /// Builds a zip archive holding `members` (name, bytes), stored.

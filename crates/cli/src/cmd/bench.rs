@@ -367,7 +367,7 @@ fn accuracy(a: AccuracyBench) -> Result<()> {
     let wi = [0.0, 0.0, 1.0];
     let map = |e: &dyn Evaluator| iridis_diffraction::map::brdf_map(e, wi, a.map_size, &|_| {});
     for spec in &surfaces {
-        let patch = load_patch(spec, &SurfaceOpts { pixel_size: None, max_height: None, channel: None })?;
+        let patch = load_patch(spec, &SurfaceOpts::default())?;
         let (ex, ey) = patch.extent();
         let coherence = a.coherence.unwrap_or(ex.min(ey) / 4.0);
         eprintln!("{spec}: {}×{} samples, coherence {:.1} µm …", patch.cols, patch.rows, coherence / 1000.0);

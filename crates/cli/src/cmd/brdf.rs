@@ -21,7 +21,7 @@ use crate::progress::bar;
 const DEFAULT_EPSILON: f64 = 1e-6;
 
 /// How to read a SURFACE argument.
-#[derive(Debug, Clone, ClapArgs)]
+#[derive(Debug, Clone, Default, ClapArgs)]
 pub struct SurfaceOpts {
     /// Pixel size for image surfaces without physical units (e.g. 65nm).
     #[arg(long, value_parser = positive_length_nm)]
@@ -29,9 +29,17 @@ pub struct SurfaceOpts {
     /// Height of the brightest grey value for image surfaces (e.g. 300nm).
     #[arg(long, value_parser = positive_length_nm)]
     pub max_height: Option<f64>,
-    /// Gwyddion: channel number (default the lowest); .npz: which 2-D array, counted from 0 in name order.
+    /// Channel of a multi-channel file, by index or name (`iridis surface channels FILE` lists them);
+    /// default the first height channel (.npz: the only 2-D array).
     #[arg(long)]
-    pub channel: Option<u32>,
+    pub channel: Option<iridis_surface::formats::channel::ChannelSel>,
+    /// Unit of heights in files that do not give one (.npy, text, a unitless channel), e.g. m or nm.
+    #[arg(long)]
+    pub height_unit: Option<String>,
+    /// Levelling before the model: plane (default for files), poly, lines (median line correction), rows,
+    /// mean or none (built-ins are used as generated unless this is given).
+    #[arg(long)]
+    pub level: Option<String>,
 }
 
 /// Options shared by the commands that build Taylor terms.
@@ -173,13 +181,16 @@ pub fn load_patch(spec: &str, opts: &SurfaceOpts) -> Result<Patch> {
     let load = iridis_surface::LoadOptions {
         pixel_size_nm: opts.pixel_size,
         max_height_nm: opts.max_height,
-        channel: opts.channel,
+        channel: opts.channel.clone(),
+        height_unit: opts.height_unit.clone(),
         ..Default::default()
     };
     let hf = iridis_surface::load_surface(spec, &load).with_context(|| format!("cannot load surface {spec}"))?;
     for w in &hf.meta.warnings {
         eprintln!("warning: {spec}: {w}");
     }
+    let (hf, levelling) = iridis_surface::prep::level_for_model(spec, hf, opts.level.as_deref())?;
+    eprintln!("{spec}: {levelling}");
     Ok(Patch::from_row_major(hf.rows, hf.cols, hf.dx_nm, hf.dy_nm, &hf.heights_nm)?)
 }
 
@@ -701,7 +712,7 @@ pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
          Xenopeltis). Each map: `iridis brdf-map builtin:NAME -o map.png`.",
     );
     let model = ModelOpts { terms: "auto".into(), coherence: None, illuminant: None, observer: None, step: None };
-    let none = SurfaceOpts { pixel_size: None, max_height: None, channel: None };
+    let none = SurfaceOpts::default();
     let size = 320;
     for (name, theta_deg) in [("blazed", 0.0), ("cd", 0.0), ("elaphe", 0.0), ("xenopeltis", 20.0)] {
         let spec = format!("builtin:{name}");

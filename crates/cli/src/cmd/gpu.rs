@@ -341,7 +341,7 @@ pub fn bench(a: GpuBench) -> Result<()> {
             if !a.json {
                 crate::outln!("building the lookup table of builtin:elaphe at 201² (pass --table to use your own) …")?;
             }
-            let none = SurfaceOpts { pixel_size: None, max_height: None, channel: None };
+            let none = SurfaceOpts::default();
             lookup_table("builtin:elaphe", &model, TableParams { uv_resolution: 201, uv_power: 5.0 }, &none)?
         }
     };
@@ -512,6 +512,8 @@ pub struct ViewArgs {
     /// With --check: print the check's report as JSON.
     #[arg(long)]
     pub json: bool,
+    #[command(flatten)]
+    pub surface_opts: SurfaceOpts,
 }
 
 fn load_for_view(p: &std::path::Path) -> std::result::Result<iridis_render::Scene, String> {
@@ -534,9 +536,8 @@ pub fn run_view(a: ViewArgs) -> Result<()> {
         ViewInput::Scene(path.to_path_buf())
     } else {
         let model = ModelOpts { terms: "auto".into(), coherence: None, illuminant: None, observer: None, step: None };
-        let none = SurfaceOpts { pixel_size: None, max_height: None, channel: None };
         let params = TableParams { uv_resolution: a.uv_resolution, uv_power: 5.0 };
-        let table = lookup_table(&a.input, &model, params, &none)?;
+        let table = lookup_table(&a.input, &model, params, &a.surface_opts)?;
         ViewInput::Table { table: Box::new(table), name: a.input.clone() }
     };
     let report = run(input, ViewOptions { check: a.check.clone() }, load_for_view).map_err(anyhow::Error::msg)?;

@@ -31,6 +31,16 @@ pub struct LabModel {
     /// Height of full white for image surfaces (e.g. 300nm).
     #[arg(long, value_parser = positive_length_nm)]
     pub max_height: Option<f64>,
+    /// Channel of a multi-channel file, by index or name (`iridis surface channels FILE` lists them).
+    #[arg(long)]
+    pub channel: Option<iridis_surface::formats::channel::ChannelSel>,
+    /// Unit of heights in files that do not give one (.npy, text), e.g. m or nm.
+    #[arg(long)]
+    pub height_unit: Option<String>,
+    /// Levelling before the model: plane (default for files), poly, lines, rows, mean or none (built-ins are
+    /// used as generated unless this is given).
+    #[arg(long)]
+    pub level: Option<String>,
     /// Coherence length 4σ_s of the window.
     #[arg(long, value_parser = positive_length_nm, default_value = "65um")]
     pub coherence: f64,
@@ -116,9 +126,19 @@ fn fresnel(s: &str) -> Result<Arc<dyn FresnelSource>> {
 
 /// Loads SURFACE (a file or builtin:NAME) as a patch, printing the model's warnings.
 fn load(spec: &str, m: &LabModel) -> Result<Patch> {
-    let opts =
-        iridis_surface::LoadOptions { pixel_size_nm: m.pixel_size, max_height_nm: m.max_height, ..Default::default() };
+    let opts = iridis_surface::LoadOptions {
+        pixel_size_nm: m.pixel_size,
+        max_height_nm: m.max_height,
+        channel: m.channel.clone(),
+        height_unit: m.height_unit.clone(),
+        ..Default::default()
+    };
     let hf = iridis_surface::load_surface(spec, &opts).with_context(|| format!("cannot load surface {spec}"))?;
+    for w in &hf.meta.warnings {
+        eprintln!("warning: {spec}: {w}");
+    }
+    let (hf, levelling) = iridis_surface::prep::level_for_model(spec, hf, m.level.as_deref())?;
+    eprintln!("{spec}: {levelling}");
     let patch = Patch::from_row_major(hf.rows, hf.cols, hf.dx_nm, hf.dy_nm, &hf.heights_nm)?;
     for w in patch.warnings(m.coherence) {
         eprintln!("warning: {w}");
@@ -1016,6 +1036,9 @@ pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
     let model = LabModel {
         pixel_size: None,
         max_height: None,
+        channel: None,
+        height_unit: None,
+        level: None,
         coherence: 65_000.0,
         terms: "auto".into(),
         fresnel: "schlick:1.5".into(),

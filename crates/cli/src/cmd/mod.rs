@@ -7,6 +7,7 @@ pub mod filmfit;
 pub mod gpu;
 pub mod lab;
 pub mod render;
+pub mod report;
 pub mod rough;
 pub mod surface;
 pub mod thinfilm;

@@ -12,8 +12,9 @@ use iridis_surface::{find_peaks, load_surface, prep, HeightField, LoadOptions, P
 use serde_json::json;
 
 pub const SURFACE_HELP: &str = "\
-SURFACE is a file or builtin:NAME. Files are recognised by content: Gwyddion .gwy (units from the file),
-numpy .npy or .npz (np.savez / np.savez_compressed: the only 2-D array, or --channel N among several, in name
+SURFACE is a file or builtin:NAME. Files are recognised by content: instrument files with their units
+(Bruker NanoScope .spm/.000, Asylum .ibw, JPK .jpk, WSxM .stp/.top, Nanonis .sxm, Gwyddion .gwy/.gsf; pick a
+channel with --channel NAME or --channel N, listed by `iridis surface channels FILE`), numpy .npy or .npz (np.savez / np.savez_compressed: the only 2-D array, or --channel N among several, in name
 order), 8/16-bit greyscale PNG or TIFF (relative heights: give --max-height and --pixel-size), or a text
 matrix (Gwyddion ASCII export header understood). Units missing from a file can come from a JSON sidecar
 FILE.EXT.json or FILE.json: {\"pixel_size_nm\": 65, \"height_unit\": \"nm\", \"max_height_nm\": 250}.
@@ -28,6 +29,9 @@ pub enum SurfaceCommand {
     /// Size, pixel size, heights and the dominant periods (with orientations) of a height field.
     #[command(after_help = INFO_HELP)]
     Info(InfoArgs),
+    /// The channels (images) a file holds: index, name, scan direction, size and unit.
+    #[command(after_help = CHANNELS_HELP)]
+    Channels(ChannelsArgs),
     /// Generate a nanostructure (gratings, bump lattices, CD, random, snake skins) and write it.
     #[command(after_help = GENERATE_HELP)]
     Generate(GenerateArgs),
@@ -50,7 +54,21 @@ Examples:
   iridis surface info scan.gwy --level plane
   iridis surface info scan.png --pixel-size 65nm --max-height 300nm
   iridis surface info scan.npz --channel 1 --pixel-size 20nm
+  iridis surface info scan.spm --channel Height --psdf psdf.png --acf acf.png --json
+  iridis surface info scan.npy --pixel-size 10nm --height-unit m
   iridis surface info 'builtin:sine?period=1500nm&angle=30deg&size=20um&pixel=20nm'";
+
+const CHANNELS_HELP: &str = "\
+Instrument files hold several images (height trace and retrace, amplitude, phase, …). Every command that
+reads a SURFACE takes --channel with the index or the name shown here (names match without regard to case
+or punctuation; NAME_DIRECTION, e.g. height_retrace, picks a direction). Without --channel the first
+height channel (a length unit, named like a height) is read. Only channels in a length unit are heights.
+
+Examples:
+  iridis surface channels scan.spm
+  iridis surface channels scan.ibw --json
+  iridis surface info scan.jpk --channel height_retrace
+  iridis surface info scan.spm --channel 7";
 
 const GENERATE_HELP: &str = "\
 Kinds and their parameters (defaults shown; lengths need units):
@@ -93,10 +111,13 @@ pub struct LoadArgs {
     /// Images: the height that white stands for (black is 0), e.g. 250nm.
     #[arg(long, value_parser = crate::args::positive_length_nm)]
     pub max_height: Option<f64>,
-    /// Gwyddion: channel number (default the lowest); .npz: which 2-D array, counted from 0 in name order
-    /// (needed when there are several; the error lists them).
+    /// Channel of a multi-channel file, by index or name (`iridis surface channels FILE` lists them);
+    /// default the first height channel (.gwy: the lowest number; .npz: the only 2-D array).
     #[arg(long)]
-    pub channel: Option<u32>,
+    pub channel: Option<iridis_surface::formats::channel::ChannelSel>,
+    /// Unit of heights in files that do not give one (.npy, text, a unitless channel), e.g. m or nm.
+    #[arg(long)]
+    pub height_unit: Option<String>,
     /// Built-ins: edge of the square patch (default 65um).
     #[arg(long, value_parser = crate::args::positive_length_nm)]
     pub size: Option<f64>,
@@ -110,7 +131,8 @@ impl LoadArgs {
         LoadOptions {
             pixel_size_nm: self.pixel_size,
             max_height_nm: self.max_height,
-            channel: self.channel,
+            channel: self.channel.clone(),
+            height_unit: self.height_unit.clone(),
             size_nm: self.size,
             seed: self.seed,
             ignore_sidecar: false,
@@ -124,7 +146,8 @@ pub struct InfoArgs {
     pub surface: String,
     #[command(flatten)]
     pub load: LoadArgs,
-    /// Levelling before analysis: none, mean, plane or rows (the analysis itself always removes a plane).
+    /// Levelling before analysis: none, mean, plane, poly (degree 2), lines (median line correction) or rows
+    /// (line means); the period analysis and the roughness figures always remove a plane as well.
     #[arg(long, default_value = "none")]
     pub level: String,
     /// How many periods to report.
@@ -136,6 +159,21 @@ pub struct InfoArgs {
     /// Write a shaded-relief preview with a scale bar (PNG).
     #[arg(long)]
     pub image: Option<PathBuf>,
+    /// Write the 2-D power spectral density (log scale, plane-levelled field) as a PNG.
+    #[arg(long)]
+    pub psdf: Option<PathBuf>,
+    /// Write the 2-D autocorrelation function (plane-levelled field) as a PNG.
+    #[arg(long)]
+    pub acf: Option<PathBuf>,
+    /// Print JSON.
+    #[arg(long)]
+    pub json: bool,
+}
+
+#[derive(Debug, ClapArgs)]
+pub struct ChannelsArgs {
+    /// The file.
+    pub file: PathBuf,
     /// Print JSON.
     #[arg(long)]
     pub json: bool,
@@ -227,7 +265,8 @@ pub struct ConvertArgs {
     pub output: PathBuf,
     #[command(flatten)]
     pub load: LoadArgs,
-    /// Levelling: none, mean (remove the mean), plane (remove the tilt) or rows (per-scan-line offsets).
+    /// Levelling: none, mean (remove the mean), plane (remove the tilt), poly (tilt and bow, degree 2), lines
+    /// (median line correction) or rows (per-scan-line means).
     #[arg(long, default_value = "none")]
     pub level: String,
     /// Crop to ROW,COL,ROWS,COLS (samples).
@@ -247,6 +286,7 @@ pub struct ConvertArgs {
 pub fn run(command: SurfaceCommand) -> Result<()> {
     match command {
         SurfaceCommand::Info(a) => info(a),
+        SurfaceCommand::Channels(a) => channels(a),
         SurfaceCommand::Generate(a) => generate(a),
         SurfaceCommand::Convert(a) => convert(a),
     }
@@ -257,13 +297,7 @@ fn load(spec: &str, load: &LoadArgs) -> Result<HeightField> {
 }
 
 fn level(hf: HeightField, how: &str) -> Result<HeightField> {
-    Ok(match how.trim() {
-        "none" => hf,
-        "mean" => prep::remove_mean(&hf),
-        "plane" => prep::level_plane(&hf),
-        "rows" => prep::level_rows(&hf),
-        other => bail!("unknown levelling '{other}'; expected none, mean, plane or rows"),
-    })
+    Ok(prep::level_by_name(&hf, how)?)
 }
 
 /// Everything `info` reports, as JSON (keys fixed by the documentation).
@@ -272,6 +306,7 @@ pub fn report(hf: &HeightField, n_peaks: usize, coherence_nm: f64) -> serde_json
     let peaks = find_peaks(hf, &PeakOptions { max_peaks: n_peaks, ..PeakOptions::default() });
     let mut warnings = hf.meta.warnings.clone();
     warnings.extend(hf.physics_warnings(coherence_nm));
+    let rough = iridis_surface::stats::roughness(&prep::level_plane(hf));
     json!({
         "source": hf.meta.source,
         "format": hf.meta.format,
@@ -285,6 +320,15 @@ pub fn report(hf: &HeightField, n_peaks: usize, coherence_nm: f64) -> serde_json
         "rms_nm": hf.rms(),
         "z_unit_in_file": hf.meta.z_unit,
         "peaks": peaks,
+        "roughness": {
+            "levelling": "plane",
+            "sq_nm": rough.sq_nm,
+            "sa_nm": rough.sa_nm,
+            "skewness": rough.skewness,
+            "excess_kurtosis": rough.excess_kurtosis,
+            "sz_nm": rough.sz_nm,
+            "correlation_length_nm": rough.correlation_length_nm,
+        },
         "notes": hf.meta.notes,
         "warnings": warnings,
     })
@@ -304,6 +348,23 @@ fn print_report(r: &serde_json::Value) -> Result<()> {
         g("mean_nm"),
         g("rms_nm")
     )?;
+    let ro = &r["roughness"];
+    crate::outln!(
+        "roughness    Sq {:.3} nm, Sa {:.3} nm, Ssk {:.3}, Sku−3 {:.3}, Sz {:.2} nm (plane-levelled)",
+        ro["sq_nm"].as_f64().unwrap_or(f64::NAN),
+        ro["sa_nm"].as_f64().unwrap_or(f64::NAN),
+        ro["skewness"].as_f64().unwrap_or(f64::NAN),
+        ro["excess_kurtosis"].as_f64().unwrap_or(f64::NAN),
+        ro["sz_nm"].as_f64().unwrap_or(f64::NAN)
+    )?;
+    match ro["correlation_length_nm"].as_f64() {
+        Some(t) => {
+            crate::outln!("corr. length τ = {t:.2} nm (radial ACF at 1/e; σ = Sq and τ are the rough-film model's)")?
+        }
+        None => crate::outln!(
+            "corr. length none: the ACF does not fall to 1/e within half the patch (periodic or too small)"
+        )?,
+    }
     let peaks = r["peaks"].as_array().cloned().unwrap_or_default();
     if peaks.is_empty() {
         crate::outln!("periods      none found")?;
@@ -353,11 +414,65 @@ pub fn write_preview(hf: &HeightField, path: &Path, title: &str) -> Result<()> {
     crate::output::write_png_rgb8(path, img.width, img.height, &img.data)
 }
 
+/// A centred 2-D function (PSDF or ACF) as a colour map with axes (`unit` scales the grid steps to the axis
+/// unit) and a colour bar; `log` plots log10 of the positive values.
+fn write_grid(
+    g: &iridis_surface::stats::Grid2,
+    path: &Path,
+    title: &str,
+    xl: &str,
+    yl: &str,
+    unit: f64,
+    log: bool,
+) -> Result<()> {
+    use iridis_plot::{magma, ColorBar, ImagePlot, RgbImage};
+    let v: Vec<f64> = if log {
+        let floor = g.values.iter().copied().fold(0.0f64, f64::max) * 1e-12;
+        g.values.iter().map(|x| x.max(floor).max(1e-300).log10()).collect()
+    } else {
+        g.values.clone()
+    };
+    let (lo, hi) = v.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| (a.min(x), b.max(x)));
+    let span = if hi > lo { hi - lo } else { 1.0 };
+    let mut pixels = RgbImage::new(g.cols as u32, g.rows as u32);
+    for (i, x) in v.iter().enumerate() {
+        pixels.data[3 * i..3 * i + 3].copy_from_slice(&magma((x - lo) / span));
+    }
+    let (hx, hy) = ((g.cols / 2) as f64 * g.dx * unit, (g.rows / 2) as f64 * g.dy * unit);
+    let plot = ImagePlot {
+        title: title.into(),
+        x_label: xl.into(),
+        y_label: yl.into(),
+        x_range: (-hx, hx),
+        y_range: (-hy, hy),
+        pixels: &pixels,
+        overlays: Vec::new(),
+        colorbar: Some(ColorBar {
+            label: if log { "log10".into() } else { "nm²".into() },
+            min: lo,
+            max: lo + span,
+            map: magma,
+        }),
+        size: (800, 700),
+    };
+    let img = plot.render().map_err(|e| anyhow::anyhow!("{e}"))?;
+    crate::output::write_png_rgb8(path, img.width, img.height, &img.data)
+}
+
 fn info(a: InfoArgs) -> Result<()> {
     let hf = level(load(&a.surface, &a.load)?, &a.level)?;
     let r = report(&hf, a.peaks, a.coherence);
     if let Some(p) = &a.image {
         write_preview(&hf, p, &a.surface)?;
+    }
+    let levelled = prep::level_plane(&hf);
+    if let Some(p) = &a.psdf {
+        let g = iridis_surface::stats::psdf(&levelled);
+        write_grid(&g, p, &format!("PSDF of {} (log10 nm⁴)", a.surface), "kx (µm⁻¹)", "ky (µm⁻¹)", 1000.0, true)?;
+    }
+    if let Some(p) = &a.acf {
+        let g = iridis_surface::stats::acf(&levelled);
+        write_grid(&g, p, &format!("ACF of {} (nm²)", a.surface), "τx (µm)", "τy (µm)", 1e-3, false)?;
     }
     if a.json {
         crate::output::print_json(&r)?;
@@ -374,10 +489,49 @@ fn info(a: InfoArgs) -> Result<()> {
     }
 }
 
+fn channels(a: ChannelsArgs) -> Result<()> {
+    let name = a.file.display().to_string();
+    let meta = std::fs::metadata(&a.file).with_context(|| format!("cannot read {name}"))?;
+    if meta.len() > formats::MAX_FILE_BYTES {
+        bail!("{name} is {} MB, larger than any height-field file iridis reads", meta.len() >> 20);
+    }
+    let bytes = std::fs::read(&a.file).with_context(|| format!("cannot read {name}"))?;
+    let list = formats::list_channels(&bytes, &name)?;
+    let fmt = formats::detect_format(&bytes).map_or("?", Format::name);
+    if a.json {
+        return crate::output::print_json(&json!({ "file": name, "format": fmt, "channels": list }));
+    }
+    crate::outln!("{name} ({fmt}): {} channel{}", list.len(), if list.len() == 1 { "" } else { "s" })?;
+    crate::outln!("  index  name                           direction  size         unit")?;
+    for c in &list {
+        let unit = if c.z_unit.is_empty() { "?" } else { c.z_unit.as_str() };
+        crate::outln!(
+            "  {:>5}  {:<30} {:<10} {:<12} {}{}",
+            c.index,
+            if c.alias.is_empty() { c.name.clone() } else { format!("{} (or {})", c.name, c.alias) },
+            if c.direction.is_empty() { "-" } else { c.direction.as_str() },
+            format!("{}×{}", c.cols, c.rows),
+            unit,
+            if c.is_length() { "" } else { "  (not a height)" }
+        )?;
+    }
+    Ok(())
+}
+
 fn output_format(path: &Path) -> Result<Format> {
     match Format::from_extension(path) {
         Some(Format::Tiff) => {
-            bail!("{}: writing TIFF is not supported; use .png (16-bit), .gwy, .npy, .npz or .txt", path.display())
+            bail!(
+                "{}: writing TIFF is not supported; use .png (16-bit), .gwy, .gsf, .npy, .npz or .txt",
+                path.display()
+            )
+        }
+        Some(f @ (Format::Nanoscope | Format::Ibw | Format::Jpk | Format::Wsxm | Format::Sxm)) => {
+            bail!(
+                "{}: writing {} files is not supported; use .gwy, .gsf, .npy, .npz, .png or .txt",
+                path.display(),
+                f.name()
+            )
         }
         Some(f) => Ok(f),
         None => bail!(

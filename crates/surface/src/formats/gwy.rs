@@ -190,35 +190,73 @@ fn to_nm(u: Option<String>, what: &str, warnings: &mut Vec<String>) -> Result<(f
     }
 }
 
+/// The container's `/N/data` fields, by number.
+fn data_fields(top: &Object) -> Vec<(u32, &Object)> {
+    let mut channels: Vec<(u32, &Object)> = top
+        .items
+        .iter()
+        .filter_map(|(k, v)| {
+            let id = k.strip_prefix('/')?.strip_suffix("/data")?.parse::<u32>().ok()?;
+            match v {
+                Value::Object(o) if o.name == "GwyDataField" => Some((id, o)),
+                _ => None,
+            }
+        })
+        .collect();
+    channels.sort_by_key(|c| c.0);
+    channels
+}
+
+fn infos(top: &Object, channels: &[(u32, &Object)]) -> Vec<super::channel::ChannelInfo> {
+    channels
+        .iter()
+        .map(|(id, f)| {
+            let int = |k: &str| match f.get(k) {
+                Some(Value::Int(v)) => (*v).max(0) as usize,
+                _ => 0,
+            };
+            let name = match top.get(&format!("/{id}/data/title")) {
+                Some(Value::Str(s)) => s.clone(),
+                _ => String::new(),
+            };
+            super::channel::ChannelInfo {
+                index: *id,
+                name,
+                rows: int("yres"),
+                cols: int("xres"),
+                z_unit: unit(f, "si_unit_z").unwrap_or_default(),
+                direction: String::new(),
+                alias: String::new(),
+            }
+        })
+        .collect()
+}
+
+/// The image channels of a `.gwy` file (index = the container's channel number).
+pub fn channels(bytes: &[u8]) -> Result<Vec<super::channel::ChannelInfo>, SurfaceError> {
+    let top = parse(bytes)?;
+    if top.name == "GwyDataField" {
+        return Ok(infos(&top, &[(0, &top)]));
+    }
+    Ok(infos(&top, &data_fields(&top)))
+}
+
 /// Reads the chosen (or lowest-numbered) data field.
 pub fn read(bytes: &[u8], side: Option<&Sidecar>, opts: &LoadOptions) -> Result<HeightField, SurfaceError> {
     let top = parse(bytes)?;
     let (id, field) = if top.name == "GwyDataField" {
         (None, &top)
     } else {
-        let mut channels: Vec<(u32, &Object)> = top
-            .items
-            .iter()
-            .filter_map(|(k, v)| {
-                let id = k.strip_prefix('/')?.strip_suffix("/data")?.parse::<u32>().ok()?;
-                match v {
-                    Value::Object(o) if o.name == "GwyDataField" => Some((id, o)),
-                    _ => None,
-                }
-            })
-            .collect();
-        channels.sort_by_key(|c| c.0);
+        let channels = data_fields(&top);
         if channels.is_empty() {
             return Err(SurfaceError::invalid("the Gwyddion file holds no image channel (/N/data)"));
         }
-        let pick = match opts.channel {
-            Some(n) => channels.iter().find(|c| c.0 == n).copied().ok_or_else(|| {
-                SurfaceError::invalid(format!(
-                    "no channel {n}; the file has channels {}",
-                    channels.iter().map(|c| c.0.to_string()).collect::<Vec<_>>().join(", ")
-                ))
-            })?,
+        let pick = match &opts.channel {
             None => channels[0],
+            Some(sel) => {
+                let list = infos(&top, &channels);
+                channels[super::channel::pick(&list, Some(sel))?]
+            }
         };
         (Some(pick.0), pick.1)
     };

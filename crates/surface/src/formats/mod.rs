@@ -9,13 +9,29 @@
 //! | numpy `.npz` (`savez`, compressed or not; `--channel N` among several 2-D arrays) | yes | f64, array `heights` | sidecar or options |
 //! | PNG, TIFF 8/16-bit grey | yes | PNG 16-bit | relative: `--max-height`, `--pixel-size` or sidecar |
 //! | text matrix | yes | yes | Gwyddion ASCII-export header (`# Width: 5 µm`), sidecar or options |
+//! | Gwyddion Simple Field `.gsf` | yes | yes | in the file (`XReal`, `XYUnits`, `ZUnits`) |
+//! | Bruker NanoScope `.spm`, `.000` (v5–9, 16/32-bit) | yes | no | in the file (`Scan Size`, `Z scale` × sensitivity) |
+//! | Asylum Igor binary wave `.ibw` (v5) | yes | no | scan size from the wave note; heights in m |
+//! | JPK `.jpk` (TIFF with JPK tags) | yes | no | in the file (grid lengths, per-channel linear scaling) |
+//! | WSxM `.stp`, `.top` | yes | no | in the file (`X Amplitude`, `Z Amplitude`) |
+//! | Nanonis `.sxm` | yes | no | in the file (`SCAN_RANGE`, `DATA_INFO` units) |
+//!
+//! Instrument files hold several channels; [`list_channels`] lists them and `LoadOptions::channel` picks
+//! one by index or by name (see [`channel`]).
 
+pub mod channel;
+pub mod gsf;
 pub mod gwy;
+pub mod ibw;
+pub mod jpk;
+pub mod nanoscope;
 pub mod npy;
 pub mod npz;
 pub mod raster;
 pub mod sidecar;
+pub mod sxm;
 pub mod text;
+pub mod wsxm;
 
 use std::path::{Path, PathBuf};
 
@@ -34,6 +50,12 @@ pub enum Format {
     Png,
     Tiff,
     Text,
+    Gsf,
+    Nanoscope,
+    Ibw,
+    Jpk,
+    Wsxm,
+    Sxm,
 }
 
 impl Format {
@@ -45,6 +67,12 @@ impl Format {
             Format::Png => "png",
             Format::Tiff => "tiff",
             Format::Text => "text",
+            Format::Gsf => "gsf",
+            Format::Nanoscope => "nanoscope",
+            Format::Ibw => "ibw",
+            Format::Jpk => "jpk",
+            Format::Wsxm => "wsxm",
+            Format::Sxm => "sxm",
         }
     }
 
@@ -58,6 +86,7 @@ impl Format {
             "png" => Format::Png,
             "tif" | "tiff" => Format::Tiff,
             "txt" | "asc" | "csv" | "dat" | "xyz" => Format::Text,
+            "gsf" => Format::Gsf,
             _ => return None,
         })
     }
@@ -70,9 +99,14 @@ pub struct LoadOptions {
     pub pixel_size_nm: Option<f64>,
     /// Images: the height (nm) that full white stands for; black is 0.
     pub max_height_nm: Option<f64>,
-    /// Gwyddion: the channel number (`/N/data`), default the lowest; `.npz`: the index of the 2-D array in
-    /// name order, needed when the archive holds several.
-    pub channel: Option<u32>,
+    /// Which channel: an index or a name (`iridis surface channels` lists them). Gwyddion: the channel
+    /// number (`/N/data`) or title, default the lowest; `.npz`: the index of the 2-D array in name order or
+    /// its name, needed when the archive holds several; instrument files: the index in file order or the
+    /// name, default the first height channel.
+    pub channel: Option<channel::ChannelSel>,
+    /// Unit of stored heights where the file has none (`.npy`, text, a unitless channel); overrides a
+    /// sidecar's `height_unit`.
+    pub height_unit: Option<String>,
     /// Built-in surfaces: edge length of the square patch (nm); default 65 µm.
     pub size_nm: Option<f64>,
     /// Built-in surfaces: random seed; default 1.
@@ -91,8 +125,20 @@ pub fn detect_format(bytes: &[u8]) -> Option<Format> {
         Some(Format::Npz)
     } else if bytes.starts_with(b"\x89PNG\r\n\x1a\n") {
         Some(Format::Png)
+    } else if jpk::detect(bytes) {
+        Some(Format::Jpk)
     } else if bytes.starts_with(b"II*\0") || bytes.starts_with(b"MM\0*") {
         Some(Format::Tiff)
+    } else if nanoscope::detect(bytes) {
+        Some(Format::Nanoscope)
+    } else if wsxm::detect(bytes) {
+        Some(Format::Wsxm)
+    } else if sxm::detect(bytes) {
+        Some(Format::Sxm)
+    } else if gsf::detect(bytes) {
+        Some(Format::Gsf)
+    } else if ibw::detect(bytes) {
+        Some(Format::Ibw)
     } else if text::looks_like_text(bytes) {
         Some(Format::Text)
     } else {
@@ -110,7 +156,10 @@ fn describe_unknown(bytes: &[u8]) -> String {
     } else {
         "not a recognised height-field format"
     };
-    format!("{kind} (recognised: Gwyddion .gwy, numpy .npy/.npz, PNG, TIFF, text matrix)")
+    format!(
+        "{kind} (recognised: Gwyddion .gwy/.gsf, Bruker NanoScope .spm/.000, Asylum .ibw, JPK .jpk, WSxM \
+         .stp/.top, Nanonis .sxm, numpy .npy/.npz, PNG, TIFF, text matrix)"
+    )
 }
 
 /// Loads a height field from a file path or a `builtin:NAME[?key=value&…]` spec (see [`crate::builtin`]).
@@ -160,6 +209,12 @@ pub fn read_bytes(
         Format::Npz => npz::read(bytes, side, opts),
         Format::Png | Format::Tiff => raster::read(bytes, fmt, side, opts),
         Format::Text => text::read(bytes, side, opts),
+        Format::Gsf => gsf::read(bytes, side, opts),
+        Format::Nanoscope => nanoscope::read(bytes, side, opts),
+        Format::Ibw => ibw::read(bytes, side, opts),
+        Format::Jpk => jpk::read(bytes, side, opts),
+        Format::Wsxm => wsxm::read(bytes, side, opts),
+        Format::Sxm => sxm::read(bytes, side, opts),
     }
     .map_err(wrap)?;
     hf.meta.source = name.to_string();
@@ -176,10 +231,114 @@ pub fn write_bytes(hf: &HeightField, fmt: Format) -> Result<(Vec<u8>, Option<Str
         Format::Png => Ok((raster::write_png16(hf)?, Some(Sidecar::for_field(hf, true).to_json()))),
         Format::Text => Ok((text::write(hf).into_bytes(), None)),
         Format::Npz => Ok((npz::write(hf)?, Some(Sidecar::for_field(hf, false).to_json()))),
+        Format::Gsf => Ok((gsf::write(hf), None)),
         Format::Tiff => Err(SurfaceError::invalid(
-            "writing TIFF is not supported (a 16-bit PNG holds the same data); write .png, .gwy, .npy or .txt",
+            "writing TIFF is not supported (a 16-bit PNG holds the same data); write .png, .gwy, .gsf, .npy or .txt",
+        )),
+        Format::Nanoscope | Format::Ibw | Format::Jpk | Format::Wsxm | Format::Sxm => Err(SurfaceError::invalid(
+            format!("writing {} files is not supported; write .gwy, .gsf, .npy, .png or .txt", fmt.name()),
         )),
     }
+}
+
+/// The channels a file holds (one entry for single-image formats), recognised by content like
+/// [`read_bytes`]; `name` is used in messages.
+pub fn list_channels(bytes: &[u8], name: &str) -> Result<Vec<channel::ChannelInfo>, SurfaceError> {
+    let fmt = detect_format(bytes)
+        .ok_or_else(|| SurfaceError::Format { path: name.into(), message: describe_unknown(bytes) })?;
+    let wrap = |e: SurfaceError| match e {
+        SurfaceError::Invalid(m) => SurfaceError::Format { path: name.into(), message: m },
+        other => other,
+    };
+    match fmt {
+        Format::Gwy => gwy::channels(bytes),
+        Format::Npz => npz::channels(bytes),
+        Format::Gsf => gsf::channels(bytes),
+        Format::Nanoscope => nanoscope::channels(bytes),
+        Format::Ibw => ibw::channels(bytes),
+        Format::Jpk => jpk::channels(bytes),
+        Format::Wsxm => wsxm::channels(bytes),
+        Format::Sxm => sxm::channels(bytes),
+        Format::Npy | Format::Png | Format::Tiff | Format::Text => {
+            // One image: read it with stand-in scales only to learn its size.
+            let o = LoadOptions {
+                pixel_size_nm: Some(1.0),
+                max_height_nm: Some(1.0),
+                ignore_sidecar: true,
+                ..Default::default()
+            };
+            let hf = read_bytes(bytes, name, None, &o)?;
+            Ok(vec![channel::ChannelInfo {
+                index: 0,
+                name: "heights".into(),
+                rows: hf.rows,
+                cols: hf.cols,
+                z_unit: hf.meta.z_unit.clone(),
+                direction: String::new(),
+                alias: String::new(),
+            }])
+        }
+    }
+    .map_err(wrap)
+}
+
+/// The end of every instrument reader: the channel's values (in its stored unit) become nm, non-finite
+/// samples (unscanned or saturated lines) are reported and filled with the mean, and the pixel size comes
+/// from the file unless a sidecar or the options say otherwise.
+pub(crate) fn finish_channel(
+    mut values: Vec<f64>,
+    list: &[channel::ChannelInfo],
+    ch: &channel::ChannelInfo,
+    file_pixel: Option<(f64, f64)>,
+    side: Option<&Sidecar>,
+    opts: &LoadOptions,
+    what: &str,
+) -> Result<HeightField, SurfaceError> {
+    let unit = opts.height_unit.clone().or_else(|| side.and_then(|s| s.height_unit.clone()));
+    let (k, z_unit) = channel::z_scale(list, ch, unit.as_deref())?;
+    let mut warnings = Vec::new();
+    let (rows, cols) = (ch.rows, ch.cols);
+    let bad: Vec<usize> = (0..values.len()).filter(|&i| !values[i].is_finite()).collect();
+    if !bad.is_empty() {
+        if bad.len() == values.len() {
+            return Err(SurfaceError::invalid(format!(
+                "channel {} '{}' holds no finite value (an empty or aborted scan)",
+                ch.index, ch.name
+            )));
+        }
+        let finite: Vec<f64> = values.iter().copied().filter(|v| v.is_finite()).collect();
+        let mean = finite.iter().sum::<f64>() / finite.len() as f64;
+        let mut bad_rows: Vec<usize> = bad.iter().map(|i| i / cols).collect();
+        bad_rows.dedup();
+        for &i in &bad {
+            values[i] = mean;
+        }
+        warnings.push(format!(
+            "{} of {} samples are not numbers (NaN/inf: an unfinished or saturated scan), in {} of {rows} rows \
+             (first row {}, last row {}); they are filled with the mean height so levelling and spectra work \
+             around them — crop them away (surface convert --crop) for clean results",
+            bad.len(),
+            values.len(),
+            bad_rows.len(),
+            bad_rows[0],
+            bad_rows[bad_rows.len() - 1]
+        ));
+    }
+    let (dx, dy) = pick_pixel(file_pixel, side, opts, what)?;
+    let heights = values.iter().map(|v| v * k).collect();
+    let hf = HeightField::new(rows, cols, dx, dy, heights)?;
+    let mut meta = hf.meta.clone();
+    meta.z_unit = z_unit;
+    meta.warnings = warnings;
+    let dir = if ch.direction.is_empty() { String::new() } else { format!(", {}", ch.direction) };
+    meta.notes.push(format!(
+        "channel {} '{}'{dir} of {} ({}): {cols} × {rows} samples",
+        ch.index,
+        ch.name,
+        list.len(),
+        list.iter().map(|c| c.full_name()).collect::<Vec<_>>().join(", ")
+    ));
+    Ok(hf.with_meta(meta))
 }
 
 /// Where the sidecar of `path` is written: `FILE.EXT.json`.
@@ -206,6 +365,32 @@ pub(crate) fn pick_pixel(
     )?;
     crate::check_pixel(p.0, p.1)?;
     Ok(p)
+}
+
+/// The height unit the user gave (`--height-unit`, first) or the sidecar's: (nm per unit, unit).
+pub(crate) fn given_height_unit(
+    side: Option<&Sidecar>,
+    opts: &LoadOptions,
+) -> Result<Option<(f64, String)>, SurfaceError> {
+    if let Some(u) = &opts.height_unit {
+        let k = unit_to_nm(u).ok_or_else(|| {
+            SurfaceError::invalid(format!("--height-unit '{u}' is not a length unit (m, um, µm, nm, pm, Å)"))
+        })?;
+        return Ok(Some((k, format!("{u} (--height-unit)"))));
+    }
+    Ok(side.and_then(|s| Some((s.height_scale()?, s.height_unit.clone()?))))
+}
+
+/// Warns when heights taken as nm are all below 1e-3 in magnitude: sub-picometre relief is implausible, an
+/// array saved in metres is not.
+pub(crate) fn warn_if_metres(values: &[f64], warnings: &mut Vec<String>) {
+    let max = values.iter().filter(|v| v.is_finite()).fold(0.0f64, |m, v| m.max(v.abs()));
+    if max > 0.0 && max < 1e-3 {
+        warnings.push(format!(
+            "the largest |height| is {max:.3e}, which as nm would be a relief below a picometre: the values look \
+             like metres — if so, give --height-unit m"
+        ));
+    }
 }
 
 /// Length unit string → nanometres per unit (`m`, `mm`, `um`, `µm`, `nm`, `pm`, `Å`, `A`).

@@ -63,11 +63,16 @@ pub fn read(bytes: &[u8], side: Option<&Sidecar>, opts: &LoadOptions) -> Result<
         return Err(bad(format!("{} values for shape {shape:?}", values.len())));
     }
     let mut warnings = Vec::new();
-    let scale = match side.and_then(|s| s.height_scale()) {
-        Some(k) => k,
+    let given = super::given_height_unit(side, opts)?;
+    let scale = match &given {
+        Some((k, _)) => *k,
         None => {
-            warnings
-                .push("the .npy gives no height unit; values taken as nm (add \"height_unit\" to a sidecar)".into());
+            warnings.push(
+                "the .npy gives no height unit; values taken as nm (give --height-unit, or add \"height_unit\" to a \
+                 sidecar)"
+                    .into(),
+            );
+            super::warn_if_metres(&values, &mut warnings);
             1.0
         }
     };
@@ -81,7 +86,7 @@ pub fn read(bytes: &[u8], side: Option<&Sidecar>, opts: &LoadOptions) -> Result<
     let (dx, dy) = super::pick_pixel(None, side, opts, "a .npy array")?;
     let hf = HeightField::new(rows, cols, dx, dy, heights)?;
     let mut meta = hf.meta.clone();
-    meta.z_unit = side.and_then(|s| s.height_unit.clone()).unwrap_or_else(|| "nm (assumed)".into());
+    meta.z_unit = given.map(|g| g.1).unwrap_or_else(|| "nm (assumed)".into());
     meta.warnings = warnings;
     meta.notes.push(format!("numpy {ts} array of shape {shape:?}{}", if fortran { ", Fortran order" } else { "" }));
     Ok(hf.with_meta(meta))

@@ -11,6 +11,7 @@ use std::io::{Cursor, Read, Seek, Write};
 
 use crate::{HeightField, SurfaceError};
 
+use super::channel::{ChannelInfo, ChannelSel};
 use super::{npy, LoadOptions, Sidecar};
 
 /// Longest `.npy` header read while scanning an archive (numpy writes 128 bytes or a few hundred).
@@ -34,6 +35,11 @@ struct Entry {
 impl Entry {
     fn is_2d(&self) -> bool {
         self.shape.iter().filter(|&&d| d != 1).count() == 2
+    }
+    /// The two dimensions that are not 1.
+    fn shape_rows_cols(&self) -> (usize, usize) {
+        let d: Vec<usize> = self.shape.iter().filter(|&&d| d != 1).map(|&d| d as usize).collect();
+        (d.first().copied().unwrap_or(1), d.get(1).copied().unwrap_or(1))
     }
     fn describe(&self) -> String {
         let dims = self.shape.iter().map(|d| d.to_string()).collect::<Vec<_>>().join(" × ");
@@ -87,7 +93,7 @@ pub fn read(bytes: &[u8], side: Option<&Sidecar>, opts: &LoadOptions) -> Result<
     let all = entries(&mut zip)?;
     let arrays: Vec<&Entry> = all.iter().filter(|e| e.is_2d()).collect();
     let listing = || arrays.iter().enumerate().map(|(i, e)| format!("{i}: {}", e.describe())).collect::<Vec<_>>();
-    let chosen = match (arrays.len(), opts.channel) {
+    let chosen = match (arrays.len(), opts.channel.as_ref()) {
         (0, _) => {
             let held = all.iter().map(Entry::describe).collect::<Vec<_>>();
             return Err(bad(format!(
@@ -96,10 +102,16 @@ pub fn read(bytes: &[u8], side: Option<&Sidecar>, opts: &LoadOptions) -> Result<
             )));
         }
         (1, None) => arrays[0],
-        (_, Some(i)) => arrays
-            .get(i as usize)
+        (_, Some(ChannelSel::Index(i))) => arrays
+            .get(*i as usize)
             .copied()
             .ok_or_else(|| bad(format!("--channel {i}: the archive's 2-D arrays are {}", listing().join(", "))))?,
+        (_, Some(ChannelSel::Name(n))) => {
+            let key = n.strip_suffix(".npy").unwrap_or(n);
+            arrays.iter().copied().find(|e| e.name == key).ok_or_else(|| {
+                bad(format!("--channel {n}: no such array; the archive's 2-D arrays are {}", listing().join(", ")))
+            })?
+        }
         (_, None) => {
             return Err(bad(format!(
                 "the archive holds several 2-D arrays ({}); pick one with --channel N",
@@ -123,6 +135,26 @@ pub fn read(bytes: &[u8], side: Option<&Sidecar>, opts: &LoadOptions) -> Result<
     })?;
     hf.meta.notes.push(format!("array '{name}' of the archive"));
     Ok(hf)
+}
+
+/// The archive's 2-D arrays, in name order.
+pub fn channels(bytes: &[u8]) -> Result<Vec<ChannelInfo>, SurfaceError> {
+    let mut zip = zip::ZipArchive::new(Cursor::new(bytes)).map_err(|e| bad(format!("zip archive: {e}")))?;
+    let all = entries(&mut zip)?;
+    Ok(all
+        .iter()
+        .filter(|e| e.is_2d())
+        .enumerate()
+        .map(|(i, e)| ChannelInfo {
+            index: i as u32,
+            name: e.name.clone(),
+            rows: e.shape_rows_cols().0,
+            cols: e.shape_rows_cols().1,
+            z_unit: String::new(),
+            direction: String::new(),
+            alias: String::new(),
+        })
+        .collect())
 }
 
 /// Writes an archive as `np.savez(f, heights=h)` does: one stored member `heights.npy` (`<f8`, C order, nm).
@@ -168,7 +200,7 @@ mod tests {
     }
 
     fn opts(channel: Option<u32>) -> LoadOptions {
-        LoadOptions { pixel_size_nm: Some(50.0), channel, ..Default::default() }
+        LoadOptions { pixel_size_nm: Some(50.0), channel: channel.map(ChannelSel::Index), ..Default::default() }
     }
 
     #[test]

@@ -92,12 +92,14 @@ pub fn read(bytes: &[u8], side: Option<&Sidecar>, opts: &LoadOptions) -> Result<
     }
     crate::check_dims(rows, cols)?;
     let mut warnings = Vec::new();
-    let scale = match (zunit.as_deref(), side.and_then(|s| s.height_scale())) {
+    let given = super::given_height_unit(side, opts)?;
+    let scale = match (zunit.as_deref(), given.as_ref().map(|g| g.0)) {
         (_, Some(k)) => k,
         (Some(u), None) => super::unit_to_nm(u)
             .ok_or_else(|| SurfaceError::invalid(format!("value unit '{u}' is not a length: not a height map")))?,
         (None, None) => {
-            warnings.push("the text gives no height unit; values taken as nm".into());
+            warnings.push("the text gives no height unit; values taken as nm (give --height-unit)".into());
+            super::warn_if_metres(&values, &mut warnings);
             1.0
         }
     };
@@ -109,7 +111,7 @@ pub fn read(bytes: &[u8], side: Option<&Sidecar>, opts: &LoadOptions) -> Result<
     let (dx, dy) = super::pick_pixel(file_pixel, side, opts, "a text matrix")?;
     let hf = HeightField::new(rows, cols, dx, dy, values.into_iter().map(|v| v * scale).collect())?;
     let mut meta = hf.meta.clone();
-    meta.z_unit = zunit.or_else(|| side.and_then(|s| s.height_unit.clone())).unwrap_or_else(|| "nm (assumed)".into());
+    meta.z_unit = given.map(|g| g.1).or(zunit).unwrap_or_else(|| "nm (assumed)".into());
     meta.warnings = warnings;
     meta.notes.push(format!("text matrix {rows} × {cols}"));
     Ok(hf.with_meta(meta))

@@ -1,0 +1,146 @@
+//! Gwyddion Simple Field (`.gsf`; gwyddion.net "Gwyddion Simple Field 1.0"): the line
+//! `Gwyddion Simple Field 1.0`, `Key = Value` lines (`XRes`, `YRes` required; `XReal`, `YReal` default 1;
+//! `XYUnits`, `ZUnits`, `Title`), then 1–4 NUL bytes padding the header to a multiple of 4, then
+//! `XRes·YRes` little-endian `f32`, row after row from the top.
+
+use crate::{HeightField, SurfaceError};
+
+use super::channel::{self, ChannelInfo};
+use super::{LoadOptions, Sidecar};
+
+const MAGIC: &[u8] = b"Gwyddion Simple Field 1.0\n";
+
+fn bad(m: impl Into<String>) -> SurfaceError {
+    SurfaceError::invalid(format!("not a valid Gwyddion Simple Field: {}", m.into()))
+}
+
+pub fn detect(bytes: &[u8]) -> bool {
+    bytes.starts_with(MAGIC)
+}
+
+struct Parsed {
+    info: ChannelInfo,
+    data_at: usize,
+    real: (f64, f64),
+    xy_unit: Option<String>,
+}
+
+fn parse(bytes: &[u8]) -> Result<Parsed, SurfaceError> {
+    if !detect(bytes) {
+        return Err(bad("missing the 'Gwyddion Simple Field 1.0' line"));
+    }
+    let nul = bytes.iter().position(|&b| b == 0).ok_or_else(|| bad("no NUL after the header (truncated?)"))?;
+    let header = std::str::from_utf8(&bytes[MAGIC.len()..nul]).map_err(|_| bad("header is not UTF-8"))?;
+    let mut kv = Vec::new();
+    for line in header.lines().filter(|l| !l.trim().is_empty()) {
+        let (k, v) = line.split_once('=').ok_or_else(|| bad(format!("header line '{line}' is not Key = Value")))?;
+        kv.push((k.trim().to_string(), v.trim().to_string()));
+    }
+    let get = |key: &str| kv.iter().find(|(k, _)| k == key).map(|(_, v)| v.as_str());
+    let res = |key: &str| {
+        get(key).and_then(|v| v.parse::<usize>().ok()).ok_or_else(|| bad(format!("no valid {key} in the header")))
+    };
+    let (cols, rows) = (res("XRes")?, res("YRes")?);
+    crate::check_dims(rows, cols)?;
+    let real = |key: &str| match get(key) {
+        None => Ok(1.0),
+        Some(v) => v.parse::<f64>().map_err(|_| bad(format!("{key} = {v} is not a number"))),
+    };
+    let data_at = (nul / 4 + 1) * 4;
+    let info = ChannelInfo {
+        index: 0,
+        name: get("Title").unwrap_or("").to_string(),
+        rows,
+        cols,
+        z_unit: get("ZUnits").unwrap_or("").to_string(),
+        direction: String::new(),
+        alias: String::new(),
+    };
+    Ok(Parsed { info, data_at, real: (real("XReal")?, real("YReal")?), xy_unit: get("XYUnits").map(str::to_string) })
+}
+
+pub fn channels(bytes: &[u8]) -> Result<Vec<ChannelInfo>, SurfaceError> {
+    Ok(vec![parse(bytes)?.info])
+}
+
+pub fn read(bytes: &[u8], side: Option<&Sidecar>, opts: &LoadOptions) -> Result<HeightField, SurfaceError> {
+    let p = parse(bytes)?;
+    let list = vec![p.info.clone()];
+    channel::pick(&list, opts.channel.as_ref())?;
+    let (rows, cols) = (p.info.rows, p.info.cols);
+    let need = rows * cols * 4;
+    let data = bytes
+        .get(p.data_at..p.data_at + need)
+        .ok_or_else(|| bad(format!("{cols} × {rows} values need {need} bytes after the header (truncated?)")))?;
+    let values: Vec<f64> =
+        data.chunks_exact(4).map(|c| f64::from(f32::from_le_bytes(c.try_into().expect("4 bytes")))).collect();
+    let file_pixel = match p.xy_unit.as_deref().map(super::unit_to_nm) {
+        Some(Some(k)) => Some((p.real.0 * k / cols as f64, p.real.1 * k / rows as f64)),
+        Some(None) => {
+            return Err(bad(format!("XYUnits = {} is not a length", p.xy_unit.unwrap_or_default())));
+        }
+        // No lateral unit: the pixel size must come from --pixel-size or a sidecar.
+        None => None,
+    };
+    super::finish_channel(values, &list, &p.info, file_pixel, side, opts, "Gwyddion Simple Field without XYUnits")
+}
+
+/// Writes a field with `XYUnits = m` and `ZUnits = m` (Gwyddion's convention).
+pub fn write(hf: &HeightField) -> Vec<u8> {
+    let title = if hf.meta.source.is_empty() { "Height".to_string() } else { format!("Height ({})", hf.meta.source) };
+    let mut head = String::from_utf8_lossy(MAGIC).into_owned();
+    head += &format!("XRes = {}\nYRes = {}\n", hf.cols, hf.rows);
+    head +=
+        &format!("XReal = {:e}\nYReal = {:e}\n", hf.cols as f64 * hf.dx_nm * 1e-9, hf.rows as f64 * hf.dy_nm * 1e-9);
+    head += "XYUnits = m\nZUnits = m\n";
+    head += &format!("Title = {}\n", title.replace(['\n', '\r', '\0'], " "));
+    let mut out = head.into_bytes();
+    let pad = 4 - out.len() % 4;
+    out.resize(out.len() + pad, 0);
+    for h in &hf.heights_nm {
+        out.extend_from_slice(&((h * 1e-9) as f32).to_le_bytes());
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A file without lateral units asks for --pixel-size; NaN lines are reported and filled with the mean.
+    #[test]
+    fn no_units_and_nan_lines() {
+        let mut head = String::from_utf8_lossy(MAGIC).into_owned();
+        head += "XRes = 4\nYRes = 3\nXReal = 2\nYReal = 1.5\n";
+        let mut b = head.into_bytes();
+        let pad = 4 - b.len() % 4;
+        b.resize(b.len() + pad, 0);
+        let vals = [1.0f32, 2.0, 3.0, 4.0, f32::NAN, f32::NAN, f32::NAN, f32::NAN, 5.0, 6.0, 7.0, 8.0];
+        for v in vals {
+            b.extend_from_slice(&v.to_le_bytes());
+        }
+        let e = read(&b, None, &LoadOptions::default()).unwrap_err().to_string();
+        assert!(e.contains("--height-unit"), "{e}");
+        let o = LoadOptions { height_unit: Some("nm".into()), ..Default::default() };
+        let e = read(&b, None, &o).unwrap_err().to_string();
+        assert!(e.contains("without XYUnits has no pixel size") && e.contains("--pixel-size"), "{e}");
+        let o = LoadOptions { height_unit: Some("nm".into()), pixel_size_nm: Some(5.0), ..Default::default() };
+        let hf = read(&b, None, &o).unwrap();
+        assert_eq!(hf.get(1, 2), 4.5);
+        let w = hf.meta.warnings.join(" ");
+        assert!(w.contains("4 of 12 samples are not numbers") && w.contains("1 of 3 rows"), "{w}");
+    }
+
+    #[test]
+    fn round_trip_to_f32_precision() {
+        let hf = super::super::sample_field();
+        let bytes = write(&hf);
+        assert_eq!((bytes.len() - hf.heights_nm.len() * 4) % 4, 0);
+        let back = read(&bytes, None, &LoadOptions::default()).unwrap();
+        assert_eq!((back.rows, back.cols), (hf.rows, hf.cols));
+        assert!((back.dx_nm - hf.dx_nm).abs() < 1e-9 * hf.dx_nm);
+        for (a, b) in back.heights_nm.iter().zip(&hf.heights_nm) {
+            assert!((a - b).abs() <= 1e-6 * b.abs().max(1.0), "{a} vs {b}");
+        }
+    }
+}
