@@ -39,10 +39,10 @@ pub fn point_query(
             )));
         }
     }
-    let reflectance = match e.reflectance(wavelengths_nm.first().copied().unwrap_or(550.0), wi, wr) {
-        Some(_) => Some(wavelengths_nm.iter().map(|&l| e.reflectance(l, wi, wr).unwrap_or(0.0)).collect()),
-        None => None,
-    };
+    // A method either resolves wavelengths or it does not: ask once, then fill the grid.
+    let resolves = e.reflectance(wavelengths_nm.first().copied().unwrap_or(550.0), wi, wr).is_some();
+    let reflectance =
+        resolves.then(|| wavelengths_nm.iter().map(|&l| e.reflectance(l, wi, wr).unwrap_or(0.0)).collect());
     Ok(PointQuery { wavelengths_nm: wavelengths_nm.to_vec(), reflectance, xyz: e.xyz(wi, wr) })
 }
 
