@@ -319,14 +319,13 @@ pub fn scene_from_gltf(path: &Path) -> Result<crate::scene::Scene, RenderError> 
     let (forward, right, up) = crate::camera::frame(sub(center, position), [0.0, 1.0, 0.0]).expect("camera frame");
     notes.push("glTF scene: default camera (front, slightly above), a D65 light from the upper left and a sky".into());
     let bvh = crate::bvh::Bvh::build(&meshes);
+    let environment =
+        Environment::Sky { zenith: [0.25, 0.45, 0.9], horizon: [0.9, 0.92, 0.95], ground: [0.2, 0.18, 0.15] };
     Ok(crate::scene::Scene {
         camera: crate::camera::Camera::Perspective { position, forward, right, up, tan_half: (fov / 2.0).tan() },
         lights: vec![Light::Directional { direction: normalize([-0.5, 1.0, 0.7]), rgb: [1.0; 3] }],
-        environment: Environment::Sky {
-            zenith: [0.25, 0.45, 0.9],
-            horizon: [0.9, 0.92, 0.95],
-            ground: [0.2, 0.18, 0.15],
-        },
+        irradiance: environment.irradiance_map(),
+        environment,
         environment_visible: true,
         meshes,
         spheres: Vec::new(),
