@@ -32,7 +32,7 @@ use std::time::{Duration, Instant};
 
 pub use film::{FilmFrame, FilmOutput, FilmRun, GpuFilm};
 pub use lookup::{GpuLookup, MapFrame, MapOutput};
-pub use scene::{GpuScene, SceneFrame};
+pub use scene::{GpuScene, SceneFrame, StackOverflow};
 
 /// What the user reads when no adapter is found.
 pub const NO_ADAPTER_HELP: &str = "no GPU adapter found (iridis uses Vulkan through wgpu). Install a Vulkan driver; \

@@ -164,6 +164,9 @@ pub struct ThinFilm {
     pub base: Option<Microfacet>,
     /// glTF `iridescenceFactor`: the film's reflection is scaled by it and the base shows through `1 − factor`.
     pub factor: f64,
+    /// The same film over the metal of a metallic `base` (glTF: its substrate is the metal, whose index comes
+    /// from the base colour as `F_0`); the specular of the base's metallic part. `None`: the base is dielectric.
+    pub metal_stack: Option<Stack>,
     /// A rough substrate: the bottom interface (last layer | substrate) has rms height σ and correlation
     /// length τ, and the film follows Hirayama's LSRS model with the HTSG BRDF (Sussenbach sec. 3.2,
     /// eq. 3.15–3.20; `iridis_thinfilm::rough`). Set it with [`ThinFilm::set_rough`], which checks the model's
@@ -191,6 +194,7 @@ impl ThinFilm {
             transmission,
             base: None,
             factor: 1.0,
+            metal_stack: None,
             rough: None,
             colorimeter: FilmColorimeter::new(&grid, Illuminant::D65, Observer::Cie1931),
             invariant,
@@ -231,6 +235,19 @@ impl ThinFilm {
         }
         let c = self.colorimeter.from_spectra(&r, &t);
         (c.reflected, c.transmitted)
+    }
+
+    /// The reflected colour of [`ThinFilm::metal_stack`] (like [`ThinFilm::colors`]); `None` without one.
+    pub fn metal_color(&self, cos_theta: f64, offset_nm: f64) -> Option<Xyz> {
+        let stack = self.metal_stack.as_ref()?;
+        let angle = cos_theta.clamp(0.0, 1.0).acos();
+        let r: Vec<f64> = self
+            .colorimeter
+            .wavelengths_nm()
+            .iter()
+            .map(|&l| stack.evaluate_offset(l, angle, offset_nm).map(|x| x.r()).unwrap_or(0.0))
+            .collect();
+        Some(self.colorimeter.from_spectra(&r, &r).reflected)
     }
 
     /// Makes the substrate rough (LSRS). Refused where the film transmits (the LSRS model describes

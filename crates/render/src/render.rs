@@ -273,7 +273,9 @@ impl Scene {
     /// specular Fresnel, and the base's diffuse lobe takes what the film does not reflect, per channel as the
     /// glTF BRDF's `mix(diffuse, specular, F)`: lights give the GGX lobe `D G / (4 cos θ_i cos θ_o) · R(v·h)`
     /// plus `(1 − R(v·h)) ρ_d cos θ_i`, the environment `R(cos θ_o)` along the mirror (blurred with roughness)
-    /// plus `(1 − R(cos θ_o)) ρ_d E(n)/π`. `iridescenceFactor` mixes this with the base alone.
+    /// plus `(1 − R(cos θ_o)) ρ_d E(n)/π`. A metallic base (`metallic` m) takes `(1 − m) R + m R_metal`, with
+    /// `R_metal` the film over the metal ([`ThinFilm::metal_stack`]), as its specular and `(1 − m) ρ` as its
+    /// diffuse albedo. `iridescenceFactor` mixes this with the base alone.
     #[allow(clippy::too_many_arguments)]
     fn shade_film_over_base(
         &self,
@@ -296,16 +298,23 @@ impl Scene {
             return out;
         }
         let albedo = self.color(&base.color, h.uv);
-        let diffuse = mul(albedo, 1.0 - base.metallic);
+        let m = base.metallic;
+        let diffuse = mul(albedo, 1.0 - m);
+        // The specular reflectance: the film over the dielectric, mixed with the film over the metal.
+        let refl = |cos: f64, dielectric: Xyz| -> (Rgb, Rgb) {
+            let d = dielectric.to_linear_srgb();
+            let metal = f.metal_color(cos, offset).map(|x| x.to_linear_srgb()).unwrap_or(d);
+            ([0, 1, 2].map(|k| (1.0 - m) * d[k] + m * metal[k]), d)
+        };
         let mut film = [0.0; 3];
         for (wi, e) in self.lights_at(h) {
-            let hv = normalize(add(wi, wo));
-            let r = f.colors(dot(wi, hv).clamp(0.0, 1.0), offset).0.to_linear_srgb();
+            let vh = dot(wi, normalize(add(wi, wo))).clamp(0.0, 1.0);
+            let (r, d) = refl(vh, f.colors(vh, offset).0);
             let (spec, ci) = (base.ggx_single(h.n, wi, wo), dot(h.n, wi).max(0.0));
-            film = add(film, hadamard(e, [0, 1, 2].map(|k| spec * r[k] + (1.0 - r[k]) * diffuse[k] * ci)));
+            film = add(film, hadamard(e, [0, 1, 2].map(|k| spec * r[k] + (1.0 - d[k]) * diffuse[k] * ci)));
         }
-        let r = r_view.to_linear_srgb();
-        film = add(film, hadamard(hadamard(r.map(|x| 1.0 - x), diffuse), self.irradiance(h.n)));
+        let (r, d) = refl(dot(h.n, wo).clamp(0.0, 1.0), r_view);
+        film = add(film, hadamard(hadamard(d.map(|x| 1.0 - x), diffuse), self.irradiance(h.n)));
         let dir = reflect(wo, h.n);
         let blurred = self.irradiance(dir);
         let rough = (base.roughness / 0.6).min(1.0);
