@@ -66,6 +66,9 @@ pub struct Gpu {
     pub queue: wgpu::Queue,
     pub info: wgpu::AdapterInfo,
     pub limits: wgpu::Limits,
+    /// The scene renderer, compiled by the first [`GpuScene`] and reused by the next (software drivers take
+    /// seconds to compile it).
+    pub(crate) scene_pipeline: std::sync::OnceLock<wgpu::ComputePipeline>,
 }
 
 impl Gpu {
@@ -93,13 +96,13 @@ impl Gpu {
             ..Default::default()
         }))
         .map_err(|e| GpuError::Device { adapter: describe(&info), message: e.to_string() })?;
-        Ok(Self { device, queue, info, limits })
+        Ok(Self { device, queue, info, limits, scene_pipeline: Default::default() })
     }
 
     /// Wraps a device opened elsewhere (the viewer's window integration opens one that can present).
     pub fn from_parts(device: wgpu::Device, queue: wgpu::Queue, info: wgpu::AdapterInfo) -> Self {
         let limits = device.limits();
-        Self { device, queue, info, limits }
+        Self { device, queue, info, limits, scene_pipeline: Default::default() }
     }
 
     /// `name (backend, device type, driver)`, e.g. `llvmpipe (LLVM 15.0.6, 256 bits) (Vulkan, Cpu, Mesa …)`.

@@ -466,18 +466,23 @@ impl<'g> GpuScene<'g> {
                     })
                 };
                 let storage = wgpu::BufferUsages::STORAGE;
-                let module = gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                    label: Some("scene.wgsl"),
-                    source: wgpu::ShaderSource::Wgsl(source.into()),
-                });
-                let pipeline = gpu.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                    label: Some("iridis scene"),
-                    layout: None,
-                    module: &module,
-                    entry_point: Some("render_scene"),
-                    compilation_options: Default::default(),
-                    cache: None,
-                });
+                let pipeline = gpu
+                    .scene_pipeline
+                    .get_or_init(|| {
+                        let module = gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                            label: Some("scene.wgsl"),
+                            source: wgpu::ShaderSource::Wgsl(source.into()),
+                        });
+                        gpu.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                            label: Some("iridis scene"),
+                            layout: None,
+                            module: &module,
+                            entry_point: Some("render_scene"),
+                            compilation_options: Default::default(),
+                            cache: None,
+                        })
+                    })
+                    .clone();
                 (
                     init("scene records", bytemuck::cast_slice(&rec.0), storage | wgpu::BufferUsages::COPY_DST),
                     init("scene texels", bytemuck::cast_slice(&texels), storage),

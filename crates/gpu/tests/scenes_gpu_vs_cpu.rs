@@ -303,3 +303,31 @@ fn every_example_scene_matches_the_cpu() {
         assert!(*mean < 1.0 && *p99 < 3.0, "{name}: mean ΔE00 {mean:.3}, p99 {p99:.3}");
     }
 }
+
+#[test]
+fn a_full_ray_stack_is_reported_with_its_depth() {
+    // 30 parallel soap films in front of the camera: every film splits a ray into a reflected and a
+    // transmitted one, so the stack of pending rays grows by one per film and overflows its 24 places.
+    let Some(gpu) = gpu() else { return };
+    let mut text = String::from(
+        "[output]\nmax_depth = 40\n[camera]\nkind = \"orthographic\"\nposition = [0, 0, 5]\nheight = 1\n\
+         [environment]\nkind = \"sky\"\n[materials.film]\nkind = \"thinfilm\"\nstack = \"air | water 300nm | air\"\n\
+         transmission = true\n",
+    );
+    for k in 0..30 {
+        text.push_str(&format!("[[object]]\nkind = \"plane\"\ncenter = [0, 0, {}]\nnormal = [0.05, 0, 1]\nmaterial = \"film\"\n", -0.1 * k as f64));
+    }
+    let scene = parse_scene(&text, "films.toml", std::path::Path::new(".")).unwrap();
+    let g = GpuScene::new(&gpu, &scene).unwrap();
+    g.render(4, 4, 1, &|_| {}).unwrap();
+    let o = g.stack_overflow().expect("the stack overflows");
+    eprintln!("{o}");
+    assert!(o.rays >= 16 && o.depth >= 20 && o.depth <= 40, "{o:?}");
+    assert!(o.to_string().contains("overflowed") && o.to_string().contains(&format!("bounce {}", o.depth)));
+    // Fewer films fit: no report.
+    let few = parse_scene(&text.replace("max_depth = 40", "max_depth = 10"), "films.toml", std::path::Path::new("."))
+        .unwrap();
+    let g = GpuScene::new(&gpu, &few).unwrap();
+    g.render(4, 4, 1, &|_| {}).unwrap();
+    assert_eq!(g.stack_overflow(), None);
+}

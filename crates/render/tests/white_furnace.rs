@@ -4,7 +4,7 @@
 
 mod furnace;
 
-use furnace::{deviation, furnace_scene, MATERIALS};
+use furnace::{deviation, furnace_grid, furnace_scene, grid_deviation, GRID_COLS, MATERIALS};
 use iridis_render::render;
 
 #[test]
@@ -21,4 +21,14 @@ fn every_material_passes_the_white_furnace_on_the_cpu() {
         }
     }
     assert!(failures.is_empty(), "{failures:#?}");
+}
+
+#[test]
+fn the_furnace_grid_holds_on_the_cpu_too() {
+    // The GPU test's one-scene grid (spheres that see each other), on the CPU at 10⁻³ scale.
+    let rows = MATERIALS.len().div_ceil(GRID_COLS) as u32;
+    let img = render(&furnace_grid(1e-3), GRID_COLS as u32 * 24, rows * 24, 1, &|_| {});
+    for ((name, _), (worst, n)) in MATERIALS.iter().zip(grid_deviation(&img)) {
+        assert!(n > 200 && worst < 2e-3, "{name}: {n} pixels, |L − 1| up to {worst}");
+    }
 }

@@ -90,3 +90,64 @@ pub fn deviation(img: &Image) -> (f64, usize) {
     }
     (worst, n)
 }
+
+/// Columns of [`furnace_grid`].
+pub const GRID_COLS: usize = 6;
+
+/// Every material of [`MATERIALS`] on its own unit sphere, in a grid of [`GRID_COLS`] columns 2.5 apart, inside
+/// the furnace (the spheres see each other, which a furnace allows: what they reflect is radiance 1 too),
+/// rendered at `scale`. One scene, so that the GPU compiles and uploads once.
+pub fn furnace_grid(scale: f64) -> Scene {
+    let rows = MATERIALS.len().div_ceil(GRID_COLS);
+    let mut text = format!(
+        "[output]\nmax_depth = 8\n\
+         [camera]\nkind = \"orthographic\"\nposition = [0, 0, 10]\nlook_at = [0, 0, 0]\nheight = {}\n\
+         [environment]\nkind = \"uniform\"\ncolor = [1, 1, 1]\n",
+        2.5 * rows as f64
+    );
+    for (i, (_, mat)) in MATERIALS.iter().enumerate() {
+        let (x, y) = grid_centre(i, rows);
+        text.push_str(
+            &mat.replace("[materials.m]", &format!("[materials.m{i}]"))
+                .replace("[materials.b]", &format!("[materials.b{i}]"))
+                .replace("base = \"b\"", &format!("base = \"b{i}\"")),
+        );
+        text.push_str(&format!(
+            "\n[[object]]\nkind = \"sphere\"\ncenter = [{x}, {y}, 0]\nradius = 1.0\nmaterial = \"m{i}\"\n"
+        ));
+    }
+    let mut s = parse_scene(&text, "furnace_grid.toml", std::path::Path::new(".")).unwrap();
+    s.scale(scale);
+    s
+}
+
+fn grid_centre(i: usize, rows: usize) -> (f64, f64) {
+    let (c, r) = ((i % GRID_COLS) as f64, (i / GRID_COLS) as f64);
+    (2.5 * (c - (GRID_COLS as f64 - 1.0) / 2.0), -2.5 * (r - (rows as f64 - 1.0) / 2.0))
+}
+
+/// Per material of [`furnace_grid`] (an image `GRID_COLS · k` × `rows · k` pixels): the largest deviation
+/// from 1 over the pixels whose centre sees its sphere (within 0.98 of the radius), and their number.
+pub fn grid_deviation(img: &Image) -> Vec<(f64, usize)> {
+    let rows = MATERIALS.len().div_ceil(GRID_COLS);
+    let (w, h) = (img.width as f64, img.height as f64);
+    let half_h = 1.25 * rows as f64;
+    let half_w = half_h * w / h;
+    let mut out = vec![(0.0f64, 0usize); MATERIALS.len()];
+    for row in 0..img.height {
+        for col in 0..img.width {
+            let x = (-1.0 + 2.0 * (col as f64 + 0.5) / w) * half_w;
+            let y = (1.0 - 2.0 * (row as f64 + 0.5) / h) * half_h;
+            for (i, o) in out.iter_mut().enumerate() {
+                let (cx, cy) = grid_centre(i, rows);
+                if (x - cx).powi(2) + (y - cy).powi(2) <= 0.98f64.powi(2) {
+                    o.1 += 1;
+                    for c in img.data[(row * img.width + col) as usize] {
+                        o.0 = o.0.max((c as f64 - 1.0).abs());
+                    }
+                }
+            }
+        }
+    }
+    out
+}
