@@ -210,7 +210,7 @@ impl<'g> GpuScene<'g> {
             rec.v3w(p.center, u32::from(p.size.is_some()));
             rec.v3(p.normal, w as f32);
             rec.v3(p.tangent, h as f32);
-            rec.words([p.material as u32, 0, 0, 0]);
+            rec.push([f32::from_bits(p.material as u32), p.uv_unit as f32, 0.0, 0.0]);
         }
         lay.n_planes = scene.planes.len() as u32;
 

@@ -69,9 +69,9 @@ impl Scene {
     }
 
     /// Multiplies every length by `s` about the origin: objects, camera, point lights (whose irradiance at
-    /// distance 1 is multiplied by `s²`, so that what arrives at the scaled objects is unchanged). Materials
-    /// keep their nanometre scales; planes without a size take their UVs from world units, so their textures
-    /// scale too. The image is the same at any `s` (the renderers' tests check this at 10⁻³ and 10³).
+    /// distance 1 is multiplied by `s²`, so that what arrives at the scaled objects is unchanged). Infinite
+    /// planes' UV unit scales too, so their textures stay put. Materials keep their nanometre scales. The image
+    /// is the same at any `s` (the renderers' tests check this at 10⁻³ and 10³).
     pub fn scale(&mut self, s: f64) {
         for sp in &mut self.spheres {
             sp.center = mul(sp.center, s);
@@ -80,6 +80,7 @@ impl Scene {
         for p in &mut self.planes {
             p.center = mul(p.center, s);
             p.size = p.size.map(|[w, h]| [w * s, h * s]);
+            p.uv_unit *= s;
         }
         for m in &mut self.meshes {
             for p in &mut m.positions {
@@ -479,6 +480,7 @@ pub fn parse_scene(text: &str, name: &str, base: &Path) -> Result<Scene, RenderE
                     normal,
                     tangent,
                     size: d.size,
+                    uv_unit: 1.0,
                     material: mat(true)?.unwrap_or(0),
                 });
             }

@@ -400,7 +400,7 @@ fn sphere_t(i: u32, o: vec3<f32>, d: vec3<f32>, t_max: f32) -> f32 {
     return -1.0;
 }
 
-// Plane record (4 vec4): [centre, has size], [normal, width], [tangent, height], [material].
+// Plane record (4 vec4): [centre, has size], [normal, width], [tangent, height], [material, UV unit].
 fn plane_t(i: u32, o: vec3<f32>, d: vec3<f32>, t_max: f32) -> f32 {
     let r = P.plane_base + 4u * i;
     let c = scene[r];
@@ -577,7 +577,7 @@ fn make_hit(h: Prim, o: vec3<f32>, d: vec3<f32>) -> Hit {
         let rel = p - c.xyz;
         let x = dot(rel, tg.xyz);
         let y = dot(rel, b);
-        var uv = vec2<f32>(x, -y);
+        var uv = vec2<f32>(x, -y) / scene[r + 3u].y;
         if (word(c.w) != 0u) {
             uv = vec2<f32>(x / nw.w + 0.5, 0.5 - y / tg.w);
         }
