@@ -315,7 +315,10 @@ fn a_full_ray_stack_is_reported_with_its_depth() {
          transmission = true\n",
     );
     for k in 0..30 {
-        text.push_str(&format!("[[object]]\nkind = \"plane\"\ncenter = [0, 0, {}]\nnormal = [0.05, 0, 1]\nmaterial = \"film\"\n", -0.1 * k as f64));
+        text.push_str(&format!(
+            "[[object]]\nkind = \"plane\"\ncenter = [0, 0, {}]\nnormal = [0.05, 0, 1]\nmaterial = \"film\"\n",
+            -0.1 * k as f64
+        ));
     }
     let scene = parse_scene(&text, "films.toml", std::path::Path::new(".")).unwrap();
     let g = GpuScene::new(&gpu, &scene).unwrap();

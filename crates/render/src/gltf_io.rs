@@ -294,7 +294,8 @@ pub fn load_gltf(
                 return Err(bad(path, format!("{label}: an index points beyond the {n} vertices")));
             }
             let gltf_mat = prim.material().index();
-            let material = material_override.unwrap_or_else(|| gltf_mat.map(|i| mat_map[i]).unwrap_or(default_material));
+            let material =
+                material_override.unwrap_or_else(|| gltf_mat.map(|i| mat_map[i]).unwrap_or(default_material));
             let uv_map = gltf_mat.filter(|_| material_override.is_none()).map(|i| mat_uv[i]).unwrap_or_default();
             let mut m = Mesh { name: label.clone(), positions, triangles, material, ..Default::default() };
             match reader.read_normals() {

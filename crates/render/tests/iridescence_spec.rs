@@ -39,9 +39,13 @@ fn sensitivity(opd: f64, shift: [f64; 3]) -> [f64; 3] {
     let var = [4.3278e9, 9.3046e9, 6.6121e9];
     let mut xyz = [0.0; 3];
     for k in 0..3 {
-        xyz[k] = val[k] * (2.0 * PI * var[k]).sqrt() * (pos[k] * phase + shift[k]).cos() * (-phase * phase * var[k]).exp();
+        xyz[k] =
+            val[k] * (2.0 * PI * var[k]).sqrt() * (pos[k] * phase + shift[k]).cos() * (-phase * phase * var[k]).exp();
     }
-    xyz[0] += 9.7470e-14 * (2.0 * PI * 4.5282e9).sqrt() * (2.2399e6 * phase + shift[0]).cos() * (-4.5282e9 * phase * phase).exp();
+    xyz[0] += 9.7470e-14
+        * (2.0 * PI * 4.5282e9).sqrt()
+        * (2.2399e6 * phase + shift[0]).cos()
+        * (-4.5282e9 * phase * phase).exp();
     let x = Xyz::new(xyz[0] / 1.0685e-7, xyz[1] / 1.0685e-7, xyz[2] / 1.0685e-7);
     x.to_linear_srgb()
 }
@@ -177,7 +181,10 @@ fn delta_e_against_the_gltf_approximation_on_the_khronos_sphere_grids() {
             }
         }
         let name = if metallic { "IridescenceMetallicSpheres" } else { "IridescenceDielectricSpheres" };
-        eprintln!("\n{name}: mean ΔE00 over the 7 {} × cos θ ∈ {{1, 0.7, 0.4}}", if metallic { "base colours" } else { "base IORs" });
+        eprintln!(
+            "\n{name}: mean ΔE00 over the 7 {} × cos θ ∈ {{1, 0.7, 0.4}}",
+            if metallic { "base colours" } else { "base IORs" }
+        );
         eprintln!("| film IOR | {} |", thick.iter().map(|d| format!("{d:.0} nm")).collect::<Vec<_>>().join(" | "));
         eprintln!("|---|{}", "---|".repeat(thick.len()));
         for (i, row) in table.iter().enumerate() {

@@ -21,10 +21,7 @@ pub const MATERIALS: &[(&str, &str)] = &[
     ("metal r0.3", "[materials.m]\nkind = \"microfacet\"\ncolor = [1, 1, 1]\nroughness = 0.3\nmetallic = 1.0"),
     ("metal r0.7", "[materials.m]\nkind = \"microfacet\"\ncolor = [1, 1, 1]\nroughness = 0.7\nmetallic = 1.0"),
     ("metal r1", "[materials.m]\nkind = \"microfacet\"\ncolor = [1, 1, 1]\nroughness = 1.0\nmetallic = 1.0"),
-    (
-        "half metal r0.4",
-        "[materials.m]\nkind = \"microfacet\"\ncolor = [1, 1, 1]\nroughness = 0.4\nmetallic = 0.5",
-    ),
+    ("half metal r0.4", "[materials.m]\nkind = \"microfacet\"\ncolor = [1, 1, 1]\nroughness = 0.4\nmetallic = 0.5"),
     (
         "film over lambert",
         "[materials.b]\nkind = \"lambert\"\ncolor = [1, 1, 1]\n\
@@ -50,10 +47,7 @@ pub const MATERIALS: &[(&str, &str)] = &[
         "[materials.b]\nkind = \"microfacet\"\ncolor = [1, 1, 1]\nroughness = 1.0\nior = 1.5\n\
          [materials.m]\nkind = \"thinfilm\"\nstack = \"air | n=1.3 300nm | n=1.5\"\nbase = \"b\"",
     ),
-    (
-        "soap bubble",
-        "[materials.m]\nkind = \"thinfilm\"\nstack = \"air | water 400nm | air\"\ntransmission = true",
-    ),
+    ("soap bubble", "[materials.m]\nkind = \"thinfilm\"\nstack = \"air | water 400nm | air\"\ntransmission = true"),
 ];
 
 /// The furnace scene for a material table (the sphere uses material `m`), rendered at `scale`.
