@@ -32,7 +32,7 @@ use std::time::{Duration, Instant};
 
 pub use film::{FilmFrame, FilmOutput, FilmRun, GpuFilm};
 pub use lookup::{GpuLookup, MapFrame, MapOutput};
-pub use scene::{GpuScene, SceneFrame};
+pub use scene::{GpuScene, SceneFrame, StackOverflow};
 
 /// What the user reads when no adapter is found.
 pub const NO_ADAPTER_HELP: &str = "no GPU adapter found (iridis uses Vulkan through wgpu). Install a Vulkan driver; \
@@ -66,6 +66,9 @@ pub struct Gpu {
     pub queue: wgpu::Queue,
     pub info: wgpu::AdapterInfo,
     pub limits: wgpu::Limits,
+    /// The scene renderer, compiled by the first [`GpuScene`] and reused by the next (software drivers take
+    /// seconds to compile it).
+    pub(crate) scene_pipeline: std::sync::OnceLock<wgpu::ComputePipeline>,
 }
 
 impl Gpu {
@@ -93,13 +96,13 @@ impl Gpu {
             ..Default::default()
         }))
         .map_err(|e| GpuError::Device { adapter: describe(&info), message: e.to_string() })?;
-        Ok(Self { device, queue, info, limits })
+        Ok(Self { device, queue, info, limits, scene_pipeline: Default::default() })
     }
 
     /// Wraps a device opened elsewhere (the viewer's window integration opens one that can present).
     pub fn from_parts(device: wgpu::Device, queue: wgpu::Queue, info: wgpu::AdapterInfo) -> Self {
         let limits = device.limits();
-        Self { device, queue, info, limits }
+        Self { device, queue, info, limits, scene_pipeline: Default::default() }
     }
 
     /// `name (backend, device type, driver)`, e.g. `llvmpipe (LLVM 15.0.6, 256 bits) (Vulkan, Cpu, Mesa …)`.

@@ -88,6 +88,7 @@ pub struct GpuScene<'g> {
     /// The films' media as uploaded (the viewer's thickness, IOR and SVT controls rewrite copies of them).
     media_cpu: Vec<[f32; 2]>,
     films: Vec<FilmSlot>,
+    last_overflow: std::sync::Mutex<Option<StackOverflow>>,
 }
 
 /// Where a thin-film material lives in the buffers.
@@ -138,6 +139,8 @@ struct Layout {
     tex_base: u32,
     sample_base: u32,
     n_lambda: u32,
+    energy_base: u32,
+    irr_tex: u32,
 }
 
 /// Output buffers for one image size (the benchmark's and the viewer's frame loop), used with the
@@ -152,8 +155,35 @@ pub struct SceneFrame {
     bind: wgpu::BindGroup,
     out_rgb: wgpu::Buffer,
     out_rgba: wgpu::Buffer,
+    /// `[count, deepest depth]` of secondary rays that found the shader's ray stack full.
+    overflow: wgpu::Buffer,
     timer: Option<Timer>,
 }
+
+/// Secondary rays that found the shader's ray stack (24 rays) full during a render: they took the
+/// environment's radiance instead of being traced, so the image may lack some inter-reflections there.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct StackOverflow {
+    /// How many rays were dropped.
+    pub rays: u32,
+    /// The deepest bounce at which one was.
+    pub depth: u32,
+}
+
+impl std::fmt::Display for StackOverflow {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "the GPU's ray stack ({STACK} rays) overflowed: {} secondary rays, the deepest at bounce {}, took the \
+             environment's light instead of being traced; lower [output] max_depth or render on the CPU for the \
+             exact image",
+            self.rays, self.depth
+        )
+    }
+}
+
+/// Rays the shader's stack holds (`STACK` in scene.wgsl).
+pub const STACK: u32 = 24;
 
 impl<'g> GpuScene<'g> {
     /// Flattens `scene` into GPU buffers and compiles the renderer. Fails with a clear message for what the
@@ -180,7 +210,7 @@ impl<'g> GpuScene<'g> {
             rec.v3w(p.center, u32::from(p.size.is_some()));
             rec.v3(p.normal, w as f32);
             rec.v3(p.tangent, h as f32);
-            rec.words([p.material as u32, 0, 0, 0]);
+            rec.push([f32::from_bits(p.material as u32), p.uv_unit as f32, 0.0, 0.0]);
         }
         lay.n_planes = scene.planes.len() as u32;
 
@@ -334,7 +364,14 @@ impl<'g> GpuScene<'g> {
             rec.pad_to(start, 8);
         }
 
-        // Textures (the environment map last).
+        // The GGX energy table (render::energy), shared by every microfacet: E_0, E_1, then their averages.
+        let energy = iridis_render::energy::table();
+        lay.energy_base = tables.len() as u32;
+        for v in [&energy.e0, &energy.e1, &energy.avg0, &energy.avg1] {
+            tables.extend(v.iter().map(|&x| x as f32));
+        }
+
+        // Textures (the environment map and its irradiance map last).
         lay.tex_base = rec.len();
         let mut textures: Vec<&Texture> = scene.textures.iter().collect();
         let mut texels: Vec<f32> = Vec::new();
@@ -361,6 +398,11 @@ impl<'g> GpuScene<'g> {
                 lay.env[0] = c([0.0; 3], *intensity);
                 lay.env[1] = c([*rotation, 0.0, 0.0], 0.0);
             }
+        }
+        lay.irr_tex = NONE;
+        if let Some(irr) = &scene.irradiance {
+            lay.irr_tex = textures.len() as u32;
+            textures.push(irr);
         }
         for t in textures {
             let start = rec.len();
@@ -432,18 +474,23 @@ impl<'g> GpuScene<'g> {
                     })
                 };
                 let storage = wgpu::BufferUsages::STORAGE;
-                let module = gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                    label: Some("scene.wgsl"),
-                    source: wgpu::ShaderSource::Wgsl(source.into()),
-                });
-                let pipeline = gpu.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                    label: Some("iridis scene"),
-                    layout: None,
-                    module: &module,
-                    entry_point: Some("render_scene"),
-                    compilation_options: Default::default(),
-                    cache: None,
-                });
+                let pipeline = gpu
+                    .scene_pipeline
+                    .get_or_init(|| {
+                        let module = gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                            label: Some("scene.wgsl"),
+                            source: wgpu::ShaderSource::Wgsl(source.into()),
+                        });
+                        gpu.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                            label: Some("iridis scene"),
+                            layout: None,
+                            module: &module,
+                            entry_point: Some("render_scene"),
+                            compilation_options: Default::default(),
+                            cache: None,
+                        })
+                    })
+                    .clone();
                 (
                     init("scene records", bytemuck::cast_slice(&rec.0), storage | wgpu::BufferUsages::COPY_DST),
                     init("scene texels", bytemuck::cast_slice(&texels), storage),
@@ -467,6 +514,7 @@ impl<'g> GpuScene<'g> {
             output: scene.output.clone(),
             media_cpu: media,
             films,
+            last_overflow: std::sync::Mutex::new(None),
         })
     }
 
@@ -567,6 +615,11 @@ impl<'g> GpuScene<'g> {
             let display = display_buffer(gpu, tone);
             let out_rgb = storage_out(gpu, "scene rgb", pixels * 16);
             let out_rgba = storage_out(gpu, "scene rgba", pixels * 4);
+            let overflow = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("scene stack overflow"),
+                contents: bytemuck::cast_slice(&[0u32; 2]),
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
+            });
             let bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("scene bindings"),
                 layout: &self.pipeline.get_bind_group_layout(0),
@@ -580,9 +633,10 @@ impl<'g> GpuScene<'g> {
                     entry(6, &self.tables),
                     entry(7, &out_rgb),
                     entry(8, &out_rgba),
+                    entry(9, &overflow),
                 ],
             });
-            SceneFrame { width, height, spp, params, display, bind, out_rgb, out_rgba, timer: gpu.timer() }
+            SceneFrame { width, height, spp, params, display, bind, out_rgb, out_rgba, overflow, timer: gpu.timer() }
         })
     }
 
@@ -598,7 +652,14 @@ impl<'g> GpuScene<'g> {
             row += rows;
             progress(row as usize);
         }
+        *self.last_overflow.lock().unwrap_or_else(|e| e.into_inner()) = frame.stack_overflow(self)?;
         frame.read_image(self)
+    }
+
+    /// Whether the last [`GpuScene::render`] dropped rays because the shader's ray stack was full (the CLI
+    /// prints it once as a warning).
+    pub fn stack_overflow(&self) -> Option<StackOverflow> {
+        *self.last_overflow.lock().unwrap_or_else(|e| e.into_inner())
     }
 
     fn param_words(&self, width: u32, height: u32, spp: u32, row0: u32) -> [u32; PARAM_WORDS] {
@@ -630,7 +691,7 @@ impl<'g> GpuScene<'g> {
         w.extend([l.n_spheres, l.sphere_base, l.n_planes, l.plane_base]);
         w.extend([l.n_lights, l.light_base, l.n_nodes, l.node_base]);
         w.extend([l.tri_base, l.mat_base, l.tex_base, l.sample_base]);
-        w.extend([l.n_lambda, 0, 0, 0]);
+        w.extend([l.n_lambda, l.energy_base, l.irr_tex, 0]);
         w.try_into().expect("the Params struct of scene.wgsl")
     }
 }
@@ -687,6 +748,12 @@ impl SceneFrame {
     /// current camera and lights, and waits for the GPU.
     pub fn run(&self, s: &GpuScene) -> Result<FrameTime, GpuError> {
         self.run_rows(s, 0, self.height)
+    }
+
+    /// The stack overflows since this frame was made (see [`StackOverflow`]); `None` if there were none.
+    pub fn stack_overflow(&self, s: &GpuScene) -> Result<Option<StackOverflow>, GpuError> {
+        let w: Vec<u32> = bytemuck::pod_collect_to_vec(&s.gpu.read_buffer(&self.overflow, 8)?);
+        Ok((w[0] > 0).then_some(StackOverflow { rays: w[0], depth: w[1] }))
     }
 
     /// Reads the last image back as linear sRGB.

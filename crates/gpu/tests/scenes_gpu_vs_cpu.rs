@@ -1,5 +1,8 @@
 //! `iridis render --gpu` against the CPU renderer: every example scene in `examples/` rendered both ways must
-//! agree as displayed colours (issue 8: mean CIEDE2000 < 1, 99th percentile < 3).
+//! agree as displayed colours (issue 8: mean CIEDE2000 < 1, 99th percentile < 3), at unit scale and shrunk
+//! or grown 1000× (issue 21: ray offsets relative to the scene's scale), and so must scenes written here for
+//! what the examples leave out: point lights, an environment map, orthographic and hemisphere cameras, every
+//! orientation rule, image colour textures.
 //!
 //! Needs a Vulkan adapter (lavapipe on machines without a GPU); `IRIDIS_SKIP_GPU=1` skips.
 
@@ -13,7 +16,7 @@ use iridis_color::lab::delta_e_2000;
 use iridis_color::{Illuminant, Lab, Observer, Xyz};
 use iridis_gpu::GpuScene;
 use iridis_render::material::Material;
-use iridis_render::{load_scene, render, Image};
+use iridis_render::{load_scene, parse_scene, render, Image, Scene};
 
 fn examples() -> Vec<PathBuf> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../examples");
@@ -43,6 +46,226 @@ fn delta_e(a: &Image, b: &Image, exposure: f64) -> Vec<f64> {
     let mut d: Vec<f64> = a.data.iter().zip(&b.data).map(|(&p, &q)| delta_e_2000(shown(p), shown(q))).collect();
     d.sort_by(|x, y| x.total_cmp(y));
     d
+}
+
+/// GPU against CPU for one scene at `w` pixels wide: (mean ΔE00, 99th percentile, share of pixels where a
+/// displayed 8-bit channel differs by more than 8 levels), and whether the CPU image is lit.
+fn compare(gpu: &iridis_gpu::Gpu, scene: &Scene, name: &str, w: u32) -> (f64, f64, f64, bool) {
+    let h = ((w as f64 * scene.output.height as f64 / scene.output.width as f64).round() as u32).max(1);
+    let cpu = render(scene, w, h, 1, &|_| {});
+    let g = GpuScene::new(gpu, scene).unwrap_or_else(|e| panic!("{name}: {e}"));
+    let img = g.render(w, h, 1, &|_| {}).unwrap();
+    if let Some(o) = g.stack_overflow() {
+        panic!("{name}: {o}");
+    }
+    let d = delta_e(&cpu, &img, scene.output.exposure);
+    let mean = d.iter().sum::<f64>() / d.len() as f64;
+    let p99 = d[((d.len() as f64 * 0.99) as usize).min(d.len() - 1)];
+    let (a, b) = (
+        cpu.to_rgb8(scene.output.exposure, scene.output.encoding),
+        img.to_rgb8(scene.output.exposure, scene.output.encoding),
+    );
+    let off = a.chunks(3).zip(b.chunks(3)).filter(|(p, q)| p.iter().zip(*q).any(|(x, y)| x.abs_diff(*y) > 8)).count();
+    let lit = cpu.data.iter().filter(|p| p.iter().any(|&c| c > 1e-3)).count() > cpu.data.len() / 10;
+    (mean, p99, off as f64 / d.len() as f64, lit)
+}
+
+#[test]
+fn every_example_scene_matches_the_cpu_at_1e_3_and_1e3_scale() {
+    let Some(gpu) = gpu() else { return };
+    let mut report = Vec::new();
+    for path in examples() {
+        let name = path.file_name().unwrap().to_string_lossy().to_string();
+        for scale in [1e-3, 1e3] {
+            let mut scene = load_scene(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            if scene.materials.iter().any(|m| matches!(m, Material::ThinFilm(f) if f.rough.is_some())) {
+                continue;
+            }
+            scene.scale(scale);
+            let (mean, p99, off, lit) = compare(&gpu, &scene, &name, 64);
+            eprintln!("{name:<32} ×{scale:<6} mean ΔE00 {mean:.3}, p99 {p99:.3}, > 8 levels {:.3} %", off * 100.0);
+            assert!(lit, "{name} ×{scale}: the CPU image is nearly black");
+            report.push((format!("{name} ×{scale}"), mean, p99, off));
+        }
+    }
+    assert!(report.len() >= 14, "{} renders compared", report.len());
+    for (name, mean, p99, off) in &report {
+        assert!(*mean < 1.0 && *p99 < 3.0 && *off < 0.01, "{name}: mean ΔE00 {mean:.3}, p99 {p99:.3}, {off:.4}");
+    }
+}
+
+/// Writes the test inputs: an EXR sky map with a warm sun, a PNG colour texture and a PNG vector field.
+fn write_inputs(dir: &std::path::Path) {
+    let env = image::Rgb32FImage::from_fn(64, 32, |x, y| {
+        let v = y as f32 / 31.0;
+        let sun = if (x as i32 - 40).abs() <= 2 && (y as i32 - 9).abs() <= 2 { 30.0 } else { 0.0 };
+        image::Rgb([0.3 + 0.6 * (1.0 - v) + sun, 0.35 + 0.5 * (1.0 - v) + sun * 0.8, 0.5 * (1.0 - v) + 0.2 + sun * 0.5])
+    });
+    env.save(dir.join("env.exr")).unwrap();
+    let color = image::RgbImage::from_fn(8, 8, |x, y| image::Rgb([(x * 30 + 20) as u8, (y * 30 + 20) as u8, 200]));
+    color.save(dir.join("color.png")).unwrap();
+    // A field turning by 90° across u: (cos, sin) of u·π/2 mapped to 2·rg − 1.
+    let vec = image::RgbImage::from_fn(16, 4, |x, _| {
+        let a = x as f32 / 15.0 * std::f32::consts::FRAC_PI_2;
+        image::Rgb([((a.cos() + 1.0) * 127.5) as u8, ((a.sin() + 1.0) * 127.5) as u8, 255])
+    });
+    vec.save(dir.join("vector.png")).unwrap();
+}
+
+/// Scenes for what the examples leave out; each names the features it covers.
+const COVERAGE: &[(&str, &str)] = &[
+    (
+        "orthographic, point lights, environment map, image colour texture, direction orientation",
+        r#"
+[output]
+size = [96, 64]
+[camera]
+kind = "orthographic"
+position = [0, 2, 6]
+look_at = [0, 0.6, 0]
+height = 3.2
+[[light]]
+kind = "point"
+position = [-1.5, 2.5, 2]
+intensity = 4
+[[light]]
+kind = "point"
+position = [2, 1, 1.5]
+intensity = 2
+color = [1.0, 0.7, 0.4]
+[environment]
+kind = "map"
+file = "env.exr"
+rotation = "30deg"
+[textures.photo]
+kind = "color"
+file = "color.png"
+[materials.painted]
+kind = "microfacet"
+texture = "photo"
+roughness = 0.35
+[materials.metal]
+kind = "microfacet"
+color = [0.95, 0.64, 0.54]
+metallic = 1.0
+roughness = 0.25
+[materials.grating]
+kind = "diffraction"
+table = "builtin:blazed"
+uv_resolution = 41
+orientation = "direction"
+direction = [1, 0, 0.3]
+scale_ru = 1500
+w_diffuse = 0.2
+texture = "photo"
+ambient = 0.3
+[materials.floor]
+kind = "lambert"
+texture = "photo"
+[[object]]
+kind = "sphere"
+center = [-1.1, 0.7, 0]
+radius = 0.7
+material = "painted"
+[[object]]
+kind = "sphere"
+center = [0.4, 0.6, -0.3]
+radius = 0.6
+material = "metal"
+[[object]]
+kind = "plane"
+center = [1.4, 0.7, 0.5]
+normal = [-0.3, 0.2, 1]
+tangent = [1, 0, 0.3]
+size = [1.0, 1.0]
+material = "grating"
+[[object]]
+kind = "plane"
+normal = [0, 1, 0]
+tangent = [1, 0, 0]
+size = [8, 8]
+material = "floor"
+"#,
+    ),
+    (
+        "hemisphere camera, tangent orientation",
+        r#"
+[camera]
+kind = "hemisphere"
+target = [0, 0, 0]
+normal = [0, 0, 1]
+[[light]]
+kind = "directional"
+direction = [0.3, 0.2, 1]
+[materials.grating]
+kind = "diffraction"
+table = "builtin:elaphe"
+uv_resolution = 41
+orientation = "tangent"
+angle = "20deg"
+scale_ru = 3000
+[[object]]
+kind = "plane"
+normal = [0, 0, 1]
+tangent = [1, 0, 0]
+material = "grating"
+"#,
+    ),
+    (
+        "perspective, vector-texture orientation, point light, sky",
+        r#"
+[output]
+size = [96, 64]
+[camera]
+kind = "perspective"
+position = [0, 0.5, 3.2]
+look_at = [0, 0, 0]
+[[light]]
+kind = "point"
+position = [1, 2, 2.5]
+intensity = 6
+[environment]
+kind = "sky"
+[textures.field]
+kind = "vector"
+file = "vector.png"
+[materials.grating]
+kind = "diffraction"
+table = "builtin:elaphe"
+uv_resolution = 41
+orientation = "texture"
+orientation_texture = "field"
+scale_ru = 3000
+w_diffuse = 0.1
+ambient = 0.2
+[[object]]
+kind = "sphere"
+center = [0, 0, 0]
+radius = 1.0
+material = "grating"
+"#,
+    ),
+];
+
+#[test]
+fn coverage_scenes_match_the_cpu_at_every_scale() {
+    let Some(gpu) = gpu() else { return };
+    let dir = tempfile::tempdir().unwrap();
+    write_inputs(dir.path());
+    let mut report = Vec::new();
+    for (what, text) in COVERAGE {
+        for scale in [1.0, 1e-3, 1e3] {
+            let mut scene = parse_scene(text, what, dir.path()).unwrap_or_else(|e| panic!("{what}: {e}"));
+            scene.scale(scale);
+            let (mean, p99, off, lit) = compare(&gpu, &scene, what, 72);
+            eprintln!("{what:<88} ×{scale:<6} mean ΔE00 {mean:.3}, p99 {p99:.3}, > 8 levels {:.3} %", off * 100.0);
+            assert!(lit, "{what} ×{scale}: the CPU image is nearly black");
+            report.push((format!("{what} ×{scale}"), mean, p99, off));
+        }
+    }
+    for (name, mean, p99, off) in &report {
+        assert!(*mean < 1.0 && *p99 < 3.0 && *off < 0.01, "{name}: mean ΔE00 {mean:.3}, p99 {p99:.3}, {off:.4}");
+    }
 }
 
 #[test]
@@ -83,4 +306,35 @@ fn every_example_scene_matches_the_cpu() {
         let (mean_max, p99_max) = if name.starts_with("soap_bubble") { (0.2, 3.0) } else { (0.05, 0.05) };
         assert!(*mean < mean_max && *p99 < p99_max, "{name}: mean ΔE00 {mean:.3}, p99 {p99:.3}");
     }
+}
+
+#[test]
+fn a_full_ray_stack_is_reported_with_its_depth() {
+    // 30 parallel soap films in front of the camera: every film splits a ray into a reflected and a
+    // transmitted one, so the stack of pending rays grows by one per film and overflows its 24 places.
+    let Some(gpu) = gpu() else { return };
+    let mut text = String::from(
+        "[output]\nmax_depth = 40\n[camera]\nkind = \"orthographic\"\nposition = [0, 0, 5]\nheight = 1\n\
+         [environment]\nkind = \"sky\"\n[materials.film]\nkind = \"thinfilm\"\nstack = \"air | water 300nm | air\"\n\
+         transmission = true\n",
+    );
+    for k in 0..30 {
+        text.push_str(&format!(
+            "[[object]]\nkind = \"plane\"\ncenter = [0, 0, {}]\nnormal = [0.05, 0, 1]\nmaterial = \"film\"\n",
+            -0.1 * k as f64
+        ));
+    }
+    let scene = parse_scene(&text, "films.toml", std::path::Path::new(".")).unwrap();
+    let g = GpuScene::new(&gpu, &scene).unwrap();
+    g.render(4, 4, 1, &|_| {}).unwrap();
+    let o = g.stack_overflow().expect("the stack overflows");
+    eprintln!("{o}");
+    assert!(o.rays >= 16 && o.depth >= 20 && o.depth <= 40, "{o:?}");
+    assert!(o.to_string().contains("overflowed") && o.to_string().contains(&format!("bounce {}", o.depth)));
+    // Fewer films fit: no report.
+    let few = parse_scene(&text.replace("max_depth = 40", "max_depth = 10"), "films.toml", std::path::Path::new("."))
+        .unwrap();
+    let g = GpuScene::new(&gpu, &few).unwrap();
+    g.render(4, 4, 1, &|_| {}).unwrap();
+    assert_eq!(g.stack_overflow(), None);
 }

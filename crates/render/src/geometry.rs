@@ -240,6 +240,9 @@ pub struct Plane {
     pub normal: V3,
     pub tangent: V3,
     pub size: Option<[f64; 2]>,
+    /// Scene units per UV unit of an infinite plane (1: UVs are scene coordinates; [`crate::Scene::scale`]
+    /// scales it with the scene).
+    pub uv_unit: f64,
     pub material: usize,
 }
 
@@ -264,7 +267,7 @@ impl Plane {
                 }
                 [x / w + 0.5, 0.5 - y / h]
             }
-            None => [x, -y],
+            None => [x / self.uv_unit, -y / self.uv_unit],
         };
         let front = den < 0.0;
         let n = if front { self.normal } else { mul(self.normal, -1.0) };

@@ -1,9 +1,14 @@
 //! glTF 2.0 input (`.gltf` with external or embedded buffers, `.glb`): triangle meshes with normals, UVs and
 //! tangents (MikkTSpace when the file has none, as the glTF specification asks), PBR metallic-roughness
 //! materials as a GGX base, and `KHR_materials_iridescence` as a thin-film stack over that base:
-//! `air | n = iridescenceIor, d | n = 1.5`, with `d = mix(thicknessMinimum, thicknessMaximum, texture.g)`
-//! (Sussenbach's SVT with `d_avg = (min + max)/2`, `d_rel = (max − min)/2`) or `d = thicknessMaximum`
-//! without a texture, and the film's reflection weighted by `iridescenceFactor`.
+//! `air | n = iridescenceIor, d | n = ior` (`KHR_materials_ior`, default 1.5), and for a metallic base the same
+//! film over the metal (its index from the base colour as `F_0`), with `d = mix(thicknessMinimum,
+//! thicknessMaximum, texture.g)` (Sussenbach's SVT with `d_avg = (min + max)/2`, `d_rel = (max − min)/2`) or
+//! `d = thicknessMaximum` without a texture. The film's reflectance replaces the base's specular Fresnel
+//! (render.rs, `shade_film_over_base`) and `iridescenceFactor` mixes it with the base alone. Textures:
+//! `baseColorTexture` × `baseColorFactor`, `texCoord` and `KHR_texture_transform` (applied to the mesh's
+//! UVs), the thickness texture's G channel; what is not read (metallic-roughness, normal, occlusion and
+//! emissive textures, samplers other than repeat/linear, `iridescenceTexture`) is named in a note.
 
 use std::path::Path;
 
@@ -95,45 +100,102 @@ pub fn load_gltf(
 
     // Materials
     let mut mat_map = Vec::new();
+    // Per glTF material: which UV set its textures read, and their KHR_texture_transform.
+    let mut mat_uv: Vec<UvMap> = Vec::new();
     for m in doc.materials() {
         let name = m.name().map(str::to_string).unwrap_or_else(|| format!("gltf material {}", m.index().unwrap_or(0)));
         let pbr = m.pbr_metallic_roughness();
         let bc = pbr.base_color_factor();
+        let factor3 = [bc[0] as f64, bc[1] as f64, bc[2] as f64];
+        let mut uv_map: Option<UvMap> = None;
         let color = match pbr.base_color_texture() {
             Some(info) => {
-                textures.push(Texture::from_image(image_of(info.texture())?, TexKind::Color, &name)?);
+                let mut t = Texture::from_image(image_of(info.texture())?, TexKind::Color, &name)?;
+                // baseColorFactor multiplies the texture (glTF 2.0, 3.9.2).
+                if let Texture::Image { channels, data, .. } = &mut t {
+                    let c = *channels;
+                    for (i, v) in data.iter_mut().enumerate() {
+                        if i % c < 3 {
+                            *v *= factor3[i % c] as f32;
+                        }
+                    }
+                }
+                textures.push(t);
+                check_sampler(&name, "baseColorTexture", &info.texture(), notes);
+                uv_map = Some(UvMap::of(info.tex_coord(), info.extensions()));
                 ColorSource::Texture(textures.len() - 1)
             }
-            None => ColorSource::Const([bc[0] as f64, bc[1] as f64, bc[2] as f64]),
+            None => ColorSource::Const(factor3),
         };
+        let ext = |k: &str| m.extensions().and_then(|e| e.get(k));
+        // KHR_materials_ior: the dielectric's index (default 1.5), the film's substrate under iridescence.
+        let ior = ext("KHR_materials_ior").and_then(|x| x.get("ior")).and_then(|v| v.as_f64()).unwrap_or(1.5);
+        if !(ior >= 1.0 && ior.is_finite()) {
+            return Err(bad(path, format!("material \"{name}\": KHR_materials_ior ior = {ior}; it must be ≥ 1")));
+        }
         let base = Microfacet {
             color,
             roughness: pbr.roughness_factor().clamp(0.0, 1.0) as f64,
             metallic: pbr.metallic_factor().clamp(0.0, 1.0) as f64,
-            ior: 1.5,
+            ior,
         };
-        let ext = m.extensions().and_then(|e| e.get("KHR_materials_iridescence"));
-        let mat = match ext {
+        // What the renderer does not read, named once per material.
+        let mut ignored = Vec::new();
+        if pbr.metallic_roughness_texture().is_some() {
+            ignored.push("metallicRoughnessTexture (the factors apply everywhere)");
+        }
+        if m.normal_texture().is_some() {
+            ignored.push("normalTexture (the mesh normals are used)");
+        }
+        if m.occlusion_texture().is_some() {
+            ignored.push("occlusionTexture");
+        }
+        if m.emissive_texture().is_some() || m.emissive_factor() != [0.0; 3] {
+            ignored.push("emission");
+        }
+        for k in m.extensions().into_iter().flat_map(|e| e.keys()) {
+            if k != "KHR_materials_ior" && k != "KHR_materials_iridescence" {
+                notes.push(format!("material \"{name}\": extension {k} is not supported (ignored)"));
+            }
+        }
+        if !ignored.is_empty() {
+            notes.push(format!("material \"{name}\": not supported, ignored: {}", ignored.join(", ")));
+        }
+        let mat = match ext("KHR_materials_iridescence") {
             Some(x) => {
                 let num = |k: &str, d: f64| x.get(k).and_then(|v| v.as_f64()).unwrap_or(d);
                 let factor = num("iridescenceFactor", 0.0).clamp(0.0, 1.0);
-                let ior = num("iridescenceIor", 1.3);
+                let film_ior = num("iridescenceIor", 1.3);
                 let (dmin, dmax) =
                     (num("iridescenceThicknessMinimum", 100.0), num("iridescenceThicknessMaximum", 400.0));
-                if !(ior >= 1.0 && dmin >= 0.0 && dmax >= 0.0) {
+                if !(film_ior >= 1.0 && dmin >= 0.0 && dmax >= 0.0) {
                     return Err(bad(
                         path,
-                        format!("material \"{name}\": iridescence IOR {ior} or thickness {dmin}–{dmax} nm is invalid"),
+                        format!(
+                            "material \"{name}\": iridescence IOR {film_ior} or thickness {dmin}–{dmax} nm is invalid"
+                        ),
                     ));
                 }
-                let tex_index =
-                    x.get("iridescenceThicknessTexture").and_then(|t| t.get("index")).and_then(|i| i.as_u64());
+                let tex_info = x.get("iridescenceThicknessTexture");
+                let tex_index = tex_info.and_then(|t| t.get("index")).and_then(|i| i.as_u64());
                 let (d, svt) = match tex_index {
                     Some(i) => {
                         let tex = doc
                             .textures()
                             .nth(i as usize)
                             .ok_or_else(|| bad(path, format!("thickness texture {i} does not exist")))?;
+                        check_sampler(&name, "iridescenceThicknessTexture", &tex, notes);
+                        let info = tex_info.expect("has an index");
+                        let set = info.get("texCoord").and_then(|v| v.as_u64()).unwrap_or(0) as u32;
+                        let own = UvMap::of(set, info.get("extensions").and_then(|e| e.as_object()));
+                        match &uv_map {
+                            None => uv_map = Some(own),
+                            Some(u) if *u != own => notes.push(format!(
+                                "material \"{name}\": iridescenceThicknessTexture reads other texture coordinates \
+                                 (texCoord / KHR_texture_transform) than baseColorTexture; both use the base colour's"
+                            )),
+                            Some(_) => {}
+                        }
                         let rgb = image_of(tex)?.to_rgb32f();
                         let (w, h) = (rgb.width() as usize, rgb.height() as usize);
                         // The G channel, linear (glTF: thickness textures hold data, not colours).
@@ -153,10 +215,27 @@ pub fn load_gltf(
                 if x.get("iridescenceTexture").is_some() {
                     notes.push(format!("material \"{name}\": iridescenceTexture is not supported; the factor {factor} applies everywhere"));
                 }
-                let stack: iridis_thinfilm::Stack = format!("air | n={ior} {d}nm | n=1.5")
+                // The film over the dielectric base (substrate: its KHR_materials_ior index) and, for a metallic
+                // base, over the metal (substrate: the index whose F_0 is the base colour).
+                let stack: iridis_thinfilm::Stack = format!("air | n={film_ior} {d}nm | n={ior}")
                     .parse()
                     .map_err(|e| bad(path, format!("material \"{name}\": {e}")))?;
-                let mut film = ThinFilm::new(stack, svt, false)?;
+                let mut film = ThinFilm::new(stack.clone(), svt, false)?;
+                if base.metallic > 0.0 {
+                    let f0 = match base.color {
+                        ColorSource::Const(c) => c,
+                        ColorSource::Texture(_) => {
+                            notes.push(format!(
+                                "material \"{name}\": the metal under the iridescent film takes baseColorFactor as \
+                                 its F_0 (a base colour texture still colours its Schlick reflection)"
+                            ));
+                            factor3
+                        }
+                    };
+                    let mut metal = stack;
+                    metal.substrate = metal_from_f0(f0).map_err(|e| bad(path, format!("material \"{name}\": {e}")))?;
+                    film.metal_stack = Some(metal);
+                }
                 film.base = Some(base);
                 film.factor = factor;
                 Material::ThinFilm(Box::new(film))
@@ -166,6 +245,7 @@ pub fn load_gltf(
         materials.push(mat);
         material_names.push(name);
         mat_map.push(materials.len() - 1);
+        mat_uv.push(uv_map.unwrap_or_default());
     }
     let default_material = match material_override {
         Some(m) => m,
@@ -213,8 +293,10 @@ pub fn load_gltf(
             if triangles.iter().flatten().any(|&i| i as usize >= n) {
                 return Err(bad(path, format!("{label}: an index points beyond the {n} vertices")));
             }
-            let material = material_override
-                .unwrap_or_else(|| prim.material().index().map(|i| mat_map[i]).unwrap_or(default_material));
+            let gltf_mat = prim.material().index();
+            let material =
+                material_override.unwrap_or_else(|| gltf_mat.map(|i| mat_map[i]).unwrap_or(default_material));
+            let uv_map = gltf_mat.filter(|_| material_override.is_none()).map(|i| mat_uv[i]).unwrap_or_default();
             let mut m = Mesh { name: label.clone(), positions, triangles, material, ..Default::default() };
             match reader.read_normals() {
                 Some(ns) => m.normals = ns.map(|v| normalize(v.map(|x| x as f64))).collect(),
@@ -226,8 +308,10 @@ pub fn load_gltf(
             if m.normals.len() != n {
                 return Err(bad(path, format!("{label}: {} normals for {n} positions", m.normals.len())));
             }
-            if let Some(uv) = reader.read_tex_coords(0) {
-                m.uvs = Some(uv.into_f32().map(|t| [t[0] as f64, t[1] as f64]).collect());
+            if let Some(uv) = reader.read_tex_coords(uv_map.set) {
+                m.uvs = Some(uv.into_f32().map(|t| uv_map.apply([t[0] as f64, t[1] as f64])).collect());
+            } else if uv_map.set != 0 {
+                notes.push(format!("{label}: its material reads TEXCOORD_{}, which the primitive lacks", uv_map.set));
             }
             match reader.read_tangents() {
                 Some(ts) => {
@@ -247,6 +331,81 @@ pub fn load_gltf(
         return Err(bad(path, "the default scene holds no triangle meshes"));
     }
     Ok(out)
+}
+
+/// The texture coordinates a material's textures read: the UV set (`texCoord`) and `KHR_texture_transform`
+/// (offset, rotation, scale; its `texCoord` overrides the set), applied to the mesh's UVs at load.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+struct UvMap {
+    set: u32,
+    /// `[offset_u, offset_v, rotation, scale_u, scale_v]`; `None`: identity.
+    transform: Option<[f64; 5]>,
+}
+
+impl UvMap {
+    fn of(tex_coord: u32, extensions: Option<&serde_json::Map<String, serde_json::Value>>) -> Self {
+        let Some(t) = extensions.and_then(|e| e.get("KHR_texture_transform")) else {
+            return UvMap { set: tex_coord, transform: None };
+        };
+        let pair = |k: &str, d: [f64; 2]| {
+            t.get(k)
+                .and_then(|v| v.as_array())
+                .map(|a| [0, 1].map(|i| a.get(i).and_then(|x| x.as_f64()).unwrap_or(d[i])))
+                .unwrap_or(d)
+        };
+        let (o, s) = (pair("offset", [0.0, 0.0]), pair("scale", [1.0, 1.0]));
+        let r = t.get("rotation").and_then(|v| v.as_f64()).unwrap_or(0.0);
+        let set = t.get("texCoord").and_then(|v| v.as_u64()).map(|v| v as u32).unwrap_or(tex_coord);
+        UvMap { set, transform: Some([o[0], o[1], r, s[0], s[1]]) }
+    }
+
+    /// `T · R · S · uv` of the KHR_texture_transform specification.
+    fn apply(&self, uv: [f64; 2]) -> [f64; 2] {
+        let Some([ou, ov, r, su, sv]) = self.transform else { return uv };
+        let (sn, cs) = r.sin_cos();
+        let (x, y) = (uv[0] * su, uv[1] * sv);
+        [cs * x + sn * y + ou, -sn * x + cs * y + ov]
+    }
+}
+
+/// Notes the sampler settings the renderer does not follow (it repeats and filters bilinearly).
+fn check_sampler(material: &str, slot: &str, tex: &gltf::Texture, notes: &mut Vec<String>) {
+    use gltf::texture::{MagFilter, WrappingMode};
+    let s = tex.sampler();
+    let mut odd = Vec::new();
+    if s.wrap_s() != WrappingMode::Repeat || s.wrap_t() != WrappingMode::Repeat {
+        odd.push(format!("wrap {:?}/{:?} (textures repeat)", s.wrap_s(), s.wrap_t()));
+    }
+    if s.mag_filter() == Some(MagFilter::Nearest) {
+        odd.push("nearest filtering (textures are filtered bilinearly)".to_string());
+    }
+    if !odd.is_empty() {
+        notes.push(format!("material \"{material}\": {slot}'s sampler is not supported: {}", odd.join(", ")));
+    }
+}
+
+/// The substrate of a film over a metal whose normal-incidence reflectance is `f0` (linear RGB): the real
+/// index `n = (1 + √F_0)/(1 − √F_0)` (glTF iridescence's `Fresnel0ToIor`, √F_0 ≤ 0.9999), with `F_0(λ)`
+/// piecewise linear through the channels at 610 (R), 550 (G) and 465 nm (B), constant beyond, on a 5 nm grid.
+pub fn metal_from_f0(f0: [f64; 3]) -> Result<iridis_thinfilm::Material, RenderError> {
+    let nodes = [(465.0, f0[2]), (550.0, f0[1]), (610.0, f0[0])];
+    let mut csv = String::from("wavelength_nm,n\n");
+    for i in 0..=80 {
+        let l = 380.0 + 5.0 * i as f64;
+        let f = if l <= nodes[0].0 {
+            nodes[0].1
+        } else if l >= nodes[2].0 {
+            nodes[2].1
+        } else {
+            let k = if l < nodes[1].0 { 0 } else { 1 };
+            let (a, b) = (nodes[k], nodes[k + 1]);
+            a.1 + (b.1 - a.1) * (l - a.0) / (b.0 - a.0)
+        };
+        let r = f.clamp(0.0, 1.0).sqrt().min(0.9999);
+        csv.push_str(&format!("{l},{}\n", (1.0 + r) / (1.0 - r)));
+    }
+    iridis_thinfilm::nkfile::parse_csv(&csv, "metal base (from baseColorFactor)")
+        .map_err(|e| RenderError::Input(format!("metal base index: {e}")))
 }
 
 fn identity4() -> [[f64; 4]; 4] {
@@ -319,14 +478,13 @@ pub fn scene_from_gltf(path: &Path) -> Result<crate::scene::Scene, RenderError> 
     let (forward, right, up) = crate::camera::frame(sub(center, position), [0.0, 1.0, 0.0]).expect("camera frame");
     notes.push("glTF scene: default camera (front, slightly above), a D65 light from the upper left and a sky".into());
     let bvh = crate::bvh::Bvh::build(&meshes);
+    let environment =
+        Environment::Sky { zenith: [0.25, 0.45, 0.9], horizon: [0.9, 0.92, 0.95], ground: [0.2, 0.18, 0.15] };
     Ok(crate::scene::Scene {
         camera: crate::camera::Camera::Perspective { position, forward, right, up, tan_half: (fov / 2.0).tan() },
         lights: vec![Light::Directional { direction: normalize([-0.5, 1.0, 0.7]), rgb: [1.0; 3] }],
-        environment: Environment::Sky {
-            zenith: [0.25, 0.45, 0.9],
-            horizon: [0.9, 0.92, 0.95],
-            ground: [0.2, 0.18, 0.15],
-        },
+        irradiance: environment.irradiance_map(),
+        environment,
         environment_visible: true,
         meshes,
         spheres: Vec::new(),

@@ -20,6 +20,7 @@
 
 pub mod bvh;
 pub mod camera;
+pub mod energy;
 pub mod error;
 pub mod geometry;
 pub mod gltf_io;

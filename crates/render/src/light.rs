@@ -108,6 +108,110 @@ impl Environment {
     }
 }
 
+/// Size of the irradiance map (equirectangular, like an environment map; irradiance varies slowly).
+pub const IRRADIANCE_SIZE: [usize; 2] = [32, 16];
+
+impl Environment {
+    /// The environment's irradiance around every normal, divided by π (the radiance a white Lambertian surface
+    /// with that normal reflects: `E(n)/π = ∫ L(ω) max(n·ω, 0) dω / π`), as a 32 × 16 equirectangular map
+    /// (row 0 is +y, centre column −z, no rotation) that the renderers sample bilinearly. The radiance is
+    /// first averaged into 128 × 64 solid-angle cells (a map's texels box-filtered into them, a sky sampled at
+    /// their centres); the cosine integral is then a sum over the cells, normalised by the same sum of the
+    /// weights, so that a uniform environment gives exactly its radiance. `None` where the irradiance is the
+    /// same for every normal (no environment, uniform).
+    pub fn irradiance_map(&self) -> Option<Texture> {
+        let (cw, ch) = (128usize, 64usize);
+        let mut cells = vec![[0.0f64; 3]; cw * ch];
+        match self {
+            Environment::None | Environment::Uniform(_) => return None,
+            Environment::Sky { .. } => {
+                for r in 0..ch {
+                    for c in 0..cw {
+                        let (u, v) = ((c as f64 + 0.5) / cw as f64, (r as f64 + 0.5) / ch as f64);
+                        cells[r * cw + c] = self.radiance(equirect_dir(u, v, 0.0));
+                    }
+                }
+            }
+            Environment::Map { texture, rotation, intensity, .. } => {
+                let Texture::Image { width, height, .. } = texture.as_ref() else { return None };
+                let (w, h) = (*width, *height);
+                let mut wsum = vec![0.0f64; cw * ch];
+                for y in 0..h {
+                    let v = (y as f64 + 0.5) / h as f64;
+                    let s = (v * std::f64::consts::PI).sin();
+                    for x in 0..w {
+                        let u = (x as f64 + 0.5) / w as f64;
+                        // The texel's direction in the world (the map turned by `rotation`), then its cell.
+                        let (uw, vw) = equirect_uv(equirect_dir(u, v, *rotation), 0.0);
+                        let k = ((vw * ch as f64) as usize).min(ch - 1) * cw + ((uw * cw as f64) as usize).min(cw - 1);
+                        let t = texture.sample_with([u, v], true);
+                        cells[k] = add(cells[k], mul(t, s * intensity));
+                        wsum[k] += s;
+                    }
+                }
+                for (k, c) in cells.iter_mut().enumerate() {
+                    if wsum[k] > 0.0 {
+                        *c = mul(*c, 1.0 / wsum[k]);
+                    } else {
+                        // A map smaller than the cell grid: sample it at the cell's centre.
+                        let (u, v) = (((k % cw) as f64 + 0.5) / cw as f64, ((k / cw) as f64 + 0.5) / ch as f64);
+                        *c = self.radiance(equirect_dir(u, v, 0.0));
+                    }
+                }
+            }
+        }
+        let dirs: Vec<(V3, f64)> = (0..cw * ch)
+            .map(|k| {
+                let (u, v) = (((k % cw) as f64 + 0.5) / cw as f64, ((k / cw) as f64 + 0.5) / ch as f64);
+                (equirect_dir(u, v, 0.0), (v * std::f64::consts::PI).sin())
+            })
+            .collect();
+        let [ow, oh] = IRRADIANCE_SIZE;
+        let mut data = Vec::with_capacity(ow * oh * 3);
+        for r in 0..oh {
+            for c in 0..ow {
+                let n = equirect_dir((c as f64 + 0.5) / ow as f64, (r as f64 + 0.5) / oh as f64, 0.0);
+                let (mut acc, mut wsum) = ([0.0; 3], 0.0);
+                for (k, (d, s)) in dirs.iter().enumerate() {
+                    let w = dot(n, *d).max(0.0) * s;
+                    acc = add(acc, mul(cells[k], w));
+                    wsum += w;
+                }
+                data.extend(mul(acc, 1.0 / wsum).map(|x| x as f32));
+            }
+        }
+        Some(Texture::Image {
+            width: ow,
+            height: oh,
+            channels: 3,
+            data,
+            kind: crate::texture::TexKind::Color,
+            name: "environment irradiance".into(),
+        })
+    }
+
+    /// `E(n)/π` for a unit normal, from [`Environment::irradiance_map`]'s map (`map`) or, without one, the
+    /// uniform radiance.
+    pub fn irradiance(&self, map: Option<&Texture>, n: V3) -> Rgb {
+        match (map, self) {
+            (Some(t), _) => {
+                let (u, v) = equirect_uv(n, 0.0);
+                t.sample_with([u, v], true)
+            }
+            (None, Environment::Uniform(c)) => *c,
+            (None, _) => self.mean(),
+        }
+    }
+}
+
+/// The direction of equirectangular coordinates (the inverse of [`equirect_uv`]).
+pub fn equirect_dir(u: f64, v: f64, rotation: f64) -> V3 {
+    let phi = (u - 0.5) * std::f64::consts::TAU + rotation;
+    let theta = v * std::f64::consts::PI;
+    let s = theta.sin();
+    [s * phi.sin(), theta.cos(), -s * phi.cos()]
+}
+
 /// Equirectangular coordinates of a direction: `u` is the longitude (0.5 at −z), `v` from +y (0) to −y (1).
 pub fn equirect_uv(d: V3, rotation: f64) -> (f64, f64) {
     let phi = d[0].atan2(-d[2]) - rotation;
@@ -150,7 +254,42 @@ mod tests {
         assert!(equirect_uv([0.0, 1.0, 0.0], 0.0).1 < 1e-12);
         let (u, v) = equirect_uv([0.0, 0.0, -1.0], 0.0);
         assert!((u - 0.5).abs() < 1e-12 && (v - 0.5).abs() < 1e-12);
+        for (u, v) in [(0.1, 0.3), (0.7, 0.8), (0.5, 0.5)] {
+            let (a, b) = equirect_uv(equirect_dir(u, v, 0.4), 0.4);
+            assert!((a - u).abs() < 1e-12 && (b - v).abs() < 1e-12);
+        }
         let uni = Environment::Uniform([0.2, 0.3, 0.4]);
         assert_eq!(uni.mean(), [0.2, 0.3, 0.4]);
+    }
+
+    #[test]
+    fn irradiance_of_a_sky_matches_a_brute_force_integral() {
+        // E(n)/π = ∫ L(ω) max(n·ω, 0) dω / π on a fine (θ, φ) grid, directly from the sky's radiance — not
+        // through the map's cells. Two tones: radiance 1 above the horizon, 0.2 below (blended over 7°).
+        let sky = Environment::Sky { zenith: [1.0; 3], horizon: [1.0; 3], ground: [0.2; 3] };
+        let map = sky.irradiance_map().unwrap();
+        for deg in [0.0f64, 30.0, 60.0, 90.0, 120.0, 180.0] {
+            let t = deg.to_radians();
+            let n = [t.sin(), t.cos(), 0.0];
+            let (nt, np) = (1000, 400);
+            let mut want = 0.0;
+            for i in 0..nt {
+                let th = std::f64::consts::PI * (i as f64 + 0.5) / nt as f64;
+                for j in 0..np {
+                    let ph = std::f64::consts::TAU * (j as f64 + 0.5) / np as f64;
+                    let d = [th.sin() * ph.cos(), th.cos(), th.sin() * ph.sin()];
+                    let dw = th.sin() * std::f64::consts::PI / nt as f64 * std::f64::consts::TAU / np as f64;
+                    want += sky.radiance(d)[0] * dot(n, d).max(0.0) * dw / std::f64::consts::PI;
+                }
+            }
+            let got = sky.irradiance(Some(&map), n)[0];
+            assert!((got - want).abs() < 0.01, "{deg}°: {got} vs {want}");
+        }
+        // A uniform environment: exactly its radiance, with or without a map.
+        let uni = Environment::Sky { zenith: [0.7; 3], horizon: [0.7; 3], ground: [0.7; 3] };
+        let m = uni.irradiance_map().unwrap();
+        for n in [[0.0, 1.0, 0.0], [0.6, 0.0, 0.8], [0.0, -1.0, 0.0]] {
+            assert!((uni.irradiance(Some(&m), n)[1] - 0.7).abs() < 1e-6);
+        }
     }
 }

@@ -12,6 +12,7 @@ use iridis_thinfilm::htsg::Htsg;
 use iridis_thinfilm::rough::RoughStack;
 use iridis_thinfilm::Stack;
 
+use crate::energy;
 use crate::error::RenderError;
 use crate::geometry::Hit;
 use crate::light::Rgb;
@@ -163,6 +164,9 @@ pub struct ThinFilm {
     pub base: Option<Microfacet>,
     /// glTF `iridescenceFactor`: the film's reflection is scaled by it and the base shows through `1 − factor`.
     pub factor: f64,
+    /// The same film over the metal of a metallic `base` (glTF: its substrate is the metal, whose index comes
+    /// from the base colour as `F_0`); the specular of the base's metallic part. `None`: the base is dielectric.
+    pub metal_stack: Option<Stack>,
     /// A rough substrate: the bottom interface (last layer | substrate) has rms height σ and correlation
     /// length τ, and the film follows Hirayama's LSRS model with the HTSG BRDF (Sussenbach sec. 3.2,
     /// eq. 3.15–3.20; `iridis_thinfilm::rough`). Set it with [`ThinFilm::set_rough`], which checks the model's
@@ -198,6 +202,7 @@ impl ThinFilm {
             transmission,
             base: None,
             factor: 1.0,
+            metal_stack: None,
             rough: None,
             colorimeter: FilmColorimeter::new(&grid, Illuminant::D65, Observer::Cie1931),
             invariant,
@@ -238,6 +243,19 @@ impl ThinFilm {
         }
         let c = self.colorimeter.from_spectra(&r, &t);
         (c.reflected, c.transmitted)
+    }
+
+    /// The reflected colour of [`ThinFilm::metal_stack`] (like [`ThinFilm::colors`]); `None` without one.
+    pub fn metal_color(&self, cos_theta: f64, offset_nm: f64) -> Option<Xyz> {
+        let stack = self.metal_stack.as_ref()?;
+        let angle = cos_theta.clamp(0.0, 1.0).acos();
+        let r: Vec<f64> = self
+            .colorimeter
+            .wavelengths_nm()
+            .iter()
+            .map(|&l| stack.evaluate_offset(l, angle, offset_nm).map(|x| x.r()).unwrap_or(0.0))
+            .collect();
+        Some(self.colorimeter.from_spectra(&r, &r).reflected)
     }
 
     /// Makes the substrate rough (LSRS). Refused where the film transmits (the LSRS model describes
@@ -318,7 +336,8 @@ pub fn relative_azimuth(n: V3, wi: V3, wo: V3) -> f64 {
     }
 }
 
-/// A GGX microfacet surface with a Lambertian base (metallic = 0) or a coloured metal (metallic = 1).
+/// A GGX microfacet surface: a dielectric coat over a Lambertian base (metallic = 0) or a coloured metal
+/// (metallic = 1), energy-conserving ([`crate::energy`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Microfacet {
     pub color: ColorSource,
@@ -330,36 +349,88 @@ pub struct Microfacet {
 }
 
 impl Microfacet {
-    /// `π · f(ω_i, ω_o) · cos θ_i` for unit irradiance: Lambert `(1 − m)(1 − F)·albedo` plus the specular lobe
-    /// `D G F / (4 cos θ_i cos θ_o)` with GGX `D`, Smith's separable `G` and Schlick's `F` (tinted by the
-    /// albedo for metals).
+    /// Schlick `F_0 = ((n − 1)/(n + 1))²` of the dielectric coat. An index-matched coat (`ior = 1`, the films'
+    /// Lambertian base) is no interface at all: no specular, a plain Lambertian.
+    fn coat_f0(&self) -> Option<f64> {
+        (self.ior != 1.0).then(|| ((self.ior - 1.0) / (self.ior + 1.0)).powi(2))
+    }
+
+    /// `π · f(ω_i, ω_o) · cos θ_i` for unit irradiance: glTF's `mix(dielectric, metal, metallic)` where the metal
+    /// is the GGX lobe (`D G F / (4 cos θ_i cos θ_o)`, GGX `D`, Smith's separable `G`, Schlick's `F` from the
+    /// albedo) plus Kulla & Conty's multiple-scattering lobe, and the dielectric is the same specular with the
+    /// coat's `F_0` over a diffuse lobe that takes what the specular leaves, `ρ (1 − E_s(μ_i))(1 − E_s(μ_o)) /
+    /// (1 − E_s,avg)` ([`crate::energy`]): a white surface reflects all the light it receives.
     pub fn reflect(&self, n: V3, wi: V3, wo: V3, albedo: Rgb) -> Rgb {
         let (ci, co) = (dot(n, wi), dot(n, wo));
         if ci <= 0.0 || co <= 0.0 {
             return [0.0; 3];
         }
         let h = normalize(add(wi, wo));
-        let a = (self.roughness * self.roughness).max(1e-4);
-        let a2 = a * a;
-        let nh = dot(n, h).max(0.0);
-        let d = a2 / (std::f64::consts::PI * (nh * nh * (a2 - 1.0) + 1.0).powi(2));
-        let g1 = |c: f64| 2.0 * c / (c + (a2 + (1.0 - a2) * c * c).sqrt());
-        let g = g1(ci) * g1(co);
-        let f0d = ((self.ior - 1.0) / (self.ior + 1.0)).powi(2);
-        let f0 = [0, 1, 2].map(|k| f0d * (1.0 - self.metallic) + albedo[k] * self.metallic);
-        let m = (1.0 - dot(wi, h).clamp(0.0, 1.0)).powi(5);
-        let f = f0.map(|x| x + (1.0 - x) * m);
-        let spec = d * g / (4.0 * ci * co) * std::f64::consts::PI * ci;
-        [0, 1, 2].map(|k| spec * f[k] + (1.0 - self.metallic) * (1.0 - f[k]) * albedo[k] * ci)
+        let a2 = energy::alpha2(self.roughness);
+        let d = energy::ggx_d(a2, dot(n, h).max(0.0));
+        let g = energy::smith_g1(a2, ci) * energy::smith_g1(a2, co);
+        let x5 = (1.0 - dot(wi, h).clamp(0.0, 1.0)).powi(5);
+        // π f cos θ_i of the single-scattering lobe with F = 1, and of the multiple-scattering lobe with F_ms = 1.
+        let single = d * g / (4.0 * ci * co) * std::f64::consts::PI * ci;
+        let (ei, eo) = (energy::lookup(self.roughness, ci), energy::lookup(self.roughness, co));
+        let multi = (1.0 - ei.0[0]) * (1.0 - eo.0[0]) / (1.0 - eo.1[0]).max(1e-9) * ci;
+        let lobe = |f0: f64| {
+            let e = energy::spec_energy(self.roughness, co, f0);
+            single * (f0 + (1.0 - f0) * x5) + multi * e.f_ms
+        };
+        let dielectric = match self.coat_f0() {
+            Some(f0) => {
+                let s = lobe(f0);
+                let (si, so) =
+                    (energy::spec_energy(self.roughness, ci, f0), energy::spec_energy(self.roughness, co, f0));
+                let k = (1.0 - si.e_s) * (1.0 - so.e_s) / (1.0 - so.e_s_avg).max(1e-9) * ci;
+                albedo.map(|a| s + a * k)
+            }
+            None => albedo.map(|a| a * ci),
+        };
+        let m = self.metallic;
+        [0, 1, 2].map(|k| (1.0 - m) * dielectric[k] + if m > 0.0 { m * lobe(albedo[k]) } else { 0.0 })
     }
 
-    /// Fresnel reflectance towards the mirror direction (for environment reflections).
+    /// `π f cos θ_i` of the single-scattering GGX lobe with `F = 1` (a film's reflectance multiplies it).
+    pub fn ggx_single(&self, n: V3, wi: V3, wo: V3) -> f64 {
+        let (ci, co) = (dot(n, wi), dot(n, wo));
+        if ci <= 0.0 || co <= 0.0 {
+            return 0.0;
+        }
+        let a2 = energy::alpha2(self.roughness);
+        let d = energy::ggx_d(a2, dot(n, normalize(add(wi, wo))).max(0.0));
+        d * energy::smith_g1(a2, ci) * energy::smith_g1(a2, co) / (4.0 * co) * std::f64::consts::PI
+    }
+
+    /// How environment light of uniform radiance 1 leaves towards `ω_o` (`cos_o = n·ω_o`): the specular share
+    /// (directional albedo of all specular lobes, per channel) and the diffuse share. Their sum is what
+    /// [`Microfacet::reflect`] integrates to over the hemisphere of `ω_i`: 1 for a white surface.
+    pub fn env_weights(&self, cos_o: f64, albedo: Rgb) -> (Rgb, Rgb) {
+        let m = self.metallic;
+        let (es_d, diffuse) = match self.coat_f0() {
+            Some(f0) => {
+                let e = energy::spec_energy(self.roughness, cos_o, f0).e_s;
+                (e, 1.0 - e)
+            }
+            None => (0.0, 1.0),
+        };
+        let spec = [0, 1, 2].map(|k| {
+            let metal = if m > 0.0 { energy::spec_energy(self.roughness, cos_o, albedo[k]).e_s } else { 0.0 };
+            (1.0 - m) * es_d + m * metal
+        });
+        (spec, albedo.map(|a| (1.0 - m) * diffuse * a))
+    }
+
+    /// Fresnel reflectance towards the mirror direction (Schlick, the coat's `F_0` or the metal's albedo).
     pub fn mirror_fresnel(&self, cos: f64, albedo: Rgb) -> Rgb {
-        let f0d = ((self.ior - 1.0) / (self.ior + 1.0)).powi(2);
+        let f0d = self.coat_f0().unwrap_or(0.0);
         let m = (1.0 - cos.clamp(0.0, 1.0)).powi(5);
+        let coat = if self.coat_f0().is_some() { 1.0 } else { 0.0 };
         [0, 1, 2].map(|k| {
-            let f0 = f0d * (1.0 - self.metallic) + albedo[k] * self.metallic;
-            f0 + (1.0 - f0) * m
+            let d = coat * (f0d + (1.0 - f0d) * m);
+            let metal = albedo[k] + (1.0 - albedo[k]) * m;
+            d * (1.0 - self.metallic) + metal * self.metallic
         })
     }
 }
@@ -436,6 +507,51 @@ mod tests {
         assert!(close(o(OrientRule::Tangent, std::f64::consts::FRAC_PI_2), [0.0, 1.0, 0.0]));
         // A world direction is projected onto the surface.
         assert!(close(o(OrientRule::Direction([1.0, 1.0, 5.0]), 0.0), normalize([1.0, 1.0, 0.0])));
+    }
+
+    #[test]
+    fn microfacet_lobes_integrate_to_their_environment_weights() {
+        // ∫ f cos θ_i dω_i by brute force over a (θ_i, φ_i) grid — independent of the energy table's half-vector
+        // quadrature — against env_weights (specular + diffuse share), which the environment shading uses.
+        // A white dielectric or metal reflects everything: 1 (the white furnace for lights).
+        let n = [0.0, 0.0, 1.0];
+        let cases: [(f64, f64, [f64; 3]); 6] = [
+            (0.3, 0.0, [1.0; 3]),
+            (0.6, 0.0, [1.0; 3]),
+            (1.0, 0.0, [1.0; 3]),
+            (0.5, 1.0, [1.0; 3]),
+            (0.5, 1.0, [1.0, 0.78, 0.34]),
+            (0.8, 0.5, [0.5, 0.6, 0.7]),
+        ];
+        for (rough, metallic, albedo) in cases {
+            let m = Microfacet { color: ColorSource::Const(albedo), roughness: rough, metallic, ior: 1.5 };
+            for mu_o in [1.0f64, 0.6, 0.25] {
+                let wo = [(1.0 - mu_o * mu_o).sqrt(), 0.0, mu_o];
+                let (nt, np) = (900, 360);
+                let mut acc = [0.0; 3];
+                for i in 0..nt {
+                    let th = std::f64::consts::FRAC_PI_2 * (i as f64 + 0.5) / nt as f64;
+                    let dw = th.sin() * std::f64::consts::FRAC_PI_2 / nt as f64 * std::f64::consts::TAU / np as f64;
+                    for j in 0..np {
+                        let ph = std::f64::consts::TAU * (j as f64 + 0.5) / np as f64;
+                        let wi = [th.sin() * ph.cos(), th.sin() * ph.sin(), th.cos()];
+                        let r = m.reflect(n, wi, wo, albedo);
+                        acc = add(acc, mul(r, dw / std::f64::consts::PI));
+                    }
+                }
+                let (spec, diff) = m.env_weights(mu_o, albedo);
+                for k in 0..3 {
+                    let want = spec[k] + diff[k];
+                    assert!(
+                        (acc[k] - want).abs() < 0.015,
+                        "roughness {rough}, metallic {metallic}, μ_o {mu_o}: ∫ = {acc:?}, weights {want}"
+                    );
+                    if albedo == [1.0; 3] {
+                        assert!((want - 1.0).abs() < 1e-9, "{want}");
+                    }
+                }
+            }
+        }
     }
 
     #[test]

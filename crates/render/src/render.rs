@@ -7,7 +7,7 @@ use iridis_color::{Encoding, ToneMap, Xyz};
 
 use crate::geometry::{triangle_hit, Hit};
 use crate::light::Rgb;
-use crate::material::{relative_azimuth, ColorSource, Material, Microfacet};
+use crate::material::{relative_azimuth, ColorSource, Material, Microfacet, ThinFilm};
 use crate::math::*;
 use crate::scene::Scene;
 
@@ -130,7 +130,7 @@ impl Scene {
             match self.intersect(o, wi, left) {
                 None => return false,
                 Some(h) if self.materials[h.material].transmissive() => {
-                    o = add(h.p, mul(wi, eps(h.p)));
+                    o = add(h.p, mul(wi, eps(&h)));
                     left -= h.t;
                 }
                 Some(_) => return true,
@@ -162,7 +162,7 @@ impl Scene {
 
     /// Lights visible from a hit: (direction to the light, irradiance).
     fn lights_at(&self, h: &Hit) -> Vec<(V3, Rgb)> {
-        let o = add(h.p, mul(h.ng, eps(h.p)));
+        let o = add(h.p, mul(h.ng, eps(h)));
         self.lights
             .iter()
             .filter_map(|l| {
@@ -176,31 +176,38 @@ impl Scene {
         c.at(uv, &self.textures)
     }
 
+    /// `E(n)/π` of the environment: what a white Lambertian surface with normal `n` reflects of it.
+    pub fn irradiance(&self, n: V3) -> Rgb {
+        self.environment.irradiance(self.irradiance.as_ref(), n)
+    }
+
     fn shade_microfacet(&self, m: &Microfacet, h: &Hit, wo: V3, depth: u32, weight: f64, with_env: bool) -> Rgb {
         let albedo = self.color(&m.color, h.uv);
         let mut out = [0.0; 3];
         for (wi, e) in self.lights_at(h) {
             out = add(out, hadamard(m.reflect(h.n, wi, wo, albedo), e));
         }
-        let ambient = self.environment.mean();
-        out = add(out, mul(hadamard(albedo, ambient), 1.0 - m.metallic));
+        // Environment light: the diffuse lobe takes the irradiance around the normal, the specular lobes their
+        // directional albedo of the light along the mirror direction, blurred towards the irradiance around
+        // that direction with roughness (a uniform environment comes back exactly: the white furnace).
+        let (spec, diffuse) = m.env_weights(dot(h.n, wo).clamp(0.0, 1.0), albedo);
+        out = add(out, hadamard(diffuse, self.irradiance(h.n)));
         if with_env {
-            // Environment reflection: the mirror direction, blurred towards the mean radiance with roughness.
-            let f = m.mirror_fresnel(dot(h.n, wo), albedo);
             let r = reflect(wo, h.n);
+            let blurred = self.irradiance(r);
             let mirror = if m.roughness < 0.6 && depth < self.output.max_depth {
                 self.trace(
-                    add(h.p, mul(h.ng, eps(h.p))),
+                    add(h.p, mul(h.ng, eps(h))),
                     r,
                     depth + 1,
-                    weight * f.iter().fold(0.0f64, |a, &b| a.max(b)),
+                    weight * spec.iter().fold(0.0f64, |a, &b| a.max(b)),
                 )
             } else {
-                ambient
+                blurred
             };
             let rough = (m.roughness / 0.6).min(1.0);
-            let l = [0, 1, 2].map(|k| mirror[k] * (1.0 - rough) + ambient[k] * rough);
-            out = add(out, hadamard(f, l));
+            let l = [0, 1, 2].map(|k| mirror[k] * (1.0 - rough) + blurred[k] * rough);
+            out = add(out, hadamard(spec, l));
         }
         out
     }
@@ -210,7 +217,7 @@ impl Scene {
         match &self.materials[h.material] {
             Material::Lambert { color } => {
                 let albedo = self.color(color, h.uv);
-                let mut out = hadamard(albedo, self.environment.mean());
+                let mut out = hadamard(albedo, self.irradiance(h.n));
                 for (wi, e) in self.lights_at(h) {
                     out = add(out, mul(hadamard(albedo, e), dot(h.n, wi).max(0.0)));
                 }
@@ -243,27 +250,89 @@ impl Scene {
                 } else {
                     f.colors(cos, offset)
                 };
+                if let Some(base) = &f.base {
+                    return add(out, self.shade_film_over_base(f, base, h, wo, r, offset, depth, weight));
+                }
                 let r_rgb = mul(r.to_linear_srgb(), f.factor);
                 let w_r = weight * r_rgb.iter().fold(0.0f64, |a, &b| a.max(b));
-                let refl = self.trace(add(h.p, mul(h.ng, eps(h.p))), reflect(wo, h.n), depth + 1, w_r);
+                let refl = self.trace(add(h.p, mul(h.ng, eps(h))), reflect(wo, h.n), depth + 1, w_r);
                 out = add(out, hadamard(r_rgb, refl));
                 if f.transmission {
                     let t_rgb = mul(t.to_linear_srgb(), f.factor);
                     let w_t = weight * t_rgb.iter().fold(0.0f64, |a, &b| a.max(b));
-                    let through = self.trace(add(h.p, mul(h.ng, -eps(h.p))), d, depth + 1, w_t);
+                    let through = self.trace(add(h.p, mul(h.ng, -eps(h))), d, depth + 1, w_t);
                     out = add(out, hadamard(t_rgb, through));
-                }
-                if let Some(base) = &f.base {
-                    let below = self.shade_microfacet(base, h, wo, depth, weight, f.factor < 1.0);
-                    out = add(out, mul(below, (1.0 - f.factor * r.y).max(0.0)));
                 }
                 out
             }
         }
     }
+
+    /// A smooth film over a base material (glTF `KHR_materials_iridescence`, oil over asphalt): the film's
+    /// reflectance `R` (spectral, at the angle of incidence on the microfacet) takes the place of the base's
+    /// specular Fresnel, and the base's diffuse lobe takes what the film does not reflect, per channel as the
+    /// glTF BRDF's `mix(diffuse, specular, F)`: lights give the GGX lobe `D G / (4 cos θ_i cos θ_o) · R(v·h)`
+    /// plus `(1 − R(v·h)) ρ_d cos θ_i`, the environment `R(cos θ_o)` along the mirror (blurred with roughness)
+    /// plus `(1 − R(cos θ_o)) ρ_d E(n)/π`. A metallic base (`metallic` m) takes `(1 − m) R + m R_metal`, with
+    /// `R_metal` the film over the metal ([`ThinFilm::metal_stack`]), as its specular and `(1 − m) ρ` as its
+    /// diffuse albedo. `iridescenceFactor` mixes this with the base alone.
+    #[allow(clippy::too_many_arguments)]
+    fn shade_film_over_base(
+        &self,
+        f: &ThinFilm,
+        base: &Microfacet,
+        h: &Hit,
+        wo: V3,
+        r_view: Xyz,
+        offset: f64,
+        depth: u32,
+        weight: f64,
+    ) -> Rgb {
+        let fac = f.factor;
+        let mut out = [0.0; 3];
+        if fac < 1.0 {
+            let below = self.shade_microfacet(base, h, wo, depth, weight * (1.0 - fac), true);
+            out = mul(below, 1.0 - fac);
+        }
+        if fac <= 0.0 {
+            return out;
+        }
+        let albedo = self.color(&base.color, h.uv);
+        let m = base.metallic;
+        let diffuse = mul(albedo, 1.0 - m);
+        // The specular reflectance: the film over the dielectric, mixed with the film over the metal.
+        let refl = |cos: f64, dielectric: Xyz| -> (Rgb, Rgb) {
+            let d = dielectric.to_linear_srgb();
+            let metal = f.metal_color(cos, offset).map(|x| x.to_linear_srgb()).unwrap_or(d);
+            ([0, 1, 2].map(|k| (1.0 - m) * d[k] + m * metal[k]), d)
+        };
+        let mut film = [0.0; 3];
+        for (wi, e) in self.lights_at(h) {
+            let vh = dot(wi, normalize(add(wi, wo))).clamp(0.0, 1.0);
+            let (r, d) = refl(vh, f.colors(vh, offset).0);
+            let (spec, ci) = (base.ggx_single(h.n, wi, wo), dot(h.n, wi).max(0.0));
+            film = add(film, hadamard(e, [0, 1, 2].map(|k| spec * r[k] + (1.0 - d[k]) * diffuse[k] * ci)));
+        }
+        let (r, d) = refl(dot(h.n, wo).clamp(0.0, 1.0), r_view);
+        film = add(film, hadamard(hadamard(d.map(|x| 1.0 - x), diffuse), self.irradiance(h.n)));
+        let dir = reflect(wo, h.n);
+        let blurred = self.irradiance(dir);
+        let rough = (base.roughness / 0.6).min(1.0);
+        let mirror = if base.roughness < 0.6 {
+            let w = weight * fac * r.iter().fold(0.0f64, |a, &b| a.max(b));
+            self.trace(add(h.p, mul(h.ng, eps(h))), dir, depth + 1, w)
+        } else {
+            blurred
+        };
+        let l = [0, 1, 2].map(|k| mirror[k] * (1.0 - rough) + blurred[k] * rough);
+        add(out, mul(add(film, hadamard(r, l)), fac))
+    }
 }
 
-/// Ray offset that clears the surface at `p` without skipping thin features.
-fn eps(p: V3) -> f64 {
-    1e-7 * (1.0 + p[0].abs().max(p[1].abs()).max(p[2].abs()))
+/// Ray offset along the normal that clears the surface at a hit without skipping thin features. Relative to
+/// the hit's magnitude and the distance the ray travelled to it (the rounding error of `o + t d` is bounded by
+/// a few ulps of `|o| + t|d| ≤ |p| + 2t`, as in pbrt's error bounds), so a scene renders alike at any scale.
+fn eps(h: &Hit) -> f64 {
+    let p = h.p;
+    1e-8 * (p[0].abs().max(p[1].abs()).max(p[2].abs()) + h.t)
 }

@@ -55,8 +55,57 @@ pub struct Scene {
     pub textures: Vec<Texture>,
     pub bvh: Bvh,
     pub output: Output,
+    /// The environment's irradiance map ([`Environment::irradiance_map`]; `None` where it is uniform), made
+    /// by the loaders; call [`Scene::update_irradiance`] after changing `environment`.
+    pub irradiance: Option<Texture>,
     /// Notes for the user (normals computed, tangents generated, …).
     pub notes: Vec<String>,
+}
+
+impl Scene {
+    /// Recomputes [`Scene::irradiance`] from `environment`.
+    pub fn update_irradiance(&mut self) {
+        self.irradiance = self.environment.irradiance_map();
+    }
+
+    /// Multiplies every length by `s` about the origin: objects, camera, point lights (whose irradiance at
+    /// distance 1 is multiplied by `s²`, so that what arrives at the scaled objects is unchanged). Infinite
+    /// planes' UV unit scales too, so their textures stay put. Materials keep their nanometre scales. The image
+    /// is the same at any `s` (the renderers' tests check this at 10⁻³ and 10³).
+    pub fn scale(&mut self, s: f64) {
+        for sp in &mut self.spheres {
+            sp.center = mul(sp.center, s);
+            sp.radius *= s;
+        }
+        for p in &mut self.planes {
+            p.center = mul(p.center, s);
+            p.size = p.size.map(|[w, h]| [w * s, h * s]);
+            p.uv_unit *= s;
+        }
+        for m in &mut self.meshes {
+            for p in &mut m.positions {
+                *p = mul(*p, s);
+            }
+        }
+        for l in &mut self.lights {
+            if let Light::Point { position, rgb } = l {
+                *position = mul(*position, s);
+                *rgb = mul(*rgb, s * s);
+            }
+        }
+        self.camera = match self.camera.clone() {
+            Camera::Perspective { position, forward, right, up, tan_half } => {
+                Camera::Perspective { position: mul(position, s), forward, right, up, tan_half }
+            }
+            Camera::Orthographic { position, forward, right, up, half_height } => {
+                Camera::Orthographic { position: mul(position, s), forward, right, up, half_height: half_height * s }
+            }
+            Camera::Hemisphere { target, normal, right, up, distance } => {
+                Camera::Hemisphere { target: mul(target, s), normal, right, up, distance: distance * s }
+            }
+        };
+        self.bvh = Bvh::build(&self.meshes);
+    }
 }
 
 // ---------------------------------------------------------------- the file format (serde)
@@ -431,6 +480,7 @@ pub fn parse_scene(text: &str, name: &str, base: &Path) -> Result<Scene, RenderE
                     normal,
                     tangent,
                     size: d.size,
+                    uv_unit: 1.0,
                     material: mat(true)?.unwrap_or(0),
                 });
             }
@@ -496,9 +546,11 @@ pub fn parse_scene(text: &str, name: &str, base: &Path) -> Result<Scene, RenderE
         }
     }
     let bvh = Bvh::build(&meshes);
+    let irradiance = environment.irradiance_map();
     Ok(Scene {
         camera,
         lights,
+        irradiance,
         environment,
         environment_visible,
         meshes,

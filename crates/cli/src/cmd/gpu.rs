@@ -30,6 +30,9 @@ pub fn render_scene(
     let pb = crate::progress::bar(h as u64, "render (GPU)");
     let img = g.render(w, h, spp, &|rows| pb.set_position(rows as u64));
     pb.finish_and_clear();
+    if let Some(o) = g.stack_overflow() {
+        eprintln!("warning: {o}");
+    }
     Ok((img?, t.elapsed().as_secs_f64(), gpu.adapter_name()))
 }
 

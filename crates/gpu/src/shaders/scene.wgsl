@@ -43,8 +43,8 @@ struct Params {
     tex_base: u32,
     sample_base: u32,
     n_lambda: u32,
-    pad0: u32,
-    pad1: u32,
+    energy_base: u32,      // the GGX energy table in `tables` (render::energy): E_0, E_1, their averages
+    irr_tex: u32,          // the environment's irradiance map (a texture), NONE: uniform
     pad2: u32,
 }
 
@@ -59,6 +59,8 @@ struct Params {
 @group(0) @binding(6) var<storage, read> tables: array<f32>;
 @group(0) @binding(7) var<storage, read_write> out_rgb: array<vec4<f32>>;
 @group(0) @binding(8) var<storage, read_write> out_rgba: array<u32>;
+// Ray-stack overflows: [count, deepest depth that found the stack full], reported once per render.
+@group(0) @binding(9) var<storage, read_write> overflow: array<atomic<u32>, 2>;
 
 const PI: f32 = 3.141592653589793;
 const TAU: f32 = 6.283185307179586;
@@ -124,9 +126,11 @@ fn max3(v: vec3<f32>) -> f32 {
     return max(max(max(v.x, v.y), v.z), 0.0);
 }
 
-// Ray offset that clears the surface at p (larger than the CPU's 1e-7: f32 positions).
-fn eps(p: vec3<f32>) -> f32 {
-    return 2e-4 * (1.0 + max(max(abs(p.x), abs(p.y)), abs(p.z)));
+// Ray offset that clears the surface at p, reached after distance t: relative to |p| and t (the error of
+// o + t d in f32 is a few ulps of |o| + t <= |p| + 2t), so the same scene renders alike at any scale
+// (render::render::eps, with a larger factor for f32).
+fn eps(p: vec3<f32>, t: f32) -> f32 {
+    return 5e-5 * (max(max(abs(p.x), abs(p.y)), abs(p.z)) + t);
 }
 
 fn to_rgb(xyz: vec3<f32>) -> vec3<f32> {
@@ -329,6 +333,20 @@ fn environment(d: vec3<f32>) -> vec3<f32> {
     return vec3<f32>(0.0);
 }
 
+// E(n)/pi of the environment (render::light::Environment::irradiance): its irradiance map, or the uniform
+// radiance.
+fn irradiance(n: vec3<f32>) -> vec3<f32> {
+    if (P.irr_tex != NONE) {
+        let u = euclid(0.5 + atan2(n.x, -n.z) / TAU, 1.0);
+        let v = acos(clamp(n.y, -1.0, 1.0)) / PI;
+        return sample_texture(P.irr_tex, vec2<f32>(u, v), true);
+    }
+    if (P.env_kind == 1u) {
+        return P.env_a.xyz;
+    }
+    return P.env_mean.xyz;
+}
+
 struct Arrival {
     wi: vec3<f32>,
     dist: f32,
@@ -370,7 +388,7 @@ fn sphere_t(i: u32, o: vec3<f32>, d: vec3<f32>, t_max: f32) -> f32 {
         return -1.0;
     }
     let sq = sqrt(disc);
-    let e = 1e-6 * max(s.w, 1.0);
+    let e = 1e-6 * s.w;
     let t0 = (-hb - sq) / a;
     if (t0 > e && t0 < t_max) {
         return t0;
@@ -382,7 +400,7 @@ fn sphere_t(i: u32, o: vec3<f32>, d: vec3<f32>, t_max: f32) -> f32 {
     return -1.0;
 }
 
-// Plane record (4 vec4): [centre, has size], [normal, width], [tangent, height], [material].
+// Plane record (4 vec4): [centre, has size], [normal, width], [tangent, height], [material, UV unit].
 fn plane_t(i: u32, o: vec3<f32>, d: vec3<f32>, t_max: f32) -> f32 {
     let r = P.plane_base + 4u * i;
     let c = scene[r];
@@ -559,7 +577,7 @@ fn make_hit(h: Prim, o: vec3<f32>, d: vec3<f32>) -> Hit {
         let rel = p - c.xyz;
         let x = dot(rel, tg.xyz);
         let y = dot(rel, b);
-        var uv = vec2<f32>(x, -y);
+        var uv = vec2<f32>(x, -y) / scene[r + 3u].y;
         if (word(c.w) != 0u) {
             uv = vec2<f32>(x / nw.w + 0.5, 0.5 - y / tg.w);
         }
@@ -640,7 +658,7 @@ fn occluded(p: vec3<f32>, wi: vec3<f32>, dist: f32) -> bool {
             return true;
         }
         let q = o + wi * h.t;
-        o = q + wi * eps(q);
+        o = q + wi * eps(q, h.t);
         left = left - h.t;
     }
     return true;
@@ -655,6 +673,67 @@ struct Microfacet {
     ior: f32,
 }
 
+// The GGX energy table (render::energy::lookup): (E_0, E_1, E_0 avg, E_1 avg) at (roughness, mu), bilinear.
+const N_ROUGH: u32 = 32u;
+const N_MU: u32 = 64u;
+
+fn energy_bilinear(o: u32, i: u32, j: u32, fx: f32, fy: f32) -> f32 {
+    let g00 = tables[o + i * N_MU + j];
+    let g01 = tables[o + i * N_MU + j + 1u];
+    let g10 = tables[o + (i + 1u) * N_MU + j];
+    let g11 = tables[o + (i + 1u) * N_MU + j + 1u];
+    let a = g00 + (g01 - g00) * fy;
+    let b = g10 + (g11 - g10) * fy;
+    return a + (b - a) * fx;
+}
+
+fn energy_lookup(rough: f32, mu: f32) -> vec4<f32> {
+    let x = clamp(rough, 0.0, 1.0) * f32(N_ROUGH - 1u);
+    let y = clamp(mu, 0.0, 1.0) * f32(N_MU - 1u);
+    let i = min(u32(x), N_ROUGH - 2u);
+    let j = min(u32(y), N_MU - 2u);
+    let fx = x - f32(i);
+    let fy = y - f32(j);
+    let b = P.energy_base;
+    let n = N_ROUGH * N_MU;
+    let av = b + 2u * n;
+    let a0 = tables[av + i] + (tables[av + i + 1u] - tables[av + i]) * fx;
+    let a1 = tables[av + N_ROUGH + i] + (tables[av + N_ROUGH + i + 1u] - tables[av + N_ROUGH + i]) * fx;
+    return vec4<f32>(energy_bilinear(b, i, j, fx, fy), energy_bilinear(b + n, i, j, fx, fy), a0, a1);
+}
+
+// render::energy::spec_energy: (E_s, E_s avg, F_ms, E_0) of a lobe with Schlick reflectance f0.
+fn spec_energy(rough: f32, mu: f32, f0: f32) -> vec4<f32> {
+    let e = energy_lookup(rough, mu);
+    let f_avg = f0 + (1.0 - f0) / 21.0;
+    let f_ms = f_avg * f_avg * e.z / max(1.0 - f_avg * (1.0 - e.z), 1e-12);
+    let e_ss = f0 * (e.x - e.y) + e.y;
+    let e_ss_avg = f0 * (e.z - e.w) + e.w;
+    return vec4<f32>(min(e_ss + f_ms * (1.0 - e.x), 1.0), min(e_ss_avg + f_ms * (1.0 - e.z), 1.0), f_ms, e.x);
+}
+
+fn coat_f0(m: Microfacet) -> f32 {
+    return ((m.ior - 1.0) / (m.ior + 1.0)) * ((m.ior - 1.0) / (m.ior + 1.0));
+}
+
+// pi f cos(theta_i) of the single-scattering GGX lobe with F = 1 (render::material::Microfacet::ggx_single).
+fn ggx_single(m: Microfacet, n: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> f32 {
+    let ci = dot(n, wi);
+    let co = dot(n, wo);
+    if (ci <= 0.0 || co <= 0.0) {
+        return 0.0;
+    }
+    let a = max(m.roughness * m.roughness, 1e-4);
+    let a2 = a * a;
+    let nh = max(dot(n, safe_normalize(wi + wo)), 0.0);
+    let q = nh * nh * (a2 - 1.0) + 1.0;
+    let dd = a2 / (PI * q * q);
+    let g = 2.0 * ci / (ci + sqrt(a2 + (1.0 - a2) * ci * ci)) * 2.0 * co / (co + sqrt(a2 + (1.0 - a2) * co * co));
+    return dd * g / (4.0 * co) * PI;
+}
+
+// render::material::Microfacet::reflect: mix(dielectric, metal, metallic), Kulla-Conty multiple scattering,
+// the dielectric's diffuse lobe taking what its specular leaves. An index-matched coat (ior 1) is Lambertian.
 fn microfacet_reflect(m: Microfacet, n: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>, albedo: vec3<f32>) -> vec3<f32> {
     let ci = dot(n, wi);
     let co = dot(n, wo);
@@ -662,18 +741,48 @@ fn microfacet_reflect(m: Microfacet, n: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>,
         return vec3<f32>(0.0);
     }
     let h = safe_normalize(wi + wo);
-    let a = max(m.roughness * m.roughness, 1e-4);
-    let a2 = a * a;
-    let nh = max(dot(n, h), 0.0);
-    let q = nh * nh * (a2 - 1.0) + 1.0;
-    let dd = a2 / (PI * q * q);
-    let g = 2.0 * ci / (ci + sqrt(a2 + (1.0 - a2) * ci * ci)) * 2.0 * co / (co + sqrt(a2 + (1.0 - a2) * co * co));
-    let f0d = ((m.ior - 1.0) / (m.ior + 1.0)) * ((m.ior - 1.0) / (m.ior + 1.0));
-    let f0 = vec3<f32>(f0d * (1.0 - m.metallic)) + albedo * m.metallic;
     let x = 1.0 - clamp(dot(wi, h), 0.0, 1.0);
-    let f = f0 + (vec3<f32>(1.0) - f0) * (x * x * x * x * x);
-    let spec = dd * g / (4.0 * ci * co) * PI * ci;
-    return spec * f + (1.0 - m.metallic) * (vec3<f32>(1.0) - f) * albedo * ci;
+    let x5 = x * x * x * x * x;
+    let single = ggx_single(m, n, wi, wo) * ci;
+    let ei = energy_lookup(m.roughness, ci);
+    let eo = energy_lookup(m.roughness, co);
+    let multi = (1.0 - ei.x) * (1.0 - eo.x) / max(1.0 - eo.z, 1e-9) * ci;
+    var dielectric = albedo * ci;
+    if (m.ior != 1.0) {
+        let f0 = coat_f0(m);
+        let si = spec_energy(m.roughness, ci, f0);
+        let so = spec_energy(m.roughness, co, f0);
+        let k = (1.0 - si.x) * (1.0 - so.x) / max(1.0 - so.y, 1e-9) * ci;
+        dielectric = vec3<f32>(single * (f0 + (1.0 - f0) * x5) + multi * so.z) + albedo * k;
+    }
+    var metal = vec3<f32>(0.0);
+    if (m.metallic > 0.0) {
+        let fms = vec3<f32>(spec_energy(m.roughness, co, albedo.x).z, spec_energy(m.roughness, co, albedo.y).z,
+                            spec_energy(m.roughness, co, albedo.z).z);
+        metal = single * (albedo + (vec3<f32>(1.0) - albedo) * x5) + multi * fms;
+    }
+    return (1.0 - m.metallic) * dielectric + m.metallic * metal;
+}
+
+// render::material::Microfacet::env_weights: the specular and diffuse shares of uniform environment light.
+struct EnvWeights {
+    spec: vec3<f32>,
+    diffuse: vec3<f32>,
+}
+
+fn env_weights(m: Microfacet, cos_o: f32, albedo: vec3<f32>) -> EnvWeights {
+    var es_d = 0.0;
+    var dif = 1.0;
+    if (m.ior != 1.0) {
+        es_d = spec_energy(m.roughness, cos_o, coat_f0(m)).x;
+        dif = 1.0 - es_d;
+    }
+    var metal = vec3<f32>(0.0);
+    if (m.metallic > 0.0) {
+        metal = vec3<f32>(spec_energy(m.roughness, cos_o, albedo.x).x, spec_energy(m.roughness, cos_o, albedo.y).x,
+                          spec_energy(m.roughness, cos_o, albedo.z).x);
+    }
+    return EnvWeights(vec3<f32>((1.0 - m.metallic) * es_d) + m.metallic * metal, albedo * ((1.0 - m.metallic) * dif));
 }
 
 fn mirror_fresnel(m: Microfacet, cosv: f32, albedo: vec3<f32>) -> vec3<f32> {
@@ -733,7 +842,7 @@ var<private> n_rays: u32;
 var<private> radiance: vec3<f32>;
 
 // Queues a secondary ray; if the stack is full, the environment's radiance stands in (as for a ray past
-// max_depth on the CPU).
+// max_depth on the CPU) and the overflow is counted, with its depth, for the host to report.
 fn push_ray(o: vec3<f32>, d: vec3<f32>, throughput: vec3<f32>, depth: u32, weight: f32) {
     if (max3(throughput) <= 0.0) {
         return;
@@ -743,6 +852,8 @@ fn push_ray(o: vec3<f32>, d: vec3<f32>, throughput: vec3<f32>, depth: u32, weigh
         n_rays = n_rays + 1u;
     } else {
         radiance = radiance + throughput * environment(d);
+        atomicAdd(&overflow[0], 1u);
+        atomicMax(&overflow[1], depth);
     }
 }
 
@@ -751,23 +862,26 @@ fn shade_microfacet(m: Microfacet, h: Hit, wo: vec3<f32>, depth: u32, weight: f3
                     thr: vec3<f32>) {
     let albedo = color_at(m.color, h.uv);
     var out = vec3<f32>(0.0);
-    let o = h.p + h.ng * eps(h.p);
+    let o = h.p + h.ng * eps(h.p, h.t);
     for (var i = 0u; i < P.n_lights; i = i + 1u) {
         let l = arrive(i, h.p);
         if (dot(l.wi, h.ng) > 0.0 && !occluded(o, l.wi, l.dist)) {
             out = out + microfacet_reflect(m, h.n, l.wi, wo, albedo) * l.e;
         }
     }
-    let ambient = P.env_mean.xyz;
-    out = out + albedo * ambient * (1.0 - m.metallic);
+    // Environment light: the diffuse share lit by the irradiance around the normal, the specular share by the
+    // mirror direction blurred towards the irradiance around it with roughness.
+    let ew = env_weights(m, clamp(dot(h.n, wo), 0.0, 1.0), albedo);
+    out = out + ew.diffuse * irradiance(h.n);
     if (with_env) {
-        let f = mirror_fresnel(m, dot(h.n, wo), albedo);
+        let dir = reflect_dir(wo, h.n);
+        let blurred = irradiance(dir);
         let rough = min(m.roughness / 0.6, 1.0);
         if (m.roughness < 0.6 && depth < P.max_depth) {
-            push_ray(o, reflect_dir(wo, h.n), thr * f * (1.0 - rough), depth + 1u, weight * max3(f));
-            out = out + f * ambient * rough;
+            push_ray(o, dir, thr * ew.spec * (1.0 - rough), depth + 1u, weight * max3(ew.spec));
+            out = out + ew.spec * blurred * rough;
         } else {
-            out = out + f * ambient;
+            out = out + ew.spec * blurred;
         }
     }
     radiance = radiance + thr * out;
@@ -784,8 +898,8 @@ fn shade(h: Hit, d: vec3<f32>, depth: u32, weight: f32, thr: vec3<f32>) {
     let kind = word(scene[r].x);
     if (kind == 0u) {
         let albedo = color_at(scene[r + 1u], h.uv);
-        var out = albedo * P.env_mean.xyz;
-        let o = h.p + h.ng * eps(h.p);
+        var out = albedo * irradiance(h.n);
+        let o = h.p + h.ng * eps(h.p, h.t);
         for (var i = 0u; i < P.n_lights; i = i + 1u) {
             let l = arrive(i, h.p);
             if (dot(l.wi, h.ng) > 0.0 && !occluded(o, l.wi, l.dist)) {
@@ -814,7 +928,7 @@ fn shade(h: Hit, d: vec3<f32>, depth: u32, weight: f32, thr: vec3<f32>) {
         let n = h.n;
         let b = cross(n, t);
         let lo = vec3<f32>(dot(wo, t), dot(wo, b), dot(wo, n));
-        let o = h.p + h.ng * eps(h.p);
+        let o = h.p + h.ng * eps(h.p, h.t);
         for (var i = 0u; i < P.n_lights; i = i + 1u) {
             let l = arrive(i, h.p);
             if (dot(l.wi, h.ng) > 0.0 && !occluded(o, l.wi, l.dist)) {
@@ -846,16 +960,53 @@ fn shade(h: Hit, d: vec3<f32>, depth: u32, weight: f32, thr: vec3<f32>) {
     }
     let film = Film(word(fw.x), P.n_lambda, word(fw.y), word(fw.z));
     let c = film_xyz(film, sqrt(max(1.0 - cosv * cosv, 0.0)), cosv, offset);
+    if ((flags & 4u) != 0u) {
+        film_over_base(film, microfacet_at(r + 3u), h, wo, c.r, offset, factor, depth, weight, thr);
+        return;
+    }
     let r_rgb = to_rgb(c.r) * factor;
-    push_ray(h.p + h.ng * eps(h.p), reflect_dir(wo, h.n), thr * r_rgb, depth + 1u, weight * max3(r_rgb));
+    push_ray(h.p + h.ng * eps(h.p, h.t), reflect_dir(wo, h.n), thr * r_rgb, depth + 1u, weight * max3(r_rgb));
     if ((flags & 2u) != 0u) {
         let t_rgb = to_rgb(c.t) * factor;
-        push_ray(h.p - h.ng * eps(h.p), d, thr * t_rgb, depth + 1u, weight * max3(t_rgb));
+        push_ray(h.p - h.ng * eps(h.p, h.t), d, thr * t_rgb, depth + 1u, weight * max3(t_rgb));
     }
-    if ((flags & 4u) != 0u) {
-        let below = max(1.0 - factor * c.r.y, 0.0);
-        shade_microfacet(microfacet_at(r + 3u), h, wo, depth, weight, factor < 1.0, thr * below);
+}
+
+// A smooth film over a base (render::render::Scene::shade_film_over_base): the film's reflectance R replaces
+// the base's specular Fresnel, the diffuse takes 1 - R per channel; iridescenceFactor mixes with the base alone.
+fn film_over_base(film: Film, base: Microfacet, h: Hit, wo: vec3<f32>, r_view: vec3<f32>, offset: f32,
+                  factor: f32, depth: u32, weight: f32, thr: vec3<f32>) {
+    if (factor < 1.0) {
+        shade_microfacet(base, h, wo, depth, weight * (1.0 - factor), true, thr * (1.0 - factor));
     }
+    if (factor <= 0.0) {
+        return;
+    }
+    let albedo = color_at(base.color, h.uv);
+    let diffuse = albedo * (1.0 - base.metallic);
+    var out = vec3<f32>(0.0);
+    let o = h.p + h.ng * eps(h.p, h.t);
+    for (var i = 0u; i < P.n_lights; i = i + 1u) {
+        let l = arrive(i, h.p);
+        if (dot(l.wi, h.ng) > 0.0 && !occluded(o, l.wi, l.dist)) {
+            let vh = clamp(dot(l.wi, safe_normalize(l.wi + wo)), 0.0, 1.0);
+            let rl = to_rgb(film_xyz(film, sqrt(max(1.0 - vh * vh, 0.0)), vh, offset).r);
+            let ci = max(dot(h.n, l.wi), 0.0);
+            out = out + l.e * (ggx_single(base, h.n, l.wi, wo) * rl + (vec3<f32>(1.0) - rl) * diffuse * ci);
+        }
+    }
+    let rv = to_rgb(r_view);
+    out = out + (vec3<f32>(1.0) - rv) * diffuse * irradiance(h.n);
+    let dir = reflect_dir(wo, h.n);
+    let blurred = irradiance(dir);
+    let rough = min(base.roughness / 0.6, 1.0);
+    if (base.roughness < 0.6) {
+        push_ray(o, dir, thr * factor * rv * (1.0 - rough), depth + 1u, weight * factor * max3(rv));
+        out = out + rv * blurred * rough;
+    } else {
+        out = out + rv * blurred;
+    }
+    radiance = radiance + thr * factor * out;
 }
 
 // Radiance (linear sRGB, RU) along a camera ray, its reflections and transmissions.
