@@ -208,6 +208,13 @@ pub struct Periodicity {
 /// Elaphe-like fingers, which have no period (paper sec. 7), they spread by ≈ 8 %.
 pub const DEFINITE_SPREAD: f64 = 0.01;
 
+/// Smallest ratio of the strongest ridge's strength to every other ridge's for a direction to have one
+/// definite period. A patch's spectrum is a set of DFT spikes `1/L` apart, so even a structure without a
+/// period (the Elaphe-like fingers along their length) can put one spike at the same place for every λ — a
+/// tiny spread — while two or three other ridges are nearly as strong (measured: 1.26× the next). A grating
+/// has one ridge; the Xenopeltis-like rows' strongest ridge carries 1.97× the next.
+pub const DOMINANT_RIDGE: f64 = 1.5;
+
 impl Periodicity {
     /// `√variance / mean`.
     pub fn relative_spread(&self) -> f64 {
@@ -247,6 +254,24 @@ pub struct BenchResult {
 }
 
 impl BenchResult {
+    /// One definite period: the peaks follow one period ([`Periodicity::is_definite`]) and, where the matrix
+    /// has several ridges, the strongest dominates every other by [`DOMINANT_RIDGE`].
+    pub fn is_definite(&self) -> bool {
+        let dominant = match self.ridges.as_slice() {
+            [first, second, ..] => first.strength >= DOMINANT_RIDGE * second.strength,
+            _ => true,
+        };
+        self.periodicity.is_definite() && dominant
+    }
+
+    /// The strength of the strongest ridge relative to the next, where there are several.
+    pub fn ridge_dominance(&self) -> Option<f64> {
+        match self.ridges.as_slice() {
+            [first, second, ..] if second.strength > 0.0 => Some(first.strength / second.strength),
+            _ => None,
+        }
+    }
+
     /// The JSON of issue 6: `{"periodicity_nm":{"mean","variance","relative_spread","definite"},"order",
     /// "incidence_deg","azimuth_deg",
     /// "peaks":[{"wavelength_nm","angle_deg","period_nm"}],"ridges":[…]}`.
@@ -264,7 +289,7 @@ impl BenchResult {
         };
         serde_json::json!({
             "periodicity_nm": {"mean": self.periodicity.mean, "variance": self.periodicity.variance,
-                "relative_spread": self.periodicity.relative_spread(), "definite": self.periodicity.is_definite()},
+                "relative_spread": self.periodicity.relative_spread(), "definite": self.is_definite()},
             "order": self.order,
             "incidence_deg": self.incidence_deg,
             "azimuth_deg": self.azimuth_deg,

@@ -347,7 +347,17 @@ pub fn run_testbench(a: TestbenchArgs) -> Result<()> {
     let matrix = bench::reflectance_matrix(e.as_ref(), &setup, &|d| pb.set_position(d as u64))?;
     pb.finish_and_clear();
     let result = bench::analyse(&matrix, &setup)?;
-    if !result.periodicity.is_definite() {
+    if result.periodicity.is_definite() && !result.is_definite() {
+        eprintln!(
+            "warning: the peaks follow d = {:.1} nm, but {} ridges are nearly as strong (the strongest carries {:.2}× \
+             the next, less than {}×): the surface has no definite period along azimuth {:.0}°",
+            result.periodicity.mean,
+            result.ridges.len(),
+            result.ridge_dominance().unwrap_or(1.0),
+            bench::DOMINANT_RIDGE,
+            a.azimuth.to_degrees()
+        );
+    } else if !result.periodicity.is_definite() {
         eprintln!(
             "warning: the peaks do not follow one period in this direction (d_λ spreads by {:.1} % of its mean, \
              more than {:.0} %): the surface has no definite period along azimuth {:.0}°; the mean is not a period",
