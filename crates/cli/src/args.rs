@@ -19,3 +19,21 @@ pub fn positive_length_nm(s: &str) -> Result<f64, String> {
 pub fn angle_rad(s: &str) -> Result<f64, String> {
     units::parse_angle_rad(s).map_err(|e| e.0)
 }
+
+/// Parses a direction `θ[,φ]` of the flag `--FLAG` (`--incidence`, `--light`, `--view`) into `(θ, φ)` in
+/// radians, refusing θ outside [0°, 90°) (the BRDF is defined above the surface).
+pub fn polar_azimuth(flag: &str, s: &str) -> anyhow::Result<(f64, f64)> {
+    let mut parts = s.split(',');
+    let theta = angle_rad(parts.next().unwrap_or("")).map_err(|e| anyhow::anyhow!("--{flag} '{s}': {e}"))?;
+    let phi = match parts.next() {
+        Some(p) => angle_rad(p).map_err(|e| anyhow::anyhow!("--{flag} '{s}': {e}"))?,
+        None => 0.0,
+    };
+    if parts.next().is_some() {
+        anyhow::bail!("--{flag} '{s}': write θ or θ,φ, e.g. 20deg,180deg");
+    }
+    if !(0.0..std::f64::consts::FRAC_PI_2).contains(&theta) {
+        anyhow::bail!("--{flag} '{s}': θ must be in [0°, 90°) (above the surface)");
+    }
+    Ok((theta, phi))
+}

@@ -257,11 +257,7 @@ impl BenchResult {
     /// One definite period: the peaks follow one period ([`Periodicity::is_definite`]) and, where the matrix
     /// has several ridges, the strongest dominates every other by [`DOMINANT_RIDGE`].
     pub fn is_definite(&self) -> bool {
-        let dominant = match self.ridges.as_slice() {
-            [first, second, ..] => first.strength >= DOMINANT_RIDGE * second.strength,
-            _ => true,
-        };
-        self.periodicity.is_definite() && dominant
+        self.periodicity.is_definite() && !matches!(self.ridge_dominance(), Some(d) if d < DOMINANT_RIDGE)
     }
 
     /// The strength of the strongest ridge relative to the next, where there are several.

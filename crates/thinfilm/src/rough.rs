@@ -197,6 +197,11 @@ impl Side {
         Composite { gamma_s: b.r_s * amp, gamma_p: b.r_p * amp, tau_s: b.t_s, tau_p: b.t_p }
     }
 
+    /// The composite specular reflectivity at the top of the stack (eq. 3.15), from the seed `γ_{s,0}` up.
+    fn specular(&self, seed: &Composite) -> Composite {
+        (1..=self.n()).rev().fold(*seed, |gs, j| gs.step(&self.down[j - 1], self.phi[j - 1]))
+    }
+
     /// Fresnel amplitudes of interface `B_j` from below (medium `j` into `j − 1`).
     fn up(&self, j: usize) -> Fresnel {
         fresnel(self.media[j], self.media[j - 1])
@@ -246,10 +251,7 @@ impl RoughStack {
     pub fn specular(&self, wavelength_nm: f64, view_rad: f64) -> Result<(f64, f64), ThinFilmError> {
         let (_, k) = self.upper(wavelength_nm)?;
         let v = Side::new(&self.stack, wavelength_nm, view_rad)?;
-        let mut gs = v.seed(&self.htsg, k);
-        for j in (1..=v.n()).rev() {
-            gs = gs.step(&v.down[j - 1], v.phi[j - 1]);
-        }
+        let gs = v.specular(&v.seed(&self.htsg, k));
         Ok((gs.gamma_s.norm_sqr(), gs.gamma_p.norm_sqr()))
     }
 
@@ -268,58 +270,54 @@ impl RoughStack {
         let (n_upper, k) = self.upper(wavelength_nm)?;
         let v = Side::new(&self.stack, wavelength_nm, view_rad)?;
         let l = Side::new(&self.stack, wavelength_nm, light_rad)?;
-        let n = v.n();
         // Seeds: eq. 3.16 (view and light angle) and eq. 3.17.
-        let mut gs_v = v.seed(&self.htsg, k);
-        let mut gs_l = l.seed(&self.htsg, k);
-        let (mut gd_s, mut gd_p, mut terms, mut bound) = (Complex64::new(0.0, 0.0), Complex64::new(0.0, 0.0), 0, 0.0);
+        let (seed_v, seed_l) = (v.seed(&self.htsg, k), l.seed(&self.htsg, k));
+        let (mut diffuse, mut terms, mut bound) = ([0.0; 2], 0, 0.0);
         if let (Some((sv, cv)), Some((sl, cl))) = (v.dir, l.dir) {
             let wv = [sv, 0.0, cv];
             let wl = [sl * azimuth_rad.cos(), sl * azimuth_rad.sin(), cl];
             let geo = self.htsg.diffuse_geometry(wl, wv, k)?;
-            let f = local_fresnel(n_upper, v.media[n + 1].n, geo.cos_local);
-            let amp = geo.factor.sqrt();
-            gd_s = f.r_s * amp;
-            gd_p = f.r_p * amp;
+            let f = local_fresnel(n_upper, v.media[v.n() + 1].n, geo.cos_local);
+            let t = self.layer_transport(&v, &seed_v, &l, &seed_l);
+            diffuse = [geo.factor * f.r_s.norm_sqr() * t[0], geo.factor * f.r_p.norm_sqr() * t[1]];
             terms = geo.terms;
-            bound = geo.bound;
+            bound = geo.bound * t[0].max(t[1]);
         }
-        if self.transport == DiffuseTransport::Reciprocal {
-            // Eq. R5 of docs/rough-films.md: k_d = (n₀/n_N)² T(θ_l) f_N T(θ_v) per polarisation.
-            let (tv, tl) = (side_transmittance(&v, &gs_v), side_transmittance(&l, &gs_l));
-            let rad = Self::radiance_factor(&v);
-            for j in (1..=n).rev() {
-                gs_v = gs_v.step(&v.down[j - 1], v.phi[j - 1]); // eq. 3.15
-            }
-            return Ok(Lsrs {
-                specular_s: gs_v.gamma_s.norm_sqr(),
-                specular_p: gs_v.gamma_p.norm_sqr(),
-                diffuse_s: rad * gd_s.norm_sqr() * tv[0] * tl[0],
-                diffuse_p: rad * gd_p.norm_sqr() * tv[1] * tl[1],
-                terms,
-                bound: bound * rad * (tv[0] * tl[0]).max(tv[1] * tl[1]),
-            });
-        }
-        for j in (1..=n).rev() {
-            let (pv, pl) = (v.phi[j - 1], l.phi[j - 1]);
-            let (tv, rl, tu) = (v.down[j - 1], l.down[j - 1], l.up(j));
-            let e = cis(pv + pl);
-            let e2l = cis(2.0 * pl);
-            // Eq. 3.19 (the light-side ratio times t_j(θ_l) is tu, see the module documentation) and eq. 3.18,
-            // with γ_{s,N−j}(θ_l) the light-angle specular composite before this step.
-            gd_s = tv.t_s * tu.t_s * gd_s * e / (1.0 + rl.r_s * gs_l.gamma_s * e2l);
-            gd_p = tv.t_p * tu.t_p * gd_p * e / (1.0 + rl.r_p * gs_l.gamma_p * e2l);
-            gs_v = gs_v.step(&v.down[j - 1], pv); // eq. 3.15
-            gs_l = gs_l.step(&rl, pl);
-        }
+        let gs = v.specular(&seed_v); // eq. 3.15
         Ok(Lsrs {
-            specular_s: gs_v.gamma_s.norm_sqr(),
-            specular_p: gs_v.gamma_p.norm_sqr(),
-            diffuse_s: gd_s.norm_sqr(),
-            diffuse_p: gd_p.norm_sqr(),
+            specular_s: gs.gamma_s.norm_sqr(),
+            specular_p: gs.gamma_p.norm_sqr(),
+            diffuse_s: diffuse[0],
+            diffuse_p: diffuse[1],
             terms,
-            bound: bound * transport(&v, &l, &l.seed(&self.htsg, k)),
+            bound,
         })
+    }
+
+    /// The factor, per polarisation, by which the layers scale the diffuse seed's power `|r|² Φ` (the HTSG
+    /// BRDF in medium `N`) on its way from the light down to the rough interface and up to the viewer:
+    /// `(n₀/n_N)² T(θ_l) T(θ_v)` (eq. R5), or the printed eq. 3.18–3.19, whose recurrence for `γ_d` is a product
+    /// of a view-only and a light-only factor (`|γ_d|² = |γ_{d,0}|² · down(θ_v) · up(θ_l)`).
+    fn layer_transport(&self, v: &Side, seed_v: &Composite, l: &Side, seed_l: &Composite) -> [f64; 2] {
+        let (fv, fl, rad) = (self.side_factor(v, seed_v, true), self.side_factor(l, seed_l, false), self.radiance(v));
+        [rad * fv[0] * fl[0], rad * fv[1] * fl[1]]
+    }
+
+    /// One side's factor of [`RoughStack::layer_transport`] (the view side when `view`, else the light side).
+    fn side_factor(&self, side: &Side, seed: &Composite, view: bool) -> [f64; 2] {
+        match (self.transport, view) {
+            (DiffuseTransport::Reciprocal, _) => side_transmittance(side, seed),
+            (DiffuseTransport::ThesisPrinted, true) => down_factor(side),
+            (DiffuseTransport::ThesisPrinted, false) => up_factor(side, seed),
+        }
+    }
+
+    /// The radiance factor of this transport: `(n₀/n_N)²`, or 1 as printed.
+    fn radiance(&self, side: &Side) -> f64 {
+        match self.transport {
+            DiffuseTransport::Reciprocal => Self::radiance_factor(side),
+            DiffuseTransport::ThesisPrinted => 1.0,
+        }
     }
 
     /// Where the light of one incident direction goes, at one wavelength: the specular reflectance `k_r`
@@ -399,7 +397,7 @@ impl RoughStack {
             let (n_upper, k) = self.upper(lambda)?;
             struct Pre {
                 side: Side,
-                /// view: Π|t_j e^{iφ_j}|² per polarisation; light: Π|t'_j e^{iφ_j}/(1 + r_j γ_s e^{2iφ_j})|²
+                /// [`RoughStack::side_factor`] per polarisation
                 factor: [f64; 2],
                 k_factor: f64,
                 shadow: f64,
@@ -407,11 +405,7 @@ impl RoughStack {
             let pre = |deg: f64, view: bool| -> Result<Pre, ThinFilmError> {
                 let side = Side::new(&self.stack, lambda, deg.to_radians())?;
                 let seed = side.seed(&self.htsg, k);
-                let factor = match (self.transport, view) {
-                    (DiffuseTransport::Reciprocal, _) => side_transmittance(&side, &seed),
-                    (DiffuseTransport::ThesisPrinted, true) => down_factor(&side),
-                    (DiffuseTransport::ThesisPrinted, false) => up_factor(&side, &seed),
-                };
+                let factor = self.side_factor(&side, &seed, view);
                 let (kf, sh) = match side.dir {
                     Some((_, c)) => (r.k_factor(c), r.shadowing(c)),
                     None => (0.0, 0.0),
@@ -421,15 +415,9 @@ impl RoughStack {
             let views: Vec<Pre> = view_deg.iter().map(|&d| pre(d, true)).collect::<Result<_, _>>()?;
             let lights: Vec<Pre> = light_deg.iter().map(|&d| pre(d, false)).collect::<Result<_, _>>()?;
             let n_sub = views[0].side.media[views[0].side.n() + 1].n;
-            let rad = match self.transport {
-                DiffuseTransport::Reciprocal => Self::radiance_factor(&views[0].side),
-                DiffuseTransport::ThesisPrinted => 1.0,
-            };
+            let rad = self.radiance(&views[0].side);
             for (i, v) in views.iter().enumerate() {
-                let mut gs = v.side.seed(&self.htsg, k);
-                for j in (1..=v.side.n()).rev() {
-                    gs = gs.step(&v.side.down[j - 1], v.side.phi[j - 1]);
-                }
+                let gs = v.side.specular(&v.side.seed(&self.htsg, k));
                 specular[i * nw + w] = 0.5 * (gs.gamma_s.norm_sqr() + gs.gamma_p.norm_sqr());
                 let Some((sv, cv)) = v.side.dir else { continue };
                 let wv = [sv, 0.0, cv];
@@ -502,13 +490,6 @@ fn up_factor(l: &Side, seed: &Composite) -> [f64; 2] {
         gs = gs.step(&rl, l.phi[j - 1]);
     }
     f
-}
-
-/// The largest factor (over the polarisations) by which the layers scale the diffuse seed's power: carries
-/// the HTSG series bound to `k_d`.
-fn transport(v: &Side, l: &Side, seed_l: &Composite) -> f64 {
-    let (a, b) = (down_factor(v), up_factor(l, seed_l));
-    (a[0] * b[0]).max(a[1] * b[1])
 }
 
 /// `n` angles from 0° to 90° inclusive, evenly spaced (the thesis' Listing 3.5 samples `(90/n)(i + 1)`, which

@@ -14,7 +14,7 @@ use iridis_diffraction::{Fresnel, Patch, SpectralSetup, TaylorTerms, DEFAULT_COH
 use iridis_lab::methods::{Method, MethodConfig, Workbench};
 use num_complex::Complex64;
 
-use crate::args::{angle_rad, positive_length_nm};
+use crate::args::{polar_azimuth, positive_length_nm};
 use crate::progress::bar;
 
 /// Bound on the Taylor remainder used by `--terms auto` (PHYSICS.md).
@@ -140,17 +140,8 @@ pub struct BrdfMapArgs {
     /// Also write linear XYZ·exposure as OpenEXR (RGB = linear sRGB).
     #[arg(long)]
     pub exr: Option<PathBuf>,
-    /// Fresnel factor: schlick[:N] (default schlick:1.5), index:N or index:N+Ki (gold: index:0.2+3.4i), or a
-    /// thin-film stack, e.g. "stack:air | keratin 300nm | n=1.56" (λ-dependent: reference or ground-truth).
-    #[arg(long, default_value = "schlick:1.5")]
-    pub fresnel: String,
-    /// How the Fresnel reflectance enters: physical (R once, the default) or paper (R², the paper's formula as
-    /// printed, to reproduce its figures; docs/PHYSICS.md).
-    #[arg(long, value_name = "physical|paper", default_value = "physical", value_parser = fresnel_convention)]
-    pub fresnel_convention: FresnelConvention,
-    /// Leave out the Cook-Torrance shadowing term.
-    #[arg(long)]
-    pub no_shadowing: bool,
+    #[command(flatten)]
+    pub shading: ShadingOpts,
     /// Lookup sum in f32, as a GPU would evaluate it.
     #[arg(long)]
     pub f32: bool,
@@ -269,6 +260,32 @@ pub fn run_precompute(a: PrecomputeArgs) -> Result<()> {
     Ok(())
 }
 
+/// The shading factors around |A|² (`C` of paper eq. 2–4), shared by `brdf-map` and `brdf eval`.
+#[derive(Debug, Clone, ClapArgs)]
+pub struct ShadingOpts {
+    /// Fresnel factor: schlick[:N] (default schlick:1.5), index:N or index:N+Ki (gold: index:0.2+3.4i), or a
+    /// thin-film stack, e.g. "stack:air | keratin 300nm | n=1.56" (λ-dependent: reference or ground-truth).
+    #[arg(long, default_value = "schlick:1.5")]
+    pub fresnel: String,
+    /// How the Fresnel reflectance enters: physical (R once, the default) or paper (R², the paper's formula as
+    /// printed, to reproduce its figures; docs/PHYSICS.md).
+    #[arg(long, value_name = "physical|paper", default_value = "physical", value_parser = fresnel_convention)]
+    pub fresnel_convention: FresnelConvention,
+    /// Leave out the Cook-Torrance shadowing term.
+    #[arg(long)]
+    pub no_shadowing: bool,
+}
+
+impl ShadingOpts {
+    pub fn shading(&self) -> Result<Shading> {
+        Ok(Shading {
+            fresnel: parse_fresnel_source(&self.fresnel)?,
+            shadowing: !self.no_shadowing,
+            convention: self.fresnel_convention,
+        })
+    }
+}
+
 /// Parses `--fresnel-convention`.
 pub fn fresnel_convention(s: &str) -> Result<FresnelConvention, String> {
     FresnelConvention::parse(s).map_err(|e| e.to_string())
@@ -314,20 +331,9 @@ fn parse_complex(s: &str) -> Option<Complex64> {
     }
 }
 
-/// Parses `θ[,φ]` into a light direction, refusing θ ≥ 90°.
+/// Parses `--incidence θ[,φ]` into a light direction, refusing θ ≥ 90°.
 pub fn parse_incidence(s: &str) -> Result<[f64; 3]> {
-    let mut parts = s.split(',');
-    let theta = angle_rad(parts.next().unwrap_or("")).map_err(anyhow::Error::msg)?;
-    let phi = match parts.next() {
-        Some(p) => angle_rad(p).map_err(anyhow::Error::msg)?,
-        None => 0.0,
-    };
-    if parts.next().is_some() {
-        bail!("--incidence '{s}': write θ or θ,φ, e.g. 20deg,0deg");
-    }
-    if !(0.0..std::f64::consts::FRAC_PI_2).contains(&theta) {
-        bail!("--incidence '{s}': θ_i must be in [0°, 90°)");
-    }
+    let (theta, phi) = polar_azimuth("incidence", s)?;
     Ok(direction(theta, phi))
 }
 
@@ -429,15 +435,8 @@ pub struct BrdfEvalArgs {
     /// [default: reference for a SURFACE, lookup for a TABLE].
     #[arg(long)]
     pub method: Option<String>,
-    /// Fresnel factor: schlick[:N] (default schlick:1.5), index:N or index:N+Ki, or "stack:…" (a thin film).
-    #[arg(long, default_value = "schlick:1.5")]
-    pub fresnel: String,
-    /// How the Fresnel reflectance enters: physical (R once, the default) or paper (R², as printed).
-    #[arg(long, value_name = "physical|paper", default_value = "physical", value_parser = fresnel_convention)]
-    pub fresnel_convention: FresnelConvention,
-    /// Leave out the Cook-Torrance shadowing term.
-    #[arg(long)]
-    pub no_shadowing: bool,
+    #[command(flatten)]
+    pub shading: ShadingOpts,
     /// u-v resolution when the lookup method builds a table from a SURFACE.
     #[arg(long, default_value_t = 501)]
     pub uv_resolution: usize,
@@ -453,23 +452,6 @@ pub struct BrdfEvalArgs {
     pub json: bool,
 }
 
-/// Parses `θ[,φ]` of `--light`/`--view` into (θ, φ) in radians, θ in [0°, 90°).
-fn parse_direction(flag: &str, s: &str) -> Result<(f64, f64)> {
-    let mut parts = s.split(',');
-    let theta = angle_rad(parts.next().unwrap_or("")).map_err(|e| anyhow::anyhow!("--{flag} '{s}': {e}"))?;
-    let phi = match parts.next() {
-        Some(p) => angle_rad(p).map_err(|e| anyhow::anyhow!("--{flag} '{s}': {e}"))?,
-        None => 0.0,
-    };
-    if parts.next().is_some() {
-        bail!("--{flag} '{s}': write θ or θ,φ, e.g. 30deg,180deg");
-    }
-    if !(0.0..std::f64::consts::FRAC_PI_2).contains(&theta) {
-        bail!("--{flag} '{s}': θ must be in [0°, 90°) (above the surface)");
-    }
-    Ok((theta, phi))
-}
-
 pub fn run_brdf(c: BrdfCommand) -> Result<()> {
     match c {
         BrdfCommand::Eval(a) => run_eval(a),
@@ -477,15 +459,11 @@ pub fn run_brdf(c: BrdfCommand) -> Result<()> {
 }
 
 fn run_eval(a: BrdfEvalArgs) -> Result<()> {
-    let (tl, pl) = parse_direction("light", &a.light)?;
-    let (tv, pv) = parse_direction("view", &a.view)?;
+    let (tl, pl) = polar_azimuth("light", &a.light)?;
+    let (tv, pv) = polar_azimuth("view", &a.view)?;
     let (wi, wr) = (direction(tl, pl), direction(tv, pv));
     let method = a.method.clone().unwrap_or_else(|| if is_table(&a.input) { "lookup" } else { "reference" }.into());
-    let shading = Shading {
-        fresnel: parse_fresnel_source(&a.fresnel)?,
-        shadowing: !a.no_shadowing,
-        convention: a.fresnel_convention,
-    };
+    let shading = a.shading.shading()?;
     let params = TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power };
     let e = make_evaluator(&a.input, &method, &a.model, shading, params, Precision::F64, &a.surface_opts)?;
     let spectral = spectral_setup(&a.model)?;
@@ -497,9 +475,9 @@ fn run_eval(a: BrdfEvalArgs) -> Result<()> {
             "method": e.name(),
             "light": { "theta_deg": deg(tl), "phi_deg": deg(pl), "direction": wi },
             "view": { "theta_deg": deg(tv), "phi_deg": deg(pv), "direction": wr },
-            "fresnel": a.fresnel,
-            "fresnel_convention": a.fresnel_convention.name(),
-            "shadowing": !a.no_shadowing,
+            "fresnel": a.shading.fresnel,
+            "fresnel_convention": a.shading.fresnel_convention.name(),
+            "shadowing": !a.shading.no_shadowing,
             "illuminant": a.model.illuminant.as_deref().unwrap_or("d65"),
             "observer": a.model.observer.as_deref().unwrap_or("1931"),
             "wavelength_nm": q.wavelengths_nm,
@@ -647,11 +625,7 @@ pub fn run_brdf_map(a: BrdfMapArgs) -> Result<()> {
     if a.gpu {
         return crate::cmd::gpu::run_brdf_map(a, wi, encoding);
     }
-    let shading = Shading {
-        fresnel: parse_fresnel_source(&a.fresnel)?,
-        shadowing: !a.no_shadowing,
-        convention: a.fresnel_convention,
-    };
+    let shading = a.shading.shading()?;
     let params = TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power };
     let precision = if a.f32 { Precision::F32 } else { Precision::F64 };
     let e = make_evaluator(&a.input, &a.method, &a.model, shading, params, precision, &a.surface_opts)?;

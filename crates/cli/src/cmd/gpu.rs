@@ -60,17 +60,18 @@ pub fn run_brdf_map(a: BrdfMapArgs, wi: [f64; 3], encoding: Encoding) -> Result<
     if a.method != "lookup" {
         bail!("--gpu renders the lookup method (the paper's shader); --method {} runs on the CPU only", a.method);
     }
-    if a.fresnel.trim().starts_with("stack:") {
+    if a.shading.fresnel.trim().starts_with("stack:") {
         bail!(
             "--gpu renders the lookup method, whose Fresnel factor must not depend on λ; a thin-film stack as \
              Fresnel source needs --method reference or ground-truth (CPU)"
         );
     }
-    let fresnel = brdf::parse_fresnel(&a.fresnel)?;
+    let fresnel = brdf::parse_fresnel(&a.shading.fresnel)?;
     let params = TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power };
     let table = lookup_table(&a.input, &a.model, params, &a.surface_opts)?;
     let gpu = open_gpu()?;
-    let lookup = GpuLookup::new(&gpu, &table, fresnel, !a.no_shadowing)?.with_convention(a.fresnel_convention);
+    let lookup =
+        GpuLookup::new(&gpu, &table, fresnel, !a.shading.no_shadowing)?.with_convention(a.shading.fresnel_convention);
     let tone = ToneMap { exposure_ru: a.exposure, encoding };
     let frame = lookup.frame(a.size, tone)?;
     let secs = frame.run(wi)?.wall.as_secs_f64();

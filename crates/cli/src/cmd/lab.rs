@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use anyhow::{bail, Context, Result};
 use clap::{Args as ClapArgs, Subcommand};
-use iridis_color::units::{parse_angle_rad, parse_length_nm};
+use iridis_color::units::parse_length_nm;
 use iridis_color::{Illuminant, Observer, Spectrum, Xyz};
 use iridis_diffraction::geometry::{FresnelConvention, FresnelSource, Shading};
 use iridis_diffraction::table::TableParams;
@@ -208,22 +208,6 @@ fn exposures(s: &str) -> Result<Vec<f64>> {
         Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
         _ => bail!("--exposures: '{p}' is not a positive exposure in RU (e.g. 1,1000,7500)"),
     })
-}
-
-fn parse_incidence(s: &str) -> Result<(f64, f64)> {
-    let mut parts = s.split(',');
-    let theta = parse_angle_rad(parts.next().unwrap_or("")).map_err(anyhow::Error::msg)?;
-    let phi = match parts.next() {
-        Some(p) => parse_angle_rad(p).map_err(anyhow::Error::msg)?,
-        None => 0.0,
-    };
-    if parts.next().is_some() {
-        bail!("--incidence '{s}': write θ or θ,φ, e.g. 20deg,0deg");
-    }
-    if !(0.0..std::f64::consts::FRAC_PI_2).contains(&theta) {
-        bail!("--incidence '{s}': θ_i must be in [0°, 90°)");
-    }
-    Ok((theta, phi))
 }
 
 fn check_output(path: &Path) -> Result<()> {
@@ -591,7 +575,7 @@ pub fn run_compare(a: CompareArgs) -> Result<()> {
         other => Some(other.parse().map_err(|e| anyhow::anyhow!("--against: {e}, or model"))?),
     };
     let exps = exposures(&a.exposures)?;
-    let (theta, phi) = parse_incidence(&a.incidence)?;
+    let (theta, phi) = crate::args::polar_azimuth("incidence", &a.incidence)?;
     if !(8..=2048).contains(&a.size) {
         bail!("--size {} must be 8–2048 pixels", a.size);
     }
@@ -772,7 +756,7 @@ pub fn run_sweep(a: SweepArgs) -> Result<()> {
         },
     };
     let exps = exposures(&a.exposures)?;
-    let (theta, phi) = parse_incidence(&a.incidence)?;
+    let (theta, phi) = crate::args::polar_azimuth("incidence", &a.incidence)?;
     if !(8..=1024).contains(&a.size) {
         bail!("--size {} must be 8–1024 pixels", a.size);
     }
