@@ -424,3 +424,65 @@ fn a_film_fresnel_source_enters_the_spectrum_linearly() {
         assert!((p450 / p600 / expected - 1.0).abs() < 1e-12, "{convention:?}: {} vs {expected}", p450 / p600);
     }
 }
+
+/// `∫ ρ cos θ_r dω_r / cos θ_i` over the hemisphere at 500 nm (ρ is the BRDF times cos θ_i): the reflected
+/// power per unit incident power, relative to `R₀`.
+fn hemispherical(truth: &GroundTruth, theta_deg: f64) -> f64 {
+    let wi = light(theta_deg);
+    let (n, mut sum) = (161, 0.0);
+    let d = 2.0 / n as f64;
+    for j in 0..n {
+        for i in 0..n {
+            let (a, b) = (-1.0 + (i as f64 + 0.5) * d, -1.0 + (j as f64 + 0.5) * d);
+            let r2 = a * a + b * b;
+            if r2 < 1.0 {
+                sum += truth.reflectance(500.0, wi, [a, b, (1.0 - r2).sqrt()]).unwrap() * d * d;
+            }
+        }
+    }
+    sum / wi[2]
+}
+
+#[test]
+fn a_rough_patch_reflects_no_more_than_the_flat_one() {
+    // Energy over the hemisphere. The paper's ρ is relative to the mirror's peak, so the hemispherical integral
+    // of a flat patch is the window's Parseval sum, λ² Σg²/((Σg)² dx dy) (≈ λ²/(4πσ_s²) for an uncut Gaussian),
+    // times R(θ)/R₀ (the flat-surface test above). With |exp(ikwh)| = 1 a
+    // rough patch has the same total |A|² over all frequencies and roughness only moves power into other
+    // directions (some of it below the horizon): its integral must not exceed the flat patch's.
+    let (n, dx) = (32, 60.0);
+    let mut seed = 5u64;
+    let mut rnd = || {
+        seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    };
+    let rough: Vec<f64> = (0..n * n).map(|_| 40.0 * rnd()).collect();
+    let metal = iridis_diffraction::Fresnel::Index { n: num_complex::Complex64::new(0.2, 3.4) };
+    let shading = Shading { fresnel: Arc::new(metal), ..Shading::default() };
+    let coherence = 1500.0;
+    let make = |h: &[f64]| {
+        let patch = Patch::from_row_major(n, n, dx, dx, h).unwrap();
+        GroundTruth::new(&patch, coherence, shading.clone(), &SpectralSetup::default(), 3).unwrap()
+    };
+    let (flat, rough) = (make(&vec![0.0; n * n]), make(&rough));
+    // Parseval on the sampled window as the ground truth holds it (centred, cut at the patch edge).
+    let sigma_s: f64 = coherence / 4.0;
+    let c = (n - 1) as f64 * dx / 2.0;
+    let g: Vec<f64> = (0..n * n)
+        .map(|k| {
+            let (x, y) = ((k % n) as f64 * dx - c, (k / n) as f64 * dx - c);
+            (-(x * x + y * y) / (2.0 * sigma_s * sigma_s)).exp()
+        })
+        .collect();
+    let (sum, sum2) = (g.iter().sum::<f64>(), g.iter().map(|v| v * v).sum::<f64>());
+    let parseval = 500.0f64.powi(2) * sum2 / (sum * sum * dx * dx);
+    for theta in [0.0, 45.0] {
+        let (f, r) = (hemispherical(&flat, theta), hemispherical(&rough, theta));
+        eprintln!("θ_i = {theta}°: flat {f:.4} (Parseval at 0°: {parseval:.4}), rough {r:.4}");
+        assert!(r <= f * 1.01 && r > 0.3 * f, "θ_i = {theta}°: flat {f}, rough {r}");
+    }
+    let f0 = hemispherical(&flat, 0.0);
+    // C is 1 only at the mirror direction; across this wide lobe (≈ 0.15 in direction cosines) it grows like
+    // 1/cos θ_r, a few per cent.
+    assert!((f0 / parseval - 1.0).abs() < 0.05, "flat {f0} vs Parseval {parseval}");
+}
