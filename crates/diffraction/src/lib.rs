@@ -24,7 +24,7 @@ pub mod taylor;
 
 pub use evaluator::{Aperture, Evaluator, GroundTruth, Reference};
 pub use geometry::{Fresnel, FresnelConvention, Shading};
-pub use patch::Patch;
+pub use patch::{Coherence, Patch};
 pub use point::{point_query, PointQuery};
 pub use spectral::SpectralSetup;
 pub use table::{Lookup, LookupTable, TableParams};

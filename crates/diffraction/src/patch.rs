@@ -81,6 +81,63 @@ impl Patch {
     pub fn warnings(&self, coherence_nm: f64) -> Vec<String> {
         model_warnings(self.rows, self.cols, self.dx, self.dy, coherence_nm)
     }
+
+    /// The shorter side of the patch (nm).
+    pub fn shorter_side_nm(&self) -> f64 {
+        (self.cols as f64 * self.dx).min(self.rows as f64 * self.dy)
+    }
+
+    /// The coherence length to use: the one given, or [`Coherence::fitted`] to this patch.
+    pub fn coherence(&self, given_nm: Option<f64>) -> Coherence {
+        match given_nm {
+            Some(nm) => Coherence { nm, fitted_to_side_nm: None },
+            None => Coherence::fitted(self.shorter_side_nm()),
+        }
+    }
+}
+
+/// The coherence length `4σ_s` a model runs with, and whether it was fitted to the patch.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Coherence {
+    pub nm: f64,
+    /// The patch side it was fitted to, when the user gave none and the paper's 65 µm would not fit.
+    pub fitted_to_side_nm: Option<f64>,
+}
+
+impl Coherence {
+    /// The paper's 65 µm ([`crate::DEFAULT_COHERENCE_NM`]) when the patch is at least that large, otherwise half
+    /// the patch's shorter side `L`. Why half: the Gaussian window `exp(−r²/2σ_s²)` with `4σ_s = L/2` falls to
+    /// e⁻⁸ ≈ 3e-4 at the patch's edges (±4σ_s = ±L/2), so the window sees one copy of the patch, and its
+    /// spectral width `σ_f = 1/(2π σ_s) ≈ 1.27/L` blends the DFT's spikes (`1/L` apart) into a smooth spectrum.
+    /// With the paper's 65 µm on a 6.4 µm scan of a 1000 nm sine the spikes stay apart and the test bench reads
+    /// 1066.7 nm (6400/6, a DFT grid value); at L/2 it reads 996 nm (measured; 4.8 µm: 999, 6.4 µm: 1007,
+    /// 9.6 µm: 1053 — the error grows once the window is wider than the patch).
+    pub fn fitted(shorter_side_nm: f64) -> Self {
+        if shorter_side_nm >= crate::DEFAULT_COHERENCE_NM {
+            Coherence { nm: crate::DEFAULT_COHERENCE_NM, fitted_to_side_nm: None }
+        } else {
+            Coherence { nm: 0.5 * shorter_side_nm, fitted_to_side_nm: Some(shorter_side_nm) }
+        }
+    }
+
+    /// A line for the user when the coherence was fitted: what was chosen and why.
+    pub fn note(&self) -> Option<String> {
+        self.fitted_to_side_nm.map(|side| {
+            format!(
+                "coherence {} µm, fitted to the patch (half its {} µm shorter side): the paper's {} µm would exceed \
+                 the patch and turn its spectrum into DFT spikes; give --coherence to choose another",
+                trim_um(self.nm),
+                trim_um(side),
+                trim_um(crate::DEFAULT_COHERENCE_NM)
+            )
+        })
+    }
+}
+
+/// A length in µm as a person would write it: at most 3 decimals, trailing zeros dropped.
+fn trim_um(nm: f64) -> String {
+    let s = format!("{:.3}", nm / 1000.0);
+    s.trim_end_matches('0').trim_end_matches('.').to_string()
 }
 
 /// Warnings about a `rows × cols` grid of `dx × dy` nm pixels under a coherence length (PHYSICS.md), each at
@@ -101,7 +158,9 @@ pub fn model_warnings(rows: usize, cols: usize, dx: f64, dy: f64, coherence_nm: 
     if ex.min(ey) < coherence_nm {
         w.push(format!(
             "patch {:.1} × {:.1} µm is smaller than the coherence length {:.1} µm: the DFT treats it as periodic, so \
-             spectra become spikes {:.3}/µm apart (narrower than the window); tile a larger patch for smooth results",
+             spectra become spikes {:.3}/µm apart (narrower than the window) and a period read off them is quantised \
+             to about ± d²/L; tiling does not help (the spikes stay where they are): leave --coherence out (it is \
+             then fitted to the patch) or give at most half the patch's side, or scan a larger area",
             ex / 1000.0,
             ey / 1000.0,
             coherence_nm / 1000.0,

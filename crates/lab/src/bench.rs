@@ -251,13 +251,58 @@ pub struct BenchResult {
     pub window_period_nm: f64,
     /// Ridges, strongest first (reported when more than one).
     pub ridges: Vec<Ridge>,
+    /// The patch the matrix came from, when known ([`BenchResult::on_patch`]): its DFT grid limits the period.
+    pub grid: Option<PatchGrid>,
+}
+
+/// The patch side and coherence a bench ran with. A patch of side `L` has a spectrum sampled `1/L` apart, so a
+/// period `d` read off it is uncertain by about `d²/L` (one grid step in frequency, `Δ(1/d) = 1/L`); while the
+/// coherence window is no wider than the patch, the window blends the grid's spikes and the peaks fall between
+/// them (a 1000 nm sine on a 6.4 µm patch reads 996 nm at a 3.2 µm coherence), but a wider window leaves the
+/// spikes apart and the period snaps to a grid value `L/k` (1066.7 nm = 6400/6 at 65 µm): quantised.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PatchGrid {
+    pub side_nm: f64,
+    pub coherence_nm: f64,
+}
+
+impl PatchGrid {
+    /// `d²/L`: the period's uncertainty from the patch's DFT grid.
+    pub fn uncertainty_nm(&self, period_nm: f64) -> f64 {
+        period_nm * period_nm / self.side_nm
+    }
+
+    /// The window is wider than the patch, so the period sits on the DFT grid.
+    pub fn quantised(&self) -> bool {
+        self.coherence_nm > self.side_nm
+    }
 }
 
 impl BenchResult {
     /// One definite period: the peaks follow one period ([`Periodicity::is_definite`]) and, where the matrix
     /// has several ridges, the strongest dominates every other by [`DOMINANT_RIDGE`].
+    /// On a patch whose window is wider than the patch ([`PatchGrid::quantised`]) the period is a DFT grid value,
+    /// never definite however small its spread.
     pub fn is_definite(&self) -> bool {
-        self.periodicity.is_definite() && !matches!(self.ridge_dominance(), Some(d) if d < DOMINANT_RIDGE)
+        self.periodicity.is_definite()
+            && !matches!(self.ridge_dominance(), Some(d) if d < DOMINANT_RIDGE)
+            && !self.is_quantised()
+    }
+
+    /// Records the patch the matrix came from (side `side_nm`, window `coherence_nm`).
+    pub fn on_patch(mut self, side_nm: f64, coherence_nm: f64) -> Self {
+        self.grid = Some(PatchGrid { side_nm, coherence_nm });
+        self
+    }
+
+    /// Whether the period was read off the DFT grid of a patch smaller than the window.
+    pub fn is_quantised(&self) -> bool {
+        self.grid.is_some_and(|g| g.quantised())
+    }
+
+    /// `± d²/L` of the mean period, when the patch is known.
+    pub fn uncertainty_nm(&self) -> Option<f64> {
+        self.grid.map(|g| g.uncertainty_nm(self.periodicity.mean))
     }
 
     /// The strength of the strongest ridge relative to the next, where there are several.
@@ -268,7 +313,8 @@ impl BenchResult {
         }
     }
 
-    /// The JSON of issue 6: `{"periodicity_nm":{"mean","variance","relative_spread","definite"},"order",
+    /// The JSON of issue 6: `{"periodicity_nm":{"mean","variance","relative_spread","definite","uncertainty",
+    /// "quantised"},"patch_side_nm","coherence_nm","order",
     /// "incidence_deg","azimuth_deg",
     /// "peaks":[{"wavelength_nm","angle_deg","period_nm"}],"ridges":[…]}`.
     pub fn to_json(&self) -> serde_json::Value {
@@ -285,7 +331,10 @@ impl BenchResult {
         };
         serde_json::json!({
             "periodicity_nm": {"mean": self.periodicity.mean, "variance": self.periodicity.variance,
-                "relative_spread": self.periodicity.relative_spread(), "definite": self.is_definite()},
+                "relative_spread": self.periodicity.relative_spread(), "definite": self.is_definite(),
+                "uncertainty": self.uncertainty_nm(), "quantised": self.is_quantised()},
+            "patch_side_nm": self.grid.map(|g| g.side_nm),
+            "coherence_nm": self.grid.map(|g| g.coherence_nm),
             "order": self.order,
             "incidence_deg": self.incidence_deg,
             "azimuth_deg": self.azimuth_deg,
@@ -434,6 +483,7 @@ pub fn analyse(matrix: &ReflectanceMatrix, setup: &BenchSetup) -> Result<BenchRe
         periodicity: Periodicity { mean, variance },
         window_period_nm: d0,
         ridges,
+        grid: None,
     })
 }
 

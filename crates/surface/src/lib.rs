@@ -196,14 +196,13 @@ impl HeightField {
                 "patch {:.1} × {:.1} µm is smaller than the {:.1} µm coherence area: the DFT treats it as periodic, \
                  so its spectrum is spikes {:.4} µm⁻¹ apart instead of a smooth spectrum, and a period read off \
                  that grid is quantised to about ± d²/{:.1} µm. Tiling does not help (the spikes stay where they \
-                 are); give the model commands a coherence that fits the patch (e.g. --coherence {:.1}um) or scan \
-                 a larger area",
+                 are); the model commands (brdf-map, precompute, testbench, compare, sweep, report) therefore fit \
+                 the coherence to the patch unless --coherence is given, and say so; or scan a larger area",
                 ex / 1000.0,
                 ey / 1000.0,
                 coherence_nm / 1000.0,
                 1000.0 / ex.min(ey),
                 ex.min(ey) / 1000.0,
-                (ex.min(ey) / 2000.0 * 10.0).floor() / 10.0
             ));
         }
         w

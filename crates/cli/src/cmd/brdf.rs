@@ -10,7 +10,7 @@ use iridis_diffraction::evaluator::{Evaluator, GroundTruth, Reference};
 use iridis_diffraction::geometry::{direction, FilmFresnel, FresnelConvention, FresnelSource, Shading};
 use iridis_diffraction::table::{Lookup, LookupTable, Precision, Provenance, TableParams};
 use iridis_diffraction::taylor::terms_for_bound;
-use iridis_diffraction::{Fresnel, Patch, SpectralSetup, TaylorTerms, DEFAULT_COHERENCE_NM};
+use iridis_diffraction::{Fresnel, Patch, SpectralSetup, TaylorTerms};
 use iridis_lab::methods::{Method, MethodConfig, Workbench};
 use num_complex::Complex64;
 
@@ -48,7 +48,8 @@ pub struct ModelOpts {
     /// Taylor terms: `auto` (from the remainder bound) or a number N (terms 0..N).
     #[arg(long, default_value = "auto")]
     pub terms: String,
-    /// Coherence length 4σ_s of the Gaussian window.
+    /// Coherence length 4σ_s of the Gaussian window (default 65um, or half the patch's shorter side when the
+    /// patch is smaller than that; said in the output).
     #[arg(long, value_parser = positive_length_nm)]
     pub coherence: Option<f64>,
     /// Illuminant: d65, d50, a, e.
@@ -196,12 +197,22 @@ pub fn spectral_setup(m: &ModelOpts) -> Result<SpectralSetup> {
     Ok(SpectralSetup::new(ill, obs, step)?)
 }
 
-/// Taylor terms of a patch with a progress bar.
-pub fn taylor_terms(patch: &Patch, m: &ModelOpts) -> Result<TaylorTerms> {
-    let coherence = m.coherence.unwrap_or(DEFAULT_COHERENCE_NM);
-    for w in patch.warnings(coherence) {
+/// The coherence length for a patch (the one given, or fitted to the patch), with the note saying it was
+/// fitted and the model's warnings on stderr.
+pub fn coherence_for(patch: &Patch, given_nm: Option<f64>) -> f64 {
+    let c = patch.coherence(given_nm);
+    if let Some(note) = c.note() {
+        eprintln!("note: {note}");
+    }
+    for w in patch.warnings(c.nm) {
         eprintln!("warning: {w}");
     }
+    c.nm
+}
+
+/// Taylor terms of a patch with a progress bar.
+pub fn taylor_terms(patch: &Patch, m: &ModelOpts) -> Result<TaylorTerms> {
+    let coherence = coherence_for(patch, m.coherence);
     let n = match m.terms.trim() {
         "auto" => terms_for_bound(patch.max_abs_height, 380.0, DEFAULT_EPSILON),
         t => match t.parse::<usize>() {
@@ -537,10 +548,7 @@ pub fn make_evaluator(
     let spectral = spectral_setup(model)?;
     match parsed {
         Method::GroundTruth => {
-            let coherence = model.coherence.unwrap_or(DEFAULT_COHERENCE_NM);
-            for w in patch.warnings(coherence) {
-                eprintln!("warning: {w}");
-            }
+            let coherence = coherence_for(&patch, model.coherence);
             let samples = 2 * spectral.wavelengths().len() - 1;
             Ok(Box::new(GroundTruth::new(&patch, coherence, shading, &spectral, samples)?))
         }
@@ -567,10 +575,7 @@ fn lab_evaluator(
     shading: Shading,
     spectral: SpectralSetup,
 ) -> Result<Box<dyn Evaluator>> {
-    let coherence = model.coherence.unwrap_or(DEFAULT_COHERENCE_NM);
-    for w in patch.warnings(coherence) {
-        eprintln!("warning: {w}");
-    }
+    let coherence = coherence_for(&patch, model.coherence);
     let terms = match model.terms.trim() {
         "auto" => None,
         t => match t.parse::<usize>() {

@@ -41,9 +41,10 @@ pub struct LabModel {
     /// used as generated unless this is given).
     #[arg(long)]
     pub level: Option<String>,
-    /// Coherence length 4σ_s of the window.
-    #[arg(long, value_parser = positive_length_nm, default_value = "65um")]
-    pub coherence: f64,
+    /// Coherence length 4σ_s of the window (default 65um, or half the patch's shorter side when the patch is
+    /// smaller than that; said in the output).
+    #[arg(long, value_parser = positive_length_nm)]
+    pub coherence: Option<f64>,
     /// Taylor terms: auto (remainder bound 1e-6) or N.
     #[arg(long, default_value = "auto")]
     pub terms: String,
@@ -72,7 +73,8 @@ impl LabModel {
             },
         };
         Ok(MethodConfig {
-            coherence_nm: self.coherence,
+            // Replaced by the patch's coherence in `workbench` when none is given.
+            coherence_nm: self.coherence.unwrap_or(iridis_diffraction::DEFAULT_COHERENCE_NM),
             terms,
             shading: Shading {
                 fresnel: fresnel(&self.fresnel)?,
@@ -139,15 +141,12 @@ fn load(spec: &str, m: &LabModel) -> Result<Patch> {
     }
     let (hf, levelling) = iridis_surface::prep::level_for_model(spec, hf, m.level.as_deref())?;
     eprintln!("{spec}: {levelling}");
-    let patch = Patch::from_row_major(hf.rows, hf.cols, hf.dx_nm, hf.dy_nm, &hf.heights_nm)?;
-    for w in patch.warnings(m.coherence) {
-        eprintln!("warning: {w}");
-    }
-    Ok(patch)
+    Ok(Patch::from_row_major(hf.rows, hf.cols, hf.dx_nm, hf.dy_nm, &hf.heights_nm)?)
 }
 
-fn workbench(spec: &str, m: &LabModel, config: MethodConfig) -> Result<Workbench> {
+fn workbench(spec: &str, m: &LabModel, mut config: MethodConfig) -> Result<Workbench> {
     let patch = load(spec, m)?;
+    config.coherence_nm = crate::cmd::brdf::coherence_for(&patch, m.coherence);
     eprintln!(
         "{spec}: {}×{} samples at {:.1} × {:.1} nm ({:.1} × {:.1} µm), |h|max {:.1} nm, coherence {:.1} µm",
         patch.cols,
@@ -315,7 +314,6 @@ pub fn run_testbench(a: TestbenchArgs) -> Result<()> {
         (a.min_angle.to_degrees(), a.max_angle.to_degrees(), a.angle_step.to_degrees()),
     )?;
     setup.period_hint_nm = a.period;
-    setup.max_period_nm = a.max_period.unwrap_or((a.model.coherence * std::f64::consts::FRAC_PI_4).min(10_000.0));
     let mut config = a.model.config()?;
     if let Some(p) = a.period {
         // NMM and Stam's lattice take the period along the measured direction.
@@ -326,12 +324,24 @@ pub fn run_testbench(a: TestbenchArgs) -> Result<()> {
         }
     }
     let b = workbench(&a.surface, &a.model, config)?;
+    setup.max_period_nm =
+        a.max_period.unwrap_or((b.config.coherence_nm * std::f64::consts::FRAC_PI_4).min(10_000.0));
     let e = evaluator(&b, method)?;
     let pb = bar(setup.wavelengths_nm.len() as u64, "test bench");
     let matrix = bench::reflectance_matrix(e.as_ref(), &setup, &|d| pb.set_position(d as u64))?;
     pb.finish_and_clear();
-    let result = bench::analyse(&matrix, &setup)?;
-    if result.periodicity.is_definite() && !result.is_definite() {
+    let result = bench::analyse(&matrix, &setup)?.on_patch(b.patch.shorter_side_nm(), b.config.coherence_nm);
+    if result.is_quantised() {
+        eprintln!(
+            "warning: the peaks follow d = {:.2} nm, but the coherence window ({} µm) is wider than the {} µm patch, \
+             so the period is read off the patch's DFT grid, quantised to ± d²/L = {:.1} nm: not a definite \
+             period; leave --coherence out (it is then fitted to the patch) or give at most half the patch's side",
+            result.periodicity.mean,
+            b.config.coherence_nm / 1000.0,
+            b.patch.shorter_side_nm() / 1000.0,
+            result.uncertainty_nm().unwrap_or(f64::NAN)
+        );
+    } else if result.periodicity.is_definite() && !result.is_definite() {
         eprintln!(
             "warning: the peaks follow d = {:.1} nm, but {} ridges are nearly as strong (the strongest carries {:.2}× \
              the next, less than {}×): the surface has no definite period along azimuth {:.0}°",
@@ -381,10 +391,13 @@ pub fn run_testbench(a: TestbenchArgs) -> Result<()> {
         setup.wavelengths_nm.len()
     )?;
     crate::outln!(
-        "periodicity  mean {:.2} nm, variance {:.3} nm² (window centred on {:.1} nm)",
+        "periodicity  mean {:.2} nm ± {:.1} nm (d²/L, L = {} µm), variance {:.3} nm² (window centred on {:.1} nm){}",
         result.periodicity.mean,
+        result.uncertainty_nm().unwrap_or(f64::NAN),
+        b.patch.shorter_side_nm() / 1000.0,
         result.periodicity.variance,
-        result.window_period_nm
+        result.window_period_nm,
+        if result.is_definite() { ", definite" } else { ", not definite" }
     )?;
     if result.ridges.len() > 1 {
         for (k, r) in result.ridges.iter().enumerate() {
@@ -948,7 +961,7 @@ fn run_laser(a: LaserArgs) -> Result<()> {
     };
     let pixels = setup.pixels()?;
     let mut model = a.model.clone();
-    model.coherence = a.aperture;
+    model.coherence = Some(a.aperture);
     let mut config = model.config()?;
     config.spectral = spectral("e", a.dlambda)?;
     let scale = iridis_lab::laser::configure(&mut config, method, &spectrum, coating.as_ref(), Observer::Cie1931)?;
@@ -1033,7 +1046,7 @@ pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
         channel: None,
         height_unit: None,
         level: None,
-        coherence: 65_000.0,
+        coherence: Some(65_000.0),
         terms: "auto".into(),
         fresnel: "schlick:1.5".into(),
         fresnel_convention: FresnelConvention::Physical,
@@ -1053,12 +1066,12 @@ pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
     ];
     for (spec, az, coherence, label, file) in cases {
         let mut m = model.clone();
-        m.coherence = coherence;
+        m.coherence = Some(coherence);
         let b = workbench(spec, &m, m.config()?)?;
         let e = evaluator(&b, Method::Reference)?;
         let setup = BenchSetup::new(75f64.to_radians(), az.to_radians(), 1, (380.0, 780.0, 10.0), (-60.0, 74.0, 0.05))?;
         let matrix = bench::reflectance_matrix(e.as_ref(), &setup, &|_| {})?;
-        let r = bench::analyse(&matrix, &setup)?;
+        let r = bench::analyse(&matrix, &setup)?.on_patch(b.patch.shorter_side_nm(), b.config.coherence_nm);
         let img = bench::plot(&matrix, &setup, &r, r.periodicity.mean, &format!("{label}: test bench, θi = 75°"))?;
         write_png_rgb8(&g.path(file), img.width, img.height, &img.data)?;
         g.image(
@@ -1094,7 +1107,7 @@ pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
     // Table 2 in kind: a small Elaphe-like patch, 48 × 48 map at normal incidence.
     let spec = "builtin:elaphe?size=6um&pixel=60nm";
     let mut m = model.clone();
-    m.coherence = 3_000.0;
+    m.coherence = Some(3_000.0);
     let mut config = m.config()?;
     config.spectral = SpectralSetup::new(Illuminant::D65, Observer::Cie1931, 5.0)?;
     config.table = TableParams { uv_resolution: 201, uv_power: 5.0 };

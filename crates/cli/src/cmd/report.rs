@@ -146,35 +146,6 @@ pub fn run(a: ReportArgs) -> Result<()> {
             }
         }
     }
-    // A period read off the DFT grid of a patch smaller than the coherence area is quantised to ± d²/L, and
-    // when it sits on L/k it may be the grid itself, not the structure: say so with the numbers.
-    let extent = info["extent_nm"].as_array().and_then(|e| Some(e.first()?.as_f64()?.min(e.get(1)?.as_f64()?)));
-    let coherence =
-        a.coherence.as_deref().map_or(Ok(iridis_surface::DEFAULT_COHERENCE_NM), crate::args::positive_length_nm);
-    if let (Some(d), Some(l), Ok(c)) =
-        (bench.as_ref().and_then(|b| b["periodicity_nm"]["mean"].as_f64()), extent, coherence)
-    {
-        if l < c {
-            let q = d * d / l;
-            let k = (l / d).round();
-            let on_grid = k >= 1.0 && (d - l / k).abs() < 0.25 * q;
-            warnings.push(format!(
-                "test bench period {d:.2} nm comes from the DFT grid of a {:.2} µm patch (smaller than the {:.1} µm \
-                 coherence area): it is quantised to ± d²/L = {q:.2} nm{}",
-                l / 1000.0,
-                c / 1000.0,
-                if on_grid {
-                    format!(
-                        "; it equals L/{k} = {:.2} nm, so it may be the grid and not the structure — compare the \
-                             periods of surface info",
-                        l / k
-                    )
-                } else {
-                    String::new()
-                }
-            ));
-        }
-    }
     let commands: Vec<Value> = steps
         .iter()
         .map(|st| json!({"title": st.title, "command": format!("iridis {}", st.args.iter().map(|x| quote(x)).collect::<Vec<_>>().join(" "))}))
@@ -238,8 +209,9 @@ fn html(r: &Value, steps: &[Step]) -> String {
     let pm = &r["testbench"]["periodicity_nm"];
     if pm.is_object() {
         h += &format!(
-            "<p>Test bench: periodicity {} nm (variance {} nm², {}).</p>\n",
+            "<p>Test bench: periodicity {} ± {} nm (the patch's DFT grid, d²/L; variance {} nm², {}).</p>\n",
             f(&pm["mean"]),
+            f(&pm["uncertainty"]),
             f(&pm["variance"]),
             if pm["definite"].as_bool() == Some(true) { "definite" } else { "not definite" }
         );
