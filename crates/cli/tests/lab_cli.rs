@@ -643,3 +643,24 @@ fn laser_tables_record_the_beam_and_are_checked() {
         &["--method lookup"],
     );
 }
+
+/// A patch smaller than the paper's 65 µm coherence: without `--coherence` the model commands fit it to half
+/// the patch's side and say so; a coherence the user gives is used as given (with the patch-size warning).
+#[test]
+fn model_commands_fit_the_coherence_to_a_small_patch() {
+    let dir = tempfile::tempdir().unwrap();
+    let map = dir.path().join("m.png");
+    let spec = "builtin:sine?size=6.4um&pixel=50nm&period=1000nm";
+    let fitted = "coherence 3.2 µm, fitted to the patch (half its 6.4 µm shorter side)";
+    let out = iridis(&["brdf-map", spec, "--size", "8", "-o", map.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success() && err.contains(fitted), "{err}");
+    assert!(!err.contains("smaller than the coherence length"), "no warning for a fitted window: {err}");
+    let out = iridis(&["brdf-map", spec, "--size", "8", "--coherence", "65um", "-o", map.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success() && !err.contains(fitted), "{err}");
+    assert!(err.contains("smaller than the coherence length 65.0 µm") && !err.contains("tile a larger"), "{err}");
+    let j = json_of(&["testbench", spec, "--from", "450nm", "--to", "650nm", "--step", "50nm", "--json"]);
+    let c = j["coherence_nm"].as_f64().unwrap();
+    assert!((c - 3200.0).abs() < 1e-6, "testbench coherence {c}");
+}
