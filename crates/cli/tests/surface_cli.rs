@@ -92,7 +92,17 @@ fn info_json_has_the_documented_keys_and_the_numpy_values() {
     // The keys, plus provenance (source, format, z unit, notes), mean and warnings.
     let documented =
         ["rows", "cols", "pixel_size_nm", "extent_nm", "height_min_nm", "height_max_nm", "rms_nm", "peaks"];
-    let extra = ["source", "format", "mean_nm", "z_unit_in_file", "notes", "warnings", "roughness"];
+    let extra = [
+        "source",
+        "format",
+        "mean_nm",
+        "z_unit_in_file",
+        "notes",
+        "warnings",
+        "roughness",
+        "psdf_radial",
+        "acf_radial",
+    ];
     assert_eq!(keys, documented.iter().chain(&extra).copied().collect(), "{v}");
     for p in v["peaks"].as_array().unwrap() {
         let pk: std::collections::BTreeSet<&str> = p.as_object().unwrap().keys().map(String::as_str).collect();
@@ -406,20 +416,35 @@ fn height_unit_and_metres_warning() {
 #[test]
 fn psdf_and_acf_images_and_roughness_numbers() {
     let dir = tempfile::tempdir().unwrap();
-    let (psd, acf) = (dir.path().join("psdf.png"), dir.path().join("acf.png"));
+    let (psd, acf_png) = (dir.path().join("psdf.png"), dir.path().join("acf.png"));
     let v = info_json(&[
         "builtin:sine?size=8um&pixel=50nm&period=800nm&depth=20nm",
         "--psdf",
         psd.to_str().unwrap(),
         "--acf",
-        acf.to_str().unwrap(),
+        acf_png.to_str().unwrap(),
     ]);
     // A sine of amplitude 10 nm: Sq = 10/√2 nm (the plane fit takes < 1 %). Its radial ACF is
     // (A²/2) J0(2π r / period), which falls to 1/e at r = 1.75199 · 800 nm / 2π = 223.07 nm (scipy).
     let ro = &v["roughness"];
     assert!(close(ro["sq_nm"].as_f64().unwrap(), 10.0 / 2f64.sqrt(), 0.01 * 7.07), "{v}");
     assert!(close(ro["correlation_length_nm"].as_f64().unwrap(), 223.07, 0.03 * 223.07), "{v}");
-    for p in [&psd, &acf] {
+    // The radial PSDF peaks at the grating's frequency 1/800 nm (bin 10 of 1/8000 nm steps); the radial ACF starts
+    // at Sq² = 50 nm² and crosses zero where J0 does, r = 2.40483 · 800 nm / 2π = 306.19 nm.
+    let psdf = &v["psdf_radial"];
+    let step = psdf["frequency_step_per_nm"].as_f64().unwrap();
+    assert!(close(step, 1.0 / 8000.0, 1e-12), "{step}");
+    let vals: Vec<f64> = psdf["values_nm4"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+    let peak = (0..vals.len()).max_by(|&a, &b| vals[a].total_cmp(&vals[b])).unwrap();
+    assert_eq!(peak, 10, "radial PSDF peak at bin {peak}");
+    let acf = &v["acf_radial"];
+    let lag = acf["lag_step_nm"].as_f64().unwrap();
+    let a: Vec<f64> = acf["values_nm2"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+    assert!(close(a[0], 50.0, 0.01 * 50.0), "ACF(0) {}", a[0]);
+    let zero = (1..a.len()).find(|&i| a[i] <= 0.0).unwrap();
+    let r0 = lag * ((zero - 1) as f64 + a[zero - 1] / (a[zero - 1] - a[zero]));
+    assert!(close(r0, 306.19, 0.03 * 306.19), "first zero of the radial ACF at {r0} nm");
+    for p in [&psd, &acf_png] {
         assert_eq!(&std::fs::read(p).unwrap()[..8], b"\x89PNG\r\n\x1a\n");
     }
 }

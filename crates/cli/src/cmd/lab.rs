@@ -324,8 +324,7 @@ pub fn run_testbench(a: TestbenchArgs) -> Result<()> {
         }
     }
     let b = workbench(&a.surface, &a.model, config)?;
-    setup.max_period_nm =
-        a.max_period.unwrap_or((b.config.coherence_nm * std::f64::consts::FRAC_PI_4).min(10_000.0));
+    setup.max_period_nm = a.max_period.unwrap_or((b.config.coherence_nm * std::f64::consts::FRAC_PI_4).min(10_000.0));
     let e = evaluator(&b, method)?;
     let pb = bar(setup.wavelengths_nm.len() as u64, "test bench");
     let matrix = bench::reflectance_matrix(e.as_ref(), &setup, &|d| pb.set_position(d as u64))?;

@@ -306,7 +306,10 @@ pub fn report(hf: &HeightField, n_peaks: usize, coherence_nm: f64) -> serde_json
     let peaks = find_peaks(hf, &PeakOptions { max_peaks: n_peaks, ..PeakOptions::default() });
     let mut warnings = hf.meta.warnings.clone();
     warnings.extend(hf.physics_warnings(coherence_nm));
-    let rough = iridis_surface::stats::roughness(&prep::level_plane(hf));
+    let levelled = prep::level_plane(hf);
+    let rough = iridis_surface::stats::roughness(&levelled);
+    let psdf = iridis_surface::stats::radial_of(&iridis_surface::stats::psdf(&levelled));
+    let acf = iridis_surface::stats::radial_of(&iridis_surface::stats::acf(&levelled));
     json!({
         "source": hf.meta.source,
         "format": hf.meta.format,
@@ -329,6 +332,10 @@ pub fn report(hf: &HeightField, n_peaks: usize, coherence_nm: f64) -> serde_json
             "sz_nm": rough.sz_nm,
             "correlation_length_nm": rough.correlation_length_nm,
         },
+        // Annular means of the plane-levelled field's 2-D PSDF (nm⁴, against spatial frequency) and ACF (nm²,
+        // against lag), bin k at k × step.
+        "psdf_radial": {"levelling": "plane", "frequency_step_per_nm": psdf.step, "values_nm4": psdf.values},
+        "acf_radial": {"levelling": "plane", "lag_step_nm": acf.step, "values_nm2": acf.values},
         "notes": hf.meta.notes,
         "warnings": warnings,
     })

@@ -298,31 +298,66 @@ pub(crate) fn finish_channel(
     let (k, z_unit) = channel::z_scale(list, ch, unit.as_deref())?;
     let mut warnings = Vec::new();
     let (rows, cols) = (ch.rows, ch.cols);
-    let bad: Vec<usize> = (0..values.len()).filter(|&i| !values[i].is_finite()).collect();
-    if !bad.is_empty() {
-        if bad.len() == values.len() {
-            return Err(SurfaceError::invalid(format!(
-                "channel {} '{}' holds no finite value (an empty or aborted scan)",
-                ch.index, ch.name
-            )));
-        }
-        let finite: Vec<f64> = values.iter().copied().filter(|v| v.is_finite()).collect();
-        let mean = finite.iter().sum::<f64>() / finite.len() as f64;
-        let mut bad_rows: Vec<usize> = bad.iter().map(|i| i / cols).collect();
-        bad_rows.dedup();
-        for &i in &bad {
-            values[i] = mean;
-        }
+    let nan: Vec<usize> = (0..values.len()).filter(|&i| !values[i].is_finite()).collect();
+    if nan.len() == values.len() {
+        return Err(SurfaceError::invalid(format!(
+            "channel {} '{}' holds no finite value (an empty or aborted scan)",
+            ch.index, ch.name
+        )));
+    }
+    let clipped = saturated_samples(&values, cols);
+    let rows_of = |idx: &[usize]| {
+        let mut r: Vec<usize> = idx.iter().map(|i| i / cols).collect();
+        r.dedup();
+        r
+    };
+    if !nan.is_empty() {
+        let r = rows_of(&nan);
         warnings.push(format!(
             "{} of {} samples are not numbers (NaN/inf: an unfinished or saturated scan), in {} of {rows} rows \
              (first row {}, last row {}); they are filled with the mean height so levelling and spectra work \
              around them — crop them away (surface convert --crop) for clean results",
-            bad.len(),
+            nan.len(),
             values.len(),
-            bad_rows.len(),
-            bad_rows[0],
-            bad_rows[bad_rows.len() - 1]
+            r.len(),
+            r[0],
+            r[r.len() - 1]
         ));
+    }
+    if !clipped.is_empty() {
+        let r = rows_of(&clipped);
+        warnings.push(format!(
+            "{} samples in {} of {rows} rows (first row {}, last row {}) sit at the scan's extreme height in runs \
+             of {SATURATION_RUN} or more equal values: the z range saturated (the piezo hit its limit or the tip \
+             lost the surface), so they are bounds, not heights; they are filled with the mean height like \
+             missing samples so levelling and spectra work around them — crop them away (surface convert --crop) \
+             for clean results",
+            clipped.len(),
+            r.len(),
+            r[0],
+            r[r.len() - 1]
+        ));
+    }
+    let mut bad = nan;
+    bad.extend(&clipped);
+    if !bad.is_empty() {
+        bad.sort_unstable();
+        bad.dedup();
+        let mut is_bad = vec![false; values.len()];
+        for &i in &bad {
+            is_bad[i] = true;
+        }
+        let good: Vec<f64> = values.iter().zip(&is_bad).filter(|(_, &b)| !b).map(|(&v, _)| v).collect();
+        if good.is_empty() {
+            return Err(SurfaceError::invalid(format!(
+                "channel {} '{}' holds no height that is neither missing nor saturated",
+                ch.index, ch.name
+            )));
+        }
+        let mean = good.iter().sum::<f64>() / good.len() as f64;
+        for &i in &bad {
+            values[i] = mean;
+        }
     }
     let (dx, dy) = pick_pixel(file_pixel, side, opts, what)?;
     let heights = values.iter().map(|v| v * k).collect();
@@ -339,6 +374,42 @@ pub(crate) fn finish_channel(
         list.iter().map(|c| c.full_name()).collect::<Vec<_>>().join(", ")
     ));
     Ok(hf.with_meta(meta))
+}
+
+/// Shortest run of equal samples at the global extreme that counts as saturation. Measured heights carry noise,
+/// so eight equal neighbours at the very top or bottom of the range are the range's limit, not the surface.
+pub const SATURATION_RUN: usize = 8;
+
+/// Indices of saturated samples: runs of at least [`SATURATION_RUN`] equal values at the global maximum or
+/// minimum of the finite samples along a line, in lines where such runs cover at least a tenth of the line.
+fn saturated_samples(values: &[f64], cols: usize) -> Vec<usize> {
+    let (lo, hi) = values
+        .iter()
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+    if !(lo < hi) || cols < SATURATION_RUN {
+        return Vec::new();
+    }
+    let mut out = Vec::new();
+    for (r, line) in values.chunks(cols).enumerate() {
+        let mut in_line = Vec::new();
+        let mut j = 0;
+        while j < line.len() {
+            let v = line[j];
+            let mut k = j + 1;
+            while k < line.len() && line[k] == v {
+                k += 1;
+            }
+            if (v == lo || v == hi) && k - j >= SATURATION_RUN {
+                in_line.extend((j..k).map(|c| r * cols + c));
+            }
+            j = k;
+        }
+        if in_line.len() * 10 >= cols {
+            out.extend(in_line);
+        }
+    }
+    out
 }
 
 /// Where the sidecar of `path` is written: `FILE.EXT.json`.
