@@ -141,6 +141,8 @@ struct Layout {
     n_lambda: u32,
     energy_base: u32,
     irr_tex: u32,
+    /// The environment's directional lights in `tables` (6 floats each: direction, irradiance), NONE: none.
+    env_light_base: u32,
 }
 
 /// Output buffers for one image size (the benchmark's and the viewer's frame loop), used with the
@@ -369,6 +371,20 @@ impl<'g> GpuScene<'g> {
         lay.energy_base = tables.len() as u32;
         for v in [&energy.e0, &energy.e1, &energy.avg0, &energy.avg1] {
             tables.extend(v.iter().map(|&x| x as f32));
+        }
+
+        // The environment as directional lights (render::light::Environment::as_lights), for diffraction.
+        lay.env_light_base = NONE;
+        if !scene.environment_lights.is_empty() {
+            assert_eq!(
+                scene.environment_lights.len(),
+                iridis_render::light::ENVIRONMENT_LIGHTS,
+                "ENV_LIGHTS of scene.wgsl"
+            );
+            lay.env_light_base = tables.len() as u32;
+            for (d, e) in &scene.environment_lights {
+                tables.extend(d.iter().chain(e).map(|&x| x as f32));
+            }
         }
 
         // Textures (the environment map and its irradiance map last).
@@ -691,7 +707,7 @@ impl<'g> GpuScene<'g> {
         w.extend([l.n_spheres, l.sphere_base, l.n_planes, l.plane_base]);
         w.extend([l.n_lights, l.light_base, l.n_nodes, l.node_base]);
         w.extend([l.tri_base, l.mat_base, l.tex_base, l.sample_base]);
-        w.extend([l.n_lambda, l.energy_base, l.irr_tex, 0]);
+        w.extend([l.n_lambda, l.energy_base, l.irr_tex, l.env_light_base]);
         w.try_into().expect("the Params struct of scene.wgsl")
     }
 }

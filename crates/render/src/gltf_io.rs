@@ -484,6 +484,7 @@ pub fn scene_from_gltf(path: &Path) -> Result<crate::scene::Scene, RenderError> 
         camera: crate::camera::Camera::Perspective { position, forward, right, up, tan_half: (fov / 2.0).tan() },
         lights: vec![Light::Directional { direction: normalize([-0.5, 1.0, 0.7]), rgb: [1.0; 3] }],
         irradiance: environment.irradiance_map(),
+        environment_lights: environment.as_lights(),
         environment,
         environment_visible: true,
         meshes,

@@ -108,6 +108,13 @@ impl Environment {
     }
 }
 
+/// Number of directional lights that stand for the environment ([`Environment::as_lights`]); the GPU shader's
+/// `ENV_LIGHTS` is the same number.
+pub const ENVIRONMENT_LIGHTS: usize = 64;
+
+/// Equirectangular cells (columns, rows) into which the environment's radiance is averaged.
+pub const RADIANCE_CELLS: (usize, usize) = (128, 64);
+
 /// Size of the irradiance map (equirectangular, like an environment map; irradiance varies slowly).
 pub const IRRADIANCE_SIZE: [usize; 2] = [32, 16];
 
@@ -120,10 +127,87 @@ impl Environment {
     /// weights, so that a uniform environment gives exactly its radiance. `None` where the irradiance is the
     /// same for every normal (no environment, uniform).
     pub fn irradiance_map(&self) -> Option<Texture> {
-        let (cw, ch) = (128usize, 64usize);
+        if matches!(self, Environment::Uniform(_)) {
+            return None;
+        }
+        let cells = self.radiance_cells()?;
+        let (cw, ch) = RADIANCE_CELLS;
+        let dirs: Vec<(V3, f64)> = (0..cw * ch)
+            .map(|k| {
+                let (u, v) = (((k % cw) as f64 + 0.5) / cw as f64, ((k / cw) as f64 + 0.5) / ch as f64);
+                (equirect_dir(u, v, 0.0), (v * std::f64::consts::PI).sin())
+            })
+            .collect();
+        let [ow, oh] = IRRADIANCE_SIZE;
+        let mut data = Vec::with_capacity(ow * oh * 3);
+        for r in 0..oh {
+            for c in 0..ow {
+                let n = equirect_dir((c as f64 + 0.5) / ow as f64, (r as f64 + 0.5) / oh as f64, 0.0);
+                let (mut acc, mut wsum) = ([0.0; 3], 0.0);
+                for (k, (d, s)) in dirs.iter().enumerate() {
+                    let w = dot(n, *d).max(0.0) * s;
+                    acc = add(acc, mul(cells[k], w));
+                    wsum += w;
+                }
+                data.extend(mul(acc, 1.0 / wsum).map(|x| x as f32));
+            }
+        }
+        Some(Texture::Image {
+            width: ow,
+            height: oh,
+            channels: 3,
+            data,
+            kind: crate::texture::TexKind::Color,
+            name: "environment irradiance".into(),
+        })
+    }
+
+    /// The environment as [`ENVIRONMENT_LIGHTS`] directional lights, for the BRDFs that have no environment
+    /// integral of their own (diffraction, a rough film's diffuse lobe): `(direction, e)` where the directions
+    /// are a Fibonacci sphere (near-equal solid angles) and each carries the irradiance `E_k = ∫ L dω` over the
+    /// [`RADIANCE_CELLS`] cells nearest to it (its Voronoi cell), in the unit of the scene's lights: `e = E/π`,
+    /// the radiance a white Lambertian surface facing the light reflects (a light of `e` gives it `e cos θ`).
+    /// So `Σ_k π f(ω_k, ω_o) e_k cos θ_k` is a quadrature of the reflected radiance `∫ f L cos θ dω` that keeps
+    /// the environment's total power (`Σ e_k = ∫ L dω / π`; a uniform radiance 1 gives 4). Empty without an
+    /// environment. The same directions light the CPU and the GPU renderer.
+    pub fn as_lights(&self) -> Vec<(V3, Rgb)> {
+        let Some(cells) = self.radiance_cells() else { return Vec::new() };
+        let (cw, ch) = RADIANCE_CELLS;
+        let n = ENVIRONMENT_LIGHTS;
+        let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
+        let dirs: Vec<V3> = (0..n)
+            .map(|k| {
+                let y = 1.0 - (2 * k + 1) as f64 / n as f64;
+                let r = (1.0 - y * y).max(0.0).sqrt();
+                let phi = k as f64 * golden;
+                [r * phi.cos(), y, r * phi.sin()]
+            })
+            .collect();
+        let mut e = vec![[0.0f64; 3]; n];
+        let dphi = std::f64::consts::TAU / cw as f64;
+        for (k, cell) in cells.iter().enumerate() {
+            let (c, r) = (k % cw, k / cw);
+            let (u, v) = ((c as f64 + 0.5) / cw as f64, (r as f64 + 0.5) / ch as f64);
+            let d = equirect_dir(u, v, 0.0);
+            // The cell's solid angle: Δφ (cos θ₀ − cos θ₁) between its polar edges.
+            let (t0, t1) =
+                (r as f64 / ch as f64 * std::f64::consts::PI, (r + 1) as f64 / ch as f64 * std::f64::consts::PI);
+            let omega = dphi * (t0.cos() - t1.cos());
+            let nearest = (0..n).max_by(|&a, &b| dot(dirs[a], d).total_cmp(&dot(dirs[b], d))).unwrap_or(0);
+            e[nearest] = add(e[nearest], mul(*cell, omega / std::f64::consts::PI));
+        }
+        dirs.into_iter().zip(e).collect()
+    }
+
+    /// The radiance averaged into [`RADIANCE_CELLS`] equirectangular solid-angle cells (row 0 is +y, centre
+    /// column −z, no rotation): a map's texels box-filtered into them, a sky sampled at their centres, a
+    /// uniform radiance as it is. `None` without an environment.
+    fn radiance_cells(&self) -> Option<Vec<Rgb>> {
+        let (cw, ch) = RADIANCE_CELLS;
         let mut cells = vec![[0.0f64; 3]; cw * ch];
         match self {
-            Environment::None | Environment::Uniform(_) => return None,
+            Environment::None => return None,
+            Environment::Uniform(c) => cells.fill(*c),
             Environment::Sky { .. } => {
                 for r in 0..ch {
                     for c in 0..cw {
@@ -160,34 +244,7 @@ impl Environment {
                 }
             }
         }
-        let dirs: Vec<(V3, f64)> = (0..cw * ch)
-            .map(|k| {
-                let (u, v) = (((k % cw) as f64 + 0.5) / cw as f64, ((k / cw) as f64 + 0.5) / ch as f64);
-                (equirect_dir(u, v, 0.0), (v * std::f64::consts::PI).sin())
-            })
-            .collect();
-        let [ow, oh] = IRRADIANCE_SIZE;
-        let mut data = Vec::with_capacity(ow * oh * 3);
-        for r in 0..oh {
-            for c in 0..ow {
-                let n = equirect_dir((c as f64 + 0.5) / ow as f64, (r as f64 + 0.5) / oh as f64, 0.0);
-                let (mut acc, mut wsum) = ([0.0; 3], 0.0);
-                for (k, (d, s)) in dirs.iter().enumerate() {
-                    let w = dot(n, *d).max(0.0) * s;
-                    acc = add(acc, mul(cells[k], w));
-                    wsum += w;
-                }
-                data.extend(mul(acc, 1.0 / wsum).map(|x| x as f32));
-            }
-        }
-        Some(Texture::Image {
-            width: ow,
-            height: oh,
-            channels: 3,
-            data,
-            kind: crate::texture::TexKind::Color,
-            name: "environment irradiance".into(),
-        })
+        Some(cells)
     }
 
     /// `E(n)/π` for a unit normal, from [`Environment::irradiance_map`]'s map (`map`) or, without one, the

@@ -172,6 +172,13 @@ impl Scene {
             .collect()
     }
 
+    /// The environment's directional lights ([`Scene::environment_lights`]) above a hit's surface. Like the
+    /// irradiance map, they are not shadowed: the environment is light from far away, open sky.
+    fn environment_lights_at(&self, h: &Hit) -> impl Iterator<Item = (V3, Rgb)> + '_ {
+        let ng = h.ng;
+        self.environment_lights.iter().copied().filter(move |(wi, _)| dot(*wi, ng) > 0.0)
+    }
+
     fn color(&self, c: &ColorSource, uv: [f64; 2]) -> Rgb {
         c.at(uv, &self.textures)
     }
@@ -228,7 +235,8 @@ impl Scene {
                 let t = df.orientation.tangent(h, &self.textures);
                 let tex = self.color(&df.texture, h.uv);
                 let mut out = mul(tex, df.ambient);
-                for (wi, e) in self.lights_at(h) {
+                // Lights, then the environment as directional lights (Algorithm 4 for each).
+                for (wi, e) in self.lights_at(h).into_iter().chain(self.environment_lights_at(h)) {
                     out = add(out, df.shade_light(h, t, wi, wo, e, tex));
                 }
                 out
@@ -238,8 +246,10 @@ impl Scene {
                 let offset = f.offset_nm(h.uv, &self.textures);
                 let mut out = [0.0; 3];
                 let (r, t) = if f.rough.is_some() {
-                    // Eq. 3.20: the diffuse part π·k_d·cos θ_l per RU of irradiance, for every light.
-                    let lights = self.lights_at(h);
+                    // Eq. 3.20: the diffuse part π·k_d·cos θ_l per RU of irradiance, for every light and for
+                    // the environment as directional lights (the specular part follows the mirror ray below).
+                    let mut lights = self.lights_at(h);
+                    lights.extend(self.environment_lights_at(h));
                     let dirs: Vec<(f64, f64)> =
                         lights.iter().map(|(wi, _)| (dot(h.n, *wi), relative_azimuth(h.n, *wi, wo))).collect();
                     let (spec, diffuse) = f.rough_colors(cos, offset, &dirs).unwrap_or_default();

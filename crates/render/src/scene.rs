@@ -58,14 +58,18 @@ pub struct Scene {
     /// The environment's irradiance map ([`Environment::irradiance_map`]; `None` where it is uniform), made
     /// by the loaders; call [`Scene::update_irradiance`] after changing `environment`.
     pub irradiance: Option<Texture>,
+    /// The environment as directional lights ([`Environment::as_lights`]) for diffraction and rough films,
+    /// made with `irradiance`.
+    pub environment_lights: Vec<([f64; 3], [f64; 3])>,
     /// Notes for the user (normals computed, tangents generated, …).
     pub notes: Vec<String>,
 }
 
 impl Scene {
-    /// Recomputes [`Scene::irradiance`] from `environment`.
+    /// Recomputes [`Scene::irradiance`] and [`Scene::environment_lights`] from `environment`.
     pub fn update_irradiance(&mut self) {
         self.irradiance = self.environment.irradiance_map();
+        self.environment_lights = self.environment.as_lights();
     }
 
     /// Multiplies every length by `s` about the origin: objects, camera, point lights (whose irradiance at
@@ -547,10 +551,12 @@ pub fn parse_scene(text: &str, name: &str, base: &Path) -> Result<Scene, RenderE
     }
     let bvh = Bvh::build(&meshes);
     let irradiance = environment.irradiance_map();
+    let environment_lights = environment.as_lights();
     Ok(Scene {
         camera,
         lights,
         irradiance,
+        environment_lights,
         environment,
         environment_visible,
         meshes,

@@ -69,3 +69,37 @@ fn equirect_environment_orientation_and_refusals() {
     let e = parse_scene(&text("sky.png"), "env.toml", dir.path()).unwrap_err().to_string();
     assert!(e.contains("linear HDR"), "{e}");
 }
+
+/// The environment as directional lights (for diffraction and rough films), in the lights' unit `E/π`: they
+/// add up to the environment's power `∫ L dω / π` (4 for a uniform radiance 1), and as a quadrature of a
+/// Lambertian surface's reflected radiance `∫ L cos θ dω / π` they give the closed form 1 for a uniform
+/// environment, and the irradiance map's value for a sky, at every normal.
+#[test]
+fn environment_lights_integrate_a_lambertian_surface() {
+    use iridis_render::light::{Environment, ENVIRONMENT_LIGHTS};
+    let uniform = Environment::Uniform([1.0, 1.0, 1.0]).as_lights();
+    assert_eq!(uniform.len(), ENVIRONMENT_LIGHTS);
+    let power: f64 = uniform.iter().map(|(_, e)| e[0]).sum();
+    assert!((power - 4.0).abs() < 1e-9, "Σ e = {power}");
+    assert!(Environment::None.as_lights().is_empty());
+    let sky = Environment::Sky { zenith: [0.2, 0.4, 0.9], horizon: [0.9, 0.9, 0.9], ground: [0.1, 0.1, 0.1] };
+    let (sky_lights, map) = (sky.as_lights(), sky.irradiance_map());
+    let lambert = |lights: &[([f64; 3], [f64; 3])], n: [f64; 3], c: usize| -> f64 {
+        lights.iter().map(|(d, e)| e[c] * (d[0] * n[0] + d[1] * n[1] + d[2] * n[2]).max(0.0)).sum::<f64>()
+    };
+    let (mut worst_uniform, mut worst_sky) = (0.0f64, 0.0f64);
+    for i in 0..40 {
+        // Normals spread over the sphere (a spiral), none on a quadrature direction by construction.
+        let y = 1.0 - (2 * i + 1) as f64 / 40.0;
+        let (r, phi) = ((1.0 - y * y).sqrt(), 2.1 * i as f64 + 0.3);
+        let n = [r * phi.cos(), y, r * phi.sin()];
+        worst_uniform = worst_uniform.max((lambert(&uniform, n, 0) - 1.0).abs());
+        let expect = sky.irradiance(map.as_ref(), n);
+        for c in 0..3 {
+            worst_sky = worst_sky.max((lambert(&sky_lights, n, c) - expect[c]).abs() / expect[c]);
+        }
+    }
+    eprintln!("64-direction quadrature: uniform |err| ≤ {worst_uniform:.4}, sky relative ≤ {worst_sky:.4}");
+    assert!(worst_uniform < 0.03, "uniform environment: Lambertian radiance off by {worst_uniform}");
+    assert!(worst_sky < 0.05, "sky: off the irradiance map by {worst_sky}");
+}

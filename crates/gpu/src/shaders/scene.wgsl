@@ -45,7 +45,7 @@ struct Params {
     n_lambda: u32,
     energy_base: u32,      // the GGX energy table in `tables` (render::energy): E_0, E_1, their averages
     irr_tex: u32,          // the environment's irradiance map (a texture), NONE: uniform
-    pad2: u32,
+    env_light_base: u32,   // the environment as ENV_LIGHTS directional lights in `tables`, NONE: none
 }
 
 @group(0) @binding(0) var<uniform> P: Params;
@@ -66,6 +66,8 @@ const PI: f32 = 3.141592653589793;
 const TAU: f32 = 6.283185307179586;
 const FAR: f32 = 3.0e38;
 const NONE: u32 = 0xffffffffu;
+// render::light::ENVIRONMENT_LIGHTS: directions and irradiances standing for the environment (diffraction).
+const ENV_LIGHTS: u32 = 64u;
 
 fn word(v: f32) -> u32 {
     return bitcast<u32>(v);
@@ -892,6 +894,21 @@ fn microfacet_at(r: u32) -> Microfacet {
     return Microfacet(scene[r], p.x, p.y, p.z);
 }
 
+// Algorithm 4 for one light (render::material::Diffraction::shade_light):
+// (1 - w_d) c_diffraction + (1 - alpha) c_texture + w_d c_texture, k = [scale_ru, w_diffuse, ambient, fresnel_n].
+fn diffraction_light(table: Table, k: vec4<f32>, tex: vec3<f32>, t: vec3<f32>, b: vec3<f32>, n: vec3<f32>,
+                     lo: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>, e: vec3<f32>) -> vec3<f32> {
+    let li = vec3<f32>(dot(wi, t), dot(wi, b), dot(wi, n));
+    if (li.z <= 0.0 || lo.z <= 0.0) {
+        return vec3<f32>(0.0);
+    }
+    let c_diff = to_rgb(lookup_xyz(table, li, lo)) * e * k.x;
+    let hv = safe_normalize(wi + wo);
+    let alpha = min(abs(schlick(k.w, dot(wi, hv))), 1.0);
+    let c_tex = tex * e * li.z;
+    return c_diff * (1.0 - k.y) + c_tex * (1.0 - alpha) + c_tex * k.y;
+}
+
 fn shade(h: Hit, d: vec3<f32>, depth: u32, weight: f32, thr: vec3<f32>) {
     let wo = -d;
     let r = P.mat_base + 8u * h.material;
@@ -932,14 +949,17 @@ fn shade(h: Hit, d: vec3<f32>, depth: u32, weight: f32, thr: vec3<f32>) {
         for (var i = 0u; i < P.n_lights; i = i + 1u) {
             let l = arrive(i, h.p);
             if (dot(l.wi, h.ng) > 0.0 && !occluded(o, l.wi, l.dist)) {
-                // Algorithm 4: (1 - w_d) c_diffraction + (1 - alpha) c_texture + w_d c_texture.
-                let li = vec3<f32>(dot(l.wi, t), dot(l.wi, b), dot(l.wi, n));
-                if (li.z > 0.0 && lo.z > 0.0) {
-                    let c_diff = to_rgb(lookup_xyz(table, li, lo)) * l.e * k.x;
-                    let hv = safe_normalize(l.wi + wo);
-                    let alpha = min(abs(schlick(k.w, dot(l.wi, hv))), 1.0);
-                    let c_tex = tex * l.e * li.z;
-                    out = out + c_diff * (1.0 - k.y) + c_tex * (1.0 - alpha) + c_tex * k.y;
+                out = out + diffraction_light(table, k, tex, t, b, n, lo, l.wi, wo, l.e);
+            }
+        }
+        // The environment as directional lights, unshadowed like the irradiance map (render.rs).
+        if (P.env_light_base != NONE) {
+            for (var i = 0u; i < ENV_LIGHTS; i = i + 1u) {
+                let q = P.env_light_base + 6u * i;
+                let wi = vec3<f32>(tables[q], tables[q + 1u], tables[q + 2u]);
+                if (dot(wi, h.ng) > 0.0) {
+                    let e = vec3<f32>(tables[q + 3u], tables[q + 4u], tables[q + 5u]);
+                    out = out + diffraction_light(table, k, tex, t, b, n, lo, wi, wo, e);
                 }
             }
         }
