@@ -732,7 +732,8 @@ fn push_lights(rec: &mut Records, lights: &[Light]) {
 
 fn push_microfacet(rec: &mut Records, m: &Microfacet) {
     rec.color(&m.color);
-    rec.push([m.roughness as f32, m.metallic as f32, m.ior as f32, 0.0]);
+    let mr = m.metallic_roughness.map_or(NONE, |i| i as u32);
+    rec.push([m.roughness as f32, m.metallic as f32, m.ior as f32, f32::from_bits(mr)]);
 }
 
 impl SceneFrame {

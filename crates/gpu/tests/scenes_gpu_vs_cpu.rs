@@ -352,3 +352,21 @@ fn a_full_ray_stack_is_reported_with_its_depth() {
     g.render(4, 4, 1, &|_| {}).unwrap();
     assert_eq!(g.stack_overflow(), None);
 }
+
+#[path = "../../render/tests/gltf_fixtures/mod.rs"]
+mod gltf_fixtures;
+
+/// glTF's metallicRoughnessTexture on the GPU: a quad whose left half is a smooth metal and right half a rough
+/// half-metal (two texels), under the glTF default light and sky, as on the CPU.
+#[test]
+fn a_metallic_roughness_texture_matches_the_cpu() {
+    let _serial = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+    let Some(gpu) = gpu() else { return };
+    let dir = tempfile::tempdir().unwrap();
+    let path = gltf_fixtures::write_metallic_roughness_quad(dir.path(), &[[0, 40, 255], [0, 255, 128]]);
+    let scene = load_scene(&path).unwrap();
+    let (mean, p99, off, lit) = compare(&gpu, &scene, "metallic-roughness quad", 72);
+    eprintln!("metallic-roughness quad: mean ΔE00 {mean:.3}, p99 {p99:.3}, > 8 levels {:.3} %", off * 100.0);
+    assert!(lit, "the CPU image is nearly black");
+    assert!(mean < 1.0 && p99 < 3.0 && off < 0.01, "mean ΔE00 {mean:.3}, p99 {p99:.3}, {off:.4}");
+}

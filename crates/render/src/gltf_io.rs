@@ -7,7 +7,7 @@
 //! `d = thicknessMaximum` without a texture. The film's reflectance replaces the base's specular Fresnel
 //! (render.rs, `shade_film_over_base`) and `iridescenceFactor` mixes it with the base alone. Textures:
 //! `baseColorTexture` × `baseColorFactor`, `texCoord` and `KHR_texture_transform` (applied to the mesh's
-//! UVs), the thickness texture's G channel; what is not read (metallic-roughness, normal, occlusion and
+//! UVs), the thickness texture's G channel, the metallic-roughness texture (G, B); what is not read (normal, occlusion and
 //! emissive textures, samplers other than repeat/linear, `iridescenceTexture`) is named in a note.
 
 use std::path::Path;
@@ -133,17 +133,38 @@ pub fn load_gltf(
         if !(ior >= 1.0 && ior.is_finite()) {
             return Err(bad(path, format!("material \"{name}\": KHR_materials_ior ior = {ior}; it must be ≥ 1")));
         }
+        // metallicRoughnessTexture: G scales the roughness, B the metallic factor, read linearly (glTF 2.0,
+        // sec. 3.9.2); it shares the material's texture coordinates.
+        let metallic_roughness = match pbr.metallic_roughness_texture() {
+            Some(info) => {
+                textures.push(Texture::from_image(
+                    image_of(info.texture())?,
+                    TexKind::Data,
+                    &format!("{name} metallic-roughness"),
+                )?);
+                check_sampler(&name, "metallicRoughnessTexture", &info.texture(), notes);
+                let own = UvMap::of(info.tex_coord(), info.extensions());
+                match &uv_map {
+                    None => uv_map = Some(own),
+                    Some(u) if *u != own => notes.push(format!(
+                        "material \"{name}\": metallicRoughnessTexture reads other texture coordinates (texCoord / \
+                         KHR_texture_transform) than baseColorTexture; both use the base colour's"
+                    )),
+                    Some(_) => {}
+                }
+                Some(textures.len() - 1)
+            }
+            None => None,
+        };
         let base = Microfacet {
             color,
             roughness: pbr.roughness_factor().clamp(0.0, 1.0) as f64,
             metallic: pbr.metallic_factor().clamp(0.0, 1.0) as f64,
             ior,
+            metallic_roughness,
         };
         // What the renderer does not read, named once per material.
         let mut ignored = Vec::new();
-        if pbr.metallic_roughness_texture().is_some() {
-            ignored.push("metallicRoughnessTexture (the factors apply everywhere)");
-        }
         if m.normal_texture().is_some() {
             ignored.push("normalTexture (the mesh normals are used)");
         }
@@ -255,6 +276,7 @@ pub fn load_gltf(
                 roughness: 0.5,
                 metallic: 0.0,
                 ior: 1.5,
+                metallic_roughness: None,
             }));
             material_names.push("gltf default".into());
             materials.len() - 1

@@ -346,9 +346,29 @@ pub struct Microfacet {
     pub metallic: f64,
     /// Index of refraction of the dielectric coat (F_0 = ((n − 1)/(n + 1))²).
     pub ior: f64,
+    /// glTF's metallicRoughnessTexture (a [`crate::texture::TexKind::Data`] texture): its G channel multiplies
+    /// `roughness`, its B channel `metallic` ([`Microfacet::at`]).
+    pub metallic_roughness: Option<usize>,
 }
 
 impl Microfacet {
+    /// The surface at texture coordinate `uv`: roughness × G and metallic × B of the metallic-roughness
+    /// texture, read linearly (glTF 2.0, sec. 3.9.2); itself where there is none.
+    pub fn at(&self, uv: [f64; 2], textures: &[crate::texture::Texture]) -> Microfacet {
+        match self.metallic_roughness.and_then(|i| textures.get(i)) {
+            Some(t) => {
+                let s = t.sample(uv);
+                Microfacet {
+                    roughness: (self.roughness * s[1]).clamp(0.0, 1.0),
+                    metallic: (self.metallic * s[2]).clamp(0.0, 1.0),
+                    metallic_roughness: None,
+                    ..*self
+                }
+            }
+            None => *self,
+        }
+    }
+
     /// Schlick `F_0 = ((n − 1)/(n + 1))²` of the dielectric coat. An index-matched coat (`ior = 1`, the films'
     /// Lambertian base) is no interface at all: no specular, a plain Lambertian.
     fn coat_f0(&self) -> Option<f64> {
@@ -524,7 +544,13 @@ mod tests {
             (0.8, 0.5, [0.5, 0.6, 0.7]),
         ];
         for (rough, metallic, albedo) in cases {
-            let m = Microfacet { color: ColorSource::Const(albedo), roughness: rough, metallic, ior: 1.5 };
+            let m = Microfacet {
+                color: ColorSource::Const(albedo),
+                roughness: rough,
+                metallic,
+                ior: 1.5,
+                metallic_roughness: None,
+            };
             for mu_o in [1.0f64, 0.6, 0.25] {
                 let wo = [(1.0 - mu_o * mu_o).sqrt(), 0.0, mu_o];
                 let (nt, np) = (900, 360);
@@ -556,11 +582,23 @@ mod tests {
 
     #[test]
     fn microfacet_is_bounded_and_lambert_like_when_rough() {
-        let m = Microfacet { color: ColorSource::Const([0.5; 3]), roughness: 1.0, metallic: 0.0, ior: 1.5 };
+        let m = Microfacet {
+            color: ColorSource::Const([0.5; 3]),
+            roughness: 1.0,
+            metallic: 0.0,
+            ior: 1.5,
+            metallic_roughness: None,
+        };
         let n = [0.0, 0.0, 1.0];
         let r = m.reflect(n, n, n, [0.5; 3]);
         assert!(r[0] > 0.45 && r[0] < 0.6, "{r:?}");
-        let gold = Microfacet { color: ColorSource::Const([1.0, 0.8, 0.3]), roughness: 0.2, metallic: 1.0, ior: 1.5 };
+        let gold = Microfacet {
+            color: ColorSource::Const([1.0, 0.8, 0.3]),
+            roughness: 0.2,
+            metallic: 1.0,
+            ior: 1.5,
+            metallic_roughness: None,
+        };
         let f = gold.mirror_fresnel(1.0, [1.0, 0.8, 0.3]);
         assert_eq!(f, [1.0, 0.8, 0.3]);
     }

@@ -230,7 +230,7 @@ impl Scene {
                 }
                 out
             }
-            Material::Microfacet(m) => self.shade_microfacet(m, h, wo, depth, weight, true),
+            Material::Microfacet(m) => self.shade_microfacet(&m.at(h.uv, &self.textures), h, wo, depth, weight, true),
             Material::Diffraction(df) => {
                 let t = df.orientation.tangent(h, &self.textures);
                 let tex = self.color(&df.texture, h.uv);
@@ -261,7 +261,8 @@ impl Scene {
                     f.colors(cos, offset)
                 };
                 if let Some(base) = &f.base {
-                    return add(out, self.shade_film_over_base(f, base, h, wo, r, offset, depth, weight));
+                    let base = base.at(h.uv, &self.textures);
+                    return add(out, self.shade_film_over_base(f, &base, h, wo, r, offset, depth, weight));
                 }
                 let r_rgb = mul(r.to_linear_srgb(), f.factor);
                 let w_r = weight * r_rgb.iter().fold(0.0f64, |a, &b| a.max(b));

@@ -850,6 +850,7 @@ fn build_material(
             )?,
             metallic: unit(d.metallic, "metallic", 0.0)?,
             ior: d.ior.unwrap_or(1.5),
+            metallic_roughness: None,
         })),
         "diffraction" => {
             let table = d.table.as_ref().ok_or_else(|| {
@@ -925,9 +926,13 @@ fn build_material(
             let base = match &d.base {
                 None => None,
                 Some(b) => match mat_index.get(b).map(|&i| &built[i]) {
-                    Some(Material::Lambert { color }) => {
-                        Some(Microfacet { color: *color, roughness: 1.0, metallic: 0.0, ior: 1.0 })
-                    }
+                    Some(Material::Lambert { color }) => Some(Microfacet {
+                        color: *color,
+                        roughness: 1.0,
+                        metallic: 0.0,
+                        ior: 1.0,
+                        metallic_roughness: None,
+                    }),
                     Some(Material::Microfacet(m)) => Some(*m),
                     _ => {
                         return Err(ctx.err(

@@ -14,6 +14,8 @@ pub enum TexKind {
     Grey,
     /// A direction in tangent space, `xy = 2·rg − 1` (like a normal map), for orientation fields.
     Vector,
+    /// Linear RGB data, read as stored (glTF's metallic-roughness texture: G roughness, B metallic).
+    Data,
 }
 
 impl TexKind {
@@ -30,6 +32,7 @@ impl TexKind {
             TexKind::Color => "color",
             TexKind::Grey => "grey",
             TexKind::Vector => "vector",
+            TexKind::Data => "data",
         }
     }
 }
@@ -102,6 +105,7 @@ impl Texture {
                     img.to_luma32f().into_raw()
                 }
             }
+            TexKind::Data => img.to_rgb32f().into_raw(),
             TexKind::Vector => {
                 if !has_color {
                     return Err(RenderError::Input(format!(

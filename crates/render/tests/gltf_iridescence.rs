@@ -105,3 +105,44 @@ fn the_gltf_texture_set_ior_and_metallic_base_are_read() {
     // What is not read is named.
     assert!(scene.notes.iter().any(|n| n.contains("normalTexture")), "{:?}", scene.notes);
 }
+
+mod gltf_fixtures;
+
+/// glTF's metallicRoughnessTexture: G scales the roughness and B the metallic factor, read linearly (an 8-bit
+/// 51 is 0.2, not the sRGB-decoded 0.033); a uniform texture renders exactly as the constant material with
+/// those products.
+#[test]
+fn the_metallic_roughness_texture_scales_roughness_and_metallic() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = gltf_fixtures::write_metallic_roughness_quad(dir.path(), &[[0, 51, 255], [0, 255, 128]]);
+    let scene = iridis_render::load_scene(&path).unwrap();
+    let Material::Microfacet(m) = &scene.materials[0] else { panic!("{:?}", scene.materials[0]) };
+    assert!(m.metallic_roughness.is_some());
+    assert!(!scene.notes.iter().any(|n| n.contains("metallicRoughnessTexture")), "{:?}", scene.notes);
+    // Texel centres of a 2 × 1 texture: u = 0.25 and 0.75.
+    let left = m.at([0.25, 0.5], &scene.textures);
+    let right = m.at([0.75, 0.5], &scene.textures);
+    assert!((left.roughness - 0.8 * 0.2).abs() < 1e-6 && (left.metallic - 1.0).abs() < 1e-6, "{left:?}");
+    assert!((right.roughness - 0.8).abs() < 1e-6 && (right.metallic - 128.0 / 255.0).abs() < 1e-6, "{right:?}");
+
+    let uniform = gltf_fixtures::write_metallic_roughness_quad(dir.path(), &[[0, 51, 128]]);
+    let textured = iridis_render::load_scene(&uniform).unwrap();
+    let mut constant = iridis_render::load_scene(&uniform).unwrap();
+    let Material::Microfacet(c) = &mut constant.materials[0] else { unreachable!() };
+    c.roughness = 0.8 * 0.2;
+    c.metallic = 128.0 / 255.0;
+    c.metallic_roughness = None;
+    let (a, b) =
+        (iridis_render::render(&textured, 24, 24, 1, &|_| {}), iridis_render::render(&constant, 24, 24, 1, &|_| {}));
+    let worst =
+        a.data.iter().zip(&b.data).flat_map(|(p, q)| (0..3).map(move |k| (p[k] - q[k]).abs())).fold(0.0f32, f32::max);
+    assert!(worst < 1e-6, "textured vs constant: {worst}");
+    // And the texture matters: the untextured factors (roughness 0.8, metallic 1) render otherwise.
+    let mut factors = iridis_render::load_scene(&uniform).unwrap();
+    let Material::Microfacet(c) = &mut factors.materials[0] else { unreachable!() };
+    c.metallic_roughness = None;
+    let f = iridis_render::render(&factors, 24, 24, 1, &|_| {});
+    let diff =
+        a.data.iter().zip(&f.data).flat_map(|(p, q)| (0..3).map(move |k| (p[k] - q[k]).abs())).fold(0.0f32, f32::max);
+    assert!(diff > 0.05, "the texture changed nothing: {diff}");
+}

@@ -889,9 +889,16 @@ fn shade_microfacet(m: Microfacet, h: Hit, wo: vec3<f32>, depth: u32, weight: f3
     radiance = radiance + thr * out;
 }
 
-fn microfacet_at(r: u32) -> Microfacet {
+// The microfacet record at r, at texture coordinate uv: the metallic-roughness texture (w, NONE: none)
+// scales roughness by its G and metallic by its B channel (render::material::Microfacet::at).
+fn microfacet_at(r: u32, uv: vec2<f32>) -> Microfacet {
     let p = scene[r + 1u];
-    return Microfacet(scene[r], p.x, p.y, p.z);
+    let mr = word(p.w);
+    if (mr == NONE) {
+        return Microfacet(scene[r], p.x, p.y, p.z);
+    }
+    let s = sample_texture(mr, uv, false);
+    return Microfacet(scene[r], clamp(p.x * s.y, 0.0, 1.0), clamp(p.y * s.z, 0.0, 1.0), p.z);
 }
 
 // Algorithm 4 for one light (render::material::Diffraction::shade_light):
@@ -927,7 +934,7 @@ fn shade(h: Hit, d: vec3<f32>, depth: u32, weight: f32, thr: vec3<f32>) {
         return;
     }
     if (kind == 1u) {
-        shade_microfacet(microfacet_at(r + 1u), h, wo, depth, weight, true, thr);
+        shade_microfacet(microfacet_at(r + 1u, h.uv), h, wo, depth, weight, true, thr);
         return;
     }
     if (kind == 2u) {
@@ -981,7 +988,7 @@ fn shade(h: Hit, d: vec3<f32>, depth: u32, weight: f32, thr: vec3<f32>) {
     let film = Film(word(fw.x), P.n_lambda, word(fw.y), word(fw.z));
     let c = film_xyz(film, sqrt(max(1.0 - cosv * cosv, 0.0)), cosv, offset);
     if ((flags & 4u) != 0u) {
-        film_over_base(film, microfacet_at(r + 3u), h, wo, c.r, offset, factor, depth, weight, thr);
+        film_over_base(film, microfacet_at(r + 3u, h.uv), h, wo, c.r, offset, factor, depth, weight, thr);
         return;
     }
     let r_rgb = to_rgb(c.r) * factor;
