@@ -129,8 +129,7 @@ fn unidentifiable_parameters_are_reported() {
     let opt = FitOptions { grid: 1, ..FitOptions::default() };
     let mut rng = StdRng::seed_from_u64(5);
     let data = synthetic(&t, &[120.0, 90.0], &wl, &opt, 0.002, &mut rng);
-    match fit(&t, &data, &opt) {
-        Err(e) => assert!(e.to_string().contains("do not determine"), "{e}"),
-        Ok(r) => assert!(r.correlation[0][1] < -0.999, "{r:?}"),
-    }
+    // With exact derivatives the two columns of J are equal to rounding: refused, not a ±∞ correlation.
+    let e = fit(&t, &data, &opt).unwrap_err().to_string();
+    assert!(e.contains("do not determine"), "{e}");
 }
