@@ -322,7 +322,9 @@ fn incoherent_slide_and_psi_delta_in_spectrum() {
         "--json",
     ]);
     assert!((v["R"][0].as_f64().unwrap() - 0.08 / 1.04).abs() < 1e-12, "{}", v["R"][0]);
-    assert!(v["psi_deg"].is_null(), "no ψ/Δ for an incoherent stack");
+    // Through an incoherent layer Δ is undefined (null) and tan ψ = √(R_p/R_s): at normal incidence R_p = R_s.
+    assert!(v["delta_deg"].is_null(), "no Δ for an incoherent stack");
+    assert!((v["psi_deg"][0].as_f64().unwrap() - 45.0).abs() < 1e-12, "{}", v["psi_deg"]);
     // ψ/Δ of a bare n = 1.5 substrate at 60° (beyond Brewster: Δ = 180°), tan ψ = |r_p/r_s| from Fresnel.
     let v = json_of(&[
         "thinfilm",
@@ -460,4 +462,84 @@ fn fit_recovers_the_scipy_optimum_and_refuses_bad_input() {
     assert_fails(&["thinfilm", "fit", "/nonexistent.csv", "--stack", stack], &["cannot read /nonexistent.csv"]);
     assert_fails(&["thinfilm", "fit", csv, "--stack", stack, "--quantity", "X"], &["use R, T or psi-delta"]);
     assert_fails(&["thinfilm", "spectrum", "--stack", "inc:air | BK7 1mm | air"], &["semi-infinite", "column 1"]);
+}
+
+#[test]
+fn fit_weights_are_inverse_variances() {
+    // --weights w (w = 1/σ²) as a number, a column of the CSV and a separate file: the same fit as --sigma.
+    let csv = concat!(env!("CARGO_MANIFEST_DIR"), "/../filmfit/tests/fixtures/scipy_fit.csv");
+    let stack = "air | cauchy:{A=1.5:1.3..1.7},{B=0.004:0..0.02} {d=330nm:100nm..600nm} | n=3.88+0.02i";
+    let fit = |extra: &[&str]| {
+        let mut args = vec!["thinfilm", "fit", csv, "--stack", stack, "--grid", "1", "--json"];
+        args.extend_from_slice(extra);
+        json_of(&args)
+    };
+    let by_sigma = fit(&["--sigma", "0.002"]);
+    let text = std::fs::read_to_string(csv).unwrap();
+    let dir = temp_dir();
+    // The same data with a weight column (σ = 0.002 → w = 250000) and as a separate weights file.
+    let mut with_w = String::new();
+    let mut file_w = String::from("wavelength_nm,w\n");
+    for line in text.lines() {
+        if line.starts_with('#') || line.trim().is_empty() {
+            with_w.push_str(line);
+        } else if line.starts_with("wavelength") {
+            with_w.push_str(&format!("{line},w"));
+        } else {
+            with_w.push_str(&format!("{line},250000"));
+            file_w.push_str(&format!("{},250000\n", line.split(',').next().unwrap()));
+        }
+        with_w.push('\n');
+    }
+    let col_csv = dir.join("weighted.csv");
+    std::fs::write(&col_csv, &with_w).unwrap();
+    let w_file = dir.join("weights.csv");
+    std::fs::write(&w_file, &file_w).unwrap();
+    let mut args = vec!["thinfilm", "fit", col_csv.to_str().unwrap(), "--stack", stack, "--grid", "1", "--json"];
+    args.extend(["--weights", "w"]);
+    let by_column = json_of(&args);
+    for v in [fit(&["--weights", "250000"]), by_column, fit(&["--weights", w_file.to_str().unwrap()])] {
+        for k in 0..3 {
+            let (a, b) = (v["values"][k].as_f64().unwrap(), by_sigma["values"][k].as_f64().unwrap());
+            let (sa, sb) = (v["sigma"][k].as_f64().unwrap(), by_sigma["sigma"][k].as_f64().unwrap());
+            assert!((a - b).abs() < 1e-6 * sb && (sa / sb - 1.0).abs() < 1e-9, "{v}");
+        }
+        assert!(v["sigma_given"].as_bool().unwrap());
+        assert!((v["chi2"].as_f64().unwrap() - by_sigma["chi2"].as_f64().unwrap()).abs() < 1e-6);
+    }
+    // Bad weights: a clear message each.
+    assert_fails(
+        &["thinfilm", "fit", csv, "--stack", stack, "--weights", "0"],
+        &["--weights 0", "must be a finite number > 0"],
+    );
+    assert_fails(
+        &["thinfilm", "fit", csv, "--stack", stack, "--weights", "nocolumn"],
+        &["--weights 'nocolumn' is neither a number, a column of", "nor a file"],
+    );
+    assert_fails(
+        &["thinfilm", "fit", csv, "--stack", stack, "--weights", "1", "--sigma", "1"],
+        &["cannot be used with"],
+    );
+    std::fs::write(&w_file, "wavelength_nm,w\n400,1\n").unwrap();
+    assert_fails(
+        &["thinfilm", "fit", csv, "--stack", stack, "--weights", w_file.to_str().unwrap()],
+        &["1 rows of weights for 401 measured wavelengths"],
+    );
+    // ψ/Δ cannot be fitted through an incoherent layer: Δ is undefined there.
+    let ell = dir.join("ellips.csv");
+    std::fs::write(&ell, "wavelength_nm,psi,delta\n400,30,100\n500,31,101\n600,32,102\n").unwrap();
+    assert_fails(
+        &[
+            "thinfilm",
+            "fit",
+            ell.to_str().unwrap(),
+            "--stack",
+            "air | n=2.1 {d=150nm:50nm..400nm} | inc:BK7 1mm | air",
+            "--quantity",
+            "psi-delta",
+            "--angle",
+            "70deg",
+        ],
+        &["has no Δ", "incoherent"],
+    );
 }

@@ -8,7 +8,7 @@ use std::time::Instant;
 
 use anyhow::{bail, Context, Result};
 use clap::Args as ClapArgs;
-use iridis_filmfit::{fit, FitOptions, Measured, Quantity, Template};
+use iridis_filmfit::{fit, FitOptions, Measured, Quantity, Spread, Template};
 use iridis_plot::{LinePlot, Series};
 use iridis_thinfilm::Stack;
 use serde_json::json;
@@ -56,8 +56,13 @@ pub struct FitArgs {
     pub quantity: String,
     /// 1σ measurement uncertainty: a number (same for every point) or the name of a CSV column (for
     /// psi-delta two names, "spsi,sdelta"). The weights are 1/σ². Without it σ is estimated from the scatter.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "weights")]
     pub sigma: Option<String>,
+    /// Weights w = 1/σ² of the measured values: a number (the same for every point), the name of a CSV
+    /// column ("w_psi,w_delta" for psi-delta), or a separate CSV file with wavelength_nm and w (w_psi and
+    /// w_delta) in the measurement's rows. Equivalent to --sigma 1/√w.
+    #[arg(long)]
+    pub weights: Option<String>,
     /// Grid points per thickness range for the multi-start search (0: automatic, about one per 10 nm;
     /// 1: a single local fit from the start values).
     #[arg(long, default_value_t = 0)]
@@ -185,18 +190,7 @@ pub fn fit_cmd(a: FitArgs) -> Result<()> {
     let template = Template::parse(&a.stack)?;
     let text = std::fs::read_to_string(&a.measured).with_context(|| format!("cannot read {}", a.measured.display()))?;
     let shown = a.measured.display().to_string();
-    let (column, constant) = match &a.sigma {
-        None => (None, None),
-        Some(s) => match s.trim().parse::<f64>() {
-            Ok(v) if v.is_finite() && v > 0.0 => (None, Some(v)),
-            Ok(v) => bail!("--sigma {v}: an uncertainty must be a positive number (or a column name)"),
-            Err(_) => (Some(s.as_str()), None),
-        },
-    };
-    let mut data = Measured::from_csv(&text, &shown, quantity, column)?;
-    if let Some(v) = constant {
-        data.sigma = Some(vec![v; data.values.len()]);
-    }
+    let data = read_measured(&text, &shown, quantity, &a)?;
     if let Some(w) = iridis_thinfilm::sampling::check(&template.base, a.angle, &sorted(&data.wavelength_nm)) {
         eprintln!("warning: the measured wavelengths: {}", w.message);
     }
@@ -267,7 +261,7 @@ pub fn fit_cmd(a: FitArgs) -> Result<()> {
     crate::outln!("χ² = {:.4} for {} degrees of freedom (χ²/dof = {:.4})", r.chi2, r.dof, r.reduced_chi2)?;
     if !r.sigma_given {
         crate::outln!(
-            "no --sigma: χ² uses σ = 1 and the uncertainties are scaled by √(χ²/dof), i.e. σ is estimated from the scatter"
+            "no --sigma or --weights: χ² uses σ = 1 and the uncertainties are scaled by √(χ²/dof), i.e. σ is estimated from the scatter"
         )?;
     }
     if params.len() > 1 {
@@ -290,6 +284,39 @@ pub fn fit_cmd(a: FitArgs) -> Result<()> {
         crate::outln!("wrote {}", p.display())?;
     }
     Ok(())
+}
+
+/// The measurement with its uncertainties from `--sigma` or `--weights` (a number, column names of the
+/// measured CSV, or — for `--weights` — a separate CSV file).
+fn read_measured(text: &str, shown: &str, quantity: Quantity, a: &FitArgs) -> Result<Measured> {
+    let (arg, kind) = match (&a.sigma, &a.weights) {
+        (Some(s), _) => (s.trim(), Spread::Sigma),
+        (None, Some(w)) => (w.trim(), Spread::Weight),
+        (None, None) => return Ok(Measured::from_csv(text, shown, quantity, None)?),
+    };
+    let flag = if kind == Spread::Sigma { "--sigma" } else { "--weights" };
+    if let Ok(v) = arg.parse::<f64>() {
+        let sigma = kind.sigma(v).map_err(|m| anyhow::anyhow!("{flag} {arg}: {m}"))?;
+        let mut data = Measured::from_csv(text, shown, quantity, None)?;
+        data.sigma = Some(vec![sigma; data.values.len()]);
+        return Ok(data);
+    }
+    let header = iridis_filmfit::data::header(text);
+    let is_column = arg.split(',').all(|c| header.iter().any(|h| h.eq_ignore_ascii_case(c.trim())));
+    if kind == Spread::Weight && !is_column {
+        let path = std::path::Path::new(arg);
+        if !path.is_file() {
+            bail!(
+                "--weights '{arg}' is neither a number, a column of {shown} (its columns: {}), nor a file",
+                header.join(", ")
+            );
+        }
+        let wtext = std::fs::read_to_string(path).with_context(|| format!("cannot read {arg}"))?;
+        let mut data = Measured::from_csv(text, shown, quantity, None)?;
+        data.set_weights_from_csv(&wtext, arg, quantity)?;
+        return Ok(data);
+    }
+    Ok(Measured::from_csv_with(text, shown, quantity, Some((arg, kind)))?)
 }
 
 /// Degrees, rounded to 1e-6 (prints `30`, not `30.000000`).

@@ -28,7 +28,8 @@ thickness with a unit. A medium is a library name (see 'iridis thinfilm material
 (intensities add across it, as for a 1 mm glass slide; tmm's inc_tmm).
 
 JSON keys: wavelength_nm, R, T, A (the chosen polarisation), Rs, Rp, Ts, Tp, psi_deg, delta_deg (ellipsometric
-angles, tan ψ e^{iΔ} = −r_p/r_s as tmm.ellips; null for a stack with inc: layers). CSV has the same columns.
+angles, tan ψ e^{iΔ} = −r_p/r_s as tmm.ellips; with inc: layers tan ψ = √(Rp/Rs) and Δ null: no single
+phase survives an incoherent layer). CSV has the same columns.
 A warning goes to stderr when the wavelength step is too coarse for the fringes of a thick layer.
 
 Examples:
@@ -41,7 +42,7 @@ Examples:
     /// The angle × wavelength simulation table (Sussenbach Figure 3.8) as CSV, optionally a map image.
     #[command(after_help = "\
 Columns: angle_deg, wavelength_nm, R, T, A, Rs, Rp, Ts, Tp, psi_deg, delta_deg (unpolarised R, T, A;
-ellipsometric ψ, Δ as tmm.ellips, empty for a stack with inc: layers). Without -o the table goes to
+ellipsometric ψ, Δ as tmm.ellips; with inc: layers ψ from √(Rp/Rs) and Δ empty). Without -o the table goes to
 standard output. --plot draws R as an angle × wavelength map with a colour bar.
 
 Examples:
@@ -116,13 +117,16 @@ Free parameters are written into the stack as {NAME=START:LOW..HIGH}: a layer th
 constant index n={n1=1.45:1.3..1.7}, or a coefficient of cauchy:A,B,C / sellmeier:B1,C1,… e.g.
 cauchy:{A=1.46:1.3..1.7},{B=0.004:0..0.05}. The fit is Levenberg–Marquardt (the levenberg-marquardt crate)
 from the best points of a grid over the thickness ranges (fringes make χ² periodic in thickness; --grid 1 fits
-from the start values only), with numerical derivatives. It prints the values with 1σ uncertainties from the
-covariance (JᵀWJ)⁻¹, χ², and the correlation matrix. The CSV needs a header: wavelength_nm and R, T, or psi
-and delta (degrees); --sigma gives the 1σ noise (a number or a column), else σ is estimated from the scatter.
+from the start values only), with exact derivatives (automatic differentiation through the model). It prints
+the values with 1σ uncertainties from the covariance (JᵀWJ)⁻¹, χ², and the correlation matrix. The CSV needs a
+header: wavelength_nm and R, T, or psi and delta (degrees); --sigma gives the 1σ noise (a number or a column),
+--weights the weights w = 1/σ² (a number, a column, or a CSV file with wavelength_nm,w); without either σ is
+estimated from the scatter. psi-delta needs a coherent stack (Δ is undefined through an inc: layer).
 
 Examples:
   iridis thinfilm fit measured.csv --stack \"air | SiO2 {d1=100nm:50nm..500nm} | Si\"
   iridis thinfilm fit slide.csv --stack \"air | n=2.1 {d=150nm:50nm..400nm} | inc:BK7 1mm | air\" --quantity T --sigma 0.002 --plot fit.png
+  iridis thinfilm fit measured.csv --stack \"air | SiO2 {d1=100nm:50nm..500nm} | Si\" --weights w
   iridis thinfilm fit ellips.csv --stack \"air | n={n=1.5:1.3..1.7} {d=100nm:10nm..400nm} | Si\" --angle 70deg --quantity psi-delta --json")]
     Fit(super::filmfit::FitArgs),
 }
@@ -319,19 +323,23 @@ fn pick(pol: Polarization, x: &Rta) -> (f64, f64, f64) {
 }
 
 /// Ellipsometric (ψ, Δ) in degrees per wavelength; `None` for a stack with inc: layers (no amplitudes).
-fn psi_delta(stack: &Stack, angle: f64, grid: &[f64]) -> Result<Option<Vec<(f64, f64)>>> {
-    if stack.has_incoherent() {
-        return Ok(None);
-    }
+fn psi_delta(stack: &Stack, angle: f64, grid: &[f64]) -> Result<Vec<(f64, Option<f64>)>> {
     let v = grid
         .iter()
-        .map(|&w| stack.ellipsometry(w, angle).map(|(p, d)| (p.to_degrees(), d.to_degrees())))
+        .map(|&w| {
+            if stack.has_incoherent() {
+                // Δ is undefined through an incoherent layer; ψ from the intensity ratio (field.rs).
+                stack.psi(w, angle).map(|p| (p.to_degrees(), None))
+            } else {
+                stack.ellipsometry(w, angle).map(|(p, d)| (p.to_degrees(), Some(d.to_degrees())))
+            }
+        })
         .collect::<std::result::Result<Vec<_>, _>>()?;
-    Ok(Some(v))
+    Ok(v)
 }
 
-fn ellips_cells(e: &Option<Vec<(f64, f64)>>, i: usize) -> (String, String) {
-    e.as_ref().map(|v| (v[i].0.to_string(), v[i].1.to_string())).unwrap_or_default()
+fn ellips_cells(e: &[(f64, Option<f64>)], i: usize) -> (String, String) {
+    (e[i].0.to_string(), e[i].1.map(|d| d.to_string()).unwrap_or_default())
 }
 
 /// Says on stderr when the grid cannot resolve the fringes of a thick layer (`iridis_thinfilm::sampling`).
@@ -393,8 +401,8 @@ fn spectrum(a: SpectrumArgs) -> Result<()> {
             "wavelength_nm": grid,
             "R": r, "T": t, "A": ab,
             "Rs": col(&|x| x.r_s), "Rp": col(&|x| x.r_p), "Ts": col(&|x| x.t_s), "Tp": col(&|x| x.t_p),
-            "psi_deg": ellips.as_ref().map(|v| v.iter().map(|p| p.0).collect::<Vec<_>>()),
-            "delta_deg": ellips.as_ref().map(|v| v.iter().map(|p| p.1).collect::<Vec<_>>()),
+            "psi_deg": ellips.iter().map(|p| p.0).collect::<Vec<_>>(),
+            "delta_deg": (!stack.has_incoherent()).then(|| ellips.iter().map(|p| p.1).collect::<Vec<_>>()),
         }));
     }
     let mut out = String::new();
