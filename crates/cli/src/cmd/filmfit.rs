@@ -15,7 +15,7 @@ use serde_json::json;
 
 #[derive(Debug, ClapArgs)]
 pub struct ProfileArgs {
-    /// The stack, e.g. "air | Au 30nm | glass" (inc: layers: absorption per layer only).
+    /// The stack, e.g. "air | Au 30nm | glass" (inc: layers: incoherent intensities, no interference, in them).
     #[arg(long)]
     pub stack: String,
     /// Vacuum wavelength (with unit).
@@ -102,21 +102,20 @@ pub fn profile(a: ProfileArgs) -> Result<()> {
     if balance.abs() > 1e-9 {
         bail!("internal error: R + T + ΣA − 1 = {balance:e} (please report with the stack)");
     }
-    let profile = if stack.has_incoherent() {
-        None
-    } else {
-        let f = stack.fields(a.wavelength, a.angle)?;
+    // Coherent and mixed stacks alike (in inc: layers: incoherent Beer–Lambert beams, no interference).
+    let (pts, depth) = {
+        let f = stack.profile(a.wavelength, a.angle)?;
         let depth = f.depth_nm();
         let (z0, z1) = (-100.0, depth + 100.0);
         let pts: Vec<_> = (0..a.points).map(|i| f.at(z0 + (z1 - z0) * i as f64 / (a.points - 1) as f64)).collect();
-        Some((pts, depth))
+        (pts, depth)
     };
     let names: Vec<String> = stack
         .layers
         .iter()
         .map(|l| format!("{}{} {} nm", if l.incoherent { "inc:" } else { "" }, l.material.name(), l.thickness_nm))
         .collect();
-    if let (Some(path), Some((pts, depth))) = (&a.plot, &profile) {
+    if let Some(path) = &a.plot {
         let z: Vec<f64> = pts.iter().map(|p| p.z_nm).collect();
         let e2: Vec<f64> = pts.iter().map(|p| pick(p.e2_s, p.e2_p)).collect();
         let ab: Vec<f64> = pts.iter().map(|p| 1000.0 * pick(p.absorption_s, p.absorption_p)).collect();
@@ -133,18 +132,14 @@ pub fn profile(a: ProfileArgs) -> Result<()> {
         if !a.json && !a.csv {
             crate::outln!("wrote {}", path.display())?;
         }
-    } else if a.plot.is_some() {
-        eprintln!("warning: no profile plot for a stack with inc: layers (intensities, not fields, in them)");
     }
     if a.json {
-        let prof = profile.as_ref().map(|(pts, _)| {
-            json!({
+        let prof = json!({
                 "z_nm": pts.iter().map(|p| p.z_nm).collect::<Vec<_>>(),
                 "medium": pts.iter().map(|p| p.medium).collect::<Vec<_>>(),
                 "E2": pts.iter().map(|p| pick(p.e2_s, p.e2_p)).collect::<Vec<_>>(),
                 "absorption_per_nm": pts.iter().map(|p| pick(p.absorption_s, p.absorption_p)).collect::<Vec<_>>(),
                 "flux": pts.iter().map(|p| pick(p.poynting_s, p.poynting_p)).collect::<Vec<_>>(),
-            })
         });
         return crate::output::print_json(&json!({
             "stack": stack.to_string(), "wavelength_nm": a.wavelength, "angle_deg": a.angle.to_degrees(),
@@ -153,11 +148,8 @@ pub fn profile(a: ProfileArgs) -> Result<()> {
         }));
     }
     if a.csv {
-        let Some((pts, _)) = &profile else {
-            bail!("--csv prints the depth profile, which needs a coherent stack (no inc: layer); use --json");
-        };
         let mut out = String::from("z_nm,medium,E2,absorption_per_nm,flux\n");
-        for p in pts {
+        for p in &pts {
             let _ = writeln!(
                 out,
                 "{},{},{},{},{}",
