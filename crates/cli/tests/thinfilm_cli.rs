@@ -418,6 +418,29 @@ fn profile_balances_energy() {
         .map(|i| 0.5 * (d[i] + d[i - 1]) * (z[i] - z[i - 1]))
         .sum();
     let a_si = v["A_layers"][0].as_f64().unwrap();
+    // A depth window: the films on a 1 mm slide, sampled every 20 nm from 20 nm above them.
+    let v = json_of(&[
+        "thinfilm",
+        "profile",
+        "--stack",
+        "air | TiO2 60nm | Si 50nm | inc:glass 1mm | air",
+        "--wavelength",
+        "550nm",
+        "--depth=-20nm:200nm",
+        "--points",
+        "12",
+        "--json",
+    ]);
+    let zs: Vec<f64> = v["profile"]["z_nm"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+    assert_eq!((zs[0], zs[1], zs[11]), (-20.0, 0.0, 200.0));
+    // In the lossless glass the flux is T; above the stack it is 1 − R.
+    let flux = &v["profile"]["flux"];
+    assert!((flux[11].as_f64().unwrap() - v["T"].as_f64().unwrap()).abs() < 1e-12);
+    assert!((flux[0].as_f64().unwrap() - (1.0 - v["R"].as_f64().unwrap())).abs() < 1e-12);
+    assert_fails(
+        &["thinfilm", "profile", "--stack", "air | TiO2 60nm | air", "--wavelength", "550nm", "--depth=200nm:20nm"],
+        &["--depth 200 nm:20 nm is empty"],
+    );
     // (to the grid's 0.1 nm resolution at the film's faces; the library tests integrate exactly)
     assert!((integral - a_si).abs() < 5e-3 * a_si, "∫ {integral} vs {a_si}");
     let dir = temp_dir();

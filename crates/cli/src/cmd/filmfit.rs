@@ -30,6 +30,10 @@ pub struct ProfileArgs {
     /// Number of depth samples of the profile (from 100 nm above the stack to 100 nm into the substrate).
     #[arg(long, default_value_t = 400)]
     pub points: usize,
+    /// The depth window of the profile, FROM:TO below the first interface (e.g. --depth=-20nm:200nm to see
+    /// the films on a 1 mm slide); default 100 nm above the stack to 100 nm into the substrate.
+    #[arg(long, value_name = "FROM:TO", allow_hyphen_values = true)]
+    pub depth: Option<String>,
     /// Print JSON (absorption per layer and the profile).
     #[arg(long, conflicts_with = "csv")]
     pub json: bool,
@@ -106,7 +110,19 @@ pub fn profile(a: ProfileArgs) -> Result<()> {
     let (pts, depth) = {
         let f = stack.profile(a.wavelength, a.angle)?;
         let depth = f.depth_nm();
-        let (z0, z1) = (-100.0, depth + 100.0);
+        let (z0, z1) = match &a.depth {
+            None => (-100.0, depth + 100.0),
+            Some(w) => {
+                let bad = || anyhow::anyhow!("--depth '{w}': write FROM:TO with units, e.g. --depth=-20nm:200nm");
+                let (from, to) = w.split_once(':').ok_or_else(bad)?;
+                let (from, to) = (crate::args::length_nm(from.trim()), crate::args::length_nm(to.trim()));
+                match (from, to) {
+                    (Ok(f), Ok(t)) if f < t => (f, t),
+                    (Ok(f), Ok(t)) => bail!("--depth {f} nm:{t} nm is empty: FROM must be above (less than) TO"),
+                    (Err(e), _) | (_, Err(e)) => bail!("--depth '{w}': {e}"),
+                }
+            }
+        };
         let pts: Vec<_> = (0..a.points).map(|i| f.at(z0 + (z1 - z0) * i as f64 / (a.points - 1) as f64)).collect();
         (pts, depth)
     };

@@ -99,17 +99,20 @@ Examples:
     /// Where the light goes: absorption in each layer and |E|², absorbed power and flux against depth.
     #[command(after_help = "\
 At one wavelength and angle: the fraction of the incident power reflected, absorbed in each layer (and in an
-absorbing substrate) and transmitted, with the energy balance R + T + ΣA − 1 (zero up to rounding); for a
-coherent stack also the depth profile from 100 nm above the first interface to 100 nm into the substrate:
+absorbing substrate) and transmitted, with the energy balance R + T + ΣA − 1 (zero up to rounding), and the
+depth profile from 100 nm above the first interface to 100 nm into the substrate (--depth FROM:TO to choose):
 |E|² relative to the incident wave, absorbed power density (fraction of the incident power per nm) and the
-normal Poynting flux (tmm's position_resolved; Byrnes, arXiv:1603.02720). Stacks with inc: layers give the
-absorption per layer only (as tmm's inc_absorp_in_each_layer).
+normal Poynting flux (tmm's position_resolved; Byrnes, arXiv:1603.02720). With inc: layers each coherent
+group is lit from both sides by incoherent intensities (tmm's inc_absorp_in_each_layer and
+inc_find_absorp_analytic_fn), and inside an inc: layer the two beams decay by Beer–Lambert without
+interference.
 JSON keys: R, T, layers, A_layers, A_substrate, balance, profile {z_nm, medium, E2, absorption_per_nm, flux}.
 
 Examples:
   iridis thinfilm profile --stack \"air | Au 30nm | glass\" --wavelength 500nm
   iridis thinfilm profile --stack \"air | Si 108nm | glass\" --wavelength 450nm --angle 30deg --plot si_profile.png
-  iridis thinfilm profile --stack \"air | TiO2 60nm | Si 50nm | inc:glass 1mm | air\" --wavelength 550nm --json")]
+  iridis thinfilm profile --stack \"air | TiO2 60nm | Si 50nm | inc:glass 1mm | air\" --wavelength 550nm --json
+  iridis thinfilm profile --stack \"air | TiO2 60nm | Si 50nm | inc:glass 1mm | air\" --wavelength 550nm --depth=-20nm:200nm --csv")]
     Profile(super::filmfit::ProfileArgs),
     /// Fit a stack's free parameters to a measured R, T or ψ/Δ spectrum.
     #[command(after_help = "\
@@ -896,10 +899,13 @@ fn bench(a: BenchArgs) -> Result<()> {
     crate::outln!("× tmm compares the general path on one thread with tmm on one thread.")?;
     crate::outln!(
         "fit, 3 parameters on 401 wavelengths (tools/fit_scipy_compare.py's data): {:.2} ms from one start, \
-         {:.2} ms with the multi-start search ({} starts); scipy least_squares + tmm: see docs/thinfilm.md",
+         {:.2} ms with the multi-start search ({} starts), exact derivatives; with finite differences {:.2} ms \
+         and {:.2} ms; scipy least_squares + tmm: see docs/thinfilm.md",
         1e3 * fit["single_start_seconds"].as_f64().unwrap_or(f64::NAN),
         1e3 * fit["multi_start_seconds"].as_f64().unwrap_or(f64::NAN),
-        fit["multi_start_starts"]
+        fit["multi_start_starts"],
+        1e3 * fit["single_start_fd_seconds"].as_f64().unwrap_or(f64::NAN),
+        1e3 * fit["multi_start_fd_seconds"].as_f64().unwrap_or(f64::NAN),
     )?;
     crate::outln!(
         "batch of 10⁶ (λ, θ) points, 20 layers, all threads: fast path {:.3} s, general path {:.3} s",
@@ -911,15 +917,22 @@ fn bench(a: BenchArgs) -> Result<()> {
 
 /// The fit of tools/fit_scipy_compare.py (the same CSV), timed from one start and with the search.
 fn bench_fit(seconds: f64) -> Result<serde_json::Value> {
-    use iridis_filmfit::{fit, FitOptions, Measured, Quantity, Template};
+    use iridis_filmfit::{fit, Derivatives, FitOptions, Measured, Quantity, Template};
     const CSV: &str = include_str!("../../../filmfit/tests/fixtures/scipy_fit.csv");
     const STACK: &str = "air | cauchy:{A=1.5:1.3..1.7},{B=0.004:0..0.02} {d=330nm:100nm..600nm} | n=3.88+0.02i";
     let t = Template::parse(STACK)?;
     let mut data = Measured::from_csv(CSV, "scipy_fit.csv", Quantity::R, None)?;
     data.sigma = Some(vec![0.002; data.values.len()]);
     let mut out = json!({ "stack": STACK, "wavelengths": data.values.len(), "parameters": 3 });
-    for (key, grid) in [("single_start", 1), ("multi_start", 0)] {
-        let opt = FitOptions { grid, ..FitOptions::default() };
+    // Exact derivatives (the default) and the finite-difference fallback, for comparison.
+    let runs = [
+        ("single_start", 1, Derivatives::Exact),
+        ("multi_start", 0, Derivatives::Exact),
+        ("single_start_fd", 1, Derivatives::FiniteDifferences),
+        ("multi_start_fd", 0, Derivatives::FiniteDifferences),
+    ];
+    for (key, grid, derivatives) in runs {
+        let opt = FitOptions { grid, derivatives, ..FitOptions::default() };
         let (mut n, t0) = (0usize, Instant::now());
         let mut last = None;
         while n == 0 || t0.elapsed().as_secs_f64() < seconds {
