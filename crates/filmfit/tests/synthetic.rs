@@ -72,7 +72,7 @@ fn coverage_of_200_noisy_trials() {
     // probability 1.0 % and more than 198 (> 99 %) with probability 0.1 %, so each parameter must lie in
     // [92 %, 99 %]; σ inflated by 1.5× would cover 99.7 % and fail. Seeds 1000–1199 give A 93.5 %, B 95.5 %,
     // d 92.0 % (the same with exact derivatives and with finite differences: the optimum and covariance
-    // agree to ~1e-8 σ); 4000 other seeds (FIT_TRIALS=4000 FIT_SEED0=20000) give 95.4 %, 95.3 %, 95.3 %,
+    // agree to ~1e-7 σ); 4000 other seeds (FIT_TRIALS=4000 FIT_SEED0=20000) give 95.4 %, 95.3 %, 95.3 %,
     // 95 % intervals ±0.7 % — the Gaussian 95.45 %. (docs/thinfilm.md, "honest uncertainties".)
     // The noise level is recovered: mean reduced χ² ≈ 1 (standard error over 200 × 198 dof ≈ 0.007).
     for (k, f) in frac.iter().enumerate() {

@@ -97,8 +97,8 @@ impl Stack {
     pub fn fields(&self, wavelength_nm: f64, angle_rad: f64) -> Result<Fields, ThinFilmError> {
         if self.has_incoherent() {
             return Err(ThinFilmError::Invalid(format!(
-                "\"{self}\" has an incoherent (inc:) layer; field profiles are for coherent stacks (use \
-                 absorption per layer, which handles both)"
+                "\"{self}\" has an incoherent (inc:) layer, so no single coherent field: use Stack::profile \
+                 (intensities lit from both sides) or the absorption per layer, which handle both"
             )));
         }
         let media = self.media(wavelength_nm, angle_rad)?;

@@ -105,6 +105,8 @@ impl<const K: usize> Neg for Jet<K> {
 
 impl<const K: usize> Mul for Jet<K> {
     type Output = Self;
+    // The product rule adds: (ab)' = a'b + ab'.
+    #[allow(clippy::suspicious_arithmetic_impl)]
     fn mul(self, o: Self) -> Self {
         let mut d = self.d;
         d.iter_mut().zip(o.d).for_each(|(a, b)| *a = *a * o.v + self.v * b);
@@ -114,6 +116,7 @@ impl<const K: usize> Mul for Jet<K> {
 
 impl<const K: usize> Div for Jet<K> {
     type Output = Self;
+    #[allow(clippy::suspicious_arithmetic_impl)]
     fn div(self, o: Self) -> Self {
         // (a/b)' = (a' − (a/b) b') / b
         let inv = 1.0 / o.v;
