@@ -22,7 +22,8 @@ pub struct FitOptions {
 /// The Jacobian of the fit: exact (forward-mode automatic differentiation through the model,
 /// [`iridis_thinfilm::jet`]) or central finite differences. Exact derivatives cover every parameter type
 /// (thicknesses, constant indices, Cauchy and Sellmeier coefficients) for up to [`MAX_EXACT`] parameters;
-/// beyond that the fit falls back to finite differences.
+/// beyond that, and where an exact derivative is infinite (a layer exactly at its critical angle), the fit
+/// falls back to finite differences.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Derivatives {
     #[default]
@@ -161,6 +162,11 @@ impl Problem<'_> {
     fn exact_jacobian<const K: usize>(&self, x: &[f64]) -> Option<DMatrix<f64>> {
         self.evaluations.set(self.evaluations.get() + 1);
         let rows = model_jacobian::<K>(self.template, x, &self.data.wavelength_nm, self.opt).ok()?;
+        // Exactly at a layer's critical angle (cos θ = 0) the derivative with respect to its index is
+        // infinite: there the finite differences of the (finite) spectrum stand in.
+        if rows.iter().flatten().any(|v| !v.is_finite()) {
+            return self.fd_jacobian(x);
+        }
         let sigma = self.data.sigma.as_deref();
         Some(DMatrix::from_fn(rows.len(), x.len(), |i, k| rows[i][k] / sigma.map_or(1.0, |s| s[i])))
     }

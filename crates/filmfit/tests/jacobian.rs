@@ -60,3 +60,25 @@ fn incident_medium_index_and_incoherent_slide() {
     check(s, &[1.33, 212.0, 1.52], Quantity::T, 0.0);
     check(s, &[1.33, 212.0, 1.52], Quantity::R, 40.0);
 }
+
+#[test]
+fn a_layer_at_its_critical_angle_falls_back_to_finite_differences() {
+    // An air gap between glass at exactly its critical angle: cos θ = 0 in the gap, where ∂R/∂n_gap is
+    // infinite. The exact Jacobian says so (not a finite wrong number); the fit then uses finite
+    // differences and still ends with finite values and uncertainties.
+    let t = Template::parse("n=1.5 | n={n=1.0:0.9..1.1} {d=200nm:100nm..300nm} | n=1.5").unwrap();
+    let th = (1.0f64 / 1.5).asin();
+    assert_eq!(1.5 * th.sin(), 1.0, "the angle is exactly critical in floating point");
+    let opt = FitOptions { angle_rad: th, quantity: Quantity::R, grid: 1, ..FitOptions::default() };
+    let wl: Vec<f64> = (0..40).map(|i| 450.0 + 5.0 * i as f64).collect();
+    let jac = model_jacobian::<2>(&t, &[1.0, 200.0], &wl, &opt).unwrap();
+    assert!(jac.iter().any(|r| !r[0].is_finite()), "∂R/∂n is unbounded at the critical angle");
+    let clean = model(&t, &[1.0, 200.0], &wl, &opt).unwrap();
+    let data = iridis_filmfit::Measured {
+        wavelength_nm: wl.clone(),
+        values: clean.iter().enumerate().map(|(i, v)| v + 1e-3 * ((i * 7 % 5) as f64 - 2.0)).collect(),
+        sigma: Some(vec![1e-3; wl.len()]),
+    };
+    let r = iridis_filmfit::fit(&t, &data, &FitOptions { grid: 1, ..opt }).unwrap();
+    assert!(r.values.iter().chain(&r.sigma).all(|v| v.is_finite()), "{r:?}");
+}

@@ -155,7 +155,7 @@ pub fn absorption(
     let one = |p: bool| -> PolPowers {
         let f: Vec<PolPowers> = fields.iter().map(|x| x.0.powers(p)).collect();
         let b: Vec<PolPowers> = fields.iter().map(|x| x.1.powers(p)).collect();
-        let Bounces { rc, down, up } = bounces(&f, &b, &pass);
+        let Bounces { rc, down, up, .. } = bounces(&f, &b, &pass);
         // Net flux entering incoherent medium k at its top and leaving it at its bottom (tmm's conventions:
         // a bare interface passes T both ways; a coherent group is entered with its `entering` flux).
         let mut entering = vec![1.0; m + 1];
@@ -187,6 +187,9 @@ struct Bounces {
     down: Vec<f64>,
     /// `up[k]`: backward intensity at the top of incoherent medium k (the `B` lighting group k − 1).
     up: Vec<f64>,
+    /// `top[k]`: forward intensity at the top of incoherent medium k, `F T_f + B R_b` of the group above
+    /// (= `down[k] / P_k`, without the division, which fails where P underflows to 0).
+    top: Vec<f64>,
 }
 
 /// The geometric series of bounces between the groups (`f`, `b`: each group lit from above / below).
@@ -204,7 +207,11 @@ fn bounces(f: &[PolPowers], b: &[PolPowers], pass: &[f64]) -> Bounces {
         down[k + 1] = pk * f[k].t * down[k] / (1.0 - b[k].r * pk * pk * rc[k + 1]);
         up[k + 1] = pk * rc[k + 1] * down[k + 1];
     }
-    Bounces { rc, down, up }
+    let mut top = vec![1.0; m + 1];
+    for k in 0..m {
+        top[k + 1] = down[k] * f[k].t + up[k + 1] * b[k].r;
+    }
+    Bounces { rc, down, up, top }
 }
 
 /// Where the light goes inside any stack, coherent or mixed: the position-resolved flux, absorbed power
@@ -229,7 +236,6 @@ pub struct Profile {
     fields: Vec<(Fields, Fields)>,
     /// Per polarisation (s, p): the intensities between the groups.
     light: [Bounces; 2],
-    pass: Vec<f64>,
 }
 
 impl Stack {
@@ -254,7 +260,7 @@ impl Stack {
             let b: Vec<PolPowers> = fields.iter().map(|x| x.1.powers(p)).collect();
             bounces(&f, &b, &pass)
         });
-        Ok(Profile { media, thicknesses: d, wavelength_nm, inc, fields, light, pass })
+        Ok(Profile { media, thicknesses: d, wavelength_nm, inc, fields, light })
     }
 }
 
@@ -324,10 +330,13 @@ impl Profile {
         let j = self.inc[k];
         let m = self.media[j];
         let light = &self.light[usize::from(p)];
-        let v = light.down[k] / self.pass[k];
-        let w = light.up[k];
+        // Each beam from where it enters (forward: the top; backward: the bottom), so nothing overflows in
+        // a layer that absorbs everything.
+        let v = light.top[k];
+        let w_bottom = light.rc[k] * light.down[k];
         let alpha = 4.0 * std::f64::consts::PI * (m.n * m.cos).im / self.wavelength_nm;
-        let (fwd, bwd) = (v * (-alpha * dz).exp(), w * (alpha * dz).exp());
+        let d = self.thicknesses[j - 1];
+        let (fwd, bwd) = (v * (-alpha * dz).exp(), w_bottom * (-alpha * (d - dz)).exp());
         let norm = Self::flux_per_e2(self.media[0], p);
         let per = Self::flux_per_e2(m, p);
         let shape = if p { m.cos.norm_sqr() + (Complex64::new(self.invariant(), 0.0) / m.n).norm_sqr() } else { 1.0 };
@@ -426,6 +435,24 @@ mod tests {
         let r = rho + (1.0 - rho).powi(2) * p * p * rho / (1.0 - rho * rho * p * p);
         let t = (1.0 - rho).powi(2) * p / (1.0 - rho * rho * p * p);
         assert!((x.r() - r).abs() < 1e-8 && (x.t() - t).abs() < 1e-8, "{x:?} vs {r} {t}");
+    }
+
+    #[test]
+    fn opaque_incoherent_layer_has_a_finite_profile() {
+        // κ = 0.1 over 1 mm: P = exp(−2500) underflows to 0; the light entering the slab decays by
+        // Beer–Lambert, α = 4πκ/λ, and none comes out.
+        let s = Stack::parse("air | n=2 50nm | inc:n=1.5+0.1i 1mm | air").unwrap();
+        let prof = s.profile(500.0, 0.0).unwrap();
+        let entering = prof.in_medium(2, 0.0).poynting();
+        let alpha = 4.0 * std::f64::consts::PI * 0.1 / 500.0;
+        for dz in [0.0, 10.0, 100.0, 1e4, 1e6] {
+            let p = prof.in_medium(2, dz);
+            assert!(p.absorption().is_finite() && p.e2().is_finite() && p.poynting().is_finite(), "{p:?}");
+            let want = entering * (-alpha * dz).exp();
+            assert!((p.poynting() - want).abs() < 1e-15 && (p.absorption() - alpha * want).abs() < 1e-15, "{p:?}");
+        }
+        let x = s.evaluate(500.0, 0.0).unwrap();
+        assert!(x.t() == 0.0 && (entering - (1.0 - x.r())).abs() < 1e-12);
     }
 
     #[test]

@@ -223,7 +223,7 @@ fn mixed_stack_profiles_agree_with_tmm() {
     }
     assert!(n_points > 1000 && n_inc_points > 100, "{n_points} points, {n_inc_points} in incoherent layers");
     eprintln!(
-        "mixed profiles: worst difference {worst:.2e} over {n_points} points; ∫ over incoherent layers vs tmm's \
+        "mixed profiles: worst difference {worst:.2e} over {n_points} values (points × s, p); ∫ over incoherent layers vs tmm's \
          absorption: at most {worst_inc:.2} κ/n"
     );
 }
