@@ -468,6 +468,7 @@ fn fit_recovers_the_scipy_optimum_and_refuses_bad_input() {
     assert!((d - 312.16741253638287).abs() < 1e-4, "{v}");
     assert!((v["sigma"][2].as_f64().unwrap() - 0.12091036442066286).abs() < 1e-6);
     assert_eq!(v["dof"], 398);
+    assert_eq!(v["jacobian"], "exact");
     let dir = temp_dir();
     let png = dir.join("fit.png");
     let out = iridis(&["thinfilm", "fit", csv, "--stack", stack, "--plot", png.to_str().unwrap()]);

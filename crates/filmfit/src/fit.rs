@@ -58,6 +58,9 @@ pub struct FitResult {
     pub fitted: Vec<f64>,
     pub starts_tried: usize,
     pub evaluations: usize,
+    /// How the Jacobian was computed: "exact", or "finite differences" where any Jacobian of the fit was
+    /// (by choice, beyond [`MAX_EXACT`] parameters, or at a critical angle).
+    pub jacobian: &'static str,
 }
 
 /// The model values on the measured wavelengths: R or T (unpolarised), or ψ, Δ in degrees interleaved.
@@ -118,6 +121,8 @@ struct Problem<'a> {
     opt: &'a FitOptions,
     x: Vec<f64>,
     evaluations: std::cell::Cell<usize>,
+    /// Set when some Jacobian came from finite differences.
+    used_fd: std::cell::Cell<bool>,
 }
 
 impl Problem<'_> {
@@ -173,6 +178,7 @@ impl Problem<'_> {
 
     /// Central differences, one-sided at a bound; steps ~1e-6 of the parameter's scale.
     fn fd_jacobian(&self, x: &[f64]) -> Option<DMatrix<f64>> {
+        self.used_fd.set(true);
         let n = self.data.values.len();
         let mut j = DMatrix::zeros(n, x.len());
         for (k, p) in self.template.params.iter().enumerate() {
@@ -268,7 +274,14 @@ pub fn fit(template: &Template, data: &Measured, opt: &FitOptions) -> Result<Fit
             "{n} measured values cannot determine {np} parameters (need more than {np})"
         )));
     }
-    let mut problem = Problem { template, data, opt, x: template.starts(), evaluations: std::cell::Cell::new(0) };
+    let mut problem = Problem {
+        template,
+        data,
+        opt,
+        x: template.starts(),
+        evaluations: std::cell::Cell::new(0),
+        used_fd: std::cell::Cell::new(false),
+    };
     // The model must evaluate at the start (e.g. every wavelength inside every material's data).
     model(template, &template.starts(), &data.wavelength_nm, opt)?;
     let candidates = starts(template, opt);
@@ -337,5 +350,6 @@ pub fn fit(template: &Template, data: &Measured, opt: &FitOptions) -> Result<Fit
         fitted,
         starts_tried: candidates.len(),
         evaluations: problem.evaluations.get(),
+        jacobian: if problem.used_fd.get() { "finite differences" } else { "exact" },
     })
 }

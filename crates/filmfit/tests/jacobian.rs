@@ -81,4 +81,5 @@ fn a_layer_at_its_critical_angle_falls_back_to_finite_differences() {
     };
     let r = iridis_filmfit::fit(&t, &data, &FitOptions { grid: 1, ..opt }).unwrap();
     assert!(r.values.iter().chain(&r.sigma).all(|v| v.is_finite()), "{r:?}");
+    assert_eq!(r.jacobian, "finite differences");
 }

@@ -41,6 +41,7 @@ fn coverage_of_200_noisy_trials() {
             StdRng::seed_from_u64(std::env::var("FIT_SEED0").ok().and_then(|v| v.parse().ok()).unwrap_or(1000) + seed);
         let data = synthetic(&t, &truth, &wl, &opt, 0.002, &mut rng);
         let r = fit(&t, &data, &opt).unwrap();
+        assert_eq!(r.jacobian, "exact");
         let mut all = true;
         for k in 0..3 {
             let ok = (r.values[k] - truth[k]).abs() <= 2.0 * r.sigma[k];

@@ -250,7 +250,7 @@ pub fn fit_cmd(a: FitArgs) -> Result<()> {
             "names": r.names, "units": params.iter().map(|p| p.unit()).collect::<Vec<_>>(),
             "values": r.values, "sigma": r.sigma, "correlation": r.correlation,
             "chi2": r.chi2, "dof": r.dof, "reduced_chi2": r.reduced_chi2, "sigma_given": r.sigma_given,
-            "at_bound": r.at_bound, "starts": r.starts_tried, "evaluations": r.evaluations, "seconds": seconds,
+            "at_bound": r.at_bound, "starts": r.starts_tried, "evaluations": r.evaluations, "jacobian": r.jacobian, "seconds": seconds,
             "fitted": r.fitted,
         }));
     }
@@ -287,7 +287,13 @@ pub fn fit_cmd(a: FitArgs) -> Result<()> {
             crate::outln!("{row}")?;
         }
     }
-    crate::outln!("{} starts searched, {} spectra evaluated, {:.3} s", r.starts_tried, r.evaluations, seconds)?;
+    crate::outln!(
+        "{} starts searched, {} spectra evaluated, {} derivatives, {:.3} s",
+        r.starts_tried,
+        r.evaluations,
+        r.jacobian,
+        seconds
+    )?;
     if let Some(p) = &a.plot {
         crate::outln!("wrote {}", p.display())?;
     }
