@@ -15,7 +15,8 @@
 //! * [`fast`]: the chapter 4 variant — per-interface values computed once for a fixed angle, real arithmetic
 //!   for dielectric stacks, the same numbers as the general path;
 //! * [`grid`]: angle × wavelength tables (Figure 3.8), in parallel;
-//! * [`incoherent`]: stacks with incoherent layers (`inc:BK7 1mm`), as `tmm.inc_tmm`;
+//! * [`incoherent`]: stacks with incoherent layers (`inc:BK7 1mm`), as `tmm.inc_tmm`, and the depth
+//!   profile of any stack ([`incoherent::Profile`]);
 //! * [`field`]: amplitudes inside the stack, position-resolved flux / absorption / |E|², absorption per
 //!   layer, ellipsometric ψ and Δ;
 //! * [`jet`]: exact derivatives of R, T, ψ, Δ with respect to thicknesses and indices (forward-mode
