@@ -322,7 +322,9 @@ fn incoherent_slide_and_psi_delta_in_spectrum() {
         "--json",
     ]);
     assert!((v["R"][0].as_f64().unwrap() - 0.08 / 1.04).abs() < 1e-12, "{}", v["R"][0]);
-    assert!(v["psi_deg"].is_null(), "no ψ/Δ for an incoherent stack");
+    // Through an incoherent layer Δ is undefined (null) and tan ψ = √(R_p/R_s): at normal incidence R_p = R_s.
+    assert!(v["delta_deg"].is_null(), "no Δ for an incoherent stack");
+    assert!((v["psi_deg"][0].as_f64().unwrap() - 45.0).abs() < 1e-12, "{}", v["psi_deg"]);
     // ψ/Δ of a bare n = 1.5 substrate at 60° (beyond Brewster: Δ = 180°), tan ψ = |r_p/r_s| from Fresnel.
     let v = json_of(&[
         "thinfilm",
@@ -395,17 +397,52 @@ fn profile_balances_energy() {
         v["profile"]["absorption_per_nm"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
     let integral: f64 = (1..z.len()).map(|i| 0.5 * (d[i] + d[i - 1]) * (z[i] - z[i - 1])).sum();
     assert!((integral - a).abs() < 5e-3 * a, "∫ {integral} vs {a}");
-    // Mixed stacks: absorption per layer, no profile.
+    // Mixed stacks: a profile too; in the coherent Si film it integrates to the film's absorption.
     let v = json_of(&[
         "thinfilm",
         "profile",
         "--stack",
-        "air | Si 50nm | inc:n=1.5+0.0001i 1mm | air",
+        "air | Si 50nm | inc:n=1.5+0.0001i 2um | air",
         "--wavelength",
         "550nm",
+        "--points",
+        "22001",
         "--json",
     ]);
-    assert!(v["profile"].is_null() && v["balance"].as_f64().unwrap().abs() < 1e-12);
+    assert!(v["balance"].as_f64().unwrap().abs() < 1e-12);
+    let z: Vec<f64> = v["profile"]["z_nm"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+    let d: Vec<f64> =
+        v["profile"]["absorption_per_nm"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+    let integral: f64 = (1..z.len())
+        .filter(|&i| z[i] <= 50.0 && z[i - 1] >= 0.0)
+        .map(|i| 0.5 * (d[i] + d[i - 1]) * (z[i] - z[i - 1]))
+        .sum();
+    let a_si = v["A_layers"][0].as_f64().unwrap();
+    // A depth window: the films on a 1 mm slide, sampled every 20 nm from 20 nm above them.
+    let v = json_of(&[
+        "thinfilm",
+        "profile",
+        "--stack",
+        "air | TiO2 60nm | Si 50nm | inc:glass 1mm | air",
+        "--wavelength",
+        "550nm",
+        "--depth=-20nm:200nm",
+        "--points",
+        "12",
+        "--json",
+    ]);
+    let zs: Vec<f64> = v["profile"]["z_nm"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+    assert_eq!((zs[0], zs[1], zs[11]), (-20.0, 0.0, 200.0));
+    // In the lossless glass the flux is T; above the stack it is 1 − R.
+    let flux = &v["profile"]["flux"];
+    assert!((flux[11].as_f64().unwrap() - v["T"].as_f64().unwrap()).abs() < 1e-12);
+    assert!((flux[0].as_f64().unwrap() - (1.0 - v["R"].as_f64().unwrap())).abs() < 1e-12);
+    assert_fails(
+        &["thinfilm", "profile", "--stack", "air | TiO2 60nm | air", "--wavelength", "550nm", "--depth=200nm:20nm"],
+        &["--depth 200 nm:20 nm is empty"],
+    );
+    // (to the grid's 0.1 nm resolution at the film's faces; the library tests integrate exactly)
+    assert!((integral - a_si).abs() < 5e-3 * a_si, "∫ {integral} vs {a_si}");
     let dir = temp_dir();
     let png = dir.join("profile.png");
     let out = iridis(&[
@@ -431,6 +468,7 @@ fn fit_recovers_the_scipy_optimum_and_refuses_bad_input() {
     assert!((d - 312.16741253638287).abs() < 1e-4, "{v}");
     assert!((v["sigma"][2].as_f64().unwrap() - 0.12091036442066286).abs() < 1e-6);
     assert_eq!(v["dof"], 398);
+    assert_eq!(v["jacobian"], "exact");
     let dir = temp_dir();
     let png = dir.join("fit.png");
     let out = iridis(&["thinfilm", "fit", csv, "--stack", stack, "--plot", png.to_str().unwrap()]);
@@ -460,4 +498,84 @@ fn fit_recovers_the_scipy_optimum_and_refuses_bad_input() {
     assert_fails(&["thinfilm", "fit", "/nonexistent.csv", "--stack", stack], &["cannot read /nonexistent.csv"]);
     assert_fails(&["thinfilm", "fit", csv, "--stack", stack, "--quantity", "X"], &["use R, T or psi-delta"]);
     assert_fails(&["thinfilm", "spectrum", "--stack", "inc:air | BK7 1mm | air"], &["semi-infinite", "column 1"]);
+}
+
+#[test]
+fn fit_weights_are_inverse_variances() {
+    // --weights w (w = 1/σ²) as a number, a column of the CSV and a separate file: the same fit as --sigma.
+    let csv = concat!(env!("CARGO_MANIFEST_DIR"), "/../filmfit/tests/fixtures/scipy_fit.csv");
+    let stack = "air | cauchy:{A=1.5:1.3..1.7},{B=0.004:0..0.02} {d=330nm:100nm..600nm} | n=3.88+0.02i";
+    let fit = |extra: &[&str]| {
+        let mut args = vec!["thinfilm", "fit", csv, "--stack", stack, "--grid", "1", "--json"];
+        args.extend_from_slice(extra);
+        json_of(&args)
+    };
+    let by_sigma = fit(&["--sigma", "0.002"]);
+    let text = std::fs::read_to_string(csv).unwrap();
+    let dir = temp_dir();
+    // The same data with a weight column (σ = 0.002 → w = 250000) and as a separate weights file.
+    let mut with_w = String::new();
+    let mut file_w = String::from("wavelength_nm,w\n");
+    for line in text.lines() {
+        if line.starts_with('#') || line.trim().is_empty() {
+            with_w.push_str(line);
+        } else if line.starts_with("wavelength") {
+            with_w.push_str(&format!("{line},w"));
+        } else {
+            with_w.push_str(&format!("{line},250000"));
+            file_w.push_str(&format!("{},250000\n", line.split(',').next().unwrap()));
+        }
+        with_w.push('\n');
+    }
+    let col_csv = dir.join("weighted.csv");
+    std::fs::write(&col_csv, &with_w).unwrap();
+    let w_file = dir.join("weights.csv");
+    std::fs::write(&w_file, &file_w).unwrap();
+    let mut args = vec!["thinfilm", "fit", col_csv.to_str().unwrap(), "--stack", stack, "--grid", "1", "--json"];
+    args.extend(["--weights", "w"]);
+    let by_column = json_of(&args);
+    for v in [fit(&["--weights", "250000"]), by_column, fit(&["--weights", w_file.to_str().unwrap()])] {
+        for k in 0..3 {
+            let (a, b) = (v["values"][k].as_f64().unwrap(), by_sigma["values"][k].as_f64().unwrap());
+            let (sa, sb) = (v["sigma"][k].as_f64().unwrap(), by_sigma["sigma"][k].as_f64().unwrap());
+            assert!((a - b).abs() < 1e-6 * sb && (sa / sb - 1.0).abs() < 1e-9, "{v}");
+        }
+        assert!(v["sigma_given"].as_bool().unwrap());
+        assert!((v["chi2"].as_f64().unwrap() - by_sigma["chi2"].as_f64().unwrap()).abs() < 1e-6);
+    }
+    // Bad weights: a clear message each.
+    assert_fails(
+        &["thinfilm", "fit", csv, "--stack", stack, "--weights", "0"],
+        &["--weights 0", "must be a finite number > 0"],
+    );
+    assert_fails(
+        &["thinfilm", "fit", csv, "--stack", stack, "--weights", "nocolumn"],
+        &["--weights 'nocolumn' is neither a number, a column of", "nor a file"],
+    );
+    assert_fails(
+        &["thinfilm", "fit", csv, "--stack", stack, "--weights", "1", "--sigma", "1"],
+        &["cannot be used with"],
+    );
+    std::fs::write(&w_file, "wavelength_nm,w\n400,1\n").unwrap();
+    assert_fails(
+        &["thinfilm", "fit", csv, "--stack", stack, "--weights", w_file.to_str().unwrap()],
+        &["1 rows of weights for 401 measured wavelengths"],
+    );
+    // ψ/Δ cannot be fitted through an incoherent layer: Δ is undefined there.
+    let ell = dir.join("ellips.csv");
+    std::fs::write(&ell, "wavelength_nm,psi,delta\n400,30,100\n500,31,101\n600,32,102\n").unwrap();
+    assert_fails(
+        &[
+            "thinfilm",
+            "fit",
+            ell.to_str().unwrap(),
+            "--stack",
+            "air | n=2.1 {d=150nm:50nm..400nm} | inc:BK7 1mm | air",
+            "--quantity",
+            "psi-delta",
+            "--angle",
+            "70deg",
+        ],
+        &["has no Δ", "incoherent"],
+    );
 }

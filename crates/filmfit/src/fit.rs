@@ -15,11 +15,28 @@ pub struct FitOptions {
     pub grid: usize,
     /// How many of the best grid points are refined by Levenberg–Marquardt.
     pub refine: usize,
+    /// How the Jacobian is computed.
+    pub derivatives: Derivatives,
 }
+
+/// The Jacobian of the fit: exact (forward-mode automatic differentiation through the model,
+/// [`iridis_thinfilm::jet`]) or central finite differences. Exact derivatives cover every parameter type
+/// (thicknesses, constant indices, Cauchy and Sellmeier coefficients) for up to [`MAX_EXACT`] parameters;
+/// beyond that, and where an exact derivative is infinite (a layer exactly at its critical angle), the fit
+/// falls back to finite differences.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Derivatives {
+    #[default]
+    Exact,
+    FiniteDifferences,
+}
+
+/// The most parameters with exact derivatives (the jets' width is fixed at compile time).
+pub const MAX_EXACT: usize = 16;
 
 impl Default for FitOptions {
     fn default() -> Self {
-        Self { angle_rad: 0.0, quantity: Quantity::R, grid: 0, refine: 4 }
+        Self { angle_rad: 0.0, quantity: Quantity::R, grid: 0, refine: 4, derivatives: Derivatives::Exact }
     }
 }
 
@@ -41,6 +58,9 @@ pub struct FitResult {
     pub fitted: Vec<f64>,
     pub starts_tried: usize,
     pub evaluations: usize,
+    /// How the Jacobian was computed: "exact", or "finite differences" where any Jacobian of the fit was
+    /// (by choice, beyond [`MAX_EXACT`] parameters, or at a critical angle).
+    pub jacobian: &'static str,
 }
 
 /// The model values on the measured wavelengths: R or T (unpolarised), or ψ, Δ in degrees interleaved.
@@ -63,12 +83,46 @@ pub fn model(template: &Template, values: &[f64], wavelengths: &[f64], opt: &Fit
     Ok(out)
 }
 
+/// The derivatives of [`model`] with respect to the parameters, exact (forward-mode automatic
+/// differentiation, [`iridis_thinfilm::jet`]): one row per model value (ψ, Δ in degrees), `K ≥` the number of
+/// parameters (the extra columns are zero).
+pub fn model_jacobian<const K: usize>(
+    template: &Template,
+    values: &[f64],
+    wavelengths: &[f64],
+    opt: &FitOptions,
+) -> Result<Vec<[f64; K]>, FitError> {
+    if values.len() > K {
+        return Err(FitError::Model(format!("{} parameters need jets of width ≥ {0}", values.len())));
+    }
+    let stack = template.stack(values)?;
+    let mut out = Vec::with_capacity(wavelengths.len() * opt.quantity.width());
+    let model_err = |e: iridis_thinfilm::ThinFilmError| FitError::Model(e.to_string());
+    for &w in wavelengths {
+        let tan = template.tangent::<K>(values, w);
+        match opt.quantity {
+            Quantity::R | Quantity::T => {
+                let x = stack.evaluate_jet(w, opt.angle_rad, &tan).map_err(model_err)?;
+                out.push(if opt.quantity == Quantity::R { x.r() } else { x.t() }.gradient());
+            }
+            Quantity::PsiDelta => {
+                let (psi, delta) = stack.ellipsometry_jet(w, opt.angle_rad, &tan).map_err(model_err)?;
+                out.push(psi.gradient().map(f64::to_degrees));
+                out.push(delta.gradient().map(f64::to_degrees));
+            }
+        }
+    }
+    Ok(out)
+}
+
 struct Problem<'a> {
     template: &'a Template,
     data: &'a Measured,
     opt: &'a FitOptions,
     x: Vec<f64>,
     evaluations: std::cell::Cell<usize>,
+    /// Set when some Jacobian came from finite differences.
+    used_fd: std::cell::Cell<bool>,
 }
 
 impl Problem<'_> {
@@ -92,8 +146,39 @@ impl Problem<'_> {
         )
     }
 
-    /// Central differences, one-sided at a bound; steps ~1e-6 of the parameter's scale.
     fn jacobian_at(&self, x: &[f64]) -> Option<DMatrix<f64>> {
+        if self.opt.derivatives == Derivatives::FiniteDifferences {
+            return self.fd_jacobian(x);
+        }
+        match x.len() {
+            1 => self.exact_jacobian::<1>(x),
+            2 => self.exact_jacobian::<2>(x),
+            3 => self.exact_jacobian::<3>(x),
+            4 => self.exact_jacobian::<4>(x),
+            5 | 6 => self.exact_jacobian::<6>(x),
+            7 | 8 => self.exact_jacobian::<8>(x),
+            9..=12 => self.exact_jacobian::<12>(x),
+            13..=MAX_EXACT => self.exact_jacobian::<MAX_EXACT>(x),
+            _ => self.fd_jacobian(x),
+        }
+    }
+
+    /// The Jacobian of the weighted residuals from [`model_jacobian`].
+    fn exact_jacobian<const K: usize>(&self, x: &[f64]) -> Option<DMatrix<f64>> {
+        self.evaluations.set(self.evaluations.get() + 1);
+        let rows = model_jacobian::<K>(self.template, x, &self.data.wavelength_nm, self.opt).ok()?;
+        // Exactly at a layer's critical angle (cos θ = 0) the derivative with respect to its index is
+        // infinite: there the finite differences of the (finite) spectrum stand in.
+        if rows.iter().flatten().any(|v| !v.is_finite()) {
+            return self.fd_jacobian(x);
+        }
+        let sigma = self.data.sigma.as_deref();
+        Some(DMatrix::from_fn(rows.len(), x.len(), |i, k| rows[i][k] / sigma.map_or(1.0, |s| s[i])))
+    }
+
+    /// Central differences, one-sided at a bound; steps ~1e-6 of the parameter's scale.
+    fn fd_jacobian(&self, x: &[f64]) -> Option<DMatrix<f64>> {
+        self.used_fd.set(true);
         let n = self.data.values.len();
         let mut j = DMatrix::zeros(n, x.len());
         for (k, p) in self.template.params.iter().enumerate() {
@@ -189,7 +274,14 @@ pub fn fit(template: &Template, data: &Measured, opt: &FitOptions) -> Result<Fit
             "{n} measured values cannot determine {np} parameters (need more than {np})"
         )));
     }
-    let mut problem = Problem { template, data, opt, x: template.starts(), evaluations: std::cell::Cell::new(0) };
+    let mut problem = Problem {
+        template,
+        data,
+        opt,
+        x: template.starts(),
+        evaluations: std::cell::Cell::new(0),
+        used_fd: std::cell::Cell::new(false),
+    };
     // The model must evaluate at the start (e.g. every wavelength inside every material's data).
     model(template, &template.starts(), &data.wavelength_nm, opt)?;
     let candidates = starts(template, opt);
@@ -214,14 +306,28 @@ pub fn fit(template: &Template, data: &Measured, opt: &FitOptions) -> Result<Fit
     let dof = n - np;
     let sigma_given = data.sigma.is_some();
     let scale = if sigma_given { 1.0 } else { chi2v / dof as f64 };
-    let jtj = j.transpose() * &j;
-    let cov = jtj.clone().try_inverse().filter(|c| c.iter().all(|v| v.is_finite())).ok_or_else(|| {
+    // (JᵀJ)⁻¹ through the columns scaled to unit norm, JᵀJ = D C D with C a correlation-like matrix of unit
+    // diagonal: its smallest eigenvalue says how nearly two parameters do the same thing, whatever their
+    // units. Below 1e-12 (|correlation| > 1 − 5e-13) the covariance is rounding noise.
+    let singular = || {
         FitError::Model(
             "the data do not determine the parameters (JᵀJ is singular): some parameter has no effect on the \
              spectrum, or two have the same effect; fix one of them"
                 .into(),
         )
-    })? * scale;
+    };
+    let norms: Vec<f64> = (0..np).map(|k| j.column(k).norm()).collect();
+    if norms.iter().any(|v| !(v.is_finite() && *v > 0.0)) {
+        return Err(singular());
+    }
+    let d_inv = DMatrix::from_diagonal(&DVector::from_iterator(np, norms.iter().map(|v| 1.0 / v)));
+    let js = &j * &d_inv;
+    let c = js.transpose() * &js;
+    let eig = c.clone().symmetric_eigenvalues();
+    if eig.min() < 1e-12 * eig.max() {
+        return Err(singular());
+    }
+    let cov = &d_inv * c.try_inverse().ok_or_else(singular)? * &d_inv * scale;
     let sigma: Vec<f64> = (0..np).map(|k| cov[(k, k)].max(0.0).sqrt()).collect();
     let correlation = (0..np).map(|a| (0..np).map(|b| cov[(a, b)] / (sigma[a] * sigma[b])).collect()).collect();
     let at_bound = template
@@ -244,5 +350,6 @@ pub fn fit(template: &Template, data: &Measured, opt: &FitOptions) -> Result<Fit
         fitted,
         starts_tried: candidates.len(),
         evaluations: problem.evaluations.get(),
+        jacobian: if problem.used_fd.get() { "finite differences" } else { "exact" },
     })
 }

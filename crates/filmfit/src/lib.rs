@@ -5,14 +5,17 @@
 //! [`template`]); the fit is Levenberg–Marquardt (the `levenberg-marquardt` crate, MINPACK's algorithm)
 //! started from the best points of a grid over the thickness ranges (interference makes χ²(d) periodic, so a
 //! local fit from one start finds the nearest fringe order, not the best one), with the 1σ uncertainties and
-//! correlations of the parameters from the covariance `(JᵀWJ)⁻¹` at the optimum.
+//! correlations of the parameters from the covariance `(JᵀWJ)⁻¹` at the optimum. The Jacobian `J` is exact:
+//! forward-mode automatic differentiation through the thin-film model ([`iridis_thinfilm::jet`]), with the
+//! chain rule through Cauchy and Sellmeier formulas ([`Template::tangent`]); central finite differences
+//! remain as [`Derivatives::FiniteDifferences`] (and for more than [`MAX_EXACT`] parameters).
 
 pub mod data;
 pub mod fit;
 pub mod template;
 
-pub use data::Measured;
-pub use fit::{fit, model, FitOptions, FitResult};
+pub use data::{Measured, Spread};
+pub use fit::{fit, model, model_jacobian, Derivatives, FitOptions, FitResult, MAX_EXACT};
 pub use template::{Param, Role, Template};
 
 /// What was measured.

@@ -5,6 +5,7 @@
 //! * a coefficient of `cauchy:A,B,C` or `sellmeier:B1,C1,…` (plain numbers), e.g.
 //!   `cauchy:{A=1.45:1.3..1.7},{B=0.004:0..0.05}`.
 
+use iridis_thinfilm::jet::Tangent;
 use iridis_thinfilm::{Complex64, Material, Stack};
 
 use crate::FitError;
@@ -208,19 +209,55 @@ impl Template {
             }
         }
         for f in &self.formulas {
-            let c: Vec<f64> = f
-                .coefs
-                .iter()
-                .map(|c| match c {
-                    Coef::Fixed(v) => *v,
-                    Coef::Free(i) => values[*i],
-                })
-                .collect();
+            let c = f.values(values);
             let m = if f.sellmeier { Material::sellmeier(&f.name, &c) } else { Material::cauchy(&f.name, &c) }
                 .map_err(|e| FitError::Model(e.to_string()))?;
             set_medium(&mut s, n, f.medium, m);
         }
         Ok(s)
+    }
+}
+
+impl Template {
+    /// How the media and thicknesses of [`Template::stack`] depend on the parameters at one wavelength:
+    /// 1 for a thickness or a constant index, `∂n/∂c` of the Cauchy or Sellmeier formula for a coefficient
+    /// (`K ≥` the number of parameters; the other directions stay zero).
+    pub fn tangent<const K: usize>(&self, values: &[f64], wavelength_nm: f64) -> Tangent<K> {
+        let mut t = Tangent::zero(self.base.layers.len());
+        let one = Complex64::new(1.0, 0.0);
+        for (k, p) in self.params.iter().enumerate() {
+            match p.role {
+                Role::Thickness { layer } => t.thickness[layer][k] = 1.0,
+                Role::Index { medium } => t.index[medium][k] = one,
+                Role::Coefficient { .. } => {}
+            }
+        }
+        for f in &self.formulas {
+            let c = f.values(values);
+            let g = if f.sellmeier {
+                Material::sellmeier_gradient(&c, wavelength_nm)
+            } else {
+                Material::cauchy_gradient(&c, wavelength_nm)
+            };
+            for (coef, dn) in f.coefs.iter().zip(g) {
+                if let Coef::Free(k) = coef {
+                    t.index[f.medium][*k] += dn;
+                }
+            }
+        }
+        t
+    }
+}
+
+impl Formula {
+    fn values(&self, values: &[f64]) -> Vec<f64> {
+        self.coefs
+            .iter()
+            .map(|c| match c {
+                Coef::Fixed(v) => *v,
+                Coef::Free(i) => values[*i],
+            })
+            .collect()
     }
 }
 

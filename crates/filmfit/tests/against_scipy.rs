@@ -1,7 +1,7 @@
 //! The same fit as scipy.optimize.least_squares with a tmm model (tools/fit_scipy_compare.py wrote the
 //! measurement and scipy's answer): same optimum, same uncertainties.
 
-use iridis_filmfit::{fit, FitOptions, Measured, Quantity, Template};
+use iridis_filmfit::{fit, Derivatives, FitOptions, Measured, Quantity, Template};
 use serde_json::Value;
 
 #[test]
@@ -15,11 +15,15 @@ fn same_optimum_as_scipy_least_squares() {
     let want: Vec<f64> = doc["x"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
     let want_sigma: Vec<f64> = doc["sigma"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
     let chi2 = doc["chi2"].as_f64().unwrap();
-    // One local fit from scipy's start, and the default multi-start search: both land on scipy's optimum.
-    for grid in [1, 0] {
-        let r = fit(&t, &data, &FitOptions { angle_rad: 0.0, quantity: Quantity::R, grid, refine: 4 }).unwrap();
+    // One local fit from scipy's start, and the default multi-start search, with exact derivatives and with
+    // finite differences: all land on scipy's optimum.
+    for (grid, derivatives) in
+        [1, 0].into_iter().flat_map(|g| [(g, Derivatives::Exact), (g, Derivatives::FiniteDifferences)])
+    {
+        let opt = FitOptions { angle_rad: 0.0, quantity: Quantity::R, grid, refine: 4, derivatives };
+        let r = fit(&t, &data, &opt).unwrap();
         eprintln!(
-            "grid {grid}: {:?} ± {:?}, χ² {} (scipy {want:?} ± {want_sigma:?}, χ² {chi2})",
+            "grid {grid}, {derivatives:?}: {:?} ± {:?}, χ² {} (scipy {want:?} ± {want_sigma:?}, χ² {chi2})",
             r.values, r.sigma, r.chi2
         );
         for k in 0..3 {

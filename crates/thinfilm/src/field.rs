@@ -97,8 +97,8 @@ impl Stack {
     pub fn fields(&self, wavelength_nm: f64, angle_rad: f64) -> Result<Fields, ThinFilmError> {
         if self.has_incoherent() {
             return Err(ThinFilmError::Invalid(format!(
-                "\"{self}\" has an incoherent (inc:) layer; field profiles are for coherent stacks (use \
-                 absorption per layer, which handles both)"
+                "\"{self}\" has an incoherent (inc:) layer, so no single coherent field: use Stack::profile \
+                 (intensities lit from both sides) or the absorption per layer, which handle both"
             )));
         }
         let media = self.media(wavelength_nm, angle_rad)?;
@@ -114,10 +114,39 @@ impl Stack {
     /// Ellipsometric angles `(ψ, Δ)` in radians with tmm's `ellips` convention:
     /// `tan ψ e^{iΔ} = −r_p / r_s`, ψ ∈ [0, π/2], Δ ∈ (−π, π]. With iridis' (and tmm's) sign of `r_p`
     /// (Sussenbach eq. 3.7, `r_p = −r_s` at normal incidence) a bare substrate at normal incidence has Δ = 0.
+    ///
+    /// A stack with an incoherent (`inc:`) layer has no Δ: the light leaving it is an incoherent sum of
+    /// beams with unrelated phases (partly depolarised), so no single phase difference between p and s
+    /// exists; this returns an error that says so. Its ψ is defined: see [`Stack::psi`].
     pub fn ellipsometry(&self, wavelength_nm: f64, angle_rad: f64) -> Result<(f64, f64), ThinFilmError> {
+        if self.has_incoherent() {
+            return Err(no_delta_through_incoherent(self));
+        }
         let a = self.amplitudes(wavelength_nm, angle_rad)?;
         Ok(psi_delta(a.r_s, a.r_p))
     }
+
+    /// The ellipsometric ψ (radians) of any stack: `tan ψ = √(R_p / R_s)`. For a coherent stack this is
+    /// `|r_p / r_s|`, the ψ of [`Stack::ellipsometry`]; with `inc:` layers it is what an ellipsometer's
+    /// intensity ratio measures (the normalised Mueller element `N = −M₁₂/M₁₁ = cos 2ψ` of an incoherent
+    /// sum of beams is `(R_s − R_p)/(R_s + R_p)`), while Δ is not defined.
+    pub fn psi(&self, wavelength_nm: f64, angle_rad: f64) -> Result<f64, ThinFilmError> {
+        if !self.has_incoherent() {
+            return Ok(self.ellipsometry(wavelength_nm, angle_rad)?.0);
+        }
+        let x = self.evaluate(wavelength_nm, angle_rad)?;
+        Ok((x.r_p / x.r_s).sqrt().atan())
+    }
+}
+
+/// The error of asking for Δ of a stack with an incoherent layer.
+pub(crate) fn no_delta_through_incoherent(stack: &Stack) -> ThinFilmError {
+    ThinFilmError::Invalid(format!(
+        "\"{stack}\" has an incoherent (inc:) layer, so its reflection has no Δ: the beams returned by the \
+         incoherent layer add as intensities with unrelated phases (the light is partly depolarised), and no \
+         single p–s phase difference exists. ψ is defined (tan ψ = √(R_p/R_s)); fit R, T, or make the layer \
+         coherent if its thickness is below the coherence length"
+    ))
 }
 
 /// `(ψ, Δ)` from `r_s`, `r_p` (see [`Stack::ellipsometry`]).

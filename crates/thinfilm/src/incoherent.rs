@@ -15,7 +15,7 @@
 use num_complex::Complex64;
 
 use crate::error::ThinFilmError;
-use crate::field::{Absorption, Fields, PolPowers};
+use crate::field::{Absorption, Fields, Point, PolPowers};
 use crate::recurrence::{compose, Medium, Rta};
 use crate::stack::Stack;
 
@@ -155,20 +155,7 @@ pub fn absorption(
     let one = |p: bool| -> PolPowers {
         let f: Vec<PolPowers> = fields.iter().map(|x| x.0.powers(p)).collect();
         let b: Vec<PolPowers> = fields.iter().map(|x| x.1.powers(p)).collect();
-        // rc[k]: reflectance of everything below the bottom of incoherent medium k, seen from inside it.
-        let mut rc = vec![0.0; m + 1];
-        for k in (0..m).rev() {
-            let pp = pass[k + 1] * pass[k + 1];
-            rc[k] = f[k].r + f[k].t * b[k].t * pp * rc[k + 1] / (1.0 - b[k].r * pp * rc[k + 1]);
-        }
-        // down[k]: forward intensity at the bottom of medium k; up[k]: backward intensity at its top.
-        let (mut down, mut up) = (vec![0.0; m + 1], vec![0.0; m + 1]);
-        down[0] = 1.0;
-        for k in 0..m {
-            let pk = pass[k + 1];
-            down[k + 1] = pk * f[k].t * down[k] / (1.0 - b[k].r * pk * pk * rc[k + 1]);
-            up[k + 1] = pk * rc[k + 1] * down[k + 1];
-        }
+        let Bounces { rc, down, up, .. } = bounces(&f, &b, &pass);
         // Net flux entering incoherent medium k at its top and leaving it at its bottom (tmm's conventions:
         // a bare interface passes T both ways; a coherent group is entered with its `entering` flux).
         let mut entering = vec![1.0; m + 1];
@@ -189,6 +176,207 @@ pub fn absorption(
     };
     let opaque = media[media.len() - 1].n.im > 0.0;
     Ok(Absorption::from_powers(one(false), one(true), opaque))
+}
+
+/// The intensities between the groups of one polarisation.
+#[derive(Debug, Clone)]
+struct Bounces {
+    /// `rc[k]`: reflectance of everything below the bottom of incoherent medium k, seen from inside it.
+    rc: Vec<f64>,
+    /// `down[k]`: forward intensity at the bottom of incoherent medium k (the `F` lighting group k).
+    down: Vec<f64>,
+    /// `up[k]`: backward intensity at the top of incoherent medium k (the `B` lighting group k − 1).
+    up: Vec<f64>,
+    /// `top[k]`: forward intensity at the top of incoherent medium k, `F T_f + B R_b` of the group above
+    /// (= `down[k] / P_k`, without the division, which fails where P underflows to 0).
+    top: Vec<f64>,
+}
+
+/// The geometric series of bounces between the groups (`f`, `b`: each group lit from above / below).
+fn bounces(f: &[PolPowers], b: &[PolPowers], pass: &[f64]) -> Bounces {
+    let m = f.len();
+    let mut rc = vec![0.0; m + 1];
+    for k in (0..m).rev() {
+        let pp = pass[k + 1] * pass[k + 1];
+        rc[k] = f[k].r + f[k].t * b[k].t * pp * rc[k + 1] / (1.0 - b[k].r * pp * rc[k + 1]);
+    }
+    let (mut down, mut up) = (vec![0.0; m + 1], vec![0.0; m + 1]);
+    down[0] = 1.0;
+    for k in 0..m {
+        let pk = pass[k + 1];
+        down[k + 1] = pk * f[k].t * down[k] / (1.0 - b[k].r * pk * pk * rc[k + 1]);
+        up[k + 1] = pk * rc[k + 1] * down[k + 1];
+    }
+    let mut top = vec![1.0; m + 1];
+    for k in 0..m {
+        top[k + 1] = down[k] * f[k].t + up[k + 1] * b[k].r;
+    }
+    Bounces { rc, down, up, top }
+}
+
+/// Where the light goes inside any stack, coherent or mixed: the position-resolved flux, absorbed power
+/// density and |E|² (as [`Fields`] for a coherent stack, which it reproduces).
+///
+/// In a coherent group lit by the forward intensity `F` from above and the backward intensity `B` from
+/// below (the two are mutually incoherent), every quantity is the intensity-weighted sum of the group's
+/// coherent solutions lit from each side: absorption `F a_fwd(z) + B a_bwd(d − z)` (what
+/// `tmm.inc_find_absorp_analytic_fn` computes), flux `F S_fwd − B S_bwd`, and |E|² likewise, each coherent
+/// |E|² rescaled from its group's incident amplitude to the stack's (flux per unit |E|² is `Re(n̂ s_z)` for s,
+/// `Re(n̂ s̄_z)` for p). In an incoherent layer with forward intensity `V` and backward intensity `W` at its
+/// top (tmm's `VW_list`), the two beams decay by Beer–Lambert, `α = 4π Im(n̂ s_z)/λ`: flux
+/// `V e^{−αz} − W e^{αz}`, absorption `α (V e^{−αz} + W e^{αz})`, |E|² the sum of the two beams' (no
+/// interference term).
+#[derive(Debug, Clone)]
+pub struct Profile {
+    media: Vec<Medium>,
+    thicknesses: Vec<f64>,
+    wavelength_nm: f64,
+    inc: Vec<usize>,
+    /// Per group: lit from above, lit from below (reversed media).
+    fields: Vec<(Fields, Fields)>,
+    /// Per polarisation (s, p): the intensities between the groups.
+    light: [Bounces; 2],
+}
+
+impl Stack {
+    /// The position-resolved profile of any stack ([`Profile`]).
+    pub fn profile(&self, wavelength_nm: f64, angle_rad: f64) -> Result<Profile, ThinFilmError> {
+        let media = self.media(wavelength_nm, angle_rad)?;
+        let d = self.thicknesses();
+        let inc = incoherent_media(self);
+        let pass: Vec<f64> = inc.iter().map(|&i| pass_of(&media, &d, i, wavelength_nm)).collect();
+        let fields: Vec<(Fields, Fields)> = inc
+            .windows(2)
+            .map(|w| {
+                let gm = media[w[0]..=w[1]].to_vec();
+                let gd = d[w[0]..w[1] - 1].to_vec();
+                let rev_m = gm.iter().rev().copied().collect();
+                let rev_d = gd.iter().rev().copied().collect();
+                (Fields::new(gm, gd, wavelength_nm), Fields::new(rev_m, rev_d, wavelength_nm))
+            })
+            .collect();
+        let light = [false, true].map(|p| {
+            let f: Vec<PolPowers> = fields.iter().map(|x| x.0.powers(p)).collect();
+            let b: Vec<PolPowers> = fields.iter().map(|x| x.1.powers(p)).collect();
+            bounces(&f, &b, &pass)
+        });
+        Ok(Profile { media, thicknesses: d, wavelength_nm, inc, fields, light })
+    }
+}
+
+impl Profile {
+    /// The total thickness of the layers (nm).
+    pub fn depth_nm(&self) -> f64 {
+        self.thicknesses.iter().sum()
+    }
+
+    /// The depth (nm) of the top of medium `j` below the first interface (0 for media 0 and 1).
+    fn top(&self, j: usize) -> f64 {
+        self.thicknesses[..j.saturating_sub(1).min(self.thicknesses.len())].iter().sum()
+    }
+
+    /// The values at depth `z_nm` below the first interface (negative: in the incident medium; beyond the
+    /// last interface: in the substrate). At an interface, the medium below is used.
+    pub fn at(&self, z_nm: f64) -> Point {
+        let n = self.thicknesses.len();
+        let j = if z_nm < 0.0 {
+            0
+        } else {
+            let mut j = 1;
+            while j <= n && z_nm >= self.top(j) + self.thicknesses[j - 1] {
+                j += 1;
+            }
+            j
+        };
+        let dz = if j == 0 { z_nm } else { z_nm - self.top(j) };
+        self.in_medium(j, dz)
+    }
+
+    /// Flux per unit |E|² of a wave in medium `m`, for s or p.
+    fn flux_per_e2(m: Medium, p: bool) -> f64 {
+        if p {
+            (m.n * m.cos.conj()).re
+        } else {
+            (m.n * m.cos).re
+        }
+    }
+
+    /// The values in medium `j` at `dz` nm below its top (for the incident medium: `dz ≤ 0` above the first
+    /// interface), both polarisations.
+    pub fn in_medium(&self, j: usize, dz: f64) -> Point {
+        let last = self.media.len() - 1;
+        let z_nm = self.top(j) + dz;
+        let ([ps, as_, es], [pp, ap, ep]) =
+            if let Some(k) = self.inc.iter().position(|&i| i == j && i != 0 && i != last) {
+                (self.incoherent_layer(k, dz, false), self.incoherent_layer(k, dz, true))
+            } else {
+                let g = self.inc.windows(2).position(|w| w[0] <= j && j <= w[1]).expect("every medium is in a group");
+                (self.coherent(g, j, dz, false), self.coherent(g, j, dz, true))
+            };
+        Point {
+            z_nm,
+            medium: j,
+            poynting_s: ps,
+            poynting_p: pp,
+            absorption_s: as_,
+            absorption_p: ap,
+            e2_s: es,
+            e2_p: ep,
+        }
+    }
+
+    /// [flux, absorption density, |E|²] in incoherent medium `inc[k]` at `dz` below its top.
+    fn incoherent_layer(&self, k: usize, dz: f64, p: bool) -> [f64; 3] {
+        let j = self.inc[k];
+        let m = self.media[j];
+        let light = &self.light[usize::from(p)];
+        // Each beam from where it enters (forward: the top; backward: the bottom), so nothing overflows in
+        // a layer that absorbs everything.
+        let v = light.top[k];
+        let w_bottom = light.rc[k] * light.down[k];
+        let alpha = 4.0 * std::f64::consts::PI * (m.n * m.cos).im / self.wavelength_nm;
+        let d = self.thicknesses[j - 1];
+        let (fwd, bwd) = (v * (-alpha * dz).exp(), w_bottom * (-alpha * (d - dz)).exp());
+        let norm = Self::flux_per_e2(self.media[0], p);
+        let per = Self::flux_per_e2(m, p);
+        let shape = if p { m.cos.norm_sqr() + (Complex64::new(self.invariant(), 0.0) / m.n).norm_sqr() } else { 1.0 };
+        let e2 = if per > 0.0 { (fwd + bwd) * norm / per * shape } else { 0.0 };
+        [fwd - bwd, alpha * (fwd + bwd), e2]
+    }
+
+    /// `n₀ sin θ₀`.
+    fn invariant(&self) -> f64 {
+        let m0 = self.media[0];
+        (m0.n * (Complex64::new(1.0, 0.0) - m0.cos * m0.cos).sqrt()).re
+    }
+
+    /// [flux, absorption density, |E|²] in medium `j` of coherent group `g` at `dz` below its top.
+    fn coherent(&self, g: usize, j: usize, dz: f64, p: bool) -> [f64; 3] {
+        let (a, b) = (self.inc[g], self.inc[g + 1]);
+        let light = &self.light[usize::from(p)];
+        let (big_f, big_b) = (light.down[g], light.up[g + 1]);
+        let (fwd, bwd) = &self.fields[g];
+        // Position in the reversed group: from the bottom of a finite layer; below the last interface
+        // (of the reversed media) for the semi-infinite ends.
+        let end = j == 0 || j == self.media.len() - 1;
+        let dz_b = if end { -dz } else { self.thicknesses[j - 1] - dz };
+        let norm = Self::flux_per_e2(self.media[0], p);
+        let pick =
+            |x: Point| if p { [x.poynting_p, x.absorption_p, x.e2_p] } else { [x.poynting_s, x.absorption_s, x.e2_s] };
+        let mut out = [0.0; 3];
+        // Zero intensity contributes nothing (and a group lit from an evanescent side has no normalisation).
+        if big_f != 0.0 {
+            let [s, ab, e] = pick(fwd.in_medium(j - a, dz));
+            let scale = norm / Self::flux_per_e2(self.media[a], p);
+            out = [big_f * s, big_f * ab, big_f * scale * e];
+        }
+        if big_b != 0.0 {
+            let [s, ab, e] = pick(bwd.in_medium(b - j, dz_b));
+            let scale = norm / Self::flux_per_e2(self.media[b], p);
+            out = [out[0] - big_b * s, out[1] + big_b * ab, out[2] + big_b * scale * e];
+        }
+        out
+    }
 }
 
 /// `P` of incoherent medium `i` (1 for the semi-infinite ends).
@@ -247,6 +435,24 @@ mod tests {
         let r = rho + (1.0 - rho).powi(2) * p * p * rho / (1.0 - rho * rho * p * p);
         let t = (1.0 - rho).powi(2) * p / (1.0 - rho * rho * p * p);
         assert!((x.r() - r).abs() < 1e-8 && (x.t() - t).abs() < 1e-8, "{x:?} vs {r} {t}");
+    }
+
+    #[test]
+    fn opaque_incoherent_layer_has_a_finite_profile() {
+        // κ = 0.1 over 1 mm: P = exp(−2500) underflows to 0; the light entering the slab decays by
+        // Beer–Lambert, α = 4πκ/λ, and none comes out.
+        let s = Stack::parse("air | n=2 50nm | inc:n=1.5+0.1i 1mm | air").unwrap();
+        let prof = s.profile(500.0, 0.0).unwrap();
+        let entering = prof.in_medium(2, 0.0).poynting();
+        let alpha = 4.0 * std::f64::consts::PI * 0.1 / 500.0;
+        for dz in [0.0, 10.0, 100.0, 1e4, 1e6] {
+            let p = prof.in_medium(2, dz);
+            assert!(p.absorption().is_finite() && p.e2().is_finite() && p.poynting().is_finite(), "{p:?}");
+            let want = entering * (-alpha * dz).exp();
+            assert!((p.poynting() - want).abs() < 1e-15 && (p.absorption() - alpha * want).abs() < 1e-15, "{p:?}");
+        }
+        let x = s.evaluate(500.0, 0.0).unwrap();
+        assert!(x.t() == 0.0 && (entering - (1.0 - x.r())).abs() < 1e-12);
     }
 
     #[test]

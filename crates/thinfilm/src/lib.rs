@@ -15,9 +15,12 @@
 //! * [`fast`]: the chapter 4 variant — per-interface values computed once for a fixed angle, real arithmetic
 //!   for dielectric stacks, the same numbers as the general path;
 //! * [`grid`]: angle × wavelength tables (Figure 3.8), in parallel;
-//! * [`incoherent`]: stacks with incoherent layers (`inc:BK7 1mm`), as `tmm.inc_tmm`;
+//! * [`incoherent`]: stacks with incoherent layers (`inc:BK7 1mm`), as `tmm.inc_tmm`, and the depth
+//!   profile of any stack ([`incoherent::Profile`]);
 //! * [`field`]: amplitudes inside the stack, position-resolved flux / absorption / |E|², absorption per
 //!   layer, ellipsometric ψ and Δ;
+//! * [`jet`]: exact derivatives of R, T, ψ, Δ with respect to thicknesses and indices (forward-mode
+//!   automatic differentiation through the same equations), for fitting;
 //! * [`sampling`]: warnings when a wavelength grid cannot resolve the fringes of a thick layer;
 //! * [`color`]: film colours (reflected / transmitted spectrum → XYZ through `iridis-color`).
 //! * [`htsg`]: the He–Torrance–Sillion–Greenberg BRDF of a rough interface (rms height σ, correlation
@@ -44,6 +47,7 @@ pub mod field;
 pub mod grid;
 pub mod htsg;
 pub mod incoherent;
+pub mod jet;
 pub mod material;
 pub mod nkfile;
 pub mod recurrence;

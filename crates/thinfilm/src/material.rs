@@ -272,6 +272,28 @@ impl Material {
         Ok(Self { name, n: Part::Formula { kind: 2, c }, k: Part::Const(0.0), range_nm: (0.0, f64::INFINITY) })
     }
 
+    /// `∂n/∂c_i` of [`Material::cauchy`] at one wavelength: `n = A + B/λ² + C/λ⁴` (λ in µm) is linear in
+    /// its coefficients, so the gradient is `(1, λ⁻², λ⁻⁴)` (as many entries as coefficients).
+    pub fn cauchy_gradient(coefficients: &[f64], wavelength_nm: f64) -> Vec<f64> {
+        let l2 = (wavelength_nm / 1000.0).powi(2);
+        (0..coefficients.len()).map(|i| l2.powi(-(i as i32))).collect()
+    }
+
+    /// `∂n/∂c` of [`Material::sellmeier`] at one wavelength, for `B1, C1, B2, C2, …`: with
+    /// `n² = 1 + Σ B_i λ²/(λ² − C_i)`, `∂n/∂B_i = λ²/((λ² − C_i) 2n)` and `∂n/∂C_i = B_i λ²/((λ² − C_i)² 2n)`.
+    pub fn sellmeier_gradient(coefficients: &[f64], wavelength_nm: f64) -> Vec<f64> {
+        let l2 = (wavelength_nm / 1000.0).powi(2);
+        let n2: f64 = 1.0 + coefficients.chunks(2).map(|p| p[0] * l2 / (l2 - p[1])).sum::<f64>();
+        let two_n = 2.0 * n2.sqrt();
+        coefficients
+            .chunks(2)
+            .flat_map(|p| {
+                let q = l2 - p[1];
+                [l2 / (q * two_n), p[0] * l2 / (q * q * two_n)]
+            })
+            .collect()
+    }
+
     pub(crate) fn from_parts(name: String, n: Part, k: Part, range_nm: (f64, f64)) -> Self {
         Self { name, n, k, range_nm }
     }

@@ -8,14 +8,14 @@ use std::time::Instant;
 
 use anyhow::{bail, Context, Result};
 use clap::Args as ClapArgs;
-use iridis_filmfit::{fit, FitOptions, Measured, Quantity, Template};
+use iridis_filmfit::{fit, FitOptions, Measured, Quantity, Spread, Template};
 use iridis_plot::{LinePlot, Series};
 use iridis_thinfilm::Stack;
 use serde_json::json;
 
 #[derive(Debug, ClapArgs)]
 pub struct ProfileArgs {
-    /// The stack, e.g. "air | Au 30nm | glass" (inc: layers: absorption per layer only).
+    /// The stack, e.g. "air | Au 30nm | glass" (inc: layers: incoherent intensities, no interference, in them).
     #[arg(long)]
     pub stack: String,
     /// Vacuum wavelength (with unit).
@@ -30,6 +30,10 @@ pub struct ProfileArgs {
     /// Number of depth samples of the profile (from 100 nm above the stack to 100 nm into the substrate).
     #[arg(long, default_value_t = 400)]
     pub points: usize,
+    /// The depth window of the profile, FROM:TO below the first interface (e.g. --depth=-20nm:200nm to see
+    /// the films on a 1 mm slide); default 100 nm above the stack to 100 nm into the substrate.
+    #[arg(long, value_name = "FROM:TO", allow_hyphen_values = true)]
+    pub depth: Option<String>,
     /// Print JSON (absorption per layer and the profile).
     #[arg(long, conflicts_with = "csv")]
     pub json: bool,
@@ -56,8 +60,13 @@ pub struct FitArgs {
     pub quantity: String,
     /// 1σ measurement uncertainty: a number (same for every point) or the name of a CSV column (for
     /// psi-delta two names, "spsi,sdelta"). The weights are 1/σ². Without it σ is estimated from the scatter.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "weights")]
     pub sigma: Option<String>,
+    /// Weights w = 1/σ² of the measured values: a number (the same for every point), the name of a CSV
+    /// column ("w_psi,w_delta" for psi-delta), or a separate CSV file with wavelength_nm and w (w_psi and
+    /// w_delta) in the measurement's rows. Equivalent to --sigma 1/√w.
+    #[arg(long)]
+    pub weights: Option<String>,
     /// Grid points per thickness range for the multi-start search (0: automatic, about one per 10 nm;
     /// 1: a single local fit from the start values).
     #[arg(long, default_value_t = 0)]
@@ -97,21 +106,32 @@ pub fn profile(a: ProfileArgs) -> Result<()> {
     if balance.abs() > 1e-9 {
         bail!("internal error: R + T + ΣA − 1 = {balance:e} (please report with the stack)");
     }
-    let profile = if stack.has_incoherent() {
-        None
-    } else {
-        let f = stack.fields(a.wavelength, a.angle)?;
+    // Coherent and mixed stacks alike (in inc: layers: incoherent Beer–Lambert beams, no interference).
+    let (pts, depth) = {
+        let f = stack.profile(a.wavelength, a.angle)?;
         let depth = f.depth_nm();
-        let (z0, z1) = (-100.0, depth + 100.0);
+        let (z0, z1) = match &a.depth {
+            None => (-100.0, depth + 100.0),
+            Some(w) => {
+                let bad = || anyhow::anyhow!("--depth '{w}': write FROM:TO with units, e.g. --depth=-20nm:200nm");
+                let (from, to) = w.split_once(':').ok_or_else(bad)?;
+                let (from, to) = (crate::args::length_nm(from.trim()), crate::args::length_nm(to.trim()));
+                match (from, to) {
+                    (Ok(f), Ok(t)) if f < t => (f, t),
+                    (Ok(f), Ok(t)) => bail!("--depth {f} nm:{t} nm is empty: FROM must be above (less than) TO"),
+                    (Err(e), _) | (_, Err(e)) => bail!("--depth '{w}': {e}"),
+                }
+            }
+        };
         let pts: Vec<_> = (0..a.points).map(|i| f.at(z0 + (z1 - z0) * i as f64 / (a.points - 1) as f64)).collect();
-        Some((pts, depth))
+        (pts, depth)
     };
     let names: Vec<String> = stack
         .layers
         .iter()
         .map(|l| format!("{}{} {} nm", if l.incoherent { "inc:" } else { "" }, l.material.name(), l.thickness_nm))
         .collect();
-    if let (Some(path), Some((pts, depth))) = (&a.plot, &profile) {
+    if let Some(path) = &a.plot {
         let z: Vec<f64> = pts.iter().map(|p| p.z_nm).collect();
         let e2: Vec<f64> = pts.iter().map(|p| pick(p.e2_s, p.e2_p)).collect();
         let ab: Vec<f64> = pts.iter().map(|p| 1000.0 * pick(p.absorption_s, p.absorption_p)).collect();
@@ -128,18 +148,14 @@ pub fn profile(a: ProfileArgs) -> Result<()> {
         if !a.json && !a.csv {
             crate::outln!("wrote {}", path.display())?;
         }
-    } else if a.plot.is_some() {
-        eprintln!("warning: no profile plot for a stack with inc: layers (intensities, not fields, in them)");
     }
     if a.json {
-        let prof = profile.as_ref().map(|(pts, _)| {
-            json!({
+        let prof = json!({
                 "z_nm": pts.iter().map(|p| p.z_nm).collect::<Vec<_>>(),
                 "medium": pts.iter().map(|p| p.medium).collect::<Vec<_>>(),
                 "E2": pts.iter().map(|p| pick(p.e2_s, p.e2_p)).collect::<Vec<_>>(),
                 "absorption_per_nm": pts.iter().map(|p| pick(p.absorption_s, p.absorption_p)).collect::<Vec<_>>(),
                 "flux": pts.iter().map(|p| pick(p.poynting_s, p.poynting_p)).collect::<Vec<_>>(),
-            })
         });
         return crate::output::print_json(&json!({
             "stack": stack.to_string(), "wavelength_nm": a.wavelength, "angle_deg": a.angle.to_degrees(),
@@ -148,11 +164,8 @@ pub fn profile(a: ProfileArgs) -> Result<()> {
         }));
     }
     if a.csv {
-        let Some((pts, _)) = &profile else {
-            bail!("--csv prints the depth profile, which needs a coherent stack (no inc: layer); use --json");
-        };
         let mut out = String::from("z_nm,medium,E2,absorption_per_nm,flux\n");
-        for p in pts {
+        for p in &pts {
             let _ = writeln!(
                 out,
                 "{},{},{},{},{}",
@@ -185,18 +198,7 @@ pub fn fit_cmd(a: FitArgs) -> Result<()> {
     let template = Template::parse(&a.stack)?;
     let text = std::fs::read_to_string(&a.measured).with_context(|| format!("cannot read {}", a.measured.display()))?;
     let shown = a.measured.display().to_string();
-    let (column, constant) = match &a.sigma {
-        None => (None, None),
-        Some(s) => match s.trim().parse::<f64>() {
-            Ok(v) if v.is_finite() && v > 0.0 => (None, Some(v)),
-            Ok(v) => bail!("--sigma {v}: an uncertainty must be a positive number (or a column name)"),
-            Err(_) => (Some(s.as_str()), None),
-        },
-    };
-    let mut data = Measured::from_csv(&text, &shown, quantity, column)?;
-    if let Some(v) = constant {
-        data.sigma = Some(vec![v; data.values.len()]);
-    }
+    let data = read_measured(&text, &shown, quantity, &a)?;
     if let Some(w) = iridis_thinfilm::sampling::check(&template.base, a.angle, &sorted(&data.wavelength_nm)) {
         eprintln!("warning: the measured wavelengths: {}", w.message);
     }
@@ -248,7 +250,7 @@ pub fn fit_cmd(a: FitArgs) -> Result<()> {
             "names": r.names, "units": params.iter().map(|p| p.unit()).collect::<Vec<_>>(),
             "values": r.values, "sigma": r.sigma, "correlation": r.correlation,
             "chi2": r.chi2, "dof": r.dof, "reduced_chi2": r.reduced_chi2, "sigma_given": r.sigma_given,
-            "at_bound": r.at_bound, "starts": r.starts_tried, "evaluations": r.evaluations, "seconds": seconds,
+            "at_bound": r.at_bound, "starts": r.starts_tried, "evaluations": r.evaluations, "jacobian": r.jacobian, "seconds": seconds,
             "fitted": r.fitted,
         }));
     }
@@ -267,7 +269,7 @@ pub fn fit_cmd(a: FitArgs) -> Result<()> {
     crate::outln!("χ² = {:.4} for {} degrees of freedom (χ²/dof = {:.4})", r.chi2, r.dof, r.reduced_chi2)?;
     if !r.sigma_given {
         crate::outln!(
-            "no --sigma: χ² uses σ = 1 and the uncertainties are scaled by √(χ²/dof), i.e. σ is estimated from the scatter"
+            "no --sigma or --weights: χ² uses σ = 1 and the uncertainties are scaled by √(χ²/dof), i.e. σ is estimated from the scatter"
         )?;
     }
     if params.len() > 1 {
@@ -285,11 +287,50 @@ pub fn fit_cmd(a: FitArgs) -> Result<()> {
             crate::outln!("{row}")?;
         }
     }
-    crate::outln!("{} starts searched, {} spectra evaluated, {:.3} s", r.starts_tried, r.evaluations, seconds)?;
+    crate::outln!(
+        "{} starts searched, {} spectra evaluated, {} derivatives, {:.3} s",
+        r.starts_tried,
+        r.evaluations,
+        r.jacobian,
+        seconds
+    )?;
     if let Some(p) = &a.plot {
         crate::outln!("wrote {}", p.display())?;
     }
     Ok(())
+}
+
+/// The measurement with its uncertainties from `--sigma` or `--weights` (a number, column names of the
+/// measured CSV, or — for `--weights` — a separate CSV file).
+fn read_measured(text: &str, shown: &str, quantity: Quantity, a: &FitArgs) -> Result<Measured> {
+    let (arg, kind) = match (&a.sigma, &a.weights) {
+        (Some(s), _) => (s.trim(), Spread::Sigma),
+        (None, Some(w)) => (w.trim(), Spread::Weight),
+        (None, None) => return Ok(Measured::from_csv(text, shown, quantity, None)?),
+    };
+    let flag = if kind == Spread::Sigma { "--sigma" } else { "--weights" };
+    if let Ok(v) = arg.parse::<f64>() {
+        let sigma = kind.sigma(v).map_err(|m| anyhow::anyhow!("{flag} {arg}: {m}"))?;
+        let mut data = Measured::from_csv(text, shown, quantity, None)?;
+        data.sigma = Some(vec![sigma; data.values.len()]);
+        return Ok(data);
+    }
+    let header = iridis_filmfit::data::header(text);
+    let is_column = arg.split(',').all(|c| header.iter().any(|h| h.eq_ignore_ascii_case(c.trim())));
+    if kind == Spread::Weight && !is_column {
+        let path = std::path::Path::new(arg);
+        if !path.is_file() {
+            bail!(
+                "--weights '{arg}' is neither a number, a column of {shown} (its columns: {}), nor a file",
+                header.join(", ")
+            );
+        }
+        let wtext = std::fs::read_to_string(path).with_context(|| format!("cannot read {arg}"))?;
+        let mut data = Measured::from_csv(text, shown, quantity, None)?;
+        data.set_weights_from_csv(&wtext, arg, quantity)?;
+        return Ok(data);
+    }
+    Ok(Measured::from_csv_with(text, shown, quantity, Some((arg, kind)))?)
 }
 
 /// Degrees, rounded to 1e-6 (prints `30`, not `30.000000`).

@@ -28,7 +28,8 @@ thickness with a unit. A medium is a library name (see 'iridis thinfilm material
 (intensities add across it, as for a 1 mm glass slide; tmm's inc_tmm).
 
 JSON keys: wavelength_nm, R, T, A (the chosen polarisation), Rs, Rp, Ts, Tp, psi_deg, delta_deg (ellipsometric
-angles, tan ψ e^{iΔ} = −r_p/r_s as tmm.ellips; null for a stack with inc: layers). CSV has the same columns.
+angles, tan ψ e^{iΔ} = −r_p/r_s as tmm.ellips; with inc: layers tan ψ = √(Rp/Rs) and Δ null: no single
+phase survives an incoherent layer). CSV has the same columns.
 A warning goes to stderr when the wavelength step is too coarse for the fringes of a thick layer.
 
 Examples:
@@ -41,7 +42,7 @@ Examples:
     /// The angle × wavelength simulation table (Sussenbach Figure 3.8) as CSV, optionally a map image.
     #[command(after_help = "\
 Columns: angle_deg, wavelength_nm, R, T, A, Rs, Rp, Ts, Tp, psi_deg, delta_deg (unpolarised R, T, A;
-ellipsometric ψ, Δ as tmm.ellips, empty for a stack with inc: layers). Without -o the table goes to
+ellipsometric ψ, Δ as tmm.ellips; with inc: layers ψ from √(Rp/Rs) and Δ empty). Without -o the table goes to
 standard output. --plot draws R as an angle × wavelength map with a colour bar.
 
 Examples:
@@ -98,17 +99,20 @@ Examples:
     /// Where the light goes: absorption in each layer and |E|², absorbed power and flux against depth.
     #[command(after_help = "\
 At one wavelength and angle: the fraction of the incident power reflected, absorbed in each layer (and in an
-absorbing substrate) and transmitted, with the energy balance R + T + ΣA − 1 (zero up to rounding); for a
-coherent stack also the depth profile from 100 nm above the first interface to 100 nm into the substrate:
+absorbing substrate) and transmitted, with the energy balance R + T + ΣA − 1 (zero up to rounding), and the
+depth profile from 100 nm above the first interface to 100 nm into the substrate (--depth FROM:TO to choose):
 |E|² relative to the incident wave, absorbed power density (fraction of the incident power per nm) and the
-normal Poynting flux (tmm's position_resolved; Byrnes, arXiv:1603.02720). Stacks with inc: layers give the
-absorption per layer only (as tmm's inc_absorp_in_each_layer).
+normal Poynting flux (tmm's position_resolved; Byrnes, arXiv:1603.02720). With inc: layers each coherent
+group is lit from both sides by incoherent intensities (tmm's inc_absorp_in_each_layer and
+inc_find_absorp_analytic_fn), and inside an inc: layer the two beams decay by Beer–Lambert without
+interference.
 JSON keys: R, T, layers, A_layers, A_substrate, balance, profile {z_nm, medium, E2, absorption_per_nm, flux}.
 
 Examples:
   iridis thinfilm profile --stack \"air | Au 30nm | glass\" --wavelength 500nm
   iridis thinfilm profile --stack \"air | Si 108nm | glass\" --wavelength 450nm --angle 30deg --plot si_profile.png
-  iridis thinfilm profile --stack \"air | TiO2 60nm | Si 50nm | inc:glass 1mm | air\" --wavelength 550nm --json")]
+  iridis thinfilm profile --stack \"air | TiO2 60nm | Si 50nm | inc:glass 1mm | air\" --wavelength 550nm --json
+  iridis thinfilm profile --stack \"air | TiO2 60nm | Si 50nm | inc:glass 1mm | air\" --wavelength 550nm --depth=-20nm:200nm --csv")]
     Profile(super::filmfit::ProfileArgs),
     /// Fit a stack's free parameters to a measured R, T or ψ/Δ spectrum.
     #[command(after_help = "\
@@ -116,13 +120,16 @@ Free parameters are written into the stack as {NAME=START:LOW..HIGH}: a layer th
 constant index n={n1=1.45:1.3..1.7}, or a coefficient of cauchy:A,B,C / sellmeier:B1,C1,… e.g.
 cauchy:{A=1.46:1.3..1.7},{B=0.004:0..0.05}. The fit is Levenberg–Marquardt (the levenberg-marquardt crate)
 from the best points of a grid over the thickness ranges (fringes make χ² periodic in thickness; --grid 1 fits
-from the start values only), with numerical derivatives. It prints the values with 1σ uncertainties from the
-covariance (JᵀWJ)⁻¹, χ², and the correlation matrix. The CSV needs a header: wavelength_nm and R, T, or psi
-and delta (degrees); --sigma gives the 1σ noise (a number or a column), else σ is estimated from the scatter.
+from the start values only), with exact derivatives (automatic differentiation through the model). It prints
+the values with 1σ uncertainties from the covariance (JᵀWJ)⁻¹, χ², and the correlation matrix. The CSV needs a
+header: wavelength_nm and R, T, or psi and delta (degrees); --sigma gives the 1σ noise (a number or a column),
+--weights the weights w = 1/σ² (a number, a column, or a CSV file with wavelength_nm,w); without either σ is
+estimated from the scatter. psi-delta needs a coherent stack (Δ is undefined through an inc: layer).
 
 Examples:
   iridis thinfilm fit measured.csv --stack \"air | SiO2 {d1=100nm:50nm..500nm} | Si\"
   iridis thinfilm fit slide.csv --stack \"air | n=2.1 {d=150nm:50nm..400nm} | inc:BK7 1mm | air\" --quantity T --sigma 0.002 --plot fit.png
+  iridis thinfilm fit measured.csv --stack \"air | SiO2 {d1=100nm:50nm..500nm} | Si\" --weights w
   iridis thinfilm fit ellips.csv --stack \"air | n={n=1.5:1.3..1.7} {d=100nm:10nm..400nm} | Si\" --angle 70deg --quantity psi-delta --json")]
     Fit(super::filmfit::FitArgs),
 }
@@ -319,19 +326,23 @@ fn pick(pol: Polarization, x: &Rta) -> (f64, f64, f64) {
 }
 
 /// Ellipsometric (ψ, Δ) in degrees per wavelength; `None` for a stack with inc: layers (no amplitudes).
-fn psi_delta(stack: &Stack, angle: f64, grid: &[f64]) -> Result<Option<Vec<(f64, f64)>>> {
-    if stack.has_incoherent() {
-        return Ok(None);
-    }
+fn psi_delta(stack: &Stack, angle: f64, grid: &[f64]) -> Result<Vec<(f64, Option<f64>)>> {
     let v = grid
         .iter()
-        .map(|&w| stack.ellipsometry(w, angle).map(|(p, d)| (p.to_degrees(), d.to_degrees())))
+        .map(|&w| {
+            if stack.has_incoherent() {
+                // Δ is undefined through an incoherent layer; ψ from the intensity ratio (field.rs).
+                stack.psi(w, angle).map(|p| (p.to_degrees(), None))
+            } else {
+                stack.ellipsometry(w, angle).map(|(p, d)| (p.to_degrees(), Some(d.to_degrees())))
+            }
+        })
         .collect::<std::result::Result<Vec<_>, _>>()?;
-    Ok(Some(v))
+    Ok(v)
 }
 
-fn ellips_cells(e: &Option<Vec<(f64, f64)>>, i: usize) -> (String, String) {
-    e.as_ref().map(|v| (v[i].0.to_string(), v[i].1.to_string())).unwrap_or_default()
+fn ellips_cells(e: &[(f64, Option<f64>)], i: usize) -> (String, String) {
+    (e[i].0.to_string(), e[i].1.map(|d| d.to_string()).unwrap_or_default())
 }
 
 /// Says on stderr when the grid cannot resolve the fringes of a thick layer (`iridis_thinfilm::sampling`).
@@ -393,8 +404,8 @@ fn spectrum(a: SpectrumArgs) -> Result<()> {
             "wavelength_nm": grid,
             "R": r, "T": t, "A": ab,
             "Rs": col(&|x| x.r_s), "Rp": col(&|x| x.r_p), "Ts": col(&|x| x.t_s), "Tp": col(&|x| x.t_p),
-            "psi_deg": ellips.as_ref().map(|v| v.iter().map(|p| p.0).collect::<Vec<_>>()),
-            "delta_deg": ellips.as_ref().map(|v| v.iter().map(|p| p.1).collect::<Vec<_>>()),
+            "psi_deg": ellips.iter().map(|p| p.0).collect::<Vec<_>>(),
+            "delta_deg": (!stack.has_incoherent()).then(|| ellips.iter().map(|p| p.1).collect::<Vec<_>>()),
         }));
     }
     let mut out = String::new();
@@ -888,10 +899,13 @@ fn bench(a: BenchArgs) -> Result<()> {
     crate::outln!("× tmm compares the general path on one thread with tmm on one thread.")?;
     crate::outln!(
         "fit, 3 parameters on 401 wavelengths (tools/fit_scipy_compare.py's data): {:.2} ms from one start, \
-         {:.2} ms with the multi-start search ({} starts); scipy least_squares + tmm: see docs/thinfilm.md",
+         {:.2} ms with the multi-start search ({} starts), exact derivatives; with finite differences {:.2} ms \
+         and {:.2} ms; scipy least_squares + tmm: see docs/thinfilm.md",
         1e3 * fit["single_start_seconds"].as_f64().unwrap_or(f64::NAN),
         1e3 * fit["multi_start_seconds"].as_f64().unwrap_or(f64::NAN),
-        fit["multi_start_starts"]
+        fit["multi_start_starts"],
+        1e3 * fit["single_start_fd_seconds"].as_f64().unwrap_or(f64::NAN),
+        1e3 * fit["multi_start_fd_seconds"].as_f64().unwrap_or(f64::NAN),
     )?;
     crate::outln!(
         "batch of 10⁶ (λ, θ) points, 20 layers, all threads: fast path {:.3} s, general path {:.3} s",
@@ -903,15 +917,22 @@ fn bench(a: BenchArgs) -> Result<()> {
 
 /// The fit of tools/fit_scipy_compare.py (the same CSV), timed from one start and with the search.
 fn bench_fit(seconds: f64) -> Result<serde_json::Value> {
-    use iridis_filmfit::{fit, FitOptions, Measured, Quantity, Template};
+    use iridis_filmfit::{fit, Derivatives, FitOptions, Measured, Quantity, Template};
     const CSV: &str = include_str!("../../../filmfit/tests/fixtures/scipy_fit.csv");
     const STACK: &str = "air | cauchy:{A=1.5:1.3..1.7},{B=0.004:0..0.02} {d=330nm:100nm..600nm} | n=3.88+0.02i";
     let t = Template::parse(STACK)?;
     let mut data = Measured::from_csv(CSV, "scipy_fit.csv", Quantity::R, None)?;
     data.sigma = Some(vec![0.002; data.values.len()]);
     let mut out = json!({ "stack": STACK, "wavelengths": data.values.len(), "parameters": 3 });
-    for (key, grid) in [("single_start", 1), ("multi_start", 0)] {
-        let opt = FitOptions { grid, ..FitOptions::default() };
+    // Exact derivatives (the default) and the finite-difference fallback, for comparison.
+    let runs = [
+        ("single_start", 1, Derivatives::Exact),
+        ("multi_start", 0, Derivatives::Exact),
+        ("single_start_fd", 1, Derivatives::FiniteDifferences),
+        ("multi_start_fd", 0, Derivatives::FiniteDifferences),
+    ];
+    for (key, grid, derivatives) in runs {
+        let opt = FitOptions { grid, derivatives, ..FitOptions::default() };
         let (mut n, t0) = (0usize, Instant::now());
         let mut last = None;
         while n == 0 || t0.elapsed().as_secs_f64() < seconds {
