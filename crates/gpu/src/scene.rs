@@ -730,10 +730,14 @@ fn push_lights(rec: &mut Records, lights: &[Light]) {
     }
 }
 
+/// A microfacet's three records: colour, `[roughness, metallic, ior, metallic-roughness texture]`, and
+/// `[normal texture, scale]` (NONE: none).
 fn push_microfacet(rec: &mut Records, m: &Microfacet) {
     rec.color(&m.color);
     let mr = m.metallic_roughness.map_or(NONE, |i| i as u32);
     rec.push([m.roughness as f32, m.metallic as f32, m.ior as f32, f32::from_bits(mr)]);
+    let (nt, scale) = m.normal_texture.map_or((NONE, 1.0), |(i, s)| (i as u32, s as f32));
+    rec.push([f32::from_bits(nt), scale, 0.0, 0.0]);
 }
 
 impl SceneFrame {

@@ -123,6 +123,8 @@ pub struct Hit {
     pub uv: [f64; 2],
     /// The tangent attribute (mesh TANGENT/MikkTSpace, or the analytic dP/du), if any.
     pub tangent: Option<V3>,
+    /// The bitangent's sign w of the tangent attribute (glTF: `B = (N × T) · w`); 1 without one.
+    pub tangent_sign: f64,
     /// The "along the body" direction, if the object defines one.
     pub along: Option<V3>,
     pub material: usize,
@@ -181,7 +183,8 @@ pub fn triangle_hit(mesh: &Mesh, tri: usize, o: V3, d: V3, t: f64, b1: f64, b2: 
         orthogonalize(interp(c), n)
     });
     let along = mesh.along.as_ref().and_then(|al| orthogonalize(interp(idx.map(|i| al[i])), n));
-    Hit { t, p: add(o, mul(d, t)), n, ng, front, uv, tangent, along, material: mesh.material }
+    let tangent_sign = mesh.corner_tangents.as_ref().map_or(1.0, |ts| if ts[tri * 3][3] < 0.0 { -1.0 } else { 1.0 });
+    Hit { t, p: add(o, mul(d, t)), n, ng, front, uv, tangent, tangent_sign, along, material: mesh.material }
 }
 
 /// An analytic sphere; its pole axis is world `+y` (glTF's up), `u` runs around it (east), `v` from the top
@@ -225,6 +228,7 @@ impl Sphere {
             front,
             uv: [u, v],
             tangent: orthogonalize(east, n),
+            tangent_sign: 1.0,
             along: Some(south),
             material: self.material,
         })
@@ -279,6 +283,7 @@ impl Plane {
             front,
             uv,
             tangent: Some(self.tangent),
+            tangent_sign: 1.0,
             along: Some(self.tangent),
             material: self.material,
         })

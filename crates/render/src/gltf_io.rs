@@ -7,7 +7,7 @@
 //! `d = thicknessMaximum` without a texture. The film's reflectance replaces the base's specular Fresnel
 //! (render.rs, `shade_film_over_base`) and `iridescenceFactor` mixes it with the base alone. Textures:
 //! `baseColorTexture` × `baseColorFactor`, `texCoord` and `KHR_texture_transform` (applied to the mesh's
-//! UVs), the thickness texture's G channel, the metallic-roughness texture (G, B); what is not read (normal, occlusion and
+//! UVs), the thickness texture's G channel, the metallic-roughness (G, B) and normal textures; what is not read (occlusion and
 //! emissive textures, samplers other than repeat/linear, `iridescenceTexture`) is named in a note.
 
 use std::path::Path;
@@ -156,18 +156,38 @@ pub fn load_gltf(
             }
             None => None,
         };
+        // normalTexture: a tangent-space normal (2·rgb − 1, x and y × scale), read linearly (sec. 3.9.3).
+        let normal_texture = match m.normal_texture() {
+            Some(info) => {
+                textures.push(Texture::from_image(
+                    image_of(info.texture())?,
+                    TexKind::Data,
+                    &format!("{name} normal"),
+                )?);
+                check_sampler(&name, "normalTexture", &info.texture(), notes);
+                let own = UvMap::of(info.tex_coord(), info.extensions());
+                match &uv_map {
+                    None => uv_map = Some(own),
+                    Some(u) if *u != own => notes.push(format!(
+                        "material \"{name}\": normalTexture reads other texture coordinates (texCoord / \
+                         KHR_texture_transform) than baseColorTexture; both use the base colour's"
+                    )),
+                    Some(_) => {}
+                }
+                Some((textures.len() - 1, info.scale() as f64))
+            }
+            None => None,
+        };
         let base = Microfacet {
             color,
             roughness: pbr.roughness_factor().clamp(0.0, 1.0) as f64,
             metallic: pbr.metallic_factor().clamp(0.0, 1.0) as f64,
             ior,
             metallic_roughness,
+            normal_texture,
         };
         // What the renderer does not read, named once per material.
         let mut ignored = Vec::new();
-        if m.normal_texture().is_some() {
-            ignored.push("normalTexture (the mesh normals are used)");
-        }
         if m.occlusion_texture().is_some() {
             ignored.push("occlusionTexture");
         }
@@ -277,6 +297,7 @@ pub fn load_gltf(
                 metallic: 0.0,
                 ior: 1.5,
                 metallic_roughness: None,
+                normal_texture: None,
             }));
             material_names.push("gltf default".into());
             materials.len() - 1
@@ -342,7 +363,15 @@ pub fn load_gltf(
                         Some(m.triangles.iter().flat_map(|t| t.map(|i| ts[i as usize].map(|x| x as f64))).collect());
                 }
                 None => {
-                    m.compute_tangents();
+                    // MikkTSpace assumes v grows upwards in the image (OpenGL); glTF's v grows downwards (row 0
+                    // at v = 0), so its bitangent sign is the mirror of MikkTSpace's on glTF UVs: flipping v
+                    // leaves the tangent dP/du alone and negates w. Then a normal texture's green points up the
+                    // image (+y of glTF's tangent space), as glTF's exporters and sample viewer have it.
+                    if m.compute_tangents() {
+                        for t in m.corner_tangents.iter_mut().flatten() {
+                            t[3] = -t[3];
+                        }
+                    }
                 }
             }
             transform_mesh(&mut m, &world);

@@ -349,6 +349,9 @@ pub struct Microfacet {
     /// glTF's metallicRoughnessTexture (a [`crate::texture::TexKind::Data`] texture): its G channel multiplies
     /// `roughness`, its B channel `metallic` ([`Microfacet::at`]).
     pub metallic_roughness: Option<usize>,
+    /// glTF's normalTexture (a [`crate::texture::TexKind::Data`] texture) and its `scale`: the shading normal in
+    /// tangent space ([`Microfacet::normal_at`]).
+    pub normal_texture: Option<(usize, f64)>,
 }
 
 impl Microfacet {
@@ -367,6 +370,22 @@ impl Microfacet {
             }
             None => *self,
         }
+    }
+
+    /// The hit with its shading normal from the normal texture, where there is one and the hit has a tangent:
+    /// `n' = normalize(T·x + B·y + N·z)` with `(x, y, z) = (2·rgb − 1)`, x and y × `scale`, `B = (N × T)·w`
+    /// (glTF 2.0, sec. 3.9.3). A normal that would face away from the geometric normal is not used.
+    pub fn normal_at(&self, h: &Hit, textures: &[crate::texture::Texture]) -> Hit {
+        let (Some((i, scale)), Some(t)) = (self.normal_texture, h.tangent) else { return *h };
+        let Some(tex) = textures.get(i) else { return *h };
+        let s = tex.sample(h.uv);
+        let (x, y, z) = ((2.0 * s[0] - 1.0) * scale, (2.0 * s[1] - 1.0) * scale, 2.0 * s[2] - 1.0);
+        let b = mul(cross(h.n, t), h.tangent_sign);
+        let Some(n) = try_normalize(add(add(mul(t, x), mul(b, y)), mul(h.n, z))) else { return *h };
+        if dot(n, h.ng) <= 0.0 {
+            return *h;
+        }
+        Hit { n, tangent: orthogonalize(t, n), ..*h }
     }
 
     /// Schlick `F_0 = ((n − 1)/(n + 1))²` of the dielectric coat. An index-matched coat (`ior = 1`, the films'
@@ -513,6 +532,7 @@ mod tests {
             front: true,
             uv: [0.3, 0.3],
             tangent: Some([1.0, 0.0, 0.0]),
+            tangent_sign: 1.0,
             along: Some([0.0, 1.0, 0.0]),
             material: 0,
         };
@@ -550,6 +570,7 @@ mod tests {
                 metallic,
                 ior: 1.5,
                 metallic_roughness: None,
+                normal_texture: None,
             };
             for mu_o in [1.0f64, 0.6, 0.25] {
                 let wo = [(1.0 - mu_o * mu_o).sqrt(), 0.0, mu_o];
@@ -588,6 +609,7 @@ mod tests {
             metallic: 0.0,
             ior: 1.5,
             metallic_roughness: None,
+            normal_texture: None,
         };
         let n = [0.0, 0.0, 1.0];
         let r = m.reflect(n, n, n, [0.5; 3]);
@@ -598,6 +620,7 @@ mod tests {
             metallic: 1.0,
             ior: 1.5,
             metallic_roughness: None,
+            normal_texture: None,
         };
         let f = gold.mirror_fresnel(1.0, [1.0, 0.8, 0.3]);
         assert_eq!(f, [1.0, 0.8, 0.3]);

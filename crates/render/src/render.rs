@@ -221,6 +221,13 @@ impl Scene {
 
     fn shade(&self, h: &Hit, d: V3, depth: u32, weight: f64) -> Rgb {
         let wo = mul(d, -1.0);
+        // A glTF normal texture (on the surface or on a film's base) replaces the shading normal first.
+        let mapped = match &self.materials[h.material] {
+            Material::Microfacet(m) => m.normal_at(h, &self.textures),
+            Material::ThinFilm(f) => f.base.map_or(*h, |b| b.normal_at(h, &self.textures)),
+            _ => *h,
+        };
+        let h = &mapped;
         match &self.materials[h.material] {
             Material::Lambert { color } => {
                 let albedo = self.color(color, h.uv);

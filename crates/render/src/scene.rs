@@ -851,6 +851,7 @@ fn build_material(
             metallic: unit(d.metallic, "metallic", 0.0)?,
             ior: d.ior.unwrap_or(1.5),
             metallic_roughness: None,
+            normal_texture: None,
         })),
         "diffraction" => {
             let table = d.table.as_ref().ok_or_else(|| {
@@ -932,6 +933,7 @@ fn build_material(
                         metallic: 0.0,
                         ior: 1.0,
                         metallic_roughness: None,
+                        normal_texture: None,
                     }),
                     Some(Material::Microfacet(m)) => Some(*m),
                     _ => {

@@ -146,3 +146,42 @@ fn the_metallic_roughness_texture_scales_roughness_and_metallic() {
         a.data.iter().zip(&f.data).flat_map(|(p, q)| (0..3).map(move |k| (p[k] - q[k]).abs())).fold(0.0f32, f32::max);
     assert!(diff > 0.05, "the texture changed nothing: {diff}");
 }
+
+/// glTF's normalTexture: a uniform texel `(0.5 + 0.5 sin a, 0.5, 0.5 + 0.5 cos a)` tilts the quad's shading
+/// normal to `(sin a, 0, cos a)` in the frame (T, B, N) = (+x, +y, +z) of its MikkTSpace tangents (u along +x);
+/// `scale` stretches x and y before normalising (glTF 2.0, sec. 3.9.3). Checked on the hit the renderer sees.
+#[test]
+fn the_normal_texture_tilts_the_shading_normal() {
+    let dir = tempfile::tempdir().unwrap();
+    let a = 30f64.to_radians();
+    let texel = [(127.5 + 127.5 * a.sin()).round() as u8, 128, (127.5 + 127.5 * a.cos()).round() as u8];
+    for scale in [1.0, 0.5] {
+        let path = gltf_fixtures::write_normal_mapped_quad(dir.path(), &[texel], scale);
+        let scene = iridis_render::load_scene(&path).unwrap();
+        assert!(!scene.notes.iter().any(|n| n.contains("normalTexture")), "{:?}", scene.notes);
+        let Material::Microfacet(m) = &scene.materials[0] else { panic!("{:?}", scene.materials[0]) };
+        let hit = scene.intersect([0.2, 0.3, 5.0], [0.0, 0.0, -1.0], f64::INFINITY).expect("the quad");
+        let n = m.normal_at(&hit, &scene.textures).n;
+        // The 8-bit texel, decoded as the renderer decodes it.
+        let c = |v: u8| 2.0 * v as f64 / 255.0 - 1.0;
+        let (x, y, z) = (c(texel[0]) * scale, c(texel[1]) * scale, c(texel[2]));
+        let len = (x * x + y * y + z * z).sqrt();
+        let want = [x / len, y / len, z / len];
+        for k in 0..3 {
+            assert!((n[k] - want[k]).abs() < 1e-6, "scale {scale}: normal {n:?}, want {want:?}");
+        }
+        // Against the closed form (sin a, 0, cos a) at scale 1, to the texel's 8-bit quantisation.
+        if scale == 1.0 {
+            assert!((n[0] - a.sin()).abs() < 0.01 && n[1].abs() < 0.01 && (n[2] - a.cos()).abs() < 0.01, "{n:?}");
+        }
+    }
+    // Green points up the image: row 0 (v = 0) is the quad's top edge (+y), so a texel tilted by b towards
+    // green tilts the normal towards +y — the glTF sample viewer's B = N × T for unmirrored UVs.
+    let b = 25f64.to_radians();
+    let up = [128, (127.5 + 127.5 * b.sin()).round() as u8, (127.5 + 127.5 * b.cos()).round() as u8];
+    let scene = iridis_render::load_scene(&gltf_fixtures::write_normal_mapped_quad(dir.path(), &[up], 1.0)).unwrap();
+    let Material::Microfacet(m) = &scene.materials[0] else { unreachable!() };
+    let hit = scene.intersect([0.2, 0.3, 5.0], [0.0, 0.0, -1.0], f64::INFINITY).expect("the quad");
+    let n = m.normal_at(&hit, &scene.textures).n;
+    assert!(n[0].abs() < 0.01 && (n[1] - b.sin()).abs() < 0.01 && (n[2] - b.cos()).abs() < 0.01, "{n:?}");
+}

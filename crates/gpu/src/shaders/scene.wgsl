@@ -544,6 +544,7 @@ struct Hit {
     tangent: vec3<f32>,  // zero: none
     along: vec3<f32>,    // zero: none
     material: u32,
+    tsign: f32,          // the tangent's bitangent sign w (B = (N x T) w); 1 without one
 }
 
 fn make_hit(h: Prim, o: vec3<f32>, d: vec3<f32>) -> Hit {
@@ -567,7 +568,7 @@ fn make_hit(h: Prim, o: vec3<f32>, d: vec3<f32>) -> Hit {
         if (dot(so, so) > 0.0) {
             south = so;
         }
-        return Hit(h.t, p, n, n, vec2<f32>(u, v), orthogonalize(east, n), south, material);
+        return Hit(h.t, p, n, n, vec2<f32>(u, v), orthogonalize(east, n), south, material, 1.0);
     }
     if (h.kind == 2u) {
         let r = P.plane_base + 4u * h.index;
@@ -587,7 +588,7 @@ fn make_hit(h: Prim, o: vec3<f32>, d: vec3<f32>) -> Hit {
         if (dot(d, nw.xyz) >= 0.0) {
             n = -n;
         }
-        return Hit(h.t, p, n, n, uv, tg.xyz, tg.xyz, material);
+        return Hit(h.t, p, n, n, uv, tg.xyz, tg.xyz, material, 1.0);
     }
     // Triangle record (14 vec4): p0 [material], p1 [flags: 1 uv, 2 tangents, 4 along], p2, n0..n2,
     // [uv0, uv1], [uv2], t0..t2 (xyz, sign), a0..a2.
@@ -617,14 +618,16 @@ fn make_hit(h: Prim, o: vec3<f32>, d: vec3<f32>) -> Hit {
         uv = q01.xy * w.x + q01.zw * w.y + q2.xy * w.z;
     }
     var tangent = vec3<f32>(0.0);
+    var tsign = 1.0;
     if ((flags & 2u) != 0u) {
         tangent = orthogonalize(scene[r + 8u].xyz * w.x + scene[r + 9u].xyz * w.y + scene[r + 10u].xyz * w.z, n);
+        tsign = select(1.0, -1.0, scene[r + 8u].w < 0.0);
     }
     var along = vec3<f32>(0.0);
     if ((flags & 4u) != 0u) {
         along = orthogonalize(scene[r + 11u].xyz * w.x + scene[r + 12u].xyz * w.y + scene[r + 13u].xyz * w.z, n);
     }
-    return Hit(h.t, p, n, ng, uv, tangent, along, material);
+    return Hit(h.t, p, n, ng, uv, tangent, along, material, tsign);
 }
 
 fn mat_kind(m: u32) -> u32 {
@@ -745,7 +748,9 @@ fn microfacet_reflect(m: Microfacet, n: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>,
     let h = safe_normalize(wi + wo);
     let x = 1.0 - clamp(dot(wi, h), 0.0, 1.0);
     let x5 = x * x * x * x * x;
-    let single = ggx_single(m, n, wi, wo) * ci;
+    // ggx_single is already pi f cos(theta_i) (as the CPU's `single`); multiplying by ci again made the GPU's
+    // specular highlights from lights cos(theta_i) too dark (found by the glTF metal quads, 26 % at 42 degrees).
+    let single = ggx_single(m, n, wi, wo);
     let ei = energy_lookup(m.roughness, ci);
     let eo = energy_lookup(m.roughness, co);
     let multi = (1.0 - ei.x) * (1.0 - eo.x) / max(1.0 - eo.z, 1e-9) * ci;
@@ -916,10 +921,38 @@ fn diffraction_light(table: Table, k: vec4<f32>, tex: vec3<f32>, t: vec3<f32>, b
     return c_diff * (1.0 - k.y) + c_tex * (1.0 - alpha) + c_tex * k.y;
 }
 
-fn shade(h: Hit, d: vec3<f32>, depth: u32, weight: f32, thr: vec3<f32>) {
+// glTF's normalTexture (render::material::Microfacet::normal_at): rec = [texture, scale], NONE: none. The
+// tangent-space normal 2 rgb - 1 (x, y times scale) in the frame (T, (N x T) w, N) replaces the shading normal,
+// unless it faces away from the geometric normal or the hit has no tangent.
+fn normal_mapped(h: Hit, rec: vec4<f32>) -> Hit {
+    let tex = word(rec.x);
+    if (tex == NONE || dot(h.tangent, h.tangent) == 0.0) {
+        return h;
+    }
+    let s = sample_texture(tex, h.uv, false);
+    let x = (2.0 * s.x - 1.0) * rec.y;
+    let y = (2.0 * s.y - 1.0) * rec.y;
+    let z = 2.0 * s.z - 1.0;
+    let b = cross(h.n, h.tangent) * h.tsign;
+    let n = safe_normalize(h.tangent * x + b * y + h.n * z);
+    if (dot(n, n) == 0.0 || dot(n, h.ng) <= 0.0) {
+        return h;
+    }
+    return Hit(h.t, h.p, n, h.ng, h.uv, orthogonalize(h.tangent, n), h.along, h.material, h.tsign);
+}
+
+fn shade(h_in: Hit, d: vec3<f32>, depth: u32, weight: f32, thr: vec3<f32>) {
     let wo = -d;
-    let r = P.mat_base + 8u * h.material;
+    let r = P.mat_base + 8u * h_in.material;
     let kind = word(scene[r].x);
+    // A normal texture (a microfacet's, or a film's base's) replaces the shading normal first.
+    var h = h_in;
+    if (kind == 1u) {
+        h = normal_mapped(h_in, scene[r + 3u]);
+    }
+    if (kind == 3u && (word(scene[r + 1u].w) & 4u) != 0u) {
+        h = normal_mapped(h_in, scene[r + 5u]);
+    }
     if (kind == 0u) {
         let albedo = color_at(scene[r + 1u], h.uv);
         var out = albedo * irradiance(h.n);
