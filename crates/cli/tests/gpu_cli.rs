@@ -71,6 +71,33 @@ fn no_adapter_is_a_clear_error_not_a_panic() {
     assert!(!std::path::Path::new("/tmp/never.png").exists());
 }
 
+/// Without XDG_RUNTIME_DIR (a service, `sudo`, `env -i`) the graphics stack printed "error: XDG_RUNTIME_DIR is
+/// invalid or not set in the environment." twice on every successful `--gpu` run; iridis now gives the process
+/// a private one, so stderr holds only iridis' own lines — and none of them says "error".
+#[test]
+fn a_gpu_run_without_xdg_runtime_dir_prints_no_driver_noise() {
+    if !have_gpu() {
+        return;
+    }
+    let dir = tmp();
+    let png = dir.path().join("g.png");
+    for xdg in [None, Some("/nonexistent/run")] {
+        let mut cmd = Command::new(env!("CARGO_BIN_EXE_iridis"));
+        cmd.args(["brdf-map", "builtin:blazed?size=4um&pixel=50nm", "--gpu", "--size", "16"])
+            .args(["--coherence", "4um", "--uv-resolution", "31", "-o", png.to_str().unwrap()])
+            .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."));
+        match xdg {
+            None => cmd.env_remove("XDG_RUNTIME_DIR"),
+            Some(v) => cmd.env("XDG_RUNTIME_DIR", v),
+        };
+        let out = cmd.output().unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{stderr}");
+        assert!(!stderr.contains("XDG_RUNTIME_DIR") && !stderr.contains("error"), "XDG_RUNTIME_DIR={xdg:?}: {stderr}");
+        assert!(png.exists());
+    }
+}
+
 /// Displayed colours of an 8-bit sRGB PNG as CIELAB.
 fn png_lab(path: &std::path::Path) -> Vec<Lab> {
     let img = image::open(path).unwrap().to_rgb8();
