@@ -115,7 +115,9 @@ fn compute_table(name: &str, patch: &Patch, n: usize, params: TableParams) -> Re
     let spectral =
         SpectralSetup::new(iridis_color::Illuminant::D65, iridis_color::Observer::Cie1931, BUILTIN_STEP_NM)
             .map_err(err)?;
-    let t = LookupTable::build(&terms, &spectral, params, &spec, &|d| report(n + 1 + d, total, &what)).map_err(err)?;
+    // Rows finish out of order on many threads: only the call after the build says "done".
+    let t = LookupTable::build(&terms, &spectral, params, &spec, &|d| report((n + 1 + d).min(total - 1), total, &what))
+        .map_err(err)?;
     report(total, total, &what);
     Ok(t)
 }

@@ -176,7 +176,8 @@ pub fn load_patch(spec: &str, opts: &SurfaceOpts) -> Result<Patch> {
         height_unit: opts.height_unit.clone(),
         ..Default::default()
     };
-    let hf = iridis_surface::load_surface(spec, &load).with_context(|| format!("cannot load surface {spec}"))?;
+    let hf = crate::progress::step(&format!("loading {spec}"), || iridis_surface::load_surface(spec, &load))
+        .with_context(|| format!("cannot load surface {spec}"))?;
     for w in &hf.meta.warnings {
         eprintln!("warning: {spec}: {w}");
     }

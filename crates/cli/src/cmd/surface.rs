@@ -293,7 +293,8 @@ pub fn run(command: SurfaceCommand) -> Result<()> {
 }
 
 fn load(spec: &str, load: &LoadArgs) -> Result<HeightField> {
-    load_surface(spec, &load.options()).with_context(|| format!("cannot load surface {spec}"))
+    crate::progress::step(&format!("loading {spec}"), || load_surface(spec, &load.options()))
+        .with_context(|| format!("cannot load surface {spec}"))
 }
 
 fn level(hf: HeightField, how: &str) -> Result<HeightField> {
