@@ -98,6 +98,25 @@ fn a_gpu_run_without_xdg_runtime_dir_prints_no_driver_noise() {
     }
 }
 
+/// docs/json.md's GPU sections against the real output (the others are checked by json_doc_cli.rs).
+#[test]
+fn gpu_json_matches_docs_json_md() {
+    if !have_gpu() {
+        return;
+    }
+    let (shapes, sections) = common::json_doc::read();
+    let mut problems = Vec::new();
+    let mut ran = 0;
+    for s in sections.iter().filter(|s| s.gpu && !s.display) {
+        let words = common::json_doc::split(&s.command);
+        let args: Vec<&str> = words[1..].iter().map(String::as_str).collect();
+        problems.extend(common::json_doc::check(s, &shapes, &json_of(&args)));
+        ran += 1;
+    }
+    assert!(ran >= 2, "ran {ran}");
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
+
 /// Displayed colours of an 8-bit sRGB PNG as CIELAB.
 fn png_lab(path: &std::path::Path) -> Vec<Lab> {
     let img = image::open(path).unwrap().to_rgb8();

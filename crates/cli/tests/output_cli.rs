@@ -166,3 +166,72 @@ fn json_echoes_its_inputs_and_keeps_arrays_on_a_line() {
     // Objects stay one key a line (a nested object is indented).
     assert!(text.contains("\n  \"inputs\": {\n    \""), "{text}");
 }
+
+/// `precompute` says how big the table will be before it builds and writes it, and the figure is the size
+/// of the file it writes (res² × 3 × (2N+1) float64 values and a few small arrays).
+#[test]
+fn precompute_states_the_size_before_writing() {
+    let d = tmp();
+    let t = p(d.path(), "t.npz");
+    let out = iridis(&["precompute", SMALL, "--coherence", "4um", "--uv-resolution", "41", "-o", &t]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    let line = stderr.lines().find(|l| l.contains("will hold")).unwrap_or_else(|| panic!("{stderr}"));
+    // "…/t.npz will hold 41² × 3 × 2N+1 values in f64: X MB"
+    let powers: usize = line.split(" × ").nth(2).unwrap().split(' ').next().unwrap().parse().unwrap();
+    let mb: f64 = line.rsplit(": ").next().unwrap().trim_end_matches(" MB").parse().unwrap();
+    assert_eq!(mb, ((41 * 41 * 3 * powers * 8) as f64 / 1e5).round() / 10.0, "{line}");
+    let size = std::fs::metadata(&t).unwrap().len() as f64 / 1e6;
+    assert!((size - mb).abs() < 0.05 + 0.01 * mb, "file {size} MB, announced {mb} MB");
+    // The reported time covers the whole run, table build included.
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains(" s)"), "{stdout}");
+}
+
+/// `brdf-map` reports the time of the whole run (loading, Taylor terms, table) next to the map's own.
+#[test]
+fn brdf_map_time_includes_the_preparation() {
+    let d = tmp();
+    let m = p(d.path(), "m.png");
+    let mut args = vec!["brdf-map", SMALL, "--size", "16", "-o", &m];
+    args.extend(SMALL_MODEL);
+    let t = std::time::Instant::now();
+    let out = iridis(&args);
+    let wall = t.elapsed().as_secs_f64();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let secs = |after: &str| -> f64 {
+        let rest = stdout.split(after).nth(1).unwrap_or_else(|| panic!("{stdout}"));
+        rest.trim_start().split(' ').next().unwrap().parse().unwrap()
+    };
+    let (all, prepare) = (secs("16², "), secs("in all: "));
+    assert!(all >= prepare && all <= wall + 0.01, "{stdout} (wall {wall:.2} s)");
+    assert!(prepare > 0.0, "{stdout}");
+}
+
+/// Built-in tables of materials are cached under a key of their content: a second render finds the table
+/// (no "computing" line), and the cache file is named by the built-in and a hash of what made it.
+#[test]
+fn builtin_tables_are_cached_under_a_content_key() {
+    let d = tmp();
+    let cache = d.path().join("cache");
+    let png = p(d.path(), "s.png");
+    let run = || {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_iridis"))
+            .args(["render", "examples/snake_elaphe.toml", "--size", "8x8", "-o", &png])
+            .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
+            .env("IRIDIS_CACHE", &cache)
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        String::from_utf8_lossy(&out.stderr).into_owned()
+    };
+    let first = run();
+    assert!(first.contains("computing the table builtin:elaphe"), "{first}");
+    let files: Vec<String> =
+        std::fs::read_dir(&cache).unwrap().map(|e| e.unwrap().file_name().into_string().unwrap()).collect();
+    assert_eq!(files.len(), 1, "{files:?}");
+    let hash = files[0].strip_prefix("elaphe-").and_then(|f| f.strip_suffix(".npz")).unwrap();
+    assert!(hash.len() == 16 && hash.chars().all(|c| c.is_ascii_hexdigit()), "{files:?}");
+    let second = run();
+    assert!(!second.contains("computing"), "{second}");
+}

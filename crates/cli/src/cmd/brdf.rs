@@ -248,7 +248,7 @@ pub fn run_precompute(a: PrecomputeArgs) -> Result<()> {
     // The size is known once N is: say it before the long build and the write.
     let values = a.uv_resolution * a.uv_resolution * 3 * (2 * terms.n_max + 1);
     eprintln!(
-        "{} will hold {}² × 3 × {} values in f64: {:.0} MB",
+        "{} will hold {}² × 3 × {} values in f64: {:.1} MB",
         a.output.display(),
         a.uv_resolution,
         2 * terms.n_max + 1,
