@@ -4,7 +4,7 @@
 //! them into place only when the whole command has succeeded ([`commit`]); on an error they are deleted
 //! ([`discard`]). A failed run therefore leaves no output at all, not some of them.
 
-use std::io::{Seek, Write};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
@@ -18,8 +18,9 @@ struct Staged {
     key: PathBuf,
     /// The option that named it (`-o`, `--raw`, …), for messages; empty for files a command names itself.
     flag: String,
-    tmp: tempfile::NamedTempFile,
-    written: bool,
+    /// The written content, created at the first write (not at the declaration: a run interrupted while it
+    /// computes leaves no temporary file behind).
+    tmp: Option<tempfile::NamedTempFile>,
 }
 
 static RUN: Mutex<Vec<Staged>> = Mutex::new(Vec::new());
@@ -82,14 +83,19 @@ fn stage(flag: &str, path: &Path, run: &mut Vec<Staged>) -> Result<usize> {
             by(flag)
         );
     }
+    // Creating (and at once deleting) a file proves the folder writable before the work starts.
+    temporary(path)?;
+    run.push(Staged { path: path.to_path_buf(), key, flag: flag.to_string(), tmp: None });
+    Ok(run.len() - 1)
+}
+
+fn temporary(path: &Path) -> Result<tempfile::NamedTempFile> {
     let dir = folder_of(path);
-    let tmp = tempfile::Builder::new()
+    tempfile::Builder::new()
         .prefix(".iridis-")
         .suffix(".tmp")
         .tempfile_in(dir)
-        .with_context(|| format!("cannot write {}: cannot create a file in {}", path.display(), dir.display()))?;
-    run.push(Staged { path: path.to_path_buf(), key, flag: flag.to_string(), tmp, written: false });
-    Ok(run.len() - 1)
+        .with_context(|| format!("cannot write {}: cannot create a file in {}", path.display(), dir.display()))
 }
 
 /// Declares an output of this run before any computing: checks that the extension is one of `supported`
@@ -113,20 +119,17 @@ pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<()
     let mut run = run();
     let key = key_of(path)?;
     let i = match run.iter().position(|s| s.key == key) {
-        Some(i) if run[i].written => bail!("{} is written twice in one run", path.display()),
+        Some(i) if run[i].tmp.is_some() => bail!("{} is written twice in one run", path.display()),
         Some(i) => i,
         None => stage("", path, &mut run)?,
     };
-    let s = &mut run[i];
-    let file = s.tmp.as_file_mut();
-    file.set_len(0)?;
-    file.rewind()?;
+    let mut tmp = temporary(path)?;
     {
-        let mut buffered = std::io::BufWriter::new(&mut *file);
+        let mut buffered = std::io::BufWriter::new(tmp.as_file_mut());
         write(&mut buffered)?;
         buffered.flush().with_context(|| format!("cannot write {}", path.display()))?;
     }
-    s.written = true;
+    run[i].tmp = Some(tmp);
     Ok(())
 }
 
@@ -134,16 +137,14 @@ pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<()
 /// declared outputs that were never written leave nothing behind.
 pub fn commit() -> Result<()> {
     for s in std::mem::take(&mut *run()) {
-        if !s.written {
-            continue;
-        }
+        let Some(tmp) = s.tmp else { continue };
         // Temporary files are created private (0600); a result is an ordinary file that others may read.
         #[cfg(unix)]
         {
             use std::os::unix::fs::PermissionsExt;
-            s.tmp.as_file().set_permissions(std::fs::Permissions::from_mode(0o644))?;
+            tmp.as_file().set_permissions(std::fs::Permissions::from_mode(0o644))?;
         }
-        s.tmp.persist(&s.path).map_err(|e| e.error).with_context(|| format!("cannot write {}", s.path.display()))?;
+        tmp.persist(&s.path).map_err(|e| e.error).with_context(|| format!("cannot write {}", s.path.display()))?;
     }
     Ok(())
 }

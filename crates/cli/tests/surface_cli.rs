@@ -92,7 +92,7 @@ fn info_json_has_the_documented_keys_and_the_numpy_values() {
     // The keys, plus provenance (source, format, z unit, notes), mean and warnings.
     let documented =
         ["rows", "cols", "pixel_size_nm", "extent_nm", "height_min_nm", "height_max_nm", "rms_nm", "peaks"];
-    let extra = ["source", "format", "mean_nm", "z_unit_in_file", "notes", "warnings", "roughness"];
+    let extra = ["source", "format", "mean_nm", "z_unit_in_file", "notes", "warnings", "roughness", "inputs"];
     assert_eq!(keys, documented.iter().chain(&extra).copied().collect(), "{v}");
     for p in v["peaks"].as_array().unwrap() {
         let pk: std::collections::BTreeSet<&str> = p.as_object().unwrap().keys().map(String::as_str).collect();
