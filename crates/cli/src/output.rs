@@ -211,7 +211,9 @@ pub fn set_inputs(cli: &clap::Command, matches: &clap::ArgMatches) {
             clap::ArgAction::SetTrue | clap::ArgAction::SetFalse => {
                 m.try_get_one::<bool>(id).ok().flatten().map_or(serde_json::Value::Null, |b| (*b).into())
             }
-            clap::ArgAction::Count => m.try_get_one::<u8>(id).ok().flatten().map_or(serde_json::Value::Null, |n| (*n).into()),
+            clap::ArgAction::Count => {
+                m.try_get_one::<u8>(id).ok().flatten().map_or(serde_json::Value::Null, |n| (*n).into())
+            }
             _ => match m.try_get_raw(id).ok().flatten() {
                 None => serde_json::Value::Null,
                 Some(raw) => {

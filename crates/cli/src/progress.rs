@@ -51,12 +51,15 @@ impl Bar {
     }
 
     fn announce(&self) {
-        if self.pb.is_hidden()
-            && self.start.elapsed() > ANNOUNCE_AFTER
-            && !self.announced.swap(true, Ordering::Relaxed)
+        if self.pb.is_hidden() && self.start.elapsed() > ANNOUNCE_AFTER && !self.announced.swap(true, Ordering::Relaxed)
         {
             let len = self.pb.length().map(|l| format!("/{l}")).unwrap_or_default();
-            eprintln!("{}: {}{len} after {:.1} s …", self.what(), self.pb.position(), self.start.elapsed().as_secs_f64());
+            eprintln!(
+                "{}: {}{len} after {:.1} s …",
+                self.what(),
+                self.pb.position(),
+                self.start.elapsed().as_secs_f64()
+            );
         }
     }
 }
@@ -78,7 +81,8 @@ pub fn bar(len: u64, what: &str) -> Bar {
 pub fn step<T>(what: &str, f: impl FnOnce() -> T) -> T {
     let pb = ProgressBar::new_spinner();
     pb.set_style(
-        ProgressStyle::with_template("{spinner} {msg} ({elapsed})").unwrap_or_else(|_| ProgressStyle::default_spinner()),
+        ProgressStyle::with_template("{spinner} {msg} ({elapsed})")
+            .unwrap_or_else(|_| ProgressStyle::default_spinner()),
     );
     pb.set_message(what.to_string());
     pb.enable_steady_tick(Duration::from_millis(120));
@@ -93,7 +97,7 @@ pub fn step<T>(what: &str, f: impl FnOnce() -> T) -> T {
 
 /// A progress reporter for work a library announces as `(done, total, what)`: a bar per piece of work,
 /// and one line on stderr when it starts, so that a log shows what the time went into too.
-pub fn reporter() -> Box<dyn Fn(usize, usize, &str) + Send + Sync> {
+pub fn reporter() -> Box<iridis_render::tables::TableProgress> {
     let current: std::sync::Mutex<Option<Bar>> = std::sync::Mutex::new(None);
     Box::new(move |done, total, what| {
         let mut cur = current.lock().unwrap_or_else(|e| e.into_inner());

@@ -8,7 +8,9 @@
 /// folder; returns the folder's guard (the folder is deleted when it is dropped). Call it first in `main`,
 /// before any thread starts: changing the environment is only sound while the process has one thread.
 pub fn ensure() -> Option<tempfile::TempDir> {
-    let valid = std::env::var_os("XDG_RUNTIME_DIR").map(std::path::PathBuf::from).is_some_and(|p| p.is_absolute() && p.is_dir());
+    let valid = std::env::var_os("XDG_RUNTIME_DIR")
+        .map(std::path::PathBuf::from)
+        .is_some_and(|p| p.is_absolute() && p.is_dir());
     if valid {
         return None;
     }

@@ -39,8 +39,17 @@ fn every_documented_key_is_printed_and_every_printed_key_is_documented() {
 #[test]
 fn every_command_with_json_is_documented() {
     let (_, sections) = json_doc::read();
-    let documented: Vec<String> =
-        sections.iter().map(|s| json_doc::split(&s.command).iter().take_while(|w| !w.starts_with('-') && !w.contains(['/', ':', '.', ','])).cloned().collect::<Vec<_>>().join(" ")).collect();
+    let documented: Vec<String> = sections
+        .iter()
+        .map(|s| {
+            json_doc::split(&s.command)
+                .iter()
+                .take_while(|w| !w.starts_with('-') && !w.contains(['/', ':', '.', ',']))
+                .cloned()
+                .collect::<Vec<_>>()
+                .join(" ")
+        })
+        .collect();
     // Every page of `--help` that lists `--json`.
     let mut missing = Vec::new();
     let mut stack = vec![vec!["iridis".to_string()]];

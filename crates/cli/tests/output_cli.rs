@@ -73,7 +73,16 @@ fn one_path_for_two_outputs_is_refused() {
     assert_fails(&args, &["same file"]);
     let png = p(d.path(), "r.png");
     assert_fails(
-        &["render", "examples/soap_bubble.toml", "--size", "8x8", "-o", &png.replace("r.png", "r.exr"), "--exr", &png.replace("r.png", "r.exr")],
+        &[
+            "render",
+            "examples/soap_bubble.toml",
+            "--size",
+            "8x8",
+            "-o",
+            &png.replace("r.png", "r.exr"),
+            "--exr",
+            &png.replace("r.png", "r.exr"),
+        ],
         &["same file"],
     );
     assert_fails(&["surface", "generate", "sine", "--size", "2um", "-o", &png, "--image", &png], &["same file"]);
@@ -89,23 +98,125 @@ fn every_output_format_follows_its_extension_or_is_refused() {
     let film = "air | water {d} | air";
     let cases: Vec<(Vec<String>, Vec<&str>)> = vec![
         (vec!["brdf-map".into(), SMALL.into(), "-o".into(), f("m.jpg")], vec!["m.jpg", ".png", ".exr", ".npy"]),
-        (vec!["brdf-map".into(), SMALL.into(), "-o".into(), f("m.png"), "--raw".into(), f("m.txt")], vec!["--raw", ".npy"]),
-        (vec!["brdf-map".into(), SMALL.into(), "-o".into(), f("m.png"), "--exr".into(), f("m.tif")], vec!["--exr", ".exr"]),
+        (
+            vec!["brdf-map".into(), SMALL.into(), "-o".into(), f("m.png"), "--raw".into(), f("m.txt")],
+            vec!["--raw", ".npy"],
+        ),
+        (
+            vec!["brdf-map".into(), SMALL.into(), "-o".into(), f("m.png"), "--exr".into(), f("m.tif")],
+            vec!["--exr", ".exr"],
+        ),
         (vec!["precompute".into(), SMALL.into(), "-o".into(), f("t.npy")], vec!["-o", ".npz"]),
         (vec!["render".into(), "examples/soap_bubble.toml".into(), "-o".into(), f("r.jpg")], vec![".png", ".exr"]),
-        (vec!["render".into(), "examples/soap_bubble.toml".into(), "-o".into(), f("r.png"), "--exr".into(), f("r.png2")], vec!["--exr", ".exr"]),
-        (vec!["thinfilm".into(), "chart".into(), "--stack".into(), film.into(), "-o".into(), f("c.pdf")], vec!["-o", ".png"]),
-        (vec!["thinfilm".into(), "chart".into(), "--stack".into(), film.into(), "-o".into(), f("c.png"), "--csv".into(), f("c.txt")], vec!["--csv", ".csv"]),
-        (vec!["thinfilm".into(), "spectrum".into(), "--stack".into(), "air | water 300nm | air".into(), "--plot".into(), f("s.svg")], vec!["--plot", ".png"]),
-        (vec!["thinfilm".into(), "table".into(), "--stack".into(), "air | water 300nm | air".into(), "-o".into(), f("t.txt")], vec!["-o", ".csv"]),
-        (vec!["thinfilm".into(), "table".into(), "--stack".into(), "air | water 300nm | air".into(), "--plot".into(), f("t.jpg")], vec!["--plot", ".png"]),
-        (vec!["thinfilm".into(), "profile".into(), "--stack".into(), "air | Au 30nm | glass".into(), "--wavelength".into(), "500nm".into(), "--plot".into(), f("p.pdf")], vec!["--plot", ".png"]),
-        (vec!["surface".into(), "generate".into(), "sine".into(), "-o".into(), f("s.jpg")], vec![".gwy", ".npy", ".png", ".txt"]),
-        (vec!["surface".into(), "generate".into(), "sine".into(), "-o".into(), f("s.npy"), "--image".into(), f("s.svg")], vec!["--image", ".png"]),
-        (vec!["surface".into(), "info".into(), "builtin:sine".into(), "--psdf".into(), f("p.jpg")], vec!["--psdf", ".png"]),
+        (
+            vec![
+                "render".into(),
+                "examples/soap_bubble.toml".into(),
+                "-o".into(),
+                f("r.png"),
+                "--exr".into(),
+                f("r.png2"),
+            ],
+            vec!["--exr", ".exr"],
+        ),
+        (
+            vec!["thinfilm".into(), "chart".into(), "--stack".into(), film.into(), "-o".into(), f("c.pdf")],
+            vec!["-o", ".png"],
+        ),
+        (
+            vec![
+                "thinfilm".into(),
+                "chart".into(),
+                "--stack".into(),
+                film.into(),
+                "-o".into(),
+                f("c.png"),
+                "--csv".into(),
+                f("c.txt"),
+            ],
+            vec!["--csv", ".csv"],
+        ),
+        (
+            vec![
+                "thinfilm".into(),
+                "spectrum".into(),
+                "--stack".into(),
+                "air | water 300nm | air".into(),
+                "--plot".into(),
+                f("s.svg"),
+            ],
+            vec!["--plot", ".png"],
+        ),
+        (
+            vec![
+                "thinfilm".into(),
+                "table".into(),
+                "--stack".into(),
+                "air | water 300nm | air".into(),
+                "-o".into(),
+                f("t.txt"),
+            ],
+            vec!["-o", ".csv"],
+        ),
+        (
+            vec![
+                "thinfilm".into(),
+                "table".into(),
+                "--stack".into(),
+                "air | water 300nm | air".into(),
+                "--plot".into(),
+                f("t.jpg"),
+            ],
+            vec!["--plot", ".png"],
+        ),
+        (
+            vec![
+                "thinfilm".into(),
+                "profile".into(),
+                "--stack".into(),
+                "air | Au 30nm | glass".into(),
+                "--wavelength".into(),
+                "500nm".into(),
+                "--plot".into(),
+                f("p.pdf"),
+            ],
+            vec!["--plot", ".png"],
+        ),
+        (
+            vec!["surface".into(), "generate".into(), "sine".into(), "-o".into(), f("s.jpg")],
+            vec![".gwy", ".npy", ".png", ".txt"],
+        ),
+        (
+            vec![
+                "surface".into(),
+                "generate".into(),
+                "sine".into(),
+                "-o".into(),
+                f("s.npy"),
+                "--image".into(),
+                f("s.svg"),
+            ],
+            vec!["--image", ".png"],
+        ),
+        (
+            vec!["surface".into(), "info".into(), "builtin:sine".into(), "--psdf".into(), f("p.jpg")],
+            vec!["--psdf", ".png"],
+        ),
         (vec!["surface".into(), "convert".into(), "builtin:sine".into(), f("s.tiff")], vec![".gwy", ".npz"]),
         (vec!["testbench".into(), SMALL.into(), "--plot".into(), f("b.svg")], vec!["--plot", ".png"]),
-        (vec!["sweep".into(), SMALL.into(), "--param".into(), "terms".into(), "--values".into(), "2".into(), "-o".into(), f("s.jpg")], vec!["-o", ".png"]),
+        (
+            vec![
+                "sweep".into(),
+                SMALL.into(),
+                "--param".into(),
+                "terms".into(),
+                "--values".into(),
+                "2".into(),
+                "-o".into(),
+                f("s.jpg"),
+            ],
+            vec!["-o", ".png"],
+        ),
         (vec!["experiment".into(), "laser".into(), SMALL.into(), "-o".into(), f("l.jpg")], vec!["-o", ".png"]),
         (vec!["bench".into(), "diffraction-accuracy".into(), "--convergence-plot".into(), f("c.pdf")], vec![".png"]),
     ];
@@ -120,7 +231,9 @@ fn every_output_format_follows_its_extension_or_is_refused() {
 #[test]
 fn brdf_map_writes_png_exr_or_npy_by_extension() {
     let d = tmp();
-    for (name, magic) in [("m.png", &b"\x89PNG"[..]), ("m.exr", &[0x76, 0x2f, 0x31, 0x01][..]), ("m.npy", &b"\x93NUMPY"[..])] {
+    for (name, magic) in
+        [("m.png", &b"\x89PNG"[..]), ("m.exr", &[0x76, 0x2f, 0x31, 0x01][..]), ("m.npy", &b"\x93NUMPY"[..])]
+    {
         let out_path = p(d.path(), name);
         let mut args = vec!["brdf-map", SMALL, "--size", "16", "-o", &out_path];
         args.extend(SMALL_MODEL);

@@ -110,11 +110,10 @@ fn compute_table(name: &str, patch: &Patch, n: usize, params: TableParams) -> Re
     let report = progress();
     let total = params.uv_resolution + n + 1;
     let what = format!("table {spec}");
-    let terms =
-        TaylorTerms::compute_with_progress(patch, n, DEFAULT_COHERENCE_NM, &|d| report(d, total, &what)).map_err(err)?;
-    let spectral =
-        SpectralSetup::new(iridis_color::Illuminant::D65, iridis_color::Observer::Cie1931, BUILTIN_STEP_NM)
-            .map_err(err)?;
+    let terms = TaylorTerms::compute_with_progress(patch, n, DEFAULT_COHERENCE_NM, &|d| report(d, total, &what))
+        .map_err(err)?;
+    let spectral = SpectralSetup::new(iridis_color::Illuminant::D65, iridis_color::Observer::Cie1931, BUILTIN_STEP_NM)
+        .map_err(err)?;
     // Rows finish out of order on many threads: only the call after the build says "done".
     let t = LookupTable::build(&terms, &spectral, params, &spec, &|d| report((n + 1 + d).min(total - 1), total, &what))
         .map_err(err)?;

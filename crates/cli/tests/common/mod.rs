@@ -122,7 +122,8 @@ pub mod json_doc {
                 for (k, x) in m {
                     let p = if prefix.is_empty() { k.clone() } else { format!("{prefix}.{k}") };
                     out.insert(p.clone());
-                    if !(prefix.is_empty() && k == "inputs") && !shaped.contains(&p) {
+                    let echo = prefix.is_empty() && k == "inputs";
+                    if !echo && !shaped.contains(&p) {
                         paths(x, &p, shaped, out);
                     }
                 }
