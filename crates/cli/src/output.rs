@@ -116,18 +116,25 @@ pub fn declare_opt(flag: &str, path: Option<&Path>, supported: &[&str]) -> Resul
 /// once the command has succeeded. A path that was not declared is declared now (a command's own files, such
 /// as a gallery's pages); one path written twice is an error.
 pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<()>) -> Result<()> {
-    let mut run = run();
     let key = key_of(path)?;
-    let i = match run.iter().position(|s| s.key == key) {
-        Some(i) if run[i].tmp.is_some() => bail!("{} is written twice in one run", path.display()),
-        Some(i) => i,
-        None => stage("", path, &mut run)?,
+    let i = {
+        let mut run = run();
+        match run.iter().position(|s| s.key == key) {
+            Some(i) if run[i].tmp.is_some() => bail!("{} is written twice in one run", path.display()),
+            Some(i) => i,
+            None => stage("", path, &mut run)?,
+        }
     };
+    // Written without the lock (entries are only ever appended, so `i` stays this output's index).
     let mut tmp = temporary(path)?;
     {
         let mut buffered = std::io::BufWriter::new(tmp.as_file_mut());
         write(&mut buffered)?;
         buffered.flush().with_context(|| format!("cannot write {}", path.display()))?;
+    }
+    let mut run = run();
+    if run[i].tmp.is_some() {
+        bail!("{} is written twice in one run", path.display());
     }
     run[i].tmp = Some(tmp);
     Ok(())
