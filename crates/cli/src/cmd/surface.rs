@@ -461,21 +461,22 @@ fn write_grid(
 }
 
 fn info(a: InfoArgs) -> Result<()> {
+    use crate::progress::step;
     crate::output::declare_opt("--image", a.image.as_deref(), &["png"])?;
     crate::output::declare_opt("--psdf", a.psdf.as_deref(), &["png"])?;
     crate::output::declare_opt("--acf", a.acf.as_deref(), &["png"])?;
     let hf = level(load(&a.surface, &a.load)?, &a.level)?;
-    let r = report(&hf, a.peaks, a.coherence);
+    let r = step("periods and roughness", || report(&hf, a.peaks, a.coherence));
     if let Some(p) = &a.image {
-        write_preview(&hf, p, &a.surface)?;
+        step("shaded-relief preview", || write_preview(&hf, p, &a.surface))?;
     }
     let levelled = prep::level_plane(&hf);
     if let Some(p) = &a.psdf {
-        let g = iridis_surface::stats::psdf(&levelled);
+        let g = step("power spectral density", || iridis_surface::stats::psdf(&levelled));
         write_grid(&g, p, &format!("PSDF of {} (log10 nm⁴)", a.surface), "kx (µm⁻¹)", "ky (µm⁻¹)", 1000.0, true)?;
     }
     if let Some(p) = &a.acf {
-        let g = iridis_surface::stats::acf(&levelled);
+        let g = step("autocorrelation", || iridis_surface::stats::acf(&levelled));
         write_grid(&g, p, &format!("ACF of {} (nm²)", a.surface), "τx (µm)", "τy (µm)", 1e-3, false)?;
     }
     if a.json {
