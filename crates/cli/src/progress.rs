@@ -8,8 +8,14 @@ use std::time::{Duration, Instant};
 
 use indicatif::{ProgressBar, ProgressStyle};
 
-/// Steps shorter than this stay silent in a log.
-const ANNOUNCE_AFTER: Duration = Duration::from_secs(1);
+/// Steps shorter than this stay silent in a log: 1 s, or `IRIDIS_PROGRESS_AFTER_MS` (0 announces every step).
+fn announce_after() -> Duration {
+    static AFTER: std::sync::OnceLock<Duration> = std::sync::OnceLock::new();
+    *AFTER.get_or_init(|| {
+        let ms = std::env::var("IRIDIS_PROGRESS_AFTER_MS").ok().and_then(|v| v.parse().ok()).unwrap_or(1000);
+        Duration::from_millis(ms)
+    })
+}
 
 /// A progress bar (or, without a terminal, its one-line announcements).
 pub struct Bar {
@@ -51,7 +57,9 @@ impl Bar {
     }
 
     fn announce(&self) {
-        if self.pb.is_hidden() && self.start.elapsed() > ANNOUNCE_AFTER && !self.announced.swap(true, Ordering::Relaxed)
+        if self.pb.is_hidden()
+            && self.start.elapsed() >= announce_after()
+            && !self.announced.swap(true, Ordering::Relaxed)
         {
             let len = self.pb.length().map(|l| format!("/{l}")).unwrap_or_default();
             eprintln!(
@@ -89,7 +97,7 @@ pub fn step<T>(what: &str, f: impl FnOnce() -> T) -> T {
     let start = Instant::now();
     let out = f();
     pb.finish_and_clear();
-    if pb.is_hidden() && start.elapsed() > ANNOUNCE_AFTER {
+    if pb.is_hidden() && start.elapsed() >= announce_after() {
         eprintln!("{what}: {:.1} s", start.elapsed().as_secs_f64());
     }
     out

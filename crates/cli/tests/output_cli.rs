@@ -348,3 +348,26 @@ fn builtin_tables_are_cached_under_a_content_key() {
     let second = run();
     assert!(!second.contains("computing"), "{second}");
 }
+
+/// Long work announces itself in a log too (stderr not a terminal, where the bars are hidden): a step still
+/// running after the threshold (1 s; `IRIDIS_PROGRESS_AFTER_MS=0` here, so every step counts) says so in one
+/// line and again when it is done — loading, Taylor terms and the lookup tables of `precompute`.
+#[test]
+fn long_steps_announce_themselves_in_a_log() {
+    let d = tmp();
+    let t = p(d.path(), "t.npz");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_iridis"))
+        .args(["precompute", SMALL, "--coherence", "4um", "--uv-resolution", "31", "-o", &t])
+        .env("IRIDIS_PROGRESS_AFTER_MS", "0")
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    for needle in [&format!("loading {SMALL}: "), "Taylor terms: done in", "lookup tables: done in", "/31 after "] {
+        assert!(stderr.contains(needle), "no '{needle}' in {stderr}");
+    }
+    // With the default threshold a run this short prints none of them.
+    let out = iridis(&["precompute", SMALL, "--coherence", "4um", "--uv-resolution", "31", "-o", &t]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("done in"), "{stderr}");
+}
