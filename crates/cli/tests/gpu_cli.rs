@@ -294,6 +294,11 @@ fn viewer_starts_renders_and_answers_input_under_xvfb() {
     assert!(out.status.success(), "{stderr}");
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["ok"], true, "{v}");
+    // Its keys are the ones docs/json.md lists.
+    let (shapes, sections) = common::json_doc::read();
+    let doc = sections.iter().find(|s| s.display && s.command.starts_with("iridis view")).unwrap();
+    let problems = common::json_doc::check(doc, &shapes, &v);
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
     let steps = v["steps"].as_array().unwrap();
     assert_eq!(steps.len(), 4, "{v}");
     for s in steps {
