@@ -5,8 +5,9 @@ mod args;
 mod cmd;
 mod output;
 mod progress;
+mod runtime_dir;
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 
 /// Structural colour: thin-film interference and diffraction from measured nanostructures.
 #[derive(Debug, Parser)]
@@ -116,7 +117,12 @@ Examples:
 }
 
 fn main() -> std::process::ExitCode {
-    let cli = Cli::parse();
+    let matches = Cli::command().get_matches();
+    let cli = Cli::from_arg_matches(&matches).unwrap_or_else(|e| e.exit());
+    output::set_inputs(&Cli::command(), &matches);
+    // Before any thread or GPU driver starts: the drivers read XDG_RUNTIME_DIR (runtime_dir.rs).
+    let _runtime_dir = runtime_dir::ensure();
+    iridis_render::tables::set_table_progress(progress::reporter());
     let result = match cli.command {
         Command::Demo(a) => cmd::demo::run(a),
         Command::Color(c) => cmd::color::run(c),
@@ -133,6 +139,14 @@ fn main() -> std::process::ExitCode {
         Command::Render(a) => cmd::render::run(a),
         Command::View(a) => cmd::gpu::run_view(a),
         Command::Report(a) => cmd::report::run(a),
+    };
+    // All of a run's files appear together, and only when the whole command succeeded (output.rs).
+    let result = match result {
+        Ok(()) => output::commit(),
+        Err(e) => {
+            output::discard();
+            Err(e)
+        }
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,

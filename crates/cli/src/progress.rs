@@ -1,9 +1,79 @@
-//! Progress bars for long work (drawn on stderr, hidden when stderr is not a terminal).
+//! Progress for long work. On a terminal, an indicatif bar on stderr; when stderr is not a terminal (a log,
+//! a pipe, CI) the bar is hidden, so a step that is still running after a second says so in one line, and
+//! again when it ends: every step over ~1 s announces itself either way.
+
+use std::borrow::Cow;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
 
 use indicatif::{ProgressBar, ProgressStyle};
 
+/// Steps shorter than this stay silent in a log: 1 s, or `IRIDIS_PROGRESS_AFTER_MS` (0 announces every step).
+fn announce_after() -> Duration {
+    static AFTER: std::sync::OnceLock<Duration> = std::sync::OnceLock::new();
+    *AFTER.get_or_init(|| {
+        let ms = std::env::var("IRIDIS_PROGRESS_AFTER_MS").ok().and_then(|v| v.parse().ok()).unwrap_or(1000);
+        Duration::from_millis(ms)
+    })
+}
+
+/// A progress bar (or, without a terminal, its one-line announcements).
+pub struct Bar {
+    pb: ProgressBar,
+    what: std::sync::Mutex<String>,
+    start: Instant,
+    announced: AtomicBool,
+}
+
+impl Bar {
+    pub fn set_position(&self, pos: u64) {
+        self.pb.set_position(pos);
+        self.announce();
+    }
+
+    pub fn inc(&self, delta: u64) {
+        self.pb.inc(delta);
+        self.announce();
+    }
+
+    pub fn set_message(&self, msg: impl Into<Cow<'static, str>>) {
+        let msg = msg.into();
+        if let Ok(mut w) = self.what.lock() {
+            *w = msg.to_string();
+        }
+        self.pb.set_message(msg);
+    }
+
+    /// Ends the bar; in a log, a step that was announced says how long it took.
+    pub fn finish_and_clear(&self) {
+        self.pb.finish_and_clear();
+        if self.pb.is_hidden() && self.announced.load(Ordering::Relaxed) {
+            eprintln!("{}: done in {:.1} s", self.what(), self.start.elapsed().as_secs_f64());
+        }
+    }
+
+    fn what(&self) -> String {
+        self.what.lock().map(|w| w.clone()).unwrap_or_default()
+    }
+
+    fn announce(&self) {
+        if self.pb.is_hidden()
+            && self.start.elapsed() >= announce_after()
+            && !self.announced.swap(true, Ordering::Relaxed)
+        {
+            let len = self.pb.length().map(|l| format!("/{l}")).unwrap_or_default();
+            eprintln!(
+                "{}: {}{len} after {:.1} s …",
+                self.what(),
+                self.pb.position(),
+                self.start.elapsed().as_secs_f64()
+            );
+        }
+    }
+}
+
 /// A bar of `len` steps labelled `what`.
-pub fn bar(len: u64, what: &str) -> ProgressBar {
+pub fn bar(len: u64, what: &str) -> Bar {
     let pb = ProgressBar::new(len);
     pb.set_style(
         ProgressStyle::with_template("{msg:>18} [{bar:40.cyan/blue}] {pos}/{len} ({elapsed} elapsed, eta {eta})")
@@ -11,5 +81,42 @@ pub fn bar(len: u64, what: &str) -> ProgressBar {
             .progress_chars("=> "),
     );
     pb.set_message(what.to_string());
-    pb
+    Bar { pb, what: std::sync::Mutex::new(what.to_string()), start: Instant::now(), announced: AtomicBool::new(false) }
+}
+
+/// Runs a step that reports no progress of its own (loading and generating a height field) under a
+/// spinner with the elapsed time; in a log, a step over a second is reported when it ends.
+pub fn step<T>(what: &str, f: impl FnOnce() -> T) -> T {
+    let pb = ProgressBar::new_spinner();
+    pb.set_style(
+        ProgressStyle::with_template("{spinner} {msg} ({elapsed})")
+            .unwrap_or_else(|_| ProgressStyle::default_spinner()),
+    );
+    pb.set_message(what.to_string());
+    pb.enable_steady_tick(Duration::from_millis(120));
+    let start = Instant::now();
+    let out = f();
+    pb.finish_and_clear();
+    if pb.is_hidden() && start.elapsed() >= announce_after() {
+        eprintln!("{what}: {:.1} s", start.elapsed().as_secs_f64());
+    }
+    out
+}
+
+/// A progress reporter for work a library announces as `(done, total, what)`: a bar per piece of work,
+/// and one line on stderr when it starts, so that a log shows what the time went into too.
+pub fn reporter() -> Box<iridis_render::tables::TableProgress> {
+    let current: std::sync::Mutex<Option<Bar>> = std::sync::Mutex::new(None);
+    Box::new(move |done, total, what| {
+        let mut cur = current.lock().unwrap_or_else(|e| e.into_inner());
+        let pb = cur.get_or_insert_with(|| {
+            eprintln!("computing the {what} (cached for the next runs)");
+            bar(total as u64, what)
+        });
+        pb.set_position(done as u64);
+        if done >= total {
+            pb.finish_and_clear();
+            *cur = None;
+        }
+    })
 }

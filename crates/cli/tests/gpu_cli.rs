@@ -71,6 +71,52 @@ fn no_adapter_is_a_clear_error_not_a_panic() {
     assert!(!std::path::Path::new("/tmp/never.png").exists());
 }
 
+/// Without XDG_RUNTIME_DIR (a service, `sudo`, `env -i`) the graphics stack printed "error: XDG_RUNTIME_DIR is
+/// invalid or not set in the environment." twice on every successful `--gpu` run; iridis now gives the process
+/// a private one, so stderr holds only iridis' own lines — and none of them says "error".
+#[test]
+fn a_gpu_run_without_xdg_runtime_dir_prints_no_driver_noise() {
+    if !have_gpu() {
+        return;
+    }
+    let dir = tmp();
+    let png = dir.path().join("g.png");
+    for xdg in [None, Some("/nonexistent/run")] {
+        let mut cmd = Command::new(env!("CARGO_BIN_EXE_iridis"));
+        cmd.args(["brdf-map", "builtin:blazed?size=4um&pixel=50nm", "--gpu", "--size", "16"])
+            .args(["--coherence", "4um", "--uv-resolution", "31", "-o", png.to_str().unwrap()])
+            .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."));
+        match xdg {
+            None => cmd.env_remove("XDG_RUNTIME_DIR"),
+            Some(v) => cmd.env("XDG_RUNTIME_DIR", v),
+        };
+        let out = cmd.output().unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{stderr}");
+        assert!(!stderr.contains("XDG_RUNTIME_DIR") && !stderr.contains("error"), "XDG_RUNTIME_DIR={xdg:?}: {stderr}");
+        assert!(png.exists());
+    }
+}
+
+/// docs/json.md's GPU sections against the real output (the others are checked by json_doc_cli.rs).
+#[test]
+fn gpu_json_matches_docs_json_md() {
+    if !have_gpu() {
+        return;
+    }
+    let (shapes, sections) = common::json_doc::read();
+    let mut problems = Vec::new();
+    let mut ran = 0;
+    for s in sections.iter().filter(|s| s.gpu && !s.display) {
+        let words = common::json_doc::split(&s.command);
+        let args: Vec<&str> = words[1..].iter().map(String::as_str).collect();
+        problems.extend(common::json_doc::check(s, &shapes, &json_of(&args)));
+        ran += 1;
+    }
+    assert!(ran >= 2, "ran {ran}");
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
+
 /// Displayed colours of an 8-bit sRGB PNG as CIELAB.
 fn png_lab(path: &std::path::Path) -> Vec<Lab> {
     let img = image::open(path).unwrap().to_rgb8();
@@ -248,6 +294,11 @@ fn viewer_starts_renders_and_answers_input_under_xvfb() {
     assert!(out.status.success(), "{stderr}");
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["ok"], true, "{v}");
+    // Its keys are the ones docs/json.md lists.
+    let (shapes, sections) = common::json_doc::read();
+    let doc = sections.iter().find(|s| s.display && s.command.starts_with("iridis view")).unwrap();
+    let problems = common::json_doc::check(doc, &shapes, &v);
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
     let steps = v["steps"].as_array().unwrap();
     assert_eq!(steps.len(), 4, "{v}");
     for s in steps {

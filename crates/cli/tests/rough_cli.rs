@@ -97,20 +97,27 @@ fn xyz(v: &serde_json::Value) -> Vec<f64> {
 /// `thinfilm color --roughness 25nm --correlation 300nm` (Listing 3.6's σ and τ): the smooth film's colour,
 /// the rough film's specular colour and its diffuse colour are reported separately; the specular part is
 /// darker than the smooth film (light goes into the diffuse lobe), and the smooth part is exactly the colour
-/// `thinfilm color` reports without roughness.
+/// `thinfilm color` reports without roughness. Smooth and rough films answer with the same keys.
 #[test]
 fn color_reports_smooth_specular_and_diffuse() {
     let v =
         json_of(&["thinfilm", "color", "--stack", STACK, "--roughness", "25nm", "--correlation", "300nm", "--json"]);
-    for part in ["smooth", "specular", "diffuse"] {
+    for part in ["reflected", "transmitted", "specular", "diffuse"] {
         for key in ["XYZ", "xyY", "Lab", "linear_srgb", "srgb", "hex"] {
             assert!(!v[part][key].is_null(), "{part}.{key} in {v}");
         }
     }
-    assert_eq!((v["roughness_nm"].as_f64(), v["correlation_nm"].as_f64()), (Some(25.0), Some(300.0)));
+    assert_eq!((v["rough"]["roughness_nm"].as_f64(), v["rough"]["correlation_nm"].as_f64()), (Some(25.0), Some(300.0)));
     let plain = json_of(&["thinfilm", "color", "--stack", STACK, "--json"]);
-    assert_eq!(xyz(&v["smooth"]), xyz(&plain["reflected"]));
-    let (smooth, spec, diff) = (xyz(&v["smooth"]), xyz(&v["specular"]), xyz(&v["diffuse"]));
+    let keys = |v: &serde_json::Value| v.as_object().unwrap().keys().cloned().collect::<Vec<_>>();
+    assert_eq!(keys(&v), keys(&plain), "one shape for smooth and rough films");
+    assert!(plain["rough"].is_null());
+    assert_eq!(xyz(&v["reflected"]), xyz(&plain["reflected"]));
+    assert_eq!(xyz(&v["transmitted"]), xyz(&plain["transmitted"]));
+    // A smooth film reflects specularly only: its specular colour is its reflected colour, its diffuse black.
+    assert_eq!(xyz(&plain["specular"]), xyz(&plain["reflected"]));
+    assert_eq!(xyz(&plain["diffuse"]), [0.0; 3]);
+    let (smooth, spec, diff) = (xyz(&v["reflected"]), xyz(&v["specular"]), xyz(&v["diffuse"]));
     for c in 0..3 {
         assert!(spec[c] > 0.0 && spec[c] < smooth[c], "{spec:?} vs {smooth:?}");
         assert!(diff[c] > 0.0, "{diff:?}");

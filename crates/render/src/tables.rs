@@ -22,37 +22,63 @@ fn memory() -> &'static Mutex<HashMap<String, Arc<LookupTable>>> {
     M.get_or_init(|| Mutex::new(HashMap::new()))
 }
 
+/// Model options of a built-in table: those of `iridis precompute` at its defaults.
+const BUILTIN_EPSILON: f64 = 1e-6;
+const BUILTIN_STEP_NM: f64 = 5.0;
+
+/// The cache key of a built-in table: a hash of everything that determines its content — the height field
+/// the generator made (its [`Patch::fingerprint`], so a changed generator gives a new key), the u-v grid, the
+/// model options (Taylor terms, coherence, illuminant, observer, wavelength step), the table format and the
+/// version of the code that computes it. Readable prefix: the built-in's name.
+pub fn builtin_key(name: &str, patch_fingerprint: &str, params: TableParams, terms: usize) -> String {
+    let what = format!(
+        "{patch_fingerprint} uv={} a={} N={terms} coherence={DEFAULT_COHERENCE_NM} D65 CIE1931 step={BUILTIN_STEP_NM} \
+         format={FORMAT_VERSION} iridis-render={}",
+        params.uv_resolution,
+        params.uv_power,
+        env!("CARGO_PKG_VERSION")
+    );
+    // FNV-1a 64: stable across runs and platforms (std's hasher is not promised to be).
+    let h = what.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| (h ^ b as u64).wrapping_mul(0x0000_0100_0000_01b3));
+    format!("{name}-{h:016x}")
+}
+
 /// Loads (or computes and caches) a table. `spec` is a path (relative to `base`) or `builtin:NAME`.
+/// A built-in table being computed reports to [`set_table_progress`].
 pub fn load_table(spec: &str, base: &Path, params: TableParams) -> Result<Arc<LookupTable>, RenderError> {
-    let key = match spec.strip_prefix("builtin:") {
-        Some(name) => format!("{name}-uv{}-a{}-v{}", params.uv_resolution, params.uv_power, FORMAT_VERSION),
-        None => base.join(spec).display().to_string(),
+    let Some(name) = spec.strip_prefix("builtin:") else {
+        let path = base.join(spec);
+        let key = path.display().to_string();
+        if let Some(t) = memory().lock().ok().and_then(|m| m.get(&key).cloned()) {
+            return Ok(t);
+        }
+        let table = Arc::new(LookupTable::load(&path).map_err(|e| {
+            RenderError::Input(format!(
+                "diffraction table {}: {e} (make one with `iridis precompute SURFACE -o TABLE.npz`, or write \
+                 table = \"builtin:elaphe\")",
+                path.display()
+            ))
+        })?);
+        if let Ok(mut m) = memory().lock() {
+            m.insert(key, table.clone());
+        }
+        return Ok(table);
     };
+    // The height field is generated every time (fast next to the table) so that the key follows it.
+    let patch = builtin_patch(name)?;
+    let n = terms_for_bound(patch.max_abs_height, 380.0, BUILTIN_EPSILON);
+    let key = builtin_key(name, &patch.fingerprint(), params, n);
     if let Some(t) = memory().lock().ok().and_then(|m| m.get(&key).cloned()) {
         return Ok(t);
     }
-    let table = match spec.strip_prefix("builtin:") {
-        None => {
-            let path = base.join(spec);
-            LookupTable::load(&path).map_err(|e| {
-                RenderError::Input(format!(
-                    "diffraction table {}: {e} (make one with `iridis precompute SURFACE -o TABLE.npz`, or write \
-                     table = \"builtin:elaphe\")",
-                    path.display()
-                ))
-            })?
-        }
-        Some(name) => {
-            let file = cache_dir().join(format!("{key}.npz"));
-            match LookupTable::load(&file) {
-                Ok(t) => t,
-                Err(_) => {
-                    let t = compute_builtin(name, params)?;
-                    // The cache is an optimisation: failing to write it is not an error.
-                    let _ = save_atomic(&t, &file);
-                    t
-                }
-            }
+    let file = cache_dir().join(format!("{key}.npz"));
+    let table = match LookupTable::load(&file) {
+        Ok(t) => t,
+        Err(_) => {
+            let t = compute_table(name, &patch, n, params)?;
+            // The cache is an optimisation: failing to write it is not an error.
+            let _ = save_atomic(&t, &file);
+            t
         }
     };
     let table = Arc::new(table);
@@ -62,19 +88,55 @@ pub fn load_table(spec: &str, base: &Path, params: TableParams) -> Result<Arc<Lo
     Ok(table)
 }
 
-/// `iridis precompute builtin:NAME` with default model options and the given u-v grid.
-pub fn compute_builtin(name: &str, params: TableParams) -> Result<LookupTable, RenderError> {
+fn builtin_patch(name: &str) -> Result<Patch, RenderError> {
     let spec = format!("builtin:{name}");
     let hf = iridis_surface::load_surface(&spec, &Default::default()).map_err(|e| {
         RenderError::Input(format!("{spec}: {e} (built-in surfaces: {})", iridis_surface::BUILTIN_NAMES.join(", ")))
     })?;
+    Patch::from_row_major(hf.rows, hf.cols, hf.dx_nm, hf.dy_nm, &hf.heights_nm)
+        .map_err(|e| RenderError::Input(format!("{spec}: {e}")))
+}
+
+/// `iridis precompute builtin:NAME` with default model options and the given u-v grid.
+pub fn compute_builtin(name: &str, params: TableParams) -> Result<LookupTable, RenderError> {
+    let patch = builtin_patch(name)?;
+    let n = terms_for_bound(patch.max_abs_height, 380.0, BUILTIN_EPSILON);
+    compute_table(name, &patch, n, params)
+}
+
+fn compute_table(name: &str, patch: &Patch, n: usize, params: TableParams) -> Result<LookupTable, RenderError> {
+    let spec = format!("builtin:{name}");
     let err = |e: iridis_diffraction::DiffractionError| RenderError::Input(format!("{spec}: {e}"));
-    let patch = Patch::from_row_major(hf.rows, hf.cols, hf.dx_nm, hf.dy_nm, &hf.heights_nm).map_err(err)?;
-    let n = terms_for_bound(patch.max_abs_height, 380.0, 1e-6);
-    let terms = TaylorTerms::compute(&patch, n, DEFAULT_COHERENCE_NM).map_err(err)?;
-    let spectral =
-        SpectralSetup::new(iridis_color::Illuminant::D65, iridis_color::Observer::Cie1931, 5.0).map_err(err)?;
-    LookupTable::build(&terms, &spectral, params, &spec, &|_| {}).map_err(err)
+    let report = progress();
+    let total = params.uv_resolution + n + 1;
+    let what = format!("table {spec}");
+    let terms = TaylorTerms::compute_with_progress(patch, n, DEFAULT_COHERENCE_NM, &|d| report(d, total, &what))
+        .map_err(err)?;
+    let spectral = SpectralSetup::new(iridis_color::Illuminant::D65, iridis_color::Observer::Cie1931, BUILTIN_STEP_NM)
+        .map_err(err)?;
+    // Rows finish out of order on many threads: only the call after the build says "done".
+    let t = LookupTable::build(&terms, &spectral, params, &spec, &|d| report((n + 1 + d).min(total - 1), total, &what))
+        .map_err(err)?;
+    report(total, total, &what);
+    Ok(t)
+}
+
+/// How a caller hears of built-in tables being computed (seconds to minutes): `(done, total, what)`.
+pub type TableProgress = dyn Fn(usize, usize, &str) + Send + Sync;
+
+static PROGRESS: OnceLock<Box<TableProgress>> = OnceLock::new();
+
+/// Sets, once per process, where the progress of built-in tables goes (the command line's progress bar).
+pub fn set_table_progress(f: Box<TableProgress>) {
+    let _ = PROGRESS.set(f);
+}
+
+fn progress() -> impl Fn(usize, usize, &str) {
+    |d, t, w| {
+        if let Some(f) = PROGRESS.get() {
+            f(d, t, w)
+        }
+    }
 }
 
 fn save_atomic(t: &LookupTable, file: &Path) -> Result<(), RenderError> {
@@ -84,4 +146,36 @@ fn save_atomic(t: &LookupTable, file: &Path) -> Result<(), RenderError> {
     t.write_npz(&mut tmp).map_err(|e| RenderError::Input(e.to_string()))?;
     tmp.persist(file).map_err(|e| RenderError::Io(e.error))?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The key changes with each thing that changes the table's content, and only with those.
+    #[test]
+    fn builtin_key_follows_the_content() {
+        let p = TableParams { uv_resolution: 201, uv_power: 5.0 };
+        let k = builtin_key("elaphe", "fnv1a64:0123456789abcdef", p, 30);
+        assert_eq!(k, builtin_key("elaphe", "fnv1a64:0123456789abcdef", p, 30));
+        assert!(k.starts_with("elaphe-"));
+        for other in [
+            builtin_key("elaphe", "fnv1a64:0123456789abcdee", p, 30),
+            builtin_key("elaphe", "fnv1a64:0123456789abcdef", TableParams { uv_resolution: 202, ..p }, 30),
+            builtin_key("elaphe", "fnv1a64:0123456789abcdef", TableParams { uv_power: 4.0, ..p }, 30),
+            builtin_key("elaphe", "fnv1a64:0123456789abcdef", p, 31),
+        ] {
+            assert_ne!(k, other);
+        }
+    }
+
+    /// A changed generator makes another height field, hence another fingerprint and key: two built-ins
+    /// stand in for "before" and "after" a change of the generator.
+    #[test]
+    fn a_changed_height_field_gets_a_new_key() {
+        let p = TableParams { uv_resolution: 31, uv_power: 5.0 };
+        let (a, b) = (builtin_patch("sine").unwrap(), builtin_patch("blazed").unwrap());
+        assert_ne!(a.fingerprint(), b.fingerprint());
+        assert_ne!(builtin_key("x", &a.fingerprint(), p, 10), builtin_key("x", &b.fingerprint(), p, 10));
+    }
 }

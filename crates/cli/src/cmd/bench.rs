@@ -352,6 +352,7 @@ pub fn delta_e_stats(a: &[iridis_color::Xyz], b: &[iridis_color::Xyz], exposure:
 }
 
 fn accuracy(a: AccuracyBench) -> Result<()> {
+    crate::output::declare_opt("--convergence-plot", a.convergence_plot.as_deref(), &["png"])?;
     use crate::cmd::brdf::{load_patch, SurfaceOpts};
     let surfaces = if a.surface.is_empty() {
         vec!["builtin:blazed".to_string(), "builtin:cd".into(), "builtin:elaphe".into(), "builtin:xenopeltis".into()]

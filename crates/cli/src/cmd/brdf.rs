@@ -132,7 +132,7 @@ pub struct BrdfMapArgs {
     /// Encoding: srgb, linear or a gamma such as 2.2.
     #[arg(long, default_value = "srgb")]
     pub gamma: String,
-    /// Output image (PNG).
+    /// Output: .png (tone-mapped), .exr (linear sRGB) or .npy (linear XYZ), by its extension.
     #[arg(short, long)]
     pub output: PathBuf,
     /// Also write linear XYZ per pixel as .npy (float64, shape [size, size, 3]).
@@ -177,7 +177,8 @@ pub fn load_patch(spec: &str, opts: &SurfaceOpts) -> Result<Patch> {
         height_unit: opts.height_unit.clone(),
         ..Default::default()
     };
-    let hf = iridis_surface::load_surface(spec, &load).with_context(|| format!("cannot load surface {spec}"))?;
+    let hf = crate::progress::step(&format!("loading {spec}"), || iridis_surface::load_surface(spec, &load))
+        .with_context(|| format!("cannot load surface {spec}"))?;
     for w in &hf.meta.warnings {
         eprintln!("warning: {spec}: {w}");
     }
@@ -249,24 +250,33 @@ pub fn build_table(
 }
 
 pub fn run_precompute(a: PrecomputeArgs) -> Result<()> {
+    crate::output::declare("-o", &a.output, &["npz"])?;
+    let start = std::time::Instant::now();
     let patch = load_patch(&a.surface, &a.surface_opts)?;
     let spectral = spectral_setup(&a.model)?;
     let terms = taylor_terms(&patch, &a.model)?;
     let params = TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power };
+    // The size is known once N is: say it before the long build and the write.
+    let values = a.uv_resolution * a.uv_resolution * 3 * (2 * terms.n_max + 1);
+    eprintln!(
+        "{} will hold {}² × 3 × {} values in f64: {:.1} MB",
+        a.output.display(),
+        a.uv_resolution,
+        2 * terms.n_max + 1,
+        (values * 8) as f64 / 1e6
+    );
     let table = build_table(&terms, &spectral, params, &a.surface)?;
-    crate::output::write_atomic(&a.output, |w| {
-        let mut buf = std::io::Cursor::new(Vec::new());
-        table.write_npz(&mut buf)?;
-        w.write_all(buf.get_ref())?;
-        Ok(())
-    })?;
+    let mut buf = std::io::Cursor::new(Vec::new());
+    table.write_npz(&mut buf)?;
+    crate::output::write_bytes(&a.output, buf.get_ref())?;
     crate::outln!(
-        "wrote {} ({} tables of {}², N = {}, {:.1} MB)",
+        "wrote {} ({} tables of {}², N = {}, {:.1} MB, {:.1} s)",
         a.output.display(),
         table.powers(),
         a.uv_resolution,
         table.meta.taylor_terms,
-        std::fs::metadata(&a.output).map(|m| m.len() as f64 / 1e6).unwrap_or(0.0)
+        buf.get_ref().len() as f64 / 1e6,
+        start.elapsed().as_secs_f64()
     )?;
     Ok(())
 }
@@ -627,33 +637,57 @@ pub fn run_brdf_map(a: BrdfMapArgs) -> Result<()> {
     if is_table(&a.input) {
         refuse_build_options_for_table(&a)?;
     }
+    declare_map_outputs(&a)?;
     if a.gpu {
         return crate::cmd::gpu::run_brdf_map(a, wi, encoding);
     }
     let shading = a.shading.shading()?;
     let params = TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power };
     let precision = if a.f32 { Precision::F32 } else { Precision::F64 };
-    let e = make_evaluator(&a.input, &a.method, &a.model, shading, params, precision, &a.surface_opts)?;
     let start = std::time::Instant::now();
+    let e = make_evaluator(&a.input, &a.method, &a.model, shading, params, precision, &a.surface_opts)?;
+    let prepared = start.elapsed().as_secs_f64();
     let xyz = render_map(e.as_ref(), wi, a.size);
-    let secs = start.elapsed().as_secs_f64();
+    let total = start.elapsed().as_secs_f64();
+    let secs = total - prepared;
     let tone = ToneMap { exposure_ru: a.exposure, encoding };
-    let rgb = map_to_rgb8(&xyz, tone);
-    crate::output::write_png_rgb8(&a.output, a.size as u32, a.size as u32, &rgb)?;
-    if let Some(raw) = &a.raw {
-        write_xyz_npy(raw, &xyz, a.size)?;
-    }
-    if let Some(exr) = &a.exr {
-        write_exr(exr, &xyz, a.size, a.exposure)?;
-    }
+    write_map_outputs(&a, &xyz, tone)?;
     crate::outln!(
-        "wrote {} ({} map, {}², {:.2} s, {:.0} pixels/s)",
+        "wrote {} ({} map, {}², {total:.2} s in all: {prepared:.2} s to load and prepare, {secs:.2} s for the \
+         map, {:.0} pixels/s)",
         a.output.display(),
         e.name(),
         a.size,
-        secs,
-        (a.size * a.size) as f64 / secs
+        (a.size * a.size) as f64 / secs.max(1e-9)
     )?;
+    Ok(())
+}
+
+/// The formats of `brdf-map -o`: a tone-mapped image, linear sRGB, or the linear XYZ numbers.
+const MAP_FORMATS: &[&str] = &["png", "exr", "npy"];
+
+/// Declares the outputs of `brdf-map` (-o, --raw, --exr) before anything is computed (output.rs).
+pub fn declare_map_outputs(a: &BrdfMapArgs) -> Result<()> {
+    crate::output::declare("-o", &a.output, MAP_FORMATS)?;
+    crate::output::declare_opt("--raw", a.raw.as_deref(), &["npy"])?;
+    crate::output::declare_opt("--exr", a.exr.as_deref(), &["exr"])?;
+    Ok(())
+}
+
+/// Writes a map's outputs: -o in the format its extension names, and --raw and --exr.
+pub fn write_map_outputs(a: &BrdfMapArgs, xyz: &[Xyz], tone: ToneMap) -> Result<()> {
+    let ext = crate::output::format_of("-o", &a.output, MAP_FORMATS)?;
+    match ext.as_str() {
+        "exr" => write_exr(&a.output, xyz, a.size, a.exposure)?,
+        "npy" => write_xyz_npy(&a.output, xyz, a.size)?,
+        _ => crate::output::write_png_rgb8(&a.output, a.size as u32, a.size as u32, &map_to_rgb8(xyz, tone))?,
+    }
+    if let Some(raw) = &a.raw {
+        write_xyz_npy(raw, xyz, a.size)?;
+    }
+    if let Some(exr) = &a.exr {
+        write_exr(exr, xyz, a.size, a.exposure)?;
+    }
     Ok(())
 }
 

@@ -83,6 +83,7 @@ pub struct FitArgs {
 }
 
 pub fn profile(a: ProfileArgs) -> Result<()> {
+    crate::output::declare_opt("--plot", a.plot.as_deref(), &["png"])?;
     let stack = Stack::parse(&a.stack).map_err(|e| anyhow::anyhow!("{e}"))?;
     let pol = a.polarization.to_ascii_lowercase();
     if !matches!(pol.as_str(), "avg" | "s" | "p") {
@@ -194,6 +195,8 @@ pub fn profile(a: ProfileArgs) -> Result<()> {
 }
 
 pub fn fit_cmd(a: FitArgs) -> Result<()> {
+    crate::output::declare_opt("--plot", a.plot.as_deref(), &["png"])?;
+    crate::output::declare_opt("-o", a.output.as_deref(), &["csv"])?;
     let quantity: Quantity = a.quantity.parse()?;
     let template = Template::parse(&a.stack)?;
     let text = std::fs::read_to_string(&a.measured).with_context(|| format!("cannot read {}", a.measured.display()))?;

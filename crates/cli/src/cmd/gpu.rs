@@ -68,6 +68,7 @@ pub fn run_brdf_map(a: BrdfMapArgs, wi: [f64; 3], encoding: Encoding) -> Result<
     }
     let fresnel = brdf::parse_fresnel(&a.shading.fresnel)?;
     let params = TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power };
+    let start = std::time::Instant::now();
     let table = lookup_table(&a.input, &a.model, params, &a.surface_opts)?;
     let gpu = open_gpu()?;
     let lookup =
@@ -76,18 +77,12 @@ pub fn run_brdf_map(a: BrdfMapArgs, wi: [f64; 3], encoding: Encoding) -> Result<
     let frame = lookup.frame(a.size, tone)?;
     let secs = frame.run(wi)?.wall.as_secs_f64();
     let out = frame.read()?;
-    let rgb = brdf::map_to_rgb8(&out.xyz, tone);
-    crate::output::write_png_rgb8(&a.output, a.size as u32, a.size as u32, &rgb)?;
-    if let Some(raw) = &a.raw {
-        brdf::write_xyz_npy(raw, &out.xyz, a.size)?;
-    }
-    if let Some(exr) = &a.exr {
-        brdf::write_exr(exr, &out.xyz, a.size, a.exposure)?;
-    }
+    brdf::write_map_outputs(&a, &out.xyz, tone)?;
     crate::outln!(
-        "wrote {} (lookup map on the GPU, {}², {:.2} ms on {})",
+        "wrote {} (lookup map on the GPU, {}², {:.2} s in all, of which the map {:.2} ms on {})",
         a.output.display(),
         a.size,
+        start.elapsed().as_secs_f64(),
         secs * 1e3,
         gpu.adapter_name()
     )?;
@@ -526,11 +521,7 @@ fn load_for_view(p: &std::path::Path) -> std::result::Result<iridis_render::Scen
 
 pub fn run_view(a: ViewArgs) -> Result<()> {
     use iridis_gpu::viewer::{run, ViewInput, ViewOptions};
-    if let Some(c) = &a.check {
-        if c.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() != Some("png") {
-            bail!("--check {}: name the screenshot .png", c.display());
-        }
-    }
+    crate::output::declare_opt("--check", a.check.as_deref(), &["png"])?;
     let path = std::path::Path::new(&a.input);
     let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
     let input = if matches!(ext.as_deref(), Some("toml" | "gltf" | "glb")) {

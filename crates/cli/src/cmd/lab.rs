@@ -209,17 +209,6 @@ fn exposures(s: &str) -> Result<Vec<f64>> {
     })
 }
 
-fn check_output(path: &Path) -> Result<()> {
-    let dir = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
-    if !dir.is_dir() {
-        bail!("cannot write {}: folder {} does not exist", path.display(), dir.display());
-    }
-    Ok(())
-}
-
 // ---------------------------------------------------------------------------------------------------------
 // testbench
 
@@ -303,9 +292,7 @@ pub fn run_testbench(a: TestbenchArgs) -> Result<()> {
              bench needs one of: reference, ground-truth, nmm, pq, stam-periodic, stam-gaussian"
         );
     }
-    if let Some(p) = &a.plot {
-        check_output(p)?;
-    }
+    crate::output::declare_opt("--plot", a.plot.as_deref(), &["png"])?;
     let mut setup = BenchSetup::new(
         a.incidence,
         a.azimuth,
@@ -772,11 +759,12 @@ pub fn run_sweep(a: SweepArgs) -> Result<()> {
     if !(8..=1024).contains(&a.size) {
         bail!("--size {} must be 8–1024 pixels", a.size);
     }
-    check_output(&a.output)?;
+    crate::output::declare("-o", &a.output, &["png"])?;
     let plot_path = a.plot.clone().unwrap_or_else(|| {
         let stem = a.output.file_stem().and_then(|s| s.to_str()).unwrap_or("sweep");
         a.output.with_file_name(format!("{stem}_error.png"))
     });
+    crate::output::declare("--plot", &plot_path, &["png"])?;
     let mut config = a.model.config()?;
     config.spectral = spectral("d65", a.dlambda)?;
     config.table = TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power };
@@ -918,16 +906,28 @@ pub fn run_experiment(c: ExperimentCommand) -> Result<()> {
 fn run_laser(a: LaserArgs) -> Result<()> {
     let method: Method = a.method.parse()?;
     let exps = exposures(&a.exposures)?;
-    check_output(&a.output)?;
+    let screens: Vec<PathBuf> = exps
+        .iter()
+        .map(|x| {
+            if exps.len() == 1 {
+                a.output.clone()
+            } else {
+                let stem = a.output.file_stem().and_then(|s| s.to_str()).unwrap_or("screen");
+                a.output.with_file_name(format!("{stem}_{x}RU.png"))
+            }
+        })
+        .collect();
+    crate::output::format_of("-o", &a.output, &["png"])?;
+    for p in &screens {
+        crate::output::declare("-o", p, &["png"])?;
+    }
     if (a.table.is_some() || a.save_table.is_some()) && method != Method::Lookup {
         bail!("--table and --save-table are lookup tables: use them with --method lookup, not {method}");
     }
     if a.table.is_some() && a.save_table.is_some() {
         bail!("--table reuses a table and --save-table writes the one built here: give one of them");
     }
-    if let Some(p) = &a.save_table {
-        check_output(p)?;
-    }
+    crate::output::declare_opt("--save-table", a.save_table.as_deref(), &["npz"])?;
     let spectrum = match &a.spectrum {
         Some(p) => Spectrum::from_csv_path(p)?,
         None => {
@@ -980,13 +980,7 @@ fn run_laser(a: LaserArgs) -> Result<()> {
     iridis_lab::laser::scale_image(&mut img, scale);
     let half = a.screen / 2e6;
     let mut written = Vec::new();
-    for &x in &exps {
-        let path = if exps.len() == 1 {
-            a.output.clone()
-        } else {
-            let stem = a.output.file_stem().and_then(|s| s.to_str()).unwrap_or("screen");
-            a.output.with_file_name(format!("{stem}_{x}RU.png"))
-        };
+    for (&x, path) in exps.iter().zip(screens) {
         let px = iridis_lab::image::to_rgb(&img, a.size, a.size, x);
         let plot = iridis_plot::ImagePlot {
             title: format!(

@@ -63,22 +63,6 @@ pub fn parse_size(s: &str) -> Result<(u32, u32)> {
     }
 }
 
-#[derive(Debug, Clone, Copy, PartialEq)]
-enum Format {
-    Png,
-    Exr,
-}
-
-fn format_of(p: &Path) -> Result<Format> {
-    match p.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
-        Some("png") => Ok(Format::Png),
-        Some("exr") => Ok(Format::Exr),
-        _ => {
-            bail!("cannot tell the image format of {}: name it .png (tone-mapped) or .exr (linear float)", p.display())
-        }
-    }
-}
-
 /// Loads a scene, printing its notes.
 pub fn load(path: &Path) -> Result<Scene> {
     let scene = load_scene(path).map_err(anyhow::Error::new)?;
@@ -99,12 +83,9 @@ pub fn render_with_bar(scene: &Scene, w: u32, h: u32, spp: u32) -> (iridis_rende
 
 pub fn run(a: RenderArgs) -> Result<()> {
     // Check everything the user typed before the (possibly long) render.
-    let fmt = format_of(&a.output)?;
-    if let Some(e) = &a.exr {
-        if format_of(e)? != Format::Exr {
-            bail!("--exr {}: name the file .exr", e.display());
-        }
-    }
+    let fmt = crate::output::declare("-o", &a.output, &["png", "exr"])?;
+    crate::output::declare_opt("--exr", a.exr.as_deref(), &["exr"])?;
+    let start = Instant::now();
     let size = a.size.as_deref().map(parse_size).transpose()?;
     if let Some(s) = a.spp {
         if !(1..=4096).contains(&s) {
@@ -127,15 +108,19 @@ pub fn run(a: RenderArgs) -> Result<()> {
         let (img, secs) = render_with_bar(&scene, w, h, spp);
         (img, secs, format!("{} threads", rayon::current_num_threads()))
     };
-    let bytes = match fmt {
-        Format::Png => img.encode_png(exposure, scene.output.encoding)?,
-        Format::Exr => img.encode_exr(exposure)?,
+    let bytes = match fmt.as_str() {
+        "exr" => img.encode_exr(exposure)?,
+        _ => img.encode_png(exposure, scene.output.encoding)?,
     };
     crate::output::write_bytes(&a.output, &bytes)?;
     if let Some(e) = &a.exr {
         crate::output::write_bytes(e, &img.encode_exr(exposure)?)?;
     }
-    crate::outln!("wrote {} ({w}×{h}, {spp} spp, {secs:.2} s on {device})", a.output.display())?;
+    crate::outln!(
+        "wrote {} ({w}×{h}, {spp} spp, {:.2} s in all, of which the render {secs:.2} s on {device})",
+        a.output.display(),
+        start.elapsed().as_secs_f64()
+    )?;
     Ok(())
 }
 
@@ -159,12 +144,12 @@ pub const EXAMPLE_FILES: &[(&str, &[u8])] =
 pub fn write_examples(dir: &Path) -> Result<Vec<PathBuf>> {
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     for (name, bytes) in EXAMPLE_FILES {
-        crate::output::write_bytes(&dir.join(name), bytes)?;
+        crate::output::write_now(&dir.join(name), bytes)?;
     }
     let mut out = Vec::new();
     for (name, text) in EXAMPLES {
         let p = dir.join(name);
-        crate::output::write_bytes(&p, text.as_bytes())?;
+        crate::output::write_now(&p, text.as_bytes())?;
         out.push(p);
     }
     Ok(out)
@@ -255,7 +240,6 @@ mod tests {
         assert_eq!(parse_size("1024x768").unwrap(), (1024, 768));
         assert!(parse_size("1024").is_err());
         assert!(parse_size("0x5").is_err());
-        assert!(format_of(Path::new("a.jpg")).is_err());
     }
 
     #[test]

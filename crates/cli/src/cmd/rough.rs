@@ -238,7 +238,12 @@ pub fn color(
     let light = args.light_angle.unwrap_or(view);
     let xs = evaluate(&rough, grid, view, light, args.azimuth)?;
     let weights = SpectralWeights::new(grid, illuminant, observer);
-    let smooth = weights.integrate(&xs.iter().map(|x| x.0).collect::<Vec<_>>());
+    let smooth_film = iridis_thinfilm::color::FilmColorimeter::new(grid, illuminant, observer).color(
+        &rough.stack,
+        view,
+        iridis_thinfilm::color::Polarization::Average,
+    )?;
+    let smooth = smooth_film.reflected;
     let spec = weights.integrate(&xs.iter().map(|x| x.1.k_r()).collect::<Vec<_>>());
     let diff = weights.integrate(&xs.iter().map(|x| PI * x.1.k_d()).collect::<Vec<_>>());
     let white = iridis_color::integrate::white_point(illuminant, observer);
@@ -248,14 +253,19 @@ pub fn color(
         ("diffuse", "rough film, diffuse π·k_d", super::color::colour_report(diff, white)),
     ];
     if json_out {
-        let mut v = json!({
+        let conditions = json!({
             "roughness_nm": rough.htsg.roughness.sigma_nm(), "correlation_nm": rough.htsg.roughness.tau_nm(),
             "view_deg": view.to_degrees(), "light_deg": light.to_degrees(), "azimuth_deg": args.azimuth.to_degrees(),
+            "diffuse_transport": args.diffuse_transport.name(),
         });
-        for (k, _, r) in &reports {
-            v[*k] = r.clone();
-        }
-        return crate::output::print_json(&v);
+        let transmitted = super::color::colour_report(smooth_film.transmitted, white);
+        return crate::output::print_json(&super::thinfilm::film_colours_json(
+            &reports[0].2,
+            &transmitted,
+            &reports[1].2,
+            &reports[2].2,
+            conditions,
+        ));
     }
     let f = |v: &serde_json::Value| -> String {
         v.as_array()

@@ -293,7 +293,8 @@ pub fn run(command: SurfaceCommand) -> Result<()> {
 }
 
 fn load(spec: &str, load: &LoadArgs) -> Result<HeightField> {
-    load_surface(spec, &load.options()).with_context(|| format!("cannot load surface {spec}"))
+    crate::progress::step(&format!("loading {spec}"), || load_surface(spec, &load.options()))
+        .with_context(|| format!("cannot load surface {spec}"))
 }
 
 fn level(hf: HeightField, how: &str) -> Result<HeightField> {
@@ -467,18 +468,22 @@ fn write_grid(
 }
 
 fn info(a: InfoArgs) -> Result<()> {
+    use crate::progress::step;
+    crate::output::declare_opt("--image", a.image.as_deref(), &["png"])?;
+    crate::output::declare_opt("--psdf", a.psdf.as_deref(), &["png"])?;
+    crate::output::declare_opt("--acf", a.acf.as_deref(), &["png"])?;
     let hf = level(load(&a.surface, &a.load)?, &a.level)?;
-    let r = report(&hf, a.peaks, a.coherence);
+    let r = step("periods and roughness", || report(&hf, a.peaks, a.coherence));
     if let Some(p) = &a.image {
-        write_preview(&hf, p, &a.surface)?;
+        step("shaded-relief preview", || write_preview(&hf, p, &a.surface))?;
     }
     let levelled = prep::level_plane(&hf);
     if let Some(p) = &a.psdf {
-        let g = iridis_surface::stats::psdf(&levelled);
+        let g = step("power spectral density", || iridis_surface::stats::psdf(&levelled));
         write_grid(&g, p, &format!("PSDF of {} (log10 nm⁴)", a.surface), "kx (µm⁻¹)", "ky (µm⁻¹)", 1000.0, true)?;
     }
     if let Some(p) = &a.acf {
-        let g = iridis_surface::stats::acf(&levelled);
+        let g = step("autocorrelation", || iridis_surface::stats::acf(&levelled));
         write_grid(&g, p, &format!("ACF of {} (nm²)", a.surface), "τx (µm)", "τy (µm)", 1e-3, false)?;
     }
     if a.json {
@@ -525,27 +530,21 @@ fn channels(a: ChannelsArgs) -> Result<()> {
     Ok(())
 }
 
+/// The extensions `surface generate` and `surface convert` write (TIFF and instrument formats are read only).
+const SURFACE_OUTPUTS: &[&str] = &["gwy", "gsf", "npy", "npz", "png", "txt"];
+
 fn output_format(path: &Path) -> Result<Format> {
-    match Format::from_extension(path) {
-        Some(Format::Tiff) => {
-            bail!(
-                "{}: writing TIFF is not supported; use .png (16-bit), .gwy, .gsf, .npy, .npz or .txt",
-                path.display()
-            )
-        }
-        Some(f @ (Format::Nanoscope | Format::Ibw | Format::Jpk | Format::Wsxm | Format::Sxm)) => {
-            bail!(
-                "{}: writing {} files is not supported; use .gwy, .gsf, .npy, .npz, .png or .txt",
-                path.display(),
-                f.name()
-            )
-        }
-        Some(f) => Ok(f),
-        None => bail!(
-            "{}: unknown output format; use the extension .gwy, .npy, .npz, .png (16-bit) or .txt",
-            path.display()
-        ),
+    crate::output::format_of("", path, SURFACE_OUTPUTS)?;
+    Format::from_extension(path).with_context(|| format!("{}: unknown output format", path.display()))
+}
+
+/// Declares the outputs of a surface written to `path`: the file and, for formats without units, its sidecar.
+fn declare_surface(flag: &str, path: &Path) -> Result<()> {
+    crate::output::declare(flag, path, SURFACE_OUTPUTS)?;
+    if matches!(output_format(path)?, Format::Npy | Format::Png | Format::Npz) {
+        crate::output::declare("", &sidecar_path(path), &["json"])?;
     }
+    Ok(())
 }
 
 /// Writes a field in the format its extension names, with a sidecar where the format has no units.
@@ -563,7 +562,8 @@ fn generate(a: GenerateArgs) -> Result<()> {
     if !KINDS.contains(&a.kind.as_str()) {
         bail!("unknown kind '{}'; kinds: {}", a.kind, KINDS.join(", "));
     }
-    output_format(&a.output)?;
+    declare_surface("-o", &a.output)?;
+    crate::output::declare_opt("--image", a.image.as_deref(), &["png"])?;
     let mut params = Vec::new();
     for (k, v) in [
         ("size", &a.size),
@@ -631,7 +631,7 @@ fn pair(s: &str, what: &str) -> Result<(usize, usize)> {
 }
 
 fn convert(a: ConvertArgs) -> Result<()> {
-    output_format(&a.output)?;
+    declare_surface("OUTPUT", &a.output)?;
     let mut hf = level(load(&a.input, &a.load)?, &a.level)?;
     if let Some(c) = &a.crop {
         let v: Vec<usize> = c

@@ -53,7 +53,7 @@ Examples:
     #[command(after_help = "\
 XYZ = ∫ R(λ) S(λ) x̄(λ) dλ / ∫ S(λ) ȳ(λ) dλ (likewise for T), so a perfect mirror has Y = 1; CIELAB is relative
 to the illuminant's white; sRGB is clipped to the gamut at exposure 1.
-JSON: {\"reflected\":{\"XYZ\",\"xyY\",\"Lab\",\"linear_srgb\",\"srgb\",\"hex\"},\"transmitted\":{…}}.
+JSON: reflected, transmitted, specular, diffuse (each XYZ, xyY, Lab, linear_srgb, srgb, hex), rough (docs/json.md).
 
 Examples:
   iridis thinfilm color --stack \"air | water 348nm | air\"
@@ -362,6 +362,7 @@ fn clean(a: f64) -> f64 {
 }
 
 fn spectrum(a: SpectrumArgs) -> Result<()> {
+    crate::output::declare_opt("--plot", a.plot.as_deref(), &["png"])?;
     let stack = parse_stack(&a.stack)?;
     let pol = parse_pol(&a.polarization)?;
     if a.rough.is_set() {
@@ -431,6 +432,8 @@ fn spectrum(a: SpectrumArgs) -> Result<()> {
 }
 
 fn table(a: TableArgs) -> Result<()> {
+    crate::output::declare_opt("-o", a.output.as_deref(), &["csv"])?;
+    crate::output::declare_opt("--plot", a.plot.as_deref(), &["png"])?;
     let stack = parse_stack(&a.stack)?;
     if a.rough.is_set() {
         let grid = a.grid.grid()?;
@@ -532,7 +535,9 @@ fn color(a: ColorArgs) -> Result<()> {
     let refl = super::color::colour_report(c.reflected, white);
     let trans = super::color::colour_report(c.transmitted, white);
     if a.json {
-        return crate::output::print_json(&json!({ "reflected": refl, "transmitted": trans }));
+        // One shape for smooth and rough films (see rough::color): a smooth film reflects specularly only.
+        let none = super::color::colour_report(Xyz { x: 0.0, y: 0.0, z: 0.0 }, white);
+        return crate::output::print_json(&film_colours_json(&refl, &trans, &refl, &none, json!(null)));
     }
     let f = |v: &serde_json::Value| -> String {
         v.as_array()
@@ -556,6 +561,21 @@ fn color(a: ColorArgs) -> Result<()> {
     Ok(())
 }
 
+/// The JSON of `thinfilm color`, the same keys for smooth and rough films: `reflected` and `transmitted` of
+/// the stack with a smooth last interface, `specular` and `diffuse` (π·k_d) parts of the reflection (for a
+/// smooth film the reflection is all specular and the diffuse part black), `rough` the LSRS conditions or null.
+pub(crate) fn film_colours_json(
+    reflected: &serde_json::Value,
+    transmitted: &serde_json::Value,
+    specular: &serde_json::Value,
+    diffuse: &serde_json::Value,
+    rough: serde_json::Value,
+) -> serde_json::Value {
+    json!({
+        "reflected": reflected, "transmitted": transmitted, "specular": specular, "diffuse": diffuse, "rough": rough,
+    })
+}
+
 /// Colours of a thickness sweep: (reflected, transmitted) XYZ per thickness.
 fn sweep(
     stack: &Stack,
@@ -574,6 +594,8 @@ fn sweep(
 }
 
 fn chart(a: ChartArgs) -> Result<()> {
+    crate::output::declare("-o", &a.output, &["png"])?;
+    crate::output::declare_opt("--csv", a.csv.as_deref(), &["csv"])?;
     let (stack, layer) = Stack::parse_sweep(&a.stack)?;
     let ds = parse_range(&a.thickness, parse_length_nm).map_err(|e| anyhow::anyhow!("--thickness: {e}"))?;
     if ds[0] < 0.0 {
@@ -730,7 +752,7 @@ fn materials(a: MaterialsArgs) -> Result<()> {
                 o
             })
             .collect();
-        return crate::output::print_json(&json!(v));
+        return crate::output::print_json(&json!({ "materials": v }));
     }
     for (names, desc, _, _, at) in rows {
         let idx = match at {

@@ -32,3 +32,155 @@ pub fn assert_fails(args: &[&str], needles: &[&str]) {
         assert!(errors[0].contains(n), "{args:?}: '{}' lacks '{n}'", errors[0]);
     }
 }
+
+/// docs/json.md, the one place where the JSON keys of every command are documented, read as the test reads
+/// it: a `## ` section per command with the command line in backticks and a table of keys.
+pub mod json_doc {
+    use std::collections::BTreeSet;
+
+    pub struct Section {
+        pub title: String,
+        pub command: String,
+        /// "Needs a GPU."
+        pub gpu: bool,
+        /// "… a display …": run only under xvfb by the viewer test.
+        pub display: bool,
+        /// (key path, meaning)
+        pub keys: Vec<(String, String)>,
+    }
+
+    pub fn read() -> (Vec<Section>, Vec<Section>) {
+        let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/json.md")).unwrap();
+        let (mut shapes, mut commands) = (Vec::new(), Vec::new());
+        let mut cur: Option<Section> = None;
+        let flush = |cur: Option<Section>, shapes: &mut Vec<Section>, commands: &mut Vec<Section>| {
+            if let Some(s) = cur {
+                if s.title.starts_with("Shape: ") {
+                    shapes.push(s)
+                } else {
+                    commands.push(s)
+                }
+            }
+        };
+        for line in text.lines() {
+            if let Some(t) = line.strip_prefix("## ") {
+                flush(cur.take(), &mut shapes, &mut commands);
+                cur = Some(Section {
+                    title: t.to_string(),
+                    command: String::new(),
+                    gpu: false,
+                    display: false,
+                    keys: Vec::new(),
+                });
+            } else if let Some(s) = cur.as_mut() {
+                if s.command.is_empty() && line.starts_with("`iridis ") && line.ends_with('`') {
+                    s.command = line.trim_matches('`').to_string();
+                } else if line.starts_with("Needs a GPU") {
+                    s.gpu = true;
+                    s.display = line.contains("display");
+                } else if let Some(row) = line.strip_prefix("| `") {
+                    let (key, rest) = row.split_once('`').unwrap();
+                    let meaning = rest.trim_start_matches(" |").trim_end_matches('|').trim().to_string();
+                    s.keys.push((key.to_string(), meaning));
+                }
+            }
+        }
+        flush(cur, &mut shapes, &mut commands);
+        (shapes, commands)
+    }
+
+    /// Splits a documented command line as a shell would: words, '…' and "…" quoting.
+    pub fn split(command: &str) -> Vec<String> {
+        let (mut words, mut cur, mut quote, mut any) = (Vec::new(), String::new(), None, false);
+        for c in command.chars() {
+            match (quote, c) {
+                (None, '\'' | '"') => (quote, any) = (Some(c), true),
+                (Some(q), c) if c == q => quote = None,
+                (None, ' ') => {
+                    if any {
+                        words.push(std::mem::take(&mut cur));
+                    }
+                    any = false;
+                }
+                (_, c) => {
+                    cur.push(c);
+                    any = true;
+                }
+            }
+        }
+        if any {
+            words.push(cur);
+        }
+        words
+    }
+
+    /// The key paths of an answer as the page writes them (`a.b`, `list[].key`), not descending into
+    /// `inputs` or into values documented with a shape (`(shape: NAME)`, whose keys are checked against it).
+    fn paths(v: &serde_json::Value, prefix: &str, shaped: &BTreeSet<String>, out: &mut BTreeSet<String>) {
+        match v {
+            serde_json::Value::Object(m) => {
+                for (k, x) in m {
+                    let p = if prefix.is_empty() { k.clone() } else { format!("{prefix}.{k}") };
+                    out.insert(p.clone());
+                    let echo = prefix.is_empty() && k == "inputs";
+                    if !echo && !shaped.contains(&p) {
+                        paths(x, &p, shaped, out);
+                    }
+                }
+            }
+            serde_json::Value::Array(items) => {
+                for x in items.iter().filter(|x| x.is_object()) {
+                    paths(x, &format!("{prefix}[]"), shaped, out);
+                }
+            }
+            _ => {}
+        }
+    }
+
+    /// Checks one answer against its section: the documented keys are exactly the keys printed (a
+    /// documented key of an array's elements is excused when the array is empty), values with a shape have
+    /// the shape's keys, and `inputs` is there.
+    pub fn check(section: &Section, shapes: &[Section], v: &serde_json::Value) -> Vec<String> {
+        let mut problems = Vec::new();
+        let shape_of = |meaning: &str| {
+            shapes.iter().find(|s| meaning.contains(&format!("(shape: {})", s.title.trim_start_matches("Shape: "))))
+        };
+        let shaped: BTreeSet<String> =
+            section.keys.iter().filter(|(_, m)| shape_of(m).is_some()).map(|(k, _)| k.clone()).collect();
+        let mut printed = BTreeSet::new();
+        paths(v, "", &shaped, &mut printed);
+        let documented: BTreeSet<String> = section.keys.iter().map(|(k, _)| k.clone()).collect();
+        let title = &section.title;
+        for k in printed.difference(&documented) {
+            problems.push(format!("{title}: `{k}` is printed but not documented"));
+        }
+        for k in documented.difference(&printed) {
+            // `a[].b` cannot be seen when the array `a` is empty.
+            let empty_array = k.split_once("[]").is_some_and(|(a, _)| {
+                a.split('.').try_fold(v, |x, part| x.get(part)).and_then(|x| x.as_array()).is_some_and(|x| x.is_empty())
+            });
+            if !empty_array {
+                problems.push(format!("{title}: `{k}` is documented but not printed"));
+            }
+        }
+        for (k, m) in &section.keys {
+            let Some(shape) = shape_of(m) else { continue };
+            let value = k.split('.').try_fold(v, |x, part| x.get(part));
+            match value {
+                Some(serde_json::Value::Object(o)) => {
+                    let got: BTreeSet<&String> = o.keys().collect();
+                    let want: BTreeSet<&String> = shape.keys.iter().map(|(k, _)| k).collect();
+                    if got != want {
+                        problems.push(format!("{title}: `{k}` has keys {got:?}, its shape {want:?}"));
+                    }
+                }
+                Some(serde_json::Value::Null) if m.contains("`null`") => {}
+                other => problems.push(format!("{title}: `{k}` should be a {} object, is {other:?}", shape.title)),
+            }
+        }
+        if !v["inputs"].is_object() {
+            problems.push(format!("{title}: no `inputs` object"));
+        }
+        problems
+    }
+}
