@@ -3,10 +3,11 @@
 
 mod args;
 mod cmd;
+mod help;
 mod output;
 mod progress;
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 
 /// Structural colour: thin-film interference and diffraction from measured nanostructures.
 #[derive(Debug, Parser)]
@@ -20,9 +21,8 @@ Examples:
   iridis thinfilm color --stack \"air | water 348nm | air\" --json
   iridis color xyz data/examples/colorchecker_green.csv --json
 
-SURFACE arguments take a file (.gwy, .npy, PNG/TIFF, text) or a built-in:
-builtin:blazed|sine|cd|elaphe|xenopeltis|gaussian. Lengths and angles carry units:
-65nm, 0.43um, 65µm, 75deg.")]
+SURFACE arguments take a file (.gwy, .npy, PNG/TIFF, text) or a built-in, one of
+builtin:blazed|sine|cd|elaphe|xenopeltis|gaussian. Lengths and angles carry units: 65nm, 0.43um, 65µm, 75deg.")]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -106,9 +106,9 @@ Examples:
   iridis experiment laser 'builtin:elaphe?size=40um&pixel=80nm' --aperture 40um -o elaphe_screen.png"
     )]
     Experiment(cmd::lab::ExperimentCommand),
-    /// Render a scene (TOML or glTF) on the CPU: diffraction and thin-film materials on meshes (issue 7).
+    /// Render a scene (TOML or glTF) on the CPU, or the GPU with --gpu: diffraction and thin-film materials on meshes.
     Render(cmd::render::RenderArgs),
-    /// Interactive window: a scene or a BRDF map rendered on the GPU, with an egui panel (issue 8).
+    /// Interactive window: a scene or a BRDF map rendered on the GPU, with an egui panel.
     View(cmd::gpu::ViewArgs),
     /// From a scan to its colours: relief, roughness, periods, PSDF, BRDF maps, test bench in DIR/index.html.
     Report(cmd::report::ReportArgs),
@@ -116,7 +116,18 @@ Examples:
 }
 
 fn main() -> std::process::ExitCode {
-    let cli = Cli::parse();
+    // Parsed through the laid-out command (help.rs) so that every help page wraps its prose and keeps its
+    // examples whole.
+    let width = help::width();
+    let matches = match help::layout(Cli::command()).term_width(width).try_get_matches() {
+        Ok(m) => m,
+        Err(e) if e.kind() == clap::error::ErrorKind::DisplayHelp => {
+            print!("{}", help::mend_widows(&e.render().to_string(), width));
+            return std::process::ExitCode::SUCCESS;
+        }
+        Err(e) => e.exit(),
+    };
+    let cli = Cli::from_arg_matches(&matches).unwrap_or_else(|e| e.exit());
     let result = match cli.command {
         Command::Demo(a) => cmd::demo::run(a),
         Command::Color(c) => cmd::color::run(c),
@@ -167,7 +178,7 @@ mod tests {
                 walk(sub, &path, missing, seen);
             }
         }
-        let mut cli = Cli::command();
+        let mut cli = super::help::layout(Cli::command());
         cli.build();
         let (mut missing, mut seen) = (Vec::new(), 0);
         walk(&mut cli, "", &mut missing, &mut seen);
