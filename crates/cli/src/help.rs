@@ -168,6 +168,9 @@ mod tests {
         let text = "First line\nof a paragraph, which says:\nthis.\n\nKinds:\n  sine   a table row\nCommon: x\n\nExamples:\n  iridis a --b \"c | d\"\n  iridis e   note\n\nAfter.";
         let (prose, examples) = split_examples(text);
         assert_eq!(examples, ["  iridis a --b \"c | d\"", "  iridis e   note"]);
-        assert_eq!(reflow(&prose), "First line of a paragraph, which says: this.\n\nKinds:\n  sine   a table row\nCommon: x\n\nAfter.");
+        assert_eq!(
+            reflow(&prose),
+            "First line of a paragraph, which says: this.\n\nKinds:\n  sine   a table row\nCommon: x\n\nAfter."
+        );
     }
 }

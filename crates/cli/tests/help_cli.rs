@@ -1,19 +1,26 @@
 //! Every `--help` page as a new user reads it: prose wrapped to the terminal with no word stranded on a line,
 //! examples one command per line at any width — and every example, and every command in the README, runs.
 //!
-//! Examples run as written, in one scratch folder (with `data/` and `examples/` of the repository linked
-//! in), in page order, so that a file one example writes (`elaphe.npz`) is there for the next. Two documented
-//! rules make them quick and self-contained:
+//! Examples run as written, each page's in a scratch folder of its own (with `data/` and `examples/` of the
+//! repository linked in), in order, so that a file one example writes (`elaphe.npz`) is there for the next.
+//! Two documented rules make them quick and self-contained:
 //!
 //! **Small sizes.** Every `builtin:NAME[?…]` is cut to a patch of at most 6 µm at no less than 1/64 of it per
 //! pixel (`size=`, `pixel=` in its query string); `surface generate` gets the same patch; map and image
 //! sizes (`--size N`, `--size WxH`, `--film-size WxH`) at most 24 pixels a side; `--frames` ≤ 2, `--spp` 1,
-//! `--terms` ≤ 6, `--uv-resolution` ≤ 31, `--map-size` ≤ 8, `--patch-sizes 32,48`, `--seconds 0.05`,
-//! `--aperture` ≤ the patch, `--crop` at most 32 pixels a side. Nothing else changes.
+//! `--terms` ≤ 6, `--uv-resolution` ≤ 31, `--map-size` ≤ 8, `--patch-sizes 64,96`, `--seconds 0.05`,
+//! `--aperture` ≤ the patch, `--crop` at most 32 pixels a side. Commands that build lookup tables (their
+//! `--help` lists `--uv-resolution`) get `--uv-resolution 31` when the example gives none (the default 501
+//! is most of the time; brdf-map and brdf eval, which refuse it with a finished table, then get none), and those that draw a map or image of `--size N` pixels get `--size 24` (`render`:
+//! `--size 24x18`) when it gives none. The benchmarks, whose defaults are full-size runs, get their small
+//! equivalents when absent: `bench diffraction --map-sizes 16,24`, `bench diffraction-methods --patch-sizes
+//! 64,96`, `bench diffraction-accuracy --surface` one small built-in, `thinfilm bench --seconds 0.05`.
+//! Nothing else changes.
 //!
-//! **Inputs.** A file an example reads that no earlier example wrote is made first: height fields
+//! **Inputs.** A file an example reads that no earlier example of its page wrote is made first: height fields
 //! (`.gwy`, `.npy`, `.png`, `.txt`, `.tif`) by `iridis surface generate sine` on the small patch; `.npz` is the
-//! committed two-array `np.savez` fixture of the surface crate, `.sxm` its Nanonis fixture; instrument files
+//! committed `np.savez_compressed` fixture of the surface crate (two height channels), `.sxm` its Nanonis
+//! fixture; instrument files
 //! (`.spm`, `.ibw`, `.jpk`, `.stp`, `.top`, `.gsf`) are the real scans of `tools/fetch_afm_samples.sh`
 //! (examples that need one are skipped, saying so, when they have not been fetched); the CSV of `thinfilm fit`
 //! is the spectrum (`thinfilm spectrum --csv`) of the example's own stack with every fitted parameter 10 %
@@ -178,6 +185,63 @@ fn nm(s: &str) -> f64 {
     iridis_color::units::parse_length_nm(s).unwrap_or_else(|e| panic!("{s}: {e}"))
 }
 
+/// The options each command takes that the rules add when absent: `--uv-resolution` and a pixel `--size`.
+#[derive(Debug, Default)]
+struct Takes {
+    uv_resolution: Vec<Vec<String>>,
+    pixel_size: Vec<Vec<String>>,
+}
+
+impl Takes {
+    fn of(paths: &[Vec<String>]) -> Self {
+        let mut t = Takes::default();
+        for p in paths {
+            let page = help_page(p, 1000);
+            if page.contains("--uv-resolution <") {
+                t.uv_resolution.push(p.clone());
+            }
+            // A --size in pixels (not a length: `surface` commands take `--size 65um` for built-ins).
+            if page.contains("--size <SIZE>") && !page.contains("edge of the square patch") {
+                t.pixel_size.push(p.clone());
+            }
+        }
+        t
+    }
+
+    /// The command path an example runs (the longest one its words start with).
+    fn path_of<'a>(list: &'a [Vec<String>], words: &[String]) -> Option<&'a Vec<String>> {
+        list.iter().filter(|p| words.len() > p.len() && words[1..=p.len()] == p[..]).max_by_key(|p| p.len())
+    }
+
+    /// Adds the options the rules add when absent.
+    fn complete(&self, mut words: Vec<String>) -> Vec<String> {
+        let has = |w: &[String], f: &str| w.iter().any(|x| x == f);
+        // brdf-map and brdf eval refuse table-shaping options with a finished table (.npz read, not written);
+        // the other commands check a table against their own settings, so they get the same 31.
+        let reads_table = words.windows(2).any(|w| w[1].ends_with(".npz") && !OUTPUT_FLAGS.contains(&w[0].as_str()));
+        let refuses = reads_table && (words[1] == "brdf-map" || words[1] == "brdf");
+        if Self::path_of(&self.uv_resolution, &words).is_some() && !has(&words, "--uv-resolution") && !refuses {
+            words.extend(["--uv-resolution".to_string(), "31".to_string()]);
+        }
+        if Self::path_of(&self.pixel_size, &words).is_some() && !has(&words, "--size") {
+            let size = if words[1] == "render" { "24x18" } else { "24" };
+            words.extend(["--size".to_string(), size.to_string()]);
+        }
+        // The benchmarks' own defaults are full-size runs: the small equivalents.
+        for (path, flag, value) in [
+            (&["bench", "diffraction"][..], "--map-sizes", "16,24"),
+            (&["bench", "diffraction-methods"][..], "--patch-sizes", "64,96"),
+            (&["bench", "diffraction-accuracy"][..], "--surface", "builtin:blazed?size=6000nm&pixel=93.75nm"),
+            (&["thinfilm", "bench"][..], "--seconds", "0.05"),
+        ] {
+            if words.len() > path.len() && words[1..=path.len()] == *path && !has(&words, flag) {
+                words.extend([flag.to_string(), value.to_string()]);
+            }
+        }
+        words
+    }
+}
+
 /// Applies the small-size rules (module documentation) to one command's words.
 fn small(words: &[String]) -> Vec<String> {
     let mut out: Vec<String> = Vec::new();
@@ -238,9 +302,12 @@ fn small(words: &[String]) -> Vec<String> {
                 flag(w, value.parse::<usize>().map_or(value.clone(), |n| n.min(cap).to_string()));
             }
             "--spp" => flag(w, "1".into()),
-            "--patch-sizes" => flag(w, "32,48".into()),
+            "--patch-sizes" => flag(w, "64,96".into()),
             "--seconds" => flag(w, "0.05".into()),
-            "--aperture" => flag(w, format!("{}nm", nm(&value).min(6000.0))),
+            // A laser's aperture is a length; the accuracy bench's is a kind (`finite`), left alone.
+            "--aperture" if iridis_color::units::parse_length_nm(&value).is_ok() => {
+                flag(w, format!("{}nm", nm(&value).min(6000.0)))
+            }
             "--crop" => {
                 let v: Vec<String> = value
                     .split(',')
@@ -301,10 +368,13 @@ fn inputs(words: &[String]) -> Vec<String> {
     let mut positional_files = 0;
     for (k, w) in words.iter().enumerate().skip(1) {
         let prev = words[k - 1].as_str();
-        let is_file = Path::new(w).extension().and_then(|e| e.to_str()).is_some_and(|e| e.len() <= 4 && e.chars().all(char::is_alphanumeric))
-            && !w.starts_with('-')
-            && !w.starts_with("builtin:")
-            && w.parse::<f64>().is_err();
+        // A word with a file extension that is not a flag, a number with a unit (`93.75nm`) or a `kind:value`.
+        let is_file = Path::new(w)
+            .extension()
+            .and_then(|e| e.to_str())
+            .is_some_and(|e| e.len() <= 4 && e.chars().all(char::is_alphanumeric))
+            && !w.starts_with(|c: char| c == '-' || c.is_ascii_digit())
+            && !w.contains([':', ' ', '|', '=']);
         if !is_file || OUTPUT_FLAGS.contains(&prev) {
             continue;
         }
@@ -345,12 +415,7 @@ fn make_input(dir: &Path, name: &str, words: &[String]) -> Result<(), String> {
             let out = run_in(dir, &args);
             out.status.success().then_some(()).ok_or_else(|| String::from_utf8_lossy(&out.stderr).to_string())
         }
-        "npz" => {
-            copy(fixtures.join("numpy_savez.npz"))?;
-            std::fs::copy(fixtures.join("numpy_savez.npz.json"), dir.join(format!("{name}.json")))
-                .map(|_| ())
-                .map_err(|e| e.to_string())
-        }
+        "npz" => copy(fixtures.join("numpy_savez_compressed.npz")),
         "sxm" => copy(fixtures.join("nanonis_synthetic.sxm")),
         "spm" | "ibw" | "jpk" | "stp" | "top" | "gsf" => {
             let sample = afm_samples().join(format!("sample_0.{ext}"));
@@ -396,16 +461,17 @@ fn make_input(dir: &Path, name: &str, words: &[String]) -> Result<(), String> {
 }
 
 /// Runs the example lines in `dir` under the rules; returns the failures.
-fn run_examples(dir: &Path, origin: &str, lines: &[String], log: &mut Vec<String>) -> Vec<String> {
+fn run_examples(dir: &Path, origin: &str, lines: &[String], takes: &Takes, log: &mut Vec<String>) -> Vec<String> {
     let mut failures = Vec::new();
     for line in lines {
         for words in commands_of(line) {
             if let Some(why) = not_run(&words) {
                 log.push(format!("not run ({why}): {origin}: {}", line.trim()));
+                eprintln!("{}", log.last().unwrap());
                 continue;
             }
             assert_eq!(words[0], "iridis", "{origin}: '{line}' does not start with iridis");
-            let args = small(&words);
+            let args = takes.complete(small(&words));
             let mut skipped = None;
             for name in inputs(&args) {
                 if !dir.join(&name).exists() {
@@ -417,6 +483,7 @@ fn run_examples(dir: &Path, origin: &str, lines: &[String], log: &mut Vec<String
             if let Some(e) = skipped {
                 if e.starts_with("SKIPPED") {
                     log.push(format!("{e}: {origin}: {}", line.trim()));
+                    eprintln!("{}", log.last().unwrap());
                     continue;
                 }
                 failures.push(format!("{origin}: {}: cannot make its input: {e}", line.trim()));
@@ -425,6 +492,7 @@ fn run_examples(dir: &Path, origin: &str, lines: &[String], log: &mut Vec<String
             let t = std::time::Instant::now();
             let out = run_in(dir, &args[1..]);
             log.push(format!("{:6.2} s  {origin}: {}", t.elapsed().as_secs_f64(), args[1..].join(" ")));
+            eprintln!("{}", log.last().unwrap()); // as it goes: a slow example shows itself
             let stderr = String::from_utf8_lossy(&out.stderr);
             if !out.status.success() || stderr.contains("panicked") {
                 failures.push(format!("{origin}: {}\n    ran: {:?}\n    {}", line.trim(), &args[1..], stderr.trim()));
@@ -447,15 +515,17 @@ fn scratch(name: &str) -> PathBuf {
 
 #[test]
 fn every_help_example_runs() {
-    let dir = scratch("help-examples");
     let (mut failures, mut log) = (Vec::new(), Vec::new());
-    for path in command_paths() {
-        let lines: Vec<String> = example_lines(&help_page(&path, 1000));
+    let paths = command_paths();
+    let takes = Takes::of(&paths);
+    for (k, path) in paths.iter().enumerate() {
+        let dir = scratch(&format!("help-examples-{k}"));
+        let lines: Vec<String> = example_lines(&help_page(path, 1000));
         let origin = format!("iridis {} --help", path.join(" "));
-        failures.extend(run_examples(&dir, &origin, &lines, &mut log));
+        failures.extend(run_examples(&dir, &origin, &lines, &takes, &mut log));
+        let _ = std::fs::remove_dir_all(&dir);
     }
-    eprintln!("{}", log.join("\n"));
-    let _ = std::fs::remove_dir_all(&dir);
+    let _ = log; // printed as it went
     assert!(failures.is_empty(), "{} examples failed:\n{}", failures.len(), failures.join("\n"));
 }
 
@@ -479,8 +549,8 @@ fn every_readme_command_runs() {
     assert!(lines.len() > 20, "only {} commands found in the README", lines.len());
     let dir = scratch("readme-examples");
     let mut log = Vec::new();
-    let failures = run_examples(&dir, "README.md", &lines, &mut log);
-    eprintln!("{}", log.join("\n"));
+    let failures = run_examples(&dir, "README.md", &lines, &Takes::of(&command_paths()), &mut log);
+    let _ = log; // printed as it went
     let _ = std::fs::remove_dir_all(&dir);
     assert!(failures.is_empty(), "{} README commands failed:\n{}", failures.len(), failures.join("\n"));
 }
@@ -492,10 +562,10 @@ fn the_rules_do_what_they_say() {
         commands_of("  iridis a 'b c' --x \"d | e\"   a note"),
         vec![s(&["iridis", "a", "b c", "--x", "d | e"])]
     );
-    assert_eq!(commands_of("iridis a -o x.npz && iridis b x.npz  # note"), vec![
-        s(&["iridis", "a", "-o", "x.npz"]),
-        s(&["iridis", "b", "x.npz"])
-    ]);
+    assert_eq!(
+        commands_of("iridis a -o x.npz && iridis b x.npz  # note"),
+        vec![s(&["iridis", "a", "-o", "x.npz"]), s(&["iridis", "b", "x.npz"])]
+    );
     assert_eq!(
         small(&s(&["iridis", "brdf-map", "builtin:elaphe?size=10um&pixel=50nm", "--size", "256"])),
         s(&["iridis", "brdf-map", "builtin:elaphe?size=6000nm&pixel=93.75nm", "--size", "24"])
@@ -504,6 +574,9 @@ fn the_rules_do_what_they_say() {
         small(&s(&["iridis", "surface", "generate", "elaphe", "--size", "20um", "--pixel-size", "40nm"])),
         s(&["iridis", "surface", "generate", "elaphe", "--size", "6000nm", "--pixel-size", "93.75nm"])
     );
-    assert_eq!(small(&s(&["iridis", "render", "x.toml", "--size", "1024x768"])), s(&["iridis", "render", "x.toml", "--size", "24x18"]));
+    assert_eq!(
+        small(&s(&["iridis", "render", "x.toml", "--size", "1024x768"])),
+        s(&["iridis", "render", "x.toml", "--size", "24x18"])
+    );
     assert_eq!(inputs(&s(&["iridis", "surface", "convert", "a.gwy", "b.npy", "--image", "c.png"])), s(&["a.gwy"]));
 }

@@ -101,12 +101,12 @@ pub fn degrees(rad: f64) -> f64 {
     tidy(rad.to_degrees())
 }
 
-/// A length as a person writes it on the command line (`1100nm`, `6.4um`, `2.5mm`): the unit that keeps the
-/// number at or above 1, at most 6 significant digits, no trailing zeros.
+/// A length as a person writes it on the command line (`1100nm`, `6.4um`, `2.5mm`): nm up to 5 µm (periods
+/// are written in nm), µm up to 5 mm, at most 6 significant digits, no trailing zeros.
 pub fn format_length(nm: f64) -> String {
     let (v, unit) = match nm.abs() {
-        a if a >= 1e6 => (nm / 1e6, "mm"),
-        a if a >= 1e3 => (nm / 1e3, "um"),
+        a if a >= 5e6 => (nm / 1e6, "mm"),
+        a if a >= 5e3 => (nm / 1e3, "um"),
         _ => (nm, "nm"),
     };
     format!("{}{unit}", format!("{v:.5e}").parse::<f64>().unwrap_or(v))
@@ -131,6 +131,7 @@ mod tests {
         assert_eq!(format_length(6400.000000000001), "6.4um");
         assert_eq!(format_length(2500.0 * 6f64.to_radians().tan()), "262.761nm");
         assert_eq!(format_length(65e6), "65mm");
+        assert_eq!(format_length(4000.0), "4000nm");
         assert_eq!(format_angle(parse_angle_rad("30deg").unwrap()), "30deg");
         assert_eq!(format_angle(0.0), "0deg");
     }

@@ -234,10 +234,7 @@ mod tests {
     fn the_note_reads_as_written() {
         let hf = builtin_surface("blazed?size=6.4um&pixel=50nm&angle=30deg", &LoadOptions::default()).unwrap();
         // Blazed default depth 2500 nm · tan 6° = 262.7606 nm, shown to 6 digits.
-        assert_eq!(
-            hf.meta.notes,
-            ["blazed period=2500nm depth=262.761nm size=6.4um pixel=50nm angle=30deg seed=1"]
-        );
+        assert_eq!(hf.meta.notes, ["blazed period=2500nm depth=262.761nm size=6.4um pixel=50nm angle=30deg seed=1"]);
     }
 
     #[test]

@@ -123,7 +123,10 @@ impl Stack {
                 let t = Token { text: "|", column: col(bar) };
                 return Err(err(
                     &t,
-                    format!("a {place} '|' with no {what} {}; remove it, or name the {what}", if k == 0 { "before it" } else { "after it" }),
+                    format!(
+                        "a {place} '|' with no {what} {}; remove it, or name the {what}",
+                        if k == 0 { "before it" } else { "after it" }
+                    ),
                 ));
             }
         }

@@ -440,7 +440,7 @@ TABLE.
 Examples:
   iridis brdf eval builtin:sine --light 30deg --view 10deg,180deg --json
   iridis brdf eval builtin:blazed --method ground-truth --light 0deg --view 20deg,180deg
-  iridis brdf eval elaphe.npz --light 20deg,0deg --view 35deg,180deg --json")]
+  iridis precompute builtin:elaphe -o elaphe.npz && iridis brdf eval elaphe.npz --light 20deg,0deg --view 35deg,180deg --json")]
 pub struct BrdfEvalArgs {
     /// A height field (file or builtin:NAME) or a lookup table from `iridis precompute`.
     pub input: String,

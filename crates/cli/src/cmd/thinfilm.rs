@@ -495,7 +495,11 @@ fn table(a: TableArgs) -> Result<()> {
         for i in 0..angles.len() {
             for j in 0..grid.len() {
                 // Row 0 of the picture is the top = the largest angle.
-                px.put(j as u32, (angles.len() - 1 - i) as u32, magma(level(xs[i * grid.len() + j].r()).clamp(0.0, 1.0)));
+                px.put(
+                    j as u32,
+                    (angles.len() - 1 - i) as u32,
+                    magma(level(xs[i * grid.len() + j].r()).clamp(0.0, 1.0)),
+                );
             }
         }
         let img = ImagePlot {
