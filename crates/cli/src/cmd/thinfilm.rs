@@ -428,6 +428,9 @@ fn spectrum(a: SpectrumArgs) -> Result<()> {
 fn table(a: TableArgs) -> Result<()> {
     let stack = parse_stack(&a.stack)?;
     if a.rough.is_set() {
+        if a.scale != "auto" {
+            bail!("--scale sets the colour scale of a smooth film's R map; the rough-film table draws its own");
+        }
         let grid = a.grid.grid()?;
         return super::rough::table(
             stack,
