@@ -19,8 +19,8 @@ order), 8/16-bit greyscale PNG or TIFF (relative heights: give --max-height and 
 matrix (Gwyddion ASCII export header understood). Units missing from a file can come from a JSON sidecar
 FILE.EXT.json or FILE.json: {\"pixel_size_nm\": 65, \"height_unit\": \"nm\", \"max_height_nm\": 250}.
 Built-ins (blazed, sine, cd, elaphe, xenopeltis, gaussian) are generated on the fly: a 65 µm patch at
-65 nm per pixel (1000 × 1000), seed 1; change them with --size/--pixel-size/--seed or a query string,
-e.g. builtin:elaphe?size=16um&pixel=50nm&seed=3&angle=10deg (parameters: iridis surface generate --help).";
+65 nm per pixel (1000 × 1000), seed 1; change them with --size/--pixel-size/--seed or a query string
+(not both for one parameter), e.g. builtin:elaphe?size=16um&pixel=50nm&seed=3&angle=10deg (parameters: iridis surface generate --help).";
 
 // Parsed once per run: the size difference between variants costs nothing worth boxing for.
 #[allow(clippy::large_enum_variant)]
