@@ -3,6 +3,7 @@
 
 mod args;
 mod cmd;
+mod help;
 mod output;
 mod progress;
 mod runtime_dir;
@@ -21,9 +22,8 @@ Examples:
   iridis thinfilm color --stack \"air | water 348nm | air\" --json
   iridis color xyz data/examples/colorchecker_green.csv --json
 
-SURFACE arguments take a file (.gwy, .npy, PNG/TIFF, text) or a built-in:
-builtin:blazed|sine|cd|elaphe|xenopeltis|gaussian. Lengths and angles carry units:
-65nm, 0.43um, 65µm, 75deg.")]
+SURFACE arguments take a file (.gwy, .npy, PNG/TIFF, text) or a built-in, one of
+builtin:blazed|sine|cd|elaphe|xenopeltis|gaussian. Lengths and angles carry units: 65nm, 0.43um, 65µm, 75deg.")]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -107,9 +107,9 @@ Examples:
   iridis experiment laser 'builtin:elaphe?size=40um&pixel=80nm' --aperture 40um -o elaphe_screen.png"
     )]
     Experiment(cmd::lab::ExperimentCommand),
-    /// Render a scene (TOML or glTF) on the CPU: diffraction and thin-film materials on meshes (issue 7).
+    /// Render a scene (TOML or glTF) on the CPU, or the GPU with --gpu: diffraction and thin-film materials on meshes.
     Render(cmd::render::RenderArgs),
-    /// Interactive window: a scene or a BRDF map rendered on the GPU, with an egui panel (issue 8).
+    /// Interactive window: a scene or a BRDF map rendered on the GPU, with an egui panel.
     View(cmd::gpu::ViewArgs),
     /// From a scan to its colours: relief, roughness, periods, PSDF, BRDF maps, test bench in DIR/index.html.
     Report(cmd::report::ReportArgs),
@@ -117,7 +117,17 @@ Examples:
 }
 
 fn main() -> std::process::ExitCode {
-    let matches = Cli::command().get_matches();
+    // Parsed through the laid-out command (help.rs) so that every help page wraps its prose and keeps its
+    // examples whole.
+    let width = help::width();
+    let matches = match help::layout(Cli::command()).term_width(width).try_get_matches() {
+        Ok(m) => m,
+        Err(e) if e.kind() == clap::error::ErrorKind::DisplayHelp => {
+            print!("{}", help::mend_widows(&e.render().to_string(), width));
+            return std::process::ExitCode::SUCCESS;
+        }
+        Err(e) => e.exit(),
+    };
     let cli = Cli::from_arg_matches(&matches).unwrap_or_else(|e| e.exit());
     output::set_inputs(&Cli::command(), &matches);
     // Before any thread or GPU driver starts: the drivers read XDG_RUNTIME_DIR (runtime_dir.rs).
@@ -181,7 +191,7 @@ mod tests {
                 walk(sub, &path, missing, seen);
             }
         }
-        let mut cli = Cli::command();
+        let mut cli = super::help::layout(Cli::command());
         cli.build();
         let (mut missing, mut seen) = (Vec::new(), 0);
         walk(&mut cli, "", &mut missing, &mut seen);

@@ -14,19 +14,36 @@ const ANGLE_UNITS: &[(&str, f64)] =
 
 fn parse_with(s: &str, kind: &str, units: &[(&str, f64)], accepted: &str) -> Result<f64, UnitError> {
     let t = s.trim();
+    let article = if kind.starts_with(['a', 'e', 'i', 'o', 'u']) { "an" } else { "a" };
     for &(suffix, factor) in units {
         if let Some(num) = t.strip_suffix(suffix) {
             let num = num.trim();
             return match num.parse::<f64>() {
                 Ok(v) if v.is_finite() => Ok(v * factor),
-                _ => Err(UnitError(format!("'{s}' is not a {kind}: '{num}' is not a finite number"))),
+                _ => Err(UnitError(format!("'{s}' is not {article} {kind}: '{num}' is not a finite number"))),
             };
         }
     }
-    if t.parse::<f64>().is_ok() {
-        Err(UnitError(format!("'{s}' has no unit; write a {kind} with a unit ({accepted}), e.g. '{t}{}'", units[0].0)))
+    match t.parse::<f64>() {
+        Ok(v) if v.is_finite() => Err(UnitError(format!(
+            "'{s}' has no unit; write {article} {kind} with a unit ({accepted}), e.g. '{t}{}'",
+            units[0].0
+        ))),
+        // `nan`, `inf` parse as numbers but are no quantity: suggesting 'nannm' would mislead.
+        Ok(_) => Err(UnitError(format!(
+            "'{s}' is not {article} {kind}: write a finite number with a unit ({accepted}), e.g. '{}'",
+            example_of(units[0].0)
+        ))),
+        Err(_) => Err(UnitError(format!("'{s}' is not {article} {kind}; accepted units: {accepted}"))),
+    }
+}
+
+/// An example value of the kind whose first unit is `unit`, for messages.
+fn example_of(unit: &str) -> &'static str {
+    if unit == "nm" {
+        "65nm"
     } else {
-        Err(UnitError(format!("'{s}' is not a {kind}; accepted units: {accepted}")))
+        "30deg"
     }
 }
 
@@ -55,7 +72,9 @@ pub fn parse_positive_length_nm(s: &str) -> Result<f64, UnitError> {
 pub fn parse_range(s: &str, parse: fn(&str) -> Result<f64, UnitError>) -> Result<Vec<f64>, UnitError> {
     let parts: Vec<&str> = s.split(':').collect();
     if parts.len() != 3 {
-        return Err(UnitError(format!("'{s}' is not a range; write FROM:TO:STEP, e.g. 0nm:2000nm:2nm")));
+        // The example is in the quantity this range is of (an angle range is not shown in nm).
+        let example = if parse("1deg").is_ok() { "0deg:80deg:1deg" } else { "0nm:2000nm:2nm" };
+        return Err(UnitError(format!("'{s}' is not a range; write FROM:TO:STEP, e.g. {example}")));
     }
     let (a, b, step) = (parse(parts[0])?, parse(parts[1])?, parse(parts[2])?);
     if step <= 0.0 || b < a {
@@ -68,9 +87,69 @@ pub fn parse_range(s: &str, parse: fn(&str) -> Result<f64, UnitError>) -> Result
     Ok((0..n).map(|i| a + i as f64 * step).collect())
 }
 
+/// `x` without the noise of a unit round trip (`30deg` → rad → deg gives 29.999999999999996): rounded to 12
+/// significant digits, which is far below any figure iridis reports and far above f64's 16.
+pub fn tidy(x: f64) -> f64 {
+    if x == 0.0 || !x.is_finite() {
+        return x;
+    }
+    format!("{x:.11e}").parse().unwrap_or(x)
+}
+
+/// An angle in degrees from radians, [`tidy`]: what a person wrote (`30`, not `29.999999999999996`).
+pub fn degrees(rad: f64) -> f64 {
+    tidy(rad.to_degrees())
+}
+
+/// A length as a person writes it on the command line (`1100nm`, `6.4um`, `2.5mm`): nm up to 5 µm (periods
+/// are written in nm), µm up to 5 mm, at most 6 significant digits, no trailing zeros.
+pub fn format_length(nm: f64) -> String {
+    let (v, unit) = match nm.abs() {
+        a if a >= 5e6 => (nm / 1e6, "mm"),
+        a if a >= 5e3 => (nm / 1e3, "um"),
+        _ => (nm, "nm"),
+    };
+    format!("{}{unit}", format!("{v:.5e}").parse::<f64>().unwrap_or(v))
+}
+
+/// An angle as a person writes it (`30deg`, `6.5deg`), from radians.
+pub fn format_angle(rad: f64) -> String {
+    format!("{}deg", format!("{:.5e}", rad.to_degrees()).parse::<f64>().unwrap_or(rad.to_degrees()))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn values_print_as_written() {
+        assert_eq!(degrees(parse_angle_rad("30deg").unwrap()), 30.0);
+        assert_eq!(degrees(parse_angle_rad("29.5deg").unwrap()), 29.5);
+        assert_eq!(tidy(6.4000000000000006e-6), 6.4e-6);
+        assert_eq!(tidy(-0.1 - 0.2), -0.3);
+        assert_eq!(format_length(1100.0), "1100nm");
+        assert_eq!(format_length(6400.000000000001), "6.4um");
+        assert_eq!(format_length(2500.0 * 6f64.to_radians().tan()), "262.761nm");
+        assert_eq!(format_length(65e6), "65mm");
+        assert_eq!(format_length(4000.0), "4000nm");
+        assert_eq!(format_angle(parse_angle_rad("30deg").unwrap()), "30deg");
+        assert_eq!(format_angle(0.0), "0deg");
+    }
+
+    #[test]
+    fn messages_say_what_to_write() {
+        // An angle takes "an"; a length "a".
+        assert!(parse_angle_rad("30").unwrap_err().0.contains("write an angle with a unit"));
+        assert!(parse_length_nm("30").unwrap_err().0.contains("write a length with a unit"));
+        // nan and inf are numbers to Rust but not lengths: no 'nannm' suggestion.
+        for s in ["nan", "inf", "-inf"] {
+            let e = parse_length_nm(s).unwrap_err().0;
+            assert!(!e.contains("nannm") && !e.contains("infnm") && e.contains("finite") && e.contains("65nm"), "{e}");
+        }
+        // A range's example is in the range's own quantity.
+        assert!(parse_range("0deg:80deg", parse_angle_rad).unwrap_err().0.contains("e.g. 0deg:80deg:1deg"));
+        assert!(parse_range("0nm", parse_length_nm).unwrap_err().0.contains("e.g. 0nm:2000nm:2nm"));
+    }
 
     #[test]
     fn lengths() {

@@ -265,9 +265,10 @@ pub fn error_plot(param: Param, method: Method, points: &[Point]) -> Result<irid
         let p95: Vec<f64> = points.iter().map(|p| p.errors[k].2).collect();
         let color = iridis_plot::PALETTE[k % iridis_plot::PALETTE.len()];
         plot = plot.series(Series::new(format!("mean, {x} RU"), &xs, &mean).with_color([color.0, color.1, color.2]));
-        let mut s = Series::new(format!("95th percentile, {x} RU"), &xs, &p95).with_color([color.0, color.1, color.2]);
-        s.emphasis = false;
-        plot = plot.series(s);
+        // Same exposure, same colour; the statistic is told by the line: mean solid, 95th percentile dashed.
+        plot = plot.series(
+            Series::new(format!("95th percentile, {x} RU"), &xs, &p95).with_color([color.0, color.1, color.2]).dashed(),
+        );
     }
     if let Some(first) = exposures.first() {
         // The periodic-extension error at the first exposure, for scale: the models' own difference.

@@ -6,6 +6,7 @@
 
 use std::sync::Once;
 
+use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 use plotters::style::FontStyle;
 
@@ -51,6 +52,10 @@ fn register_font() {
     });
 }
 
+/// Dash and gap of dashed lines, in pixels.
+const DASH: u32 = 6;
+const GAP: u32 = 4;
+
 /// Distinguishable line colours (Okabe–Ito palette, readable for colour-blind viewers).
 pub const PALETTE: [RGBColor; 7] = [
     RGBColor(0, 114, 178),
@@ -71,6 +76,8 @@ pub struct Series {
     pub emphasis: bool,
     /// Line colour; the palette's next colour when `None`.
     pub color: Option<[u8; 3]>,
+    /// A dashed line (and a dashed legend swatch): tells apart two curves that share a colour.
+    pub dashed: bool,
 }
 
 impl Series {
@@ -80,7 +87,15 @@ impl Series {
             points: xs.iter().copied().zip(ys.iter().copied()).collect(),
             emphasis: true,
             color: None,
+            dashed: false,
         }
+    }
+
+    /// The same series drawn dashed, a thin line with a dashed legend swatch.
+    pub fn dashed(mut self) -> Self {
+        self.dashed = true;
+        self.emphasis = false;
+        self
     }
 
     /// The same series in a given colour.
@@ -155,14 +170,25 @@ impl LinePlot {
                 .map_err(err)?;
             for (i, s) in self.series.iter().enumerate() {
                 let color = s.color.map(|c| RGBColor(c[0], c[1], c[2])).unwrap_or(PALETTE[i % PALETTE.len()]);
-                let style = if s.emphasis { color.stroke_width(2) } else { color.stroke_width(1) };
+                let width = if s.emphasis { 2 } else { 1 };
                 let pts: Vec<(f64, f64)> =
                     s.points.iter().copied().filter(|p| p.0.is_finite() && p.1.is_finite()).collect();
-                chart
-                    .draw_series(LineSeries::new(pts, style))
-                    .map_err(err)?
-                    .label(&s.name)
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], color.stroke_width(3)));
+                // The legend swatch is drawn like its line (width and dashes), so curves that share a colour
+                // keep distinct swatches.
+                let swatch = color.stroke_width(width + 1);
+                if s.dashed {
+                    chart
+                        .draw_series(DashedLineSeries::new(pts, DASH, GAP, color.stroke_width(width)))
+                        .map_err(err)?
+                        .label(&s.name)
+                        .legend(move |(x, y)| DashedPathElement::new(vec![(x, y), (x + 24, y)], DASH, GAP, swatch));
+                } else {
+                    chart
+                        .draw_series(LineSeries::new(pts, color.stroke_width(width)))
+                        .map_err(err)?
+                        .label(&s.name)
+                        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], swatch));
+                }
             }
             if self.series.len() > 1 || self.series.iter().any(|s| !s.name.is_empty()) {
                 chart
@@ -446,6 +472,40 @@ mod tests {
         let dark =
             (0..img.width).flat_map(|x| (0..40).map(move |y| (x, y))).filter(|&(x, y)| img.get(x, y)[0] < 100).count();
         assert!(dark > 10);
+    }
+
+    /// Runs of `colour` along row `y` between columns `x0..x1`: one for a solid line, several for a dashed one.
+    fn runs(img: &RgbImage, y: u32, (x0, x1): (u32, u32), c: [u8; 3]) -> usize {
+        let on: Vec<bool> = (x0..x1).map(|x| img.get(x, y) == c).collect();
+        on.windows(2).filter(|w| w[1] && !w[0]).count() + usize::from(on.first() == Some(&true))
+    }
+
+    #[test]
+    fn dashed_series_have_dashed_lines_and_swatches() {
+        // Two horizontal lines in one colour: y = 0.25 solid, y = 0.75 dashed; no margin (y range fixed).
+        let c = [200, 30, 30];
+        let xs = [0.0, 1.0];
+        let mut plot = LinePlot::new("t", "x", "y")
+            .series(Series::new("mean", &xs, &[0.25, 0.25]).with_color(c))
+            .series(Series::new("95th percentile", &xs, &[0.75, 0.75]).with_color(c).dashed());
+        plot.y_range = Some((0.0, 1.0));
+        let img = plot.render().unwrap();
+        // Rows of the colour, each with the number of separate runs it holds across the whole image.
+        let rows: Vec<(u32, usize, usize)> = (0..img.height)
+            .map(|y| {
+                let n = (0..img.width).filter(|&x| img.get(x, y) == c).count();
+                (y, n, runs(&img, y, (0, img.width), c))
+            })
+            .filter(|r| r.1 > 0)
+            .collect();
+        // The solid curve: a row with one long run (the plot area is ~800 px wide).
+        assert!(rows.iter().any(|r| r.1 > 600 && r.2 <= 2), "{rows:?}");
+        // The dashed curve: a row with dozens of runs of dash length (6 px dash, 4 px gap).
+        assert!(rows.iter().any(|r| r.2 > 40), "{rows:?}");
+        // The legend: two swatches 24 px long; the solid one is one run, the dashed one several. They lie in
+        // rows apart from the curves, found as rows holding a short stretch of the colour.
+        let swatches: Vec<usize> = rows.iter().filter(|r| r.1 >= 10 && r.1 <= 80).map(|r| r.2).collect();
+        assert!(swatches.contains(&1) && swatches.iter().any(|&n| n >= 2), "{rows:?}");
     }
 
     fn plot_with(points: &[(f64, f64)]) -> LinePlot {

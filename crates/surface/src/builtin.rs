@@ -170,6 +170,27 @@ pub fn builtin_surface(rest: &str, opts: &LoadOptions) -> Result<HeightField, Su
         params.push((k.to_string(), v.to_string()));
     }
     let (gen, grid) = from_params(name, &params, &base)?;
+    // A flag and the query string that say different things: which one was meant is not ours to guess.
+    let fmt = iridis_color::units::format_length;
+    for (flag, given, (q_x, q_y), (b_x, b_y)) in [
+        ("--size", opts.size_nm.is_some(), (grid.size_x_nm, grid.size_y_nm), (base.size_x_nm, base.size_y_nm)),
+        ("--pixel-size", opts.pixel_size_nm.is_some(), (grid.pixel_nm, grid.pixel_nm), (base.pixel_nm, base.pixel_nm)),
+    ] {
+        if given && (q_x != b_x || q_y != b_y) {
+            return Err(SurfaceError::invalid(format!(
+                "builtin:{rest} asks for {} {} but {flag} says {}; give it once, in the query string or as the flag",
+                if flag == "--size" { "size" } else { "pixel" },
+                if q_x == q_y { fmt(q_x) } else { format!("{} × {}", fmt(q_x), fmt(q_y)) },
+                fmt(b_x)
+            )));
+        }
+    }
+    if opts.seed.is_some() && grid.seed != base.seed {
+        return Err(SurfaceError::invalid(format!(
+            "builtin:{rest} asks for seed {} but --seed says {}; give it once, in the query string or as the flag",
+            grid.seed, base.seed
+        )));
+    }
     let mut hf = gen.generate(&grid)?;
     hf.meta.source = format!("builtin:{rest}");
     hf.meta.format = "builtin".into();
@@ -196,6 +217,27 @@ mod tests {
     }
 
     #[test]
+    fn query_and_flag_must_agree() {
+        let o = LoadOptions { size_nm: Some(8000.0), pixel_size_nm: Some(50.0), seed: Some(2), ..Default::default() };
+        let e = builtin_surface("sine?size=5um", &o).unwrap_err().to_string();
+        assert!(e.contains("size 5um") && e.contains("--size says 8um"), "{e}");
+        let e = builtin_surface("sine?pixel=40nm", &o).unwrap_err().to_string();
+        assert!(e.contains("pixel 40nm") && e.contains("--pixel-size says 50nm"), "{e}");
+        let e = builtin_surface("sine?seed=3", &o).unwrap_err().to_string();
+        assert!(e.contains("seed 3") && e.contains("--seed says 2"), "{e}");
+        // Saying the same thing twice is no conflict.
+        let hf = builtin_surface("sine?size=8um&pixel=50nm&seed=2", &o).unwrap();
+        assert_eq!((hf.rows, hf.cols), (160, 160));
+    }
+
+    #[test]
+    fn the_note_reads_as_written() {
+        let hf = builtin_surface("blazed?size=6.4um&pixel=50nm&angle=30deg", &LoadOptions::default()).unwrap();
+        // Blazed default depth 2500 nm · tan 6° = 262.7606 nm, shown to 6 digits.
+        assert_eq!(hf.meta.notes, ["blazed period=2500nm depth=262.761nm size=6.4um pixel=50nm angle=30deg seed=1"]);
+    }
+
+    #[test]
     fn bad_specs_say_why() {
         let o = LoadOptions::default();
         for (spec, needle) in [
@@ -207,6 +249,9 @@ mod tests {
             ("sine?seed=-1", "whole number"),
             ("sine?period", "key=value"),
             ("sine?period=10nm&pixel=65nm", "two pixels"),
+            // Over-size built-ins: the way out is a larger pixel or a smaller patch, not cropping.
+            ("sine?size=4mm&pixel=65nm", "use a larger pixel or a smaller size"),
+            ("sine?size=2mm&pixel=65nm", "use a larger pixel or a smaller size"),
         ] {
             let e = builtin_surface(spec, &o).unwrap_err().to_string();
             assert!(e.contains(needle), "{spec}: {e}");

@@ -44,12 +44,16 @@ impl Grid {
         }
         let cols = (self.size_x_nm / self.pixel_nm).round();
         let rows = (self.size_y_nm / self.pixel_nm).round();
-        if cols > crate::MAX_DIM as f64 || rows > crate::MAX_DIM as f64 {
+        // A generated field is made to measure: the way out is a larger pixel or a smaller patch (there is
+        // nothing to crop or resample yet).
+        if cols > crate::MAX_DIM as f64 || rows > crate::MAX_DIM as f64 || rows * cols > crate::MAX_SAMPLES as f64 {
             return Err(SurfaceError::invalid(format!(
-                "{:.0} × {:.0} samples is too large (at most {} per axis); use a larger pixel or a smaller size",
+                "{:.0} × {:.0} samples is too large (at most {} per axis and {} in all); use a larger pixel or a \
+                 smaller size",
                 rows,
                 cols,
-                crate::MAX_DIM
+                crate::MAX_DIM,
+                crate::MAX_SAMPLES
             )));
         }
         let (rows, cols) = (rows as usize, cols as usize);
@@ -185,6 +189,49 @@ impl Generator {
         }
     }
 
+    /// The generator and its grid as a person writes them in a built-in's query string, e.g.
+    /// `sine period=1100nm depth=100nm size=8um pixel=50nm angle=0deg seed=1`.
+    pub fn describe(&self, grid: &Grid) -> String {
+        use iridis_color::units::{format_angle, format_length as len};
+        let params = match *self {
+            Generator::Sine { period_nm, depth_nm } | Generator::Blazed { period_nm, depth_nm } => {
+                format!("period={} depth={}", len(period_nm), len(depth_nm))
+            }
+            Generator::Bumps { period_u_nm, period_v_nm, fill, depth_nm, .. } => format!(
+                "period-x={} period-y={} fill={fill} depth={}",
+                len(period_u_nm),
+                len(period_v_nm),
+                len(depth_nm)
+            ),
+            Generator::Cd { pitch_nm, bit_nm, pit_width_nm, depth_nm } => format!(
+                "pitch={} bit={} pit-width={} depth={}",
+                len(pitch_nm),
+                len(bit_nm),
+                len(pit_width_nm),
+                len(depth_nm)
+            ),
+            Generator::Gaussian { rms_nm, corr_nm } => format!("rms={} corr={}", len(rms_nm), len(corr_nm)),
+            Generator::Elaphe { spacing_nm, finger_nm, rms_nm } => {
+                format!("spacing={} finger={} rms={}", len(spacing_nm), len(finger_nm), len(rms_nm))
+            }
+            Generator::Xenopeltis { along_nm, across_nm, depth_nm } => {
+                format!("along={} across={} depth={}", len(along_nm), len(across_nm), len(depth_nm))
+            }
+        };
+        let size = if grid.size_x_nm == grid.size_y_nm {
+            format!("size={}", len(grid.size_x_nm))
+        } else {
+            format!("size-x={} size-y={}", len(grid.size_x_nm), len(grid.size_y_nm))
+        };
+        format!(
+            "{} {params} {size} pixel={} angle={} seed={}",
+            self.kind(),
+            len(grid.pixel_nm),
+            format_angle(grid.angle_rad),
+            grid.seed
+        )
+    }
+
     fn validate(&self, grid: &Grid) -> Result<(), SurfaceError> {
         let px = grid.pixel_nm;
         let period_ok = |name: &str, p: f64| -> Result<(), SurfaceError> {
@@ -280,15 +327,7 @@ impl Generator {
             source: format!("generated {}", self.kind()),
             format: "generated".into(),
             z_unit: "nm".into(),
-            notes: vec![format!(
-                "{:?}; grid {:.0} × {:.0} nm at {} nm/pixel, angle {:.3}°, seed {}",
-                self,
-                grid.size_x_nm,
-                grid.size_y_nm,
-                grid.pixel_nm,
-                grid.angle_rad.to_degrees(),
-                grid.seed
-            )],
+            notes: vec![self.describe(grid)],
             warnings: Vec::new(),
         }))
     }

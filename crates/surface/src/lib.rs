@@ -94,8 +94,7 @@ pub fn check_dims(rows: usize, cols: usize) -> Result<(), SurfaceError> {
     }
     if rows > MAX_DIM || cols > MAX_DIM || rows.saturating_mul(cols) > MAX_SAMPLES {
         return Err(SurfaceError::invalid(format!(
-            "{rows} × {cols} samples is too large (at most {MAX_DIM} per axis and {MAX_SAMPLES} in all); crop or \
-             resample it first"
+            "{rows} × {cols} samples is too large (at most {MAX_DIM} per axis and {MAX_SAMPLES} in all)"
         )));
     }
     Ok(())

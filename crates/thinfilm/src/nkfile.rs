@@ -252,11 +252,31 @@ fn check_table(
     Ok((wl, a, b))
 }
 
-/// Parses CSV with columns `wavelength_nm, n[, κ]` (commas, semicolons, tabs or spaces; `#` comments and
-/// one header line allowed).
+/// The length unit (in nm) that a header's first column names: `wavelength_um`, `lambda (µm)`, `wl[nm]`;
+/// `None` when it names none.
+fn header_unit_nm(header: &str) -> Option<f64> {
+    let first = if header.contains([',', ';', '\t']) {
+        header.split([',', ';', '\t']).next().unwrap_or("")
+    } else {
+        header.split_whitespace().next().unwrap_or("")
+    };
+    let lower = first.to_lowercase();
+    lower.split(|c: char| !(c.is_alphanumeric())).find_map(|word| match word {
+        "nm" | "nanometer" | "nanometers" | "nanometre" | "nanometres" => Some(1.0),
+        "um" | "µm" | "μm" | "micron" | "microns" | "micrometer" | "micrometers" | "micrometre" | "micrometres" => {
+            Some(1e3)
+        }
+        _ => None,
+    })
+}
+
+/// Parses CSV with columns `wavelength, n[, κ]` (commas, semicolons, tabs or spaces; `#` comments and one
+/// header line allowed). Wavelengths are in nm unless the header's first column names µm (`wavelength_um`,
+/// `lambda (µm)`).
 pub fn parse_csv(text: &str, path: &str) -> Result<Material, ThinFilmError> {
     let (mut wl, mut n, mut k) = (Vec::new(), Vec::new(), Vec::new());
     let mut first_line = true;
+    let mut scale = 1.0;
     for (i, raw) in text.lines().enumerate() {
         let t = raw.trim();
         if t.is_empty() || t.starts_with('#') {
@@ -267,7 +287,9 @@ pub fn parse_csv(text: &str, path: &str) -> Result<Material, ThinFilmError> {
         let header_allowed = std::mem::replace(&mut first_line, false);
         if parsed.iter().any(Option::is_none) {
             if header_allowed {
-                continue; // the first line that is not a comment may name the columns
+                // The first line that is not a comment may name the columns, and the wavelength's unit.
+                scale = header_unit_nm(t).unwrap_or(1.0);
+                continue;
             }
             let bad = fields.iter().zip(&parsed).find(|(_, p)| p.is_none()).map(|(f, _)| *f).unwrap_or("");
             return Err(file_err(path, Some(i + 1), format!("'{bad}' is not a finite number")));
@@ -281,8 +303,8 @@ pub fn parse_csv(text: &str, path: &str) -> Result<Material, ThinFilmError> {
             ));
         }
         let kappa = v.get(2).copied().unwrap_or(0.0);
-        check_row(path, i + 1, v[0], Some(v[1]), Some(kappa))?;
-        wl.push(v[0]);
+        check_row(path, i + 1, v[0] * scale, Some(v[1]), Some(kappa))?;
+        wl.push(v[0] * scale);
         n.push(v[1]);
         k.push(kappa);
     }
@@ -340,6 +362,23 @@ mod tests {
         assert!(m.index_at(399.0).is_err());
         let e = parse_csv("400,1.5\n500,abc\n", "y.csv").unwrap_err().to_string();
         assert!(e.contains("line 2") && e.contains("abc"), "{e}");
+    }
+
+    #[test]
+    fn csv_header_names_the_wavelength_unit() {
+        // The same gold-like table in µm and nm: read in the header's unit, so both cover 350–800 nm.
+        for (text, name) in [
+            ("wavelength_um,n,k\n0.35,1.5,1.9\n0.8,0.15,4.9\n", "um.csv"),
+            ("wavelength (µm);n;k\n0.35;1.5;1.9\n0.8;0.15;4.9\n", "mu.csv"),
+            ("lambda_nm n k\n350 1.5 1.9\n800 0.15 4.9\n", "nm.csv"),
+            ("# no header: nm\n350,1.5,1.9\n800,0.15,4.9\n", "bare.csv"),
+        ] {
+            let m = parse_csv(text, name).unwrap();
+            assert_eq!(m.range_nm(), (350.0, 800.0), "{name}");
+            assert!((m.index_at(800.0).unwrap().im - 4.9).abs() < 1e-12, "{name}");
+        }
+        // Words that merely contain the letters are not units.
+        assert_eq!(header_unit_nm("wavenumber,n,k"), None);
     }
 
     #[test]

@@ -114,6 +114,22 @@ impl Stack {
                 "a stack needs at least an incident medium and a substrate separated by '|', e.g. \"air | water 635nm | air\"".into(),
             ));
         }
+        // A '|' at either end leaves nothing for the incident medium or the substrate; said so here, before the
+        // medium next to it would be read as a layer without a thickness.
+        for (k, what, place) in [(segments.len() - 1, "substrate", "trailing"), (0, "incident medium", "leading")] {
+            let (off, seg) = segments[k];
+            if seg.trim().is_empty() {
+                let bar = if k == 0 { off + seg.len() } else { off - 1 };
+                let t = Token { text: "|", column: col(bar) };
+                return Err(err(
+                    &t,
+                    format!(
+                        "a {place} '|' with no {what} {}; remove it, or name the {what}",
+                        if k == 0 { "before it" } else { "after it" }
+                    ),
+                ));
+            }
+        }
         let last = segments.len() - 1;
         let mut media: Vec<Material> = Vec::with_capacity(segments.len());
         let mut thicknesses = Vec::new();
@@ -488,6 +504,13 @@ mod tests {
         assert!(m.contains("lossless"), "{m}");
         let (_, _, m) = column_of(Stack::parse("air | | air").unwrap_err());
         assert!(m.contains("missing"), "{m}");
+        // A trailing or leading '|' is named as such, not as the medium beside it lacking a thickness.
+        let (t, c, m) = column_of(Stack::parse("air | water 348nm | air |").unwrap_err());
+        assert_eq!((t.as_str(), c), ("|", 25));
+        assert!(m.contains("trailing '|' with no substrate") && !m.contains("thickness"), "{m}");
+        let (_, c, m) = column_of(Stack::parse(" | air | water 348nm | air").unwrap_err());
+        assert_eq!(c, 2);
+        assert!(m.contains("leading '|' with no incident medium"), "{m}");
         let (t, _, _) = column_of(Stack::parse("air 5nm | air").unwrap_err());
         assert_eq!(t, "5nm");
         let (t, c, m) = column_of(Stack::parse("air | file:/nonexistent/x.yml 5nm | air").unwrap_err());

@@ -32,7 +32,7 @@ Examples:
   iridis bench diffraction-accuracy                                  built-in surfaces, 24² maps
   iridis bench diffraction-accuracy --surface builtin:blazed --map-size 48 --json
   iridis bench diffraction-accuracy --surface 'builtin:elaphe?size=10um' --coherence 65um --aperture finite
-  iridis bench diffraction-accuracy --convergence-plot docs/img/taylor_convergence.png")]
+  iridis bench diffraction-accuracy --convergence-plot convergence.png")]
     DiffractionAccuracy(AccuracyBench),
     /// Reference against ground truth at equal size: the same surfaces (512² and 1024² samples), the same
     /// map size, maps per second of each, all cores.

@@ -284,8 +284,9 @@ pub fn run_precompute(a: PrecomputeArgs) -> Result<()> {
 /// The shading factors around |A|² (`C` of paper eq. 2–4), shared by `brdf-map` and `brdf eval`.
 #[derive(Debug, Clone, ClapArgs)]
 pub struct ShadingOpts {
-    /// Fresnel factor: schlick[:N] (default schlick:1.5), index:N or index:N+Ki (gold: index:0.2+3.4i), or a
-    /// thin-film stack, e.g. "stack:air | keratin 300nm | n=1.56" (λ-dependent: reference or ground-truth).
+    /// Fresnel factor: schlick[:N] (default schlick:1.5), index:N or index:N+Ki (gold near 550 nm:
+    /// index:0.2+3.4i), gold (measured, Johnson & Christy) or a thin-film stack, e.g. "stack:air | keratin
+    /// 300nm | n=1.56" (the last two depend on λ: reference or ground-truth).
     #[arg(long, default_value = "schlick:1.5")]
     pub fresnel: String,
     /// How the Fresnel reflectance enters: physical (R once, the default) or paper (R², the paper's formula as
@@ -312,31 +313,49 @@ pub fn fresnel_convention(s: &str) -> Result<FresnelConvention, String> {
     FresnelConvention::parse(s).map_err(|e| e.to_string())
 }
 
-/// Parses `--fresnel` into a Fresnel source (a thin-film stack too: `stack:air | keratin 400nm | …`).
+/// Parses `--fresnel`, the one parser of every command that takes it: the built-in models, measured gold
+/// (`gold`, λ-dependent) and a thin-film stack (`stack:air | keratin 400nm | …`, λ-dependent).
 pub fn parse_fresnel_source(s: &str) -> Result<Arc<dyn FresnelSource>> {
     if let Some(stack) = s.trim().strip_prefix("stack:") {
         let stack: iridis_thinfilm::Stack = stack.parse().with_context(|| format!("--fresnel '{s}'"))?;
         return Ok(Arc::new(FilmFresnel::new(stack)?));
     }
+    if matches!(s.trim().to_ascii_lowercase().as_str(), "gold" | "au") {
+        let m = iridis_thinfilm::Material::builtin("gold").context("the built-in gold data are missing")?;
+        return Ok(Arc::new(iridis_lab::laser::MetalFresnel::new(m, 380.0, 780.0)?));
+    }
     Ok(Arc::new(parse_fresnel(s)?))
 }
 
-/// Parses the built-in Fresnel models of `--fresnel`.
+/// Parses the built-in Fresnel models of `--fresnel` (those a GPU shader evaluates: no λ dependence).
 pub fn parse_fresnel(s: &str) -> Result<Fresnel> {
     let t = s.trim().to_ascii_lowercase();
     let (kind, value) = t.split_once(':').unwrap_or((t.as_str(), ""));
     match kind {
         "schlick" => {
-            let n =
-                if value.is_empty() { 1.5 } else { value.parse::<f64>().ok().filter(|n| *n > 0.0).context("bad n")? };
+            // n = 1 gives F_0 = 0: a black surface, never what was meant.
+            let n = if value.is_empty() {
+                1.5
+            } else {
+                value
+                    .parse::<f64>()
+                    .ok()
+                    .filter(|n| *n > 0.0 && *n != 1.0)
+                    .with_context(|| format!("--fresnel '{s}': schlick:N needs a positive N ≠ 1"))?
+            };
             Ok(Fresnel::Schlick { n })
         }
         "index" => {
-            let n = parse_complex(value)
-                .with_context(|| format!("--fresnel '{s}': write index:N or index:N+Ki, e.g. index:0.2+3.4i"))?;
+            let n = parse_complex(value).with_context(|| {
+                format!("--fresnel '{s}': write index:N or index:N+Ki with N > 0, K ≥ 0, e.g. index:0.2+3.4i")
+            })?;
             Ok(Fresnel::Index { n })
         }
-        _ => bail!("--fresnel '{s}': expected schlick[:N] or index:N[+Ki]"),
+        "gold" | "au" => bail!(
+            "--fresnel '{s}': measured gold depends on λ, which this path cannot evaluate; use index:0.2+3.4i \
+             (gold near 550 nm) or a CPU method"
+        ),
+        _ => bail!("--fresnel '{s}': expected schlick[:N], index:N[+Ki], gold or stack:STACK"),
     }
 }
 
@@ -442,7 +461,7 @@ TABLE.
 Examples:
   iridis brdf eval builtin:sine --light 30deg --view 10deg,180deg --json
   iridis brdf eval builtin:blazed --method ground-truth --light 0deg --view 20deg,180deg
-  iridis brdf eval elaphe.npz --light 20deg,0deg --view 35deg,180deg --json")]
+  iridis precompute builtin:elaphe -o elaphe.npz && iridis brdf eval elaphe.npz --light 20deg,0deg --view 35deg,180deg --json")]
 pub struct BrdfEvalArgs {
     /// A height field (file or builtin:NAME) or a lookup table from `iridis precompute`.
     pub input: String,

@@ -231,6 +231,7 @@ pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
                 .collect(),
             emphasis: true,
             color: Some(marker_colors[k]),
+            dashed: false,
         });
         let rgb8 = ToneMap::default().to_rgb8(wp);
         rows.push(vec![

@@ -14,8 +14,8 @@ sections; --only writes some sections (an index page with just those).
 
 Examples:
   iridis demo                      writes ./iridis-demo/index.html and its images
-  iridis demo --out /tmp/gallery
-  iridis demo --only color,thinfilm --out /tmp/films   two sections only (seconds)")]
+  iridis demo --out gallery
+  iridis demo --only color,thinfilm --out films    two sections only (seconds)")]
 pub struct Args {
     /// Folder for the gallery (created if missing).
     #[arg(long, default_value = "iridis-demo")]

@@ -498,7 +498,7 @@ Examples:
   iridis view examples/soap_bubble.toml
   iridis view elaphe.npz                       BRDF map of a precomputed table
   iridis view builtin:blazed                   builds a 201² table first
-  xvfb-run -a iridis view examples/soap_bubble.toml --check docs/img/viewer.png --json")]
+  xvfb-run -a iridis view examples/soap_bubble.toml --check viewer.png --json")]
 pub struct ViewArgs {
     /// A scene (.toml, .gltf, .glb), a lookup table (.npz) or a SURFACE.
     pub input: String,

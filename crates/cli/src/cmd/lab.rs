@@ -2,15 +2,14 @@
 //! (paper sec. 6–7, thesis ch. 5) over `iridis-lab`.
 
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
 
 use anyhow::{bail, Context, Result};
 use clap::{Args as ClapArgs, Subcommand};
 use iridis_color::units::parse_length_nm;
 use iridis_color::{Illuminant, Observer, Spectrum, Xyz};
-use iridis_diffraction::geometry::{FresnelConvention, FresnelSource, Shading};
+use iridis_diffraction::geometry::{FresnelConvention, Shading};
 use iridis_diffraction::table::TableParams;
-use iridis_diffraction::{Fresnel, Patch, SpectralSetup};
+use iridis_diffraction::{Patch, SpectralSetup};
 use iridis_lab::bench::{self, BenchSetup};
 use iridis_lab::image::{render, Pixels};
 use iridis_lab::laser::{LaserSetup, MetalFresnel};
@@ -48,7 +47,8 @@ pub struct LabModel {
     /// Taylor terms: auto (remainder bound 1e-6) or N.
     #[arg(long, default_value = "auto")]
     pub terms: String,
-    /// Fresnel factor: schlick[:N] (default schlick:1.5), index:N[+Ki], or gold.
+    /// Fresnel factor: schlick[:N] (default schlick:1.5), index:N[+Ki], gold (measured) or a thin-film stack,
+    /// e.g. "stack:air | keratin 300nm | n=1.56" (as brdf-map's --fresnel).
     #[arg(long, default_value = "schlick:1.5")]
     pub fresnel: String,
     /// How the Fresnel reflectance enters: physical (R once, the default) or paper (R², the paper's formula as
@@ -77,52 +77,13 @@ impl LabModel {
             coherence_nm: self.coherence.unwrap_or(iridis_diffraction::DEFAULT_COHERENCE_NM),
             terms,
             shading: Shading {
-                fresnel: fresnel(&self.fresnel)?,
+                fresnel: crate::cmd::brdf::parse_fresnel_source(&self.fresnel)?,
                 shadowing: !self.no_shadowing,
                 convention: self.fresnel_convention,
             },
             stam_epsilon: self.epsilon,
             ..MethodConfig::default()
         })
-    }
-}
-
-fn fresnel(s: &str) -> Result<Arc<dyn FresnelSource>> {
-    let t = s.trim().to_ascii_lowercase();
-    if t == "gold" || t == "au" {
-        let m = iridis_thinfilm::Material::builtin("gold").context("the built-in gold data are missing")?;
-        return Ok(Arc::new(MetalFresnel::new(m, 380.0, 780.0)?));
-    }
-    let (kind, value) = t.split_once(':').unwrap_or((t.as_str(), ""));
-    match kind {
-        "schlick" => {
-            let n = if value.is_empty() {
-                1.5
-            } else {
-                value
-                    .parse::<f64>()
-                    .ok()
-                    .filter(|n| *n > 0.0 && *n != 1.0)
-                    .with_context(|| format!("--fresnel '{s}': schlick:N needs a positive N ≠ 1"))?
-            };
-            Ok(Arc::new(Fresnel::Schlick { n }))
-        }
-        "index" => {
-            let (re, im) = match value.strip_suffix('i') {
-                Some(body) => {
-                    let p = body.rfind(['+', '-']).filter(|&p| p > 0).context("write index:N+Ki")?;
-                    (body[..p].parse::<f64>().ok(), body[p..].parse::<f64>().ok())
-                }
-                None => (value.parse::<f64>().ok(), Some(0.0)),
-            };
-            match (re, im) {
-                (Some(re), Some(im)) if re > 0.0 && im >= 0.0 => {
-                    Ok(Arc::new(Fresnel::Index { n: num_complex::Complex64::new(re, im) }))
-                }
-                _ => bail!("--fresnel '{s}': write index:N or index:N+Ki with N > 0, K ≥ 0, e.g. index:0.47+2.4i"),
-            }
-        }
-        _ => bail!("--fresnel '{s}': expected schlick[:N], index:N[+Ki] or gold"),
     }
 }
 
@@ -221,9 +182,9 @@ d_λ = m λ / (sin θ_i − sin θ_r) (eq. 5.6 in this frame) reported with its 
 rotates the surface about its normal: 0deg measures periods along x, 90deg along y. Without --period the
 strongest response away from the mirror direction is taken as the first order.
 
-JSON: {\"periodicity_nm\":{\"mean\",\"variance\",\"relative_spread\",\"definite\"},\"order\",
-       \"incidence_deg\",\"azimuth_deg\",\"peaks\":[{\"wavelength_nm\",\"angle_deg\",\"period_nm\"}],
-       \"ridges\":[{\"period_nm\",\"variance\",…}]}
+JSON: {\"periodicity_nm\": {\"mean\", \"variance\", \"relative_spread\", \"definite\"}, \"order\",
+\"incidence_deg\", \"azimuth_deg\", \"peaks\": [{\"wavelength_nm\", \"angle_deg\", \"period_nm\"}],
+\"ridges\": [{\"period_nm\", \"variance\", …}]}
 (ridges lists competing sub-structure periods when there is more than one, as for Xenopeltis; definite is
 false, with a warning, when d_λ spreads by more than 1 % of its mean: the direction has no period, as along
 the Elaphe-like fingers.)
@@ -424,14 +385,14 @@ window cut at the patch edge), --against METHOD with any method. The periodic-ex
 against finite-aperture ground truth) is printed on its own line: where the window is as wide as the patch it
 is the models' own difference, which no approximation of either can remove.
 
-JSON: {\"results\":[{\"method\",\"against\",\"exposure_ru\",\"mean\",\"p95\",\"max\",\"ratio\"}],
-       \"periodic_extension_error\":[{\"exposure_ru\",\"mean\",\"p95\",\"max\"}],\"against\",…}
+JSON: {\"results\": [{\"method\", \"against\", \"exposure_ru\", \"mean\", \"p95\", \"max\", \"ratio\"}],
+\"periodic_extension_error\": [{\"exposure_ru\", \"mean\", \"p95\", \"max\"}], \"against\", …}
 
 Examples:
   iridis compare 'builtin:elaphe?size=12um&pixel=60nm' --coherence 4um --size 64
   iridis compare 'builtin:elaphe?size=12um&pixel=60nm' --methods reference,stam-gaussian --json
   iridis compare 'builtin:elaphe?size=12um&pixel=60nm' --against ground-truth   # the finite aperture
-  iridis compare scan.gwy --methods lookup,reference --table scan.npz --maps errors/")]
+  iridis precompute scan.gwy -o scan.npz && iridis compare scan.gwy --methods lookup,reference --table scan.npz --maps errors/")]
 pub struct CompareArgs {
     /// Height field: a file or builtin:NAME.
     pub surface: String,
@@ -628,7 +589,7 @@ pub fn run_compare(a: CompareArgs) -> Result<()> {
             .map(|r| json!({"exposure_ru": r.exposure_ru, "mean": r.mean, "p95": r.p95, "max": r.max}))
             .collect();
         return print_json(&json!({"surface": a.surface, "against": against_name, "size": a.size,
-            "incidence_deg": theta.to_degrees(), "coherence_nm": b.config.coherence_nm, "results": rows,
+            "incidence_deg": iridis_color::units::degrees(theta), "coherence_nm": b.config.coherence_nm, "results": rows,
             "periodic_extension_error": ext}));
     }
     crate::outln!(

@@ -12,7 +12,7 @@ use std::time::Instant;
 
 use anyhow::{bail, Result};
 use clap::Args as ClapArgs;
-use iridis_color::units::{parse_angle_rad, parse_range};
+use iridis_color::units::{degrees, parse_angle_rad, parse_range};
 use iridis_color::{Illuminant, Observer, SpectralWeights, Xyz};
 use iridis_plot::{magma, ColorBar, ImagePlot, LinePlot, RgbImage, Series as PlotSeries};
 use iridis_thinfilm::htsg::{Htsg, Roughness, Series};
@@ -167,7 +167,7 @@ pub fn spectrum(
             "model": "LSRS (Sussenbach eq. 3.15-3.20) with the HTSG BRDF",
             "diffuse_transport": args.diffuse_transport.name(),
             "roughness_nm": sigma, "correlation_nm": tau,
-            "view_deg": view.to_degrees(), "light_deg": light.to_degrees(), "azimuth_deg": args.azimuth.to_degrees(),
+            "view_deg": degrees(view), "light_deg": degrees(light), "azimuth_deg": degrees(args.azimuth),
             "wavelength_nm": grid,
             "R_smooth": smooth,
             "specular": kr, "specular_s": xs.iter().map(|x| x.1.specular_s).collect::<Vec<_>>(),
@@ -255,7 +255,7 @@ pub fn color(
     if json_out {
         let conditions = json!({
             "roughness_nm": rough.htsg.roughness.sigma_nm(), "correlation_nm": rough.htsg.roughness.tau_nm(),
-            "view_deg": view.to_degrees(), "light_deg": light.to_degrees(), "azimuth_deg": args.azimuth.to_degrees(),
+            "view_deg": degrees(view), "light_deg": degrees(light), "azimuth_deg": degrees(args.azimuth),
             "diffuse_transport": args.diffuse_transport.name(),
         });
         let transmitted = super::color::colour_report(smooth_film.transmitted, white);

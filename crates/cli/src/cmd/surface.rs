@@ -19,8 +19,8 @@ order), 8/16-bit greyscale PNG or TIFF (relative heights: give --max-height and 
 matrix (Gwyddion ASCII export header understood). Units missing from a file can come from a JSON sidecar
 FILE.EXT.json or FILE.json: {\"pixel_size_nm\": 65, \"height_unit\": \"nm\", \"max_height_nm\": 250}.
 Built-ins (blazed, sine, cd, elaphe, xenopeltis, gaussian) are generated on the fly: a 65 µm patch at
-65 nm per pixel (1000 × 1000), seed 1; change them with --size/--pixel-size/--seed or a query string,
-e.g. builtin:elaphe?size=16um&pixel=50nm&seed=3&angle=10deg (parameters: iridis surface generate --help).";
+65 nm per pixel (1000 × 1000), seed 1; change them with --size/--pixel-size/--seed or a query string
+(not both for one parameter), e.g. builtin:elaphe?size=16um&pixel=50nm&seed=3&angle=10deg (parameters: iridis surface generate --help).";
 
 // Parsed once per run: the size difference between variants costs nothing worth boxing for.
 #[allow(clippy::large_enum_variant)]
@@ -53,7 +53,7 @@ Examples:
   iridis surface info builtin:elaphe --json --image elaphe.png
   iridis surface info scan.gwy --level plane
   iridis surface info scan.png --pixel-size 65nm --max-height 300nm
-  iridis surface info scan.npz --channel 1 --pixel-size 20nm
+  iridis surface info afm.npz --channel 1 --pixel-size 20nm
   iridis surface info scan.spm --channel Height --psdf psdf.png --acf acf.png --json
   iridis surface info scan.npy --pixel-size 10nm --height-unit m
   iridis surface info 'builtin:sine?period=1500nm&angle=30deg&size=20um&pixel=20nm'";
@@ -72,15 +72,25 @@ Examples:
 
 const GENERATE_HELP: &str = "\
 Kinds and their parameters (defaults shown; lengths need units):
-Common: --size 65um (or --size-x/--size-y), --pixel 65nm, --seed 1, --angle 0deg (counter-clockwise)
-  sine        --period 1100nm --depth 100nm             h = depth/2 · sin(2π u/period)
-  blazed      --period 2500nm --blaze 6deg | --depth …  saw-tooth rising along +x: facets face −x
-  rect-bumps  --period 1100nm (--period-x/-y) --fill 0.5 --depth 100nm   Stam's boxes (paper Fig. 11a)
-  tri-bumps   same as rect-bumps                         pyramids on the same footprint (Fig. 11c)
-  cd          --pitch 1600nm --bit 231nm --pit-width 500nm --depth 110nm   tracks along x, pits 3T–11T
-  gaussian    --rms 30nm --corr 500nm                   correlation rms²·exp(−r²/corr²), tiles seamlessly
-  elaphe      --spacing 1100nm --finger 4000nm --rms 60nm   overlapping nanofinger layers along x
-  xenopeltis  --along 1500nm --across 550nm --depth 120nm   curving fingers, grains of other periods
+  sine         --period 1100nm --depth 100nm
+               h = depth/2 · sin(2π u/period)
+  blazed       --period 2500nm --blaze 6deg | --depth …
+               saw-tooth rising along +x: facets face −x
+  rect-bumps   --period 1100nm (--period-x/-y) --fill 0.5 --depth 100nm
+               Stam's boxes (paper Fig. 11a)
+  tri-bumps    same as rect-bumps
+               pyramids on the same footprint (Fig. 11c)
+  cd           --pitch 1600nm --bit 231nm --pit-width 500nm --depth 110nm
+               tracks along x, pits 3T–11T
+  gaussian     --rms 30nm --corr 500nm
+               correlation rms²·exp(−r²/corr²), tiles seamlessly
+  elaphe       --spacing 1100nm --finger 4000nm --rms 60nm
+               overlapping nanofinger layers along x
+  xenopeltis   --along 1500nm --across 550nm --depth 120nm
+               curving fingers, grains of other periods
+Every kind also takes --size 65um (or --size-x/--size-y), --pixel-size 65nm, --seed 1 and --angle 0deg
+(counter-clockwise).
+
 The output format follows the extension: .gwy (with units), .npy (+ .npy.json sidecar), .npz (like
 np.savez: one array 'heights', + .npz.json sidecar), .png (16-bit, + .png.json sidecar with pixel size and
 height range) or .txt (Gwyddion-style header).
@@ -88,7 +98,7 @@ height range) or .txt (Gwyddion-style header).
 Examples:
   iridis surface generate blazed -o blazed.gwy
   iridis surface generate blazed --period 2500nm --blaze 10deg --angle 30deg -o blazed30.npy
-  iridis surface generate elaphe --size 20um --pixel 40nm --seed 7 -o elaphe.png --image elaphe_preview.png
+  iridis surface generate elaphe --size 20um --pixel-size 40nm --seed 7 -o elaphe.png --image elaphe_preview.png
   iridis surface generate gaussian --rms 20nm --corr 300nm -o rough.txt";
 
 const CONVERT_HELP: &str = "\
@@ -201,8 +211,8 @@ pub struct GenerateArgs {
     /// Patch height along y.
     #[arg(long)]
     pub size_y: Option<String>,
-    /// Pixel size (default 65nm).
-    #[arg(long)]
+    /// Pixel size (default 65nm); --pixel, the old name, is still read.
+    #[arg(long = "pixel-size", alias = "pixel")]
     pub pixel: Option<String>,
     /// Counter-clockwise rotation of the pattern (e.g. 30deg).
     #[arg(long, allow_hyphen_values = true)]
@@ -569,7 +579,7 @@ fn generate(a: GenerateArgs) -> Result<()> {
         ("size", &a.size),
         ("size-x", &a.size_x),
         ("size-y", &a.size_y),
-        ("pixel", &a.pixel),
+        ("pixel-size", &a.pixel),
         ("angle", &a.angle),
         ("seed", &a.seed),
         ("period", &a.period),

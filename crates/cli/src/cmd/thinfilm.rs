@@ -43,7 +43,8 @@ Examples:
     #[command(after_help = "\
 Columns: angle_deg, wavelength_nm, R, T, A, Rs, Rp, Ts, Tp, psi_deg, delta_deg (unpolarised R, T, A;
 ellipsometric ψ, Δ as tmm.ellips; with inc: layers ψ from √(Rp/Rs) and Δ empty). Without -o the table goes to
-standard output. --plot draws R as an angle × wavelength map with a colour bar.
+standard output. --plot draws R as an angle × wavelength map with a colour bar, on a log scale when most of
+R is small (an AR coating; --scale sets it).
 
 Examples:
   iridis thinfilm table --stack \"air | water 635nm | air\" --angles 1deg:90deg:1deg --from 400nm --to 690nm --step 10nm -o t.csv
@@ -205,6 +206,11 @@ pub struct TableArgs {
     /// Write the angle × wavelength map of R (PNG).
     #[arg(long)]
     pub plot: Option<PathBuf>,
+    /// Colour scale of --plot: linear (0 to the largest R), log (three decades below the largest R) or auto:
+    /// log when most of the map would sit in the darkest tenth of a linear scale (an AR coating, whose R
+    /// stays near 1 % until grazing incidence).
+    #[arg(long, value_name = "auto|linear|log", default_value = "auto", value_parser = ["auto", "linear", "log"])]
+    pub scale: String,
     #[command(flatten)]
     pub rough: super::rough::RoughArgs,
 }
@@ -436,6 +442,9 @@ fn table(a: TableArgs) -> Result<()> {
     crate::output::declare_opt("--plot", a.plot.as_deref(), &["png"])?;
     let stack = parse_stack(&a.stack)?;
     if a.rough.is_set() {
+        if a.scale != "auto" {
+            bail!("--scale sets the colour scale of a smooth film's R map; the rough-film table draws its own");
+        }
         let grid = a.grid.grid()?;
         return super::rough::table(
             stack,
@@ -484,11 +493,30 @@ fn table(a: TableArgs) -> Result<()> {
     if let Some(p) = &a.plot {
         let (w, h) = (grid.len() as u32, angles.len() as u32);
         let rmax = xs.iter().map(|x| x.r()).fold(0.0, f64::max).max(1e-12);
+        let log = match a.scale.as_str() {
+            "log" => true,
+            "linear" => false,
+            _ => {
+                let mut r: Vec<f64> = xs.iter().map(|x| x.r()).collect();
+                r.sort_by(f64::total_cmp);
+                r[r.len() / 2] < 0.1 * rmax
+            }
+        };
+        // Log: three decades below the largest R, so a 1 % reflectance on a map that reaches 90 % is visible.
+        let (lo, hi) = if log { (rmax.log10() - 3.0, rmax.log10()) } else { (0.0, rmax) };
+        let level = |r: f64| if log { (r.max(1e-300).log10() - lo) / (hi - lo) } else { r / rmax };
+        if log && a.scale == "auto" {
+            eprintln!("--plot: log colour scale (most of R is below a tenth of its largest value; --scale linear for a linear one)");
+        }
         let mut px = RgbImage::new(w, h);
         for i in 0..angles.len() {
             for j in 0..grid.len() {
                 // Row 0 of the picture is the top = the largest angle.
-                px.put(j as u32, (angles.len() - 1 - i) as u32, magma(xs[i * grid.len() + j].r() / rmax));
+                px.put(
+                    j as u32,
+                    (angles.len() - 1 - i) as u32,
+                    magma(level(xs[i * grid.len() + j].r()).clamp(0.0, 1.0)),
+                );
             }
         }
         let img = ImagePlot {
@@ -499,7 +527,12 @@ fn table(a: TableArgs) -> Result<()> {
             y_range: (angles[0].to_degrees(), angles[angles.len() - 1].to_degrees().max(angles[0].to_degrees() + 1e-9)),
             pixels: &px,
             overlays: Vec::new(),
-            colorbar: Some(ColorBar { label: "R".into(), min: 0.0, max: rmax, map: magma }),
+            colorbar: Some(ColorBar {
+                label: if log { "log₁₀ R".into() } else { "R".into() },
+                min: lo,
+                max: hi,
+                map: magma,
+            }),
             size: (1000, 640),
         }
         .render()?;

@@ -306,9 +306,12 @@ pub fn read(bytes: &[u8], side: Option<&Sidecar>, opts: &LoadOptions) -> Result<
     meta.z_unit = uz;
     meta.warnings = warnings;
     meta.notes.push(format!(
-        "Gwyddion channel {}{}: {cols} × {rows} samples, {xreal:e} × {yreal:e} {uxy}",
+        "Gwyddion channel {}{}: {cols} × {rows} samples, {:e} × {:e} {uxy}",
         id.map_or("-".to_string(), |i| i.to_string()),
-        if title.is_empty() { String::new() } else { format!(" '{title}'") }
+        if title.is_empty() { String::new() } else { format!(" '{title}'") },
+        // The extent as the file's author wrote it, without the noise of its binary double.
+        iridis_color::units::tidy(xreal),
+        iridis_color::units::tidy(yreal)
     ));
     Ok(hf.with_meta(meta))
 }
