@@ -101,7 +101,8 @@ fn surface_notes_and_angles_read_as_written() {
         "30deg",
         "--json",
     ]);
-    assert_eq!((v["light_deg"].as_f64(), v["view_deg"].as_f64()), (Some(30.0), Some(30.0)), "{v}");
+    let r = &v["rough"];
+    assert_eq!((r["light_deg"].as_f64(), r["view_deg"].as_f64()), (Some(30.0), Some(30.0)), "{v}");
 }
 
 #[test]

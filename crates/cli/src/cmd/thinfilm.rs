@@ -130,7 +130,7 @@ estimated from the scatter. psi-delta needs a coherent stack (Δ is undefined th
 Examples:
   iridis thinfilm fit measured.csv --stack \"air | SiO2 {d1=100nm:50nm..500nm} | Si\"
   iridis thinfilm fit slide.csv --stack \"air | n=2.1 {d=150nm:50nm..400nm} | inc:BK7 1mm | air\" --quantity T --sigma 0.002 --plot fit.png
-  iridis thinfilm fit measured.csv --stack \"air | SiO2 {d1=100nm:50nm..500nm} | Si\" --weights w
+  iridis thinfilm fit measured.csv --stack \"air | SiO2 {d1=100nm:50nm..500nm} | Si\" --weights 250000   # w = 1/σ², σ = 0.002; or a column name, or a file
   iridis thinfilm fit ellips.csv --stack \"air | n={n=1.5:1.3..1.7} {d=100nm:10nm..400nm} | Si\" --angle 70deg --quantity psi-delta --json")]
     Fit(super::filmfit::FitArgs),
 }
