@@ -387,7 +387,7 @@ fn saturated_samples(values: &[f64], cols: usize) -> Vec<usize> {
         .iter()
         .filter(|v| v.is_finite())
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
-    if !(lo < hi) || cols < SATURATION_RUN {
+    if lo >= hi || !lo.is_finite() || cols < SATURATION_RUN {
         return Vec::new();
     }
     let mut out = Vec::new();
