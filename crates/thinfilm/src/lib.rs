@@ -18,6 +18,8 @@
 //! * [`incoherent`]: stacks with incoherent layers (`inc:BK7 1mm`), as `tmm.inc_tmm`;
 //! * [`field`]: amplitudes inside the stack, position-resolved flux / absorption / |E|², absorption per
 //!   layer, ellipsometric ψ and Δ;
+//! * [`tmm`]: the calling convention of Byrnes' `tmm` package (index and thickness lists, `r`, `t`, `R`, `T`,
+//!   `vw_list`, … with its conventions), for the Python drop-in `iridis.tmm`;
 //! * [`sampling`]: warnings when a wavelength grid cannot resolve the fringes of a thick layer;
 //! * [`color`]: film colours (reflected / transmitted spectrum → XYZ through `iridis-color`).
 //! * [`htsg`]: the He–Torrance–Sillion–Greenberg BRDF of a rough interface (rms height σ, correlation
@@ -50,6 +52,7 @@ pub mod recurrence;
 pub mod rough;
 pub mod sampling;
 pub mod stack;
+pub mod tmm;
 
 pub use error::ThinFilmError;
 pub use fast::Prepared;
