@@ -178,6 +178,17 @@ fn tmm_forward(n: Complex64, th: Complex64) -> bool {
     }
 }
 
+/// The principal arcsin with C99's (and numpy's) value on the branch cut: for a real `|z| > 1` (zero
+/// imaginary part, as tmm's `n₀ sin θ₀ / n_j` has for a lossless layer beyond its critical angle) the imaginary
+/// part is `+acosh|z|`; num-complex's formula gives its conjugate there.
+fn asin(z: Complex64) -> Complex64 {
+    if z.im == 0.0 && z.re.abs() > 1.0 {
+        Complex64::new(FRAC_PI_2.copysign(z.re), z.re.abs().acosh())
+    } else {
+        z.asin()
+    }
+}
+
 /// `tmm.coh_tmm(pol, n, d, th0, lam)`.
 pub fn coh_tmm(pol: Pol, n: &[Complex64], d: &[f64], th0: f64, lam: f64) -> Result<Coherent, ThinFilmError> {
     check_lists(n, d)?;
@@ -199,7 +210,7 @@ pub fn coh_tmm(pol: Pol, n: &[Complex64], d: &[f64], th0: f64, lam: f64) -> Resu
         .iter()
         .enumerate()
         .map(|(j, &x)| {
-            let a = (invariant / x).asin();
+            let a = asin(invariant / x);
             if (j == 0 || j == last) && !tmm_forward(x, a) {
                 PI - a
             } else {
