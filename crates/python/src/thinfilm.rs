@@ -157,6 +157,71 @@ impl PyStack {
     }
 }
 
+/// Reflected and transmitted XYZ of many stacks of constant indices: `n` (stacks × media, complex), `d`
+/// (stacks × layers, nm), one angle; shape (stacks, 6). Each row is one stack, as `Stack.color`.
+#[pyfunction]
+fn _stack_colors<'py>(
+    py: Python<'py>,
+    n: numpy::PyReadonlyArray2<'py, Complex64>,
+    d: numpy::PyReadonlyArray2<'py, f64>,
+    angle: f64,
+    grid: PyReadonlyArray1<'py, f64>,
+    illuminant: &str,
+    observer: &str,
+    polarization: &str,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let (ill, obs, pol) = (self::illuminant(illuminant)?, self::observer(observer)?, self::pol(polarization)?);
+    let (n, d, g) = (n.as_array(), d.as_array(), grid.as_slice()?);
+    if n.nrows() != d.nrows() || n.ncols() != d.ncols() + 2 {
+        return Err(value_error(format!(
+            "indices of shape {:?} need thicknesses of shape ({}, {}), got {:?}",
+            n.shape(),
+            n.nrows(),
+            n.ncols().saturating_sub(2),
+            d.shape()
+        )));
+    }
+    if g.len() < 2 || g.windows(2).any(|x| x[1] <= x[0]) {
+        return Err(value_error("the wavelength grid must have ≥ 2 strictly increasing values"));
+    }
+    let rows: Vec<(Vec<Complex64>, Vec<f64>)> = n
+        .rows()
+        .into_iter()
+        .zip(d.rows())
+        .map(|(a, b)| {
+            let mut dl = vec![f64::INFINITY];
+            dl.extend(b.iter());
+            dl.push(f64::INFINITY);
+            (a.to_vec(), dl)
+        })
+        .collect();
+    let out = py
+        .allow_threads(|| {
+            let meter = FilmColorimeter::new(g, ill, obs);
+            rows.par_iter()
+                .enumerate()
+                .map(|(i, (n, d))| {
+                    let stack = stack_from_lists(n, d, None)
+                        .map_err(|e| iridis_thinfilm::ThinFilmError::Invalid(format!("stack {i}: {e}")))?;
+                    // Constant indices: the chapter 4 fast path (per-interface values once per stack).
+                    let prepared = stack.prepare(angle)?;
+                    let mut r = Vec::with_capacity(g.len());
+                    let mut t = Vec::with_capacity(g.len());
+                    for &w in g {
+                        let x = prepared.evaluate(w)?;
+                        r.push(pol.reflectance(&x));
+                        t.push(pol.transmittance(&x));
+                    }
+                    let c = meter.from_spectra(&r, &t);
+                    Ok([c.reflected.to_array(), c.transmitted.to_array()].concat())
+                })
+                .collect::<Result<Vec<Vec<f64>>, iridis_thinfilm::ThinFilmError>>()
+        })
+        .map_err(value_error)?;
+    let flat: Vec<f64> = out.into_iter().flatten().collect();
+    Ok(Array2::from_shape_vec((rows.len(), 6), flat).expect("shape").into_pyarray(py))
+}
+
 /// The complex index `n + iκ` of a material (library name, `n=…`, `file:PATH`) at each wavelength (nm).
 #[pyfunction]
 fn material_index<'py>(
@@ -184,5 +249,6 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyStack>()?;
     m.add_function(wrap_pyfunction!(material_index, m)?)?;
     m.add_function(wrap_pyfunction!(materials, m)?)?;
+    m.add_function(wrap_pyfunction!(_stack_colors, m)?)?;
     Ok(())
 }

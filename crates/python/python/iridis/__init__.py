@@ -10,7 +10,7 @@ Example:
     >>> import iridis.thinfilm as tf
     >>> film = tf.Stack("air | water 348nm | air")
     >>> round(float(film.reflectance(550.0, 0.0)), 4)
-    0.1227
+    0.0556
 """
 from ._native import __version__
 
