@@ -9,6 +9,7 @@ use pyo3::prelude::*;
 
 mod args;
 mod color;
+mod surface;
 mod thinfilm;
 mod tmm;
 
@@ -18,5 +19,6 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     tmm::register(m)?;
     color::register(m)?;
     thinfilm::register(m)?;
+    surface::register(m)?;
     Ok(())
 }

@@ -1,0 +1,6 @@
+from . import color as color
+from . import surface as surface
+from . import thinfilm as thinfilm
+from . import tmm as tmm
+
+__version__: str
