@@ -307,6 +307,9 @@ pub struct Batch {
     pub power_entering: Vec<f64>,
 }
 
+/// One point of a batch: `r`, `t`, `R`, `T`, `power_entering`.
+type Point = (Complex64, Complex64, f64, f64, f64);
+
 /// Below this many points at one angle, a point is evaluated directly rather than through [`crate::Prepared`].
 const PREPARE_MIN: usize = 4;
 
@@ -368,7 +371,7 @@ pub fn coh_tmm_batch(pol: Pol, n: Indices<'_>, d: &[f64], th0: &[f64], lam: &[f6
         let (rr, tt, pe) = powers(pol, r, t, media[0], media[media.len() - 1]);
         (r, t, rr, tt, pe)
     };
-    let results: Vec<(usize, (Complex64, Complex64, f64, f64, f64))> = match n {
+    let results: Vec<(usize, Point)> = match n {
         Indices::PerPoint { .. } => {
             (0..points).into_par_iter().map_init(|| Vec::with_capacity(media_count), |m, i| (i, direct(i, m))).collect()
         }
