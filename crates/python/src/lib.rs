@@ -9,6 +9,7 @@ use pyo3::prelude::*;
 
 mod args;
 mod color;
+mod diffraction;
 mod surface;
 mod thinfilm;
 mod tmm;
@@ -20,5 +21,6 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     color::register(m)?;
     thinfilm::register(m)?;
     surface::register(m)?;
+    diffraction::register(m)?;
     Ok(())
 }

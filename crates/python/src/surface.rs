@@ -30,6 +30,12 @@ fn surface_error(spec: &str, e: iridis_surface::SurfaceError) -> PyErr {
     }
 }
 
+impl PyHeightField {
+    pub fn field(&self) -> &HeightField {
+        &self.hf
+    }
+}
+
 #[pymethods]
 impl PyHeightField {
     #[new]

@@ -1,4 +1,5 @@
 from . import color as color
+from . import diffraction as diffraction
 from . import surface as surface
 from . import thinfilm as thinfilm
 from . import tmm as tmm
