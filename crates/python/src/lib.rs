@@ -10,6 +10,7 @@ use pyo3::prelude::*;
 mod args;
 mod color;
 mod diffraction;
+mod render;
 mod surface;
 mod thinfilm;
 mod tmm;
@@ -22,5 +23,6 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     thinfilm::register(m)?;
     surface::register(m)?;
     diffraction::register(m)?;
+    render::register(m)?;
     Ok(())
 }

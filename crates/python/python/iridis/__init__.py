@@ -5,6 +5,7 @@ Modules:
     iridis.thinfilm  stacks from the CLI's syntax or lists; R, T, A broadcast over λ × θ × thickness offset; colours
     iridis.surface   height fields from AFM files, numpy, images or generators; levelling; roughness
     iridis.diffraction  lookup tables (precompute, save, load) and BRDF maps as XYZ arrays
+    iridis.render    a scene (TOML or glTF) to an RGB or XYZ array on the CPU
     iridis.color     spectrum → XYZ / xyY / Lab / sRGB under any illuminant and observer; ΔE
     iridis.bench     ``python -m iridis.bench``: iridis.tmm against tmm (and tmm_fast) in the same run
 
@@ -16,4 +17,4 @@ Example:
 """
 from ._native import __version__
 
-__all__ = ["__version__", "color", "diffraction", "surface", "thinfilm", "tmm"]
+__all__ = ["__version__", "color", "diffraction", "render", "surface", "thinfilm", "tmm"]
