@@ -2,6 +2,7 @@
 serial computation, bit for bit, and as iridis.thinfilm.Stack for single stacks."""
 import importlib.util
 import os
+import sys
 
 import numpy as np
 import pytest
@@ -35,3 +36,29 @@ def test_two_worker_cluster_equals_serial():
     n, d = ex.make_stacks(count, seed=7)
     for i in (0, 1234, count - 1):
         np.testing.assert_allclose(got[i], tf.Stack.from_lists(n[i], d[i]).color(angle)["reflected"], rtol=0, atol=1e-14)
+
+
+def brdf_example():
+    path = os.path.join(ROOT, "examples", "python", "brdf_maps_dask.py")
+    spec = importlib.util.spec_from_file_location("brdf_maps_dask", path)
+    mod = importlib.util.module_from_spec(spec)
+    sys.modules["brdf_maps_dask"] = mod  # cloudpickle pickles by value only modules it can find
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def test_brdf_maps_on_two_workers_equal_serial():
+    import cloudpickle
+
+    ex = brdf_example()
+    # The example's task function travels by value (the workers cannot import the example's file).
+    cloudpickle.register_pickle_by_value(ex)
+    specs = ["builtin:sine?size=4um&pixel=100nm", "builtin:blazed?size=4um&pixel=100nm"]
+    expected = ex.serial(specs, [0.0, 40.0], size=17)
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+        with distributed.Client(cluster) as client:
+            got = ex.distributed(client, specs, [0.0, 40.0], size=17)
+    assert len(got) == 4
+    for g, e in zip(got, expected):
+        assert g.shape == (17, 17, 3)
+        np.testing.assert_array_equal(g, e)
