@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """BRDF maps of several surfaces with Dask: one task per (surface, incidence), on a LocalCluster or a cluster.
 
-Each task loads its surface on the worker (a file path every worker can read, or a built-in such as
+Each task (``iridis.diffraction.brdf_map_of``) loads its surface on the worker (a file path every worker can read, or a built-in such as
 ``builtin:elaphe?size=12um&pixel=60nm``), computes the BRDF map with iridis (``iridis.diffraction``, the
 reference evaluator by default) and sends back the linear XYZ array; the client writes one ``.npz`` with all
 maps (and, per map, its sRGB at the given exposure).
@@ -22,7 +22,6 @@ import numpy as np
 
 import iridis.color as color
 import iridis.diffraction as diffraction
-import iridis.surface as surface
 
 DEFAULT_SURFACES = [
     "builtin:elaphe?size=8um&pixel=80nm",
@@ -37,21 +36,14 @@ def jobs(specs, angles):
 
 
 def serial(specs, angles, size=64, method="reference"):
-    return [task(s, a, size, method) for s, a in jobs(specs, angles)]
+    return [diffraction.brdf_map_of(s, np.radians(a), size, method) for s, a in jobs(specs, angles)]
 
 
 def distributed(client, specs, angles, size=64, method="reference"):
     todo = jobs(specs, angles)
-    # pure=False: the same surface at the same angle is still computed if asked twice (no caching surprises).
-    futures = [client.submit(task, s, a, size, method, pure=False) for s, a in todo]
+    # The task is a library function (importable on every worker), not one of this script's.
+    futures = [client.submit(diffraction.brdf_map_of, s, np.radians(a), size, method) for s, a in todo]
     return client.gather(futures)
-
-
-def task(spec, theta_deg, size, method):
-    """One task: the map of one surface at one incidence, computed where it runs (files levelled by a plane,
-    as the CLI does; built-ins as generated)."""
-    return diffraction.brdf_map(surface.load(spec, level=None if spec.startswith("builtin:") else "plane"),
-                                incidence=np.radians(theta_deg), size=size, method=method)
 
 
 def main(argv=None):

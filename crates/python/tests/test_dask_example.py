@@ -2,7 +2,6 @@
 serial computation, bit for bit, and as iridis.thinfilm.Stack for single stacks."""
 import importlib.util
 import os
-import sys
 
 import numpy as np
 import pytest
@@ -42,17 +41,12 @@ def brdf_example():
     path = os.path.join(ROOT, "examples", "python", "brdf_maps_dask.py")
     spec = importlib.util.spec_from_file_location("brdf_maps_dask", path)
     mod = importlib.util.module_from_spec(spec)
-    sys.modules["brdf_maps_dask"] = mod  # cloudpickle pickles by value only modules it can find
     spec.loader.exec_module(mod)
     return mod
 
 
 def test_brdf_maps_on_two_workers_equal_serial():
-    import cloudpickle
-
     ex = brdf_example()
-    # The example's task function travels by value (the workers cannot import the example's file).
-    cloudpickle.register_pickle_by_value(ex)
     specs = ["builtin:sine?size=4um&pixel=100nm", "builtin:blazed?size=4um&pixel=100nm"]
     expected = ex.serial(specs, [0.0, 40.0], size=17)
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:

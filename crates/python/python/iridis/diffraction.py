@@ -17,7 +17,7 @@ import os
 from . import _native
 from .surface import Surface
 
-__all__ = ["Table", "precompute", "brdf_map"]
+__all__ = ["Table", "precompute", "brdf_map", "brdf_map_of"]
 
 
 class Table:
@@ -76,3 +76,13 @@ def brdf_map(source, incidence=(0.0, 0.0), size=256, method=None, coherence_nm=N
         native, method = _surface(source), method or "reference"
     return _native.brdf_map_xyz(native, method, theta, phi, int(size), coherence_nm, terms, illuminant, observer,
                                 float(step_nm))
+
+
+def brdf_map_of(spec, incidence=(0.0, 0.0), size=256, method="reference", level=None, **options):
+    """:func:`brdf_map` of a SURFACE argument as ``iridis brdf-map`` takes it: a file (plane-levelled unless
+    ``level`` says otherwise, as the CLI does) or ``builtin:…`` (used as generated). A plain function of its
+    arguments, so it is what batch scripts send to Dask workers."""
+    from .surface import load
+
+    how = level if level is not None else ("none" if str(spec).startswith("builtin:") else "plane")
+    return brdf_map(load(spec, level=how), incidence=incidence, size=size, method=method, **options)

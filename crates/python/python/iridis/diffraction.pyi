@@ -33,3 +33,11 @@ def brdf_map(
     observer: str = ...,
     step_nm: float = ...,
 ) -> npt.NDArray[np.float64]: ...
+def brdf_map_of(
+    spec: str,
+    incidence: Union[float, tuple[float, float]] = ...,
+    size: int = ...,
+    method: str = ...,
+    level: Optional[str] = ...,
+    **options: Any,
+) -> npt.NDArray[np.float64]: ...
