@@ -307,15 +307,13 @@ pub struct Batch {
     pub power_entering: Vec<f64>,
 }
 
-/// One point of a batch: `r`, `t`, `R`, `T`, `power_entering`.
-type Point = (Complex64, Complex64, f64, f64, f64);
-
-/// Below this many points at one angle, a point is evaluated directly rather than through [`crate::Prepared`].
-const PREPARE_MIN: usize = 4;
+/// Points per parallel task of [`coh_tmm_batch`]: large enough that the per-angle preparation is shared by many
+/// points, small enough for both threads to stay busy.
+const CHUNK: usize = 4096;
 
 /// `coh_tmm` at many (θ₀, λ) points (`th0` and `lam` of equal length): `r`, `t`, `R`, `T`, `power_entering`
-/// as `coh_tmm` gives them, in parallel. Points that share an angle reuse the per-interface values (the
-/// chapter 4 fast path, [`crate::Prepared`]) when the indices are constant.
+/// as `coh_tmm` gives them, in parallel over chunks of points. With constant indices each chunk prepares every
+/// angle it meets once (the chapter 4 fast path, [`crate::Prepared`]) and reuses it for the points at that angle.
 pub fn coh_tmm_batch(pol: Pol, n: Indices<'_>, d: &[f64], th0: &[f64], lam: &[f64]) -> Result<Batch, ThinFilmError> {
     let points = th0.len();
     if lam.len() != points {
@@ -334,89 +332,84 @@ pub fn coh_tmm_batch(pol: Pol, n: Indices<'_>, d: &[f64], th0: &[f64], lam: &[f6
             media
         }
     };
+    if points == 0 {
+        if let Indices::Constant(x) = n {
+            check_lists(x, d)?;
+        }
+        return Ok(Batch::default());
+    }
     let first_n: Vec<Complex64> = match n {
         Indices::Constant(x) => x.to_vec(),
         Indices::PerPoint { data, .. } => (0..media_count).map(|j| data[j * points]).collect(),
     };
     check_lists(&first_n, d)?;
-    if let Indices::PerPoint { data, .. } = n {
-        for (k, x) in data.iter().enumerate() {
-            check_index(k / points.max(1), *x)
-                .map_err(|e| invalid(format!("{e} (at point {} of the batch)", k % points.max(1))))?;
-        }
-    }
-    for i in 0..points {
-        check_angle_wavelength(th0[i], lam[i]).map_err(|e| invalid(format!("{e} (at point {i} of the batch)")))?;
-    }
+    let stack = match n {
+        Indices::Constant(x) => Some(stack_from_lists(x, d, None)?),
+        Indices::PerPoint { .. } => None,
+    };
     let inner = &d[1..d.len() - 1];
+    let zero = Complex64::new(0.0, 0.0);
     let mut out = Batch {
-        r: vec![Complex64::new(0.0, 0.0); points],
-        t: vec![Complex64::new(0.0, 0.0); points],
+        r: vec![zero; points],
+        t: vec![zero; points],
         big_r: vec![0.0; points],
         big_t: vec![0.0; points],
         power_entering: vec![0.0; points],
     };
-    let pick = |g: Complex64, tau: Complex64, gp: Complex64, taup: Complex64| match pol {
-        Pol::S => (g, tau),
-        Pol::P => (gp, taup),
+    let pick = |a: [Complex64; 4]| match pol {
+        Pol::S => (a[0], a[2]),
+        Pol::P => (a[1], a[3]),
     };
-    // One point on the general path.
-    let direct = |i: usize, media: &mut Vec<Medium>| {
-        match n {
-            Indices::Constant(x) => media_into(x.iter().copied(), th0[i], media),
-            Indices::PerPoint { data, .. } => media_into((0..media_count).map(|j| data[j * points + i]), th0[i], media),
-        }
-        let c = compose(media, inner, lam[i], None);
-        let (r, t) = pick(c.gamma_s, c.tau_s, c.gamma_p, c.tau_p);
-        let (rr, tt, pe) = powers(pol, r, t, media[0], media[media.len() - 1]);
-        (r, t, rr, tt, pe)
-    };
-    let results: Vec<(usize, Point)> = match n {
-        Indices::PerPoint { .. } => {
-            (0..points).into_par_iter().map_init(|| Vec::with_capacity(media_count), |m, i| (i, direct(i, m))).collect()
-        }
-        Indices::Constant(x) => {
-            let mut groups: HashMap<u64, Vec<usize>> = HashMap::new();
-            for (i, a) in th0.iter().enumerate() {
-                groups.entry(a.abs().to_bits()).or_default().push(i);
-            }
-            let groups: Vec<Vec<usize>> = groups.into_values().collect();
-            let stack = stack_from_lists(x, d, None)?;
-            groups
-                .par_iter()
-                .map_init(
-                    || Vec::with_capacity(media_count),
-                    |m, idx| -> Result<Vec<_>, ThinFilmError> {
-                        if idx.len() < PREPARE_MIN {
-                            return Ok(idx.iter().map(|&i| (i, direct(i, m))).collect());
+    out.r
+        .par_chunks_mut(CHUNK)
+        .zip(out.t.par_chunks_mut(CHUNK))
+        .zip(out.big_r.par_chunks_mut(CHUNK))
+        .zip(out.big_t.par_chunks_mut(CHUNK))
+        .zip(out.power_entering.par_chunks_mut(CHUNK))
+        .enumerate()
+        .try_for_each(|(c, ((((r, t), big_r), big_t), pe))| -> Result<(), ThinFilmError> {
+            let start = c * CHUNK;
+            let mut media = Vec::with_capacity(media_count);
+            // Per angle in this chunk: the prepared stack and its two end media.
+            let mut prepared: HashMap<u64, (crate::Prepared, Medium, Medium)> = HashMap::new();
+            for k in 0..r.len() {
+                let i = start + k;
+                check_angle_wavelength(th0[i], lam[i])
+                    .map_err(|e| invalid(format!("{e} (at point {i} of the batch)")))?;
+                let (amp, first, last) = match (&stack, n) {
+                    (Some(stack), Indices::Constant(x)) => {
+                        let a = th0[i].abs().min(FRAC_PI_2);
+                        let entry = match prepared.entry(a.to_bits()) {
+                            std::collections::hash_map::Entry::Occupied(o) => o.into_mut(),
+                            std::collections::hash_map::Entry::Vacant(v) => {
+                                media_into(x.iter().copied(), a, &mut media);
+                                let ends = (media[0], media[media.len() - 1]);
+                                v.insert((stack.prepare(a)?, ends.0, ends.1))
+                            }
+                        };
+                        (entry.0.amplitudes(lam[i])?, entry.1, entry.2)
+                    }
+                    (_, Indices::PerPoint { data, .. }) => {
+                        for j in 0..media_count {
+                            check_index(j, data[j * points + i])
+                                .map_err(|e| invalid(format!("{e} (at point {i} of the batch)")))?;
                         }
-                        let a = th0[idx[0]].abs().min(FRAC_PI_2);
-                        let prepared = stack.prepare(a)?;
-                        media_into(x.iter().copied(), a, m);
-                        let (first, last) = (m[0], m[m.len() - 1]);
-                        idx.iter()
-                            .map(|&i| {
-                                let [gs, gp, ts, tp] = prepared.amplitudes(lam[i])?;
-                                let (r, t) = pick(gs, ts, gp, tp);
-                                let (rr, tt, pe) = powers(pol, r, t, first, last);
-                                Ok((i, (r, t, rr, tt, pe)))
-                            })
-                            .collect()
-                    },
-                )
-                .collect::<Result<Vec<Vec<_>>, ThinFilmError>>()?
-                .into_iter()
-                .flatten()
-                .collect()
-        }
-    };
-    for (i, (r, t, rr, tt, pe)) in results {
-        out.r[i] = r;
-        out.t[i] = t;
-        out.big_r[i] = rr;
-        out.big_t[i] = tt;
-        out.power_entering[i] = pe;
-    }
+                        media_into((0..media_count).map(|j| data[j * points + i]), th0[i], &mut media);
+                        let c = compose(&media, inner, lam[i], None);
+                        ([c.gamma_s, c.gamma_p, c.tau_s, c.tau_p], media[0], media[media.len() - 1])
+                    }
+                    (None, Indices::Constant(_)) => unreachable!("constant indices always build a stack"),
+                };
+                let (rr, tt) = pick(amp);
+                let (x_r, x_t, x_pe) = powers(pol, rr, tt, first, last);
+                r[k] = rr;
+                t[k] = tt;
+                big_r[k] = x_r;
+                big_t[k] = x_t;
+                pe[k] = x_pe;
+            }
+            Ok(())
+        })?;
     Ok(out)
 }
 
@@ -445,6 +438,8 @@ mod tests {
         let lam: Vec<f64> = (0..40).map(|i| 380.0 + 10.0 * i as f64).collect();
         for pol in [Pol::S, Pol::P] {
             let b = coh_tmm_batch(pol, Indices::Constant(&n), &d, &th, &lam).unwrap();
+            let e = coh_tmm_batch(pol, Indices::Constant(&n), &d, &[], &[]).unwrap();
+            assert!(e.r.is_empty());
             for i in 0..40 {
                 let one = coh_tmm(pol, &n, &d, th[i], lam[i]).unwrap();
                 assert!((b.r[i] - one.r).norm() < 1e-13 && (b.t[i] - one.t).norm() < 1e-13);
