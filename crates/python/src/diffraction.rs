@@ -134,7 +134,7 @@ fn brdf_map_xyz<'py>(
     if !(1..=4096).contains(&size) {
         return Err(value_error(format!("size {size} must be between 1 and 4096 pixels")));
     }
-    if !(theta_i.is_finite() && (0.0..std::f64::consts::FRAC_PI_2).contains(&theta_i)) || !phi_i.is_finite() {
+    if !((0.0..std::f64::consts::FRAC_PI_2).contains(&theta_i) && phi_i.is_finite()) {
         return Err(value_error(format!("incidence θ = {theta_i} rad must be in [0, π/2), φ finite")));
     }
     let shading = Shading::default();
