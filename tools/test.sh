@@ -33,3 +33,29 @@ fi
 
 echo "== cargo test --workspace --release"
 cargo test --workspace --release
+
+# The Python package (crates/python), built and installed the way the README tells users to
+# (`pip install ./crates/python`), into a throw-away virtual environment, then its tests (pytest: the tmm drop-in
+# against tmm and the committed fixtures, colours, films, the README's example, the Dask example on a two-worker
+# local cluster). The build reuses cargo's target directory, so only the binding crate and pyo3 compile anew.
+echo "== Python package: pip install ./crates/python into a throw-away venv, then pytest"
+if ! command -v python3 >/dev/null 2>&1; then
+    echo "error: python3 is needed for the Python package's tests (Debian: apt-get install python3 python3-venv)"
+    exit 1
+fi
+VENV="$(mktemp -d "${TMPDIR:-/tmp}/iridis-venv.XXXXXX")"
+trap 'rm -rf "$VENV"' EXIT
+if ! python3 -m venv "$VENV" >/dev/null 2>&1; then
+    # Debian's python3 comes without ensurepip unless python3-venv is installed.
+    if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
+        echo "== installing python3-venv"
+        apt-get update -qq && apt-get install -y -qq python3-venv >/dev/null
+        rm -rf "$VENV" && python3 -m venv "$VENV"
+    else
+        echo "error: python3 -m venv failed; install python3-venv (Debian/Ubuntu) and run again"
+        exit 1
+    fi
+fi
+"$VENV/bin/pip" install -q --disable-pip-version-check maturin numpy pytest tmm "dask[distributed]"
+CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$PWD/target}" "$VENV/bin/pip" install -q --disable-pip-version-check ./crates/python
+(cd crates/python && "$VENV/bin/python" -m pytest -q tests)

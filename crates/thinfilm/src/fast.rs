@@ -117,6 +117,20 @@ impl Prepared {
         Ok(self.run(wavelength_nm, |j| thicknesses_nm[j]))
     }
 
+    /// The complex amplitudes `[r_s, r_p, t_s, t_p]` (the composite γ and τ at the top) at a wavelength with
+    /// the stack's own thicknesses: what `tmm.coh_tmm` reports as `r` and `t`.
+    pub fn amplitudes(&self, wavelength_nm: f64) -> Result<[Complex64; 4], ThinFilmError> {
+        self.check(wavelength_nm)?;
+        let d = |j: usize| self.thicknesses[j];
+        Ok(if self.sets.len() == 1 {
+            amplitudes(&self.sets[0], wavelength_nm, &d)
+        } else {
+            let a = amplitudes(&self.sets[0], wavelength_nm, &d);
+            let b = amplitudes(&self.sets[1], wavelength_nm, &d);
+            [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2]), 0.5 * (a[3] + b[3])]
+        })
+    }
+
     #[inline]
     fn run(&self, wavelength_nm: f64, d: impl Fn(usize) -> f64) -> Rta {
         let [gs, gp, ts, tp] = if self.sets.len() == 1 {

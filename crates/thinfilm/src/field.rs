@@ -19,9 +19,9 @@ use crate::stack::Stack;
 /// The waves of one polarisation: `v[j]`, `w[j]` forward/backward amplitudes at the top of medium `j`
 /// (for `j = 0`, at the first interface: `v = 1`, `w = r`).
 #[derive(Debug, Clone)]
-struct Waves {
-    v: Vec<Complex64>,
-    w: Vec<Complex64>,
+pub(crate) struct Waves {
+    pub(crate) v: Vec<Complex64>,
+    pub(crate) w: Vec<Complex64>,
     p: bool,
 }
 
@@ -168,7 +168,7 @@ pub struct PolPowers {
 }
 
 /// The composite reflectivities below every interface, then the amplitudes from the top down.
-fn waves(media: &[Medium], d: &[f64], wavelength_nm: f64, p: bool) -> Waves {
+pub(crate) fn waves(media: &[Medium], d: &[f64], wavelength_nm: f64, p: bool) -> Waves {
     let n = d.len();
     let rt = |j: usize| {
         let f = fresnel(media[j - 1], media[j]);

@@ -21,6 +21,8 @@
 //!   layer, ellipsometric ψ and Δ;
 //! * [`jet`]: exact derivatives of R, T, ψ, Δ with respect to thicknesses and indices (forward-mode
 //!   automatic differentiation through the same equations), for fitting;
+//! * [`tmm`]: the calling convention of Byrnes' `tmm` package (index and thickness lists, `r`, `t`, `R`, `T`,
+//!   `vw_list`, … with its conventions), for the Python drop-in `iridis.tmm`;
 //! * [`sampling`]: warnings when a wavelength grid cannot resolve the fringes of a thick layer;
 //! * [`color`]: film colours (reflected / transmitted spectrum → XYZ through `iridis-color`).
 //! * [`htsg`]: the He–Torrance–Sillion–Greenberg BRDF of a rough interface (rms height σ, correlation
@@ -54,6 +56,7 @@ pub mod recurrence;
 pub mod rough;
 pub mod sampling;
 pub mod stack;
+pub mod tmm;
 
 pub use error::ThinFilmError;
 pub use fast::Prepared;

@@ -1,0 +1,8 @@
+from . import color as color
+from . import diffraction as diffraction
+from . import render as render
+from . import surface as surface
+from . import thinfilm as thinfilm
+from . import tmm as tmm
+
+__version__: str

@@ -1,0 +1,136 @@
+"""``python -m iridis.bench``: iridis.tmm against its peers in the same run, on this machine.
+
+1. call by call: ``iridis.tmm.coh_tmm`` against ``tmm.coh_tmm`` (same arguments, a loop of calls reading
+   ``['R']``; and reading every key);
+2. a batch of (λ, θ) points: ``iridis.tmm.coh_tmm_batch`` against a loop of ``tmm.coh_tmm`` and, where it is
+   installed, ``tmm_fast`` (PyTorch, CPU) on the same grid.
+
+Every result is checked against tmm's before it is timed. Options: ``--points N`` (batch size, default 10⁵),
+``--tmm-points N`` (how many of the batch's points tmm runs, default all; fewer are timed and scaled, which
+the output says), ``--json``.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import platform
+import time
+
+import numpy as np
+
+from . import tmm as itmm
+
+STACKS = {
+    "3 layers": ([1.0, 1.38, 2.35 + 0.01j, 1.46, 1.52], [np.inf, 95.0, 60.0, 140.0, np.inf]),
+    "10 layers": ([1.0] + [2.35, 1.46] * 5 + [1.52], [np.inf] + [60.0, 95.0] * 5 + [np.inf]),
+}
+
+
+def best_of(fn, repeat=3):
+    """The fastest of `repeat` runs of fn(), in seconds (the least disturbed by other work)."""
+    best = float("inf")
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        fn()
+        best = min(best, time.perf_counter() - t0)
+    return best
+
+
+def call_by_call(tmm, calls):
+    rows = []
+    for name, (n, d) in STACKS.items():
+        lam = np.linspace(400, 700, calls)
+        a = [tmm.coh_tmm("p", n, d, 0.3, x)["R"] for x in lam[:50]]
+        b = [itmm.coh_tmm("p", n, d, 0.3, x)["R"] for x in lam[:50]]
+        assert np.max(np.abs(np.array(a) - b)) < 1e-9, "iridis.tmm disagrees with tmm"
+        t_tmm = best_of(lambda: [tmm.coh_tmm("p", n, d, 0.3, x)["R"] for x in lam])
+        t_iri = best_of(lambda: [itmm.coh_tmm("p", n, d, 0.3, x)["R"] for x in lam])
+        t_all = best_of(lambda: [dict(itmm.coh_tmm("p", n, d, 0.3, x)) for x in lam])
+        rows.append({"stack": name, "calls": calls, "tmm_us": t_tmm / calls * 1e6, "iridis_us": t_iri / calls * 1e6,
+                     "iridis_all_keys_us": t_all / calls * 1e6, "speedup": t_tmm / t_iri,
+                     "speedup_all_keys": t_tmm / t_all})
+    return rows
+
+
+def batch(tmm, points, tmm_points):
+    n, d = STACKS["3 layers"]
+    k = max(1, int(round(points / 1000)))
+    lam = np.linspace(380.0, 780.0, points // k)
+    th = np.linspace(0.0, np.radians(85.0), k)
+    grid_th, grid_lam = np.meshgrid(th, lam)
+    t_iri = best_of(lambda: itmm.coh_tmm_batch("s", n, d, grid_th, grid_lam))
+    out = itmm.coh_tmm_batch("s", n, d, grid_th, grid_lam)
+    flat_th, flat_lam, flat_r = grid_th.ravel(), grid_lam.ravel(), out["R"].ravel()
+    total = flat_th.size
+    m = total if tmm_points is None else min(tmm_points, total)
+    pick = np.linspace(0, total - 1, m).astype(int)
+    t0 = time.perf_counter()
+    ref = np.array([tmm.coh_tmm("s", n, d, flat_th[i], flat_lam[i])["R"] for i in pick])
+    t_tmm = (time.perf_counter() - t0) * total / m
+    worst = float(np.max(np.abs(ref - flat_r[pick])))
+    assert worst < 1e-9, f"coh_tmm_batch disagrees with tmm by {worst}"
+    row = {"points": total, "grid": f"{lam.size} λ × {th.size} θ", "stack": "3 layers", "iridis_s": t_iri,
+           "tmm_s": t_tmm, "tmm_points_timed": m, "speedup": t_tmm / t_iri, "worst_abs_diff_R": worst}
+    row["tmm_fast"] = tmm_fast_peer(n, d, th, lam, out["R"])
+    return row
+
+
+def tmm_fast_peer(n, d, th, lam, reference):
+    """tmm_fast (PyTorch) on the same grid, CPU, where installed."""
+    try:
+        import torch
+        import tmm_fast
+    except ImportError as e:
+        return {"skipped": f"tmm_fast is not installed ({e.name}); pip install tmm-fast (pulls PyTorch) to add it"}
+    N = torch.tensor(np.tile(np.asarray(n, complex)[None, :, None], (1, 1, lam.size)), dtype=torch.complex128)
+    T = torch.tensor(np.asarray(d, float)[None, :], dtype=torch.float64)
+    Th = torch.tensor(th, dtype=torch.float64)
+    L = torch.tensor(lam, dtype=torch.float64)
+    run = lambda: tmm_fast.coh_tmm("s", N, T, Th, L, device="cpu")  # noqa: E731
+    res = run()
+    r = np.asarray(res["R"]).reshape(th.size, lam.size).T
+    seconds = best_of(run)
+    return {"seconds": seconds, "worst_abs_diff_R": float(np.max(np.abs(r - reference))),
+            "torch_threads": torch.get_num_threads()}
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(prog="python -m iridis.bench", description=__doc__.split("\n\n")[0])
+    p.add_argument("--points", type=int, default=100_000)
+    p.add_argument("--tmm-points", type=int, default=None)
+    p.add_argument("--calls", type=int, default=2000)
+    p.add_argument("--json", action="store_true")
+    a = p.parse_args(argv)
+    try:
+        import tmm
+    except ImportError:
+        raise SystemExit("the peer, tmm, is not installed: pip install tmm")
+    info = {"machine": platform.machine(), "cpus": os.cpu_count(), "python": platform.python_version(),
+            "numpy": np.__version__, "tmm": getattr(tmm, "__version__", "?")}
+    calls = call_by_call(tmm, a.calls)
+    b = batch(tmm, a.points, a.tmm_points)
+    if a.json:
+        print(json.dumps({"info": info, "call_by_call": calls, "batch": b}, indent=1))
+        return
+    print(f"iridis.bench on {info['cpus']} CPUs, Python {info['python']}, numpy {info['numpy']} "
+          "(best of 3 runs each; every result checked against tmm first)")
+    print("\ncoh_tmm, call by call (p, θ = 0.3 rad, reading ['R']):")
+    print(f"  {'stack':<10} {'tmm µs':>9} {'iridis µs':>10} {'speed-up':>9} {'all keys µs':>12} {'speed-up':>9}")
+    for r in calls:
+        print(f"  {r['stack']:<10} {r['tmm_us']:9.1f} {r['iridis_us']:10.2f} {r['speedup']:8.0f}× "
+              f"{r['iridis_all_keys_us']:12.2f} {r['speedup_all_keys']:8.0f}×")
+    scaled = "" if b["tmm_points_timed"] == b["points"] else f" (tmm timed on {b['tmm_points_timed']} points, scaled)"
+    print(f"\ncoh_tmm_batch over {b['points']} (λ, θ) points ({b['grid']}, {b['stack']}, s):")
+    print(f"  tmm loop     {b['tmm_s']:9.3f} s{scaled}")
+    print(f"  iridis       {b['iridis_s']:9.4f} s   {b['speedup']:.0f}× (worst |ΔR| {b['worst_abs_diff_R']:.1e})")
+    tf = b["tmm_fast"]
+    if "skipped" in tf:
+        print(f"  tmm_fast     skipped: {tf['skipped']}")
+    else:
+        print(f"  tmm_fast     {tf['seconds']:9.4f} s   iridis {tf['seconds'] / b['iridis_s']:.1f}× faster "
+              f"(worst |ΔR| {tf['worst_abs_diff_R']:.1e}, {tf['torch_threads']} torch threads)")
+
+
+if __name__ == "__main__":
+    main()

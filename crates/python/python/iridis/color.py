@@ -1,0 +1,133 @@
+"""Colour science on arrays: spectrum → XYZ / xyY / CIELAB / sRGB under any built-in illuminant and observer,
+and colour differences (CIEDE2000, ΔE*ab). The same library code as ``iridis color xyz`` and
+``iridis color delta-e``: XYZ is relative (``Y = 1`` for a perfect reflector), spectra are interpolated onto
+the observer's 1 nm grid.
+
+Colours are arrays whose last axis has length 3; any leading shape is kept.
+
+Example:
+    >>> import numpy as np, iridis.color as color
+    >>> wl = np.arange(380.0, 781.0, 5.0)
+    >>> xyz = color.spectrum_to_xyz(wl, np.ones_like(wl))   # a perfect white under D65
+    >>> np.round(color.xyz_to_lab(xyz), 6).tolist()
+    [100.0, 0.0, 0.0]
+    >>> round(float(color.delta_e([50, 2.6772, -79.7751], [50, 0, -82.7485])), 4)   # Sharma et al. 2005, pair 1
+    2.0425
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from . import _native
+
+__all__ = [
+    "ILLUMINANTS",
+    "OBSERVERS",
+    "spectrum_to_xyz",
+    "white_point",
+    "xyz_to_xyy",
+    "xyz_to_lab",
+    "lab_to_xyz",
+    "xyz_to_linear_srgb",
+    "xyz_to_srgb",
+    "xyz_to_hex",
+    "delta_e",
+]
+
+ILLUMINANTS, OBSERVERS = (tuple(x) for x in _native.names())
+
+
+def _float_array(x, name):
+    a = np.asarray(x)
+    if a.dtype.kind not in "biuf":
+        raise TypeError(f"{name} must hold real numbers, got dtype {a.dtype}")
+    return a.astype(np.float64, copy=False)
+
+
+def _colours(x, name):
+    a = _float_array(x, name)
+    if a.ndim == 0 or a.shape[-1] != 3:
+        raise ValueError(f"{name} must have a last axis of length 3 (one colour per row), got shape {a.shape}")
+    return np.ascontiguousarray(a.reshape(-1, 3)), a.shape
+
+
+def white_point(illuminant="D65", observer="1931"):
+    """XYZ of a perfect reflector (``Y = 1``) under ``illuminant`` for ``observer``."""
+    return np.array(_native.white_point_xyz(illuminant, observer))
+
+
+def spectrum_to_xyz(wavelengths_nm, values, illuminant="D65", observer="1931"):
+    """XYZ of reflectance (or transmittance) spectra: ``values[..., k]`` at ``wavelengths_nm[k]``.
+
+    Returns shape ``values.shape[:-1] + (3,)``. ``illuminant``: one of ``ILLUMINANTS``; ``observer``:
+    ``"1931"`` (2°) or ``"1964"`` (10°).
+    """
+    wl = _float_array(wavelengths_nm, "wavelengths_nm")
+    if wl.ndim != 1:
+        raise ValueError(f"wavelengths_nm must be 1-D, got shape {wl.shape}")
+    v = _float_array(values, "values")
+    if v.ndim == 0 or v.shape[-1] != wl.size:
+        raise ValueError(f"values of shape {v.shape}: the last axis must match the {wl.size} wavelengths")
+    out = _native._spectrum_to_xyz(np.ascontiguousarray(wl), np.ascontiguousarray(v.reshape(-1, wl.size)),
+                                   illuminant, observer)
+    return out.reshape(v.shape[:-1] + (3,))
+
+
+def _white(white, illuminant, observer):
+    if white is None:
+        return tuple(_native.white_point_xyz(illuminant, observer))
+    w = _float_array(white, "white")
+    if w.shape != (3,):
+        raise ValueError(f"white must be one XYZ triple, got shape {w.shape}")
+    return tuple(float(x) for x in w)
+
+
+def xyz_to_lab(xyz, white=None, illuminant="D65", observer="1931"):
+    """CIELAB relative to ``white`` (default: the white point of ``illuminant`` and ``observer``)."""
+    a, shape = _colours(xyz, "xyz")
+    return _native._xyz_to_lab(a, _white(white, illuminant, observer)).reshape(shape)
+
+
+def lab_to_xyz(lab, white=None, illuminant="D65", observer="1931"):
+    """The inverse of :func:`xyz_to_lab`."""
+    a, shape = _colours(lab, "lab")
+    return _native._lab_to_xyz(a, _white(white, illuminant, observer)).reshape(shape)
+
+
+def xyz_to_xyy(xyz):
+    """Chromaticity x, y and luminance Y."""
+    a, shape = _colours(xyz, "xyz")
+    return _native._xyz_to_xyy(a).reshape(shape)
+
+
+def xyz_to_linear_srgb(xyz):
+    """Linear sRGB (IEC 61966-2-1, D65), not clipped."""
+    a, shape = _colours(xyz, "xyz")
+    return _native._xyz_to_linear_srgb(a).reshape(shape)
+
+
+def xyz_to_srgb(xyz, exposure=1.0):
+    """Display sRGB in [0, 1]: scaled by ``exposure``, clipped, encoded (the CLI's ``srgb``)."""
+    a, shape = _colours(xyz, "xyz")
+    return _native._xyz_to_srgb(a, float(exposure)).reshape(shape)
+
+
+def xyz_to_hex(xyz, exposure=1.0):
+    """``#rrggbb`` strings (the CLI's ``hex``); a list for several colours, a str for one."""
+    a, shape = _colours(xyz, "xyz")
+    out = _native._xyz_to_hex(a, float(exposure))
+    return out[0] if len(shape) == 1 else np.array(out).reshape(shape[:-1]).tolist()
+
+
+def delta_e(lab1, lab2, method="2000"):
+    """Colour difference between Lab colours (broadcast): CIEDE2000 (``"2000"``) or ΔE*ab (``"1976"``)."""
+    a = _float_array(lab1, "lab1")
+    b = _float_array(lab2, "lab2")
+    try:
+        a, b = np.broadcast_arrays(a, b)
+    except ValueError:
+        raise ValueError(f"lab1 of shape {a.shape} and lab2 of shape {b.shape} do not broadcast") from None
+    pa, shape = _colours(a, "lab1")
+    pb, _ = _colours(b, "lab2")
+    out = np.array(_native._delta_e(pa, pb, str(method)))
+    return out.reshape(shape[:-1]) if len(shape) > 1 else out[0]

@@ -1,0 +1,55 @@
+"""Scenes (TOML or glTF, as ``iridis render`` reads them) rendered on the CPU into NumPy arrays: linear sRGB,
+CIE XYZ, or display sRGB with the scene's exposure. Diffraction and thin-film materials, lights,
+environments: everything the CPU renderer does (docs/render.md).
+
+Example:
+    >>> import iridis.render as render
+    >>> img = render.render("examples/gold_sphere.toml", size=(32, 24), spp=1)   # doctest: +SKIP
+    >>> img.shape                                                                # doctest: +SKIP
+    (24, 32, 3)
+"""
+from __future__ import annotations
+
+import os
+
+import numpy as np
+
+from . import _native
+from .color import xyz_to_srgb
+
+__all__ = ["render"]
+
+# XYZ from linear sRGB (IEC 61966-2-1, D65): the inverse of the matrix iridis-color uses.
+_SRGB_TO_XYZ = None
+
+
+def render(scene, size=None, spp=None, space="srgb"):
+    """Renders ``scene`` (a path) on the CPU. ``size``: ``(width, height)``, default the scene's; ``spp``:
+    samples per pixel, default the scene's. ``space``: ``"srgb"`` (display values in [0, 1] after the scene's
+    exposure, as the PNG ``iridis render`` writes), ``"linear_srgb"`` or ``"xyz"`` (linear, before exposure).
+    Returns an array of shape ``(height, width, 3)``."""
+    if space not in ("srgb", "linear_srgb", "xyz"):
+        raise ValueError(f"space {space!r}: use 'srgb', 'linear_srgb' or 'xyz'")
+    w = h = None
+    if size is not None:
+        try:
+            w, h = (int(x) for x in size)
+        except (TypeError, ValueError):
+            raise TypeError(f"size must be (width, height), got {size!r}") from None
+    out = _native.render_scene(os.fspath(scene), w, h, None if spp is None else int(spp))
+    rgb = out["linear_srgb"].astype(np.float64)
+    if space == "linear_srgb":
+        return rgb
+    xyz = _to_xyz(rgb)
+    if space == "xyz":
+        return xyz
+    return xyz_to_srgb(xyz, exposure=out["exposure"])
+
+
+def _to_xyz(rgb):
+    global _SRGB_TO_XYZ
+    if _SRGB_TO_XYZ is None:
+        from .color import xyz_to_linear_srgb
+
+        _SRGB_TO_XYZ = np.linalg.inv(xyz_to_linear_srgb(np.eye(3)).T)
+    return rgb @ _SRGB_TO_XYZ.T

@@ -1,0 +1,8 @@
+from typing import Any, Optional
+
+import numpy as np
+import numpy.typing as npt
+
+def render(
+    scene: Any, size: Optional[tuple[int, int]] = ..., spp: Optional[int] = ..., space: str = ...
+) -> npt.NDArray[np.float64]: ...

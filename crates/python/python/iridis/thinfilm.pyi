@@ -1,0 +1,56 @@
+from typing import Any, Optional, Sequence
+
+import numpy as np
+import numpy.typing as npt
+
+def material_index(name: str, wavelengths_nm: npt.ArrayLike) -> Any: ...
+def materials() -> list[tuple[list[str], str]]: ...
+def colors_of_stacks(
+    indices: npt.ArrayLike,
+    thicknesses_nm: npt.ArrayLike,
+    angle_rad: float = ...,
+    illuminant: str = ...,
+    observer: str = ...,
+    polarization: str = ...,
+    grid_nm: Optional[npt.ArrayLike] = ...,
+) -> dict[str, npt.NDArray[np.float64]]: ...
+
+class Stack:
+    def __init__(self, spec: str) -> None: ...
+    @classmethod
+    def from_lists(
+        cls, indices: npt.ArrayLike, thicknesses_nm: npt.ArrayLike, incoherent: Optional[Sequence[bool]] = ...
+    ) -> "Stack": ...
+    @property
+    def layers(self) -> int: ...
+    def indices(self, wavelengths_nm: npt.ArrayLike) -> npt.NDArray[np.complex128]: ...
+    def rta(
+        self,
+        wavelengths_nm: npt.ArrayLike,
+        angles_rad: npt.ArrayLike = ...,
+        offsets_nm: npt.ArrayLike = ...,
+        polarization: str = ...,
+    ) -> dict[str, npt.NDArray[np.float64]]: ...
+    def reflectance(
+        self,
+        wavelengths_nm: npt.ArrayLike,
+        angles_rad: npt.ArrayLike = ...,
+        offsets_nm: npt.ArrayLike = ...,
+        polarization: str = ...,
+    ) -> npt.NDArray[np.float64]: ...
+    def transmittance(
+        self,
+        wavelengths_nm: npt.ArrayLike,
+        angles_rad: npt.ArrayLike = ...,
+        offsets_nm: npt.ArrayLike = ...,
+        polarization: str = ...,
+    ) -> npt.NDArray[np.float64]: ...
+    def color(
+        self,
+        angles_rad: npt.ArrayLike = ...,
+        offsets_nm: npt.ArrayLike = ...,
+        illuminant: str = ...,
+        observer: str = ...,
+        polarization: str = ...,
+        grid_nm: Optional[npt.ArrayLike] = ...,
+    ) -> dict[str, Any]: ...

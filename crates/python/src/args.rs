@@ -1,0 +1,92 @@
+//! Argument conversion shared by the bindings: sequences or arrays of numbers into Rust slices, with a
+//! `TypeError` that names the argument when the type is wrong.
+
+use num_complex::Complex64;
+use numpy::{PyReadonlyArray1, PyUntypedArrayMethods};
+use pyo3::exceptions::{PyTypeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyFloat, PyList};
+
+/// A library error as Python's `ValueError`, with the library's message.
+pub fn value_error(e: impl std::fmt::Display) -> PyErr {
+    PyValueError::new_err(e.to_string())
+}
+
+/// One real or complex number (a float is read without the complex conversion).
+fn number(name: &str, x: &Bound<'_, PyAny>) -> PyResult<Complex64> {
+    if let Ok(f) = x.downcast_exact::<PyFloat>() {
+        return Ok(Complex64::new(f.value(), 0.0));
+    }
+    x.extract::<Complex64>()
+        .map_err(|_| PyTypeError::new_err(format!("{name} must be a 1-D sequence of numbers, got an item {x:?}")))
+}
+
+/// A 1-D list or array of complex (or real) numbers.
+pub fn complex_list(name: &str, obj: &Bound<'_, PyAny>) -> PyResult<Vec<Complex64>> {
+    // Plain lists first: the common tmm call, and the cheapest to recognise.
+    if let Ok(l) = obj.downcast::<PyList>() {
+        let mut v = Vec::with_capacity(l.len());
+        for x in l.iter() {
+            v.push(number(name, &x)?);
+        }
+        return Ok(v);
+    }
+    if let Ok(a) = obj.extract::<PyReadonlyArray1<'_, Complex64>>() {
+        return Ok(a.as_slice().map(|s| s.to_vec()).unwrap_or_else(|_| a.as_array().to_vec()));
+    }
+    if let Ok(a) = obj.extract::<PyReadonlyArray1<'_, f64>>() {
+        return Ok(a.as_array().iter().map(|&x| Complex64::new(x, 0.0)).collect());
+    }
+    if let Ok(a) = obj.downcast::<numpy::PyUntypedArray>() {
+        if a.ndim() != 1 {
+            return Err(PyValueError::new_err(format!("{name} must be 1-D, got an array of shape {:?}", a.shape())));
+        }
+    }
+    obj.extract::<Vec<Complex64>>()
+        .map_err(|_| PyTypeError::new_err(format!("{name} must be a 1-D sequence of numbers (real or complex)")))
+}
+
+/// A 1-D list or array of real numbers.
+pub fn real_list(name: &str, obj: &Bound<'_, PyAny>) -> PyResult<Vec<f64>> {
+    if let Ok(l) = obj.downcast::<PyList>() {
+        let mut v = Vec::with_capacity(l.len());
+        for x in l.iter() {
+            v.push(x.extract::<f64>().map_err(|_| {
+                PyTypeError::new_err(format!("{name} must be a 1-D sequence of real numbers, got an item {x:?}"))
+            })?);
+        }
+        return Ok(v);
+    }
+    if let Ok(a) = obj.extract::<PyReadonlyArray1<'_, f64>>() {
+        return Ok(a.as_array().to_vec());
+    }
+    if let Ok(a) = obj.downcast::<numpy::PyUntypedArray>() {
+        if a.ndim() != 1 {
+            return Err(PyValueError::new_err(format!("{name} must be 1-D, got an array of shape {:?}", a.shape())));
+        }
+    }
+    obj.extract::<Vec<f64>>()
+        .map_err(|_| PyTypeError::new_err(format!("{name} must be a 1-D sequence of real numbers")))
+}
+
+/// One real number; an array of several gives tmm's "not vectorized" `ValueError`.
+pub fn scalar(name: &str, obj: &Bound<'_, PyAny>, batch_hint: &str) -> PyResult<f64> {
+    if let Ok(x) = obj.extract::<f64>() {
+        return Ok(x);
+    }
+    if let Ok(a) = obj.downcast::<numpy::PyUntypedArray>() {
+        if a.len() > 1 {
+            return Err(PyValueError::new_err(format!(
+                "This function is not vectorized; you need to run one calculation at a time (1 wavelength, 1 \
+                 angle, etc.): {name} has {} values{batch_hint}",
+                a.len()
+            )));
+        }
+    }
+    if obj.extract::<Complex64>().is_ok() {
+        return Err(PyTypeError::new_err(format!(
+            "{name} must be a real number (iridis needs a lossless incident medium and a real angle)"
+        )));
+    }
+    Err(PyTypeError::new_err(format!("{name} must be a real number, got {}", obj.get_type().name()?)))
+}

@@ -1,0 +1,28 @@
+//! # iridis-python
+//!
+//! The native part of the Python package `iridis` (built with maturin, imported as `iridis._native`): thin
+//! bindings of the library crates — NumPy arrays in and out, the GIL released while Rust computes, library
+//! errors raised as `ValueError` with the library's (and so the CLI's) messages. The Python modules in
+//! `python/iridis/` give the public names, docstrings and type stubs.
+
+use pyo3::prelude::*;
+
+mod args;
+mod color;
+mod diffraction;
+mod render;
+mod surface;
+mod thinfilm;
+mod tmm;
+
+#[pymodule]
+fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    tmm::register(m)?;
+    color::register(m)?;
+    thinfilm::register(m)?;
+    surface::register(m)?;
+    diffraction::register(m)?;
+    render::register(m)?;
+    Ok(())
+}

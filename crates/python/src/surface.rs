@@ -1,0 +1,118 @@
+//! `iridis.surface`: height fields from any supported file or a built-in generator (the CLI's SURFACE
+//! argument, `iridis_surface::load_surface`), levelling, roughness statistics.
+
+use iridis_surface::formats::channel::ChannelSel;
+use iridis_surface::{load_surface, prep, stats, HeightField, LoadOptions};
+use numpy::ndarray::Array2;
+use numpy::{IntoPyArray, PyArray2, PyReadonlyArray2};
+use pyo3::exceptions::PyOSError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::args::value_error;
+
+/// Heights in nm, row-major, with the pixel size and where they came from (the native half of
+/// `iridis.surface.Surface`).
+#[pyclass(frozen, module = "iridis._native", name = "_HeightField")]
+#[derive(Debug)]
+pub struct PyHeightField {
+    hf: HeightField,
+}
+
+/// Missing files are `OSError` (as Python's own `open`), everything else about the input `ValueError`.
+fn surface_error(spec: &str, e: iridis_surface::SurfaceError) -> PyErr {
+    let msg = format!("cannot load surface {spec}: {e}");
+    let missing = !spec.starts_with("builtin:") && !std::path::Path::new(spec).exists();
+    if missing {
+        PyOSError::new_err(msg)
+    } else {
+        value_error(msg)
+    }
+}
+
+impl PyHeightField {
+    pub fn field(&self) -> &HeightField {
+        &self.hf
+    }
+}
+
+#[pymethods]
+impl PyHeightField {
+    #[new]
+    fn new(heights_nm: PyReadonlyArray2<'_, f64>, dx_nm: f64, dy_nm: f64) -> PyResult<Self> {
+        let a = heights_nm.as_array();
+        let (rows, cols) = a.dim();
+        let hf = HeightField::new(rows, cols, dx_nm, dy_nm, a.iter().copied().collect()).map_err(value_error)?;
+        Ok(Self { hf })
+    }
+
+    #[getter]
+    fn heights_nm<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        Array2::from_shape_vec((self.hf.rows, self.hf.cols), self.hf.heights_nm.clone())
+            .expect("shape")
+            .into_pyarray(py)
+    }
+    #[getter]
+    fn dx_nm(&self) -> f64 {
+        self.hf.dx_nm
+    }
+    #[getter]
+    fn dy_nm(&self) -> f64 {
+        self.hf.dy_nm
+    }
+    /// Source, format, the unit heights were stored in, notes and warnings.
+    #[getter]
+    fn meta<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let m = &self.hf.meta;
+        let d = PyDict::new(py);
+        d.set_item("source", &m.source)?;
+        d.set_item("format", &m.format)?;
+        d.set_item("z_unit", &m.z_unit)?;
+        d.set_item("notes", m.notes.clone())?;
+        d.set_item("warnings", m.warnings.clone())?;
+        Ok(d)
+    }
+
+    /// A levelled copy: `none`, `mean`, `plane`, `rows`, `lines-median` or `poly` (the CLI's `--level`).
+    fn level(&self, how: &str) -> PyResult<Self> {
+        Ok(Self { hf: prep::level_by_name(&self.hf, how).map_err(value_error)? })
+    }
+
+    /// Roughness of the field as it is (level it first): Sq, Sa, skewness, excess kurtosis, Sz, correlation
+    /// length (nm), as `iridis surface info --json`.
+    fn roughness<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let r = py.allow_threads(|| stats::roughness(&self.hf));
+        let d = PyDict::new(py);
+        d.set_item("Sq_nm", r.sq_nm)?;
+        d.set_item("Sa_nm", r.sa_nm)?;
+        d.set_item("Ssk", r.skewness)?;
+        d.set_item("Sku_excess", r.excess_kurtosis)?;
+        d.set_item("Sz_nm", r.sz_nm)?;
+        d.set_item("correlation_length_nm", r.correlation_length_nm)?;
+        Ok(d)
+    }
+}
+
+/// Loads a SURFACE as the CLI does: a file (AFM instrument formats, `.npy`, `.npz`, PNG/TIFF, text) or
+/// `builtin:NAME[?size=…&pixel=…&seed=…]`.
+#[pyfunction]
+#[pyo3(signature = (spec, channel=None, pixel_size_nm=None, max_height_nm=None, height_unit=None))]
+fn load_height_field(
+    py: Python<'_>,
+    spec: &str,
+    channel: Option<&str>,
+    pixel_size_nm: Option<f64>,
+    max_height_nm: Option<f64>,
+    height_unit: Option<String>,
+) -> PyResult<PyHeightField> {
+    let channel = channel.map(|c| c.parse::<ChannelSel>()).transpose().map_err(value_error)?;
+    let opts = LoadOptions { pixel_size_nm, max_height_nm, channel, height_unit, ..Default::default() };
+    let hf = py.allow_threads(|| load_surface(spec, &opts)).map_err(|e| surface_error(spec, e))?;
+    Ok(PyHeightField { hf })
+}
+
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<PyHeightField>()?;
+    m.add_function(wrap_pyfunction!(load_height_field, m)?)?;
+    Ok(())
+}

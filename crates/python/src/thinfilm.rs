@@ -1,0 +1,254 @@
+//! `iridis.thinfilm`: stacks in the CLI's syntax or from lists, R/T over arrays of (λ, θ, thickness offset),
+//! film colours — the same library calls as `iridis thinfilm spectrum|color`.
+
+use iridis_thinfilm::color::{FilmColorimeter, Polarization};
+use iridis_thinfilm::tmm::stack_from_lists;
+use iridis_thinfilm::Stack;
+use num_complex::Complex64;
+use numpy::ndarray::Array2;
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1};
+use pyo3::prelude::*;
+use rayon::prelude::*;
+
+use crate::args::{complex_list, real_list, value_error};
+use crate::color::{illuminant, observer};
+
+/// A thin-film stack (the native half of `iridis.thinfilm.Stack`).
+#[pyclass(frozen, module = "iridis._native", name = "_Stack")]
+#[derive(Debug)]
+pub struct PyStack {
+    stack: Stack,
+}
+
+fn pol(s: &str) -> PyResult<Polarization> {
+    s.parse().map_err(value_error)
+}
+
+#[pymethods]
+impl PyStack {
+    /// Parses the CLI's syntax, e.g. `"air | water 348nm | air"`, `"air | inc:BK7 1mm | n=1.38+0.01i 90nm | Si"`.
+    #[new]
+    fn new(spec: &str) -> PyResult<Self> {
+        Ok(Self { stack: Stack::parse(spec).map_err(value_error)? })
+    }
+
+    /// From indices (incident, layers…, substrate) and the layers' thicknesses in nm.
+    #[staticmethod]
+    #[pyo3(signature = (indices, thicknesses_nm, incoherent=None))]
+    fn from_lists(
+        indices: &Bound<'_, PyAny>,
+        thicknesses_nm: &Bound<'_, PyAny>,
+        incoherent: Option<Vec<bool>>,
+    ) -> PyResult<Self> {
+        let n = complex_list("indices", indices)?;
+        let t = real_list("thicknesses_nm", thicknesses_nm)?;
+        if t.len() + 2 != n.len() {
+            return Err(value_error(format!(
+                "{} indices need {} thicknesses (one per layer between the incident medium and the substrate), got {}",
+                n.len(),
+                n.len().saturating_sub(2),
+                t.len()
+            )));
+        }
+        let mut d = vec![f64::INFINITY];
+        d.extend(t);
+        d.push(f64::INFINITY);
+        let inc = match incoherent {
+            None => None,
+            Some(v) if v.len() == n.len() - 2 => Some([vec![true], v, vec![true]].concat()),
+            Some(v) => {
+                return Err(value_error(format!("incoherent has {} entries for {} layers", v.len(), n.len() - 2)))
+            }
+        };
+        Ok(Self { stack: stack_from_lists(&n, &d, inc.as_deref()).map_err(value_error)? })
+    }
+
+    fn __str__(&self) -> String {
+        self.stack.to_string()
+    }
+
+    #[getter]
+    fn layers(&self) -> usize {
+        self.stack.layers.len()
+    }
+
+    /// The index of each medium (incident first) at each wavelength: shape (media, wavelengths).
+    fn indices<'py>(
+        &self,
+        py: Python<'py>,
+        wavelengths: PyReadonlyArray1<'py, f64>,
+    ) -> PyResult<Bound<'py, PyArray2<Complex64>>> {
+        let wl = wavelengths.as_array();
+        let media: Vec<_> = self.stack.materials().collect();
+        let mut out = Vec::with_capacity(media.len() * wl.len());
+        for m in &media {
+            for &w in wl.iter() {
+                out.push(m.index_at(w).map_err(value_error)?);
+            }
+        }
+        Ok(Array2::from_shape_vec((media.len(), wl.len()), out).expect("shape").into_pyarray(py))
+    }
+
+    /// `[R_s, R_p, T_s, T_p]` at each point `(λ_i, θ_i, offset_i)` (1-D arrays of one length): shape (4, P).
+    fn _rta<'py>(
+        &self,
+        py: Python<'py>,
+        wavelengths: PyReadonlyArray1<'py, f64>,
+        angles: PyReadonlyArray1<'py, f64>,
+        offsets: PyReadonlyArray1<'py, f64>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let (w, a, o) = (wavelengths.as_slice()?, angles.as_slice()?, offsets.as_slice()?);
+        let p = w.len();
+        let stack = &self.stack;
+        let rows = py
+            .allow_threads(|| {
+                (0..p).into_par_iter().map(|i| stack.evaluate_offset(w[i], a[i], o[i])).collect::<Result<Vec<_>, _>>()
+            })
+            .map_err(value_error)?;
+        let mut out = Array2::zeros((4, p));
+        for (i, x) in rows.iter().enumerate() {
+            out[[0, i]] = x.r_s;
+            out[[1, i]] = x.r_p;
+            out[[2, i]] = x.t_s;
+            out[[3, i]] = x.t_p;
+        }
+        Ok(out.into_pyarray(py))
+    }
+
+    /// Reflected and transmitted XYZ at each `(θ_i, offset_i)`: shape (P, 2, 3) flattened to (P, 6), on the
+    /// wavelength `grid` (nm), as `iridis thinfilm color`.
+    fn _colors<'py>(
+        &self,
+        py: Python<'py>,
+        angles: PyReadonlyArray1<'py, f64>,
+        offsets: PyReadonlyArray1<'py, f64>,
+        grid: PyReadonlyArray1<'py, f64>,
+        illuminant: &str,
+        observer: &str,
+        polarization: &str,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let (ill, obs, pol) = (self::illuminant(illuminant)?, self::observer(observer)?, self::pol(polarization)?);
+        let (a, o, g) = (angles.as_slice()?, offsets.as_slice()?, grid.as_slice()?);
+        if g.len() < 2 || g.windows(2).any(|x| x[1] <= x[0]) {
+            return Err(value_error("the wavelength grid must have ≥ 2 strictly increasing values"));
+        }
+        let stack = &self.stack;
+        let out = py
+            .allow_threads(|| {
+                let meter = FilmColorimeter::new(g, ill, obs);
+                (0..a.len())
+                    .into_par_iter()
+                    .map(|i| {
+                        let mut r = Vec::with_capacity(g.len());
+                        let mut t = Vec::with_capacity(g.len());
+                        for &w in g {
+                            let x = stack.evaluate_offset(w, a[i], o[i])?;
+                            r.push(pol.reflectance(&x));
+                            t.push(pol.transmittance(&x));
+                        }
+                        let c = meter.from_spectra(&r, &t);
+                        Ok([c.reflected.to_array(), c.transmitted.to_array()].concat())
+                    })
+                    .collect::<Result<Vec<Vec<f64>>, iridis_thinfilm::ThinFilmError>>()
+            })
+            .map_err(value_error)?;
+        let flat: Vec<f64> = out.into_iter().flatten().collect();
+        Ok(Array2::from_shape_vec((a.len(), 6), flat).expect("shape").into_pyarray(py))
+    }
+}
+
+/// Reflected and transmitted XYZ of many stacks of constant indices: `n` (stacks × media, complex), `d`
+/// (stacks × layers, nm), one angle; shape (stacks, 6). Each row is one stack, as `Stack.color`.
+#[pyfunction]
+fn _stack_colors<'py>(
+    py: Python<'py>,
+    n: numpy::PyReadonlyArray2<'py, Complex64>,
+    d: numpy::PyReadonlyArray2<'py, f64>,
+    angle: f64,
+    grid: PyReadonlyArray1<'py, f64>,
+    illuminant: &str,
+    observer: &str,
+    polarization: &str,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let (ill, obs, pol) = (self::illuminant(illuminant)?, self::observer(observer)?, self::pol(polarization)?);
+    let (n, d, g) = (n.as_array(), d.as_array(), grid.as_slice()?);
+    if n.nrows() != d.nrows() || n.ncols() != d.ncols() + 2 {
+        return Err(value_error(format!(
+            "indices of shape {:?} need thicknesses of shape ({}, {}), got {:?}",
+            n.shape(),
+            n.nrows(),
+            n.ncols().saturating_sub(2),
+            d.shape()
+        )));
+    }
+    if g.len() < 2 || g.windows(2).any(|x| x[1] <= x[0]) {
+        return Err(value_error("the wavelength grid must have ≥ 2 strictly increasing values"));
+    }
+    let rows: Vec<(Vec<Complex64>, Vec<f64>)> = n
+        .rows()
+        .into_iter()
+        .zip(d.rows())
+        .map(|(a, b)| {
+            let mut dl = vec![f64::INFINITY];
+            dl.extend(b.iter());
+            dl.push(f64::INFINITY);
+            (a.to_vec(), dl)
+        })
+        .collect();
+    let out = py
+        .allow_threads(|| {
+            let meter = FilmColorimeter::new(g, ill, obs);
+            rows.par_iter()
+                .enumerate()
+                .map(|(i, (n, d))| {
+                    let stack = stack_from_lists(n, d, None)
+                        .map_err(|e| iridis_thinfilm::ThinFilmError::Invalid(format!("stack {i}: {e}")))?;
+                    // Constant indices: the chapter 4 fast path (per-interface values once per stack).
+                    let prepared = stack.prepare(angle)?;
+                    let mut r = Vec::with_capacity(g.len());
+                    let mut t = Vec::with_capacity(g.len());
+                    for &w in g {
+                        let x = prepared.evaluate(w)?;
+                        r.push(pol.reflectance(&x));
+                        t.push(pol.transmittance(&x));
+                    }
+                    let c = meter.from_spectra(&r, &t);
+                    Ok([c.reflected.to_array(), c.transmitted.to_array()].concat())
+                })
+                .collect::<Result<Vec<Vec<f64>>, iridis_thinfilm::ThinFilmError>>()
+        })
+        .map_err(value_error)?;
+    let flat: Vec<f64> = out.into_iter().flatten().collect();
+    Ok(Array2::from_shape_vec((rows.len(), 6), flat).expect("shape").into_pyarray(py))
+}
+
+/// The complex index `n + iκ` of a material (library name, `n=…`, `file:PATH`) at each wavelength (nm).
+#[pyfunction]
+fn material_index<'py>(
+    py: Python<'py>,
+    name: &str,
+    wavelengths: PyReadonlyArray1<'py, f64>,
+) -> PyResult<Bound<'py, PyArray1<Complex64>>> {
+    let stack = Stack::parse(&format!("air | {name}")).map_err(value_error)?;
+    let out = wavelengths
+        .as_array()
+        .iter()
+        .map(|&w| stack.substrate.index_at(w))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(value_error)?;
+    Ok(out.into_pyarray(py))
+}
+
+/// The built-in material library: `(names, description)` pairs.
+#[pyfunction]
+fn materials() -> Vec<(Vec<&'static str>, &'static str)> {
+    iridis_thinfilm::Material::library()
+}
+
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<PyStack>()?;
+    m.add_function(wrap_pyfunction!(material_index, m)?)?;
+    m.add_function(wrap_pyfunction!(materials, m)?)?;
+    m.add_function(wrap_pyfunction!(_stack_colors, m)?)?;
+    Ok(())
+}

@@ -1,0 +1,73 @@
+"""iridis.surface against numpy (files numpy wrote, read by numpy itself) and closed forms."""
+import os
+import shutil
+
+import numpy as np
+import pytest
+
+import iridis.surface as surface
+from conftest import ROOT
+
+FIX = os.path.join(ROOT, "crates", "surface", "tests", "fixtures")
+
+
+def test_npy_written_by_numpy_reads_exactly():
+    # numpy_f64.npy has a sidecar (numpy_f64.npy.json): 100 × 80 nm pixels, heights in nm.
+    s = surface.load(os.path.join(FIX, "numpy_f64.npy"))
+    np.testing.assert_array_equal(s.heights_nm, np.load(os.path.join(FIX, "numpy_f64.npy")))
+    assert s.pixel_nm == (100.0, 80.0)
+
+
+def test_npz_channels_and_units(tmp_path):
+    z = np.random.default_rng(3).normal(size=(12, 9))
+    path = tmp_path / "scan.npz"
+    np.savez(path, height=z, phase=z * 0.0 + 1.0)
+    s = surface.load(str(path), channel="height", pixel_size_nm=20.0, height_unit="um")
+    np.testing.assert_allclose(s.heights_nm, z * 1000.0, rtol=1e-15)
+    assert s.pixel_nm == (20.0, 20.0)
+    with pytest.raises(ValueError, match="channel"):
+        surface.load(str(path), channel="nope", pixel_size_nm=20.0, height_unit="nm")
+
+
+def test_roughness_equals_numpy_formulas():
+    z = np.random.default_rng(5).gamma(2.0, 10.0, size=(64, 48))
+    r = surface.Surface(z, 10.0).roughness()
+    c = z - z.mean()
+    sq = np.sqrt(np.mean(c**2))
+    assert abs(r["Sq_nm"] - sq) < 1e-12 * sq
+    assert abs(r["Sa_nm"] - np.mean(np.abs(c))) < 1e-12 * sq
+    assert abs(r["Ssk"] - np.mean(c**3) / sq**3) < 1e-12
+    assert abs(r["Sku_excess"] - (np.mean(c**4) / sq**4 - 3.0)) < 1e-11
+    assert r["Sz_nm"] == z.max() - z.min()
+
+
+def test_builtin_sine_has_the_closed_form_rms():
+    s = surface.generate("sine", size="11um", pixel="100nm", period="1100nm", depth="100nm")
+    assert s.heights_nm.shape == (110, 110)
+    assert abs(s.roughness()["Sq_nm"] - 50.0 / np.sqrt(2.0)) < 1e-9
+
+
+def test_plane_levelling_removes_a_tilt():
+    y, x = np.mgrid[0:40, 0:30].astype(float)
+    bumps = np.sin(x / 3.0) * np.cos(y / 5.0)
+    tilted = surface.Surface(bumps + 0.7 * x - 0.2 * y + 5.0, 10.0)
+    flat = tilted.level("plane").heights_nm
+    # the least-squares plane of the bumps alone is what remains of them after levelling the tilted field
+    a = np.c_[x.ravel(), y.ravel(), np.ones(x.size)]
+    coef, *_ = np.linalg.lstsq(a, bumps.ravel(), rcond=None)
+    np.testing.assert_allclose(flat, bumps - (a @ coef).reshape(bumps.shape), atol=1e-9)
+
+
+def test_bad_input():
+    with pytest.raises(OSError, match="cannot load surface"):
+        surface.load("/no/such/file.gwy")
+    with pytest.raises(ValueError):
+        surface.load("builtin:nothing")
+    with pytest.raises(ValueError, match="2-D"):
+        surface.Surface(np.zeros(5), 1.0)
+    with pytest.raises(TypeError, match="real numbers"):
+        surface.Surface(np.array([["a", "b"], ["c", "d"]]), 1.0)
+    with pytest.raises(ValueError):
+        surface.Surface(np.zeros((4, 4)), -1.0)
+    with pytest.raises(ValueError, match="level"):
+        surface.Surface(np.zeros((4, 4)), 1.0).level("sideways")

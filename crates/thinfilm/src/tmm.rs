@@ -1,0 +1,461 @@
+//! The calling convention of S. J. Byrnes' `tmm` package (<https://pypi.org/project/tmm/>, described in
+//! arXiv:1603.02720), on iridis' physics: lists of complex indices and thicknesses with the two semi-infinite
+//! media at the ends (`d = inf` there), one polarisation at a time, and tmm's conventions for everything it
+//! reports — `r`, `t`, `R`, `T`, `power_entering`, the wave amplitudes `vw_list`, `kz_list` and the complex
+//! angles `th_list`. The Python package's `iridis.tmm` is a thin binding of this module.
+//!
+//! Where tmm and the rest of iridis differ, this module follows tmm:
+//! * `T` is the flux into the last medium even when it absorbs (Byrnes eq. 21–22); iridis' [`crate::Rta`]
+//!   reports 0 there (`docs/PHYSICS.md`);
+//! * `th_list` holds tmm's angles: `arcsin(n₀ sin θ₀ / n_j)` on the principal branch for the finite layers and
+//!   the forward one for the two semi-infinite media; `kz_list` and `vw_list` follow that choice (the wave
+//!   called forward in a layer is the one with `e^{+i k_z z}`). R and T do not depend on it.
+//!
+//! Lengths are in any unit shared by the thicknesses and the wavelength (only `d/λ` enters).
+//! Not reproduced: tmm's clamp of very opaque layers (`Im δ > 35` becomes 35, "1 photon in 10^30"), which
+//! changes nothing above 1e-30; and absorbing incident media (iridis requires a lossless one).
+
+use std::collections::HashMap;
+use std::f64::consts::{FRAC_PI_2, PI};
+
+use num_complex::Complex64;
+use rayon::prelude::*;
+
+use crate::error::ThinFilmError;
+use crate::field::waves;
+use crate::material::Material;
+use crate::recurrence::{compose, Medium};
+use crate::stack::{Layer, Stack};
+
+/// tmm's `pol` argument.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Pol {
+    S,
+    P,
+}
+
+impl Pol {
+    /// `"s"` or `"p"`, with tmm's message otherwise.
+    pub fn parse(s: &str) -> Result<Self, ThinFilmError> {
+        match s {
+            "s" => Ok(Pol::S),
+            "p" => Ok(Pol::P),
+            _ => Err(ThinFilmError::Invalid(format!("Polarization must be 's' or 'p' (got {s:?})"))),
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Pol::S => "s",
+            Pol::P => "p",
+        }
+    }
+}
+
+fn invalid(msg: String) -> ThinFilmError {
+    ThinFilmError::Invalid(msg)
+}
+
+/// Checks `n_list` and `d_list` as tmm does (same length, `inf` at both ends), and what iridis needs besides:
+/// finite thicknesses ≥ 0 inside, finite indices with `Re n > 0`, `κ ≥ 0` (no gain) and a lossless first medium.
+pub fn check_lists(n: &[Complex64], d: &[f64]) -> Result<(), ThinFilmError> {
+    if n.len() != d.len() || n.len() < 2 {
+        return Err(invalid(format!(
+            "Problem with n_list or d_list! (n_list has {} entries, d_list {}; both need the same number, at \
+             least 2: the two semi-infinite media and the layers between)",
+            n.len(),
+            d.len()
+        )));
+    }
+    if d[0] != f64::INFINITY || d[d.len() - 1] != f64::INFINITY {
+        return Err(invalid(format!("d_list must start and end with inf! (got {} and {})", d[0], d[d.len() - 1])));
+    }
+    for (i, x) in d.iter().enumerate().take(d.len() - 1).skip(1) {
+        if !(x.is_finite() && *x >= 0.0) {
+            return Err(invalid(format!("d_list[{i}] = {x}: a layer thickness must be finite and ≥ 0")));
+        }
+    }
+    for (i, x) in n.iter().enumerate() {
+        check_index(i, *x)?;
+    }
+    Ok(())
+}
+
+fn check_index(i: usize, x: Complex64) -> Result<(), ThinFilmError> {
+    if !(x.re.is_finite() && x.im.is_finite()) || x.re <= 0.0 {
+        return Err(invalid(format!("n_list[{i}] = {x}: an index must be finite with a real part > 0")));
+    }
+    if x.im < 0.0 {
+        return Err(invalid(format!(
+            "n_list[{i}] = {x}: Im n < 0 is gain; tmm's (and iridis') convention is n + iκ with κ ≥ 0 absorbing"
+        )));
+    }
+    if i == 0 && x.im != 0.0 {
+        return Err(invalid(format!(
+            "Error in n0 or th0! n_list[0] = {x} absorbs; iridis needs a lossless incident medium (in an \
+             absorbing one the incident wave decays and R is not defined; docs/PHYSICS.md)"
+        )));
+    }
+    Ok(())
+}
+
+/// Checks the angle (−π/2 ≤ θ₀ ≤ π/2: tmm's forward-angle condition for a lossless first medium) and the
+/// wavelength.
+pub fn check_angle_wavelength(th0: f64, lam: f64) -> Result<(), ThinFilmError> {
+    if !(th0.is_finite() && th0.abs() <= FRAC_PI_2 + 1e-12) {
+        return Err(invalid(format!(
+            "Error in n0 or th0! th_0 = {th0} rad: light must arrive travelling forwards, |th_0| ≤ π/2"
+        )));
+    }
+    if !(lam.is_finite() && lam > 0.0) {
+        return Err(invalid(format!("lam_vac = {lam} must be finite and > 0")));
+    }
+    Ok(())
+}
+
+/// The media for iridis' recurrence: the incident one with `cos θ₀`, the others on the forward branch.
+fn media_into(n: impl Iterator<Item = Complex64>, th0: f64, out: &mut Vec<Medium>) {
+    out.clear();
+    let a = th0.abs().min(FRAC_PI_2);
+    let mut s = 0.0;
+    for (j, x) in n.enumerate() {
+        if j == 0 {
+            s = x.re * a.sin();
+            out.push(Medium { n: x, cos: Complex64::new(a.cos(), 0.0) });
+        } else {
+            out.push(Medium::new(x, s));
+        }
+    }
+}
+
+/// The normal flux of a unit wave in a medium (Byrnes eq. 21–22): `Re(n cos θ)` for s, `Re(n cos θ*)` for p.
+fn flux(pol: Pol, m: Medium) -> f64 {
+    match pol {
+        Pol::S => (m.n * m.cos).re,
+        Pol::P => (m.n * m.cos.conj()).re,
+    }
+}
+
+/// `T` from `t` (tmm's `T_from_t`) and the power entering the first layer from `r` (`power_entering_from_r`).
+fn powers(pol: Pol, r: Complex64, t: Complex64, first: Medium, last: Medium) -> (f64, f64, f64) {
+    let f0 = flux(pol, first);
+    let big_t = t.norm_sqr() * flux(pol, last) / f0;
+    let one = Complex64::new(1.0, 0.0);
+    let entering = match pol {
+        Pol::S => (first.n * first.cos * (one + r.conj()) * (one - r)).re / f0,
+        Pol::P => (first.n * first.cos.conj() * (one + r) * (one - r.conj())).re / f0,
+    };
+    (r.norm_sqr(), big_t, entering)
+}
+
+/// Everything `tmm.coh_tmm` reports, for one polarisation, wavelength and angle.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Coherent {
+    pub r: Complex64,
+    pub t: Complex64,
+    /// `R = |r|²`.
+    pub big_r: f64,
+    /// The flux into the last medium.
+    pub big_t: f64,
+    /// The flux into the first layer (`1 − R` when the incident medium is lossless).
+    pub power_entering: f64,
+    /// `[v_j, w_j]`: forward and backward amplitudes at the top of medium `j` (`[0, 0]` for the first, `[t, 0]`
+    /// for the last).
+    pub vw: Vec<[Complex64; 2]>,
+    /// `k_z = 2π n_j cos θ_j / λ`.
+    pub kz: Vec<Complex64>,
+    /// The complex angles `θ_j`.
+    pub th: Vec<Complex64>,
+}
+
+/// tmm's forward-angle test: `Im(n cos θ) > 0`, or `Re(n cos θ) > 0` when that imaginary part is ~0.
+fn tmm_forward(n: Complex64, th: Complex64) -> bool {
+    let q = n * th.cos();
+    if q.im.abs() > 100.0 * f64::EPSILON {
+        q.im > 0.0
+    } else {
+        q.re > 0.0
+    }
+}
+
+/// The principal arcsin with C99's (and numpy's) value on the branch cut: for a real `|z| > 1` (zero
+/// imaginary part, as tmm's `n₀ sin θ₀ / n_j` has for a lossless layer beyond its critical angle) the imaginary
+/// part is `+acosh|z|`; num-complex's formula gives its conjugate there.
+fn asin(z: Complex64) -> Complex64 {
+    if z.im == 0.0 && z.re.abs() > 1.0 {
+        Complex64::new(FRAC_PI_2.copysign(z.re), z.re.abs().acosh())
+    } else {
+        z.asin()
+    }
+}
+
+/// `tmm.coh_tmm(pol, n, d, th0, lam)`.
+pub fn coh_tmm(pol: Pol, n: &[Complex64], d: &[f64], th0: f64, lam: f64) -> Result<Coherent, ThinFilmError> {
+    check_lists(n, d)?;
+    check_angle_wavelength(th0, lam)?;
+    let mut media = Vec::with_capacity(n.len());
+    media_into(n.iter().copied(), th0, &mut media);
+    let inner = &d[1..d.len() - 1];
+    let c = compose(&media, inner, lam, None);
+    let (r, t) = match pol {
+        Pol::S => (c.gamma_s, c.tau_s),
+        Pol::P => (c.gamma_p, c.tau_p),
+    };
+    let last = media.len() - 1;
+    let (big_r, big_t, power_entering) = powers(pol, r, t, media[0], media[last]);
+
+    // tmm's angles: principal arcsin, flipped to the forward wave in the two semi-infinite media.
+    let invariant = n[0] * th0.sin();
+    let th: Vec<Complex64> = n
+        .iter()
+        .enumerate()
+        .map(|(j, &x)| {
+            let a = asin(invariant / x);
+            if (j == 0 || j == last) && !tmm_forward(x, a) {
+                PI - a
+            } else {
+                a
+            }
+        })
+        .collect();
+    let tmm_media: Vec<Medium> = n.iter().zip(&th).map(|(&x, a)| Medium { n: x, cos: a.cos() }).collect();
+    let kz = tmm_media.iter().map(|m| 2.0 * PI * m.n * m.cos / lam).collect();
+    let wv = waves(&tmm_media, inner, lam, pol == Pol::P);
+    let zero = Complex64::new(0.0, 0.0);
+    let mut vw: Vec<[Complex64; 2]> = (0..n.len()).map(|j| [wv.v[j], wv.w[j]]).collect();
+    vw[0] = [zero, zero];
+    vw[last] = [t, zero];
+    Ok(Coherent { r, t, big_r, big_t, power_entering, vw, kz, th })
+}
+
+/// `tmm.ellips`: `(ψ, Δ)` with `tan ψ e^{iΔ} = −r_p / r_s`.
+pub fn ellips(n: &[Complex64], d: &[f64], th0: f64, lam: f64) -> Result<(f64, f64), ThinFilmError> {
+    let s = coh_tmm(Pol::S, n, d, th0, lam)?;
+    let p = coh_tmm(Pol::P, n, d, th0, lam)?;
+    Ok(crate::field::psi_delta(s.r, p.r))
+}
+
+/// A [`Stack`] of constant materials from tmm's lists; `incoherent[j]` marks tmm's `'i'` layers.
+pub fn stack_from_lists(n: &[Complex64], d: &[f64], incoherent: Option<&[bool]>) -> Result<Stack, ThinFilmError> {
+    check_lists(n, d)?;
+    let m = |j: usize| Material::constant(format!("n={}", n[j]), n[j]);
+    let layers = (1..n.len() - 1)
+        .map(|j| Ok(Layer { material: m(j)?, thickness_nm: d[j], incoherent: incoherent.is_some_and(|c| c[j]) }))
+        .collect::<Result<Vec<_>, ThinFilmError>>()?;
+    Ok(Stack { incident: m(0)?, layers, substrate: m(n.len() - 1)? })
+}
+
+/// What `tmm.inc_tmm` and `tmm.inc_absorp_in_each_layer` report for one polarisation.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Incoherent {
+    pub big_r: f64,
+    /// The flux into the last medium (absorbed there when it absorbs).
+    pub big_t: f64,
+    /// `[R, A_1, …, A_N, T]`, as `inc_absorp_in_each_layer`.
+    pub absorp: Vec<f64>,
+}
+
+/// `tmm.inc_tmm(pol, n, d, c, th0, lam)` with `c[j]` = `'i'` (incoherent) or `'c'`; the ends must be `'i'`.
+pub fn inc_tmm(
+    pol: Pol,
+    n: &[Complex64],
+    d: &[f64],
+    c: &[char],
+    th0: f64,
+    lam: f64,
+) -> Result<Incoherent, ThinFilmError> {
+    check_lists(n, d)?;
+    if c.len() != n.len() {
+        return Err(invalid(format!("List sizes do not match! (c_list has {}, n_list {})", c.len(), n.len())));
+    }
+    if c[0] != 'i' || c[c.len() - 1] != 'i' {
+        return Err(invalid("c_list should start and end with \"i\"".into()));
+    }
+    if let Some(x) = c.iter().find(|x| **x != 'i' && **x != 'c') {
+        return Err(invalid(format!("Error: c_list entries must be 'i' or 'c'! (got {x:?})")));
+    }
+    check_angle_wavelength(th0, lam)?;
+    let inc: Vec<bool> = c.iter().map(|x| *x == 'i').collect();
+    let stack = stack_from_lists(n, d, Some(&inc))?;
+    let a = stack.absorption(lam, th0.abs())?;
+    let (r, layers, sub, t) = match pol {
+        Pol::S => (a.r_s, a.layers_s, a.substrate_s, a.t_s),
+        Pol::P => (a.r_p, a.layers_p, a.substrate_p, a.t_p),
+    };
+    let mut absorp = Vec::with_capacity(n.len());
+    absorp.push(r);
+    absorp.extend(layers);
+    absorp.push(sub + t);
+    Ok(Incoherent { big_r: r, big_t: sub + t, absorp })
+}
+
+/// The indices of a batch: the same for every point, or one column per point (dispersive media), stored
+/// medium-major: `data[j * points + i]` is medium `j` at point `i`.
+#[derive(Debug, Clone, Copy)]
+pub enum Indices<'a> {
+    Constant(&'a [Complex64]),
+    PerPoint { media: usize, data: &'a [Complex64] },
+}
+
+/// The results of [`coh_tmm_batch`], one entry per point.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Batch {
+    pub r: Vec<Complex64>,
+    pub t: Vec<Complex64>,
+    pub big_r: Vec<f64>,
+    pub big_t: Vec<f64>,
+    pub power_entering: Vec<f64>,
+}
+
+/// Points per parallel task of [`coh_tmm_batch`]: large enough that the per-angle preparation is shared by many
+/// points, small enough for both threads to stay busy.
+const CHUNK: usize = 4096;
+
+/// `coh_tmm` at many (θ₀, λ) points (`th0` and `lam` of equal length): `r`, `t`, `R`, `T`, `power_entering`
+/// as `coh_tmm` gives them, in parallel over chunks of points. With constant indices each chunk prepares every
+/// angle it meets once (the chapter 4 fast path, [`crate::Prepared`]) and reuses it for the points at that angle.
+pub fn coh_tmm_batch(pol: Pol, n: Indices<'_>, d: &[f64], th0: &[f64], lam: &[f64]) -> Result<Batch, ThinFilmError> {
+    let points = th0.len();
+    if lam.len() != points {
+        return Err(invalid(format!("{} angles but {} wavelengths", points, lam.len())));
+    }
+    let media_count = match n {
+        Indices::Constant(x) => x.len(),
+        Indices::PerPoint { media, data } => {
+            if data.len() != media * points {
+                return Err(invalid(format!(
+                    "n_list has {} values; {media} media × {points} points need {}",
+                    data.len(),
+                    media * points
+                )));
+            }
+            media
+        }
+    };
+    if points == 0 {
+        if let Indices::Constant(x) = n {
+            check_lists(x, d)?;
+        }
+        return Ok(Batch::default());
+    }
+    let first_n: Vec<Complex64> = match n {
+        Indices::Constant(x) => x.to_vec(),
+        Indices::PerPoint { data, .. } => (0..media_count).map(|j| data[j * points]).collect(),
+    };
+    check_lists(&first_n, d)?;
+    let stack = match n {
+        Indices::Constant(x) => Some(stack_from_lists(x, d, None)?),
+        Indices::PerPoint { .. } => None,
+    };
+    let inner = &d[1..d.len() - 1];
+    let zero = Complex64::new(0.0, 0.0);
+    let mut out = Batch {
+        r: vec![zero; points],
+        t: vec![zero; points],
+        big_r: vec![0.0; points],
+        big_t: vec![0.0; points],
+        power_entering: vec![0.0; points],
+    };
+    let pick = |a: [Complex64; 4]| match pol {
+        Pol::S => (a[0], a[2]),
+        Pol::P => (a[1], a[3]),
+    };
+    out.r
+        .par_chunks_mut(CHUNK)
+        .zip(out.t.par_chunks_mut(CHUNK))
+        .zip(out.big_r.par_chunks_mut(CHUNK))
+        .zip(out.big_t.par_chunks_mut(CHUNK))
+        .zip(out.power_entering.par_chunks_mut(CHUNK))
+        .enumerate()
+        .try_for_each(|(c, ((((r, t), big_r), big_t), pe))| -> Result<(), ThinFilmError> {
+            let start = c * CHUNK;
+            let mut media = Vec::with_capacity(media_count);
+            // Per angle in this chunk: the prepared stack and its two end media.
+            let mut prepared: HashMap<u64, (crate::Prepared, Medium, Medium)> = HashMap::new();
+            for k in 0..r.len() {
+                let i = start + k;
+                check_angle_wavelength(th0[i], lam[i])
+                    .map_err(|e| invalid(format!("{e} (at point {i} of the batch)")))?;
+                let (amp, first, last) = match (&stack, n) {
+                    (Some(stack), Indices::Constant(x)) => {
+                        let a = th0[i].abs().min(FRAC_PI_2);
+                        let entry = match prepared.entry(a.to_bits()) {
+                            std::collections::hash_map::Entry::Occupied(o) => o.into_mut(),
+                            std::collections::hash_map::Entry::Vacant(v) => {
+                                media_into(x.iter().copied(), a, &mut media);
+                                let ends = (media[0], media[media.len() - 1]);
+                                v.insert((stack.prepare(a)?, ends.0, ends.1))
+                            }
+                        };
+                        (entry.0.amplitudes(lam[i])?, entry.1, entry.2)
+                    }
+                    (_, Indices::PerPoint { data, .. }) => {
+                        for j in 0..media_count {
+                            check_index(j, data[j * points + i])
+                                .map_err(|e| invalid(format!("{e} (at point {i} of the batch)")))?;
+                        }
+                        media_into((0..media_count).map(|j| data[j * points + i]), th0[i], &mut media);
+                        let c = compose(&media, inner, lam[i], None);
+                        ([c.gamma_s, c.gamma_p, c.tau_s, c.tau_p], media[0], media[media.len() - 1])
+                    }
+                    (None, Indices::Constant(_)) => unreachable!("constant indices always build a stack"),
+                };
+                let (rr, tt) = pick(amp);
+                let (x_r, x_t, x_pe) = powers(pol, rr, tt, first, last);
+                r[k] = rr;
+                t[k] = tt;
+                big_r[k] = x_r;
+                big_t[k] = x_t;
+                pe[k] = x_pe;
+            }
+            Ok(())
+        })?;
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn c(re: f64, im: f64) -> Complex64 {
+        Complex64::new(re, im)
+    }
+
+    #[test]
+    fn single_interface_is_fresnel() {
+        // Air → glass at normal incidence: r_s = (1 − 1.5)/(1 + 1.5) = −0.2, R = 0.04, T = 0.96.
+        let x = coh_tmm(Pol::S, &[c(1.0, 0.0), c(1.5, 0.0)], &[f64::INFINITY; 2], 0.0, 500.0).unwrap();
+        assert!((x.r - c(-0.2, 0.0)).norm() < 1e-15 && (x.big_r - 0.04).abs() < 1e-15);
+        assert!((x.big_t - 0.96).abs() < 1e-15 && (x.power_entering - 0.96).abs() < 1e-15);
+        assert_eq!(x.vw[1], [x.t, c(0.0, 0.0)]);
+    }
+
+    #[test]
+    fn batch_equals_single_calls() {
+        let n = [c(1.0, 0.0), c(2.1, 0.0), c(1.4, 0.02), c(3.5, 0.3)];
+        let d = [f64::INFINITY, 120.0, 333.0, f64::INFINITY];
+        let th: Vec<f64> = (0..40).map(|i| (i % 8) as f64 * 0.2).collect();
+        let lam: Vec<f64> = (0..40).map(|i| 380.0 + 10.0 * i as f64).collect();
+        for pol in [Pol::S, Pol::P] {
+            let b = coh_tmm_batch(pol, Indices::Constant(&n), &d, &th, &lam).unwrap();
+            let e = coh_tmm_batch(pol, Indices::Constant(&n), &d, &[], &[]).unwrap();
+            assert!(e.r.is_empty());
+            for i in 0..40 {
+                let one = coh_tmm(pol, &n, &d, th[i], lam[i]).unwrap();
+                assert!((b.r[i] - one.r).norm() < 1e-13 && (b.t[i] - one.t).norm() < 1e-13);
+                assert!(
+                    (b.big_t[i] - one.big_t).abs() < 1e-13 && (b.power_entering[i] - one.power_entering).abs() < 1e-13
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn bad_lists_are_refused_with_tmm_messages() {
+        let e = coh_tmm(Pol::S, &[c(1.0, 0.0), c(1.5, 0.0)], &[0.0, f64::INFINITY], 0.0, 500.0).unwrap_err();
+        assert!(e.to_string().starts_with("d_list must start and end with inf!"), "{e}");
+        let e = coh_tmm(Pol::S, &[c(1.0, 0.0)], &[f64::INFINITY, f64::INFINITY], 0.0, 500.0).unwrap_err();
+        assert!(e.to_string().starts_with("Problem with n_list or d_list!"), "{e}");
+        assert!(Pol::parse("x").unwrap_err().to_string().starts_with("Polarization must be 's' or 'p'"));
+    }
+}
