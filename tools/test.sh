@@ -32,7 +32,7 @@ else
 fi
 
 echo "== cargo test --workspace --release"
-cargo test --workspace --release
+cargo test --workspace --release --no-fail-fast
 
 # The Python package (crates/python), built and installed the way the README tells users to
 # (`pip install ./crates/python`), into a throw-away virtual environment, then its tests (pytest: the tmm drop-in

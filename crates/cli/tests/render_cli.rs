@@ -304,7 +304,7 @@ material = "film"
 /// Issue 9 in the renderer: a flat rough-film plane (Listing 3.6: water 348 nm on Si, σ 25 nm, τ 300 nm) seen
 /// and lit head-on by a 1 RU light shows the diffuse colour π·k_d that `iridis thinfilm color --roughness
 /// --correlation --angle 0deg` reports; under a white environment as well, it shows diffuse + specular (k_r
-/// weighting the mirror ray).
+/// weighting the mirror ray) + the environment's diffuse share.
 #[test]
 fn rough_film_plane_shows_thinfilm_color() {
     let dir = tempfile::tempdir().unwrap();
@@ -327,9 +327,26 @@ fn rough_film_plane_shows_thinfilm_color() {
     };
     let (spec, diff) = (xyz("specular"), xyz("diffuse"));
     assert!(diff[1] > 0.01 && spec[1] > 0.01, "both parts must show: {spec:?} {diff:?}");
-    let both = [spec[0] + diff[0], spec[1] + diff[1], spec[2] + diff[2]];
+    // The white environment lights the diffuse lobe too (as 64 directional lights, render::light): by reciprocity
+    // its share at normal view is the film's diffuse albedo ∫ k_d cos θ dω, integrated densely by the library.
+    let scene =
+        iridis_render::parse_scene(&ROUGH_PLANE.replace("ENVIRONMENT", ""), "plane.toml", Path::new(".")).unwrap();
+    let iridis_render::material::Material::ThinFilm(f) = &scene.materials[0] else { panic!("not a film") };
+    let rough = iridis_thinfilm::rough::RoughStack::new(f.stack.clone(), f.rough.expect("rough"));
+    let grid = iridis_color::spectrum::uniform_grid(380.0, 780.0, 5.0).unwrap();
+    let d: Vec<f64> = grid.iter().map(|&l| rough.albedo(l, 0.0, 60).unwrap().diffuse).collect();
+    let cm = iridis_thinfilm::color::FilmColorimeter::new(
+        &grid,
+        iridis_color::Illuminant::D65,
+        iridis_color::Observer::Cie1931,
+    );
+    let e = cm.from_spectra(&d, &d).reflected;
+    let both = [spec[0] + diff[0] + e.x, spec[1] + diff[1] + e.y, spec[2] + diff[2] + e.z];
     let env = "[environment]\nkind = \"uniform\"\ncolor = [1, 1, 1]\nvisible = false";
-    for (name, environment, want) in [("dark", "", diff), ("white", env, both)] {
+    // (name, environment, expected XYZ, relative and ΔE00 tolerance): the light alone is exact; the environment's
+    // 64-direction quadrature of the diffuse lobe is within 0.1 % of the dense integral (white_furnace.rs).
+    for (name, environment, want, tol_rel, tol_de) in [("dark", "", diff, 2e-4, 0.01), ("white", env, both, 2e-3, 0.05)]
+    {
         let scene = dir.path().join(format!("{name}.toml"));
         std::fs::write(&scene, ROUGH_PLANE.replace("ENVIRONMENT", environment)).unwrap();
         let exr = dir.path().join(format!("{name}.exr"));
@@ -345,7 +362,7 @@ fn rough_film_plane_shows_thinfilm_color() {
             worst_de = worst_de.max(delta_e_rgb(*p, want_rgb));
         }
         eprintln!("rough plane, {name} environment: largest ΔE00 {worst_de:.2e}, relative XYZ {worst_rel:.2e}");
-        assert!(worst_rel < 2e-4 && worst_de < 0.01, "{name}: ΔE00 {worst_de}, relative {worst_rel}");
+        assert!(worst_rel < tol_rel && worst_de < tol_de, "{name}: ΔE00 {worst_de}, relative {worst_rel}");
     }
 }
 
