@@ -129,26 +129,14 @@ impl PyStack {
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let (ill, obs, pol) = (self::illuminant(illuminant)?, self::observer(observer)?, self::pol(polarization)?);
         let (a, o, g) = (angles.as_slice()?, offsets.as_slice()?, grid.as_slice()?);
-        if g.len() < 2 || g.windows(2).any(|x| x[1] <= x[0]) {
-            return Err(value_error("the wavelength grid must have ≥ 2 strictly increasing values"));
-        }
+        check_grid(g)?;
         let stack = &self.stack;
         let out = py
             .allow_threads(|| {
                 let meter = FilmColorimeter::new(g, ill, obs);
                 (0..a.len())
                     .into_par_iter()
-                    .map(|i| {
-                        let mut r = Vec::with_capacity(g.len());
-                        let mut t = Vec::with_capacity(g.len());
-                        for &w in g {
-                            let x = stack.evaluate_offset(w, a[i], o[i])?;
-                            r.push(pol.reflectance(&x));
-                            t.push(pol.transmittance(&x));
-                        }
-                        let c = meter.from_spectra(&r, &t);
-                        Ok([c.reflected.to_array(), c.transmitted.to_array()].concat())
-                    })
+                    .map(|i| Ok(xyz_row(meter.color_of(pol, |w| stack.evaluate_offset(w, a[i], o[i]))?)))
                     .collect::<Result<Vec<Vec<f64>>, iridis_thinfilm::ThinFilmError>>()
             })
             .map_err(value_error)?;
@@ -181,9 +169,7 @@ fn _stack_colors<'py>(
             d.shape()
         )));
     }
-    if g.len() < 2 || g.windows(2).any(|x| x[1] <= x[0]) {
-        return Err(value_error("the wavelength grid must have ≥ 2 strictly increasing values"));
-    }
+    check_grid(g)?;
     let rows: Vec<(Vec<Complex64>, Vec<f64>)> = n
         .rows()
         .into_iter()
@@ -205,15 +191,7 @@ fn _stack_colors<'py>(
                         .map_err(|e| iridis_thinfilm::ThinFilmError::Invalid(format!("stack {i}: {e}")))?;
                     // Constant indices: the chapter 4 fast path (per-interface values once per stack).
                     let prepared = stack.prepare(angle)?;
-                    let mut r = Vec::with_capacity(g.len());
-                    let mut t = Vec::with_capacity(g.len());
-                    for &w in g {
-                        let x = prepared.evaluate(w)?;
-                        r.push(pol.reflectance(&x));
-                        t.push(pol.transmittance(&x));
-                    }
-                    let c = meter.from_spectra(&r, &t);
-                    Ok([c.reflected.to_array(), c.transmitted.to_array()].concat())
+                    Ok(xyz_row(meter.color_of(pol, |w| prepared.evaluate(w))?))
                 })
                 .collect::<Result<Vec<Vec<f64>>, iridis_thinfilm::ThinFilmError>>()
         })
@@ -251,4 +229,17 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(materials, m)?)?;
     m.add_function(wrap_pyfunction!(_stack_colors, m)?)?;
     Ok(())
+}
+
+/// A colour integral's wavelength grid: at least two strictly increasing values.
+fn check_grid(g: &[f64]) -> PyResult<()> {
+    if g.len() < 2 || g.windows(2).any(|x| x[1] <= x[0]) {
+        return Err(value_error("the wavelength grid must have ≥ 2 strictly increasing values"));
+    }
+    Ok(())
+}
+
+/// Reflected then transmitted XYZ: one row of the colour arrays.
+fn xyz_row(c: iridis_thinfilm::color::FilmColor) -> Vec<f64> {
+    [c.reflected.to_array(), c.transmitted.to_array()].concat()
 }

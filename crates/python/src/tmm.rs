@@ -37,10 +37,7 @@ fn coh_tmm<'py>(
     lam_vac: &Bound<'py, PyAny>,
 ) -> PyResult<CohTmmResult> {
     let p = self::pol(pol)?;
-    let n = complex_list("n_list", n_list)?;
-    let d = real_list("d_list", d_list)?;
-    let th = scalar("th_0", th_0, HINT)?;
-    let lam = scalar("lam_vac", lam_vac, HINT)?;
+    let (n, d, th, lam) = coherent_args(n_list, d_list, th_0, lam_vac)?;
     let x = py.allow_threads(|| lib::coh_tmm(p, &n, &d, th, lam)).map_err(value_error)?;
     Ok(CohTmmResult { x, pol: p, n, d, th_0: th_0.clone().unbind(), lam_vac: lam_vac.clone().unbind() })
 }
@@ -159,10 +156,7 @@ fn unpolarized_rt<'py>(
     th_0: &Bound<'py, PyAny>,
     lam_vac: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let n = complex_list("n_list", n_list)?;
-    let d = real_list("d_list", d_list)?;
-    let th = scalar("th_0", th_0, HINT)?;
-    let lam = scalar("lam_vac", lam_vac, HINT)?;
+    let (n, d, th, lam) = coherent_args(n_list, d_list, th_0, lam_vac)?;
     let (s, p) = py
         .allow_threads(|| {
             Ok::<_, iridis_thinfilm::ThinFilmError>((
@@ -187,10 +181,7 @@ fn ellips<'py>(
     th_0: &Bound<'py, PyAny>,
     lam_vac: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let n = complex_list("n_list", n_list)?;
-    let d = real_list("d_list", d_list)?;
-    let th = scalar("th_0", th_0, HINT)?;
-    let lam = scalar("lam_vac", lam_vac, HINT)?;
+    let (n, d, th, lam) = coherent_args(n_list, d_list, th_0, lam_vac)?;
     let (psi, delta) = py.allow_threads(|| lib::ellips(&n, &d, th, lam)).map_err(value_error)?;
     let out = PyDict::new(py);
     out.set_item("psi", psi)?;
@@ -271,4 +262,20 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(inc_tmm, m)?)?;
     m.add_function(wrap_pyfunction!(_coh_tmm_batch, m)?)?;
     Ok(())
+}
+
+/// tmm's four arguments of one coherent calculation: indices, thicknesses, angle and wavelength (scalars; the
+/// batch takes arrays).
+fn coherent_args(
+    n_list: &Bound<'_, PyAny>,
+    d_list: &Bound<'_, PyAny>,
+    th_0: &Bound<'_, PyAny>,
+    lam_vac: &Bound<'_, PyAny>,
+) -> PyResult<(Vec<Complex64>, Vec<f64>, f64, f64)> {
+    Ok((
+        complex_list("n_list", n_list)?,
+        real_list("d_list", d_list)?,
+        scalar("th_0", th_0, HINT)?,
+        scalar("lam_vac", lam_vac, HINT)?,
+    ))
 }

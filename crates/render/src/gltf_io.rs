@@ -143,15 +143,13 @@ pub fn load_gltf(
                     &format!("{name} metallic-roughness"),
                 )?);
                 check_sampler(&name, "metallicRoughnessTexture", &info.texture(), notes);
-                let own = UvMap::of(info.tex_coord(), info.extensions());
-                match &uv_map {
-                    None => uv_map = Some(own),
-                    Some(u) if *u != own => notes.push(format!(
-                        "material \"{name}\": metallicRoughnessTexture reads other texture coordinates (texCoord / \
-                         KHR_texture_transform) than baseColorTexture; both use the base colour's"
-                    )),
-                    Some(_) => {}
-                }
+                share_uv_map(
+                    &mut uv_map,
+                    UvMap::of(info.tex_coord(), info.extensions()),
+                    &name,
+                    "metallicRoughnessTexture",
+                    notes,
+                );
                 Some(textures.len() - 1)
             }
             None => None,
@@ -165,15 +163,13 @@ pub fn load_gltf(
                     &format!("{name} normal"),
                 )?);
                 check_sampler(&name, "normalTexture", &info.texture(), notes);
-                let own = UvMap::of(info.tex_coord(), info.extensions());
-                match &uv_map {
-                    None => uv_map = Some(own),
-                    Some(u) if *u != own => notes.push(format!(
-                        "material \"{name}\": normalTexture reads other texture coordinates (texCoord / \
-                         KHR_texture_transform) than baseColorTexture; both use the base colour's"
-                    )),
-                    Some(_) => {}
-                }
+                share_uv_map(
+                    &mut uv_map,
+                    UvMap::of(info.tex_coord(), info.extensions()),
+                    &name,
+                    "normalTexture",
+                    notes,
+                );
                 Some((textures.len() - 1, info.scale() as f64))
             }
             None => None,
@@ -229,14 +225,7 @@ pub fn load_gltf(
                         let info = tex_info.expect("has an index");
                         let set = info.get("texCoord").and_then(|v| v.as_u64()).unwrap_or(0) as u32;
                         let own = UvMap::of(set, info.get("extensions").and_then(|e| e.as_object()));
-                        match &uv_map {
-                            None => uv_map = Some(own),
-                            Some(u) if *u != own => notes.push(format!(
-                                "material \"{name}\": iridescenceThicknessTexture reads other texture coordinates \
-                                 (texCoord / KHR_texture_transform) than baseColorTexture; both use the base colour's"
-                            )),
-                            Some(_) => {}
-                        }
+                        share_uv_map(&mut uv_map, own, &name, "iridescenceThicknessTexture", notes);
                         let rgb = image_of(tex)?.to_rgb32f();
                         let (w, h) = (rgb.width() as usize, rgb.height() as usize);
                         // The G channel, linear (glTF: thickness textures hold data, not colours).
@@ -420,6 +409,19 @@ impl UvMap {
 }
 
 /// Notes the sampler settings the renderer does not follow (it repeats and filters bilinearly).
+/// A material has one set of texture coordinates (the first texture's); a later texture that reads other
+/// coordinates is named in a note and reads the material's.
+fn share_uv_map(uv_map: &mut Option<UvMap>, own: UvMap, material: &str, slot: &str, notes: &mut Vec<String>) {
+    match uv_map {
+        None => *uv_map = Some(own),
+        Some(u) if *u != own => notes.push(format!(
+            "material \"{material}\": {slot} reads other texture coordinates (texCoord / KHR_texture_transform) \
+             than baseColorTexture; both use the base colour's"
+        )),
+        Some(_) => {}
+    }
+}
+
 fn check_sampler(material: &str, slot: &str, tex: &gltf::Texture, notes: &mut Vec<String>) {
     use gltf::texture::{MagFilter, WrappingMode};
     let s = tex.sampler();

@@ -75,10 +75,20 @@ impl FilmColorimeter {
 
     /// The colours of a stack at an incidence angle (unpolarised light unless `pol` says otherwise).
     pub fn color(&self, stack: &Stack, angle_rad: f64, pol: Polarization) -> Result<FilmColor, ThinFilmError> {
+        self.color_of(pol, |w| stack.evaluate(w, angle_rad))
+    }
+
+    /// The colours of the powers that `evaluate` gives at each wavelength of the grid (a stack with offset
+    /// layers, a prepared stack, …), for polarisation `pol`.
+    pub fn color_of(
+        &self,
+        pol: Polarization,
+        mut evaluate: impl FnMut(f64) -> Result<Rta, ThinFilmError>,
+    ) -> Result<FilmColor, ThinFilmError> {
         let mut r = Vec::with_capacity(self.wavelengths_nm().len());
         let mut t = Vec::with_capacity(r.capacity());
         for &w in self.wavelengths_nm() {
-            let x = stack.evaluate(w, angle_rad)?;
+            let x = evaluate(w)?;
             r.push(pol.reflectance(&x));
             t.push(pol.transmittance(&x));
         }

@@ -239,7 +239,7 @@ impl Fields {
 
     /// The depth (nm) of the top of medium `j` below the first interface (0 for media 0 and 1).
     fn top(&self, j: usize) -> f64 {
-        self.thicknesses[..j.saturating_sub(1).min(self.thicknesses.len())].iter().sum()
+        top_of(&self.thicknesses, j)
     }
 
     /// The total thickness of the layers (nm).
@@ -250,17 +250,7 @@ impl Fields {
     /// The values at depth `z_nm` below the first interface (negative: in the incident medium; beyond the
     /// last interface: in the substrate). At an interface, the medium below is used.
     pub fn at(&self, z_nm: f64) -> Point {
-        let n = self.thicknesses.len();
-        let j = if z_nm < 0.0 {
-            0
-        } else {
-            let mut j = 1;
-            while j <= n && z_nm >= self.top(j) + self.thicknesses[j - 1] {
-                j += 1;
-            }
-            j
-        };
-        let dz = if j == 0 { z_nm } else { z_nm - self.top(j) };
+        let (j, dz) = locate(&self.thicknesses, z_nm);
         self.in_medium(j, dz)
     }
 
@@ -319,6 +309,29 @@ impl Absorption {
         let ((substrate_s, t_s), (substrate_p, t_p)) = (split(s.t), split(p.t));
         Absorption { layers_s: s.layers, layers_p: p.layers, substrate_s, substrate_p, r_s: s.r, r_p: p.r, t_s, t_p }
     }
+}
+
+/// The depth (nm) of the top of medium `j` below the first interface (0 for media 0 and 1), given the layers'
+/// thicknesses.
+pub(crate) fn top_of(thicknesses: &[f64], j: usize) -> f64 {
+    thicknesses[..j.saturating_sub(1).min(thicknesses.len())].iter().sum()
+}
+
+/// The medium that holds depth `z_nm` below the first interface and the depth below its top: medium 0 (the
+/// incident medium) for negative depths, the substrate beyond the last interface, and at an interface the medium
+/// below. One pass over the layers.
+pub(crate) fn locate(thicknesses: &[f64], z_nm: f64) -> (usize, f64) {
+    if z_nm < 0.0 {
+        return (0, z_nm);
+    }
+    let mut top = 0.0;
+    for (k, &d) in thicknesses.iter().enumerate() {
+        if z_nm < top + d {
+            return (k + 1, z_nm - top);
+        }
+        top += d;
+    }
+    (thicknesses.len() + 1, z_nm - top)
 }
 
 #[cfg(test)]

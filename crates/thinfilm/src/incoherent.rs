@@ -15,7 +15,7 @@
 use num_complex::Complex64;
 
 use crate::error::ThinFilmError;
-use crate::field::{Absorption, Fields, Point, PolPowers};
+use crate::field::{locate, top_of, Absorption, Fields, Point, PolPowers};
 use crate::recurrence::{compose, Medium, Rta};
 use crate::stack::Stack;
 
@@ -272,23 +272,13 @@ impl Profile {
 
     /// The depth (nm) of the top of medium `j` below the first interface (0 for media 0 and 1).
     fn top(&self, j: usize) -> f64 {
-        self.thicknesses[..j.saturating_sub(1).min(self.thicknesses.len())].iter().sum()
+        top_of(&self.thicknesses, j)
     }
 
     /// The values at depth `z_nm` below the first interface (negative: in the incident medium; beyond the
     /// last interface: in the substrate). At an interface, the medium below is used.
     pub fn at(&self, z_nm: f64) -> Point {
-        let n = self.thicknesses.len();
-        let j = if z_nm < 0.0 {
-            0
-        } else {
-            let mut j = 1;
-            while j <= n && z_nm >= self.top(j) + self.thicknesses[j - 1] {
-                j += 1;
-            }
-            j
-        };
-        let dz = if j == 0 { z_nm } else { z_nm - self.top(j) };
+        let (j, dz) = locate(&self.thicknesses, z_nm);
         self.in_medium(j, dz)
     }
 
