@@ -163,7 +163,7 @@ impl Environment {
     }
 
     /// The environment as [`ENVIRONMENT_LIGHTS`] directional lights, for the BRDFs that have no environment
-    /// integral of their own (diffraction, a rough film's diffuse lobe): `(direction, e)` where the directions
+    /// integral of their own (diffraction): `(direction, e)` where the directions
     /// are a Fibonacci sphere (near-equal solid angles) and each carries the irradiance `E_k = ∫ L dω` over the
     /// [`RADIANCE_CELLS`] cells nearest to it (its Voronoi cell), in the unit of the scene's lights: `e = E/π`,
     /// the radiance a white Lambertian surface facing the light reflects (a light of `e` gives it `e cos θ`).

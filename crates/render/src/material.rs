@@ -174,7 +174,24 @@ pub struct ThinFilm {
     pub rough: Option<Htsg>,
     colorimeter: FilmColorimeter,
     invariant: bool,
+    /// A rough film's diffuse directional albedo over view angle and SVT offset, made on first use
+    /// ([`ThinFilm::rough_env_diffuse`]).
+    rough_albedo: std::sync::OnceLock<RoughAlbedo>,
 }
+
+/// The diffuse directional albedo `∫ k_d cos θ dω` of a rough film as XYZ, on a grid of `cos θ_v` (rows) and
+/// SVT offsets (columns), bilinear in between.
+#[derive(Debug, Clone)]
+struct RoughAlbedo {
+    cos: Vec<f64>,
+    offsets: Vec<f64>,
+    xyz: Vec<Xyz>,
+}
+
+/// `cos θ_v` nodes of [`RoughAlbedo`] (0.02 to 1, uniform), and the midpoint cells per hemisphere axis of each
+/// albedo integral: the table's values are within 0.1 % of a 60-step integral (render_cli's rough plane).
+const ROUGH_ALBEDO_COS: usize = 12;
+const ROUGH_ALBEDO_STEPS: usize = 16;
 
 impl ThinFilm {
     /// Checks that the stack covers 380–780 nm and sets up the colour integral (D65, CIE 1931, 5 nm — the
@@ -206,7 +223,63 @@ impl ThinFilm {
             rough: None,
             colorimeter: FilmColorimeter::new(&grid, Illuminant::D65, Observer::Cie1931),
             invariant,
+            rough_albedo: std::sync::OnceLock::new(),
         })
+    }
+
+    /// A rough film's diffuse light from the environment per unit irradiance `E(n)/π`: its diffuse directional
+    /// albedo `∫ k_d(ω, ω_v) cos θ dω` (by reciprocity the diffuse fraction [`RoughStack::albedo`] returns for
+    /// light from `ω_v`) as XYZ — exact for a uniform environment, and the same split as the microfacet's
+    /// diffuse lobe under the irradiance map elsewhere. Made once per material over 12 view angles × the SVT
+    /// range, so that a pixel costs a table lookup instead of a diffuse evaluation per environment direction.
+    /// `None` for a smooth film.
+    pub fn rough_env_diffuse(&self, cos_view: f64, offset_nm: f64) -> Option<Xyz> {
+        let htsg = self.rough?;
+        let t = self.rough_albedo.get_or_init(|| {
+            use rayon::prelude::*;
+            let cos: Vec<f64> =
+                (0..ROUGH_ALBEDO_COS).map(|k| 0.02 + 0.98 * k as f64 / (ROUGH_ALBEDO_COS - 1) as f64).collect();
+            let offsets = match self.svt {
+                Some(s) => (-2..=2).map(|k| s.d_rel_nm * k as f64 / 2.0).collect(),
+                None => vec![0.0],
+            };
+            let grid = self.colorimeter.wavelengths_nm();
+            let xyz = cos
+                .iter()
+                .flat_map(|&c| offsets.iter().map(move |&o| (c, o)))
+                .collect::<Vec<_>>()
+                .par_iter()
+                .map(|&(c, o)| {
+                    let mut stack = self.stack.clone();
+                    for l in &mut stack.layers {
+                        l.thickness_nm = (l.thickness_nm + o).max(0.0);
+                    }
+                    let rough = RoughStack::new(stack, htsg);
+                    let d: Vec<f64> = grid
+                        .iter()
+                        .map(|&l| rough.albedo(l, c.acos(), ROUGH_ALBEDO_STEPS).map_or(0.0, |a| a.diffuse))
+                        .collect();
+                    self.colorimeter.from_spectra(&d, &d).reflected
+                })
+                .collect();
+            RoughAlbedo { cos, offsets, xyz }
+        });
+        // Bilinear in (cos θ_v, offset), clamped to the table.
+        let at = |v: f64, nodes: &[f64]| -> (usize, usize, f64) {
+            if nodes.len() == 1 || v <= nodes[0] {
+                return (0, 0, 0.0);
+            }
+            let i = nodes.partition_point(|&x| x <= v).min(nodes.len() - 1);
+            let (a, b) = (nodes[i - 1], nodes[i]);
+            (i - 1, i, ((v - a) / (b - a)).clamp(0.0, 1.0))
+        };
+        let (c0, c1, fc) = at(cos_view, &t.cos);
+        let (o0, o1, fo) = at(offset_nm, &t.offsets);
+        let w = t.offsets.len();
+        let g = |c: usize, o: usize| t.xyz[c * w + o].to_array();
+        let lerp = |a: [f64; 3], b: [f64; 3], f: f64| [0, 1, 2].map(|k| a[k] + (b[k] - a[k]) * f);
+        let v = lerp(lerp(g(c0, o0), g(c0, o1), fo), lerp(g(c1, o0), g(c1, o1), fo), fc);
+        Some(Xyz::new(v[0], v[1], v[2]))
     }
 
     /// The SVT thickness offset (nm) at a hit.

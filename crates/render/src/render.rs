@@ -253,15 +253,19 @@ impl Scene {
                 let offset = f.offset_nm(h.uv, &self.textures);
                 let mut out = [0.0; 3];
                 let (r, t) = if f.rough.is_some() {
-                    // Eq. 3.20: the diffuse part π·k_d·cos θ_l per RU of irradiance, for every light and for
-                    // the environment as directional lights (the specular part follows the mirror ray below).
-                    let mut lights = self.lights_at(h);
-                    lights.extend(self.environment_lights_at(h));
+                    // Eq. 3.20: the diffuse part π·k_d·cos θ_l per RU of irradiance, for every light; the
+                    // environment lights it as it lights a microfacet's diffuse lobe, the film's diffuse
+                    // directional albedo times the irradiance around the normal (the specular part follows the
+                    // mirror ray below).
+                    let lights = self.lights_at(h);
                     let dirs: Vec<(f64, f64)> =
                         lights.iter().map(|(wi, _)| (dot(h.n, *wi), relative_azimuth(h.n, *wi, wo))).collect();
                     let (spec, diffuse) = f.rough_colors(cos, offset, &dirs).unwrap_or_default();
                     for (((_, e), (cos_l, _)), d) in lights.iter().zip(&dirs).zip(&diffuse) {
                         out = add(out, mul(hadamard(d.to_linear_srgb(), *e), cos_l.max(0.0) * f.factor));
+                    }
+                    if let Some(a) = f.rough_env_diffuse(cos, offset) {
+                        out = add(out, mul(hadamard(a.to_linear_srgb(), self.irradiance(h.n)), f.factor));
                     }
                     (spec, Xyz::default())
                 } else {

@@ -58,7 +58,7 @@ pub struct Scene {
     /// The environment's irradiance map ([`Environment::irradiance_map`]; `None` where it is uniform), made
     /// by the loaders; call [`Scene::update_irradiance`] after changing `environment`.
     pub irradiance: Option<Texture>,
-    /// The environment as directional lights ([`Environment::as_lights`]) for diffraction and rough films,
+    /// The environment as directional lights ([`Environment::as_lights`]) for diffraction,
     /// made with `irradiance`.
     pub environment_lights: Vec<([f64; 3], [f64; 3])>,
     /// Notes for the user (normals computed, tangents generated, …).
