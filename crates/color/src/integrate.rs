@@ -49,6 +49,22 @@ impl SpectralWeights {
     pub fn wavelengths_nm(&self) -> &[f64] {
         &self.wavelengths_nm
     }
+
+    /// The same weights with each sample's triple multiplied by `factor(λ)`: a spectral factor that the
+    /// integral should carry without renormalising (e.g. a quantity that is not a reflectance relative to the
+    /// light, such as the diffraction BRDF's radiometric gain `4πσ_s²/λ²`).
+    pub fn scaled(&self, factor: impl Fn(f64) -> f64) -> Self {
+        let weights = self
+            .wavelengths_nm
+            .iter()
+            .zip(&self.weights)
+            .map(|(&l, w)| {
+                let f = factor(l);
+                [w[0] * f, w[1] * f, w[2] * f]
+            })
+            .collect();
+        Self { wavelengths_nm: self.wavelengths_nm.clone(), weights }
+    }
     /// The weight triple of each sample.
     pub fn weights(&self) -> &[[f64; 3]] {
         &self.weights

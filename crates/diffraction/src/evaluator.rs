@@ -386,7 +386,11 @@ impl GroundTruth {
             (0..spectral_samples).map(|k| s_lo + (s_hi - s_lo) * k as f64 / (spectral_samples - 1) as f64).collect();
         let mut grid: Vec<f64> = wavenumbers.iter().map(|s| 1.0 / s).collect();
         grid.reverse(); // increasing λ
-        let weights = SpectralWeights::new(&grid, spectral.illuminant, spectral.observer);
+        let mut weights = SpectralWeights::new(&grid, spectral.illuminant, spectral.observer);
+        if spectral.units == crate::Units::Radiometric {
+            spectral.check_coherence(coherence_nm)?;
+            weights = weights.scaled(|l| crate::spectral::radiometric_gain(l, coherence_nm));
+        }
         Ok(Self { samples, dx: patch.dx, dy: patch.dy, shading, wavenumbers, weights })
     }
 

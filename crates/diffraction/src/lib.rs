@@ -13,6 +13,7 @@
 //! Every evaluator implements [`Evaluator`]: colour (XYZ) for a pair of directions, and — where the method
 //! has it — the spectral reflectance at one wavelength. [`map::brdf_map`] renders any of them.
 
+pub mod energy;
 pub mod evaluator;
 pub mod geometry;
 pub mod map;
@@ -26,7 +27,7 @@ pub use evaluator::{Aperture, Evaluator, GroundTruth, Reference};
 pub use geometry::{Fresnel, FresnelConvention, Shading};
 pub use patch::{Coherence, Patch};
 pub use point::{point_query, PointQuery};
-pub use spectral::SpectralSetup;
+pub use spectral::{SpectralSetup, Units};
 pub use table::{Lookup, LookupTable, TableParams};
 pub use taylor::TaylorTerms;
 

@@ -78,6 +78,21 @@ pub struct TableMeta {
     /// illuminant (`illuminant` is then `light`); absent otherwise.
     #[serde(default)]
     pub light_spectrum: Option<Vec<f64>>,
+    /// What the colours measure ([`crate::Units`]): `relative` (the paper's) or `radiometric`. Absent in tables
+    /// written before it existed, which are relative.
+    #[serde(default = "relative_units")]
+    pub units: String,
+}
+
+fn relative_units() -> String {
+    crate::Units::Relative.name().into()
+}
+
+impl TableMeta {
+    /// The table's [`crate::Units`].
+    pub fn units(&self) -> Result<crate::Units, DiffractionError> {
+        self.units.parse()
+    }
 }
 
 /// What a table must have been made from, to be used for a surface and settings. `None` fields are not
@@ -100,6 +115,7 @@ pub struct Provenance {
     pub wavelength_range_nm: Option<(f64, f64)>,
     pub taylor_terms: Option<usize>,
     pub uv: Option<TableParams>,
+    pub units: Option<crate::Units>,
 }
 
 impl Provenance {
@@ -124,6 +140,7 @@ impl Provenance {
             wavelength_range_nm: Some((l[0], l[l.len() - 1])),
             taylor_terms: Some(taylor_terms),
             uv: Some(uv),
+            units: Some(spectral.units),
         }
     }
 }
@@ -173,6 +190,7 @@ impl LookupTable {
         if !(params.uv_power.is_finite() && params.uv_power >= 1.0 && params.uv_power <= 20.0) {
             return Err(DiffractionError::Invalid(format!("u-v power {} must be between 1 and 20", params.uv_power)));
         }
+        spectral.check_coherence(terms.coherence_nm)?;
         let n = terms.n_max;
         let np = 2 * n + 1;
         let uv: Vec<f64> = (0..res).map(|i| grid_value(i, res, params.uv_power)).collect();
@@ -250,6 +268,7 @@ impl LookupTable {
             warnings: crate::patch::model_warnings(terms.rows, terms.cols, terms.dx, terms.dy, terms.coherence_nm),
             surface_fingerprint: Some(terms.fingerprint.clone()),
             light_spectrum: spectral.light.clone(),
+            units: spectral.units.name().into(),
         };
         Ok(Self { meta, uv, wavelengths_nm: lambdas, data })
     }
@@ -336,6 +355,16 @@ impl LookupTable {
         if let Some(n) = e.taylor_terms {
             if m.taylor_terms != n {
                 out.push(format!("Taylor terms N: the table's {}, here {n}", m.taylor_terms));
+            }
+        }
+        if let Some(u) = e.units {
+            if m.units().ok() != Some(u) {
+                out.push(format!(
+                    "units: the table's colours are {}, here {} (iridis precompute --units {})",
+                    m.units,
+                    u.name(),
+                    u.name()
+                ));
             }
         }
         if let Some(p) = e.uv {
@@ -448,6 +477,7 @@ impl LookupTable {
                 meta.uv_resolution, meta.uv_power, meta.taylor_terms
             )));
         }
+        meta.units().map_err(|e| bad(format!("metadata: {e}")))?;
         let res = meta.uv_resolution as u64;
         let np = (meta.taylor_terms as u64).saturating_mul(2).saturating_add(1);
         let (shape, i_npy) = array("I")?;

@@ -277,6 +277,12 @@ impl<'g> GpuScene<'g> {
                     push_microfacet(&mut rec, mf);
                 }
                 Material::Diffraction(df) => {
+                    if !matches!(df.blend, iridis_render::material::Blend::Algorithm4) {
+                        return Err(GpuError::Invalid(format!(
+                            "material `{name}`: blend = \"{}\" is rendered on the CPU only (leave out --gpu)",
+                            df.blend.name()
+                        )));
+                    }
                     let lookup = df.evaluator.as_lookup().ok_or_else(|| {
                         GpuError::Invalid(format!(
                             "material `{name}`: the GPU renders diffraction from lookup tables only ({})",
@@ -787,6 +793,12 @@ impl SceneFrame {
             height: self.height,
             data: data.chunks_exact(4).take(pixels).map(|p| [p[0], p[1], p[2]]).collect(),
         })
+    }
+
+    /// The displayed pixels as the shader packed them (`pack4x8unorm`, row-major), for the viewer's present pass.
+    #[cfg(feature = "viewer")]
+    pub(crate) fn packed(&self) -> &wgpu::Buffer {
+        &self.out_rgba
     }
 
     /// Reads the last image back as displayed 8-bit sRGB (exposure and encoding of [`GpuScene::frame`]).

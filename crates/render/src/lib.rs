@@ -25,6 +25,7 @@ pub mod error;
 pub mod geometry;
 pub mod gltf_io;
 pub mod light;
+pub mod lobe;
 pub mod material;
 pub mod math;
 pub mod obj_io;

@@ -98,6 +98,31 @@ pub struct Diffraction {
     /// Index for the Schlick Fresnel weight `α = |F|` of Algorithm 4.
     pub fresnel_n: f64,
     pub description: String,
+    /// How the diffraction and the texture are combined.
+    pub blend: Blend,
+}
+
+/// How a diffraction material combines its lobe with its texture.
+#[derive(Debug, Clone)]
+pub enum Blend {
+    /// The thesis' Algorithm 4: `(1 − w_d)·c_diffraction + (1 − α)·c_texture + w_d·c_texture`, `α` Schlick's
+    /// Fresnel at the half vector. An artist's model: `scale_ru` is an exposure and the texture does not give up
+    /// the light the lobe reflects, so it does not conserve energy.
+    Algorithm4,
+    /// Energy-conserving (needs a radiometric table): `(1 − w_d)·(c_diffraction + c_texture·s) + w_d·c_texture`,
+    /// with `c_diffraction` the radiometric BRDF times `R₀` and `s = (1 − A(ω_i))(1 − A(ω_o))/(1 − A_avg)` the
+    /// share the lobe leaves ([`crate::lobe::LobeAlbedo`]): a white texture passes the white furnace, and
+    /// the BRDF stays reciprocal.
+    Energy(Arc<crate::lobe::LobeAlbedo>),
+}
+
+impl Blend {
+    pub fn name(&self) -> &'static str {
+        match self {
+            Blend::Algorithm4 => "algorithm4",
+            Blend::Energy(_) => "energy",
+        }
+    }
 }
 
 impl std::fmt::Debug for Diffraction {
@@ -123,22 +148,67 @@ impl Diffraction {
     /// `(t, n × t, n)` times the irradiance and `scale_ru`, and `c_texture` is the texture colour lit as a
     /// Lambertian surface (`cos θ_i` × irradiance).
     pub fn shade_light(&self, hit: &Hit, t: V3, wi: V3, wo: V3, e: Rgb, tex: Rgb) -> Rgb {
-        let n = hit.n;
-        let b = cross(n, t);
-        let local = |v: V3| [dot(v, t), dot(v, b), dot(v, n)];
-        let (li, lo) = (local(wi), local(wo));
+        let (li, lo) = (local_frame(hit.n, t, wi), local_frame(hit.n, t, wo));
         if li[2] <= 0.0 || lo[2] <= 0.0 {
             return [0.0; 3];
         }
-        let xyz = self.evaluator.xyz(li, lo);
-        let c_diff = hadamard(xyz.to_linear_srgb(), mul(e, self.scale_ru));
-        let h = normalize(add(wi, wo));
-        let alpha = schlick(self.fresnel_n, dot(wi, h)).abs().min(1.0);
+        let c_diff = self.lobe(li, lo, e);
         let c_tex = mul(hadamard(tex, e), li[2]);
-        let mut out = mul(c_diff, 1.0 - self.w_diffuse);
-        out = add(out, mul(c_tex, 1.0 - alpha));
-        add(out, mul(c_tex, self.w_diffuse))
+        let rest = match &self.blend {
+            Blend::Algorithm4 => {
+                let h = normalize(add(wi, wo));
+                let alpha = schlick(self.fresnel_n, dot(wi, h)).abs().min(1.0);
+                mul(c_tex, 1.0 - alpha)
+            }
+            Blend::Energy(a) => hadamard(c_tex, a.diffuse_share(li, lo)),
+        };
+        add(add(mul(c_diff, 1.0 - self.w_diffuse), rest), mul(c_tex, self.w_diffuse))
     }
+
+    /// The light's diffraction alone, `scale_ru · XYZ(ω_i, ω_o) · e`, for local directions above the surface.
+    fn lobe(&self, li: V3, lo: V3, e: Rgb) -> Rgb {
+        hadamard(self.evaluator.xyz(li, lo).to_linear_srgb(), mul(e, self.scale_ru))
+    }
+
+    /// One directional light of the environment's quadrature ([`crate::Scene::environment_lights`]): all of
+    /// Algorithm 4; under the energy blend only the lobe, since the texture takes the environment through
+    /// [`Diffraction::environment_diffuse`].
+    pub fn shade_environment_light(&self, hit: &Hit, t: V3, wi: V3, wo: V3, e: Rgb, tex: Rgb) -> Rgb {
+        match &self.blend {
+            Blend::Algorithm4 => self.shade_light(hit, t, wi, wo, e, tex),
+            Blend::Energy(_) => {
+                let (li, lo) = (local_frame(hit.n, t, wi), local_frame(hit.n, t, wo));
+                if li[2] <= 0.0 || lo[2] <= 0.0 {
+                    return [0.0; 3];
+                }
+                mul(self.lobe(li, lo, e), 1.0 - self.w_diffuse)
+            }
+        }
+    }
+
+    /// Under the energy blend, the texture's share of the environment: `c_texture ⊙ (1 − (1 − w_d) A(ω_o)) ⊙ E(n)/π`
+    /// (exact for a uniform environment, as the microfacet's diffuse share); nothing under Algorithm 4, whose
+    /// texture takes the environment's lights one by one.
+    pub fn environment_diffuse(&self, hit: &Hit, t: V3, wo: V3, tex: Rgb, irradiance: Rgb) -> Rgb {
+        match &self.blend {
+            Blend::Algorithm4 => [0.0; 3],
+            Blend::Energy(a) => {
+                let lo = local_frame(hit.n, t, wo);
+                if lo[2] <= 0.0 {
+                    return [0.0; 3];
+                }
+                let share = a.environment_share(lo);
+                let w = self.w_diffuse;
+                hadamard(hadamard(tex, irradiance), share.map(|s| (1.0 - w) * s + w))
+            }
+        }
+    }
+}
+
+/// `v` in the frame `(t, n × t, n)`.
+fn local_frame(n: V3, t: V3, v: V3) -> V3 {
+    let b = cross(n, t);
+    [dot(v, t), dot(v, b), dot(v, n)]
 }
 
 /// Spatially varying thickness (Sussenbach sec. 4.2): every layer gets `d_rel · (2α − 1)` added, with `α` from

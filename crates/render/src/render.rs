@@ -242,11 +242,15 @@ impl Scene {
                 let t = df.orientation.tangent(h, &self.textures);
                 let tex = self.color(&df.texture, h.uv);
                 let mut out = mul(tex, df.ambient);
-                // Lights, then the environment as directional lights (Algorithm 4 for each).
-                for (wi, e) in self.lights_at(h).into_iter().chain(self.environment_lights_at(h)) {
+                for (wi, e) in self.lights_at(h) {
                     out = add(out, df.shade_light(h, t, wi, wo, e, tex));
                 }
-                out
+                // The environment as directional lights for the lobe (and for Algorithm 4's texture); the
+                // energy blend's texture takes the irradiance around the normal.
+                for (wi, e) in self.environment_lights_at(h) {
+                    out = add(out, df.shade_environment_light(h, t, wi, wo, e, tex));
+                }
+                add(out, df.environment_diffuse(h, t, wo, tex, self.irradiance(h.n)))
             }
             Material::ThinFilm(f) => {
                 let cos = dot(h.n, wo).clamp(0.0, 1.0);

@@ -10,7 +10,7 @@ use std::sync::Arc;
 use iridis_color::units::{parse_angle_rad, parse_length_nm};
 use iridis_color::{Encoding, Illuminant};
 use iridis_diffraction::table::{Lookup, Precision, TableParams};
-use iridis_diffraction::{Fresnel, Shading};
+use iridis_diffraction::{Fresnel, Shading, Units};
 use iridis_thinfilm::htsg::{Htsg, Roughness, Series};
 use serde::Deserialize;
 use toml::Spanned;
@@ -221,6 +221,8 @@ struct MaterialDef {
     w_diffuse: Option<f64>,
     ambient: Option<f64>,
     fresnel_n: Option<f64>,
+    units: Option<String>,
+    blend: Option<String>,
     stack: Option<String>,
     svt: Option<String>,
     d_rel: Option<String>,
@@ -752,6 +754,8 @@ pub const MATERIAL_KEYS: &[(&str, &[&str])] = &[
             "texture",
             "ambient",
             "fresnel_n",
+            "units",
+            "blend",
         ],
     ),
     ("thinfilm", &["stack", "svt", "d_rel", "transmission", "base", "factor", "roughness", "correlation"]),
@@ -864,9 +868,16 @@ fn build_material(
             if !(16..=2001).contains(&params.uv_resolution) {
                 return Err(ctx.err(span.clone(), format!("{what}: `uv_resolution` must be between 16 and 2001")));
             }
-            let t = crate::tables::load_table(table, &ctx.base, params)
+            let units: Units = match d.units.as_deref() {
+                None => Units::Relative,
+                Some(u) => u.parse().map_err(|e| ctx.err_key(span, "units", format!("{what}: {e}")))?,
+            };
+            let t = crate::tables::load_table(table, &ctx.base, params, units)
                 .map_err(|e| ctx.err(span.clone(), format!("{what}: {e}")))?;
             let fresnel_n = d.fresnel_n.unwrap_or(1.5);
+            if !(fresnel_n.is_finite() && fresnel_n >= 1.0) {
+                return Err(ctx.err_key(span, "fresnel_n", format!("{what}: `fresnel_n` = {fresnel_n} must be ≥ 1")));
+            }
             let shading = Shading { fresnel: Arc::new(Fresnel::Schlick { n: fresnel_n }), ..Shading::default() };
             let lookup =
                 Lookup::new(t, shading, Precision::F64).map_err(|e| ctx.err(span.clone(), format!("{what}: {e}")))?;
@@ -887,19 +898,71 @@ fn build_material(
                     ))
                 }
             };
-            let scale_ru = d.scale_ru.unwrap_or(1.0);
+            let scale_ru = match units {
+                Units::Relative => d.scale_ru.unwrap_or(1.0),
+                // The BRDF itself: R₀ for the surface's reflectance, π for the lights' unit E/π (a 1 RU light
+                // gives a white Lambertian surface radiance cos θ_i).
+                Units::Radiometric if d.scale_ru.is_some() => {
+                    return Err(ctx.err_key(
+                        span,
+                        "scale_ru",
+                        format!(
+                            "{what}: `scale_ru` is the exposure of the paper's relative units; with units = \
+                             \"radiometric\" the lobe is the BRDF itself (scaled by R₀ of `fresnel_n`): leave it out"
+                        ),
+                    ))
+                }
+                Units::Radiometric => std::f64::consts::PI * ((fresnel_n - 1.0) / (fresnel_n + 1.0)).powi(2),
+            };
             if !(scale_ru.is_finite() && scale_ru >= 0.0) {
                 return Err(ctx.err(span.clone(), format!("{what}: `scale_ru` must be ≥ 0")));
             }
+            let ambient = d.ambient.unwrap_or(0.0).max(0.0);
+            let blend = match d.blend.as_deref().unwrap_or("algorithm4") {
+                "algorithm4" => Blend::Algorithm4,
+                "energy" if units != Units::Radiometric => {
+                    return Err(ctx.err_key(
+                        span,
+                        "blend",
+                        format!(
+                            "{what}: blend = \"energy\" needs units = \"radiometric\" (in the paper's relative \
+                             units the lobe's brightness is an exposure, so there is no energy to conserve)"
+                        ),
+                    ))
+                }
+                "energy" if ambient > 0.0 => {
+                    return Err(ctx.err_key(
+                        span,
+                        "ambient",
+                        format!("{what}: `ambient` adds light from nowhere; blend = \"energy\" takes none"),
+                    ))
+                }
+                "energy" => {
+                    // The lobe's albedo: the radiometric colour times R₀ is the reflected fraction.
+                    let r0 = scale_ru / std::f64::consts::PI;
+                    Blend::Energy(Arc::new(
+                        crate::lobe::LobeAlbedo::compute(&lookup, r0)
+                            .map_err(|e| ctx.err(span.clone(), format!("{what}: {e}")))?,
+                    ))
+                }
+                b => {
+                    return Err(ctx.err_key(
+                        span,
+                        "blend",
+                        format!("{what}: `blend` = \"{b}\": use algorithm4 (the thesis') or energy"),
+                    ))
+                }
+            };
             Ok(Material::Diffraction(Box::new(Diffraction {
                 evaluator: Arc::new(lookup),
                 orientation: Orientation { rule, angle: angle(&d.angle, ctx, span, "angle", 0.0)? },
                 scale_ru,
                 w_diffuse: unit(d.w_diffuse, "w_diffuse", 0.0)?,
                 texture: color_source(d, span, tex, [0.0; 3])?,
-                ambient: d.ambient.unwrap_or(0.0).max(0.0),
+                ambient,
                 fresnel_n,
                 description: table.clone(),
+                blend,
             })))
         }
         "thinfilm" => {

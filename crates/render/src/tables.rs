@@ -8,7 +8,7 @@ use std::sync::{Arc, Mutex, OnceLock};
 
 use iridis_diffraction::table::{LookupTable, TableParams, FORMAT_VERSION};
 use iridis_diffraction::taylor::terms_for_bound;
-use iridis_diffraction::{Patch, SpectralSetup, TaylorTerms, DEFAULT_COHERENCE_NM};
+use iridis_diffraction::{Patch, SpectralSetup, TaylorTerms, Units, DEFAULT_COHERENCE_NM};
 
 use crate::error::RenderError;
 
@@ -30,13 +30,15 @@ const BUILTIN_STEP_NM: f64 = 5.0;
 /// the generator made (its [`Patch::fingerprint`], so a changed generator gives a new key), the u-v grid, the
 /// model options (Taylor terms, coherence, illuminant, observer, wavelength step), the table format and the
 /// version of the code that computes it. Readable prefix: the built-in's name.
-pub fn builtin_key(name: &str, patch_fingerprint: &str, params: TableParams, terms: usize) -> String {
+pub fn builtin_key(name: &str, patch_fingerprint: &str, params: TableParams, terms: usize, units: Units) -> String {
     let what = format!(
         "{patch_fingerprint} uv={} a={} N={terms} coherence={DEFAULT_COHERENCE_NM} D65 CIE1931 step={BUILTIN_STEP_NM} \
-         format={FORMAT_VERSION} iridis-render={}",
+         format={FORMAT_VERSION} iridis-render={}{}",
         params.uv_resolution,
         params.uv_power,
-        env!("CARGO_PKG_VERSION")
+        env!("CARGO_PKG_VERSION"),
+        // Relative tables keep the key they had before units existed.
+        if units == Units::Relative { String::new() } else { format!(" units={}", units.name()) }
     );
     // FNV-1a 64: stable across runs and platforms (std's hasher is not promised to be).
     let h = what.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| (h ^ b as u64).wrapping_mul(0x0000_0100_0000_01b3));
@@ -45,20 +47,31 @@ pub fn builtin_key(name: &str, patch_fingerprint: &str, params: TableParams, ter
 
 /// Loads (or computes and caches) a table. `spec` is a path (relative to `base`) or `builtin:NAME`.
 /// A built-in table being computed reports to [`set_table_progress`].
-pub fn load_table(spec: &str, base: &Path, params: TableParams) -> Result<Arc<LookupTable>, RenderError> {
+pub fn load_table(spec: &str, base: &Path, params: TableParams, units: Units) -> Result<Arc<LookupTable>, RenderError> {
     let Some(name) = spec.strip_prefix("builtin:") else {
         let path = base.join(spec);
         let key = path.display().to_string();
-        if let Some(t) = memory().lock().ok().and_then(|m| m.get(&key).cloned()) {
-            return Ok(t);
+        let cached = memory().lock().ok().and_then(|m| m.get(&key).cloned());
+        let table = match cached {
+            Some(t) => t,
+            None => Arc::new(LookupTable::load(&path).map_err(|e| {
+                RenderError::Input(format!(
+                    "diffraction table {}: {e} (make one with `iridis precompute SURFACE -o TABLE.npz`, or write \
+                     table = \"builtin:elaphe\")",
+                    path.display()
+                ))
+            })?),
+        };
+        if table.meta.units().ok() != Some(units) {
+            return Err(RenderError::Input(format!(
+                "diffraction table {}: its colours are in {} units, the material asks for {} (make it with \
+                 `iridis precompute SURFACE --units {} -o TABLE.npz`)",
+                path.display(),
+                table.meta.units,
+                units.name(),
+                units.name()
+            )));
         }
-        let table = Arc::new(LookupTable::load(&path).map_err(|e| {
-            RenderError::Input(format!(
-                "diffraction table {}: {e} (make one with `iridis precompute SURFACE -o TABLE.npz`, or write \
-                 table = \"builtin:elaphe\")",
-                path.display()
-            ))
-        })?);
         if let Ok(mut m) = memory().lock() {
             m.insert(key, table.clone());
         }
@@ -67,7 +80,7 @@ pub fn load_table(spec: &str, base: &Path, params: TableParams) -> Result<Arc<Lo
     // The height field is generated every time (fast next to the table) so that the key follows it.
     let patch = builtin_patch(name)?;
     let n = terms_for_bound(patch.max_abs_height, 380.0, BUILTIN_EPSILON);
-    let key = builtin_key(name, &patch.fingerprint(), params, n);
+    let key = builtin_key(name, &patch.fingerprint(), params, n, units);
     if let Some(t) = memory().lock().ok().and_then(|m| m.get(&key).cloned()) {
         return Ok(t);
     }
@@ -75,7 +88,7 @@ pub fn load_table(spec: &str, base: &Path, params: TableParams) -> Result<Arc<Lo
     let table = match LookupTable::load(&file) {
         Ok(t) => t,
         Err(_) => {
-            let t = compute_table(name, &patch, n, params)?;
+            let t = compute_table(name, &patch, n, params, units)?;
             // The cache is an optimisation: failing to write it is not an error.
             let _ = save_atomic(&t, &file);
             t
@@ -98,13 +111,19 @@ fn builtin_patch(name: &str) -> Result<Patch, RenderError> {
 }
 
 /// `iridis precompute builtin:NAME` with default model options and the given u-v grid.
-pub fn compute_builtin(name: &str, params: TableParams) -> Result<LookupTable, RenderError> {
+pub fn compute_builtin(name: &str, params: TableParams, units: Units) -> Result<LookupTable, RenderError> {
     let patch = builtin_patch(name)?;
     let n = terms_for_bound(patch.max_abs_height, 380.0, BUILTIN_EPSILON);
-    compute_table(name, &patch, n, params)
+    compute_table(name, &patch, n, params, units)
 }
 
-fn compute_table(name: &str, patch: &Patch, n: usize, params: TableParams) -> Result<LookupTable, RenderError> {
+fn compute_table(
+    name: &str,
+    patch: &Patch,
+    n: usize,
+    params: TableParams,
+    units: Units,
+) -> Result<LookupTable, RenderError> {
     let spec = format!("builtin:{name}");
     let err = |e: iridis_diffraction::DiffractionError| RenderError::Input(format!("{spec}: {e}"));
     let report = progress();
@@ -112,8 +131,12 @@ fn compute_table(name: &str, patch: &Patch, n: usize, params: TableParams) -> Re
     let what = format!("table {spec}");
     let terms = TaylorTerms::compute_with_progress(patch, n, DEFAULT_COHERENCE_NM, &|d| report(d, total, &what))
         .map_err(err)?;
-    let spectral = SpectralSetup::new(iridis_color::Illuminant::D65, iridis_color::Observer::Cie1931, BUILTIN_STEP_NM)
-        .map_err(err)?;
+    let mut spectral =
+        SpectralSetup::new(iridis_color::Illuminant::D65, iridis_color::Observer::Cie1931, BUILTIN_STEP_NM)
+            .map_err(err)?;
+    if units == Units::Radiometric {
+        spectral = spectral.radiometric(DEFAULT_COHERENCE_NM).map_err(err)?;
+    }
     // Rows finish out of order on many threads: only the call after the build says "done".
     let t = LookupTable::build(&terms, &spectral, params, &spec, &|d| report((n + 1 + d).min(total - 1), total, &what))
         .map_err(err)?;
@@ -156,14 +179,21 @@ mod tests {
     #[test]
     fn builtin_key_follows_the_content() {
         let p = TableParams { uv_resolution: 201, uv_power: 5.0 };
-        let k = builtin_key("elaphe", "fnv1a64:0123456789abcdef", p, 30);
-        assert_eq!(k, builtin_key("elaphe", "fnv1a64:0123456789abcdef", p, 30));
+        let k = builtin_key("elaphe", "fnv1a64:0123456789abcdef", p, 30, Units::Relative);
+        assert_eq!(k, builtin_key("elaphe", "fnv1a64:0123456789abcdef", p, 30, Units::Relative));
         assert!(k.starts_with("elaphe-"));
         for other in [
-            builtin_key("elaphe", "fnv1a64:0123456789abcdee", p, 30),
-            builtin_key("elaphe", "fnv1a64:0123456789abcdef", TableParams { uv_resolution: 202, ..p }, 30),
-            builtin_key("elaphe", "fnv1a64:0123456789abcdef", TableParams { uv_power: 4.0, ..p }, 30),
-            builtin_key("elaphe", "fnv1a64:0123456789abcdef", p, 31),
+            builtin_key("elaphe", "fnv1a64:0123456789abcdee", p, 30, Units::Relative),
+            builtin_key(
+                "elaphe",
+                "fnv1a64:0123456789abcdef",
+                TableParams { uv_resolution: 202, ..p },
+                30,
+                Units::Relative,
+            ),
+            builtin_key("elaphe", "fnv1a64:0123456789abcdef", TableParams { uv_power: 4.0, ..p }, 30, Units::Relative),
+            builtin_key("elaphe", "fnv1a64:0123456789abcdef", p, 31, Units::Relative),
+            builtin_key("elaphe", "fnv1a64:0123456789abcdef", p, 30, Units::Radiometric),
         ] {
             assert_ne!(k, other);
         }
@@ -176,6 +206,9 @@ mod tests {
         let p = TableParams { uv_resolution: 31, uv_power: 5.0 };
         let (a, b) = (builtin_patch("sine").unwrap(), builtin_patch("blazed").unwrap());
         assert_ne!(a.fingerprint(), b.fingerprint());
-        assert_ne!(builtin_key("x", &a.fingerprint(), p, 10), builtin_key("x", &b.fingerprint(), p, 10));
+        assert_ne!(
+            builtin_key("x", &a.fingerprint(), p, 10, Units::Relative),
+            builtin_key("x", &b.fingerprint(), p, 10, Units::Relative)
+        );
     }
 }

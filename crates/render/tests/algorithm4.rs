@@ -16,7 +16,7 @@ use std::sync::Arc;
 use iridis_color::Xyz;
 use iridis_diffraction::geometry::Vec3;
 use iridis_diffraction::Evaluator;
-use iridis_render::material::{ColorSource, Diffraction, Material, OrientRule, Orientation};
+use iridis_render::material::{Blend, ColorSource, Diffraction, Material, OrientRule, Orientation};
 use iridis_render::parse_scene;
 
 /// `c_diffraction` before irradiance and `scale_ru`: linear sRGB [0.02, 0.05, 0.01] above the surface.
@@ -59,6 +59,7 @@ fn shade(theta_deg: f64, w_diffuse: f64, ambient: f64) -> [f64; 3] {
         ambient,
         fresnel_n: 1.5,
         description: "constant".into(),
+        blend: Blend::Algorithm4,
     }));
     scene.primary([0.0, 0.0, 5.0], [0.0, 0.0, -1.0])
 }

@@ -84,3 +84,107 @@ fn rough_films_in_the_furnace_reflect_their_albedo() {
         assert!(brightest < 1.01, "{stack}: a channel reaches {brightest} in the furnace");
     }
 }
+
+/// Diffraction under the energy-conserving blend (issue 21): a radiometric table of a rough nanostructure with a
+/// wide lobe (3.2 µm coherence, so a direction grid resolves it), a white texture under it. In a uniform white
+/// environment the light reflected into ω_o — the lobe plus the texture's share, integrated over ω_i on a dense
+/// (θ, φ) grid, independently of the u-v quadrature behind the albedo table — must be 1; and the lobe alone
+/// (no texture) must reflect at most 1.
+#[test]
+fn diffraction_with_the_energy_blend_passes_the_furnace() {
+    use std::sync::Arc;
+
+    use iridis_diffraction::table::{Lookup, LookupTable, Precision, TableParams};
+    use iridis_diffraction::taylor::terms_for_bound;
+    use iridis_diffraction::{Patch, Shading, SpectralSetup, TaylorTerms};
+    use iridis_render::geometry::Hit;
+    use iridis_render::lobe::LobeAlbedo;
+    use iridis_render::material::{Blend, ColorSource, Diffraction, OrientRule, Orientation};
+
+    let n = 64;
+    let mut seed = 7u64;
+    let mut rnd = move || {
+        seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    };
+    let noise: Vec<f64> = (0..n * n).map(|_| rnd()).collect();
+    // Heights correlated over ~3 pixels (300 nm): light scattered over tens of degrees.
+    let heights: Vec<f64> = (0..n * n)
+        .map(|k| {
+            let (r, c) = (k / n, k % n);
+            (0..3)
+                .flat_map(|dr| (0..3).map(move |dc| (dr, dc)))
+                .map(|(dr, dc)| noise[((r + dr) % n) * n + (c + dc) % n])
+                .sum::<f64>()
+                * 60.0
+        })
+        .collect();
+    let patch = Patch::from_row_major(n, n, 100.0, 100.0, &heights).unwrap();
+    let coherence = 3200.0;
+    let terms = TaylorTerms::compute(&patch, terms_for_bound(patch.max_abs_height, 380.0, 1e-6), coherence).unwrap();
+    let spectral = SpectralSetup::default().radiometric(coherence).unwrap();
+    let table =
+        LookupTable::build(&terms, &spectral, TableParams { uv_resolution: 101, uv_power: 5.0 }, "rough", &|_| {})
+            .unwrap();
+    let lookup = Lookup::new(Arc::new(table), Shading::default(), Precision::F64).unwrap();
+    let r0 = 0.04;
+    let albedo = LobeAlbedo::compute(&lookup, r0).unwrap();
+    let material = Diffraction {
+        evaluator: Arc::new(lookup.clone()),
+        orientation: Orientation { rule: OrientRule::Tangent, angle: 0.0 },
+        scale_ru: std::f64::consts::PI * r0,
+        w_diffuse: 0.0,
+        texture: ColorSource::Const([1.0; 3]),
+        ambient: 0.0,
+        fresnel_n: 1.5,
+        description: "rough".into(),
+        blend: Blend::Energy(Arc::new(albedo.clone())),
+    };
+    let hit = Hit {
+        t: 1.0,
+        p: [0.0; 3],
+        n: [0.0, 0.0, 1.0],
+        ng: [0.0, 0.0, 1.0],
+        front: true,
+        uv: [0.0; 2],
+        tangent: None,
+        tangent_sign: 1.0,
+        along: None,
+        material: 0,
+    };
+    // ∫ L cos θ_i dω_i for radiance 1: each cell a directional light of irradiance dω/π (the lights' unit E/π).
+    let furnace = |m: &Diffraction, wo: [f64; 3], tex: f64| {
+        let (nt, np) = (300, 600);
+        let mut acc = [0.0; 3];
+        for i in 0..nt {
+            let theta = (i as f64 + 0.5) / nt as f64 * std::f64::consts::FRAC_PI_2;
+            let d_omega = theta.sin() * (std::f64::consts::FRAC_PI_2 / nt as f64) * (std::f64::consts::TAU / np as f64);
+            for j in 0..np {
+                let phi = (j as f64 + 0.5) / np as f64 * std::f64::consts::TAU;
+                let wi = [theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos()];
+                let e = d_omega / std::f64::consts::PI;
+                let c = m.shade_light(&hit, [1.0, 0.0, 0.0], wi, wo, [e; 3], [tex; 3]);
+                for k in 0..3 {
+                    acc[k] += c[k];
+                }
+            }
+        }
+        acc
+    };
+    let mut worst = 0.0f64;
+    for (theta, phi) in [(0.0f64, 0.0f64), (25.0, 0.4), (50.0, 2.0), (70.0, 4.0)] {
+        let (t, p) = (theta.to_radians(), phi);
+        let wo = [t.sin() * p.cos(), t.sin() * p.sin(), t.cos()];
+        let (l, lobe) = (furnace(&material, wo, 1.0), furnace(&material, wo, 0.0));
+        eprintln!(
+            "θ_o = {theta}°: lobe alone {lobe:.4?}, lobe + white texture {l:.4?}, A_avg {:.4?}",
+            albedo.average()
+        );
+        for k in 0..3 {
+            assert!(lobe[k] <= 1.0 && lobe[k] > 0.01, "θ_o = {theta}°: the lobe reflects {lobe:?}");
+            worst = worst.max((l[k] - 1.0).abs());
+        }
+    }
+    // The albedo table's interpolation (10 × 16 nodes) against the dense grid's integral of the same lobe.
+    assert!(worst < 0.01, "|L − 1| up to {worst}");
+}

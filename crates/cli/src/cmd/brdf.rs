@@ -10,7 +10,7 @@ use iridis_diffraction::evaluator::{Evaluator, GroundTruth, Reference};
 use iridis_diffraction::geometry::{direction, FilmFresnel, FresnelConvention, FresnelSource, Shading};
 use iridis_diffraction::table::{Lookup, LookupTable, Precision, Provenance, TableParams};
 use iridis_diffraction::taylor::terms_for_bound;
-use iridis_diffraction::{Fresnel, Patch, SpectralSetup, TaylorTerms};
+use iridis_diffraction::{Fresnel, Patch, SpectralSetup, TaylorTerms, Units};
 use iridis_lab::methods::{Method, MethodConfig, Workbench};
 use num_complex::Complex64;
 
@@ -70,6 +70,12 @@ I_p(u, v), p = 0..2N, for X, Y and Z (eq. 10-12) on the non-linear u-v grid of s
 to one .npz file that numpy opens:  t = np.load('T.npz'); t['I'].shape == (res, res, 3, 2N+1);
 json.loads(bytes(t['metadata_json'])).
 
+--units radiometric weights the colours by 4πσ_s²/λ² (σ_s a quarter of the coherence length): the table
+then holds the BRDF times cos θ_i over R₀, whose integral over the hemisphere is the light reflected (a
+flat surface: R(θ)/R₀), for scenes with energy-conserving diffraction materials (units = "radiometric"
+in a scene; docs/PHYSICS.md). The default, relative, is the paper's: a flat mirror's peak is 1 at every
+wavelength, and images are scaled by an exposure in RU.
+
 Examples:
   iridis precompute builtin:elaphe -o elaphe.npz
   iridis precompute scan.gwy -o scan.npz --terms 30 --coherence 65um --uv-resolution 501 --uv-power 5
@@ -88,8 +94,16 @@ pub struct PrecomputeArgs {
     /// Exponent a of the non-linear u-v grid (1 = linear).
     #[arg(long, default_value_t = 5.0)]
     pub uv_power: f64,
+    /// What the colours measure: relative (the paper's: a flat mirror's peak is 1) or radiometric (the BRDF:
+    /// a flat surface reflects R(θ)/R₀ of the light).
+    #[arg(long, value_name = "relative|radiometric", default_value = "relative", value_parser = units)]
+    pub units: Units,
     #[command(flatten)]
     pub surface_opts: SurfaceOpts,
+}
+
+fn units(s: &str) -> Result<Units, String> {
+    s.parse().map_err(|e: iridis_diffraction::DiffractionError| e.to_string())
 }
 
 #[derive(Debug, ClapArgs)]
@@ -253,8 +267,11 @@ pub fn run_precompute(a: PrecomputeArgs) -> Result<()> {
     crate::output::declare("-o", &a.output, &["npz"])?;
     let start = std::time::Instant::now();
     let patch = load_patch(&a.surface, &a.surface_opts)?;
-    let spectral = spectral_setup(&a.model)?;
     let terms = taylor_terms(&patch, &a.model)?;
+    let mut spectral = spectral_setup(&a.model)?;
+    if a.units == Units::Radiometric {
+        spectral = spectral.radiometric(terms.coherence_nm)?;
+    }
     let params = TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power };
     // The size is known once N is: say it before the long build and the write.
     let values = a.uv_resolution * a.uv_resolution * 3 * (2 * terms.n_max + 1);
