@@ -24,6 +24,8 @@
 
 pub mod film;
 pub mod lookup;
+#[cfg(feature = "viewer")]
+mod present;
 pub mod scene;
 #[cfg(feature = "viewer")]
 pub mod viewer;

@@ -253,6 +253,12 @@ impl MapFrame<'_, '_> {
         dispatch(gpu, self.timer.as_ref(), &self.lookup.pipeline, &self.bind, (groups, groups), "rendering the map")
     }
 
+    /// The displayed pixels as the shader packed them (`pack4x8unorm`, row-major), for the viewer's present pass.
+    #[cfg(feature = "viewer")]
+    pub(crate) fn packed(&self) -> &wgpu::Buffer {
+        &self.out_rgba
+    }
+
     /// Reads the last rendered map back.
     pub fn read(&self) -> Result<MapOutput, GpuError> {
         let gpu = self.lookup.gpu;

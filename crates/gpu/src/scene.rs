@@ -100,6 +100,9 @@ struct FilmSlot {
     media_base: usize,
     thick_base: usize,
     n_media: usize,
+    /// The same film over a metallic base's metal ([`iridis_render::material::ThinFilm::metal_stack`]): its
+    /// media block (same layers, the metal as substrate; thicknesses shared).
+    metal_media_base: Option<usize>,
 }
 
 /// Interactive changes to every thin-film material of a scene (the viewer's panel).
@@ -354,14 +357,32 @@ impl<'g> GpuScene<'g> {
                         | (u32::from(f.base.is_some()) << 2);
                     rec.words([3, 0, 0, 0]);
                     rec.words([n_media as u32, media_base, thick_base, flags]);
+                    // A metallic base's film: the same layers over the metal, per wavelength after the thicknesses.
+                    let metal_media_base = match &f.metal_stack {
+                        Some(ms) => {
+                            let b = media.len();
+                            for &l in &grid {
+                                for m in ms.materials() {
+                                    let n = m.index_at(l).map_err(|e| {
+                                        GpuError::Invalid(format!("material `{name}`: metal under the film: {e}"))
+                                    })?;
+                                    media.push([n.re as f32, n.im as f32]);
+                                }
+                            }
+                            Some(b)
+                        }
+                        None => None,
+                    };
                     let (svt_tex, d_rel) = f.svt.map(|s| (s.texture as u32, s.d_rel_nm as f32)).unwrap_or((NONE, 0.0));
-                    let svt = [f32::from_bits(svt_tex), d_rel, f.factor as f32, 0.0];
+                    let metal_word = metal_media_base.map_or(NONE, |b| b as u32);
+                    let svt = [f32::from_bits(svt_tex), d_rel, f.factor as f32, f32::from_bits(metal_word)];
                     films.push(FilmSlot {
                         svt_record: rec.len(),
                         svt,
                         media_base: media_base as usize,
                         thick_base: thick_base as usize,
                         n_media,
+                        metal_media_base,
                     });
                     rec.push(svt);
                     if let Some(b) = &f.base {
@@ -558,6 +579,9 @@ impl<'g> GpuScene<'g> {
                 let n_lambda = (f.thick_base - f.media_base) / f.n_media;
                 for l in 0..n_lambda {
                     media[f.media_base + l * f.n_media + 1] = [n as f32, 0.0];
+                    if let Some(m) = f.metal_media_base {
+                        media[m + l * f.n_media + 1] = [n as f32, 0.0];
+                    }
                 }
             }
             let mut svt = f.svt;

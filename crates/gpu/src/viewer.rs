@@ -4,9 +4,10 @@
 //! at a chosen incidence) and the frame time. Dragging orbits the camera, right- or shift-dragging moves the
 //! light, the wheel zooms; the scene file is reloaded when it changes on disk.
 //!
-//! Frames are rendered by the same compute shaders as `iridis render --gpu` into a storage buffer, read back
-//! and shown as an egui texture (a copy per frame: simple and the same on every adapter; at the viewer's
-//! sizes it costs far less than the shading). A frame is rendered only when something changed.
+//! Frames are rendered by the same compute shaders as `iridis render --gpu` into a storage buffer; a small
+//! compute pass ([`crate::present`]) stores its displayed pixels into a texture registered with egui's wgpu
+//! renderer, so a frame never travels to the CPU and back. The panel shows the render pass's own GPU
+//! timestamps where the adapter has them. A frame is rendered only when something changed.
 //!
 //! [`ViewOptions::check`] runs the scripted check used under Xvfb: it drives the window through egui's own
 //! input path (pointer drags, a key, the wheel), verifies that every input changed what is shown, takes a
@@ -25,6 +26,7 @@ use iridis_render::light::Light;
 use iridis_render::material::Material;
 use iridis_render::Scene;
 
+use crate::present::{PresentTarget, Presenter};
 use crate::scene::{FilmControls, GpuScene, SceneFrame};
 use crate::{FrameTime, Gpu, GpuLookup};
 
@@ -52,8 +54,15 @@ pub struct CheckReport {
     pub frames: usize,
     /// Each input and how much it changed the shown image (mean absolute difference of 8-bit values).
     pub steps: Vec<(String, f64)>,
-    /// Median frame time of the renders (ms).
+    /// Median frame time of the renders (ms): submission to completion of the render pass.
     pub frame_ms: f64,
+    /// Median of the render pass's GPU timestamps (ms), where the adapter has timestamp queries.
+    pub gpu_ms: Option<f64>,
+    /// Median time to read a frame back to the CPU (ms), measured by the check on every frame as the peer of
+    /// what the viewer no longer does.
+    pub readback_ms: f64,
+    /// Whether the texture egui drew held exactly the rendered frame's pixels, every frame.
+    pub texture_equals_frame: bool,
     /// The window as RGBA8 (`width × height`).
     pub screenshot: Option<(usize, usize, Vec<u8>)>,
 }
@@ -94,7 +103,7 @@ pub fn run(input: ViewInput, opts: ViewOptions, load: SceneLoader) -> Result<Opt
             let rs = cc.wgpu_render_state.as_ref().ok_or("eframe opened no wgpu renderer")?;
             let gpu: &'static Gpu =
                 Box::leak(Box::new(Gpu::from_parts(rs.device.clone(), rs.queue.clone(), rs.adapter.get_info())));
-            match Viewer::new(gpu, input, first, opts, load, out) {
+            match Viewer::new(gpu, rs.clone(), input, first, opts, load, out) {
                 Ok(v) => Ok(Box::new(v) as Box<dyn eframe::App>),
                 Err(e) => {
                     *fail.lock().unwrap_or_else(|p| p.into_inner()) = Some(e.clone());
@@ -220,11 +229,19 @@ struct Check {
     requested: bool,
 }
 
+/// The texture the main image is presented in, and its egui id.
+struct FrameTexture {
+    target: PresentTarget,
+    id: egui::TextureId,
+}
+
 struct Viewer {
     gpu: &'static Gpu,
+    render_state: eframe::egui_wgpu::RenderState,
+    presenter: Presenter,
     mode: Mode,
     load: SceneLoader,
-    tex: Option<egui::TextureHandle>,
+    frame_tex: Option<FrameTexture>,
     map_tex: Option<egui::TextureHandle>,
     shown: Vec<u8>,
     exposure: f64,
@@ -241,6 +258,9 @@ struct Viewer {
     dirty: bool,
     map_dirty: bool,
     times: Vec<FrameTime>,
+    /// The check's readback times (ms) and whether every presented texture equalled its frame.
+    readback_ms: Vec<f64>,
+    texture_equals_frame: bool,
     status: Vec<String>,
     last_poll: Instant,
     image_rect: Option<egui::Rect>,
@@ -338,6 +358,7 @@ impl SceneView {
 impl Viewer {
     fn new(
         gpu: &'static Gpu,
+        render_state: eframe::egui_wgpu::RenderState,
         input: ViewInput,
         first: Option<Scene>,
         opts: ViewOptions,
@@ -363,9 +384,11 @@ impl Viewer {
         let software = gpu.is_software();
         Ok(Self {
             gpu,
+            render_state,
+            presenter: Presenter::new(gpu).map_err(|e| e.to_string())?,
             mode,
             load,
-            tex: None,
+            frame_tex: None,
             map_tex: None,
             shown: Vec::new(),
             exposure,
@@ -383,6 +406,8 @@ impl Viewer {
             dirty: true,
             map_dirty: true,
             times: Vec::new(),
+            readback_ms: Vec::new(),
+            texture_equals_frame: true,
             status: Vec::new(),
             last_poll: Instant::now(),
             image_rect: None,
@@ -434,13 +459,39 @@ impl Viewer {
         }
     }
 
-    /// Renders the main image at `size` (pixels) if needed; returns an error message on failure.
-    fn render(&mut self, ctx: &egui::Context, size: [u32; 2]) -> Result<(), String> {
+    /// Renders the main image at `size` (pixels) and presents it in the frame texture; returns an error message
+    /// on failure.
+    fn render(&mut self, size: [u32; 2]) -> Result<(), String> {
         let tone = self.tone();
-        let (rgb, ft) = match &mut self.mode {
+        let gpu = self.gpu;
+        let (w, h) = match &self.mode {
+            Mode::Scene(_) => (size[0], size[1]),
+            Mode::Table(_) => (size[0].min(size[1]), size[0].min(size[1])),
+        };
+        if self.frame_tex.as_ref().map(|t| (t.target.width, t.target.height)) != Some((w, h)) {
+            let target = self.presenter.target(gpu, w, h).map_err(|e| e.to_string())?;
+            let mut renderer = self.render_state.renderer.write();
+            let filter = wgpu::FilterMode::Linear;
+            let id = match self.frame_tex.take() {
+                Some(old) => {
+                    renderer.update_egui_texture_from_wgpu_texture(&gpu.device, &target.sample_view, filter, old.id);
+                    old.id
+                }
+                None => renderer.register_native_texture(&gpu.device, &target.sample_view, filter),
+            };
+            self.frame_tex = Some(FrameTexture { target, id });
+        }
+        let target = &self.frame_tex.as_ref().ok_or("no frame texture")?.target;
+        // Only the scripted check reads frames back: to verify the texture and to time the copy it saves.
+        let check = self.check.is_some();
+        let timed_read = |read: &dyn Fn() -> Result<Vec<u8>, crate::GpuError>| {
+            let t = Instant::now();
+            read().map(|rgb| (rgb, t.elapsed().as_secs_f64() * 1e3)).map_err(|e| e.to_string())
+        };
+        let (ft, readback) = match &mut self.mode {
             Mode::Scene(sv) => {
-                if sv.frame.as_ref().map(|f| f.size()) != Some((size[0], size[1])) {
-                    sv.frame = Some(sv.gpu.frame(size[0], size[1], 1, tone).map_err(|e| e.to_string())?);
+                if sv.frame.as_ref().map(|f| f.size()) != Some((w, h)) {
+                    sv.frame = Some(sv.gpu.frame(w, h, 1, tone).map_err(|e| e.to_string())?);
                 }
                 if let Some(cam) = sv.orbit.and_then(|o| o.camera()) {
                     sv.gpu.set_camera(cam);
@@ -459,29 +510,25 @@ impl Viewer {
                 let frame = sv.frame.as_ref().ok_or("no frame")?;
                 frame.set_tone(&sv.gpu, tone);
                 let ft = frame.run(&sv.gpu).map_err(|e| e.to_string())?;
-                (frame.read_rgb8(&sv.gpu).map_err(|e| e.to_string())?, ft)
+                self.presenter.present(gpu, frame.packed(), target).map_err(|e| e.to_string())?;
+                let rb = if check { Some(timed_read(&|| frame.read_rgb8(&sv.gpu))?) } else { None };
+                (ft, rb)
             }
             Mode::Table(mv) => {
-                let side = size[0].min(size[1]) as usize;
                 let wi = direction(self.map_theta.to_radians(), self.map_phi.to_radians());
-                let t = Instant::now();
-                let out = mv.lookup.render_map(wi, side, tone).map_err(|e| e.to_string())?;
-                (out.rgb8, FrameTime { wall: t.elapsed(), gpu: None })
+                let frame = mv.lookup.frame(w as usize, tone).map_err(|e| e.to_string())?;
+                let ft = frame.run(wi).map_err(|e| e.to_string())?;
+                self.presenter.present(gpu, frame.packed(), target).map_err(|e| e.to_string())?;
+                let rb = if check { Some(timed_read(&|| frame.read().map(|o| o.rgb8))?) } else { None };
+                (ft, rb)
             }
         };
-        let (w, h) = match &self.mode {
-            Mode::Scene(_) => (size[0] as usize, size[1] as usize),
-            Mode::Table(_) => {
-                let s = size[0].min(size[1]) as usize;
-                (s, s)
-            }
-        };
-        let img = egui::ColorImage::from_rgb([w, h], &rgb);
-        match &mut self.tex {
-            Some(t) => t.set(img, egui::TextureOptions::LINEAR),
-            None => self.tex = Some(ctx.load_texture("iridis-frame", img, egui::TextureOptions::LINEAR)),
+        if let Some((rgb, ms)) = readback {
+            let shown = target.read_rgb8(gpu).map_err(|e| e.to_string())?;
+            self.texture_equals_frame &= shown == rgb;
+            self.readback_ms.push(ms);
+            self.shown = rgb;
         }
-        self.shown = rgb;
         self.times.push(ft);
         Ok(())
     }
@@ -581,7 +628,11 @@ impl Viewer {
         if let Some(t) = self.times.last() {
             let ms = t.wall.as_secs_f64() * 1e3;
             ui.label(format!("frame {ms:.1} ms ({:.1} fps)", 1e3 / ms.max(1e-6)));
-            // No GPU timestamps here: with egui's passes on the same queue, lavapipe's are not those of our pass.
+            // The render pass's own timestamps (a query set around our compute pass): the shading alone,
+            // without submission and waiting.
+            if let Some(g) = t.gpu {
+                ui.label(format!("render pass {:.2} ms (GPU timestamps)", g.as_secs_f64() * 1e3));
+            }
             ui.label(format!("{} frames rendered", self.times.len()));
         }
         for s in &self.status {
@@ -765,20 +816,29 @@ impl Viewer {
         if c.requested {
             let shot = c.screenshot.lock().unwrap_or_else(|p| p.into_inner()).take();
             if let Some(img) = shot {
-                let mut ms: Vec<f64> = self.times.iter().map(|t| t.wall.as_secs_f64() * 1e3).collect();
-                ms.sort_by(f64::total_cmp);
+                let ms: Vec<f64> = self.times.iter().map(|t| t.wall.as_secs_f64() * 1e3).collect();
+                let gpu_ms: Vec<f64> = self.times.iter().filter_map(|t| t.gpu).map(|g| g.as_secs_f64() * 1e3).collect();
                 let rgba: Vec<u8> = img.pixels.iter().flat_map(|p| p.to_array()).collect();
                 *self.report.lock().unwrap_or_else(|p| p.into_inner()) = Some(CheckReport {
                     adapter: self.gpu.adapter_name(),
                     frames: self.times.len(),
                     steps: c.steps.clone(),
-                    frame_ms: ms.get(ms.len() / 2).copied().unwrap_or(f64::NAN),
+                    frame_ms: median(ms),
+                    gpu_ms: (!gpu_ms.is_empty()).then(|| median(gpu_ms)),
+                    readback_ms: median(self.readback_ms.clone()),
+                    texture_equals_frame: self.texture_equals_frame && !self.readback_ms.is_empty(),
                     screenshot: Some((img.size[0], img.size[1], rgba)),
                 });
                 ctx.send_viewport_cmd(egui::ViewportCommand::Close);
             }
         }
     }
+}
+
+/// The median of some times (NaN for none).
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
 }
 
 const HELP: &str = "drag: orbit the camera · right-drag or shift-drag: move the light · wheel: zoom\n\
@@ -808,11 +868,11 @@ impl eframe::App for Viewer {
             ];
             let size_changed = match &self.mode {
                 Mode::Scene(sv) => sv.frame.as_ref().map(|f| f.size()) != Some((px[0], px[1])),
-                Mode::Table(_) => self.tex.as_ref().map(|t| t.size()[0] as u32) != Some(px[0].min(px[1])),
+                Mode::Table(_) => self.frame_tex.as_ref().map(|t| t.target.width) != Some(px[0].min(px[1])),
             };
             if self.dirty || size_changed {
                 self.dirty = false;
-                if let Err(e) = self.render(&ctx, px) {
+                if let Err(e) = self.render(px) {
                     self.status = vec![e];
                 }
             }
@@ -820,12 +880,12 @@ impl eframe::App for Viewer {
                 self.map_dirty = false;
                 self.render_map_view(&ctx);
             }
-            if let Some(t) = &self.tex {
+            if let Some(t) = &self.frame_tex {
                 let size = match &self.mode {
                     Mode::Scene(_) => avail,
                     Mode::Table(_) => egui::vec2(avail.x.min(avail.y), avail.x.min(avail.y)),
                 };
-                let resp = ui.add(egui::Image::new((t.id(), size)).sense(egui::Sense::click_and_drag()));
+                let resp = ui.add(egui::Image::new((t.id, size)).sense(egui::Sense::click_and_drag()));
                 self.image_rect = Some(resp.rect);
                 self.handle_input(&ctx, &resp);
                 if self.help {

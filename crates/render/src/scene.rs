@@ -1007,8 +1007,25 @@ fn build_material(
                     }
                 },
             };
-            let mut film = ThinFilm::new(stack, svt, d.transmission.unwrap_or(false))
+            let mut film = ThinFilm::new(stack.clone(), svt, d.transmission.unwrap_or(false))
                 .map_err(|e| ctx.err(span.clone(), format!("{what}: {e}")))?;
+            // Over a metallic base the film's substrate is the metal, as in glTF iridescence: the index whose
+            // F_0 is the base colour (crate::gltf_io::metal_from_f0).
+            if let Some(b) = base.filter(|b| b.metallic > 0.0) {
+                let ColorSource::Const(f0) = b.color else {
+                    return Err(ctx.err(
+                        span.clone(),
+                        format!(
+                            "{what}: the metallic base under the film takes its constant `color` as the metal's F_0; \
+                             give the base a `color`, not a texture"
+                        ),
+                    ));
+                };
+                let mut metal = stack;
+                metal.substrate =
+                    crate::gltf_io::metal_from_f0(f0).map_err(|e| ctx.err(span.clone(), format!("{what}: {e}")))?;
+                film.metal_stack = Some(metal);
+            }
             film.base = base;
             film.factor = unit(d.factor, "factor", 1.0)?;
             let length = |key: &str, v: &str| {

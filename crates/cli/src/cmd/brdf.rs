@@ -72,7 +72,7 @@ json.loads(bytes(t['metadata_json'])).
 
 --units radiometric weights the colours by 4πσ_s²/λ² (σ_s a quarter of the coherence length): the table
 then holds the BRDF times cos θ_i over R₀, whose integral over the hemisphere is the light reflected (a
-flat surface: R(θ)/R₀), for scenes with energy-conserving diffraction materials (units = "radiometric"
+flat surface: R(θ)/R₀), for scenes with energy-conserving diffraction materials (units = \"radiometric\"
 in a scene; docs/PHYSICS.md). The default, relative, is the paper's: a flat mirror's peak is 1 at every
 wavelength, and images are scaled by an exposure in RU.
 

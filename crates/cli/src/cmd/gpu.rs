@@ -541,22 +541,36 @@ pub fn run_view(a: ViewArgs) -> Result<()> {
         let rgb: Vec<u8> = rgba.chunks_exact(4).flat_map(|p| [p[0], p[1], p[2]]).collect();
         crate::output::write_png_rgb8(shot, *w as u32, *h as u32, &rgb)?;
     }
-    let ok = r.steps.len() == 4 && r.steps.iter().all(|(_, d)| *d > 0.0);
+    let ok = r.steps.len() == 4 && r.steps.iter().all(|(_, d)| *d > 0.0) && r.texture_equals_frame;
     if a.json {
         crate::output::print_json(&json!({
             "adapter": r.adapter,
             "frames": r.frames,
             "frame_ms_median": r.frame_ms,
+            "gpu_ms_median": r.gpu_ms,
+            "readback_ms_median": r.readback_ms,
+            "texture_equals_frame": r.texture_equals_frame,
             "steps": r.steps.iter().map(|(n, d)| json!({"input": n, "change": d})).collect::<Vec<_>>(),
             "screenshot": shot.display().to_string(),
             "ok": ok,
         }))?;
     } else {
         crate::outln!("viewer check on {}: {} frames, median {:.1} ms", r.adapter, r.frames, r.frame_ms)?;
+        if let Some(g) = r.gpu_ms {
+            crate::outln!("  render pass (GPU timestamps): median {g:.2} ms")?;
+        }
+        crate::outln!(
+            "  frames shown without a readback: the texture {} the frame; a readback would add a median {:.2} ms",
+            if r.texture_equals_frame { "equals" } else { "DIFFERS FROM" },
+            r.readback_ms
+        )?;
         for (n, d) in &r.steps {
             crate::outln!("  {n}: change {d:.3}")?;
         }
         crate::outln!("wrote {}", shot.display())?;
+    }
+    if !r.texture_equals_frame {
+        bail!("the texture the window drew differs from the rendered frame (a present-pass defect)");
     }
     if !ok {
         bail!("the viewer did not answer every input (a change of 0 above)");

@@ -1007,7 +1007,8 @@ fn shade(h_in: Hit, d: vec3<f32>, depth: u32, weight: f32, thr: vec3<f32>) {
         return;
     }
     // Thin film: [kind], [n_media, media, thickness, flags: 1 SVT, 2 transmission, 4 base],
-    // [SVT texture, d_rel, factor], base colour, base [roughness, metallic, ior].
+    // [SVT texture, d_rel, factor, media of the film over a metallic base's metal (NONE: none)], base colour,
+    // base [roughness, metallic, ior].
     let fw = scene[r + 1u];
     let sv = scene[r + 2u];
     let flags = word(fw.w);
@@ -1021,7 +1022,7 @@ fn shade(h_in: Hit, d: vec3<f32>, depth: u32, weight: f32, thr: vec3<f32>) {
     let film = Film(word(fw.x), P.n_lambda, word(fw.y), word(fw.z));
     let c = film_xyz(film, sqrt(max(1.0 - cosv * cosv, 0.0)), cosv, offset);
     if ((flags & 4u) != 0u) {
-        film_over_base(film, microfacet_at(r + 3u, h.uv), h, wo, c.r, offset, factor, depth, weight, thr);
+        film_over_base(film, word(sv.w), microfacet_at(r + 3u, h.uv), h, wo, c.r, offset, factor, depth, weight, thr);
         return;
     }
     let r_rgb = to_rgb(c.r) * factor;
@@ -1032,9 +1033,21 @@ fn shade(h_in: Hit, d: vec3<f32>, depth: u32, weight: f32, thr: vec3<f32>) {
     }
 }
 
+// The specular reflectance of a film over a base of metallic m: (1 - m) R over the dielectric + m R over the
+// metal (media block `metal`, NONE: the dielectric's alone), from the dielectric's R (linear sRGB).
+fn film_specular(film: Film, metal: u32, m: f32, sin_t: f32, cos_t: f32, offset: f32, r_dielectric: vec3<f32>)
+        -> vec3<f32> {
+    if (metal == NONE || m <= 0.0) {
+        return r_dielectric;
+    }
+    let over_metal = Film(film.n_media, film.n_lambda, metal, film.thickness);
+    return (1.0 - m) * r_dielectric + m * to_rgb(film_xyz(over_metal, sin_t, cos_t, offset).r);
+}
+
 // A smooth film over a base (render::render::Scene::shade_film_over_base): the film's reflectance R replaces
-// the base's specular Fresnel, the diffuse takes 1 - R per channel; iridescenceFactor mixes with the base alone.
-fn film_over_base(film: Film, base: Microfacet, h: Hit, wo: vec3<f32>, r_view: vec3<f32>, offset: f32,
+// the base's specular Fresnel (over a metallic base mixed with the film over the metal), the diffuse takes
+// 1 - R per channel; iridescenceFactor mixes with the base alone.
+fn film_over_base(film: Film, metal: u32, base: Microfacet, h: Hit, wo: vec3<f32>, r_view: vec3<f32>, offset: f32,
                   factor: f32, depth: u32, weight: f32, thr: vec3<f32>) {
     if (factor < 1.0) {
         shade_microfacet(base, h, wo, depth, weight * (1.0 - factor), true, thr * (1.0 - factor));
@@ -1050,13 +1063,17 @@ fn film_over_base(film: Film, base: Microfacet, h: Hit, wo: vec3<f32>, r_view: v
         let l = arrive(i, h.p);
         if (dot(l.wi, h.ng) > 0.0 && !occluded(o, l.wi, l.dist)) {
             let vh = clamp(dot(l.wi, safe_normalize(l.wi + wo)), 0.0, 1.0);
-            let rl = to_rgb(film_xyz(film, sqrt(max(1.0 - vh * vh, 0.0)), vh, offset).r);
+            let sh = sqrt(max(1.0 - vh * vh, 0.0));
+            let rl = to_rgb(film_xyz(film, sh, vh, offset).r);
+            let spec = film_specular(film, metal, base.metallic, sh, vh, offset, rl);
             let ci = max(dot(h.n, l.wi), 0.0);
-            out = out + l.e * (ggx_single(base, h.n, l.wi, wo) * rl + (vec3<f32>(1.0) - rl) * diffuse * ci);
+            out = out + l.e * (ggx_single(base, h.n, l.wi, wo) * spec + (vec3<f32>(1.0) - rl) * diffuse * ci);
         }
     }
-    let rv = to_rgb(r_view);
-    out = out + (vec3<f32>(1.0) - rv) * diffuse * irradiance(h.n);
+    let rd = to_rgb(r_view);
+    out = out + (vec3<f32>(1.0) - rd) * diffuse * irradiance(h.n);
+    let cv = clamp(dot(h.n, wo), 0.0, 1.0);
+    let rv = film_specular(film, metal, base.metallic, sqrt(max(1.0 - cv * cv, 0.0)), cv, offset, rd);
     let dir = reflect_dir(wo, h.n);
     let blurred = irradiance(dir);
     let rough = min(base.roughness / 0.6, 1.0);

@@ -48,6 +48,23 @@ pub const MATERIALS: &[(&str, &str)] = &[
          [materials.m]\nkind = \"thinfilm\"\nstack = \"air | n=1.3 300nm | n=1.5\"\nbase = \"b\"",
     ),
     ("soap bubble", "[materials.m]\nkind = \"thinfilm\"\nstack = \"air | water 400nm | air\"\ntransmission = true"),
+    // A film over a white metal (F_0 = 1: the index (1 + √F_0)/(1 − √F_0) at its √F_0 ≤ 0.9999 cap, n ≈ 2·10⁴):
+    // a lossless film over a near-perfect conductor reflects 1 − O(1/n) at every wavelength and angle.
+    (
+        "film over white metal r0",
+        "[materials.b]\nkind = \"microfacet\"\ncolor = [1, 1, 1]\nroughness = 0.0\nmetallic = 1.0\n\
+         [materials.m]\nkind = \"thinfilm\"\nstack = \"air | n=1.3 300nm | n=1.5\"\nbase = \"b\"",
+    ),
+    (
+        "film over white metal r0.6",
+        "[materials.b]\nkind = \"microfacet\"\ncolor = [1, 1, 1]\nroughness = 0.6\nmetallic = 1.0\n\
+         [materials.m]\nkind = \"thinfilm\"\nstack = \"air | n=1.3 300nm | n=1.5\"\nbase = \"b\"",
+    ),
+    (
+        "film over half metal r0.3",
+        "[materials.b]\nkind = \"microfacet\"\ncolor = [1, 1, 1]\nroughness = 0.3\nmetallic = 0.5\n\
+         [materials.m]\nkind = \"thinfilm\"\nstack = \"air | n=1.3 300nm | n=1.5\"\nbase = \"b\"",
+    ),
 ];
 
 /// The furnace scene for a material table (the sphere uses material `m`), rendered at `scale`.
