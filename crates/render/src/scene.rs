@@ -18,7 +18,7 @@ use toml::Spanned;
 use crate::bvh::Bvh;
 use crate::camera::{frame, Camera};
 use crate::error::RenderError;
-use crate::geometry::{snake_mesh, Mesh, Plane, SnakeParams, Sphere};
+use crate::geometry::{snake_mesh, Mesh, Plane, ScaleKind, SnakeParams, Sphere};
 use crate::light::{equirect_mean, illuminant_tint, Environment, Light, Rgb};
 use crate::material::*;
 use crate::math::*;
@@ -281,6 +281,10 @@ struct ObjectDef {
     rings: Option<usize>,
     segments: Option<usize>,
     tiles: Option<[f64; 2]>,
+    scales: Option<String>,
+    scale_rows: Option<usize>,
+    scale_length: Option<f64>,
+    section: Option<[f64; 2]>,
 }
 
 // ---------------------------------------------------------------- loading
@@ -498,7 +502,38 @@ pub fn parse_scene(text: &str, name: &str, base: &Path) -> Result<Scene, RenderE
                     rings: d.rings.unwrap_or(def.rings).clamp(8, 20_000),
                     segments: d.segments.unwrap_or(def.segments).clamp(6, 2_000),
                     tiles: d.tiles.unwrap_or(def.tiles),
+                    scales: match d.scales.as_deref() {
+                        None => def.scales,
+                        Some(k) => ScaleKind::parse(k).ok_or_else(|| {
+                            ctx.err_key(
+                                &span,
+                                "scales",
+                                format!("{what}: `scales` = \"{k}\": use none, smooth or keeled"),
+                            )
+                        })?,
+                    },
+                    scale_rows: d.scale_rows.unwrap_or(def.scale_rows),
+                    scale_length: d.scale_length.unwrap_or(def.scale_length),
+                    section: d.section.unwrap_or(def.section),
                 };
+                if !(3..=61).contains(&p.scale_rows) {
+                    return Err(ctx.err_key(&span, "scale_rows", format!("{what}: `scale_rows` must be 3 to 61")));
+                }
+                if !(p.scale_length.is_finite() && p.scale_length >= 0.0) {
+                    return Err(ctx.err_key(
+                        &span,
+                        "scale_length",
+                        format!("{what}: `scale_length` must be ≥ 0 (0: automatic)"),
+                    ));
+                }
+                let [s0, s1] = p.section;
+                if !(0.0..=1.0).contains(&s0) || !(0.0..=1.0).contains(&s1) || s0 >= s1 {
+                    return Err(ctx.err_key(
+                        &span,
+                        "section",
+                        format!("{what}: `section` = [{s0}, {s1}]: two fractions of the body, tail (0) to head (1), the first smaller"),
+                    ));
+                }
                 let mut m = snake_mesh(&p, mat(true)?.unwrap_or(0));
                 m.transform(&transform);
                 meshes.push(m);

@@ -1,0 +1,563 @@
+//! The procedural snake (issue 19): a body along a planar sine-wave spine, with a flattened belly, a neck and
+//! a wider, flatter head, covered with individually curved, overlapping scale plates — dorsal scales in
+//! longitudinal rows (alternate rows offset by half a scale, as on real snakes), keeled or smooth, and wide
+//! ventral plates along the belly — as real triangles.
+//!
+//! Each plate is a patch over plate coordinates `(a, b)`: `a` from its base (anterior, tucked under the plate
+//! in front of it) to its free tip (posterior), `b` across it from −1 to 1. It lies on the body at the height
+//! [`PlateShape::height`] above the body surface: a tilt that lifts the free tip over the next plate, a dome
+//! across, a slight arch along, and on keeled scales a ridge along the midline. Normals are those of the
+//! displaced surface; the orientation field (`Mesh::along`, the `along` rule) follows the plate's long axis
+//! from base to tip — "nanofingers run parallel to snake scales (from the anterior end towards the posterior
+//! end of the animal)", paper sec. 7 — converging slightly towards the tip, and lies in the plate's tangent
+//! plane, so both the normal and the nanostructure's axis vary across every scale.
+//!
+//! Why triangles and not a normal and orientation map on a smooth tube: the overlapping edges are then real —
+//! they cast shadows on the next scale, show in silhouette, hide the plate below at grazing view — and the
+//! GPU renderer and glTF files get the relief with no extra machinery (the per-vertex normal and `along`
+//! field travel with the triangles; the glTF export writes `along` as TANGENT). The price is triangles: about
+//! 130 per plate.
+
+use std::f64::consts::{PI, TAU};
+
+use crate::geometry::Mesh;
+use crate::math::*;
+
+/// The relief of the scales.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ScaleKind {
+    /// The smooth tube of earlier versions (texture scales only, `tiles` repeats of the UV square).
+    None,
+    /// Smooth, domed plates (Xenopeltis: smooth, glossy scales).
+    Smooth,
+    /// Plates with a ridge along the midline on the upper rows (Elaphe: weakly keeled dorsal scales).
+    Keeled,
+}
+
+impl ScaleKind {
+    pub fn parse(s: &str) -> Option<Self> {
+        match s {
+            "none" => Some(ScaleKind::None),
+            "smooth" => Some(ScaleKind::Smooth),
+            "keeled" => Some(ScaleKind::Keeled),
+            _ => None,
+        }
+    }
+}
+
+/// Parameters of the procedural snake.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SnakeParams {
+    /// Length of the spine (scene units).
+    pub length: f64,
+    /// Largest radius of the body.
+    pub radius: f64,
+    /// Number of full sine waves along the body.
+    pub waves: f64,
+    /// Amplitude of the sideways undulation.
+    pub amplitude: f64,
+    /// Rings along the body and vertices around it (the smooth tube, `ScaleKind::None`).
+    pub rings: usize,
+    pub segments: usize,
+    /// How many times the UV square repeats along the body and around it.
+    pub tiles: [f64; 2],
+    pub scales: ScaleKind,
+    /// Dorsal scale rows around the body (Elaphe guttata 27, Xenopeltis unicolor 15).
+    pub scale_rows: usize,
+    /// Spacing of the scales along the body where it is thickest (scene units); 0: 1.6 × a row's width.
+    pub scale_length: f64,
+    /// The part of the body that is built, as fractions of the spine from tail (0) to head (1).
+    pub section: [f64; 2],
+}
+
+impl Default for SnakeParams {
+    fn default() -> Self {
+        Self {
+            length: 10.0,
+            radius: 0.45,
+            waves: 1.5,
+            amplitude: 0.9,
+            rings: 400,
+            segments: 48,
+            tiles: [40.0, 4.0],
+            scales: ScaleKind::None,
+            scale_rows: 19,
+            scale_length: 0.0,
+            section: [0.0, 1.0],
+        }
+    }
+}
+
+/// Half-angle of the belly covered by ventral plates, about the ventral midline (φ = π).
+pub const VENTRAL_HALF_ANGLE: f64 = 0.3 * PI;
+
+/// The body's cross-section squashes below its centre line to this fraction (a flattened belly).
+const BELLY_FLAT: f64 = 0.6;
+
+/// The body: spine, cross-section and the scale coordinate along it.
+#[derive(Debug, Clone)]
+pub struct Body {
+    p: SnakeParams,
+    /// σ (scale spacings from the tail tip) at `s = k / (n − 1)`.
+    sigma: Vec<f64>,
+}
+
+fn smoothstep(e0: f64, e1: f64, x: f64) -> f64 {
+    let t = ((x - e0) / (e1 - e0)).clamp(0.0, 1.0);
+    t * t * (3.0 - 2.0 * t)
+}
+
+/// Where the head begins (fraction of the spine) and the neck's centre just behind it.
+const HEAD_START: f64 = 0.935;
+const NECK: f64 = 0.925;
+
+impl Body {
+    pub fn new(p: &SnakeParams) -> Self {
+        let mut b = Body { p: p.clone(), sigma: Vec::new() };
+        // σ(s) = ∫ |spine'(s)| / L(s) ds: scales shorten with the body's width towards the tail and lengthen
+        // on the head (its large shields).
+        let n = 8192;
+        let mut sigma = Vec::with_capacity(n);
+        let mut acc = 0.0;
+        let mut prev = 0.0;
+        for k in 0..n {
+            let s = k as f64 / (n - 1) as f64;
+            let f = length(b.spine_derivative(s)) / b.scale_spacing(s);
+            if k > 0 {
+                acc += 0.5 * (f + prev) / (n - 1) as f64;
+            }
+            prev = f;
+            sigma.push(acc);
+        }
+        b.sigma = sigma;
+        b
+    }
+
+    pub fn params(&self) -> &SnakeParams {
+        &self.p
+    }
+
+    /// The spine in the x–z plane (y up), tail at −x, head at +x.
+    pub fn spine(&self, s: f64) -> V3 {
+        let p = &self.p;
+        let x = (s - 0.5) * p.length;
+        let z = p.amplitude * (TAU * p.waves * s).sin() * (0.4 + 0.6 * s);
+        [x, 0.0, z]
+    }
+
+    fn spine_derivative(&self, s: f64) -> V3 {
+        let p = &self.p;
+        let w = TAU * p.waves;
+        let dz = p.amplitude * (w * (w * s).cos() * (0.4 + 0.6 * s) + 0.6 * (w * s).sin());
+        [p.length, 0.0, dz]
+    }
+
+    /// Unit tangent (tail → head), side (right of the body, looking head-wards from above: `T × up`) and up.
+    pub fn frame(&self, s: f64) -> (V3, V3, V3) {
+        let t = normalize(self.spine_derivative(s));
+        let side = normalize(cross(t, [0.0, 1.0, 0.0]));
+        (t, side, cross(side, t))
+    }
+
+    /// Half-width and half-height of the cross-section: a long taper to the pointed tail, a neck, a head
+    /// wider than the neck and flatter than the body, and a rounded snout.
+    pub fn half_axes(&self, s: f64) -> (f64, f64) {
+        let s = s.clamp(0.0, 1.0);
+        let tail = (s / 0.6).min(1.0).powf(0.7).max(0.02);
+        let neck = 1.0 - 0.22 * (-((s - NECK) / 0.012).powi(2)).exp();
+        let head = smoothstep(HEAD_START - 0.01, HEAD_START + 0.02, s);
+        let snout = ((1.0 - s) / 0.025).clamp(0.0, 1.0).sqrt().max(0.05);
+        let r = self.p.radius * tail * neck * snout;
+        (r * (1.0 + 0.22 * head), r * (1.0 - 0.3 * head))
+    }
+
+    /// Spacing of the transverse scale rows at `s` (scene units along the spine).
+    fn scale_spacing(&self, s: f64) -> f64 {
+        let (w, _) = self.half_axes(s);
+        let base = if self.p.scale_length > 0.0 { self.p.scale_length } else { 1.6 * self.row_width_max() };
+        let head = smoothstep(HEAD_START, HEAD_START + 0.02, s);
+        base * (w / self.p.radius).clamp(0.1, 1.0).sqrt().max(0.3) * (1.0 + 1.5 * head)
+    }
+
+    /// The width of a dorsal row where the body is thickest (an arc of the round part of the section).
+    pub fn row_width_max(&self) -> f64 {
+        self.p.radius * dorsal_row_angle(self.p.scale_rows)
+    }
+
+    /// σ, the number of scale spacings from the tail tip to `s`.
+    pub fn sigma_of(&self, s: f64) -> f64 {
+        let n = self.sigma.len();
+        let x = s.clamp(0.0, 1.0) * (n - 1) as f64;
+        let i = (x.floor() as usize).min(n - 2);
+        let f = x - i as f64;
+        self.sigma[i] + (self.sigma[i + 1] - self.sigma[i]) * f
+    }
+
+    /// The inverse of [`Body::sigma_of`] (σ beyond the ends extrapolates linearly).
+    pub fn s_of_sigma(&self, sigma: f64) -> f64 {
+        let n = self.sigma.len();
+        let i = self.sigma.partition_point(|&x| x <= sigma).clamp(1, n - 1);
+        let (a, b) = (self.sigma[i - 1], self.sigma[i]);
+        ((i - 1) as f64 + (sigma - a) / (b - a)) / (n - 1) as f64
+    }
+
+    /// The point of the body surface at `s` and angle `phi` around it (0 on the dorsal midline, π/2 on the
+    /// right side, ±π on the ventral midline). The belly rests on `y = 0`.
+    pub fn surface(&self, s: f64, phi: f64) -> V3 {
+        let (t, side, up) = self.frame(s);
+        let _ = t;
+        let (rw, rh) = self.half_axes(s);
+        let c = add(self.spine(s.clamp(0.0, 1.0)), [0.0, rh * BELLY_FLAT, 0.0]);
+        let (sp, cp) = phi.sin_cos();
+        // Below the centre line the section squashes smoothly (C¹) to BELLY_FLAT at the ventral midline.
+        let flat = if cp < 0.0 { 1.0 - (1.0 - BELLY_FLAT) * cp * cp } else { 1.0 };
+        add(c, add(mul(side, rw * sp), mul(up, rh * cp * flat)))
+    }
+
+    /// Outward unit normal of the body surface at `(s, phi)` (central differences of [`Body::surface`]).
+    pub fn normal(&self, s: f64, phi: f64) -> V3 {
+        let (ds, dp) = (1e-5, 1e-5);
+        let ps = sub(self.surface(s + ds, phi), self.surface(s - ds, phi));
+        let pp = sub(self.surface(s, phi + dp), self.surface(s, phi - dp));
+        // s runs tail → head, φ from the back to the right side: ∂P/∂φ × ∂P/∂s points outwards.
+        let n = normalize(cross(pp, ps));
+        if n == [0.0; 3] {
+            // At the pointed ends: away from the spine.
+            return normalize(sub(self.surface(s, phi), self.spine(s.clamp(0.0, 1.0))));
+        }
+        n
+    }
+}
+
+/// The angle around the body of one dorsal row.
+pub fn dorsal_row_angle(rows: usize) -> f64 {
+    2.0 * (PI - VENTRAL_HALF_ANGLE) / rows.max(1) as f64
+}
+
+/// A dorsal plate's half-width at its widest, in rows: neighbouring rows overlap by 0.2 of a row on each side.
+pub const DORSAL_HALF_WIDTH: f64 = 0.7;
+
+/// A plate's length along the body, in scale spacings: plates overlap the next one by `PLATE_LENGTH − 1`.
+pub const PLATE_LENGTH: f64 = 1.45;
+
+/// The shape of a scale plate, in units of its row width `w` (heights) and plate coordinates `(a, b)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlateShape {
+    /// Rise of the plate from base to tip (the tilt that lifts the free edge over the next plate), × w.
+    pub lift: f64,
+    /// Dome height across the plate (`dome · (1 − b²)`), × w.
+    pub dome: f64,
+    /// Arch along the plate (`arch · sin(π a)`), × w.
+    pub arch: f64,
+    /// Keel height along the midline, × w (0: smooth).
+    pub keel: f64,
+    /// Keel width in `b`.
+    pub keel_width: f64,
+    /// How far the plate's edge curls down under its neighbours near `|b| = 1` (ventral plates), × w.
+    pub tuck: f64,
+}
+
+impl PlateShape {
+    /// A keeled dorsal scale (Elaphe): its tip lifted 10° over a plate 2.3 row widths long (`lift` 0.41 w), a
+    /// dome whose edges slope 14° (`dome` 0.087 w over a half-width of 0.7 w), a slight arch, and a ridge
+    /// along the midline whose flanks slope about 25°, strongest on the upper rows. Where two plates overlap,
+    /// their `a` differ by at least ½ spacing (0.345 in `a`), so the upper one stands `0.345·lift` higher; the
+    /// dome takes back at most half its height there (the sides overlap by 0.2 w), so it must stay under
+    /// `0.69·lift`.
+    pub fn keeled(keel: f64) -> Self {
+        PlateShape { lift: 0.41, dome: 0.087, arch: 0.03, keel: 0.076 * keel, keel_width: 0.18, tuck: 0.0 }
+    }
+
+    /// A smooth dorsal scale (Xenopeltis): flatter and tighter, its tip lifted 6° (`lift` 0.25 w), a dome
+    /// whose edges slope 8° (`dome` 0.05 w).
+    pub fn smooth() -> Self {
+        PlateShape { lift: 0.25, dome: 0.05, arch: 0.02, keel: 0.0, keel_width: 0.18, tuck: 0.0 }
+    }
+
+    /// A ventral plate: wide, flatter, its sides curled down under the lowest dorsal rows.
+    pub fn ventral() -> Self {
+        PlateShape { lift: 0.3, dome: 0.06, arch: 0.02, keel: 0.0, keel_width: 0.18, tuck: 0.6 }
+    }
+
+    /// Height above the body surface in units of the row width (the closed form every normal comes from):
+    /// `lift·(a − ¼) + dome·(1 − b²) + arch·sin(πa) + keel·e^{−(b/k)²}·smoothstep(0.1, 0.45, a) − tuck·smoothstep(0.7, 0.87, |b|)`.
+    pub fn height(&self, a: f64, b: f64) -> f64 {
+        let mut h = self.lift * (a - 0.25) + self.dome * (1.0 - b * b) + self.arch * (PI * a).sin();
+        if self.keel != 0.0 {
+            h += self.keel * (-(b / self.keel_width).powi(2)).exp() * smoothstep(0.1, 0.45, a);
+        }
+        if self.tuck != 0.0 {
+            h -= self.tuck * smoothstep(0.7, 0.87, b.abs());
+        }
+        h
+    }
+
+    /// `(∂h/∂a, ∂h/∂b)` of [`PlateShape::height`], in closed form.
+    pub fn gradient(&self, a: f64, b: f64) -> (f64, f64) {
+        let mut ha = self.lift + self.arch * PI * (PI * a).cos();
+        let mut hb = -2.0 * self.dome * b;
+        if self.keel != 0.0 {
+            let k = self.keel_width;
+            let g = (-(b / k).powi(2)).exp();
+            let t = ((a - 0.1) / 0.35).clamp(0.0, 1.0);
+            let sm = t * t * (3.0 - 2.0 * t);
+            let dsm = if (0.0..1.0).contains(&t) && a > 0.1 { 6.0 * t * (1.0 - t) / 0.35 } else { 0.0 };
+            ha += self.keel * g * dsm;
+            hb += self.keel * g * (-2.0 * b / (k * k)) * sm;
+        }
+        if self.tuck != 0.0 {
+            let t = ((b.abs() - 0.7) / 0.17).clamp(0.0, 1.0);
+            let d = if t > 0.0 && t < 1.0 { 6.0 * t * (1.0 - t) / 0.17 } else { 0.0 };
+            hb -= self.tuck * d * b.signum();
+        }
+        (ha, hb)
+    }
+}
+
+/// One scale plate on the body.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Plate {
+    /// σ of the plate's base (its anterior end; the tip lies `PLATE_LENGTH` spacings towards the tail).
+    pub sigma_base: f64,
+    /// Angle of its midline around the body.
+    pub phi: f64,
+    /// Half its width at the widest, as an angle around the body.
+    pub half_angle: f64,
+    /// Row width (the unit of its heights).
+    pub w: f64,
+    pub shape: PlateShape,
+    /// Dorsal scales narrow towards base and tip; ventral plates are as wide along their whole length.
+    pub dorsal: bool,
+}
+
+/// The plate's half-width profile along `a`: for dorsal scales a rounded shield, the super-ellipse
+/// `|x|^2.5 + |y|^2.5 = 1` widest at `a = 0.55` (rounded at base and tip); constant for ventral plates.
+fn half_width(dorsal: bool, a: f64) -> f64 {
+    if dorsal {
+        let x = if a < WIDEST { (WIDEST - a) / WIDEST } else { (a - WIDEST) / (1.0 - WIDEST) };
+        (1.0 - x.clamp(0.0, 1.0).powf(OUTLINE_POWER)).max(0.0).powf(1.0 / OUTLINE_POWER)
+    } else {
+        1.0
+    }
+}
+
+/// Where a dorsal plate is widest (in `a`) and the exponent of its super-elliptic outline.
+const WIDEST: f64 = 0.55;
+const OUTLINE_POWER: f64 = 2.5;
+
+/// Normals and orientations at the plate's very base and tip (where its width goes to zero) are taken this
+/// close to them instead.
+const END_GUARD: f64 = 0.004;
+
+/// How much the lines of the orientation field converge from base to tip (`b` scales by `1 − CONVERGE·a`).
+pub const CONVERGE: f64 = 0.3;
+
+impl Plate {
+    /// Body coordinates `(s, φ)` of the plate point `(a, b)`.
+    pub fn body_coords(&self, body: &Body, a: f64, b: f64) -> (f64, f64) {
+        let sigma = self.sigma_base - a * PLATE_LENGTH;
+        (body.s_of_sigma(sigma), self.phi + b * half_width(self.dorsal, a) * self.half_angle)
+    }
+
+    /// The plate point `(a, b)`: the body surface there, raised along its normal by the plate's height.
+    pub fn point(&self, body: &Body, a: f64, b: f64) -> V3 {
+        let (s, phi) = self.body_coords(body, a, b);
+        add(body.surface(s, phi), mul(body.normal(s, phi), self.w * self.shape.height(a, b)))
+    }
+
+    /// `(∂P/∂a, ∂P/∂b)` by central differences of [`Plate::point`] (a smooth closed form).
+    pub fn derivatives(&self, body: &Body, a: f64, b: f64) -> (V3, V3) {
+        let a = a.clamp(END_GUARD, 1.0 - END_GUARD);
+        let e = 1e-5;
+        let pa = mul(sub(self.point(body, a + e, b), self.point(body, a - e, b)), 0.5 / e);
+        let pb = mul(sub(self.point(body, a, b + e), self.point(body, a, b - e)), 0.5 / e);
+        (pa, pb)
+    }
+
+    /// Unit normal of the plate at `(a, b)`, on the outside of the body.
+    pub fn normal(&self, body: &Body, a: f64, b: f64) -> V3 {
+        let a = a.clamp(END_GUARD, 1.0 - END_GUARD);
+        let (pa, pb) = self.derivatives(body, a, b);
+        let n = normalize(cross(pb, pa));
+        let (s, phi) = self.body_coords(body, a, b);
+        if dot(n, body.normal(s, phi)) < 0.0 {
+            mul(n, -1.0)
+        } else {
+            n
+        }
+    }
+
+    /// The nanostructure's axis at `(a, b)`: the tangent of the line `b = c·(1 − CONVERGE·a)` through the
+    /// point (the plate's long axis, from base to tip, converging slightly towards the tip), in the plate's
+    /// tangent plane.
+    pub fn orientation(&self, body: &Body, a: f64, b: f64) -> V3 {
+        let a = a.clamp(END_GUARD, 1.0 - END_GUARD);
+        let (pa, pb) = self.derivatives(body, a, b);
+        let g = 1.0 - CONVERGE * a;
+        let db_da = -b * CONVERGE / g;
+        let n = self.normal(body, a, b);
+        orthogonalize(add(pa, mul(pb, db_da)), n).unwrap_or_else(|| normalize(pa))
+    }
+}
+
+/// Every plate of the body whose centre lies in the section, dorsal rows then ventral plates.
+pub fn plates(body: &Body) -> Vec<Plate> {
+    let p = body.params();
+    let rows = p.scale_rows.max(3);
+    let dphi = dorsal_row_angle(rows);
+    let (s0, s1) = (p.section[0].clamp(0.0, 1.0), p.section[1].clamp(0.0, 1.0));
+    let total = body.sigma_of(1.0);
+    let mut out = Vec::new();
+    // Plates whose base lies at σ = k (+ ½ on odd rows); the tip reaches PLATE_LENGTH spacings tail-wards.
+    let n = total.ceil() as i64 + 1;
+    for k in 0..=n {
+        for j in 0..rows {
+            let phi = -(PI - VENTRAL_HALF_ANGLE) + (j as f64 + 0.5) * dphi;
+            let sigma_base = k as f64 + if j % 2 == 1 { 0.5 } else { 0.0 };
+            let centre = body.s_of_sigma(sigma_base - 0.5 * PLATE_LENGTH);
+            if sigma_base - 0.5 * PLATE_LENGTH < 0.0 || sigma_base - 0.5 * PLATE_LENGTH > total {
+                continue;
+            }
+            if centre < s0 || centre > s1 {
+                continue;
+            }
+            let (rw, _) = body.half_axes(centre);
+            // Keels on the upper rows only (as on Elaphe guttata), fading out down the flanks.
+            let upper = (1.5 * phi.cos()).clamp(0.0, 1.0);
+            let shape = if p.scales == ScaleKind::Keeled { PlateShape::keeled(upper) } else { PlateShape::smooth() };
+            out.push(Plate {
+                sigma_base,
+                phi,
+                half_angle: DORSAL_HALF_WIDTH * dphi,
+                w: rw * dphi,
+                shape,
+                dorsal: true,
+            });
+        }
+        let sigma_base = k as f64 + 0.25;
+        let c = sigma_base - 0.5 * PLATE_LENGTH;
+        if c >= 0.0 && c <= total {
+            let centre = body.s_of_sigma(c);
+            if centre >= s0 && centre <= s1 {
+                let (rw, _) = body.half_axes(centre);
+                out.push(Plate {
+                    sigma_base,
+                    phi: PI,
+                    half_angle: VENTRAL_HALF_ANGLE * 1.12,
+                    w: rw * dphi,
+                    shape: PlateShape::ventral(),
+                    dorsal: false,
+                });
+            }
+        }
+    }
+    out
+}
+
+/// Vertices along and across a dorsal plate, and across a ventral one.
+const DORSAL_GRID: (usize, usize) = (13, 11);
+const KEELED_ACROSS: usize = 15;
+const VENTRAL_GRID: (usize, usize) = (9, 17);
+
+/// The scaled snake as one mesh: every plate of [`plates`] as a grid of triangles with the plate's normals,
+/// the orientation field as `along`, and UVs in body coordinates (`u = s·tiles[0]` from tail to head,
+/// `v = (½ + φ/2π)·tiles[1]`: the dorsal midline at `v = ½`, the belly at 0 ≡ 1), plus a dark inner tube a
+/// little under the plates that closes any gap between them.
+pub fn scaled_snake_mesh(p: &SnakeParams, material: usize) -> Mesh {
+    let body = Body::new(p);
+    let mut m = Mesh { name: "snake".into(), material, ..Default::default() };
+    let mut uvs = Vec::new();
+    let mut along = Vec::new();
+    let uv_of = |s: f64, phi: f64| [s * p.tiles[0], (0.5 + phi / TAU) * p.tiles[1]];
+    for plate in plates(&body) {
+        let (na, nb) = if plate.dorsal {
+            (DORSAL_GRID.0, if plate.shape.keel > 0.0 { KEELED_ACROSS } else { DORSAL_GRID.1 })
+        } else {
+            VENTRAL_GRID
+        };
+        let start = m.positions.len() as u32;
+        for i in 0..na {
+            // Denser towards the tip, where the plate shows and its outline rounds off.
+            let a = 1.0 - (1.0 - i as f64 / (na - 1) as f64).powf(1.6);
+            for jb in 0..nb {
+                let b = -1.0 + 2.0 * jb as f64 / (nb - 1) as f64;
+                let (s, phi) = plate.body_coords(&body, a, b);
+                m.positions.push(plate.point(&body, a, b));
+                m.normals.push(plate.normal(&body, a, b));
+                along.push(plate.orientation(&body, a, b));
+                uvs.push(uv_of(s, phi));
+            }
+        }
+        for i in 0..na - 1 {
+            for jb in 0..nb - 1 {
+                let v = start + (i * nb + jb) as u32;
+                let (r, d, rd) = (v + 1, v + nb as u32, v + nb as u32 + 1);
+                m.triangles.push([v, d, r]);
+                m.triangles.push([r, d, rd]);
+            }
+        }
+    }
+    // The inner tube, 0.35 row widths under the body surface.
+    let (s0, s1) = (p.section[0].clamp(0.0, 1.0), p.section[1].clamp(0.0, 1.0));
+    let rings = ((s1 - s0) * 600.0).ceil().max(2.0) as usize;
+    let segs = 48;
+    let dphi = dorsal_row_angle(p.scale_rows.max(3));
+    let start = m.positions.len() as u32;
+    for i in 0..=rings {
+        let s = s0 + (s1 - s0) * i as f64 / rings as f64;
+        let (rw, _) = body.half_axes(s);
+        for j in 0..=segs {
+            let phi = -PI + TAU * j as f64 / segs as f64;
+            let n = body.normal(s, phi);
+            m.positions.push(add(body.surface(s, phi), mul(n, -0.35 * rw * dphi)));
+            m.normals.push(n);
+            along.push(body.frame(s).0);
+            uvs.push(uv_of(s, phi));
+        }
+    }
+    let row = (segs + 1) as u32;
+    for i in 0..rings as u32 {
+        for j in 0..segs as u32 {
+            let a = start + i * row + j;
+            let b = a + row;
+            m.triangles.push([a, b, a + 1]);
+            m.triangles.push([a + 1, b, b + 1]);
+        }
+    }
+    m.uvs = Some(uvs);
+    m.along = Some(along);
+    m.compute_tangents();
+    m
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn body(scales: ScaleKind) -> Body {
+        Body::new(&SnakeParams { scales, scale_rows: 19, ..Default::default() })
+    }
+
+    #[test]
+    fn sigma_inverts() {
+        let b = body(ScaleKind::Smooth);
+        for s in [0.01, 0.2, 0.5, 0.77, 0.95, 0.999] {
+            assert!((b.s_of_sigma(b.sigma_of(s)) - s).abs() < 1e-9, "{s}");
+        }
+    }
+
+    #[test]
+    fn plate_gradient_is_the_derivative_of_its_height() {
+        for shape in [PlateShape::keeled(1.0), PlateShape::keeled(0.4), PlateShape::smooth(), PlateShape::ventral()] {
+            for a in [0.05, 0.2, 0.37, 0.5, 0.8, 0.97] {
+                for b in [-0.95, -0.8, -0.3, -0.05, 0.0, 0.12, 0.5, 0.78, 0.9] {
+                    let e = 1e-6;
+                    let fa = (shape.height(a + e, b) - shape.height(a - e, b)) / (2.0 * e);
+                    let fb = (shape.height(a, b + e) - shape.height(a, b - e)) / (2.0 * e);
+                    let (ga, gb) = shape.gradient(a, b);
+                    assert!((fa - ga).abs() < 1e-6 && (fb - gb).abs() < 1e-6, "{shape:?} {a} {b}: {fa} {ga} {fb} {gb}");
+                }
+            }
+        }
+    }
+}
