@@ -68,6 +68,9 @@ pub struct SnakeParams {
     pub scale_length: f64,
     /// The part of the body that is built, as fractions of the spine from tail (0) to head (1).
     pub section: [f64; 2],
+    /// Vertices along and across each dorsal plate (keeled plates get four more across, ventral plates six):
+    /// fewer for a whole snake seen from afar, more for close-ups.
+    pub scale_grid: [usize; 2],
 }
 
 impl Default for SnakeParams {
@@ -84,6 +87,7 @@ impl Default for SnakeParams {
             scale_rows: 19,
             scale_length: 0.0,
             section: [0.0, 1.0],
+            scale_grid: [13, 11],
         }
     }
 }
@@ -110,6 +114,14 @@ fn smoothstep(e0: f64, e1: f64, x: f64) -> f64 {
 /// Where the head begins (fraction of the spine) and the neck's centre just behind it.
 const HEAD_START: f64 = 0.935;
 const NECK: f64 = 0.925;
+/// Where the head is widest (the jaws); it tapers from there to the snout at `s = 1`.
+const JAWS: f64 = 0.95;
+
+/// Where the eyes sit: along the spine, around the head from the dorsal midline, and their radius as a
+/// fraction of the head's half-height there.
+const EYE_S: f64 = 0.972;
+const EYE_PHI: f64 = 1.05;
+const EYE_RADIUS: f64 = 0.2;
 
 impl Body {
     pub fn new(p: &SnakeParams) -> Self {
@@ -160,15 +172,17 @@ impl Body {
     }
 
     /// Half-width and half-height of the cross-section: a long taper to the pointed tail, a neck, a head
-    /// wider than the neck and flatter than the body, and a rounded snout.
+    /// wider than the neck and flatter than the body, tapering from the jaws to a rounded snout.
     pub fn half_axes(&self, s: f64) -> (f64, f64) {
         let s = s.clamp(0.0, 1.0);
         let tail = (s / 0.6).min(1.0).powf(0.7).max(0.02);
-        let neck = 1.0 - 0.22 * (-((s - NECK) / 0.012).powi(2)).exp();
+        let neck = 1.0 - 0.2 * (-((s - NECK) / 0.012).powi(2)).exp();
         let head = smoothstep(HEAD_START - 0.01, HEAD_START + 0.02, s);
-        let snout = ((1.0 - s) / 0.025).clamp(0.0, 1.0).sqrt().max(0.05);
-        let r = self.p.radius * tail * neck * snout;
-        (r * (1.0 + 0.22 * head), r * (1.0 - 0.3 * head))
+        // From the jaws (widest) to the tip of the snout, an elliptical taper: narrow in plan, rounded in profile.
+        let x = ((s - JAWS) / (1.0 - JAWS)).clamp(0.0, 1.0);
+        let snout = (1.0 - x * x).sqrt();
+        let r = self.p.radius * tail * neck;
+        (r * (1.0 + 0.2 * head) * snout.powf(0.9).max(0.04), r * (1.0 - 0.35 * head) * snout.powf(0.5).max(0.04))
     }
 
     /// Spacing of the transverse scale rows at `s` (scene units along the spine).
@@ -229,6 +243,17 @@ impl Body {
     }
 }
 
+/// Centres and radius of the two eyes (on the upper sides of the head, a little sunk into it).
+pub fn eyes(p: &SnakeParams) -> [(V3, f64); 2] {
+    let body = Body::new(p);
+    let (_, rh) = body.half_axes(EYE_S);
+    let r = EYE_RADIUS * rh;
+    [-EYE_PHI, EYE_PHI].map(|phi| {
+        let c = add(body.surface(EYE_S, phi), mul(body.normal(EYE_S, phi), 0.35 * r));
+        (c, r)
+    })
+}
+
 /// The angle around the body of one dorsal row.
 pub fn dorsal_row_angle(rows: usize) -> f64 {
     2.0 * (PI - VENTRAL_HALF_ANGLE) / rows.max(1) as f64
@@ -274,9 +299,9 @@ impl PlateShape {
         PlateShape { lift: 0.25, dome: 0.05, arch: 0.02, keel: 0.0, keel_width: 0.18, tuck: 0.0 }
     }
 
-    /// A ventral plate: wide, flatter, its sides curled down under the lowest dorsal rows.
+    /// A ventral plate: wide, flatter, its sides curled down (by 0.3 w) under the lowest dorsal rows.
     pub fn ventral() -> Self {
-        PlateShape { lift: 0.3, dome: 0.06, arch: 0.02, keel: 0.0, keel_width: 0.18, tuck: 0.6 }
+        PlateShape { lift: 0.2, dome: 0.06, arch: 0.02, keel: 0.0, keel_width: 0.18, tuck: 0.3 }
     }
 
     /// Height above the body surface in units of the row width (the closed form every normal comes from):
@@ -387,14 +412,17 @@ impl Plate {
         }
     }
 
-    /// The nanostructure's axis at `(a, b)`: the tangent of the line `b = c·(1 − CONVERGE·a)` through the
-    /// point (the plate's long axis, from base to tip, converging slightly towards the tip), in the plate's
-    /// tangent plane.
+    /// The nanostructure's axis at `(a, b)`: the plate's long axis from base to tip — the direction of the
+    /// field line `φ − φ_c = c·(1 − CONVERGE·a)·half_angle` through the point, straight along the body and
+    /// converging slightly towards the tip whatever the outline does — in the plate's tangent plane. In plate
+    /// coordinates the line has `db/da = −b·(CONVERGE/(1 − CONVERGE·a) + hw'(a)/hw(a))`.
     pub fn orientation(&self, body: &Body, a: f64, b: f64) -> V3 {
         let a = a.clamp(END_GUARD, 1.0 - END_GUARD);
         let (pa, pb) = self.derivatives(body, a, b);
-        let g = 1.0 - CONVERGE * a;
-        let db_da = -b * CONVERGE / g;
+        let e = 1e-6;
+        let hw = half_width(self.dorsal, a);
+        let dhw = (half_width(self.dorsal, a + e) - half_width(self.dorsal, a - e)) / (2.0 * e);
+        let db_da = -b * (CONVERGE / (1.0 - CONVERGE * a) + dhw / hw);
         let n = self.normal(body, a, b);
         orthogonalize(add(pa, mul(pb, db_da)), n).unwrap_or_else(|| normalize(pa))
     }
@@ -454,10 +482,41 @@ pub fn plates(body: &Body) -> Vec<Plate> {
     out
 }
 
-/// Vertices along and across a dorsal plate, and across a ventral one.
-const DORSAL_GRID: (usize, usize) = (13, 11);
-const KEELED_ACROSS: usize = 15;
-const VENTRAL_GRID: (usize, usize) = (9, 17);
+/// Vertices along and across `plate`'s grid.
+fn plate_grid(p: &SnakeParams, plate: &Plate) -> (usize, usize) {
+    let [along, across] = p.scale_grid.map(|n| n.max(3));
+    if !plate.dorsal {
+        (along, across + 6)
+    } else if plate.shape.keel > 0.0 {
+        (along, across + 4)
+    } else {
+        (along, across)
+    }
+}
+
+/// Rings of the inner tube per unit of `s` and vertices around it.
+const TUBE_RINGS: f64 = 250.0;
+const TUBE_SEGMENTS: usize = 48;
+/// Depth of the inner tube under the body surface, in row widths.
+const TUBE_DEPTH: f64 = 0.45;
+
+/// The number of triangles [`scaled_snake_mesh`] makes for `p` (cheap: the plates are laid out, not built).
+pub fn triangle_count(p: &SnakeParams) -> usize {
+    let body = Body::new(p);
+    let plates: usize = plates(&body)
+        .iter()
+        .map(|pl| {
+            let (na, nb) = plate_grid(p, pl);
+            2 * (na - 1) * (nb - 1)
+        })
+        .sum();
+    let (s0, s1) = (p.section[0].clamp(0.0, 1.0), p.section[1].clamp(0.0, 1.0));
+    plates + 2 * tube_rings(s0, s1) * TUBE_SEGMENTS
+}
+
+fn tube_rings(s0: f64, s1: f64) -> usize {
+    ((s1 - s0) * TUBE_RINGS).ceil().max(2.0) as usize
+}
 
 /// The scaled snake as one mesh: every plate of [`plates`] as a grid of triangles with the plate's normals,
 /// the orientation field as `along`, and UVs in body coordinates (`u = s·tiles[0]` from tail to head,
@@ -470,11 +529,7 @@ pub fn scaled_snake_mesh(p: &SnakeParams, material: usize) -> Mesh {
     let mut along = Vec::new();
     let uv_of = |s: f64, phi: f64| [s * p.tiles[0], (0.5 + phi / TAU) * p.tiles[1]];
     for plate in plates(&body) {
-        let (na, nb) = if plate.dorsal {
-            (DORSAL_GRID.0, if plate.shape.keel > 0.0 { KEELED_ACROSS } else { DORSAL_GRID.1 })
-        } else {
-            VENTRAL_GRID
-        };
+        let (na, nb) = plate_grid(p, &plate);
         let start = m.positions.len() as u32;
         for i in 0..na {
             // Denser towards the tip, where the plate shows and its outline rounds off.
@@ -497,10 +552,11 @@ pub fn scaled_snake_mesh(p: &SnakeParams, material: usize) -> Mesh {
             }
         }
     }
-    // The inner tube, 0.35 row widths under the body surface.
+    // The inner tube, 0.45 row widths under the body surface: below every plate (the lowest, a ventral
+    // plate's curled side, reaches −0.35 w).
     let (s0, s1) = (p.section[0].clamp(0.0, 1.0), p.section[1].clamp(0.0, 1.0));
-    let rings = ((s1 - s0) * 600.0).ceil().max(2.0) as usize;
-    let segs = 48;
+    let rings = tube_rings(s0, s1);
+    let segs = TUBE_SEGMENTS;
     let dphi = dorsal_row_angle(p.scale_rows.max(3));
     let start = m.positions.len() as u32;
     for i in 0..=rings {
@@ -509,7 +565,7 @@ pub fn scaled_snake_mesh(p: &SnakeParams, material: usize) -> Mesh {
         for j in 0..=segs {
             let phi = -PI + TAU * j as f64 / segs as f64;
             let n = body.normal(s, phi);
-            m.positions.push(add(body.surface(s, phi), mul(n, -0.35 * rw * dphi)));
+            m.positions.push(add(body.surface(s, phi), mul(n, -TUBE_DEPTH * rw * dphi)));
             m.normals.push(n);
             along.push(body.frame(s).0);
             uvs.push(uv_of(s, phi));
@@ -534,13 +590,30 @@ pub fn scaled_snake_mesh(p: &SnakeParams, material: usize) -> Mesh {
 mod tests {
     use super::*;
 
-    fn body(scales: ScaleKind) -> Body {
-        Body::new(&SnakeParams { scales, scale_rows: 19, ..Default::default() })
+    fn params(scales: ScaleKind) -> SnakeParams {
+        SnakeParams { scales, scale_rows: 19, ..Default::default() }
+    }
+
+    /// The dorsal plate on the dorsal midline whose centre lies nearest `s = 2/3`, where the spine's sine
+    /// wave turns neither way (so the plate's own shape alone bends its long axis).
+    fn midline_plate(body: &Body) -> Plate {
+        *plates(body)
+            .iter()
+            .filter(|p| p.dorsal && p.phi.abs() < 1e-9)
+            .min_by(|a, b| {
+                let c = |p: &Plate| (body.s_of_sigma(p.sigma_base - 0.5 * PLATE_LENGTH) - 2.0 / 3.0).abs();
+                c(a).total_cmp(&c(b))
+            })
+            .expect("a midline plate")
+    }
+
+    fn angle(a: V3, b: V3) -> f64 {
+        dot(normalize(a), normalize(b)).clamp(-1.0, 1.0).acos()
     }
 
     #[test]
     fn sigma_inverts() {
-        let b = body(ScaleKind::Smooth);
+        let b = Body::new(&params(ScaleKind::Smooth));
         for s in [0.01, 0.2, 0.5, 0.77, 0.95, 0.999] {
             assert!((b.s_of_sigma(b.sigma_of(s)) - s).abs() < 1e-9, "{s}");
         }
@@ -559,5 +632,153 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The plate's normal is the body's normal tilted by the slopes of the plate's height, in closed form:
+    /// `n ∝ n_body − (w·∂h/∂a / |∂B/∂a|)·ê_a − (w·∂h/∂b / |∂B/∂b|)·ê_b`, where `B(a, b)` is the body surface
+    /// under the plate and `ê_a ⟂ ê_b` its directions (orthogonal on the midline `b = 0` and across the
+    /// widest part `a = 0.55`, where the outline's width does not change). Left out: the height `h` times
+    /// the body's curvature `1/R` (the displaced surface is `1 + h/R` as wide), so the bound is
+    /// `1.5·h/R` of the tilt plus 0.05°.
+    #[test]
+    fn normals_are_unit_and_tilt_as_the_plate_slopes_say() {
+        for kind in [ScaleKind::Keeled, ScaleKind::Smooth] {
+            let body = Body::new(&params(kind));
+            let plate = midline_plate(&body);
+            let mut largest_tilt = 0.0f64;
+            let points: Vec<(f64, f64)> = [0.15, 0.3, 0.5, 0.7, 0.85, 0.95]
+                .iter()
+                .map(|&a| (a, 0.0))
+                .chain([-0.9, -0.6, -0.3, -0.1, 0.1, 0.3, 0.6, 0.9].iter().map(|&b| (WIDEST, b)))
+                .collect();
+            for (a, b) in points {
+                let n = plate.normal(&body, a, b);
+                assert!((length(n) - 1.0).abs() < 1e-12);
+                let under = |a: f64, b: f64| {
+                    let (s, phi) = plate.body_coords(&body, a, b);
+                    body.surface(s, phi)
+                };
+                let e = 1e-5;
+                let ba = mul(sub(under(a + e, b), under(a - e, b)), 0.5 / e);
+                let bb = mul(sub(under(a, b + e), under(a, b - e)), 0.5 / e);
+                let ea = normalize(ba);
+                let eb = normalize(sub(bb, mul(ea, dot(bb, ea))));
+                let (s, phi) = plate.body_coords(&body, a, b);
+                let nb = body.normal(s, phi);
+                let (ha, hb) = plate.shape.gradient(a, b);
+                let expected =
+                    normalize(sub(nb, add(mul(ea, plate.w * ha / length(ba)), mul(eb, plate.w * hb / dot(bb, eb)))));
+                let tilt = angle(expected, nb);
+                largest_tilt = largest_tilt.max(tilt);
+                let err = angle(n, expected);
+                let h = plate.w * plate.shape.height(a, b);
+                let (rw, rh) = body.half_axes(s);
+                assert!(
+                    err < 1.5 * h.abs() / rw.min(rh) * tilt + 0.05f64.to_radians(),
+                    "{kind:?} ({a}, {b}): normal {:.3}° from the closed form (tilt {:.2}°)",
+                    err.to_degrees(),
+                    tilt.to_degrees()
+                );
+            }
+            // The plates do tilt: the tip lifts 6–10° and the dome or keel slopes as much across.
+            assert!(largest_tilt.to_degrees() > 6.0, "{kind:?}: largest tilt {:.1}°", largest_tilt.to_degrees());
+        }
+    }
+
+    /// On a known scale the nanostructure's axis is the scale's long axis — the chord from the middle of its
+    /// base to its tip, in the local tangent plane — within the plate's arch along the midline (2.3°: the
+    /// arch `0.03 w·π` over a plate 2.3 w long) and, across the plate, within that plus the convergence of
+    /// the field lines towards the tip (`CONVERGE` 0.3 of a half-width 0.7 w over 2.3 w: 5.2°); it is unit,
+    /// in the tangent plane, points from base to tip, and turns across the plate.
+    #[test]
+    fn orientation_follows_the_long_axis_of_a_known_scale() {
+        for kind in [ScaleKind::Keeled, ScaleKind::Smooth] {
+            let body = Body::new(&params(kind));
+            let plate = midline_plate(&body);
+            let axis = sub(plate.point(&body, 1.0, 0.0), plate.point(&body, 0.0, 0.0));
+            for a in [0.1, 0.3, 0.5, 0.7, 0.9] {
+                for b in [-0.9, -0.5, 0.0, 0.5, 0.9] {
+                    let t = plate.orientation(&body, a, b);
+                    let n = plate.normal(&body, a, b);
+                    assert!((length(t) - 1.0).abs() < 1e-12 && dot(t, n).abs() < 1e-12);
+                    assert!(dot(t, axis) > 0.0, "{kind:?} ({a}, {b}): the axis points from tip to base");
+                    let local_axis = orthogonalize(axis, n).unwrap();
+                    let dev = angle(t, local_axis).to_degrees();
+                    let bound = if b == 0.0 { 2.5 } else { 8.0 };
+                    assert!(dev < bound, "{kind:?} ({a}, {b}): {dev:.2}° off the long axis (bound {bound}°)");
+                    // Towards the tip the field leans towards the midline (converges), by up to the closed
+                    // form's atan(|b|·hw·CONVERGE·0.7 w / ((1 − CONVERGE·a)·2.32 w)) ≈ 4.7° at (0.9, ±0.9).
+                    if a >= 0.7 && b != 0.0 {
+                        let to_mid =
+                            orthogonalize(sub(plate.point(&body, a, 0.0), plate.point(&body, a, b)), n).unwrap();
+                        let lean = dot(t, to_mid).asin().to_degrees();
+                        assert!(lean > 0.3 && lean < 8.0, "{kind:?} ({a}, {b}): leans {lean:.2}° towards the midline");
+                    }
+                }
+            }
+        }
+    }
+
+    /// Rays shot at the body from outside, over a patch of mid-body all the way around, meet a scale plate
+    /// first, never the inner tube under the plates: the plates cover the body without gaps.
+    #[test]
+    fn the_plates_cover_the_body() {
+        for kind in [ScaleKind::Keeled, ScaleKind::Smooth] {
+            let p = SnakeParams { section: [0.45, 0.6], scale_grid: [9, 7], ..params(kind) };
+            let mesh = scaled_snake_mesh(&p, 0);
+            let tube_tris = 2 * tube_rings(0.45, 0.6) * TUBE_SEGMENTS;
+            let first_tube = mesh.triangles.len() - tube_tris;
+            let meshes = [mesh];
+            let bvh = crate::bvh::Bvh::build(&meshes);
+            let body = Body::new(&p);
+            let mut shot = 0;
+            for i in 0..60 {
+                let s = 0.5 + 0.05 * i as f64 / 59.0;
+                for j in 0..72 {
+                    let phi = -PI + TAU * (j as f64 + 0.37) / 72.0;
+                    let n = body.normal(s, phi);
+                    let o = add(body.surface(s, phi), mul(n, 0.3));
+                    let (_, _, _, hit) = bvh.intersect(&meshes, o, mul(n, -1.0), 1.0).expect("the ray meets the body");
+                    assert!(
+                        (hit.tri as usize) < first_tube,
+                        "{kind:?}: a gap between the plates at s {s:.4}, φ {phi:.3}"
+                    );
+                    shot += 1;
+                }
+            }
+            assert_eq!(shot, 60 * 72);
+        }
+    }
+
+    #[test]
+    fn keels_only_on_keeled_scales_and_only_on_the_upper_rows() {
+        let keeled = plates(&Body::new(&params(ScaleKind::Keeled)));
+        let smooth = plates(&Body::new(&params(ScaleKind::Smooth)));
+        assert!(smooth.iter().all(|p| p.shape.keel == 0.0));
+        assert!(keeled.iter().any(|p| p.shape.keel > 0.0));
+        // Keels fade out down the flanks: none below the side midline (|φ| > π/2).
+        assert!(keeled.iter().filter(|p| p.phi.abs() > PI / 2.0).all(|p| p.shape.keel == 0.0));
+        // Ventral plates: one per scale spacing, on the belly.
+        assert!(keeled.iter().filter(|p| !p.dorsal).all(|p| (p.phi - PI).abs() < 1e-12));
+    }
+
+    #[test]
+    fn the_triangle_count_is_what_the_mesh_has() {
+        let p = SnakeParams { section: [0.3, 0.5], scale_grid: [7, 5], ..params(ScaleKind::Keeled) };
+        assert_eq!(triangle_count(&p), scaled_snake_mesh(&p, 0).triangles.len());
+    }
+
+    #[test]
+    fn the_eyes_sit_on_the_head_one_each_side() {
+        let p = params(ScaleKind::Smooth);
+        let [(l, rl), (r, rr)] = eyes(&p);
+        assert!(rl == rr && rl > 0.0);
+        // Mirror images across the spine's vertical plane, on the upper half of the head.
+        let body = Body::new(&p);
+        let (_, side, up) = body.frame(EYE_S);
+        let c = body.spine(EYE_S);
+        assert!(dot(sub(l, c), side) < 0.0 && dot(sub(r, c), side) > 0.0);
+        assert!((dot(sub(l, c), side) + dot(sub(r, c), side)).abs() < 0.05 * rl);
+        assert!(dot(sub(l, c), up) > 0.0);
     }
 }
