@@ -121,7 +121,7 @@ const JAWS: f64 = 0.95;
 /// fraction of the head's half-height there.
 const EYE_S: f64 = 0.972;
 const EYE_PHI: f64 = 1.05;
-const EYE_RADIUS: f64 = 0.2;
+const EYE_RADIUS: f64 = 0.16;
 
 impl Body {
     pub fn new(p: &SnakeParams) -> Self {
@@ -176,13 +176,13 @@ impl Body {
     pub fn half_axes(&self, s: f64) -> (f64, f64) {
         let s = s.clamp(0.0, 1.0);
         let tail = (s / 0.6).min(1.0).powf(0.7).max(0.02);
-        let neck = 1.0 - 0.2 * (-((s - NECK) / 0.012).powi(2)).exp();
+        let neck = 1.0 - 0.1 * (-((s - NECK) / 0.012).powi(2)).exp();
         let head = smoothstep(HEAD_START - 0.01, HEAD_START + 0.02, s);
         // From the jaws (widest) to the tip of the snout, an elliptical taper: narrow in plan, rounded in profile.
         let x = ((s - JAWS) / (1.0 - JAWS)).clamp(0.0, 1.0);
         let snout = (1.0 - x * x).sqrt();
         let r = self.p.radius * tail * neck;
-        (r * (1.0 + 0.2 * head) * snout.powf(0.9).max(0.04), r * (1.0 - 0.35 * head) * snout.powf(0.5).max(0.04))
+        (r * (1.0 + 0.12 * head) * snout.powf(0.9).max(0.04), r * (1.0 - 0.35 * head) * snout.powf(0.5).max(0.04))
     }
 
     /// Spacing of the transverse scale rows at `s` (scene units along the spine).

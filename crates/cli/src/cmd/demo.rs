@@ -28,7 +28,8 @@ pub struct Args {
 type Section = fn(&mut Gallery) -> Result<()>;
 
 /// The gallery's sections, in the order a newcomer should read them; each command group adds its own.
-const SECTIONS: [(&str, Section); 6] = [
+const SECTIONS: [(&str, Section); 7] = [
+    ("snakes", super::render::figures_demo),
     ("color", super::color::demo),
     ("surface", super::surface::demo),
     ("thinfilm", super::thinfilm::demo),
