@@ -84,6 +84,8 @@ pub struct GpuScene<'g> {
     layout: Layout,
     camera: Camera,
     lights: Vec<Light>,
+    /// Texture number of the first laser spot's reflection profile (the profiles follow the scene's textures).
+    first_profile: u32,
     output: iridis_render::scene::Output,
     /// The films' media as uploaded (the viewer's thickness, IOR and SVT controls rewrite copies of them).
     media_cpu: Vec<[f32; 2]>,
@@ -220,7 +222,8 @@ impl<'g> GpuScene<'g> {
         lay.n_planes = scene.planes.len() as u32;
 
         lay.light_base = rec.len();
-        push_lights(&mut rec, &scene.lights);
+        let first_profile = scene.textures.len() as u32;
+        push_lights(&mut rec, &scene.lights, lay.light_base, first_profile);
         lay.n_lights = scene.lights.len() as u32;
 
         lay.node_base = rec.len();
@@ -417,6 +420,10 @@ impl<'g> GpuScene<'g> {
         // Textures (the environment map and its irradiance map last).
         lay.tex_base = rec.len();
         let mut textures: Vec<&Texture> = scene.textures.iter().collect();
+        textures.extend(scene.lights.iter().filter_map(|l| match l {
+            Light::Laser(spot) => Some(&spot.profile),
+            _ => None,
+        }));
         let mut texels: Vec<f32> = Vec::new();
         lay.env_visible = u32::from(scene.environment_visible);
         let m = scene.environment.mean();
@@ -554,6 +561,7 @@ impl<'g> GpuScene<'g> {
             layout: lay,
             camera: scene.camera.clone(),
             lights: scene.lights.clone(),
+            first_profile,
             output: scene.output.clone(),
             media_cpu: media,
             films,
@@ -620,8 +628,15 @@ impl<'g> GpuScene<'g> {
                 lights.len()
             )));
         }
+        let old: Vec<_> = self.lights.iter().filter(|l| matches!(l, Light::Laser(_))).collect();
+        let new: Vec<_> = lights.iter().filter(|l| matches!(l, Light::Laser(_))).collect();
+        if old != new {
+            return Err(GpuError::Invalid(
+                "a laser spot's reflection is fixed by the scene; it cannot be moved".into(),
+            ));
+        }
         let mut rec = Records::default();
-        push_lights(&mut rec, lights);
+        push_lights(&mut rec, lights, self.layout.light_base, self.first_profile);
         self.gpu.queue.write_buffer(&self.scene, self.layout.light_base as u64 * 16, bytemuck::cast_slice(&rec.0));
         self.lights = lights.to_vec();
         Ok(())
@@ -745,18 +760,35 @@ impl<'g> GpuScene<'g> {
 /// `Params` of scene.wgsl: 12 vec4 and 24 u32.
 const PARAM_WORDS: usize = 12 * 4 + 24;
 
-fn push_lights(rec: &mut Records, lights: &[Light]) {
+/// Two records per light from record `base` on — `[direction | position, kind (0 directional, 1 point,
+/// 2 laser spot)]`, `[irradiance rgb, laser: record of its frame]` — then three per laser spot:
+/// `[t, profile texture]`, `[b, cos θ_i]`, `[n, 0]` (render::light::LaserSpot), whose profiles are textures
+/// `first_profile`, `first_profile + 1`, … in the order of the lights.
+fn push_lights(rec: &mut Records, lights: &[Light], base: u32, first_profile: u32) {
+    let frames = base + 2 * lights.len() as u32;
+    let mut spots = Vec::new();
     for l in lights {
-        match *l {
+        match l {
             Light::Directional { direction, rgb } => {
-                rec.v3w(direction, 0);
-                rec.v3(rgb, 0.0);
+                rec.v3w(*direction, 0);
+                rec.v3(*rgb, 0.0);
             }
             Light::Point { position, rgb } => {
-                rec.v3w(position, 1);
-                rec.v3(rgb, 0.0);
+                rec.v3w(*position, 1);
+                rec.v3(*rgb, 0.0);
+            }
+            Light::Laser(spot) => {
+                rec.v3w(spot.position, 2);
+                rec.v3w(spot.rgb, frames + 3 * spots.len() as u32);
+                spots.push(spot);
             }
         }
+    }
+    for (k, spot) in spots.iter().enumerate() {
+        let [t, b, n] = spot.frame;
+        rec.v3w(t, first_profile + k as u32);
+        rec.v3(b, spot.cos_in as f32);
+        rec.v3(n, 0.0);
     }
 }
 

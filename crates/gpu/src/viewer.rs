@@ -344,12 +344,14 @@ impl SceneView {
         };
         self.lights0
             .iter()
-            .map(|l| match *l {
-                Light::Directional { direction, rgb } => Light::Directional { direction: rot(direction), rgb },
-                Light::Point { position, rgb } => {
+            .map(|l| match l {
+                &Light::Directional { direction, rgb } => Light::Directional { direction: rot(direction), rgb },
+                &Light::Point { position, rgb } => {
                     let p = rot([position[0] - target[0], position[1] - target[1], position[2] - target[2]]);
                     Light::Point { position: [p[0] + target[0], p[1] + target[1], p[2] + target[2]], rgb }
                 }
+                // A laser's spot stays where the beam meets the sample.
+                Light::Laser(_) => l.clone(),
             })
             .collect()
     }

@@ -290,35 +290,17 @@ impl Plane {
     }
 }
 
-/// Parameters of the procedural snake body: a tapered tube along a planar sine-wave spine.
-#[derive(Debug, Clone, PartialEq)]
-pub struct SnakeParams {
-    /// Length of the spine (scene units).
-    pub length: f64,
-    /// Largest radius of the body.
-    pub radius: f64,
-    /// Number of full sine waves along the body.
-    pub waves: f64,
-    /// Amplitude of the sideways undulation.
-    pub amplitude: f64,
-    /// Rings along the body and vertices around it.
-    pub rings: usize,
-    pub segments: usize,
-    /// How many times the UV square repeats along the body and around it (scale tiling).
-    pub tiles: [f64; 2],
-}
-
-impl Default for SnakeParams {
-    fn default() -> Self {
-        Self { length: 10.0, radius: 0.45, waves: 1.5, amplitude: 0.9, rings: 400, segments: 48, tiles: [40.0, 4.0] }
-    }
-}
+pub use crate::snake::{ScaleKind, SnakeParams};
 
 /// The snake body: a tube of `rings × segments` vertices around a spine in the x–z plane (y up), lying on
 /// `y = 0` (its belly touches the ground), head at `+x`. The radius tapers to a point at the tail and to a
 /// rounded head; `u` runs along the body (tail → head, repeating `tiles[0]` times), `v` around it, and the
 /// `along` attribute is the spine's direction (tail → head), the rule the paper uses for the nanofingers.
+/// With scales (`p.scales` smooth or keeled), the body of [`crate::snake`] covered with plates instead.
 pub fn snake_mesh(p: &SnakeParams, material: usize) -> Mesh {
+    if p.scales != ScaleKind::None {
+        return crate::snake::scaled_snake_mesh(p, material);
+    }
     let n_r = p.rings.max(8);
     let n_s = p.segments.max(6);
     let spine = |s: f64| -> V3 {

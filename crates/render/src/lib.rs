@@ -6,7 +6,8 @@
 //! * [`scene`]: the TOML scene format (camera, lights, environment, textures, materials, objects, output) and
 //!   glTF 2.0 scenes;
 //! * [`geometry`]: meshes with normals, UVs and MikkTSpace tangent frames ([`obj_io`], [`gltf_io`]), analytic
-//!   spheres and planes, the procedural snake body; [`bvh`] the acceleration structure;
+//!   spheres and planes; [`snake`] the procedural snake with curved, overlapping scale plates; [`bvh`] the
+//!   acceleration structure;
 //! * [`material`]: diffraction (lookup tables of `iridis precompute`, orientation fields, the thesis' texture
 //!   blending, Algorithm 4), thin films (Sussenbach's smooth illumination model, eq. 3.14, with spatially
 //!   varying thickness, eq. 4.3–4.4), Lambert and GGX microfacet;
@@ -23,6 +24,7 @@ pub mod camera;
 pub mod energy;
 pub mod error;
 pub mod geometry;
+pub mod gltf_export;
 pub mod gltf_io;
 pub mod light;
 pub mod lobe;
@@ -31,6 +33,7 @@ pub mod math;
 pub mod obj_io;
 pub mod render;
 pub mod scene;
+pub mod snake;
 pub mod tables;
 pub mod texture;
 

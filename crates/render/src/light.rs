@@ -30,6 +30,48 @@ pub enum Light {
     Directional { direction: V3, rgb: Rgb },
     /// A point at `position`; `rgb` is the irradiance (RU) at distance 1, falling off as `1/r²`.
     Point { position: V3, rgb: Rgb },
+    /// A laser beam's spot on a diffraction sample (paper sec. 6.2), seen as the light source it is for
+    /// everything else: a point that sends each direction what the sample reflects of the beam there.
+    Laser(Box<LaserSpot>),
+}
+
+/// The reflection of a thin laser beam off a sample: a point source at the spot whose intensity towards
+/// `ω_o` is `P·F(ω_i, ω_o)·cos θ_o / cos θ_i`, where `P` is the beam's power, `F` the sample's reflection of a
+/// 1 RU light (what a camera sees of it: `Diffraction::shade_light` for unit irradiance) and the
+/// `cos θ_o / cos θ_i` the spot's projected area towards `ω_o` (the beam's cross-section spreads over
+/// `1/cos θ_i` of the surface). A surface at distance `r` receives `P·F·cos θ_o / (cos θ_i·r²)`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LaserSpot {
+    /// Where the beam meets the sample, lifted off it a little along its normal (by 10⁻⁴ of the scene's
+    /// scale, more than the GPU's ray offsets); only what lies in front of that point is lit.
+    pub position: V3,
+    /// The beam's power `P` (RU · scene unit²: a 1 RU light over one square unit of cross-section) × tint.
+    pub rgb: Rgb,
+    /// The sample's frame at the spot: the nanostructure's axis `t`, `b = n × t` and the normal `n`.
+    pub frame: [V3; 3],
+    /// `cos θ_i` of the beam on the sample.
+    pub cos_in: f64,
+    /// `F(ω_i, ω_o)` for every outgoing direction, as a BRDF map (`iridis brdf-map`'s layout: pixel `(x, y)`
+    /// of the unit disk shows `ω_o = (x, y, √(1 − x² − y²))` in the frame), linear sRGB.
+    pub profile: Texture,
+}
+
+impl LaserSpot {
+    /// Direction towards the spot, distance and irradiance arriving at `p` (zero behind the sample).
+    pub fn arrive(&self, p: V3) -> (V3, f64, Rgb) {
+        let d = sub(self.position, p);
+        let r2 = dot(d, d).max(1e-300);
+        let r = r2.sqrt();
+        let wi = mul(d, 1.0 / r);
+        let [t, b, n] = self.frame;
+        if dot(sub(p, self.position), n) <= 0.0 {
+            return (wi, r, [0.0; 3]);
+        }
+        let wo = mul(wi, -1.0);
+        let (x, y, z) = (dot(wo, t), dot(wo, b), dot(wo, n));
+        let f = self.profile.sample([(x + 1.0) / 2.0, (1.0 - y) / 2.0]);
+        (wi, r, mul(hadamard(self.rgb, f), z / (self.cos_in * r2)))
+    }
 }
 
 impl Light {
@@ -42,6 +84,7 @@ impl Light {
                 let r2 = dot(d, d).max(1e-12);
                 (mul(d, 1.0 / r2.sqrt()), r2.sqrt(), mul(rgb, 1.0 / r2))
             }
+            Light::Laser(ref spot) => spot.arrive(p),
         }
     }
 }

@@ -99,7 +99,39 @@ pub fn render(scene: &Scene, width: u32, height: u32, spp: u32, progress: &(dyn 
     Image { width, height, data: rows.into_iter().flatten().collect() }
 }
 
+/// What a camera ray meets on a diffraction material, in that material's local frame `(t, n × t, n)`: the
+/// directions `iridis brdf-map` takes, so that a pixel's colour can be read off the BRDF map it comes from.
+#[derive(Debug, Clone)]
+pub struct LocalView {
+    /// The material hit (a diffraction material).
+    pub material: usize,
+    /// Towards the camera.
+    pub view: V3,
+    /// Towards each light that reaches the point (the scene's lights, then the environment's), with its
+    /// irradiance.
+    pub lights: Vec<(V3, Rgb)>,
+}
+
 impl Scene {
+    /// [`LocalView`] of the camera ray through `(x, y) ∈ [−1, 1]²`; `None` where it meets no diffraction
+    /// material.
+    pub fn local_view(&self, x: f64, y: f64, aspect: f64) -> Option<LocalView> {
+        let (o, d) = self.camera.ray(x, y, aspect)?;
+        let h = self.intersect(o, d, f64::INFINITY)?;
+        let Material::Diffraction(df) = &self.materials[h.material] else { return None };
+        let t = df.orientation.tangent(&h, &self.textures);
+        let b = cross(h.n, t);
+        let local = |v: V3| [dot(v, t), dot(v, b), dot(v, h.n)];
+        let lights = self
+            .lights_at(&h)
+            .into_iter()
+            .chain(self.environment_lights_at(&h))
+            .map(|(wi, e)| (local(wi), e))
+            .filter(|(wi, _)| wi[2] > 0.0)
+            .collect();
+        Some(LocalView { material: h.material, view: local(mul(d, -1.0)), lights })
+    }
+
     /// The nearest surface along a ray.
     pub fn intersect(&self, o: V3, d: V3, t_max: f64) -> Option<Hit> {
         let mut best: Option<Hit> = None;

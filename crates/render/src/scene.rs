@@ -18,7 +18,7 @@ use toml::Spanned;
 use crate::bvh::Bvh;
 use crate::camera::{frame, Camera};
 use crate::error::RenderError;
-use crate::geometry::{snake_mesh, Mesh, Plane, SnakeParams, Sphere};
+use crate::geometry::{snake_mesh, Mesh, Plane, ScaleKind, SnakeParams, Sphere};
 use crate::light::{equirect_mean, illuminant_tint, Environment, Light, Rgb};
 use crate::material::*;
 use crate::math::*;
@@ -73,7 +73,8 @@ impl Scene {
     }
 
     /// Multiplies every length by `s` about the origin: objects, camera, point lights (whose irradiance at
-    /// distance 1 is multiplied by `s²`, so that what arrives at the scaled objects is unchanged). Infinite
+    /// distance 1 is multiplied by `s²`, so that what arrives at the scaled objects is unchanged) and laser
+    /// spots (their beam power likewise). Infinite
     /// planes' UV unit scales too, so their textures stay put. Materials keep their nanometre scales. The image
     /// is the same at any `s` (the renderers' tests check this at 10⁻³ and 10³).
     pub fn scale(&mut self, s: f64) {
@@ -92,9 +93,17 @@ impl Scene {
             }
         }
         for l in &mut self.lights {
-            if let Light::Point { position, rgb } = l {
-                *position = mul(*position, s);
-                *rgb = mul(*rgb, s * s);
+            match l {
+                Light::Point { position, rgb } => {
+                    *position = mul(*position, s);
+                    *rgb = mul(*rgb, s * s);
+                }
+                // A beam's power is irradiance × area: the same image needs `s²` of it.
+                Light::Laser(spot) => {
+                    spot.position = mul(spot.position, s);
+                    spot.rgb = mul(spot.rgb, s * s);
+                }
+                Light::Directional { .. } => {}
             }
         }
         self.camera = match self.camera.clone() {
@@ -283,9 +292,19 @@ struct ObjectDef {
     rings: Option<usize>,
     segments: Option<usize>,
     tiles: Option<[f64; 2]>,
+    scales: Option<String>,
+    scale_rows: Option<usize>,
+    scale_length: Option<f64>,
+    section: Option<[f64; 2]>,
+    scale_grid: Option<[usize; 2]>,
+    eye_material: Option<String>,
 }
 
 // ---------------------------------------------------------------- loading
+
+/// The most triangles a scaled snake may have: 112 MB of triangle records on the GPU, within the 128 MiB
+/// that lavapipe binds in one storage buffer.
+const MAX_SNAKE_TRIANGLES: usize = 500_000;
 
 /// Reads a scene file (TOML, or a glTF 2.0 file `.gltf`/`.glb` rendered with a default camera and light).
 pub fn load_scene(path: &Path) -> Result<Scene, RenderError> {
@@ -424,10 +443,15 @@ pub fn parse_scene(text: &str, name: &str, base: &Path) -> Result<Scene, RenderE
         material_names.push(name.clone());
     }
 
-    // Lights
+    // Lights (a laser's spot is found once the objects are in place)
     let mut lights = Vec::new();
+    let mut lasers = Vec::new();
     for l in &file.light {
-        lights.push(build_light(l.get_ref(), &l.span(), &ctx)?);
+        if l.get_ref().kind == "laser" {
+            lasers.push(build_laser_beam(l.get_ref(), &l.span(), &ctx)?);
+        } else {
+            lights.push(build_light(l.get_ref(), &l.span(), &ctx)?);
+        }
     }
     let (environment, environment_visible) = match &file.environment {
         None => (Environment::None, false),
@@ -500,10 +524,73 @@ pub fn parse_scene(text: &str, name: &str, base: &Path) -> Result<Scene, RenderE
                     rings: d.rings.unwrap_or(def.rings).clamp(8, 20_000),
                     segments: d.segments.unwrap_or(def.segments).clamp(6, 2_000),
                     tiles: d.tiles.unwrap_or(def.tiles),
+                    scales: match d.scales.as_deref() {
+                        None => def.scales,
+                        Some(k) => ScaleKind::parse(k).ok_or_else(|| {
+                            ctx.err_key(
+                                &span,
+                                "scales",
+                                format!("{what}: `scales` = \"{k}\": use none, smooth or keeled"),
+                            )
+                        })?,
+                    },
+                    scale_rows: d.scale_rows.unwrap_or(def.scale_rows),
+                    scale_length: d.scale_length.unwrap_or(def.scale_length),
+                    section: d.section.unwrap_or(def.section),
+                    scale_grid: d.scale_grid.unwrap_or(def.scale_grid),
                 };
+                if !(3..=61).contains(&p.scale_rows) {
+                    return Err(ctx.err_key(&span, "scale_rows", format!("{what}: `scale_rows` must be 3 to 61")));
+                }
+                if !(p.scale_length.is_finite() && p.scale_length >= 0.0) {
+                    return Err(ctx.err_key(
+                        &span,
+                        "scale_length",
+                        format!("{what}: `scale_length` must be ≥ 0 (0: automatic)"),
+                    ));
+                }
+                if p.scale_grid.iter().any(|n| !(3..=64).contains(n)) {
+                    return Err(ctx.err_key(
+                        &span,
+                        "scale_grid",
+                        format!("{what}: `scale_grid` = {:?}: 3 to 64 vertices along and across a scale", p.scale_grid),
+                    ));
+                }
+                let [s0, s1] = p.section;
+                if !(0.0..=1.0).contains(&s0) || !(0.0..=1.0).contains(&s1) || s0 >= s1 {
+                    return Err(ctx.err_key(
+                        &span,
+                        "section",
+                        format!("{what}: `section` = [{s0}, {s1}]: two fractions of the body, tail (0) to head (1), the first smaller"),
+                    ));
+                }
+                if p.scales != ScaleKind::None {
+                    let n = crate::snake::triangle_count(&p);
+                    if n > MAX_SNAKE_TRIANGLES {
+                        return Err(ctx.err(
+                            span.clone(),
+                            format!(
+                                "{what}: these scales make {n} triangles (at most {MAX_SNAKE_TRIANGLES}); use fewer \
+                                 `scale_rows`, a longer `scale_length`, a smaller `scale_grid` or a `section` of the body"
+                            ),
+                        ));
+                    }
+                }
                 let mut m = snake_mesh(&p, mat(true)?.unwrap_or(0));
                 m.transform(&transform);
                 meshes.push(m);
+                if let Some(e) = &d.eye_material {
+                    let material = mat_index.get(e).copied().ok_or_else(|| {
+                        ctx.err_key(
+                            &span,
+                            "eye_material",
+                            format!("{what}: `eye_material` = \"{e}\" is not defined in [materials.*]"),
+                        )
+                    })?;
+                    for (c, r) in crate::snake::eyes(&p) {
+                        spheres.push(Sphere { center: transform.point(c), radius: r * transform.scale, material });
+                    }
+                }
             }
             "obj" => {
                 let f = d.file.as_ref().ok_or_else(|| ctx.err(span.clone(), format!("{what}: missing key `file`")))?;
@@ -554,7 +641,7 @@ pub fn parse_scene(text: &str, name: &str, base: &Path) -> Result<Scene, RenderE
     let bvh = Bvh::build(&meshes);
     let irradiance = environment.irradiance_map();
     let environment_lights = environment.as_lights();
-    Ok(Scene {
+    let mut scene = Scene {
         camera,
         lights,
         irradiance,
@@ -570,7 +657,98 @@ pub fn parse_scene(text: &str, name: &str, base: &Path) -> Result<Scene, RenderE
         bvh,
         output,
         notes,
-    })
+    };
+    for beam in lasers {
+        let spot = laser_spot(&scene, &beam, &ctx)?;
+        scene.lights.push(Light::Laser(Box::new(spot)));
+    }
+    Ok(scene)
+}
+
+/// A laser as written: its aperture, the beam's direction of travel, its power × tint, and where it is written.
+struct LaserBeam {
+    position: V3,
+    direction: V3,
+    rgb: Rgb,
+    span: std::ops::Range<usize>,
+}
+
+/// Side of a laser's reflection profile in pixels (a BRDF map of the sample at the beam's incidence).
+pub const LASER_PROFILE_SIZE: usize = 512;
+
+fn build_laser_beam(d: &LightDef, span: &std::ops::Range<usize>, ctx: &Ctx) -> Result<LaserBeam, RenderError> {
+    let what = "[[light]] (kind \"laser\")";
+    let intensity = d.intensity.unwrap_or(1.0);
+    if !(intensity.is_finite() && intensity >= 0.0) {
+        return Err(ctx.err(span.clone(), format!("{what}: `intensity` (the beam's power, RU · unit²) must be ≥ 0")));
+    }
+    let rgb = mul(hadamard(spectrum_tint(&d.spectrum, ctx, span)?, d.color.unwrap_or([1.0; 3])), intensity);
+    let position = need(d.position, ctx, span, what, "position")?;
+    let direction = try_normalize(need(d.direction, ctx, span, what, "direction")?)
+        .ok_or_else(|| ctx.err(span.clone(), format!("{what}: `direction` (where the beam goes) must not be zero")))?;
+    Ok(LaserBeam { position, direction, rgb, span: span.clone() })
+}
+
+/// Follows a laser's beam to the first surface it meets, which must be a diffraction material (the paper's
+/// sample), and makes the spot a light: its reflection of the beam into every direction, by Algorithm 4 for a
+/// light of 1 RU from the beam (`Diffraction::shade_light`), as a hemisphere map in the sample's frame.
+fn laser_spot(scene: &Scene, beam: &LaserBeam, ctx: &Ctx) -> Result<crate::light::LaserSpot, RenderError> {
+    use rayon::prelude::*;
+    let what = "[[light]] (kind \"laser\")";
+    let hit = scene.intersect(beam.position, beam.direction, f64::INFINITY).ok_or_else(|| {
+        ctx.err(
+            beam.span.clone(),
+            format!(
+                "{what}: the beam from {:?} along {:?} meets nothing; aim `direction` at the diffraction sample",
+                beam.position, beam.direction
+            ),
+        )
+    })?;
+    let Material::Diffraction(df) = &scene.materials[hit.material] else {
+        return Err(ctx.err(
+            beam.span.clone(),
+            format!(
+                "{what}: the beam first meets material `{}`, which is not a diffraction material; the laser's \
+                 reflection is made for a diffraction sample in its path",
+                scene.material_names.get(hit.material).map(String::as_str).unwrap_or("?")
+            ),
+        ));
+    };
+    let n = hit.n;
+    let t = df.orientation.tangent(&hit, &scene.textures);
+    let b = cross(n, t);
+    let wi = mul(beam.direction, -1.0);
+    let cos_in = dot(wi, n);
+    if cos_in <= 1e-6 {
+        return Err(ctx.err(beam.span.clone(), format!("{what}: the beam grazes the sample; tilt it or the sample")));
+    }
+    let tex = df.texture.at(hit.uv, &scene.textures);
+    let size = LASER_PROFILE_SIZE;
+    let data: Vec<f32> = (0..size * size)
+        .into_par_iter()
+        .flat_map_iter(|k| {
+            let f = iridis_diffraction::map::view_direction(k % size, k / size, size)
+                .map(|[x, y, z]| {
+                    let wo = add(add(mul(t, x), mul(b, y)), mul(n, z));
+                    df.shade_light(&hit, t, wi, wo, [1.0; 3], tex)
+                })
+                .unwrap_or([0.0; 3]);
+            f.map(|c| c as f32)
+        })
+        .collect();
+    let profile = Texture::Image {
+        width: size,
+        height: size,
+        channels: 3,
+        data,
+        kind: TexKind::Data,
+        name: "laser reflection profile".into(),
+    };
+    // Off the sample by a little more than the GPU's ray offsets, so that a shadow ray towards the spot does not
+    // stop on the sample itself.
+    let p = hit.p;
+    let lift = 1e-4 * (p[0].abs().max(p[1].abs()).max(p[2].abs()) + hit.t);
+    Ok(crate::light::LaserSpot { position: add(p, mul(n, lift)), rgb: beam.rgb, frame: [t, b, n], cos_in, profile })
 }
 
 fn build_camera(c: &Spanned<CameraDef>, ctx: &Ctx) -> Result<Camera, RenderError> {
@@ -639,7 +817,9 @@ fn build_light(d: &LightDef, span: &std::ops::Range<usize>, ctx: &Ctx) -> Result
             Ok(Light::Directional { direction: dir, rgb })
         }
         "point" => Ok(Light::Point { position: need(d.position, ctx, span, &what, "position")?, rgb }),
-        other => Err(ctx.err(span.clone(), format!("[[light]]: unknown kind \"{other}\"; use directional or point"))),
+        other => {
+            Err(ctx.err(span.clone(), format!("[[light]]: unknown kind \"{other}\"; use directional, point or laser")))
+        }
     }
 }
 

@@ -38,7 +38,7 @@ impl TexKind {
 }
 
 /// A texture ready for sampling.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum Texture {
     /// An image: `channels` values per texel (1–4), linear, row 0 at the top.
     Image { width: usize, height: usize, channels: usize, data: Vec<f32>, kind: TexKind, name: String },

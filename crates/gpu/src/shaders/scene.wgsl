@@ -355,17 +355,33 @@ struct Arrival {
     e: vec3<f32>,
 }
 
-// Light record (2 vec4): [direction | position, kind (0 directional, 1 point)], [irradiance rgb].
+// Light record (2 vec4): [direction | position, kind (0 directional, 1 point, 2 laser spot)], [irradiance
+// rgb, laser: record of its frame [t, profile texture], [b, cos theta_i], [n, 0]].
 fn arrive(i: u32, p: vec3<f32>) -> Arrival {
     let r = P.light_base + 2u * i;
     let a = scene[r];
     let e = scene[r + 1u].xyz;
-    if (word(a.w) == 0u) {
+    let kind = word(a.w);
+    if (kind == 0u) {
         return Arrival(a.xyz, FAR, e);
     }
     let d = a.xyz - p;
     let r2 = max(dot(d, d), 1e-12);
     let dist = sqrt(r2);
+    if (kind == 2u) {
+        // render::light::LaserSpot::arrive: the sample's reflection of the beam towards p, from its profile.
+        let f = word(scene[r + 1u].w);
+        let t = scene[f];
+        let b = scene[f + 1u];
+        let n = scene[f + 2u].xyz;
+        let wo = -d / dist;
+        if (dot(-d, n) <= 0.0) {
+            return Arrival(d / dist, dist, vec3<f32>(0.0));
+        }
+        let uv = vec2<f32>((dot(wo, t.xyz) + 1.0) * 0.5, (1.0 - dot(wo, b.xyz)) * 0.5);
+        let refl = sample_texture(word(t.w), uv, false);
+        return Arrival(d / dist, dist, e * refl * (dot(wo, n) / (b.w * r2)));
+    }
     return Arrival(d / dist, dist, e / r2);
 }
 
