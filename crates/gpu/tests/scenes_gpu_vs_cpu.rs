@@ -299,10 +299,14 @@ fn every_example_scene_matches_the_cpu() {
         // the snakes and the gold sphere (a few silhouette pixels apart, max ≈ 24, where one renderer's ray hits
         // and the other's misses); films over a base since the GGX film lobe (issue 21): gltf_iridescence
         // 0.036 / 0.117, oil_spill 0.042 / 1.72 (at 1× only: 0.000 / 0.001 at 10⁻³ and 10³ — not yet
-        // explained); the soap bubble 0.050 / 0.71 (rays refracted through two thin shells).
+        // explained); the soap bubble 0.050 / 0.71 (rays refracted through two thin shells). Issue 17 (films
+        // from colour tables on the GPU; the CPU evaluates them directly): gltf_iridescence 0.001 / 0.009,
+        // soap_bubble 0.051 / 0.71, oil_spill 0.044 / 1.72 as before; rough_film (the LSRS tables against the
+        // CPU's direct model at 81 wavelengths per hit and light) 0.059 / 0.38.
         let (mean_max, p99_max) = match name.as_str() {
             "soap_bubble.toml" | "oil_spill.toml" => (0.2, 3.0),
             "gltf_iridescence.toml" => (0.1, 0.3),
+            "rough_film.toml" => (0.1, 0.6),
             _ => (0.05, 0.05),
         };
         assert!(*mean < mean_max && *p99 < p99_max, "{name}: mean ΔE00 {mean:.3}, p99 {p99:.3}");
