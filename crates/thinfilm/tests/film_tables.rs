@@ -41,7 +41,7 @@ fn compare(stack: &Stack, lo: f64, hi: f64, density: f64) -> (TableGrid, DeltaES
         .flat_map(|j| {
             (0..na).map(move |i| {
                 // 0°–89.5° and the offsets, off the node positions (an irrational fraction of a step).
-                let theta = (89.5 * (i as f64 + 0.318) / na as f64).to_radians();
+                let theta = (89.5 * (i as f64 + 0.3137) / na as f64).to_radians();
                 let o = if no > 1 { lo + (hi - lo) * (j as f64 + 0.271) / no as f64 } else { lo };
                 (theta, o)
             })

@@ -261,7 +261,6 @@ fn bench_scene(a: &GpuBench, path: &std::path::Path) -> Result<()> {
     let gpu = open_gpu()?;
     let adapter = gpu.adapter_name();
     let a_samples = a.spectral_samples;
-    sampled_weights(a_samples, FULL_BAND_NM).with_context(|| format!("--spectral-samples {a_samples}"))?;
     let t = std::time::Instant::now();
     let g = GpuScene::new(&gpu, &scene)?;
     let setup_s = t.elapsed().as_secs_f64();
@@ -359,6 +358,8 @@ pub fn bench(a: GpuBench) -> Result<()> {
     if !(a.max_seconds.is_finite() && a.max_seconds > 0.0) {
         bail!("--max-seconds {} must be positive", a.max_seconds);
     }
+    let direct_weights = sampled_weights(a.spectral_samples, FULL_BAND_NM)
+        .with_context(|| format!("--spectral-samples {}", a.spectral_samples))?;
     if let Some(p) = a.scene.clone() {
         return bench_scene(&a, &p);
     }
@@ -427,8 +428,6 @@ pub fn bench(a: GpuBench) -> Result<()> {
 
     // Thin film: the fast path (colour table) and the direct path, in the same run.
     let dense = dense_weights();
-    let direct_weights = sampled_weights(a.spectral_samples, FULL_BAND_NM)
-        .with_context(|| format!("--spectral-samples {}", a.spectral_samples))?;
     let film_frame = FilmFrame {
         width: fw,
         height: fh,
