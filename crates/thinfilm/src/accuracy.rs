@@ -9,7 +9,9 @@ use serde::Serialize;
 
 /// The displayed colour of `xyz` scaled by `exposure`, clipped to the sRGB cube, in CIELAB (D65).
 pub fn displayed_lab(xyz: Xyz, exposure: f64) -> Lab {
-    let white = white_point(Illuminant::D65, Observer::Cie1931);
+    // The white point integrates the CMFs on their 1 nm grid: once, not per colour.
+    static WHITE: std::sync::OnceLock<Xyz> = std::sync::OnceLock::new();
+    let white = *WHITE.get_or_init(|| white_point(Illuminant::D65, Observer::Cie1931));
     let rgb = xyz.scale(exposure).to_linear_srgb().map(|c| if c.is_nan() { 0.0 } else { c.clamp(0.0, 1.0) });
     Lab::from_xyz(Xyz::from_linear_srgb(rgb), white)
 }
@@ -44,9 +46,10 @@ impl DeltaEStats {
         }
     }
 
-    /// Displayed ΔE00 between matching colours of `a` and `b` at one exposure.
+    /// Displayed ΔE00 between matching colours of `a` and `b` at one exposure (in parallel).
     pub fn between(a: &[Xyz], b: &[Xyz], exposure: f64) -> Self {
-        Self::of(a.iter().zip(b).map(|(p, q)| delta_e_displayed(*p, *q, exposure)).collect())
+        use rayon::prelude::*;
+        Self::of(a.par_iter().zip(b).map(|(p, q)| delta_e_displayed(*p, *q, exposure)).collect())
     }
 }
 
