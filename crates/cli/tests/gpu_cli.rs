@@ -181,8 +181,9 @@ fn bench_gpu_reports_adapter_and_frame_times() {
         "--json",
     ]);
     assert!(!v["adapter"].as_str().unwrap().is_empty());
-    for part in ["lookup", "film"] {
-        let p = &v[part];
+    for (part, p) in
+        [("lookup", &v["lookup"]), ("film table", &v["film"]["table"]), ("film direct", &v["film"]["direct"])]
+    {
         assert_eq!(p["frames"], 4, "{part}");
         let ms = &p["ms"];
         let (mn, med, p99) = (ms["min"].as_f64().unwrap(), ms["median"].as_f64().unwrap(), ms["p99"].as_f64().unwrap());
@@ -197,9 +198,17 @@ fn bench_gpu_reports_adapter_and_frame_times() {
     }
     assert_eq!(v["lookup"]["size"], serde_json::json!([64, 64]));
     assert_eq!(v["film"]["size"], serde_json::json!([96, 48]));
+    // The fast path used its colour table and stays within issue 17's bound of the direct 81-sample frame.
+    let t = &v["film"]["table"];
+    assert!(t["cos_nodes"].as_u64().unwrap() >= 65 && t["fallback"].is_null(), "{t}");
+    assert_eq!(v["film"]["direct"]["wavelengths"], 81);
+    let d = &t["vs_direct"];
+    assert!(d["delta_e00_mean"].as_f64().unwrap() < 0.1 && d["delta_e00_p99"].as_f64().unwrap() < 0.5, "{d}");
+    assert!(v["film"]["direct_over_table_median"].as_f64().unwrap() > 0.0);
     let map = image::open(dir.path().join("lookup_map.png")).unwrap();
     let film = image::open(dir.path().join("film_frame.png")).unwrap();
     assert_eq!((map.width(), map.height(), film.width(), film.height()), (64, 64, 96, 48));
+    assert_eq!(image::open(dir.path().join("film_frame_direct.png")).unwrap().width(), 96);
 }
 
 #[test]
@@ -217,6 +226,15 @@ fn gpu_options_are_checked() {
     assert_fails(&["view", "no_such_scene.toml"], &["no_such_scene.toml", "does not exist"]);
     assert_fails(&["view", "examples/gold_sphere.toml", "--check", "/tmp/shot.jpg"], &[".png"]);
     assert_fails(&["bench", "gpu", "no_such_scene.toml"], &["no_such_scene.toml"]);
+    assert_fails(&["bench", "gpu", "--spectral-samples", "1"], &["--spectral-samples 1", "2 to 4096"]);
+    assert_fails(
+        &["render", "examples/soap_bubble.toml", "-o", "/tmp/x.png", "--spectral-samples", "20"],
+        &["--spectral-samples", "--gpu"],
+    );
+    assert_fails(
+        &["render", "examples/soap_bubble.toml", "-o", "/tmp/x.png", "--gpu", "--spectral-samples", "0"],
+        &["--spectral-samples 0", "2 to 4096"],
+    );
 }
 
 #[test]
@@ -265,6 +283,10 @@ fn bench_gpu_times_a_scene_against_the_cpu() {
     assert!(mn > 0.0 && mn <= med && med <= p99, "{ms}");
     assert!(v["cpu"]["render_s"].as_f64().unwrap() > 0.0);
     assert!(v["vs_cpu"]["delta_e00_mean"].as_f64().unwrap() < 1.0, "{v}");
+    // A film scene is also timed with its films evaluated directly; the two images agree.
+    let d = &v["film_direct"];
+    assert_eq!((d["spectral_samples"].as_u64(), d["frames"].as_u64()), (Some(81), Some(3)), "{d}");
+    assert!(d["vs_table"]["delta_e00_mean"].as_f64().unwrap() < 0.1, "{d}");
 }
 
 /// The viewer under a virtual X server (Xvfb) with lavapipe: `--check` drags, scrolls and presses keys through

@@ -8,12 +8,21 @@
 //! (absorbing and dispersive media: the indices are tabulated per wavelength sample on the CPU), and sums
 //! `XYZ = Σ_λ w(λ) R(λ)` (and the same for T) with the weights of [`iridis_color::SpectralWeights`].
 //!
+//! **Two paths.** [`FilmPath::Direct`] evaluates every pixel as above (the reference). [`FilmPath::Table`] (the
+//! default, issue 17) first fills a colour table over `cos θ` × offset with that same evaluation on the GPU
+//! (one invocation per node; the resolution from the interference period, [`iridis_thinfilm::table`]) and then
+//! shades every pixel by bilinear lookup; a stack that a table cannot follow (a critical angle inside the
+//! stack, fringes too dense) is evaluated directly instead, and [`FilmRun::path`] says why.
+//!
 //! Not on the GPU: the CPU's treatment of a layer at exactly its critical angle (`|cos| < 1e-5`, averaged
 //! over `cos² ± δ²`; `iridis_thinfilm::recurrence::grazing_variants`) — in `f32` such a pixel is evaluated
 //! directly (its cosine is never exactly 0); for an air gap in glass at the critical angle the reflected Y
 //! differs from the CPU's by < 1e-4 (test `a_layer_at_its_critical_angle`).
 
+use std::time::Duration;
+
 use iridis_color::{SpectralWeights, ToneMap, Xyz};
+use iridis_thinfilm::table::TableGrid;
 use iridis_thinfilm::Stack;
 use rayon::prelude::*;
 use wgpu::util::DeviceExt;
@@ -46,6 +55,21 @@ impl FilmFrame {
             offset += iridis_thinfilm::stack::svt_offset(*d_rel, alpha[row * self.width + col] as f64);
         }
         (theta, offset)
+    }
+
+    /// The lowest and the highest thickness offset (nm) of any pixel: the gradient's ends widened by the SVT
+    /// texture's darkest and brightest grey values.
+    pub fn offset_range(&self) -> (f64, f64) {
+        let (a, b) = self.offset_nm;
+        let (lo, hi) = (a.min(b), a.max(b));
+        match &self.svt {
+            Some((d_rel, alpha)) => {
+                let (amin, amax) = alpha.iter().fold((1.0f32, 0.0f32), |(l, h), &a| (l.min(a), h.max(a)));
+                let ends = [amin, amax].map(|a| iridis_thinfilm::stack::svt_offset(*d_rel, a as f64));
+                (lo + ends[0].min(ends[1]), hi + ends[0].max(ends[1]))
+            }
+            None => (lo, hi),
+        }
     }
 
     fn check(&self) -> Result<(), GpuError> {
@@ -95,11 +119,136 @@ pub struct FilmOutput {
     pub rgb8: Vec<u8>,
 }
 
+/// How a film frame gets its colours.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum FilmPath {
+    /// A colour table over `cos θ` × offset, built on the GPU by the direct evaluation, then a bilinear lookup
+    /// per pixel (issue 17's fast path); the direct path where the stack has no table.
+    #[default]
+    Table,
+    /// The recurrence at every wavelength sample for every pixel (the reference).
+    Direct,
+}
+
+/// The path a frame took.
+#[derive(Debug, Clone, PartialEq)]
+pub enum FilmPathUsed {
+    /// A colour table of this grid, built on the GPU in `build` (wall clock, submission to completion).
+    Table { grid: TableGrid, build: Duration },
+    /// Direct evaluation; `why` says why a table was not used when one was asked for.
+    Direct { why: Option<String> },
+}
+
+impl std::fmt::Display for FilmPathUsed {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Table { grid, build } => write!(
+                f,
+                "colour table {} cos θ × {} offset nodes ({:.0}…{:.0} nm), built in {:.2} ms",
+                grid.cos_nodes,
+                grid.offset_nodes,
+                grid.offset_nm.0,
+                grid.offset_nm.1,
+                build.as_secs_f64() * 1e3
+            ),
+            Self::Direct { why: None } => write!(f, "direct evaluation at every wavelength sample"),
+            Self::Direct { why: Some(w) } => write!(f, "direct evaluation at every wavelength sample ({w})"),
+        }
+    }
+}
+
+/// The film module's three pipelines, compiled once per device.
+#[derive(Debug, Clone)]
+pub(crate) struct FilmPipelines {
+    direct: wgpu::ComputePipeline,
+    table: wgpu::ComputePipeline,
+    lookup: wgpu::ComputePipeline,
+}
+
+impl FilmPipelines {
+    fn get(gpu: &Gpu) -> Result<Self, GpuError> {
+        if let Some(p) = gpu.film_pipelines.get() {
+            return Ok(p.clone());
+        }
+        let source = format!("{COMMON_WGSL}\n{FILM_WGSL}\n{}", include_str!("shaders/film.wgsl"));
+        let p = gpu.checked("compiling the film shaders", || {
+            let module = gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some("film.wgsl"),
+                source: wgpu::ShaderSource::Wgsl(source.into()),
+            });
+            let pipeline = |entry: &str| {
+                gpu.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                    label: Some(entry),
+                    layout: None,
+                    module: &module,
+                    entry_point: Some(entry),
+                    compilation_options: Default::default(),
+                    cache: None,
+                })
+            };
+            Self { direct: pipeline("film_frame"), table: pipeline("film_table"), lookup: pipeline("film_frame_table") }
+        })?;
+        Ok(gpu.film_pipelines.get_or_init(|| p).clone())
+    }
+}
+
+/// Words of `FilmParams` (film.wgsl).
+const PARAM_WORDS: usize = 16;
+
+/// Fills a colour table of `grid` on the GPU from a stack's media (`n_media` per wavelength sample), layer
+/// thicknesses and weights (as `GpuFilm` uploads them): one invocation per node, the direct evaluation.
+/// Returns the table (two `vec4` per node, `STORAGE | COPY_SRC`) and the wall time of its dispatch.
+pub(crate) fn build_table(
+    gpu: &Gpu,
+    media: &wgpu::Buffer,
+    thickness: &wgpu::Buffer,
+    weights: &wgpu::Buffer,
+    n_media: u32,
+    n_lambda: u32,
+    grid: &TableGrid,
+) -> Result<(wgpu::Buffer, Duration), GpuError> {
+    let pipes = FilmPipelines::get(gpu)?;
+    let bytes = grid.len() as u64 * 32;
+    gpu.check_storage("the film colour table", bytes, "use a thinner stack or a smaller offset range")?;
+    let mut words = [0u32; PARAM_WORDS];
+    words[2] = n_media;
+    words[3] = n_lambda;
+    table_words(&mut words, grid);
+    let (table, bind) = gpu.checked("allocating the film colour table", || {
+        let params = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("film table params"),
+            contents: bytemuck::cast_slice(&words),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        let table = storage_out(gpu, "film colour table", bytes);
+        let bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("film table bindings"),
+            layout: &pipes.table.get_bind_group_layout(0),
+            entries: &[entry(0, &params), entry(2, media), entry(3, thickness), entry(4, weights), entry(8, &table)],
+        });
+        (table, bind)
+    })?;
+    let groups = ((grid.cos_nodes as u32).div_ceil(8), (grid.offset_nodes as u32).div_ceil(8));
+    let t = dispatch(gpu, None, &pipes.table, &bind, groups, "building the film colour table")?;
+    Ok((table, t.wall))
+}
+
+/// The table words 10–13 of `FilmParams`.
+fn table_words(words: &mut [u32; PARAM_WORDS], grid: &TableGrid) {
+    words[10] = grid.cos_nodes as u32;
+    words[11] = grid.offset_nodes as u32;
+    words[12] = (grid.offset_nm.0 as f32).to_bits();
+    words[13] = (grid.offset_nm.1 as f32).to_bits();
+}
+
 /// A stack, its indices at every wavelength sample and the colour weights, on the GPU.
 #[derive(Debug)]
 pub struct GpuFilm<'g> {
     gpu: &'g Gpu,
-    pipeline: wgpu::ComputePipeline,
+    pipelines: FilmPipelines,
+    stack: Stack,
+    grid_nm: Vec<f64>,
+    path: FilmPath,
     media: wgpu::Buffer,
     thickness: wgpu::Buffer,
     weights: wgpu::Buffer,
@@ -113,15 +262,18 @@ pub struct FilmRun<'a, 'g> {
     film: &'a GpuFilm<'g>,
     width: usize,
     height: usize,
+    pipeline: wgpu::ComputePipeline,
     bind: wgpu::BindGroup,
     out_xyz: wgpu::Buffer,
     out_rgba: wgpu::Buffer,
+    path: FilmPathUsed,
     timer: Option<Timer>,
 }
 
 impl<'g> GpuFilm<'g> {
     /// Tabulates the stack's complex indices at the weights' wavelengths (an error names a material without
-    /// data there) and compiles the shader.
+    /// data there) and compiles the shaders (once per device). Frames take [`FilmPath::Table`] unless
+    /// [`GpuFilm::with_path`] says otherwise.
     pub fn new(gpu: &'g Gpu, stack: &Stack, weights: &SpectralWeights) -> Result<Self, GpuError> {
         if stack.has_incoherent() {
             return Err(GpuError::Invalid(format!(
@@ -152,8 +304,8 @@ impl<'g> GpuFilm<'g> {
             .zip(weights.weights())
             .flat_map(|(&l, w)| [w[0] as f32, w[1] as f32, w[2] as f32, (std::f64::consts::TAU / l) as f32])
             .collect();
-        let source = format!("{COMMON_WGSL}\n{FILM_WGSL}\n{}", include_str!("shaders/film.wgsl"));
-        let (media_buf, thick_buf, weights_buf, pipeline) = gpu.checked("uploading the stack", || {
+        let pipelines = FilmPipelines::get(gpu)?;
+        let (media_buf, thick_buf, weights_buf) = gpu.checked("uploading the stack", || {
             let init = |label: &str, data: &[f32]| {
                 gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                     label: Some(label),
@@ -161,29 +313,31 @@ impl<'g> GpuFilm<'g> {
                     usage: wgpu::BufferUsages::STORAGE,
                 })
             };
-            let module = gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some("film.wgsl"),
-                source: wgpu::ShaderSource::Wgsl(source.into()),
-            });
-            let pipeline = gpu.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some("iridis film"),
-                layout: None,
-                module: &module,
-                entry_point: Some("film_frame"),
-                compilation_options: Default::default(),
-                cache: None,
-            });
-            (init("film media", &media), init("film thickness", &thick), init("film weights", &w), pipeline)
+            (init("film media", &media), init("film thickness", &thick), init("film weights", &w))
         })?;
         Ok(Self {
             gpu,
-            pipeline,
+            pipelines,
+            stack: stack.clone(),
+            grid_nm: grid.to_vec(),
+            path: FilmPath::default(),
             media: media_buf,
             thickness: thick_buf,
             weights: weights_buf,
             n_media: n_media as u32,
             n_lambda: grid.len() as u32,
         })
+    }
+
+    /// The same film with another path (the default is [`FilmPath::Table`]).
+    pub fn with_path(mut self, path: FilmPath) -> Self {
+        self.path = path;
+        self
+    }
+
+    /// The path frames are asked to take.
+    pub fn path(&self) -> FilmPath {
+        self.path
     }
 
     /// Uploads a frame's parameters and SVT texture and allocates its output.
@@ -197,7 +351,7 @@ impl<'g> GpuFilm<'g> {
             Some((d, _)) => (1u32, *d),
             None => (0, 0.0),
         };
-        let words: [u32; 12] = [
+        let mut words: [u32; PARAM_WORDS] = [
             frame.width as u32,
             frame.height as u32,
             self.n_media,
@@ -210,7 +364,30 @@ impl<'g> GpuFilm<'g> {
             flags_svt | 2,
             0,
             0,
+            0,
+            0,
+            0,
+            0,
         ];
+        let (path, table) = match self.path {
+            FilmPath::Direct => (FilmPathUsed::Direct { why: None }, None),
+            FilmPath::Table => match TableGrid::for_stack(&self.stack, &self.grid_nm, frame.offset_range()) {
+                Ok(grid) => {
+                    let (table, build) = build_table(
+                        gpu,
+                        &self.media,
+                        &self.thickness,
+                        &self.weights,
+                        self.n_media,
+                        self.n_lambda,
+                        &grid,
+                    )?;
+                    table_words(&mut words, &grid);
+                    (FilmPathUsed::Table { grid, build }, Some(table))
+                }
+                Err(e) => (FilmPathUsed::Direct { why: Some(e.to_string()) }, None),
+            },
+        };
         let alpha: &[f32] = match &frame.svt {
             Some((_, a)) => a,
             None => &[0.0],
@@ -229,27 +406,51 @@ impl<'g> GpuFilm<'g> {
             let display = display_buffer(gpu, tone);
             let out_xyz = storage_out(gpu, "film xyz", pixels * 32);
             let out_rgba = storage_out(gpu, "film rgba", pixels * 4);
-            let bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("film bindings"),
-                layout: &self.pipeline.get_bind_group_layout(0),
-                entries: &[
-                    entry(0, &params),
-                    entry(1, &display),
-                    entry(2, &self.media),
-                    entry(3, &self.thickness),
-                    entry(4, &self.weights),
-                    entry(5, &alpha),
-                    entry(6, &out_xyz),
-                    entry(7, &out_rgba),
-                ],
-            });
+            let (pipeline, bind) = match &table {
+                Some(table) => {
+                    let p = &self.pipelines.lookup;
+                    let bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                        label: Some("film table frame bindings"),
+                        layout: &p.get_bind_group_layout(0),
+                        entries: &[
+                            entry(0, &params),
+                            entry(1, &display),
+                            entry(5, &alpha),
+                            entry(6, &out_xyz),
+                            entry(7, &out_rgba),
+                            entry(8, table),
+                        ],
+                    });
+                    (p.clone(), bind)
+                }
+                None => {
+                    let p = &self.pipelines.direct;
+                    let bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                        label: Some("film bindings"),
+                        layout: &p.get_bind_group_layout(0),
+                        entries: &[
+                            entry(0, &params),
+                            entry(1, &display),
+                            entry(2, &self.media),
+                            entry(3, &self.thickness),
+                            entry(4, &self.weights),
+                            entry(5, &alpha),
+                            entry(6, &out_xyz),
+                            entry(7, &out_rgba),
+                        ],
+                    });
+                    (p.clone(), bind)
+                }
+            };
             FilmRun {
                 film: self,
                 width: frame.width,
                 height: frame.height,
+                pipeline,
                 bind,
                 out_xyz,
                 out_rgba,
+                path,
                 timer: gpu.timer(),
             }
         })
@@ -264,18 +465,16 @@ impl<'g> GpuFilm<'g> {
 }
 
 impl FilmRun<'_, '_> {
+    /// The path this frame takes (and, for a table, its grid and build time).
+    pub fn path(&self) -> &FilmPathUsed {
+        &self.path
+    }
+
     /// Renders the frame and waits for the GPU; returns the time from submission to completion (and the GPU's
     /// timestamps where it has them).
     pub fn run(&self) -> Result<FrameTime, GpuError> {
         let groups = ((self.width as u32).div_ceil(8), (self.height as u32).div_ceil(8));
-        dispatch(
-            self.film.gpu,
-            self.timer.as_ref(),
-            &self.film.pipeline,
-            &self.bind,
-            groups,
-            "rendering the film frame",
-        )
+        dispatch(self.film.gpu, self.timer.as_ref(), &self.pipeline, &self.bind, groups, "rendering the film frame")
     }
 
     /// Reads the last frame back.

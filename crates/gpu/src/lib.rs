@@ -13,7 +13,8 @@
 //!   Snell's law (eq. 3.6), Fresnel amplitudes (eq. 3.7–3.10), the composite recurrence (eq. 3.1–3.4), R and T
 //!   (eq. 3.12–3.13), and the colour integral `XYZ = Σ_λ w(λ) R(λ)` — the numbers of
 //!   [`iridis_thinfilm::Stack::evaluate_offset`] and [`iridis_thinfilm::color::FilmColorimeter`], in `f32`,
-//!   with a thickness gradient and a spatially varying thickness texture (SVT, eq. 4.3–4.4).
+//!   with a thickness gradient and a spatially varying thickness texture (SVT, eq. 4.3–4.4) — by default
+//!   through a colour table over `cos θ` × thickness offset filled by that evaluation (the fast path).
 //!
 //! Both shaders also write the displayed pixel (exposure in RU, XYZ → linear sRGB, clip, encode), so one
 //! dispatch is one finished frame.
@@ -32,9 +33,9 @@ pub mod viewer;
 
 use std::time::{Duration, Instant};
 
-pub use film::{FilmFrame, FilmOutput, FilmRun, GpuFilm};
+pub use film::{FilmFrame, FilmOutput, FilmPath, FilmPathUsed, FilmRun, GpuFilm};
 pub use lookup::{GpuLookup, MapFrame, MapOutput};
-pub use scene::{GpuScene, SceneFrame, StackOverflow};
+pub use scene::{GpuScene, SceneFilm, SceneFrame, StackOverflow};
 
 /// What the user reads when no adapter is found.
 pub const NO_ADAPTER_HELP: &str = "no GPU adapter found (iridis uses Vulkan through wgpu). Install a Vulkan driver; \
@@ -71,6 +72,8 @@ pub struct Gpu {
     /// The scene renderer, compiled by the first [`GpuScene`] and reused by the next (software drivers take
     /// seconds to compile it).
     pub(crate) scene_pipeline: std::sync::OnceLock<wgpu::ComputePipeline>,
+    /// The film shaders' pipelines (direct frame, colour-table build, table frame), compiled on first use.
+    pub(crate) film_pipelines: std::sync::OnceLock<film::FilmPipelines>,
 }
 
 impl Gpu {
@@ -98,13 +101,13 @@ impl Gpu {
             ..Default::default()
         }))
         .map_err(|e| GpuError::Device { adapter: describe(&info), message: e.to_string() })?;
-        Ok(Self { device, queue, info, limits, scene_pipeline: Default::default() })
+        Ok(Self { device, queue, info, limits, scene_pipeline: Default::default(), film_pipelines: Default::default() })
     }
 
     /// Wraps a device opened elsewhere (the viewer's window integration opens one that can present).
     pub fn from_parts(device: wgpu::Device, queue: wgpu::Queue, info: wgpu::AdapterInfo) -> Self {
         let limits = device.limits();
-        Self { device, queue, info, limits, scene_pipeline: Default::default() }
+        Self { device, queue, info, limits, scene_pipeline: Default::default(), film_pipelines: Default::default() }
     }
 
     /// `name (backend, device type, driver)`, e.g. `llvmpipe (LLVM 15.0.6, 256 bits) (Vulkan, Cpu, Mesa …)`.

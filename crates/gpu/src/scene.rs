@@ -6,11 +6,18 @@
 //! and [`SceneFrame::render`] renders it in bands of rows (so that a progress bar moves and no dispatch runs
 //! for long), returning the same linear [`Image`] the CPU renders — PNG and EXR encoding are shared.
 //!
+//! Thin films shade from colour tables by default (issue 17): a smooth film's reflected and transmitted XYZ
+//! over `cos θ` × its SVT offset range, filled on the GPU by the direct evaluation ([`crate::film`]), and a rough
+//! film's LSRS tables (`k_r`, `π k_d`, the diffuse albedo) made on the CPU
+//! ([`iridis_thinfilm::rough_table`], [`iridis_render::material::ThinFilm::rough_env_table`]). A smooth film
+//! that no table can follow (a critical angle inside its stack) and every smooth film under
+//! [`FilmPath::Direct`] run the recurrence at every wavelength sample per hit.
+//!
 //! What the GPU does not evaluate, it refuses with a message at upload: diffraction materials whose evaluator
-//! is not a lookup table (the scene format only makes lookup ones), thin films on a rough substrate (the LSRS
-//! model: the CPU evaluates HTSG per hit, light and wavelength), and tables larger than one storage binding.
+//! is not a lookup table (the scene format only makes lookup ones), incoherent film layers, and tables larger
+//! than one storage binding.
 
-use iridis_color::{Illuminant, Observer, SpectralWeights, ToneMap};
+use iridis_color::ToneMap;
 use iridis_diffraction::geometry::{Fresnel, FresnelSource};
 use iridis_render::camera::Camera;
 use iridis_render::light::{Environment, Light};
@@ -18,16 +25,26 @@ use iridis_render::material::{ColorSource, Material, Microfacet, OrientRule};
 use iridis_render::render::sample_offset;
 use iridis_render::texture::Texture;
 use iridis_render::{Image, Scene};
+use iridis_thinfilm::spectral::FULL_BAND_NM;
 use wgpu::util::DeviceExt;
 
+use crate::film::{build_table, FilmPath};
 use crate::lookup::{display_buffer, entry, storage_out};
 use crate::{
     dispatch, unpack_rgb8, xyz_to_srgb_words, FrameTime, Gpu, GpuError, Timer, COMMON_WGSL, FILM_WGSL, LOOKUP_WGSL,
 };
+use iridis_thinfilm::rough::RoughStack;
+use iridis_thinfilm::rough_table::{RoughColorTable, ANGLE_NODES, AZIMUTH_NODES};
+use iridis_thinfilm::table::{TableGrid, MAX_NODES, NODES_PER_PERIOD};
+use iridis_thinfilm::Complex64;
 
 /// The scene shader's source: the shared helpers, both models and the renderer.
 pub(crate) fn scene_source() -> String {
-    format!("{COMMON_WGSL}\n{LOOKUP_WGSL}\n{FILM_WGSL}\n{}", include_str!("shaders/scene.wgsl"))
+    format!(
+        "{COMMON_WGSL}\n{LOOKUP_WGSL}\n{FILM_WGSL}\n{}\n{}",
+        include_str!("shaders/film_rough.wgsl"),
+        include_str!("shaders/scene.wgsl")
+    )
 }
 
 /// Rows rendered per dispatch.
@@ -80,6 +97,9 @@ pub struct GpuScene<'g> {
     media: wgpu::Buffer,
     weights: wgpu::Buffer,
     tables: wgpu::Buffer,
+    /// The films' colour tables (binding 10).
+    film_tables: wgpu::Buffer,
+    grid_nm: Vec<f64>,
     /// The uniform words after the camera (environment, matrix, counts, offsets).
     layout: Layout,
     camera: Camera,
@@ -96,6 +116,10 @@ pub struct GpuScene<'g> {
 /// Where a thin-film material lives in the buffers.
 #[derive(Debug, Clone)]
 struct FilmSlot {
+    /// vec4 index of its material record.
+    record: u32,
+    /// Its flags word (without the colour-table bit).
+    flags: u32,
     /// vec4 index of its `[SVT texture, d_rel, factor]` record.
     svt_record: u32,
     svt: [f32; 4],
@@ -105,6 +129,24 @@ struct FilmSlot {
     /// The same film over a metallic base's metal ([`iridis_render::material::ThinFilm::metal_stack`]): its
     /// media block (same layers, the metal as substrate; thicknesses shared).
     metal_media_base: Option<usize>,
+    /// A smooth film's room for a colour table in `film_tables`: first vec4 and nodes; `None`: evaluated
+    /// directly (a rough film, or [`FilmPath::Direct`]).
+    table: Option<(u32, usize)>,
+}
+
+/// How a scene's thin films are shaded on the GPU.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SceneFilm {
+    /// Colour tables (the default) or the recurrence per hit for smooth films; rough films always use tables.
+    pub path: FilmPath,
+    /// Wavelength samples of the direct evaluation, evenly over 380–780 nm (81: 5 nm steps, the reference).
+    pub spectral_samples: usize,
+}
+
+impl Default for SceneFilm {
+    fn default() -> Self {
+        Self { path: FilmPath::Table, spectral_samples: 81 }
+    }
 }
 
 /// Interactive changes to every thin-film material of a scene (the viewer's panel).
@@ -196,6 +238,11 @@ impl<'g> GpuScene<'g> {
     /// Flattens `scene` into GPU buffers and compiles the renderer. Fails with a clear message for what the
     /// GPU path does not evaluate.
     pub fn new(gpu: &'g Gpu, scene: &Scene) -> Result<Self, GpuError> {
+        Self::with_film(gpu, scene, SceneFilm::default())
+    }
+
+    /// As [`GpuScene::new`] with the thin films shaded as `film` says.
+    pub fn with_film(gpu: &'g Gpu, scene: &Scene, film: SceneFilm) -> Result<Self, GpuError> {
         let mut rec = Records::default();
         let mut lay = Layout { sample_base: rec.len(), ..Default::default() };
 
@@ -262,10 +309,12 @@ impl<'g> GpuScene<'g> {
         }
 
         // Materials, their tables and films.
-        let grid = iridis_color::spectrum::uniform_grid(380.0, 780.0, 5.0)
-            .map_err(|e| GpuError::Invalid(format!("wavelength grid: {e}")))?;
-        let sw = SpectralWeights::new(&grid, Illuminant::D65, Observer::Cie1931);
+        let sw = iridis_thinfilm::spectral::sampled_weights(film.spectral_samples, FULL_BAND_NM)
+            .map_err(|e| GpuError::Invalid(format!("--spectral-samples: {e}")))?;
+        let grid = sw.wavelengths_nm().to_vec();
+        let dense = iridis_thinfilm::spectral::dense_weights();
         lay.n_lambda = grid.len() as u32;
+        let mut film_data: Vec<[f32; 4]> = Vec::new();
         let mut tables: Vec<f32> = Vec::new();
         let mut media: Vec<[f32; 2]> = Vec::new();
         let mut films = Vec::new();
@@ -331,12 +380,6 @@ impl<'g> GpuScene<'g> {
                     rec.push([(1.0 / t.meta.uv_power) as f32, f0, n_re, n_im]);
                 }
                 Material::ThinFilm(f) => {
-                    if f.rough.is_some() {
-                        return Err(GpuError::Invalid(format!(
-                            "material `{name}`: thin films on a rough substrate (`roughness`, `correlation`: the \
-                             LSRS model) render on the CPU only; render this scene without --gpu"
-                        )));
-                    }
                     if f.stack.has_incoherent() {
                         return Err(GpuError::Invalid(format!(
                             "material `{name}`: incoherent (inc:) layers render on the CPU only; render this \
@@ -357,7 +400,8 @@ impl<'g> GpuScene<'g> {
                     media.extend(f.stack.thicknesses().iter().map(|&d| [d as f32, 0.0]));
                     let flags = u32::from(f.svt.is_some())
                         | (u32::from(f.transmission) << 1)
-                        | (u32::from(f.base.is_some()) << 2);
+                        | (u32::from(f.base.is_some()) << 2)
+                        | (u32::from(f.rough.is_some()) << 4);
                     rec.words([3, 0, 0, 0]);
                     rec.words([n_media as u32, media_base, thick_base, flags]);
                     // A metallic base's film: the same layers over the metal, per wavelength after the thicknesses.
@@ -379,17 +423,36 @@ impl<'g> GpuScene<'g> {
                     let (svt_tex, d_rel) = f.svt.map(|s| (s.texture as u32, s.d_rel_nm as f32)).unwrap_or((NONE, 0.0));
                     let metal_word = metal_media_base.map_or(NONE, |b| b as u32);
                     let svt = [f32::from_bits(svt_tex), d_rel, f.factor as f32, f32::from_bits(metal_word)];
+                    let svt_range = f.svt.map_or((0.0, 0.0), |s| (-s.d_rel_nm.abs(), s.d_rel_nm.abs()));
+                    // Room for a smooth film's colour table: enough for the viewer's controls at their
+                    // extremes (thickness and SVT ×3, a layer index up to 2.6), at least 64 Ki nodes.
+                    let table = match (f.rough, film.path) {
+                        (None, FilmPath::Table) => TableGrid::for_stack(&f.stack, &grid, svt_range).ok().map(|g| {
+                            let room = (g.len() * 18).clamp(1 << 16, MAX_NODES);
+                            let base = film_data.len() as u32;
+                            film_data.resize(film_data.len() + 2 * room, [0.0; 4]);
+                            (base, room)
+                        }),
+                        _ => None,
+                    };
                     films.push(FilmSlot {
+                        record: start,
+                        flags,
                         svt_record: rec.len(),
                         svt,
                         media_base: media_base as usize,
                         thick_base: thick_base as usize,
                         n_media,
                         metal_media_base,
+                        table,
                     });
                     rec.push(svt);
                     if let Some(b) = &f.base {
                         push_microfacet(&mut rec, b);
+                    }
+                    if let Some(htsg) = f.rough {
+                        push_rough_tables(&mut rec, &mut film_data, f, htsg, &dense, svt_range)
+                            .map_err(|e| GpuError::Invalid(format!("material `{name}`: rough film: {e}")))?;
                     }
                 }
             }
@@ -496,6 +559,7 @@ impl<'g> GpuScene<'g> {
             ("the scene (geometry, materials, textures)", rec.0.len() as u64 * 16),
             ("the scene's image textures", texels.len() as u64 * 4),
             ("the scene's lookup tables", tables.len() as u64 * 4),
+            ("the scene's film colour tables", film_data.len() as u64 * 16),
         ] {
             gpu.check_storage(
                 what,
@@ -513,8 +577,11 @@ impl<'g> GpuScene<'g> {
         if media.is_empty() {
             media.push([0.0; 2]);
         }
+        if film_data.is_empty() {
+            film_data.push([0.0; 4]);
+        }
         let source = scene_source();
-        let (scene_buf, texels_buf, media_buf, weights_buf, tables_buf, pipeline) =
+        let (scene_buf, texels_buf, media_buf, weights_buf, tables_buf, film_buf, pipeline) =
             gpu.checked("uploading the scene and compiling the renderer", || {
                 let init = |label: &str, data: &[u8], usage: wgpu::BufferUsages| {
                     gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -547,10 +614,11 @@ impl<'g> GpuScene<'g> {
                     init("scene film media", bytemuck::cast_slice(&media), storage | wgpu::BufferUsages::COPY_DST),
                     init("scene film weights", bytemuck::cast_slice(&weights), storage),
                     init("scene tables", bytemuck::cast_slice(&tables), storage),
+                    init("scene film tables", bytemuck::cast_slice(&film_data), storage | wgpu::BufferUsages::COPY_DST),
                     pipeline,
                 )
             })?;
-        Ok(Self {
+        let s = Self {
             gpu,
             pipeline,
             scene: scene_buf,
@@ -558,6 +626,8 @@ impl<'g> GpuScene<'g> {
             media: media_buf,
             weights: weights_buf,
             tables: tables_buf,
+            film_tables: film_buf,
+            grid_nm: grid,
             layout: lay,
             camera: scene.camera.clone(),
             lights: scene.lights.clone(),
@@ -566,7 +636,90 @@ impl<'g> GpuScene<'g> {
             media_cpu: media,
             films,
             last_overflow: std::sync::Mutex::new(None),
-        })
+        };
+        s.build_film_tables(&s.media_cpu, 1.0);
+        Ok(s)
+    }
+
+    /// Fills every smooth film's colour table on the GPU from `media` (the uploaded media, or the viewer's
+    /// changed copy) for its SVT range × `svt_scale`, and points its record at it; a film whose table does not
+    /// fit its room, or that no table can follow, is marked for direct evaluation instead.
+    fn build_film_tables(&self, media: &[[f32; 2]], svt_scale: f64) {
+        let q = &self.gpu.queue;
+        for f in &self.films {
+            let Some((base, room)) = f.table else { continue };
+            let built = self.build_film_table(f, media, svt_scale, base, room);
+            let mut words = [f.flags, 0, 0, 0];
+            if let Some(g) = built {
+                words[0] |= 8;
+                let t = [
+                    [
+                        f32::from_bits(base),
+                        f32::from_bits(g.cos_nodes as u32),
+                        f32::from_bits(g.offset_nodes as u32),
+                        0.0,
+                    ],
+                    [g.offset_nm.0 as f32, g.offset_nm.1 as f32, 0.0, 0.0],
+                ];
+                q.write_buffer(&self.scene, (f.record as u64 + 6) * 16, bytemuck::cast_slice(&t));
+            }
+            // Word 3 of record 1: the flags.
+            q.write_buffer(&self.scene, (f.record as u64 + 1) * 16 + 12, bytemuck::cast_slice(&words[..1]));
+        }
+    }
+
+    /// One film's table (see [`GpuScene::build_film_tables`]); `None` where it falls back to direct evaluation.
+    fn build_film_table(
+        &self,
+        f: &FilmSlot,
+        media: &[[f32; 2]],
+        svt_scale: f64,
+        base: u32,
+        room: usize,
+    ) -> Option<TableGrid> {
+        let n_lambda = self.grid_nm.len();
+        let indices: Vec<Vec<Complex64>> = (0..n_lambda)
+            .map(|l| {
+                (0..f.n_media)
+                    .map(|j| {
+                        let [re, im] = media[f.media_base + l * f.n_media + j];
+                        Complex64::new(re as f64, im as f64)
+                    })
+                    .collect()
+            })
+            .collect();
+        let layers = f.n_media - 2;
+        let thick: Vec<f32> =
+            (0..layers.max(1)).map(|j| if j < layers { media[f.thick_base + j][0] } else { 0.0 }).collect();
+        let d: Vec<f64> = thick[..layers].iter().map(|&x| x as f64).collect();
+        let r = (f.svt[1] as f64 * svt_scale).abs();
+        let grid = TableGrid::for_indices(&indices, &d, &self.grid_nm, (-r, r), NODES_PER_PERIOD).ok()?;
+        if grid.len() > room {
+            return None;
+        }
+        let gpu = self.gpu;
+        let flat: Vec<[f32; 2]> = media[f.media_base..f.media_base + n_lambda * f.n_media].to_vec();
+        let (m, t) = gpu
+            .checked("uploading a film for its colour table", || {
+                let init = |label: &str, data: &[u8]| {
+                    gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                        label: Some(label),
+                        contents: data,
+                        usage: wgpu::BufferUsages::STORAGE,
+                    })
+                };
+                (
+                    init("film table media", bytemuck::cast_slice(&flat)),
+                    init("film table thickness", bytemuck::cast_slice(&thick)),
+                )
+            })
+            .ok()?;
+        let (table, _) = build_table(gpu, &m, &t, &self.weights, f.n_media as u32, n_lambda as u32, &grid).ok()?;
+        let mut enc =
+            gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("film table copy") });
+        enc.copy_buffer_to_buffer(&table, 0, &self.film_tables, base as u64 * 16, grid.len() as u64 * 32);
+        gpu.submit_and_wait(enc.finish()).ok()?;
+        Some(grid)
     }
 
     /// Whether the scene has thin-film materials (for which [`GpuScene::set_film_controls`] does something).
@@ -597,6 +750,7 @@ impl<'g> GpuScene<'g> {
             q.write_buffer(&self.scene, f.svt_record as u64 * 16, bytemuck::cast_slice(&[svt]));
         }
         q.write_buffer(&self.media, 0, bytemuck::cast_slice(&media));
+        self.build_film_tables(&media, c.svt_scale);
     }
 
     /// The adapter the scene lives on.
@@ -695,6 +849,7 @@ impl<'g> GpuScene<'g> {
                     entry(7, &out_rgb),
                     entry(8, &out_rgba),
                     entry(9, &overflow),
+                    entry(10, &self.film_tables),
                 ],
             });
             SceneFrame { width, height, spp, params, display, bind, out_rgb, out_rgba, overflow, timer: gpu.timer() }
@@ -800,6 +955,41 @@ fn push_microfacet(rec: &mut Records, m: &Microfacet) {
     rec.push([m.roughness as f32, m.metallic as f32, m.ior as f32, f32::from_bits(mr)]);
     let (nt, scale) = m.normal_texture.map_or((NONE, 1.0), |(i, s)| (i as u32, s as f32));
     rec.push([f32::from_bits(nt), scale, 0.0, 0.0]);
+}
+
+/// A rough film's records (after its SVT record: four, where a base would go) and its tables in `film_data`:
+/// `[k_r, π k_d, albedo first entries, angles | azimuths << 16]`, `[offset nodes, albedo cos nodes, albedo offset
+/// nodes]`, `[first, last offset, albedo's first, last offset]`, `[albedo's first, last cos]` (film_rough.wgsl's
+/// RoughTab). The LSRS tables cover the SVT range with the offset nodes a smooth table of the stack would have.
+fn push_rough_tables(
+    rec: &mut Records,
+    film_data: &mut Vec<[f32; 4]>,
+    f: &iridis_render::material::ThinFilm,
+    htsg: iridis_thinfilm::htsg::Htsg,
+    dense: &iridis_color::SpectralWeights,
+    svt_range: (f64, f64),
+) -> Result<(), iridis_thinfilm::ThinFilmError> {
+    let offsets = if svt_range.1 > svt_range.0 {
+        TableGrid::for_stack(&f.stack, dense.wavelengths_nm(), svt_range)?.offset_nodes
+    } else {
+        1
+    };
+    let rough = RoughStack::new(f.stack.clone(), htsg);
+    let t = RoughColorTable::build(&rough, dense, ANGLE_NODES, AZIMUTH_NODES, offsets, svt_range)?;
+    let (cos, env_offsets, env) = f.rough_env_table().expect("a rough film has its albedo table");
+    let xyz = |x: &iridis_color::Xyz| [x.x as f32, x.y as f32, x.z as f32, 0.0];
+    let spec = film_data.len() as u32;
+    film_data.extend(t.specular.iter().map(xyz));
+    let diffuse = film_data.len() as u32;
+    film_data.extend(t.diffuse.iter().map(xyz));
+    let env_base = film_data.len() as u32;
+    film_data.extend(env.iter().map(xyz));
+    let last = |v: &[f64]| v[v.len() - 1] as f32;
+    rec.words([spec, diffuse, env_base, t.angles as u32 | ((t.azimuths as u32) << 16)]);
+    rec.words([t.offsets as u32, cos.len() as u32, env_offsets.len() as u32, 0]);
+    rec.push([t.offset_nm.0 as f32, t.offset_nm.1 as f32, env_offsets[0] as f32, last(env_offsets)]);
+    rec.push([cos[0] as f32, last(cos), 0.0, 0.0]);
+    Ok(())
 }
 
 impl SceneFrame {

@@ -18,7 +18,7 @@ use iridis_diffraction::geometry::direction;
 use iridis_diffraction::table::{Lookup, LookupTable, Precision, TableParams};
 use iridis_diffraction::taylor::terms_for_bound;
 use iridis_diffraction::{Fresnel, FresnelConvention, Patch, Shading, SpectralSetup, TaylorTerms};
-use iridis_gpu::{FilmFrame, GpuFilm, GpuLookup};
+use iridis_gpu::{FilmFrame, FilmPath, FilmPathUsed, GpuFilm, GpuLookup};
 use iridis_thinfilm::{Complex64, Stack};
 
 /// CIEDE2000 between displayed colours (exposure, clipped to the sRGB cube), over the given pixels:
@@ -178,29 +178,41 @@ fn thin_film_colours_match_the_cpu() {
             offset_nm: offsets,
             svt: svt.then(|| (150.0, svt_texture(w, h))),
         };
-        let film = GpuFilm::new(&gpu, &stack, &weights).unwrap();
-        let out = film.render(&frame, ToneMap::default()).unwrap();
         let all: Vec<usize> = (0..w * h).collect();
         let cpu = iridis_gpu::film::cpu_reference(&stack, &weights, &frame, &all).unwrap();
         let (cr, ct): (Vec<Xyz>, Vec<Xyz>) = cpu.into_iter().unzip();
-        // Reflected colour exposed so that the brightest pixel reaches Y = 1 (as `iridis thinfilm chart`).
-        let ymax = cr.iter().map(|x| x.y).fold(0.0f64, f64::max);
-        assert!(ymax > 0.01, "{name}: the film reflects almost nothing ({ymax})");
-        let (mean, p99, max) = delta_e(&out.reflected, &cr, 1.0 / ymax, 0..w * h);
-        eprintln!("film {name}: reflected at {:.2} RU: ΔE00 mean {mean:.5} p99 {p99:.5} max {max:.4}", 1.0 / ymax);
-        assert!(mean < 0.01 && p99 < 0.1, "{name} reflected: mean {mean}, p99 {p99}");
-        let tmax = ct.iter().map(|x| x.y).fold(0.0f64, f64::max);
-        if tmax > 0.01 {
-            let (mean, p99, max) = delta_e(&out.transmitted, &ct, 1.0 / tmax, 0..w * h);
-            eprintln!("film {name}: transmitted: ΔE00 mean {mean:.5} p99 {p99:.5} max {max:.4}");
-            assert!(mean < 0.01 && p99 < 0.1, "{name} transmitted: mean {mean}, p99 {p99}");
-        } else {
-            // An opaque substrate: the shader must transmit nothing too.
-            assert!(out.transmitted.iter().all(|x| x.y.abs() < 1e-6), "{name}: light through an absorber");
-        }
-        // Energy: R + T ≤ 1 (Y of a white reflector is 1), up to f32 rounding.
-        for (r, t) in out.reflected.iter().zip(&out.transmitted) {
-            assert!(r.y + t.y <= 1.0 + 1e-4 && r.y >= 0.0 && t.y >= 0.0, "{name}: R {} T {}", r.y, t.y);
+        // Both paths: the direct evaluation (f32 rounding only: mean 0.01, p99 0.1) and the colour table
+        // (issue 17's fast path: its interpolation error too, which the thin-film library's own test,
+        // `tables_meet_the_colour_bound`, holds to mean 0.02, p99 0.35 in f64 over 0°–89.5°).
+        for path in [FilmPath::Direct, FilmPath::Table] {
+            let (mean_max, p99_max) = if path == FilmPath::Direct { (0.01, 0.1) } else { (0.02, 0.35) };
+            let film = GpuFilm::new(&gpu, &stack, &weights).unwrap().with_path(path);
+            let run = film.frame(&frame, ToneMap::default()).unwrap();
+            assert_eq!(matches!(run.path(), FilmPathUsed::Table { .. }), path == FilmPath::Table, "{name}");
+            run.run().unwrap();
+            let out = run.read().unwrap();
+            // Reflected colour exposed so that the brightest pixel reaches Y = 1 (as `iridis thinfilm chart`).
+            let ymax = cr.iter().map(|x| x.y).fold(0.0f64, f64::max);
+            assert!(ymax > 0.01, "{name}: the film reflects almost nothing ({ymax})");
+            let (mean, p99, max) = delta_e(&out.reflected, &cr, 1.0 / ymax, 0..w * h);
+            eprintln!(
+                "film {name} ({path:?}): reflected at {:.2} RU: ΔE00 mean {mean:.5} p99 {p99:.5} max {max:.4}",
+                1.0 / ymax
+            );
+            assert!(mean < mean_max && p99 < p99_max, "{name} {path:?} reflected: mean {mean}, p99 {p99}");
+            let tmax = ct.iter().map(|x| x.y).fold(0.0f64, f64::max);
+            if tmax > 0.01 {
+                let (mean, p99, max) = delta_e(&out.transmitted, &ct, 1.0 / tmax, 0..w * h);
+                eprintln!("film {name} ({path:?}): transmitted: ΔE00 mean {mean:.5} p99 {p99:.5} max {max:.4}");
+                assert!(mean < mean_max && p99 < p99_max, "{name} {path:?} transmitted: mean {mean}, p99 {p99}");
+            } else {
+                // An opaque substrate: the shader must transmit nothing too.
+                assert!(out.transmitted.iter().all(|x| x.y.abs() < 1e-6), "{name}: light through an absorber");
+            }
+            // Energy: R + T ≤ 1 (Y of a white reflector is 1), up to f32 rounding.
+            for (r, t) in out.reflected.iter().zip(&out.transmitted) {
+                assert!(r.y + t.y <= 1.0 + 1e-4 && r.y >= 0.0 && t.y >= 0.0, "{name}: R {} T {}", r.y, t.y);
+            }
         }
     }
 }
@@ -219,7 +231,16 @@ fn a_layer_at_its_critical_angle() {
     let frame =
         FilmFrame { width: w, height: h, angle_rad: (crit - 0.01, crit + 0.01), offset_nm: (-100.0, 100.0), svt: None };
     assert!((frame.pixel(100, 0).0 - crit).abs() < 1e-15);
-    let out = GpuFilm::new(&gpu, &stack, &weights).unwrap().render(&frame, ToneMap::default()).unwrap();
+    // No colour table follows the kink at the critical angle: the fast path evaluates directly and says why.
+    let film = GpuFilm::new(&gpu, &stack, &weights).unwrap();
+    assert_eq!(film.path(), FilmPath::Table);
+    let run = film.frame(&frame, ToneMap::default()).unwrap();
+    match run.path() {
+        FilmPathUsed::Direct { why: Some(w) } => assert!(w.contains("critical angle"), "{w}"),
+        other => panic!("expected the direct path, got {other:?}"),
+    }
+    run.run().unwrap();
+    let out = run.read().unwrap();
     let all: Vec<usize> = (0..w * h).collect();
     let cpu = iridis_gpu::film::cpu_reference(&stack, &weights, &frame, &all).unwrap();
     let worst = all.iter().map(|&i| (cpu[i].0.y - out.reflected[i].y).abs()).fold(0.0, f64::max);

@@ -15,7 +15,6 @@ use iridis_color::integrate::white_point;
 use iridis_color::lab::delta_e_2000;
 use iridis_color::{Illuminant, Lab, Observer, Xyz};
 use iridis_gpu::GpuScene;
-use iridis_render::material::Material;
 use iridis_render::{load_scene, parse_scene, render, Image, Scene};
 
 /// One scene test at a time: several scene renderers on lavapipe at once (one device each) were seen to stop
@@ -83,9 +82,6 @@ fn every_example_scene_matches_the_cpu_at_1e_3_and_1e3_scale() {
         let name = path.file_name().unwrap().to_string_lossy().to_string();
         for scale in [1e-3, 1e3] {
             let mut scene = load_scene(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-            if scene.materials.iter().any(|m| matches!(m, Material::ThinFilm(f) if f.rough.is_some())) {
-                continue;
-            }
             scene.scale(scale);
             let (mean, p99, off, lit) = compare(&gpu, &scene, &name, 64);
             eprintln!("{name:<32} ×{scale:<6} mean ΔE00 {mean:.3}, p99 {p99:.3}, > 8 levels {:.3} %", off * 100.0);
@@ -93,7 +89,7 @@ fn every_example_scene_matches_the_cpu_at_1e_3_and_1e3_scale() {
             report.push((format!("{name} ×{scale}"), mean, p99, off));
         }
     }
-    assert!(report.len() >= 14, "{} renders compared", report.len());
+    assert!(report.len() >= 16, "{} renders compared", report.len());
     for (name, mean, p99, off) in &report {
         assert!(*mean < 1.0 && *p99 < 3.0 && *off < 0.01, "{name}: mean ΔE00 {mean:.3}, p99 {p99:.3}, {off:.4}");
     }
@@ -284,14 +280,6 @@ fn every_example_scene_matches_the_cpu() {
     for path in scenes {
         let scene = load_scene(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         let name = path.file_name().unwrap().to_string_lossy().to_string();
-        let rough = scene.materials.iter().any(|m| matches!(m, Material::ThinFilm(f) if f.rough.is_some()));
-        if rough {
-            // Rough films (LSRS) are CPU-only: the GPU must say so, not render something else.
-            let e = GpuScene::new(&gpu, &scene).unwrap_err().to_string();
-            assert!(e.contains("rough substrate") && e.contains("CPU only"), "{name}: {e}");
-            eprintln!("{name:<32} refused on the GPU (rough film, CPU only)");
-            continue;
-        }
         let (w, h) = (96, (96.0 * scene.output.height as f64 / scene.output.width as f64).round() as u32);
         let cpu = render(&scene, w, h, 1, &|_| {});
         let g = GpuScene::new(&gpu, &scene).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
@@ -305,16 +293,20 @@ fn every_example_scene_matches_the_cpu() {
         assert!(lit > cpu.data.len() / 10, "{name}: the CPU image is nearly black");
         report.push((name, mean, p99));
     }
-    assert!(report.len() >= 8, "{} scenes compared", report.len());
+    assert!(report.len() >= 9, "{} scenes compared", report.len());
     for (name, mean, p99) in &report {
         // Issue 14: bounds at the measured level (lavapipe, 96 px, 2026-11-23): mean ≤ 0.009 and p99 ≤ 0.007 on
         // the snakes and the gold sphere (a few silhouette pixels apart, max ≈ 24, where one renderer's ray hits
         // and the other's misses); films over a base since the GGX film lobe (issue 21): gltf_iridescence
         // 0.036 / 0.117, oil_spill 0.042 / 1.72 (at 1× only: 0.000 / 0.001 at 10⁻³ and 10³ — not yet
-        // explained); the soap bubble 0.050 / 0.71 (rays refracted through two thin shells).
+        // explained); the soap bubble 0.050 / 0.71 (rays refracted through two thin shells). Issue 17 (films
+        // from colour tables on the GPU; the CPU evaluates them directly): gltf_iridescence 0.001 / 0.009,
+        // soap_bubble 0.051 / 0.71, oil_spill 0.044 / 1.72 as before; rough_film (the LSRS tables against the
+        // CPU's direct model at 81 wavelengths per hit and light) 0.059 / 0.38.
         let (mean_max, p99_max) = match name.as_str() {
             "soap_bubble.toml" | "oil_spill.toml" => (0.2, 3.0),
             "gltf_iridescence.toml" => (0.1, 0.3),
+            "rough_film.toml" => (0.1, 0.6),
             _ => (0.05, 0.05),
         };
         assert!(*mean < mean_max && *p99 < p99_max, "{name}: mean ΔE00 {mean:.3}, p99 {p99:.3}");

@@ -297,15 +297,17 @@ impl ThinFilm {
         })
     }
 
-    /// A rough film's diffuse light from the environment per unit irradiance `E(n)/π`: its diffuse directional
-    /// albedo `∫ k_d(ω, ω_v) cos θ dω` (by reciprocity the diffuse fraction [`RoughStack::albedo`] returns for
-    /// light from `ω_v`) as XYZ — exact for a uniform environment, and the same split as the microfacet's
-    /// diffuse lobe under the irradiance map elsewhere. Made once per material over 12 view angles × the SVT
-    /// range, so that a pixel costs a table lookup instead of a diffuse evaluation per environment direction.
-    /// `None` for a smooth film.
-    pub fn rough_env_diffuse(&self, cos_view: f64, offset_nm: f64) -> Option<Xyz> {
+    /// The table behind [`ThinFilm::rough_env_diffuse`] (made on first use): the `cos θ_v` nodes (uniform),
+    /// the SVT offset nodes (nm, uniform; one without SVT) and the XYZ at `[cos][offset]`, between which it
+    /// interpolates bilinearly, clamped to the nodes. `None` for a smooth film. The GPU uploads it as it is.
+    pub fn rough_env_table(&self) -> Option<(&[f64], &[f64], &[Xyz])> {
+        let t = self.rough_albedo()?;
+        Some((&t.cos, &t.offsets, &t.xyz))
+    }
+
+    fn rough_albedo(&self) -> Option<&RoughAlbedo> {
         let htsg = self.rough?;
-        let t = self.rough_albedo.get_or_init(|| {
+        Some(self.rough_albedo.get_or_init(|| {
             use rayon::prelude::*;
             let cos: Vec<f64> =
                 (0..ROUGH_ALBEDO_COS).map(|k| 0.02 + 0.98 * k as f64 / (ROUGH_ALBEDO_COS - 1) as f64).collect();
@@ -333,7 +335,17 @@ impl ThinFilm {
                 })
                 .collect();
             RoughAlbedo { cos, offsets, xyz }
-        });
+        }))
+    }
+
+    /// A rough film's diffuse light from the environment per unit irradiance `E(n)/π`: its diffuse directional
+    /// albedo `∫ k_d(ω, ω_v) cos θ dω` (by reciprocity the diffuse fraction [`RoughStack::albedo`] returns for
+    /// light from `ω_v`) as XYZ — exact for a uniform environment, and the same split as the microfacet's
+    /// diffuse lobe under the irradiance map elsewhere. Made once per material over 12 view angles × the SVT
+    /// range, so that a pixel costs a table lookup instead of a diffuse evaluation per environment direction.
+    /// `None` for a smooth film.
+    pub fn rough_env_diffuse(&self, cos_view: f64, offset_nm: f64) -> Option<Xyz> {
+        let t = self.rough_albedo()?;
         // Bilinear in (cos θ_v, offset), clamped to the table.
         let at = |v: f64, nodes: &[f64]| -> (usize, usize, f64) {
             if nodes.len() == 1 || v <= nodes[0] {

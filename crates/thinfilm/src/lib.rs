@@ -29,7 +29,12 @@
 //!   length τ): specular and directional-diffuse terms, Smith shadowing, effective roughness, the bounded
 //!   series of `D` (the thesis' "D-iterations");
 //! * [`rough`]: the LSRS model (section 3.2, eq. 3.15–3.20, Algorithm 2) — a stack whose bottom interface is
-//!   rough: composite specular `k_r` and diffuse `k_d` reflectances, tables with interpolation, eq. 3.20.
+//!   rough: composite specular `k_r` and diffuse `k_d` reflectances, tables with interpolation, eq. 3.20;
+//! * [`table`] and [`rough_table`]: colour tables for rendering — a smooth film's reflected and transmitted
+//!   XYZ over `cos θ` × thickness offset, a rough film's `k_r` and `π k_d` XYZ over angles, azimuth and offset —
+//!   integrated over the spectrum in advance (the GPU's fast film path);
+//! * [`spectral`]: wavelength grids with fewer samples and Sussenbach's sparse-sampling experiment
+//!   (section 5.2.2); [`accuracy`]: CIEDE2000 between displayed colours and its statistics.
 //!
 //! Conventions (`docs/PHYSICS.md`): lengths in nanometres, angles in radians, `κ ≥ 0` absorbs, the incident
 //! medium is lossless, and the transmittance into an absorbing substrate is zero.
@@ -42,6 +47,7 @@
 //! assert!((rta.r() + rta.t() - 1.0).abs() < 1e-12);
 //! ```
 
+pub mod accuracy;
 pub mod color;
 pub mod error;
 pub mod fast;
@@ -54,8 +60,11 @@ pub mod material;
 pub mod nkfile;
 pub mod recurrence;
 pub mod rough;
+pub mod rough_table;
 pub mod sampling;
+pub mod spectral;
 pub mod stack;
+pub mod table;
 pub mod tmm;
 
 pub use error::ThinFilmError;

@@ -154,18 +154,18 @@ pub struct Light {
 
 /// One angle at one wavelength: the media, the downward Fresnel amplitudes of every interface, the phases
 /// of every layer, and the real direction in medium `N`.
-struct Side {
-    media: Vec<Medium>,
+pub(crate) struct Side {
+    pub(crate) media: Vec<Medium>,
     /// Interface `B_j` (`j = 1 … N + 1`) at index `j − 1`, from medium `j − 1` into `j`.
-    down: Vec<Fresnel>,
+    pub(crate) down: Vec<Fresnel>,
     /// `φ_j` (eq. 3.5) at index `j − 1`.
-    phi: Vec<Complex64>,
+    pub(crate) phi: Vec<Complex64>,
     /// `(sin θ_N, cos θ_N)` in medium `N`, `None` where light is evanescent there.
-    dir: Option<(f64, f64)>,
+    pub(crate) dir: Option<(f64, f64)>,
 }
 
 impl Side {
-    fn new(stack: &Stack, wavelength_nm: f64, angle_rad: f64) -> Result<Self, ThinFilmError> {
+    pub(crate) fn new(stack: &Stack, wavelength_nm: f64, angle_rad: f64) -> Result<Self, ThinFilmError> {
         let media = stack.media(wavelength_nm, angle_rad)?;
         let n = stack.layers.len();
         let down = (1..=n + 1).map(|j| fresnel(media[j - 1], media[j])).collect();
@@ -183,12 +183,12 @@ impl Side {
         Ok(Self { media, down, phi, dir })
     }
 
-    fn n(&self) -> usize {
+    pub(crate) fn n(&self) -> usize {
         self.phi.len()
     }
 
     /// The specular seed (eq. 3.16; module documentation).
-    fn seed(&self, htsg: &Htsg, k: f64) -> Composite {
+    pub(crate) fn seed(&self, htsg: &Htsg, k: f64) -> Composite {
         let amp = match self.dir {
             Some((_, cos)) => htsg.specular_amplitude(cos, k).0,
             None => 1.0,
@@ -198,7 +198,7 @@ impl Side {
     }
 
     /// The composite specular reflectivity at the top of the stack (eq. 3.15), from the seed `γ_{s,0}` up.
-    fn specular(&self, seed: &Composite) -> Composite {
+    pub(crate) fn specular(&self, seed: &Composite) -> Composite {
         (1..=self.n()).rev().fold(*seed, |gs, j| gs.step(&self.down[j - 1], self.phi[j - 1]))
     }
 
@@ -233,7 +233,7 @@ impl RoughStack {
 
     /// The real index of the medium above the rough interface and the wave number there, after checking the
     /// HTSG validity at this wavelength.
-    fn upper(&self, wavelength_nm: f64) -> Result<(Complex64, f64), ThinFilmError> {
+    pub(crate) fn upper(&self, wavelength_nm: f64) -> Result<(Complex64, f64), ThinFilmError> {
         if !(wavelength_nm.is_finite() && wavelength_nm > 0.0) {
             return Err(ThinFilmError::Invalid(format!("wavelength {wavelength_nm} nm must be positive")));
         }
@@ -304,7 +304,7 @@ impl RoughStack {
     }
 
     /// One side's factor of [`RoughStack::layer_transport`] (the view side when `view`, else the light side).
-    fn side_factor(&self, side: &Side, seed: &Composite, view: bool) -> [f64; 2] {
+    pub(crate) fn side_factor(&self, side: &Side, seed: &Composite, view: bool) -> [f64; 2] {
         match (self.transport, view) {
             (DiffuseTransport::Reciprocal, _) => side_transmittance(side, seed),
             (DiffuseTransport::ThesisPrinted, true) => down_factor(side),
@@ -313,7 +313,7 @@ impl RoughStack {
     }
 
     /// The radiance factor of this transport: `(n₀/n_N)²`, or 1 as printed.
-    fn radiance(&self, side: &Side) -> f64 {
+    pub(crate) fn radiance(&self, side: &Side) -> f64 {
         match self.transport {
             DiffuseTransport::Reciprocal => Self::radiance_factor(side),
             DiffuseTransport::ThesisPrinted => 1.0,

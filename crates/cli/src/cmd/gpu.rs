@@ -6,12 +6,16 @@ use std::time::Duration;
 
 use anyhow::{bail, Context, Result};
 use clap::Args as ClapArgs;
-use iridis_color::{Encoding, SpectralWeights, ToneMap, Xyz};
+use iridis_color::{Encoding, ToneMap, Xyz};
 use iridis_diffraction::evaluator::Evaluator;
 use iridis_diffraction::geometry::direction;
 use iridis_diffraction::table::{Lookup, LookupTable, Precision, TableParams};
 use iridis_diffraction::{Fresnel, Shading};
-use iridis_gpu::{FilmFrame, FrameTime, Gpu, GpuFilm, GpuLookup, GpuScene};
+use iridis_gpu::film::FilmPathUsed;
+use iridis_gpu::scene::SceneFilm;
+use iridis_gpu::{FilmFrame, FilmPath, FrameTime, Gpu, GpuFilm, GpuLookup, GpuScene};
+use iridis_thinfilm::accuracy::DeltaEStats;
+use iridis_thinfilm::spectral::{dense_weights, sampled_weights, FULL_BAND_NM};
 use serde_json::json;
 
 use crate::cmd::brdf::{self, BrdfMapArgs, ModelOpts, SurfaceOpts};
@@ -23,10 +27,11 @@ pub fn render_scene(
     w: u32,
     h: u32,
     spp: u32,
+    film: SceneFilm,
 ) -> Result<(iridis_render::Image, f64, String)> {
     let t = std::time::Instant::now();
     let gpu = open_gpu()?;
-    let g = GpuScene::new(&gpu, scene)?;
+    let g = GpuScene::with_film(&gpu, scene, film)?;
     let pb = crate::progress::bar(h as u64, "render (GPU)");
     let img = g.render(w, h, spp, &|rows| pb.set_position(rows as u64));
     pb.finish_and_clear();
@@ -34,6 +39,18 @@ pub fn render_scene(
         eprintln!("warning: {o}");
     }
     Ok((img?, t.elapsed().as_secs_f64(), gpu.adapter_name()))
+}
+
+/// How `--spectral-samples N` shades films on the GPU: colour tables without it, else the direct evaluation at
+/// N wavelength samples over 380–780 nm.
+pub fn scene_film(spectral_samples: Option<usize>) -> Result<SceneFilm> {
+    Ok(match spectral_samples {
+        None => SceneFilm::default(),
+        Some(n) => {
+            sampled_weights(n, FULL_BAND_NM).with_context(|| format!("--spectral-samples {n}"))?;
+            SceneFilm { path: FilmPath::Direct, spectral_samples: n }
+        }
+    })
 }
 
 /// Opens the GPU, with the driver hint when there is none.
@@ -92,7 +109,10 @@ pub fn run_brdf_map(a: BrdfMapArgs, wi: [f64; 3], encoding: Encoding) -> Result<
 #[derive(Debug, ClapArgs)]
 #[command(after_help = "\
 Times the two shaders headless (no window): the lookup diffraction BRDF map (paper eq. 10-12) and the
-thin-film frame (Sussenbach ch. 4: recurrence per wavelength sample, thickness gradient and SVT texture).
+thin-film frame (Sussenbach ch. 4: thickness gradient and SVT texture) on both film paths in the same run:
+the fast path (a colour table over angle x thickness, built on the GPU, then a bilinear lookup per pixel)
+and the direct path (the recurrence at --spectral-samples wavelengths per pixel, 81 by default: the
+reference), with the CIEDE2000 between the two.
 A frame is one dispatch from submission to completion (wall clock; also the GPU's own timestamps around the
 pass where the adapter has them); the light circles the normal at 30° from frame to
 frame. Each shader runs --frames frames or --max-seconds, whichever ends first, after one warm-up frame,
@@ -100,7 +120,7 @@ and the last frame is checked against the CPU (CIEDE2000 over up to 4096 pixels)
 
 With a SCENE (TOML or glTF), times the scene renderer instead (iridis render --gpu): --frames frames of
 --size with 1 sample per pixel, min/median/p99, against one CPU render of the same image in the same run
-(speed-up and CIEDE2000 between the two).
+(speed-up and CIEDE2000 between the two); a scene with smooth thin films is timed on both film paths.
 
 Examples:
   iridis bench gpu examples/snake_elaphe.toml --size 1024x1024 --frames 500
@@ -130,7 +150,11 @@ pub struct GpuBench {
     /// Thin-film stack; every layer's thickness gets the frame's offset (gradient ±300 nm, SVT ±100 nm).
     #[arg(long, default_value = "air | water 500nm | air")]
     pub stack: String,
-    /// Also write the last frames as PNG into this folder: lookup_map.png (1500 RU) and film_frame.png.
+    /// Wavelength samples (380-780 nm) of the direct film path that the fast path is timed against.
+    #[arg(long, default_value_t = 81, value_name = "N")]
+    pub spectral_samples: usize,
+    /// Also write the last frames as PNG into this folder: lookup_map.png (1500 RU) and film_frame.png (the
+    /// fast path; film_frame_direct.png the direct one).
     #[arg(long)]
     pub save: Option<PathBuf>,
     /// Print JSON.
@@ -194,18 +218,8 @@ fn sample(total: usize, n: usize) -> Vec<usize> {
 
 /// Mean and 99th percentile of CIEDE2000 between displayed colours.
 fn delta_e(a: &[Xyz], b: &[Xyz], exposure: f64) -> (f64, f64) {
-    use iridis_color::integrate::white_point;
-    use iridis_color::{Illuminant, Lab, Observer};
-    let white = white_point(Illuminant::D65, Observer::Cie1931);
-    let shown = |x: Xyz| {
-        let rgb = x.scale(exposure).to_linear_srgb().map(|c| if c.is_nan() { 0.0 } else { c.clamp(0.0, 1.0) });
-        Lab::from_xyz(Xyz::from_linear_srgb(rgb), white)
-    };
-    let mut d: Vec<f64> = a.iter().zip(b).map(|(p, q)| iridis_color::lab::delta_e_2000(shown(*p), shown(*q))).collect();
-    d.sort_by(f64::total_cmp);
-    let mean = d.iter().sum::<f64>() / d.len().max(1) as f64;
-    let p99 = d.get(((d.len() as f64 * 0.99) as usize).min(d.len().saturating_sub(1))).copied().unwrap_or(0.0);
-    (mean, p99)
+    let s = DeltaEStats::between(a, b, exposure);
+    (s.mean, s.p99)
 }
 
 /// A smooth, deterministic grey texture (value noise, three octaves) for spatially varying thickness.
@@ -246,6 +260,7 @@ fn bench_scene(a: &GpuBench, path: &std::path::Path) -> Result<()> {
     let scene = crate::cmd::render::load(path)?;
     let gpu = open_gpu()?;
     let adapter = gpu.adapter_name();
+    let a_samples = a.spectral_samples;
     let t = std::time::Instant::now();
     let g = GpuScene::new(&gpu, &scene)?;
     let setup_s = t.elapsed().as_secs_f64();
@@ -260,6 +275,16 @@ fn bench_scene(a: &GpuBench, path: &std::path::Path) -> Result<()> {
     }
     let times = time_frames(a.frames, a.max_seconds, |_| Ok(frame.run(&g)?))?;
     let img = frame.read_image(&g)?;
+    // The same image with the films evaluated directly (the reference path), where the scene has films.
+    let direct = if g.has_films() {
+        let film = SceneFilm { path: FilmPath::Direct, spectral_samples: a.spectral_samples };
+        let d = GpuScene::with_film(&gpu, &scene, film)?;
+        let f = d.frame(w, h, 1, tone)?;
+        let t = time_frames(a.frames, a.max_seconds, |_| Ok(f.run(&d)?))?;
+        Some((t, f.read_image(&d)?))
+    } else {
+        None
+    };
     let (cpu, cpu_s) = crate::cmd::render::render_with_bar(&scene, w, h, 1);
     let xyz = |i: &iridis_render::Image| -> Vec<Xyz> {
         i.data.iter().map(|p| Xyz::from_linear_srgb(p.map(|c| c as f64))).collect()
@@ -268,6 +293,11 @@ fn bench_scene(a: &GpuBench, path: &std::path::Path) -> Result<()> {
     let [mn, med, p99, mean] = stats(&wall_times(&times));
     let gts = gpu_times(&times).map(|t| stats(&t));
     let name = path.display().to_string();
+    let direct = direct.map(|(t, di)| {
+        let s = stats(&wall_times(&t));
+        let de = DeltaEStats::between(&xyz(&img), &xyz(&di), scene.output.exposure);
+        (t.len(), s, gpu_times(&t).map(|t| stats(&t)), de)
+    });
     if let Some(dir) = &a.save {
         crate::output::write_png_rgb8(&dir.join("scene_gpu.png"), w, h, &frame.read_rgb8(&g)?)?;
     }
@@ -285,6 +315,14 @@ fn bench_scene(a: &GpuBench, path: &std::path::Path) -> Result<()> {
             "fps_median": 1e3 / med,
             "cpu": {"threads": rayon::current_num_threads(), "render_s": cpu_s, "cpu_over_gpu_median": cpu_s * 1e3 / med},
             "vs_cpu": {"pixels": (w * h), "exposure_ru": scene.output.exposure, "delta_e00_mean": de_mean, "delta_e00_p99": de_p99},
+            "film_direct": direct.map(|(n, [a, b, c, d], g, de)| json!({
+                "spectral_samples": a_samples,
+                "frames": n,
+                "ms": {"min": a, "median": b, "p99": c, "mean": d},
+                "gpu_timestamp_ms": g.map(|[a, b, c, d]| json!({"min": a, "median": b, "p99": c, "mean": d})),
+                "direct_over_table_median": b / med,
+                "vs_table": {"delta_e00_mean": de.mean, "delta_e00_p99": de.p99, "delta_e00_max": de.max},
+            })),
         }));
     }
     crate::outln!(
@@ -304,6 +342,15 @@ fn bench_scene(a: &GpuBench, path: &std::path::Path) -> Result<()> {
         w * h,
         scene.output.exposure
     )?;
+    if let Some((n, [dmn, dmed, dp99, _], g, de)) = direct {
+        crate::outln!(
+            "  films evaluated directly ({a_samples} wavelength samples per hit), {n} frames: min {dmn:.2} ms, median \
+             {dmed:.2} ms, p99 {dp99:.2} ms — {:.2}× the colour-table frame",
+            dmed / med
+        )?;
+        print_gpu_times(g)?;
+        crate::outln!("  colour tables vs direct: {de}")?;
+    }
     Ok(())
 }
 
@@ -311,6 +358,8 @@ pub fn bench(a: GpuBench) -> Result<()> {
     if !(a.max_seconds.is_finite() && a.max_seconds > 0.0) {
         bail!("--max-seconds {} must be positive", a.max_seconds);
     }
+    let direct_weights = sampled_weights(a.spectral_samples, FULL_BAND_NM)
+        .with_context(|| format!("--spectral-samples {}", a.spectral_samples))?;
     if let Some(p) = a.scene.clone() {
         return bench_scene(&a, &p);
     }
@@ -377,10 +426,8 @@ pub fn bench(a: GpuBench) -> Result<()> {
     let [mn, med, p99, mean] = stats(&wall_times(&map_times));
     let map_gpu = gpu_times(&map_times).map(|t| stats(&t));
 
-    // Thin film.
-    let grid = iridis_color::spectrum::uniform_grid(380.0, 780.0, 5.0)?;
-    let weights = SpectralWeights::new(&grid, iridis_color::Illuminant::D65, iridis_color::Observer::Cie1931);
-    let film = GpuFilm::new(&gpu, &stack, &weights)?;
+    // Thin film: the fast path (colour table) and the direct path, in the same run.
+    let dense = dense_weights();
     let film_frame = FilmFrame {
         width: fw,
         height: fh,
@@ -388,21 +435,43 @@ pub fn bench(a: GpuBench) -> Result<()> {
         offset_nm: (-300.0, 300.0),
         svt: Some((100.0, svt_noise(fw, fh))),
     };
-    let run = film.frame(&film_frame, ToneMap { exposure_ru: 5.0, encoding: Encoding::Srgb })?;
-    let film_times = time_frames(frames, a.max_seconds, |_| Ok(run.run()?))?;
-    let out = run.read()?;
+    let film_tone = ToneMap { exposure_ru: 5.0, encoding: Encoding::Srgb };
+    let fast = GpuFilm::new(&gpu, &stack, &dense)?;
+    let fast_run = fast.frame(&film_frame, film_tone)?;
+    let fast_times = time_frames(frames, a.max_seconds, |_| Ok(fast_run.run()?))?;
+    let fast_out = fast_run.read()?;
+    let direct = GpuFilm::new(&gpu, &stack, &direct_weights)?.with_path(FilmPath::Direct);
+    let direct_run = direct.frame(&film_frame, film_tone)?;
+    let direct_times = time_frames(frames, a.max_seconds, |_| Ok(direct_run.run()?))?;
+    let direct_out = direct_run.read()?;
     let fpx = sample(fw * fh, 2048);
-    let cpu_film = iridis_gpu::film::cpu_reference(&stack, &weights, &film_frame, &fpx)?;
-    let cpu_r: Vec<Xyz> = cpu_film.iter().map(|p| p.0).collect();
-    let gpu_r: Vec<Xyz> = fpx.iter().map(|&i| out.reflected[i]).collect();
-    let ymax = cpu_r.iter().map(|x| x.y).fold(1e-6f64, f64::max);
-    let film_de = delta_e(&gpu_r, &cpu_r, 1.0 / ymax);
-    let [fmn, fmed, fp99, fmean] = stats(&wall_times(&film_times));
-    let film_gpu = gpu_times(&film_times).map(|t| stats(&t));
+    let cpu_dense = iridis_gpu::film::cpu_reference(&stack, &dense, &film_frame, &fpx)?;
+    let cpu_direct = if a.spectral_samples == 81 {
+        cpu_dense.clone()
+    } else {
+        iridis_gpu::film::cpu_reference(&stack, &direct_weights, &film_frame, &fpx)?
+    };
+    let reflected = |v: &[(Xyz, Xyz)]| -> Vec<Xyz> { v.iter().map(|p| p.0).collect() };
+    let at = |out: &[Xyz]| -> Vec<Xyz> { fpx.iter().map(|&i| out[i]).collect() };
+    let ymax = cpu_dense.iter().map(|x| x.0.y).fold(1e-6f64, f64::max);
+    let fast_de = delta_e(&at(&fast_out.reflected), &reflected(&cpu_dense), 1.0 / ymax);
+    let direct_de = delta_e(&at(&direct_out.reflected), &reflected(&cpu_direct), 1.0 / ymax);
+    // The fast path against the direct one over every pixel, the brightest direct pixel at Y = 1.
+    let frame_ymax = direct_out.reflected.iter().map(|x| x.y).fold(1e-6f64, f64::max);
+    let vs_direct = DeltaEStats::between(&fast_out.reflected, &direct_out.reflected, 1.0 / frame_ymax);
+    let [fmn, fmed, fp99, fmean] = stats(&wall_times(&fast_times));
+    let fast_gpu = gpu_times(&fast_times).map(|t| stats(&t));
+    let [dmn, dmed, dp99, dmean] = stats(&wall_times(&direct_times));
+    let direct_gpu = gpu_times(&direct_times).map(|t| stats(&t));
+    let (grid, build_ms, fallback) = match fast_run.path() {
+        FilmPathUsed::Table { grid, build } => (Some(*grid), Some(build.as_secs_f64() * 1e3), None),
+        FilmPathUsed::Direct { why } => (None, None, why.clone()),
+    };
     let ms_json = |s: Option<[f64; 4]>| s.map(|[a, b, c, d]| json!({"min": a, "median": b, "p99": c, "mean": d}));
     if let Some(dir) = &a.save {
         crate::output::write_png_rgb8(&dir.join("lookup_map.png"), mw as u32, mw as u32, &map.rgb8)?;
-        crate::output::write_png_rgb8(&dir.join("film_frame.png"), fw as u32, fh as u32, &out.rgb8)?;
+        crate::output::write_png_rgb8(&dir.join("film_frame.png"), fw as u32, fh as u32, &fast_out.rgb8)?;
+        crate::output::write_png_rgb8(&dir.join("film_frame_direct.png"), fw as u32, fh as u32, &direct_out.rgb8)?;
     }
 
     if a.json {
@@ -423,13 +492,29 @@ pub fn bench(a: GpuBench) -> Result<()> {
             },
             "film": {
                 "stack": stack.to_string(),
-                "wavelengths": grid.len(),
                 "size": [fw, fh],
-                "frames": film_times.len(),
-                "ms": {"min": fmn, "median": fmed, "p99": fp99, "mean": fmean},
-                "gpu_timestamp_ms": ms_json(film_gpu),
-                "fps_median": 1e3 / fmed,
-                "vs_cpu": {"pixels": fpx.len(), "exposure_ru": 1.0 / ymax, "delta_e00_mean": film_de.0, "delta_e00_p99": film_de.1},
+                "table": {
+                    "cos_nodes": grid.map(|g| g.cos_nodes),
+                    "offset_nodes": grid.map(|g| g.offset_nodes),
+                    "offset_nm": grid.map(|g| [g.offset_nm.0, g.offset_nm.1]),
+                    "build_ms": build_ms,
+                    "fallback": fallback,
+                    "frames": fast_times.len(),
+                    "ms": {"min": fmn, "median": fmed, "p99": fp99, "mean": fmean},
+                    "gpu_timestamp_ms": ms_json(fast_gpu),
+                    "fps_median": 1e3 / fmed,
+                    "vs_cpu": {"pixels": fpx.len(), "exposure_ru": 1.0 / ymax, "delta_e00_mean": fast_de.0, "delta_e00_p99": fast_de.1},
+                    "vs_direct": {"pixels": fw * fh, "exposure_ru": 1.0 / frame_ymax, "delta_e00_mean": vs_direct.mean, "delta_e00_p99": vs_direct.p99, "delta_e00_max": vs_direct.max},
+                },
+                "direct": {
+                    "wavelengths": direct_weights.wavelengths_nm().len(),
+                    "frames": direct_times.len(),
+                    "ms": {"min": dmn, "median": dmed, "p99": dp99, "mean": dmean},
+                    "gpu_timestamp_ms": ms_json(direct_gpu),
+                    "fps_median": 1e3 / dmed,
+                    "vs_cpu": {"pixels": fpx.len(), "exposure_ru": 1.0 / ymax, "delta_e00_mean": direct_de.0, "delta_e00_p99": direct_de.1},
+                },
+                "direct_over_table_median": dmed / fmed,
             },
         }));
     }
@@ -451,31 +536,50 @@ pub fn bench(a: GpuBench) -> Result<()> {
         map_de.0,
         map_de.1
     )?;
+    crate::outln!("thin film {stack}, {fw}×{fh}, gradient + SVT:")?;
+    crate::outln!("  fast path: {}; {} frames:", fast_run.path(), fast_times.len())?;
     crate::outln!(
-        "thin film {stack}, {fw}×{fh}, {} wavelengths, gradient + SVT, {} frames:",
-        grid.len(),
-        film_times.len()
-    )?;
-    crate::outln!(
-        "  frame time min {fmn:.2} ms, median {fmed:.2} ms, p99 {fp99:.2} ms ({:.1} fps at the median)",
+        "    frame time min {fmn:.2} ms, median {fmed:.2} ms, p99 {fp99:.2} ms ({:.1} fps at the median)",
         1e3 / fmed
     )?;
-    print_gpu_times(film_gpu)?;
+    print_gpu_times_at(fast_gpu, "    ")?;
     crate::outln!(
-        "  vs CPU (Stack::evaluate_offset, f64; {} pixels): ΔE00 mean {:.4}, p99 {:.4}",
+        "    vs CPU (Stack::evaluate_offset, f64, 81 samples; {} pixels): ΔE00 mean {:.4}, p99 {:.4}",
         fpx.len(),
-        film_de.0,
-        film_de.1
+        fast_de.0,
+        fast_de.1
     )?;
+    crate::outln!("    vs the direct path (every pixel): {vs_direct}")?;
+    crate::outln!(
+        "  direct path, {} wavelength samples per pixel; {} frames:",
+        direct_weights.wavelengths_nm().len(),
+        direct_times.len()
+    )?;
+    crate::outln!(
+        "    frame time min {dmn:.2} ms, median {dmed:.2} ms, p99 {dp99:.2} ms ({:.1} fps at the median)",
+        1e3 / dmed
+    )?;
+    print_gpu_times_at(direct_gpu, "    ")?;
+    crate::outln!(
+        "    vs CPU (f64, the same samples; {} pixels): ΔE00 mean {:.4}, p99 {:.4}",
+        fpx.len(),
+        direct_de.0,
+        direct_de.1
+    )?;
+    crate::outln!("  direct / fast median frame time: {:.1}×", dmed / fmed)?;
     Ok(())
 }
 
 fn print_gpu_times(s: Option<[f64; 4]>) -> Result<()> {
+    print_gpu_times_at(s, "  ")
+}
+
+fn print_gpu_times_at(s: Option<[f64; 4]>, indent: &str) -> Result<()> {
     match s {
         Some([mn, med, p99, _]) => {
-            crate::outln!("  GPU timestamps of the pass: min {mn:.2} ms, median {med:.2} ms, p99 {p99:.2} ms")
+            crate::outln!("{indent}GPU timestamps of the pass: min {mn:.2} ms, median {med:.2} ms, p99 {p99:.2} ms")
         }
-        None => crate::outln!("  (the adapter has no timestamp queries: wall clock only)"),
+        None => crate::outln!("{indent}(the adapter has no timestamp queries: wall clock only)"),
     }
 }
 

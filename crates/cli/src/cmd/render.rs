@@ -26,11 +26,14 @@ Examples:
   iridis render examples/rough_film.toml -o rough.png --size 480x320   # films on rough substrates (LSRS)
   iridis render examples/iridescent_spheres.gltf -o gltf.png --size 512x512
   iridis render examples/snake_elaphe.toml -o snake_gpu.png --gpu      on the GPU (lavapipe without one)
+  iridis render examples/soap_bubble.toml -o bubble_81.png --size 96x96 --gpu --spectral-samples 81
   iridis render examples/fig1_elaphe_section.toml --export-mesh snake.glb   the scaled snake as glTF
 
 --gpu renders the same scene with the WGSL port of the renderer (iridis-gpu) through Vulkan; its colours
-match the CPU's (mean CIEDE2000 < 1 on every example scene it renders, tested). Rough films (roughness,
-correlation) render on the CPU only. Without a GPU, Mesa's software driver works:
+match the CPU's (mean CIEDE2000 < 1 on every example scene, tested). Thin films shade there from colour
+tables (XYZ over angle and thickness, filled by the 81-sample evaluation; rough films' LSRS tables are made
+on the CPU); --spectral-samples N evaluates smooth films directly at N wavelengths (380-780 nm) per hit
+instead, 81 being the reference. Without a GPU, Mesa's software driver works:
 apt-get install mesa-vulkan-drivers.")]
 pub struct RenderArgs {
     /// Scene: TOML (.toml) or glTF 2.0 (.gltf, .glb).
@@ -57,6 +60,10 @@ pub struct RenderArgs {
     /// normals, UVs and the orientation field as TANGENT.
     #[arg(long)]
     pub export_mesh: Option<PathBuf>,
+    /// With --gpu: evaluate smooth films directly at N wavelength samples (380-780 nm) per hit instead of
+    /// from colour tables (81: the 5 nm reference).
+    #[arg(long, value_name = "N")]
+    pub spectral_samples: Option<usize>,
 }
 
 /// Parses `WxH`.
@@ -105,6 +112,10 @@ pub fn run(a: RenderArgs) -> Result<()> {
             bail!("--exposure {x}: must be a positive number of RU");
         }
     }
+    if a.spectral_samples.is_some() && !a.gpu {
+        bail!("--spectral-samples sets the GPU's direct film evaluation; add --gpu (the CPU evaluates films at 81 samples)");
+    }
+    let film = crate::cmd::gpu::scene_film(a.spectral_samples)?;
     let scene = load(&a.scene)?;
     if let Some(path) = &a.export_mesh {
         let glb = iridis_render::gltf_export::glb_bytes(&scene.meshes).map_err(anyhow::Error::new)?;
@@ -117,7 +128,7 @@ pub fn run(a: RenderArgs) -> Result<()> {
     let spp = a.spp.unwrap_or(scene.output.spp);
     let exposure = a.exposure.unwrap_or(scene.output.exposure);
     let (img, secs, device) = if a.gpu {
-        let (img, secs, adapter) = crate::cmd::gpu::render_scene(&scene, w, h, spp)?;
+        let (img, secs, adapter) = crate::cmd::gpu::render_scene(&scene, w, h, spp, film)?;
         (img, secs, format!("the GPU {adapter}"))
     } else {
         let (img, secs) = render_with_bar(&scene, w, h, spp);

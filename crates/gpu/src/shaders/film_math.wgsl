@@ -131,3 +131,39 @@ fn film_xyz(f: Film, sin_t: f32, cos_t_in: f32, offset: f32) -> FilmXyz {
     }
     return FilmXyz(xyz_r, xyz_t);
 }
+
+// A colour table (iridis_thinfilm::table::FilmTable): reflected and transmitted XYZ over cos theta (nc nodes,
+// uniform on [0, 1]) x thickness offset (no nodes, uniform on [o0, o1]); node (i, j) is the two vec4 at
+// base + 2 (j nc + i). Where it lives is the shader's hook:
+//
+//   fn film_table_node(k: u32) -> vec4<f32>
+struct FilmTab {
+    base: u32,
+    nc: u32,
+    no: u32,
+    o0: f32,
+    o1: f32,
+}
+
+// Bilinear in (cos theta, offset), both clamped to the table (TableGrid::locate).
+fn film_table_xyz(t: FilmTab, cos_t: f32, offset: f32) -> FilmXyz {
+    let x = clamp(cos_t, 0.0, 1.0) * f32(t.nc - 1u);
+    let i = min(u32(x), t.nc - 2u);
+    let fi = x - f32(i);
+    var j = 0u;
+    var j1 = 0u;
+    var fj = 0.0;
+    if (t.no > 1u) {
+        let y = clamp((offset - t.o0) / (t.o1 - t.o0), 0.0, 1.0) * f32(t.no - 1u);
+        j = min(u32(y), t.no - 2u);
+        fj = y - f32(j);
+        j1 = j + 1u;
+    }
+    let a = t.base + 2u * (j * t.nc + i);
+    let b = t.base + 2u * (j1 * t.nc + i);
+    let r = mix(mix(film_table_node(a), film_table_node(a + 2u), fi),
+                mix(film_table_node(b), film_table_node(b + 2u), fi), fj);
+    let tr = mix(mix(film_table_node(a + 1u), film_table_node(a + 3u), fi),
+                 mix(film_table_node(b + 1u), film_table_node(b + 3u), fi), fj);
+    return FilmXyz(r.xyz, tr.xyz);
+}

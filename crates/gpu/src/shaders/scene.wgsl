@@ -61,6 +61,8 @@ struct Params {
 @group(0) @binding(8) var<storage, read_write> out_rgba: array<u32>;
 // Ray-stack overflows: [count, deepest depth that found the stack full], reported once per render.
 @group(0) @binding(9) var<storage, read_write> overflow: array<atomic<u32>, 2>;
+// Thin films' colour tables (film_math.wgsl's FilmTab, film_rough.wgsl's RoughTab), one vec4 per entry.
+@group(0) @binding(10) var<storage, read> film_tables: array<vec4<f32>>;
 
 const PI: f32 = 3.141592653589793;
 const TAU: f32 = 6.283185307179586;
@@ -89,6 +91,10 @@ fn film_thickness(f: Film, j: u32) -> f32 {
 
 fn film_weight(l: u32) -> vec4<f32> {
     return weights[l];
+}
+
+fn film_table_node(k: u32) -> vec4<f32> {
+    return film_tables[k];
 }
 
 // ------------------------------------------------------------------ small vector helpers (render::math)
@@ -1022,9 +1028,11 @@ fn shade(h_in: Hit, d: vec3<f32>, depth: u32, weight: f32, thr: vec3<f32>) {
         radiance = radiance + thr * out;
         return;
     }
-    // Thin film: [kind], [n_media, media, thickness, flags: 1 SVT, 2 transmission, 4 base],
-    // [SVT texture, d_rel, factor, media of the film over a metallic base's metal (NONE: none)], base colour,
-    // base [roughness, metallic, ior].
+    // Thin film: [kind], [n_media, media, thickness, flags: 1 SVT, 2 transmission, 4 base, 8 colour table,
+    // 16 rough], [SVT texture, d_rel, factor, media of the film over a metallic base's metal (NONE: none)], then a
+    // base's three records (colour, [roughness, metallic, ior], normal texture) or a rough film's tables (four
+    // records, scene.rs), and a colour table's [first node, cos nodes, offset nodes] and [first offset, last
+    // offset] at r + 6, r + 7.
     let fw = scene[r + 1u];
     let sv = scene[r + 2u];
     let flags = word(fw.w);
@@ -1035,10 +1043,19 @@ fn shade(h_in: Hit, d: vec3<f32>, depth: u32, weight: f32, thr: vec3<f32>) {
         let alpha = sample_texture(word(sv.x), h.uv, false).x;
         offset = sv.y * (alpha / 0.5 - 1.0);
     }
+    if ((flags & 16u) != 0u) {
+        rough_film(r, h, wo, cosv, offset, factor, depth, weight, thr);
+        return;
+    }
     let film = Film(word(fw.x), P.n_lambda, word(fw.y), word(fw.z));
-    let c = film_xyz(film, sqrt(max(1.0 - cosv * cosv, 0.0)), cosv, offset);
+    let tw = scene[r + 6u];
+    let to = scene[r + 7u];
+    let tab = FilmTab(word(tw.x), word(tw.y), word(tw.z), to.x, to.y);
+    let tabbed = (flags & 8u) != 0u;
+    let c = film_colors(film, tabbed, tab, cosv, offset);
     if ((flags & 4u) != 0u) {
-        film_over_base(film, word(sv.w), microfacet_at(r + 3u, h.uv), h, wo, c.r, offset, factor, depth, weight, thr);
+        film_over_base(film, tabbed, tab, word(sv.w), microfacet_at(r + 3u, h.uv), h, wo, c.r, offset, factor, depth,
+                       weight, thr);
         return;
     }
     let r_rgb = to_rgb(c.r) * factor;
@@ -1060,11 +1077,47 @@ fn film_specular(film: Film, metal: u32, m: f32, sin_t: f32, cos_t: f32, offset:
     return (1.0 - m) * r_dielectric + m * to_rgb(film_xyz(over_metal, sin_t, cos_t, offset).r);
 }
 
+// A smooth film's colours at cos theta and an offset: from its colour table where it has one (the fast path),
+// else the recurrence at every wavelength sample.
+fn film_colors(film: Film, tabbed: bool, tab: FilmTab, cos_t: f32, offset: f32) -> FilmXyz {
+    if (tabbed) {
+        return film_table_xyz(tab, cos_t, offset);
+    }
+    return film_xyz(film, sqrt(max(1.0 - cos_t * cos_t, 0.0)), cos_t, offset);
+}
+
+// A rough film (render::render::Scene::shade, eq. 3.20): the lights' diffuse pi k_d cos theta_l, the
+// environment's diffuse albedo times the irradiance, and k_r along the mirror ray, all from tables.
+fn rough_film(r: u32, h: Hit, wo: vec3<f32>, cosv: f32, offset: f32, factor: f32, depth: u32, weight: f32,
+              thr: vec3<f32>) {
+    let a = scene[r + 3u];
+    let b = scene[r + 4u];
+    let c = scene[r + 5u];
+    let e = scene[r + 6u];
+    let sizes = word(a.w);
+    let t = RoughTab(word(a.x), word(a.y), word(a.z), sizes & 0xffffu, sizes >> 16u, word(b.x), word(b.y), word(b.z),
+                     c.x, c.y, c.z, c.w, e.x, e.y);
+    var out = vec3<f32>(0.0);
+    let o = h.p + h.ng * eps(h.p, h.t);
+    for (var i = 0u; i < P.n_lights; i = i + 1u) {
+        let l = arrive(i, h.p);
+        if (dot(l.wi, h.ng) > 0.0 && !occluded(o, l.wi, l.dist)) {
+            let cl = dot(h.n, l.wi);
+            let d = rough_diffuse(t, cosv, cl, relative_azimuth(h.n, l.wi, wo), offset);
+            out = out + to_rgb(d) * l.e * (max(cl, 0.0) * factor);
+        }
+    }
+    out = out + to_rgb(rough_env(t, cosv, offset)) * irradiance(h.n) * factor;
+    radiance = radiance + thr * out;
+    let s = to_rgb(rough_specular(t, cosv, offset)) * factor;
+    push_ray(o, reflect_dir(wo, h.n), thr * s, depth + 1u, weight * max3(s));
+}
+
 // A smooth film over a base (render::render::Scene::shade_film_over_base): the film's reflectance R replaces
 // the base's specular Fresnel (over a metallic base mixed with the film over the metal), the diffuse takes
 // 1 - R per channel; iridescenceFactor mixes with the base alone.
-fn film_over_base(film: Film, metal: u32, base: Microfacet, h: Hit, wo: vec3<f32>, r_view: vec3<f32>, offset: f32,
-                  factor: f32, depth: u32, weight: f32, thr: vec3<f32>) {
+fn film_over_base(film: Film, tabbed: bool, tab: FilmTab, metal: u32, base: Microfacet, h: Hit, wo: vec3<f32>,
+                  r_view: vec3<f32>, offset: f32, factor: f32, depth: u32, weight: f32, thr: vec3<f32>) {
     if (factor < 1.0) {
         shade_microfacet(base, h, wo, depth, weight * (1.0 - factor), true, thr * (1.0 - factor));
     }
@@ -1080,7 +1133,7 @@ fn film_over_base(film: Film, metal: u32, base: Microfacet, h: Hit, wo: vec3<f32
         if (dot(l.wi, h.ng) > 0.0 && !occluded(o, l.wi, l.dist)) {
             let vh = clamp(dot(l.wi, safe_normalize(l.wi + wo)), 0.0, 1.0);
             let sh = sqrt(max(1.0 - vh * vh, 0.0));
-            let rl = to_rgb(film_xyz(film, sh, vh, offset).r);
+            let rl = to_rgb(film_colors(film, tabbed, tab, vh, offset).r);
             let spec = film_specular(film, metal, base.metallic, sh, vh, offset, rl);
             let ci = max(dot(h.n, l.wi), 0.0);
             out = out + l.e * (ggx_single(base, h.n, l.wi, wo) * spec + (vec3<f32>(1.0) - rl) * diffuse * ci);
