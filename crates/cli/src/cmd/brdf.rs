@@ -70,8 +70,12 @@ I_p(u, v), p = 0..2N, for X, Y and Z (eq. 10-12) on the non-linear u-v grid of s
 to one .npz file that numpy opens:  t = np.load('T.npz'); t['I'].shape == (res, res, 3, 2N+1);
 json.loads(bytes(t['metadata_json'])).
 
+--gpu builds the tables on the GPU (Vulkan; lavapipe without a GPU): the same grid and metadata, the values
+in f32 (relative error ~1e-6 of each power's largest value; docs/gpu.md); the FFTs stay on the CPU.
+
 Examples:
   iridis precompute builtin:elaphe -o elaphe.npz
+  iridis precompute 'builtin:elaphe?size=10um' -o elaphe10.npz --uv-resolution 101 --gpu
   iridis precompute scan.gwy -o scan.npz --terms 30 --coherence 65um --uv-resolution 501 --uv-power 5
   iridis precompute relief.png --pixel-size 65nm --max-height 300nm -o relief.npz --uv-power 1")]
 pub struct PrecomputeArgs {
@@ -88,6 +92,9 @@ pub struct PrecomputeArgs {
     /// Exponent a of the non-linear u-v grid (1 = linear).
     #[arg(long, default_value_t = 5.0)]
     pub uv_power: f64,
+    /// Build the tables on the GPU (values in f32).
+    #[arg(long)]
+    pub gpu: bool,
     #[command(flatten)]
     pub surface_opts: SurfaceOpts,
 }
@@ -112,7 +119,13 @@ Examples:
   iridis brdf-map builtin:xenopeltis --method reference --incidence 20deg,0deg --size 256 -o x.png --raw x.npy
   iridis brdf-map builtin:sine --method ground-truth --size 48 -o gt.png --gamma 2.2
   iridis brdf-map 'builtin:elaphe?size=10um&pixel=50nm' --method stam-gaussian --coherence 5um -o stam.png
-  iridis brdf-map elaphe.npz --gpu --size 1024 -o elaphe_gpu.png")]
+  iridis brdf-map elaphe.npz --gpu --size 1024 -o elaphe_gpu.png
+  iridis brdf-map 'builtin:sine?size=4um' --method ground-truth --gpu --size 48 -o gt_gpu.png
+
+--gpu renders the lookup method (the paper's shader; a SURFACE's table is built on the GPU too) and the
+ground truths (ground-truth, ground-truth-periodic) on the GPU; the other methods run on the CPU only.
+--table-precision stores the lookup table on the GPU as f32 (default), f16, or K Chebyshev coefficients in w
+(chebK, chebK-f16, e.g. cheb12): less memory, a small colour error (docs/gpu.md).")]
 pub struct BrdfMapArgs {
     /// A height field (file or builtin:NAME) or a lookup table from `iridis precompute`, told apart by content
     /// (a height field may be an .npz too).
@@ -146,9 +159,12 @@ pub struct BrdfMapArgs {
     /// Lookup sum in f32, as a GPU would evaluate it.
     #[arg(long)]
     pub f32: bool,
-    /// Render on the GPU (Vulkan; lavapipe without a GPU): the lookup method's shader, same image.
+    /// Render on the GPU (Vulkan; lavapipe without a GPU): lookup or the ground truths, same image.
     #[arg(long)]
     pub gpu: bool,
+    /// With --gpu and the lookup method: how the table is stored, f32, f16, chebK or chebK-f16.
+    #[arg(long, value_name = "ENCODING")]
+    pub table_precision: Option<String>,
     #[command(flatten)]
     pub model: ModelOpts,
     /// u-v resolution when a table must be built from a SURFACE [default: 501]; refused with a TABLE.
@@ -265,7 +281,11 @@ pub fn run_precompute(a: PrecomputeArgs) -> Result<()> {
         2 * terms.n_max + 1,
         (values * 8) as f64 / 1e6
     );
-    let table = build_table(&terms, &spectral, params, &a.surface)?;
+    let table = if a.gpu {
+        crate::cmd::gpu::build_table(&terms, &spectral, params, &a.surface)?
+    } else {
+        build_table(&terms, &spectral, params, &a.surface)?
+    };
     let mut buf = std::io::Cursor::new(Vec::new());
     table.write_npz(&mut buf)?;
     crate::output::write_bytes(&a.output, buf.get_ref())?;
@@ -659,6 +679,9 @@ pub fn run_brdf_map(a: BrdfMapArgs) -> Result<()> {
     declare_map_outputs(&a)?;
     if a.gpu {
         return crate::cmd::gpu::run_brdf_map(a, wi, encoding);
+    }
+    if a.table_precision.is_some() {
+        bail!("--table-precision chooses how the GPU stores the lookup table: add --gpu (the CPU evaluates the f64 table)");
     }
     let shading = a.shading.shading()?;
     let params = TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power };
