@@ -15,6 +15,7 @@ use iridis_diffraction::encoding::{EncodedTable, TableEncoding};
 use iridis_diffraction::geometry::{direction, uvw, Shading};
 use iridis_diffraction::map::view_direction;
 use iridis_diffraction::table::{Lookup, LookupTable, Precision};
+use iridis_diffraction::Evaluator;
 use rayon::prelude::*;
 
 fn shown(x: Xyz, exposure: f64) -> Lab {

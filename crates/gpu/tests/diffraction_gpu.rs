@@ -87,8 +87,13 @@ fn tables_built_on_the_gpu_match_the_cpu() {
              {:.1e}, max {:.1e}; at 7500 RU mean {:.1e}, max {:.1e}",
             err.per_power, err.of_sum, de[0], de[2], de_bright[0], de_bright[2]
         );
-        assert!(err.per_power < 1e-4 && err.of_sum < 1e-5, "{spec}: {err:?}");
-        assert!(de[2] < 0.01 && de_bright[2] < 0.01, "{spec}: {de:?} {de_bright:?}");
+        // Measured on lavapipe: per power ≤ 4.5e-5 (xenopeltis: its highest powers are small and cancel), of
+        // the sum ≤ 3.5e-7; ΔE00 mean ≤ 2.6e-4, max 0.033
+        // (one dark pixel of the blazed grating, where the f32 lookup itself differs by 0.019, docs/gpu.md).
+        assert!(err.per_power < 2e-4 && err.of_sum < 3e-6, "{spec}: {err:?}");
+        for d in [de, de_bright] {
+            assert!(d[0] < 1e-3 && d[1] < 0.02 && d[2] < 0.1, "{spec}: {de:?} {de_bright:?}");
+        }
     }
 }
 
@@ -128,8 +133,9 @@ fn the_ground_truth_on_the_gpu_matches_the_cpu() {
                  {:.1e}, p99 {:.1e}, max {:.1e}",
                 de[0], de[1], de[2]
             );
-            assert!(worst < 2e-5, "{aperture:?} {coherence}: {worst}");
-            assert!(de[0] < 1e-3 && de[2] < 0.02, "{aperture:?} {coherence}: {de:?}");
+            // Measured on lavapipe: ≤ 1.9e-6 of the peak; ΔE00 mean ≤ 4.5e-6, max ≤ 1.7e-4.
+            assert!(worst < 1e-5, "{aperture:?} {coherence}: {worst}");
+            assert!(de[0] < 1e-4 && de[2] < 2e-3, "{aperture:?} {coherence}: {de:?}");
             // The map is lit, so the comparison is not between two black images.
             assert!(cx.iter().filter(|x| x.y * 1500.0 > 0.05).count() > 20);
         }
@@ -141,8 +147,9 @@ fn fixed_point_phases_keep_f32_accuracy() {
     let Some(gpu) = gpu() else { return };
     let err = iridis_gpu::ground_truth::phase_accuracy(&gpu, 100_000).unwrap();
     eprintln!("phase error of the ground-truth shader over 100 000 cases (indices up to 2^31): {err:.2e} rad");
-    // The f32 angle within an octant has a rounding error of ~4.7e-8 rad; the polynomials add ~1e-7.
-    assert!(err < 5e-7, "{err}");
+    // The f32 angle within an octant rounds by up to 4.7e-8 rad, the f32 polynomials add a few ulps: measured
+    // 1.2e-7 rad on lavapipe (an f32 phase of 2^31 steps would be off by whole turns).
+    assert!(err < 3e-7, "{err}");
 }
 
 #[test]
@@ -189,9 +196,15 @@ fn encoded_tables_render_what_the_cpu_decodes() {
             cost[1],
             cost[2]
         );
-        assert!(shader[0] < 1e-3 && shader[2] < 0.05, "{e:?}: {shader:?}");
-        if matches!(e, TableEncoding::F32 | TableEncoding::Chebyshev { terms: 45, half: false }) {
-            assert!(cost[2] < 0.05, "{e:?}: {cost:?}");
-        }
+        // The shader evaluates the stored numbers as the CPU decodes them: measured mean ≤ 7.1e-5, max ≤ 2.2e-3.
+        assert!(shader[0] < 5e-4 && shader[2] < 0.02, "{e:?}: {shader:?}");
+        // What each costs against the f64 lookup (measured: f32, cheb12, cheb45 mean 1e-4, max 0.002;
+        // cheb12-f16 mean 0.008, max 0.36; f16 powers mean 52 — the sum's cancellation eats half precision).
+        let bound = match e {
+            TableEncoding::F16 => f64::INFINITY,
+            TableEncoding::Chebyshev { half: true, .. } => 0.03,
+            _ => 1e-3,
+        };
+        assert!(cost[0] < bound, "{e:?}: {cost:?}");
     }
 }

@@ -107,6 +107,12 @@ pub fn run_brdf_map(a: BrdfMapArgs, wi: [f64; 3], encoding: Encoding) -> Result<
         );
     }
     let table_encoding: TableEncoding = a.table_precision.as_deref().unwrap_or("f32").parse()?;
+    if table_encoding == TableEncoding::F16 {
+        eprintln!(
+            "warning: --table-precision f16 stores the powers I_p in half precision, which the lookup sum's \
+             cancellation turns into wrong colours (docs/gpu.md); chebK-f16 halves the memory without that"
+        );
+    }
     let fresnel = brdf::parse_fresnel(&a.shading.fresnel)?;
     let params = TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power };
     let start = std::time::Instant::now();
@@ -471,7 +477,7 @@ pub fn bench(a: GpuBench) -> Result<()> {
     let map = frame.read()?;
     let cpu = Lookup::new(
         Arc::new(table.clone()),
-        Shading { fresnel: Arc::new(fresnel), ..Shading::default() },
+        Shading { fresnel: Arc::new(fresnel.clone()), ..Shading::default() },
         Precision::F64,
     )?;
     let px: Vec<usize> = sample(mw * mw, 4096)

@@ -45,13 +45,10 @@ fn cis_turns(p: u32) -> vec2<f32> {
         + x2 * 2.7557319223985893e-6)));
     let c = 1.0 + x2 * (-0.5 + x2 * (0.041666666666666664 + x2 * (-0.001388888888888889 + x2
         * (2.48015873015873e-5 - x2 * 2.755731922398589e-7))));
-    // The angle is q quarter turns plus psi, psi = x (even octants) or -x (odd ones).
+    // The angle is q quarter turns plus psi, psi = x (even octants) or -x (odd ones): (cos, sin) of psi turned
+    // by q quarter turns, without branches (one quarter turn: (c, s) -> (-s, c); two: negation).
     let sp = select(s, -s, odd);
     let q = ((octant + 1u) >> 1u) & 3u;
-    switch q {
-        case 0u: { return vec2<f32>(c, sp); }
-        case 1u: { return vec2<f32>(-sp, c); }
-        case 2u: { return vec2<f32>(-c, -sp); }
-        default: { return vec2<f32>(sp, -c); }
-    }
+    let turned = select(vec2<f32>(c, sp), vec2<f32>(-sp, c), (q & 1u) != 0u);
+    return select(turned, -turned, (q & 2u) != 0u);
 }
