@@ -227,7 +227,17 @@ fn gpu_options_are_checked() {
         &["--table-precision", "--gpu"],
     );
     assert_fails(
-        &["brdf-map", "builtin:blazed", "--gpu", "--method", "ground-truth", "--table-precision", "f16", "-o", "/tmp/x.png"],
+        &[
+            "brdf-map",
+            "builtin:blazed",
+            "--gpu",
+            "--method",
+            "ground-truth",
+            "--table-precision",
+            "f16",
+            "-o",
+            "/tmp/x.png",
+        ],
         &["--table-precision", "lookup"],
     );
     assert_fails(
@@ -325,15 +335,32 @@ fn compare_and_sweep_on_the_gpu_give_the_cpu_numbers() {
         eprintln!("{} at {} RU: mean ΔE00 {a:.4} (CPU) vs {b:.4} (GPU)", c["method"], c["exposure_ru"]);
         assert!((a - b).abs() < 2e-3, "{c} vs {g}");
     }
-    for (c, g) in runs[0]["periodic_extension_error"].as_array().unwrap().iter().zip(runs[1]["periodic_extension_error"].as_array().unwrap()) {
+    for (c, g) in runs[0]["periodic_extension_error"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .zip(runs[1]["periodic_extension_error"].as_array().unwrap())
+    {
         let (a, b) = (c["mean"].as_f64().unwrap(), g["mean"].as_f64().unwrap());
         assert!((a - b).abs() < 2e-3, "{c} vs {g}");
     }
     let dir = tmp();
     let sheet = dir.path().join("sweep.png").display().to_string();
     let v = json_of(&[
-        "sweep", surface, "--method", "lookup", "--param", "uv-resolution", "--values", "21,41", "--size", "16", "--gpu",
-        "-o", &sheet, "--json",
+        "sweep",
+        surface,
+        "--method",
+        "lookup",
+        "--param",
+        "uv-resolution",
+        "--values",
+        "21,41",
+        "--size",
+        "16",
+        "--gpu",
+        "-o",
+        &sheet,
+        "--json",
     ]);
     assert_eq!(v["points"].as_array().unwrap().len(), 2);
 }

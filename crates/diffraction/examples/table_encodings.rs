@@ -49,7 +49,9 @@ fn main() {
         let lights = [direction(0.0, 0.0), direction(30f64.to_radians(), 40f64.to_radians())];
         let pairs: Vec<([f64; 3], [f64; 3])> = lights
             .iter()
-            .flat_map(|&wi| (0..size * size).filter_map(move |i| view_direction(i % size, i / size, size).map(|wr| (wi, wr))))
+            .flat_map(|&wi| {
+                (0..size * size).filter_map(move |i| view_direction(i % size, i / size, size).map(|wr| (wi, wr)))
+            })
             .collect();
         let reference: Vec<Xyz> = pairs.par_iter().map(|&(wi, wr)| exact.xyz(wi, wr)).collect();
         for &e in &encodings {

@@ -26,10 +26,21 @@ pub enum TableEncoding {
     F32,
     F16,
     /// `terms` Chebyshev coefficients per cell and channel, in `f16` when `half`.
-    Chebyshev { terms: usize, half: bool },
+    Chebyshev {
+        terms: usize,
+        half: bool,
+    },
 }
 
 impl TableEncoding {
+    /// What `brdf-map --gpu` stores unless told otherwise: 12 Chebyshev terms in `f32`, 3.75× less memory
+    /// than the `f32` powers of a table with N = 22 and as exact: against the `f64` lookup on every built-in at
+    /// 501², mean CIEDE2000 < 0.0001 and at most 0.001 (docs/gpu.md, `examples/table_encodings.rs`), far
+    /// inside the bound it had to meet (mean < 0.05). `cheb12-f16` halves the memory again and meets the mean
+    /// bound too (≤ 0.005), but single pixels next to a grating's specular peak reach ΔE00 4–21. Surfaces whose
+    /// `|h|max` far exceeds the built-ins' ~150 nm make `f(w)` oscillate faster and may need more terms.
+    pub const GPU_DEFAULT: TableEncoding = TableEncoding::Chebyshev { terms: 12, half: false };
+
     /// The name the command line uses: `f32`, `f16`, `chebK`, `chebK-f16`.
     pub fn name(&self) -> String {
         match self {
@@ -177,13 +188,14 @@ impl EncodedTable {
         }
         let words_per_channel = if half { per_channel.div_ceil(2) } else { per_channel };
         let mut words = vec![0u32; cells * 3 * words_per_channel];
-        for (k, (out, src)) in words.chunks_exact_mut(words_per_channel).zip(coeffs.chunks_exact(per_channel)).enumerate()
+        for (k, (out, src)) in
+            words.chunks_exact_mut(words_per_channel).zip(coeffs.chunks_exact(per_channel)).enumerate()
         {
             let c = k % 3;
             if half {
                 for (j, v) in src.iter().enumerate() {
                     let h = half::f16::from_f32(*v as f32 / scales[c * per_channel + j]).to_bits() as u32;
-                    out[j / 2] |= if j % 2 == 0 { h } else { h << 16 };
+                    out[j / 2] |= if j & 1 == 0 { h } else { h << 16 };
                 }
             } else {
                 for (o, v) in out.iter_mut().zip(src) {
@@ -198,7 +210,7 @@ impl EncodedTable {
     pub fn coefficient(&self, iv: usize, iu: usize, c: usize, j: usize) -> f32 {
         let word = self.words[((iv * self.res + iu) * 3 + c) * self.words_per_channel + j / (1 + self.half() as usize)];
         if self.half() {
-            let bits = if j % 2 == 0 { word & 0xffff } else { word >> 16 };
+            let bits = if j & 1 == 0 { word & 0xffff } else { word >> 16 };
             half::f16::from_bits(bits as u16).to_f32() * self.scales[c * self.per_channel + j]
         } else {
             f32::from_bits(word)

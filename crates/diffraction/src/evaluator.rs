@@ -549,7 +549,8 @@ impl Evaluator for GroundTruth {
         }
         let n = self.wavenumbers.len();
         let ds = self.wavenumbers[1] - self.wavenumbers[0];
-        let power: Vec<f64> = self.amplitudes(wi, wr, self.wavenumbers[0], ds, n).iter().map(|a| a.norm_sqr()).collect();
+        let power: Vec<f64> =
+            self.amplitudes(wi, wr, self.wavenumbers[0], ds, n).iter().map(|a| a.norm_sqr()).collect();
         self.xyz_from_power(wi, wr, &power)
     }
     fn as_ground_truth(&self) -> Option<&GroundTruth> {

@@ -49,19 +49,16 @@ fn the_lattice_describes_the_same_sum_as_the_ground_truth() {
     // (the finite window falls below its 1e-12 cut inside the patch, so columns drop out).
     let (rows, cols) = (10, 12);
     let patch = Patch::from_row_major(rows, cols, 80.0, 90.0, &heights(rows * cols, 60.0, 3)).unwrap();
-    for (aperture, coherence) in
-        [(Aperture::Finite, 1500.0), (Aperture::Finite, 250.0), (Aperture::Periodic, 1500.0), (Aperture::Periodic, 250.0)]
-    {
+    for (aperture, coherence) in [
+        (Aperture::Finite, 1500.0),
+        (Aperture::Finite, 250.0),
+        (Aperture::Periodic, 1500.0),
+        (Aperture::Periodic, 250.0),
+    ] {
         let gt =
             GroundTruth::with_aperture(&patch, coherence, Shading::default(), &SpectralSetup::default(), 21, aperture)
                 .unwrap();
-        let total: f64 = gt
-            .lattice()
-            .column_images
-            .iter()
-            .flatten()
-            .map(|c| c.1)
-            .sum::<f64>()
+        let total: f64 = gt.lattice().column_images.iter().flatten().map(|c| c.1).sum::<f64>()
             * gt.lattice().row_images.iter().flatten().map(|r| r.1).sum::<f64>();
         // The window is normalised over the whole lattice; the 1e-12 cut leaves out a negligible rest.
         assert!((total - 1.0).abs() < 1e-9, "{aperture:?} {coherence}: Σ g = {total}");
@@ -83,8 +80,15 @@ fn the_lattice_describes_the_same_sum_as_the_ground_truth() {
 #[test]
 fn colour_from_powers_is_the_ground_truths_colour() {
     let patch = Patch::from_row_major(8, 8, 100.0, 100.0, &heights(64, 40.0, 11)).unwrap();
-    let gt = GroundTruth::with_aperture(&patch, 800.0, Shading::default(), &SpectralSetup::default(), 31, Aperture::Periodic)
-        .unwrap();
+    let gt = GroundTruth::with_aperture(
+        &patch,
+        800.0,
+        Shading::default(),
+        &SpectralSetup::default(),
+        31,
+        Aperture::Periodic,
+    )
+    .unwrap();
     let s = gt.wavenumbers().to_vec();
     // Grazing view: some wavenumbers lie beyond Nyquist (u/λ > 1/(2·100 nm)) and must be left out.
     for (wi, wr) in [(direction(0.3, 0.0), direction(0.5, 2.0)), (direction(1.4, 0.0), direction(1.45, 0.0))] {

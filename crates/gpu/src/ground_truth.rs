@@ -46,7 +46,10 @@ pub struct GpuGroundTruth<'a, 'g> {
 
 /// The images of one axis as spans (per live position: index, first entry, entry count) and entries
 /// (lattice index, weight): lattice index `i + (m + m0)·n`, `m0` making the smallest one 0.
-fn axis_spans(images: &[Vec<(i64, f64)>], n: usize, what: &str) -> Result<(Vec<[u32; 4]>, Vec<[u32; 2]>), GpuError> {
+/// Per live position `(index, first entry, entries, 0)`, and per image `(lattice index, weight bits)`.
+type Spans = (Vec<[u32; 4]>, Vec<[u32; 2]>);
+
+fn axis_spans(images: &[Vec<(i64, f64)>], n: usize, what: &str) -> Result<Spans, GpuError> {
     let m0 = -images.iter().flatten().map(|&(m, _)| m).min().unwrap_or(0);
     let m1 = images.iter().flatten().map(|&(m, _)| m).max().unwrap_or(0);
     if ((m1 + m0 + 1) as u128) * (n as u128) > u32::MAX as u128 {
@@ -93,39 +96,36 @@ impl<'a, 'g> GpuGroundTruth<'a, 'g> {
         let entries: Vec<[u32; 2]> = col_entries.iter().chain(&row_entries).copied().collect();
         let heights: Vec<f32> = l.heights.iter().map(|&h| h as f32).collect();
         gpu.check_storage("the height field", heights.len() as u64 * 4, "use a smaller patch or the CPU")?;
-        let source = format!(
-            "{}\n{}",
-            include_str!("shaders/turns.wgsl"),
-            include_str!("shaders/ground_truth.wgsl")
-        );
-        let (pipeline, bufs) = gpu.checked("uploading the height field and compiling the ground-truth shader", || {
-            let module = gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some("ground_truth.wgsl"),
-                source: wgpu::ShaderSource::Wgsl(source.into()),
-            });
-            let pipeline = gpu.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some("iridis ground truth"),
-                layout: None,
-                module: &module,
-                entry_point: Some("power"),
-                compilation_options: Default::default(),
-                cache: None,
-            });
-            let init = |label: &str, contents: &[u8]| {
-                gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some(label),
-                    contents,
-                    usage: wgpu::BufferUsages::STORAGE,
-                })
-            };
-            let pad = [[0u32; 4]];
-            let bufs = [
-                init("heights", bytemuck::cast_slice(&heights)),
-                init("spans", bytemuck::cast_slice(if spans.is_empty() { &pad[..] } else { &spans })),
-                init("entries", bytemuck::cast_slice(if entries.is_empty() { &[[0u32; 2]][..] } else { &entries })),
-            ];
-            (pipeline, bufs)
-        })?;
+        let source = format!("{}\n{}", include_str!("shaders/turns.wgsl"), include_str!("shaders/ground_truth.wgsl"));
+        let (pipeline, bufs) =
+            gpu.checked("uploading the height field and compiling the ground-truth shader", || {
+                let module = gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                    label: Some("ground_truth.wgsl"),
+                    source: wgpu::ShaderSource::Wgsl(source.into()),
+                });
+                let pipeline = gpu.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                    label: Some("iridis ground truth"),
+                    layout: None,
+                    module: &module,
+                    entry_point: Some("power"),
+                    compilation_options: Default::default(),
+                    cache: None,
+                });
+                let init = |label: &str, contents: &[u8]| {
+                    gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                        label: Some(label),
+                        contents,
+                        usage: wgpu::BufferUsages::STORAGE,
+                    })
+                };
+                let pad = [[0u32; 4]];
+                let bufs = [
+                    init("heights", bytemuck::cast_slice(&heights)),
+                    init("spans", bytemuck::cast_slice(if spans.is_empty() { &pad[..] } else { &spans })),
+                    init("entries", bytemuck::cast_slice(if entries.is_empty() { &[[0u32; 2]][..] } else { &entries })),
+                ];
+                (pipeline, bufs)
+            })?;
         let [heights, spans_buf, entries_buf] = bufs;
         Ok(Self {
             gpu,
@@ -157,7 +157,8 @@ impl<'a, 'g> GpuGroundTruth<'a, 'g> {
             .min(gpu.limits.max_compute_workgroups_per_dimension as usize)
             .min(pairs.len())
             .max(1);
-        let (phases, betas, power, params, bind) = gpu.checked("allocating the ground truth's batches", || {
+        // The bind group keeps the buffers it binds (the params among them) alive.
+        let (phases, betas, power, bind) = gpu.checked("allocating the ground truth's batches", || {
             let phases = gpu.device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("gt phases"),
                 size: (cap * count * 16) as u64,
@@ -189,9 +190,8 @@ impl<'a, 'g> GpuGroundTruth<'a, 'g> {
                     entry(6, &power),
                 ],
             });
-            (phases, betas, power, params, bind)
+            (phases, betas, power, bind)
         })?;
-        let _ = &params;
         // Start small, then size batches to BATCH_SECONDS from the time per pair measured so far.
         let (mut done, mut batch, mut spent) = (0usize, 4usize.min(cap), Duration::ZERO);
         while done < pairs.len() {

@@ -43,8 +43,8 @@ pub use accel::GpuAccelerator;
 pub use film::{FilmFrame, FilmOutput, FilmRun, GpuFilm};
 pub use ground_truth::{ground_truth_map, GpuGroundTruth};
 pub use lookup::{GpuLookup, MapFrame, MapOutput};
-pub use table_build::build_table;
 pub use scene::{GpuScene, SceneFrame, StackOverflow};
+pub use table_build::build_table;
 
 /// What the user reads when no adapter is found.
 pub const NO_ADAPTER_HELP: &str = "no GPU adapter found (iridis uses Vulkan through wgpu). Install a Vulkan driver; \

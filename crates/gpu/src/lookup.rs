@@ -10,8 +10,8 @@
 //! N = 22 is 136 MB) — so the shader is the CPU's `Lookup::sum` with `Precision::F32`.
 
 use iridis_color::{ToneMap, Xyz};
-use iridis_diffraction::geometry::{Fresnel, FresnelConvention, FresnelSource};
 use iridis_diffraction::encoding::{EncodedTable, TableEncoding};
+use iridis_diffraction::geometry::{Fresnel, FresnelConvention, FresnelSource};
 use iridis_diffraction::LookupTable;
 use wgpu::util::DeviceExt;
 
@@ -106,7 +106,9 @@ impl<'g> GpuLookup<'g> {
         }
         // The cells as 32-bit words: the f32 powers themselves, or the encoding's words and scales.
         let (words, per_row_cell, coefficients, scales) = match encoding {
-            TableEncoding::F32 => (table.data.iter().map(|&v| (v as f32).to_bits()).collect::<Vec<u32>>(), np, np, None),
+            TableEncoding::F32 => {
+                (table.data.iter().map(|&v| (v as f32).to_bits()).collect::<Vec<u32>>(), np, np, None)
+            }
             _ => {
                 let e = EncodedTable::encode(table, encoding).map_err(|e| GpuError::Invalid(e.to_string()))?;
                 // Two scale slots per word and channel (the padding half of an odd count gets 0).
@@ -300,7 +302,8 @@ impl<'g> GpuLookup<'g> {
             // lookup_encoded.wgsl: coefficients and words per channel, mode (bit 0 f16, bit 1 Chebyshev).
             self.coefficients,
             self.words,
-            u32::from(self.encoding.is_half()) | if matches!(self.encoding, TableEncoding::Chebyshev { .. }) { 2 } else { 0 },
+            u32::from(self.encoding.is_half())
+                | if matches!(self.encoding, TableEncoding::Chebyshev { .. }) { 2 } else { 0 },
         ]
     }
 }

@@ -42,15 +42,7 @@ struct AxisWindows {
 
 /// The window along one axis for every grid value and wavelength: the frequency is `−value/λ` (the table's
 /// `f = (−u/λ, −v/λ)`, PHYSICS.md), `length` the patch's extent and `n` its samples along the axis.
-fn axis_windows(
-    grid: &[f64],
-    lambdas: &[f64],
-    length: f64,
-    n: usize,
-    pixel: f64,
-    r: f64,
-    inv2s2: f64,
-) -> AxisWindows {
+fn axis_windows(grid: &[f64], lambdas: &[f64], length: f64, n: usize, pixel: f64, r: f64, inv2s2: f64) -> AxisWindows {
     let mut ranges = Vec::with_capacity(grid.len() * lambdas.len());
     for &value in grid {
         for &l in lambdas {
@@ -132,7 +124,8 @@ pub fn build_table(
         }
     }
     // Weights, then (kH)^n/n! = k^n/n! · H^n.
-    let mut spectral_words: Vec<f32> = spectral.weights.weights().iter().flat_map(|w| [w[0], w[1], w[2], 0.0]).map(|v| v as f32).collect();
+    let mut spectral_words: Vec<f32> =
+        spectral.weights.weights().iter().flat_map(|w| [w[0], w[1], w[2], 0.0]).map(|v| v as f32).collect();
     for s in taylor_scale(lambdas, terms.n_max) {
         spectral_words.extend(s.iter().enumerate().map(|(n, v)| (v * h.powi(n as i32)) as f32));
     }
@@ -293,7 +286,15 @@ pub fn table_error(reference: &LookupTable, other: &LookupTable) -> TableError {
     let per_power = scale
         .iter()
         .zip(&worst)
-        .map(|(&s, &w)| if s > 0.0 { w / s } else if w > 0.0 { f64::INFINITY } else { 0.0 })
+        .map(|(&s, &w)| {
+            if s > 0.0 {
+                w / s
+            } else if w > 0.0 {
+                f64::INFINITY
+            } else {
+                0.0
+            }
+        })
         .fold(0.0, f64::max);
     let of_sum = if sum_scale > 0.0 { sum_err / sum_scale } else { 0.0 };
     TableError { per_power, of_sum }

@@ -106,9 +106,12 @@ fn the_ground_truth_on_the_gpu_matches_the_cpu() {
     let p = patch("builtin:elaphe?size=2.6um&pixel=65nm");
     let size = 20;
     let cells = disk(size);
-    for (aperture, coherence) in
-        [(Aperture::Finite, 1300.0), (Aperture::Periodic, 1300.0), (Aperture::Finite, 600.0), (Aperture::Periodic, 600.0)]
-    {
+    for (aperture, coherence) in [
+        (Aperture::Finite, 1300.0),
+        (Aperture::Periodic, 1300.0),
+        (Aperture::Finite, 600.0),
+        (Aperture::Periodic, 600.0),
+    ] {
         let gt = GroundTruth::with_aperture(&p, coherence, Shading::default(), &spectral, 41, aperture).unwrap();
         for theta in [0.0, 50.0] {
             let wi = direction(f64::to_radians(theta), 1.0);

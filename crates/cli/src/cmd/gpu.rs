@@ -7,13 +7,13 @@ use std::time::Duration;
 use anyhow::{bail, Context, Result};
 use clap::Args as ClapArgs;
 use iridis_color::{Encoding, SpectralWeights, ToneMap, Xyz};
+use iridis_diffraction::encoding::TableEncoding;
 use iridis_diffraction::evaluator::Evaluator;
 use iridis_diffraction::geometry::direction;
-use iridis_diffraction::encoding::TableEncoding;
 use iridis_diffraction::table::{Lookup, LookupTable, Precision, TableParams};
 use iridis_diffraction::{Fresnel, Shading, SpectralSetup, TaylorTerms};
-use iridis_lab::methods::Method;
 use iridis_gpu::{FilmFrame, FrameTime, Gpu, GpuFilm, GpuLookup, GpuScene};
+use iridis_lab::methods::Method;
 use serde_json::json;
 
 use crate::cmd::brdf::{self, BrdfMapArgs, ModelOpts, SurfaceOpts};
@@ -106,7 +106,10 @@ pub fn run_brdf_map(a: BrdfMapArgs, wi: [f64; 3], encoding: Encoding) -> Result<
              measured gold as Fresnel source needs --method reference (CPU) or ground-truth (CPU or --gpu)"
         );
     }
-    let table_encoding: TableEncoding = a.table_precision.as_deref().unwrap_or("f32").parse()?;
+    let table_encoding: TableEncoding = match a.table_precision.as_deref() {
+        Some(p) => p.parse()?,
+        None => TableEncoding::GPU_DEFAULT,
+    };
     if table_encoding == TableEncoding::F16 {
         eprintln!(
             "warning: --table-precision f16 stores the powers I_p in half precision, which the lookup sum's \
@@ -178,7 +181,16 @@ thin-film frame (Sussenbach ch. 4: recurrence per wavelength sample, thickness g
 A frame is one dispatch from submission to completion (wall clock; also the GPU's own timestamps around the
 pass where the adapter has them); the light circles the normal at 30° from frame to
 frame. Each shader runs --frames frames or --max-seconds, whichever ends first, after one warm-up frame,
-and the last frame is checked against the CPU (CIEDE2000 over up to 4096 pixels).
+and the last frame is checked against the CPU (CIEDE2000 over up to 4096 pixels). --table-precision times
+the lookup map once per table encoding (f32, f16, chebK, chebK-f16), each against the CPU's f64 lookup.
+
+Then the diffraction work that is not a frame, each against the CPU in the same run: the lookup table of
+--build-surface built on all CPU cores (f64) and on the GPU (f32) — seconds, speed-up, the largest relative
+error — and the ground truth of --gt-surface (finite aperture and periodic) as a --gt-size map on the GPU
+against --gt-cpu-pixels of its pixels on the CPU — pixels per second, speed-up, CIEDE2000 — and the phase
+arithmetic of the ground-truth shader against f64. The defaults are small (lavapipe runs on the CPU); on a
+GPU the paper's sizes are --build-surface builtin:elaphe --build-uv-resolution 501 --gt-surface
+builtin:elaphe --gt-size 101.
 
 With a SCENE (TOML or glTF), times the scene renderer instead (iridis render --gpu): --frames frames of
 --size with 1 sample per pixel, min/median/p99, against one CPU render of the same image in the same run
@@ -190,7 +202,9 @@ Examples:
   iridis bench gpu                                      built-in Elaphe table (201²), 1024² map, 1920×1080 film
   iridis bench gpu --table elaphe.npz --size 1024x1024 --frames 500 --json
   iridis bench gpu --stack \"air | gasoline 216nm | water 220nm | asphalt\" --film-size 1280x720
-  iridis bench gpu --size 512 --film-size 960x540 --frames 5 --save out/")]
+  iridis bench gpu --size 512 --film-size 960x540 --frames 5 --save out/
+  iridis bench gpu --table-precision f32,cheb12,cheb12-f16 --size 1024 --frames 200
+  iridis bench gpu --build-surface builtin:elaphe --build-uv-resolution 501 --gt-surface builtin:elaphe --gt-size 101")]
 pub struct GpuBench {
     /// A scene (TOML or glTF) to time instead of the two shaders.
     pub scene: Option<PathBuf>,
@@ -216,20 +230,20 @@ pub struct GpuBench {
     #[arg(long)]
     pub save: Option<PathBuf>,
     /// Lookup table encodings to time, comma-separated (f32, f16, chebK, chebK-f16): the first is `lookup`'s,
-    /// each is checked against the CPU's f64 lookup.
-    #[arg(long, default_value = "f32")]
+    /// each is checked against the CPU's f64 lookup (default: the f32 powers and brdf-map's default).
+    #[arg(long, default_value = "f32,cheb12")]
     pub table_precision: String,
     /// Surface whose lookup table is built on the CPU and on the GPU (times and agreement).
     #[arg(long, default_value = "builtin:elaphe?size=10um")]
     pub build_surface: String,
     /// u-v resolution of that table.
-    #[arg(long, default_value_t = 61)]
+    #[arg(long, default_value_t = 31)]
     pub build_uv_resolution: usize,
     /// Surface whose ground truth (finite aperture and periodic) is rendered on the GPU and the CPU.
-    #[arg(long, default_value = "builtin:elaphe?size=4um&pixel=65nm")]
+    #[arg(long, default_value = "builtin:elaphe?size=3um&pixel=65nm")]
     pub gt_surface: String,
     /// Size of the ground truth's BRDF map on the GPU.
-    #[arg(long, default_value_t = 16)]
+    #[arg(long, default_value_t = 12)]
     pub gt_size: usize,
     /// Pixels of that map the CPU evaluates (spread over it) for its rate and the CIEDE2000.
     #[arg(long, default_value_t = 32)]
@@ -727,8 +741,9 @@ fn bench_ground_truth(gpu: &Gpu, a: &GpuBench, quiet: bool) -> Result<serde_json
     let samples = 2 * spectral.wavelengths().len() - 1;
     let size = a.gt_size;
     let wi = direction(30f64.to_radians(), 0.0);
-    let disk: Vec<usize> =
-        (0..size * size).filter(|&i| iridis_diffraction::map::view_direction(i % size, i / size, size).is_some()).collect();
+    let disk: Vec<usize> = (0..size * size)
+        .filter(|&i| iridis_diffraction::map::view_direction(i % size, i / size, size).is_some())
+        .collect();
     let picked: Vec<usize> = sample(disk.len(), a.gt_cpu_pixels).into_iter().map(|k| disk[k]).collect();
     if !quiet {
         crate::outln!(

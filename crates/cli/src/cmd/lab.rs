@@ -145,7 +145,12 @@ fn render_bar(e: &dyn iridis_diffraction::Evaluator, pixels: &Pixels, what: &str
 }
 
 /// [`render_bar`] through the workbench: on its accelerator (the GPU of `--gpu`) where that evaluates the method.
-fn render_on_bench(b: &Workbench, e: &dyn iridis_diffraction::Evaluator, pixels: &Pixels, what: &str) -> Result<Vec<Option<Xyz>>> {
+fn render_on_bench(
+    b: &Workbench,
+    e: &dyn iridis_diffraction::Evaluator,
+    pixels: &Pixels,
+    what: &str,
+) -> Result<Vec<Option<Xyz>>> {
     let pb = bar(pixels.len() as u64, what);
     let img = b.render(e, pixels, &|d| pb.set_position(d as u64));
     pb.finish_and_clear();
