@@ -235,6 +235,152 @@ fn gpu_options_are_checked() {
         &["render", "examples/soap_bubble.toml", "-o", "/tmp/x.png", "--gpu", "--spectral-samples", "0"],
         &["--spectral-samples 0", "2 to 4096"],
     );
+    // What --gpu does not evaluate is refused, naming what it does.
+    assert_fails(
+        &["brdf-map", "builtin:blazed", "--gpu", "--method", "nmm", "-o", "/tmp/x.png"],
+        &["--gpu", "lookup", "ground-truth", "CPU only"],
+    );
+    assert_fails(
+        &["brdf-map", "builtin:blazed", "--table-precision", "f16", "-o", "/tmp/x.png"],
+        &["--table-precision", "--gpu"],
+    );
+    assert_fails(
+        &[
+            "brdf-map",
+            "builtin:blazed",
+            "--gpu",
+            "--method",
+            "ground-truth",
+            "--table-precision",
+            "f16",
+            "-o",
+            "/tmp/x.png",
+        ],
+        &["--table-precision", "lookup"],
+    );
+    assert_fails(
+        &["brdf-map", "builtin:blazed", "--gpu", "--table-precision", "f64", "-o", "/tmp/x.png"],
+        &["f32", "chebK"],
+    );
+    assert_fails(&["bench", "gpu", "--table-precision", "cheb1"], &["--table-precision", "chebK"]);
+}
+
+/// A table built by `precompute --gpu` against the CPU's, from the files.
+#[test]
+fn precompute_on_the_gpu_writes_the_cpu_table_in_f32() {
+    if !have_gpu() {
+        return;
+    }
+    let dir = tmp();
+    let spec = "builtin:xenopeltis?size=5um&pixel=60nm";
+    let mut tables = Vec::new();
+    for extra in [None, Some("--gpu")] {
+        let t = dir.path().join(format!("t{}.npz", tables.len())).display().to_string();
+        let mut args = vec!["precompute", spec, "-o", &t, "--coherence", "2.5um", "--uv-resolution", "37"];
+        args.extend(extra);
+        let out = iridis(&args);
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        tables.push(iridis_diffraction::LookupTable::load(std::path::Path::new(&t)).unwrap());
+    }
+    assert!(tables[0].meta.built_on.is_none());
+    assert!(tables[1].meta.built_on.as_deref().is_some_and(|a| !a.is_empty()));
+    let err = iridis_gpu::table_build::table_error(&tables[0], &tables[1]);
+    eprintln!("precompute --gpu vs CPU: {err:?}");
+    // Measured in crates/gpu/tests/diffraction_gpu.rs: ≤ 8.2e-6 per power, ≤ 3.5e-7 of the sum.
+    assert!(err.per_power < 5e-5 && err.of_sum < 3e-6, "{err:?}");
+}
+
+#[test]
+fn ground_truth_maps_on_the_gpu_match_the_cpu_image() {
+    if !have_gpu() {
+        return;
+    }
+    let dir = tmp();
+    for method in ["ground-truth", "ground-truth-periodic"] {
+        let cpu = dir.path().join(format!("{method}_cpu.png"));
+        let gpu = dir.path().join(format!("{method}_gpu.png"));
+        for (png, extra) in [(&cpu, None), (&gpu, Some("--gpu"))] {
+            let p = png.display().to_string();
+            let mut args = vec![
+                "brdf-map",
+                "builtin:sine?size=3um&pixel=60nm",
+                "--method",
+                method,
+                "--incidence",
+                "20deg,10deg",
+                "--size",
+                "32",
+                "--exposure",
+                "50",
+                "-o",
+                &p,
+            ];
+            args.extend(extra);
+            let out = iridis(&args);
+            assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        }
+        let (a, b) = (png_lab(&cpu), png_lab(&gpu));
+        let d: Vec<f64> = a.iter().zip(&b).map(|(p, q)| iridis_color::lab::delta_e_2000(*p, *q)).collect();
+        let (mean, max) = (d.iter().sum::<f64>() / d.len() as f64, d.iter().fold(0.0f64, |m, &v| m.max(v)));
+        eprintln!("{method}: brdf-map --gpu vs CPU (PNG): ΔE00 mean {mean:.4}, max {max:.4}");
+        // 8-bit PNGs of maps that agree to ~1e-6 in |A|²: at most one level apart.
+        assert!(mean < 0.05 && max < 1.0, "{method}: mean {mean}, max {max}");
+        assert!(a.iter().filter(|l| l.l > 20.0).count() > 30, "{method}: the map must show something");
+    }
+}
+
+/// `compare --gpu` (ground truths and lookup tables on the GPU) gives the CPU's Table 2.
+#[test]
+fn compare_and_sweep_on_the_gpu_give_the_cpu_numbers() {
+    if !have_gpu() {
+        return;
+    }
+    let surface = "builtin:elaphe?size=3um&pixel=60nm";
+    let common = ["--methods", "lookup,reference", "--size", "24", "--uv-resolution", "41", "--json"];
+    let mut runs = Vec::new();
+    for extra in [None, Some("--gpu")] {
+        let mut args = vec!["compare", surface];
+        args.extend(common);
+        args.extend(extra);
+        runs.push(json_of(&args));
+    }
+    let rows = |v: &serde_json::Value| v["results"].as_array().unwrap().clone();
+    let (cpu, gpu) = (rows(&runs[0]), rows(&runs[1]));
+    assert_eq!(cpu.len(), gpu.len());
+    for (c, g) in cpu.iter().zip(&gpu) {
+        assert_eq!((&c["method"], &c["exposure_ru"]), (&g["method"], &g["exposure_ru"]));
+        let (a, b) = (c["mean"].as_f64().unwrap(), g["mean"].as_f64().unwrap());
+        eprintln!("{} at {} RU: mean ΔE00 {a:.4} (CPU) vs {b:.4} (GPU)", c["method"], c["exposure_ru"]);
+        assert!((a - b).abs() < 2e-3, "{c} vs {g}");
+    }
+    for (c, g) in runs[0]["periodic_extension_error"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .zip(runs[1]["periodic_extension_error"].as_array().unwrap())
+    {
+        let (a, b) = (c["mean"].as_f64().unwrap(), g["mean"].as_f64().unwrap());
+        assert!((a - b).abs() < 2e-3, "{c} vs {g}");
+    }
+    let dir = tmp();
+    let sheet = dir.path().join("sweep.png").display().to_string();
+    let v = json_of(&[
+        "sweep",
+        surface,
+        "--method",
+        "lookup",
+        "--param",
+        "uv-resolution",
+        "--values",
+        "21,41",
+        "--size",
+        "16",
+        "--gpu",
+        "-o",
+        &sheet,
+        "--json",
+    ]);
+    assert_eq!(v["points"].as_array().unwrap().len(), 2);
 }
 
 #[test]

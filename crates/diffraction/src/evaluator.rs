@@ -25,6 +25,11 @@ pub trait Evaluator: Send + Sync {
     fn as_lookup(&self) -> Option<&crate::table::Lookup> {
         None
     }
+    /// The direct sum behind this evaluator, if it is a ground truth: what a GPU needs to evaluate the same
+    /// numbers (`iridis-gpu`).
+    fn as_ground_truth(&self) -> Option<&GroundTruth> {
+        None
+    }
 }
 
 /// The thesis' reference shader (FLSS, Algorithm 3): at each λ of a uniform grid, the windowed DFT of every
@@ -148,6 +153,7 @@ const WINDOW_CUT: f64 = 1e-12;
 #[derive(Debug, Clone)]
 pub struct GroundTruth {
     samples: Samples,
+    lattice: Arc<Lattice>,
     dx: f64,
     dy: f64,
     pub shading: Shading,
@@ -160,16 +166,40 @@ pub struct GroundTruth {
 enum Samples {
     /// Sample positions relative to the patch centre and heights (nm), and window weights normalised to Σ g = 1.
     Finite { x: Vec<f64>, y: Vec<f64>, h: Vec<f64>, g: Vec<f64> },
-    /// The patch's samples (row-major, positions relative to its centre) and, per column and per row, the
-    /// images that carry window weight: `(m·Lx, g_x(x_i + m·Lx) / S_x)`, `S_x` the window's sum along x over
-    /// the whole lattice (so that the lattice's `Σ g = 1`).
-    Periodic { xs: Vec<f64>, ys: Vec<f64>, h: Vec<f64>, cols: Vec<Vec<(f64, f64)>>, rows: Vec<Vec<(f64, f64)>> },
+    /// The sample positions of the columns and rows relative to the patch centre; heights and images are the
+    /// [`Lattice`]'s.
+    Periodic { xs: Vec<f64>, ys: Vec<f64> },
+}
+
+/// The ground truth's sum in separable form, as a device that evaluates it elsewhere (a GPU) needs it. The
+/// window is separable, `g(x, y) = g_x(x) g_y(y)`, and every term of the sum is a patch sample `(i, t)` or one
+/// of its images at lattice column `I = i + m·cols` and row `T = t + n·rows` (same height), so
+///
+/// `A(s) = Σ_t Σ_i e^{2πi s w h_ti} · [Σ_m gx_im e^{2πi s u I dx}] · [Σ_n gy_tn e^{2πi s v T dy}]`
+///
+/// up to a phase common to all terms (positions are counted from the lattice's origin, not the patch centre,
+/// which leaves `|A|²` unchanged). The finite aperture has one image per column and row (`m = n = 0`) with the
+/// window's weights; the periodic one the images of [`Aperture::Periodic`]. Weights are normalised so that the
+/// whole window sums to 1.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Lattice {
+    pub rows: usize,
+    pub cols: usize,
+    /// Pixel sizes (nm).
+    pub dx: f64,
+    pub dy: f64,
+    /// Heights (nm), row-major, row `t` at `y = t·dy` (the patch's order).
+    pub heights: Vec<f64>,
+    /// Per column `i`, its images that carry window weight: `(m, gx)`, lattice column `i + m·cols`.
+    pub column_images: Vec<Vec<(i64, f64)>>,
+    /// Per row `t`, its images: `(n, gy)`, lattice row `t + n·rows`.
+    pub row_images: Vec<Vec<(i64, f64)>>,
 }
 
 /// The images along one axis: for each sample position `pos[i]` (relative to the patch centre), the shifts
 /// `m·period` and weights `exp(−(pos + m·period)²/(2σ²))` at or above [`WINDOW_CUT`], normalised by the sum over
 /// every sample and image (those cut included).
-fn axis_images(pos: &[f64], period: f64, sigma: f64) -> Result<Vec<Vec<(f64, f64)>>, DiffractionError> {
+fn axis_images(pos: &[f64], period: f64, sigma: f64) -> Result<Vec<Vec<(i64, f64)>>, DiffractionError> {
     // exp(−r²/2σ²) ≥ 1e-12 needs |r| ≤ σ √(2 ln 1e12) ≈ 7.43 σ; one period more covers every sample; ten more
     // σ make the normalisation's left-out tail < e^{-150}.
     let reach = sigma * (2.0 * (1.0 / WINDOW_CUT).ln()).sqrt();
@@ -195,7 +225,7 @@ fn axis_images(pos: &[f64], period: f64, sigma: f64) -> Result<Vec<Vec<(f64, f64
             let g = (-(r * r) / (2.0 * sigma * sigma)).exp();
             total += g;
             if g >= WINDOW_CUT {
-                kept.push((m as f64 * period, g));
+                kept.push((m, g));
             }
         }
         out.push(kept);
@@ -206,14 +236,15 @@ fn axis_images(pos: &[f64], period: f64, sigma: f64) -> Result<Vec<Vec<(f64, f64
     Ok(out)
 }
 
-/// `W[i][k] = Σ_m g_m exp(2πi (s0 + k·ds) · a · shift_m)` for each position's images, row-major
+/// `W[i][k] = Σ_m g_m exp(2πi (s0 + k·ds) · a · m·period)` for each position's images `(m, g_m)`, row-major
 /// `[i · count + k]`, with one extra row of zeros at the end (for padding lanes).
-fn image_factors(images: &[Vec<(f64, f64)>], a: f64, s0: f64, ds: f64, count: usize) -> Vec<Complex64> {
+fn image_factors(images: &[Vec<(i64, f64)>], period: f64, a: f64, s0: f64, ds: f64, count: usize) -> Vec<Complex64> {
     let tau = std::f64::consts::TAU;
     let mut out = vec![Complex64::new(0.0, 0.0); (images.len() + 1) * count];
     for (i, list) in images.iter().enumerate() {
         let row = &mut out[i * count..(i + 1) * count];
-        for &(shift, g) in list {
+        for &(m, g) in list {
+            let shift = m as f64 * period;
             let (s, c) = (tau * s0 * a * shift).sin_cos();
             let (rs, rc) = (tau * ds * a * shift).sin_cos();
             let mut z = Complex64::new(c * g, s * g);
@@ -346,7 +377,7 @@ impl GroundTruth {
         }
         let sigma_s = coherence_nm / 4.0;
         let (xc, yc) = ((patch.cols - 1) as f64 * patch.dx / 2.0, (patch.rows - 1) as f64 * patch.dy / 2.0);
-        let samples = match aperture {
+        let (samples, lattice) = match aperture {
             Aperture::Finite => {
                 let (mut x, mut y, mut g) = (Vec::new(), Vec::new(), Vec::new());
                 for j in 0..patch.rows {
@@ -367,7 +398,25 @@ impl GroundTruth {
                 let cut = WINDOW_CUT * g.iter().fold(0.0f64, |m, &v| m.max(v));
                 let keep: Vec<usize> = (0..g.len()).filter(|&k| g[k] >= cut).collect();
                 let pick = |v: &[f64]| keep.iter().map(|&k| v[k]).collect::<Vec<f64>>();
-                Samples::Finite { x: pick(&x), y: pick(&y), h: pick(&patch.heights), g: pick(&g) }
+                let samples = Samples::Finite { x: pick(&x), y: pick(&y), h: pick(&patch.heights), g: pick(&g) };
+                // The same window, separable: g = g_x g_y, normalised by S_x S_y = Σ g. Per axis the 1e-12 cut
+                // keeps the square around the disk kept above; the corners it adds each weigh < 1e-12 of the peak.
+                let axis = |n: usize, d: f64, c: f64| -> Vec<Vec<(i64, f64)>> {
+                    let g: Vec<f64> =
+                        (0..n).map(|i| (-(i as f64 * d - c).powi(2) / (2.0 * sigma_s * sigma_s)).exp()).collect();
+                    let (sum, peak) = (g.iter().sum::<f64>(), g.iter().fold(0.0f64, |m, &v| m.max(v)));
+                    g.iter().map(|&v| if v >= WINDOW_CUT * peak { vec![(0, v / sum)] } else { Vec::new() }).collect()
+                };
+                let lattice = Lattice {
+                    rows: patch.rows,
+                    cols: patch.cols,
+                    dx: patch.dx,
+                    dy: patch.dy,
+                    heights: patch.heights.clone(),
+                    column_images: axis(patch.cols, patch.dx, xc),
+                    row_images: axis(patch.rows, patch.dy, yc),
+                };
+                (samples, lattice)
             }
             Aperture::Periodic => {
                 let xs: Vec<f64> = (0..patch.cols).map(|i| i as f64 * patch.dx - xc).collect();
@@ -375,9 +424,16 @@ impl GroundTruth {
                 let (lx, ly) = patch.extent();
                 // The same 1e-12 cut, per axis (g = g_x g_y, peak 1): the lattice kept is the square around the
                 // finite aperture's disk.
-                let cols = axis_images(&xs, lx, sigma_s)?;
-                let rows = axis_images(&ys, ly, sigma_s)?;
-                Samples::Periodic { xs, ys, h: patch.heights.clone(), cols, rows }
+                let lattice = Lattice {
+                    rows: patch.rows,
+                    cols: patch.cols,
+                    dx: patch.dx,
+                    dy: patch.dy,
+                    heights: patch.heights.clone(),
+                    column_images: axis_images(&xs, lx, sigma_s)?,
+                    row_images: axis_images(&ys, ly, sigma_s)?,
+                };
+                (Samples::Periodic { xs, ys }, lattice)
             }
         };
         let lam = spectral.wavelengths();
@@ -391,7 +447,7 @@ impl GroundTruth {
             spectral.check_coherence(coherence_nm)?;
             weights = weights.scaled(|l| crate::spectral::radiometric_gain(l, coherence_nm));
         }
-        Ok(Self { samples, dx: patch.dx, dy: patch.dy, shading, wavenumbers, weights })
+        Ok(Self { samples, lattice: Arc::new(lattice), dx: patch.dx, dy: patch.dy, shading, wavenumbers, weights })
     }
 
     /// The aperture this ground truth sums over.
@@ -411,10 +467,12 @@ impl GroundTruth {
         let uvw = uvw(wi, wr);
         let mut acc = match &self.samples {
             Samples::Finite { x, y, h, g } => finite_sum(x, y, h, g, uvw, s0, ds, count),
-            Samples::Periodic { xs, ys, h, cols, rows } => {
-                let wx = image_factors(cols, uvw[0], s0, ds, count);
-                let wy = image_factors(rows, uvw[1], s0, ds, count);
-                periodic_sum(xs, ys, h, &wx, &wy, uvw, s0, ds, count)
+            Samples::Periodic { xs, ys } => {
+                let l = &self.lattice;
+                let (lx, ly) = (l.cols as f64 * l.dx, l.rows as f64 * l.dy);
+                let wx = image_factors(&l.column_images, lx, uvw[0], s0, ds, count);
+                let wy = image_factors(&l.row_images, ly, uvw[1], s0, ds, count);
+                periodic_sum(xs, ys, &l.heights, &wx, &wy, uvw, s0, ds, count)
             }
         };
         for (k, a) in acc.iter_mut().enumerate() {
@@ -433,6 +491,44 @@ impl GroundTruth {
         let grid = self.weights.wavelengths_nm().to_vec();
         self.weights = SpectralWeights::with_light(&grid, light, observer);
         self
+    }
+
+    /// The sum in separable form, for devices that evaluate it elsewhere.
+    pub fn lattice(&self) -> &Lattice {
+        &self.lattice
+    }
+
+    /// The wavenumbers `1/λ` (1/nm) of the spectral integral, uniform and increasing.
+    pub fn wavenumbers(&self) -> &[f64] {
+        &self.wavenumbers
+    }
+
+    /// The colour (eq. 9) from `|A|²` at each of [`GroundTruth::wavenumbers`]: `X = Σ_λ w_x(λ) C(λ) |A(λ)|²`,
+    /// leaving out the wavenumbers beyond Nyquist — what [`Evaluator::xyz`] does after its sums, for powers
+    /// computed elsewhere (a GPU). Black below the horizon.
+    pub fn xyz_from_power(&self, wi: Vec3, wr: Vec3, power: &[f64]) -> Xyz {
+        let n = self.wavenumbers.len();
+        if wi[2] <= 0.0 || wr[2] <= 0.0 || power.len() != n {
+            return Xyz::default();
+        }
+        let [u, v, _] = uvw(wi, wr);
+        let lambda_independent = !self.shading.fresnel.depends_on_wavelength();
+        let c0 = self.shading.factor(500.0, wi, wr);
+        let mut acc = [0.0; 3];
+        // The weights are in increasing λ, the powers in increasing wavenumber.
+        for (k, wt) in self.weights.weights().iter().enumerate() {
+            let l = self.weights.wavelengths_nm()[k];
+            // The wavenumber as `amplitudes` forms it, so both leave out the same ones.
+            let ds = self.wavenumbers[1] - self.wavenumbers[0];
+            if !self.nyquist_ok(u, v, 1.0 / (self.wavenumbers[0] + ds * (n - 1 - k) as f64)) {
+                continue;
+            }
+            let rho = power[n - 1 - k] * if lambda_independent { c0 } else { self.shading.factor(l, wi, wr) };
+            for c in 0..3 {
+                acc[c] += wt[c] * rho;
+            }
+        }
+        Xyz::new(acc[0], acc[1], acc[2])
     }
 
     /// `A(λ)` at one wavelength.
@@ -457,19 +553,11 @@ impl Evaluator for GroundTruth {
         }
         let n = self.wavenumbers.len();
         let ds = self.wavenumbers[1] - self.wavenumbers[0];
-        let amps = self.amplitudes(wi, wr, self.wavenumbers[0], ds, n);
-        let lambda_independent = !self.shading.fresnel.depends_on_wavelength();
-        let c0 = self.shading.factor(500.0, wi, wr);
-        let mut acc = [0.0; 3];
-        // The weights are in increasing λ, the amplitudes in increasing wavenumber.
-        for (k, wt) in self.weights.weights().iter().enumerate() {
-            let a = amps[n - 1 - k];
-            let l = self.weights.wavelengths_nm()[k];
-            let rho = a.norm_sqr() * if lambda_independent { c0 } else { self.shading.factor(l, wi, wr) };
-            for c in 0..3 {
-                acc[c] += wt[c] * rho;
-            }
-        }
-        Xyz::new(acc[0], acc[1], acc[2])
+        let power: Vec<f64> =
+            self.amplitudes(wi, wr, self.wavenumbers[0], ds, n).iter().map(|a| a.norm_sqr()).collect();
+        self.xyz_from_power(wi, wr, &power)
+    }
+    fn as_ground_truth(&self) -> Option<&GroundTruth> {
+        Some(self)
     }
 }

@@ -13,6 +13,8 @@
 //! Every evaluator implements [`Evaluator`]: colour (XYZ) for a pair of directions, and — where the method
 //! has it — the spectral reflectance at one wavelength. [`map::brdf_map`] renders any of them.
 
+pub mod accel;
+pub mod encoding;
 pub mod energy;
 pub mod evaluator;
 pub mod geometry;
@@ -23,7 +25,8 @@ pub mod spectral;
 pub mod table;
 pub mod taylor;
 
-pub use evaluator::{Aperture, Evaluator, GroundTruth, Reference};
+pub use accel::Accelerator;
+pub use evaluator::{Aperture, Evaluator, GroundTruth, Lattice, Reference};
 pub use geometry::{Fresnel, FresnelConvention, Shading};
 pub use patch::{Coherence, Patch};
 pub use point::{point_query, PointQuery};

@@ -43,6 +43,41 @@ impl Default for TableParams {
     }
 }
 
+impl TableParams {
+    /// Checks the grid: 3–4001 samples per axis, exponent 1–20.
+    pub fn validate(&self) -> Result<(), DiffractionError> {
+        let res = self.uv_resolution;
+        if !(3..=4001).contains(&res) {
+            return Err(DiffractionError::Invalid(format!("u-v resolution {res} must be between 3 and 4001")));
+        }
+        if !(self.uv_power.is_finite() && self.uv_power >= 1.0 && self.uv_power <= 20.0) {
+            return Err(DiffractionError::Invalid(format!("u-v power {} must be between 1 and 20", self.uv_power)));
+        }
+        Ok(())
+    }
+
+    /// The grid values of both axes, increasing ([`grid_value`]).
+    pub fn grid(&self) -> Vec<f64> {
+        (0..self.uv_resolution).map(|i| grid_value(i, self.uv_resolution, self.uv_power)).collect()
+    }
+}
+
+/// `k^n / n!` for `n = 0..=N` at each wavelength, `k = 2π/λ`: the Taylor factors of eq. 6 that turn `F_n` into
+/// `G_n` (eq. 11–12).
+pub fn taylor_scale(wavelengths_nm: &[f64], n: usize) -> Vec<Vec<f64>> {
+    wavelengths_nm
+        .iter()
+        .map(|&l| {
+            let k = std::f64::consts::TAU / l;
+            let mut s = vec![1.0; n + 1];
+            for m in 1..=n {
+                s[m] = s[m - 1] * k / m as f64;
+            }
+            s
+        })
+        .collect()
+}
+
 /// Everything needed to interpret (and reproduce) a table.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct TableMeta {
@@ -82,6 +117,10 @@ pub struct TableMeta {
     /// written before it existed, which are relative.
     #[serde(default = "relative_units")]
     pub units: String,
+    /// The device that computed the values when it was not the CPU (in `f64`): a GPU adapter's name (the GPU
+    /// computes in `f32`, docs/gpu.md). Absent for tables built on the CPU.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub built_on: Option<String>,
 }
 
 fn relative_units() -> String {
@@ -183,31 +222,15 @@ impl LookupTable {
         surface: &str,
         progress: &(dyn Fn(usize) + Sync),
     ) -> Result<Self, DiffractionError> {
+        params.validate()?;
         let res = params.uv_resolution;
-        if !(3..=4001).contains(&res) {
-            return Err(DiffractionError::Invalid(format!("u-v resolution {res} must be between 3 and 4001")));
-        }
-        if !(params.uv_power.is_finite() && params.uv_power >= 1.0 && params.uv_power <= 20.0) {
-            return Err(DiffractionError::Invalid(format!("u-v power {} must be between 1 and 20", params.uv_power)));
-        }
         spectral.check_coherence(terms.coherence_nm)?;
         let n = terms.n_max;
         let np = 2 * n + 1;
-        let uv: Vec<f64> = (0..res).map(|i| grid_value(i, res, params.uv_power)).collect();
-        let lambdas = spectral.wavelengths().to_vec();
-        let weights = spectral.weights.weights().to_vec();
-        // k^n / n! per wavelength, for n = 0..=N.
-        let scale: Vec<Vec<f64>> = lambdas
-            .iter()
-            .map(|&l| {
-                let k = std::f64::consts::TAU / l;
-                let mut s = vec![1.0; n + 1];
-                for m in 1..=n {
-                    s[m] = s[m - 1] * k / m as f64;
-                }
-                s
-            })
-            .collect();
+        let uv = params.grid();
+        let lambdas = spectral.wavelengths();
+        let weights = spectral.weights.weights();
+        let scale = taylor_scale(lambdas, n);
         let done = std::sync::atomic::AtomicUsize::new(0);
         let mut data = vec![0.0; res * res * 3 * np];
         data.par_chunks_mut(res * 3 * np).enumerate().for_each(|(iv, row)| {
@@ -246,6 +269,30 @@ impl LookupTable {
             }
             progress(done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1);
         });
+        Self::from_data(terms, spectral, params, surface, data, None)
+    }
+
+    /// A table whose values were computed elsewhere — `data` in this type's layout, for these terms, settings
+    /// and grid — with the metadata [`LookupTable::build`] records; `built_on` names the device (a GPU adapter,
+    /// which computes in `f32`), `None` for the CPU.
+    pub fn from_data(
+        terms: &TaylorTerms,
+        spectral: &SpectralSetup,
+        params: TableParams,
+        surface: &str,
+        data: Vec<f64>,
+        built_on: Option<String>,
+    ) -> Result<Self, DiffractionError> {
+        params.validate()?;
+        let (res, n) = (params.uv_resolution, terms.n_max);
+        if data.len() != res * res * 3 * (2 * n + 1) {
+            return Err(DiffractionError::Invalid(format!(
+                "{} table values for a {res}² grid with N = {n} (expected {})",
+                data.len(),
+                res * res * 3 * (2 * n + 1)
+            )));
+        }
+        let lambdas = spectral.wavelengths().to_vec();
         let meta = TableMeta {
             format: FORMAT.into(),
             version: FORMAT_VERSION,
@@ -269,8 +316,9 @@ impl LookupTable {
             surface_fingerprint: Some(terms.fingerprint.clone()),
             light_spectrum: spectral.light.clone(),
             units: spectral.units.name().into(),
+            built_on,
         };
-        Ok(Self { meta, uv, wavelengths_nm: lambdas, data })
+        Ok(Self { meta, uv: params.grid(), wavelengths_nm: lambdas, data })
     }
 
     pub fn powers(&self) -> usize {

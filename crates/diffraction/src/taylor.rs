@@ -156,16 +156,11 @@ impl TaylorTerms {
         if !self.within_nyquist(fx, fy) {
             return;
         }
-        let (lx, ly) = (self.cols as f64 * self.dx, self.rows as f64 * self.dy);
-        let r = 4.0 * self.sigma_f;
+        let (lx, ly) = self.extent();
+        let r = self.window_radius();
         let inv2s2 = 1.0 / (2.0 * self.sigma_f * self.sigma_f);
-        // Signed bin ranges that exist in the DFT: s ∈ [−⌊(cols−1)/2⌋, ⌊cols/2⌋].
-        let (smin, smax) = (-(((self.cols - 1) / 2) as i64), (self.cols / 2) as i64);
-        let (tmin, tmax) = (-(((self.rows - 1) / 2) as i64), (self.rows / 2) as i64);
-        let s0 = (((fx - r) * lx).ceil() as i64).max(smin);
-        let s1 = (((fx + r) * lx).floor() as i64).min(smax);
-        let t0 = (((fy - r) * ly).ceil() as i64).max(tmin);
-        let t1 = (((fy + r) * ly).floor() as i64).min(tmax);
+        let (s0, s1) = window_bins(fx, r, lx, self.cols);
+        let (t0, t1) = window_bins(fy, r, ly, self.rows);
         for t in t0..=t1 {
             let dfy = fy - t as f64 / ly;
             let ti = t.rem_euclid(self.rows as i64) as usize;
@@ -184,10 +179,34 @@ impl TaylorTerms {
         }
     }
 
+    /// The patch's extent `(Lx, Ly)` (nm): DFT bin `s` sits at frequency `s / Lx`.
+    pub fn extent(&self) -> (f64, f64) {
+        (self.cols as f64 * self.dx, self.rows as f64 * self.dy)
+    }
+
+    /// Radius `4σ_f` (cycles/nm) within which [`TaylorTerms::windowed`] takes bins.
+    pub fn window_radius(&self) -> f64 {
+        4.0 * self.sigma_f
+    }
+
+    /// Every coefficient `c_n[s, t]`, interleaved as [`TaylorTerms::bin`] reads them: index
+    /// `(t · cols + s) · (N + 1) + n` (what a GPU uploads to evaluate eq. 8 itself).
+    pub fn coefficients(&self) -> &[Complex64] {
+        &self.coeffs
+    }
+
     /// Bytes held by the coefficients.
     pub fn memory_bytes(&self) -> usize {
         self.coeffs.len() * std::mem::size_of::<Complex64>()
     }
+}
+
+/// The signed DFT bins `s` along one axis whose frequencies `s / length` lie within `r` of `f`, among those the
+/// DFT of `n` samples has (`−⌊(n−1)/2⌋ ..= ⌊n/2⌋`, never wrapped past Nyquist): `(first, last)`, empty when
+/// `first > last`. The bins eq. 8's window takes at `f`.
+pub fn window_bins(f: f64, r: f64, length: f64, n: usize) -> (i64, i64) {
+    let (lo, hi) = (-(((n - 1) / 2) as i64), (n / 2) as i64);
+    ((((f - r) * length).ceil() as i64).max(lo), (((f + r) * length).floor() as i64).min(hi))
 }
 
 /// Signed frequency index of DFT bin `k` of `n`: `0, 1, …, ⌊n/2⌋, −⌊(n−1)/2⌋, …, −1`.

@@ -16,26 +16,38 @@
 //!   with a thickness gradient and a spatially varying thickness texture (SVT, eq. 4.3–4.4) — by default
 //!   through a colour table over `cos θ` × thickness offset filled by that evaluation (the fast path).
 //!
-//! Both shaders also write the displayed pixel (exposure in RU, XYZ → linear sRGB, clip, encode), so one
+//! * [`table_build`]: `iridis precompute --gpu` — the tables `I_p(u, v)` themselves (eq. 8–12), one grid point
+//!   per invocation, the numbers of [`iridis_diffraction::LookupTable::build`] in `f32`;
+//! * [`ground_truth`]: `--method ground-truth --gpu` — `|A|²` of [`iridis_diffraction::GroundTruth`] (finite
+//!   aperture or periodic extension) per direction pair and wavenumber, with fixed-point phases;
+//! * [`accel`]: both behind [`iridis_diffraction::Accelerator`], for the lab's commands.
+//!
+//! The lookup and film shaders also write the displayed pixel (exposure in RU, XYZ → linear sRGB, clip, encode), so one
 //! dispatch is one finished frame.
 //!
 //! On a machine without a GPU, Mesa's software Vulkan driver (lavapipe, Debian package `mesa-vulkan-drivers`)
 //! provides an adapter. Without any adapter [`Gpu::new`] returns [`GpuError::NoAdapter`], whose message says
 //! how to install it.
 
+pub mod accel;
 pub mod film;
+pub mod ground_truth;
 pub mod lookup;
 #[cfg(feature = "viewer")]
 mod present;
 pub mod scene;
+pub mod table_build;
 #[cfg(feature = "viewer")]
 pub mod viewer;
 
 use std::time::{Duration, Instant};
 
+pub use accel::GpuAccelerator;
 pub use film::{FilmFrame, FilmOutput, FilmPath, FilmPathUsed, FilmRun, GpuFilm};
+pub use ground_truth::{ground_truth_map, GpuGroundTruth};
 pub use lookup::{GpuLookup, MapFrame, MapOutput};
 pub use scene::{GpuScene, SceneFilm, SceneFrame, StackOverflow};
+pub use table_build::build_table;
 
 /// What the user reads when no adapter is found.
 pub const NO_ADAPTER_HELP: &str = "no GPU adapter found (iridis uses Vulkan through wgpu). Install a Vulkan driver; \

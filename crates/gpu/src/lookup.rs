@@ -10,6 +10,7 @@
 //! N = 22 is 136 MB) — so the shader is the CPU's `Lookup::sum` with `Precision::F32`.
 
 use iridis_color::{ToneMap, Xyz};
+use iridis_diffraction::encoding::{EncodedTable, TableEncoding};
 use iridis_diffraction::geometry::{Fresnel, FresnelConvention, FresnelSource};
 use iridis_diffraction::LookupTable;
 use wgpu::util::DeviceExt;
@@ -36,6 +37,12 @@ pub struct GpuLookup<'g> {
     f0: f32,
     shadowing: bool,
     convention: FresnelConvention,
+    /// How the cells are stored; [`TableEncoding::F32`] runs `lookup.wgsl`, the others `lookup_encoded.wgsl`
+    /// with their per-(channel, coefficient) scales.
+    encoding: TableEncoding,
+    coefficients: u32,
+    words: u32,
+    scales: Option<wgpu::Buffer>,
 }
 
 /// A rendered map read back: linear XYZ per pixel (row-major, row 0 at the top) and the displayed 8-bit sRGB.
@@ -74,6 +81,19 @@ impl<'g> GpuLookup<'g> {
         shadowing: bool,
         max_binding_bytes: u64,
     ) -> Result<Self, GpuError> {
+        Self::encoded(gpu, table, fresnel, shadowing, TableEncoding::F32, max_binding_bytes)
+    }
+
+    /// As [`GpuLookup::with_binding_limit`], the table stored in `encoding` (`iridis_diffraction::encoding`):
+    /// `f16` powers or Chebyshev coefficients in `w` instead of the `f32` powers.
+    pub fn encoded(
+        gpu: &'g Gpu,
+        table: &LookupTable,
+        fresnel: Fresnel,
+        shadowing: bool,
+        encoding: TableEncoding,
+        max_binding_bytes: u64,
+    ) -> Result<Self, GpuError> {
         let res = table.meta.uv_resolution;
         let np = table.powers();
         if res < 3 || table.uv.len() != res || table.data.len() != res * res * 3 * np {
@@ -84,33 +104,56 @@ impl<'g> GpuLookup<'g> {
                 table.data.len()
             )));
         }
+        // The cells as 32-bit words: the f32 powers themselves, or the encoding's words and scales.
+        let (words, per_row_cell, coefficients, scales) = match encoding {
+            TableEncoding::F32 => {
+                (table.data.iter().map(|&v| (v as f32).to_bits()).collect::<Vec<u32>>(), np, np, None)
+            }
+            _ => {
+                let e = EncodedTable::encode(table, encoding).map_err(|e| GpuError::Invalid(e.to_string()))?;
+                // Two scale slots per word and channel (the padding half of an odd count gets 0).
+                let mut scales = vec![0f32; 3 * 2 * e.words_per_channel];
+                for c in 0..3 {
+                    for j in 0..e.per_channel {
+                        scales[c * 2 * e.words_per_channel + j] = e.scales[c * e.per_channel + j];
+                    }
+                }
+                let (wpc, k) = (e.words_per_channel, e.per_channel);
+                (e.words, wpc, k, Some(scales))
+            }
+        };
         // Rows of v per buffer: a cell needs rows iv and iv + 1, so buffer k holds rows kR ..= kR + R.
-        let row = (res * 3 * np * 4) as u64;
+        let per_row = res * 3 * per_row_cell;
+        let row = (per_row * 4) as u64;
         let max = gpu.limits.max_storage_buffer_binding_size.min(gpu.limits.max_buffer_size).min(max_binding_bytes);
         let rows_per_chunk = ((max / row).saturating_sub(1) as usize).min(res - 1);
         let chunks = if rows_per_chunk == 0 { usize::MAX } else { (res - 1).div_ceil(rows_per_chunk) };
         if chunks > MAX_CHUNKS {
             return Err(GpuError::TooLarge(format!(
-                "the lookup table ({:.1} MB in f32) does not fit {MAX_CHUNKS} storage buffers of {:.1} MB on {}; \
-                 precompute it with a smaller --uv-resolution or fewer --terms (the size grows with res² × (2N+1))",
-                (table.data.len() * 4) as f64 / 1e6,
+                "the lookup table ({:.1} MB as {}) does not fit {MAX_CHUNKS} storage buffers of {:.1} MB on {}; \
+                 precompute it with a smaller --uv-resolution or fewer --terms (the size grows with res² × (2N+1)), \
+                 or store it more compactly (--table-precision f16 or cheb12)",
+                (words.len() * 4) as f64 / 1e6,
+                encoding.name(),
                 max as f64 / 1e6,
                 gpu.adapter_name()
             )));
         }
-        let per_row = res * 3 * np;
-        let parts: Vec<Vec<f32>> = (0..MAX_CHUNKS)
+        let parts: Vec<&[u32]> = (0..MAX_CHUNKS)
             .map(|k| {
                 let first = k * rows_per_chunk;
                 if k >= chunks {
-                    return vec![0.0];
+                    return &[0u32][..];
                 }
                 let last = (first + rows_per_chunk + 1).min(res);
-                table.data[first * per_row..last * per_row].iter().map(|&v| v as f32).collect()
+                &words[first * per_row..last * per_row]
             })
             .collect();
-        let source = format!("{COMMON_WGSL}\n{LOOKUP_WGSL}\n{}", include_str!("shaders/lookup.wgsl"));
-        let (tables, pipeline) = gpu.checked("uploading the lookup table and compiling the shader", || {
+        let source = match encoding {
+            TableEncoding::F32 => format!("{COMMON_WGSL}\n{LOOKUP_WGSL}\n{}", include_str!("shaders/lookup.wgsl")),
+            _ => format!("{COMMON_WGSL}\n{LOOKUP_WGSL}\n{}", include_str!("shaders/lookup_encoded.wgsl")),
+        };
+        let (tables, pipeline, scales) = gpu.checked("uploading the lookup table and compiling the shader", || {
             let bufs: Vec<wgpu::Buffer> = parts
                 .iter()
                 .map(|part| {
@@ -121,6 +164,13 @@ impl<'g> GpuLookup<'g> {
                     })
                 })
                 .collect();
+            let scales = scales.as_ref().map(|s| {
+                gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("iridis lookup scales"),
+                    contents: bytemuck::cast_slice(s),
+                    usage: wgpu::BufferUsages::STORAGE,
+                })
+            });
             let module = gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
                 label: Some("lookup.wgsl"),
                 source: wgpu::ShaderSource::Wgsl(source.into()),
@@ -133,7 +183,7 @@ impl<'g> GpuLookup<'g> {
                 compilation_options: Default::default(),
                 cache: None,
             });
-            (bufs, pipeline)
+            (bufs, pipeline, scales)
         })?;
         let f0 = fresnel.reflectance(500.0, 1.0) as f32;
         Ok(Self {
@@ -148,7 +198,16 @@ impl<'g> GpuLookup<'g> {
             f0,
             shadowing,
             convention: FresnelConvention::Physical,
+            encoding,
+            coefficients: coefficients as u32,
+            words: per_row_cell as u32,
+            scales,
         })
+    }
+
+    /// How the table is stored on the GPU.
+    pub fn encoding(&self) -> TableEncoding {
+        self.encoding
     }
 
     /// The adapter this table lives on.
@@ -184,19 +243,23 @@ impl<'g> GpuLookup<'g> {
             let display = display_buffer(gpu, tone);
             let out_xyz = storage_out(gpu, "map xyz", pixels * 16);
             let out_rgba = storage_out(gpu, "map rgba", pixels * 4);
+            let mut entries = vec![
+                entry(0, &params),
+                entry(1, &display),
+                entry(2, &out_xyz),
+                entry(3, &out_rgba),
+                entry(4, &self.tables[0]),
+                entry(5, &self.tables[1]),
+                entry(6, &self.tables[2]),
+                entry(7, &self.tables[3]),
+            ];
+            if let Some(s) = &self.scales {
+                entries.push(entry(8, s));
+            }
             let bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("lookup bindings"),
                 layout: &self.pipeline.get_bind_group_layout(0),
-                entries: &[
-                    entry(0, &params),
-                    entry(1, &display),
-                    entry(2, &out_xyz),
-                    entry(3, &out_rgba),
-                    entry(4, &self.tables[0]),
-                    entry(5, &self.tables[1]),
-                    entry(6, &self.tables[2]),
-                    entry(7, &self.tables[3]),
-                ],
+                entries: &entries,
             });
             MapFrame { lookup: self, size: size as u32, params, bind, out_xyz, out_rgba, timer: gpu.timer() }
         })
@@ -236,9 +299,11 @@ impl<'g> GpuLookup<'g> {
             f(n_re),
             f(n_im),
             self.rows_per_chunk,
-            0,
-            0,
-            0,
+            // lookup_encoded.wgsl: coefficients and words per channel, mode (bit 0 f16, bit 1 Chebyshev).
+            self.coefficients,
+            self.words,
+            u32::from(self.encoding.is_half())
+                | if matches!(self.encoding, TableEncoding::Chebyshev { .. }) { 2 } else { 0 },
         ]
     }
 }

@@ -4,11 +4,11 @@
 use iridis_color::{ToneMap, Xyz};
 use iridis_diffraction::geometry::{direction, Vec3};
 use iridis_diffraction::map::view_direction;
-use iridis_diffraction::Evaluator;
+use iridis_diffraction::{Accelerator, Evaluator};
 use iridis_plot::RgbImage;
 use rayon::prelude::*;
 
-use crate::Progress;
+use crate::{LabError, Progress};
 
 /// One sample of a pixel: light direction, view direction and the weight of its XYZ in the pixel's mean.
 pub type Sample = (Vec3, Vec3, f64);
@@ -72,6 +72,47 @@ pub fn render(evaluator: &dyn Evaluator, pixels: &Pixels, progress: Progress) ->
             out
         })
         .collect()
+}
+
+/// [`render`] on an accelerator: every sample of every pixel as one batch of direction pairs, summed per pixel
+/// with the samples' weights. `None` when the accelerator does not evaluate this evaluator. `progress(pixels_done)`.
+pub fn render_on(
+    accelerator: &dyn Accelerator,
+    evaluator: &dyn Evaluator,
+    pixels: &Pixels,
+    progress: Progress,
+) -> Option<Result<Vec<Option<Xyz>>, LabError>> {
+    let pairs: Vec<(Vec3, Vec3)> = pixels.samples.iter().flatten().map(|&(wi, wr, _)| (wi, wr)).collect();
+    // Pairs done → pixels done (the samples of a pixel are consecutive).
+    let ends: Vec<usize> = pixels
+        .samples
+        .iter()
+        .scan(0, |n, s| {
+            *n += s.len();
+            Some(*n)
+        })
+        .collect();
+    let report = |done: usize| progress(ends.partition_point(|&e| e <= done));
+    let xyz = match accelerator.xyz_pairs(evaluator, &pairs, &report)? {
+        Ok(x) => x,
+        Err(e) => return Some(Err(e.into())),
+    };
+    let mut next = xyz.iter();
+    Some(Ok(pixels
+        .samples
+        .iter()
+        .map(|s| {
+            (!s.is_empty()).then(|| {
+                let mut acc = [0.0; 3];
+                for (&(_, _, w), c) in s.iter().zip(next.by_ref()) {
+                    acc[0] += w * c.x;
+                    acc[1] += w * c.y;
+                    acc[2] += w * c.z;
+                }
+                Xyz::new(acc[0], acc[1], acc[2])
+            })
+        })
+        .collect()))
 }
 
 /// The picture a camera records at `exposure_ru` (XYZ × exposure → linear sRGB → clip → sRGB curve).

@@ -6,10 +6,12 @@
 use std::str::FromStr;
 use std::sync::{Arc, Mutex};
 
-use iridis_color::{Observer, Spectrum};
+use iridis_color::{Observer, Spectrum, Xyz};
 use iridis_diffraction::table::{Lookup, LookupTable, Precision, Provenance, TableParams};
 use iridis_diffraction::taylor::terms_for_bound;
-use iridis_diffraction::{Aperture, Evaluator, GroundTruth, Patch, Reference, Shading, SpectralSetup, TaylorTerms};
+use iridis_diffraction::{
+    Accelerator, Aperture, Evaluator, GroundTruth, Patch, Reference, Shading, SpectralSetup, TaylorTerms,
+};
 
 use crate::analysis::{dominant_period, Axis};
 use crate::stam::{Bump, StamGaussian, StamPeriodic};
@@ -143,6 +145,8 @@ pub struct MethodConfig {
     pub period_y_nm: Option<f64>,
     /// ε of Stam's wavelength selection (paper: 0.01).
     pub stam_epsilon: f64,
+    /// A device (the GPU) that builds lookup tables and renders the ground truths; the CPU when `None`.
+    pub accelerator: Option<Arc<dyn Accelerator>>,
 }
 
 impl Default for MethodConfig {
@@ -161,6 +165,7 @@ impl Default for MethodConfig {
             period_x_nm: None,
             period_y_nm: None,
             stam_epsilon: 0.01,
+            accelerator: None,
         }
     }
 }
@@ -259,7 +264,10 @@ impl Workbench {
                     }
                     None => {
                         let terms = self.terms(&crate::no_progress)?;
-                        LookupTable::build(&terms, &c.spectral, c.table, &self.surface, progress)?
+                        match &c.accelerator {
+                            Some(a) => a.build_table(&terms, &c.spectral, c.table, &self.surface, progress)?,
+                            None => LookupTable::build(&terms, &c.spectral, c.table, &self.surface, progress)?,
+                        }
                     }
                 };
                 Box::new(Lookup::new(Arc::new(table), c.shading.clone(), c.precision)?)
@@ -297,6 +305,24 @@ impl Workbench {
                 Box::new(StamGaussian::new(&self.patch, c.coherence_nm, c.shading.clone(), c.spectral.clone())?)
             }
         })
+    }
+}
+
+impl Workbench {
+    /// [`crate::image::render`] of `evaluator`, on the configured accelerator where it evaluates this kind of
+    /// evaluator (the ground truths on the GPU), else on the CPU. `progress(pixels_done)`.
+    pub fn render(
+        &self,
+        evaluator: &dyn Evaluator,
+        pixels: &crate::image::Pixels,
+        progress: Progress,
+    ) -> Result<Vec<Option<Xyz>>, LabError> {
+        if let Some(a) = &self.config.accelerator {
+            if let Some(img) = crate::image::render_on(a.as_ref(), evaluator, pixels, progress) {
+                return img;
+            }
+        }
+        Ok(crate::image::render(evaluator, pixels, progress))
     }
 }
 

@@ -16,7 +16,7 @@ use iridis_diffraction::SpectralSetup;
 use serde::Serialize;
 
 use crate::compare::{delta_e_map, stats};
-use crate::image::{render, Pixels};
+use crate::image::Pixels;
 use crate::methods::{Method, Workbench};
 use crate::{LabError, Progress};
 
@@ -166,7 +166,7 @@ pub fn run(
     check_values(param, values)?;
     let image_of = |b: &Workbench, m: Method| -> Result<Vec<Option<Xyz>>, LabError> {
         let gt = b.evaluator(m, &crate::no_progress)?;
-        Ok(render(gt.as_ref(), pixels, &crate::no_progress))
+        b.render(gt.as_ref(), pixels, &crate::no_progress)
     };
     // The truth and the periodic-extension error at one setting.
     let truths_of = |b: &Workbench| -> Result<(Vec<Option<Xyz>>, Vec<ErrorAt>), LabError> {
@@ -203,7 +203,7 @@ pub fn run(
         }
         let b = Workbench::new(bench.patch.clone(), config, bench.surface.clone())?;
         let e = b.evaluator(method, &crate::no_progress)?;
-        let image = render(e.as_ref(), pixels, &crate::no_progress);
+        let image = b.render(e.as_ref(), pixels, &crate::no_progress)?;
         let (truth, extension) =
             if param == Param::Coherence { truths_of(&b)? } else { (base_truth.clone(), base_extension.clone()) };
         let errors = exposures

@@ -76,8 +76,12 @@ flat surface: R(θ)/R₀), for scenes with energy-conserving diffraction materia
 in a scene; docs/PHYSICS.md). The default, relative, is the paper's: a flat mirror's peak is 1 at every
 wavelength, and images are scaled by an exposure in RU.
 
+--gpu builds the tables on the GPU (Vulkan; lavapipe without a GPU): the same grid and metadata, the values
+in f32 (relative error ~1e-6 of each power's largest value; docs/gpu.md); the FFTs stay on the CPU.
+
 Examples:
   iridis precompute builtin:elaphe -o elaphe.npz
+  iridis precompute 'builtin:elaphe?size=10um' -o elaphe10.npz --uv-resolution 101 --gpu
   iridis precompute scan.gwy -o scan.npz --terms 30 --coherence 65um --uv-resolution 501 --uv-power 5
   iridis precompute relief.png --pixel-size 65nm --max-height 300nm -o relief.npz --uv-power 1")]
 pub struct PrecomputeArgs {
@@ -98,6 +102,9 @@ pub struct PrecomputeArgs {
     /// a flat surface reflects R(θ)/R₀ of the light).
     #[arg(long, value_name = "relative|radiometric", default_value = "relative", value_parser = units)]
     pub units: Units,
+    /// Build the tables on the GPU (values in f32).
+    #[arg(long)]
+    pub gpu: bool,
     #[command(flatten)]
     pub surface_opts: SurfaceOpts,
 }
@@ -126,7 +133,16 @@ Examples:
   iridis brdf-map builtin:xenopeltis --method reference --incidence 20deg,0deg --size 256 -o x.png --raw x.npy
   iridis brdf-map builtin:sine --method ground-truth --size 48 -o gt.png --gamma 2.2
   iridis brdf-map 'builtin:elaphe?size=10um&pixel=50nm' --method stam-gaussian --coherence 5um -o stam.png
-  iridis brdf-map elaphe.npz --gpu --size 1024 -o elaphe_gpu.png")]
+  iridis brdf-map elaphe.npz --gpu --size 1024 -o elaphe_gpu.png
+  iridis brdf-map 'builtin:sine?size=4um' --method ground-truth --gpu --size 48 -o gt_gpu.png
+
+--gpu renders the lookup method (the paper's shader; a SURFACE's table is built on the GPU too) and the
+ground truths (ground-truth, ground-truth-periodic) on the GPU; the other methods run on the CPU only.
+--table-precision says how the GPU stores the lookup table: K Chebyshev coefficients in w instead of the 2N+1
+powers, in f32 (cheb12, the default: 3.75× less memory than the powers at N = 22, CIEDE2000 ≤ 0.001 against
+the f64 lookup on the built-ins) or f16 (chebK-f16: half that again, mean ≤ 0.005 but single pixels up to 21
+at a grating's specular peak), or the powers themselves (f32; f16 is there to show that half precision
+breaks them). docs/gpu.md has the measurements.")]
 pub struct BrdfMapArgs {
     /// A height field (file or builtin:NAME) or a lookup table from `iridis precompute`, told apart by content
     /// (a height field may be an .npz too).
@@ -160,9 +176,13 @@ pub struct BrdfMapArgs {
     /// Lookup sum in f32, as a GPU would evaluate it.
     #[arg(long)]
     pub f32: bool,
-    /// Render on the GPU (Vulkan; lavapipe without a GPU): the lookup method's shader, same image.
+    /// Render on the GPU (Vulkan; lavapipe without a GPU): lookup or the ground truths, same image.
     #[arg(long)]
     pub gpu: bool,
+    /// With --gpu and the lookup method: how the table is stored, chebK (default cheb12), chebK-f16, f32 or
+    /// f16.
+    #[arg(long, value_name = "ENCODING")]
+    pub table_precision: Option<String>,
     #[command(flatten)]
     pub model: ModelOpts,
     /// u-v resolution when a table must be built from a SURFACE [default: 501]; refused with a TABLE.
@@ -282,7 +302,11 @@ pub fn run_precompute(a: PrecomputeArgs) -> Result<()> {
         2 * terms.n_max + 1,
         (values * 8) as f64 / 1e6
     );
-    let table = build_table(&terms, &spectral, params, &a.surface)?;
+    let table = if a.gpu {
+        crate::cmd::gpu::build_table(&terms, &spectral, params, &a.surface)?
+    } else {
+        build_table(&terms, &spectral, params, &a.surface)?
+    };
     let mut buf = std::io::Cursor::new(Vec::new());
     table.write_npz(&mut buf)?;
     crate::output::write_bytes(&a.output, buf.get_ref())?;
@@ -676,6 +700,9 @@ pub fn run_brdf_map(a: BrdfMapArgs) -> Result<()> {
     declare_map_outputs(&a)?;
     if a.gpu {
         return crate::cmd::gpu::run_brdf_map(a, wi, encoding);
+    }
+    if a.table_precision.is_some() {
+        bail!("--table-precision chooses how the GPU stores the lookup table: add --gpu (the CPU evaluates the f64 table)");
     }
     let shading = a.shading.shading()?;
     let params = TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power };

@@ -7,18 +7,22 @@ use std::time::Duration;
 use anyhow::{bail, Context, Result};
 use clap::Args as ClapArgs;
 use iridis_color::{Encoding, ToneMap, Xyz};
+use iridis_diffraction::encoding::TableEncoding;
 use iridis_diffraction::evaluator::Evaluator;
 use iridis_diffraction::geometry::direction;
 use iridis_diffraction::table::{Lookup, LookupTable, Precision, TableParams};
 use iridis_diffraction::{Fresnel, Shading};
+use iridis_diffraction::{SpectralSetup, TaylorTerms};
 use iridis_gpu::film::FilmPathUsed;
 use iridis_gpu::scene::SceneFilm;
 use iridis_gpu::{FilmFrame, FilmPath, FrameTime, Gpu, GpuFilm, GpuLookup, GpuScene};
+use iridis_lab::methods::Method;
 use iridis_thinfilm::accuracy::DeltaEStats;
 use iridis_thinfilm::spectral::{dense_weights, sampled_weights, FULL_BAND_NM};
 use serde_json::json;
 
 use crate::cmd::brdf::{self, BrdfMapArgs, ModelOpts, SurfaceOpts};
+use crate::progress::bar;
 
 /// `iridis render --gpu`: the scene on the GPU with a progress bar over bands of rows; the image, the seconds
 /// (upload, compile, render and read-back) and the adapter's name.
@@ -71,36 +75,118 @@ pub fn lookup_table(input: &str, model: &ModelOpts, params: TableParams, surface
     brdf::build_table(&terms, &spectral, params, input)
 }
 
-/// `iridis brdf-map … --gpu`: the lookup method on the GPU, written exactly like the CPU's map (the image is
-/// tone-mapped on the CPU from the GPU's XYZ, so `--raw` and `--exr` hold the shader's numbers).
+/// `iridis precompute --gpu` (and a `--gpu` command that needs a table of a SURFACE): the lookup table built on
+/// the GPU, with a progress bar.
+pub fn build_table(
+    terms: &TaylorTerms,
+    spectral: &SpectralSetup,
+    params: TableParams,
+    name: &str,
+) -> Result<LookupTable> {
+    build_table_on(&open_gpu()?, terms, spectral, params, name)
+}
+
+fn build_table_on(
+    gpu: &Gpu,
+    terms: &TaylorTerms,
+    spectral: &SpectralSetup,
+    params: TableParams,
+    name: &str,
+) -> Result<LookupTable> {
+    let pb = bar(params.uv_resolution as u64, "lookup tables (GPU)");
+    let t = std::time::Instant::now();
+    let table = iridis_gpu::build_table(gpu, terms, spectral, params, name, &|d| pb.set_position(d as u64))?;
+    pb.finish_and_clear();
+    eprintln!("lookup tables built on {} in f32, {:.2} s", gpu.adapter_name(), t.elapsed().as_secs_f64());
+    Ok(table)
+}
+
+/// `iridis brdf-map … --gpu`: the lookup method or a ground truth on the GPU, written exactly like the CPU's
+/// map (the image is tone-mapped on the CPU from the GPU's XYZ, so `--raw` and `--exr` hold the GPU's numbers).
 pub fn run_brdf_map(a: BrdfMapArgs, wi: [f64; 3], encoding: Encoding) -> Result<()> {
-    if a.method != "lookup" {
-        bail!("--gpu renders the lookup method (the paper's shader); --method {} runs on the CPU only", a.method);
-    }
-    if a.shading.fresnel.trim().starts_with("stack:") {
+    let ground_truth = matches!(a.method.parse::<Method>(), Ok(m) if m.is_ground_truth());
+    if a.method != "lookup" && !ground_truth {
         bail!(
-            "--gpu renders the lookup method, whose Fresnel factor must not depend on λ; a thin-film stack as \
-             Fresnel source needs --method reference or ground-truth (CPU)"
+            "--gpu renders the lookup method (the paper's shader) and the ground truths (--method ground-truth or \
+             ground-truth-periodic); --method {} runs on the CPU only (leave out --gpu)",
+            a.method
+        );
+    }
+    if ground_truth {
+        if a.table_precision.is_some() {
+            bail!("--table-precision applies to the lookup method's table; --method {} has none", a.method);
+        }
+        return run_ground_truth_map(a, wi, encoding);
+    }
+    if a.shading.fresnel.trim().starts_with("stack:") || matches!(a.shading.fresnel.trim(), "gold" | "au") {
+        bail!(
+            "--gpu renders the lookup method, whose Fresnel factor must not depend on λ; a thin-film stack or \
+             measured gold as Fresnel source needs --method reference (CPU) or ground-truth (CPU or --gpu)"
+        );
+    }
+    let table_encoding: TableEncoding = match a.table_precision.as_deref() {
+        Some(p) => p.parse()?,
+        None => TableEncoding::GPU_DEFAULT,
+    };
+    if table_encoding == TableEncoding::F16 {
+        eprintln!(
+            "warning: --table-precision f16 stores the powers I_p in half precision, which the lookup sum's \
+             cancellation turns into wrong colours (docs/gpu.md); chebK-f16 halves the memory without that"
         );
     }
     let fresnel = brdf::parse_fresnel(&a.shading.fresnel)?;
     let params = TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power };
     let start = std::time::Instant::now();
-    let table = lookup_table(&a.input, &a.model, params, &a.surface_opts)?;
     let gpu = open_gpu()?;
-    let lookup =
-        GpuLookup::new(&gpu, &table, fresnel, !a.shading.no_shadowing)?.with_convention(a.shading.fresnel_convention);
+    let table = if brdf::is_table(&a.input) {
+        lookup_table(&a.input, &a.model, params, &a.surface_opts)?
+    } else {
+        let patch = brdf::load_patch(&a.input, &a.surface_opts)?;
+        let spectral = brdf::spectral_setup(&a.model)?;
+        let terms = brdf::taylor_terms(&patch, &a.model)?;
+        build_table_on(&gpu, &terms, &spectral, params, &a.input)?
+    };
+    let lookup = GpuLookup::encoded(&gpu, &table, fresnel, !a.shading.no_shadowing, table_encoding, u64::MAX)?
+        .with_convention(a.shading.fresnel_convention);
     let tone = ToneMap { exposure_ru: a.exposure, encoding };
     let frame = lookup.frame(a.size, tone)?;
     let secs = frame.run(wi)?.wall.as_secs_f64();
     let out = frame.read()?;
     brdf::write_map_outputs(&a, &out.xyz, tone)?;
     crate::outln!(
-        "wrote {} (lookup map on the GPU, {}², {:.2} s in all, of which the map {:.2} ms on {})",
+        "wrote {} (lookup map on the GPU, {}², table in {}, {:.2} s in all, of which the map {:.2} ms on {})",
         a.output.display(),
         a.size,
+        table_encoding.name(),
         start.elapsed().as_secs_f64(),
         secs * 1e3,
+        gpu.adapter_name()
+    )?;
+    Ok(())
+}
+
+/// `iridis brdf-map --method ground-truth[-periodic] --gpu`: `|A|²` per pixel and wavenumber on the GPU, the
+/// colour (shading, any Fresnel source) on the CPU.
+fn run_ground_truth_map(a: BrdfMapArgs, wi: [f64; 3], encoding: Encoding) -> Result<()> {
+    let start = std::time::Instant::now();
+    let shading = a.shading.shading()?;
+    let params = TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power };
+    let e = brdf::make_evaluator(&a.input, &a.method, &a.model, shading, params, Precision::F64, &a.surface_opts)?;
+    let gt = e.as_ground_truth().context("internal: a ground-truth method without a ground truth")?;
+    let gpu = open_gpu()?;
+    let pb = bar((a.size * a.size) as u64, &format!("{} map (GPU)", e.name()));
+    let t = std::time::Instant::now();
+    let xyz = iridis_gpu::ground_truth_map(&gpu, gt, wi, a.size, &|d| pb.set_position(d as u64))?;
+    pb.finish_and_clear();
+    let secs = t.elapsed().as_secs_f64();
+    let tone = ToneMap { exposure_ru: a.exposure, encoding };
+    brdf::write_map_outputs(&a, &xyz, tone)?;
+    crate::outln!(
+        "wrote {} ({} map on the GPU, {}², {:.2} s in all, of which the map {secs:.2} s on {})",
+        a.output.display(),
+        e.name(),
+        a.size,
+        start.elapsed().as_secs_f64(),
         gpu.adapter_name()
     )?;
     Ok(())
@@ -116,7 +202,16 @@ reference), with the CIEDE2000 between the two.
 A frame is one dispatch from submission to completion (wall clock; also the GPU's own timestamps around the
 pass where the adapter has them); the light circles the normal at 30° from frame to
 frame. Each shader runs --frames frames or --max-seconds, whichever ends first, after one warm-up frame,
-and the last frame is checked against the CPU (CIEDE2000 over up to 4096 pixels).
+and the last frame is checked against the CPU (CIEDE2000 over up to 4096 pixels). --table-precision times
+the lookup map once per table encoding (f32, f16, chebK, chebK-f16), each against the CPU's f64 lookup.
+
+Then the diffraction work that is not a frame, each against the CPU in the same run: the lookup table of
+--build-surface built on all CPU cores (f64) and on the GPU (f32) — seconds, speed-up, the largest relative
+error — and the ground truth of --gt-surface (finite aperture and periodic) as a --gt-size map on the GPU
+against --gt-cpu-pixels of its pixels on the CPU — pixels per second, speed-up, CIEDE2000 — and the phase
+arithmetic of the ground-truth shader against f64. The defaults are small (lavapipe runs on the CPU); on a
+GPU the paper's sizes are --build-surface builtin:elaphe --build-uv-resolution 501 --gt-surface
+builtin:elaphe --gt-size 101.
 
 With a SCENE (TOML or glTF), times the scene renderer instead (iridis render --gpu): --frames frames of
 --size with 1 sample per pixel, min/median/p99, against one CPU render of the same image in the same run
@@ -128,7 +223,9 @@ Examples:
   iridis bench gpu                                      built-in Elaphe table (201²), 1024² map, 1920×1080 film
   iridis bench gpu --table elaphe.npz --size 1024x1024 --frames 500 --json
   iridis bench gpu --stack \"air | gasoline 216nm | water 220nm | asphalt\" --film-size 1280x720
-  iridis bench gpu --size 512 --film-size 960x540 --frames 5 --save out/")]
+  iridis bench gpu --size 512 --film-size 960x540 --frames 5 --save out/
+  iridis bench gpu --table-precision f32,cheb12,cheb12-f16 --size 1024 --frames 200
+  iridis bench gpu --build-surface builtin:elaphe --build-uv-resolution 501 --gt-surface builtin:elaphe --gt-size 101")]
 pub struct GpuBench {
     /// A scene (TOML or glTF) to time instead of the two shaders.
     pub scene: Option<PathBuf>,
@@ -157,6 +254,25 @@ pub struct GpuBench {
     /// fast path; film_frame_direct.png the direct one).
     #[arg(long)]
     pub save: Option<PathBuf>,
+    /// Lookup table encodings to time, comma-separated (f32, f16, chebK, chebK-f16): the first is `lookup`'s,
+    /// each is checked against the CPU's f64 lookup (default: the f32 powers and brdf-map's default).
+    #[arg(long, default_value = "f32,cheb12")]
+    pub table_precision: String,
+    /// Surface whose lookup table is built on the CPU and on the GPU (times and agreement).
+    #[arg(long, default_value = "builtin:elaphe?size=10um")]
+    pub build_surface: String,
+    /// u-v resolution of that table.
+    #[arg(long, default_value_t = 31)]
+    pub build_uv_resolution: usize,
+    /// Surface whose ground truth (finite aperture and periodic) is rendered on the GPU and the CPU.
+    #[arg(long, default_value = "builtin:elaphe?size=3um&pixel=65nm")]
+    pub gt_surface: String,
+    /// Size of the ground truth's BRDF map on the GPU.
+    #[arg(long, default_value_t = 12)]
+    pub gt_size: usize,
+    /// Pixels of that map the CPU evaluates (spread over it) for its rate and the CIEDE2000.
+    #[arg(long, default_value_t = 32)]
+    pub gt_cpu_pixels: usize,
     /// Print JSON.
     #[arg(long)]
     pub json: bool,
@@ -218,8 +334,14 @@ fn sample(total: usize, n: usize) -> Vec<usize> {
 
 /// Mean and 99th percentile of CIEDE2000 between displayed colours.
 fn delta_e(a: &[Xyz], b: &[Xyz], exposure: f64) -> (f64, f64) {
+    let [mean, p99, _] = delta_e_stats(a, b, exposure);
+    (mean, p99)
+}
+
+/// Mean, 99th percentile and maximum of CIEDE2000 between displayed colours.
+fn delta_e_stats(a: &[Xyz], b: &[Xyz], exposure: f64) -> [f64; 3] {
     let s = DeltaEStats::between(a, b, exposure);
-    (s.mean, s.p99)
+    [s.mean, s.p99, s.max]
 }
 
 /// A smooth, deterministic grey texture (value noise, three octaves) for spatially varying thickness.
@@ -372,6 +494,18 @@ pub fn bench(a: GpuBench) -> Result<()> {
         bail!("--max-seconds {} must be positive", a.max_seconds);
     }
     let stack: iridis_thinfilm::Stack = a.stack.parse().with_context(|| format!("--stack '{}'", a.stack))?;
+    let encodings: Vec<TableEncoding> = a
+        .table_precision
+        .split(',')
+        .filter(|s| !s.trim().is_empty())
+        .map(|s| s.parse::<TableEncoding>().with_context(|| format!("--table-precision '{}'", a.table_precision)))
+        .collect::<Result<_>>()?;
+    if encodings.is_empty() {
+        bail!("--table-precision: give at least one of f32, f16, chebK, chebK-f16");
+    }
+    if !(8..=4096).contains(&a.gt_size) || a.gt_cpu_pixels == 0 {
+        bail!("--gt-size {} must be 8–4096 pixels and --gt-cpu-pixels at least 1", a.gt_size);
+    }
     let gpu = open_gpu()?;
     let adapter = gpu.adapter_name();
     if !a.json {
@@ -394,7 +528,7 @@ pub fn bench(a: GpuBench) -> Result<()> {
         }
     };
     let fresnel = Fresnel::default();
-    let lookup = GpuLookup::new(&gpu, &table, fresnel.clone(), true)?;
+    let lookup = GpuLookup::encoded(&gpu, &table, fresnel.clone(), true, encodings[0], u64::MAX)?;
     let tone = ToneMap { exposure_ru: 1500.0, encoding: Encoding::Srgb };
     let frame = lookup.frame(mw, tone)?;
     let frames = a.frames;
@@ -407,7 +541,7 @@ pub fn bench(a: GpuBench) -> Result<()> {
     let map = frame.read()?;
     let cpu = Lookup::new(
         Arc::new(table.clone()),
-        Shading { fresnel: Arc::new(fresnel), ..Shading::default() },
+        Shading { fresnel: Arc::new(fresnel.clone()), ..Shading::default() },
         Precision::F64,
     )?;
     let px: Vec<usize> = sample(mw * mw, 4096)
@@ -422,9 +556,40 @@ pub fn bench(a: GpuBench) -> Result<()> {
         })
         .collect();
     let gpu_px: Vec<Xyz> = px.iter().map(|&i| map.xyz[i]).collect();
-    let map_de = delta_e(&gpu_px, &cpu_px, 1500.0);
+    let map_de = delta_e_stats(&gpu_px, &cpu_px, 1500.0);
     let [mn, med, p99, mean] = stats(&wall_times(&map_times));
     let map_gpu = gpu_times(&map_times).map(|t| stats(&t));
+    // The other encodings of the table, each timed and checked the same way in this run.
+    let mut encoded = vec![EncodingRun {
+        encoding: encodings[0],
+        table_mb: lookup.table_bytes() as f64 / 1e6,
+        frames: map_times.len(),
+        ms: [mn, med, p99, mean],
+        delta_e00: map_de,
+    }];
+    for &e in &encodings[1..] {
+        let l = GpuLookup::encoded(&gpu, &table, fresnel.clone(), true, e, u64::MAX)?;
+        let f = l.frame(mw, tone)?;
+        let times = time_frames(frames, a.max_seconds, |i| Ok(f.run(light(i))?))?;
+        let m = f.read()?;
+        // The last frame's light (time_frames warms up with frame 0, then runs frames 0, 1, …).
+        let last = light(times.len().saturating_sub(1));
+        let cpu_e: Vec<Xyz> = px
+            .iter()
+            .map(|&i| {
+                let wr = iridis_diffraction::map::view_direction(i % mw, i / mw, mw).unwrap_or([0.0, 0.0, 1.0]);
+                cpu.xyz(last, wr)
+            })
+            .collect();
+        let gpu_e: Vec<Xyz> = px.iter().map(|&i| m.xyz[i]).collect();
+        encoded.push(EncodingRun {
+            encoding: e,
+            table_mb: l.table_bytes() as f64 / 1e6,
+            frames: times.len(),
+            ms: stats(&wall_times(&times)),
+            delta_e00: delta_e_stats(&gpu_e, &cpu_e, 1500.0),
+        });
+    }
 
     // Thin film: the fast path (colour table) and the direct path, in the same run.
     let dense = dense_weights();
@@ -475,6 +640,8 @@ pub fn bench(a: GpuBench) -> Result<()> {
     }
 
     if a.json {
+        let build = bench_table_build(&gpu, &a, true)?;
+        let truth = bench_ground_truth(&gpu, &a, true)?;
         return crate::output::print_json(&json!({
             "adapter": adapter,
             "software_adapter": gpu.is_software(),
@@ -488,7 +655,18 @@ pub fn bench(a: GpuBench) -> Result<()> {
                 "ms": {"min": mn, "median": med, "p99": p99, "mean": mean},
                 "gpu_timestamp_ms": ms_json(map_gpu),
                 "fps_median": 1e3 / med,
-                "vs_cpu": {"pixels": px.len(), "exposure_ru": 1500.0, "delta_e00_mean": map_de.0, "delta_e00_p99": map_de.1},
+                "vs_cpu": {"pixels": px.len(), "exposure_ru": 1500.0, "delta_e00_mean": map_de[0], "delta_e00_p99": map_de[1]},
+                "encodings": encoded.iter().map(|e| json!({
+                    "encoding": e.encoding.name(),
+                    "table_mb": e.table_mb,
+                    "frames": e.frames,
+                    "ms": ms_json(Some(e.ms)),
+                    "fps_median": 1e3 / e.ms[1],
+                    "median_over_first": e.ms[1] / encoded[0].ms[1],
+                    "delta_e00_mean": e.delta_e00[0],
+                    "delta_e00_p99": e.delta_e00[1],
+                    "delta_e00_max": e.delta_e00[2],
+                })).collect::<Vec<_>>(),
             },
             "film": {
                 "stack": stack.to_string(),
@@ -516,6 +694,8 @@ pub fn bench(a: GpuBench) -> Result<()> {
                 },
                 "direct_over_table_median": dmed / fmed,
             },
+            "table_build": build,
+            "ground_truth": truth,
         }));
     }
     crate::outln!(
@@ -533,9 +713,24 @@ pub fn bench(a: GpuBench) -> Result<()> {
     crate::outln!(
         "  vs CPU (lookup, f64; {} pixels at 1500 RU): ΔE00 mean {:.4}, p99 {:.4}",
         px.len(),
-        map_de.0,
-        map_de.1
+        map_de[0],
+        map_de[1]
     )?;
+    if encoded.len() > 1 {
+        crate::outln!("  table encodings (same map, same pixels; ΔE00 against the CPU's f64 lookup at 1500 RU):")?;
+        for e in &encoded {
+            crate::outln!(
+                "    {:<10} {:>8.1} MB  median {:>9.2} ms ({:.2}× the first)  ΔE00 mean {:.4}, p99 {:.4}, max {:.4}",
+                e.encoding.name(),
+                e.table_mb,
+                e.ms[1],
+                e.ms[1] / encoded[0].ms[1],
+                e.delta_e00[0],
+                e.delta_e00[1],
+                e.delta_e00[2]
+            )?;
+        }
+    }
     crate::outln!("thin film {stack}, {fw}×{fh}, gradient + SVT:")?;
     crate::outln!("  fast path: {}; {} frames:", fast_run.path(), fast_times.len())?;
     crate::outln!(
@@ -567,7 +762,159 @@ pub fn bench(a: GpuBench) -> Result<()> {
         direct_de.1
     )?;
     crate::outln!("  direct / fast median frame time: {:.1}×", dmed / fmed)?;
+    bench_table_build(&gpu, &a, false)?;
+    bench_ground_truth(&gpu, &a, false)?;
     Ok(())
+}
+
+/// One table encoding's run of the lookup map.
+struct EncodingRun {
+    encoding: TableEncoding,
+    table_mb: f64,
+    frames: usize,
+    /// min, median, p99, mean (ms).
+    ms: [f64; 4],
+    /// Against the CPU's f64 lookup: mean, p99, max.
+    delta_e00: [f64; 3],
+}
+
+/// The lookup table of `--build-surface` built on the CPU (all cores) and on the GPU in the same run: times,
+/// speed-up and the GPU table's error against the CPU's (`iridis_gpu::table_build::table_error`).
+fn bench_table_build(gpu: &Gpu, a: &GpuBench, quiet: bool) -> Result<serde_json::Value> {
+    let model = ModelOpts { terms: "auto".into(), coherence: None, illuminant: None, observer: None, step: None };
+    let patch = brdf::load_patch(&a.build_surface, &SurfaceOpts::default())?;
+    let spectral = brdf::spectral_setup(&model)?;
+    let terms = brdf::taylor_terms(&patch, &model)?;
+    let params = TableParams { uv_resolution: a.build_uv_resolution, uv_power: 5.0 };
+    let t = std::time::Instant::now();
+    let cpu = brdf::build_table(&terms, &spectral, params, &a.build_surface)?;
+    let cpu_s = t.elapsed().as_secs_f64();
+    let t = std::time::Instant::now();
+    let on_gpu = iridis_gpu::build_table(gpu, &terms, &spectral, params, &a.build_surface, &|_| {})?;
+    let gpu_s = t.elapsed().as_secs_f64();
+    let err = iridis_gpu::table_build::table_error(&cpu, &on_gpu);
+    if !quiet {
+        crate::outln!(
+            "lookup table build, {} ({}×{} samples, N = {}), {}² grid × {} wavelengths:",
+            a.build_surface,
+            patch.cols,
+            patch.rows,
+            terms.n_max,
+            params.uv_resolution,
+            spectral.wavelengths().len()
+        )?;
+        crate::outln!(
+            "  CPU ({} threads, f64) {cpu_s:.2} s, GPU (f32, with upload, compilation and read-back) {gpu_s:.2} s: \
+             CPU/GPU = {:.2}",
+            rayon::current_num_threads(),
+            cpu_s / gpu_s
+        )?;
+        crate::outln!(
+            "  GPU table vs CPU: largest error relative to each power's largest |I_p| {:.2e}; relative to the \
+             largest term 2^p |I_p| of the sum {:.2e}",
+            err.per_power,
+            err.of_sum
+        )?;
+    }
+    Ok(json!({
+        "surface": a.build_surface,
+        "samples": [patch.cols, patch.rows],
+        "taylor_terms": terms.n_max,
+        "uv_resolution": params.uv_resolution,
+        "wavelengths": spectral.wavelengths().len(),
+        "cpu_threads": rayon::current_num_threads(),
+        "cpu_s": cpu_s,
+        "gpu_s": gpu_s,
+        "cpu_over_gpu": cpu_s / gpu_s,
+        "max_rel_error_per_power": err.per_power,
+        "max_rel_error_of_sum": err.of_sum,
+    }))
+}
+
+/// The ground truth of `--gt-surface` (both apertures) as a `--gt-size` BRDF map on the GPU, against the CPU on
+/// up to `--gt-cpu-pixels` of its pixels in the same run: per-pixel rates, speed-up, CIEDE2000 at 1500 RU.
+fn bench_ground_truth(gpu: &Gpu, a: &GpuBench, quiet: bool) -> Result<serde_json::Value> {
+    use iridis_diffraction::{Aperture, GroundTruth};
+    use rayon::prelude::*;
+    let patch = brdf::load_patch(&a.gt_surface, &SurfaceOpts::default())?;
+    let coherence = brdf::coherence_for(&patch, None);
+    let spectral = SpectralSetup::default();
+    let samples = 2 * spectral.wavelengths().len() - 1;
+    let size = a.gt_size;
+    let wi = direction(30f64.to_radians(), 0.0);
+    let disk: Vec<usize> = (0..size * size)
+        .filter(|&i| iridis_diffraction::map::view_direction(i % size, i / size, size).is_some())
+        .collect();
+    let picked: Vec<usize> = sample(disk.len(), a.gt_cpu_pixels).into_iter().map(|k| disk[k]).collect();
+    if !quiet {
+        crate::outln!(
+            "ground truth, {} ({}×{} samples, coherence {:.1} µm), {size}² map ({} pixels) × {samples} wavenumbers:",
+            a.gt_surface,
+            patch.cols,
+            patch.rows,
+            coherence / 1000.0,
+            disk.len()
+        )?;
+    }
+    let mut out = serde_json::Map::new();
+    out.insert("surface".into(), json!(a.gt_surface));
+    out.insert("samples".into(), json!([patch.cols, patch.rows]));
+    out.insert("size".into(), json!(size));
+    out.insert("pixels".into(), json!(disk.len()));
+    out.insert("wavenumbers".into(), json!(samples));
+    for aperture in [Aperture::Finite, Aperture::Periodic] {
+        let gt = GroundTruth::with_aperture(&patch, coherence, Shading::default(), &spectral, samples, aperture)?;
+        let t = std::time::Instant::now();
+        let map = iridis_gpu::ground_truth_map(gpu, &gt, wi, size, &|_| {})?;
+        let gpu_s = t.elapsed().as_secs_f64();
+        let t = std::time::Instant::now();
+        let cpu: Vec<Xyz> = picked
+            .par_iter()
+            .map(|&i| {
+                let wr = iridis_diffraction::map::view_direction(i % size, i / size, size).unwrap_or([0.0, 0.0, 1.0]);
+                gt.xyz(wi, wr)
+            })
+            .collect();
+        let cpu_s = t.elapsed().as_secs_f64();
+        let gpu_px: Vec<Xyz> = picked.iter().map(|&i| map[i]).collect();
+        let de = delta_e_stats(&gpu_px, &cpu, 1500.0);
+        let (gpu_rate, cpu_rate) = (disk.len() as f64 / gpu_s, picked.len() as f64 / cpu_s);
+        if !quiet {
+            crate::outln!(
+                "  {:<8} GPU {gpu_s:.2} s ({gpu_rate:.1} pixels/s, with upload and compilation); CPU ({} threads) \
+                 {:.1} pixels/s on {} of them: GPU/CPU = {:.2}; ΔE00 at 1500 RU mean {:.4}, p99 {:.4}, max {:.4}",
+                aperture.name(),
+                rayon::current_num_threads(),
+                cpu_rate,
+                picked.len(),
+                gpu_rate / cpu_rate,
+                de[0],
+                de[1],
+                de[2]
+            )?;
+        }
+        out.insert(
+            aperture.name().into(),
+            json!({
+                "gpu_s": gpu_s,
+                "gpu_pixels_per_s": gpu_rate,
+                "cpu_pixels": picked.len(),
+                "cpu_s": cpu_s,
+                "cpu_pixels_per_s": cpu_rate,
+                "gpu_over_cpu": gpu_rate / cpu_rate,
+                "exposure_ru": 1500.0,
+                "delta_e00_mean": de[0],
+                "delta_e00_p99": de[1],
+                "delta_e00_max": de[2],
+            }),
+        );
+    }
+    let phase = iridis_gpu::ground_truth::phase_accuracy(gpu, 100_000)?;
+    if !quiet {
+        crate::outln!("  phase arithmetic of the shader against f64 (100 000 cases): largest error {phase:.1e} rad")?;
+    }
+    out.insert("phase_error_rad".into(), json!(phase));
+    Ok(serde_json::Value::Object(out))
 }
 
 fn print_gpu_times(s: Option<[f64; 4]>) -> Result<()> {

@@ -144,6 +144,29 @@ fn render_bar(e: &dyn iridis_diffraction::Evaluator, pixels: &Pixels, what: &str
     img
 }
 
+/// [`render_bar`] through the workbench: on its accelerator (the GPU of `--gpu`) where that evaluates the method.
+fn render_on_bench(
+    b: &Workbench,
+    e: &dyn iridis_diffraction::Evaluator,
+    pixels: &Pixels,
+    what: &str,
+) -> Result<Vec<Option<Xyz>>> {
+    let pb = bar(pixels.len() as u64, what);
+    let img = b.render(e, pixels, &|d| pb.set_position(d as u64));
+    pb.finish_and_clear();
+    Ok(img?)
+}
+
+/// `--gpu` of compare and sweep: the GPU builds the lookup tables and renders the ground truths.
+fn gpu_accelerator(on: bool) -> Result<Option<std::sync::Arc<dyn iridis_diffraction::Accelerator>>> {
+    if !on {
+        return Ok(None);
+    }
+    let a = iridis_gpu::GpuAccelerator::new()?;
+    eprintln!("on the GPU ({}): lookup tables and ground truths; other methods on the CPU", a.gpu().adapter_name());
+    Ok(Some(std::sync::Arc::new(a)))
+}
+
 /// A surface name short enough for a plot title.
 fn short(spec: &str) -> String {
     let s = spec.strip_prefix("builtin:").unwrap_or(spec);
@@ -392,7 +415,11 @@ Examples:
   iridis compare 'builtin:elaphe?size=12um&pixel=60nm' --coherence 4um --size 64
   iridis compare 'builtin:elaphe?size=12um&pixel=60nm' --methods reference,stam-gaussian --json
   iridis compare 'builtin:elaphe?size=12um&pixel=60nm' --against ground-truth   # the finite aperture
-  iridis precompute scan.gwy -o scan.npz && iridis compare scan.gwy --methods lookup,reference --table scan.npz --maps errors/")]
+  iridis precompute scan.gwy -o scan.npz && iridis compare scan.gwy --methods lookup,reference --table scan.npz --maps errors/
+  iridis compare builtin:elaphe --methods lookup --gpu --json   # Table 2's size (101², 3 exposures) on the GPU
+
+--gpu builds the lookup tables and renders both ground truths on the GPU (f32; ΔE00 against the CPU's f64
+below 0.01, docs/gpu.md); the other methods stay on the CPU.")]
 pub struct CompareArgs {
     /// Height field: a file or builtin:NAME.
     pub surface: String,
@@ -431,6 +458,9 @@ pub struct CompareArgs {
     /// Write the maps and ΔE heat maps into this folder.
     #[arg(long)]
     pub maps: Option<PathBuf>,
+    /// Build the lookup tables and render the ground truths on the GPU (Vulkan; lavapipe without a GPU).
+    #[arg(long)]
+    pub gpu: bool,
     /// Print JSON.
     #[arg(long)]
     pub json: bool,
@@ -479,12 +509,12 @@ pub fn comparison(
     }
     for m in needed {
         let e = evaluator(b, m)?;
-        truths.push((m, render_bar(e.as_ref(), pixels, m.name())));
+        truths.push((m, render_on_bench(b, e.as_ref(), pixels, m.name())?));
     }
     let mut c = Comparison { rows: Vec::new(), images: Vec::new(), truths, extension: Vec::new() };
     for &m in methods {
         let e = evaluator(b, m)?;
-        let img = render_bar(e.as_ref(), pixels, m.name());
+        let img = render_on_bench(b, e.as_ref(), pixels, m.name())?;
         let t = against.unwrap_or(m.model_truth());
         let one = [(m.name().to_string(), img)];
         c.rows.extend(iridis_lab::compare::table(&one, c.truth(t), t.name(), exps));
@@ -546,6 +576,7 @@ pub fn run_compare(a: CompareArgs) -> Result<()> {
     config.spectral = spectral(&a.illuminant, a.dlambda)?;
     config.table = TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power };
     config.table_path = a.table.clone();
+    config.accelerator = gpu_accelerator(a.gpu)?;
     let b = workbench(&a.surface, &a.model, config)?;
     let pixels = Pixels::brdf_map(theta, phi, a.size);
     let c = comparison(&b, &methods, against, &pixels, &exps)?;
@@ -648,7 +679,10 @@ coherence (all; with units, 5um,20um,65um; the ground truth follows), uv-power a
 Examples:
   iridis sweep 'builtin:xenopeltis?size=10um&pixel=50nm' --param terms --values 2,5,10,20 --coherence 3um -o terms.png
   iridis sweep 'builtin:blazed?size=10um&pixel=50nm' --param coherence --values 2um,5um,10um -o coh.png
-  iridis sweep 'builtin:elaphe?size=10um&pixel=50nm' --method lookup --param uv-power --values 1,3,5 -o uv.png --json")]
+  iridis sweep 'builtin:elaphe?size=10um&pixel=50nm' --method lookup --param uv-power --values 1,3,5 -o uv.png --json
+  iridis sweep 'builtin:elaphe?size=10um&pixel=50nm' --method lookup --param uv-resolution --values 51,101 --gpu -o r.png
+
+--gpu builds the lookup tables and renders the ground truths on the GPU; the other methods stay on the CPU.")]
 pub struct SweepArgs {
     /// Height field: a file or builtin:NAME.
     pub surface: String,
@@ -689,6 +723,9 @@ pub struct SweepArgs {
     /// Error-against-parameter plot (PNG); default: the contact sheet's name with _error.
     #[arg(long)]
     pub plot: Option<PathBuf>,
+    /// Build the lookup tables and render the ground truths on the GPU (Vulkan; lavapipe without a GPU).
+    #[arg(long)]
+    pub gpu: bool,
     /// Print JSON.
     #[arg(long)]
     pub json: bool,
@@ -729,6 +766,7 @@ pub fn run_sweep(a: SweepArgs) -> Result<()> {
     let mut config = a.model.config()?;
     config.spectral = spectral("d65", a.dlambda)?;
     config.table = TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power };
+    config.accelerator = gpu_accelerator(a.gpu)?;
     let b = workbench(&a.surface, &a.model, config)?;
     let pixels = Pixels::brdf_map(theta, phi, a.size);
     let pb = bar(values.len() as u64, &format!("sweep {}", param.name()));
