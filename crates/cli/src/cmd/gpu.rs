@@ -6,6 +6,8 @@ use std::time::Duration;
 
 use anyhow::{bail, Context, Result};
 use clap::Args as ClapArgs;
+use iridis_api::model::lookup_table;
+use iridis_api::{ModelOptions, SurfaceOptions};
 use iridis_color::{Encoding, SpectralWeights, ToneMap, Xyz};
 use iridis_diffraction::evaluator::Evaluator;
 use iridis_diffraction::geometry::direction;
@@ -14,7 +16,8 @@ use iridis_diffraction::{Fresnel, Shading};
 use iridis_gpu::{FilmFrame, FrameTime, Gpu, GpuFilm, GpuLookup, GpuScene};
 use serde_json::json;
 
-use crate::cmd::brdf::{self, BrdfMapArgs, ModelOpts, SurfaceOpts};
+use crate::cmd::brdf::{self, BrdfMapArgs, SurfaceOpts};
+use crate::progress::Cli;
 
 /// `iridis render --gpu`: the scene on the GPU with a progress bar over bands of rows; the image, the seconds
 /// (upload, compile, render and read-back) and the adapter's name.
@@ -24,34 +27,13 @@ pub fn render_scene(
     h: u32,
     spp: u32,
 ) -> Result<(iridis_render::Image, f64, String)> {
-    let t = std::time::Instant::now();
-    let gpu = open_gpu()?;
-    let g = GpuScene::new(&gpu, scene)?;
-    let pb = crate::progress::bar(h as u64, "render (GPU)");
-    let img = g.render(w, h, spp, &|rows| pb.set_position(rows as u64));
-    pb.finish_and_clear();
-    if let Some(o) = g.stack_overflow() {
-        eprintln!("warning: {o}");
-    }
-    Ok((img?, t.elapsed().as_secs_f64(), gpu.adapter_name()))
+    let r = iridis_api::gpu::render_scene(scene, w, h, spp, &Cli)?;
+    Ok((r.image, r.seconds, r.adapter))
 }
 
 /// Opens the GPU, with the driver hint when there is none.
 fn open_gpu() -> Result<Gpu> {
-    Ok(Gpu::new()?)
-}
-
-/// The lookup table of a TABLE (checked against the options) or built from a SURFACE.
-pub fn lookup_table(input: &str, model: &ModelOpts, params: TableParams, surface: &SurfaceOpts) -> Result<LookupTable> {
-    if brdf::is_table(input) {
-        let table = LookupTable::load(std::path::Path::new(input))?;
-        brdf::check_against_table(&table, model)?;
-        return Ok(table);
-    }
-    let patch = brdf::load_patch(input, surface)?;
-    let spectral = brdf::spectral_setup(model)?;
-    let terms = brdf::taylor_terms(&patch, model)?;
-    brdf::build_table(&terms, &spectral, params, input)
+    iridis_api::gpu::open()
 }
 
 /// `iridis brdf-map … --gpu`: the lookup method on the GPU, written exactly like the CPU's map (the image is
@@ -66,25 +48,29 @@ pub fn run_brdf_map(a: BrdfMapArgs, wi: [f64; 3], encoding: Encoding) -> Result<
              Fresnel source needs --method reference or ground-truth (CPU)"
         );
     }
-    let fresnel = brdf::parse_fresnel(&a.shading.fresnel)?;
+    let fresnel = iridis_api::fresnel::parse_fresnel(&a.shading.fresnel)?;
     let params = TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power };
     let start = std::time::Instant::now();
-    let table = lookup_table(&a.input, &a.model, params, &a.surface_opts)?;
-    let gpu = open_gpu()?;
-    let lookup =
-        GpuLookup::new(&gpu, &table, fresnel, !a.shading.no_shadowing)?.with_convention(a.shading.fresnel_convention);
+    let table = lookup_table(&a.input, &a.model.options(), params, &a.surface_opts.options(), &Cli)?;
     let tone = ToneMap { exposure_ru: a.exposure, encoding };
-    let frame = lookup.frame(a.size, tone)?;
-    let secs = frame.run(wi)?.wall.as_secs_f64();
-    let out = frame.read()?;
-    brdf::write_map_outputs(&a, &out.xyz, tone)?;
+    let shading = &a.shading;
+    let map = iridis_api::gpu::lookup_map(
+        &table,
+        fresnel,
+        !shading.no_shadowing,
+        shading.fresnel_convention,
+        wi,
+        a.size,
+        tone,
+    )?;
+    brdf::write_map_outputs(&a, &map.output.xyz, tone)?;
     crate::outln!(
         "wrote {} (lookup map on the GPU, {}², {:.2} s in all, of which the map {:.2} ms on {})",
         a.output.display(),
         a.size,
         start.elapsed().as_secs_f64(),
-        secs * 1e3,
-        gpu.adapter_name()
+        map.map_seconds * 1e3,
+        map.adapter
     )?;
     Ok(())
 }
@@ -333,15 +319,15 @@ pub fn bench(a: GpuBench) -> Result<()> {
     }
 
     // Lookup diffraction.
-    let model = ModelOpts { terms: "auto".into(), coherence: None, illuminant: None, observer: None, step: None };
+    let model = ModelOptions::default();
     let table = match &a.table {
         Some(p) => LookupTable::load(p)?,
         None => {
             if !a.json {
                 crate::outln!("building the lookup table of builtin:elaphe at 201² (pass --table to use your own) …")?;
             }
-            let none = SurfaceOpts::default();
-            lookup_table("builtin:elaphe", &model, TableParams { uv_resolution: 201, uv_power: 5.0 }, &none)?
+            let none = SurfaceOptions::default();
+            lookup_table("builtin:elaphe", &model, TableParams { uv_resolution: 201, uv_power: 5.0 }, &none, &Cli)?
         }
     };
     let fresnel = Fresnel::default();
@@ -530,9 +516,8 @@ pub fn run_view(a: ViewArgs) -> Result<()> {
         }
         ViewInput::Scene(path.to_path_buf())
     } else {
-        let model = ModelOpts { terms: "auto".into(), coherence: None, illuminant: None, observer: None, step: None };
         let params = TableParams { uv_resolution: a.uv_resolution, uv_power: 5.0 };
-        let table = lookup_table(&a.input, &model, params, &a.surface_opts)?;
+        let table = lookup_table(&a.input, &ModelOptions::default(), params, &a.surface_opts.options(), &Cli)?;
         ViewInput::Table { table: Box::new(table), name: a.input.clone() }
     };
     let report = run(input, ViewOptions { check: a.check.clone() }, load_for_view).map_err(anyhow::Error::msg)?;
