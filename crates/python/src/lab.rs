@@ -50,6 +50,10 @@ fn method(s: &str) -> PyResult<Method> {
     s.parse().map_err(value_error)
 }
 
+/// What `_testbench` returns: the `--json` text, the reflectance matrix, its wavelengths and angles.
+type BenchArrays<'py> =
+    (String, Bound<'py, numpy::PyArray2<f64>>, Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
+
 /// The test bench: returns `(json, matrix, wavelengths_nm, angles_deg)` — `json` as `iridis testbench --json`
 /// prints it, `matrix` the reflectance over (λ, θ_r).
 #[pyfunction]
@@ -66,7 +70,7 @@ fn _testbench<'py>(
     period_nm: Option<f64>,
     max_period_nm: Option<f64>,
     options: Option<Bound<'py, PyDict>>,
-) -> PyResult<(String, Bound<'py, numpy::PyArray2<f64>>, Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>)> {
+) -> PyResult<BenchArrays<'py>> {
     let method = method(method_name)?;
     let mut o = Options::new(options);
     let lab = lab_options(&mut o)?;
