@@ -77,3 +77,48 @@ impl Source {
         }
     }
 }
+
+/// Everything `iridis surface info --json` reports (keys in docs/json.md): sizes, heights, the dominant periods
+/// with their orientations, roughness of the plane-levelled field, radial PSDF and ACF, notes and warnings.
+pub fn info(hf: &iridis_surface::HeightField, n_peaks: usize, coherence_nm: f64) -> serde_json::Value {
+    let (lo, hi) = hf.min_max();
+    let peaks = iridis_surface::find_peaks(
+        hf,
+        &iridis_surface::PeakOptions { max_peaks: n_peaks, ..iridis_surface::PeakOptions::default() },
+    );
+    let mut warnings = hf.meta.warnings.clone();
+    warnings.extend(hf.physics_warnings(coherence_nm));
+    let levelled = iridis_surface::prep::level_plane(hf);
+    let rough = iridis_surface::stats::roughness(&levelled);
+    let psdf = iridis_surface::stats::radial_of(&iridis_surface::stats::psdf(&levelled));
+    let acf = iridis_surface::stats::radial_of(&iridis_surface::stats::acf(&levelled));
+    serde_json::json!({
+        "source": hf.meta.source,
+        "format": hf.meta.format,
+        "rows": hf.rows,
+        "cols": hf.cols,
+        "pixel_size_nm": [hf.dx_nm, hf.dy_nm],
+        "extent_nm": [hf.extent_nm().0, hf.extent_nm().1],
+        "height_min_nm": lo,
+        "height_max_nm": hi,
+        "mean_nm": hf.mean(),
+        "rms_nm": hf.rms(),
+        "z_unit_in_file": hf.meta.z_unit,
+        "peaks": peaks,
+        "roughness": {
+            "levelling": "plane",
+            "sq_nm": rough.sq_nm,
+            "sa_nm": rough.sa_nm,
+            "skewness": rough.skewness,
+            "excess_kurtosis": rough.excess_kurtosis,
+            "sz_nm": rough.sz_nm,
+            "correlation_length_nm": rough.correlation_length_nm,
+        },
+        // Annular means of the plane-levelled field's 2-D PSDF (nm⁴, against spatial frequency) and ACF (nm²,
+        // against lag), bin k at k × step.
+        "psdf_radial": {"levelling": "plane", "frequency_step_per_nm": psdf.step, "values_nm4": psdf.values},
+        "acf_radial": {"levelling": "plane", "lag_step_nm": acf.step, "values_nm2": acf.values},
+        "notes": hf.meta.notes,
+        "warnings": warnings,
+    })
+}
