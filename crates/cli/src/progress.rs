@@ -87,20 +87,74 @@ pub fn bar(len: u64, what: &str) -> Bar {
 /// Runs a step that reports no progress of its own (loading and generating a height field) under a
 /// spinner with the elapsed time; in a log, a step over a second is reported when it ends.
 pub fn step<T>(what: &str, f: impl FnOnce() -> T) -> T {
-    let pb = ProgressBar::new_spinner();
-    pb.set_style(
-        ProgressStyle::with_template("{spinner} {msg} ({elapsed})")
-            .unwrap_or_else(|_| ProgressStyle::default_spinner()),
-    );
-    pb.set_message(what.to_string());
-    pb.enable_steady_tick(Duration::from_millis(120));
-    let start = Instant::now();
+    let s = Spinner::start(what);
     let out = f();
-    pb.finish_and_clear();
-    if pb.is_hidden() && start.elapsed() >= announce_after() {
-        eprintln!("{what}: {:.1} s", start.elapsed().as_secs_f64());
-    }
+    s.finish();
     out
+}
+
+/// The spinner of [`step`].
+pub struct Spinner {
+    pb: ProgressBar,
+    what: String,
+    start: Instant,
+}
+
+impl Spinner {
+    pub fn start(what: &str) -> Self {
+        let pb = ProgressBar::new_spinner();
+        pb.set_style(
+            ProgressStyle::with_template("{spinner} {msg} ({elapsed})")
+                .unwrap_or_else(|_| ProgressStyle::default_spinner()),
+        );
+        pb.set_message(what.to_string());
+        pb.enable_steady_tick(Duration::from_millis(120));
+        Self { pb, what: what.to_string(), start: Instant::now() }
+    }
+
+    pub fn finish(&self) {
+        self.pb.finish_and_clear();
+        if self.pb.is_hidden() && self.start.elapsed() >= announce_after() {
+            eprintln!("{}: {:.1} s", self.what, self.start.elapsed().as_secs_f64());
+        }
+    }
+}
+
+/// The facade's notes, warnings and progress on the terminal: `note: …` and `warning: …` on stderr, the
+/// facade's other lines as they are, progress as [`bar`]s and [`step`] spinners.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Cli;
+
+impl iridis_api::report::Progress for Bar {
+    fn set(&self, done: u64) {
+        self.set_position(done);
+    }
+    fn finish(&self) {
+        self.finish_and_clear();
+    }
+}
+
+impl iridis_api::report::Progress for Spinner {
+    fn set(&self, _: u64) {}
+    fn finish(&self) {
+        Spinner::finish(self);
+    }
+}
+
+impl iridis_api::Report for Cli {
+    fn say(&self, kind: iridis_api::Kind, text: &str) {
+        match kind {
+            iridis_api::Kind::Note => eprintln!("note: {text}"),
+            iridis_api::Kind::Warning => eprintln!("warning: {text}"),
+            iridis_api::Kind::Info => eprintln!("{text}"),
+        }
+    }
+    fn progress(&self, len: u64, what: &str) -> Box<dyn iridis_api::report::Progress + '_> {
+        Box::new(bar(len, what))
+    }
+    fn step(&self, what: &str) -> Box<dyn iridis_api::report::Progress + '_> {
+        Box::new(Spinner::start(what))
+    }
 }
 
 /// A progress reporter for work a library announces as `(done, total, what)`: a bar per piece of work,

@@ -1,28 +1,28 @@
-//! `iridis.diffraction`: the paper's lookup tables (precompute, save, load) and BRDF maps as XYZ arrays from
-//! a height field (reference or ground-truth evaluator) or a table (lookup), through `iridis_diffraction`.
+//! `iridis.diffraction`: the paper's lookup tables (precompute, save, load), BRDF maps as XYZ arrays and point
+//! queries (ρ(λ) and XYZ for one pair of directions), for every method the CLI has, through the facade
+//! (`iridis_api::brdf`, `iridis_api::model`: the functions `iridis precompute`, `iridis brdf-map` and
+//! `iridis brdf eval` call).
 
 use std::path::Path;
 use std::sync::Arc;
 
+use iridis_api::brdf::{default_method, evaluator_for, make_evaluator, point, render_map, table_evaluator};
+use iridis_api::model::{build_table, spectral_setup, taylor_terms};
+use iridis_api::report::Report;
+use iridis_api::surface::Source;
+use iridis_api::{ModelOptions, SurfaceOptions};
 use iridis_diffraction::geometry::direction;
-use iridis_diffraction::map::brdf_map;
-use iridis_diffraction::taylor::terms_for_bound;
-use iridis_diffraction::{
-    Evaluator, GroundTruth, Lookup, LookupTable, Patch, Reference, Shading, SpectralSetup, TableParams, TaylorTerms,
-    DEFAULT_COHERENCE_NM,
-};
+use iridis_diffraction::table::Precision;
+use iridis_diffraction::{Evaluator, LookupTable, Patch, Shading, TableParams};
 use numpy::ndarray::Array3;
-use numpy::{IntoPyArray, PyArray3};
-use pyo3::exceptions::PyOSError;
+use numpy::{IntoPyArray, PyArray1, PyArray3};
+use pyo3::exceptions::{PyOSError, PyTypeError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::args::value_error;
-use crate::color::{illuminant, observer};
+use crate::facade::{run, Options};
 use crate::surface::PyHeightField;
-
-/// Terms bounded so that the series' remainder is below this (the CLI's `--terms auto`).
-const TERM_EPSILON: f64 = 1e-6;
 
 /// A lookup table (the native half of `iridis.diffraction.Table`).
 #[pyclass(frozen, module = "iridis._native", name = "_Table")]
@@ -70,121 +70,189 @@ impl PyTable {
     }
 }
 
-fn patch_of(hf: &PyHeightField) -> PyResult<Patch> {
-    let h = hf.field();
-    Patch::from_row_major(h.rows, h.cols, h.dx_nm, h.dy_nm, &h.heights_nm).map_err(value_error)
+/// A height field in memory as the facade's [`Source`], named after where it came from.
+pub fn source_of_field(h: &PyHeightField) -> PyResult<Source> {
+    let f = h.field();
+    let patch = Patch::from_row_major(f.rows, f.cols, f.dx_nm, f.dy_nm, &f.heights_nm).map_err(value_error)?;
+    let name = if f.meta.source.is_empty() { "surface".to_string() } else { f.meta.source.clone() };
+    Ok(Source::Patch { patch, name })
 }
 
-fn terms_of(
-    patch: &Patch,
-    terms: Option<usize>,
-    coherence_nm: f64,
-) -> Result<TaylorTerms, iridis_diffraction::DiffractionError> {
-    let n = terms.unwrap_or_else(|| terms_for_bound(patch.max_abs_height, 380.0, TERM_EPSILON));
-    TaylorTerms::compute(patch, n, coherence_nm)
+/// What an evaluator is made from: a table, a height field in memory, or an argument as the CLI takes it
+/// (a SURFACE, or a TABLE file told apart by content).
+enum Input {
+    Table(Arc<LookupTable>),
+    Field(Source),
+    Arg(String),
 }
 
-/// The paper's lookup tables `I_p(u, v)` of a height field, as `iridis precompute`.
+fn input_of(obj: &Bound<'_, PyAny>) -> PyResult<Input> {
+    if let Ok(t) = obj.downcast::<PyTable>() {
+        return Ok(Input::Table(t.get().table.clone()));
+    }
+    if let Ok(h) = obj.downcast::<PyHeightField>() {
+        return Ok(Input::Field(source_of_field(h.get())?));
+    }
+    if let Ok(s) = obj.extract::<String>() {
+        return Ok(Input::Arg(s));
+    }
+    Err(PyTypeError::new_err(format!(
+        "source must be an iridis.surface.Surface, an iridis.diffraction.Table or a SURFACE or TABLE argument as \
+         the CLI takes it (str), got {}",
+        obj.get_type().name()?
+    )))
+}
+
+/// Everything an evaluator needs besides its input.
+struct EvalOptions {
+    model: ModelOptions,
+    surface: SurfaceOptions,
+    fresnel: (String, iridis_diffraction::FresnelConvention, bool),
+    params: TableParams,
+}
+
+impl EvalOptions {
+    fn read(o: &mut Options<'_>) -> PyResult<Self> {
+        let model = o.model()?;
+        let surface = o.surface()?;
+        let fresnel = o.shading_text()?;
+        let params = TableParams {
+            uv_resolution: o.usize("uv_resolution")?.unwrap_or(501),
+            uv_power: o.positive("uv_power")?.unwrap_or(5.0),
+        };
+        Ok(Self { model, surface, fresnel, params })
+    }
+
+    fn shading(&self) -> anyhow::Result<Shading> {
+        let (f, c, s) = &self.fresnel;
+        iridis_api::fresnel::shading(f, *c, *s)
+    }
+}
+
+/// The evaluator of `method` (default: lookup for a table, reference for a height field) on an input.
+fn evaluator(
+    input: &Input,
+    method: Option<&str>,
+    o: &EvalOptions,
+    report: &dyn Report,
+) -> anyhow::Result<Box<dyn Evaluator>> {
+    let shading = o.shading()?;
+    let f64p = Precision::F64;
+    match input {
+        Input::Table(t) => table_evaluator(t.clone(), method.unwrap_or("lookup"), &o.model, shading, f64p, report),
+        Input::Field(s) => {
+            evaluator_for(s, method.unwrap_or("reference"), &o.model, shading, o.params, f64p, &o.surface, report)
+        }
+        Input::Arg(a) => {
+            let m = method.unwrap_or_else(|| default_method(a));
+            make_evaluator(a, m, &o.model, shading, o.params, f64p, &o.surface, report)
+        }
+    }
+}
+
+/// A direction `(θ, φ)` in radians above the surface.
+fn direction_of(what: &str, (theta, phi): (f64, f64)) -> PyResult<[f64; 3]> {
+    if !((0.0..std::f64::consts::FRAC_PI_2).contains(&theta) && phi.is_finite()) {
+        return Err(value_error(format!("{what} θ = {theta} rad must be in [0, π/2) (above the surface), φ finite")));
+    }
+    Ok(direction(theta, phi))
+}
+
+/// The paper's lookup tables `I_p(u, v)` of a height field, as `iridis precompute` (coherence, terms and the
+/// spectral setup from `options`; u-v grid `uv_resolution`, `uv_power`).
 #[pyfunction]
-#[pyo3(signature = (surface, coherence_nm=None, terms=None, uv_resolution=501, uv_power=5.0, illuminant="D65", observer="1931", step_nm=5.0, name=""))]
+#[pyo3(signature = (source, name=None, options=None))]
 fn precompute(
     py: Python<'_>,
-    surface: &PyHeightField,
-    coherence_nm: Option<f64>,
-    terms: Option<usize>,
-    uv_resolution: usize,
-    uv_power: f64,
-    illuminant: &str,
-    observer: &str,
-    step_nm: f64,
-    name: &str,
+    source: &Bound<'_, PyAny>,
+    name: Option<String>,
+    options: Option<Bound<'_, PyDict>>,
 ) -> PyResult<PyTable> {
-    let spectral =
-        SpectralSetup::new(self::illuminant(illuminant)?, self::observer(observer)?, step_nm).map_err(value_error)?;
-    let patch = patch_of(surface)?;
-    let coherence = coherence_nm.unwrap_or(DEFAULT_COHERENCE_NM);
-    let name = if name.is_empty() { surface.field().meta.source.clone() } else { name.to_string() };
-    let table = py
-        .allow_threads(|| {
-            let t = terms_of(&patch, terms, coherence)?;
-            LookupTable::build(&t, &spectral, TableParams { uv_resolution, uv_power }, &name, &|_| {})
-        })
-        .map_err(value_error)?;
+    let mut o = Options::new(options);
+    let eo = EvalOptions::read(&mut o)?;
+    o.finish()?;
+    let source = match input_of(source)? {
+        Input::Field(s) => s,
+        Input::Arg(a) if !iridis_api::model::is_table(&a) => Source::Spec(a),
+        _ => return Err(value_error("precompute needs a height field (a Surface or a SURFACE argument), not a table")),
+    };
+    let name = name.unwrap_or_else(|| source.name().to_string());
+    let table = run(py, |r| {
+        let patch = source.patch(&eo.surface, r)?;
+        let spectral = spectral_setup(&eo.model, r)?;
+        let terms = taylor_terms(&patch, &eo.model, r)?;
+        build_table(&terms, &spectral, eo.params, &name, r)
+    })?;
     Ok(PyTable { table: Arc::new(table) })
 }
 
 /// A BRDF map (the paper's layout: view directions on the unit disk, row 0 at the top) as linear XYZ,
-/// shape (size, size, 3), light from (θ_i, φ_i) in radians. `source` is a height field (methods
-/// `reference`, `ground-truth`) or a table (method `lookup`).
+/// shape (size, size, 3), light from (θ_i, φ_i) in radians, as `iridis brdf-map --raw`.
 #[pyfunction]
-#[pyo3(signature = (source, method, theta_i, phi_i, size, coherence_nm=None, terms=None, illuminant="D65", observer="1931", step_nm=5.0))]
+#[pyo3(signature = (source, method, theta_i, phi_i, size, options=None))]
 fn brdf_map_xyz<'py>(
     py: Python<'py>,
     source: &Bound<'py, PyAny>,
-    method: &str,
+    method: Option<String>,
     theta_i: f64,
     phi_i: f64,
     size: usize,
-    coherence_nm: Option<f64>,
-    terms: Option<usize>,
-    illuminant: &str,
-    observer: &str,
-    step_nm: f64,
+    options: Option<Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyArray3<f64>>> {
     if !(1..=4096).contains(&size) {
         return Err(value_error(format!("size {size} must be between 1 and 4096 pixels")));
     }
-    if !((0.0..std::f64::consts::FRAC_PI_2).contains(&theta_i) && phi_i.is_finite()) {
-        return Err(value_error(format!("incidence θ = {theta_i} rad must be in [0, π/2), φ finite")));
-    }
-    let shading = Shading::default();
-    let evaluator: Box<dyn Evaluator> = if let Ok(t) = source.downcast::<PyTable>() {
-        if method != "lookup" {
-            return Err(value_error(format!(
-                "method {method} needs the height field, not a table: pass the Surface the table was made from"
-            )));
-        }
-        Box::new(
-            Lookup::new(t.get().table.clone(), shading, iridis_diffraction::table::Precision::F64)
-                .map_err(value_error)?,
-        )
-    } else if let Ok(h) = source.downcast::<PyHeightField>() {
-        let patch = patch_of(h.get())?;
-        let spectral = SpectralSetup::new(self::illuminant(illuminant)?, self::observer(observer)?, step_nm)
-            .map_err(value_error)?;
-        let coherence = coherence_nm.unwrap_or(DEFAULT_COHERENCE_NM);
-        match method {
-            "reference" => {
-                let t = py.allow_threads(|| terms_of(&patch, terms, coherence)).map_err(value_error)?;
-                Box::new(Reference { terms: Arc::new(t), shading, spectral })
-            }
-            "ground-truth" => {
-                let samples = 2 * spectral.wavelengths().len() - 1;
-                Box::new(GroundTruth::new(&patch, coherence, shading, &spectral, samples).map_err(value_error)?)
-            }
-            "lookup" => {
-                return Err(value_error("method lookup needs a Table: iridis.diffraction.precompute(surface) first"))
-            }
-            _ => {
-                return Err(value_error(format!(
-                    "unknown method '{method}'; expected reference, ground-truth or lookup"
-                )))
-            }
-        }
-    } else {
-        return Err(pyo3::exceptions::PyTypeError::new_err(
-            "source must be an iridis.surface.Surface or an iridis.diffraction.Table",
-        ));
-    };
-    let wi = direction(theta_i, phi_i);
-    let xyz = py.allow_threads(|| brdf_map(evaluator.as_ref(), wi, size, &|_| {}));
+    let wi = direction_of("incidence", (theta_i, phi_i))?;
+    let mut o = Options::new(options);
+    let eo = EvalOptions::read(&mut o)?;
+    o.finish()?;
+    let input = input_of(source)?;
+    let xyz = run(py, |r| {
+        let e = evaluator(&input, method.as_deref(), &eo, r)?;
+        Ok(render_map(e.as_ref(), wi, size, r))
+    })?;
     let flat: Vec<f64> = xyz.iter().flat_map(|c| c.to_array()).collect();
     Ok(Array3::from_shape_vec((size, size, 3), flat).expect("shape").into_pyarray(py))
+}
+
+/// ρ(λ) and XYZ of one method for one pair of directions, as `iridis brdf eval --json`: a dict with `method`,
+/// `wavelength_nm`, `reflectance` (None for lookup) and `xyz`.
+#[pyfunction]
+#[pyo3(signature = (source, method, light, view, options=None))]
+fn eval_point<'py>(
+    py: Python<'py>,
+    source: &Bound<'py, PyAny>,
+    method: Option<String>,
+    light: (f64, f64),
+    view: (f64, f64),
+    options: Option<Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let (wi, wr) = (direction_of("light", light)?, direction_of("view", view)?);
+    let mut o = Options::new(options);
+    let eo = EvalOptions::read(&mut o)?;
+    o.finish()?;
+    let input = input_of(source)?;
+    let p = run(py, |r| {
+        let e = evaluator(&input, method.as_deref(), &eo, r)?;
+        point(e.as_ref(), &eo.model, wi, wr, r)
+    })?;
+    let d = PyDict::new(py);
+    d.set_item("method", &p.method)?;
+    d.set_item("light_direction", wi.to_vec())?;
+    d.set_item("view_direction", wr.to_vec())?;
+    d.set_item("wavelength_nm", PyArray1::from_vec(py, p.query.wavelengths_nm.clone()))?;
+    match p.query.reflectance {
+        Some(rho) => d.set_item("reflectance", PyArray1::from_vec(py, rho))?,
+        None => d.set_item("reflectance", py.None())?,
+    }
+    d.set_item("xyz", PyArray1::from_vec(py, p.query.xyz.to_array().to_vec()))?;
+    Ok(d)
 }
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyTable>()?;
     m.add_function(wrap_pyfunction!(precompute, m)?)?;
     m.add_function(wrap_pyfunction!(brdf_map_xyz, m)?)?;
+    m.add_function(wrap_pyfunction!(eval_point, m)?)?;
     Ok(())
 }

@@ -1,8 +1,9 @@
 //! # iridis-python
 //!
 //! The native part of the Python package `iridis` (built with maturin, imported as `iridis._native`): thin
-//! bindings of the library crates — NumPy arrays in and out, the GIL released while Rust computes, library
-//! errors raised as `ValueError` with the library's (and so the CLI's) messages. The Python modules in
+//! bindings of the library crates and of the facade the CLI calls (`iridis-api`) — NumPy arrays in and out,
+//! the GIL released while Rust computes, library errors raised as `ValueError` (`OSError` for files) with the
+//! library's (and so the CLI's) messages, the facade's warnings as Python warnings. The Python modules in
 //! `python/iridis/` give the public names, docstrings and type stubs.
 
 use pyo3::prelude::*;
@@ -10,6 +11,8 @@ use pyo3::prelude::*;
 mod args;
 mod color;
 mod diffraction;
+mod facade;
+mod lab;
 mod render;
 mod surface;
 mod thinfilm;
@@ -24,5 +27,6 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     surface::register(m)?;
     diffraction::register(m)?;
     render::register(m)?;
+    lab::register(m)?;
     Ok(())
 }

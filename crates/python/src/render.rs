@@ -1,5 +1,6 @@
-//! `iridis.render`: a scene (TOML or glTF) rendered on the CPU into an array, through `iridis_render` (what
-//! `iridis render` does before it encodes the file).
+//! `iridis.render`: a scene (TOML or glTF) rendered into an array on the CPU (`iridis_render`) or on the GPU
+//! (the facade's `iridis_api::gpu::render_scene`, what `iridis render --gpu` calls), before the CLI would
+//! encode the file.
 
 use std::path::Path;
 
@@ -12,16 +13,19 @@ use pyo3::types::PyDict;
 
 use crate::args::value_error;
 
-/// Renders the scene at `path`; `width`, `height`, `spp` default to the scene's own. Returns a dict with
-/// `linear_srgb` (float32, shape (height, width, 3), before exposure), the scene's `exposure`, `notes`.
+/// Renders the scene at `path`; `width`, `height`, `spp` default to the scene's own; `gpu`: on the GPU (a
+/// `ValueError` naming the driver to install when there is no adapter; the renderer's warnings as Python
+/// warnings). Returns a dict with `linear_srgb` (float32, shape (height, width, 3), before exposure), the
+/// scene's `exposure`, `notes` and `device` (`cpu` or the adapter's name).
 #[pyfunction]
-#[pyo3(signature = (path, width=None, height=None, spp=None))]
+#[pyo3(signature = (path, width=None, height=None, spp=None, gpu=false))]
 fn render_scene<'py>(
     py: Python<'py>,
     path: &str,
     width: Option<u32>,
     height: Option<u32>,
     spp: Option<u32>,
+    gpu: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     if !Path::new(path).exists() {
         return Err(PyOSError::new_err(format!("scene {path}: no such file")));
@@ -38,7 +42,14 @@ fn render_scene<'py>(
     if !(1..=4096).contains(&spp) {
         return Err(value_error(format!("spp {spp}: use 1 to 4096 samples per pixel")));
     }
-    let img = py.allow_threads(|| render(&scene, w, h, spp, &|_| {}));
+    let (img, device) = if gpu {
+        let r = crate::facade::run(py, |report| {
+            iridis_api::gpu::render_scene(&scene, w, h, spp, Default::default(), report)
+        })?;
+        (r.image, r.adapter)
+    } else {
+        (py.allow_threads(|| render(&scene, w, h, spp, &|_| {})), "cpu".to_string())
+    };
     let flat: Vec<f32> = img.data.iter().flatten().copied().collect();
     let arr = Array3::from_shape_vec((h as usize, w as usize, 3), flat).expect("shape");
     let out = PyDict::new(py);
@@ -47,6 +58,7 @@ fn render_scene<'py>(
     out.set_item("exposure", scene.output.exposure)?;
     out.set_item("spp", spp)?;
     out.set_item("notes", scene.notes.clone())?;
+    out.set_item("device", device)?;
     Ok(out)
 }
 

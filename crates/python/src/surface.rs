@@ -78,6 +78,16 @@ impl PyHeightField {
         Ok(Self { hf: prep::level_by_name(&self.hf, how).map_err(value_error)? })
     }
 
+    /// `iridis surface info --json` of this field (the facade's `iridis_api::surface::info`), as JSON text:
+    /// the dominant periods (at most `peaks`), roughness and radial PSDF/ACF of the plane-levelled field, and
+    /// the physics warnings for a window of `coherence_nm`.
+    fn info_json(&self, py: Python<'_>, peaks: usize, coherence_nm: f64) -> PyResult<String> {
+        if !(coherence_nm.is_finite() && coherence_nm > 0.0) {
+            return Err(value_error(format!("coherence_nm = {coherence_nm}: must be a positive, finite number")));
+        }
+        Ok(py.allow_threads(|| iridis_api::surface::info(&self.hf, peaks, coherence_nm).to_string()))
+    }
+
     /// Roughness of the field as it is (level it first): Sq, Sa, skewness, excess kurtosis, Sz, correlation
     /// length (nm), as `iridis surface info --json`.
     fn roughness<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {

@@ -1,17 +1,21 @@
 //! `iridis.thinfilm`: stacks in the CLI's syntax or from lists, R/T over arrays of (λ, θ, thickness offset),
 //! film colours — the same library calls as `iridis thinfilm spectrum|color`.
 
+use iridis_api::rough::RoughOptions;
 use iridis_thinfilm::color::{FilmColorimeter, Polarization};
+use iridis_thinfilm::rough::DiffuseTransport;
 use iridis_thinfilm::tmm::stack_from_lists;
 use iridis_thinfilm::Stack;
 use num_complex::Complex64;
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1};
 use pyo3::prelude::*;
+use pyo3::types::PyDict;
 use rayon::prelude::*;
 
 use crate::args::{complex_list, real_list, value_error};
 use crate::color::{illuminant, observer};
+use crate::facade::run;
 
 /// A thin-film stack (the native half of `iridis.thinfilm.Stack`).
 #[pyclass(frozen, module = "iridis._native", name = "_Stack")]
@@ -22,6 +26,12 @@ pub struct PyStack {
 
 fn pol(s: &str) -> PyResult<Polarization> {
     s.parse().map_err(value_error)
+}
+
+/// The rough model's options from Python: σ, τ (nm), the series' terms, the diffuse transport.
+fn rough_options(sigma: f64, tau: f64, d_iterations: Option<usize>, transport: &str) -> PyResult<RoughOptions> {
+    let transport = DiffuseTransport::parse(transport).map_err(value_error)?;
+    Ok(RoughOptions { sigma_nm: sigma, tau_nm: tau, d_iterations, transport })
 }
 
 #[pymethods]
@@ -142,6 +152,77 @@ impl PyStack {
             .map_err(value_error)?;
         let flat: Vec<f64> = out.into_iter().flatten().collect();
         Ok(Array2::from_shape_vec((a.len(), 6), flat).expect("shape").into_pyarray(py))
+    }
+
+    /// The rough film's spectrum (LSRS, as `iridis thinfilm spectrum --roughness --json`): a dict of arrays
+    /// over `wavelengths` and the series' figures.
+    #[pyo3(signature = (sigma_nm, tau_nm, d_iterations, transport, wavelengths, view, light, azimuth))]
+    fn _rough_spectrum<'py>(
+        &self,
+        py: Python<'py>,
+        sigma_nm: f64,
+        tau_nm: f64,
+        d_iterations: Option<usize>,
+        transport: &str,
+        wavelengths: PyReadonlyArray1<'py, f64>,
+        view: f64,
+        light: f64,
+        azimuth: f64,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let opts = rough_options(sigma_nm, tau_nm, d_iterations, transport)?;
+        let grid = wavelengths.as_slice()?.to_vec();
+        let stack = self.stack.clone();
+        let xs = run(py, |_| {
+            let rough = opts.build(stack)?;
+            iridis_api::rough::evaluate(&rough, &grid, view, light, azimuth)
+        })?;
+        let col = |f: &dyn Fn(&(f64, iridis_thinfilm::rough::Lsrs)) -> f64| -> Vec<f64> { xs.iter().map(f).collect() };
+        let d = PyDict::new(py);
+        d.set_item("wavelength_nm", PyArray1::from_vec(py, grid.clone()))?;
+        d.set_item("R_smooth", PyArray1::from_vec(py, col(&|x| x.0)))?;
+        d.set_item("specular", PyArray1::from_vec(py, col(&|x| x.1.k_r())))?;
+        d.set_item("specular_s", PyArray1::from_vec(py, col(&|x| x.1.specular_s)))?;
+        d.set_item("specular_p", PyArray1::from_vec(py, col(&|x| x.1.specular_p)))?;
+        d.set_item("diffuse_per_sr", PyArray1::from_vec(py, col(&|x| x.1.k_d())))?;
+        d.set_item("diffuse_s_per_sr", PyArray1::from_vec(py, col(&|x| x.1.diffuse_s)))?;
+        d.set_item("diffuse_p_per_sr", PyArray1::from_vec(py, col(&|x| x.1.diffuse_p)))?;
+        d.set_item("series_terms_max", xs.iter().map(|x| x.1.terms).max().unwrap_or(0))?;
+        d.set_item("diffuse_error_bound_per_sr", xs.iter().map(|x| x.1.bound).fold(0.0, f64::max))?;
+        d.set_item("diffuse_transport", opts.transport.name())?;
+        d.set_item("series", opts.series_label())?;
+        Ok(d)
+    }
+
+    /// The rough film's colours (as `iridis thinfilm color --roughness`): XYZ rows of the smooth film's
+    /// reflected and transmitted light, the rough film's specular part `k_r` and its diffuse part `π k_d`;
+    /// shape (4, 3).
+    #[pyo3(signature = (sigma_nm, tau_nm, d_iterations, transport, view, light, azimuth, grid, illuminant, observer))]
+    fn _rough_color<'py>(
+        &self,
+        py: Python<'py>,
+        sigma_nm: f64,
+        tau_nm: f64,
+        d_iterations: Option<usize>,
+        transport: &str,
+        view: f64,
+        light: f64,
+        azimuth: f64,
+        grid: PyReadonlyArray1<'py, f64>,
+        illuminant: &str,
+        observer: &str,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let opts = rough_options(sigma_nm, tau_nm, d_iterations, transport)?;
+        let (ill, obs) = (self::illuminant(illuminant)?, self::observer(observer)?);
+        let g = grid.as_slice()?.to_vec();
+        check_grid(&g)?;
+        let stack = self.stack.clone();
+        let c = run(py, |_| {
+            let rough = opts.build(stack)?;
+            iridis_api::rough::colours(&rough, view, light, azimuth, &g, ill, obs)
+        })?;
+        let rows = [c.smooth.reflected, c.smooth.transmitted, c.specular, c.diffuse];
+        let flat: Vec<f64> = rows.iter().flat_map(|x| x.to_array()).collect();
+        Ok(Array2::from_shape_vec((4, 3), flat).expect("shape").into_pyarray(py))
     }
 }
 

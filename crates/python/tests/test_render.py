@@ -30,3 +30,27 @@ def test_bad_input():
         render.render(SCENE, size=(4, 4), spp=0)
     with pytest.raises(TypeError, match="size"):
         render.render(SCENE, size=5)
+
+
+def test_gpu_render_matches_the_cpu():
+    """render(gpu=True) is `iridis render --gpu` (the facade's GPU path): the CPU reference's image within
+    ΔE00 mean 1, p99 3 (the bound crates/cli/tests/gpu_cli.rs uses), on lavapipe where there is no GPU."""
+    scene = os.path.join(ROOT, "examples", "soap_bubble.toml")
+    try:
+        gpu = render.render(scene, size=(64, 48), spp=2, gpu=True)
+    except ValueError as e:
+        if "no GPU adapter" in str(e) and os.environ.get("IRIDIS_SKIP_GPU") == "1":
+            pytest.skip(f"IRIDIS_SKIP_GPU=1: {e}")
+        raise
+    cpu = render.render(scene, size=(64, 48), spp=2)
+    assert gpu.shape == cpu.shape == (48, 64, 3)
+    # The displayed images (after the scene's exposure, as the PNGs the CLI's test compares) back to XYZ.
+    to_xyz = np.linalg.inv(color.xyz_to_linear_srgb(np.eye(3)).T)
+    lab = []
+    for srgb in (cpu, gpu):
+        linear = np.where(srgb <= 0.04045, srgb / 12.92, ((srgb + 0.055) / 1.055) ** 2.4)
+        lab.append(color.xyz_to_lab(linear @ to_xyz.T))
+    d = np.sort(color.delta_e(lab[0], lab[1]).ravel())
+    mean, p99 = d.mean(), d[d.size * 99 // 100]
+    assert mean < 1.0 and p99 < 3.0, (mean, p99)
+    assert (lab[0][..., 0] > 10).sum() > 300  # the image shows something

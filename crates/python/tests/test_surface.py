@@ -71,3 +71,31 @@ def test_bad_input():
         surface.Surface(np.zeros((4, 4)), -1.0)
     with pytest.raises(ValueError, match="level"):
         surface.Surface(np.zeros((4, 4)), 1.0).level("sideways")
+
+
+def test_info_finds_the_generated_period_and_equals_the_cli():
+    """Surface.info is `iridis surface info --json` (the facade's function; fixture from
+    tests/fixtures/make_cli_fixtures.sh), and finds the period and direction the sine was generated with."""
+    import json
+
+    spec = "builtin:sine?period=1500nm&angle=30deg&size=20um&pixel=20nm"
+    info = surface.load(spec).info()
+    with open(os.path.join(os.path.dirname(__file__), "fixtures", "surface_info.json")) as f:
+        cli = json.load(f)
+    assert [(p["period_nm"], p["orientation_deg"], p["power"]) for p in info["peaks"]] == [
+        (p["period_nm"], p["orientation_deg"], p["power"]) for p in cli["peaks"]
+    ]
+    assert info["roughness"] == cli["roughness"]
+    np.testing.assert_array_equal(info["psdf_radial"]["values_nm4"], cli["psdf_radial"]["values_nm4"])
+    top = info["peaks"][0]
+    assert abs(top["period_nm"] - 1500.0) < 0.01  # the generator's period (measured 1500.0000008 nm)
+    assert abs(top["orientation_deg"] - 30.0) < 1e-4  # its grating vector's direction
+    assert top["power"] > 0.9  # a pure sine: (almost) all of the variance in one peak
+
+
+def test_info_bad_input():
+    s = surface.generate("sine", size="2um", pixel="50nm")
+    with pytest.raises(ValueError, match="coherence_nm"):
+        s.info(coherence_nm=-1.0)
+    with pytest.raises(TypeError, match="peaks"):
+        s.info(peaks="3")

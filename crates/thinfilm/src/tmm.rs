@@ -20,11 +20,12 @@ use std::f64::consts::{FRAC_PI_2, PI};
 
 use num_complex::Complex64;
 use rayon::prelude::*;
+use wide::f64x4;
 
 use crate::error::ThinFilmError;
 use crate::field::waves;
 use crate::material::Material;
-use crate::recurrence::{compose, Medium};
+use crate::recurrence::{compose, fresnel, grazing_variants, Medium};
 use crate::stack::{Layer, Stack};
 
 /// tmm's `pol` argument.
@@ -307,13 +308,199 @@ pub struct Batch {
     pub power_entering: Vec<f64>,
 }
 
-/// Points per parallel task of [`coh_tmm_batch`]: large enough that the per-angle preparation is shared by many
-/// points, small enough for both threads to stay busy.
-const CHUNK: usize = 4096;
+/// Points per parallel task of [`coh_tmm_batch`] at least; a batch is cut into about four tasks per thread
+/// (each task prepares the angles it meets once, so fewer, larger tasks repeat less of that work).
+const MIN_CHUNK: usize = 4096;
+
+/// One polarisation of a stack of constant indices prepared for one angle (Sussenbach's precalculation stage,
+/// Algorithm 3, for the batch): the Fresnel amplitudes `(r_j, t_j)` of every interface and, per layer, the
+/// phase per unit wavenumber `d_j n̂_j s_{z,j}` (eq. 3.5 without `2π/λ`), so that a point costs only the
+/// phases' `e^{iφ}` and the recurrence (eq. 3.1–3.2) of the one polarisation asked for. One flat block of
+/// numbers, read front to back at every point: `[Re r, Im r, Re t, Im t]` of interfaces `B_1 … B_{N+1}`, then
+/// `Re(d_j n̂_j s_{z,j})` from the bottom layer up (zero-padded to a multiple of four), then
+/// `Im(d_j n̂_j s_{z,j})` per layer, top to bottom (0 where a layer neither absorbs nor is evanescent).
+#[derive(Debug, Clone)]
+struct AngleKernel {
+    layers: usize,
+    data: Vec<f64>,
+}
+
+impl AngleKernel {
+    fn new(pol: Pol, media: &[Medium], inner: &[f64]) -> Self {
+        let layers = inner.len();
+        let padded = layers.div_ceil(4) * 4;
+        let mut data = Vec::with_capacity(4 * (layers + 1) + padded + layers);
+        for j in 1..media.len() {
+            let f = fresnel(media[j - 1], media[j]);
+            let (r, t) = match pol {
+                Pol::S => (f.r_s, f.t_s),
+                Pol::P => (f.r_p, f.t_p),
+            };
+            data.extend([r.re, r.im, t.re, t.im]);
+        }
+        let phase: Vec<Complex64> =
+            inner.iter().zip(&media[1..=layers]).map(|(&dj, mj)| dj * (mj.n * mj.cos)).collect();
+        data.extend(phase.iter().rev().map(|q| q.re));
+        data.resize(4 * (layers + 1) + padded, 0.0);
+        data.extend(phase.iter().map(|q| q.im));
+        Self { layers, data }
+    }
+
+    /// Eq. 3.1–3.2 from the bottom interface up, at wavenumber `k = 2π/λ`, in projective form: with
+    /// `γ = N/D` and `τ = M/D` a layer is `N' = r D + N e^{2iφ}`, `D' = D + r N e^{2iφ}`, `M' = t e^{iφ} M`
+    /// (the same algebra as `γ' = (r + γ e^{2iφ}) / (1 + r γ e^{2iφ})`, `τ' = t τ e^{iφ} / (1 + r γ e^{2iφ})`),
+    /// so that no layer divides — one division at the top gives `(γ, τ)` — and `e^{iφ}` of four layers at a
+    /// time: one SIMD `sin_cos` of their `Re φ`, times `e^{−Im φ}` where a layer decays.
+    #[inline]
+    fn amplitudes(&self, k: f64) -> (Complex64, Complex64) {
+        let n = self.layers;
+        let (rt, rest) = self.data.split_at(4 * (n + 1));
+        let (phase_re_up, phase_im) = rest.split_at(rest.len() - n);
+        let interface = |j: usize| {
+            let x = &rt[4 * j..4 * j + 4];
+            (Complex64::new(x[0], x[1]), Complex64::new(x[2], x[3]))
+        };
+        let (r0, t0) = interface(n);
+        let (mut num, mut den, mut m) = (r0, Complex64::new(1.0, 0.0), t0);
+        let kk = f64x4::splat(k);
+        for (b, four) in phase_re_up.chunks_exact(4).enumerate() {
+            let (sin, cos) = (kk * f64x4::new([four[0], four[1], four[2], four[3]])).sin_cos();
+            let (sin, cos) = (sin.to_array(), cos.to_array());
+            for l in 0..4.min(n - 4 * b) {
+                let j = n - 1 - (4 * b + l);
+                let mut e1 = Complex64::new(cos[l], sin[l]);
+                if phase_im[j] != 0.0 {
+                    // Im φ ≥ 0 on the forward branch: |e^{iφ}| ≤ 1, nothing overflows.
+                    e1 *= (-k * phase_im[j]).exp();
+                }
+                let (r, t) = interface(j);
+                let ne2 = num * (e1 * e1);
+                num = r * den + ne2;
+                den += r * ne2;
+                m = t * e1 * m;
+                // |D| can grow by up to 2× a layer: bring it back near 1 long before f64 would overflow.
+                let size = den.norm_sqr();
+                if !(1e-150..=1e150).contains(&size) {
+                    let s = 1.0 / size.sqrt();
+                    (num, den, m) = (num * s, den * s, m * s);
+                }
+            }
+        }
+        let inv = den.inv();
+        (num * inv, m * inv)
+    }
+}
+
+/// One angle of the batch: its kernel (and a second one, averaged with it, when a layer grazes:
+/// `recurrence::grazing_variants`), and what turns amplitudes into tmm's powers there ([`powers`], with the
+/// per-angle factors taken out of the loop over points).
+#[derive(Debug, Clone)]
+struct AngleEntry {
+    kernel: AngleKernel,
+    grazing: Option<AngleKernel>,
+    /// `flux(last) / flux(first)`: `T = |t|²` times this.
+    t_factor: f64,
+    /// `n₀ cos θ₀` (conjugated cosine for p) over `flux(first)`: `power_entering = Re(this · (1 ± r̄)(1 ∓ r))`.
+    entering: Complex64,
+}
+
+impl AngleEntry {
+    fn new(pol: Pol, n: &[Complex64], d: &[f64], angle: f64, media: &mut Vec<Medium>) -> Self {
+        media_into(n.iter().copied(), angle, media);
+        let inner = &d[1..d.len() - 1];
+        let (kernel, grazing) = match grazing_variants(media) {
+            Some([plus, minus]) => (AngleKernel::new(pol, &plus, inner), Some(AngleKernel::new(pol, &minus, inner))),
+            None => (AngleKernel::new(pol, media, inner), None),
+        };
+        let (first, last) = (media[0], media[media.len() - 1]);
+        let f0 = flux(pol, first);
+        let entering = match pol {
+            Pol::S => first.n * first.cos,
+            Pol::P => first.n * first.cos.conj(),
+        } / f0;
+        Self { kernel, grazing, t_factor: flux(pol, last) / f0, entering }
+    }
+
+    /// `r`, `t`, `R`, `T` and `power_entering` at one wavelength.
+    #[inline]
+    fn point(&self, pol: Pol, lam: f64) -> (Complex64, Complex64, f64, f64, f64) {
+        let k = 2.0 * PI / lam;
+        let (r, t) = match &self.grazing {
+            None => self.kernel.amplitudes(k),
+            Some(other) => {
+                let (x, y) = (self.kernel.amplitudes(k), other.amplitudes(k));
+                (0.5 * (x.0 + y.0), 0.5 * (x.1 + y.1))
+            }
+        };
+        let one = Complex64::new(1.0, 0.0);
+        let entering = match pol {
+            Pol::S => (self.entering * (one + r.conj()) * (one - r)).re,
+            Pol::P => (self.entering * (one + r) * (one - r.conj())).re,
+        };
+        (r, t, r.norm_sqr(), t.norm_sqr() * self.t_factor, entering)
+    }
+}
+
+/// The angles one task of the batch has met, found by their bits: a direct-mapped table of recent ones in front
+/// of a hash map (one multiplication to look up; the batch looks an angle up at every point).
+#[derive(Debug)]
+struct AngleCache {
+    /// `(bits, index + 1)`; index + 1 = 0: empty.
+    recent: Vec<(u64, usize)>,
+    index: AngleMap,
+    entries: Vec<AngleEntry>,
+}
+
+impl AngleCache {
+    const SLOTS: usize = 256;
+
+    fn new() -> Self {
+        Self { recent: vec![(0, 0); Self::SLOTS], index: AngleMap::default(), entries: Vec::new() }
+    }
+
+    #[inline]
+    fn get(&mut self, angle: f64, make: impl FnOnce(f64) -> AngleEntry) -> &AngleEntry {
+        let bits = angle.to_bits();
+        let slot = (bits.wrapping_mul(0x9e37_79b9_7f4a_7c15) >> 56) as usize;
+        let (b, e) = self.recent[slot];
+        if e != 0 && b == bits {
+            return &self.entries[e - 1];
+        }
+        let entries = &mut self.entries;
+        let e = *self.index.entry(bits).or_insert_with(|| {
+            entries.push(make(angle));
+            entries.len() - 1
+        });
+        self.recent[slot] = (bits, e + 1);
+        &self.entries[e]
+    }
+}
+
+/// A hasher for angles' bit patterns: one multiplication (std's SipHash, built against hostile keys, costs
+/// more than the recurrence of a thin layer).
+#[derive(Debug, Default, Clone, Copy)]
+struct AngleHasher(u64);
+
+impl std::hash::Hasher for AngleHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.0 = (self.0.rotate_left(5) ^ b as u64).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+        }
+    }
+    fn write_u64(&mut self, x: u64) {
+        self.0 = (x ^ (x >> 29)).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+}
+
+type AngleMap = HashMap<u64, usize, std::hash::BuildHasherDefault<AngleHasher>>;
 
 /// `coh_tmm` at many (θ₀, λ) points (`th0` and `lam` of equal length): `r`, `t`, `R`, `T`, `power_entering`
 /// as `coh_tmm` gives them, in parallel over chunks of points. With constant indices each chunk prepares every
-/// angle it meets once (the chapter 4 fast path, [`crate::Prepared`]) and reuses it for the points at that angle.
+/// angle it meets once ([`AngleEntry`]: the chapter 4 fast path for the one polarisation asked for) and reuses
+/// it for the points at that angle.
 pub fn coh_tmm_batch(pol: Pol, n: Indices<'_>, d: &[f64], th0: &[f64], lam: &[f64]) -> Result<Batch, ThinFilmError> {
     let points = th0.len();
     if lam.len() != points {
@@ -343,10 +530,6 @@ pub fn coh_tmm_batch(pol: Pol, n: Indices<'_>, d: &[f64], th0: &[f64], lam: &[f6
         Indices::PerPoint { data, .. } => (0..media_count).map(|j| data[j * points]).collect(),
     };
     check_lists(&first_n, d)?;
-    let stack = match n {
-        Indices::Constant(x) => Some(stack_from_lists(x, d, None)?),
-        Indices::PerPoint { .. } => None,
-    };
     let inner = &d[1..d.len() - 1];
     let zero = Complex64::new(0.0, 0.0);
     let mut out = Batch {
@@ -360,48 +543,40 @@ pub fn coh_tmm_batch(pol: Pol, n: Indices<'_>, d: &[f64], th0: &[f64], lam: &[f6
         Pol::S => (a[0], a[2]),
         Pol::P => (a[1], a[3]),
     };
+    let chunk = MIN_CHUNK.max(points.div_ceil(4 * rayon::current_num_threads()));
     out.r
-        .par_chunks_mut(CHUNK)
-        .zip(out.t.par_chunks_mut(CHUNK))
-        .zip(out.big_r.par_chunks_mut(CHUNK))
-        .zip(out.big_t.par_chunks_mut(CHUNK))
-        .zip(out.power_entering.par_chunks_mut(CHUNK))
+        .par_chunks_mut(chunk)
+        .zip(out.t.par_chunks_mut(chunk))
+        .zip(out.big_r.par_chunks_mut(chunk))
+        .zip(out.big_t.par_chunks_mut(chunk))
+        .zip(out.power_entering.par_chunks_mut(chunk))
         .enumerate()
         .try_for_each(|(c, ((((r, t), big_r), big_t), pe))| -> Result<(), ThinFilmError> {
-            let start = c * CHUNK;
+            let start = c * chunk;
             let mut media = Vec::with_capacity(media_count);
-            // Per angle in this chunk: the prepared stack and its two end media.
-            let mut prepared: HashMap<u64, (crate::Prepared, Medium, Medium)> = HashMap::new();
+            // Per angle in this chunk: its kernel, prepared the first time the angle comes.
+            let mut cache = AngleCache::new();
             for k in 0..r.len() {
                 let i = start + k;
                 check_angle_wavelength(th0[i], lam[i])
                     .map_err(|e| invalid(format!("{e} (at point {i} of the batch)")))?;
-                let (amp, first, last) = match (&stack, n) {
-                    (Some(stack), Indices::Constant(x)) => {
+                let (rr, tt, x_r, x_t, x_pe) = match n {
+                    Indices::Constant(x) => {
                         let a = th0[i].abs().min(FRAC_PI_2);
-                        let entry = match prepared.entry(a.to_bits()) {
-                            std::collections::hash_map::Entry::Occupied(o) => o.into_mut(),
-                            std::collections::hash_map::Entry::Vacant(v) => {
-                                media_into(x.iter().copied(), a, &mut media);
-                                let ends = (media[0], media[media.len() - 1]);
-                                v.insert((stack.prepare(a)?, ends.0, ends.1))
-                            }
-                        };
-                        (entry.0.amplitudes(lam[i])?, entry.1, entry.2)
+                        cache.get(a, |a| AngleEntry::new(pol, x, d, a, &mut media)).point(pol, lam[i])
                     }
-                    (_, Indices::PerPoint { data, .. }) => {
+                    Indices::PerPoint { data, .. } => {
                         for j in 0..media_count {
                             check_index(j, data[j * points + i])
                                 .map_err(|e| invalid(format!("{e} (at point {i} of the batch)")))?;
                         }
                         media_into((0..media_count).map(|j| data[j * points + i]), th0[i], &mut media);
                         let c = compose(&media, inner, lam[i], None);
-                        ([c.gamma_s, c.gamma_p, c.tau_s, c.tau_p], media[0], media[media.len() - 1])
+                        let (rr, tt) = pick([c.gamma_s, c.gamma_p, c.tau_s, c.tau_p]);
+                        let (x_r, x_t, x_pe) = powers(pol, rr, tt, media[0], media[media.len() - 1]);
+                        (rr, tt, x_r, x_t, x_pe)
                     }
-                    (None, Indices::Constant(_)) => unreachable!("constant indices always build a stack"),
                 };
-                let (rr, tt) = pick(amp);
-                let (x_r, x_t, x_pe) = powers(pol, rr, tt, first, last);
                 r[k] = rr;
                 t[k] = tt;
                 big_r[k] = x_r;
@@ -446,6 +621,38 @@ mod tests {
                 assert!(
                     (b.big_t[i] - one.big_t).abs() < 1e-13 && (b.power_entering[i] - one.power_entering).abs() < 1e-13
                 );
+            }
+        }
+    }
+
+    #[test]
+    fn batch_equals_single_calls_at_and_beyond_a_critical_angle() {
+        // A lossless layer of lower index: real phases below its critical angle (the sin_cos path), evanescent
+        // beyond it (the exp path), and grazing at it (two kernels averaged, recurrence::grazing_variants);
+        // the per-point path (dispersive indices) on the same points as a third opinion.
+        let n = [c(1.5, 0.0), c(1.0, 0.0), c(2.0, 0.01), c(1.5, 0.0)];
+        let d = [f64::INFINITY, 300.0, 80.0, f64::INFINITY];
+        let critical = (1.0f64 / 1.5).asin();
+        let th: Vec<f64> = [0.0, 0.3, critical - 1e-7, critical, critical + 1e-7, 0.9, 1.2, -0.3]
+            .iter()
+            .flat_map(|&a| [a; 3])
+            .collect();
+        let lam: Vec<f64> = (0..th.len()).map(|i| 400.0 + 13.0 * i as f64).collect();
+        let per_point: Vec<Complex64> = n.iter().flat_map(|&x| vec![x; th.len()]).collect();
+        for pol in [Pol::S, Pol::P] {
+            let b = coh_tmm_batch(pol, Indices::Constant(&n), &d, &th, &lam).unwrap();
+            let q = coh_tmm_batch(pol, Indices::PerPoint { media: n.len(), data: &per_point }, &d, &th, &lam).unwrap();
+            for i in 0..th.len() {
+                let one = coh_tmm(pol, &n, &d, th[i], lam[i]).unwrap();
+                // Within ~ε/δ of each other at the critical angle (δ = GRAZING_COS: the variants' conditioning).
+                for (x, y) in [(b.r[i], one.r), (b.t[i], one.t), (q.r[i], one.r), (q.t[i], one.t)] {
+                    assert!((x - y).norm() < 1e-11, "{pol:?} θ {} λ {}: {x} vs {y}", th[i], lam[i]);
+                }
+                for (x, y) in
+                    [(b.big_r[i], one.big_r), (b.big_t[i], one.big_t), (b.power_entering[i], one.power_entering)]
+                {
+                    assert!((x - y).abs() < 1e-11, "{pol:?} θ {} λ {}: {x} vs {y}", th[i], lam[i]);
+                }
             }
         }
     }

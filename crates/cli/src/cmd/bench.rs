@@ -353,7 +353,7 @@ pub fn delta_e_stats(a: &[iridis_color::Xyz], b: &[iridis_color::Xyz], exposure:
 
 fn accuracy(a: AccuracyBench) -> Result<()> {
     crate::output::declare_opt("--convergence-plot", a.convergence_plot.as_deref(), &["png"])?;
-    use crate::cmd::brdf::{load_patch, SurfaceOpts};
+    use iridis_api::surface::load_patch;
     let surfaces = if a.surface.is_empty() {
         vec!["builtin:blazed".to_string(), "builtin:cd".into(), "builtin:elaphe".into(), "builtin:xenopeltis".into()]
     } else {
@@ -368,7 +368,7 @@ fn accuracy(a: AccuracyBench) -> Result<()> {
     let wi = [0.0, 0.0, 1.0];
     let map = |e: &dyn Evaluator| iridis_diffraction::map::brdf_map(e, wi, a.map_size, &|_| {});
     for spec in &surfaces {
-        let patch = load_patch(spec, &SurfaceOpts::default())?;
+        let patch = load_patch(spec, &Default::default(), &crate::progress::Cli)?;
         let (ex, ey) = patch.extent();
         let coherence = a.coherence.unwrap_or(ex.min(ey) / 4.0);
         eprintln!("{spec}: {}×{} samples, coherence {:.1} µm …", patch.cols, patch.rows, coherence / 1000.0);

@@ -5,20 +5,17 @@ use std::sync::Arc;
 
 use anyhow::{bail, Context, Result};
 use clap::Args as ClapArgs;
-use iridis_color::{Encoding, Illuminant, Observer, ToneMap, Xyz};
-use iridis_diffraction::evaluator::{Evaluator, GroundTruth, Reference};
-use iridis_diffraction::geometry::{direction, FilmFresnel, FresnelConvention, FresnelSource, Shading};
-use iridis_diffraction::table::{Lookup, LookupTable, Precision, Provenance, TableParams};
-use iridis_diffraction::taylor::terms_for_bound;
-use iridis_diffraction::{Fresnel, Patch, SpectralSetup, TaylorTerms, Units};
-use iridis_lab::methods::{Method, MethodConfig, Workbench};
-use num_complex::Complex64;
+use iridis_api::brdf::{eval_point, make_evaluator, render_map};
+use iridis_api::model::{build_table, is_table, spectral_setup, taylor_terms};
+use iridis_api::surface::load_patch;
+use iridis_api::{ModelOptions, SurfaceOptions};
+use iridis_color::{Encoding, ToneMap, Xyz};
+use iridis_diffraction::geometry::{direction, FresnelConvention, Shading};
+use iridis_diffraction::table::{Lookup, Precision, TableParams};
+use iridis_diffraction::Units;
 
 use crate::args::{polar_azimuth, positive_length_nm};
-use crate::progress::bar;
-
-/// Bound on the Taylor remainder used by `--terms auto` (PHYSICS.md).
-const DEFAULT_EPSILON: f64 = 1e-6;
+use crate::progress::Cli;
 
 /// How to read a SURFACE argument.
 #[derive(Debug, Clone, Default, ClapArgs)]
@@ -201,94 +198,39 @@ pub struct BrdfMapArgs {
     pub surface_opts: SurfaceOpts,
 }
 
-/// Loads a SURFACE argument as a diffraction patch, printing what the reader warned about (e.g. heights of
-/// unknown unit); the model's own warnings come with the Taylor terms or the ground truth.
-pub fn load_patch(spec: &str, opts: &SurfaceOpts) -> Result<Patch> {
-    let load = iridis_surface::LoadOptions {
-        pixel_size_nm: opts.pixel_size,
-        max_height_nm: opts.max_height,
-        channel: opts.channel.clone(),
-        height_unit: opts.height_unit.clone(),
-        ..Default::default()
-    };
-    let hf = crate::progress::step(&format!("loading {spec}"), || iridis_surface::load_surface(spec, &load))
-        .with_context(|| format!("cannot load surface {spec}"))?;
-    for w in &hf.meta.warnings {
-        eprintln!("warning: {spec}: {w}");
+impl SurfaceOpts {
+    /// The facade's surface options.
+    pub fn options(&self) -> SurfaceOptions {
+        SurfaceOptions {
+            pixel_size_nm: self.pixel_size,
+            max_height_nm: self.max_height,
+            channel: self.channel.clone(),
+            height_unit: self.height_unit.clone(),
+            level: self.level.clone(),
+        }
     }
-    let (hf, levelling) = iridis_surface::prep::level_for_model(spec, hf, opts.level.as_deref())?;
-    eprintln!("{spec}: {levelling}");
-    Ok(Patch::from_row_major(hf.rows, hf.cols, hf.dx_nm, hf.dy_nm, &hf.heights_nm)?)
 }
 
-/// Spectral setup from the options (defaults: D65, CIE 1931, 5 nm).
-pub fn spectral_setup(m: &ModelOpts) -> Result<SpectralSetup> {
-    let ill: Illuminant = m.illuminant.as_deref().unwrap_or("d65").parse()?;
-    let obs: Observer = m.observer.as_deref().unwrap_or("1931").parse()?;
-    let step = m.step.unwrap_or(5.0);
-    if step > 5.0 {
-        eprintln!("warning: a wavelength step of {step} nm shows colour artefacts (the paper: use ≤ 5 nm)");
+impl ModelOpts {
+    /// The facade's model options.
+    pub fn options(&self) -> ModelOptions {
+        ModelOptions {
+            terms: self.terms.clone(),
+            coherence_nm: self.coherence,
+            illuminant: self.illuminant.clone(),
+            observer: self.observer.clone(),
+            step_nm: self.step,
+        }
     }
-    Ok(SpectralSetup::new(ill, obs, step)?)
-}
-
-/// The coherence length for a patch (the one given, or fitted to the patch), with the note saying it was
-/// fitted and the model's warnings on stderr.
-pub fn coherence_for(patch: &Patch, given_nm: Option<f64>) -> f64 {
-    let c = patch.coherence(given_nm);
-    if let Some(note) = c.note() {
-        eprintln!("note: {note}");
-    }
-    for w in patch.warnings(c.nm) {
-        eprintln!("warning: {w}");
-    }
-    c.nm
-}
-
-/// Taylor terms of a patch with a progress bar.
-pub fn taylor_terms(patch: &Patch, m: &ModelOpts) -> Result<TaylorTerms> {
-    let coherence = coherence_for(patch, m.coherence);
-    let n = match m.terms.trim() {
-        "auto" => terms_for_bound(patch.max_abs_height, 380.0, DEFAULT_EPSILON),
-        t => match t.parse::<usize>() {
-            Ok(n) if n <= 200 => n,
-            _ => bail!("--terms '{t}' must be 'auto' or a number of terms from 0 to 200"),
-        },
-    };
-    let pb = bar(n as u64 + 1, "Taylor terms");
-    let terms = TaylorTerms::compute_with_progress(patch, n, coherence, &|d| pb.set_position(d as u64))?;
-    pb.finish_and_clear();
-    eprintln!(
-        "{}×{} samples at {:.1} × {:.1} nm, |h|max {:.1} nm, N = {n} Taylor terms, coherence {:.1} µm",
-        patch.cols,
-        patch.rows,
-        patch.dx,
-        patch.dy,
-        patch.max_abs_height,
-        coherence / 1000.0
-    );
-    Ok(terms)
-}
-
-/// Builds a lookup table with a progress bar.
-pub fn build_table(
-    terms: &TaylorTerms,
-    spectral: &SpectralSetup,
-    params: TableParams,
-    name: &str,
-) -> Result<LookupTable> {
-    let pb = bar(params.uv_resolution as u64, "lookup tables");
-    let t = LookupTable::build(terms, spectral, params, name, &|d| pb.set_position(d as u64))?;
-    pb.finish_and_clear();
-    Ok(t)
 }
 
 pub fn run_precompute(a: PrecomputeArgs) -> Result<()> {
     crate::output::declare("-o", &a.output, &["npz"])?;
     let start = std::time::Instant::now();
-    let patch = load_patch(&a.surface, &a.surface_opts)?;
-    let terms = taylor_terms(&patch, &a.model)?;
-    let mut spectral = spectral_setup(&a.model)?;
+    let model = a.model.options();
+    let patch = load_patch(&a.surface, &a.surface_opts.options(), &Cli)?;
+    let mut spectral = spectral_setup(&model, &Cli)?;
+    let terms = taylor_terms(&patch, &model, &Cli)?;
     if a.units == Units::Radiometric {
         spectral = spectral.radiometric(terms.coherence_nm)?;
     }
@@ -305,7 +247,7 @@ pub fn run_precompute(a: PrecomputeArgs) -> Result<()> {
     let table = if a.gpu {
         crate::cmd::gpu::build_table(&terms, &spectral, params, &a.surface)?
     } else {
-        build_table(&terms, &spectral, params, &a.surface)?
+        build_table(&terms, &spectral, params, &a.surface, &Cli)?
     };
     let mut buf = std::io::Cursor::new(Vec::new());
     table.write_npz(&mut buf)?;
@@ -341,11 +283,7 @@ pub struct ShadingOpts {
 
 impl ShadingOpts {
     pub fn shading(&self) -> Result<Shading> {
-        Ok(Shading {
-            fresnel: parse_fresnel_source(&self.fresnel)?,
-            shadowing: !self.no_shadowing,
-            convention: self.fresnel_convention,
-        })
+        iridis_api::fresnel::shading(&self.fresnel, self.fresnel_convention, !self.no_shadowing)
     }
 }
 
@@ -354,74 +292,10 @@ pub fn fresnel_convention(s: &str) -> Result<FresnelConvention, String> {
     FresnelConvention::parse(s).map_err(|e| e.to_string())
 }
 
-/// Parses `--fresnel`, the one parser of every command that takes it: the built-in models, measured gold
-/// (`gold`, λ-dependent) and a thin-film stack (`stack:air | keratin 400nm | …`, λ-dependent).
-pub fn parse_fresnel_source(s: &str) -> Result<Arc<dyn FresnelSource>> {
-    if let Some(stack) = s.trim().strip_prefix("stack:") {
-        let stack: iridis_thinfilm::Stack = stack.parse().with_context(|| format!("--fresnel '{s}'"))?;
-        return Ok(Arc::new(FilmFresnel::new(stack)?));
-    }
-    if matches!(s.trim().to_ascii_lowercase().as_str(), "gold" | "au") {
-        let m = iridis_thinfilm::Material::builtin("gold").context("the built-in gold data are missing")?;
-        return Ok(Arc::new(iridis_lab::laser::MetalFresnel::new(m, 380.0, 780.0)?));
-    }
-    Ok(Arc::new(parse_fresnel(s)?))
-}
-
-/// Parses the built-in Fresnel models of `--fresnel` (those a GPU shader evaluates: no λ dependence).
-pub fn parse_fresnel(s: &str) -> Result<Fresnel> {
-    let t = s.trim().to_ascii_lowercase();
-    let (kind, value) = t.split_once(':').unwrap_or((t.as_str(), ""));
-    match kind {
-        "schlick" => {
-            // n = 1 gives F_0 = 0: a black surface, never what was meant.
-            let n = if value.is_empty() {
-                1.5
-            } else {
-                value
-                    .parse::<f64>()
-                    .ok()
-                    .filter(|n| *n > 0.0 && *n != 1.0)
-                    .with_context(|| format!("--fresnel '{s}': schlick:N needs a positive N ≠ 1"))?
-            };
-            Ok(Fresnel::Schlick { n })
-        }
-        "index" => {
-            let n = parse_complex(value).with_context(|| {
-                format!("--fresnel '{s}': write index:N or index:N+Ki with N > 0, K ≥ 0, e.g. index:0.2+3.4i")
-            })?;
-            Ok(Fresnel::Index { n })
-        }
-        "gold" | "au" => bail!(
-            "--fresnel '{s}': measured gold depends on λ, which this path cannot evaluate; use index:0.2+3.4i \
-             (gold near 550 nm) or a CPU method"
-        ),
-        _ => bail!("--fresnel '{s}': expected schlick[:N], index:N[+Ki], gold or stack:STACK"),
-    }
-}
-
-fn parse_complex(s: &str) -> Option<Complex64> {
-    let s = s.trim();
-    if let Some(body) = s.strip_suffix('i') {
-        let split = body.rfind(['+', '-']).filter(|&p| p > 0)?;
-        let (re, im) = body.split_at(split);
-        let (re, im) = (re.parse::<f64>().ok()?, im.parse::<f64>().ok()?);
-        (re > 0.0 && im >= 0.0).then_some(Complex64::new(re, im))
-    } else {
-        s.parse::<f64>().ok().filter(|n| *n > 0.0).map(|n| Complex64::new(n, 0.0))
-    }
-}
-
 /// Parses `--incidence θ[,φ]` into a light direction, refusing θ ≥ 90°.
 pub fn parse_incidence(s: &str) -> Result<[f64; 3]> {
     let (theta, phi) = polar_azimuth("incidence", s)?;
     Ok(direction(theta, phi))
-}
-
-/// Whether INPUT is a lookup table from `iridis precompute` rather than a height field, by content: a height
-/// field may be an `.npz` too (`np.savez`), a table is the archive with iridis' `metadata_json`.
-pub(crate) fn is_table(input: &str) -> bool {
-    !input.starts_with("builtin:") && LookupTable::is_table_file(Path::new(input))
 }
 
 /// Refuses options that only shape how a table is built (or how a surface is read) when INPUT is a finished
@@ -446,39 +320,6 @@ pub(crate) fn refuse_build_options_for_table(a: &BrdfMapArgs) -> Result<()> {
              from a SURFACE; pass them to `iridis precompute` (or give brdf-map the surface itself)",
             a.input,
             given.join(", ")
-        );
-    }
-    Ok(())
-}
-
-/// Rejects model options that contradict a table's metadata (the library's provenance check, on the fields
-/// the user gave: the table alone has no surface to fingerprint), and repeats the warnings the table was built
-/// with (pixel size, patch size against the coherence length).
-pub(crate) fn check_against_table(t: &LookupTable, m: &ModelOpts) -> Result<()> {
-    for w in &t.meta.warnings {
-        eprintln!("warning: the table was computed from a surface with this problem: {w}");
-    }
-    let terms = match m.terms.trim() {
-        "auto" => None,
-        s => Some(s.parse::<usize>().map_err(|_| anyhow::anyhow!("--terms '{s}' must be 'auto' or a number"))?),
-    };
-    let illuminant = match &m.illuminant {
-        Some(i) => Some(i.parse::<Illuminant>()?.name().to_string()),
-        None => None,
-    };
-    let expected = Provenance {
-        coherence_nm: m.coherence,
-        illuminant,
-        observer: m.observer.clone(),
-        wavelength_step_nm: m.step,
-        taylor_terms: terms,
-        ..Provenance::default()
-    };
-    let problems = t.mismatches(&expected);
-    if !problems.is_empty() {
-        bail!(
-            "the table was computed with other parameters ({}); run `iridis precompute` with the ones you want",
-            problems.join("; ")
         );
     }
     Ok(())
@@ -543,17 +384,16 @@ fn run_eval(a: BrdfEvalArgs) -> Result<()> {
     let (tl, pl) = polar_azimuth("light", &a.light)?;
     let (tv, pv) = polar_azimuth("view", &a.view)?;
     let (wi, wr) = (direction(tl, pl), direction(tv, pv));
-    let method = a.method.clone().unwrap_or_else(|| if is_table(&a.input) { "lookup" } else { "reference" }.into());
     let shading = a.shading.shading()?;
     let params = TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power };
-    let e = make_evaluator(&a.input, &method, &a.model, shading, params, Precision::F64, &a.surface_opts)?;
-    let spectral = spectral_setup(&a.model)?;
-    let q = iridis_diffraction::point_query(e.as_ref(), spectral.wavelengths(), wi, wr)?;
+    let (model, surface) = (a.model.options(), a.surface_opts.options());
+    let p = eval_point(&a.input, a.method.as_deref(), &model, shading, params, &surface, wi, wr, &Cli)?;
+    let q = &p.query;
     let deg = |r: f64| (r.to_degrees() * 1e9).round() / 1e9;
     if a.json {
         return crate::output::print_json(&serde_json::json!({
             "input": a.input,
-            "method": e.name(),
+            "method": p.method,
             "light": { "theta_deg": deg(tl), "phi_deg": deg(pl), "direction": wi },
             "view": { "theta_deg": deg(tv), "phi_deg": deg(pv), "direction": wr },
             "fresnel": a.shading.fresnel,
@@ -569,7 +409,7 @@ fn run_eval(a: BrdfEvalArgs) -> Result<()> {
     crate::outln!(
         "{} · {} · light θ {}° φ {}° · view θ {}° φ {}°",
         a.input,
-        e.name(),
+        p.method,
         deg(tl),
         deg(pl),
         deg(tv),
@@ -582,99 +422,9 @@ fn run_eval(a: BrdfEvalArgs) -> Result<()> {
                 crate::outln!("{l:10.1}  {r:10.4e}")?;
             }
         }
-        None => crate::outln!("ρ(λ): not available — the {} method integrates over λ in advance", e.name())?,
+        None => crate::outln!("ρ(λ): not available — the {} method integrates over λ in advance", p.method)?,
     }
     crate::outln!("XYZ {:.6e} {:.6e} {:.6e}  (a normal-incidence mirror: Y = 1)", q.xyz.x, q.xyz.y, q.xyz.z)
-}
-
-/// An evaluator for `--method` on a surface or table.
-pub fn make_evaluator(
-    input: &str,
-    method: &str,
-    model: &ModelOpts,
-    shading: Shading,
-    params: TableParams,
-    precision: Precision,
-    surface_opts: &SurfaceOpts,
-) -> Result<Box<dyn Evaluator>> {
-    if is_table(input) {
-        if method != "lookup" {
-            bail!("--method {method} needs the height field, not a table: pass the SURFACE the table was made from");
-        }
-        let table = LookupTable::load(Path::new(input))?;
-        check_against_table(&table, model)?;
-        return Ok(Box::new(Lookup::new(Arc::new(table), shading, precision)?));
-    }
-    let parsed: Method = method.parse()?;
-    if method == "lookup" && shading.fresnel.depends_on_wavelength() {
-        // Refused before the (long) table build rather than after it.
-        bail!(
-            "the lookup method integrates over wavelength in advance, so its Fresnel factor must not depend on λ \
-             ({}); use --method reference or ground-truth",
-            shading.fresnel.describe()
-        );
-    }
-    let patch = load_patch(input, surface_opts)?;
-    let spectral = spectral_setup(model)?;
-    match parsed {
-        Method::GroundTruth => {
-            let coherence = coherence_for(&patch, model.coherence);
-            let samples = 2 * spectral.wavelengths().len() - 1;
-            Ok(Box::new(GroundTruth::new(&patch, coherence, shading, &spectral, samples)?))
-        }
-        Method::Reference => {
-            let terms = Arc::new(taylor_terms(&patch, model)?);
-            Ok(Box::new(Reference { terms, shading, spectral }))
-        }
-        Method::Lookup => {
-            let terms = taylor_terms(&patch, model)?;
-            let table = build_table(&terms, &spectral, params, input)?;
-            Ok(Box::new(Lookup::new(Arc::new(table), shading, precision)?))
-        }
-        // The lab's variants (NMM, PQ) and Stam's analytic models, built as `iridis compare` builds them.
-        lab => lab_evaluator(lab, input, patch, model, shading, spectral),
-    }
-}
-
-/// NMM, PQ and Stam's models from `iridis-lab`, with the same Taylor terms and window as `reference`.
-fn lab_evaluator(
-    method: Method,
-    input: &str,
-    patch: Patch,
-    model: &ModelOpts,
-    shading: Shading,
-    spectral: SpectralSetup,
-) -> Result<Box<dyn Evaluator>> {
-    let coherence = coherence_for(&patch, model.coherence);
-    let terms = match model.terms.trim() {
-        "auto" => None,
-        t => match t.parse::<usize>() {
-            Ok(n) if (1..=200).contains(&n) => Some(n),
-            _ => bail!("--terms '{t}' must be 'auto' or a number of terms from 1 to 200 for --method {method}"),
-        },
-    };
-    let config = MethodConfig {
-        coherence_nm: coherence,
-        terms,
-        term_epsilon: DEFAULT_EPSILON,
-        spectral,
-        shading,
-        ..Default::default()
-    };
-    let bench = Workbench::new(patch, config, input)?;
-    let uses_terms = matches!(method, Method::Nmm | Method::Pq);
-    let pb = bar(if uses_terms { bench.config.term_count(&bench.patch) as u64 + 1 } else { 1 }, "preparing");
-    let e = bench.evaluator(method, &|d| pb.set_position(d as u64));
-    pb.finish_and_clear();
-    e.with_context(|| format!("--method {method} cannot make a map of {input}"))
-}
-
-/// Renders a BRDF map with a progress bar: linear XYZ per pixel.
-pub fn render_map(e: &dyn Evaluator, wi: [f64; 3], size: usize) -> Vec<Xyz> {
-    let pb = bar(size as u64, &format!("{} map", e.name()));
-    let xyz = iridis_diffraction::map::brdf_map(e, wi, size, &|d| pb.set_position(d as u64));
-    pb.finish_and_clear();
-    xyz
 }
 
 /// Tone-maps a map to 8-bit sRGB.
@@ -708,9 +458,10 @@ pub fn run_brdf_map(a: BrdfMapArgs) -> Result<()> {
     let params = TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power };
     let precision = if a.f32 { Precision::F32 } else { Precision::F64 };
     let start = std::time::Instant::now();
-    let e = make_evaluator(&a.input, &a.method, &a.model, shading, params, precision, &a.surface_opts)?;
+    let (model, surface) = (a.model.options(), a.surface_opts.options());
+    let e = make_evaluator(&a.input, &a.method, &model, shading, params, precision, &surface, &Cli)?;
     let prepared = start.elapsed().as_secs_f64();
-    let xyz = render_map(e.as_ref(), wi, a.size);
+    let xyz = render_map(e.as_ref(), wi, a.size, &Cli);
     let total = start.elapsed().as_secs_f64();
     let secs = total - prepared;
     let tone = ToneMap { exposure_ru: a.exposure, encoding };
@@ -787,20 +538,20 @@ pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
          from the error bound) on built-in surfaces, 1500 RU, sRGB. Light at normal incidence (20° for \
          Xenopeltis). Each map: `iridis brdf-map builtin:NAME -o map.png`.",
     );
-    let model = ModelOpts { terms: "auto".into(), coherence: None, illuminant: None, observer: None, step: None };
-    let none = SurfaceOpts::default();
+    let model = ModelOptions::default();
+    let none = SurfaceOptions::default();
     let size = 320;
     for (name, theta_deg) in [("blazed", 0.0), ("cd", 0.0), ("elaphe", 0.0), ("xenopeltis", 20.0)] {
         let spec = format!("builtin:{name}");
         crate::outln!("  {spec}: Taylor terms and lookup tables …")?;
-        let patch = load_patch(&spec, &none)?;
-        let spectral = spectral_setup(&model)?;
-        let terms = taylor_terms(&patch, &model)?;
-        let table = build_table(&terms, &spectral, TableParams { uv_resolution: 201, uv_power: 5.0 }, &spec)?;
+        let patch = load_patch(&spec, &none, &Cli)?;
+        let spectral = spectral_setup(&model, &Cli)?;
+        let terms = taylor_terms(&patch, &model, &Cli)?;
+        let table = build_table(&terms, &spectral, TableParams { uv_resolution: 201, uv_power: 5.0 }, &spec, &Cli)?;
         let n = table.meta.taylor_terms;
         let lookup = Lookup::new(Arc::new(table), Shading::default(), Precision::F64)?;
         let wi = direction(f64::to_radians(theta_deg), 0.0);
-        let xyz = render_map(&lookup, wi, size);
+        let xyz = render_map(&lookup, wi, size, &Cli);
         let rgb = map_to_rgb8(&xyz, ToneMap { exposure_ru: 1500.0, encoding: Encoding::Srgb });
         let pixels = RgbImage { width: size as u32, height: size as u32, data: rgb };
         let plot = ImagePlot {
@@ -830,13 +581,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn fresnel_and_incidence_parse() {
-        assert!(matches!(parse_fresnel("schlick").unwrap(), Fresnel::Schlick { n } if n == 1.5));
-        match parse_fresnel("index:0.2+3.4i").unwrap() {
-            Fresnel::Index { n } => assert_eq!(n, Complex64::new(0.2, 3.4)),
-            f => panic!("{f:?}"),
-        }
-        assert!(parse_fresnel("index:abc").is_err());
+    fn incidence_parses() {
         assert!(parse_incidence("90deg").is_err());
         assert!(parse_incidence("20deg,0deg,1deg").is_err());
         let d = parse_incidence("0deg").unwrap();

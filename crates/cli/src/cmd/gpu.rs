@@ -6,6 +6,8 @@ use std::time::Duration;
 
 use anyhow::{bail, Context, Result};
 use clap::Args as ClapArgs;
+use iridis_api::model::lookup_table;
+use iridis_api::{ModelOptions, SurfaceOptions};
 use iridis_color::{Encoding, ToneMap, Xyz};
 use iridis_diffraction::encoding::TableEncoding;
 use iridis_diffraction::evaluator::Evaluator;
@@ -21,8 +23,8 @@ use iridis_thinfilm::accuracy::DeltaEStats;
 use iridis_thinfilm::spectral::{dense_weights, sampled_weights, FULL_BAND_NM};
 use serde_json::json;
 
-use crate::cmd::brdf::{self, BrdfMapArgs, ModelOpts, SurfaceOpts};
-use crate::progress::bar;
+use crate::cmd::brdf::{self, BrdfMapArgs, SurfaceOpts};
+use crate::progress::{bar, Cli};
 
 /// `iridis render --gpu`: the scene on the GPU with a progress bar over bands of rows; the image, the seconds
 /// (upload, compile, render and read-back) and the adapter's name.
@@ -33,16 +35,8 @@ pub fn render_scene(
     spp: u32,
     film: SceneFilm,
 ) -> Result<(iridis_render::Image, f64, String)> {
-    let t = std::time::Instant::now();
-    let gpu = open_gpu()?;
-    let g = GpuScene::with_film(&gpu, scene, film)?;
-    let pb = crate::progress::bar(h as u64, "render (GPU)");
-    let img = g.render(w, h, spp, &|rows| pb.set_position(rows as u64));
-    pb.finish_and_clear();
-    if let Some(o) = g.stack_overflow() {
-        eprintln!("warning: {o}");
-    }
-    Ok((img?, t.elapsed().as_secs_f64(), gpu.adapter_name()))
+    let r = iridis_api::gpu::render_scene(scene, w, h, spp, film, &Cli)?;
+    Ok((r.image, r.seconds, r.adapter))
 }
 
 /// How `--spectral-samples N` shades films on the GPU: colour tables without it, else the direct evaluation at
@@ -59,20 +53,7 @@ pub fn scene_film(spectral_samples: Option<usize>) -> Result<SceneFilm> {
 
 /// Opens the GPU, with the driver hint when there is none.
 fn open_gpu() -> Result<Gpu> {
-    Ok(Gpu::new()?)
-}
-
-/// The lookup table of a TABLE (checked against the options) or built from a SURFACE.
-pub fn lookup_table(input: &str, model: &ModelOpts, params: TableParams, surface: &SurfaceOpts) -> Result<LookupTable> {
-    if brdf::is_table(input) {
-        let table = LookupTable::load(std::path::Path::new(input))?;
-        brdf::check_against_table(&table, model)?;
-        return Ok(table);
-    }
-    let patch = brdf::load_patch(input, surface)?;
-    let spectral = brdf::spectral_setup(model)?;
-    let terms = brdf::taylor_terms(&patch, model)?;
-    brdf::build_table(&terms, &spectral, params, input)
+    iridis_api::gpu::open()
 }
 
 /// `iridis precompute --gpu` (and a `--gpu` command that needs a table of a SURFACE): the lookup table built on
@@ -93,12 +74,7 @@ fn build_table_on(
     params: TableParams,
     name: &str,
 ) -> Result<LookupTable> {
-    let pb = bar(params.uv_resolution as u64, "lookup tables (GPU)");
-    let t = std::time::Instant::now();
-    let table = iridis_gpu::build_table(gpu, terms, spectral, params, name, &|d| pb.set_position(d as u64))?;
-    pb.finish_and_clear();
-    eprintln!("lookup tables built on {} in f32, {:.2} s", gpu.adapter_name(), t.elapsed().as_secs_f64());
-    Ok(table)
+    iridis_api::gpu::build_table(gpu, terms, spectral, params, name, &Cli)
 }
 
 /// `iridis brdf-map … --gpu`: the lookup method or a ground truth on the GPU, written exactly like the CPU's
@@ -134,33 +110,34 @@ pub fn run_brdf_map(a: BrdfMapArgs, wi: [f64; 3], encoding: Encoding) -> Result<
              cancellation turns into wrong colours (docs/gpu.md); chebK-f16 halves the memory without that"
         );
     }
-    let fresnel = brdf::parse_fresnel(&a.shading.fresnel)?;
+    let fresnel = iridis_api::fresnel::parse_fresnel(&a.shading.fresnel)?;
     let params = TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power };
     let start = std::time::Instant::now();
     let gpu = open_gpu()?;
-    let table = if brdf::is_table(&a.input) {
-        lookup_table(&a.input, &a.model, params, &a.surface_opts)?
-    } else {
-        let patch = brdf::load_patch(&a.input, &a.surface_opts)?;
-        let spectral = brdf::spectral_setup(&a.model)?;
-        let terms = brdf::taylor_terms(&patch, &a.model)?;
-        build_table_on(&gpu, &terms, &spectral, params, &a.input)?
-    };
-    let lookup = GpuLookup::encoded(&gpu, &table, fresnel, !a.shading.no_shadowing, table_encoding, u64::MAX)?
-        .with_convention(a.shading.fresnel_convention);
+    let table =
+        iridis_api::gpu::lookup_table(&gpu, &a.input, &a.model.options(), params, &a.surface_opts.options(), &Cli)?;
     let tone = ToneMap { exposure_ru: a.exposure, encoding };
-    let frame = lookup.frame(a.size, tone)?;
-    let secs = frame.run(wi)?.wall.as_secs_f64();
-    let out = frame.read()?;
-    brdf::write_map_outputs(&a, &out.xyz, tone)?;
+    let shading = &a.shading;
+    let map = iridis_api::gpu::lookup_map(
+        &gpu,
+        &table,
+        fresnel,
+        !shading.no_shadowing,
+        shading.fresnel_convention,
+        table_encoding,
+        wi,
+        a.size,
+        tone,
+    )?;
+    brdf::write_map_outputs(&a, &map.output.xyz, tone)?;
     crate::outln!(
         "wrote {} (lookup map on the GPU, {}², table in {}, {:.2} s in all, of which the map {:.2} ms on {})",
         a.output.display(),
         a.size,
         table_encoding.name(),
         start.elapsed().as_secs_f64(),
-        secs * 1e3,
-        gpu.adapter_name()
+        map.map_seconds * 1e3,
+        map.adapter
     )?;
     Ok(())
 }
@@ -171,7 +148,16 @@ fn run_ground_truth_map(a: BrdfMapArgs, wi: [f64; 3], encoding: Encoding) -> Res
     let start = std::time::Instant::now();
     let shading = a.shading.shading()?;
     let params = TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power };
-    let e = brdf::make_evaluator(&a.input, &a.method, &a.model, shading, params, Precision::F64, &a.surface_opts)?;
+    let e = iridis_api::brdf::make_evaluator(
+        &a.input,
+        &a.method,
+        &a.model.options(),
+        shading,
+        params,
+        Precision::F64,
+        &a.surface_opts.options(),
+        &Cli,
+    )?;
     let gt = e.as_ground_truth().context("internal: a ground-truth method without a ground truth")?;
     let gpu = open_gpu()?;
     let pb = bar((a.size * a.size) as u64, &format!("{} map (GPU)", e.name()));
@@ -516,15 +502,15 @@ pub fn bench(a: GpuBench) -> Result<()> {
     }
 
     // Lookup diffraction.
-    let model = ModelOpts { terms: "auto".into(), coherence: None, illuminant: None, observer: None, step: None };
+    let model = ModelOptions::default();
     let table = match &a.table {
         Some(p) => LookupTable::load(p)?,
         None => {
             if !a.json {
                 crate::outln!("building the lookup table of builtin:elaphe at 201² (pass --table to use your own) …")?;
             }
-            let none = SurfaceOpts::default();
-            lookup_table("builtin:elaphe", &model, TableParams { uv_resolution: 201, uv_power: 5.0 }, &none)?
+            let none = SurfaceOptions::default();
+            lookup_table("builtin:elaphe", &model, TableParams { uv_resolution: 201, uv_power: 5.0 }, &none, &Cli)?
         }
     };
     let fresnel = Fresnel::default();
@@ -781,13 +767,13 @@ struct EncodingRun {
 /// The lookup table of `--build-surface` built on the CPU (all cores) and on the GPU in the same run: times,
 /// speed-up and the GPU table's error against the CPU's (`iridis_gpu::table_build::table_error`).
 fn bench_table_build(gpu: &Gpu, a: &GpuBench, quiet: bool) -> Result<serde_json::Value> {
-    let model = ModelOpts { terms: "auto".into(), coherence: None, illuminant: None, observer: None, step: None };
-    let patch = brdf::load_patch(&a.build_surface, &SurfaceOpts::default())?;
-    let spectral = brdf::spectral_setup(&model)?;
-    let terms = brdf::taylor_terms(&patch, &model)?;
+    let model = ModelOptions::default();
+    let patch = iridis_api::surface::load_patch(&a.build_surface, &SurfaceOptions::default(), &Cli)?;
+    let spectral = iridis_api::model::spectral_setup(&model, &Cli)?;
+    let terms = iridis_api::model::taylor_terms(&patch, &model, &Cli)?;
     let params = TableParams { uv_resolution: a.build_uv_resolution, uv_power: 5.0 };
     let t = std::time::Instant::now();
-    let cpu = brdf::build_table(&terms, &spectral, params, &a.build_surface)?;
+    let cpu = iridis_api::model::build_table(&terms, &spectral, params, &a.build_surface, &Cli)?;
     let cpu_s = t.elapsed().as_secs_f64();
     let t = std::time::Instant::now();
     let on_gpu = iridis_gpu::build_table(gpu, &terms, &spectral, params, &a.build_surface, &|_| {})?;
@@ -836,8 +822,8 @@ fn bench_table_build(gpu: &Gpu, a: &GpuBench, quiet: bool) -> Result<serde_json:
 fn bench_ground_truth(gpu: &Gpu, a: &GpuBench, quiet: bool) -> Result<serde_json::Value> {
     use iridis_diffraction::{Aperture, GroundTruth};
     use rayon::prelude::*;
-    let patch = brdf::load_patch(&a.gt_surface, &SurfaceOpts::default())?;
-    let coherence = brdf::coherence_for(&patch, None);
+    let patch = iridis_api::surface::load_patch(&a.gt_surface, &SurfaceOptions::default(), &Cli)?;
+    let coherence = iridis_api::model::coherence_for(&patch, None, &Cli);
     let spectral = SpectralSetup::default();
     let samples = 2 * spectral.wavelengths().len() - 1;
     let size = a.gt_size;
@@ -981,9 +967,8 @@ pub fn run_view(a: ViewArgs) -> Result<()> {
         }
         ViewInput::Scene(path.to_path_buf())
     } else {
-        let model = ModelOpts { terms: "auto".into(), coherence: None, illuminant: None, observer: None, step: None };
         let params = TableParams { uv_resolution: a.uv_resolution, uv_power: 5.0 };
-        let table = lookup_table(&a.input, &model, params, &a.surface_opts)?;
+        let table = lookup_table(&a.input, &ModelOptions::default(), params, &a.surface_opts.options(), &Cli)?;
         ViewInput::Table { table: Box::new(table), name: a.input.clone() }
     };
     let report = run(input, ViewOptions { check: a.check.clone() }, load_for_view).map_err(anyhow::Error::msg)?;

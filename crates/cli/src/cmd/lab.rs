@@ -1,25 +1,27 @@
 //! `iridis testbench`, `iridis compare`, `iridis sweep`, `iridis experiment laser`: the virtual lab of issue 6
 //! (paper sec. 6–7, thesis ch. 5) over `iridis-lab`.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use anyhow::{bail, Context, Result};
 use clap::{Args as ClapArgs, Subcommand};
+use iridis_api::lab::{comparison, evaluator, render_pixels, spectral, workbench, LabOptions};
+use iridis_api::SurfaceOptions;
 use iridis_color::units::parse_length_nm;
-use iridis_color::{Illuminant, Observer, Spectrum, Xyz};
-use iridis_diffraction::geometry::{FresnelConvention, Shading};
+use iridis_color::{Illuminant, Observer, Xyz};
+use iridis_diffraction::geometry::FresnelConvention;
 use iridis_diffraction::table::TableParams;
-use iridis_diffraction::{Patch, SpectralSetup};
+use iridis_diffraction::SpectralSetup;
 use iridis_lab::bench::{self, BenchSetup};
-use iridis_lab::image::{render, Pixels};
-use iridis_lab::laser::{LaserSetup, MetalFresnel};
-use iridis_lab::methods::{Method, MethodConfig, Workbench};
+use iridis_lab::image::Pixels;
+use iridis_lab::laser::LaserSetup;
+use iridis_lab::methods::Method;
 use iridis_lab::sweep::Param;
 use serde_json::json;
 
 use crate::args::{angle_rad, positive_length_nm};
 use crate::output::{print_json, write_png_rgb8};
-use crate::progress::bar;
+use crate::progress::{bar, Cli};
 
 /// How to read SURFACE and the model's parameters, shared by the lab commands.
 #[derive(Debug, Clone, ClapArgs)]
@@ -64,107 +66,24 @@ pub struct LabModel {
 }
 
 impl LabModel {
-    fn config(&self) -> Result<MethodConfig> {
-        let terms = match self.terms.trim() {
-            "auto" => None,
-            t => match t.parse::<usize>() {
-                Ok(n) if (1..=200).contains(&n) => Some(n),
-                _ => bail!("--terms '{t}' must be 'auto' or a number of terms from 1 to 200"),
+    /// The facade's lab options.
+    pub fn options(&self) -> LabOptions {
+        LabOptions {
+            surface: SurfaceOptions {
+                pixel_size_nm: self.pixel_size,
+                max_height_nm: self.max_height,
+                channel: self.channel.clone(),
+                height_unit: self.height_unit.clone(),
+                level: self.level.clone(),
             },
-        };
-        Ok(MethodConfig {
-            // Replaced by the patch's coherence in `workbench` when none is given.
-            coherence_nm: self.coherence.unwrap_or(iridis_diffraction::DEFAULT_COHERENCE_NM),
-            terms,
-            shading: Shading {
-                fresnel: crate::cmd::brdf::parse_fresnel_source(&self.fresnel)?,
-                shadowing: !self.no_shadowing,
-                convention: self.fresnel_convention,
-            },
+            coherence_nm: self.coherence,
+            terms: self.terms.clone(),
+            fresnel: self.fresnel.clone(),
+            convention: self.fresnel_convention,
+            shadowing: !self.no_shadowing,
             stam_epsilon: self.epsilon,
-            ..MethodConfig::default()
-        })
-    }
-}
-
-/// Loads SURFACE (a file or builtin:NAME) as a patch, printing the model's warnings.
-fn load(spec: &str, m: &LabModel) -> Result<Patch> {
-    let opts = iridis_surface::LoadOptions {
-        pixel_size_nm: m.pixel_size,
-        max_height_nm: m.max_height,
-        channel: m.channel.clone(),
-        height_unit: m.height_unit.clone(),
-        ..Default::default()
-    };
-    let hf = iridis_surface::load_surface(spec, &opts).with_context(|| format!("cannot load surface {spec}"))?;
-    for w in &hf.meta.warnings {
-        eprintln!("warning: {spec}: {w}");
-    }
-    let (hf, levelling) = iridis_surface::prep::level_for_model(spec, hf, m.level.as_deref())?;
-    eprintln!("{spec}: {levelling}");
-    Ok(Patch::from_row_major(hf.rows, hf.cols, hf.dx_nm, hf.dy_nm, &hf.heights_nm)?)
-}
-
-fn workbench(spec: &str, m: &LabModel, mut config: MethodConfig) -> Result<Workbench> {
-    let patch = load(spec, m)?;
-    config.coherence_nm = crate::cmd::brdf::coherence_for(&patch, m.coherence);
-    eprintln!(
-        "{spec}: {}×{} samples at {:.1} × {:.1} nm ({:.1} × {:.1} µm), |h|max {:.1} nm, coherence {:.1} µm",
-        patch.cols,
-        patch.rows,
-        patch.dx,
-        patch.dy,
-        patch.cols as f64 * patch.dx / 1000.0,
-        patch.rows as f64 * patch.dy / 1000.0,
-        patch.max_abs_height,
-        config.coherence_nm / 1000.0
-    );
-    Ok(Workbench::new(patch, config, spec)?)
-}
-
-/// Builds an evaluator with a progress bar on its expensive step.
-fn evaluator(b: &Workbench, method: Method) -> Result<Box<dyn iridis_diffraction::Evaluator>> {
-    let (len, what) = match method {
-        Method::Lookup => (b.config.table.uv_resolution as u64, "lookup tables"),
-        Method::GroundTruth | Method::GroundTruthPeriodic | Method::StamGaussian | Method::StamPeriodic(_) => {
-            (1, "preparing")
         }
-        _ => (b.config.term_count(&b.patch) as u64 + 1, "Taylor terms"),
-    };
-    let pb = bar(len, what);
-    let e = b.evaluator(method, &|d| pb.set_position(d as u64))?;
-    pb.finish_and_clear();
-    Ok(e)
-}
-
-fn render_bar(e: &dyn iridis_diffraction::Evaluator, pixels: &Pixels, what: &str) -> Vec<Option<Xyz>> {
-    let pb = bar(pixels.len() as u64, what);
-    let img = render(e, pixels, &|d| pb.set_position(d as u64));
-    pb.finish_and_clear();
-    img
-}
-
-/// [`render_bar`] through the workbench: on its accelerator (the GPU of `--gpu`) where that evaluates the method.
-fn render_on_bench(
-    b: &Workbench,
-    e: &dyn iridis_diffraction::Evaluator,
-    pixels: &Pixels,
-    what: &str,
-) -> Result<Vec<Option<Xyz>>> {
-    let pb = bar(pixels.len() as u64, what);
-    let img = b.render(e, pixels, &|d| pb.set_position(d as u64));
-    pb.finish_and_clear();
-    Ok(img?)
-}
-
-/// `--gpu` of compare and sweep: the GPU builds the lookup tables and renders the ground truths.
-fn gpu_accelerator(on: bool) -> Result<Option<std::sync::Arc<dyn iridis_diffraction::Accelerator>>> {
-    if !on {
-        return Ok(None);
     }
-    let a = iridis_gpu::GpuAccelerator::new()?;
-    eprintln!("on the GPU ({}): lookup tables and ground truths; other methods on the CPU", a.gpu().adapter_name());
-    Ok(Some(std::sync::Arc::new(a)))
 }
 
 /// A surface name short enough for a plot title.
@@ -270,12 +189,7 @@ pub struct TestbenchArgs {
 
 pub fn run_testbench(a: TestbenchArgs) -> Result<()> {
     let method: Method = a.method.parse()?;
-    if !method.is_spectral() {
-        bail!(
-            "the {method} method integrates over wavelength in advance and has no spectral reflectance; the test \
-             bench needs one of: reference, ground-truth, nmm, pq, stam-periodic, stam-gaussian"
-        );
-    }
+    iridis_api::lab::check_spectral(method)?;
     crate::output::declare_opt("--plot", a.plot.as_deref(), &["png"])?;
     let mut setup = BenchSetup::new(
         a.incidence,
@@ -285,51 +199,9 @@ pub fn run_testbench(a: TestbenchArgs) -> Result<()> {
         (a.min_angle.to_degrees(), a.max_angle.to_degrees(), a.angle_step.to_degrees()),
     )?;
     setup.period_hint_nm = a.period;
-    let mut config = a.model.config()?;
-    if let Some(p) = a.period {
-        // NMM and Stam's lattice take the period along the measured direction.
-        if a.azimuth.sin().abs() > a.azimuth.cos().abs() {
-            config.period_y_nm = Some(p);
-        } else {
-            config.period_x_nm = Some(p);
-        }
-    }
-    let b = workbench(&a.surface, &a.model, config)?;
-    setup.max_period_nm = a.max_period.unwrap_or((b.config.coherence_nm * std::f64::consts::FRAC_PI_4).min(10_000.0));
-    let e = evaluator(&b, method)?;
-    let pb = bar(setup.wavelengths_nm.len() as u64, "test bench");
-    let matrix = bench::reflectance_matrix(e.as_ref(), &setup, &|d| pb.set_position(d as u64))?;
-    pb.finish_and_clear();
-    let result = bench::analyse(&matrix, &setup)?.on_patch(b.patch.shorter_side_nm(), b.config.coherence_nm);
-    if result.is_quantised() {
-        eprintln!(
-            "warning: the peaks follow d = {:.2} nm, but the coherence window ({} µm) is wider than the {} µm patch, \
-             so the period is read off the patch's DFT grid, quantised to ± d²/L = {:.1} nm: not a definite \
-             period; leave --coherence out (it is then fitted to the patch) or give at most half the patch's side",
-            result.periodicity.mean,
-            b.config.coherence_nm / 1000.0,
-            b.patch.shorter_side_nm() / 1000.0,
-            result.uncertainty_nm().unwrap_or(f64::NAN)
-        );
-    } else if result.periodicity.is_definite() && !result.is_definite() {
-        eprintln!(
-            "warning: the peaks follow d = {:.1} nm, but {} ridges are nearly as strong (the strongest carries {:.2}× \
-             the next, less than {}×): the surface has no definite period along azimuth {:.0}°",
-            result.periodicity.mean,
-            result.ridges.len(),
-            result.ridge_dominance().unwrap_or(1.0),
-            bench::DOMINANT_RIDGE,
-            a.azimuth.to_degrees()
-        );
-    } else if !result.periodicity.is_definite() {
-        eprintln!(
-            "warning: the peaks do not follow one period in this direction (d_λ spreads by {:.1} % of its mean, \
-             more than {:.0} %): the surface has no definite period along azimuth {:.0}°; the mean is not a period",
-            100.0 * result.periodicity.relative_spread(),
-            100.0 * bench::DEFINITE_SPREAD,
-            a.azimuth.to_degrees()
-        );
-    }
+    let source = iridis_api::surface::Source::Spec(a.surface.clone());
+    let t = iridis_api::lab::testbench(&source, &a.model.options(), method, setup, a.max_period, &Cli)?;
+    let (b, setup, matrix, result) = (t.workbench, t.setup, t.matrix, t.result);
     let curve = a.period.unwrap_or(result.periodicity.mean);
     if let Some(path) = &a.plot {
         let name = short(&a.surface);
@@ -468,64 +340,6 @@ pub struct CompareArgs {
     pub model: LabModel,
 }
 
-fn spectral(ill: &str, step: f64) -> Result<SpectralSetup> {
-    let ill: Illuminant = ill.parse()?;
-    if step > 5.0 {
-        eprintln!("warning: a wavelength step of {step} nm shows colour artefacts (the paper: use ≤ 5 nm)");
-    }
-    Ok(SpectralSetup::new(ill, Observer::Cie1931, step)?)
-}
-
-/// The results of `compare` (also used by the demo).
-pub struct Comparison {
-    /// One row per method and exposure, each against its own truth (`row.against`).
-    pub rows: Vec<iridis_lab::compare::ComparisonRow>,
-    pub images: Vec<(String, Vec<Option<Xyz>>)>,
-    /// The images compared against, by method: both ground truths, and `--against METHOD` if given.
-    pub truths: Vec<(Method, Vec<Option<Xyz>>)>,
-    /// The periodic ground truth against the finite-aperture one, per exposure.
-    pub extension: Vec<iridis_lab::compare::ComparisonRow>,
-}
-
-impl Comparison {
-    pub fn truth(&self, m: Method) -> &[Option<Xyz>] {
-        self.truths.iter().find(|t| t.0 == m).map(|t| t.1.as_slice()).unwrap_or(&[])
-    }
-}
-
-/// Each method against `against`, or against the ground truth of its own model ([`Method::model_truth`]) when
-/// `None`; both ground truths are rendered for the periodic-extension error.
-pub fn comparison(
-    b: &Workbench,
-    methods: &[Method],
-    against: Option<Method>,
-    pixels: &Pixels,
-    exps: &[f64],
-) -> Result<Comparison> {
-    let mut truths = Vec::new();
-    let mut needed = vec![Method::GroundTruthPeriodic, Method::GroundTruth];
-    if let Some(a) = against.filter(|a| !a.is_ground_truth()) {
-        needed.push(a);
-    }
-    for m in needed {
-        let e = evaluator(b, m)?;
-        truths.push((m, render_on_bench(b, e.as_ref(), pixels, m.name())?));
-    }
-    let mut c = Comparison { rows: Vec::new(), images: Vec::new(), truths, extension: Vec::new() };
-    for &m in methods {
-        let e = evaluator(b, m)?;
-        let img = render_on_bench(b, e.as_ref(), pixels, m.name())?;
-        let t = against.unwrap_or(m.model_truth());
-        let one = [(m.name().to_string(), img)];
-        c.rows.extend(iridis_lab::compare::table(&one, c.truth(t), t.name(), exps));
-        let [(name, img)] = one;
-        c.images.push((name, img));
-    }
-    c.extension =
-        iridis_lab::compare::extension_error(c.truth(Method::GroundTruthPeriodic), c.truth(Method::GroundTruth), exps);
-    Ok(c)
-}
-
 fn heat_plot(map: &[Option<f64>], size: usize, title: &str, max: f64) -> Result<iridis_plot::RgbImage> {
     let px = iridis_lab::image::heat(map, size, size, max);
     Ok(iridis_plot::ImagePlot {
@@ -560,10 +374,7 @@ fn map_plot(img: &[Option<Xyz>], size: usize, exposure: f64, title: &str) -> Res
 
 pub fn run_compare(a: CompareArgs) -> Result<()> {
     let methods = parse_list(&a.methods, "--methods", |s| Ok(s.parse::<Method>()?))?;
-    let against: Option<Method> = match a.against.trim().to_ascii_lowercase().as_str() {
-        "model" | "own" => None,
-        other => Some(other.parse().map_err(|e| anyhow::anyhow!("--against: {e}, or model"))?),
-    };
+    let against = iridis_api::lab::parse_against(&a.against)?;
     let exps = exposures(&a.exposures)?;
     let (theta, phi) = crate::args::polar_azimuth("incidence", &a.incidence)?;
     if !(8..=2048).contains(&a.size) {
@@ -572,15 +383,15 @@ pub fn run_compare(a: CompareArgs) -> Result<()> {
     if let Some(d) = &a.maps {
         std::fs::create_dir_all(d).with_context(|| format!("cannot create {}", d.display()))?;
     }
-    let mut config = a.model.config()?;
-    config.spectral = spectral(&a.illuminant, a.dlambda)?;
+    let opts = a.model.options();
+    let mut config = opts.config()?;
+    config.spectral = spectral(&a.illuminant, a.dlambda, &Cli)?;
     config.table = TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power };
     config.table_path = a.table.clone();
-    config.accelerator = gpu_accelerator(a.gpu)?;
-    let b = workbench(&a.surface, &a.model, config)?;
+    config.accelerator = iridis_api::lab::gpu_accelerator(a.gpu, &Cli)?;
+    let b = workbench(&a.surface, &opts, config, &Cli)?;
     let pixels = Pixels::brdf_map(theta, phi, a.size);
-    let c = comparison(&b, &methods, against, &pixels, &exps)?;
-    let against_name = against.map(|m| m.name()).unwrap_or("model");
+    let c = comparison(&b, &methods, against, &pixels, &exps, &Cli)?;
     if let Some(dir) = &a.maps {
         for &e in &exps {
             for (m, img) in &c.truths {
@@ -604,24 +415,10 @@ pub fn run_compare(a: CompareArgs) -> Result<()> {
         }
         eprintln!("wrote maps to {}", dir.display());
     }
-    let first = |e: f64| c.rows.iter().find(|r| r.exposure_ru == e).map(|r| r.mean).unwrap_or(f64::NAN);
+    let first = |e: f64| c.first_mean(e);
     if a.json {
-        let rows: Vec<_> = c
-            .rows
-            .iter()
-            .map(|r| {
-                json!({"method": r.method, "against": r.against, "exposure_ru": r.exposure_ru, "mean": r.mean,
-                       "p95": r.p95, "max": r.max, "ratio": r.mean / first(r.exposure_ru)})
-            })
-            .collect();
-        let ext: Vec<_> = c
-            .extension
-            .iter()
-            .map(|r| json!({"exposure_ru": r.exposure_ru, "mean": r.mean, "p95": r.p95, "max": r.max}))
-            .collect();
-        return print_json(&json!({"surface": a.surface, "against": against_name, "size": a.size,
-            "incidence_deg": iridis_color::units::degrees(theta), "coherence_nm": b.config.coherence_nm, "results": rows,
-            "periodic_extension_error": ext}));
+        let deg = iridis_color::units::degrees(theta);
+        return print_json(&c.to_json(&a.surface, against, a.size, deg, b.config.coherence_nm));
     }
     crate::outln!(
         "CIEDE2000 against {} ({}×{} BRDF map, θi = {:.1}°):",
@@ -763,11 +560,12 @@ pub fn run_sweep(a: SweepArgs) -> Result<()> {
         a.output.with_file_name(format!("{stem}_error.png"))
     });
     crate::output::declare("--plot", &plot_path, &["png"])?;
-    let mut config = a.model.config()?;
-    config.spectral = spectral("d65", a.dlambda)?;
+    let opts = a.model.options();
+    let mut config = opts.config()?;
+    config.spectral = spectral("d65", a.dlambda, &Cli)?;
     config.table = TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power };
-    config.accelerator = gpu_accelerator(a.gpu)?;
-    let b = workbench(&a.surface, &a.model, config)?;
+    config.accelerator = iridis_api::lab::gpu_accelerator(a.gpu, &Cli)?;
+    let b = workbench(&a.surface, &opts, config, &Cli)?;
     let pixels = Pixels::brdf_map(theta, phi, a.size);
     let pb = bar(values.len() as u64, &format!("sweep {}", param.name()));
     let (_, points) =
@@ -927,26 +725,8 @@ fn run_laser(a: LaserArgs) -> Result<()> {
         bail!("--table reuses a table and --save-table writes the one built here: give one of them");
     }
     crate::output::declare_opt("--save-table", a.save_table.as_deref(), &["npz"])?;
-    let spectrum = match &a.spectrum {
-        Some(p) => Spectrum::from_csv_path(p)?,
-        None => {
-            eprintln!("note: no --spectrum given; using an equal-energy beam (give the laser's CSV for its colours)");
-            Spectrum::new(vec![300.0, 900.0], vec![1.0, 1.0])?
-        }
-    };
-    let coating = match a.coating.trim().to_ascii_lowercase().as_str() {
-        "none" => None,
-        "gold" | "au" => Some(MetalFresnel::new(
-            iridis_thinfilm::Material::builtin("gold").context("the built-in gold data are missing")?,
-            380.0,
-            780.0,
-        )?),
-        _ => {
-            let m = iridis_thinfilm::Material::from_file(Path::new(&a.coating))
-                .with_context(|| format!("--coating '{}': not gold, none or a readable n,k file", a.coating))?;
-            Some(MetalFresnel::new(m, 380.0, 780.0)?)
-        }
-    };
+    let spectrum = iridis_api::lab::beam_spectrum(a.spectrum.as_deref(), &Cli)?;
+    let coating = iridis_api::lab::coating(&a.coating)?;
     let setup = LaserSetup {
         incidence: a.incidence,
         azimuth: a.azimuth,
@@ -958,14 +738,14 @@ fn run_laser(a: LaserArgs) -> Result<()> {
         subsamples: a.subsamples,
     };
     let pixels = setup.pixels()?;
-    let mut model = a.model.clone();
-    model.coherence = Some(a.aperture);
+    let mut model = a.model.options();
+    model.coherence_nm = Some(a.aperture);
     let mut config = model.config()?;
-    config.spectral = spectral("e", a.dlambda)?;
+    config.spectral = spectral("e", a.dlambda, &Cli)?;
     let scale = iridis_lab::laser::configure(&mut config, method, &spectrum, coating.as_ref(), Observer::Cie1931)?;
     config.table_path = a.table.clone();
-    let b = workbench(&a.surface, &model, config)?;
-    let e = evaluator(&b, method)?;
+    let b = workbench(&a.surface, &model, config, &Cli)?;
+    let e = evaluator(&b, method, &Cli)?;
     if let (Some(path), Some(lookup)) = (&a.save_table, e.as_lookup()) {
         crate::output::write_atomic(path, |w| {
             let mut buf = std::io::Cursor::new(Vec::new());
@@ -975,7 +755,7 @@ fn run_laser(a: LaserArgs) -> Result<()> {
         })?;
         eprintln!("wrote {}", path.display());
     }
-    let mut img = render_bar(e.as_ref(), &pixels, "screen");
+    let mut img = render_pixels(e.as_ref(), &pixels, "screen", &Cli);
     iridis_lab::laser::scale_image(&mut img, scale);
     let half = a.screen / 2e6;
     let mut written = Vec::new();
@@ -1032,19 +812,7 @@ pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
          Below: the built-in blazed grating and Elaphe-like surface (small patches so the demo stays quick), \
          then CIEDE2000 errors of several methods against the ground truth (Table 2).",
     );
-    let model = LabModel {
-        pixel_size: None,
-        max_height: None,
-        channel: None,
-        height_unit: None,
-        level: None,
-        coherence: Some(65_000.0),
-        terms: "auto".into(),
-        fresnel: "schlick:1.5".into(),
-        fresnel_convention: FresnelConvention::Physical,
-        no_shadowing: false,
-        epsilon: 0.01,
-    };
+    let model = LabOptions { coherence_nm: Some(65_000.0), ..LabOptions::default() };
     let mut rows = Vec::new();
     let cases = [
         ("builtin:blazed?size=20um&pixel=50nm", 0.0f64, 65_000.0, "blazed grating (2500 nm)", "bench_blazed.png"),
@@ -1058,9 +826,9 @@ pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
     ];
     for (spec, az, coherence, label, file) in cases {
         let mut m = model.clone();
-        m.coherence = Some(coherence);
-        let b = workbench(spec, &m, m.config()?)?;
-        let e = evaluator(&b, Method::Reference)?;
+        m.coherence_nm = Some(coherence);
+        let b = workbench(spec, &m, m.config()?, &Cli)?;
+        let e = evaluator(&b, Method::Reference, &Cli)?;
         let setup = BenchSetup::new(75f64.to_radians(), az.to_radians(), 1, (380.0, 780.0, 10.0), (-60.0, 74.0, 0.05))?;
         let matrix = bench::reflectance_matrix(e.as_ref(), &setup, &|_| {})?;
         let r = bench::analyse(&matrix, &setup)?.on_patch(b.patch.shorter_side_nm(), b.config.coherence_nm);
@@ -1099,11 +867,11 @@ pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
     // Table 2 in kind: a small Elaphe-like patch, 48 × 48 map at normal incidence.
     let spec = "builtin:elaphe?size=6um&pixel=60nm";
     let mut m = model.clone();
-    m.coherence = Some(3_000.0);
+    m.coherence_nm = Some(3_000.0);
     let mut config = m.config()?;
     config.spectral = SpectralSetup::new(Illuminant::D65, Observer::Cie1931, 5.0)?;
     config.table = TableParams { uv_resolution: 201, uv_power: 5.0 };
-    let b = workbench(spec, &m, config)?;
+    let b = workbench(spec, &m, config, &Cli)?;
     let pixels = Pixels::brdf_map(0.0, 0.0, 48);
     let methods = [
         Method::Lookup,
@@ -1111,7 +879,7 @@ pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
         Method::StamPeriodic(iridis_lab::stam::Bump::Rectangular),
         Method::StamGaussian,
     ];
-    let c = comparison(&b, &methods, None, &pixels, &[1.0, 1000.0, 7500.0])?;
+    let c = comparison(&b, &methods, None, &pixels, &[1.0, 1000.0, 7500.0], &Cli)?;
     let mut t = Vec::new();
     for r in &c.rows {
         let ours = c

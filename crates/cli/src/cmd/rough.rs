@@ -12,11 +12,11 @@ use std::time::Instant;
 
 use anyhow::{bail, Result};
 use clap::Args as ClapArgs;
+use iridis_api::rough::{evaluate, RoughOptions};
 use iridis_color::units::{degrees, parse_angle_rad, parse_range};
-use iridis_color::{Illuminant, Observer, SpectralWeights, Xyz};
+use iridis_color::{Illuminant, Observer, Xyz};
 use iridis_plot::{magma, ColorBar, ImagePlot, LinePlot, RgbImage, Series as PlotSeries};
-use iridis_thinfilm::htsg::{Htsg, Roughness, Series};
-use iridis_thinfilm::rough::{angle_grid, DiffuseTransport, Lsrs, RoughStack};
+use iridis_thinfilm::rough::{angle_grid, DiffuseTransport, RoughStack};
 use iridis_thinfilm::Stack;
 use serde_json::json;
 
@@ -64,23 +64,20 @@ impl RoughArgs {
         self.roughness.is_some() || self.correlation.is_some()
     }
 
-    fn build(&self, stack: Stack) -> Result<RoughStack> {
-        let (Some(sigma), Some(tau)) = (self.roughness, self.correlation) else {
+    /// The facade's rough-model options (both σ and τ given).
+    pub fn options(&self) -> Result<RoughOptions> {
+        let (Some(sigma_nm), Some(tau_nm)) = (self.roughness, self.correlation) else {
             bail!("the rough model needs both --roughness and --correlation");
         };
-        let series = match self.d_iterations {
-            Some(n) => Series::Fixed(n),
-            None => Series::default(),
-        };
-        let r = Roughness::new(sigma, tau).map_err(|e| anyhow::anyhow!("--roughness/--correlation: {e}"))?;
-        Ok(RoughStack::new(stack, Htsg::new(r, series)).with_transport(self.diffuse_transport))
+        Ok(RoughOptions { sigma_nm, tau_nm, d_iterations: self.d_iterations, transport: self.diffuse_transport })
+    }
+
+    fn build(&self, stack: Stack) -> Result<RoughStack> {
+        self.options()?.build(stack)
     }
 
     fn series_label(&self) -> String {
-        match self.d_iterations {
-            Some(n) => format!("{n} D-iterations"),
-            None => "series to 1e-6".into(),
-        }
+        iridis_api::rough::series_label(self.d_iterations)
     }
 }
 
@@ -102,27 +99,23 @@ pub fn chart_colours(
     illuminant: Illuminant,
     observer: Observer,
 ) -> Result<Vec<(Xyz, Xyz)>> {
-    use rayon::prelude::*;
     if args.light_angles.is_some() {
         bail!("--light-angles is for 'table'; use --light-angle here");
     }
     let light = args.light_angle.unwrap_or(view);
-    let weights = SpectralWeights::new(grid, illuminant, observer);
-    thicknesses
-        .par_iter()
-        .map(|&d| {
-            let rough = args.build(stack.with_thickness(layer, d))?;
-            let xs = evaluate(&rough, grid, view, light, args.azimuth)?;
-            let spec = weights.integrate(&xs.iter().map(|x| x.1.k_r()).collect::<Vec<_>>());
-            let diff = weights.integrate(&xs.iter().map(|x| PI * x.1.k_d()).collect::<Vec<_>>());
-            Ok((spec, diff))
-        })
-        .collect()
-}
-
-/// One wavelength: the smooth model's R and the LSRS values.
-fn evaluate(rough: &RoughStack, grid: &[f64], view: f64, light: f64, azimuth: f64) -> Result<Vec<(f64, Lsrs)>> {
-    grid.iter().map(|&w| Ok((rough.stack.evaluate(w, view)?.r(), rough.evaluate(w, view, light, azimuth)?))).collect()
+    let opts = args.options()?;
+    iridis_api::rough::chart_colours(
+        stack,
+        layer,
+        thicknesses,
+        &opts,
+        view,
+        light,
+        args.azimuth,
+        grid,
+        illuminant,
+        observer,
+    )
 }
 
 /// `iridis thinfilm spectrum … --roughness σ --correlation τ`.
@@ -236,16 +229,8 @@ pub fn color(
     }
     let rough = args.build(stack)?;
     let light = args.light_angle.unwrap_or(view);
-    let xs = evaluate(&rough, grid, view, light, args.azimuth)?;
-    let weights = SpectralWeights::new(grid, illuminant, observer);
-    let smooth_film = iridis_thinfilm::color::FilmColorimeter::new(grid, illuminant, observer).color(
-        &rough.stack,
-        view,
-        iridis_thinfilm::color::Polarization::Average,
-    )?;
-    let smooth = smooth_film.reflected;
-    let spec = weights.integrate(&xs.iter().map(|x| x.1.k_r()).collect::<Vec<_>>());
-    let diff = weights.integrate(&xs.iter().map(|x| PI * x.1.k_d()).collect::<Vec<_>>());
+    let c = iridis_api::rough::colours(&rough, view, light, args.azimuth, grid, illuminant, observer)?;
+    let (smooth_film, smooth, spec, diff) = (c.smooth, c.smooth.reflected, c.specular, c.diffuse);
     let white = iridis_color::integrate::white_point(illuminant, observer);
     let reports = [
         ("smooth", "smooth film, reflected", super::color::colour_report(smooth, white)),

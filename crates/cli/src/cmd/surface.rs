@@ -311,45 +311,10 @@ fn level(hf: HeightField, how: &str) -> Result<HeightField> {
     Ok(prep::level_by_name(&hf, how)?)
 }
 
-/// Everything `info` reports, as JSON (keys fixed by the documentation).
+/// Everything `info` reports, as JSON (keys fixed by the documentation): the facade's, which Python's
+/// `Surface.info` returns too.
 pub fn report(hf: &HeightField, n_peaks: usize, coherence_nm: f64) -> serde_json::Value {
-    let (lo, hi) = hf.min_max();
-    let peaks = find_peaks(hf, &PeakOptions { max_peaks: n_peaks, ..PeakOptions::default() });
-    let mut warnings = hf.meta.warnings.clone();
-    warnings.extend(hf.physics_warnings(coherence_nm));
-    let levelled = prep::level_plane(hf);
-    let rough = iridis_surface::stats::roughness(&levelled);
-    let psdf = iridis_surface::stats::radial_of(&iridis_surface::stats::psdf(&levelled));
-    let acf = iridis_surface::stats::radial_of(&iridis_surface::stats::acf(&levelled));
-    json!({
-        "source": hf.meta.source,
-        "format": hf.meta.format,
-        "rows": hf.rows,
-        "cols": hf.cols,
-        "pixel_size_nm": [hf.dx_nm, hf.dy_nm],
-        "extent_nm": [hf.extent_nm().0, hf.extent_nm().1],
-        "height_min_nm": lo,
-        "height_max_nm": hi,
-        "mean_nm": hf.mean(),
-        "rms_nm": hf.rms(),
-        "z_unit_in_file": hf.meta.z_unit,
-        "peaks": peaks,
-        "roughness": {
-            "levelling": "plane",
-            "sq_nm": rough.sq_nm,
-            "sa_nm": rough.sa_nm,
-            "skewness": rough.skewness,
-            "excess_kurtosis": rough.excess_kurtosis,
-            "sz_nm": rough.sz_nm,
-            "correlation_length_nm": rough.correlation_length_nm,
-        },
-        // Annular means of the plane-levelled field's 2-D PSDF (nm⁴, against spatial frequency) and ACF (nm²,
-        // against lag), bin k at k × step.
-        "psdf_radial": {"levelling": "plane", "frequency_step_per_nm": psdf.step, "values_nm4": psdf.values},
-        "acf_radial": {"levelling": "plane", "lag_step_nm": acf.step, "values_nm2": acf.values},
-        "notes": hf.meta.notes,
-        "warnings": warnings,
-    })
+    iridis_api::surface::info(hf, n_peaks, coherence_nm)
 }
 
 fn print_report(r: &serde_json::Value) -> Result<()> {

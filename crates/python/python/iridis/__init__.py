@@ -2,10 +2,12 @@
 
 Modules:
     iridis.tmm       a drop-in for Byrnes' ``tmm`` (coh_tmm, unpolarized_RT, ellips, inc_tmm) plus coh_tmm_batch
-    iridis.thinfilm  stacks from the CLI's syntax or lists; R, T, A broadcast over λ × θ × thickness offset; colours
+    iridis.thinfilm  stacks from the CLI's syntax or lists; R, T, A broadcast over λ × θ × thickness offset; colours;
+                     rough films (LSRS: specular and diffuse spectra and colours)
     iridis.surface   height fields from AFM files, numpy, images or generators; levelling; roughness
-    iridis.diffraction  lookup tables (precompute, save, load) and BRDF maps as XYZ arrays
-    iridis.render    a scene (TOML or glTF) to an RGB or XYZ array on the CPU
+    iridis.diffraction  lookup tables (precompute, save, load), BRDF maps as XYZ arrays, point queries (every method)
+    iridis.lab       the test bench (periodicity through the grating equation) and method comparisons in CIELAB
+    iridis.render    a scene (TOML or glTF) to an RGB or XYZ array on the CPU or the GPU
     iridis.color     spectrum → XYZ / xyY / Lab / sRGB under any illuminant and observer; ΔE
     iridis.bench     ``python -m iridis.bench``: iridis.tmm against tmm (and tmm_fast) in the same run
 
@@ -17,4 +19,4 @@ Example:
 """
 from ._native import __version__
 
-__all__ = ["__version__", "color", "diffraction", "render", "surface", "thinfilm", "tmm"]
+__all__ = ["__version__", "color", "diffraction", "lab", "render", "surface", "thinfilm", "tmm"]

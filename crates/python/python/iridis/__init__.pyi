@@ -1,5 +1,6 @@
 from . import color as color
 from . import diffraction as diffraction
+from . import lab as lab
 from . import render as render
 from . import surface as surface
 from . import thinfilm as thinfilm

@@ -1,7 +1,21 @@
 """Diffraction from a measured height field (Dhillon et al. 2014): the paper's lookup tables (precompute,
-save, load) and BRDF maps as linear XYZ arrays, from the height field (``reference``: Taylor terms + windowed
-DFT per wavelength; ``ground-truth``: the direct windowed Fourier sum) or from a table (``lookup``). The same
-library code as ``iridis precompute`` and ``iridis brdf-map``; lengths in nm, angles in radians.
+save, load), BRDF maps as linear XYZ arrays, and point queries (ρ(λ) and XYZ for one pair of directions).
+
+Every method of the CLI: ``reference`` (Taylor terms + windowed DFT per wavelength), ``ground-truth`` (the
+direct windowed Fourier sum), ``lookup`` (the precomputed tables), and the lab's ``nmm``, ``pq``,
+``stam-periodic``, ``stam-periodic-triangular``, ``stam-gaussian``. The same library functions as
+``iridis precompute``, ``iridis brdf-map`` and ``iridis brdf eval`` (the facade ``iridis-api``), with the same
+defaults (Taylor terms from the remainder bound 1e-6; coherence 65 µm, or half the patch's shorter side when
+the patch is smaller, said on the ``iridis`` logger) and the same messages. Lengths in nm, angles in radians.
+
+A ``source`` is an :class:`iridis.surface.Surface`, a :class:`Table`, or a SURFACE or TABLE argument exactly
+as the CLI takes it (``"builtin:elaphe"``, ``"scan.gwy"``, ``"table.npz"``: a file is plane-levelled unless
+``level=`` says otherwise). Keyword ``options``: ``coherence_nm``, ``terms``, ``illuminant``, ``observer``,
+``step_nm``, ``fresnel`` (``"schlick:1.5"``, ``"index:0.2+3.4i"``, ``"gold"``, ``"stack:air | keratin 300nm |
+n=1.56"``), ``fresnel_convention`` (``"physical"`` or ``"paper"``), ``shadowing``, ``uv_resolution``,
+``uv_power`` (tables built from a height field) and, for SURFACE arguments, ``pixel_size_nm``,
+``max_height_nm``, ``channel``, ``height_unit``, ``level``. Warnings the CLI prints (a coarse wavelength step,
+a patch smaller than the window) are Python warnings.
 
 Example:
     >>> import numpy as np, iridis.surface as surface, iridis.diffraction as diffraction
@@ -9,6 +23,9 @@ Example:
     >>> m = diffraction.brdf_map(flat, size=9, method="reference")    # a mirror at normal incidence
     >>> round(float(m[4, 4, 1]), 9), float(np.delete(m[..., 1].ravel(), 40).max()) < 1e-6
     (1.0, True)
+    >>> q = diffraction.evaluate(flat, light=0.3, view=(0.3, np.pi))   # the mirror direction
+    >>> q["method"], q["wavelength_nm"].shape, q["reflectance"].shape
+    ('reference', (81,), (81,))
 """
 from __future__ import annotations
 
@@ -17,7 +34,7 @@ import os
 from . import _native
 from .surface import Surface
 
-__all__ = ["Table", "precompute", "brdf_map", "brdf_map_of"]
+__all__ = ["Table", "precompute", "brdf_map", "brdf_map_of", "evaluate"]
 
 
 class Table:
@@ -44,45 +61,68 @@ class Table:
         return f"Table({m['surface']!r}, {m['uv_resolution']}² grid, N = {m['taylor_terms']})"
 
 
-def _surface(s):
-    if not isinstance(s, Surface):
-        raise TypeError(f"surface must be an iridis.surface.Surface, got {type(s).__name__}")
-    return s._h
+def _native_source(source):
+    if isinstance(source, Table):
+        return source._t
+    if isinstance(source, Surface):
+        return source._h
+    if isinstance(source, (str, os.PathLike)):
+        return os.fspath(source)
+    raise TypeError(
+        "source must be an iridis.surface.Surface, an iridis.diffraction.Table or a SURFACE or TABLE argument "
+        f"as the CLI takes it (str), got {type(source).__name__}"
+    )
 
 
-def precompute(surface, coherence_nm=None, terms=None, uv_resolution=501, uv_power=5.0, illuminant="D65",
-               observer="1931", step_nm=5.0):
-    """The paper's tables ``I_p(u, v)`` of a height field (``terms=None``: as many Taylor terms as the
-    heights need, the CLI's ``--terms auto``; default coherence 65 µm)."""
-    return Table(_native.precompute(_surface(surface), coherence_nm, terms, int(uv_resolution), float(uv_power),
-                                    illuminant, observer, float(step_nm)))
+def _direction(value, name):
+    """θ or (θ, φ) in radians."""
+    try:
+        if hasattr(value, "__len__"):
+            theta, phi = (float(x) for x in value)
+        else:
+            theta, phi = float(value), 0.0
+    except (TypeError, ValueError):
+        raise TypeError(f"{name} must be θ or (θ, φ) in radians, got {value!r}") from None
+    return theta, phi
 
 
-def brdf_map(source, incidence=(0.0, 0.0), size=256, method=None, coherence_nm=None, terms=None,
-             illuminant="D65", observer="1931", step_nm=5.0):
-    """A BRDF map as linear XYZ of shape ``(size, size, 3)`` (row 0 at the top; outside the unit disk 0).
+def precompute(surface, coherence_nm=None, terms=None, uv_resolution=501, uv_power=5.0, illuminant=None,
+               observer=None, step_nm=None, name=None, **options):
+    """The paper's tables ``I_p(u, v)`` of a height field (a Surface or a SURFACE argument), as
+    ``iridis precompute``: ``terms=None`` takes as many Taylor terms as the heights need (``--terms auto``),
+    the coherence and spectral setup default as the CLI's (D65, CIE 1931, 5 nm)."""
+    options.update(coherence_nm=coherence_nm, terms=terms, uv_resolution=uv_resolution, uv_power=uv_power,
+                   illuminant=illuminant, observer=observer, step_nm=step_nm)
+    return Table(_native.precompute(_native_source(surface), name, options))
 
-    ``source``: a :class:`~iridis.surface.Surface` (``method`` ``"reference"``, the default, or
-    ``"ground-truth"``) or a :class:`Table` (``"lookup"``). ``incidence``: ``θ_i`` or ``(θ_i, φ_i)`` in radians.
+
+def brdf_map(source, incidence=(0.0, 0.0), size=256, method=None, **options):
+    """A BRDF map as linear XYZ of shape ``(size, size, 3)`` (row 0 at the top; outside the unit disk 0), as
+    ``iridis brdf-map --raw`` writes it.
+
+    ``method``: default ``"lookup"`` for a :class:`Table`, ``"reference"`` for a height field (a SURFACE
+    argument that is a table file counts as a table). ``incidence``: ``θ_i`` or ``(θ_i, φ_i)`` in radians.
     A normal-incidence mirror has ``Y = 1`` in its specular pixel.
     """
-    try:
-        theta, phi = (float(incidence), 0.0) if not hasattr(incidence, "__len__") else map(float, incidence)
-    except (TypeError, ValueError):
-        raise TypeError(f"incidence must be θ or (θ, φ) in radians, got {incidence!r}") from None
-    if isinstance(source, Table):
-        native, method = source._t, method or "lookup"
-    else:
-        native, method = _surface(source), method or "reference"
-    return _native.brdf_map_xyz(native, method, theta, phi, int(size), coherence_nm, terms, illuminant, observer,
-                                float(step_nm))
+    theta, phi = _direction(incidence, "incidence")
+    return _native.brdf_map_xyz(_native_source(source), method, theta, phi, int(size), options)
+
+
+def evaluate(source, light, view, method=None, **options):
+    """ρ(λ) and XYZ of one method for one pair of directions (``θ`` or ``(θ, φ)``, radians, pointing away from
+    the surface; the mirror direction of ``(θ, φ)`` is ``(θ, φ + π)``), as ``iridis brdf eval --json``.
+
+    Returns a dict: ``method``, ``wavelength_nm``, ``reflectance`` (ρ(λ) = C |A(λ)|², paper eq. 4: 1 for a
+    mirror at normal incidence; ``None`` for lookup, which integrates over λ in advance), ``xyz`` (eq. 9),
+    ``light_direction``, ``view_direction``.
+    """
+    wi = _direction(light, "light")
+    wr = _direction(view, "view")
+    return _native.eval_point(_native_source(source), method, wi, wr, options)
 
 
 def brdf_map_of(spec, incidence=(0.0, 0.0), size=256, method="reference", level=None, **options):
     """:func:`brdf_map` of a SURFACE argument as ``iridis brdf-map`` takes it: a file (plane-levelled unless
     ``level`` says otherwise, as the CLI does) or ``builtin:…`` (used as generated). A plain function of its
     arguments, so it is what batch scripts send to Dask workers."""
-    from .surface import load
-
-    how = level if level is not None else ("none" if str(spec).startswith("builtin:") else "plane")
-    return brdf_map(load(spec, level=how), incidence=incidence, size=size, method=method, **options)
+    return brdf_map(os.fspath(spec), incidence=incidence, size=size, method=method, level=level, **options)

@@ -1,3 +1,4 @@
+import os
 from typing import Any, Optional, Union
 
 import numpy as np
@@ -7,35 +8,43 @@ from .surface import Surface
 
 class Table:
     @classmethod
-    def load(cls, path: Any) -> "Table": ...
-    def save(self, path: Any) -> None: ...
+    def load(cls, path: Union[str, os.PathLike[str]]) -> "Table": ...
+    def save(self, path: Union[str, os.PathLike[str]]) -> None: ...
     @property
     def meta(self) -> dict[str, Any]: ...
 
+Source = Union[Surface, Table, str, os.PathLike[str]]
+Direction = Union[float, tuple[float, float]]
+
 def precompute(
-    surface: Surface,
+    surface: Union[Surface, str, os.PathLike[str]],
     coherence_nm: Optional[float] = ...,
     terms: Optional[int] = ...,
     uv_resolution: int = ...,
     uv_power: float = ...,
-    illuminant: str = ...,
-    observer: str = ...,
-    step_nm: float = ...,
+    illuminant: Optional[str] = ...,
+    observer: Optional[str] = ...,
+    step_nm: Optional[float] = ...,
+    name: Optional[str] = ...,
+    **options: Any,
 ) -> Table: ...
 def brdf_map(
-    source: Union[Surface, Table],
-    incidence: Union[float, tuple[float, float]] = ...,
+    source: Source,
+    incidence: Direction = ...,
     size: int = ...,
     method: Optional[str] = ...,
-    coherence_nm: Optional[float] = ...,
-    terms: Optional[int] = ...,
-    illuminant: str = ...,
-    observer: str = ...,
-    step_nm: float = ...,
+    **options: Any,
 ) -> npt.NDArray[np.float64]: ...
+def evaluate(
+    source: Source,
+    light: Direction,
+    view: Direction,
+    method: Optional[str] = ...,
+    **options: Any,
+) -> dict[str, Any]: ...
 def brdf_map_of(
-    spec: str,
-    incidence: Union[float, tuple[float, float]] = ...,
+    spec: Union[str, os.PathLike[str]],
+    incidence: Direction = ...,
     size: int = ...,
     method: str = ...,
     level: Optional[str] = ...,

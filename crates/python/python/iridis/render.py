@@ -1,6 +1,7 @@
-"""Scenes (TOML or glTF, as ``iridis render`` reads them) rendered on the CPU into NumPy arrays: linear sRGB,
-CIE XYZ, or display sRGB with the scene's exposure. Diffraction and thin-film materials, lights,
-environments: everything the CPU renderer does (docs/render.md).
+"""Scenes (TOML or glTF, as ``iridis render`` reads them) rendered into NumPy arrays: linear sRGB, CIE XYZ, or
+display sRGB with the scene's exposure. Diffraction and thin-film materials, lights, environments: everything
+the CPU renderer does (docs/render.md); with ``gpu=True`` the same scene on the GPU (``iridis render --gpu``:
+wgpu through Vulkan, Mesa's lavapipe on a machine without a GPU), whose colours match the CPU's (docs/gpu.md).
 
 Example:
     >>> import iridis.render as render
@@ -23,11 +24,12 @@ __all__ = ["render"]
 _SRGB_TO_XYZ = None
 
 
-def render(scene, size=None, spp=None, space="srgb"):
-    """Renders ``scene`` (a path) on the CPU. ``size``: ``(width, height)``, default the scene's; ``spp``:
-    samples per pixel, default the scene's. ``space``: ``"srgb"`` (display values in [0, 1] after the scene's
-    exposure, as the PNG ``iridis render`` writes), ``"linear_srgb"`` or ``"xyz"`` (linear, before exposure).
-    Returns an array of shape ``(height, width, 3)``."""
+def render(scene, size=None, spp=None, space="srgb", gpu=False):
+    """Renders ``scene`` (a path). ``size``: ``(width, height)``, default the scene's; ``spp``: samples per
+    pixel, default the scene's. ``space``: ``"srgb"`` (display values in [0, 1] after the scene's exposure, as
+    the PNG ``iridis render`` writes), ``"linear_srgb"`` or ``"xyz"`` (linear, before exposure). ``gpu``: render
+    on the GPU (a ValueError naming the driver to install when there is no adapter; rough films render on the
+    CPU only). Returns an array of shape ``(height, width, 3)``."""
     if space not in ("srgb", "linear_srgb", "xyz"):
         raise ValueError(f"space {space!r}: use 'srgb', 'linear_srgb' or 'xyz'")
     w = h = None
@@ -36,7 +38,9 @@ def render(scene, size=None, spp=None, space="srgb"):
             w, h = (int(x) for x in size)
         except (TypeError, ValueError):
             raise TypeError(f"size must be (width, height), got {size!r}") from None
-    out = _native.render_scene(os.fspath(scene), w, h, None if spp is None else int(spp))
+    if not isinstance(gpu, bool):
+        raise TypeError(f"gpu must be True or False, got {gpu!r}")
+    out = _native.render_scene(os.fspath(scene), w, h, None if spp is None else int(spp), gpu)
     rgb = out["linear_srgb"].astype(np.float64)
     if space == "linear_srgb":
         return rgb

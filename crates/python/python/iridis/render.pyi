@@ -4,5 +4,9 @@ import numpy as np
 import numpy.typing as npt
 
 def render(
-    scene: Any, size: Optional[tuple[int, int]] = ..., spp: Optional[int] = ..., space: str = ...
+    scene: Any,
+    size: Optional[tuple[int, int]] = ...,
+    spp: Optional[int] = ...,
+    space: str = ...,
+    gpu: bool = ...,
 ) -> npt.NDArray[np.float64]: ...

@@ -1,5 +1,6 @@
 """Height fields: load any file the CLI reads (AFM instrument files, ``.npy``/``.npz``, PNG/TIFF, text
-matrices) or a built-in generator, as a NumPy array of heights in nm with the pixel size; level; roughness.
+matrices) or a built-in generator, as a NumPy array of heights in nm with the pixel size; level; roughness;
+the dominant periods and the rest of ``iridis surface info`` (:meth:`Surface.info`).
 
 Example:
     >>> import iridis.surface as surface
@@ -50,6 +51,25 @@ class Surface:
     def level(self, how="plane"):
         """A levelled copy: ``none``, ``mean``, ``plane``, ``rows``, ``lines-median`` or ``poly``."""
         return Surface(self._h.level(how), 0)
+
+    def info(self, peaks=5, coherence_nm=65000.0):
+        """What ``iridis surface info --json`` reports, as a dict (keys in docs/json.md): ``rows``, ``cols``,
+        ``pixel_size_nm``, heights, ``peaks`` (the dominant periods: ``period_nm``, ``orientation_deg``,
+        ``power``, …, at most ``peaks``), ``roughness`` and the radial PSDF / ACF of the plane-levelled
+        field (their ``values_*`` as arrays), and the warnings for a coherence window of ``coherence_nm``.
+
+            >>> g = generate("sine", size="11um", pixel="50nm", period="1100nm", depth="100nm")
+            >>> round(g.info()["peaks"][0]["period_nm"])
+            1100
+        """
+        if isinstance(peaks, bool) or not isinstance(peaks, (int, np.integer)) or peaks < 0:
+            raise TypeError(f"peaks must be a whole number ≥ 0, got {peaks!r}")
+        import json
+
+        out = json.loads(self._h.info_json(int(peaks), float(coherence_nm)))
+        out["psdf_radial"]["values_nm4"] = np.asarray(out["psdf_radial"]["values_nm4"], dtype=float)
+        out["acf_radial"]["values_nm2"] = np.asarray(out["acf_radial"]["values_nm2"], dtype=float)
+        return out
 
     def roughness(self):
         """Sq, Sa, Ssk, excess kurtosis, Sz (nm) and the correlation length, as ``iridis surface info``."""

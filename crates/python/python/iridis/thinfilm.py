@@ -14,6 +14,18 @@ Example:
     >>> out = soap.rta(np.linspace(400, 700, 31)[:, None], np.radians([0, 30, 60]))
     >>> out["R"].shape
     (31, 3)
+
+Rough films (Sussenbach's LSRS model: the stack on a substrate of rms roughness σ and correlation length τ,
+the HTSG BRDF at the rough interface) come from :meth:`Stack.rough`, as ``iridis thinfilm spectrum|color
+--roughness σ --correlation τ``:
+
+    >>> film = tf.Stack("air | water 348nm | Si").rough(25.0, 300.0)     # Sussenbach, Listing 3.6
+    >>> c = film.color(np.radians(30))
+    >>> sorted(k for k in c if not k.endswith(("_lab", "_srgb", "_hex")))
+    ['diffuse', 'reflected', 'specular', 'transmitted']
+    >>> s = film.spectrum([450.0, 550.0, 650.0], np.radians(30))
+    >>> bool((s["specular"] < s["R_smooth"]).all())      # here: roughness scatters light out of the mirror
+    True
 """
 from __future__ import annotations
 
@@ -22,7 +34,7 @@ import numpy as np
 from . import _native
 from .color import xyz_to_hex, xyz_to_lab, xyz_to_srgb, white_point
 
-__all__ = ["Stack", "colors_of_stacks", "material_index", "materials"]
+__all__ = ["Stack", "RoughFilm", "colors_of_stacks", "material_index", "materials"]
 
 _POL = {"s": "s", "p": "p", "unpolarized": "avg", "unpolarised": "avg", "avg": "avg", "average": "avg"}
 
@@ -148,6 +160,14 @@ class Stack:
         """T alone (see :meth:`rta`)."""
         return self.rta(wavelengths_nm, angles_rad, offsets_nm, polarization)["T"]
 
+    def rough(self, roughness_nm, correlation_nm, d_iterations=None, diffuse_transport="reciprocal"):
+        """This stack on a rough substrate: rms roughness σ = ``roughness_nm`` of the last interface and its
+        autocorrelation length τ = ``correlation_nm`` (valid for σ > 0, 2σ/τ ≤ 1 and τ²/(2√3σ) ≥ λ in the
+        medium above the substrate). ``d_iterations``: terms of the HTSG series (default: as many as an error
+        bound of 1e-6 of the lobe's peak needs); ``diffuse_transport``: ``"reciprocal"`` (default) or
+        ``"thesis"`` (eq. 3.18–3.19 as printed, for comparison only)."""
+        return RoughFilm(self, roughness_nm, correlation_nm, d_iterations, diffuse_transport)
+
     def color(self, angles_rad=0.0, offsets_nm=0.0, illuminant="D65", observer="1931",
               polarization="unpolarized", grid_nm=None):
         """Reflected and transmitted colours, as ``iridis thinfilm color`` (default grid 380–780 nm in 5 nm
@@ -166,6 +186,77 @@ class Stack:
         trans = xyz[:, 3:].reshape(shape + (3,))
         white = white_point(illuminant, observer)
         out = {"reflected": refl, "transmitted": trans}
+        for k, v in list(out.items()):
+            out[k + "_lab"] = xyz_to_lab(v, white)
+            out[k + "_srgb"] = xyz_to_srgb(v)
+            out[k + "_hex"] = xyz_to_hex(v)
+        return out
+
+
+def _float(x, name, what):
+    if isinstance(x, bool):
+        raise TypeError(f"{name} must be {what} (a number), got {x!r}")
+    try:
+        return float(x)
+    except (TypeError, ValueError):
+        raise TypeError(f"{name} must be {what} (a number), got {x!r}") from None
+
+
+def _angle(x, name):
+    return _float(x, name, "an angle in radians")
+
+
+class RoughFilm:
+    """A stack on a rough substrate (LSRS model with the HTSG BRDF; docs/rough-films.md): the specular part
+    ``k_r`` (a fraction of the incident power) and the diffuse part ``k_d`` (sr⁻¹; ``π k_d`` is the radiance
+    factor, relative to a white Lambertian surface under the same light), next to the smooth film's ``R``.
+    Made by :meth:`Stack.rough`."""
+
+    def __init__(self, stack, roughness_nm, correlation_nm, d_iterations=None, diffuse_transport="reciprocal"):
+        if not isinstance(stack, Stack):
+            raise TypeError(f"stack must be an iridis.thinfilm.Stack, got {type(stack).__name__}")
+        self.stack = stack
+        self.roughness_nm = _float(roughness_nm, "roughness_nm", "a length in nm")
+        self.correlation_nm = _float(correlation_nm, "correlation_nm", "a length in nm")
+        if d_iterations is not None and (isinstance(d_iterations, bool) or int(d_iterations) != d_iterations
+                                         or d_iterations < 0):
+            raise ValueError(f"d_iterations {d_iterations!r}: a whole number of terms ≥ 0, or None")
+        self.d_iterations = None if d_iterations is None else int(d_iterations)
+        self.diffuse_transport = str(diffuse_transport)
+
+    def __repr__(self):
+        return f"RoughFilm({str(self.stack)!r}, σ = {self.roughness_nm} nm, τ = {self.correlation_nm} nm)"
+
+    def _args(self):
+        return self.roughness_nm, self.correlation_nm, self.d_iterations, self.diffuse_transport
+
+    def spectrum(self, wavelengths_nm, view_rad=0.0, light_rad=None, azimuth_rad=np.pi):
+        """The spectrum at one view angle, as ``iridis thinfilm spectrum --roughness … --json``: a dict of arrays
+        over ``wavelength_nm`` — ``R_smooth``, ``specular`` (and ``specular_s``, ``specular_p``),
+        ``diffuse_per_sr`` (and ``diffuse_s_per_sr``, ``diffuse_p_per_sr``) — with ``series_terms_max`` and
+        ``diffuse_error_bound_per_sr``. ``light_rad`` defaults to the view angle; ``azimuth_rad`` is the light's
+        azimuth relative to the viewer (π: the mirror configuration)."""
+        wl = _real(wavelengths_nm, "wavelengths_nm")
+        if wl.ndim != 1 or wl.size == 0:
+            raise ValueError(f"wavelengths_nm must be a non-empty 1-D array, got shape {wl.shape}")
+        view = _angle(view_rad, "view_rad")
+        light = view if light_rad is None else _angle(light_rad, "light_rad")
+        return self.stack._s._rough_spectrum(*self._args(), np.ascontiguousarray(wl), view, light,
+                                             _angle(azimuth_rad, "azimuth_rad"))
+
+    def color(self, view_rad=0.0, light_rad=None, azimuth_rad=np.pi, illuminant="D65", observer="1931",
+              grid_nm=None):
+        """The colours, as ``iridis thinfilm color --roughness … --json``: XYZ of the smooth film's
+        ``reflected`` and ``transmitted`` light, of the rough film's ``specular`` part and of its ``diffuse``
+        part (``π k_d``: Y = 1 is a white Lambertian surface under the same light), each with ``*_lab``,
+        ``*_srgb`` and ``*_hex``. Default grid 380–780 nm in 5 nm steps."""
+        grid = np.arange(380.0, 780.0 + 1e-9, 5.0) if grid_nm is None else _real(grid_nm, "grid_nm")
+        view = _angle(view_rad, "view_rad")
+        light = view if light_rad is None else _angle(light_rad, "light_rad")
+        xyz = self.stack._s._rough_color(*self._args(), view, light, _angle(azimuth_rad, "azimuth_rad"),
+                                         np.ascontiguousarray(grid.ravel()), illuminant, observer)
+        white = white_point(illuminant, observer)
+        out = {"reflected": xyz[0], "transmitted": xyz[1], "specular": xyz[2], "diffuse": xyz[3]}
         for k, v in list(out.items()):
             out[k + "_lab"] = xyz_to_lab(v, white)
             out[k + "_srgb"] = xyz_to_srgb(v)

@@ -45,6 +45,13 @@ class Stack:
         offsets_nm: npt.ArrayLike = ...,
         polarization: str = ...,
     ) -> npt.NDArray[np.float64]: ...
+    def rough(
+        self,
+        roughness_nm: float,
+        correlation_nm: float,
+        d_iterations: Optional[int] = ...,
+        diffuse_transport: str = ...,
+    ) -> "RoughFilm": ...
     def color(
         self,
         angles_rad: npt.ArrayLike = ...,
@@ -52,5 +59,36 @@ class Stack:
         illuminant: str = ...,
         observer: str = ...,
         polarization: str = ...,
+        grid_nm: Optional[npt.ArrayLike] = ...,
+    ) -> dict[str, Any]: ...
+
+class RoughFilm:
+    stack: Stack
+    roughness_nm: float
+    correlation_nm: float
+    d_iterations: Optional[int]
+    diffuse_transport: str
+    def __init__(
+        self,
+        stack: Stack,
+        roughness_nm: float,
+        correlation_nm: float,
+        d_iterations: Optional[int] = ...,
+        diffuse_transport: str = ...,
+    ) -> None: ...
+    def spectrum(
+        self,
+        wavelengths_nm: npt.ArrayLike,
+        view_rad: float = ...,
+        light_rad: Optional[float] = ...,
+        azimuth_rad: float = ...,
+    ) -> dict[str, Any]: ...
+    def color(
+        self,
+        view_rad: float = ...,
+        light_rad: Optional[float] = ...,
+        azimuth_rad: float = ...,
+        illuminant: str = ...,
+        observer: str = ...,
         grid_nm: Optional[npt.ArrayLike] = ...,
     ) -> dict[str, Any]: ...

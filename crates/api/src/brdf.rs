@@ -1,0 +1,194 @@
+//! Evaluators of the diffraction BRDF for a method on a SURFACE or TABLE (`brdf-map`, `brdf eval`, Python's
+//! `iridis.diffraction`), BRDF maps and point queries.
+
+use std::path::Path;
+use std::sync::Arc;
+
+use anyhow::{bail, Context, Result};
+use iridis_color::Xyz;
+use iridis_diffraction::evaluator::{Evaluator, GroundTruth, Reference};
+use iridis_diffraction::geometry::Shading;
+use iridis_diffraction::table::{Lookup, LookupTable, Precision, TableParams};
+use iridis_diffraction::{Patch, PointQuery, SpectralSetup};
+use iridis_lab::methods::{Method, MethodConfig, Workbench};
+
+use crate::model::{
+    build_table, check_against_table, coherence_for, is_table, spectral_setup, taylor_terms, ModelOptions,
+    DEFAULT_EPSILON,
+};
+use crate::report::{with_progress, Report};
+use crate::surface::{Source, SurfaceOptions};
+
+/// An evaluator for `--method` on a SURFACE argument or TABLE file (told apart by content, [`is_table`]).
+pub fn make_evaluator(
+    input: &str,
+    method: &str,
+    model: &ModelOptions,
+    shading: Shading,
+    params: TableParams,
+    precision: Precision,
+    surface_opts: &SurfaceOptions,
+    report: &dyn Report,
+) -> Result<Box<dyn Evaluator>> {
+    if is_table(input) {
+        require_lookup(method)?;
+        let table = LookupTable::load(Path::new(input))?;
+        return table_evaluator(Arc::new(table), method, model, shading, precision, report);
+    }
+    evaluator_for(&Source::Spec(input.to_string()), method, model, shading, params, precision, surface_opts, report)
+}
+
+/// A finished table answers the lookup method only.
+fn require_lookup(method: &str) -> Result<()> {
+    if method != "lookup" {
+        bail!("--method {method} needs the height field, not a table: pass the SURFACE the table was made from");
+    }
+    Ok(())
+}
+
+/// The lookup evaluator of a table, checked against the model options the person gave.
+pub fn table_evaluator(
+    table: Arc<LookupTable>,
+    method: &str,
+    model: &ModelOptions,
+    shading: Shading,
+    precision: Precision,
+    report: &dyn Report,
+) -> Result<Box<dyn Evaluator>> {
+    require_lookup(method)?;
+    check_against_table(&table, model, report)?;
+    Ok(Box::new(Lookup::new(table, shading, precision)?))
+}
+
+/// An evaluator for `method` on a height field: ground truth, reference, lookup (its table built here) or the
+/// lab's models.
+pub fn evaluator_for(
+    source: &Source,
+    method: &str,
+    model: &ModelOptions,
+    shading: Shading,
+    params: TableParams,
+    precision: Precision,
+    surface_opts: &SurfaceOptions,
+    report: &dyn Report,
+) -> Result<Box<dyn Evaluator>> {
+    let parsed: Method = method.parse()?;
+    if method == "lookup" && shading.fresnel.depends_on_wavelength() {
+        // Refused before the (long) table build rather than after it.
+        bail!(
+            "the lookup method integrates over wavelength in advance, so its Fresnel factor must not depend on λ \
+             ({}); use --method reference or ground-truth",
+            shading.fresnel.describe()
+        );
+    }
+    let patch = source.patch(surface_opts, report)?;
+    let spectral = spectral_setup(model, report)?;
+    let input = source.name();
+    match parsed {
+        Method::GroundTruth => {
+            let coherence = coherence_for(&patch, model.coherence_nm, report);
+            let samples = 2 * spectral.wavelengths().len() - 1;
+            Ok(Box::new(GroundTruth::new(&patch, coherence, shading, &spectral, samples)?))
+        }
+        Method::Reference => {
+            let terms = Arc::new(taylor_terms(&patch, model, report)?);
+            Ok(Box::new(Reference { terms, shading, spectral }))
+        }
+        Method::Lookup => {
+            let terms = taylor_terms(&patch, model, report)?;
+            let table = build_table(&terms, &spectral, params, input, report)?;
+            Ok(Box::new(Lookup::new(Arc::new(table), shading, precision)?))
+        }
+        // The lab's variants (NMM, PQ) and Stam's analytic models, built as `iridis compare` builds them.
+        lab => lab_evaluator(lab, input, patch, model, shading, spectral, report),
+    }
+}
+
+/// NMM, PQ and Stam's models from `iridis-lab`, with the same Taylor terms and window as `reference`.
+fn lab_evaluator(
+    method: Method,
+    input: &str,
+    patch: Patch,
+    model: &ModelOptions,
+    shading: Shading,
+    spectral: SpectralSetup,
+    report: &dyn Report,
+) -> Result<Box<dyn Evaluator>> {
+    let coherence = coherence_for(&patch, model.coherence_nm, report);
+    let terms = match model.terms.trim() {
+        "auto" => None,
+        t => match t.parse::<usize>() {
+            Ok(n) if (1..=200).contains(&n) => Some(n),
+            _ => bail!("--terms '{t}' must be 'auto' or a number of terms from 1 to 200 for --method {method}"),
+        },
+    };
+    let config = MethodConfig {
+        coherence_nm: coherence,
+        terms,
+        term_epsilon: DEFAULT_EPSILON,
+        spectral,
+        shading,
+        ..Default::default()
+    };
+    let bench = Workbench::new(patch, config, input)?;
+    let uses_terms = matches!(method, Method::Nmm | Method::Pq);
+    let len = if uses_terms { bench.config.term_count(&bench.patch) as u64 + 1 } else { 1 };
+    let e = with_progress(report, len, "preparing", |p| bench.evaluator(method, p));
+    e.with_context(|| format!("--method {method} cannot make a map of {input}"))
+}
+
+/// A BRDF map (the paper's layout: pixel (x, y) views (x, y, √(1 − x² − y²)), row 0 at the top) for the
+/// light direction `wi`, with progress: linear XYZ per pixel.
+pub fn render_map(e: &dyn Evaluator, wi: [f64; 3], size: usize, report: &dyn Report) -> Vec<Xyz> {
+    with_progress(report, size as u64, &format!("{} map", e.name()), |p| {
+        iridis_diffraction::map::brdf_map(e, wi, size, p)
+    })
+}
+
+/// The method `brdf eval` uses when none is given: reference for a SURFACE, lookup for a TABLE.
+pub fn default_method(input: &str) -> &'static str {
+    if is_table(input) {
+        "lookup"
+    } else {
+        "reference"
+    }
+}
+
+/// One method's answer for one pair of directions (`iridis brdf eval`, Python's `diffraction.eval`).
+#[derive(Debug, Clone)]
+pub struct PointEval {
+    /// The evaluator's name.
+    pub method: String,
+    /// The wavelength grid, ρ(λ) (`None` for lookup, which integrates over λ in advance) and XYZ.
+    pub query: PointQuery,
+}
+
+/// ρ(λ) and XYZ of `method` (default [`default_method`]) on INPUT for light `wi` and view `wr`.
+pub fn eval_point(
+    input: &str,
+    method: Option<&str>,
+    model: &ModelOptions,
+    shading: Shading,
+    params: TableParams,
+    surface_opts: &SurfaceOptions,
+    wi: [f64; 3],
+    wr: [f64; 3],
+    report: &dyn Report,
+) -> Result<PointEval> {
+    let method = method.unwrap_or_else(|| default_method(input));
+    let e = make_evaluator(input, method, model, shading, params, Precision::F64, surface_opts, report)?;
+    point(e.as_ref(), model, wi, wr, report)
+}
+
+/// ρ(λ) (on the model's wavelength grid) and XYZ of an evaluator for light `wi` and view `wr`.
+pub fn point(
+    e: &dyn Evaluator,
+    model: &ModelOptions,
+    wi: [f64; 3],
+    wr: [f64; 3],
+    report: &dyn Report,
+) -> Result<PointEval> {
+    let spectral = spectral_setup(model, report)?;
+    let query = iridis_diffraction::point_query(e, spectral.wavelengths(), wi, wr)?;
+    Ok(PointEval { method: e.name().to_string(), query })
+}

@@ -1,0 +1,372 @@
+//! The virtual lab's orchestration (`testbench`, `compare`, `sweep`, `experiment laser`, Python's
+//! `iridis.lab`): the workbench of a SURFACE with the model's options, evaluators with progress, the test
+//! bench with its warnings, method comparisons, and the laser experiment's coating and beam.
+
+use std::path::Path;
+
+use anyhow::{bail, Context, Result};
+use iridis_color::{Illuminant, Observer, Spectrum, Xyz};
+use iridis_diffraction::geometry::{FresnelConvention, Shading};
+use iridis_diffraction::{Evaluator, SpectralSetup};
+use iridis_lab::bench::{self, BenchResult, BenchSetup, ReflectanceMatrix};
+use iridis_lab::compare::ComparisonRow;
+use iridis_lab::image::{render, Pixels};
+use iridis_lab::laser::MetalFresnel;
+use iridis_lab::methods::{Method, MethodConfig, Workbench};
+use serde_json::json;
+
+use crate::model::coherence_for;
+use crate::report::{with_progress, Report};
+use crate::surface::{Source, SurfaceOptions};
+
+/// How to read SURFACE and the model's parameters, shared by the lab commands.
+#[derive(Debug, Clone)]
+pub struct LabOptions {
+    pub surface: SurfaceOptions,
+    /// Coherence length 4σ_s of the window (nm); default 65 µm, or half the patch's shorter side when the patch
+    /// is smaller than that.
+    pub coherence_nm: Option<f64>,
+    /// Taylor terms: auto (remainder bound 1e-6) or N.
+    pub terms: String,
+    /// Fresnel factor, as [`crate::fresnel::parse_fresnel_source`] reads it.
+    pub fresnel: String,
+    pub convention: FresnelConvention,
+    /// The Cook–Torrance shadowing term.
+    pub shadowing: bool,
+    /// ε of Stam's wavelength selection (paper: 0.01).
+    pub stam_epsilon: f64,
+}
+
+impl Default for LabOptions {
+    fn default() -> Self {
+        Self {
+            surface: SurfaceOptions::default(),
+            coherence_nm: None,
+            terms: "auto".into(),
+            fresnel: "schlick:1.5".into(),
+            convention: FresnelConvention::Physical,
+            shadowing: true,
+            stam_epsilon: 0.01,
+        }
+    }
+}
+
+impl LabOptions {
+    /// The methods' configuration (the coherence is replaced by the patch's in [`workbench`] when none is
+    /// given).
+    pub fn config(&self) -> Result<MethodConfig> {
+        let terms = match self.terms.trim() {
+            "auto" => None,
+            t => match t.parse::<usize>() {
+                Ok(n) if (1..=200).contains(&n) => Some(n),
+                _ => bail!("--terms '{t}' must be 'auto' or a number of terms from 1 to 200"),
+            },
+        };
+        Ok(MethodConfig {
+            // Replaced by the patch's coherence in `workbench` when none is given.
+            coherence_nm: self.coherence_nm.unwrap_or(iridis_diffraction::DEFAULT_COHERENCE_NM),
+            terms,
+            shading: Shading {
+                fresnel: crate::fresnel::parse_fresnel_source(&self.fresnel)?,
+                shadowing: self.shadowing,
+                convention: self.convention,
+            },
+            stam_epsilon: self.stam_epsilon,
+            ..MethodConfig::default()
+        })
+    }
+}
+
+/// Loads SURFACE and makes the workbench for `config`, with the coherence given in `m` or fitted to the patch.
+pub fn workbench(spec: &str, m: &LabOptions, config: MethodConfig, report: &dyn Report) -> Result<Workbench> {
+    workbench_from(&Source::Spec(spec.to_string()), m, config, report)
+}
+
+/// [`workbench`] for a height field from anywhere (a SURFACE argument or a patch in memory).
+pub fn workbench_from(
+    source: &Source,
+    m: &LabOptions,
+    mut config: MethodConfig,
+    report: &dyn Report,
+) -> Result<Workbench> {
+    let patch = source.patch(&m.surface, report)?;
+    let spec = source.name();
+    config.coherence_nm = coherence_for(&patch, m.coherence_nm, report);
+    report.info(&format!(
+        "{spec}: {}×{} samples at {:.1} × {:.1} nm ({:.1} × {:.1} µm), |h|max {:.1} nm, coherence {:.1} µm",
+        patch.cols,
+        patch.rows,
+        patch.dx,
+        patch.dy,
+        patch.cols as f64 * patch.dx / 1000.0,
+        patch.rows as f64 * patch.dy / 1000.0,
+        patch.max_abs_height,
+        config.coherence_nm / 1000.0
+    ));
+    Ok(Workbench::new(patch, config, spec)?)
+}
+
+/// Builds an evaluator with progress on its expensive step.
+pub fn evaluator(b: &Workbench, method: Method, report: &dyn Report) -> Result<Box<dyn Evaluator>> {
+    let (len, what) = match method {
+        Method::Lookup => (b.config.table.uv_resolution as u64, "lookup tables"),
+        Method::GroundTruth | Method::GroundTruthPeriodic | Method::StamGaussian | Method::StamPeriodic(_) => {
+            (1, "preparing")
+        }
+        _ => (b.config.term_count(&b.patch) as u64 + 1, "Taylor terms"),
+    };
+    Ok(with_progress(report, len, what, |p| b.evaluator(method, p))?)
+}
+
+/// Colours of `pixels` (view directions; `None` below the horizon) by an evaluator, with progress.
+pub fn render_pixels(e: &dyn Evaluator, pixels: &Pixels, what: &str, report: &dyn Report) -> Vec<Option<Xyz>> {
+    with_progress(report, pixels.len() as u64, what, |p| render(e, pixels, p))
+}
+
+/// [`render_pixels`] through the workbench: on its accelerator (the GPU of `--gpu`) where that evaluates the
+/// method.
+pub fn render_on_bench(
+    b: &Workbench,
+    e: &dyn Evaluator,
+    pixels: &Pixels,
+    what: &str,
+    report: &dyn Report,
+) -> Result<Vec<Option<Xyz>>> {
+    Ok(with_progress(report, pixels.len() as u64, what, |p| b.render(e, pixels, p))?)
+}
+
+/// The lab's `--gpu`: the GPU builds the lookup tables and renders the ground truths; `None` when `on` is false.
+pub fn gpu_accelerator(
+    on: bool,
+    report: &dyn Report,
+) -> Result<Option<std::sync::Arc<dyn iridis_diffraction::Accelerator>>> {
+    if !on {
+        return Ok(None);
+    }
+    let a = iridis_gpu::GpuAccelerator::new()?;
+    report.info(&format!(
+        "on the GPU ({}): lookup tables and ground truths; other methods on the CPU",
+        a.gpu().adapter_name()
+    ));
+    Ok(Some(std::sync::Arc::new(a)))
+}
+
+/// The spectral setup of the lab commands (CIE 1931), warning about steps over 5 nm.
+pub fn spectral(ill: &str, step: f64, report: &dyn Report) -> Result<SpectralSetup> {
+    let ill: Illuminant = ill.parse()?;
+    if step > 5.0 {
+        report.warn(&format!("a wavelength step of {step} nm shows colour artefacts (the paper: use ≤ 5 nm)"));
+    }
+    Ok(SpectralSetup::new(ill, Observer::Cie1931, step)?)
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// test bench
+
+/// Refuses a method without a spectral reflectance (the test bench reads peaks per wavelength).
+pub fn check_spectral(method: Method) -> Result<()> {
+    if !method.is_spectral() {
+        bail!(
+            "the {method} method integrates over wavelength in advance and has no spectral reflectance; the test \
+             bench needs one of: reference, ground-truth, nmm, pq, stam-periodic, stam-gaussian"
+        );
+    }
+    Ok(())
+}
+
+/// A test-bench run: the workbench it ran on, the reflectance over (λ, θ_r), and what was read off it.
+#[derive(Debug)]
+pub struct Testbench {
+    pub workbench: Workbench,
+    pub setup: BenchSetup,
+    pub matrix: ReflectanceMatrix,
+    pub result: BenchResult,
+}
+
+/// The test bench (paper sec. 6.1) of `method` on SURFACE: `setup.period_hint_nm`, when set, centres the
+/// order's window and gives NMM and Stam's lattice the period along the measured direction; `max_period_nm`
+/// defaults to the smaller of 10 µm and 0.785 × coherence (the mirror lobe's 2σ_f). Says why a period is not
+/// definite (quantised by the patch, competing ridges, spread over λ) as warnings.
+pub fn testbench(
+    source: &Source,
+    m: &LabOptions,
+    method: Method,
+    mut setup: BenchSetup,
+    max_period_nm: Option<f64>,
+    report: &dyn Report,
+) -> Result<Testbench> {
+    check_spectral(method)?;
+    let mut config = m.config()?;
+    if let Some(p) = setup.period_hint_nm {
+        // NMM and Stam's lattice take the period along the measured direction.
+        if setup.azimuth.sin().abs() > setup.azimuth.cos().abs() {
+            config.period_y_nm = Some(p);
+        } else {
+            config.period_x_nm = Some(p);
+        }
+    }
+    let b = workbench_from(source, m, config, report)?;
+    setup.max_period_nm = max_period_nm.unwrap_or((b.config.coherence_nm * std::f64::consts::FRAC_PI_4).min(10_000.0));
+    let e = evaluator(&b, method, report)?;
+    let matrix = with_progress(report, setup.wavelengths_nm.len() as u64, "test bench", |p| {
+        bench::reflectance_matrix(e.as_ref(), &setup, p)
+    })?;
+    let result = bench::analyse(&matrix, &setup)?.on_patch(b.patch.shorter_side_nm(), b.config.coherence_nm);
+    let azimuth_deg = setup.azimuth.to_degrees();
+    if result.is_quantised() {
+        report.warn(&format!(
+            "the peaks follow d = {:.2} nm, but the coherence window ({} µm) is wider than the {} µm patch, \
+             so the period is read off the patch's DFT grid, quantised to ± d²/L = {:.1} nm: not a definite \
+             period; leave --coherence out (it is then fitted to the patch) or give at most half the patch's side",
+            result.periodicity.mean,
+            b.config.coherence_nm / 1000.0,
+            b.patch.shorter_side_nm() / 1000.0,
+            result.uncertainty_nm().unwrap_or(f64::NAN)
+        ));
+    } else if result.periodicity.is_definite() && !result.is_definite() {
+        report.warn(&format!(
+            "the peaks follow d = {:.1} nm, but {} ridges are nearly as strong (the strongest carries {:.2}× \
+             the next, less than {}×): the surface has no definite period along azimuth {azimuth_deg:.0}°",
+            result.periodicity.mean,
+            result.ridges.len(),
+            result.ridge_dominance().unwrap_or(1.0),
+            bench::DOMINANT_RIDGE,
+        ));
+    } else if !result.periodicity.is_definite() {
+        report.warn(&format!(
+            "the peaks do not follow one period in this direction (d_λ spreads by {:.1} % of its mean, \
+             more than {:.0} %): the surface has no definite period along azimuth {azimuth_deg:.0}°; the mean is \
+             not a period",
+            100.0 * result.periodicity.relative_spread(),
+            100.0 * bench::DEFINITE_SPREAD,
+        ));
+    }
+    Ok(Testbench { workbench: b, setup, matrix, result })
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// compare
+
+/// The results of a comparison (`iridis compare`, the demo, Python's `lab.compare`).
+#[derive(Debug)]
+pub struct Comparison {
+    /// One row per method and exposure, each against its own truth (`row.against`).
+    pub rows: Vec<ComparisonRow>,
+    pub images: Vec<(String, Vec<Option<Xyz>>)>,
+    /// The images compared against, by method: both ground truths, and `against` if given.
+    pub truths: Vec<(Method, Vec<Option<Xyz>>)>,
+    /// The periodic ground truth against the finite-aperture one, per exposure.
+    pub extension: Vec<ComparisonRow>,
+}
+
+impl Comparison {
+    pub fn truth(&self, m: Method) -> &[Option<Xyz>] {
+        self.truths.iter().find(|t| t.0 == m).map(|t| t.1.as_slice()).unwrap_or(&[])
+    }
+
+    /// The mean ΔE of the first method at an exposure: what each row's `ratio` divides by (Table 2's E2/E1).
+    pub fn first_mean(&self, exposure_ru: f64) -> f64 {
+        self.rows.iter().find(|r| r.exposure_ru == exposure_ru).map(|r| r.mean).unwrap_or(f64::NAN)
+    }
+
+    /// The comparison as `iridis compare --json` prints it (keys in docs/json.md).
+    pub fn to_json(
+        &self,
+        surface: &str,
+        against: Option<Method>,
+        size: usize,
+        incidence_deg: f64,
+        coherence_nm: f64,
+    ) -> serde_json::Value {
+        let rows: Vec<_> = self
+            .rows
+            .iter()
+            .map(|r| {
+                json!({"method": r.method, "against": r.against, "exposure_ru": r.exposure_ru, "mean": r.mean,
+                       "p95": r.p95, "max": r.max, "ratio": r.mean / self.first_mean(r.exposure_ru)})
+            })
+            .collect();
+        let ext: Vec<_> = self
+            .extension
+            .iter()
+            .map(|r| json!({"exposure_ru": r.exposure_ru, "mean": r.mean, "p95": r.p95, "max": r.max}))
+            .collect();
+        let against_name = against.map(|m| m.name()).unwrap_or("model");
+        json!({"surface": surface, "against": against_name, "size": size,
+            "incidence_deg": incidence_deg, "coherence_nm": coherence_nm, "results": rows,
+            "periodic_extension_error": ext})
+    }
+}
+
+/// Each method against `against`, or against the ground truth of its own model ([`Method::model_truth`]) when
+/// `None`; both ground truths are rendered for the periodic-extension error.
+pub fn comparison(
+    b: &Workbench,
+    methods: &[Method],
+    against: Option<Method>,
+    pixels: &Pixels,
+    exps: &[f64],
+    report: &dyn Report,
+) -> Result<Comparison> {
+    let mut truths = Vec::new();
+    let mut needed = vec![Method::GroundTruthPeriodic, Method::GroundTruth];
+    if let Some(a) = against.filter(|a| !a.is_ground_truth()) {
+        needed.push(a);
+    }
+    for m in needed {
+        let e = evaluator(b, m, report)?;
+        truths.push((m, render_on_bench(b, e.as_ref(), pixels, m.name(), report)?));
+    }
+    let mut c = Comparison { rows: Vec::new(), images: Vec::new(), truths, extension: Vec::new() };
+    for &m in methods {
+        let e = evaluator(b, m, report)?;
+        let img = render_on_bench(b, e.as_ref(), pixels, m.name(), report)?;
+        let t = against.unwrap_or(m.model_truth());
+        let one = [(m.name().to_string(), img)];
+        c.rows.extend(iridis_lab::compare::table(&one, c.truth(t), t.name(), exps));
+        let [(name, img)] = one;
+        c.images.push((name, img));
+    }
+    c.extension =
+        iridis_lab::compare::extension_error(c.truth(Method::GroundTruthPeriodic), c.truth(Method::GroundTruth), exps);
+    Ok(c)
+}
+
+/// `--against`: `model` (or `own`: each method against the ground truth of its own model) or a method.
+pub fn parse_against(s: &str) -> Result<Option<Method>> {
+    Ok(match s.trim().to_ascii_lowercase().as_str() {
+        "model" | "own" => None,
+        other => Some(other.parse().map_err(|e| anyhow::anyhow!("--against: {e}, or model"))?),
+    })
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// laser experiment
+
+/// The coating of the laser experiment: `gold` (Johnson & Christy), `none`, or an n,k file.
+pub fn coating(s: &str) -> Result<Option<MetalFresnel>> {
+    Ok(match s.trim().to_ascii_lowercase().as_str() {
+        "none" => None,
+        "gold" | "au" => Some(MetalFresnel::new(
+            iridis_thinfilm::Material::builtin("gold").context("the built-in gold data are missing")?,
+            380.0,
+            780.0,
+        )?),
+        _ => {
+            let m = iridis_thinfilm::Material::from_file(Path::new(s))
+                .with_context(|| format!("--coating '{s}': not gold, none or a readable n,k file"))?;
+            Some(MetalFresnel::new(m, 380.0, 780.0)?)
+        }
+    })
+}
+
+/// The beam's spectrum from a CSV (wavelength_nm, power), or an equal-energy beam (with a note) without one.
+pub fn beam_spectrum(path: Option<&Path>, report: &dyn Report) -> Result<Spectrum> {
+    Ok(match path {
+        Some(p) => Spectrum::from_csv_path(p)?,
+        None => {
+            report.note("no --spectrum given; using an equal-energy beam (give the laser's CSV for its colours)");
+            Spectrum::new(vec![300.0, 900.0], vec![1.0, 1.0])?
+        }
+    })
+}

@@ -1,0 +1,34 @@
+//! # iridis-api
+//!
+//! The library API the front ends share: the command line (`crates/cli`), the viewer's inputs and the Python
+//! package (`crates/python`) call these functions, so that a SURFACE is read, a table checked, an evaluator
+//! made, a coherence length fitted or a rough film coloured the same way — with the same messages — whichever
+//! front end asked. The front ends keep what is theirs: parsing arguments, printing, writing files.
+//!
+//! * [`surface`]: a SURFACE argument with its options, levelled for the model ([`surface::load_patch`]);
+//! * [`model`]: the spectral setup, coherence (given or fitted), Taylor terms, lookup tables built, loaded and
+//!   checked against the options;
+//! * [`fresnel`]: the Fresnel factor from its text form (`schlick:1.5`, `index:0.2+3.4i`, `gold`, `stack:…`);
+//! * [`brdf`]: evaluators for a method on a SURFACE or TABLE, BRDF maps, point queries (`brdf eval`);
+//! * [`lab`]: the workbench, the test bench with its warnings, comparisons, the laser experiment's inputs;
+//! * [`rough`]: films on rough substrates (LSRS): options, spectra, colours, the chart's bands;
+//! * [`gpu`]: scenes and lookup maps on the GPU.
+//!
+//! Errors are messages for people (`anyhow`, with the library's typed error as the source and the context a
+//! person needs: "cannot load surface X: …"); notes, warnings and progress go to a [`report::Report`] the front
+//! end supplies — the facade never prints.
+//!
+//! Arrows: `cli, python → api → lab, gpu → render → diffraction → thinfilm, surface → color`.
+
+pub mod brdf;
+pub mod fresnel;
+pub mod gpu;
+pub mod lab;
+pub mod model;
+pub mod report;
+pub mod rough;
+pub mod surface;
+
+pub use model::ModelOptions;
+pub use report::{Kind, Quiet, Report};
+pub use surface::SurfaceOptions;

@@ -1,0 +1,164 @@
+//! The diffraction model's options and the steps every front end takes with them: the spectral setup, the
+//! coherence length (given or fitted to the patch), the Taylor terms, lookup tables built or loaded and checked
+//! against the options.
+
+use std::path::Path;
+
+use anyhow::{bail, Result};
+use iridis_color::{Illuminant, Observer};
+use iridis_diffraction::table::{LookupTable, Provenance, TableParams};
+use iridis_diffraction::taylor::terms_for_bound;
+use iridis_diffraction::{Patch, SpectralSetup, TaylorTerms};
+
+use crate::report::{with_progress, Report};
+use crate::surface::{load_patch, SurfaceOptions};
+
+/// Bound on the Taylor remainder used by `--terms auto` (PHYSICS.md).
+pub const DEFAULT_EPSILON: f64 = 1e-6;
+
+/// The model's options (the CLI's `--terms --coherence --illuminant --observer --step`).
+#[derive(Debug, Clone)]
+pub struct ModelOptions {
+    /// Taylor terms: `auto` (from the remainder bound) or a number N (terms 0..N).
+    pub terms: String,
+    /// Coherence length 4σ_s of the Gaussian window (nm); default 65 µm, or half the patch's shorter side
+    /// when the patch is smaller than that.
+    pub coherence_nm: Option<f64>,
+    /// Illuminant: d65 (default), d50, a, e.
+    pub illuminant: Option<String>,
+    /// Observer: 1931 (default) or 1964.
+    pub observer: Option<String>,
+    /// Wavelength step of the spectral integral (nm); default 5.
+    pub step_nm: Option<f64>,
+}
+
+impl Default for ModelOptions {
+    fn default() -> Self {
+        Self { terms: "auto".into(), coherence_nm: None, illuminant: None, observer: None, step_nm: None }
+    }
+}
+
+/// Spectral setup from the options (defaults: D65, CIE 1931, 5 nm).
+pub fn spectral_setup(m: &ModelOptions, report: &dyn Report) -> Result<SpectralSetup> {
+    let ill: Illuminant = m.illuminant.as_deref().unwrap_or("d65").parse()?;
+    let obs: Observer = m.observer.as_deref().unwrap_or("1931").parse()?;
+    let step = m.step_nm.unwrap_or(5.0);
+    if step > 5.0 {
+        report.warn(&format!("a wavelength step of {step} nm shows colour artefacts (the paper: use ≤ 5 nm)"));
+    }
+    Ok(SpectralSetup::new(ill, obs, step)?)
+}
+
+/// The coherence length for a patch (the one given, or fitted to the patch), with the note saying it was
+/// fitted and the model's warnings.
+pub fn coherence_for(patch: &Patch, given_nm: Option<f64>, report: &dyn Report) -> f64 {
+    let c = patch.coherence(given_nm);
+    if let Some(note) = c.note() {
+        report.note(&note);
+    }
+    for w in patch.warnings(c.nm) {
+        report.warn(&w);
+    }
+    c.nm
+}
+
+/// The number of Taylor terms the options ask for (`auto`: from the remainder bound at 380 nm).
+pub fn term_count(patch: &Patch, m: &ModelOptions) -> Result<usize> {
+    Ok(match m.terms.trim() {
+        "auto" => terms_for_bound(patch.max_abs_height, 380.0, DEFAULT_EPSILON),
+        t => match t.parse::<usize>() {
+            Ok(n) if n <= 200 => n,
+            _ => bail!("--terms '{t}' must be 'auto' or a number of terms from 0 to 200"),
+        },
+    })
+}
+
+/// Taylor terms of a patch, with progress.
+pub fn taylor_terms(patch: &Patch, m: &ModelOptions, report: &dyn Report) -> Result<TaylorTerms> {
+    let coherence = coherence_for(patch, m.coherence_nm, report);
+    let n = term_count(patch, m)?;
+    let terms = with_progress(report, n as u64 + 1, "Taylor terms", |p| {
+        TaylorTerms::compute_with_progress(patch, n, coherence, p)
+    })?;
+    report.info(&format!(
+        "{}×{} samples at {:.1} × {:.1} nm, |h|max {:.1} nm, N = {n} Taylor terms, coherence {:.1} µm",
+        patch.cols,
+        patch.rows,
+        patch.dx,
+        patch.dy,
+        patch.max_abs_height,
+        coherence / 1000.0
+    ));
+    Ok(terms)
+}
+
+/// Builds a lookup table, with progress.
+pub fn build_table(
+    terms: &TaylorTerms,
+    spectral: &SpectralSetup,
+    params: TableParams,
+    name: &str,
+    report: &dyn Report,
+) -> Result<LookupTable> {
+    Ok(with_progress(report, params.uv_resolution as u64, "lookup tables", |p| {
+        LookupTable::build(terms, spectral, params, name, p)
+    })?)
+}
+
+/// Whether INPUT is a lookup table from `iridis precompute` rather than a height field, by content: a height
+/// field may be an `.npz` too (`np.savez`), a table is the archive with iridis' `metadata_json`.
+pub fn is_table(input: &str) -> bool {
+    !input.starts_with("builtin:") && LookupTable::is_table_file(Path::new(input))
+}
+
+/// Rejects model options that contradict a table's metadata (the library's provenance check, on the fields
+/// the user gave: the table alone has no surface to fingerprint), and repeats the warnings the table was built
+/// with (pixel size, patch size against the coherence length).
+pub fn check_against_table(t: &LookupTable, m: &ModelOptions, report: &dyn Report) -> Result<()> {
+    for w in &t.meta.warnings {
+        report.warn(&format!("the table was computed from a surface with this problem: {w}"));
+    }
+    let terms = match m.terms.trim() {
+        "auto" => None,
+        s => Some(s.parse::<usize>().map_err(|_| anyhow::anyhow!("--terms '{s}' must be 'auto' or a number"))?),
+    };
+    let illuminant = match &m.illuminant {
+        Some(i) => Some(i.parse::<Illuminant>()?.name().to_string()),
+        None => None,
+    };
+    let expected = Provenance {
+        coherence_nm: m.coherence_nm,
+        illuminant,
+        observer: m.observer.clone(),
+        wavelength_step_nm: m.step_nm,
+        taylor_terms: terms,
+        ..Provenance::default()
+    };
+    let problems = t.mismatches(&expected);
+    if !problems.is_empty() {
+        bail!(
+            "the table was computed with other parameters ({}); run `iridis precompute` with the ones you want",
+            problems.join("; ")
+        );
+    }
+    Ok(())
+}
+
+/// The lookup table of a TABLE (checked against the options) or built from a SURFACE.
+pub fn lookup_table(
+    input: &str,
+    model: &ModelOptions,
+    params: TableParams,
+    surface: &SurfaceOptions,
+    report: &dyn Report,
+) -> Result<LookupTable> {
+    if is_table(input) {
+        let table = LookupTable::load(Path::new(input))?;
+        check_against_table(&table, model, report)?;
+        return Ok(table);
+    }
+    let patch = load_patch(input, surface, report)?;
+    let spectral = spectral_setup(model, report)?;
+    let terms = taylor_terms(&patch, model, report)?;
+    build_table(&terms, &spectral, params, input, report)
+}

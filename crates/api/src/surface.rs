@@ -1,0 +1,124 @@
+//! A SURFACE argument (a file or `builtin:NAME`) read with its options and levelled for the diffraction model:
+//! what `precompute`, `brdf-map`, `brdf eval`, the lab commands and Python's evaluators all start from.
+
+use anyhow::{Context, Result};
+use iridis_diffraction::Patch;
+use iridis_surface::formats::channel::ChannelSel;
+use iridis_surface::LoadOptions;
+
+use crate::report::{with_step, Report};
+
+/// How to read a SURFACE (the CLI's `--pixel-size --max-height --channel --height-unit --level`).
+#[derive(Debug, Clone, Default)]
+pub struct SurfaceOptions {
+    /// Pixel size (nm) for image surfaces without physical units.
+    pub pixel_size_nm: Option<f64>,
+    /// Height (nm) of the brightest grey value for image surfaces.
+    pub max_height_nm: Option<f64>,
+    /// Channel of a multi-channel file, by index or name.
+    pub channel: Option<ChannelSel>,
+    /// Unit of heights in files that do not give one.
+    pub height_unit: Option<String>,
+    /// Levelling before the model: plane (default for files), poly, lines, rows, mean or none (built-ins are
+    /// used as generated unless this is given).
+    pub level: Option<String>,
+}
+
+impl SurfaceOptions {
+    /// The reader's options.
+    pub fn load_options(&self) -> LoadOptions {
+        LoadOptions {
+            pixel_size_nm: self.pixel_size_nm,
+            max_height_nm: self.max_height_nm,
+            channel: self.channel.clone(),
+            height_unit: self.height_unit.clone(),
+            ..Default::default()
+        }
+    }
+}
+
+/// Loads a SURFACE argument as a diffraction patch, saying what the reader warned about (e.g. heights of
+/// unknown unit) and how it was levelled; the model's own warnings come with the Taylor terms or the ground
+/// truth.
+pub fn load_patch(spec: &str, opts: &SurfaceOptions, report: &dyn Report) -> Result<Patch> {
+    let load = opts.load_options();
+    let hf = with_step(report, &format!("loading {spec}"), || iridis_surface::load_surface(spec, &load))
+        .with_context(|| format!("cannot load surface {spec}"))?;
+    for w in &hf.meta.warnings {
+        report.warn(&format!("{spec}: {w}"));
+    }
+    let (hf, levelling) = iridis_surface::prep::level_for_model(spec, hf, opts.level.as_deref())?;
+    report.info(&format!("{spec}: {levelling}"));
+    Ok(Patch::from_row_major(hf.rows, hf.cols, hf.dx_nm, hf.dy_nm, &hf.heights_nm)?)
+}
+
+/// Where a height field comes from: a SURFACE argument (read with [`SurfaceOptions`]) or a patch already in
+/// memory (Python's `iridis.surface.Surface`), with the name tables and reports give it.
+#[derive(Debug, Clone)]
+pub enum Source {
+    Spec(String),
+    Patch { patch: Patch, name: String },
+}
+
+impl Source {
+    /// The name: the SURFACE argument, or the in-memory patch's.
+    pub fn name(&self) -> &str {
+        match self {
+            Source::Spec(s) => s,
+            Source::Patch { name, .. } => name,
+        }
+    }
+
+    /// The patch: loaded and levelled ([`load_patch`]) for a SURFACE argument, as it is otherwise.
+    pub fn patch(&self, opts: &SurfaceOptions, report: &dyn Report) -> Result<Patch> {
+        match self {
+            Source::Spec(s) => load_patch(s, opts, report),
+            Source::Patch { patch, .. } => Ok(patch.clone()),
+        }
+    }
+}
+
+/// Everything `iridis surface info --json` reports (keys in docs/json.md): sizes, heights, the dominant periods
+/// with their orientations, roughness of the plane-levelled field, radial PSDF and ACF, notes and warnings.
+pub fn info(hf: &iridis_surface::HeightField, n_peaks: usize, coherence_nm: f64) -> serde_json::Value {
+    let (lo, hi) = hf.min_max();
+    let peaks = iridis_surface::find_peaks(
+        hf,
+        &iridis_surface::PeakOptions { max_peaks: n_peaks, ..iridis_surface::PeakOptions::default() },
+    );
+    let mut warnings = hf.meta.warnings.clone();
+    warnings.extend(hf.physics_warnings(coherence_nm));
+    let levelled = iridis_surface::prep::level_plane(hf);
+    let rough = iridis_surface::stats::roughness(&levelled);
+    let psdf = iridis_surface::stats::radial_of(&iridis_surface::stats::psdf(&levelled));
+    let acf = iridis_surface::stats::radial_of(&iridis_surface::stats::acf(&levelled));
+    serde_json::json!({
+        "source": hf.meta.source,
+        "format": hf.meta.format,
+        "rows": hf.rows,
+        "cols": hf.cols,
+        "pixel_size_nm": [hf.dx_nm, hf.dy_nm],
+        "extent_nm": [hf.extent_nm().0, hf.extent_nm().1],
+        "height_min_nm": lo,
+        "height_max_nm": hi,
+        "mean_nm": hf.mean(),
+        "rms_nm": hf.rms(),
+        "z_unit_in_file": hf.meta.z_unit,
+        "peaks": peaks,
+        "roughness": {
+            "levelling": "plane",
+            "sq_nm": rough.sq_nm,
+            "sa_nm": rough.sa_nm,
+            "skewness": rough.skewness,
+            "excess_kurtosis": rough.excess_kurtosis,
+            "sz_nm": rough.sz_nm,
+            "correlation_length_nm": rough.correlation_length_nm,
+        },
+        // Annular means of the plane-levelled field's 2-D PSDF (nm⁴, against spatial frequency) and ACF (nm²,
+        // against lag), bin k at k × step.
+        "psdf_radial": {"levelling": "plane", "frequency_step_per_nm": psdf.step, "values_nm4": psdf.values},
+        "acf_radial": {"levelling": "plane", "lag_step_nm": acf.step, "values_nm2": acf.values},
+        "notes": hf.meta.notes,
+        "warnings": warnings,
+    })
+}

@@ -1,0 +1,97 @@
+"""The virtual lab (docs/lab.md): the test bench of the paper's sec. 6.1 (peak viewing angles and the
+periodicity of a surface through the grating equation) and the comparison of methods in CIELAB (sec. 6.3,
+Table 2). The same library functions as ``iridis testbench`` and ``iridis compare`` (the facade
+``iridis-api``); the results are the dicts those commands print with ``--json`` (keys in docs/json.md), plus
+the arrays behind them.
+
+``surface`` is an :class:`iridis.surface.Surface` or a SURFACE argument as the CLI takes it. Keyword
+``options``: ``coherence_nm``, ``terms``, ``fresnel``, ``fresnel_convention``, ``shadowing``, ``stam_epsilon``
+and, for SURFACE arguments, ``pixel_size_nm``, ``max_height_nm``, ``channel``, ``height_unit``, ``level``.
+Angles in radians, lengths in nm.
+
+Example:
+    >>> import numpy as np, iridis.lab as lab
+    >>> r = lab.testbench("builtin:blazed?size=20um&pixel=50nm", wavelengths=(500, 700, 50),
+    ...                   angles_deg=(-60, 74, 0.1))
+    >>> round(r["periodicity_nm"]["mean"] / 100) * 100                      # the 2500 nm blazed grating
+    2500
+    >>> r["matrix"].shape                                   # reflectance over (λ, θ_r)
+    (5, 1341)
+"""
+from __future__ import annotations
+
+import json
+import math
+import os
+
+from . import _native
+from .surface import Surface
+
+__all__ = ["testbench", "compare", "METHODS"]
+
+#: The methods every lab function accepts (``iridis compare --help``).
+METHODS = ("ground-truth", "ground-truth-periodic", "reference", "lookup", "nmm", "pq", "stam-periodic",
+           "stam-periodic-triangular", "stam-gaussian")
+
+
+def _surface(s):
+    if isinstance(s, Surface):
+        return s._h
+    if isinstance(s, (str, os.PathLike)):
+        return os.fspath(s)
+    raise TypeError(f"surface must be an iridis.surface.Surface or a SURFACE argument (str), got {type(s).__name__}")
+
+
+def _triple(value, name):
+    try:
+        a, b, c = (float(x) for x in value)
+    except (TypeError, ValueError):
+        raise TypeError(f"{name} must be (from, to, step), got {value!r}") from None
+    return a, b, c
+
+
+def testbench(surface, method="reference", incidence=math.radians(75.0), azimuth=0.0, order=1,
+              wavelengths=(380.0, 780.0, 5.0), angles_deg=(-89.0, 89.0, 0.05), period_nm=None, max_period_nm=None,
+              **options):
+    """The test bench (paper sec. 6.1, Table 1): light in the x-z plane at ``incidence``, the viewer in the same
+    plane at signed θ_r; for each wavelength the peak of the ``order`` found and the periodicity
+    ``d_λ = m λ / (sin θ_i − sin θ_r)`` reported with its mean and variance over λ. ``azimuth`` rotates the
+    surface about its normal; ``wavelengths`` and ``angles_deg`` are ``(from, to, step)``; ``period_nm`` centres
+    the order's window on a known period.
+
+    Returns ``iridis testbench --json``'s dict (``periodicity_nm``, ``peaks``, ``ridges``, …) with ``matrix``
+    (the reflectance over ``wavelength_nm`` × ``angle_deg``) besides. Why a period is not definite is a Python
+    warning, as the CLI's.
+    """
+    out, matrix, wl, ang = _native._testbench(
+        _surface(surface), str(method), float(incidence), float(azimuth), int(order),
+        _triple(wavelengths, "wavelengths"), _triple(angles_deg, "angles_deg"), period_nm, max_period_nm, options)
+    result = json.loads(out)
+    result.update(matrix=matrix, wavelength_nm=wl, angle_deg=ang)
+    return result
+
+
+def compare(surface, methods=("lookup", "reference", "stam-periodic", "stam-gaussian"), against="model",
+            exposures=(1.0, 1000.0, 7500.0), incidence=(0.0, 0.0), size=101, step_nm=5.0, illuminant="d65",
+            uv_resolution=501, uv_power=5.0, table=None, **options):
+    """CIELAB errors between methods (paper sec. 6.3, Table 2): each method's BRDF map displayed at each
+    exposure and compared per pixel by CIEDE2000 with the ground truth of its own model (``against="model"``,
+    the patch's periodic extension), the finite aperture (``"ground-truth"``) or any method.
+
+    Returns ``iridis compare --json``'s dict (``results``: method, against, exposure_ru, mean, p95, max, ratio;
+    ``periodic_extension_error``; …) with ``maps`` besides: each method's and each ground truth's map as XYZ of
+    shape ``(size, size, 3)``, NaN outside the unit disk.
+    """
+    if isinstance(methods, str):
+        methods = [m for m in methods.split(",") if m.strip()]
+    try:
+        theta, phi = (float(x) for x in incidence) if hasattr(incidence, "__len__") else (float(incidence), 0.0)
+    except (TypeError, ValueError):
+        raise TypeError(f"incidence must be θ or (θ, φ) in radians, got {incidence!r}") from None
+    out, maps = _native._compare(
+        _surface(surface), [str(m).strip() for m in methods], str(against), [float(e) for e in exposures], theta,
+        phi, int(size), float(step_nm), str(illuminant), int(uv_resolution), float(uv_power),
+        None if table is None else os.fspath(table), options)
+    result = json.loads(out)
+    result["maps"] = maps
+    return result

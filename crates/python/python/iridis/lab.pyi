@@ -1,0 +1,33 @@
+import os
+from typing import Any, Optional, Sequence, Union
+
+from .surface import Surface
+
+METHODS: tuple[str, ...]
+
+def testbench(
+    surface: Union[Surface, str, os.PathLike[str]],
+    method: str = ...,
+    incidence: float = ...,
+    azimuth: float = ...,
+    order: int = ...,
+    wavelengths: tuple[float, float, float] = ...,
+    angles_deg: tuple[float, float, float] = ...,
+    period_nm: Optional[float] = ...,
+    max_period_nm: Optional[float] = ...,
+    **options: Any,
+) -> dict[str, Any]: ...
+def compare(
+    surface: Union[Surface, str, os.PathLike[str]],
+    methods: Union[str, Sequence[str]] = ...,
+    against: str = ...,
+    exposures: Sequence[float] = ...,
+    incidence: Union[float, tuple[float, float]] = ...,
+    size: int = ...,
+    step_nm: float = ...,
+    illuminant: str = ...,
+    uv_resolution: int = ...,
+    uv_power: float = ...,
+    table: Optional[Union[str, os.PathLike[str]]] = ...,
+    **options: Any,
+) -> dict[str, Any]: ...

@@ -1,0 +1,193 @@
+//! Calling the facade (`iridis-api`, the functions the CLI calls) from Python: the GIL released while it
+//! works, its notes and warnings kept ([`Collect`]) and given to Python afterwards — warnings as
+//! `warnings.warn(…, UserWarning)`, notes and the rest on the `logging` logger `iridis` — and its errors raised
+//! with the CLI's messages: `OSError` when a file could not be read, `ValueError` otherwise.
+
+use iridis_api::report::{Collect, Kind};
+use pyo3::exceptions::{PyOSError, PyUserWarning, PyValueError};
+use pyo3::prelude::*;
+
+/// Whether an error comes from reading a file (the cause chain holds an I/O error).
+fn is_io(e: &anyhow::Error) -> bool {
+    e.chain().any(|c| {
+        c.is::<std::io::Error>()
+            || matches!(c.downcast_ref::<iridis_surface::SurfaceError>(), Some(iridis_surface::SurfaceError::Io { .. }))
+            || matches!(
+                c.downcast_ref::<iridis_diffraction::DiffractionError>(),
+                Some(iridis_diffraction::DiffractionError::Io(_))
+            )
+            || matches!(c.downcast_ref::<iridis_render::RenderError>(), Some(iridis_render::RenderError::Io(_)))
+    })
+}
+
+/// A facade error as a Python exception, with the message the CLI prints after `error: `.
+pub fn api_error(e: anyhow::Error) -> PyErr {
+    let msg = format!("{e:#}");
+    if is_io(&e) {
+        PyOSError::new_err(msg)
+    } else {
+        PyValueError::new_err(msg)
+    }
+}
+
+/// Gives Python what the facade said: warnings to `warnings.warn`, the rest to the `iridis` logger.
+fn emit(py: Python<'_>, lines: Vec<(Kind, String)>) -> PyResult<()> {
+    if lines.is_empty() {
+        return Ok(());
+    }
+    let warnings = py.import("warnings")?;
+    let logger = py.import("logging")?.call_method1("getLogger", ("iridis",))?;
+    for (kind, text) in lines {
+        match kind {
+            Kind::Warning => {
+                warnings.call_method1("warn", (text, py.get_type::<PyUserWarning>(), 2))?;
+            }
+            Kind::Note => {
+                logger.call_method1("info", (format!("note: {text}"),))?;
+            }
+            Kind::Info => {
+                logger.call_method1("info", (text,))?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Runs `f` (a facade call) with the GIL released, then reports what it said and raises its error, if any.
+pub fn run<T: Send>(py: Python<'_>, f: impl FnOnce(&Collect) -> anyhow::Result<T> + Send) -> PyResult<T> {
+    let report = Collect::default();
+    let out = py.allow_threads(|| f(&report));
+    emit(py, report.take())?;
+    out.map_err(api_error)
+}
+
+/// The keyword options of a facade call (the wrapper's `**options`), read by name and type: a wrong type is a
+/// `TypeError` naming the option, a name no option has is a `TypeError` as Python gives for an unexpected
+/// keyword, `None` is the same as leaving the option out.
+#[derive(Debug)]
+pub struct Options<'py> {
+    dict: Option<Bound<'py, pyo3::types::PyDict>>,
+    used: Vec<&'static str>,
+}
+
+impl<'py> Options<'py> {
+    pub fn new(dict: Option<Bound<'py, pyo3::types::PyDict>>) -> Self {
+        Self { dict, used: Vec::new() }
+    }
+
+    fn value(&mut self, key: &'static str) -> PyResult<Option<Bound<'py, PyAny>>> {
+        self.used.push(key);
+        let Some(d) = &self.dict else { return Ok(None) };
+        Ok(d.get_item(key)?.filter(|v| !v.is_none()))
+    }
+
+    fn type_error(key: &str, what: &str, v: &Bound<'_, PyAny>) -> PyErr {
+        let ty = v.get_type().name().map(|n| n.to_string()).unwrap_or_else(|_| "?".into());
+        pyo3::exceptions::PyTypeError::new_err(format!("{key} must be {what}, got {ty}"))
+    }
+
+    /// A real number.
+    pub fn f64(&mut self, key: &'static str) -> PyResult<Option<f64>> {
+        match self.value(key)? {
+            None => Ok(None),
+            Some(v) if v.is_instance_of::<pyo3::types::PyBool>() => Err(Self::type_error(key, "a number", &v)),
+            Some(v) => v.extract::<f64>().map(Some).map_err(|_| Self::type_error(key, "a number", &v)),
+        }
+    }
+
+    /// A length or other quantity that must be finite and positive.
+    pub fn positive(&mut self, key: &'static str) -> PyResult<Option<f64>> {
+        match self.f64(key)? {
+            Some(x) if !(x.is_finite() && x > 0.0) => {
+                Err(PyValueError::new_err(format!("{key} = {x}: must be a positive, finite number")))
+            }
+            x => Ok(x),
+        }
+    }
+
+    /// A whole number ≥ 0.
+    pub fn usize(&mut self, key: &'static str) -> PyResult<Option<usize>> {
+        match self.value(key)? {
+            None => Ok(None),
+            Some(v) if v.is_instance_of::<pyo3::types::PyBool>() => Err(Self::type_error(key, "an integer", &v)),
+            Some(v) => match v.extract::<i64>() {
+                Ok(n) if n >= 0 => Ok(Some(n as usize)),
+                Ok(n) => Err(PyValueError::new_err(format!("{key} = {n}: must be ≥ 0"))),
+                Err(_) => Err(Self::type_error(key, "an integer", &v)),
+            },
+        }
+    }
+
+    pub fn string(&mut self, key: &'static str) -> PyResult<Option<String>> {
+        match self.value(key)? {
+            None => Ok(None),
+            Some(v) => v.extract::<String>().map(Some).map_err(|_| Self::type_error(key, "a str", &v)),
+        }
+    }
+
+    pub fn bool(&mut self, key: &'static str) -> PyResult<Option<bool>> {
+        match self.value(key)? {
+            None => Ok(None),
+            Some(v) => v.extract::<bool>().map(Some).map_err(|_| Self::type_error(key, "True or False", &v)),
+        }
+    }
+
+    /// How to read a SURFACE argument: `pixel_size_nm`, `max_height_nm`, `channel`, `height_unit`, `level`.
+    pub fn surface(&mut self) -> PyResult<iridis_api::SurfaceOptions> {
+        let channel = match self.value("channel")? {
+            None => None,
+            Some(v) => {
+                let s = if let Ok(i) = v.extract::<usize>() { i.to_string() } else { v.str()?.to_string() };
+                Some(s.parse().map_err(|e: String| PyValueError::new_err(format!("channel: {e}")))?)
+            }
+        };
+        Ok(iridis_api::SurfaceOptions {
+            pixel_size_nm: self.positive("pixel_size_nm")?,
+            max_height_nm: self.positive("max_height_nm")?,
+            channel,
+            height_unit: self.string("height_unit")?,
+            level: self.string("level")?,
+        })
+    }
+
+    /// The model: `terms` (None: from the remainder bound), `coherence_nm`, `illuminant`, `observer`, `step_nm`.
+    pub fn model(&mut self) -> PyResult<iridis_api::ModelOptions> {
+        Ok(iridis_api::ModelOptions {
+            terms: self.usize("terms")?.map(|n| n.to_string()).unwrap_or_else(|| "auto".into()),
+            coherence_nm: self.positive("coherence_nm")?,
+            illuminant: self.string("illuminant")?,
+            observer: self.string("observer")?,
+            step_nm: self.positive("step_nm")?,
+        })
+    }
+
+    /// The shading factors: `fresnel` (default `schlick:1.5`), `fresnel_convention` (`physical` or `paper`),
+    /// `shadowing` (default True), as text the CLI takes.
+    pub fn shading_text(&mut self) -> PyResult<(String, iridis_diffraction::FresnelConvention, bool)> {
+        let fresnel = self.string("fresnel")?.unwrap_or_else(|| "schlick:1.5".into());
+        let convention = match self.string("fresnel_convention")? {
+            None => iridis_diffraction::FresnelConvention::Physical,
+            Some(c) => {
+                iridis_diffraction::FresnelConvention::parse(&c).map_err(|e| PyValueError::new_err(e.to_string()))?
+            }
+        };
+        Ok((fresnel, convention, self.bool("shadowing")?.unwrap_or(true)))
+    }
+
+    /// Refuses options no one read.
+    pub fn finish(self) -> PyResult<()> {
+        let Some(d) = &self.dict else { return Ok(()) };
+        for k in d.keys() {
+            let k: String = k.extract()?;
+            if !self.used.contains(&k.as_str()) {
+                let mut known = self.used.clone();
+                known.sort_unstable();
+                return Err(pyo3::exceptions::PyTypeError::new_err(format!(
+                    "unexpected keyword argument '{k}' (this call takes: {})",
+                    known.join(", ")
+                )));
+            }
+        }
+        Ok(())
+    }
+}
