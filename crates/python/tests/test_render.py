@@ -54,3 +54,20 @@ def test_gpu_render_matches_the_cpu():
     mean, p99 = d.mean(), d[d.size * 99 // 100]
     assert mean < 1.0 and p99 < 3.0, (mean, p99)
     assert (lab[0][..., 0] > 10).sum() > 300  # the image shows something
+
+
+def test_gpu_render_without_xdg_runtime_dir_prints_no_driver_noise():
+    """As the CLI's gpu_cli test: a process started without XDG_RUNTIME_DIR (a service, sudo, env -i) gets a
+    private one, so the driver prints nothing about it."""
+    import subprocess
+    import sys
+
+    env = {k: v for k, v in os.environ.items() if k != "XDG_RUNTIME_DIR"}
+    code = ("import iridis.render as r, sys; "
+            f"a = r.render({SCENE!r}, size=(8, 8), spp=1, gpu=True); print(a.shape)")
+    p = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=300)
+    if p.returncode != 0 and "no GPU adapter" in p.stderr and os.environ.get("IRIDIS_SKIP_GPU") == "1":
+        pytest.skip("IRIDIS_SKIP_GPU=1 and no adapter")
+    assert p.returncode == 0, p.stderr
+    assert "(8, 8, 3)" in p.stdout
+    assert "XDG_RUNTIME_DIR" not in p.stderr, p.stderr
