@@ -239,12 +239,17 @@ impl Scene {
         }
     }
 
-    /// The nearest area light along a ray before `t_max`: (distance, index).
+    /// The nearest area light along a ray before `t_max`: (distance, index). Camera rays see the visible ones.
     pub fn hit_area_light(&self, o: V3, d: V3, t_max: f64, camera: bool) -> Option<(f64, usize)> {
+        self.hit_area_light_but(o, d, t_max, camera, usize::MAX)
+    }
+
+    /// [`Scene::hit_area_light`] ignoring light `skip`.
+    fn hit_area_light_but(&self, o: V3, d: V3, t_max: f64, camera: bool, skip: usize) -> Option<(f64, usize)> {
         let mut best = None;
         let mut t_max = t_max;
         for (k, l) in self.area_lights.iter().enumerate() {
-            if camera && !l.visible {
+            if (camera && !l.visible) || k == skip {
                 continue;
             }
             if let Some(t) = l.shape.intersect(o, d, t_max) {
@@ -261,9 +266,9 @@ impl Scene {
     }
 
     /// Whether the segment from `o` along `wi` of length `dist` is blocked by a surface or by an area light
-    /// (lights hide what lies behind them, as the rays that meet them see).
-    fn blocked(&self, o: V3, wi: V3, dist: f64) -> bool {
-        self.hit_area_light(o, wi, dist, false).is_some() || self.occluded(o, wi, dist)
+    /// other than `skip`, the one it goes to (lights hide what lies behind them, as the rays that meet them see).
+    fn blocked(&self, o: V3, wi: V3, dist: f64, skip: usize) -> bool {
+        self.hit_area_light_but(o, wi, dist, false, skip).is_some() || self.occluded(o, wi, dist)
     }
 
     /// The reflected radiance of the area lights, the environment and the rest of the scene (along the BRDF's
@@ -273,13 +278,13 @@ impl Scene {
         let o = add(h.p, mul(h.ng, crate::render::eps(h)));
         let inv_pi = 1.0 / std::f64::consts::PI;
         let mut out = [0.0; 3];
-        for l in &self.area_lights {
+        for (k, l) in self.area_lights.iter().enumerate() {
             let Some(x) = l.shape.sample(h.p, next2()) else { continue };
             if dot(x.wi, h.ng) <= 0.0 {
                 continue;
             }
             let f = s.eval(x.wi, wo);
-            if black(f) || self.blocked(o, x.wi, x.dist * (1.0 - 1e-7)) {
+            if black(f) || self.blocked(o, x.wi, x.dist * (1.0 - 1e-7), k) {
                 continue;
             }
             let w = self.light_weight(x.pdf, s.pdf(x.wi, wo));
@@ -289,7 +294,7 @@ impl Scene {
             let (wi, p) = es.sample(next2());
             if dot(wi, h.ng) > 0.0 {
                 let f = s.eval(wi, wo);
-                if !black(f) && !self.blocked(o, wi, f64::INFINITY) {
+                if !black(f) && !self.blocked(o, wi, f64::INFINITY, usize::MAX) {
                     let w = self.light_weight(p, s.pdf(wi, wo));
                     out = add(out, mul(hadamard(f, self.environment.radiance(wi)), w * inv_pi / p));
                 }
