@@ -81,6 +81,9 @@ fn disk_as_directional() -> String {
     )
 }
 
+/// A scene to measure: name, the fast scene, the Monte Carlo scene's text for a seed, the directional-light peer.
+type Case = (&'static str, String, Box<dyn Fn(u64) -> String>, Option<String>);
+
 fn scene(text: &str) -> Scene {
     parse_scene(text, "extended_light.toml", std::path::Path::new(".")).expect("scene")
 }
@@ -125,8 +128,7 @@ fn main() {
             std::fs::write(d.join(format!("{name}.png")), png).expect("write");
         }
     };
-    // (name, fast scene, Monte Carlo scene text builder, directional-light peer)
-    let cases: Vec<(&str, String, Box<dyn Fn(u64) -> String>, Option<String>)> = vec![
+    let cases: Vec<Case> = vec![
         ("snake under a sky", snake(SKY, "fast", 0), Box::new(|s| snake(SKY, "monte-carlo", s)), None),
         (
             "snake under a disk light",
@@ -149,7 +151,7 @@ fn main() {
         println!("\n{name}:");
         println!("  fast vs converged Monte Carlo: ΔE00 mean {m:.2}, p99 {p:.2} (noise floor, two MC seeds: {nm:.2} / {np:.2})");
         println!(
-            "  CPU: fast {:.3} s/frame; Monte Carlo {:.4} s per sample per pixel ({t_mc:.1} s for {spp})",
+            "  CPU: fast {:.3} s/frame; Monte Carlo {:.4} s per sample of every pixel ({t_mc:.1} s for {spp})",
             t_fast,
             t_mc / spp as f64
         );
@@ -170,7 +172,7 @@ fn main() {
             let n = spp.min(64);
             let (gimg, tg) = timed(|| gm_scene.render(w, h, n, &|_| {}).expect("GPU"));
             let (mm, mp) = delta_e(&gimg, &mc);
-            print!("  GPU: fast {t:.3} s/frame (ΔE00 to the CPU's fast {gm:.2} / {gp:.2}); Monte Carlo {:.4} s per sample per pixel (at {n} spp: ΔE00 to the CPU's {spp} spp {mm:.2} / {mp:.2})", tg / n as f64);
+            print!("  GPU: fast {t:.3} s/frame (ΔE00 to the CPU's fast {gm:.2} / {gp:.2}); Monte Carlo {:.4} s per sample of every pixel (at {n} spp, passes of 8: ΔE00 to the CPU's {spp} spp {mm:.2} / {mp:.2})", tg / n as f64);
             if let Some(d) = directional {
                 let gd = iridis_gpu::GpuScene::new(g, &scene(d)).expect("GPU scene");
                 let _ = gd.render(w, h, 1, &|_| {});

@@ -868,7 +868,7 @@ fn push_lobe(tables: &mut Vec<f32>, ls: &iridis_render::lobe::LobeSampler, res: 
     for level in &ls.levels {
         match level {
             Some(d) => push_distribution(tables, d),
-            None => tables.extend(std::iter::repeat(0.0).take((n + 1) + n * (n + 1) + n * n)),
+            None => tables.extend(std::iter::repeat_n(0.0, (n + 1) + n * (n + 1) + n * n)),
         }
     }
 }
