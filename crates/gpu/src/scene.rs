@@ -19,10 +19,13 @@
 
 use iridis_color::ToneMap;
 use iridis_diffraction::geometry::{Fresnel, FresnelSource};
+use iridis_render::area::{AreaLight, Shape};
 use iridis_render::camera::Camera;
+use iridis_render::integrate::{Integration, Strategy};
 use iridis_render::light::{Environment, Light};
 use iridis_render::material::{ColorSource, Material, Microfacet, OrientRule};
 use iridis_render::render::sample_offset;
+use iridis_render::sampling::Distribution2d;
 use iridis_render::texture::Texture;
 use iridis_render::{Image, Scene};
 use iridis_thinfilm::spectral::FULL_BAND_NM;
@@ -41,14 +44,17 @@ use iridis_thinfilm::Complex64;
 /// The scene shader's source: the shared helpers, both models and the renderer.
 pub(crate) fn scene_source() -> String {
     format!(
-        "{COMMON_WGSL}\n{LOOKUP_WGSL}\n{FILM_WGSL}\n{}\n{}",
+        "{COMMON_WGSL}\n{LOOKUP_WGSL}\n{FILM_WGSL}\n{}\n{}\n{}",
         include_str!("shaders/film_rough.wgsl"),
-        include_str!("shaders/scene.wgsl")
+        include_str!("shaders/scene.wgsl"),
+        include_str!("shaders/extended.wgsl")
     )
 }
 
 /// Rows rendered per dispatch.
 const BAND_ROWS: u32 = 32;
+/// Samples per pixel of one pass of a Monte Carlo render (progressive accumulation).
+pub const MC_PASS_SAMPLES: u32 = 8;
 /// Largest samples per pixel (the sample offsets live in the scene buffer).
 pub const MAX_SPP: u32 = 4096;
 
@@ -106,6 +112,7 @@ pub struct GpuScene<'g> {
     lights: Vec<Light>,
     /// Texture number of the first laser spot's reflection profile (the profiles follow the scene's textures).
     first_profile: u32,
+    area_lights: Vec<AreaLight>,
     output: iridis_render::scene::Output,
     /// The films' media as uploaded (the viewer's thickness, IOR and SVT controls rewrite copies of them).
     media_cpu: Vec<[f32; 2]>,
@@ -190,6 +197,13 @@ struct Layout {
     irr_tex: u32,
     /// The environment's directional lights in `tables` (6 floats each: direction, irradiance), NONE: none.
     env_light_base: u32,
+    /// 0 fast, 1 Monte Carlo.
+    integration: u32,
+    seed: u32,
+    n_area: u32,
+    area_base: u32,
+    /// The environment's importance sampler in `tables` (`[columns, rows]` then the distribution), NONE: none.
+    env_cdf_base: u32,
 }
 
 /// Output buffers for one image size (the benchmark's and the viewer's frame loop), used with the
@@ -272,6 +286,24 @@ impl<'g> GpuScene<'g> {
         let first_profile = scene.textures.len() as u32;
         push_lights(&mut rec, &scene.lights, lay.light_base, first_profile);
         lay.n_lights = scene.lights.len() as u32;
+
+        lay.area_base = rec.len();
+        push_area_lights(&mut rec, &scene.area_lights);
+        lay.n_area = scene.area_lights.len() as u32;
+        lay.integration = match scene.integration {
+            Integration::Fast => 0,
+            Integration::MonteCarlo(Strategy::Mis) => 1,
+            Integration::MonteCarlo(other) => {
+                return Err(GpuError::Invalid(format!(
+                    "the GPU integrates extended light by multiple importance sampling only ({other:?} sampling is \
+                     a check of the CPU renderer)"
+                )))
+            }
+        };
+        lay.seed = scene.output.seed as u32;
+        // What extended light needs of a diffraction table (its lobe's sampler, its prefiltered tables):
+        // uploaded where extended light exists.
+        let extended = !matches!(scene.environment, Environment::None) || !scene.area_lights.is_empty();
 
         lay.node_base = rec.len();
         for n in scene.bvh.nodes() {
@@ -378,6 +410,21 @@ impl<'g> GpuScene<'g> {
                         base,
                     ]);
                     rec.push([(1.0 / t.meta.uv_power) as f32, f0, n_re, n_im]);
+                    // [lobe distributions, prefiltered tables] (extended.wgsl).
+                    let (mut lobe, mut pref) = (NONE, NONE);
+                    if extended {
+                        if let Some(ls) = df.lobe_sampler() {
+                            lobe = tables.len() as u32;
+                            push_lobe(&mut tables, ls, t.meta.uv_resolution);
+                        }
+                        if let Some(p) = df.prefiltered() {
+                            pref = tables.len() as u32;
+                            for v in [&p.f, &p.c, &p.r] {
+                                tables.extend(v.iter().map(|&x| x as f32));
+                            }
+                        }
+                    }
+                    rec.words([lobe, pref, 0, 0]);
                 }
                 Material::ThinFilm(f) => {
                     if f.stack.has_incoherent() {
@@ -478,6 +525,23 @@ impl<'g> GpuScene<'g> {
             for (d, e) in &scene.environment_lights {
                 tables.extend(d.iter().chain(e).map(|&x| x as f32));
             }
+        }
+
+        // The environment's importance sampler (Monte Carlo).
+        // Uploaded whatever the integration, so that the viewer can switch to Monte Carlo.
+        lay.env_cdf_base = NONE;
+        let built;
+        let sampler = match &scene.env_sampler {
+            Some(s) => Some(s),
+            None => {
+                built = iridis_render::light::EnvSampler::new(&scene.environment);
+                built.as_ref()
+            }
+        };
+        if let Some(es) = sampler {
+            lay.env_cdf_base = tables.len() as u32;
+            tables.extend([es.dist.cols as f32, es.dist.rows as f32]);
+            push_distribution(&mut tables, &es.dist);
         }
 
         // Textures (the environment map and its irradiance map last).
@@ -632,6 +696,7 @@ impl<'g> GpuScene<'g> {
             camera: scene.camera.clone(),
             lights: scene.lights.clone(),
             first_profile,
+            area_lights: scene.area_lights.clone(),
             output: scene.output.clone(),
             media_cpu: media,
             films,
@@ -796,6 +861,43 @@ impl<'g> GpuScene<'g> {
         Ok(())
     }
 
+    /// The scene's area lights.
+    pub fn area_lights(&self) -> &[AreaLight] {
+        &self.area_lights
+    }
+
+    /// Replaces the area lights (same number as the scene has: the viewer turns them with its light drag).
+    pub fn set_area_lights(&mut self, lights: &[AreaLight]) -> Result<(), GpuError> {
+        if lights.len() != self.area_lights.len() {
+            return Err(GpuError::Invalid(format!(
+                "the scene has {} area lights; {} given",
+                self.area_lights.len(),
+                lights.len()
+            )));
+        }
+        let mut rec = Records::default();
+        push_area_lights(&mut rec, lights);
+        self.gpu.queue.write_buffer(&self.scene, self.layout.area_base as u64 * 16, bytemuck::cast_slice(&rec.0));
+        self.area_lights = lights.to_vec();
+        Ok(())
+    }
+
+    /// Whether the scene has extended light (an environment or area lights), which Monte Carlo integrates.
+    pub fn has_extended_light(&self) -> bool {
+        self.layout.n_area > 0 || self.layout.env_kind != 0
+    }
+
+    /// Whether the next frames integrate extended light by Monte Carlo.
+    pub fn monte_carlo(&self) -> bool {
+        self.layout.integration == 1
+    }
+
+    /// Switches between the fast path and Monte Carlo (the viewer's toggle; the scene file's `integration`
+    /// is the start). Monte Carlo frames are meant to accumulate ([`SceneFrame::run_samples`]).
+    pub fn set_monte_carlo(&mut self, on: bool) {
+        self.layout.integration = u32::from(on);
+    }
+
     /// The scene's output settings (size, spp, exposure, encoding).
     pub fn output(&self) -> &iridis_render::scene::Output {
         &self.output
@@ -857,16 +959,24 @@ impl<'g> GpuScene<'g> {
     }
 
     /// Renders `width × height` with `spp` samples per pixel and reads the linear image back;
-    /// `progress(rows_done)` is called after each band of rows.
+    /// `progress(rows_done)` is called after each band of rows (of each pass, scaled to the image's rows).
+    /// Monte Carlo accumulates progressively, [`MC_PASS_SAMPLES`] samples per pass: every pass adds its samples
+    /// to the running mean of each pixel, so the image converges pass by pass as the CPU's does with `spp`.
     pub fn render(&self, width: u32, height: u32, spp: u32, progress: &dyn Fn(usize)) -> Result<Image, GpuError> {
         let tone = ToneMap { exposure_ru: self.output.exposure, encoding: self.output.encoding };
         let frame = self.frame(width, height, spp, tone)?;
-        let mut row = 0;
-        while row < height {
-            let rows = BAND_ROWS.min(height - row);
-            frame.run_rows(self, row, rows)?;
-            row += rows;
-            progress(row as usize);
+        let per_pass = if self.layout.integration == 0 { spp } else { MC_PASS_SAMPLES.min(spp) };
+        let passes = spp.div_ceil(per_pass);
+        for k in 0..passes {
+            let sample0 = k * per_pass;
+            let n = per_pass.min(spp - sample0);
+            let mut row = 0;
+            while row < height {
+                let rows = BAND_ROWS.min(height - row);
+                frame.run_rows(self, row, rows, (sample0, n))?;
+                row += rows;
+                progress(((k * height + row) / passes) as usize);
+            }
         }
         *self.last_overflow.lock().unwrap_or_else(|e| e.into_inner()) = frame.stack_overflow(self)?;
         frame.read_image(self)
@@ -878,7 +988,7 @@ impl<'g> GpuScene<'g> {
         *self.last_overflow.lock().unwrap_or_else(|e| e.into_inner())
     }
 
-    fn param_words(&self, width: u32, height: u32, spp: u32, row0: u32) -> [u32; PARAM_WORDS] {
+    fn param_words(&self, width: u32, height: u32, spp: u32, row0: u32, pass: (u32, u32)) -> [u32; PARAM_WORDS] {
         let f = |v: f64| (v as f32).to_bits();
         let v4 = |v: [f64; 3], w: u32| [f(v[0]), f(v[1]), f(v[2]), w];
         let (kind, pos, fwd, right, up, s) = match self.camera {
@@ -908,12 +1018,57 @@ impl<'g> GpuScene<'g> {
         w.extend([l.n_lights, l.light_base, l.n_nodes, l.node_base]);
         w.extend([l.tri_base, l.mat_base, l.tex_base, l.sample_base]);
         w.extend([l.n_lambda, l.energy_base, l.irr_tex, l.env_light_base]);
+        w.extend([pass.0, pass.1, l.integration, l.seed]);
+        w.extend([l.n_area, l.area_base, l.env_cdf_base, 0]);
         w.try_into().expect("the Params struct of scene.wgsl")
     }
 }
 
-/// `Params` of scene.wgsl: 12 vec4 and 24 u32.
-const PARAM_WORDS: usize = 12 * 4 + 24;
+/// `Params` of scene.wgsl: 12 vec4 and 32 u32.
+const PARAM_WORDS: usize = 12 * 4 + 32;
+
+/// Area light records (extended.wgsl): `[centre, kind]`, `[normal, radius | width]`, `[tangent, height]`,
+/// `[radiance, visible]`.
+fn push_area_lights(rec: &mut Records, lights: &[AreaLight]) {
+    for l in lights {
+        match l.shape {
+            Shape::Sphere { center, radius } => {
+                rec.v3w(center, 0);
+                rec.v3([0.0; 3], radius as f32);
+                rec.v3([0.0; 3], 0.0);
+            }
+            Shape::Disk { center, normal, radius } => {
+                rec.v3w(center, 1);
+                rec.v3(normal, radius as f32);
+                rec.v3([0.0; 3], 0.0);
+            }
+            Shape::Rectangle { center, normal, tangent, size } => {
+                rec.v3w(center, 2);
+                rec.v3(normal, size[0] as f32);
+                rec.v3(tangent, size[1] as f32);
+            }
+        }
+        rec.v3w(l.radiance, u32::from(l.visible));
+    }
+}
+
+/// A [`Distribution2d`] as extended.wgsl reads it: row CDF, the rows' column CDFs, the cells' probabilities.
+fn push_distribution(tables: &mut Vec<f32>, d: &Distribution2d) {
+    for v in [&d.marginal, &d.conditional, &d.prob] {
+        tables.extend(v.iter().map(|&x| x as f32));
+    }
+}
+
+/// The lobe's distributions, one block per level of the same size (an empty level has a row CDF ending at 0).
+fn push_lobe(tables: &mut Vec<f32>, ls: &iridis_render::lobe::LobeSampler, res: usize) {
+    let n = res - 1;
+    for level in &ls.levels {
+        match level {
+            Some(d) => push_distribution(tables, d),
+            None => tables.extend(std::iter::repeat_n(0.0, (n + 1) + n * (n + 1) + n * n)),
+        }
+    }
+}
 
 /// Two records per light from record `base` on — `[direction | position, kind (0 directional, 1 point,
 /// 2 laser spot)]`, `[irradiance rgb, laser: record of its frame]` — then three per laser spot:
@@ -998,14 +1153,20 @@ impl SceneFrame {
         (self.width, self.height)
     }
 
+    /// The samples per pixel of the frame's camera offsets.
+    pub fn spp(&self) -> u32 {
+        self.spp
+    }
+
     /// Changes the display (exposure in RU, encoding) of the next frames.
     pub fn set_tone(&self, s: &GpuScene, tone: ToneMap) {
         s.gpu.queue.write_buffer(&self.display, 0, bytemuck::cast_slice(&crate::lookup::display_words(tone)));
     }
 
-    /// Renders rows `row0 .. row0 + rows` and waits for the GPU.
-    fn run_rows(&self, s: &GpuScene, row0: u32, rows: u32) -> Result<FrameTime, GpuError> {
-        let words = s.param_words(self.width, self.height, self.spp, row0);
+    /// Renders rows `row0 .. row0 + rows`, samples `pass.0 .. pass.0 + pass.1` of each pixel (added to the
+    /// running mean of the samples before them), and waits for the GPU.
+    fn run_rows(&self, s: &GpuScene, row0: u32, rows: u32, pass: (u32, u32)) -> Result<FrameTime, GpuError> {
+        let words = s.param_words(self.width, self.height, self.spp, row0, pass);
         s.gpu.queue.write_buffer(&self.params, 0, bytemuck::cast_slice(&words));
         dispatch(
             s.gpu,
@@ -1020,7 +1181,14 @@ impl SceneFrame {
     /// Renders the whole image in one dispatch (the benchmark's and the viewer's frames) with the scene's
     /// current camera and lights, and waits for the GPU.
     pub fn run(&self, s: &GpuScene) -> Result<FrameTime, GpuError> {
-        self.run_rows(s, 0, self.height)
+        self.run_rows(s, 0, self.height, (0, self.spp))
+    }
+
+    /// Progressive accumulation (the viewer's Monte Carlo frames): adds samples `sample0 .. sample0 + n` of
+    /// every pixel to the running mean of the samples before them (`sample0 = 0` starts a new image). The
+    /// camera offsets cycle through the frame's `spp` set; the random numbers differ for every sample index.
+    pub fn run_samples(&self, s: &GpuScene, sample0: u32, n: u32) -> Result<FrameTime, GpuError> {
+        self.run_rows(s, 0, self.height, (sample0, n.max(1)))
     }
 
     /// The stack overflows since this frame was made (see [`StackOverflow`]); `None` if there were none.
@@ -1061,8 +1229,8 @@ mod tests {
 
     #[test]
     fn params_fill_the_uniform_exactly() {
-        // 12 vec4 then 24 u32 = 72 words = 288 bytes, a multiple of 16 as a uniform needs.
+        // 12 vec4 then 32 u32 = 80 words = 320 bytes, a multiple of 16 as a uniform needs.
         assert_eq!(PARAM_WORDS * 4 % 16, 0);
-        assert_eq!(PARAM_WORDS, 72);
+        assert_eq!(PARAM_WORDS, 80);
     }
 }

@@ -21,6 +21,7 @@ use eframe::egui;
 use iridis_color::{Encoding, ToneMap};
 use iridis_diffraction::geometry::direction;
 use iridis_diffraction::LookupTable;
+use iridis_render::area::{AreaLight, Shape};
 use iridis_render::camera::{frame as camera_frame, Camera};
 use iridis_render::light::Light;
 use iridis_render::material::Material;
@@ -66,6 +67,11 @@ pub struct CheckReport {
     /// The window as RGBA8 (`width × height`).
     pub screenshot: Option<(usize, usize, Vec<u8>)>,
 }
+
+/// Samples per pixel a Monte Carlo image accumulates before the viewer stops rendering it.
+const VIEW_MC_SAMPLES: u32 = 1024;
+/// Camera sample offsets of a Monte Carlo frame (cycled through as samples accumulate).
+const VIEW_MC_OFFSETS: u32 = 64;
 
 /// Loads a scene for the viewer (the CLI prints notes; the viewer shows them).
 pub type SceneLoader = fn(&Path) -> Result<Scene, String>;
@@ -203,6 +209,7 @@ struct SceneView {
     orbit: Option<Orbit>,
     home: Option<Orbit>,
     lights0: Vec<Light>,
+    area0: Vec<AreaLight>,
     /// Rotation of the lights about the vertical and the horizontal axis (rad).
     light_yaw: f64,
     light_pitch: f64,
@@ -210,6 +217,9 @@ struct SceneView {
     films: usize,
     /// What was last uploaded: lights and film controls are rewritten only when they change.
     uploaded_lights: Vec<Light>,
+    uploaded_area: Vec<AreaLight>,
+    /// Monte Carlo: samples accumulated in the frame so far (0: start a new image).
+    samples: u32,
     uploaded_film: FilmControls,
 }
 
@@ -313,6 +323,9 @@ impl SceneView {
             path,
             maps: map_views(gpu, &cpu)?,
             lights0: cpu.lights.clone(),
+            area0: cpu.area_lights.clone(),
+            uploaded_area: cpu.area_lights.clone(),
+            samples: 0,
             gpu: g,
             frame: None,
             home: orbit,
@@ -326,9 +339,9 @@ impl SceneView {
         })
     }
 
-    fn lights(&self) -> Vec<Light> {
-        let target = self.orbit.map(|o| o.target).unwrap_or([0.0; 3]);
-        let rot = |v: [f64; 3]| {
+    /// The light rotation of the viewer's light drag: about +y by the yaw, then about the horizontal axis.
+    fn light_rotation(&self) -> impl Fn([f64; 3]) -> [f64; 3] + '_ {
+        move |v: [f64; 3]| {
             // Yaw about +y, then pitch about the horizontal axis perpendicular to the yawed vector.
             let (s, c) = self.light_yaw.sin_cos();
             let v = [c * v[0] + s * v[2], v[1], -s * v[0] + c * v[2]];
@@ -341,7 +354,55 @@ impl SceneView {
             let pitch = pitch.clamp(-1.55, 1.55);
             let (sp, cp) = pitch.sin_cos();
             [v[0] / h * cp * r, sp * r, v[2] / h * cp * r]
-        };
+        }
+    }
+
+    /// A position turned about the orbit's target.
+    fn turn_point(&self, p: [f64; 3]) -> [f64; 3] {
+        let target = self.orbit.map(|o| o.target).unwrap_or([0.0; 3]);
+        let q = (self.light_rotation())([p[0] - target[0], p[1] - target[1], p[2] - target[2]]);
+        [q[0] + target[0], q[1] + target[1], q[2] + target[2]]
+    }
+
+    /// The area lights moved with the light drag about the orbit's target; a disk's or rectangle's facing turns
+    /// by the rotation that takes its centre's old direction from the target to the new one.
+    fn area_lights(&self) -> Vec<AreaLight> {
+        use iridis_render::math::{cross, dot, normalize, rotate_about, sub, try_normalize};
+        let target = self.orbit.map(|o| o.target).unwrap_or([0.0; 3]);
+        self.area0
+            .iter()
+            .map(|l| {
+                let center = match l.shape {
+                    Shape::Sphere { center, .. } | Shape::Disk { center, .. } | Shape::Rectangle { center, .. } => {
+                        center
+                    }
+                };
+                let moved = self.turn_point(center);
+                let turn = |v: [f64; 3]| -> [f64; 3] {
+                    let (Some(a), Some(b)) = (try_normalize(sub(center, target)), try_normalize(sub(moved, target)))
+                    else {
+                        return v;
+                    };
+                    match try_normalize(cross(a, b)) {
+                        Some(k) => normalize(rotate_about(v, k, dot(a, b).clamp(-1.0, 1.0).acos())),
+                        None => v,
+                    }
+                };
+                let shape = match l.shape {
+                    Shape::Sphere { radius, .. } => Shape::Sphere { center: moved, radius },
+                    Shape::Disk { normal, radius, .. } => Shape::Disk { center: moved, normal: turn(normal), radius },
+                    Shape::Rectangle { normal, tangent, size, .. } => {
+                        Shape::Rectangle { center: moved, normal: turn(normal), tangent: turn(tangent), size }
+                    }
+                };
+                AreaLight { shape, ..*l }
+            })
+            .collect()
+    }
+
+    fn lights(&self) -> Vec<Light> {
+        let target = self.orbit.map(|o| o.target).unwrap_or([0.0; 3]);
+        let rot = self.light_rotation();
         self.lights0
             .iter()
             .map(|l| match l {
@@ -461,9 +522,15 @@ impl Viewer {
         }
     }
 
-    /// Renders the main image at `size` (pixels) and presents it in the frame texture; returns an error message
-    /// on failure.
-    fn render(&mut self, size: [u32; 2]) -> Result<(), String> {
+    /// Whether a Monte Carlo image is still accumulating samples (then frames keep coming while nothing moves).
+    fn accumulating(&self) -> bool {
+        matches!(&self.mode, Mode::Scene(sv) if sv.gpu.monte_carlo() && sv.samples < VIEW_MC_SAMPLES)
+    }
+
+    /// Renders the main image at `size` (pixels) and presents it in the frame texture; `restart`: something
+    /// changed, so a Monte Carlo image starts over (otherwise it adds a sample per pixel). Returns an error
+    /// message on failure.
+    fn render(&mut self, size: [u32; 2], restart: bool) -> Result<(), String> {
         let tone = self.tone();
         let gpu = self.gpu;
         let (w, h) = match &self.mode {
@@ -492,8 +559,14 @@ impl Viewer {
         };
         let (ft, readback) = match &mut self.mode {
             Mode::Scene(sv) => {
-                if sv.frame.as_ref().map(|f| f.size()) != Some((w, h)) {
-                    sv.frame = Some(sv.gpu.frame(w, h, 1, tone).map_err(|e| e.to_string())?);
+                let mc = sv.gpu.monte_carlo();
+                let offsets = if mc { VIEW_MC_OFFSETS } else { 1 };
+                if sv.frame.as_ref().map(|f| (f.size(), f.spp())) != Some(((w, h), offsets)) {
+                    sv.frame = Some(sv.gpu.frame(w, h, offsets, tone).map_err(|e| e.to_string())?);
+                    sv.samples = 0;
+                }
+                if restart {
+                    sv.samples = 0;
                 }
                 if let Some(cam) = sv.orbit.and_then(|o| o.camera()) {
                     sv.gpu.set_camera(cam);
@@ -503,6 +576,11 @@ impl Viewer {
                     sv.gpu.set_lights(&lights).map_err(|e| e.to_string())?;
                     sv.uploaded_lights = lights;
                 }
+                let area = sv.area_lights();
+                if area != sv.uploaded_area {
+                    sv.gpu.set_area_lights(&area).map_err(|e| e.to_string())?;
+                    sv.uploaded_area = area;
+                }
                 let mut film = self.film;
                 film.layer_ior = self.ior_on.then_some(self.ior);
                 if film != sv.uploaded_film {
@@ -511,7 +589,13 @@ impl Viewer {
                 }
                 let frame = sv.frame.as_ref().ok_or("no frame")?;
                 frame.set_tone(&sv.gpu, tone);
-                let ft = frame.run(&sv.gpu).map_err(|e| e.to_string())?;
+                let ft = if mc {
+                    let ft = frame.run_samples(&sv.gpu, sv.samples, 1).map_err(|e| e.to_string())?;
+                    sv.samples += 1;
+                    ft
+                } else {
+                    frame.run(&sv.gpu).map_err(|e| e.to_string())?
+                };
                 self.presenter.present(gpu, frame.packed(), target).map_err(|e| e.to_string())?;
                 let rb = if check { Some(timed_read(&|| frame.read_rgb8(&sv.gpu))?) } else { None };
                 (ft, rb)
@@ -572,6 +656,23 @@ impl Viewer {
             changed |= ui.add(egui::Slider::new(&mut self.gamma, 1.0..=3.0).text("gamma")).changed();
         }
         changed |= ui.add(egui::Slider::new(&mut self.res_scale, 0.1..=1.0).text("resolution")).changed();
+        if let Mode::Scene(sv) = &mut self.mode {
+            if sv.gpu.has_extended_light() {
+                ui.separator();
+                ui.label("Extended light (environment, area lights)");
+                let mut mc = sv.gpu.monte_carlo();
+                if ui.checkbox(&mut mc, "Monte Carlo (accumulates while still)").changed() {
+                    sv.gpu.set_monte_carlo(mc);
+                    changed = true;
+                }
+                let text = if mc {
+                    format!("{} of {VIEW_MC_SAMPLES} samples per pixel", sv.samples)
+                } else {
+                    "fast: prefiltered lights, real time".to_string()
+                };
+                ui.label(egui::RichText::new(text).small());
+            }
+        }
         let (films, maps) = match &self.mode {
             Mode::Scene(sv) => (sv.films, sv.maps.len()),
             Mode::Table(_) => (0, 1),
@@ -872,9 +973,15 @@ impl eframe::App for Viewer {
                 Mode::Scene(sv) => sv.frame.as_ref().map(|f| f.size()) != Some((px[0], px[1])),
                 Mode::Table(_) => self.frame_tex.as_ref().map(|t| t.target.width) != Some(px[0].min(px[1])),
             };
-            if self.dirty || size_changed {
+            if self.dirty || size_changed || self.accumulating() {
+                let restart = self.dirty || size_changed;
                 self.dirty = false;
-                if let Err(e) = self.render(px) {
+                if let Err(e) = self.render(px, restart) {
+                    if self.check.is_some() {
+                        // The scripted check waits for frames: a frame that fails would leave it waiting.
+                        eprintln!("error: view --check: the frame failed: {e}");
+                        std::process::exit(1);
+                    }
                     self.status = vec![e];
                 }
             }
@@ -898,7 +1005,7 @@ impl eframe::App for Viewer {
                 }
             }
         });
-        if self.dirty {
+        if self.dirty || self.accumulating() {
             ctx.request_repaint();
         }
         if self.check.is_some() {

@@ -538,6 +538,9 @@ pub fn scene_from_gltf(path: &Path) -> Result<crate::scene::Scene, RenderError> 
         lights: vec![Light::Directional { direction: normalize([-0.5, 1.0, 0.7]), rgb: [1.0; 3] }],
         irradiance: environment.irradiance_map(),
         environment_lights: environment.as_lights(),
+        area_lights: Vec::new(),
+        integration: Default::default(),
+        env_sampler: None,
         environment,
         environment_visible: true,
         meshes,
@@ -555,6 +558,7 @@ pub fn scene_from_gltf(path: &Path) -> Result<crate::scene::Scene, RenderError> 
             encoding: iridis_color::Encoding::Srgb,
             background: [0.0; 3],
             max_depth: 6,
+            seed: 0,
         },
         notes,
     })

@@ -11,7 +11,10 @@
 //! * [`material`]: diffraction (lookup tables of `iridis precompute`, orientation fields, the thesis' texture
 //!   blending, Algorithm 4), thin films (Sussenbach's smooth illumination model, eq. 3.14, with spatially
 //!   varying thickness, eq. 4.3–4.4), Lambert and GGX microfacet;
-//! * [`light`]: directional and point lights with a spectrum, uniform / sky / equirectangular environments;
+//! * [`light`]: directional and point lights with a spectrum, uniform / sky / equirectangular environments
+//!   and their importance sampler; [`area`] sphere, disk and rectangle lights;
+//! * [`integrate`]: extended light by Monte Carlo (light and BRDF sampling, multiple importance sampling), with
+//!   [`sampling`] the samplers and [`lobe`] the diffraction lobe's sampler and prefiltered table;
 //! * [`camera`]: perspective, orthographic and the hemisphere camera that reproduces a BRDF map;
 //! * [`render`]: ray casting on all cores, anti-aliasing, linear float images, PNG and EXR encoding.
 //!
@@ -19,6 +22,7 @@
 //! colours are linear sRGB with D65 white = 1; light levels are in RU, so a directional light of 1 RU on the
 //! plane of a diffraction material gives exactly the colours of `iridis brdf-map` at exposure 1.
 
+pub mod area;
 pub mod bvh;
 pub mod camera;
 pub mod energy;
@@ -26,12 +30,15 @@ pub mod error;
 pub mod geometry;
 pub mod gltf_export;
 pub mod gltf_io;
+pub mod integrate;
 pub mod light;
 pub mod lobe;
+pub mod lobe_albedo;
 pub mod material;
 pub mod math;
 pub mod obj_io;
 pub mod render;
+pub mod sampling;
 pub mod scene;
 pub mod snake;
 pub mod tables;

@@ -1,112 +1,362 @@
-//! The energy a diffraction material's lobe reflects, for the energy-conserving blend of its texture.
+//! The diffraction lobe of a lookup table, for extended light:
 //!
-//! A diffraction material in radiometric units reflects `A(ω_o) = ∫ f_r cos θ_i dω_i` of a uniform sky into
-//! `ω_o` ([`iridis_diffraction::energy::directional_albedo`], `R(θ_o)` for a flat surface, less for a rough
-//! one). Its texture, a Lambertian lobe under it, may then take only what the lobe leaves: as for the dielectric
-//! microfacet (Kulla & Conty 2017), `f_d = ρ_d (1 − A(ω_i))(1 − A(ω_o)) / (π (1 − A_avg))`, reciprocal, and in
-//! a uniform environment `∫ f_d cos θ_i dω_i = ρ_d (1 − A(ω_o))`, so lobe plus texture return exactly what a white
-//! texture receives (the white furnace, `crates/render/tests/white_furnace.rs`). `A_avg = (1/π) ∫ A cos θ dω`.
-//!
-//! The diffraction lobe is anisotropic (gratings, nanofingers along a direction), so `A` is tabulated over
-//! `cos θ` and azimuth in the material's local frame and interpolated bilinearly (periodic in azimuth).
+//! * [`LobeSampler`] importance-samples it. The table holds `I_p(u, v)` on a u-v grid with
+//!   `(u, v, w) = −ω_i − ω_o` (paper sec. 5); for a view `ω_o` a point `(u, v)` is the light direction
+//!   `ω_i = (−u − x_o, −v − y_o, √(1 − …))`, so a 2-D distribution over the grid's cells ∝ the luminance
+//!   `Y(u, v) = Σ_p w^p I_p^Y(u, v)` is a distribution of light directions, with solid-angle pdf
+//!   `p_uv(u, v) cos θ_i` (the hemisphere projects onto the unit disk with `dA = cos θ dω`). `w` varies with
+//!   the directions; the luminance is tabulated at [`LOBE_LEVELS`] values `w = −2 c` (the `w` of the mirror
+//!   configuration for `cos θ_o = c`) and a view uses the level nearest `cos θ_o`. The pdf a view uses to sample
+//!   is the one it evaluates, so the estimator is unbiased whatever the level's mismatch costs in variance; the
+//!   factor `C(ω_i, ω_o)` (Fresnel, geometry, shadowing) is left out of the distribution.
+//! * [`Prefiltered`] is the real-time counterpart: the table integrated over a square of the u-v plane
+//!   (summed-area tables of every power `I_p`), i.e. the lobe convolved with a light of solid angle `Ω`
+//!   — a prefiltered area light. A light seen under `Ω` from direction `ω_i` covers about `Ω cos θ_i` of the
+//!   u-v plane; its contribution is the mean of the lobe over that square times the light's irradiance,
+//!   instead of the lobe's value at the centre.
 
-use iridis_diffraction::energy::{directional_albedo, AlbedoGrid};
-use iridis_diffraction::Evaluator;
-use rayon::prelude::*;
+use iridis_diffraction::table::{grid_index, Lookup};
 
-use crate::error::RenderError;
-use crate::light::Rgb;
-use crate::math::V3;
+use crate::math::*;
+use crate::sampling::Distribution2d;
 
-/// Midpoint nodes in `cos θ` and uniform azimuths of the albedo table: within the tests' bound of the
-/// exact integral for the built-in surfaces (the lobe's albedo varies slowly with direction).
-const COS_NODES: usize = 10;
-const AZIMUTHS: usize = 16;
-/// The most quadrature points per axis (a 101² table is integrated on its grid refined once, 201 points).
-const MAX_QUADRATURE_RES: usize = 201;
+/// Number of `w` levels of the lobe's distribution.
+pub const LOBE_LEVELS: usize = 8;
 
-/// `A(ω)` as linear sRGB over the hemisphere (per unit radiance of a white sky), and its cosine-weighted mean.
-#[derive(Debug, Clone)]
-pub struct LobeAlbedo {
-    /// `[cos node][azimuth]`.
-    values: Vec<Rgb>,
-    average: Rgb,
+/// `cos θ_o` of level `k`: the midpoints of `LOBE_LEVELS` equal bins of `[0, 1]`.
+pub fn level_cos(k: usize) -> f64 {
+    (k as f64 + 0.5) / LOBE_LEVELS as f64
 }
 
-impl LobeAlbedo {
-    /// Integrates the evaluator's lobe, times `scale` (the factor that makes its colour the reflected fraction:
-    /// `R₀` for a radiometric table), at every node.
-    pub fn compute(eval: &dyn Evaluator, scale: f64) -> Result<Self, RenderError> {
-        let grid =
-            AlbedoGrid::for_evaluator(eval, MAX_QUADRATURE_RES).map_err(|e| RenderError::Input(e.to_string()))?;
-        let values: Vec<Rgb> = (0..COS_NODES * AZIMUTHS)
-            .into_par_iter()
+/// The level for a view with `cos θ_o = c`.
+pub fn level_of(c: f64) -> usize {
+    ((c.clamp(0.0, 1.0) * LOBE_LEVELS as f64) as usize).min(LOBE_LEVELS - 1)
+}
+
+/// Importance sampling of a table's diffraction lobe (see the module notes).
+#[derive(Debug, Clone)]
+pub struct LobeSampler {
+    /// Grid values along u and v (the table's).
+    pub uv: Vec<f64>,
+    /// One distribution over the `(res − 1)²` cells per level; `None` where the lobe is black.
+    pub levels: Vec<Option<Distribution2d>>,
+}
+
+/// `Σ_p w^p I_p^Y` at grid node `(iu, iv)`.
+fn node_luminance(lookup: &Lookup, iu: usize, iv: usize, w: f64) -> f64 {
+    let t = &lookup.table;
+    let (res, np) = (t.meta.uv_resolution, t.powers());
+    let base = ((iv * res + iu) * 3 + 1) * np;
+    t.data[base..base + np].iter().rev().fold(0.0, |acc, &x| acc * w + x)
+}
+
+impl LobeSampler {
+    pub fn new(lookup: &Lookup) -> Self {
+        let t = &lookup.table;
+        let res = t.meta.uv_resolution;
+        let n = res - 1;
+        let levels = (0..LOBE_LEVELS)
             .map(|k| {
-                let (c, a) = (cos_node(k / AZIMUTHS), azimuth(k % AZIMUTHS));
-                let s = (1.0 - c * c).sqrt();
-                let xyz = directional_albedo(eval, [s * a.cos(), s * a.sin(), c], &grid);
-                xyz.to_linear_srgb().map(|v| v * scale)
+                let w = -2.0 * level_cos(k);
+                let y: Vec<f64> =
+                    (0..res * res).map(|i| node_luminance(lookup, i % res, i / res, w).max(0.0)).collect();
+                let weights: Vec<f64> = (0..n * n)
+                    .map(|c| {
+                        let (iu, iv) = (c % n, c / n);
+                        let mean = 0.25
+                            * (y[iv * res + iu]
+                                + y[iv * res + iu + 1]
+                                + y[(iv + 1) * res + iu]
+                                + y[(iv + 1) * res + iu + 1]);
+                        mean * (t.uv[iu + 1] - t.uv[iu]) * (t.uv[iv + 1] - t.uv[iv])
+                    })
+                    .collect();
+                Distribution2d::new(n, n, &weights)
             })
             .collect();
-        // (1/π) ∫ A cos θ dω = ∫₀¹ 2μ ⟨A⟩_φ dμ by the midpoint rule on the cos nodes.
-        let mut average = [0.0; 3];
-        for (k, v) in values.iter().enumerate() {
-            let w = 2.0 * cos_node(k / AZIMUTHS) / (COS_NODES * AZIMUTHS) as f64;
+        Self { uv: t.uv.clone(), levels }
+    }
+
+    /// Area of cell `(iu, iv)` in the u-v plane.
+    fn cell_area(&self, iu: usize, iv: usize) -> f64 {
+        (self.uv[iu + 1] - self.uv[iu]) * (self.uv[iv + 1] - self.uv[iv])
+    }
+
+    /// The cell index holding `x` along one axis.
+    fn cell_of(&self, x: f64) -> Option<usize> {
+        let n = self.uv.len() - 1;
+        if !(x >= self.uv[0] && x <= self.uv[n]) {
+            return None;
+        }
+        Some((self.uv.partition_point(|&g| g <= x).max(1) - 1).min(n - 1))
+    }
+
+    /// A light direction (local frame, z the normal) for the view `lo` and its solid-angle pdf; `None` where
+    /// the drawn `(u, v)` has no light direction above the horizon (that mass is lost: the estimator counts it
+    /// as zero, which keeps it unbiased).
+    pub fn sample(&self, lo: V3, u: [f64; 2]) -> Option<(V3, f64)> {
+        let d = self.levels[level_of(lo[2])].as_ref()?;
+        let (iu, iv, f) = d.sample(u);
+        let uu = self.uv[iu] + f[0] * (self.uv[iu + 1] - self.uv[iu]);
+        let vv = self.uv[iv] + f[1] * (self.uv[iv + 1] - self.uv[iv]);
+        let (x, y) = (-uu - lo[0], -vv - lo[1]);
+        let s2 = x * x + y * y;
+        if s2 >= 1.0 {
+            return None;
+        }
+        let z = (1.0 - s2).sqrt();
+        Some(([x, y, z], d.prob(iu, iv) / self.cell_area(iu, iv) * z))
+    }
+
+    /// The solid-angle pdf of light direction `li` for the view `lo` (local frame).
+    pub fn pdf(&self, lo: V3, li: V3) -> f64 {
+        if li[2] <= 0.0 {
+            return 0.0;
+        }
+        let Some(d) = self.levels[level_of(lo[2])].as_ref() else { return 0.0 };
+        match (self.cell_of(-li[0] - lo[0]), self.cell_of(-li[1] - lo[1])) {
+            (Some(iu), Some(iv)) => d.prob(iu, iv) / self.cell_area(iu, iv) * li[2],
+            _ => 0.0,
+        }
+    }
+}
+
+/// Summed-area tables of every power `I_p` of a lookup table over the u-v plane (see the module notes): the
+/// exact integral of the table's values interpolated bilinearly in `u` and `v` between grid nodes, from three
+/// prefix tables — the double integral `F` at the nodes, and the single integrals along `v` at each node's `u`
+/// (`C`) and along `u` at each node's `v` (`R`) — that make the integral up to any point inside a cell exact
+/// too (a piecewise-linear interpolation of `F` alone would flatten the interpolant inside a cell).
+#[derive(Debug, Clone)]
+pub struct Prefiltered {
+    pub res: usize,
+    pub np: usize,
+    pub uv: Vec<f64>,
+    pub uv_power: f64,
+    /// `F[((iv · res + iu) · 3 + c) · np + p] = ∫_{u_0}^{u_iu} ∫_{v_0}^{v_iv} I_p du dv` (the table's layout).
+    pub f: Vec<f64>,
+    /// `C[…] = ∫_{v_0}^{v_iv} I_p(u_iu, v) dv`.
+    pub c: Vec<f64>,
+    /// `R[…] = ∫_{u_0}^{u_iu} I_p(u, v_iv) du`.
+    pub r: Vec<f64>,
+}
+
+impl Prefiltered {
+    pub fn new(lookup: &Lookup) -> Self {
+        let t = &lookup.table;
+        let (res, np) = (t.meta.uv_resolution, t.powers());
+        let idx = |iu: usize, iv: usize, c: usize, p: usize| ((iv * res + iu) * 3 + c) * np + p;
+        let at = |iu: usize, iv: usize, c: usize, p: usize| t.data[idx(iu, iv, c, p)];
+        let n = res * res * 3 * np;
+        let (mut f, mut cc, mut rr) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        for iv in 0..res {
+            for iu in 0..res {
+                for c in 0..3 {
+                    for p in 0..np {
+                        // The trapezoid rule is exact for the bilinear interpolant.
+                        if iv > 0 {
+                            let dv = t.uv[iv] - t.uv[iv - 1];
+                            cc[idx(iu, iv, c, p)] =
+                                cc[idx(iu, iv - 1, c, p)] + 0.5 * dv * (at(iu, iv - 1, c, p) + at(iu, iv, c, p));
+                        }
+                        if iu > 0 {
+                            let du = t.uv[iu] - t.uv[iu - 1];
+                            rr[idx(iu, iv, c, p)] =
+                                rr[idx(iu - 1, iv, c, p)] + 0.5 * du * (at(iu - 1, iv, c, p) + at(iu, iv, c, p));
+                        }
+                        if iu > 0 && iv > 0 {
+                            let area = (t.uv[iu] - t.uv[iu - 1]) * (t.uv[iv] - t.uv[iv - 1]);
+                            let cell = 0.25
+                                * (at(iu - 1, iv - 1, c, p)
+                                    + at(iu, iv - 1, c, p)
+                                    + at(iu - 1, iv, c, p)
+                                    + at(iu, iv, c, p))
+                                * area;
+                            f[idx(iu, iv, c, p)] = cell + f[idx(iu - 1, iv, c, p)] + f[idx(iu, iv - 1, c, p)]
+                                - f[idx(iu - 1, iv - 1, c, p)];
+                        }
+                    }
+                }
+            }
+        }
+        Self { res, np, uv: t.uv.clone(), uv_power: t.meta.uv_power, f, c: cc, r: rr }
+    }
+
+    /// The grid cell and the linear fraction inside it of coordinate `x`, clamped to the grid.
+    fn locate(&self, x: f64) -> (usize, f64) {
+        let n = self.res - 1;
+        let x = x.clamp(self.uv[0], self.uv[n]);
+        let i = (grid_index(x, self.res, self.uv_power).floor() as usize).min(n - 1);
+        let (a, b) = (self.uv[i], self.uv[i + 1]);
+        (i, ((x - a) / (b - a)).clamp(0.0, 1.0))
+    }
+
+    /// `∫_{u_0}^{u} ∫_{v_0}^{v} I_p` for every channel and power, added with `sign` into `out` (`3 · np`).
+    fn accumulate(&self, table: &[f64], u: f64, v: f64, sign: f64, out: &mut [f64]) {
+        let (i, t) = self.locate(u);
+        let (j, s) = self.locate(v);
+        let (du, dv) = (self.uv[i + 1] - self.uv[i], self.uv[j + 1] - self.uv[j]);
+        // Weights of the nodes' F, C, R and values (module notes: the cell's share is the bilinear interpolant
+        // integrated over [u_i, u] × [v_j, v]).
+        let (a0, a1) = (t - 0.5 * t * t, 0.5 * t * t);
+        let (b0, b1) = (s - 0.5 * s * s, 0.5 * s * s);
+        let np = self.np;
+        let base = |iu: usize, iv: usize| (iv * self.res + iu) * 3 * np;
+        let terms: [(&[f64], usize, f64); 9] = [
+            (&self.f, base(i, j), 1.0),
+            (&self.c, base(i, j), du * a0),
+            (&self.c, base(i + 1, j), du * a1),
+            (&self.r, base(i, j), dv * b0),
+            (&self.r, base(i, j + 1), dv * b1),
+            (table, base(i, j), du * dv * a0 * b0),
+            (table, base(i + 1, j), du * dv * a1 * b0),
+            (table, base(i, j + 1), du * dv * a0 * b1),
+            (table, base(i + 1, j + 1), du * dv * a1 * b1),
+        ];
+        for (src, b, w) in terms {
+            let w = w * sign;
+            if w != 0.0 {
+                for (o, x) in out.iter_mut().zip(&src[b..b + 3 * np]) {
+                    *o += w * x;
+                }
+            }
+        }
+    }
+
+    /// `Σ_p w^p ∫∫ I_p` over `[u0, u1] × [v0, v1]`, per channel.
+    fn integral(&self, table: &[f64], u0: f64, u1: f64, v0: f64, v1: f64, w: f64) -> [f64; 3] {
+        let mut acc = vec![0.0; 3 * self.np];
+        for (u, v, sign) in [(u1, v1, 1.0), (u0, v1, -1.0), (u1, v0, -1.0), (u0, v0, 1.0)] {
+            self.accumulate(table, u, v, sign, &mut acc);
+        }
+        let np = self.np;
+        [0, 1, 2].map(|c| acc[c * np..(c + 1) * np].iter().rev().fold(0.0, |a, &x| a * w + x))
+    }
+
+    /// The mean of `Σ_p w^p I_p` over the square of area `Ω cos θ_i` centred on the `(u, v)` of the
+    /// directions (local frame): the lobe seen through a light of solid angle `omega` around `li`. A square
+    /// narrower than the grid's cell there is averaged by 2 × 2 Gauss points of the lookup itself (the lookup
+    /// interpolates in the grid's index space, which the tables' interpolation in `u`, `v` approaches only
+    /// across many cells); a wider one exactly by the tables.
+    pub fn mean(&self, lookup: &Lookup, li: V3, lo: V3, omega: f64) -> [f64; 3] {
+        let (u, v, w) = (-li[0] - lo[0], -li[1] - lo[1], -li[2] - lo[2]);
+        let half = 0.5 * (omega * li[2].max(0.0)).sqrt();
+        if half <= 0.0 {
+            return lookup.sum(u, v, w);
+        }
+        let cell = |x: f64| {
+            let (i, _) = self.locate(x);
+            self.uv[i + 1] - self.uv[i]
+        };
+        if 2.0 * half < cell(u).min(cell(v)) {
+            let g = half / 3f64.sqrt();
+            let mut acc = [0.0; 3];
+            for (du, dv) in [(-g, -g), (g, -g), (-g, g), (g, g)] {
+                let x = lookup.sum(u + du, v + dv, w);
+                for c in 0..3 {
+                    acc[c] += 0.25 * x[c];
+                }
+            }
+            return acc;
+        }
+        let s = self.integral(&lookup.table.data, u - half, u + half, v - half, v + half, w);
+        s.map(|x| x / (4.0 * half * half))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use iridis_diffraction::table::{grid_value, LookupTable, TableMeta};
+    use iridis_diffraction::Shading;
+    use std::sync::Arc;
+
+    /// A table with one power whose values are a known function of (u, v), on a coarse power grid.
+    fn table(res: usize, value: impl Fn(f64, f64) -> f64) -> Lookup {
+        let uv: Vec<f64> = (0..res).map(|i| grid_value(i, res, 3.0)).collect();
+        let mut data = vec![0.0; res * res * 3];
+        for iv in 0..res {
+            for iu in 0..res {
+                for c in 0..3 {
+                    data[(iv * res + iu) * 3 + c] = value(uv[iu], uv[iv]) * (c + 1) as f64;
+                }
+            }
+        }
+        let meta = TableMeta {
+            format: "test".into(),
+            version: 0,
+            surface: "test".into(),
+            rows: 1,
+            cols: 1,
+            dx_nm: 1.0,
+            dy_nm: 1.0,
+            max_abs_height_nm: 0.0,
+            taylor_terms: 0,
+            coherence_nm: 1.0,
+            uv_resolution: res,
+            uv_power: 3.0,
+            illuminant: "d65".into(),
+            observer: "cie1931".into(),
+            wavelength_step_nm: 5.0,
+            wavelength_min_nm: 500.0,
+            wavelength_max_nm: 500.0,
+            layout: String::new(),
+            warnings: Vec::new(),
+            surface_fingerprint: None,
+            light_spectrum: None,
+        };
+        let t = LookupTable { meta, uv, wavelengths_nm: vec![500.0], data };
+        Lookup::new(Arc::new(t), Shading::default(), iridis_diffraction::table::Precision::F64).unwrap()
+    }
+
+    #[test]
+    fn the_tables_integrate_a_bilinear_function_exactly() {
+        // A bilinear function of u and v is its own interpolant: the box integral is the closed form, at any
+        // box, in or across cells.
+        let f = |u: f64, v: f64| 1.0 + 0.3 * u - 0.2 * v + 0.1 * u * v;
+        let l = table(9, f);
+        let p = Prefiltered::new(&l);
+        let exact = |u0: f64, u1: f64, v0: f64, v1: f64| {
+            let (a, b) = (u1 - u0, v1 - v0);
+            let (su, sv) = (0.5 * (u1 * u1 - u0 * u0), 0.5 * (v1 * v1 - v0 * v0));
+            a * b + 0.3 * su * b - 0.2 * a * sv + 0.1 * su * sv
+        };
+        for (u0, u1, v0, v1) in [(-1.9, 1.7, -1.2, 0.4), (0.01, 0.02, -0.015, -0.011), (-0.6, 0.3, 0.2, 1.95)] {
+            let got = p.integral(&l.table.data, u0, u1, v0, v1, 0.0);
             for c in 0..3 {
-                average[c] += w * v[c];
+                let want = exact(u0, u1, v0, v1) * (c + 1) as f64;
+                assert!((got[c] - want).abs() < 1e-12 * want.abs().max(1.0), "{got:?} vs {want}");
             }
         }
-        Ok(Self { values, average })
     }
 
-    /// `A` for a direction in the local frame (`z` the normal), bilinear between the nodes.
-    pub fn at(&self, local: V3) -> Rgb {
-        let c = local[2].clamp(0.0, 1.0);
-        let fc = (c * COS_NODES as f64 - 0.5).clamp(0.0, (COS_NODES - 1) as f64);
-        let (c0, tc) = (fc.floor() as usize, fc.fract());
-        let c1 = (c0 + 1).min(COS_NODES - 1);
-        let a = local[1].atan2(local[0]).rem_euclid(std::f64::consts::TAU) / std::f64::consts::TAU * AZIMUTHS as f64;
-        let (a0, ta) = (a.floor() as usize % AZIMUTHS, a.fract());
-        let a1 = (a0 + 1) % AZIMUTHS;
-        let v = |ci: usize, ai: usize| self.values[ci * AZIMUTHS + ai];
-        let mut out = [0.0; 3];
-        for k in 0..3 {
-            let lo = v(c0, a0)[k] * (1.0 - ta) + v(c0, a1)[k] * ta;
-            let hi = v(c1, a0)[k] * (1.0 - ta) + v(c1, a1)[k] * ta;
-            out[k] = lo * (1.0 - tc) + hi * tc;
+    #[test]
+    fn the_lobe_sampler_draws_its_pdf() {
+        // A Gaussian lobe about (u, v) = (0.2, -0.1): sampled directions report the pdf of pdf(), the pdf
+        // integrates to the fraction of (u, v) mass above the horizon, and E[g/pdf] = ∫ g dω for a test g.
+        let l = table(41, |u, v| (-((u - 0.2).powi(2) + (v + 0.1).powi(2)) / 0.02).exp());
+        let s = LobeSampler::new(&l);
+        let lo = normalize([-0.25, 0.05, 0.9]);
+        crate::sampling::seed(4, 0);
+        let n = 100_000;
+        let (mut acc, mut acc2) = (0.0, 0.0);
+        for _ in 0..n {
+            let x = match s.sample(lo, crate::sampling::next2()) {
+                Some((li, pdf)) => {
+                    assert!((s.pdf(lo, li) - pdf).abs() < 1e-9 * pdf, "{} vs {pdf}", s.pdf(lo, li));
+                    // g = cos θ_i × a Gaussian in (u, v) narrower than the lobe (so that g / pdf stays bounded).
+                    let (u, v) = (-li[0] - lo[0], -li[1] - lo[1]);
+                    li[2] * (-((u - 0.2).powi(2) + (v + 0.1).powi(2)) / 0.01).exp() / pdf
+                }
+                None => 0.0,
+            };
+            acc += x;
+            acc2 += x * x;
         }
-        out
+        let mean = acc / n as f64;
+        let se = ((acc2 / n as f64 - mean * mean) / n as f64).sqrt();
+        // ∫ g dω = ∫ exp(−|x − x_0|² / 0.01) dA over the unit disk (dω = dA / cos θ): the Gaussian's π·0.01,
+        // its centre (0.05, 0.05) lying 9 widths inside the disk.
+        let want = std::f64::consts::PI * 0.01;
+        assert!((mean - want).abs() < 4.0 * se, "{mean} ± {se} vs {want}");
     }
-
-    /// The cosine-weighted mean `A_avg`.
-    pub fn average(&self) -> Rgb {
-        self.average
-    }
-
-    /// The texture's share `(1 − A(ω_i))(1 − A(ω_o)) / (1 − A_avg)` per channel (0 where the lobe reflects all).
-    pub fn diffuse_share(&self, wi_local: V3, wo_local: V3) -> Rgb {
-        let (ai, ao) = (self.at(wi_local), self.at(wo_local));
-        std::array::from_fn(|k| {
-            let rest = 1.0 - self.average[k];
-            if rest <= 1e-9 {
-                0.0
-            } else {
-                (1.0 - ai[k]).max(0.0) * (1.0 - ao[k]).max(0.0) / rest
-            }
-        })
-    }
-
-    /// The share of a uniform environment's light the texture takes at `ω_o`: `1 − A(ω_o)` (the integral of
-    /// [`LobeAlbedo::diffuse_share`] against `cos θ_i / π`).
-    pub fn environment_share(&self, wo_local: V3) -> Rgb {
-        self.at(wo_local).map(|a| (1.0 - a).max(0.0))
-    }
-}
-
-fn cos_node(i: usize) -> f64 {
-    (i as f64 + 0.5) / COS_NODES as f64
-}
-
-fn azimuth(j: usize) -> f64 {
-    std::f64::consts::TAU * j as f64 / AZIMUTHS as f64
 }

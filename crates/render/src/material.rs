@@ -100,6 +100,9 @@ pub struct Diffraction {
     pub description: String,
     /// How the diffraction and the texture are combined.
     pub blend: Blend,
+    /// The lobe's sampler and prefiltered table for extended light, made on first use from a lookup
+    /// evaluator (`Default::default()` for a new material).
+    pub extended: ExtendedLight,
 }
 
 /// How a diffraction material combines its lobe with its texture.
@@ -111,9 +114,9 @@ pub enum Blend {
     Algorithm4,
     /// Energy-conserving (needs a radiometric table): `(1 − w_d)·(c_diffraction + c_texture·s) + w_d·c_texture`,
     /// with `c_diffraction` the radiometric BRDF times `R₀` and `s = (1 − A(ω_i))(1 − A(ω_o))/(1 − A_avg)` the
-    /// share the lobe leaves ([`crate::lobe::LobeAlbedo`]): a white texture passes the white furnace, and
+    /// share the lobe leaves ([`crate::lobe_albedo::LobeAlbedo`]): a white texture passes the white furnace, and
     /// the BRDF stays reciprocal.
-    Energy(Arc<crate::lobe::LobeAlbedo>),
+    Energy(Arc<crate::lobe_albedo::LobeAlbedo>),
 }
 
 impl Blend {
@@ -123,6 +126,14 @@ impl Blend {
             Blend::Energy(_) => "energy",
         }
     }
+}
+
+/// Per diffraction material, what extended light needs of its lookup table ([`crate::lobe`]): made on first
+/// use, `None` for evaluators that are not lookup tables.
+#[derive(Debug, Clone, Default)]
+pub struct ExtendedLight {
+    sampler: std::sync::OnceLock<Option<Arc<crate::lobe::LobeSampler>>>,
+    prefiltered: std::sync::OnceLock<Option<Arc<crate::lobe::Prefiltered>>>,
 }
 
 impl std::fmt::Debug for Diffraction {
@@ -143,16 +154,59 @@ pub fn schlick(n: f64, cos: f64) -> f64 {
 }
 
 impl Diffraction {
+    /// The lobe's importance sampler ([`crate::lobe::LobeSampler`]); `None` when the evaluator is not a lookup
+    /// table or the table is black.
+    pub fn lobe_sampler(&self) -> Option<&crate::lobe::LobeSampler> {
+        self.extended
+            .sampler
+            .get_or_init(|| {
+                let l = self.evaluator.as_lookup()?;
+                let s = crate::lobe::LobeSampler::new(l);
+                s.levels.iter().any(Option::is_some).then(|| Arc::new(s))
+            })
+            .as_deref()
+    }
+
+    /// The table's summed-area tables ([`crate::lobe::Prefiltered`]); `None` for other evaluators.
+    pub fn prefiltered(&self) -> Option<&crate::lobe::Prefiltered> {
+        self.extended
+            .prefiltered
+            .get_or_init(|| self.evaluator.as_lookup().map(|l| Arc::new(crate::lobe::Prefiltered::new(l))))
+            .as_deref()
+    }
+
+    /// The table's colour for local directions, averaged over a light of solid angle `omega` around `li`
+    /// (the prefiltered area light of [`crate::lobe::Prefiltered`]); the point value for `omega = 0` or an
+    /// evaluator that is not a lookup table.
+    pub fn xyz_filtered(&self, li: V3, lo: V3, omega: f64) -> Xyz {
+        match (omega > 0.0, self.evaluator.as_lookup(), self.prefiltered()) {
+            (true, Some(l), Some(p)) if li[2] > 0.0 && lo[2] > 0.0 => {
+                let c = l.shading.factor(500.0, li, lo);
+                let m = p.mean(l, li, lo, omega);
+                Xyz::new(c * m[0], c * m[1], c * m[2])
+            }
+            _ => self.evaluator.xyz(li, lo),
+        }
+    }
+
     /// Algorithm 4 for one light: `(1 − w_d)·c_diffraction + (1 − α)·c_texture + w_d·c_texture`, `α = min(|F|, 1)`,
     /// where `c_diffraction` is the table's colour for the light and view directions in the local frame
     /// `(t, n × t, n)` times the irradiance and `scale_ru`, and `c_texture` is the texture colour lit as a
     /// Lambertian surface (`cos θ_i` × irradiance).
     pub fn shade_light(&self, hit: &Hit, t: V3, wi: V3, wo: V3, e: Rgb, tex: Rgb) -> Rgb {
+        self.shade_light_filtered(hit, t, wi, wo, e, tex, 0.0)
+    }
+
+    /// [`Diffraction::shade_light`] for a light of solid angle `omega` (> 0: an area light or a cell of the
+    /// environment seen as one light), whose diffraction colour is the lobe averaged over the light
+    /// ([`Diffraction::xyz_filtered`]).
+    #[allow(clippy::too_many_arguments)]
+    pub fn shade_light_filtered(&self, hit: &Hit, t: V3, wi: V3, wo: V3, e: Rgb, tex: Rgb, omega: f64) -> Rgb {
         let (li, lo) = (local_frame(hit.n, t, wi), local_frame(hit.n, t, wo));
         if li[2] <= 0.0 || lo[2] <= 0.0 {
             return [0.0; 3];
         }
-        let c_diff = self.lobe(li, lo, e);
+        let c_diff = self.lobe(li, lo, e, omega);
         let c_tex = mul(hadamard(tex, e), li[2]);
         let rest = match &self.blend {
             Blend::Algorithm4 => {
@@ -165,23 +219,25 @@ impl Diffraction {
         add(add(mul(c_diff, 1.0 - self.w_diffuse), rest), mul(c_tex, self.w_diffuse))
     }
 
-    /// The light's diffraction alone, `scale_ru · XYZ(ω_i, ω_o) · e`, for local directions above the surface.
-    fn lobe(&self, li: V3, lo: V3, e: Rgb) -> Rgb {
-        hadamard(self.evaluator.xyz(li, lo).to_linear_srgb(), mul(e, self.scale_ru))
+    /// The light's diffraction alone, `scale_ru · XYZ(ω_i, ω_o) · e` (averaged over a light of solid angle
+    /// `omega`), for local directions above the surface.
+    fn lobe(&self, li: V3, lo: V3, e: Rgb, omega: f64) -> Rgb {
+        hadamard(self.xyz_filtered(li, lo, omega).to_linear_srgb(), mul(e, self.scale_ru))
     }
 
-    /// One directional light of the environment's quadrature ([`crate::Scene::environment_lights`]): all of
-    /// Algorithm 4; under the energy blend only the lobe, since the texture takes the environment through
-    /// [`Diffraction::environment_diffuse`].
-    pub fn shade_environment_light(&self, hit: &Hit, t: V3, wi: V3, wo: V3, e: Rgb, tex: Rgb) -> Rgb {
+    /// One light of the environment's quadrature ([`crate::Scene::environment_lights`], a cell of solid angle
+    /// `omega`): all of Algorithm 4; under the energy blend only the lobe, since the texture takes the
+    /// environment through [`Diffraction::environment_diffuse`].
+    #[allow(clippy::too_many_arguments)]
+    pub fn shade_environment_light(&self, hit: &Hit, t: V3, wi: V3, wo: V3, e: Rgb, tex: Rgb, omega: f64) -> Rgb {
         match &self.blend {
-            Blend::Algorithm4 => self.shade_light(hit, t, wi, wo, e, tex),
+            Blend::Algorithm4 => self.shade_light_filtered(hit, t, wi, wo, e, tex, omega),
             Blend::Energy(_) => {
                 let (li, lo) = (local_frame(hit.n, t, wi), local_frame(hit.n, t, wo));
                 if li[2] <= 0.0 || lo[2] <= 0.0 {
                     return [0.0; 3];
                 }
-                mul(self.lobe(li, lo, e), 1.0 - self.w_diffuse)
+                mul(self.lobe(li, lo, e, omega), 1.0 - self.w_diffuse)
             }
         }
     }
@@ -398,6 +454,23 @@ impl ThinFilm {
         }
         let c = self.colorimeter.from_spectra(&r, &t);
         (c.reflected, c.transmitted)
+    }
+
+    /// `π f cos θ_i` of the film over its base for light from `wi` (glTF `KHR_materials_iridescence`: the film's
+    /// reflectance `R(v·h)` replaces the base's specular Fresnel in its GGX lobe, the base's diffuse takes
+    /// `1 − R(v·h)` per channel, a metallic base mixes in the film over the metal), without
+    /// `iridescenceFactor`: the caller mixes it with the base alone. `albedo` is the base colour at the hit.
+    pub fn over_base_light(&self, base: &Microfacet, albedo: Rgb, n: V3, wi: V3, wo: V3, offset_nm: f64) -> Rgb {
+        let ci = dot(n, wi);
+        if ci <= 0.0 || dot(n, wo) <= 0.0 {
+            return [0.0; 3];
+        }
+        let m = base.metallic;
+        let vh = dot(wi, normalize(add(wi, wo))).clamp(0.0, 1.0);
+        let d = self.colors(vh, offset_nm).0.to_linear_srgb();
+        let metal = self.metal_color(vh, offset_nm).map(|x| x.to_linear_srgb()).unwrap_or(d);
+        let spec = base.ggx_single(n, wi, wo);
+        [0, 1, 2].map(|k| spec * ((1.0 - m) * d[k] + m * metal[k]) + (1.0 - d[k]) * albedo[k] * (1.0 - m) * ci)
     }
 
     /// The reflected colour of [`ThinFilm::metal_stack`] (like [`ThinFilm::colors`]); `None` without one.
@@ -695,6 +768,38 @@ mod tests {
             }
         }
         assert!(worst < 1e-12, "f(ω_i, ω_o) vs f(ω_o, ω_i): relative {worst}");
+    }
+
+    /// The film over its base as lights see it (glTF iridescence, `ThinFilm::over_base_light`): reciprocal, as
+    /// its GGX lobe and the `1 − R(v·h)` diffuse are symmetric in the two directions.
+    #[test]
+    fn film_over_base_brdf_is_reciprocal() {
+        let stack: Stack = "air | n=1.3 300nm | n=1.5".parse().unwrap();
+        let film = ThinFilm::new(stack, None, false).unwrap();
+        let n = [0.0, 0.0, 1.0];
+        let dir = |t: f64, p: f64| [t.sin() * p.cos(), t.sin() * p.sin(), t.cos()];
+        let mut worst = 0.0f64;
+        for (rough, metallic) in [(0.3, 0.0), (0.8, 0.5), (0.05, 1.0)] {
+            let base = Microfacet {
+                color: ColorSource::Const([0.9, 0.6, 0.3]),
+                roughness: rough,
+                metallic,
+                ior: 1.5,
+                metallic_roughness: None,
+                normal_texture: None,
+            };
+            for (ti, pi, to, po) in [(0.2, 0.0, 1.1, 2.0), (1.3, 0.5, 0.4, 3.5), (0.7, 1.0, 0.75, 4.2)] {
+                let (wi, wo) = (dir(ti, pi), dir(to, po));
+                let a = film.over_base_light(&base, [0.9, 0.6, 0.3], n, wi, wo, 0.0);
+                let b = film.over_base_light(&base, [0.9, 0.6, 0.3], n, wo, wi, 0.0);
+                for k in 0..3 {
+                    let (fa, fb) = (a[k] / wi[2], b[k] / wo[2]);
+                    assert!(fa > 0.0);
+                    worst = worst.max((fa - fb).abs() / fa);
+                }
+            }
+        }
+        assert!(worst < 1e-12, "relative {worst}");
     }
 
     #[test]

@@ -6,6 +6,7 @@ use rayon::prelude::*;
 use iridis_color::{Encoding, ToneMap, Xyz};
 
 use crate::geometry::{triangle_hit, Hit};
+use crate::integrate::Surface;
 use crate::light::Rgb;
 use crate::material::{relative_azimuth, ColorSource, Material, Microfacet, ThinFilm};
 use crate::math::*;
@@ -82,6 +83,10 @@ pub fn render(scene: &Scene, width: u32, height: u32, spp: u32, progress: &(dyn 
                 .map(|col| {
                     let mut acc = [0.0; 3];
                     for s in 0..spp {
+                        crate::sampling::seed(
+                            row as u64 * width as u64 + col as u64,
+                            s as u64 ^ (scene.output.seed << 32),
+                        );
                         let (jx, jy) = sample_offset(s, spp);
                         let x = -1.0 + 2.0 * (col as f64 + jx) / width as f64;
                         let y = 1.0 - 2.0 * (row as f64 + jy) / height as f64;
@@ -126,7 +131,7 @@ impl Scene {
             .lights_at(&h)
             .into_iter()
             .chain(self.environment_lights_at(&h))
-            .map(|(wi, e)| (local(wi), e))
+            .map(|(wi, e, _)| (local(wi), e))
             .filter(|(wi, _)| wi[2] > 0.0)
             .collect();
         Some(LocalView { material: h.material, view: local(mul(d, -1.0)), lights })
@@ -155,7 +160,7 @@ impl Scene {
     }
 
     /// Whether something opaque lies between `p` and a light `dist` away along `wi`.
-    fn occluded(&self, p: V3, wi: V3, dist: f64) -> bool {
+    pub(crate) fn occluded(&self, p: V3, wi: V3, dist: f64) -> bool {
         let mut o = p;
         let mut left = dist;
         for _ in 0..16 {
@@ -173,7 +178,11 @@ impl Scene {
 
     /// Radiance (linear sRGB, RU) seen along a camera ray.
     pub fn primary(&self, o: V3, d: V3) -> Rgb {
-        match self.intersect(o, d, f64::INFINITY) {
+        let hit = self.intersect(o, d, f64::INFINITY);
+        if let Some((_, k)) = self.hit_area_light(o, d, hit.as_ref().map_or(f64::INFINITY, |h| h.t), true) {
+            return self.area_lights[k].radiance;
+        }
+        match hit {
             Some(h) => self.shade(&h, d, 0, 1.0),
             None if self.environment_visible => self.environment.radiance(d),
             None => self.output.background,
@@ -186,29 +195,49 @@ impl Scene {
         if depth > self.output.max_depth || weight < 2e-3 {
             return self.environment.radiance(d);
         }
-        match self.intersect(o, d, f64::INFINITY) {
+        let hit = self.intersect(o, d, f64::INFINITY);
+        // Monte Carlo: a mirror's ray sees the area lights (the fast path lights surfaces by them directly).
+        if self.monte_carlo() {
+            if let Some((_, k)) = self.hit_area_light(o, d, hit.as_ref().map_or(f64::INFINITY, |h| h.t), false) {
+                return self.area_lights[k].radiance;
+            }
+        }
+        match hit {
             Some(h) => self.shade(&h, d, depth, weight),
             None => self.environment.radiance(d),
         }
     }
 
-    /// Lights visible from a hit: (direction to the light, irradiance).
-    fn lights_at(&self, h: &Hit) -> Vec<(V3, Rgb)> {
+    /// Lights visible from a hit: (direction to the light, irradiance, solid angle). The directional and point
+    /// lights (solid angle 0) and, on the fast path, each area light as one light from its centre with its
+    /// irradiance ([`crate::area::Shape::representative`]); Monte Carlo samples area lights instead.
+    fn lights_at(&self, h: &Hit) -> Vec<(V3, Rgb, f64)> {
         let o = add(h.p, mul(h.ng, eps(h)));
-        self.lights
+        let mut out: Vec<(V3, Rgb, f64)> = self
+            .lights
             .iter()
             .filter_map(|l| {
                 let (wi, dist, e) = l.arrive(h.p);
-                (dot(wi, h.ng) > 0.0 && !self.occluded(o, wi, dist)).then_some((wi, e))
+                (dot(wi, h.ng) > 0.0 && !self.occluded(o, wi, dist)).then_some((wi, e, 0.0))
             })
-            .collect()
+            .collect();
+        if !self.monte_carlo() {
+            for l in &self.area_lights {
+                let Some(r) = l.shape.representative(h.p) else { continue };
+                if dot(r.wi, h.ng) > 0.0 && !self.occluded(o, r.wi, r.dist) {
+                    out.push((r.wi, mul(l.radiance, r.e_per_radiance), r.solid_angle));
+                }
+            }
+        }
+        out
     }
 
     /// The environment's directional lights ([`Scene::environment_lights`]) above a hit's surface. Like the
     /// irradiance map, they are not shadowed: the environment is light from far away, open sky.
-    fn environment_lights_at(&self, h: &Hit) -> impl Iterator<Item = (V3, Rgb)> + '_ {
+    fn environment_lights_at(&self, h: &Hit) -> impl Iterator<Item = (V3, Rgb, f64)> + '_ {
         let ng = h.ng;
-        self.environment_lights.iter().copied().filter(move |(wi, _)| dot(*wi, ng) > 0.0)
+        let omega = 4.0 * std::f64::consts::PI / self.environment_lights.len().max(1) as f64;
+        self.environment_lights.iter().filter(move |(wi, _)| dot(*wi, ng) > 0.0).map(move |&(wi, e)| (wi, e, omega))
     }
 
     fn color(&self, c: &ColorSource, uv: [f64; 2]) -> Rgb {
@@ -223,8 +252,12 @@ impl Scene {
     fn shade_microfacet(&self, m: &Microfacet, h: &Hit, wo: V3, depth: u32, weight: f64, with_env: bool) -> Rgb {
         let albedo = self.color(&m.color, h.uv);
         let mut out = [0.0; 3];
-        for (wi, e) in self.lights_at(h) {
+        for (wi, e, _) in self.lights_at(h) {
             out = add(out, hadamard(m.reflect(h.n, wi, wo, albedo), e));
+        }
+        if self.monte_carlo() {
+            let s = Surface::microfacet(*m, h.n, albedo, dot(h.n, wo).clamp(0.0, 1.0));
+            return add(out, self.extended_light(h, &s, wo, depth, weight));
         }
         // Environment light: the diffuse lobe takes the irradiance around the normal, the specular lobes their
         // directional albedo of the light along the mirror direction, blurred towards the irradiance around
@@ -251,7 +284,7 @@ impl Scene {
         out
     }
 
-    fn shade(&self, h: &Hit, d: V3, depth: u32, weight: f64) -> Rgb {
+    pub(crate) fn shade(&self, h: &Hit, d: V3, depth: u32, weight: f64) -> Rgb {
         let wo = mul(d, -1.0);
         // A glTF normal texture (on the surface or on a film's base) replaces the shading normal first.
         let mapped = match &self.materials[h.material] {
@@ -263,8 +296,12 @@ impl Scene {
         match &self.materials[h.material] {
             Material::Lambert { color } => {
                 let albedo = self.color(color, h.uv);
-                let mut out = hadamard(albedo, self.irradiance(h.n));
-                for (wi, e) in self.lights_at(h) {
+                let mut out = if self.monte_carlo() {
+                    self.extended_light(h, &Surface::Lambert { n: h.n, albedo }, wo, depth, weight)
+                } else {
+                    hadamard(albedo, self.irradiance(h.n))
+                };
+                for (wi, e, _) in self.lights_at(h) {
                     out = add(out, mul(hadamard(albedo, e), dot(h.n, wi).max(0.0)));
                 }
                 out
@@ -274,13 +311,22 @@ impl Scene {
                 let t = df.orientation.tangent(h, &self.textures);
                 let tex = self.color(&df.texture, h.uv);
                 let mut out = mul(tex, df.ambient);
-                for (wi, e) in self.lights_at(h) {
-                    out = add(out, df.shade_light(h, t, wi, wo, e, tex));
+                if self.monte_carlo() {
+                    for (wi, e, _) in self.lights_at(h) {
+                        out = add(out, df.shade_light(h, t, wi, wo, e, tex));
+                    }
+                    let b = cross(h.n, t);
+                    let s = Surface::Diffraction { df, hit: *h, t, b, tex };
+                    return add(out, self.extended_light(h, &s, wo, depth, weight));
+                }
+                // Lights; a light with a solid angle (an area light) sees the lobe averaged over it.
+                for (wi, e, omega) in self.lights_at(h) {
+                    out = add(out, df.shade_light_filtered(h, t, wi, wo, e, tex, omega));
                 }
                 // The environment as directional lights for the lobe (and for Algorithm 4's texture); the
                 // energy blend's texture takes the irradiance around the normal.
-                for (wi, e) in self.environment_lights_at(h) {
-                    out = add(out, df.shade_environment_light(h, t, wi, wo, e, tex));
+                for (wi, e, omega) in self.environment_lights_at(h) {
+                    out = add(out, df.shade_environment_light(h, t, wi, wo, e, tex, omega));
                 }
                 add(out, df.environment_diffuse(h, t, wo, tex, self.irradiance(h.n)))
             }
@@ -295,12 +341,15 @@ impl Scene {
                     // mirror ray below).
                     let lights = self.lights_at(h);
                     let dirs: Vec<(f64, f64)> =
-                        lights.iter().map(|(wi, _)| (dot(h.n, *wi), relative_azimuth(h.n, *wi, wo))).collect();
+                        lights.iter().map(|(wi, _, _)| (dot(h.n, *wi), relative_azimuth(h.n, *wi, wo))).collect();
                     let (spec, diffuse) = f.rough_colors(cos, offset, &dirs).unwrap_or_default();
-                    for (((_, e), (cos_l, _)), d) in lights.iter().zip(&dirs).zip(&diffuse) {
+                    for (((_, e, _), (cos_l, _)), d) in lights.iter().zip(&dirs).zip(&diffuse) {
                         out = add(out, mul(hadamard(d.to_linear_srgb(), *e), cos_l.max(0.0) * f.factor));
                     }
-                    if let Some(a) = f.rough_env_diffuse(cos, offset) {
+                    if self.monte_carlo() {
+                        let s = Surface::RoughDiffuse { film: f, n: h.n, cos_o: cos, offset };
+                        out = add(out, self.extended_light(h, &s, wo, depth, weight));
+                    } else if let Some(a) = f.rough_env_diffuse(cos, offset) {
                         out = add(out, mul(hadamard(a.to_linear_srgb(), self.irradiance(h.n)), f.factor));
                     }
                     (spec, Xyz::default())
@@ -348,6 +397,15 @@ impl Scene {
     ) -> Rgb {
         let fac = f.factor;
         let mut out = [0.0; 3];
+        if self.monte_carlo() {
+            // The film over the base and the base alone, mixed by the factor, as one BRDF for every light.
+            let albedo = self.color(&base.color, h.uv);
+            let s = Surface::film_over_base(f, *base, h.n, albedo, offset, dot(h.n, wo).clamp(0.0, 1.0));
+            for (wi, e, _) in self.lights_at(h) {
+                out = add(out, hadamard(s.eval(wi, wo), e));
+            }
+            return add(out, self.extended_light(h, &s, wo, depth, weight));
+        }
         if fac < 1.0 {
             let below = self.shade_microfacet(base, h, wo, depth, weight * (1.0 - fac), true);
             out = mul(below, 1.0 - fac);
@@ -365,11 +423,8 @@ impl Scene {
             ([0, 1, 2].map(|k| (1.0 - m) * d[k] + m * metal[k]), d)
         };
         let mut film = [0.0; 3];
-        for (wi, e) in self.lights_at(h) {
-            let vh = dot(wi, normalize(add(wi, wo))).clamp(0.0, 1.0);
-            let (r, d) = refl(vh, f.colors(vh, offset).0);
-            let (spec, ci) = (base.ggx_single(h.n, wi, wo), dot(h.n, wi).max(0.0));
-            film = add(film, hadamard(e, [0, 1, 2].map(|k| spec * r[k] + (1.0 - d[k]) * diffuse[k] * ci)));
+        for (wi, e, _) in self.lights_at(h) {
+            film = add(film, hadamard(e, f.over_base_light(base, albedo, h.n, wi, wo, offset)));
         }
         let (r, d) = refl(dot(h.n, wo).clamp(0.0, 1.0), r_view);
         film = add(film, hadamard(hadamard(d.map(|x| 1.0 - x), diffuse), self.irradiance(h.n)));
@@ -390,7 +445,7 @@ impl Scene {
 /// Ray offset along the normal that clears the surface at a hit without skipping thin features. Relative to
 /// the hit's magnitude and the distance the ray travelled to it (the rounding error of `o + t d` is bounded by
 /// a few ulps of `|o| + t|d| ≤ |p| + 2t`, as in pbrt's error bounds), so a scene renders alike at any scale.
-fn eps(h: &Hit) -> f64 {
+pub(crate) fn eps(h: &Hit) -> f64 {
     let p = h.p;
     1e-8 * (p[0].abs().max(p[1].abs()).max(p[2].abs()) + h.t)
 }

@@ -15,11 +15,13 @@ use iridis_thinfilm::htsg::{Htsg, Roughness, Series};
 use serde::Deserialize;
 use toml::Spanned;
 
+use crate::area::{AreaLight, Shape};
 use crate::bvh::Bvh;
 use crate::camera::{frame, Camera};
 use crate::error::RenderError;
 use crate::geometry::{snake_mesh, Mesh, Plane, ScaleKind, SnakeParams, Sphere};
-use crate::light::{equirect_mean, illuminant_tint, Environment, Light, Rgb};
+use crate::integrate::Integration;
+use crate::light::{equirect_mean, illuminant_tint, EnvSampler, Environment, Light, Rgb};
 use crate::material::*;
 use crate::math::*;
 use crate::texture::{TexKind, Texture};
@@ -37,6 +39,8 @@ pub struct Output {
     pub background: Rgb,
     /// Reflection/transmission bounces before the environment takes over.
     pub max_depth: u32,
+    /// The random streams' seed (Monte Carlo): renders with different seeds are independent estimates.
+    pub seed: u64,
 }
 
 /// A scene ready to render.
@@ -61,6 +65,12 @@ pub struct Scene {
     /// The environment as directional lights ([`Environment::as_lights`]) for diffraction,
     /// made with `irradiance`.
     pub environment_lights: Vec<([f64; 3], [f64; 3])>,
+    /// Sphere, disk and rectangle lights.
+    pub area_lights: Vec<AreaLight>,
+    /// How extended light (the environment, area lights) is integrated.
+    pub integration: Integration,
+    /// The environment's importance sampler (Monte Carlo), made with `irradiance`.
+    pub env_sampler: Option<EnvSampler>,
     /// Notes for the user (normals computed, tangents generated, …).
     pub notes: Vec<String>,
 }
@@ -70,6 +80,7 @@ impl Scene {
     pub fn update_irradiance(&mut self) {
         self.irradiance = self.environment.irradiance_map();
         self.environment_lights = self.environment.as_lights();
+        self.env_sampler = EnvSampler::new(&self.environment);
     }
 
     /// Multiplies every length by `s` about the origin: objects, camera, point lights (whose irradiance at
@@ -105,6 +116,9 @@ impl Scene {
                 }
                 Light::Directional { .. } => {}
             }
+        }
+        for l in &mut self.area_lights {
+            *l = l.scaled(s);
         }
         self.camera = match self.camera.clone() {
             Camera::Perspective { position, forward, right, up, tan_half } => {
@@ -149,6 +163,8 @@ struct OutputDef {
     encoding: Option<String>,
     background: Option<[f64; 3]>,
     max_depth: Option<u32>,
+    integration: Option<String>,
+    seed: Option<u64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -174,6 +190,12 @@ struct LightDef {
     intensity: Option<f64>,
     spectrum: Option<String>,
     color: Option<[f64; 3]>,
+    radius: Option<f64>,
+    normal: Option<[f64; 3]>,
+    look_at: Option<[f64; 3]>,
+    tangent: Option<[f64; 3]>,
+    size: Option<[f64; 2]>,
+    visible: Option<bool>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -390,6 +412,7 @@ pub fn parse_scene(text: &str, name: &str, base: &Path) -> Result<Scene, RenderE
         encoding,
         background: o.background.unwrap_or([0.0; 3]),
         max_depth: o.max_depth.unwrap_or(6),
+        seed: o.seed.unwrap_or(0),
     };
     if !(output.exposure.is_finite() && output.exposure > 0.0) {
         return Err(ctx.err(0..0, "[output] `exposure` must be a positive number of RU"));
@@ -443,14 +466,27 @@ pub fn parse_scene(text: &str, name: &str, base: &Path) -> Result<Scene, RenderE
         material_names.push(name.clone());
     }
 
+    let integration = match o.integration.as_deref() {
+        None | Some("fast") => Integration::Fast,
+        Some("monte-carlo") => Integration::MonteCarlo(Default::default()),
+        Some(other) => {
+            return Err(ctx
+                .err(0..0, format!("[output] integration = \"{other}\": use \"fast\" (real-time) or \"monte-carlo\"")))
+        }
+    };
+
     // Lights (a laser's spot is found once the objects are in place)
     let mut lights = Vec::new();
+    let mut area_lights = Vec::new();
     let mut lasers = Vec::new();
     for l in &file.light {
         if l.get_ref().kind == "laser" {
             lasers.push(build_laser_beam(l.get_ref(), &l.span(), &ctx)?);
         } else {
-            lights.push(build_light(l.get_ref(), &l.span(), &ctx)?);
+            match build_light(l.get_ref(), &l.span(), &ctx)? {
+                Built::Delta(d) => lights.push(d),
+                Built::Area(a) => area_lights.push(a),
+            }
         }
     }
     let (environment, environment_visible) = match &file.environment {
@@ -641,9 +677,13 @@ pub fn parse_scene(text: &str, name: &str, base: &Path) -> Result<Scene, RenderE
     let bvh = Bvh::build(&meshes);
     let irradiance = environment.irradiance_map();
     let environment_lights = environment.as_lights();
+    let env_sampler = (integration != Integration::Fast).then(|| EnvSampler::new(&environment)).flatten();
     let mut scene = Scene {
         camera,
         lights,
+        area_lights,
+        integration,
+        env_sampler,
         irradiance,
         environment_lights,
         environment,
@@ -803,23 +843,97 @@ fn spectrum_tint(s: &Option<String>, ctx: &Ctx, span: &std::ops::Range<usize>) -
     Ok(illuminant_tint(ill))
 }
 
-fn build_light(d: &LightDef, span: &std::ops::Range<usize>, ctx: &Ctx) -> Result<Light, RenderError> {
+/// A light of the scene file: a delta light (directional, point) or an area light.
+enum Built {
+    Delta(Light),
+    Area(AreaLight),
+}
+
+fn build_light(d: &LightDef, span: &std::ops::Range<usize>, ctx: &Ctx) -> Result<Built, RenderError> {
     let what = format!("[[light]] (kind \"{}\")", d.kind);
     let intensity = d.intensity.unwrap_or(1.0);
     if !(intensity.is_finite() && intensity >= 0.0) {
         return Err(ctx.err(span.clone(), format!("{what}: `intensity` must be ≥ 0 (RU)")));
     }
     let rgb = mul(hadamard(spectrum_tint(&d.spectrum, ctx, span)?, d.color.unwrap_or([1.0; 3])), intensity);
+    // Keys that belong to another kind of light are refused, with the kinds they belong to.
+    let keys: [(&str, bool, &str); 7] = [
+        ("direction", d.direction.is_some(), "directional"),
+        ("radius", d.radius.is_some(), "sphere, disk"),
+        ("normal", d.normal.is_some(), "disk, rectangle"),
+        ("look_at", d.look_at.is_some(), "disk, rectangle"),
+        ("tangent", d.tangent.is_some(), "rectangle"),
+        ("size", d.size.is_some(), "rectangle"),
+        ("visible", d.visible.is_some(), "sphere, disk, rectangle"),
+    ];
+    for (key, given, kinds) in keys {
+        if given
+            && !kinds.split(", ").any(|k| k == d.kind)
+            && ["directional", "point", "sphere", "disk", "rectangle"].contains(&d.kind.as_str())
+        {
+            return Err(ctx.err(
+                span.clone(),
+                format!("{what}: `{key}` is not a key of this kind of light (it belongs to {kinds})"),
+            ));
+        }
+    }
+    let positive = |v: Option<f64>, key: &str| -> Result<f64, RenderError> {
+        let x = v.ok_or_else(|| ctx.err(span.clone(), format!("{what}: missing key `{key}`")))?;
+        if !(x.is_finite() && x > 0.0) {
+            return Err(ctx.err(span.clone(), format!("{what}: `{key}` must be a positive length")));
+        }
+        Ok(x)
+    };
+    // The way a disk's or rectangle's emitting face looks: `normal`, or from `position` towards `look_at`.
+    let facing = |center: V3| -> Result<V3, RenderError> {
+        let n = match (d.normal, d.look_at) {
+            (Some(n), None) => n,
+            (None, Some(t)) => sub(t, center),
+            (Some(_), Some(_)) => {
+                return Err(ctx.err(span.clone(), format!("{what}: give `normal` or `look_at`, not both")))
+            }
+            (None, None) => {
+                return Err(ctx.err(
+                    span.clone(),
+                    format!("{what}: missing key `normal` (the way its emitting face looks) or `look_at`"),
+                ))
+            }
+        };
+        try_normalize(n).ok_or_else(|| ctx.err(span.clone(), format!("{what}: its facing direction must not be zero")))
+    };
+    let area = |shape: Shape| Built::Area(AreaLight { shape, radiance: rgb, visible: d.visible.unwrap_or(true) });
     match d.kind.as_str() {
         "directional" => {
             let dir = try_normalize(need(d.direction, ctx, span, &what, "direction")?)
                 .ok_or_else(|| ctx.err(span.clone(), format!("{what}: `direction` must not be zero")))?;
-            Ok(Light::Directional { direction: dir, rgb })
+            Ok(Built::Delta(Light::Directional { direction: dir, rgb }))
         }
-        "point" => Ok(Light::Point { position: need(d.position, ctx, span, &what, "position")?, rgb }),
-        other => {
-            Err(ctx.err(span.clone(), format!("[[light]]: unknown kind \"{other}\"; use directional, point or laser")))
+        "point" => Ok(Built::Delta(Light::Point { position: need(d.position, ctx, span, &what, "position")?, rgb })),
+        "sphere" => Ok(area(Shape::Sphere {
+            center: need(d.position, ctx, span, &what, "position")?,
+            radius: positive(d.radius, "radius")?,
+        })),
+        "disk" => {
+            let center = need(d.position, ctx, span, &what, "position")?;
+            Ok(area(Shape::Disk { center, normal: facing(center)?, radius: positive(d.radius, "radius")? }))
         }
+        "rectangle" => {
+            let center = need(d.position, ctx, span, &what, "position")?;
+            let normal = facing(center)?;
+            let size = need(d.size, ctx, span, &what, "size")?;
+            if !size.iter().all(|x| x.is_finite() && *x > 0.0) {
+                return Err(ctx.err(span.clone(), format!("{what}: `size` = [w, h] must be positive lengths")));
+            }
+            let tangent =
+                orthogonalize(d.tangent.unwrap_or_else(|| any_perpendicular(normal)), normal).ok_or_else(|| {
+                    ctx.err(span.clone(), format!("{what}: `tangent` must not be parallel to its normal"))
+                })?;
+            Ok(area(Shape::Rectangle { center, normal, tangent, size }))
+        }
+        other => Err(ctx.err(
+            span.clone(),
+            format!("[[light]]: unknown kind \"{other}\"; use directional, point, sphere, disk, rectangle or laser"),
+        )),
     }
 }
 
@@ -1121,7 +1235,7 @@ fn build_material(
                     // The lobe's albedo: the radiometric colour times R₀ is the reflected fraction.
                     let r0 = scale_ru / std::f64::consts::PI;
                     Blend::Energy(Arc::new(
-                        crate::lobe::LobeAlbedo::compute(&lookup, r0)
+                        crate::lobe_albedo::LobeAlbedo::compute(&lookup, r0)
                             .map_err(|e| ctx.err(span.clone(), format!("{what}: {e}")))?,
                     ))
                 }
@@ -1143,6 +1257,7 @@ fn build_material(
                 fresnel_n,
                 description: table.clone(),
                 blend,
+                extended: Default::default(),
             })))
         }
         "thinfilm" => {

@@ -60,6 +60,7 @@ fn shade(theta_deg: f64, w_diffuse: f64, ambient: f64) -> [f64; 3] {
         fresnel_n: 1.5,
         description: "constant".into(),
         blend: Blend::Algorithm4,
+        extended: Default::default(),
     }));
     scene.primary([0.0, 0.0, 5.0], [0.0, 0.0, -1.0])
 }

@@ -98,7 +98,7 @@ fn diffraction_with_the_energy_blend_passes_the_furnace() {
     use iridis_diffraction::taylor::terms_for_bound;
     use iridis_diffraction::{Patch, Shading, SpectralSetup, TaylorTerms};
     use iridis_render::geometry::Hit;
-    use iridis_render::lobe::LobeAlbedo;
+    use iridis_render::lobe_albedo::LobeAlbedo;
     use iridis_render::material::{Blend, ColorSource, Diffraction, OrientRule, Orientation};
 
     let n = 64;

@@ -21,20 +21,20 @@ struct RoughTab {
     env_c1: f32,
 }
 
-struct Cell {
+struct NodeCell {
     i: u32,
     j: u32,   // the next node (i itself on a one-node axis)
     t: f32,
 }
 
 // The cell of x on n uniform nodes over [a, b], clamped.
-fn uniform_cell(x: f32, a: f32, b: f32, n: u32) -> Cell {
+fn uniform_cell(x: f32, a: f32, b: f32, n: u32) -> NodeCell {
     if (n < 2u || b <= a) {
-        return Cell(0u, 0u, 0.0);
+        return NodeCell(0u, 0u, 0.0);
     }
     let u = clamp((x - a) / (b - a), 0.0, 1.0) * f32(n - 1u);
     let i = min(u32(u), n - 2u);
-    return Cell(i, i + 1u, u - f32(i));
+    return NodeCell(i, i + 1u, u - f32(i));
 }
 
 // k_r XYZ at the view angle's cosine and a thickness offset (RoughColorTable::specular_at).

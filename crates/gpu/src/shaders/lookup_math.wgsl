@@ -83,15 +83,15 @@ fn lookup_shading(t: Table, wi: vec3<f32>, wr: vec3<f32>) -> f32 {
     return c;
 }
 
-// XYZ for light direction wi and view direction wr in the surface's frame (z = normal, x = the
-// nanostructure's x axis).
-fn lookup_xyz(t: Table, wi: vec3<f32>, wr: vec3<f32>) -> vec3<f32> {
-    if (wi.z <= 0.0 || wr.z <= 0.0) {
-        return vec3<f32>(0.0);
-    }
-    let u = -wi.x - wr.x;
-    let v = -wi.y - wr.y;
-    let w = -wi.z - wr.z;
+// The three channels' I_p at offset b (a node's offset in its row) of grid row iv + dv.
+fn table_value3(t: Table, iv: u32, dv: u32, b: u32, p: u32) -> vec3<f32> {
+    return vec3<f32>(table_value(t, iv, dv, b + p), table_value(t, iv, dv, b + t.np + p),
+                     table_value(t, iv, dv, b + 2u * t.np + p));
+}
+
+// sum_p w^p I_p(u, v) per channel: bilinear in the grid's index space, Horner's rule in w. One loop over the
+// powers for the three channels (lavapipe counts every loop iteration against a limit, extended.wgsl).
+fn table_sum(t: Table, u: f32, v: f32, w: f32) -> vec3<f32> {
     let res = t.res;
     let np = t.np;
     let qu = grid_index(t, u);
@@ -106,17 +106,21 @@ fn lookup_xyz(t: Table, wi: vec3<f32>, wr: vec3<f32>) -> vec3<f32> {
     let w11 = fu * fv;
     let b0 = iu * 3u * np;
     let b1 = (iu + 1u) * 3u * np;
-    var out = vec3<f32>(0.0);
-    for (var c = 0u; c < 3u; c = c + 1u) {
-        let o = c * np;
-        var acc = 0.0;
-        for (var k = 0u; k < np; k = k + 1u) {
-            let p = np - 1u - k;
-            let ip = w00 * table_value(t, iv, 0u, b0 + o + p) + w01 * table_value(t, iv, 0u, b1 + o + p)
-                + w10 * table_value(t, iv, 1u, b0 + o + p) + w11 * table_value(t, iv, 1u, b1 + o + p);
-            acc = acc * w + ip;
-        }
-        out[c] = acc;
+    var acc = vec3<f32>(0.0);
+    for (var k = 0u; k < np; k = k + 1u) {
+        let p = np - 1u - k;
+        let ip = w00 * table_value3(t, iv, 0u, b0, p) + w01 * table_value3(t, iv, 0u, b1, p)
+            + w10 * table_value3(t, iv, 1u, b0, p) + w11 * table_value3(t, iv, 1u, b1, p);
+        acc = acc * w + ip;
     }
-    return lookup_shading(t, wi, wr) * out;
+    return acc;
+}
+
+// XYZ for light direction wi and view direction wr in the surface's frame (z = normal, x = the
+// nanostructure's x axis).
+fn lookup_xyz(t: Table, wi: vec3<f32>, wr: vec3<f32>) -> vec3<f32> {
+    if (wi.z <= 0.0 || wr.z <= 0.0) {
+        return vec3<f32>(0.0);
+    }
+    return lookup_shading(t, wi, wr) * table_sum(t, -wi.x - wr.x, -wi.y - wr.y, -wi.z - wr.z);
 }

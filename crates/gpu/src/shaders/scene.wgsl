@@ -46,6 +46,14 @@ struct Params {
     energy_base: u32,      // the GGX energy table in `tables` (render::energy): E_0, E_1, their averages
     irr_tex: u32,          // the environment's irradiance map (a texture), NONE: uniform
     env_light_base: u32,   // the environment as ENV_LIGHTS directional lights in `tables`, NONE: none
+    sample0: u32,          // progressive accumulation: the first sample of this pass (0: a new image)
+    pass_samples: u32,     // samples per pixel in this pass
+    integration: u32,      // 0 fast, 1 Monte Carlo (render::integrate::Integration)
+    seed: u32,             // the random streams' seed
+    n_area: u32,           // area lights (extended.wgsl)
+    area_base: u32,
+    env_cdf_base: u32,     // the environment's importance sampler in `tables`, NONE: none
+    pad: u32,
 }
 
 @group(0) @binding(0) var<uniform> P: Params;
@@ -359,17 +367,37 @@ struct Arrival {
     wi: vec3<f32>,
     dist: f32,
     e: vec3<f32>,
+    omega: f32,  // the light's solid angle (0: a delta light)
+}
+
+// Lights that reach surfaces as directional lights (render::render::Scene::lights_at): the directional and
+// point lights, then on the fast path each area light from its centre (extended.wgsl); Monte Carlo samples
+// area lights instead.
+fn n_arrivals() -> u32 {
+    if (P.integration == 0u) {
+        return P.n_lights + P.n_area;
+    }
+    return P.n_lights;
+}
+
+fn monte_carlo() -> bool {
+    return P.integration != 0u;
 }
 
 // Light record (2 vec4): [direction | position, kind (0 directional, 1 point, 2 laser spot)], [irradiance
-// rgb, laser: record of its frame [t, profile texture], [b, cos theta_i], [n, 0]].
+// rgb, laser: record of its frame [t, profile texture], [b, cos theta_i], [n, 0]]. An index past them is an area
+// light's representative (e = 0 where it cannot be seen).
 fn arrive(i: u32, p: vec3<f32>) -> Arrival {
+    if (i >= P.n_lights) {
+        let r = area_representative(i - P.n_lights, p);
+        return Arrival(r.wi, r.dist, r.e, r.omega);
+    }
     let r = P.light_base + 2u * i;
     let a = scene[r];
     let e = scene[r + 1u].xyz;
     let kind = word(a.w);
     if (kind == 0u) {
-        return Arrival(a.xyz, FAR, e);
+        return Arrival(a.xyz, FAR, e, 0.0);
     }
     let d = a.xyz - p;
     let r2 = max(dot(d, d), 1e-12);
@@ -382,13 +410,13 @@ fn arrive(i: u32, p: vec3<f32>) -> Arrival {
         let n = scene[f + 2u].xyz;
         let wo = -d / dist;
         if (dot(-d, n) <= 0.0) {
-            return Arrival(d / dist, dist, vec3<f32>(0.0));
+            return Arrival(d / dist, dist, vec3<f32>(0.0), 0.0);
         }
         let uv = vec2<f32>((dot(wo, t.xyz) + 1.0) * 0.5, (1.0 - dot(wo, b.xyz)) * 0.5);
         let refl = sample_texture(word(t.w), uv, false);
-        return Arrival(d / dist, dist, e * refl * (dot(wo, n) / (b.w * r2)));
+        return Arrival(d / dist, dist, e * refl * (dot(wo, n) / (b.w * r2)), 0.0);
     }
-    return Arrival(d / dist, dist, e / r2);
+    return Arrival(d / dist, dist, e / r2, 0.0);
 }
 
 // ------------------------------------------------------------------ geometry (render::geometry, render::bvh)
@@ -863,6 +891,7 @@ struct Ray {
     throughput: vec3<f32>,
     depth: u32,
     weight: f32,
+    pdf: f32,  // a BRDF sample's pdf (Monte Carlo: the lights it meets are weighted by MIS); 0: a mirror's ray
 }
 
 const STACK: u32 = 24u;
@@ -873,14 +902,25 @@ var<private> radiance: vec3<f32>;
 // Queues a secondary ray; if the stack is full, the environment's radiance stands in (as for a ray past
 // max_depth on the CPU) and the overflow is counted, with its depth, for the host to report.
 fn push_ray(o: vec3<f32>, d: vec3<f32>, throughput: vec3<f32>, depth: u32, weight: f32) {
+    push_sampled(o, d, throughput, depth, weight, 0.0);
+}
+
+// The environment's radiance along a ray that leaves the scene, weighted against its own sampling when a BRDF
+// sampled the ray (render::integrate::Scene::sampled_radiance).
+fn escaped(d: vec3<f32>, pdf: f32) -> vec3<f32> {
+    return environment(d) * brdf_weight(pdf, env_pdf(d));
+}
+
+// Queues a ray (a BRDF's sample with its pdf, or a mirror's with pdf 0).
+fn push_sampled(o: vec3<f32>, d: vec3<f32>, throughput: vec3<f32>, depth: u32, weight: f32, pdf: f32) {
     if (max3(throughput) <= 0.0) {
         return;
     }
     if (n_rays < STACK) {
-        rays[n_rays] = Ray(o, d, throughput, depth, weight);
+        rays[n_rays] = Ray(o, d, throughput, depth, weight, pdf);
         n_rays = n_rays + 1u;
     } else {
-        radiance = radiance + throughput * environment(d);
+        radiance = radiance + throughput * escaped(d, pdf);
         atomicAdd(&overflow[0], 1u);
         atomicMax(&overflow[1], depth);
     }
@@ -892,9 +932,9 @@ fn shade_microfacet(m: Microfacet, h: Hit, wo: vec3<f32>, depth: u32, weight: f3
     let albedo = color_at(m.color, h.uv);
     var out = vec3<f32>(0.0);
     let o = h.p + h.ng * eps(h.p, h.t);
-    for (var i = 0u; i < P.n_lights; i = i + 1u) {
+    for (var i = 0u; i < n_arrivals(); i = i + 1u) {
         let l = arrive(i, h.p);
-        if (dot(l.wi, h.ng) > 0.0 && !occluded(o, l.wi, l.dist)) {
+        if (max3(l.e) > 0.0 && dot(l.wi, h.ng) > 0.0 && !occluded(o, l.wi, l.dist)) {
             out = out + microfacet_reflect(m, h.n, l.wi, wo, albedo) * l.e;
         }
     }
@@ -930,13 +970,21 @@ fn microfacet_at(r: u32, uv: vec2<f32>) -> Microfacet {
 
 // Algorithm 4 for one light (render::material::Diffraction::shade_light):
 // (1 - w_d) c_diffraction + (1 - alpha) c_texture + w_d c_texture, k = [scale_ru, w_diffuse, ambient, fresnel_n].
+// A light of solid angle omega > 0 (an area light, a cell of the environment) sees the lobe averaged over it
+// (the prefiltered tables at pref, render::material::Diffraction::xyz_filtered).
 fn diffraction_light(table: Table, k: vec4<f32>, tex: vec3<f32>, t: vec3<f32>, b: vec3<f32>, n: vec3<f32>,
-                     lo: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>, e: vec3<f32>) -> vec3<f32> {
+                     lo: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>, e: vec3<f32>, omega: f32, pref: u32) -> vec3<f32> {
     let li = vec3<f32>(dot(wi, t), dot(wi, b), dot(wi, n));
     if (li.z <= 0.0 || lo.z <= 0.0) {
         return vec3<f32>(0.0);
     }
-    let c_diff = to_rgb(lookup_xyz(table, li, lo)) * e * k.x;
+    var xyz = vec3<f32>(0.0);
+    if (omega > 0.0 && pref != NONE) {
+        xyz = lookup_shading(table, li, lo) * prefiltered_sum(table, pref, li, lo, omega);
+    } else {
+        xyz = lookup_xyz(table, li, lo);
+    }
+    let c_diff = to_rgb(xyz) * e * k.x;
     let hv = safe_normalize(wi + wo);
     let alpha = min(abs(schlick(k.w, dot(wi, hv))), 1.0);
     let c_tex = tex * e * li.z;
@@ -975,95 +1023,155 @@ fn shade(h_in: Hit, d: vec3<f32>, depth: u32, weight: f32, thr: vec3<f32>) {
     if (kind == 3u && (word(scene[r + 1u].w) & 4u) != 0u) {
         h = normal_mapped(h_in, scene[r + 5u]);
     }
+    // Monte Carlo: each kind makes its surface, and one call below shades it (one copy of the integrator in
+    // the compiled shader, which inlines every call).
+    let mc = monte_carlo();
+    var s = surf_lambert(h.n, vec3<f32>(0.0));
+    var ambient = vec3<f32>(0.0);
     if (kind == 0u) {
         let albedo = color_at(scene[r + 1u], h.uv);
-        var out = albedo * irradiance(h.n);
-        let o = h.p + h.ng * eps(h.p, h.t);
-        for (var i = 0u; i < P.n_lights; i = i + 1u) {
-            let l = arrive(i, h.p);
-            if (dot(l.wi, h.ng) > 0.0 && !occluded(o, l.wi, l.dist)) {
-                out = out + albedo * l.e * max(dot(h.n, l.wi), 0.0);
-            }
+        if (mc) {
+            s = surf_lambert(h.n, albedo);
+        } else {
+            shade_lambert(h, albedo, thr);
+            return;
         }
-        radiance = radiance + thr * out;
-        return;
-    }
-    if (kind == 1u) {
-        shade_microfacet(microfacet_at(r + 1u, h.uv), h, wo, depth, weight, true, thr);
-        return;
-    }
-    if (kind == 2u) {
+    } else if (kind == 1u) {
+        let m = microfacet_at(r + 1u, h.uv);
+        if (mc) {
+            s = surf_microfacet(m, h.n, color_at(m.color, h.uv), clamp(dot(h.n, wo), 0.0, 1.0));
+        } else {
+            shade_microfacet(m, h, wo, depth, weight, true, thr);
+            return;
+        }
+    } else if (kind == 2u) {
         // Diffraction: [kind], texture colour, [scale_ru, w_diffuse, ambient, fresnel_n],
-        // [direction, rule], [angle, orientation texture], table words, table numbers.
+        // [direction, rule], [angle, orientation texture], table words, table numbers,
+        // [lobe distributions, prefiltered tables] in `tables` (NONE: none).
         let k = scene[r + 2u];
         let od = scene[r + 3u];
         let oa = scene[r + 4u];
         let tw = scene[r + 5u];
         let tf = scene[r + 6u];
+        let ext = scene[r + 7u];
         let table = Table(word(tw.x), word(tw.y), word(tw.z), word(tw.w), tf.x, tf.y, tf.z, tf.w);
         let t = orientation(h, word(od.w), od.xyz, word(oa.y), oa.x);
         let tex = color_at(scene[r + 1u], h.uv);
-        var out = tex * k.z;
-        let n = h.n;
-        let b = cross(n, t);
-        let lo = vec3<f32>(dot(wo, t), dot(wo, b), dot(wo, n));
-        let o = h.p + h.ng * eps(h.p, h.t);
-        for (var i = 0u; i < P.n_lights; i = i + 1u) {
+        if (!mc) {
+            shade_diffraction(h, wo, table, k, t, tex, word(ext.y), thr);
+            return;
+        }
+        s = surf_basic(3u, h.n, tex, Microfacet(vec4<f32>(0.0), 1.0, 0.0, 1.0), 0.0);
+        s.table = table;
+        s.dk = k;
+        s.t = t;
+        s.b = cross(h.n, t);
+        s.tex = tex;
+        s.lobe = word(ext.x);
+        ambient = tex * k.z;
+    } else {
+        // Thin film: [kind], [n_media, media, thickness, flags: 1 SVT, 2 transmission, 4 base, 8 colour table,
+        // 16 rough], [SVT texture, d_rel, factor, media of the film over a metallic base's metal (NONE: none)],
+        // then a base's three records (colour, [roughness, metallic, ior], normal texture) or a rough film's
+        // tables (four records, scene.rs), and a colour table's [first node, cos nodes, offset nodes] and [first
+        // offset, last offset] at r + 6, r + 7.
+        let fw = scene[r + 1u];
+        let sv = scene[r + 2u];
+        let flags = word(fw.w);
+        let factor = sv.z;
+        let cosv = clamp(dot(h.n, wo), 0.0, 1.0);
+        var offset = 0.0;
+        if ((flags & 1u) != 0u) {
+            let alpha = sample_texture(word(sv.x), h.uv, false).x;
+            offset = sv.y * (alpha / 0.5 - 1.0);
+        }
+        if ((flags & 16u) != 0u) {
+            // Rough films from their tables; Monte Carlo lights them as the fast path does (docs/render.md).
+            rough_film(r, h, wo, cosv, offset, factor, depth, weight, thr);
+            return;
+        }
+        let film = Film(word(fw.x), P.n_lambda, word(fw.y), word(fw.z));
+        let tw = scene[r + 6u];
+        let to = scene[r + 7u];
+        let tab = FilmTab(word(tw.x), word(tw.y), word(tw.z), to.x, to.y);
+        let tabbed = (flags & 8u) != 0u;
+        let c = film_colors(film, tabbed, tab, cosv, offset);
+        if ((flags & 4u) == 0u) {
+            // A film alone: a mirror (and a window), whose rays are traced.
+            let r_rgb = to_rgb(c.r) * factor;
+            push_ray(h.p + h.ng * eps(h.p, h.t), reflect_dir(wo, h.n), thr * r_rgb, depth + 1u,
+                     weight * max3(r_rgb));
+            if ((flags & 2u) != 0u) {
+                let t_rgb = to_rgb(c.t) * factor;
+                push_ray(h.p - h.ng * eps(h.p, h.t), d, thr * t_rgb, depth + 1u, weight * max3(t_rgb));
+            }
+            return;
+        }
+        let base = microfacet_at(r + 3u, h.uv);
+        if (!mc) {
+            film_over_base(film, tabbed, tab, word(sv.w), base, h, wo, c.r, offset, factor, depth, weight, thr);
+            return;
+        }
+        // The film over the base and the base alone, mixed by the factor, as one BRDF for every light (the
+        // dielectric base's film; a metallic base's metal stack is the fast path's only).
+        s = surf_film(film, base, h.n, color_at(base.color, h.uv), offset, factor, to_rgb(c.r));
+    }
+    shade_mc(h, s, wo, depth, weight, thr, ambient);
+}
+
+// The fast path's Lambertian: the irradiance map around the normal and the lights.
+fn shade_lambert(h: Hit, albedo: vec3<f32>, thr: vec3<f32>) {
+    var out = albedo * irradiance(h.n);
+    let o = h.p + h.ng * eps(h.p, h.t);
+    for (var i = 0u; i < n_arrivals(); i = i + 1u) {
+        let l = arrive(i, h.p);
+        if (max3(l.e) > 0.0 && dot(l.wi, h.ng) > 0.0 && !occluded(o, l.wi, l.dist)) {
+            out = out + albedo * l.e * max(dot(h.n, l.wi), 0.0);
+        }
+    }
+    radiance = radiance + thr * out;
+}
+
+// The fast path's diffraction: the lights, then the environment as ENV_LIGHTS directional lights (Algorithm 4
+// for each).
+fn shade_diffraction(h: Hit, wo: vec3<f32>, table: Table, k: vec4<f32>, t: vec3<f32>, tex: vec3<f32>, pref: u32,
+                     thr: vec3<f32>) {
+    let n = h.n;
+    let b = cross(n, t);
+    var out = tex * k.z;
+    let lo = vec3<f32>(dot(wo, t), dot(wo, b), dot(wo, n));
+    let o = h.p + h.ng * eps(h.p, h.t);
+    // The lights, then the environment as ENV_LIGHTS directional lights, unshadowed like the irradiance map
+    // (render.rs); a light with a solid angle (an area light, a cell of the environment: 4 pi / ENV_LIGHTS)
+    // sees the lobe averaged over it. One loop, so that the compiler emits the lobe's evaluation once.
+    let n_lit = n_arrivals();
+    var n_env = 0u;
+    if (P.env_light_base != NONE) {
+        n_env = ENV_LIGHTS;
+    }
+    for (var i = 0u; i < n_lit + n_env; i = i + 1u) {
+        var wi = vec3<f32>(0.0, 0.0, 1.0);
+        var e = vec3<f32>(0.0);
+        var omega = 4.0 * PI / f32(ENV_LIGHTS);
+        if (i < n_lit) {
             let l = arrive(i, h.p);
-            if (dot(l.wi, h.ng) > 0.0 && !occluded(o, l.wi, l.dist)) {
-                out = out + diffraction_light(table, k, tex, t, b, n, lo, l.wi, wo, l.e);
+            if (max3(l.e) <= 0.0 || dot(l.wi, h.ng) <= 0.0 || occluded(o, l.wi, l.dist)) {
+                continue;
             }
-        }
-        // The environment as directional lights, unshadowed like the irradiance map (render.rs).
-        if (P.env_light_base != NONE) {
-            for (var i = 0u; i < ENV_LIGHTS; i = i + 1u) {
-                let q = P.env_light_base + 6u * i;
-                let wi = vec3<f32>(tables[q], tables[q + 1u], tables[q + 2u]);
-                if (dot(wi, h.ng) > 0.0) {
-                    let e = vec3<f32>(tables[q + 3u], tables[q + 4u], tables[q + 5u]);
-                    out = out + diffraction_light(table, k, tex, t, b, n, lo, wi, wo, e);
-                }
+            wi = l.wi;
+            e = l.e;
+            omega = l.omega;
+        } else {
+            let q = P.env_light_base + 6u * (i - n_lit);
+            wi = vec3<f32>(tables[q], tables[q + 1u], tables[q + 2u]);
+            if (dot(wi, h.ng) <= 0.0) {
+                continue;
             }
+            e = vec3<f32>(tables[q + 3u], tables[q + 4u], tables[q + 5u]);
         }
-        radiance = radiance + thr * out;
-        return;
+        out = out + diffraction_light(table, k, tex, t, b, n, lo, wi, wo, e, omega, pref);
     }
-    // Thin film: [kind], [n_media, media, thickness, flags: 1 SVT, 2 transmission, 4 base, 8 colour table,
-    // 16 rough], [SVT texture, d_rel, factor, media of the film over a metallic base's metal (NONE: none)], then a
-    // base's three records (colour, [roughness, metallic, ior], normal texture) or a rough film's tables (four
-    // records, scene.rs), and a colour table's [first node, cos nodes, offset nodes] and [first offset, last
-    // offset] at r + 6, r + 7.
-    let fw = scene[r + 1u];
-    let sv = scene[r + 2u];
-    let flags = word(fw.w);
-    let factor = sv.z;
-    let cosv = clamp(dot(h.n, wo), 0.0, 1.0);
-    var offset = 0.0;
-    if ((flags & 1u) != 0u) {
-        let alpha = sample_texture(word(sv.x), h.uv, false).x;
-        offset = sv.y * (alpha / 0.5 - 1.0);
-    }
-    if ((flags & 16u) != 0u) {
-        rough_film(r, h, wo, cosv, offset, factor, depth, weight, thr);
-        return;
-    }
-    let film = Film(word(fw.x), P.n_lambda, word(fw.y), word(fw.z));
-    let tw = scene[r + 6u];
-    let to = scene[r + 7u];
-    let tab = FilmTab(word(tw.x), word(tw.y), word(tw.z), to.x, to.y);
-    let tabbed = (flags & 8u) != 0u;
-    let c = film_colors(film, tabbed, tab, cosv, offset);
-    if ((flags & 4u) != 0u) {
-        film_over_base(film, tabbed, tab, word(sv.w), microfacet_at(r + 3u, h.uv), h, wo, c.r, offset, factor, depth,
-                       weight, thr);
-        return;
-    }
-    let r_rgb = to_rgb(c.r) * factor;
-    push_ray(h.p + h.ng * eps(h.p, h.t), reflect_dir(wo, h.n), thr * r_rgb, depth + 1u, weight * max3(r_rgb));
-    if ((flags & 2u) != 0u) {
-        let t_rgb = to_rgb(c.t) * factor;
-        push_ray(h.p - h.ng * eps(h.p, h.t), d, thr * t_rgb, depth + 1u, weight * max3(t_rgb));
-    }
+    radiance = radiance + thr * out;
 }
 
 // The specular reflectance of a film over a base of metallic m: (1 - m) R over the dielectric + m R over the
@@ -1099,9 +1207,9 @@ fn rough_film(r: u32, h: Hit, wo: vec3<f32>, cosv: f32, offset: f32, factor: f32
                      c.x, c.y, c.z, c.w, e.x, e.y);
     var out = vec3<f32>(0.0);
     let o = h.p + h.ng * eps(h.p, h.t);
-    for (var i = 0u; i < P.n_lights; i = i + 1u) {
+    for (var i = 0u; i < n_arrivals(); i = i + 1u) {
         let l = arrive(i, h.p);
-        if (dot(l.wi, h.ng) > 0.0 && !occluded(o, l.wi, l.dist)) {
+        if (max3(l.e) > 0.0 && dot(l.wi, h.ng) > 0.0 && !occluded(o, l.wi, l.dist)) {
             let cl = dot(h.n, l.wi);
             let d = rough_diffuse(t, cosv, cl, relative_azimuth(h.n, l.wi, wo), offset);
             out = out + to_rgb(d) * l.e * (max(cl, 0.0) * factor);
@@ -1128,9 +1236,9 @@ fn film_over_base(film: Film, tabbed: bool, tab: FilmTab, metal: u32, base: Micr
     let diffuse = albedo * (1.0 - base.metallic);
     var out = vec3<f32>(0.0);
     let o = h.p + h.ng * eps(h.p, h.t);
-    for (var i = 0u; i < P.n_lights; i = i + 1u) {
+    for (var i = 0u; i < n_arrivals(); i = i + 1u) {
         let l = arrive(i, h.p);
-        if (dot(l.wi, h.ng) > 0.0 && !occluded(o, l.wi, l.dist)) {
+        if (max3(l.e) > 0.0 && dot(l.wi, h.ng) > 0.0 && !occluded(o, l.wi, l.dist)) {
             let vh = clamp(dot(l.wi, safe_normalize(l.wi + wo)), 0.0, 1.0);
             let sh = sqrt(max(1.0 - vh * vh, 0.0));
             let rl = to_rgb(film_colors(film, tabbed, tab, vh, offset).r);
@@ -1155,31 +1263,44 @@ fn film_over_base(film: Film, tabbed: bool, tab: FilmTab, metal: u32, base: Micr
     radiance = radiance + thr * factor * out;
 }
 
-// Radiance (linear sRGB, RU) along a camera ray, its reflections and transmissions.
+// Radiance (linear sRGB, RU) along a camera ray, its reflections and transmissions. The camera ray is the
+// first ray of the stack, so that `shade` has one call site (the compiled shader inlines every call).
 fn primary(o: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
     radiance = vec3<f32>(0.0);
-    n_rays = 0u;
-    let first = intersect(o, d, FAR);
-    if (first.kind == 0u) {
-        if (P.env_visible != 0u) {
-            return environment(d);
-        }
-        return P.background.xyz;
-    }
-    shade(make_hit(first, o, d), d, 0u, 1.0, vec3<f32>(1.0));
+    rays[0] = Ray(o, d, vec3<f32>(1.0), 0u, 1.0, 0.0);
+    n_rays = 1u;
+    var camera = true;
     while (n_rays > 0u) {
         n_rays = n_rays - 1u;
         let ray = rays[n_rays];
-        if (ray.depth > P.max_depth || ray.weight < 2e-3) {
-            radiance = radiance + ray.throughput * environment(ray.d);
+        let first = camera;
+        camera = false;
+        if (!first && (ray.depth > P.max_depth || ray.weight < 2e-3)) {
+            radiance = radiance + ray.throughput * escaped(ray.d, ray.pdf);
             continue;
         }
         let h = intersect(ray.o, ray.d, FAR);
-        if (h.kind == 0u) {
-            radiance = radiance + ray.throughput * environment(ray.d);
-        } else {
-            shade(make_hit(h, ray.o, ray.d), ray.d, ray.depth, ray.weight, ray.throughput);
+        // The area lights the camera sees; in Monte Carlo, those secondary rays meet too (weighted against light
+        // sampling when a BRDF sampled the ray) -- the fast path lights surfaces by them directly.
+        if (first || monte_carlo()) {
+            let l = hit_area(ray.o, ray.d, h.t, first);
+            if (l.k != NONE) {
+                let w = brdf_weight(ray.pdf, area_pdf(l.k, ray.o, ray.d));
+                radiance = radiance + ray.throughput * area_radiance(l.k) * w;
+                continue;
+            }
         }
+        if (h.kind == 0u) {
+            if (!first) {
+                radiance = radiance + ray.throughput * escaped(ray.d, ray.pdf);
+            } else if (P.env_visible != 0u) {
+                radiance = environment(ray.d);
+            } else {
+                radiance = P.background.xyz;
+            }
+            continue;
+        }
+        shade(make_hit(h, ray.o, ray.d), ray.d, ray.depth, ray.weight, ray.throughput);
     }
     return radiance;
 }
@@ -1220,9 +1341,12 @@ fn render_scene(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let aspect = f32(P.width) / f32(P.height);
+    let idx = row * P.width + col;
     var acc = vec3<f32>(0.0);
-    for (var s = 0u; s < P.spp; s = s + 1u) {
-        let j = scene[P.sample_base + s].xy;
+    // Samples sample0 .. sample0 + pass_samples of the pixel's P.spp (progressive accumulation).
+    for (var s = P.sample0; s < P.sample0 + P.pass_samples; s = s + 1u) {
+        seed_rng(idx, s);
+        let j = scene[P.sample_base + s % P.spp].xy;
         let x = -1.0 + 2.0 * (f32(col) + j.x) / f32(P.width);
         let y = 1.0 - 2.0 * (f32(row) + j.y) / f32(P.height);
         let ray = camera_ray(x, y, aspect);
@@ -1230,8 +1354,11 @@ fn render_scene(@builtin(global_invocation_id) id: vec3<u32>) {
             acc = acc + primary(ray.o, ray.d);
         }
     }
-    let rgb = acc / f32(P.spp);
-    let idx = row * P.width + col;
+    // The running mean of every sample so far.
+    var rgb = acc / f32(P.pass_samples);
+    if (P.sample0 > 0u) {
+        rgb = (out_rgb[idx].xyz * f32(P.sample0) + acc) / f32(P.sample0 + P.pass_samples);
+    }
     out_rgb[idx] = vec4<f32>(rgb, 1.0);
     out_rgba[idx] = display_rgb(rgb, D);
 }
