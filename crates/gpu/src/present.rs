@@ -58,9 +58,14 @@ impl Presenter {
                     | wgpu::TextureUsages::COPY_SRC,
                 view_formats: &[wgpu::TextureFormat::Rgba8UnormSrgb],
             });
-            let store_view = texture.create_view(&wgpu::TextureViewDescriptor::default());
+            let store_view = texture.create_view(&wgpu::TextureViewDescriptor {
+                usage: Some(wgpu::TextureUsages::STORAGE_BINDING),
+                ..Default::default()
+            });
+            // sRGB formats cannot be storage views: this one is for sampling only.
             let sample_view = texture.create_view(&wgpu::TextureViewDescriptor {
                 format: Some(wgpu::TextureFormat::Rgba8UnormSrgb),
+                usage: Some(wgpu::TextureUsages::TEXTURE_BINDING),
                 ..Default::default()
             });
             PresentTarget { texture, store_view, sample_view, width, height }
