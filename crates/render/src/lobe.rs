@@ -303,6 +303,8 @@ mod tests {
             warnings: Vec::new(),
             surface_fingerprint: None,
             light_spectrum: None,
+            units: "relative".into(),
+            built_on: None,
         };
         let t = LookupTable { meta, uv, wavelengths_nm: vec![500.0], data };
         Lookup::new(Arc::new(t), Shading::default(), iridis_diffraction::table::Precision::F64).unwrap()

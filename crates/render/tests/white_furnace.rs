@@ -139,6 +139,7 @@ fn diffraction_with_the_energy_blend_passes_the_furnace() {
         fresnel_n: 1.5,
         description: "rough".into(),
         blend: Blend::Energy(Arc::new(albedo.clone())),
+        extended: Default::default(),
     };
     let hit = Hit {
         t: 1.0,
