@@ -37,7 +37,7 @@ pub fn glb_bytes(meshes: &[Mesh]) -> Result<Vec<u8>, RenderError> {
     let mut nodes = Vec::new();
     // Appends one accessor over `data` (4-byte aligned, as glTF asks) and returns its index.
     let mut push = |bytes: Vec<u8>, count: usize, kind: &str, component: u32, target: u32, extra: serde_json::Value| {
-        while bin.len() % 4 != 0 {
+        while !bin.len().is_multiple_of(4) {
             bin.push(0);
         }
         views.push(json!({"buffer": 0, "byteOffset": bin.len(), "byteLength": bytes.len(), "target": target}));
@@ -92,7 +92,7 @@ pub fn glb_bytes(meshes: &[Mesh]) -> Result<Vec<u8>, RenderError> {
             "the scene has no triangle meshes to export (spheres and planes are analytic)".into(),
         ));
     }
-    while bin.len() % 4 != 0 {
+    while !bin.len().is_multiple_of(4) {
         bin.push(0);
     }
     let node_ids: Vec<usize> = (0..nodes.len()).collect();

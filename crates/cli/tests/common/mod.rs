@@ -165,17 +165,26 @@ pub mod json_doc {
         }
         for (k, m) in &section.keys {
             let Some(shape) = shape_of(m) else { continue };
-            let value = k.split('.').try_fold(v, |x, part| x.get(part));
-            match value {
-                Some(serde_json::Value::Object(o)) => {
-                    let got: BTreeSet<&String> = o.keys().collect();
-                    let want: BTreeSet<&String> = shape.keys.iter().map(|(k, _)| k).collect();
-                    if got != want {
-                        problems.push(format!("{title}: `{k}` has keys {got:?}, its shape {want:?}"));
+            // `a[].b`: the shape holds for `b` of every element of the array `a`.
+            let values: Vec<Option<&serde_json::Value>> = match k.split_once("[].") {
+                Some((a, rest)) => match a.split('.').try_fold(v, |x, part| x.get(part)).and_then(|x| x.as_array()) {
+                    Some(items) => items.iter().map(|it| rest.split('.').try_fold(it, |x, part| x.get(part))).collect(),
+                    None => vec![None],
+                },
+                None => vec![k.split('.').try_fold(v, |x, part| x.get(part))],
+            };
+            for value in values {
+                match value {
+                    Some(serde_json::Value::Object(o)) => {
+                        let got: BTreeSet<&String> = o.keys().collect();
+                        let want: BTreeSet<&String> = shape.keys.iter().map(|(k, _)| k).collect();
+                        if got != want {
+                            problems.push(format!("{title}: `{k}` has keys {got:?}, its shape {want:?}"));
+                        }
                     }
+                    Some(serde_json::Value::Null) if m.contains("`null`") => {}
+                    other => problems.push(format!("{title}: `{k}` should be a {} object, is {other:?}", shape.title)),
                 }
-                Some(serde_json::Value::Null) if m.contains("`null`") => {}
-                other => problems.push(format!("{title}: `{k}` should be a {} object, is {other:?}", shape.title)),
             }
         }
         if !v["inputs"].is_object() {
