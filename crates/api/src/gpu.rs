@@ -9,7 +9,7 @@ use iridis_diffraction::{Fresnel, FresnelConvention, LookupTable, SpectralSetup,
 use iridis_gpu::scene::SceneFilm;
 use iridis_gpu::{Gpu, GpuLookup, GpuScene, MapOutput};
 
-use crate::model::{is_table, ModelOptions};
+use crate::model::ModelOptions;
 use crate::report::{with_progress, Report};
 use crate::surface::SurfaceOptions;
 
@@ -84,13 +84,9 @@ pub fn lookup_table(
     surface: &SurfaceOptions,
     report: &dyn Report,
 ) -> Result<LookupTable> {
-    if is_table(input) {
-        return crate::model::lookup_table(input, model, params, surface, report);
-    }
-    let patch = crate::surface::load_patch(input, surface, report)?;
-    let spectral = crate::model::spectral_setup(model, report)?;
-    let terms = crate::model::taylor_terms(&patch, model, report)?;
-    build_table(gpu, &terms, &spectral, params, input, report)
+    crate::model::lookup_table_with(input, model, surface, report, |terms, spectral| {
+        build_table(gpu, terms, spectral, params, input, report)
+    })
 }
 
 /// The lookup method's BRDF map (paper eq. 10–12) of `table` on the GPU for light `wi`, the table stored as

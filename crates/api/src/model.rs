@@ -152,6 +152,20 @@ pub fn lookup_table(
     surface: &SurfaceOptions,
     report: &dyn Report,
 ) -> Result<LookupTable> {
+    lookup_table_with(input, model, surface, report, |terms, spectral| {
+        build_table(terms, spectral, params, input, report)
+    })
+}
+
+/// [`lookup_table`] with the table of a SURFACE made by `build` from its Taylor terms and spectral setup (the
+/// CPU's [`build_table`], or the GPU's).
+pub fn lookup_table_with(
+    input: &str,
+    model: &ModelOptions,
+    surface: &SurfaceOptions,
+    report: &dyn Report,
+    build: impl FnOnce(&TaylorTerms, &SpectralSetup) -> Result<LookupTable>,
+) -> Result<LookupTable> {
     if is_table(input) {
         let table = LookupTable::load(Path::new(input))?;
         check_against_table(&table, model, report)?;
@@ -160,5 +174,5 @@ pub fn lookup_table(
     let patch = load_patch(input, surface, report)?;
     let spectral = spectral_setup(model, report)?;
     let terms = taylor_terms(&patch, model, report)?;
-    build_table(&terms, &spectral, params, input, report)
+    build(&terms, &spectral)
 }

@@ -344,7 +344,7 @@ fn not_run(words: &[String]) -> Option<&'static str> {
 }
 
 /// Flags whose value is a file the command writes.
-const OUTPUT_FLAGS: [&str; 14] = [
+const OUTPUT_FLAGS: [&str; 15] = [
     "-o",
     "--output",
     "--out",
@@ -359,6 +359,7 @@ const OUTPUT_FLAGS: [&str; 14] = [
     "--save-table",
     "--maps",
     "--convergence-plot",
+    "--export-mesh",
 ];
 
 /// The input files a command names (by extension), with the flag before each.
