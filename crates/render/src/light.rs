@@ -158,13 +158,25 @@ pub const ENVIRONMENT_LIGHTS: usize = 64;
 /// Equirectangular cells (columns, rows) into which the environment's radiance is averaged.
 pub const RADIANCE_CELLS: (usize, usize) = (128, 64);
 
-/// Size of the irradiance map (equirectangular, like an environment map; irradiance varies slowly).
-pub const IRRADIANCE_SIZE: [usize; 2] = [32, 16];
+/// Size of the irradiance map (equirectangular, like an environment map; irradiance varies slowly). Its rows
+/// sit at polar angles `π r / (rows − 1)`, so the first and last rows are the poles themselves
+/// ([`irradiance_map_v`]).
+pub const IRRADIANCE_SIZE: [usize; 2] = [32, 17];
+
+/// The texture coordinate `v` at which the irradiance map is sampled for a direction at `v = θ/π`: its rows
+/// hold the poles exactly, so a normal straight up or down reads the same value in every column. (With
+/// rows at texel centres the pole's value depended on the azimuth of an exactly vertical normal, which
+/// `atan2(0, −0)` decides: π on the CPU, 0 on some GPUs — a floor came out 1.6 % apart, issue 19.)
+pub fn irradiance_map_v(v: f64) -> f64 {
+    let rows = IRRADIANCE_SIZE[1] as f64;
+    (v * (rows - 1.0) + 0.5) / rows
+}
 
 impl Environment {
     /// The environment's irradiance around every normal, divided by π (the radiance a white Lambertian surface
-    /// with that normal reflects: `E(n)/π = ∫ L(ω) max(n·ω, 0) dω / π`), as a 32 × 16 equirectangular map
-    /// (row 0 is +y, centre column −z, no rotation) that the renderers sample bilinearly. The radiance is
+    /// with that normal reflects: `E(n)/π = ∫ L(ω) max(n·ω, 0) dω / π`), as a 32 × 17 equirectangular map
+    /// (row 0 is +y itself, the last row −y, centre column −z, no rotation) that the renderers sample
+    /// bilinearly at [`irradiance_map_v`]. The radiance is
     /// first averaged into 128 × 64 solid-angle cells (a map's texels box-filtered into them, a sky sampled at
     /// their centres); the cosine integral is then a sum over the cells, normalised by the same sum of the
     /// weights, so that a uniform environment gives exactly its radiance. `None` where the irradiance is the
@@ -185,7 +197,7 @@ impl Environment {
         let mut data = Vec::with_capacity(ow * oh * 3);
         for r in 0..oh {
             for c in 0..ow {
-                let n = equirect_dir((c as f64 + 0.5) / ow as f64, (r as f64 + 0.5) / oh as f64, 0.0);
+                let n = equirect_dir((c as f64 + 0.5) / ow as f64, r as f64 / (oh - 1) as f64, 0.0);
                 let (mut acc, mut wsum) = ([0.0; 3], 0.0);
                 for (k, (d, s)) in dirs.iter().enumerate() {
                     let w = dot(n, *d).max(0.0) * s;
@@ -301,7 +313,7 @@ impl Environment {
         match (map, self) {
             (Some(t), _) => {
                 let (u, v) = equirect_uv(n, 0.0);
-                t.sample_with([u, v], true)
+                t.sample_with([u, irradiance_map_v(v)], true)
             }
             (None, Environment::Uniform(c)) => *c,
             (None, _) => self.mean(),
@@ -409,6 +421,7 @@ pub fn equirect_mean(texture: &Texture, intensity: f64) -> Rgb {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::texture::TexKind;
 
     #[test]
     fn the_environment_sampler_is_a_density_and_follows_the_sky() {
@@ -465,6 +478,48 @@ mod tests {
         }
         let uni = Environment::Uniform([0.2, 0.3, 0.4]);
         assert_eq!(uni.mean(), [0.2, 0.3, 0.4]);
+    }
+
+    #[test]
+    fn a_vertical_normal_reads_one_irradiance_whatever_its_azimuth() {
+        // An environment bright on one side (+x half of the sphere 1, the other 0.1): the irradiance straight up
+        // is the brute-force integral, and normals a hair off vertical (any azimuth, and −0 in z, whose
+        // atan2 gives the opposite column) read the same value. Before the map's rows held the poles, these
+        // read the first row's texels at the azimuth's column: 1.6 % apart on examples/studio.hdr.
+        let (w, h) = (64, 32);
+        let data: Vec<f32> = (0..w * h)
+            .flat_map(|k| {
+                let d = equirect_dir(((k % w) as f64 + 0.5) / w as f64, ((k / w) as f64 + 0.5) / h as f64, 0.0);
+                let l = if d[0] > 0.0 { 1.0 } else { 0.1 };
+                [l as f32; 3]
+            })
+            .collect();
+        let texture =
+            Texture::Image { width: w, height: h, channels: 3, data, kind: TexKind::Color, name: "half".into() };
+        let env = Environment::Map {
+            mean: equirect_mean(&texture, 1.0),
+            texture: Box::new(texture),
+            rotation: 0.0,
+            intensity: 1.0,
+        };
+        let map = env.irradiance_map().unwrap();
+        let (nt, np) = (600, 600);
+        let mut want = 0.0;
+        for i in 0..nt {
+            let th = std::f64::consts::PI * (i as f64 + 0.5) / nt as f64;
+            for j in 0..np {
+                let ph = std::f64::consts::TAU * (j as f64 + 0.5) / np as f64;
+                let d = [th.sin() * ph.cos(), th.cos(), th.sin() * ph.sin()];
+                let dw = th.sin() * std::f64::consts::PI / nt as f64 * std::f64::consts::TAU / np as f64;
+                want += env.radiance(d)[0] * d[1].max(0.0) * dw / std::f64::consts::PI;
+            }
+        }
+        let up = env.irradiance(Some(&map), [0.0, 1.0, 0.0])[0];
+        assert!((up - want).abs() < 0.01 * want, "straight up: {up} vs the integral {want}");
+        for n in [[0.0, 1.0, -0.0], [1e-4, 1.0, 0.0], [-1e-4, 1.0, 0.0], [0.0, 1.0, 1e-4], [0.0, 1.0, -1e-4]] {
+            let got = env.irradiance(Some(&map), n)[0];
+            assert!((got - up).abs() < 1e-4 * up, "{n:?}: {got} vs {up} straight up");
+        }
     }
 
     #[test]

@@ -354,7 +354,9 @@ fn environment(d: vec3<f32>) -> vec3<f32> {
 fn irradiance(n: vec3<f32>) -> vec3<f32> {
     if (P.irr_tex != NONE) {
         let u = euclid(0.5 + atan2(n.x, -n.z) / TAU, 1.0);
-        let v = acos(clamp(n.y, -1.0, 1.0)) / PI;
+        // render::light::irradiance_map_v: the map's first and last rows are the poles themselves.
+        let rows = f32(word(scene[P.tex_base + 3u * P.irr_tex].z));
+        let v = (acos(clamp(n.y, -1.0, 1.0)) / PI * (rows - 1.0) + 0.5) / rows;
         return sample_texture(P.irr_tex, vec2<f32>(u, v), true);
     }
     if (P.env_kind == 1u) {
