@@ -31,6 +31,13 @@ else
     echo "warning: no python3; the real-file reader tests will be skipped"
 fi
 
+# Mesa's shader cache in a folder we know is writable (CI may run with a read-only or missing home): lavapipe
+# compiles the scene renderer once (~3-4 minutes of LLVM on 2 cores) and every later test process and CLI run
+# that opens the same pipeline loads it from here in seconds. Without the cache each of them compiled it again.
+export MESA_SHADER_CACHE_DIR="${MESA_SHADER_CACHE_DIR:-${CARGO_TARGET_DIR:-$PWD/target}/mesa-shader-cache}"
+export MESA_SHADER_CACHE_DISABLE=false
+mkdir -p "$MESA_SHADER_CACHE_DIR"
+
 echo "== cargo test --workspace --release"
 cargo test --workspace --release --no-fail-fast
 

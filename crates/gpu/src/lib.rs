@@ -88,32 +88,43 @@ pub struct Gpu {
     pub(crate) film_pipelines: std::sync::OnceLock<film::FilmPipelines>,
 }
 
+/// The instance, adapter, device and queue of every iridis GPU path, headless or in the viewer's window: Vulkan,
+/// high-performance preference, the adapter's own limits, and timestamp queries where it has them. One device
+/// recipe for both matters beyond tidiness: lavapipe compiled the scene shader in ~3 minutes on this device and
+/// for over 17 on the one eframe opened by itself (2-core VM, 2026-11-26), and its disk cache only serves a
+/// pipeline compiled for the same device settings.
+pub fn open_vulkan() -> Result<(wgpu::Instance, wgpu::Adapter, wgpu::Device, wgpu::Queue, wgpu::AdapterInfo), GpuError>
+{
+    let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
+    desc.backends = wgpu::Backends::VULKAN;
+    let instance = wgpu::Instance::new(desc);
+    let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+        power_preference: wgpu::PowerPreference::HighPerformance,
+        force_fallback_adapter: false,
+        compatible_surface: None,
+        apply_limit_buckets: false,
+    }))
+    .map_err(|e| GpuError::NoAdapter(e.to_string()))?;
+    let info = adapter.get_info();
+    let limits = adapter.limits();
+    // GPU timestamps around each pass where the adapter has them (frame times without submission overhead).
+    let features = adapter.features() & wgpu::Features::TIMESTAMP_QUERY;
+    let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+        label: Some("iridis"),
+        required_features: features,
+        required_limits: limits,
+        ..Default::default()
+    }))
+    .map_err(|e| GpuError::Device { adapter: describe(&info), message: e.to_string() })?;
+    Ok((instance, adapter, device, queue, info))
+}
+
 impl Gpu {
     /// Opens the first suitable Vulkan adapter (high-performance preference; a software adapter such as
     /// lavapipe when nothing else exists) with the adapter's own limits, so large tables fit where they can.
     pub fn new() -> Result<Self, GpuError> {
-        let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
-        desc.backends = wgpu::Backends::VULKAN;
-        let instance = wgpu::Instance::new(desc);
-        let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
-            power_preference: wgpu::PowerPreference::HighPerformance,
-            force_fallback_adapter: false,
-            compatible_surface: None,
-            apply_limit_buckets: false,
-        }))
-        .map_err(|e| GpuError::NoAdapter(e.to_string()))?;
-        let info = adapter.get_info();
-        let limits = adapter.limits();
-        // GPU timestamps around each pass where the adapter has them (frame times without submission overhead).
-        let features = adapter.features() & wgpu::Features::TIMESTAMP_QUERY;
-        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
-            label: Some("iridis"),
-            required_features: features,
-            required_limits: limits.clone(),
-            ..Default::default()
-        }))
-        .map_err(|e| GpuError::Device { adapter: describe(&info), message: e.to_string() })?;
-        Ok(Self { device, queue, info, limits, scene_pipeline: Default::default(), film_pipelines: Default::default() })
+        let (_, _, device, queue, info) = open_vulkan()?;
+        Ok(Self::from_parts(device, queue, info))
     }
 
     /// Wraps a device opened elsewhere (the viewer's window integration opens one that can present).

@@ -2,7 +2,8 @@
 //! lookup table's BRDF map with [`GpuLookup`], and an egui panel for the display (exposure in RU, gamma), the
 //! thin films (thickness, the film layer's index, SVT strength), the diffraction tables (a BRDF-map view of each
 //! at a chosen incidence) and the frame time. Dragging orbits the camera, right- or shift-dragging moves the
-//! light, the wheel zooms; the scene file is reloaded when it changes on disk.
+//! light, the wheel zooms; the scene file is reloaded when it changes on disk. On a BRDF map, dragging turns the
+//! light's incidence and the wheel sets the exposure.
 //!
 //! Frames are rendered by the same compute shaders as `iridis render --gpu` into a storage buffer; a small
 //! compute pass ([`crate::present`]) stores its displayed pixels into a texture registered with egui's wgpu
@@ -83,7 +84,7 @@ pub fn run(input: ViewInput, opts: ViewOptions, load: SceneLoader) -> Result<Opt
         ViewInput::Scene(p) => Some(load(p)?),
         ViewInput::Table { .. } => None,
     };
-    let mut wgpu_options = egui_wgpu_config();
+    let mut wgpu_options = egui_wgpu_config()?;
     // The scripted check runs under a virtual X server: no display to wait for.
     wgpu_options.surface.present_mode =
         if opts.check.is_some() { wgpu::PresentMode::AutoNoVsync } else { wgpu::PresentMode::AutoVsync };
@@ -134,19 +135,14 @@ pub fn run(input: ViewInput, opts: ViewOptions, load: SceneLoader) -> Result<Opt
     Ok(r)
 }
 
-/// Vulkan only, with the adapter's own limits (large tables) and timestamps where it has them.
-fn egui_wgpu_config() -> eframe::egui_wgpu::WgpuConfiguration {
-    let mut c = eframe::egui_wgpu::WgpuConfiguration::default();
-    if let eframe::egui_wgpu::WgpuSetup::CreateNew(n) = &mut c.wgpu_setup {
-        n.instance_descriptor.backends = wgpu::Backends::VULKAN;
-        n.device_descriptor = Arc::new(|adapter| wgpu::DeviceDescriptor {
-            label: Some("iridis viewer"),
-            required_features: adapter.features() & wgpu::Features::TIMESTAMP_QUERY,
-            required_limits: adapter.limits(),
-            ..Default::default()
-        });
-    }
-    c
+/// egui draws on the device every other GPU path opens ([`crate::open_vulkan`]), handed over whole.
+fn egui_wgpu_config() -> Result<eframe::egui_wgpu::WgpuConfiguration, String> {
+    let (instance, adapter, device, queue, _) = crate::open_vulkan().map_err(|e| e.to_string())?;
+    let setup = eframe::egui_wgpu::WgpuSetupExisting { instance, adapter, device, queue };
+    Ok(eframe::egui_wgpu::WgpuConfiguration {
+        wgpu_setup: eframe::egui_wgpu::WgpuSetup::Existing(setup),
+        ..Default::default()
+    })
 }
 
 /// An orbit around a target point, y up (the camera of perspective and orthographic scenes).
@@ -778,14 +774,22 @@ impl Viewer {
         if resp.hovered() {
             let scroll = ctx.input(|i| i.smooth_scroll_delta.y);
             if scroll != 0.0 {
-                if let Mode::Scene(sv) = &mut self.mode {
-                    if let Some(o) = &mut sv.orbit {
-                        let f = (-scroll as f64 * 0.002).exp();
-                        if o.ortho {
-                            o.lens *= f;
-                        } else {
-                            o.dist *= f;
+                match &mut self.mode {
+                    Mode::Scene(sv) => {
+                        if let Some(o) = &mut sv.orbit {
+                            let f = (-scroll as f64 * 0.002).exp();
+                            if o.ortho {
+                                o.lens *= f;
+                            } else {
+                                o.dist *= f;
+                            }
+                            self.dirty = true;
                         }
+                    }
+                    // A BRDF map spans decades of radiance: the wheel brightens (up) or darkens it, within the
+                    // exposure slider's range.
+                    Mode::Table(_) => {
+                        self.exposure = (self.exposure * (scroll as f64 * 0.004).exp()).clamp(0.01, 20000.0);
                         self.dirty = true;
                     }
                 }
@@ -871,6 +875,7 @@ impl Viewer {
     fn check_after_frame(&mut self, ctx: &egui::Context, help_before: bool) {
         let shown = self.shown.clone();
         let help = self.help;
+        let map = matches!(self.mode, Mode::Table(_));
         let Some(c) = &mut self.check else { return };
         ctx.request_repaint();
         if c.step == 0 {
@@ -902,7 +907,11 @@ impl Viewer {
             } else {
                 f64::NAN
             };
-            let name = ["", "left drag orbits the camera", "right drag moves the light", "wheel zooms"][c.step];
+            let name = if map {
+                ["", "left drag turns the incidence", "right drag turns the incidence", "wheel changes the exposure"]
+            } else {
+                ["", "left drag orbits the camera", "right drag moves the light", "wheel zooms"]
+            }[c.step];
             c.steps.push((name.into(), diff));
         }
         if done {
@@ -947,6 +956,9 @@ fn median(mut v: Vec<f64>) -> f64 {
 const HELP: &str = "drag: orbit the camera · right-drag or shift-drag: move the light · wheel: zoom\n\
 R: reset view and light · H: hide/show this help · Esc: quit\n\
 The scene file is reloaded when it changes on disk.";
+
+const HELP_MAP: &str = "drag: turn the light's incidence (θ up-down, φ left-right) · wheel: exposure\n\
+H: hide/show this help · Esc: quit";
 
 impl eframe::App for Viewer {
     fn raw_input_hook(&mut self, _ctx: &egui::Context, raw: &mut egui::RawInput) {
@@ -1000,7 +1012,8 @@ impl eframe::App for Viewer {
                 if self.help {
                     let pos = resp.rect.left_top() + egui::vec2(8.0, 8.0);
                     egui::Area::new(egui::Id::unique("iridis-help")).fixed_pos(pos).show(&ctx, |ui| {
-                        egui::Frame::popup(ui.style()).show(ui, |ui| ui.label(HELP));
+                        egui::Frame::popup(ui.style())
+                            .show(ui, |ui| ui.label(if matches!(self.mode, Mode::Table(_)) { HELP_MAP } else { HELP }));
                     });
                 }
             }

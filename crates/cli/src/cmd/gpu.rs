@@ -923,7 +923,8 @@ scene (.toml, .gltf, .glb), reloaded when the file changes, or the BRDF map of a
 `iridis precompute`) or of a SURFACE (its table is built first). The panel sets the exposure (RU) and gamma,
 the thin films' thickness, layer IOR and SVT strength, and shows each diffraction table's BRDF map at a
 chosen incidence; the frame time is shown below. Drag to orbit, right-drag (or shift-drag) to move the
-light, wheel to zoom, R resets, H toggles the help, Esc quits.
+light, wheel to zoom, R resets, H toggles the help, Esc quits. On a BRDF map, drag to turn the light's
+incidence and the wheel sets the exposure.
 
 Needs a display and a Vulkan driver; on a headless machine: xvfb-run -a iridis view SCENE.
 --check drives the window with synthetic input (a drag to orbit, a right-drag for the light, the wheel,
