@@ -51,6 +51,9 @@ pub(crate) fn scene_source() -> String {
     )
 }
 
+// scene.wgsl's ALBEDO_COS and ALBEDO_AZ read the energy blend's albedo table with these sizes.
+const _: () = assert!(iridis_render::lobe_albedo::COS_NODES == 10 && iridis_render::lobe_albedo::AZIMUTHS == 16);
+
 /// Rows rendered per dispatch.
 const BAND_ROWS: u32 = 32;
 /// Samples per pixel of one pass of a Monte Carlo render (progressive accumulation).
@@ -364,12 +367,6 @@ impl<'g> GpuScene<'g> {
                     push_microfacet(&mut rec, mf);
                 }
                 Material::Diffraction(df) => {
-                    if !matches!(df.blend, iridis_render::material::Blend::Algorithm4) {
-                        return Err(GpuError::Invalid(format!(
-                            "material `{name}`: blend = \"{}\" is rendered on the CPU only (leave out --gpu)",
-                            df.blend.name()
-                        )));
-                    }
                     let lookup = df.evaluator.as_lookup().ok_or_else(|| {
                         GpuError::Invalid(format!(
                             "material `{name}`: the GPU renders diffraction from lookup tables only ({})",
@@ -424,7 +421,15 @@ impl<'g> GpuScene<'g> {
                             }
                         }
                     }
-                    rec.words([lobe, pref, 0, 0]);
+                    // The energy blend's lobe albedo (render::lobe_albedo: the nodes, then A_avg), NONE under
+                    // Algorithm 4.
+                    let mut albedo = NONE;
+                    if let iridis_render::material::Blend::Energy(a) = &df.blend {
+                        albedo = tables.len() as u32;
+                        tables.extend(a.nodes().iter().flatten().map(|&v| v as f32));
+                        tables.extend(a.average().map(|v| v as f32));
+                    }
+                    rec.words([lobe, pref, albedo, 0]);
                 }
                 Material::ThinFilm(f) => {
                     if f.stack.has_incoherent() {

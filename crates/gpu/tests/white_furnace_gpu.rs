@@ -86,3 +86,42 @@ fn rough_films_in_the_gpu_furnace_reflect_their_albedo() {
         assert!(brightest < 1.01, "{stack}: a channel reaches {brightest} in the furnace");
     }
 }
+
+/// The energy-blend diffraction material (issue 21; the CPU test `diffraction_with_the_energy_blend_passes_the_
+/// scene_furnace`) in the GPU's furnace: the fast path within the CPU's bounds (the environment's 64-cell
+/// quadrature of the lobe) and within f32 of the CPU's image, and Monte Carlo at radiance 1 on average over the
+/// sphere within its noise.
+#[test]
+fn diffraction_with_the_energy_blend_in_the_gpu_furnace() {
+    use furnace::{
+        deviation, energy_diffraction_furnace, sphere_pixels, worst_within, FAST_DIFFRACTION_FURNACE,
+        FAST_DIFFRACTION_FURNACE_RIM,
+    };
+    use iridis_render::integrate::{Integration, Strategy};
+    let Some(gpu) = gpu() else { return };
+    let size = 41;
+    let scene = energy_diffraction_furnace(Integration::Fast, 1.0);
+    let img = GpuScene::new(&gpu, &scene).unwrap().render(size, size, 1, &|_| {}).unwrap();
+    let cpu = iridis_render::render(&scene, size, size, 1, &|_| {});
+    let (worst, n) = deviation(&img);
+    let within_45 = worst_within(&img, 45.0);
+    let apart = img
+        .data
+        .iter()
+        .zip(&cpu.data)
+        .flat_map(|(g, c)| (0..3).map(move |k| (g[k] - c[k]).abs()))
+        .fold(0.0f32, f32::max);
+    eprintln!("GPU fast path: {n} pixels, |L − 1| ≤ {worst:.2e} ({within_45:.2e} within 45°), GPU − CPU ≤ {apart:.2e}");
+    assert!(within_45 < FAST_DIFFRACTION_FURNACE && worst < FAST_DIFFRACTION_FURNACE_RIM, "{within_45} / {worst}");
+    assert!(apart < 2e-3, "GPU and CPU images up to {apart} apart");
+
+    let spp = 64;
+    let mc = energy_diffraction_furnace(Integration::MonteCarlo(Strategy::Mis), 1.0);
+    let img = GpuScene::new(&gpu, &mc).unwrap().render(size, size, spp, &|_| {}).unwrap();
+    let on_sphere: Vec<f64> = sphere_pixels(&img).map(|c| (c[0] + c[1] + c[2]) as f64 / 3.0).collect();
+    let mean = on_sphere.iter().sum::<f64>() / on_sphere.len() as f64;
+    let sd = (on_sphere.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (on_sphere.len() - 1) as f64).sqrt();
+    let se = sd / (on_sphere.len() as f64).sqrt();
+    eprintln!("GPU Monte Carlo ({spp} spp): mean {mean:.5} ± {se:.5} over {} pixels", on_sphere.len());
+    assert!((mean - 1.0).abs() < 4.0 * se + 1e-3, "Monte Carlo: mean {mean} ± {se}");
+}

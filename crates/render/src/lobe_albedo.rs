@@ -20,8 +20,8 @@ use crate::math::V3;
 
 /// Midpoint nodes in `cos θ` and uniform azimuths of the albedo table: within the tests' bound of the
 /// exact integral for the built-in surfaces (the lobe's albedo varies slowly with direction).
-const COS_NODES: usize = 10;
-const AZIMUTHS: usize = 16;
+pub const COS_NODES: usize = 10;
+pub const AZIMUTHS: usize = 16;
 /// The most quadrature points per axis (a 101² table is integrated on its grid refined once, 201 points).
 const MAX_QUADRATURE_RES: usize = 201;
 
@@ -76,6 +76,12 @@ impl LobeAlbedo {
             out[k] = lo * (1.0 - tc) + hi * tc;
         }
         out
+    }
+
+    /// The table, `[cos node][azimuth]` (node `i` at `cos θ = (i + ½)/COS_NODES`, azimuth `j` at `2π j/AZIMUTHS`
+    /// from the material's `t`), as the GPU uploads it.
+    pub fn nodes(&self) -> &[Rgb] {
+        &self.values
     }
 
     /// The cosine-weighted mean `A_avg`.

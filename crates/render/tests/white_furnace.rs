@@ -4,7 +4,10 @@
 
 mod furnace;
 
-use furnace::{deviation, furnace_grid, furnace_scene, grid_deviation, GRID_COLS, MATERIALS};
+use furnace::{
+    deviation, furnace_grid, furnace_scene, grid_deviation, sphere_pixels, worst_within, FAST_DIFFRACTION_FURNACE,
+    FAST_DIFFRACTION_FURNACE_RIM, GRID_COLS, MATERIALS,
+};
 use iridis_render::render;
 
 #[test]
@@ -92,55 +95,10 @@ fn rough_films_in_the_furnace_reflect_their_albedo() {
 /// (no texture) must reflect at most 1.
 #[test]
 fn diffraction_with_the_energy_blend_passes_the_furnace() {
-    use std::sync::Arc;
-
-    use iridis_diffraction::table::{Lookup, LookupTable, Precision, TableParams};
-    use iridis_diffraction::taylor::terms_for_bound;
-    use iridis_diffraction::{Patch, Shading, SpectralSetup, TaylorTerms};
     use iridis_render::geometry::Hit;
-    use iridis_render::lobe_albedo::LobeAlbedo;
-    use iridis_render::material::{Blend, ColorSource, Diffraction, OrientRule, Orientation};
+    use iridis_render::material::Diffraction;
 
-    let n = 64;
-    let mut seed = 7u64;
-    let mut rnd = move || {
-        seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-        (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-    };
-    let noise: Vec<f64> = (0..n * n).map(|_| rnd()).collect();
-    // Heights correlated over ~3 pixels (300 nm): light scattered over tens of degrees.
-    let heights: Vec<f64> = (0..n * n)
-        .map(|k| {
-            let (r, c) = (k / n, k % n);
-            (0..3)
-                .flat_map(|dr| (0..3).map(move |dc| (dr, dc)))
-                .map(|(dr, dc)| noise[((r + dr) % n) * n + (c + dc) % n])
-                .sum::<f64>()
-                * 60.0
-        })
-        .collect();
-    let patch = Patch::from_row_major(n, n, 100.0, 100.0, &heights).unwrap();
-    let coherence = 3200.0;
-    let terms = TaylorTerms::compute(&patch, terms_for_bound(patch.max_abs_height, 380.0, 1e-6), coherence).unwrap();
-    let spectral = SpectralSetup::default().radiometric(coherence).unwrap();
-    let table =
-        LookupTable::build(&terms, &spectral, TableParams { uv_resolution: 101, uv_power: 5.0 }, "rough", &|_| {})
-            .unwrap();
-    let lookup = Lookup::new(Arc::new(table), Shading::default(), Precision::F64).unwrap();
-    let r0 = 0.04;
-    let albedo = LobeAlbedo::compute(&lookup, r0).unwrap();
-    let material = Diffraction {
-        evaluator: Arc::new(lookup.clone()),
-        orientation: Orientation { rule: OrientRule::Tangent, angle: 0.0 },
-        scale_ru: std::f64::consts::PI * r0,
-        w_diffuse: 0.0,
-        texture: ColorSource::Const([1.0; 3]),
-        ambient: 0.0,
-        fresnel_n: 1.5,
-        description: "rough".into(),
-        blend: Blend::Energy(Arc::new(albedo.clone())),
-        extended: Default::default(),
-    };
+    let (material, albedo) = furnace::energy_diffraction();
     let hit = Hit {
         t: 1.0,
         p: [0.0; 3],
@@ -188,4 +146,37 @@ fn diffraction_with_the_energy_blend_passes_the_furnace() {
     }
     // The albedo table's interpolation (10 × 16 nodes) against the dense grid's integral of the same lobe.
     assert!(worst < 0.01, "|L − 1| up to {worst}");
+}
+
+/// The same material on the furnace's sphere, as a scene (issue 21): the fast path lights the lobe through the
+/// environment's 64 cells (each the lobe averaged over its solid angle) and the texture through the irradiance
+/// around the normal, `(1 − A(ω_o))` of it; Monte Carlo samples the lobe and the cosine lobe. Both must give
+/// radiance 1 over the sphere: the fast path to its quadrature's accuracy at every pixel, Monte Carlo on average
+/// over the sphere within its noise.
+#[test]
+fn diffraction_with_the_energy_blend_passes_the_scene_furnace() {
+    use iridis_render::integrate::{Integration, Strategy};
+    let size = 41;
+    let fast = render(&furnace::energy_diffraction_furnace(Integration::Fast, 1.0), size, size, 1, &|_| {});
+    let (worst, n) = deviation(&fast);
+    let within_45 = worst_within(&fast, 45.0);
+    eprintln!("fast path: {n} pixels, largest |L − 1| = {worst:.2e}, within 45° of the view {within_45:.2e}");
+    assert!(n > 1000, "{n} pixels on the sphere");
+    assert!(within_45 < FAST_DIFFRACTION_FURNACE, "fast path: |L − 1| up to {within_45} within 45°");
+    assert!(worst < FAST_DIFFRACTION_FURNACE_RIM, "fast path: |L − 1| up to {worst} at the rim");
+
+    let spp = 64;
+    let mc = render(
+        &furnace::energy_diffraction_furnace(Integration::MonteCarlo(Strategy::Mis), 1.0),
+        size,
+        size,
+        spp,
+        &|_| {},
+    );
+    let on_sphere: Vec<f64> = sphere_pixels(&mc).map(|c| (c[0] + c[1] + c[2]) as f64 / 3.0).collect();
+    let mean = on_sphere.iter().sum::<f64>() / on_sphere.len() as f64;
+    let sd = (on_sphere.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (on_sphere.len() - 1) as f64).sqrt();
+    let se = sd / (on_sphere.len() as f64).sqrt();
+    eprintln!("Monte Carlo ({spp} spp): mean {mean:.5} ± {se:.5} over {} pixels (pixel sd {sd:.4})", on_sphere.len());
+    assert!((mean - 1.0).abs() < 4.0 * se + 1e-3, "Monte Carlo: mean {mean} ± {se}");
 }

@@ -579,6 +579,7 @@ struct Surf {
     b: vec3<f32>,
     tex: vec3<f32>,
     lobe: u32,            // the lobe's distributions in `tables`, NONE: none
+    albedo_table: u32,    // the energy blend's albedo table in `tables`, NONE: Algorithm 4
 }
 
 const DIFFRACTION_LOBE_PROBABILITY: f32 = 0.75;
@@ -602,7 +603,7 @@ fn no_table() -> Table {
 
 fn surf_basic(kind: u32, n: vec3<f32>, albedo: vec3<f32>, m: Microfacet, p_spec: f32) -> Surf {
     return Surf(kind, n, albedo, m, p_spec, no_film(), 0.0, 1.0, no_table(), vec4<f32>(0.0), vec3<f32>(0.0),
-                vec3<f32>(0.0), vec3<f32>(0.0), NONE);
+                vec3<f32>(0.0), vec3<f32>(0.0), NONE, NONE);
 }
 
 fn surf_lambert(n: vec3<f32>, albedo: vec3<f32>) -> Surf {
@@ -653,7 +654,8 @@ fn surf_eval(s: Surf, wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
         return out;
     }
     let lo = vec3<f32>(dot(wo, s.t), dot(wo, s.b), dot(wo, s.n));
-    return diffraction_light(s.table, s.dk, s.tex, s.t, s.b, s.n, lo, wi, wo, vec3<f32>(1.0), 0.0, NONE);
+    return diffraction_light(s.table, s.dk, s.tex, s.t, s.b, s.n, lo, wi, wo, vec3<f32>(1.0), 0.0, NONE,
+                             s.albedo_table, false);
 }
 
 struct SurfSample {

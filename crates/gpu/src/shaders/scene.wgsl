@@ -974,8 +974,47 @@ fn microfacet_at(r: u32, uv: vec2<f32>) -> Microfacet {
 // (1 - w_d) c_diffraction + (1 - alpha) c_texture + w_d c_texture, k = [scale_ru, w_diffuse, ambient, fresnel_n].
 // A light of solid angle omega > 0 (an area light, a cell of the environment) sees the lobe averaged over it
 // (the prefiltered tables at pref, render::material::Diffraction::xyz_filtered).
+// render::lobe_albedo::LobeAlbedo (the energy blend): A(omega) as linear sRGB at ALBEDO_COS midpoints in cos
+// theta x ALBEDO_AZ azimuths from t, then A_avg, at `base` in `tables`.
+const ALBEDO_COS: u32 = 10u;
+const ALBEDO_AZ: u32 = 16u;
+
+fn albedo_node(base: u32, c: u32, a: u32) -> vec3<f32> {
+    let q = base + 3u * (c * ALBEDO_AZ + a);
+    return vec3<f32>(tables[q], tables[q + 1u], tables[q + 2u]);
+}
+
+// A for a local direction (z the normal), bilinear, periodic in azimuth (LobeAlbedo::at).
+fn lobe_albedo(base: u32, l: vec3<f32>) -> vec3<f32> {
+    let fc = clamp(clamp(l.z, 0.0, 1.0) * f32(ALBEDO_COS) - 0.5, 0.0, f32(ALBEDO_COS - 1u));
+    let c0 = u32(floor(fc));
+    let tc = fc - floor(fc);
+    let c1 = min(c0 + 1u, ALBEDO_COS - 1u);
+    let a = euclid(atan2(l.y, l.x), TAU) / TAU * f32(ALBEDO_AZ);
+    let ta = a - floor(a);
+    let a0 = u32(floor(a)) % ALBEDO_AZ;
+    let a1 = (a0 + 1u) % ALBEDO_AZ;
+    let lo = mix(albedo_node(base, c0, a0), albedo_node(base, c0, a1), ta);
+    let hi = mix(albedo_node(base, c1, a0), albedo_node(base, c1, a1), ta);
+    return mix(lo, hi, tc);
+}
+
+// The texture's share under the energy blend, (1 - A(wi))(1 - A(wo)) / (1 - A_avg) (LobeAlbedo::diffuse_share).
+fn energy_share(base: u32, li: vec3<f32>, lo: vec3<f32>) -> vec3<f32> {
+    let q = base + 3u * ALBEDO_COS * ALBEDO_AZ;
+    let rest = vec3<f32>(1.0) - vec3<f32>(tables[q], tables[q + 1u], tables[q + 2u]);
+    let s = max(vec3<f32>(1.0) - lobe_albedo(base, li), vec3<f32>(0.0))
+        * max(vec3<f32>(1.0) - lobe_albedo(base, lo), vec3<f32>(0.0));
+    return select(s / max(rest, vec3<f32>(1e-9)), vec3<f32>(0.0), rest <= vec3<f32>(1e-9));
+}
+
+// One light on a diffraction material (render::material::Diffraction::shade_light_filtered): the lobe (averaged
+// over the light's solid angle omega where the prefiltered tables exist) and the texture, blended by Algorithm 4
+// or, with an albedo table (`albedo` != NONE), by the energy blend. `lobe_only`: a cell of the environment under
+// the energy blend, whose texture takes the irradiance instead (Diffraction::shade_environment_light).
 fn diffraction_light(table: Table, k: vec4<f32>, tex: vec3<f32>, t: vec3<f32>, b: vec3<f32>, n: vec3<f32>,
-                     lo: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>, e: vec3<f32>, omega: f32, pref: u32) -> vec3<f32> {
+                     lo: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>, e: vec3<f32>, omega: f32, pref: u32,
+                     albedo: u32, lobe_only: bool) -> vec3<f32> {
     let li = vec3<f32>(dot(wi, t), dot(wi, b), dot(wi, n));
     if (li.z <= 0.0 || lo.z <= 0.0) {
         return vec3<f32>(0.0);
@@ -987,10 +1026,18 @@ fn diffraction_light(table: Table, k: vec4<f32>, tex: vec3<f32>, t: vec3<f32>, b
         xyz = lookup_xyz(table, li, lo);
     }
     let c_diff = to_rgb(xyz) * e * k.x;
-    let hv = safe_normalize(wi + wo);
-    let alpha = min(abs(schlick(k.w, dot(wi, hv))), 1.0);
+    if (lobe_only) {
+        return c_diff * (1.0 - k.y);
+    }
     let c_tex = tex * e * li.z;
-    return c_diff * (1.0 - k.y) + c_tex * (1.0 - alpha) + c_tex * k.y;
+    var rest = vec3<f32>(0.0);
+    if (albedo != NONE) {
+        rest = c_tex * energy_share(albedo, li, lo);
+    } else {
+        let hv = safe_normalize(wi + wo);
+        rest = c_tex * (1.0 - min(abs(schlick(k.w, dot(wi, hv))), 1.0));
+    }
+    return c_diff * (1.0 - k.y) + rest + c_tex * k.y;
 }
 
 // glTF's normalTexture (render::material::Microfacet::normal_at): rec = [texture, scale], NONE: none. The
@@ -1049,7 +1096,7 @@ fn shade(h_in: Hit, d: vec3<f32>, depth: u32, weight: f32, thr: vec3<f32>) {
     } else if (kind == 2u) {
         // Diffraction: [kind], texture colour, [scale_ru, w_diffuse, ambient, fresnel_n],
         // [direction, rule], [angle, orientation texture], table words, table numbers,
-        // [lobe distributions, prefiltered tables] in `tables` (NONE: none).
+        // [lobe distributions, prefiltered tables, energy blend's albedo table] in `tables` (NONE: none).
         let k = scene[r + 2u];
         let od = scene[r + 3u];
         let oa = scene[r + 4u];
@@ -1060,7 +1107,7 @@ fn shade(h_in: Hit, d: vec3<f32>, depth: u32, weight: f32, thr: vec3<f32>) {
         let t = orientation(h, word(od.w), od.xyz, word(oa.y), oa.x);
         let tex = color_at(scene[r + 1u], h.uv);
         if (!mc) {
-            shade_diffraction(h, wo, table, k, t, tex, word(ext.y), thr);
+            shade_diffraction(h, wo, table, k, t, tex, word(ext.y), word(ext.z), thr);
             return;
         }
         s = surf_basic(3u, h.n, tex, Microfacet(vec4<f32>(0.0), 1.0, 0.0, 1.0), 0.0);
@@ -1070,6 +1117,7 @@ fn shade(h_in: Hit, d: vec3<f32>, depth: u32, weight: f32, thr: vec3<f32>) {
         s.b = cross(h.n, t);
         s.tex = tex;
         s.lobe = word(ext.x);
+        s.albedo_table = word(ext.z);
         ambient = tex * k.z;
     } else {
         // Thin film: [kind], [n_media, media, thickness, flags: 1 SVT, 2 transmission, 4 base, 8 colour table,
@@ -1137,7 +1185,7 @@ fn shade_lambert(h: Hit, albedo: vec3<f32>, thr: vec3<f32>) {
 // The fast path's diffraction: the lights, then the environment as ENV_LIGHTS directional lights (Algorithm 4
 // for each).
 fn shade_diffraction(h: Hit, wo: vec3<f32>, table: Table, k: vec4<f32>, t: vec3<f32>, tex: vec3<f32>, pref: u32,
-                     thr: vec3<f32>) {
+                     albedo: u32, thr: vec3<f32>) {
     let n = h.n;
     let b = cross(n, t);
     var out = tex * k.z;
@@ -1171,7 +1219,14 @@ fn shade_diffraction(h: Hit, wo: vec3<f32>, table: Table, k: vec4<f32>, t: vec3<
             }
             e = vec3<f32>(tables[q + 3u], tables[q + 4u], tables[q + 5u]);
         }
-        out = out + diffraction_light(table, k, tex, t, b, n, lo, wi, wo, e, omega, pref);
+        out = out + diffraction_light(table, k, tex, t, b, n, lo, wi, wo, e, omega, pref, albedo,
+                                      albedo != NONE && i >= n_lit);
+    }
+    // The energy blend's texture takes (1 - A(wo)) of the irradiance around the normal
+    // (Diffraction::environment_diffuse).
+    if (albedo != NONE && lo.z > 0.0) {
+        let share = max(vec3<f32>(1.0) - lobe_albedo(albedo, lo), vec3<f32>(0.0));
+        out = out + tex * irradiance(n) * ((1.0 - k.y) * share + k.y);
     }
     radiance = radiance + thr * out;
 }

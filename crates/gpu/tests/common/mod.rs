@@ -2,9 +2,13 @@
 
 use iridis_gpu::Gpu;
 
-/// The adapter, or `None` when `IRIDIS_SKIP_GPU=1` says to skip; without either, a failure with the driver hint.
-pub fn gpu() -> Option<Gpu> {
-    match Gpu::new() {
+/// The adapter, opened once per test process and shared by its tests (or `None` when `IRIDIS_SKIP_GPU=1` says to
+/// skip; without either, a failure with the driver hint). One device means one compilation of each pipeline per
+/// process: on lavapipe the scene shader takes minutes, and tests running in parallel on devices of their own
+/// each compiled it at the same time.
+pub fn gpu() -> Option<&'static Gpu> {
+    static GPU: std::sync::OnceLock<Option<Gpu>> = std::sync::OnceLock::new();
+    GPU.get_or_init(|| match Gpu::new() {
         Ok(g) => {
             eprintln!("adapter: {}", g.adapter_name());
             Some(g)
@@ -14,5 +18,6 @@ pub fn gpu() -> Option<Gpu> {
             None
         }
         Err(e) => panic!("{e}\nThe GPU tests need a Vulkan adapter; set IRIDIS_SKIP_GPU=1 to skip them."),
-    }
+    })
+    .as_ref()
 }
