@@ -62,7 +62,7 @@ fn tables_built_on_the_gpu_match_the_cpu() {
         let params = TableParams { uv_resolution: res, uv_power: 5.0 };
         let cpu = LookupTable::build(&terms, &spectral, params, spec, &|_| {}).unwrap();
         let rows = std::sync::atomic::AtomicUsize::new(0);
-        let on_gpu = iridis_gpu::build_table(&gpu, &terms, &spectral, params, spec, &|r| {
+        let on_gpu = iridis_gpu::build_table(gpu, &terms, &spectral, params, spec, &|r| {
             rows.store(r, std::sync::atomic::Ordering::Relaxed)
         })
         .unwrap();
@@ -116,7 +116,7 @@ fn the_ground_truth_on_the_gpu_matches_the_cpu() {
         for theta in [0.0, 50.0] {
             let wi = direction(f64::to_radians(theta), 1.0);
             let pairs: Vec<([f64; 3], [f64; 3])> = cells.iter().map(|&(_, wr)| (wi, wr)).collect();
-            let g = GpuGroundTruth::new(&gpu, &gt).unwrap();
+            let g = GpuGroundTruth::new(gpu, &gt).unwrap();
             let power = g.power(&pairs, &|_| {}).unwrap();
             // |A|² against the CPU's per wavenumber, relative to the pair's brightest wavenumber.
             let s = gt.wavenumbers();
@@ -148,7 +148,7 @@ fn the_ground_truth_on_the_gpu_matches_the_cpu() {
 #[test]
 fn fixed_point_phases_keep_f32_accuracy() {
     let Some(gpu) = gpu() else { return };
-    let err = iridis_gpu::ground_truth::phase_accuracy(&gpu, 100_000).unwrap();
+    let err = iridis_gpu::ground_truth::phase_accuracy(gpu, 100_000).unwrap();
     eprintln!("phase error of the ground-truth shader over 100 000 cases (indices up to 2^31): {err:.2e} rad");
     // The f32 angle within an octant rounds by up to 4.7e-8 rad, the f32 polynomials add a few ulps: measured
     // 1.2e-7 rad on lavapipe (an f32 phase of 2^31 steps would be off by whole turns).
@@ -172,7 +172,7 @@ fn encoded_tables_render_what_the_cpu_decodes() {
     for e in ["f32", "f16", "cheb12", "cheb12-f16", "cheb45"] {
         let e: TableEncoding = e.parse().unwrap();
         // Split over several buffers as a large table would be.
-        let lookup = GpuLookup::encoded(&gpu, &table, Fresnel::default(), true, e, 2_000_000).unwrap();
+        let lookup = GpuLookup::encoded(gpu, &table, Fresnel::default(), true, e, 2_000_000).unwrap();
         assert!(lookup.table_buffers() >= 2 || e != TableEncoding::F32, "{e:?}: {} buffers", lookup.table_buffers());
         let map = lookup.render_map(wi, size, tone).unwrap();
         let gpu_xyz: Vec<Xyz> = cells.iter().map(|&(i, _)| map.xyz[i]).collect();

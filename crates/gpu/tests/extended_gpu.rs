@@ -150,7 +150,7 @@ fn monte_carlo_on_the_gpu_converges_to_the_cpu() {
     let (w, h, spp) = (48, 32, 64);
     let cpu_a = render(&scene("monte-carlo", 0), w, h, spp, &|_| {});
     let cpu_b = render(&scene("monte-carlo", 1), w, h, spp, &|_| {});
-    let g = GpuScene::new(&gpu, &scene("monte-carlo", 0)).unwrap();
+    let g = GpuScene::new(gpu, &scene("monte-carlo", 0)).unwrap();
     let img = g.render(w, h, spp, &|_| {}).unwrap();
     assert!(g.stack_overflow().is_none(), "{:?}", g.stack_overflow());
     let (ba, bb, bg) = (blocks(&cpu_a, 4), blocks(&cpu_b, 4), blocks(&img, 4));
@@ -188,7 +188,7 @@ fn the_fast_path_against_the_converged_render() {
     let (w, h, spp) = (48, 32, 1024);
     let converged = render(&scene("monte-carlo", 0), w, h, spp, &|_| {});
     let other = render(&scene("monte-carlo", 1), w, h, spp, &|_| {});
-    let fast = GpuScene::new(&gpu, &scene("fast", 0)).unwrap().render(w, h, 1, &|_| {}).unwrap();
+    let fast = GpuScene::new(gpu, &scene("fast", 0)).unwrap().render(w, h, 1, &|_| {}).unwrap();
     let (m, p) = delta_e(&fast, &converged);
     let (nm, np) = delta_e(&other, &converged);
     eprintln!("fast vs converged: ΔE00 mean {m:.3}, p99 {p:.3}; noise floor {nm:.3} / {np:.3}");
@@ -206,7 +206,7 @@ fn the_fast_path_with_area_lights_matches_the_cpu() {
     let s = scene("fast", 0);
     let (w, h) = (48, 32);
     let cpu = render(&s, w, h, 1, &|_| {});
-    let img = GpuScene::new(&gpu, &s).unwrap().render(w, h, 1, &|_| {}).unwrap();
+    let img = GpuScene::new(gpu, &s).unwrap().render(w, h, 1, &|_| {}).unwrap();
     let (mean, p99) = delta_e(&cpu, &img);
     eprintln!("fast path: mean ΔE00 {mean:.4}, p99 {p99:.4}");
     // Measured on lavapipe (2026-11-25): mean 0.0001, p99 0.0014 -- f32 against f64. The bounds leave 35-100x
@@ -226,7 +226,7 @@ fn a_lambertian_in_the_monte_carlo_furnace_on_the_gpu() {
          [[object]]\nkind = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1.0\nmaterial = \"m\"\n";
     let s = parse_scene(text, "furnace.toml", std::path::Path::new(".")).unwrap();
     let (size, spp) = (32u32, 64u32);
-    let img = GpuScene::new(&gpu, &s).unwrap().render(size, size, spp, &|_| {}).unwrap();
+    let img = GpuScene::new(gpu, &s).unwrap().render(size, size, spp, &|_| {}).unwrap();
     // Over the sphere's pixels: the mean must be 1 within its standard error (pixels are independent).
     let mut v = Vec::new();
     for row in 0..size {

@@ -80,7 +80,7 @@ fn lookup_brdf_maps_match_the_cpu() {
         let cpu = Lookup::new(table.clone(), shading, Precision::F64).unwrap();
         let cpu_map = iridis_diffraction::map::brdf_map(&cpu, wi, size, &|_| {});
         let tone = ToneMap { exposure_ru: 1500.0, encoding: Encoding::Srgb };
-        let g = GpuLookup::new(&gpu, &table, fresnel.clone(), shadowing).unwrap().with_convention(convention);
+        let g = GpuLookup::new(gpu, &table, fresnel.clone(), shadowing).unwrap().with_convention(convention);
         let out = g.render_map(wi, size, tone).unwrap();
         assert_eq!(out.xyz.len(), size * size);
         // Outside the disk the map is black on both.
@@ -118,19 +118,19 @@ fn a_table_split_over_several_buffers_gives_the_same_map() {
     let table = small_table("elaphe");
     let wi = direction(25f64.to_radians(), 60f64.to_radians());
     let tone = ToneMap::default();
-    let whole = GpuLookup::new(&gpu, &table, Fresnel::default(), true).unwrap();
+    let whole = GpuLookup::new(gpu, &table, Fresnel::default(), true).unwrap();
     assert_eq!(whole.table_buffers(), 1);
     let reference = whole.render_map(wi, 64, tone).unwrap();
     let row = (table.meta.uv_resolution * 3 * table.powers() * 4) as u64;
     // 40 rows per buffer: 121 rows need 3 buffers (rows 0-40, 40-80, 80-120); 30 rows: 4 buffers.
     for (rows, buffers) in [(41u64, 3usize), (31, 4)] {
-        let split = GpuLookup::with_binding_limit(&gpu, &table, Fresnel::default(), true, rows * row).unwrap();
+        let split = GpuLookup::with_binding_limit(gpu, &table, Fresnel::default(), true, rows * row).unwrap();
         assert_eq!(split.table_buffers(), buffers);
         let out = split.render_map(wi, 64, tone).unwrap();
         assert_eq!(out.xyz, reference.xyz, "{buffers} buffers");
     }
     // More than four buffers' worth is refused with advice.
-    let e = GpuLookup::with_binding_limit(&gpu, &table, Fresnel::default(), true, 20 * row).unwrap_err().to_string();
+    let e = GpuLookup::with_binding_limit(gpu, &table, Fresnel::default(), true, 20 * row).unwrap_err().to_string();
     assert!(e.contains("--uv-resolution"), "{e}");
 }
 
@@ -186,7 +186,7 @@ fn thin_film_colours_match_the_cpu() {
         // `tables_meet_the_colour_bound`, holds to mean 0.02, p99 0.35 in f64 over 0°–89.5°).
         for path in [FilmPath::Direct, FilmPath::Table] {
             let (mean_max, p99_max) = if path == FilmPath::Direct { (0.01, 0.1) } else { (0.02, 0.35) };
-            let film = GpuFilm::new(&gpu, &stack, &weights).unwrap().with_path(path);
+            let film = GpuFilm::new(gpu, &stack, &weights).unwrap().with_path(path);
             let run = film.frame(&frame, ToneMap::default()).unwrap();
             assert_eq!(matches!(run.path(), FilmPathUsed::Table { .. }), path == FilmPath::Table, "{name}");
             run.run().unwrap();
@@ -232,7 +232,7 @@ fn a_layer_at_its_critical_angle() {
         FilmFrame { width: w, height: h, angle_rad: (crit - 0.01, crit + 0.01), offset_nm: (-100.0, 100.0), svt: None };
     assert!((frame.pixel(100, 0).0 - crit).abs() < 1e-15);
     // No colour table follows the kink at the critical angle: the fast path evaluates directly and says why.
-    let film = GpuFilm::new(&gpu, &stack, &weights).unwrap();
+    let film = GpuFilm::new(gpu, &stack, &weights).unwrap();
     assert_eq!(film.path(), FilmPath::Table);
     let run = film.frame(&frame, ToneMap::default()).unwrap();
     match run.path() {
@@ -257,10 +257,10 @@ fn thin_film_frame_rejects_bad_input() {
     let weights = SpectralWeights::new(&grid, Illuminant::D65, Observer::Cie1931);
     // Rutile has no data below 430 nm: an error that names the material, not a silent extrapolation.
     let stack: Stack = "air | rutile 100nm | glass".parse().unwrap();
-    let e = GpuFilm::new(&gpu, &stack, &weights).unwrap_err().to_string();
+    let e = GpuFilm::new(gpu, &stack, &weights).unwrap_err().to_string();
     assert!(e.contains("rutile") && e.contains("380"), "{e}");
     let stack: Stack = "air | water 300nm | air".parse().unwrap();
-    let film = GpuFilm::new(&gpu, &stack, &weights).unwrap();
+    let film = GpuFilm::new(gpu, &stack, &weights).unwrap();
     let bad = FilmFrame { width: 4, height: 4, angle_rad: (0.0, 2.0), offset_nm: (0.0, 0.0), svt: None };
     assert!(film.render(&bad, ToneMap::default()).unwrap_err().to_string().contains("0°–90°"));
     let bad = FilmFrame { angle_rad: (0.0, 1.0), svt: Some((10.0, vec![0.5; 3])), ..bad };

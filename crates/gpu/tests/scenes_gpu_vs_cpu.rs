@@ -83,7 +83,7 @@ fn every_example_scene_matches_the_cpu_at_1e_3_and_1e3_scale() {
         for scale in [1e-3, 1e3] {
             let mut scene = load_scene(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
             scene.scale(scale);
-            let (mean, p99, off, lit) = compare(&gpu, &scene, &name, 64);
+            let (mean, p99, off, lit) = compare(gpu, &scene, &name, 64);
             eprintln!("{name:<32} ×{scale:<6} mean ΔE00 {mean:.3}, p99 {p99:.3}, > 8 levels {:.3} %", off * 100.0);
             assert!(lit, "{name} ×{scale}: the CPU image is nearly black");
             report.push((format!("{name} ×{scale}"), mean, p99, off));
@@ -259,7 +259,7 @@ fn coverage_scenes_match_the_cpu_at_every_scale() {
         for scale in [1.0, 1e-3, 1e3] {
             let mut scene = parse_scene(text, what, dir.path()).unwrap_or_else(|e| panic!("{what}: {e}"));
             scene.scale(scale);
-            let (mean, p99, off, lit) = compare(&gpu, &scene, what, 72);
+            let (mean, p99, off, lit) = compare(gpu, &scene, what, 72);
             eprintln!("{what:<88} ×{scale:<6} mean ΔE00 {mean:.3}, p99 {p99:.3}, > 8 levels {:.3} %", off * 100.0);
             assert!(lit, "{what} ×{scale}: the CPU image is nearly black");
             report.push((format!("{what} ×{scale}"), mean, p99, off));
@@ -282,7 +282,7 @@ fn every_example_scene_matches_the_cpu() {
         let name = path.file_name().unwrap().to_string_lossy().to_string();
         let (w, h) = (96, (96.0 * scene.output.height as f64 / scene.output.width as f64).round() as u32);
         let cpu = render(&scene, w, h, 1, &|_| {});
-        let g = GpuScene::new(&gpu, &scene).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let g = GpuScene::new(gpu, &scene).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         let img = g.render(w, h, 1, &|_| {}).unwrap();
         let d = delta_e(&cpu, &img, scene.output.exposure);
         let mean = d.iter().sum::<f64>() / d.len() as f64;
@@ -331,7 +331,7 @@ fn a_full_ray_stack_is_reported_with_its_depth() {
         ));
     }
     let scene = parse_scene(&text, "films.toml", std::path::Path::new(".")).unwrap();
-    let g = GpuScene::new(&gpu, &scene).unwrap();
+    let g = GpuScene::new(gpu, &scene).unwrap();
     g.render(4, 4, 1, &|_| {}).unwrap();
     let o = g.stack_overflow().expect("the stack overflows");
     eprintln!("{o}");
@@ -340,7 +340,7 @@ fn a_full_ray_stack_is_reported_with_its_depth() {
     // Fewer films fit: no report.
     let few = parse_scene(&text.replace("max_depth = 40", "max_depth = 10"), "films.toml", std::path::Path::new("."))
         .unwrap();
-    let g = GpuScene::new(&gpu, &few).unwrap();
+    let g = GpuScene::new(gpu, &few).unwrap();
     g.render(4, 4, 1, &|_| {}).unwrap();
     assert_eq!(g.stack_overflow(), None);
 }
@@ -358,7 +358,7 @@ fn a_metallic_roughness_texture_matches_the_cpu() {
     let dir = tempfile::tempdir().unwrap();
     let path = gltf_fixtures::write_metallic_roughness_quad(dir.path(), &[[0, 40, 255], [0, 255, 128]]);
     let scene = load_scene(&path).unwrap();
-    let (mean, p99, off, lit) = compare(&gpu, &scene, "metallic-roughness quad", 72);
+    let (mean, p99, off, lit) = compare(gpu, &scene, "metallic-roughness quad", 72);
     eprintln!("metallic-roughness quad: mean ΔE00 {mean:.3}, p99 {p99:.3}, > 8 levels {:.3} %", off * 100.0);
     assert!(lit, "the CPU image is nearly black");
     assert!(mean < 1.0 && p99 < 3.0 && off < 0.01, "mean ΔE00 {mean:.3}, p99 {p99:.3}, {off:.4}");
@@ -373,7 +373,7 @@ fn a_normal_texture_matches_the_cpu() {
     let dir = tempfile::tempdir().unwrap();
     let path = gltf_fixtures::write_normal_mapped_quad(dir.path(), &[[55, 128, 232], [128, 171, 248]], 1.0);
     let scene = load_scene(&path).unwrap();
-    let (mean, p99, off, lit) = compare(&gpu, &scene, "normal-mapped quad", 72);
+    let (mean, p99, off, lit) = compare(gpu, &scene, "normal-mapped quad", 72);
     eprintln!("normal-mapped quad: mean ΔE00 {mean:.3}, p99 {p99:.3}, > 8 levels {:.3} %", off * 100.0);
     assert!(lit, "the CPU image is nearly black");
     assert!(mean < 1.0 && p99 < 3.0 && off < 0.01, "mean ΔE00 {mean:.3}, p99 {p99:.3}, {off:.4}");

@@ -20,7 +20,7 @@ fn every_material_passes_the_white_furnace_on_the_gpu_at_every_scale() {
     let mut failures = Vec::new();
     for scale in [1.0, 1e-3, 1e3] {
         let scene = furnace_grid(scale);
-        let g = GpuScene::new(&gpu, &scene).unwrap();
+        let g = GpuScene::new(gpu, &scene).unwrap();
         let img = g.render(GRID_COLS as u32 * k, rows * k, 1, &|_| {}).unwrap();
         assert_eq!(g.stack_overflow(), None);
         for ((name, _), (worst, n)) in MATERIALS.iter().zip(grid_deviation(&img)) {
@@ -55,7 +55,7 @@ fn rough_films_in_the_gpu_furnace_reflect_their_albedo() {
             "[materials.m]\nkind = \"thinfilm\"\nstack = \"{stack}\"\nroughness = \"{sigma}\"\ncorrelation = \"{tau}\""
         );
         let scene = furnace::furnace_scene(&mat, 1.0);
-        let g = GpuScene::new(&gpu, &scene).unwrap();
+        let g = GpuScene::new(gpu, &scene).unwrap();
         let img = g.render(21, 21, 1, &|_| {}).unwrap();
         let Material::ThinFilm(f) = &scene.materials[0] else { panic!("{stack}: not a film") };
         let rough = RoughStack::new(f.stack.clone(), f.rough.expect("a rough film"));
@@ -101,7 +101,7 @@ fn diffraction_with_the_energy_blend_in_the_gpu_furnace() {
     let Some(gpu) = gpu() else { return };
     let size = 41;
     let scene = energy_diffraction_furnace(Integration::Fast, 1.0);
-    let img = GpuScene::new(&gpu, &scene).unwrap().render(size, size, 1, &|_| {}).unwrap();
+    let img = GpuScene::new(gpu, &scene).unwrap().render(size, size, 1, &|_| {}).unwrap();
     let cpu = iridis_render::render(&scene, size, size, 1, &|_| {});
     let (worst, n) = deviation(&img);
     let within_45 = worst_within(&img, 45.0);
@@ -117,7 +117,7 @@ fn diffraction_with_the_energy_blend_in_the_gpu_furnace() {
 
     let spp = 64;
     let mc = energy_diffraction_furnace(Integration::MonteCarlo(Strategy::Mis), 1.0);
-    let img = GpuScene::new(&gpu, &mc).unwrap().render(size, size, spp, &|_| {}).unwrap();
+    let img = GpuScene::new(gpu, &mc).unwrap().render(size, size, spp, &|_| {}).unwrap();
     let on_sphere: Vec<f64> = sphere_pixels(&img).map(|c| (c[0] + c[1] + c[2]) as f64 / 3.0).collect();
     let mean = on_sphere.iter().sum::<f64>() / on_sphere.len() as f64;
     let sd = (on_sphere.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (on_sphere.len() - 1) as f64).sqrt();
