@@ -11,6 +11,14 @@ use iridis_color::integrate::white_point;
 use iridis_color::{Illuminant, Lab, Observer, Xyz};
 
 /// True when the GPU tests may run; panics with the driver hint when there is no adapter and no skip.
+/// Tests that run the scene shader take turns: on lavapipe its first compilation takes minutes, and Mesa's shader
+/// cache serves every later process only once one has finished it (parallel first runs each compiled it).
+static SCENE_SHADER: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+fn scene_shader_turn() -> std::sync::MutexGuard<'static, ()> {
+    SCENE_SHADER.lock().unwrap_or_else(|e| e.into_inner())
+}
+
 fn have_gpu() -> bool {
     let out = iridis(&["bench", "gpu", "--size", "8", "--film-size", "8x8", "--frames", "1", "--table", "none.npz"]);
     let stderr = String::from_utf8_lossy(&out.stderr);
@@ -101,6 +109,7 @@ fn a_gpu_run_without_xdg_runtime_dir_prints_no_driver_noise() {
 /// docs/json.md's GPU sections against the real output (the others are checked by json_doc_cli.rs).
 #[test]
 fn gpu_json_matches_docs_json_md() {
+    let _turn = scene_shader_turn();
     if !have_gpu() {
         return;
     }
@@ -160,6 +169,7 @@ fn brdf_map_on_the_gpu_matches_the_cpu_image() {
 
 #[test]
 fn bench_gpu_reports_adapter_and_frame_times() {
+    let _turn = scene_shader_turn();
     if !have_gpu() {
         return;
     }
@@ -385,6 +395,7 @@ fn compare_and_sweep_on_the_gpu_give_the_cpu_numbers() {
 
 #[test]
 fn render_on_the_gpu_writes_the_cpu_image() {
+    let _turn = scene_shader_turn();
     if !have_gpu() {
         return;
     }
@@ -417,6 +428,7 @@ fn render_on_the_gpu_writes_the_cpu_image() {
 
 #[test]
 fn bench_gpu_times_a_scene_against_the_cpu() {
+    let _turn = scene_shader_turn();
     if !have_gpu() {
         return;
     }
@@ -443,16 +455,10 @@ fn viewer_starts_renders_and_answers_input_under_xvfb() {
     viewer_check(&["builtin:blazed", "--uv-resolution", "64"]);
 }
 
-/// The viewer on a scene. Opt-in (`IRIDIS_VIEWER_SCENE_TEST=1`): on lavapipe the scene shader's pipeline, which
-/// headless renders compile in ~3 minutes (2-core VM), took over 17 CPU-minutes in LLVM at the viewer's first
-/// dispatch (2026-11-26; same device settings, cause not found), longer than CI allows. The scene frames
-/// themselves are tested headless (`scenes_gpu_vs_cpu`), and the window path by the test above.
+/// The viewer on a scene: the scene shader's frames, presented the same way.
 #[test]
 fn viewer_on_a_scene_under_xvfb() {
-    if std::env::var("IRIDIS_VIEWER_SCENE_TEST").as_deref() != Ok("1") {
-        eprintln!("viewer scene test skipped: set IRIDIS_VIEWER_SCENE_TEST=1 to run it (slow on lavapipe)");
-        return;
-    }
+    let _turn = scene_shader_turn();
     viewer_check(&["examples/snake_elaphe.toml"]);
 }
 

@@ -89,10 +89,8 @@ pub struct Gpu {
 }
 
 /// The instance, adapter, device and queue of every iridis GPU path, headless or in the viewer's window: Vulkan,
-/// high-performance preference, the adapter's own limits, and timestamp queries where it has them. One device
-/// recipe for both matters beyond tidiness: lavapipe compiled the scene shader in ~3 minutes on this device and
-/// for over 17 on the one eframe opened by itself (2-core VM, 2026-11-26), and its disk cache only serves a
-/// pipeline compiled for the same device settings.
+/// high-performance preference, the adapter's own limits, and timestamp queries where it has them (one recipe,
+/// so that the viewer renders on exactly the device the tests and `render --gpu` use).
 pub fn open_vulkan() -> Result<(wgpu::Instance, wgpu::Adapter, wgpu::Device, wgpu::Queue, wgpu::AdapterInfo), GpuError>
 {
     let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();

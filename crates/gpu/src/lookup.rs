@@ -367,7 +367,8 @@ pub(crate) fn display_buffer(gpu: &Gpu, tone: ToneMap) -> wgpu::Buffer {
     gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("display"),
         contents: bytemuck::cast_slice(&display_words(tone)),
-        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        // Uniform for the lookup and film shaders, storage for the scene shader (scene.wgsl says why).
+        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
     })
 }
 

@@ -931,7 +931,7 @@ impl<'g> GpuScene<'g> {
             let params = gpu.device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("scene params"),
                 size: (PARAM_WORDS * 4) as u64,
-                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
                 mapped_at_creation: false,
             });
             let display = display_buffer(gpu, tone);

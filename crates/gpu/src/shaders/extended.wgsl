@@ -580,6 +580,7 @@ struct Surf {
     tex: vec3<f32>,
     lobe: u32,            // the lobe's distributions in `tables`, NONE: none
     albedo_table: u32,    // the energy blend's albedo table in `tables`, NONE: Algorithm 4
+    metal: u32,           // a film over a metallic base: the metal stack's media block, NONE: none
 }
 
 const DIFFRACTION_LOBE_PROBABILITY: f32 = 0.75;
@@ -603,7 +604,7 @@ fn no_table() -> Table {
 
 fn surf_basic(kind: u32, n: vec3<f32>, albedo: vec3<f32>, m: Microfacet, p_spec: f32) -> Surf {
     return Surf(kind, n, albedo, m, p_spec, no_film(), 0.0, 1.0, no_table(), vec4<f32>(0.0), vec3<f32>(0.0),
-                vec3<f32>(0.0), vec3<f32>(0.0), NONE, NONE);
+                vec3<f32>(0.0), vec3<f32>(0.0), NONE, NONE, NONE);
 }
 
 fn surf_lambert(n: vec3<f32>, albedo: vec3<f32>) -> Surf {
@@ -616,27 +617,32 @@ fn surf_microfacet(m: Microfacet, n: vec3<f32>, albedo: vec3<f32>, cos_o: f32) -
 }
 
 fn surf_film(film: Film, base: Microfacet, n: vec3<f32>, albedo: vec3<f32>, offset: f32, factor: f32,
-             r_view: vec3<f32>) -> Surf {
+             r_view: vec3<f32>, metal: u32) -> Surf {
     let diffuse = (vec3<f32>(1.0) - r_view) * albedo * (1.0 - base.metallic);
     var s = surf_basic(2u, n, albedo, base, spec_probability(max(r_view, vec3<f32>(base.metallic)), diffuse));
     s.film = film;
     s.offset = offset;
     s.factor = factor;
+    s.metal = metal;
     return s;
 }
 
-// pi f cos(theta_i) of the film over its base for light from wi (render::material::ThinFilm::over_base_light,
-// dielectric base), without the factor.
+// pi f cos(theta_i) of the film over its base for light from wi (render::material::ThinFilm::over_base_light),
+// without the factor: the GGX lobe carries the film's reflectance over the dielectric and, for a metallic base,
+// over the metal (the metal stack `metal`), mixed by the base's metallic; the diffuse takes what the film over
+// the dielectric lets through.
 fn film_base_light(film: Film, base: Microfacet, albedo: vec3<f32>, n: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>,
-                   offset: f32) -> vec3<f32> {
+                   offset: f32, metal: u32) -> vec3<f32> {
     let ci = dot(n, wi);
     if (ci <= 0.0 || dot(n, wo) <= 0.0) {
         return vec3<f32>(0.0);
     }
     let vh = clamp(dot(wi, safe_normalize(wi + wo)), 0.0, 1.0);
-    let rl = to_rgb(film_xyz(film, sqrt(max(1.0 - vh * vh, 0.0)), vh, offset).r);
+    let sin_h = sqrt(max(1.0 - vh * vh, 0.0));
+    let rl = to_rgb(film_xyz(film, sin_h, vh, offset).r);
+    let spec = film_specular(film, metal, base.metallic, sin_h, vh, offset, rl);
     let diffuse = albedo * (1.0 - base.metallic);
-    return ggx_single(base, n, wi, wo) * rl + (vec3<f32>(1.0) - rl) * diffuse * ci;
+    return ggx_single(base, n, wi, wo) * spec + (vec3<f32>(1.0) - rl) * diffuse * ci;
 }
 
 fn surf_eval(s: Surf, wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
@@ -647,7 +653,7 @@ fn surf_eval(s: Surf, wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
         return microfacet_reflect(s.m, s.n, wi, wo, s.albedo);
     }
     if (s.kind == 2u) {
-        var out = film_base_light(s.film, s.m, s.albedo, s.n, wi, wo, s.offset) * s.factor;
+        var out = film_base_light(s.film, s.m, s.albedo, s.n, wi, wo, s.offset, s.metal) * s.factor;
         if (s.factor < 1.0) {
             out = out + microfacet_reflect(s.m, s.n, wi, wo, s.albedo) * (1.0 - s.factor);
         }

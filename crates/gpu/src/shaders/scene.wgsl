@@ -56,8 +56,11 @@ struct Params {
     pad: u32,
 }
 
-@group(0) @binding(0) var<uniform> P: Params;
-@group(0) @binding(1) var<uniform> D: Display;
+// The parameters and the display in storage, not uniform, buffers: lavapipe specialises a shader on the values of
+// uniforms that steer its loops and branches (inlined uniforms), so every scene, camera move or light drag
+// compiled a new variant of this shader, loops unrolled, for up to 17 CPU-minutes each (2026-11-26).
+@group(0) @binding(0) var<storage, read> P: Params;
+@group(0) @binding(1) var<storage, read> D: Display;
 @group(0) @binding(2) var<storage, read> scene: array<vec4<f32>>;
 @group(0) @binding(3) var<storage, read> texels: array<f32>;
 // Per film: its media at every wavelength sample (l * n_media + j), then its thicknesses (x).
@@ -1162,9 +1165,9 @@ fn shade(h_in: Hit, d: vec3<f32>, depth: u32, weight: f32, thr: vec3<f32>) {
             film_over_base(film, tabbed, tab, word(sv.w), base, h, wo, c.r, offset, factor, depth, weight, thr);
             return;
         }
-        // The film over the base and the base alone, mixed by the factor, as one BRDF for every light (the
-        // dielectric base's film; a metallic base's metal stack is the fast path's only).
-        s = surf_film(film, base, h.n, color_at(base.color, h.uv), offset, factor, to_rgb(c.r));
+        // The film over the base and the base alone, mixed by the factor, as one BRDF for every light (over a
+        // metallic base, the metal stack's reflectance as in the fast path).
+        s = surf_film(film, base, h.n, color_at(base.color, h.uv), offset, factor, to_rgb(c.r), word(sv.w));
     }
     shade_mc(h, s, wo, depth, weight, thr, ambient);
 }

@@ -224,9 +224,7 @@ pub fn energy_diffraction_furnace(integration: iridis_render::integrate::Integra
     let mut s = furnace_scene("[materials.m]\nkind = \"lambert\"\ncolor = [1, 1, 1]", scale);
     s.materials[0] = iridis_render::material::Material::Diffraction(Box::new(energy_diffraction().0));
     s.integration = integration;
-    if integration != iridis_render::integrate::Integration::Fast {
-        s.env_sampler = iridis_render::light::EnvSampler::new(&s.environment);
-    }
+    s.update_irradiance();
     s
 }
 
