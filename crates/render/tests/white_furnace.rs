@@ -180,3 +180,38 @@ fn diffraction_with_the_energy_blend_passes_the_scene_furnace() {
     eprintln!("Monte Carlo ({spp} spp): mean {mean:.5} ± {se:.5} over {} pixels (pixel sd {sd:.4})", on_sphere.len());
     assert!((mean - 1.0).abs() < 4.0 * se + 1e-3, "Monte Carlo: mean {mean} ± {se}");
 }
+
+/// The energy blend keeps the BRDF reciprocal: the lobe is (radiometric table), and the texture's share
+/// `(1 − A(ω_i))(1 − A(ω_o))/(1 − A_avg)` is symmetric in its two directions, so `f(ω_i, ω_o) = f(ω_o, ω_i)` for the
+/// whole material (`π f cos θ_i` is what `shade_light` returns for a light of unit irradiance).
+#[test]
+fn the_energy_blend_is_reciprocal() {
+    use iridis_render::geometry::Hit;
+    let (material, _) = furnace::energy_diffraction();
+    let hit = Hit {
+        t: 1.0,
+        p: [0.0; 3],
+        n: [0.0, 0.0, 1.0],
+        ng: [0.0, 0.0, 1.0],
+        front: true,
+        uv: [0.0; 2],
+        tangent: None,
+        tangent_sign: 1.0,
+        along: None,
+        material: 0,
+    };
+    let dir = |t: f64, p: f64| [t.sin() * p.cos(), t.sin() * p.sin(), t.cos()];
+    let f = |wi: [f64; 3], wo: [f64; 3]| {
+        material.shade_light(&hit, [1.0, 0.0, 0.0], wi, wo, [1.0; 3], [1.0; 3]).map(|c| c / wi[2])
+    };
+    let mut worst = 0.0f64;
+    for (ti, pi, to, po) in [(0.2, 0.0, 0.3, 2.8), (0.5, 0.5, 0.4, 3.5), (0.9, 1.0, 0.75, 4.2), (1.2, 2.0, 0.1, 0.3)] {
+        let (wi, wo) = (dir(ti, pi), dir(to, po));
+        let (a, b) = (f(wi, wo), f(wo, wi));
+        for k in 0..3 {
+            worst = worst.max((a[k] - b[k]).abs() / a[k].abs().max(1e-12));
+        }
+    }
+    eprintln!("energy blend: largest relative |f(ω_i, ω_o) − f(ω_o, ω_i)| = {worst:.1e}");
+    assert!(worst < 1e-6, "relative {worst}");
+}
