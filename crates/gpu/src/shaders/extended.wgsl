@@ -565,7 +565,7 @@ fn prefiltered_sum(t: Table, pref: u32, li: vec3<f32>, lo: vec3<f32>, omega: f32
 // ------------------------------------------------------------------ surfaces (render::integrate::Surface)
 
 struct Surf {
-    kind: u32,            // 0 Lambert, 1 microfacet, 2 film over a base, 3 diffraction
+    kind: u32,            // 0 Lambert, 1 microfacet, 2 film over a base, 3 diffraction, 4 rough film's diffuse
     n: vec3<f32>,
     albedo: vec3<f32>,
     m: Microfacet,        // the microfacet, or the film's base
@@ -581,6 +581,7 @@ struct Surf {
     lobe: u32,            // the lobe's distributions in `tables`, NONE: none
     albedo_table: u32,    // the energy blend's albedo table in `tables`, NONE: Algorithm 4
     metal: u32,           // a film over a metallic base: the metal stack's media block, NONE: none
+    rough: u32,           // a rough film: its material record (rough_tab)
 }
 
 const DIFFRACTION_LOBE_PROBABILITY: f32 = 0.75;
@@ -604,7 +605,7 @@ fn no_table() -> Table {
 
 fn surf_basic(kind: u32, n: vec3<f32>, albedo: vec3<f32>, m: Microfacet, p_spec: f32) -> Surf {
     return Surf(kind, n, albedo, m, p_spec, no_film(), 0.0, 1.0, no_table(), vec4<f32>(0.0), vec3<f32>(0.0),
-                vec3<f32>(0.0), vec3<f32>(0.0), NONE, NONE, NONE);
+                vec3<f32>(0.0), vec3<f32>(0.0), NONE, NONE, NONE, NONE);
 }
 
 fn surf_lambert(n: vec3<f32>, albedo: vec3<f32>) -> Surf {
@@ -658,6 +659,16 @@ fn surf_eval(s: Surf, wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
             out = out + microfacet_reflect(s.m, s.n, wi, wo, s.albedo) * (1.0 - s.factor);
         }
         return out;
+    }
+    if (s.kind == 4u) {
+        // pi k_d cos theta_l of the rough film (render::integrate::Surface::RoughDiffuse), times its factor.
+        let cl = dot(s.n, wi);
+        let co = dot(s.n, wo);
+        if (cl <= 0.0 || co <= 0.0) {
+            return vec3<f32>(0.0);
+        }
+        let d = rough_diffuse(rough_tab(s.rough), co, cl, relative_azimuth(s.n, wi, wo), s.offset);
+        return to_rgb(d) * (cl * s.factor);
     }
     let lo = vec3<f32>(dot(wo, s.t), dot(wo, s.b), dot(wo, s.n));
     return diffraction_light(s.table, s.dk, s.tex, s.t, s.b, s.n, lo, wi, wo, vec3<f32>(1.0), 0.0, NONE,

@@ -1139,35 +1139,45 @@ fn shade(h_in: Hit, d: vec3<f32>, depth: u32, weight: f32, thr: vec3<f32>) {
             offset = sv.y * (alpha / 0.5 - 1.0);
         }
         if ((flags & 16u) != 0u) {
-            // Rough films from their tables; Monte Carlo lights them as the fast path does (docs/render.md).
-            rough_film(r, h, wo, cosv, offset, factor, depth, weight, thr);
-            return;
-        }
-        let film = Film(word(fw.x), P.n_lambda, word(fw.y), word(fw.z));
-        let tw = scene[r + 6u];
-        let to = scene[r + 7u];
-        let tab = FilmTab(word(tw.x), word(tw.y), word(tw.z), to.x, to.y);
-        let tabbed = (flags & 8u) != 0u;
-        let c = film_colors(film, tabbed, tab, cosv, offset);
-        if ((flags & 4u) == 0u) {
-            // A film alone: a mirror (and a window), whose rays are traced.
-            let r_rgb = to_rgb(c.r) * factor;
-            push_ray(h.p + h.ng * eps(h.p, h.t), reflect_dir(wo, h.n), thr * r_rgb, depth + 1u,
-                     weight * max3(r_rgb));
-            if ((flags & 2u) != 0u) {
-                let t_rgb = to_rgb(c.t) * factor;
-                push_ray(h.p - h.ng * eps(h.p, h.t), d, thr * t_rgb, depth + 1u, weight * max3(t_rgb));
+            // Rough films from their tables. Monte Carlo: the diffuse lobe pi k_d cos theta_l as a surface
+            // (render::integrate::Surface::RoughDiffuse) for every light and the BRDF's samples, k_r along the
+            // mirror as in the fast path.
+            if (!mc) {
+                rough_film(r, h, wo, cosv, offset, factor, depth, weight, thr);
+                return;
             }
-            return;
+            rough_mirror(rough_tab(r), h, wo, cosv, offset, factor, depth, weight, thr);
+            s.kind = 4u;
+            s.rough = r;
+            s.offset = offset;
+            s.factor = factor;
+        } else {
+            let film = Film(word(fw.x), P.n_lambda, word(fw.y), word(fw.z));
+            let tw = scene[r + 6u];
+            let to = scene[r + 7u];
+            let tab = FilmTab(word(tw.x), word(tw.y), word(tw.z), to.x, to.y);
+            let tabbed = (flags & 8u) != 0u;
+            let c = film_colors(film, tabbed, tab, cosv, offset);
+            if ((flags & 4u) == 0u) {
+                // A film alone: a mirror (and a window), whose rays are traced.
+                let r_rgb = to_rgb(c.r) * factor;
+                push_ray(h.p + h.ng * eps(h.p, h.t), reflect_dir(wo, h.n), thr * r_rgb, depth + 1u,
+                         weight * max3(r_rgb));
+                if ((flags & 2u) != 0u) {
+                    let t_rgb = to_rgb(c.t) * factor;
+                    push_ray(h.p - h.ng * eps(h.p, h.t), d, thr * t_rgb, depth + 1u, weight * max3(t_rgb));
+                }
+                return;
+            }
+            let base = microfacet_at(r + 3u, h.uv);
+            if (!mc) {
+                film_over_base(film, tabbed, tab, word(sv.w), base, h, wo, c.r, offset, factor, depth, weight, thr);
+                return;
+            }
+            // The film over the base and the base alone, mixed by the factor, as one BRDF for every light (over a
+            // metallic base, the metal stack's reflectance as in the fast path).
+            s = surf_film(film, base, h.n, color_at(base.color, h.uv), offset, factor, to_rgb(c.r), word(sv.w));
         }
-        let base = microfacet_at(r + 3u, h.uv);
-        if (!mc) {
-            film_over_base(film, tabbed, tab, word(sv.w), base, h, wo, c.r, offset, factor, depth, weight, thr);
-            return;
-        }
-        // The film over the base and the base alone, mixed by the factor, as one BRDF for every light (over a
-        // metallic base, the metal stack's reflectance as in the fast path).
-        s = surf_film(film, base, h.n, color_at(base.color, h.uv), offset, factor, to_rgb(c.r), word(sv.w));
     }
     shade_mc(h, s, wo, depth, weight, thr, ambient);
 }
@@ -1256,15 +1266,27 @@ fn film_colors(film: Film, tabbed: bool, tab: FilmTab, cos_t: f32, offset: f32) 
 
 // A rough film (render::render::Scene::shade, eq. 3.20): the lights' diffuse pi k_d cos theta_l, the
 // environment's diffuse albedo times the irradiance, and k_r along the mirror ray, all from tables.
-fn rough_film(r: u32, h: Hit, wo: vec3<f32>, cosv: f32, offset: f32, factor: f32, depth: u32, weight: f32,
-              thr: vec3<f32>) {
+// A rough film's tables from its material record `r` (scene.rs).
+fn rough_tab(r: u32) -> RoughTab {
     let a = scene[r + 3u];
     let b = scene[r + 4u];
     let c = scene[r + 5u];
     let e = scene[r + 6u];
     let sizes = word(a.w);
-    let t = RoughTab(word(a.x), word(a.y), word(a.z), sizes & 0xffffu, sizes >> 16u, word(b.x), word(b.y), word(b.z),
-                     c.x, c.y, c.z, c.w, e.x, e.y);
+    return RoughTab(word(a.x), word(a.y), word(a.z), sizes & 0xffffu, sizes >> 16u, word(b.x), word(b.y), word(b.z),
+                    c.x, c.y, c.z, c.w, e.x, e.y);
+}
+
+// The specular part of a rough film, k_r along the mirror ray (both paths).
+fn rough_mirror(t: RoughTab, h: Hit, wo: vec3<f32>, cosv: f32, offset: f32, factor: f32, depth: u32, weight: f32,
+                thr: vec3<f32>) {
+    let s = to_rgb(rough_specular(t, cosv, offset)) * factor;
+    push_ray(h.p + h.ng * eps(h.p, h.t), reflect_dir(wo, h.n), thr * s, depth + 1u, weight * max3(s));
+}
+
+fn rough_film(r: u32, h: Hit, wo: vec3<f32>, cosv: f32, offset: f32, factor: f32, depth: u32, weight: f32,
+              thr: vec3<f32>) {
+    let t = rough_tab(r);
     var out = vec3<f32>(0.0);
     let o = h.p + h.ng * eps(h.p, h.t);
     for (var i = 0u; i < n_arrivals(); i = i + 1u) {
@@ -1277,8 +1299,7 @@ fn rough_film(r: u32, h: Hit, wo: vec3<f32>, cosv: f32, offset: f32, factor: f32
     }
     out = out + to_rgb(rough_env(t, cosv, offset)) * irradiance(h.n) * factor;
     radiance = radiance + thr * out;
-    let s = to_rgb(rough_specular(t, cosv, offset)) * factor;
-    push_ray(o, reflect_dir(wo, h.n), thr * s, depth + 1u, weight * max3(s));
+    rough_mirror(t, h, wo, cosv, offset, factor, depth, weight, thr);
 }
 
 // A smooth film over a base (render::render::Scene::shade_film_over_base): the film's reflectance R replaces
