@@ -253,15 +253,13 @@ fn a_lambertian_in_the_monte_carlo_furnace_on_the_gpu() {
 /// the film over the dielectric for every base: a film over a white metal then reflected ~0.1 instead of ~0.95.)
 #[test]
 fn films_over_metal_under_monte_carlo_light_match_the_cpu() {
-    use iridis_render::integrate::{Integration, Strategy};
+    use iridis_render::integrate::Strategy;
     let _serial = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
     let Some(gpu) = gpu() else { return };
     let (size, spp) = (32u32, 64u32);
     for name in ["film over white metal r0.6", "film over half metal r0.3"] {
         let mat = furnace::MATERIALS.iter().find(|(n, _)| *n == name).unwrap().1;
-        let mut scene = furnace::furnace_scene(mat, 1.0);
-        scene.integration = Integration::MonteCarlo(Strategy::Mis);
-        scene.update_irradiance();
+        let scene = furnace::monte_carlo(furnace::furnace_scene(mat, 1.0), Strategy::Mis);
         let grey = |c: [f32; 3]| (c[0] + c[1] + c[2]) as f64 / 3.0;
         let g: Vec<f64> =
             furnace::sphere_pixels(&GpuScene::new(gpu, &scene).unwrap().render(size, size, spp, &|_| {}).unwrap())
@@ -270,10 +268,8 @@ fn films_over_metal_under_monte_carlo_light_match_the_cpu() {
         let c: Vec<f64> = furnace::sphere_pixels(&render(&scene, size, size, spp, &|_| {})).map(grey).collect();
         // Per pixel, GPU minus CPU: the mean difference within its standard error.
         let d: Vec<f64> = g.iter().zip(&c).map(|(a, b)| a - b).collect();
-        let n = d.len() as f64;
-        let mean = d.iter().sum::<f64>() / n;
-        let se = (d.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0) / n).sqrt();
-        let level = c.iter().sum::<f64>() / n;
+        let (mean, se) = furnace::mean_and_se(&d);
+        let level = c.iter().sum::<f64>() / c.len() as f64;
         eprintln!("{name}: GPU − CPU {mean:+.5} ± {se:.5} (CPU mean {level:.4})");
         assert!(mean.abs() < 4.0 * se + 1e-3, "{name}: GPU − CPU {mean} ± {se}");
     }
@@ -315,11 +311,9 @@ fn a_rough_film_under_monte_carlo_light_matches_the_cpu() {
                 level += lum(cpu_img.data[k]);
             }
         }
-        let n = d.len() as f64;
-        let mean = d.iter().sum::<f64>() / n;
-        let se = (d.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0) / n).sqrt();
-        let level = level / n;
-        eprintln!("rough film, {quarter:?}: GPU − CPU {mean:+.5} ± {se:.5} (CPU mean {level:.4}, {n} pixels)");
+        let (mean, se) = furnace::mean_and_se(&d);
+        let level = level / d.len() as f64;
+        eprintln!("rough film, {quarter:?}: GPU − CPU {mean:+.5} ± {se:.5} (CPU mean {level:.4}, {} pixels)", d.len());
         assert!(mean.abs() < 4.0 * se + 1e-3 * level, "{quarter:?}: GPU − CPU {mean} ± {se}");
     }
 }

@@ -94,13 +94,14 @@ fn rough_films_in_the_gpu_furnace_reflect_their_albedo() {
 #[test]
 fn diffraction_with_the_energy_blend_in_the_gpu_furnace() {
     use furnace::{
-        deviation, energy_diffraction_furnace, sphere_pixels, worst_within, FAST_DIFFRACTION_FURNACE,
-        FAST_DIFFRACTION_FURNACE_RIM,
+        deviation, energy_diffraction, energy_diffraction_furnace, mean_and_se, monte_carlo, sphere_pixels,
+        worst_within, FAST_DIFFRACTION_FURNACE, FAST_DIFFRACTION_FURNACE_RIM,
     };
-    use iridis_render::integrate::{Integration, Strategy};
+    use iridis_render::integrate::Strategy;
     let Some(gpu) = gpu() else { return };
     let size = 41;
-    let scene = energy_diffraction_furnace(Integration::Fast, 1.0);
+    let (material, _) = energy_diffraction();
+    let scene = energy_diffraction_furnace(&material, 1.0);
     let img = GpuScene::new(gpu, &scene).unwrap().render(size, size, 1, &|_| {}).unwrap();
     let cpu = iridis_render::render(&scene, size, size, 1, &|_| {});
     let (worst, n) = deviation(&img);
@@ -116,12 +117,10 @@ fn diffraction_with_the_energy_blend_in_the_gpu_furnace() {
     assert!(apart < 2e-3, "GPU and CPU images up to {apart} apart");
 
     let spp = 64;
-    let mc = energy_diffraction_furnace(Integration::MonteCarlo(Strategy::Mis), 1.0);
+    let mc = monte_carlo(energy_diffraction_furnace(&material, 1.0), Strategy::Mis);
     let img = GpuScene::new(gpu, &mc).unwrap().render(size, size, spp, &|_| {}).unwrap();
     let on_sphere: Vec<f64> = sphere_pixels(&img).map(|c| (c[0] + c[1] + c[2]) as f64 / 3.0).collect();
-    let mean = on_sphere.iter().sum::<f64>() / on_sphere.len() as f64;
-    let sd = (on_sphere.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (on_sphere.len() - 1) as f64).sqrt();
-    let se = sd / (on_sphere.len() as f64).sqrt();
+    let (mean, se) = mean_and_se(&on_sphere);
     eprintln!("GPU Monte Carlo ({spp} spp): mean {mean:.5} ± {se:.5} over {} pixels", on_sphere.len());
     assert!((mean - 1.0).abs() < 4.0 * se + 1e-3, "Monte Carlo: mean {mean} ± {se}");
 }

@@ -480,6 +480,22 @@ mod tests {
         assert_eq!(uni.mean(), [0.2, 0.3, 0.4]);
     }
 
+    /// `E(n)/π = ∫ L(ω) max(n·ω, 0) dω / π` (red channel) on an `nt × np` (θ, φ) grid, directly from the
+    /// environment's radiance — not through the map's cells.
+    fn brute_force_irradiance(env: &Environment, n: V3, nt: usize, np: usize) -> f64 {
+        let mut sum = 0.0;
+        for i in 0..nt {
+            let th = std::f64::consts::PI * (i as f64 + 0.5) / nt as f64;
+            for j in 0..np {
+                let ph = std::f64::consts::TAU * (j as f64 + 0.5) / np as f64;
+                let d = [th.sin() * ph.cos(), th.cos(), th.sin() * ph.sin()];
+                let dw = th.sin() * std::f64::consts::PI / nt as f64 * std::f64::consts::TAU / np as f64;
+                sum += env.radiance(d)[0] * dot(n, d).max(0.0) * dw / std::f64::consts::PI;
+            }
+        }
+        sum
+    }
+
     #[test]
     fn a_vertical_normal_reads_one_irradiance_whatever_its_azimuth() {
         // An environment bright on one side (+x half of the sphere 1, the other 0.1): the irradiance straight up
@@ -503,17 +519,7 @@ mod tests {
             intensity: 1.0,
         };
         let map = env.irradiance_map().unwrap();
-        let (nt, np) = (600, 600);
-        let mut want = 0.0;
-        for i in 0..nt {
-            let th = std::f64::consts::PI * (i as f64 + 0.5) / nt as f64;
-            for j in 0..np {
-                let ph = std::f64::consts::TAU * (j as f64 + 0.5) / np as f64;
-                let d = [th.sin() * ph.cos(), th.cos(), th.sin() * ph.sin()];
-                let dw = th.sin() * std::f64::consts::PI / nt as f64 * std::f64::consts::TAU / np as f64;
-                want += env.radiance(d)[0] * d[1].max(0.0) * dw / std::f64::consts::PI;
-            }
-        }
+        let want = brute_force_irradiance(&env, [0.0, 1.0, 0.0], 600, 600);
         let up = env.irradiance(Some(&map), [0.0, 1.0, 0.0])[0];
         assert!((up - want).abs() < 0.01 * want, "straight up: {up} vs the integral {want}");
         for n in [[0.0, 1.0, -0.0], [1e-4, 1.0, 0.0], [-1e-4, 1.0, 0.0], [0.0, 1.0, 1e-4], [0.0, 1.0, -1e-4]] {
@@ -531,17 +537,7 @@ mod tests {
         for deg in [0.0f64, 30.0, 60.0, 90.0, 120.0, 180.0] {
             let t = deg.to_radians();
             let n = [t.sin(), t.cos(), 0.0];
-            let (nt, np) = (1000, 400);
-            let mut want = 0.0;
-            for i in 0..nt {
-                let th = std::f64::consts::PI * (i as f64 + 0.5) / nt as f64;
-                for j in 0..np {
-                    let ph = std::f64::consts::TAU * (j as f64 + 0.5) / np as f64;
-                    let d = [th.sin() * ph.cos(), th.cos(), th.sin() * ph.sin()];
-                    let dw = th.sin() * std::f64::consts::PI / nt as f64 * std::f64::consts::TAU / np as f64;
-                    want += sky.radiance(d)[0] * dot(n, d).max(0.0) * dw / std::f64::consts::PI;
-                }
-            }
+            let want = brute_force_irradiance(&sky, n, 1000, 400);
             let got = sky.irradiance(Some(&map), n)[0];
             assert!((got - want).abs() < 0.01, "{deg}°: {got} vs {want}");
         }

@@ -5,7 +5,7 @@
 
 mod furnace;
 
-use furnace::furnace_scene;
+use furnace::{furnace_scene, monte_carlo};
 use iridis_render::integrate::{Integration, Strategy};
 use iridis_render::material::Material;
 use iridis_render::math::*;
@@ -31,12 +31,6 @@ fn estimate(scene: &Scene, o: V3, d: V3, n: u64, stream: u64) -> ([f64; 3], [f64
 /// The furnace's camera ray through the point `(x, y)` of the unit sphere's disk (orthographic, looking −z).
 fn furnace_ray(x: f64, y: f64) -> (V3, V3) {
     ([x, y, 5.0], [0.0, 0.0, -1.0])
-}
-
-fn monte_carlo(mut s: Scene, strategy: Strategy) -> Scene {
-    s.integration = Integration::MonteCarlo(strategy);
-    s.update_irradiance();
-    s
 }
 
 /// Points of the sphere's disk seen at cos θ_o = 1, 0.8, 0.5, 0.2.

@@ -95,22 +95,10 @@ fn rough_films_in_the_furnace_reflect_their_albedo() {
 /// (no texture) must reflect at most 1.
 #[test]
 fn diffraction_with_the_energy_blend_passes_the_furnace() {
-    use iridis_render::geometry::Hit;
     use iridis_render::material::Diffraction;
 
     let (material, albedo) = furnace::energy_diffraction();
-    let hit = Hit {
-        t: 1.0,
-        p: [0.0; 3],
-        n: [0.0, 0.0, 1.0],
-        ng: [0.0, 0.0, 1.0],
-        front: true,
-        uv: [0.0; 2],
-        tangent: None,
-        tangent_sign: 1.0,
-        along: None,
-        material: 0,
-    };
+    let hit = furnace::flat_hit();
     // ∫ L cos θ_i dω_i for radiance 1: each cell a directional light of irradiance dω/π (the lights' unit E/π).
     let furnace = |m: &Diffraction, wo: [f64; 3], tex: f64| {
         let (nt, np) = (300, 600);
@@ -155,9 +143,10 @@ fn diffraction_with_the_energy_blend_passes_the_furnace() {
 /// over the sphere within its noise.
 #[test]
 fn diffraction_with_the_energy_blend_passes_the_scene_furnace() {
-    use iridis_render::integrate::{Integration, Strategy};
+    use iridis_render::integrate::Strategy;
     let size = 41;
-    let fast = render(&furnace::energy_diffraction_furnace(Integration::Fast, 1.0), size, size, 1, &|_| {});
+    let (material, _) = furnace::energy_diffraction();
+    let fast = render(&furnace::energy_diffraction_furnace(&material, 1.0), size, size, 1, &|_| {});
     let (worst, n) = deviation(&fast);
     let within_45 = worst_within(&fast, 45.0);
     eprintln!("fast path: {n} pixels, largest |L − 1| = {worst:.2e}, within 45° of the view {within_45:.2e}");
@@ -166,18 +155,11 @@ fn diffraction_with_the_energy_blend_passes_the_scene_furnace() {
     assert!(worst < FAST_DIFFRACTION_FURNACE_RIM, "fast path: |L − 1| up to {worst} at the rim");
 
     let spp = 64;
-    let mc = render(
-        &furnace::energy_diffraction_furnace(Integration::MonteCarlo(Strategy::Mis), 1.0),
-        size,
-        size,
-        spp,
-        &|_| {},
-    );
+    let scene = furnace::monte_carlo(furnace::energy_diffraction_furnace(&material, 1.0), Strategy::Mis);
+    let mc = render(&scene, size, size, spp, &|_| {});
     let on_sphere: Vec<f64> = sphere_pixels(&mc).map(|c| (c[0] + c[1] + c[2]) as f64 / 3.0).collect();
-    let mean = on_sphere.iter().sum::<f64>() / on_sphere.len() as f64;
-    let sd = (on_sphere.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (on_sphere.len() - 1) as f64).sqrt();
-    let se = sd / (on_sphere.len() as f64).sqrt();
-    eprintln!("Monte Carlo ({spp} spp): mean {mean:.5} ± {se:.5} over {} pixels (pixel sd {sd:.4})", on_sphere.len());
+    let (mean, se) = furnace::mean_and_se(&on_sphere);
+    eprintln!("Monte Carlo ({spp} spp): mean {mean:.5} ± {se:.5} over {} pixels", on_sphere.len());
     assert!((mean - 1.0).abs() < 4.0 * se + 1e-3, "Monte Carlo: mean {mean} ± {se}");
 }
 
@@ -186,20 +168,8 @@ fn diffraction_with_the_energy_blend_passes_the_scene_furnace() {
 /// whole material (`π f cos θ_i` is what `shade_light` returns for a light of unit irradiance).
 #[test]
 fn the_energy_blend_is_reciprocal() {
-    use iridis_render::geometry::Hit;
     let (material, _) = furnace::energy_diffraction();
-    let hit = Hit {
-        t: 1.0,
-        p: [0.0; 3],
-        n: [0.0, 0.0, 1.0],
-        ng: [0.0, 0.0, 1.0],
-        front: true,
-        uv: [0.0; 2],
-        tangent: None,
-        tangent_sign: 1.0,
-        along: None,
-        material: 0,
-    };
+    let hit = furnace::flat_hit();
     let dir = |t: f64, p: f64| [t.sin() * p.cos(), t.sin() * p.sin(), t.cos()];
     let f = |wi: [f64; 3], wo: [f64; 3]| {
         material.shade_light(&hit, [1.0, 0.0, 0.0], wi, wo, [1.0; 3], [1.0; 3]).map(|c| c / wi[2])

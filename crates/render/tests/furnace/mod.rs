@@ -219,13 +219,42 @@ pub fn energy_diffraction() -> (iridis_render::material::Diffraction, iridis_ren
     (material, albedo)
 }
 
-/// [`furnace_scene`] with the sphere made of [`energy_diffraction`]'s material, integrated by `integration`.
-pub fn energy_diffraction_furnace(integration: iridis_render::integrate::Integration, scale: f64) -> Scene {
+/// [`furnace_scene`] with the sphere made of `material` (built once by [`energy_diffraction`] and cloned per
+/// scene: its table takes seconds), integrated by the fast path.
+pub fn energy_diffraction_furnace(material: &iridis_render::material::Diffraction, scale: f64) -> Scene {
     let mut s = furnace_scene("[materials.m]\nkind = \"lambert\"\ncolor = [1, 1, 1]", scale);
-    s.materials[0] = iridis_render::material::Material::Diffraction(Box::new(energy_diffraction().0));
-    s.integration = integration;
+    s.materials[0] = iridis_render::material::Material::Diffraction(Box::new(material.clone()));
+    s
+}
+
+/// The scene integrated by Monte Carlo with `strategy` (the environment's sampler made for it).
+pub fn monte_carlo(mut s: Scene, strategy: iridis_render::integrate::Strategy) -> Scene {
+    s.integration = iridis_render::integrate::Integration::MonteCarlo(strategy);
     s.update_irradiance();
     s
+}
+
+/// A hit at the origin of the plane z = 0 (normal +z, no tangent): the frame of the material-level tests.
+pub fn flat_hit() -> iridis_render::geometry::Hit {
+    iridis_render::geometry::Hit {
+        t: 1.0,
+        p: [0.0; 3],
+        n: [0.0, 0.0, 1.0],
+        ng: [0.0, 0.0, 1.0],
+        front: true,
+        uv: [0.0; 2],
+        tangent: None,
+        tangent_sign: 1.0,
+        along: None,
+        material: 0,
+    }
+}
+
+/// Mean and its standard error of independent samples.
+pub fn mean_and_se(v: &[f64]) -> (f64, f64) {
+    let n = v.len() as f64;
+    let mean = v.iter().sum::<f64>() / n;
+    (mean, (v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0) / n).sqrt())
 }
 
 /// The largest |L − 1| over the sphere's pixels whose normal is within `deg` of the view (the orthographic
