@@ -23,6 +23,7 @@
 pub mod brdf;
 pub mod fresnel;
 pub mod gpu;
+pub mod grating;
 pub mod lab;
 pub mod model;
 pub mod report;

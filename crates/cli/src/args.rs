@@ -37,3 +37,38 @@ pub fn polar_azimuth(flag: &str, s: &str) -> anyhow::Result<(f64, f64)> {
     }
     Ok((theta, phi))
 }
+
+/// How to read a SURFACE argument.
+#[derive(Debug, Clone, Default, clap::Args)]
+pub struct SurfaceOpts {
+    /// Pixel size for image surfaces without physical units (e.g. 65nm).
+    #[arg(long, value_parser = positive_length_nm)]
+    pub pixel_size: Option<f64>,
+    /// Height of the brightest grey value for image surfaces (e.g. 300nm).
+    #[arg(long, value_parser = positive_length_nm)]
+    pub max_height: Option<f64>,
+    /// Channel of a multi-channel file, by index or name (`iridis surface channels FILE` lists them);
+    /// default the first height channel (.npz: the only 2-D array).
+    #[arg(long)]
+    pub channel: Option<iridis_surface::formats::channel::ChannelSel>,
+    /// Unit of heights in files that do not give one (.npy, text, a unitless channel), e.g. m or nm.
+    #[arg(long)]
+    pub height_unit: Option<String>,
+    /// Levelling before the model: plane (default for files), poly, lines (median line correction), rows,
+    /// mean or none (built-ins are used as generated unless this is given).
+    #[arg(long)]
+    pub level: Option<String>,
+}
+
+impl SurfaceOpts {
+    /// The facade's surface options.
+    pub fn options(&self) -> iridis_api::SurfaceOptions {
+        iridis_api::SurfaceOptions {
+            pixel_size_nm: self.pixel_size,
+            max_height_nm: self.max_height,
+            channel: self.channel.clone(),
+            height_unit: self.height_unit.clone(),
+            level: self.level.clone(),
+        }
+    }
+}

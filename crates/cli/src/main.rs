@@ -93,6 +93,8 @@ Examples:
 
 {}", cmd::surface::SURFACE_HELP))]
     Surface(cmd::surface::SurfaceCommand),
+    /// Order efficiencies of a height field taken as one unit cell of a grating (TE, TM, unpolarised).
+    Grating(cmd::grating::GratingArgs),
     /// Virtual test bench: peak viewing angles and periodicity per wavelength (paper sec. 6.1, Table 1).
     Testbench(cmd::lab::TestbenchArgs),
     /// CIELAB errors of methods against the ground truth (paper sec. 6.3, Table 2).
@@ -136,6 +138,7 @@ fn main() -> std::process::ExitCode {
     let result = match cli.command {
         Command::Demo(a) => cmd::demo::run(a),
         Command::Color(c) => cmd::color::run(c),
+        Command::Grating(a) => cmd::grating::run(a),
         Command::Testbench(a) => cmd::lab::run_testbench(a),
         Command::Compare(a) => cmd::lab::run_compare(a),
         Command::Sweep(a) => cmd::lab::run_sweep(a),

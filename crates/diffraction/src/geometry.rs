@@ -25,6 +25,17 @@ pub fn uvw(wi: Vec3, wr: Vec3) -> Vec3 {
 pub trait FresnelSource: Send + Sync + std::fmt::Debug {
     /// Unpolarised reflectance at wavelength `λ` (nm) for the cosine of the angle of incidence.
     fn reflectance(&self, wavelength_nm: f64, cos_theta: f64) -> f64;
+    /// The reflectances `[R_s, R_p]` for s (TE) and p (TM) light; a model without a polarised form
+    /// (Schlick's approximation) answers its unpolarised value for both ([`FresnelSource::polarised`] says
+    /// which).
+    fn reflectance_sp(&self, wavelength_nm: f64, cos_theta: f64) -> [f64; 2] {
+        let r = self.reflectance(wavelength_nm, cos_theta);
+        [r, r]
+    }
+    /// Whether [`FresnelSource::reflectance_sp`] tells s from p.
+    fn polarised(&self) -> bool {
+        false
+    }
     /// Whether the value depends on λ (then it must stay inside the spectral integral).
     fn depends_on_wavelength(&self) -> bool;
     fn describe(&self) -> String;
@@ -58,13 +69,20 @@ impl Default for Fresnel {
 
 /// Unpolarised Fresnel reflectance from a medium of index 1 into `n̂` (complex cosines from Snell's law).
 pub fn fresnel_unpolarised(n: Complex64, cos_i: f64) -> f64 {
+    let [rs, rp] = fresnel_sp(n, cos_i);
+    0.5 * (rs + rp)
+}
+
+/// Fresnel power reflectances `[R_s, R_p]` from a medium of index 1 into `n̂` (s: E perpendicular to the plane
+/// of incidence, TE; p: in it, TM), with the complex cosine of Snell's law.
+pub fn fresnel_sp(n: Complex64, cos_i: f64) -> [f64; 2] {
     let cos_i = cos_i.clamp(0.0, 1.0);
     let sin2 = 1.0 - cos_i * cos_i;
     let cos_t = (Complex64::new(1.0, 0.0) - sin2 / (n * n)).sqrt();
     let ci = Complex64::new(cos_i, 0.0);
     let rs = (ci - n * cos_t) / (ci + n * cos_t);
     let rp = (n * ci - cos_t) / (n * ci + cos_t);
-    0.5 * (rs.norm_sqr() + rp.norm_sqr())
+    [rs.norm_sqr(), rp.norm_sqr()]
 }
 
 impl FresnelSource for Fresnel {
@@ -76,6 +94,18 @@ impl FresnelSource for Fresnel {
             }
             Fresnel::Index { n } => fresnel_unpolarised(n, cos_theta),
         }
+    }
+    fn reflectance_sp(&self, wavelength_nm: f64, cos_theta: f64) -> [f64; 2] {
+        match *self {
+            Fresnel::Schlick { .. } => {
+                let r = self.reflectance(wavelength_nm, cos_theta);
+                [r, r]
+            }
+            Fresnel::Index { n } => fresnel_sp(n, cos_theta),
+        }
+    }
+    fn polarised(&self) -> bool {
+        matches!(self, Fresnel::Index { .. })
     }
     fn depends_on_wavelength(&self) -> bool {
         false
@@ -127,6 +157,15 @@ impl FresnelSource for FilmFresnel {
     fn reflectance(&self, wavelength_nm: f64, cos_theta: f64) -> f64 {
         // The range was checked at construction; a failure here would be a bug in the stack code.
         self.stack.evaluate(wavelength_nm, cos_theta.clamp(0.0, 1.0).acos()).map(|r| r.r()).unwrap_or(f64::NAN)
+    }
+    fn reflectance_sp(&self, wavelength_nm: f64, cos_theta: f64) -> [f64; 2] {
+        match self.stack.evaluate(wavelength_nm, cos_theta.clamp(0.0, 1.0).acos()) {
+            Ok(r) => [r.r_s, r.r_p],
+            Err(_) => [f64::NAN; 2],
+        }
+    }
+    fn polarised(&self) -> bool {
+        true
     }
     fn depends_on_wavelength(&self) -> bool {
         true

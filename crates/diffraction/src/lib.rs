@@ -18,6 +18,7 @@ pub mod encoding;
 pub mod energy;
 pub mod evaluator;
 pub mod geometry;
+pub mod grating;
 pub mod map;
 pub mod patch;
 pub mod point;

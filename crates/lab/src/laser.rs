@@ -172,6 +172,12 @@ impl FresnelSource for MetalFresnel {
     fn reflectance(&self, wavelength_nm: f64, cos_theta: f64) -> f64 {
         fresnel_unpolarised(self.index(wavelength_nm), cos_theta)
     }
+    fn reflectance_sp(&self, wavelength_nm: f64, cos_theta: f64) -> [f64; 2] {
+        iridis_diffraction::geometry::fresnel_sp(self.index(wavelength_nm), cos_theta)
+    }
+    fn polarised(&self) -> bool {
+        true
+    }
     fn depends_on_wavelength(&self) -> bool {
         true
     }

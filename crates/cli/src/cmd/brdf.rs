@@ -17,27 +17,7 @@ use iridis_diffraction::Units;
 use crate::args::{polar_azimuth, positive_length_nm};
 use crate::progress::Cli;
 
-/// How to read a SURFACE argument.
-#[derive(Debug, Clone, Default, ClapArgs)]
-pub struct SurfaceOpts {
-    /// Pixel size for image surfaces without physical units (e.g. 65nm).
-    #[arg(long, value_parser = positive_length_nm)]
-    pub pixel_size: Option<f64>,
-    /// Height of the brightest grey value for image surfaces (e.g. 300nm).
-    #[arg(long, value_parser = positive_length_nm)]
-    pub max_height: Option<f64>,
-    /// Channel of a multi-channel file, by index or name (`iridis surface channels FILE` lists them);
-    /// default the first height channel (.npz: the only 2-D array).
-    #[arg(long)]
-    pub channel: Option<iridis_surface::formats::channel::ChannelSel>,
-    /// Unit of heights in files that do not give one (.npy, text, a unitless channel), e.g. m or nm.
-    #[arg(long)]
-    pub height_unit: Option<String>,
-    /// Levelling before the model: plane (default for files), poly, lines (median line correction), rows,
-    /// mean or none (built-ins are used as generated unless this is given).
-    #[arg(long)]
-    pub level: Option<String>,
-}
+pub use crate::args::SurfaceOpts;
 
 /// Options shared by the commands that build Taylor terms.
 #[derive(Debug, Clone, ClapArgs)]
@@ -196,19 +176,6 @@ pub struct BrdfMapArgs {
     pub uv_power: f64,
     #[command(flatten)]
     pub surface_opts: SurfaceOpts,
-}
-
-impl SurfaceOpts {
-    /// The facade's surface options.
-    pub fn options(&self) -> SurfaceOptions {
-        SurfaceOptions {
-            pixel_size_nm: self.pixel_size,
-            max_height_nm: self.max_height,
-            channel: self.channel.clone(),
-            height_unit: self.height_unit.clone(),
-            level: self.level.clone(),
-        }
-    }
 }
 
 impl ModelOpts {

@@ -5,6 +5,7 @@ pub mod color;
 pub mod demo;
 pub mod filmfit;
 pub mod gpu;
+pub mod grating;
 pub mod lab;
 pub mod render;
 pub mod report;

@@ -1,0 +1,486 @@
+//! Diffraction efficiencies of a periodic structure in the scalar (Kirchhoff) model: the height field taken
+//! as **one unit cell** of a grating, its extent `(Lx, Ly)` the periods, so that light leaves in discrete
+//! orders. What a spectrometer, a goniometer or a rigorous solver measures: the fraction of the incident power
+//! in each order (`iridis grating`, docs/diffraction.md, "Order efficiencies").
+//!
+//! Orders (the convention of docs/PHYSICS.md, "Test bench"): light from `ω_i` (pointing to the light) leaves
+//! in order `(m, n)` along `ω_r` with `ω_r,xy = −ω_i,xy + (m λ/Lx, n λ/Ly)`, i.e. `m λ/d = sin θ_i − sin θ_r`
+//! in the plane of incidence with `θ_r` positive on the specular side. Only propagating orders (`|ω_r,xy| <
+//! 1`) carry power.
+//!
+//! **Kirchhoff's efficiency** of order `G` (Beckmann's periodic-surface result, the discrete form of the
+//! paper's eq. 2–4): the BRDF lobe of the order, `f_r cos θ_r` integrated over its solid angle (the
+//! coherence window's `∫G² du dv = λ²/(4πσ_s²)` cancels the radiometric gain `4πσ_s²/λ²`, docs/PHYSICS.md),
+//! is
+//!
+//! `η_G = R(θ_h) · K(ω_i, ω_r) · |c_G(w)|²`,  `K = (1 + ω_i·ω_r)² / (cos θ_i cos θ_r (cos θ_i + cos θ_r)²)`,
+//!
+//! with `c_G(w)` the Fourier coefficient of `exp(i k w h)` over the unit cell at the order's frequency
+//! (`w = −(cos θ_i + cos θ_r)`, `k = 2π/λ`; paper eq. 5–8 without the window, evaluated from the Taylor terms'
+//! DFTs) and `R` the Fresnel reflectance at the half-vector angle, per polarisation (s = TE, p = TM, with
+//! respect to the plane of `ω_i` and `ω_r`; the scalar model does not mix them).
+//!
+//! **Energy.** `K` is 1 at the mirror direction but not an energy-conserving weight: at oblique light it
+//! grows like `1/cos θ_i` for every other order, so a sine grating's orders sum to 1.25 of the light at 75°
+//! (period 1100 nm, amplitude 60 nm) and 2.08 at 150 nm. Every incidence `a` of the grating's channels (the
+//! directions `ω_i,xy + G` that its orders couple) and every exit `b` form a square matrix
+//! `M[a][b] = K(a, b)|c_{a−b}(w)|²` — for a perfect reflector, the scattering matrix of powers. Lossless
+//! scattering makes it doubly stochastic (every row sums to 1: energy; every column too: the reverse light,
+//! by reciprocity). [`Normalisation::Energy`] scales it to that, `η = r_a M[a][b] s_b`, with the
+//! Sinkhorn–Knopp iteration (Sinkhorn & Knopp, Pacific J. Math. 21, 343, 1967): both energy and reciprocity
+//! then hold exactly, a flat mirror keeps `M = I` (Kirchhoff exact at the specular limit), and shallow
+//! gratings change by second order in `k h`. It is the discrete, reciprocal form of Harvey–Shack's
+//! renormalisation (Harvey & Pfisterer, Opt. Eng. 58, 087105, 2019). [`Normalisation::Kirchhoff`] keeps the
+//! printed factor (for comparison).
+
+use num_complex::Complex64;
+use rayon::prelude::*;
+use serde::Serialize;
+
+use crate::geometry::{dot, FresnelSource, Vec3};
+use crate::patch::Patch;
+use crate::taylor::{terms_for_bound, TaylorTerms};
+use crate::DiffractionError;
+
+/// Bound on the Taylor remainder of `c_G(w)` (`(2k|h|max)^{N+1}/(N+1)!`, docs/PHYSICS.md).
+pub const TAYLOR_EPSILON: f64 = 1e-10;
+
+/// Largest number of coupled channels for which the full Sinkhorn scaling runs (its matrix has this many
+/// squared entries per wavelength); larger unit cells (a 20 µm scan has ~5000) take the row normalisation.
+pub const MAX_SINKHORN_CHANNELS: usize = 600;
+
+/// How Kirchhoff's efficiencies are normalised (module documentation).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Normalisation {
+    /// The channel matrix scaled to be doubly stochastic (Sinkhorn–Knopp): energy and reciprocity exact.
+    #[default]
+    Energy,
+    /// Kirchhoff's obliquity factor as printed (Beckmann; Stam's `F²G/w²`): reflects more than it receives
+    /// at oblique light.
+    Kirchhoff,
+}
+
+impl Normalisation {
+    pub fn name(self) -> &'static str {
+        match self {
+            Normalisation::Energy => "energy",
+            Normalisation::Kirchhoff => "kirchhoff",
+        }
+    }
+}
+
+impl std::str::FromStr for Normalisation {
+    type Err = DiffractionError;
+    fn from_str(s: &str) -> Result<Self, DiffractionError> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "energy" | "energy-conserving" => Ok(Normalisation::Energy),
+            "kirchhoff" | "none" | "printed" => Ok(Normalisation::Kirchhoff),
+            _ => Err(DiffractionError::Invalid(format!(
+                "normalisation '{s}': expected energy (the default: energy and reciprocity exact) or kirchhoff \
+                 (the obliquity factor as printed, not energy-conserving)"
+            ))),
+        }
+    }
+}
+
+/// Efficiencies for TE (s) and TM (p) incident light and their mean (unpolarised light).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct Efficiency {
+    pub te: f64,
+    pub tm: f64,
+    pub unpolarized: f64,
+}
+
+impl Efficiency {
+    fn new(te: f64, tm: f64) -> Self {
+        Self { te, tm, unpolarized: 0.5 * (te + tm) }
+    }
+    fn add(&mut self, o: Efficiency) {
+        self.te += o.te;
+        self.tm += o.tm;
+        self.unpolarized += o.unpolarized;
+    }
+}
+
+/// One propagating order.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct OrderEfficiency {
+    pub wavelength_nm: f64,
+    pub m: i64,
+    pub n: i64,
+    /// Polar angle of `ω_r` (degrees from the normal).
+    pub theta_deg: f64,
+    /// Azimuth of `ω_r` (degrees from +x, counter-clockwise seen from above, in `[0, 360)`).
+    pub phi_deg: f64,
+    pub efficiency: Efficiency,
+}
+
+/// The orders at one wavelength.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct GratingAnswer {
+    pub wavelength_nm: f64,
+    /// Propagating orders, `m` then `n` increasing.
+    pub orders: Vec<OrderEfficiency>,
+    /// Their sum: the hemispherical reflectance.
+    pub reflected_total: Efficiency,
+    /// Channels the orders couple at this wavelength (the size of the scattering matrix).
+    pub channels: usize,
+    /// What normalised the efficiencies: `energy` (Sinkhorn), `energy-row` (this incidence's row only: energy
+    /// exact, reciprocity approximate; more than [`MAX_SINKHORN_CHANNELS`] channels) or `kirchhoff`.
+    pub normalisation: &'static str,
+    /// Largest deviation of a row or column sum from 1 after the scaling (0 for `kirchhoff`).
+    pub normalisation_residual: f64,
+    /// Kirchhoff's own sum of this row, before any normalisation, for a perfect reflector: how much energy the
+    /// printed obliquity factor creates (> 1) or loses.
+    pub kirchhoff_sum: f64,
+}
+
+/// Which axes of the unit cell carry structure.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Lines {
+    /// Every row the same: a 1-D grating along x (orders `n ≠ 0` carry nothing).
+    AlongX,
+    /// Every column the same: a 1-D grating along y.
+    AlongY,
+    /// A crossed (2-D) grating.
+    Crossed,
+}
+
+/// A height field taken as one unit cell of a grating, with the Taylor terms of its phase factor.
+#[derive(Debug, Clone)]
+pub struct UnitCell {
+    terms: TaylorTerms,
+    lines: Lines,
+}
+
+impl UnitCell {
+    /// The unit cell of `patch` (its extent is the period along each axis), with Taylor terms for wavelengths
+    /// down to `lambda_min_nm` (remainder ≤ [`TAYLOR_EPSILON`]).
+    pub fn new(patch: &Patch, lambda_min_nm: f64) -> Result<Self, DiffractionError> {
+        if !(lambda_min_nm.is_finite() && lambda_min_nm > 0.0) {
+            return Err(DiffractionError::Invalid(format!("shortest wavelength {lambda_min_nm} nm must be positive")));
+        }
+        let n = terms_for_bound(patch.max_abs_height, lambda_min_nm, TAYLOR_EPSILON);
+        // The window is not used: the orders read the DFT bins themselves.
+        let terms = TaylorTerms::compute(patch, n, 1e12)?;
+        let rows_same =
+            (1..patch.rows).all(|j| patch.heights[j * patch.cols..(j + 1) * patch.cols] == patch.heights[..patch.cols]);
+        let cols_same = (0..patch.rows)
+            .all(|j| patch.heights[j * patch.cols..(j + 1) * patch.cols].windows(2).all(|w| w[0] == w[1]));
+        let lines = match (rows_same, cols_same) {
+            (true, false) => Lines::AlongX,
+            (false, true) => Lines::AlongY,
+            _ => Lines::Crossed,
+        };
+        Ok(Self { terms, lines })
+    }
+
+    /// The periods `(Lx, Ly)` (nm).
+    pub fn periods(&self) -> (f64, f64) {
+        self.terms.extent()
+    }
+
+    pub fn lines(&self) -> Lines {
+        self.lines
+    }
+
+    /// Taylor terms `N` (terms 0..N) behind `c_G(w)`.
+    pub fn taylor_terms(&self) -> usize {
+        self.terms.n_max
+    }
+
+    /// `c_G(w)`: the Fourier coefficient of `exp(i k w h)` at order `(m, n)`, zero beyond the grid's Nyquist.
+    fn coefficient(&self, m: i64, n: i64, kw: f64) -> Complex64 {
+        let t = &self.terms;
+        let (cols, rows) = (t.cols as i64, t.rows as i64);
+        if m > cols / 2 || -m > (cols - 1) / 2 || n > rows / 2 || -n > (rows - 1) / 2 {
+            return Complex64::new(0.0, 0.0);
+        }
+        let c = t.bin(m.rem_euclid(cols) as usize, n.rem_euclid(rows) as usize);
+        let mut acc = c[t.n_max];
+        for j in (0..t.n_max).rev() {
+            acc = acc * (kw / (j + 1) as f64) + c[j];
+        }
+        acc
+    }
+
+    /// The lattice vectors `(m, n)` whose channels `ω_i,xy + (mλ/Lx, nλ/Ly)` propagate, `m` then `n`
+    /// increasing; a 1-D grating keeps its own axis only.
+    fn channels(&self, wi: Vec3, wavelength_nm: f64) -> Vec<(i64, i64)> {
+        let (lx, ly) = self.periods();
+        let (gx, gy) = (wavelength_nm / lx, wavelength_nm / ly);
+        let range = |c: f64, g: f64| ((-1.0 - c) / g).ceil() as i64..=((1.0 - c) / g).floor() as i64;
+        let (mr, nr) = match self.lines {
+            Lines::AlongX => (range(wi[0], gx), 0..=0),
+            Lines::AlongY => (0..=0, range(wi[1], gy)),
+            Lines::Crossed => (range(wi[0], gx), range(wi[1], gy)),
+        };
+        let mut out = Vec::new();
+        for n in nr {
+            for m in mr.clone() {
+                let (x, y) = (wi[0] + m as f64 * gx, wi[1] + n as f64 * gy);
+                if x * x + y * y < 1.0 - 1e-12 {
+                    out.push((m, n));
+                }
+            }
+        }
+        out.sort_by_key(|&(m, n)| (m, n));
+        out
+    }
+
+    /// The efficiencies of every propagating order for light from `wi` (unit vector, `wi[2] > 0`) at one
+    /// wavelength, the Fresnel reflectance from `fresnel` at the half-vector angle.
+    pub fn efficiencies(
+        &self,
+        wi: Vec3,
+        wavelength_nm: f64,
+        fresnel: &dyn FresnelSource,
+        normalisation: Normalisation,
+    ) -> Result<GratingAnswer, DiffractionError> {
+        let len = dot(wi, wi).sqrt();
+        if !(wi.iter().all(|v| v.is_finite()) && (len - 1.0).abs() < 1e-9 && wi[2] > 0.0) {
+            return Err(DiffractionError::Invalid(format!(
+                "the light direction {wi:?} must be a unit vector above the surface"
+            )));
+        }
+        if !(wavelength_nm.is_finite() && wavelength_nm > 0.0) {
+            return Err(DiffractionError::Invalid(format!("wavelength {wavelength_nm} nm must be positive")));
+        }
+        let (lx, ly) = self.periods();
+        let (gx, gy) = (wavelength_nm / lx, wavelength_nm / ly);
+        let channels = self.channels(wi, wavelength_nm);
+        let here = channels.iter().position(|&c| c == (0, 0)).ok_or_else(|| {
+            DiffractionError::Invalid("the light's own channel does not propagate (grazing light)".into())
+        })?;
+        // Channel g: light from a_g (xy = ω_i,xy + g) or exit along b_g = a_g mirrored in xy; same cosine.
+        let xy: Vec<[f64; 2]> = channels.iter().map(|&(m, n)| [wi[0] + m as f64 * gx, wi[1] + n as f64 * gy]).collect();
+        let cos: Vec<f64> = xy.iter().map(|p| (1.0 - p[0] * p[0] - p[1] * p[1]).max(0.0).sqrt()).collect();
+        let k = std::f64::consts::TAU / wavelength_nm;
+        let entry = |a: usize, b: usize| -> f64 {
+            let (ca, cb) = (cos[a], cos[b]);
+            // a·b with b the mirror of channel b's in-plane components.
+            let ab = -(xy[a][0] * xy[b][0] + xy[a][1] * xy[b][1]) + ca * cb;
+            let obliquity = (1.0 + ab).powi(2) / (ca * cb * (ca + cb).powi(2));
+            let (m, n) = (channels[a].0 - channels[b].0, channels[a].1 - channels[b].1);
+            obliquity * self.coefficient(m, n, -k * (ca + cb)).norm_sqr()
+        };
+        let p = channels.len();
+        let row: Vec<f64> = (0..p).map(|b| entry(here, b)).collect();
+        let kirchhoff_sum: f64 = row.iter().sum();
+        let (weights, applied, residual): (Vec<f64>, &'static str, f64) = match normalisation {
+            Normalisation::Kirchhoff => (row, "kirchhoff", 0.0),
+            Normalisation::Energy if p > MAX_SINKHORN_CHANNELS => {
+                let w = row.iter().map(|v| v / kirchhoff_sum).collect();
+                (w, "energy-row", 0.0)
+            }
+            Normalisation::Energy => {
+                let matrix: Vec<f64> = (0..p * p).into_par_iter().map(|i| entry(i / p, i % p)).collect::<Vec<f64>>();
+                let (r, s, residual) = sinkhorn(&matrix, p);
+                let w = (0..p).map(|b| r[here] * matrix[here * p + b] * s[b]).collect();
+                (w, "energy", residual)
+            }
+        };
+        let mut orders = Vec::with_capacity(p);
+        let mut total = Efficiency::default();
+        for (b, &weight) in weights.iter().enumerate() {
+            let wr = [-xy[b][0], -xy[b][1], cos[b]];
+            let h = [wi[0] + wr[0], wi[1] + wr[1], wi[2] + wr[2]];
+            let cos_h = dot(wi, h) / dot(h, h).sqrt();
+            let [rs, rp] = fresnel.reflectance_sp(wavelength_nm, cos_h);
+            let e = Efficiency::new(weight * rs, weight * rp);
+            total.add(e);
+            let (m, n) = (-channels[b].0, -channels[b].1);
+            orders.push(OrderEfficiency {
+                wavelength_nm,
+                m,
+                n,
+                theta_deg: cos[b].clamp(-1.0, 1.0).acos().to_degrees(),
+                phi_deg: if xy[b][0] == 0.0 && xy[b][1] == 0.0 {
+                    0.0
+                } else {
+                    wr[1].atan2(wr[0]).to_degrees().rem_euclid(360.0)
+                },
+                efficiency: e,
+            });
+        }
+        orders.sort_by_key(|o| (o.m, o.n));
+        Ok(GratingAnswer {
+            wavelength_nm,
+            orders,
+            reflected_total: total,
+            channels: p,
+            normalisation: applied,
+            normalisation_residual: residual,
+            kirchhoff_sum,
+        })
+    }
+
+    /// [`UnitCell::efficiencies`] at every wavelength, in parallel.
+    pub fn spectrum(
+        &self,
+        wi: Vec3,
+        wavelengths_nm: &[f64],
+        fresnel: &dyn FresnelSource,
+        normalisation: Normalisation,
+        progress: &(dyn Fn(usize) + Sync),
+    ) -> Result<Vec<GratingAnswer>, DiffractionError> {
+        let done = std::sync::atomic::AtomicUsize::new(0);
+        wavelengths_nm
+            .par_iter()
+            .map(|&l| {
+                let a = self.efficiencies(wi, l, fresnel, normalisation);
+                progress(done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1);
+                a
+            })
+            .collect()
+    }
+}
+
+/// Sinkhorn–Knopp: `r`, `s` such that `r_a M[a][b] s_b` has every row and column summing to 1 (`M` square,
+/// row-major, `p × p`, non-negative with positive diagonal); returns them and the largest deviation left.
+fn sinkhorn(m: &[f64], p: usize) -> (Vec<f64>, Vec<f64>, f64) {
+    let mut r = vec![1.0; p];
+    let mut s = vec![1.0; p];
+    let mut residual = f64::INFINITY;
+    for _ in 0..20_000 {
+        for a in 0..p {
+            let sum: f64 = (0..p).map(|b| m[a * p + b] * s[b]).sum();
+            r[a] = if sum > 0.0 { 1.0 / sum } else { 0.0 };
+        }
+        for b in 0..p {
+            let sum: f64 = (0..p).map(|a| r[a] * m[a * p + b]).sum();
+            s[b] = if sum > 0.0 { 1.0 / sum } else { 0.0 };
+        }
+        // Columns sum to 1 now; the rows say how far from the fixed point.
+        residual =
+            (0..p).map(|a| ((0..p).map(|b| r[a] * m[a * p + b] * s[b]).sum::<f64>() - 1.0).abs()).fold(0.0, f64::max);
+        if residual < 1e-13 {
+            break;
+        }
+    }
+    (r, s, residual)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::{direction, Fresnel};
+
+    /// A reflector that returns everything (`R = 1` for both polarisations).
+    #[derive(Debug)]
+    struct Perfect;
+    impl FresnelSource for Perfect {
+        fn reflectance(&self, _: f64, _: f64) -> f64 {
+            1.0
+        }
+        fn depends_on_wavelength(&self) -> bool {
+            false
+        }
+        fn describe(&self) -> String {
+            "perfect".into()
+        }
+    }
+
+    /// `J_m(x)` by its power series (Abramowitz & Stegun 9.1.10), enough terms for |x| < 10.
+    fn bessel_j(m: i64, x: f64) -> f64 {
+        let (mu, sign) = if m < 0 { (-m, if m % 2 == 0 { 1.0 } else { -1.0 }) } else { (m, 1.0) };
+        let mut term = (x / 2.0).powi(mu as i32) / (1..=mu).map(|k| k as f64).product::<f64>();
+        let mut sum = term;
+        for k in 1..60 {
+            term *= -(x * x / 4.0) / (k as f64 * (k + mu) as f64);
+            sum += term;
+        }
+        sign * sum
+    }
+
+    fn sine(period: f64, amplitude: f64, samples: usize) -> Patch {
+        let h: Vec<f64> = (0..4 * samples)
+            .map(|i| amplitude * (std::f64::consts::TAU * (i % samples) as f64 / samples as f64).sin())
+            .collect();
+        Patch::from_row_major(4, samples, period / samples as f64, 50.0, &h).unwrap()
+    }
+
+    #[test]
+    fn a_sine_gratings_orders_are_kirchhoffs_bessel_functions() {
+        // exp(i k w a sin(2πx/Λ)) = Σ_m J_m(k w a) e^{2πi m x/Λ} (Jacobi–Anger): η_m = K R J_m(k w_m a)².
+        let (period, a, lambda) = (1100.0, 60.0, 500.0);
+        let cell = UnitCell::new(&sine(period, a, 256), 380.0).unwrap();
+        assert_eq!(cell.lines(), Lines::AlongX);
+        let wi = direction(30f64.to_radians(), 0.0);
+        let ans = cell.efficiencies(wi, lambda, &Perfect, Normalisation::Kirchhoff).unwrap();
+        assert_eq!(ans.orders.iter().map(|o| o.m).collect::<Vec<_>>(), vec![-1, 0, 1, 2, 3]);
+        for o in &ans.orders {
+            // Grating equation: sin θ_r = sin θ_i − m λ/Λ, θ_r positive on the specular side (φ = 180°).
+            let s = 30f64.to_radians().sin() - o.m as f64 * lambda / period;
+            let signed = if o.phi_deg > 90.0 && o.phi_deg < 270.0 { o.theta_deg } else { -o.theta_deg };
+            assert!((signed.to_radians().sin() - s).abs() < 1e-12, "{o:?}");
+            let wr = [-s, 0.0, (1.0 - s * s).sqrt()];
+            let (ci, cr) = (wi[2], wr[2]);
+            let k = (1.0 + dot(wi, wr)).powi(2) / (ci * cr * (ci + cr).powi(2));
+            let j = bessel_j(o.m, std::f64::consts::TAU / lambda * (ci + cr) * a);
+            let expect = k * j * j;
+            assert!((o.efficiency.te - expect).abs() < 1e-9 * expect.max(1e-3), "{o:?} vs {expect}");
+        }
+    }
+
+    #[test]
+    fn energy_normalised_orders_of_a_perfect_reflector_return_all_light_at_every_incidence() {
+        let cell = UnitCell::new(&sine(1100.0, 150.0, 128), 380.0).unwrap();
+        for deg in [0.0, 30.0, 60.0, 75.0, 85.0, 89.0] {
+            let wi = direction(f64::to_radians(deg), 0.3);
+            for lambda in [400.0, 550.0, 700.0] {
+                let e = cell.efficiencies(wi, lambda, &Perfect, Normalisation::Energy).unwrap();
+                assert!((e.reflected_total.unpolarized - 1.0).abs() < 1e-12, "{deg}° {lambda}: {e:?}");
+                let k = cell.efficiencies(wi, lambda, &Perfect, Normalisation::Kirchhoff).unwrap();
+                assert!((k.kirchhoff_sum - k.reflected_total.unpolarized).abs() < 1e-12);
+            }
+        }
+        // The printed obliquity creates energy at oblique light (the issue's 2.08 at 75°, 150 nm amplitude).
+        let k = cell.efficiencies(direction(75f64.to_radians(), 0.0), 550.0, &Perfect, Normalisation::Kirchhoff);
+        assert!(k.unwrap().reflected_total.te > 1.5);
+    }
+
+    #[test]
+    fn energy_normalised_efficiencies_are_reciprocal() {
+        // Light from ω_i into order G leaving along ω_r; the reverse light from ω_r leaves along ω_i in the same
+        // order G (ω_i,xy = −ω_r,xy + G): the efficiencies agree (metal Fresnel included, symmetric in θ_h).
+        let h: Vec<f64> = (0..96 * 96)
+            .map(|i| {
+                let (x, y) = ((i % 96) as f64 / 96.0, (i / 96) as f64 / 96.0);
+                40.0 * (std::f64::consts::TAU * x).sin() + 25.0 * (std::f64::consts::TAU * (x + 2.0 * y)).cos().powi(3)
+            })
+            .collect();
+        let patch = Patch::from_row_major(96, 96, 1400.0 / 96.0, 1700.0 / 96.0, &h).unwrap();
+        let cell = UnitCell::new(&patch, 380.0).unwrap();
+        assert_eq!(cell.lines(), Lines::Crossed);
+        let metal = Fresnel::Index { n: Complex64::new(0.2, 3.4) };
+        let wi = direction(50f64.to_radians(), 0.7);
+        let ans = cell.efficiencies(wi, 600.0, &metal, Normalisation::Energy).unwrap();
+        assert!(ans.orders.len() > 4);
+        assert!(ans.reflected_total.unpolarized < 1.0);
+        for o in &ans.orders {
+            let wr = direction(o.theta_deg.to_radians(), o.phi_deg.to_radians());
+            let back = cell.efficiencies(wr, 600.0, &metal, Normalisation::Energy).unwrap();
+            let r = back.orders.iter().find(|b| (b.m, b.n) == (o.m, o.n)).expect("the reverse order");
+            let there = direction(r.theta_deg.to_radians(), r.phi_deg.to_radians());
+            assert!((0..3).all(|c| (there[c] - wi[c]).abs() < 1e-9), "{there:?} vs {wi:?}");
+            for (x, y) in [(o.efficiency.te, r.efficiency.te), (o.efficiency.tm, r.efficiency.tm)] {
+                assert!((x - y).abs() < 1e-11 * x.max(1e-6), "order {} {}: {x} vs {y}", o.m, o.n);
+            }
+        }
+    }
+
+    #[test]
+    fn a_flat_cell_is_a_mirror_with_fresnels_reflectance() {
+        let patch = Patch::from_row_major(8, 8, 100.0, 100.0, &[5.0; 64]).unwrap();
+        let cell = UnitCell::new(&patch, 380.0).unwrap();
+        let glass = Fresnel::Index { n: Complex64::new(1.5, 0.0) };
+        let wi = direction(60f64.to_radians(), 0.0);
+        let ans = cell.efficiencies(wi, 500.0, &glass, Normalisation::Energy).unwrap();
+        let [rs, rp] = crate::geometry::fresnel_sp(Complex64::new(1.5, 0.0), 0.5);
+        for o in &ans.orders {
+            let want = if (o.m, o.n) == (0, 0) { [rs, rp] } else { [0.0, 0.0] };
+            assert!((o.efficiency.te - want[0]).abs() < 1e-14 && (o.efficiency.tm - want[1]).abs() < 1e-14, "{o:?}");
+        }
+    }
+}
