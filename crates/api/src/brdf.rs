@@ -159,6 +159,10 @@ pub fn default_method(input: &str) -> &'static str {
 pub struct PointEval {
     /// The evaluator's name.
     pub method: String,
+    /// The coherence length the evaluator ran with (nm), where it has one.
+    pub coherence_nm: Option<f64>,
+    /// The coherence window's effective area `A_eff` (nm²) behind the BRDF's gain `A_eff/λ²`.
+    pub effective_area_nm2: Option<f64>,
     /// The wavelength grid, ρ(λ) (`None` for lookup, which integrates over λ in advance) and XYZ.
     pub query: PointQuery,
 }
@@ -190,5 +194,6 @@ pub fn point(
 ) -> Result<PointEval> {
     let spectral = spectral_setup(model, report)?;
     let query = iridis_diffraction::point_query(e, spectral.wavelengths(), wi, wr)?;
-    Ok(PointEval { method: e.name().to_string(), query })
+    let effective_area_nm2 = e.radiometric_gain(1.0);
+    Ok(PointEval { method: e.name().to_string(), coherence_nm: e.coherence_nm(), effective_area_nm2, query })
 }

@@ -216,7 +216,7 @@ impl Grating {
                     dot(wr, d.direction) >= cos_cone
                 })
                 .map(|o| o.efficiency.unpolarized)
-                .sum(),
+                .fold(0.0, |a, b| a + b),
         )
     }
 

@@ -23,8 +23,7 @@ use crate::surface::{Source, SurfaceOptions};
 #[derive(Debug, Clone)]
 pub struct LabOptions {
     pub surface: SurfaceOptions,
-    /// Coherence length 4σ_s of the window (nm); default 65 µm, or half the patch's shorter side when the patch
-    /// is smaller than that.
+    /// Coherence length 4σ_s of the window (nm), a property of the light; default 65 µm (the paper's).
     pub coherence_nm: Option<f64>,
     /// Taylor terms: auto (remainder bound 1e-6) or N.
     pub terms: String,
@@ -185,18 +184,43 @@ pub struct Testbench {
 
 /// The test bench (paper sec. 6.1) of `method` on SURFACE: `setup.period_hint_nm`, when set, centres the
 /// order's window and gives NMM and Stam's lattice the period along the measured direction; `max_period_nm`
-/// defaults to the smaller of 10 µm and 0.785 × coherence (the mirror lobe's 2σ_f). Says why a period is not
-/// definite (quantised by the patch, competing ridges, spread over λ) as warnings.
+/// defaults to the smallest of 10 µm, 0.785 × coherence (the mirror lobe's 2σ_f) and half the patch's extent
+/// along the measured direction (a longer period is no period of the scan). With `along_dominant`, the bench
+/// measures along the orientation of the surface's strongest period (what `iridis surface info` finds), and
+/// centres the order's window on that period unless one is given. Says why a period is not definite (competing
+/// ridges, spread over λ) as warnings, and how precisely it is known (half a DFT step along the direction, or
+/// the window's resolution: [`bench::PatchGrid`]).
 pub fn testbench(
     source: &Source,
     m: &LabOptions,
     method: Method,
     mut setup: BenchSetup,
+    along_dominant: bool,
     max_period_nm: Option<f64>,
     report: &dyn Report,
 ) -> Result<Testbench> {
     check_spectral(method)?;
     let mut config = m.config()?;
+    let patch = source.patch(&m.surface, report)?;
+    if along_dominant {
+        match crate::surface::dominant_period(&patch) {
+            Some(p) => {
+                setup.azimuth = p.orientation_deg.to_radians();
+                let hint = setup.period_hint_nm.is_none();
+                if hint {
+                    setup.period_hint_nm = Some(p.period_nm);
+                }
+                report.note(&format!(
+                    "measuring along azimuth {:.1}°, the orientation of the surface's strongest period ({:.1} nm{}); \
+                     --azimuth chooses another",
+                    p.orientation_deg,
+                    p.period_nm,
+                    if hint { ", which centres the order's window" } else { "" }
+                ));
+            }
+            None => report.note("the surface has no dominant period: measuring along azimuth 0° (x)"),
+        }
+    }
     if let Some(p) = setup.period_hint_nm {
         // NMM and Stam's lattice take the period along the measured direction.
         if setup.azimuth.sin().abs() > setup.azimuth.cos().abs() {
@@ -205,25 +229,18 @@ pub fn testbench(
             config.period_x_nm = Some(p);
         }
     }
-    let b = workbench_from(source, m, config, report)?;
-    setup.max_period_nm = max_period_nm.unwrap_or((b.config.coherence_nm * std::f64::consts::FRAC_PI_4).min(10_000.0));
+    let source = Source::Patch { patch, name: source.name().to_string() };
+    let b = workbench_from(&source, m, config, report)?;
+    let extent = b.patch.extent_along(setup.azimuth);
+    setup.max_period_nm =
+        max_period_nm.unwrap_or((b.config.coherence_nm * std::f64::consts::FRAC_PI_4).min(10_000.0).min(0.5 * extent));
     let e = evaluator(&b, method, report)?;
     let matrix = with_progress(report, setup.wavelengths_nm.len() as u64, "test bench", |p| {
         bench::reflectance_matrix(e.as_ref(), &setup, p)
     })?;
-    let result = bench::analyse(&matrix, &setup)?.on_patch(b.patch.shorter_side_nm(), b.config.coherence_nm);
+    let result = bench::analyse(&matrix, &setup)?.on_patch(extent, b.config.coherence_nm);
     let azimuth_deg = setup.azimuth.to_degrees();
-    if result.is_quantised() {
-        report.warn(&format!(
-            "the peaks follow d = {:.2} nm, but the coherence window ({} µm) is wider than the {} µm patch, \
-             so the period is read off the patch's DFT grid, quantised to ± d²/L = {:.1} nm: not a definite \
-             period; leave --coherence out (it is then fitted to the patch) or give at most half the patch's side",
-            result.periodicity.mean,
-            b.config.coherence_nm / 1000.0,
-            b.patch.shorter_side_nm() / 1000.0,
-            result.uncertainty_nm().unwrap_or(f64::NAN)
-        ));
-    } else if result.periodicity.is_definite() && !result.is_definite() {
+    if result.periodicity.is_definite() && !result.is_definite() {
         report.warn(&format!(
             "the peaks follow d = {:.1} nm, but {} ridges are nearly as strong (the strongest carries {:.2}× \
              the next, less than {}×): the surface has no definite period along azimuth {azimuth_deg:.0}°",

@@ -21,8 +21,7 @@ pub const DEFAULT_EPSILON: f64 = 1e-6;
 pub struct ModelOptions {
     /// Taylor terms: `auto` (from the remainder bound) or a number N (terms 0..N).
     pub terms: String,
-    /// Coherence length 4σ_s of the Gaussian window (nm); default 65 µm, or half the patch's shorter side
-    /// when the patch is smaller than that.
+    /// Coherence length 4σ_s of the Gaussian window (nm), a property of the light; default 65 µm (the paper's).
     pub coherence_nm: Option<f64>,
     /// Illuminant: d65 (default), d50, a, e.
     pub illuminant: Option<String>,
@@ -49,13 +48,11 @@ pub fn spectral_setup(m: &ModelOptions, report: &dyn Report) -> Result<SpectralS
     Ok(SpectralSetup::new(ill, obs, step)?)
 }
 
-/// The coherence length for a patch (the one given, or fitted to the patch), with the note saying it was
-/// fitted and the model's warnings.
+/// The coherence length for a patch (the light's: the one given, or the paper's 65 µm), with the note that
+/// says which and what a patch smaller than the window becomes, and the model's warnings.
 pub fn coherence_for(patch: &Patch, given_nm: Option<f64>, report: &dyn Report) -> f64 {
     let c = patch.coherence(given_nm);
-    if let Some(note) = c.note() {
-        report.note(&note);
-    }
+    report.note(&c.note());
     for w in patch.warnings(c.nm) {
         report.warn(&w);
     }

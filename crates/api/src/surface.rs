@@ -78,6 +78,18 @@ impl Source {
     }
 }
 
+/// The strongest period of a patch and its orientation, as `iridis surface info` finds them (the direction of
+/// the grating vector, degrees in `[0, 180)` from +x with y up); `None` for a surface without one.
+pub fn dominant_period(patch: &Patch) -> Option<iridis_surface::Peak> {
+    let cols = patch.cols;
+    // Back to the readers' row order (row 0 at the top); the patch keeps y growing with the row.
+    let heights: Vec<f64> =
+        (0..patch.rows).rev().flat_map(|j| patch.heights[j * cols..(j + 1) * cols].iter().copied()).collect();
+    let hf = iridis_surface::HeightField::new(patch.rows, cols, patch.dx, patch.dy, heights).ok()?;
+    let opts = iridis_surface::PeakOptions { max_peaks: 1, ..iridis_surface::PeakOptions::default() };
+    iridis_surface::find_peaks(&hf, &opts).into_iter().next()
+}
+
 /// Everything `iridis surface info --json` reports (keys in docs/json.md): sizes, heights, the dominant periods
 /// with their orientations, roughness of the plane-levelled field, radial PSDF and ACF, notes and warnings.
 pub fn info(hf: &iridis_surface::HeightField, n_peaks: usize, coherence_nm: f64) -> serde_json::Value {

@@ -30,6 +30,22 @@ pub trait Evaluator: Send + Sync {
     fn as_ground_truth(&self) -> Option<&GroundTruth> {
         None
     }
+    /// The shading factors `C` around `|A|²`, where the method has them: with [`Evaluator::radiometric_gain`]
+    /// what turns the relative `ρ` into the BRDF `f_r` (sr⁻¹) per polarisation ([`crate::point`]).
+    fn shading(&self) -> Option<&Shading> {
+        None
+    }
+    /// The gain `A_eff/λ²` that turns the relative `ρ` (a flat mirror's peak is 1) into `f_r cos θ_i / R₀`:
+    /// the coherence window's effective area `A_eff = (Σg)² dx dy / Σg²` over the wavelength squared — `4πσ_s²`
+    /// for a Gaussian window inside the patch or on the periodic lattice (docs/PHYSICS.md, "Units of ρ"), less
+    /// where the patch edge cuts the window. `None` for methods whose lobe has no such normalisation.
+    fn radiometric_gain(&self, _wavelength_nm: f64) -> Option<f64> {
+        None
+    }
+    /// The coherence length `4σ_s` (nm) of the evaluator's window, where it has one.
+    fn coherence_nm(&self) -> Option<f64> {
+        None
+    }
 }
 
 /// The thesis' reference shader (FLSS, Algorithm 3): at each λ of a uniform grid, the windowed DFT of every
@@ -61,6 +77,15 @@ impl Reference {
 impl Evaluator for Reference {
     fn name(&self) -> &'static str {
         "reference"
+    }
+    fn shading(&self) -> Option<&Shading> {
+        Some(&self.shading)
+    }
+    fn radiometric_gain(&self, wavelength_nm: f64) -> Option<f64> {
+        Some(crate::spectral::radiometric_gain(wavelength_nm, self.terms.coherence_nm))
+    }
+    fn coherence_nm(&self) -> Option<f64> {
+        Some(self.terms.coherence_nm)
     }
     fn reflectance(&self, wavelength_nm: f64, wi: Vec3, wr: Vec3) -> Option<f64> {
         let mut scratch = vec![Complex64::new(0.0, 0.0); self.terms.n_max + 1];
@@ -160,6 +185,10 @@ pub struct GroundTruth {
     /// Wavenumbers `1/λ` (1/nm), uniform, and their XYZ weights.
     wavenumbers: Vec<f64>,
     weights: SpectralWeights,
+    /// The window's effective area `(Σg)² dx dy / Σg²` (nm²): `4πσ_s²` on the periodic lattice or for a window
+    /// inside the patch, less where the patch edge cuts it ([`Evaluator::radiometric_gain`]).
+    effective_area_nm2: f64,
+    coherence_nm: f64,
 }
 
 #[derive(Debug, Clone)]
@@ -377,6 +406,7 @@ impl GroundTruth {
         }
         let sigma_s = coherence_nm / 4.0;
         let (xc, yc) = ((patch.cols - 1) as f64 * patch.dx / 2.0, (patch.rows - 1) as f64 * patch.dy / 2.0);
+        let mut effective_area_nm2 = 4.0 * std::f64::consts::PI * sigma_s * sigma_s;
         let (samples, lattice) = match aperture {
             Aperture::Finite => {
                 let (mut x, mut y, mut g) = (Vec::new(), Vec::new(), Vec::new());
@@ -390,6 +420,7 @@ impl GroundTruth {
                 }
                 let gs: f64 = g.iter().sum();
                 g.iter_mut().for_each(|v| *v /= gs);
+                effective_area_nm2 = patch.dx * patch.dy / g.iter().map(|v| v * v).sum::<f64>();
                 // Samples where the window has fallen below 1e-12 of its peak (beyond 7.4 σ_s) are left out of
                 // the sum: together they change A by less than 1e-12 × (their count × peak weight), far below
                 // the f64 rounding of a million-term sum, and with a window smaller than the patch they are
@@ -445,9 +476,22 @@ impl GroundTruth {
         let mut weights = SpectralWeights::new(&grid, spectral.illuminant, spectral.observer);
         if spectral.units == crate::Units::Radiometric {
             spectral.check_coherence(coherence_nm)?;
-            weights = weights.scaled(|l| crate::spectral::radiometric_gain(l, coherence_nm));
+            // The lobe's solid angle is the window's effective area over λ²: 4πσ_s² unless the patch edge
+            // cuts the window (the finite aperture), where 4πσ_s² overstated the energy by 1.19× (window = patch)
+            // to 8.3× (the paper's 65 µm window on a 20 µm patch).
+            weights = weights.scaled(|l| effective_area_nm2 / (l * l));
         }
-        Ok(Self { samples, lattice: Arc::new(lattice), dx: patch.dx, dy: patch.dy, shading, wavenumbers, weights })
+        Ok(Self {
+            samples,
+            lattice: Arc::new(lattice),
+            dx: patch.dx,
+            dy: patch.dy,
+            shading,
+            wavenumbers,
+            weights,
+            effective_area_nm2,
+            coherence_nm,
+        })
     }
 
     /// The aperture this ground truth sums over.
@@ -559,5 +603,60 @@ impl Evaluator for GroundTruth {
     }
     fn as_ground_truth(&self) -> Option<&GroundTruth> {
         Some(self)
+    }
+    fn shading(&self) -> Option<&Shading> {
+        Some(&self.shading)
+    }
+    fn radiometric_gain(&self, wavelength_nm: f64) -> Option<f64> {
+        Some(self.effective_area_nm2 / (wavelength_nm * wavelength_nm))
+    }
+    fn coherence_nm(&self) -> Option<f64> {
+        Some(self.coherence_nm)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `G(λ) ∬ |A|² du dv` of a flat patch over one period of its sampled spectrum (`|u| ≤ λ/(2dx)`; a flat
+    /// patch's `A` does not depend on `w`, so the directions need not lie on the hemisphere): by Parseval
+    /// `λ² Σg²/(dx dy)` with `Σg = 1`, so exactly 1 when the gain is the window's effective area over λ². The
+    /// trapezoid rule is exact here: `|A|²` is a trigonometric polynomial of lower degree than the grid.
+    fn lobe_energy(gt: &GroundTruth, lambda: f64, dx: f64, n: usize) -> f64 {
+        let wi = [0.0, 0.0, 1.0];
+        let span = lambda / dx;
+        let du = span / n as f64;
+        let mut sum = 0.0;
+        for j in 0..n {
+            for i in 0..n {
+                let (u, v) = (-0.5 * span + i as f64 * du, -0.5 * span + j as f64 * du);
+                sum += gt.amplitude(lambda, wi, [-u, -v, 0.0]).norm_sqr() * du * du;
+            }
+        }
+        sum * gt.radiometric_gain(lambda).unwrap()
+    }
+
+    #[test]
+    fn the_lobes_gain_is_the_windows_effective_area_also_where_the_patch_cuts_it() {
+        let patch = Patch::from_row_major(24, 24, 100.0, 100.0, &[0.0; 576]).unwrap();
+        let spectral = SpectralSetup::default();
+        for (coherence, aperture) in
+            [(1200.0, Aperture::Finite), (2400.0, Aperture::Finite), (65000.0, Aperture::Finite)]
+        {
+            let gt =
+                GroundTruth::with_aperture(&patch, coherence, Shading::default(), &spectral, 41, aperture).unwrap();
+            let e = lobe_energy(&gt, 500.0, 100.0, 64);
+            let old = crate::spectral::radiometric_gain(500.0, coherence) / gt.radiometric_gain(500.0).unwrap();
+            eprintln!("coherence {coherence} nm on a 2.4 µm patch: lobe energy {e:.12}, 4πσ_s²/A_eff = {old:.4}");
+            assert!((e - 1.0).abs() < 1e-9, "{coherence}: {e}");
+            match coherence {
+                // The window well inside the patch (edges at 8σ_s): the Gaussian's own 4πσ_s².
+                c if c < 2000.0 => assert!((old - 1.0).abs() < 1e-3, "{old}"),
+                // As wide as the patch, 4πσ_s² overstated the light by ~1.2×; the paper's 65 µm on it by far more.
+                c if c < 10_000.0 => assert!((1.15..1.25).contains(&old), "{old}"),
+                _ => assert!(old > 100.0, "{old}"),
+            }
+        }
     }
 }

@@ -87,50 +87,60 @@ impl Patch {
         (self.cols as f64 * self.dx).min(self.rows as f64 * self.dy)
     }
 
-    /// The coherence length to use: the one given, or [`Coherence::fitted`] to this patch.
+    /// The coherence length to use: the light's, as given, or the paper's 65 µm ([`Coherence`]).
     pub fn coherence(&self, given_nm: Option<f64>) -> Coherence {
-        match given_nm {
-            Some(nm) => Coherence { nm, fitted_to_side_nm: None },
-            None => Coherence::fitted(self.shorter_side_nm()),
+        Coherence {
+            nm: given_nm.unwrap_or(crate::DEFAULT_COHERENCE_NM),
+            given: given_nm.is_some(),
+            extent_nm: self.extent(),
         }
+    }
+
+    /// The patch's extent along the in-plane direction at azimuth `phi` (rad): the length whose DFT step
+    /// `1/L` is the frequency grid's step along that direction, `1/L = √((cos φ/Lx)² + (sin φ/Ly)²)`.
+    pub fn extent_along(&self, phi: f64) -> f64 {
+        let (lx, ly) = self.extent();
+        1.0 / ((phi.cos() / lx).powi(2) + (phi.sin() / ly).powi(2)).sqrt()
     }
 }
 
-/// The coherence length `4σ_s` a model runs with, and whether it was fitted to the patch.
+/// The coherence length `4σ_s` a model runs with: a property of the light (paper sec. 4.2: the paper's 65 µm
+/// unless the user gives another), never fitted to the patch. A patch smaller than the window is taken as one
+/// unit cell of a periodic surface (the DFT's periodic extension, [`crate::Aperture::Periodic`]): it diffracts
+/// into discrete orders `1/L` apart in frequency, as a grating of that period does. (An earlier default shrank
+/// the window to half the patch's shorter side; on a 65 × 3.2 µm strip of a 2500 nm grating that made the
+/// window 1.6 µm, narrower than one period, and the test bench read 302.8 nm.)
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Coherence {
     pub nm: f64,
-    /// The patch side it was fitted to, when the user gave none and the paper's 65 µm would not fit.
-    pub fitted_to_side_nm: Option<f64>,
+    /// Whether the user gave it.
+    pub given: bool,
+    /// The patch's extent `(Lx, Ly)` (nm).
+    pub extent_nm: (f64, f64),
 }
 
 impl Coherence {
-    /// The paper's 65 µm ([`crate::DEFAULT_COHERENCE_NM`]) when the patch is at least that large, otherwise half
-    /// the patch's shorter side `L`. Why half: the Gaussian window `exp(−r²/2σ_s²)` with `4σ_s = L/2` falls to
-    /// e⁻⁸ ≈ 3e-4 at the patch's edges (±4σ_s = ±L/2), so the window sees one copy of the patch, and its
-    /// spectral width `σ_f = 1/(2π σ_s) ≈ 1.27/L` blends the DFT's spikes (`1/L` apart) into a smooth spectrum.
-    /// With the paper's 65 µm on a 6.4 µm scan of a 1000 nm sine the spikes stay apart and the test bench reads
-    /// 1066.7 nm (6400/6, a DFT grid value); at L/2 it reads 996 nm (measured; 4.8 µm: 999, 6.4 µm: 1007,
-    /// 9.6 µm: 1053 — the error grows once the window is wider than the patch).
-    pub fn fitted(shorter_side_nm: f64) -> Self {
-        if shorter_side_nm >= crate::DEFAULT_COHERENCE_NM {
-            Coherence { nm: crate::DEFAULT_COHERENCE_NM, fitted_to_side_nm: None }
-        } else {
-            Coherence { nm: 0.5 * shorter_side_nm, fitted_to_side_nm: Some(shorter_side_nm) }
-        }
+    /// Whether the window is wider than the patch along either axis, so that the patch is taken as a unit
+    /// cell of a periodic surface.
+    pub fn periodic(&self) -> bool {
+        self.nm > self.extent_nm.0.min(self.extent_nm.1)
     }
 
-    /// A line for the user when the coherence was fitted: what was chosen and why.
-    pub fn note(&self) -> Option<String> {
-        self.fitted_to_side_nm.map(|side| {
-            format!(
-                "coherence {} µm, fitted to the patch (half its {} µm shorter side): the paper's {} µm would exceed \
-                 the patch and turn its spectrum into DFT spikes; give --coherence to choose another",
-                trim_um(self.nm),
-                trim_um(side),
-                trim_um(crate::DEFAULT_COHERENCE_NM)
-            )
-        })
+    /// The line a person sees: the coherence and where it came from, and, where the patch is smaller than the
+    /// window, what the model makes of it and what that means for the numbers.
+    pub fn note(&self) -> String {
+        let what = if self.given { "as given" } else { "the paper's default; --coherence to change" };
+        let mut s = format!("coherence {} µm ({what})", trim_um(self.nm));
+        if self.periodic() {
+            s += &format!(
+                "; the {} × {} µm patch is smaller, so it is taken as one unit cell of a periodic surface: it \
+                 diffracts into discrete orders, and periods read off it are uncertain by ± d²/(2L) along their \
+                 direction (L its extent there)",
+                trim_um(self.extent_nm.0),
+                trim_um(self.extent_nm.1)
+            );
+        }
+        s
     }
 }
 
@@ -140,9 +150,9 @@ fn trim_um(nm: f64) -> String {
     s.trim_end_matches('0').trim_end_matches('.').to_string()
 }
 
-/// Warnings about a `rows × cols` grid of `dx × dy` nm pixels under a coherence length (PHYSICS.md), each at
-/// most once: pixels too coarse for the visible band at grazing geometry (one warning for both axes), or a
-/// patch smaller than the coherence area (treated as periodic). Also stored in a lookup table's metadata.
+/// Warnings about a `rows × cols` grid of `dx × dy` nm pixels (PHYSICS.md): pixels too coarse for the visible
+/// band at grazing geometry (one warning for both axes). Also stored in a lookup table's metadata. A patch
+/// smaller than the coherence window is no warning but the model's unit cell, said in [`Coherence::note`].
 pub fn model_warnings(rows: usize, cols: usize, dx: f64, dy: f64, coherence_nm: f64) -> Vec<String> {
     let mut w = Vec::new();
     let d = dx.max(dy);
@@ -154,18 +164,6 @@ pub fn model_warnings(rows: usize, cols: usize, dx: f64, dy: f64, coherence_nm: 
             380.0 * 0.5 / d
         ));
     }
-    let (ex, ey) = (cols as f64 * dx, rows as f64 * dy);
-    if ex.min(ey) < coherence_nm {
-        w.push(format!(
-            "patch {:.1} × {:.1} µm is smaller than the coherence length {:.1} µm: the DFT treats it as periodic, so \
-             spectra become spikes {:.3}/µm apart (narrower than the window) and a period read off them is quantised \
-             to about ± d²/L; tiling does not help (the spikes stay where they are): leave --coherence out (it is \
-             then fitted to the patch) or give at most half the patch's side, or scan a larger area",
-            ex / 1000.0,
-            ey / 1000.0,
-            coherence_nm / 1000.0,
-            1000.0 / ex.min(ey)
-        ));
-    }
+    let _ = (rows, cols, coherence_nm);
     w
 }

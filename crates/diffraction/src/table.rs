@@ -671,6 +671,15 @@ impl Evaluator for Lookup {
     fn name(&self) -> &'static str {
         "lookup"
     }
+    fn shading(&self) -> Option<&Shading> {
+        Some(&self.shading)
+    }
+    fn radiometric_gain(&self, wavelength_nm: f64) -> Option<f64> {
+        Some(crate::spectral::radiometric_gain(wavelength_nm, self.table.meta.coherence_nm))
+    }
+    fn coherence_nm(&self) -> Option<f64> {
+        Some(self.table.meta.coherence_nm)
+    }
     fn reflectance(&self, _wavelength_nm: f64, _wi: Vec3, _wr: Vec3) -> Option<f64> {
         None
     }

@@ -255,43 +255,47 @@ pub struct BenchResult {
     pub grid: Option<PatchGrid>,
 }
 
-/// The patch side and coherence a bench ran with. A patch of side `L` has a spectrum sampled `1/L` apart, so a
-/// period `d` read off it is uncertain by about `d²/L` (one grid step in frequency, `Δ(1/d) = 1/L`); while the
-/// coherence window is no wider than the patch, the window blends the grid's spikes and the peaks fall between
-/// them (a 1000 nm sine on a 6.4 µm patch reads 996 nm at a 3.2 µm coherence), but a wider window leaves the
-/// spikes apart and the period snaps to a grid value `L/k` (1066.7 nm = 6400/6 at 65 µm): quantised.
+/// The patch's extent along the measured direction and the coherence a bench ran with. A patch of extent `L`
+/// there has a spectrum sampled `1/L` apart along it. Where the window is wider than the patch
+/// ([`PatchGrid::quantised`]), the patch is one unit cell of a periodic surface: its orders sit on that grid
+/// and a period `d` is read to ± half a step, `d²/(2L)` (a 2500 nm grating on a 65 µm extent: ± 48 nm — and
+/// exact when the period divides the extent, as Table 1's does). Otherwise the window's own resolution limits
+/// it: `± d² σ_f`, `σ_f = 1/(2πσ_s)` the window's width in frequency.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PatchGrid {
-    pub side_nm: f64,
+    /// The patch's extent along the measured direction (nm).
+    pub extent_nm: f64,
     pub coherence_nm: f64,
 }
 
 impl PatchGrid {
-    /// `d²/L`: the period's uncertainty from the patch's DFT grid.
+    /// The period's uncertainty (nm): half a DFT step, or the window's resolution (above).
     pub fn uncertainty_nm(&self, period_nm: f64) -> f64 {
-        period_nm * period_nm / self.side_nm
+        if self.quantised() {
+            period_nm * period_nm / (2.0 * self.extent_nm)
+        } else {
+            let sigma_f = 1.0 / (std::f64::consts::TAU * self.coherence_nm / 4.0);
+            period_nm * period_nm * sigma_f
+        }
     }
 
-    /// The window is wider than the patch, so the period sits on the DFT grid.
+    /// The window is wider than the patch along the measured direction, so the period sits on the DFT grid.
     pub fn quantised(&self) -> bool {
-        self.coherence_nm > self.side_nm
+        self.coherence_nm > self.extent_nm
     }
 }
 
 impl BenchResult {
     /// One definite period: the peaks follow one period ([`Periodicity::is_definite`]) and, where the matrix
-    /// has several ridges, the strongest dominates every other by [`DOMINANT_RIDGE`].
-    /// On a patch whose window is wider than the patch ([`PatchGrid::quantised`]) the period is a DFT grid value,
-    /// never definite however small its spread.
+    /// has several ridges, the strongest dominates every other by [`DOMINANT_RIDGE`]. (How precisely the
+    /// period is known is [`BenchResult::uncertainty_nm`].)
     pub fn is_definite(&self) -> bool {
-        self.periodicity.is_definite()
-            && !matches!(self.ridge_dominance(), Some(d) if d < DOMINANT_RIDGE)
-            && !self.is_quantised()
+        self.periodicity.is_definite() && !matches!(self.ridge_dominance(), Some(d) if d < DOMINANT_RIDGE)
     }
 
-    /// Records the patch the matrix came from (side `side_nm`, window `coherence_nm`).
-    pub fn on_patch(mut self, side_nm: f64, coherence_nm: f64) -> Self {
-        self.grid = Some(PatchGrid { side_nm, coherence_nm });
+    /// Records the patch the matrix came from: its extent along the measured direction and the window.
+    pub fn on_patch(mut self, extent_nm: f64, coherence_nm: f64) -> Self {
+        self.grid = Some(PatchGrid { extent_nm, coherence_nm });
         self
     }
 
@@ -300,7 +304,7 @@ impl BenchResult {
         self.grid.is_some_and(|g| g.quantised())
     }
 
-    /// `± d²/L` of the mean period, when the patch is known.
+    /// `±` of the mean period ([`PatchGrid::uncertainty_nm`]), when the patch is known.
     pub fn uncertainty_nm(&self) -> Option<f64> {
         self.grid.map(|g| g.uncertainty_nm(self.periodicity.mean))
     }
@@ -314,7 +318,7 @@ impl BenchResult {
     }
 
     /// The JSON of issue 6: `{"periodicity_nm":{"mean","variance","relative_spread","definite","uncertainty",
-    /// "quantised"},"patch_side_nm","coherence_nm","order",
+    /// "quantised"},"patch_extent_nm","coherence_nm","order",
     /// "incidence_deg","azimuth_deg",
     /// "peaks":[{"wavelength_nm","angle_deg","period_nm"}],"ridges":[…]}`.
     pub fn to_json(&self) -> serde_json::Value {
@@ -333,7 +337,7 @@ impl BenchResult {
             "periodicity_nm": {"mean": self.periodicity.mean, "variance": self.periodicity.variance,
                 "relative_spread": self.periodicity.relative_spread(), "definite": self.is_definite(),
                 "uncertainty": self.uncertainty_nm(), "quantised": self.is_quantised()},
-            "patch_side_nm": self.grid.map(|g| g.side_nm),
+            "patch_extent_nm": self.grid.map(|g| g.extent_nm),
             "coherence_nm": self.grid.map(|g| g.coherence_nm),
             "order": self.order,
             "incidence_deg": self.incidence_deg,

@@ -245,8 +245,68 @@ fn eval_point<'py>(
         Some(rho) => d.set_item("reflectance", PyArray1::from_vec(py, rho))?,
         None => d.set_item("reflectance", py.None())?,
     }
+    match &p.query.brdf {
+        Some(b) => {
+            let f = PyDict::new(py);
+            f.set_item("s", PyArray1::from_vec(py, b.s.clone()))?;
+            f.set_item("p", PyArray1::from_vec(py, b.p.clone()))?;
+            f.set_item("unpolarized", PyArray1::from_vec(py, b.unpolarized.clone()))?;
+            d.set_item("brdf_per_sr", f)?;
+        }
+        None => d.set_item("brdf_per_sr", py.None())?,
+    }
+    d.set_item("coherence_nm", p.coherence_nm)?;
+    d.set_item("window_effective_area_um2", p.effective_area_nm2.map(|a| a / 1e6))?;
     d.set_item("xyz", PyArray1::from_vec(py, p.query.xyz.to_array().to_vec()))?;
     Ok(d)
+}
+
+/// Order efficiencies of a unit cell, as `iridis grating --json` (a dict with the same keys).
+#[pyfunction]
+#[pyo3(signature = (source, light, wavelengths_nm, options=None))]
+fn grating<'py>(
+    py: Python<'py>,
+    source: &Bound<'py, PyAny>,
+    light: (f64, f64),
+    wavelengths_nm: Vec<f64>,
+    options: Option<Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyAny>> {
+    use iridis_api::grating::{Detector, GratingOptions};
+    let wi = direction_of("light", light)?;
+    let mut o = Options::new(options);
+    let surface = o.surface()?;
+    let method = o.string("method")?.unwrap_or_else(|| "kirchhoff".into());
+    let material = o.string("material")?;
+    let fresnel = o.string("fresnel")?;
+    let normalisation = o.string("normalisation")?.unwrap_or_else(|| "energy".into());
+    let detector = match (o.f64("detector_theta")?, o.f64("detector_phi")?, o.positive("acceptance")?) {
+        (Some(t), p, a) => Some(Detector {
+            direction: direction_of("detector", (t, p.unwrap_or(0.0)))?,
+            acceptance_rad: a.unwrap_or(2f64.to_radians()),
+        }),
+        (None, None, None) => None,
+        _ => return Err(value_error("detector_phi and acceptance need detector_theta (radians)")),
+    };
+    o.finish()?;
+    let source = match input_of(source)? {
+        Input::Field(s) => s,
+        Input::Arg(a) => Source::Spec(a),
+        Input::Table(_) => return Err(value_error("grating needs the height field (the unit cell), not a table")),
+    };
+    let g = run(py, |r| {
+        let opts = GratingOptions {
+            method: method.parse()?,
+            light: wi,
+            wavelengths_nm,
+            material,
+            fresnel,
+            normalisation: normalisation.parse()?,
+            detector,
+        };
+        iridis_api::grating::grating(&source, &surface, &opts, r)
+    })?;
+    let text = serde_json::to_string(&g.to_json()).map_err(value_error)?;
+    py.import("json")?.call_method1("loads", (text,))
 }
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -254,5 +314,6 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(precompute, m)?)?;
     m.add_function(wrap_pyfunction!(brdf_map_xyz, m)?)?;
     m.add_function(wrap_pyfunction!(eval_point, m)?)?;
+    m.add_function(wrap_pyfunction!(grating, m)?)?;
     Ok(())
 }

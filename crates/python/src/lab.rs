@@ -63,7 +63,7 @@ fn _testbench<'py>(
     surface: &Bound<'py, PyAny>,
     method_name: &str,
     incidence: f64,
-    azimuth: f64,
+    azimuth: Option<f64>,
     order: i32,
     wavelengths: (f64, f64, f64),
     angles_deg: (f64, f64, f64),
@@ -76,9 +76,10 @@ fn _testbench<'py>(
     let lab = lab_options(&mut o)?;
     o.finish()?;
     let source = source_of(surface)?;
-    let mut setup = BenchSetup::new(incidence, azimuth, order, wavelengths, angles_deg).map_err(value_error)?;
+    let mut setup =
+        BenchSetup::new(incidence, azimuth.unwrap_or(0.0), order, wavelengths, angles_deg).map_err(value_error)?;
     setup.period_hint_nm = period_nm;
-    let t = run(py, |r| testbench(&source, &lab, method, setup, max_period_nm, r))?;
+    let t = run(py, |r| testbench(&source, &lab, method, setup, azimuth.is_none(), max_period_nm, r))?;
     let mut j = t.result.to_json();
     j["method"] = serde_json::json!(method.name());
     j["surface"] = serde_json::json!(source.name());

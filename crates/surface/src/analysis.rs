@@ -33,7 +33,8 @@ pub struct PeakOptions {
     pub max_peaks: usize,
     /// Peaks weaker than this fraction of the strongest are dropped.
     pub min_relative_power: f64,
-    /// Periods longer than this fraction of the smaller extent are ignored (levelling residue, not structure).
+    /// Periods longer than this fraction of the patch's extent along their direction are ignored (levelling
+    /// residue, not structure).
     pub max_period_fraction: f64,
 }
 
@@ -157,8 +158,10 @@ pub fn find_peaks(hf: &HeightField, opts: &PeakOptions) -> Vec<Peak> {
     let win = Windowed { rows, cols, dx: hf.dx_nm, dy: hf.dy_nm, w };
     // Bin (kr, kc) ↔ fx = kc/(cols·dx), fy = −kr/(rows·dy) (rows run downwards, y upwards).
     let signed = |k: usize, n: usize| if k <= n / 2 { k as i64 } else { k as i64 - n as i64 };
-    let (ex, ey) = hf.extent_nm();
-    let fmin = 1.0 / (opts.max_period_fraction * ex.min(ey));
+    // A period counts when the patch holds at least 1/max_period_fraction of it along its own direction: at
+    // least that many cycles across the patch there, i.e. |(kc, kr)| in bins. (Against the shorter side, a
+    // 2500 nm grating on a 65 × 3.2 µm strip was ignored and its 4th harmonic reported.)
+    let min_cycles = 1.0 / opts.max_period_fraction;
     let at =
         |kr: i64, kc: i64| power[(kr.rem_euclid(rows as i64) as usize) * cols + kc.rem_euclid(cols as i64) as usize];
     let mut cands: Vec<(f64, i64, i64)> = Vec::new();
@@ -168,8 +171,7 @@ pub fn find_peaks(hf: &HeightField, opts: &PeakOptions) -> Vec<Peak> {
             let kc = signed(c, cols);
             // Half plane: fx > 0, or fx = 0 and fy > 0 (the other half mirrors it for a real field).
             let fy = -(kr as f64) / (rows as f64 * hf.dy_nm);
-            let fx = kc as f64 / (cols as f64 * hf.dx_nm);
-            if kc < 0 || (kc == 0 && fy <= 0.0) || fx.hypot(fy) < fmin {
+            if kc < 0 || (kc == 0 && fy <= 0.0) || (kc as f64).hypot(kr as f64) < min_cycles {
                 continue;
             }
             let p = power[r * cols + c];

@@ -302,10 +302,15 @@ pub enum BrdfCommand {
 #[derive(Debug, ClapArgs)]
 #[command(after_help = "\
 Directions point away from the surface: θ from the normal, φ the azimuth from +x. The mirror direction of
-light at (θ, φ) is (θ, φ + 180deg). ρ(λ) = C |A(λ)|² is the paper's relative reflectance (eq. 4): 1 for a
-mirror at normal incidence; XYZ is its colour (eq. 9, a normal-incidence mirror has Y = 1). The lookup method
-integrates over λ in advance, so it answers XYZ only. Default method: reference for a SURFACE, lookup for a
-TABLE.
+light at (θ, φ) is (θ, φ + 180deg). Printed by default: the BRDF f_r(λ) in sr⁻¹ for s (TE) and p (TM) light
+and unpolarised, f_r = R(θ_h) (1 + ω_i·ω_r)² |A(λ)|² (A_eff/λ²) / ((cos θ_i + cos θ_r)² cos θ_i cos θ_r)
+(times the shadowing term), with A_eff the coherence window's effective area (4πσ_s², σ_s a quarter of the
+coherence length) and R the Fresnel reflectance at the half-vector angle (s and p for --fresnel index:… or a
+stack; Schlick's approximation has no polarised form). --relative prints instead the paper's relative
+reflectance ρ(λ) = f_r cos θ_i λ² / (A_eff R₀) (eq. 4 with the cos θ_i of eq. 9): 1 at a flat mirror's peak
+at every λ, what BRDF maps show at an exposure. XYZ is the colour of ρ (eq. 9, a normal-incidence mirror
+has Y = 1). The lookup method integrates over λ in advance, so it answers XYZ only. Default method:
+reference for a SURFACE, lookup for a TABLE.
 
 Examples:
   iridis brdf eval builtin:sine --light 30deg --view 10deg,180deg --json
@@ -336,7 +341,11 @@ pub struct BrdfEvalArgs {
     pub model: ModelOpts,
     #[command(flatten)]
     pub surface_opts: SurfaceOpts,
-    /// Print JSON: the inputs, the wavelength grid, ρ(λ) (null for lookup) and XYZ.
+    /// Print the paper's relative reflectance ρ(λ) instead of the BRDF in sr⁻¹.
+    #[arg(long)]
+    pub relative: bool,
+    /// Print JSON: the inputs, the wavelength grid, f_r(λ) in sr⁻¹ per polarisation, ρ(λ) (null for lookup)
+    /// and XYZ.
     #[arg(long)]
     pub json: bool,
 }
@@ -357,6 +366,8 @@ fn run_eval(a: BrdfEvalArgs) -> Result<()> {
     let p = eval_point(&a.input, a.method.as_deref(), &model, shading, params, &surface, wi, wr, &Cli)?;
     let q = &p.query;
     let deg = |r: f64| (r.to_degrees() * 1e9).round() / 1e9;
+    let r0 = shading_r0(&a.shading)?;
+    let area_um2 = p.effective_area_nm2.map(|a| a / 1e6);
     if a.json {
         return crate::output::print_json(&serde_json::json!({
             "input": a.input,
@@ -365,10 +376,14 @@ fn run_eval(a: BrdfEvalArgs) -> Result<()> {
             "view": { "theta_deg": deg(tv), "phi_deg": deg(pv), "direction": wr },
             "fresnel": a.shading.fresnel,
             "fresnel_convention": a.shading.fresnel_convention.name(),
+            "fresnel_r0": r0,
             "shadowing": !a.shading.no_shadowing,
+            "coherence_nm": p.coherence_nm,
+            "window_effective_area_um2": area_um2,
             "illuminant": a.model.illuminant.as_deref().unwrap_or("d65"),
             "observer": a.model.observer.as_deref().unwrap_or("1931"),
             "wavelength_nm": q.wavelengths_nm,
+            "brdf_per_sr": q.brdf,
             "reflectance": q.reflectance,
             "xyz": [q.xyz.x, q.xyz.y, q.xyz.z],
         }));
@@ -382,16 +397,47 @@ fn run_eval(a: BrdfEvalArgs) -> Result<()> {
         deg(tv),
         deg(pv)
     )?;
-    match &q.reflectance {
-        Some(rho) => {
-            crate::outln!("    λ (nm)        ρ(λ)")?;
+    crate::outln!(
+        "Fresnel {} (R₀ = {r0:.4}), {}, coherence {} (window area A_eff {})",
+        a.shading.fresnel,
+        if a.shading.no_shadowing { "no shadowing" } else { "Cook-Torrance shadowing" },
+        p.coherence_nm.map_or("–".into(), |c| format!("{:.3} µm", c / 1000.0)),
+        area_um2.map_or("–".into(), |x| format!("{x:.4} µm²"))
+    )?;
+    match (&q.reflectance, &q.brdf, a.relative) {
+        (Some(_), Some(b), false) => {
+            crate::outln!("    λ (nm)   f_r s (sr⁻¹)   f_r p (sr⁻¹)   f_r unpol. (sr⁻¹)")?;
+            for (k, l) in q.wavelengths_nm.iter().enumerate() {
+                crate::outln!("{l:10.1}  {:13.4e}  {:13.4e}  {:18.4e}", b.s[k], b.p[k], b.unpolarized[k])?;
+            }
+        }
+        (Some(rho), b, _) => {
+            if b.is_none() && !a.relative {
+                crate::outln!(
+                    "f_r: not available for the {} method{} — the relative reflectance instead:",
+                    p.method,
+                    if a.shading.fresnel_convention.name() == "paper" {
+                        " under the paper's R² convention"
+                    } else {
+                        ""
+                    }
+                )?;
+            }
+            crate::outln!("    λ (nm)        ρ(λ) (relative: a flat mirror's peak is 1)")?;
             for (l, r) in q.wavelengths_nm.iter().zip(rho) {
                 crate::outln!("{l:10.1}  {r:10.4e}")?;
             }
         }
-        None => crate::outln!("ρ(λ): not available — the {} method integrates over λ in advance", p.method)?,
+        (None, _, _) => {
+            crate::outln!("f_r(λ), ρ(λ): not available — the {} method integrates over λ in advance", p.method)?
+        }
     }
-    crate::outln!("XYZ {:.6e} {:.6e} {:.6e}  (a normal-incidence mirror: Y = 1)", q.xyz.x, q.xyz.y, q.xyz.z)
+    crate::outln!("XYZ {:.6e} {:.6e} {:.6e}  (of ρ; a normal-incidence mirror: Y = 1)", q.xyz.x, q.xyz.y, q.xyz.z)
+}
+
+/// `R₀` of the Fresnel source (what the relative ρ divides by).
+fn shading_r0(s: &ShadingOpts) -> Result<f64> {
+    Ok(s.shading()?.fresnel.normal_reflectance())
 }
 
 /// Tone-maps a map to 8-bit sRGB.

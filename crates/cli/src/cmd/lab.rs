@@ -146,9 +146,10 @@ pub struct TestbenchArgs {
     /// Angle of incidence θ_i.
     #[arg(long, value_parser = angle_rad, default_value = "75deg")]
     pub incidence: f64,
-    /// Rotation of the surface about its normal.
-    #[arg(long, value_parser = angle_rad, default_value = "0deg", allow_hyphen_values = true)]
-    pub azimuth: f64,
+    /// Rotation of the surface about its normal: 0deg measures periods along x, 90deg along y [default: the
+    /// orientation of the surface's strongest period, as `iridis surface info` finds it].
+    #[arg(long, value_parser = angle_rad, allow_hyphen_values = true)]
+    pub azimuth: Option<f64>,
     /// Diffraction order m (non-zero; m > 0 lies between the mirror direction and the normal).
     #[arg(long, default_value_t = 1, allow_hyphen_values = true)]
     pub order: i32,
@@ -193,14 +194,15 @@ pub fn run_testbench(a: TestbenchArgs) -> Result<()> {
     crate::output::declare_opt("--plot", a.plot.as_deref(), &["png"])?;
     let mut setup = BenchSetup::new(
         a.incidence,
-        a.azimuth,
+        a.azimuth.unwrap_or(0.0),
         a.order,
         (a.from, a.to, a.step),
         (a.min_angle.to_degrees(), a.max_angle.to_degrees(), a.angle_step.to_degrees()),
     )?;
     setup.period_hint_nm = a.period;
     let source = iridis_api::surface::Source::Spec(a.surface.clone());
-    let t = iridis_api::lab::testbench(&source, &a.model.options(), method, setup, a.max_period, &Cli)?;
+    let along_dominant = a.azimuth.is_none();
+    let t = iridis_api::lab::testbench(&source, &a.model.options(), method, setup, along_dominant, a.max_period, &Cli)?;
     let (b, setup, matrix, result) = (t.workbench, t.setup, t.matrix, t.result);
     let curve = a.period.unwrap_or(result.periodicity.mean);
     if let Some(path) = &a.plot {
@@ -208,7 +210,7 @@ pub fn run_testbench(a: TestbenchArgs) -> Result<()> {
         let title = format!(
             "{name} ({method}), θi {:.0}°, φ {:.0}°: d = {:.2} nm, var {:.3}",
             a.incidence.to_degrees(),
-            a.azimuth.to_degrees(),
+            setup.azimuth.to_degrees(),
             result.periodicity.mean,
             result.periodicity.variance
         );
@@ -228,15 +230,20 @@ pub fn run_testbench(a: TestbenchArgs) -> Result<()> {
         method,
         a.order,
         a.incidence.to_degrees(),
-        a.azimuth.to_degrees(),
+        setup.azimuth.to_degrees(),
         result.peaks.len(),
         setup.wavelengths_nm.len()
     )?;
+    let extent_um = b.patch.extent_along(setup.azimuth) / 1000.0;
     crate::outln!(
-        "periodicity  mean {:.2} nm ± {:.1} nm (d²/L, L = {} µm), variance {:.3} nm² (window centred on {:.1} nm){}",
+        "periodicity  mean {:.2} nm ± {:.1} nm ({}), variance {:.3} nm² (window centred on {:.1} nm){}",
         result.periodicity.mean,
         result.uncertainty_nm().unwrap_or(f64::NAN),
-        b.patch.shorter_side_nm() / 1000.0,
+        if result.is_quantised() {
+            format!("half a DFT step, d²/(2L), L = {extent_um:.3} µm along the direction")
+        } else {
+            format!("the {:.1} µm window's resolution, d²σ_f", b.config.coherence_nm / 1000.0)
+        },
         result.periodicity.variance,
         result.window_period_nm,
         if result.is_definite() { ", definite" } else { ", not definite" }
@@ -831,7 +838,7 @@ pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
         let e = evaluator(&b, Method::Reference, &Cli)?;
         let setup = BenchSetup::new(75f64.to_radians(), az.to_radians(), 1, (380.0, 780.0, 10.0), (-60.0, 74.0, 0.05))?;
         let matrix = bench::reflectance_matrix(e.as_ref(), &setup, &|_| {})?;
-        let r = bench::analyse(&matrix, &setup)?.on_patch(b.patch.shorter_side_nm(), b.config.coherence_nm);
+        let r = bench::analyse(&matrix, &setup)?.on_patch(b.patch.extent_along(setup.azimuth), b.config.coherence_nm);
         let img = bench::plot(&matrix, &setup, &r, r.periodicity.mean, &format!("{label}: test bench, θi = 75°"))?;
         write_png_rgb8(&g.path(file), img.width, img.height, &img.data)?;
         g.image(

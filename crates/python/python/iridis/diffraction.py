@@ -112,8 +112,11 @@ def evaluate(source, light, view, method=None, **options):
     """ρ(λ) and XYZ of one method for one pair of directions (``θ`` or ``(θ, φ)``, radians, pointing away from
     the surface; the mirror direction of ``(θ, φ)`` is ``(θ, φ + π)``), as ``iridis brdf eval --json``.
 
-    Returns a dict: ``method``, ``wavelength_nm``, ``reflectance`` (ρ(λ) = C |A(λ)|², paper eq. 4: 1 for a
-    mirror at normal incidence; ``None`` for lookup, which integrates over λ in advance), ``xyz`` (eq. 9),
+    Returns a dict: ``method``, ``wavelength_nm``, ``brdf_per_sr`` (the BRDF f_r(λ) in sr⁻¹, a dict of arrays
+    ``s``, ``p``, ``unpolarized``; ``None`` where the method has no window gain or under the paper's R²
+    convention), ``reflectance`` (the paper's relative ρ(λ) = f_r cos θ_i λ²/(A_eff R₀), eq. 4 with the
+    cos θ_i of eq. 9: 1 at a flat mirror's peak; ``None`` for lookup, which integrates over λ in advance),
+    ``coherence_nm``, ``window_effective_area_um2`` (A_eff, 4πσ_s² inside the patch), ``xyz`` (eq. 9),
     ``light_direction``, ``view_direction``.
     """
     wi = _direction(light, "light")
@@ -126,3 +129,32 @@ def brdf_map_of(spec, incidence=(0.0, 0.0), size=256, method="reference", level=
     ``level`` says otherwise, as the CLI does) or ``builtin:…`` (used as generated). A plain function of its
     arguments, so it is what batch scripts send to Dask workers."""
     return brdf_map(os.fspath(spec), incidence=incidence, size=size, method=method, level=level, **options)
+
+
+def grating(source, light, wavelengths_nm, method="kirchhoff", material=None, fresnel=None,
+            normalisation="energy", detector=None, acceptance=None, **options):
+    """Order efficiencies of ``source`` taken as one unit cell of a grating (its extent is the period), as
+    ``iridis grating --json``: a dict with ``orders`` (every propagating order at every wavelength: ``m``,
+    ``n``, ``theta_deg``, ``phi_deg``, ``efficiency`` with ``te``, ``tm``, ``unpolarized``, fractions of the
+    incident power), ``reflected_total`` per wavelength, ``detector`` (the orders inside the acceptance cone,
+    when ``detector`` is given), ``convergence`` and the model's assumptions.
+
+    ``light`` and ``detector`` are ``θ`` or ``(θ, φ)`` in radians; ``wavelengths_nm`` a number or a sequence;
+    ``material`` the medium under the relief as a stack writes it (``"gold"``, ``"n=1.5"``, ``"n=0.2+3.4i"``;
+    default n = 1.5) or ``fresnel`` any Fresnel source (``"schlick:1.5"``); ``normalisation`` ``"energy"``
+    (energy and reciprocity exact) or ``"kirchhoff"`` (the obliquity factor as printed); ``acceptance`` the
+    detector's half-angle in radians (default 2°). SURFACE options (``pixel_size``, ``level``, …) as
+    elsewhere.
+    """
+    theta, phi = _direction(light, "light")
+    opts = dict(options, method=method, normalisation=normalisation)
+    if material is not None:
+        opts["material"] = material
+    if fresnel is not None:
+        opts["fresnel"] = fresnel
+    if detector is not None:
+        opts["detector_theta"], opts["detector_phi"] = _direction(detector, "detector")
+    if acceptance is not None:
+        opts["acceptance"] = float(acceptance)
+    wl = [float(w) for w in (wavelengths_nm if hasattr(wavelengths_nm, "__len__") else [wavelengths_nm])]
+    return _native.grating(_native_source(source), (theta, phi), wl, opts)

@@ -50,3 +50,15 @@ def brdf_map_of(
     level: Optional[str] = ...,
     **options: Any,
 ) -> npt.NDArray[np.float64]: ...
+def grating(
+    source: Source,
+    light: Direction,
+    wavelengths_nm: Union[float, Sequence[float]],
+    method: str = ...,
+    material: Optional[str] = ...,
+    fresnel: Optional[str] = ...,
+    normalisation: str = ...,
+    detector: Optional[Direction] = ...,
+    acceptance: Optional[float] = ...,
+    **options: Any,
+) -> dict[str, Any]: ...

@@ -50,21 +50,22 @@ def _triple(value, name):
     return a, b, c
 
 
-def testbench(surface, method="reference", incidence=math.radians(75.0), azimuth=0.0, order=1,
+def testbench(surface, method="reference", incidence=math.radians(75.0), azimuth=None, order=1,
               wavelengths=(380.0, 780.0, 5.0), angles_deg=(-89.0, 89.0, 0.05), period_nm=None, max_period_nm=None,
               **options):
     """The test bench (paper sec. 6.1, Table 1): light in the x-z plane at ``incidence``, the viewer in the same
     plane at signed θ_r; for each wavelength the peak of the ``order`` found and the periodicity
-    ``d_λ = m λ / (sin θ_i − sin θ_r)`` reported with its mean and variance over λ. ``azimuth`` rotates the
-    surface about its normal; ``wavelengths`` and ``angles_deg`` are ``(from, to, step)``; ``period_nm`` centres
-    the order's window on a known period.
+    ``d_λ = m λ / (sin θ_i − sin θ_r)`` reported with its mean and variance over λ. ``azimuth`` (radians)
+    rotates the surface about its normal (0: periods along x, π/2: along y); ``None`` measures along the
+    orientation of the surface's strongest period, as ``Surface.info`` finds it. ``wavelengths`` and
+    ``angles_deg`` are ``(from, to, step)``; ``period_nm`` centres the order's window on a known period.
 
     Returns ``iridis testbench --json``'s dict (``periodicity_nm``, ``peaks``, ``ridges``, …) with ``matrix``
     (the reflectance over ``wavelength_nm`` × ``angle_deg``) besides. Why a period is not definite is a Python
     warning, as the CLI's.
     """
     out, matrix, wl, ang = _native._testbench(
-        _surface(surface), str(method), float(incidence), float(azimuth), int(order),
+        _surface(surface), str(method), float(incidence), None if azimuth is None else float(azimuth), int(order),
         _triple(wavelengths, "wavelengths"), _triple(angles_deg, "angles_deg"), period_nm, max_period_nm, options)
     result = json.loads(out)
     result.update(matrix=matrix, wavelength_nm=wl, angle_deg=ang)

@@ -9,7 +9,7 @@ def testbench(
     surface: Union[Surface, str, os.PathLike[str]],
     method: str = ...,
     incidence: float = ...,
-    azimuth: float = ...,
+    azimuth: Optional[float] = ...,
     order: int = ...,
     wavelengths: tuple[float, float, float] = ...,
     angles_deg: tuple[float, float, float] = ...,
