@@ -644,23 +644,30 @@ fn laser_tables_record_the_beam_and_are_checked() {
     );
 }
 
-/// A patch smaller than the paper's 65 µm coherence: without `--coherence` the model commands fit it to half
-/// the patch's side and say so; a coherence the user gives is used as given (with the patch-size warning).
+/// A patch smaller than the paper's 65 µm coherence: the coherence stays the light's (65 µm unless given,
+/// said every time), the patch is the periodic model's unit cell (said once, no warning), and the test bench
+/// states the period's uncertainty from the patch's extent along the measured direction, d²/(2L).
 #[test]
-fn model_commands_fit_the_coherence_to_a_small_patch() {
+fn a_small_patch_keeps_the_lights_coherence_and_is_a_unit_cell() {
     let dir = tempfile::tempdir().unwrap();
     let map = dir.path().join("m.png");
     let spec = "builtin:sine?size=6.4um&pixel=50nm&period=1000nm";
-    let fitted = "coherence 3.2 µm, fitted to the patch (half its 6.4 µm shorter side)";
     let out = iridis(&["brdf-map", spec, "--size", "8", "-o", map.to_str().unwrap()]);
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(out.status.success() && err.contains(fitted), "{err}");
-    assert!(!err.contains("smaller than the coherence length"), "no warning for a fitted window: {err}");
-    let out = iridis(&["brdf-map", spec, "--size", "8", "--coherence", "65um", "-o", map.to_str().unwrap()]);
+    assert!(out.status.success(), "{err}");
+    assert!(
+        err.contains("coherence 65 µm (the paper's default") && err.contains("one unit cell of a periodic"),
+        "{err}"
+    );
+    assert!(!err.contains("warning: patch"), "a unit cell is no warning: {err}");
+    let out = iridis(&["brdf-map", spec, "--size", "8", "--coherence", "3um", "-o", map.to_str().unwrap()]);
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(out.status.success() && !err.contains(fitted), "{err}");
-    assert!(err.contains("smaller than the coherence length 65.0 µm") && !err.contains("tile a larger"), "{err}");
+    assert!(out.status.success() && err.contains("coherence 3 µm (as given)") && !err.contains("unit cell"), "{err}");
     let j = json_of(&["testbench", spec, "--from", "450nm", "--to", "650nm", "--step", "50nm", "--json"]);
-    let c = j["coherence_nm"].as_f64().unwrap();
-    assert!((c - 3200.0).abs() < 1e-6, "testbench coherence {c}");
+    assert_eq!(j["coherence_nm"].as_f64(), Some(65_000.0));
+    assert_eq!(j["patch_extent_nm"].as_f64(), Some(6400.0));
+    let (d, u) = (j["periodicity_nm"]["mean"].as_f64().unwrap(), j["periodicity_nm"]["uncertainty"].as_f64().unwrap());
+    assert!((u - d * d / 12_800.0).abs() < 1e-9, "± {u} for {d}");
+    // 6.4 periods in the cell: the orders sit at 6400/k nm; the sine's 1000 nm lies within the stated ±.
+    assert!((d - 1000.0).abs() <= u, "{d} ± {u}");
 }

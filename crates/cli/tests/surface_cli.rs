@@ -547,9 +547,10 @@ fn report_on_an_instrument_file() {
     assert!(r["warnings"].as_array().unwrap().iter().any(|w| w.as_str().unwrap().contains("coherence area")), "{r}");
 }
 
-/// The small scan: a 1000 nm sine on a 6.4 µm patch. Left to itself the coherence is fitted to the
-/// patch (3.2 µm) and the test bench agrees with surface info within the stated ± d²/L; at the paper's 65 µm the
-/// bench reads 6400/6 = 1066.7 nm off the DFT grid, and the report says it is quantised, not definite.
+/// The small scan: a 1000 nm sine on a 6.4 µm patch (6.4 periods). The coherence is the light's 65 µm,
+/// the patch the periodic model's unit cell, so the bench reads a DFT grid value (6400/6 = 1066.7 nm) and says
+/// it is known to ± half a DFT step, d²/(2L) — within which it agrees with surface info. A window inside the
+/// patch (`--coherence 3.2um`) reads between the grid values, to the window's resolution d²σ_f.
 #[test]
 fn report_states_the_quantisation_of_a_small_patch() {
     let dir = tempfile::tempdir().unwrap();
@@ -563,29 +564,24 @@ fn report_states_the_quantisation_of_a_small_patch() {
         ok(&args);
         serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap()
     };
-    let r = report(&[], "fitted");
+    let r = report(&[], "light");
     let tb = &r["testbench"];
     let d = tb["periodicity_nm"]["mean"].as_f64().unwrap();
     let q = tb["periodicity_nm"]["uncertainty"].as_f64().unwrap();
-    assert!(close(q, d * d / 6400.0, 1e-6), "uncertainty {q} is d²/L");
-    let c = tb["coherence_nm"].as_f64().unwrap();
-    assert!(close(c, 3200.0, 1e-9), "coherence {c} fitted to half the 6.4 µm side");
+    assert!(close(d, 6400.0 / 6.0, 0.05), "the DFT grid value L/6: {d}");
+    assert!(close(q, d * d / 12_800.0, 1e-6), "uncertainty {q} is d²/(2L)");
+    assert!(close(tb["coherence_nm"].as_f64().unwrap(), 65_000.0, 1e-9), "the light's coherence");
+    assert_eq!(tb["periodicity_nm"]["quantised"], true);
     let info = r["info"]["peaks"][0]["period_nm"].as_f64().unwrap();
     assert!(close(info, 1000.0, 0.5), "surface info {info}");
-    // Both agree within the stated uncertainty; with the fitted window the bench is within 1 % of the truth.
-    assert!((d - info).abs() <= q && (d - 1000.0).abs() < 10.0, "test bench {d} ± {q} vs surface info {info}");
-    assert_eq!(tb["periodicity_nm"]["quantised"], false);
-    assert_eq!(tb["periodicity_nm"]["definite"], true);
-    let r = report(&["--coherence", "65um"], "paper");
+    assert!((d - info).abs() <= q && (d - 1000.0).abs() <= q, "test bench {d} ± {q} vs surface info {info}");
+    let r = report(&["--coherence", "3.2um"], "window");
     let tb = &r["testbench"]["periodicity_nm"];
-    let d = tb["mean"].as_f64().unwrap();
-    assert!(close(d, 6400.0 / 6.0, 0.05), "the DFT grid value L/6: {d}");
-    assert_eq!(tb["quantised"], true);
-    assert_eq!(tb["definite"], false, "a grid value is never definite");
-    let w: Vec<&str> = r["warnings"].as_array().unwrap().iter().map(|w| w.as_str().unwrap()).collect();
-    let q = d * d / 6400.0;
-    assert!(w.iter().any(|w| w.contains(&format!("quantised to ± d²/L = {q:.1} nm"))), "{w:?}");
-    assert!(w.iter().all(|w| !w.contains("tile a larger")), "no advice to tile: {w:?}");
+    let (d, q) = (tb["mean"].as_f64().unwrap(), tb["uncertainty"].as_f64().unwrap());
+    assert_eq!(tb["quantised"], false);
+    // σ_f = 1/(2π σ_s), σ_s = 800 nm.
+    assert!(close(q, d * d / (std::f64::consts::TAU * 800.0), 1e-6), "the window's resolution: {q}");
+    assert!((d - 1000.0).abs() < 10.0 && (d - info).abs() <= q, "{d} ± {q}");
 }
 
 /// `iridis report` on every real instrument file (small maps), when the samples have been fetched.

@@ -109,12 +109,20 @@ fn mutated_tables_never_panic() {
 fn patch_warnings_once_each_and_carried_by_tables() {
     let coarse = Patch::from_row_major(40, 50, 120.0, 110.0, &vec![0.0; 2000]).unwrap();
     let w = coarse.warnings(65_000.0);
-    assert_eq!(w.len(), 2, "{w:?}");
+    assert_eq!(w.len(), 1, "{w:?}");
     assert!(w[0].contains("pixel size 120.0 nm") && w[0].contains("≤ 95 nm"), "{w:?}");
-    assert!(w[1].contains("patch 6.0 × 4.4 µm") && w[1].contains("65.0 µm"), "{w:?}");
+    // A patch smaller than the window is no warning but the periodic model's unit cell, said in the note.
     let fine = Patch::from_row_major(100, 100, 65.0, 65.0, &vec![0.0; 10_000]).unwrap();
-    assert!(fine.warnings(6_000.0).is_empty());
-    assert_eq!(fine.warnings(6_600.0).len(), 1, "6.5 µm patch, 6.6 µm coherence");
+    assert!(fine.warnings(6_600.0).is_empty());
+    let c = fine.coherence(None);
+    assert_eq!(c.nm, 65_000.0, "the light's coherence, never fitted to the patch");
+    assert!(
+        c.note().contains("coherence 65 µm (the paper's default") && c.note().contains("one unit cell"),
+        "{}",
+        c.note()
+    );
+    let c = fine.coherence(Some(6_000.0));
+    assert!(c.note() == "coherence 6 µm (as given)", "{}", c.note());
 
     // small_table(): 32 × 60 nm = 1.92 µm patch under a 1 µm window, pixels fine: no warning.
     assert!(small_table().meta.warnings.is_empty());

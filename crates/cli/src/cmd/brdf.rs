@@ -25,8 +25,8 @@ pub struct ModelOpts {
     /// Taylor terms: `auto` (from the remainder bound) or a number N (terms 0..N).
     #[arg(long, default_value = "auto")]
     pub terms: String,
-    /// Coherence length 4σ_s of the Gaussian window (default 65um, or half the patch's shorter side when the
-    /// patch is smaller than that; said in the output).
+    /// Coherence length 4σ_s of the Gaussian window, a property of the light (default 65um, the paper's; a
+    /// smaller patch is taken as one unit cell of a periodic surface; said in the output).
     #[arg(long, value_parser = positive_length_nm)]
     pub coherence: Option<f64>,
     /// Illuminant: d65, d50, a, e.

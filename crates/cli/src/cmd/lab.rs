@@ -42,8 +42,8 @@ pub struct LabModel {
     /// used as generated unless this is given).
     #[arg(long)]
     pub level: Option<String>,
-    /// Coherence length 4σ_s of the window (default 65um, or half the patch's shorter side when the patch is
-    /// smaller than that; said in the output).
+    /// Coherence length 4σ_s of the window, a property of the light (default 65um, the paper's; a smaller
+    /// patch is taken as one unit cell of a periodic surface; said in the output).
     #[arg(long, value_parser = positive_length_nm)]
     pub coherence: Option<f64>,
     /// Taylor terms: auto (remainder bound 1e-6) or N.
@@ -120,9 +120,13 @@ fn exposures(s: &str) -> Result<Vec<f64>> {
 The virtual test bench (paper sec. 6.1, Table 1, Figure 7; thesis ch. 5): light in the x-z plane at θ_i, the
 viewer in the same plane at signed θ_r (positive on the specular side). For each wavelength the reflectance
 over θ_r is computed (thesis eq. 5.5), the peak viewing angle of the chosen order found, and the periodicity
-d_λ = m λ / (sin θ_i − sin θ_r) (eq. 5.6 in this frame) reported with its mean and variance over λ. --azimuth
-rotates the surface about its normal: 0deg measures periods along x, 90deg along y. Without --period the
-strongest response away from the mirror direction is taken as the first order.
+d_λ = m λ / (sin θ_i − sin θ_r) (eq. 5.6 in this frame) reported with its mean and variance over λ, and its
+uncertainty: half a DFT step d²/(2L) when the patch is smaller than the coherence window (L its extent along
+the direction; the patch is then one unit cell of a periodic surface), else the window's resolution.
+--azimuth rotates the surface about its normal: 0deg measures periods along x, 90deg along y; without it the
+bench measures along the orientation of the surface's strongest period (what `iridis surface info` finds)
+and centres the order's window on that period. With --azimuth and no --period the strongest response away
+from the mirror direction is taken as the first order.
 
 JSON: {\"periodicity_nm\": {\"mean\", \"variance\", \"relative_spread\", \"definite\"}, \"order\",
 \"incidence_deg\", \"azimuth_deg\", \"peaks\": [{\"wavelength_nm\", \"angle_deg\", \"period_nm\"}],

@@ -5,8 +5,9 @@ Every method of the CLI: ``reference`` (Taylor terms + windowed DFT per waveleng
 direct windowed Fourier sum), ``lookup`` (the precomputed tables), and the lab's ``nmm``, ``pq``,
 ``stam-periodic``, ``stam-periodic-triangular``, ``stam-gaussian``. The same library functions as
 ``iridis precompute``, ``iridis brdf-map`` and ``iridis brdf eval`` (the facade ``iridis-api``), with the same
-defaults (Taylor terms from the remainder bound 1e-6; coherence 65 µm, or half the patch's shorter side when
-the patch is smaller, said on the ``iridis`` logger) and the same messages. Lengths in nm, angles in radians.
+defaults (Taylor terms from the remainder bound 1e-6; coherence 65 µm, the light's, a smaller patch taken as
+one unit cell of a periodic surface, said on the ``iridis`` logger) and the same messages. Lengths in nm,
+angles in radians. ``grating`` gives the order efficiencies of a unit cell (``iridis grating``).
 
 A ``source`` is an :class:`iridis.surface.Surface`, a :class:`Table`, or a SURFACE or TABLE argument exactly
 as the CLI takes it (``"builtin:elaphe"``, ``"scan.gwy"``, ``"table.npz"``: a file is plane-levelled unless
