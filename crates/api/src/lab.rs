@@ -186,8 +186,7 @@ pub struct Testbench {
 /// order's window and gives NMM and Stam's lattice the period along the measured direction; `max_period_nm`
 /// defaults to the smallest of 10 µm, 0.785 × coherence (the mirror lobe's 2σ_f) and half the patch's extent
 /// along the measured direction (a longer period is no period of the scan). With `along_dominant`, the bench
-/// measures along the orientation of the surface's strongest period (what `iridis surface info` finds), and
-/// centres the order's window on that period unless one is given. Says why a period is not definite (competing
+/// measures along the orientation of the surface's strongest period (what `iridis surface info` finds). Says why a period is not definite (competing
 /// ridges, spread over λ) as warnings, and how precisely it is known (half a DFT step along the direction, or
 /// the window's resolution: [`bench::PatchGrid`]).
 pub fn testbench(
@@ -205,17 +204,13 @@ pub fn testbench(
     if along_dominant {
         match crate::surface::dominant_period(&patch) {
             Some(p) => {
+                // The orientation only: the analysis' period may be a harmonic where the fundamental has too few
+                // cycles in the patch, and the bench finds its own first order.
                 setup.azimuth = p.orientation_deg.to_radians();
-                let hint = setup.period_hint_nm.is_none();
-                if hint {
-                    setup.period_hint_nm = Some(p.period_nm);
-                }
                 report.note(&format!(
-                    "measuring along azimuth {:.1}°, the orientation of the surface's strongest period ({:.1} nm{}); \
+                    "measuring along azimuth {:.1}°, the orientation of the surface's strongest period ({:.1} nm); \
                      --azimuth chooses another",
-                    p.orientation_deg,
-                    p.period_nm,
-                    if hint { ", which centres the order's window" } else { "" }
+                    p.orientation_deg, p.period_nm,
                 ));
             }
             None => report.note("the surface has no dominant period: measuring along azimuth 0° (x)"),

@@ -124,9 +124,8 @@ d_λ = m λ / (sin θ_i − sin θ_r) (eq. 5.6 in this frame) reported with its 
 uncertainty: half a DFT step d²/(2L) when the patch is smaller than the coherence window (L its extent along
 the direction; the patch is then one unit cell of a periodic surface), else the window's resolution.
 --azimuth rotates the surface about its normal: 0deg measures periods along x, 90deg along y; without it the
-bench measures along the orientation of the surface's strongest period (what `iridis surface info` finds)
-and centres the order's window on that period. With --azimuth and no --period the strongest response away
-from the mirror direction is taken as the first order.
+bench measures along the orientation of the surface's strongest period (what `iridis surface info` finds).
+Without --period the strongest response away from the mirror direction is taken as the first order.
 
 JSON: {\"periodicity_nm\": {\"mean\", \"variance\", \"relative_spread\", \"definite\"}, \"order\",
 \"incidence_deg\", \"azimuth_deg\", \"peaks\": [{\"wavelength_nm\", \"angle_deg\", \"period_nm\"}],
