@@ -145,6 +145,42 @@ pub fn render_map(e: &dyn Evaluator, wi: [f64; 3], size: usize, report: &dyn Rep
     })
 }
 
+/// An exposure (RU) chosen from a map's own values: the 99th percentile of the brightest linear sRGB channel
+/// over the lit pixels becomes white, so a bright mirror lobe does not black out the rest and a faint map is
+/// not a white disk; with the share of the disk's pixels it clips. `None` for a map with no light in it.
+pub fn auto_exposure(xyz: &[Xyz], size: usize) -> Option<AutoExposure> {
+    let in_disk = |k: usize| {
+        let (x, y) =
+            (-1.0 + (2 * (k % size) + 1) as f64 / size as f64, 1.0 - (2 * (k / size) + 1) as f64 / size as f64);
+        x * x + y * y <= 1.0
+    };
+    let peak = |p: &Xyz| p.to_linear_srgb().iter().fold(0.0f64, |m, &c| m.max(c));
+    let disk: Vec<f64> = xyz.iter().enumerate().filter(|(k, _)| in_disk(*k)).map(|(_, p)| peak(p)).collect();
+    let mut lit: Vec<f64> = disk.iter().copied().filter(|&v| v > 0.0 && v.is_finite()).collect();
+    if lit.is_empty() {
+        return None;
+    }
+    lit.sort_by(|a, b| a.total_cmp(b));
+    let p99 = lit[((lit.len() - 1) as f64 * 0.99).round() as usize];
+    let exposure_ru = 1.0 / p99;
+    let clipped = disk.iter().filter(|&&v| v * exposure_ru > 1.0 + 1e-12).count();
+    Some(AutoExposure {
+        exposure_ru,
+        clipped_share: clipped as f64 / disk.len() as f64,
+        lit_share: lit.len() as f64 / disk.len() as f64,
+    })
+}
+
+/// What [`auto_exposure`] chose.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AutoExposure {
+    pub exposure_ru: f64,
+    /// Share of the disk's pixels brighter than white at that exposure.
+    pub clipped_share: f64,
+    /// Share of the disk's pixels with any light.
+    pub lit_share: f64,
+}
+
 /// The method `brdf eval` uses when none is given: reference for a SURFACE, lookup for a TABLE.
 pub fn default_method(input: &str) -> &'static str {
     if is_table(input) {

@@ -201,7 +201,55 @@ fn deg(r: f64) -> f64 {
     (r.to_degrees() * 1e9).round() / 1e9
 }
 
+/// The colours of a grating under D65 (CIE 1931), when its wavelengths span the visible 380–780 nm.
+#[derive(Debug, Clone)]
+pub struct GratingColours {
+    /// The mirror order (0, 0): what the surface shows where it does not diffract.
+    pub specular: iridis_color::Xyz,
+    /// Every other order together.
+    pub diffracted: iridis_color::Xyz,
+    /// All orders (what an integrating sphere sees).
+    pub reflected: iridis_color::Xyz,
+    pub white: iridis_color::Xyz,
+}
+
+impl GratingColours {
+    /// The diffracted share of the reflected light, weighted by D65 × ȳ (luminous).
+    pub fn diffracted_share(&self) -> f64 {
+        if self.reflected.y > 0.0 {
+            self.diffracted.y / self.reflected.y
+        } else {
+            0.0
+        }
+    }
+}
+
 impl Grating {
+    /// The colours of the specular order, the diffracted orders and all of them under D65, for unpolarised
+    /// light; `None` unless the wavelengths span 380–780 nm at steps of at most 10 nm.
+    pub fn colours(&self) -> Option<GratingColours> {
+        let w: Vec<f64> = self.answers.iter().map(|a| a.wavelength_nm).collect();
+        let covers = w.first().is_some_and(|&l| l <= 380.0) && w.last().is_some_and(|&l| l >= 780.0);
+        if !covers || w.windows(2).any(|p| p[1] - p[0] > 10.0 + 1e-9) {
+            return None;
+        }
+        let weights =
+            iridis_color::SpectralWeights::new(&w, iridis_color::Illuminant::D65, iridis_color::Observer::Cie1931);
+        let spec: Vec<f64> = self
+            .answers
+            .iter()
+            .map(|a| a.orders.iter().find(|o| (o.m, o.n) == (0, 0)).map_or(0.0, |o| o.efficiency.unpolarized))
+            .collect();
+        let total: Vec<f64> = self.answers.iter().map(|a| a.reflected_total.unpolarized).collect();
+        let diffracted: Vec<f64> = total.iter().zip(&spec).map(|(t, s)| (t - s).max(0.0)).collect();
+        Some(GratingColours {
+            specular: weights.integrate(&spec),
+            diffracted: weights.integrate(&diffracted),
+            reflected: weights.integrate(&total),
+            white: weights.white(),
+        })
+    }
+
     /// The reflectance a detector sees at one wavelength: the orders inside its acceptance cone (fraction).
     pub fn detector_reflectance(&self, answer: &GratingAnswer) -> Option<f64> {
         let d = self.detector?;
@@ -274,6 +322,13 @@ impl Grating {
             "reflected_total": totals,
             "transmitted_total": Value::Null,
             "detector": detector,
+            "colour": self.colours().map(|c| json!({
+                "illuminant": "d65", "observer": "1931",
+                "specular": crate::color::colour_report(c.specular, c.white),
+                "diffracted": crate::color::colour_report(c.diffracted, c.white),
+                "reflected": crate::color::colour_report(c.reflected, c.white),
+                "diffracted_share": c.diffracted_share(),
+            })),
             "convergence": convergence,
             "units": "efficiencies are fractions of the incident power (1 = 100 %)",
         })

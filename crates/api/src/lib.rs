@@ -21,6 +21,7 @@
 //! Arrows: `cli, python → api → lab, gpu → render → diffraction → thinfilm, surface → color`.
 
 pub mod brdf;
+pub mod color;
 pub mod fresnel;
 pub mod gpu;
 pub mod grating;

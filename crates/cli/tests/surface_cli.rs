@@ -26,8 +26,8 @@ fn generate_then_info_recovers_the_period() {
         let p = &v["peaks"][0];
         assert!((p["period_nm"].as_f64().unwrap() / 1300.0 - 1.0).abs() < 0.005, "{ext}: {p}");
         assert!((p["orientation_deg"].as_f64().unwrap() - 30.0).abs() < 0.5, "{ext}: {p}");
-        // The 16 µm patch is smaller than the 65 µm coherence area: the user is told.
-        assert!(String::from_utf8_lossy(&info.stderr).contains("coherence area"));
+        // Smaller than the 65 µm coherence window, but surface info uses no window: nothing said about it.
+        assert!(!String::from_utf8_lossy(&info.stderr).contains("coherence"));
     }
 }
 
@@ -538,13 +538,17 @@ fn report_on_an_instrument_file() {
     let sq = r["info"]["roughness"]["sq_nm"].as_f64().unwrap();
     assert!(close(sq, 3.472_134_206_7, 1e-4), "{sq}");
     let html = std::fs::read_to_string(out.join("index.html")).unwrap();
-    for f in ["relief.png", "psdf.png", "acf.png", "brdf_0deg.png", "brdf_45deg.png"] {
+    for f in ["relief.png", "psdf.png", "acf.png"] {
         assert!(out.join(f).exists(), "{f}");
         assert!(html.contains(f), "{f} not in the page");
     }
-    assert!(html.contains("iridis brdf-map") && html.contains("--channel Z_forward"), "commands missing");
-    // 0.4 µm is far below the 65 µm coherence area: the warning carries its numbers.
-    assert!(r["warnings"].as_array().unwrap().iter().any(|w| w.as_str().unwrap().contains("coherence area")), "{r}");
+    assert!(html.contains("iridis grating") && html.contains("--channel Z_forward"), "commands missing");
+    // Its 100 nm period cannot diffract visible light (a first order needs d > λ/2 ≥ 190 nm): said in words,
+    // with the mirror colour instead of a map.
+    assert_eq!(r["diffracts_visible_light"], false, "{r}");
+    let verdict = r["verdict"].as_str().unwrap();
+    assert!(verdict.contains("diffracts no visible light") && verdict.contains("100 nm"), "{verdict}");
+    assert!(!out.join("brdf_0deg.png").exists() && !html.contains("brdf_0deg"), "no map of nothing");
 }
 
 /// The small scan: a 1000 nm sine on a 6.4 µm patch (6.4 periods). The coherence is the light's 65 µm,
@@ -565,6 +569,15 @@ fn report_states_the_quantisation_of_a_small_patch() {
         serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap()
     };
     let r = report(&[], "light");
+    assert_eq!(r["diffracts_visible_light"], true);
+    assert!(r["verdict"].as_str().unwrap().starts_with("The scan diffracts visible light"), "{}", r["verdict"]);
+    let html = std::fs::read_to_string(dir.path().join("light").join("index.html")).unwrap();
+    // One title, the file's name without its folders; the maps with axes, each once under its step.
+    assert!(html.contains("<h1>iridis report: s.gwy</h1>") && !html.contains(gs), "{html}");
+    for f in ["brdf_0deg_plot.png", "brdf_45deg_plot.png", "testbench.png"] {
+        assert_eq!(html.matches(&format!("src=\"{f}\"")).count(), 1, "{f}");
+    }
+    assert_eq!(html.matches("<h2>Levelled relief").count(), 1, "one heading for the relief, PSDF and ACF");
     let tb = &r["testbench"];
     let d = tb["periodicity_nm"]["mean"].as_f64().unwrap();
     let q = tb["periodicity_nm"]["uncertainty"].as_f64().unwrap();
@@ -612,13 +625,16 @@ fn report_on_each_real_instrument_file() {
             let sq = reference["gwy"]["roughness"]["sq_nm"].as_f64().unwrap();
             assert!((r["info"]["roughness"]["sq_nm"].as_f64().unwrap() - sq).abs() <= 1e-6 * sq, "{file}");
         }
-        for f in ["index.html", "relief.png", "psdf.png", "brdf_0deg.png", "brdf_45deg.png"] {
+        for f in ["index.html", "relief.png", "psdf.png"] {
             assert!(out.join(f).exists(), "{file}: {f}");
         }
-        // Sub-micrometre scans: the coherence warning with its numbers.
-        assert!(
-            r["warnings"].as_array().unwrap().iter().any(|w| w.as_str().unwrap().contains("coherence area")),
-            "{file}"
-        );
+        // 0.4–0.5 µm scans of molecules (periods 30–130 nm): nothing visible is diffracted. Said in words with
+        // the mirror colour, never a saturated map (the report's maps were white disks), no test bench.
+        assert_eq!(r["diffracts_visible_light"], false, "{file}");
+        assert!(r["verdict"].as_str().unwrap().contains("diffracts no visible light"), "{file}: {}", r["verdict"]);
+        for share in r["unit_cell"].as_array().unwrap().iter().map(|u| u["diffracted_share"].as_f64().unwrap()) {
+            assert!(share < 1e-3, "{file}: diffracted share {share}");
+        }
+        assert!(!out.join("brdf_0deg.png").exists() && r["testbench"].is_null(), "{file}");
     }
 }

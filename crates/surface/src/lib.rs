@@ -189,21 +189,9 @@ impl HeightField {
                 1000.0 / (2.0 * p)
             ));
         }
-        let (ex, ey) = self.extent_nm();
-        if ex.min(ey) < coherence_nm {
-            w.push(format!(
-                "patch {:.1} × {:.1} µm is smaller than the {:.1} µm coherence area: the DFT treats it as periodic, \
-                 so its spectrum is spikes {:.4} µm⁻¹ apart instead of a smooth spectrum, and a period read off \
-                 that grid is quantised to about ± d²/{:.1} µm. Tiling does not help (the spikes stay where they \
-                 are); the model commands (brdf-map, precompute, testbench, compare, sweep, report) therefore fit \
-                 the coherence to the patch unless --coherence is given, and say so; or scan a larger area",
-                ex / 1000.0,
-                ey / 1000.0,
-                coherence_nm / 1000.0,
-                1000.0 / ex.min(ey),
-                ex.min(ey) / 1000.0,
-            ));
-        }
+        // A patch smaller than the coherence window is no problem of the scan: the diffraction commands take it
+        // as one unit cell of a periodic surface and say so once, where it matters.
+        let _ = coherence_nm;
         w
     }
 }

@@ -396,7 +396,9 @@ fn physics_warnings_carry_numbers() {
     let hf = HeightField::new(100, 100, 120.0, 120.0, vec![0.0; 10_000]).unwrap();
     let w = hf.physics_warnings(65_000.0);
     assert!(w.iter().any(|m| m.contains("120.0 nm") && m.contains("95")), "{w:?}");
-    assert!(w.iter().any(|m| m.contains("12.0 × 12.0 µm") && m.contains("65.0 µm")), "{w:?}");
+    // A patch smaller than the coherence window is the diffraction model's unit cell, said by the model
+    // commands where it matters, not a problem of the scan.
+    assert_eq!(w.len(), 1, "{w:?}");
     let fine = HeightField::new(1000, 1000, 65.0, 65.0, vec![0.0; 1_000_000]).unwrap();
     assert!(fine.physics_warnings(65_000.0).is_empty());
 }

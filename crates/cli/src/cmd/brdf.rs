@@ -136,6 +136,14 @@ pub struct BrdfMapArgs {
     /// Exposure in RU (1 RU: a normal-incidence mirror just saturates white).
     #[arg(long, default_value_t = 1500.0)]
     pub exposure: f64,
+    /// Choose the exposure from the map: its 99th-percentile lit pixel becomes white; the clipped share is
+    /// said.
+    #[arg(long, conflicts_with = "exposure")]
+    pub auto_exposure: bool,
+    /// Also write the map as a figure with axes (view direction x = sin θr cos φr, y = sin θr sin φr) and a
+    /// caption: the surface, light, method and exposure (PNG).
+    #[arg(long)]
+    pub plot: Option<PathBuf>,
     /// Encoding: srgb, linear or a gamma such as 2.2.
     #[arg(long, default_value = "srgb")]
     pub gamma: String,
@@ -462,6 +470,9 @@ pub fn run_brdf_map(a: BrdfMapArgs) -> Result<()> {
     }
     declare_map_outputs(&a)?;
     if a.gpu {
+        if a.auto_exposure || a.plot.is_some() {
+            bail!("--auto-exposure and --plot are made on the CPU's map: leave out --gpu (or give --exposure)");
+        }
         return crate::cmd::gpu::run_brdf_map(a, wi, encoding);
     }
     if a.table_precision.is_some() {
@@ -477,8 +488,46 @@ pub fn run_brdf_map(a: BrdfMapArgs) -> Result<()> {
     let xyz = render_map(e.as_ref(), wi, a.size, &Cli);
     let total = start.elapsed().as_secs_f64();
     let secs = total - prepared;
-    let tone = ToneMap { exposure_ru: a.exposure, encoding };
+    let mut exposure = a.exposure;
+    if a.auto_exposure {
+        match iridis_api::brdf::auto_exposure(&xyz, a.size) {
+            Some(auto) => {
+                exposure = auto.exposure_ru;
+                eprintln!(
+                    "note: exposure {:.4} RU, chosen from the map (its 99th-percentile lit pixel is white): {:.2} % of \
+                     the disk's pixels clipped, {:.2} % lit",
+                    exposure,
+                    100.0 * auto.clipped_share,
+                    100.0 * auto.lit_share
+                );
+            }
+            None => eprintln!(
+                "warning: the map is black: no light reaches these view directions (at this coherence a mirror's \
+                 lobe is narrower than a pixel); the exposure stays {exposure} RU"
+            ),
+        }
+    }
+    let tone = ToneMap { exposure_ru: exposure, encoding };
     write_map_outputs(&a, &xyz, tone)?;
+    if let Some(path) = &a.plot {
+        let name = std::path::Path::new(&a.input).file_name().map_or(a.input.clone(), |f| f.to_string_lossy().into());
+        let (t, p) = (wi[2].clamp(-1.0, 1.0).acos().to_degrees(), wi[1].atan2(wi[0]).to_degrees());
+        let pixels =
+            iridis_plot::RgbImage { width: a.size as u32, height: a.size as u32, data: map_to_rgb8(&xyz, tone) };
+        let plot = iridis_plot::ImagePlot {
+            title: format!("{name} · θi {t:.0}° φi {p:.0}° · {} · D65 · {exposure:.3e} RU", e.name()),
+            x_label: "x = sin θr cos φr".into(),
+            y_label: "y = sin θr sin φr".into(),
+            x_range: (-1.0, 1.0),
+            y_range: (-1.0, 1.0),
+            pixels: &pixels,
+            overlays: vec![],
+            colorbar: None,
+            size: (560, 600),
+        }
+        .render()?;
+        crate::output::write_png_rgb8(path, plot.width, plot.height, &plot.data)?;
+    }
     crate::outln!(
         "wrote {} ({} map, {}², {total:.2} s in all: {prepared:.2} s to load and prepare, {secs:.2} s for the \
          map, {:.0} pixels/s)",
@@ -498,6 +547,7 @@ pub fn declare_map_outputs(a: &BrdfMapArgs) -> Result<()> {
     crate::output::declare("-o", &a.output, MAP_FORMATS)?;
     crate::output::declare_opt("--raw", a.raw.as_deref(), &["npy"])?;
     crate::output::declare_opt("--exr", a.exr.as_deref(), &["exr"])?;
+    crate::output::declare_opt("--plot", a.plot.as_deref(), &["png"])?;
     Ok(())
 }
 

@@ -73,21 +73,7 @@ pub fn run(command: ColorCommand) -> Result<()> {
     }
 }
 
-/// Everything a person wants to know about one colour, as JSON (keys fixed by the CLI's documentation).
-pub fn colour_report(xyz: Xyz, white: Xyz) -> serde_json::Value {
-    let xyy = xyz.to_xyy();
-    let lab = Lab::from_xyz(xyz, white);
-    let tone = ToneMap::default();
-    let rgb8 = tone.to_rgb8(xyz);
-    json!({
-        "XYZ": xyz.to_array(),
-        "xyY": [xyy.x, xyy.y, xyy.big_y],
-        "Lab": lab.to_array(),
-        "linear_srgb": xyz.to_linear_srgb(),
-        "srgb": tone.to_display(xyz),
-        "hex": hex(rgb8),
-    })
-}
+pub use iridis_api::color::colour_report;
 
 fn xyz(a: XyzArgs) -> Result<()> {
     let illuminant: Illuminant = a.illuminant.parse()?;

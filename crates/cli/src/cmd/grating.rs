@@ -176,5 +176,19 @@ pub fn run(a: GratingArgs) -> Result<()> {
             list.join("  ")
         )?;
     }
+    if let Some(c) = g.colours() {
+        let hex = |x| iridis_api::color::colour_report(x, c.white)["hex"].as_str().unwrap_or("").to_string();
+        crate::outln!(
+            "colours under D65 (unpolarised): mirror order {} (Y {:.4}), diffracted orders {} (Y {:.4}, {:.2} % of the \
+             reflected light), all orders {} (Y {:.4})",
+            hex(c.specular),
+            c.specular.y,
+            hex(c.diffracted),
+            c.diffracted.y,
+            100.0 * c.diffracted_share(),
+            hex(c.reflected),
+            c.reflected.y
+        )?;
+    }
     Ok(())
 }

@@ -16,10 +16,15 @@ use crate::progress::bar;
 Steps (each a command shown in the report, run with the same surface options):
   1. iridis surface info FILE --level L --image relief.png --psdf psdf.png --acf acf.png --json
      size, heights, roughness (Sq, Sa, Ssk, Sku, correlation length), periods and orientations, PSDF, ACF
-  2. iridis brdf-map FILE --method reference --incidence 0deg / 45deg, under D65: the structure's colours
-  3. iridis testbench FILE --json --plot testbench.png: the period from the grating equation (paper 6.1)
-Warnings (patch smaller than the coherence area, pixels too coarse for the visible band, units assumed,
-NaN lines) are collected with their numbers. Files are plane-levelled unless --level says otherwise.
+  2. iridis grating FILE --light 0deg / 45deg --from 380nm --to 780nm: the scan as one unit cell, how much
+     of the light it diffracts and the colour of its mirror reflection
+  3. iridis brdf-map FILE --method reference --incidence 0deg / 45deg --auto-exposure, under D65: the
+     structure's colours (only when it diffracts at least 0.1 % of the reflected light)
+  4. iridis testbench FILE --json --plot testbench.png: the period from the grating equation (paper 6.1),
+     along the orientation of the strongest period (likewise)
+The report opens with a sentence on what the scan does to visible light. Warnings (pixels too coarse for
+the visible band, units assumed, NaN lines) are collected with their numbers. Files are plane-levelled
+unless --level says otherwise.
 
 Examples:
   iridis report scan.spm -o scan_report
@@ -90,6 +95,24 @@ fn html_escape(s: &str) -> String {
     s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
 }
 
+/// The share of the reflected light a structure must diffract (D65 × ȳ) for the report to draw its BRDF maps
+/// and run the test bench: below it the scan looks like a mirror of its specular colour.
+const DIFFRACTS: f64 = 1e-3;
+
+/// A value rounded to its uncertainty's leading digit (two where that digit is 1), with the uncertainty.
+fn with_uncertainty(value: f64, u: f64) -> String {
+    if !(u.is_finite() && u > 0.0) {
+        return format!("{value:.1}");
+    }
+    let mut digits = -(u.log10().floor() as i32);
+    if u * 10f64.powi(digits) < 2.0 {
+        digits += 1;
+    }
+    let d = digits.max(0) as usize;
+    let r = |x: f64| (x * 10f64.powi(digits)).round() / 10f64.powi(digits);
+    format!("{:.d$} ± {:.d$}", r(value), r(u))
+}
+
 pub fn run(a: ReportArgs) -> Result<()> {
     let dir = &a.output;
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
@@ -100,45 +123,71 @@ pub fn run(a: ReportArgs) -> Result<()> {
             common.extend([flag.to_string(), v.clone()]);
         }
     }
+    common.extend(["--level".to_string(), a.level.clone()]);
     let mut model = common.clone();
-    model.extend(["--level".to_string(), a.level.clone()]);
     if let Some(c) = &a.coherence {
         model.extend(["--coherence".to_string(), c.clone()]);
     }
     let s = |v: &[&str]| v.iter().map(|x| x.to_string()).collect::<Vec<String>>();
-    let mut plan: Vec<(String, Vec<String>)> = Vec::new();
-    let mut info = s(&["surface", "info", &a.surface, "--level", &a.level, "--json"]);
+    let pb = bar(if a.no_testbench { 5 } else { 6 }, "report");
+    let mut steps: Vec<Step> = Vec::new();
+    let step = |title: &str, label: &str, args: Vec<String>| -> Result<Step> {
+        pb.set_message(label.to_string());
+        let r = run_step(title, args);
+        pb.inc(1);
+        r
+    };
+    let mut info = s(&["surface", "info", &a.surface, "--json"]);
     info.extend(common.clone());
     info.extend(s(&["--image", &file("relief.png"), "--psdf", &file("psdf.png"), "--acf", &file("acf.png")]));
-    plan.push(("Levelled relief, roughness, periods, PSDF and ACF".into(), info));
-    for (name, inc) in [("brdf_0deg.png", "0deg"), ("brdf_45deg.png", "45deg,0deg")] {
-        let mut b = s(&["brdf-map", &a.surface, "--method", "reference", "--incidence", inc]);
-        b.extend(s(&["--size", &a.size.to_string(), "-o", &file(name)]));
-        b.extend(model.clone());
-        plan.push((format!("BRDF map under D65, light at {inc}"), b));
+    steps.push(step("Levelled relief, roughness, periods, PSDF and ACF", "surface", info)?);
+    // The scan as one unit cell of a grating: how much of the light it diffracts, and the colour of the rest.
+    let mut grating = Vec::new();
+    for inc in ["0deg", "45deg"] {
+        let mut g = s(&["grating", &a.surface, "--light", inc, "--from", "380nm", "--to", "780nm", "--step", "10nm"]);
+        g.extend(common.clone());
+        g.push("--json".into());
+        let st = step(&format!("Order efficiencies of the scan as a unit cell, light at {inc}"), "orders", g)?;
+        grating.push(serde_json::from_str::<Value>(&st.stdout).context("grating printed no JSON")?);
+        steps.push(st);
     }
-    if !a.no_testbench {
-        let mut t = s(&["testbench", &a.surface, "--json", "--plot", &file("testbench.png")]);
-        t.extend(model.clone());
-        plan.push(("Test bench: the period from the grating equation (paper sec. 6.1)".into(), t));
-    }
-    let pb = bar(plan.len() as u64, "report");
-    let mut steps = Vec::new();
-    let mut failed: Vec<String> = Vec::new();
-    for (i, (title, args)) in plan.into_iter().enumerate() {
-        pb.set_message(title.chars().take(18).collect::<String>());
-        match run_step(&title, args) {
-            Ok(st) => steps.push(st),
-            // The test bench finds no order when the periods are below the visible band: say so, go on.
-            Err(e) if i == 3 => failed.push(format!("{e:#}")),
-            Err(e) => return Err(e),
+    let share = |g: &Value| g["colour"]["diffracted_share"].as_f64().unwrap_or(0.0);
+    let diffracts = grating.iter().any(|g| share(g) >= DIFFRACTS);
+    let mut maps = Vec::new();
+    let mut bench: Option<Value> = None;
+    let mut bench_failure: Option<String> = None;
+    if diffracts {
+        for (name, plot, inc) in
+            [("brdf_0deg.png", "brdf_0deg_plot.png", "0deg"), ("brdf_45deg.png", "brdf_45deg_plot.png", "45deg,0deg")]
+        {
+            let mut b = s(&["brdf-map", &a.surface, "--method", "reference", "--incidence", inc, "--auto-exposure"]);
+            b.extend(s(&["--size", &a.size.to_string(), "-o", &file(name), "--plot", &file(plot)]));
+            b.extend(model.clone());
+            steps.push(step(&format!("BRDF map under D65, light at {inc}"), "maps", b)?);
+            maps.push(plot);
         }
-        pb.inc(1);
+        if !a.no_testbench {
+            let mut t = s(&["testbench", &a.surface, "--json", "--plot", &file("testbench.png")]);
+            t.extend(model.clone());
+            match step("Test bench: the period from the grating equation (paper sec. 6.1)", "bench", t) {
+                Ok(st) => {
+                    bench = serde_json::from_str(&st.stdout).ok();
+                    steps.push(st);
+                }
+                Err(e) => {
+                    bench_failure = Some(format!(
+                        "the test bench found no first order to read a period from ({}); the scan's diffraction is \
+                         too weak or its periods too long or too short for light at 75°",
+                        e.to_string().lines().last().unwrap_or("").trim_start_matches("error: ")
+                    ))
+                }
+            }
+        }
     }
     pb.finish_and_clear();
     let info: Value = serde_json::from_str(&steps[0].stdout).context("surface info printed no JSON")?;
-    let bench: Option<Value> = steps.get(3).and_then(|st| serde_json::from_str(&st.stdout).ok());
-    let mut warnings: Vec<String> = failed;
+    let verdict = verdict(&info, &grating, diffracts);
+    let mut warnings: Vec<String> = bench_failure.into_iter().collect();
     for st in &steps {
         for w in &st.warnings {
             if !warnings.contains(w) {
@@ -150,14 +199,25 @@ pub fn run(a: ReportArgs) -> Result<()> {
         .iter()
         .map(|st| json!({"title": st.title, "command": format!("iridis {}", st.args.iter().map(|x| quote(x)).collect::<Vec<_>>().join(" "))}))
         .collect();
-    let mut figures = vec!["relief.png", "psdf.png", "acf.png", "brdf_0deg.png", "brdf_45deg.png"];
-    if steps.len() > 3 {
+    let mut figures = vec!["relief.png", "psdf.png", "acf.png"];
+    figures.extend(maps.iter().copied());
+    if bench.is_some() {
         figures.push("testbench.png");
     }
+    let unit_cell: Vec<Value> = grating
+        .iter()
+        .map(|g| {
+            json!({"light_theta_deg": g["light"]["theta_deg"], "diffracted_share": g["colour"]["diffracted_share"],
+                   "specular": g["colour"]["specular"], "diffracted": g["colour"]["diffracted"]})
+        })
+        .collect();
     let report = json!({
         "surface": a.surface,
         "level": a.level,
         "info": info,
+        "unit_cell": unit_cell,
+        "diffracts_visible_light": diffracts,
+        "verdict": verdict,
         "testbench": bench,
         "warnings": warnings,
         "commands": commands,
@@ -166,17 +226,67 @@ pub fn run(a: ReportArgs) -> Result<()> {
     crate::output::write_bytes(&dir.join("report.json"), serde_json::to_string_pretty(&report)?.as_bytes())?;
     crate::output::write_bytes(&dir.join("index.html"), html(&report, &steps).as_bytes())?;
     crate::outln!("report of {} in {}", a.surface, dir.join("index.html").display())?;
+    crate::outln!("{verdict}")?;
     for w in &warnings {
         eprintln!("warning: {w}");
     }
     Ok(())
 }
 
+/// What the scan does to light, in words a biologist reads first.
+fn verdict(info: &Value, grating: &[Value], diffracts: bool) -> String {
+    let share = |g: &Value| 100.0 * g["colour"]["diffracted_share"].as_f64().unwrap_or(0.0);
+    let periods: Vec<f64> =
+        info["peaks"].as_array().into_iter().flatten().filter_map(|p| p["period_nm"].as_f64()).collect();
+    let longest = periods.iter().fold(0.0f64, |m, &p| m.max(p));
+    let specular = &grating[0]["colour"]["specular"];
+    if diffracts {
+        format!(
+            "The scan diffracts visible light: taken as one unit cell of a periodic surface, it sends {:.2} % of the \
+             light it reflects into orders other than the mirror direction at normal incidence and {:.2} % at 45° \
+             (D65, luminance-weighted; scalar model); its strongest period is {}.",
+            share(&grating[0]),
+            share(&grating[1]),
+            periods.first().map_or("none".to_string(), |p| format!("{p:.0} nm"))
+        )
+    } else {
+        let why = if periods.is_empty() {
+            "it has no dominant period".to_string()
+        } else if longest < 190.0 {
+            format!(
+                "its periods ({} nm) are all shorter than half the shortest visible wavelength (190 nm), so no \
+                 diffraction order of visible light can leave it",
+                periods.iter().map(|p| format!("{p:.0}")).collect::<Vec<_>>().join(", ")
+            )
+        } else {
+            format!("its relief is too shallow to send light into its orders (longest period {longest:.0} nm)")
+        };
+        format!(
+            "The scan diffracts no visible light: {why}. Taken as one unit cell of a periodic surface it sends {:.4} % \
+             of the reflected light out of the mirror direction at normal incidence, {:.4} % at 45°. It looks like a \
+             mirror of colour {} (reflectance Y = {:.2} % at normal incidence, n = 1.5 under the relief), so no BRDF \
+             map is drawn and no test bench is run.",
+            share(&grating[0]),
+            share(&grating[1]),
+            specular["hex"].as_str().unwrap_or("?"),
+            100.0 * specular["XYZ"][1].as_f64().unwrap_or(0.0)
+        )
+    }
+}
+
 fn html(r: &Value, steps: &[Step]) -> String {
     let info = &r["info"];
     let f = |v: &Value| v.as_f64().map_or("–".to_string(), |x| format!("{x:.4}"));
-    let mut h = String::from("<!doctype html><meta charset=utf-8><title>iridis report</title>\n<style>body{font-family:sans-serif;max-width:1000px;margin:auto}code{background:#eee;padding:2px}img{max-width:100%}.w{color:#a40}</style>\n");
-    h += &format!("<h1>iridis report: {}</h1>\n", html_escape(r["surface"].as_str().unwrap_or("")));
+    let name = std::path::Path::new(r["surface"].as_str().unwrap_or(""))
+        .file_name()
+        .map_or(String::new(), |n| n.to_string_lossy().into_owned());
+    let mut h = String::from("<!doctype html><meta charset=utf-8><title>iridis report</title>\n<style>body{font-family:sans-serif;max-width:1000px;margin:auto}code{background:#eee;padding:2px}img{max-width:100%}.w{color:#a40}.swatch{display:inline-block;width:2em;height:1em;border:1px solid #888;vertical-align:middle}</style>\n");
+    h += &format!("<h1>iridis report: {}</h1>\n", html_escape(&name));
+    let swatch = r["unit_cell"][0]["specular"]["hex"].as_str().unwrap_or("#000000");
+    h += &format!(
+        "<p><b>{}</b> <span class=swatch style=\"background:{swatch}\"></span> (mirror colour)</p>\n",
+        html_escape(r["verdict"].as_str().unwrap_or(""))
+    );
     h += &format!(
         "<p>{} × {} samples, pixel {} × {} nm, heights {}–{} nm; levelling: {}.</p>\n",
         info["cols"],
@@ -198,40 +308,50 @@ fn html(r: &Value, steps: &[Step]) -> String {
     );
     h += "<table border=1 cellpadding=4><tr><th>period (nm)</th><th>orientation (°)</th><th>share of variance</th></tr>\n";
     for p in info["peaks"].as_array().into_iter().flatten() {
+        let period = match (p["period_nm"].as_f64(), p["uncertainty_nm"].as_f64()) {
+            (Some(d), Some(u)) => with_uncertainty(d, u),
+            (Some(d), None) => format!("{d:.1}"),
+            _ => "–".into(),
+        };
         h += &format!(
-            "<tr><td>{}</td><td>{}</td><td>{}</td></tr>\n",
-            f(&p["period_nm"]),
-            f(&p["orientation_deg"]),
-            f(&p["power"])
+            "<tr><td>{period}</td><td>{:.1}</td><td>{:.3}</td></tr>\n",
+            p["orientation_deg"].as_f64().unwrap_or(f64::NAN),
+            p["power"].as_f64().unwrap_or(f64::NAN)
         );
     }
     h += "</table>\n";
     let pm = &r["testbench"]["periodicity_nm"];
     if pm.is_object() {
         h += &format!(
-            "<p>Test bench: periodicity {} ± {} nm (the patch's DFT grid, d²/L; variance {} nm², {}).</p>\n",
-            f(&pm["mean"]),
-            f(&pm["uncertainty"]),
-            f(&pm["variance"]),
-            if pm["definite"].as_bool() == Some(true) { "definite" } else { "not definite" }
+            "<p>Test bench along azimuth {:.1}°: periodicity {} nm ({}, {}).</p>\n",
+            r["testbench"]["azimuth_deg"].as_f64().unwrap_or(f64::NAN),
+            with_uncertainty(pm["mean"].as_f64().unwrap_or(f64::NAN), pm["uncertainty"].as_f64().unwrap_or(f64::NAN)),
+            if pm["quantised"].as_bool() == Some(true) {
+                "± half a DFT step of the patch along that direction"
+            } else {
+                "± the coherence window's resolution"
+            },
+            if pm["definite"].as_bool() == Some(true) { "one definite period" } else { "no definite period" }
         );
     }
     for w in r["warnings"].as_array().into_iter().flatten() {
         h += &format!("<p class=w>warning: {}</p>\n", html_escape(w.as_str().unwrap_or("")));
     }
-    let figs: [(&str, usize); 6] = [
-        ("relief.png", 0),
-        ("psdf.png", 0),
-        ("acf.png", 0),
-        ("brdf_0deg.png", 1),
-        ("brdf_45deg.png", 2),
-        ("testbench.png", 3),
-    ];
-    for (img, step) in figs {
-        let Some(st) = steps.get(step) else { continue };
+    // One heading per step, its figures under it, then the command that made them.
+    for st in steps {
+        let figs: Vec<&str> = r["figures"]
+            .as_array()
+            .into_iter()
+            .flatten()
+            .filter_map(|f| f.as_str())
+            .filter(|f| st.args.iter().any(|a| a.ends_with(&format!("/{f}")) || a == f))
+            .collect();
+        h += &format!("<h2>{}</h2>\n", html_escape(&st.title));
+        for img in figs {
+            h += &format!("<img src=\"{img}\">\n");
+        }
         h += &format!(
-            "<h2>{}</h2><img src=\"{img}\"><p><code>iridis {}</code></p>\n",
-            html_escape(&st.title),
+            "<p><code>iridis {}</code></p>\n",
             html_escape(&st.args.iter().map(|x| quote(x)).collect::<Vec<_>>().join(" "))
         );
     }
