@@ -368,6 +368,7 @@ fn max_change(a: &RawSolution, b: &RawSolution, floor: f64) -> f64 {
 /// The truncations the search walks through.
 fn truncation_steps(start: usize, opts: &Options, two_d: bool) -> Vec<usize> {
     if let Some(m) = opts.fixed_orders {
+        let m = m.max(start);
         return vec![m, m + if two_d { 2 } else { (m / 4).max(2) }];
     }
     let mut steps = vec![start.min(opts.max_orders)];
@@ -414,8 +415,9 @@ fn solve_auto(
     let px = propagating_extent(set.kx0, set.kgx, n_max);
     let py = if two_d { propagating_extent(set.ky0, set.kgy, n_max) } else { 0 };
     let margin = if two_d { 1 } else { 4 };
-    let start = opts.min_orders.max(px.max(py) + margin);
-    let steps = truncation_steps(start, opts, two_d);
+    let needed = px.max(py) + margin;
+    let start = opts.min_orders.max(needed);
+    let steps = truncation_steps(if opts.fixed_orders.is_some() { needed } else { start }, opts, two_d);
     let mut history = Vec::new();
     let mut prev: Option<(RawSolution, [usize; 2])> = None;
     let mut result = None;
