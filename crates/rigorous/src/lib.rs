@@ -415,14 +415,14 @@ fn solve_auto(
     let px = propagating_extent(set.kx0, set.kgx, n_max);
     let py = if two_d { propagating_extent(set.ky0, set.kgy, n_max) } else { 0 };
     let margin = if two_d { 1 } else { 4 };
-    let needed = px.max(py) + margin;
-    let start = opts.min_orders.max(needed);
-    let steps = truncation_steps(if opts.fixed_orders.is_some() { needed } else { start }, opts, two_d);
+    // Every propagating order must be inside the truncation; the automatic search starts with a margin.
+    let start = opts.min_orders.max(px.max(py) + margin);
+    let steps = truncation_steps(if opts.fixed_orders.is_some() { px.max(py) } else { start }, opts, two_d);
     let mut history = Vec::new();
     let mut prev: Option<(RawSolution, [usize; 2])> = None;
     let mut result = None;
     for (i, &m) in steps.iter().enumerate() {
-        let (mx, my) = if two_d { (m.max(px + margin), m.max(py + margin)) } else { (m.max(px + margin), 0) };
+        let (mx, my) = if two_d { (m.max(px), m.max(py)) } else { (m.max(px), 0) };
         let orders = Orders::new(mx, my);
         let lx = next_pow2_at_least((8 * mx + 16).max(32));
         let ly = if two_d { next_pow2_at_least((8 * my + 16).max(32)) } else { 1 };
