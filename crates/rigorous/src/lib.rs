@@ -29,9 +29,12 @@
 
 #![allow(clippy::needless_range_loop)]
 
+mod bench;
 mod cmethod;
 mod surface;
 mod waves;
+
+pub use bench::{benchmark, BenchCase, BenchOrder, BenchReport};
 
 use cmethod::{OrderAmplitudes, Orders, RawSolution, Setting};
 use num_complex::Complex64;
@@ -339,14 +342,6 @@ fn next_pow2_at_least(n: usize) -> usize {
     n.next_power_of_two()
 }
 
-fn efficiencies(raw: &RawSolution) -> Vec<f64> {
-    raw.reflected
-        .iter()
-        .chain(&raw.transmitted)
-        .flat_map(|o| [o.eff[0][0] + o.eff[0][1], o.eff[1][0] + o.eff[1][1]])
-        .collect()
-}
-
 /// Largest change between two truncations of the same problem, relative to `max(η, floor)`; orders are
 /// matched by (m, n) and side.
 fn max_change(a: &RawSolution, b: &RawSolution, floor: f64) -> f64 {
@@ -389,13 +384,12 @@ fn truncation_steps(start: usize, opts: &Options, two_d: bool) -> Vec<usize> {
     steps
 }
 
-fn to_order(o: &OrderAmplitudes, n_medium: f64, reflected: bool) -> Order {
+fn to_order(o: &OrderAmplitudes, n_medium: f64) -> Order {
     let eff = |sp: usize| Efficiency::new(o.eff[0][sp], o.eff[1][sp]);
     let (s, p) = (eff(0), eff(1));
     let kt = o.k[0].hypot(o.k[1]);
     let theta = (kt / n_medium).min(1.0).asin().to_degrees();
     let phi = if kt > 0.0 { o.k[1].atan2(o.k[0]).to_degrees() } else { 0.0 };
-    let _ = reflected;
     Order { m: o.m as i32, n: o.n as i32, theta_deg: theta, phi_deg: phi, efficiency: s.add(p), into_s: s, into_p: p }
 }
 
@@ -440,10 +434,10 @@ fn solve_auto(
         prev = Some((raw, [mx, my]));
     }
     let (raw, ord, cmp, err, met, capped) = result.expect("at least two truncations are solved");
-    let orders: Vec<Order> = raw.reflected.iter().map(|o| to_order(o, problem.incident_index, true)).collect();
+    let orders: Vec<Order> = raw.reflected.iter().map(|o| to_order(o, problem.incident_index)).collect();
     let lossless = problem.substrate_index.im == 0.0;
     let transmitted_orders: Vec<Order> = if lossless {
-        raw.transmitted.iter().map(|o| to_order(o, problem.substrate_index.re, false)).collect()
+        raw.transmitted.iter().map(|o| to_order(o, problem.substrate_index.re)).collect()
     } else {
         Vec::new()
     };
@@ -455,7 +449,6 @@ fn solve_auto(
         1.0 - reflected_total.tm - transmitted_total.tm,
     );
     let energy_error = lossless.then(|| absorbed.te.abs().max(absorbed.tm.abs()));
-    let _ = efficiencies;
     Ok(Solution {
         wavelength_nm: problem.wavelength_nm,
         theta_i_deg: problem.theta_i_rad.to_degrees(),

@@ -154,11 +154,6 @@ impl FineSurface {
         let vals: Vec<C64> = (0..self.a.len()).map(|k| f(self.a[k], self.ax[k], self.ay[k])).collect();
         fourier_coeffs(self.lx, self.ly, &vals)
     }
-
-    /// Largest slope magnitude on the fine grid.
-    pub fn max_slope(&self) -> f64 {
-        self.ax.iter().zip(&self.ay).map(|(x, y)| x.hypot(*y)).fold(0.0, f64::max)
-    }
 }
 
 #[cfg(test)]

@@ -2,7 +2,7 @@
 //! - tests/fixtures/rayleigh_sine.json: the Rayleigh–Fourier method (numpy, tools/gen_rayleigh_fixtures.py),
 //!   shallow sine gratings (a/Λ ≤ 0.05, inside the Rayleigh hypothesis' validity), metal and glass, TE and TM;
 //! - tests/fixtures/grcwa_sine.json: grcwa 0.1.2, staircase RCWA (tools/gen_rigorous_fixtures.py), a/Λ up to
-//!   0.15, used where grcwa itself converges (its change between 41 orders/40 slices and 81/80 below 0.3 % on
+//!   0.15, used where grcwa itself converges (its change between 41 orders/40 slices and 81/80 below 0.5 % on
 //!   every order above 1e-3): glass TE and TM, metal TE.
 //!
 //! The bar (issue 28): every propagating order with η > 1e-3 within 1 % of the reference, relative.
@@ -96,12 +96,18 @@ fn c_method_agrees_with_grcwa_where_grcwa_converges() {
         );
         let grcwa_change =
             fine.iter().filter(|(_, v)| **v > 1e-3).map(|(m, v)| (v - coarse[m]).abs() / v).fold(0.0, f64::max);
-        if grcwa_change > 3e-3 {
+        // Metal TM: staircase RCWA does not converge (Popov et al. 2002); a small change between two
+        // resolutions there is a coincidence, not convergence (docs/rigorous.md), so it is never a reference.
+        if grcwa_change > 5e-3 || key.starts_with("metal tm") {
             *skipped.entry(key).or_default() += 1;
             continue;
         }
         let sol = solve_case(case);
         let (worst, n) = compare_loose(case, &runs[1], &sol);
+        println!(
+            "  {key} a={} λ={} θ={}: worst {worst:.2e}, grcwa's own change {grcwa_change:.2e}",
+            case["amplitude_nm"], case["wavelength_nm"], case["theta_deg"]
+        );
         let e = table.entry(key).or_insert((0.0, 0, 0));
         e.0 = e.0.max(worst);
         e.1 += n;
@@ -112,7 +118,7 @@ fn c_method_agrees_with_grcwa_where_grcwa_converges() {
         assert!(*w < 1e-2, "{k}: {w}");
     }
     for (k, n) in &skipped {
-        println!("grcwa {k}: {n} cases where grcwa itself changes by more than 0.3 % (not compared)");
+        println!("grcwa {k}: {n} cases where grcwa itself changes by more than 0.5 % or metal TM (not compared)");
     }
     // Glass (TE, TM) and metal TE must be covered; metal TM is where staircase RCWA does not converge.
     for k in ["glass te", "glass tm", "metal te"] {
