@@ -58,16 +58,28 @@ def grcwa_solve(case, n_orders, slices, pol, nx):
     return out
 
 
+def metal(case):
+    return case["eps"][0] < 0
+
+
 def error(case, ref, res_te, res_tm):
+    """Worst error over the propagating orders; TE only on a metal, where staircase RCWA does not converge in
+    TM (Popov et al. 2002; the ladder below shows it)."""
     worst = 0.0
     for o in ref:
         if case["eps"][1] != 0 and o["transmitted"]:
             continue
         key = (o["m"], o["n"], o["transmitted"])
-        for want, res in ((o["te"], res_te), (o["tm"], res_tm)):
+        pairs = ((o["te"], res_te),) if metal(case) else ((o["te"], res_te), (o["tm"], res_tm))
+        for want, res in pairs:
             got = res.get(key, 0.0)
             worst = max(worst, abs(got - want) / max(want, 1e-3))
     return worst
+
+
+def tm_error(case, ref, res_tm):
+    return max(abs(res_tm.get((o["m"], o["n"], o["transmitted"]), 0.0) - o["tm"]) / max(o["tm"], 1e-3)
+               for o in ref if not o["transmitted"])
 
 
 def main():
@@ -95,12 +107,13 @@ def main():
             dt = time.time() - t
             err = error(case, rep["reference"], te, tm)
             last = (n_orders, slices, dt, err)
-            print(f"  grcwa {case['name']}: {n_orders} orders, {slices} slices: {dt:.2f} s, error {err:.2e}",
-                  file=sys.stderr)
+            extra = f", TM error {tm_error(case, rep['reference'], tm):.2e}" if metal(case) else ""
+            print(f"  grcwa {case['name']}: {n_orders} orders, {slices} slices: {dt:.2f} s (TE+TM), "
+                  f"error {err:.2e}{extra}", file=sys.stderr)
             for level in (1e-2, 1e-3):
                 if err <= level and level not in found:
                     found[level] = (n_orders, slices, dt, err)
-            if 1e-3 in found or dt > 120:
+            if 1e-3 in found or dt > 60:
                 break
         ours = f"{rep['orders']}, {rep['seconds']:.4f} s, {rep['measured_error']:.1e}"
 
@@ -113,7 +126,8 @@ def main():
 
         speed = (f"{found[1e-2][2] / rep['seconds']:.0f}×" if 1e-2 in found
                  else f"> {last[2] / rep['seconds']:.0f}× (grcwa not at 1 %)")
-        print(f"| {case['name']} (TE+TM) | {ours} | {cell(1e-2)} | {cell(1e-3)} | {speed} |")
+        pols = "TE+TM; grcwa's error on TE" if metal(case) else "TE+TM"
+        print(f"| {case['name']} ({pols}) | {ours} | {cell(1e-2)} | {cell(1e-3)} | {speed} |")
 
 
 if __name__ == "__main__":

@@ -26,8 +26,8 @@ pub struct BenchCase {
 }
 
 impl BenchCase {
-    /// The cases: metal (ε = −20 + 1i) sine, Λ = 1000 nm, a/Λ = 0.1, λ = 550 nm, θ = 30°; and a
-    /// crossed sine on glass (n = 1.5), Λ = 1000 nm both ways, a = 50 nm, λ = 550 nm, θ = 30°, φ = 20°.
+    /// The cases: a sine, Λ = 1000 nm, a/Λ = 0.1, λ = 550 nm, θ = 30°, on metal (ε = −20 + 1i) and on
+    /// glass (n = 1.5); and a crossed sine on glass (n = 1.5), Λ = 1000 nm both ways, a = 50 nm, λ = 550 nm, θ = 30°, φ = 20°.
     pub fn standard() -> Vec<BenchCase> {
         vec![
             BenchCase {
@@ -39,6 +39,17 @@ impl BenchCase {
                 theta_i_deg: 30.0,
                 phi_i_deg: 0.0,
                 eps: [-20.0, 1.0],
+                tolerance: 1e-3,
+            },
+            BenchCase {
+                name: "1-D sine on glass".into(),
+                two_d: false,
+                period_nm: 1000.0,
+                amplitude_nm: 100.0,
+                wavelength_nm: 550.0,
+                theta_i_deg: 30.0,
+                phi_i_deg: 0.0,
+                eps: [2.25, 0.0],
                 tolerance: 1e-3,
             },
             BenchCase {

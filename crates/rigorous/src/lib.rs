@@ -372,13 +372,13 @@ fn truncation_steps(start: usize, opts: &Options, two_d: bool) -> Vec<usize> {
         if last >= opts.max_orders {
             break;
         }
-        let next = if two_d { last + 2 } else { last + (last / 2).max(4) };
+        let next = if two_d { last + 1 } else { last + (last / 2).max(4) };
         steps.push(next.min(opts.max_orders));
     }
     if steps.len() == 1 {
         // Even at the cap, compare with a smaller truncation for an error estimate.
         let m = steps[0];
-        let prev = if two_d { m.saturating_sub(2) } else { m - (m / 3).max(1).min(m) };
+        let prev = if two_d { m.saturating_sub(1) } else { m - (m / 3).max(1).min(m) };
         steps.insert(0, prev);
     }
     steps

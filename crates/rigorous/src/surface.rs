@@ -116,10 +116,10 @@ impl FineSurface {
         let ky = 2.0 * std::f64::consts::PI / period_y_nm;
         for j in 0..sy {
             let q = signed(j, sy);
-            let nyq_y = sy > 1 && sy % 2 == 0 && 2 * j == sy;
+            let nyq_y = sy > 1 && 2 * j == sy;
             for i in 0..sx {
                 let p = signed(i, sx);
-                let nyq_x = sx % 2 == 0 && 2 * i == sx;
+                let nyq_x = 2 * i == sx;
                 let c = spec[j * sx + i] * norm;
                 // Each Nyquist harmonic is split in two halves at ±N/2.
                 let ps: Vec<i64> = if nyq_x { vec![p, -p] } else { vec![p] };
