@@ -253,3 +253,36 @@ fn the_batch_gives_the_answers_of_single_solves_in_order() {
         assert_eq!(b.reflected_total, s.reflected_total);
     }
 }
+
+#[test]
+fn a_diagonal_ridge_in_a_square_cell_agrees_with_the_rotated_1d_grating() {
+    // h = a sin(2π(x + y)/Λ) in a Λ × Λ cell is a 1-D sine of period Λ/√2 along (1, 1)/√2: the 2-D solver
+    // (both slopes non-zero, every Toeplitz block coupled) against the 1-D solver in the rotated frame, where
+    // the light's azimuth is φ − 45° and order p is the cell's order (p, p).
+    let (period, amp) = (1000.0, 30.0);
+    let g2 = sample_2d(period, period, 16, 16, |x, y| amp * (2.0 * PI * (x + y) / period).sin());
+    let d = period / 2f64.sqrt();
+    let g1 = sine(d, amp);
+    let metal = Problem::index_from_permittivity(C::new(-20.0, 1.0));
+    for (n2, th, ph) in [(metal, 20.0f64, 10.0f64), (C::new(1.5, 0.0), 35.0, 70.0)] {
+        let p2 = Problem::new(600.0, th.to_radians(), ph.to_radians(), n2);
+        let p1 = Problem { phi_i_rad: (ph - 45.0).to_radians(), ..p2 };
+        let a = solve_1d(&g1, &p1, &tight()).unwrap();
+        let b = solve_2d(&g2, &p2, &Options { fixed_orders: Some(2), ..Options::default_2d() }).unwrap();
+        assert!(a.orders.len() >= 2);
+        for (ours, theirs) in [(&a.orders, &b.orders), (&a.transmitted_orders, &b.transmitted_orders)] {
+            for o in ours.iter() {
+                let q = theirs.iter().find(|q| q.m == o.m && q.n == o.m).unwrap();
+                assert!((q.theta_deg - o.theta_deg).abs() < 1e-9);
+                let dphi = (q.phi_deg - o.phi_deg - 45.0).rem_euclid(360.0);
+                assert!(dphi.min(360.0 - dphi) < 1e-9 || o.theta_deg < 1e-9);
+                for (x, y) in [(o.efficiency.te, q.efficiency.te), (o.efficiency.tm, q.efficiency.tm)] {
+                    // Measured: 3e-9 at M = 2 … 4; the two formulations share no matrix.
+                    assert!((x - y).abs() < 1e-6 * x.max(1e-3), "order {}: 1-D {x} vs 2-D {y}", o.m);
+                }
+            }
+        }
+        // Nothing goes into orders off the diagonal.
+        assert!(b.orders.iter().filter(|q| q.m != q.n).all(|q| q.efficiency.unpolarized < 1e-20));
+    }
+}
