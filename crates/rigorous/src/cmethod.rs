@@ -17,7 +17,7 @@ const ZERO: C64 = C64 { re: 0.0, im: 0.0 };
 const ONE: C64 = C64 { re: 1.0, im: 0.0 };
 
 /// The incidence and media of one solve, normalised by `k0`.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub(crate) struct Setting {
     /// Permittivity of the incident medium (real: a transparent medium).
     pub eps1: f64,
@@ -31,6 +31,9 @@ pub(crate) struct Setting {
     /// Grating vectors `λ/Λx`, `λ/Λy` (`kgy` unused for a 1-D profile).
     pub kgx: f64,
     pub kgy: f64,
+    /// Conformal coatings from the top: permittivity and thickness (times k0) along z; every interface is the
+    /// profile shifted down, `u = const` in the C-method's coordinates.
+    pub layers: Vec<(C64, f64)>,
 }
 
 /// The Fourier orders kept: `|m| ≤ mx`, `|n| ≤ my`.
@@ -86,6 +89,8 @@ struct MediumModes {
     /// `(order index, kz)` of each analytic order, in column order (each gives an s and a p column).
     analytic: Vec<(usize, C64)>,
     columns: Vec<Column>,
+    /// Propagation constant along u of each column (`k_z` of a plane wave, ρ of an eigenmode).
+    rho: Vec<C64>,
 }
 
 /// Which way a medium's modes must go: upwards (incident medium, above the surface) or downwards (substrate).
@@ -230,12 +235,11 @@ fn modes_1d(
     orders: &Orders,
     surf: &FineSurface,
     eps: C64,
-    side: Side,
-) -> Result<MediumModes, RigorousError> {
+    sides: &[Side],
+) -> Result<Vec<MediumModes>, RigorousError> {
     let nf = orders.len();
-    let analytic = analytic_orders(set, orders, eps, side);
-    let mut columns = analytic_columns(set, orders, surf, eps, &analytic);
-    let need = nf - analytic.len();
+    let mut out: Vec<MediumModes> = sides.iter().map(|&side| start_modes(set, orders, surf, eps, side)).collect();
+    let need = nf - out[0].analytic.len();
     if need > 0 {
         let adot = toeplitz(&surf.coeffs_of(|_, ax, _| C64::new(ax, 0.0)), orders);
         let cmat = toeplitz(&surf.coeffs_of(|_, ax, _| C64::new(1.0 + ax * ax, 0.0)), orders);
@@ -260,36 +264,48 @@ fn modes_1d(
             }
         }
         let (vals, vecs) = eigen(&a)?;
-        let akz: Vec<C64> = analytic.iter().map(|a| a.1).collect();
-        let chosen = select_modes(&vals, &akz, 1, side, need);
-        for &i in &chosen {
-            // N = C G − Ȧ α F: the Fourier vector of the normal derivative operator (C4).
-            let f: Vec<C64> = (0..nf).map(|r| vecs[(r, i)]).collect();
-            let g: Vec<C64> = (0..nf).map(|r| vecs[(nf + r, i)]).collect();
-            let mut nvec = vec![ZERO; nf];
-            for r in 0..nf {
-                let mut acc = ZERO;
-                for c in 0..nf {
-                    acc += cmat[(r, c)] * g[c] - adot[(r, c)] * (alpha[c] * f[c]);
+        for (mm, &side) in out.iter_mut().zip(sides) {
+            let akz: Vec<C64> = mm.analytic.iter().map(|a| a.1).collect();
+            let chosen = select_modes(&vals, &akz, 1, side, need);
+            for &i in &chosen {
+                // N = C G − Ȧ α F: the Fourier vector of the normal derivative operator (C4).
+                let f: Vec<C64> = (0..nf).map(|r| vecs[(r, i)]).collect();
+                let g: Vec<C64> = (0..nf).map(|r| vecs[(nf + r, i)]).collect();
+                let mut nvec = vec![ZERO; nf];
+                for r in 0..nf {
+                    let mut acc = ZERO;
+                    for c in 0..nf {
+                        acc += cmat[(r, c)] * g[c] - adot[(r, c)] * (alpha[c] * f[c]);
+                    }
+                    nvec[r] = acc;
                 }
-                nvec[r] = acc;
+                let mut e_col = vec![ZERO; 4 * nf];
+                let mut h_col = vec![ZERO; 4 * nf];
+                for r in 0..nf {
+                    // E_y-type mode (E_y = F, H_y = 0) and H_y-type mode (E_y = 0, H_y = F), (C5).
+                    e_col[r] = -ky * alpha[r] * f[r] / kappa2;
+                    e_col[nf + r] = f[r];
+                    e_col[2 * nf + r] = -eps * nvec[r] / kappa2;
+                    h_col[r] = nvec[r] / kappa2;
+                    h_col[2 * nf + r] = -ky * alpha[r] * f[r] / kappa2;
+                    h_col[3 * nf + r] = f[r];
+                }
+                mm.columns.push(e_col);
+                mm.columns.push(h_col);
+                mm.rho.push(vals[i]);
+                mm.rho.push(vals[i]);
             }
-            let mut e_col = vec![ZERO; 4 * nf];
-            let mut h_col = vec![ZERO; 4 * nf];
-            for r in 0..nf {
-                // E_y-type mode (E_y = F, H_y = 0) and H_y-type mode (E_y = 0, H_y = F), (C5).
-                e_col[r] = -ky * alpha[r] * f[r] / kappa2;
-                e_col[nf + r] = f[r];
-                e_col[2 * nf + r] = -eps * nvec[r] / kappa2;
-                h_col[r] = nvec[r] / kappa2;
-                h_col[2 * nf + r] = -ky * alpha[r] * f[r] / kappa2;
-                h_col[3 * nf + r] = f[r];
-            }
-            columns.push(e_col);
-            columns.push(h_col);
         }
     }
-    Ok(MediumModes { analytic, columns })
+    Ok(out)
+}
+
+/// The analytic plane-wave columns of a medium for one side (C7); the eigenmodes are appended later.
+fn start_modes(set: &Setting, orders: &Orders, surf: &FineSurface, eps: C64, side: Side) -> MediumModes {
+    let analytic = analytic_orders(set, orders, eps, side);
+    let columns = analytic_columns(set, orders, surf, eps, &analytic);
+    let rho = analytic.iter().flat_map(|a| [a.1, a.1]).collect();
+    MediumModes { analytic, columns, rho }
 }
 
 /// Modes of a medium for a 2-D profile `a(x, y)`: the covariant Maxwell equations in the translation
@@ -299,12 +315,11 @@ fn modes_2d(
     orders: &Orders,
     surf: &FineSurface,
     eps: C64,
-    side: Side,
-) -> Result<MediumModes, RigorousError> {
+    sides: &[Side],
+) -> Result<Vec<MediumModes>, RigorousError> {
     let nf = orders.len();
-    let analytic = analytic_orders(set, orders, eps, side);
-    let mut columns = analytic_columns(set, orders, surf, eps, &analytic);
-    let need = 2 * (nf - analytic.len());
+    let mut out: Vec<MediumModes> = sides.iter().map(|&side| start_modes(set, orders, surf, eps, side)).collect();
+    let need = 2 * (nf - out[0].analytic.len());
     if need > 0 {
         let g = |ax: f64, ay: f64| 1.0 / (1.0 + ax * ax + ay * ay);
         let t_g = toeplitz(&surf.coeffs_of(|_, ax, ay| C64::new(g(ax, ay), 0.0)), orders);
@@ -343,17 +358,21 @@ fn modes_2d(
             p[(3 * nf + r, r)] += eps;
         }
         let (vals, vecs) = eigen(&p)?;
-        let akz: Vec<C64> = analytic.iter().map(|a| a.1).collect();
-        let chosen = select_modes(&vals, &akz, 2, side, need);
-        for &i in &chosen {
-            columns.push((0..4 * nf).map(|r| vecs[(r, i)]).collect());
+        for (mm, &side) in out.iter_mut().zip(sides) {
+            let akz: Vec<C64> = mm.analytic.iter().map(|a| a.1).collect();
+            let chosen = select_modes(&vals, &akz, 2, side, need);
+            for &i in &chosen {
+                mm.columns.push((0..4 * nf).map(|r| vecs[(r, i)]).collect());
+                mm.rho.push(vals[i]);
+            }
         }
     }
-    Ok(MediumModes { analytic, columns })
+    Ok(out)
 }
 
-/// Solves one truncation: modes above and below, boundary conditions at `u = 0` (C9), Rayleigh amplitudes and
-/// power efficiencies of the propagating orders for TE and TM incidence.
+/// Solves one truncation: modes above, in each coating layer (both directions) and below, the boundary
+/// conditions at every interface `u = u_i` (C9), Rayleigh amplitudes and power efficiencies of the propagating
+/// orders for TE and TM incidence.
 pub(crate) fn solve(
     set: &Setting,
     orders: &Orders,
@@ -362,20 +381,28 @@ pub(crate) fn solve(
 ) -> Result<RawSolution, RigorousError> {
     let nf = orders.len();
     let eps1 = C64::new(set.eps1, 0.0);
-    let modes = |eps, side| {
+    let modes = |eps, sides: &[Side]| {
         if two_d {
-            modes_2d(set, orders, surf, eps, side)
+            modes_2d(set, orders, surf, eps, sides)
         } else {
-            modes_1d(set, orders, surf, eps, side)
+            modes_1d(set, orders, surf, eps, sides)
         }
     };
-    let above = modes(eps1, Side::Above)?;
-    let below = modes(set.eps2, Side::Below)?;
-    let n_unknown = above.columns.len() + below.columns.len();
-    if n_unknown != 4 * nf {
+    // Column blocks in order: above (up), each layer (up, then down), substrate (down). Each block is
+    // normalised where it is launched: up-going modes at the interface below them, down-going at the one above,
+    // so no factor exp(iρ d) ever grows.
+    let nl = set.layers.len();
+    let mut blocks: Vec<MediumModes> = modes(eps1, &[Side::Above])?;
+    for &(eps, _) in &set.layers {
+        blocks.extend(modes(eps, &[Side::Above, Side::Below])?);
+    }
+    let below = modes(set.eps2, &[Side::Below])?.pop().expect("one side asked");
+    blocks.push(below);
+    let n_unknown: usize = blocks.iter().map(|b| b.columns.len()).sum();
+    if n_unknown != 4 * nf * (nl + 1) {
         return Err(RigorousError::Numerical(format!(
             "mode count {n_unknown} does not match the {} boundary conditions",
-            4 * nf
+            4 * nf * (nl + 1)
         )));
     }
     // Incident wave: order (0, 0), travelling down; TE = s, TM = p of its own plane of incidence.
@@ -387,20 +414,53 @@ pub(crate) fn solve(
     let inc_te = plane_wave_column(orders, q0, &phi_inc, &s_inc, &k_inc);
     let inc_tm = plane_wave_column(orders, q0, &phi_inc, &p_inc, &k_inc);
 
-    // A x = −incident: above-columns minus below-columns, each column scaled to unit max-norm (equilibration).
-    let n = 4 * nf;
+    // A x = −incident: at interface i, the columns of the medium above minus those of the medium below, each
+    // times exp(iρ (u_i − u_launch)); then every column scaled to unit max-norm (equilibration).
+    let n = 4 * nf * (nl + 1);
     let mut a = Mat::<C64>::zeros(n, n);
-    let mut scale = vec![1.0; n];
-    for (j, col) in above.columns.iter().chain(below.columns.iter()).enumerate() {
-        let sign = if j < above.columns.len() { 1.0 } else { -1.0 };
-        let mx = col.iter().map(|v| v.norm()).fold(0.0, f64::max).max(1e-300);
-        scale[j] = 1.0 / mx;
-        for r in 0..n {
-            a[(r, j)] = col[r] * (sign / mx);
+    let mut col0 = 0;
+    let mut scale = Vec::with_capacity(n);
+    for (b, block) in blocks.iter().enumerate() {
+        // Block b: 0 above; 1 + 2l (up) and 2 + 2l (down) in layer l; 2 nl + 1 the substrate. It meets
+        // interface `top` (as the medium below it) and `bottom` (as the medium above it).
+        let (medium, up) = if b == 0 {
+            (0, true)
+        } else if b == 2 * nl + 1 {
+            (nl + 1, false)
+        } else {
+            ((b + 1) / 2, b % 2 == 1)
+        };
+        let d = if medium >= 1 && medium <= nl { set.layers[medium - 1].1 } else { 0.0 };
+        for (j, col) in block.columns.iter().enumerate() {
+            let rho = block.rho[j];
+            // (interface, sign, factor): the medium above interface i enters with +, the one below with −.
+            let mut hits: Vec<(usize, f64, C64)> = Vec::new();
+            if medium > 0 {
+                // Its top interface is medium − 1; up-going modes launched at the bottom travel d to it.
+                let f = if up { (C64::new(0.0, 1.0) * rho * d).exp() } else { ONE };
+                hits.push((medium - 1, -1.0, f));
+            }
+            if medium <= nl {
+                // Its bottom interface is `medium`; down-going modes launched at the top travel d to it.
+                let f = if up { ONE } else { (C64::new(0.0, -1.0) * rho * d).exp() };
+                hits.push((medium, 1.0, f));
+            }
+            let mut mx: f64 = 0.0;
+            for &(_, _, f) in &hits {
+                mx = mx.max(col.iter().map(|v| (v * f).norm()).fold(0.0, f64::max));
+            }
+            let mx = mx.max(1e-300);
+            scale.push(1.0 / mx);
+            for &(i, sign, f) in &hits {
+                for r in 0..4 * nf {
+                    a[(4 * nf * i + r, col0 + j)] = col[r] * f * (sign / mx);
+                }
+            }
         }
+        col0 += block.columns.len();
     }
     let mut rhs = Mat::<C64>::zeros(n, 2);
-    for r in 0..n {
+    for r in 0..4 * nf {
         rhs[(r, 0)] = -inc_te[r];
         rhs[(r, 1)] = -inc_tm[r];
     }
@@ -431,8 +491,9 @@ pub(crate) fn solve(
             })
             .collect()
     };
+    let last = blocks.last().expect("substrate block");
     Ok(RawSolution {
-        reflected: collect(&above, 0, true),
-        transmitted: collect(&below, above.columns.len(), set.eps2.im == 0.0),
+        reflected: collect(&blocks[0], 0, true),
+        transmitted: collect(last, n - last.columns.len(), set.eps2.im == 0.0),
     })
 }

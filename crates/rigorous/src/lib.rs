@@ -67,6 +67,8 @@ pub enum RigorousError {
     NegativeExtinction(f64),
     #[error("the substrate's refractive index must be finite with n ≥ 0 and n + ik ≠ 0, got {0} + {1}i")]
     InvalidSubstrateIndex(f64, f64),
+    #[error("coating {layer}: the thickness must be a finite number ≥ 0 nm and the index n + ik finite with n ≥ 0, k ≥ 0, got {thickness} nm, {n} + {k}i")]
+    InvalidCoating { layer: usize, thickness: f64, n: f64, k: f64 },
     #[error("the tolerance must be a positive number, got {0}")]
     InvalidTolerance(f64),
     #[error("the order limits are inconsistent: {0}")]
@@ -95,8 +97,26 @@ pub struct Profile2d {
     pub heights_nm: Vec<f64>,
 }
 
+/// A conformal coating layer: the profile shifted down by `thickness_nm` along z (every interface is the same
+/// surface, as the C-method needs; on slopes the thickness along the normal is `thickness/√(1 + |∇h|²)`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Coating {
+    pub thickness_nm: f64,
+    /// Complex refractive index `n + ik` (`k ≥ 0`) at the problem's wavelength.
+    #[serde(serialize_with = "serialize_index")]
+    pub index: Complex64,
+}
+
+fn serialize_index<S: serde::Serializer>(n: &Complex64, s: S) -> Result<S::Ok, S::Error> {
+    use serde::ser::SerializeTuple;
+    let mut t = s.serialize_tuple(2)?;
+    t.serialize_element(&n.re)?;
+    t.serialize_element(&n.im)?;
+    t.end()
+}
+
 /// One wavelength and direction of incidence, with the media at that wavelength (the caller resolves materials).
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub struct Problem {
     pub wavelength_nm: f64,
     /// Polar angle of the light direction `ω_i` (rad), in `[0, π/2)`.
@@ -107,12 +127,14 @@ pub struct Problem {
     pub incident_index: f64,
     /// Complex refractive index `n + ik` (`k ≥ 0`) of the substrate at this wavelength.
     pub substrate_index: Complex64,
+    /// Conformal coatings on the substrate, from the top (incident side) down; empty for a bare substrate.
+    pub coatings: Vec<Coating>,
 }
 
 impl Problem {
     /// In air: `theta_i_rad`, `phi_i_rad` in radians.
     pub fn new(wavelength_nm: f64, theta_i_rad: f64, phi_i_rad: f64, substrate_index: Complex64) -> Self {
-        Problem { wavelength_nm, theta_i_rad, phi_i_rad, incident_index: 1.0, substrate_index }
+        Problem { wavelength_nm, theta_i_rad, phi_i_rad, incident_index: 1.0, substrate_index, coatings: Vec::new() }
     }
 
     /// A substrate given by its relative permittivity (e.g. `ε = −20 + 1i`): `n + ik = √ε` with `k ≥ 0`.
@@ -241,6 +263,7 @@ pub struct Solution {
     pub incident_index: f64,
     /// Substrate index `[n, k]`.
     pub substrate_index: [f64; 2],
+    pub coatings: Vec<Coating>,
     /// Reflected propagating orders.
     pub orders: Vec<Order>,
     /// Transmitted propagating orders (empty for an absorbing substrate, where nothing leaves below).
@@ -294,6 +317,23 @@ fn check_problem(p: &Problem) -> Result<(), RigorousError> {
     if n.im < 0.0 {
         return Err(RigorousError::NegativeExtinction(n.im));
     }
+    for (layer, c) in p.coatings.iter().enumerate() {
+        let ok = c.thickness_nm.is_finite()
+            && c.thickness_nm >= 0.0
+            && c.index.re.is_finite()
+            && c.index.im.is_finite()
+            && c.index.re >= 0.0
+            && c.index.im >= 0.0
+            && c.index.norm() > 0.0;
+        if !ok {
+            return Err(RigorousError::InvalidCoating {
+                layer,
+                thickness: c.thickness_nm,
+                n: c.index.re,
+                k: c.index.im,
+            });
+        }
+    }
     Ok(())
 }
 
@@ -329,6 +369,11 @@ fn setting(p: &Problem, period_x: f64, period_y: f64) -> Setting {
         phi: p.phi_i_rad,
         kgx: p.wavelength_nm / period_x,
         kgy: p.wavelength_nm / period_y,
+        layers: p
+            .coatings
+            .iter()
+            .map(|c| (c.index * c.index, 2.0 * std::f64::consts::PI / p.wavelength_nm * c.thickness_nm))
+            .collect(),
     }
 }
 
@@ -405,7 +450,11 @@ fn solve_auto(
     check_problem(problem)?;
     check_options(opts)?;
     let set = setting(problem, period_x, period_y);
-    let n_max = problem.incident_index.max(problem.substrate_index.re);
+    let n_max = problem
+        .coatings
+        .iter()
+        .map(|c| c.index.re)
+        .fold(problem.incident_index.max(problem.substrate_index.re), f64::max);
     let px = propagating_extent(set.kx0, set.kgx, n_max);
     let py = if two_d { propagating_extent(set.ky0, set.kgy, n_max) } else { 0 };
     let margin = if two_d { 1 } else { 4 };
@@ -455,6 +504,7 @@ fn solve_auto(
         phi_i_deg: problem.phi_i_rad.to_degrees(),
         incident_index: problem.incident_index,
         substrate_index: [problem.substrate_index.re, problem.substrate_index.im],
+        coatings: problem.coatings.clone(),
         orders,
         transmitted_orders,
         reflected_total,

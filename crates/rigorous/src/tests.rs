@@ -78,7 +78,7 @@ fn a_lossless_metal_grating_reflects_everything() {
 
 /// The reciprocal configuration of reflected order `o` of a solution: light from `ω_r` of that order.
 fn reciprocal(p: &Problem, o: &Order) -> Problem {
-    Problem { theta_i_rad: o.theta_deg.to_radians(), phi_i_rad: o.phi_deg.to_radians(), ..*p }
+    Problem { theta_i_rad: o.theta_deg.to_radians(), phi_i_rad: o.phi_deg.to_radians(), ..p.clone() }
 }
 
 /// Reciprocity (Petit 1980, ch. 1; Maystre 1984): the power in order (m, n) with polarisation b, lit from
@@ -116,7 +116,7 @@ fn order_efficiencies_are_reciprocal_on_an_asymmetric_profile() {
         let p = Problem::new(600.0, 20f64.to_radians(), f64::to_radians(ph), n2);
         let a = solve_1d(&g, &p, &tight()).unwrap();
         // Light from the mirrored azimuth: a symmetric profile would give order −m what order m gets here.
-        let mirror = solve_1d(&g, &Problem { phi_i_rad: p.phi_i_rad + PI, ..p }, &tight()).unwrap();
+        let mirror = solve_1d(&g, &Problem { phi_i_rad: p.phi_i_rad + PI, ..p.clone() }, &tight()).unwrap();
         let asym = a
             .orders
             .iter()
@@ -191,7 +191,7 @@ fn a_crossed_grating_conserves_energy_and_is_reciprocal() {
     assert!(s.transmitted_orders.iter().any(|o| o.n != 0 && o.m != 0 && o.efficiency.unpolarized > 1e-3));
     let e = s.convergence.energy_error.unwrap();
     assert!(e < 1e-6, "R + T − 1 = {e}");
-    let metal = Problem { substrate_index: Problem::index_from_permittivity(C::new(-20.0, 1.0)), ..glass };
+    let metal = Problem { substrate_index: Problem::index_from_permittivity(C::new(-20.0, 1.0)), ..glass.clone() };
     let a = solve_2d(&g, &metal, &opts).unwrap();
     // At a fixed truncation the reciprocal problem's order window is shifted, so reciprocity holds to the
     // truncation error (the record's estimate), not to rounding.
@@ -206,17 +206,20 @@ fn bad_input_gets_a_specific_error() {
     let o = Options::default();
     let err = |g: &Profile1d, p: &Problem, o: &Options| solve_1d(g, p, o).unwrap_err();
     assert_eq!(err(&Profile1d { period_nm: 0.0, ..g.clone() }, &p, &o), RigorousError::InvalidPeriod(0.0));
-    assert_eq!(err(&g, &Problem { wavelength_nm: -1.0, ..p }, &o), RigorousError::InvalidWavelength(-1.0));
+    assert_eq!(err(&g, &Problem { wavelength_nm: -1.0, ..p.clone() }, &o), RigorousError::InvalidWavelength(-1.0));
     let mut nan = g.clone();
     nan.heights_nm[5] = f64::NAN;
     assert!(matches!(err(&nan, &p, &o), RigorousError::NonFiniteHeight { index: 5, .. }));
     assert_eq!(err(&Profile1d { heights_nm: vec![0.0, 1.0], ..g.clone() }, &p, &o), RigorousError::TooFewSamples(2));
     assert_eq!(
-        err(&g, &Problem { substrate_index: C::new(1.5, -0.1), ..p }, &o),
+        err(&g, &Problem { substrate_index: C::new(1.5, -0.1), ..p.clone() }, &o),
         RigorousError::NegativeExtinction(-0.1)
     );
-    assert!(matches!(err(&g, &Problem { theta_i_rad: 1.6, ..p }, &o), RigorousError::InvalidPolarAngle(_)));
-    assert!(matches!(err(&g, &Problem { incident_index: 0.0, ..p }, &o), RigorousError::InvalidIncidentIndex(_)));
+    assert!(matches!(err(&g, &Problem { theta_i_rad: 1.6, ..p.clone() }, &o), RigorousError::InvalidPolarAngle(_)));
+    assert!(matches!(
+        err(&g, &Problem { incident_index: 0.0, ..p.clone() }, &o),
+        RigorousError::InvalidIncidentIndex(_)
+    ));
     assert!(matches!(err(&g, &p, &Options { tolerance: 0.0, ..o }), RigorousError::InvalidTolerance(_)));
     let bad2 = Profile2d { period_x_nm: 500.0, period_y_nm: 500.0, rows: 4, cols: 4, heights_nm: vec![0.0; 15] };
     assert_eq!(solve_2d(&bad2, &p, &o).unwrap_err(), RigorousError::GridSize { rows: 4, cols: 4, len: 15 });
@@ -266,7 +269,7 @@ fn a_diagonal_ridge_in_a_square_cell_agrees_with_the_rotated_1d_grating() {
     let metal = Problem::index_from_permittivity(C::new(-20.0, 1.0));
     for (n2, th, ph) in [(metal, 20.0f64, 10.0f64), (C::new(1.5, 0.0), 35.0, 70.0)] {
         let p2 = Problem::new(600.0, th.to_radians(), ph.to_radians(), n2);
-        let p1 = Problem { phi_i_rad: (ph - 45.0).to_radians(), ..p2 };
+        let p1 = Problem { phi_i_rad: (ph - 45.0).to_radians(), ..p2.clone() };
         let a = solve_1d(&g1, &p1, &tight()).unwrap();
         let b = solve_2d(&g2, &p2, &Options { fixed_orders: Some(2), ..Options::default_2d() }).unwrap();
         assert!(a.orders.len() >= 2);
@@ -285,4 +288,88 @@ fn a_diagonal_ridge_in_a_square_cell_agrees_with_the_rotated_1d_grating() {
         // Nothing goes into orders off the diagonal.
         assert!(b.orders.iter().filter(|q| q.m != q.n).all(|q| q.efficiency.unpolarized < 1e-20));
     }
+}
+
+fn q(n: C, s: f64) -> C {
+    let v = (n * n - s * s).sqrt();
+    if v.im < 0.0 {
+        -v
+    } else {
+        v
+    }
+}
+
+/// Reflectance of a single film on a substrate (Airy's sum; Born & Wolf §1.6.4), TE and TM.
+fn airy(n0: f64, n1: C, d_nm: f64, n2: C, lam: f64, theta: f64) -> (f64, f64) {
+    let s = n0 * theta.sin();
+    let (q0, q1, q2) = (q(C::new(n0, 0.0), s), q(n1, s), q(n2, s));
+    let ph = (C::new(0.0, 2.0) * q1 * (2.0 * PI / lam * d_nm)).exp();
+    let te = |qa: C, qb: C| (qa - qb) / (qa + qb);
+    let tm = |na: C, qa: C, nb: C, qb: C| (nb * nb * qa - na * na * qb) / (nb * nb * qa + na * na * qb);
+    let n0c = C::new(n0, 0.0);
+    let (a, b) = (te(q0, q1), te(q1, q2));
+    let rs = (a + b * ph) / (1.0 + a * b * ph);
+    let (a, b) = (tm(n0c, q0, n1, q1), tm(n1, q1, n2, q2));
+    let rp = (a + b * ph) / (1.0 + a * b * ph);
+    (rs.norm_sqr(), rp.norm_sqr())
+}
+
+#[test]
+fn a_coated_flat_substrate_reflects_as_airy_says() {
+    let flat = sample_1d(700.0, 8, |_| 0.0);
+    let flat2 = sample_2d(250.0, 220.0, 4, 4, |_, _| 0.0);
+    let metal = Problem::index_from_permittivity(C::new(-20.0, 1.0));
+    for (n1, d, n2, theta, phi) in [
+        (C::new(2.0, 0.0), 80.0, metal, 0.4, 0.3),
+        (C::new(0.2, 3.4), 20.0, C::new(1.5, 0.0), 0.9, 1.9),
+        (C::new(1.33, 0.0), 635.0, C::new(1.0, 0.0), 0.0, 0.0),
+    ] {
+        let p =
+            Problem { coatings: vec![Coating { thickness_nm: d, index: n1 }], ..Problem::new(550.0, theta, phi, n2) };
+        let (rs, rp) = airy(1.0, n1, d, n2, 550.0, theta);
+        for sol in [solve_1d(&flat, &p, &Options::default()).unwrap(), solve_2d(&flat2, &p, &small_2d()).unwrap()] {
+            let o = &sol.orders[sol.orders.iter().position(|o| o.m == 0 && o.n == 0).unwrap()];
+            assert!((o.efficiency.te - rs).abs() < 1e-12, "TE {} vs {rs}", o.efficiency.te);
+            assert!((o.efficiency.tm - rp).abs() < 1e-12, "TM {} vs {rp}", o.efficiency.tm);
+        }
+    }
+}
+
+#[test]
+fn coatings_of_the_substrate_itself_or_of_zero_thickness_change_nothing() {
+    // A layer of the substrate's own index (any thickness) or of zero thickness is no layer at all: the
+    // interfaces it adds carry no jump, the layer's up- and down-going modes must cancel exactly.
+    let g = sine(1000.0, 120.0);
+    let metal = Problem::index_from_permittivity(C::new(-20.0, 1.0));
+    for n2 in [metal, C::new(1.5, 0.0)] {
+        let bare = Problem::new(500.0, 0.5, 0.4, n2);
+        let a = solve_1d(&g, &bare, &Options { fixed_orders: Some(12), ..Options::default() }).unwrap();
+        for coating in
+            [Coating { thickness_nm: 60.0, index: n2 }, Coating { thickness_nm: 0.0, index: C::new(2.0, 0.1) }]
+        {
+            let p = Problem { coatings: vec![coating], ..bare.clone() };
+            let b = solve_1d(&g, &p, &Options { fixed_orders: Some(12), ..Options::default() }).unwrap();
+            for (x, y) in a.orders.iter().zip(&b.orders) {
+                assert!((x.efficiency.te - y.efficiency.te).abs() < 1e-9, "{:?} {:?}", x, y);
+                assert!((x.efficiency.tm - y.efficiency.tm).abs() < 1e-9, "{:?} {:?}", x, y);
+            }
+        }
+    }
+}
+
+#[test]
+fn a_coated_lossless_grating_conserves_energy() {
+    // Two dielectric coatings (80 nm n = 2.0, 150 nm n = 1.38) on a deep sine on glass, conical incidence.
+    let g = sine(1000.0, 120.0);
+    let p = Problem {
+        coatings: vec![
+            Coating { thickness_nm: 80.0, index: C::new(2.0, 0.0) },
+            Coating { thickness_nm: 150.0, index: C::new(1.38, 0.0) },
+        ],
+        ..Problem::new(550.0, 0.6, 0.7, C::new(1.5, 0.0))
+    };
+    let s = solve_1d(&g, &p, &Options::default()).unwrap();
+    assert!(s.convergence.met);
+    let e = s.convergence.energy_error.unwrap();
+    assert!(e < 1e-9, "R + T − 1 = {e}");
 }
