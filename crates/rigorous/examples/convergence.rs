@@ -43,7 +43,7 @@ fn table_2d() {
     println!("\n2-D crossed sine h = 50 nm (sin Kx + sin Ky), metal, Λ = 1000 nm, λ = 550 nm, θ_i = 30°, φ_i = 20°");
     println!("| M | (0,0) TE / TM | (1,0) TE / TM | (1,1) TE / TM | R TE / TM | estimated error | seconds |");
     println!("|---|---|---|---|---|---|---|");
-    for m in [2usize, 3, 4, 5, 6] {
+    for m in [2usize, 3, 4, 5] {
         let t = std::time::Instant::now();
         let s = solve_2d(&g, &p, &Options { fixed_orders: Some(m), ..Options::default_2d() }).unwrap();
         let dt = t.elapsed().as_secs_f64();

@@ -428,7 +428,7 @@ pub(crate) fn solve(
         } else if b == 2 * nl + 1 {
             (nl + 1, false)
         } else {
-            ((b + 1) / 2, b % 2 == 1)
+            (b.div_ceil(2), b % 2 == 1)
         };
         let d = if medium >= 1 && medium <= nl { set.layers[medium - 1].1 } else { 0.0 };
         for (j, col) in block.columns.iter().enumerate() {
