@@ -196,6 +196,13 @@ fn a_crossed_grating_conserves_energy_and_is_reciprocal() {
     // At a fixed truncation the reciprocal problem's order window is shifted, so reciprocity holds to the
     // truncation error (the record's estimate), not to rounding.
     let tol = 10.0 * a.convergence.estimated_error.max(1e-4);
+    // The three brightest orders with both m and n non-zero among them (each reciprocal solve is a 2-D solve).
+    let mut a = a;
+    a.orders.sort_by(|x, y| y.efficiency.unpolarized.total_cmp(&x.efficiency.unpolarized));
+    let diagonal = a.orders.iter().position(|o| o.m != 0 && o.n != 0).unwrap();
+    let keep = [a.orders[0].clone(), a.orders[1].clone(), a.orders[diagonal].clone()];
+    assert!(keep[2].efficiency.unpolarized > 1e-3);
+    a.orders = keep.to_vec();
     check_reciprocity(&a, |q| solve_2d(&g, q, &opts).unwrap(), &metal, tol);
 }
 
