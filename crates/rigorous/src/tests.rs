@@ -380,3 +380,24 @@ fn a_coated_lossless_grating_conserves_energy() {
     let e = s.convergence.energy_error.unwrap();
     assert!(e < 1e-9, "R + T − 1 = {e}");
 }
+
+#[test]
+fn rayleigh_anomalies_and_a_weakly_absorbing_substrate_are_handled() {
+    // λ = Λ at normal incidence: orders ±1 leave at grazing (k_z = 0), left to the eigenmodes; the answer stays
+    // continuous and conserves energy. A substrate with k = 1e-9 reflects as the lossless one (to 1e-9) and,
+    // by the convention of PHYSICS.md, transmits nothing: what the lossless one transmits is absorbed.
+    let g = sine(1000.0, 80.0);
+    for lam in [999.999, 1000.0, 1000.001] {
+        let lossless = solve_1d(&g, &Problem::new(lam, 0.0, 0.0, C::new(1.5, 0.0)), &Options::default()).unwrap();
+        assert!(lossless.convergence.energy_error.unwrap() < 1e-8, "{lam}: {:?}", lossless.convergence);
+        let lossy = solve_1d(&g, &Problem::new(lam, 0.0, 0.0, C::new(1.5, 1e-9)), &Options::default()).unwrap();
+        assert!(lossy.transmitted_orders.is_empty());
+        assert!((lossy.reflected_total.te - lossless.reflected_total.te).abs() < 1e-9);
+        assert!((lossy.reflected_total.tm - lossless.reflected_total.tm).abs() < 1e-9);
+        assert!((lossy.absorbed.te - lossless.transmitted_total.te).abs() < 1e-8);
+    }
+    let near = |lam: f64| {
+        solve_1d(&g, &Problem::new(lam, 0.0, 0.0, C::new(1.5, 0.0)), &Options::default()).unwrap().reflected_total
+    };
+    assert!((near(1000.0).te - near(1000.001).te).abs() < 1e-5);
+}
