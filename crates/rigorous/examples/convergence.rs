@@ -45,7 +45,7 @@ fn table_2d() {
     println!("|---|---|---|---|---|---|---|");
     for m in [2usize, 3, 4, 5] {
         let t = std::time::Instant::now();
-        let s = solve_2d(&g, &p, &Options { fixed_orders: Some(m), ..Options::default_2d() }).unwrap();
+        let s = solve_2d(&g, &p, &Options { fixed_orders: Some(m), ..Options::default() }).unwrap();
         let dt = t.elapsed().as_secs_f64();
         let e = |a: i32, b: i32| {
             s.orders

@@ -77,10 +77,10 @@ impl BenchCase {
         );
         if self.two_d {
             let g = sample_2d(p, p, 32, 32, |x, y| 0.5 * a * ((k * x).sin() + (k * y).sin()));
-            solve_2d(&g, &problem, &Options { tolerance, max_orders: 12, fixed_orders, ..Options::default_2d() })
+            solve_2d(&g, &problem, &Options { tolerance, max_orders: Some(12), fixed_orders, ..Options::default() })
         } else {
             let g = sample_1d(p, 256, |x| a * (k * x).sin());
-            solve_1d(&g, &problem, &Options { tolerance, fixed_orders, ..Options::default_1d() })
+            solve_1d(&g, &problem, &Options { tolerance, fixed_orders, ..Options::default() })
         }
     }
 }

@@ -158,29 +158,36 @@ pub struct Options {
     /// (default 1e-3: relative 1e-3 above η = 1e-3, absolute 1e-6 below).
     pub efficiency_floor: f64,
     /// Smallest truncation `M` (orders `−M … M` along each periodic direction); raised to hold every
-    /// propagating order with a margin.
-    pub min_orders: usize,
+    /// propagating order with a margin. `None`: 8 for a 1-D profile, 3 for a 2-D one.
+    pub min_orders: Option<usize>,
     /// Largest `M` tried; reaching it without meeting the tolerance is reported (`convergence.met = false`).
-    pub max_orders: usize,
+    /// `None`: 120 for a 1-D profile, 8 for a 2-D one (a 4·17² = 1156 eigenproblem per medium).
+    pub max_orders: Option<usize>,
     /// Solve at exactly this `M` and the next step up (for the error estimate), no search.
     pub fixed_orders: Option<usize>,
 }
 
 impl Options {
-    /// Defaults for a 1-D profile: tolerance 1e-3, `M` from 8 up to 120.
+    /// Defaults for a 1-D profile: tolerance 1e-3, `M` from 8 up to 120 (the same as `default()` gives a 1-D
+    /// profile).
     pub fn default_1d() -> Self {
-        Options { tolerance: 1e-3, efficiency_floor: 1e-3, min_orders: 8, max_orders: 120, fixed_orders: None }
+        Options { min_orders: Some(8), max_orders: Some(120), ..Options::default() }
     }
-    /// Defaults for a 2-D profile: tolerance 1e-3, `M` from 3 up to 8 along each direction (a 4·17² = 1156
-    /// eigenproblem per medium at the cap).
+    /// Defaults for a 2-D profile: tolerance 1e-3, `M` from 3 up to 8 along each direction (the same as
+    /// `default()` gives a 2-D profile).
     pub fn default_2d() -> Self {
-        Options { tolerance: 1e-3, efficiency_floor: 1e-3, min_orders: 3, max_orders: 8, fixed_orders: None }
+        Options { min_orders: Some(3), max_orders: Some(8), ..Options::default() }
+    }
+    fn limits(&self, two_d: bool) -> (usize, usize) {
+        let (lo, hi) = if two_d { (3, 8) } else { (8, 120) };
+        (self.min_orders.unwrap_or(lo), self.max_orders.unwrap_or(hi))
     }
 }
 
 impl Default for Options {
+    /// Tolerance 1e-3 (relative above η = 1e-3), order limits chosen by the dimension of the profile.
     fn default() -> Self {
-        Options::default_1d()
+        Options { tolerance: 1e-3, efficiency_floor: 1e-3, min_orders: None, max_orders: None, fixed_orders: None }
     }
 }
 
@@ -347,9 +354,11 @@ fn check_options(o: &Options) -> Result<(), RigorousError> {
             o.efficiency_floor
         )));
     }
-    if o.max_orders < o.min_orders.max(1) {
+    let (lo, hi) = o.limits(false);
+    let (lo2, hi2) = o.limits(true);
+    if hi < lo.max(1) || hi2 < lo2.max(1) {
         return Err(RigorousError::InvalidOrders(format!(
-            "max_orders {} is below min_orders {}",
+            "max_orders {:?} is below min_orders {:?} (or below 1)",
             o.max_orders, o.min_orders
         )));
     }
@@ -407,18 +416,19 @@ fn max_change(a: &RawSolution, b: &RawSolution, floor: f64) -> f64 {
 
 /// The truncations the search walks through.
 fn truncation_steps(start: usize, opts: &Options, two_d: bool) -> Vec<usize> {
+    let max_orders = opts.limits(two_d).1;
     if let Some(m) = opts.fixed_orders {
         let m = m.max(start);
         return vec![m, m + if two_d { 2 } else { (m / 4).max(2) }];
     }
-    let mut steps = vec![start.min(opts.max_orders)];
+    let mut steps = vec![start.min(max_orders)];
     loop {
         let last = *steps.last().unwrap();
-        if last >= opts.max_orders {
+        if last >= max_orders {
             break;
         }
         let next = if two_d { last + 1 } else { last + (last / 2).max(4) };
-        steps.push(next.min(opts.max_orders));
+        steps.push(next.min(max_orders));
     }
     if steps.len() == 1 {
         // Even at the cap, compare with a smaller truncation for an error estimate.
@@ -459,7 +469,7 @@ fn solve_auto(
     let py = if two_d { propagating_extent(set.ky0, set.kgy, n_max) } else { 0 };
     let margin = if two_d { 1 } else { 4 };
     // Every propagating order must be inside the truncation; the automatic search starts with a margin.
-    let start = opts.min_orders.max(px.max(py) + margin);
+    let start = opts.limits(two_d).0.max(px.max(py) + margin);
     let steps = truncation_steps(if opts.fixed_orders.is_some() { px.max(py) } else { start }, opts, two_d);
     let mut history = Vec::new();
     let mut prev: Option<(RawSolution, [usize; 2])> = None;

@@ -13,7 +13,7 @@ fn fresnel(n1: f64, n2: C, theta: f64) -> (f64, f64) {
 
 /// A small fixed 2-D truncation for fast tests: the smallest M that holds the propagating orders, and M + 2.
 fn small_2d() -> Options {
-    Options { fixed_orders: Some(1), ..Options::default_2d() }
+    Options { fixed_orders: Some(1), ..Options::default() }
 }
 
 #[test]
@@ -164,7 +164,7 @@ fn the_2d_solver_on_a_ridge_profile_agrees_with_the_1d_solver_at_conical_inciden
     for n2 in [metal, C::new(1.5, 0.0)] {
         let p = Problem::new(600.0, 25f64.to_radians(), 40f64.to_radians(), n2);
         let a = solve_1d(&g1, &p, &tight()).unwrap();
-        let b = solve_2d(&g2, &p, &Options { fixed_orders: Some(2), ..Options::default_2d() }).unwrap();
+        let b = solve_2d(&g2, &p, &Options { fixed_orders: Some(2), ..Options::default() }).unwrap();
         for o in &a.orders {
             let q = b.orders.iter().find(|q| q.m == o.m && q.n == 0).unwrap();
             assert!((q.theta_deg - o.theta_deg).abs() < 1e-9 && (q.phi_deg - o.phi_deg).abs() < 1e-9);
@@ -185,7 +185,7 @@ fn a_crossed_grating_conserves_energy_and_is_reciprocal() {
         let (u, v) = (2.0 * PI * x / px, 2.0 * PI * y / py);
         40.0 * (u.sin() + v.sin()) + 20.0 * (u + v + 1.0).sin()
     });
-    let opts = Options { fixed_orders: Some(2), ..Options::default_2d() };
+    let opts = Options { fixed_orders: Some(2), ..Options::default() };
     let glass = Problem::new(650.0, 20f64.to_radians(), 30f64.to_radians(), C::new(1.5, 0.0));
     let s = solve_2d(&g, &glass, &opts).unwrap();
     assert!(s.transmitted_orders.iter().any(|o| o.n != 0 && o.m != 0 && o.efficiency.unpolarized > 1e-3));
@@ -240,7 +240,8 @@ fn an_unmet_tolerance_is_reported_not_hidden() {
     let g = sine(1000.0, 150.0);
     let p = Problem::new(450.0, 0.0, 0.0, Problem::index_from_permittivity(C::new(-20.0, 1.0)));
     let s =
-        solve_1d(&g, &p, &Options { tolerance: 1e-12, min_orders: 4, max_orders: 6, ..Options::default() }).unwrap();
+        solve_1d(&g, &p, &Options { tolerance: 1e-12, min_orders: Some(4), max_orders: Some(6), ..Options::default() })
+            .unwrap();
     assert!(s.convergence.capped && !s.convergence.met);
     assert!(s.convergence.estimated_error > 1e-12);
     assert_eq!(s.convergence.orders, [6, 0]);
@@ -278,7 +279,7 @@ fn a_diagonal_ridge_in_a_square_cell_agrees_with_the_rotated_1d_grating() {
         let p2 = Problem::new(600.0, th.to_radians(), ph.to_radians(), n2);
         let p1 = Problem { phi_i_rad: (ph - 45.0).to_radians(), ..p2.clone() };
         let a = solve_1d(&g1, &p1, &tight()).unwrap();
-        let b = solve_2d(&g2, &p2, &Options { fixed_orders: Some(2), ..Options::default_2d() }).unwrap();
+        let b = solve_2d(&g2, &p2, &Options { fixed_orders: Some(2), ..Options::default() }).unwrap();
         assert!(a.orders.len() >= 2);
         for (ours, theirs) in [(&a.orders, &b.orders), (&a.transmitted_orders, &b.transmitted_orders)] {
             for o in ours.iter() {
