@@ -25,6 +25,9 @@ pub mod system;
 pub mod table;
 pub mod template;
 
+#[cfg(test)]
+mod fixture_tests;
+
 pub use light::{Background, Light};
 pub use model::{analyse, Analysis, Distance, NoiseModel, Options, ReceptorNoise, Sample};
 pub use space::Space;

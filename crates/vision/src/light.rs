@@ -20,7 +20,9 @@ pub struct Light {
 enum LightSpectrum {
     /// The same photon flux at every wavelength (pavo's "ideal").
     Flat,
-    Tabulated(Curve),
+    /// `factor · table(λ)` (photons), or `factor · table(λ) · λ` when the table is in energy units: the table
+    /// is interpolated in the units it was measured in, then converted.
+    Tabulated { table: Curve, energy: bool, factor: f64 },
 }
 
 /// Whether a light's table is in photon units or in energy units (converted by `× λ`).
@@ -57,7 +59,7 @@ impl Light {
             let c = Curve::new(spd.wavelengths_nm().to_vec(), spd.values().to_vec())?;
             Ok(Light {
                 name: format!("{} (CIE, converted to photon flux)", ill.name()),
-                spectrum: LightSpectrum::Tabulated(to_photons(&c)),
+                spectrum: LightSpectrum::Tabulated { table: c, energy: true, factor: 1.0 },
             }
             .max_one())
         };
@@ -68,7 +70,7 @@ impl Light {
             "e" => cie(Illuminant::E),
             "bluesky" | "blue-sky" => Ok(Light {
                 name: "blue sky (Endler 1993)".into(),
-                spectrum: LightSpectrum::Tabulated(
+                spectrum: tabulated_photons(
                     Curve::from_csv_str(
                         include_str!("../../../data/vision/illuminant_endler1993_bluesky.csv"),
                         "bluesky",
@@ -78,7 +80,7 @@ impl Light {
             }),
             "forestshade" | "forest-shade" => Ok(Light {
                 name: "forest shade (Endler 1993)".into(),
-                spectrum: LightSpectrum::Tabulated(
+                spectrum: tabulated_photons(
                     Curve::from_csv_str(
                         include_str!("../../../data/vision/illuminant_endler1993_forestshade.csv"),
                         "forestshade",
@@ -99,11 +101,8 @@ impl Light {
         if let Some(v) = curve.values().iter().find(|v| **v < 0.0) {
             return Err(VisionError::invalid(format!("illuminant value {v} is negative")));
         }
-        let c = match units {
-            LightUnits::Photons => curve,
-            LightUnits::Energy => to_photons(&curve),
-        };
-        Ok(Light { name: name.into(), spectrum: LightSpectrum::Tabulated(c) })
+        let energy = units == LightUnits::Energy;
+        Ok(Light { name: name.into(), spectrum: LightSpectrum::Tabulated { table: curve, energy, factor: 1.0 } })
     }
 
     /// A light from a two-column CSV file.
@@ -128,7 +127,14 @@ impl Light {
     pub fn at(&self, wavelength_nm: f64) -> f64 {
         match &self.spectrum {
             LightSpectrum::Flat => 1.0,
-            LightSpectrum::Tabulated(c) => c.at(wavelength_nm),
+            LightSpectrum::Tabulated { table, energy, factor } => {
+                let v = factor * table.at(wavelength_nm);
+                if *energy {
+                    v * wavelength_nm
+                } else {
+                    v
+                }
+            }
         }
     }
 
@@ -136,26 +142,23 @@ impl Light {
     pub fn range_nm(&self) -> Option<(f64, f64)> {
         match &self.spectrum {
             LightSpectrum::Flat => None,
-            LightSpectrum::Tabulated(c) => Some(c.range_nm()),
+            LightSpectrum::Tabulated { table, .. } => Some(table.range_nm()),
         }
     }
 
     fn max_one(self) -> Self {
-        match &self.spectrum {
-            LightSpectrum::Flat => self,
-            LightSpectrum::Tabulated(c) => {
-                let m = (300..=700).map(|l| c.at(l as f64)).fold(0.0, f64::max);
-                let spectrum = LightSpectrum::Tabulated(if m > 0.0 { c.scaled(1.0 / m) } else { c.clone() });
-                Light { name: self.name, spectrum }
+        let m = (300..=700).map(|l| self.at(l as f64)).fold(0.0, f64::max);
+        match self.spectrum {
+            LightSpectrum::Tabulated { table, energy, factor } if m > 0.0 => {
+                Light { name: self.name, spectrum: LightSpectrum::Tabulated { table, energy, factor: factor / m } }
             }
+            spectrum => Light { name: self.name, spectrum },
         }
     }
 }
 
-/// Energy → photons: the number of photons per unit energy is proportional to λ.
-fn to_photons(c: &Curve) -> Curve {
-    let v = c.wavelengths_nm().iter().zip(c.values()).map(|(l, v)| v * l).collect();
-    Curve::new(c.wavelengths_nm().to_vec(), v).expect("same grid")
+fn tabulated_photons(table: Curve) -> LightSpectrum {
+    LightSpectrum::Tabulated { table, energy: false, factor: 1.0 }
 }
 
 /// What the receptors adapt to (von Kries: each receptor's catch is divided by its catch of the background

@@ -327,7 +327,7 @@ pub fn analyse_table(table: &SpectraTable, system: &VisualSystem, options: &Opti
         b => {
             let refl: Vec<f64> = wl.iter().map(|&l| b.reflectance(l).unwrap_or(0.0)).collect();
             let qb: Vec<f64> = kernel.iter().map(|kern| catch(kern, &|k| refl[k])).collect();
-            if let Some(i) = qb.iter().position(|q| !(*q > 0.0)) {
+            if let Some(i) = qb.iter().position(|q| q.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater)) {
                 return Err(VisionError::invalid(format!(
                     "receptor {} catches no light from the background over the spectra's {}–{} nm under {}: \
                      von Kries adaptation is undefined",
@@ -371,7 +371,8 @@ pub fn analyse_table(table: &SpectraTable, system: &VisualSystem, options: &Opti
         });
     }
     for s in &samples {
-        if let Some(i) = s.quantum_catches.iter().position(|q| !(*q > 0.0)) {
+        if let Some(i) = s.quantum_catches.iter().position(|q| q.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater))
+        {
             notes.push(format!(
                 "sample '{}': receptor {} catches no light; its ΔS is undefined (null)",
                 s.name, system.receptors[i].name

@@ -69,7 +69,7 @@ impl Receptor {
             r.peak = normalisation_grid().map(|l| template(*lambda_max_nm, l, *chromophore, *beta)).fold(0.0, f64::max);
         }
         let sum: f64 = normalisation_grid().map(|l| r.unnormalised(l)).sum();
-        if !(sum > 0.0) {
+        if sum.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
             return Err(VisionError::invalid(format!("receptor '{}' is blind over 300–700 nm", r.name)));
         }
         r.norm = 1.0 / sum;

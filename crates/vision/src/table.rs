@@ -170,7 +170,7 @@ impl SpectraTable {
             if let Some(bad) = values.iter().find(|v| !v.is_finite()) {
                 return Err(err(line_no, format!("{bad} is not a finite number")));
             }
-            if !(values[0] > 0.0) {
+            if values[0].partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
                 return Err(err(line_no, format!("wavelength {} nm must be positive", values[0])));
             }
             if let Some(last) = rows.last() {
