@@ -21,6 +21,7 @@
 pub mod light;
 pub mod model;
 pub mod space;
+pub mod spec;
 pub mod system;
 pub mod table;
 pub mod template;
@@ -28,9 +29,10 @@ pub mod template;
 #[cfg(test)]
 mod fixture_tests;
 
-pub use light::{Background, Light};
-pub use model::{analyse, Analysis, Distance, NoiseModel, Options, ReceptorNoise, Sample};
+pub use light::{Background, Light, LightUnits};
+pub use model::{analyse, analyse_table, AchromaticChoice, Analysis, Distance, NoiseModel, Options, ReceptorNoise, Sample};
 pub use space::Space;
+pub use spec::Spec;
 pub use system::{Achromatic, Receptor, VisualSystem};
 pub use table::{Curve, SpectraTable};
 pub use template::{Chromophore, Droplet, DropletType};
