@@ -30,7 +30,9 @@ pub mod template;
 mod fixture_tests;
 
 pub use light::{Background, Light, LightUnits};
-pub use model::{analyse, analyse_table, AchromaticChoice, Analysis, Distance, NoiseModel, Options, ReceptorNoise, Sample};
+pub use model::{
+    analyse, analyse_table, AchromaticChoice, Analysis, Distance, NoiseModel, Options, ReceptorNoise, Sample,
+};
 pub use space::Space;
 pub use spec::Spec;
 pub use system::{Achromatic, Receptor, VisualSystem};

@@ -450,7 +450,9 @@ pub fn analyse_table(table: &SpectraTable, system: &VisualSystem, options: &Opti
 /// Says when the spectra (or the light) leave out part of a receptor's sensitivity.
 fn coverage_notes(system: &VisualSystem, options: &Options, lo: f64, hi: f64, notes: &mut Vec<String>) {
     for r in &system.receptors {
-        let grid = (250..=850).map(f64::from);
+        // Over the range sensitivities are normalised on (pavo's 300–700 nm): natural light has next to nothing
+        // below 300 nm, so the β band of a UV pigment's template reaching below it is not a gap in the data.
+        let grid = (300..=700).map(f64::from);
         let (mut inside, mut total) = (0.0, 0.0);
         for l in grid {
             let s = r.sensitivity(l) * system.media(l);
@@ -461,7 +463,7 @@ fn coverage_notes(system: &VisualSystem, options: &Options, lo: f64, hi: f64, no
         }
         if total > 0.0 && inside / total < 0.99 {
             notes.push(format!(
-                "the spectra cover {lo}–{hi} nm: {:.1} % of receptor {}'s sensitivity lies outside and is left out",
+                "the spectra cover {lo}–{hi} nm: {:.1} % of receptor {}'s sensitivity over 300–700 nm lies outside and is left out",
                 100.0 * (1.0 - inside / total),
                 r.name
             ));

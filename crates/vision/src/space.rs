@@ -87,15 +87,20 @@ pub struct Coordinates {
     pub space: Space,
     /// x (line), x, y (triangle, hexagon) or x, y, z (tetrahedron).
     pub position: Vec<f64>,
-    /// Hue: the angle of (x, y) from the +x axis, counter-clockwise, in degrees [0, 360); null on a line.
+    /// Hue: the angle of (x, y) from the +x axis, counter-clockwise, in degrees [0, 360); null on a line and
+    /// at the achromatic point.
     pub hue_deg: Option<f64>,
-    /// Tetrahedron only: the angle of the point above the x-y plane, degrees (−90 to 90).
+    /// Tetrahedron only: the angle of the point above the x-y plane, degrees (−90 to 90); null at the
+    /// achromatic point.
     pub elevation_deg: Option<f64>,
     /// Distance from the achromatic point (the origin).
     pub chroma: f64,
     /// Hexagon only: the receptor excitations `E = q/(q + 1)`.
     pub excitations: Option<Vec<f64>>,
 }
+
+/// Closer than this to the achromatic point (rounding of an achromatic sample) a point has no hue.
+const ACHROMATIC: f64 = 1e-12;
 
 fn hue(x: f64, y: f64) -> f64 {
     let h = y.atan2(x).to_degrees();
@@ -126,6 +131,7 @@ pub fn simplex(space: Space, rel: &[f64]) -> Option<Coordinates> {
         _ => return None,
     };
     let chroma = position.iter().map(|v| v * v).sum::<f64>().sqrt();
+    let (hue_deg, elevation_deg) = if chroma < ACHROMATIC { (None, None) } else { (hue_deg, elevation_deg) };
     Some(Coordinates { space, position, hue_deg, elevation_deg, chroma, excitations: None })
 }
 
@@ -136,12 +142,13 @@ pub fn hexagon(q: &[f64]) -> Option<Coordinates> {
     let e = [qu / (qu + 1.0), qb / (qb + 1.0), qg / (qg + 1.0)];
     let x = 3f64.sqrt() / 2.0 * (e[2] - e[0]);
     let y = e[1] - 0.5 * (e[0] + e[2]);
+    let chroma = (x * x + y * y).sqrt();
     Some(Coordinates {
         space: Space::Hexagon,
         position: vec![x, y],
-        hue_deg: Some(hue(x, y)),
+        hue_deg: (chroma >= ACHROMATIC).then(|| hue(x, y)),
         elevation_deg: None,
-        chroma: (x * x + y * y).sqrt(),
+        chroma,
         excitations: Some(e.to_vec()),
     })
 }
@@ -165,7 +172,7 @@ mod tests {
             (d(&tet(&[0.0, 0.0, 0.0, 1.0]), &tet(&[1.0, 0.0, 0.0, 0.0])) - 3f64.sqrt() / 2f64.sqrt()).abs() < 1e-15
         );
         // The achromatic point is the origin, each vertex 0.75 from it, the UV vertex straight up.
-        assert!(tet(&[0.25; 4]).chroma < 1e-15);
+        assert!(tet(&[0.25; 4]).chroma < 1e-15 && tet(&[0.25; 4]).hue_deg.is_none());
         for k in 0..4 {
             let mut r = [0.0; 4];
             r[k] = 1.0;

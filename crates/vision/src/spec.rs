@@ -53,9 +53,10 @@ fn numbers(s: &str, what: &str, seps: &[char]) -> Result<Vec<f64>, VisionError> 
         .filter(|p| !p.is_empty())
         .map(|p| {
             let t = p.trim_end_matches("nm");
-            t.parse::<f64>().ok().filter(|v| v.is_finite()).ok_or_else(|| {
-                VisionError::invalid(format!("{what} '{s}': '{p}' is not a number"))
-            })
+            t.parse::<f64>()
+                .ok()
+                .filter(|v| v.is_finite())
+                .ok_or_else(|| VisionError::invalid(format!("{what} '{s}': '{p}' is not a number")))
         })
         .collect()
 }
@@ -65,7 +66,8 @@ pub fn parse_droplets(s: &str) -> Result<Vec<Option<Droplet>>, VisionError> {
     s.split(',')
         .map(str::trim)
         .map(|p| {
-            if p.eq_ignore_ascii_case("none") || p.eq_ignore_ascii_case("t") || p.to_ascii_lowercase().starts_with("t:") {
+            if p.eq_ignore_ascii_case("none") || p.eq_ignore_ascii_case("t") || p.to_ascii_lowercase().starts_with("t:")
+            {
                 return Ok(None);
             }
             let (a, b) = p.split_once(':').ok_or_else(|| {
@@ -74,9 +76,10 @@ pub fn parse_droplets(s: &str) -> Result<Vec<Option<Droplet>>, VisionError> {
                 ))
             })?;
             let num = |x: &str| {
-                x.trim().trim_end_matches("nm").parse::<f64>().map_err(|_| {
-                    VisionError::invalid(format!("oil droplet '{p}': '{x}' is not a number"))
-                })
+                x.trim()
+                    .trim_end_matches("nm")
+                    .parse::<f64>()
+                    .map_err(|_| VisionError::invalid(format!("oil droplet '{p}': '{x}' is not a number")))
             };
             match a.trim().parse() {
                 Ok(kind) => Droplet::from_type(kind, num(b)?),
@@ -93,7 +96,9 @@ impl Spec {
             (Some(_), Some(_)) => {
                 return Err(VisionError::invalid("give a visual system or λmax values, not both"));
             }
-            (None, None) => return Err(VisionError::invalid("no visual system: give one by name, a CSV or λmax values")),
+            (None, None) => {
+                return Err(VisionError::invalid("no visual system: give one by name, a CSV or λmax values"))
+            }
             (Some(v), None) => {
                 if self.chromophore.is_some() || self.oil_droplets.is_some() {
                     return Err(VisionError::invalid("a chromophore and oil droplets go with λmax values"));

@@ -409,7 +409,8 @@ fn spectrum(a: SpectrumArgs) -> Result<()> {
     let col = |f: &dyn Fn(&Rta) -> f64| xs.iter().map(f).collect::<Vec<f64>>();
     let (r, t, ab) = (col(&|x| pick(pol, x).0), col(&|x| pick(pol, x).1), col(&|x| pick(pol, x).2));
     if let Some(p) = &a.spectra {
-        let table = iridis_vision::SpectraTable::new(grid.clone(), vec![("R".into(), r.clone()), ("T".into(), t.clone())])?;
+        let table =
+            iridis_vision::SpectraTable::new(grid.clone(), vec![("R".into(), r.clone()), ("T".into(), t.clone())])?;
         crate::output::write_bytes(p, table.to_csv().as_bytes())?;
         if !a.json && !a.csv {
             eprintln!("wrote {} (pavo's layout: wl, R, T)", p.display());
@@ -637,7 +638,12 @@ fn color(a: ColorArgs) -> Result<()> {
         crate::outln!("  sRGB       {}   {}", f(&r["srgb"]), r["hex"].as_str().unwrap_or(""))?;
     }
     if let Some(v) = &vision {
-        crate::outln!("seen by      {} ({}; relative catches {})", v.visual.name, v.illuminant, v.receptors.join(", "))?;
+        crate::outln!(
+            "seen by      {} ({}; relative catches {})",
+            v.visual.name,
+            v.illuminant,
+            v.receptors.join(", ")
+        )?;
         for s in &v.samples {
             let rel: Vec<String> = s.relative_catches.iter().map(|x| format!("{x:.4}")).collect();
             crate::outln!("  {:<11}  {}", s.name, rel.join("  "))?;

@@ -7,7 +7,7 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result};
 use clap::Args as ClapArgs;
-use iridis_vision::{analyse_table, Analysis, SpectraTable, Spec};
+use iridis_vision::{analyse_table, Analysis, Spec, SpectraTable};
 
 #[derive(Debug, ClapArgs)]
 #[command(after_help = "\
@@ -197,7 +197,10 @@ fn text(a: &VisionArgs, table: &SpectraTable, r: &Analysis) -> String {
         let _ = writeln!(o);
     }
     if let Some(space) = r.colour_space {
-        let _ = writeln!(o, "\ncolour space: {space} (position; hue in degrees from +x; chroma = distance from the achromatic point)");
+        let _ = writeln!(
+            o,
+            "\ncolour space: {space} (position; hue in degrees from +x; chroma = distance from the achromatic point)"
+        );
         for s in &r.samples {
             if let Some(c) = &s.coordinates {
                 let hue = c.hue_deg.map_or("—".to_string(), |h| format!("{h:.1}°"));
