@@ -78,7 +78,10 @@ fn a_film_seen_through_spectra_csv_and_through_thinfilm_color_agrees() {
 fn bad_input_is_refused_with_a_reason() {
     assert_fails(&["vision", SPECTRA, "--visual", "cat"], &["unknown visual system 'cat'", "bluetit"]);
     assert_fails(&["vision", SPECTRA, "--visual", "bluetit", "--densities", "1:2"], &["2 receptor densities for 4"]);
-    assert_fails(&["vision", SPECTRA, "--visual", "human", "--space", "hexagon"], &["hexagon needs 3"]);
+    assert_fails(
+        &["vision", SPECTRA, "--visual", "human", "--space", "tetrahedron"],
+        &["tetrahedron needs 4", "has 3"],
+    );
     assert_fails(&["vision", SPECTRA, "--lambda-max", "344,436", "--oil-droplets", "Q:400,none"], &["'Q:400'"]);
     assert_fails(&["vision", "no/such.csv", "--visual", "bluetit"], &["no/such.csv"]);
     assert_fails(&["vision", SPECTRA], &["no visual system"]);
