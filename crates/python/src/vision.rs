@@ -100,9 +100,12 @@ fn _sensitivities<'py>(
     Ok((system.receptor_names(), arr.into_pyarray(py)))
 }
 
+/// (name, description) pairs.
+type Named = Vec<(String, String)>;
+
 /// The built-in visual systems and illuminants: ([(id, description)], [(name, description)]).
 #[pyfunction]
-fn _vision_names() -> (Vec<(String, String)>, Vec<(String, String)>) {
+fn _vision_names() -> (Named, Named) {
     let f = |v: &[(&str, &str)]| v.iter().map(|(a, b)| (a.to_string(), b.to_string())).collect();
     (f(VisualSystem::builtin_names()), f(Light::builtin_names()))
 }
