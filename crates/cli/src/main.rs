@@ -21,6 +21,7 @@ Examples:
   iridis testbench builtin:blazed --plot b.png      period from the grating equation (paper 6.1)
   iridis thinfilm color --stack \"air | water 348nm | air\" --json
   iridis color xyz data/examples/colorchecker_green.csv --json
+  iridis vision data/examples/vision_spectra.csv --visual bluetit
 
 SURFACE arguments take a file (.gwy, .npy, PNG/TIFF, text) or a built-in, one of
 builtin:blazed|sine|cd|elaphe|xenopeltis|gaussian. Lengths and angles carry units: 65nm, 0.43um, 65µm, 75deg.")]
@@ -115,6 +116,8 @@ Examples:
     View(cmd::gpu::ViewArgs),
     /// From a scan to its colours: relief, roughness, periods, PSDF, BRDF maps, test bench in DIR/index.html.
     Report(cmd::report::ReportArgs),
+    /// Colours as animals see them: quantum catches, colour spaces and distances ΔS, ΔL in JND (birds, bees, …).
+    Vision(cmd::vision::VisionArgs),
     // New command groups are added here, one line each, with their module in cmd/.
 }
 
@@ -152,6 +155,7 @@ fn main() -> std::process::ExitCode {
         Command::Render(a) => cmd::render::run(a),
         Command::View(a) => cmd::gpu::run_view(a),
         Command::Report(a) => cmd::report::run(a),
+        Command::Vision(a) => cmd::vision::run(a),
     };
     // All of a run's files appear together, and only when the whole command succeeded (output.rs).
     let result = match result {

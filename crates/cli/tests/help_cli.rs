@@ -344,8 +344,9 @@ fn not_run(words: &[String]) -> Option<&'static str> {
 }
 
 /// Flags whose value is a file the command writes.
-const OUTPUT_FLAGS: [&str; 15] = [
+const OUTPUT_FLAGS: [&str; 16] = [
     "-o",
+    "--spectra",
     "--output",
     "--out",
     "--image",

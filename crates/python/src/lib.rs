@@ -17,6 +17,7 @@ mod render;
 mod surface;
 mod thinfilm;
 mod tmm;
+mod vision;
 
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -28,5 +29,6 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     diffraction::register(m)?;
     render::register(m)?;
     lab::register(m)?;
+    vision::register(m)?;
     Ok(())
 }

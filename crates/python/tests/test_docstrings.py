@@ -5,13 +5,14 @@ import iridis
 import iridis.color
 import iridis.thinfilm
 import iridis.tmm
+import iridis.vision
 from iridis import _native
 
 
 def test_docstring_examples():
     finder, runner = doctest.DocTestFinder(), doctest.DocTestRunner(optionflags=doctest.NORMALIZE_WHITESPACE)
     tests = []
-    for mod in (iridis, iridis.tmm, iridis.thinfilm, iridis.color):
+    for mod in (iridis, iridis.tmm, iridis.thinfilm, iridis.color, iridis.vision):
         tests += finder.find(mod)
     for name in ("coh_tmm",):
         tests += finder.find(getattr(_native, name), name=f"iridis.tmm.{name}", globs={})

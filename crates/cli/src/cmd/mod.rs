@@ -12,3 +12,4 @@ pub mod report;
 pub mod rough;
 pub mod surface;
 pub mod thinfilm;
+pub mod vision;

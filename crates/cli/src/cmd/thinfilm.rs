@@ -29,7 +29,8 @@ thickness with a unit. A medium is a library name (see 'iridis thinfilm material
 
 JSON keys: wavelength_nm, R, T, A (the chosen polarisation), Rs, Rp, Ts, Tp, psi_deg, delta_deg (ellipsometric
 angles, tan ψ e^{iΔ} = −r_p/r_s as tmm.ellips; with inc: layers tan ψ = √(Rp/Rs) and Δ null: no single
-phase survives an incoherent layer). CSV has the same columns.
+phase survives an incoherent layer). CSV has the same columns. --spectra writes R and T in pavo's layout
+(wl, R, T), which `iridis vision` reads.
 A warning goes to stderr when the wavelength step is too coarse for the fringes of a thick layer.
 
 Examples:
@@ -37,7 +38,8 @@ Examples:
   iridis thinfilm spectrum --stack \"air | gasoline 216nm | water 220nm | asphalt\" --plot oil.png
   iridis thinfilm spectrum --stack \"air | Si 108nm | glass\" --from 400nm --to 700nm --csv
   iridis thinfilm spectrum --stack \"air | n=1.38 100nm | n=0.2+3.4i\" --angle 45deg --polarization p --json
-  iridis thinfilm spectrum --stack \"air | MgF2 100nm | inc:BK7 1mm | air\" --csv")]
+  iridis thinfilm spectrum --stack \"air | MgF2 100nm | inc:BK7 1mm | air\" --csv
+  iridis thinfilm spectrum --stack \"air | water 348nm | air\" --from 300nm --to 700nm --step 1nm --spectra soap.csv")]
     Spectrum(SpectrumArgs),
     /// The angle × wavelength simulation table (Sussenbach Figure 3.8) as CSV, optionally a map image.
     #[command(after_help = "\
@@ -55,11 +57,13 @@ Examples:
 XYZ = ∫ R(λ) S(λ) x̄(λ) dλ / ∫ S(λ) ȳ(λ) dλ (likewise for T), so a perfect mirror has Y = 1; CIELAB is relative
 to the illuminant's white; sRGB is clipped to the gamut at exposure 1.
 JSON: reflected, transmitted, specular, diffuse (each XYZ, xyY, Lab, linear_srgb, srgb, hex), rough (docs/json.md).
+--visual adds how an animal sees the reflected and transmitted light (`iridis vision`, key vision in --json).
 
 Examples:
   iridis thinfilm color --stack \"air | water 348nm | air\"
   iridis thinfilm color --stack \"air | gasoline 216nm | water 220nm | asphalt\" --angle 30deg --json
-  iridis thinfilm color --stack \"air | TiO2 60nm | glass\" --illuminant d50")]
+  iridis thinfilm color --stack \"air | TiO2 60nm | glass\" --illuminant d50
+  iridis thinfilm color --stack \"air | water 348nm | air\" --visual bluetit --from 300nm --to 700nm")]
     Color(ColorArgs),
     /// The soap-film colour chart (Sussenbach Figure 5.11): colour against the thickness of one layer.
     #[command(after_help = "\
@@ -186,6 +190,9 @@ pub struct SpectrumArgs {
     /// Write a plot of R, T and A against wavelength (PNG).
     #[arg(long)]
     pub plot: Option<PathBuf>,
+    /// Write R and T as a spectra CSV that pavo reads (wl, R, T), for `iridis vision` or R.
+    #[arg(long)]
+    pub spectra: Option<PathBuf>,
     #[command(flatten)]
     pub rough: super::rough::RoughArgs,
 }
@@ -237,6 +244,10 @@ pub struct ColorArgs {
     /// Print JSON.
     #[arg(long)]
     pub json: bool,
+    /// Also as an animal sees it: a visual system of `iridis vision` (bluetit, honeybee, …; under --illuminant,
+    /// von Kries to grey). Use --from 300nm for animals that see ultraviolet.
+    #[arg(long)]
+    pub visual: Option<String>,
     #[command(flatten)]
     pub rough: super::rough::RoughArgs,
 }
@@ -369,8 +380,12 @@ fn clean(a: f64) -> f64 {
 
 fn spectrum(a: SpectrumArgs) -> Result<()> {
     crate::output::declare_opt("--plot", a.plot.as_deref(), &["png"])?;
+    crate::output::declare_opt("--spectra", a.spectra.as_deref(), &["csv"])?;
     let stack = parse_stack(&a.stack)?;
     let pol = parse_pol(&a.polarization)?;
+    if a.rough.is_set() && a.spectra.is_some() {
+        bail!("--spectra writes a smooth film's R and T; with --roughness use --csv");
+    }
     if a.rough.is_set() {
         if pol != Polarization::Average {
             bail!("with --roughness the spectrum is unpolarised, with s and p columns in --csv/--json");
@@ -393,6 +408,14 @@ fn spectrum(a: SpectrumArgs) -> Result<()> {
     let ellips = psi_delta(&stack, a.angle, &grid)?;
     let col = |f: &dyn Fn(&Rta) -> f64| xs.iter().map(f).collect::<Vec<f64>>();
     let (r, t, ab) = (col(&|x| pick(pol, x).0), col(&|x| pick(pol, x).1), col(&|x| pick(pol, x).2));
+    if let Some(p) = &a.spectra {
+        let table =
+            iridis_vision::SpectraTable::new(grid.clone(), vec![("R".into(), r.clone()), ("T".into(), t.clone())])?;
+        crate::output::write_bytes(p, table.to_csv().as_bytes())?;
+        if !a.json && !a.csv {
+            eprintln!("wrote {} (pavo's layout: wl, R, T)", p.display());
+        }
+    }
     if let Some(p) = &a.plot {
         let title = format!("{}  at {}°{}", stack_title(&a.stack), fmt_deg(a.angle), pol_label(pol));
         let mut plot = LinePlot::new(title, "wavelength (nm)", "fraction of incident power")
@@ -559,6 +582,9 @@ fn color(a: ColorArgs) -> Result<()> {
         if pol != Polarization::Average {
             bail!("with --roughness the colours are for unpolarised light");
         }
+        if a.visual.is_some() {
+            bail!("--visual takes a smooth film's spectra; leave out --roughness");
+        }
         return super::rough::color(stack, &a.rough, a.angle, &grid, illuminant, observer, a.json);
     }
     warn_sampling(&stack, a.angle, &grid);
@@ -567,10 +593,30 @@ fn color(a: ColorArgs) -> Result<()> {
     let white = iridis_color::integrate::white_point(illuminant, observer);
     let refl = super::color::colour_report(c.reflected, white);
     let trans = super::color::colour_report(c.transmitted, white);
+    // How an animal sees the reflected and transmitted light (iridis-vision), only when asked.
+    let vision = match &a.visual {
+        Some(v) => {
+            let xs = spectra(&stack, a.angle, &grid)?;
+            let (r, t) = (xs.iter().map(|x| pick(pol, x).0).collect(), xs.iter().map(|x| pick(pol, x).1).collect());
+            let spec = iridis_vision::Spec {
+                visual: Some(v.clone()),
+                illuminant: Some(a.illuminant.clone()),
+                ..Default::default()
+            };
+            let system = spec.system().context("--visual")?;
+            let samples = [("reflected".to_string(), r), ("transmitted".to_string(), t)];
+            Some(iridis_vision::analyse(&samples, &grid, &system, &spec.options(&system)?)?)
+        }
+        None => None,
+    };
     if a.json {
         // One shape for smooth and rough films (see rough::color): a smooth film reflects specularly only.
         let none = super::color::colour_report(Xyz { x: 0.0, y: 0.0, z: 0.0 }, white);
-        return crate::output::print_json(&film_colours_json(&refl, &trans, &refl, &none, json!(null)));
+        let mut v = film_colours_json(&refl, &trans, &refl, &none, json!(null));
+        if let (Some(vision), Some(obj)) = (&vision, v.as_object_mut()) {
+            obj.insert("vision".into(), serde_json::to_value(vision)?);
+        }
+        return crate::output::print_json(&v);
     }
     let f = |v: &serde_json::Value| -> String {
         v.as_array()
@@ -590,6 +636,25 @@ fn color(a: ColorArgs) -> Result<()> {
         crate::outln!("  XYZ        {}", f(&r["XYZ"]))?;
         crate::outln!("  L*a*b*     {}", f(&r["Lab"]))?;
         crate::outln!("  sRGB       {}   {}", f(&r["srgb"]), r["hex"].as_str().unwrap_or(""))?;
+    }
+    if let Some(v) = &vision {
+        crate::outln!(
+            "seen by      {} ({}; relative catches {})",
+            v.visual.name,
+            v.illuminant,
+            v.receptors.join(", ")
+        )?;
+        for s in &v.samples {
+            let rel: Vec<String> = s.relative_catches.iter().map(|x| format!("{x:.4}")).collect();
+            crate::outln!("  {:<11}  {}", s.name, rel.join("  "))?;
+        }
+        if let Some(d) = v.distances.first() {
+            let jnd = |x: Option<f64>| x.map_or("—".to_string(), |x| format!("{x:.2} JND"));
+            crate::outln!("  reflected vs transmitted: ΔS {}, ΔL {}", jnd(d.delta_s), jnd(d.delta_l))?;
+        }
+        for n in &v.notes {
+            eprintln!("note: {n}");
+        }
     }
     Ok(())
 }

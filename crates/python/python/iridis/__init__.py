@@ -9,6 +9,7 @@ Modules:
     iridis.lab       the test bench (periodicity through the grating equation) and method comparisons in CIELAB
     iridis.render    a scene (TOML or glTF) to an RGB or XYZ array on the CPU or the GPU
     iridis.color     spectrum → XYZ / xyY / Lab / sRGB under any illuminant and observer; ΔE
+    iridis.vision    colours as animals see them: quantum catches, colour spaces, ΔS and ΔL in JND (birds, bees, …)
     iridis.bench     ``python -m iridis.bench``: iridis.tmm against tmm (and tmm_fast) in the same run
 
 Example:
@@ -19,4 +20,4 @@ Example:
 """
 from ._native import __version__
 
-__all__ = ["__version__", "color", "diffraction", "lab", "render", "surface", "thinfilm", "tmm"]
+__all__ = ["__version__", "color", "diffraction", "lab", "render", "surface", "thinfilm", "tmm", "vision"]

@@ -1,0 +1,88 @@
+//! `iridis vision` and the vision options of the thin-film commands as a user runs them: the numbers of the
+//! independent numpy implementation (crates/vision/tests/fixtures), one film seen through both paths, units
+//! in the text, and clear errors.
+
+mod common;
+use common::{assert_fails, iridis, json_of};
+
+const SPECTRA: &str = "data/examples/vision_spectra.csv";
+
+#[test]
+fn bluetit_json_matches_the_numpy_fixture() {
+    let v = json_of(&["vision", SPECTRA, "--visual", "bluetit", "--json"]);
+    let f: serde_json::Value =
+        serde_json::from_str(include_str!("../../vision/tests/fixtures/vision_numpy.json")).unwrap();
+    // The fixture's first case is the blue tit under D65 with a grey background and pavo's default noise:
+    // the CLI's defaults.
+    let case = &f["cases"][0];
+    assert_eq!(case["system"], "bluetit");
+    let (got, want) = (v["distances"].as_array().unwrap(), case["distances"].as_array().unwrap());
+    assert_eq!(got.len(), 15);
+    for (g, w) in got.iter().zip(want) {
+        assert_eq!((&g["a"], &g["b"]), (&w["a"], &w["b"]));
+        for k in ["delta_s", "delta_l"] {
+            let (g, w) = (g[k].as_f64().unwrap(), w[k].as_f64().unwrap());
+            assert!((g - w).abs() <= 1e-8 * w.max(1.0), "{k}: {g} vs {w}");
+        }
+    }
+    assert_eq!(v["receptors"], serde_json::json!(["UVS", "SWS", "MWS", "LWS"]));
+    assert_eq!(v["colour_space"], "tetrahedron");
+    assert_eq!(v["inputs"]["visual"], "bluetit");
+}
+
+#[test]
+fn text_says_what_was_assumed_and_gives_units() {
+    let out = iridis(&["vision", SPECTRA, "--visual", "ball-python"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8_lossy(&out.stdout);
+    for needle in ["Ball python", "Sillman", "ΔS (JND)", "ΔL (JND)", "colour space: line", "Weber fraction 0.1 of LWS"]
+    {
+        assert!(text.contains(needle), "missing {needle:?} in\n{text}");
+    }
+}
+
+#[test]
+fn a_film_seen_through_spectra_csv_and_through_thinfilm_color_agrees() {
+    let dir = tempfile::tempdir().unwrap();
+    let csv = dir.path().join("film.csv");
+    let stack = "air | water 348nm | air";
+    let grid = ["--from", "300nm", "--to", "700nm", "--step", "5nm"];
+    let mut args = vec!["thinfilm", "spectrum", "--stack", stack, "--spectra", csv.to_str().unwrap(), "--json"];
+    args.extend(grid);
+    assert!(iridis(&args).status.success());
+    let text = std::fs::read_to_string(&csv).unwrap();
+    assert!(text.starts_with("wl,R,T\n300,"), "{}", &text[..40]);
+    let a = json_of(&["vision", csv.to_str().unwrap(), "--visual", "bluetit", "--json"]);
+    let mut args = vec!["thinfilm", "color", "--stack", stack, "--visual", "bluetit", "--json"];
+    args.extend(grid);
+    let b = json_of(&args);
+    let (sa, sb) = (&a["samples"], &b["vision"]["samples"]);
+    for i in 0..2 {
+        for k in 0..4 {
+            let (x, y) =
+                (sa[i]["relative_catches"][k].as_f64().unwrap(), sb[i]["relative_catches"][k].as_f64().unwrap());
+            assert!((x - y).abs() < 1e-12, "{x} vs {y}");
+        }
+    }
+    // A lossless film: R + T = 1, so under a grey background the catches of R and T add up to those of white.
+    for k in 0..4 {
+        let q = sb[0]["quantum_catches"][k].as_f64().unwrap() + sb[1]["quantum_catches"][k].as_f64().unwrap();
+        assert!((q - 1.0).abs() < 1e-9, "receptor {k}: {q}");
+    }
+    // Without --visual the film's JSON has no vision key (its shape is unchanged).
+    let c = json_of(&["thinfilm", "color", "--stack", stack, "--json"]);
+    assert!(c.get("vision").is_none());
+}
+
+#[test]
+fn bad_input_is_refused_with_a_reason() {
+    assert_fails(&["vision", SPECTRA, "--visual", "cat"], &["unknown visual system 'cat'", "bluetit"]);
+    assert_fails(&["vision", SPECTRA, "--visual", "bluetit", "--densities", "1:2"], &["2 receptor densities for 4"]);
+    assert_fails(
+        &["vision", SPECTRA, "--visual", "human", "--space", "tetrahedron"],
+        &["tetrahedron needs 4", "has 3"],
+    );
+    assert_fails(&["vision", SPECTRA, "--lambda-max", "344,436", "--oil-droplets", "Q:400,none"], &["'Q:400'"]);
+    assert_fails(&["vision", "no/such.csv", "--visual", "bluetit"], &["no/such.csv"]);
+    assert_fails(&["vision", SPECTRA], &["no visual system"]);
+}

@@ -1,0 +1,267 @@
+//! Sampled curves (sensitivities, lights, transmittances) and multi-column spectra tables.
+
+use std::path::Path;
+
+use crate::VisionError;
+
+/// A curve sampled at strictly increasing wavelengths, linear between samples and **zero outside** them (a
+/// receptor is blind, and a tabulated light dark, where nothing was measured).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Curve {
+    wavelengths_nm: Vec<f64>,
+    values: Vec<f64>,
+}
+
+impl Curve {
+    /// Checks that there are at least two samples, the grid increases strictly and every number is finite.
+    pub fn new(wavelengths_nm: Vec<f64>, values: Vec<f64>) -> Result<Self, VisionError> {
+        check_grid(&wavelengths_nm, "curve")?;
+        if values.len() != wavelengths_nm.len() {
+            return Err(VisionError::invalid(format!(
+                "{} wavelengths but {} values",
+                wavelengths_nm.len(),
+                values.len()
+            )));
+        }
+        if let Some((i, v)) = values.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+            return Err(VisionError::invalid(format!("value {v} at {} nm is not finite", wavelengths_nm[i])));
+        }
+        Ok(Self { wavelengths_nm, values })
+    }
+
+    /// A two-column CSV (wavelength_nm, value); see [`SpectraTable::parse`] for the syntax.
+    pub fn from_csv_str(text: &str, source_name: &str) -> Result<Self, VisionError> {
+        let t = SpectraTable::parse(text, source_name)?;
+        if t.samples.len() != 1 {
+            return Err(VisionError::invalid(format!(
+                "{source_name}: expected two columns (wavelength_nm, value), found {} value columns",
+                t.samples.len()
+            )));
+        }
+        let (_, v) = t.samples.into_iter().next().unwrap_or_default();
+        Curve::new(t.wavelengths_nm, v)
+    }
+
+    pub fn from_csv_path(path: &Path) -> Result<Self, VisionError> {
+        Self::from_csv_str(&read(path)?, &path.display().to_string())
+    }
+
+    pub fn wavelengths_nm(&self) -> &[f64] {
+        &self.wavelengths_nm
+    }
+    pub fn values(&self) -> &[f64] {
+        &self.values
+    }
+    /// First and last sampled wavelength.
+    pub fn range_nm(&self) -> (f64, f64) {
+        (self.wavelengths_nm[0], self.wavelengths_nm[self.wavelengths_nm.len() - 1])
+    }
+
+    /// Linear interpolation inside the sampled range, zero outside it.
+    pub fn at(&self, wavelength_nm: f64) -> f64 {
+        let (lo, hi) = self.range_nm();
+        if !(lo..=hi).contains(&wavelength_nm) {
+            return 0.0;
+        }
+        iridis_color::spectrum::interpolate_linear(&self.wavelengths_nm, &self.values, wavelength_nm)
+    }
+
+    /// The same curve with every value multiplied by `factor`.
+    pub fn scaled(&self, factor: f64) -> Curve {
+        Curve { wavelengths_nm: self.wavelengths_nm.clone(), values: self.values.iter().map(|v| v * factor).collect() }
+    }
+}
+
+pub(crate) fn read(path: &Path) -> Result<String, VisionError> {
+    std::fs::read_to_string(path)
+        .map_err(|e| VisionError::Io { source_name: path.display().to_string(), message: e.to_string() })
+}
+
+fn check_grid(w: &[f64], what: &str) -> Result<(), VisionError> {
+    if w.len() < 2 {
+        return Err(VisionError::invalid(format!("a {what} needs at least two wavelengths, got {}", w.len())));
+    }
+    for (i, &x) in w.iter().enumerate() {
+        if !(x.is_finite() && x > 0.0) {
+            return Err(VisionError::invalid(format!("wavelength {x} nm is not a positive finite number")));
+        }
+        if i > 0 && x <= w[i - 1] {
+            return Err(VisionError::invalid(format!("wavelengths must increase: {x} nm follows {} nm", w[i - 1])));
+        }
+    }
+    Ok(())
+}
+
+/// Spectra on one wavelength grid: the CSV that pavo reads (`as.rspec`) and writes — a wavelength column
+/// (nm) and one column per sample, the first line naming the columns.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SpectraTable {
+    pub wavelengths_nm: Vec<f64>,
+    /// (name, values on the grid) per sample.
+    pub samples: Vec<(String, Vec<f64>)>,
+}
+
+impl SpectraTable {
+    /// Builds a table, checking the grid and that every sample has one finite value per wavelength.
+    pub fn new(wavelengths_nm: Vec<f64>, samples: Vec<(String, Vec<f64>)>) -> Result<Self, VisionError> {
+        check_grid(&wavelengths_nm, "spectrum")?;
+        if samples.is_empty() {
+            return Err(VisionError::invalid("no spectra: the table has a wavelength column only"));
+        }
+        for (name, v) in &samples {
+            if v.len() != wavelengths_nm.len() {
+                return Err(VisionError::invalid(format!(
+                    "spectrum '{name}' has {} values for {} wavelengths",
+                    v.len(),
+                    wavelengths_nm.len()
+                )));
+            }
+            if let Some((i, x)) = v.iter().enumerate().find(|(_, x)| !x.is_finite()) {
+                return Err(VisionError::invalid(format!(
+                    "spectrum '{name}': value {x} at {} nm is not finite",
+                    wavelengths_nm[i]
+                )));
+            }
+        }
+        Ok(Self { wavelengths_nm, samples })
+    }
+
+    /// Parses CSV text: fields separated by commas, semicolons, tabs or spaces; blank lines and lines starting
+    /// with `#` skipped; an optional header line (the first that is not all numbers) names the columns
+    /// (the first column is the wavelength; without a header the samples are `sample1`, `sample2`, …).
+    /// Errors name the source and line.
+    pub fn parse(text: &str, source_name: &str) -> Result<Self, VisionError> {
+        let mut header: Option<Vec<String>> = None;
+        let mut rows: Vec<Vec<f64>> = Vec::new();
+        let err = |line: usize, message: String| VisionError::Parse { source_name: source_name.into(), line, message };
+        for (index, raw) in text.lines().enumerate() {
+            let line_no = index + 1;
+            let line = raw.trim();
+            if line.is_empty() || line.starts_with('#') {
+                continue;
+            }
+            let sep: &[char] = if line.contains(',') {
+                &[',']
+            } else if line.contains(';') {
+                &[';']
+            } else if line.contains('\t') {
+                &['\t']
+            } else {
+                &[' ']
+            };
+            let fields: Vec<&str> = line.split(sep).map(str::trim).filter(|s| !s.is_empty() || sep != [' ']).collect();
+            let parsed: Vec<Result<f64, _>> = fields.iter().map(|f| f.parse::<f64>()).collect();
+            if parsed.iter().any(|p| p.is_err()) {
+                if header.is_none() && rows.is_empty() {
+                    header = Some(fields.iter().map(|f| f.trim_matches('"').to_string()).collect());
+                    continue;
+                }
+                let bad = fields.iter().zip(&parsed).find(|(_, p)| p.is_err()).map(|(f, _)| *f).unwrap_or("");
+                return Err(err(line_no, format!("'{bad}' is not a number")));
+            }
+            let values: Vec<f64> = parsed.into_iter().map(|p| p.unwrap_or(f64::NAN)).collect();
+            let width = header.as_ref().map(Vec::len).or_else(|| rows.first().map(Vec::len)).unwrap_or(values.len());
+            if values.len() != width {
+                return Err(err(line_no, format!("expected {width} columns, found {}", values.len())));
+            }
+            if values.len() < 2 {
+                return Err(err(line_no, "expected a wavelength column and at least one value column".into()));
+            }
+            if let Some(bad) = values.iter().find(|v| !v.is_finite()) {
+                return Err(err(line_no, format!("{bad} is not a finite number")));
+            }
+            if values[0].partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+                return Err(err(line_no, format!("wavelength {} nm must be positive", values[0])));
+            }
+            if let Some(last) = rows.last() {
+                if values[0] <= last[0] {
+                    return Err(err(
+                        line_no,
+                        format!("wavelengths must increase: {} nm follows {} nm", values[0], last[0]),
+                    ));
+                }
+            }
+            rows.push(values);
+        }
+        if rows.len() < 2 {
+            return Err(err(
+                text.lines().count(),
+                format!("found {} data rows; spectra need at least two", rows.len()),
+            ));
+        }
+        let ncols = rows[0].len();
+        let names: Vec<String> = match header {
+            Some(h) => h.into_iter().skip(1).collect(),
+            None => (1..ncols).map(|i| format!("sample{i}")).collect(),
+        };
+        let wavelengths = rows.iter().map(|r| r[0]).collect();
+        let samples =
+            names.into_iter().enumerate().map(|(j, name)| (name, rows.iter().map(|r| r[j + 1]).collect())).collect();
+        Self::new(wavelengths, samples)
+    }
+
+    pub fn from_csv_path(path: &Path) -> Result<Self, VisionError> {
+        Self::parse(&read(path)?, &path.display().to_string())
+    }
+
+    /// The table as CSV text, pavo's layout: `wl,NAME1,NAME2,…` then one row per wavelength.
+    pub fn to_csv(&self) -> String {
+        let mut out = String::from("wl");
+        for (name, _) in &self.samples {
+            out.push(',');
+            out.push_str(&csv_field(name));
+        }
+        out.push('\n');
+        for (i, w) in self.wavelengths_nm.iter().enumerate() {
+            out.push_str(&w.to_string());
+            for (_, v) in &self.samples {
+                out.push(',');
+                out.push_str(&v[i].to_string());
+            }
+            out.push('\n');
+        }
+        out
+    }
+}
+
+/// A column name as one CSV field: quoted when it holds a separator or a quote.
+fn csv_field(name: &str) -> String {
+    if name.contains([',', ';', '"', '\n']) {
+        format!("\"{}\"", name.replace('"', "\"\""))
+    } else {
+        name.to_string()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pavo_layout_round_trips() {
+        let t = SpectraTable::parse("wl,a,b\n300,0.1,0.2\n301,0.3,0.4\n", "t").unwrap();
+        assert_eq!(t.samples[1], ("b".to_string(), vec![0.2, 0.4]));
+        assert_eq!(SpectraTable::parse(&t.to_csv(), "again").unwrap(), t);
+        let t = SpectraTable::parse("# c\n300\t1\n310\t2\n", "t").unwrap();
+        assert_eq!(t.samples[0].0, "sample1");
+    }
+
+    #[test]
+    fn errors_name_the_line() {
+        let e = SpectraTable::parse("wl,a\n300,1\n310,x\n", "f.csv").unwrap_err().to_string();
+        assert!(e.contains("f.csv:3") && e.contains("'x'"), "{e}");
+        let e = SpectraTable::parse("wl,a\n300,1\n290,2\n", "f.csv").unwrap_err().to_string();
+        assert!(e.contains("f.csv:3") && e.contains("increase"), "{e}");
+        let e = SpectraTable::parse("wl,a,b\n300,1\n310,2,3\n", "f.csv").unwrap_err().to_string();
+        assert!(e.contains("f.csv:2") && e.contains("expected 3 columns"), "{e}");
+        assert!(SpectraTable::parse("wl,a\n300,1\n", "f.csv").is_err());
+    }
+
+    #[test]
+    fn curves_are_zero_outside() {
+        let c = Curve::new(vec![400.0, 500.0], vec![1.0, 3.0]).unwrap();
+        assert_eq!(c.at(450.0), 2.0);
+        assert_eq!(c.at(399.0), 0.0);
+        assert_eq!(c.at(501.0), 0.0);
+    }
+}
