@@ -63,6 +63,16 @@ pub struct OrdersAt {
 }
 
 impl OrdersAt {
+    /// The orders' azimuths turned by `deg` degrees (from a cell's frame back to the scan's).
+    fn rotated(mut self, deg: f64) -> Self {
+        for o in self.orders.iter_mut().chain(self.transmitted_orders.iter_mut()) {
+            if o.theta_deg > 1e-12 {
+                o.phi_deg = (o.phi_deg + deg).rem_euclid(360.0);
+            }
+        }
+        self
+    }
+
     fn kirchhoff(a: GratingAnswer, taylor_terms: usize) -> Self {
         let convergence = json!({"wavelength_nm": a.wavelength_nm, "taylor_terms": taylor_terms,
             "taylor_remainder_bound": iridis_diffraction::grating::TAYLOR_EPSILON,
@@ -136,6 +146,9 @@ pub struct GratingOptions {
     pub fresnel: Option<String>,
     pub normalisation: Normalisation,
     pub detector: Option<Detector>,
+    /// Take the scan's dominant period as the unit cell, its profile averaged along the ridges, instead of
+    /// the whole patch.
+    pub unit_cell_auto: bool,
 }
 
 impl Default for GratingOptions {
@@ -148,6 +161,7 @@ impl Default for GratingOptions {
             fresnel: None,
             normalisation: Normalisation::Energy,
             detector: None,
+            unit_cell_auto: false,
         }
     }
 }
@@ -168,7 +182,39 @@ pub struct Grating {
     pub taylor_terms: usize,
     pub light: Vec3,
     pub detector: Option<Detector>,
+    /// With `--unit-cell auto`: the period (nm) and the orientation of its grating vector (degrees from +x)
+    /// the cell was averaged along.
+    pub averaged: Option<(f64, f64)>,
     pub answers: Vec<OrdersAt>,
+}
+
+/// A scan's dominant period as a 1-D unit cell: the heights binned by their phase `(x cos φ + y sin φ)/d mod 1`
+/// along the grating vector of the strongest period `d` (what `iridis surface info` finds) and averaged in
+/// each bin, i.e. the profile averaged along the ridges. Returns the cell (every row the same, along x), `d`
+/// and `φ` (degrees); `None` for a scan without a dominant period.
+pub fn averaged_unit_cell(patch: &iridis_diffraction::Patch) -> Option<(iridis_diffraction::Patch, f64, f64)> {
+    let peak = crate::surface::dominant_period(patch)?;
+    let (d, phi) = (peak.period_nm, peak.orientation_deg.to_radians());
+    // A sample per pixel along the grating vector, at least 32 and at most 256.
+    let pixel = patch.dx.min(patch.dy);
+    let bins = ((d / pixel).round() as usize).clamp(32, 256);
+    let (mut sum, mut count) = (vec![0.0; bins], vec![0usize; bins]);
+    for j in 0..patch.rows {
+        for i in 0..patch.cols {
+            let (x, y) = (i as f64 * patch.dx, j as f64 * patch.dy);
+            let phase = ((x * phi.cos() + y * phi.sin()) / d).rem_euclid(1.0);
+            let b = ((phase * bins as f64) as usize).min(bins - 1);
+            sum[b] += patch.heights[j * patch.cols + i];
+            count[b] += 1;
+        }
+    }
+    if count.iter().any(|&c| c == 0) {
+        return None;
+    }
+    let row: Vec<f64> = sum.iter().zip(&count).map(|(s, &c)| s / c as f64).collect();
+    let heights: Vec<f64> = row.iter().chain(&row).copied().collect();
+    let cell = iridis_diffraction::Patch::from_row_major(2, bins, d / bins as f64, d / bins as f64, &heights).ok()?;
+    Some((cell, d, peak.orientation_deg))
 }
 
 /// The Fresnel source of a material written as a stack's medium, exact per polarisation at every wavelength
@@ -227,7 +273,24 @@ pub fn grating(
             (metal, format!("{medium} (exact Fresnel, s and p)"))
         }
     };
-    let patch = source.patch(surface, report)?;
+    let mut patch = source.patch(surface, report)?;
+    let mut averaged = None;
+    // The light in the cell's frame: an averaged cell runs along its grating vector at φ, so rotate by −φ.
+    let mut l = l;
+    if opts.unit_cell_auto {
+        let Some((cell, d, phi)) = averaged_unit_cell(&patch) else {
+            bail!("--unit-cell auto: {} has no dominant period to take as the unit cell", source.name());
+        };
+        report.note(&format!(
+            "unit cell: the strongest period, {d:.1} nm along {phi:.1}°, its profile averaged along the ridges over \
+             the whole scan ({} samples); directions are given in the scan's frame",
+            cell.cols
+        ));
+        patch = cell;
+        averaged = Some((d, phi));
+        let (s, c) = (-phi.to_radians()).sin_cos();
+        l = [c * l[0] - s * l[1], s * l[0] + c * l[1], l[2]];
+    }
     let cell = UnitCell::new(&patch, from)?;
     let (lx, ly) = cell.periods();
     report.info(&format!(
@@ -285,9 +348,13 @@ pub fn grating(
         polarised: fresnel.polarised(),
         normalisation: opts.normalisation,
         taylor_terms: cell.taylor_terms(),
-        light: l,
+        light: opts.light,
         detector: opts.detector,
-        answers,
+        averaged,
+        answers: match averaged {
+            Some((_, phi)) => answers.into_iter().map(|a| a.rotated(phi)).collect(),
+            None => answers,
+        },
     })
 }
 
@@ -489,10 +556,14 @@ impl Grating {
         json!({
             "surface": self.surface,
             "method": self.method.name(),
-            "unit_cell": {"period_x_nm": self.periods_nm.0, "period_y_nm": self.periods_nm.1,
+            "unit_cell": {"period_x_nm": if self.lines == Lines::AlongY { Value::Null } else { json!(self.periods_nm.0) },
+                          "period_y_nm": if self.lines == Lines::AlongX { Value::Null } else { json!(self.periods_nm.1) },
                           "samples": [self.samples.0, self.samples.1],
-                          "kind": match self.lines { Lines::AlongX => "1-D along x", Lines::AlongY => "1-D along y",
-                                                     Lines::Crossed => "crossed" }},
+                          "kind": match (self.averaged, self.lines) {
+                              (Some(_), _) => "1-D, the scan's dominant period averaged along its ridges",
+                              (None, Lines::AlongX) => "1-D along x", (None, Lines::AlongY) => "1-D along y",
+                              (None, Lines::Crossed) => "crossed" },
+                          "orientation_deg": self.averaged.map_or(Value::Null, |(_, phi)| json!(phi))},
             "light": {"theta_deg": deg(l[2].clamp(-1.0, 1.0).acos()), "phi_deg": deg(l[1].atan2(l[0])), "direction": l},
             "reflector": self.reflector,
             "polarised": self.polarised,

@@ -287,13 +287,19 @@ fn grating<'py>(
         (None, None, None) => None,
         _ => return Err(value_error("detector_phi and acceptance need detector_theta (radians)")),
     };
+    let compare = o.bool("compare")?.unwrap_or(false);
+    let unit_cell_auto = match o.string("unit_cell")?.as_deref() {
+        None | Some("whole") => false,
+        Some("auto") => true,
+        Some(other) => return Err(value_error(format!("unit_cell '{other}': expected 'whole' or 'auto'"))),
+    };
     o.finish()?;
     let source = match input_of(source)? {
         Input::Field(s) => s,
         Input::Arg(a) => Source::Spec(a),
         Input::Table(_) => return Err(value_error("grating needs the height field (the unit cell), not a table")),
     };
-    let g = run(py, |r| {
+    let value = run(py, |r| {
         let opts = GratingOptions {
             method: method.parse()?,
             light: wi,
@@ -302,10 +308,17 @@ fn grating<'py>(
             fresnel,
             normalisation: normalisation.parse()?,
             detector,
+            unit_cell_auto,
         };
-        iridis_api::grating::grating(&source, &surface, &opts, r)
+        if !compare {
+            return Ok(iridis_api::grating::grating(&source, &surface, &opts, r)?.to_json());
+        }
+        use iridis_api::grating::{grating, scalar_error, GratingMethod};
+        let k = grating(&source, &surface, &GratingOptions { method: GratingMethod::Kirchhoff, ..opts.clone() }, r)?;
+        let g = grating(&source, &surface, &GratingOptions { method: GratingMethod::Rigorous, ..opts }, r)?;
+        Ok(scalar_error(&k, &g).to_json(&k, &g))
     })?;
-    let text = serde_json::to_string(&g.to_json()).map_err(value_error)?;
+    let text = serde_json::to_string(&value).map_err(value_error)?;
     py.import("json")?.call_method1("loads", (text,))
 }
 

@@ -208,3 +208,59 @@ def test_lab_bad_input():
         lab.compare("builtin:blazed?size=20um&pixel=50nm", exposures=[-1.0])
     with pytest.raises(TypeError, match="surface must be"):
         lab.compare(3.0)
+
+
+# --- order efficiencies: iridis grating -------------------------------------------------------------------
+
+def test_grating_equals_the_cli():
+    ref = cli("grating_rigorous")
+    g = diffraction.grating("builtin:sine?size=1100nm&pixel=10nm", light=math.radians(30), wavelengths_nm=550.0,
+                            method="rigorous")
+    assert g["method"] == "rigorous" and len(g["orders"]) == len(ref["orders"])
+    for a, b in zip(g["orders"], ref["orders"]):
+        assert (a["m"], a["n"]) == (b["m"], b["n"])
+        close([a["efficiency"][k] for k in ("te", "tm")], [b["efficiency"][k] for k in ("te", "tm")], rtol=1e-12)
+    # Glass (n = 1.5, the default) is lossless: reflected + transmitted is all the light, TE and TM.
+    for pol in ("te", "tm"):
+        total = g["reflected_total"][0][pol] + g["transmitted_total"][0][pol]
+        assert abs(total - 1.0) < 1e-6, (pol, total)
+
+
+def test_grating_kirchhoff_conserves_energy_and_knows_its_colours():
+    g = diffraction.grating("builtin:sine?size=1100nm&pixel=10nm", light=math.radians(75),
+                            wavelengths_nm=np.arange(380.0, 781.0, 10.0), material="n=0.0001+30i")
+    totals = [t["unpolarized"] for t in g["reflected_total"]]
+    assert max(totals) <= 1.0 + 1e-12 and min(totals) > 0.99
+    c = g["colour"]
+    assert c["illuminant"] == "d65" and 0.0 < c["diffracted_share"] < 1.0
+    printed = diffraction.grating("builtin:sine?size=1100nm&pixel=10nm", light=math.radians(75), wavelengths_nm=500.0,
+                                  material="n=0.0001+30i", normalisation="kirchhoff")
+    assert printed["reflected_total"][0]["unpolarized"] > 1.05  # the printed obliquity creates energy
+
+
+def test_evaluate_gives_the_brdf_in_per_steradian():
+    ref = cli("brdf_eval_reference")
+    q = diffraction.evaluate("builtin:sine", light=math.radians(30), view=(math.radians(10), math.pi))
+    for k in ("s", "p", "unpolarized"):
+        close(q["brdf_per_sr"][k], ref["brdf_per_sr"][k], rtol=1e-10, atol=1e-14)
+    # f_r = R₀ ρ A_eff/λ² / cos θ_i (Schlick: s = p = unpolarised).
+    area_nm2 = q["window_effective_area_um2"] * 1e6
+    expect = 0.04 * q["reflectance"] * area_nm2 / q["wavelength_nm"] ** 2 / math.cos(math.radians(30))
+    close(q["brdf_per_sr"]["unpolarized"], expect, rtol=1e-9, atol=1e-14)
+
+
+def test_grating_bad_input():
+    with pytest.raises(ValueError, match="rigorous method needs the material"):
+        diffraction.grating("builtin:sine?size=1100nm&pixel=10nm", light=0.1, wavelengths_nm=500.0,
+                            method="rigorous", fresnel="schlick:1.5")
+    with pytest.raises(ValueError, match="--method"):
+        diffraction.grating("builtin:sine?size=1100nm&pixel=10nm", light=0.1, wavelengths_nm=500.0, method="fdtd")
+
+
+def test_grating_compare_equals_the_cli():
+    ref = cli("grating_compare")
+    c = diffraction.grating("builtin:sine?size=1100nm&pixel=10nm", light=math.radians(20),
+                            wavelengths_nm=np.arange(380.0, 781.0, 20.0), material="gold", compare=True)
+    close(c["worst_relative_error"]["unpolarized"], ref["worst_relative_error"]["unpolarized"], rtol=1e-9)
+    close(c["delta_e00_diffracted"], ref["delta_e00_diffracted"], rtol=1e-9)
+    assert len(c["orders"]) == len(ref["orders"]) and c["rigorous_converged"]

@@ -10,8 +10,9 @@ use crate::progress::Cli;
 
 #[derive(Debug, ClapArgs)]
 #[command(after_help = "\
-The height field is one unit cell of a periodic surface: its extent is the period along x and y, and the
-light leaves in discrete orders (m, n), ω_r,xy = −ω_i,xy + (m λ/Lx, n λ/Ly) (in the plane of incidence
+The height field is one unit cell of a periodic surface: its extent is the period along x and y (or, with
+--unit-cell auto, the scan's strongest period with its profile averaged along the ridges: what a rigorous
+solver needs of a real scan), and the light leaves in discrete orders (m, n), ω_r,xy = −ω_i,xy + (m λ/Lx, n λ/Ly) (in the plane of incidence
 m λ/d = sin θ_i − sin θ_r, θ_r positive on the specular side). A patch whose rows are all the same is a 1-D
 grating along x. Efficiencies are fractions of the incident power in each propagating order, for TE (s) and
 TM (p) light and unpolarised; their sum is the hemispherical reflectance (an integrating sphere); --detector
@@ -36,6 +37,7 @@ Examples:
   iridis grating 'builtin:sine?size=1um&pixel=10nm' --light 20deg --from 400nm --to 700nm --step 10nm --detector 10deg,180deg --acceptance 2deg
   iridis grating 'builtin:sine?size=1100nm&pixel=10nm' --method rigorous --light 30deg --wavelength 550nm --material gold
   iridis grating 'builtin:sine?size=1100nm&pixel=10nm' --compare --light 0deg --from 400nm --to 700nm --step 50nm
+  iridis grating 'builtin:elaphe?size=10um&pixel=50nm' --unit-cell auto --compare --light 0deg --from 380nm --to 780nm --step 20nm
   iridis grating strip.png --pixel-size 50nm --max-height 250nm --light 75deg --wavelength 600nm")]
 pub struct GratingArgs {
     /// The unit cell: a height field (file or builtin:NAME) whose extent is the period.
@@ -74,6 +76,10 @@ pub struct GratingArgs {
     /// A detector's direction θ[,φ]: its reflectance is the orders inside its acceptance cone.
     #[arg(long)]
     pub detector: Option<String>,
+    /// The unit cell: whole (the patch, its extent the period) or auto (the scan's strongest period, its
+    /// profile averaged along the ridges: a 1-D grating at that orientation).
+    #[arg(long, value_name = "whole|auto", default_value = "whole")]
+    pub unit_cell: String,
     /// Half-angle of the detector's acceptance cone.
     #[arg(long, value_parser = angle_rad, default_value = "2deg")]
     pub acceptance: f64,
@@ -107,6 +113,11 @@ pub fn run(a: GratingArgs) -> Result<()> {
         fresnel: a.fresnel.clone(),
         normalisation: a.normalisation.parse()?,
         detector,
+        unit_cell_auto: match a.unit_cell.as_str() {
+            "auto" => true,
+            "whole" => false,
+            other => bail!("--unit-cell '{other}': expected whole (the patch) or auto (the dominant period)"),
+        },
     };
     let source = iridis_api::surface::Source::Spec(a.surface.clone());
     if a.compare {

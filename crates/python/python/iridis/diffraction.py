@@ -133,7 +133,7 @@ def brdf_map_of(spec, incidence=(0.0, 0.0), size=256, method="reference", level=
 
 
 def grating(source, light, wavelengths_nm, method="kirchhoff", material=None, fresnel=None,
-            normalisation="energy", detector=None, acceptance=None, **options):
+            normalisation="energy", detector=None, acceptance=None, compare=False, **options):
     """Order efficiencies of ``source`` taken as one unit cell of a grating (its extent is the period), as
     ``iridis grating --json``: a dict with ``orders`` (every propagating order at every wavelength: ``m``,
     ``n``, ``theta_deg``, ``phi_deg``, ``efficiency`` with ``te``, ``tm``, ``unpolarized``, fractions of the
@@ -145,10 +145,13 @@ def grating(source, light, wavelengths_nm, method="kirchhoff", material=None, fr
     default n = 1.5) or ``fresnel`` any Fresnel source (``"schlick:1.5"``); ``normalisation`` ``"energy"``
     (energy and reciprocity exact) or ``"kirchhoff"`` (the obliquity factor as printed); ``acceptance`` the
     detector's half-angle in radians (default 2°). SURFACE options (``pixel_size``, ``level``, …) as
-    elsewhere.
+    elsewhere. ``method="rigorous"`` solves Maxwell's equations (the C-method; transmitted orders and the
+    convergence record too); ``compare=True`` runs both models and returns ``iridis grating --compare --json``'s
+    dict: every order of both, the worst relative error, CIEDE2000 of the colours. ``unit_cell="auto"`` takes
+    the scan's strongest period, its profile averaged along the ridges, as the cell.
     """
     theta, phi = _direction(light, "light")
-    opts = dict(options, method=method, normalisation=normalisation)
+    opts = dict(options, method=method, normalisation=normalisation, compare=bool(compare))
     if material is not None:
         opts["material"] = material
     if fresnel is not None:
