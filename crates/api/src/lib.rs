@@ -30,6 +30,7 @@ pub mod model;
 pub mod report;
 pub mod rough;
 pub mod surface;
+pub mod vision;
 
 pub use model::ModelOptions;
 pub use report::{Kind, Quiet, Report};

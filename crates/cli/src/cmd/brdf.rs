@@ -305,6 +305,174 @@ pub(crate) fn refuse_build_options_for_table(a: &BrdfMapArgs) -> Result<()> {
 pub enum BrdfCommand {
     /// ρ(λ) and XYZ of one method for one pair of directions (the evaluator interface, for scripts).
     Eval(BrdfEvalArgs),
+    /// How an animal sees the surface from several directions: quantum catches and ΔS, ΔL in JND.
+    Vision(BrdfVisionArgs),
+}
+
+#[derive(Debug, ClapArgs)]
+#[command(after_help = "\
+The reflectance factor π f_r(λ) of the BRDF (unpolarised; a white diffuser's is 1; the reference method,
+300–700 nm: birds and bees see ultraviolet) in each view direction of the plane of incidence, analysed by the
+receptor-noise-limited model (Vorobyev & Osorio 1998; `iridis vision`, docs/vision.md): each direction's
+quantum catches and its colour distance ΔS (and achromatic ΔL) in JND to the mirror direction and to the next
+view. Views are signed polar angles in the plane of incidence, positive on the specular side; the plane is
+the surface's dominant orientation unless --azimuth says otherwise. --strip draws each view's false colour:
+the three longest receptors' catches as R, G, B, and a fourth (UV) receptor's as a violet row below.
+
+Examples:
+  iridis brdf vision 'builtin:elaphe?size=10um&pixel=50nm' --visual bluetit --coherence 5um --views -60,-40,-20,0,20,40,60
+  iridis brdf vision 'builtin:xenopeltis?size=10um&pixel=50nm' --visual honeybee --light 20deg --coherence 5um --strip bee.png
+  iridis brdf vision 'builtin:elaphe?size=10um&pixel=50nm' --visual ball-python --coherence 5um --json")]
+pub struct BrdfVisionArgs {
+    /// A height field (file or builtin:NAME).
+    pub input: String,
+    /// The visual system: human, avian-uv, avian-v, bluetit, honeybee, ball-python, or a CSV of sensitivities.
+    #[arg(long)]
+    pub visual: String,
+    /// Light polar angle θ_i (in the plane of incidence).
+    #[arg(long, value_parser = crate::args::angle_rad, default_value = "0deg")]
+    pub light: f64,
+    /// The plane of incidence's azimuth [default: the orientation of the surface's strongest period].
+    #[arg(long, value_parser = crate::args::angle_rad, allow_hyphen_values = true)]
+    pub azimuth: Option<f64>,
+    /// View angles θ_r in degrees, comma-separated, signed (positive on the specular side).
+    #[arg(long, default_value = "-60,-50,-40,-30,-20,-10,0,10,20,30,40,50,60", allow_hyphen_values = true)]
+    pub views: String,
+    /// The light the animal sees by: d65 (default), bluesky, forestshade, … (`iridis vision --help`).
+    #[arg(long, default_value = "d65")]
+    pub illuminant: String,
+    /// Write each view's false colour (PNG).
+    #[arg(long)]
+    pub strip: Option<PathBuf>,
+    /// Print JSON: the spectra and the analysis.
+    #[arg(long)]
+    pub json: bool,
+    #[command(flatten)]
+    pub shading: ShadingOpts,
+    #[command(flatten)]
+    pub model: ModelOpts,
+    #[command(flatten)]
+    pub surface_opts: SurfaceOpts,
+}
+
+fn run_vision(a: BrdfVisionArgs) -> Result<()> {
+    crate::output::declare_opt("--strip", a.strip.as_deref(), &["png"])?;
+    let views: Vec<f64> = a
+        .views
+        .split(',')
+        .map(|v| {
+            let v = v.trim().trim_end_matches("deg");
+            v.parse::<f64>().map_err(|_| anyhow::anyhow!("--views: '{v}' is not an angle in degrees"))
+        })
+        .collect::<Result<_>>()?;
+    let spec = iridis_vision::Spec {
+        visual: Some(a.visual.clone()),
+        illuminant: Some(a.illuminant.clone()),
+        ..Default::default()
+    };
+    let source = iridis_api::surface::Source::Spec(a.input.clone());
+    let v = iridis_api::vision::along_plane(
+        &source,
+        &a.surface_opts.options(),
+        &a.model.options(),
+        a.shading.shading()?,
+        a.light,
+        a.azimuth,
+        &views,
+        &spec,
+        &Cli,
+    )?;
+    if let Some(path) = &a.strip {
+        let img = vision_strip(&v)?;
+        crate::output::write_png_rgb8(path, img.width, img.height, &img.data)?;
+    }
+    if a.json {
+        return crate::output::print_json(&v.to_json());
+    }
+    let an = &v.analysis;
+    crate::outln!(
+        "{} · seen by {} under {} · light θ {:.1}° in the plane of azimuth {:.1}° · π f_r(λ), 300–700 nm",
+        v.surface,
+        an.visual.name,
+        an.illuminant,
+        v.light_theta.to_degrees(),
+        v.azimuth.to_degrees()
+    )?;
+    let mirror = v
+        .views
+        .iter()
+        .min_by(|x, y| (x.1 - v.light_theta.to_degrees()).abs().total_cmp(&(y.1 - v.light_theta.to_degrees()).abs()))
+        .map(|x| x.0.clone())
+        .unwrap_or_default();
+    let jnd = |d: Option<f64>| d.map_or("—".to_string(), |x| format!("{x:.2}"));
+    crate::outln!(
+        "  view      relative catches ({})      ΔS to {mirror} (JND)   ΔS to the previous (JND)",
+        an.receptors.join(", ")
+    )?;
+    for (k, s) in an.samples.iter().enumerate() {
+        let rel: Vec<String> = s.relative_catches.iter().map(|x| format!("{x:.3}")).collect();
+        let to_mirror = an.distance(&s.name, &mirror).and_then(|d| d.delta_s);
+        let to_prev = (k > 0).then(|| an.distance(&s.name, &an.samples[k - 1].name).and_then(|d| d.delta_s)).flatten();
+        crate::outln!("  {:>6}    {:<32}  {:>12}   {:>12}", s.name, rel.join(" "), jnd(to_mirror), jnd(to_prev))?;
+    }
+    for n in &an.notes {
+        eprintln!("note: {n}");
+    }
+    Ok(())
+}
+
+/// The views' false colours as a picture with its legend in the title (see [`iridis_api::vision`]).
+fn vision_strip(v: &iridis_api::vision::DirectionalVision) -> Result<iridis_plot::RgbImage> {
+    let colours = v.false_colours();
+    let uv = colours.iter().any(|c| c.1.is_some());
+    let (cell, rows) = (16usize, if uv { 2 } else { 1 });
+    let n = colours.len();
+    let mut data = vec![0u8; n * cell * rows * cell * 3];
+    for (k, (rgb, u)) in colours.iter().enumerate() {
+        for row in 0..rows {
+            let c = if row == 0 {
+                *rgb
+            } else {
+                let x = u.unwrap_or(0.0);
+                [0.6 * x, 0.2 * x, x]
+            };
+            for y in row * cell..(row + 1) * cell {
+                for x in k * cell..(k + 1) * cell {
+                    let i = (y * n * cell + x) * 3;
+                    for ch in 0..3 {
+                        data[i + ch] = (255.0 * c[ch].clamp(0.0, 1.0).powf(1.0 / 2.2)).round() as u8;
+                    }
+                }
+            }
+        }
+    }
+    let pixels = iridis_plot::RgbImage { width: (n * cell) as u32, height: (rows * cell) as u32, data };
+    let r = &v.analysis.receptors;
+    let k = r.len();
+    let legend = match k {
+        0..=2 => format!("{}: catches of {}", v.analysis.visual.name, r.join(", ")),
+        _ => format!(
+            "{}: R {} G {} B {}{}",
+            v.analysis.visual.name.split(" (").next().unwrap_or(""),
+            r[k - 1],
+            r[k - 2],
+            r[k - 3],
+            if uv { format!(", below {}", r[0]) } else { String::new() }
+        ),
+    };
+    let (lo, hi) = (v.views.first().map_or(0.0, |x| x.1), v.views.last().map_or(0.0, |x| x.1));
+    Ok(iridis_plot::ImagePlot {
+        title: legend,
+        x_label: "view θr (deg, + on the specular side)".into(),
+        y_label: if uv { "UV | visible".into() } else { "visible".into() },
+        x_range: (lo, hi),
+        y_range: (0.0, rows as f64),
+        pixels: &pixels,
+        overlays: vec![],
+        colorbar: None,
+        size: (720, 260),
+    }
+    .render_without_y_ticks()?)
 }
 
 #[derive(Debug, ClapArgs)]
@@ -361,6 +529,7 @@ pub struct BrdfEvalArgs {
 pub fn run_brdf(c: BrdfCommand) -> Result<()> {
     match c {
         BrdfCommand::Eval(a) => run_eval(a),
+        BrdfCommand::Vision(a) => run_vision(a),
     }
 }
 

@@ -20,9 +20,11 @@ Steps (each a command shown in the report, run with the same surface options):
      of the light it diffracts and the colour of its mirror reflection
   3. iridis brdf-map FILE --method reference --incidence 0deg / 45deg --auto-exposure, under D65: the
      structure's colours (only when it diffracts at least 0.1 % of the reflected light)
-  4. iridis grating FILE --unit-cell auto --compare: how far the scalar model behind the maps is from
+  4. iridis brdf vision FILE --visual bluetit --strip vision.png: how a bird (--visual) sees the colours
+     in each direction of the plane of the strongest period, ΔS in JND against the mirror direction
+  5. iridis grating FILE --unit-cell auto --compare: how far the scalar model behind the maps is from
      Maxwell's equations (the C-method) on the scan's own profile (likewise)
-  5. iridis testbench FILE --json --plot testbench.png: the period from the grating equation (paper 6.1),
+  6. iridis testbench FILE --json --plot testbench.png: the period from the grating equation (paper 6.1),
      along the orientation of the strongest period (likewise)
 The report opens with a sentence on what the scan does to visible light. Warnings (pixels too coarse for
 the visible band, units assumed, NaN lines) are collected with their numbers. Files are plane-levelled
@@ -57,6 +59,10 @@ pub struct ReportArgs {
     /// its shorter side, at least four of its strongest periods, and say so).
     #[arg(long)]
     pub coherence: Option<String>,
+    /// The animal whose view of the colours the report shows: bluetit, avian-uv, avian-v, honeybee, human,
+    /// ball-python.
+    #[arg(long, default_value = "bluetit")]
+    pub visual: String,
     /// Leave out the test bench (the slowest step).
     #[arg(long)]
     pub no_testbench: bool,
@@ -135,7 +141,7 @@ pub fn run(a: ReportArgs) -> Result<()> {
         model.extend(["--coherence".to_string(), c.clone()]);
     }
     let s = |v: &[&str]| v.iter().map(|x| x.to_string()).collect::<Vec<String>>();
-    let pb = bar(if a.no_testbench { 6 } else { 7 }, "report");
+    let pb = bar(if a.no_testbench { 7 } else { 8 }, "report");
     let mut steps: Vec<Step> = Vec::new();
     let step = |title: &str, label: &str, args: Vec<String>| -> Result<Step> {
         pb.set_message(label.to_string());
@@ -173,6 +179,7 @@ pub fn run(a: ReportArgs) -> Result<()> {
     let mut bench: Option<Value> = None;
     let mut bench_failure: Option<String> = None;
     let mut scalar_error: Option<Value> = None;
+    let mut vision: Option<Value> = None;
     let mut scalar_failure: Option<String> = None;
     // The maps' window: the light's 65 µm on a smaller scan shows the discrete orders of its periodic
     // extension, narrower than a pixel (speckle); half the scan's shorter side, never under four of its
@@ -198,6 +205,21 @@ pub fn run(a: ReportArgs) -> Result<()> {
             steps.push(step(&format!("BRDF map under D65, light at {inc}"), "maps", b)?);
             maps.push(plot);
         }
+        // How an animal sees the scan's colours in each direction of the plane of its strongest period.
+        let mut v = s(&["brdf", "vision", &a.surface, "--visual", &a.visual, "--light", "0deg"]);
+        v.extend(s(&["--strip", &file("vision.png"), "--json"]));
+        v.extend(common.clone());
+        if let Some(c) = &map_coherence {
+            v.extend(["--coherence".to_string(), c.clone()]);
+        }
+        let st = step(
+            &format!("As a {} sees it: light at normal incidence, views along the strongest period", a.visual),
+            "vision",
+            v,
+        )?;
+        vision = serde_json::from_str(&st.stdout).ok();
+        steps.push(st);
+        maps.push("vision.png");
         // How far the scalar model (behind the maps) is from Maxwell's equations on this scan's own profile.
         let mut c = s(&["grating", &a.surface, "--unit-cell", "auto", "--compare", "--light", "0deg"]);
         c.extend(s(&["--from", "380nm", "--to", "780nm", "--step", "10nm", "--material", "keratin"]));
@@ -233,6 +255,7 @@ pub fn run(a: ReportArgs) -> Result<()> {
     let info: Value = serde_json::from_str(&steps[0].stdout).context("surface info printed no JSON")?;
     let verdict = verdict(&info, &grating, diffracts);
     let scalar = scalar_error.as_ref().map(scalar_sentence);
+    let seen = vision.as_ref().map(vision_sentence);
     let mut warnings: Vec<String> = bench_failure.into_iter().collect();
     if let Some(f) = scalar_failure {
         warnings.push(format!("the scalar model's error could not be measured on this scan: {f}"));
@@ -282,6 +305,8 @@ pub fn run(a: ReportArgs) -> Result<()> {
         "map_coherence": map_coherence,
         "scalar_model_error": scalar_error,
         "scalar_model_sentence": scalar,
+        "vision": vision,
+        "vision_sentence": seen,
         "testbench": bench,
         "warnings": warnings,
         "commands": commands,
@@ -300,6 +325,36 @@ pub fn run(a: ReportArgs) -> Result<()> {
 /// Above this worst relative error of an order's efficiency (unpolarised) the report warns that the scalar
 /// model's numbers are not to be trusted on the scan.
 const SCALAR_WARN: f64 = 0.2;
+
+/// How the animal sees the scan's colours across directions, in one sentence with its numbers.
+fn vision_sentence(v: &Value) -> String {
+    let an = &v["vision"];
+    let name = an["visual"]["name"].as_str().unwrap_or("the animal");
+    let views: Vec<&str> = v["views"].as_array().into_iter().flatten().filter_map(|x| x["name"].as_str()).collect();
+    let mirror = views.iter().copied().find(|n| n.starts_with("+0") || n.starts_with("-0")).unwrap_or("+0°");
+    let (mut best, mut at) = (0.0f64, "");
+    for d in an["distances"].as_array().into_iter().flatten() {
+        let (a, b) = (d["a"].as_str().unwrap_or(""), d["b"].as_str().unwrap_or(""));
+        if let (Some(ds), true) = (d["delta_s"].as_f64(), a == mirror || b == mirror) {
+            if ds > best {
+                best = ds;
+                at = if a == mirror { b } else { a };
+            }
+        }
+    }
+    format!(
+        "As a {name} sees it (receptor-noise-limited model, D65, 300–700 nm), the scan's colour changes with the \
+         viewing direction by up to {best:.1} JND against the mirror direction (at {at}; 1 JND is just noticeable, \
+         {}): the figure below shows each direction in false colour.",
+        if best > 3.0 {
+            "so the iridescence is plain to it"
+        } else if best > 1.0 {
+            "so it can tell the directions apart"
+        } else {
+            "below what it can tell apart"
+        }
+    )
+}
 
 /// The scalar model's error on the scan, in one sentence with its numbers.
 fn scalar_sentence(e: &Value) -> String {
@@ -387,6 +442,9 @@ fn html(r: &Value, steps: &[Step]) -> String {
              scan, smaller than that, is one unit cell of a periodic surface whose discrete orders are narrower than \
              a pixel.</p>\n"
         );
+    }
+    if let Some(sentence) = r["vision_sentence"].as_str() {
+        h += &format!("<p>{}</p>\n", html_escape(sentence));
     }
     if let Some(sentence) = r["scalar_model_sentence"].as_str() {
         h += &format!("<p>{}</p>\n", html_escape(sentence));
