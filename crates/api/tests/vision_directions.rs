@@ -32,8 +32,9 @@ fn a_sine_grating_looks_the_same_from_plus_and_minus_theta_and_a_blazed_one_brig
     // The same orders on both sides (the grating equation), far brighter on the facets' side (−x): the bird
     // sees the same hues and a plain difference in brightness.
     assert!(d.delta_l.unwrap() > 5.0, "{d:?}");
+    // +25° looks from −x (positive angles are the specular side of light from +x: ω_r,x = −sin θ_r).
     let (minus, plus) = (&blazed.views[0].2, &blazed.views[1].2);
-    assert!(minus.iter().sum::<f64>() > 3.0 * plus.iter().sum::<f64>());
+    assert!(plus.iter().sum::<f64>() > 3.0 * minus.iter().sum::<f64>());
     // The spectra are π f_r on 300–700 nm, the birds' range.
     assert_eq!(sine.wavelengths_nm.first(), Some(&300.0));
     assert_eq!(sine.wavelengths_nm.last(), Some(&700.0));
