@@ -322,11 +322,42 @@ fn grating<'py>(
     py.import("json")?.call_method1("loads", (text,))
 }
 
+/// How an animal sees a surface from several directions, as `iridis brdf vision --json` (a dict).
+#[pyfunction]
+#[pyo3(signature = (source, visual, light_theta, views_deg, azimuth=None, illuminant=None, options=None))]
+#[allow(clippy::too_many_arguments)]
+fn brdf_vision<'py>(
+    py: Python<'py>,
+    source: &Bound<'py, PyAny>,
+    visual: String,
+    light_theta: f64,
+    views_deg: Vec<f64>,
+    azimuth: Option<f64>,
+    illuminant: Option<String>,
+    options: Option<Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let mut o = Options::new(options);
+    let eo = EvalOptions::read(&mut o)?;
+    o.finish()?;
+    let source = match input_of(source)? {
+        Input::Field(s) => s,
+        Input::Arg(a) => Source::Spec(a),
+        Input::Table(_) => return Err(value_error("vision needs the height field, not a table")),
+    };
+    let spec = iridis_vision::Spec { visual: Some(visual), illuminant, ..Default::default() };
+    let v = run(py, |r| {
+        iridis_api::vision::along_plane(&source, &eo.surface, &eo.model, eo.shading()?, light_theta, azimuth, &views_deg, &spec, r)
+    })?;
+    let text = serde_json::to_string(&v.to_json()).map_err(value_error)?;
+    py.import("json")?.call_method1("loads", (text,))
+}
+
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyTable>()?;
     m.add_function(wrap_pyfunction!(precompute, m)?)?;
     m.add_function(wrap_pyfunction!(brdf_map_xyz, m)?)?;
     m.add_function(wrap_pyfunction!(eval_point, m)?)?;
     m.add_function(wrap_pyfunction!(grating, m)?)?;
+    m.add_function(wrap_pyfunction!(brdf_vision, m)?)?;
     Ok(())
 }

@@ -264,3 +264,11 @@ def test_grating_compare_equals_the_cli():
     close(c["worst_relative_error"]["unpolarized"], ref["worst_relative_error"]["unpolarized"], rtol=1e-9)
     close(c["delta_e00_diffracted"], ref["delta_e00_diffracted"], rtol=1e-9)
     assert len(c["orders"]) == len(ref["orders"]) and c["rigorous_converged"]
+
+
+def test_vision_along_a_plane_equals_the_cli_and_a_sine_is_symmetric():
+    v = diffraction.vision("builtin:sine?size=4.4um&pixel=50nm&period=1100nm&depth=100nm", "bluetit",
+                           views_deg=(-25, 25), azimuth=0.0)
+    a, b = (np.asarray(x["reflectance_factor"]) for x in v["views"])
+    assert np.max(np.abs(a - b)) <= 1e-9 * np.max(a)  # |c_m| = |c_-m| for a sine
+    assert v["wavelength_nm"][0] == 300.0 and v["vision"]["receptors"] == ["UVS", "SWS", "MWS", "LWS"]

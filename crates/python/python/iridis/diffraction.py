@@ -162,3 +162,16 @@ def grating(source, light, wavelengths_nm, method="kirchhoff", material=None, fr
         opts["acceptance"] = float(acceptance)
     wl = [float(w) for w in (wavelengths_nm if hasattr(wavelengths_nm, "__len__") else [wavelengths_nm])]
     return _native.grating(_native_source(source), (theta, phi), wl, opts)
+
+
+def vision(source, visual, light=0.0, views_deg=(-60, -50, -40, -30, -20, -10, 0, 10, 20, 30, 40, 50, 60),
+           azimuth=None, illuminant=None, **options):
+    """How an animal sees ``source`` from several directions, as ``iridis brdf vision --json``: the reflectance
+    factor π f_r(λ) (unpolarised, 300–700 nm, the reference method) at each view angle (degrees, signed, in the
+    plane of incidence; positive on the specular side) for light at ``light`` (radians) in the plane of
+    ``azimuth`` (radians; default the surface's dominant orientation), analysed by the receptor-noise-limited
+    model for ``visual`` (``"bluetit"``, ``"honeybee"``, …; see :mod:`iridis.vision`). Returns a dict with
+    ``views`` (``name``, ``theta_r_deg``, ``reflectance_factor``), ``wavelength_nm`` and ``vision`` (the
+    analysis: quantum catches, ΔS and ΔL in JND between every pair of directions)."""
+    return _native.brdf_vision(_native_source(source), str(visual), float(light), [float(v) for v in views_deg],
+                               None if azimuth is None else float(azimuth), illuminant, options)

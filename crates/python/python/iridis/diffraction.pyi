@@ -63,3 +63,12 @@ def grating(
     compare: bool = ...,
     **options: Any,
 ) -> dict[str, Any]: ...
+def vision(
+    source: Source,
+    visual: str,
+    light: float = ...,
+    views_deg: Sequence[float] = ...,
+    azimuth: Optional[float] = ...,
+    illuminant: Optional[str] = ...,
+    **options: Any,
+) -> dict[str, Any]: ...
