@@ -84,16 +84,31 @@ pub fn evaluator_for(
     let patch = source.patch(surface_opts, report)?;
     let spectral = spectral_setup(model, report)?;
     let input = source.name();
+    let conserve = |e: Box<dyn Evaluator>, spectral: SpectralSetup| -> Result<Box<dyn Evaluator>> {
+        if !model.conserve_energy {
+            return Ok(e);
+        }
+        report.note(
+            "energy-conserving lobes: each scaled by its order's factor in the energy-normalised channel matrix of \
+             the patch taken as a unit cell (docs/PHYSICS.md, \"Order efficiencies\")",
+        );
+        Ok(Box::new(iridis_diffraction::grating::EnergyNormalised::new(e, &patch, spectral)?))
+    };
     match parsed {
         Method::GroundTruth => {
             let coherence = coherence_for(&patch, model.coherence_nm, report);
             let samples = 2 * spectral.wavelengths().len() - 1;
-            Ok(Box::new(GroundTruth::new(&patch, coherence, shading, &spectral, samples)?))
+            let e = Box::new(GroundTruth::new(&patch, coherence, shading, &spectral, samples)?);
+            conserve(e, spectral)
         }
         Method::Reference => {
             let terms = Arc::new(taylor_terms(&patch, model, report)?);
-            Ok(Box::new(Reference { terms, shading, spectral }))
+            conserve(Box::new(Reference { terms, shading, spectral: spectral.clone() }), spectral)
         }
+        _ if model.conserve_energy => bail!(
+            "--conserve-energy scales each wavelength's lobes: the {method} method has none (lookup integrates over λ \
+             in advance; the lab's models have no lobes of the patch's orders); use reference or ground-truth"
+        ),
         Method::Lookup => {
             let terms = taylor_terms(&patch, model, report)?;
             let table = build_table(&terms, &spectral, params, input, report)?;

@@ -346,7 +346,17 @@ fn brdf_vision<'py>(
     };
     let spec = iridis_vision::Spec { visual: Some(visual), illuminant, ..Default::default() };
     let v = run(py, |r| {
-        iridis_api::vision::along_plane(&source, &eo.surface, &eo.model, eo.shading()?, light_theta, azimuth, &views_deg, &spec, r)
+        iridis_api::vision::along_plane(
+            &source,
+            &eo.surface,
+            &eo.model,
+            eo.shading()?,
+            light_theta,
+            azimuth,
+            &views_deg,
+            &spec,
+            r,
+        )
     })?;
     let text = serde_json::to_string(&v.to_json()).map_err(value_error)?;
     py.import("json")?.call_method1("loads", (text,))

@@ -158,6 +158,7 @@ impl<'py> Options<'py> {
             illuminant: self.string("illuminant")?,
             observer: self.string("observer")?,
             step_nm: self.positive("step_nm")?,
+            conserve_energy: self.bool("conserve_energy")?.unwrap_or(false),
         })
     }
 

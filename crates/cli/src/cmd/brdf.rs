@@ -38,6 +38,11 @@ pub struct ModelOpts {
     /// Wavelength step of the spectral integral (≤ 5nm recommended).
     #[arg(long, value_parser = positive_length_nm)]
     pub step: Option<f64>,
+    /// Energy-conserving lobes (reference, ground-truth): each scaled by its order's factor in the patch's
+    /// energy-normalised channel matrix, so that the BRDF never returns more light than it receives (Kirchhoff's
+    /// obliquity factor as printed returns up to twice it at grazing light).
+    #[arg(long)]
+    pub conserve_energy: bool,
 }
 
 #[derive(Debug, ClapArgs)]
@@ -195,6 +200,7 @@ impl ModelOpts {
             illuminant: self.illuminant.clone(),
             observer: self.observer.clone(),
             step_nm: self.step,
+            conserve_energy: self.conserve_energy,
         }
     }
 }
