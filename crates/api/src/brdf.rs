@@ -218,6 +218,39 @@ pub struct PointEval {
     pub query: PointQuery,
 }
 
+impl PointEval {
+    /// The reflectance factor `π f_r(λ)` (unpolarised; a white diffuser's is 1), where the method gives `f_r`.
+    pub fn reflectance_factor(&self) -> Option<Vec<f64>> {
+        let b = self.query.brdf.as_ref()?;
+        Some(b.unpolarized.iter().map(|f| std::f64::consts::PI * f).collect())
+    }
+
+    /// How an animal sees this direction's light: the reflectance factor analysed by the receptor-noise-limited
+    /// model (`iridis-vision`) on the query's wavelengths.
+    pub fn vision(&self, spec: &iridis_vision::Spec) -> Result<iridis_vision::Analysis> {
+        let Some(factor) = self.reflectance_factor() else {
+            bail!("--visual needs the BRDF f_r(λ), which the {} method does not give", self.method);
+        };
+        let system = spec.system().context("--visual")?;
+        let options = spec.options(&system)?;
+        Ok(iridis_vision::analyse(&[("view".to_string(), factor)], &self.query.wavelengths_nm, &system, &options)?)
+    }
+
+    /// The spectra as a CSV pavo reads (a wavelength column, one column per quantity): the reflectance factor
+    /// `π f_r` for s, p and unpolarised light, and the relative `ρ`.
+    pub fn spectra_csv(&self) -> Result<String> {
+        let (Some(b), Some(rho)) = (&self.query.brdf, &self.query.reflectance) else {
+            bail!("--spectra needs the spectral BRDF, which the {} method does not give", self.method);
+        };
+        let pi = std::f64::consts::PI;
+        let mut out = String::from("wavelength_nm,pi_fr_s,pi_fr_p,pi_fr_unpolarized,rho_relative\n");
+        for (k, l) in self.query.wavelengths_nm.iter().enumerate() {
+            out += &format!("{l},{},{},{},{}\n", pi * b.s[k], pi * b.p[k], pi * b.unpolarized[k], rho[k]);
+        }
+        Ok(out)
+    }
+}
+
 /// ρ(λ) and XYZ of `method` (default [`default_method`]) on INPUT for light `wi` and view `wr`.
 pub fn eval_point(
     input: &str,

@@ -497,6 +497,7 @@ reference for a SURFACE, lookup for a TABLE.
 Examples:
   iridis brdf eval builtin:sine --light 30deg --view 10deg,180deg --json
   iridis brdf eval builtin:blazed --method ground-truth --light 0deg --view 20deg,180deg
+  iridis brdf eval builtin:sine --light 30deg --view 10deg,180deg --visual bluetit --spectra sine_view.csv
   iridis precompute builtin:elaphe -o elaphe.npz && iridis brdf eval elaphe.npz --light 20deg,0deg --view 35deg,180deg --json")]
 pub struct BrdfEvalArgs {
     /// A height field (file or builtin:NAME) or a lookup table from `iridis precompute`.
@@ -526,6 +527,13 @@ pub struct BrdfEvalArgs {
     /// Print the paper's relative reflectance ρ(λ) instead of the BRDF in sr⁻¹.
     #[arg(long)]
     pub relative: bool,
+    /// Also as an animal sees this direction: a visual system of `iridis vision` (bluetit, honeybee, …),
+    /// from the reflectance factor π f_r(λ); key vision in --json.
+    #[arg(long)]
+    pub visual: Option<String>,
+    /// Write the spectra as CSV (pavo reads it): wavelength_nm, π f_r for s, p and unpolarised light, ρ.
+    #[arg(long)]
+    pub spectra: Option<PathBuf>,
     /// Print JSON: the inputs, the wavelength grid, f_r(λ) in sr⁻¹ per polarisation, ρ(λ) (null for lookup)
     /// and XYZ.
     #[arg(long)]
@@ -540,6 +548,7 @@ pub fn run_brdf(c: BrdfCommand) -> Result<()> {
 }
 
 fn run_eval(a: BrdfEvalArgs) -> Result<()> {
+    crate::output::declare_opt("--spectra", a.spectra.as_deref(), &["csv"])?;
     let (tl, pl) = polar_azimuth("light", &a.light)?;
     let (tv, pv) = polar_azimuth("view", &a.view)?;
     let (wi, wr) = (direction(tl, pl), direction(tv, pv));
@@ -550,6 +559,13 @@ fn run_eval(a: BrdfEvalArgs) -> Result<()> {
     let q = &p.query;
     let deg = |r: f64| (r.to_degrees() * 1e9).round() / 1e9;
     let r0 = shading_r0(&a.shading)?;
+    if let Some(path) = &a.spectra {
+        crate::output::write_bytes(path, p.spectra_csv()?.as_bytes())?;
+    }
+    let vision = match &a.visual {
+        Some(v) => Some(p.vision(&iridis_vision::Spec { visual: Some(v.clone()), ..Default::default() })?),
+        None => None,
+    };
     let area_um2 = p.effective_area_nm2.map(|a| a / 1e6);
     if a.json {
         return crate::output::print_json(&serde_json::json!({
@@ -569,6 +585,7 @@ fn run_eval(a: BrdfEvalArgs) -> Result<()> {
             "brdf_per_sr": q.brdf,
             "reflectance": q.reflectance,
             "xyz": [q.xyz.x, q.xyz.y, q.xyz.z],
+            "vision": vision.as_ref().map(serde_json::to_value).transpose()?,
         }));
     }
     crate::outln!(
@@ -615,7 +632,18 @@ fn run_eval(a: BrdfEvalArgs) -> Result<()> {
             crate::outln!("f_r(λ), ρ(λ): not available — the {} method integrates over λ in advance", p.method)?
         }
     }
-    crate::outln!("XYZ {:.6e} {:.6e} {:.6e}  (of ρ; a normal-incidence mirror: Y = 1)", q.xyz.x, q.xyz.y, q.xyz.z)
+    crate::outln!("XYZ {:.6e} {:.6e} {:.6e}  (of ρ; a normal-incidence mirror: Y = 1)", q.xyz.x, q.xyz.y, q.xyz.z)?;
+    if let Some(v) = &vision {
+        let s = &v.samples[0];
+        let f = |x: &[f64]| x.iter().map(|c| format!("{c:.4}")).collect::<Vec<_>>().join("  ");
+        crate::outln!("seen by {} under {} (receptors {}):", v.visual.name, v.illuminant, v.receptors.join(", "))?;
+        crate::outln!("  quantum catches (von Kries)  {}", f(&s.quantum_catches))?;
+        crate::outln!("  relative catches             {}", f(&s.relative_catches))?;
+        for n in &v.notes {
+            eprintln!("note: {n}");
+        }
+    }
+    Ok(())
 }
 
 /// `R₀` of the Fresnel source (what the relative ρ divides by).
