@@ -60,6 +60,7 @@ pub mod material;
 pub mod nkfile;
 pub mod recurrence;
 pub mod rough;
+pub mod rough_multiple;
 pub mod rough_table;
 pub mod sampling;
 pub mod spectral;

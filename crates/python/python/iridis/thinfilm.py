@@ -160,7 +160,7 @@ class Stack:
         """T alone (see :meth:`rta`)."""
         return self.rta(wavelengths_nm, angles_rad, offsets_nm, polarization)["T"]
 
-    def rough(self, roughness_nm, correlation_nm, d_iterations=None, diffuse_transport="reciprocal"):
+    def rough(self, roughness_nm, correlation_nm, d_iterations=None, diffuse_transport="multiple"):
         """This stack on a rough substrate: rms roughness σ = ``roughness_nm`` of the last interface and its
         autocorrelation length τ = ``correlation_nm`` (valid for σ > 0, 2σ/τ ≤ 1 and τ²/(2√3σ) ≥ λ in the
         medium above the substrate). ``d_iterations``: terms of the HTSG series (default: as many as an error
@@ -212,7 +212,7 @@ class RoughFilm:
     factor, relative to a white Lambertian surface under the same light), next to the smooth film's ``R``.
     Made by :meth:`Stack.rough`."""
 
-    def __init__(self, stack, roughness_nm, correlation_nm, d_iterations=None, diffuse_transport="reciprocal"):
+    def __init__(self, stack, roughness_nm, correlation_nm, d_iterations=None, diffuse_transport="multiple"):
         if not isinstance(stack, Stack):
             raise TypeError(f"stack must be an iridis.thinfilm.Stack, got {type(stack).__name__}")
         self.stack = stack
