@@ -49,6 +49,7 @@
 
 pub mod accuracy;
 pub mod color;
+pub mod depth;
 pub mod error;
 pub mod fast;
 pub mod field;

@@ -11,9 +11,14 @@
 //!   the forward one for the two semi-infinite media; `kz_list` and `vw_list` follow that choice (the wave
 //!   called forward in a layer is the one with `e^{+i k_z z}`). R and T do not depend on it.
 //!
+//! * complex angles: [`coh_tmm_complex`] takes `θ₀` complex and an absorbing first medium, as tmm does, when
+//!   `n₀ sin θ₀` is real (tmm's condition; the incident wave is then uniform along the interfaces) and `θ₀` is
+//!   the forward angle in `n₀`; `R`, `T` and `power_entering` use tmm's definitions (Byrnes eq. 21–23), in
+//!   which `R + power_entering ≠ 1` when the first medium absorbs.
+//!
 //! Lengths are in any unit shared by the thicknesses and the wavelength (only `d/λ` enters).
 //! Not reproduced: tmm's clamp of very opaque layers (`Im δ > 35` becomes 35, "1 photon in 10^30"), which
-//! changes nothing above 1e-30; and absorbing incident media (iridis requires a lossless one).
+//! changes nothing above 1e-30.
 
 use std::collections::HashMap;
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -60,6 +65,11 @@ fn invalid(msg: String) -> ThinFilmError {
 /// Checks `n_list` and `d_list` as tmm does (same length, `inf` at both ends), and what iridis needs besides:
 /// finite thicknesses ≥ 0 inside, finite indices with `Re n > 0`, `κ ≥ 0` (no gain) and a lossless first medium.
 pub fn check_lists(n: &[Complex64], d: &[f64]) -> Result<(), ThinFilmError> {
+    check_lists_with(n, d, false)
+}
+
+/// [`check_lists`], with an absorbing first medium allowed (`absorbing_incident`, for complex angles).
+fn check_lists_with(n: &[Complex64], d: &[f64], absorbing_incident: bool) -> Result<(), ThinFilmError> {
     if n.len() != d.len() || n.len() < 2 {
         return Err(invalid(format!(
             "Problem with n_list or d_list! (n_list has {} entries, d_list {}; both need the same number, at \
@@ -77,7 +87,11 @@ pub fn check_lists(n: &[Complex64], d: &[f64]) -> Result<(), ThinFilmError> {
         }
     }
     for (i, x) in n.iter().enumerate() {
-        check_index(i, *x)?;
+        if i == 0 && absorbing_incident {
+            check_index(1, *x).map_err(|e| invalid(e.to_string().replacen("n_list[1]", "n_list[0]", 1)))?;
+        } else {
+            check_index(i, *x)?;
+        }
     }
     Ok(())
 }
@@ -93,8 +107,9 @@ fn check_index(i: usize, x: Complex64) -> Result<(), ThinFilmError> {
     }
     if i == 0 && x.im != 0.0 {
         return Err(invalid(format!(
-            "Error in n0 or th0! n_list[0] = {x} absorbs; iridis needs a lossless incident medium (in an \
-             absorbing one the incident wave decays and R is not defined; docs/PHYSICS.md)"
+            "Error in n0 or th0! n_list[0] = {x} absorbs: give th_0 as the complex angle that makes \
+             n_list[0]·sin(th_0) real (tmm's convention, which iridis.tmm.coh_tmm accepts), e.g. \
+             numpy.lib.scimath.arcsin(s / n_list[0]) for a real s"
         )));
     }
     Ok(())
@@ -196,8 +211,57 @@ pub fn coh_tmm(pol: Pol, n: &[Complex64], d: &[f64], th0: f64, lam: f64) -> Resu
     check_angle_wavelength(th0, lam)?;
     let mut media = Vec::with_capacity(n.len());
     media_into(n.iter().copied(), th0, &mut media);
+    Ok(coherent_from_media(pol, n, d, &media, n[0] * th0.sin(), lam))
+}
+
+/// `tmm.coh_tmm` with a complex `θ₀` (module documentation): the first medium may absorb when `n₀ sin θ₀` is
+/// real (|Im| < 100 ε, tmm's test) and `θ₀` is the forward angle there (tmm's `is_forward_angle`). A real
+/// `θ₀` with a lossless first medium is [`coh_tmm`].
+pub fn coh_tmm_complex(
+    pol: Pol,
+    n: &[Complex64],
+    d: &[f64],
+    th0: Complex64,
+    lam: f64,
+) -> Result<Coherent, ThinFilmError> {
+    if th0.im == 0.0 && n.first().is_some_and(|x| x.im == 0.0) {
+        return coh_tmm(pol, n, d, th0.re, lam);
+    }
+    check_lists_with(n, d, true)?;
+    if !(th0.re.is_finite() && th0.im.is_finite()) {
+        return Err(invalid(format!("Error in n0 or th0! th_0 = {th0} must be finite")));
+    }
+    check_angle_wavelength(0.0, lam)?;
+    let invariant = n[0] * th0.sin();
+    if invariant.im.abs() >= 100.0 * f64::EPSILON {
+        return Err(invalid(format!(
+            "Error in n0 or th0! n_list[0]·sin(th_0) = {invariant} must be real (|Im| < 100 ε): the incident wave \
+             must be uniform along the interfaces"
+        )));
+    }
+    if !tmm_forward(n[0], th0) {
+        return Err(invalid(format!(
+            "Error in n0 or th0! th_0 = {th0} is not the forward-travelling angle in n_list[0] = {} (use π − th_0)",
+            n[0]
+        )));
+    }
+    let mut media = Vec::with_capacity(n.len());
+    media.push(Medium { n: n[0], cos: th0.cos() });
+    media.extend(n[1..].iter().map(|&x| Medium::new(x, invariant.re)));
+    Ok(coherent_from_media(pol, n, d, &media, invariant, lam))
+}
+
+/// The rest of [`coh_tmm`] once the media are set: the recurrence, tmm's powers, angles, `k_z` and amplitudes.
+fn coherent_from_media(
+    pol: Pol,
+    n: &[Complex64],
+    d: &[f64],
+    media: &[Medium],
+    invariant: Complex64,
+    lam: f64,
+) -> Coherent {
     let inner = &d[1..d.len() - 1];
-    let c = compose(&media, inner, lam, None);
+    let c = compose(media, inner, lam, None);
     let (r, t) = match pol {
         Pol::S => (c.gamma_s, c.tau_s),
         Pol::P => (c.gamma_p, c.tau_p),
@@ -206,7 +270,6 @@ pub fn coh_tmm(pol: Pol, n: &[Complex64], d: &[f64], th0: f64, lam: f64) -> Resu
     let (big_r, big_t, power_entering) = powers(pol, r, t, media[0], media[last]);
 
     // tmm's angles: principal arcsin, flipped to the forward wave in the two semi-infinite media.
-    let invariant = n[0] * th0.sin();
     let th: Vec<Complex64> = n
         .iter()
         .enumerate()
@@ -226,13 +289,18 @@ pub fn coh_tmm(pol: Pol, n: &[Complex64], d: &[f64], th0: f64, lam: f64) -> Resu
     let mut vw: Vec<[Complex64; 2]> = (0..n.len()).map(|j| [wv.v[j], wv.w[j]]).collect();
     vw[0] = [zero, zero];
     vw[last] = [t, zero];
-    Ok(Coherent { r, t, big_r, big_t, power_entering, vw, kz, th })
+    Coherent { r, t, big_r, big_t, power_entering, vw, kz, th }
 }
 
 /// `tmm.ellips`: `(ψ, Δ)` with `tan ψ e^{iΔ} = −r_p / r_s`.
 pub fn ellips(n: &[Complex64], d: &[f64], th0: f64, lam: f64) -> Result<(f64, f64), ThinFilmError> {
-    let s = coh_tmm(Pol::S, n, d, th0, lam)?;
-    let p = coh_tmm(Pol::P, n, d, th0, lam)?;
+    ellips_complex(n, d, Complex64::new(th0, 0.0), lam)
+}
+
+/// [`ellips`] with a complex `θ₀` ([`coh_tmm_complex`]).
+pub fn ellips_complex(n: &[Complex64], d: &[f64], th0: Complex64, lam: f64) -> Result<(f64, f64), ThinFilmError> {
+    let s = coh_tmm_complex(Pol::S, n, d, th0, lam)?;
+    let p = coh_tmm_complex(Pol::P, n, d, th0, lam)?;
     Ok(crate::field::psi_delta(s.r, p.r))
 }
 
