@@ -25,7 +25,7 @@ use std::f64::consts::{FRAC_PI_2, PI};
 
 use num_complex::Complex64;
 use rayon::prelude::*;
-use wide::f64x4;
+use wide::{f64x4, CmpGt, CmpLt, CmpNe};
 
 use crate::error::ThinFilmError;
 use crate::field::waves;
@@ -457,6 +457,61 @@ impl AngleKernel {
         let inv = den.inv();
         (num * inv, m * inv)
     }
+
+    /// [`AngleKernel::amplitudes`] for four points at once, vectorised across the points: lane `l` runs
+    /// `kernels[l]` (kernels of one stack, so of one layer count; the angles may differ) at wavenumber `k[l]`.
+    /// Every layer costs one SIMD `sin_cos` for the four points, and one SIMD `exp` where a layer decays —
+    /// where the per-point kernel spends a `sin_cos` per four layers and a scalar `exp` per absorbing layer,
+    /// which for the few layers of most films leaves lanes idle (issue 29: a 2-layer absorbing stack).
+    #[inline]
+    fn amplitudes4(kernels: [&AngleKernel; 4], k: [f64; 4]) -> [(Complex64, Complex64); 4] {
+        let n = kernels[0].layers;
+        let base = 4 * (n + 1);
+        let im_at = base + n.div_ceil(4) * 4;
+        let lanes =
+            |f: &dyn Fn(&AngleKernel) -> f64| f64x4::new([f(kernels[0]), f(kernels[1]), f(kernels[2]), f(kernels[3])]);
+        let kk = f64x4::new(k);
+        let (one, zero) = (f64x4::splat(1.0), f64x4::splat(0.0));
+        let (mut num_re, mut num_im) = (lanes(&|q| q.data[4 * n]), lanes(&|q| q.data[4 * n + 1]));
+        let (mut den_re, mut den_im) = (one, zero);
+        let (mut m_re, mut m_im) = (lanes(&|q| q.data[4 * n + 2]), lanes(&|q| q.data[4 * n + 3]));
+        for j in (0..n).rev() {
+            let (sin, cos) = (kk * lanes(&|q| q.data[base + n - 1 - j])).sin_cos();
+            let (mut e_re, mut e_im) = (cos, sin);
+            let decay = lanes(&|q| q.data[im_at + j]);
+            if decay.cmp_ne(zero).any() {
+                // Im φ ≥ 0 on the forward branch: |e^{iφ}| ≤ 1, nothing overflows.
+                let d = (-(kk * decay)).exp();
+                e_re *= d;
+                e_im *= d;
+            }
+            let (r_re, r_im) = (lanes(&|q| q.data[4 * j]), lanes(&|q| q.data[4 * j + 1]));
+            let (t_re, t_im) = (lanes(&|q| q.data[4 * j + 2]), lanes(&|q| q.data[4 * j + 3]));
+            let (e2_re, e2_im) = (e_re * e_re - e_im * e_im, 2.0 * e_re * e_im);
+            let (ne_re, ne_im) = (num_re * e2_re - num_im * e2_im, num_re * e2_im + num_im * e2_re);
+            let (rd_re, rd_im) = (r_re * den_re - r_im * den_im, r_re * den_im + r_im * den_re);
+            let (rn_re, rn_im) = (r_re * ne_re - r_im * ne_im, r_re * ne_im + r_im * ne_re);
+            num_re = rd_re + ne_re;
+            num_im = rd_im + ne_im;
+            den_re += rn_re;
+            den_im += rn_im;
+            let (te_re, te_im) = (t_re * e_re - t_im * e_im, t_re * e_im + t_im * e_re);
+            (m_re, m_im) = (te_re * m_re - te_im * m_im, te_re * m_im + te_im * m_re);
+            // |D| can grow by up to 2× a layer: bring it back near 1 long before f64 would overflow.
+            let size = den_re * den_re + den_im * den_im;
+            let out = size.cmp_gt(f64x4::splat(1e150)) | size.cmp_lt(f64x4::splat(1e-150));
+            if out.any() {
+                let s = out.blend(one / size.sqrt(), one);
+                (num_re, num_im, den_re, den_im, m_re, m_im) =
+                    (num_re * s, num_im * s, den_re * s, den_im * s, m_re * s, m_im * s);
+            }
+        }
+        let size = den_re * den_re + den_im * den_im;
+        let (inv_re, inv_im) = (den_re / size, -den_im / size);
+        let g = ((num_re * inv_re - num_im * inv_im).to_array(), (num_re * inv_im + num_im * inv_re).to_array());
+        let t = ((m_re * inv_re - m_im * inv_im).to_array(), (m_re * inv_im + m_im * inv_re).to_array());
+        std::array::from_fn(|l| (Complex64::new(g.0[l], g.1[l]), Complex64::new(t.0[l], t.1[l])))
+    }
 }
 
 /// One angle of the batch: its kernel (and a second one, averaged with it, when a layer grazes:
@@ -500,6 +555,12 @@ impl AngleEntry {
                 (0.5 * (x.0 + y.0), 0.5 * (x.1 + y.1))
             }
         };
+        self.outputs(pol, r, t)
+    }
+
+    /// tmm's outputs from the amplitudes at this angle.
+    #[inline]
+    fn outputs(&self, pol: Pol, r: Complex64, t: Complex64) -> (Complex64, Complex64, f64, f64, f64) {
         let one = Complex64::new(1.0, 0.0);
         let entering = match pol {
             Pol::S => (self.entering * (one + r.conj()) * (one - r)).re,
@@ -528,11 +589,18 @@ impl AngleCache {
 
     #[inline]
     fn get(&mut self, angle: f64, make: impl FnOnce(f64) -> AngleEntry) -> &AngleEntry {
+        let e = self.position(angle, make);
+        &self.entries[e]
+    }
+
+    /// The index of the angle's entry in `entries`, made the first time.
+    #[inline]
+    fn position(&mut self, angle: f64, make: impl FnOnce(f64) -> AngleEntry) -> usize {
         let bits = angle.to_bits();
         let slot = (bits.wrapping_mul(0x9e37_79b9_7f4a_7c15) >> 56) as usize;
         let (b, e) = self.recent[slot];
         if e != 0 && b == bits {
-            return &self.entries[e - 1];
+            return e - 1;
         }
         let entries = &mut self.entries;
         let e = *self.index.entry(bits).or_insert_with(|| {
@@ -540,7 +608,7 @@ impl AngleCache {
             entries.len() - 1
         });
         self.recent[slot] = (bits, e + 1);
-        &self.entries[e]
+        e
     }
 }
 
@@ -624,7 +692,34 @@ pub fn coh_tmm_batch(pol: Pol, n: Indices<'_>, d: &[f64], th0: &[f64], lam: &[f6
             let mut media = Vec::with_capacity(media_count);
             // Per angle in this chunk: its kernel, prepared the first time the angle comes.
             let mut cache = AngleCache::new();
-            for k in 0..r.len() {
+            // Constant indices: four points at a time through the vectorised kernel (lanes may have different
+            // angles), the rest — and any four with a grazing layer, whose two kernels are averaged — one by one.
+            let mut next = 0;
+            if let Indices::Constant(x) = n {
+                while next + 4 <= r.len() {
+                    let mut e = [0usize; 4];
+                    for l in 0..4 {
+                        let i = start + next + l;
+                        check_angle_wavelength(th0[i], lam[i])
+                            .map_err(|e| invalid(format!("{e} (at point {i} of the batch)")))?;
+                        let a = th0[i].abs().min(FRAC_PI_2);
+                        e[l] = cache.position(a, |a| AngleEntry::new(pol, x, d, a, &mut media));
+                    }
+                    let entries = e.map(|e| &cache.entries[e]);
+                    if entries.iter().any(|x| x.grazing.is_some()) {
+                        break;
+                    }
+                    let ks = std::array::from_fn(|l| 2.0 * PI / lam[start + next + l]);
+                    let amps = AngleKernel::amplitudes4(entries.map(|x| &x.kernel), ks);
+                    for l in 0..4 {
+                        let (rr, tt, x_r, x_t, x_pe) = entries[l].outputs(pol, amps[l].0, amps[l].1);
+                        let k = next + l;
+                        (r[k], t[k], big_r[k], big_t[k], pe[k]) = (rr, tt, x_r, x_t, x_pe);
+                    }
+                    next += 4;
+                }
+            }
+            for k in next..r.len() {
                 let i = start + k;
                 check_angle_wavelength(th0[i], lam[i])
                     .map_err(|e| invalid(format!("{e} (at point {i} of the batch)")))?;
@@ -646,6 +741,7 @@ pub fn coh_tmm_batch(pol: Pol, n: Indices<'_>, d: &[f64], th0: &[f64], lam: &[f6
                     }
                 };
                 r[k] = rr;
+
                 t[k] = tt;
                 big_r[k] = x_r;
                 big_t[k] = x_t;
@@ -723,6 +819,58 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn four_point_kernel_equals_single_calls_on_deep_stacks() {
+        // 60 layers (high/low pairs, absorbing and evanescent ones among them, a thick metal that makes |D| grow
+        // past the rescaling threshold), angles differing within every group of four, and a tail of points
+        // that is not a multiple of four.
+        let mut n = vec![c(1.0, 0.0)];
+        let mut d = vec![f64::INFINITY];
+        for j in 0..30 {
+            n.extend([c(2.3, 0.001 * j as f64), c(1.38, 0.0)]);
+            d.extend([55.0 + j as f64, 93.0]);
+        }
+        n[40] = c(0.2, 3.4);
+        d[40] = 3000.0;
+        n.push(c(1.52, 0.0));
+        d.push(f64::INFINITY);
+        let th: Vec<f64> = (0..23).map(|i| (i % 7) as f64 * 0.21).collect();
+        let lam: Vec<f64> = (0..23).map(|i| 350.0 + 31.0 * i as f64).collect();
+        for pol in [Pol::S, Pol::P] {
+            let b = coh_tmm_batch(pol, Indices::Constant(&n), &d, &th, &lam).unwrap();
+            for i in 0..th.len() {
+                let one = coh_tmm(pol, &n, &d, th[i], lam[i]).unwrap();
+                assert!((b.r[i] - one.r).norm() < 1e-12 * (1.0 + one.r.norm()), "{pol:?} {i}: {} vs {}", b.r[i], one.r);
+                assert!(
+                    (b.t[i] - one.t).norm() <= 1e-12 * one.t.norm() + 1e-300,
+                    "{pol:?} {i}: {} vs {}",
+                    b.t[i],
+                    one.t
+                );
+                assert!(
+                    (b.big_r[i] - one.big_r).abs() < 1e-12 && (b.power_entering[i] - one.power_entering).abs() < 1e-12
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn complex_angles_as_tmm_takes_them() {
+        // A real angle written as complex is the real calculation; an absorbing first medium takes the complex
+        // angle that makes n₀ sin θ₀ real (tmm's convention) and is refused otherwise.
+        let n = [c(1.0, 0.0), c(2.0, 0.1), c(1.5, 0.0)];
+        let d = [f64::INFINITY, 200.0, f64::INFINITY];
+        let a = coh_tmm(Pol::P, &n, &d, 0.4, 500.0).unwrap();
+        let b = coh_tmm_complex(Pol::P, &n, &d, c(0.4, 0.0), 500.0).unwrap();
+        assert_eq!(a, b);
+        let n0 = c(1.5, 0.02);
+        let th0 = asin(c(0.6, 0.0) / n0);
+        let x = coh_tmm_complex(Pol::S, &[n0, c(2.0, 0.0), c(1.0, 0.0)], &d, th0, 500.0).unwrap();
+        assert!(x.big_r > 0.0 && x.big_r < 1.0 && (x.th[1] - asin(c(0.3, 0.0))).norm() < 1e-12, "{x:?}");
+        assert!(coh_tmm_complex(Pol::S, &[n0, c(2.0, 0.0), c(1.0, 0.0)], &d, c(0.4, 0.0), 500.0).is_err());
+        assert!(coh_tmm(Pol::S, &[n0, c(2.0, 0.0), c(1.0, 0.0)], &d, 0.4, 500.0).is_err());
     }
 
     #[test]
