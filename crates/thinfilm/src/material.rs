@@ -400,6 +400,39 @@ impl Material {
             .collect()
     }
 
+    /// A material tabulated at the given wavelengths (nm, strictly increasing), interpolated linearly in
+    /// between and refused outside (as the measured data of files): Python's per-wavelength index arrays.
+    /// One wavelength: a constant at that wavelength only.
+    pub fn tabulated(
+        name: impl Into<String>,
+        wavelengths_nm: &[f64],
+        index: &[Complex64],
+    ) -> Result<Self, ThinFilmError> {
+        let name = name.into();
+        if wavelengths_nm.is_empty() || wavelengths_nm.len() != index.len() {
+            return Err(ThinFilmError::Invalid(format!(
+                "material '{name}': {} wavelengths for {} indices (give one index per wavelength)",
+                wavelengths_nm.len(),
+                index.len()
+            )));
+        }
+        if let Some(w) = wavelengths_nm.iter().find(|w| !(w.is_finite() && **w > 0.0)) {
+            return Err(ThinFilmError::Invalid(format!("material '{name}': wavelength {w} nm must be finite and > 0")));
+        }
+        if wavelengths_nm.windows(2).any(|w| w[1] <= w[0]) {
+            return Err(ThinFilmError::Invalid(format!(
+                "material '{name}': the wavelengths must increase strictly (sort them, one index per wavelength)"
+            )));
+        }
+        for (w, x) in wavelengths_nm.iter().zip(index) {
+            Material::constant(format!("{name} at {w} nm"), *x)?;
+        }
+        let (lo, hi) = (wavelengths_nm[0], wavelengths_nm[wavelengths_nm.len() - 1]);
+        let n = Part::Table { wl_nm: wavelengths_nm.to_vec(), v: index.iter().map(|x| x.re).collect() };
+        let k = Part::Table { wl_nm: wavelengths_nm.to_vec(), v: index.iter().map(|x| x.im).collect() };
+        Ok(Self { name, n, k, range_nm: (lo, hi) })
+    }
+
     pub(crate) fn from_parts(name: String, n: Part, k: Part, range_nm: (f64, f64)) -> Self {
         Self { name, n, k, range_nm }
     }
