@@ -465,12 +465,18 @@ impl AngleKernel {
     /// which for the few layers of most films leaves lanes idle (issue 29: a 2-layer absorbing stack).
     #[inline]
     fn amplitudes4(kernels: [&AngleKernel; 4], k: [f64; 4]) -> [(Complex64, Complex64); 4] {
+        let [g_re, g_im, t_re, t_im] = Self::amplitudes4_lanes(kernels, f64x4::new(k)).map(|x| x.to_array());
+        std::array::from_fn(|l| (Complex64::new(g_re[l], g_im[l]), Complex64::new(t_re[l], t_im[l])))
+    }
+
+    /// [`AngleKernel::amplitudes4`] as SIMD lanes: `[Re γ, Im γ, Re τ, Im τ]`.
+    #[inline]
+    fn amplitudes4_lanes(kernels: [&AngleKernel; 4], kk: f64x4) -> [f64x4; 4] {
         let n = kernels[0].layers;
         let base = 4 * (n + 1);
         let im_at = base + n.div_ceil(4) * 4;
         let lanes =
             |f: &dyn Fn(&AngleKernel) -> f64| f64x4::new([f(kernels[0]), f(kernels[1]), f(kernels[2]), f(kernels[3])]);
-        let kk = f64x4::new(k);
         let (one, zero) = (f64x4::splat(1.0), f64x4::splat(0.0));
         let (mut num_re, mut num_im) = (lanes(&|q| q.data[4 * n]), lanes(&|q| q.data[4 * n + 1]));
         let (mut den_re, mut den_im) = (one, zero);
@@ -508,9 +514,12 @@ impl AngleKernel {
         }
         let size = den_re * den_re + den_im * den_im;
         let (inv_re, inv_im) = (den_re / size, -den_im / size);
-        let g = ((num_re * inv_re - num_im * inv_im).to_array(), (num_re * inv_im + num_im * inv_re).to_array());
-        let t = ((m_re * inv_re - m_im * inv_im).to_array(), (m_re * inv_im + m_im * inv_re).to_array());
-        std::array::from_fn(|l| (Complex64::new(g.0[l], g.1[l]), Complex64::new(t.0[l], t.1[l])))
+        [
+            num_re * inv_re - num_im * inv_im,
+            num_re * inv_im + num_im * inv_re,
+            m_re * inv_re - m_im * inv_im,
+            m_re * inv_im + m_im * inv_re,
+        ]
     }
 }
 
@@ -696,25 +705,54 @@ pub fn coh_tmm_batch(pol: Pol, n: Indices<'_>, d: &[f64], th0: &[f64], lam: &[f6
             // angles), the rest — and any four with a grazing layer, whose two kernels are averaged — one by one.
             let mut next = 0;
             if let Indices::Constant(x) = n {
+                // The chunk's angles and wavelengths are checked first, in one pass (the error names the first bad
+                // point); the loop below then has no error path. Consecutive points often share their angle
+                // (spectra): the last angle's entry is kept without a lookup.
+                let (th_c, lam_c) = (&th0[start..start + r.len()], &lam[start..start + r.len()]);
+                if th_c.iter().zip(lam_c).any(|(&a, &l)| check_angle_wavelength(a, l).is_err()) {
+                    let k = (0..r.len()).find(|&k| check_angle_wavelength(th_c[k], lam_c[k]).is_err()).unwrap_or(0);
+                    check_angle_wavelength(th_c[k], lam_c[k])
+                        .map_err(|e| invalid(format!("{e} (at point {} of the batch)", start + k)))?;
+                }
+                let mut last: Option<(u64, usize)> = None;
                 while next + 4 <= r.len() {
                     let mut e = [0usize; 4];
                     for l in 0..4 {
-                        let i = start + next + l;
-                        check_angle_wavelength(th0[i], lam[i])
-                            .map_err(|e| invalid(format!("{e} (at point {i} of the batch)")))?;
-                        let a = th0[i].abs().min(FRAC_PI_2);
-                        e[l] = cache.position(a, |a| AngleEntry::new(pol, x, d, a, &mut media));
+                        let a = th_c[next + l].abs().min(FRAC_PI_2);
+                        e[l] = match last {
+                            Some((bits, idx)) if bits == a.to_bits() => idx,
+                            _ => {
+                                let idx = cache.position(a, |a| AngleEntry::new(pol, x, d, a, &mut media));
+                                last = Some((a.to_bits(), idx));
+                                idx
+                            }
+                        };
                     }
                     let entries = e.map(|e| &cache.entries[e]);
                     if entries.iter().any(|x| x.grazing.is_some()) {
                         break;
                     }
-                    let ks = std::array::from_fn(|l| 2.0 * PI / lam[start + next + l]);
-                    let amps = AngleKernel::amplitudes4(entries.map(|x| &x.kernel), ks);
+                    let i = start + next;
+                    let kk = f64x4::splat(2.0 * PI) / f64x4::new([lam[i], lam[i + 1], lam[i + 2], lam[i + 3]]);
+                    let [g_re, g_im, t_re, t_im] = AngleKernel::amplitudes4_lanes(entries.map(|x| &x.kernel), kk);
+                    // R = |γ|², T = |τ|² flux(last)/flux(first), and the power entering (AngleEntry::outputs) as
+                    // lanes: (1 ± r̄)(1 ∓ r) = 1 − |r|² ∓ 2i Im r for s and p.
+                    let big_r4 = g_re * g_re + g_im * g_im;
+                    let tf = f64x4::new(entries.map(|x| x.t_factor));
+                    let big_t4 = (t_re * t_re + t_im * t_im) * tf;
+                    let (e_re, e_im) =
+                        (f64x4::new(entries.map(|x| x.entering.re)), f64x4::new(entries.map(|x| x.entering.im)));
+                    let sign = if pol == Pol::S { 2.0 } else { -2.0 };
+                    let pe4 = e_re * (f64x4::splat(1.0) - big_r4) + f64x4::splat(sign) * e_im * g_im;
+                    let (gr, gi, tr, ti) = (g_re.to_array(), g_im.to_array(), t_re.to_array(), t_im.to_array());
+                    let (x_r, x_t, x_pe) = (big_r4.to_array(), big_t4.to_array(), pe4.to_array());
                     for l in 0..4 {
-                        let (rr, tt, x_r, x_t, x_pe) = entries[l].outputs(pol, amps[l].0, amps[l].1);
                         let k = next + l;
-                        (r[k], t[k], big_r[k], big_t[k], pe[k]) = (rr, tt, x_r, x_t, x_pe);
+                        r[k] = Complex64::new(gr[l], gi[l]);
+                        t[k] = Complex64::new(tr[l], ti[l]);
+                        big_r[k] = x_r[l];
+                        big_t[k] = x_t[l];
+                        pe[k] = x_pe[l];
                     }
                     next += 4;
                 }
