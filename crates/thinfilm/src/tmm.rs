@@ -458,18 +458,11 @@ impl AngleKernel {
         (num * inv, m * inv)
     }
 
-    /// [`AngleKernel::amplitudes`] for four points at once, vectorised across the points: lane `l` runs
+    /// [`AngleKernel::amplitudes`] for four points at once (as SIMD lanes: `[Re γ, Im γ, Re τ, Im τ]`), vectorised across the points: lane `l` runs
     /// `kernels[l]` (kernels of one stack, so of one layer count; the angles may differ) at wavenumber `k[l]`.
     /// Every layer costs one SIMD `sin_cos` for the four points, and one SIMD `exp` where a layer decays —
     /// where the per-point kernel spends a `sin_cos` per four layers and a scalar `exp` per absorbing layer,
     /// which for the few layers of most films leaves lanes idle (issue 29: a 2-layer absorbing stack).
-    #[inline]
-    fn amplitudes4(kernels: [&AngleKernel; 4], k: [f64; 4]) -> [(Complex64, Complex64); 4] {
-        let [g_re, g_im, t_re, t_im] = Self::amplitudes4_lanes(kernels, f64x4::new(k)).map(|x| x.to_array());
-        std::array::from_fn(|l| (Complex64::new(g_re[l], g_im[l]), Complex64::new(t_re[l], t_im[l])))
-    }
-
-    /// [`AngleKernel::amplitudes4`] as SIMD lanes: `[Re γ, Im γ, Re τ, Im τ]`.
     #[inline]
     fn amplitudes4_lanes(kernels: [&AngleKernel; 4], kk: f64x4) -> [f64x4; 4] {
         let n = kernels[0].layers;
