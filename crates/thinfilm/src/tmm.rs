@@ -458,8 +458,9 @@ impl AngleKernel {
         (num * inv, m * inv)
     }
 
-    /// [`AngleKernel::amplitudes`] for four points at once (as SIMD lanes: `[Re γ, Im γ, Re τ, Im τ]`), vectorised across the points: lane `l` runs
-    /// `kernels[l]` (kernels of one stack, so of one layer count; the angles may differ) at wavenumber `k[l]`.
+    /// [`AngleKernel::amplitudes`] for four points at once, vectorised across the points, as SIMD lanes
+    /// `[Re γ, Im γ, Re τ, Im τ]`: lane `l` runs `kernels[l]` (kernels of one stack, so of one layer count; the
+    /// angles may differ) at wavenumber `kk[l]`.
     /// Every layer costs one SIMD `sin_cos` for the four points, and one SIMD `exp` where a layer decays —
     /// where the per-point kernel spends a `sin_cos` per four layers and a scalar `exp` per absorbing layer,
     /// which for the few layers of most films leaves lanes idle (issue 29: a 2-layer absorbing stack).
