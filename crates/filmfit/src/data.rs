@@ -55,6 +55,27 @@ pub struct Reading {
     pub columns: Vec<String>,
 }
 
+/// Names of measured quantities: a column so named is not taken for another quantity.
+const OTHER_QUANTITIES: &[&str] = &[
+    "r",
+    "reflectance",
+    "reflectivity",
+    "refl",
+    "reflection",
+    "t",
+    "transmittance",
+    "transmission",
+    "trans",
+    "psi",
+    "ψ",
+    "delta",
+    "δ",
+    "Δ",
+    "a",
+    "absorptance",
+    "absorbance",
+];
+
 const WAVELENGTH: &[&str] =
     &["wavelength", "wavelengths", "wl", "lambda", "λ", "wave", "nm", "um", "µm", "energy", "ev"];
 
@@ -330,8 +351,8 @@ pub fn read(
             let found = (0..names.len()).find(|&i| i != wl && is(i, want));
             let c = match found {
                 Some(c) => c,
-                // A file of two columns: the other one is the value.
-                None if names.len() == 2 && q != Quantity::PsiDelta => {
+                // A file of two columns: the other one is the value, unless its name says it is something else.
+                None if names.len() == 2 && q != Quantity::PsiDelta && !is(1 - wl, OTHER_QUANTITIES) => {
                     let c = 1 - wl;
                     notes.push(format!("column '{}' taken as {} (the only other column)", names[c], labels[k]));
                     c
@@ -557,7 +578,7 @@ pub fn read(
         Some((SpreadSource::File(f), _)) => {
             let wtext = load(&f).map_err(|e| {
                 FitError::Data(format!(
-                    "--weights '{f}' is neither a number, a column of {path} (its columns: {}), nor a readable file: {e}",
+                    "--weights '{f}' is neither a number, a column of {path} (its columns: {}), nor a file ({e})",
                     names.join(", ")
                 ))
             })?;
@@ -902,7 +923,10 @@ mod tests {
         let mut o = ReadOptions::new(Quantity::R);
         o.spread = Some(("wt".into(), Spread::Weight));
         let e = read(text, "x.csv", &o, &|_| Err("no such file".into())).unwrap_err().to_string();
-        assert!(e.contains("--weights 'wt' is neither a number, a column") && e.contains("no such file"), "{e}");
+        assert!(
+            e.contains("--weights 'wt' is neither a number, a column") && e.contains("nor a file (no such file)"),
+            "{e}"
+        );
         // A separate file, row by row; ψ/Δ take two weights.
         let mut m =
             Measured::from_csv("wavelength_nm,psi,delta\n400,30,100\n450,31,101\n", "e.csv", Quantity::PsiDelta, None)
