@@ -620,6 +620,19 @@ mod tests {
     }
 
     #[test]
+    fn tables_from_arrays_interpolate_and_refuse_outside() {
+        let (w, n) =
+            ([400.0, 500.0, 700.0], [Complex64::new(2.0, 0.1), Complex64::new(1.8, 0.0), Complex64::new(1.6, 0.0)]);
+        let m = Material::tabulated("t", &w, &n).unwrap();
+        assert_eq!(m.index_at(500.0).unwrap(), n[1]);
+        assert!((m.index_at(450.0).unwrap() - Complex64::new(1.9, 0.05)).norm() < 1e-15);
+        assert!(matches!(m.index_at(750.0), Err(ThinFilmError::OutOfRange { .. })));
+        assert!(Material::tabulated("t", &[500.0, 400.0], &n[..2]).is_err());
+        assert!(Material::tabulated("t", &w, &n[..2]).is_err());
+        assert!(Material::tabulated("t", &w, &[n[0], n[1], Complex64::new(1.5, -0.1)]).is_err());
+    }
+
+    #[test]
     fn constants_are_checked() {
         assert!(Material::constant("x", Complex64::new(1.5, -0.1)).is_err());
         assert!(Material::constant("x", Complex64::new(0.0, 0.0)).is_err());
