@@ -208,7 +208,7 @@ pub fn averaged_unit_cell(patch: &iridis_diffraction::Patch) -> Option<(iridis_d
             count[b] += 1;
         }
     }
-    if count.iter().any(|&c| c == 0) {
+    if count.contains(&0) {
         return None;
     }
     let row: Vec<f64> = sum.iter().zip(&count).map(|(s, &c)| s / c as f64).collect();

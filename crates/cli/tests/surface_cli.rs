@@ -599,6 +599,33 @@ fn report_states_the_quantisation_of_a_small_patch() {
     assert!((d - 1000.0).abs() < 10.0 && (d - info).abs() <= q, "{d} ± {q}");
 }
 
+/// The report of an Elaphe-like scan (issue 28, 30): how far the scalar model is from the rigorous solver on
+/// the scan's own averaged profile, with numbers (the scalar model is tens of percent off at these depths), and
+/// how a blue tit sees the colours across directions; the test bench along the rows (90°), not along x.
+#[test]
+fn report_of_a_snake_scan_states_the_scalar_models_error_and_a_birds_view() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("elaphe");
+    ok(&["report", "builtin:elaphe?size=10um&pixel=50nm&seed=3", "--size", "16", "-o", out.to_str().unwrap()]);
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    assert_eq!(r["diffracts_visible_light"], true);
+    let e = &r["scalar_model_error"];
+    let worst = e["worst_relative_error"]["unpolarized"].as_f64().unwrap();
+    let period = e["unit_cell"]["period_x_nm"].as_f64().unwrap();
+    assert!((period - 1100.0).abs() < 60.0, "the averaged cell's period {period}");
+    assert!(worst > 0.1 && e["rigorous_converged"] == true, "{e}");
+    assert!(e["delta_e00_diffracted"].as_f64().is_some(), "{e}");
+    let sentence = r["scalar_model_sentence"].as_str().unwrap();
+    assert!(sentence.contains(&format!("{:.1} %", 100.0 * worst)), "{sentence}");
+    let v = &r["vision"]["vision"];
+    assert_eq!(v["receptors"].as_array().unwrap().len(), 4, "a blue tit's four cones");
+    assert!(r["vision_sentence"].as_str().unwrap().contains("JND"));
+    assert!(out.join("vision.png").exists());
+    let az = r["testbench"]["azimuth_deg"].as_f64().unwrap();
+    assert!((az - 90.0).abs() < 1.0, "the bench along the rows: {az}");
+}
+
 /// `iridis report` on every real instrument file (small maps), when the samples have been fetched.
 #[test]
 fn report_on_each_real_instrument_file() {
