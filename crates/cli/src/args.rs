@@ -37,3 +37,16 @@ pub fn polar_azimuth(flag: &str, s: &str) -> anyhow::Result<(f64, f64)> {
     }
     Ok((theta, phi))
 }
+
+/// What a SURFACE's own metadata may be overruled by, flattened into every command that reads one.
+#[derive(Debug, Clone, Copy, Default, clap::Args)]
+pub struct UnitFlags {
+    /// Let --pixel-size and --height-unit replace the pixel size and height unit an instrument file states
+    /// itself (without it the file's win, and a warning names both).
+    #[arg(long)]
+    pub override_units: bool,
+    /// Read a channel that is not a height (an amplitude, error, phase or deformation channel, or one whose
+    /// unit is not a length; `iridis surface channels FILE` marks them) as heights anyway.
+    #[arg(long)]
+    pub as_height: bool,
+}

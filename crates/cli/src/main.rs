@@ -22,8 +22,10 @@ Examples:
   iridis thinfilm color --stack \"air | water 348nm | air\" --json
   iridis color xyz data/examples/colorchecker_green.csv --json
 
-SURFACE arguments take a file (.gwy, .npy, PNG/TIFF, text) or a built-in, one of
-builtin:blazed|sine|cd|elaphe|xenopeltis|gaussian. Lengths and angles carry units: 65nm, 0.43um, 65µm, 75deg.")]
+SURFACE arguments take a file — AFM instrument files (Bruker .spm/.000, Asylum .ibw, JPK .jpk, WSxM .stp/.top,
+Nanonis .sxm, Gwyddion .gwy/.gsf; --channel NAME|N, `iridis surface channels FILE`), numpy .npy/.npz, PNG/TIFF,
+text — or a built-in, one of builtin:blazed|sine|cd|elaphe|xenopeltis|gaussian (iridis surface --help). Lengths
+and angles carry units: 65nm, 0.43um, 65µm, 75deg.")]
 struct Cli {
     #[command(subcommand)]
     command: Command,

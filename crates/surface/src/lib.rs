@@ -68,6 +68,9 @@ pub struct Metadata {
     pub notes: Vec<String>,
     /// Things the user should know (colour image reduced to luminance, assumed units, …).
     pub warnings: Vec<String>,
+    /// Which channel of a multi-channel file was read, and why (`None` for single-image formats).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub channel: Option<formats::channel::ChannelChoice>,
 }
 
 /// Heights in nm on a regular grid, row-major, row 0 at the top (`docs/PHYSICS.md`).
@@ -177,8 +180,9 @@ impl HeightField {
     }
 
     /// Warnings (with numbers) about what this field can represent for the diffraction model: pixels too
-    /// coarse for the visible band, or a patch smaller than the coherence area (PHYSICS.md).
-    pub fn physics_warnings(&self, coherence_nm: f64) -> Vec<String> {
+    /// coarse for the visible band (PHYSICS.md). A patch smaller than the coherence area is not a warning
+    /// here (the model commands fit the coherence to it): [`HeightField::coherence_note`] says what it costs.
+    pub fn physics_warnings(&self, _coherence_nm: f64) -> Vec<String> {
         let mut w = Vec::new();
         let p = self.dx_nm.max(self.dy_nm);
         if p > MAX_RESOLVING_PIXEL_NM {
@@ -189,21 +193,38 @@ impl HeightField {
                 1000.0 / (2.0 * p)
             ));
         }
+        w
+    }
+
+    /// For a patch smaller than the coherence area, what it means in practice, in two sentences: the model
+    /// commands window the patch to half its shorter side `L` (`iridis_diffraction::Coherence::fitted`), whose
+    /// spectral width ≈ 1.27/L spreads each diffraction colour over about `λ/L` of viewing angle. `None` for a
+    /// patch at least as large as the coherence area.
+    pub fn coherence_note(&self, coherence_nm: f64) -> Option<String> {
         let (ex, ey) = self.extent_nm();
-        if ex.min(ey) < coherence_nm {
-            w.push(format!(
-                "patch {:.1} × {:.1} µm is smaller than the {:.1} µm coherence area: the DFT treats it as periodic, \
-                 so its spectrum is spikes {:.4} µm⁻¹ apart instead of a smooth spectrum, and a period read off \
-                 that grid is quantised to about ± d²/{:.1} µm. Tiling does not help (the spikes stay where they \
-                 are); the model commands (brdf-map, precompute, testbench, compare, sweep, report) therefore fit \
-                 the coherence to the patch unless --coherence is given, and say so; or scan a larger area",
+        let l = ex.min(ey);
+        (l < coherence_nm).then(|| {
+            let lambda_over_l = 550.0 / l;
+            let cost = if lambda_over_l < 0.5 {
+                format!(
+                    "which spreads each diffraction colour over about λ/L = {:.1}° of viewing angle at 550 nm \
+                     (paler and wider than a {:.0} µm scan would show)",
+                    lambda_over_l.asin().to_degrees(),
+                    coherence_nm / 1000.0
+                )
+            } else {
+                "and a patch under two wavelengths across (λ/L ≥ 0.5 at 550 nm) shows no distinct diffraction \
+                 colours at all"
+                    .to_string()
+            };
+            format!(
+                "patch {:.1} × {:.1} µm is smaller than the {:.1} µm coherence area: the model commands fit the \
+                 coherence to it, {cost}. Scan a larger area for sharper colours; periods read from this patch carry \
+                 the ± given with them",
                 ex / 1000.0,
                 ey / 1000.0,
                 coherence_nm / 1000.0,
-                1000.0 / ex.min(ey),
-                ex.min(ey) / 1000.0,
-            ));
-        }
-        w
+            )
+        })
     }
 }

@@ -42,6 +42,8 @@ pub struct LabModel {
     /// used as generated unless this is given).
     #[arg(long)]
     pub level: Option<String>,
+    #[command(flatten)]
+    pub units: crate::args::UnitFlags,
     /// Coherence length 4σ_s of the window (default 65um, or half the patch's shorter side when the patch is
     /// smaller than that; said in the output).
     #[arg(long, value_parser = positive_length_nm)]
@@ -75,6 +77,8 @@ impl LabModel {
                 channel: self.channel.clone(),
                 height_unit: self.height_unit.clone(),
                 level: self.level.clone(),
+                override_units: self.units.override_units,
+                as_height: self.units.as_height,
             },
             coherence_nm: self.coherence,
             terms: self.terms.clone(),

@@ -40,9 +40,11 @@ pub struct ReportArgs {
     /// Unit of heights in files that do not give one (m, nm, …).
     #[arg(long)]
     pub height_unit: Option<String>,
-    /// Levelling: plane (default), poly, lines, rows, mean or none.
-    #[arg(long, default_value = "plane")]
-    pub level: String,
+    /// Levelling: plane (default for files), poly, lines, rows, mean or none.
+    #[arg(long)]
+    pub level: Option<String>,
+    #[command(flatten)]
+    pub units: crate::args::UnitFlags,
     /// Size of the BRDF maps in pixels.
     #[arg(long, default_value_t = 128)]
     pub size: usize,
@@ -100,14 +102,23 @@ pub fn run(a: ReportArgs) -> Result<()> {
             common.extend([flag.to_string(), v.clone()]);
         }
     }
+    for (flag, on) in [("--override-units", a.units.override_units), ("--as-height", a.units.as_height)] {
+        if on {
+            common.push(flag.to_string());
+        }
+    }
     let mut model = common.clone();
-    model.extend(["--level".to_string(), a.level.clone()]);
+    // Only a level that was asked for is passed on: the model commands say "the default for files" otherwise.
+    if let Some(l) = &a.level {
+        model.extend(["--level".to_string(), l.clone()]);
+    }
+    let relief_level = a.level.clone().unwrap_or_else(|| "plane".into());
     if let Some(c) = &a.coherence {
         model.extend(["--coherence".to_string(), c.clone()]);
     }
     let s = |v: &[&str]| v.iter().map(|x| x.to_string()).collect::<Vec<String>>();
     let mut plan: Vec<(String, Vec<String>)> = Vec::new();
-    let mut info = s(&["surface", "info", &a.surface, "--level", &a.level, "--json"]);
+    let mut info = s(&["surface", "info", &a.surface, "--level", &relief_level, "--json"]);
     info.extend(common.clone());
     info.extend(s(&["--image", &file("relief.png"), "--psdf", &file("psdf.png"), "--acf", &file("acf.png")]));
     plan.push(("Levelled relief, roughness, periods, PSDF and ACF".into(), info));
@@ -126,7 +137,7 @@ pub fn run(a: ReportArgs) -> Result<()> {
     let mut steps = Vec::new();
     let mut failed: Vec<String> = Vec::new();
     for (i, (title, args)) in plan.into_iter().enumerate() {
-        pb.set_message(title.chars().take(18).collect::<String>());
+        pb.set_message(title.clone());
         match run_step(&title, args) {
             Ok(st) => steps.push(st),
             // The test bench finds no order when the periods are below the visible band: say so, go on.
@@ -156,7 +167,7 @@ pub fn run(a: ReportArgs) -> Result<()> {
     }
     let report = json!({
         "surface": a.surface,
-        "level": a.level,
+        "level": relief_level,
         "info": info,
         "testbench": bench,
         "warnings": warnings,
