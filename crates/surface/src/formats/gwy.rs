@@ -313,7 +313,9 @@ pub fn read(bytes: &[u8], side: Option<&Sidecar>, opts: &LoadOptions) -> Result<
     ));
     if top.name != "GwyDataField" {
         let choice = super::channel::ChannelChoice::new(&list, pos, opts.channel.as_ref());
-        meta.notes.push(choice.describe());
+        if list.len() > 1 {
+            meta.notes.push(choice.describe());
+        }
         meta.channel = Some(choice);
     }
     Ok(hf.with_meta(meta))

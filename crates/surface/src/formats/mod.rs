@@ -460,8 +460,10 @@ pub(crate) fn pick_pixel(
 
 /// A pixel size in nm with four significant digits (0.4940, 65.00, 1563).
 fn pixel_text(nm: f64) -> String {
-    let digits = (3 - nm.abs().log10().floor() as i32).max(0) as usize;
-    format!("{nm:.digits$}")
+    // Rounded to four significant digits first, so that 9.999999999 reads 10.00, not 10.000.
+    let r: f64 = format!("{nm:.3e}").parse().unwrap_or(nm);
+    let digits = (3 - r.abs().log10().floor() as i32).max(0) as usize;
+    format!("{r:.digits$}")
 }
 
 /// The height unit the user gave (`--height-unit`, first) or the sidecar's: (nm per unit, unit).
@@ -545,6 +547,10 @@ mod tests {
         assert_eq!(p, (50.0, 50.0));
         assert!(w.unwrap().contains("replaces the file's own 0.4940 × 0.4940 nm"));
         assert_eq!(pick_pixel(None, None, &given, "x").unwrap(), ((50.0, 50.0), None));
+        assert_eq!(
+            (pixel_text(9.999_999_999_9), pixel_text(65.0), pixel_text(1563.2)),
+            ("10.00".into(), "65.00".into(), "1563".into())
+        );
         let same = LoadOptions { pixel_size_nm: Some(0.494), ..Default::default() };
         assert_eq!(pick_pixel(file, None, &same, "x").unwrap().1, None);
     }
