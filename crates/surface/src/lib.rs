@@ -219,7 +219,7 @@ impl HeightField {
             };
             format!(
                 "patch {:.1} × {:.1} µm is smaller than the {:.1} µm coherence area: the model commands fit the \
-                 coherence to it, {cost}. Scan a larger area for sharper colours; periods read from this patch carry \
+                 coherence to it (unless given --coherence), {cost}. Scan a larger area for sharper colours; periods read from this patch carry \
                  the ± given with them",
                 ex / 1000.0,
                 ey / 1000.0,

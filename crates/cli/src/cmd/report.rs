@@ -120,6 +120,10 @@ pub fn run(a: ReportArgs) -> Result<()> {
     let mut plan: Vec<(String, Vec<String>)> = Vec::new();
     let mut info = s(&["surface", "info", &a.surface, "--level", &relief_level, "--json"]);
     info.extend(common.clone());
+    // The same coherence as the model steps, so that the surface's note about it speaks of that one.
+    if let Some(c) = &a.coherence {
+        info.extend(["--coherence".to_string(), c.clone()]);
+    }
     info.extend(s(&["--image", &file("relief.png"), "--psdf", &file("psdf.png"), "--acf", &file("acf.png")]));
     plan.push(("Levelled relief, roughness, periods, PSDF and ACF".into(), info));
     for (name, inc) in [("brdf_0deg.png", "0deg"), ("brdf_45deg.png", "45deg,0deg")] {
