@@ -27,7 +27,7 @@ pub struct SurfaceOpts {
     #[arg(long, value_parser = positive_length_nm)]
     pub max_height: Option<f64>,
     /// Channel of a multi-channel file, by index or name (`iridis surface channels FILE` lists them);
-    /// default the first height channel (.npz: the only 2-D array).
+    /// default the channel named Height, else the first height channel (.npz: the only 2-D array).
     #[arg(long)]
     pub channel: Option<iridis_surface::formats::channel::ChannelSel>,
     /// Unit of heights in files that do not give one (.npy, text, a unitless channel), e.g. m or nm.

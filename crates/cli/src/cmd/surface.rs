@@ -61,8 +61,11 @@ Examples:
 const CHANNELS_HELP: &str = "\
 Instrument files hold several images (height trace and retrace, amplitude, phase, …). Every command that
 reads a SURFACE takes --channel with the index or the name shown here (names match without regard to case
-or punctuation; NAME_DIRECTION, e.g. height_retrace, picks a direction). Without --channel the first
-height channel (a length unit, named like a height) is read. Only channels in a length unit are heights.
+or punctuation; NAME_DIRECTION, e.g. height_retrace, picks a direction). Without --channel the channel
+named Height is read (as AFMReader reads Bruker files), else the first height channel (a length unit, named
+like a height); every command says which it took. Channels in another unit, or named for another signal
+(amplitude, error, deformation, phase, …) even in metres, are not heights: --as-height reads one anyway.
+A pixel size or height unit the file states wins over --pixel-size/--height-unit unless --override-units.
 
 Examples:
   iridis surface channels scan.spm
@@ -123,7 +126,7 @@ pub struct LoadArgs {
     #[arg(long, value_parser = crate::args::positive_length_nm)]
     pub max_height: Option<f64>,
     /// Channel of a multi-channel file, by index or name (`iridis surface channels FILE` lists them);
-    /// default the first height channel (.gwy: the lowest number; .npz: the only 2-D array).
+    /// default the channel named Height, else the first height channel (.npz: the only 2-D array).
     #[arg(long)]
     pub channel: Option<iridis_surface::formats::channel::ChannelSel>,
     /// Unit of heights in files that do not give one (.npy, text, a unitless channel), e.g. m or nm.

@@ -101,9 +101,9 @@ pub struct LoadOptions {
     /// Images: the height (nm) that full white stands for; black is 0.
     pub max_height_nm: Option<f64>,
     /// Which channel: an index or a name (`iridis surface channels` lists them). Gwyddion: the channel
-    /// number (`/N/data`) or title, default the lowest; `.npz`: the index of the 2-D array in name order or
+    /// number (`/N/data`) or title; `.npz`: the index of the 2-D array in name order or
     /// its name, needed when the archive holds several; instrument files: the index in file order or the
-    /// name, default the first height channel.
+    /// name. Default: the channel named Height, else the first height channel ([`channel::pick`]).
     pub channel: Option<channel::ChannelSel>,
     /// Unit of stored heights where the file has none (`.npy`, text, a unitless channel); overrides a
     /// sidecar's `height_unit`, and a file's own unit only with `override_units`.
