@@ -342,7 +342,7 @@ impl Scene {
                     let lights = self.lights_at(h);
                     let dirs: Vec<(f64, f64)> =
                         lights.iter().map(|(wi, _, _)| (dot(h.n, *wi), relative_azimuth(h.n, *wi, wo))).collect();
-                    let (spec, diffuse) = f.rough_colors(cos, offset, &dirs).unwrap_or_default();
+                    let (spec, diffuse) = f.rough_colors_tabulated(cos, offset, &dirs).unwrap_or_default();
                     for (((_, e, _), (cos_l, _)), d) in lights.iter().zip(&dirs).zip(&diffuse) {
                         out = add(out, mul(hadamard(d.to_linear_srgb(), *e), cos_l.max(0.0) * f.factor));
                     }
