@@ -236,7 +236,8 @@ impl Scene {
     /// irradiance map, they are not shadowed: the environment is light from far away, open sky.
     fn environment_lights_at(&self, h: &Hit) -> impl Iterator<Item = (V3, Rgb, f64)> + '_ {
         let ng = h.ng;
-        let omega = 4.0 * std::f64::consts::PI / self.environment_lights.len().max(1) as f64;
+        let omega = crate::light::ENVIRONMENT_LIGHT_SPREAD * 4.0 * std::f64::consts::PI
+            / self.environment_lights.len().max(1) as f64;
         self.environment_lights.iter().filter(move |(wi, _)| dot(*wi, ng) > 0.0).map(move |&(wi, e)| (wi, e, omega))
     }
 
