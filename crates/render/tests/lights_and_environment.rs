@@ -166,14 +166,13 @@ fn a_diffraction_sphere_under_a_sky_is_not_blocky() {
     };
     // Mean |neighbour difference| (right and down), over the mean luminance.
     let jumps = |l: &[f64]| {
-        let (mut s, mut m, mut k) = (0.0, 0.0, 0);
+        let (mut s, mut m) = (0.0, 0.0);
         for r in 0..n - 1 {
             for c in 0..n - 1 {
                 if inside(c, r) && inside(c + 1, r + 1) {
                     let v = l[(r * n + c) as usize];
                     s += (l[(r * n + c + 1) as usize] - v).abs() + (l[((r + 1) * n + c) as usize] - v).abs();
                     m += v;
-                    k += 1;
                 }
             }
         }

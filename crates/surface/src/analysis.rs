@@ -66,7 +66,7 @@ pub fn period_uncertainty_nm(period_nm: f64, extent_along_nm: f64, refined: bool
 /// `value ± uncertainty` rounded to the uncertainty's first significant digit (two when it starts with a 1:
 /// `0.014` stays `0.014`), the value to the same decimal place: `1100.19 ± 0.03`, `2500 ± 40`.
 pub fn with_uncertainty(value: f64, uncertainty: f64) -> String {
-    if !(uncertainty.is_finite() && uncertainty > 0.0) || !value.is_finite() {
+    if !(uncertainty.is_finite() && uncertainty > 0.0 && value.is_finite()) {
         return format!("{value}");
     }
     let exp = uncertainty.log10().floor() as i32;
