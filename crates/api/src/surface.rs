@@ -50,7 +50,8 @@ pub fn load_patch(spec: &str, opts: &SurfaceOptions, report: &dyn Report) -> Res
     let load = opts.load_options();
     let hf = with_step(report, &format!("loading {spec}"), || iridis_surface::load_surface(spec, &load))
         .with_context(|| format!("cannot load surface {spec}"))?;
-    if let Some(c) = &hf.meta.channel {
+    // Which channel of several, why, and how to pick another (a file of one channel has nothing to choose).
+    if let Some(c) = hf.meta.channel.as_ref().filter(|c| c.of > 1) {
         report.note(&format!("{spec}: {}", c.describe()));
     }
     for w in &hf.meta.warnings {

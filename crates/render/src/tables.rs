@@ -109,7 +109,7 @@ fn surface_table(
             "{spec} is neither a lookup table (from `iridis precompute`) nor a height field iridis can read: {e}"
         ))
     })?;
-    if let Some(c) = &hf.meta.channel {
+    if let Some(c) = hf.meta.channel.as_ref().filter(|c| c.of > 1) {
         notes.push(format!("{spec}: {}", c.describe()));
     }
     notes.extend(hf.meta.warnings.iter().map(|w| format!("{spec}: {w}")));
