@@ -698,7 +698,7 @@ pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
         write_preview(&hf, &g.path(&file), &spec)?;
         let listed = peaks
             .iter()
-            .map(|p| format!("{:.0} nm at {:.1}°", p.period_nm, p.orientation_deg))
+            .map(|p| format!("{} at {:.1}°", p.period_text(), p.orientation_deg))
             .collect::<Vec<_>>()
             .join(", ");
         g.image(
@@ -708,7 +708,7 @@ pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
         for p in &peaks {
             rows.push(vec![
                 spec.clone(),
-                format!("{:.2}", p.period_nm),
+                iridis_surface::analysis::with_uncertainty(p.period_nm, p.period_uncertainty_nm),
                 format!("{:.2}", p.orientation_deg),
                 format!("{:.4}", p.power),
             ]);

@@ -101,14 +101,14 @@ pub fn read(bytes: &[u8], side: Option<&Sidecar>, opts: &LoadOptions) -> Result<
                 (Some(gk), Some((_, from))) if (gk / k - 1.0).abs() > 1e-9 => {
                     if opts.override_units {
                         warnings.push(format!(
-                            "{from} overrides the header's value unit {u}: the values are read in it \
+                            "height unit {from} overrides the header's value unit {u} \
                              (--override-units)"
                         ));
                         gk
                     } else {
                         warnings.push(format!(
-                            "{from} ignored: the header gives the values in {u}; --override-units reads them in \
-                             yours instead"
+                            "height unit {from} ignored: the header gives the values in {u}; --override-units \
+                             reads them in yours instead"
                         ));
                         given = None;
                         k
@@ -173,6 +173,24 @@ mod tests {
         let back = read(write(&hf).as_bytes(), None, &LoadOptions::default()).unwrap();
         assert_eq!(back.heights_nm, hf.heights_nm);
         assert!((back.dx_nm - hf.dx_nm).abs() < 1e-12 && (back.dy_nm - hf.dy_nm).abs() < 1e-12);
+    }
+
+    /// The header's own units win over contradicting flags unless --override-units (issue 32).
+    #[test]
+    fn the_headers_units_win_over_flags() {
+        let hf = super::super::sample_field();
+        let text = write(&hf);
+        let flags = LoadOptions { pixel_size_nm: Some(50.0), height_unit: Some("um".into()), ..Default::default() };
+        let kept = read(text.as_bytes(), None, &flags).unwrap();
+        assert_eq!(kept.heights_nm, hf.heights_nm);
+        assert!((kept.dx_nm - hf.dx_nm).abs() < 1e-12);
+        let w = kept.meta.warnings.join("\n");
+        assert!(
+            w.contains("ignored: the header gives the values in nm") && w.contains("--pixel-size 50 nm ignored"),
+            "{w}"
+        );
+        let forced = read(text.as_bytes(), None, &LoadOptions { override_units: true, ..flags }).unwrap();
+        assert_eq!((forced.dx_nm, forced.heights_nm[1]), (50.0, 1000.0 * hf.heights_nm[1]));
     }
 
     #[test]
