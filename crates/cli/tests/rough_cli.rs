@@ -220,3 +220,43 @@ fn chart_with_roughness_and_its_smooth_limit() {
         }
     }
 }
+
+/// The README's film table is what the CLI prints: its commands (the code block above the table) are run with
+/// `--json` and every row's hex colour and L\*a\*b\* (one decimal, as printed there) must match. Issue 32: the
+/// rough diffuse row kept the old, twice-too-bright `#89bcfb` after the model changed.
+#[test]
+fn the_readmes_film_table_is_what_the_cli_prints() {
+    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../README.md")).unwrap();
+    let command = |tag: &str| -> Vec<String> {
+        let line = readme
+            .lines()
+            .find(|l| l.starts_with("iridis thinfilm color") && l.trim_end().ends_with(tag))
+            .unwrap_or_else(|| panic!("no README command tagged {tag}"));
+        let cmd = line.split(" #").next().unwrap();
+        let mut w = common::json_doc::split(cmd);
+        w.remove(0);
+        w.push("--json".into());
+        w
+    };
+    let run = |tag: &str| {
+        let w = command(tag);
+        json_of(&w.iter().map(String::as_str).collect::<Vec<_>>())
+    };
+    let (smooth, rough) = (run("# smooth"), run("# rough"));
+    let rows = [
+        ("smooth", &smooth["reflected"]),
+        ("rough, specular part k_r", &rough["specular"]),
+        ("rough, diffuse part π·k_d", &rough["diffuse"]),
+    ];
+    for (name, c) in rows {
+        let row = readme
+            .lines()
+            .find(|l| l.starts_with(&format!("| {name} |")))
+            .unwrap_or_else(|| panic!("no README row '{name}'"));
+        let cells: Vec<&str> = row.split('|').map(str::trim).collect();
+        let lab: Vec<f64> = c["Lab"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+        let want_lab = lab.iter().map(|v| format!("{v:.1}").replace('-', "−")).collect::<Vec<_>>().join(", ");
+        let want_hex = format!("`{}`", c["hex"].as_str().unwrap());
+        assert_eq!((cells[2], cells[3]), (want_hex.as_str(), want_lab.as_str()), "README row '{name}'");
+    }
+}

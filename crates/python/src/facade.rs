@@ -147,6 +147,7 @@ impl<'py> Options<'py> {
             channel,
             height_unit: self.string("height_unit")?,
             level: self.string("level")?,
+            ..Default::default()
         })
     }
 

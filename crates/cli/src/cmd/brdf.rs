@@ -101,7 +101,8 @@ Renders the colour reflected towards every view direction for one light directio
 (x, y) in [-1, 1]^2 shows the view direction (x, y, sqrt(1 - x^2 - y^2)); x right, y up.
 
 Methods: ground-truth (direct windowed transform of exp(ikwh), slow: use --size 64 on big
-surfaces), reference (the thesis' FLSS shader: windowed DFT of the Taylor terms per wavelength),
+surfaces), ground-truth-periodic (the same transform of the patch's periodic extension, the exact
+answer the DFT-based methods approximate), reference (the thesis' FLSS shader: windowed DFT of the Taylor terms per wavelength),
 lookup (the paper's fast path: precomputed tables; pass a TABLE from `iridis precompute`, or a
 SURFACE to build one first), and the lab's comparison models (docs/lab.md): nmm and pq (the
 thesis' variants), stam-periodic and stam-periodic-triangular (Stam's bumps on a lattice fitted
@@ -129,7 +130,8 @@ pub struct BrdfMapArgs {
     /// A height field (file or builtin:NAME) or a lookup table from `iridis precompute`, told apart by content
     /// (a height field may be an .npz too).
     pub input: String,
-    /// ground-truth, reference, lookup, nmm, pq, stam-periodic, stam-periodic-triangular or stam-gaussian.
+    /// ground-truth, ground-truth-periodic, reference, lookup, nmm, pq, stam-periodic, stam-periodic-triangular
+    /// or stam-gaussian.
     #[arg(long, default_value = "lookup")]
     pub method: String,
     /// Light direction: polar angle θ_i[,azimuth φ_i].
@@ -508,8 +510,8 @@ pub struct BrdfEvalArgs {
     /// View direction θ[,φ] (towards the viewer).
     #[arg(long)]
     pub view: String,
-    /// ground-truth, reference, lookup, nmm, pq, stam-periodic, stam-periodic-triangular or stam-gaussian
-    /// [default: reference for a SURFACE, lookup for a TABLE].
+    /// ground-truth, ground-truth-periodic, reference, lookup, nmm, pq, stam-periodic, stam-periodic-triangular
+    /// or stam-gaussian [default: reference for a SURFACE, lookup for a TABLE].
     #[arg(long)]
     pub method: Option<String>,
     #[command(flatten)]

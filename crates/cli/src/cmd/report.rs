@@ -49,9 +49,11 @@ pub struct ReportArgs {
     /// Unit of heights in files that do not give one (m, nm, …).
     #[arg(long)]
     pub height_unit: Option<String>,
-    /// Levelling: plane (default), poly, lines, rows, mean or none.
-    #[arg(long, default_value = "plane")]
-    pub level: String,
+    /// Levelling: plane (default for files), poly, lines, rows, mean or none.
+    #[arg(long)]
+    pub level: Option<String>,
+    #[command(flatten)]
+    pub units: crate::args::UnitFlags,
     /// Size of the BRDF maps in pixels.
     #[arg(long, default_value_t = 128)]
     pub size: usize,
@@ -135,8 +137,17 @@ pub fn run(a: ReportArgs) -> Result<()> {
             common.extend([flag.to_string(), v.clone()]);
         }
     }
-    common.extend(["--level".to_string(), a.level.clone()]);
+    for (flag, on) in [("--override-units", a.units.override_units), ("--as-height", a.units.as_height)] {
+        if on {
+            common.push(flag.to_string());
+        }
+    }
+    // Only a level that was asked for is passed on: the model commands say "the default for files" otherwise.
+    if let Some(l) = &a.level {
+        common.extend(["--level".to_string(), l.clone()]);
+    }
     let mut model = common.clone();
+    let relief_level = a.level.clone().unwrap_or_else(|| "plane".into());
     if let Some(c) = &a.coherence {
         model.extend(["--coherence".to_string(), c.clone()]);
     }
@@ -150,7 +161,14 @@ pub fn run(a: ReportArgs) -> Result<()> {
         r
     };
     let mut info = s(&["surface", "info", &a.surface, "--json"]);
+    if a.level.is_none() {
+        info.extend(s(&["--level", "plane"]));
+    }
     info.extend(common.clone());
+    // The same coherence as the model steps, so that the surface's note about it speaks of that one.
+    if let Some(c) = &a.coherence {
+        info.extend(["--coherence".to_string(), c.clone()]);
+    }
     info.extend(s(&["--image", &file("relief.png"), "--psdf", &file("psdf.png"), "--acf", &file("acf.png")]));
     steps.push(step("Levelled relief, roughness, periods, PSDF and ACF", "surface", info)?);
     // The scan as one unit cell of a grating: how much of the light it diffracts, and the colour of the rest.
@@ -297,7 +315,7 @@ pub fn run(a: ReportArgs) -> Result<()> {
         .collect();
     let report = json!({
         "surface": a.surface,
-        "level": a.level,
+        "level": relief_level,
         "info": info,
         "unit_cell": unit_cell,
         "diffracts_visible_light": diffracts,
