@@ -319,6 +319,9 @@ fn rough_film_plane_shows_thinfilm_color() {
         "300nm",
         "--angle",
         "0deg",
+        // The renderer's rough films are lit by single scattering (docs/render.md): compare like with like.
+        "--diffuse-transport",
+        "single",
         "--json",
     ]);
     let xyz = |k: &str| -> [f64; 3] {
@@ -467,6 +470,8 @@ fn rough_film_oblique_view_and_light_follow_the_azimuth() {
             "25nm",
             "--correlation",
             "300nm",
+            "--diffuse-transport",
+            "single",
             "--angle",
             "30deg",
             "--light-angle",

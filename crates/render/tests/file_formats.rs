@@ -150,7 +150,7 @@ fn hdr_environment_map() {
 
 /// A diffraction material's `table` takes any SURFACE, as every command does (issue 32: `table =
 /// "../snake.gwy"` failed with "not an npz (zip) file … Could not find EOCD"): the height field is read,
-/// plane-levelled as the model commands level files, windowed with a coherence fitted to the small patch, and
+/// plane-levelled as the model commands level files, taken as one unit cell under the light's coherence, and
 /// made into a table, with notes saying so. A `.npz` holding heights (numpy's savez), not a table, too.
 #[test]
 fn a_materials_table_may_be_any_surface() {
@@ -175,10 +175,11 @@ fn a_materials_table_may_be_any_surface() {
         let Material::Diffraction(d) = &scene.materials[0] else { panic!("not diffraction") };
         let meta = &d.evaluator.as_lookup().unwrap().table.meta;
         assert_eq!((meta.rows, meta.cols, meta.uv_resolution), (32, 32, 31), "{ext}");
-        // Half the 1.6 µm patch, as `iridis precompute` fits it.
-        assert!((meta.coherence_nm - 800.0).abs() < 1e-9, "{ext}: {}", meta.coherence_nm);
+        // The light's 65 µm, as `iridis precompute` takes it: the 1.6 µm patch is one unit cell of a periodic
+        // surface, and the notes say so.
+        assert!((meta.coherence_nm - 65_000.0).abs() < 1e-9, "{ext}: {}", meta.coherence_nm);
         let notes = scene.notes.join("\n");
-        assert!(notes.contains("levelling: plane") && notes.contains("coherence 0.8 µm, fitted"), "{ext}: {notes}");
+        assert!(notes.contains("levelling: plane") && notes.contains("taken as one unit cell"), "{ext}: {notes}");
         let img = render(&scene, 8, 8, 1, &|_| {});
         assert!(img.xyz(4, 4).y.is_finite());
     }

@@ -154,8 +154,8 @@ pub fn run(a: ReportArgs) -> Result<()> {
     let s = |v: &[&str]| v.iter().map(|x| x.to_string()).collect::<Vec<String>>();
     let pb = bar(if a.no_testbench { 7 } else { 8 }, "report");
     let mut steps: Vec<Step> = Vec::new();
-    let step = |title: &str, label: &str, args: Vec<String>| -> Result<Step> {
-        pb.set_message(label.to_string());
+    let step = |title: &str, args: Vec<String>| -> Result<Step> {
+        pb.set_message(title.to_string());
         let r = run_step(title, args);
         pb.inc(1);
         r
@@ -170,14 +170,14 @@ pub fn run(a: ReportArgs) -> Result<()> {
         info.extend(["--coherence".to_string(), c.clone()]);
     }
     info.extend(s(&["--image", &file("relief.png"), "--psdf", &file("psdf.png"), "--acf", &file("acf.png")]));
-    steps.push(step("Levelled relief, roughness, periods, PSDF and ACF", "surface", info)?);
+    steps.push(step("Levelled relief, roughness, periods, PSDF and ACF", info)?);
     // The scan as one unit cell of a grating: how much of the light it diffracts, and the colour of the rest.
     let mut grating = Vec::new();
     for inc in ["0deg", "45deg"] {
         let mut g = s(&["grating", &a.surface, "--light", inc, "--from", "380nm", "--to", "780nm", "--step", "10nm"]);
         g.extend(common.clone());
         g.push("--json".into());
-        let st = step(&format!("Order efficiencies of the scan as a unit cell, light at {inc}"), "orders", g)?;
+        let st = step(&format!("Order efficiencies of the scan as a unit cell, light at {inc}"), g)?;
         grating.push(serde_json::from_str::<Value>(&st.stdout).context("grating printed no JSON")?);
         steps.push(st);
     }
@@ -220,7 +220,7 @@ pub fn run(a: ReportArgs) -> Result<()> {
             if let Some(c) = &map_coherence {
                 b.extend(["--coherence".to_string(), c.clone()]);
             }
-            steps.push(step(&format!("BRDF map under D65, light at {inc}"), "maps", b)?);
+            steps.push(step(&format!("BRDF map under D65, light at {inc}"), b)?);
             maps.push(plot);
         }
         // How an animal sees the scan's colours in each direction of the plane of its strongest period.
@@ -232,7 +232,6 @@ pub fn run(a: ReportArgs) -> Result<()> {
         }
         let st = step(
             &format!("As a {} sees it: light at normal incidence, views along the strongest period", a.visual),
-            "vision",
             v,
         )?;
         vision = serde_json::from_str(&st.stdout).ok();
@@ -244,7 +243,7 @@ pub fn run(a: ReportArgs) -> Result<()> {
         c.extend(common.clone());
         c.push("--json".into());
         let title = "The scalar model's error on this scan: rigorous (C-method) against Kirchhoff, normal incidence";
-        match step(title, "rigorous", c) {
+        match step(title, c) {
             Ok(st) => {
                 scalar_error = serde_json::from_str(&st.stdout).ok();
                 steps.push(st);
@@ -254,7 +253,7 @@ pub fn run(a: ReportArgs) -> Result<()> {
         if !a.no_testbench {
             let mut t = s(&["testbench", &a.surface, "--json", "--plot", &file("testbench.png")]);
             t.extend(model.clone());
-            match step("Test bench: the period from the grating equation (paper sec. 6.1)", "bench", t) {
+            match step("Test bench: the period from the grating equation (paper sec. 6.1)", t) {
                 Ok(st) => {
                     bench = serde_json::from_str(&st.stdout).ok();
                     steps.push(st);
@@ -338,6 +337,22 @@ pub fn run(a: ReportArgs) -> Result<()> {
         eprintln!("warning: {w}");
     }
     Ok(())
+}
+
+/// What a report figure shows, in one sentence under it.
+fn figure_caption(file: &str) -> &'static str {
+    match file {
+        "relief.png" => "The levelled heights, dark low to bright high (nm; scale bar and axes in µm).",
+        "psdf.png" => "Power spectral density of the heights: each bright spot is a period, at 1/period from the centre.",
+        "acf.png" => "Autocorrelation of the heights: its repeats are the periods, its fall-off the correlation length.",
+        "brdf_0deg_plot.png" | "brdf_45deg_plot.png" => {
+            "The colour reflected into each view direction (x = sin θr cos φr, y = sin θr sin φr; the disk is the \
+             hemisphere) under D65, exposed so that the 99th percentile of the lit pixels is white (the brightest 1 % clip)."
+        }
+        "vision.png" => "The colours of the strongest period's plane of incidence, as the animal named above sees them.",
+        "testbench.png" => "The test bench: reflected intensity against the view angle; the first order's peak gives the period.",
+        _ => "",
+    }
 }
 
 /// Above this worst relative error of an order's efficiency (unpolarised) the report warns that the scalar
@@ -528,7 +543,8 @@ fn html(r: &Value, steps: &[Step]) -> String {
             .collect();
         h += &format!("<h2>{}</h2>\n", html_escape(&st.title));
         for img in figs {
-            h += &format!("<img src=\"{img}\">\n");
+            let c = html_escape(figure_caption(img));
+            h += &format!("<figure><img src=\"{img}\" alt=\"{c}\"><figcaption>{c}</figcaption></figure>\n");
         }
         h += &format!(
             "<p><code>iridis {}</code></p>\n",
