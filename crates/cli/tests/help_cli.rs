@@ -8,13 +8,15 @@
 //! **Small sizes.** Every `builtin:NAME[?…]` is cut to a patch of at most 6 µm at no less than 1/64 of it per
 //! pixel (`size=`, `pixel=` in its query string); `surface generate` gets the same patch; map and image
 //! sizes (`--size N`, `--size WxH`, `--film-size WxH`) at most 24 pixels a side; `--frames` ≤ 2, `--spp` 1,
-//! `--terms` ≤ 6, `--uv-resolution` ≤ 31, `--map-size` ≤ 8, `--patch-sizes 64,96`, `--seconds 0.05`,
+//! `--terms` ≤ 6, `--thickness A:B:STEP` at most 25 thicknesses, `--uv-resolution` ≤ 31, `--map-size` ≤ 8,
+//! `--patch-sizes 64,96`, `--seconds 0.05`,
 //! `--aperture` ≤ the patch, `--crop` at most 32 pixels a side. Commands that build lookup tables (their
 //! `--help` lists `--uv-resolution`) get `--uv-resolution 31` when the example gives none (the default 501
 //! is most of the time; brdf-map and brdf eval, which refuse it with a finished table, then get none), and those that draw a map or image of `--size N` pixels get `--size 24` (`render`:
 //! `--size 24x18`) when it gives none. The benchmarks, whose defaults are full-size runs, get their small
 //! equivalents when absent: `bench diffraction --map-sizes 16,24`, `bench diffraction-methods --patch-sizes
-//! 64,96`, `bench diffraction-accuracy --surface` one small built-in, `thinfilm bench --seconds 0.05`.
+//! 64,96`, `bench diffraction-accuracy --surface` one small built-in, `thinfilm bench --seconds 0.05`,
+//! `bench render --scene examples/gold_sphere.toml`.
 //! Nothing else changes.
 //!
 //! **Inputs.** A file an example reads that no earlier example of its page wrote is made first: height fields
@@ -233,6 +235,8 @@ impl Takes {
             (&["bench", "diffraction-methods"][..], "--patch-sizes", "64,96"),
             (&["bench", "diffraction-accuracy"][..], "--surface", "builtin:blazed?size=6000nm&pixel=93.75nm"),
             (&["thinfilm", "bench"][..], "--seconds", "0.05"),
+            // Every example scene is 40 s of CPU at any size (their tables); examples.rs renders them all.
+            (&["bench", "render"][..], "--scene", "examples/gold_sphere.toml"),
         ] {
             if words.len() > path.len() && words[1..=path.len()] == *path && !has(&words, flag) {
                 words.extend([flag.to_string(), value.to_string()]);
@@ -302,6 +306,12 @@ fn small(words: &[String]) -> Vec<String> {
                 flag(w, value.parse::<usize>().map_or(value.clone(), |n| n.min(cap).to_string()));
             }
             "--spp" => flag(w, "1".into()),
+            // A thickness sweep A:B:STEP of a chart: at most 25 thicknesses.
+            "--thickness" if value.split(':').count() == 3 => {
+                let p: Vec<&str> = value.split(':').collect();
+                let (a, b) = (nm(p[0]), nm(p[1]));
+                flag(w, format!("{}:{}:{}nm", p[0], p[1], nm(p[2]).max((b - a) / 24.0)))
+            }
             "--patch-sizes" => flag(w, "64,96".into()),
             "--seconds" => flag(w, "0.05".into()),
             // A laser's aperture is a length; the accuracy bench's is a kind (`finite`), left alone.
