@@ -63,6 +63,6 @@ if ! python3 -m venv "$VENV" >/dev/null 2>&1; then
         exit 1
     fi
 fi
-"$VENV/bin/pip" install -q --disable-pip-version-check maturin numpy pytest tmm "dask[distributed]"
+"$VENV/bin/pip" install -q --disable-pip-version-check maturin numpy pytest tmm scipy "dask[distributed]"
 CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$PWD/target}" "$VENV/bin/pip" install -q --disable-pip-version-check ./crates/python
 (cd crates/python && "$VENV/bin/python" -m pytest -q tests)

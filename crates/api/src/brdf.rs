@@ -84,16 +84,31 @@ pub fn evaluator_for(
     let patch = source.patch(surface_opts, report)?;
     let spectral = spectral_setup(model, report)?;
     let input = source.name();
+    let conserve = |e: Box<dyn Evaluator>, spectral: SpectralSetup| -> Result<Box<dyn Evaluator>> {
+        if !model.conserve_energy {
+            return Ok(e);
+        }
+        report.note(
+            "energy-conserving lobes: each scaled by its order's factor in the energy-normalised channel matrix of \
+             the patch taken as a unit cell (docs/PHYSICS.md, \"Order efficiencies\")",
+        );
+        Ok(Box::new(iridis_diffraction::grating::EnergyNormalised::new(e, &patch, spectral)?))
+    };
     match parsed {
         Method::GroundTruth => {
             let coherence = coherence_for(&patch, model.coherence_nm, report);
             let samples = 2 * spectral.wavelengths().len() - 1;
-            Ok(Box::new(GroundTruth::new(&patch, coherence, shading, &spectral, samples)?))
+            let e = Box::new(GroundTruth::new(&patch, coherence, shading, &spectral, samples)?);
+            conserve(e, spectral)
         }
         Method::Reference => {
             let terms = Arc::new(taylor_terms(&patch, model, report)?);
-            Ok(Box::new(Reference { terms, shading, spectral }))
+            conserve(Box::new(Reference { terms, shading, spectral: spectral.clone() }), spectral)
         }
+        _ if model.conserve_energy => bail!(
+            "--conserve-energy scales each wavelength's lobes: the {method} method has none (lookup integrates over λ \
+             in advance; the lab's models have no lobes of the patch's orders); use reference or ground-truth"
+        ),
         Method::Lookup => {
             let terms = taylor_terms(&patch, model, report)?;
             let table = build_table(&terms, &spectral, params, input, report)?;
@@ -201,6 +216,39 @@ pub struct PointEval {
     pub effective_area_nm2: Option<f64>,
     /// The wavelength grid, ρ(λ) (`None` for lookup, which integrates over λ in advance) and XYZ.
     pub query: PointQuery,
+}
+
+impl PointEval {
+    /// The reflectance factor `π f_r(λ)` (unpolarised; a white diffuser's is 1), where the method gives `f_r`.
+    pub fn reflectance_factor(&self) -> Option<Vec<f64>> {
+        let b = self.query.brdf.as_ref()?;
+        Some(b.unpolarized.iter().map(|f| std::f64::consts::PI * f).collect())
+    }
+
+    /// How an animal sees this direction's light: the reflectance factor analysed by the receptor-noise-limited
+    /// model (`iridis-vision`) on the query's wavelengths.
+    pub fn vision(&self, spec: &iridis_vision::Spec) -> Result<iridis_vision::Analysis> {
+        let Some(factor) = self.reflectance_factor() else {
+            bail!("--visual needs the BRDF f_r(λ), which the {} method does not give", self.method);
+        };
+        let system = spec.system().context("--visual")?;
+        let options = spec.options(&system)?;
+        Ok(iridis_vision::analyse(&[("view".to_string(), factor)], &self.query.wavelengths_nm, &system, &options)?)
+    }
+
+    /// The spectra as a CSV pavo reads (a wavelength column, one column per quantity): the reflectance factor
+    /// `π f_r` for s, p and unpolarised light, and the relative `ρ`.
+    pub fn spectra_csv(&self) -> Result<String> {
+        let (Some(b), Some(rho)) = (&self.query.brdf, &self.query.reflectance) else {
+            bail!("--spectra needs the spectral BRDF, which the {} method does not give", self.method);
+        };
+        let pi = std::f64::consts::PI;
+        let mut out = String::from("wavelength_nm,pi_fr_s,pi_fr_p,pi_fr_unpolarized,rho_relative\n");
+        for (k, l) in self.query.wavelengths_nm.iter().enumerate() {
+            out += &format!("{l},{},{},{},{}\n", pi * b.s[k], pi * b.p[k], pi * b.unpolarized[k], rho[k]);
+        }
+        Ok(out)
+    }
 }
 
 /// ρ(λ) and XYZ of `method` (default [`default_method`]) on INPUT for light `wi` and view `wr`.

@@ -7,7 +7,8 @@ use std::sync::Arc;
 
 use anyhow::{bail, Context, Result};
 use iridis_diffraction::geometry::{dot, FresnelSource, Vec3};
-use iridis_diffraction::grating::{GratingAnswer, Lines, Normalisation, UnitCell};
+use iridis_diffraction::grating::{Efficiency, GratingAnswer, Lines, Normalisation, OrderEfficiency, UnitCell};
+use rayon::prelude::*;
 use serde_json::{json, Value};
 
 use crate::report::{with_progress, Report};
@@ -18,12 +19,16 @@ use crate::surface::{Source, SurfaceOptions};
 pub enum GratingMethod {
     /// Stam's scalar (Kirchhoff) model, the one iridis' BRDFs use (`iridis_diffraction::grating`).
     Kirchhoff,
+    /// Maxwell's equations solved by the C-method (`iridis_rigorous`, docs/rigorous.md): TE and TM apart,
+    /// reflected and transmitted orders, converged to a stated tolerance.
+    Rigorous,
 }
 
 impl GratingMethod {
     pub fn name(self) -> &'static str {
         match self {
             GratingMethod::Kirchhoff => "kirchhoff",
+            GratingMethod::Rigorous => "rigorous",
         }
     }
 }
@@ -33,7 +38,86 @@ impl std::str::FromStr for GratingMethod {
     fn from_str(s: &str) -> Result<Self> {
         match s.trim().to_ascii_lowercase().as_str() {
             "kirchhoff" | "scalar" => Ok(GratingMethod::Kirchhoff),
-            other => bail!("--method '{other}': expected kirchhoff (Stam's scalar model)"),
+            "rigorous" | "c-method" => Ok(GratingMethod::Rigorous),
+            other => bail!(
+                "--method '{other}': expected kirchhoff (Stam's scalar model) or rigorous (Maxwell's equations, the \
+                 C-method)"
+            ),
+        }
+    }
+}
+
+/// The orders at one wavelength, whichever method computed them.
+#[derive(Debug, Clone)]
+pub struct OrdersAt {
+    pub wavelength_nm: f64,
+    /// Reflected propagating orders.
+    pub orders: Vec<OrderEfficiency>,
+    pub reflected_total: Efficiency,
+    /// Transmitted propagating orders (rigorous, transparent substrate; empty otherwise).
+    pub transmitted_orders: Vec<OrderEfficiency>,
+    /// `None` for the scalar model, which has no transmitted field.
+    pub transmitted_total: Option<Efficiency>,
+    /// What the answer rests on (method-specific keys, docs/json.md).
+    pub convergence: Value,
+}
+
+impl OrdersAt {
+    /// The orders' azimuths turned by `deg` degrees (from a cell's frame back to the scan's).
+    fn rotated(mut self, deg: f64) -> Self {
+        for o in self.orders.iter_mut().chain(self.transmitted_orders.iter_mut()) {
+            if o.theta_deg > 1e-12 {
+                o.phi_deg = (o.phi_deg + deg).rem_euclid(360.0);
+            }
+        }
+        self
+    }
+
+    fn kirchhoff(a: GratingAnswer, taylor_terms: usize) -> Self {
+        let convergence = json!({"wavelength_nm": a.wavelength_nm, "taylor_terms": taylor_terms,
+            "taylor_remainder_bound": iridis_diffraction::grating::TAYLOR_EPSILON,
+            "channels": a.channels, "normalisation": a.normalisation,
+            "normalisation_residual": a.normalisation_residual, "kirchhoff_sum": a.kirchhoff_sum});
+        OrdersAt {
+            wavelength_nm: a.wavelength_nm,
+            orders: a.orders,
+            reflected_total: a.reflected_total,
+            transmitted_orders: Vec::new(),
+            transmitted_total: None,
+            convergence,
+        }
+    }
+
+    /// A rigorous solution in the scalar model's terms, rotated back by `rotation` (rad) where the profile
+    /// was taken along another axis than x.
+    fn rigorous(s: iridis_rigorous::Solution, rotation: f64, along_y: bool) -> Self {
+        let map = |o: &iridis_rigorous::Order| OrderEfficiency {
+            wavelength_nm: s.wavelength_nm,
+            m: if along_y { 0 } else { o.m as i64 },
+            n: if along_y { o.m as i64 } else { o.n as i64 },
+            theta_deg: o.theta_deg,
+            phi_deg: if o.theta_deg.abs() < 1e-12 {
+                0.0
+            } else {
+                (o.phi_deg + rotation.to_degrees()).rem_euclid(360.0)
+            },
+            efficiency: Efficiency { te: o.efficiency.te, tm: o.efficiency.tm, unpolarized: o.efficiency.unpolarized },
+        };
+        let e = |x: iridis_rigorous::Efficiency| Efficiency { te: x.te, tm: x.tm, unpolarized: x.unpolarized };
+        let mut orders: Vec<OrderEfficiency> = s.orders.iter().map(map).collect();
+        orders.sort_by_key(|o| (o.m, o.n));
+        let mut transmitted: Vec<OrderEfficiency> = s.transmitted_orders.iter().map(map).collect();
+        transmitted.sort_by_key(|o| (o.m, o.n));
+        let transparent = s.substrate_index[1] == 0.0;
+        let mut convergence = serde_json::to_value(&s.convergence).unwrap_or_default();
+        convergence["wavelength_nm"] = json!(s.wavelength_nm);
+        OrdersAt {
+            wavelength_nm: s.wavelength_nm,
+            orders,
+            reflected_total: e(s.reflected_total),
+            transmitted_orders: transmitted,
+            transmitted_total: transparent.then(|| e(s.transmitted_total)),
+            convergence,
         }
     }
 }
@@ -62,6 +146,9 @@ pub struct GratingOptions {
     pub fresnel: Option<String>,
     pub normalisation: Normalisation,
     pub detector: Option<Detector>,
+    /// Take the scan's dominant period as the unit cell, its profile averaged along the ridges, instead of
+    /// the whole patch.
+    pub unit_cell_auto: bool,
 }
 
 impl Default for GratingOptions {
@@ -74,6 +161,7 @@ impl Default for GratingOptions {
             fresnel: None,
             normalisation: Normalisation::Energy,
             detector: None,
+            unit_cell_auto: false,
         }
     }
 }
@@ -94,12 +182,31 @@ pub struct Grating {
     pub taylor_terms: usize,
     pub light: Vec3,
     pub detector: Option<Detector>,
-    pub answers: Vec<GratingAnswer>,
+    /// With `--unit-cell auto`: the period (nm) and the orientation of its grating vector (degrees from +x)
+    /// the cell was averaged along.
+    pub averaged: Option<(f64, f64)>,
+    pub answers: Vec<OrdersAt>,
+}
+
+/// A scan's dominant period as a 1-D unit cell: the heights binned by their phase `(x cos φ + y sin φ)/d mod 1`
+/// along the grating vector of the strongest period `d` (what `iridis surface info` finds) and averaged in
+/// each bin, i.e. the profile averaged along the ridges. Returns the cell (every row the same, along x), `d`
+/// and `φ` (degrees); `None` for a scan without a dominant period.
+pub fn averaged_unit_cell(patch: &iridis_diffraction::Patch) -> Option<(iridis_diffraction::Patch, f64, f64)> {
+    let peak = crate::surface::dominant_period(patch)?;
+    let d = peak.period_nm;
+    // A sample per pixel along the grating vector, at least 32 and at most 256.
+    let pixel = patch.dx.min(patch.dy);
+    let bins = ((d / pixel).round() as usize).clamp(32, 256);
+    let row = crate::unit_cell::averaged_profile(patch, d, peak.orientation_deg, bins);
+    let heights: Vec<f64> = row.iter().chain(&row).copied().collect();
+    let cell = iridis_diffraction::Patch::from_row_major(2, bins, d / bins as f64, d / bins as f64, &heights).ok()?;
+    Some((cell, d, peak.orientation_deg))
 }
 
 /// The Fresnel source of a material written as a stack's medium, exact per polarisation at every wavelength
 /// of `[from, to]` (refused, naming the range the data have, where they do not cover it).
-pub fn material_fresnel(medium: &str, from_nm: f64, to_nm: f64) -> Result<Arc<dyn FresnelSource>> {
+pub fn material_fresnel(medium: &str, from_nm: f64, to_nm: f64) -> Result<Arc<iridis_lab::laser::MetalFresnel>> {
     let stack: iridis_thinfilm::Stack =
         format!("air | {medium}").parse().with_context(|| format!("--material '{medium}'"))?;
     let m = stack.substrate;
@@ -134,8 +241,13 @@ pub fn grating(
         }
     }
     let (from, to) = w.iter().fold((f64::INFINITY, 0.0f64), |(a, b), &l| (a.min(l), b.max(l)));
+    let mut substrate = None;
     let (fresnel, reflector): (Arc<dyn FresnelSource>, String) = match (&opts.material, &opts.fresnel) {
         (Some(_), Some(_)) => bail!("give --material or --fresnel, not both"),
+        (None, Some(_)) if opts.method == GratingMethod::Rigorous => bail!(
+            "the rigorous method needs the material under the relief (--material gold, n=1.5, n=0.2+3.4i, …), \
+             not a Fresnel approximation"
+        ),
         (None, Some(f)) => {
             let f = crate::fresnel::parse_fresnel_source(f)?;
             let d = f.describe();
@@ -143,14 +255,33 @@ pub fn grating(
         }
         (m, None) => {
             let medium = m.as_deref().unwrap_or("n=1.5");
-            (material_fresnel(medium, from, to)?, format!("{medium} (exact Fresnel, s and p)"))
+            let metal = material_fresnel(medium, from, to)?;
+            substrate = Some(metal.clone());
+            (metal, format!("{medium} (exact Fresnel, s and p)"))
         }
     };
-    let patch = source.patch(surface, report)?;
+    let mut patch = source.patch(surface, report)?;
+    let mut averaged = None;
+    // The light in the cell's frame: an averaged cell runs along its grating vector at φ, so rotate by −φ.
+    let mut l = l;
+    if opts.unit_cell_auto {
+        let Some((cell, d, phi)) = averaged_unit_cell(&patch) else {
+            bail!("--unit-cell auto: {} has no dominant period to take as the unit cell", source.name());
+        };
+        report.note(&format!(
+            "unit cell: the strongest period, {d:.1} nm along {phi:.1}°, its profile averaged along the ridges over \
+             the whole scan ({} samples); directions are given in the scan's frame",
+            cell.cols
+        ));
+        patch = cell;
+        averaged = Some((d, phi));
+        let (s, c) = (-phi.to_radians()).sin_cos();
+        l = [c * l[0] - s * l[1], s * l[0] + c * l[1], l[2]];
+    }
     let cell = UnitCell::new(&patch, from)?;
     let (lx, ly) = cell.periods();
     report.info(&format!(
-        "{}: one unit cell of {:.1} × {:.1} nm ({}×{} samples, {}), N = {} Taylor terms",
+        "{}: one unit cell of {:.1} × {:.1} nm ({}×{} samples, {}){}",
         source.name(),
         lx,
         ly,
@@ -161,26 +292,39 @@ pub fn grating(
             Lines::AlongY => "a 1-D grating along y: every column the same",
             Lines::Crossed => "a crossed grating",
         },
-        cell.taylor_terms()
+        if opts.method == GratingMethod::Kirchhoff {
+            format!(", N = {} Taylor terms", cell.taylor_terms())
+        } else {
+            String::new()
+        }
     ));
-    if !fresnel.polarised() {
-        report.note(&format!(
-            "{}: no polarised form, so TE and TM get the same reflectance (give --material for exact s and p)",
-            fresnel.describe()
-        ));
-    }
-    let answers = with_progress(report, w.len() as u64, "orders", |p| {
-        cell.spectrum(l, w, fresnel.as_ref(), opts.normalisation, p)
-    })?;
-    if let Some(a) = answers.iter().find(|a| a.normalisation == "energy-row") {
-        report.note(&format!(
-            "{} channels at {:.0} nm: the efficiencies are scaled so that this light's orders conserve energy \
-             (reciprocity is then approximate; the full scaling runs up to {} channels)",
-            a.channels,
-            a.wavelength_nm,
-            iridis_diffraction::grating::MAX_SINKHORN_CHANNELS
-        ));
-    }
+    let answers: Vec<OrdersAt> = match opts.method {
+        GratingMethod::Kirchhoff => {
+            if !fresnel.polarised() {
+                report.note(&format!(
+                    "{}: no polarised form, so TE and TM get the same reflectance (give --material for exact s and p)",
+                    fresnel.describe()
+                ));
+            }
+            let a = with_progress(report, w.len() as u64, "orders", |p| {
+                cell.spectrum(l, w, fresnel.as_ref(), opts.normalisation, p)
+            })?;
+            if let Some(a) = a.iter().find(|a| a.normalisation == "energy-row") {
+                report.note(&format!(
+                    "{} channels at {:.0} nm: the efficiencies are scaled so that this light's orders conserve \
+                     energy (reciprocity is then approximate; the full scaling runs up to {} channels)",
+                    a.channels,
+                    a.wavelength_nm,
+                    iridis_diffraction::grating::MAX_SINKHORN_CHANNELS
+                ));
+            }
+            a.into_iter().map(|a| OrdersAt::kirchhoff(a, cell.taylor_terms())).collect()
+        }
+        GratingMethod::Rigorous => {
+            let metal = substrate.expect("the rigorous method has a material");
+            rigorous(&patch, cell.lines(), l, w, &metal, report)?
+        }
+    };
     Ok(Grating {
         surface: source.name().to_string(),
         method: opts.method,
@@ -191,10 +335,97 @@ pub fn grating(
         polarised: fresnel.polarised(),
         normalisation: opts.normalisation,
         taylor_terms: cell.taylor_terms(),
-        light: l,
+        light: opts.light,
         detector: opts.detector,
-        answers,
+        averaged,
+        answers: match averaged {
+            Some((_, phi)) => answers.into_iter().map(|a| a.rotated(phi)).collect(),
+            None => answers,
+        },
     })
+}
+
+/// The rigorous solutions at every wavelength (in parallel), the unit cell as a 1-D profile where it is one
+/// (along x, or along y by a rotation of the light by −90°) and as a crossed grating otherwise.
+fn rigorous(
+    patch: &iridis_diffraction::Patch,
+    lines: Lines,
+    light: Vec3,
+    wavelengths_nm: &[f64],
+    metal: &iridis_lab::laser::MetalFresnel,
+    report: &dyn Report,
+) -> Result<Vec<OrdersAt>> {
+    use iridis_rigorous::{solve_1d, solve_2d, Options, Problem, Profile1d, Profile2d};
+    let theta = light[2].clamp(-1.0, 1.0).acos();
+    let phi = light[1].atan2(light[0]);
+    let (rows, cols) = (patch.rows, patch.cols);
+    let (lx, ly) = patch.extent();
+    enum Shape {
+        OneD(Profile1d, f64, bool),
+        TwoD(Profile2d),
+    }
+    let shape = match lines {
+        Lines::AlongX => {
+            Shape::OneD(Profile1d { period_nm: lx, heights_nm: patch.heights[..cols].to_vec() }, 0.0, false)
+        }
+        // Columns all the same: the profile runs along y; in the solver's frame (profile along x) the light's
+        // azimuth is φ − 90°, and its orders (m, 0) are the surface's (0, m).
+        Lines::AlongY => Shape::OneD(
+            Profile1d { period_nm: ly, heights_nm: (0..rows).map(|j| patch.heights[j * cols]).collect() },
+            std::f64::consts::FRAC_PI_2,
+            true,
+        ),
+        Lines::Crossed => {
+            if rows * cols > 64 * 64 {
+                report.note(&format!(
+                    "a crossed grating of {cols}×{rows} samples: the C-method's cost grows as (2M+1)⁶ with the orders \
+                     M it needs; a 1-D unit cell (rows all the same) is far faster"
+                ));
+            }
+            // Back to the readers' row order (row 0 at the top), as the solver takes it.
+            let heights = (0..rows).rev().flat_map(|j| patch.heights[j * cols..(j + 1) * cols].to_vec()).collect();
+            Shape::TwoD(Profile2d { period_x_nm: lx, period_y_nm: ly, rows, cols, heights_nm: heights })
+        }
+    };
+    let options = Options::default();
+    let done = std::sync::atomic::AtomicUsize::new(0);
+    let solutions = with_progress(report, wavelengths_nm.len() as u64, "rigorous orders", |p| {
+        wavelengths_nm
+            .par_iter()
+            .map(|&l| {
+                let index = metal.index(l);
+                let r = match &shape {
+                    Shape::OneD(profile, rot, along_y) => {
+                        let problem = Problem::new(l, theta, phi - rot, index);
+                        solve_1d(profile, &problem, &options).map(|s| OrdersAt::rigorous(s, *rot, *along_y))
+                    }
+                    Shape::TwoD(profile) => solve_2d(profile, &Problem::new(l, theta, phi, index), &options)
+                        .map(|s| OrdersAt::rigorous(s, 0.0, false)),
+                };
+                p(done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1);
+                r.map_err(|e| anyhow::anyhow!("the rigorous solver at {l} nm: {e}"))
+            })
+            .collect::<Result<Vec<_>>>()
+    })?;
+    let unmet: Vec<String> = solutions
+        .iter()
+        .filter(|s| s.convergence["met"] == json!(false))
+        .map(|s| {
+            format!(
+                "{:.0} nm (±{:.2e})",
+                s.wavelength_nm,
+                s.convergence["estimated_error"].as_f64().unwrap_or(f64::NAN)
+            )
+        })
+        .collect();
+    if !unmet.is_empty() {
+        report.warn(&format!(
+            "the rigorous solver reached its order limit before the tolerance at {}: the efficiencies there carry \
+             the estimated error given",
+            unmet.join(", ")
+        ));
+    }
+    Ok(solutions)
 }
 
 fn deg(r: f64) -> f64 {
@@ -251,7 +482,7 @@ impl Grating {
     }
 
     /// The reflectance a detector sees at one wavelength: the orders inside its acceptance cone (fraction).
-    pub fn detector_reflectance(&self, answer: &GratingAnswer) -> Option<f64> {
+    pub fn detector_reflectance(&self, answer: &OrdersAt) -> Option<f64> {
         let d = self.detector?;
         let cos_cone = d.acceptance_rad.cos();
         Some(
@@ -284,16 +515,20 @@ impl Grating {
                        "unpolarized": a.reflected_total.unpolarized})
             })
             .collect();
-        let convergence: Vec<Value> = self
+        let convergence: Vec<Value> = self.answers.iter().map(|a| a.convergence.clone()).collect();
+        let transmitted: Vec<Value> = self
             .answers
             .iter()
-            .map(|a| {
-                json!({"wavelength_nm": a.wavelength_nm, "taylor_terms": self.taylor_terms,
-                       "taylor_remainder_bound": iridis_diffraction::grating::TAYLOR_EPSILON,
-                       "channels": a.channels, "normalisation": a.normalisation,
-                       "normalisation_residual": a.normalisation_residual,
-                       "kirchhoff_sum": a.kirchhoff_sum})
+            .filter_map(|a| {
+                a.transmitted_total.map(
+                    |t| json!({"wavelength_nm": a.wavelength_nm, "te": t.te, "tm": t.tm, "unpolarized": t.unpolarized}),
+                )
             })
+            .collect();
+        let transmitted_orders: Vec<Value> = self
+            .answers
+            .iter()
+            .flat_map(|a| a.transmitted_orders.iter().map(|o| serde_json::to_value(o).unwrap_or_default()))
             .collect();
         let detector = self.detector.map(|d| {
             let (t, p) = (d.direction[2].clamp(-1.0, 1.0).acos(), d.direction[1].atan2(d.direction[0]));
@@ -308,19 +543,30 @@ impl Grating {
         json!({
             "surface": self.surface,
             "method": self.method.name(),
-            "unit_cell": {"period_x_nm": self.periods_nm.0, "period_y_nm": self.periods_nm.1,
+            "unit_cell": {"period_x_nm": if self.lines == Lines::AlongY { Value::Null } else { json!(self.periods_nm.0) },
+                          "period_y_nm": if self.lines == Lines::AlongX { Value::Null } else { json!(self.periods_nm.1) },
                           "samples": [self.samples.0, self.samples.1],
-                          "kind": match self.lines { Lines::AlongX => "1-D along x", Lines::AlongY => "1-D along y",
-                                                     Lines::Crossed => "crossed" }},
+                          "kind": match (self.averaged, self.lines) {
+                              (Some(_), _) => "1-D, the scan's dominant period averaged along its ridges",
+                              (None, Lines::AlongX) => "1-D along x", (None, Lines::AlongY) => "1-D along y",
+                              (None, Lines::Crossed) => "crossed" },
+                          "orientation_deg": self.averaged.map_or(Value::Null, |(_, phi)| json!(phi))},
             "light": {"theta_deg": deg(l[2].clamp(-1.0, 1.0).acos()), "phi_deg": deg(l[1].atan2(l[0])), "direction": l},
             "reflector": self.reflector,
             "polarised": self.polarised,
-            "polarisation": "TE = s, TM = p, with respect to the plane of the light and the order (scalar model: no conversion)",
-            "normalisation": self.normalisation.name(),
+            "polarisation": match self.method {
+                GratingMethod::Kirchhoff => "TE = s, TM = p, with respect to the plane of the light and the order (scalar model: no conversion)",
+                GratingMethod::Rigorous => "TE: the incident electric field perpendicular to the incident plane of incidence, TM: the magnetic field; each order's efficiency sums both outgoing polarisations",
+            },
+            "normalisation": match self.method {
+                GratingMethod::Kirchhoff => self.normalisation.name(),
+                GratingMethod::Rigorous => "none (Maxwell's equations conserve energy)",
+            },
             "wavelength_nm": self.answers.iter().map(|a| a.wavelength_nm).collect::<Vec<f64>>(),
             "orders": orders,
             "reflected_total": totals,
-            "transmitted_total": Value::Null,
+            "transmitted_total": if transmitted.is_empty() { Value::Null } else { Value::Array(transmitted) },
+            "transmitted_orders": transmitted_orders,
             "detector": detector,
             "colour": self.colours().map(|c| json!({
                 "illuminant": "d65", "observer": "1931",
@@ -331,6 +577,112 @@ impl Grating {
             })),
             "convergence": convergence,
             "units": "efficiencies are fractions of the incident power (1 = 100 %)",
+        })
+    }
+}
+
+/// How far the scalar model is from Maxwell's equations on one unit cell: the same orders compared wavelength
+/// by wavelength, and the colours of the light they send (issue 28: "the scalar model's error on the user's
+/// own scan").
+#[derive(Debug, Clone)]
+pub struct ScalarError {
+    /// Per order present in both (reflected), at each wavelength: (λ, m, n, scalar, rigorous).
+    pub orders: Vec<(f64, i64, i64, Efficiency, Efficiency)>,
+    /// The largest relative error of any order whose rigorous efficiency exceeds `floor`, TE, TM, unpolarised.
+    pub worst: Efficiency,
+    /// Where the worst unpolarised error is: (λ, m, n).
+    pub worst_at: Option<(f64, i64, i64)>,
+    /// The largest relative error of the total reflectance, unpolarised.
+    pub total: f64,
+    /// CIEDE2000 between the scalar and rigorous colours of the diffracted orders and of the mirror order (D65,
+    /// 380–780 nm), where the wavelengths span it.
+    pub delta_e_diffracted: Option<f64>,
+    pub delta_e_specular: Option<f64>,
+    pub floor: f64,
+}
+
+/// The efficiencies below which an order is not compared relatively (its absolute error is below `floor`).
+pub const COMPARE_FLOOR: f64 = 1e-3;
+
+/// Compares the scalar and rigorous answers of the same unit cell and light.
+pub fn scalar_error(scalar: &Grating, rigorous: &Grating) -> ScalarError {
+    let rel = |a: f64, b: f64| if b > COMPARE_FLOOR { (a - b).abs() / b } else { 0.0 };
+    let mut orders = Vec::new();
+    let mut worst = Efficiency::default();
+    let mut worst_at = None;
+    let mut total = 0.0f64;
+    for (k, r) in scalar.answers.iter().zip(&rigorous.answers) {
+        for ro in &r.orders {
+            let Some(ko) = k.orders.iter().find(|o| (o.m, o.n) == (ro.m, ro.n)) else { continue };
+            let (a, b) = (ko.efficiency, ro.efficiency);
+            worst.te = worst.te.max(rel(a.te, b.te));
+            worst.tm = worst.tm.max(rel(a.tm, b.tm));
+            let u = rel(a.unpolarized, b.unpolarized);
+            if u > worst.unpolarized {
+                worst.unpolarized = u;
+                worst_at = Some((r.wavelength_nm, ro.m, ro.n));
+            }
+            orders.push((r.wavelength_nm, ro.m, ro.n, a, b));
+        }
+        total = total.max(rel(k.reflected_total.unpolarized, r.reflected_total.unpolarized));
+    }
+    let de = |f: fn(&GratingColours) -> iridis_color::Xyz| {
+        let (a, b) = (scalar.colours()?, rigorous.colours()?);
+        Some(iridis_color::lab::delta_e_2000(
+            iridis_color::Lab::from_xyz(f(&a), a.white),
+            iridis_color::Lab::from_xyz(f(&b), b.white),
+        ))
+    };
+    ScalarError {
+        orders,
+        worst,
+        worst_at,
+        total,
+        delta_e_diffracted: de(|c| c.diffracted),
+        delta_e_specular: de(|c| c.specular),
+        floor: COMPARE_FLOOR,
+    }
+}
+
+impl ScalarError {
+    /// What `iridis grating --compare --json` prints (keys in docs/json.md).
+    pub fn to_json(&self, scalar: &Grating, rigorous: &Grating) -> Value {
+        let e = |x: Efficiency| json!({"te": x.te, "tm": x.tm, "unpolarized": x.unpolarized});
+        let rel = |a: f64, b: f64| if b > self.floor { Some((a - b) / b) } else { None };
+        let orders: Vec<Value> = self
+            .orders
+            .iter()
+            .map(|&(l, m, n, a, b)| {
+                json!({"wavelength_nm": l, "m": m, "n": n, "kirchhoff": e(a), "rigorous": e(b),
+                       "relative_error": {"te": rel(a.te, b.te), "tm": rel(a.tm, b.tm),
+                                          "unpolarized": rel(a.unpolarized, b.unpolarized)}})
+            })
+            .collect();
+        let totals: Vec<Value> = scalar
+            .answers
+            .iter()
+            .zip(&rigorous.answers)
+            .map(|(k, r)| {
+                json!({"wavelength_nm": k.wavelength_nm, "kirchhoff": e(k.reflected_total),
+                       "rigorous": e(r.reflected_total)})
+            })
+            .collect();
+        json!({
+            "surface": scalar.surface,
+            "unit_cell": {"period_x_nm": scalar.periods_nm.0, "period_y_nm": scalar.periods_nm.1},
+            "light": {"theta_deg": deg(scalar.light[2].clamp(-1.0, 1.0).acos()),
+                      "phi_deg": deg(scalar.light[1].atan2(scalar.light[0]))},
+            "reflector": rigorous.reflector,
+            "wavelength_nm": scalar.answers.iter().map(|a| a.wavelength_nm).collect::<Vec<f64>>(),
+            "orders": orders,
+            "reflected_total": totals,
+            "worst_relative_error": e(self.worst),
+            "worst_at": self.worst_at.map(|(l, m, n)| json!({"wavelength_nm": l, "m": m, "n": n})),
+            "total_relative_error": self.total,
+            "delta_e00_diffracted": self.delta_e_diffracted,
+            "delta_e00_specular": self.delta_e_specular,
+            "efficiency_floor": self.floor,
+            "rigorous_converged": rigorous.answers.iter().all(|a| a.convergence["met"] == json!(true)),
         })
     }
 }

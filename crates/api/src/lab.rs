@@ -331,7 +331,13 @@ pub fn comparison(
     }
     let mut c = Comparison { rows: Vec::new(), images: Vec::new(), truths, extension: Vec::new() };
     for &m in methods {
-        let e = evaluator(b, m, report)?;
+        // A lookup table only where the map reads it: the same colours, at the map's cost, not the table's.
+        let e = match m {
+            Method::Lookup => with_progress(report, b.config.table.uv_resolution as u64, "lookup tables", |p| {
+                b.lookup_for(pixels, p)
+            })?,
+            _ => evaluator(b, m, report)?,
+        };
         let img = render_on_bench(b, e.as_ref(), pixels, m.name(), report)?;
         let t = against.unwrap_or(m.model_truth());
         let one = [(m.name().to_string(), img)];

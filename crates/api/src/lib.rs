@@ -34,6 +34,7 @@ pub mod report;
 pub mod rough;
 pub mod surface;
 pub mod unit_cell;
+pub mod vision;
 
 pub use model::ModelOptions;
 pub use report::{Kind, Quiet, Report};

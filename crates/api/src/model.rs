@@ -29,11 +29,22 @@ pub struct ModelOptions {
     pub observer: Option<String>,
     /// Wavelength step of the spectral integral (nm); default 5.
     pub step_nm: Option<f64>,
+    /// Scale each lobe by its order's factor in the energy-normalised channel matrix, so that the BRDF
+    /// returns no more light than it receives (`iridis_diffraction::grating::EnergyNormalised`; reference and
+    /// ground truths).
+    pub conserve_energy: bool,
 }
 
 impl Default for ModelOptions {
     fn default() -> Self {
-        Self { terms: "auto".into(), coherence_nm: None, illuminant: None, observer: None, step_nm: None }
+        Self {
+            terms: "auto".into(),
+            coherence_nm: None,
+            illuminant: None,
+            observer: None,
+            step_nm: None,
+            conserve_energy: false,
+        }
     }
 }
 

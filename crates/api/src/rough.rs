@@ -28,9 +28,9 @@ pub struct RoughOptions {
 }
 
 impl RoughOptions {
-    /// σ and τ with the defaults (series to 1e-6, reciprocal transport).
+    /// σ and τ with the defaults of the front ends (series to 1e-6, multiple scattering inside the film).
     pub fn new(sigma_nm: f64, tau_nm: f64) -> Self {
-        Self { sigma_nm, tau_nm, d_iterations: None, transport: DiffuseTransport::default() }
+        Self { sigma_nm, tau_nm, d_iterations: None, transport: DiffuseTransport::Multiple }
     }
 
     /// The stack with this rough substrate.
@@ -60,7 +60,11 @@ pub fn series_label(d_iterations: Option<usize>) -> String {
 /// Per wavelength: the smooth model's R and the LSRS values (view and light polar angles, azimuth of the light
 /// relative to the viewer; radians).
 pub fn evaluate(rough: &RoughStack, grid: &[f64], view: f64, light: f64, azimuth: f64) -> Result<Vec<(f64, Lsrs)>> {
-    grid.iter().map(|&w| Ok((rough.stack.evaluate(w, view)?.r(), rough.evaluate(w, view, light, azimuth)?))).collect()
+    use rayon::prelude::*;
+    // In parallel: with multiple scattering each wavelength prepares its own state.
+    grid.par_iter()
+        .map(|&w| Ok((rough.stack.evaluate(w, view)?.r(), rough.evaluate(w, view, light, azimuth)?)))
+        .collect()
 }
 
 /// The colours of a rough film (`iridis thinfilm color --roughness`): the smooth film's (reflected and

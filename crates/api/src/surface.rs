@@ -22,6 +22,10 @@ pub struct SurfaceOptions {
     /// Levelling before the model: plane (default for files), poly, lines, rows, mean or none (built-ins are
     /// used as generated unless this is given).
     pub level: Option<String>,
+    /// Let `pixel_size_nm` and `height_unit` replace what the file itself states (`--override-units`).
+    pub override_units: bool,
+    /// Read a channel that is not a height as heights (`--as-height`).
+    pub as_height: bool,
 }
 
 impl SurfaceOptions {
@@ -32,6 +36,8 @@ impl SurfaceOptions {
             max_height_nm: self.max_height_nm,
             channel: self.channel.clone(),
             height_unit: self.height_unit.clone(),
+            override_units: self.override_units,
+            as_height: self.as_height,
             ..Default::default()
         }
     }
@@ -44,6 +50,10 @@ pub fn load_patch(spec: &str, opts: &SurfaceOptions, report: &dyn Report) -> Res
     let load = opts.load_options();
     let hf = with_step(report, &format!("loading {spec}"), || iridis_surface::load_surface(spec, &load))
         .with_context(|| format!("cannot load surface {spec}"))?;
+    // Which channel of several, why, and how to pick another (a file of one channel has nothing to choose).
+    if let Some(c) = hf.meta.channel.as_ref().filter(|c| c.of > 1) {
+        report.note(&format!("{spec}: {}", c.describe()));
+    }
     for w in &hf.meta.warnings {
         report.warn(&format!("{spec}: {w}"));
     }
@@ -100,6 +110,8 @@ pub fn info(hf: &iridis_surface::HeightField, n_peaks: usize, coherence_nm: f64)
     );
     let mut warnings = hf.meta.warnings.clone();
     warnings.extend(hf.physics_warnings(coherence_nm));
+    let mut notes = hf.meta.notes.clone();
+    notes.extend(hf.coherence_note(coherence_nm));
     let levelled = iridis_surface::prep::level_plane(hf);
     let rough = iridis_surface::stats::roughness(&levelled);
     let psdf = iridis_surface::stats::radial_of(&iridis_surface::stats::psdf(&levelled));
@@ -116,6 +128,8 @@ pub fn info(hf: &iridis_surface::HeightField, n_peaks: usize, coherence_nm: f64)
         "mean_nm": hf.mean(),
         "rms_nm": hf.rms(),
         "z_unit_in_file": hf.meta.z_unit,
+        // Which channel of a multi-channel file was read, why, and the file's height channels; null otherwise.
+        "channel": hf.meta.channel,
         "peaks": peaks,
         "roughness": {
             "levelling": "plane",
@@ -130,7 +144,7 @@ pub fn info(hf: &iridis_surface::HeightField, n_peaks: usize, coherence_nm: f64)
         // against lag), bin k at k × step.
         "psdf_radial": {"levelling": "plane", "frequency_step_per_nm": psdf.step, "values_nm4": psdf.values},
         "acf_radial": {"levelling": "plane", "lag_step_nm": acf.step, "values_nm2": acf.values},
-        "notes": hf.meta.notes,
+        "notes": notes,
         "warnings": warnings,
     })
 }

@@ -48,7 +48,7 @@ pub struct SurfaceOpts {
     #[arg(long, value_parser = positive_length_nm)]
     pub max_height: Option<f64>,
     /// Channel of a multi-channel file, by index or name (`iridis surface channels FILE` lists them);
-    /// default the first height channel (.npz: the only 2-D array).
+    /// default the channel named Height, else the first height channel (.npz: the only 2-D array).
     #[arg(long)]
     pub channel: Option<iridis_surface::formats::channel::ChannelSel>,
     /// Unit of heights in files that do not give one (.npy, text, a unitless channel), e.g. m or nm.
@@ -58,6 +58,8 @@ pub struct SurfaceOpts {
     /// mean or none (built-ins are used as generated unless this is given).
     #[arg(long)]
     pub level: Option<String>,
+    #[command(flatten)]
+    pub units: UnitFlags,
 }
 
 impl SurfaceOpts {
@@ -69,6 +71,21 @@ impl SurfaceOpts {
             channel: self.channel.clone(),
             height_unit: self.height_unit.clone(),
             level: self.level.clone(),
+            override_units: self.units.override_units,
+            as_height: self.units.as_height,
         }
     }
+}
+
+/// What a SURFACE's own metadata may be overruled by, flattened into every command that reads one.
+#[derive(Debug, Clone, Copy, Default, clap::Args)]
+pub struct UnitFlags {
+    /// Let --pixel-size and --height-unit replace the pixel size and height unit an instrument file states
+    /// itself (without it the file's win, and a warning names both).
+    #[arg(long)]
+    pub override_units: bool,
+    /// Read a channel that is not a height (an amplitude, error, phase or deformation channel, or one whose
+    /// unit is not a length; `iridis surface channels FILE` marks them) as heights anyway.
+    #[arg(long)]
+    pub as_height: bool,
 }

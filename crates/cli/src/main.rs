@@ -23,8 +23,10 @@ Examples:
   iridis color xyz data/examples/colorchecker_green.csv --json
   iridis vision data/examples/vision_spectra.csv --visual bluetit
 
-SURFACE arguments take a file (.gwy, .npy, PNG/TIFF, text) or a built-in, one of
-builtin:blazed|sine|cd|elaphe|xenopeltis|gaussian. Lengths and angles carry units: 65nm, 0.43um, 65µm, 75deg.")]
+SURFACE arguments take a file — AFM instrument files (Bruker .spm/.000, Asylum .ibw, JPK .jpk, WSxM .stp/.top,
+Nanonis .sxm, Gwyddion .gwy/.gsf; --channel NAME|N, `iridis surface channels FILE`), numpy .npy/.npz, PNG/TIFF,
+text — or a built-in, one of builtin:blazed|sine|cd|elaphe|xenopeltis|gaussian (iridis surface --help). Lengths
+and angles carry units: 65nm, 0.43um, 65µm, 75deg.")]
 struct Cli {
     #[command(subcommand)]
     command: Command,

@@ -582,3 +582,35 @@ fn the_rules_do_what_they_say() {
     );
     assert_eq!(inputs(&s(&["iridis", "surface", "convert", "a.gwy", "b.npy", "--image", "c.png"])), s(&["a.gwy"]));
 }
+
+/// The help pages name every choice there is (issue 32: `brdf eval` and `brdf-map` did not list
+/// ground-truth-periodic; the top level listed SURFACE as ".gwy, .npy, PNG/TIFF, text"). The methods are the
+/// ones the parser itself lists when given an unknown one.
+#[test]
+fn help_lists_every_method_and_every_surface_format() {
+    let out = Command::new(env!("CARGO_BIN_EXE_iridis"))
+        .args(["brdf", "eval", "builtin:sine?size=2um&pixel=50nm", "--light", "0deg", "--view", "0deg"])
+        .args(["--method", "no-such-method"])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    let methods: Vec<&str> = err
+        .split("expected one of: ")
+        .nth(1)
+        .unwrap_or_else(|| panic!("no method list in: {err}"))
+        .split(',')
+        .map(|m| m.trim().trim_end_matches(|c: char| !c.is_alphanumeric()))
+        .collect();
+    assert!(methods.contains(&"ground-truth-periodic") && methods.len() >= 9, "{methods:?}");
+    for page in [vec!["brdf-map".to_string()], vec!["brdf".to_string(), "eval".to_string()]] {
+        let help = help_page(&page, 1000);
+        for m in &methods {
+            assert!(help.contains(m), "`iridis {} --help` does not list {m}", page.join(" "));
+        }
+    }
+    let top = help_page(&[], 1000);
+    let surface_line = top.split("SURFACE arguments").nth(1).expect("top-level help speaks of SURFACE");
+    for ext in [".spm", ".ibw", ".jpk", ".stp", ".sxm", ".gwy", ".gsf", ".npy", ".npz", "PNG", "TIFF", "text"] {
+        assert!(surface_line.contains(ext), "top-level --help: SURFACE without {ext}");
+    }
+}

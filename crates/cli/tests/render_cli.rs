@@ -425,7 +425,9 @@ fn vanishing_roughness_renders_the_smooth_film() {
     let (tiny_mean, tiny_max) = compare(&imgs[0], &imgs[1]);
     let (rough_mean, _) = compare(&imgs[0], &imgs[2]);
     eprintln!("σ = 0.01 nm vs smooth: mean ΔE00 {tiny_mean:.2e}, max {tiny_max:.2e}; σ = 20 nm: mean {rough_mean:.2}");
-    assert!(tiny_max < 0.05, "σ → 0 must give the smooth film (max ΔE00 {tiny_max})");
+    // The rough film shades from colour tables on 3° nodes (as on the GPU): 0.07 at most near the rim,
+    // where the smooth film's R changes fastest, against 14 for σ = 20 nm.
+    assert!(tiny_mean < 0.02 && tiny_max < 0.1, "σ → 0 must give the smooth film (max ΔE00 {tiny_max})");
     assert!(rough_mean > 1.0, "σ = 20 nm must change the picture (mean ΔE00 {rough_mean})");
 }
 
@@ -487,9 +489,12 @@ fn rough_film_oblique_view_and_light_follow_the_azimuth() {
     let worst = px.iter().map(|p| delta_e_rgb(*p, want_rgb)).fold(0.0, f64::max);
     let got = Xyz::from_linear_srgb(px[0]).to_array();
     eprintln!("oblique rough plane: largest ΔE00 {worst:.2e}; XYZ {got:?} vs {want:?}");
-    assert!(worst < 0.01, "largest ΔE00 {worst}");
+    // The renderer shades rough films from colour tables (3° in θ, 10° in azimuth, as the GPU): exact at the
+    // nodes (θ_v = 30° and the azimuth 150° are nodes), linear between 39° and 42° in θ_l: ΔE00 0.029 and
+    // 5e-4 relative measured (within 0.01 and 2e-4 with the direct evaluation per hit, before issue 32).
+    assert!(worst < 0.05, "largest ΔE00 {worst}");
     for k in 0..3 {
-        assert!((got[k] - want[k]).abs() / want[k].abs().max(1e-3) < 2e-4, "{got:?} vs {want:?}");
+        assert!((got[k] - want[k]).abs() / want[k].abs().max(1e-3) < 1e-3, "{got:?} vs {want:?}");
     }
 }
 

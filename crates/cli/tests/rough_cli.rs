@@ -174,7 +174,10 @@ fn chart_csv(extra: &[&str], name: &str) -> Vec<Vec<String>> {
     let dir = std::env::temp_dir().join(format!("iridis-rough-chart-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let (png, csv) = (dir.join(format!("{name}.png")), dir.join(format!("{name}.csv")));
-    let mut args = vec!["thinfilm", "chart", "--stack", "air | water {d} | Si", "--thickness", "0nm:600nm:20nm"];
+    let mut args = vec!["thinfilm", "chart", "--stack", "air | water {d} | Si"];
+    if !extra.contains(&"--thickness") {
+        args.extend(["--thickness", "0nm:600nm:20nm"]);
+    }
     args.extend(["-o", png.to_str().unwrap(), "--csv", csv.to_str().unwrap()]);
     args.extend(extra);
     let out = iridis(&args);
@@ -184,14 +187,28 @@ fn chart_csv(extra: &[&str], name: &str) -> Vec<Vec<String>> {
 }
 
 /// `thinfilm chart --roughness σ --correlation τ`: the bands are the specular and the diffuse colour; as σ → 0
-/// the specular band is the smooth chart's reflected band (to 1e-9) and the diffuse band is black.
+/// the specular band is the smooth chart's reflected band (to 1e-9) and the diffuse band is black. Single
+/// scattering keeps the 31 × 81 evaluations fast (the multiple-scattering state costs ~10 ms per thickness and
+/// wavelength; its limits are tested in crates/thinfilm/src/rough_multiple.rs, and one band of it below).
 #[test]
 fn chart_with_roughness_and_its_smooth_limit() {
-    let rough = chart_csv(&["--roughness", "25nm", "--correlation", "300nm"], "rough");
+    let one = ["--roughness", "25nm", "--correlation", "300nm", "--thickness", "300nm:320nm:20nm"];
+    let multi = chart_csv(&one, "multiple");
+    let single = chart_csv(&[&one[..], &["--diffuse-transport", "single"]].concat(), "single");
+    assert_eq!(multi.len(), 1 + 2);
+    for (m, s) in multi[1..].iter().zip(&single[1..]) {
+        // The specular band does not depend on the transport; the diffuse band gains the light the film
+        // turns back (silicon absorbs most of it: a few per cent).
+        assert_eq!(m[1..5], s[1..5]);
+        let (dm, ds): (f64, f64) = (m[6].parse().unwrap(), s[6].parse().unwrap());
+        assert!(dm > 0.9 * ds && dm < 1.2 * ds, "diffuse Y {dm} vs single {ds}");
+    }
+    let rough = chart_csv(&["--roughness", "25nm", "--correlation", "300nm", "--diffuse-transport", "single"], "rough");
     assert_eq!(rough[0].join(","), "thickness_nm,S_X,S_Y,S_Z,S_hex,D_X,D_Y,D_Z,D_hex");
     assert_eq!(rough.len(), 1 + 31);
     assert!(rough[1..].iter().all(|r| r[6].parse::<f64>().unwrap() > 0.01), "a rough film scatters");
-    let limit = chart_csv(&["--roughness", "0.000001nm", "--correlation", "300nm"], "limit");
+    let limit =
+        chart_csv(&["--roughness", "0.000001nm", "--correlation", "300nm", "--diffuse-transport", "single"], "limit");
     let smooth = chart_csv(&[], "smooth");
     assert_eq!(smooth[0].join(","), "thickness_nm,R_X,R_Y,R_Z,R_hex,T_X,T_Y,T_Z,T_hex");
     for (l, s) in limit[1..].iter().zip(&smooth[1..]) {
@@ -201,5 +218,45 @@ fn chart_with_roughness_and_its_smooth_limit() {
             assert!((a - b).abs() < 1e-9, "d = {} nm: {a} vs smooth {b}", l[0]);
             assert!(l[c + 4].parse::<f64>().unwrap().abs() < 1e-12, "diffuse vanishes");
         }
+    }
+}
+
+/// The README's film table is what the CLI prints: its commands (the code block above the table) are run with
+/// `--json` and every row's hex colour and L\*a\*b\* (one decimal, as printed there) must match. Issue 32: the
+/// rough diffuse row kept the old, twice-too-bright `#89bcfb` after the model changed.
+#[test]
+fn the_readmes_film_table_is_what_the_cli_prints() {
+    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../README.md")).unwrap();
+    let command = |tag: &str| -> Vec<String> {
+        let line = readme
+            .lines()
+            .find(|l| l.starts_with("iridis thinfilm color") && l.trim_end().ends_with(tag))
+            .unwrap_or_else(|| panic!("no README command tagged {tag}"));
+        let cmd = line.split(" #").next().unwrap();
+        let mut w = common::json_doc::split(cmd);
+        w.remove(0);
+        w.push("--json".into());
+        w
+    };
+    let run = |tag: &str| {
+        let w = command(tag);
+        json_of(&w.iter().map(String::as_str).collect::<Vec<_>>())
+    };
+    let (smooth, rough) = (run("# smooth"), run("# rough"));
+    let rows = [
+        ("smooth", &smooth["reflected"]),
+        ("rough, specular part k_r", &rough["specular"]),
+        ("rough, diffuse part π·k_d", &rough["diffuse"]),
+    ];
+    for (name, c) in rows {
+        let row = readme
+            .lines()
+            .find(|l| l.starts_with(&format!("| {name} |")))
+            .unwrap_or_else(|| panic!("no README row '{name}'"));
+        let cells: Vec<&str> = row.split('|').map(str::trim).collect();
+        let lab: Vec<f64> = c["Lab"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+        let want_lab = lab.iter().map(|v| format!("{v:.1}").replace('-', "−")).collect::<Vec<_>>().join(", ");
+        let want_hex = format!("`{}`", c["hex"].as_str().unwrap());
+        assert_eq!((cells[2], cells[3]), (want_hex.as_str(), want_lab.as_str()), "README row '{name}'");
     }
 }

@@ -503,6 +503,60 @@ fn fit_recovers_the_scipy_optimum_and_refuses_bad_input() {
     assert_fails(&["thinfilm", "spectrum", "--stack", "inc:air | BK7 1mm | air"], &["semi-infinite", "column 1"]);
 }
 
+/// Issue 29: a spectrometer export (metadata lines, tab-separated, `Wavelength (nm)`, reflectance in percent,
+/// 400–1000 nm) generated from 150 nm of SiO₂ on Green's silicon with 0.1 % noise.
+#[test]
+fn fit_reads_real_files_and_names_the_material_that_does_not_cover_them() {
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/../python/tests/fixtures/measured_sio2_si.txt");
+    let stack = "air | SiO2 {d=120nm:50nm..300nm} | si-green";
+    let v = json_of(&["thinfilm", "fit", file, "--stack", stack, "--sigma", "0.1", "--json"]);
+    let (d, s) = (v["values"][0].as_f64().unwrap(), v["sigma"][0].as_f64().unwrap());
+    assert!((d - 150.0).abs() < 3.0 * s && s < 0.1, "{d} ± {s}");
+    assert!((v["reduced_chi2"].as_f64().unwrap() - 1.0).abs() < 0.35, "{v}");
+    assert_eq!(v["read"]["percent"], true);
+    let notes: Vec<&str> = v["read"]["notes"].as_array().unwrap().iter().map(|n| n.as_str().unwrap()).collect();
+    assert_eq!(notes[0], "tab-separated, header on line 3, 2 line(s) before it skipped");
+    assert!(notes.iter().any(|n| n.contains("percent (header 'Reflectance (%)')")), "{notes:?}");
+    // Aspnes' silicon ends at 826.6 nm: the error names it, its range, a material that covers the file, and
+    // the window that would fit; with that window the fit runs (and lands within 0.5 nm: another Si dataset).
+    assert_fails(
+        &["thinfilm", "fit", file, "--stack", "air | SiO2 {d=120nm:50nm..300nm} | Si"],
+        &["substrate 'si' has data for 206.6–826.6 nm only", "si-green (250–1450 nm) covers it", "--to 826.6nm"],
+    );
+    let w = json_of(&[
+        "thinfilm",
+        "fit",
+        file,
+        "--stack",
+        "air | SiO2 {d=120nm:50nm..300nm} | Si",
+        "--to",
+        "826nm",
+        "--json",
+    ]);
+    assert!(
+        (w["values"][0].as_f64().unwrap() - 150.0).abs() < 0.5 && w["wavelength_nm"].as_array().unwrap().len() == 86
+    );
+    // The same numbers as a headerless comma file in fractions, columns chosen by number.
+    let dir = temp_dir();
+    let plain = dir.join("plain.csv");
+    let text = std::fs::read_to_string(file).unwrap();
+    let rows: Vec<String> = text
+        .lines()
+        .skip(3)
+        .map(|l| {
+            let (a, b) = l.split_once('\t').unwrap();
+            format!("{a},0,{}", b.parse::<f64>().unwrap() / 100.0)
+        })
+        .collect();
+    std::fs::write(&plain, rows.join("\n")).unwrap();
+    let p = plain.to_str().unwrap();
+    let x = json_of(&["thinfilm", "fit", p, "--stack", stack, "--columns", "1,3", "--sigma", "0.001", "--json"]);
+    assert!((x["values"][0].as_f64().unwrap() - d).abs() < 1e-6, "{x}");
+    assert_eq!(x["read"]["percent"], false);
+    assert_fails(&["thinfilm", "fit", p, "--stack", stack, "--columns", "1"], &["give 2 columns"]);
+    assert_fails(&["thinfilm", "fit", p, "--stack", stack, "--from", "1200nm"], &["no wavelength of the file"]);
+}
+
 #[test]
 fn fit_weights_are_inverse_variances() {
     // --weights w (w = 1/σ²) as a number, a column of the CSV and a separate file: the same fit as --sigma.

@@ -135,6 +135,45 @@ pub struct GratingAnswer {
     pub kirchhoff_sum: f64,
 }
 
+/// One row of a unit cell's channel matrix (light from one direction at one wavelength) with its
+/// normalisation: what [`UnitCell::efficiencies`] turns into orders, and what makes a continuous evaluator's
+/// lobes energy-conserving ([`EnergyNormalised`]).
+#[derive(Debug, Clone)]
+pub struct ChannelRow {
+    pub wavelength_nm: f64,
+    wi: Vec3,
+    gx: f64,
+    gy: f64,
+    channels: Vec<(i64, i64)>,
+    xy: Vec<[f64; 2]>,
+    cos: Vec<f64>,
+    /// Kirchhoff's `K|c|²` towards each exit channel (a perfect reflector's raw efficiencies).
+    pub raw: Vec<f64>,
+    /// The normalisation's factor of each entry: `η = raw · factor` (before the Fresnel factor).
+    pub factor: Vec<f64>,
+    pub applied: &'static str,
+    pub residual: f64,
+    pub kirchhoff_sum: f64,
+}
+
+impl ChannelRow {
+    /// The normalisation factor of the channel nearest the exit direction `wr` (a lobe's continuous
+    /// directions take the factor of the order they surround); 1 where no propagating channel is near.
+    pub fn factor_towards(&self, wr: Vec3) -> f64 {
+        // Exit channel h leaves along −(ω_i,xy + h·g).
+        let m = ((-wr[0] - self.wi[0]) / self.gx).round() as i64;
+        let n = if self.gy.is_finite() && self.gy > 0.0 { ((-wr[1] - self.wi[1]) / self.gy).round() as i64 } else { 0 };
+        match self.channels.binary_search_by(|&(cm, cn)| (cm, cn).cmp(&(m, n))) {
+            Ok(b) => self.factor[b],
+            // A 1-D cell's channels keep n = 0 only.
+            Err(_) => match self.channels.binary_search_by(|&(cm, cn)| (cm, cn).cmp(&(m, 0))) {
+                Ok(b) => self.factor[b],
+                Err(_) => 1.0,
+            },
+        }
+    }
+}
+
 /// Which axes of the unit cell carry structure.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Lines {
@@ -228,15 +267,14 @@ impl UnitCell {
         out
     }
 
-    /// The efficiencies of every propagating order for light from `wi` (unit vector, `wi[2] > 0`) at one
-    /// wavelength, the Fresnel reflectance from `fresnel` at the half-vector angle.
-    pub fn efficiencies(
+    /// The channel matrix's row of light from `wi` (unit vector, `wi[2] > 0`) at one wavelength: Kirchhoff's
+    /// `K|c|²` towards every propagating channel and the factors `normalisation` multiplies them by.
+    pub fn row(
         &self,
         wi: Vec3,
         wavelength_nm: f64,
-        fresnel: &dyn FresnelSource,
         normalisation: Normalisation,
-    ) -> Result<GratingAnswer, DiffractionError> {
+    ) -> Result<ChannelRow, DiffractionError> {
         let len = dot(wi, wi).sqrt();
         if !(wi.iter().all(|v| v.is_finite()) && (len - 1.0).abs() < 1e-9 && wi[2] > 0.0) {
             return Err(DiffractionError::Invalid(format!(
@@ -265,21 +303,33 @@ impl UnitCell {
             obliquity * self.coefficient(m, n, -k * (ca + cb)).norm_sqr()
         };
         let p = channels.len();
-        let row: Vec<f64> = (0..p).map(|b| entry(here, b)).collect();
-        let kirchhoff_sum: f64 = row.iter().sum();
-        let (weights, applied, residual): (Vec<f64>, &'static str, f64) = match normalisation {
-            Normalisation::Kirchhoff => (row, "kirchhoff", 0.0),
-            Normalisation::Energy if p > MAX_SINKHORN_CHANNELS => {
-                let w = row.iter().map(|v| v / kirchhoff_sum).collect();
-                (w, "energy-row", 0.0)
-            }
+        let raw: Vec<f64> = (0..p).map(|b| entry(here, b)).collect();
+        let kirchhoff_sum: f64 = raw.iter().sum();
+        let (factor, applied, residual): (Vec<f64>, &'static str, f64) = match normalisation {
+            Normalisation::Kirchhoff => (vec![1.0; p], "kirchhoff", 0.0),
+            Normalisation::Energy if p > MAX_SINKHORN_CHANNELS => (vec![1.0 / kirchhoff_sum; p], "energy-row", 0.0),
             Normalisation::Energy => {
                 let matrix: Vec<f64> = (0..p * p).into_par_iter().map(|i| entry(i / p, i % p)).collect::<Vec<f64>>();
                 let (r, s, residual) = sinkhorn(&matrix, p);
-                let w = (0..p).map(|b| r[here] * matrix[here * p + b] * s[b]).collect();
-                (w, "energy", residual)
+                ((0..p).map(|b| r[here] * s[b]).collect(), "energy", residual)
             }
         };
+        Ok(ChannelRow { wavelength_nm, wi, gx, gy, channels, xy, cos, raw, factor, applied, residual, kirchhoff_sum })
+    }
+
+    /// The efficiencies of every propagating order for light from `wi` (unit vector, `wi[2] > 0`) at one
+    /// wavelength, the Fresnel reflectance from `fresnel` at the half-vector angle.
+    pub fn efficiencies(
+        &self,
+        wi: Vec3,
+        wavelength_nm: f64,
+        fresnel: &dyn FresnelSource,
+        normalisation: Normalisation,
+    ) -> Result<GratingAnswer, DiffractionError> {
+        let row = self.row(wi, wavelength_nm, normalisation)?;
+        let ChannelRow { channels, xy, cos, raw, factor, applied, residual, kirchhoff_sum, .. } = row;
+        let p = channels.len();
+        let weights: Vec<f64> = raw.iter().zip(&factor).map(|(r, f)| r * f).collect();
         let mut orders = Vec::with_capacity(p);
         let mut total = Efficiency::default();
         for (b, &weight) in weights.iter().enumerate() {
@@ -333,6 +383,97 @@ impl UnitCell {
                 a
             })
             .collect()
+    }
+}
+
+/// A continuous evaluator (reference, ground truth) whose BRDF conserves energy: each lobe, which surrounds an
+/// order of the patch taken as a unit cell, is scaled by that order's factor in the energy-normalised channel
+/// matrix ([`UnitCell::row`] with [`Normalisation::Energy`]): the lobes of a perfect reflector then return the
+/// light within the lobe-versus-order accuracy, at every incidence, where Kirchhoff's obliquity factor as
+/// printed returned up to twice it at grazing light (docs/PHYSICS.md, "Order efficiencies"). The scaling is
+/// reciprocal where the full Sinkhorn scaling runs (up to [`MAX_SINKHORN_CHANNELS`] channels); above, each
+/// light's row alone is scaled (energy exact, reciprocity approximate). The relative `ρ` of the lookup method
+/// integrates over λ in advance and cannot take a per-λ factor; it is not wrapped.
+pub struct EnergyNormalised {
+    inner: Box<dyn crate::Evaluator>,
+    cell: UnitCell,
+    spectral: crate::SpectralSetup,
+    rows: std::sync::RwLock<std::collections::HashMap<[u64; 4], std::sync::Arc<ChannelRow>>>,
+}
+
+impl std::fmt::Debug for EnergyNormalised {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("EnergyNormalised")
+            .field("inner", &self.inner.name())
+            .field("cell", &self.cell.periods())
+            .finish()
+    }
+}
+
+impl EnergyNormalised {
+    /// Wraps `inner`, an evaluator with a spectral reflectance, of the height field `patch`; `spectral` is the
+    /// wavelength grid and colour weights its colours integrate over.
+    pub fn new(
+        inner: Box<dyn crate::Evaluator>,
+        patch: &Patch,
+        spectral: crate::SpectralSetup,
+    ) -> Result<Self, DiffractionError> {
+        let lambda_min = spectral.wavelengths().first().copied().unwrap_or(380.0);
+        if inner.reflectance(lambda_min, [0.0, 0.0, 1.0], [0.0, 0.0, 1.0]).is_none() {
+            return Err(DiffractionError::Invalid(format!(
+                "the {} method integrates over wavelength in advance: its lobes cannot take a factor per wavelength; \
+                 use reference or ground-truth for energy-normalised BRDFs",
+                inner.name()
+            )));
+        }
+        let cell = UnitCell::new(patch, lambda_min)?;
+        Ok(Self { inner, cell, spectral, rows: Default::default() })
+    }
+
+    /// The row of light from `wi` at `λ`, computed once.
+    fn row(&self, wavelength_nm: f64, wi: Vec3) -> Option<std::sync::Arc<ChannelRow>> {
+        let key = [wavelength_nm.to_bits(), wi[0].to_bits(), wi[1].to_bits(), wi[2].to_bits()];
+        if let Some(r) = self.rows.read().ok()?.get(&key) {
+            return Some(r.clone());
+        }
+        let r = std::sync::Arc::new(self.cell.row(wi, wavelength_nm, Normalisation::Energy).ok()?);
+        self.rows.write().ok()?.insert(key, r.clone());
+        Some(r)
+    }
+}
+
+impl crate::Evaluator for EnergyNormalised {
+    fn name(&self) -> &'static str {
+        self.inner.name()
+    }
+    fn reflectance(&self, wavelength_nm: f64, wi: Vec3, wr: Vec3) -> Option<f64> {
+        let rho = self.inner.reflectance(wavelength_nm, wi, wr)?;
+        if rho == 0.0 {
+            return Some(0.0);
+        }
+        Some(rho * self.row(wavelength_nm, wi).map_or(1.0, |r| r.factor_towards(wr)))
+    }
+    fn xyz(&self, wi: Vec3, wr: Vec3) -> iridis_color::Xyz {
+        if wi[2] <= 0.0 || wr[2] <= 0.0 {
+            return iridis_color::Xyz::default();
+        }
+        let mut acc = [0.0; 3];
+        for (&l, w) in self.spectral.wavelengths().iter().zip(self.spectral.weights.weights()) {
+            let rho = self.reflectance(l, wi, wr).unwrap_or(0.0);
+            for c in 0..3 {
+                acc[c] += w[c] * rho;
+            }
+        }
+        iridis_color::Xyz::new(acc[0], acc[1], acc[2])
+    }
+    fn shading(&self) -> Option<&crate::Shading> {
+        self.inner.shading()
+    }
+    fn radiometric_gain(&self, wavelength_nm: f64) -> Option<f64> {
+        self.inner.radiometric_gain(wavelength_nm)
+    }
+    fn coherence_nm(&self) -> Option<f64> {
+        self.inner.coherence_nm()
     }
 }
 
@@ -468,6 +609,55 @@ mod tests {
                 assert!((x - y).abs() < 1e-11 * x.max(1e-6), "order {} {}: {x} vs {y}", o.m, o.n);
             }
         }
+    }
+
+    /// `∬ f_r cos θ_r dω_r = ∬ f_r du dv` of a continuous evaluator for light at `wi`, one wavelength, on a
+    /// grid over the unit disk.
+    fn hemispherical(e: &dyn crate::Evaluator, wi: Vec3, lambda: f64, n: usize) -> f64 {
+        let du = 2.0 / n as f64;
+        let mut sum = 0.0;
+        for j in 0..n {
+            for i in 0..n {
+                let (x, y) = (-1.0 + (i as f64 + 0.5) * du, -1.0 + (j as f64 + 0.5) * du);
+                if x * x + y * y >= 1.0 {
+                    continue;
+                }
+                let wr = [x, y, (1.0 - x * x - y * y).sqrt()];
+                let rho = e.reflectance(lambda, wi, wr).unwrap();
+                let f = e.shading().unwrap().fresnel.normal_reflectance() * rho * e.radiometric_gain(lambda).unwrap()
+                    / wi[2];
+                sum += f * du * du;
+            }
+        }
+        sum
+    }
+
+    #[test]
+    fn energy_normalised_lobes_of_a_deep_sine_return_the_light_where_kirchhoffs_create_it() {
+        // A 150 nm-amplitude sine of period 1100 nm (4 periods, window as wide as the cell) on a near-perfect
+        // reflector, light at 75°: Kirchhoff's lobes return ~2× the light (the orders' 2.08), normalised ~1.
+        let row: Vec<f64> = (0..256).map(|i| 150.0 * (std::f64::consts::TAU * (i % 64) as f64 / 64.0).sin()).collect();
+        let heights: Vec<f64> = (0..64).flat_map(|_| row.clone()).collect();
+        let patch = Patch::from_row_major(64, 256, 4400.0 / 256.0, 4400.0 / 64.0, &heights).unwrap();
+        let terms = std::sync::Arc::new(
+            crate::TaylorTerms::compute(&patch, terms_for_bound(150.0, 500.0, 1e-8), 4400.0).unwrap(),
+        );
+        let mirror = Fresnel::Index { n: Complex64::new(1e-4, 30.0) };
+        let shading = crate::Shading { fresnel: std::sync::Arc::new(mirror), shadowing: false, ..Default::default() };
+        let spectral = crate::SpectralSetup::default();
+        let raw = crate::Reference { terms, shading, spectral: spectral.clone() };
+        let wi = direction(75f64.to_radians(), 0.0);
+        let before = hemispherical(&raw, wi, 500.0, 400);
+        let e = EnergyNormalised::new(Box::new(raw), &patch, spectral).unwrap();
+        let after = hemispherical(&e, wi, 500.0, 400);
+        eprintln!("75°, 500 nm: Kirchhoff's lobes return {before:.4}, normalised {after:.4}");
+        assert!(before > 1.5, "{before}");
+        assert!((after - 1.0).abs() < 0.03, "{after}");
+        // Reciprocity at an order's direction: light from ω_r sees ω_i in the same order (same factor product).
+        let wr = [-(wi[0] - 500.0 / 1100.0), 0.0, (1.0 - (wi[0] - 500.0 / 1100.0).powi(2)).sqrt()];
+        use crate::Evaluator;
+        let (a, b) = (e.reflectance(500.0, wi, wr).unwrap() / wi[2], e.reflectance(500.0, wr, wi).unwrap() / wr[2]);
+        assert!((a / b - 1.0).abs() < 1e-9, "{a} vs {b}");
     }
 
     #[test]

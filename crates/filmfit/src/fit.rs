@@ -282,7 +282,11 @@ pub fn fit(template: &Template, data: &Measured, opt: &FitOptions) -> Result<Fit
         evaluations: std::cell::Cell::new(0),
         used_fd: std::cell::Cell::new(false),
     };
-    // The model must evaluate at the start (e.g. every wavelength inside every material's data).
+    // Every material must have data over the measured wavelengths (the error names the one that does not),
+    // and the model must evaluate at the start.
+    let (lo, hi) =
+        data.wavelength_nm.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &w| (a.min(w), b.max(w)));
+    crate::data::check_coverage(&template.stack(&template.starts())?, lo, hi)?;
     model(template, &template.starts(), &data.wavelength_nm, opt)?;
     let candidates = starts(template, opt);
     let mut scored: Vec<(f64, Vec<f64>)> =

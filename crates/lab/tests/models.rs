@@ -334,3 +334,29 @@ fn stam_periodic_maps_show_the_same_orders_at_5nm_and_1nm() {
     let missed = ga.iter().zip(&gb).filter(|(a, b)| !**a && **b).count();
     assert!(missed > 0, "the control should show the grid-sampled test losing orders at 5 nm");
 }
+
+/// `compare`'s lookup builds its table only at the nodes the map reads (issue 32: a 64² crop spent 44 of 46 s
+/// building a 501² table): the map is bit for bit the whole table's, from a small share of its nodes.
+#[test]
+fn the_lookup_of_a_map_builds_only_the_nodes_it_reads() {
+    let (rows, cols, dx) = (32, 32, 50.0);
+    let h: Vec<f64> =
+        (0..rows * cols).map(|k| 40.0 * (std::f64::consts::TAU * (k % cols) as f64 * dx / 400.0).sin()).collect();
+    let patch = Patch::from_row_major(rows, cols, dx, dx, &h).unwrap();
+    let config = MethodConfig {
+        coherence_nm: 800.0,
+        spectral: SpectralSetup::new(Illuminant::D65, Observer::Cie1931, 20.0).unwrap(),
+        table: iridis_diffraction::table::TableParams { uv_resolution: 101, uv_power: 5.0 },
+        ..MethodConfig::default()
+    };
+    let bench = Workbench::new(patch, config, "sine").unwrap();
+    let pixels = Pixels::brdf_map(0.3, 0.4, 16);
+    let whole = render(bench.evaluator(Method::Lookup, &|_| {}).unwrap().as_ref(), &pixels, &|_| {});
+    let sparse = render(bench.lookup_for(&pixels, &|_| {}).unwrap().as_ref(), &pixels, &|_| {});
+    assert_eq!(whole, sparse);
+    assert!(whole.iter().flatten().any(|x| x.y > 1e-6), "the map shows something");
+    let dirs = pixels.samples.iter().flatten().map(|&(wi, wr, _)| (wi, wr));
+    let nodes = iridis_diffraction::table::nodes_for(bench.config.table, dirs).iter().filter(|&&n| n).count();
+    // At most four nodes per pixel, far fewer than the table's 101².
+    assert!(nodes <= 4 * pixels.len() && nodes * 10 < 101 * 101, "{nodes} nodes");
+}

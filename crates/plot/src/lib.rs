@@ -267,12 +267,12 @@ fn tick_format(span: f64) -> impl Fn(&f64) -> String {
     let decimals = if step > 0.0 && step.is_finite() { (-step.log10() - 1e-9).ceil().max(0.0) as usize } else { 1 };
     move |v: &f64| {
         let a = v.abs();
-        if a != 0.0 && !(1e-3..1e6).contains(&a) || decimals > 4 {
-            if a == 0.0 {
-                "0".to_string()
-            } else {
-                format!("{v:.1e}")
-            }
+        // A tick that is zero but for rounding (−5.6e-17 on an axis from −x to x) reads 0.
+        if a <= step * 1e-9 {
+            return "0".to_string();
+        }
+        if !(1e-3..1e6).contains(&a) || decimals > 4 {
+            format!("{v:.1e}")
         } else if a < 0.5 * 10f64.powi(-(decimals as i32)) {
             "0".to_string() // −0.000 and friends
         } else {
@@ -545,5 +545,10 @@ mod tests {
         let f = tick_format(2e-5);
         assert_eq!(f(&1.5e-5), "1.5e-5");
         assert_eq!(tick_format(1e7)(&5e6), "5.0e6");
+        // The ACF's lag axis of a 0.43 µm scan, −0.22 to 0.22 µm: plotters' tick at −0.3 + 3 × 0.1 is
+        // −5.6e-17, which is 0.
+        let f = tick_format(0.44);
+        assert_eq!((f(&(-0.3 + 3.0 * 0.1)), f(&-0.1)), ("0".to_string(), "-0.10".to_string()));
+        assert_eq!(tick_format(2e-5)(&-5.6e-17), "0");
     }
 }

@@ -90,3 +90,31 @@ pub fn scalar(name: &str, obj: &Bound<'_, PyAny>, batch_hint: &str) -> PyResult<
     }
     Err(PyTypeError::new_err(format!("{name} must be a real number, got {}", obj.get_type().name()?)))
 }
+
+/// One real or complex number (tmm's angles may be complex); an array of several gives tmm's "not
+/// vectorized" `ValueError`.
+pub fn complex_scalar(name: &str, obj: &Bound<'_, PyAny>, batch_hint: &str) -> PyResult<Complex64> {
+    // Complex first: extracting an f64 from a NumPy complex scalar calls its __float__, which drops the
+    // imaginary part (with only a ComplexWarning).
+    if let Ok(f) = obj.downcast_exact::<PyFloat>() {
+        return Ok(Complex64::new(f.value(), 0.0));
+    }
+    if obj.downcast::<numpy::PyUntypedArray>().is_err() {
+        if let Ok(x) = obj.extract::<Complex64>() {
+            return Ok(x);
+        }
+    }
+    if let Ok(a) = obj.downcast::<numpy::PyUntypedArray>() {
+        if a.len() > 1 {
+            return Err(PyValueError::new_err(format!(
+                "This function is not vectorized; you need to run one calculation at a time (1 wavelength, 1 \
+                 angle, etc.): {name} has {} values{batch_hint}",
+                a.len()
+            )));
+        }
+        if let Ok(item) = obj.call_method0("item") {
+            return complex_scalar(name, &item, batch_hint);
+        }
+    }
+    Err(PyTypeError::new_err(format!("{name} must be a number (real or complex), got {}", obj.get_type().name()?)))
+}

@@ -287,13 +287,19 @@ fn grating<'py>(
         (None, None, None) => None,
         _ => return Err(value_error("detector_phi and acceptance need detector_theta (radians)")),
     };
+    let compare = o.bool("compare")?.unwrap_or(false);
+    let unit_cell_auto = match o.string("unit_cell")?.as_deref() {
+        None | Some("whole") => false,
+        Some("auto") => true,
+        Some(other) => return Err(value_error(format!("unit_cell '{other}': expected 'whole' or 'auto'"))),
+    };
     o.finish()?;
     let source = match input_of(source)? {
         Input::Field(s) => s,
         Input::Arg(a) => Source::Spec(a),
         Input::Table(_) => return Err(value_error("grating needs the height field (the unit cell), not a table")),
     };
-    let g = run(py, |r| {
+    let value = run(py, |r| {
         let opts = GratingOptions {
             method: method.parse()?,
             light: wi,
@@ -302,10 +308,57 @@ fn grating<'py>(
             fresnel,
             normalisation: normalisation.parse()?,
             detector,
+            unit_cell_auto,
         };
-        iridis_api::grating::grating(&source, &surface, &opts, r)
+        if !compare {
+            return Ok(iridis_api::grating::grating(&source, &surface, &opts, r)?.to_json());
+        }
+        use iridis_api::grating::{grating, scalar_error, GratingMethod};
+        let k = grating(&source, &surface, &GratingOptions { method: GratingMethod::Kirchhoff, ..opts.clone() }, r)?;
+        let g = grating(&source, &surface, &GratingOptions { method: GratingMethod::Rigorous, ..opts }, r)?;
+        Ok(scalar_error(&k, &g).to_json(&k, &g))
     })?;
-    let text = serde_json::to_string(&g.to_json()).map_err(value_error)?;
+    let text = serde_json::to_string(&value).map_err(value_error)?;
+    py.import("json")?.call_method1("loads", (text,))
+}
+
+/// How an animal sees a surface from several directions, as `iridis brdf vision --json` (a dict).
+#[pyfunction]
+#[pyo3(signature = (source, visual, light_theta, views_deg, azimuth=None, illuminant=None, options=None))]
+#[allow(clippy::too_many_arguments)]
+fn brdf_vision<'py>(
+    py: Python<'py>,
+    source: &Bound<'py, PyAny>,
+    visual: String,
+    light_theta: f64,
+    views_deg: Vec<f64>,
+    azimuth: Option<f64>,
+    illuminant: Option<String>,
+    options: Option<Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let mut o = Options::new(options);
+    let eo = EvalOptions::read(&mut o)?;
+    o.finish()?;
+    let source = match input_of(source)? {
+        Input::Field(s) => s,
+        Input::Arg(a) => Source::Spec(a),
+        Input::Table(_) => return Err(value_error("vision needs the height field, not a table")),
+    };
+    let spec = iridis_vision::Spec { visual: Some(visual), illuminant, ..Default::default() };
+    let v = run(py, |r| {
+        iridis_api::vision::along_plane(
+            &source,
+            &eo.surface,
+            &eo.model,
+            eo.shading()?,
+            light_theta,
+            azimuth,
+            &views_deg,
+            &spec,
+            r,
+        )
+    })?;
+    let text = serde_json::to_string(&v.to_json()).map_err(value_error)?;
     py.import("json")?.call_method1("loads", (text,))
 }
 
@@ -315,5 +368,6 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(brdf_map_xyz, m)?)?;
     m.add_function(wrap_pyfunction!(eval_point, m)?)?;
     m.add_function(wrap_pyfunction!(grating, m)?)?;
+    m.add_function(wrap_pyfunction!(brdf_vision, m)?)?;
     Ok(())
 }

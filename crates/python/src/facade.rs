@@ -147,6 +147,7 @@ impl<'py> Options<'py> {
             channel,
             height_unit: self.string("height_unit")?,
             level: self.string("level")?,
+            ..Default::default()
         })
     }
 
@@ -158,6 +159,7 @@ impl<'py> Options<'py> {
             illuminant: self.string("illuminant")?,
             observer: self.string("observer")?,
             step_nm: self.positive("step_nm")?,
+            conserve_energy: self.bool("conserve_energy")?.unwrap_or(false),
         })
     }
 

@@ -12,6 +12,7 @@ mod args;
 mod color;
 mod diffraction;
 mod facade;
+mod film;
 mod lab;
 mod render;
 mod surface;
@@ -25,6 +26,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     tmm::register(m)?;
     color::register(m)?;
     thinfilm::register(m)?;
+    film::register(m)?;
     surface::register(m)?;
     diffraction::register(m)?;
     render::register(m)?;

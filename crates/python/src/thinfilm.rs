@@ -21,7 +21,7 @@ use crate::facade::run;
 #[pyclass(frozen, module = "iridis._native", name = "_Stack")]
 #[derive(Debug)]
 pub struct PyStack {
-    stack: Stack,
+    pub(crate) stack: Stack,
 }
 
 fn pol(s: &str) -> PyResult<Polarization> {
@@ -73,6 +73,56 @@ impl PyStack {
         Ok(Self { stack: stack_from_lists(&n, &d, inc.as_deref()).map_err(value_error)? })
     }
 
+    /// From per-wavelength indices: `table` (media × wavelengths, complex) at `wavelengths` (nm, increasing);
+    /// `constant[j]`: medium `j` is the same at every wavelength (a constant material, not a table).
+    #[staticmethod]
+    #[pyo3(signature = (table, constant, wavelengths, thicknesses_nm, incoherent=None))]
+    fn _from_tables(
+        table: numpy::PyReadonlyArray2<'_, Complex64>,
+        constant: Vec<bool>,
+        wavelengths: PyReadonlyArray1<'_, f64>,
+        thicknesses_nm: &Bound<'_, PyAny>,
+        incoherent: Option<Vec<bool>>,
+    ) -> PyResult<Self> {
+        let (t, w) = (table.as_array(), wavelengths.as_slice()?);
+        let t_nm = real_list("thicknesses_nm", thicknesses_nm)?;
+        let media = t.nrows();
+        if media < 2 || t_nm.len() + 2 != media || constant.len() != media || t.ncols() != w.len() {
+            return Err(value_error(format!(
+                "{media} media need {} thicknesses (got {}) and one index per wavelength ({} wavelengths, {} columns)",
+                media.saturating_sub(2),
+                t_nm.len(),
+                w.len(),
+                t.ncols()
+            )));
+        }
+        let material = |j: usize| -> PyResult<iridis_thinfilm::Material> {
+            let row: Vec<Complex64> = t.row(j).to_vec();
+            if constant[j] {
+                iridis_thinfilm::Material::constant(format!("n={}", row[0]), row[0]).map_err(value_error)
+            } else {
+                iridis_thinfilm::Material::tabulated(format!("indices[{j}]"), w, &row).map_err(value_error)
+            }
+        };
+        let inc = incoherent.unwrap_or_else(|| vec![false; media - 2]);
+        if inc.len() != media - 2 {
+            return Err(value_error(format!("incoherent has {} entries for {} layers", inc.len(), media - 2)));
+        }
+        let mut layers = Vec::with_capacity(media - 2);
+        for j in 1..media - 1 {
+            let d = t_nm[j - 1];
+            if !(d.is_finite() && d >= 0.0) {
+                return Err(value_error(format!(
+                    "thicknesses_nm[{}] = {d}: a layer thickness must be finite and ≥ 0 (nm)",
+                    j - 1
+                )));
+            }
+            layers.push(iridis_thinfilm::Layer { material: material(j)?, thickness_nm: d, incoherent: inc[j - 1] });
+        }
+        let stack = Stack { incident: material(0)?, layers, substrate: material(media - 1)? };
+        Ok(Self { stack })
+    }
+
     fn __str__(&self) -> String {
         self.stack.to_string()
     }
@@ -80,6 +130,12 @@ impl PyStack {
     #[getter]
     fn layers(&self) -> usize {
         self.stack.layers.len()
+    }
+
+    /// The layers' thicknesses (nm), top first.
+    #[getter]
+    fn thicknesses(&self) -> Vec<f64> {
+        self.stack.layers.iter().map(|l| l.thickness_nm).collect()
     }
 
     /// The index of each medium (incident first) at each wavelength: shape (media, wavelengths).

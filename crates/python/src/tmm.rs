@@ -7,7 +7,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::{complex_list, real_list, scalar, value_error};
+use crate::args::{complex_list, complex_scalar, real_list, scalar, value_error};
 
 const HINT: &str = "; iridis.tmm.coh_tmm_batch takes arrays";
 
@@ -38,7 +38,7 @@ fn coh_tmm<'py>(
 ) -> PyResult<CohTmmResult> {
     let p = self::pol(pol)?;
     let (n, d, th, lam) = coherent_args(n_list, d_list, th_0, lam_vac)?;
-    let x = py.allow_threads(|| lib::coh_tmm(p, &n, &d, th, lam)).map_err(value_error)?;
+    let x = py.allow_threads(|| lib::coh_tmm_complex(p, &n, &d, th, lam)).map_err(value_error)?;
     Ok(CohTmmResult { x, pol: p, n, d, th_0: th_0.clone().unbind(), lam_vac: lam_vac.clone().unbind() })
 }
 
@@ -160,8 +160,8 @@ fn unpolarized_rt<'py>(
     let (s, p) = py
         .allow_threads(|| {
             Ok::<_, iridis_thinfilm::ThinFilmError>((
-                lib::coh_tmm(Pol::S, &n, &d, th, lam)?,
-                lib::coh_tmm(Pol::P, &n, &d, th, lam)?,
+                lib::coh_tmm_complex(Pol::S, &n, &d, th, lam)?,
+                lib::coh_tmm_complex(Pol::P, &n, &d, th, lam)?,
             ))
         })
         .map_err(value_error)?;
@@ -182,20 +182,19 @@ fn ellips<'py>(
     lam_vac: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let (n, d, th, lam) = coherent_args(n_list, d_list, th_0, lam_vac)?;
-    let (psi, delta) = py.allow_threads(|| lib::ellips(&n, &d, th, lam)).map_err(value_error)?;
+    let (psi, delta) = py.allow_threads(|| lib::ellips_complex(&n, &d, th, lam)).map_err(value_error)?;
     let out = PyDict::new(py);
     out.set_item("psi", psi)?;
     out.set_item("Delta", delta)?;
     Ok(out)
 }
 
-/// Incoherent or partly coherent stacks, as `tmm.inc_tmm` (`c_list`: `'i'` or `'c'` per medium, `'i'` at both
-/// ends). Returns `R`, `T` (tmm's meaning: the flux into the last medium), and `absorp_in_each_layer`
-/// (`[R, A_1, …, A_N, T]`, what `tmm.inc_absorp_in_each_layer` gives; `iridis.tmm.inc_absorp_in_each_layer`
-/// reads it).
+/// Incoherent or partly coherent stacks through the library's incoherent path (`iridis_thinfilm::tmm::inc_tmm`):
+/// `R`, `T` (tmm's meaning: the flux into the last medium) and `absorp_in_each_layer` (`[R, A_1, …, A_N, T]`).
+/// `iridis.tmm.inc_tmm` gives tmm's whole dictionary; the tests compare the two.
 #[pyfunction]
 #[pyo3(signature = (pol, n_list, d_list, c_list, th_0, lam_vac))]
-fn inc_tmm<'py>(
+fn _inc_tmm<'py>(
     py: Python<'py>,
     pol: &str,
     n_list: &Bound<'py, PyAny>,
@@ -259,7 +258,7 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(coh_tmm, m)?)?;
     m.add_function(wrap_pyfunction!(unpolarized_rt, m)?)?;
     m.add_function(wrap_pyfunction!(ellips, m)?)?;
-    m.add_function(wrap_pyfunction!(inc_tmm, m)?)?;
+    m.add_function(wrap_pyfunction!(_inc_tmm, m)?)?;
     m.add_function(wrap_pyfunction!(_coh_tmm_batch, m)?)?;
     Ok(())
 }
@@ -271,11 +270,11 @@ fn coherent_args(
     d_list: &Bound<'_, PyAny>,
     th_0: &Bound<'_, PyAny>,
     lam_vac: &Bound<'_, PyAny>,
-) -> PyResult<(Vec<Complex64>, Vec<f64>, f64, f64)> {
+) -> PyResult<(Vec<Complex64>, Vec<f64>, Complex64, f64)> {
     Ok((
         complex_list("n_list", n_list)?,
         real_list("d_list", d_list)?,
-        scalar("th_0", th_0, HINT)?,
+        complex_scalar("th_0", th_0, HINT)?,
         scalar("lam_vac", lam_vac, HINT)?,
     ))
 }

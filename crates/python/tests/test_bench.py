@@ -19,3 +19,5 @@ def test_bench_runs_small_and_reports_agreement_with_tmm(capsys):
     assert [r["stack"] for r in out["call_by_call"]] == ["3 layers", "10 layers"]
     tf = b["tmm_fast"]
     assert "skipped" in tf or tf["worst_abs_diff_R"] < 1e-9
+    ab = out["absorbing"]  # issue 29's absorbing stack, 2000 wavelengths at one angle
+    assert ab["points"] == 2000 and ab["worst_abs_diff_R"] < 1e-9

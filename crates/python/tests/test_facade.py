@@ -52,18 +52,20 @@ def test_rough_spectrum_equals_the_cli():
 def test_rough_film_energy_and_reciprocity():
     """Physics, independent of the CLI: the specular part plus the diffuse part over the hemisphere,
     k_r + 2π ∫ k_d cos θ sin θ dθ (light at normal incidence), stays below the incident power, and equals what
-    the library's own albedo integrator gave for this stack (docs/PHYSICS.md: 0.716 at 400 nm, σ = 25 nm,
-    τ = 300 nm); swapping view and light leaves the diffuse part unchanged (the reciprocal transport,
-    docs/rough-films.md). The specular part is not bounded by the smooth film's R: roughness damps the
-    substrate's wave, which can undo destructive interference."""
-    film = tf.Stack("air | n=2.0 80nm | n=0.2+3.4i").rough(25.0, 300.0)
+    the library's own albedo integrator gave for this stack (docs/rough-films.md, at 400 nm, σ = 25 nm,
+    τ = 300 nm: 0.716 with single scattering, 0.888 with the default multiple scattering, which returns light
+    the film turns back); swapping view and light leaves the diffuse part unchanged (docs/rough-films.md).
+    The specular part is not bounded by the smooth film's R: roughness damps the substrate's wave, which can
+    undo destructive interference."""
     steps = 180
     theta = (np.arange(steps) + 0.5) * (np.pi / 2) / steps     # midpoints over the view hemisphere
-    kd = np.array([film.spectrum([400.0], t, light_rad=0.0)["diffuse_per_sr"][0] for t in theta])
-    spec = film.spectrum([400.0], 0.0)["specular"][0]
-    total = spec + 2 * np.pi * np.sum(kd * np.cos(theta) * np.sin(theta)) * (np.pi / 2) / steps
-    assert total <= 1.0
-    assert abs(total - 0.716) < 0.005, total
+    for transport, want in (("single", 0.716), ("multiple", 0.888)):
+        film = tf.Stack("air | n=2.0 80nm | n=0.2+3.4i").rough(25.0, 300.0, diffuse_transport=transport)
+        kd = np.array([film.spectrum([400.0], t, light_rad=0.0)["diffuse_per_sr"][0] for t in theta])
+        spec = film.spectrum([400.0], 0.0)["specular"][0]
+        total = spec + 2 * np.pi * np.sum(kd * np.cos(theta) * np.sin(theta)) * (np.pi / 2) / steps
+        assert total <= 1.0
+        assert abs(total - want) < 0.005, (transport, total)
 
     film = tf.Stack("air | n=1.38 120nm | n=1.9+0.05i").rough(20.0, 400.0)
     wl = np.linspace(450, 700, 6)
@@ -83,7 +85,7 @@ def test_rough_film_bad_input():
     with pytest.raises(ValueError, match="d_iterations"):
         stack.rough(25.0, 300.0, d_iterations=2.5)
     with pytest.raises(ValueError, match="1-D"):
-        stack.rough(25.0, 300.0).spectrum(np.zeros((2, 2)))
+        stack.rough(25.0, 300.0).spectrum(np.full((2, 2), 500.0))
     with pytest.raises(TypeError, match="view_rad"):
         stack.rough(25.0, 300.0).spectrum([500.0], view_rad="30deg")
 
@@ -208,3 +210,67 @@ def test_lab_bad_input():
         lab.compare("builtin:blazed?size=20um&pixel=50nm", exposures=[-1.0])
     with pytest.raises(TypeError, match="surface must be"):
         lab.compare(3.0)
+
+
+# --- order efficiencies: iridis grating -------------------------------------------------------------------
+
+def test_grating_equals_the_cli():
+    ref = cli("grating_rigorous")
+    g = diffraction.grating("builtin:sine?size=1100nm&pixel=10nm", light=math.radians(30), wavelengths_nm=550.0,
+                            method="rigorous")
+    assert g["method"] == "rigorous" and len(g["orders"]) == len(ref["orders"])
+    for a, b in zip(g["orders"], ref["orders"]):
+        assert (a["m"], a["n"]) == (b["m"], b["n"])
+        close([a["efficiency"][k] for k in ("te", "tm")], [b["efficiency"][k] for k in ("te", "tm")], rtol=1e-12)
+    # Glass (n = 1.5, the default) is lossless: reflected + transmitted is all the light, TE and TM.
+    for pol in ("te", "tm"):
+        total = g["reflected_total"][0][pol] + g["transmitted_total"][0][pol]
+        assert abs(total - 1.0) < 1e-6, (pol, total)
+
+
+def test_grating_kirchhoff_conserves_energy_and_knows_its_colours():
+    g = diffraction.grating("builtin:sine?size=1100nm&pixel=10nm", light=math.radians(75),
+                            wavelengths_nm=np.arange(380.0, 781.0, 10.0), material="n=0.0001+30i")
+    totals = [t["unpolarized"] for t in g["reflected_total"]]
+    assert max(totals) <= 1.0 + 1e-12 and min(totals) > 0.99
+    c = g["colour"]
+    assert c["illuminant"] == "d65" and 0.0 < c["diffracted_share"] < 1.0
+    printed = diffraction.grating("builtin:sine?size=1100nm&pixel=10nm", light=math.radians(75), wavelengths_nm=500.0,
+                                  material="n=0.0001+30i", normalisation="kirchhoff")
+    assert printed["reflected_total"][0]["unpolarized"] > 1.05  # the printed obliquity creates energy
+
+
+def test_evaluate_gives_the_brdf_in_per_steradian():
+    ref = cli("brdf_eval_reference")
+    q = diffraction.evaluate("builtin:sine", light=math.radians(30), view=(math.radians(10), math.pi))
+    for k in ("s", "p", "unpolarized"):
+        close(q["brdf_per_sr"][k], ref["brdf_per_sr"][k], rtol=1e-10, atol=1e-14)
+    # f_r = R₀ ρ A_eff/λ² / cos θ_i (Schlick: s = p = unpolarised).
+    area_nm2 = q["window_effective_area_um2"] * 1e6
+    expect = 0.04 * q["reflectance"] * area_nm2 / q["wavelength_nm"] ** 2 / math.cos(math.radians(30))
+    close(q["brdf_per_sr"]["unpolarized"], expect, rtol=1e-9, atol=1e-14)
+
+
+def test_grating_bad_input():
+    with pytest.raises(ValueError, match="rigorous method needs the material"):
+        diffraction.grating("builtin:sine?size=1100nm&pixel=10nm", light=0.1, wavelengths_nm=500.0,
+                            method="rigorous", fresnel="schlick:1.5")
+    with pytest.raises(ValueError, match="--method"):
+        diffraction.grating("builtin:sine?size=1100nm&pixel=10nm", light=0.1, wavelengths_nm=500.0, method="fdtd")
+
+
+def test_grating_compare_equals_the_cli():
+    ref = cli("grating_compare")
+    c = diffraction.grating("builtin:sine?size=1100nm&pixel=10nm", light=math.radians(20),
+                            wavelengths_nm=np.arange(380.0, 781.0, 20.0), material="gold", compare=True)
+    close(c["worst_relative_error"]["unpolarized"], ref["worst_relative_error"]["unpolarized"], rtol=1e-9)
+    close(c["delta_e00_diffracted"], ref["delta_e00_diffracted"], rtol=1e-9)
+    assert len(c["orders"]) == len(ref["orders"]) and c["rigorous_converged"]
+
+
+def test_vision_along_a_plane_equals_the_cli_and_a_sine_is_symmetric():
+    v = diffraction.vision("builtin:sine?size=4.4um&pixel=50nm&period=1100nm&depth=100nm", "bluetit",
+                           views_deg=(-25, 25), azimuth=0.0)
+    a, b = (np.asarray(x["reflectance_factor"]) for x in v["views"])
+    assert np.max(np.abs(a - b)) <= 1e-9 * np.max(a)  # |c_m| = |c_-m| for a sine
+    assert v["wavelength_nm"][0] == 300.0 and v["vision"]["receptors"] == ["UVS", "SWS", "MWS", "LWS"]

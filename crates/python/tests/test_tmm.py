@@ -150,7 +150,7 @@ def test_an_existing_tmm_script_runs_unchanged():
         (lambda: itmm.coh_tmm("s", [1, 1.5], [0, np.inf], 0, 500), ValueError, "d_list must start and end with inf"),
         (lambda: itmm.coh_tmm("s", [1, 1.5, 2], [np.inf, np.inf], 0, 500), ValueError, "Problem with n_list or d_list"),
         (lambda: itmm.coh_tmm("s", [1, 1.5], [np.inf, np.inf], 2.0, 500), ValueError, "Error in n0 or th0"),
-        (lambda: itmm.coh_tmm("s", [1 + 0.1j, 1.5], [np.inf, np.inf], 0, 500), ValueError, "lossless incident"),
+        (lambda: itmm.coh_tmm("s", [1 + 0.1j, 1.5], [np.inf, np.inf], 0.3, 500), ValueError, "must be real"),
         (lambda: itmm.coh_tmm("s", [1, 1.5 - 0.1j], [np.inf, np.inf], 0, 500), ValueError, "gain"),
         (lambda: itmm.coh_tmm("s", [1, 1.5], [np.inf, np.inf], 0, -5), ValueError, "lam_vac"),
         (lambda: itmm.coh_tmm("s", [1, "glass"], [np.inf, np.inf], 0, 500), TypeError, "n_list"),

@@ -136,7 +136,7 @@ impl<'a> Surface<'a> {
                     return [0.0; 3];
                 }
                 let dirs = [(cos_l, relative_azimuth(*n, wi, wo))];
-                match film.rough_colors(*cos_o, *offset, &dirs) {
+                match film.rough_colors_tabulated(*cos_o, *offset, &dirs) {
                     Some((_, d)) => mul(d[0].to_linear_srgb(), cos_l * film.factor),
                     None => [0.0; 3],
                 }

@@ -46,4 +46,4 @@ pub mod texture;
 
 pub use error::RenderError;
 pub use render::{render, Image};
-pub use scene::{load_scene, parse_scene, Scene};
+pub use scene::{load_scene, load_scene_with, parse_scene, Scene};

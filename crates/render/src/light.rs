@@ -155,6 +155,14 @@ impl Environment {
 /// `ENV_LIGHTS` is the same number.
 pub const ENVIRONMENT_LIGHTS: usize = 64;
 
+/// How many of its cells' solid angle (`4π/ENVIRONMENT_LIGHTS` each) an environment light's diffraction lobe is
+/// averaged over: 4, a square twice as wide as the light's own cell, so that neighbouring lights overlap and a
+/// narrow lobe under a smooth sky blends them instead of reflecting each cell as a flat, hard-edged patch
+/// (issue 32's blocky sphere). The environment keeps its power (each light's mean lobe still carries its own
+/// irradiance); its detail is blurred by about one cell, which the 64 cells could not resolve anyway. The GPU's
+/// `scene.wgsl` uses the same factor.
+pub const ENVIRONMENT_LIGHT_SPREAD: f64 = 4.0;
+
 /// Equirectangular cells (columns, rows) into which the environment's radiance is averaged.
 pub const RADIANCE_CELLS: (usize, usize) = (128, 64);
 

@@ -236,7 +236,8 @@ impl Scene {
     /// irradiance map, they are not shadowed: the environment is light from far away, open sky.
     fn environment_lights_at(&self, h: &Hit) -> impl Iterator<Item = (V3, Rgb, f64)> + '_ {
         let ng = h.ng;
-        let omega = 4.0 * std::f64::consts::PI / self.environment_lights.len().max(1) as f64;
+        let omega = crate::light::ENVIRONMENT_LIGHT_SPREAD * 4.0 * std::f64::consts::PI
+            / self.environment_lights.len().max(1) as f64;
         self.environment_lights.iter().filter(move |(wi, _)| dot(*wi, ng) > 0.0).map(move |&(wi, e)| (wi, e, omega))
     }
 
@@ -342,7 +343,7 @@ impl Scene {
                     let lights = self.lights_at(h);
                     let dirs: Vec<(f64, f64)> =
                         lights.iter().map(|(wi, _, _)| (dot(h.n, *wi), relative_azimuth(h.n, *wi, wo))).collect();
-                    let (spec, diffuse) = f.rough_colors(cos, offset, &dirs).unwrap_or_default();
+                    let (spec, diffuse) = f.rough_colors_tabulated(cos, offset, &dirs).unwrap_or_default();
                     for (((_, e, _), (cos_l, _)), d) in lights.iter().zip(&dirs).zip(&diffuse) {
                         out = add(out, mul(hadamard(d.to_linear_srgb(), *e), cos_l.max(0.0) * f.factor));
                     }

@@ -73,6 +73,89 @@ pub struct Scene {
     pub env_sampler: Option<EnvSampler>,
     /// Notes for the user (normals computed, tangents generated, …).
     pub notes: Vec<String>,
+    /// What the user should know because the picture may not be what the file meant (a glTF film thickness
+    /// that looks written in the wrong unit, …).
+    pub warnings: Vec<String>,
+    /// The sections a TOML scene was written with, for exporting it with its materials
+    /// ([`crate::gltf_export::scene_glb`]); `None` for a glTF scene.
+    pub source: Option<SceneSource>,
+}
+
+/// A TOML scene as written: its `[output]`, `[environment]`, `[textures]` and `[materials]` sections as JSON
+/// (`{"output": …, "environment": …, "textures": {name: …}, "materials": {name: …}}`, absent sections left
+/// out) and the folder its relative paths are resolved against. A GLB exported from the scene carries them in
+/// its `extras`, and iridis rebuilds the materials from them when it reads the file back.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SceneSource {
+    pub sections: serde_json::Value,
+    pub base: PathBuf,
+}
+
+impl SceneSource {
+    /// The sections as TOML text with a stand-in camera: a scene [`parse_scene`] reads back into the same
+    /// materials, textures, environment and output.
+    pub fn to_toml(&self) -> String {
+        let mut out = String::from("[camera]\nposition = [0, 0, 1]\n");
+        let table = |out: &mut String, header: &str, v: &serde_json::Value| {
+            out.push_str(&format!("[{header}]\n"));
+            for (k, x) in v.as_object().into_iter().flatten() {
+                out.push_str(&format!("{} = {}\n", toml_key(k), toml_value(x)));
+            }
+        };
+        for section in ["output", "environment"] {
+            if let Some(v) = self.sections.get(section) {
+                table(&mut out, section, v);
+            }
+        }
+        for section in ["textures", "materials"] {
+            for (name, v) in self.sections.get(section).and_then(|t| t.as_object()).into_iter().flatten() {
+                table(&mut out, &format!("{section}.{}", toml_key(name)), v);
+            }
+        }
+        out
+    }
+}
+
+/// A TOML key: bare where it may be, quoted otherwise.
+fn toml_key(k: &str) -> String {
+    if !k.is_empty() && k.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-') {
+        k.to_string()
+    } else {
+        toml_string(k)
+    }
+}
+
+fn toml_string(s: &str) -> String {
+    let mut out = String::from("\"");
+    for c in s.chars() {
+        match c {
+            '"' => out.push_str("\\\""),
+            '\\' => out.push_str("\\\\"),
+            c if (c as u32) < 0x20 || c == '\u{7f}' => out.push_str(&format!("\\u{:04x}", c as u32)),
+            c => out.push(c),
+        }
+    }
+    out.push('"');
+    out
+}
+
+/// A JSON value (as [`SceneSource`] keeps a TOML value) written back as TOML; objects become inline tables.
+fn toml_value(v: &serde_json::Value) -> String {
+    match v {
+        serde_json::Value::Null => "\"\"".into(),
+        serde_json::Value::Bool(b) => b.to_string(),
+        serde_json::Value::Number(n) => match (n.as_i64(), n.as_f64()) {
+            (Some(i), _) => i.to_string(),
+            (None, Some(f)) => format!("{f:?}"),
+            _ => n.to_string(),
+        },
+        serde_json::Value::String(s) => toml_string(s),
+        serde_json::Value::Array(a) => format!("[{}]", a.iter().map(toml_value).collect::<Vec<_>>().join(", ")),
+        serde_json::Value::Object(o) => format!(
+            "{{ {} }}",
+            o.iter().map(|(k, x)| format!("{} = {}", toml_key(k), toml_value(x))).collect::<Vec<_>>().join(", ")
+        ),
+    }
 }
 
 impl Scene {
@@ -328,11 +411,24 @@ struct ObjectDef {
 /// that lavapipe binds in one storage buffer.
 const MAX_SNAKE_TRIANGLES: usize = 500_000;
 
-/// Reads a scene file (TOML, or a glTF 2.0 file `.gltf`/`.glb` rendered with a default camera and light).
+/// Reads a scene file (TOML, or a glTF 2.0 file `.gltf`/`.glb` with its own cameras and lights, or a default
+/// camera and light where it has none).
 pub fn load_scene(path: &Path) -> Result<Scene, RenderError> {
+    load_scene_with(path, &crate::gltf_io::GltfOptions::default())
+}
+
+/// [`load_scene`] with the choices a glTF scene leaves open (which of its cameras, whether its lights).
+pub fn load_scene_with(path: &Path, gltf: &crate::gltf_io::GltfOptions) -> Result<Scene, RenderError> {
     let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
     if ext == "gltf" || ext == "glb" {
-        return crate::gltf_io::scene_from_gltf(path);
+        return crate::gltf_io::scene_from_gltf_with(path, gltf);
+    }
+    if gltf.camera.is_some() || gltf.ignore_lights {
+        return Err(RenderError::Input(format!(
+            "{}: --camera and --ignore-gltf-lights choose among a glTF file's own cameras and lights; a TOML scene \
+             has its [camera] and [[light]]",
+            path.display()
+        )));
     }
     let text = std::fs::read_to_string(path).map_err(|e| {
         RenderError::Input(format!("cannot read scene {}: {e} (check the path; scenes are TOML files)", path.display()))
@@ -350,6 +446,8 @@ struct Ctx<'a> {
     text: &'a str,
     name: &'a str,
     base: PathBuf,
+    /// Notes made while building (what a material's height field was read and levelled as).
+    notes: std::cell::RefCell<Vec<String>>,
 }
 
 impl Ctx<'_> {
@@ -396,8 +494,9 @@ pub fn parse_scene(text: &str, name: &str, base: &Path) -> Result<Scene, RenderE
         let message = if src.is_empty() { e.message().to_string() } else { format!("{} (in `{src}`)", e.message()) };
         RenderError::Scene { path: name.to_string(), line, message }
     })?;
-    let ctx = Ctx { text, name, base: base.to_path_buf() };
+    let ctx = Ctx { text, name, base: base.to_path_buf(), notes: Default::default() };
     let mut notes = Vec::new();
+    let mut warnings = Vec::new();
 
     // Output
     let o = &file.output;
@@ -647,6 +746,7 @@ pub fn parse_scene(text: &str, name: &str, base: &Path) -> Result<Scene, RenderE
                     &mut textures,
                     over,
                     &mut notes,
+                    &mut warnings,
                 )?;
                 for mut mesh in loaded {
                     mesh.transform(&transform);
@@ -661,6 +761,7 @@ pub fn parse_scene(text: &str, name: &str, base: &Path) -> Result<Scene, RenderE
             }
         }
     }
+    notes.extend(ctx.notes.take());
     if spheres.is_empty() && planes.is_empty() && meshes.is_empty() {
         notes.push("the scene has no objects: the image shows only the background".into());
     }
@@ -678,6 +779,14 @@ pub fn parse_scene(text: &str, name: &str, base: &Path) -> Result<Scene, RenderE
     let irradiance = environment.irradiance_map();
     let environment_lights = environment.as_lights();
     let env_sampler = (integration != Integration::Fast).then(|| EnvSampler::new(&environment)).flatten();
+    let sections: serde_json::Map<String, serde_json::Value> = ["output", "environment", "textures", "materials"]
+        .into_iter()
+        .filter_map(|k| Some((k.to_string(), serde_json::to_value(raw.get(k)?).ok()?)))
+        .collect();
+    let source = SceneSource {
+        sections: serde_json::Value::Object(sections),
+        base: std::fs::canonicalize(base).unwrap_or_else(|_| base.to_path_buf()),
+    };
     let mut scene = Scene {
         camera,
         lights,
@@ -697,6 +806,8 @@ pub fn parse_scene(text: &str, name: &str, base: &Path) -> Result<Scene, RenderE
         bvh,
         output,
         notes,
+        warnings,
+        source: Some(source),
     };
     for beam in lasers {
         let spot = laser_spot(&scene, &beam, &ctx)?;
@@ -1166,8 +1277,10 @@ fn build_material(
                 None => Units::Relative,
                 Some(u) => u.parse().map_err(|e| ctx.err_key(span, "units", format!("{what}: {e}")))?,
             };
-            let t = crate::tables::load_table(table, &ctx.base, params, units)
+            let mut table_notes = Vec::new();
+            let t = crate::tables::load_table(table, &ctx.base, params, units, &mut table_notes)
                 .map_err(|e| ctx.err(span.clone(), format!("{what}: {e}")))?;
+            ctx.notes.borrow_mut().extend(table_notes.into_iter().map(|n| format!("{what}: {n}")));
             let fresnel_n = d.fresnel_n.unwrap_or(1.5);
             if !(fresnel_n.is_finite() && fresnel_n >= 1.0) {
                 return Err(ctx.err_key(span, "fresnel_n", format!("{what}: `fresnel_n` = {fresnel_n} must be ≥ 1")));

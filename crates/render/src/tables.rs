@@ -1,6 +1,9 @@
-//! Diffraction lookup tables for materials: a `.npz` written by `iridis precompute`, or `builtin:NAME`,
-//! computed on first use exactly as `iridis precompute builtin:NAME --uv-resolution R` would (auto Taylor terms
-//! from the remainder bound 1e-6, 65 µm coherence, D65, CIE 1931, 5 nm) and cached on disk.
+//! Diffraction lookup tables for materials: a `.npz` written by `iridis precompute`, or any SURFACE the
+//! command line takes — `builtin:NAME`, or a height-field file (an instrument file with its default channel,
+//! `.gwy`, `.npy`, …) told apart from a table by content — computed on first use as `iridis precompute
+//! SURFACE --uv-resolution R` would (a file plane-levelled, auto Taylor terms from the remainder bound 1e-6,
+//! the coherence 65 µm or fitted to a smaller patch, D65, CIE 1931, 5 nm) and cached on disk, keyed by the
+//! height field's content.
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -45,19 +48,29 @@ pub fn builtin_key(name: &str, patch_fingerprint: &str, params: TableParams, ter
     format!("{name}-{h:016x}")
 }
 
-/// Loads (or computes and caches) a table. `spec` is a path (relative to `base`) or `builtin:NAME`.
-/// A built-in table being computed reports to [`set_table_progress`].
-pub fn load_table(spec: &str, base: &Path, params: TableParams, units: Units) -> Result<Arc<LookupTable>, RenderError> {
+/// Loads (or computes and caches) a table. `spec` is a path (relative to `base`) of a table or of a height
+/// field, or `builtin:NAME`; what was done to a height field (its channel, levelling, a fitted coherence, its
+/// warnings) is added to `notes`. A table being computed reports to [`set_table_progress`].
+pub fn load_table(
+    spec: &str,
+    base: &Path,
+    params: TableParams,
+    units: Units,
+    notes: &mut Vec<String>,
+) -> Result<Arc<LookupTable>, RenderError> {
+    let path = base.join(spec);
+    if !spec.starts_with("builtin:") && path.is_file() && !LookupTable::is_table_file(&path) {
+        return surface_table(&path, params, units, notes);
+    }
     let Some(name) = spec.strip_prefix("builtin:") else {
-        let path = base.join(spec);
         let key = path.display().to_string();
         let cached = memory().lock().ok().and_then(|m| m.get(&key).cloned());
         let table = match cached {
             Some(t) => t,
             None => Arc::new(LookupTable::load(&path).map_err(|e| {
                 RenderError::Input(format!(
-                    "diffraction table {}: {e} (make one with `iridis precompute SURFACE -o TABLE.npz`, or write \
-                     table = \"builtin:elaphe\")",
+                    "diffraction table {}: {e} (`table` takes a table from `iridis precompute SURFACE -o \
+                     TABLE.npz`, a height field — an instrument file, .gwy, .npy, … — or \"builtin:elaphe\")",
                     path.display()
                 ))
             })?),
@@ -79,8 +92,49 @@ pub fn load_table(spec: &str, base: &Path, params: TableParams, units: Units) ->
     };
     // The height field is generated every time (fast next to the table) so that the key follows it.
     let patch = builtin_patch(name)?;
+    cached_table(name, &format!("builtin:{name}"), &patch, DEFAULT_COHERENCE_NM, params, units)
+}
+
+/// The table of a height-field file, read as every command reads a SURFACE (default channel, the file's own
+/// units) and plane-levelled as the model commands level files.
+fn surface_table(
+    path: &Path,
+    params: TableParams,
+    units: Units,
+    notes: &mut Vec<String>,
+) -> Result<Arc<LookupTable>, RenderError> {
+    let spec = path.display().to_string();
+    let hf = iridis_surface::load_surface(&spec, &Default::default()).map_err(|e| {
+        RenderError::Input(format!(
+            "{spec} is neither a lookup table (from `iridis precompute`) nor a height field iridis can read: {e}"
+        ))
+    })?;
+    if let Some(c) = hf.meta.channel.as_ref().filter(|c| c.of > 1) {
+        notes.push(format!("{spec}: {}", c.describe()));
+    }
+    notes.extend(hf.meta.warnings.iter().map(|w| format!("{spec}: {w}")));
+    let (hf, levelling) = iridis_surface::prep::level_for_model(&spec, hf, None)
+        .map_err(|e| RenderError::Input(format!("{spec}: {e}")))?;
+    notes.push(format!("{spec}: {levelling}"));
+    let patch = Patch::from_row_major(hf.rows, hf.cols, hf.dx_nm, hf.dy_nm, &hf.heights_nm)
+        .map_err(|e| RenderError::Input(format!("{spec}: {e}")))?;
+    let coherence = patch.coherence(None);
+    notes.push(format!("{spec}: {}", coherence.note()));
+    let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("surface");
+    cached_table(stem, &spec, &patch, coherence.nm, params, units)
+}
+
+/// The table of `patch` from memory, the disk cache or computed, under a key that follows its content.
+fn cached_table(
+    name: &str,
+    spec: &str,
+    patch: &Patch,
+    coherence_nm: f64,
+    params: TableParams,
+    units: Units,
+) -> Result<Arc<LookupTable>, RenderError> {
     let n = terms_for_bound(patch.max_abs_height, 380.0, BUILTIN_EPSILON);
-    let key = builtin_key(name, &patch.fingerprint(), params, n, units);
+    let key = table_key(name, &patch.fingerprint(), params, n, coherence_nm, units);
     if let Some(t) = memory().lock().ok().and_then(|m| m.get(&key).cloned()) {
         return Ok(t);
     }
@@ -88,7 +142,7 @@ pub fn load_table(spec: &str, base: &Path, params: TableParams, units: Units) ->
     let table = match LookupTable::load(&file) {
         Ok(t) => t,
         Err(_) => {
-            let t = compute_table(name, &patch, n, params, units)?;
+            let t = compute_table(spec, patch, n, coherence_nm, params, units)?;
             // The cache is an optimisation: failing to write it is not an error.
             let _ = save_atomic(&t, &file);
             t
@@ -99,6 +153,21 @@ pub fn load_table(spec: &str, base: &Path, params: TableParams, units: Units) ->
         m.insert(key, table.clone());
     }
     Ok(table)
+}
+
+/// [`builtin_key`] for any coherence: the paper's 65 µm keeps the key it always had.
+fn table_key(
+    name: &str,
+    fingerprint: &str,
+    params: TableParams,
+    terms: usize,
+    coherence_nm: f64,
+    units: Units,
+) -> String {
+    if coherence_nm == DEFAULT_COHERENCE_NM {
+        return builtin_key(name, fingerprint, params, terms, units);
+    }
+    builtin_key(name, &format!("{fingerprint} coherence={coherence_nm}"), params, terms, units)
 }
 
 fn builtin_patch(name: &str) -> Result<Patch, RenderError> {
@@ -114,31 +183,31 @@ fn builtin_patch(name: &str) -> Result<Patch, RenderError> {
 pub fn compute_builtin(name: &str, params: TableParams, units: Units) -> Result<LookupTable, RenderError> {
     let patch = builtin_patch(name)?;
     let n = terms_for_bound(patch.max_abs_height, 380.0, BUILTIN_EPSILON);
-    compute_table(name, &patch, n, params, units)
+    compute_table(&format!("builtin:{name}"), &patch, n, DEFAULT_COHERENCE_NM, params, units)
 }
 
 fn compute_table(
-    name: &str,
+    spec: &str,
     patch: &Patch,
     n: usize,
+    coherence_nm: f64,
     params: TableParams,
     units: Units,
 ) -> Result<LookupTable, RenderError> {
-    let spec = format!("builtin:{name}");
     let err = |e: iridis_diffraction::DiffractionError| RenderError::Input(format!("{spec}: {e}"));
     let report = progress();
     let total = params.uv_resolution + n + 1;
     let what = format!("table {spec}");
-    let terms = TaylorTerms::compute_with_progress(patch, n, DEFAULT_COHERENCE_NM, &|d| report(d, total, &what))
-        .map_err(err)?;
+    let terms =
+        TaylorTerms::compute_with_progress(patch, n, coherence_nm, &|d| report(d, total, &what)).map_err(err)?;
     let mut spectral =
         SpectralSetup::new(iridis_color::Illuminant::D65, iridis_color::Observer::Cie1931, BUILTIN_STEP_NM)
             .map_err(err)?;
     if units == Units::Radiometric {
-        spectral = spectral.radiometric(DEFAULT_COHERENCE_NM).map_err(err)?;
+        spectral = spectral.radiometric(coherence_nm).map_err(err)?;
     }
     // Rows finish out of order on many threads: only the call after the build says "done".
-    let t = LookupTable::build(&terms, &spectral, params, &spec, &|d| report((n + 1 + d).min(total - 1), total, &what))
+    let t = LookupTable::build(&terms, &spectral, params, spec, &|d| report((n + 1 + d).min(total - 1), total, &what))
         .map_err(err)?;
     report(total, total, &what);
     Ok(t)

@@ -147,3 +147,196 @@ fn hdr_environment_map() {
     let mean = scene.environment.mean();
     assert!((mean[0] - 1.25).abs() < 0.01, "{mean:?}");
 }
+
+/// A diffraction material's `table` takes any SURFACE, as every command does (issue 32: `table =
+/// "../snake.gwy"` failed with "not an npz (zip) file … Could not find EOCD"): the height field is read,
+/// plane-levelled as the model commands level files, windowed with a coherence fitted to the small patch, and
+/// made into a table, with notes saying so. A `.npz` holding heights (numpy's savez), not a table, too.
+#[test]
+fn a_materials_table_may_be_any_surface() {
+    let dir = tempfile::tempdir().unwrap();
+    let sub = dir.path().join("scenes");
+    std::fs::create_dir(&sub).unwrap();
+    let hf =
+        iridis_surface::load_surface("builtin:sine?size=1600nm&pixel=50nm&period=400nm", &Default::default()).unwrap();
+    for ext in ["gwy", "npz"] {
+        let fmt = iridis_surface::Format::from_extension(Path::new(&format!("x.{ext}"))).unwrap();
+        let (bytes, side) = iridis_surface::formats::write_bytes(&hf, fmt).unwrap();
+        std::fs::write(dir.path().join(format!("sine.{ext}")), bytes).unwrap();
+        if let Some(s) = side {
+            std::fs::write(dir.path().join(format!("sine.{ext}.json")), s).unwrap();
+        }
+        let text = format!(
+            "[camera]\nposition = [0, 0, 3]\n[[light]]\nkind = \"directional\"\ndirection = [0, 0, 1]\n\
+             [materials.skin]\nkind = \"diffraction\"\ntable = \"../sine.{ext}\"\nuv_resolution = 31\n\
+             [[object]]\nkind = \"sphere\"\nradius = 1\nmaterial = \"skin\"\n"
+        );
+        let scene = parse_scene(&text, "s.toml", &sub).unwrap_or_else(|e| panic!("{ext}: {e}"));
+        let Material::Diffraction(d) = &scene.materials[0] else { panic!("not diffraction") };
+        let meta = &d.evaluator.as_lookup().unwrap().table.meta;
+        assert_eq!((meta.rows, meta.cols, meta.uv_resolution), (32, 32, 31), "{ext}");
+        // Half the 1.6 µm patch, as `iridis precompute` fits it.
+        assert!((meta.coherence_nm - 800.0).abs() < 1e-9, "{ext}: {}", meta.coherence_nm);
+        let notes = scene.notes.join("\n");
+        assert!(notes.contains("levelling: plane") && notes.contains("coherence 0.8 µm, fitted"), "{ext}: {notes}");
+        let img = render(&scene, 8, 8, 1, &|_| {});
+        assert!(img.xyz(4, 4).y.is_finite());
+    }
+}
+
+/// The triangle document with a camera node (perspective, 40°, at z = 3 looking down −z, named "Closeup"), a
+/// second camera ("Side", at x = 3 looking along −x), and a red KHR_lights_punctual point light of 5 cd at
+/// (0, 0, 2); `thickness` the iridescence range [min, max] (nm).
+fn lit_triangle_json(thickness: [f64; 2]) -> String {
+    triangle_json(None)
+        .replace(
+            r#""extensionsUsed": ["KHR_materials_iridescence"],"#,
+            r#""extensionsUsed": ["KHR_materials_iridescence", "KHR_lights_punctual"],
+  "extensions": {"KHR_lights_punctual": {"lights": [{"type": "point", "color": [1, 0, 0], "intensity": 5}]}},
+  "cameras": [{"type": "perspective", "name": "cam", "perspective": {"yfov": 0.6981317, "znear": 0.01, "aspectRatio": 2.0}},
+              {"type": "perspective", "perspective": {"yfov": 0.5, "znear": 0.01}}],"#,
+        )
+        .replace(
+            r#""scenes": [{"nodes": [0]}],
+  "nodes": [{"mesh": 0}],"#,
+            r#""scenes": [{"nodes": [0, 1, 2, 3]}],
+  "nodes": [{"mesh": 0}, {"name": "Closeup", "camera": 0, "translation": [0, 0, 3]},
+            {"name": "Side", "camera": 1, "translation": [3, 0, 0], "rotation": [0, 0.7071068, 0, 0.7071068]},
+            {"name": "Lamp", "translation": [0, 0, 2], "extensions": {"KHR_lights_punctual": {"light": 0}}}],"#,
+        )
+        .replace(
+            r#""iridescenceThicknessMaximum": 350"#,
+            &format!(r#""iridescenceThicknessMinimum": {}, "iridescenceThicknessMaximum": {}"#, thickness[0], thickness[1]),
+        )
+}
+
+/// A glTF file's own camera and red KHR_lights_punctual light are what it renders with (issue 32: the default
+/// camera and a D65 light were used, and the notes did not say the file's were dropped); `--camera NAME`
+/// picks another of its cameras and `--ignore-gltf-lights` the default light, each saying so.
+#[test]
+fn gltf_cameras_and_punctual_lights_are_honoured() {
+    use iridis_render::camera::Camera;
+    use iridis_render::gltf_io::GltfOptions;
+    use iridis_render::light::Light;
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("lit.gltf");
+    std::fs::write(dir.path().join("tri.bin"), triangle_bytes()).unwrap();
+    std::fs::write(
+        &p,
+        lit_triangle_json([100.0, 350.0]).replace(
+            "\"buffers\": [{\"byteLength\": 36}]",
+            "\"buffers\": [{\"byteLength\": 36, \"uri\": \"tri.bin\"}]",
+        ),
+    )
+    .unwrap();
+    let scene = load_scene(&p).unwrap();
+    let Camera::Perspective { position, forward, tan_half, .. } = scene.camera else { panic!("{:?}", scene.camera) };
+    assert!(position == [0.0, 0.0, 3.0] && forward == [0.0, 0.0, -1.0], "{position:?} {forward:?}");
+    assert!((tan_half - (0.6981317f64 / 2.0).tan()).abs() < 1e-6);
+    assert_eq!((scene.output.width, scene.output.height), (1024, 512), "the camera's aspect ratio 2");
+    assert_eq!(scene.lights.len(), 1);
+    let Light::Point { position, rgb } = &scene.lights[0] else { panic!("{:?}", scene.lights[0]) };
+    assert_eq!((*position, *rgb), ([0.0, 0.0, 2.0], [5.0, 0.0, 0.0]));
+    let notes = scene.notes.join("\n");
+    assert!(
+        notes.contains("glTF camera 'Closeup' (camera 'cam') from the file") && notes.contains("--camera NAME"),
+        "{notes}"
+    );
+    assert!(notes.contains("1 KHR_lights_punctual light(s)") && notes.contains("--ignore-gltf-lights"), "{notes}");
+    // The red light makes the lit triangle red: the centre pixel has no green or blue but the sky's.
+    let img = render(&scene, 32, 16, 1, &|_| {});
+    let c = img.data[8 * 32 + 16];
+    assert!(c[0] > 2.0 * c[1].max(c[2]), "{c:?}");
+    // Another camera by name: "Side" at x = 3, turned +90° about y, looks along −x.
+    let side =
+        iridis_render::load_scene_with(&p, &GltfOptions { camera: Some("Side".into()), ..Default::default() }).unwrap();
+    let Camera::Perspective { position, forward, .. } = side.camera else { panic!() };
+    assert!(position == [3.0, 0.0, 0.0] && (forward[0] + 1.0).abs() < 1e-6, "{position:?} {forward:?}");
+    let e = iridis_render::load_scene_with(&p, &GltfOptions { camera: Some("Top".into()), ..Default::default() })
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("--camera Top") && e.contains("'Closeup' (camera 'cam'), 'Side'"), "{e}");
+    let plain =
+        iridis_render::load_scene_with(&p, &GltfOptions { camera: Some("default".into()), ignore_lights: true })
+            .unwrap();
+    assert!(matches!(plain.lights[0], Light::Directional { rgb: [1.0, 1.0, 1.0], .. }));
+    let notes = plain.notes.join("\n");
+    assert!(notes.contains("ignored (--ignore-gltf-lights)") && notes.contains("default camera"), "{notes}");
+}
+
+/// KHR_materials_iridescence gives thicknesses in nm; 0.2–0.6 (micrometres by mistake) renders as no film, so
+/// the scene warns and says what the numbers would be in µm (issue 32: silently no film).
+#[test]
+fn implausible_iridescence_thicknesses_are_warned_about() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("thin.glb");
+    std::fs::write(&p, glb(&lit_triangle_json([0.2, 0.6]), &triangle_bytes())).unwrap();
+    let w = load_scene(&p).unwrap().warnings.join("\n");
+    assert!(w.contains("iridescence thickness 0.6 nm is below 10 nm") && w.contains("600 nm"), "{w}");
+    std::fs::write(&p, glb(&lit_triangle_json([100.0, 350.0]), &triangle_bytes())).unwrap();
+    assert!(load_scene(&p).unwrap().warnings.is_empty());
+}
+
+/// `render --export-mesh x.glb` keeps the scene's materials (issue 32: re-rendered, the snake was white),
+/// camera and lights: the GLB renders like the scene, and other tools see the materials as glTF PBR.
+#[test]
+fn an_exported_glb_renders_like_its_scene() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/unit_box.obj"), dir.path().join("box.obj"))
+        .unwrap();
+    let text = r#"
+[output]
+exposure = 1.5
+[camera]
+position = [1.6, 1.2, 2.4]
+look_at = [0, 0, 0]
+fov = "40deg"
+[[light]]
+kind = "directional"
+direction = [0.4, 1, 0.6]
+color = [1, 0.8, 0.6]
+[environment]
+kind = "sky"
+zenith = [0.1, 0.2, 0.5]
+[materials.red]
+kind = "microfacet"
+color = [0.8, 0.1, 0.05]
+roughness = 0.4
+[materials.film]
+kind = "thinfilm"
+stack = "air | water 320nm | n=1.5"
+[[object]]
+kind = "obj"
+file = "box.obj"
+material = "red"
+[[object]]
+kind = "obj"
+file = "box.obj"
+material = "film"
+translate = [0, 1.1, 0]
+"#;
+    let scene = parse_scene(text, "box.toml", dir.path()).unwrap();
+    let (bytes, _) = iridis_render::gltf_export::scene_glb(&scene).unwrap();
+    let p = dir.path().join("box.glb");
+    std::fs::write(&p, &bytes).unwrap();
+    let back = load_scene(&p).unwrap();
+    assert_eq!(back.output.exposure, 1.5);
+    let (a, b) = (render(&scene, 40, 30, 1, &|_| {}), render(&back, 40, 30, 1, &|_| {}));
+    let worst = a
+        .data
+        .iter()
+        .zip(&b.data)
+        .flat_map(|(p, q)| (0..3).map(move |k| f64::from((p[k] - q[k]).abs())))
+        .fold(0.0f64, f64::max);
+    assert!(worst < 1e-5, "largest difference {worst}");
+    // What another viewer reads: PBR colours and the film as KHR_materials_iridescence.
+    let json_len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+    let doc: serde_json::Value = serde_json::from_slice(&bytes[20..20 + json_len]).unwrap();
+    let named = |n: &str| doc["materials"].as_array().unwrap().iter().find(|m| m["name"] == n).unwrap().clone();
+    assert_eq!(named("red")["pbrMetallicRoughness"]["baseColorFactor"], serde_json::json!([0.8, 0.1, 0.05, 1.0]));
+    let film = &named("film")["extensions"]["KHR_materials_iridescence"];
+    assert_eq!(
+        (film["iridescenceThicknessMaximum"].as_f64(), film["iridescenceIor"].as_f64()),
+        (Some(320.0), Some(1.33))
+    );
+}

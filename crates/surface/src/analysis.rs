@@ -7,6 +7,9 @@
 //! until they vanish, which for a sinusoid converges to the true frequency wherever it lies between bins
 //! (tested to 1e-3 bin for lines 0.05–0.5 bin off the grid), not the bin centre.
 //!
+//! Each period carries its uncertainty ([`period_uncertainty_nm`]): half a DFT step, `d²/(2L)`, where it is
+//! read off the grid, the refinement's resolution otherwise.
+//!
 //! Orientation is the direction of the grating vector (the direction in which the height varies), measured
 //! counter-clockwise from `+x` with `y` up, in `[0°, 180°)`: a grating whose ridges run along `y` has
 //! orientation 0°; nanofingers running along `x`, repeating in `y`, give 90°.
@@ -21,10 +24,58 @@ use crate::HeightField;
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Peak {
     pub period_nm: f64,
+    /// How well the period is known, ± nm: see [`period_uncertainty_nm`].
+    pub period_uncertainty_nm: f64,
+    /// Where the period was read: `"refined"` off the FFT grid, or `"grid"` (the refinement strayed from the
+    /// grid maximum, which is kept).
+    pub read_off: &'static str,
     /// Direction of the grating vector, degrees in `[0, 180)`.
     pub orientation_deg: f64,
     /// Share of the (windowed, levelled) height variance in this peak's neighbourhood, `0..1`.
     pub power: f64,
+}
+
+impl Peak {
+    /// The period as a person reads it: rounded to its uncertainty, `1100.19 ± 0.03 nm`.
+    pub fn period_text(&self) -> String {
+        format!("{} nm", with_uncertainty(self.period_nm, self.period_uncertainty_nm))
+    }
+}
+
+/// What the off-grid refinement resolves, in DFT bins: a sinusoid's frequency is found to 1e-3 bin wherever it
+/// lies between bins (`refinement_finds_off_grid_periods`).
+pub const REFINED_BIN_FRACTION: f64 = 1e-3;
+
+/// The extent of a `size_x × size_y` patch along the direction `angle_deg` (counter-clockwise from +x) as
+/// the DFT sees it: the frequency step along that direction is `1/L`, with `1/L² = cos²/Lx² + sin²/Ly²` —
+/// `Lx` along x, `Ly` along y.
+pub fn extent_along_nm(size_x_nm: f64, size_y_nm: f64, angle_deg: f64) -> f64 {
+    let (s, c) = angle_deg.to_radians().sin_cos();
+    1.0 / ((c / size_x_nm).powi(2) + (s / size_y_nm).powi(2)).sqrt()
+}
+
+/// The uncertainty (± nm) of a period `d` found in the spectrum of a patch `L` long along its grating vector
+/// ([`extent_along_nm`]): read off the DFT grid (bins `1/L` apart) it is half a step, `δd = d²·δf =
+/// d²/(2L)`; refined off the grid, the refinement's resolution, [`REFINED_BIN_FRACTION`] of a bin,
+/// `d²·10⁻³/L`.
+pub fn period_uncertainty_nm(period_nm: f64, extent_along_nm: f64, refined: bool) -> f64 {
+    let bins = if refined { REFINED_BIN_FRACTION } else { 0.5 };
+    period_nm * period_nm * bins / extent_along_nm
+}
+
+/// `value ± uncertainty` rounded to the uncertainty's first significant digit (two when it starts with a 1:
+/// `0.014` stays `0.014`), the value to the same decimal place: `1100.19 ± 0.03`, `2500 ± 40`.
+pub fn with_uncertainty(value: f64, uncertainty: f64) -> String {
+    if !(uncertainty.is_finite() && uncertainty > 0.0 && value.is_finite()) {
+        return format!("{value}");
+    }
+    let exp = uncertainty.log10().floor() as i32;
+    let lead = uncertainty / 10f64.powi(exp);
+    let place = if lead < 1.95 { exp - 1 } else { exp };
+    let step = 10f64.powi(place);
+    let (v, u) = ((value / step).round() * step, (uncertainty / step).round() * step);
+    let decimals = (-place).max(0) as usize;
+    format!("{v:.decimals$} ± {u:.decimals$}")
 }
 
 /// How many peaks to report and how weak they may be.
@@ -104,7 +155,8 @@ impl Windowed {
     /// the (symmetric) main lobe peaks, so the iteration converges to the line's frequency wherever it lies
     /// between bins: a grid maximum can be up to half a bin from it (plus the Hann lobe's asymmetry), which
     /// a fixed set of shrinking steps could not always cover.
-    fn refine(&self, mut fx: f64, mut fy: f64) -> (f64, f64) {
+    /// Returns the frequency and whether it is the refined one (`false`: the grid estimate kept).
+    fn refine(&self, mut fx: f64, mut fy: f64) -> (f64, f64, bool) {
         let (bx, by) = (1.0 / (self.cols as f64 * self.dx), 1.0 / (self.rows as f64 * self.dy));
         let (fx0, fy0) = (fx, fy);
         for _ in 0..12 {
@@ -139,9 +191,9 @@ impl Windowed {
         }
         // A line more than 1.5 bins from its grid maximum is not this maximum's: keep the grid estimate.
         if ((fx - fx0) / bx).abs() > 1.5 || ((fy - fy0) / by).abs() > 1.5 {
-            return (fx0, fy0);
+            return (fx0, fy0, false);
         }
-        (fx, fy)
+        (fx, fy, true)
     }
 }
 
@@ -156,6 +208,7 @@ pub fn find_peaks(hf: &HeightField, opts: &PeakOptions) -> Vec<Peak> {
     let power: Vec<f64> = spec.iter().map(|z| z.norm_sqr()).collect();
     let total: f64 = power.iter().sum::<f64>().max(1e-300);
     let win = Windowed { rows, cols, dx: hf.dx_nm, dy: hf.dy_nm, w };
+    let (ex, ey) = hf.extent_nm();
     // Bin (kr, kc) ↔ fx = kc/(cols·dx), fy = −kr/(rows·dy) (rows run downwards, y upwards).
     let signed = |k: usize, n: usize| if k <= n / 2 { k as i64 } else { k as i64 - n as i64 };
     // A period counts when the patch holds at least 1/max_period_fraction of it along its own direction: at
@@ -205,7 +258,7 @@ pub fn find_peaks(hf: &HeightField, opts: &PeakOptions) -> Vec<Peak> {
         }
         let fx0 = kc as f64 / (cols as f64 * hf.dx_nm);
         let fy0 = -(kr as f64) / (rows as f64 * hf.dy_nm);
-        let (fx, fy) = win.refine(fx0, fy0);
+        let (fx, fy, refined) = win.refine(fx0, fy0);
         let f = fx.hypot(fy);
         // Fold into [0°, 180°): a grating vector and its opposite are the same grating.
         let mut ang = fy.atan2(fx).to_degrees().rem_euclid(180.0);
@@ -213,8 +266,16 @@ pub fn find_peaks(hf: &HeightField, opts: &PeakOptions) -> Vec<Peak> {
             ang = 0.0;
         }
         ang += 0.0; // no −0
-                    // Both half-plane copies count: the share of variance is twice the half-plane share.
-        peaks.push(Peak { period_nm: 1.0 / f, orientation_deg: ang, power: (2.0 * s / total).min(1.0) });
+        let period = 1.0 / f;
+        let along = extent_along_nm(ex, ey, ang);
+        peaks.push(Peak {
+            period_nm: period,
+            period_uncertainty_nm: period_uncertainty_nm(period, along, refined),
+            read_off: if refined { "refined" } else { "grid" },
+            orientation_deg: ang,
+            // Both half-plane copies count: the share of variance is twice the half-plane share.
+            power: (2.0 * s / total).min(1.0),
+        });
     }
     peaks
 }
@@ -247,6 +308,58 @@ mod tests {
                 assert!((p.orientation_deg - angle).abs() < 0.01, "{}", p.orientation_deg);
             }
         }
+    }
+
+    /// A refined period lies within its stated uncertainty of the generated one, and the uncertainty is the
+    /// refinement's 1e-3 bin along the grating vector: on a 12.8 × 6.4 µm patch, a bin is 1/12.8 µm⁻¹ along x
+    /// and 1/6.4 µm⁻¹ along y, so the same period is twice as uncertain at 90° as at 0°.
+    #[test]
+    fn periods_carry_their_uncertainty_along_their_direction() {
+        use crate::generate::{Generator, Grid};
+        let period = 533.0;
+        let mut u = Vec::new();
+        for angle in [0.0f64, 90.0] {
+            let grid = Grid {
+                size_x_nm: 12_800.0,
+                size_y_nm: 6_400.0,
+                pixel_nm: 50.0,
+                angle_rad: angle.to_radians(),
+                seed: 1,
+            };
+            let hf = Generator::Sine { period_nm: period, depth_nm: 20.0 }.generate(&grid).unwrap();
+            let p = &find_peaks(&hf, &PeakOptions::default())[0];
+            assert_eq!(p.read_off, "refined");
+            assert!((p.period_nm - period).abs() <= p.period_uncertainty_nm, "{angle}°: {p:?}");
+            u.push(p.period_uncertainty_nm);
+        }
+        // 1e-3 bin: δd = d²·δf = 533² nm² × 1e-3 / 12 800 nm = 0.0222 nm along x.
+        assert!((u[0] - 0.022_194).abs() < 1e-5, "{u:?}");
+        assert!((u[1] / u[0] - 2.0).abs() < 1e-4, "{u:?}");
+        assert!((extent_along_nm(12_800.0, 6_400.0, 0.0) - 12_800.0).abs() < 1e-9);
+        assert!((extent_along_nm(12_800.0, 6_400.0, 90.0) - 6_400.0).abs() < 1e-6);
+    }
+
+    /// Read off the grid, a period `d = L/k` is uncertain by half the distance to its neighbours `L/(k ± 1)`
+    /// on the DFT grid, which is `d²/(2L)` to first order in `1/k`.
+    #[test]
+    fn a_grid_period_is_uncertain_by_half_a_dft_step() {
+        let l = 65_000.0;
+        for k in [20.0, 59.0, 200.0] {
+            let d = l / k;
+            let half_step = 0.25 * (l / (k - 1.0) - l / (k + 1.0));
+            let u = period_uncertainty_nm(d, l, false);
+            assert!((u / half_step - 1.0).abs() < 1.0 / (k * k) + 1e-12, "k {k}: {u} vs {half_step}");
+        }
+    }
+
+    #[test]
+    fn values_are_rounded_to_their_uncertainty() {
+        assert_eq!(with_uncertainty(1100.1934, 0.0186), "1100.193 ± 0.019");
+        assert_eq!(with_uncertainty(1100.1934, 0.0286), "1100.19 ± 0.03");
+        assert_eq!(with_uncertainty(1600.0004, 0.0141), "1600.000 ± 0.014");
+        assert_eq!(with_uncertainty(2499.63, 9.6), "2500 ± 10");
+        assert_eq!(with_uncertainty(2499.63, 43.0), "2500 ± 40");
+        assert_eq!(with_uncertainty(531.2, 0.15), "531.20 ± 0.15");
     }
 
     #[test]

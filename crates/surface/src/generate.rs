@@ -329,6 +329,7 @@ impl Generator {
             z_unit: "nm".into(),
             notes: vec![self.describe(grid)],
             warnings: Vec::new(),
+            channel: None,
         }))
     }
 }

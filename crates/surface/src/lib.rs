@@ -68,6 +68,9 @@ pub struct Metadata {
     pub notes: Vec<String>,
     /// Things the user should know (colour image reduced to luminance, assumed units, …).
     pub warnings: Vec<String>,
+    /// Which channel of a multi-channel file was read, and why (`None` for single-image formats).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub channel: Option<formats::channel::ChannelChoice>,
 }
 
 /// Heights in nm on a regular grid, row-major, row 0 at the top (`docs/PHYSICS.md`).
@@ -177,8 +180,9 @@ impl HeightField {
     }
 
     /// Warnings (with numbers) about what this field can represent for the diffraction model: pixels too
-    /// coarse for the visible band, or a patch smaller than the coherence area (PHYSICS.md).
-    pub fn physics_warnings(&self, coherence_nm: f64) -> Vec<String> {
+    /// coarse for the visible band (PHYSICS.md). A patch smaller than the coherence area is not a warning
+    /// here (the diffraction commands take it as a unit cell): [`HeightField::coherence_note`] says what that means.
+    pub fn physics_warnings(&self, _coherence_nm: f64) -> Vec<String> {
         let mut w = Vec::new();
         let p = self.dx_nm.max(self.dy_nm);
         if p > MAX_RESOLVING_PIXEL_NM {
@@ -189,9 +193,37 @@ impl HeightField {
                 1000.0 / (2.0 * p)
             ));
         }
-        // A patch smaller than the coherence window is no problem of the scan: the diffraction commands take it
-        // as one unit cell of a periodic surface and say so once, where it matters.
-        let _ = coherence_nm;
         w
+    }
+
+    /// For a patch smaller than the light's coherence area, what it means in practice, in two sentences: the
+    /// diffraction commands take the patch as one unit cell of a periodic surface (docs/PHYSICS.md), whose own
+    /// period `L` puts orders every `λ/L` of viewing angle, so colours are sampled that finely. `None` for a
+    /// patch at least as large as the coherence area.
+    pub fn coherence_note(&self, coherence_nm: f64) -> Option<String> {
+        let (ex, ey) = self.extent_nm();
+        let l = ex.min(ey);
+        (l < coherence_nm).then(|| {
+            let lambda_over_l = 550.0 / l;
+            let cost = if lambda_over_l < 0.5 {
+                format!(
+                    "whose own period L sends light only into orders λ/L = {:.1}° of viewing angle apart at \
+                     550 nm",
+                    lambda_over_l.asin().to_degrees(),
+                )
+            } else {
+                "and a patch under two wavelengths across (λ/L ≥ 0.5 at 550 nm) has too few orders to show \
+                 diffraction colours"
+                    .to_string()
+            };
+            format!(
+                "patch {:.1} × {:.1} µm is smaller than the light's {:.1} µm coherence area: the diffraction \
+                 commands take it as one unit cell of a periodic surface, {cost}. Scan a larger area if the \
+                 structure is not periodic; periods read from this patch carry the ± given with them",
+                ex / 1000.0,
+                ey / 1000.0,
+                coherence_nm / 1000.0,
+            )
+        })
     }
 }

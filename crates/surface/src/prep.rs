@@ -170,9 +170,9 @@ pub fn level_for_model(
     let how = requested.unwrap_or(if builtin { "none" } else { "plane" });
     let out = level_by_name(&hf, how)?;
     let why = match (requested, builtin) {
-        (Some(_), _) => "as asked (--level)",
-        (None, false) => "the default for files; --level none keeps the tilt",
-        (None, true) => "built-ins are used as generated",
+        (Some(_), _) => format!("as asked: --level {how}"),
+        (None, false) => "the default for files; --level none keeps the tilt".to_string(),
+        (None, true) => "built-ins are used as generated".to_string(),
     };
     Ok((out, format!("levelling: {how} ({why})")))
 }
@@ -340,6 +340,19 @@ mod tests {
     }
 
     use super::*;
+
+    /// The levelling line says what was asked, once, and says "default" when nothing was (issue 32: "plane
+    /// (as asked (--level))" was printed when nothing had been asked).
+    #[test]
+    fn the_levelling_line_names_the_choice() {
+        let hf = HeightField::new(3, 3, 1.0, 1.0, (0..9).map(f64::from).collect()).unwrap();
+        let (_, asked) = level_for_model("scan.spm", hf.clone(), Some("lines")).unwrap();
+        assert_eq!(asked, "levelling: lines (as asked: --level lines)");
+        let (_, default) = level_for_model("scan.spm", hf.clone(), None).unwrap();
+        assert_eq!(default, "levelling: plane (the default for files; --level none keeps the tilt)");
+        let (_, builtin) = level_for_model("builtin:sine", hf, None).unwrap();
+        assert_eq!(builtin, "levelling: none (built-ins are used as generated)");
+    }
 
     fn field(rows: usize, cols: usize, f: impl Fn(usize, usize) -> f64) -> HeightField {
         let h = (0..rows * cols).map(|i| f(i / cols, i % cols)).collect();

@@ -87,17 +87,41 @@ fn bruker_nanoscope_spm_as_afmreader_and_pyspm() {
     assert_eq!(hf.meta.format, "nanoscope");
     let want: Vec<String> = r["channels"].as_array().unwrap().iter().map(|v| v.as_str().unwrap().to_string()).collect();
     assert_eq!(names(&b, "spm", false), want);
-    // By index: "Height" is the 8th image (index 7) and the default is the first height channel (Height Sensor).
+    // By index: "Height" is the 8th image (index 7), and the default: AFMReader and TopoStats read "Height", not
+    // the first height-like channel (Height Sensor, as before issue 32). The choice says why and how to change it.
     let by_index = load(&b, "sample_0.spm", Some("7"));
     assert_eq!(by_index.heights_nm, hf.heights_nm);
     let default = load(&b, "sample_0.spm", None);
-    assert!(default.meta.notes.iter().any(|n| n.contains("'Height Sensor'")), "{:?}", default.meta.notes);
-    // Not a height: the message names the unit and lists the channels.
+    assert_eq!(default.heights_nm, hf.heights_nm, "default = the channel named Height");
+    let c = default.meta.channel.as_ref().unwrap();
+    assert_eq!((c.index, c.name.as_str(), c.of), (7, "Height", 8));
+    let d = c.describe();
+    assert!(d.contains("AFMReader") && d.contains("0: Height Sensor_retrace, 7: Height_trace"), "{d}");
+    assert!(d.contains("--channel NAME"), "{d}");
+    // Not a height: the message names the signal and the height channels.
     let e =
         read_bytes(&b, "s", None, &LoadOptions { channel: Some("DMTModulus".parse().unwrap()), ..Default::default() })
             .unwrap_err()
             .to_string();
-    assert!(e.contains("not a length") && e.contains("7: Height (nm, trace)"), "{e}");
+    assert!(e.contains("records the modulus") && e.contains("7: Height_trace") && e.contains("--as-height"), "{e}");
+    // The file's 0.494 nm pixels win over a contradicting --pixel-size 50nm (which made the 0.506 µm scan
+    // 51 µm wide, silently), and its nm over --height-unit um; both are named in a warning. --override-units
+    // gives the user's, saying what the file had.
+    let flags = LoadOptions { pixel_size_nm: Some(50.0), height_unit: Some("um".into()), ..Default::default() };
+    let kept = read_bytes(&b, "s", None, &flags).unwrap();
+    assert!((kept.dx_nm - r["pixel_nm"].as_f64().unwrap()).abs() < 1e-9, "{}", kept.dx_nm);
+    assert_eq!(kept.heights_nm, hf.heights_nm);
+    let w = kept.meta.warnings.join("\n");
+    assert!(w.contains("--pixel-size 50 nm ignored: the file gives 0.4940 × 0.4940 nm per pixel"), "{w}");
+    assert!(w.contains("--height-unit um ignored: the file gives this channel's heights in nm"), "{w}");
+    let forced = read_bytes(&b, "s", None, &LoadOptions { override_units: true, ..flags }).unwrap();
+    assert_eq!(forced.dx_nm, 50.0);
+    assert!((forced.heights_nm[0] - 1000.0 * hf.heights_nm[0]).abs() < 1e-9 * forced.heights_nm[0].abs());
+    assert!(
+        forced.meta.warnings.iter().any(|w| w.contains("replaces the file's own 0.4940")),
+        "{:?}",
+        forced.meta.warnings
+    );
 }
 
 #[test]
@@ -121,6 +145,18 @@ fn jpk_as_afmreader_and_tifffile() {
     assert_eq!(hf.meta.format, "jpk");
     let want: Vec<String> = r["channels"].as_array().unwrap().iter().map(|v| v.as_str().unwrap().to_string()).collect();
     assert_eq!(names(&b, "jpk", true), want);
+    // The tapping amplitude is in metres but is not the topography: refused unless --as-height.
+    let amp = |as_height| {
+        read_bytes(
+            &b,
+            "s",
+            None,
+            &LoadOptions { channel: Some("amplitude".parse().unwrap()), as_height, ..Default::default() },
+        )
+    };
+    let e = amp(false).unwrap_err().to_string();
+    assert!(e.contains("records the amplitude") && e.contains("5: height_trace"), "{e}");
+    assert!(amp(true).unwrap().meta.warnings.iter().any(|w| w.contains("--as-height")));
 }
 
 #[test]
@@ -128,6 +164,12 @@ fn gwyddion_gwy_as_afmreader() {
     let Some(b) = sample("sample_0.gwy") else { return };
     let hf = load(&b, "sample_0.gwy", Some("ZSensor"));
     check(&hf, &reference()["gwy"], "gwy ZSensor");
+    // Channel 3, LogStiffness, has no unit: it was read as heights of 3.3e9–9.3e9 nm with only "assumed
+    // metres"; its name says it is no height, so it is refused, naming the heights.
+    let e = read_bytes(&b, "s", None, &LoadOptions { channel: Some(ChannelSel::Index(3)), ..Default::default() })
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("'LogStiffness' (no unit) records the stiffness") && e.contains("0: ZSensor, 7: Height"), "{e}");
 }
 
 #[test]
@@ -189,7 +231,7 @@ fn nanonis_sxm_as_pyspm() {
         read_bytes(&b, "x.sxm", None, &LoadOptions { channel: Some("Current".parse().unwrap()), ..Default::default() })
             .unwrap_err()
             .to_string();
-    assert!(e.contains("in A, not a length"), "{e}");
+    assert!(e.contains("'Current_forward' (A) records the current") && e.contains("0: Z_forward"), "{e}");
 }
 
 mod common;
@@ -237,7 +279,7 @@ fn synthetic_instrument_files_read_exactly() {
     )
     .unwrap_err()
     .to_string();
-    assert!(e.contains("in deg, not a length") && e.contains("0: HeightTrace (m, trace)"), "{e}");
+    assert!(e.contains("'Phase' (deg) records the phase") && e.contains("0: HeightTrace_trace"), "{e}");
 }
 
 /// Roughness, ACF and correlation length of the real .gwy scan against numpy (tools/gen_afm_fixtures.py).

@@ -396,9 +396,11 @@ fn physics_warnings_carry_numbers() {
     let hf = HeightField::new(100, 100, 120.0, 120.0, vec![0.0; 10_000]).unwrap();
     let w = hf.physics_warnings(65_000.0);
     assert!(w.iter().any(|m| m.contains("120.0 nm") && m.contains("95")), "{w:?}");
-    // A patch smaller than the coherence window is the diffraction model's unit cell, said by the model
-    // commands where it matters, not a problem of the scan.
-    assert_eq!(w.len(), 1, "{w:?}");
+    assert_eq!(w.len(), 1, "the patch size is a note, not a warning: {w:?}");
+    // λ/L at 550 nm over 12 µm: asin(0.0458) = 2.63°.
+    let n = hf.coherence_note(65_000.0).unwrap();
+    assert!(n.contains("12.0 × 12.0 µm") && n.contains("65.0 µm") && n.contains("2.6°"), "{n}");
+    assert!(n.chars().count() < 400, "two sentences, not a paragraph: {} characters", n.chars().count());
     let fine = HeightField::new(1000, 1000, 65.0, 65.0, vec![0.0; 1_000_000]).unwrap();
-    assert!(fine.physics_warnings(65_000.0).is_empty());
+    assert!(fine.physics_warnings(65_000.0).is_empty() && fine.coherence_note(65_000.0).is_none());
 }

@@ -49,6 +49,7 @@
 
 pub mod accuracy;
 pub mod color;
+pub mod depth;
 pub mod error;
 pub mod fast;
 pub mod field;
@@ -60,6 +61,7 @@ pub mod material;
 pub mod nkfile;
 pub mod recurrence;
 pub mod rough;
+pub mod rough_multiple;
 pub mod rough_table;
 pub mod sampling;
 pub mod spectral;

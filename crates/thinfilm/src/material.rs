@@ -212,6 +212,112 @@ const LIBRARY: &[(&[&str], &str, Builtin)] = &[
         "aluminium, Rakić 1995, 207–2066 nm",
         Builtin::File("al_rakic.yml", include_str!("../../../data/materials/al_rakic.yml")),
     ),
+    (
+        &["al2o3", "alumina"],
+        "Al2O3 film (amorphous, pulsed-laser deposited), Boidin et al. 2016, 300–2498 nm",
+        Builtin::File("al2o3_boidin.yml", include_str!("../../../data/materials/al2o3_boidin.yml")),
+    ),
+    (
+        &["si3n4", "silicon-nitride"],
+        "Si3N4 (CVD film), Philipp 1973 Sellmeier, 207–1240 nm",
+        Builtin::File("si3n4_philipp.yml", include_str!("../../../data/materials/si3n4_philipp.yml")),
+    ),
+    (
+        &["sio2-film"],
+        "SiO2 film (ion-assisted e-beam), Gao et al. 2013, 252–1250 nm",
+        Builtin::File("sio2_gao.yml", include_str!("../../../data/materials/sio2_gao.yml")),
+    ),
+    (
+        &["ito", "in2o3-sno2"],
+        "ITO film (72 nm on BK7), König et al. 2014, 252–1000 nm",
+        Builtin::File("ito_konig.yml", include_str!("../../../data/materials/ito_konig.yml")),
+    ),
+    (
+        &["hfo2", "hafnia"],
+        "HfO2 film (e-beam), Franta et al. 2015, 250–2497 nm",
+        Builtin::File("hfo2_franta.yml", include_str!("../../../data/materials/hfo2_franta.yml")),
+    ),
+    (
+        &["ta2o5"],
+        "Ta2O5 film (e-beam), Franta et al. 2015, 253–2497 nm",
+        Builtin::File("ta2o5_franta.yml", include_str!("../../../data/materials/ta2o5_franta.yml")),
+    ),
+    (
+        &["zno"],
+        "ZnO film, Aguilar et al. 2019, 300–2500 nm",
+        Builtin::File("zno_aguilar.yml", include_str!("../../../data/materials/zno_aguilar.yml")),
+    ),
+    (
+        &["zns"],
+        "ZnS (cubic), Ozaki & Adachi 1993, 221–1033 nm",
+        Builtin::File("zns_ozaki.yml", include_str!("../../../data/materials/zns_ozaki.yml")),
+    ),
+    (
+        &["cr", "chromium"],
+        "chromium, Johnson & Christy 1974, 188–1937 nm",
+        Builtin::File("cr_johnson.yml", include_str!("../../../data/materials/cr_johnson.yml")),
+    ),
+    (
+        &["ti", "titanium"],
+        "titanium, Johnson & Christy 1974, 188–1937 nm",
+        Builtin::File("ti_johnson.yml", include_str!("../../../data/materials/ti_johnson.yml")),
+    ),
+    (
+        &["ni", "nickel"],
+        "nickel, Johnson & Christy 1974, 188–1937 nm",
+        Builtin::File("ni_johnson.yml", include_str!("../../../data/materials/ni_johnson.yml")),
+    ),
+    (
+        &["pt", "platinum"],
+        "platinum, Rakić et al. 1998 (Lorentz–Drude fit), 248–2499 nm",
+        Builtin::File("pt_rakic.yml", include_str!("../../../data/materials/pt_rakic.yml")),
+    ),
+    (
+        &["w", "tungsten"],
+        "tungsten, Rakić et al. 1998 (Lorentz–Drude fit), 248–2499 nm",
+        Builtin::File("w_rakic.yml", include_str!("../../../data/materials/w_rakic.yml")),
+    ),
+    (
+        &["ge", "germanium"],
+        "germanium, Nunley et al. 2016, 188–2480 nm",
+        Builtin::File("ge_nunley.yml", include_str!("../../../data/materials/ge_nunley.yml")),
+    ),
+    (
+        &["inp"],
+        "InP, Adachi 1989 (model dielectric function), 207–2407 nm",
+        Builtin::File("inp_adachi.yml", include_str!("../../../data/materials/inp_adachi.yml")),
+    ),
+    (
+        &["gaas"],
+        "GaAs, Papatryfonos et al. 2021, 260–1879 nm",
+        Builtin::File("gaas_papatryfonos.yml", include_str!("../../../data/materials/gaas_papatryfonos.yml")),
+    ),
+    (
+        &["si-green", "si-green2008"],
+        "crystalline Si, Green 2008, 250–1450 nm",
+        Builtin::File("si_green.yml", include_str!("../../../data/materials/si_green.yml")),
+    ),
+    (
+        &["pmma"],
+        "PMMA, Szczurowski 2013 Sellmeier, 405–1083 nm",
+        Builtin::File("pmma_szczurowski.yml", include_str!("../../../data/materials/pmma_szczurowski.yml")),
+    ),
+    (
+        &["pdms"],
+        "PDMS (Sylgard 184, 10:1), Gupta et al. 2019, 300–1690 nm",
+        Builtin::File("pdms_gupta.yml", include_str!("../../../data/materials/pdms_gupta.yml")),
+    ),
+    (
+        &["melanin", "eumelanin"],
+        "eumelanin, Stavenga et al. 2015 Cauchy + exponential κ, 380–780 nm",
+        Builtin::File("melanin_stavenga.yml", include_str!("../../../data/materials/melanin_stavenga.yml")),
+    ),
+    (
+        // Birefringent: 1.83 in the plane of the biogenic plates, 1.46 normal to them; no dispersion data.
+        &["guanine"],
+        "guanine crystal plates, n = 1.83 in-plane (Land 1972; Jordan et al. 2012), constant",
+        Builtin::Const(1.83),
+    ),
 ];
 
 #[derive(Debug, Clone, Copy)]
@@ -292,6 +398,39 @@ impl Material {
                 [l2 / (q * two_n), p[0] * l2 / (q * q * two_n)]
             })
             .collect()
+    }
+
+    /// A material tabulated at the given wavelengths (nm, strictly increasing), interpolated linearly in
+    /// between and refused outside (as the measured data of files): Python's per-wavelength index arrays.
+    /// One wavelength: a constant at that wavelength only.
+    pub fn tabulated(
+        name: impl Into<String>,
+        wavelengths_nm: &[f64],
+        index: &[Complex64],
+    ) -> Result<Self, ThinFilmError> {
+        let name = name.into();
+        if wavelengths_nm.is_empty() || wavelengths_nm.len() != index.len() {
+            return Err(ThinFilmError::Invalid(format!(
+                "material '{name}': {} wavelengths for {} indices (give one index per wavelength)",
+                wavelengths_nm.len(),
+                index.len()
+            )));
+        }
+        if let Some(w) = wavelengths_nm.iter().find(|w| !(w.is_finite() && **w > 0.0)) {
+            return Err(ThinFilmError::Invalid(format!("material '{name}': wavelength {w} nm must be finite and > 0")));
+        }
+        if wavelengths_nm.windows(2).any(|w| w[1] <= w[0]) {
+            return Err(ThinFilmError::Invalid(format!(
+                "material '{name}': the wavelengths must increase strictly (sort them, one index per wavelength)"
+            )));
+        }
+        for (w, x) in wavelengths_nm.iter().zip(index) {
+            Material::constant(format!("{name} at {w} nm"), *x)?;
+        }
+        let (lo, hi) = (wavelengths_nm[0], wavelengths_nm[wavelengths_nm.len() - 1]);
+        let n = Part::Table { wl_nm: wavelengths_nm.to_vec(), v: index.iter().map(|x| x.re).collect() };
+        let k = Part::Table { wl_nm: wavelengths_nm.to_vec(), v: index.iter().map(|x| x.im).collect() };
+        Ok(Self { name, n, k, range_nm: (lo, hi) })
     }
 
     pub(crate) fn from_parts(name: String, n: Part, k: Part, range_nm: (f64, f64)) -> Self {
@@ -427,9 +566,47 @@ mod tests {
         let tio2 = Material::builtin("TiO2").unwrap();
         assert!((tio2.index_at(550.0).unwrap() - Complex64::new(2.164358, 0.0)).norm() < 1e-12);
         assert!((tio2.index_at(330.0).unwrap() - Complex64::new(2.747194, 0.179225)).norm() < 1e-12);
+        // The database's tabulated rows, read back exactly: ITO (König et al.) 0.25157 µm, Cr (Johnson &
+        // Christy) 0.582 µm; Si3N4 (Philipp) Sellmeier at 0.6328 µm.
+        for (name, wl, want) in
+            [("ITO", 251.57, Complex64::new(2.31717213, 0.57780161)), ("Cr", 582.0, Complex64::new(3.22, 3.30))]
+        {
+            let n = Material::builtin(name).unwrap().index_at(wl).unwrap();
+            assert!((n - want).norm() < 1e-12, "{name} at {wl} nm: {n}");
+        }
+        let si3n4 = Material::builtin("Si3N4").unwrap().index_at(632.8).unwrap().re;
+        let l2 = 0.6328f64.powi(2);
+        assert!((si3n4 - (1.0 + 2.8939 * l2 / (l2 - 0.13967f64.powi(2))).sqrt()).abs() < 1e-12, "{si3n4}");
+        // Melanin (Stavenga et al. 2015): 1.648 + 23 700/λ², κ = 0.56 e^{−λ/270}; n 1.7–1.8 in the visible.
+        let mel = Material::builtin("melanin").unwrap();
+        let n = mel.index_at(500.0).unwrap();
+        assert!(
+            (n.re - (1.648 + 23700.0 / 250000.0)).abs() < 1e-12
+                && (n.im - 0.56 * (-500.0f64 / 270.0).exp()).abs() < 1e-6
+        );
         // Chitin (Leertouwer et al.): 1.517 + 8800/λ² with λ in nm.
         let chitin = Material::builtin("chitin").unwrap();
         assert!((chitin.index_at(500.0).unwrap().re - (1.517 + 8800.0 / 250000.0)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn coating_materials_cover_300_to_1000_nm_where_the_source_does() {
+        // Issue 29: what people coat with, from 300 nm (UV that birds and insects see) to 1000 nm.
+        for name in [
+            "Al2O3", "Si3N4", "ITO", "HfO2", "Ta2O5", "ZnO", "ZnS", "Cr", "Ti", "Ni", "Pt", "W", "Ge", "InP", "PDMS",
+            "si-green",
+        ] {
+            let m = Material::builtin(name).unwrap();
+            let (lo, hi) = m.range_nm();
+            assert!(lo <= 300.0 + 1e-9 && hi >= 1000.0 - 1e-9, "{name}: {lo}–{hi} nm");
+            for wl in [300.0, 450.0, 650.0, 1000.0] {
+                let n = m.index_at(wl).unwrap();
+                assert!(n.re > 0.0 && n.im >= 0.0, "{name} at {wl} nm: {n}");
+            }
+        }
+        // Where the source starts later, the range says so: GaAs from 260 nm (covers), PMMA from 405 nm.
+        assert!(Material::builtin("GaAs").unwrap().range_nm().0 <= 300.0);
+        assert!(Material::builtin("PMMA").unwrap().index_at(350.0).is_err());
     }
 
     #[test]
@@ -440,6 +617,19 @@ mod tests {
         assert!(e.to_string().contains("Si") || e.to_string().contains("si"), "{e}");
         let rutile = Material::builtin("rutile").unwrap();
         assert!(rutile.index_at(400.0).is_err());
+    }
+
+    #[test]
+    fn tables_from_arrays_interpolate_and_refuse_outside() {
+        let (w, n) =
+            ([400.0, 500.0, 700.0], [Complex64::new(2.0, 0.1), Complex64::new(1.8, 0.0), Complex64::new(1.6, 0.0)]);
+        let m = Material::tabulated("t", &w, &n).unwrap();
+        assert_eq!(m.index_at(500.0).unwrap(), n[1]);
+        assert!((m.index_at(450.0).unwrap() - Complex64::new(1.9, 0.05)).norm() < 1e-15);
+        assert!(matches!(m.index_at(750.0), Err(ThinFilmError::OutOfRange { .. })));
+        assert!(Material::tabulated("t", &[500.0, 400.0], &n[..2]).is_err());
+        assert!(Material::tabulated("t", &w, &n[..2]).is_err());
+        assert!(Material::tabulated("t", &w, &[n[0], n[1], Complex64::new(1.5, -0.1)]).is_err());
     }
 
     #[test]

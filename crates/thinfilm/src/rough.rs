@@ -60,6 +60,9 @@ use serde::Serialize;
 use crate::error::ThinFilmError;
 use crate::htsg::{local_fresnel, Htsg};
 use crate::recurrence::{fresnel, phase, Composite, Fresnel, Medium};
+use std::sync::Arc;
+
+use crate::rough_multiple::{lobe_cached, Lobe, Multiple};
 use crate::stack::{check_angle, Stack};
 
 /// The default relative azimuth `φ_l − φ_v` of tables: light opposite the viewer in one plane.
@@ -68,10 +71,16 @@ pub const MIRROR_AZIMUTH: f64 = PI;
 /// How the diffuse light crosses the smooth layers above the rough interface (module documentation).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum DiffuseTransport {
-    /// Power transmittances down at `θ_l` and up at `θ_v`, multiple reflections on both paths, the `n²`
-    /// radiance factor: reciprocal, and energy-conserving up to the HTSG interface's own balance.
+    /// Single scattering: power transmittances down at `θ_l` and up at `θ_v`, multiple reflections on both
+    /// paths, the `n²` radiance factor (eq. R1–R6): reciprocal; the light that the layers send back to the
+    /// rough interface, and the light scattered beyond the escape cone, is dropped. The default of
+    /// [`RoughStack::new`] (renderers evaluate it per sample); front ends default to [`Self::Multiple`].
     #[default]
     Reciprocal,
+    /// Single scattering plus every further scattering at the rough interface of the light the layers turn
+    /// back and of the light trapped beyond the escape cone ([`crate::rough_multiple`], eq. M1–M9):
+    /// reciprocal, and a lossless film on a lossless substrate reflects all the light.
+    Multiple,
     /// Sussenbach's eq. 3.18–3.19 as printed (compatibility only: creates energy, not reciprocal).
     ThesisPrinted,
 }
@@ -80,17 +89,20 @@ impl DiffuseTransport {
     /// Parses `reciprocal` or `thesis`.
     pub fn parse(s: &str) -> Result<Self, ThinFilmError> {
         match s.trim().to_ascii_lowercase().as_str() {
-            "reciprocal" => Ok(Self::Reciprocal),
+            "multiple" => Ok(Self::Multiple),
+            "reciprocal" | "single" => Ok(Self::Reciprocal),
             "thesis" | "thesis-printed" => Ok(Self::ThesisPrinted),
             other => Err(ThinFilmError::Invalid(format!(
-                "diffuse transport '{other}': expected 'reciprocal' (the default) or 'thesis' (eq. 3.18–3.19 as \
-                 printed; not energy-conserving)"
+                "diffuse transport '{other}': expected 'multiple' (every scattering inside the film), 'single' \
+                 (alias 'reciprocal': one scattering at the rough interface) or 'thesis' (eq. 3.18–3.19 as printed; \
+                 not energy-conserving)"
             ))),
         }
     }
     pub fn name(self) -> &'static str {
         match self {
-            Self::Reciprocal => "reciprocal",
+            Self::Multiple => "multiple",
+            Self::Reciprocal => "single",
             Self::ThesisPrinted => "thesis",
         }
     }
@@ -256,7 +268,9 @@ impl RoughStack {
     }
 
     /// Direct evaluation of the LSRS model (eq. 3.15–3.19) for the view angle `θ_v`, light angle `θ_l`
-    /// (both 0–90°, radians) and relative azimuth `φ_l − φ_v` (π: light opposite the viewer).
+    /// (both 0–90°, radians) and relative azimuth `φ_l − φ_v` (π: light opposite the viewer). With
+    /// [`DiffuseTransport::Multiple`] each call prepares the wavelength's multiple-scattering state: to
+    /// evaluate many directions at one wavelength, use [`RoughStack::at`].
     pub fn evaluate(
         &self,
         wavelength_nm: f64,
@@ -264,58 +278,48 @@ impl RoughStack {
         light_rad: f64,
         azimuth_rad: f64,
     ) -> Result<Lsrs, ThinFilmError> {
-        if !azimuth_rad.is_finite() {
-            return Err(ThinFilmError::Invalid(format!("azimuth {azimuth_rad} must be finite")));
-        }
+        self.at(wavelength_nm)?.evaluate(view_rad, light_rad, azimuth_rad)
+    }
+
+    /// The model at one wavelength, prepared for evaluating many directions (the multiple-scattering state
+    /// of [`DiffuseTransport::Multiple`] is computed here, once).
+    pub fn at(&self, wavelength_nm: f64) -> Result<RoughAt<'_>, ThinFilmError> {
         let (n_upper, k) = self.upper(wavelength_nm)?;
-        let v = Side::new(&self.stack, wavelength_nm, view_rad)?;
-        let l = Side::new(&self.stack, wavelength_nm, light_rad)?;
-        // Seeds: eq. 3.16 (view and light angle) and eq. 3.17.
-        let (seed_v, seed_l) = (v.seed(&self.htsg, k), l.seed(&self.htsg, k));
-        let (mut diffuse, mut terms, mut bound) = ([0.0; 2], 0, 0.0);
-        if let (Some((sv, cv)), Some((sl, cl))) = (v.dir, l.dir) {
-            let wv = [sv, 0.0, cv];
-            let wl = [sl * azimuth_rad.cos(), sl * azimuth_rad.sin(), cl];
-            let geo = self.htsg.diffuse_geometry(wl, wv, k)?;
-            let f = local_fresnel(n_upper, v.media[v.n() + 1].n, geo.cos_local);
-            let t = self.layer_transport(&v, &seed_v, &l, &seed_l);
-            diffuse = [geo.factor * f.r_s.norm_sqr() * t[0], geo.factor * f.r_p.norm_sqr() * t[1]];
-            terms = geo.terms;
-            bound = geo.bound * t[0].max(t[1]);
-        }
-        let gs = v.specular(&seed_v); // eq. 3.15
-        Ok(Lsrs {
-            specular_s: gs.gamma_s.norm_sqr(),
-            specular_p: gs.gamma_p.norm_sqr(),
-            diffuse_s: diffuse[0],
-            diffuse_p: diffuse[1],
-            terms,
-            bound,
-        })
+        let multiple = match self.transport {
+            DiffuseTransport::Multiple => {
+                let lobe = self.lobe(wavelength_nm, n_upper, k)?;
+                Some(Multiple::new(self, &lobe, wavelength_nm, k, n_upper.re)?)
+            }
+            _ => None,
+        };
+        Ok(RoughAt { rough: self, wavelength_nm, n_upper, k, multiple })
     }
 
-    /// The factor, per polarisation, by which the layers scale the diffuse seed's power `|r|² Φ` (the HTSG
-    /// BRDF in medium `N`) on its way from the light down to the rough interface and up to the viewer:
-    /// `(n₀/n_N)² T(θ_l) T(θ_v)` (eq. R5), or the printed eq. 3.18–3.19, whose recurrence for `γ_d` is a product
-    /// of a view-only and a light-only factor (`|γ_d|² = |γ_{d,0}|² · down(θ_v) · up(θ_l)`).
-    fn layer_transport(&self, v: &Side, seed_v: &Composite, l: &Side, seed_l: &Composite) -> [f64; 2] {
-        let (fv, fl, rad) = (self.side_factor(v, seed_v, true), self.side_factor(l, seed_l, false), self.radiance(v));
-        [rad * fv[0] * fl[0], rad * fv[1] * fl[1]]
+    /// The film-independent lobe of the multiple-scattering model at one wavelength (shared by stacks that
+    /// differ only in thicknesses).
+    pub(crate) fn lobe(&self, wavelength_nm: f64, n_upper: Complex64, k: f64) -> Result<Arc<Lobe>, ThinFilmError> {
+        let n = self.stack.layers.len();
+        let n0 = self.stack.incident.index_at(wavelength_nm).map_err(|e| self.stack.place(e, 0))?.re;
+        let n_sub = self.stack.substrate.index_at(wavelength_nm).map_err(|e| self.stack.place(e, n + 1))?;
+        let theta_c = if n0 >= n_upper.re { 0.5 * PI } else { (n0 / n_upper.re).asin() };
+        lobe_cached(&self.htsg, n_upper, n_sub, k, theta_c)
     }
 
-    /// One side's factor of [`RoughStack::layer_transport`] (the view side when `view`, else the light side).
-    pub(crate) fn side_factor(&self, side: &Side, seed: &Composite, view: bool) -> [f64; 2] {
-        match (self.transport, view) {
-            (DiffuseTransport::Reciprocal, _) => side_transmittance(side, seed),
-            (DiffuseTransport::ThesisPrinted, true) => down_factor(side),
-            (DiffuseTransport::ThesisPrinted, false) => up_factor(side, seed),
-        }
+    /// [`RoughStack::at`] with a lobe computed before (for the same wavelength, incident medium, medium `N`
+    /// and substrate; tables over thickness offsets share it).
+    pub(crate) fn at_with(&self, wavelength_nm: f64, lobe: &Lobe) -> Result<RoughAt<'_>, ThinFilmError> {
+        let (n_upper, k) = self.upper(wavelength_nm)?;
+        let multiple = match self.transport {
+            DiffuseTransport::Multiple => Some(Multiple::new(self, lobe, wavelength_nm, k, n_upper.re)?),
+            _ => None,
+        };
+        Ok(RoughAt { rough: self, wavelength_nm, n_upper, k, multiple })
     }
 
     /// The radiance factor of this transport: `(n₀/n_N)²`, or 1 as printed.
     pub(crate) fn radiance(&self, side: &Side) -> f64 {
         match self.transport {
-            DiffuseTransport::Reciprocal => Self::radiance_factor(side),
+            DiffuseTransport::Reciprocal | DiffuseTransport::Multiple => Self::radiance_factor(side),
             DiffuseTransport::ThesisPrinted => 1.0,
         }
     }
@@ -325,22 +329,7 @@ impl RoughStack {
     /// and `2·steps` azimuthal cells over the hemisphere; the plane of incidence is a mirror plane, so half the
     /// azimuths are evaluated). Their sum is the reflected fraction of the incident power.
     pub fn albedo(&self, wavelength_nm: f64, light_rad: f64, steps: usize) -> Result<Albedo, ThinFilmError> {
-        check_angle(light_rad)?;
-        if steps < 2 {
-            return Err(ThinFilmError::Invalid(format!("albedo integration needs at least 2 steps, got {steps}")));
-        }
-        let (dt, dp) = (0.5 * PI / steps as f64, PI / steps as f64);
-        let mut diffuse = 0.0;
-        for i in 0..steps {
-            let tv = (i as f64 + 0.5) * dt;
-            let w = tv.cos() * tv.sin() * dt * dp;
-            for j in 0..steps {
-                let az = (j as f64 + 0.5) * dp;
-                diffuse += 2.0 * w * self.evaluate(wavelength_nm, tv, light_rad, az)?.k_d();
-            }
-        }
-        let (s, p) = self.specular(wavelength_nm, light_rad)?;
-        Ok(Albedo { specular: 0.5 * (s + p), diffuse })
+        self.at(wavelength_nm)?.albedo(light_rad, steps)
     }
 
     /// The illumination model of eq. 3.20 at one wavelength: `I_e = k_r(θ_v) I_r + Σ_m k_d(ω_l, ω_v) cos θ_l L_m`,
@@ -354,9 +343,10 @@ impl RoughStack {
     ) -> Result<f64, ThinFilmError> {
         let (s, p) = self.specular(wavelength_nm, view_rad)?;
         let mut ie = 0.5 * (s + p) * reflected;
+        let at = self.at(wavelength_nm)?;
         for light in lights {
             check_angle(light.theta_rad)?;
-            let x = self.evaluate(wavelength_nm, view_rad, light.theta_rad, light.azimuth_rad)?;
+            let x = at.evaluate(view_rad, light.theta_rad, light.azimuth_rad)?;
             ie += x.k_d() * light.theta_rad.cos().max(0.0) * light.radiance;
         }
         Ok(ie)
@@ -367,7 +357,8 @@ impl RoughStack {
     /// [`RoughStack::evaluate`] at the nodes; the work is shared: per wavelength, every view angle's
     /// downward path and every light angle's upward path (with its multiple reflections) are computed once, and
     /// each (view, light) pair costs one HTSG directional-diffuse evaluation — the diffuse recurrence is a
-    /// product of a view-only and a light-only factor per polarisation.
+    /// product of a view-only and a light-only factor per polarisation (plus, with multiple scattering, the
+    /// interpolated multiple-scattering term).
     pub fn table(
         &self,
         view_deg: &[f64],
@@ -394,10 +385,11 @@ impl RoughStack {
         let (mut max_terms, mut max_bound) = (0usize, 0.0f64);
         let r = &self.htsg.roughness;
         for (w, &lambda) in wavelengths_nm.iter().enumerate() {
-            let (n_upper, k) = self.upper(lambda)?;
+            let at = self.at(lambda)?;
+            let (n_upper, k) = (at.n_upper, at.k);
             struct Pre {
                 side: Side,
-                /// [`RoughStack::side_factor`] per polarisation
+                /// [`RoughAt::side_factor`] per polarisation
                 factor: [f64; 2],
                 k_factor: f64,
                 shadow: f64,
@@ -405,7 +397,7 @@ impl RoughStack {
             let pre = |deg: f64, view: bool| -> Result<Pre, ThinFilmError> {
                 let side = Side::new(&self.stack, lambda, deg.to_radians())?;
                 let seed = side.seed(&self.htsg, k);
-                let factor = self.side_factor(&side, &seed, view);
+                let factor = at.side_factor(&side, &seed, view);
                 let (kf, sh) = match side.dir {
                     Some((_, c)) => (r.k_factor(c), r.shadowing(c)),
                     None => (0.0, 0.0),
@@ -427,8 +419,11 @@ impl RoughStack {
                     let sigma0 = r.effective_sigma_from_k(v.k_factor + l.k_factor);
                     let geo = self.htsg.diffuse_geometry_with(wl, wv, k, sigma0, v.shadow * l.shadow)?;
                     let f = local_fresnel(n_upper, n_sub, geo.cos_local);
+                    let extra = at.multiple_term((sl, cl), (sv, cv));
                     let (ts, tp) = (rad * v.factor[0] * l.factor[0], rad * v.factor[1] * l.factor[1]);
-                    diffuse[(i * nl + j) * nw + w] = 0.5 * geo.factor * (f.r_s.norm_sqr() * ts + f.r_p.norm_sqr() * tp);
+                    diffuse[(i * nl + j) * nw + w] = 0.5
+                        * ((geo.factor * f.r_s.norm_sqr() + extra[0]) * ts
+                            + (geo.factor * f.r_p.norm_sqr() + extra[1]) * tp);
                     max_terms = max_terms.max(geo.terms);
                     max_bound = max_bound.max(geo.bound * ts.max(tp));
                 }
@@ -447,12 +442,134 @@ impl RoughStack {
     }
 }
 
+/// A rough stack at one wavelength ([`RoughStack::at`]): evaluates any directions with the wavelength's
+/// multiple-scattering state computed once.
+#[derive(Debug, Clone)]
+pub struct RoughAt<'a> {
+    rough: &'a RoughStack,
+    wavelength_nm: f64,
+    n_upper: Complex64,
+    k: f64,
+    multiple: Option<Multiple>,
+}
+
+impl RoughAt<'_> {
+    /// [`RoughStack::evaluate`] at this wavelength.
+    pub fn evaluate(&self, view_rad: f64, light_rad: f64, azimuth_rad: f64) -> Result<Lsrs, ThinFilmError> {
+        if !azimuth_rad.is_finite() {
+            return Err(ThinFilmError::Invalid(format!("azimuth {azimuth_rad} must be finite")));
+        }
+        let rough = self.rough;
+        let (n_upper, k) = (self.n_upper, self.k);
+        let v = Side::new(&rough.stack, self.wavelength_nm, view_rad)?;
+        let l = Side::new(&rough.stack, self.wavelength_nm, light_rad)?;
+        // Seeds: eq. 3.16 (view and light angle) and eq. 3.17.
+        let (seed_v, seed_l) = (v.seed(&rough.htsg, k), l.seed(&rough.htsg, k));
+        let (mut diffuse, mut terms, mut bound) = ([0.0; 2], 0, 0.0);
+        if let (Some((sv, cv)), Some((sl, cl))) = (v.dir, l.dir) {
+            let wv = [sv, 0.0, cv];
+            let wl = [sl * azimuth_rad.cos(), sl * azimuth_rad.sin(), cl];
+            let geo = rough.htsg.diffuse_geometry(wl, wv, k)?;
+            let f = local_fresnel(n_upper, v.media[v.n() + 1].n, geo.cos_local);
+            let (fv, fl, rad) =
+                (self.side_factor(&v, &seed_v, true), self.side_factor(&l, &seed_l, false), rough.radiance(&v));
+            let extra = self.multiple_term((sl, cl), (sv, cv));
+            let t = [rad * fv[0] * fl[0], rad * fv[1] * fl[1]];
+            diffuse =
+                [(geo.factor * f.r_s.norm_sqr() + extra[0]) * t[0], (geo.factor * f.r_p.norm_sqr() + extra[1]) * t[1]];
+            terms = geo.terms;
+            bound = geo.bound * t[0].max(t[1]);
+        }
+        let gs = v.specular(&seed_v); // eq. 3.15
+        Ok(Lsrs {
+            specular_s: gs.gamma_s.norm_sqr(),
+            specular_p: gs.gamma_p.norm_sqr(),
+            diffuse_s: diffuse[0],
+            diffuse_p: diffuse[1],
+            terms,
+            bound,
+        })
+    }
+
+    /// One side's factor of the diffuse transport per polarisation (the view side when `view`, else the
+    /// light side): `T(θ)` (eq. R4), times `β(θ)` with multiple scattering (eq. M7), or the printed eq. 3.19's
+    /// factors.
+    pub(crate) fn side_factor(&self, side: &Side, seed: &Composite, view: bool) -> [f64; 2] {
+        match (self.rough.transport, view) {
+            (DiffuseTransport::Reciprocal, _) => side_transmittance(side, seed),
+            (DiffuseTransport::Multiple, _) => {
+                let t = side_transmittance(side, seed);
+                match (&self.multiple, side.dir) {
+                    (Some(m), Some((s, c))) => {
+                        let theta = s.atan2(c);
+                        [t[0] * m.beta(0, theta), t[1] * m.beta(1, theta)]
+                    }
+                    _ => t,
+                }
+            }
+            (DiffuseTransport::ThesisPrinted, true) => down_factor(side),
+            (DiffuseTransport::ThesisPrinted, false) => up_factor(side, seed),
+        }
+    }
+
+    /// The multiply scattered part `K(θ_l, θ_v)` per polarisation (eq. M5), added to the HTSG lobe before the
+    /// side factors; zero for the other transports. Arguments: `(sin, cos)` of the light and view directions
+    /// in medium `N`.
+    pub(crate) fn multiple_term(&self, light: (f64, f64), view: (f64, f64)) -> [f64; 2] {
+        match &self.multiple {
+            Some(m) => {
+                let (tl, tv) = (light.0.atan2(light.1), view.0.atan2(view.1));
+                [m.kms(0, tl, tv), m.kms(1, tl, tv)]
+            }
+            None => [0.0; 2],
+        }
+    }
+
+    /// [`RoughStack::albedo`] at this wavelength.
+    pub fn albedo(&self, light_rad: f64, steps: usize) -> Result<Albedo, ThinFilmError> {
+        check_angle(light_rad)?;
+        if steps < 2 {
+            return Err(ThinFilmError::Invalid(format!("albedo integration needs at least 2 steps, got {steps}")));
+        }
+        let (dt, dp) = (0.5 * PI / steps as f64, PI / steps as f64);
+        let mut diffuse = 0.0;
+        for i in 0..steps {
+            let tv = (i as f64 + 0.5) * dt;
+            let w = tv.cos() * tv.sin() * dt * dp;
+            for j in 0..steps {
+                let az = (j as f64 + 0.5) * dp;
+                diffuse += 2.0 * w * self.evaluate(tv, light_rad, az)?.k_d();
+            }
+        }
+        let (s, p) = self.rough.specular(self.wavelength_nm, light_rad)?;
+        Ok(Albedo { specular: 0.5 * (s + p), diffuse })
+    }
+
+    /// [`RoughAt::albedo`] per polarisation: `[(k_r, ∫ k_d cos θ dω)]` for s and p.
+    pub fn albedo_polarized(&self, light_rad: f64, steps: usize) -> Result<[Albedo; 2], ThinFilmError> {
+        check_angle(light_rad)?;
+        let (dt, dp) = (0.5 * PI / steps.max(2) as f64, PI / steps.max(2) as f64);
+        let mut diffuse = [0.0; 2];
+        for i in 0..steps.max(2) {
+            let tv = (i as f64 + 0.5) * dt;
+            let w = tv.cos() * tv.sin() * dt * dp;
+            for j in 0..steps.max(2) {
+                let x = self.evaluate(tv, light_rad, (j as f64 + 0.5) * dp)?;
+                diffuse[0] += 2.0 * w * x.diffuse_s;
+                diffuse[1] += 2.0 * w * x.diffuse_p;
+            }
+        }
+        let (s, p) = self.rough.specular(self.wavelength_nm, light_rad)?;
+        Ok([Albedo { specular: s, diffuse: diffuse[0] }, Albedo { specular: p, diffuse: diffuse[1] }])
+    }
+}
+
 /// `T = |D||U|` per polarisation (⊥, ∥): the power transmittance between medium 0 and the rough interface at
 /// this side's angle, with the multiple reflections between the stack and the interface's specular
 /// reflection `seed` (docs/rough-films.md eq. R3–R4). Per layer, from the rough interface up:
 /// `|t_j t'_j| |e^{iφ_j}|² / |1 + r_j γ_{s,N−j} e^{2iφ_j}|²`, `t'_j` the upward amplitude. `|D||U|` rather than
 /// `|D|² Re(n_N cos θ_N)/(n₀ cos θ₀)`: the same for real indices, and finite at grazing incidence.
-fn side_transmittance(side: &Side, seed: &Composite) -> [f64; 2] {
+pub(crate) fn side_transmittance(side: &Side, seed: &Composite) -> [f64; 2] {
     let mut f = [1.0, 1.0];
     let mut gs = *seed;
     for j in (1..=side.n()).rev() {

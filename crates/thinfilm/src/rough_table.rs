@@ -98,30 +98,52 @@ impl RoughColorTable {
             view: Vec<[f64; 2]>,
             light: Vec<[f64; 2]>,
             geometry: Vec<[f64; 2]>,
+            /// With multiple scattering: `(n₀/n_N)² K_pol` at `[o][θ_l][θ_v]` (eq. M5), else empty.
+            multiple: Vec<[f64; 2]>,
         }
+        let multiple = rough.transport == crate::rough::DiffuseTransport::Multiple;
         let per_lambda: Vec<Spectral> = weights
             .wavelengths_nm()
             .par_iter()
             .map(|&lambda| -> Result<Spectral, ThinFilmError> {
                 let (n_upper, k) = rough.upper(lambda)?;
+                // The lobe does not depend on the thicknesses: one for every offset.
+                let lobe = if multiple { Some(rough.lobe(lambda, n_upper, k)?) } else { None };
                 let mut specular = vec![0.0; no * nt];
                 let mut view = vec![[0.0; 2]; no * nt];
                 let mut light = vec![[0.0; 2]; no * nt];
+                let mut extra = if multiple { vec![[0.0; 2]; no * nt * nt] } else { Vec::new() };
                 let mut dirs = vec![None; nt];
                 let mut rad = 0.0;
                 let mut n_sub = n_upper;
                 for (j, r) in stacks.iter().enumerate() {
+                    let at = match &lobe {
+                        Some(l) => r.at_with(lambda, l)?,
+                        None => r.at(lambda)?,
+                    };
+                    let mut here = vec![None; nt];
                     for i in 0..nt {
                         let side = Side::new(&r.stack, lambda, theta(i))?;
                         let seed = side.seed(&r.htsg, k);
                         let gs = side.specular(&seed);
                         specular[j * nt + i] = 0.5 * (gs.gamma_s.norm_sqr() + gs.gamma_p.norm_sqr());
-                        view[j * nt + i] = r.side_factor(&side, &seed, true);
-                        light[j * nt + i] = r.side_factor(&side, &seed, false);
+                        view[j * nt + i] = at.side_factor(&side, &seed, true);
+                        light[j * nt + i] = at.side_factor(&side, &seed, false);
+                        here[i] = side.dir;
                         if j == 0 {
                             dirs[i] = side.dir;
                             rad = r.radiance(&side);
                             n_sub = side.media[side.n() + 1].n;
+                        }
+                    }
+                    if multiple {
+                        for il in 0..nt {
+                            for iv in 0..nt {
+                                if let (Some(dl), Some(dv)) = (here[il], here[iv]) {
+                                    let x = at.multiple_term(dl, dv);
+                                    extra[(j * nt + il) * nt + iv] = [rad * x[0], rad * x[1]];
+                                }
+                            }
                         }
                     }
                 }
@@ -140,7 +162,7 @@ impl RoughColorTable {
                         }
                     }
                 }
-                Ok(Spectral { specular, view, light, geometry })
+                Ok(Spectral { specular, view, light, geometry, multiple: extra })
             })
             .collect::<Result<_, _>>()?;
         let w = weights.weights();
@@ -161,9 +183,13 @@ impl RoughColorTable {
                 let (il, iv) = ((plane / nt) % nt, plane % nt);
                 let mut acc = [0.0; 3];
                 for (p, wl) in per_lambda.iter().zip(w) {
-                    let g = p.geometry[plane];
+                    let mut g = p.geometry[plane];
+                    if !p.multiple.is_empty() {
+                        let x = p.multiple[(j * nt + il) * nt + iv];
+                        g = [g[0] + x[0], g[1] + x[1]];
+                    }
                     let (v, l) = (p.view[j * nt + iv], p.light[j * nt + il]);
-                    // π k_d = π · ½ Σ_pol G_pol T_pol(θ_l) T_pol(θ_v)
+                    // π k_d = π · ½ Σ_pol (G_pol + K_pol) T_pol(θ_l) T_pol(θ_v)
                     let kd = 0.5 * PI * (g[0] * l[0] * v[0] + g[1] * l[1] * v[1]);
                     for c in 0..3 {
                         acc[c] += wl[c] * kd;

@@ -11,16 +11,21 @@
 //!   the forward one for the two semi-infinite media; `kz_list` and `vw_list` follow that choice (the wave
 //!   called forward in a layer is the one with `e^{+i k_z z}`). R and T do not depend on it.
 //!
+//! * complex angles: [`coh_tmm_complex`] takes `θ₀` complex and an absorbing first medium, as tmm does, when
+//!   `n₀ sin θ₀` is real (tmm's condition; the incident wave is then uniform along the interfaces) and `θ₀` is
+//!   the forward angle in `n₀`; `R`, `T` and `power_entering` use tmm's definitions (Byrnes eq. 21–23), in
+//!   which `R + power_entering ≠ 1` when the first medium absorbs.
+//!
 //! Lengths are in any unit shared by the thicknesses and the wavelength (only `d/λ` enters).
 //! Not reproduced: tmm's clamp of very opaque layers (`Im δ > 35` becomes 35, "1 photon in 10^30"), which
-//! changes nothing above 1e-30; and absorbing incident media (iridis requires a lossless one).
+//! changes nothing above 1e-30.
 
 use std::collections::HashMap;
 use std::f64::consts::{FRAC_PI_2, PI};
 
 use num_complex::Complex64;
 use rayon::prelude::*;
-use wide::f64x4;
+use wide::{f64x4, CmpGt, CmpLt, CmpNe};
 
 use crate::error::ThinFilmError;
 use crate::field::waves;
@@ -60,6 +65,11 @@ fn invalid(msg: String) -> ThinFilmError {
 /// Checks `n_list` and `d_list` as tmm does (same length, `inf` at both ends), and what iridis needs besides:
 /// finite thicknesses ≥ 0 inside, finite indices with `Re n > 0`, `κ ≥ 0` (no gain) and a lossless first medium.
 pub fn check_lists(n: &[Complex64], d: &[f64]) -> Result<(), ThinFilmError> {
+    check_lists_with(n, d, false)
+}
+
+/// [`check_lists`], with an absorbing first medium allowed (`absorbing_incident`, for complex angles).
+fn check_lists_with(n: &[Complex64], d: &[f64], absorbing_incident: bool) -> Result<(), ThinFilmError> {
     if n.len() != d.len() || n.len() < 2 {
         return Err(invalid(format!(
             "Problem with n_list or d_list! (n_list has {} entries, d_list {}; both need the same number, at \
@@ -77,7 +87,11 @@ pub fn check_lists(n: &[Complex64], d: &[f64]) -> Result<(), ThinFilmError> {
         }
     }
     for (i, x) in n.iter().enumerate() {
-        check_index(i, *x)?;
+        if i == 0 && absorbing_incident {
+            check_index(1, *x).map_err(|e| invalid(e.to_string().replacen("n_list[1]", "n_list[0]", 1)))?;
+        } else {
+            check_index(i, *x)?;
+        }
     }
     Ok(())
 }
@@ -93,8 +107,9 @@ fn check_index(i: usize, x: Complex64) -> Result<(), ThinFilmError> {
     }
     if i == 0 && x.im != 0.0 {
         return Err(invalid(format!(
-            "Error in n0 or th0! n_list[0] = {x} absorbs; iridis needs a lossless incident medium (in an \
-             absorbing one the incident wave decays and R is not defined; docs/PHYSICS.md)"
+            "Error in n0 or th0! n_list[0] = {x} absorbs: give th_0 as the complex angle that makes \
+             n_list[0]·sin(th_0) real (tmm's convention, which iridis.tmm.coh_tmm accepts), e.g. \
+             numpy.lib.scimath.arcsin(s / n_list[0]) for a real s"
         )));
     }
     Ok(())
@@ -196,8 +211,57 @@ pub fn coh_tmm(pol: Pol, n: &[Complex64], d: &[f64], th0: f64, lam: f64) -> Resu
     check_angle_wavelength(th0, lam)?;
     let mut media = Vec::with_capacity(n.len());
     media_into(n.iter().copied(), th0, &mut media);
+    Ok(coherent_from_media(pol, n, d, &media, n[0] * th0.sin(), lam))
+}
+
+/// `tmm.coh_tmm` with a complex `θ₀` (module documentation): the first medium may absorb when `n₀ sin θ₀` is
+/// real (|Im| < 100 ε, tmm's test) and `θ₀` is the forward angle there (tmm's `is_forward_angle`). A real
+/// `θ₀` with a lossless first medium is [`coh_tmm`].
+pub fn coh_tmm_complex(
+    pol: Pol,
+    n: &[Complex64],
+    d: &[f64],
+    th0: Complex64,
+    lam: f64,
+) -> Result<Coherent, ThinFilmError> {
+    if th0.im == 0.0 && n.first().is_some_and(|x| x.im == 0.0) {
+        return coh_tmm(pol, n, d, th0.re, lam);
+    }
+    check_lists_with(n, d, true)?;
+    if !(th0.re.is_finite() && th0.im.is_finite()) {
+        return Err(invalid(format!("Error in n0 or th0! th_0 = {th0} must be finite")));
+    }
+    check_angle_wavelength(0.0, lam)?;
+    let invariant = n[0] * th0.sin();
+    if invariant.im.abs() >= 100.0 * f64::EPSILON {
+        return Err(invalid(format!(
+            "Error in n0 or th0! n_list[0]·sin(th_0) = {invariant} must be real (|Im| < 100 ε): the incident wave \
+             must be uniform along the interfaces"
+        )));
+    }
+    if !tmm_forward(n[0], th0) {
+        return Err(invalid(format!(
+            "Error in n0 or th0! th_0 = {th0} is not the forward-travelling angle in n_list[0] = {} (use π − th_0)",
+            n[0]
+        )));
+    }
+    let mut media = Vec::with_capacity(n.len());
+    media.push(Medium { n: n[0], cos: th0.cos() });
+    media.extend(n[1..].iter().map(|&x| Medium::new(x, invariant.re)));
+    Ok(coherent_from_media(pol, n, d, &media, invariant, lam))
+}
+
+/// The rest of [`coh_tmm`] once the media are set: the recurrence, tmm's powers, angles, `k_z` and amplitudes.
+fn coherent_from_media(
+    pol: Pol,
+    n: &[Complex64],
+    d: &[f64],
+    media: &[Medium],
+    invariant: Complex64,
+    lam: f64,
+) -> Coherent {
     let inner = &d[1..d.len() - 1];
-    let c = compose(&media, inner, lam, None);
+    let c = compose(media, inner, lam, None);
     let (r, t) = match pol {
         Pol::S => (c.gamma_s, c.tau_s),
         Pol::P => (c.gamma_p, c.tau_p),
@@ -206,7 +270,6 @@ pub fn coh_tmm(pol: Pol, n: &[Complex64], d: &[f64], th0: f64, lam: f64) -> Resu
     let (big_r, big_t, power_entering) = powers(pol, r, t, media[0], media[last]);
 
     // tmm's angles: principal arcsin, flipped to the forward wave in the two semi-infinite media.
-    let invariant = n[0] * th0.sin();
     let th: Vec<Complex64> = n
         .iter()
         .enumerate()
@@ -226,13 +289,18 @@ pub fn coh_tmm(pol: Pol, n: &[Complex64], d: &[f64], th0: f64, lam: f64) -> Resu
     let mut vw: Vec<[Complex64; 2]> = (0..n.len()).map(|j| [wv.v[j], wv.w[j]]).collect();
     vw[0] = [zero, zero];
     vw[last] = [t, zero];
-    Ok(Coherent { r, t, big_r, big_t, power_entering, vw, kz, th })
+    Coherent { r, t, big_r, big_t, power_entering, vw, kz, th }
 }
 
 /// `tmm.ellips`: `(ψ, Δ)` with `tan ψ e^{iΔ} = −r_p / r_s`.
 pub fn ellips(n: &[Complex64], d: &[f64], th0: f64, lam: f64) -> Result<(f64, f64), ThinFilmError> {
-    let s = coh_tmm(Pol::S, n, d, th0, lam)?;
-    let p = coh_tmm(Pol::P, n, d, th0, lam)?;
+    ellips_complex(n, d, Complex64::new(th0, 0.0), lam)
+}
+
+/// [`ellips`] with a complex `θ₀` ([`coh_tmm_complex`]).
+pub fn ellips_complex(n: &[Complex64], d: &[f64], th0: Complex64, lam: f64) -> Result<(f64, f64), ThinFilmError> {
+    let s = coh_tmm_complex(Pol::S, n, d, th0, lam)?;
+    let p = coh_tmm_complex(Pol::P, n, d, th0, lam)?;
     Ok(crate::field::psi_delta(s.r, p.r))
 }
 
@@ -389,6 +457,64 @@ impl AngleKernel {
         let inv = den.inv();
         (num * inv, m * inv)
     }
+
+    /// [`AngleKernel::amplitudes`] for four points at once, vectorised across the points, as SIMD lanes
+    /// `[Re γ, Im γ, Re τ, Im τ]`: lane `l` runs `kernels[l]` (kernels of one stack, so of one layer count; the
+    /// angles may differ) at wavenumber `kk[l]`.
+    /// Every layer costs one SIMD `sin_cos` for the four points, and one SIMD `exp` where a layer decays —
+    /// where the per-point kernel spends a `sin_cos` per four layers and a scalar `exp` per absorbing layer,
+    /// which for the few layers of most films leaves lanes idle (issue 29: a 2-layer absorbing stack).
+    #[inline]
+    fn amplitudes4_lanes(kernels: [&AngleKernel; 4], kk: f64x4) -> [f64x4; 4] {
+        let n = kernels[0].layers;
+        let base = 4 * (n + 1);
+        let im_at = base + n.div_ceil(4) * 4;
+        let lanes =
+            |f: &dyn Fn(&AngleKernel) -> f64| f64x4::new([f(kernels[0]), f(kernels[1]), f(kernels[2]), f(kernels[3])]);
+        let (one, zero) = (f64x4::splat(1.0), f64x4::splat(0.0));
+        let (mut num_re, mut num_im) = (lanes(&|q| q.data[4 * n]), lanes(&|q| q.data[4 * n + 1]));
+        let (mut den_re, mut den_im) = (one, zero);
+        let (mut m_re, mut m_im) = (lanes(&|q| q.data[4 * n + 2]), lanes(&|q| q.data[4 * n + 3]));
+        for j in (0..n).rev() {
+            let (sin, cos) = (kk * lanes(&|q| q.data[base + n - 1 - j])).sin_cos();
+            let (mut e_re, mut e_im) = (cos, sin);
+            let decay = lanes(&|q| q.data[im_at + j]);
+            if decay.cmp_ne(zero).any() {
+                // Im φ ≥ 0 on the forward branch: |e^{iφ}| ≤ 1, nothing overflows.
+                let d = (-(kk * decay)).exp();
+                e_re *= d;
+                e_im *= d;
+            }
+            let (r_re, r_im) = (lanes(&|q| q.data[4 * j]), lanes(&|q| q.data[4 * j + 1]));
+            let (t_re, t_im) = (lanes(&|q| q.data[4 * j + 2]), lanes(&|q| q.data[4 * j + 3]));
+            let (e2_re, e2_im) = (e_re * e_re - e_im * e_im, 2.0 * e_re * e_im);
+            let (ne_re, ne_im) = (num_re * e2_re - num_im * e2_im, num_re * e2_im + num_im * e2_re);
+            let (rd_re, rd_im) = (r_re * den_re - r_im * den_im, r_re * den_im + r_im * den_re);
+            let (rn_re, rn_im) = (r_re * ne_re - r_im * ne_im, r_re * ne_im + r_im * ne_re);
+            num_re = rd_re + ne_re;
+            num_im = rd_im + ne_im;
+            den_re += rn_re;
+            den_im += rn_im;
+            let (te_re, te_im) = (t_re * e_re - t_im * e_im, t_re * e_im + t_im * e_re);
+            (m_re, m_im) = (te_re * m_re - te_im * m_im, te_re * m_im + te_im * m_re);
+            // |D| can grow by up to 2× a layer: bring it back near 1 long before f64 would overflow.
+            let size = den_re * den_re + den_im * den_im;
+            let out = size.cmp_gt(f64x4::splat(1e150)) | size.cmp_lt(f64x4::splat(1e-150));
+            if out.any() {
+                let s = out.blend(one / size.sqrt(), one);
+                (num_re, num_im, den_re, den_im, m_re, m_im) =
+                    (num_re * s, num_im * s, den_re * s, den_im * s, m_re * s, m_im * s);
+            }
+        }
+        let size = den_re * den_re + den_im * den_im;
+        let (inv_re, inv_im) = (den_re / size, -den_im / size);
+        [
+            num_re * inv_re - num_im * inv_im,
+            num_re * inv_im + num_im * inv_re,
+            m_re * inv_re - m_im * inv_im,
+            m_re * inv_im + m_im * inv_re,
+        ]
+    }
 }
 
 /// One angle of the batch: its kernel (and a second one, averaged with it, when a layer grazes:
@@ -432,6 +558,12 @@ impl AngleEntry {
                 (0.5 * (x.0 + y.0), 0.5 * (x.1 + y.1))
             }
         };
+        self.outputs(pol, r, t)
+    }
+
+    /// tmm's outputs from the amplitudes at this angle.
+    #[inline]
+    fn outputs(&self, pol: Pol, r: Complex64, t: Complex64) -> (Complex64, Complex64, f64, f64, f64) {
         let one = Complex64::new(1.0, 0.0);
         let entering = match pol {
             Pol::S => (self.entering * (one + r.conj()) * (one - r)).re,
@@ -460,11 +592,18 @@ impl AngleCache {
 
     #[inline]
     fn get(&mut self, angle: f64, make: impl FnOnce(f64) -> AngleEntry) -> &AngleEntry {
+        let e = self.position(angle, make);
+        &self.entries[e]
+    }
+
+    /// The index of the angle's entry in `entries`, made the first time.
+    #[inline]
+    fn position(&mut self, angle: f64, make: impl FnOnce(f64) -> AngleEntry) -> usize {
         let bits = angle.to_bits();
         let slot = (bits.wrapping_mul(0x9e37_79b9_7f4a_7c15) >> 56) as usize;
         let (b, e) = self.recent[slot];
         if e != 0 && b == bits {
-            return &self.entries[e - 1];
+            return e - 1;
         }
         let entries = &mut self.entries;
         let e = *self.index.entry(bits).or_insert_with(|| {
@@ -472,7 +611,7 @@ impl AngleCache {
             entries.len() - 1
         });
         self.recent[slot] = (bits, e + 1);
-        &self.entries[e]
+        e
     }
 }
 
@@ -556,7 +695,63 @@ pub fn coh_tmm_batch(pol: Pol, n: Indices<'_>, d: &[f64], th0: &[f64], lam: &[f6
             let mut media = Vec::with_capacity(media_count);
             // Per angle in this chunk: its kernel, prepared the first time the angle comes.
             let mut cache = AngleCache::new();
-            for k in 0..r.len() {
+            // Constant indices: four points at a time through the vectorised kernel (lanes may have different
+            // angles), the rest — and any four with a grazing layer, whose two kernels are averaged — one by one.
+            let mut next = 0;
+            if let Indices::Constant(x) = n {
+                // The chunk's angles and wavelengths are checked first, in one pass (the error names the first bad
+                // point); the loop below then has no error path. Consecutive points often share their angle
+                // (spectra): the last angle's entry is kept without a lookup.
+                let (th_c, lam_c) = (&th0[start..start + r.len()], &lam[start..start + r.len()]);
+                if th_c.iter().zip(lam_c).any(|(&a, &l)| check_angle_wavelength(a, l).is_err()) {
+                    let k = (0..r.len()).find(|&k| check_angle_wavelength(th_c[k], lam_c[k]).is_err()).unwrap_or(0);
+                    check_angle_wavelength(th_c[k], lam_c[k])
+                        .map_err(|e| invalid(format!("{e} (at point {} of the batch)", start + k)))?;
+                }
+                let mut last: Option<(u64, usize)> = None;
+                while next + 4 <= r.len() {
+                    let mut e = [0usize; 4];
+                    for l in 0..4 {
+                        let a = th_c[next + l].abs().min(FRAC_PI_2);
+                        e[l] = match last {
+                            Some((bits, idx)) if bits == a.to_bits() => idx,
+                            _ => {
+                                let idx = cache.position(a, |a| AngleEntry::new(pol, x, d, a, &mut media));
+                                last = Some((a.to_bits(), idx));
+                                idx
+                            }
+                        };
+                    }
+                    let entries = e.map(|e| &cache.entries[e]);
+                    if entries.iter().any(|x| x.grazing.is_some()) {
+                        break;
+                    }
+                    let i = start + next;
+                    let kk = f64x4::splat(2.0 * PI) / f64x4::new([lam[i], lam[i + 1], lam[i + 2], lam[i + 3]]);
+                    let [g_re, g_im, t_re, t_im] = AngleKernel::amplitudes4_lanes(entries.map(|x| &x.kernel), kk);
+                    // R = |γ|², T = |τ|² flux(last)/flux(first), and the power entering (AngleEntry::outputs) as
+                    // lanes: (1 ± r̄)(1 ∓ r) = 1 − |r|² ∓ 2i Im r for s and p.
+                    let big_r4 = g_re * g_re + g_im * g_im;
+                    let tf = f64x4::new(entries.map(|x| x.t_factor));
+                    let big_t4 = (t_re * t_re + t_im * t_im) * tf;
+                    let (e_re, e_im) =
+                        (f64x4::new(entries.map(|x| x.entering.re)), f64x4::new(entries.map(|x| x.entering.im)));
+                    let sign = if pol == Pol::S { 2.0 } else { -2.0 };
+                    let pe4 = e_re * (f64x4::splat(1.0) - big_r4) + f64x4::splat(sign) * e_im * g_im;
+                    let (gr, gi, tr, ti) = (g_re.to_array(), g_im.to_array(), t_re.to_array(), t_im.to_array());
+                    let (x_r, x_t, x_pe) = (big_r4.to_array(), big_t4.to_array(), pe4.to_array());
+                    for l in 0..4 {
+                        let k = next + l;
+                        r[k] = Complex64::new(gr[l], gi[l]);
+                        t[k] = Complex64::new(tr[l], ti[l]);
+                        big_r[k] = x_r[l];
+                        big_t[k] = x_t[l];
+                        pe[k] = x_pe[l];
+                    }
+                    next += 4;
+                }
+            }
+            for k in next..r.len() {
                 let i = start + k;
                 check_angle_wavelength(th0[i], lam[i])
                     .map_err(|e| invalid(format!("{e} (at point {i} of the batch)")))?;
@@ -578,6 +773,7 @@ pub fn coh_tmm_batch(pol: Pol, n: Indices<'_>, d: &[f64], th0: &[f64], lam: &[f6
                     }
                 };
                 r[k] = rr;
+
                 t[k] = tt;
                 big_r[k] = x_r;
                 big_t[k] = x_t;
@@ -655,6 +851,58 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn four_point_kernel_equals_single_calls_on_deep_stacks() {
+        // 60 layers (high/low pairs, absorbing and evanescent ones among them, a thick metal that makes |D| grow
+        // past the rescaling threshold), angles differing within every group of four, and a tail of points
+        // that is not a multiple of four.
+        let mut n = vec![c(1.0, 0.0)];
+        let mut d = vec![f64::INFINITY];
+        for j in 0..30 {
+            n.extend([c(2.3, 0.001 * j as f64), c(1.38, 0.0)]);
+            d.extend([55.0 + j as f64, 93.0]);
+        }
+        n[40] = c(0.2, 3.4);
+        d[40] = 3000.0;
+        n.push(c(1.52, 0.0));
+        d.push(f64::INFINITY);
+        let th: Vec<f64> = (0..23).map(|i| (i % 7) as f64 * 0.21).collect();
+        let lam: Vec<f64> = (0..23).map(|i| 350.0 + 31.0 * i as f64).collect();
+        for pol in [Pol::S, Pol::P] {
+            let b = coh_tmm_batch(pol, Indices::Constant(&n), &d, &th, &lam).unwrap();
+            for i in 0..th.len() {
+                let one = coh_tmm(pol, &n, &d, th[i], lam[i]).unwrap();
+                assert!((b.r[i] - one.r).norm() < 1e-12 * (1.0 + one.r.norm()), "{pol:?} {i}: {} vs {}", b.r[i], one.r);
+                assert!(
+                    (b.t[i] - one.t).norm() <= 1e-12 * one.t.norm() + 1e-300,
+                    "{pol:?} {i}: {} vs {}",
+                    b.t[i],
+                    one.t
+                );
+                assert!(
+                    (b.big_r[i] - one.big_r).abs() < 1e-12 && (b.power_entering[i] - one.power_entering).abs() < 1e-12
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn complex_angles_as_tmm_takes_them() {
+        // A real angle written as complex is the real calculation; an absorbing first medium takes the complex
+        // angle that makes n₀ sin θ₀ real (tmm's convention) and is refused otherwise.
+        let n = [c(1.0, 0.0), c(2.0, 0.1), c(1.5, 0.0)];
+        let d = [f64::INFINITY, 200.0, f64::INFINITY];
+        let a = coh_tmm(Pol::P, &n, &d, 0.4, 500.0).unwrap();
+        let b = coh_tmm_complex(Pol::P, &n, &d, c(0.4, 0.0), 500.0).unwrap();
+        assert_eq!(a, b);
+        let n0 = c(1.5, 0.02);
+        let th0 = asin(c(0.6, 0.0) / n0);
+        let x = coh_tmm_complex(Pol::S, &[n0, c(2.0, 0.0), c(1.0, 0.0)], &d, th0, 500.0).unwrap();
+        assert!(x.big_r > 0.0 && x.big_r < 1.0 && (x.th[1] - asin(c(0.3, 0.0))).norm() < 1e-12, "{x:?}");
+        assert!(coh_tmm_complex(Pol::S, &[n0, c(2.0, 0.0), c(1.0, 0.0)], &d, c(0.4, 0.0), 500.0).is_err());
+        assert!(coh_tmm(Pol::S, &[n0, c(2.0, 0.0), c(1.0, 0.0)], &d, 0.4, 500.0).is_err());
     }
 
     #[test]

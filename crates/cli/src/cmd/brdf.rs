@@ -38,6 +38,11 @@ pub struct ModelOpts {
     /// Wavelength step of the spectral integral (≤ 5nm recommended).
     #[arg(long, value_parser = positive_length_nm)]
     pub step: Option<f64>,
+    /// Energy-conserving lobes (reference, ground-truth): each scaled by its order's factor in the patch's
+    /// energy-normalised channel matrix, so that the BRDF never returns more light than it receives (Kirchhoff's
+    /// obliquity factor as printed returns up to twice it at grazing light).
+    #[arg(long)]
+    pub conserve_energy: bool,
 }
 
 #[derive(Debug, ClapArgs)]
@@ -96,7 +101,8 @@ Renders the colour reflected towards every view direction for one light directio
 (x, y) in [-1, 1]^2 shows the view direction (x, y, sqrt(1 - x^2 - y^2)); x right, y up.
 
 Methods: ground-truth (direct windowed transform of exp(ikwh), slow: use --size 64 on big
-surfaces), reference (the thesis' FLSS shader: windowed DFT of the Taylor terms per wavelength),
+surfaces), ground-truth-periodic (the same transform of the patch's periodic extension, the exact
+answer the DFT-based methods approximate), reference (the thesis' FLSS shader: windowed DFT of the Taylor terms per wavelength),
 lookup (the paper's fast path: precomputed tables; pass a TABLE from `iridis precompute`, or a
 SURFACE to build one first), and the lab's comparison models (docs/lab.md): nmm and pq (the
 thesis' variants), stam-periodic and stam-periodic-triangular (Stam's bumps on a lattice fitted
@@ -124,7 +130,8 @@ pub struct BrdfMapArgs {
     /// A height field (file or builtin:NAME) or a lookup table from `iridis precompute`, told apart by content
     /// (a height field may be an .npz too).
     pub input: String,
-    /// ground-truth, reference, lookup, nmm, pq, stam-periodic, stam-periodic-triangular or stam-gaussian.
+    /// ground-truth, ground-truth-periodic, reference, lookup, nmm, pq, stam-periodic, stam-periodic-triangular
+    /// or stam-gaussian.
     #[arg(long, default_value = "lookup")]
     pub method: String,
     /// Light direction: polar angle θ_i[,azimuth φ_i].
@@ -195,6 +202,7 @@ impl ModelOpts {
             illuminant: self.illuminant.clone(),
             observer: self.observer.clone(),
             step_nm: self.step,
+            conserve_energy: self.conserve_energy,
         }
     }
 }
@@ -305,6 +313,174 @@ pub(crate) fn refuse_build_options_for_table(a: &BrdfMapArgs) -> Result<()> {
 pub enum BrdfCommand {
     /// ρ(λ) and XYZ of one method for one pair of directions (the evaluator interface, for scripts).
     Eval(BrdfEvalArgs),
+    /// How an animal sees the surface from several directions: quantum catches and ΔS, ΔL in JND.
+    Vision(BrdfVisionArgs),
+}
+
+#[derive(Debug, ClapArgs)]
+#[command(after_help = "\
+The reflectance factor π f_r(λ) of the BRDF (unpolarised; a white diffuser's is 1; the reference method,
+300–700 nm: birds and bees see ultraviolet) in each view direction of the plane of incidence, analysed by the
+receptor-noise-limited model (Vorobyev & Osorio 1998; `iridis vision`, docs/vision.md): each direction's
+quantum catches and its colour distance ΔS (and achromatic ΔL) in JND to the mirror direction and to the next
+view. Views are signed polar angles in the plane of incidence, positive on the specular side; the plane is
+the surface's dominant orientation unless --azimuth says otherwise. --strip draws each view's false colour:
+the three longest receptors' catches as R, G, B, and a fourth (UV) receptor's as a violet row below.
+
+Examples:
+  iridis brdf vision 'builtin:elaphe?size=10um&pixel=50nm' --visual bluetit --coherence 5um --views -60,-40,-20,0,20,40,60
+  iridis brdf vision 'builtin:xenopeltis?size=10um&pixel=50nm' --visual honeybee --light 20deg --coherence 5um --strip bee.png
+  iridis brdf vision 'builtin:elaphe?size=10um&pixel=50nm' --visual ball-python --coherence 5um --json")]
+pub struct BrdfVisionArgs {
+    /// A height field (file or builtin:NAME).
+    pub input: String,
+    /// The visual system: human, avian-uv, avian-v, bluetit, honeybee, ball-python, or a CSV of sensitivities.
+    #[arg(long)]
+    pub visual: String,
+    /// Light polar angle θ_i (in the plane of incidence).
+    #[arg(long, value_parser = crate::args::angle_rad, default_value = "0deg")]
+    pub light: f64,
+    /// The plane of incidence's azimuth [default: the orientation of the surface's strongest period].
+    #[arg(long, value_parser = crate::args::angle_rad, allow_hyphen_values = true)]
+    pub azimuth: Option<f64>,
+    /// View angles θ_r in degrees, comma-separated, signed (positive on the specular side).
+    #[arg(long, default_value = "-60,-50,-40,-30,-20,-10,0,10,20,30,40,50,60", allow_hyphen_values = true)]
+    pub views: String,
+    /// The light the animal sees by: d65 (default), bluesky, forestshade, … (`iridis vision --help`).
+    #[arg(long, default_value = "d65")]
+    pub illuminant: String,
+    /// Write each view's false colour (PNG).
+    #[arg(long)]
+    pub strip: Option<PathBuf>,
+    /// Print JSON: the spectra and the analysis.
+    #[arg(long)]
+    pub json: bool,
+    #[command(flatten)]
+    pub shading: ShadingOpts,
+    #[command(flatten)]
+    pub model: ModelOpts,
+    #[command(flatten)]
+    pub surface_opts: SurfaceOpts,
+}
+
+fn run_vision(a: BrdfVisionArgs) -> Result<()> {
+    crate::output::declare_opt("--strip", a.strip.as_deref(), &["png"])?;
+    let views: Vec<f64> = a
+        .views
+        .split(',')
+        .map(|v| {
+            let v = v.trim().trim_end_matches("deg");
+            v.parse::<f64>().map_err(|_| anyhow::anyhow!("--views: '{v}' is not an angle in degrees"))
+        })
+        .collect::<Result<_>>()?;
+    let spec = iridis_vision::Spec {
+        visual: Some(a.visual.clone()),
+        illuminant: Some(a.illuminant.clone()),
+        ..Default::default()
+    };
+    let source = iridis_api::surface::Source::Spec(a.input.clone());
+    let v = iridis_api::vision::along_plane(
+        &source,
+        &a.surface_opts.options(),
+        &a.model.options(),
+        a.shading.shading()?,
+        a.light,
+        a.azimuth,
+        &views,
+        &spec,
+        &Cli,
+    )?;
+    if let Some(path) = &a.strip {
+        let img = vision_strip(&v)?;
+        crate::output::write_png_rgb8(path, img.width, img.height, &img.data)?;
+    }
+    if a.json {
+        return crate::output::print_json(&v.to_json());
+    }
+    let an = &v.analysis;
+    crate::outln!(
+        "{} · seen by {} under {} · light θ {:.1}° in the plane of azimuth {:.1}° · π f_r(λ), 300–700 nm",
+        v.surface,
+        an.visual.name,
+        an.illuminant,
+        v.light_theta.to_degrees(),
+        v.azimuth.to_degrees()
+    )?;
+    let mirror = v
+        .views
+        .iter()
+        .min_by(|x, y| (x.1 - v.light_theta.to_degrees()).abs().total_cmp(&(y.1 - v.light_theta.to_degrees()).abs()))
+        .map(|x| x.0.clone())
+        .unwrap_or_default();
+    let jnd = |d: Option<f64>| d.map_or("—".to_string(), |x| format!("{x:.2}"));
+    crate::outln!(
+        "  view      relative catches ({})      ΔS to {mirror} (JND)   ΔS to the previous (JND)",
+        an.receptors.join(", ")
+    )?;
+    for (k, s) in an.samples.iter().enumerate() {
+        let rel: Vec<String> = s.relative_catches.iter().map(|x| format!("{x:.3}")).collect();
+        let to_mirror = an.distance(&s.name, &mirror).and_then(|d| d.delta_s);
+        let to_prev = (k > 0).then(|| an.distance(&s.name, &an.samples[k - 1].name).and_then(|d| d.delta_s)).flatten();
+        crate::outln!("  {:>6}    {:<32}  {:>12}   {:>12}", s.name, rel.join(" "), jnd(to_mirror), jnd(to_prev))?;
+    }
+    for n in &an.notes {
+        eprintln!("note: {n}");
+    }
+    Ok(())
+}
+
+/// The views' false colours as a picture with its legend in the title (see [`iridis_api::vision`]).
+fn vision_strip(v: &iridis_api::vision::DirectionalVision) -> Result<iridis_plot::RgbImage> {
+    let colours = v.false_colours();
+    let uv = colours.iter().any(|c| c.1.is_some());
+    let (cell, rows) = (16usize, if uv { 2 } else { 1 });
+    let n = colours.len();
+    let mut data = vec![0u8; n * cell * rows * cell * 3];
+    for (k, (rgb, u)) in colours.iter().enumerate() {
+        for row in 0..rows {
+            let c = if row == 0 {
+                *rgb
+            } else {
+                let x = u.unwrap_or(0.0);
+                [0.6 * x, 0.2 * x, x]
+            };
+            for y in row * cell..(row + 1) * cell {
+                for x in k * cell..(k + 1) * cell {
+                    let i = (y * n * cell + x) * 3;
+                    for ch in 0..3 {
+                        data[i + ch] = (255.0 * c[ch].clamp(0.0, 1.0).powf(1.0 / 2.2)).round() as u8;
+                    }
+                }
+            }
+        }
+    }
+    let pixels = iridis_plot::RgbImage { width: (n * cell) as u32, height: (rows * cell) as u32, data };
+    let r = &v.analysis.receptors;
+    let k = r.len();
+    let legend = match k {
+        0..=2 => format!("{}: catches of {}", v.analysis.visual.name, r.join(", ")),
+        _ => format!(
+            "{}: R {} G {} B {}{}",
+            v.analysis.visual.name.split(" (").next().unwrap_or(""),
+            r[k - 1],
+            r[k - 2],
+            r[k - 3],
+            if uv { format!(", below {}", r[0]) } else { String::new() }
+        ),
+    };
+    let (lo, hi) = (v.views.first().map_or(0.0, |x| x.1), v.views.last().map_or(0.0, |x| x.1));
+    Ok(iridis_plot::ImagePlot {
+        title: legend,
+        x_label: "view θr (deg, + on the specular side)".into(),
+        y_label: if uv { "UV | visible".into() } else { "visible".into() },
+        x_range: (lo, hi),
+        y_range: (0.0, rows as f64),
+        pixels: &pixels,
+        overlays: vec![],
+        colorbar: None,
+        size: (720, 260),
+    }
+    .render_without_y_ticks()?)
 }
 
 #[derive(Debug, ClapArgs)]
@@ -323,6 +499,7 @@ reference for a SURFACE, lookup for a TABLE.
 Examples:
   iridis brdf eval builtin:sine --light 30deg --view 10deg,180deg --json
   iridis brdf eval builtin:blazed --method ground-truth --light 0deg --view 20deg,180deg
+  iridis brdf eval builtin:sine --light 30deg --view 10deg,180deg --visual bluetit --spectra sine_view.csv
   iridis precompute builtin:elaphe -o elaphe.npz && iridis brdf eval elaphe.npz --light 20deg,0deg --view 35deg,180deg --json")]
 pub struct BrdfEvalArgs {
     /// A height field (file or builtin:NAME) or a lookup table from `iridis precompute`.
@@ -333,8 +510,8 @@ pub struct BrdfEvalArgs {
     /// View direction θ[,φ] (towards the viewer).
     #[arg(long)]
     pub view: String,
-    /// ground-truth, reference, lookup, nmm, pq, stam-periodic, stam-periodic-triangular or stam-gaussian
-    /// [default: reference for a SURFACE, lookup for a TABLE].
+    /// ground-truth, ground-truth-periodic, reference, lookup, nmm, pq, stam-periodic, stam-periodic-triangular
+    /// or stam-gaussian [default: reference for a SURFACE, lookup for a TABLE].
     #[arg(long)]
     pub method: Option<String>,
     #[command(flatten)]
@@ -352,6 +529,13 @@ pub struct BrdfEvalArgs {
     /// Print the paper's relative reflectance ρ(λ) instead of the BRDF in sr⁻¹.
     #[arg(long)]
     pub relative: bool,
+    /// Also as an animal sees this direction: a visual system of `iridis vision` (bluetit, honeybee, …),
+    /// from the reflectance factor π f_r(λ); key vision in --json.
+    #[arg(long)]
+    pub visual: Option<String>,
+    /// Write the spectra as CSV (pavo reads it): wavelength_nm, π f_r for s, p and unpolarised light, ρ.
+    #[arg(long)]
+    pub spectra: Option<PathBuf>,
     /// Print JSON: the inputs, the wavelength grid, f_r(λ) in sr⁻¹ per polarisation, ρ(λ) (null for lookup)
     /// and XYZ.
     #[arg(long)]
@@ -361,10 +545,12 @@ pub struct BrdfEvalArgs {
 pub fn run_brdf(c: BrdfCommand) -> Result<()> {
     match c {
         BrdfCommand::Eval(a) => run_eval(a),
+        BrdfCommand::Vision(a) => run_vision(a),
     }
 }
 
 fn run_eval(a: BrdfEvalArgs) -> Result<()> {
+    crate::output::declare_opt("--spectra", a.spectra.as_deref(), &["csv"])?;
     let (tl, pl) = polar_azimuth("light", &a.light)?;
     let (tv, pv) = polar_azimuth("view", &a.view)?;
     let (wi, wr) = (direction(tl, pl), direction(tv, pv));
@@ -375,6 +561,13 @@ fn run_eval(a: BrdfEvalArgs) -> Result<()> {
     let q = &p.query;
     let deg = |r: f64| (r.to_degrees() * 1e9).round() / 1e9;
     let r0 = shading_r0(&a.shading)?;
+    if let Some(path) = &a.spectra {
+        crate::output::write_bytes(path, p.spectra_csv()?.as_bytes())?;
+    }
+    let vision = match &a.visual {
+        Some(v) => Some(p.vision(&iridis_vision::Spec { visual: Some(v.clone()), ..Default::default() })?),
+        None => None,
+    };
     let area_um2 = p.effective_area_nm2.map(|a| a / 1e6);
     if a.json {
         return crate::output::print_json(&serde_json::json!({
@@ -394,6 +587,7 @@ fn run_eval(a: BrdfEvalArgs) -> Result<()> {
             "brdf_per_sr": q.brdf,
             "reflectance": q.reflectance,
             "xyz": [q.xyz.x, q.xyz.y, q.xyz.z],
+            "vision": vision.as_ref().map(serde_json::to_value).transpose()?,
         }));
     }
     crate::outln!(
@@ -440,7 +634,18 @@ fn run_eval(a: BrdfEvalArgs) -> Result<()> {
             crate::outln!("f_r(λ), ρ(λ): not available — the {} method integrates over λ in advance", p.method)?
         }
     }
-    crate::outln!("XYZ {:.6e} {:.6e} {:.6e}  (of ρ; a normal-incidence mirror: Y = 1)", q.xyz.x, q.xyz.y, q.xyz.z)
+    crate::outln!("XYZ {:.6e} {:.6e} {:.6e}  (of ρ; a normal-incidence mirror: Y = 1)", q.xyz.x, q.xyz.y, q.xyz.z)?;
+    if let Some(v) = &vision {
+        let s = &v.samples[0];
+        let f = |x: &[f64]| x.iter().map(|c| format!("{c:.4}")).collect::<Vec<_>>().join("  ");
+        crate::outln!("seen by {} under {} (receptors {}):", v.visual.name, v.illuminant, v.receptors.join(", "))?;
+        crate::outln!("  quantum catches (von Kries)  {}", f(&s.quantum_catches))?;
+        crate::outln!("  relative catches             {}", f(&s.relative_catches))?;
+        for n in &v.notes {
+            eprintln!("note: {n}");
+        }
+    }
+    Ok(())
 }
 
 /// `R₀` of the Fresnel source (what the relative ρ divides by).

@@ -8,8 +8,10 @@ use std::time::Instant;
 
 use anyhow::{bail, Context, Result};
 use clap::Args as ClapArgs;
-use iridis_filmfit::{fit, FitOptions, Measured, Quantity, Spread, Template};
+use iridis_filmfit::{fit, FitOptions, Quantity, ReadOptions, Spread, Template};
 use iridis_plot::{LinePlot, Series};
+use iridis_thinfilm::color::Polarization;
+use iridis_thinfilm::depth::depth_profile;
 use iridis_thinfilm::Stack;
 use serde_json::json;
 
@@ -47,7 +49,9 @@ pub struct ProfileArgs {
 
 #[derive(Debug, ClapArgs)]
 pub struct FitArgs {
-    /// The measured spectrum: CSV with a header naming wavelength_nm and R, T, or psi and delta (degrees).
+    /// The measured spectrum: columns of wavelength and R, T, or psi and delta (degrees), separated by
+    /// commas, tabs, semicolons or spaces, with or without a header ("Wavelength (nm),Reflectance (%)", …);
+    /// what was read is printed (separator, columns, unit, percent).
     pub measured: PathBuf,
     /// The stack with free parameters {NAME=START:LOW..HIGH}, e.g. "air | SiO2 {d1=100nm:50nm..500nm} | Si".
     #[arg(long)]
@@ -71,6 +75,19 @@ pub struct FitArgs {
     /// 1: a single local fit from the start values).
     #[arg(long, default_value_t = 0)]
     pub grid: usize,
+    /// The columns to fit, by header name or number from 1: wavelength then R (or T), or wavelength, psi,
+    /// delta, e.g. --columns "Wavelength (nm),R sample" or --columns 1,3. Default: found from the header.
+    #[arg(long, value_name = "WL,VALUE[,VALUE]")]
+    pub columns: Option<String>,
+    /// The values are in percent (default: detected from a "%" in the header or values above 1.5, and said).
+    #[arg(long)]
+    pub percent: bool,
+    /// Fit only wavelengths from this one on (with unit, e.g. 400nm).
+    #[arg(long, value_parser = crate::args::length_nm)]
+    pub from: Option<f64>,
+    /// Fit only wavelengths up to this one (with unit, e.g. 826nm).
+    #[arg(long, value_parser = crate::args::length_nm)]
+    pub to: Option<f64>,
     /// Plot measured against fitted (PNG).
     #[arg(long)]
     pub plot: Option<PathBuf>,
@@ -86,64 +103,45 @@ pub fn profile(a: ProfileArgs) -> Result<()> {
     crate::output::declare_opt("--plot", a.plot.as_deref(), &["png"])?;
     let stack = Stack::parse(&a.stack).map_err(|e| anyhow::anyhow!("{e}"))?;
     let pol = a.polarization.to_ascii_lowercase();
-    if !matches!(pol.as_str(), "avg" | "s" | "p") {
-        bail!("--polarization '{}': use avg, s or p", a.polarization);
-    }
+    let polarization = match pol.as_str() {
+        "avg" => Polarization::Average,
+        "s" => Polarization::S,
+        "p" => Polarization::P,
+        _ => bail!("--polarization '{}': use avg, s or p", a.polarization),
+    };
+    let window = match &a.depth {
+        None => None,
+        Some(w) => {
+            let bad = || anyhow::anyhow!("--depth '{w}': write FROM:TO with units, e.g. --depth=-20nm:200nm");
+            let (from, to) = w.split_once(':').ok_or_else(bad)?;
+            match (crate::args::length_nm(from.trim()), crate::args::length_nm(to.trim())) {
+                (Ok(f), Ok(t)) if f < t => Some((f, t)),
+                (Ok(f), Ok(t)) => bail!("--depth {f} nm:{t} nm is empty: FROM must be above (less than) TO"),
+                (Err(e), _) | (_, Err(e)) => bail!("--depth '{w}': {e}"),
+            }
+        }
+    };
     if !(2..=1_000_000).contains(&a.points) {
         bail!("--points must be between 2 and 1000000");
     }
-    let pick = |s: f64, p: f64| match pol.as_str() {
-        "s" => s,
-        "p" => p,
-        _ => 0.5 * (s + p),
-    };
-    let abs = stack.absorption(a.wavelength, a.angle)?;
-    // Rounding leaves ±1e-17 in lossless layers: print those as 0.
-    let clean = |v: f64| if v.abs() < 1e-14 { 0.0 } else { v };
-    let layers: Vec<f64> = abs.layers_s.iter().zip(&abs.layers_p).map(|(s, p)| clean(pick(*s, *p))).collect();
-    let (r, t, sub) = (pick(abs.r_s, abs.r_p), pick(abs.t_s, abs.t_p), pick(abs.substrate_s, abs.substrate_p));
-    let balance = r + t + layers.iter().sum::<f64>() + sub - 1.0;
-    // The energy balance is an identity of the flux formulas; more than rounding means a bug, not bad input.
-    if balance.abs() > 1e-9 {
-        bail!("internal error: R + T + ΣA − 1 = {balance:e} (please report with the stack)");
-    }
     // Coherent and mixed stacks alike (in inc: layers: incoherent Beer–Lambert beams, no interference).
-    let (pts, depth) = {
-        let f = stack.profile(a.wavelength, a.angle)?;
-        let depth = f.depth_nm();
-        let (z0, z1) = match &a.depth {
-            None => (-100.0, depth + 100.0),
-            Some(w) => {
-                let bad = || anyhow::anyhow!("--depth '{w}': write FROM:TO with units, e.g. --depth=-20nm:200nm");
-                let (from, to) = w.split_once(':').ok_or_else(bad)?;
-                let (from, to) = (crate::args::length_nm(from.trim()), crate::args::length_nm(to.trim()));
-                match (from, to) {
-                    (Ok(f), Ok(t)) if f < t => (f, t),
-                    (Ok(f), Ok(t)) => bail!("--depth {f} nm:{t} nm is empty: FROM must be above (less than) TO"),
-                    (Err(e), _) | (_, Err(e)) => bail!("--depth '{w}': {e}"),
-                }
-            }
-        };
-        let pts: Vec<_> = (0..a.points).map(|i| f.at(z0 + (z1 - z0) * i as f64 / (a.points - 1) as f64)).collect();
-        (pts, depth)
-    };
-    let names: Vec<String> = stack
-        .layers
-        .iter()
-        .map(|l| format!("{}{} {} nm", if l.incoherent { "inc:" } else { "" }, l.material.name(), l.thickness_nm))
-        .collect();
+    let d = depth_profile(&stack, a.wavelength, a.angle, polarization, a.points, window)?;
+    // The energy balance is an identity of the flux formulas; more than rounding means a bug, not bad input.
+    if d.balance.abs() > 1e-9 {
+        bail!("internal error: R + T + ΣA − 1 = {:e} (please report with the stack)", d.balance);
+    }
+    let (r, t, sub, balance, depth) = (d.r, d.t, d.substrate, d.balance, d.depth_nm);
+    let (layers, names) = (&d.layers, &d.layer_names);
     if let Some(path) = &a.plot {
-        let z: Vec<f64> = pts.iter().map(|p| p.z_nm).collect();
-        let e2: Vec<f64> = pts.iter().map(|p| pick(p.e2_s, p.e2_p)).collect();
-        let ab: Vec<f64> = pts.iter().map(|p| 1000.0 * pick(p.absorption_s, p.absorption_p)).collect();
+        let ab: Vec<f64> = d.absorption_per_nm.iter().map(|v| 1000.0 * v).collect();
         let mut plot = LinePlot::new(
             format!("{}  at {} nm, {}°", super::thinfilm::stack_title(&a.stack), a.wavelength, deg(a.angle)),
             format!("depth below the first interface (nm); layers end at 0 and {depth} nm"),
             "|E|² (incident = 1); absorbed power (fraction per µm)",
         )
-        .series(Series::new("|E|²", &z, &e2))
-        .series(Series::new("absorbed power density (1/µm)", &z, &ab));
-        plot.x_range = Some((z[0], z[z.len() - 1]));
+        .series(Series::new("|E|²", &d.z_nm, &d.e2))
+        .series(Series::new("absorbed power density (1/µm)", &d.z_nm, &ab));
+        plot.x_range = Some((d.z_nm[0], d.z_nm[d.z_nm.len() - 1]));
         let img = plot.render()?;
         crate::output::write_png_rgb8(path, img.width, img.height, &img.data)?;
         if !a.json && !a.csv {
@@ -152,11 +150,7 @@ pub fn profile(a: ProfileArgs) -> Result<()> {
     }
     if a.json {
         let prof = json!({
-                "z_nm": pts.iter().map(|p| p.z_nm).collect::<Vec<_>>(),
-                "medium": pts.iter().map(|p| p.medium).collect::<Vec<_>>(),
-                "E2": pts.iter().map(|p| pick(p.e2_s, p.e2_p)).collect::<Vec<_>>(),
-                "absorption_per_nm": pts.iter().map(|p| pick(p.absorption_s, p.absorption_p)).collect::<Vec<_>>(),
-                "flux": pts.iter().map(|p| pick(p.poynting_s, p.poynting_p)).collect::<Vec<_>>(),
+                "z_nm": d.z_nm, "medium": d.medium, "E2": d.e2, "absorption_per_nm": d.absorption_per_nm, "flux": d.flux,
         });
         return crate::output::print_json(&json!({
             "stack": stack.to_string(), "wavelength_nm": a.wavelength, "angle_deg": a.angle.to_degrees(),
@@ -166,16 +160,8 @@ pub fn profile(a: ProfileArgs) -> Result<()> {
     }
     if a.csv {
         let mut out = String::from("z_nm,medium,E2,absorption_per_nm,flux\n");
-        for p in &pts {
-            let _ = writeln!(
-                out,
-                "{},{},{},{},{}",
-                p.z_nm,
-                p.medium,
-                pick(p.e2_s, p.e2_p),
-                pick(p.absorption_s, p.absorption_p),
-                pick(p.poynting_s, p.poynting_p)
-            );
+        for i in 0..d.z_nm.len() {
+            let _ = writeln!(out, "{},{},{},{},{}", d.z_nm[i], d.medium[i], d.e2[i], d.absorption_per_nm[i], d.flux[i]);
         }
         return crate::output::write_stdout_bytes(out.as_bytes());
     }
@@ -183,10 +169,10 @@ pub fn profile(a: ProfileArgs) -> Result<()> {
     crate::outln!("{} nm at {}°, {}", a.wavelength, deg(a.angle), pol)?;
     crate::outln!("{:<40} {:>12}", "where the light goes", "fraction")?;
     crate::outln!("{:<40} {:>12.7}", "reflected (R)", r)?;
-    for (i, (n, v)) in names.iter().zip(&layers).enumerate() {
+    for (i, (n, v)) in names.iter().zip(layers.iter()).enumerate() {
         crate::outln!("{:<40} {:>12.7}", format!("absorbed in layer {} ({n})", i + 1), v)?;
     }
-    if abs.substrate_s > 0.0 || abs.substrate_p > 0.0 {
+    if sub > 0.0 {
         crate::outln!("{:<40} {:>12.7}", "absorbed in the substrate", sub)?;
     }
     crate::outln!("{:<40} {:>12.7}", "transmitted (T)", t)?;
@@ -201,13 +187,16 @@ pub fn fit_cmd(a: FitArgs) -> Result<()> {
     let template = Template::parse(&a.stack)?;
     let text = std::fs::read_to_string(&a.measured).with_context(|| format!("cannot read {}", a.measured.display()))?;
     let shown = a.measured.display().to_string();
-    let data = read_measured(&text, &shown, quantity, &a)?;
+    let reading = iridis_filmfit::read(&text, &shown, &read_options(&a, quantity), &|p| {
+        std::fs::read_to_string(p).map_err(|e| e.to_string())
+    })?;
+    let data = &reading.data;
     if let Some(w) = iridis_thinfilm::sampling::check(&template.base, a.angle, &sorted(&data.wavelength_nm)) {
         eprintln!("warning: the measured wavelengths: {}", w.message);
     }
     let opt = FitOptions { angle_rad: a.angle, quantity, grid: a.grid, ..FitOptions::default() };
     let t0 = Instant::now();
-    let r = fit(&template, &data, &opt)?;
+    let r = fit(&template, data, &opt)?;
     let seconds = t0.elapsed().as_secs_f64();
     let params = &template.params;
     if let Some(path) = &a.output {
@@ -254,7 +243,8 @@ pub fn fit_cmd(a: FitArgs) -> Result<()> {
             "values": r.values, "sigma": r.sigma, "correlation": r.correlation,
             "chi2": r.chi2, "dof": r.dof, "reduced_chi2": r.reduced_chi2, "sigma_given": r.sigma_given,
             "at_bound": r.at_bound, "starts": r.starts_tried, "evaluations": r.evaluations, "jacobian": r.jacobian, "seconds": seconds,
-            "fitted": r.fitted,
+            "fitted": r.fitted, "wavelength_nm": data.wavelength_nm, "measured": data.values,
+            "read": { "columns": reading.columns, "percent": reading.percent, "notes": reading.notes },
         }));
     }
     crate::outln!("stack     {}", a.stack)?;
@@ -265,6 +255,9 @@ pub fn fit_cmd(a: FitArgs) -> Result<()> {
         quantity.name(),
         deg(a.angle)
     )?;
+    for note in &reading.notes {
+        crate::outln!("read      {note}")?;
+    }
     crate::outln!("{:<12} {:>16} {:>14}", "parameter", "value", "1σ")?;
     for (k, p) in params.iter().enumerate() {
         crate::outln!("{:<12} {:>16.6} {:>14.3e} {}", p.name, r.values[k], r.sigma[k], p.unit())?;
@@ -303,37 +296,19 @@ pub fn fit_cmd(a: FitArgs) -> Result<()> {
     Ok(())
 }
 
-/// The measurement with its uncertainties from `--sigma` or `--weights` (a number, column names of the
-/// measured CSV, or — for `--weights` — a separate CSV file).
-fn read_measured(text: &str, shown: &str, quantity: Quantity, a: &FitArgs) -> Result<Measured> {
-    let (arg, kind) = match (&a.sigma, &a.weights) {
-        (Some(s), _) => (s.trim(), Spread::Sigma),
-        (None, Some(w)) => (w.trim(), Spread::Weight),
-        (None, None) => return Ok(Measured::from_csv(text, shown, quantity, None)?),
+/// The reading options of the measured file, from the command line.
+fn read_options(a: &FitArgs, quantity: Quantity) -> ReadOptions {
+    let mut o = ReadOptions::new(quantity);
+    o.columns = a.columns.clone();
+    o.percent = a.percent.then_some(true);
+    o.from_nm = a.from;
+    o.to_nm = a.to;
+    o.spread = match (&a.sigma, &a.weights) {
+        (Some(s), _) => Some((s.clone(), Spread::Sigma)),
+        (None, Some(w)) => Some((w.clone(), Spread::Weight)),
+        (None, None) => None,
     };
-    let flag = if kind == Spread::Sigma { "--sigma" } else { "--weights" };
-    if let Ok(v) = arg.parse::<f64>() {
-        let sigma = kind.sigma(v).map_err(|m| anyhow::anyhow!("{flag} {arg}: {m}"))?;
-        let mut data = Measured::from_csv(text, shown, quantity, None)?;
-        data.sigma = Some(vec![sigma; data.values.len()]);
-        return Ok(data);
-    }
-    let header = iridis_filmfit::data::header(text);
-    let is_column = arg.split(',').all(|c| header.iter().any(|h| h.eq_ignore_ascii_case(c.trim())));
-    if kind == Spread::Weight && !is_column {
-        let path = std::path::Path::new(arg);
-        if !path.is_file() {
-            bail!(
-                "--weights '{arg}' is neither a number, a column of {shown} (its columns: {}), nor a file",
-                header.join(", ")
-            );
-        }
-        let wtext = std::fs::read_to_string(path).with_context(|| format!("cannot read {arg}"))?;
-        let mut data = Measured::from_csv(text, shown, quantity, None)?;
-        data.set_weights_from_csv(&wtext, arg, quantity)?;
-        return Ok(data);
-    }
-    Ok(Measured::from_csv_with(text, shown, quantity, Some((arg, kind)))?)
+    o
 }
 
 /// Degrees, rounded to 1e-6 (prints `30`, not `30.000000`).

@@ -10,18 +10,22 @@ use crate::progress::Cli;
 
 #[derive(Debug, ClapArgs)]
 #[command(after_help = "\
-The height field is one unit cell of a periodic surface: its extent is the period along x and y, and the
-light leaves in discrete orders (m, n), ω_r,xy = −ω_i,xy + (m λ/Lx, n λ/Ly) (in the plane of incidence
+The height field is one unit cell of a periodic surface: its extent is the period along x and y (or, with
+--unit-cell auto, the scan's strongest period with its profile averaged along the ridges: what a rigorous
+solver needs of a real scan), and the light leaves in discrete orders (m, n), ω_r,xy = −ω_i,xy + (m λ/Lx, n λ/Ly) (in the plane of incidence
 m λ/d = sin θ_i − sin θ_r, θ_r positive on the specular side). A patch whose rows are all the same is a 1-D
 grating along x. Efficiencies are fractions of the incident power in each propagating order, for TE (s) and
 TM (p) light and unpolarised; their sum is the hemispherical reflectance (an integrating sphere); --detector
 adds what a detector of that acceptance sees (a goniometer, a fibre spectrometer).
 
-Method kirchhoff: Stam's scalar model, the one behind iridis' BRDFs (docs/diffraction.md, \"Order
-efficiencies\"). Its obliquity factor as printed creates energy at oblique light; by default the channel
-matrix is scaled so that energy and reciprocity hold exactly (--normalisation energy; kirchhoff keeps the
-printed factor). The scalar model is right for shallow structures (peak amplitude ≲ 2 % of the period) and
-off by tens of percent for snake-skin depths (issue 28).
+Method kirchhoff (default): Stam's scalar model, the one behind iridis' BRDFs (docs/diffraction.md,
+\"Order efficiencies\"). Its obliquity factor as printed creates energy at oblique light; by default the
+channel matrix is scaled so that energy and reciprocity hold exactly (--normalisation energy; kirchhoff
+keeps the printed factor). Method rigorous: Maxwell's equations by the C-method (docs/rigorous.md), TE and
+TM apart, transmitted orders into a transparent substrate, the number of orders raised until every
+efficiency changes by less than 1e-3 (relative; the estimate is printed). --compare runs both and says how
+far the scalar model is from the rigorous one on this cell: the worst relative error of any order above
+0.1 %, of the total, and CIEDE2000 of the colours of the diffracted and the mirror light.
 
 The reflector is --material (a library name such as gold or keratin, n=1.5, n=0.2+3.4i or file:PATH; exact
 Fresnel per polarisation, default n=1.5) or any --fresnel source (schlick:1.5 has no polarised form).
@@ -31,6 +35,9 @@ Examples:
   iridis grating builtin:blazed --light 0deg --from 400nm --to 700nm --step 50nm --material gold --json
   iridis grating 'builtin:sine?size=1um&pixel=10nm' --light 75deg --wavelength 500nm --normalisation kirchhoff
   iridis grating 'builtin:sine?size=1um&pixel=10nm' --light 20deg --from 400nm --to 700nm --step 10nm --detector 10deg,180deg --acceptance 2deg
+  iridis grating 'builtin:sine?size=1100nm&pixel=10nm' --method rigorous --light 30deg --wavelength 550nm --material gold
+  iridis grating 'builtin:sine?size=1100nm&pixel=10nm' --compare --light 0deg --from 400nm --to 700nm --step 50nm
+  iridis grating 'builtin:elaphe?size=10um&pixel=50nm' --unit-cell auto --compare --light 0deg --from 380nm --to 780nm --step 20nm
   iridis grating strip.png --pixel-size 50nm --max-height 250nm --light 75deg --wavelength 600nm")]
 pub struct GratingArgs {
     /// The unit cell: a height field (file or builtin:NAME) whose extent is the period.
@@ -50,9 +57,12 @@ pub struct GratingArgs {
     /// Wavelength step of a spectrum.
     #[arg(long, value_parser = positive_length_nm, default_value = "10nm")]
     pub step: f64,
-    /// The model: kirchhoff (Stam's scalar model).
+    /// The model: kirchhoff (Stam's scalar model) or rigorous (Maxwell's equations, the C-method).
     #[arg(long, default_value = "kirchhoff")]
     pub method: String,
+    /// Run both models and report how far the scalar one is from the rigorous one on this cell.
+    #[arg(long, conflicts_with = "method")]
+    pub compare: bool,
     /// The medium under the relief: a library name (gold, keratin, …), n=1.5, n=0.2+3.4i or file:PATH
     /// [default: n=1.5].
     #[arg(long)]
@@ -66,6 +76,10 @@ pub struct GratingArgs {
     /// A detector's direction θ[,φ]: its reflectance is the orders inside its acceptance cone.
     #[arg(long)]
     pub detector: Option<String>,
+    /// The unit cell: whole (the patch, its extent the period) or auto (the scan's strongest period, its
+    /// profile averaged along the ridges: a 1-D grating at that orientation).
+    #[arg(long, value_name = "whole|auto", default_value = "whole")]
+    pub unit_cell: String,
     /// Half-angle of the detector's acceptance cone.
     #[arg(long, value_parser = angle_rad, default_value = "2deg")]
     pub acceptance: f64,
@@ -99,14 +113,22 @@ pub fn run(a: GratingArgs) -> Result<()> {
         fresnel: a.fresnel.clone(),
         normalisation: a.normalisation.parse()?,
         detector,
+        unit_cell_auto: match a.unit_cell.as_str() {
+            "auto" => true,
+            "whole" => false,
+            other => bail!("--unit-cell '{other}': expected whole (the patch) or auto (the dominant period)"),
+        },
     };
     let source = iridis_api::surface::Source::Spec(a.surface.clone());
+    if a.compare {
+        return compare(&a, &source, opts);
+    }
     let g = grating(&source, &a.surface_opts.options(), &opts, &Cli)?;
     if a.json {
         return crate::output::print_json(&g.to_json());
     }
     crate::outln!(
-        "{} · {} · unit cell {:.1} × {:.1} nm · light θ {:.2}° φ {:.2}° · {} · normalisation {}",
+        "{} · {} · unit cell {:.1} × {:.1} nm · light θ {:.2}° φ {:.2}° · {}{}",
         g.surface,
         g.method.name(),
         g.periods_nm.0,
@@ -114,7 +136,10 @@ pub fn run(a: GratingArgs) -> Result<()> {
         t.to_degrees(),
         p.to_degrees(),
         g.reflector,
-        g.normalisation.name()
+        match g.method {
+            iridis_api::grating::GratingMethod::Kirchhoff => format!(" · normalisation {}", g.normalisation.name()),
+            iridis_api::grating::GratingMethod::Rigorous => String::new(),
+        }
     )?;
     crate::outln!("efficiencies in % of the incident power; TE = s, TM = p")?;
     if let [one] = g.answers.as_slice() {
@@ -145,6 +170,24 @@ pub fn run(a: GratingArgs) -> Result<()> {
             100.0 * r.unpolarized,
             one.orders.len()
         )?;
+        if let Some(t) = one.transmitted_total {
+            crate::outln!(
+                "total transmitted  TE {:.4} %  TM {:.4} %  unpolarised {:.4} %  ({} orders; --json lists them)",
+                100.0 * t.te,
+                100.0 * t.tm,
+                100.0 * t.unpolarized,
+                one.transmitted_orders.len()
+            )?;
+        }
+        if let Some(err) = one.convergence["estimated_error"].as_f64() {
+            crate::outln!(
+                "converged: orders ±{}, estimated error {:.1e} (tolerance {:.0e}){}",
+                one.convergence["orders"][0],
+                err,
+                one.convergence["tolerance"].as_f64().unwrap_or(f64::NAN),
+                if one.convergence["met"] == serde_json::json!(true) { "" } else { " — NOT met" }
+            )?;
+        }
         if let Some(d) = g.detector_reflectance(one) {
             crate::outln!(
                 "detector ({}, ±{:.2}°)  {:.4} %",
@@ -189,6 +232,51 @@ pub fn run(a: GratingArgs) -> Result<()> {
             hex(c.reflected),
             c.reflected.y
         )?;
+    }
+    Ok(())
+}
+
+/// `--compare`: both models on the same cell, and the scalar model's error.
+fn compare(a: &GratingArgs, source: &iridis_api::surface::Source, opts: GratingOptions) -> Result<()> {
+    use iridis_api::grating::{scalar_error, GratingMethod};
+    let surface = a.surface_opts.options();
+    let scalar = grating(source, &surface, &GratingOptions { method: GratingMethod::Kirchhoff, ..opts.clone() }, &Cli)?;
+    let rigorous = grating(source, &surface, &GratingOptions { method: GratingMethod::Rigorous, ..opts }, &Cli)?;
+    let e = scalar_error(&scalar, &rigorous);
+    if a.json {
+        return crate::output::print_json(&e.to_json(&scalar, &rigorous));
+    }
+    crate::outln!(
+        "{} · unit cell {:.1} × {:.1} nm · {} · the scalar (Kirchhoff) model against the rigorous one",
+        scalar.surface,
+        scalar.periods_nm.0,
+        scalar.periods_nm.1,
+        rigorous.reflector
+    )?;
+    crate::outln!("     λ (nm)      m      n   scalar (%)   rigorous (%)   relative error (unpolarised)")?;
+    for &(l, m, n, k, r) in &e.orders {
+        if r.unpolarized < 1e-5 && k.unpolarized < 1e-5 {
+            continue;
+        }
+        let rel = if r.unpolarized > e.floor {
+            format!("{:+.1} %", 100.0 * (k.unpolarized - r.unpolarized) / r.unpolarized)
+        } else {
+            "(below 0.1 %)".into()
+        };
+        crate::outln!("{l:11.1} {m:6} {n:6} {:12.4} {:14.4}   {rel}", 100.0 * k.unpolarized, 100.0 * r.unpolarized)?;
+    }
+    crate::outln!(
+        "worst relative error of an order above {:.1} %: TE {:.1} %, TM {:.1} %, unpolarised {:.1} %{}; of the total \
+         reflectance {:.1} %",
+        100.0 * e.floor,
+        100.0 * e.worst.te,
+        100.0 * e.worst.tm,
+        100.0 * e.worst.unpolarized,
+        e.worst_at.map_or(String::new(), |(l, m, n)| format!(" (order ({m},{n}) at {l:.0} nm)")),
+        100.0 * e.total
+    )?;
+    if let (Some(d), Some(s)) = (e.delta_e_diffracted, e.delta_e_specular) {
+        crate::outln!("colour difference (CIEDE2000, D65): diffracted light {d:.2}, mirror order {s:.2}")?;
     }
     Ok(())
 }

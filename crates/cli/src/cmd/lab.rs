@@ -42,6 +42,8 @@ pub struct LabModel {
     /// used as generated unless this is given).
     #[arg(long)]
     pub level: Option<String>,
+    #[command(flatten)]
+    pub units: crate::args::UnitFlags,
     /// Coherence length 4σ_s of the window, a property of the light (default 65um, the paper's; a smaller
     /// patch is taken as one unit cell of a periodic surface; said in the output).
     #[arg(long, value_parser = positive_length_nm)]
@@ -75,6 +77,8 @@ impl LabModel {
                 channel: self.channel.clone(),
                 height_unit: self.height_unit.clone(),
                 level: self.level.clone(),
+                override_units: self.units.override_units,
+                as_height: self.units.as_height,
             },
             coherence_nm: self.coherence,
             terms: self.terms.clone(),

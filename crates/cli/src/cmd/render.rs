@@ -6,18 +6,22 @@ use std::time::Instant;
 
 use anyhow::{bail, Context, Result};
 use clap::Args as ClapArgs;
-use iridis_render::{load_scene, render, Scene};
+use iridis_render::{render, Scene};
 
 use crate::progress::bar;
 
 #[derive(Debug, ClapArgs)]
 #[command(after_help = "\
 Renders a scene: a TOML file (camera, lights, environment, textures, materials, objects; see docs/render.md)
-or a glTF 2.0 file (.gltf/.glb, KHR_materials_iridescence as a thin film; default camera and light). The
-output format follows the extension: .png is tone-mapped (exposure in RU, sRGB), .exr is linear sRGB float.
+or a glTF 2.0 file (.gltf/.glb, KHR_materials_iridescence as a thin film): its first camera (--camera NAME
+picks another, --camera default frames the scene) and its KHR_lights_punctual lights (--ignore-gltf-lights
+uses a default light), or a default camera and light where it has none; the notes say which. The output
+format follows the extension: .png is tone-mapped (exposure in RU, sRGB), .exr is linear sRGB float.
 Nothing is written unless the whole render succeeds. --export-mesh writes the scene's triangle meshes (the
 procedural snake's scale plates, OBJ and glTF meshes) as binary glTF with normals, UVs and the orientation
-field as TANGENT, so orientation \"tangent\" on that file gives what \"along\" gives on the procedural snake.
+field as TANGENT, so orientation \"tangent\" on that file gives what \"along\" gives on the procedural snake;
+with the scene's materials (glTF PBR for other tools, iridis' own in the extras), camera and lights, so that
+rendering the .glb looks like the scene.
 
 Examples:
   iridis render examples/soap_bubble.toml -o bubble.png
@@ -28,6 +32,8 @@ Examples:
   iridis render examples/snake_elaphe.toml -o snake_gpu.png --gpu      on the GPU (lavapipe without one)
   iridis render examples/soap_bubble.toml -o bubble_81.png --size 96x96 --gpu --spectral-samples 81
   iridis render examples/fig1_elaphe_section.toml --export-mesh snake.glb   the scaled snake as glTF
+  iridis render snake.glb -o snake_again.png --size 96x64                   rendered back, materials and all
+  iridis render examples/iridescent_spheres.gltf -o g.png --camera default --ignore-gltf-lights
 
 --gpu renders the same scene with the WGSL port of the renderer (iridis-gpu) through Vulkan; its colours
 match the CPU's (mean CIEDE2000 < 1 on every example scene, tested). Thin films shade there from colour
@@ -64,6 +70,13 @@ pub struct RenderArgs {
     /// from colour tables (81: the 5 nm reference).
     #[arg(long, value_name = "N")]
     pub spectral_samples: Option<usize>,
+    /// glTF scenes: the camera to render through, by node or camera name (or index); `default` frames the
+    /// scene with iridis' own camera. Without it, the file's first camera.
+    #[arg(long, value_name = "NAME")]
+    pub camera: Option<String>,
+    /// glTF scenes: leave out the file's KHR_lights_punctual lights and use a default D65 light.
+    #[arg(long)]
+    pub ignore_gltf_lights: bool,
 }
 
 /// Parses `WxH`.
@@ -77,11 +90,19 @@ pub fn parse_size(s: &str) -> Result<(u32, u32)> {
     }
 }
 
-/// Loads a scene, printing its notes.
+/// Loads a scene, printing its notes and warnings.
 pub fn load(path: &Path) -> Result<Scene> {
-    let scene = load_scene(path).map_err(anyhow::Error::new)?;
+    load_with(path, &Default::default())
+}
+
+/// [`load`] with a glTF scene's camera and lights chosen.
+fn load_with(path: &Path, gltf: &iridis_render::gltf_io::GltfOptions) -> Result<Scene> {
+    let scene = iridis_render::load_scene_with(path, gltf).map_err(anyhow::Error::new)?;
     for n in &scene.notes {
         eprintln!("note: {n}");
+    }
+    for w in &scene.warnings {
+        eprintln!("warning: {w}");
     }
     Ok(scene)
 }
@@ -116,12 +137,21 @@ pub fn run(a: RenderArgs) -> Result<()> {
         bail!("--spectral-samples sets the GPU's direct film evaluation; add --gpu (the CPU evaluates films at 81 samples)");
     }
     let film = crate::cmd::gpu::scene_film(a.spectral_samples)?;
-    let scene = load(&a.scene)?;
+    let gltf = iridis_render::gltf_io::GltfOptions { camera: a.camera.clone(), ignore_lights: a.ignore_gltf_lights };
+    let scene = load_with(&a.scene, &gltf)?;
     if let Some(path) = &a.export_mesh {
-        let glb = iridis_render::gltf_export::glb_bytes(&scene.meshes).map_err(anyhow::Error::new)?;
+        let (glb, notes) = iridis_render::gltf_export::scene_glb(&scene).map_err(anyhow::Error::new)?;
+        for n in notes {
+            eprintln!("note: {}: {n}", path.display());
+        }
         crate::output::write_bytes(path, &glb)?;
         let tris: usize = scene.meshes.iter().map(|m| m.triangles.len()).sum();
-        crate::outln!("wrote {} ({} meshes, {tris} triangles)", path.display(), scene.meshes.len())?;
+        crate::outln!(
+            "wrote {} ({} meshes, {tris} triangles, {} materials, camera and lights)",
+            path.display(),
+            scene.meshes.len(),
+            scene.materials.len()
+        )?;
     }
     let (Some(output), Some(fmt)) = (&a.output, fmt) else { return Ok(()) };
     let (w, h) = size.unwrap_or((scene.output.width, scene.output.height));

@@ -20,7 +20,11 @@ Steps (each a command shown in the report, run with the same surface options):
      of the light it diffracts and the colour of its mirror reflection
   3. iridis brdf-map FILE --method reference --incidence 0deg / 45deg --auto-exposure, under D65: the
      structure's colours (only when it diffracts at least 0.1 % of the reflected light)
-  4. iridis testbench FILE --json --plot testbench.png: the period from the grating equation (paper 6.1),
+  4. iridis brdf vision FILE --visual bluetit --strip vision.png: how a bird (--visual) sees the colours
+     in each direction of the plane of the strongest period, ΔS in JND against the mirror direction
+  5. iridis grating FILE --unit-cell auto --compare: how far the scalar model behind the maps is from
+     Maxwell's equations (the C-method) on the scan's own profile (likewise)
+  6. iridis testbench FILE --json --plot testbench.png: the period from the grating equation (paper 6.1),
      along the orientation of the strongest period (likewise)
 The report opens with a sentence on what the scan does to visible light. Warnings (pixels too coarse for
 the visible band, units assumed, NaN lines) are collected with their numbers. Files are plane-levelled
@@ -45,15 +49,22 @@ pub struct ReportArgs {
     /// Unit of heights in files that do not give one (m, nm, …).
     #[arg(long)]
     pub height_unit: Option<String>,
-    /// Levelling: plane (default), poly, lines, rows, mean or none.
-    #[arg(long, default_value = "plane")]
-    pub level: String,
+    /// Levelling: plane (default for files), poly, lines, rows, mean or none.
+    #[arg(long)]
+    pub level: Option<String>,
+    #[command(flatten)]
+    pub units: crate::args::UnitFlags,
     /// Size of the BRDF maps in pixels.
     #[arg(long, default_value_t = 128)]
     pub size: usize,
-    /// Coherence length for the model (default: the commands' own, 65um).
+    /// Coherence length for the model (default: the light's 65um; the BRDF maps of a smaller scan use half
+    /// its shorter side, at least four of its strongest periods, and say so).
     #[arg(long)]
     pub coherence: Option<String>,
+    /// The animal whose view of the colours the report shows: bluetit, avian-uv, avian-v, honeybee, human,
+    /// ball-python.
+    #[arg(long, default_value = "bluetit")]
+    pub visual: String,
     /// Leave out the test bench (the slowest step).
     #[arg(long)]
     pub no_testbench: bool,
@@ -95,6 +106,9 @@ fn html_escape(s: &str) -> String {
     s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
 }
 
+/// The shortest period that can send a visible diffraction order out of the surface: `d > λ/2`, λ ≥ 380 nm.
+const VISIBLE_PERIOD: f64 = 190.0;
+
 /// The share of the reflected light a structure must diffract (D65 × ȳ) for the report to draw its BRDF maps
 /// and run the test bench: below it the scan looks like a mirror of its specular colour.
 const DIFFRACTS: f64 = 1e-3;
@@ -123,13 +137,22 @@ pub fn run(a: ReportArgs) -> Result<()> {
             common.extend([flag.to_string(), v.clone()]);
         }
     }
-    common.extend(["--level".to_string(), a.level.clone()]);
+    for (flag, on) in [("--override-units", a.units.override_units), ("--as-height", a.units.as_height)] {
+        if on {
+            common.push(flag.to_string());
+        }
+    }
+    // Only a level that was asked for is passed on: the model commands say "the default for files" otherwise.
+    if let Some(l) = &a.level {
+        common.extend(["--level".to_string(), l.clone()]);
+    }
     let mut model = common.clone();
+    let relief_level = a.level.clone().unwrap_or_else(|| "plane".into());
     if let Some(c) = &a.coherence {
         model.extend(["--coherence".to_string(), c.clone()]);
     }
     let s = |v: &[&str]| v.iter().map(|x| x.to_string()).collect::<Vec<String>>();
-    let pb = bar(if a.no_testbench { 5 } else { 6 }, "report");
+    let pb = bar(if a.no_testbench { 7 } else { 8 }, "report");
     let mut steps: Vec<Step> = Vec::new();
     let step = |title: &str, label: &str, args: Vec<String>| -> Result<Step> {
         pb.set_message(label.to_string());
@@ -138,7 +161,14 @@ pub fn run(a: ReportArgs) -> Result<()> {
         r
     };
     let mut info = s(&["surface", "info", &a.surface, "--json"]);
+    if a.level.is_none() {
+        info.extend(s(&["--level", "plane"]));
+    }
     info.extend(common.clone());
+    // The same coherence as the model steps, so that the surface's note about it speaks of that one.
+    if let Some(c) = &a.coherence {
+        info.extend(["--coherence".to_string(), c.clone()]);
+    }
     info.extend(s(&["--image", &file("relief.png"), "--psdf", &file("psdf.png"), "--acf", &file("acf.png")]));
     steps.push(step("Levelled relief, roughness, periods, PSDF and ACF", "surface", info)?);
     // The scan as one unit cell of a grating: how much of the light it diffracts, and the colour of the rest.
@@ -152,19 +182,74 @@ pub fn run(a: ReportArgs) -> Result<()> {
         steps.push(st);
     }
     let share = |g: &Value| g["colour"]["diffracted_share"].as_f64().unwrap_or(0.0);
-    let diffracts = grating.iter().any(|g| share(g) >= DIFFRACTS);
+    // Diffraction by the structure: a period that can send a visible order out (d > λ/2 ≥ 190 nm) and a
+    // diffracted share worth drawing. (A scan with only shorter periods still sends a little light into the
+    // orders of its own extent as a unit cell — its edges, not its structure.)
+    let info_first: Value = serde_json::from_str(&steps[0].stdout).context("surface info printed no JSON")?;
+    let longest = info_first["peaks"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .filter_map(|p| p["period_nm"].as_f64())
+        .fold(0.0f64, f64::max);
+    let diffracts = longest >= VISIBLE_PERIOD && grating.iter().any(|g| share(g) >= DIFFRACTS);
     let mut maps = Vec::new();
     let mut bench: Option<Value> = None;
     let mut bench_failure: Option<String> = None;
+    let mut scalar_error: Option<Value> = None;
+    let mut vision: Option<Value> = None;
+    let mut scalar_failure: Option<String> = None;
+    // The maps' window: the light's 65 µm on a smaller scan shows the discrete orders of its periodic
+    // extension, narrower than a pixel (speckle); half the scan's shorter side, never under four of its
+    // strongest periods (a strip of a grating keeps its orders), lets each pixel see the scan's spectrum.
+    let map_coherence = a.coherence.clone().or_else(|| {
+        let first: Value = serde_json::from_str(&steps[0].stdout).ok()?;
+        let e = &first["extent_nm"];
+        let short = e[0].as_f64()?.min(e[1].as_f64()?);
+        let period = first["peaks"][0]["period_nm"].as_f64().unwrap_or(0.0);
+        let c = (0.5 * short).max(4.0 * period);
+        (c < iridis_diffraction::DEFAULT_COHERENCE_NM).then(|| format!("{:.3}um", c / 1000.0))
+    });
     if diffracts {
         for (name, plot, inc) in
             [("brdf_0deg.png", "brdf_0deg_plot.png", "0deg"), ("brdf_45deg.png", "brdf_45deg_plot.png", "45deg,0deg")]
         {
             let mut b = s(&["brdf-map", &a.surface, "--method", "reference", "--incidence", inc, "--auto-exposure"]);
             b.extend(s(&["--size", &a.size.to_string(), "-o", &file(name), "--plot", &file(plot)]));
-            b.extend(model.clone());
+            b.extend(common.clone());
+            if let Some(c) = &map_coherence {
+                b.extend(["--coherence".to_string(), c.clone()]);
+            }
             steps.push(step(&format!("BRDF map under D65, light at {inc}"), "maps", b)?);
             maps.push(plot);
+        }
+        // How an animal sees the scan's colours in each direction of the plane of its strongest period.
+        let mut v = s(&["brdf", "vision", &a.surface, "--visual", &a.visual, "--light", "0deg"]);
+        v.extend(s(&["--strip", &file("vision.png"), "--json"]));
+        v.extend(common.clone());
+        if let Some(c) = &map_coherence {
+            v.extend(["--coherence".to_string(), c.clone()]);
+        }
+        let st = step(
+            &format!("As a {} sees it: light at normal incidence, views along the strongest period", a.visual),
+            "vision",
+            v,
+        )?;
+        vision = serde_json::from_str(&st.stdout).ok();
+        steps.push(st);
+        maps.push("vision.png");
+        // How far the scalar model (behind the maps) is from Maxwell's equations on this scan's own profile.
+        let mut c = s(&["grating", &a.surface, "--unit-cell", "auto", "--compare", "--light", "0deg"]);
+        c.extend(s(&["--from", "380nm", "--to", "780nm", "--step", "10nm", "--material", "keratin"]));
+        c.extend(common.clone());
+        c.push("--json".into());
+        let title = "The scalar model's error on this scan: rigorous (C-method) against Kirchhoff, normal incidence";
+        match step(title, "rigorous", c) {
+            Ok(st) => {
+                scalar_error = serde_json::from_str(&st.stdout).ok();
+                steps.push(st);
+            }
+            Err(e) => scalar_failure = Some(format!("{e:#}").lines().last().unwrap_or("").to_string()),
         }
         if !a.no_testbench {
             let mut t = s(&["testbench", &a.surface, "--json", "--plot", &file("testbench.png")]);
@@ -187,7 +272,24 @@ pub fn run(a: ReportArgs) -> Result<()> {
     pb.finish_and_clear();
     let info: Value = serde_json::from_str(&steps[0].stdout).context("surface info printed no JSON")?;
     let verdict = verdict(&info, &grating, diffracts);
+    let scalar = scalar_error.as_ref().map(scalar_sentence);
+    let seen = vision.as_ref().map(vision_sentence);
     let mut warnings: Vec<String> = bench_failure.into_iter().collect();
+    if let Some(f) = scalar_failure {
+        warnings.push(format!("the scalar model's error could not be measured on this scan: {f}"));
+    }
+    if let Some(e) = &scalar_error {
+        let worst = e["worst_relative_error"]["unpolarized"].as_f64().unwrap_or(0.0);
+        let de = e["delta_e00_diffracted"].as_f64().unwrap_or(0.0);
+        if worst > SCALAR_WARN || de > 2.0 {
+            warnings.push(format!(
+                "the scalar (Kirchhoff) model behind the BRDF maps is off by up to {:.0} % in an order's efficiency \
+                 on this scan (ΔE00 {de:.1} in the colour of the diffracted light): for numbers, use `iridis grating \
+                 --method rigorous --unit-cell auto`",
+                100.0 * worst
+            ));
+        }
+    }
     for st in &steps {
         for w in &st.warnings {
             if !warnings.contains(w) {
@@ -213,11 +315,16 @@ pub fn run(a: ReportArgs) -> Result<()> {
         .collect();
     let report = json!({
         "surface": a.surface,
-        "level": a.level,
+        "level": relief_level,
         "info": info,
         "unit_cell": unit_cell,
         "diffracts_visible_light": diffracts,
         "verdict": verdict,
+        "map_coherence": map_coherence,
+        "scalar_model_error": scalar_error,
+        "scalar_model_sentence": scalar,
+        "vision": vision,
+        "vision_sentence": seen,
         "testbench": bench,
         "warnings": warnings,
         "commands": commands,
@@ -231,6 +338,64 @@ pub fn run(a: ReportArgs) -> Result<()> {
         eprintln!("warning: {w}");
     }
     Ok(())
+}
+
+/// Above this worst relative error of an order's efficiency (unpolarised) the report warns that the scalar
+/// model's numbers are not to be trusted on the scan.
+const SCALAR_WARN: f64 = 0.2;
+
+/// How the animal sees the scan's colours across directions, in one sentence with its numbers.
+fn vision_sentence(v: &Value) -> String {
+    let an = &v["vision"];
+    let name = an["visual"]["name"].as_str().unwrap_or("the animal");
+    let views: Vec<&str> = v["views"].as_array().into_iter().flatten().filter_map(|x| x["name"].as_str()).collect();
+    let mirror = views.iter().copied().find(|n| n.starts_with("+0") || n.starts_with("-0")).unwrap_or("+0°");
+    let (mut best, mut at) = (0.0f64, "");
+    for d in an["distances"].as_array().into_iter().flatten() {
+        let (a, b) = (d["a"].as_str().unwrap_or(""), d["b"].as_str().unwrap_or(""));
+        if let (Some(ds), true) = (d["delta_s"].as_f64(), a == mirror || b == mirror) {
+            if ds > best {
+                best = ds;
+                at = if a == mirror { b } else { a };
+            }
+        }
+    }
+    format!(
+        "As a {name} sees it (receptor-noise-limited model, D65, 300–700 nm), the scan's colour changes with the \
+         viewing direction by up to {best:.1} JND against the mirror direction (at {at}; 1 JND is just noticeable, \
+         {}): the figure below shows each direction in false colour.",
+        if best > 3.0 {
+            "so the iridescence is plain to it"
+        } else if best > 1.0 {
+            "so it can tell the directions apart"
+        } else {
+            "below what it can tell apart"
+        }
+    )
+}
+
+/// The scalar model's error on the scan, in one sentence with its numbers.
+fn scalar_sentence(e: &Value) -> String {
+    let pct = |v: &Value| 100.0 * v.as_f64().unwrap_or(f64::NAN);
+    let at = &e["worst_at"];
+    format!(
+        "Against Maxwell's equations (the C-method on the scan's strongest period, {:.0} nm, its profile averaged \
+         along the ridges, on keratin, light at normal incidence), the scalar model behind the maps is off by up to \
+         {:.1} % in an order's efficiency (unpolarised; TE {:.1} %, TM {:.1} %{}), {:.1} % in the total reflectance, \
+         and by ΔE00 {} in the colour of the diffracted light ({} for the mirror reflection).",
+        e["unit_cell"]["period_x_nm"].as_f64().unwrap_or(f64::NAN),
+        pct(&e["worst_relative_error"]["unpolarized"]),
+        pct(&e["worst_relative_error"]["te"]),
+        pct(&e["worst_relative_error"]["tm"]),
+        if at.is_object() {
+            format!("; worst: order {} at {} nm", at["m"], at["wavelength_nm"])
+        } else {
+            String::new()
+        },
+        pct(&e["total_relative_error"]),
+        e["delta_e00_diffracted"].as_f64().map_or("–".into(), |d| format!("{d:.2}")),
+        e["delta_e00_specular"].as_f64().map_or("–".into(), |d| format!("{d:.2}"))
+    )
 }
 
 /// What the scan does to light, in words a biologist reads first.
@@ -252,7 +417,7 @@ fn verdict(info: &Value, grating: &[Value], diffracts: bool) -> String {
     } else {
         let why = if periods.is_empty() {
             "it has no dominant period".to_string()
-        } else if longest < 190.0 {
+        } else if longest < VISIBLE_PERIOD {
             format!(
                 "its periods ({} nm) are all shorter than half the shortest visible wavelength (190 nm), so no \
                  diffraction order of visible light can leave it",
@@ -263,9 +428,10 @@ fn verdict(info: &Value, grating: &[Value], diffracts: bool) -> String {
         };
         format!(
             "The scan diffracts no visible light: {why}. Taken as one unit cell of a periodic surface it sends {:.4} % \
-             of the reflected light out of the mirror direction at normal incidence, {:.4} % at 45°. It looks like a \
-             mirror of colour {} (reflectance Y = {:.2} % at normal incidence, n = 1.5 under the relief), so no BRDF \
-             map is drawn and no test bench is run.",
+             of the reflected light out of the mirror direction at normal incidence, {:.4} % at 45° (into the orders \
+             of the scan's own extent: its edges, not its structure). It looks like a mirror of colour {} \
+             (reflectance Y = {:.2} % at normal incidence, n = 1.5 under the relief), so no BRDF map is drawn and no \
+             test bench is run.",
             share(&grating[0]),
             share(&grating[1]),
             specular["hex"].as_str().unwrap_or("?"),
@@ -287,6 +453,20 @@ fn html(r: &Value, steps: &[Step]) -> String {
         "<p><b>{}</b> <span class=swatch style=\"background:{swatch}\"></span> (mirror colour)</p>\n",
         html_escape(r["verdict"].as_str().unwrap_or(""))
     );
+    if let (Some(c), true) = (r["map_coherence"].as_str(), r["diffracts_visible_light"] == json!(true)) {
+        h += &format!(
+            "<p>The BRDF maps are drawn with a coherence window of {c}: half the scan's shorter side (at least four \
+             of its strongest periods), so that each pixel sees the scan's spectrum. Under the light's own 65 µm the \
+             scan, smaller than that, is one unit cell of a periodic surface whose discrete orders are narrower than \
+             a pixel.</p>\n"
+        );
+    }
+    if let Some(sentence) = r["vision_sentence"].as_str() {
+        h += &format!("<p>{}</p>\n", html_escape(sentence));
+    }
+    if let Some(sentence) = r["scalar_model_sentence"].as_str() {
+        h += &format!("<p>{}</p>\n", html_escape(sentence));
+    }
     h += &format!(
         "<p>{} × {} samples, pixel {} × {} nm, heights {}–{} nm; levelling: {}.</p>\n",
         info["cols"],

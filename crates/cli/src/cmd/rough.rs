@@ -47,10 +47,12 @@ pub struct RoughArgs {
     /// as many as needed for an error bound of 1e-6 of the lobe's peak.
     #[arg(long, help_heading = "Rough substrate (LSRS)")]
     pub d_iterations: Option<usize>,
-    /// How diffuse light crosses the layers: reciprocal (the default: power transmittances both ways, the n²
-    /// radiance factor; docs/rough-films.md) or thesis (eq. 3.18–3.19 as printed; creates energy, not
-    /// reciprocal — for comparison with the thesis only).
-    #[arg(long, default_value = "reciprocal", value_name = "reciprocal|thesis", value_parser = diffuse_transport, help_heading = "Rough substrate (LSRS)")]
+    /// How diffuse light crosses the layers: multiple (the default: the light the layers turn back and the
+    /// light trapped beyond the escape cone is scattered again until it leaves; reciprocal, a lossless film on
+    /// a mirror reflects everything), single (alias reciprocal: one scattering, power transmittances both
+    /// ways; faster, loses that light; docs/rough-films.md) or thesis (eq. 3.18–3.19 as printed; creates
+    /// energy, not reciprocal — for comparison with the thesis only).
+    #[arg(long, default_value = "multiple", value_name = "multiple|single|thesis", value_parser = diffuse_transport, help_heading = "Rough substrate (LSRS)")]
     pub diffuse_transport: DiffuseTransport,
 }
 

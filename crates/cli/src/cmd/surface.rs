@@ -61,8 +61,11 @@ Examples:
 const CHANNELS_HELP: &str = "\
 Instrument files hold several images (height trace and retrace, amplitude, phase, …). Every command that
 reads a SURFACE takes --channel with the index or the name shown here (names match without regard to case
-or punctuation; NAME_DIRECTION, e.g. height_retrace, picks a direction). Without --channel the first
-height channel (a length unit, named like a height) is read. Only channels in a length unit are heights.
+or punctuation; NAME_DIRECTION, e.g. height_retrace, picks a direction). Without --channel the channel
+named Height is read (as AFMReader reads Bruker files), else the first height channel (a length unit, named
+like a height); every command says which it took. Channels in another unit, or named for another signal
+(amplitude, error, deformation, phase, …) even in metres, are not heights: --as-height reads one anyway.
+A pixel size or height unit the file states wins over --pixel-size/--height-unit unless --override-units.
 
 Examples:
   iridis surface channels scan.spm
@@ -115,14 +118,15 @@ Examples:
 /// How to read a SURFACE (shared by every subcommand).
 #[derive(Debug, Clone, ClapArgs)]
 pub struct LoadArgs {
-    /// Pixel size (e.g. 65nm): required for images, .npy and text without units; overrides the file's.
+    /// Pixel size (e.g. 65nm): required for images, .npy and text without units; a file's own wins unless
+    /// --override-units.
     #[arg(long, value_parser = crate::args::positive_length_nm)]
     pub pixel_size: Option<f64>,
     /// Images: the height that white stands for (black is 0), e.g. 250nm.
     #[arg(long, value_parser = crate::args::positive_length_nm)]
     pub max_height: Option<f64>,
     /// Channel of a multi-channel file, by index or name (`iridis surface channels FILE` lists them);
-    /// default the first height channel (.gwy: the lowest number; .npz: the only 2-D array).
+    /// default the channel named Height, else the first height channel (.npz: the only 2-D array).
     #[arg(long)]
     pub channel: Option<iridis_surface::formats::channel::ChannelSel>,
     /// Unit of heights in files that do not give one (.npy, text, a unitless channel), e.g. m or nm.
@@ -134,6 +138,8 @@ pub struct LoadArgs {
     /// Built-ins: random seed (default 1).
     #[arg(long)]
     pub seed: Option<u64>,
+    #[command(flatten)]
+    pub units: crate::args::UnitFlags,
 }
 
 impl LoadArgs {
@@ -146,6 +152,8 @@ impl LoadArgs {
             size_nm: self.size,
             seed: self.seed,
             ignore_sidecar: false,
+            override_units: self.units.override_units,
+            as_height: self.units.as_height,
         }
     }
 }
@@ -352,13 +360,17 @@ fn print_report(r: &serde_json::Value) -> Result<()> {
     if peaks.is_empty() {
         crate::outln!("periods      none found")?;
     } else {
-        crate::outln!("periods      period (nm)   orientation   power (share of variance)")?;
+        crate::outln!("periods      period (nm)          orientation   power (share of variance)")?;
         for p in peaks {
-            crate::outln!(
-                "             {:>11.2}   {:>9.2}°     {:.4}",
+            let period = iridis_surface::analysis::with_uncertainty(
                 p["period_nm"].as_f64().unwrap_or(f64::NAN),
+                p["period_uncertainty_nm"].as_f64().unwrap_or(f64::NAN),
+            );
+            crate::outln!(
+                "             {period:>18}   {:>9.2}°     {:.4}{}",
                 p["orientation_deg"].as_f64().unwrap_or(f64::NAN),
-                p["power"].as_f64().unwrap_or(f64::NAN)
+                p["power"].as_f64().unwrap_or(f64::NAN),
+                if p["read_off"] == "grid" { "   (read off the DFT grid)" } else { "" }
             )?;
         }
     }
@@ -486,7 +498,15 @@ fn channels(a: ChannelsArgs) -> Result<()> {
     let list = formats::list_channels(&bytes, &name)?;
     let fmt = formats::detect_format(&bytes).map_or("?", Format::name);
     if a.json {
-        return crate::output::print_json(&json!({ "file": name, "format": fmt, "channels": list }));
+        let channels: Vec<serde_json::Value> = list
+            .iter()
+            .map(|c| {
+                let mut v = json!(c);
+                v["height"] = json!(c.is_height());
+                v
+            })
+            .collect();
+        return crate::output::print_json(&json!({ "file": name, "format": fmt, "channels": channels }));
     }
     crate::outln!("{name} ({fmt}): {} channel{}", list.len(), if list.len() == 1 { "" } else { "s" })?;
     crate::outln!("  index  name                           direction  size         unit")?;
@@ -499,7 +519,18 @@ fn channels(a: ChannelsArgs) -> Result<()> {
             if c.direction.is_empty() { "-" } else { c.direction.as_str() },
             format!("{}×{}", c.cols, c.rows),
             unit,
-            if c.is_length() { "" } else { "  (not a height)" }
+            if c.is_height() { "" } else { "  (not a height)" }
+        )?;
+    }
+    let default = formats::channel::pick(&list, None).ok().map(|i| list[i].index);
+    let heights = list.iter().filter(|c| c.is_height()).count();
+    if list.len() > 1 {
+        let are =
+            if heights == 1 { "1 of them is a height".to_string() } else { format!("{heights} of them are heights") };
+        crate::outln!(
+            "{are}; without --channel, commands read channel {} (pick another with --channel NAME or --channel N; \
+             --as-height reads one that is not a height)",
+            default.map_or("?".to_string(), |i| i.to_string())
         )?;
     }
     Ok(())
@@ -631,7 +662,9 @@ fn convert(a: ConvertArgs) -> Result<()> {
         hf = prep::pad(&hf, r, c)?;
     }
     write_surface(&hf, &a.output)?;
-    for w in hf.meta.warnings.iter().chain(&hf.physics_warnings(DEFAULT_COHERENCE_NM)) {
+    // What the reader warned about; the model's concerns (coherence area, coarse pixels) belong to the
+    // commands that run the model.
+    for w in &hf.meta.warnings {
         eprintln!("warning: {w}");
     }
     crate::outln!(
@@ -665,7 +698,7 @@ pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
         write_preview(&hf, &g.path(&file), &spec)?;
         let listed = peaks
             .iter()
-            .map(|p| format!("{:.0} nm at {:.1}°", p.period_nm, p.orientation_deg))
+            .map(|p| format!("{} at {:.1}°", p.period_text(), p.orientation_deg))
             .collect::<Vec<_>>()
             .join(", ");
         g.image(
@@ -675,7 +708,7 @@ pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
         for p in &peaks {
             rows.push(vec![
                 spec.clone(),
-                format!("{:.2}", p.period_nm),
+                iridis_surface::analysis::with_uncertainty(p.period_nm, p.period_uncertainty_nm),
                 format!("{:.2}", p.orientation_deg),
                 format!("{:.4}", p.power),
             ]);

@@ -126,8 +126,11 @@ constant index n={n1=1.45:1.3..1.7}, or a coefficient of cauchy:A,B,C / sellmeie
 cauchy:{A=1.46:1.3..1.7},{B=0.004:0..0.05}. The fit is Levenberg–Marquardt (the levenberg-marquardt crate)
 from the best points of a grid over the thickness ranges (fringes make χ² periodic in thickness; --grid 1 fits
 from the start values only), with exact derivatives (automatic differentiation through the model). It prints
-the values with 1σ uncertainties from the covariance (JᵀWJ)⁻¹, χ², and the correlation matrix. The CSV needs a
-header: wavelength_nm and R, T, or psi and delta (degrees); --sigma gives the 1σ noise (a number or a column),
+the values with 1σ uncertainties from the covariance (JᵀWJ)⁻¹, χ², and the correlation matrix. The file holds
+columns of wavelength and R, T, or psi and delta (degrees), separated by commas, tabs, semicolons or spaces,
+with a header in any common form (\"Wavelength (nm),Reflectance (%)\") or none; what was read is printed
+(separator, columns, unit, percent detected from the header or values above 1); --columns, --percent and
+--from/--to choose; a material without data over the range is named. --sigma gives the 1σ noise (a number or a column),
 --weights the weights w = 1/σ² (a number, a column, or a CSV file with wavelength_nm,w); without either σ is
 estimated from the scatter. psi-delta needs a coherent stack (Δ is undefined through an inc: layer).
 
@@ -135,6 +138,7 @@ Examples:
   iridis thinfilm fit measured.csv --stack \"air | SiO2 {d1=100nm:50nm..500nm} | Si\"
   iridis thinfilm fit slide.csv --stack \"air | n=2.1 {d=150nm:50nm..400nm} | inc:BK7 1mm | air\" --quantity T --sigma 0.002 --plot fit.png
   iridis thinfilm fit measured.csv --stack \"air | SiO2 {d1=100nm:50nm..500nm} | Si\" --weights 250000   # w = 1/σ², σ = 0.002; or a column name, or a file
+  iridis thinfilm fit measured.csv --stack \"air | SiO2 {d1=100nm:50nm..500nm} | Si\" --columns wavelength_nm,R --from 450nm --to 650nm
   iridis thinfilm fit ellips.csv --stack \"air | n={n=1.5:1.3..1.7} {d=100nm:10nm..400nm} | Si\" --angle 70deg --quantity psi-delta --json")]
     Fit(super::filmfit::FitArgs),
 }

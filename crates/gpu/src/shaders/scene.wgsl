@@ -1215,7 +1215,8 @@ fn shade_diffraction(h: Hit, wo: vec3<f32>, table: Table, k: vec4<f32>, t: vec3<
     for (var i = 0u; i < n_lit + n_env; i = i + 1u) {
         var wi = vec3<f32>(0.0, 0.0, 1.0);
         var e = vec3<f32>(0.0);
-        var omega = 4.0 * PI / f32(ENV_LIGHTS);
+        // render::light::ENVIRONMENT_LIGHT_SPREAD (4): an environment light's lobe is averaged over four cells.
+        var omega = 4.0 * 4.0 * PI / f32(ENV_LIGHTS);
         if (i < n_lit) {
             let l = arrive(i, h.p);
             if (max3(l.e) <= 0.0 || dot(l.wi, h.ng) <= 0.0 || occluded(o, l.wi, l.dist)) {

@@ -3,7 +3,8 @@
 1. call by call: ``iridis.tmm.coh_tmm`` against ``tmm.coh_tmm`` (same arguments, a loop of calls reading
    ``['R']``; and reading every key);
 2. a batch of (λ, θ) points: ``iridis.tmm.coh_tmm_batch`` against a loop of ``tmm.coh_tmm`` and, where it is
-   installed, ``tmm_fast`` (PyTorch, CPU) on the same grid.
+   installed, ``tmm_fast`` (PyTorch, CPU) on the same grid;
+3. issue 29's absorbing stack ``[1, 1.4, 1.33+0.001j, 1.635]`` over 10⁵ wavelengths at one angle, the same way.
 
 Every result is checked against tmm's before it is timed. Options: ``--points N`` (batch size, default 10⁵),
 ``--tmm-points N`` (how many of the batch's points tmm runs, default all; fewer are timed and scaled, which
@@ -85,6 +86,25 @@ def batch(tmm, points, tmm_points):
     return row
 
 
+def absorbing(tmm, points, tmm_points):
+    """Issue 29's measurement: a 2-layer stack with one absorbing layer, many wavelengths at one angle."""
+    n, d = [1.0, 1.4, 1.33 + 0.001j, 1.635], [np.inf, 100.0, 300.0, np.inf]
+    lam = np.linspace(380.0, 780.0, points)
+    t_iri, cpu_iri = best_of_with_cpu(lambda: itmm.coh_tmm_batch("s", n, d, 0.0, lam))
+    out = itmm.coh_tmm_batch("s", n, d, 0.0, lam)
+    m = points if tmm_points is None else min(tmm_points, points)
+    pick = np.linspace(0, points - 1, m).astype(int)
+    t0, c0 = time.perf_counter(), time.process_time()
+    ref = np.array([tmm.coh_tmm("s", n, d, 0.0, lam[i])["R"] for i in pick])
+    t_tmm = (time.perf_counter() - t0) * points / m
+    cpu_tmm = (time.process_time() - c0) * points / m
+    worst = float(np.max(np.abs(ref - out["R"][pick])))
+    assert worst < 1e-9, f"coh_tmm_batch disagrees with tmm by {worst}"
+    return {"points": points, "stack": "[1, 1.4, 1.33+0.001j, 1.635], 100 nm / 300 nm, θ = 0", "iridis_s": t_iri,
+            "tmm_s": t_tmm, "tmm_points_timed": m, "speedup": t_tmm / t_iri, "worst_abs_diff_R": worst,
+            "iridis_cpu_s": cpu_iri, "tmm_cpu_s": cpu_tmm, "speedup_cpu": cpu_tmm / cpu_iri}
+
+
 def tmm_fast_peer(n, d, th, lam, reference):
     """tmm_fast (PyTorch) on the same grid, CPU, where installed."""
     try:
@@ -119,8 +139,13 @@ def main(argv=None):
             "numpy": np.__version__, "tmm": getattr(tmm, "__version__", "?")}
     calls = call_by_call(tmm, a.calls)
     b = batch(tmm, a.points, a.tmm_points)
+    ab = absorbing(tmm, a.points, a.tmm_points)
+    try:
+        info["load_average"] = os.getloadavg()
+    except OSError:
+        pass
     if a.json:
-        print(json.dumps({"info": info, "call_by_call": calls, "batch": b}, indent=1))
+        print(json.dumps({"info": info, "call_by_call": calls, "batch": b, "absorbing": ab}, indent=1))
         return
     print(f"iridis.bench on {info['cpus']} CPUs, Python {info['python']}, numpy {info['numpy']} "
           "(best of 3 runs each; every result checked against tmm first)")
@@ -141,6 +166,13 @@ def main(argv=None):
         print(f"  tmm_fast     {tf['seconds']:9.4f} s  (CPU {tf['cpu_seconds']:.3f} s)   iridis "
               f"{tf['seconds'] / b['iridis_s']:.1f}× faster wall, {tf['cpu_seconds'] / b['iridis_cpu_s']:.1f}× CPU "
               f"(worst |ΔR| {tf['worst_abs_diff_R']:.1e}, {tf['torch_threads']} torch threads)")
+    scaled = "" if ab["tmm_points_timed"] == ab["points"] else f" (tmm timed on {ab['tmm_points_timed']} points, scaled)"
+    print(f"\ncoh_tmm_batch over {ab['points']} wavelengths of {ab['stack']} (issue 29), s:")
+    print(f"  tmm loop     {ab['tmm_s']:9.3f} s  (CPU {ab['tmm_cpu_s']:.3f} s){scaled}")
+    print(f"  iridis       {ab['iridis_s']:9.4f} s  (CPU {ab['iridis_cpu_s']:.4f} s, all threads)   {ab['speedup']:.0f}× "
+          f"wall, {ab['speedup_cpu']:.0f}× CPU (worst |ΔR| {ab['worst_abs_diff_R']:.1e})")
+    if "load_average" in info:
+        print(f"\nload average during the run: {', '.join(f'{x:.1f}' for x in info['load_average'])}")
 
 
 if __name__ == "__main__":

@@ -133,7 +133,7 @@ def brdf_map_of(spec, incidence=(0.0, 0.0), size=256, method="reference", level=
 
 
 def grating(source, light, wavelengths_nm, method="kirchhoff", material=None, fresnel=None,
-            normalisation="energy", detector=None, acceptance=None, **options):
+            normalisation="energy", detector=None, acceptance=None, compare=False, **options):
     """Order efficiencies of ``source`` taken as one unit cell of a grating (its extent is the period), as
     ``iridis grating --json``: a dict with ``orders`` (every propagating order at every wavelength: ``m``,
     ``n``, ``theta_deg``, ``phi_deg``, ``efficiency`` with ``te``, ``tm``, ``unpolarized``, fractions of the
@@ -145,10 +145,13 @@ def grating(source, light, wavelengths_nm, method="kirchhoff", material=None, fr
     default n = 1.5) or ``fresnel`` any Fresnel source (``"schlick:1.5"``); ``normalisation`` ``"energy"``
     (energy and reciprocity exact) or ``"kirchhoff"`` (the obliquity factor as printed); ``acceptance`` the
     detector's half-angle in radians (default 2°). SURFACE options (``pixel_size``, ``level``, …) as
-    elsewhere.
+    elsewhere. ``method="rigorous"`` solves Maxwell's equations (the C-method; transmitted orders and the
+    convergence record too); ``compare=True`` runs both models and returns ``iridis grating --compare --json``'s
+    dict: every order of both, the worst relative error, CIEDE2000 of the colours. ``unit_cell="auto"`` takes
+    the scan's strongest period, its profile averaged along the ridges, as the cell.
     """
     theta, phi = _direction(light, "light")
-    opts = dict(options, method=method, normalisation=normalisation)
+    opts = dict(options, method=method, normalisation=normalisation, compare=bool(compare))
     if material is not None:
         opts["material"] = material
     if fresnel is not None:
@@ -159,3 +162,16 @@ def grating(source, light, wavelengths_nm, method="kirchhoff", material=None, fr
         opts["acceptance"] = float(acceptance)
     wl = [float(w) for w in (wavelengths_nm if hasattr(wavelengths_nm, "__len__") else [wavelengths_nm])]
     return _native.grating(_native_source(source), (theta, phi), wl, opts)
+
+
+def vision(source, visual, light=0.0, views_deg=(-60, -50, -40, -30, -20, -10, 0, 10, 20, 30, 40, 50, 60),
+           azimuth=None, illuminant=None, **options):
+    """How an animal sees ``source`` from several directions, as ``iridis brdf vision --json``: the reflectance
+    factor π f_r(λ) (unpolarised, 300–700 nm, the reference method) at each view angle (degrees, signed, in the
+    plane of incidence; positive on the specular side) for light at ``light`` (radians) in the plane of
+    ``azimuth`` (radians; default the surface's dominant orientation), analysed by the receptor-noise-limited
+    model for ``visual`` (``"bluetit"``, ``"honeybee"``, …; see :mod:`iridis.vision`). Returns a dict with
+    ``views`` (``name``, ``theta_r_deg``, ``reflectance_factor``), ``wavelength_nm`` and ``vision`` (the
+    analysis: quantum catches, ΔS and ΔL in JND between every pair of directions)."""
+    return _native.brdf_vision(_native_source(source), str(visual), float(light), [float(v) for v in views_deg],
+                               None if azimuth is None else float(azimuth), illuminant, options)

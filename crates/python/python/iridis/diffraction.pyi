@@ -1,5 +1,5 @@
 import os
-from typing import Any, Optional, Union
+from typing import Any, Optional, Sequence, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -60,5 +60,15 @@ def grating(
     normalisation: str = ...,
     detector: Optional[Direction] = ...,
     acceptance: Optional[float] = ...,
+    compare: bool = ...,
+    **options: Any,
+) -> dict[str, Any]: ...
+def vision(
+    source: Source,
+    visual: str,
+    light: float = ...,
+    views_deg: Sequence[float] = ...,
+    azimuth: Optional[float] = ...,
+    illuminant: Optional[str] = ...,
     **options: Any,
 ) -> dict[str, Any]: ...

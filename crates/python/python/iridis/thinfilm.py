@@ -29,12 +29,14 @@ the HTSG BRDF at the rough interface) come from :meth:`Stack.rough`, as ``iridis
 """
 from __future__ import annotations
 
+import os
+
 import numpy as np
 
 from . import _native
 from .color import xyz_to_hex, xyz_to_lab, xyz_to_srgb, white_point
 
-__all__ = ["Stack", "RoughFilm", "colors_of_stacks", "material_index", "materials"]
+__all__ = ["Stack", "RoughFilm", "colors_of_stacks", "material_index", "materials", "fit", "profile"]
 
 _POL = {"s": "s", "p": "p", "unpolarized": "avg", "unpolarised": "avg", "avg": "avg", "average": "avg"}
 
@@ -43,11 +45,57 @@ def _real(x, name):
     a = np.asarray(x)
     if a.dtype.kind not in "biuf":
         raise TypeError(f"{name} must hold real numbers, got dtype {a.dtype}")
-    return a.astype(np.float64, copy=False)
+    a = a.astype(np.float64, copy=False)
+    bad = ~np.isfinite(a)
+    if bad.any():
+        where = tuple(int(i) for i in np.argwhere(bad)[0]) if a.ndim else ()
+        raise ValueError(f"{name} holds {a[where] if a.ndim else a} at index {where}: every value must be a finite "
+                         "number (drop or replace NaN and inf before calling)")
+    return a
+
+
+def _wavelengths(x, name="wavelengths_nm"):
+    """Wavelengths in nm: finite, > 0, and not metres or µm by mistake."""
+    a = _real(x, name)
+    if a.size == 0:
+        return a
+    lo, hi = float(a.min()), float(a.max())
+    if lo <= 0:
+        raise ValueError(f"{name} holds {lo}: wavelengths are in nm and must be > 0")
+    if hi < 1e-4:
+        raise ValueError(f"{name} reaches only {hi:g}: that looks like metres; iridis takes nanometres — multiply "
+                         "by 1e9 (e.g. 550e-9 m → 550 nm)")
+    if hi < 20:
+        raise ValueError(f"{name} reaches only {hi:g}: that looks like µm; iridis takes nanometres — multiply by "
+                         "1000 (e.g. 0.55 µm → 550 nm)")
+    return a
+
+
+def _angles(x, name="angles_rad"):
+    """Angles of incidence in radians, |θ| ≤ π/2; degrees by mistake are named."""
+    a = _real(x, name)
+    if a.size and np.abs(a).max() > np.pi / 2 + 1e-12:
+        worst = float(np.abs(a).max())
+        hint = ("; if these are degrees, convert them with numpy.radians(...)" if worst <= 90.0 + 1e-9 else "")
+        raise ValueError(f"{name} reaches {worst:g} rad: angles of incidence lie in −π/2…π/2 rad{hint}")
+    return a
+
+
+def _offsets(x, stack, name="offsets_nm"):
+    """Thickness offsets (nm): finite, and no layer thinner than 0 after the offset."""
+    a = _real(x, name)
+    d = stack._s.thicknesses
+    if a.size and d:
+        lowest, thinnest = float(a.min()), min(d)
+        if thinnest + lowest < 0:
+            layer = d.index(thinnest) + 1
+            raise ValueError(f"{name} holds {lowest:g} nm, which makes layer {layer} ({thinnest:g} nm) thinner than 0; "
+                             f"offsets must be ≥ {-thinnest:g} nm (the offset is added to every layer)")
+    return a
 
 
 def _broadcast(*pairs):
-    arrays = [_real(x, n) for x, n in pairs]
+    arrays = [np.asarray(x) for x, n in pairs]
     try:
         out = np.broadcast_arrays(*arrays)
     except ValueError:
@@ -59,7 +107,7 @@ def _broadcast(*pairs):
 def material_index(name, wavelengths_nm):
     """``n + iκ`` of a material (library name such as ``"Si"``, ``"n=1.38"``, ``"file:PATH"``) at each
     wavelength (nm)."""
-    wl = _real(wavelengths_nm, "wavelengths_nm")
+    wl = _wavelengths(wavelengths_nm)
     out = _native.material_index(name, np.ascontiguousarray(np.atleast_1d(wl).ravel()))
     return out.reshape(wl.shape) if wl.ndim else complex(out[0])
 
@@ -84,10 +132,23 @@ def colors_of_stacks(indices, thicknesses_nm, angle_rad=0.0, illuminant="D65", o
     n = np.asarray(indices)
     if n.dtype.kind not in "biufc":
         raise TypeError(f"indices must hold numbers, got dtype {n.dtype}")
+    if not np.isfinite(n).all():
+        raise ValueError("indices hold NaN or inf: every index must be a finite number")
     d = _real(thicknesses_nm, "thicknesses_nm")
-    if n.ndim != 2 or d.ndim != 2:
-        raise ValueError(f"indices and thicknesses_nm must be 2-D (one row per stack), got {n.shape} and {d.shape}")
-    grid = np.arange(380.0, 780.0 + 1e-9, 5.0) if grid_nm is None else _real(grid_nm, "grid_nm")
+    if d.size and d.min() < 0:
+        raise ValueError(f"thicknesses_nm holds {d.min():g}: thicknesses are in nm and must be ≥ 0")
+    grid = np.arange(380.0, 780.0 + 1e-9, 5.0) if grid_nm is None else _wavelengths(grid_nm, "grid_nm")
+    angle_rad = float(_angles(angle_rad, "angle_rad"))
+    if n.ndim == 3:
+        # One index per medium and wavelength of the grid (dispersive media): each stack on its own.
+        if d.ndim != 2 or n.shape[:2] != (d.shape[0], d.shape[1] + 2) or n.shape[2] != grid.size:
+            raise ValueError(f"indices of shape {n.shape} (stacks, media, wavelengths) need thicknesses of shape "
+                             f"({n.shape[0]}, {n.shape[1] - 2}) and grid_nm of {n.shape[2]} wavelengths")
+        rows = [Stack.from_lists(list(n[i]), d[i], wavelengths_nm=grid).color(angle_rad, 0.0, illuminant, observer,
+                                                                              polarization, grid)
+                for i in range(n.shape[0])]
+        return {"reflected": np.array([r["reflected"] for r in rows]),
+                "transmitted": np.array([r["transmitted"] for r in rows])}
     out = _native._stack_colors(np.ascontiguousarray(n, dtype=np.complex128), np.ascontiguousarray(d),
                                 float(angle_rad), np.ascontiguousarray(grid.ravel()), illuminant, observer, pol)
     return {"reflected": out[:, :3], "transmitted": out[:, 3:]}
@@ -116,11 +177,61 @@ class Stack:
                             "use Stack.from_lists for lists")
 
     @classmethod
-    def from_lists(cls, indices, thicknesses_nm, incoherent=None):
+    def from_lists(cls, indices, thicknesses_nm, incoherent=None, wavelengths_nm=None):
         """From complex indices (incident, layers…, substrate) and one thickness (nm) per layer;
-        ``incoherent``: one bool per layer."""
-        return cls(_native._Stack.from_lists(indices, thicknesses_nm,
-                                             None if incoherent is None else [bool(x) for x in incoherent]))
+        ``incoherent``: one bool per layer.
+
+        An index may be an array with one value per wavelength of ``wavelengths_nm`` (dispersive media, e.g.
+        from ``material_index``): it is interpolated linearly in between, and wavelengths outside are refused,
+        as the built-in measured data are. ``indices`` may also be one array of shape (media, wavelengths).
+
+        >>> import numpy as np, iridis.thinfilm as tf
+        >>> wl = np.array([400.0, 500.0, 600.0, 700.0])
+        >>> s = tf.Stack.from_lists([1.0, tf.material_index("TiO2", wl), 1.52], [60.0], wavelengths_nm=wl)
+        >>> s.reflectance([450.0, 650.0]).shape
+        (2,)
+        """
+        inc = None if incoherent is None else [bool(x) for x in incoherent]
+        d = _real(thicknesses_nm, "thicknesses_nm")
+        if d.size and d.min() < 0:
+            raise ValueError(f"thicknesses_nm holds {d.min():g}: layer thicknesses are in nm and must be ≥ 0")
+        arrays = isinstance(indices, np.ndarray) and indices.ndim == 2 or any(np.ndim(x) > 0 for x in indices)
+        if wavelengths_nm is None:
+            if arrays:
+                raise ValueError("indices hold arrays (one index per wavelength): give their wavelengths as "
+                                 "wavelengths_nm=…")
+            n = np.asarray(indices)
+            if n.dtype.kind not in "biufc":
+                raise TypeError(f"indices must hold numbers, got dtype {n.dtype}")
+            if not np.isfinite(n).all():
+                raise ValueError("indices hold NaN or inf: every index must be a finite number")
+            return cls(_native._Stack.from_lists(indices, d, inc))
+        wl = _wavelengths(wavelengths_nm)
+        if wl.ndim != 1 or wl.size == 0:
+            raise ValueError(f"wavelengths_nm must be a non-empty 1-D array, got shape {wl.shape}")
+        rows = list(indices)
+        table = np.empty((len(rows), wl.size), dtype=np.complex128)
+        constant = []
+        for j, x in enumerate(rows):
+            a = np.asarray(x)
+            if a.dtype.kind not in "biufc":
+                raise TypeError(f"indices[{j}] must hold numbers, got dtype {a.dtype}")
+            if a.ndim == 0:
+                table[j] = a
+                constant.append(True)
+            elif a.shape == wl.shape:
+                table[j] = a
+                constant.append(False)
+            else:
+                raise ValueError(f"indices[{j}] has shape {a.shape}: give one number, or one index per wavelength "
+                                 f"({wl.size},)")
+            if not np.isfinite(table[j]).all():
+                raise ValueError(f"indices[{j}] holds NaN or inf: every index must be a finite number")
+        order = np.argsort(wl, kind="stable")
+        if np.any(np.diff(wl[order]) == 0):
+            raise ValueError("wavelengths_nm holds a wavelength twice: give each once")
+        return cls(_native._Stack._from_tables(np.ascontiguousarray(table[:, order]), constant,
+                                               np.ascontiguousarray(wl[order]), d, inc))
 
     def __str__(self):
         return str(self._s)
@@ -135,7 +246,7 @@ class Stack:
 
     def indices(self, wavelengths_nm):
         """The complex index of every medium at each wavelength: shape ``(media,) + wavelengths.shape``."""
-        wl = _real(wavelengths_nm, "wavelengths_nm")
+        wl = _wavelengths(wavelengths_nm)
         out = self._s.indices(np.ascontiguousarray(np.atleast_1d(wl).ravel()))
         return out.reshape((out.shape[0],) + wl.shape)
 
@@ -146,8 +257,8 @@ class Stack:
         pol = _POL.get(str(polarization).lower())
         if pol is None:
             raise ValueError(f"polarization {polarization!r}: use 's', 'p' or 'unpolarized'")
-        (w, a, o), shape = _broadcast((wavelengths_nm, "wavelengths_nm"), (angles_rad, "angles_rad"),
-                                      (offsets_nm, "offsets_nm"))
+        (w, a, o), shape = _broadcast((_wavelengths(wavelengths_nm), "wavelengths_nm"),
+                                      (_angles(angles_rad), "angles_rad"), (_offsets(offsets_nm, self), "offsets_nm"))
         rs, rp, ts, tp = self._s._rta(w, a, o)
         r, t = {"s": (rs, ts), "p": (rp, tp), "avg": (0.5 * (rs + rp), 0.5 * (ts + tp))}[pol]
         return {"R": r.reshape(shape), "T": t.reshape(shape), "A": (1.0 - r - t).reshape(shape)}
@@ -160,13 +271,18 @@ class Stack:
         """T alone (see :meth:`rta`)."""
         return self.rta(wavelengths_nm, angles_rad, offsets_nm, polarization)["T"]
 
-    def rough(self, roughness_nm, correlation_nm, d_iterations=None, diffuse_transport="reciprocal"):
+    def rough(self, roughness_nm, correlation_nm, d_iterations=None, diffuse_transport="multiple"):
         """This stack on a rough substrate: rms roughness σ = ``roughness_nm`` of the last interface and its
         autocorrelation length τ = ``correlation_nm`` (valid for σ > 0, 2σ/τ ≤ 1 and τ²/(2√3σ) ≥ λ in the
         medium above the substrate). ``d_iterations``: terms of the HTSG series (default: as many as an error
-        bound of 1e-6 of the lobe's peak needs); ``diffuse_transport``: ``"reciprocal"`` (default) or
-        ``"thesis"`` (eq. 3.18–3.19 as printed, for comparison only)."""
+        bound of 1e-6 of the lobe's peak needs); ``diffuse_transport``: ``"multiple"`` (default: every
+        scattering inside the film, energy-conserving), ``"single"`` (one scattering, faster; alias
+        ``"reciprocal"``) or ``"thesis"`` (eq. 3.18–3.19 as printed, for comparison only)."""
         return RoughFilm(self, roughness_nm, correlation_nm, d_iterations, diffuse_transport)
+
+    def profile(self, wavelength_nm, angle_rad=0.0, polarization="unpolarized", points=400, depth_nm=None):
+        """Where the light goes: :func:`profile` of this stack."""
+        return profile(self, wavelength_nm, angle_rad, polarization, points, depth_nm)
 
     def color(self, angles_rad=0.0, offsets_nm=0.0, illuminant="D65", observer="1931",
               polarization="unpolarized", grid_nm=None):
@@ -179,8 +295,8 @@ class Stack:
         pol = _POL.get(str(polarization).lower())
         if pol is None:
             raise ValueError(f"polarization {polarization!r}: use 's', 'p' or 'unpolarized'")
-        grid = np.arange(380.0, 780.0 + 1e-9, 5.0) if grid_nm is None else _real(grid_nm, "grid_nm")
-        (a, o), shape = _broadcast((angles_rad, "angles_rad"), (offsets_nm, "offsets_nm"))
+        grid = np.arange(380.0, 780.0 + 1e-9, 5.0) if grid_nm is None else _wavelengths(grid_nm, "grid_nm")
+        (a, o), shape = _broadcast((_angles(angles_rad), "angles_rad"), (_offsets(offsets_nm, self), "offsets_nm"))
         xyz = self._s._colors(a, o, np.ascontiguousarray(grid.ravel()), illuminant, observer, pol)
         refl = xyz[:, :3].reshape(shape + (3,))
         trans = xyz[:, 3:].reshape(shape + (3,))
@@ -203,7 +319,10 @@ def _float(x, name, what):
 
 
 def _angle(x, name):
-    return _float(x, name, "an angle in radians")
+    v = _float(x, name, "an angle in radians")
+    if not np.isfinite(v):
+        raise ValueError(f"{name} is {v}: an angle must be a finite number (radians)")
+    return v
 
 
 class RoughFilm:
@@ -212,7 +331,7 @@ class RoughFilm:
     factor, relative to a white Lambertian surface under the same light), next to the smooth film's ``R``.
     Made by :meth:`Stack.rough`."""
 
-    def __init__(self, stack, roughness_nm, correlation_nm, d_iterations=None, diffuse_transport="reciprocal"):
+    def __init__(self, stack, roughness_nm, correlation_nm, d_iterations=None, diffuse_transport="multiple"):
         if not isinstance(stack, Stack):
             raise TypeError(f"stack must be an iridis.thinfilm.Stack, got {type(stack).__name__}")
         self.stack = stack
@@ -236,7 +355,7 @@ class RoughFilm:
         ``diffuse_per_sr`` (and ``diffuse_s_per_sr``, ``diffuse_p_per_sr``) — with ``series_terms_max`` and
         ``diffuse_error_bound_per_sr``. ``light_rad`` defaults to the view angle; ``azimuth_rad`` is the light's
         azimuth relative to the viewer (π: the mirror configuration)."""
-        wl = _real(wavelengths_nm, "wavelengths_nm")
+        wl = _wavelengths(wavelengths_nm)
         if wl.ndim != 1 or wl.size == 0:
             raise ValueError(f"wavelengths_nm must be a non-empty 1-D array, got shape {wl.shape}")
         view = _angle(view_rad, "view_rad")
@@ -250,7 +369,7 @@ class RoughFilm:
         ``reflected`` and ``transmitted`` light, of the rough film's ``specular`` part and of its ``diffuse``
         part (``π k_d``: Y = 1 is a white Lambertian surface under the same light), each with ``*_lab``,
         ``*_srgb`` and ``*_hex``. Default grid 380–780 nm in 5 nm steps."""
-        grid = np.arange(380.0, 780.0 + 1e-9, 5.0) if grid_nm is None else _real(grid_nm, "grid_nm")
+        grid = np.arange(380.0, 780.0 + 1e-9, 5.0) if grid_nm is None else _wavelengths(grid_nm, "grid_nm")
         view = _angle(view_rad, "view_rad")
         light = view if light_rad is None else _angle(light_rad, "light_rad")
         xyz = self.stack._s._rough_color(*self._args(), view, light, _angle(azimuth_rad, "azimuth_rad"),
@@ -262,3 +381,119 @@ class RoughFilm:
             out[k + "_srgb"] = xyz_to_srgb(v)
             out[k + "_hex"] = xyz_to_hex(v)
         return out
+
+
+def profile(stack, wavelength_nm, angle_rad=0.0, polarization="unpolarized", points=400, depth_nm=None):
+    """Where the light goes in ``stack`` (a :class:`Stack` or the CLI's syntax) at one wavelength and angle,
+    as ``iridis thinfilm profile --json`` (the same library function): ``R``, ``T``, ``A_layers`` (absorbed in
+    each layer), ``A_substrate``, ``balance`` (R + T + ΣA − 1, rounding), and over ``points`` depths ``z_nm``
+    (below the first interface; default window 100 nm above the stack to 100 nm into the substrate, or
+    ``depth_nm=(from, to)``) the ``medium``, ``E2`` (|E|², incident = 1), ``absorption_per_nm`` and ``flux``.
+
+    >>> import iridis.thinfilm as tf
+    >>> p = tf.profile("air | Au 30nm | glass", 500.0, points=101)
+    >>> round(float(p["R"] + p["T"] + sum(p["A_layers"]) + p["A_substrate"]), 9)
+    1.0
+    """
+    s = stack if isinstance(stack, Stack) else Stack(stack)
+    pol = _POL.get(str(polarization).lower())
+    if pol is None:
+        raise ValueError(f"polarization {polarization!r}: use 's', 'p' or 'unpolarized'")
+    wl = float(_wavelengths(_float(wavelength_nm, "wavelength_nm", "a wavelength in nm"), "wavelength_nm"))
+    angle = float(_angles(_angle(angle_rad, "angle_rad"), "angle_rad"))
+    if isinstance(points, bool) or int(points) != points or not 2 <= points <= 1_000_000:
+        raise ValueError(f"points {points!r}: a whole number of depth samples from 2 to 1000000")
+    window = None
+    if depth_nm is not None:
+        lo, hi = (float(v) for v in _real(depth_nm, "depth_nm"))
+        if not lo < hi:
+            raise ValueError(f"depth_nm ({lo}, {hi}) is empty: the first depth must be above (less than) the second")
+        window = (lo, hi)
+    out = _native._profile(s._s, wl, angle, pol, int(points), window)
+    out["wavelength_nm"], out["angle_deg"], out["polarization"] = wl, float(np.degrees(angle)), pol
+    return out
+
+
+def fit(measured, stack, angle_rad=0.0, quantity="R", sigma=None, weights=None, grid=0, columns=None,
+        percent=None, from_nm=None, to_nm=None):
+    """Fits the free parameters of ``stack`` (the CLI's template syntax, e.g. ``"air | SiO2
+    {d1=100nm:50nm..500nm} | Si"``) to a measured spectrum, as ``iridis thinfilm fit --json`` (the same
+    library functions: reading, multi-start Levenberg–Marquardt with exact derivatives, covariance).
+
+    ``measured``: a file path, read as the CLI reads it (separators, headers, percent, ``columns``,
+    ``from_nm``/``to_nm``; what was found is in ``result["read"]["notes"]``), or arrays ``(wavelengths_nm,
+    values)`` or ``(wavelengths_nm, values, sigma)`` — ψ, Δ interleaved for ``quantity="psi-delta"``.
+    ``sigma``/``weights``: a number (1σ, or w = 1/σ²), for a file also column names (and for weights a file).
+    ``percent``: the values are percent (for arrays it must be said; for files it is detected and stated).
+    ``grid``: multi-start points per thickness (0: about one per 10 nm). ``angle_rad`` in radians.
+
+    Returns the CLI's JSON keys: ``names``, ``units``, ``values``, ``sigma``, ``correlation``, ``chi2``,
+    ``dof``, ``reduced_chi2``, ``sigma_given``, ``at_bound``, ``starts``, ``evaluations``, ``jacobian``,
+    ``fitted``, ``wavelength_nm``, ``measured``, ``read``.
+
+    >>> import numpy as np, iridis.thinfilm as tf
+    >>> wl = np.linspace(400, 800, 81)
+    >>> r = tf.Stack("air | SiO2 150nm | si-green").reflectance(wl)
+    >>> out = tf.fit((wl, r), "air | SiO2 {d=120nm:50nm..300nm} | si-green")
+    >>> round(float(out["values"][0]), 3)
+    150.0
+    """
+    q = str(quantity)
+    angle = float(_angles(_angle(angle_rad, "angle_rad"), "angle_rad"))
+    if isinstance(grid, bool) or int(grid) != grid or grid < 0:
+        raise ValueError(f"grid {grid!r}: a whole number of starts per thickness ≥ 0 (0: automatic)")
+    for name, v in (("from_nm", from_nm), ("to_nm", to_nm)):
+        if v is not None:
+            _wavelengths(_float(v, name, "a wavelength in nm"), name)
+    if sigma is not None and weights is not None:
+        raise ValueError("give sigma or weights, not both (weights are 1/σ²)")
+    if isinstance(measured, (str, bytes)) or hasattr(measured, "__fspath__"):
+        spread = {}
+        for name, v in (("sigma", sigma), ("weights", weights)):
+            if v is not None:
+                spread[name] = str(v) if isinstance(v, str) else repr(_float(v, name, "a number or column names"))
+        path = os.fsdecode(os.fspath(measured))
+        return _native._fit(stack, angle, q, int(grid), path=path, columns=columns, percent=percent,
+                            from_nm=from_nm, to_nm=to_nm, **spread)
+    parts = [np.asarray(m) for m in measured] if isinstance(measured, (tuple, list)) else None
+    if parts is None:
+        a = np.asarray(measured)
+        if a.ndim != 2 or a.shape[1] not in (2, 3):
+            raise ValueError(f"measured of shape {a.shape}: give a file path, (wavelengths_nm, values[, sigma]) or an "
+                             "array of 2 or 3 columns")
+        parts = [a[:, k] for k in range(a.shape[1])]
+    if len(parts) not in (2, 3):
+        raise ValueError(f"measured has {len(parts)} parts: give (wavelengths_nm, values) or (wavelengths_nm, values, "
+                         "sigma)")
+    wl = _wavelengths(parts[0], "wavelengths_nm").ravel()
+    vals = _real(parts[1], "values").ravel()
+    sig = None if len(parts) < 3 else _real(parts[2], "sigma").ravel()
+    width = 2 if q.lower() in ("psi-delta", "psi_delta", "ellipsometry") else 1
+    if vals.size != wl.size * width:
+        raise ValueError(f"{wl.size} wavelengths need {wl.size * width} values for {q}, got {vals.size}")
+    if width == 1:
+        if percent is None and vals.max() > 1.5:
+            raise ValueError(f"the values reach {vals.max():g} > 1: if they are percent, say percent=True")
+        if percent:
+            vals = vals / 100.0
+            sig = None if sig is None else sig / 100.0
+    if sigma is not None or weights is not None:
+        if sig is not None:
+            raise ValueError("sigma given twice: in measured and as sigma/weights")
+        v = _float(sigma if sigma is not None else weights, "sigma" if sigma is not None else "weights", "a number")
+        if not (np.isfinite(v) and v > 0):
+            raise ValueError(f"{'sigma' if sigma is not None else 'weights'} {v} must be a finite number > 0")
+        s1 = v if sigma is not None else 1.0 / np.sqrt(v)
+        sig = np.full(vals.size, s1 / (100.0 if percent and width == 1 else 1.0))
+    keep = np.ones(wl.size, bool)
+    if from_nm is not None:
+        keep &= wl >= float(from_nm)
+    if to_nm is not None:
+        keep &= wl <= float(to_nm)
+    if not keep.any():
+        raise ValueError(f"no wavelength of measured ({wl.min():g}–{wl.max():g} nm) lies between from_nm and to_nm")
+    kv = np.repeat(keep, width)
+    out = _native._fit(stack, angle, q, int(grid), wavelengths=np.ascontiguousarray(wl[keep]),
+                       values=np.ascontiguousarray(vals[kv]),
+                       sigma_values=None if sig is None else np.ascontiguousarray(sig[kv]))
+    return out

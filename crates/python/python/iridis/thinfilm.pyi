@@ -19,7 +19,11 @@ class Stack:
     def __init__(self, spec: str) -> None: ...
     @classmethod
     def from_lists(
-        cls, indices: npt.ArrayLike, thicknesses_nm: npt.ArrayLike, incoherent: Optional[Sequence[bool]] = ...
+        cls,
+        indices: Any,
+        thicknesses_nm: npt.ArrayLike,
+        incoherent: Optional[Sequence[bool]] = ...,
+        wavelengths_nm: Optional[npt.ArrayLike] = ...,
     ) -> "Stack": ...
     @property
     def layers(self) -> int: ...
@@ -52,6 +56,14 @@ class Stack:
         d_iterations: Optional[int] = ...,
         diffuse_transport: str = ...,
     ) -> "RoughFilm": ...
+    def profile(
+        self,
+        wavelength_nm: float,
+        angle_rad: float = ...,
+        polarization: str = ...,
+        points: int = ...,
+        depth_nm: Optional[tuple[float, float]] = ...,
+    ) -> dict[str, Any]: ...
     def color(
         self,
         angles_rad: npt.ArrayLike = ...,
@@ -92,3 +104,25 @@ class RoughFilm:
         observer: str = ...,
         grid_nm: Optional[npt.ArrayLike] = ...,
     ) -> dict[str, Any]: ...
+
+def profile(
+    stack: Any,
+    wavelength_nm: float,
+    angle_rad: float = ...,
+    polarization: str = ...,
+    points: int = ...,
+    depth_nm: Optional[tuple[float, float]] = ...,
+) -> dict[str, Any]: ...
+def fit(
+    measured: Any,
+    stack: str,
+    angle_rad: float = ...,
+    quantity: str = ...,
+    sigma: Any = ...,
+    weights: Any = ...,
+    grid: int = ...,
+    columns: Optional[str] = ...,
+    percent: Optional[bool] = ...,
+    from_nm: Optional[float] = ...,
+    to_nm: Optional[float] = ...,
+) -> dict[str, Any]: ...

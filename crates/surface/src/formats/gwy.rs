@@ -241,25 +241,26 @@ pub fn channels(bytes: &[u8]) -> Result<Vec<super::channel::ChannelInfo>, Surfac
     Ok(infos(&top, &data_fields(&top)))
 }
 
-/// Reads the chosen (or lowest-numbered) data field.
+/// Reads the chosen data field (by default the one named Height, else the lowest-numbered height channel,
+/// as [`super::channel::pick`] chooses).
 pub fn read(bytes: &[u8], side: Option<&Sidecar>, opts: &LoadOptions) -> Result<HeightField, SurfaceError> {
     let top = parse(bytes)?;
-    let (id, field) = if top.name == "GwyDataField" {
-        (None, &top)
+    let fields: Vec<(u32, &Object)> = if top.name == "GwyDataField" {
+        vec![(0, &top)]
     } else {
         let channels = data_fields(&top);
         if channels.is_empty() {
             return Err(SurfaceError::invalid("the Gwyddion file holds no image channel (/N/data)"));
         }
-        let pick = match &opts.channel {
-            None => channels[0],
-            Some(sel) => {
-                let list = infos(&top, &channels);
-                channels[super::channel::pick(&list, Some(sel))?]
-            }
-        };
-        (Some(pick.0), pick.1)
+        channels
     };
+    let list = infos(&top, &fields);
+    let pos = match &opts.channel {
+        // Gwyddion's own default is the lowest channel; among several, a height (not a stiffness map).
+        None => super::channel::pick(&list, None)?,
+        Some(sel) => super::channel::pick(&list, Some(sel))?,
+    };
+    let (id, field) = fields[pos];
     let int = |k: &str| match field.get(k) {
         Some(Value::Int(v)) => Ok(*v),
         _ => Err(err(format!("data field without '{k}'"))),
@@ -285,7 +286,9 @@ pub fn read(bytes: &[u8], side: Option<&Sidecar>, opts: &LoadOptions) -> Result<
     let (xreal, yreal) = (dbl("xreal", Some(1.0))?, dbl("yreal", Some(1.0))?);
     let mut warnings = Vec::new();
     let (kxy, uxy) = to_nm(unit(field, "si_unit_xy"), "lateral (xy)", &mut warnings)?;
-    let (kz, uz) = to_nm(unit(field, "si_unit_z"), "height (z)", &mut warnings)?;
+    let z =
+        super::channel::z_scale(&list, &list[pos], opts, side, Some((1e9, "m", "metres (Gwyddion's AFM convention)")))?;
+    warnings.extend(z.warnings);
     let file_pixel = (xreal * kxy / cols as f64, yreal * kxy / rows as f64);
     let file_ok = file_pixel.0.is_finite() && file_pixel.0 > 0.0 && file_pixel.1.is_finite() && file_pixel.1 > 0.0;
     if !file_ok && opts.pixel_size_nm.is_none() && side.and_then(|s| s.pixel_nm()).is_none() {
@@ -293,26 +296,28 @@ pub fn read(bytes: &[u8], side: Option<&Sidecar>, opts: &LoadOptions) -> Result<
             "the file's physical size {xreal} × {yreal} {uxy} gives no valid pixel size; give --pixel-size"
         )));
     }
-    let (dx, dy) = super::pick_pixel(Some(file_pixel), side, opts, "this Gwyddion channel")?;
-    let heights: Vec<f64> = data.iter().map(|v| v * kz).collect();
+    let ((dx, dy), pixel_warning) = super::pick_pixel(Some(file_pixel), side, opts, "this Gwyddion channel")?;
+    warnings.extend(pixel_warning);
+    let heights: Vec<f64> = data.iter().map(|v| v * z.nm_per_unit).collect();
     let hf = HeightField::new(rows, cols, dx, dy, heights)?;
-    let title = id
-        .and_then(|i| match top.get(&format!("/{i}/data/title")) {
-            Some(Value::Str(s)) => Some(s.clone()),
-            _ => None,
-        })
-        .unwrap_or_default();
     let mut meta = hf.meta.clone();
-    meta.z_unit = uz;
+    meta.z_unit = z.unit;
     meta.warnings = warnings;
+    let title = &list[pos].name;
     meta.notes.push(format!(
-        "Gwyddion channel {}{}: {cols} × {rows} samples, {:e} × {:e} {uxy}",
-        id.map_or("-".to_string(), |i| i.to_string()),
+        "Gwyddion channel {id}{}: {cols} × {rows} samples, {:e} × {:e} {uxy}",
         if title.is_empty() { String::new() } else { format!(" '{title}'") },
         // The extent as the file's author wrote it, without the noise of its binary double.
         iridis_color::units::tidy(xreal),
         iridis_color::units::tidy(yreal)
     ));
+    if top.name != "GwyDataField" {
+        let choice = super::channel::ChannelChoice::new(&list, pos, opts.channel.as_ref());
+        if list.len() > 1 {
+            meta.notes.push(choice.describe());
+        }
+        meta.channel = Some(choice);
+    }
     Ok(hf.with_meta(meta))
 }
 

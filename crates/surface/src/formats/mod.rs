@@ -95,17 +95,18 @@ impl Format {
 /// Options for [`load_surface`]; `None` means "from the file or its sidecar".
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct LoadOptions {
-    /// Pixel size (nm), both axes. Required for formats without units; overrides the file's if given.
+    /// Pixel size (nm), both axes. Required for formats without units; where the file states its own, the
+    /// file's wins unless `override_units`.
     pub pixel_size_nm: Option<f64>,
     /// Images: the height (nm) that full white stands for; black is 0.
     pub max_height_nm: Option<f64>,
     /// Which channel: an index or a name (`iridis surface channels` lists them). Gwyddion: the channel
-    /// number (`/N/data`) or title, default the lowest; `.npz`: the index of the 2-D array in name order or
+    /// number (`/N/data`) or title; `.npz`: the index of the 2-D array in name order or
     /// its name, needed when the archive holds several; instrument files: the index in file order or the
-    /// name, default the first height channel.
+    /// name. Default: the channel named Height, else the first height channel ([`channel::pick`]).
     pub channel: Option<channel::ChannelSel>,
     /// Unit of stored heights where the file has none (`.npy`, text, a unitless channel); overrides a
-    /// sidecar's `height_unit`.
+    /// sidecar's `height_unit`, and a file's own unit only with `override_units`.
     pub height_unit: Option<String>,
     /// Built-in surfaces: edge length of the square patch (nm); default 65 µm.
     pub size_nm: Option<f64>,
@@ -113,6 +114,11 @@ pub struct LoadOptions {
     pub seed: Option<u64>,
     /// Do not look for a JSON sidecar.
     pub ignore_sidecar: bool,
+    /// Let `pixel_size_nm` and `height_unit` (or a sidecar's) replace the pixel size and height unit a file
+    /// states itself; without it the file's own win and a warning names both.
+    pub override_units: bool,
+    /// Read a channel that is not a height (another signal's name, a unit that is not a length) as heights.
+    pub as_height: bool,
 }
 
 /// Recognises a format from the first bytes of a file.
@@ -294,9 +300,9 @@ pub(crate) fn finish_channel(
     opts: &LoadOptions,
     what: &str,
 ) -> Result<HeightField, SurfaceError> {
-    let unit = opts.height_unit.clone().or_else(|| side.and_then(|s| s.height_unit.clone()));
-    let (k, z_unit) = channel::z_scale(list, ch, unit.as_deref())?;
-    let mut warnings = Vec::new();
+    let z = channel::z_scale(list, ch, opts, side, None)?;
+    let (k, z_unit) = (z.nm_per_unit, z.unit);
+    let mut warnings = z.warnings;
     let (rows, cols) = (ch.rows, ch.cols);
     let nan: Vec<usize> = (0..values.len()).filter(|&i| !values[i].is_finite()).collect();
     if nan.len() == values.len() {
@@ -359,20 +365,17 @@ pub(crate) fn finish_channel(
             values[i] = mean;
         }
     }
-    let (dx, dy) = pick_pixel(file_pixel, side, opts, what)?;
+    let ((dx, dy), pixel_warning) = pick_pixel(file_pixel, side, opts, what)?;
+    warnings.extend(pixel_warning);
     let heights = values.iter().map(|v| v * k).collect();
     let hf = HeightField::new(rows, cols, dx, dy, heights)?;
     let mut meta = hf.meta.clone();
     meta.z_unit = z_unit;
     meta.warnings = warnings;
-    let dir = if ch.direction.is_empty() { String::new() } else { format!(", {}", ch.direction) };
-    meta.notes.push(format!(
-        "channel {} '{}'{dir} of {} ({}): {cols} × {rows} samples",
-        ch.index,
-        ch.name,
-        list.len(),
-        list.iter().map(|c| c.full_name()).collect::<Vec<_>>().join(", ")
-    ));
+    let pos = list.iter().position(|c| c == ch).unwrap_or(0);
+    let choice = channel::ChannelChoice::new(list, pos, opts.channel.as_ref());
+    meta.notes.push(format!("{}: {cols} × {rows} samples", choice.describe()));
+    meta.channel = Some(choice);
     Ok(hf.with_meta(meta))
 }
 
@@ -419,23 +422,48 @@ pub fn sidecar_path(path: &Path) -> PathBuf {
     PathBuf::from(s)
 }
 
-/// Pixel sizes from (in increasing priority) the file, the sidecar and the options.
+/// Pixel sizes: the file's where it states one, else the options' (`--pixel-size`), else the sidecar's. A
+/// user's size that contradicts the file's (by more than 1e-6 relative) is ignored with a warning naming
+/// both, or — with `override_units` — used, with a warning naming the file's.
 pub(crate) fn pick_pixel(
     from_file: Option<(f64, f64)>,
     side: Option<&Sidecar>,
     opts: &LoadOptions,
     what: &str,
-) -> Result<(f64, f64), SurfaceError> {
-    let p = opts.pixel_size_nm.map(|p| (p, p)).or_else(|| side.and_then(|s| s.pixel_nm())).or(from_file).ok_or_else(
-        || {
-            SurfaceError::invalid(format!(
+) -> Result<((f64, f64), Option<String>), SurfaceError> {
+    let user = match opts.pixel_size_nm {
+        Some(p) => Some(((p, p), format!("--pixel-size {}", crate::render::format_length(p)))),
+        None => side.and_then(|s| s.pixel_nm()).map(|p| (p, format!("the sidecar's pixel_size_nm {}", p.0))),
+    };
+    let from_file = from_file.filter(|p| crate::check_pixel(p.0, p.1).is_ok());
+    let (p, warning) = match (from_file, user) {
+        (Some(f), Some((u, from))) if (u.0 / f.0 - 1.0).abs() > 1e-6 || (u.1 / f.1 - 1.0).abs() > 1e-6 => {
+            let file = format!("{} × {} nm per pixel", pixel_text(f.0), pixel_text(f.1));
+            if opts.override_units {
+                (u, Some(format!("{from} replaces the file's own {file} (--override-units)")))
+            } else {
+                (f, Some(format!("{from} ignored: the file gives {file}; --override-units uses yours instead")))
+            }
+        }
+        (Some(f), _) => (f, None),
+        (None, Some((u, _))) => (u, None),
+        (None, None) => {
+            return Err(SurfaceError::invalid(format!(
                 "{what} has no pixel size: give --pixel-size (e.g. 65nm) or a sidecar FILE.json with \
                  {{\"pixel_size_nm\": 65}}"
-            ))
-        },
-    )?;
+            )))
+        }
+    };
     crate::check_pixel(p.0, p.1)?;
-    Ok(p)
+    Ok((p, warning))
+}
+
+/// A pixel size in nm with four significant digits (0.4940, 65.00, 1563).
+fn pixel_text(nm: f64) -> String {
+    // Rounded to four significant digits first, so that 9.999999999 reads 10.00, not 10.000.
+    let r: f64 = format!("{nm:.3e}").parse().unwrap_or(nm);
+    let digits = (3 - r.abs().log10().floor() as i32).max(0) as usize;
+    format!("{r:.digits$}")
 }
 
 /// The height unit the user gave (`--height-unit`, first) or the sidecar's: (nm per unit, unit).
@@ -501,6 +529,30 @@ mod tests {
         assert_eq!(detect_format(b"\xff\xd8\xff\xe0JFIF"), None);
         let e = read_bytes(b"\xff\xd8\xff\xe0JFIF", "x.jpg", None, &LoadOptions::default()).unwrap_err();
         assert!(e.to_string().contains("JPEG"), "{e}");
+    }
+
+    /// A pixel size the file states wins over a contradicting --pixel-size (issue 32: 50 nm turned a 0.506 µm
+    /// scan into 51 µm without a word), with a warning naming the file's value; --override-units uses the
+    /// user's, naming the file's too. A flag that agrees, or a file without a pixel size, says nothing.
+    #[test]
+    fn the_files_pixel_size_wins_unless_overridden() {
+        let file = Some((0.494, 0.494));
+        let given = LoadOptions { pixel_size_nm: Some(50.0), ..Default::default() };
+        let (p, w) = pick_pixel(file, None, &given, "x").unwrap();
+        assert_eq!(p, (0.494, 0.494));
+        let w = w.unwrap();
+        assert!(w.contains("--pixel-size 50 nm ignored") && w.contains("0.4940 × 0.4940 nm"), "{w}");
+        let forced = LoadOptions { override_units: true, ..given.clone() };
+        let (p, w) = pick_pixel(file, None, &forced, "x").unwrap();
+        assert_eq!(p, (50.0, 50.0));
+        assert!(w.unwrap().contains("replaces the file's own 0.4940 × 0.4940 nm"));
+        assert_eq!(pick_pixel(None, None, &given, "x").unwrap(), ((50.0, 50.0), None));
+        assert_eq!(
+            (pixel_text(9.999_999_999_9), pixel_text(65.0), pixel_text(1563.2)),
+            ("10.00".into(), "65.00".into(), "1563".into())
+        );
+        let same = LoadOptions { pixel_size_nm: Some(0.494), ..Default::default() };
+        assert_eq!(pick_pixel(file, None, &same, "x").unwrap().1, None);
     }
 
     #[test]

@@ -83,7 +83,7 @@ pub fn read(bytes: &[u8], side: Option<&Sidecar>, opts: &LoadOptions) -> Result<
             heights[r * cols + c] = v * scale;
         }
     }
-    let (dx, dy) = super::pick_pixel(None, side, opts, "a .npy array")?;
+    let ((dx, dy), _) = super::pick_pixel(None, side, opts, "a .npy array")?;
     let hf = HeightField::new(rows, cols, dx, dy, heights)?;
     let mut meta = hf.meta.clone();
     meta.z_unit = given.map(|g| g.1).unwrap_or_else(|| "nm (assumed)".into());

@@ -76,7 +76,7 @@ pub fn read(
     if hi == lo {
         warnings.push("the height of white equals that of black: the field is flat".into());
     }
-    let (dx, dy) = super::pick_pixel(None, side, opts, &format!("a {} image", fmt.name().to_uppercase()))?;
+    let ((dx, dy), _) = super::pick_pixel(None, side, opts, &format!("a {} image", fmt.name().to_uppercase()))?;
     let heights = values.iter().map(|v| lo + v * (hi - lo)).collect();
     let hf = HeightField::new(rows, cols, dx, dy, heights)?;
     let mut meta = hf.meta.clone();

@@ -92,11 +92,35 @@ pub fn read(bytes: &[u8], side: Option<&Sidecar>, opts: &LoadOptions) -> Result<
     }
     crate::check_dims(rows, cols)?;
     let mut warnings = Vec::new();
-    let given = super::given_height_unit(side, opts)?;
+    let mut given = super::given_height_unit(side, opts)?;
     let scale = match (zunit.as_deref(), given.as_ref().map(|g| g.0)) {
-        (_, Some(k)) => k,
-        (Some(u), None) => super::unit_to_nm(u)
-            .ok_or_else(|| SurfaceError::invalid(format!("value unit '{u}' is not a length: not a height map")))?,
+        (Some(u), g) => {
+            let k = super::unit_to_nm(u)
+                .ok_or_else(|| SurfaceError::invalid(format!("value unit '{u}' is not a length: not a height map")))?;
+            match (g, &given) {
+                (Some(gk), Some((_, from))) if (gk / k - 1.0).abs() > 1e-9 => {
+                    if opts.override_units {
+                        warnings.push(format!(
+                            "height unit {from} overrides the header's value unit {u} \
+                             (--override-units)"
+                        ));
+                        gk
+                    } else {
+                        warnings.push(format!(
+                            "height unit {from} ignored: the header gives the values in {u}; --override-units \
+                             reads them in yours instead"
+                        ));
+                        given = None;
+                        k
+                    }
+                }
+                _ => {
+                    given = None;
+                    k
+                }
+            }
+        }
+        (None, Some(k)) => k,
         (None, None) => {
             warnings.push("the text gives no height unit; values taken as nm (give --height-unit)".into());
             super::warn_if_metres(&values, &mut warnings);
@@ -108,7 +132,8 @@ pub fn read(bytes: &[u8], side: Option<&Sidecar>, opts: &LoadOptions) -> Result<
         (Some(w), None) => Some((w / cols as f64, w / cols as f64)),
         _ => None,
     };
-    let (dx, dy) = super::pick_pixel(file_pixel, side, opts, "a text matrix")?;
+    let ((dx, dy), pixel_warning) = super::pick_pixel(file_pixel, side, opts, "a text matrix")?;
+    warnings.extend(pixel_warning);
     let hf = HeightField::new(rows, cols, dx, dy, values.into_iter().map(|v| v * scale).collect())?;
     let mut meta = hf.meta.clone();
     meta.z_unit = given.map(|g| g.1).or(zunit).unwrap_or_else(|| "nm (assumed)".into());
@@ -148,6 +173,24 @@ mod tests {
         let back = read(write(&hf).as_bytes(), None, &LoadOptions::default()).unwrap();
         assert_eq!(back.heights_nm, hf.heights_nm);
         assert!((back.dx_nm - hf.dx_nm).abs() < 1e-12 && (back.dy_nm - hf.dy_nm).abs() < 1e-12);
+    }
+
+    /// The header's own units win over contradicting flags unless --override-units (issue 32).
+    #[test]
+    fn the_headers_units_win_over_flags() {
+        let hf = super::super::sample_field();
+        let text = write(&hf);
+        let flags = LoadOptions { pixel_size_nm: Some(50.0), height_unit: Some("um".into()), ..Default::default() };
+        let kept = read(text.as_bytes(), None, &flags).unwrap();
+        assert_eq!(kept.heights_nm, hf.heights_nm);
+        assert!((kept.dx_nm - hf.dx_nm).abs() < 1e-12);
+        let w = kept.meta.warnings.join("\n");
+        assert!(
+            w.contains("ignored: the header gives the values in nm") && w.contains("--pixel-size 50 nm ignored"),
+            "{w}"
+        );
+        let forced = read(text.as_bytes(), None, &LoadOptions { override_units: true, ..flags }).unwrap();
+        assert_eq!((forced.dx_nm, forced.heights_nm[1]), (50.0, 1000.0 * hf.heights_nm[1]));
     }
 
     #[test]

@@ -1,0 +1,142 @@
+//! How an animal sees a diffracting surface from several directions (`iridis brdf vision`, the report's
+//! "as a bird sees it", Python's `iridis.diffraction.vision`): the reflectance factor `π f_r(λ)` of the BRDF in
+//! each view direction, from 300 nm (birds and bees see ultraviolet), analysed by the receptor-noise-limited
+//! model of `iridis-vision` (quantum catches, ΔS and ΔL in JND between the directions).
+
+use anyhow::{bail, Context, Result};
+use iridis_diffraction::geometry::{direction, Shading, Vec3};
+use iridis_diffraction::taylor::terms_for_bound;
+use iridis_diffraction::{Evaluator, Reference, SpectralSetup, TaylorTerms};
+
+use crate::model::{coherence_for, ModelOptions, DEFAULT_EPSILON};
+use crate::report::{with_progress, Report};
+use crate::surface::{Source, SurfaceOptions};
+
+/// The shortest wavelength the directional spectra start at: birds' and bees' UV cones reach 300 nm.
+pub const FROM_NM: f64 = 300.0;
+/// The longest: the long-wave cones of birds and bees end before 700 nm.
+pub const TO_NM: f64 = 700.0;
+
+/// The spectra and what the animal makes of them.
+#[derive(Debug, Clone)]
+pub struct DirectionalVision {
+    pub surface: String,
+    /// Polar angle of the light (rad).
+    pub light_theta: f64,
+    /// The plane of incidence's azimuth in the surface frame (rad): the dominant period's orientation unless
+    /// given.
+    pub azimuth: f64,
+    pub coherence_nm: f64,
+    pub wavelengths_nm: Vec<f64>,
+    /// Per view: its name, signed θ_r (degrees, positive on the specular side) and `π f_r(λ)` (unpolarised).
+    pub views: Vec<(String, f64, Vec<f64>)>,
+    pub analysis: iridis_vision::Analysis,
+}
+
+/// The reflectance factor `π f_r(λ)` (a white diffuser's is 1) of the reference evaluator on SURFACE for light
+/// at `light_theta` in the plane of azimuth `azimuth` (default: the dominant period's orientation) and views at
+/// the signed angles `views_deg` in that plane, from [`FROM_NM`] to [`TO_NM`] in 5 nm steps, seen by the
+/// visual system of `spec`.
+#[allow(clippy::too_many_arguments)]
+pub fn along_plane(
+    source: &Source,
+    surface: &SurfaceOptions,
+    model: &ModelOptions,
+    shading: Shading,
+    light_theta: f64,
+    azimuth: Option<f64>,
+    views_deg: &[f64],
+    spec: &iridis_vision::Spec,
+    report: &dyn Report,
+) -> Result<DirectionalVision> {
+    if views_deg.is_empty() || views_deg.iter().any(|v| !(v.is_finite() && v.abs() < 90.0)) {
+        bail!("the view angles must lie strictly between −90° and 90°");
+    }
+    let system = spec.system().context("--visual")?;
+    let options = spec.options(&system)?;
+    let patch = source.patch(surface, report)?;
+    let azimuth = match azimuth {
+        Some(a) => a,
+        None => match crate::surface::dominant_period(&patch) {
+            Some(p) => {
+                report.note(&format!(
+                    "views in the plane of azimuth {:.1}°, the orientation of the surface's strongest period ({:.0} nm)",
+                    p.orientation_deg, p.period_nm
+                ));
+                p.orientation_deg.to_radians()
+            }
+            None => 0.0,
+        },
+    };
+    let coherence = coherence_for(&patch, model.coherence_nm, report);
+    // Taylor terms for the shortest wavelength asked, 300 nm (the model commands' `auto` takes 380 nm).
+    let n = terms_for_bound(patch.max_abs_height, FROM_NM, DEFAULT_EPSILON);
+    let terms = with_progress(report, n as u64 + 1, "Taylor terms", |p| {
+        TaylorTerms::compute_with_progress(&patch, n, coherence, p)
+    })?;
+    let wavelengths: Vec<f64> = iridis_color::spectrum::uniform_grid(FROM_NM, TO_NM, 5.0)?;
+    let e = Reference { terms: std::sync::Arc::new(terms), shading, spectral: SpectralSetup::default() };
+    let light = direction(light_theta, azimuth);
+    let view = |deg: f64| -> Vec3 {
+        let t = deg.to_radians();
+        [-t.sin() * azimuth.cos(), -t.sin() * azimuth.sin(), t.cos()]
+    };
+    let mut views = Vec::with_capacity(views_deg.len());
+    for &deg in views_deg {
+        let q = iridis_diffraction::point_query(&e, &wavelengths, light, view(deg))?;
+        let Some(b) = q.brdf else {
+            bail!("the BRDF in sr⁻¹ needs the physical Fresnel convention (R once), not the paper's R²");
+        };
+        let factor: Vec<f64> = b.unpolarized.iter().map(|f| std::f64::consts::PI * f).collect();
+        views.push((format!("{deg:+.0}°"), deg, factor));
+    }
+    let samples: Vec<(String, Vec<f64>)> = views.iter().map(|(n, _, s)| (n.clone(), s.clone())).collect();
+    let analysis = iridis_vision::analyse(&samples, &wavelengths, &system, &options)?;
+    let _ = e.name();
+    Ok(DirectionalVision {
+        surface: source.name().to_string(),
+        light_theta,
+        azimuth,
+        coherence_nm: coherence,
+        wavelengths_nm: wavelengths,
+        views,
+        analysis,
+    })
+}
+
+impl DirectionalVision {
+    /// The false colours of each view: the receptors' von Kries-adapted catches, longest three to R, G, B and
+    /// (for a fourth, shortest receptor: UV) its own channel, each scaled to the brightest view. `[rgb, uv]` in
+    /// 0..1 per view; `uv` is `None` for systems of three receptors or fewer.
+    pub fn false_colours(&self) -> Vec<([f64; 3], Option<f64>)> {
+        let k = self.analysis.receptors.len();
+        let catches: Vec<&Vec<f64>> = self.analysis.samples.iter().map(|s| &s.quantum_catches).collect();
+        let max_of = |i: usize| catches.iter().map(|c| c[i]).fold(0.0f64, f64::max).max(1e-300);
+        let channel = |c: &Vec<f64>, i: Option<usize>| i.map_or(0.0, |i| (c[i] / max_of(i)).clamp(0.0, 1.0));
+        // Receptors short to long: R the longest, G the next, B the third from the long end.
+        let (r, g, b) = (k.checked_sub(1), k.checked_sub(2), k.checked_sub(3));
+        catches
+            .iter()
+            .map(|c| ([channel(c, r), channel(c, g), channel(c, b)], (k >= 4).then(|| channel(c, Some(0)))))
+            .collect()
+    }
+
+    /// What `iridis brdf vision --json` prints (keys in docs/json.md).
+    pub fn to_json(&self) -> serde_json::Value {
+        let views: Vec<serde_json::Value> = self
+            .views
+            .iter()
+            .map(|(name, deg, s)| serde_json::json!({"name": name, "theta_r_deg": deg, "reflectance_factor": s}))
+            .collect();
+        serde_json::json!({
+            "surface": self.surface,
+            "light_theta_deg": self.light_theta.to_degrees(),
+            "azimuth_deg": self.azimuth.to_degrees(),
+            "coherence_nm": self.coherence_nm,
+            "quantity": "reflectance factor π f_r(λ), unpolarised: 1 for a white diffuser",
+            "wavelength_nm": self.wavelengths_nm,
+            "views": views,
+            "vision": serde_json::to_value(&self.analysis).unwrap_or_default(),
+        })
+    }
+}
