@@ -5,7 +5,7 @@
 //! Accuracy: our timed answer against the same problem with more Fourier orders (the library's
 //! [`iridis_rigorous::benchmark`]); the peer walks a ladder of (orders, slices) until every propagating
 //! efficiency above 1e-3 is within 1 % of that reference (then 0.1 %), and its time at the first rung that
-//! meets each level is compared with ours (tools/bench_rigorous_peers.py does the same outside the CLI). On a
+//! meets each level is compared with ours. On a
 //! metal the peer's error is measured on TE only: staircase RCWA does not converge in TM there (Popov et al.,
 //! JOSA A 19, 33, 2002), which the ladder's `error_tm` shows. Python is optional: without it, or without
 //! grcwa, the peer is skipped with a note.
@@ -14,8 +14,7 @@ use std::process::Command;
 use std::time::Instant;
 
 use anyhow::{bail, Context, Result};
-use iridis_rigorous::{BenchCase, BenchReport, Grating, Options, Problem};
-use num_complex::Complex64;
+use iridis_rigorous::{BenchCase, BenchReport, Problem};
 use serde_json::{json, Value};
 
 use crate::report::Report;
@@ -31,7 +30,8 @@ pub struct GratingBenchOptions {
     pub peer_seconds: f64,
     /// Problems (wavelengths 400–700 nm) of the throughput measurement per case.
     pub batch: usize,
-    /// Tiny cases (a 10 nm sine, a 10 nm crossed sine) that only show the command works.
+    /// Tiny cases (a 10 nm sine, a 10 nm crossed sine of period 400 nm), one repeat and two wavelengths in the
+    /// throughput: shows the command works, measures nothing.
     pub quick: bool,
 }
 
@@ -42,14 +42,18 @@ impl Default for GratingBenchOptions {
 }
 
 /// The cases: the library's standard ones (a sine of a/Λ = 0.1 on metal ε = −20 + 1i and on glass, a crossed
-/// sine on glass), or tiny ones for `quick`.
+/// sine on glass), or tiny ones for `quick`: glass only, 10 nm deep, the crossed sine at a period of 400 nm
+/// (fewer propagating orders, so a small truncation).
 pub fn cases(quick: bool) -> Vec<BenchCase> {
     let mut c = BenchCase::standard();
     if quick {
         c.retain(|c| c.eps[0] > 0.0);
         for c in c.iter_mut() {
             c.amplitude_nm = 10.0;
-            c.name = format!("{} (quick: 10 nm)", c.name);
+            if c.two_d {
+                c.period_nm = 400.0;
+            }
+            c.name = format!("{} (quick: 10 nm, Λ = {} nm)", c.name, c.period_nm);
         }
     }
     c
@@ -157,33 +161,10 @@ fn run_grcwa(python: &str, spec: &Value, one_thread: bool) -> std::result::Resul
     Ok(v)
 }
 
-/// The problem of a case at another wavelength (throughput measurement).
-fn case_problem(c: &BenchCase, wavelength_nm: f64) -> Problem {
-    Problem::new(
-        wavelength_nm,
-        c.theta_i_deg.to_radians(),
-        c.phi_i_deg.to_radians(),
-        Problem::index_from_permittivity(Complex64::new(c.eps[0], c.eps[1])),
-    )
-}
-
-fn case_grating(c: &BenchCase) -> Grating {
-    let k = std::f64::consts::TAU / c.period_nm;
-    let a = c.amplitude_nm;
-    if c.two_d {
-        Grating::TwoD(iridis_rigorous::sample_2d(c.period_nm, c.period_nm, 32, 32, |x, y| {
-            0.5 * a * ((k * x).sin() + (k * y).sin())
-        }))
-    } else {
-        Grating::OneD(iridis_rigorous::sample_1d(c.period_nm, 256, |x| a * (k * x).sin()))
-    }
-}
-
 /// Solves per second of `problems` on one grating, in a pool of `threads` threads.
 fn throughput(c: &BenchCase, problems: &[Problem], threads: usize) -> Result<f64> {
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().context("thread pool")?;
-    let grating = case_grating(c);
-    let opts = if c.two_d { Options { max_orders: Some(12), ..Options::default() } } else { Options::default() };
+    let (grating, opts) = (c.grating(), c.options());
     let t = Instant::now();
     let answers = pool.install(|| iridis_rigorous::solve_batch(&grating, problems, &opts));
     let secs = t.elapsed().as_secs_f64();
@@ -214,7 +195,6 @@ fn peer(opts: &GratingBenchOptions, rep: &BenchReport, report: &dyn Report) -> V
         "error_measured_on": if case.eps[0] < 0.0 { "TE (RCWA does not converge in TM on a metal)" } else { "TE and TM" },
         "ladder": [], "at_1_percent": Value::Null, "at_0_1_percent": Value::Null,
         "speedup_at_1_percent": Value::Null, "speedup_lower_bound": Value::Null,
-        "all_threads_seconds_at_1_percent": Value::Null,
     });
     let Some(python) = &opts.python else {
         out["note"] = json!("not run (--no-python)");
@@ -249,14 +229,6 @@ fn peer(opts: &GratingBenchOptions, rep: &BenchReport, report: &dyn Report) -> V
     match one {
         Some(r) => {
             out["speedup_at_1_percent"] = json!(r["seconds"].as_f64().unwrap_or(f64::NAN) / ours);
-            // The same rung on all cores (numpy's threads as they come).
-            let one_rung = json!({
-                "case": case, "reference": rep.reference, "ladder": [[r["orders"], r["slices"]]],
-                "stop_error": 1.0, "max_seconds": f64::INFINITY,
-            });
-            if let Ok(all) = run_grcwa(python, &one_rung, false) {
-                out["all_threads_seconds_at_1_percent"] = all["rungs"][0]["seconds"].clone();
-            }
         }
         None => {
             let longest = rungs.iter().filter_map(|r| r["seconds"].as_f64()).fold(0.0, f64::max);
@@ -283,6 +255,7 @@ pub fn bench_grating(opts: &GratingBenchOptions, report: &dyn Report) -> Result<
         bail!("--batch {} must be between 1 and 1000", opts.batch);
     }
     let threads = rayon::current_num_threads();
+    let (repeats, batch) = if opts.quick { (1, opts.batch.min(2)) } else { (opts.repeats, opts.batch) };
     let load_before = load_average();
     let cases = cases(opts.quick);
     let mut out = Vec::new();
@@ -290,12 +263,12 @@ pub fn bench_grating(opts: &GratingBenchOptions, report: &dyn Report) -> Result<
         report.info(&format!("iridis: {} …", case.name));
         let one = rayon::ThreadPoolBuilder::new().num_threads(1).build().context("thread pool")?;
         let rep = one
-            .install(|| iridis_rigorous::benchmark(std::slice::from_ref(case), opts.repeats))?
+            .install(|| iridis_rigorous::benchmark(std::slice::from_ref(case), repeats))?
             .pop()
             .context("the benchmark returned no report")?;
-        let n = if case.two_d { opts.batch.min(2 * threads).max(1) } else { opts.batch };
+        let n = if case.two_d { batch.min(2 * threads).max(1) } else { batch };
         let problems: Vec<Problem> = (0..n)
-            .map(|i| case_problem(case, if n == 1 { 550.0 } else { 400.0 + 300.0 * i as f64 / (n - 1) as f64 }))
+            .map(|i| case.problem(if n == 1 { 550.0 } else { 400.0 + 300.0 * i as f64 / (n - 1) as f64 }))
             .collect();
         report.info(&format!("iridis: {} throughput over {n} wavelengths …", case.name));
         let t1 = throughput(case, &problems, 1)?;
@@ -323,4 +296,28 @@ pub fn bench_grating(opts: &GratingBenchOptions, report: &dyn Report) -> Result<
         "accuracy": "largest error of a propagating efficiency against the C-method with more orders, relative above η = 1e-3 (absolute ×1e3 below)",
         "cases": out,
     }))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bad_options_are_refused_with_the_flag_named() {
+        let q = crate::Quiet;
+        for (opts, flag) in [
+            (GratingBenchOptions { repeats: 0, ..Default::default() }, "--repeats 0"),
+            (GratingBenchOptions { peer_seconds: f64::NAN, ..Default::default() }, "--peer-seconds"),
+            (GratingBenchOptions { batch: 0, ..Default::default() }, "--batch 0"),
+        ] {
+            let e = bench_grating(&opts, &q).unwrap_err().to_string();
+            assert!(e.contains(flag), "{e}");
+        }
+    }
+
+    #[test]
+    fn a_missing_python_is_a_note_not_an_error() {
+        let note = run_grcwa("/nonexistent/python3", &json!({}), true).unwrap_err();
+        assert!(note.contains("/nonexistent/python3 not found") && note.contains("grcwa not timed"), "{note}");
+    }
 }
