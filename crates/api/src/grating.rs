@@ -194,24 +194,11 @@ pub struct Grating {
 /// and `φ` (degrees); `None` for a scan without a dominant period.
 pub fn averaged_unit_cell(patch: &iridis_diffraction::Patch) -> Option<(iridis_diffraction::Patch, f64, f64)> {
     let peak = crate::surface::dominant_period(patch)?;
-    let (d, phi) = (peak.period_nm, peak.orientation_deg.to_radians());
+    let d = peak.period_nm;
     // A sample per pixel along the grating vector, at least 32 and at most 256.
     let pixel = patch.dx.min(patch.dy);
     let bins = ((d / pixel).round() as usize).clamp(32, 256);
-    let (mut sum, mut count) = (vec![0.0; bins], vec![0usize; bins]);
-    for j in 0..patch.rows {
-        for i in 0..patch.cols {
-            let (x, y) = (i as f64 * patch.dx, j as f64 * patch.dy);
-            let phase = ((x * phi.cos() + y * phi.sin()) / d).rem_euclid(1.0);
-            let b = ((phase * bins as f64) as usize).min(bins - 1);
-            sum[b] += patch.heights[j * patch.cols + i];
-            count[b] += 1;
-        }
-    }
-    if count.contains(&0) {
-        return None;
-    }
-    let row: Vec<f64> = sum.iter().zip(&count).map(|(s, &c)| s / c as f64).collect();
+    let row = crate::unit_cell::averaged_profile(patch, d, peak.orientation_deg, bins);
     let heights: Vec<f64> = row.iter().chain(&row).copied().collect();
     let cell = iridis_diffraction::Patch::from_row_major(2, bins, d / bins as f64, d / bins as f64, &heights).ok()?;
     Some((cell, d, peak.orientation_deg))

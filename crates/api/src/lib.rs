@@ -12,7 +12,9 @@
 //! * [`brdf`]: evaluators for a method on a SURFACE or TABLE, BRDF maps, point queries (`brdf eval`);
 //! * [`lab`]: the workbench, the test bench with its warnings, comparisons, the laser experiment's inputs;
 //! * [`rough`]: films on rough substrates (LSRS): options, spectra, colours, the chart's bands;
-//! * [`gpu`]: scenes and lookup maps on the GPU.
+//! * [`gpu`]: scenes and lookup maps on the GPU;
+//! * [`grating_bench`]: the rigorous solver timed against grcwa (`iridis bench grating`);
+//! * [`unit_cell`]: one period of a scan averaged along its ridges (a 1-D grating profile).
 //!
 //! Errors are messages for people (`anyhow`, with the library's typed error as the source and the context a
 //! person needs: "cannot load surface X: …"); notes, warnings and progress go to a [`report::Report`] the front
@@ -25,11 +27,13 @@ pub mod color;
 pub mod fresnel;
 pub mod gpu;
 pub mod grating;
+pub mod grating_bench;
 pub mod lab;
 pub mod model;
 pub mod report;
 pub mod rough;
 pub mod surface;
+pub mod unit_cell;
 pub mod vision;
 
 pub use model::ModelOptions;

@@ -69,6 +69,7 @@ Examples:
   iridis bench diffraction-accuracy --json            CIEDE2000 of lookup and reference against ground truth
   iridis bench gpu                                    GPU frame times: diffraction map and thin-film frame
   iridis bench render --size 512                      render time of every example scene
+  iridis bench grating                                rigorous orders (C-method) against grcwa, 1-D and 2-D
   iridis thinfilm bench                               thin-film evaluations per second against Python tmm"
     )]
     Bench(cmd::bench::BenchCommand),

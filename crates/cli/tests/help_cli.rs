@@ -16,7 +16,7 @@
 //! `--size 24x18`) when it gives none. The benchmarks, whose defaults are full-size runs, get their small
 //! equivalents when absent: `bench diffraction --map-sizes 16,24`, `bench diffraction-methods --patch-sizes
 //! 64,96`, `bench diffraction-accuracy --surface` one small built-in, `thinfilm bench --seconds 0.05`,
-//! `bench render --scene examples/gold_sphere.toml`.
+//! `bench render --scene examples/gold_sphere.toml`, `bench grating --quick`.
 //! Nothing else changes.
 //!
 //! **Inputs.** A file an example reads that no earlier example of its page wrote is made first: height fields
@@ -231,15 +231,17 @@ impl Takes {
         }
         // The benchmarks' own defaults are full-size runs: the small equivalents.
         for (path, flag, value) in [
-            (&["bench", "diffraction"][..], "--map-sizes", "16,24"),
-            (&["bench", "diffraction-methods"][..], "--patch-sizes", "64,96"),
-            (&["bench", "diffraction-accuracy"][..], "--surface", "builtin:blazed?size=6000nm&pixel=93.75nm"),
-            (&["thinfilm", "bench"][..], "--seconds", "0.05"),
+            (&["bench", "diffraction"][..], "--map-sizes", Some("16,24")),
+            (&["bench", "diffraction-methods"][..], "--patch-sizes", Some("64,96")),
+            (&["bench", "diffraction-accuracy"][..], "--surface", Some("builtin:blazed?size=6000nm&pixel=93.75nm")),
+            (&["thinfilm", "bench"][..], "--seconds", Some("0.05")),
+            (&["bench", "grating"][..], "--quick", None),
             // Every example scene is 40 s of CPU at any size (their tables); examples.rs renders them all.
-            (&["bench", "render"][..], "--scene", "examples/gold_sphere.toml"),
+            (&["bench", "render"][..], "--scene", Some("examples/gold_sphere.toml")),
         ] {
             if words.len() > path.len() && words[1..=path.len()] == *path && !has(&words, flag) {
-                words.extend([flag.to_string(), value.to_string()]);
+                words.push(flag.to_string());
+                words.extend(value.map(str::to_string));
             }
         }
         words

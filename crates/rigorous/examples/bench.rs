@@ -1,5 +1,5 @@
 //! `cargo run --release -p iridis-rigorous --example bench [REPEATS]`: the library benchmark as JSON on stdout
-//! (tools/bench_rigorous_peers.py reads it and times the peers on the same cases).
+//! (`iridis bench grating` runs the same benchmark and times grcwa on the same cases).
 fn main() {
     let repeats = std::env::args().nth(1).and_then(|s| s.parse().ok()).unwrap_or(3);
     match iridis_rigorous::benchmark(&iridis_rigorous::BenchCase::standard(), repeats) {

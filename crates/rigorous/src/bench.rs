@@ -2,7 +2,8 @@
 //!
 //! The accuracy of a timed answer is measured against the same problem solved with more Fourier orders (about 2M
 //! in 1-D, M + 1 in 2-D; the C-method converges exponentially on smooth profiles, so that answer is exact to far
-//! below the timed one's error); the peer timings of tools/bench_rigorous_peers.py use the reference efficiencies printed here.
+//! below the timed one's error); the peer timings of `iridis bench grating`
+//! (`iridis_api::grating_bench`) use the reference efficiencies printed here.
 
 use crate::{sample_1d, sample_2d, solve_1d, solve_2d, Options, Problem, Solution};
 use num_complex::Complex64;
@@ -66,21 +67,42 @@ impl BenchCase {
         ]
     }
 
-    fn solve(&self, tolerance: f64, fixed_orders: Option<usize>) -> Result<Solution, crate::RigorousError> {
+    /// The case's grating as the solver takes it: the 1-D sine at 256 samples, the crossed sine on 32 × 32.
+    pub fn grating(&self) -> crate::Grating {
         let (p, a) = (self.period_nm, self.amplitude_nm);
         let k = 2.0 * std::f64::consts::PI / p;
-        let problem = Problem::new(
-            self.wavelength_nm,
+        if self.two_d {
+            crate::Grating::TwoD(sample_2d(p, p, 32, 32, |x, y| 0.5 * a * ((k * x).sin() + (k * y).sin())))
+        } else {
+            crate::Grating::OneD(sample_1d(p, 256, |x| a * (k * x).sin()))
+        }
+    }
+
+    /// The case's light and substrate at `wavelength_nm` (the case's own wavelength, or another one).
+    pub fn problem(&self, wavelength_nm: f64) -> Problem {
+        Problem::new(
+            wavelength_nm,
             self.theta_i_deg.to_radians(),
             self.phi_i_deg.to_radians(),
             Problem::index_from_permittivity(Complex64::new(self.eps[0], self.eps[1])),
-        );
+        )
+    }
+
+    /// The solver's options for the case: the 2-D one may go up to M = 12 (the default cap is 8).
+    pub fn options(&self) -> Options {
         if self.two_d {
-            let g = sample_2d(p, p, 32, 32, |x, y| 0.5 * a * ((k * x).sin() + (k * y).sin()));
-            solve_2d(&g, &problem, &Options { tolerance, max_orders: Some(12), fixed_orders, ..Options::default() })
+            Options { max_orders: Some(12), ..Options::default() }
         } else {
-            let g = sample_1d(p, 256, |x| a * (k * x).sin());
-            solve_1d(&g, &problem, &Options { tolerance, fixed_orders, ..Options::default() })
+            Options::default()
+        }
+    }
+
+    fn solve(&self, tolerance: f64, fixed_orders: Option<usize>) -> Result<Solution, crate::RigorousError> {
+        let problem = self.problem(self.wavelength_nm);
+        let opts = Options { tolerance, fixed_orders, ..self.options() };
+        match self.grating() {
+            crate::Grating::TwoD(g) => solve_2d(&g, &problem, &opts),
+            crate::Grating::OneD(g) => solve_1d(&g, &problem, &opts),
         }
     }
 }

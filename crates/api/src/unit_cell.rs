@@ -1,0 +1,88 @@
+//! One period of a scan as a 1-D grating profile: the height field averaged along its ridges (what
+//! `--unit-cell auto` and the validity map in docs/diffraction.md use to take a skin's dominant period as a
+//! grating for the rigorous solver, which needs a periodic profile).
+
+use iridis_diffraction::Patch;
+
+/// The mean profile of `patch` over one period of a grating of period `period_nm` whose grating vector points
+/// along `orientation_deg` (degrees from +x, y up: the orientation `iridis surface info` reports): every
+/// height is put in the bin of its phase `(x cos φ + y sin φ)/Λ mod 1` (`x = col·dx`, `y` up as in [`Patch`]),
+/// and each of the `samples` bins gives the mean of its heights. Bin `i` is centred on phase `i/samples`, so
+/// the result is sampled at `x = i·Λ/samples` as `iridis_rigorous::Profile1d` wants. A bin no height falls in
+/// (a pixel coarser than `Λ/samples` along a grid axis) takes the linear interpolation of its nearest filled
+/// neighbours around the period. Heights are those of the patch (mean removed); the profile's mean is
+/// therefore close to zero. Averaging along the ridges keeps what repeats with the period and washes out what
+/// does not (rows of unequal phase, finger ends, noise): the result is shallower than the scan's
+/// peak-to-valley wherever the ridges are not straight or not in phase.
+///
+/// `samples` is at least 1; a non-finite or non-positive period gives all zeros.
+pub fn averaged_profile(patch: &Patch, period_nm: f64, orientation_deg: f64, samples: usize) -> Vec<f64> {
+    let samples = samples.max(1);
+    if !(period_nm.is_finite() && period_nm > 0.0 && orientation_deg.is_finite()) {
+        return vec![0.0; samples];
+    }
+    let (s, c) = orientation_deg.to_radians().sin_cos();
+    let mut sum = vec![0.0; samples];
+    let mut count = vec![0usize; samples];
+    for j in 0..patch.rows {
+        let y = j as f64 * patch.dy;
+        for i in 0..patch.cols {
+            let x = i as f64 * patch.dx;
+            let phase = ((x * c + y * s) / period_nm).rem_euclid(1.0);
+            let bin = ((phase * samples as f64).round() as usize) % samples;
+            sum[bin] += patch.heights[j * patch.cols + i];
+            count[bin] += 1;
+        }
+    }
+    let filled: Vec<usize> = (0..samples).filter(|&b| count[b] > 0).collect();
+    let mean = |b: usize| sum[b] / count[b] as f64;
+    (0..samples)
+        .map(|b| {
+            if count[b] > 0 {
+                return mean(b);
+            }
+            // Nearest filled bins before and after b, around the period.
+            let after = filled.iter().copied().find(|&f| f > b).unwrap_or(filled[0] + samples);
+            let before = filled
+                .iter()
+                .copied()
+                .rev()
+                .find(|&f| f < b)
+                .map_or(filled[filled.len() - 1] as isize - samples as isize, |f| f as isize);
+            let t = (b as isize - before) as f64 / (after as isize - before) as f64;
+            (1.0 - t) * mean(before.rem_euclid(samples as isize) as usize) + t * mean(after % samples)
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::TAU;
+
+    #[test]
+    fn a_sine_at_an_angle_averages_to_its_profile_and_washes_out_across() {
+        // h = A sin(2π (x cos φ + y sin φ)/Λ + p), φ = 30°, on a 20 nm grid (row 0 at the top, y up).
+        let (rows, cols, d, period, amp, phi, p) = (150, 170, 20.0, 700.0, 40.0, 30f64.to_radians(), 0.7);
+        let h: Vec<f64> = (0..rows * cols)
+            .map(|k| {
+                let (x, y) = ((k % cols) as f64 * d, (rows - 1 - k / cols) as f64 * d);
+                amp * (TAU * (x * phi.cos() + y * phi.sin()) / period + p).sin()
+            })
+            .collect();
+        let patch = Patch::from_row_major(rows, cols, d, d, &h).unwrap();
+        let n = 32;
+        let profile = averaged_profile(&patch, period, 30.0, n);
+        // A bin averages the sine over its phase width 1/n: the closed form is the sine times sinc(π/n), less
+        // the patch's mean (the field holds no whole number of periods).
+        let mean = h.iter().sum::<f64>() / h.len() as f64;
+        let sinc = (std::f64::consts::PI / n as f64).sin() / (std::f64::consts::PI / n as f64);
+        for (i, v) in profile.iter().enumerate() {
+            let want = amp * sinc * (TAU * i as f64 / n as f64 + p).sin() - mean;
+            assert!((v - want).abs() < 0.01 * amp, "bin {i}: {v} vs {want}");
+        }
+        // Along the wrong direction (the ridges' own) the phases mix and the profile nearly vanishes.
+        let across = averaged_profile(&patch, period, 120.0, n);
+        assert!(across.iter().all(|v| v.abs() < 0.1 * amp), "{across:?}");
+    }
+}
