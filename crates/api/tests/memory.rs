@@ -53,9 +53,11 @@ fn the_reports_model_steps_hold_a_few_copies_of_the_scan() {
     // Every order counted, at most 1/1 % of them listed a wavelength (with the mirror order).
     assert!(g.answers.iter().all(|a| a.orders.len() <= 101 && a.unlisted > 1000), "{:?}", g.answers[0].unlisted);
 
-    // The reference evaluator of `iridis brdf-map SCAN --method reference`: its Taylor terms.
+    // The reference evaluator of `iridis brdf-map SCAN --method reference --incidence 0deg`: its Taylor terms.
     let shading = iridis_diffraction::geometry::Shading::default();
-    let model = iridis_api::ModelOptions { coherence_nm: Some(12_800.0), ..Default::default() };
+    // A map asks about one light (`brdf-map` sets it): the terms keep that light's bins.
+    let model =
+        iridis_api::ModelOptions { coherence_nm: Some(12_800.0), light: Some([0.0, 0.0, 1.0]), ..Default::default() };
     let (e, peak) = peak_during(|| {
         iridis_api::brdf::evaluator_for(
             &source,
