@@ -13,8 +13,8 @@ use iridis_diffraction::{Patch, PointQuery, SpectralSetup};
 use iridis_lab::methods::{Method, MethodConfig, Workbench};
 
 use crate::model::{
-    build_table, check_against_table, coherence_for, is_table, spectral_setup, taylor_terms, ModelOptions,
-    DEFAULT_EPSILON,
+    build_table, check_against_table, coherence_for, is_table, spectral_setup, taylor_terms, taylor_terms_for_light,
+    ModelOptions, DEFAULT_EPSILON,
 };
 use crate::report::{with_progress, Report};
 use crate::surface::{Source, SurfaceOptions};
@@ -102,7 +102,8 @@ pub fn evaluator_for(
             conserve(e, spectral)
         }
         Method::Reference => {
-            let terms = Arc::new(taylor_terms(&patch, model, report)?);
+            let lambda_min = spectral.wavelengths().first().copied().unwrap_or(380.0);
+            let terms = Arc::new(taylor_terms_for_light(&patch, model, lambda_min, report)?);
             conserve(Box::new(Reference { terms, shading, spectral: spectral.clone() }), spectral)
         }
         _ if model.conserve_energy => bail!(

@@ -60,6 +60,8 @@ pub struct OrdersAt {
     pub transmitted_total: Option<Efficiency>,
     /// What the answer rests on (method-specific keys, docs/json.md).
     pub convergence: Value,
+    /// Reflected orders below [`GratingOptions::orders_above`], counted in the totals but not listed.
+    pub unlisted: usize,
 }
 
 impl OrdersAt {
@@ -85,7 +87,17 @@ impl OrdersAt {
             transmitted_orders: Vec::new(),
             transmitted_total: None,
             convergence,
+            unlisted: 0,
         }
+    }
+
+    /// Keeps the orders `keep` says (the mirror order always), counting the others.
+    fn listing(mut self, keep: impl Fn(&OrderEfficiency) -> bool) -> Self {
+        let before = self.orders.len();
+        self.orders.retain(|o| (o.m, o.n) == (0, 0) || keep(o));
+        self.orders.shrink_to_fit();
+        self.unlisted += before - self.orders.len();
+        self
     }
 
     /// A rigorous solution in the scalar model's terms, rotated back by `rotation` (rad) where the profile
@@ -118,6 +130,7 @@ impl OrdersAt {
             transmitted_orders: transmitted,
             transmitted_total: transparent.then(|| e(s.transmitted_total)),
             convergence,
+            unlisted: 0,
         }
     }
 }
@@ -149,6 +162,10 @@ pub struct GratingOptions {
     /// Take the scan's dominant period as the unit cell, its profile averaged along the ridges, instead of
     /// the whole patch.
     pub unit_cell_auto: bool,
+    /// List only the orders of at least this unpolarised efficiency (with the mirror order and those inside
+    /// the detector's cone); the totals and colours still count every order. At most `1/orders_above` orders
+    /// a wavelength are then kept, where a large scan as one unit cell has hundreds of thousands. 0: all.
+    pub orders_above: f64,
 }
 
 impl Default for GratingOptions {
@@ -162,6 +179,7 @@ impl Default for GratingOptions {
             normalisation: Normalisation::Energy,
             detector: None,
             unit_cell_auto: false,
+            orders_above: 0.0,
         }
     }
 }
@@ -185,6 +203,8 @@ pub struct Grating {
     /// With `--unit-cell auto`: the period (nm) and the orientation of its grating vector (degrees from +x)
     /// the cell was averaged along.
     pub averaged: Option<(f64, f64)>,
+    /// [`GratingOptions::orders_above`].
+    pub orders_above: f64,
     pub answers: Vec<OrdersAt>,
 }
 
@@ -235,6 +255,9 @@ pub fn grating(
     if w.is_empty() || w.iter().any(|l| !(l.is_finite() && *l > 0.0)) {
         bail!("the wavelengths must be positive lengths");
     }
+    if !(opts.orders_above.is_finite() && (0.0..1.0).contains(&opts.orders_above)) {
+        bail!("the efficiency above which orders are listed must be a fraction from 0 up to 1");
+    }
     if let Some(d) = opts.detector {
         if !(d.direction[2] > 0.0 && d.acceptance_rad > 0.0 && d.acceptance_rad < std::f64::consts::FRAC_PI_2) {
             bail!("the detector must look from above the surface with an acceptance between 0° and 90°");
@@ -278,7 +301,8 @@ pub fn grating(
         let (s, c) = (-phi.to_radians()).sin_cos();
         l = [c * l[0] - s * l[1], s * l[0] + c * l[1], l[2]];
     }
-    let cell = UnitCell::new(&patch, from)?;
+    // The cell keeps only the DFT bins this light's orders read (a large scan's memory).
+    let cell = UnitCell::for_light(&patch, l, w)?;
     let (lx, ly) = cell.periods();
     report.info(&format!(
         "{}: one unit cell of {:.1} × {:.1} nm ({}×{} samples, {}){}",
@@ -298,6 +322,17 @@ pub fn grating(
             String::new()
         }
     ));
+    // An order is listed at or above the asked efficiency, or inside the detector's cone (its reflectance
+    // sums them); directions in the cell's frame are turned back by φ for the detector.
+    let keep = |o: &OrderEfficiency, averaged: Option<(f64, f64)>| {
+        opts.orders_above <= 0.0
+            || o.efficiency.unpolarized >= opts.orders_above
+            || opts.detector.is_some_and(|d| {
+                let phi = o.phi_deg + averaged.map_or(0.0, |(_, p)| p);
+                let (t, p) = (o.theta_deg.to_radians(), phi.to_radians());
+                dot([t.sin() * p.cos(), t.sin() * p.sin(), t.cos()], d.direction) >= d.acceptance_rad.cos() - 1e-12
+            })
+    };
     let answers: Vec<OrdersAt> = match opts.method {
         GratingMethod::Kirchhoff => {
             if !fresnel.polarised() {
@@ -306,23 +341,35 @@ pub fn grating(
                     fresnel.describe()
                 ));
             }
+            // One wavelength at a time, its orders listed as asked before the next: memory scales with the
+            // orders kept, not with every order of every wavelength.
+            let done = std::sync::atomic::AtomicUsize::new(0);
             let a = with_progress(report, w.len() as u64, "orders", |p| {
-                cell.spectrum(l, w, fresnel.as_ref(), opts.normalisation, p)
+                w.par_iter()
+                    .map(|&lambda| {
+                        let a = cell.efficiencies(l, lambda, fresnel.as_ref(), opts.normalisation)?;
+                        p(done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1);
+                        let row_only = (a.normalisation == "energy-row").then_some((a.channels, a.wavelength_nm));
+                        let listed = OrdersAt::kirchhoff(a, cell.taylor_terms()).listing(|o| keep(o, averaged));
+                        Ok((listed, row_only))
+                    })
+                    .collect::<Result<Vec<_>, iridis_diffraction::DiffractionError>>()
             })?;
-            if let Some(a) = a.iter().find(|a| a.normalisation == "energy-row") {
+            if let Some((channels, lambda)) = a.iter().find_map(|(_, r)| *r) {
                 report.note(&format!(
-                    "{} channels at {:.0} nm: the efficiencies are scaled so that this light's orders conserve \
-                     energy (reciprocity is then approximate; the full scaling runs up to {} channels)",
-                    a.channels,
-                    a.wavelength_nm,
+                    "{channels} channels at {lambda:.0} nm: the efficiencies are scaled so that this light's orders \
+                     conserve energy (reciprocity is then approximate; the full scaling runs up to {} channels)",
                     iridis_diffraction::grating::MAX_SINKHORN_CHANNELS
                 ));
             }
-            a.into_iter().map(|a| OrdersAt::kirchhoff(a, cell.taylor_terms())).collect()
+            a.into_iter().map(|(a, _)| a).collect()
         }
         GratingMethod::Rigorous => {
             let metal = substrate.expect("the rigorous method has a material");
             rigorous(&patch, cell.lines(), l, w, &metal, report)?
+                .into_iter()
+                .map(|a| a.listing(|o| keep(o, averaged)))
+                .collect()
         }
     };
     Ok(Grating {
@@ -338,6 +385,7 @@ pub fn grating(
         light: opts.light,
         detector: opts.detector,
         averaged,
+        orders_above: opts.orders_above,
         answers: match averaged {
             Some((_, phi)) => answers.into_iter().map(|a| a.rotated(phi)).collect(),
             None => answers,
@@ -564,6 +612,11 @@ impl Grating {
             },
             "wavelength_nm": self.answers.iter().map(|a| a.wavelength_nm).collect::<Vec<f64>>(),
             "orders": orders,
+            "unlisted_orders": (self.orders_above > 0.0).then(|| json!({
+                "below_efficiency": self.orders_above,
+                "per_wavelength": self.answers.iter().map(|a| a.unlisted).collect::<Vec<usize>>(),
+                "note": "orders below this efficiency are counted in the totals and colours but not listed",
+            })),
             "reflected_total": totals,
             "transmitted_total": if transmitted.is_empty() { Value::Null } else { Value::Array(transmitted) },
             "transmitted_orders": transmitted_orders,

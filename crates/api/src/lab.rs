@@ -225,7 +225,14 @@ pub fn testbench(
         }
     }
     let source = Source::Patch { patch, name: source.name().to_string() };
-    let b = workbench_from(&source, m, config, report)?;
+    let mut b = workbench_from(&source, m, config, report)?;
+    if method == Method::Reference {
+        // The bench reads one light's lobes: its Taylor terms keep the bins that light reaches (memory).
+        let lambda_min =
+            setup.wavelengths_nm.iter().chain(b.config.spectral.wavelengths()).copied().fold(f64::INFINITY, f64::min);
+        let margin = 1.001 * iridis_diffraction::taylor::window_radius(b.config.coherence_nm);
+        b.config.band = iridis_diffraction::taylor::Band::light(setup.light(), lambda_min, margin);
+    }
     let extent = b.patch.extent_along(setup.azimuth);
     setup.max_period_nm =
         max_period_nm.unwrap_or((b.config.coherence_nm * std::f64::consts::FRAC_PI_4).min(10_000.0).min(0.5 * extent));

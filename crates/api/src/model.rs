@@ -7,7 +7,7 @@ use std::path::Path;
 use anyhow::{bail, Result};
 use iridis_color::{Illuminant, Observer};
 use iridis_diffraction::table::{LookupTable, Provenance, TableParams};
-use iridis_diffraction::taylor::terms_for_bound;
+use iridis_diffraction::taylor::{terms_for_bound, window_radius, Band};
 use iridis_diffraction::{Patch, SpectralSetup, TaylorTerms};
 
 use crate::report::{with_progress, Report};
@@ -33,6 +33,10 @@ pub struct ModelOptions {
     /// returns no more light than it receives (`iridis_diffraction::grating::EnergyNormalised`; reference and
     /// ground truths).
     pub conserve_energy: bool,
+    /// The one light direction the evaluator will be asked about (a BRDF map's incidence): the reference
+    /// method's Taylor terms then keep only the DFT bins that light's lobes read (a twentieth of a 50 nm
+    /// scan's; other light would read zeros). `None`: any light.
+    pub light: Option<[f64; 3]>,
 }
 
 impl Default for ModelOptions {
@@ -44,6 +48,7 @@ impl Default for ModelOptions {
             observer: None,
             step_nm: None,
             conserve_energy: false,
+            light: None,
         }
     }
 }
@@ -81,12 +86,42 @@ pub fn term_count(patch: &Patch, m: &ModelOptions) -> Result<usize> {
     })
 }
 
-/// Taylor terms of a patch, with progress.
+/// Taylor terms of a patch, with progress: every DFT bin (what a lookup table or a GPU reads).
 pub fn taylor_terms(patch: &Patch, m: &ModelOptions, report: &dyn Report) -> Result<TaylorTerms> {
+    taylor_terms_in_band(patch, m, None, report)
+}
+
+/// [`taylor_terms`] keeping only the bins that light of wavelengths from `lambda_min_nm` up reads between
+/// any two directions above the surface (`2/λ` about zero, widened by the window's `4σ_f`): what an evaluator
+/// of those wavelengths needs, a fifth of the bins of a scan sampled at 50 nm; with [`ModelOptions::light`],
+/// those of that light only (`1/λ` about `ω_i,xy/λ`).
+pub fn taylor_terms_for_light(
+    patch: &Patch,
+    m: &ModelOptions,
+    lambda_min_nm: f64,
+    report: &dyn Report,
+) -> Result<TaylorTerms> {
+    taylor_terms_in_band(patch, m, Some(lambda_min_nm), report)
+}
+
+fn taylor_terms_in_band(
+    patch: &Patch,
+    m: &ModelOptions,
+    lambda_min_nm: Option<f64>,
+    report: &dyn Report,
+) -> Result<TaylorTerms> {
     let coherence = coherence_for(patch, m.coherence_nm, report);
     let n = term_count(patch, m)?;
+    let band = match lambda_min_nm {
+        // The margin covers the rounding of the window's radius.
+        Some(l) => match m.light {
+            Some(wi) => Band::light(wi, l, 1.001 * window_radius(coherence)),
+            None => Band::directions(l, 1.001 * window_radius(coherence)),
+        },
+        None => Band::ALL,
+    };
     let terms = with_progress(report, n as u64 + 1, "Taylor terms", |p| {
-        TaylorTerms::compute_with_progress(patch, n, coherence, p)
+        TaylorTerms::compute_in_band(patch, n, coherence, band, p)
     })?;
     report.info(&format!(
         "{}×{} samples at {:.1} × {:.1} nm, |h|max {:.1} nm, N = {n} Taylor terms, coherence {:.1} µm",

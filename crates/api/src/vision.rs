@@ -5,7 +5,7 @@
 
 use anyhow::{bail, Context, Result};
 use iridis_diffraction::geometry::{direction, Shading, Vec3};
-use iridis_diffraction::taylor::terms_for_bound;
+use iridis_diffraction::taylor::{terms_for_bound, window_radius, Band};
 use iridis_diffraction::{Evaluator, Reference, SpectralSetup, TaylorTerms};
 
 use crate::model::{coherence_for, ModelOptions, DEFAULT_EPSILON};
@@ -71,8 +71,10 @@ pub fn along_plane(
     let coherence = coherence_for(&patch, model.coherence_nm, report);
     // Taylor terms for the shortest wavelength asked, 300 nm (the model commands' `auto` takes 380 nm).
     let n = terms_for_bound(patch.max_abs_height, FROM_NM, DEFAULT_EPSILON);
+    // One light: the terms keep the bins its lobes read at 300 nm and longer (a large scan's memory).
+    let band = Band::light(direction(light_theta, azimuth), FROM_NM, 1.001 * window_radius(coherence));
     let terms = with_progress(report, n as u64 + 1, "Taylor terms", |p| {
-        TaylorTerms::compute_with_progress(&patch, n, coherence, p)
+        TaylorTerms::compute_in_band(&patch, n, coherence, band, p)
     })?;
     let wavelengths: Vec<f64> = iridis_color::spectrum::uniform_grid(FROM_NM, TO_NM, 5.0)?;
     let e = Reference { terms: std::sync::Arc::new(terms), shading, spectral: SpectralSetup::default() };

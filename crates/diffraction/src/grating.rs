@@ -39,7 +39,7 @@ use serde::Serialize;
 
 use crate::geometry::{dot, FresnelSource, Vec3};
 use crate::patch::Patch;
-use crate::taylor::{terms_for_bound, TaylorTerms};
+use crate::taylor::{terms_for_bound, Band, TaylorTerms};
 use crate::DiffractionError;
 
 /// Bound on the Taylor remainder of `c_G(w)` (`(2k|h|max)^{N+1}/(N+1)!`, docs/PHYSICS.md).
@@ -190,28 +190,46 @@ pub enum Lines {
 pub struct UnitCell {
     terms: TaylorTerms,
     lines: Lines,
+    /// Set by [`UnitCell::for_light`]: the one light direction and the shortest wavelength whose rows the
+    /// cell's bins serve.
+    light: Option<(Vec3, f64)>,
 }
 
 impl UnitCell {
     /// The unit cell of `patch` (its extent is the period along each axis), with Taylor terms for wavelengths
-    /// down to `lambda_min_nm` (remainder ≤ [`TAYLOR_EPSILON`]).
+    /// down to `lambda_min_nm` (remainder ≤ [`TAYLOR_EPSILON`]), for light from any direction.
     pub fn new(patch: &Patch, lambda_min_nm: f64) -> Result<Self, DiffractionError> {
-        if !(lambda_min_nm.is_finite() && lambda_min_nm > 0.0) {
-            return Err(DiffractionError::Invalid(format!("shortest wavelength {lambda_min_nm} nm must be positive")));
+        check_wavelength(lambda_min_nm)?;
+        // Channels a, b couple through c_{a−b}, |a − b| < 2/λ in frequency: no other bin is read.
+        Self::with_band(patch, lambda_min_nm, Band::directions(lambda_min_nm, 0.0), None)
+    }
+
+    /// The unit cell of `patch` for light from `wi` only, at `wavelengths_nm`: where every one of them has
+    /// more than [`MAX_SINKHORN_CHANNELS`] channels (rows are normalised alone), its row reads only the bins
+    /// within `1/λ` of `ω_i,xy/λ`, a quarter of those of [`UnitCell::new`] (a large scan's memory); its
+    /// [`UnitCell::row`] refuses other light. Otherwise as [`UnitCell::new`].
+    pub fn for_light(patch: &Patch, wi: Vec3, wavelengths_nm: &[f64]) -> Result<Self, DiffractionError> {
+        let lambda_min = wavelengths_nm.iter().copied().fold(f64::INFINITY, f64::min);
+        check_wavelength(lambda_min)?;
+        let lines = lines_of(patch);
+        let (lx, ly) = patch.extent();
+        let rows_alone = wavelengths_nm.iter().all(|&l| channels(lines, (lx, ly), wi, l).len() > MAX_SINKHORN_CHANNELS);
+        if !rows_alone {
+            return Self::new(patch, lambda_min);
         }
+        Self::with_band(patch, lambda_min, Band::light(wi, lambda_min, 0.0), Some((wi, lambda_min)))
+    }
+
+    fn with_band(
+        patch: &Patch,
+        lambda_min_nm: f64,
+        band: Band,
+        light: Option<(Vec3, f64)>,
+    ) -> Result<Self, DiffractionError> {
         let n = terms_for_bound(patch.max_abs_height, lambda_min_nm, TAYLOR_EPSILON);
         // The window is not used: the orders read the DFT bins themselves.
-        let terms = TaylorTerms::compute(patch, n, 1e12)?;
-        let rows_same =
-            (1..patch.rows).all(|j| patch.heights[j * patch.cols..(j + 1) * patch.cols] == patch.heights[..patch.cols]);
-        let cols_same = (0..patch.rows)
-            .all(|j| patch.heights[j * patch.cols..(j + 1) * patch.cols].windows(2).all(|w| w[0] == w[1]));
-        let lines = match (rows_same, cols_same) {
-            (true, false) => Lines::AlongX,
-            (false, true) => Lines::AlongY,
-            _ => Lines::Crossed,
-        };
-        Ok(Self { terms, lines })
+        let terms = TaylorTerms::compute_in_band(patch, n, 1e12, band, &|_| {})?;
+        Ok(Self { terms, lines: lines_of(patch), light })
     }
 
     /// The periods `(Lx, Ly)` (nm).
@@ -243,30 +261,6 @@ impl UnitCell {
         acc
     }
 
-    /// The lattice vectors `(m, n)` whose channels `ω_i,xy + (mλ/Lx, nλ/Ly)` propagate, `m` then `n`
-    /// increasing; a 1-D grating keeps its own axis only.
-    fn channels(&self, wi: Vec3, wavelength_nm: f64) -> Vec<(i64, i64)> {
-        let (lx, ly) = self.periods();
-        let (gx, gy) = (wavelength_nm / lx, wavelength_nm / ly);
-        let range = |c: f64, g: f64| ((-1.0 - c) / g).ceil() as i64..=((1.0 - c) / g).floor() as i64;
-        let (mr, nr) = match self.lines {
-            Lines::AlongX => (range(wi[0], gx), 0..=0),
-            Lines::AlongY => (0..=0, range(wi[1], gy)),
-            Lines::Crossed => (range(wi[0], gx), range(wi[1], gy)),
-        };
-        let mut out = Vec::new();
-        for n in nr {
-            for m in mr.clone() {
-                let (x, y) = (wi[0] + m as f64 * gx, wi[1] + n as f64 * gy);
-                if x * x + y * y < 1.0 - 1e-12 {
-                    out.push((m, n));
-                }
-            }
-        }
-        out.sort_by_key(|&(m, n)| (m, n));
-        out
-    }
-
     /// The channel matrix's row of light from `wi` (unit vector, `wi[2] > 0`) at one wavelength: Kirchhoff's
     /// `K|c|²` towards every propagating channel and the factors `normalisation` multiplies them by.
     pub fn row(
@@ -284,9 +278,17 @@ impl UnitCell {
         if !(wavelength_nm.is_finite() && wavelength_nm > 0.0) {
             return Err(DiffractionError::Invalid(format!("wavelength {wavelength_nm} nm must be positive")));
         }
+        if let Some((only, lambda_min)) = self.light {
+            if wi != only || wavelength_nm < lambda_min {
+                return Err(DiffractionError::Invalid(format!(
+                    "this unit cell keeps the DFT bins of light from {only:?} at {lambda_min} nm and longer only \
+                     (UnitCell::for_light); use UnitCell::new for other light"
+                )));
+            }
+        }
         let (lx, ly) = self.periods();
         let (gx, gy) = (wavelength_nm / lx, wavelength_nm / ly);
-        let channels = self.channels(wi, wavelength_nm);
+        let channels = channels(self.lines, (lx, ly), wi, wavelength_nm);
         let here = channels.iter().position(|&c| c == (0, 0)).ok_or_else(|| {
             DiffractionError::Invalid("the light's own channel does not propagate (grazing light)".into())
         })?;
@@ -308,6 +310,12 @@ impl UnitCell {
         let (factor, applied, residual): (Vec<f64>, &'static str, f64) = match normalisation {
             Normalisation::Kirchhoff => (vec![1.0; p], "kirchhoff", 0.0),
             Normalisation::Energy if p > MAX_SINKHORN_CHANNELS => (vec![1.0 / kirchhoff_sum; p], "energy-row", 0.0),
+            Normalisation::Energy if self.light.is_some() => {
+                return Err(DiffractionError::Invalid(format!(
+                    "{p} channels at {wavelength_nm} nm: the full scaling needs every direction's bins, which this \
+                     unit cell (UnitCell::for_light) does not keep; use UnitCell::new"
+                )))
+            }
             Normalisation::Energy => {
                 let matrix: Vec<f64> = (0..p * p).into_par_iter().map(|i| entry(i / p, i % p)).collect::<Vec<f64>>();
                 let (r, s, residual) = sinkhorn(&matrix, p);
@@ -384,6 +392,50 @@ impl UnitCell {
             })
             .collect()
     }
+}
+
+fn check_wavelength(lambda_min_nm: f64) -> Result<(), DiffractionError> {
+    if lambda_min_nm.is_finite() && lambda_min_nm > 0.0 {
+        Ok(())
+    } else {
+        Err(DiffractionError::Invalid(format!("shortest wavelength {lambda_min_nm} nm must be positive")))
+    }
+}
+
+/// Which axes of `patch` carry structure.
+fn lines_of(patch: &Patch) -> Lines {
+    let rows_same =
+        (1..patch.rows).all(|j| patch.heights[j * patch.cols..(j + 1) * patch.cols] == patch.heights[..patch.cols]);
+    let cols_same =
+        (0..patch.rows).all(|j| patch.heights[j * patch.cols..(j + 1) * patch.cols].windows(2).all(|w| w[0] == w[1]));
+    match (rows_same, cols_same) {
+        (true, false) => Lines::AlongX,
+        (false, true) => Lines::AlongY,
+        _ => Lines::Crossed,
+    }
+}
+
+/// The lattice vectors `(m, n)` of a cell of periods `(Lx, Ly)` whose channels `ω_i,xy + (mλ/Lx, nλ/Ly)`
+/// propagate, `m` then `n` increasing; a 1-D grating keeps its own axis only.
+fn channels(lines: Lines, (lx, ly): (f64, f64), wi: Vec3, wavelength_nm: f64) -> Vec<(i64, i64)> {
+    let (gx, gy) = (wavelength_nm / lx, wavelength_nm / ly);
+    let range = |c: f64, g: f64| ((-1.0 - c) / g).ceil() as i64..=((1.0 - c) / g).floor() as i64;
+    let (mr, nr) = match lines {
+        Lines::AlongX => (range(wi[0], gx), 0..=0),
+        Lines::AlongY => (0..=0, range(wi[1], gy)),
+        Lines::Crossed => (range(wi[0], gx), range(wi[1], gy)),
+    };
+    let mut out = Vec::new();
+    for n in nr {
+        for m in mr.clone() {
+            let (x, y) = (wi[0] + m as f64 * gx, wi[1] + n as f64 * gy);
+            if x * x + y * y < 1.0 - 1e-12 {
+                out.push((m, n));
+            }
+        }
+    }
+    out.sort_by_key(|&(m, n)| (m, n));
+    out
 }
 
 /// A continuous evaluator (reference, ground truth) whose BRDF conserves energy: each lobe, which surrounds an
@@ -658,6 +710,42 @@ mod tests {
         use crate::Evaluator;
         let (a, b) = (e.reflectance(500.0, wi, wr).unwrap() / wi[2], e.reflectance(500.0, wr, wi).unwrap() / wr[2]);
         assert!((a / b - 1.0).abs() < 1e-9, "{a} vs {b}");
+    }
+
+    #[test]
+    fn a_cell_for_one_light_gives_the_same_bits_and_refuses_other_light() {
+        // 8 µm crossed cell: > 600 channels at 400 and 500 nm (rows normalised alone), so `for_light` keeps
+        // only the bins within 1/λ of ω_i,xy/λ; its orders are those of the cell for every light, bit for bit.
+        let h: Vec<f64> = (0..80 * 80)
+            .map(|i| {
+                let (x, y) = ((i % 80) as f64 / 80.0, (i / 80) as f64 / 80.0);
+                45.0 * (std::f64::consts::TAU * 7.0 * x).sin()
+                    + 20.0 * (std::f64::consts::TAU * (3.0 * x + 5.0 * y)).cos()
+            })
+            .collect();
+        let patch = Patch::from_row_major(80, 80, 100.0, 100.0, &h).unwrap();
+        let wi = direction(40f64.to_radians(), 1.1);
+        let glass = Fresnel::Index { n: Complex64::new(1.5, 0.0) };
+        let all = UnitCell::new(&patch, 400.0).unwrap();
+        let one = UnitCell::for_light(&patch, wi, &[400.0, 500.0]).unwrap();
+        assert!(
+            one.terms.memory_bytes() * 3 < all.terms.memory_bytes(),
+            "{} vs {}",
+            one.terms.memory_bytes(),
+            all.terms.memory_bytes()
+        );
+        for lambda in [400.0, 500.0] {
+            for norm in [Normalisation::Energy, Normalisation::Kirchhoff] {
+                let a = all.efficiencies(wi, lambda, &glass, norm).unwrap();
+                assert_eq!(a.normalisation, if norm == Normalisation::Energy { "energy-row" } else { "kirchhoff" });
+                assert_eq!(one.efficiencies(wi, lambda, &glass, norm).unwrap(), a);
+            }
+        }
+        assert!(one.efficiencies(direction(0.3, 0.0), 500.0, &glass, Normalisation::Energy).is_err());
+        assert!(one.efficiencies(wi, 390.0, &glass, Normalisation::Energy).is_err());
+        // Few channels (the full scaling reads every direction's bins): the cell for every light.
+        let small = UnitCell::for_light(&patch, wi, &[400.0, 5000.0]).unwrap();
+        assert_eq!(small.terms.memory_bytes(), all.terms.memory_bytes());
     }
 
     #[test]

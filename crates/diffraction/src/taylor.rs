@@ -26,6 +26,43 @@ pub fn terms_for_bound(max_abs_height_nm: f64, lambda_min_nm: f64, epsilon: f64)
     n
 }
 
+/// The DFT bins a [`TaylorTerms`] keeps: those whose frequency `(s/Lx, t/Ly)` lies within `radius` of `centre`
+/// (cycles/nm). Light of wavelength `λ` between two directions above the surface reads frequencies within
+/// `2/λ` of zero (and light from one direction within `1/λ` of `ω_i,xy/λ`), so a patch sampled finer than
+/// `λ/4` has bins no light reaches: a band leaves them out of memory (a 50 nm scan keeps a fifth of its bins
+/// for every direction pair, a twentieth for one light). Bins outside the band read as zero.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Band {
+    pub centre: [f64; 2],
+    pub radius: f64,
+}
+
+impl Band {
+    /// Every bin.
+    pub const ALL: Band = Band { centre: [0.0, 0.0], radius: f64::INFINITY };
+
+    /// The frequencies `(ω_i + ω_r)_xy/λ` (either sign) of any two directions above the surface at wavelengths
+    /// from `lambda_min_nm` up, widened by `margin` (cycles/nm; a coherence window's radius).
+    pub fn directions(lambda_min_nm: f64, margin: f64) -> Band {
+        Band { centre: [0.0, 0.0], radius: 2.0 / lambda_min_nm + margin }
+    }
+
+    /// The frequencies `(ω_i + ω_r)_xy/λ` of light from `wi` towards any direction above the surface at
+    /// wavelengths from `lambda_min_nm` up, widened by `margin` (what the reference method's eq. 8 and a unit
+    /// cell's row of light from `wi` read): the disks of radius `1/λ` about `ω_i,xy/λ` all hold the origin and
+    /// grow with `1/λ`, so the shortest wavelength's holds them all.
+    pub fn light(wi: [f64; 3], lambda_min_nm: f64, margin: f64) -> Band {
+        let c = 1.0 / lambda_min_nm;
+        Band { centre: [c * wi[0], c * wi[1]], radius: 1.0 / lambda_min_nm + margin }
+    }
+}
+
+/// The radius `4σ_f` (cycles/nm) of the window of coherence length `coherence_nm` (eq. 8 takes the bins
+/// within it): what a [`Band`] widens by for a windowed evaluator.
+pub fn window_radius(coherence_nm: f64) -> f64 {
+    4.0 / (std::f64::consts::TAU * coherence_nm / 4.0)
+}
+
 /// Fourier coefficients of `(i h)^n`, `n = 0..=N`, for one patch, with the coherence window.
 #[derive(Debug, Clone)]
 pub struct TaylorTerms {
@@ -43,12 +80,20 @@ pub struct TaylorTerms {
     pub max_abs_height: f64,
     /// [`Patch::fingerprint`] of the patch the terms were computed from.
     pub fingerprint: String,
-    /// `c_n[s,t]`, interleaved: index `(t · cols + s) · (N + 1) + n`, `s`, `t` the DFT bins along x and y.
+    /// The bins kept.
+    pub band: Band,
+    /// Per DFT row `t` (unsigned): its kept signed bins `s_lo..=s_hi` and the index of `s_lo` in the kept
+    /// bins; `None` for a row with none.
+    band_rows: Vec<Option<(i64, i64, usize)>>,
+    /// `c_n[s,t]` of the kept bins, row by row (`t` unsigned increasing, `s` signed increasing), interleaved:
+    /// `N + 1` coefficients per bin.
     coeffs: Vec<Complex64>,
+    /// What a bin outside the band reads.
+    zeros: Vec<Complex64>,
 }
 
 impl TaylorTerms {
-    /// DFTs of `(i h)^n` for `n = 0..=n_max`, one term per thread, in `f64`.
+    /// DFTs of `(i h)^n` for `n = 0..=n_max`, in `f64`, every bin.
     pub fn compute(patch: &Patch, n_max: usize, coherence_nm: f64) -> Result<Self, DiffractionError> {
         Self::compute_with_progress(patch, n_max, coherence_nm, &|_| {})
     }
@@ -60,66 +105,129 @@ impl TaylorTerms {
         coherence_nm: f64,
         progress: &(dyn Fn(usize) + Sync),
     ) -> Result<Self, DiffractionError> {
+        Self::compute_in_band(patch, n_max, coherence_nm, Band::ALL, progress)
+    }
+
+    /// As [`TaylorTerms::compute_with_progress`], keeping only the bins of `band`: memory and time scale
+    /// with the bins light reaches, not with the samples. The kept coefficients are bit for bit those of
+    /// [`TaylorTerms::compute`] (the same row and column transforms, one term at a time).
+    pub fn compute_in_band(
+        patch: &Patch,
+        n_max: usize,
+        coherence_nm: f64,
+        band: Band,
+        progress: &(dyn Fn(usize) + Sync),
+    ) -> Result<Self, DiffractionError> {
         if !(coherence_nm.is_finite() && coherence_nm > 0.0) {
             return Err(DiffractionError::Invalid(format!("coherence length {coherence_nm} nm must be positive")));
         }
+        if !(band.radius > 0.0 && band.centre.iter().all(|c| c.is_finite())) {
+            return Err(DiffractionError::Invalid(format!("band {band:?}: needs a positive radius")));
+        }
         let (rows, cols) = (patch.rows, patch.cols);
         let samples = rows * cols;
-        let bytes = samples as f64 * (n_max + 1) as f64 * 16.0 * 2.0;
+        let (lx, ly) = (cols as f64 * patch.dx, rows as f64 * patch.dy);
+        // The kept bins, row by row: signed s within the band and within the DFT's −⌊(n−1)/2⌋..=⌊n/2⌋.
+        let (s_min, s_max) = (-(((cols - 1) / 2) as i64), (cols / 2) as i64);
+        let mut band_rows = vec![None; rows];
+        let mut kept = 0usize;
+        for (t, row) in band_rows.iter_mut().enumerate() {
+            let fy = signed(t, rows) as f64 / ly - band.centre[1];
+            let half2 = band.radius * band.radius - fy * fy;
+            if half2.is_nan() || half2 < 0.0 {
+                continue;
+            }
+            let half = half2.sqrt();
+            let lo = (((band.centre[0] - half) * lx).ceil() as i64).max(s_min);
+            let hi = (((band.centre[0] + half) * lx).floor() as i64).min(s_max);
+            if lo <= hi {
+                *row = Some((lo, hi, kept));
+                kept += (hi - lo + 1) as usize;
+            }
+        }
+        let stride = n_max + 1;
+        let bytes = kept as f64 * stride as f64 * 16.0;
         if bytes > 16e9 {
             return Err(DiffractionError::Invalid(format!(
-                "{rows}×{cols} samples with {} terms need {:.1} GB; use fewer terms or a smaller patch",
-                n_max + 1,
+                "{rows}×{cols} samples with {stride} terms need {:.1} GB; use fewer terms or a smaller patch",
                 bytes / 1e9
             )));
         }
+        // The columns (signed s) and DFT rows any kept bin needs.
+        let (c_lo, c_hi) = band_rows.iter().flatten().fold((i64::MAX, i64::MIN), |(a, b), r| (a.min(r.0), b.max(r.1)));
+        let width = if kept == 0 { 0 } else { (c_hi - c_lo + 1) as usize };
+        let column_of = |k: usize| (c_lo + k as i64).rem_euclid(cols as i64) as usize;
         let mut planner = FftPlanner::<f64>::new();
         let fft_x = planner.plan_fft_forward(cols);
         let fft_y = planner.plan_fft_forward(rows);
         let norm = 1.0 / samples as f64;
         // Centre the coherence window on the patch (as the ground truth does) rather than on its corner: by
-        // the shift theorem, c[s,t] · exp(2πi f_{s,t} · x_c), x_c the patch centre. Computed once for all terms,
-        // with the 1/samples normalisation folded in.
-        let phase_x: Vec<f64> =
-            (0..cols).map(|s| signed(s, cols) as f64 * (cols - 1) as f64 / (2 * cols) as f64).collect();
-        let centring: Vec<Complex64> = (0..rows)
-            .flat_map(|t| {
+        // the shift theorem, c[s,t] · exp(2πi f_{s,t} · x_c), x_c the patch centre, with the 1/samples
+        // normalisation folded in; for the kept bins, in their order.
+        let centring: Vec<Complex64> = band_rows
+            .iter()
+            .enumerate()
+            .filter_map(|(t, r)| r.map(|r| (t, r)))
+            .flat_map(|(t, (lo, hi, _))| {
                 let ty = signed(t, rows) as f64 * (rows - 1) as f64 / (2 * rows) as f64;
-                let phase_x = &phase_x;
-                (0..cols).map(move |s| {
-                    let (sin, cos) = (std::f64::consts::TAU * (phase_x[s] + ty)).sin_cos();
+                (lo..=hi).map(move |s| {
+                    let sx = s as f64 * (cols - 1) as f64 / (2 * cols) as f64;
+                    let (sin, cos) = (std::f64::consts::TAU * (sx + ty)).sin_cos();
                     Complex64::new(cos * norm, sin * norm)
                 })
             })
             .collect();
-        let done = std::sync::atomic::AtomicUsize::new(0);
-        let terms: Vec<Vec<Complex64>> = (0..=n_max)
-            .into_par_iter()
-            .map(|n| {
-                // (i h)^n = i^n h^n, evaluated directly (not by repeated products across threads).
-                let i_n = match n % 4 {
-                    0 => Complex64::new(1.0, 0.0),
-                    1 => Complex64::new(0.0, 1.0),
-                    2 => Complex64::new(-1.0, 0.0),
-                    _ => Complex64::new(0.0, -1.0),
-                };
-                let mut data: Vec<Complex64> = patch.heights.iter().map(|&h| i_n * h.powi(n as i32)).collect();
-                fft2(&mut data, rows, cols, fft_x.as_ref(), fft_y.as_ref());
-                for (c, p) in data.iter_mut().zip(&centring) {
-                    *c *= p;
-                }
-                let d = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-                progress(d);
-                data
-            })
-            .collect();
-        let stride = n_max + 1;
-        let mut coeffs = vec![Complex64::new(0.0, 0.0); samples * stride];
-        coeffs.par_chunks_mut(stride).enumerate().for_each(|(bin, out)| {
-            for (n, t) in terms.iter().enumerate() {
-                out[n] = t[bin];
+        let mut coeffs = vec![Complex64::new(0.0, 0.0); kept * stride];
+        // One term at a time, its transforms in parallel: the row transforms keep the band's columns, the
+        // column transforms run on those only.
+        let mut by_rows = vec![Complex64::new(0.0, 0.0); rows * width];
+        let mut by_cols = vec![Complex64::new(0.0, 0.0); width * rows];
+        for n in 0..=n_max {
+            if kept == 0 {
+                progress(n + 1);
+                continue;
             }
-        });
+            // (i h)^n = i^n h^n, evaluated directly (not by repeated products).
+            let i_n = match n % 4 {
+                0 => Complex64::new(1.0, 0.0),
+                1 => Complex64::new(0.0, 1.0),
+                2 => Complex64::new(-1.0, 0.0),
+                _ => Complex64::new(0.0, -1.0),
+            };
+            by_rows.par_chunks_mut(width).zip(patch.heights.par_chunks(cols)).for_each_init(
+                || vec![Complex64::new(0.0, 0.0); cols],
+                |line, (out, h)| {
+                    for (l, &v) in line.iter_mut().zip(h) {
+                        *l = i_n * v.powi(n as i32);
+                    }
+                    fft_x.process(line);
+                    for (k, o) in out.iter_mut().enumerate() {
+                        *o = line[column_of(k)];
+                    }
+                },
+            );
+            transpose(&by_rows, &mut by_cols, rows, width);
+            by_cols.par_chunks_mut(rows * 8).for_each(|block| fft_y.process(block));
+            // Scatter the kept bins (row by row, disjoint slices of the coefficients) with the centring.
+            let mut rest = &mut coeffs[..];
+            let mut parts = Vec::new();
+            for (t, r) in band_rows.iter().enumerate() {
+                if let Some((lo, hi, first)) = *r {
+                    let (part, tail) = rest.split_at_mut((hi - lo + 1) as usize * stride);
+                    parts.push((t, lo, first, part));
+                    rest = tail;
+                }
+            }
+            let by_cols = &by_cols;
+            let centring = &centring;
+            parts.into_par_iter().for_each(|(t, lo, first, part)| {
+                for (j, bin) in part.chunks_mut(stride).enumerate() {
+                    let k = (lo - c_lo) as usize + j;
+                    bin[n] = by_cols[k * rows + t] * centring[first + j];
+                }
+            });
+            progress(n + 1);
+        }
         let sigma_s = coherence_nm / 4.0;
         Ok(Self {
             rows,
@@ -131,15 +239,27 @@ impl TaylorTerms {
             coherence_nm,
             max_abs_height: patch.max_abs_height,
             fingerprint: patch.fingerprint(),
+            band,
+            band_rows,
             coeffs,
+            zeros: vec![Complex64::new(0.0, 0.0); stride],
         })
     }
 
-    /// `c_n` at DFT bin `(s, t)` for all n (bins indexed `0..cols`, `0..rows`).
+    /// `c_n` at DFT bin `(s, t)` for all n (bins indexed `0..cols`, `0..rows`); zeros outside the band.
     pub fn bin(&self, s: usize, t: usize) -> &[Complex64] {
         let stride = self.n_max + 1;
-        let i = (t * self.cols + s) * stride;
-        &self.coeffs[i..i + stride]
+        match self.band_rows[t] {
+            Some((lo, hi, first)) => {
+                let ss = signed(s, self.cols);
+                if ss < lo || ss > hi {
+                    return &self.zeros;
+                }
+                let i = (first + (ss - lo) as usize) * stride;
+                &self.coeffs[i..i + stride]
+            }
+            None => &self.zeros,
+        }
     }
 
     /// Whether frequency `f` (cycles/nm) lies within Nyquist on both axes.
@@ -190,9 +310,17 @@ impl TaylorTerms {
     }
 
     /// Every coefficient `c_n[s, t]`, interleaved as [`TaylorTerms::bin`] reads them: index
-    /// `(t · cols + s) · (N + 1) + n` (what a GPU uploads to evaluate eq. 8 itself).
-    pub fn coefficients(&self) -> &[Complex64] {
-        &self.coeffs
+    /// `(t · cols + s) · (N + 1) + n`, zeros outside the band (what a GPU uploads to evaluate eq. 8 itself).
+    pub fn coefficients(&self) -> Vec<Complex64> {
+        let stride = self.n_max + 1;
+        let mut all = vec![Complex64::new(0.0, 0.0); self.rows * self.cols * stride];
+        for t in 0..self.rows {
+            for s in 0..self.cols {
+                let i = (t * self.cols + s) * stride;
+                all[i..i + stride].copy_from_slice(self.bin(s, t));
+            }
+        }
+        all
     }
 
     /// Bytes held by the coefficients.
@@ -218,21 +346,6 @@ fn signed(k: usize, n: usize) -> i64 {
     }
 }
 
-/// In-place 2D forward DFT of a row-major `rows × cols` array (`Σ x e^{−2πi(...)}`).
-fn fft2(
-    data: &mut [Complex64],
-    rows: usize,
-    cols: usize,
-    fft_x: &dyn rustfft::Fft<f64>,
-    fft_y: &dyn rustfft::Fft<f64>,
-) {
-    fft_x.process(data); // rustfft processes consecutive chunks of its length: every row
-    let mut t = vec![Complex64::new(0.0, 0.0); rows * cols];
-    transpose(data, &mut t, rows, cols);
-    fft_y.process(&mut t);
-    transpose(&t, data, cols, rows);
-}
-
 fn transpose(src: &[Complex64], dst: &mut [Complex64], rows: usize, cols: usize) {
     const B: usize = 32;
     for r0 in (0..rows).step_by(B) {
@@ -250,12 +363,139 @@ fn transpose(src: &[Complex64], dst: &mut [Complex64], rows: usize, cols: usize)
 mod tests {
     use super::*;
 
+    /// In-place 2D forward DFT (the whole grid at once, as the terms were computed before bands) of a row-major `rows × cols` array (`Σ x e^{−2πi(...)}`).
+    fn fft2(
+        data: &mut [Complex64],
+        rows: usize,
+        cols: usize,
+        fft_x: &dyn rustfft::Fft<f64>,
+        fft_y: &dyn rustfft::Fft<f64>,
+    ) {
+        fft_x.process(data); // rustfft processes consecutive chunks of its length: every row
+        let mut t = vec![Complex64::new(0.0, 0.0); rows * cols];
+        transpose(data, &mut t, rows, cols);
+        fft_y.process(&mut t);
+        transpose(&t, data, cols, rows);
+    }
+
+    /// The coefficients as computed before bands: every term's full 2-D DFT times the centring, unsigned
+    /// layout `(t · cols + s)` per term.
+    fn full_grid(patch: &Patch, n_max: usize) -> Vec<Vec<Complex64>> {
+        let (rows, cols) = (patch.rows, patch.cols);
+        let mut planner = FftPlanner::<f64>::new();
+        let (fft_x, fft_y) = (planner.plan_fft_forward(cols), planner.plan_fft_forward(rows));
+        let norm = 1.0 / (rows * cols) as f64;
+        let phase_x: Vec<f64> =
+            (0..cols).map(|s| signed(s, cols) as f64 * (cols - 1) as f64 / (2 * cols) as f64).collect();
+        (0..=n_max)
+            .map(|n| {
+                let i_n = [
+                    Complex64::new(1.0, 0.0),
+                    Complex64::new(0.0, 1.0),
+                    Complex64::new(-1.0, 0.0),
+                    Complex64::new(0.0, -1.0),
+                ][n % 4];
+                let mut data: Vec<Complex64> = patch.heights.iter().map(|&h| i_n * h.powi(n as i32)).collect();
+                fft2(&mut data, rows, cols, fft_x.as_ref(), fft_y.as_ref());
+                for (k, c) in data.iter_mut().enumerate() {
+                    let (s, t) = (k % cols, k / cols);
+                    let ty = signed(t, rows) as f64 * (rows - 1) as f64 / (2 * rows) as f64;
+                    let (sin, cos) = (std::f64::consts::TAU * (phase_x[s] + ty)).sin_cos();
+                    *c *= Complex64::new(cos * norm, sin * norm);
+                }
+                data
+            })
+            .collect()
+    }
+
+    fn rough_patch(rows: usize, cols: usize, dx: f64) -> Patch {
+        let h: Vec<f64> = (0..rows * cols)
+            .map(|k| {
+                let (x, y) = ((k % cols) as f64, (k / cols) as f64);
+                60.0 * (0.37 * x + 0.11 * y).sin() + 25.0 * (0.05 * x * y).cos() + 3.0 * ((k * 7919) % 13) as f64
+            })
+            .collect();
+        Patch::from_row_major(rows, cols, dx, dx * 1.3, &h).unwrap()
+    }
+
+    #[test]
+    fn banded_terms_are_the_full_grids_bits_inside_and_zero_outside() {
+        // Odd and even sizes (the DFT's signed ranges differ), every bin and a band off the origin.
+        for (rows, cols) in [(48, 60), (37, 53)] {
+            let patch = rough_patch(rows, cols, 40.0);
+            let want = full_grid(&patch, 5);
+            for band in [Band::ALL, Band::light([0.5, -0.3, 0.81], 380.0, 1e-4), Band::directions(500.0, 0.0)] {
+                let t = TaylorTerms::compute_in_band(&patch, 5, 9000.0, band, &|_| {}).unwrap();
+                let mut inside = 0;
+                for tt in 0..rows {
+                    for s in 0..cols {
+                        let f = [
+                            signed(s, cols) as f64 / (cols as f64 * 40.0),
+                            signed(tt, rows) as f64 / (rows as f64 * 52.0),
+                        ];
+                        let d = ((f[0] - band.centre[0]).powi(2) + (f[1] - band.centre[1]).powi(2)).sqrt();
+                        for n in 0..=5 {
+                            let got = t.bin(s, tt)[n];
+                            if d <= band.radius {
+                                assert_eq!(
+                                    got,
+                                    want[n][tt * cols + s],
+                                    "{rows}×{cols} {band:?} bin ({s}, {tt}) term {n}"
+                                );
+                            } else {
+                                assert_eq!(got, Complex64::new(0.0, 0.0));
+                            }
+                        }
+                        inside += usize::from(d <= band.radius);
+                    }
+                }
+                assert_eq!(t.memory_bytes(), inside * 6 * 16);
+                if band == Band::ALL {
+                    assert_eq!(inside, rows * cols);
+                } else {
+                    assert!(inside < rows * cols / 2, "{band:?} keeps {inside}");
+                }
+            }
+        }
+    }
+
     #[test]
     fn term_count_meets_its_bound() {
         let n = terms_for_bound(150.0, 380.0, 1e-6);
         let x = 2.0 * std::f64::consts::TAU / 380.0 * 150.0;
         let bound = |n: usize| (1..=n + 1).fold(1.0, |acc, k| acc * x / k as f64);
         assert!(bound(n) <= 1e-6 && bound(n - 1) > 1e-6, "N = {n}");
+    }
+
+    #[test]
+    fn bands_hold_every_bin_the_windowed_sum_reads() {
+        // The reference method reads eq. 8 at f = (ω_i + ω_r)_xy/λ: over the hemisphere of ω_r, at λ from the
+        // band's shortest up, the banded terms give the full terms' sums bit for bit (a missing bin would not).
+        let patch = rough_patch(64, 64, 30.0);
+        let coherence = 3000.0;
+        let full = TaylorTerms::compute(&patch, 4, coherence).unwrap();
+        let r = 1.001 * window_radius(coherence);
+        let wi = [0.6 * 0.3f64.cos(), 0.6 * 0.3f64.sin(), 0.8];
+        let (mut a, mut b) = (vec![Complex64::new(0.0, 0.0); 5], vec![Complex64::new(0.0, 0.0); 5]);
+        for (band, light) in [(Band::light(wi, 400.0, r), Some(wi)), (Band::directions(400.0, r), None)] {
+            let t = TaylorTerms::compute_in_band(&patch, 4, coherence, band, &|_| {}).unwrap();
+            assert!(t.memory_bytes() < full.memory_bytes() / 2);
+            let mut nonzero = 0;
+            for k in 0..400 {
+                let (theta, phi) = (1.55 * (k % 20) as f64 / 19.0, std::f64::consts::TAU * (k / 20) as f64 / 20.0);
+                let wr = [theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos()];
+                // Any light (the directions band) or the band's own.
+                let wi = light.unwrap_or([-wr[1], wr[0], wr[2]]);
+                for lambda in [400.0, 550.0, 780.0] {
+                    let (fx, fy) = ((wi[0] + wr[0]) / lambda, (wi[1] + wr[1]) / lambda);
+                    full.windowed(fx, fy, &mut a);
+                    t.windowed(fx, fy, &mut b);
+                    assert_eq!(a, b, "{band:?} at f = ({fx}, {fy})");
+                    nonzero += usize::from(a[1].norm() > 0.0);
+                }
+            }
+            assert!(nonzero > 1000, "{nonzero}");
+        }
     }
 
     #[test]

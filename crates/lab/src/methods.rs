@@ -8,7 +8,7 @@ use std::sync::{Arc, Mutex};
 
 use iridis_color::{Observer, Spectrum, Xyz};
 use iridis_diffraction::table::{Lookup, LookupTable, Precision, Provenance, TableParams};
-use iridis_diffraction::taylor::terms_for_bound;
+use iridis_diffraction::taylor::{terms_for_bound, Band};
 use iridis_diffraction::{
     Accelerator, Aperture, Evaluator, GroundTruth, Patch, Reference, Shading, SpectralSetup, TaylorTerms,
 };
@@ -147,6 +147,9 @@ pub struct MethodConfig {
     pub stam_epsilon: f64,
     /// A device (the GPU) that builds lookup tables and renders the ground truths; the CPU when `None`.
     pub accelerator: Option<Arc<dyn Accelerator>>,
+    /// The DFT bins the Taylor terms keep (every bin by default). Narrow it only for a method that reads
+    /// within it — the reference method for one light ([`Band::light`]); the lookup table reads `|u|, |v| ≤ 2`.
+    pub band: Band,
 }
 
 impl Default for MethodConfig {
@@ -166,6 +169,7 @@ impl Default for MethodConfig {
             period_y_nm: None,
             stam_epsilon: 0.01,
             accelerator: None,
+            band: Band::ALL,
         }
     }
 }
@@ -209,7 +213,13 @@ impl Workbench {
             return Ok(t.clone());
         }
         let n = self.config.term_count(&self.patch);
-        let t = Arc::new(TaylorTerms::compute_with_progress(&self.patch, n, self.config.coherence_nm, progress)?);
+        let t = Arc::new(TaylorTerms::compute_in_band(
+            &self.patch,
+            n,
+            self.config.coherence_nm,
+            self.config.band,
+            progress,
+        )?);
         *guard = Some(t.clone());
         Ok(t)
     }

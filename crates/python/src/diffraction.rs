@@ -309,6 +309,7 @@ fn grating<'py>(
             normalisation: normalisation.parse()?,
             detector,
             unit_cell_auto,
+            ..GratingOptions::default()
         };
         if !compare {
             return Ok(iridis_api::grating::grating(&source, &surface, &opts, r)?.to_json());

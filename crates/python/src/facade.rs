@@ -160,6 +160,7 @@ impl<'py> Options<'py> {
             observer: self.string("observer")?,
             step_nm: self.positive("step_nm")?,
             conserve_energy: self.bool("conserve_energy")?.unwrap_or(false),
+            light: None,
         })
     }
 

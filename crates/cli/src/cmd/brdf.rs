@@ -203,6 +203,7 @@ impl ModelOpts {
             observer: self.observer.clone(),
             step_nm: self.step,
             conserve_energy: self.conserve_energy,
+            light: None,
         }
     }
 }
@@ -687,7 +688,9 @@ pub fn run_brdf_map(a: BrdfMapArgs) -> Result<()> {
     let params = TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power };
     let precision = if a.f32 { Precision::F32 } else { Precision::F64 };
     let start = std::time::Instant::now();
-    let (model, surface) = (a.model.options(), a.surface_opts.options());
+    let (mut model, surface) = (a.model.options(), a.surface_opts.options());
+    // The map asks about one light: the reference method keeps only its bins (memory).
+    model.light = Some(wi);
     let e = make_evaluator(&a.input, &a.method, &model, shading, params, precision, &surface, &Cli)?;
     let prepared = start.elapsed().as_secs_f64();
     let xyz = render_map(e.as_ref(), wi, a.size, &Cli);

@@ -86,6 +86,11 @@ pub struct GratingArgs {
     /// Print JSON: every order's efficiency per wavelength, the totals, the detector's spectrum.
     #[arg(long)]
     pub json: bool,
+    /// List only the orders of at least this efficiency (a fraction, or a percentage: 1e-3, 0.1%), with the
+    /// mirror order and those the detector sees; the totals and colours still count every order (a large
+    /// scan as one unit cell has hundreds of thousands of orders a wavelength). Default: every order.
+    #[arg(long, value_name = "FRACTION", value_parser = fraction)]
+    pub orders_above: Option<f64>,
     #[command(flatten)]
     pub surface_opts: SurfaceOpts,
 }
@@ -118,6 +123,7 @@ pub fn run(a: GratingArgs) -> Result<()> {
             "whole" => false,
             other => bail!("--unit-cell '{other}': expected whole (the patch) or auto (the dominant period)"),
         },
+        orders_above: a.orders_above.unwrap_or(0.0),
     };
     let source = iridis_api::surface::Source::Spec(a.surface.clone());
     if a.compare {
@@ -279,4 +285,19 @@ fn compare(a: &GratingArgs, source: &iridis_api::surface::Source, opts: GratingO
         crate::outln!("colour difference (CIEDE2000, D65): diffracted light {d:.2}, mirror order {s:.2}")?;
     }
     Ok(())
+}
+
+/// A fraction from 0 up to 1, written as a number (`1e-3`) or a percentage (`0.1%`).
+fn fraction(s: &str) -> Result<f64, String> {
+    let t = s.trim();
+    let v = match t.strip_suffix('%') {
+        Some(p) => p.trim().parse::<f64>().map(|v| v / 100.0),
+        None => t.parse::<f64>(),
+    }
+    .map_err(|_| format!("'{s}': expected a fraction (1e-3) or a percentage (0.1%)"))?;
+    if v.is_finite() && (0.0..1.0).contains(&v) {
+        Ok(v)
+    } else {
+        Err(format!("'{s}': the efficiency must be from 0 up to 1 (100 %)"))
+    }
 }

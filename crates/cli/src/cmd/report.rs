@@ -16,8 +16,8 @@ use crate::progress::bar;
 Steps (each a command shown in the report, run with the same surface options):
   1. iridis surface info FILE --level L --image relief.png --psdf psdf.png --acf acf.png --json
      size, heights, roughness (Sq, Sa, Ssk, Sku, correlation length), periods and orientations, PSDF, ACF
-  2. iridis grating FILE --light 0deg / 45deg --from 380nm --to 780nm: the scan as one unit cell, how much
-     of the light it diffracts and the colour of its mirror reflection
+  2. iridis grating FILE --light 0deg / 45deg --from 380nm --to 780nm --orders-above 0.01: the scan as
+     one unit cell, how much of the light it diffracts and the colour of its mirror reflection
   3. iridis brdf-map FILE --method reference --incidence 0deg / 45deg --auto-exposure, under D65: the
      structure's colours (only when it diffracts at least 0.1 % of the reflected light)
   4. iridis brdf vision FILE --visual bluetit --strip vision.png: how a bird (--visual) sees the colours
@@ -175,6 +175,8 @@ pub fn run(a: ReportArgs) -> Result<()> {
     let mut grating = Vec::new();
     for inc in ["0deg", "45deg"] {
         let mut g = s(&["grating", &a.surface, "--light", inc, "--from", "380nm", "--to", "780nm", "--step", "10nm"]);
+        // The report reads the totals and colours only: a large scan has ~10⁵ orders a wavelength.
+        g.extend(s(&["--orders-above", "0.01"]));
         g.extend(common.clone());
         g.push("--json".into());
         let st = step(&format!("Order efficiencies of the scan as a unit cell, light at {inc}"), g)?;
