@@ -30,9 +30,15 @@ pub struct ModelOptions {
     /// Wavelength step of the spectral integral (nm); default 5.
     pub step_nm: Option<f64>,
     /// Scale each lobe by its order's factor in the energy-normalised channel matrix, so that the BRDF
-    /// returns no more light than it receives (`iridis_diffraction::grating::EnergyNormalised`; reference and
+    /// returns no more light than it receives (`iridis_diffraction::grating::LobeScaled::energy_normalised`; reference and
     /// ground truths).
     pub conserve_energy: bool,
+    /// The medium under the relief for the rigorous method (a stack's medium: `gold`, `keratin`, `n=1.5`, …;
+    /// default [`crate::grating::DEFAULT_MATERIAL`]).
+    pub material: Option<String>,
+    /// Take a scan's dominant period, its profile averaged along the ridges, as the unit cell
+    /// ([`crate::grating::averaged_unit_cell`]) instead of the whole patch (the rigorous method).
+    pub unit_cell_auto: bool,
 }
 
 impl Default for ModelOptions {
@@ -44,6 +50,8 @@ impl Default for ModelOptions {
             observer: None,
             step_nm: None,
             conserve_energy: false,
+            material: None,
+            unit_cell_auto: false,
         }
     }
 }

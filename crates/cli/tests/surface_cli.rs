@@ -618,7 +618,9 @@ fn report_on_an_instrument_file() {
     assert!(verdict.contains("diffracts no visible light") && verdict.contains("100 nm"), "{verdict}");
     assert!(!out.join("brdf_0deg.png").exists() && !html.contains("brdf_0deg"), "no map of nothing");
     // No --level was given: the model steps get none, and say "the default for files", not "as asked".
-    for c in r["commands"].as_array().unwrap().iter().filter(|c| !c["command"].as_str().unwrap().contains("surface info")) {
+    for c in
+        r["commands"].as_array().unwrap().iter().filter(|c| !c["command"].as_str().unwrap().contains("surface info"))
+    {
         assert!(!c["command"].as_str().unwrap().contains("--level"), "{c}");
     }
     assert!(!log.contains("as asked (--level)"), "{log}");

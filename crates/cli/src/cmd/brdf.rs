@@ -5,7 +5,7 @@ use std::sync::Arc;
 
 use anyhow::{bail, Context, Result};
 use clap::Args as ClapArgs;
-use iridis_api::brdf::{eval_point, make_evaluator, render_map};
+use iridis_api::brdf::{eval_point, map_evaluator, render_map};
 use iridis_api::model::{build_table, is_table, spectral_setup, taylor_terms};
 use iridis_api::surface::load_patch;
 use iridis_api::{ModelOptions, SurfaceOptions};
@@ -14,7 +14,7 @@ use iridis_diffraction::geometry::{direction, FresnelConvention, Shading};
 use iridis_diffraction::table::{Lookup, Precision, TableParams};
 use iridis_diffraction::Units;
 
-use crate::args::{polar_azimuth, positive_length_nm};
+use crate::args::{polar_azimuth, positive_length_nm, RigorousOpts};
 use crate::progress::Cli;
 
 pub use crate::args::SurfaceOpts;
@@ -130,10 +130,12 @@ pub struct BrdfMapArgs {
     /// A height field (file or builtin:NAME) or a lookup table from `iridis precompute`, told apart by content
     /// (a height field may be an .npz too).
     pub input: String,
-    /// ground-truth, ground-truth-periodic, reference, lookup, nmm, pq, stam-periodic, stam-periodic-triangular
-    /// or stam-gaussian.
+    /// ground-truth, ground-truth-periodic, reference, lookup, nmm, pq, stam-periodic, stam-periodic-triangular,
+    /// stam-gaussian or rigorous.
     #[arg(long, default_value = "lookup")]
     pub method: String,
+    #[command(flatten)]
+    pub rigorous: RigorousOpts,
     /// Light direction: polar angle θ_i[,azimuth φ_i].
     #[arg(long, default_value = "0deg")]
     pub incidence: String,
@@ -203,6 +205,9 @@ impl ModelOpts {
             observer: self.observer.clone(),
             step_nm: self.step,
             conserve_energy: self.conserve_energy,
+            // Set by the commands that take --material and --unit-cell (`RigorousOpts::apply`).
+            material: None,
+            unit_cell_auto: false,
         }
     }
 }
@@ -510,10 +515,12 @@ pub struct BrdfEvalArgs {
     /// View direction θ[,φ] (towards the viewer).
     #[arg(long)]
     pub view: String,
-    /// ground-truth, ground-truth-periodic, reference, lookup, nmm, pq, stam-periodic, stam-periodic-triangular
-    /// or stam-gaussian [default: reference for a SURFACE, lookup for a TABLE].
+    /// ground-truth, ground-truth-periodic, reference, lookup, nmm, pq, stam-periodic, stam-periodic-triangular,
+    /// stam-gaussian or rigorous [default: reference for a SURFACE, lookup for a TABLE].
     #[arg(long)]
     pub method: Option<String>,
+    #[command(flatten)]
+    pub rigorous: RigorousOpts,
     #[command(flatten)]
     pub shading: ShadingOpts,
     /// u-v resolution when the lookup method builds a table from a SURFACE.
@@ -556,8 +563,11 @@ fn run_eval(a: BrdfEvalArgs) -> Result<()> {
     let (wi, wr) = (direction(tl, pl), direction(tv, pv));
     let shading = a.shading.shading()?;
     let params = TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power };
-    let (model, surface) = (a.model.options(), a.surface_opts.options());
-    let p = eval_point(&a.input, a.method.as_deref(), &model, shading, params, &surface, wi, wr, &Cli)?;
+    let (mut model, surface) = (a.model.options(), a.surface_opts.options());
+    let paper = a.shading.fresnel_convention == FresnelConvention::Paper;
+    let method = a.method.clone().unwrap_or_else(|| iridis_api::brdf::default_method(&a.input).to_string());
+    a.rigorous.apply(&method, &a.shading.fresnel, paper, &mut model)?;
+    let p = eval_point(&a.input, Some(&method), &model, shading, params, &surface, wi, wr, &Cli)?;
     let q = &p.query;
     let deg = |r: f64| (r.to_degrees() * 1e9).round() / 1e9;
     let r0 = shading_r0(&a.shading)?;
@@ -575,7 +585,7 @@ fn run_eval(a: BrdfEvalArgs) -> Result<()> {
             "method": p.method,
             "light": { "theta_deg": deg(tl), "phi_deg": deg(pl), "direction": wi },
             "view": { "theta_deg": deg(tv), "phi_deg": deg(pv), "direction": wr },
-            "fresnel": a.shading.fresnel,
+            "fresnel": if p.rigorous.is_some() { serde_json::Value::Null } else { serde_json::json!(a.shading.fresnel) },
             "fresnel_convention": a.shading.fresnel_convention.name(),
             "fresnel_r0": r0,
             "shadowing": !a.shading.no_shadowing,
@@ -588,6 +598,8 @@ fn run_eval(a: BrdfEvalArgs) -> Result<()> {
             "reflectance": q.reflectance,
             "xyz": [q.xyz.x, q.xyz.y, q.xyz.z],
             "vision": vision.as_ref().map(serde_json::to_value).transpose()?,
+            "rigorous": p.rigorous.as_ref().map(|r| r.to_json()),
+            "scalar_error": p.scalar_error.as_ref().map(|e| e.to_json()),
         }));
     }
     crate::outln!(
@@ -599,13 +611,24 @@ fn run_eval(a: BrdfEvalArgs) -> Result<()> {
         deg(tv),
         deg(pv)
     )?;
-    crate::outln!(
-        "Fresnel {} (R₀ = {r0:.4}), {}, coherence {} (window area A_eff {})",
-        a.shading.fresnel,
-        if a.shading.no_shadowing { "no shadowing" } else { "Cook-Torrance shadowing" },
-        p.coherence_nm.map_or("–".into(), |c| format!("{:.3} µm", c / 1000.0)),
-        area_um2.map_or("–".into(), |x| format!("{x:.4} µm²"))
-    )?;
+    match &p.rigorous {
+        Some(r) => crate::outln!(
+            "{}; coherence {} (window area A_eff {})",
+            r.sentence(),
+            p.coherence_nm.map_or("–".into(), |c| format!("{:.3} µm", c / 1000.0)),
+            area_um2.map_or("–".into(), |x| format!("{x:.4} µm²"))
+        )?,
+        None => crate::outln!(
+            "Fresnel {} (R₀ = {r0:.4}), {}, coherence {} (window area A_eff {})",
+            a.shading.fresnel,
+            if a.shading.no_shadowing { "no shadowing" } else { "Cook-Torrance shadowing" },
+            p.coherence_nm.map_or("–".into(), |c| format!("{:.3} µm", c / 1000.0)),
+            area_um2.map_or("–".into(), |x| format!("{x:.4} µm²"))
+        )?,
+    }
+    if let Some(e) = &p.scalar_error {
+        crate::outln!("scalar model: {}", e.sentence())?;
+    }
     match (&q.reflectance, &q.brdf, a.relative) {
         (Some(_), Some(b), false) => {
             crate::outln!("    λ (nm)   f_r s (sr⁻¹)   f_r p (sr⁻¹)   f_r unpol. (sr⁻¹)")?;
@@ -675,6 +698,9 @@ pub fn run_brdf_map(a: BrdfMapArgs) -> Result<()> {
     }
     declare_map_outputs(&a)?;
     if a.gpu {
+        if a.method == iridis_api::brdf::RIGOROUS {
+            bail!("the rigorous BRDF runs on the CPU: leave out --gpu");
+        }
         if a.auto_exposure || a.plot.is_some() {
             bail!("--auto-exposure and --plot are made on the CPU's map: leave out --gpu (or give --exposure)");
         }
@@ -687,8 +713,16 @@ pub fn run_brdf_map(a: BrdfMapArgs) -> Result<()> {
     let params = TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power };
     let precision = if a.f32 { Precision::F32 } else { Precision::F64 };
     let start = std::time::Instant::now();
-    let (model, surface) = (a.model.options(), a.surface_opts.options());
-    let e = make_evaluator(&a.input, &a.method, &model, shading, params, precision, &surface, &Cli)?;
+    let (mut model, surface) = (a.model.options(), a.surface_opts.options());
+    let paper = a.shading.fresnel_convention == FresnelConvention::Paper;
+    a.rigorous.apply(&a.method, &a.shading.fresnel, paper, &mut model)?;
+    if a.rigorous.material.is_some() && a.method != iridis_api::brdf::RIGOROUS {
+        bail!("--material is the rigorous method's medium; the scalar methods take --fresnel (index:…, gold, stack:…)");
+    }
+    let (e, rigorous) = map_evaluator(&a.input, &a.method, &model, shading, params, precision, &surface, wi, &Cli)?;
+    if let Some(r) = &rigorous {
+        eprintln!("note: {}", r.sentence());
+    }
     let prepared = start.elapsed().as_secs_f64();
     let xyz = render_map(e.as_ref(), wi, a.size, &Cli);
     let total = start.elapsed().as_secs_f64();
