@@ -278,7 +278,8 @@ pub fn testbench_rigorous(
         step_nm: Some(step),
         ..rigorous.clone()
     };
-    let e = crate::rigorous_brdf::RigorousBrdf::new(cell, rigorous.material.as_deref(), &model, report)?;
+    // Quiet: the workbench said the window and the cell already; the solves report below.
+    let e = crate::rigorous_brdf::RigorousBrdf::new(cell, rigorous.material.as_deref(), &model, &crate::report::Quiet)?;
     e.prepare(setup.light(), report)?;
     let (lx, ly) = e.cell().patch.extent();
     let along = (setup.azimuth - e.cell().rotation_rad()).rem_euclid(std::f64::consts::PI);

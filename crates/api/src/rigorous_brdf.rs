@@ -433,7 +433,8 @@ pub struct ScanScalarError {
 impl ScanScalarError {
     /// One sentence with the numbers.
     pub fn sentence(&self) -> String {
-        let at = self.error.worst_at.map_or(String::new(), |(l, m, n)| format!(" (order ({m}, {n}) at {l:.0} nm)"));
+        // Orders of the averaged 1-D cell: m counts the dominant period's orders.
+        let at = self.error.worst_at.map_or(String::new(), |(l, m, _)| format!(" (order {m} at {l:.0} nm)"));
         format!(
             "the scalar (Kirchhoff) model behind this BRDF is off by up to {:.1} % in an order's efficiency{at}{} \
              against Maxwell's equations on this scan's dominant period ({:.1} nm along {:.1}°, its profile averaged \
@@ -458,7 +459,7 @@ impl ScanScalarError {
             "material": self.material,
             "wavelength_nm": [380.0, 780.0, 10.0],
             "worst_relative_error": {"te": e.worst.te, "tm": e.worst.tm, "unpolarized": e.worst.unpolarized},
-            "worst_at": e.worst_at.map(|(l, m, n)| json!({"wavelength_nm": l, "m": m, "n": n})),
+            "worst_at": e.worst_at.map(|(l, m, _)| json!({"wavelength_nm": l, "order": m})),
             "total_relative_error": e.total,
             "delta_e00_diffracted": e.delta_e_diffracted,
             "delta_e00_specular": e.delta_e_specular,

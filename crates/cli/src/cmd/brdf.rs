@@ -108,7 +108,9 @@ SURFACE to build one first), and the lab's comparison models (docs/lab.md): nmm 
 thesis' variants), stam-periodic and stam-periodic-triangular (Stam's bumps on a lattice fitted
 to the surface's dominant periods, ε = 0.01; a 1-D grating's orders lie on y = 0 only, so use an
 odd --size) and stam-gaussian (Stam's Gaussian random surface from the height field's
-correlation function). Every method but lookup needs the height field.
+correlation function). Every method but lookup needs the height field. rigorous: each order's lobe of the
+SURFACE taken as one period (or, with --unit-cell auto, a scan's dominant period averaged along its ridges)
+carries Maxwell's efficiency for it (the C-method over --material; docs/diffraction.md, \"The rigorous BRDF\").
 
 Examples:
   iridis brdf-map builtin:blazed --method lookup -o blazed.png
@@ -118,6 +120,7 @@ Examples:
   iridis brdf-map 'builtin:elaphe?size=10um&pixel=50nm' --method stam-gaussian --coherence 5um -o stam.png
   iridis brdf-map elaphe.npz --gpu --size 1024 -o elaphe_gpu.png
   iridis brdf-map 'builtin:sine?size=4um' --method ground-truth --gpu --size 48 -o gt_gpu.png
+  iridis brdf-map 'builtin:sine?size=1100nm&pixel=10nm' --method rigorous --material gold --coherence 5um --size 64 -o rigorous.png
 
 --gpu renders the lookup method (the paper's shader; a SURFACE's table is built on the GPU too) and the
 ground truths (ground-truth, ground-truth-periodic) on the GPU; the other methods run on the CPU only.
@@ -499,12 +502,17 @@ stack; Schlick's approximation has no polarised form). --relative prints instead
 reflectance ρ(λ) = f_r cos θ_i λ² / (A_eff R₀) (eq. 4 with the cos θ_i of eq. 9): 1 at a flat mirror's peak
 at every λ, what BRDF maps show at an exposure. XYZ is the colour of ρ (eq. 9, a normal-incidence mirror
 has Y = 1). The lookup method integrates over λ in advance, so it answers XYZ only. Default method:
-reference for a SURFACE, lookup for a TABLE.
+reference for a SURFACE, lookup for a TABLE. --method rigorous scales each order's lobe to Maxwell's
+efficiency (the C-method, TE and TM apart, over --material) on SURFACE as one period or, with --unit-cell
+auto, on a scan's dominant period. With a scalar method on a scan with a dominant period, the output states
+how far the scalar model is from Maxwell's equations there (worst order error, ΔE00), with a warning above
+20 % or ΔE00 2.
 
 Examples:
   iridis brdf eval builtin:sine --light 30deg --view 10deg,180deg --json
   iridis brdf eval builtin:blazed --method ground-truth --light 0deg --view 20deg,180deg
   iridis brdf eval builtin:sine --light 30deg --view 10deg,180deg --visual bluetit --spectra sine_view.csv
+  iridis brdf eval 'builtin:sine?size=1100nm&pixel=10nm' --method rigorous --light 30deg --view 0deg --material gold
   iridis precompute builtin:elaphe -o elaphe.npz && iridis brdf eval elaphe.npz --light 20deg,0deg --view 35deg,180deg --json")]
 pub struct BrdfEvalArgs {
     /// A height field (file or builtin:NAME) or a lookup table from `iridis precompute`.

@@ -143,7 +143,12 @@ Examples:
   iridis testbench 'builtin:elaphe?size=20um&pixel=50nm' --azimuth 90deg --coherence 10um --json
   iridis testbench builtin:elaphe --azimuth 0deg   # along the fingers: no definite period (a warning)
   iridis testbench 'builtin:xenopeltis?size=20um&pixel=50nm' --azimuth 90deg --coherence 10um --plot x.png
-  iridis testbench scan.gwy --method ground-truth --from 400nm --to 700nm --step 20nm --min-angle 20deg")]
+  iridis testbench scan.gwy --method ground-truth --from 400nm --to 700nm --step 20nm --min-angle 20deg
+  iridis testbench builtin:sine --method rigorous --unit-cell auto --step 20nm
+
+--method rigorous: the unit cell (SURFACE as one period, or with --unit-cell auto the scan's dominant period
+averaged along its ridges) with each order's lobe carrying Maxwell's efficiency (the C-method over
+--material); the period is then the cell's, known to the SURFACE's resolution.")]
 pub struct TestbenchArgs {
     /// Height field: a file (.gwy, .npy, PNG, TIFF, text) or builtin:NAME.
     pub surface: String,
