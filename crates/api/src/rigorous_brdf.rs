@@ -554,7 +554,9 @@ mod tests {
         let total = solved.reflected_total.unpolarized;
         eprintln!("lobes {sum:.5}, rigorous total {total:.5}, orders {}", solved.orders.len());
         assert!(solved.orders.len() >= 3 && total < 0.9, "{total}");
-        assert!((sum / total - 1.0).abs() < 5e-3, "lobes {sum} vs Maxwell {total}");
+        // The lobe-versus-order accuracy of a 5 µm window (measured 0.48 %: the obliquity and Fresnel factors
+        // vary across the lobe, which the order's factor takes at its centre).
+        assert!((sum / total - 1.0).abs() < 1e-2, "lobes {sum} vs Maxwell {total}");
     }
 
     #[test]
@@ -568,6 +570,7 @@ mod tests {
         let s = wi[0] - lambda / 1100.0;
         let wr = [-s, 0.0, (1.0 - s * s).sqrt()];
         let (a, b) = (brdf(&e, lambda, wi, wr), brdf(&e, lambda, wr, wi));
+        eprintln!("f_r(ω_i, ω_r) = {a:.6} sr⁻¹, f_r(ω_r, ω_i) = {b:.6} sr⁻¹");
         assert!(a > 1e-3, "{a}");
         assert!((a / b - 1.0).abs() < 2e-3, "{a} vs {b}");
         for k in 0..2 {
@@ -578,26 +581,27 @@ mod tests {
 
     #[test]
     fn the_first_orders_lobe_peaks_at_the_grating_equations_angle() {
-        let e = RigorousBrdf::new(sine_cell(40.0), None, &model(), &crate::Quiet).unwrap();
+        // The light's 65 µm window: lobes ~0.006 wide in direction cosines, so the smooth factors across the
+        // lobe (cos θ_r, the obliquity) move its peak by far less than the 0.002° steps of the scan (with a
+        // 5 µm window they move it by 0.06°).
+        let narrow = ModelOptions { step_nm: Some(20.0), ..Default::default() };
+        let e = RigorousBrdf::new(sine_cell(40.0), None, &narrow, &crate::Quiet).unwrap();
         let (lambda, ti) = (620.0, 10f64.to_radians());
         let wi = direction(ti, 0.0);
-        // Scan the plane of incidence on the far side of the normal at 0.01°.
+        let expect = (ti.sin() - lambda / 1100.0).asin();
+        // Scan the plane of incidence ±1° around it at 0.002°.
         let (mut best, mut at) = (0.0, 0.0);
-        for k in 0..4000 {
-            let t = (-10.0 - k as f64 * 0.01f64).to_radians();
+        for k in 0..1000 {
+            let t = expect + (k as f64 * 0.002 - 1.0).to_radians();
             let wr = [-t.sin(), 0.0, t.cos()];
             let f = brdf(&e, lambda, wi, wr);
             if f > best {
                 (best, at) = (f, t);
             }
         }
-        let expect = (ti.sin() - lambda / 1100.0).asin();
-        assert!(
-            (at - expect).abs().to_degrees() < 0.02,
-            "peak at {:.3}°, grating equation {:.3}°",
-            at.to_degrees(),
-            expect.to_degrees()
-        );
+        assert!(best > 1.0, "{best}");
+        let (got, want) = (at.to_degrees(), expect.to_degrees());
+        assert!((got - want).abs() < 0.005, "peak at {got:.4}°, grating equation {want:.4}°");
     }
 
     #[test]
