@@ -116,8 +116,8 @@ pub fn evaluator_for(
     if model.unit_cell_auto {
         bail!("--unit-cell auto chooses the unit cell of the rigorous method: use it with --method rigorous");
     }
-    let parsed: Method =
-        method.parse().map_err(|e| anyhow::anyhow!("{e}, or rigorous (Maxwell's equations on a periodic SURFACE)"))?;
+    // The lab's methods, and the rigorous one (handled above) listed with them.
+    let parsed: Method = method.parse().map_err(|e| anyhow::anyhow!("{e}, {RIGOROUS}"))?;
     if method == "lookup" && shading.fresnel.depends_on_wavelength() {
         // Refused before the (long) table build rather than after it.
         bail!(
