@@ -211,10 +211,24 @@ pub fn averaged_unit_cell(patch: &iridis_diffraction::Patch) -> Option<(iridis_d
             count[b] += 1;
         }
     }
-    if count.contains(&0) {
+    // Pixels commensurate with the period (50 nm on 1100 nm: 22 phases) leave bins empty: each takes the
+    // linear interpolation of its nearest filled neighbours along the period. Too few phases: no profile.
+    let filled: Vec<usize> = (0..bins).filter(|&b| count[b] > 0).collect();
+    if filled.len() < 8 {
         return None;
     }
-    let row: Vec<f64> = sum.iter().zip(&count).map(|(s, &c)| s / c as f64).collect();
+    let mean = |b: usize| sum[b] / count[b] as f64;
+    let row: Vec<f64> = (0..bins)
+        .map(|b| {
+            if count[b] > 0 {
+                return mean(b);
+            }
+            let k = filled.partition_point(|&f| f < b);
+            let (lo, hi) = (filled[(k + filled.len() - 1) % filled.len()], filled[k % filled.len()]);
+            let (dl, dh) = ((b + bins - lo) % bins, (hi + bins - b) % bins);
+            (mean(lo) * dh as f64 + mean(hi) * dl as f64) / (dl + dh) as f64
+        })
+        .collect();
     let heights: Vec<f64> = row.iter().chain(&row).copied().collect();
     let cell = iridis_diffraction::Patch::from_row_major(2, bins, d / bins as f64, d / bins as f64, &heights).ok()?;
     Some((cell, d, peak.orientation_deg))
