@@ -19,6 +19,10 @@ use crate::model::{
 use crate::report::{with_progress, Report};
 use crate::surface::{Source, SurfaceOptions};
 
+/// The name of the rigorous method (`--method rigorous`): the scalar lobes carrying Maxwell's efficiencies
+/// ([`crate::rigorous_brdf`]); not one of the lab's methods.
+pub const RIGOROUS: &str = "rigorous";
+
 /// An evaluator for `--method` on a SURFACE argument or TABLE file (told apart by content, [`is_table`]).
 pub fn make_evaluator(
     input: &str,
@@ -37,6 +41,37 @@ pub fn make_evaluator(
     }
     evaluator_for(&Source::Spec(input.to_string()), method, model, shading, params, precision, surface_opts, report)
 }
+
+/// [`make_evaluator`] made ready for light from `wi` (a BRDF map's): with the rigorous method, Maxwell's
+/// equations solved at every wavelength first, in parallel with progress, and the method's assumptions and
+/// convergence returned.
+#[allow(clippy::too_many_arguments)]
+pub fn map_evaluator(
+    input: &str,
+    method: &str,
+    model: &ModelOptions,
+    shading: Shading,
+    params: TableParams,
+    precision: Precision,
+    surface_opts: &SurfaceOptions,
+    wi: [f64; 3],
+    report: &dyn Report,
+) -> Result<(Box<dyn Evaluator>, Option<crate::rigorous_brdf::RigorousSummary>)> {
+    if method == RIGOROUS && !is_table(input) {
+        if model.conserve_energy {
+            bail!(CONSERVE_RIGOROUS);
+        }
+        let e = crate::rigorous_brdf::evaluator(&Source::Spec(input.to_string()), model, surface_opts, report)?;
+        e.prepare(wi, report)?;
+        let s = e.summary();
+        return Ok((Box::new(e), Some(s)));
+    }
+    Ok((make_evaluator(input, method, model, shading, params, precision, surface_opts, report)?, None))
+}
+
+/// Why `--conserve-energy` is refused with the rigorous method.
+const CONSERVE_RIGOROUS: &str = "--conserve-energy scales the scalar model's lobes; the rigorous method's lobes \
+                                 carry Maxwell's efficiencies, which conserve energy: leave it out";
 
 /// A finished table answers the lookup method only.
 fn require_lookup(method: &str) -> Result<()> {
@@ -72,7 +107,17 @@ pub fn evaluator_for(
     surface_opts: &SurfaceOptions,
     report: &dyn Report,
 ) -> Result<Box<dyn Evaluator>> {
-    let parsed: Method = method.parse()?;
+    if method == RIGOROUS {
+        if model.conserve_energy {
+            bail!(CONSERVE_RIGOROUS);
+        }
+        return Ok(Box::new(crate::rigorous_brdf::evaluator(source, model, surface_opts, report)?));
+    }
+    if model.unit_cell_auto {
+        bail!("--unit-cell auto chooses the unit cell of the rigorous method: use it with --method rigorous");
+    }
+    // The lab's methods, and the rigorous one (handled above) listed with them.
+    let parsed: Method = method.parse().map_err(|e| anyhow::anyhow!("{e}, {RIGOROUS}"))?;
     if method == "lookup" && shading.fresnel.depends_on_wavelength() {
         // Refused before the (long) table build rather than after it.
         bail!(
@@ -92,7 +137,7 @@ pub fn evaluator_for(
             "energy-conserving lobes: each scaled by its order's factor in the energy-normalised channel matrix of \
              the patch taken as a unit cell (docs/PHYSICS.md, \"Order efficiencies\")",
         );
-        Ok(Box::new(iridis_diffraction::grating::EnergyNormalised::new(e, &patch, spectral)?))
+        Ok(Box::new(iridis_diffraction::grating::LobeScaled::energy_normalised(e, &patch, spectral)?))
     };
     match parsed {
         Method::GroundTruth => {
@@ -217,6 +262,11 @@ pub struct PointEval {
     pub effective_area_nm2: Option<f64>,
     /// The wavelength grid, ρ(λ) (`None` for lookup, which integrates over λ in advance) and XYZ.
     pub query: PointQuery,
+    /// The rigorous method's assumptions and convergence.
+    pub rigorous: Option<crate::rigorous_brdf::RigorousSummary>,
+    /// A scalar method on a scan with a dominant period: how far the scalar model is from Maxwell's equations
+    /// on the scan's averaged period for this light.
+    pub scalar_error: Option<crate::rigorous_brdf::ScanScalarError>,
 }
 
 impl PointEval {
@@ -265,8 +315,30 @@ pub fn eval_point(
     report: &dyn Report,
 ) -> Result<PointEval> {
     let method = method.unwrap_or_else(|| default_method(input));
-    let e = make_evaluator(input, method, model, shading, params, Precision::F64, surface_opts, report)?;
-    point(e.as_ref(), model, wi, wr, report)
+    let (e, rigorous) = map_evaluator(input, method, model, shading, params, Precision::F64, surface_opts, wi, report)?;
+    let mut p = point(e.as_ref(), model, wi, wr, report)?;
+    p.rigorous = rigorous;
+    if !is_table(input) && p.rigorous.is_none() {
+        // The scalar model's error on the scan's own period, where it has one (issue 28).
+        let source = Source::Spec(input.to_string());
+        match crate::rigorous_brdf::scalar_error_of_scan(&source, surface_opts, wi, model.material.as_deref(), report) {
+            Ok(Some(e)) => {
+                if e.error.above_threshold() {
+                    report.warn(&format!(
+                        "{}: above the {:.0} % (or ΔE00 {:.0}) at which the scalar numbers are not to be trusted; \
+                         `--method rigorous --unit-cell auto` gives Maxwell's",
+                        e.sentence(),
+                        100.0 * crate::grating::SCALAR_WARN_RELATIVE,
+                        crate::grating::SCALAR_WARN_DELTA_E
+                    ));
+                }
+                p.scalar_error = Some(e);
+            }
+            Ok(None) => {}
+            Err(err) => report.note(&format!("the scalar model's error on this scan could not be estimated: {err:#}")),
+        }
+    }
+    Ok(p)
 }
 
 /// ρ(λ) (on the model's wavelength grid) and XYZ of an evaluator for light `wi` and view `wr`.
@@ -280,5 +352,12 @@ pub fn point(
     let spectral = spectral_setup(model, report)?;
     let query = iridis_diffraction::point_query(e, spectral.wavelengths(), wi, wr)?;
     let effective_area_nm2 = e.radiometric_gain(1.0);
-    Ok(PointEval { method: e.name().to_string(), coherence_nm: e.coherence_nm(), effective_area_nm2, query })
+    Ok(PointEval {
+        method: e.name().to_string(),
+        coherence_nm: e.coherence_nm(),
+        effective_area_nm2,
+        query,
+        rigorous: None,
+        scalar_error: None,
+    })
 }

@@ -14,6 +14,9 @@ use serde_json::{json, Value};
 use crate::report::{with_progress, Report};
 use crate::surface::{Source, SurfaceOptions};
 
+/// The medium under the relief when none is given (`--material`): glass-like, `n = 1.5`.
+pub const DEFAULT_MATERIAL: &str = "n=1.5";
+
 /// The model behind the efficiencies.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum GratingMethod {
@@ -277,7 +280,7 @@ pub fn grating(
             (f, d)
         }
         (m, None) => {
-            let medium = m.as_deref().unwrap_or("n=1.5");
+            let medium = m.as_deref().unwrap_or(DEFAULT_MATERIAL);
             let metal = material_fresnel(medium, from, to)?;
             substrate = Some(metal.clone());
             (metal, format!("{medium} (exact Fresnel, s and p)"))
@@ -393,8 +396,79 @@ pub fn grating(
     })
 }
 
-/// The rigorous solutions at every wavelength (in parallel), the unit cell as a 1-D profile where it is one
-/// (along x, or along y by a rotation of the light by −90°) and as a crossed grating otherwise.
+/// A unit cell as the rigorous solver takes it: a 1-D profile where it is one (along x, or along y by a
+/// rotation of the light by −90°) and a crossed grating otherwise.
+#[derive(Debug, Clone)]
+pub struct RigorousCell {
+    shape: RigorousShape,
+}
+
+#[derive(Debug, Clone)]
+enum RigorousShape {
+    /// The profile, the rotation (rad) from the solver's frame to the cell's, and whether it runs along y.
+    OneD(iridis_rigorous::Profile1d, f64, bool),
+    TwoD(iridis_rigorous::Profile2d),
+}
+
+impl RigorousCell {
+    /// The solver's form of `patch` (its extent the periods; `lines` from [`UnitCell::lines`]).
+    pub fn new(patch: &iridis_diffraction::Patch, lines: Lines, report: &dyn Report) -> Self {
+        use iridis_rigorous::{Profile1d, Profile2d};
+        let (rows, cols) = (patch.rows, patch.cols);
+        let (lx, ly) = patch.extent();
+        let shape = match lines {
+            Lines::AlongX => {
+                RigorousShape::OneD(Profile1d { period_nm: lx, heights_nm: patch.heights[..cols].to_vec() }, 0.0, false)
+            }
+            // Columns all the same: the profile runs along y; in the solver's frame (profile along x) the
+            // light's azimuth is φ − 90°, and its orders (m, 0) are the surface's (0, m).
+            Lines::AlongY => RigorousShape::OneD(
+                Profile1d { period_nm: ly, heights_nm: (0..rows).map(|j| patch.heights[j * cols]).collect() },
+                std::f64::consts::FRAC_PI_2,
+                true,
+            ),
+            Lines::Crossed => {
+                if rows * cols > 64 * 64 {
+                    report.note(&format!(
+                        "a crossed grating of {cols}×{rows} samples: the C-method's cost grows as (2M+1)⁶ with the \
+                         orders M it needs; a 1-D unit cell (rows all the same) is far faster"
+                    ));
+                }
+                // Back to the readers' row order (row 0 at the top), as the solver takes it.
+                let heights = (0..rows).rev().flat_map(|j| patch.heights[j * cols..(j + 1) * cols].to_vec()).collect();
+                RigorousShape::TwoD(Profile2d { period_x_nm: lx, period_y_nm: ly, rows, cols, heights_nm: heights })
+            }
+        };
+        Self { shape }
+    }
+
+    /// The orders of light from `light` (unit vector, in the cell's frame) at one wavelength over a substrate
+    /// of complex index `index`, in the scalar model's terms (the cell's frame).
+    pub fn solve(&self, wavelength_nm: f64, light: Vec3, index: num_complex::Complex64) -> Result<OrdersAt> {
+        use iridis_rigorous::{solve_1d, solve_2d, Options, Problem};
+        let theta = light[2].clamp(-1.0, 1.0).acos();
+        let phi = light[1].atan2(light[0]);
+        let options = Options::default();
+        let r = match &self.shape {
+            RigorousShape::OneD(profile, rot, along_y) => {
+                let problem = Problem::new(wavelength_nm, theta, phi - rot, index);
+                solve_1d(profile, &problem, &options).map(|s| OrdersAt::rigorous(s, *rot, *along_y))
+            }
+            RigorousShape::TwoD(profile) => {
+                solve_2d(profile, &Problem::new(wavelength_nm, theta, phi, index), &options)
+                    .map(|s| OrdersAt::rigorous(s, 0.0, false))
+            }
+        };
+        r.map_err(|e| anyhow::anyhow!("the rigorous solver at {wavelength_nm} nm: {e}"))
+    }
+
+    /// Whether the solver sees a 1-D profile (a crossed grating costs far more).
+    pub fn is_one_d(&self) -> bool {
+        matches!(self.shape, RigorousShape::OneD(..))
+    }
+}
+
+/// The rigorous solutions at every wavelength (in parallel), the unit cell as [`RigorousCell`] takes it.
 fn rigorous(
     patch: &iridis_diffraction::Patch,
     lines: Lines,
@@ -403,55 +477,15 @@ fn rigorous(
     metal: &iridis_lab::laser::MetalFresnel,
     report: &dyn Report,
 ) -> Result<Vec<OrdersAt>> {
-    use iridis_rigorous::{solve_1d, solve_2d, Options, Problem, Profile1d, Profile2d};
-    let theta = light[2].clamp(-1.0, 1.0).acos();
-    let phi = light[1].atan2(light[0]);
-    let (rows, cols) = (patch.rows, patch.cols);
-    let (lx, ly) = patch.extent();
-    enum Shape {
-        OneD(Profile1d, f64, bool),
-        TwoD(Profile2d),
-    }
-    let shape = match lines {
-        Lines::AlongX => {
-            Shape::OneD(Profile1d { period_nm: lx, heights_nm: patch.heights[..cols].to_vec() }, 0.0, false)
-        }
-        // Columns all the same: the profile runs along y; in the solver's frame (profile along x) the light's
-        // azimuth is φ − 90°, and its orders (m, 0) are the surface's (0, m).
-        Lines::AlongY => Shape::OneD(
-            Profile1d { period_nm: ly, heights_nm: (0..rows).map(|j| patch.heights[j * cols]).collect() },
-            std::f64::consts::FRAC_PI_2,
-            true,
-        ),
-        Lines::Crossed => {
-            if rows * cols > 64 * 64 {
-                report.note(&format!(
-                    "a crossed grating of {cols}×{rows} samples: the C-method's cost grows as (2M+1)⁶ with the orders \
-                     M it needs; a 1-D unit cell (rows all the same) is far faster"
-                ));
-            }
-            // Back to the readers' row order (row 0 at the top), as the solver takes it.
-            let heights = (0..rows).rev().flat_map(|j| patch.heights[j * cols..(j + 1) * cols].to_vec()).collect();
-            Shape::TwoD(Profile2d { period_x_nm: lx, period_y_nm: ly, rows, cols, heights_nm: heights })
-        }
-    };
-    let options = Options::default();
+    let cell = RigorousCell::new(patch, lines, report);
     let done = std::sync::atomic::AtomicUsize::new(0);
     let solutions = with_progress(report, wavelengths_nm.len() as u64, "rigorous orders", |p| {
         wavelengths_nm
             .par_iter()
             .map(|&l| {
-                let index = metal.index(l);
-                let r = match &shape {
-                    Shape::OneD(profile, rot, along_y) => {
-                        let problem = Problem::new(l, theta, phi - rot, index);
-                        solve_1d(profile, &problem, &options).map(|s| OrdersAt::rigorous(s, *rot, *along_y))
-                    }
-                    Shape::TwoD(profile) => solve_2d(profile, &Problem::new(l, theta, phi, index), &options)
-                        .map(|s| OrdersAt::rigorous(s, 0.0, false)),
-                };
+                let r = cell.solve(l, light, metal.index(l));
                 p(done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1);
-                r.map_err(|e| anyhow::anyhow!("the rigorous solver at {l} nm: {e}"))
+                r
             })
             .collect::<Result<Vec<_>>>()
     })?;
@@ -657,6 +691,13 @@ pub struct ScalarError {
 /// The efficiencies below which an order is not compared relatively (its absolute error is below `floor`).
 pub const COMPARE_FLOOR: f64 = 1e-3;
 
+/// Above this worst relative error of an order's efficiency (unpolarised), or above [`SCALAR_WARN_DELTA_E`]
+/// in the colour of the diffracted light, the front ends warn that the scalar model's numbers are not to be
+/// trusted on the structure (`iridis report`, `brdf eval`).
+pub const SCALAR_WARN_RELATIVE: f64 = 0.2;
+/// CIEDE2000 of the diffracted light's colour above which the front ends warn ([`SCALAR_WARN_RELATIVE`]).
+pub const SCALAR_WARN_DELTA_E: f64 = 2.0;
+
 /// Compares the scalar and rigorous answers of the same unit cell and light.
 pub fn scalar_error(scalar: &Grating, rigorous: &Grating) -> ScalarError {
     let rel = |a: f64, b: f64| if b > COMPARE_FLOOR { (a - b).abs() / b } else { 0.0 };
@@ -698,6 +739,13 @@ pub fn scalar_error(scalar: &Grating, rigorous: &Grating) -> ScalarError {
 }
 
 impl ScalarError {
+    /// Whether the scalar model is off by more than the front ends' threshold ([`SCALAR_WARN_RELATIVE`],
+    /// [`SCALAR_WARN_DELTA_E`]).
+    pub fn above_threshold(&self) -> bool {
+        self.worst.unpolarized > SCALAR_WARN_RELATIVE
+            || self.delta_e_diffracted.is_some_and(|d| d > SCALAR_WARN_DELTA_E)
+    }
+
     /// What `iridis grating --compare --json` prints (keys in docs/json.md).
     pub fn to_json(&self, scalar: &Grating, rigorous: &Grating) -> Value {
         let e = |x: Efficiency| json!({"te": x.te, "tm": x.tm, "unpolarized": x.unpolarized});

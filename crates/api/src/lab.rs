@@ -180,6 +180,10 @@ pub struct Testbench {
     pub setup: BenchSetup,
     pub matrix: ReflectanceMatrix,
     pub result: BenchResult,
+    /// The SURFACE's extent along the measured direction (nm): what the period is known to.
+    pub extent_nm: f64,
+    /// The rigorous method's assumptions and convergence (`--method rigorous`).
+    pub rigorous: Option<crate::rigorous_brdf::RigorousSummary>,
 }
 
 /// The test bench (paper sec. 6.1) of `method` on SURFACE: `setup.period_hint_nm`, when set, centres the
@@ -202,19 +206,7 @@ pub fn testbench(
     let mut config = m.config()?;
     let patch = source.patch(&m.surface, report)?;
     if along_dominant {
-        match crate::surface::dominant_period(&patch) {
-            Some(p) => {
-                // The orientation only: the analysis' period may be a harmonic where the fundamental has too few
-                // cycles in the patch, and the bench finds its own first order.
-                setup.azimuth = p.orientation_deg.to_radians();
-                report.note(&format!(
-                    "measuring along azimuth {:.1}°, the orientation of the surface's strongest period ({:.1} nm); \
-                     --azimuth chooses another",
-                    p.orientation_deg, p.period_nm,
-                ));
-            }
-            None => report.note("the surface has no dominant period: measuring along azimuth 0° (x)"),
-        }
+        measure_along_dominant(&patch, &mut setup, report);
     }
     if let Some(p) = setup.period_hint_nm {
         // NMM and Stam's lattice take the period along the measured direction.
@@ -234,11 +226,94 @@ pub fn testbench(
         b.config.band = iridis_diffraction::taylor::Band::light(setup.light(), lambda_min, margin);
     }
     let extent = b.patch.extent_along(setup.azimuth);
-    setup.max_period_nm =
+    let max_period =
         max_period_nm.unwrap_or((b.config.coherence_nm * std::f64::consts::FRAC_PI_4).min(10_000.0).min(0.5 * extent));
     let e = evaluator(&b, method, report)?;
+    bench_on(b, e.as_ref(), setup, extent, max_period, report)
+}
+
+/// Measures along the orientation of the surface's strongest period (what `iridis surface info` finds).
+fn measure_along_dominant(patch: &iridis_diffraction::Patch, setup: &mut BenchSetup, report: &dyn Report) {
+    match crate::surface::dominant_period(patch) {
+        Some(p) => {
+            // The orientation only: the analysis' period may be a harmonic where the fundamental has too few
+            // cycles in the patch, and the bench finds its own first order.
+            setup.azimuth = p.orientation_deg.to_radians();
+            report.note(&format!(
+                "measuring along azimuth {:.1}°, the orientation of the surface's strongest period ({:.1} nm); \
+                 --azimuth chooses another",
+                p.orientation_deg, p.period_nm,
+            ));
+        }
+        None => report.note("the surface has no dominant period: measuring along azimuth 0° (x)"),
+    }
+}
+
+/// The test bench of `--method rigorous` (docs/PHYSICS.md, "The rigorous BRDF"): the lobes of the unit cell's
+/// periodic extension carrying Maxwell's efficiencies; the cell is SURFACE itself or, with `--unit-cell auto`,
+/// its dominant period averaged along the ridges (`rigorous`: `material`, `unit_cell_auto`; the wavelengths
+/// must lie in 380–780 nm). The period is then the cell's, known to half a DFT step of the SURFACE it came
+/// from; `max_period_nm` defaults to 1.05 × the cell's period along the measured direction.
+pub fn testbench_rigorous(
+    source: &Source,
+    m: &LabOptions,
+    rigorous: &crate::ModelOptions,
+    mut setup: BenchSetup,
+    along_dominant: bool,
+    max_period_nm: Option<f64>,
+    report: &dyn Report,
+) -> Result<Testbench> {
+    let (lo, hi) = setup.wavelengths_nm.iter().fold((f64::INFINITY, 0.0f64), |(a, b), &l| (a.min(l), b.max(l)));
+    if lo < 380.0 - 1e-9 || hi > 780.0 + 1e-9 {
+        bail!("the rigorous test bench runs on 380–780 nm (its window's spectral grid); --from/--to give {lo:.0}–{hi:.0} nm");
+    }
+    let patch = source.patch(&m.surface, report)?;
+    if along_dominant {
+        measure_along_dominant(&patch, &mut setup, report);
+    }
+    let name = source.name().to_string();
+    let scan = Source::Patch { patch, name: name.clone() };
+    let cell = crate::rigorous_brdf::unit_cell(&scan, &m.surface, rigorous.unit_cell_auto, lo, report)?;
+    let config = m.config()?;
+    let cell_source = Source::Patch { patch: cell.patch.clone(), name: format!("{name} (unit cell)") };
+    let b = workbench_from(&cell_source, m, config, report)?;
+    // The bench's wavelengths on the window's spectral grid: one solve each.
+    let step = setup.wavelengths_nm.windows(2).map(|w| w[1] - w[0]).next().unwrap_or(5.0);
+    let model = crate::ModelOptions {
+        terms: m.terms.clone(),
+        coherence_nm: Some(b.config.coherence_nm),
+        step_nm: Some(step),
+        ..rigorous.clone()
+    };
+    // Quiet: the workbench said the window and the cell already; the solves report below.
+    let e = crate::rigorous_brdf::RigorousBrdf::new(cell, rigorous.material.as_deref(), &model, &crate::report::Quiet)?;
+    e.prepare(setup.light(), report)?;
+    let (lx, ly) = e.cell().patch.extent();
+    let along = (setup.azimuth - e.cell().rotation_rad()).rem_euclid(std::f64::consts::PI);
+    // The cell's period along the measured direction (an averaged cell's grating vector runs along x).
+    let period = if along.cos().abs() >= along.sin().abs() { lx / along.cos().abs() } else { ly / along.sin().abs() };
+    let max_period = max_period_nm.unwrap_or(1.05 * period);
+    let extent = e.cell().scan_extent_nm;
+    let mut t = bench_on(b, &e, setup, extent, max_period, report)?;
+    t.rigorous = Some(e.summary());
+    if let Some(err) = e.failures().first() {
+        bail!("the rigorous solver failed: {err}");
+    }
+    Ok(t)
+}
+
+/// The bench's reflectance matrix by `e` and what is read off it, with the warnings.
+fn bench_on(
+    b: Workbench,
+    e: &dyn Evaluator,
+    mut setup: BenchSetup,
+    extent: f64,
+    max_period_nm: f64,
+    report: &dyn Report,
+) -> Result<Testbench> {
+    setup.max_period_nm = max_period_nm;
     let matrix = with_progress(report, setup.wavelengths_nm.len() as u64, "test bench", |p| {
-        bench::reflectance_matrix(e.as_ref(), &setup, p)
+        bench::reflectance_matrix(e, &setup, p)
     })?;
     let result = bench::analyse(&matrix, &setup)?.on_patch(extent, b.config.coherence_nm);
     let azimuth_deg = setup.azimuth.to_degrees();
@@ -260,7 +335,7 @@ pub fn testbench(
             100.0 * bench::DEFINITE_SPREAD,
         ));
     }
-    Ok(Testbench { workbench: b, setup, matrix, result })
+    Ok(Testbench { workbench: b, setup, matrix, result, extent_nm: extent, rigorous: None })
 }
 
 // ---------------------------------------------------------------------------------------------------------

@@ -10,6 +10,8 @@
 //!   checked against the options;
 //! * [`fresnel`]: the Fresnel factor from its text form (`schlick:1.5`, `index:0.2+3.4i`, `gold`, `stack:…`);
 //! * [`brdf`]: evaluators for a method on a SURFACE or TABLE, BRDF maps, point queries (`brdf eval`);
+//! * [`rigorous_brdf`]: the rigorous BRDF of a periodic surface (the scalar lobes carrying Maxwell's
+//!   efficiencies), its unit cell and assumptions;
 //! * [`lab`]: the workbench, the test bench with its warnings, comparisons, the laser experiment's inputs;
 //! * [`rough`]: films on rough substrates (LSRS): options, spectra, colours, the chart's bands;
 //! * [`gpu`]: scenes and lookup maps on the GPU;
@@ -31,6 +33,7 @@ pub mod grating_bench;
 pub mod lab;
 pub mod model;
 pub mod report;
+pub mod rigorous_brdf;
 pub mod rough;
 pub mod surface;
 pub mod unit_cell;

@@ -30,13 +30,19 @@ pub struct ModelOptions {
     /// Wavelength step of the spectral integral (nm); default 5.
     pub step_nm: Option<f64>,
     /// Scale each lobe by its order's factor in the energy-normalised channel matrix, so that the BRDF
-    /// returns no more light than it receives (`iridis_diffraction::grating::EnergyNormalised`; reference and
+    /// returns no more light than it receives (`iridis_diffraction::grating::LobeScaled::energy_normalised`; reference and
     /// ground truths).
     pub conserve_energy: bool,
     /// The one light direction the evaluator will be asked about (a BRDF map's incidence): the reference
     /// method's Taylor terms then keep only the DFT bins that light's lobes read (a twentieth of a 50 nm
     /// scan's; other light would read zeros). `None`: any light.
     pub light: Option<[f64; 3]>,
+    /// The medium under the relief for the rigorous method (a stack's medium: `gold`, `keratin`, `n=1.5`, …;
+    /// default [`crate::grating::DEFAULT_MATERIAL`]).
+    pub material: Option<String>,
+    /// Take a scan's dominant period, its profile averaged along the ridges, as the unit cell
+    /// ([`crate::grating::averaged_unit_cell`]) instead of the whole patch (the rigorous method).
+    pub unit_cell_auto: bool,
 }
 
 impl Default for ModelOptions {
@@ -49,6 +55,8 @@ impl Default for ModelOptions {
             step_nm: None,
             conserve_energy: false,
             light: None,
+            material: None,
+            unit_cell_auto: false,
         }
     }
 }

@@ -89,3 +89,57 @@ pub struct UnitFlags {
     #[arg(long)]
     pub as_height: bool,
 }
+
+/// The rigorous method's options, flattened into `brdf eval`, `brdf-map` and `testbench`.
+#[derive(Debug, Clone, clap::Args)]
+pub struct RigorousOpts {
+    /// With --method rigorous: the medium under the relief, a library name (gold, keratin, …), n=1.5,
+    /// n=0.2+3.4i or file:PATH [default: n=1.5]. `brdf eval`'s scalar methods estimate their error on a scan
+    /// over it [default there: keratin].
+    #[arg(long)]
+    pub material: Option<String>,
+    /// With --method rigorous: the unit cell, whole (SURFACE is one period of the grating) or auto (a scan's
+    /// strongest period, its profile averaged along the ridges: a 1-D grating at that orientation).
+    #[arg(long, value_name = "whole|auto", default_value = "whole")]
+    pub unit_cell: String,
+}
+
+impl RigorousOpts {
+    /// Whether `--unit-cell auto` was given.
+    pub fn auto(&self) -> anyhow::Result<bool> {
+        match self.unit_cell.trim() {
+            "auto" => Ok(true),
+            "whole" => Ok(false),
+            other => anyhow::bail!("--unit-cell '{other}': expected whole (the patch) or auto (the dominant period)"),
+        }
+    }
+
+    /// Puts the options into the facade's model options, refusing what the method cannot use: a Fresnel
+    /// factor (`fresnel`, `paper`: the convention) with the rigorous method, which needs the material.
+    pub fn apply(
+        &self,
+        method: &str,
+        fresnel: &str,
+        paper: bool,
+        model: &mut iridis_api::ModelOptions,
+    ) -> anyhow::Result<()> {
+        let rigorous = method == iridis_api::brdf::RIGOROUS;
+        if rigorous && fresnel.trim() != DEFAULT_FRESNEL {
+            anyhow::bail!(
+                "the rigorous method needs the medium under the relief (--material gold, keratin, n=1.5, …), not a \
+                 Fresnel factor (--fresnel {fresnel})"
+            );
+        }
+        if rigorous && paper {
+            anyhow::bail!(
+                "--fresnel-convention paper is the scalar model's R² as printed; the rigorous method has none"
+            );
+        }
+        model.material = self.material.clone();
+        model.unit_cell_auto = self.auto()?;
+        Ok(())
+    }
+}
+
+/// The `--fresnel` of the scalar methods when none is given.
+pub const DEFAULT_FRESNEL: &str = "schlick:1.5";

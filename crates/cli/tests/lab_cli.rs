@@ -39,6 +39,28 @@ fn testbench_reads_a_sine_grating_period() {
     assert!(image::open(&plot).is_ok(), "plot is not a readable image");
 }
 
+/// The rigorous test bench (the averaged unit cell's orders carrying Maxwell's efficiencies) finds the sine's
+/// period as the scalar bench does: both from the grating equation, which holds for any model of the orders.
+#[test]
+fn rigorous_testbench_reads_the_sine_period_as_the_scalar_one() {
+    let bench = |method: &str| {
+        // 65 nm pixels on the 1100 nm period: 220 phases, so every bin of the averaged profile is filled.
+        let mut args = vec!["testbench", "builtin:sine?size=13um&pixel=65nm", "--method", method, "--coherence", "8um"];
+        args.extend(["--from", "450nm", "--to", "650nm", "--step", "50nm", "--angle-step", "0.1deg", "--json"]);
+        if method == "rigorous" {
+            args.extend(["--unit-cell", "auto"]);
+        }
+        json_of(&args)
+    };
+    let (r, k) = (bench("rigorous"), bench("reference"));
+    let (a, b) = (r["periodicity_nm"]["mean"].as_f64().unwrap(), k["periodicity_nm"]["mean"].as_f64().unwrap());
+    assert!((a - 1100.0).abs() < 0.01 * 1100.0 && (a - b).abs() < 0.01 * 1100.0, "rigorous {a} nm, scalar {b} nm");
+    assert_eq!(r["peaks"].as_array().unwrap().len(), 5, "{r}");
+    assert_eq!(r["method"], "rigorous");
+    assert!(r["rigorous"]["unit_cell"].as_str().unwrap().contains("averaged"), "{}", r["rigorous"]);
+    assert!(k["rigorous"].is_null());
+}
+
 /// `compare` reports every method at every exposure, and the reference sits far closer to the ground truth
 /// than Stam's Gaussian model on a snake-like surface (the paper's Table 2 ordering).
 #[test]

@@ -46,6 +46,12 @@ pub trait Evaluator: Send + Sync {
     fn coherence_nm(&self) -> Option<f64> {
         None
     }
+    /// How the unpolarised BRDF divides between s (TE) and p (TM) incident light, `[f_s/f, f_p/f]` (mean 1),
+    /// where the method knows it itself (a rigorous BRDF's orders). `None`: the shading's Fresnel factor at
+    /// the half-vector angle says ([`crate::point`]).
+    fn polarisation(&self, _wavelength_nm: f64, _wi: Vec3, _wr: Vec3) -> Option<[f64; 2]> {
+        None
+    }
 }
 
 /// The thesis' reference shader (FLSS, Algorithm 3): at each λ of a uniform grid, the windowed DFT of every

@@ -137,7 +137,7 @@ pub struct GratingAnswer {
 
 /// One row of a unit cell's channel matrix (light from one direction at one wavelength) with its
 /// normalisation: what [`UnitCell::efficiencies`] turns into orders, and what makes a continuous evaluator's
-/// lobes energy-conserving ([`EnergyNormalised`]).
+/// lobes energy-conserving ([`LobeScaled`]).
 #[derive(Debug, Clone)]
 pub struct ChannelRow {
     pub wavelength_nm: f64,
@@ -157,20 +157,43 @@ pub struct ChannelRow {
 }
 
 impl ChannelRow {
-    /// The normalisation factor of the channel nearest the exit direction `wr` (a lobe's continuous
-    /// directions take the factor of the order they surround); 1 where no propagating channel is near.
-    pub fn factor_towards(&self, wr: Vec3) -> f64 {
+    /// The index of the exit channel nearest the direction `wr` (the order whose lobe `wr` lies in), where a
+    /// propagating channel is near.
+    pub fn towards(&self, wr: Vec3) -> Option<usize> {
         // Exit channel h leaves along −(ω_i,xy + h·g).
         let m = ((-wr[0] - self.wi[0]) / self.gx).round() as i64;
         let n = if self.gy.is_finite() && self.gy > 0.0 { ((-wr[1] - self.wi[1]) / self.gy).round() as i64 } else { 0 };
         match self.channels.binary_search_by(|&(cm, cn)| (cm, cn).cmp(&(m, n))) {
-            Ok(b) => self.factor[b],
+            Ok(b) => Some(b),
             // A 1-D cell's channels keep n = 0 only.
-            Err(_) => match self.channels.binary_search_by(|&(cm, cn)| (cm, cn).cmp(&(m, 0))) {
-                Ok(b) => self.factor[b],
-                Err(_) => 1.0,
-            },
+            Err(_) => self.channels.binary_search_by(|&(cm, cn)| (cm, cn).cmp(&(m, 0))).ok(),
         }
+    }
+
+    /// The normalisation factor of the channel nearest the exit direction `wr` (a lobe's continuous
+    /// directions take the factor of the order they surround); 1 where no propagating channel is near.
+    pub fn factor_towards(&self, wr: Vec3) -> f64 {
+        self.towards(wr).map_or(1.0, |b| self.factor[b])
+    }
+
+    /// The number of propagating channels.
+    pub fn len(&self) -> usize {
+        self.channels.len()
+    }
+
+    /// Whether no channel propagates (never: the light's own channel always does).
+    pub fn is_empty(&self) -> bool {
+        self.channels.is_empty()
+    }
+
+    /// The unit vector along which exit channel `b` leaves (its order's direction, the lobe's centre).
+    pub fn exit(&self, b: usize) -> Vec3 {
+        [-self.xy[b][0], -self.xy[b][1], self.cos[b]]
+    }
+
+    /// The order `(m, n)` of exit channel `b` in the convention of [`OrderEfficiency`].
+    pub fn order(&self, b: usize) -> (i64, i64) {
+        (-self.channels[b].0, -self.channels[b].1)
     }
 }
 
@@ -183,6 +206,22 @@ pub enum Lines {
     AlongY,
     /// A crossed (2-D) grating.
     Crossed,
+}
+
+impl Lines {
+    /// Which axes of `patch` carry structure: rows all the same make a 1-D grating along x, columns all the
+    /// same one along y.
+    pub fn of(patch: &Patch) -> Lines {
+        let rows_same =
+            (1..patch.rows).all(|j| patch.heights[j * patch.cols..(j + 1) * patch.cols] == patch.heights[..patch.cols]);
+        let cols_same = (0..patch.rows)
+            .all(|j| patch.heights[j * patch.cols..(j + 1) * patch.cols].windows(2).all(|w| w[0] == w[1]));
+        match (rows_same, cols_same) {
+            (true, false) => Lines::AlongX,
+            (false, true) => Lines::AlongY,
+            _ => Lines::Crossed,
+        }
+    }
 }
 
 /// A height field taken as one unit cell of a grating, with the Taylor terms of its phase factor.
@@ -438,63 +477,151 @@ fn channels(lines: Lines, (lx, ly): (f64, f64), wi: Vec3, wavelength_nm: f64) ->
     out
 }
 
-/// A continuous evaluator (reference, ground truth) whose BRDF conserves energy: each lobe, which surrounds an
-/// order of the patch taken as a unit cell, is scaled by that order's factor in the energy-normalised channel
-/// matrix ([`UnitCell::row`] with [`Normalisation::Energy`]): the lobes of a perfect reflector then return the
-/// light within the lobe-versus-order accuracy, at every incidence, where Kirchhoff's obliquity factor as
-/// printed returned up to twice it at grazing light (docs/PHYSICS.md, "Order efficiencies"). The scaling is
-/// reciprocal where the full Sinkhorn scaling runs (up to [`MAX_SINKHORN_CHANNELS`] channels); above, each
-/// light's row alone is scaled (energy exact, reciprocity approximate). The relative `ρ` of the lookup method
-/// integrates over λ in advance and cannot take a per-λ factor; it is not wrapped.
-pub struct EnergyNormalised {
+/// What each diffraction lobe of a continuous evaluator should carry: for light from `ω_i` at `λ`, a factor per
+/// propagating order of the unit cell that scales the order's Kirchhoff lobe (the window-shaped lobe of the
+/// patch's periodic extension, which carries `η_G` of [`UnitCell::efficiencies`] with [`Normalisation::Kirchhoff`]),
+/// so that the lobe carries the provider's target energy instead. Two providers: [`SinkhornEnergy`] (the
+/// energy-normalised channel matrix) and the rigorous efficiencies of Maxwell's equations (`iridis-api`, which
+/// may depend on `iridis-rigorous`).
+pub trait LobeEnergy: Send + Sync {
+    /// Short name: `energy` or `rigorous`.
+    fn name(&self) -> &'static str;
+    /// The row of `cell`'s channels for light from `wi` at `wavelength_nm`, its `factor` the scale of each exit
+    /// channel's lobe, with the TE and TM shares of each lobe where the provider knows them.
+    fn scale(&self, cell: &UnitCell, wavelength_nm: f64, wi: Vec3) -> Result<ScaledRow, DiffractionError>;
+}
+
+/// A row of lobe factors ([`LobeEnergy::scale`]).
+#[derive(Debug, Clone)]
+pub struct ScaledRow {
+    /// The channels, Kirchhoff's raw entries and the lobe factors (`row.factor`).
+    pub row: ChannelRow,
+    /// Per exit channel, `[η_TE/η, η_TM/η]` of its order (mean 1): how the lobe's unpolarised energy divides
+    /// between TE (s) and TM (p) incident light. `None`: as the inner evaluator's Fresnel factor says.
+    pub shares: Option<Vec<[f64; 2]>>,
+}
+
+/// The energy-normalised channel matrix as the lobes' target ([`UnitCell::row`] with [`Normalisation::Energy`]).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct SinkhornEnergy;
+
+impl LobeEnergy for SinkhornEnergy {
+    fn name(&self) -> &'static str {
+        "energy"
+    }
+    fn scale(&self, cell: &UnitCell, wavelength_nm: f64, wi: Vec3) -> Result<ScaledRow, DiffractionError> {
+        Ok(ScaledRow { row: cell.row(wi, wavelength_nm, Normalisation::Energy)?, shares: None })
+    }
+}
+
+/// A continuous evaluator (reference, ground truth) whose lobes carry the energy a [`LobeEnergy`] gives: each
+/// lobe, which surrounds an order of the patch taken as a unit cell, is scaled by that order's factor.
+///
+/// With [`SinkhornEnergy`] (the energy-normalised BRDF, [`LobeScaled::energy_normalised`]) the lobes of a
+/// perfect reflector return the light within the lobe-versus-order accuracy, at every incidence, where
+/// Kirchhoff's obliquity factor as printed returned up to twice it at grazing light (docs/PHYSICS.md, "Order
+/// efficiencies"). The scaling is reciprocal where the full Sinkhorn scaling runs (up to
+/// [`MAX_SINKHORN_CHANNELS`] channels); above, each light's row alone is scaled (energy exact, reciprocity
+/// approximate). With rigorous efficiencies as the target, the lobes' shape is the light's window and their
+/// energy Maxwell's (docs/PHYSICS.md, "The rigorous BRDF"). The relative `ρ` of the lookup method integrates
+/// over λ in advance and cannot take a per-λ factor; it is not wrapped.
+pub struct LobeScaled {
     inner: Box<dyn crate::Evaluator>,
     cell: UnitCell,
     spectral: crate::SpectralSetup,
-    rows: std::sync::RwLock<std::collections::HashMap<[u64; 4], std::sync::Arc<ChannelRow>>>,
+    energy: std::sync::Arc<dyn LobeEnergy>,
+    rows: std::sync::RwLock<std::collections::HashMap<[u64; 4], std::sync::Arc<ScaledRow>>>,
 }
 
-impl std::fmt::Debug for EnergyNormalised {
+impl std::fmt::Debug for LobeScaled {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("EnergyNormalised")
+        f.debug_struct("LobeScaled")
             .field("inner", &self.inner.name())
+            .field("energy", &self.energy.name())
             .field("cell", &self.cell.periods())
             .finish()
     }
 }
 
-impl EnergyNormalised {
-    /// Wraps `inner`, an evaluator with a spectral reflectance, of the height field `patch`; `spectral` is the
-    /// wavelength grid and colour weights its colours integrate over.
+impl LobeScaled {
+    /// Wraps `inner`, an evaluator with a spectral reflectance, of the height field `patch` (one unit cell of
+    /// its periodic extension); `spectral` is the wavelength grid and colour weights its colours integrate
+    /// over; `energy` says what each lobe carries.
     pub fn new(
         inner: Box<dyn crate::Evaluator>,
         patch: &Patch,
         spectral: crate::SpectralSetup,
+        energy: std::sync::Arc<dyn LobeEnergy>,
     ) -> Result<Self, DiffractionError> {
         let lambda_min = spectral.wavelengths().first().copied().unwrap_or(380.0);
         if inner.reflectance(lambda_min, [0.0, 0.0, 1.0], [0.0, 0.0, 1.0]).is_none() {
             return Err(DiffractionError::Invalid(format!(
                 "the {} method integrates over wavelength in advance: its lobes cannot take a factor per wavelength; \
-                 use reference or ground-truth for energy-normalised BRDFs",
+                 use reference or ground-truth for energy-normalised or rigorous BRDFs",
                 inner.name()
             )));
         }
         let cell = UnitCell::new(patch, lambda_min)?;
-        Ok(Self { inner, cell, spectral, rows: Default::default() })
+        Ok(Self { inner, cell, spectral, energy, rows: Default::default() })
     }
 
-    /// The row of light from `wi` at `λ`, computed once.
-    fn row(&self, wavelength_nm: f64, wi: Vec3) -> Option<std::sync::Arc<ChannelRow>> {
-        let key = [wavelength_nm.to_bits(), wi[0].to_bits(), wi[1].to_bits(), wi[2].to_bits()];
+    /// The energy-normalised BRDF: `inner`'s lobes scaled by the Sinkhorn factors of `patch`'s channel matrix.
+    pub fn energy_normalised(
+        inner: Box<dyn crate::Evaluator>,
+        patch: &Patch,
+        spectral: crate::SpectralSetup,
+    ) -> Result<Self, DiffractionError> {
+        Self::new(inner, patch, spectral, std::sync::Arc::new(SinkhornEnergy))
+    }
+
+    /// The unit cell whose orders the lobes surround.
+    pub fn cell(&self) -> &UnitCell {
+        &self.cell
+    }
+
+    fn key(wavelength_nm: f64, wi: Vec3) -> [u64; 4] {
+        [wavelength_nm.to_bits(), wi[0].to_bits(), wi[1].to_bits(), wi[2].to_bits()]
+    }
+
+    /// Computes the lobe factors of light from `wi` at every wavelength of the spectral grid, in parallel,
+    /// before many views ask for them (a rigorous provider solves Maxwell's equations once per wavelength):
+    /// `progress(done)` of [`LobeScaled::preparation_steps`]. Views of other lights compute theirs when asked.
+    pub fn prepare(&self, wi: Vec3, progress: &(dyn Fn(usize) + Sync)) -> Result<(), DiffractionError> {
+        let done = std::sync::atomic::AtomicUsize::new(0);
+        let rows: Vec<([u64; 4], ScaledRow)> = self
+            .spectral
+            .wavelengths()
+            .par_iter()
+            .map(|&l| {
+                let r = self.energy.scale(&self.cell, l, wi).map(|r| (Self::key(l, wi), r));
+                progress(done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1);
+                r
+            })
+            .collect::<Result<_, _>>()?;
+        if let Ok(mut map) = self.rows.write() {
+            map.extend(rows.into_iter().map(|(k, r)| (k, std::sync::Arc::new(r))));
+        }
+        Ok(())
+    }
+
+    /// The steps of [`LobeScaled::prepare`]: one per wavelength.
+    pub fn preparation_steps(&self) -> usize {
+        self.spectral.wavelengths().len()
+    }
+
+    /// The factors of light from `wi` at `λ`, computed once.
+    fn row(&self, wavelength_nm: f64, wi: Vec3) -> Option<std::sync::Arc<ScaledRow>> {
+        let key = Self::key(wavelength_nm, wi);
         if let Some(r) = self.rows.read().ok()?.get(&key) {
             return Some(r.clone());
         }
-        let r = std::sync::Arc::new(self.cell.row(wi, wavelength_nm, Normalisation::Energy).ok()?);
+        let r = std::sync::Arc::new(self.energy.scale(&self.cell, wavelength_nm, wi).ok()?);
         self.rows.write().ok()?.insert(key, r.clone());
         Some(r)
     }
 }
 
-impl crate::Evaluator for EnergyNormalised {
+impl crate::Evaluator for LobeScaled {
     fn name(&self) -> &'static str {
         self.inner.name()
     }
@@ -503,7 +630,7 @@ impl crate::Evaluator for EnergyNormalised {
         if rho == 0.0 {
             return Some(0.0);
         }
-        Some(rho * self.row(wavelength_nm, wi).map_or(1.0, |r| r.factor_towards(wr)))
+        Some(rho * self.row(wavelength_nm, wi).map_or(1.0, |r| r.row.factor_towards(wr)))
     }
     fn xyz(&self, wi: Vec3, wr: Vec3) -> iridis_color::Xyz {
         if wi[2] <= 0.0 || wr[2] <= 0.0 {
@@ -526,6 +653,13 @@ impl crate::Evaluator for EnergyNormalised {
     }
     fn coherence_nm(&self) -> Option<f64> {
         self.inner.coherence_nm()
+    }
+    fn polarisation(&self, wavelength_nm: f64, wi: Vec3, wr: Vec3) -> Option<[f64; 2]> {
+        let r = self.row(wavelength_nm, wi);
+        match r.as_ref().and_then(|r| Some((r.row.towards(wr)?, r.shares.as_ref()?))) {
+            Some((b, shares)) => Some(shares[b]),
+            None => self.inner.polarisation(wavelength_nm, wi, wr),
+        }
     }
 }
 
@@ -700,7 +834,7 @@ mod tests {
         let raw = crate::Reference { terms, shading, spectral: spectral.clone() };
         let wi = direction(75f64.to_radians(), 0.0);
         let before = hemispherical(&raw, wi, 500.0, 400);
-        let e = EnergyNormalised::new(Box::new(raw), &patch, spectral).unwrap();
+        let e = LobeScaled::energy_normalised(Box::new(raw), &patch, spectral).unwrap();
         let after = hemispherical(&e, wi, 500.0, 400);
         eprintln!("75°, 500 nm: Kirchhoff's lobes return {before:.4}, normalised {after:.4}");
         assert!(before > 1.5, "{before}");

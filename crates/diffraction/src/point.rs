@@ -5,7 +5,9 @@
 //! `f_r = R₀ ρ G(λ) / cos θ_i` with `G = A_eff/λ²` the window's gain ([`Evaluator::radiometric_gain`],
 //! docs/PHYSICS.md "Units of ρ"), i.e. `f_r = R(θ_h) (1 + ω_i·ω_r)² |A|² G / (w² cos θ_i cos θ_r)` (times the
 //! shadowing term), symmetric in `ω_i, ω_r`; per polarisation `R` is `R_s` or `R_p` at the half-vector angle
-//! (the scalar model reflects each polarisation as the facet does, without converting one into the other).
+//! (the scalar model reflects each polarisation as the facet does, without converting one into the other),
+//! unless the evaluator divides its `f_r` itself ([`Evaluator::polarisation`]: a rigorous BRDF's TE and TM
+//! efficiencies).
 
 use iridis_color::Xyz;
 
@@ -80,9 +82,18 @@ fn brdf(e: &dyn Evaluator, wavelengths_nm: &[f64], rho: &[f64], wi: Vec3, wr: Ve
     let (mut s, mut p, mut u) = (Vec::new(), Vec::new(), Vec::new());
     for (&l, &rho) in wavelengths_nm.iter().zip(rho) {
         let f = r0 * rho * e.radiometric_gain(l)? / wi[2];
-        let r = shading.fresnel.reflectance(l, cos_h);
-        let [rs, rp] = shading.fresnel.reflectance_sp(l, cos_h);
-        let (fs, fp) = if r > 0.0 { (f * rs / r, f * rp / r) } else { (0.0, 0.0) };
+        let (fs, fp) = match e.polarisation(l, wi, wr) {
+            Some([s, p]) => (f * s, f * p),
+            None => {
+                let r = shading.fresnel.reflectance(l, cos_h);
+                let [rs, rp] = shading.fresnel.reflectance_sp(l, cos_h);
+                if r > 0.0 {
+                    (f * rs / r, f * rp / r)
+                } else {
+                    (0.0, 0.0)
+                }
+            }
+        };
         s.push(fs);
         p.push(fp);
         u.push(0.5 * (fs + fp));

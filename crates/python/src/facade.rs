@@ -151,7 +151,8 @@ impl<'py> Options<'py> {
         })
     }
 
-    /// The model: `terms` (None: from the remainder bound), `coherence_nm`, `illuminant`, `observer`, `step_nm`.
+    /// The model: `terms` (None: from the remainder bound), `coherence_nm`, `illuminant`, `observer`, `step_nm`,
+    /// and for `method="rigorous"` `material` and `unit_cell`.
     pub fn model(&mut self) -> PyResult<iridis_api::ModelOptions> {
         Ok(iridis_api::ModelOptions {
             terms: self.usize("terms")?.map(|n| n.to_string()).unwrap_or_else(|| "auto".into()),
@@ -161,6 +162,17 @@ impl<'py> Options<'py> {
             step_nm: self.positive("step_nm")?,
             conserve_energy: self.bool("conserve_energy")?.unwrap_or(false),
             light: None,
+            // method="rigorous": the medium under the relief and the unit cell ("whole" or "auto").
+            material: self.string("material")?,
+            unit_cell_auto: match self.string("unit_cell")?.as_deref() {
+                None | Some("whole") => false,
+                Some("auto") => true,
+                Some(other) => {
+                    return Err(PyValueError::new_err(format!(
+                        "unit_cell '{other}': expected 'whole' (the patch) or 'auto' (the dominant period)"
+                    )))
+                }
+            },
         })
     }
 

@@ -5,7 +5,7 @@ use std::sync::Arc;
 
 use anyhow::{bail, Context, Result};
 use clap::Args as ClapArgs;
-use iridis_api::brdf::{eval_point, make_evaluator, render_map};
+use iridis_api::brdf::{eval_point, map_evaluator, render_map};
 use iridis_api::model::{build_table, is_table, spectral_setup, taylor_terms};
 use iridis_api::surface::load_patch;
 use iridis_api::{ModelOptions, SurfaceOptions};
@@ -14,7 +14,7 @@ use iridis_diffraction::geometry::{direction, FresnelConvention, Shading};
 use iridis_diffraction::table::{Lookup, Precision, TableParams};
 use iridis_diffraction::Units;
 
-use crate::args::{polar_azimuth, positive_length_nm};
+use crate::args::{polar_azimuth, positive_length_nm, RigorousOpts};
 use crate::progress::Cli;
 
 pub use crate::args::SurfaceOpts;
@@ -108,7 +108,9 @@ SURFACE to build one first), and the lab's comparison models (docs/lab.md): nmm 
 thesis' variants), stam-periodic and stam-periodic-triangular (Stam's bumps on a lattice fitted
 to the surface's dominant periods, ε = 0.01; a 1-D grating's orders lie on y = 0 only, so use an
 odd --size) and stam-gaussian (Stam's Gaussian random surface from the height field's
-correlation function). Every method but lookup needs the height field.
+correlation function). Every method but lookup needs the height field. rigorous: each order's lobe of the
+SURFACE taken as one period (or, with --unit-cell auto, a scan's dominant period averaged along its ridges)
+carries Maxwell's efficiency for it (the C-method over --material; docs/diffraction.md, \"The rigorous BRDF\").
 
 Examples:
   iridis brdf-map builtin:blazed --method lookup -o blazed.png
@@ -118,6 +120,7 @@ Examples:
   iridis brdf-map 'builtin:elaphe?size=10um&pixel=50nm' --method stam-gaussian --coherence 5um -o stam.png
   iridis brdf-map elaphe.npz --gpu --size 1024 -o elaphe_gpu.png
   iridis brdf-map 'builtin:sine?size=4um' --method ground-truth --gpu --size 48 -o gt_gpu.png
+  iridis brdf-map 'builtin:sine?size=1100nm&pixel=10nm' --method rigorous --material gold --coherence 5um --size 64 -o rigorous.png
 
 --gpu renders the lookup method (the paper's shader; a SURFACE's table is built on the GPU too) and the
 ground truths (ground-truth, ground-truth-periodic) on the GPU; the other methods run on the CPU only.
@@ -130,10 +133,12 @@ pub struct BrdfMapArgs {
     /// A height field (file or builtin:NAME) or a lookup table from `iridis precompute`, told apart by content
     /// (a height field may be an .npz too).
     pub input: String,
-    /// ground-truth, ground-truth-periodic, reference, lookup, nmm, pq, stam-periodic, stam-periodic-triangular
-    /// or stam-gaussian.
+    /// ground-truth, ground-truth-periodic, reference, lookup, nmm, pq, stam-periodic, stam-periodic-triangular,
+    /// stam-gaussian or rigorous.
     #[arg(long, default_value = "lookup")]
     pub method: String,
+    #[command(flatten)]
+    pub rigorous: RigorousOpts,
     /// Light direction: polar angle θ_i[,azimuth φ_i].
     #[arg(long, default_value = "0deg")]
     pub incidence: String,
@@ -204,6 +209,9 @@ impl ModelOpts {
             step_nm: self.step,
             conserve_energy: self.conserve_energy,
             light: None,
+            // Set by the commands that take --material and --unit-cell (`RigorousOpts::apply`).
+            material: None,
+            unit_cell_auto: false,
         }
     }
 }
@@ -495,12 +503,17 @@ stack; Schlick's approximation has no polarised form). --relative prints instead
 reflectance ρ(λ) = f_r cos θ_i λ² / (A_eff R₀) (eq. 4 with the cos θ_i of eq. 9): 1 at a flat mirror's peak
 at every λ, what BRDF maps show at an exposure. XYZ is the colour of ρ (eq. 9, a normal-incidence mirror
 has Y = 1). The lookup method integrates over λ in advance, so it answers XYZ only. Default method:
-reference for a SURFACE, lookup for a TABLE.
+reference for a SURFACE, lookup for a TABLE. --method rigorous scales each order's lobe to Maxwell's
+efficiency (the C-method, TE and TM apart, over --material) on SURFACE as one period or, with --unit-cell
+auto, on a scan's dominant period. With a scalar method on a scan with a dominant period, the output states
+how far the scalar model is from Maxwell's equations there (worst order error, ΔE00), with a warning above
+20 % or ΔE00 2.
 
 Examples:
   iridis brdf eval builtin:sine --light 30deg --view 10deg,180deg --json
   iridis brdf eval builtin:blazed --method ground-truth --light 0deg --view 20deg,180deg
   iridis brdf eval builtin:sine --light 30deg --view 10deg,180deg --visual bluetit --spectra sine_view.csv
+  iridis brdf eval 'builtin:sine?size=1100nm&pixel=10nm' --method rigorous --light 30deg --view 0deg --material gold
   iridis precompute builtin:elaphe -o elaphe.npz && iridis brdf eval elaphe.npz --light 20deg,0deg --view 35deg,180deg --json")]
 pub struct BrdfEvalArgs {
     /// A height field (file or builtin:NAME) or a lookup table from `iridis precompute`.
@@ -511,10 +524,12 @@ pub struct BrdfEvalArgs {
     /// View direction θ[,φ] (towards the viewer).
     #[arg(long)]
     pub view: String,
-    /// ground-truth, ground-truth-periodic, reference, lookup, nmm, pq, stam-periodic, stam-periodic-triangular
-    /// or stam-gaussian [default: reference for a SURFACE, lookup for a TABLE].
+    /// ground-truth, ground-truth-periodic, reference, lookup, nmm, pq, stam-periodic, stam-periodic-triangular,
+    /// stam-gaussian or rigorous [default: reference for a SURFACE, lookup for a TABLE].
     #[arg(long)]
     pub method: Option<String>,
+    #[command(flatten)]
+    pub rigorous: RigorousOpts,
     #[command(flatten)]
     pub shading: ShadingOpts,
     /// u-v resolution when the lookup method builds a table from a SURFACE.
@@ -557,8 +572,11 @@ fn run_eval(a: BrdfEvalArgs) -> Result<()> {
     let (wi, wr) = (direction(tl, pl), direction(tv, pv));
     let shading = a.shading.shading()?;
     let params = TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power };
-    let (model, surface) = (a.model.options(), a.surface_opts.options());
-    let p = eval_point(&a.input, a.method.as_deref(), &model, shading, params, &surface, wi, wr, &Cli)?;
+    let (mut model, surface) = (a.model.options(), a.surface_opts.options());
+    let paper = a.shading.fresnel_convention == FresnelConvention::Paper;
+    let method = a.method.clone().unwrap_or_else(|| iridis_api::brdf::default_method(&a.input).to_string());
+    a.rigorous.apply(&method, &a.shading.fresnel, paper, &mut model)?;
+    let p = eval_point(&a.input, Some(&method), &model, shading, params, &surface, wi, wr, &Cli)?;
     let q = &p.query;
     let deg = |r: f64| (r.to_degrees() * 1e9).round() / 1e9;
     let r0 = shading_r0(&a.shading)?;
@@ -576,7 +594,7 @@ fn run_eval(a: BrdfEvalArgs) -> Result<()> {
             "method": p.method,
             "light": { "theta_deg": deg(tl), "phi_deg": deg(pl), "direction": wi },
             "view": { "theta_deg": deg(tv), "phi_deg": deg(pv), "direction": wr },
-            "fresnel": a.shading.fresnel,
+            "fresnel": if p.rigorous.is_some() { serde_json::Value::Null } else { serde_json::json!(a.shading.fresnel) },
             "fresnel_convention": a.shading.fresnel_convention.name(),
             "fresnel_r0": r0,
             "shadowing": !a.shading.no_shadowing,
@@ -589,6 +607,8 @@ fn run_eval(a: BrdfEvalArgs) -> Result<()> {
             "reflectance": q.reflectance,
             "xyz": [q.xyz.x, q.xyz.y, q.xyz.z],
             "vision": vision.as_ref().map(serde_json::to_value).transpose()?,
+            "rigorous": p.rigorous.as_ref().map(|r| r.to_json()),
+            "scalar_error": p.scalar_error.as_ref().map(|e| e.to_json()),
         }));
     }
     crate::outln!(
@@ -600,13 +620,24 @@ fn run_eval(a: BrdfEvalArgs) -> Result<()> {
         deg(tv),
         deg(pv)
     )?;
-    crate::outln!(
-        "Fresnel {} (R₀ = {r0:.4}), {}, coherence {} (window area A_eff {})",
-        a.shading.fresnel,
-        if a.shading.no_shadowing { "no shadowing" } else { "Cook-Torrance shadowing" },
-        p.coherence_nm.map_or("–".into(), |c| format!("{:.3} µm", c / 1000.0)),
-        area_um2.map_or("–".into(), |x| format!("{x:.4} µm²"))
-    )?;
+    match &p.rigorous {
+        Some(r) => crate::outln!(
+            "{}; coherence {} (window area A_eff {})",
+            r.sentence(),
+            p.coherence_nm.map_or("–".into(), |c| format!("{:.3} µm", c / 1000.0)),
+            area_um2.map_or("–".into(), |x| format!("{x:.4} µm²"))
+        )?,
+        None => crate::outln!(
+            "Fresnel {} (R₀ = {r0:.4}), {}, coherence {} (window area A_eff {})",
+            a.shading.fresnel,
+            if a.shading.no_shadowing { "no shadowing" } else { "Cook-Torrance shadowing" },
+            p.coherence_nm.map_or("–".into(), |c| format!("{:.3} µm", c / 1000.0)),
+            area_um2.map_or("–".into(), |x| format!("{x:.4} µm²"))
+        )?,
+    }
+    if let Some(e) = &p.scalar_error {
+        crate::outln!("scalar model: {}", e.sentence())?;
+    }
     match (&q.reflectance, &q.brdf, a.relative) {
         (Some(_), Some(b), false) => {
             crate::outln!("    λ (nm)   f_r s (sr⁻¹)   f_r p (sr⁻¹)   f_r unpol. (sr⁻¹)")?;
@@ -676,6 +707,9 @@ pub fn run_brdf_map(a: BrdfMapArgs) -> Result<()> {
     }
     declare_map_outputs(&a)?;
     if a.gpu {
+        if a.method == iridis_api::brdf::RIGOROUS {
+            bail!("the rigorous BRDF runs on the CPU: leave out --gpu");
+        }
         if a.auto_exposure || a.plot.is_some() {
             bail!("--auto-exposure and --plot are made on the CPU's map: leave out --gpu (or give --exposure)");
         }
@@ -691,7 +725,15 @@ pub fn run_brdf_map(a: BrdfMapArgs) -> Result<()> {
     let (mut model, surface) = (a.model.options(), a.surface_opts.options());
     // The map asks about one light: the reference method keeps only its bins (memory).
     model.light = Some(wi);
-    let e = make_evaluator(&a.input, &a.method, &model, shading, params, precision, &surface, &Cli)?;
+    let paper = a.shading.fresnel_convention == FresnelConvention::Paper;
+    a.rigorous.apply(&a.method, &a.shading.fresnel, paper, &mut model)?;
+    if a.rigorous.material.is_some() && a.method != iridis_api::brdf::RIGOROUS {
+        bail!("--material is the rigorous method's medium; the scalar methods take --fresnel (index:…, gold, stack:…)");
+    }
+    let (e, rigorous) = map_evaluator(&a.input, &a.method, &model, shading, params, precision, &surface, wi, &Cli)?;
+    if let Some(r) = &rigorous {
+        eprintln!("note: {}", r.sentence());
+    }
     let prepared = start.elapsed().as_secs_f64();
     let xyz = render_map(e.as_ref(), wi, a.size, &Cli);
     let total = start.elapsed().as_secs_f64();

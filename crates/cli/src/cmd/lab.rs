@@ -143,13 +143,21 @@ Examples:
   iridis testbench 'builtin:elaphe?size=20um&pixel=50nm' --azimuth 90deg --coherence 10um --json
   iridis testbench builtin:elaphe --azimuth 0deg   # along the fingers: no definite period (a warning)
   iridis testbench 'builtin:xenopeltis?size=20um&pixel=50nm' --azimuth 90deg --coherence 10um --plot x.png
-  iridis testbench scan.gwy --method ground-truth --from 400nm --to 700nm --step 20nm --min-angle 20deg")]
+  iridis testbench scan.gwy --method ground-truth --from 400nm --to 700nm --step 20nm --min-angle 20deg
+  iridis testbench builtin:sine --method rigorous --unit-cell auto --step 20nm
+
+--method rigorous: the unit cell (SURFACE as one period, or with --unit-cell auto the scan's dominant period
+averaged along its ridges) with each order's lobe carrying Maxwell's efficiency (the C-method over
+--material); the period is then the cell's, known to the SURFACE's resolution.")]
 pub struct TestbenchArgs {
     /// Height field: a file (.gwy, .npy, PNG, TIFF, text) or builtin:NAME.
     pub surface: String,
-    /// Method: reference (thesis FLSS), ground-truth (slow), nmm, pq, stam-periodic[-triangular], stam-gaussian.
+    /// Method: reference (thesis FLSS), ground-truth (slow), nmm, pq, stam-periodic[-triangular], stam-gaussian,
+    /// or rigorous (the unit cell's orders carrying Maxwell's efficiencies: --material, --unit-cell).
     #[arg(long, default_value = "reference")]
     pub method: String,
+    #[command(flatten)]
+    pub rigorous: crate::args::RigorousOpts,
     /// Angle of incidence θ_i.
     #[arg(long, value_parser = angle_rad, default_value = "75deg")]
     pub incidence: f64,
@@ -196,8 +204,16 @@ pub struct TestbenchArgs {
 }
 
 pub fn run_testbench(a: TestbenchArgs) -> Result<()> {
-    let method: Method = a.method.parse()?;
-    iridis_api::lab::check_spectral(method)?;
+    let rigorous = a.method == iridis_api::brdf::RIGOROUS;
+    let mut model = iridis_api::ModelOptions::default();
+    let paper = a.model.fresnel_convention == FresnelConvention::Paper;
+    a.rigorous.apply(&a.method, &a.model.fresnel, paper, &mut model)?;
+    if !rigorous {
+        if a.rigorous.material.is_some() || model.unit_cell_auto {
+            bail!("--material and --unit-cell auto are the rigorous method's: add --method rigorous");
+        }
+        iridis_api::lab::check_spectral(a.method.parse::<Method>()?)?;
+    }
     crate::output::declare_opt("--plot", a.plot.as_deref(), &["png"])?;
     let mut setup = BenchSetup::new(
         a.incidence,
@@ -209,7 +225,19 @@ pub fn run_testbench(a: TestbenchArgs) -> Result<()> {
     setup.period_hint_nm = a.period;
     let source = iridis_api::surface::Source::Spec(a.surface.clone());
     let along_dominant = a.azimuth.is_none();
-    let t = iridis_api::lab::testbench(&source, &a.model.options(), method, setup, along_dominant, a.max_period, &Cli)?;
+    let lab = a.model.options();
+    let t = if rigorous {
+        iridis_api::lab::testbench_rigorous(&source, &lab, &model, setup, along_dominant, a.max_period, &Cli)?
+    } else {
+        let m: Method = a.method.parse()?;
+        iridis_api::lab::testbench(&source, &lab, m, setup, along_dominant, a.max_period, &Cli)?
+    };
+    let method = a.method.as_str();
+    if let Some(r) = &t.rigorous {
+        eprintln!("note: {}", r.sentence());
+    }
+    let extent_nm = t.extent_nm;
+    let rigorous_json = t.rigorous.as_ref().map(|r| r.to_json());
     let (b, setup, matrix, result) = (t.workbench, t.setup, t.matrix, t.result);
     let curve = a.period.unwrap_or(result.periodicity.mean);
     if let Some(path) = &a.plot {
@@ -227,8 +255,9 @@ pub fn run_testbench(a: TestbenchArgs) -> Result<()> {
     }
     if a.json {
         let mut j = result.to_json();
-        j["method"] = json!(method.name());
+        j["method"] = json!(method);
         j["surface"] = json!(a.surface);
+        j["rigorous"] = rigorous_json.unwrap_or(serde_json::Value::Null);
         return print_json(&j);
     }
     crate::outln!(
@@ -241,7 +270,7 @@ pub fn run_testbench(a: TestbenchArgs) -> Result<()> {
         result.peaks.len(),
         setup.wavelengths_nm.len()
     )?;
-    let extent_um = b.patch.extent_along(setup.azimuth) / 1000.0;
+    let extent_um = extent_nm / 1000.0;
     crate::outln!(
         "periodicity  mean {:.2} nm ± {:.1} nm ({}), variance {:.3} nm² (window centred on {:.1} nm){}",
         result.periodicity.mean,

@@ -282,7 +282,7 @@ pub fn run(a: ReportArgs) -> Result<()> {
     if let Some(e) = &scalar_error {
         let worst = e["worst_relative_error"]["unpolarized"].as_f64().unwrap_or(0.0);
         let de = e["delta_e00_diffracted"].as_f64().unwrap_or(0.0);
-        if worst > SCALAR_WARN || de > 2.0 {
+        if worst > iridis_api::grating::SCALAR_WARN_RELATIVE || de > iridis_api::grating::SCALAR_WARN_DELTA_E {
             warnings.push(format!(
                 "the scalar (Kirchhoff) model behind the BRDF maps is off by up to {:.0} % in an order's efficiency \
                  on this scan (ΔE00 {de:.1} in the colour of the diffracted light): for numbers, use `iridis grating \
@@ -356,10 +356,6 @@ fn figure_caption(file: &str) -> &'static str {
         _ => "",
     }
 }
-
-/// Above this worst relative error of an order's efficiency (unpolarised) the report warns that the scalar
-/// model's numbers are not to be trusted on the scan.
-const SCALAR_WARN: f64 = 0.2;
 
 /// How the animal sees the scan's colours across directions, in one sentence with its numbers.
 fn vision_sentence(v: &Value) -> String {

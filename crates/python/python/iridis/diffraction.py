@@ -3,7 +3,10 @@ save, load), BRDF maps as linear XYZ arrays, and point queries (ρ(λ) and XYZ f
 
 Every method of the CLI: ``reference`` (Taylor terms + windowed DFT per wavelength), ``ground-truth`` (the
 direct windowed Fourier sum), ``lookup`` (the precomputed tables), and the lab's ``nmm``, ``pq``,
-``stam-periodic``, ``stam-periodic-triangular``, ``stam-gaussian``. The same library functions as
+``stam-periodic``, ``stam-periodic-triangular``, ``stam-gaussian``, and ``rigorous`` (each order's lobe of a
+periodic SURFACE carrying Maxwell's efficiency, the C-method; options ``material`` — ``"gold"``,
+``"keratin"``, ``"n=1.5"`` (default) — and ``unit_cell`` — ``"whole"`` or ``"auto"``, a scan's dominant
+period averaged along its ridges; docs/diffraction.md). The same library functions as
 ``iridis precompute``, ``iridis brdf-map`` and ``iridis brdf eval`` (the facade ``iridis-api``), with the same
 defaults (Taylor terms from the remainder bound 1e-6; coherence 65 µm, the light's, a smaller patch taken as
 one unit cell of a periodic surface, said on the ``iridis`` logger) and the same messages. Lengths in nm,
