@@ -206,6 +206,21 @@ pub fn render_map(e: &dyn Evaluator, wi: [f64; 3], size: usize, report: &dyn Rep
     })
 }
 
+/// The BRDF `f_r` in sr⁻¹ per pixel of a map, as XYZ under the model's light and observer (`Y` the luminous
+/// BRDF; [`iridis_diffraction::map::brdf_map_per_sr`]), with progress.
+pub fn render_map_per_sr(
+    e: &dyn Evaluator,
+    model: &ModelOptions,
+    wi: [f64; 3],
+    size: usize,
+    report: &dyn Report,
+) -> Result<Vec<Xyz>> {
+    let spectral = crate::model::spectral_setup(model, report)?;
+    with_progress(report, size as u64, &format!("{} BRDF in sr⁻¹", e.name()), |p| {
+        Ok(iridis_diffraction::map::brdf_map_per_sr(e, &spectral.weights, wi, size, p)?)
+    })
+}
+
 /// An exposure (RU) chosen from a map's own values: the 99th percentile of the brightest linear sRGB channel
 /// over the lit pixels becomes white, so a bright mirror lobe does not black out the rest and a faint map is
 /// not a white disk; with the share of the disk's pixels it clips. `None` for a map with no light in it.

@@ -413,3 +413,57 @@ fn rigorous_brdf_refusals_and_the_scalar_models_error_on_a_scan() {
     assert!(e["above_threshold"] == true && e["worst_relative_error"]["unpolarized"].as_f64().unwrap() > 0.2, "{e}");
     assert!(String::from_utf8_lossy(&out.stderr).contains("not to be trusted"));
 }
+
+/// `--brdf` writes f_r in sr⁻¹: over the disk (dω = dx dy / cos θ_r) a flat surface of n = 1.5 at normal
+/// light returns its Fresnel reflectance, ((n − 1)/(n + 1))² = 0.04 at every wavelength, so Σ Y·(2/size)² = 0.04
+/// (the mirror lobe of a 3 µm window, σ_u ≈ 0.12, sampled by 0.03-wide pixels); the lookup method, which has no
+/// f_r(λ), is refused with nothing written.
+#[test]
+fn brdf_map_writes_the_brdf_in_per_steradian() {
+    let dir = tempfile::tempdir().unwrap();
+    let (png, f) = (dir.path().join("flat.png"), dir.path().join("flat_fr.npy"));
+    let size = 64;
+    // 0.01 nm deep: its orders carry (k·0.01 nm)² ~ 1e-8 of the light, a flat surface for this test.
+    let flat = "builtin:sine?size=6um&pixel=60nm&depth=0.01nm";
+    let out = iridis(&[
+        "brdf-map",
+        flat,
+        "--method",
+        "reference",
+        "--coherence",
+        "3um",
+        "--fresnel",
+        "index:1.5",
+        "--size",
+        &size.to_string(),
+        "-o",
+        png.to_str().unwrap(),
+        "--brdf",
+        f.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("sr⁻¹"));
+    let fr = raw_xyz(&f);
+    let pixel = (2.0 / size as f64).powi(2);
+    let luminous: f64 = fr.iter().map(|p| p[1] * pixel).sum();
+    assert!((luminous - 0.04).abs() < 0.04 * 0.02, "Σ Y dx dy = {luminous}, Fresnel 0.04");
+    let (png2, f2) = (dir.path().join("l.png"), dir.path().join("l.npy"));
+    assert_fails(
+        &[
+            "brdf-map",
+            flat,
+            "--method",
+            "lookup",
+            "--uv-resolution",
+            "31",
+            "--size",
+            "16",
+            "-o",
+            png2.to_str().unwrap(),
+            "--brdf",
+            f2.to_str().unwrap(),
+        ],
+        &["lookup", "f_r"],
+    );
+    assert!(!png2.exists() && !f2.exists(), "nothing written on a refusal");
+}

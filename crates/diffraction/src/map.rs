@@ -19,6 +19,45 @@ pub fn view_direction(col: usize, row: usize, size: usize) -> Option<Vec3> {
     Some([x, y, (1.0 - r2).sqrt()])
 }
 
+/// The BRDF `f_r` (sr⁻¹, unpolarised light) per pixel, as XYZ: `f_r(λ)` weighted by the light and the observer
+/// as a reflectance is (`weights`, whose white has `Y = 1`), so `Y` is the luminous BRDF and `Σ Y·dx·dy` over
+/// the disk (`dω = dx dy / cos θ_r`) the luminous share of the light reflected (docs/PHYSICS.md, "The BRDF in
+/// sr⁻¹"). Refused for a method without `f_r(λ)` (the lookup method integrates over λ in advance).
+pub fn brdf_map_per_sr(
+    evaluator: &dyn Evaluator,
+    weights: &iridis_color::integrate::SpectralWeights,
+    wi: Vec3,
+    size: usize,
+    progress: &(dyn Fn(usize) + Sync),
+) -> Result<Vec<Xyz>, crate::DiffractionError> {
+    let lambdas = weights.wavelengths_nm();
+    let f_r = |wr: Vec3| -> Result<Xyz, crate::DiffractionError> {
+        let q = crate::point::point_query(evaluator, lambdas, wi, wr)?;
+        let b = q.brdf.ok_or_else(|| {
+            crate::DiffractionError::Invalid(format!(
+                "the {} method gives no BRDF f_r(λ) in sr⁻¹ (it integrates over wavelength in advance, or its \
+                 Fresnel convention is the paper's); use reference, ground-truth or rigorous",
+                evaluator.name()
+            ))
+        })?;
+        Ok(weights.integrate(&b.unpolarized))
+    };
+    // One query first: a method without f_r is refused before the map's work.
+    f_r([0.0, 0.0, 1.0])?;
+    let done = std::sync::atomic::AtomicUsize::new(0);
+    let rows: Vec<Vec<Xyz>> = (0..size)
+        .into_par_iter()
+        .map(|row| {
+            let out = (0..size)
+                .map(|col| view_direction(col, row, size).map(f_r).unwrap_or(Ok(Xyz::default())))
+                .collect::<Result<Vec<Xyz>, _>>();
+            progress(done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1);
+            out
+        })
+        .collect::<Result<_, _>>()?;
+    Ok(rows.into_iter().flatten().collect())
+}
+
 /// XYZ per pixel, row-major, row 0 at the top. `progress(rows_done)` is called as rows finish.
 pub fn brdf_map(evaluator: &dyn Evaluator, wi: Vec3, size: usize, progress: &(dyn Fn(usize) + Sync)) -> Vec<Xyz> {
     let done = std::sync::atomic::AtomicUsize::new(0);

@@ -116,6 +116,7 @@ Examples:
   iridis brdf-map builtin:blazed --method lookup -o blazed.png
   iridis precompute builtin:elaphe -o elaphe.npz && iridis brdf-map elaphe.npz -o elaphe.png --exposure 1500
   iridis brdf-map builtin:xenopeltis --method reference --incidence 20deg,0deg --size 256 -o x.png --raw x.npy
+  iridis brdf-map builtin:xenopeltis --method reference --coherence 10um --size 128 -o x.png --brdf x_fr.npy
   iridis brdf-map builtin:sine --method ground-truth --size 48 -o gt.png --gamma 2.2
   iridis brdf-map 'builtin:elaphe?size=10um&pixel=50nm' --method stam-gaussian --coherence 5um -o stam.png
   iridis brdf-map elaphe.npz --gpu --size 1024 -o elaphe_gpu.png
@@ -162,9 +163,15 @@ pub struct BrdfMapArgs {
     /// Output: .png (tone-mapped), .exr (linear sRGB) or .npy (linear XYZ), by its extension.
     #[arg(short, long)]
     pub output: PathBuf,
-    /// Also write linear XYZ per pixel as .npy (float64, shape [size, size, 3]).
+    /// Also write linear XYZ per pixel as .npy (float64, shape [size, size, 3]): the relative ρ's colour,
+    /// the quantity the PNG shows (a flat mirror's peak is 1).
     #[arg(long)]
     pub raw: Option<PathBuf>,
+    /// Also write the BRDF f_r in sr⁻¹ per pixel as .npy (float64, [size, size, 3]: X, Y, Z of f_r(λ) for
+    /// unpolarised light weighted by the illuminant and observer; Y is the luminous BRDF, and Y·(2/size)²
+    /// summed over the disk the luminous share of the light reflected). reference, ground-truth, rigorous.
+    #[arg(long, value_name = "FILE.npy")]
+    pub brdf: Option<PathBuf>,
     /// Also write linear XYZ·exposure as OpenEXR (RGB = linear sRGB).
     #[arg(long)]
     pub exr: Option<PathBuf>,
@@ -736,6 +743,11 @@ pub fn run_brdf_map(a: BrdfMapArgs) -> Result<()> {
     }
     let prepared = start.elapsed().as_secs_f64();
     let xyz = render_map(e.as_ref(), wi, a.size, &Cli);
+    // Before any file is written: a method without f_r(λ) is refused with nothing on disk.
+    let per_sr = match &a.brdf {
+        Some(_) => Some(iridis_api::brdf::render_map_per_sr(e.as_ref(), &model, wi, a.size, &Cli)?),
+        None => None,
+    };
     let total = start.elapsed().as_secs_f64();
     let secs = total - prepared;
     let mut exposure = a.exposure;
@@ -759,6 +771,17 @@ pub fn run_brdf_map(a: BrdfMapArgs) -> Result<()> {
     }
     let tone = ToneMap { exposure_ru: exposure, encoding };
     write_map_outputs(&a, &xyz, tone)?;
+    if let (Some(path), Some(f)) = (&a.brdf, &per_sr) {
+        write_xyz_npy(path, f, a.size)?;
+        eprintln!(
+            "note: {} holds f_r in sr⁻¹ (unpolarised; X, Y, Z weighted by {} and the {} observer, Y the luminous \
+             BRDF), coherence {:.3} µm",
+            path.display(),
+            model.illuminant.as_deref().unwrap_or("D65"),
+            model.observer.as_deref().unwrap_or("CIE 1931 2°"),
+            e.coherence_nm().unwrap_or(f64::NAN) / 1000.0
+        );
+    }
     if let Some(path) = &a.plot {
         let name = std::path::Path::new(&a.input).file_name().map_or(a.input.clone(), |f| f.to_string_lossy().into());
         let (t, p) = (wi[2].clamp(-1.0, 1.0).acos().to_degrees(), wi[1].atan2(wi[0]).to_degrees());
@@ -796,6 +819,7 @@ const MAP_FORMATS: &[&str] = &["png", "exr", "npy"];
 pub fn declare_map_outputs(a: &BrdfMapArgs) -> Result<()> {
     crate::output::declare("-o", &a.output, MAP_FORMATS)?;
     crate::output::declare_opt("--raw", a.raw.as_deref(), &["npy"])?;
+    crate::output::declare_opt("--brdf", a.brdf.as_deref(), &["npy"])?;
     crate::output::declare_opt("--exr", a.exr.as_deref(), &["exr"])?;
     crate::output::declare_opt("--plot", a.plot.as_deref(), &["png"])?;
     Ok(())
