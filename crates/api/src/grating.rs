@@ -688,6 +688,30 @@ pub struct ScalarError {
     pub floor: f64,
 }
 
+/// The shortest period that can send a visible diffraction order out of a surface: `d > λ/2`, λ ≥ 380 nm.
+pub const VISIBLE_PERIOD_NM: f64 = 190.0;
+
+/// The share of the reflected light (D65 × ȳ) a structure must diffract to count as diffracting: below it a
+/// scan looks like a mirror of its specular colour (`iridis report` draws no maps and runs no test bench).
+pub const DIFFRACTS_SHARE: f64 = 1e-3;
+
+/// Whether a scan diffracts visible light: a period that can send a visible order out
+/// ([`VISIBLE_PERIOD_NM`]) and a diffracted share worth drawing at some incidence ([`DIFFRACTS_SHARE`]). A scan
+/// with only shorter periods still sends a little light into the orders of its own extent as a unit cell —
+/// its edges, not its structure — hence both conditions.
+pub fn diffracts_visible_light(longest_period_nm: f64, diffracted_shares: &[f64]) -> bool {
+    longest_period_nm >= VISIBLE_PERIOD_NM && diffracted_shares.iter().any(|&s| s >= DIFFRACTS_SHARE)
+}
+
+/// The coherence length (nm) for BRDF maps of a scan of extent `extent_nm` whose strongest period is
+/// `strongest_period_nm`: under the light's 65 µm a smaller scan shows the discrete orders of its periodic
+/// extension, narrower than a pixel; half the scan's shorter side, never under four of its strongest periods
+/// (a strip of a grating keeps its orders), lets each pixel see the scan's spectrum. `None`: the light's own.
+pub fn map_coherence_nm(extent_nm: [f64; 2], strongest_period_nm: f64) -> Option<f64> {
+    let c = (0.5 * extent_nm[0].min(extent_nm[1])).max(4.0 * strongest_period_nm);
+    (c < iridis_diffraction::DEFAULT_COHERENCE_NM).then_some(c)
+}
+
 /// The efficiencies below which an order is not compared relatively (its absolute error is below `floor`).
 pub const COMPARE_FLOOR: f64 = 1e-3;
 

@@ -785,21 +785,8 @@ pub fn run_brdf_map(a: BrdfMapArgs) -> Result<()> {
     if let Some(path) = &a.plot {
         let name = std::path::Path::new(&a.input).file_name().map_or(a.input.clone(), |f| f.to_string_lossy().into());
         let (t, p) = (wi[2].clamp(-1.0, 1.0).acos().to_degrees(), wi[1].atan2(wi[0]).to_degrees());
-        let pixels =
-            iridis_plot::RgbImage { width: a.size as u32, height: a.size as u32, data: map_to_rgb8(&xyz, tone) };
-        let plot = iridis_plot::ImagePlot {
-            title: format!("{name} · θi {t:.0}° φi {p:.0}° · {} · D65 · {exposure:.3e} RU", e.name()),
-            x_label: "x = sin θr cos φr".into(),
-            y_label: "y = sin θr sin φr".into(),
-            x_range: (-1.0, 1.0),
-            y_range: (-1.0, 1.0),
-            pixels: &pixels,
-            overlays: vec![],
-            colorbar: None,
-            size: (560, 600),
-        }
-        .render()?;
-        crate::output::write_png_rgb8(path, plot.width, plot.height, &plot.data)?;
+        let title = format!("{name} · θi {t:.0}° φi {p:.0}° · {} · D65 · {exposure:.3e} RU", e.name());
+        write_map_plot(path, &xyz, a.size, tone, title)?;
     }
     crate::outln!(
         "wrote {} ({} map, {}², {total:.2} s in all: {prepared:.2} s to load and prepare, {secs:.2} s for the \
@@ -842,6 +829,24 @@ pub fn write_map_outputs(a: &BrdfMapArgs, xyz: &[Xyz], tone: ToneMap) -> Result<
     Ok(())
 }
 
+/// A map drawn as a figure with the view-direction axes of the paper's layout and a title, written as PNG.
+fn write_map_plot(path: &Path, xyz: &[Xyz], size: usize, tone: ToneMap, title: String) -> Result<()> {
+    let pixels = iridis_plot::RgbImage { width: size as u32, height: size as u32, data: map_to_rgb8(xyz, tone) };
+    let plot = iridis_plot::ImagePlot {
+        title,
+        x_label: "x = sin θr cos φr".into(),
+        y_label: "y = sin θr sin φr".into(),
+        x_range: (-1.0, 1.0),
+        y_range: (-1.0, 1.0),
+        pixels: &pixels,
+        overlays: vec![],
+        colorbar: None,
+        size: (560, 600),
+    }
+    .render()?;
+    crate::output::write_png_rgb8(path, plot.width, plot.height, &plot.data)
+}
+
 /// Linear XYZ as a float64 `.npy` of shape `[size, size, 3]`.
 pub fn write_xyz_npy(path: &Path, xyz: &[Xyz], size: usize) -> Result<()> {
     use npyz::WriterBuilder;
@@ -867,7 +872,6 @@ pub fn write_exr(path: &Path, xyz: &[Xyz], size: usize, exposure: f64) -> Result
 
 /// The demo's diffraction section: lookup BRDF maps of built-in surfaces (the kinds of the paper's Figs. 12–14).
 pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
-    use iridis_plot::{ImagePlot, RgbImage};
     g.section(
         "Diffraction from nanostructures",
         "BRDF maps (paper sec. 7): the colour reflected into every view direction (x, y) = (sin θ cos φ, \
@@ -889,22 +893,10 @@ pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
         let lookup = Lookup::new(Arc::new(table), Shading::default(), Precision::F64)?;
         let wi = direction(f64::to_radians(theta_deg), 0.0);
         let xyz = render_map(&lookup, wi, size, &Cli);
-        let rgb = map_to_rgb8(&xyz, ToneMap { exposure_ru: 1500.0, encoding: Encoding::Srgb });
-        let pixels = RgbImage { width: size as u32, height: size as u32, data: rgb };
-        let plot = ImagePlot {
-            title: format!("{name}: θi = {theta_deg}°, N = {n}, lookup, 1500 RU"),
-            x_label: "x = sin θr cos φr".into(),
-            y_label: "y = sin θr sin φr".into(),
-            x_range: (-1.0, 1.0),
-            y_range: (-1.0, 1.0),
-            pixels: &pixels,
-            overlays: vec![],
-            colorbar: None,
-            size: (560, 600),
-        }
-        .render()?;
+        let tone = ToneMap { exposure_ru: 1500.0, encoding: Encoding::Srgb };
         let file = format!("brdf_{name}.png");
-        crate::output::write_png_rgb8(&g.path(&file), plot.width, plot.height, &plot.data)?;
+        let title = format!("{name}: θi = {theta_deg}°, N = {n}, lookup, 1500 RU");
+        write_map_plot(&g.path(&file), &xyz, size, tone, title)?;
         g.image(
             &file,
             &format!("BRDF map of builtin:{name} (iridis brdf-map builtin:{name} --incidence {theta_deg}deg)"),

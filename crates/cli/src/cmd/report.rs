@@ -106,13 +106,6 @@ fn html_escape(s: &str) -> String {
     s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
 }
 
-/// The shortest period that can send a visible diffraction order out of the surface: `d > λ/2`, λ ≥ 380 nm.
-const VISIBLE_PERIOD: f64 = 190.0;
-
-/// The share of the reflected light a structure must diffract (D65 × ȳ) for the report to draw its BRDF maps
-/// and run the test bench: below it the scan looks like a mirror of its specular colour.
-const DIFFRACTS: f64 = 1e-3;
-
 /// A value rounded to its uncertainty's leading digit (two where that digit is 1), with the uncertainty.
 fn with_uncertainty(value: f64, u: f64) -> String {
     if !(u.is_finite() && u > 0.0) {
@@ -184,33 +177,22 @@ pub fn run(a: ReportArgs) -> Result<()> {
         steps.push(st);
     }
     let share = |g: &Value| g["colour"]["diffracted_share"].as_f64().unwrap_or(0.0);
-    // Diffraction by the structure: a period that can send a visible order out (d > λ/2 ≥ 190 nm) and a
-    // diffracted share worth drawing. (A scan with only shorter periods still sends a little light into the
-    // orders of its own extent as a unit cell — its edges, not its structure.)
-    let info_first: Value = serde_json::from_str(&steps[0].stdout).context("surface info printed no JSON")?;
-    let longest = info_first["peaks"]
-        .as_array()
-        .into_iter()
-        .flatten()
-        .filter_map(|p| p["period_nm"].as_f64())
-        .fold(0.0f64, f64::max);
-    let diffracts = longest >= VISIBLE_PERIOD && grating.iter().any(|g| share(g) >= DIFFRACTS);
+    let info: Value = serde_json::from_str(&steps[0].stdout).context("surface info printed no JSON")?;
+    let longest =
+        info["peaks"].as_array().into_iter().flatten().filter_map(|p| p["period_nm"].as_f64()).fold(0.0f64, f64::max);
+    let shares: Vec<f64> = grating.iter().map(share).collect();
+    let diffracts = iridis_api::grating::diffracts_visible_light(longest, &shares);
     let mut maps = Vec::new();
     let mut bench: Option<Value> = None;
     let mut bench_failure: Option<String> = None;
     let mut scalar_error: Option<Value> = None;
     let mut vision: Option<Value> = None;
     let mut scalar_failure: Option<String> = None;
-    // The maps' window: the light's 65 µm on a smaller scan shows the discrete orders of its periodic
-    // extension, narrower than a pixel (speckle); half the scan's shorter side, never under four of its
-    // strongest periods (a strip of a grating keeps its orders), lets each pixel see the scan's spectrum.
     let map_coherence = a.coherence.clone().or_else(|| {
-        let first: Value = serde_json::from_str(&steps[0].stdout).ok()?;
-        let e = &first["extent_nm"];
-        let short = e[0].as_f64()?.min(e[1].as_f64()?);
-        let period = first["peaks"][0]["period_nm"].as_f64().unwrap_or(0.0);
-        let c = (0.5 * short).max(4.0 * period);
-        (c < iridis_diffraction::DEFAULT_COHERENCE_NM).then(|| format!("{:.3}um", c / 1000.0))
+        let e = &info["extent_nm"];
+        let period = info["peaks"][0]["period_nm"].as_f64().unwrap_or(0.0);
+        iridis_api::grating::map_coherence_nm([e[0].as_f64()?, e[1].as_f64()?], period)
+            .map(|c| format!("{:.3}um", c / 1000.0))
     });
     if diffracts {
         for (name, plot, inc) in
@@ -271,7 +253,6 @@ pub fn run(a: ReportArgs) -> Result<()> {
         }
     }
     pb.finish_and_clear();
-    let info: Value = serde_json::from_str(&steps[0].stdout).context("surface info printed no JSON")?;
     let verdict = verdict(&info, &grating, diffracts);
     let scalar = scalar_error.as_ref().map(scalar_sentence);
     let seen = vision.as_ref().map(vision_sentence);
@@ -430,7 +411,7 @@ fn verdict(info: &Value, grating: &[Value], diffracts: bool) -> String {
     } else {
         let why = if periods.is_empty() {
             "it has no dominant period".to_string()
-        } else if longest < VISIBLE_PERIOD {
+        } else if longest < iridis_api::grating::VISIBLE_PERIOD_NM {
             format!(
                 "its periods ({} nm) are all shorter than half the shortest visible wavelength (190 nm), so no \
                  diffraction order of visible light can leave it",
