@@ -2,7 +2,7 @@
 //! `TypeError` that names the argument when the type is wrong.
 
 use num_complex::Complex64;
-use numpy::{PyReadonlyArray1, PyUntypedArrayMethods};
+use numpy::{PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyFloat, PyList};
@@ -67,6 +67,24 @@ pub fn real_list(name: &str, obj: &Bound<'_, PyAny>) -> PyResult<Vec<f64>> {
     }
     obj.extract::<Vec<f64>>()
         .map_err(|_| PyTypeError::new_err(format!("{name} must be a 1-D sequence of real numbers")))
+}
+
+/// Spectra as a wavelength grid and one row per spectrum, each row as long as the grid (refused, naming both
+/// lengths, otherwise).
+pub fn spectra_rows(
+    wavelengths: &PyReadonlyArray1<'_, f64>,
+    values: &PyReadonlyArray2<'_, f64>,
+) -> PyResult<(Vec<f64>, Vec<Vec<f64>>)> {
+    let wl = wavelengths.as_array().to_vec();
+    let v = values.as_array();
+    if v.ncols() != wl.len() {
+        return Err(value_error(format!(
+            "values have {} samples per spectrum but there are {} wavelengths",
+            v.ncols(),
+            wl.len()
+        )));
+    }
+    Ok((wl, v.rows().into_iter().map(|r| r.to_vec()).collect()))
 }
 
 /// One real number; an array of several gives tmm's "not vectorized" `ValueError`.

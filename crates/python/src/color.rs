@@ -42,16 +42,7 @@ fn _spectrum_to_xyz<'py>(
     observer: &str,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let (ill, obs) = (self::illuminant(illuminant)?, self::observer(observer)?);
-    let wl = wavelengths.as_array().to_vec();
-    let v = values.as_array();
-    if v.ncols() != wl.len() {
-        return Err(value_error(format!(
-            "values have {} samples per spectrum but there are {} wavelengths",
-            v.ncols(),
-            wl.len()
-        )));
-    }
-    let rows: Vec<Vec<f64>> = v.rows().into_iter().map(|r| r.to_vec()).collect();
+    let (wl, rows) = crate::args::spectra_rows(&wavelengths, &values)?;
     let out = py
         .allow_threads(|| -> Result<Vec<f64>, iridis_color::SpectrumError> {
             let grid = observer_grid(obs);

@@ -56,19 +56,11 @@ fn _analyse(
         achromatic_weber,
         space,
     };
-    let wl = wavelengths.as_array().to_vec();
-    let v = values.as_array();
-    if v.ncols() != wl.len() {
-        return Err(value_error(format!(
-            "values have {} samples per spectrum but there are {} wavelengths",
-            v.ncols(),
-            wl.len()
-        )));
+    let (wl, rows) = crate::args::spectra_rows(&wavelengths, &values)?;
+    if names.len() != rows.len() {
+        return Err(value_error(format!("{} names for {} spectra", names.len(), rows.len())));
     }
-    if names.len() != v.nrows() {
-        return Err(value_error(format!("{} names for {} spectra", names.len(), v.nrows())));
-    }
-    let spectra: Vec<(String, Vec<f64>)> = names.into_iter().zip(v.rows()).map(|(n, r)| (n, r.to_vec())).collect();
+    let spectra: Vec<(String, Vec<f64>)> = names.into_iter().zip(rows).collect();
     py.allow_threads(|| -> Result<String, String> {
         let system = spec.system().map_err(|e| e.to_string())?;
         let options = spec.options(&system).map_err(|e| e.to_string())?;
