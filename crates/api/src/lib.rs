@@ -27,11 +27,13 @@
 pub mod brdf;
 pub mod color;
 pub mod fresnel;
+pub mod gallery;
 pub mod gpu;
 pub mod grating;
 pub mod grating_bench;
 pub mod lab;
 pub mod model;
+pub mod output;
 pub mod report;
 pub mod rigorous_brdf;
 pub mod rough;

@@ -871,7 +871,7 @@ pub fn write_exr(path: &Path, xyz: &[Xyz], size: usize, exposure: f64) -> Result
 }
 
 /// The demo's diffraction section: lookup BRDF maps of built-in surfaces (the kinds of the paper's Figs. 12–14).
-pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
+pub fn demo(g: &mut iridis_api::gallery::Gallery) -> Result<()> {
     g.section(
         "Diffraction from nanostructures",
         "BRDF maps (paper sec. 7): the colour reflected into every view direction (x, y) = (sin θ cos φ, \

@@ -147,7 +147,7 @@ fn delta_e(a: DeltaEArgs) -> Result<()> {
 }
 
 /// The demo's colour section: the CIE 1931 chromaticity diagram and the colours of the built-in illuminants.
-pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
+pub fn demo(g: &mut iridis_api::gallery::Gallery) -> Result<()> {
     use iridis_color::integrate::white_point;
     use iridis_plot::{ImagePlot, RgbImage, Series};
 

@@ -846,7 +846,7 @@ fn run_laser(a: LaserArgs) -> Result<()> {
 
 /// The demo's lab section: test-bench plots and Table-1-style numbers for the built-in blazed grating and
 /// Elaphe-like surface, and a Table-2-style comparison on a small Elaphe-like patch.
-pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
+pub fn demo(g: &mut iridis_api::gallery::Gallery) -> Result<()> {
     g.section(
         "Virtual lab: test bench and method comparison (paper sec. 6.1 and 6.3)",
         "The test bench shines light at θi = 75° and records the reflectance over viewing angle θr for each \

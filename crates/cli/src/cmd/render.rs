@@ -311,7 +311,7 @@ const FIGURES: &[(&str, &str)] = &[
 
 /// The gallery's first section: the paper's figures as scenes at their own size (1024 px wide), each beside
 /// the BRDF map its centre pixel comes from.
-pub fn figures_demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
+pub fn figures_demo(g: &mut iridis_api::gallery::Gallery) -> Result<()> {
     g.section(
         "Snake skin as in the paper's figures",
         "Close-ups of snake skin whose scales are individually curved, overlapping plates (iridis-render's \
@@ -423,7 +423,7 @@ fn figure_map(scene: &Scene) -> Option<(iridis_plot::RgbImage, String)> {
 }
 
 /// The demo's rendering section: every other example scene at a modest size.
-pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
+pub fn demo(g: &mut iridis_api::gallery::Gallery) -> Result<()> {
     g.section(
         "Rendered scenes",
         "The other example scenes of examples/ rendered on the CPU (iridis-render): whole snakes whose scale \

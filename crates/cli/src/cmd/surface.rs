@@ -679,7 +679,7 @@ fn convert(a: ConvertArgs) -> Result<()> {
 }
 
 /// The demo's surface section: previews of the built-in nanostructures with their analysed periods.
-pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
+pub fn demo(g: &mut iridis_api::gallery::Gallery) -> Result<()> {
     g.section(
         "Nanostructures (height fields)",
         &format!(

@@ -1127,7 +1127,7 @@ fn hue_exposure(xyz: Xyz) -> f64 {
 }
 
 /// The demo's thin-film section: the soap-film chart, the oil-slick and coated-glass spectra and colours.
-pub fn demo(g: &mut crate::cmd::demo::Gallery) -> Result<()> {
+pub fn demo(g: &mut iridis_api::gallery::Gallery) -> Result<()> {
     g.section(
         "Thin-film interference",
         "Soap films, oil slicks and lens coatings colour light by interference between the reflections at their \
