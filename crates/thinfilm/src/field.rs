@@ -105,12 +105,6 @@ impl Stack {
         Ok(Fields::new(media, self.thicknesses(), wavelength_nm))
     }
 
-    /// The fraction of the incident power absorbed in each layer (coherent or `inc:`) and in an absorbing
-    /// substrate, with R and T; for mixed stacks as `tmm.inc_absorp_in_each_layer`.
-    pub fn absorption(&self, wavelength_nm: f64, angle_rad: f64) -> Result<Absorption, ThinFilmError> {
-        crate::incoherent::absorption(self, wavelength_nm, angle_rad, &self.thicknesses())
-    }
-
     /// Ellipsometric angles `(ψ, Δ)` in radians with tmm's `ellips` convention:
     /// `tan ψ e^{iΔ} = −r_p / r_s`, ψ ∈ [0, π/2], Δ ∈ (−π, π]. With iridis' (and tmm's) sign of `r_p`
     /// (Sussenbach eq. 3.7, `r_p = −r_s` at normal incidence) a bare substrate at normal incidence has Δ = 0.

@@ -20,6 +20,7 @@
 
 pub mod light;
 pub mod model;
+pub mod noise;
 pub mod space;
 pub mod spec;
 pub mod system;
