@@ -243,6 +243,21 @@ pub struct Lattice {
     pub row_images: Vec<Vec<(i64, f64)>>,
 }
 
+impl Lattice {
+    /// The lattice of `patch`'s heights with the images of its columns and rows.
+    fn of(patch: &Patch, column_images: Vec<Vec<(i64, f64)>>, row_images: Vec<Vec<(i64, f64)>>) -> Self {
+        Lattice {
+            rows: patch.rows,
+            cols: patch.cols,
+            dx: patch.dx,
+            dy: patch.dy,
+            heights: patch.heights.clone(),
+            column_images,
+            row_images,
+        }
+    }
+}
+
 /// The images along one axis: for each sample position `pos[i]` (relative to the patch centre), the shifts
 /// `m·period` and weights `exp(−(pos + m·period)²/(2σ²))` at or above [`WINDOW_CUT`], normalised by the sum over
 /// every sample and image (those cut included).
@@ -456,15 +471,7 @@ impl GroundTruth {
                     let (sum, peak) = (g.iter().sum::<f64>(), g.iter().fold(0.0f64, |m, &v| m.max(v)));
                     g.iter().map(|&v| if v >= WINDOW_CUT * peak { vec![(0, v / sum)] } else { Vec::new() }).collect()
                 };
-                let lattice = Lattice {
-                    rows: patch.rows,
-                    cols: patch.cols,
-                    dx: patch.dx,
-                    dy: patch.dy,
-                    heights: patch.heights.clone(),
-                    column_images: axis(patch.cols, patch.dx, xc),
-                    row_images: axis(patch.rows, patch.dy, yc),
-                };
+                let lattice = Lattice::of(patch, axis(patch.cols, patch.dx, xc), axis(patch.rows, patch.dy, yc));
                 (samples, lattice)
             }
             Aperture::Periodic => {
@@ -473,15 +480,7 @@ impl GroundTruth {
                 let (lx, ly) = patch.extent();
                 // The same 1e-12 cut, per axis (g = g_x g_y, peak 1): the lattice kept is the square around the
                 // finite aperture's disk.
-                let lattice = Lattice {
-                    rows: patch.rows,
-                    cols: patch.cols,
-                    dx: patch.dx,
-                    dy: patch.dy,
-                    heights: patch.heights.clone(),
-                    column_images: axis_images(&xs, lx, sigma_s)?,
-                    row_images: axis_images(&ys, ly, sigma_s)?,
-                };
+                let lattice = Lattice::of(patch, axis_images(&xs, lx, sigma_s)?, axis_images(&ys, ly, sigma_s)?);
                 (Samples::Periodic { xs, ys }, lattice)
             }
         };

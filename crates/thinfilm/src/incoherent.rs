@@ -18,9 +18,9 @@ use crate::error::ThinFilmError;
 use crate::field::{locate, top_of, Absorption, Fields, Point, PolPowers};
 use crate::intensity::{group_list, pass_of};
 pub use crate::intensity::{group_powers, single_pass, GroupPowers};
-use crate::recurrence::{Medium, Rta};
-pub use crate::stack::incoherent_media;
+use crate::recurrence::Medium;
 use crate::stack::Stack;
+pub use crate::stack::{evaluate_incoherent as evaluate, incoherent_media};
 
 /// The groups between consecutive incoherent media, top first: their powers.
 pub fn groups(
@@ -32,18 +32,6 @@ pub fn groups(
     let inc = incoherent_media(stack);
     let g = group_list(media, thicknesses_nm, &inc, wavelength_nm);
     (inc, g)
-}
-
-/// Reflectance and transmittance of a stack with incoherent layers (any stack: a coherent one gives the
-/// powers of [`Stack::evaluate`]), with the given layer thicknesses. As everywhere in iridis, T into an
-/// absorbing substrate is 0 (the light entering it is absorbed; `docs/PHYSICS.md`).
-pub fn evaluate(
-    stack: &Stack,
-    wavelength_nm: f64,
-    angle_rad: f64,
-    thicknesses_nm: &[f64],
-) -> Result<Rta, ThinFilmError> {
-    stack.evaluate_incoherent(wavelength_nm, angle_rad, thicknesses_nm)
 }
 
 /// Absorption per layer (coherent and incoherent) and in an absorbing substrate, with R and T, as
@@ -62,16 +50,7 @@ pub fn absorption(
     let inc = incoherent_media(stack);
     let m = inc.len() - 1;
     let pass: Vec<f64> = inc.iter().map(|&i| pass_of(&media, thicknesses_nm, i, wavelength_nm)).collect();
-    let fields: Vec<(Fields, Fields)> = inc
-        .windows(2)
-        .map(|w| {
-            let gm = media[w[0]..=w[1]].to_vec();
-            let gd = thicknesses_nm[w[0]..w[1] - 1].to_vec();
-            let rev_m = gm.iter().rev().copied().collect();
-            let rev_d = gd.iter().rev().copied().collect();
-            (Fields::new(gm, gd, wavelength_nm), Fields::new(rev_m, rev_d, wavelength_nm))
-        })
-        .collect();
+    let fields = group_fields(&media, thicknesses_nm, &inc, wavelength_nm);
     let one = |p: bool| -> PolPowers {
         let f: Vec<PolPowers> = fields.iter().map(|x| x.0.powers(p)).collect();
         let b: Vec<PolPowers> = fields.iter().map(|x| x.1.powers(p)).collect();
@@ -96,6 +75,20 @@ pub fn absorption(
     };
     let opaque = media[media.len() - 1].n.im > 0.0;
     Ok(Absorption::from_powers(one(false), one(true), opaque))
+}
+
+/// The coherent fields of each group between consecutive incoherent media `inc`, lit from above and (the
+/// group reversed) from below.
+fn group_fields(media: &[Medium], thicknesses_nm: &[f64], inc: &[usize], wavelength_nm: f64) -> Vec<(Fields, Fields)> {
+    inc.windows(2)
+        .map(|w| {
+            let gm = media[w[0]..=w[1]].to_vec();
+            let gd = thicknesses_nm[w[0]..w[1] - 1].to_vec();
+            let rev_m = gm.iter().rev().copied().collect();
+            let rev_d = gd.iter().rev().copied().collect();
+            (Fields::new(gm, gd, wavelength_nm), Fields::new(rev_m, rev_d, wavelength_nm))
+        })
+        .collect()
 }
 
 /// The intensities between the groups of one polarisation.
@@ -171,16 +164,7 @@ impl Stack {
         let d = self.thicknesses();
         let inc = incoherent_media(self);
         let pass: Vec<f64> = inc.iter().map(|&i| pass_of(&media, &d, i, wavelength_nm)).collect();
-        let fields: Vec<(Fields, Fields)> = inc
-            .windows(2)
-            .map(|w| {
-                let gm = media[w[0]..=w[1]].to_vec();
-                let gd = d[w[0]..w[1] - 1].to_vec();
-                let rev_m = gm.iter().rev().copied().collect();
-                let rev_d = gd.iter().rev().copied().collect();
-                (Fields::new(gm, gd, wavelength_nm), Fields::new(rev_m, rev_d, wavelength_nm))
-            })
-            .collect();
+        let fields = group_fields(&media, &d, &inc, wavelength_nm);
         let light = [false, true].map(|p| {
             let f: Vec<PolPowers> = fields.iter().map(|x| x.0.powers(p)).collect();
             let b: Vec<PolPowers> = fields.iter().map(|x| x.1.powers(p)).collect();
@@ -222,23 +206,13 @@ impl Profile {
     pub fn in_medium(&self, j: usize, dz: f64) -> Point {
         let last = self.media.len() - 1;
         let z_nm = self.top(j) + dz;
-        let ([ps, as_, es], [pp, ap, ep]) =
-            if let Some(k) = self.inc.iter().position(|&i| i == j && i != 0 && i != last) {
-                (self.incoherent_layer(k, dz, false), self.incoherent_layer(k, dz, true))
-            } else {
-                let g = self.inc.windows(2).position(|w| w[0] <= j && j <= w[1]).expect("every medium is in a group");
-                (self.coherent(g, j, dz, false), self.coherent(g, j, dz, true))
-            };
-        Point {
-            z_nm,
-            medium: j,
-            poynting_s: ps,
-            poynting_p: pp,
-            absorption_s: as_,
-            absorption_p: ap,
-            e2_s: es,
-            e2_p: ep,
-        }
+        let (s, p) = if let Some(k) = self.inc.iter().position(|&i| i == j && i != 0 && i != last) {
+            (self.incoherent_layer(k, dz, false), self.incoherent_layer(k, dz, true))
+        } else {
+            let g = self.inc.windows(2).position(|w| w[0] <= j && j <= w[1]).expect("every medium is in a group");
+            (self.coherent(g, j, dz, false), self.coherent(g, j, dz, true))
+        };
+        Point::from_pols(z_nm, j, s, p)
     }
 
     /// [flux, absorption density, |E|²] in incoherent medium `inc[k]` at `dz` below its top.

@@ -337,22 +337,9 @@ impl Stack {
     /// Stacks with incoherent (`inc:`) layers are evaluated by [`crate::incoherent::evaluate`].
     pub fn evaluate(&self, wavelength_nm: f64, angle_rad: f64) -> Result<Rta, ThinFilmError> {
         if self.has_incoherent() {
-            return self.evaluate_incoherent(wavelength_nm, angle_rad, &self.thicknesses());
+            return evaluate_incoherent(self, wavelength_nm, angle_rad, &self.thicknesses());
         }
         Ok(self.amplitudes(wavelength_nm, angle_rad)?.powers())
-    }
-
-    /// Reflectance and transmittance of a stack with incoherent layers (any stack: a coherent one gives the
-    /// powers of [`Stack::evaluate`]) with the given layer thicknesses ([`crate::intensity`]).
-    pub(crate) fn evaluate_incoherent(
-        &self,
-        wavelength_nm: f64,
-        angle_rad: f64,
-        thicknesses_nm: &[f64],
-    ) -> Result<Rta, ThinFilmError> {
-        self.check_thicknesses(thicknesses_nm)?;
-        let media = self.media(wavelength_nm, angle_rad)?;
-        Ok(crate::intensity::rta(&media, thicknesses_nm, &incoherent_media(self), wavelength_nm))
     }
 
     /// Refuses thicknesses that are not one finite value ≥ 0 per layer.
@@ -371,7 +358,7 @@ impl Stack {
     pub fn evaluate_offset(&self, wavelength_nm: f64, angle_rad: f64, offset_nm: f64) -> Result<Rta, ThinFilmError> {
         let d: Vec<f64> = self.layers.iter().map(|l| (l.thickness_nm + offset_nm).max(0.0)).collect();
         if self.has_incoherent() {
-            return self.evaluate_incoherent(wavelength_nm, angle_rad, &d);
+            return evaluate_incoherent(self, wavelength_nm, angle_rad, &d);
         }
         Ok(self.amplitudes_with(wavelength_nm, angle_rad, &d, None)?.powers())
     }
@@ -418,6 +405,20 @@ impl std::fmt::Display for Stack {
         }
         write!(f, " | {}", self.substrate.name())
     }
+}
+
+/// Reflectance and transmittance of a stack with incoherent layers (any stack: a coherent one gives the
+/// powers of [`Stack::evaluate`]), with the given layer thicknesses ([`crate::intensity`]). As everywhere in
+/// iridis, T into an absorbing substrate is 0 (the light entering it is absorbed; `docs/PHYSICS.md`).
+pub fn evaluate_incoherent(
+    stack: &Stack,
+    wavelength_nm: f64,
+    angle_rad: f64,
+    thicknesses_nm: &[f64],
+) -> Result<Rta, ThinFilmError> {
+    stack.check_thicknesses(thicknesses_nm)?;
+    let media = stack.media(wavelength_nm, angle_rad)?;
+    Ok(crate::intensity::rta(&media, thicknesses_nm, &incoherent_media(stack), wavelength_nm))
 }
 
 /// The indices (into the `N + 2` media) of the incoherent media: 0, every `inc:` layer, `N + 1`.
