@@ -1,5 +1,5 @@
 //! The rough stack — a film whose bottom interface is rough ([`crate::htsg`]) — and the coherent optics of one
-//! side of it: the media, Fresnel coefficients and phases above the rough interface at one angle ([`Side`]) and
+//! side of it: the media, Fresnel coefficients and phases above the rough interface at one angle (`Side`) and
 //! the power transmittance through the layers between medium 0 and the interface. [`crate::rough`] evaluates
 //! the LSRS model on it, [`crate::rough_multiple`] the light scattered more than once inside the film.
 
