@@ -1,6 +1,7 @@
 //! The evaluators: one interface, several methods (ARCHITECTURE.md). Each answers the colour (XYZ) for a pair
 //! of directions and, where the method resolves wavelengths, the relative reflectance `ρ_λ = C |A|²`.
 
+use std::any::Any;
 use std::sync::Arc;
 
 use iridis_color::{SpectralWeights, Xyz};
@@ -12,24 +13,27 @@ use crate::spectral::SpectralSetup;
 use crate::taylor::TaylorTerms;
 use crate::DiffractionError;
 
+/// What lets a `&dyn Evaluator` be asked for the concrete method behind it (`as_lookup`, defined next to the
+/// lookup table in [`crate::table`]; `as_ground_truth`) without the trait naming its implementations, so the
+/// trait sits below every module that implements it. Every `'static` type has it.
+pub trait AsAny: Any {
+    fn as_any(&self) -> &dyn Any;
+}
+
+impl<T: Any> AsAny for T {
+    fn as_any(&self) -> &dyn Any {
+        self
+    }
+}
+
 /// A diffraction BRDF model.
-pub trait Evaluator: Send + Sync {
+pub trait Evaluator: AsAny + Send + Sync {
     /// Short name (`ground-truth`, `reference`, `lookup`, …).
     fn name(&self) -> &'static str;
     /// Relative reflectance `ρ_λ(ω_i, ω_r)`; `None` for methods that integrate over λ in advance.
     fn reflectance(&self, wavelength_nm: f64, wi: Vec3, wr: Vec3) -> Option<f64>;
     /// CIE XYZ of the reflected light, `X = Σ_λ w_x(λ) ρ_λ` (paper eq. 9; a normal-incidence mirror has Y = 1).
     fn xyz(&self, wi: Vec3, wr: Vec3) -> Xyz;
-    /// The precomputed tables behind this evaluator, if it is the lookup method: what a GPU uploads to evaluate
-    /// the same numbers (`iridis-gpu`). Other methods have nothing to upload.
-    fn as_lookup(&self) -> Option<&crate::table::Lookup> {
-        None
-    }
-    /// The direct sum behind this evaluator, if it is a ground truth: what a GPU needs to evaluate the same
-    /// numbers (`iridis-gpu`).
-    fn as_ground_truth(&self) -> Option<&GroundTruth> {
-        None
-    }
     /// The shading factors `C` around `|A|²`, where the method has them: with [`Evaluator::radiometric_gain`]
     /// what turns the relative `ρ` into the BRDF `f_r` (sr⁻¹) per polarisation ([`crate::point`]).
     fn shading(&self) -> Option<&Shading> {
@@ -51,6 +55,14 @@ pub trait Evaluator: Send + Sync {
     /// the half-vector angle says ([`crate::point`]).
     fn polarisation(&self, _wavelength_nm: f64, _wi: Vec3, _wr: Vec3) -> Option<[f64; 2]> {
         None
+    }
+}
+
+impl dyn Evaluator {
+    /// The direct sum behind this evaluator, if it is a ground truth: what a GPU needs to evaluate the same
+    /// numbers (`iridis-gpu`).
+    pub fn as_ground_truth(&self) -> Option<&GroundTruth> {
+        AsAny::as_any(self).downcast_ref()
     }
 }
 
@@ -229,6 +241,21 @@ pub struct Lattice {
     pub column_images: Vec<Vec<(i64, f64)>>,
     /// Per row `t`, its images: `(n, gy)`, lattice row `t + n·rows`.
     pub row_images: Vec<Vec<(i64, f64)>>,
+}
+
+impl Lattice {
+    /// The lattice of `patch`'s heights with the images of its columns and rows.
+    fn of(patch: &Patch, column_images: Vec<Vec<(i64, f64)>>, row_images: Vec<Vec<(i64, f64)>>) -> Self {
+        Lattice {
+            rows: patch.rows,
+            cols: patch.cols,
+            dx: patch.dx,
+            dy: patch.dy,
+            heights: patch.heights.clone(),
+            column_images,
+            row_images,
+        }
+    }
 }
 
 /// The images along one axis: for each sample position `pos[i]` (relative to the patch centre), the shifts
@@ -444,15 +471,7 @@ impl GroundTruth {
                     let (sum, peak) = (g.iter().sum::<f64>(), g.iter().fold(0.0f64, |m, &v| m.max(v)));
                     g.iter().map(|&v| if v >= WINDOW_CUT * peak { vec![(0, v / sum)] } else { Vec::new() }).collect()
                 };
-                let lattice = Lattice {
-                    rows: patch.rows,
-                    cols: patch.cols,
-                    dx: patch.dx,
-                    dy: patch.dy,
-                    heights: patch.heights.clone(),
-                    column_images: axis(patch.cols, patch.dx, xc),
-                    row_images: axis(patch.rows, patch.dy, yc),
-                };
+                let lattice = Lattice::of(patch, axis(patch.cols, patch.dx, xc), axis(patch.rows, patch.dy, yc));
                 (samples, lattice)
             }
             Aperture::Periodic => {
@@ -461,15 +480,7 @@ impl GroundTruth {
                 let (lx, ly) = patch.extent();
                 // The same 1e-12 cut, per axis (g = g_x g_y, peak 1): the lattice kept is the square around the
                 // finite aperture's disk.
-                let lattice = Lattice {
-                    rows: patch.rows,
-                    cols: patch.cols,
-                    dx: patch.dx,
-                    dy: patch.dy,
-                    heights: patch.heights.clone(),
-                    column_images: axis_images(&xs, lx, sigma_s)?,
-                    row_images: axis_images(&ys, ly, sigma_s)?,
-                };
+                let lattice = Lattice::of(patch, axis_images(&xs, lx, sigma_s)?, axis_images(&ys, ly, sigma_s)?);
                 (Samples::Periodic { xs, ys }, lattice)
             }
         };
@@ -606,9 +617,6 @@ impl Evaluator for GroundTruth {
         let power: Vec<f64> =
             self.amplitudes(wi, wr, self.wavenumbers[0], ds, n).iter().map(|a| a.norm_sqr()).collect();
         self.xyz_from_power(wi, wr, &power)
-    }
-    fn as_ground_truth(&self) -> Option<&GroundTruth> {
-        Some(self)
     }
     fn shading(&self) -> Option<&Shading> {
         Some(&self.shading)

@@ -18,7 +18,7 @@ use num_complex::Complex64;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use crate::evaluator::Evaluator;
+use crate::evaluator::{AsAny, Evaluator};
 use crate::geometry::{uvw, Shading, Vec3};
 use crate::spectral::SpectralSetup;
 use crate::taylor::TaylorTerms;
@@ -710,6 +710,14 @@ impl Lookup {
     }
 }
 
+impl dyn Evaluator {
+    /// The precomputed tables behind this evaluator, if it is the lookup method: what a GPU uploads to evaluate
+    /// the same numbers (`iridis-gpu`). Other methods have nothing to upload.
+    pub fn as_lookup(&self) -> Option<&Lookup> {
+        AsAny::as_any(self).downcast_ref()
+    }
+}
+
 impl Evaluator for Lookup {
     fn name(&self) -> &'static str {
         "lookup"
@@ -734,8 +742,5 @@ impl Evaluator for Lookup {
         let c = self.shading.factor(500.0, wi, wr);
         let s = self.sum(u, v, w);
         Xyz::new(c * s[0], c * s[1], c * s[2])
-    }
-    fn as_lookup(&self) -> Option<&Lookup> {
-        Some(self)
     }
 }

@@ -68,6 +68,17 @@ fn cone_one_minus_cos(r2: f64, d2: f64) -> f64 {
     sin2 / (1.0 + (1.0 - sin2).sqrt())
 }
 
+/// The cone a sphere light subtends from `p`: the vector to its centre, the squared distance and `1 − cos α`;
+/// `None` from inside (a sphere light is seen from outside).
+fn sphere_cone(center: V3, radius: f64, p: V3) -> Option<(V3, f64, f64)> {
+    let dc = sub(center, p);
+    let d2 = dot(dc, dc);
+    if d2 <= radius * radius {
+        return None;
+    }
+    Some((dc, d2, cone_one_minus_cos(radius * radius, d2)))
+}
+
 impl Shape {
     /// Scales every length about the origin (`Scene::scale`).
     pub fn scaled(self, s: f64) -> Self {
@@ -108,27 +119,11 @@ impl Shape {
                 (t > 0.0 && t < t_max).then_some(t)
             }
             Shape::Disk { center, normal, radius } => {
-                let den = dot(d, normal);
-                if den >= 0.0 {
-                    return None;
-                }
-                let t = dot(sub(center, o), normal) / den;
-                if !(t > 0.0 && t < t_max) {
-                    return None;
-                }
-                let q = sub(add(o, mul(d, t)), center);
+                let (t, q) = front_plane_hit(o, d, center, normal, t_max)?;
                 (dot(q, q) <= radius * radius).then_some(t)
             }
             Shape::Rectangle { center, normal, tangent, size } => {
-                let den = dot(d, normal);
-                if den >= 0.0 {
-                    return None;
-                }
-                let t = dot(sub(center, o), normal) / den;
-                if !(t > 0.0 && t < t_max) {
-                    return None;
-                }
-                let q = sub(add(o, mul(d, t)), center);
+                let (t, q) = front_plane_hit(o, d, center, normal, t_max)?;
                 let b = cross(normal, tangent);
                 (dot(q, tangent).abs() <= 0.5 * size[0] && dot(q, b).abs() <= 0.5 * size[1]).then_some(t)
             }
@@ -140,12 +135,7 @@ impl Shape {
     pub fn sample(&self, p: V3, u: [f64; 2]) -> Option<LightSample> {
         match *self {
             Shape::Sphere { center, radius } => {
-                let dc = sub(center, p);
-                let d2 = dot(dc, dc);
-                if d2 <= radius * radius {
-                    return None;
-                }
-                let omc = cone_one_minus_cos(radius * radius, d2);
+                let (dc, d2, omc) = sphere_cone(center, radius, p)?;
                 // cos θ = 1 − u (1 − cos θ_max), uniform in solid angle within the cone.
                 let x = u[0] * omc;
                 let cos_t = 1.0 - x;
@@ -220,13 +210,8 @@ impl Shape {
     pub fn representative(&self, p: V3) -> Option<Representative> {
         match *self {
             Shape::Sphere { center, radius } => {
-                let dc = sub(center, p);
-                let d2 = dot(dc, dc);
-                if d2 <= radius * radius {
-                    return None;
-                }
+                let (dc, d2, omc) = sphere_cone(center, radius, p)?;
                 let d = d2.sqrt();
-                let omc = cone_one_minus_cos(radius * radius, d2);
                 Some(Representative {
                     wi: mul(dc, 1.0 / d),
                     dist: d - radius,
@@ -263,6 +248,20 @@ impl AreaLight {
     pub fn scaled(self, s: f64) -> Self {
         Self { shape: self.shape.scaled(s), ..self }
     }
+}
+
+/// Where the ray `o + t d` meets the plane through `center` with `normal` from its front side, `0 < t < t_max`:
+/// `t` and the hit point relative to `center`. A flat light emits from its front only.
+fn front_plane_hit(o: V3, d: V3, center: V3, normal: V3, t_max: f64) -> Option<(f64, V3)> {
+    let den = dot(d, normal);
+    if den >= 0.0 {
+        return None;
+    }
+    let t = dot(sub(center, o), normal) / den;
+    if !(t > 0.0 && t < t_max) {
+        return None;
+    }
+    Some((t, sub(add(o, mul(d, t)), center)))
 }
 
 #[cfg(test)]
@@ -303,16 +302,7 @@ mod tests {
         // ∫ pdf dω over a fine (θ, φ) grid = 1: the sampled directions cover the light's solid angle exactly.
         let p = [0.1, 0.0, 0.2];
         for s in shapes() {
-            let (nt, np) = (1600, 800);
-            let mut acc = 0.0;
-            for i in 0..nt {
-                let th = std::f64::consts::PI * (i as f64 + 0.5) / nt as f64;
-                let dw = th.sin() * std::f64::consts::PI / nt as f64 * std::f64::consts::TAU / np as f64;
-                for j in 0..np {
-                    let ph = std::f64::consts::TAU * (j as f64 + 0.5) / np as f64;
-                    acc += s.pdf(p, [th.sin() * ph.cos(), th.cos(), th.sin() * ph.sin()]) * dw;
-                }
-            }
+            let acc = crate::sampling::sphere_integral(1600, 800, |d| s.pdf(p, d));
             assert!((acc - 1.0).abs() < 0.01, "{s:?}: ∫ pdf = {acc}");
         }
     }

@@ -171,7 +171,7 @@ fn slab(n: &Node, o: V3, inv: V3, t_max: f64) -> Option<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::{snake_mesh, SnakeParams};
+    use crate::snake::{snake_mesh, SnakeParams};
 
     /// The BVH finds exactly the nearest hit that testing every triangle finds.
     #[test]

@@ -1,5 +1,5 @@
-//! Geometry: triangle meshes (with normals, UVs and tangent frames), analytic spheres and planes, and the
-//! procedural snake body of the demo. Intersection routines return a [`Hit`] with the shading frame that the
+//! Geometry: triangle meshes (with normals, UVs and tangent frames), analytic spheres and planes (the
+//! procedural snake body of the demo is built in [`crate::snake`]). Intersection routines return a [`Hit`] with the shading frame that the
 //! materials need.
 
 use crate::math::*;
@@ -290,74 +290,12 @@ impl Plane {
     }
 }
 
-pub use crate::snake::{ScaleKind, SnakeParams};
-
-/// The snake body: a tube of `rings × segments` vertices around a spine in the x–z plane (y up), lying on
-/// `y = 0` (its belly touches the ground), head at `+x`. The radius tapers to a point at the tail and to a
-/// rounded head; `u` runs along the body (tail → head, repeating `tiles[0]` times), `v` around it, and the
-/// `along` attribute is the spine's direction (tail → head), the rule the paper uses for the nanofingers.
-/// With scales (`p.scales` smooth or keeled), the body of [`crate::snake`] covered with plates instead.
-pub fn snake_mesh(p: &SnakeParams, material: usize) -> Mesh {
-    if p.scales != ScaleKind::None {
-        return crate::snake::scaled_snake_mesh(p, material);
-    }
-    let n_r = p.rings.max(8);
-    let n_s = p.segments.max(6);
-    let spine = |s: f64| -> V3 {
-        let x = (s - 0.5) * p.length;
-        let z = p.amplitude * (std::f64::consts::TAU * p.waves * s).sin() * (0.4 + 0.6 * s);
-        [x, 0.0, z]
-    };
-    let radius = |s: f64| -> f64 {
-        let tail = (s / 0.6).min(1.0).powf(0.7); // long taper to the tail tip
-        let head = if s > 0.97 { ((1.0 - s) / 0.03).max(0.0).sqrt() } else { 1.0 };
-        let neck = 1.0 - 0.25 * (-((s - 0.93) / 0.02).powi(2)).exp();
-        p.radius * tail.max(0.02) * head.max(0.05) * neck
-    };
-    let mut m = Mesh { name: "snake".into(), material, ..Default::default() };
-    let mut uvs = Vec::new();
-    let mut along = Vec::new();
-    for i in 0..n_r {
-        let s = i as f64 / (n_r - 1) as f64;
-        let ds = 1e-4;
-        let tan = normalize(sub(spine((s + ds).min(1.0)), spine((s - ds).max(0.0))));
-        let up = [0.0, 1.0, 0.0];
-        let side = normalize(cross(tan, up));
-        let up = cross(side, tan);
-        let r = radius(s);
-        let c = add(spine(s), [0.0, r, 0.0]);
-        for j in 0..=n_s {
-            let a = std::f64::consts::TAU * j as f64 / n_s as f64;
-            let dir = add(mul(up, a.cos()), mul(side, a.sin()));
-            // A slightly flattened belly: the cross-section squashes below the centre line.
-            let flat = if dir[1] < 0.0 { 0.6 } else { 1.0 };
-            let off = add(mul(side, r * a.sin()), mul(up, r * a.cos() * flat));
-            m.positions.push(add(c, off));
-            uvs.push([s * p.tiles[0], j as f64 / n_s as f64 * p.tiles[1]]);
-            along.push(tan);
-        }
-    }
-    let row = (n_s + 1) as u32;
-    for i in 0..(n_r - 1) as u32 {
-        for j in 0..n_s as u32 {
-            let a = i * row + j;
-            let b = a + row;
-            m.triangles.push([a, a + 1, b]);
-            m.triangles.push([a + 1, b + 1, b]);
-        }
-    }
-    m.uvs = Some(uvs);
-    m.along = Some(along);
-    m.compute_normals();
-    // The seam column duplicates positions: average the normals across it so the tube shades smoothly.
-    for i in 0..n_r {
-        let (a, b) = (i * (n_s + 1), i * (n_s + 1) + n_s);
-        let n = normalize(add(m.normals[a], m.normals[b]));
-        m.normals[a] = n;
-        m.normals[b] = n;
-    }
-    m.compute_tangents();
-    m
+/// Ray offset along the normal that clears the surface at a hit without skipping thin features. Relative to
+/// the hit's magnitude and the distance the ray travelled to it (the rounding error of `o + t d` is bounded by
+/// a few ulps of `|o| + t|d| ≤ |p| + 2t`, as in pbrt's error bounds), so a scene renders alike at any scale.
+pub(crate) fn eps(h: &Hit) -> f64 {
+    let p = h.p;
+    1e-8 * (p[0].abs().max(p[1].abs()).max(p[2].abs()) + h.t)
 }
 
 #[cfg(test)]
@@ -383,21 +321,5 @@ mod tests {
         assert!((t - 1.0).abs() < 1e-12 && (u - 0.2).abs() < 1e-12 && (v - 0.3).abs() < 1e-12);
         assert!(intersect_triangle([0.8, 0.8, 1.0], [0.0, 0.0, -1.0], a, b, c, 10.0).is_none());
         assert!(intersect_triangle([0.2, 0.3, 1.0], [0.0, 0.0, -1.0], a, b, c, 0.5).is_none());
-    }
-
-    #[test]
-    fn snake_mesh_is_closed_around_and_tangents_follow_the_body() {
-        let m = snake_mesh(&SnakeParams { rings: 60, segments: 12, ..Default::default() }, 0);
-        assert_eq!(m.positions.len(), 60 * 13);
-        let ts = m.corner_tangents.as_ref().expect("UVs give MikkTSpace tangents");
-        // u runs along the body, so the MikkTSpace tangent (dP/du) agrees with the spine direction.
-        let mut agree = 0;
-        for (k, t) in ts.iter().enumerate() {
-            let vtx = m.triangles[k / 3][k % 3] as usize;
-            if dot([t[0], t[1], t[2]], m.along.as_ref().unwrap()[vtx]) > 0.9 {
-                agree += 1;
-            }
-        }
-        assert!(agree as f64 > 0.95 * ts.len() as f64, "{agree} of {}", ts.len());
     }
 }

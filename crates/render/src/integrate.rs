@@ -15,32 +15,7 @@ use crate::material::{relative_azimuth, Diffraction, Microfacet, ThinFilm};
 use crate::math::*;
 use crate::sampling::{cosine_hemisphere, frame, from_local, ggx_visible_normal, next, next2, power_heuristic};
 use crate::scene::Scene;
-
-/// How the environment (and area lights) reach surfaces.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Integration {
-    /// Deterministic and real-time: the environment's irradiance map and mirror ray, its 64 directional lights
-    /// for diffraction (each a prefiltered area light); an area light as one directional light from its centre
-    /// with its irradiance (diffraction: the lobe averaged over its solid angle). Secondary rays do not see
-    /// area lights.
-    #[default]
-    Fast,
-    /// Monte Carlo; converges with the samples per pixel. The strategy is multiple importance sampling; the
-    /// two single-technique estimators exist to check it (they converge to the same image, with more noise).
-    MonteCarlo(Strategy),
-}
-
-/// Which samples of extended light count (the weights of the two techniques).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Strategy {
-    /// Light and BRDF samples, weighted by the power heuristic.
-    #[default]
-    Mis,
-    /// Light samples only (the BRDF's samples still carry the path to other surfaces).
-    Light,
-    /// BRDF samples only.
-    Brdf,
-}
+pub use crate::scene::{Integration, Strategy};
 
 /// A surface as extended light sees it: `π f cos θ_i`, and how to sample its lobe.
 pub(crate) enum Surface<'a> {
@@ -275,7 +250,7 @@ impl Scene {
     /// sample) at a hit whose surface is `s`, seen from `wo` (Monte Carlo). One sample of each light,
     /// one of the environment, one of the BRDF; weighted by the power heuristic.
     pub(crate) fn extended_light(&self, h: &Hit, s: &Surface, wo: V3, depth: u32, weight: f64) -> Rgb {
-        let o = add(h.p, mul(h.ng, crate::render::eps(h)));
+        let o = add(h.p, mul(h.ng, crate::geometry::eps(h)));
         let inv_pi = 1.0 / std::f64::consts::PI;
         let mut out = [0.0; 3];
         for (k, l) in self.area_lights.iter().enumerate() {

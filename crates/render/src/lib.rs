@@ -3,8 +3,8 @@
 //! Put diffraction and thin-film materials on real geometry and get a picture, headless and reproducible: the
 //! reference that the GPU renderer must match (issue 7; user documentation in `docs/render.md`).
 //!
-//! * [`scene`]: the TOML scene format (camera, lights, environment, textures, materials, objects, output) and
-//!   glTF 2.0 scenes;
+//! * [`scene`]: the scene a renderer draws; [`scene_toml`] the TOML scene format (camera, lights, environment,
+//!   textures, materials, objects, output), [`gltf_scene`] glTF 2.0 files as scenes, [`load`] either by name;
 //! * [`geometry`]: meshes with normals, UVs and MikkTSpace tangent frames ([`obj_io`], [`gltf_io`]), analytic
 //!   spheres and planes; [`snake`] the procedural snake with curved, overlapping scale plates; [`bvh`] the
 //!   acceleration structure;
@@ -30,8 +30,10 @@ pub mod error;
 pub mod geometry;
 pub mod gltf_export;
 pub mod gltf_io;
+pub mod gltf_scene;
 pub mod integrate;
 pub mod light;
+pub mod load;
 pub mod lobe;
 pub mod lobe_albedo;
 pub mod material;
@@ -40,10 +42,13 @@ pub mod obj_io;
 pub mod render;
 pub mod sampling;
 pub mod scene;
+pub mod scene_toml;
 pub mod snake;
 pub mod tables;
 pub mod texture;
 
 pub use error::RenderError;
+pub use load::{load_scene, load_scene_with};
 pub use render::{render, Image};
-pub use scene::{load_scene, load_scene_with, parse_scene, Scene};
+pub use scene::Scene;
+pub use scene_toml::parse_scene;

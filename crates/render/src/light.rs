@@ -437,16 +437,7 @@ mod tests {
         let sky = Environment::Sky { zenith: [2.0, 2.0, 2.0], horizon: [1.0; 3], ground: [0.1; 3] };
         let s = EnvSampler::new(&sky).unwrap();
         // ∫ pdf dω = 1 on a fine grid, independent of the cells.
-        let (nt, np) = (800, 400);
-        let mut acc = 0.0;
-        for i in 0..nt {
-            let th = std::f64::consts::PI * (i as f64 + 0.5) / nt as f64;
-            let dw = th.sin() * std::f64::consts::PI / nt as f64 * std::f64::consts::TAU / np as f64;
-            for j in 0..np {
-                let ph = std::f64::consts::TAU * (j as f64 + 0.5) / np as f64;
-                acc += s.pdf([th.sin() * ph.cos(), th.cos(), th.sin() * ph.sin()]) * dw;
-            }
-        }
+        let acc = crate::sampling::sphere_integral(800, 400, |d| s.pdf(d));
         assert!((acc - 1.0).abs() < 1e-3, "∫ pdf = {acc}");
         // Sampled directions report the pdf of pdf(); E[L/pdf] = ∫ L dω (closed form from the mean radiance).
         seed(9, 0);

@@ -5,7 +5,7 @@ use rayon::prelude::*;
 
 use iridis_color::{Encoding, ToneMap, Xyz};
 
-use crate::geometry::{triangle_hit, Hit};
+use crate::geometry::{eps, triangle_hit, Hit};
 use crate::integrate::Surface;
 use crate::light::Rgb;
 use crate::material::{relative_azimuth, ColorSource, Material, Microfacet, ThinFilm};
@@ -441,12 +441,4 @@ impl Scene {
         let l = [0, 1, 2].map(|k| mirror[k] * (1.0 - rough) + blurred[k] * rough);
         add(out, mul(add(film, hadamard(r, l)), fac))
     }
-}
-
-/// Ray offset along the normal that clears the surface at a hit without skipping thin features. Relative to
-/// the hit's magnitude and the distance the ray travelled to it (the rounding error of `o + t d` is bounded by
-/// a few ulps of `|o| + t|d| ≤ |p| + 2t`, as in pbrt's error bounds), so a scene renders alike at any scale.
-pub(crate) fn eps(h: &Hit) -> f64 {
-    let p = h.p;
-    1e-8 * (p[0].abs().max(p[1].abs()).max(p[2].abs()) + h.t)
 }

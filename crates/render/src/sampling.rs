@@ -174,6 +174,22 @@ fn invert(cdf: &[f64], u: f64) -> (usize, f64) {
     (i, f)
 }
 
+/// `∫ f(ω) dω` over the sphere of directions by the midpoint rule on an `nt × np` grid in (θ, φ), `θ` from
+/// the y axis (the tests' check that a pdf over directions integrates to 1).
+#[cfg(test)]
+pub(crate) fn sphere_integral(nt: usize, np: usize, mut f: impl FnMut(V3) -> f64) -> f64 {
+    let mut acc = 0.0;
+    for i in 0..nt {
+        let th = std::f64::consts::PI * (i as f64 + 0.5) / nt as f64;
+        let dw = th.sin() * std::f64::consts::PI / nt as f64 * std::f64::consts::TAU / np as f64;
+        for j in 0..np {
+            let ph = std::f64::consts::TAU * (j as f64 + 0.5) / np as f64;
+            acc += f([th.sin() * ph.cos(), th.cos(), th.sin() * ph.sin()]) * dw;
+        }
+    }
+    acc
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -385,7 +385,7 @@ fn cd(f: &Frame, radius: f64, rng: &mut Rng, pitch: f64, bit: f64, width: f64, d
 fn gaussian(rows: usize, cols: usize, d: f64, rng: &mut Rng, rms: f64, corr: f64) -> Vec<f64> {
     use rustfft::num_complex::Complex;
     let mut data: Vec<Complex<f64>> = (0..rows * cols).map(|_| Complex::new(rng.normal(), 0.0)).collect();
-    crate::analysis::fft2(&mut data, rows, cols, false);
+    crate::fft::fft2(&mut data, rows, cols, false);
     for r in 0..rows {
         let fr = signed_bin(r, rows) / (rows as f64 * d);
         for c in 0..cols {
@@ -394,7 +394,7 @@ fn gaussian(rows: usize, cols: usize, d: f64, rng: &mut Rng, rms: f64, corr: f64
             data[r * cols + c] *= (-PI * PI * f2 * corr * corr / 2.0).exp();
         }
     }
-    crate::analysis::fft2(&mut data, rows, cols, true);
+    crate::fft::fft2(&mut data, rows, cols, true);
     let mut h: Vec<f64> = data.iter().map(|z| z.re).collect();
     normalise_rms(&mut h, rms);
     h

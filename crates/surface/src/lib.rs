@@ -11,6 +11,7 @@
 
 pub mod analysis;
 pub mod builtin;
+pub mod fft;
 pub mod formats;
 pub mod fuzz;
 pub mod generate;

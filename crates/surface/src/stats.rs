@@ -14,7 +14,7 @@
 use rustfft::num_complex::Complex;
 use serde::Serialize;
 
-use crate::analysis::fft2;
+use crate::fft::fft2;
 use crate::HeightField;
 
 /// Height statistics of a (levelled) field.

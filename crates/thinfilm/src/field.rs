@@ -53,6 +53,19 @@ pub struct Point {
 }
 
 impl Point {
+    /// The point at depth `z_nm` in `medium` from each polarisation's (flux, absorbed density, |E|²).
+    pub(crate) fn from_pols(z_nm: f64, medium: usize, s: [f64; 3], p: [f64; 3]) -> Self {
+        Point {
+            z_nm,
+            medium,
+            poynting_s: s[0],
+            poynting_p: p[0],
+            absorption_s: s[1],
+            absorption_p: p[1],
+            e2_s: s[2],
+            e2_p: p[2],
+        }
+    }
     pub fn poynting(&self) -> f64 {
         0.5 * (self.poynting_s + self.poynting_p)
     }
@@ -103,12 +116,6 @@ impl Stack {
         }
         let media = self.media(wavelength_nm, angle_rad)?;
         Ok(Fields::new(media, self.thicknesses(), wavelength_nm))
-    }
-
-    /// The fraction of the incident power absorbed in each layer (coherent or `inc:`) and in an absorbing
-    /// substrate, with R and T; for mixed stacks as `tmm.inc_absorp_in_each_layer`.
-    pub fn absorption(&self, wavelength_nm: f64, angle_rad: f64) -> Result<Absorption, ThinFilmError> {
-        crate::incoherent::absorption(self, wavelength_nm, angle_rad, &self.thicknesses())
     }
 
     /// Ellipsometric angles `(ψ, Δ)` in radians with tmm's `ellips` convention:
@@ -226,8 +233,8 @@ impl Fields {
         }
         // Flux at the top of media 1..=N+1, and leaving medium 0 (equal to the first by continuity; tmm's
         // `power_entering`, used for the first layer as tmm does).
-        let flux: Vec<f64> = (1..=n + 1).map(|j| self.one(wv, j, 0.0).0).collect();
-        let entering = self.one(wv, 0, 0.0).0;
+        let flux: Vec<f64> = (1..=n + 1).map(|j| self.one(wv, j, 0.0)[0]).collect();
+        let entering = self.one(wv, 0, 0.0)[0];
         let mut layers = Vec::with_capacity(n);
         let mut above = entering;
         for &below in &flux[1..] {
@@ -256,23 +263,12 @@ impl Fields {
 
     /// The values in medium `j` at `dz` nm below its top (tmm's `position_resolved(layer, distance)`).
     pub fn in_medium(&self, j: usize, dz: f64) -> Point {
-        let (ps, as_, es) = self.one(&self.s, j, dz);
-        let (pp, ap, ep) = self.one(&self.p, j, dz);
-        Point {
-            z_nm: self.top(j) + dz,
-            medium: j,
-            poynting_s: ps,
-            poynting_p: pp,
-            absorption_s: as_,
-            absorption_p: ap,
-            e2_s: es,
-            e2_p: ep,
-        }
+        Point::from_pols(self.top(j) + dz, j, self.one(&self.s, j, dz), self.one(&self.p, j, dz))
     }
 
     /// Byrnes eq. 14–19 (arXiv:1603.02720): `E_f = v e^{i k_z z}`, `E_b = w e^{−i k_z z}`; normal flux,
     /// absorbed density and |E|² relative to the incident wave.
-    fn one(&self, wv: &Waves, j: usize, dz: f64) -> (f64, f64, f64) {
+    fn one(&self, wv: &Waves, j: usize, dz: f64) -> [f64; 3] {
         let m = self.media[j];
         let m0 = self.media[0];
         let kz = 2.0 * std::f64::consts::PI / self.wavelength_nm * m.n * m.cos;
@@ -283,7 +279,7 @@ impl Fields {
             let norm = (m0.n * m0.cos).re;
             let poyn = (m.n * m.cos * (ef + eb).conj() * (ef - eb)).re / norm;
             let absor = (m.n * m.cos * kz * (ef + eb).norm_sqr()).im / norm;
-            (poyn, absor, (ef + eb).norm_sqr())
+            [poyn, absor, (ef + eb).norm_sqr()]
         } else {
             let norm = (m0.n * m0.cos.conj()).re;
             let poyn = (m.n * m.cos.conj() * (ef + eb) * (ef - eb).conj()).re / norm;
@@ -291,7 +287,7 @@ impl Fields {
             let sin = Complex64::new(self.invariant, 0.0) / m.n;
             let ex = (ef - eb) * m.cos;
             let ez = (-ef - eb) * sin;
-            (poyn, absor, ex.norm_sqr() + ez.norm_sqr())
+            [poyn, absor, ex.norm_sqr() + ez.norm_sqr()]
         }
     }
 

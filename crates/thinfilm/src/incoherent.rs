@@ -16,73 +16,11 @@ use num_complex::Complex64;
 
 use crate::error::ThinFilmError;
 use crate::field::{locate, top_of, Absorption, Fields, Point, PolPowers};
-use crate::recurrence::{compose, Medium, Rta};
+use crate::intensity::{group_list, pass_of};
+pub use crate::intensity::{group_powers, single_pass, GroupPowers};
+use crate::recurrence::Medium;
 use crate::stack::Stack;
-
-/// Power coefficients of one coherent group (or bare interface) between two incoherent media, for s and p:
-/// `[R_f, T_f, R_b, T_b]` (forwards: from the upper medium; backwards: from the lower one).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct GroupPowers {
-    pub s: [f64; 4],
-    pub p: [f64; 4],
-}
-
-/// `Re(n̂ s_z)` (s) or `Re(n̂ conj(s_z))` (p): the normal power flux of a unit wave, as in tmm's `T_from_t`
-/// (Byrnes eq. 21–22); they differ only in absorbing media.
-fn flux(m: Medium, p: bool) -> f64 {
-    if p {
-        (m.n * m.cos.conj()).re
-    } else {
-        (m.n * m.cos).re
-    }
-}
-
-/// `|t|²` times the ratio of fluxes, or 0 where no power flows (an evanescent medium).
-fn power_t(t: Complex64, upper: Medium, lower: Medium, p: bool) -> f64 {
-    let (a, b) = (flux(upper, p), flux(lower, p));
-    if a <= 0.0 || b <= 0.0 {
-        0.0
-    } else {
-        t.norm_sqr() * b / a
-    }
-}
-
-/// The powers of the coherent group `media` (its incoherent ends included) with the inner thicknesses.
-pub fn group_powers(media: &[Medium], thicknesses_nm: &[f64], wavelength_nm: f64) -> GroupPowers {
-    let f = compose(media, thicknesses_nm, wavelength_nm, None);
-    let rev_media: Vec<Medium> = media.iter().rev().copied().collect();
-    let rev_d: Vec<f64> = thicknesses_nm.iter().rev().copied().collect();
-    let b = compose(&rev_media, &rev_d, wavelength_nm, None);
-    let (top, bottom) = (media[0], media[media.len() - 1]);
-    GroupPowers {
-        s: [
-            f.gamma_s.norm_sqr(),
-            power_t(f.tau_s, top, bottom, false),
-            b.gamma_s.norm_sqr(),
-            power_t(b.tau_s, bottom, top, false),
-        ],
-        p: [
-            f.gamma_p.norm_sqr(),
-            power_t(f.tau_p, top, bottom, true),
-            b.gamma_p.norm_sqr(),
-            power_t(b.tau_p, bottom, top, true),
-        ],
-    }
-}
-
-/// The single-pass intensity transmission of an incoherent layer, `exp(−4π d Im(n̂ s_z) / λ)`
-/// (Byrnes section 5; `Im(n̂ s_z) ≥ 0` on the forward branch).
-pub fn single_pass(m: Medium, thickness_nm: f64, wavelength_nm: f64) -> f64 {
-    (-4.0 * std::f64::consts::PI * thickness_nm * (m.n * m.cos).im / wavelength_nm).exp()
-}
-
-/// The indices (into the `N + 2` media) of the incoherent media: 0, every `inc:` layer, `N + 1`.
-pub fn incoherent_media(stack: &Stack) -> Vec<usize> {
-    let mut v = vec![0];
-    v.extend(stack.layers.iter().enumerate().filter(|(_, l)| l.incoherent).map(|(i, _)| i + 1));
-    v.push(stack.layers.len() + 1);
-    v
-}
+pub use crate::stack::{evaluate_incoherent as evaluate, incoherent_media};
 
 /// The groups between consecutive incoherent media, top first: their powers.
 pub fn groups(
@@ -92,33 +30,8 @@ pub fn groups(
     wavelength_nm: f64,
 ) -> (Vec<usize>, Vec<GroupPowers>) {
     let inc = incoherent_media(stack);
-    let g = inc.windows(2).map(|w| group_powers(&media[w[0]..=w[1]], &thicknesses_nm[w[0]..w[1] - 1], wavelength_nm));
-    (inc.clone(), g.collect())
-}
-
-/// Reflectance and transmittance of a stack with incoherent layers (any stack: a coherent one gives the
-/// powers of [`Stack::evaluate`]), with the given layer thicknesses. As everywhere in iridis, T into an
-/// absorbing substrate is 0 (the light entering it is absorbed; `docs/PHYSICS.md`).
-pub fn evaluate(
-    stack: &Stack,
-    wavelength_nm: f64,
-    angle_rad: f64,
-    thicknesses_nm: &[f64],
-) -> Result<Rta, ThinFilmError> {
-    if thicknesses_nm.len() != stack.layers.len() || thicknesses_nm.iter().any(|d| !(d.is_finite() && *d >= 0.0)) {
-        return Err(ThinFilmError::Invalid(format!(
-            "need {} finite thicknesses ≥ 0, got {thicknesses_nm:?}",
-            stack.layers.len()
-        )));
-    }
-    let media = stack.media(wavelength_nm, angle_rad)?;
-    let (inc, g) = groups(stack, &media, thicknesses_nm, wavelength_nm);
-    let pass: Vec<f64> = inc.iter().map(|&i| pass_of(&media, thicknesses_nm, i, wavelength_nm)).collect();
-    let (r_s, t_s) = cascade(g.iter().map(|x| x.s), &pass);
-    let (r_p, t_p) = cascade(g.iter().map(|x| x.p), &pass);
-    let opaque = media[media.len() - 1].n.im > 0.0;
-    let z = |t: f64| if opaque { 0.0 } else { t };
-    Ok(Rta { r_s, r_p, t_s: z(t_s), t_p: z(t_p) })
+    let g = group_list(media, thicknesses_nm, &inc, wavelength_nm);
+    (inc, g)
 }
 
 /// Absorption per layer (coherent and incoherent) and in an absorbing substrate, with R and T, as
@@ -132,26 +45,12 @@ pub fn absorption(
     angle_rad: f64,
     thicknesses_nm: &[f64],
 ) -> Result<Absorption, ThinFilmError> {
-    if thicknesses_nm.len() != stack.layers.len() || thicknesses_nm.iter().any(|d| !(d.is_finite() && *d >= 0.0)) {
-        return Err(ThinFilmError::Invalid(format!(
-            "need {} finite thicknesses ≥ 0, got {thicknesses_nm:?}",
-            stack.layers.len()
-        )));
-    }
+    stack.check_thicknesses(thicknesses_nm)?;
     let media = stack.media(wavelength_nm, angle_rad)?;
     let inc = incoherent_media(stack);
     let m = inc.len() - 1;
     let pass: Vec<f64> = inc.iter().map(|&i| pass_of(&media, thicknesses_nm, i, wavelength_nm)).collect();
-    let fields: Vec<(Fields, Fields)> = inc
-        .windows(2)
-        .map(|w| {
-            let gm = media[w[0]..=w[1]].to_vec();
-            let gd = thicknesses_nm[w[0]..w[1] - 1].to_vec();
-            let rev_m = gm.iter().rev().copied().collect();
-            let rev_d = gd.iter().rev().copied().collect();
-            (Fields::new(gm, gd, wavelength_nm), Fields::new(rev_m, rev_d, wavelength_nm))
-        })
-        .collect();
+    let fields = group_fields(&media, thicknesses_nm, &inc, wavelength_nm);
     let one = |p: bool| -> PolPowers {
         let f: Vec<PolPowers> = fields.iter().map(|x| x.0.powers(p)).collect();
         let b: Vec<PolPowers> = fields.iter().map(|x| x.1.powers(p)).collect();
@@ -176,6 +75,20 @@ pub fn absorption(
     };
     let opaque = media[media.len() - 1].n.im > 0.0;
     Ok(Absorption::from_powers(one(false), one(true), opaque))
+}
+
+/// The coherent fields of each group between consecutive incoherent media `inc`, lit from above and (the
+/// group reversed) from below.
+fn group_fields(media: &[Medium], thicknesses_nm: &[f64], inc: &[usize], wavelength_nm: f64) -> Vec<(Fields, Fields)> {
+    inc.windows(2)
+        .map(|w| {
+            let gm = media[w[0]..=w[1]].to_vec();
+            let gd = thicknesses_nm[w[0]..w[1] - 1].to_vec();
+            let rev_m = gm.iter().rev().copied().collect();
+            let rev_d = gd.iter().rev().copied().collect();
+            (Fields::new(gm, gd, wavelength_nm), Fields::new(rev_m, rev_d, wavelength_nm))
+        })
+        .collect()
 }
 
 /// The intensities between the groups of one polarisation.
@@ -239,22 +152,19 @@ pub struct Profile {
 }
 
 impl Stack {
+    /// The fraction of the incident power absorbed in each layer (coherent or `inc:`) and in an absorbing
+    /// substrate, with R and T; for mixed stacks as `tmm.inc_absorp_in_each_layer`.
+    pub fn absorption(&self, wavelength_nm: f64, angle_rad: f64) -> Result<Absorption, ThinFilmError> {
+        absorption(self, wavelength_nm, angle_rad, &self.thicknesses())
+    }
+
     /// The position-resolved profile of any stack ([`Profile`]).
     pub fn profile(&self, wavelength_nm: f64, angle_rad: f64) -> Result<Profile, ThinFilmError> {
         let media = self.media(wavelength_nm, angle_rad)?;
         let d = self.thicknesses();
         let inc = incoherent_media(self);
         let pass: Vec<f64> = inc.iter().map(|&i| pass_of(&media, &d, i, wavelength_nm)).collect();
-        let fields: Vec<(Fields, Fields)> = inc
-            .windows(2)
-            .map(|w| {
-                let gm = media[w[0]..=w[1]].to_vec();
-                let gd = d[w[0]..w[1] - 1].to_vec();
-                let rev_m = gm.iter().rev().copied().collect();
-                let rev_d = gd.iter().rev().copied().collect();
-                (Fields::new(gm, gd, wavelength_nm), Fields::new(rev_m, rev_d, wavelength_nm))
-            })
-            .collect();
+        let fields = group_fields(&media, &d, &inc, wavelength_nm);
         let light = [false, true].map(|p| {
             let f: Vec<PolPowers> = fields.iter().map(|x| x.0.powers(p)).collect();
             let b: Vec<PolPowers> = fields.iter().map(|x| x.1.powers(p)).collect();
@@ -296,23 +206,13 @@ impl Profile {
     pub fn in_medium(&self, j: usize, dz: f64) -> Point {
         let last = self.media.len() - 1;
         let z_nm = self.top(j) + dz;
-        let ([ps, as_, es], [pp, ap, ep]) =
-            if let Some(k) = self.inc.iter().position(|&i| i == j && i != 0 && i != last) {
-                (self.incoherent_layer(k, dz, false), self.incoherent_layer(k, dz, true))
-            } else {
-                let g = self.inc.windows(2).position(|w| w[0] <= j && j <= w[1]).expect("every medium is in a group");
-                (self.coherent(g, j, dz, false), self.coherent(g, j, dz, true))
-            };
-        Point {
-            z_nm,
-            medium: j,
-            poynting_s: ps,
-            poynting_p: pp,
-            absorption_s: as_,
-            absorption_p: ap,
-            e2_s: es,
-            e2_p: ep,
-        }
+        let (s, p) = if let Some(k) = self.inc.iter().position(|&i| i == j && i != 0 && i != last) {
+            (self.incoherent_layer(k, dz, false), self.incoherent_layer(k, dz, true))
+        } else {
+            let g = self.inc.windows(2).position(|w| w[0] <= j && j <= w[1]).expect("every medium is in a group");
+            (self.coherent(g, j, dz, false), self.coherent(g, j, dz, true))
+        };
+        Point::from_pols(z_nm, j, s, p)
     }
 
     /// [flux, absorption density, |E|²] in incoherent medium `inc[k]` at `dz` below its top.
@@ -367,29 +267,6 @@ impl Profile {
         }
         out
     }
-}
-
-/// `P` of incoherent medium `i` (1 for the semi-infinite ends).
-fn pass_of(media: &[Medium], thicknesses_nm: &[f64], i: usize, wavelength_nm: f64) -> f64 {
-    if i == 0 || i == media.len() - 1 {
-        1.0
-    } else {
-        single_pass(media[i], thicknesses_nm[i - 1], wavelength_nm)
-    }
-}
-
-/// Combines the groups from the bottom up (module documentation); `pass[k]` is `P` of incoherent medium `k`.
-fn cascade(groups: impl DoubleEndedIterator<Item = [f64; 4]> + ExactSizeIterator, pass: &[f64]) -> (f64, f64) {
-    let m = groups.len();
-    let mut it = groups.rev();
-    let [rf, tf, _, _] = it.next().expect("at least one group");
-    let (mut r, mut t) = (rf, tf);
-    for (k, [rf, tf, rb, tb]) in (0..m - 1).rev().zip(it) {
-        let p = pass[k + 1];
-        let inv = 1.0 / (1.0 - rb * p * p * r);
-        (r, t) = (rf + tf * tb * p * p * r * inv, tf * p * t * inv);
-    }
-    (r, t)
 }
 
 #[cfg(test)]

@@ -6,7 +6,8 @@
 //!
 //! * [`material`]: complex refractive indices `n̂ = n + iκ` that may vary with wavelength — constants
 //!   (`n=1.33`, `n=0.2+3.4i`), a built-in library (`air`, `water`, `BK7`, `Au`, …) and measured data from
-//!   files (CSV and the refractiveindex.info YAML format), interpolated in λ and never extrapolated;
+//!   files (CSV and the refractiveindex.info YAML format, [`nkfile`]), interpolated in λ and never
+//!   extrapolated; [`library`] the built-in library and the medium syntax of stacks;
 //! * [`stack`]: incident medium | layers with thicknesses | substrate, parsed from
 //!   `"air | gasoline 216nm | water 220nm | asphalt"`;
 //! * [`recurrence`]: the physics — complex cosines from Snell's law (eq. 3.6), Fresnel amplitudes
@@ -16,7 +17,8 @@
 //!   for dielectric stacks, the same numbers as the general path;
 //! * [`grid`]: angle × wavelength tables (Figure 3.8), in parallel;
 //! * [`incoherent`]: stacks with incoherent layers (`inc:BK7 1mm`), as `tmm.inc_tmm`, and the depth
-//!   profile of any stack ([`incoherent::Profile`]);
+//!   profile of any stack ([`incoherent::Profile`]); [`intensity`] the incoherent sum of intensities below
+//!   [`stack`];
 //! * [`field`]: amplitudes inside the stack, position-resolved flux / absorption / |E|², absorption per
 //!   layer, ellipsometric ψ and Δ;
 //! * [`jet`]: exact derivatives of R, T, ψ, Δ with respect to thicknesses and indices (forward-mode
@@ -30,6 +32,8 @@
 //!   series of `D` (the thesis' "D-iterations");
 //! * [`rough`]: the LSRS model (section 3.2, eq. 3.15–3.20, Algorithm 2) — a stack whose bottom interface is
 //!   rough: composite specular `k_r` and diffuse `k_d` reflectances, tables with interpolation, eq. 3.20;
+//!   [`rough_stack`] the rough stack and the optics above its rough interface, [`rough_multiple`] the light
+//!   scattered more than once inside the film;
 //! * [`table`] and [`rough_table`]: colour tables for rendering — a smooth film's reflected and transmitted
 //!   XYZ over `cos θ` × thickness offset, a rough film's `k_r` and `π k_d` XYZ over angles, azimuth and offset —
 //!   integrated over the spectrum in advance (the GPU's fast film path);
@@ -56,12 +60,15 @@ pub mod field;
 pub mod grid;
 pub mod htsg;
 pub mod incoherent;
+pub mod intensity;
 pub mod jet;
+pub mod library;
 pub mod material;
 pub mod nkfile;
 pub mod recurrence;
 pub mod rough;
 pub mod rough_multiple;
+pub mod rough_stack;
 pub mod rough_table;
 pub mod sampling;
 pub mod spectral;

@@ -45,7 +45,7 @@ use rayon::prelude::*;
 use crate::error::ThinFilmError;
 use crate::htsg::{local_fresnel, Htsg, Series};
 use crate::recurrence::{fresnel, phase, Composite, Medium};
-use crate::rough::{side_transmittance, RoughStack, Side};
+use crate::rough_stack::{side_transmittance, RoughStack, Side};
 use crate::stack::Stack;
 
 /// Node intervals inside the escape cone and beyond it (trapped directions).

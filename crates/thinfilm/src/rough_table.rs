@@ -24,7 +24,8 @@ use rayon::prelude::*;
 
 use crate::error::ThinFilmError;
 use crate::htsg::local_fresnel;
-use crate::rough::{RoughStack, Side};
+use crate::rough::RoughStack;
+use crate::rough_stack::Side;
 
 /// Angle nodes (0°–90°) and azimuth nodes (0–π) of the default table: 3° and 10° steps.
 pub const ANGLE_NODES: usize = 31;

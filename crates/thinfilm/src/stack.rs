@@ -210,7 +210,7 @@ impl Stack {
             if is_layer {
                 incoherent.push(inc);
             }
-            let m = parse_material(name).map_err(|m| err(&toks[0], m))?;
+            let m = crate::library::parse_material(name).map_err(|m| err(&toks[0], m))?;
             if k == 0 {
                 if let crate::material::Part::Const(kappa) = m.k {
                     if kappa > 0.0 {
@@ -337,9 +337,20 @@ impl Stack {
     /// Stacks with incoherent (`inc:`) layers are evaluated by [`crate::incoherent::evaluate`].
     pub fn evaluate(&self, wavelength_nm: f64, angle_rad: f64) -> Result<Rta, ThinFilmError> {
         if self.has_incoherent() {
-            return crate::incoherent::evaluate(self, wavelength_nm, angle_rad, &self.thicknesses());
+            return evaluate_incoherent(self, wavelength_nm, angle_rad, &self.thicknesses());
         }
         Ok(self.amplitudes(wavelength_nm, angle_rad)?.powers())
+    }
+
+    /// Refuses thicknesses that are not one finite value ≥ 0 per layer.
+    pub(crate) fn check_thicknesses(&self, thicknesses_nm: &[f64]) -> Result<(), ThinFilmError> {
+        if thicknesses_nm.len() != self.layers.len() || thicknesses_nm.iter().any(|d| !(d.is_finite() && *d >= 0.0)) {
+            return Err(ThinFilmError::Invalid(format!(
+                "need {} finite thicknesses ≥ 0, got {thicknesses_nm:?}",
+                self.layers.len()
+            )));
+        }
+        Ok(())
     }
 
     /// Spatially varying thickness (Sussenbach eq. 4.3): every layer's thickness plus `offset_nm`
@@ -347,7 +358,7 @@ impl Stack {
     pub fn evaluate_offset(&self, wavelength_nm: f64, angle_rad: f64, offset_nm: f64) -> Result<Rta, ThinFilmError> {
         let d: Vec<f64> = self.layers.iter().map(|l| (l.thickness_nm + offset_nm).max(0.0)).collect();
         if self.has_incoherent() {
-            return crate::incoherent::evaluate(self, wavelength_nm, angle_rad, &d);
+            return evaluate_incoherent(self, wavelength_nm, angle_rad, &d);
         }
         Ok(self.amplitudes_with(wavelength_nm, angle_rad, &d, None)?.powers())
     }
@@ -378,60 +389,6 @@ pub(crate) fn check_angle(angle_rad: f64) -> Result<(), ThinFilmError> {
     Ok(())
 }
 
-/// Parses one medium: a library name, `n=…` or `file:PATH`. The error is a message without position.
-fn parse_material(t: &str) -> Result<Material, String> {
-    if let Some(v) = t.strip_prefix("n=") {
-        let z = parse_complex(v).ok_or_else(|| {
-            format!("'{v}' is not a refractive index; write n=1.38 or n=0.2+3.4i (κ after the sign, with i)")
-        })?;
-        return Material::constant(t, z).map_err(|e| match e {
-            ThinFilmError::Invalid(m) => m,
-            other => other.to_string(),
-        });
-    }
-    for (prefix, f) in [
-        ("cauchy:", Material::cauchy as fn(String, &[f64]) -> Result<Material, ThinFilmError>),
-        ("sellmeier:", Material::sellmeier),
-    ] {
-        if let Some(list) = t.strip_prefix(prefix) {
-            let c: Vec<f64> = list
-                .split(',')
-                .map(|x| x.trim().parse::<f64>().map_err(|_| format!("'{x}' in {t} is not a number")))
-                .collect::<Result<_, _>>()?;
-            return f(t.to_string(), &c).map_err(|e| e.to_string());
-        }
-    }
-    if let Some(p) = t.strip_prefix("file:") {
-        if p.is_empty() {
-            return Err("file: needs a path, e.g. file:data/materials/au_johnson.yml".into());
-        }
-        return Material::from_file(std::path::Path::new(p)).map_err(|e| e.to_string());
-    }
-    Material::builtin(t).ok_or_else(|| {
-        let names: Vec<&str> = Material::library().iter().map(|(n, _)| n[0]).collect();
-        format!("unknown material '{t}'; known: {}; or n=1.38, n=0.2+3.4i, file:PATH", names.join(", "))
-    })
-}
-
-/// `1.38`, `0.2+3.4i`, `0.2-3.4i` (refused later as gain), `0.2+3.4j`.
-fn parse_complex(v: &str) -> Option<Complex64> {
-    let v = v.trim();
-    let num = |s: &str| s.parse::<f64>().ok().filter(|x| x.is_finite());
-    if let Some(body) = v.strip_suffix('i').or_else(|| v.strip_suffix('j')) {
-        // Find the sign that separates the real and imaginary parts (not an exponent's sign).
-        let bytes = body.as_bytes();
-        let split = (1..bytes.len())
-            .rev()
-            .find(|&i| (bytes[i] == b'+' || bytes[i] == b'-') && !matches!(bytes[i - 1], b'e' | b'E'))?;
-        let re = num(&body[..split])?;
-        let im_txt = &body[split..];
-        let im = if im_txt == "+" || im_txt == "-" { None } else { num(im_txt) }?;
-        Some(Complex64::new(re, im))
-    } else {
-        num(v).map(|re| Complex64::new(re, 0.0))
-    }
-}
-
 impl FromStr for Stack {
     type Err = ThinFilmError;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
@@ -448,6 +405,28 @@ impl std::fmt::Display for Stack {
         }
         write!(f, " | {}", self.substrate.name())
     }
+}
+
+/// Reflectance and transmittance of a stack with incoherent layers (any stack: a coherent one gives the
+/// powers of [`Stack::evaluate`]), with the given layer thicknesses ([`crate::intensity`]). As everywhere in
+/// iridis, T into an absorbing substrate is 0 (the light entering it is absorbed; `docs/PHYSICS.md`).
+pub fn evaluate_incoherent(
+    stack: &Stack,
+    wavelength_nm: f64,
+    angle_rad: f64,
+    thicknesses_nm: &[f64],
+) -> Result<Rta, ThinFilmError> {
+    stack.check_thicknesses(thicknesses_nm)?;
+    let media = stack.media(wavelength_nm, angle_rad)?;
+    Ok(crate::intensity::rta(&media, thicknesses_nm, &incoherent_media(stack), wavelength_nm))
+}
+
+/// The indices (into the `N + 2` media) of the incoherent media: 0, every `inc:` layer, `N + 1`.
+pub fn incoherent_media(stack: &Stack) -> Vec<usize> {
+    let mut v = vec![0];
+    v.extend(stack.layers.iter().enumerate().filter(|(_, l)| l.incoherent).map(|(i, _)| i + 1));
+    v.push(stack.layers.len() + 1);
+    v
 }
 
 #[cfg(test)]

@@ -10,6 +10,7 @@
 //!   from λmax values or a table of sensitivities;
 //! * [`light`]: illuminants in photon flux (CIE D65, D50, A, E; Endler's 1993 blue sky and forest shade) and
 //!   backgrounds for von Kries adaptation;
+//! * [`noise`]: the receptor noise of a visual system (Weber fractions, receptor densities);
 //! * [`model`]: quantum catches, von Kries adaptation, the receptor-noise-limited colour distance ΔS and the
 //!   achromatic distance ΔL in JND (Vorobyev & Osorio 1998), colour-space coordinates ([`space`]);
 //!   [`analyse`] is the one call from spectra to a serialisable [`Analysis`];
@@ -20,6 +21,7 @@
 
 pub mod light;
 pub mod model;
+pub mod noise;
 pub mod space;
 pub mod spec;
 pub mod system;

@@ -4,7 +4,7 @@
 
 use serde::Serialize;
 
-use crate::model::ReceptorNoise;
+use crate::noise::ReceptorNoise;
 use crate::space::Space;
 use crate::table::{Curve, SpectraTable};
 use crate::template::{template, Chromophore, Droplet, DropletType};
