@@ -24,7 +24,7 @@ use iridis_diffraction::{GroundTruth, Lattice};
 use wgpu::util::DeviceExt;
 
 use crate::lookup::{entry, storage_out};
-use crate::{Gpu, GpuError};
+use crate::{Gpu, GpuError, TURNS_WGSL};
 
 /// Wavenumbers per workgroup (`WG` of the shader).
 const WAVENUMBERS_PER_GROUP: usize = 64;
@@ -96,7 +96,7 @@ impl<'a, 'g> GpuGroundTruth<'a, 'g> {
         let entries: Vec<[u32; 2]> = col_entries.iter().chain(&row_entries).copied().collect();
         let heights: Vec<f32> = l.heights.iter().map(|&h| h as f32).collect();
         gpu.check_storage("the height field", heights.len() as u64 * 4, "use a smaller patch or the CPU")?;
-        let source = format!("{}\n{}", include_str!("shaders/turns.wgsl"), include_str!("shaders/ground_truth.wgsl"));
+        let source = format!("{TURNS_WGSL}\n{}", include_str!("shaders/ground_truth.wgsl"));
         let (pipeline, bufs) =
             gpu.checked("uploading the height field and compiling the ground-truth shader", || {
                 let module = gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -288,7 +288,7 @@ pub fn phase_accuracy(gpu: &Gpu, n: usize) -> Result<f64, GpuError> {
             [alpha as u32, (alpha >> 32) as u32, i, x.to_bits()]
         })
         .collect();
-    let source = format!("{}\n{}", include_str!("shaders/turns.wgsl"), include_str!("shaders/turns_check.wgsl"));
+    let source = format!("{TURNS_WGSL}\n{}", include_str!("shaders/turns_check.wgsl"));
     let (pipeline, input, output) = gpu.checked("compiling the phase check", || {
         let module = gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("turns_check.wgsl"),

@@ -347,3 +347,7 @@ pub(crate) const COMMON_WGSL: &str = include_str!("shaders/common.wgsl");
 pub(crate) const LOOKUP_WGSL: &str = include_str!("shaders/lookup_math.wgsl");
 /// The multilayer thin-film recurrence, shared by the film and scene shaders.
 pub(crate) const FILM_WGSL: &str = include_str!("shaders/film_math.wgsl");
+/// Phases as fixed-point fractions of a turn and 64-bit products, shared by the ground-truth and scene shaders.
+pub(crate) const TURNS_WGSL: &str = include_str!("shaders/turns.wgsl");
+/// Parameters, bindings and pixel loop of the two BRDF-map shaders (f32 and encoded tables).
+pub(crate) const LOOKUP_MAP_WGSL: &str = include_str!("shaders/lookup_map.wgsl");

@@ -16,7 +16,7 @@ use iridis_diffraction::LookupTable;
 use wgpu::util::DeviceExt;
 
 use crate::{
-    dispatch, encoding_words, unpack_rgb8, xyz_to_srgb_words, FrameTime, Gpu, GpuError, Timer, COMMON_WGSL, LOOKUP_WGSL,
+    dispatch, encoding_words, unpack_rgb8, xyz_to_srgb_words, FrameTime, Gpu, GpuError, Timer, COMMON_WGSL, LOOKUP_MAP_WGSL, LOOKUP_WGSL,
 };
 
 /// Storage buffers a table may be split into (by rows of v) when it exceeds one binding.
@@ -150,9 +150,10 @@ impl<'g> GpuLookup<'g> {
             })
             .collect();
         let source = match encoding {
-            TableEncoding::F32 => format!("{COMMON_WGSL}\n{LOOKUP_WGSL}\n{}", include_str!("shaders/lookup.wgsl")),
-            _ => format!("{COMMON_WGSL}\n{LOOKUP_WGSL}\n{}", include_str!("shaders/lookup_encoded.wgsl")),
+            TableEncoding::F32 => include_str!("shaders/lookup.wgsl"),
+            _ => include_str!("shaders/lookup_encoded.wgsl"),
         };
+        let source = format!("{COMMON_WGSL}\n{LOOKUP_WGSL}\n{LOOKUP_MAP_WGSL}\n{source}");
         let (tables, pipeline, scales) = gpu.checked("uploading the lookup table and compiling the shader", || {
             let bufs: Vec<wgpu::Buffer> = parts
                 .iter()

@@ -34,7 +34,7 @@ use wgpu::util::DeviceExt;
 use crate::film::{build_table, FilmPath};
 use crate::lookup::{display_buffer, entry, storage_out};
 use crate::{
-    dispatch, unpack_rgb8, xyz_to_srgb_words, FrameTime, Gpu, GpuError, Timer, COMMON_WGSL, FILM_WGSL, LOOKUP_WGSL,
+    dispatch, unpack_rgb8, xyz_to_srgb_words, FrameTime, Gpu, GpuError, Timer, COMMON_WGSL, FILM_WGSL, LOOKUP_WGSL, TURNS_WGSL,
 };
 use iridis_thinfilm::rough::RoughStack;
 use iridis_thinfilm::rough_table::{RoughColorTable, ANGLE_NODES, AZIMUTH_NODES};
@@ -44,7 +44,7 @@ use iridis_thinfilm::Complex64;
 /// The scene shader's source: the shared helpers, both models and the renderer.
 pub(crate) fn scene_source() -> String {
     format!(
-        "{COMMON_WGSL}\n{LOOKUP_WGSL}\n{FILM_WGSL}\n{}\n{}\n{}",
+        "{COMMON_WGSL}\n{TURNS_WGSL}\n{LOOKUP_WGSL}\n{FILM_WGSL}\n{}\n{}\n{}",
         include_str!("shaders/film_rough.wgsl"),
         include_str!("shaders/scene.wgsl"),
         include_str!("shaders/extended.wgsl")
