@@ -33,7 +33,7 @@ import numpy as np
 import tmm
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from gen_incoherent_fixtures import max_im_delta, random_layers, stack_string  # noqa: E402
+from gen_incoherent_fixtures import max_im_delta, random_layers, stack_string, write_compact  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 OUT = os.path.join(ROOT, "crates", "thinfilm", "tests", "fixtures", "tmm_inc_profile.json")
@@ -137,10 +137,7 @@ def main():
                      f"inc_absorp_in_each_layer), numpy {np.__version__}",
         "cases": cases(rng, 120),
     }
-    with open(OUT, "w") as f:
-        json.dump(doc, f, separators=(",", ":"))
-        f.write("\n")
-    print(f"wrote {len(doc['cases'])} cases to {os.path.relpath(OUT, ROOT)}")
+    write_compact(doc, OUT, f"{len(doc['cases'])} cases")
 
 
 if __name__ == "__main__":
