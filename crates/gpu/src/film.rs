@@ -172,20 +172,8 @@ impl FilmPipelines {
         }
         let source = format!("{COMMON_WGSL}\n{FILM_WGSL}\n{}", include_str!("shaders/film.wgsl"));
         let p = gpu.checked("compiling the film shaders", || {
-            let module = gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some("film.wgsl"),
-                source: wgpu::ShaderSource::Wgsl(source.into()),
-            });
-            let pipeline = |entry: &str| {
-                gpu.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                    label: Some(entry),
-                    layout: None,
-                    module: &module,
-                    entry_point: Some(entry),
-                    compilation_options: Default::default(),
-                    cache: None,
-                })
-            };
+            let module = gpu.shader("film.wgsl", &source);
+            let pipeline = |entry: &str| gpu.compute_pipeline(&module, entry, entry);
             Self { direct: pipeline("film_frame"), table: pipeline("film_table"), lookup: pipeline("film_frame_table") }
         })?;
         Ok(gpu.film_pipelines.get_or_init(|| p).clone())
@@ -306,13 +294,7 @@ impl<'g> GpuFilm<'g> {
             .collect();
         let pipelines = FilmPipelines::get(gpu)?;
         let (media_buf, thick_buf, weights_buf) = gpu.checked("uploading the stack", || {
-            let init = |label: &str, data: &[f32]| {
-                gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some(label),
-                    contents: bytemuck::cast_slice(data),
-                    usage: wgpu::BufferUsages::STORAGE,
-                })
-            };
+            let init = |label: &str, data: &[f32]| gpu.storage_init(label, bytemuck::cast_slice(data));
             (init("film media", &media), init("film thickness", &thick), init("film weights", &w))
         })?;
         Ok(Self {
@@ -398,11 +380,7 @@ impl<'g> GpuFilm<'g> {
                 contents: bytemuck::cast_slice(&words),
                 usage: wgpu::BufferUsages::UNIFORM,
             });
-            let alpha = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("film svt"),
-                contents: bytemuck::cast_slice(alpha),
-                usage: wgpu::BufferUsages::STORAGE,
-            });
+            let alpha = gpu.storage_init("film svt", bytemuck::cast_slice(alpha));
             let display = display_buffer(gpu, tone);
             let out_xyz = storage_out(gpu, "film xyz", pixels * 32);
             let out_rgba = storage_out(gpu, "film rgba", pixels * 4);

@@ -99,25 +99,9 @@ impl<'a, 'g> GpuGroundTruth<'a, 'g> {
         let source = format!("{TURNS_WGSL}\n{}", include_str!("shaders/ground_truth.wgsl"));
         let (pipeline, bufs) =
             gpu.checked("uploading the height field and compiling the ground-truth shader", || {
-                let module = gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                    label: Some("ground_truth.wgsl"),
-                    source: wgpu::ShaderSource::Wgsl(source.into()),
-                });
-                let pipeline = gpu.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                    label: Some("iridis ground truth"),
-                    layout: None,
-                    module: &module,
-                    entry_point: Some("power"),
-                    compilation_options: Default::default(),
-                    cache: None,
-                });
-                let init = |label: &str, contents: &[u8]| {
-                    gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                        label: Some(label),
-                        contents,
-                        usage: wgpu::BufferUsages::STORAGE,
-                    })
-                };
+                let module = gpu.shader("ground_truth.wgsl", &source);
+                let pipeline = gpu.compute_pipeline(&module, "iridis ground truth", "power");
+                let init = |label: &str, contents: &[u8]| gpu.storage_init(label, contents);
                 let pad = [[0u32; 4]];
                 let bufs = [
                     init("heights", bytemuck::cast_slice(&heights)),
@@ -290,23 +274,9 @@ pub fn phase_accuracy(gpu: &Gpu, n: usize) -> Result<f64, GpuError> {
         .collect();
     let source = format!("{TURNS_WGSL}\n{}", include_str!("shaders/turns_check.wgsl"));
     let (pipeline, input, output) = gpu.checked("compiling the phase check", || {
-        let module = gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("turns_check.wgsl"),
-            source: wgpu::ShaderSource::Wgsl(source.into()),
-        });
-        let pipeline = gpu.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("iridis phase check"),
-            layout: None,
-            module: &module,
-            entry_point: Some("check"),
-            compilation_options: Default::default(),
-            cache: None,
-        });
-        let input = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("phase cases"),
-            contents: bytemuck::cast_slice(&cases),
-            usage: wgpu::BufferUsages::STORAGE,
-        });
+        let module = gpu.shader("turns_check.wgsl", &source);
+        let pipeline = gpu.compute_pipeline(&module, "iridis phase check", "check");
+        let input = gpu.storage_init("phase cases", bytemuck::cast_slice(&cases));
         (pipeline, input, storage_out(gpu, "phase results", (cases.len() * 8) as u64))
     })?;
     let bind = gpu.checked("binding the phase check", || {

@@ -42,6 +42,8 @@ pub mod viewer;
 
 use std::time::{Duration, Instant};
 
+use wgpu::util::DeviceExt;
+
 pub use accel::GpuAccelerator;
 pub use film::{FilmFrame, FilmOutput, FilmPath, FilmPathUsed, FilmRun, GpuFilm};
 pub use ground_truth::{ground_truth_map, GpuGroundTruth};
@@ -118,6 +120,40 @@ pub fn open_vulkan() -> Result<(wgpu::Instance, wgpu::Adapter, wgpu::Device, wgp
 }
 
 impl Gpu {
+    /// A WGSL module from `source`; `label` names it in the driver's messages.
+    pub(crate) fn shader(&self, label: &str, source: &str) -> wgpu::ShaderModule {
+        self.device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some(label),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        })
+    }
+
+    /// The compute pipeline of entry point `entry` of `module`, its bind group layout read from the shader.
+    pub(crate) fn compute_pipeline(
+        &self,
+        module: &wgpu::ShaderModule,
+        label: &str,
+        entry: &str,
+    ) -> wgpu::ComputePipeline {
+        self.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some(label),
+            layout: None,
+            module,
+            entry_point: Some(entry),
+            compilation_options: Default::default(),
+            cache: None,
+        })
+    }
+
+    /// A storage buffer holding `contents`.
+    pub(crate) fn storage_init(&self, label: &str, contents: &[u8]) -> wgpu::Buffer {
+        self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(label),
+            contents,
+            usage: wgpu::BufferUsages::STORAGE,
+        })
+    }
+
     /// Opens the first suitable Vulkan adapter (high-performance preference; a software adapter such as
     /// lavapipe when nothing else exists) with the adapter's own limits, so large tables fit where they can.
     pub fn new() -> Result<Self, GpuError> {

@@ -34,7 +34,8 @@ use wgpu::util::DeviceExt;
 use crate::film::{build_table, FilmPath};
 use crate::lookup::{display_buffer, entry, storage_out};
 use crate::{
-    dispatch, unpack_rgb8, xyz_to_srgb_words, FrameTime, Gpu, GpuError, Timer, COMMON_WGSL, FILM_WGSL, LOOKUP_WGSL, TURNS_WGSL,
+    dispatch, unpack_rgb8, xyz_to_srgb_words, FrameTime, Gpu, GpuError, Timer, COMMON_WGSL, FILM_WGSL, LOOKUP_WGSL,
+    TURNS_WGSL,
 };
 use iridis_thinfilm::rough::RoughStack;
 use iridis_thinfilm::rough_table::{RoughColorTable, ANGLE_NODES, AZIMUTH_NODES};
@@ -663,18 +664,8 @@ impl<'g> GpuScene<'g> {
                 let pipeline = gpu
                     .scene_pipeline
                     .get_or_init(|| {
-                        let module = gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                            label: Some("scene.wgsl"),
-                            source: wgpu::ShaderSource::Wgsl(source.into()),
-                        });
-                        gpu.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                            label: Some("iridis scene"),
-                            layout: None,
-                            module: &module,
-                            entry_point: Some("render_scene"),
-                            compilation_options: Default::default(),
-                            cache: None,
-                        })
+                        let module = gpu.shader("scene.wgsl", &source);
+                        gpu.compute_pipeline(&module, "iridis scene", "render_scene")
                     })
                     .clone();
                 (
@@ -771,13 +762,7 @@ impl<'g> GpuScene<'g> {
         let flat: Vec<[f32; 2]> = media[f.media_base..f.media_base + n_lambda * f.n_media].to_vec();
         let (m, t) = gpu
             .checked("uploading a film for its colour table", || {
-                let init = |label: &str, data: &[u8]| {
-                    gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                        label: Some(label),
-                        contents: data,
-                        usage: wgpu::BufferUsages::STORAGE,
-                    })
-                };
+                let init = |label: &str, data: &[u8]| gpu.storage_init(label, data);
                 (
                     init("film table media", bytemuck::cast_slice(&flat)),
                     init("film table thickness", bytemuck::cast_slice(&thick)),

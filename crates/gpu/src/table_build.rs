@@ -22,7 +22,6 @@
 use iridis_diffraction::table::{taylor_scale, LookupTable, TableParams};
 use iridis_diffraction::taylor::window_bins;
 use iridis_diffraction::{SpectralSetup, TaylorTerms};
-use wgpu::util::DeviceExt;
 
 use crate::lookup::{entry, storage_out};
 use crate::{Gpu, GpuError};
@@ -147,25 +146,9 @@ pub fn build_table(
     let source =
         format!("const NT: u32 = {nt}u;\nconst NP: u32 = {np}u;\n{}", include_str!("shaders/table_build.wgsl"));
     let (pipeline, bufs) = gpu.checked("uploading the Taylor terms and compiling the table shader", || {
-        let module = gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("table_build.wgsl"),
-            source: wgpu::ShaderSource::Wgsl(source.into()),
-        });
-        let pipeline = gpu.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("iridis table build"),
-            layout: None,
-            module: &module,
-            entry_point: Some("build"),
-            compilation_options: Default::default(),
-            cache: None,
-        });
-        let init = |label: &str, contents: &[u8]| {
-            gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents,
-                usage: wgpu::BufferUsages::STORAGE,
-            })
-        };
+        let module = gpu.shader("table_build.wgsl", &source);
+        let pipeline = gpu.compute_pipeline(&module, "iridis table build", "build");
+        let init = |label: &str, contents: &[u8]| gpu.storage_init(label, contents);
         let bufs = [
             init("table records", bytemuck::cast_slice(&records)),
             init("table windows", bytemuck::cast_slice(&windows)),
