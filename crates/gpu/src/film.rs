@@ -27,7 +27,7 @@ use iridis_thinfilm::Stack;
 use rayon::prelude::*;
 use wgpu::util::DeviceExt;
 
-use crate::lookup::{display_buffer, entry, storage_out};
+use crate::lookup::{display_buffer, storage_out};
 use crate::{dispatch, unpack_rgb8, FrameTime, Gpu, GpuError, Timer, COMMON_WGSL, FILM_WGSL};
 
 /// Angles and thicknesses over an image.
@@ -209,11 +209,11 @@ pub(crate) fn build_table(
             usage: wgpu::BufferUsages::UNIFORM,
         });
         let table = storage_out(gpu, "film colour table", bytes);
-        let bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("film table bindings"),
-            layout: &pipes.table.get_bind_group_layout(0),
-            entries: &[entry(0, &params), entry(2, media), entry(3, thickness), entry(4, weights), entry(8, &table)],
-        });
+        let bind = gpu.bind_buffers(
+            "film table bindings",
+            &pipes.table,
+            &[(0, &params), (2, media), (3, thickness), (4, weights), (8, &table)],
+        );
         (table, bind)
     })?;
     let groups = ((grid.cos_nodes as u32).div_ceil(8), (grid.offset_nodes as u32).div_ceil(8));
@@ -387,36 +387,20 @@ impl<'g> GpuFilm<'g> {
             let (pipeline, bind) = match &table {
                 Some(table) => {
                     let p = &self.pipelines.lookup;
-                    let bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                        label: Some("film table frame bindings"),
-                        layout: &p.get_bind_group_layout(0),
-                        entries: &[
-                            entry(0, &params),
-                            entry(1, &display),
-                            entry(5, &alpha),
-                            entry(6, &out_xyz),
-                            entry(7, &out_rgba),
-                            entry(8, table),
-                        ],
-                    });
+                    let bind = gpu.bind_buffers(
+                        "film table frame bindings",
+                        p,
+                        &[(0, &params), (1, &display), (5, &alpha), (6, &out_xyz), (7, &out_rgba), (8, table)],
+                    );
                     (p.clone(), bind)
                 }
                 None => {
                     let p = &self.pipelines.direct;
-                    let bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                        label: Some("film bindings"),
-                        layout: &p.get_bind_group_layout(0),
-                        entries: &[
-                            entry(0, &params),
-                            entry(1, &display),
-                            entry(2, &self.media),
-                            entry(3, &self.thickness),
-                            entry(4, &self.weights),
-                            entry(5, &alpha),
-                            entry(6, &out_xyz),
-                            entry(7, &out_rgba),
-                        ],
-                    });
+                    let bind = gpu.bind_in_order(
+                        "film bindings",
+                        p,
+                        &[&params, &display, &self.media, &self.thickness, &self.weights, &alpha, &out_xyz, &out_rgba],
+                    );
                     (p.clone(), bind)
                 }
             };

@@ -23,7 +23,7 @@ use iridis_diffraction::map::view_direction;
 use iridis_diffraction::{GroundTruth, Lattice};
 use wgpu::util::DeviceExt;
 
-use crate::lookup::{entry, storage_out};
+use crate::lookup::storage_out;
 use crate::{Gpu, GpuError, TURNS_WGSL};
 
 /// Wavenumbers per workgroup (`WG` of the shader).
@@ -161,19 +161,11 @@ impl<'a, 'g> GpuGroundTruth<'a, 'g> {
                 contents: bytemuck::cast_slice(&[count as u32, l.cols as u32, self.ncl, self.nrl]),
                 usage: wgpu::BufferUsages::UNIFORM,
             });
-            let bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("gt bindings"),
-                layout: &self.pipeline.get_bind_group_layout(0),
-                entries: &[
-                    entry(0, &params),
-                    entry(1, &self.heights),
-                    entry(2, &self.spans),
-                    entry(3, &self.entries),
-                    entry(4, &phases),
-                    entry(5, &betas),
-                    entry(6, &power),
-                ],
-            });
+            let bind = gpu.bind_in_order(
+                "gt bindings",
+                &self.pipeline,
+                &[&params, &self.heights, &self.spans, &self.entries, &phases, &betas, &power],
+            );
             (phases, betas, power, bind)
         })?;
         // Start small, then size batches to BATCH_SECONDS from the time per pair measured so far.
@@ -279,13 +271,8 @@ pub fn phase_accuracy(gpu: &Gpu, n: usize) -> Result<f64, GpuError> {
         let input = gpu.storage_init("phase cases", bytemuck::cast_slice(&cases));
         (pipeline, input, storage_out(gpu, "phase results", (cases.len() * 8) as u64))
     })?;
-    let bind = gpu.checked("binding the phase check", || {
-        gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("phase check"),
-            layout: &pipeline.get_bind_group_layout(0),
-            entries: &[entry(0, &input), entry(1, &output)],
-        })
-    })?;
+    let bind =
+        gpu.checked("binding the phase check", || gpu.bind_in_order("phase check", &pipeline, &[&input, &output]))?;
     crate::dispatch(gpu, None, &pipeline, &bind, ((cases.len() as u32).div_ceil(64), 1), "checking the phases")?;
     let got: Vec<[f32; 2]> = bytemuck::pod_collect_to_vec(&gpu.read_buffer(&output, (cases.len() * 8) as u64)?);
     let mut worst = 0f64;

@@ -145,6 +145,35 @@ impl Gpu {
         })
     }
 
+    /// The bind group of a pipeline's group 0 with `(binding, buffer)` entries.
+    pub(crate) fn bind_buffers(
+        &self,
+        label: &str,
+        pipeline: &wgpu::ComputePipeline,
+        buffers: &[(u32, &wgpu::Buffer)],
+    ) -> wgpu::BindGroup {
+        let entries: Vec<wgpu::BindGroupEntry> = buffers
+            .iter()
+            .map(|&(binding, b)| wgpu::BindGroupEntry { binding, resource: b.as_entire_binding() })
+            .collect();
+        self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some(label),
+            layout: &pipeline.get_bind_group_layout(0),
+            entries: &entries,
+        })
+    }
+
+    /// [`Gpu::bind_buffers`] with the buffers at bindings 0, 1, 2, … in order.
+    pub(crate) fn bind_in_order(
+        &self,
+        label: &str,
+        pipeline: &wgpu::ComputePipeline,
+        buffers: &[&wgpu::Buffer],
+    ) -> wgpu::BindGroup {
+        let numbered: Vec<(u32, &wgpu::Buffer)> = buffers.iter().enumerate().map(|(i, &b)| (i as u32, b)).collect();
+        self.bind_buffers(label, pipeline, &numbered)
+    }
+
     /// A storage buffer holding `contents`.
     pub(crate) fn storage_init(&self, label: &str, contents: &[u8]) -> wgpu::Buffer {
         self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {

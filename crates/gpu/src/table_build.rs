@@ -23,7 +23,7 @@ use iridis_diffraction::table::{taylor_scale, LookupTable, TableParams};
 use iridis_diffraction::taylor::window_bins;
 use iridis_diffraction::{SpectralSetup, TaylorTerms};
 
-use crate::lookup::{entry, storage_out};
+use crate::lookup::storage_out;
 use crate::{Gpu, GpuError};
 
 /// Grid rows per dispatch at most (progress, and the watchdog of drivers that have one).
@@ -165,18 +165,7 @@ pub fn build_table(
     });
     let out = storage_out(gpu, "table rows", rows_per_dispatch as u64 * row_bytes);
     let bind = gpu.checked("binding the table buffers", || {
-        gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("table bindings"),
-            layout: &pipeline.get_bind_group_layout(0),
-            entries: &[
-                entry(0, &params_buf),
-                entry(1, &bufs[0]),
-                entry(2, &bufs[1]),
-                entry(3, &bufs[2]),
-                entry(4, &bufs[3]),
-                entry(5, &out),
-            ],
-        })
+        gpu.bind_in_order("table bindings", &pipeline, &[&params_buf, &bufs[0], &bufs[1], &bufs[2], &bufs[3], &out])
     })?;
     let mut row0 = 0;
     while row0 < res {
