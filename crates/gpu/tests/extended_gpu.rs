@@ -44,6 +44,11 @@ fn blocks(img: &Image, k: u32) -> Vec<f64> {
     out
 }
 
+/// The CPU's Monte Carlo renders of the scene with seeds 0 and 1: an estimate and, against it, the noise.
+fn cpu_monte_carlo(w: u32, h: u32, spp: u32) -> (Image, Image) {
+    (render(&scene("monte-carlo", 0), w, h, spp, &|_| {}), render(&scene("monte-carlo", 1), w, h, spp, &|_| {}))
+}
+
 fn rms(a: &[f64], b: &[f64]) -> f64 {
     (a.iter().zip(b).map(|(x, y)| (x - y).powi(2)).sum::<f64>() / a.len() as f64).sqrt()
 }
@@ -53,8 +58,7 @@ fn monte_carlo_on_the_gpu_converges_to_the_cpu() {
     let _serial = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
     let Some(gpu) = gpu() else { return };
     let (w, h, spp) = (48, 32, 64);
-    let cpu_a = render(&scene("monte-carlo", 0), w, h, spp, &|_| {});
-    let cpu_b = render(&scene("monte-carlo", 1), w, h, spp, &|_| {});
+    let (cpu_a, cpu_b) = cpu_monte_carlo(w, h, spp);
     let g = GpuScene::new(gpu, &scene("monte-carlo", 0)).unwrap();
     let img = g.render(w, h, spp, &|_| {}).unwrap();
     assert!(g.stack_overflow().is_none(), "{:?}", g.stack_overflow());
@@ -91,8 +95,7 @@ fn the_fast_path_against_the_converged_render() {
     let _serial = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
     let Some(gpu) = gpu() else { return };
     let (w, h, spp) = (48, 32, 1024);
-    let converged = render(&scene("monte-carlo", 0), w, h, spp, &|_| {});
-    let other = render(&scene("monte-carlo", 1), w, h, spp, &|_| {});
+    let (converged, other) = cpu_monte_carlo(w, h, spp);
     let fast = GpuScene::new(gpu, &scene("fast", 0)).unwrap().render(w, h, 1, &|_| {}).unwrap();
     let (m, p) = delta_e(&fast, &converged);
     let (nm, np) = delta_e(&other, &converged);
