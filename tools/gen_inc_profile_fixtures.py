@@ -131,13 +131,12 @@ def cases(rng, count):
 def main():
     rng = random.Random(20261124)
     doc = {
-        "generator": "tools/gen_inc_profile_fixtures.py",
         "reference": f"tmm {tmm.__version__ if hasattr(tmm, '__version__') else '0.2.0'} (inc_tmm, "
                      f"inc_find_absorp_analytic_fn, position_resolved, VW_list, stackFB_list, "
                      f"inc_absorp_in_each_layer), numpy {np.__version__}",
         "cases": cases(rng, 120),
     }
-    write_compact(doc, OUT, f"{len(doc['cases'])} cases")
+    write_compact("tools/gen_inc_profile_fixtures.py", doc, OUT, f"{len(doc['cases'])} cases")
 
 
 if __name__ == "__main__":

@@ -170,11 +170,10 @@ def main():
     rng = random.Random(20260322)
     cases = random_cases(rng, 1000) + tir_cases(rng, 60) + seed_cases()
     doc = {
-        "generator": "tools/gen_thinfilm_fixtures.py",
         "reference": f"tmm {getattr(tmm, '__version__', '0.2.0')} (coh_tmm), numpy {np.__version__}",
         "cases": cases,
     }
-    write_compact(doc, OUT, f"{len(cases)} cases")
+    write_compact("tools/gen_thinfilm_fixtures.py", doc, OUT, f"{len(cases)} cases")
 
 
 if __name__ == "__main__":
