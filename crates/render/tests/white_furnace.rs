@@ -16,12 +16,7 @@ fn every_material_passes_the_white_furnace_on_the_cpu() {
     for (name, mat) in MATERIALS {
         let scene = furnace_scene(mat, 1.0);
         let img = render(&scene, 41, 41, 1, &|_| {});
-        let (worst, n) = deviation(&img);
-        eprintln!("{name:<32} {n} pixels, largest |L − 1| = {worst:.2e}");
-        assert!(n > 1000, "{name}: the sphere covers {n} pixels");
-        if worst > 2e-3 {
-            failures.push(format!("{name}: |L − 1| up to {worst:.4}"));
-        }
+        furnace::tally(&mut failures, name, deviation(&img), 1000, 2e-3);
     }
     assert!(failures.is_empty(), "{failures:#?}");
 }

@@ -290,6 +290,16 @@ pub fn sphere_pixels(img: &Image) -> impl Iterator<Item = [f32; 3]> + '_ {
 pub const FAST_DIFFRACTION_FURNACE: f64 = 0.012;
 pub const FAST_DIFFRACTION_FURNACE_RIM: f64 = 0.2;
 
+/// One material's furnace result `(largest |L − 1|, pixels on its sphere)`: the sphere must cover more than
+/// `min_pixels`; a deviation above `tol` is noted in `failures` (the test lists them all before failing).
+pub fn tally(failures: &mut Vec<String>, label: &str, (worst, n): (f64, usize), min_pixels: usize, tol: f64) {
+    eprintln!("{label:<40} {n} pixels, largest |L − 1| = {worst:.2e}");
+    assert!(n > min_pixels, "{label}: the sphere covers {n} pixels");
+    if worst > tol {
+        failures.push(format!("{label}: |L − 1| up to {worst:.4}"));
+    }
+}
+
 /// Rough films for the furnace, (stack, σ, τ): a dielectric, an absorbing substrate and a metal.
 pub const ROUGH_FILMS: [(&str, &str, &str); 3] = [
     ("air | water 348nm | Si", "25nm", "300nm"),
