@@ -137,8 +137,10 @@ pub mod json_doc {
         (shapes, commands)
     }
 
-    /// Splits a documented command line as a shell would.
-    pub use super::words as split;
+    /// Splits a documented command line as a shell would ([`super::words`]).
+    pub fn split(command: &str) -> Vec<String> {
+        super::words(command)
+    }
 
     /// The key paths of an answer as the page writes them (`a.b`, `list[].key`), not descending into
     /// `inputs` or into values documented with a shape (`(shape: NAME)`, whose keys are checked against it).
