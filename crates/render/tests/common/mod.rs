@@ -10,7 +10,7 @@ pub fn thin_films(scene: &Scene) -> Vec<&ThinFilm> {
         .materials
         .iter()
         .filter_map(|m| match m {
-            Material::ThinFilm(f) => Some(f),
+            Material::ThinFilm(f) => Some(f.as_ref()),
             _ => None,
         })
         .collect()
