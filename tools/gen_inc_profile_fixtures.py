@@ -33,7 +33,7 @@ import numpy as np
 import tmm
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from gen_incoherent_fixtures import max_im_delta, random_layers, stack_string  # noqa: E402
+from gen_incoherent_fixtures import max_im_delta, random_layers, stack_string, write_compact  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 OUT = os.path.join(ROOT, "crates", "thinfilm", "tests", "fixtures", "tmm_inc_profile.json")
@@ -131,16 +131,12 @@ def cases(rng, count):
 def main():
     rng = random.Random(20261124)
     doc = {
-        "generator": "tools/gen_inc_profile_fixtures.py",
         "reference": f"tmm {tmm.__version__ if hasattr(tmm, '__version__') else '0.2.0'} (inc_tmm, "
                      f"inc_find_absorp_analytic_fn, position_resolved, VW_list, stackFB_list, "
                      f"inc_absorp_in_each_layer), numpy {np.__version__}",
         "cases": cases(rng, 120),
     }
-    with open(OUT, "w") as f:
-        json.dump(doc, f, separators=(",", ":"))
-        f.write("\n")
-    print(f"wrote {len(doc['cases'])} cases to {os.path.relpath(OUT, ROOT)}")
+    write_compact("tools/gen_inc_profile_fixtures.py", doc, OUT, f"{len(doc['cases'])} cases")
 
 
 if __name__ == "__main__":

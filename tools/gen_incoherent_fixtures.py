@@ -76,14 +76,36 @@ def random_layers(rng, count, inc_prob):
     return ns, ds, cs
 
 
+def random_case(rng, max_layers, inc_prob):
+    """A random stack of 1 to max_layers layers, a wavelength and an angle; None where the stack's coherent
+    layers are too opaque (|Im δ| > 30) for a fair comparison."""
+    ns, ds, cs = random_layers(rng, rng.randint(1, max_layers), inc_prob)
+    lam = rng.uniform(380.0, 780.0)
+    th0 = rng.choice([0.0, math.pi / 2 * 0.98 * rng.random(), math.pi / 2 * 0.98 * rng.random()])
+    if max_im_delta(ns, ds, cs, th0, lam) > 30:
+        return None
+    return ns, ds, cs, lam, th0
+
+
+def random_cases(rng, max_layers, inc_prob, enough):
+    """random_case's fair cases, drawn one by one until enough() (asked before each draw) says so."""
+    while not enough():
+        case = random_case(rng, max_layers, inc_prob)
+        if case is not None:
+            yield case
+
+
+def write_compact(generator, doc, out, what):
+    """Writes a fixture, its generator's name first, as one line of compact JSON and says what it wrote where."""
+    with open(out, "w") as f:
+        json.dump({"generator": generator, **doc}, f, separators=(",", ":"))
+        f.write("\n")
+    print(f"wrote {what} to {os.path.relpath(out, ROOT)}")
+
+
 def inc_cases(rng, count):
     cases = []
-    while len(cases) < count:
-        ns, ds, cs = random_layers(rng, rng.randint(1, 10), 0.35)
-        lam = rng.uniform(380.0, 780.0)
-        th0 = rng.choice([0.0, math.pi / 2 * 0.98 * rng.random(), math.pi / 2 * 0.98 * rng.random()])
-        if max_im_delta(ns, ds, cs, th0, lam) > 30:
-            continue
+    for ns, ds, cs, lam, th0 in random_cases(rng, 10, 0.35, lambda: len(cases) >= count):
         out = {}
         ok = True
         for pol in ("s", "p"):
@@ -110,12 +132,7 @@ def inc_cases(rng, count):
 
 def coherent_cases(rng, count, with_profile):
     cases = []
-    while len(cases) < count:
-        ns, ds, cs = random_layers(rng, rng.randint(1, 8), 0.0)
-        lam = rng.uniform(380.0, 780.0)
-        th0 = rng.choice([0.0, math.pi / 2 * 0.98 * rng.random(), math.pi / 2 * 0.98 * rng.random()])
-        if max_im_delta(ns, ds, cs, th0, lam) > 30:
-            continue
+    for ns, ds, cs, lam, th0 in random_cases(rng, 8, 0.0, lambda: len(cases) >= count):
         case = {"stack": stack_string(ns, ds, cs), "absorbing_substrate": ns[-1].imag > 0,
                 "wavelength_nm": lam, "angle_rad": th0}
         e = tmm.ellips(ns, ds, th0, lam)
@@ -150,18 +167,14 @@ def coherent_cases(rng, count, with_profile):
 def main():
     rng = random.Random(20261123)
     doc = {
-        "generator": "tools/gen_incoherent_fixtures.py",
         "reference": f"tmm (inc_tmm, inc_absorp_in_each_layer, ellips, position_resolved, absorp_in_each_layer), "
                      f"numpy {np.__version__}",
         "inc": inc_cases(rng, 400),
         "ellips": coherent_cases(rng, 300, False),
         "profile": coherent_cases(rng, 150, True),
     }
-    with open(OUT, "w") as f:
-        json.dump(doc, f, separators=(",", ":"))
-        f.write("\n")
-    print(f"wrote {len(doc['inc'])} + {len(doc['ellips'])} + {len(doc['profile'])} cases to "
-          f"{os.path.relpath(OUT, ROOT)}")
+    counts = " + ".join(str(len(doc[k])) for k in ("inc", "ellips", "profile"))
+    write_compact("tools/gen_incoherent_fixtures.py", doc, OUT, f"{counts} cases")
 
 
 if __name__ == "__main__":

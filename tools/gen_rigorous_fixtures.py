@@ -32,6 +32,10 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 OUT = os.path.join(HERE, "..", "crates", "rigorous", "tests", "fixtures", "grcwa_sine.json")
 
 
+# grcwa's plane-wave amplitudes and phases (p, p phase, s, s phase) of TE (s) and TM (p) light.
+PLANE_WAVE = {"te": (0, 0, 1, 0), "tm": (1, 0, 0, 0)}
+
+
 def grcwa_sine(eps_sub, lam, theta_deg, phi_deg, amp, n_orders, slices, pol):
     """Reflected (and transmitted) efficiencies by order m of the 1-D sine grating; orders along x only (the
     second lattice vector is made tiny so the circular truncation keeps G2 = 0)."""
@@ -47,10 +51,7 @@ def grcwa_sine(eps_sub, lam, theta_deg, phi_deg, amp, n_orders, slices, pol):
     grids = [np.where(h > amp - (j + 0.5) * 2 * amp / slices, eps_sub, 1.0 + 0j) for j in range(slices)]
     if slices:
         obj.GridLayer_geteps(np.concatenate(grids))
-    if pol == "te":
-        obj.MakeExcitationPlanewave(0, 0, 1, 0, order=0)
-    else:
-        obj.MakeExcitationPlanewave(1, 0, 0, 0, order=0)
+    obj.MakeExcitationPlanewave(*PLANE_WAVE[pol], order=0)
     R, T = obj.RT_Solve(normalize=1, byorder=1)
     refl, trans = {}, {}
     for i, g in enumerate(obj.G):

@@ -18,13 +18,16 @@ Cases:
 Each case stores tmm's complex r and t and its R and T for s and p. For an absorbing substrate tmm's T is the
 power entering the substrate; iridis reports 0 there (docs/PHYSICS.md), so the tests compare R only.
 """
-import json
 import math
 import os
 import random
+import sys
 
 import numpy as np
 import tmm
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from gen_incoherent_fixtures import write_compact  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 OUT = os.path.join(ROOT, "crates", "thinfilm", "tests", "fixtures", "tmm_reference.json")
@@ -65,6 +68,19 @@ def max_im_delta(n_list, d_list, th0, lam):
     return worst
 
 
+def case(kind, ns, ds, layers, absorbing_substrate, lam, th0):
+    """One case: the stack as iridis reads it and tmm's answers."""
+    return {
+        "kind": kind,
+        "stack": stack_string(ns, ds),
+        "layers": layers,
+        "absorbing_substrate": absorbing_substrate,
+        "wavelength_nm": lam,
+        "angle_rad": th0,
+        **run(ns, ds, th0, lam),
+    }
+
+
 def random_cases(rng, count):
     cases = []
     while len(cases) < count:
@@ -85,15 +101,7 @@ def random_cases(rng, count):
         th0 = rng.choice([0.0, math.pi / 2 * rng.random(), math.pi / 2 * rng.random(), math.radians(89.9)])
         if max_im_delta(ns, ds, th0, lam) > 30:
             continue
-        cases.append({
-            "kind": "random",
-            "stack": stack_string(ns, ds),
-            "layers": layers,
-            "absorbing_substrate": sub_k > 0,
-            "wavelength_nm": lam,
-            "angle_rad": th0,
-            **run(ns, ds, th0, lam),
-        })
+        cases.append(case("random", ns, ds, layers, sub_k > 0, lam, th0))
     return cases
 
 
@@ -112,15 +120,7 @@ def tir_cases(rng, count):
         lam = rng.uniform(380.0, 780.0)
         if max_im_delta(ns, ds, th0, lam) > 30:
             continue
-        cases.append({
-            "kind": "tir",
-            "stack": stack_string(ns, ds),
-            "layers": layers,
-            "absorbing_substrate": False,
-            "wavelength_nm": lam,
-            "angle_rad": th0,
-            **run(ns, ds, th0, lam),
-        })
+        cases.append(case("tir", ns, ds, layers, False, lam, th0))
     return cases
 
 
@@ -170,14 +170,10 @@ def main():
     rng = random.Random(20260322)
     cases = random_cases(rng, 1000) + tir_cases(rng, 60) + seed_cases()
     doc = {
-        "generator": "tools/gen_thinfilm_fixtures.py",
         "reference": f"tmm {getattr(tmm, '__version__', '0.2.0')} (coh_tmm), numpy {np.__version__}",
         "cases": cases,
     }
-    with open(OUT, "w") as f:
-        json.dump(doc, f, separators=(",", ":"))
-        f.write("\n")
-    print(f"wrote {len(cases)} cases to {os.path.relpath(OUT, ROOT)}")
+    write_compact("tools/gen_thinfilm_fixtures.py", doc, OUT, f"{len(cases)} cases")
 
 
 if __name__ == "__main__":

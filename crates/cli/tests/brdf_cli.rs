@@ -3,7 +3,7 @@
 mod common;
 use std::path::Path;
 
-use common::{assert_fails, iridis, json_of};
+use common::{assert_fails, iridis, json_of, ok, quoted, words};
 use iridis_diffraction::table::{LookupTable, FORMAT_VERSION};
 
 const SURFACE: &str = "builtin:sine?size=8um&pixel=50nm";
@@ -79,23 +79,10 @@ fn all_three_methods_agree_on_a_mirror_like_surface() {
     let dir = tempfile::tempdir().unwrap();
     for method in ["ground-truth", "reference", "lookup"] {
         let png = dir.path().join(format!("{method}.png"));
-        let out = iridis(&[
-            "brdf-map",
-            "builtin:sine?size=6um&pixel=60nm&depth=2nm",
-            "--method",
-            method,
-            "--coherence",
-            "3um",
-            "--size",
-            "9",
-            "--exposure",
-            "1",
-            "--uv-resolution",
-            "61",
-            "-o",
-            png.to_str().unwrap(),
-        ]);
-        assert!(out.status.success(), "{method}: {}", String::from_utf8_lossy(&out.stderr));
+        ok(&words(&format!(
+            "brdf-map {MIRROR} --method {method} --coherence 3um --size 9 --exposure 1 --uv-resolution 61 -o {}",
+            quoted(&png)
+        )));
         let img = image::open(&png).unwrap().to_rgb8();
         let c = img.get_pixel(4, 4).0;
         assert!(c.iter().all(|&v| v >= 245), "{method}: centre {c:?}");
@@ -107,36 +94,13 @@ fn all_three_methods_agree_on_a_mirror_like_surface() {
 fn an_npz_height_field_is_a_surface() {
     let dir = tempfile::tempdir().unwrap();
     let s = dir.path().join("shallow.npz");
-    let out = iridis(&[
-        "surface",
-        "generate",
-        "sine",
-        "--size",
-        "6um",
-        "--pixel",
-        "60nm",
-        "--depth",
-        "2nm",
-        "-o",
-        s.to_str().unwrap(),
-    ]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    ok(&words(&format!("surface generate sine --size 6um --pixel 60nm --depth 2nm -o {}", quoted(&s))));
     let png = dir.path().join("m.png");
-    let out = iridis(&[
-        "brdf-map",
-        s.to_str().unwrap(),
-        "--method",
-        "reference",
-        "--coherence",
-        "3um",
-        "--size",
-        "9",
-        "--exposure",
-        "1",
-        "-o",
-        png.to_str().unwrap(),
-    ]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    ok(&words(&format!(
+        "brdf-map {} --method reference --coherence 3um --size 9 --exposure 1 -o {}",
+        quoted(&s),
+        quoted(&png)
+    )));
     // Nearly a mirror: the centre (specular at normal incidence) is white.
     let c = image::open(&png).unwrap().to_rgb8().get_pixel(4, 4).0;
     assert!(c.iter().all(|&v| v >= 245), "centre {c:?}");
@@ -149,18 +113,9 @@ fn warnings_once_when_computed_and_again_from_the_table() {
     let dir = tempfile::tempdir().unwrap();
     let t = dir.path().join("coarse.npz");
     let t = t.to_str().unwrap();
-    let out = iridis(&[
-        "precompute",
-        "builtin:sine?size=3um&pixel=100nm",
-        "-o",
-        t,
-        "--coherence",
-        "4um",
-        "--uv-resolution",
-        "21",
-        "--step",
-        "5nm",
-    ]);
+    let out = iridis(&words(&format!(
+        "precompute builtin:sine?size=3um&pixel=100nm -o '{t}' --coherence 4um --uv-resolution 21 --step 5nm"
+    )));
     let err = String::from_utf8_lossy(&out.stderr).to_string();
     assert!(out.status.success(), "{err}");
     let count = |text: &str, needle: &str| text.matches(needle).count();
@@ -202,19 +157,12 @@ const MIRROR: &str = "builtin:sine?size=6um&pixel=60nm&depth=2nm";
 fn map(dir: &Path, name: &str, extra: &[&str]) -> Vec<[f64; 3]> {
     let png = dir.join(format!("{name}.png"));
     let raw = dir.join(format!("{name}.npy"));
-    let mut args = vec![
-        "brdf-map",
-        MIRROR,
-        "--coherence",
-        "3um",
-        "--uv-resolution",
-        "61",
-        "-o",
-        png.to_str().unwrap(),
-        "--raw",
-        raw.to_str().unwrap(),
-    ];
-    args.extend_from_slice(extra);
+    let mut args = words(&format!(
+        "brdf-map {MIRROR} --coherence 3um --uv-resolution 61 -o {} --raw {}",
+        quoted(&png),
+        quoted(&raw)
+    ));
+    args.extend(extra.iter().map(|x| x.to_string()));
     let out = iridis(&args);
     assert!(out.status.success(), "{extra:?}: {}", String::from_utf8_lossy(&out.stderr));
     raw_xyz(&raw)
@@ -323,20 +271,10 @@ fn brdf_map_reads_one_array_of_a_multi_array_npz() {
 /// sin θ_r = λ/d puts the first order at exactly 550 nm, so ρ(λ) must peak there.
 #[test]
 fn brdf_eval_peaks_where_the_grating_equation_says() {
-    let v = json_of(&[
-        "brdf",
-        "eval",
-        "builtin:sine?size=8um&pixel=50nm",
-        "--method",
-        "ground-truth",
-        "--coherence",
-        "6um",
-        "--light",
-        "0deg",
-        "--view",
-        "30deg,0deg",
-        "--json",
-    ]);
+    let v = json_of(&words(
+        "brdf eval builtin:sine?size=8um&pixel=50nm --method ground-truth --coherence 6um --light 0deg \
+         --view 30deg,0deg --json",
+    ));
     assert_eq!(v["method"], "ground-truth");
     assert_eq!(v["fresnel_convention"], "physical");
     let l: Vec<f64> = v["wavelength_nm"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
@@ -425,22 +363,11 @@ fn brdf_map_writes_the_brdf_in_per_steradian() {
     let size = 64;
     // 0.01 nm deep: its orders carry (k·0.01 nm)² ~ 1e-8 of the light, a flat surface for this test.
     let flat = "builtin:sine?size=6um&pixel=60nm&depth=0.01nm";
-    let out = iridis(&[
-        "brdf-map",
-        flat,
-        "--method",
-        "reference",
-        "--coherence",
-        "3um",
-        "--fresnel",
-        "index:1.5",
-        "--size",
-        &size.to_string(),
-        "-o",
-        png.to_str().unwrap(),
-        "--brdf",
-        f.to_str().unwrap(),
-    ]);
+    let out = iridis(&words(&format!(
+        "brdf-map {flat} --method reference --coherence 3um --fresnel index:1.5 --size {size} -o {} --brdf {}",
+        quoted(&png),
+        quoted(&f)
+    )));
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     assert!(String::from_utf8_lossy(&out.stderr).contains("sr⁻¹"));
     let fr = raw_xyz(&f);
@@ -449,20 +376,11 @@ fn brdf_map_writes_the_brdf_in_per_steradian() {
     assert!((luminous - 0.04).abs() < 0.04 * 0.02, "Σ Y dx dy = {luminous}, Fresnel 0.04");
     let (png2, f2) = (dir.path().join("l.png"), dir.path().join("l.npy"));
     assert_fails(
-        &[
-            "brdf-map",
-            flat,
-            "--method",
-            "lookup",
-            "--uv-resolution",
-            "31",
-            "--size",
-            "16",
-            "-o",
-            png2.to_str().unwrap(),
-            "--brdf",
-            f2.to_str().unwrap(),
-        ],
+        &words(&format!(
+            "brdf-map {flat} --method lookup --uv-resolution 31 --size 16 -o {} --brdf {}",
+            quoted(&png2),
+            quoted(&f2)
+        )),
         &["lookup", "f_r"],
     );
     assert!(!png2.exists() && !f2.exists(), "nothing written on a refusal");

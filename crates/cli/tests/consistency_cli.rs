@@ -2,7 +2,7 @@
 //! behaviour for one option across commands (item 11).
 
 mod common;
-use common::{assert_fails, iridis, json_of};
+use common::{assert_fails, iridis, json_of, quoted, words, ROUGH_FILM};
 
 fn s(p: &std::path::Path) -> &str {
     p.to_str().unwrap()
@@ -88,19 +88,7 @@ fn surface_notes_and_angles_read_as_written() {
     let notes = json_of(&["surface", "info", s(&gwy), "--json"])["notes"].to_string();
     assert!(notes.contains("6.4e-6 × 6.4e-6 m") && !notes.contains("0000"), "{notes}");
     // Angles in JSON are the degrees typed, not their radian round trip.
-    let v = json_of(&[
-        "thinfilm",
-        "color",
-        "--stack",
-        "air | water 348nm | Si",
-        "--roughness",
-        "25nm",
-        "--correlation",
-        "300nm",
-        "--angle",
-        "30deg",
-        "--json",
-    ]);
+    let v = json_of(&words(&format!("thinfilm color {ROUGH_FILM} --angle 30deg --json")));
     let r = &v["rough"];
     assert_eq!((r["light_deg"].as_f64(), r["view_deg"].as_f64()), (Some(30.0), Some(30.0)), "{v}");
 }
@@ -111,28 +99,10 @@ fn nk_csv_header_names_the_wavelength_unit() {
     // A constant n = 1.5 table in µm; the film's colour must equal that of n=1.5 written inline.
     let csv = dir.path().join("film_um.csv");
     std::fs::write(&csv, "wavelength_um,n,k\n0.35,1.5,0\n0.85,1.5,0\n").unwrap();
-    let from_file = json_of(&[
-        "thinfilm",
-        "spectrum",
-        "--stack",
-        &format!("air | file:{} 300nm | air", s(&csv)),
-        "--from",
-        "400nm",
-        "--to",
-        "700nm",
-        "--json",
-    ]);
-    let inline = json_of(&[
-        "thinfilm",
-        "spectrum",
-        "--stack",
-        "air | n=1.5 300nm | air",
-        "--from",
-        "400nm",
-        "--to",
-        "700nm",
-        "--json",
-    ]);
+    let spectrum = |film: &str| {
+        json_of(&words(&format!("thinfilm spectrum --stack 'air | {film} 300nm | air' --from 400nm --to 700nm --json")))
+    };
+    let (from_file, inline) = (spectrum(&format!("file:{}", s(&csv))), spectrum("n=1.5"));
     let r = |v: &serde_json::Value| v["R"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect::<Vec<_>>();
     let (a, b) = (r(&from_file), r(&inline));
     assert_eq!(a.len(), b.len());
@@ -147,22 +117,11 @@ fn ar_coating_table_map_is_not_black() {
     let dark = |scale: &str| {
         let png = dir.path().join(format!("ar_{scale}.png"));
         let csv = dir.path().join(format!("ar_{scale}.csv"));
-        let out = iridis(&[
-            "thinfilm",
-            "table",
-            "--stack",
-            stack,
-            "--angles",
-            "0deg:89deg:1deg",
-            "--step",
-            "10nm",
-            "--plot",
-            s(&png),
-            "--scale",
-            scale,
-            "-o",
-            s(&csv),
-        ]);
+        let out = iridis(&words(&format!(
+            "thinfilm table --stack '{stack}' --angles 0deg:89deg:1deg --step 10nm --plot {} --scale {scale} -o {}",
+            quoted(&png),
+            quoted(&csv)
+        )));
         assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
         let img = image::open(&png).unwrap().to_rgb8();
         let n = img.pixels().filter(|p| p.0.iter().all(|&c| c < 40)).count();
@@ -173,20 +132,6 @@ fn ar_coating_table_map_is_not_black() {
     // chooses the log scale, on which it is not.
     assert_eq!(auto, log);
     // A rough film's table draws its own map: --scale there is refused, not ignored.
-    assert_fails(
-        &[
-            "thinfilm",
-            "table",
-            "--stack",
-            "air | water 348nm | Si",
-            "--roughness",
-            "25nm",
-            "--correlation",
-            "300nm",
-            "--scale",
-            "log",
-        ],
-        &["--scale"],
-    );
+    assert_fails(&words(&format!("thinfilm table {ROUGH_FILM} --scale log")), &["--scale"]);
     assert!(linear > 0.25 && log < 0.5 * linear, "dark share: linear {linear:.3}, log {log:.3}");
 }

@@ -2,7 +2,16 @@
 //! Sizes are small so that each call takes about a second in release.
 
 mod common;
-use common::{assert_fails, iridis, json_of};
+use common::{assert_fails, iridis, json_of, quoted, words};
+
+/// Each first-order peak of a bench lit at 75° stands where m λ / d = sin θ_i − sin θ_r puts it, within `tol_deg`.
+fn assert_peaks_follow_the_grating_equation(peaks: &[serde_json::Value], period_nm: f64, tol_deg: f64) {
+    for p in peaks {
+        let (lambda, angle) = (p["wavelength_nm"].as_f64().unwrap(), p["angle_deg"].as_f64().unwrap());
+        let predicted = (75f64.to_radians().sin() - lambda / period_nm).asin().to_degrees();
+        assert!((angle - predicted).abs() < tol_deg, "λ {lambda}: peak at {angle}°, grating equation {predicted}°");
+    }
+}
 
 /// A 1500 nm sine grating: the bench must read the period back through the grating equation
 /// m λ / d = sin θ_i − sin θ_r, and write its plot.
@@ -10,32 +19,16 @@ use common::{assert_fails, iridis, json_of};
 fn testbench_reads_a_sine_grating_period() {
     let dir = tempfile::tempdir().unwrap();
     let plot = dir.path().join("bench.png");
-    let j = json_of(&[
-        "testbench",
-        "builtin:sine?size=12um&pixel=50nm&period=1500nm",
-        "--coherence",
-        "8um",
-        "--from",
-        "450nm",
-        "--to",
-        "650nm",
-        "--step",
-        "50nm",
-        "--angle-step",
-        "0.1deg",
-        "--plot",
-        plot.to_str().unwrap(),
-        "--json",
-    ]);
+    let j = json_of(&words(&format!(
+        "testbench builtin:sine?size=12um&pixel=50nm&period=1500nm --coherence 8um --from 450nm --to 650nm \
+             --step 50nm --angle-step 0.1deg --plot {} --json",
+        quoted(&plot)
+    )));
     let mean = j["periodicity_nm"]["mean"].as_f64().unwrap();
     assert!((mean - 1500.0).abs() < 0.01 * 1500.0, "period {mean} nm");
     let peaks = j["peaks"].as_array().unwrap();
     assert_eq!(peaks.len(), 5, "{j}");
-    for p in peaks {
-        let (lambda, angle) = (p["wavelength_nm"].as_f64().unwrap(), p["angle_deg"].as_f64().unwrap());
-        let predicted = (75f64.to_radians().sin() - lambda / 1500.0).asin().to_degrees();
-        assert!((angle - predicted).abs() < 0.5, "λ {lambda}: peak at {angle}°, grating equation {predicted}°");
-    }
+    assert_peaks_follow_the_grating_equation(peaks, 1500.0, 0.5);
     assert!(image::open(&plot).is_ok(), "plot is not a readable image");
 }
 
@@ -65,19 +58,10 @@ fn rigorous_testbench_reads_the_sine_period_as_the_scalar_one() {
 /// than Stam's Gaussian model on a snake-like surface (the paper's Table 2 ordering).
 #[test]
 fn compare_orders_methods_as_the_paper_does() {
-    let j = json_of(&[
-        "compare",
-        "builtin:elaphe?size=6um&pixel=60nm",
-        "--methods",
-        "reference,stam-gaussian",
-        "--exposures",
-        "1,1000",
-        "--coherence",
-        "2um",
-        "--size",
-        "16",
-        "--json",
-    ]);
+    let j = json_of(&words(
+        "compare builtin:elaphe?size=6um&pixel=60nm --methods reference,stam-gaussian --exposures 1,1000 \
+             --coherence 2um --size 16 --json",
+    ));
     let rows = j["results"].as_array().unwrap_or_else(|| panic!("no results: {j}"));
     assert_eq!(rows.len(), 4, "{j}");
     let mean = |method: &str, ru: f64| {
@@ -122,20 +106,12 @@ fn brdf_map_draws_every_lab_method_where_the_grating_equation_says() {
     for method in ["nmm", "pq", "stam-periodic", "stam-periodic-triangular", "stam-gaussian"] {
         let png = dir.path().join(format!("{method}.png"));
         let raw = dir.path().join(format!("{method}.npy"));
-        let out = common::iridis(&[
-            "brdf-map",
-            "builtin:sine?size=6um&pixel=50nm&period=1500nm",
-            "--method",
-            method,
-            "--coherence",
-            "3um",
-            "--size",
-            "65",
-            "-o",
-            png.to_str().unwrap(),
-            "--raw",
-            raw.to_str().unwrap(),
-        ]);
+        let out = common::iridis(&words(&format!(
+            "brdf-map builtin:sine?size=6um&pixel=50nm&period=1500nm --method {method} --coherence 3um \
+                 --size 65 -o {} --raw {}",
+            quoted(&png),
+            quoted(&raw)
+        )));
         assert!(out.status.success(), "{method}: {}", String::from_utf8_lossy(&out.stderr));
         assert!(String::from_utf8_lossy(&out.stdout).contains(&format!("{method} map")), "{method}");
         assert!(image::open(&png).is_ok(), "{method}: PNG is not a readable image");
@@ -214,23 +190,12 @@ fn sweep_mean(j: &serde_json::Value, value: f64, ru: f64) -> f64 {
 fn sweep_coherence_keeps_the_reference_on_the_ground_truth() {
     let dir = tempfile::tempdir().unwrap();
     let (sheet, plot) = (dir.path().join("c.png"), dir.path().join("c_err.png"));
-    let j = json_of(&[
-        "sweep",
-        "builtin:blazed?size=6um&pixel=50nm",
-        "--param",
-        "coherence",
-        "--values",
-        "1um,2um,3um",
-        "--size",
-        "24",
-        "--exposures",
-        "1,1000",
-        "-o",
-        sheet.to_str().unwrap(),
-        "--plot",
-        plot.to_str().unwrap(),
-        "--json",
-    ]);
+    let j = json_of(&words(&format!(
+        "sweep builtin:blazed?size=6um&pixel=50nm --param coherence --values 1um,2um,3um --size 24 \
+             --exposures 1,1000 -o {} --plot {} --json",
+        quoted(&sheet),
+        quoted(&plot)
+    )));
     assert_eq!(j["param"], "coherence", "{j}");
     assert_eq!(j["method"], "reference", "{j}");
     assert!(j["surface"].as_str().is_some_and(|s| s.contains("blazed")), "{j}");
@@ -258,27 +223,11 @@ fn sweep_coherence_keeps_the_reference_on_the_ground_truth() {
 fn sweep_uv_power_non_linear_grid_beats_linear_near_the_origin() {
     let dir = tempfile::tempdir().unwrap();
     let sheet = dir.path().join("uv.png");
-    let j = json_of(&[
-        "sweep",
-        "builtin:sine?size=12um&pixel=100nm&period=4000nm",
-        "--method",
-        "lookup",
-        "--param",
-        "uv-power",
-        "--values",
-        "1,3,5",
-        "--coherence",
-        "6um",
-        "--size",
-        "24",
-        "--uv-resolution",
-        "51",
-        "--exposures",
-        "1,1000",
-        "-o",
-        sheet.to_str().unwrap(),
-        "--json",
-    ]);
+    let j = json_of(&words(&format!(
+        "sweep builtin:sine?size=12um&pixel=100nm&period=4000nm --method lookup --param uv-power \
+             --values 1,3,5 --coherence 6um --size 24 --uv-resolution 51 --exposures 1,1000 -o {} --json",
+        quoted(&sheet)
+    )));
     assert_eq!(j["param"], "uv-power", "{j}");
     assert_eq!(j["method"], "lookup", "{j}");
     let linear = sweep_mean(&j, 1.0, 1.0);
@@ -292,10 +241,10 @@ fn sweep_uv_power_non_linear_grid_beats_linear_near_the_origin() {
 
 #[test]
 fn sweep_refuses_bad_input_clearly() {
+    let s = "builtin:sine?size=6um&pixel=100nm";
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("s.png");
     let o = out.to_str().unwrap();
-    let s = "builtin:sine?size=6um&pixel=100nm";
     assert_fails(
         &["sweep", s, "--param", "uv-power", "--values", "1,3", "-o", o],
         &["no parameter 'uv-power'", "lookup"],
@@ -320,28 +269,12 @@ fn experiment_laser_with_a_green_beam_on_gold() {
     std::fs::write(&csv, "wavelength_nm,power\n520,0\n529,0\n530,1\n535,1\n536,0\n545,0\n").unwrap();
     let run = |coating: &str, exposures: &str, name: &str| {
         let out = dir.path().join(name);
-        let j = json_of(&[
-            "experiment",
-            "laser",
-            "builtin:sine?size=12um&pixel=50nm&period=1000nm",
-            "--spectrum",
-            csv.to_str().unwrap(),
-            "--aperture",
-            "6um",
-            "--size",
-            "21",
-            "--subsamples",
-            "1",
-            "--dlambda",
-            "1nm",
-            "--coating",
-            coating,
-            "--exposures",
-            exposures,
-            "-o",
-            out.to_str().unwrap(),
-            "--json",
-        ]);
+        let j = json_of(&words(&format!(
+            "experiment laser builtin:sine?size=12um&pixel=50nm&period=1000nm --spectrum {} --aperture 6um \
+                 --size 21 --subsamples 1 --dlambda 1nm --coating {coating} --exposures {exposures} -o {} --json",
+            quoted(&csv),
+            quoted(&out)
+        )));
         for key in ["surface", "method", "images", "coating", "gold_mirror_relative_brightness", "max_y", "pixels"] {
             assert!(!j[key].is_null(), "no '{key}' in {j}");
         }
@@ -401,10 +334,8 @@ fn testbench_measures_the_builtin_blazed_grating_at_2500nm() {
     assert!(variance <= 0.16, "variance {variance} nm²");
     let peaks = j["peaks"].as_array().unwrap();
     assert_eq!(peaks.len(), 81, "one peak per wavelength 380–780 nm: {j}");
+    assert_peaks_follow_the_grating_equation(peaks, 2500.0, 0.02);
     for p in peaks {
-        let (lambda, angle) = (p["wavelength_nm"].as_f64().unwrap(), p["angle_deg"].as_f64().unwrap());
-        let predicted = (75f64.to_radians().sin() - lambda / 2500.0).asin().to_degrees();
-        assert!((angle - predicted).abs() < 0.02, "λ {lambda}: peak at {angle}°, grating equation {predicted}°");
         assert!((p["period_nm"].as_f64().unwrap() - 2500.0).abs() < 2.0, "{p}");
     }
 }
@@ -469,21 +400,11 @@ fn testbench_on_elaphe_across_and_along_the_fingers() {
 fn compare_writes_maps_and_delta_e_heat_maps() {
     let dir = tempfile::tempdir().unwrap();
     let maps = dir.path().join("maps");
-    let j = json_of(&[
-        "compare",
-        "builtin:elaphe?size=6um&pixel=60nm",
-        "--methods",
-        "reference,stam-gaussian",
-        "--exposures",
-        "1,1000",
-        "--coherence",
-        "2um",
-        "--size",
-        "16",
-        "--maps",
-        maps.to_str().unwrap(),
-        "--json",
-    ]);
+    let j = json_of(&words(&format!(
+        "compare builtin:elaphe?size=6um&pixel=60nm --methods reference,stam-gaussian --exposures 1,1000 \
+             --coherence 2um --size 16 --maps {} --json",
+        quoted(&maps)
+    )));
     assert_eq!(j["results"].as_array().map(Vec::len), Some(4), "{j}");
     let mut expected = Vec::new();
     for ru in ["1", "1000"] {
@@ -683,18 +604,8 @@ fn a_small_patch_keeps_the_lights_coherence_and_is_a_unit_cell() {
         "{err}"
     );
     assert!(!err.contains("warning: patch"), "a unit cell is no warning: {err}");
-    let out = iridis(&[
-        "brdf-map",
-        spec,
-        "--size",
-        "8",
-        "--uv-resolution",
-        "31",
-        "--coherence",
-        "3um",
-        "-o",
-        map.to_str().unwrap(),
-    ]);
+    let out =
+        iridis(&words(&format!("brdf-map {spec} --size 8 --uv-resolution 31 --coherence 3um -o {}", quoted(&map))));
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success() && err.contains("coherence 3 µm (as given)") && !err.contains("unit cell"), "{err}");
     let j = json_of(&["testbench", spec, "--from", "450nm", "--to", "650nm", "--step", "50nm", "--json"]);

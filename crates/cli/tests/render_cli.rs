@@ -3,17 +3,11 @@
 //! clean refusals of bad input that never leave a half-written image.
 
 mod common;
-use common::{assert_fails, iridis, json_of};
+use common::{assert_fails, json_of, ok, quoted, words, write_file, ROUGH_FILM};
 
 use iridis_color::lab::delta_e_2000;
 use iridis_color::{Lab, Xyz};
 use std::path::Path;
-
-fn ok(args: &[&str]) -> String {
-    let out = iridis(args);
-    assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
-    String::from_utf8_lossy(&out.stderr).to_string() + &String::from_utf8_lossy(&out.stdout)
-}
 
 fn lab_of(p: [u8; 3]) -> Lab {
     let lin = p.map(|c| iridis_color::convert::srgb_decode(c as f64 / 255.0));
@@ -36,35 +30,7 @@ fn mean_delta_e(a: &Path, b: &Path) -> (f64, usize) {
     (sum / (a.width() * a.height()) as f64, lit)
 }
 
-const PLANE_SCENE: &str = r#"
-[output]
-size = [64, 64]
-spp = 1
-exposure = 1500
-[camera]
-kind = "hemisphere"      # pixel (x, y) looks at the target from (x, y, sqrt(1 - x² - y²))
-target = [0, 0, 0]
-normal = [0, 0, 1]
-up = [0, 1, 0]
-[[light]]
-kind = "directional"
-direction = [0.35355339059327373, 0.35355339059327373, 0.8660254037844387]   # θ = 30°, φ = 45°
-intensity = 1
-[materials.grating]
-kind = "diffraction"
-table = "t.npz"
-orientation = "tangent"
-angle = "ANGLE"
-scale_ru = 1
-w_diffuse = 0
-color = [0, 0, 0]
-[[object]]
-kind = "plane"
-center = [0, 0, 0]
-normal = [0, 0, 1]
-tangent = [1, 0, 0]
-material = "grating"
-"#;
+const PLANE_SCENE: &str = include_str!("scenes/plane_grating.toml");
 
 /// Issue 7, "one shading path": a plane with a diffraction material under a matched camera and light gives the
 /// BRDF map of `iridis brdf-map` pixel for pixel (mean CIEDE2000 < 0.5). The blazed grating is asymmetric, so a
@@ -73,29 +39,16 @@ material = "grating"
 fn plane_reproduces_brdf_map() {
     let dir = tempfile::tempdir().unwrap();
     let t = dir.path().join("t.npz");
-    ok(&[
-        "precompute",
-        "builtin:blazed?size=8um&pixel=50nm",
-        "-o",
-        t.to_str().unwrap(),
-        "--uv-resolution",
-        "101",
-        "--coherence",
-        "4um",
-    ]);
+    ok(&words(&format!(
+        "precompute builtin:blazed?size=8um&pixel=50nm -o {} --uv-resolution 101 --coherence 4um",
+        quoted(&t)
+    )));
     let map = dir.path().join("map.png");
-    ok(&[
-        "brdf-map",
-        t.to_str().unwrap(),
-        "-o",
-        map.to_str().unwrap(),
-        "--size",
-        "64",
-        "--incidence",
-        "30deg,45deg",
-        "--exposure",
-        "1500",
-    ]);
+    ok(&words(&format!(
+        "brdf-map {} -o {} --size 64 --incidence 30deg,45deg --exposure 1500",
+        quoted(&t),
+        quoted(&map)
+    )));
     let mut means = Vec::new();
     for angle in ["0deg", "90deg"] {
         let scene = dir.path().join(format!("plane_{angle}.toml"));
@@ -111,37 +64,7 @@ fn plane_reproduces_brdf_map() {
     assert!(means[1] > 2.0, "a 90° turn of the grating must change the picture (ΔE00 {})", means[1]);
 }
 
-const FILM_SCENE: &str = r#"
-[output]
-size = [40, 40]
-spp = 1
-exposure = 1
-[camera]
-kind = "orthographic"
-position = [0, 0, 10]
-look_at = [0, 0, 0]
-up = [0, 1, 0]
-height = 2.2
-[environment]
-kind = "uniform"         # white (D65) light from every direction: a pixel shows the film's reflectance colour
-color = [1, 1, 1]
-visible = false
-[textures.drain]
-kind = "gradient"
-from = 0
-to = 1
-along = "v"
-[materials.film]
-kind = "thinfilm"
-stack = "air | water 400nm | n=1.5"
-svt = "drain"
-d_rel = "300nm"
-[[object]]
-kind = "sphere"
-center = [0, 0, 0]
-radius = 1
-material = "film"
-"#;
+const FILM_SCENE: &str = include_str!("scenes/film_sphere.toml");
 
 /// Issue 7: the thin-film colour on a sphere at a pixel equals `iridis thinfilm color` for that pixel's angle of
 /// incidence and its thickness (SVT: 400 nm + 300 nm · (2v − 1), v from the top of the sphere).
@@ -194,11 +117,7 @@ fn examples_render_and_bad_input_is_refused_cleanly() {
     // An earlier result must survive a failed run, and no temporary file may be left behind.
     let keep = d("keep.png");
     std::fs::write(&keep, b"old").unwrap();
-    let write = |name: &str, text: &str| {
-        let p = d(name);
-        std::fs::write(&p, text).unwrap();
-        p
-    };
+    let write = |name: &str, text: &str| write_file(dir.path(), name, text);
     assert_fails(&["render", &d("missing.toml"), "-o", &keep], &["cannot read scene", "missing.toml"]);
     let bad = write("bad.toml", "[camera]\nposition = [0, 0, 5]\n[[object]]\nkind = \"sphere\"\nradius = \"big\"\n");
     assert_fails(&["render", &bad, "-o", &keep], &["bad.toml:5:", "radius = \"big\""]);
@@ -272,34 +191,7 @@ fn delta_e_rgb(a: [f64; 3], b: [f64; 3]) -> f64 {
     delta_e_2000(Lab::from_xyz(Xyz::from_linear_srgb(a), white), Lab::from_xyz(Xyz::from_linear_srgb(b), white))
 }
 
-const ROUGH_PLANE: &str = r#"
-[output]
-size = [8, 8]
-spp = 1
-exposure = 1
-[camera]
-kind = "orthographic"
-position = [0, 0, 10]
-look_at = [0, 0, 0]
-up = [0, 1, 0]
-height = 2
-[[light]]
-kind = "directional"
-direction = [0, 0, 1]    # head-on, from behind the camera
-intensity = 1
-ENVIRONMENT
-[materials.film]
-kind = "thinfilm"
-stack = "air | water 348nm | Si"
-roughness = "25nm"
-correlation = "300nm"
-[[object]]
-kind = "plane"
-center = [0, 0, 0]
-normal = [0, 0, 1]
-tangent = [1, 0, 0]
-material = "film"
-"#;
+const ROUGH_PLANE: &str = include_str!("scenes/rough_film_plane.toml");
 
 /// Issue 9 in the renderer: a flat rough-film plane (Listing 3.6: water 348 nm on Si, σ 25 nm, τ 300 nm) seen
 /// and lit head-on by a 1 RU light shows the diffuse colour π·k_d that `iridis thinfilm color --roughness
@@ -308,22 +200,8 @@ material = "film"
 #[test]
 fn rough_film_plane_shows_thinfilm_color() {
     let dir = tempfile::tempdir().unwrap();
-    let j = json_of(&[
-        "thinfilm",
-        "color",
-        "--stack",
-        "air | water 348nm | Si",
-        "--roughness",
-        "25nm",
-        "--correlation",
-        "300nm",
-        "--angle",
-        "0deg",
-        // The renderer's rough films are lit by single scattering (docs/render.md): compare like with like.
-        "--diffuse-transport",
-        "single",
-        "--json",
-    ]);
+    // The renderer's rough films are lit by single scattering (docs/render.md): compare like with like.
+    let j = json_of(&words(&format!("thinfilm color {ROUGH_FILM} --angle 0deg --diffuse-transport single --json")));
     let xyz = |k: &str| -> [f64; 3] {
         let v: Vec<f64> = j[k]["XYZ"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
         [v[0], v[1], v[2]]
@@ -369,31 +247,7 @@ fn rough_film_plane_shows_thinfilm_color() {
     }
 }
 
-const ROUGH_SPHERE: &str = r#"
-[output]
-size = [24, 24]
-spp = 1
-[camera]
-kind = "orthographic"
-position = [0, 0, 10]
-look_at = [0, 0, 0]
-up = [0, 1, 0]
-height = 2.2
-[[light]]
-kind = "directional"
-direction = [0.3, 0.4, 1]
-[environment]
-kind = "sky"
-visible = false
-[materials.film]
-kind = "thinfilm"
-stack = "air | TiO2 150nm | Al"
-ROUGH
-[[object]]
-kind = "sphere"
-radius = 1
-material = "film"
-"#;
+const ROUGH_SPHERE: &str = include_str!("scenes/rough_film_sphere.toml");
 
 /// σ → 0: a rough film with σ = 0.01 nm renders the smooth film's picture (the LSRS specular part tends to the
 /// smooth reflectance, the diffuse part vanishes); σ = 20 nm visibly does not.
@@ -461,25 +315,10 @@ fn rough_film_oblique_view_and_light_follow_the_azimuth() {
     let (_, _, px) = exr_pixels(&exr);
     let mut want = [0.0; 3];
     for (azimuth, weight) in [("150deg", 1.0), ("180deg", 0.0)] {
-        let j = json_of(&[
-            "thinfilm",
-            "color",
-            "--stack",
-            "air | water 348nm | Si",
-            "--roughness",
-            "25nm",
-            "--correlation",
-            "300nm",
-            "--diffuse-transport",
-            "single",
-            "--angle",
-            "30deg",
-            "--light-angle",
-            "40deg",
-            "--azimuth",
-            azimuth,
-            "--json",
-        ]);
+        let j = json_of(&words(&format!(
+            "thinfilm color {ROUGH_FILM} --diffuse-transport single --angle 30deg --light-angle 40deg \
+             --azimuth {azimuth} --json"
+        )));
         let v: Vec<f64> = j["diffuse"]["XYZ"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
         if weight == 1.0 {
             want = [v[0] * tl.cos(), v[1] * tl.cos(), v[2] * tl.cos()];
@@ -507,11 +346,7 @@ fn rough_film_oblique_view_and_light_follow_the_azimuth() {
 #[test]
 fn foreign_and_bad_rough_keys_are_refused() {
     let dir = tempfile::tempdir().unwrap();
-    let write = |name: &str, text: &str| {
-        let p = dir.path().join(name);
-        std::fs::write(&p, text).unwrap();
-        p.to_str().unwrap().to_string()
-    };
+    let write = |name: &str, text: &str| write_file(dir.path(), name, text);
     let out = dir.path().join("x.png");
     let out = out.to_str().unwrap();
     let base = "[camera]\nposition = [0, 0, 5]\n[materials.m]\n";

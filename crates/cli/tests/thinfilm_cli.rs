@@ -2,7 +2,7 @@
 //! Figure 3.8, files written, and clean errors (exit code 2, one `error:` line naming the token) on bad input.
 
 mod common;
-use common::{assert_fails, iridis, json_of};
+use common::{assert_fails, iridis, json_of, quoted, words};
 
 fn temp_dir() -> std::path::PathBuf {
     let dir = std::env::temp_dir().join(format!("iridis-thinfilm-cli-{}", std::process::id()));
@@ -12,21 +12,10 @@ fn temp_dir() -> std::path::PathBuf {
 
 #[test]
 fn spectrum_json_matches_figure_3_8() {
-    let out = iridis(&[
-        "thinfilm",
-        "spectrum",
-        "--stack",
-        "air | water 635nm | air",
-        "--angle",
-        "1deg",
-        "--from",
-        "400nm",
-        "--to",
-        "690nm",
-        "--step",
-        "10nm",
-        "--json",
-    ]);
+    let out = iridis(&words(
+        "thinfilm spectrum --stack 'air | water 635nm | air' --angle 1deg --from 400nm --to 690nm --step 10nm \
+             --json",
+    ));
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     for key in ["wavelength_nm", "R", "T", "A", "Rs", "Rp", "Ts", "Tp"] {
@@ -41,26 +30,13 @@ fn spectrum_json_matches_figure_3_8() {
 #[test]
 fn table_csv_and_plots_are_written() {
     let dir = temp_dir();
-    let csv = dir.join("t.csv");
-    let map = dir.join("map.png");
-    let out = iridis(&[
-        "thinfilm",
-        "table",
-        "--stack",
-        "air | water 635nm | air",
-        "--angles",
-        "1deg:90deg:1deg",
-        "--from",
-        "400nm",
-        "--to",
-        "690nm",
-        "--step",
-        "10nm",
-        "-o",
-        csv.to_str().unwrap(),
-        "--plot",
-        map.to_str().unwrap(),
-    ]);
+    let (csv, map) = (dir.join("t.csv"), dir.join("map.png"));
+    let out = iridis(&words(&format!(
+        "thinfilm table --stack 'air | water 635nm | air' --angles 1deg:90deg:1deg --from 400nm --to 690nm \
+             --step 10nm -o {} --plot {}",
+        quoted(&csv),
+        quoted(&map)
+    )));
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let text = std::fs::read_to_string(&csv).unwrap();
     let lines: Vec<&str> = text.lines().collect();
@@ -72,15 +48,10 @@ fn table_csv_and_plots_are_written() {
     assert!((row[2] - 0.0109059).abs() < 1e-6, "{row:?}");
     assert!(std::fs::read(&map).unwrap().starts_with(b"\x89PNG"));
     let spec = dir.join("oil.png");
-    let out = iridis(&[
-        "thinfilm",
-        "spectrum",
-        "--stack",
-        "air | gasoline 216nm | water 220nm | asphalt",
-        "--plot",
-        spec.to_str().unwrap(),
-        "--csv",
-    ]);
+    let out = iridis(&words(&format!(
+        "thinfilm spectrum --stack 'air | gasoline 216nm | water 220nm | asphalt' --plot {} --csv",
+        quoted(&spec)
+    )));
     assert!(out.status.success());
     assert!(String::from_utf8_lossy(&out.stdout).starts_with("wavelength_nm,R,T,A,Rs,Rp,Ts,Tp,psi_deg,delta_deg\n"));
     assert!(std::fs::read(&spec).unwrap().starts_with(b"\x89PNG"));
@@ -106,18 +77,11 @@ fn chart_is_written() {
     let dir = temp_dir();
     let png = dir.join("chart.png");
     let csv = dir.join("chart.csv");
-    let out = iridis(&[
-        "thinfilm",
-        "chart",
-        "--stack",
-        "air | water {d} | air",
-        "--thickness",
-        "0nm:1000nm:5nm",
-        "-o",
-        png.to_str().unwrap(),
-        "--csv",
-        csv.to_str().unwrap(),
-    ]);
+    let out = iridis(&words(&format!(
+        "thinfilm chart --stack 'air | water {{d}} | air' --thickness 0nm:1000nm:5nm -o {} --csv {}",
+        quoted(&png),
+        quoted(&csv)
+    )));
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     assert!(std::fs::read(&png).unwrap().starts_with(b"\x89PNG"));
     let text = std::fs::read_to_string(&csv).unwrap();
@@ -236,21 +200,9 @@ fn closed_stdout_pipe_is_a_clean_exit() {
 
 fn spectrum_at(stack: &str, angle: &str, nm: f64, pol: &str) -> serde_json::Value {
     let w = format!("{nm}nm");
-    let out = iridis(&[
-        "thinfilm",
-        "spectrum",
-        "--stack",
-        stack,
-        "--angle",
-        angle,
-        "--from",
-        &w,
-        "--to",
-        &w,
-        "--polarization",
-        pol,
-        "--json",
-    ]);
+    let out = iridis(&words(&format!(
+        "thinfilm spectrum --stack '{stack}' --angle {angle} --from {w} --to {w} --polarization {pol} --json"
+    )));
     assert!(out.status.success(), "{stack} {pol}: {}", String::from_utf8_lossy(&out.stderr));
     serde_json::from_slice(&out.stdout).unwrap()
 }
@@ -313,35 +265,13 @@ fn polarization_s_and_p_agree_with_tmm() {
 #[test]
 fn incoherent_slide_and_psi_delta_in_spectrum() {
     // A bare 1 mm slide, incoherent: R = 2ρ/(1 + ρ) with ρ = 0.04 (n = 1.5) at normal incidence.
-    let v = json_of(&[
-        "thinfilm",
-        "spectrum",
-        "--stack",
-        "air | inc:n=1.5 1mm | air",
-        "--from",
-        "500nm",
-        "--to",
-        "520nm",
-        "--json",
-    ]);
+    let v = json_of(&words("thinfilm spectrum --stack 'air | inc:n=1.5 1mm | air' --from 500nm --to 520nm --json"));
     assert!((v["R"][0].as_f64().unwrap() - 0.08 / 1.04).abs() < 1e-12, "{}", v["R"][0]);
     // Through an incoherent layer Δ is undefined (null) and tan ψ = √(R_p/R_s): at normal incidence R_p = R_s.
     assert!(v["delta_deg"].is_null(), "no Δ for an incoherent stack");
     assert!((v["psi_deg"][0].as_f64().unwrap() - 45.0).abs() < 1e-12, "{}", v["psi_deg"]);
     // ψ/Δ of a bare n = 1.5 substrate at 60° (beyond Brewster: Δ = 180°), tan ψ = |r_p/r_s| from Fresnel.
-    let v = json_of(&[
-        "thinfilm",
-        "spectrum",
-        "--stack",
-        "air | n=1.5",
-        "--angle",
-        "60deg",
-        "--from",
-        "500nm",
-        "--to",
-        "500nm",
-        "--json",
-    ]);
+    let v = json_of(&words("thinfilm spectrum --stack 'air | n=1.5' --angle 60deg --from 500nm --to 500nm --json"));
     let th = 60f64.to_radians();
     let ct = (1.0 - (th.sin() / 1.5).powi(2)).sqrt();
     let rs = (th.cos() - 1.5 * ct) / (th.cos() + 1.5 * ct);
@@ -371,47 +301,20 @@ fn profile_balances_energy() {
     let (r, t) = (v["R"].as_f64().unwrap(), v["T"].as_f64().unwrap());
     assert!((r + t + a - 1.0).abs() < 1e-12 && a > 0.2, "R {r} T {t} A {a}");
     // Same R and T as the spectrum command.
-    let s = json_of(&[
-        "thinfilm",
-        "spectrum",
-        "--stack",
-        "air | Au 30nm | glass",
-        "--from",
-        "500nm",
-        "--to",
-        "500nm",
-        "--json",
-    ]);
+    let s = json_of(&words("thinfilm spectrum --stack 'air | Au 30nm | glass' --from 500nm --to 500nm --json"));
     assert!((s["R"][0].as_f64().unwrap() - r).abs() < 1e-12 && (s["T"][0].as_f64().unwrap() - t).abs() < 1e-12);
     // The profile's absorbed density integrates to the layer's absorption (trapezoid, 2000 points).
-    let v = json_of(&[
-        "thinfilm",
-        "profile",
-        "--stack",
-        "air | Au 30nm | glass",
-        "--wavelength",
-        "500nm",
-        "--points",
-        "2301",
-        "--json",
-    ]);
+    let v = json_of(&words("thinfilm profile --stack 'air | Au 30nm | glass' --wavelength 500nm --points 2301 --json"));
     let z: Vec<f64> = v["profile"]["z_nm"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
     let d: Vec<f64> =
         v["profile"]["absorption_per_nm"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
     let integral: f64 = (1..z.len()).map(|i| 0.5 * (d[i] + d[i - 1]) * (z[i] - z[i - 1])).sum();
     assert!((integral - a).abs() < 5e-3 * a, "∫ {integral} vs {a}");
     // Mixed stacks: a profile too; in the coherent Si film it integrates to the film's absorption.
-    let v = json_of(&[
-        "thinfilm",
-        "profile",
-        "--stack",
-        "air | Si 50nm | inc:n=1.5+0.0001i 2um | air",
-        "--wavelength",
-        "550nm",
-        "--points",
-        "22001",
-        "--json",
-    ]);
+    let v = json_of(&words(
+        "thinfilm profile --stack 'air | Si 50nm | inc:n=1.5+0.0001i 2um | air' --wavelength 550nm \
+             --points 22001 --json",
+    ));
     assert!(v["balance"].as_f64().unwrap().abs() < 1e-12);
     let z: Vec<f64> = v["profile"]["z_nm"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
     let d: Vec<f64> =
@@ -422,18 +325,10 @@ fn profile_balances_energy() {
         .sum();
     let a_si = v["A_layers"][0].as_f64().unwrap();
     // A depth window: the films on a 1 mm slide, sampled every 20 nm from 20 nm above them.
-    let v = json_of(&[
-        "thinfilm",
-        "profile",
-        "--stack",
-        "air | TiO2 60nm | Si 50nm | inc:glass 1mm | air",
-        "--wavelength",
-        "550nm",
-        "--depth=-20nm:200nm",
-        "--points",
-        "12",
-        "--json",
-    ]);
+    let v = json_of(&words(
+        "thinfilm profile --stack 'air | TiO2 60nm | Si 50nm | inc:glass 1mm | air' --wavelength 550nm \
+             --depth=-20nm:200nm --points 12 --json",
+    ));
     let zs: Vec<f64> = v["profile"]["z_nm"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
     assert_eq!((zs[0], zs[1], zs[11]), (-20.0, 0.0, 200.0));
     // In the lossless glass the flux is T; above the stack it is 1 − R.
@@ -448,16 +343,10 @@ fn profile_balances_energy() {
     assert!((integral - a_si).abs() < 5e-3 * a_si, "∫ {integral} vs {a_si}");
     let dir = temp_dir();
     let png = dir.join("profile.png");
-    let out = iridis(&[
-        "thinfilm",
-        "profile",
-        "--stack",
-        "air | Si 108nm | glass",
-        "--wavelength",
-        "450nm",
-        "--plot",
-        png.to_str().unwrap(),
-    ]);
+    let out = iridis(&words(&format!(
+        "thinfilm profile --stack 'air | Si 108nm | glass' --wavelength 450nm --plot {}",
+        quoted(&png)
+    )));
     assert!(out.status.success() && std::fs::metadata(&png).unwrap().len() > 1000);
 }
 
@@ -523,16 +412,9 @@ fn fit_reads_real_files_and_names_the_material_that_does_not_cover_them() {
         &["thinfilm", "fit", file, "--stack", "air | SiO2 {d=120nm:50nm..300nm} | Si"],
         &["substrate 'si' has data for 206.6–826.6 nm only", "si-green (250–1450 nm) covers it", "--to 826.6nm"],
     );
-    let w = json_of(&[
-        "thinfilm",
-        "fit",
-        file,
-        "--stack",
-        "air | SiO2 {d=120nm:50nm..300nm} | Si",
-        "--to",
-        "826nm",
-        "--json",
-    ]);
+    let w = json_of(&words(&format!(
+        "thinfilm fit '{file}' --stack 'air | SiO2 {{d=120nm:50nm..300nm}} | Si' --to 826nm --json"
+    )));
     assert!(
         (w["values"][0].as_f64().unwrap() - 150.0).abs() < 0.5 && w["wavelength_nm"].as_array().unwrap().len() == 86
     );
@@ -622,17 +504,11 @@ fn fit_weights_are_inverse_variances() {
     let ell = dir.join("ellips.csv");
     std::fs::write(&ell, "wavelength_nm,psi,delta\n400,30,100\n500,31,101\n600,32,102\n").unwrap();
     assert_fails(
-        &[
-            "thinfilm",
-            "fit",
-            ell.to_str().unwrap(),
-            "--stack",
-            "air | n=2.1 {d=150nm:50nm..400nm} | inc:BK7 1mm | air",
-            "--quantity",
-            "psi-delta",
-            "--angle",
-            "70deg",
-        ],
+        &words(&format!(
+            "thinfilm fit {} --stack 'air | n=2.1 {{d=150nm:50nm..400nm}} | inc:BK7 1mm | air' \
+             --quantity psi-delta --angle 70deg",
+            quoted(&ell)
+        )),
         &["has no Δ", "incoherent"],
     );
 }

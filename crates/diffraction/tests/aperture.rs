@@ -2,23 +2,14 @@
 //! tiled patch, and the periodic one against the reference where the reference's only approximations (the
 //! 4σ_f cut of eq. 8 and the Taylor remainder) have a bound we can compute.
 
+mod common;
+
 use std::sync::Arc;
 
 use iridis_diffraction::evaluator::{Aperture, Evaluator, GroundTruth, Reference};
 use iridis_diffraction::geometry::{direction, Shading};
 use iridis_diffraction::{Patch, SpectralSetup, TaylorTerms};
 use num_complex::Complex64;
-
-/// Deterministic pseudo-random heights in [−amp, amp] (a linear congruential generator; any fixed field will do).
-fn heights(n: usize, amp: f64, seed: u64) -> Vec<f64> {
-    let mut s = seed;
-    (0..n)
-        .map(|_| {
-            s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            amp * (2.0 * ((s >> 11) as f64 / (1u64 << 53) as f64) - 1.0)
-        })
-        .collect()
-}
 
 fn gt(patch: &Patch, coherence: f64, aperture: Aperture) -> GroundTruth {
     GroundTruth::with_aperture(patch, coherence, Shading::default(), &SpectralSetup::default(), 41, aperture).unwrap()
@@ -34,7 +25,7 @@ fn periodic_ground_truth_equals_the_reference_up_to_its_bounded_approximations()
     let sigma_f = 1.0 / (7.0 * l);
     let sigma_s = 1.0 / (std::f64::consts::TAU * sigma_f);
     let coherence = 4.0 * sigma_s;
-    let patch = Patch::from_row_major(n, n, dx, dx, &heights(n * n, 30.0, 7)).unwrap();
+    let patch = Patch::from_row_major(n, n, dx, dx, &common::heights(n * n, 30.0, 7)).unwrap();
     let terms_n = 24;
     let terms = Arc::new(TaylorTerms::compute(&patch, terms_n, coherence).unwrap());
     let reference = Reference { terms, shading: Shading::default(), spectral: SpectralSetup::default() };
@@ -103,7 +94,7 @@ fn periodic_ground_truth_is_the_finite_ground_truth_of_the_tiled_patch() {
     // window (σ_s = 300 nm, cut at 7.43 σ_s = 2.23 µm) stays inside the ±2.5 tiles, so the finite aperture over
     // the tiles and the periodic extension of one tile sum the same lattice points.
     let (rows, cols, dx, dy) = (10usize, 12usize, 80.0, 100.0);
-    let h = heights(rows * cols, 45.0, 11);
+    let h = common::heights(rows * cols, 45.0, 11);
     let patch = Patch::from_row_major(rows, cols, dx, dy, &h).unwrap();
     let k = 5;
     let mut tiled = Vec::with_capacity(rows * cols * k * k);
@@ -134,7 +125,7 @@ fn both_ground_truths_agree_when_the_window_is_well_inside_the_patch() {
     // 64 × 64 at 50 nm (3.2 µm) with σ_s = 250 nm: the lattice's window mass outside the patch bounds how much
     // the images can add, |A_periodic − A_finite| ≤ 2 · (mass outside) / (mass in total).
     let (n, dx, coherence) = (64usize, 50.0, 1000.0);
-    let patch = Patch::from_row_major(n, n, dx, dx, &heights(n * n, 60.0, 3)).unwrap();
+    let patch = Patch::from_row_major(n, n, dx, dx, &common::heights(n * n, 60.0, 3)).unwrap();
     let sigma = coherence / 4.0;
     let centre = (n - 1) as f64 * dx / 2.0;
     let axis = |m_range: i64| -> f64 {
@@ -162,7 +153,7 @@ fn both_ground_truths_agree_when_the_window_is_well_inside_the_patch() {
 
 #[test]
 fn a_window_thousands_of_patches_wide_is_refused_with_what_to_lower() {
-    let patch = Patch::from_row_major(4, 4, 10.0, 10.0, &heights(16, 5.0, 1)).unwrap();
+    let patch = Patch::from_row_major(4, 4, 10.0, 10.0, &common::heights(16, 5.0, 1)).unwrap();
     let e =
         GroundTruth::with_aperture(&patch, 1e9, Shading::default(), &SpectralSetup::default(), 3, Aperture::Periodic)
             .unwrap_err()

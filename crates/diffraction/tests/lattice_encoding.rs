@@ -2,6 +2,8 @@
 //! ([`Lattice`], what the GPU sums) against the ground truth's own sums, its colour from powers against its
 //! `xyz`, and the table encodings of the lookup shader against the f64 lookup they stand for.
 
+mod common;
+
 use std::sync::Arc;
 
 use iridis_diffraction::encoding::{EncodedTable, TableEncoding};
@@ -11,17 +13,6 @@ use iridis_diffraction::table::{Lookup, LookupTable, Precision, TableParams};
 use iridis_diffraction::taylor::terms_for_bound;
 use iridis_diffraction::{Patch, SpectralSetup, TaylorTerms};
 use num_complex::Complex64;
-
-/// Deterministic pseudo-random heights in [−amp, amp].
-fn heights(n: usize, amp: f64, seed: u64) -> Vec<f64> {
-    let mut s = seed;
-    (0..n)
-        .map(|_| {
-            s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            amp * (2.0 * ((s >> 11) as f64 / (1u64 << 53) as f64) - 1.0)
-        })
-        .collect()
-}
 
 /// `A` at wavenumber `s` summed term by term over the lattice's description (no recurrences, no separation).
 fn lattice_amplitude(gt: &GroundTruth, wi: [f64; 3], wr: [f64; 3], s: f64) -> Complex64 {
@@ -48,7 +39,7 @@ fn the_lattice_describes_the_same_sum_as_the_ground_truth() {
     // 10 × 12 samples at 80 × 90 nm; coherence 1.5 µm (the periodic sum reaches neighbouring images) and 0.25 µm
     // (the finite window falls below its 1e-12 cut inside the patch, so columns drop out).
     let (rows, cols) = (10, 12);
-    let patch = Patch::from_row_major(rows, cols, 80.0, 90.0, &heights(rows * cols, 60.0, 3)).unwrap();
+    let patch = Patch::from_row_major(rows, cols, 80.0, 90.0, &common::heights(rows * cols, 60.0, 3)).unwrap();
     for (aperture, coherence) in [
         (Aperture::Finite, 1500.0),
         (Aperture::Finite, 250.0),
@@ -79,7 +70,7 @@ fn the_lattice_describes_the_same_sum_as_the_ground_truth() {
 
 #[test]
 fn colour_from_powers_is_the_ground_truths_colour() {
-    let patch = Patch::from_row_major(8, 8, 100.0, 100.0, &heights(64, 40.0, 11)).unwrap();
+    let patch = Patch::from_row_major(8, 8, 100.0, 100.0, &common::heights(64, 40.0, 11)).unwrap();
     let gt = GroundTruth::with_aperture(
         &patch,
         800.0,

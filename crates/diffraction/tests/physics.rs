@@ -1,6 +1,8 @@
 //! Physical laws that every evaluator must obey: the grating equation, the flat mirror, the blaze direction,
 //! reciprocity of |A|², and agreement between the methods where their assumptions coincide.
 
+mod common;
+
 use std::sync::Arc;
 
 use iridis_color::{Illuminant, Observer};
@@ -97,16 +99,20 @@ fn sinusoidal_grating_obeys_the_grating_equation_ground_truth_and_reference() {
     }
 }
 
+/// The f64 lookup of a patch in a narrow band (550–555 nm), so the λ-integrated table has sharp orders.
+fn narrow_band_lookup(patch: &Patch, params: TableParams, name: &str) -> Lookup {
+    let spectral = SpectralSetup::with_range(Illuminant::E, Observer::Cie1931, 550.0, 555.0, 5.0).unwrap();
+    let n = terms_for_bound(patch.max_abs_height, 550.0, 1e-8);
+    let terms = TaylorTerms::compute(patch, n, COHERENCE).unwrap();
+    let table = Arc::new(LookupTable::build(&terms, &spectral, params, name, &|_| {}).unwrap());
+    Lookup::new(table, Shading::default(), Precision::F64).unwrap()
+}
+
 #[test]
 fn sinusoidal_grating_obeys_the_grating_equation_lookup() {
     let (patch, d) = sine_patch();
     // A narrow band (550–555 nm) so the λ-integrated lookup has a sharp first order.
-    let spectral = SpectralSetup::with_range(Illuminant::E, Observer::Cie1931, 550.0, 555.0, 5.0).unwrap();
-    let n = terms_for_bound(patch.max_abs_height, 550.0, 1e-8);
-    let terms = TaylorTerms::compute(&patch, n, COHERENCE).unwrap();
-    let params = TableParams { uv_resolution: 801, uv_power: 1.0 };
-    let table = Arc::new(LookupTable::build(&terms, &spectral, params, "test", &|_| {}).unwrap());
-    let lookup = Lookup::new(table, Shading::default(), Precision::F64).unwrap();
+    let lookup = narrow_band_lookup(&patch, TableParams { uv_resolution: 801, uv_power: 1.0 }, "test");
     for theta_i in [0.0, 30.0] {
         for m in [1.0, -1.0] {
             let expected = grating_angle(m, 552.5, d, theta_i);
@@ -174,14 +180,8 @@ fn amplitude_is_reciprocal_and_methods_agree() {
     // the patch, and the reference's BRDF is reciprocal. (|A|² alone depends on −ω_i − ω_r only, so it is
     // symmetric by construction; the test that can fail is the one through C, with its lone cos θ_r: ρ is the
     // BRDF times cos θ_i, so ρ(ω_i, ω_r)/cos θ_i = ρ(ω_r, ω_i)/cos θ_r.)
-    let (rows, cols, dx) = (48, 48, 60.0);
-    let mut seed = 7u64;
-    let mut rnd = || {
-        seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-        (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-    };
-    let h: Vec<f64> = (0..rows * cols).map(|_| 60.0 * rnd()).collect();
-    let patch = Patch::from_row_major(rows, cols, dx, dx, &h).unwrap();
+    // 48 × 48 samples 60 nm apart, heights uniform in ±30 nm.
+    let patch = Patch::from_row_major(48, 48, 60.0, 60.0, &common::heights(48 * 48, 30.0, 7)).unwrap();
     let spectral = SpectralSetup::default();
     let n = terms_for_bound(patch.max_abs_height, 380.0, 1e-10);
     let terms = Arc::new(TaylorTerms::compute(&patch, n, 2000.0).unwrap());
@@ -274,12 +274,7 @@ fn lookup_blazed_grating_prefers_the_side_its_facets_face() {
     let d = 2500.0;
     let beta = (550.0f64 / d).asin() / 2.0;
     let patch = grating(|t| d * beta.tan() * t, d, 50, 8, 4);
-    let spectral = SpectralSetup::with_range(Illuminant::E, Observer::Cie1931, 550.0, 555.0, 5.0).unwrap();
-    let n = terms_for_bound(patch.max_abs_height, 550.0, 1e-8);
-    let terms = TaylorTerms::compute(&patch, n, COHERENCE).unwrap();
-    let params = TableParams { uv_resolution: 501, uv_power: 5.0 };
-    let table = Arc::new(LookupTable::build(&terms, &spectral, params, "blazed", &|_| {}).unwrap());
-    let lookup = Lookup::new(table, Shading::default(), Precision::F64).unwrap();
+    let lookup = narrow_band_lookup(&patch, TableParams { uv_resolution: 501, uv_power: 5.0 }, "blazed");
     let order = |m: f64| {
         let a = grating_angle(m, 552.5, d, 0.0);
         peak(|t| lookup.xyz(light(0.0), viewer(t)).y, a - 1.0, a + 1.0, 0.01).1
@@ -294,14 +289,8 @@ fn ground_truth_is_reciprocal() {
     // Helmholtz reciprocity holds for the BRDF, F² G |P|² / (λ² A w²) with G = (1+ω_i·ω_r)²/(cos θ_i cos θ_r)
     // (paper eq. 2). iridis' ρ is that BRDF times cos θ_i (eq. 9: the light falls on the surface at θ_i), so
     // ρ(ω_i, ω_r)/cos θ_i must equal ρ(ω_r, ω_i)/cos θ_r — shading, shadowing and |A|² included.
-    let (rows, cols, dx) = (40, 40, 60.0);
-    let mut seed = 11u64;
-    let mut rnd = || {
-        seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-        (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-    };
-    let h: Vec<f64> = (0..rows * cols).map(|_| 80.0 * rnd()).collect();
-    let patch = Patch::from_row_major(rows, cols, dx, dx, &h).unwrap();
+    // 40 × 40 samples 60 nm apart, heights uniform in ±40 nm.
+    let patch = Patch::from_row_major(40, 40, 60.0, 60.0, &common::heights(40 * 40, 40.0, 11)).unwrap();
     let spectral = SpectralSetup::default();
     let truth = GroundTruth::new(&patch, 1500.0, Shading::default(), &spectral, 3).unwrap();
     let pairs = [(0.0, 0.0, 0.3, 1.0), (0.5, 0.3, 0.2, 2.0), (1.1, 0.0, 0.6, 3.0), (0.2, 1.0, 1.3, 4.0)];
@@ -451,12 +440,8 @@ fn a_rough_patch_reflects_no_more_than_the_flat_one() {
     // rough patch has the same total |A|² over all frequencies and roughness only moves power into other
     // directions (some of it below the horizon): its integral must not exceed the flat patch's.
     let (n, dx) = (32, 60.0);
-    let mut seed = 5u64;
-    let mut rnd = || {
-        seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-        (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-    };
-    let rough: Vec<f64> = (0..n * n).map(|_| 40.0 * rnd()).collect();
+    // Uniform in ±20 nm.
+    let rough = common::heights(n * n, 20.0, 5);
     let metal = iridis_diffraction::Fresnel::Index { n: num_complex::Complex64::new(0.2, 3.4) };
     let shading = Shading { fresnel: Arc::new(metal), ..Shading::default() };
     let coherence = 1500.0;

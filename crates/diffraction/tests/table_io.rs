@@ -14,13 +14,22 @@ fn small_table() -> LookupTable {
     LookupTable::build(&terms, &spectral, TableParams { uv_resolution: 9, uv_power: 5.0 }, "test", &|_| {}).unwrap()
 }
 
+/// The table written as `.npz`, in memory.
+fn npz_bytes(t: &LookupTable) -> Vec<u8> {
+    let mut buf = Cursor::new(Vec::new());
+    t.write_npz(&mut buf).unwrap();
+    buf.into_inner()
+}
+
+/// The table written as `.npz` and read back as the file `name`.
+fn reread(t: &LookupTable, name: &str) -> Result<LookupTable, iridis_diffraction::DiffractionError> {
+    LookupTable::read_npz(Cursor::new(npz_bytes(t)), name)
+}
+
 #[test]
 fn round_trip_is_exact() {
     let t = small_table();
-    let mut buf = Cursor::new(Vec::new());
-    t.write_npz(&mut buf).unwrap();
-    buf.set_position(0);
-    let back = LookupTable::read_npz(buf, "mem").unwrap();
+    let back = reread(&t, "mem").unwrap();
     assert_eq!(back.meta, t.meta);
     assert_eq!(back.data, t.data);
     assert_eq!(back.uv, t.uv);
@@ -32,9 +41,7 @@ fn round_trip_is_exact() {
 #[test]
 fn damaged_and_foreign_files_are_refused() {
     let t = small_table();
-    let mut buf = Cursor::new(Vec::new());
-    t.write_npz(&mut buf).unwrap();
-    let bytes = buf.into_inner();
+    let bytes = npz_bytes(&t);
 
     let truncated = bytes[..bytes.len() / 2].to_vec();
     let e = LookupTable::read_npz(Cursor::new(truncated), "cut.npz").unwrap_err().to_string();
@@ -45,34 +52,22 @@ fn damaged_and_foreign_files_are_refused() {
 
     let mut newer = t.clone();
     newer.meta.version = 99;
-    let mut buf = Cursor::new(Vec::new());
-    newer.write_npz(&mut buf).unwrap();
-    buf.set_position(0);
-    let e = LookupTable::read_npz(buf, "new.npz").unwrap_err().to_string();
+    let e = reread(&newer, "new.npz").unwrap_err().to_string();
     assert!(e.contains("version 99") && e.contains("precompute"), "{e}");
 
     let mut other = t.clone();
     other.meta.format = "something-else".into();
-    let mut buf = Cursor::new(Vec::new());
-    other.write_npz(&mut buf).unwrap();
-    buf.set_position(0);
-    assert!(LookupTable::read_npz(buf, "o.npz").unwrap_err().to_string().contains("something-else"));
+    assert!(reread(&other, "o.npz").unwrap_err().to_string().contains("something-else"));
 
     // An axis shorter than the metadata says, and a table holding NaN: both refused, not read into garbage.
     let mut short_axis = t.clone();
     short_axis.uv.pop();
-    let mut buf = Cursor::new(Vec::new());
-    short_axis.write_npz(&mut buf).unwrap();
-    buf.set_position(0);
-    let e = LookupTable::read_npz(buf, "s.npz").unwrap_err().to_string();
+    let e = reread(&short_axis, "s.npz").unwrap_err().to_string();
     assert!(e.contains("disagree"), "{e}");
 
     let mut poisoned = t.clone();
     poisoned.data[3] = f64::NAN;
-    let mut buf = Cursor::new(Vec::new());
-    poisoned.write_npz(&mut buf).unwrap();
-    buf.set_position(0);
-    let e = LookupTable::read_npz(buf, "n.npz").unwrap_err().to_string();
+    let e = reread(&poisoned, "n.npz").unwrap_err().to_string();
     assert!(e.contains("non-finite"), "{e}");
 }
 
@@ -83,9 +78,7 @@ fn damaged_and_foreign_files_are_refused() {
 fn mutated_tables_never_panic() {
     use iridis_surface::{fuzz::mutate, rng::Rng};
     let t = small_table();
-    let mut buf = Cursor::new(Vec::new());
-    t.write_npz(&mut buf).unwrap();
-    let good = buf.into_inner();
+    let good = npz_bytes(&t);
     let hook = std::panic::take_hook();
     std::panic::set_hook(Box::new(|_| {}));
     let mut rng = Rng::new(5);
@@ -131,10 +124,7 @@ fn patch_warnings_once_each_and_carried_by_tables() {
     let t =
         LookupTable::build(&terms, &spectral, TableParams { uv_resolution: 5, uv_power: 5.0 }, "c", &|_| {}).unwrap();
     assert_eq!(t.meta.warnings, w);
-    let mut buf = Cursor::new(Vec::new());
-    t.write_npz(&mut buf).unwrap();
-    buf.set_position(0);
-    assert_eq!(LookupTable::read_npz(buf, "c.npz").unwrap().meta.warnings, w);
+    assert_eq!(reread(&t, "c.npz").unwrap().meta.warnings, w);
     let mut json = serde_json::to_value(&t.meta).unwrap();
     json.as_object_mut().unwrap().remove("warnings");
     let old: iridis_diffraction::table::TableMeta = serde_json::from_value(json).unwrap();

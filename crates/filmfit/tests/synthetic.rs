@@ -13,6 +13,11 @@ fn gauss(rng: &mut StdRng) -> f64 {
     (-2.0 * u.ln()).sqrt() * (2.0 * std::f64::consts::PI * v).cos()
 }
 
+/// `n` wavelengths (nm) from `from` in steps of `step`.
+fn wavelengths(from: f64, step: f64, n: usize) -> Vec<f64> {
+    (0..n).map(|i| from + step * i as f64).collect()
+}
+
 fn synthetic(
     template: &Template,
     truth: &[f64],
@@ -31,7 +36,7 @@ fn coverage_of_200_noisy_trials() {
     // A dispersive (Cauchy) film of unknown thickness on silicon: 3 parameters, R at 201 wavelengths.
     let t = Template::parse("air | cauchy:{A=1.5:1.3..1.7},{B=0.004:0..0.02} {d=300nm:100nm..600nm} | Si").unwrap();
     let truth = [1.47, 0.0052, 312.0];
-    let wl: Vec<f64> = (0..201).map(|i| 400.0 + 2.0 * i as f64).collect();
+    let wl = wavelengths(400.0, 2.0, 201);
     let opt = FitOptions { angle_rad: 0.0, quantity: Quantity::R, ..FitOptions::default() };
     let trials: u64 = std::env::var("FIT_TRIALS").ok().and_then(|v| v.parse().ok()).unwrap_or(200);
     let mut within = [0usize; 3];
@@ -87,10 +92,9 @@ fn thickness_ambiguity_finds_the_global_minimum() {
     // 1230 nm of n = 1.46 on n = 3.9: fringes every ~100 nm of thickness; a local fit from 500 nm stops in a
     // wrong fringe order, the grid search finds the right one.
     let t = Template::parse("air | n=1.46 {d=500nm:50nm..2000nm} | n=3.9").unwrap();
-    let wl: Vec<f64> = (0..161).map(|i| 450.0 + 2.5 * i as f64).collect();
+    let wl = wavelengths(450.0, 2.5, 161);
     let opt = FitOptions { angle_rad: 0.0, quantity: Quantity::R, ..FitOptions::default() };
-    let mut rng = StdRng::seed_from_u64(7);
-    let data = synthetic(&t, &[1230.0], &wl, &opt, 0.003, &mut rng);
+    let data = synthetic(&t, &[1230.0], &wl, &opt, 0.003, &mut StdRng::seed_from_u64(7));
     let global = fit(&t, &data, &opt).unwrap();
     assert!((global.values[0] - 1230.0).abs() < 3.0 * global.sigma[0], "{global:?}");
     assert!(global.reduced_chi2 < 1.5);
@@ -102,10 +106,9 @@ fn thickness_ambiguity_finds_the_global_minimum() {
 fn psi_delta_of_oxide_on_silicon() {
     // Ellipsometry at 70°: thickness and index of a film on Si, ψ/Δ in degrees with σ = 0.05°.
     let t = Template::parse("air | n={n=1.5:1.3..1.7} {d=100nm:10nm..400nm} | Si").unwrap();
-    let wl: Vec<f64> = (0..101).map(|i| 400.0 + 4.0 * i as f64).collect();
+    let wl = wavelengths(400.0, 4.0, 101);
     let opt = FitOptions { angle_rad: 70f64.to_radians(), quantity: Quantity::PsiDelta, ..FitOptions::default() };
-    let mut rng = StdRng::seed_from_u64(3);
-    let data = synthetic(&t, &[1.458, 187.0], &wl, &opt, 0.05, &mut rng);
+    let data = synthetic(&t, &[1.458, 187.0], &wl, &opt, 0.05, &mut StdRng::seed_from_u64(3));
     let r = fit(&t, &data, &opt).unwrap();
     assert!((r.values[0] - 1.458).abs() < 3.0 * r.sigma[0] && (r.values[1] - 187.0).abs() < 3.0 * r.sigma[1], "{r:?}");
     assert!(r.sigma[1] < 0.5 && r.correlation[0][1].abs() <= 1.0);
@@ -115,10 +118,9 @@ fn psi_delta_of_oxide_on_silicon() {
 fn transmittance_of_a_coated_slide_with_incoherent_substrate() {
     // A film on a 1 mm slide measured in transmission: the slide is incoherent.
     let t = Template::parse("air | n=2.1 {d=150nm:50nm..400nm} | inc:n=1.52 1mm | air").unwrap();
-    let wl: Vec<f64> = (0..121).map(|i| 400.0 + 3.0 * i as f64).collect();
+    let wl = wavelengths(400.0, 3.0, 121);
     let opt = FitOptions { angle_rad: 0.0, quantity: Quantity::T, ..FitOptions::default() };
-    let mut rng = StdRng::seed_from_u64(11);
-    let data = synthetic(&t, &[212.0], &wl, &opt, 0.002, &mut rng);
+    let data = synthetic(&t, &[212.0], &wl, &opt, 0.002, &mut StdRng::seed_from_u64(11));
     let r = fit(&t, &data, &opt).unwrap();
     assert!((r.values[0] - 212.0).abs() < 3.0 * r.sigma[0], "{r:?}");
 }
@@ -128,10 +130,9 @@ fn unidentifiable_parameters_are_reported() {
     // The index of a zero-thickness... no: two layers of the same material in a row have one combined
     // thickness, so d1 and d2 cannot be told apart.
     let t = Template::parse("air | n=1.46 {d1=100nm:50nm..300nm} | n=1.46 {d2=100nm:50nm..300nm} | n=3.9").unwrap();
-    let wl: Vec<f64> = (0..50).map(|i| 450.0 + 5.0 * i as f64).collect();
+    let wl = wavelengths(450.0, 5.0, 50);
     let opt = FitOptions { grid: 1, ..FitOptions::default() };
-    let mut rng = StdRng::seed_from_u64(5);
-    let data = synthetic(&t, &[120.0, 90.0], &wl, &opt, 0.002, &mut rng);
+    let data = synthetic(&t, &[120.0, 90.0], &wl, &opt, 0.002, &mut StdRng::seed_from_u64(5));
     // With exact derivatives the two columns of J are equal to rounding: refused, not a ±∞ correlation.
     let e = fit(&t, &data, &opt).unwrap_err().to_string();
     assert!(e.contains("do not determine"), "{e}");

@@ -12,55 +12,19 @@
 
 use std::time::Instant;
 
-use iridis_color::integrate::white_point;
-use iridis_color::lab::delta_e_2000;
-use iridis_color::{Illuminant, Lab, Observer, Xyz};
+#[path = "../tests/common/mod.rs"]
+mod common;
+use common::delta_e;
+
 use iridis_render::{parse_scene, render, Image, Scene};
 
 /// The snake of examples/snake_elaphe.toml (Elaphe-like nanostructure along the body, Algorithm 4 over a scale
 /// texture) over a ground, under `light` — TOML for the `[[light]]` and `[environment]` sections.
 fn snake(light: &str, integration: &str, seed: u64) -> String {
-    format!(
-        r#"
-[output]
-integration = "{integration}"
-seed = {seed}
-exposure = 1.0
-[camera]
-position = [0.0, 5.5, 8.5]
-look_at = [0.0, 0.2, 0.0]
-fov = "42deg"
-{light}
-[textures.scales]
-kind = "scales"
-base = [0.045, 0.035, 0.025]
-edge = [0.012, 0.010, 0.008]
-[materials.skin]
-kind = "diffraction"
-table = "builtin:elaphe"
-uv_resolution = 101
-orientation = "along"
-scale_ru = 3000
-w_diffuse = 0.3
-texture = "scales"
-ambient = 0.0
-[materials.ground]
-kind = "lambert"
-color = [0.42, 0.40, 0.36]
-[[object]]
-kind = "snake"
-material = "skin"
-length = 10.0
-radius = 0.45
-waves = 1.5
-amplitude = 0.9
-tiles = [60.0, 6.0]
-[[object]]
-kind = "plane"
-material = "ground"
-normal = [0.0, 1.0, 0.0]
-"#
-    )
+    include_str!("snake_extended_light.toml")
+        .replace("LIGHT", light)
+        .replace("INTEGRATION", integration)
+        .replace("SEED", &seed.to_string())
 }
 
 const SKY: &str = "[environment]\nkind = \"sky\"\nvisible = false\n";
@@ -86,15 +50,6 @@ type Case = (&'static str, String, Box<dyn Fn(u64) -> String>, Option<String>);
 
 fn scene(text: &str) -> Scene {
     parse_scene(text, "extended_light.toml", std::path::Path::new(".")).expect("scene")
-}
-
-/// Mean and 99th percentile of the per-pixel CIEDE2000 between two images as displayed (exposure 1, clipped).
-fn delta_e(a: &Image, b: &Image) -> (f64, f64) {
-    let white = white_point(Illuminant::D65, Observer::Cie1931);
-    let shown = |p: [f32; 3]| Lab::from_xyz(Xyz::from_linear_srgb(p.map(|c| (c as f64).clamp(0.0, 1.0))), white);
-    let mut d: Vec<f64> = a.data.iter().zip(&b.data).map(|(&p, &q)| delta_e_2000(shown(p), shown(q))).collect();
-    d.sort_by(|x, y| x.total_cmp(y));
-    (d.iter().sum::<f64>() / d.len() as f64, d[(d.len() * 99) / 100])
 }
 
 fn timed<T>(f: impl FnOnce() -> T) -> (T, f64) {

@@ -27,7 +27,7 @@ use iridis_thinfilm::Stack;
 use rayon::prelude::*;
 use wgpu::util::DeviceExt;
 
-use crate::lookup::{display_buffer, entry, storage_out};
+use crate::lookup::{display_buffer, storage_out};
 use crate::{dispatch, unpack_rgb8, FrameTime, Gpu, GpuError, Timer, COMMON_WGSL, FILM_WGSL};
 
 /// Angles and thicknesses over an image.
@@ -172,20 +172,8 @@ impl FilmPipelines {
         }
         let source = format!("{COMMON_WGSL}\n{FILM_WGSL}\n{}", include_str!("shaders/film.wgsl"));
         let p = gpu.checked("compiling the film shaders", || {
-            let module = gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some("film.wgsl"),
-                source: wgpu::ShaderSource::Wgsl(source.into()),
-            });
-            let pipeline = |entry: &str| {
-                gpu.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                    label: Some(entry),
-                    layout: None,
-                    module: &module,
-                    entry_point: Some(entry),
-                    compilation_options: Default::default(),
-                    cache: None,
-                })
-            };
+            let module = gpu.shader("film.wgsl", &source);
+            let pipeline = |entry: &str| gpu.compute_pipeline(&module, entry, entry);
             Self { direct: pipeline("film_frame"), table: pipeline("film_table"), lookup: pipeline("film_frame_table") }
         })?;
         Ok(gpu.film_pipelines.get_or_init(|| p).clone())
@@ -221,11 +209,11 @@ pub(crate) fn build_table(
             usage: wgpu::BufferUsages::UNIFORM,
         });
         let table = storage_out(gpu, "film colour table", bytes);
-        let bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("film table bindings"),
-            layout: &pipes.table.get_bind_group_layout(0),
-            entries: &[entry(0, &params), entry(2, media), entry(3, thickness), entry(4, weights), entry(8, &table)],
-        });
+        let bind = gpu.bind_buffers(
+            "film table bindings",
+            &pipes.table,
+            &[(0, &params), (2, media), (3, thickness), (4, weights), (8, &table)],
+        );
         (table, bind)
     })?;
     let groups = ((grid.cos_nodes as u32).div_ceil(8), (grid.offset_nodes as u32).div_ceil(8));
@@ -306,13 +294,7 @@ impl<'g> GpuFilm<'g> {
             .collect();
         let pipelines = FilmPipelines::get(gpu)?;
         let (media_buf, thick_buf, weights_buf) = gpu.checked("uploading the stack", || {
-            let init = |label: &str, data: &[f32]| {
-                gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some(label),
-                    contents: bytemuck::cast_slice(data),
-                    usage: wgpu::BufferUsages::STORAGE,
-                })
-            };
+            let init = |label: &str, data: &[f32]| gpu.storage_init(label, bytemuck::cast_slice(data));
             (init("film media", &media), init("film thickness", &thick), init("film weights", &w))
         })?;
         Ok(Self {
@@ -398,47 +380,27 @@ impl<'g> GpuFilm<'g> {
                 contents: bytemuck::cast_slice(&words),
                 usage: wgpu::BufferUsages::UNIFORM,
             });
-            let alpha = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("film svt"),
-                contents: bytemuck::cast_slice(alpha),
-                usage: wgpu::BufferUsages::STORAGE,
-            });
+            let alpha = gpu.storage_init("film svt", bytemuck::cast_slice(alpha));
             let display = display_buffer(gpu, tone);
             let out_xyz = storage_out(gpu, "film xyz", pixels * 32);
             let out_rgba = storage_out(gpu, "film rgba", pixels * 4);
             let (pipeline, bind) = match &table {
                 Some(table) => {
                     let p = &self.pipelines.lookup;
-                    let bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                        label: Some("film table frame bindings"),
-                        layout: &p.get_bind_group_layout(0),
-                        entries: &[
-                            entry(0, &params),
-                            entry(1, &display),
-                            entry(5, &alpha),
-                            entry(6, &out_xyz),
-                            entry(7, &out_rgba),
-                            entry(8, table),
-                        ],
-                    });
+                    let bind = gpu.bind_buffers(
+                        "film table frame bindings",
+                        p,
+                        &[(0, &params), (1, &display), (5, &alpha), (6, &out_xyz), (7, &out_rgba), (8, table)],
+                    );
                     (p.clone(), bind)
                 }
                 None => {
                     let p = &self.pipelines.direct;
-                    let bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                        label: Some("film bindings"),
-                        layout: &p.get_bind_group_layout(0),
-                        entries: &[
-                            entry(0, &params),
-                            entry(1, &display),
-                            entry(2, &self.media),
-                            entry(3, &self.thickness),
-                            entry(4, &self.weights),
-                            entry(5, &alpha),
-                            entry(6, &out_xyz),
-                            entry(7, &out_rgba),
-                        ],
-                    });
+                    let bind = gpu.bind_in_order(
+                        "film bindings",
+                        p,
+                        &[&params, &display, &self.media, &self.thickness, &self.weights, &alpha, &out_xyz, &out_rgba],
+                    );
                     (p.clone(), bind)
                 }
             };

@@ -23,8 +23,8 @@ use iridis_diffraction::map::view_direction;
 use iridis_diffraction::{GroundTruth, Lattice};
 use wgpu::util::DeviceExt;
 
-use crate::lookup::{entry, storage_out};
-use crate::{Gpu, GpuError};
+use crate::lookup::storage_out;
+use crate::{Gpu, GpuError, TURNS_WGSL};
 
 /// Wavenumbers per workgroup (`WG` of the shader).
 const WAVENUMBERS_PER_GROUP: usize = 64;
@@ -96,28 +96,12 @@ impl<'a, 'g> GpuGroundTruth<'a, 'g> {
         let entries: Vec<[u32; 2]> = col_entries.iter().chain(&row_entries).copied().collect();
         let heights: Vec<f32> = l.heights.iter().map(|&h| h as f32).collect();
         gpu.check_storage("the height field", heights.len() as u64 * 4, "use a smaller patch or the CPU")?;
-        let source = format!("{}\n{}", include_str!("shaders/turns.wgsl"), include_str!("shaders/ground_truth.wgsl"));
+        let source = format!("{TURNS_WGSL}\n{}", include_str!("shaders/ground_truth.wgsl"));
         let (pipeline, bufs) =
             gpu.checked("uploading the height field and compiling the ground-truth shader", || {
-                let module = gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                    label: Some("ground_truth.wgsl"),
-                    source: wgpu::ShaderSource::Wgsl(source.into()),
-                });
-                let pipeline = gpu.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                    label: Some("iridis ground truth"),
-                    layout: None,
-                    module: &module,
-                    entry_point: Some("power"),
-                    compilation_options: Default::default(),
-                    cache: None,
-                });
-                let init = |label: &str, contents: &[u8]| {
-                    gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                        label: Some(label),
-                        contents,
-                        usage: wgpu::BufferUsages::STORAGE,
-                    })
-                };
+                let module = gpu.shader("ground_truth.wgsl", &source);
+                let pipeline = gpu.compute_pipeline(&module, "iridis ground truth", "power");
+                let init = |label: &str, contents: &[u8]| gpu.storage_init(label, contents);
                 let pad = [[0u32; 4]];
                 let bufs = [
                     init("heights", bytemuck::cast_slice(&heights)),
@@ -177,19 +161,11 @@ impl<'a, 'g> GpuGroundTruth<'a, 'g> {
                 contents: bytemuck::cast_slice(&[count as u32, l.cols as u32, self.ncl, self.nrl]),
                 usage: wgpu::BufferUsages::UNIFORM,
             });
-            let bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("gt bindings"),
-                layout: &self.pipeline.get_bind_group_layout(0),
-                entries: &[
-                    entry(0, &params),
-                    entry(1, &self.heights),
-                    entry(2, &self.spans),
-                    entry(3, &self.entries),
-                    entry(4, &phases),
-                    entry(5, &betas),
-                    entry(6, &power),
-                ],
-            });
+            let bind = gpu.bind_in_order(
+                "gt bindings",
+                &self.pipeline,
+                &[&params, &self.heights, &self.spans, &self.entries, &phases, &betas, &power],
+            );
             (phases, betas, power, bind)
         })?;
         // Start small, then size batches to BATCH_SECONDS from the time per pair measured so far.
@@ -288,34 +264,15 @@ pub fn phase_accuracy(gpu: &Gpu, n: usize) -> Result<f64, GpuError> {
             [alpha as u32, (alpha >> 32) as u32, i, x.to_bits()]
         })
         .collect();
-    let source = format!("{}\n{}", include_str!("shaders/turns.wgsl"), include_str!("shaders/turns_check.wgsl"));
+    let source = format!("{TURNS_WGSL}\n{}", include_str!("shaders/turns_check.wgsl"));
     let (pipeline, input, output) = gpu.checked("compiling the phase check", || {
-        let module = gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("turns_check.wgsl"),
-            source: wgpu::ShaderSource::Wgsl(source.into()),
-        });
-        let pipeline = gpu.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("iridis phase check"),
-            layout: None,
-            module: &module,
-            entry_point: Some("check"),
-            compilation_options: Default::default(),
-            cache: None,
-        });
-        let input = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("phase cases"),
-            contents: bytemuck::cast_slice(&cases),
-            usage: wgpu::BufferUsages::STORAGE,
-        });
+        let module = gpu.shader("turns_check.wgsl", &source);
+        let pipeline = gpu.compute_pipeline(&module, "iridis phase check", "check");
+        let input = gpu.storage_init("phase cases", bytemuck::cast_slice(&cases));
         (pipeline, input, storage_out(gpu, "phase results", (cases.len() * 8) as u64))
     })?;
-    let bind = gpu.checked("binding the phase check", || {
-        gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("phase check"),
-            layout: &pipeline.get_bind_group_layout(0),
-            entries: &[entry(0, &input), entry(1, &output)],
-        })
-    })?;
+    let bind =
+        gpu.checked("binding the phase check", || gpu.bind_in_order("phase check", &pipeline, &[&input, &output]))?;
     crate::dispatch(gpu, None, &pipeline, &bind, ((cases.len() as u32).div_ceil(64), 1), "checking the phases")?;
     let got: Vec<[f32; 2]> = bytemuck::pod_collect_to_vec(&gpu.read_buffer(&output, (cases.len() * 8) as u64)?);
     let mut worst = 0f64;

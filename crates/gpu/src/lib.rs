@@ -42,6 +42,8 @@ pub mod viewer;
 
 use std::time::{Duration, Instant};
 
+use wgpu::util::DeviceExt;
+
 pub use accel::GpuAccelerator;
 pub use film::{FilmFrame, FilmOutput, FilmPath, FilmPathUsed, FilmRun, GpuFilm};
 pub use ground_truth::{ground_truth_map, GpuGroundTruth};
@@ -118,6 +120,69 @@ pub fn open_vulkan() -> Result<(wgpu::Instance, wgpu::Adapter, wgpu::Device, wgp
 }
 
 impl Gpu {
+    /// A WGSL module from `source`; `label` names it in the driver's messages.
+    pub(crate) fn shader(&self, label: &str, source: &str) -> wgpu::ShaderModule {
+        self.device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some(label),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        })
+    }
+
+    /// The compute pipeline of entry point `entry` of `module`, its bind group layout read from the shader.
+    pub(crate) fn compute_pipeline(
+        &self,
+        module: &wgpu::ShaderModule,
+        label: &str,
+        entry: &str,
+    ) -> wgpu::ComputePipeline {
+        self.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some(label),
+            layout: None,
+            module,
+            entry_point: Some(entry),
+            compilation_options: Default::default(),
+            cache: None,
+        })
+    }
+
+    /// The bind group of a pipeline's group 0 with `(binding, buffer)` entries.
+    pub(crate) fn bind_buffers(
+        &self,
+        label: &str,
+        pipeline: &wgpu::ComputePipeline,
+        buffers: &[(u32, &wgpu::Buffer)],
+    ) -> wgpu::BindGroup {
+        let entries: Vec<wgpu::BindGroupEntry> = buffers
+            .iter()
+            .map(|&(binding, b)| wgpu::BindGroupEntry { binding, resource: b.as_entire_binding() })
+            .collect();
+        self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some(label),
+            layout: &pipeline.get_bind_group_layout(0),
+            entries: &entries,
+        })
+    }
+
+    /// [`Gpu::bind_buffers`] with the buffers at bindings 0, 1, 2, … in order.
+    pub(crate) fn bind_in_order(
+        &self,
+        label: &str,
+        pipeline: &wgpu::ComputePipeline,
+        buffers: &[&wgpu::Buffer],
+    ) -> wgpu::BindGroup {
+        let numbered: Vec<(u32, &wgpu::Buffer)> = buffers.iter().enumerate().map(|(i, &b)| (i as u32, b)).collect();
+        self.bind_buffers(label, pipeline, &numbered)
+    }
+
+    /// A storage buffer holding `contents`.
+    pub(crate) fn storage_init(&self, label: &str, contents: &[u8]) -> wgpu::Buffer {
+        self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(label),
+            contents,
+            usage: wgpu::BufferUsages::STORAGE,
+        })
+    }
+
     /// Opens the first suitable Vulkan adapter (high-performance preference; a software adapter such as
     /// lavapipe when nothing else exists) with the adapter's own limits, so large tables fit where they can.
     pub fn new() -> Result<Self, GpuError> {
@@ -347,3 +412,7 @@ pub(crate) const COMMON_WGSL: &str = include_str!("shaders/common.wgsl");
 pub(crate) const LOOKUP_WGSL: &str = include_str!("shaders/lookup_math.wgsl");
 /// The multilayer thin-film recurrence, shared by the film and scene shaders.
 pub(crate) const FILM_WGSL: &str = include_str!("shaders/film_math.wgsl");
+/// Phases as fixed-point fractions of a turn and 64-bit products, shared by the ground-truth and scene shaders.
+pub(crate) const TURNS_WGSL: &str = include_str!("shaders/turns.wgsl");
+/// Parameters, bindings and pixel loop of the two BRDF-map shaders (f32 and encoded tables).
+pub(crate) const LOOKUP_MAP_WGSL: &str = include_str!("shaders/lookup_map.wgsl");

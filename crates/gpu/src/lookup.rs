@@ -16,7 +16,8 @@ use iridis_diffraction::LookupTable;
 use wgpu::util::DeviceExt;
 
 use crate::{
-    dispatch, encoding_words, unpack_rgb8, xyz_to_srgb_words, FrameTime, Gpu, GpuError, Timer, COMMON_WGSL, LOOKUP_WGSL,
+    dispatch, encoding_words, unpack_rgb8, xyz_to_srgb_words, FrameTime, Gpu, GpuError, Timer, COMMON_WGSL,
+    LOOKUP_MAP_WGSL, LOOKUP_WGSL,
 };
 
 /// Storage buffers a table may be split into (by rows of v) when it exceeds one binding.
@@ -150,39 +151,16 @@ impl<'g> GpuLookup<'g> {
             })
             .collect();
         let source = match encoding {
-            TableEncoding::F32 => format!("{COMMON_WGSL}\n{LOOKUP_WGSL}\n{}", include_str!("shaders/lookup.wgsl")),
-            _ => format!("{COMMON_WGSL}\n{LOOKUP_WGSL}\n{}", include_str!("shaders/lookup_encoded.wgsl")),
+            TableEncoding::F32 => include_str!("shaders/lookup.wgsl"),
+            _ => include_str!("shaders/lookup_encoded.wgsl"),
         };
+        let source = format!("{COMMON_WGSL}\n{LOOKUP_WGSL}\n{LOOKUP_MAP_WGSL}\n{source}");
         let (tables, pipeline, scales) = gpu.checked("uploading the lookup table and compiling the shader", || {
-            let bufs: Vec<wgpu::Buffer> = parts
-                .iter()
-                .map(|part| {
-                    gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                        label: Some("iridis lookup table"),
-                        contents: bytemuck::cast_slice(part),
-                        usage: wgpu::BufferUsages::STORAGE,
-                    })
-                })
-                .collect();
-            let scales = scales.as_ref().map(|s| {
-                gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("iridis lookup scales"),
-                    contents: bytemuck::cast_slice(s),
-                    usage: wgpu::BufferUsages::STORAGE,
-                })
-            });
-            let module = gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some("lookup.wgsl"),
-                source: wgpu::ShaderSource::Wgsl(source.into()),
-            });
-            let pipeline = gpu.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some("iridis lookup"),
-                layout: None,
-                module: &module,
-                entry_point: Some("brdf_map"),
-                compilation_options: Default::default(),
-                cache: None,
-            });
+            let bufs: Vec<wgpu::Buffer> =
+                parts.iter().map(|part| gpu.storage_init("iridis lookup table", bytemuck::cast_slice(part))).collect();
+            let scales = scales.as_ref().map(|s| gpu.storage_init("iridis lookup scales", bytemuck::cast_slice(s)));
+            let module = gpu.shader("lookup.wgsl", &source);
+            let pipeline = gpu.compute_pipeline(&module, "iridis lookup", "brdf_map");
             (bufs, pipeline, scales)
         })?;
         let f0 = fresnel.reflectance(500.0, 1.0) as f32;

@@ -27,18 +27,8 @@ pub(crate) struct PresentTarget {
 impl Presenter {
     pub(crate) fn new(gpu: &Gpu) -> Result<Self, GpuError> {
         gpu.checked("compiling the present shader", || {
-            let module = gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some("present"),
-                source: wgpu::ShaderSource::Wgsl(include_str!("shaders/present.wgsl").into()),
-            });
-            let pipeline = gpu.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some("present"),
-                layout: None,
-                module: &module,
-                entry_point: Some("main"),
-                compilation_options: Default::default(),
-                cache: None,
-            });
+            let module = gpu.shader("present", include_str!("shaders/present.wgsl"));
+            let pipeline = gpu.compute_pipeline(&module, "present", "main");
             Self { pipeline }
         })
     }

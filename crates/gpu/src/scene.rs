@@ -32,9 +32,10 @@ use iridis_thinfilm::spectral::FULL_BAND_NM;
 use wgpu::util::DeviceExt;
 
 use crate::film::{build_table, FilmPath};
-use crate::lookup::{display_buffer, entry, storage_out};
+use crate::lookup::{display_buffer, storage_out};
 use crate::{
     dispatch, unpack_rgb8, xyz_to_srgb_words, FrameTime, Gpu, GpuError, Timer, COMMON_WGSL, FILM_WGSL, LOOKUP_WGSL,
+    TURNS_WGSL,
 };
 use iridis_thinfilm::rough::RoughStack;
 use iridis_thinfilm::rough_table::{RoughColorTable, ANGLE_NODES, AZIMUTH_NODES};
@@ -44,7 +45,7 @@ use iridis_thinfilm::Complex64;
 /// The scene shader's source: the shared helpers, both models and the renderer.
 pub(crate) fn scene_source() -> String {
     format!(
-        "{COMMON_WGSL}\n{LOOKUP_WGSL}\n{FILM_WGSL}\n{}\n{}\n{}",
+        "{COMMON_WGSL}\n{TURNS_WGSL}\n{LOOKUP_WGSL}\n{FILM_WGSL}\n{}\n{}\n{}",
         include_str!("shaders/film_rough.wgsl"),
         include_str!("shaders/scene.wgsl"),
         include_str!("shaders/extended.wgsl")
@@ -176,6 +177,13 @@ impl Default for FilmControls {
     }
 }
 
+/// Where a list of records starts in the scene buffer (in vec4) and how many records it holds.
+#[derive(Debug, Clone, Copy, Default)]
+struct Span {
+    base: u32,
+    n: u32,
+}
+
 #[derive(Debug, Clone, Copy, Default)]
 struct Layout {
     env: [[f32; 4]; 4],
@@ -183,14 +191,10 @@ struct Layout {
     env_kind: u32,
     env_tex: u32,
     env_visible: u32,
-    n_spheres: u32,
-    sphere_base: u32,
-    n_planes: u32,
-    plane_base: u32,
-    n_lights: u32,
-    light_base: u32,
-    n_nodes: u32,
-    node_base: u32,
+    spheres: Span,
+    planes: Span,
+    lights: Span,
+    nodes: Span,
     tri_base: u32,
     mat_base: u32,
     tex_base: u32,
@@ -203,8 +207,7 @@ struct Layout {
     /// 0 fast, 1 Monte Carlo.
     integration: u32,
     seed: u32,
-    n_area: u32,
-    area_base: u32,
+    area_lights: Span,
     /// The environment's importance sampler in `tables` (`[columns, rows]` then the distribution), NONE: none.
     env_cdf_base: u32,
 }
@@ -268,14 +271,14 @@ impl<'g> GpuScene<'g> {
         // the frame writes its own set (see SceneFrame::render); here only the room is reserved.
         rec.pad_to(lay.sample_base, MAX_SPP);
 
-        lay.sphere_base = rec.len();
+        lay.spheres.base = rec.len();
         for s in &scene.spheres {
             rec.v3(s.center, s.radius as f32);
             rec.words([s.material as u32, 0, 0, 0]);
         }
-        lay.n_spheres = scene.spheres.len() as u32;
+        lay.spheres.n = scene.spheres.len() as u32;
 
-        lay.plane_base = rec.len();
+        lay.planes.base = rec.len();
         for p in &scene.planes {
             let [w, h] = p.size.unwrap_or([0.0, 0.0]);
             rec.v3w(p.center, u32::from(p.size.is_some()));
@@ -283,16 +286,16 @@ impl<'g> GpuScene<'g> {
             rec.v3(p.tangent, h as f32);
             rec.push([f32::from_bits(p.material as u32), p.uv_unit as f32, 0.0, 0.0]);
         }
-        lay.n_planes = scene.planes.len() as u32;
+        lay.planes.n = scene.planes.len() as u32;
 
-        lay.light_base = rec.len();
+        lay.lights.base = rec.len();
         let first_profile = scene.textures.len() as u32;
-        push_lights(&mut rec, &scene.lights, lay.light_base, first_profile);
-        lay.n_lights = scene.lights.len() as u32;
+        push_lights(&mut rec, &scene.lights, lay.lights.base, first_profile);
+        lay.lights.n = scene.lights.len() as u32;
 
-        lay.area_base = rec.len();
+        lay.area_lights.base = rec.len();
         push_area_lights(&mut rec, &scene.area_lights);
-        lay.n_area = scene.area_lights.len() as u32;
+        lay.area_lights.n = scene.area_lights.len() as u32;
         lay.integration = match scene.integration {
             Integration::Fast => 0,
             Integration::MonteCarlo(Strategy::Mis) => 1,
@@ -308,12 +311,12 @@ impl<'g> GpuScene<'g> {
         // uploaded where extended light exists.
         let extended = !matches!(scene.environment, Environment::None) || !scene.area_lights.is_empty();
 
-        lay.node_base = rec.len();
+        lay.nodes.base = rec.len();
         for n in scene.bvh.nodes() {
             rec.v3w(n.lo, n.start);
             rec.v3w(n.hi, n.count);
         }
-        lay.n_nodes = scene.bvh.nodes().len() as u32;
+        lay.nodes.n = scene.bvh.nodes().len() as u32;
 
         // Triangles in the BVH's primitive order, so a leaf's range indexes them directly.
         lay.tri_base = rec.len();
@@ -663,18 +666,8 @@ impl<'g> GpuScene<'g> {
                 let pipeline = gpu
                     .scene_pipeline
                     .get_or_init(|| {
-                        let module = gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                            label: Some("scene.wgsl"),
-                            source: wgpu::ShaderSource::Wgsl(source.into()),
-                        });
-                        gpu.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                            label: Some("iridis scene"),
-                            layout: None,
-                            module: &module,
-                            entry_point: Some("render_scene"),
-                            compilation_options: Default::default(),
-                            cache: None,
-                        })
+                        let module = gpu.shader("scene.wgsl", &source);
+                        gpu.compute_pipeline(&module, "iridis scene", "render_scene")
                     })
                     .clone();
                 (
@@ -771,13 +764,7 @@ impl<'g> GpuScene<'g> {
         let flat: Vec<[f32; 2]> = media[f.media_base..f.media_base + n_lambda * f.n_media].to_vec();
         let (m, t) = gpu
             .checked("uploading a film for its colour table", || {
-                let init = |label: &str, data: &[u8]| {
-                    gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                        label: Some(label),
-                        contents: data,
-                        usage: wgpu::BufferUsages::STORAGE,
-                    })
-                };
+                let init = |label: &str, data: &[u8]| gpu.storage_init(label, data);
                 (
                     init("film table media", bytemuck::cast_slice(&flat)),
                     init("film table thickness", bytemuck::cast_slice(&thick)),
@@ -845,13 +832,7 @@ impl<'g> GpuScene<'g> {
 
     /// Replaces the lights (same number as the scene has: the viewer drags them).
     pub fn set_lights(&mut self, lights: &[Light]) -> Result<(), GpuError> {
-        if lights.len() != self.lights.len() {
-            return Err(GpuError::Invalid(format!(
-                "the scene has {} lights; {} given",
-                self.lights.len(),
-                lights.len()
-            )));
-        }
+        same_count("lights", self.lights.len(), lights.len())?;
         let old: Vec<_> = self.lights.iter().filter(|l| matches!(l, Light::Laser(_))).collect();
         let new: Vec<_> = lights.iter().filter(|l| matches!(l, Light::Laser(_))).collect();
         if old != new {
@@ -860,8 +841,8 @@ impl<'g> GpuScene<'g> {
             ));
         }
         let mut rec = Records::default();
-        push_lights(&mut rec, lights, self.layout.light_base, self.first_profile);
-        self.gpu.queue.write_buffer(&self.scene, self.layout.light_base as u64 * 16, bytemuck::cast_slice(&rec.0));
+        push_lights(&mut rec, lights, self.layout.lights.base, self.first_profile);
+        self.gpu.queue.write_buffer(&self.scene, self.layout.lights.base as u64 * 16, bytemuck::cast_slice(&rec.0));
         self.lights = lights.to_vec();
         Ok(())
     }
@@ -873,23 +854,21 @@ impl<'g> GpuScene<'g> {
 
     /// Replaces the area lights (same number as the scene has: the viewer turns them with its light drag).
     pub fn set_area_lights(&mut self, lights: &[AreaLight]) -> Result<(), GpuError> {
-        if lights.len() != self.area_lights.len() {
-            return Err(GpuError::Invalid(format!(
-                "the scene has {} area lights; {} given",
-                self.area_lights.len(),
-                lights.len()
-            )));
-        }
+        same_count("area lights", self.area_lights.len(), lights.len())?;
         let mut rec = Records::default();
         push_area_lights(&mut rec, lights);
-        self.gpu.queue.write_buffer(&self.scene, self.layout.area_base as u64 * 16, bytemuck::cast_slice(&rec.0));
+        self.gpu.queue.write_buffer(
+            &self.scene,
+            self.layout.area_lights.base as u64 * 16,
+            bytemuck::cast_slice(&rec.0),
+        );
         self.area_lights = lights.to_vec();
         Ok(())
     }
 
     /// Whether the scene has extended light (an environment or area lights), which Monte Carlo integrates.
     pub fn has_extended_light(&self) -> bool {
-        self.layout.n_area > 0 || self.layout.env_kind != 0
+        self.layout.area_lights.n > 0 || self.layout.env_kind != 0
     }
 
     /// Whether the next frames integrate extended light by Monte Carlo.
@@ -942,23 +921,23 @@ impl<'g> GpuScene<'g> {
                 contents: bytemuck::cast_slice(&[0u32; 2]),
                 usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
             });
-            let bind = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("scene bindings"),
-                layout: &self.pipeline.get_bind_group_layout(0),
-                entries: &[
-                    entry(0, &params),
-                    entry(1, &display),
-                    entry(2, &self.scene),
-                    entry(3, &self.texels),
-                    entry(4, &self.media),
-                    entry(5, &self.weights),
-                    entry(6, &self.tables),
-                    entry(7, &out_rgb),
-                    entry(8, &out_rgba),
-                    entry(9, &overflow),
-                    entry(10, &self.film_tables),
+            let bind = gpu.bind_in_order(
+                "scene bindings",
+                &self.pipeline,
+                &[
+                    &params,
+                    &display,
+                    &self.scene,
+                    &self.texels,
+                    &self.media,
+                    &self.weights,
+                    &self.tables,
+                    &out_rgb,
+                    &out_rgba,
+                    &overflow,
+                    &self.film_tables,
                 ],
-            });
+            );
             SceneFrame { width, height, spp, params, display, bind, out_rgb, out_rgba, overflow, timer: gpu.timer() }
         })
     }
@@ -1019,14 +998,22 @@ impl<'g> GpuScene<'g> {
         w.extend(m.map(f32::to_bits));
         w.extend([width, height, spp, row0]);
         w.extend([l.env_kind, l.env_tex, l.env_visible, self.output.max_depth]);
-        w.extend([l.n_spheres, l.sphere_base, l.n_planes, l.plane_base]);
-        w.extend([l.n_lights, l.light_base, l.n_nodes, l.node_base]);
+        w.extend([l.spheres.n, l.spheres.base, l.planes.n, l.planes.base]);
+        w.extend([l.lights.n, l.lights.base, l.nodes.n, l.nodes.base]);
         w.extend([l.tri_base, l.mat_base, l.tex_base, l.sample_base]);
         w.extend([l.n_lambda, l.energy_base, l.irr_tex, l.env_light_base]);
         w.extend([pass.0, pass.1, l.integration, l.seed]);
-        w.extend([l.n_area, l.area_base, l.env_cdf_base, 0]);
+        w.extend([l.area_lights.n, l.area_lights.base, l.env_cdf_base, 0]);
         w.try_into().expect("the Params struct of scene.wgsl")
     }
+}
+
+/// Refuses a replacement list of `what` (the viewer's drags) whose length is not the scene's.
+fn same_count(what: &str, have: usize, given: usize) -> Result<(), GpuError> {
+    if given != have {
+        return Err(GpuError::Invalid(format!("the scene has {have} {what}; {given} given")));
+    }
+    Ok(())
 }
 
 /// `Params` of scene.wgsl: 12 vec4 and 32 u32.

@@ -22,9 +22,8 @@
 use iridis_diffraction::table::{taylor_scale, LookupTable, TableParams};
 use iridis_diffraction::taylor::window_bins;
 use iridis_diffraction::{SpectralSetup, TaylorTerms};
-use wgpu::util::DeviceExt;
 
-use crate::lookup::{entry, storage_out};
+use crate::lookup::storage_out;
 use crate::{Gpu, GpuError};
 
 /// Grid rows per dispatch at most (progress, and the watchdog of drivers that have one).
@@ -147,25 +146,9 @@ pub fn build_table(
     let source =
         format!("const NT: u32 = {nt}u;\nconst NP: u32 = {np}u;\n{}", include_str!("shaders/table_build.wgsl"));
     let (pipeline, bufs) = gpu.checked("uploading the Taylor terms and compiling the table shader", || {
-        let module = gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("table_build.wgsl"),
-            source: wgpu::ShaderSource::Wgsl(source.into()),
-        });
-        let pipeline = gpu.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("iridis table build"),
-            layout: None,
-            module: &module,
-            entry_point: Some("build"),
-            compilation_options: Default::default(),
-            cache: None,
-        });
-        let init = |label: &str, contents: &[u8]| {
-            gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents,
-                usage: wgpu::BufferUsages::STORAGE,
-            })
-        };
+        let module = gpu.shader("table_build.wgsl", &source);
+        let pipeline = gpu.compute_pipeline(&module, "iridis table build", "build");
+        let init = |label: &str, contents: &[u8]| gpu.storage_init(label, contents);
         let bufs = [
             init("table records", bytemuck::cast_slice(&records)),
             init("table windows", bytemuck::cast_slice(&windows)),
@@ -182,18 +165,7 @@ pub fn build_table(
     });
     let out = storage_out(gpu, "table rows", rows_per_dispatch as u64 * row_bytes);
     let bind = gpu.checked("binding the table buffers", || {
-        gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("table bindings"),
-            layout: &pipeline.get_bind_group_layout(0),
-            entries: &[
-                entry(0, &params_buf),
-                entry(1, &bufs[0]),
-                entry(2, &bufs[1]),
-                entry(3, &bufs[2]),
-                entry(4, &bufs[3]),
-                entry(5, &out),
-            ],
-        })
+        gpu.bind_in_order("table bindings", &pipeline, &[&params_buf, &bufs[0], &bufs[1], &bufs[2], &bufs[3], &out])
     })?;
     let mut row0 = 0;
     while row0 < res {

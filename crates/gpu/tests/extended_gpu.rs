@@ -11,10 +11,7 @@ mod common;
 #[path = "../../render/tests/furnace/mod.rs"]
 mod furnace;
 
-use common::gpu;
-use iridis_color::integrate::white_point;
-use iridis_color::lab::delta_e_2000;
-use iridis_color::{Illuminant, Lab, Observer, Xyz};
+use common::{delta_e, gpu};
 use iridis_gpu::GpuScene;
 use iridis_render::{parse_scene, render, Image, Scene};
 
@@ -24,93 +21,8 @@ static SERIAL: std::sync::Mutex<()> = std::sync::Mutex::new(());
 /// light, a disk light and a rectangle light over a Lambertian floor, a glossy dielectric, a metal, a film over
 /// a base, and a diffraction grating.
 fn scene(integration: &str, seed: u64) -> Scene {
-    let text = format!(
-        r#"
-[output]
-size = [48, 32]
-integration = "{integration}"
-seed = {seed}
-max_depth = 4
-[camera]
-position = [0, 2.2, 5.5]
-look_at = [0, 0.5, 0]
-fov = "40deg"
-[environment]
-kind = "sky"
-intensity = 0.6
-[[light]]
-kind = "sphere"
-position = [2.5, 3, 2]
-radius = 0.4
-intensity = 6
-[[light]]
-kind = "disk"
-position = [-2.5, 2.5, 1.5]
-look_at = [0, 0.5, 0]
-radius = 0.6
-intensity = 3
-color = [1, 0.8, 0.6]
-[[light]]
-kind = "rectangle"
-position = [0, 3.5, -1.5]
-look_at = [0, 0, 0]
-size = [2, 0.6]
-intensity = 2
-[materials.floor]
-kind = "lambert"
-color = [0.6, 0.6, 0.6]
-[materials.glossy]
-kind = "microfacet"
-color = [0.8, 0.2, 0.2]
-roughness = 0.3
-[materials.metal]
-kind = "microfacet"
-color = [0.95, 0.75, 0.4]
-roughness = 0.45
-metallic = 1.0
-[materials.base]
-kind = "microfacet"
-color = [0.2, 0.3, 0.6]
-roughness = 0.4
-[materials.film]
-kind = "thinfilm"
-stack = "air | n=1.33 380nm | n=1.5"
-base = "base"
-[materials.grating]
-kind = "diffraction"
-table = "builtin:blazed"
-uv_resolution = 33
-scale_ru = 300
-color = [0.1, 0.1, 0.1]
-w_diffuse = 0.2
-[[object]]
-kind = "plane"
-normal = [0, 1, 0]
-material = "floor"
-[[object]]
-kind = "sphere"
-center = [-1.6, 0.6, 0]
-radius = 0.6
-material = "glossy"
-[[object]]
-kind = "sphere"
-center = [0, 0.6, 0.3]
-radius = 0.6
-material = "metal"
-[[object]]
-kind = "sphere"
-center = [1.6, 0.6, 0]
-radius = 0.6
-material = "film"
-[[object]]
-kind = "plane"
-center = [0, 0.9, -1.2]
-normal = [0, 0.3, 1]
-tangent = [1, 0, 0]
-size = [2.4, 1.2]
-material = "grating"
-"#
-    );
+    let text =
+        include_str!("extended_scene.toml").replace("INTEGRATION", integration).replace("SEED", &seed.to_string());
     parse_scene(&text, "extended.toml", std::path::Path::new(".")).unwrap()
 }
 
@@ -132,13 +44,9 @@ fn blocks(img: &Image, k: u32) -> Vec<f64> {
     out
 }
 
-/// Mean and 99th percentile of the per-pixel CIEDE2000 between two images as displayed (exposure 1, clipped).
-fn delta_e(a: &Image, b: &Image) -> (f64, f64) {
-    let white = white_point(Illuminant::D65, Observer::Cie1931);
-    let shown = |p: [f32; 3]| Lab::from_xyz(Xyz::from_linear_srgb(p.map(|c| (c as f64).clamp(0.0, 1.0))), white);
-    let mut d: Vec<f64> = a.data.iter().zip(&b.data).map(|(&p, &q)| delta_e_2000(shown(p), shown(q))).collect();
-    d.sort_by(|x, y| x.total_cmp(y));
-    (d.iter().sum::<f64>() / d.len() as f64, d[(d.len() * 99) / 100])
+/// The CPU's Monte Carlo renders of the scene with seeds 0 and 1: an estimate and, against it, the noise.
+fn cpu_monte_carlo(w: u32, h: u32, spp: u32) -> (Image, Image) {
+    (render(&scene("monte-carlo", 0), w, h, spp, &|_| {}), render(&scene("monte-carlo", 1), w, h, spp, &|_| {}))
 }
 
 fn rms(a: &[f64], b: &[f64]) -> f64 {
@@ -150,8 +58,7 @@ fn monte_carlo_on_the_gpu_converges_to_the_cpu() {
     let _serial = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
     let Some(gpu) = gpu() else { return };
     let (w, h, spp) = (48, 32, 64);
-    let cpu_a = render(&scene("monte-carlo", 0), w, h, spp, &|_| {});
-    let cpu_b = render(&scene("monte-carlo", 1), w, h, spp, &|_| {});
+    let (cpu_a, cpu_b) = cpu_monte_carlo(w, h, spp);
     let g = GpuScene::new(gpu, &scene("monte-carlo", 0)).unwrap();
     let img = g.render(w, h, spp, &|_| {}).unwrap();
     assert!(g.stack_overflow().is_none(), "{:?}", g.stack_overflow());
@@ -188,8 +95,7 @@ fn the_fast_path_against_the_converged_render() {
     let _serial = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
     let Some(gpu) = gpu() else { return };
     let (w, h, spp) = (48, 32, 1024);
-    let converged = render(&scene("monte-carlo", 0), w, h, spp, &|_| {});
-    let other = render(&scene("monte-carlo", 1), w, h, spp, &|_| {});
+    let (converged, other) = cpu_monte_carlo(w, h, spp);
     let fast = GpuScene::new(gpu, &scene("fast", 0)).unwrap().render(w, h, 1, &|_| {}).unwrap();
     let (m, p) = delta_e(&fast, &converged);
     let (nm, np) = delta_e(&other, &converged);

@@ -48,6 +48,11 @@ fn small_table(name: &str) -> LookupTable {
     LookupTable::build(&terms, &SpectralSetup::default(), params, &spec, &|_| {}).unwrap()
 }
 
+/// D65 and the CIE 1931 observer on 380–780 nm in 5 nm steps, the film tests' colorimetry.
+fn d65_weights() -> SpectralWeights {
+    SpectralWeights::new(&uniform_grid(380.0, 780.0, 5.0).unwrap(), Illuminant::D65, Observer::Cie1931)
+}
+
 #[test]
 fn lookup_brdf_maps_match_the_cpu() {
     let Some(gpu) = gpu() else { return };
@@ -150,8 +155,7 @@ fn svt_texture(width: usize, height: usize) -> Vec<f32> {
 #[test]
 fn thin_film_colours_match_the_cpu() {
     let Some(gpu) = gpu() else { return };
-    let grid = uniform_grid(380.0, 780.0, 5.0).unwrap();
-    let weights = SpectralWeights::new(&grid, Illuminant::D65, Observer::Cie1931);
+    let weights = d65_weights();
     let mirror: String = {
         let mut s = String::from("air");
         for _ in 0..10 {
@@ -223,8 +227,7 @@ fn a_layer_at_its_critical_angle() {
     // shifted evaluations there (recurrence::grazing_variants); the f32 shader evaluates directly — its cosine
     // is never exactly 0 — and must still agree.
     let Some(gpu) = gpu() else { return };
-    let grid = uniform_grid(380.0, 780.0, 5.0).unwrap();
-    let weights = SpectralWeights::new(&grid, Illuminant::D65, Observer::Cie1931);
+    let weights = d65_weights();
     let stack: Stack = "n=1.5 | n=1.0 300nm | n=1.5".parse().unwrap();
     let crit = (1.0f64 / 1.5).asin();
     let (w, h) = (201, 8);
@@ -253,8 +256,7 @@ fn a_layer_at_its_critical_angle() {
 #[test]
 fn thin_film_frame_rejects_bad_input() {
     let Some(gpu) = gpu() else { return };
-    let grid = uniform_grid(380.0, 780.0, 5.0).unwrap();
-    let weights = SpectralWeights::new(&grid, Illuminant::D65, Observer::Cie1931);
+    let weights = d65_weights();
     // Rutile has no data below 430 nm: an error that names the material, not a silent extrapolation.
     let stack: Stack = "air | rutile 100nm | glass".parse().unwrap();
     let e = GpuFilm::new(gpu, &stack, &weights).unwrap_err().to_string();

@@ -108,13 +108,10 @@ impl Lattice {
         }
     }
 
-    /// The Fourier coefficient `c_{nm}` of `p = exp(i α h/H)` over one cell, `α = k w H` (exact Kirchhoff form):
-    /// `c_{nm} = δ_{n0} δ_{m0} + (1/(Δx Δy)) ∫∫_bump (e^{iα h/H} − 1) e^{−2πi(nx/Δx + my/Δy)} dx dy`.
-    pub fn coefficient(&self, n: i64, m: i64, alpha: f64) -> Complex64 {
-        let (fx, fy) = self.fractions();
-        let (a, dx) = (self.width, self.period_x);
-        // Factor along y: (b/Δy) sinc(π m b/Δy); without a y period the ridge fills the cell (δ_{m0}).
-        let y = match self.period_y {
+    /// The factor of a coefficient along y: `(b/Δy) sinc(π m b/Δy)`, `fy = b/Δy`; without a y period the ridge
+    /// fills the cell (`δ_{m0}`).
+    fn y_factor(&self, m: i64, fy: f64) -> f64 {
+        match self.period_y {
             Some(_) => fy * sinc(std::f64::consts::PI * m as f64 * fy),
             None => {
                 if m == 0 {
@@ -123,7 +120,15 @@ impl Lattice {
                     0.0
                 }
             }
-        };
+        }
+    }
+
+    /// The Fourier coefficient `c_{nm}` of `p = exp(i α h/H)` over one cell, `α = k w H` (exact Kirchhoff form):
+    /// `c_{nm} = δ_{n0} δ_{m0} + (1/(Δx Δy)) ∫∫_bump (e^{iα h/H} − 1) e^{−2πi(nx/Δx + my/Δy)} dx dy`.
+    pub fn coefficient(&self, n: i64, m: i64, alpha: f64) -> Complex64 {
+        let (fx, fy) = self.fractions();
+        let (a, dx) = (self.width, self.period_x);
+        let y = self.y_factor(m, fy);
         let beta = std::f64::consts::TAU * n as f64 / dx;
         let x = match self.bump {
             Bump::Rectangular => (Complex64::new(0.0, alpha).exp() - 1.0) * fx * sinc(beta * a / 2.0),
@@ -143,16 +148,7 @@ impl Lattice {
     /// mirror's 1 at n = m = 0), valid for `α = k w H ≪ 1`.
     pub fn born_coefficient(&self, n: i64, m: i64, alpha: f64) -> Complex64 {
         let (fx, fy) = self.fractions();
-        let y = match self.period_y {
-            Some(_) => fy * sinc(std::f64::consts::PI * m as f64 * fy),
-            None => {
-                if m == 0 {
-                    1.0
-                } else {
-                    0.0
-                }
-            }
-        };
+        let y = self.y_factor(m, fy);
         let phi = match self.bump {
             Bump::Rectangular => fx * sinc(std::f64::consts::PI * n as f64 * fx),
             // FT of a tent of base a: (a/2) sinc²(βa/4).

@@ -91,6 +91,17 @@ impl std::str::FromStr for Param {
 /// An error at one exposure: (exposure in RU, mean ΔE00, 95th percentile).
 pub type ErrorAt = (f64, f64, f64);
 
+/// The ΔE00 statistics of `image` against `truth` at each exposure.
+fn errors_at(exposures: &[f64], image: &[Option<Xyz>], truth: &[Option<Xyz>]) -> Vec<ErrorAt> {
+    exposures
+        .iter()
+        .map(|&x| {
+            let s = stats(&delta_e_map(image, truth, x));
+            (x, s.mean, s.p95)
+        })
+        .collect()
+}
+
 /// One value of the sweep.
 #[derive(Debug, Clone, Serialize)]
 pub struct Point {
@@ -172,13 +183,7 @@ pub fn run(
     let truths_of = |b: &Workbench| -> Result<(Vec<Option<Xyz>>, Vec<ErrorAt>), LabError> {
         let periodic = image_of(b, Method::GroundTruthPeriodic)?;
         let finite = image_of(b, Method::GroundTruth)?;
-        let extension = exposures
-            .iter()
-            .map(|&x| {
-                let s = stats(&delta_e_map(&periodic, &finite, x));
-                (x, s.mean, s.p95)
-            })
-            .collect();
+        let extension = errors_at(exposures, &periodic, &finite);
         Ok((if against == Method::GroundTruth { finite } else { periodic }, extension))
     };
     let (base_truth, base_extension) =
@@ -206,13 +211,7 @@ pub fn run(
         let image = b.render(e.as_ref(), pixels, &crate::no_progress)?;
         let (truth, extension) =
             if param == Param::Coherence { truths_of(&b)? } else { (base_truth.clone(), base_extension.clone()) };
-        let errors = exposures
-            .iter()
-            .map(|&x| {
-                let s = stats(&delta_e_map(&image, &truth, x));
-                (x, s.mean, s.p95)
-            })
-            .collect();
+        let errors = errors_at(exposures, &image, &truth);
         points.push(Point { value: v, errors, extension, image });
         progress(k + 1);
     }

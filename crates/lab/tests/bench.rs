@@ -1,9 +1,9 @@
 //! The test bench against the grating equation (paper sec. 6.1, Table 1): known gratings must give back their
 //! periods.
 
-use std::sync::Arc;
+mod common;
 
-use iridis_diffraction::{Patch, Reference, Shading, SpectralSetup, TaylorTerms};
+use iridis_diffraction::{Patch, Reference};
 use iridis_lab::bench::{self, BenchSetup};
 
 /// A 1-D profile along x (or y), `periods` periods of `period_px` samples, `lines` lines across.
@@ -28,13 +28,9 @@ fn grating(
     }
 }
 
+/// The reference evaluator, its Taylor remainder below 1e-7.
 fn reference(patch: &Patch, coherence: f64) -> Reference {
-    let n = iridis_diffraction::taylor::terms_for_bound(patch.max_abs_height, 380.0, 1e-7);
-    Reference {
-        terms: Arc::new(TaylorTerms::compute(patch, n, coherence).unwrap()),
-        shading: Shading::default(),
-        spectral: SpectralSetup::default(),
-    }
+    common::reference(patch, coherence, 1e-7)
 }
 
 #[test]

@@ -1,11 +1,11 @@
 //! Stam's models against their own closed forms and against the measured-height-field methods; comparisons,
 //! sweeps and the laser experiment against physical laws.
 
-use std::sync::Arc;
+mod common;
 
 use iridis_color::{Illuminant, Observer, Spectrum};
 use iridis_diffraction::geometry::direction;
-use iridis_diffraction::{Evaluator, Patch, Reference, Shading, SpectralSetup, TaylorTerms};
+use iridis_diffraction::{Evaluator, Patch, Reference, Shading, SpectralSetup};
 use iridis_lab::image::{render, Pixels};
 use iridis_lab::methods::{Method, MethodConfig, Workbench};
 use iridis_lab::stam::{Bump, Lattice, StamGaussian, StamPeriodic};
@@ -39,13 +39,9 @@ fn lattice_patch(
     Patch::from_row_major(rows, cols, dx, dx, &heights).unwrap()
 }
 
+/// The reference evaluator, its Taylor remainder below 1e-9.
 fn reference(patch: &Patch, coherence: f64) -> Reference {
-    let n = iridis_diffraction::taylor::terms_for_bound(patch.max_abs_height, 380.0, 1e-9);
-    Reference {
-        terms: Arc::new(TaylorTerms::compute(patch, n, coherence).unwrap()),
-        shading: Shading::default(),
-        spectral: SpectralSetup::default(),
-    }
+    common::reference(patch, coherence, 1e-9)
 }
 
 /// The view direction that sends light from `wi` into lattice order `(n, m)` at λ.

@@ -87,11 +87,8 @@ pub fn spectra_rows(
     Ok((wl, v.rows().into_iter().map(|r| r.to_vec()).collect()))
 }
 
-/// One real number; an array of several gives tmm's "not vectorized" `ValueError`.
-pub fn scalar(name: &str, obj: &Bound<'_, PyAny>, batch_hint: &str) -> PyResult<f64> {
-    if let Ok(x) = obj.extract::<f64>() {
-        return Ok(x);
-    }
+/// tmm's "not vectorized" `ValueError` for an array of several values where one number belongs.
+fn not_vectorized(name: &str, obj: &Bound<'_, PyAny>, batch_hint: &str) -> PyResult<()> {
     if let Ok(a) = obj.downcast::<numpy::PyUntypedArray>() {
         if a.len() > 1 {
             return Err(PyValueError::new_err(format!(
@@ -101,6 +98,15 @@ pub fn scalar(name: &str, obj: &Bound<'_, PyAny>, batch_hint: &str) -> PyResult<
             )));
         }
     }
+    Ok(())
+}
+
+/// One real number; an array of several gives tmm's "not vectorized" `ValueError`.
+pub fn scalar(name: &str, obj: &Bound<'_, PyAny>, batch_hint: &str) -> PyResult<f64> {
+    if let Ok(x) = obj.extract::<f64>() {
+        return Ok(x);
+    }
+    not_vectorized(name, obj, batch_hint)?;
     if obj.extract::<Complex64>().is_ok() {
         return Err(PyTypeError::new_err(format!(
             "{name} must be a real number (iridis needs a lossless incident medium and a real angle)"
@@ -122,14 +128,8 @@ pub fn complex_scalar(name: &str, obj: &Bound<'_, PyAny>, batch_hint: &str) -> P
             return Ok(x);
         }
     }
-    if let Ok(a) = obj.downcast::<numpy::PyUntypedArray>() {
-        if a.len() > 1 {
-            return Err(PyValueError::new_err(format!(
-                "This function is not vectorized; you need to run one calculation at a time (1 wavelength, 1 \
-                 angle, etc.): {name} has {} values{batch_hint}",
-                a.len()
-            )));
-        }
+    not_vectorized(name, obj, batch_hint)?;
+    if obj.downcast::<numpy::PyUntypedArray>().is_ok() {
         if let Ok(item) = obj.call_method0("item") {
             return complex_scalar(name, &item, batch_hint);
         }

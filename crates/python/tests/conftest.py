@@ -11,21 +11,17 @@ def load(*parts):
         return json.load(f)
 
 
-@pytest.fixture(scope="session")
-def tmm_reference():
-    return load("crates", "thinfilm", "tests", "fixtures", "tmm_reference.json")
+def fixture_file(*parts):
+    """A session fixture holding the JSON file at ROOT/PARTS (read once)."""
+
+    @pytest.fixture(scope="session")
+    def read():
+        return load(*parts)
+
+    return read
 
 
-@pytest.fixture(scope="session")
-def tmm_incoherent():
-    return load("crates", "thinfilm", "tests", "fixtures", "tmm_incoherent.json")
-
-
-@pytest.fixture(scope="session")
-def colour_science():
-    return load("crates", "color", "tests", "fixtures", "colour_science.json")
-
-
-@pytest.fixture(scope="session")
-def sharma():
-    return load("crates", "color", "tests", "fixtures", "sharma2005.json")
+tmm_reference = fixture_file("crates", "thinfilm", "tests", "fixtures", "tmm_reference.json")
+tmm_incoherent = fixture_file("crates", "thinfilm", "tests", "fixtures", "tmm_incoherent.json")
+colour_science = fixture_file("crates", "color", "tests", "fixtures", "colour_science.json")
+sharma = fixture_file("crates", "color", "tests", "fixtures", "sharma2005.json")

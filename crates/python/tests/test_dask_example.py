@@ -11,16 +11,17 @@ from conftest import ROOT
 distributed = pytest.importorskip("dask.distributed", reason="dask[distributed] is not installed")
 
 
-def example():
-    path = os.path.join(ROOT, "examples", "python", "film_colors_dask.py")
-    spec = importlib.util.spec_from_file_location("film_colors_dask", path)
+def example(name):
+    """examples/python/NAME.py as a module."""
+    path = os.path.join(ROOT, "examples", "python", f"{name}.py")
+    spec = importlib.util.spec_from_file_location(name, path)
     mod = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(mod)
     return mod
 
 
 def test_two_worker_cluster_equals_serial():
-    ex = example()
+    ex = example("film_colors_dask")
     count, angle = 2500, np.radians(25.0)
     expected = ex.serial(count, angle, seed=7)
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
@@ -37,16 +38,8 @@ def test_two_worker_cluster_equals_serial():
         np.testing.assert_allclose(got[i], tf.Stack.from_lists(n[i], d[i]).color(angle)["reflected"], rtol=0, atol=1e-14)
 
 
-def brdf_example():
-    path = os.path.join(ROOT, "examples", "python", "brdf_maps_dask.py")
-    spec = importlib.util.spec_from_file_location("brdf_maps_dask", path)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
-
-
 def test_brdf_maps_on_two_workers_equal_serial():
-    ex = brdf_example()
+    ex = example("brdf_maps_dask")
     specs = ["builtin:sine?size=4um&pixel=100nm", "builtin:blazed?size=4um&pixel=100nm"]
     expected = ex.serial(specs, [0.0, 40.0], size=17)
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:

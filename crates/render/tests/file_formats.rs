@@ -3,6 +3,8 @@
 
 use std::path::Path;
 
+mod common;
+
 use iridis_render::material::Material;
 use iridis_render::{load_scene, parse_scene, render};
 
@@ -89,14 +91,7 @@ fn binary_gltf_loads_and_renders() {
     assert_eq!(scene.meshes[0].triangles.len(), 1);
     let (lo, hi) = scene.meshes[0].bounds();
     assert_eq!((lo, hi), ([-1.0, -1.0, 0.0], [1.0, 1.0, 0.0]), "positions from the BIN chunk");
-    let films: Vec<_> = scene
-        .materials
-        .iter()
-        .filter_map(|m| match m {
-            Material::ThinFilm(f) => Some(f),
-            _ => None,
-        })
-        .collect();
+    let films = common::thin_films(&scene);
     assert_eq!(films.len(), 1);
     assert_eq!(films[0].stack.thicknesses(), vec![350.0]);
     // The same document as .gltf with the buffer in a side file gives the same mesh.

@@ -1,6 +1,8 @@
 //! KHR_materials_iridescence → thin-film stack over the base (examples/iridescent_spheres.gltf, made by
 //! tools/make_iridescence_gltf.py).
 
+mod common;
+
 use iridis_render::material::Material;
 
 #[test]
@@ -8,14 +10,7 @@ fn iridescence_maps_onto_thin_films() {
     let path = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/iridescent_spheres.gltf"));
     let scene = iridis_render::load_scene(path).unwrap();
     assert_eq!(scene.meshes.len(), 4);
-    let films: Vec<_> = scene
-        .materials
-        .iter()
-        .filter_map(|m| match m {
-            Material::ThinFilm(f) => Some(f),
-            _ => None,
-        })
-        .collect();
+    let films = common::thin_films(&scene);
     assert_eq!(films.len(), 3, "three iridescent materials");
     // No texture: thickness = maximum (400 nm); texture: d_avg 500 nm ± 300 nm from the G channel.
     assert_eq!(films[0].stack.thicknesses(), vec![400.0]);

@@ -11,45 +11,12 @@ use iridis_render::{parse_scene, render};
 /// A sample at the origin facing `(1, 0, 1)`, the beam arriving along −x (45°), a white screen `dist` away
 /// along the mirror direction +z, an orthographic camera looking at the screen from the sample's side.
 fn scene(table: &str, dist: f64, power: f64) -> String {
-    format!(
-        r#"
-[output]
-size = [48, 48]
-[camera]
-kind = "orthographic"
-position = [0, 0, {cam}]
-look_at = [0, 0, {dist}]
-height = {h}
-[[light]]
-kind = "laser"
-position = [30, 0, 0]
-direction = [-1, 0, 0]
-intensity = {power}
-[materials.sample]
-kind = "diffraction"
-table = "{table}"
-uv_resolution = 41
-orientation = "direction"
-direction = [0, 1, 0]
-[materials.screen]
-kind = "lambert"
-color = [1, 1, 1]
-[[object]]
-kind = "plane"
-material = "sample"
-normal = [1, 0, 1]
-tangent = [0, 1, 0]
-size = [0.1, 0.1]
-[[object]]
-kind = "plane"
-material = "screen"
-center = [0, 0, {dist}]
-normal = [0, 0, -1]
-tangent = [1, 0, 0]
-"#,
-        cam = dist - 1.0,
-        h = dist * 1.2,
-    )
+    include_str!("scenes/laser_screen.toml")
+        .replace("{table}", table)
+        .replace("{power}", &power.to_string())
+        .replace("{cam}", &(dist - 1.0).to_string())
+        .replace("{dist}", &dist.to_string())
+        .replace("{h}", &(dist * 1.2).to_string())
 }
 
 /// Over the screen, away from the mirror direction (the zero order is a spike no 512² map resolves), the

@@ -9,35 +9,9 @@ use iridis_color::lab::delta_e_2000;
 use iridis_color::{Illuminant, Lab, Observer, Xyz};
 use iridis_render::{load_scene, parse_scene, render, Image};
 
-const SECTION: &str = r#"
-[output]
-size = [64, 40]
-[camera]
-position = [1.2, 2.3, 1.3]
-look_at = [1.2, 0.35, 0.42]
-fov = "28deg"
-[[light]]
-kind = "directional"
-direction = [0.2, 1.0, 1.0]
-[materials.skin]
-kind = "diffraction"
-table = "builtin:xenopeltis"
-uv_resolution = 41
-orientation = "ORIENT"
-scale_ru = 800
-"#;
+const SECTION: &str = include_str!("scenes/snake_section.toml");
 
-const SNAKE: &str = r#"
-[[object]]
-kind = "snake"
-material = "skin"
-waves = 0.5
-amplitude = 0.6
-scales = "smooth"
-scale_rows = 15
-scale_grid = [7, 5]
-section = [0.52, 0.72]
-"#;
+const SNAKE: &str = include_str!("scenes/snake_object.toml");
 
 fn lab(img: &Image) -> Vec<Lab> {
     let white = white_point(Illuminant::D65, Observer::Cie1931);

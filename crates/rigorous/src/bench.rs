@@ -30,41 +30,26 @@ impl BenchCase {
     /// The cases: a sine, Λ = 1000 nm, a/Λ = 0.1, λ = 550 nm, θ = 30°, on metal (ε = −20 + 1i) and on
     /// glass (n = 1.5); and a crossed sine on glass (n = 1.5), Λ = 1000 nm both ways, a = 50 nm, λ = 550 nm, θ = 30°, φ = 20°.
     pub fn standard() -> Vec<BenchCase> {
-        vec![
-            BenchCase {
-                name: "1-D sine on metal".into(),
-                two_d: false,
-                period_nm: 1000.0,
-                amplitude_nm: 100.0,
-                wavelength_nm: 550.0,
-                theta_i_deg: 30.0,
-                phi_i_deg: 0.0,
-                eps: [-20.0, 1.0],
-                tolerance: 1e-3,
-            },
-            BenchCase {
-                name: "1-D sine on glass".into(),
-                two_d: false,
-                period_nm: 1000.0,
-                amplitude_nm: 100.0,
-                wavelength_nm: 550.0,
-                theta_i_deg: 30.0,
-                phi_i_deg: 0.0,
-                eps: [2.25, 0.0],
-                tolerance: 1e-3,
-            },
-            BenchCase {
-                name: "2-D crossed sine on glass".into(),
-                two_d: true,
-                period_nm: 1000.0,
-                amplitude_nm: 50.0,
-                wavelength_nm: 550.0,
-                theta_i_deg: 30.0,
-                phi_i_deg: 20.0,
-                eps: [2.25, 0.0],
-                tolerance: 1e-3,
-            },
-        ]
+        let metal = BenchCase {
+            name: "1-D sine on metal".into(),
+            two_d: false,
+            period_nm: 1000.0,
+            amplitude_nm: 100.0,
+            wavelength_nm: 550.0,
+            theta_i_deg: 30.0,
+            phi_i_deg: 0.0,
+            eps: [-20.0, 1.0],
+            tolerance: 1e-3,
+        };
+        let glass = BenchCase { name: "1-D sine on glass".into(), eps: [2.25, 0.0], ..metal.clone() };
+        let crossed = BenchCase {
+            name: "2-D crossed sine on glass".into(),
+            two_d: true,
+            amplitude_nm: 50.0,
+            phi_i_deg: 20.0,
+            ..glass.clone()
+        };
+        vec![metal, glass, crossed]
     }
 
     /// The case's grating as the solver takes it: the 1-D sine at 256 samples, the crossed sine on 32 × 32.

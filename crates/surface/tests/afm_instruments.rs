@@ -78,15 +78,24 @@ fn names(bytes: &[u8], name: &str, full: bool) -> Vec<String> {
         .collect()
 }
 
+/// `sample_0.KEY` (None where it is not fetched) read by channel name and checked against the reference:
+/// heights, format and the channel list (names, or aliases where `full` is false); the file's bytes, its
+/// reference and the channel.
+fn read_as_reference(key: &str, channel: &str, format: &str, full: bool) -> Option<(Vec<u8>, Value, HeightField)> {
+    let file = format!("sample_0.{key}");
+    let b = sample(&file)?;
+    let r = reference()[key].clone();
+    let hf = load(&b, &file, Some(channel));
+    check(&hf, &r, &format!("{key} {channel}"));
+    assert_eq!(hf.meta.format, format);
+    let want: Vec<String> = r["channels"].as_array().unwrap().iter().map(|v| v.as_str().unwrap().to_string()).collect();
+    assert_eq!(names(&b, key, full), want);
+    Some((b, r, hf))
+}
+
 #[test]
 fn bruker_nanoscope_spm_as_afmreader_and_pyspm() {
-    let Some(b) = sample("sample_0.spm") else { return };
-    let r = &reference()["spm"];
-    let hf = load(&b, "sample_0.spm", Some("Height"));
-    check(&hf, r, "spm Height");
-    assert_eq!(hf.meta.format, "nanoscope");
-    let want: Vec<String> = r["channels"].as_array().unwrap().iter().map(|v| v.as_str().unwrap().to_string()).collect();
-    assert_eq!(names(&b, "spm", false), want);
+    let Some((b, r, hf)) = read_as_reference("spm", "Height", "nanoscope", false) else { return };
     // By index: "Height" is the 8th image (index 7), and the default: AFMReader and TopoStats read "Height", not
     // the first height-like channel (Height Sensor, as before issue 32). The choice says why and how to change it.
     let by_index = load(&b, "sample_0.spm", Some("7"));
@@ -126,25 +135,13 @@ fn bruker_nanoscope_spm_as_afmreader_and_pyspm() {
 
 #[test]
 fn asylum_ibw_as_afmreader_and_igor2() {
-    let Some(b) = sample("sample_0.ibw") else { return };
-    let r = &reference()["ibw"];
-    let hf = load(&b, "sample_0.ibw", Some("HeightTracee"));
-    check(&hf, r, "ibw HeightTracee");
-    assert_eq!(hf.meta.format, "ibw");
-    let want: Vec<String> = r["channels"].as_array().unwrap().iter().map(|v| v.as_str().unwrap().to_string()).collect();
-    assert_eq!(names(&b, "ibw", false), want);
+    let Some((b, _, hf)) = read_as_reference("ibw", "HeightTracee", "ibw", false) else { return };
     assert_eq!(load(&b, "sample_0.ibw", None).heights_nm, hf.heights_nm, "default = first height channel");
 }
 
 #[test]
 fn jpk_as_afmreader_and_tifffile() {
-    let Some(b) = sample("sample_0.jpk") else { return };
-    let r = &reference()["jpk"];
-    let hf = load(&b, "sample_0.jpk", Some("height_trace"));
-    check(&hf, r, "jpk height_trace");
-    assert_eq!(hf.meta.format, "jpk");
-    let want: Vec<String> = r["channels"].as_array().unwrap().iter().map(|v| v.as_str().unwrap().to_string()).collect();
-    assert_eq!(names(&b, "jpk", true), want);
+    let Some((b, _, _)) = read_as_reference("jpk", "height_trace", "jpk", true) else { return };
     // The tapping amplitude is in metres but is not the topography: refused unless --as-height.
     let amp = |as_height| {
         read_bytes(

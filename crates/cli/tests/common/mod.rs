@@ -5,7 +5,7 @@
 use std::process::{Command, Output};
 
 /// Runs the built binary from the repository root (so `data/…` paths in examples work).
-pub fn iridis(args: &[&str]) -> Output {
+pub fn iridis<S: AsRef<std::ffi::OsStr> + std::fmt::Debug>(args: &[S]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_iridis"))
         .args(args)
         .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
@@ -13,15 +13,22 @@ pub fn iridis(args: &[&str]) -> Output {
         .expect("cannot run iridis")
 }
 
+/// Runs a command that must succeed; its stderr then its stdout, as text.
+pub fn ok<S: AsRef<std::ffi::OsStr> + std::fmt::Debug>(args: &[S]) -> String {
+    let out = iridis(args);
+    assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+    String::from_utf8_lossy(&out.stderr).to_string() + &String::from_utf8_lossy(&out.stdout)
+}
+
 /// Runs a command that must succeed and print JSON.
-pub fn json_of(args: &[&str]) -> serde_json::Value {
+pub fn json_of<S: AsRef<std::ffi::OsStr> + std::fmt::Debug>(args: &[S]) -> serde_json::Value {
     let out = iridis(args);
     assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
     serde_json::from_slice(&out.stdout).unwrap_or_else(|e| panic!("{args:?}: not JSON ({e})"))
 }
 
 /// Asserts a clean failure: exit code 2, a single `error:` line that contains every needle, no panic.
-pub fn assert_fails(args: &[&str], needles: &[&str]) {
+pub fn assert_fails<S: AsRef<std::ffi::OsStr> + std::fmt::Debug>(args: &[S], needles: &[&str]) {
     let out = iridis(args);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
@@ -32,6 +39,47 @@ pub fn assert_fails(args: &[&str], needles: &[&str]) {
         assert!(errors[0].contains(n), "{args:?}: '{}' lacks '{n}'", errors[0]);
     }
 }
+
+/// Splits a command line as a shell would: words, '…' and "…" quoting. Tests write a command as a user types
+/// it: `json_of(&words("thinfilm color --stack 'air | water 348nm | air' --json"))`.
+pub fn words(command: &str) -> Vec<String> {
+    let (mut words, mut cur, mut quote, mut any) = (Vec::new(), String::new(), None, false);
+    for c in command.chars() {
+        match (quote, c) {
+            (None, '\'' | '"') => (quote, any) = (Some(c), true),
+            (Some(q), c) if c == q => quote = None,
+            (None, ' ') => {
+                if any {
+                    words.push(std::mem::take(&mut cur));
+                }
+                any = false;
+            }
+            (_, c) => {
+                cur.push(c);
+                any = true;
+            }
+        }
+    }
+    if any {
+        words.push(cur);
+    }
+    words
+}
+
+/// Writes `text` to `dir/name`; returns the path as text, for a command line.
+pub fn write_file(dir: &std::path::Path, name: &str, text: &str) -> String {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p.to_str().unwrap().to_string()
+}
+
+/// A path as one quoted word of a command line for [`words`].
+pub fn quoted(path: &std::path::Path) -> String {
+    format!("'{}'", path.display())
+}
+
+/// The rough film of Sussenbach's Listing 3.6 (water 348 nm on Si, σ 25 nm, τ 300 nm) as `thinfilm` options.
+pub const ROUGH_FILM: &str = "--stack 'air | water 348nm | Si' --roughness 25nm --correlation 300nm";
 
 /// docs/json.md, the one place where the JSON keys of every command are documented, read as the test reads
 /// it: a `## ` section per command with the command line in backticks and a table of keys.
@@ -89,29 +137,9 @@ pub mod json_doc {
         (shapes, commands)
     }
 
-    /// Splits a documented command line as a shell would: words, '…' and "…" quoting.
+    /// Splits a documented command line as a shell would ([`super::words`]).
     pub fn split(command: &str) -> Vec<String> {
-        let (mut words, mut cur, mut quote, mut any) = (Vec::new(), String::new(), None, false);
-        for c in command.chars() {
-            match (quote, c) {
-                (None, '\'' | '"') => (quote, any) = (Some(c), true),
-                (Some(q), c) if c == q => quote = None,
-                (None, ' ') => {
-                    if any {
-                        words.push(std::mem::take(&mut cur));
-                    }
-                    any = false;
-                }
-                (_, c) => {
-                    cur.push(c);
-                    any = true;
-                }
-            }
-        }
-        if any {
-            words.push(cur);
-        }
-        words
+        super::words(command)
     }
 
     /// The key paths of an answer as the page writes them (`a.b`, `list[].key`), not descending into

@@ -29,6 +29,24 @@ fn grid_index(t: Table, u: f32) -> f32 {
     return max((s + 1.0) * 0.5 * f32(t.res - 1u), 0.0);
 }
 
+// The grid cell holding (u, v): its lower nodes (iu, iv) and the bilinear weights of its nodes in the grid's
+// index space, w = (w00, w01, w10, w11) for (iu, iv), (iu + 1, iv), (iu, iv + 1), (iu + 1, iv + 1).
+struct GridCell {
+    iu: u32,
+    iv: u32,
+    w: vec4<f32>,
+}
+
+fn grid_cell(t: Table, u: f32, v: f32) -> GridCell {
+    let qu = grid_index(t, u);
+    let qv = grid_index(t, v);
+    let iu = min(u32(floor(qu)), t.res - 2u);
+    let iv = min(u32(floor(qv)), t.res - 2u);
+    let fu = qu - f32(iu);
+    let fv = qv - f32(iv);
+    return GridCell(iu, iv, vec4<f32>((1.0 - fu) * (1.0 - fv), fu * (1.0 - fv), (1.0 - fu) * fv, fu * fv));
+}
+
 // Unpolarised Fresnel reflectance from index 1 into n (complex cosines from Snell's law).
 fn fresnel_index(t: Table, cos_in: f32) -> f32 {
     let n = vec2<f32>(t.n_re, t.n_im);
@@ -92,25 +110,16 @@ fn table_value3(t: Table, iv: u32, dv: u32, b: u32, p: u32) -> vec3<f32> {
 // sum_p w^p I_p(u, v) per channel: bilinear in the grid's index space, Horner's rule in w. One loop over the
 // powers for the three channels (lavapipe counts every loop iteration against a limit, extended.wgsl).
 fn table_sum(t: Table, u: f32, v: f32, w: f32) -> vec3<f32> {
-    let res = t.res;
     let np = t.np;
-    let qu = grid_index(t, u);
-    let qv = grid_index(t, v);
-    let iu = min(u32(floor(qu)), res - 2u);
-    let iv = min(u32(floor(qv)), res - 2u);
-    let fu = qu - f32(iu);
-    let fv = qv - f32(iv);
-    let w00 = (1.0 - fu) * (1.0 - fv);
-    let w01 = fu * (1.0 - fv);
-    let w10 = (1.0 - fu) * fv;
-    let w11 = fu * fv;
-    let b0 = iu * 3u * np;
-    let b1 = (iu + 1u) * 3u * np;
+    let cell = grid_cell(t, u, v);
+    let iv = cell.iv;
+    let b0 = cell.iu * 3u * np;
+    let b1 = (cell.iu + 1u) * 3u * np;
     var acc = vec3<f32>(0.0);
     for (var k = 0u; k < np; k = k + 1u) {
         let p = np - 1u - k;
-        let ip = w00 * table_value3(t, iv, 0u, b0, p) + w01 * table_value3(t, iv, 0u, b1, p)
-            + w10 * table_value3(t, iv, 1u, b0, p) + w11 * table_value3(t, iv, 1u, b1, p);
+        let ip = cell.w.x * table_value3(t, iv, 0u, b0, p) + cell.w.y * table_value3(t, iv, 0u, b1, p)
+            + cell.w.z * table_value3(t, iv, 1u, b0, p) + cell.w.w * table_value3(t, iv, 1u, b1, p);
         acc = acc * w + ip;
     }
     return acc;

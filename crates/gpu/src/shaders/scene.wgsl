@@ -158,20 +158,7 @@ fn to_rgb(xyz: vec3<f32>) -> vec3<f32> {
 
 // ------------------------------------------------------------------ textures (render::texture)
 
-// 64-bit integers as (lo, hi) for the noise hash, which the CPU computes in u64.
-fn mul32(a: u32, b: u32) -> vec2<u32> {
-    let a0 = a & 0xffffu;
-    let a1 = a >> 16u;
-    let b0 = b & 0xffffu;
-    let b1 = b >> 16u;
-    let p00 = a0 * b0;
-    let p01 = a0 * b1;
-    let p10 = a1 * b0;
-    let p11 = a1 * b1;
-    let mid = (p00 >> 16u) + (p01 & 0xffffu) + (p10 & 0xffffu);
-    return vec2<u32>((p00 & 0xffffu) | (mid << 16u), p11 + (p01 >> 16u) + (p10 >> 16u) + (mid >> 16u));
-}
-
+// 64-bit integers as (lo, hi) for the noise hash, which the CPU computes in u64 (mul32: turns.wgsl).
 fn mul64(a: vec2<u32>, b: vec2<u32>) -> vec2<u32> {
     let lo = mul32(a.x, b.x);
     return vec2<u32>(lo.x, lo.y + a.x * b.y + a.y * b.x);

@@ -1,10 +1,11 @@
 // Phases as fixed-point fractions of a turn: a u32 p stands for the angle 2 pi p / 2^32. Sums and integer
 // multiples of such phases are exact (u32 arithmetic wraps, which is "mod one turn"), so a phase that reaches
 // thousands of turns -- k (u x + v y) over a large patch -- keeps its fraction to 2^-32 of a turn, where an f32
-// would keep ~1e-4 of a turn at 1000 turns. Shared by the ground-truth shader and its accuracy test.
+// would keep ~1e-4 of a turn at 1000 turns. Shared by the ground-truth shader and its accuracy test;
+// the scene shader's noise hash multiplies with mul32.
 
-// The high 32 bits of the 64-bit product a * b.
-fn mulhi(a: u32, b: u32) -> u32 {
+// The 64-bit product a * b as (low word, high word), in 16-bit halves.
+fn mul32(a: u32, b: u32) -> vec2<u32> {
     let a0 = a & 0xffffu;
     let a1 = a >> 16u;
     let b0 = b & 0xffffu;
@@ -12,8 +13,14 @@ fn mulhi(a: u32, b: u32) -> u32 {
     let p00 = a0 * b0;
     let p01 = a0 * b1;
     let p10 = a1 * b0;
+    let p11 = a1 * b1;
     let mid = (p00 >> 16u) + (p01 & 0xffffu) + (p10 & 0xffffu);
-    return a1 * b1 + (p01 >> 16u) + (p10 >> 16u) + (mid >> 16u);
+    return vec2<u32>((p00 & 0xffffu) | (mid << 16u), p11 + (p01 >> 16u) + (p10 >> 16u) + (mid >> 16u));
+}
+
+// The high 32 bits of the 64-bit product a * b.
+fn mulhi(a: u32, b: u32) -> u32 {
+    return mul32(a, b).y;
 }
 
 // frac(alpha * i) in 2^-32 turns, alpha a 0.64 fixed-point fraction of a turn given as (low word, high word):

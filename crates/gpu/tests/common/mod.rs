@@ -1,6 +1,12 @@
-//! What the GPU test files share: the adapter, or a skip when the user asked for one.
+//! What the GPU test files share: the adapter, or a skip when the user asked for one; and how far apart two
+//! images look. The example `extended_light` includes this file too.
+#![allow(dead_code)] // each user takes its subset
 
+use iridis_color::integrate::white_point;
+use iridis_color::lab::delta_e_2000;
+use iridis_color::{Illuminant, Lab, Observer, Xyz};
 use iridis_gpu::Gpu;
+use iridis_render::Image;
 
 /// The adapter, opened once per test process and shared by its tests (or `None` when `IRIDIS_SKIP_GPU=1` says to
 /// skip; without either, a failure with the driver hint). One device means one compilation of each pipeline per
@@ -20,4 +26,13 @@ pub fn gpu() -> Option<&'static Gpu> {
         Err(e) => panic!("{e}\nThe GPU tests need a Vulkan adapter; set IRIDIS_SKIP_GPU=1 to skip them."),
     })
     .as_ref()
+}
+
+/// Mean and 99th percentile of the per-pixel CIEDE2000 between two images as displayed (exposure 1, clipped).
+pub fn delta_e(a: &Image, b: &Image) -> (f64, f64) {
+    let white = white_point(Illuminant::D65, Observer::Cie1931);
+    let shown = |p: [f32; 3]| Lab::from_xyz(Xyz::from_linear_srgb(p.map(|c| (c as f64).clamp(0.0, 1.0))), white);
+    let mut d: Vec<f64> = a.data.iter().zip(&b.data).map(|(&p, &q)| delta_e_2000(shown(p), shown(q))).collect();
+    d.sort_by(|x, y| x.total_cmp(y));
+    (d.iter().sum::<f64>() / d.len() as f64, d[(d.len() * 99) / 100])
 }

@@ -29,18 +29,10 @@ def precompute(
     **options: Any,
 ) -> Table: ...
 def brdf_map(
-    source: Source,
-    incidence: Direction = ...,
-    size: int = ...,
-    method: Optional[str] = ...,
-    **options: Any,
+    source: Source, incidence: Direction = ..., size: int = ..., method: Optional[str] = ..., **options: Any
 ) -> npt.NDArray[np.float64]: ...
 def evaluate(
-    source: Source,
-    light: Direction,
-    view: Direction,
-    method: Optional[str] = ...,
-    **options: Any,
+    source: Source, light: Direction, view: Direction, method: Optional[str] = ..., **options: Any
 ) -> dict[str, Any]: ...
 def brdf_map_of(
     spec: Union[str, os.PathLike[str]],

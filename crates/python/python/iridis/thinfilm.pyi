@@ -29,24 +29,15 @@ class Stack:
     def layers(self) -> int: ...
     def indices(self, wavelengths_nm: npt.ArrayLike) -> npt.NDArray[np.complex128]: ...
     def rta(
-        self,
-        wavelengths_nm: npt.ArrayLike,
-        angles_rad: npt.ArrayLike = ...,
-        offsets_nm: npt.ArrayLike = ...,
+        self, wavelengths_nm: npt.ArrayLike, angles_rad: npt.ArrayLike = ..., offsets_nm: npt.ArrayLike = ...,
         polarization: str = ...,
     ) -> dict[str, npt.NDArray[np.float64]]: ...
     def reflectance(
-        self,
-        wavelengths_nm: npt.ArrayLike,
-        angles_rad: npt.ArrayLike = ...,
-        offsets_nm: npt.ArrayLike = ...,
+        self, wavelengths_nm: npt.ArrayLike, angles_rad: npt.ArrayLike = ..., offsets_nm: npt.ArrayLike = ...,
         polarization: str = ...,
     ) -> npt.NDArray[np.float64]: ...
     def transmittance(
-        self,
-        wavelengths_nm: npt.ArrayLike,
-        angles_rad: npt.ArrayLike = ...,
-        offsets_nm: npt.ArrayLike = ...,
+        self, wavelengths_nm: npt.ArrayLike, angles_rad: npt.ArrayLike = ..., offsets_nm: npt.ArrayLike = ...,
         polarization: str = ...,
     ) -> npt.NDArray[np.float64]: ...
     def rough(
@@ -57,11 +48,7 @@ class Stack:
         diffuse_transport: str = ...,
     ) -> "RoughFilm": ...
     def profile(
-        self,
-        wavelength_nm: float,
-        angle_rad: float = ...,
-        polarization: str = ...,
-        points: int = ...,
+        self, wavelength_nm: float, angle_rad: float = ..., polarization: str = ..., points: int = ...,
         depth_nm: Optional[tuple[float, float]] = ...,
     ) -> dict[str, Any]: ...
     def color(
@@ -106,23 +93,11 @@ class RoughFilm:
     ) -> dict[str, Any]: ...
 
 def profile(
-    stack: Any,
-    wavelength_nm: float,
-    angle_rad: float = ...,
-    polarization: str = ...,
-    points: int = ...,
+    stack: Any, wavelength_nm: float, angle_rad: float = ..., polarization: str = ..., points: int = ...,
     depth_nm: Optional[tuple[float, float]] = ...,
 ) -> dict[str, Any]: ...
 def fit(
-    measured: Any,
-    stack: str,
-    angle_rad: float = ...,
-    quantity: str = ...,
-    sigma: Any = ...,
-    weights: Any = ...,
-    grid: int = ...,
-    columns: Optional[str] = ...,
-    percent: Optional[bool] = ...,
-    from_nm: Optional[float] = ...,
+    measured: Any, stack: str, angle_rad: float = ..., quantity: str = ..., sigma: Any = ..., weights: Any = ...,
+    grid: int = ..., columns: Optional[str] = ..., percent: Optional[bool] = ..., from_nm: Optional[float] = ...,
     to_nm: Optional[float] = ...,
 ) -> dict[str, Any]: ...

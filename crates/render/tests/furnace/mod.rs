@@ -7,6 +7,19 @@
 
 use iridis_render::{parse_scene, Image, Scene};
 
+/// A lossless film (n = 1.3, 300 nm, on n = 1.5) as material `m` over the base material `b` given as its keys,
+/// then any more keys of the film.
+macro_rules! film_over {
+    ($base:literal $(, $film:literal)?) => {
+        concat!(
+            "[materials.b]\n",
+            $base,
+            "\n[materials.m]\nkind = \"thinfilm\"\nstack = \"air | n=1.3 300nm | n=1.5\"\nbase = \"b\""
+            $(, $film)?
+        )
+    };
+}
+
 /// (name, the `[materials.m]` table(s), whether the material absorbs nothing in every channel or only in
 /// luminance (films: their reflectance is coloured, the base takes the rest per channel)).
 pub const MATERIALS: &[(&str, &str)] = &[
@@ -22,48 +35,28 @@ pub const MATERIALS: &[(&str, &str)] = &[
     ("metal r0.7", "[materials.m]\nkind = \"microfacet\"\ncolor = [1, 1, 1]\nroughness = 0.7\nmetallic = 1.0"),
     ("metal r1", "[materials.m]\nkind = \"microfacet\"\ncolor = [1, 1, 1]\nroughness = 1.0\nmetallic = 1.0"),
     ("half metal r0.4", "[materials.m]\nkind = \"microfacet\"\ncolor = [1, 1, 1]\nroughness = 0.4\nmetallic = 0.5"),
-    (
-        "film over lambert",
-        "[materials.b]\nkind = \"lambert\"\ncolor = [1, 1, 1]\n\
-         [materials.m]\nkind = \"thinfilm\"\nstack = \"air | n=1.3 300nm | n=1.5\"\nbase = \"b\"",
-    ),
-    (
-        "film over dielectric r0",
-        "[materials.b]\nkind = \"microfacet\"\ncolor = [1, 1, 1]\nroughness = 0.0\nior = 1.5\n\
-         [materials.m]\nkind = \"thinfilm\"\nstack = \"air | n=1.3 300nm | n=1.5\"\nbase = \"b\"",
-    ),
-    (
-        "film over dielectric r0.5",
-        "[materials.b]\nkind = \"microfacet\"\ncolor = [1, 1, 1]\nroughness = 0.5\nior = 1.5\n\
-         [materials.m]\nkind = \"thinfilm\"\nstack = \"air | n=1.3 300nm | n=1.5\"\nbase = \"b\"",
-    ),
+    ("film over lambert", film_over!("kind = \"lambert\"\ncolor = [1, 1, 1]")),
+    ("film over dielectric r0", film_over!("kind = \"microfacet\"\ncolor = [1, 1, 1]\nroughness = 0.0\nior = 1.5")),
+    ("film over dielectric r0.5", film_over!("kind = \"microfacet\"\ncolor = [1, 1, 1]\nroughness = 0.5\nior = 1.5")),
     (
         "film ×0.5 over dielectric r0.3",
-        "[materials.b]\nkind = \"microfacet\"\ncolor = [1, 1, 1]\nroughness = 0.3\nior = 1.5\n\
-         [materials.m]\nkind = \"thinfilm\"\nstack = \"air | n=1.3 300nm | n=1.5\"\nbase = \"b\"\nfactor = 0.5",
+        film_over!("kind = \"microfacet\"\ncolor = [1, 1, 1]\nroughness = 0.3\nior = 1.5", "\nfactor = 0.5"),
     ),
-    (
-        "film over dielectric r1",
-        "[materials.b]\nkind = \"microfacet\"\ncolor = [1, 1, 1]\nroughness = 1.0\nior = 1.5\n\
-         [materials.m]\nkind = \"thinfilm\"\nstack = \"air | n=1.3 300nm | n=1.5\"\nbase = \"b\"",
-    ),
+    ("film over dielectric r1", film_over!("kind = \"microfacet\"\ncolor = [1, 1, 1]\nroughness = 1.0\nior = 1.5")),
     ("soap bubble", "[materials.m]\nkind = \"thinfilm\"\nstack = \"air | water 400nm | air\"\ntransmission = true"),
     // A film over a white metal (F_0 = 1: the index (1 + √F_0)/(1 − √F_0) at its √F_0 ≤ 0.9999 cap, n ≈ 2·10⁴):
     // a lossless film over a near-perfect conductor reflects 1 − O(1/n) at every wavelength and angle.
     (
         "film over white metal r0",
-        "[materials.b]\nkind = \"microfacet\"\ncolor = [1, 1, 1]\nroughness = 0.0\nmetallic = 1.0\n\
-         [materials.m]\nkind = \"thinfilm\"\nstack = \"air | n=1.3 300nm | n=1.5\"\nbase = \"b\"",
+        film_over!("kind = \"microfacet\"\ncolor = [1, 1, 1]\nroughness = 0.0\nmetallic = 1.0"),
     ),
     (
         "film over white metal r0.6",
-        "[materials.b]\nkind = \"microfacet\"\ncolor = [1, 1, 1]\nroughness = 0.6\nmetallic = 1.0\n\
-         [materials.m]\nkind = \"thinfilm\"\nstack = \"air | n=1.3 300nm | n=1.5\"\nbase = \"b\"",
+        film_over!("kind = \"microfacet\"\ncolor = [1, 1, 1]\nroughness = 0.6\nmetallic = 1.0"),
     ),
     (
         "film over half metal r0.3",
-        "[materials.b]\nkind = \"microfacet\"\ncolor = [1, 1, 1]\nroughness = 0.3\nmetallic = 0.5\n\
-         [materials.m]\nkind = \"thinfilm\"\nstack = \"air | n=1.3 300nm | n=1.5\"\nbase = \"b\"",
+        film_over!("kind = \"microfacet\"\ncolor = [1, 1, 1]\nroughness = 0.3\nmetallic = 0.5"),
     ),
 ];
 
@@ -296,3 +289,69 @@ pub fn sphere_pixels(img: &Image) -> impl Iterator<Item = [f32; 3]> + '_ {
 /// 0.18 at the rim (docs/render.md, "White furnace"). Monte Carlo has no such error.
 pub const FAST_DIFFRACTION_FURNACE: f64 = 0.012;
 pub const FAST_DIFFRACTION_FURNACE_RIM: f64 = 0.2;
+
+/// One material's furnace result `(largest |L − 1|, pixels on its sphere)`: the sphere must cover more than
+/// `min_pixels`; a deviation above `tol` is noted in `failures` (the test lists them all before failing).
+pub fn tally(failures: &mut Vec<String>, label: &str, (worst, n): (f64, usize), min_pixels: usize, tol: f64) {
+    eprintln!("{label:<40} {n} pixels, largest |L − 1| = {worst:.2e}");
+    assert!(n > min_pixels, "{label}: the sphere covers {n} pixels");
+    if worst > tol {
+        failures.push(format!("{label}: |L − 1| up to {worst:.4}"));
+    }
+}
+
+/// Rough films for the furnace, (stack, σ, τ): a dielectric, an absorbing substrate and a metal.
+pub const ROUGH_FILMS: [(&str, &str, &str); 3] = [
+    ("air | water 348nm | Si", "25nm", "300nm"),
+    ("air | n=2.0 80nm | n=0.2+3.4i", "25nm", "300nm"),
+    ("air | TiO2 250nm | Al", "20nm", "400nm"),
+];
+
+/// The furnace scene of one of [`ROUGH_FILMS`], at unit scale.
+pub fn rough_film_furnace(stack: &str, sigma: &str, tau: &str) -> Scene {
+    furnace_scene(
+        &format!(
+            "[materials.m]\nkind = \"thinfilm\"\nstack = \"{stack}\"\nroughness = \"{sigma}\"\ncorrelation = \"{tau}\""
+        ),
+        1.0,
+    )
+}
+
+/// Checks a 21 × 21 image of [`rough_film_furnace`] (rendered by `who`): at the centre of the sphere (normal
+/// view) the luminance must be the film's reflected fraction `k_r + ∫ k_d cos θ dω` — by reciprocity the
+/// directional albedo at normal incidence, which `RoughStack::albedo` integrates on a dense 60 × 120 grid,
+/// weighted by D65 × ȳ — and no channel of a pixel whose centre sees the sphere may exceed radiance 1.01.
+pub fn assert_rough_film_reflects_its_albedo(scene: &Scene, img: &Image, stack: &str, who: &str) {
+    use iridis_color::{Illuminant, Observer};
+    use iridis_render::material::Material;
+    use iridis_thinfilm::color::FilmColorimeter;
+    use iridis_thinfilm::rough::RoughStack;
+    let Material::ThinFilm(f) = &scene.materials[0] else { panic!("{stack}: not a film") };
+    let rough = RoughStack::new(f.stack.clone(), f.rough.expect("a rough film"));
+    let grid = iridis_color::spectrum::uniform_grid(380.0, 780.0, 5.0).unwrap();
+    let albedo: Vec<f64> = grid.iter().map(|&l| rough.albedo(l, 0.0, 60).unwrap().total()).collect();
+    let expected = FilmColorimeter::new(&grid, Illuminant::D65, Observer::Cie1931).from_spectra(&albedo, &albedo);
+    let y = |rgb: [f32; 3]| 0.2126 * rgb[0] as f64 + 0.7152 * rgb[1] as f64 + 0.0722 * rgb[2] as f64;
+    let centre = y(img.data[10 * 21 + 10]);
+    // Over the pixels whose centre sees the sphere (the others show the furnace's radiance 1).
+    let mut brightest = 0.0f32;
+    for row in 0..21u32 {
+        for col in 0..21u32 {
+            let (x, yy) =
+                ((-1.0 + 2.0 * (col as f64 + 0.5) / 21.0) * 1.1, (1.0 - 2.0 * (row as f64 + 0.5) / 21.0) * 1.1);
+            if x * x + yy * yy < 0.98 {
+                brightest = img.data[(row * 21 + col) as usize].iter().fold(brightest, |a, &b| a.max(b));
+            }
+        }
+    }
+    eprintln!(
+        "{stack}: {who} centre Y {centre:.4}, dense albedo Y {:.4}, brightest channel {brightest:.4}",
+        expected.reflected.y
+    );
+    assert!(
+        (centre - expected.reflected.y).abs() < 0.005,
+        "{stack}: centre Y {centre} vs albedo {}",
+        expected.reflected.y
+    );
+    assert!(brightest < 1.01, "{stack}: a channel reaches {brightest} in the furnace");
+}
