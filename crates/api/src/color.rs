@@ -31,7 +31,9 @@ pub fn colour_report(xyz: Xyz, white: Xyz) -> serde_json::Value {
 fn numbers(report: &serde_json::Value, key: &str, digits: usize) -> String {
     report[key]
         .as_array()
-        .map(|v| v.iter().map(|x| format!("{:.digits$}", x.as_f64().unwrap_or(f64::NAN))).collect::<Vec<_>>().join("  "))
+        .map(|v| {
+            v.iter().map(|x| format!("{:.digits$}", x.as_f64().unwrap_or(f64::NAN))).collect::<Vec<_>>().join("  ")
+        })
         .unwrap_or_default()
 }
 

@@ -9,7 +9,7 @@ use std::fmt::Write as _;
 use anyhow::{anyhow, bail, Context, Result};
 use iridis_color::spectrum::uniform_grid;
 use iridis_color::units::{parse_angle_rad, parse_range};
-use iridis_color::{Illuminant, Observer, ToneMap, Xyz};
+use iridis_color::{Illuminant, Observer, Xyz};
 use iridis_plot::{magma, ColorBar, ImagePlot, LinePlot, Series};
 use iridis_thinfilm::color::FilmColorimeter;
 use iridis_thinfilm::grid::{evaluate_grid, Path as GridPath};
@@ -236,7 +236,8 @@ impl FilmSpectrum {
     pub fn text(&self) -> String {
         let (r, t, ab) = (self.r(), self.t(), self.a());
         let mut out = String::new();
-        let _ = writeln!(out, "stack  {}\nangle  {}°{}", self.stack, fmt_deg(self.angle_rad), pol_label(self.polarization));
+        let _ =
+            writeln!(out, "stack  {}\nangle  {}°{}", self.stack, fmt_deg(self.angle_rad), pol_label(self.polarization));
         let _ = writeln!(out, "{:>10}  {:>10}  {:>10}  {:>10}", "λ (nm)", "R", "T", "A");
         for i in 0..self.wavelength_nm.len() {
             let _ = writeln!(out, "{:>10.2}  {:>10.7}  {:>10.7}  {:>10.7}", self.wavelength_nm[i], r[i], t[i], ab[i]);
@@ -336,7 +337,11 @@ impl FilmTable {
         for i in 0..angles.len() {
             for j in 0..grid.len() {
                 // Row 0 of the picture is the top = the largest angle.
-                px.put(j as u32, (angles.len() - 1 - i) as u32, magma(level(xs[i * grid.len() + j].r()).clamp(0.0, 1.0)));
+                px.put(
+                    j as u32,
+                    (angles.len() - 1 - i) as u32,
+                    magma(level(xs[i * grid.len() + j].r()).clamp(0.0, 1.0)),
+                );
             }
         }
         Ok(ImagePlot {
@@ -347,7 +352,12 @@ impl FilmTable {
             y_range: (angles[0].to_degrees(), angles[angles.len() - 1].to_degrees().max(angles[0].to_degrees() + 1e-9)),
             pixels: &px,
             overlays: Vec::new(),
-            colorbar: Some(ColorBar { label: if log { "log₁₀ R".into() } else { "R".into() }, min: lo, max: hi, map: magma }),
+            colorbar: Some(ColorBar {
+                label: if log { "log₁₀ R".into() } else { "R".into() },
+                min: lo,
+                max: hi,
+                map: magma,
+            }),
             size: (1000, 640),
         }
         .render()?)
@@ -464,8 +474,13 @@ impl FilmColour {
         o += &colour_text("reflected", &self.reflected);
         o += &colour_text("transmitted", &self.transmitted);
         if let Some(v) = &self.vision {
-            let _ =
-                writeln!(o, "seen by      {} ({}; relative catches {})", v.visual.name, v.illuminant, v.receptors.join(", "));
+            let _ = writeln!(
+                o,
+                "seen by      {} ({}; relative catches {})",
+                v.visual.name,
+                v.illuminant,
+                v.receptors.join(", ")
+            );
             for s in &v.samples {
                 let rel: Vec<String> = s.relative_catches.iter().map(|x| format!("{x:.4}")).collect();
                 let _ = writeln!(o, "  {:<11}  {}", s.name, rel.join("  "));
@@ -545,5 +560,36 @@ impl Materials {
             let _ = writeln!(o, "{:<36} {desc}{idx}", names.join(", "));
         }
         o + "\nAlso: n=1.38, n=0.2+3.4i (constants) and file:PATH (refractiveindex.info YAML or CSV wavelength_nm,n,k).\n"
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::report::Quiet;
+
+    #[test]
+    fn a_quarter_wave_layer_reflects_as_the_closed_form_says() {
+        // n₁ d = λ/4 at 550 nm: R = ((n₀ n_s − n₁²) / (n₀ n_s + n₁²))² (Born & Wolf §1.6.4), and R + T = 1.
+        let d = 550.0 / (4.0 * 1.38);
+        let stack = parse_stack(&format!("air | n=1.38 {d}nm | n=1.5")).unwrap();
+        let s = spectrum(&stack, "air|n=1.38|n=1.5", 0.0, &[550.0], Polarization::Average, &Quiet).unwrap();
+        let want = ((1.5 - 1.38 * 1.38) / (1.5 + 1.38 * 1.38)).powi(2);
+        assert!((s.r()[0] - want).abs() < 1e-12, "{} vs {want}", s.r()[0]);
+        assert!((s.r()[0] + s.t()[0] - 1.0).abs() < 1e-12);
+        assert_eq!(s.a()[0], 0.0, "a lossless stack's 1 − R − T is printed as 0");
+        assert_eq!(s.title, "air | n=1.38 | n=1.5");
+        assert!(s.csv().starts_with("wavelength_nm,R,T,A,Rs,Rp,Ts,Tp,psi_deg,delta_deg\n550,"));
+    }
+
+    #[test]
+    fn grids_and_angles_refuse_what_cannot_be_meant() {
+        assert_eq!(wavelength_grid(400.0, 410.0, 5.0).unwrap(), vec![400.0, 405.0, 410.0]);
+        assert!(wavelength_grid(0.0, 410.0, 5.0).unwrap_err().to_string().contains("--from must be a positive"));
+        assert!(wavelength_grid(500.0, 410.0, 5.0).unwrap_err().to_string().contains("must not be below"));
+        assert!(wavelength_grid(400.0, 800.0, 0.001).unwrap_err().to_string().contains("too many"));
+        assert!(parse_angles("0deg:100deg:50deg", "--angles").unwrap_err().to_string().contains("100° is outside"));
+        assert_eq!(round_deg(30f64.to_radians()), 30.0);
+        assert_eq!(fmt_deg(0.5f64.to_radians()), "0.5");
     }
 }

@@ -51,7 +51,14 @@ print(json.dumps({"evals": count, "seconds": dt, "per_second": count / dt, "chec
 "#;
 
 /// (λ, θ) evaluations per second of `stack` on the grid, repeated for at least `seconds`.
-pub fn time_rust(stack: &Stack, angles: &[f64], wl: &[f64], path: GridPath, threads: bool, seconds: f64) -> Result<f64> {
+pub fn time_rust(
+    stack: &Stack,
+    angles: &[f64],
+    wl: &[f64],
+    path: GridPath,
+    threads: bool,
+    seconds: f64,
+) -> Result<f64> {
     let mut n = 0usize;
     let t0 = Instant::now();
     let mut sink = 0.0;
@@ -68,7 +75,12 @@ pub fn time_rust(stack: &Stack, angles: &[f64], wl: &[f64], path: GridPath, thre
 }
 
 /// The same work in Python's tmm (spawning `python3`): its JSON answer, or why it did not run.
-pub fn time_tmm(stack: &Stack, angles: &[f64], wl: &[f64], seconds: f64) -> std::result::Result<serde_json::Value, String> {
+pub fn time_tmm(
+    stack: &Stack,
+    angles: &[f64],
+    wl: &[f64],
+    seconds: f64,
+) -> std::result::Result<serde_json::Value, String> {
     let n: Vec<[f64; 2]> = stack
         .materials()
         .map(|m| m.index_at(550.0).map(|z| [z.re, z.im]).map_err(|e| e.to_string()))
@@ -248,4 +260,3 @@ pub fn bench_batch() -> Result<serde_json::Value> {
     }
     Ok(out)
 }
-

@@ -73,7 +73,14 @@ pub fn profile(
     if d.balance.abs() > 1e-9 {
         bail!("internal error: R + T + ΣA − 1 = {:e} (please report with the stack)", d.balance);
     }
-    Ok(FilmProfile { stack: parsed, title: stack_title(stack), wavelength_nm, angle_rad, polarization: pol, profile: d })
+    Ok(FilmProfile {
+        stack: parsed,
+        title: stack_title(stack),
+        wavelength_nm,
+        angle_rad,
+        polarization: pol,
+        profile: d,
+    })
 }
 
 impl FilmProfile {
@@ -151,8 +158,8 @@ pub struct FitRequest {
     /// Grid points per thickness range of the multi-start search (0: automatic, 1: one local fit).
     pub grid: usize,
     pub columns: Option<String>,
-    /// The values are in percent (default: detected).
-    pub percent: bool,
+    /// The values are in percent (`Some(true)`) or fractions (`Some(false)`); `None`: detected and said.
+    pub percent: Option<bool>,
     pub from_nm: Option<f64>,
     pub to_nm: Option<f64>,
 }
@@ -179,7 +186,7 @@ pub fn fit_file(path: &Path, request: &FitRequest, report: &dyn Report) -> Resul
     let source = path.display().to_string();
     let mut o = ReadOptions::new(quantity);
     o.columns = request.columns.clone();
-    o.percent = request.percent.then_some(true);
+    o.percent = request.percent;
     o.from_nm = request.from_nm;
     o.to_nm = request.to_nm;
     o.spread = match (&request.sigma, &request.weights) {
@@ -301,5 +308,31 @@ impl FilmFit {
             r.starts_tried, r.evaluations, r.jacobian, self.seconds
         );
         o
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn depth_windows_are_read_with_units_and_refused_when_empty() {
+        assert_eq!(parse_depth("-20nm:0.2um").unwrap(), (-20.0, 200.0));
+        assert!(parse_depth("200nm:0nm").unwrap_err().to_string().contains("is empty"));
+        assert!(parse_depth("200nm").unwrap_err().to_string().contains("write FROM:TO"));
+    }
+
+    #[test]
+    fn a_gold_film_conserves_energy_and_absorbs_where_the_field_is() {
+        let p = profile("air | Au 30nm | glass", 500.0, 0.0, "P", 41, None).unwrap();
+        let d = &p.profile;
+        assert!((d.r + d.t + d.layers.iter().sum::<f64>() + d.substrate - 1.0).abs() < 1e-12);
+        assert_eq!(p.polarization, "p");
+        assert!(p.text().contains("absorbed in layer 1 ("), "{}", p.text());
+        assert_eq!(p.csv().lines().count(), 42);
+        assert!(profile("air | Au 30nm | glass", 500.0, 0.0, "x", 41, None)
+            .unwrap_err()
+            .to_string()
+            .contains("use avg, s or p"));
     }
 }

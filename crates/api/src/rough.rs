@@ -199,7 +199,10 @@ impl RoughSpectrum {
     }
 
     fn bound_terms(&self) -> (f64, usize) {
-        (self.values.iter().map(|x| x.1.bound).fold(0.0, f64::max), self.values.iter().map(|x| x.1.terms).max().unwrap_or(0))
+        (
+            self.values.iter().map(|x| x.1.bound).fold(0.0, f64::max),
+            self.values.iter().map(|x| x.1.terms).max().unwrap_or(0),
+        )
     }
 
     /// What `--json` prints (docs/json.md).
@@ -390,12 +393,7 @@ pub fn table(
         None => views_deg.clone(),
     };
     if views_deg.len() * lights_deg.len() * grid.len() > 50_000_000 {
-        anyhow::bail!(
-            "{} × {} × {} entries is too many for a table",
-            views_deg.len(),
-            lights_deg.len(),
-            grid.len()
-        );
+        anyhow::bail!("{} × {} × {} entries is too many for a table", views_deg.len(), lights_deg.len(), grid.len());
     }
     let rough = opts.build(stack)?;
     let t0 = std::time::Instant::now();

@@ -310,7 +310,7 @@ impl FitArgs {
             weights: self.weights.clone(),
             grid: self.grid,
             columns: self.columns.clone(),
-            percent: self.percent,
+            percent: self.percent.then_some(true),
             from_nm: self.from,
             to_nm: self.to,
         }

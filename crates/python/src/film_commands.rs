@@ -186,8 +186,16 @@ fn _film_color<'py>(
                 anyhow::bail!("with roughness the colours are for unpolarised light, without a visual system");
             }
             let light = light_rad.unwrap_or(angle_rad);
-            let c =
-                rough::colour_report(parsed, &opts, angle_rad, light, azimuth_rad, &grid, illuminant.parse()?, observer)?;
+            let c = rough::colour_report(
+                parsed,
+                &opts,
+                angle_rad,
+                light,
+                azimuth_rad,
+                &grid,
+                illuminant.parse()?,
+                observer,
+            )?;
             return Ok(Answer { json: Some(c.to_json()), text: Some(c.text()), ..Default::default() });
         }
         let c = film::colour(&parsed, angle_rad, pol, &grid, illuminant, observer, visual.as_deref(), report)?;
