@@ -574,7 +574,7 @@ mod tests {
         let d = 550.0 / (4.0 * 1.38);
         let stack = parse_stack(&format!("air | n=1.38 {d}nm | n=1.5")).unwrap();
         let s = spectrum(&stack, "air|n=1.38|n=1.5", 0.0, &[550.0], Polarization::Average, &Quiet).unwrap();
-        let want = ((1.5 - 1.38 * 1.38) / (1.5 + 1.38 * 1.38)).powi(2);
+        let want: f64 = ((1.5 - 1.38 * 1.38) / (1.5 + 1.38 * 1.38f64)).powi(2);
         assert!((s.r()[0] - want).abs() < 1e-12, "{} vs {want}", s.r()[0]);
         assert!((s.r()[0] + s.t()[0] - 1.0).abs() < 1e-12);
         assert_eq!(s.a()[0], 0.0, "a lossless stack's 1 − R − T is printed as 0");
