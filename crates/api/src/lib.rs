@@ -13,7 +13,9 @@
 //! * [`rigorous_brdf`]: the rigorous BRDF of a periodic surface (the scalar lobes carrying Maxwell's
 //!   efficiencies), its unit cell and assumptions;
 //! * [`lab`]: the workbench, the test bench with its warnings, comparisons, the laser experiment's inputs;
-//! * [`rough`]: films on rough substrates (LSRS): options, spectra, colours, the chart's bands;
+//! * [`film`], [`film_chart`], [`film_fit`], [`film_bench`]: thin films (spectra, tables, colours, materials, the
+//!   soap-film chart, depth profiles, fits, the benchmark against tmm) as `iridis thinfilm` and `iridis.film` give them;
+//! * [`rough`]: films on rough substrates (LSRS): options, spectra, colours, tables, the chart's bands, the bench;
 //! * [`gpu`]: scenes and lookup maps on the GPU;
 //! * [`grating_bench`]: the rigorous solver timed against grcwa (`iridis bench grating`);
 //! * [`unit_cell`]: one period of a scan averaged along its ridges (a 1-D grating profile).
@@ -26,6 +28,10 @@
 
 pub mod brdf;
 pub mod color;
+pub mod film;
+pub mod film_bench;
+pub mod film_chart;
+pub mod film_fit;
 pub mod fresnel;
 pub mod gallery;
 pub mod gpu;

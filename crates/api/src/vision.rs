@@ -1,7 +1,8 @@
 //! How an animal sees a diffracting surface from several directions (`iridis brdf vision`, the report's
 //! "as a bird sees it", Python's `iridis.diffraction.vision`): the reflectance factor `π f_r(λ)` of the BRDF in
 //! each view direction, from 300 nm (birds and bees see ultraviolet), analysed by the receptor-noise-limited
-//! model of `iridis-vision` (quantum catches, ΔS and ΔL in JND between the directions).
+//! model of `iridis-vision` (quantum catches, ΔS and ΔL in JND between the directions); and a spectra file as an
+//! animal sees it (`iridis vision`, [`analyse_file`]).
 
 use anyhow::{bail, Context, Result};
 use iridis_diffraction::geometry::{direction, Shading, Vec3};
@@ -140,5 +141,116 @@ impl DirectionalVision {
             "views": views,
             "vision": serde_json::to_value(&self.analysis).unwrap_or_default(),
         })
+    }
+}
+
+/// A spectra CSV (pavo's layout) as an animal sees it (`iridis vision`, Python's `iridis.vision.vision`).
+#[derive(Debug, Clone)]
+pub struct SpectraVision {
+    /// The file as named.
+    pub source: String,
+    /// How many samples (spectra) it holds.
+    pub samples: usize,
+    pub analysis: iridis_vision::Analysis,
+}
+
+/// Reads the spectra in `path` (a wavelength column and one column per sample; `percent`: divided by 100) and
+/// analyses them with the visual system and options of `spec`.
+pub fn analyse_file(path: &std::path::Path, spec: &iridis_vision::Spec, percent: bool) -> Result<SpectraVision> {
+    let system = spec.system().context("--visual")?;
+    let options = spec.options(&system)?;
+    let mut table = iridis_vision::SpectraTable::from_csv_path(path)?;
+    if percent {
+        for (_, v) in &mut table.samples {
+            v.iter_mut().for_each(|x| *x /= 100.0);
+        }
+    }
+    let analysis = iridis_vision::analyse_table(&table, &system, &options)?;
+    Ok(SpectraVision { source: path.display().to_string(), samples: table.samples.len(), analysis })
+}
+
+impl SpectraVision {
+    /// What `--json` prints: the analysis (docs/vision.md).
+    pub fn to_json(&self) -> Result<serde_json::Value> {
+        Ok(serde_json::to_value(&self.analysis)?)
+    }
+
+    /// The analysis for people: what was assumed, then tables with units.
+    pub fn text(&self) -> String {
+        use std::fmt::Write as _;
+        let join = |v: &[f64], digits: usize| v.iter().map(|x| format!("{x:.digits$}")).collect::<Vec<_>>().join(", ");
+        let (r, mut o) = (&self.analysis, String::new());
+        let names = r.receptors.join(", ");
+        let _ = writeln!(o, "visual       {} — receptors {names}", r.visual.name);
+        let _ = writeln!(o, "source       {}", r.visual.source);
+        let bg = match r.background.kind.as_str() {
+            "none" => "no von Kries adaptation".to_string(),
+            "grey" => format!("von Kries to a grey of reflectance {}", r.background.reflectance.unwrap_or(1.0)),
+            _ => format!("von Kries to {}", r.background.source.as_deref().unwrap_or("a spectrum")),
+        };
+        let _ = writeln!(o, "light        {} ×{}; {bg}", r.illuminant, r.illuminant_scale);
+        let noise = match (r.noise.weber, &r.noise.reference, &r.noise.densities) {
+            (Some(w), Some(rf), Some(d)) => format!(
+                "{} noise, Weber fraction {w} of {rf}, densities {} → e = {}",
+                serde_json::to_value(r.noise.model).ok().and_then(|v| v.as_str().map(String::from)).unwrap_or_default(),
+                d.iter().map(|x| x.to_string()).collect::<Vec<_>>().join(":"),
+                join(&r.noise.receptor_noise, 3)
+            ),
+            _ => format!("noise per receptor e = {}", join(&r.noise.receptor_noise, 3)),
+        };
+        let achro = match (&r.noise.achromatic, r.noise.achromatic_weber) {
+            (Some(c), Some(w)) => format!("; achromatic: {c}, Weber fraction {w}"),
+            _ => "; no achromatic channel".into(),
+        };
+        let _ = writeln!(o, "noise        {noise}{achro}");
+        let _ = writeln!(
+            o,
+            "spectra      {}: {} samples, {}–{} nm",
+            self.source, self.samples, r.wavelength_range_nm[0], r.wavelength_range_nm[1]
+        );
+        let width = r.samples.iter().map(|s| s.name.chars().count()).max().unwrap_or(6).max(6);
+        let _ = writeln!(
+            o,
+            "\nquantum catches q ({}; relative catches in brackets)",
+            if r.background.kind == "none" { "absolute" } else { "relative to the background" }
+        );
+        let _ = write!(o, "  {:<width$}", "sample");
+        for n in &r.receptors {
+            let _ = write!(o, " {n:>18}");
+        }
+        let _ = writeln!(o);
+        for s in &r.samples {
+            let _ = write!(o, "  {:<width$}", s.name);
+            for (q, rel) in s.quantum_catches.iter().zip(&s.relative_catches) {
+                let _ = write!(o, " {:>18}", format!("{q:.4} ({rel:.3})"));
+            }
+            let _ = writeln!(o);
+        }
+        if let Some(space) = r.colour_space {
+            let _ = writeln!(
+                o,
+                "\ncolour space: {space} (position; hue in degrees from +x; chroma = distance from the achromatic point)"
+            );
+            for s in &r.samples {
+                if let Some(c) = &s.coordinates {
+                    let hue = c.hue_deg.map_or("—".to_string(), |h| format!("{h:.1}°"));
+                    let elev = c.elevation_deg.map_or(String::new(), |e| format!(", elevation {e:.1}°"));
+                    let _ = writeln!(
+                        o,
+                        "  {:<width$}  ({})  hue {hue}{elev}, chroma {:.4}",
+                        s.name,
+                        join(&c.position, 4),
+                        c.chroma
+                    );
+                }
+            }
+        }
+        let _ = writeln!(o, "\ndistances (JND: 1 is just noticeable)");
+        let _ = writeln!(o, "  {:<width$}  {:<width$}  {:>10}  {:>10}", "a", "b", "ΔS (JND)", "ΔL (JND)");
+        let f = |v: Option<f64>| v.map_or("—".to_string(), |x| format!("{x:.3}"));
+        for d in &r.distances {
+            let _ = writeln!(o, "  {:<width$}  {:<width$}  {:>10}  {:>10}", d.a, d.b, f(d.delta_s), f(d.delta_l));
+        }
+        o
     }
 }

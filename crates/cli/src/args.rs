@@ -143,3 +143,176 @@ impl RigorousOpts {
 
 /// The `--fresnel` of the scalar methods when none is given.
 pub const DEFAULT_FRESNEL: &str = "schlick:1.5";
+
+// ----------------------------------------------------------------------------------------------------------
+// Thin films (`iridis thinfilm …`)
+
+use anyhow::{bail, Result};
+use iridis_api::rough::RoughOptions;
+use iridis_thinfilm::rough::DiffuseTransport;
+use std::path::PathBuf;
+
+/// Flags of the rough model, flattened into `spectrum`, `color`, `table`, `chart` and `bench`.
+#[derive(Debug, Clone, clap::Args)]
+pub struct RoughArgs {
+    /// Rough substrate (LSRS model with the HTSG BRDF): rms roughness σ of the last interface, e.g. 25nm.
+    /// Needs --correlation. Valid for σ > 0, 2σ/τ ≤ 1 and τ²/(2√3σ) ≥ λ in the medium above the substrate.
+    #[arg(long, value_parser = length_nm, requires = "correlation", help_heading = "Rough substrate (LSRS)")]
+    pub roughness: Option<f64>,
+    /// Autocorrelation length τ of the rough interface, e.g. 300nm (Sussenbach Listing 3.6).
+    #[arg(long, value_parser = length_nm, requires = "roughness", help_heading = "Rough substrate (LSRS)")]
+    pub correlation: Option<f64>,
+    /// Light angle θ_l of the diffuse part (spectrum, color); default: the view angle (--angle).
+    #[arg(long, value_parser = angle_rad, help_heading = "Rough substrate (LSRS)")]
+    pub light_angle: Option<f64>,
+    /// Light angles FROM:TO:STEP of the table's diffuse part; default: the same as --angles.
+    #[arg(long, help_heading = "Rough substrate (LSRS)")]
+    pub light_angles: Option<String>,
+    /// Azimuth of the light relative to the viewer; 180deg puts the light on the far side of the normal in
+    /// the viewer's plane (the mirror configuration).
+    #[arg(long, default_value = "180deg", value_parser = angle_rad, help_heading = "Rough substrate (LSRS)")]
+    pub azimuth: f64,
+    /// Terms of the HTSG directional-diffuse series (the thesis' D-iterations, 5 in Listing 3.6); default:
+    /// as many as needed for an error bound of 1e-6 of the lobe's peak.
+    #[arg(long, help_heading = "Rough substrate (LSRS)")]
+    pub d_iterations: Option<usize>,
+    /// How diffuse light crosses the layers: multiple (the default: the light the layers turn back and the
+    /// light trapped beyond the escape cone is scattered again until it leaves; reciprocal, a lossless film on
+    /// a mirror reflects everything), single (alias reciprocal: one scattering, power transmittances both
+    /// ways; faster, loses that light; docs/rough-films.md) or thesis (eq. 3.18–3.19 as printed; creates
+    /// energy, not reciprocal — for comparison with the thesis only).
+    #[arg(long, default_value = "multiple", value_name = "multiple|single|thesis", value_parser = diffuse_transport, help_heading = "Rough substrate (LSRS)")]
+    pub diffuse_transport: DiffuseTransport,
+}
+
+fn diffuse_transport(s: &str) -> Result<DiffuseTransport, String> {
+    DiffuseTransport::parse(s).map_err(|e| e.to_string())
+}
+
+impl RoughArgs {
+    /// True when the rough model was asked for.
+    pub fn is_set(&self) -> bool {
+        self.roughness.is_some() || self.correlation.is_some()
+    }
+
+    /// The facade's rough-model options (both σ and τ given).
+    pub fn options(&self) -> Result<RoughOptions> {
+        let (Some(sigma_nm), Some(tau_nm)) = (self.roughness, self.correlation) else {
+            bail!("the rough model needs both --roughness and --correlation");
+        };
+        Ok(RoughOptions { sigma_nm, tau_nm, d_iterations: self.d_iterations, transport: self.diffuse_transport })
+    }
+
+    /// The light angle of spectrum, color and chart (the view angle `view` unless --light-angle is given);
+    /// refuses the table's --light-angles.
+    pub fn light(&self, view: f64) -> Result<f64> {
+        if self.light_angles.is_some() {
+            bail!("--light-angles is for 'table'; use --light-angle here");
+        }
+        Ok(self.light_angle.unwrap_or(view))
+    }
+}
+
+#[derive(Debug, clap::Args)]
+/// `iridis thinfilm profile`.
+pub struct ProfileArgs {
+    /// The stack, e.g. "air | Au 30nm | glass" (inc: layers: incoherent intensities, no interference, in them).
+    #[arg(long)]
+    pub stack: String,
+    /// Vacuum wavelength (with unit).
+    #[arg(long, value_parser = length_nm)]
+    pub wavelength: f64,
+    /// Angle of incidence (0deg–90deg).
+    #[arg(long, default_value = "0deg", value_parser = angle_rad)]
+    pub angle: f64,
+    /// avg (unpolarised), s or p.
+    #[arg(long, default_value = "avg")]
+    pub polarization: String,
+    /// Number of depth samples of the profile (from 100 nm above the stack to 100 nm into the substrate).
+    #[arg(long, default_value_t = 400)]
+    pub points: usize,
+    /// The depth window of the profile, FROM:TO below the first interface (e.g. --depth=-20nm:200nm to see
+    /// the films on a 1 mm slide); default 100 nm above the stack to 100 nm into the substrate.
+    #[arg(long, value_name = "FROM:TO", allow_hyphen_values = true)]
+    pub depth: Option<String>,
+    /// Print JSON (absorption per layer and the profile).
+    #[arg(long, conflicts_with = "csv")]
+    pub json: bool,
+    /// Print the profile as CSV (z_nm, medium, E2, absorption_per_nm, flux).
+    #[arg(long)]
+    pub csv: bool,
+    /// Plot |E|² and the absorbed power density against depth (PNG).
+    #[arg(long)]
+    pub plot: Option<PathBuf>,
+}
+
+#[derive(Debug, clap::Args)]
+/// `iridis thinfilm fit`.
+pub struct FitArgs {
+    /// The measured spectrum: columns of wavelength and R, T, or psi and delta (degrees), separated by
+    /// commas, tabs, semicolons or spaces, with or without a header ("Wavelength (nm),Reflectance (%)", …);
+    /// what was read is printed (separator, columns, unit, percent).
+    pub measured: PathBuf,
+    /// The stack with free parameters {NAME=START:LOW..HIGH}, e.g. "air | SiO2 {d1=100nm:50nm..500nm} | Si".
+    #[arg(long)]
+    pub stack: String,
+    /// Angle of incidence (0deg–90deg).
+    #[arg(long, default_value = "0deg", value_parser = angle_rad)]
+    pub angle: f64,
+    /// What was measured: R, T (unpolarised) or psi-delta (ellipsometry, degrees).
+    #[arg(long, default_value = "R")]
+    pub quantity: String,
+    /// 1σ measurement uncertainty: a number (same for every point) or the name of a CSV column (for
+    /// psi-delta two names, "spsi,sdelta"). The weights are 1/σ². Without it σ is estimated from the scatter.
+    #[arg(long, conflicts_with = "weights")]
+    pub sigma: Option<String>,
+    /// Weights w = 1/σ² of the measured values: a number (the same for every point), the name of a CSV
+    /// column ("w_psi,w_delta" for psi-delta), or a separate CSV file with wavelength_nm and w (w_psi and
+    /// w_delta) in the measurement's rows. Equivalent to --sigma 1/√w.
+    #[arg(long)]
+    pub weights: Option<String>,
+    /// Grid points per thickness range for the multi-start search (0: automatic, about one per 10 nm;
+    /// 1: a single local fit from the start values).
+    #[arg(long, default_value_t = 0)]
+    pub grid: usize,
+    /// The columns to fit, by header name or number from 1: wavelength then R (or T), or wavelength, psi,
+    /// delta, e.g. --columns "Wavelength (nm),R sample" or --columns 1,3. Default: found from the header.
+    #[arg(long, value_name = "WL,VALUE[,VALUE]")]
+    pub columns: Option<String>,
+    /// The values are in percent (default: detected from a "%" in the header or values above 1.5, and said).
+    #[arg(long)]
+    pub percent: bool,
+    /// Fit only wavelengths from this one on (with unit, e.g. 400nm).
+    #[arg(long, value_parser = length_nm)]
+    pub from: Option<f64>,
+    /// Fit only wavelengths up to this one (with unit, e.g. 826nm).
+    #[arg(long, value_parser = length_nm)]
+    pub to: Option<f64>,
+    /// Plot measured against fitted (PNG).
+    #[arg(long)]
+    pub plot: Option<PathBuf>,
+    /// Write the fitted curve as CSV (wavelength_nm, measured, fitted, residual).
+    #[arg(long)]
+    pub output: Option<PathBuf>,
+    /// Print JSON.
+    #[arg(long)]
+    pub json: bool,
+}
+
+impl FitArgs {
+    /// The library's fit request.
+    pub fn request(&self) -> iridis_api::film_fit::FitRequest {
+        iridis_api::film_fit::FitRequest {
+            stack: self.stack.clone(),
+            angle_rad: self.angle,
+            quantity: self.quantity.clone(),
+            sigma: self.sigma.clone(),
+            weights: self.weights.clone(),
+            grid: self.grid,
+            columns: self.columns.clone(),
+            percent: self.percent.then_some(true),
+            from_nm: self.from,
+            to_nm: self.to,
+        }
+    }
+}

@@ -3,11 +3,12 @@
 //! `iridis_thinfilm::depth::depth_profile`), with the CLI's messages as `ValueError` (`OSError` for a file that
 //! cannot be read).
 
-use iridis_filmfit::{fit, FitOptions, Measured, Quantity, ReadOptions, Spread, Template};
+use std::path::Path;
+
+use iridis_filmfit::{fit, FitOptions, FitResult, Measured, Quantity, Template};
 use iridis_thinfilm::color::Polarization;
 use iridis_thinfilm::depth::depth_profile;
 use numpy::{PyArray1, PyArray2, PyReadonlyArray1};
-use pyo3::exceptions::PyOSError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -68,28 +69,29 @@ fn _fit<'py>(
     sigma_values: Option<PyReadonlyArray1<'py, f64>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let q: Quantity = quantity.parse().map_err(value_error)?;
+    // A file: read and fitted by the library call of `iridis thinfilm fit` (its warnings as Python warnings).
+    if let (Some(p), None, None) = (&path, &wavelengths, &values) {
+        let request = iridis_api::film_fit::FitRequest {
+            stack: stack.to_string(),
+            angle_rad,
+            quantity: quantity.to_string(),
+            sigma,
+            weights,
+            grid,
+            columns,
+            percent,
+            from_nm,
+            to_nm,
+        };
+        let f = crate::facade::run(py, |report| iridis_api::film_fit::fit_file(Path::new(p), &request, report))?;
+        let read = (f.reading.notes, f.reading.columns, f.reading.percent);
+        return fit_dict(py, stack, &f.template, q, f.reading.data, f.result, f.seconds, read);
+    }
     let template = Template::parse(stack).map_err(value_error)?;
-    let (data, notes, columns_used, was_percent) = match (&path, &wavelengths, &values) {
-        (Some(p), None, None) => {
-            let text = std::fs::read_to_string(p).map_err(|e| PyOSError::new_err(format!("cannot read {p}: {e}")))?;
-            let mut o = ReadOptions::new(q);
-            o.columns = columns;
-            o.percent = percent;
-            o.from_nm = from_nm;
-            o.to_nm = to_nm;
-            o.spread = match (sigma, weights) {
-                (Some(s), _) => Some((s, Spread::Sigma)),
-                (None, Some(w)) => Some((w, Spread::Weight)),
-                (None, None) => None,
-            };
-            let r = iridis_filmfit::read(&text, p, &o, &|f| std::fs::read_to_string(f).map_err(|e| e.to_string()))
-                .map_err(value_error)?;
-            (r.data, r.notes, r.columns, r.percent)
-        }
+    let data = match (&path, &wavelengths, &values) {
         (None, Some(w), Some(v)) => {
             let s = sigma_values.map(|s| s.as_array().to_vec());
-            let m = Measured::from_arrays(w.as_array().to_vec(), v.as_array().to_vec(), s, q).map_err(value_error)?;
-            (m, vec!["arrays given: wavelengths in nm, values as fractions".to_string()], vec![], false)
+            Measured::from_arrays(w.as_array().to_vec(), v.as_array().to_vec(), s, q).map_err(value_error)?
         }
         _ => return Err(value_error("give the measured spectrum as a file path, or as wavelengths and values")),
     };
@@ -97,6 +99,22 @@ fn _fit<'py>(
     let t0 = std::time::Instant::now();
     let r = py.allow_threads(|| fit(&template, &data, &opt)).map_err(value_error)?;
     let seconds = t0.elapsed().as_secs_f64();
+    let read = (vec!["arrays given: wavelengths in nm, values as fractions".to_string()], vec![], false);
+    fit_dict(py, stack, &template, q, data, r, seconds, read)
+}
+
+/// The fit as the dict of `iridis thinfilm fit --json` (arrays as NumPy arrays).
+#[allow(clippy::too_many_arguments)]
+fn fit_dict<'py>(
+    py: Python<'py>,
+    stack: &str,
+    template: &Template,
+    q: Quantity,
+    data: Measured,
+    r: FitResult,
+    seconds: f64,
+    (notes, columns_used, was_percent): (Vec<String>, Vec<String>, bool),
+) -> PyResult<Bound<'py, PyDict>> {
     let out = PyDict::new(py);
     out.set_item("stack", stack)?;
     out.set_item("quantity", q.name())?;

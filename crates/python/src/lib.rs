@@ -13,6 +13,7 @@ mod color;
 mod diffraction;
 mod facade;
 mod film;
+mod film_commands;
 mod lab;
 mod render;
 mod surface;
@@ -27,6 +28,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     color::register(m)?;
     thinfilm::register(m)?;
     film::register(m)?;
+    film_commands::register(m)?;
     surface::register(m)?;
     diffraction::register(m)?;
     render::register(m)?;

@@ -32,9 +32,9 @@ type Section = fn(&mut Gallery) -> Result<()>;
 /// The gallery's sections, in the order a newcomer should read them; each command group adds its own.
 const SECTIONS: [(&str, Section); 7] = [
     ("snakes", super::render::figures_demo),
-    ("color", super::color::demo),
+    ("color", iridis_api::color::demo_section),
     ("surface", super::surface::demo),
-    ("thinfilm", super::thinfilm::demo),
+    ("thinfilm", iridis_api::film_chart::demo_section),
     ("brdf", super::brdf::demo),
     ("lab", super::lab::demo),
     ("render", super::render::demo),

@@ -2,12 +2,11 @@
 //! the receptor-noise-limited distances ΔS, ΔL in JND (`iridis-vision`; docs/vision.md). Parses, makes one
 //! library call, prints.
 
-use std::fmt::Write as _;
 use std::path::PathBuf;
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use clap::Args as ClapArgs;
-use iridis_vision::{analyse_table, Analysis, Spec, SpectraTable};
+use iridis_vision::Spec;
 
 #[derive(Debug, ClapArgs)]
 #[command(after_help = "\
@@ -120,106 +119,13 @@ impl VisionArgs {
 }
 
 pub fn run(a: VisionArgs) -> Result<()> {
-    let spec = a.spec();
-    let system = spec.system().context("--visual")?;
-    let options = spec.options(&system)?;
-    let mut table = SpectraTable::from_csv_path(&a.spectra)?;
-    if a.percent {
-        for (_, v) in &mut table.samples {
-            v.iter_mut().for_each(|x| *x /= 100.0);
-        }
-    }
-    let analysis = analyse_table(&table, &system, &options)?;
+    let v = iridis_api::vision::analyse_file(&a.spectra, &a.spec(), a.percent)?;
     if a.json {
-        return crate::output::print_json(&serde_json::to_value(&analysis)?);
+        return crate::output::print_json(&v.to_json()?);
     }
-    crate::output::write_stdout_bytes(text(&a, &table, &analysis).as_bytes())?;
-    for n in &analysis.notes {
+    crate::output::write_stdout_bytes(v.text().as_bytes())?;
+    for n in &v.analysis.notes {
         eprintln!("note: {n}");
     }
     Ok(())
-}
-
-fn join(v: &[f64], digits: usize) -> String {
-    v.iter().map(|x| format!("{x:.digits$}")).collect::<Vec<_>>().join(", ")
-}
-
-/// The analysis for people: what was assumed, then tables with units.
-fn text(a: &VisionArgs, table: &SpectraTable, r: &Analysis) -> String {
-    let mut o = String::new();
-    let names = r.receptors.join(", ");
-    let _ = writeln!(o, "visual       {} — receptors {names}", r.visual.name);
-    let _ = writeln!(o, "source       {}", r.visual.source);
-    let bg = match r.background.kind.as_str() {
-        "none" => "no von Kries adaptation".to_string(),
-        "grey" => format!("von Kries to a grey of reflectance {}", r.background.reflectance.unwrap_or(1.0)),
-        _ => format!("von Kries to {}", r.background.source.as_deref().unwrap_or("a spectrum")),
-    };
-    let _ = writeln!(o, "light        {} ×{}; {bg}", r.illuminant, r.illuminant_scale);
-    let noise = match (r.noise.weber, &r.noise.reference, &r.noise.densities) {
-        (Some(w), Some(rf), Some(d)) => format!(
-            "{} noise, Weber fraction {w} of {rf}, densities {} → e = {}",
-            serde_json::to_value(r.noise.model).ok().and_then(|v| v.as_str().map(String::from)).unwrap_or_default(),
-            d.iter().map(|x| x.to_string()).collect::<Vec<_>>().join(":"),
-            join(&r.noise.receptor_noise, 3)
-        ),
-        _ => format!("noise per receptor e = {}", join(&r.noise.receptor_noise, 3)),
-    };
-    let achro = match (&r.noise.achromatic, r.noise.achromatic_weber) {
-        (Some(c), Some(w)) => format!("; achromatic: {c}, Weber fraction {w}"),
-        _ => "; no achromatic channel".into(),
-    };
-    let _ = writeln!(o, "noise        {noise}{achro}");
-    let _ = writeln!(
-        o,
-        "spectra      {}: {} samples, {}–{} nm",
-        a.spectra.display(),
-        table.samples.len(),
-        r.wavelength_range_nm[0],
-        r.wavelength_range_nm[1]
-    );
-    let width = r.samples.iter().map(|s| s.name.chars().count()).max().unwrap_or(6).max(6);
-    let _ = writeln!(
-        o,
-        "\nquantum catches q ({}; relative catches in brackets)",
-        if r.background.kind == "none" { "absolute" } else { "relative to the background" }
-    );
-    let _ = write!(o, "  {:<width$}", "sample");
-    for n in &r.receptors {
-        let _ = write!(o, " {n:>18}");
-    }
-    let _ = writeln!(o);
-    for s in &r.samples {
-        let _ = write!(o, "  {:<width$}", s.name);
-        for (q, rel) in s.quantum_catches.iter().zip(&s.relative_catches) {
-            let _ = write!(o, " {:>18}", format!("{q:.4} ({rel:.3})"));
-        }
-        let _ = writeln!(o);
-    }
-    if let Some(space) = r.colour_space {
-        let _ = writeln!(
-            o,
-            "\ncolour space: {space} (position; hue in degrees from +x; chroma = distance from the achromatic point)"
-        );
-        for s in &r.samples {
-            if let Some(c) = &s.coordinates {
-                let hue = c.hue_deg.map_or("—".to_string(), |h| format!("{h:.1}°"));
-                let elev = c.elevation_deg.map_or(String::new(), |e| format!(", elevation {e:.1}°"));
-                let _ = writeln!(
-                    o,
-                    "  {:<width$}  ({})  hue {hue}{elev}, chroma {:.4}",
-                    s.name,
-                    join(&c.position, 4),
-                    c.chroma
-                );
-            }
-        }
-    }
-    let _ = writeln!(o, "\ndistances (JND: 1 is just noticeable)");
-    let _ = writeln!(o, "  {:<width$}  {:<width$}  {:>10}  {:>10}", "a", "b", "ΔS (JND)", "ΔL (JND)");
-    let f = |v: Option<f64>| v.map_or("—".to_string(), |x| format!("{x:.3}"));
-    for d in &r.distances {
-        let _ = writeln!(o, "  {:<width$}  {:<width$}  {:>10}  {:>10}", d.a, d.b, f(d.delta_s), f(d.delta_l));
-    }
-    o
 }

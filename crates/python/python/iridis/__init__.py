@@ -4,6 +4,7 @@ Modules:
     iridis.tmm       a drop-in for Byrnes' ``tmm`` (coh_tmm, unpolarized_RT, ellips, inc_tmm) plus coh_tmm_batch
     iridis.thinfilm  stacks from the CLI's syntax or lists; R, T, A broadcast over λ × θ × thickness offset; colours;
                      rough films (LSRS: specular and diffuse spectra and colours)
+    iridis.film      the ``iridis thinfilm`` commands (spectrum, table, color, chart, materials, bench, profile, fit)
     iridis.surface   height fields from AFM files, numpy, images or generators; levelling; roughness
     iridis.diffraction  lookup tables (precompute, save, load), BRDF maps as XYZ arrays, point queries (every method)
     iridis.lab       the test bench (periodicity through the grating equation) and method comparisons in CIELAB
@@ -20,4 +21,4 @@ Example:
 """
 from ._native import __version__
 
-__all__ = ["__version__", "color", "diffraction", "lab", "render", "surface", "thinfilm", "tmm", "vision"]
+__all__ = ["__version__", "color", "diffraction", "film", "lab", "render", "surface", "thinfilm", "tmm", "vision"]

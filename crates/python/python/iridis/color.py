@@ -32,6 +32,7 @@ __all__ = [
     "xyz_to_srgb",
     "xyz_to_hex",
     "delta_e",
+    "xyz",
 ]
 
 ILLUMINANTS, OBSERVERS = (tuple(x) for x in _native.names())
@@ -120,7 +121,10 @@ def xyz_to_hex(xyz, exposure=1.0):
 
 
 def delta_e(lab1, lab2, method="2000"):
-    """Colour difference between Lab colours (broadcast): CIEDE2000 (``"2000"``) or ΔE*ab (``"1976"``)."""
+    """Colour difference between Lab colours (broadcast): CIEDE2000 (``"2000"``) or ΔE*ab (``"1976"``).
+    Two texts ``"L,a,b"`` are read as ``iridis color delta-e`` reads them (its messages and formula names)."""
+    if isinstance(lab1, str) and isinstance(lab2, str):
+        return _native._color_delta_e(lab1, lab2, str(method))
     a = _float_array(lab1, "lab1")
     b = _float_array(lab2, "lab2")
     try:
@@ -131,3 +135,13 @@ def delta_e(lab1, lab2, method="2000"):
     pb, _ = _colours(b, "lab2")
     out = np.array(_native._delta_e(pa, pb, str(method)))
     return out.reshape(shape[:-1]) if len(shape) > 1 else out[0]
+
+
+def xyz(spectrum, illuminant="D65", observer="1931", emissive=False):
+    """``iridis color xyz``: the colour of the spectrum in a file (two columns, wavelength in nm and value) as
+    the CLI reports it — a dict with XYZ, xyY, Lab, linear_srgb, srgb and hex, and ``.text`` the CLI's text.
+    A reflectance lit by ``illuminant`` (Y = 1 a perfect white reflector), or with ``emissive`` a light source
+    at Y = 1; a file that does not cover 380–780 nm gives a warning."""
+    from ._answer import answer
+
+    return answer(_native._color_xyz(str(spectrum), str(illuminant), str(observer), bool(emissive)))

@@ -23,7 +23,7 @@ import numpy as np
 
 from . import _native
 
-__all__ = ["VISUAL_SYSTEMS", "ILLUMINANTS", "analyse", "sensitivities"]
+__all__ = ["VISUAL_SYSTEMS", "ILLUMINANTS", "analyse", "sensitivities", "vision"]
 
 _systems, _lights = _native._vision_names()
 VISUAL_SYSTEMS = dict(_systems)
@@ -87,3 +87,23 @@ def sensitivities(wavelengths_nm, visual=None, *, lambda_max=None, chromophore=N
         raise ValueError(f"wavelengths_nm must be 1-D, got shape {wl.shape}")
     return _native._sensitivities(np.ascontiguousarray(wl), visual=visual, lambda_max=_text(lambda_max),
                                   chromophore=chromophore, oil_droplets=oil_droplets)
+
+
+def vision(spectra, visual=None, *, percent=False, lambda_max=None, chromophore=None, oil_droplets=None,
+           ocular_media=None, illuminant="d65", illuminant_units="photons", illuminant_scale=1.0, background="grey",
+           weber=None, weber_ref=None, densities=None, receptor_noise=None, noise="neural", achromatic=None,
+           achromatic_weber=0.1, space="auto"):
+    """``iridis vision``: the spectra CSV ``spectra`` (pavo's layout: a wavelength column and one column per
+    sample; ``percent`` divides by 100) as an animal sees it, with the CLI's defaults — the dict of ``--json``
+    and ``.text`` the CLI's text. The options are :func:`analyse`'s."""
+    from ._answer import answer
+
+    return answer(_native._vision_file(
+        str(spectra), bool(percent), visual=visual, lambda_max=_text(lambda_max), chromophore=chromophore,
+        oil_droplets=oil_droplets, ocular_media=ocular_media, illuminant=illuminant,
+        illuminant_units=illuminant_units,
+        illuminant_scale=None if illuminant_scale is None else float(illuminant_scale), background=background,
+        weber=None if weber is None else float(weber), weber_ref=None if weber_ref is None else str(weber_ref),
+        densities=_text(densities, ":"), receptor_noise=_text(receptor_noise), noise=noise,
+        achromatic=achromatic, achromatic_weber=None if achromatic_weber is None else float(achromatic_weber),
+        space=space))

@@ -1,0 +1,338 @@
+//! Where the light goes in a stack (`iridis thinfilm profile`: absorption per layer, |E|², absorbed power and
+//! flux against depth; `iridis_thinfilm::depth`) and fitting a stack to a measured spectrum (`iridis thinfilm
+//! fit`; `iridis-filmfit`), with their text, CSV, JSON and plots — Python's `iridis.film.profile` and
+//! `iridis.film.fit` call the same functions.
+
+use std::fmt::Write as _;
+use std::path::Path;
+use std::time::Instant;
+
+use anyhow::{anyhow, bail, Context, Result};
+use iridis_color::units::parse_length_nm;
+use iridis_filmfit::{FitOptions, FitResult, Quantity, ReadOptions, Reading, Spread, Template};
+use iridis_plot::{LinePlot, RgbImage, Series};
+use iridis_thinfilm::color::Polarization;
+use iridis_thinfilm::depth::{depth_profile, DepthProfile};
+use iridis_thinfilm::Stack;
+use serde_json::json;
+
+use crate::film::{fmt_deg, parse_stack, stack_title};
+use crate::report::Report;
+
+// ----------------------------------------------------------------------------------------------------------
+// Profile
+
+/// The depth window `FROM:TO` with units (nm below the first interface), FROM above TO.
+pub fn parse_depth(w: &str) -> Result<(f64, f64)> {
+    let bad = || anyhow!("--depth '{w}': write FROM:TO with units, e.g. --depth=-20nm:200nm");
+    let (from, to) = w.split_once(':').ok_or_else(bad)?;
+    match (parse_length_nm(from.trim()), parse_length_nm(to.trim())) {
+        (Ok(f), Ok(t)) if f < t => Ok((f, t)),
+        (Ok(f), Ok(t)) => bail!("--depth {f} nm:{t} nm is empty: FROM must be above (less than) TO"),
+        (Err(e), _) | (_, Err(e)) => bail!("--depth '{w}': {}", e.0),
+    }
+}
+
+/// Where the light goes at one wavelength and angle.
+#[derive(Debug, Clone)]
+pub struct FilmProfile {
+    pub stack: Stack,
+    pub title: String,
+    pub wavelength_nm: f64,
+    pub angle_rad: f64,
+    /// `avg`, `s` or `p`, as given (lower case).
+    pub polarization: String,
+    pub profile: DepthProfile,
+}
+
+/// The profile of `stack` at `wavelength_nm` and `angle_rad` for `polarization` (`avg`, `s`, `p`) on `points`
+/// depths over `depth` (`FROM:TO`; default 100 nm above the stack to 100 nm into the substrate).
+pub fn profile(
+    stack: &str,
+    wavelength_nm: f64,
+    angle_rad: f64,
+    polarization: &str,
+    points: usize,
+    depth: Option<&str>,
+) -> Result<FilmProfile> {
+    let parsed = parse_stack(stack)?;
+    let pol = polarization.to_ascii_lowercase();
+    let p = match pol.as_str() {
+        "avg" => Polarization::Average,
+        "s" => Polarization::S,
+        "p" => Polarization::P,
+        _ => bail!("--polarization '{polarization}': use avg, s or p"),
+    };
+    let window = depth.map(parse_depth).transpose()?;
+    if !(2..=1_000_000).contains(&points) {
+        bail!("--points must be between 2 and 1000000");
+    }
+    // Coherent and mixed stacks alike (in inc: layers: incoherent Beer–Lambert beams, no interference).
+    let d = depth_profile(&parsed, wavelength_nm, angle_rad, p, points, window)?;
+    // The energy balance is an identity of the flux formulas; more than rounding means a bug, not bad input.
+    if d.balance.abs() > 1e-9 {
+        bail!("internal error: R + T + ΣA − 1 = {:e} (please report with the stack)", d.balance);
+    }
+    Ok(FilmProfile {
+        stack: parsed,
+        title: stack_title(stack),
+        wavelength_nm,
+        angle_rad,
+        polarization: pol,
+        profile: d,
+    })
+}
+
+impl FilmProfile {
+    /// |E|² and the absorbed power density against depth.
+    pub fn plot(&self) -> Result<RgbImage> {
+        let d = &self.profile;
+        let ab: Vec<f64> = d.absorption_per_nm.iter().map(|v| 1000.0 * v).collect();
+        let mut plot = LinePlot::new(
+            format!("{}  at {} nm, {}°", self.title, self.wavelength_nm, fmt_deg(self.angle_rad)),
+            format!("depth below the first interface (nm); layers end at 0 and {} nm", d.depth_nm),
+            "|E|² (incident = 1); absorbed power (fraction per µm)",
+        )
+        .series(Series::new("|E|²", &d.z_nm, &d.e2))
+        .series(Series::new("absorbed power density (1/µm)", &d.z_nm, &ab));
+        plot.x_range = Some((d.z_nm[0], d.z_nm[d.z_nm.len() - 1]));
+        Ok(plot.render()?)
+    }
+
+    /// What `--json` prints (docs/json.md).
+    pub fn to_json(&self) -> serde_json::Value {
+        let d = &self.profile;
+        let prof = json!({
+            "z_nm": d.z_nm, "medium": d.medium, "E2": d.e2, "absorption_per_nm": d.absorption_per_nm, "flux": d.flux,
+        });
+        json!({
+            "stack": self.stack.to_string(), "wavelength_nm": self.wavelength_nm, "angle_deg": self.angle_rad.to_degrees(),
+            "polarization": self.polarization, "R": d.r, "T": d.t, "layers": d.layer_names, "A_layers": d.layers,
+            "A_substrate": d.substrate, "balance": d.balance, "profile": prof,
+        })
+    }
+
+    /// The profile as CSV: z_nm, medium, E2, absorption_per_nm, flux.
+    pub fn csv(&self) -> String {
+        let d = &self.profile;
+        let mut out = String::from("z_nm,medium,E2,absorption_per_nm,flux\n");
+        for i in 0..d.z_nm.len() {
+            let _ = writeln!(out, "{},{},{},{},{}", d.z_nm[i], d.medium[i], d.e2[i], d.absorption_per_nm[i], d.flux[i]);
+        }
+        out
+    }
+
+    /// Where the light goes, for people.
+    pub fn text(&self) -> String {
+        let d = &self.profile;
+        let mut o = format!("stack  {}\n", self.stack);
+        let _ = writeln!(o, "{} nm at {}°, {}", self.wavelength_nm, fmt_deg(self.angle_rad), self.polarization);
+        let _ = writeln!(o, "{:<40} {:>12}", "where the light goes", "fraction");
+        let _ = writeln!(o, "{:<40} {:>12.7}", "reflected (R)", d.r);
+        for (i, (n, v)) in d.layer_names.iter().zip(d.layers.iter()).enumerate() {
+            let _ = writeln!(o, "{:<40} {:>12.7}", format!("absorbed in layer {} ({n})", i + 1), v);
+        }
+        if d.substrate > 0.0 {
+            let _ = writeln!(o, "{:<40} {:>12.7}", "absorbed in the substrate", d.substrate);
+        }
+        let _ = writeln!(o, "{:<40} {:>12.7}", "transmitted (T)", d.t);
+        let _ = writeln!(o, "{:<40} {:>12.1e}", "R + T + ΣA − 1", d.balance);
+        o
+    }
+}
+
+// ----------------------------------------------------------------------------------------------------------
+// Fit
+
+/// What to fit and how the measured file is read (`iridis thinfilm fit`'s options).
+#[derive(Debug, Clone, Default)]
+pub struct FitRequest {
+    /// The stack with free parameters `{NAME=START:LOW..HIGH}`.
+    pub stack: String,
+    pub angle_rad: f64,
+    /// `R`, `T` or `psi-delta`.
+    pub quantity: String,
+    /// 1σ: a number or column name(s); weights w = 1/σ² likewise (or a CSV file); at most one of the two.
+    pub sigma: Option<String>,
+    pub weights: Option<String>,
+    /// Grid points per thickness range of the multi-start search (0: automatic, 1: one local fit).
+    pub grid: usize,
+    pub columns: Option<String>,
+    /// The values are in percent (`Some(true)`) or fractions (`Some(false)`); `None`: detected and said.
+    pub percent: Option<bool>,
+    pub from_nm: Option<f64>,
+    pub to_nm: Option<f64>,
+}
+
+/// A fit with what was read.
+#[derive(Debug, Clone)]
+pub struct FilmFit {
+    pub request: FitRequest,
+    pub quantity: Quantity,
+    pub template: Template,
+    /// The measured file as named.
+    pub source: String,
+    pub reading: Reading,
+    pub result: FitResult,
+    pub seconds: f64,
+}
+
+/// Reads the measured spectrum in `path` as the request says and fits the stack to it; warnings (a grid too
+/// coarse for the stack's fringes, a parameter on a bound of its range) go to `report`.
+pub fn fit_file(path: &Path, request: &FitRequest, report: &dyn Report) -> Result<FilmFit> {
+    let quantity: Quantity = request.quantity.parse()?;
+    let template = Template::parse(&request.stack)?;
+    let text = std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let source = path.display().to_string();
+    let mut o = ReadOptions::new(quantity);
+    o.columns = request.columns.clone();
+    o.percent = request.percent;
+    o.from_nm = request.from_nm;
+    o.to_nm = request.to_nm;
+    o.spread = match (&request.sigma, &request.weights) {
+        (Some(s), _) => Some((s.clone(), Spread::Sigma)),
+        (None, Some(w)) => Some((w.clone(), Spread::Weight)),
+        (None, None) => None,
+    };
+    let reading = iridis_filmfit::read(&text, &source, &o, &|p| std::fs::read_to_string(p).map_err(|e| e.to_string()))?;
+    let mut sorted = reading.data.wavelength_nm.clone();
+    sorted.sort_by(f64::total_cmp);
+    if let Some(w) = iridis_thinfilm::sampling::check(&template.base, request.angle_rad, &sorted) {
+        report.warn(&format!("the measured wavelengths: {}", w.message));
+    }
+    let opt = FitOptions { angle_rad: request.angle_rad, quantity, grid: request.grid, ..FitOptions::default() };
+    let t0 = Instant::now();
+    let result = iridis_filmfit::fit(&template, &reading.data, &opt)?;
+    let seconds = t0.elapsed().as_secs_f64();
+    for (p, at) in template.params.iter().zip(&result.at_bound) {
+        if *at {
+            report.warn(&format!(
+                "{} ended on a bound of its range {}..{}: widen the range; its uncertainty is not meaningful",
+                p.name, p.lo, p.hi
+            ));
+        }
+    }
+    Ok(FilmFit { request: request.clone(), quantity, template, source, reading, result, seconds })
+}
+
+impl FilmFit {
+    /// The fitted curve: wavelength_nm, measured, fitted, residual.
+    pub fn csv(&self) -> String {
+        let (data, r) = (&self.reading.data, &self.result);
+        let mut out = String::from("wavelength_nm,measured,fitted,residual\n");
+        let k = self.quantity.width();
+        for (i, w) in data.wavelength_nm.iter().enumerate() {
+            for j in 0..k {
+                let (m, f) = (data.values[i * k + j], r.fitted[i * k + j]);
+                let _ = writeln!(out, "{w},{m},{f},{}", m - f);
+            }
+        }
+        out
+    }
+
+    /// Measured against fitted.
+    pub fn plot(&self) -> Result<RgbImage> {
+        let (data, r, quantity) = (&self.reading.data, &self.result, self.quantity);
+        let k = quantity.width();
+        let labels: &[&str] = if k == 2 { &["ψ (°)", "Δ (°)"] } else { &[quantity.name()] };
+        let mut plot = LinePlot::new(
+            format!("measured and fitted {}, χ²/dof = {:.3}", quantity.name(), r.reduced_chi2),
+            "wavelength (nm)",
+            if k == 2 { "ψ, Δ (degrees)" } else { "fraction of incident power" },
+        );
+        for (j, label) in labels.iter().enumerate() {
+            let m: Vec<f64> = (0..data.wavelength_nm.len()).map(|i| data.values[i * k + j]).collect();
+            let f: Vec<f64> = (0..data.wavelength_nm.len()).map(|i| r.fitted[i * k + j]).collect();
+            let mut meas = Series::new(format!("measured {label}"), &data.wavelength_nm, &m);
+            meas.emphasis = false;
+            plot = plot.series(meas).series(Series::new(format!("fitted {label}"), &data.wavelength_nm, &f));
+        }
+        Ok(plot.render()?)
+    }
+
+    /// What `--json` prints (docs/json.md).
+    pub fn to_json(&self) -> serde_json::Value {
+        let (r, data, reading) = (&self.result, &self.reading.data, &self.reading);
+        json!({
+            "stack": self.request.stack, "quantity": self.quantity.name(), "angle_deg": self.request.angle_rad.to_degrees(),
+            "names": r.names, "units": self.template.params.iter().map(|p| p.unit()).collect::<Vec<_>>(),
+            "values": r.values, "sigma": r.sigma, "correlation": r.correlation,
+            "chi2": r.chi2, "dof": r.dof, "reduced_chi2": r.reduced_chi2, "sigma_given": r.sigma_given,
+            "at_bound": r.at_bound, "starts": r.starts_tried, "evaluations": r.evaluations, "jacobian": r.jacobian, "seconds": self.seconds,
+            "fitted": r.fitted, "wavelength_nm": data.wavelength_nm, "measured": data.values,
+            "read": { "columns": reading.columns, "percent": reading.percent, "notes": reading.notes },
+        })
+    }
+
+    /// The values with 1σ, χ² and the correlation matrix, for people.
+    pub fn text(&self) -> String {
+        let (r, data, params) = (&self.result, &self.reading.data, &self.template.params);
+        let mut o = format!("stack     {}\n", self.request.stack);
+        let _ = writeln!(
+            o,
+            "data      {} ({} wavelengths, {} at {}°)",
+            self.source,
+            data.wavelength_nm.len(),
+            self.quantity.name(),
+            fmt_deg(self.request.angle_rad)
+        );
+        for note in &self.reading.notes {
+            let _ = writeln!(o, "read      {note}");
+        }
+        let _ = writeln!(o, "{:<12} {:>16} {:>14}", "parameter", "value", "1σ");
+        for (k, p) in params.iter().enumerate() {
+            let _ = writeln!(o, "{:<12} {:>16.6} {:>14.3e} {}", p.name, r.values[k], r.sigma[k], p.unit());
+        }
+        let _ = writeln!(o, "χ² = {:.4} for {} degrees of freedom (χ²/dof = {:.4})", r.chi2, r.dof, r.reduced_chi2);
+        if !r.sigma_given {
+            o += "no --sigma or --weights: χ² uses σ = 1 and the uncertainties are scaled by √(χ²/dof), i.e. σ is estimated from the scatter\n";
+        }
+        if params.len() > 1 {
+            o += "correlation\n";
+            let mut head = format!("{:<12}", "");
+            for p in params {
+                let _ = write!(head, " {:>8}", p.name);
+            }
+            let _ = writeln!(o, "{head}");
+            for (k, p) in params.iter().enumerate() {
+                let mut row = format!("{:<12}", p.name);
+                for v in &r.correlation[k] {
+                    let _ = write!(row, " {v:>8.3}");
+                }
+                let _ = writeln!(o, "{row}");
+            }
+        }
+        let _ = writeln!(
+            o,
+            "{} starts searched, {} spectra evaluated, {} derivatives, {:.3} s",
+            r.starts_tried, r.evaluations, r.jacobian, self.seconds
+        );
+        o
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn depth_windows_are_read_with_units_and_refused_when_empty() {
+        assert_eq!(parse_depth("-20nm:0.2um").unwrap(), (-20.0, 200.0));
+        assert!(parse_depth("200nm:0nm").unwrap_err().to_string().contains("is empty"));
+        assert!(parse_depth("200nm").unwrap_err().to_string().contains("write FROM:TO"));
+    }
+
+    #[test]
+    fn a_gold_film_conserves_energy_and_absorbs_where_the_field_is() {
+        let p = profile("air | Au 30nm | glass", 500.0, 0.0, "P", 41, None).unwrap();
+        let d = &p.profile;
+        assert!((d.r + d.t + d.layers.iter().sum::<f64>() + d.substrate - 1.0).abs() < 1e-12);
+        assert_eq!(p.polarization, "p");
+        assert!(p.text().contains("absorbed in layer 1 ("), "{}", p.text());
+        assert_eq!(p.csv().lines().count(), 42);
+        assert!(profile("air | Au 30nm | glass", 500.0, 0.0, "x", 41, None)
+            .unwrap_err()
+            .to_string()
+            .contains("use avg, s or p"));
+    }
+}

@@ -1,0 +1,48 @@
+"""What a command of the CLI gives, from Python: its ``--json`` answer as a dict, with the text it prints, its
+CSV and its plot where it has them (shared by ``iridis.film``, ``iridis.color.xyz`` and ``iridis.vision.vision``)."""
+from __future__ import annotations
+
+import csv
+import io
+import json
+
+import numpy as np
+
+
+class Answer(dict):
+    """The command's ``--json`` answer (a dict; without the CLI's ``inputs``), with attributes:
+
+    ``text``: what the command prints without ``--json``; ``csv``: its CSV (``None`` when it has none);
+    ``image``: its plot as an ``(height, width, 3)`` ``uint8`` RGB array (``None`` unless asked for)."""
+
+    text: str | None = None
+    csv: str | None = None
+    image: np.ndarray | None = None
+
+
+def columns(text):
+    """A CSV's columns by header name: numbers as float arrays (an empty cell is NaN), other columns as lists."""
+    rows = list(csv.reader(io.StringIO(text)))
+    out = {}
+    for k, name in enumerate(rows[0]):
+        cells = [r[k] for r in rows[1:]]
+        try:
+            out[name] = np.array([float(c) if c != "" else np.nan for c in cells])
+        except ValueError:
+            out[name] = cells
+    return out
+
+
+def answer(raw, table=False):
+    """The native answer (``json``, ``text``, ``csv``, ``image`` and extras) as an :class:`Answer`; ``table``:
+    the dict holds the CSV's columns (commands whose answer is a table, without ``--json``)."""
+    a = Answer(json.loads(raw["json"]) if raw.get("json") else (columns(raw["csv"]) if table else {}))
+    a.text, a.csv = raw.get("text"), raw.get("csv")
+    img = raw.get("image")
+    a.image = None if img is None else np.frombuffer(img[2], dtype=np.uint8).reshape(img[0], img[1], 3)
+    for k in ("summary", "spectra_csv"):
+        if k in raw:
+            setattr(a, k, raw[k])
+    if "exposure" in raw:
+        a.exposure = float(raw["exposure"])
+    return a

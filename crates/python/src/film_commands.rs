@@ -1,0 +1,432 @@
+//! `iridis.film` (and `iridis.color.xyz`, `iridis.vision.vision`): the computations of the commands `iridis
+//! thinfilm spectrum|table|color|chart|materials|bench|profile|fit`, `iridis color xyz|delta-e` and `iridis
+//! vision`, by the same library calls (`iridis_api::film`, `film_chart`, `film_fit`, `film_bench`, `rough`,
+//! `color`, `vision`). Each returns what the command prints — its JSON as text, its text, its CSV — and a plot
+//! as RGB bytes where the command draws one; the Python module turns them into a dict, strings and an array.
+//! The library's warnings become Python warnings; its errors `ValueError` (`OSError` for files).
+
+use std::path::Path;
+
+use iridis_api::film::{self, RgbImage};
+use iridis_api::rough::RoughOptions;
+use iridis_api::{film_bench, film_chart, film_fit, rough};
+use iridis_thinfilm::rough::DiffuseTransport;
+use pyo3::prelude::*;
+use pyo3::types::{PyBytes, PyDict};
+
+use crate::facade::run;
+
+/// What a command gives: JSON text, text, CSV, a plot.
+#[derive(Default)]
+struct Answer {
+    json: Option<serde_json::Value>,
+    text: Option<String>,
+    csv: Option<String>,
+    image: Option<RgbImage>,
+    extra: Vec<(&'static str, String)>,
+}
+
+impl Answer {
+    fn into_py(self, py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+        let d = PyDict::new(py);
+        d.set_item("json", self.json.map(|v| v.to_string()))?;
+        d.set_item("text", self.text)?;
+        d.set_item("csv", self.csv)?;
+        match self.image {
+            Some(img) => d.set_item("image", (img.height, img.width, PyBytes::new(py, &img.data)))?,
+            None => d.set_item("image", py.None())?,
+        }
+        for (k, v) in self.extra {
+            d.set_item(k, v)?;
+        }
+        Ok(d)
+    }
+}
+
+/// The rough model's options from the keywords (`None` when no roughness was given).
+fn rough_options(
+    roughness_nm: Option<f64>,
+    correlation_nm: Option<f64>,
+    d_iterations: Option<usize>,
+    diffuse_transport: &str,
+) -> anyhow::Result<Option<RoughOptions>> {
+    match (roughness_nm, correlation_nm) {
+        (None, None) => Ok(None),
+        (Some(sigma_nm), Some(tau_nm)) => Ok(Some(RoughOptions {
+            sigma_nm,
+            tau_nm,
+            d_iterations,
+            transport: DiffuseTransport::parse(diffuse_transport)?,
+        })),
+        _ => anyhow::bail!("the rough model needs both roughness_nm and correlation_nm"),
+    }
+}
+
+/// `iridis thinfilm spectrum` (smooth, or rough with `roughness_nm`/`correlation_nm`).
+#[pyfunction]
+#[pyo3(signature = (stack, angle_rad, from_nm, to_nm, step_nm, polarization, plot, roughness_nm=None,
+    correlation_nm=None, d_iterations=None, diffuse_transport="multiple", light_rad=None, azimuth_rad=std::f64::consts::PI))]
+#[allow(clippy::too_many_arguments)]
+fn _film_spectrum<'py>(
+    py: Python<'py>,
+    stack: &str,
+    angle_rad: f64,
+    from_nm: f64,
+    to_nm: f64,
+    step_nm: f64,
+    polarization: &str,
+    plot: bool,
+    roughness_nm: Option<f64>,
+    correlation_nm: Option<f64>,
+    d_iterations: Option<usize>,
+    diffuse_transport: &str,
+    light_rad: Option<f64>,
+    azimuth_rad: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let a = run(py, |report| {
+        let parsed = film::parse_stack(stack)?;
+        let pol = film::parse_polarization(polarization)?;
+        let grid = film::wavelength_grid(from_nm, to_nm, step_nm)?;
+        if let Some(opts) = rough_options(roughness_nm, correlation_nm, d_iterations, diffuse_transport)? {
+            if pol != film::Polarization::Average {
+                anyhow::bail!("with roughness the spectrum is unpolarised, with s and p columns");
+            }
+            let light = light_rad.unwrap_or(angle_rad);
+            let s = rough::spectrum(parsed, stack, &opts, angle_rad, light, azimuth_rad, &grid)?;
+            let image = if plot { Some(s.plot()?) } else { None };
+            return Ok(Answer {
+                json: Some(s.to_json()),
+                text: Some(s.text()),
+                csv: Some(s.csv()),
+                image,
+                ..Default::default()
+            });
+        }
+        let s = film::spectrum(&parsed, stack, angle_rad, &grid, pol, report)?;
+        let image = if plot { Some(s.plot()?) } else { None };
+        Ok(Answer {
+            json: Some(s.to_json()),
+            text: Some(s.text()),
+            csv: Some(s.csv()),
+            image,
+            extra: vec![("spectra_csv", s.spectra_csv()?)],
+        })
+    })?;
+    a.into_py(py)
+}
+
+/// `iridis thinfilm table`: the CSV (smooth: angle × wavelength; rough: view × light × wavelength).
+#[pyfunction]
+#[pyo3(signature = (stack, angles, from_nm, to_nm, step_nm, plot, scale="auto", roughness_nm=None,
+    correlation_nm=None, d_iterations=None, diffuse_transport="multiple", light_angles=None, azimuth_rad=std::f64::consts::PI))]
+#[allow(clippy::too_many_arguments)]
+fn _film_table<'py>(
+    py: Python<'py>,
+    stack: &str,
+    angles: &str,
+    from_nm: f64,
+    to_nm: f64,
+    step_nm: f64,
+    plot: bool,
+    scale: &str,
+    roughness_nm: Option<f64>,
+    correlation_nm: Option<f64>,
+    d_iterations: Option<usize>,
+    diffuse_transport: &str,
+    light_angles: Option<String>,
+    azimuth_rad: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let a = run(py, |report| {
+        let parsed = film::parse_stack(stack)?;
+        let grid = film::wavelength_grid(from_nm, to_nm, step_nm)?;
+        if let Some(opts) = rough_options(roughness_nm, correlation_nm, d_iterations, diffuse_transport)? {
+            let t = rough::table(parsed, stack, &opts, angles, light_angles.as_deref(), azimuth_rad, &grid)?;
+            let image = if plot { Some(t.plot()?) } else { None };
+            let csv = String::from_utf8(t.csv()?)?;
+            return Ok(Answer { csv: Some(csv), image, extra: vec![("summary", t.summary())], ..Default::default() });
+        }
+        let t = film::table(&parsed, stack, angles, &grid, report)?;
+        let image = if plot { Some(t.plot(scale, report)?) } else { None };
+        Ok(Answer { csv: Some(t.csv()), image, ..Default::default() })
+    })?;
+    a.into_py(py)
+}
+
+/// `iridis thinfilm color`.
+#[pyfunction]
+#[pyo3(signature = (stack, angle_rad, polarization, from_nm, to_nm, step_nm, illuminant, observer, visual=None,
+    roughness_nm=None, correlation_nm=None, d_iterations=None, diffuse_transport="multiple", light_rad=None,
+    azimuth_rad=std::f64::consts::PI))]
+#[allow(clippy::too_many_arguments)]
+fn _film_color<'py>(
+    py: Python<'py>,
+    stack: &str,
+    angle_rad: f64,
+    polarization: &str,
+    from_nm: f64,
+    to_nm: f64,
+    step_nm: f64,
+    illuminant: &str,
+    observer: &str,
+    visual: Option<String>,
+    roughness_nm: Option<f64>,
+    correlation_nm: Option<f64>,
+    d_iterations: Option<usize>,
+    diffuse_transport: &str,
+    light_rad: Option<f64>,
+    azimuth_rad: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let a = run(py, |report| {
+        let parsed = film::parse_stack(stack)?;
+        let observer = observer.parse()?;
+        let pol = film::parse_polarization(polarization)?;
+        let grid = film::wavelength_grid(from_nm, to_nm, step_nm)?;
+        if let Some(opts) = rough_options(roughness_nm, correlation_nm, d_iterations, diffuse_transport)? {
+            if pol != film::Polarization::Average || visual.is_some() {
+                anyhow::bail!("with roughness the colours are for unpolarised light, without a visual system");
+            }
+            let light = light_rad.unwrap_or(angle_rad);
+            let c = rough::colour_report(
+                parsed,
+                &opts,
+                angle_rad,
+                light,
+                azimuth_rad,
+                &grid,
+                illuminant.parse()?,
+                observer,
+            )?;
+            return Ok(Answer { json: Some(c.to_json()), text: Some(c.text()), ..Default::default() });
+        }
+        let c = film::colour(&parsed, angle_rad, pol, &grid, illuminant, observer, visual.as_deref(), report)?;
+        c.notes().iter().for_each(|n| iridis_api::Report::note(report, n));
+        Ok(Answer { json: Some(c.to_json()?), text: Some(c.text()), ..Default::default() })
+    })?;
+    a.into_py(py)
+}
+
+/// `iridis thinfilm chart`: the CSV, the picture and what was drawn.
+#[pyfunction]
+#[pyo3(signature = (stack, thickness, angle_rad, illuminant, exposure, from_nm, to_nm, step_nm, roughness_nm=None,
+    correlation_nm=None, d_iterations=None, diffuse_transport="multiple", light_rad=None, azimuth_rad=std::f64::consts::PI))]
+#[allow(clippy::too_many_arguments)]
+fn _film_chart<'py>(
+    py: Python<'py>,
+    stack: &str,
+    thickness: &str,
+    angle_rad: f64,
+    illuminant: &str,
+    exposure: Option<f64>,
+    from_nm: f64,
+    to_nm: f64,
+    step_nm: f64,
+    roughness_nm: Option<f64>,
+    correlation_nm: Option<f64>,
+    d_iterations: Option<usize>,
+    diffuse_transport: &str,
+    light_rad: Option<f64>,
+    azimuth_rad: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let a = run(py, |_| {
+        let rough = rough_options(roughness_nm, correlation_nm, d_iterations, diffuse_transport)?
+            .map(|options| film_chart::RoughLight { options, light: light_rad, azimuth: azimuth_rad });
+        let grid = film::wavelength_grid(from_nm, to_nm, step_nm)?;
+        let c = film_chart::chart(stack, thickness, angle_rad, illuminant, exposure, &grid, rough)?;
+        Ok(Answer {
+            csv: Some(c.csv()),
+            image: Some(c.image()?),
+            extra: vec![("summary", c.summary()), ("exposure", c.exposure.to_string())],
+            ..Default::default()
+        })
+    })?;
+    a.into_py(py)
+}
+
+/// `iridis thinfilm materials`.
+#[pyfunction]
+#[pyo3(signature = (at_nm=None))]
+fn _film_materials(py: Python<'_>, at_nm: Option<f64>) -> PyResult<Bound<'_, PyDict>> {
+    let a = run(py, |_| {
+        let m = film::materials(at_nm)?;
+        Ok(Answer { json: Some(m.to_json()), text: Some(m.text()), ..Default::default() })
+    })?;
+    a.into_py(py)
+}
+
+/// `iridis thinfilm bench` (with `roughness_nm`/`correlation_nm`: the LSRS table of Listing 3.6).
+#[pyfunction]
+#[pyo3(signature = (seconds, no_python, roughness_nm=None, correlation_nm=None, d_iterations=None,
+    diffuse_transport="multiple", azimuth_rad=std::f64::consts::PI))]
+fn _film_bench(
+    py: Python<'_>,
+    seconds: f64,
+    no_python: bool,
+    roughness_nm: Option<f64>,
+    correlation_nm: Option<f64>,
+    d_iterations: Option<usize>,
+    diffuse_transport: &str,
+    azimuth_rad: f64,
+) -> PyResult<Bound<'_, PyDict>> {
+    let a = run(py, |_| {
+        if let Some(opts) = rough_options(roughness_nm, correlation_nm, d_iterations, diffuse_transport)? {
+            let b = rough::bench(film::parse_stack(rough::LISTING_3_6_STACK)?, &opts, azimuth_rad, 80, seconds)?;
+            return Ok(Answer { json: Some(b.to_json()), text: Some(b.text()), ..Default::default() });
+        }
+        let b = film_bench::bench(seconds, no_python)?;
+        Ok(Answer { json: Some(b.to_json()), text: Some(b.text()), ..Default::default() })
+    })?;
+    a.into_py(py)
+}
+
+/// `iridis thinfilm profile`.
+#[pyfunction]
+#[pyo3(signature = (stack, wavelength_nm, angle_rad, polarization, points, depth, plot))]
+#[allow(clippy::too_many_arguments)]
+fn _film_profile<'py>(
+    py: Python<'py>,
+    stack: &str,
+    wavelength_nm: f64,
+    angle_rad: f64,
+    polarization: &str,
+    points: usize,
+    depth: Option<String>,
+    plot: bool,
+) -> PyResult<Bound<'py, PyDict>> {
+    let a = run(py, |_| {
+        let p = film_fit::profile(stack, wavelength_nm, angle_rad, polarization, points, depth.as_deref())?;
+        let image = if plot { Some(p.plot()?) } else { None };
+        Ok(Answer { json: Some(p.to_json()), text: Some(p.text()), csv: Some(p.csv()), image, ..Default::default() })
+    })?;
+    a.into_py(py)
+}
+
+/// `iridis thinfilm fit` of the measured spectrum in a file.
+#[pyfunction]
+#[pyo3(signature = (path, stack, angle_rad, quantity, grid, sigma, weights, columns, percent, from_nm, to_nm, plot))]
+#[allow(clippy::too_many_arguments)]
+fn _film_fit<'py>(
+    py: Python<'py>,
+    path: &str,
+    stack: &str,
+    angle_rad: f64,
+    quantity: &str,
+    grid: usize,
+    sigma: Option<String>,
+    weights: Option<String>,
+    columns: Option<String>,
+    percent: Option<bool>,
+    from_nm: Option<f64>,
+    to_nm: Option<f64>,
+    plot: bool,
+) -> PyResult<Bound<'py, PyDict>> {
+    let request = film_fit::FitRequest {
+        stack: stack.to_string(),
+        angle_rad,
+        quantity: quantity.to_string(),
+        sigma,
+        weights,
+        grid,
+        columns,
+        percent,
+        from_nm,
+        to_nm,
+    };
+    let a = run(py, |report| {
+        let f = film_fit::fit_file(Path::new(path), &request, report)?;
+        let image = if plot { Some(f.plot()?) } else { None };
+        Ok(Answer { json: Some(f.to_json()), text: Some(f.text()), csv: Some(f.csv()), image, ..Default::default() })
+    })?;
+    a.into_py(py)
+}
+
+/// `iridis color xyz`: the colour of a spectrum file.
+#[pyfunction]
+fn _color_xyz<'py>(
+    py: Python<'py>,
+    path: &str,
+    illuminant: &str,
+    observer: &str,
+    emissive: bool,
+) -> PyResult<Bound<'py, PyDict>> {
+    let a = run(py, |report| {
+        let c = iridis_api::color::xyz(Path::new(path), illuminant, observer, emissive, report)?;
+        Ok(Answer { json: Some(c.to_json()), text: Some(c.text()), ..Default::default() })
+    })?;
+    a.into_py(py)
+}
+
+/// `iridis color delta-e`: the difference of two `L,a,b` texts.
+#[pyfunction]
+fn _color_delta_e(py: Python<'_>, first: &str, second: &str, formula: &str) -> PyResult<f64> {
+    run(py, |_| iridis_api::color::delta_e(first, second, formula))
+}
+
+/// `iridis vision`: a spectra CSV as an animal sees it, with the options of the CLI (`iridis_vision::Spec`).
+#[pyfunction]
+#[pyo3(signature = (path, percent, visual=None, lambda_max=None, chromophore=None, oil_droplets=None,
+    ocular_media=None, illuminant=None, illuminant_units=None, illuminant_scale=None, background=None, weber=None,
+    weber_ref=None, densities=None, receptor_noise=None, noise=None, achromatic=None, achromatic_weber=None, space=None))]
+#[allow(clippy::too_many_arguments)]
+fn _vision_file<'py>(
+    py: Python<'py>,
+    path: &str,
+    percent: bool,
+    visual: Option<String>,
+    lambda_max: Option<String>,
+    chromophore: Option<String>,
+    oil_droplets: Option<String>,
+    ocular_media: Option<String>,
+    illuminant: Option<String>,
+    illuminant_units: Option<String>,
+    illuminant_scale: Option<f64>,
+    background: Option<String>,
+    weber: Option<f64>,
+    weber_ref: Option<String>,
+    densities: Option<String>,
+    receptor_noise: Option<String>,
+    noise: Option<String>,
+    achromatic: Option<String>,
+    achromatic_weber: Option<f64>,
+    space: Option<String>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let spec = iridis_vision::Spec {
+        visual,
+        lambda_max,
+        chromophore,
+        oil_droplets,
+        ocular_media,
+        illuminant,
+        illuminant_units,
+        illuminant_scale,
+        background,
+        weber,
+        weber_ref,
+        densities,
+        receptor_noise,
+        noise,
+        achromatic,
+        achromatic_weber,
+        space,
+    };
+    let a = run(py, |report| {
+        let v = iridis_api::vision::analyse_file(Path::new(path), &spec, percent)?;
+        v.analysis.notes.iter().for_each(|n| iridis_api::Report::note(report, n));
+        Ok(Answer { json: Some(v.to_json()?), text: Some(v.text()), ..Default::default() })
+    })?;
+    a.into_py(py)
+}
+
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(_film_spectrum, m)?)?;
+    m.add_function(wrap_pyfunction!(_film_table, m)?)?;
+    m.add_function(wrap_pyfunction!(_film_color, m)?)?;
+    m.add_function(wrap_pyfunction!(_film_chart, m)?)?;
+    m.add_function(wrap_pyfunction!(_film_materials, m)?)?;
+    m.add_function(wrap_pyfunction!(_film_bench, m)?)?;
+    m.add_function(wrap_pyfunction!(_film_profile, m)?)?;
+    m.add_function(wrap_pyfunction!(_film_fit, m)?)?;
+    m.add_function(wrap_pyfunction!(_color_xyz, m)?)?;
+    m.add_function(wrap_pyfunction!(_color_delta_e, m)?)?;
+    m.add_function(wrap_pyfunction!(_vision_file, m)?)?;
+    Ok(())
+}

@@ -1,0 +1,154 @@
+"""``iridis.film``, ``iridis.color.xyz``/``delta_e`` and ``iridis.vision.vision`` give what ``iridis thinfilm …``,
+``iridis color …`` and ``iridis vision`` print: the same text byte for byte and the same numbers, against the
+CLI's output committed in fixtures/film_cli/ (made by fixtures/make_film_cli_fixtures.sh), and the spectra
+against the independent ``tmm`` package (Byrnes) where it is installed."""
+import json
+import math
+import os
+
+import numpy as np
+import pytest
+
+import iridis.color as color
+import iridis.film as film
+import iridis.vision as vision
+
+FIX = os.path.join(os.path.dirname(__file__), "fixtures", "film_cli")
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
+SOAP = dict(stack="air | water 635nm | air", angle_rad=math.radians(1), from_nm=400, to_nm=690, step_nm=10)
+
+
+def text(name):
+    with open(os.path.join(FIX, name), encoding="utf-8") as f:
+        return f.read()
+
+
+def cli_json(name):
+    out = json.loads(text(name))
+    out.pop("inputs", None)
+    return out
+
+
+def same(py, cli, path="$"):
+    """Equal JSON values: numbers to 1e-12 relative (the CLI prints shortest round-trip floats), the rest exactly."""
+    if isinstance(cli, dict):
+        assert isinstance(py, dict) and sorted(py) == sorted(cli), path
+        for k in cli:
+            same(py[k], cli[k], f"{path}.{k}")
+    elif isinstance(cli, list):
+        assert len(py) == len(cli), path
+        for i, (a, b) in enumerate(zip(py, cli)):
+            same(a, b, f"{path}[{i}]")
+    elif isinstance(cli, float) or isinstance(py, float):
+        assert py == pytest.approx(cli, rel=1e-12, abs=1e-15), path
+    else:
+        assert py == cli, path
+
+
+def test_spectrum_json_and_text_are_the_clis():
+    s = film.spectrum(**SOAP)
+    same(dict(s), cli_json("spectrum_soap.json"))
+    assert s.text == text("spectrum_soap.txt")
+
+
+def test_spectrum_of_an_incoherent_stack_is_the_clis_csv_and_tmm_inc_tmm():
+    s = film.spectrum("air | MgF2 100nm | inc:BK7 1mm | air", math.radians(45), step_nm=20, polarization="p")
+    assert s.csv == text("spectrum_inc.csv")
+    assert s["delta_deg"] is None  # no phase survives an incoherent layer
+
+
+def test_spectrum_agrees_with_tmm():
+    tmm = pytest.importorskip("tmm")
+    s = film.spectrum("air | n=1.38 100nm | n=0.2+3.4i", math.radians(45), 400, 700, 50, polarization="p")
+    for i, lam in enumerate(s["wavelength_nm"]):
+        ns, ds = [1.0, 1.38, 0.2 + 3.4j], [np.inf, 100.0, np.inf]
+        p = tmm.coh_tmm("p", ns, ds, math.radians(45), lam)
+        psi, delta = (math.degrees(v) for v in tmm.ellips(ns, ds, math.radians(45), lam).values())
+        assert s["R"][i] == pytest.approx(p["R"], rel=1e-10)
+        assert s["T"][i] == pytest.approx(p["T"], abs=1e-12)
+        assert s["psi_deg"][i] == pytest.approx(psi, rel=1e-9)
+        assert math.cos(math.radians(s["delta_deg"][i] - delta)) == pytest.approx(1.0, abs=1e-12)
+
+
+def test_rough_spectrum_text_is_the_clis():
+    s = film.spectrum("air | water 348nm | Si", math.radians(30), 400, 700, 50, roughness_nm=25, correlation_nm=300,
+                      d_iterations=5)
+    assert s.text == text("rough_spectrum.txt")
+
+
+def test_tables_are_the_clis_csv():
+    t = film.table("air | water 635nm | air", "0deg:60deg:30deg", 400, 700, 50)
+    assert t.csv == text("table.csv")
+    assert t["angle_deg"].tolist() == [0.0] * 7 + [30.0] * 7 + [60.0] * 7
+    r = film.table("air | water 348nm | Si", "0deg:60deg:30deg", 400, 700, 100, roughness_nm=25, correlation_nm=300,
+                   d_iterations=5)
+    assert r.csv == text("rough_table.csv")
+
+
+def test_colours_are_the_clis():
+    c = film.color("air | gasoline 216nm | water 220nm | asphalt", math.radians(30))
+    same(dict(c), cli_json("color_oil.json"))
+    assert c.text == text("color_oil.txt")
+    assert film.color("air | water 348nm | air", from_nm=300, to_nm=700, visual="bluetit").text == text(
+        "color_visual.txt")
+    r = film.color("air | water 348nm | Si", math.radians(30), roughness_nm=25, correlation_nm=300,
+                   light_angle_rad=math.radians(20))
+    assert r.text == text("rough_color.txt")
+
+
+def test_chart_is_the_clis():
+    c = film.chart("air | water {d} | air", "0nm:1000nm:20nm")
+    assert c.csv == text("chart.csv")
+    assert f"wrote CHART_PNG {c.summary}\nwrote CHART_CSV\n" == text("chart.txt")
+    # The top band is the reflected colour exposed so that the brightest one reaches Y = 1.
+    assert c.exposure == pytest.approx(1.0 / max(c["R_Y"]), rel=1e-12)
+    assert c.image.shape == (360, 1200, 3) and c.image.dtype == np.uint8
+
+
+def test_materials_profile_are_the_clis():
+    m = film.materials(550)
+    assert m.text == text("materials.txt")
+    same(dict(m), cli_json("materials.json"))
+    p = film.profile("air | TiO2 60nm | Si 50nm | inc:glass 1mm | air", 550, depth="-20nm:200nm", points=23)
+    assert p.csv == text("profile.csv")
+    g = film.profile("air | Au 30nm | glass", 500, math.radians(20))
+    assert g.text == text("profile.txt")
+    # Energy conservation: everything reflected, absorbed or transmitted.
+    assert g["R"] + g["T"] + sum(g["A_layers"]) + g["A_substrate"] == pytest.approx(1.0, abs=1e-12)
+
+
+def test_profile_plot_and_bad_input():
+    p = film.profile("air | Au 30nm | glass", 500, points=11, plot=True)
+    assert p.image.ndim == 3 and p.image.shape[2] == 3
+    with pytest.raises(ValueError, match="--depth"):
+        film.profile("air | Au 30nm | glass", 500, depth="200nm:0nm")
+
+
+def test_colour_of_a_spectrum_file_and_delta_e_are_the_clis():
+    green = os.path.join(ROOT, "data", "examples", "colorchecker_green.csv")
+    c = color.xyz(green, "d50", "1964")
+    same(dict(c), cli_json("color_xyz.json"))
+    assert color.xyz(green).text == text("color_xyz.txt").replace("data/examples/colorchecker_green.csv", green)
+    d = color.delta_e("50,2.6772,-79.7751", "50,0,-82.7485", "1976")
+    assert d == cli_json("delta_e.json")["delta_e"]
+    # CIEDE2000 of Sharma et al. (2005), pair 1.
+    assert round(color.delta_e("50,2.6772,-79.7751", "50,0,-82.7485"), 4) == 2.0425
+    with pytest.raises(ValueError, match="not an L,a,b triple"):
+        color.delta_e("50,2", "50,0,0")
+
+
+def test_vision_of_a_spectra_file_is_the_clis():
+    spectra = os.path.join(ROOT, "data", "examples", "vision_spectra.csv")
+    v = vision.vision(spectra, "avian-uv", illuminant="forestshade")
+    same(dict(v), cli_json("vision.json"))
+    t = vision.vision(spectra, "bluetit").text
+    assert t == text("vision.txt").replace("data/examples/vision_spectra.csv", spectra)
+
+
+def test_bench_runs_each_measurement_once():
+    b = film.bench(seconds=1e-3, no_python=True)
+    assert [r["layers"] for r in b["results"]] == [2, 20]
+    assert b["fit"]["parameters"] == 3 and b["batch"]["points"] == 10**6
+    assert "not run (--no-python)" in b.text
+    with pytest.raises(ValueError, match="--seconds must be positive"):
+        film.bench(seconds=0)
