@@ -9,6 +9,8 @@
 use pyo3::prelude::*;
 
 mod args;
+mod bench;
+mod brdf;
 mod color;
 mod diffraction;
 mod facade;
@@ -32,5 +34,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     render::register(m)?;
     lab::register(m)?;
     vision::register(m)?;
+    bench::register(m)?;
+    brdf::register(m)?;
     Ok(())
 }

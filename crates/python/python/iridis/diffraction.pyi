@@ -33,8 +33,24 @@ def brdf_map(
     incidence: Direction = ...,
     size: int = ...,
     method: Optional[str] = ...,
+    per_sr: bool = ...,
+    gpu: bool = ...,
     **options: Any,
 ) -> npt.NDArray[np.float64]: ...
+def brdf_map_run(
+    source: Union[str, os.PathLike[str]],
+    incidence: Direction = ...,
+    size: int = ...,
+    method: str = ...,
+    **options: Any,
+) -> dict[str, Any]: ...
+def brdf_eval(
+    source: Union[str, os.PathLike[str]],
+    light: Direction,
+    view: Direction,
+    method: Optional[str] = ...,
+    **options: Any,
+) -> dict[str, Any]: ...
 def evaluate(
     source: Source,
     light: Direction,
