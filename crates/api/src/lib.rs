@@ -41,6 +41,7 @@ pub mod grating_bench;
 pub mod lab;
 pub mod model;
 pub mod output;
+pub mod precompute;
 pub mod report;
 pub mod rigorous_brdf;
 pub mod rough;

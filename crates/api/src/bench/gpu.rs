@@ -112,6 +112,18 @@ impl Timed {
         self.gpu.map(FrameStats::to_json).into()
     }
 
+    /// The wall-clock frame times' line.
+    fn wall_line(&self, indent: &str) -> String {
+        let w = &self.wall;
+        format!(
+            "{indent}frame time min {:.2} ms, median {:.2} ms, p99 {:.2} ms ({:.1} fps at the median)",
+            w.min,
+            w.median,
+            w.p99,
+            1e3 / w.median
+        )
+    }
+
     /// The GPU timestamps' line, or that the adapter has none.
     fn gpu_line(&self, indent: &str) -> String {
         match self.gpu {
@@ -306,14 +318,7 @@ pub fn gpu(a: &GpuBenchOptions, report: &dyn Report) -> Result<Bench> {
         table.powers(),
         map_t.frames
     ));
-    let w = &map_t.wall;
-    t.push(format!(
-        "  frame time min {:.2} ms, median {:.2} ms, p99 {:.2} ms ({:.1} fps at the median)",
-        w.min,
-        w.median,
-        w.p99,
-        1e3 / w.median
-    ));
+    t.push(map_t.wall_line("  "));
     t.push(map_t.gpu_line("  "));
     t.push(format!(
         "  vs CPU (lookup, f64; {} pixels at 1500 RU): ΔE00 mean {:.4}, p99 {:.4}",
@@ -337,14 +342,7 @@ pub fn gpu(a: &GpuBenchOptions, report: &dyn Report) -> Result<Bench> {
     }
     t.push(format!("thin film {stack}, {fw}×{fh}, gradient + SVT:"));
     t.push(format!("  fast path: {}; {} frames:", fast_run.path(), fast_t.frames));
-    let w = &fast_t.wall;
-    t.push(format!(
-        "    frame time min {:.2} ms, median {:.2} ms, p99 {:.2} ms ({:.1} fps at the median)",
-        w.min,
-        w.median,
-        w.p99,
-        1e3 / w.median
-    ));
+    t.push(fast_t.wall_line("    "));
     t.push(fast_t.gpu_line("    "));
     t.push(format!(
         "    vs CPU (Stack::evaluate_offset, f64, 81 samples; {} pixels): ΔE00 mean {:.4}, p99 {:.4}",
@@ -358,14 +356,7 @@ pub fn gpu(a: &GpuBenchOptions, report: &dyn Report) -> Result<Bench> {
         direct_weights.wavelengths_nm().len(),
         direct_t.frames
     ));
-    let w = &direct_t.wall;
-    t.push(format!(
-        "    frame time min {:.2} ms, median {:.2} ms, p99 {:.2} ms ({:.1} fps at the median)",
-        w.min,
-        w.median,
-        w.p99,
-        1e3 / w.median
-    ));
+    t.push(direct_t.wall_line("    "));
     t.push(direct_t.gpu_line("    "));
     t.push(format!(
         "    vs CPU (f64, the same samples; {} pixels): ΔE00 mean {:.4}, p99 {:.4}",

@@ -1,5 +1,5 @@
 //! `iridis precompute`, `iridis brdf-map` and `iridis brdf eval|vision`: the diffraction BRDF of a height field
-//! (issue 5), each a call of `iridis_api` (`model::precompute`, `brdf_map::brdf_map`, `brdf_eval::brdf_eval`,
+//! (issue 5), each a call of `iridis_api` (`precompute::precompute`, `brdf_map::brdf_map`, `brdf_eval::brdf_eval`,
 //! `brdf_vision::brdf_vision`) that this module parses for and prints.
 
 use std::path::PathBuf;
@@ -294,7 +294,7 @@ pub struct BrdfEvalArgs {
 }
 
 pub fn run_precompute(a: PrecomputeArgs) -> Result<()> {
-    let r = iridis_api::model::PrecomputeRequest {
+    let r = iridis_api::precompute::PrecomputeRequest {
         surface: a.surface,
         surface_opts: a.surface_opts.options(),
         model: a.model.options(),
@@ -302,7 +302,7 @@ pub fn run_precompute(a: PrecomputeArgs) -> Result<()> {
         units: a.units,
         gpu: a.gpu,
     };
-    let line = iridis_api::model::precompute(&r, &a.output, &Cli)?;
+    let line = iridis_api::precompute::precompute(&r, &a.output, &Cli)?;
     crate::outln!("{line}")
 }
 
