@@ -298,6 +298,86 @@ pub fn bench_grating(opts: &GratingBenchOptions, report: &dyn Report) -> Result<
     }))
 }
 
+/// The text of `iridis bench grating` from [`bench_grating`]'s JSON.
+pub fn text(v: &Value) -> String {
+    let mut t = Vec::new();
+    let f = |v: &Value| v.as_f64().unwrap_or(f64::NAN);
+    t.push(format!(
+        "rigorous order efficiencies: iridis (C-method) against grcwa (RCWA), equal accuracy; {} threads",
+        v["threads"]
+    ));
+    for c in v["cases"].as_array().into_iter().flatten() {
+        let i = &c["iridis"];
+        let tp = &c["throughput"];
+        t.push(format!(
+            "{}: λ {} nm, θ {}°, φ {}°",
+            c["name"].as_str().unwrap_or(""),
+            c["wavelength_nm"],
+            c["theta_i_deg"],
+            c["phi_i_deg"]
+        ));
+        t.push(format!(
+            "  iridis   orders {} ({} harmonics): {:.4} s per solve (one thread, TE+TM), error {:.1e} (estimated {:.1e})",
+            i["orders"],
+            i["harmonics"],
+            f(&i["seconds"]),
+            f(&i["measured_error"]),
+            f(&i["estimated_error"])
+        ));
+        t.push(format!(
+            "           {} wavelengths {}–{} nm: {:.2} solves/s on one thread, {:.2} on all ({:.1}×)",
+            tp["problems"],
+            tp["wavelengths_nm"][0],
+            tp["wavelengths_nm"][1],
+            f(&tp["one_thread_per_second"]),
+            f(&tp["all_threads_per_second"]),
+            f(&tp["parallel_speedup"])
+        ));
+        for p in c["peers"].as_array().into_iter().flatten() {
+            let name = p["name"].as_str().unwrap_or("peer");
+            if p["status"] != "ok" {
+                t.push(format!("  {name}    skipped: {}", p["note"].as_str().unwrap_or("")));
+                continue;
+            }
+            t.push(format!(
+                "  {name} {} ({}; error on {}):",
+                p["version"].as_str().unwrap_or(""),
+                p["python"].as_str().unwrap_or(""),
+                p["error_measured_on"].as_str().unwrap_or("")
+            ));
+            for r in p["ladder"].as_array().into_iter().flatten() {
+                t.push(format!(
+                    "    {:>4} orders, {:>4} slices: {:>9.3} s, error {:.1e} (TE {:.1e}, TM {:.1e})",
+                    r["orders"],
+                    r["slices"],
+                    f(&r["seconds"]),
+                    f(&r["error"]),
+                    f(&r["error_te"]),
+                    f(&r["error_tm"])
+                ));
+            }
+            let level = |k: &str| {
+                let r = &p[k];
+                if r.is_null() {
+                    "not reached".to_string()
+                } else {
+                    format!("{}/{} orders/slices, {:.3} s", r["orders"], r["slices"], f(&r["seconds"]))
+                }
+            };
+            t.push(format!("    within 1 %: {}; within 0.1 %: {}", level("at_1_percent"), level("at_0_1_percent")));
+            match (p["speedup_at_1_percent"].as_f64(), p["speedup_lower_bound"].as_f64()) {
+                (Some(s), _) => t.push(format!("    iridis is {s:.0}× faster at 1 % (one thread each)")),
+                (None, Some(b)) => {
+                    t.push(format!("    iridis is more than {b:.0}× faster ({})", p["note"].as_str().unwrap_or("")))
+                }
+                _ => {}
+            }
+        }
+    }
+    t.push(format!("load average before / after: {} / {}", v["load_average"]["before"], v["load_average"]["after"]));
+    t.join("\n")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

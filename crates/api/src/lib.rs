@@ -18,6 +18,9 @@
 //! * [`rough`]: films on rough substrates (LSRS): options, spectra, colours, tables, the chart's bands, the bench;
 //! * [`gpu`]: scenes and lookup maps on the GPU;
 //! * [`grating_bench`]: the rigorous solver timed against grcwa (`iridis bench grating`);
+//! * [`bench`]: every benchmark (`iridis bench …`, `python -m iridis.bench NAME`) and the one ΔE statistics;
+//! * [`brdf_map`], [`brdf_eval`], [`brdf_vision`]: the `brdf-map`, `brdf eval` and `brdf vision` commands'
+//!   work, text and JSON; [`scene`]: `iridis render` and the example scenes; `view` (feature `viewer`);
 //! * [`unit_cell`]: one period of a scan averaged along its ridges (a 1-D grating profile).
 //!
 //! Errors are messages for people (`anyhow`, with the library's typed error as the source and the context a
@@ -26,7 +29,11 @@
 //!
 //! Arrows: `cli, python → api → lab, gpu → render → diffraction → thinfilm, surface → color`.
 
+pub mod bench;
 pub mod brdf;
+pub mod brdf_eval;
+pub mod brdf_map;
+pub mod brdf_vision;
 pub mod color;
 pub mod film;
 pub mod film_bench;
@@ -40,11 +47,15 @@ pub mod grating_bench;
 pub mod lab;
 pub mod model;
 pub mod output;
+pub mod precompute;
 pub mod report;
 pub mod rigorous_brdf;
 pub mod rough;
+pub mod scene;
 pub mod surface;
 pub mod unit_cell;
+#[cfg(feature = "viewer")]
+pub mod view;
 pub mod vision;
 
 pub use model::ModelOptions;

@@ -316,3 +316,94 @@ impl FitArgs {
         }
     }
 }
+
+/// Options shared by the commands that build Taylor terms (`precompute`, `brdf-map`, `brdf eval`, `brdf vision`).
+#[derive(Debug, Clone, clap::Args)]
+pub struct ModelOpts {
+    /// Taylor terms: `auto` (from the remainder bound) or a number N (terms 0..N).
+    #[arg(long, default_value = "auto")]
+    pub terms: String,
+    /// Coherence length 4σ_s of the Gaussian window, a property of the light (default 65um, the paper's; a
+    /// smaller patch is taken as one unit cell of a periodic surface; said in the output).
+    #[arg(long, value_parser = positive_length_nm)]
+    pub coherence: Option<f64>,
+    /// Illuminant: d65, d50, a, e.
+    #[arg(long)]
+    pub illuminant: Option<String>,
+    /// Observer: 1931 or 1964.
+    #[arg(long)]
+    pub observer: Option<String>,
+    /// Wavelength step of the spectral integral (≤ 5nm recommended).
+    #[arg(long, value_parser = positive_length_nm)]
+    pub step: Option<f64>,
+    /// Energy-conserving lobes (reference, ground-truth): each scaled by its order's factor in the patch's
+    /// energy-normalised channel matrix, so that the BRDF never returns more light than it receives (Kirchhoff's
+    /// obliquity factor as printed returns up to twice it at grazing light).
+    #[arg(long)]
+    pub conserve_energy: bool,
+}
+
+impl ModelOpts {
+    /// The facade's model options.
+    pub fn options(&self) -> iridis_api::ModelOptions {
+        iridis_api::ModelOptions {
+            terms: self.terms.clone(),
+            coherence_nm: self.coherence,
+            illuminant: self.illuminant.clone(),
+            observer: self.observer.clone(),
+            step_nm: self.step,
+            conserve_energy: self.conserve_energy,
+            light: None,
+            // Set by the commands that take --material and --unit-cell (`RigorousOpts::apply`).
+            material: None,
+            unit_cell_auto: false,
+        }
+    }
+}
+
+/// The shading factors around |A|² (`C` of paper eq. 2–4), shared by `brdf-map` and `brdf eval`.
+#[derive(Debug, Clone, clap::Args)]
+pub struct ShadingOpts {
+    /// Fresnel factor: schlick[:N] (default schlick:1.5), index:N or index:N+Ki (gold near 550 nm:
+    /// index:0.2+3.4i), gold (measured, Johnson & Christy) or a thin-film stack, e.g. "stack:air | keratin
+    /// 300nm | n=1.56" (the last two depend on λ: reference or ground-truth).
+    #[arg(long, default_value = "schlick:1.5")]
+    pub fresnel: String,
+    /// How the Fresnel reflectance enters: physical (R once, the default) or paper (R², the paper's formula as
+    /// printed, to reproduce its figures; docs/PHYSICS.md).
+    #[arg(long, value_name = "physical|paper", default_value = "physical", value_parser = fresnel_convention)]
+    pub fresnel_convention: iridis_diffraction::FresnelConvention,
+    /// Leave out the Cook-Torrance shadowing term.
+    #[arg(long)]
+    pub no_shadowing: bool,
+}
+
+impl ShadingOpts {
+    pub fn shading(&self) -> anyhow::Result<iridis_diffraction::Shading> {
+        iridis_api::fresnel::shading(&self.fresnel, self.fresnel_convention, !self.no_shadowing)
+    }
+}
+
+/// Parses `--fresnel-convention` (moved here from cmd/brdf.rs: lab.rs takes it as `crate::args::fresnel_convention`).
+pub fn fresnel_convention(s: &str) -> Result<iridis_diffraction::FresnelConvention, String> {
+    iridis_diffraction::FresnelConvention::parse(s).map_err(|e| e.to_string())
+}
+
+/// Parses `--incidence θ[,φ]` into a light direction, refusing θ ≥ 90°.
+pub fn parse_incidence(s: &str) -> anyhow::Result<[f64; 3]> {
+    let (theta, phi) = polar_azimuth("incidence", s)?;
+    Ok(iridis_diffraction::geometry::direction(theta, phi))
+}
+
+#[cfg(test)]
+mod brdf_args_tests {
+    use super::*;
+
+    #[test]
+    fn incidence_parses() {
+        assert!(parse_incidence("90deg").is_err());
+        assert!(parse_incidence("20deg,0deg,1deg").is_err());
+        let d = parse_incidence("0deg").unwrap();
+        assert!((d[2] - 1.0).abs() < 1e-15);
+    }
+}

@@ -187,9 +187,11 @@ fn precompute(
 }
 
 /// A BRDF map (the paper's layout: view directions on the unit disk, row 0 at the top) as linear XYZ,
-/// shape (size, size, 3), light from (θ_i, φ_i) in radians, as `iridis brdf-map --raw`.
+/// shape (size, size, 3), light from (θ_i, φ_i) in radians, as `iridis brdf-map --raw`; with `per_sr`, the
+/// BRDF f_r in sr⁻¹ as XYZ instead, as `iridis brdf-map --brdf`.
 #[pyfunction]
-#[pyo3(signature = (source, method, theta_i, phi_i, size, options=None))]
+#[pyo3(signature = (source, method, theta_i, phi_i, size, options=None, per_sr=false))]
+#[allow(clippy::too_many_arguments)]
 fn brdf_map_xyz<'py>(
     py: Python<'py>,
     source: &Bound<'py, PyAny>,
@@ -198,6 +200,7 @@ fn brdf_map_xyz<'py>(
     phi_i: f64,
     size: usize,
     options: Option<Bound<'py, PyDict>>,
+    per_sr: bool,
 ) -> PyResult<Bound<'py, PyArray3<f64>>> {
     if !(1..=4096).contains(&size) {
         return Err(value_error(format!("size {size} must be between 1 and 4096 pixels")));
@@ -209,6 +212,9 @@ fn brdf_map_xyz<'py>(
     let input = input_of(source)?;
     let xyz = run(py, |r| {
         let e = evaluator(&input, method.as_deref(), &eo, r)?;
+        if per_sr {
+            return iridis_api::brdf::render_map_per_sr(e.as_ref(), &eo.model, wi, size, r);
+        }
         Ok(render_map(e.as_ref(), wi, size, r))
     })?;
     let flat: Vec<f64> = xyz.iter().flat_map(|c| c.to_array()).collect();

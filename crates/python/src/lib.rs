@@ -9,6 +9,8 @@
 use pyo3::prelude::*;
 
 mod args;
+mod bench;
+mod brdf;
 mod color;
 mod diffraction;
 mod facade;
@@ -34,5 +36,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     render::register(m)?;
     lab::register(m)?;
     vision::register(m)?;
+    bench::register(m)?;
+    brdf::register(m)?;
     Ok(())
 }

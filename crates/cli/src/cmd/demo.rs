@@ -31,13 +31,13 @@ type Section = fn(&mut Gallery) -> Result<()>;
 
 /// The gallery's sections, in the order a newcomer should read them; each command group adds its own.
 const SECTIONS: [(&str, Section); 7] = [
-    ("snakes", super::render::figures_demo),
+    ("snakes", iridis_api::scene::figures_section),
     ("color", iridis_api::color::demo_section),
     ("surface", super::surface::demo),
     ("thinfilm", iridis_api::film_chart::demo_section),
-    ("brdf", super::brdf::demo),
+    ("brdf", iridis_api::brdf_map::demo_section),
     ("lab", super::lab::demo),
-    ("render", super::render::demo),
+    ("render", iridis_api::scene::demo_section),
 ];
 
 pub fn run(args: Args) -> Result<()> {

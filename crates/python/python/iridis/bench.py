@@ -9,6 +9,12 @@
 Every result is checked against tmm's before it is timed. Options: ``--points N`` (batch size, default 10⁵),
 ``--tmm-points N`` (how many of the batch's points tmm runs, default all; fewer are timed and scaled, which
 the output says), ``--json``.
+
+``python -m iridis.bench NAME [options]`` runs instead the library's bench NAME — ``diffraction``,
+``diffraction-accuracy``, ``diffraction-methods``, ``gpu``, ``render``, ``grating`` — the very function
+``iridis bench NAME`` calls (``iridis_api::bench``), with its options (``--map-size 8``, ``--surface S``
+repeated, ``--exposures 1,1000``, ``--coherence-nm``, …) and its text or ``--json``. From Python:
+``run(NAME, **options)`` returns the JSON as a dict, ``report(NAME, **options)`` the text and the dict.
 """
 from __future__ import annotations
 
@@ -20,6 +26,7 @@ import time
 
 import numpy as np
 
+from . import _native
 from . import tmm as itmm
 
 STACKS = {
@@ -123,9 +130,78 @@ def tmm_fast_peer(n, d, th, lam, reference):
     return {"seconds": seconds, "cpu_seconds": cpu, "worst_abs_diff_R": float(np.max(np.abs(r - reference))),
             "torch_threads": torch.get_num_threads()}
 
+# The library's benches (iridis_api::bench) and their options: type, and for lists how they are written.
+LIBRARY_BENCHES = {
+    "diffraction": {"size": int, "terms": int, "map_sizes": [int], "uv_resolution": int},
+    "diffraction-accuracy": {"surface": [str], "map_size": int, "coherence_nm": float, "aperture": str,
+                             "exposures": [float], "uv_resolution": int, "convergence_plot": str},
+    "diffraction-methods": {"patch_sizes": [int], "map_size": int},
+    "gpu": {"scene": str, "size": str, "frames": int, "max_seconds": float, "table": str, "film_size": str,
+            "stack": str, "spectral_samples": int, "save": str, "table_precision": str, "build_surface": str,
+            "build_uv_resolution": int, "gt_surface": str, "gt_size": int, "gt_cpu_pixels": int},
+    "render": {"size": int, "spp": int, "scene": [str]},
+    "grating": {"repeats": int, "python": str, "no_python": bool, "peer_seconds": float, "batch": int,
+                "quick": bool},
+}
+# Repeated options of the CLI (--surface S --surface T) are lists under a plural name.
+_PLURAL = {"surface": "surfaces", "scene": "scenes"}
+
+
+def report(name, **options):
+    """Runs the library bench ``name`` (``iridis bench NAME``'s very function) with ``options`` (the CLI's
+    option names with ``_``; lengths in nm): its text, as ``iridis bench NAME`` prints it, and its JSON as a
+    dict, as ``--json`` prints it."""
+    text, data = _raw(name, options)
+    return text, json.loads(data)
+
+
+def _raw(name, options):
+    """The bench's text and its JSON text (formatted as the CLI prints it)."""
+    if name not in LIBRARY_BENCHES:
+        raise ValueError(f"no bench {name!r}: the benches are {', '.join(LIBRARY_BENCHES)}")
+    if name == "gpu":
+        from .render import _ensure_runtime_dir
+
+        _ensure_runtime_dir()
+    return _native.bench_run(name, options)
+
+
+def run(name, **options):
+    """The JSON of the library bench ``name`` as a dict (see :func:`report`)."""
+    return report(name, **options)[1]
+
+
+def library_main(name, argv):
+    """``python -m iridis.bench NAME [--option value …] [--json]``."""
+    p = argparse.ArgumentParser(prog=f"python -m iridis.bench {name}",
+                                description=f"iridis bench {name}, the library's function (iridis_api::bench)")
+    for key, kind in LIBRARY_BENCHES[name].items():
+        flag = "--" + key.replace("_", "-")
+        if kind is bool:
+            p.add_argument(flag, action="store_true", default=None)
+        elif isinstance(kind, list) and key in _PLURAL:
+            p.add_argument(flag, dest=_PLURAL[key], action="append", type=kind[0])
+        elif isinstance(kind, list):
+            p.add_argument(flag, type=lambda v, t=kind[0]: [t(x) for x in v.split(",")])
+        else:
+            p.add_argument(flag, type=kind)
+    p.add_argument("--json", action="store_true")
+    a = vars(p.parse_args(argv))
+    as_json = a.pop("json")
+    options = {k: v for k, v in a.items() if v is not None}
+    text, data = _raw(name, options)
+    print(data if as_json else text)
+
 
 def main(argv=None):
-    p = argparse.ArgumentParser(prog="python -m iridis.bench", description=__doc__.split("\n\n")[0])
+    import sys
+
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if argv and argv[0] in LIBRARY_BENCHES:
+        return library_main(argv[0], argv[1:])
+    if argv and argv[0] == "tmm":
+        argv = argv[1:]
+    p = argparse.ArgumentParser(prog="python -m iridis.bench [tmm]", description=__doc__.split("\n\n")[0])
     p.add_argument("--points", type=int, default=100_000)
     p.add_argument("--tmm-points", type=int, default=None)
     p.add_argument("--calls", type=int, default=2000)

@@ -38,7 +38,7 @@ import os
 from . import _native
 from .surface import Surface
 
-__all__ = ["Table", "precompute", "brdf_map", "brdf_map_of", "evaluate"]
+__all__ = ["Table", "precompute", "brdf_map", "brdf_map_of", "brdf_map_run", "evaluate", "brdf_eval"]
 
 
 class Table:
@@ -100,16 +100,51 @@ def precompute(surface, coherence_nm=None, terms=None, uv_resolution=501, uv_pow
     return Table(_native.precompute(_native_source(surface), name, options))
 
 
-def brdf_map(source, incidence=(0.0, 0.0), size=256, method=None, **options):
+def brdf_map(source, incidence=(0.0, 0.0), size=256, method=None, per_sr=False, gpu=False, **options):
     """A BRDF map as linear XYZ of shape ``(size, size, 3)`` (row 0 at the top; outside the unit disk 0), as
-    ``iridis brdf-map --raw`` writes it.
+    ``iridis brdf-map --raw`` writes it; with ``per_sr=True`` the BRDF f_r in sr⁻¹ as XYZ instead (Y the
+    luminous BRDF), as ``iridis brdf-map --brdf`` writes it (reference, ground truths, rigorous).
 
     ``method``: default ``"lookup"`` for a :class:`Table`, ``"reference"`` for a height field (a SURFACE
     argument that is a table file counts as a table). ``incidence``: ``θ_i`` or ``(θ_i, φ_i)`` in radians.
-    A normal-incidence mirror has ``Y = 1`` in its specular pixel.
+    A normal-incidence mirror has ``Y = 1`` in its specular pixel. ``gpu=True`` renders the lookup method or a
+    ground truth on the GPU (``iridis brdf-map --gpu``; a SURFACE or TABLE argument, ``table_precision``
+    ``"cheb12"`` by default; a ValueError naming the driver to install when there is no adapter); ``f32=True``
+    evaluates the lookup sum in f32. Those take :func:`brdf_map_run`'s path, the CLI's own call.
     """
+    if gpu or options.get("f32") or options.get("table_precision") is not None:
+        out = brdf_map_run(source, incidence, size, method or "lookup", per_sr=per_sr, gpu=gpu, **options)
+        return out["per_sr"] if per_sr else out["xyz"]
     theta, phi = _direction(incidence, "incidence")
-    return _native.brdf_map_xyz(_native_source(source), method, theta, phi, int(size), options)
+    return _native.brdf_map_xyz(_native_source(source), method, theta, phi, int(size), options, bool(per_sr))
+
+
+def brdf_map_run(source, incidence=(0.0, 0.0), size=512, method="lookup", **options):
+    """``iridis brdf-map`` on a SURFACE or TABLE argument (str), the CLI's own library call, before it writes
+    files: a dict with ``xyz`` (linear XYZ of ρ), ``per_sr`` (f_r in sr⁻¹ as XYZ with ``per_sr=True``, else
+    None), ``exposure_ru`` (``exposure_ru``, default 1500, or the one ``auto_exposure=True`` chose: the
+    99th-percentile lit pixel white), ``method`` and ``coherence_nm``. Options as :func:`brdf_map`'s plus
+    ``gpu``, ``table_precision``, ``f32``, ``uv_resolution``, ``uv_power``, ``material``, ``unit_cell``.
+    Sizes 8 to 8192, as the CLI's."""
+    if not isinstance(source, (str, os.PathLike)):
+        raise TypeError(f"brdf_map_run takes a SURFACE or TABLE argument (str), got {type(source).__name__}")
+    theta, phi = _direction(incidence, "incidence")
+    if options.get("gpu"):
+        from .render import _ensure_runtime_dir
+
+        _ensure_runtime_dir()
+    return _native.brdf_map_run(os.fspath(source), method, theta, phi, int(size), options)
+
+
+def brdf_eval(source, light, view, method=None, **options):
+    """``iridis brdf eval --json`` as a dict, the same keys and numbers (the CLI's own library call) on a
+    SURFACE or TABLE argument (str): the inputs, ``fresnel_r0``, ``wavelength_nm``, ``brdf_per_sr`` (f_r(λ)
+    in sr⁻¹ for s, p and unpolarised light), ``reflectance`` (ρ(λ)), ``xyz``, ``vision`` (with
+    ``visual="bluetit"``, …), ``rigorous`` and ``scalar_error``. ``light``, ``view``: θ or (θ, φ) in radians."""
+    if not isinstance(source, (str, os.PathLike)):
+        raise TypeError(f"brdf_eval takes a SURFACE or TABLE argument (str), got {type(source).__name__}")
+    return _native.brdf_eval(os.fspath(source), method, _direction(light, "light"), _direction(view, "view"),
+                             options)
 
 
 def evaluate(source, light, view, method=None, **options):

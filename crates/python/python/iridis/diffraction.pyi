@@ -29,8 +29,28 @@ def precompute(
     **options: Any,
 ) -> Table: ...
 def brdf_map(
-    source: Source, incidence: Direction = ..., size: int = ..., method: Optional[str] = ..., **options: Any
+    source: Source,
+    incidence: Direction = ...,
+    size: int = ...,
+    method: Optional[str] = ...,
+    per_sr: bool = ...,
+    gpu: bool = ...,
+    **options: Any,
 ) -> npt.NDArray[np.float64]: ...
+def brdf_map_run(
+    source: Union[str, os.PathLike[str]],
+    incidence: Direction = ...,
+    size: int = ...,
+    method: str = ...,
+    **options: Any,
+) -> dict[str, Any]: ...
+def brdf_eval(
+    source: Union[str, os.PathLike[str]],
+    light: Direction,
+    view: Direction,
+    method: Optional[str] = ...,
+    **options: Any,
+) -> dict[str, Any]: ...
 def evaluate(
     source: Source, light: Direction, view: Direction, method: Optional[str] = ..., **options: Any
 ) -> dict[str, Any]: ...

@@ -1,0 +1,162 @@
+//! The benchmarks (`iridis bench …`, `iridis bench gpu`, Python's `python -m iridis.bench NAME`): speed measured
+//! against a peer in the same run (numpy for FFT work, the slower methods for the lookup path, the CPU for the
+//! GPU, grcwa for the rigorous solver) and accuracy against the ground truth. Nothing here is a test: tests
+//! never depend on wall-clock time.
+//!
+//! Each harness is one function returning a [`Bench`]: the text a person reads and the JSON a script reads,
+//! made from the same numbers. Progress goes to the caller's [`Report`](crate::Report); files (the saved
+//! frames, the convergence plot) through the run's output set ([`crate::output`]).
+
+pub mod diffraction;
+pub mod gpu;
+pub mod render;
+
+use std::time::Duration;
+
+use iridis_color::Xyz;
+use iridis_thinfilm::accuracy::delta_e_displayed;
+use serde_json::{json, Value};
+
+pub use crate::grating_bench::{bench_grating, GratingBenchOptions};
+
+/// A benchmark's result: the human report (lines, no trailing newline) and the same numbers as JSON.
+#[derive(Debug, Clone)]
+pub struct Bench {
+    text: String,
+    json: Value,
+}
+
+impl Bench {
+    pub(crate) fn new(text: Vec<String>, json: Value) -> Self {
+        Self { text: text.join("\n"), json }
+    }
+
+    /// The report as `iridis bench …` prints it.
+    pub fn text(&self) -> &str {
+        &self.text
+    }
+
+    /// The report as `iridis bench … --json` prints it.
+    pub fn to_json(&self) -> Value {
+        self.json.clone()
+    }
+}
+
+/// The rigorous solver against grcwa (`iridis bench grating`): [`bench_grating`]'s JSON and its text.
+pub fn grating(o: &GratingBenchOptions, report: &dyn crate::Report) -> anyhow::Result<Bench> {
+    let v = bench_grating(o, report)?;
+    Ok(Bench { text: crate::grating_bench::text(&v), json: v })
+}
+
+/// The benches by the names `iridis bench NAME` and `python -m iridis.bench NAME` give them.
+pub const NAMES: &[&str] = &["diffraction", "diffraction-accuracy", "diffraction-methods", "gpu", "render", "grating"];
+
+/// Displayed CIEDE2000 between matching colours (after one exposure, clipped to the sRGB cube as a display shows
+/// them; `iridis_thinfilm::accuracy::delta_e_displayed`): the one ΔE statistics of every bench.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DeltaE {
+    pub mean: f64,
+    /// 95th percentile (nearest rank below).
+    pub p95: f64,
+    /// 99th percentile (nearest rank below).
+    pub p99: f64,
+    pub max: f64,
+    /// How many colours were compared.
+    pub count: usize,
+}
+
+impl std::fmt::Display for DeltaE {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "ΔE00 mean {:.4}, p99 {:.4}, max {:.4} ({} colours)", self.mean, self.p99, self.max, self.count)
+    }
+}
+
+/// [`DeltaE`] between `a` and `b` (same length) at `exposure` RU; zeros for no colours.
+pub fn delta_e_stats(a: &[Xyz], b: &[Xyz], exposure: f64) -> DeltaE {
+    use rayon::prelude::*;
+    let mut d: Vec<f64> = a.par_iter().zip(b).map(|(p, q)| delta_e_displayed(*p, *q, exposure)).collect();
+    if d.is_empty() {
+        return DeltaE { mean: 0.0, p95: 0.0, p99: 0.0, max: 0.0, count: 0 };
+    }
+    d.sort_by(f64::total_cmp);
+    let n = d.len();
+    let rank = |q: f64| d[((n as f64 * q) as usize).min(n - 1)];
+    DeltaE { mean: d.iter().sum::<f64>() / n as f64, p95: rank(0.95), p99: rank(0.99), max: d[n - 1], count: n }
+}
+
+/// The pixels of a `size²` BRDF map that are view directions (inside the unit disk).
+pub fn disk_pixels(size: usize) -> Vec<usize> {
+    (0..size * size).filter(|&i| iridis_diffraction::map::view_direction(i % size, i / size, size).is_some()).collect()
+}
+
+/// The view direction of pixel `i` of a `size²` map (the normal outside the disk).
+pub(crate) fn view_of(i: usize, size: usize) -> [f64; 3] {
+    iridis_diffraction::map::view_direction(i % size, i / size, size).unwrap_or([0.0, 0.0, 1.0])
+}
+
+/// Up to `n` indices spread over `0..total`.
+pub fn sample(total: usize, n: usize) -> Vec<usize> {
+    let step = total.div_ceil(n).max(1);
+    (0..total).step_by(step).collect()
+}
+
+/// min, median, p99 (nearest rank) and mean of frame times, in ms.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FrameStats {
+    pub min: f64,
+    pub median: f64,
+    pub p99: f64,
+    pub mean: f64,
+}
+
+impl FrameStats {
+    pub fn of(times: &[Duration]) -> Self {
+        let mut ms: Vec<f64> = times.iter().map(|d| d.as_secs_f64() * 1e3).collect();
+        ms.sort_by(f64::total_cmp);
+        let rank = |q: f64| ms[((q * ms.len() as f64).ceil() as usize).clamp(1, ms.len()) - 1];
+        Self { min: ms[0], median: rank(0.5), p99: rank(0.99), mean: ms.iter().sum::<f64>() / ms.len() as f64 }
+    }
+
+    pub(crate) fn to_json(self) -> Value {
+        json!({"min": self.min, "median": self.median, "p99": self.p99, "mean": self.mean})
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn delta_e_statistics_rank_and_clip() {
+        // Identical colours differ by nothing; colours both far above white are both shown white.
+        let w = iridis_color::Xyz::from_linear_srgb([1.0, 1.0, 1.0]);
+        let s = delta_e_stats(&[w.scale(3.0)], &[w.scale(5.0)], 1.0);
+        assert!(s.max < 1e-9, "{s:?}");
+        // 100 pairs: 99 equal, one black against white (ΔE00 = 100 between L* 0 and 100).
+        let mut a = vec![w.scale(0.5); 100];
+        let b = a.clone();
+        a[7] = iridis_color::Xyz::from_linear_srgb([0.0, 0.0, 0.0]);
+        let mut b2 = b;
+        b2[7] = w;
+        let s = delta_e_stats(&a, &b2, 1.0);
+        assert!((s.max - 100.0).abs() < 0.01, "{s:?}");
+        assert!((s.mean - s.max / 100.0).abs() < 1e-12);
+        assert_eq!((s.p95, s.p99), (0.0, s.max));
+    }
+
+    #[test]
+    fn frame_statistics_nearest_rank() {
+        let t: Vec<Duration> = (1..=200).map(Duration::from_millis).collect();
+        let s = FrameStats::of(&t);
+        assert_eq!((s.min, s.median, s.p99), (1.0, 100.0, 198.0));
+        assert!((s.mean - 100.5).abs() < 1e-9);
+    }
+
+    #[test]
+    fn samples_spread_and_disk() {
+        assert_eq!(sample(10, 3), vec![0, 4, 8]);
+        // The disk of a map covers about π/4 of it.
+        let n = disk_pixels(64).len() as f64 / (64.0 * 64.0);
+        assert!((n - std::f64::consts::FRAC_PI_4).abs() < 0.02, "{n}");
+    }
+}

@@ -1,0 +1,174 @@
+//! `iridis brdf eval` (and Python's `iridis.diffraction.brdf_eval`): one method's BRDF for one pair of
+//! directions with everything behind it — f_r(λ) in sr⁻¹ per polarisation, the relative ρ(λ), XYZ, the Fresnel
+//! source and window, optionally how an animal sees it — as text and JSON.
+
+use std::path::Path;
+
+use anyhow::Result;
+use iridis_diffraction::geometry::{direction, FresnelConvention};
+use iridis_diffraction::table::TableParams;
+use serde_json::{json, Value};
+
+use crate::brdf::{default_method, eval_point, PointEval};
+use crate::report::Report;
+use crate::{ModelOptions, SurfaceOptions};
+
+/// What `iridis brdf eval` is asked for.
+#[derive(Debug, Clone)]
+pub struct EvalRequest {
+    /// A SURFACE argument or a TABLE file.
+    pub input: String,
+    /// The method; `None`: reference for a SURFACE, lookup for a TABLE.
+    pub method: Option<String>,
+    pub model: ModelOptions,
+    pub surface: SurfaceOptions,
+    /// The Fresnel source, its convention and the shadowing term.
+    pub fresnel: String,
+    pub convention: FresnelConvention,
+    pub shadowing: bool,
+    /// u-v grid of a table the lookup method builds from a SURFACE.
+    pub params: TableParams,
+    /// Light and view directions (θ, φ) in radians.
+    pub light: (f64, f64),
+    pub view: (f64, f64),
+    /// Also as an animal sees this direction (`iridis vision`'s visual systems).
+    pub visual: Option<String>,
+    /// Print the relative ρ(λ) instead of f_r in sr⁻¹.
+    pub relative: bool,
+}
+
+/// The answer of `brdf eval`, with the request it answers.
+#[derive(Debug)]
+pub struct EvalReport {
+    pub request: EvalRequest,
+    pub point: PointEval,
+    /// `R₀` of the Fresnel source (what ρ divides by).
+    pub r0: f64,
+    pub vision: Option<iridis_vision::Analysis>,
+}
+
+/// The method the request runs.
+pub fn method_of(r: &EvalRequest) -> String {
+    r.method.clone().unwrap_or_else(|| default_method(&r.input).to_string())
+}
+
+/// Evaluates the BRDF for the request; `spectra` (a CSV path, declared first) receives the spectra.
+pub fn brdf_eval(r: &EvalRequest, spectra: Option<&Path>, report: &dyn Report) -> Result<EvalReport> {
+    crate::output::declare_opt("--spectra", spectra, &["csv"])?;
+    let (wi, wr) = (direction(r.light.0, r.light.1), direction(r.view.0, r.view.1));
+    let shading = crate::fresnel::shading(&r.fresnel, r.convention, r.shadowing)?;
+    let method = method_of(r);
+    let p = eval_point(&r.input, Some(&method), &r.model, shading, r.params, &r.surface, wi, wr, report)?;
+    let r0 = crate::fresnel::shading(&r.fresnel, r.convention, r.shadowing)?.fresnel.normal_reflectance();
+    if let Some(path) = spectra {
+        crate::output::write_bytes(path, p.spectra_csv()?.as_bytes())?;
+    }
+    let vision = match &r.visual {
+        Some(v) => Some(p.vision(&iridis_vision::Spec { visual: Some(v.clone()), ..Default::default() })?),
+        None => None,
+    };
+    for n in vision.iter().flat_map(|v| &v.notes) {
+        report.note(n);
+    }
+    Ok(EvalReport { request: r.clone(), point: p, r0, vision })
+}
+
+/// Degrees, rounded to 1e-9 (so that 30deg prints as 30).
+fn deg(r: f64) -> f64 {
+    (r.to_degrees() * 1e9).round() / 1e9
+}
+
+impl EvalReport {
+    /// `brdf eval --json`.
+    pub fn to_json(&self) -> Result<Value> {
+        let (r, p, q) = (&self.request, &self.point, &self.point.query);
+        let ((tl, pl), (tv, pv)) = (r.light, r.view);
+        Ok(json!({
+            "input": r.input,
+            "method": p.method,
+            "light": { "theta_deg": deg(tl), "phi_deg": deg(pl), "direction": direction(tl, pl) },
+            "view": { "theta_deg": deg(tv), "phi_deg": deg(pv), "direction": direction(tv, pv) },
+            "fresnel": if p.rigorous.is_some() { Value::Null } else { json!(r.fresnel) },
+            "fresnel_convention": r.convention.name(),
+            "fresnel_r0": self.r0,
+            "shadowing": r.shadowing,
+            "coherence_nm": p.coherence_nm,
+            "window_effective_area_um2": p.effective_area_nm2.map(|a| a / 1e6),
+            "illuminant": r.model.illuminant.as_deref().unwrap_or("d65"),
+            "observer": r.model.observer.as_deref().unwrap_or("1931"),
+            "wavelength_nm": q.wavelengths_nm,
+            "brdf_per_sr": q.brdf,
+            "reflectance": q.reflectance,
+            "xyz": [q.xyz.x, q.xyz.y, q.xyz.z],
+            "vision": self.vision.as_ref().map(serde_json::to_value).transpose()?,
+            "rigorous": p.rigorous.as_ref().map(|r| r.to_json()),
+            "scalar_error": p.scalar_error.as_ref().map(|e| e.to_json()),
+        }))
+    }
+
+    /// `brdf eval`'s text: the inputs, the spectra table and XYZ.
+    pub fn text(&self) -> String {
+        let (r, p, q) = (&self.request, &self.point, &self.point.query);
+        let ((tl, pl), (tv, pv)) = (r.light, r.view);
+        let area_um2 = p.effective_area_nm2.map(|a| a / 1e6);
+        let coherence = p.coherence_nm.map_or("–".into(), |c| format!("{:.3} µm", c / 1000.0));
+        let area = area_um2.map_or("–".into(), |x| format!("{x:.4} µm²"));
+        let mut t = vec![format!(
+            "{} · {} · light θ {}° φ {}° · view θ {}° φ {}°",
+            r.input,
+            p.method,
+            deg(tl),
+            deg(pl),
+            deg(tv),
+            deg(pv)
+        )];
+        t.push(match &p.rigorous {
+            Some(g) => format!("{}; coherence {coherence} (window area A_eff {area})", g.sentence()),
+            None => format!(
+                "Fresnel {} (R₀ = {:.4}), {}, coherence {coherence} (window area A_eff {area})",
+                r.fresnel,
+                self.r0,
+                if r.shadowing { "Cook-Torrance shadowing" } else { "no shadowing" },
+            ),
+        });
+        if let Some(e) = &p.scalar_error {
+            t.push(format!("scalar model: {}", e.sentence()));
+        }
+        match (&q.reflectance, &q.brdf, r.relative) {
+            (Some(_), Some(b), false) => {
+                t.push("    λ (nm)   f_r s (sr⁻¹)   f_r p (sr⁻¹)   f_r unpol. (sr⁻¹)".into());
+                for (k, l) in q.wavelengths_nm.iter().enumerate() {
+                    t.push(format!("{l:10.1}  {:13.4e}  {:13.4e}  {:18.4e}", b.s[k], b.p[k], b.unpolarized[k]));
+                }
+            }
+            (Some(rho), b, _) => {
+                if b.is_none() && !r.relative {
+                    t.push(format!(
+                        "f_r: not available for the {} method{} — the relative reflectance instead:",
+                        p.method,
+                        if r.convention.name() == "paper" { " under the paper's R² convention" } else { "" }
+                    ));
+                }
+                t.push("    λ (nm)        ρ(λ) (relative: a flat mirror's peak is 1)".into());
+                for (l, x) in q.wavelengths_nm.iter().zip(rho) {
+                    t.push(format!("{l:10.1}  {x:10.4e}"));
+                }
+            }
+            (None, _, _) => {
+                t.push(format!("f_r(λ), ρ(λ): not available — the {} method integrates over λ in advance", p.method))
+            }
+        }
+        t.push(format!(
+            "XYZ {:.6e} {:.6e} {:.6e}  (of ρ; a normal-incidence mirror: Y = 1)",
+            q.xyz.x, q.xyz.y, q.xyz.z
+        ));
+        if let Some(v) = &self.vision {
+            let s = &v.samples[0];
+            let f = |x: &[f64]| x.iter().map(|c| format!("{c:.4}")).collect::<Vec<_>>().join("  ");
+            t.push(format!("seen by {} under {} (receptors {}):", v.visual.name, v.illuminant, v.receptors.join(", ")));
+            t.push(format!("  quantum catches (von Kries)  {}", f(&s.quantum_catches)));
+            t.push(format!("  relative catches             {}", f(&s.relative_catches)));
+        }
+        t.join("\n")
+    }
+}

@@ -1,0 +1,403 @@
+//! Scenes (TOML or glTF) rendered to files: `iridis render` ([`render_file`]), the example scenes embedded so
+//! that the demo and the benchmark run anywhere ([`EXAMPLES`], [`write_examples`]), and the demo's sections of
+//! rendered scenes ([`figures_section`], [`demo_section`]).
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use anyhow::{bail, Context, Result};
+use iridis_gpu::scene::SceneFilm;
+use iridis_gpu::FilmPath;
+use iridis_render::gltf_io::GltfOptions;
+use iridis_render::{Image, Scene};
+
+use crate::gallery::Gallery;
+use crate::report::{with_progress, Report};
+
+/// The demo's sections report through the gallery's log only (a [`Gallery`] carries no [`Report`]).
+use crate::report::Quiet;
+
+/// Parses an image size `WxH` (`1024x768`, `1024×768`), 1 to 16384 pixels a side.
+pub fn parse_size(s: &str) -> Result<(u32, u32)> {
+    let (w, h) =
+        s.split_once(['x', 'X', '×']).with_context(|| format!("--size '{s}': write WIDTHxHEIGHT, e.g. 1024x768"))?;
+    let p = |v: &str| v.trim().parse::<u32>().ok().filter(|n| (1..=16384).contains(n));
+    match (p(w), p(h)) {
+        (Some(w), Some(h)) => Ok((w, h)),
+        _ => bail!("--size '{s}': width and height must be whole numbers from 1 to 16384"),
+    }
+}
+
+/// Loads a scene (a glTF file's camera and lights chosen by `gltf`); its notes and warnings go to `report`.
+pub fn load(path: &Path, gltf: &GltfOptions, report: &dyn Report) -> Result<Scene> {
+    let scene = iridis_render::load_scene_with(path, gltf).map_err(anyhow::Error::new)?;
+    for n in &scene.notes {
+        report.note(n);
+    }
+    for w in &scene.warnings {
+        report.warn(w);
+    }
+    Ok(scene)
+}
+
+/// Renders on the CPU (all cores) with progress over rows; returns the image and the seconds it took.
+pub fn render_cpu(scene: &Scene, w: u32, h: u32, spp: u32, report: &dyn Report) -> (Image, f64) {
+    let t = Instant::now();
+    let img = with_progress(report, h as u64, "render", |p| iridis_render::render(scene, w, h, spp, p));
+    (img, t.elapsed().as_secs_f64())
+}
+
+/// How `--spectral-samples N` shades films on the GPU: colour tables without it, else the direct evaluation at
+/// N wavelength samples over 380–780 nm.
+pub fn scene_film(spectral_samples: Option<usize>) -> Result<SceneFilm> {
+    use iridis_thinfilm::spectral::{sampled_weights, FULL_BAND_NM};
+    Ok(match spectral_samples {
+        None => SceneFilm::default(),
+        Some(n) => {
+            sampled_weights(n, FULL_BAND_NM).with_context(|| format!("--spectral-samples {n}"))?;
+            SceneFilm { path: FilmPath::Direct, spectral_samples: n }
+        }
+    })
+}
+
+/// What `iridis render` is asked for.
+#[derive(Debug, Clone, Default)]
+pub struct RenderRequest {
+    /// The scene: TOML or glTF 2.0.
+    pub scene: PathBuf,
+    /// The image: .png (tone-mapped) or .exr (linear float); `None` with `export_mesh` only.
+    pub output: Option<PathBuf>,
+    /// Image size `WxH` (default: the scene's).
+    pub size: Option<String>,
+    /// Samples per pixel (default: the scene's).
+    pub spp: Option<u32>,
+    /// Exposure in RU (default: the scene's).
+    pub exposure: Option<f64>,
+    /// Also the linear image as OpenEXR.
+    pub exr: Option<PathBuf>,
+    /// Render on the GPU.
+    pub gpu: bool,
+    /// Also the scene's triangle meshes as binary glTF.
+    pub export_mesh: Option<PathBuf>,
+    /// With `gpu`: films evaluated directly at N wavelengths.
+    pub spectral_samples: Option<usize>,
+    /// glTF: the camera and the lights.
+    pub gltf: GltfOptions,
+}
+
+/// A render written to its files.
+#[derive(Debug)]
+pub struct Rendered {
+    /// The image (linear sRGB, before exposure); `None` when only the meshes were exported.
+    pub image: Option<Image>,
+    /// What was written, a line each (`wrote …`).
+    pub lines: Vec<String>,
+}
+
+/// `iridis render`: checks every input before the (possibly long) render, then exports the meshes and renders
+/// the image on the CPU or the GPU into the run's output set; nothing is written unless all succeeds.
+pub fn render_file(a: &RenderRequest, report: &dyn Report) -> Result<Rendered> {
+    let fmt = crate::output::declare_opt("-o", a.output.as_deref(), &["png", "exr"])?;
+    crate::output::declare_opt("--exr", a.exr.as_deref(), &["exr"])?;
+    crate::output::declare_opt("--export-mesh", a.export_mesh.as_deref(), &["glb"])?;
+    let start = Instant::now();
+    let size = a.size.as_deref().map(parse_size).transpose()?;
+    if let Some(s) = a.spp {
+        if !(1..=4096).contains(&s) {
+            bail!("--spp {s}: use 1 to 4096 samples per pixel");
+        }
+    }
+    if let Some(x) = a.exposure {
+        if !(x.is_finite() && x > 0.0) {
+            bail!("--exposure {x}: must be a positive number of RU");
+        }
+    }
+    if a.spectral_samples.is_some() && !a.gpu {
+        bail!("--spectral-samples sets the GPU's direct film evaluation; add --gpu (the CPU evaluates films at 81 samples)");
+    }
+    let film = scene_film(a.spectral_samples)?;
+    let scene = load(&a.scene, &a.gltf, report)?;
+    let mut lines = Vec::new();
+    if let Some(path) = &a.export_mesh {
+        let (glb, notes) = iridis_render::gltf_export::scene_glb(&scene).map_err(anyhow::Error::new)?;
+        for n in notes {
+            report.note(&format!("{}: {n}", path.display()));
+        }
+        crate::output::write_bytes(path, &glb)?;
+        let tris: usize = scene.meshes.iter().map(|m| m.triangles.len()).sum();
+        lines.push(format!(
+            "wrote {} ({} meshes, {tris} triangles, {} materials, camera and lights)",
+            path.display(),
+            scene.meshes.len(),
+            scene.materials.len()
+        ));
+    }
+    let (Some(output), Some(fmt)) = (&a.output, fmt) else { return Ok(Rendered { image: None, lines }) };
+    let (w, h) = size.unwrap_or((scene.output.width, scene.output.height));
+    let spp = a.spp.unwrap_or(scene.output.spp);
+    let exposure = a.exposure.unwrap_or(scene.output.exposure);
+    let (img, secs, device) = if a.gpu {
+        let r = crate::gpu::render_scene(&scene, w, h, spp, film, report)?;
+        (r.image, r.seconds, format!("the GPU {}", r.adapter))
+    } else {
+        let (img, secs) = render_cpu(&scene, w, h, spp, report);
+        (img, secs, format!("{} threads", rayon::current_num_threads()))
+    };
+    let bytes = match fmt.as_str() {
+        "exr" => img.encode_exr(exposure)?,
+        _ => img.encode_png(exposure, scene.output.encoding)?,
+    };
+    crate::output::write_bytes(output, &bytes)?;
+    if let Some(e) = &a.exr {
+        crate::output::write_bytes(e, &img.encode_exr(exposure)?)?;
+    }
+    lines.push(format!(
+        "wrote {} ({w}×{h}, {spp} spp, {:.2} s in all, of which the render {secs:.2} s on {device})",
+        output.display(),
+        start.elapsed().as_secs_f64()
+    ));
+    Ok(Rendered { image: Some(img), lines })
+}
+
+/// The example scenes, embedded so that the demo and the benchmark run anywhere.
+pub const EXAMPLES: &[(&str, &str)] = &[
+    ("fig1_elaphe_section.toml", include_str!("../../../examples/fig1_elaphe_section.toml")),
+    ("fig1_elaphe_section_light_b.toml", include_str!("../../../examples/fig1_elaphe_section_light_b.toml")),
+    ("fig1_elaphe_section_bare.toml", include_str!("../../../examples/fig1_elaphe_section_bare.toml")),
+    ("fig1_elaphe_section_bare_light_b.toml", include_str!("../../../examples/fig1_elaphe_section_bare_light_b.toml")),
+    ("fig18_xenopeltis_a.toml", include_str!("../../../examples/fig18_xenopeltis_a.toml")),
+    ("fig18_xenopeltis_b.toml", include_str!("../../../examples/fig18_xenopeltis_b.toml")),
+    ("fig18_xenopeltis_c.toml", include_str!("../../../examples/fig18_xenopeltis_c.toml")),
+    ("snake_studio.toml", include_str!("../../../examples/snake_studio.toml")),
+    ("laser_screen.toml", include_str!("../../../examples/laser_screen.toml")),
+    ("snake_elaphe.toml", include_str!("../../../examples/snake_elaphe.toml")),
+    ("snake_elaphe_backlit.toml", include_str!("../../../examples/snake_elaphe_backlit.toml")),
+    ("snake_xenopeltis.toml", include_str!("../../../examples/snake_xenopeltis.toml")),
+    ("snake_xenopeltis_backlit.toml", include_str!("../../../examples/snake_xenopeltis_backlit.toml")),
+    ("soap_bubble.toml", include_str!("../../../examples/soap_bubble.toml")),
+    ("oil_spill.toml", include_str!("../../../examples/oil_spill.toml")),
+    ("gold_sphere.toml", include_str!("../../../examples/gold_sphere.toml")),
+    ("gltf_iridescence.toml", include_str!("../../../examples/gltf_iridescence.toml")),
+    ("rough_film.toml", include_str!("../../../examples/rough_film.toml")),
+];
+/// Files the example scenes refer to.
+pub const EXAMPLE_FILES: &[(&str, &[u8])] = &[
+    ("iridescent_spheres.gltf", include_bytes!("../../../examples/iridescent_spheres.gltf")),
+    ("elaphe_skin.png", include_bytes!("../../../examples/elaphe_skin.png")),
+    ("xenopeltis_skin.png", include_bytes!("../../../examples/xenopeltis_skin.png")),
+    ("studio.hdr", include_bytes!("../../../examples/studio.hdr")),
+    ("unit_box.obj", include_bytes!("../../../examples/unit_box.obj")),
+];
+
+/// Writes the embedded examples into `dir` and returns their paths.
+pub fn write_examples(dir: &Path) -> Result<Vec<PathBuf>> {
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    for (name, bytes) in EXAMPLE_FILES {
+        crate::output::write_now(&dir.join(name), bytes)?;
+    }
+    let mut out = Vec::new();
+    for (name, text) in EXAMPLES {
+        let p = dir.join(name);
+        crate::output::write_now(&p, text.as_bytes())?;
+        out.push(p);
+    }
+    Ok(out)
+}
+
+/// The paper's figures as scenes (issue 19), in the gallery's first section: (scene, caption).
+const FIGURES: &[(&str, &str)] = &[
+    (
+        "fig18_xenopeltis_a",
+        "Figure 18(a), first view: a section of a sunbeam snake (Xenopeltis unicolor), 15 rows of smooth scale \
+         plates with the Xenopeltis-like nanostructure along each scale's long axis, 800 RU, no texture, light \
+         overhead",
+    ),
+    (
+        "fig18_xenopeltis_b",
+        "Figure 18(a), second view: along the body from the head's side, light from behind the tail",
+    ),
+    ("fig18_xenopeltis_c", "Figure 18(a), third view: from above the tail end, light low from the head's side"),
+    (
+        "fig1_elaphe_section",
+        "Figure 1, with texture, light A: a corn snake's (Elaphe guttata) skin, 27 rows of keeled scale plates \
+         with the Elaphe-like nanostructure, its colour pattern blended in by Algorithm 4",
+    ),
+    ("fig1_elaphe_section_light_b", "Figure 1, with texture, light B (above, from the head's side)"),
+    ("fig1_elaphe_section_bare", "Figure 1, without texture (the diffraction colour alone), light A"),
+    ("fig1_elaphe_section_bare_light_b", "Figure 1, without texture, light B"),
+    (
+        "snake_studio",
+        "A sunbeam snake in a studio: lit only by a procedural studio HDR (softboxes), which the diffraction \
+         material takes as 64 directional lights",
+    ),
+    (
+        "laser_screen",
+        "The laser experiment of sec. 6.2 in 3-D: a beam meets the Elaphe sample at 45° and its reflection lands \
+         on a screen parallel to the beam",
+    ),
+];
+
+/// The gallery's first section: the paper's figures as scenes at their own size (1024 px wide), each beside
+/// the BRDF map its centre pixel comes from.
+pub fn figures_section(g: &mut Gallery) -> Result<()> {
+    g.section(
+        "Snake skin as in the paper's figures",
+        "Close-ups of snake skin whose scales are individually curved, overlapping plates (iridis-render's \
+         procedural snake: keeled Elaphe scales, smooth Xenopeltis scales; the nanostructure's axis along each \
+         scale's long axis), framed like the paper's Figures 1 and 18, a snake in a studio, and the laser \
+         experiment. Next to each render is the BRDF map it comes from: the lookup table's colour for every view \
+         direction under the light that lights the centre pixel, in that pixel's surface frame (θi, φi), the \
+         circle marking the direction towards the camera — the centre pixel shows the map's colour there. Each \
+         render: `iridis render scenes/NAME.toml -o NAME.png`.",
+    );
+    let dir = g.path("scenes");
+    write_examples(&dir)?;
+    for (name, caption) in FIGURES {
+        let scene = load(&dir.join(format!("{name}.toml")), &Default::default(), &Quiet)?;
+        let (w, h, spp) = (scene.output.width, scene.output.height, scene.output.spp);
+        let (img, secs) = render_cpu(&scene, w, h, spp, &Quiet);
+        let file = format!("render_{name}.png");
+        crate::output::write_bytes(&g.path(&file), &img.encode_png(scene.output.exposure, scene.output.encoding)?)?;
+        g.image(&file, &format!("{name}: {caption}. {w}×{h}, {spp} spp, {secs:.1} s on the CPU."));
+        if let Some((map, title)) = figure_map(&scene) {
+            let file = format!("brdf_{name}.png");
+            crate::output::write_png_rgb8(&g.path(&file), map.width, map.height, &map.data)?;
+            g.image(&file, &title);
+        }
+    }
+    Ok(())
+}
+
+/// The BRDF map a figure's centre pixel comes from, drawn with the view direction marked: for a laser, the
+/// spot's reflection profile (what the screen shows); otherwise the diffraction material nearest the image's
+/// centre under the brightest light there.
+fn figure_map(scene: &Scene) -> Option<(iridis_plot::RgbImage, String)> {
+    use iridis_color::{ToneMap, Xyz};
+    use iridis_plot::{ImagePlot, RgbImage, Series};
+    use iridis_render::light::Light;
+    use iridis_render::material::Material;
+    let size = 320usize;
+    let plot = |xyz: Vec<Xyz>, exposure: f64, title: String, marker: Option<[f64; 3]>| {
+        let tone = ToneMap { exposure_ru: exposure, encoding: iridis_color::Encoding::Srgb };
+        let pixels = RgbImage {
+            width: size as u32,
+            height: size as u32,
+            data: xyz.iter().flat_map(|&p| tone.to_rgb8(p)).collect(),
+        };
+        let overlays = marker
+            .map(|v| {
+                let (xs, ys): (Vec<f64>, Vec<f64>) = (0..=32)
+                    .map(|k| {
+                        let a = std::f64::consts::TAU * k as f64 / 32.0;
+                        (v[0] + 0.05 * a.cos(), v[1] + 0.05 * a.sin())
+                    })
+                    .unzip();
+                let mut s = Series::new("view", &xs, &ys);
+                s.color = Some([255, 255, 255]);
+                vec![s]
+            })
+            .unwrap_or_default();
+        ImagePlot {
+            title,
+            x_label: "x = sin θr cos φr".into(),
+            y_label: "y = sin θr sin φr".into(),
+            x_range: (-1.0, 1.0),
+            y_range: (-1.0, 1.0),
+            pixels: &pixels,
+            overlays,
+            colorbar: None,
+            size: (560, 600),
+        }
+        .render()
+        .ok()
+    };
+    let angles = |v: [f64; 3]| (v[2].clamp(-1.0, 1.0).acos().to_degrees(), v[1].atan2(v[0]).to_degrees());
+    if let Some(Light::Laser(spot)) = scene.lights.iter().find(|l| matches!(l, Light::Laser(_))) {
+        let iridis_render::texture::Texture::Image { width, data, .. } = &spot.profile else { return None };
+        // Resampled to the map's size (nearest texel).
+        let xyz = (0..size * size)
+            .map(|k| {
+                let (c, r) = ((k % size) * width / size, (k / size) * width / size);
+                let p = &data[(r * width + c) * 3..(r * width + c) * 3 + 3];
+                Xyz::from_linear_srgb([p[0] as f64, p[1] as f64, p[2] as f64])
+            })
+            .collect();
+        let (ti, _) = angles([0.0, 0.0, spot.cos_in]);
+        let title = format!("the laser spot's reflection: θi = {ti:.0}°, 1500 RU");
+        let m = plot(xyz, 1500.0, title.clone(), None)?;
+        return Some((m, format!("What the screen shows: the sample's BRDF map at the beam's incidence ({title})")));
+    }
+    let aspect = scene.output.width as f64 / scene.output.height as f64;
+    // The diffraction pixel nearest the image's centre that a light reaches, on a 41 × 41 grid.
+    let mut grid: Vec<(f64, f64)> =
+        (0..41 * 41).map(|k| ((k % 41) as f64 / 20.0 - 1.0, (k / 41) as f64 / 20.0 - 1.0)).collect();
+    grid.sort_by(|a, b| (a.0 * a.0 + a.1 * a.1).total_cmp(&(b.0 * b.0 + b.1 * b.1)));
+    let view = grid.into_iter().find_map(|(x, y)| scene.local_view(x, y, aspect).filter(|v| !v.lights.is_empty()))?;
+    let Material::Diffraction(df) = &scene.materials[view.material] else { return None };
+    let lum = |e: [f64; 3]| 0.2126 * e[0] + 0.7152 * e[1] + 0.0722 * e[2];
+    let (wi, e) = view.lights.iter().copied().max_by(|a, b| lum(a.1).total_cmp(&lum(b.1)))?;
+    let xyz = iridis_diffraction::map::brdf_map(df.evaluator.as_ref(), wi, size, &|_| {});
+    let (ti, pi) = angles(wi);
+    let exposure = df.scale_ru * lum(e);
+    let title = format!("BRDF map: θi = {ti:.0}°, φi = {pi:.0}°, {exposure:.0} RU");
+    let m = plot(xyz, exposure, title.clone(), Some(view.view))?;
+    Some((
+        m,
+        format!(
+            "The BRDF map ({}) that the centre pixel comes from: {title}; circle: towards the camera",
+            df.description
+        ),
+    ))
+}
+
+/// The demo's rendering section: every other example scene at a modest size.
+pub fn demo_section(g: &mut Gallery) -> Result<()> {
+    g.section(
+        "Rendered scenes",
+        "The other example scenes of examples/ rendered on the CPU (iridis-render): whole snakes whose scale \
+         plates carry the Elaphe-like and Xenopeltis-like nanostructures (lookup tables of builtin:elaphe / \
+         builtin:xenopeltis, nanostructure x axis along each scale, the thesis' texture blending) under two light \
+         directions, a soap bubble draining (thin at the top, thick at the bottom), an oil film on wet asphalt, a \
+         gold sphere, and a glTF file with KHR_materials_iridescence, and a thin film on a smooth and on a rough \
+         substrate (the LSRS model: a dimmer mirror image and a coloured glossy lobe). The scene files are \
+         written next to the images: `iridis render scenes/NAME.toml -o NAME.png --size 1024x768`.",
+    );
+    let scenes = write_examples(&g.path("scenes"))?;
+    for p in scenes {
+        let name = p.file_stem().and_then(|n| n.to_str()).unwrap_or("scene").to_string();
+        if FIGURES.iter().any(|(f, _)| *f == name) {
+            continue;
+        }
+        let scene = load(&p, &Default::default(), &Quiet)?;
+        let (w, h) = (320, (320.0 * scene.output.height as f64 / scene.output.width as f64).round() as u32);
+        let (img, secs) = render_cpu(&scene, w, h, 2, &Quiet);
+        let file = format!("render_{name}.png");
+        crate::output::write_bytes(&g.path(&file), &img.encode_png(scene.output.exposure, scene.output.encoding)?)?;
+        g.image(
+            &file,
+            &format!("{name}: {w}×{h}, 2 spp, {secs:.1} s (iridis render scenes/{name}.toml -o {name}.png)"),
+        );
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sizes_parse() {
+        assert_eq!(parse_size("1024x768").unwrap(), (1024, 768));
+        assert!(parse_size("1024").is_err());
+        assert!(parse_size("0x5").is_err());
+    }
+
+    #[test]
+    fn every_embedded_example_parses() {
+        let dir = tempfile::tempdir().unwrap();
+        for p in write_examples(dir.path()).unwrap() {
+            // Tables are built on first use; cheap after that (cached).
+            load(&p, &Default::default(), &crate::Quiet).unwrap_or_else(|e| panic!("{}: {e:#}", p.display()));
+        }
+    }
+}

@@ -1,0 +1,120 @@
+//! `iridis.diffraction.brdf_map(…, gpu=True | f32=True | table_precision=…)` and
+//! `iridis.diffraction.brdf_eval`: the very library calls of `iridis brdf-map` (`iridis_api::brdf_map::compute`,
+//! on the CPU or the GPU) and `iridis brdf eval --json` (`iridis_api::brdf_eval`), on a SURFACE or TABLE argument.
+
+use iridis_api::brdf_eval::{brdf_eval as eval, EvalRequest};
+use iridis_api::brdf_map::{compute, MapRequest};
+use iridis_color::Encoding;
+use iridis_diffraction::geometry::direction;
+use numpy::ndarray::Array3;
+use numpy::{IntoPyArray, PyArray3};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::args::value_error;
+use crate::facade::{run, Options};
+
+fn above(what: &str, (theta, phi): (f64, f64)) -> PyResult<(f64, f64)> {
+    if !((0.0..std::f64::consts::FRAC_PI_2).contains(&theta) && phi.is_finite()) {
+        return Err(value_error(format!("{what} θ = {theta} rad must be in [0, π/2) (above the surface), φ finite")));
+    }
+    Ok((theta, phi))
+}
+
+fn xyz_array<'py>(py: Python<'py>, xyz: &[iridis_color::Xyz], size: usize) -> Bound<'py, PyArray3<f64>> {
+    let flat: Vec<f64> = xyz.iter().flat_map(|c| c.to_array()).collect();
+    Array3::from_shape_vec((size, size, 3), flat).expect("shape").into_pyarray(py)
+}
+
+/// `iridis brdf-map`'s map as the CLI computes it: a dict with `xyz` (linear XYZ of ρ, (size, size, 3)),
+/// `per_sr` (f_r in sr⁻¹ as XYZ, with `per_sr=True`), `exposure_ru` (the one `auto_exposure` chose), `method`,
+/// `coherence_nm`. Options: the model, surface and shading options of the module, `uv_resolution`,
+/// `uv_power`, `exposure_ru`, `auto_exposure`, `per_sr`, `f32`, `gpu`, `table_precision`, `material`, `unit_cell`.
+#[pyfunction]
+#[pyo3(signature = (source, method, theta_i, phi_i, size, options=None))]
+fn brdf_map_run<'py>(
+    py: Python<'py>,
+    source: String,
+    method: Option<String>,
+    theta_i: f64,
+    phi_i: f64,
+    size: usize,
+    options: Option<Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let (t, p) = above("incidence", (theta_i, phi_i))?;
+    let mut o = Options::new(options);
+    let (fresnel, convention, shadowing) = o.shading_text()?;
+    let method = method.unwrap_or_else(|| "lookup".into());
+    let r = MapRequest {
+        model: o.model()?,
+        surface: o.surface()?,
+        fresnel,
+        convention,
+        shadowing,
+        wi: direction(t, p),
+        size,
+        exposure_ru: o.positive("exposure_ru")?.unwrap_or(1500.0),
+        auto_exposure: o.bool("auto_exposure")?.unwrap_or(false),
+        encoding: Encoding::Srgb,
+        uv_resolution: o.usize("uv_resolution")?,
+        uv_power: o.positive("uv_power")?,
+        f32: o.bool("f32")?.unwrap_or(false),
+        gpu: o.bool("gpu")?.unwrap_or(false),
+        table_precision: o.string("table_precision")?,
+        per_sr: o.bool("per_sr")?.unwrap_or(false),
+        ..MapRequest::new(&source, &method)
+    };
+    o.finish()?;
+    let m = run(py, |rep| compute(&r, None, rep))?;
+    let d = PyDict::new(py);
+    d.set_item("xyz", xyz_array(py, &m.xyz, m.size))?;
+    d.set_item("per_sr", m.per_sr.as_ref().map(|f| xyz_array(py, f, m.size)))?;
+    d.set_item("exposure_ru", m.tone.exposure_ru)?;
+    d.set_item("method", &m.method)?;
+    d.set_item("coherence_nm", m.coherence_nm)?;
+    Ok(d)
+}
+
+/// `iridis brdf eval --json` as a dict (the same keys and numbers). Options as [`brdf_map_run`]'s, plus
+/// `visual` and `relative`.
+#[pyfunction]
+#[pyo3(signature = (source, method, light, view, options=None))]
+fn brdf_eval<'py>(
+    py: Python<'py>,
+    source: String,
+    method: Option<String>,
+    light: (f64, f64),
+    view: (f64, f64),
+    options: Option<Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let (light, view) = (above("light", light)?, above("view", view)?);
+    let mut o = Options::new(options);
+    let (fresnel, convention, shadowing) = o.shading_text()?;
+    let r = EvalRequest {
+        input: source,
+        method,
+        model: o.model()?,
+        surface: o.surface()?,
+        fresnel,
+        convention,
+        shadowing,
+        params: iridis_diffraction::TableParams {
+            uv_resolution: o.usize("uv_resolution")?.unwrap_or(501),
+            uv_power: o.positive("uv_power")?.unwrap_or(5.0),
+        },
+        light,
+        view,
+        visual: o.string("visual")?,
+        relative: false,
+    };
+    o.finish()?;
+    let value = run(py, |rep| eval(&r, None, rep)?.to_json())?;
+    let text = serde_json::to_string(&value).map_err(value_error)?;
+    py.import("json")?.call_method1("loads", (text,))
+}
+
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(brdf_map_run, m)?)?;
+    m.add_function(wrap_pyfunction!(brdf_eval, m)?)?;
+    Ok(())
+}
