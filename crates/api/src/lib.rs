@@ -16,7 +16,9 @@
 //! * [`rough`]: films on rough substrates (LSRS): options, spectra, colours, the chart's bands;
 //! * [`gpu`]: scenes and lookup maps on the GPU;
 //! * [`grating_bench`]: the rigorous solver timed against grcwa (`iridis bench grating`);
-//! * [`unit_cell`]: one period of a scan averaged along its ridges (a 1-D grating profile).
+//! * [`unit_cell`]: one period of a scan averaged along its ridges (a 1-D grating profile);
+//! * [`surface_info`], [`grating_run`], [`lab_run`], [`scan_report`]: the runs of `iridis surface`, `grating`,
+//!   the lab commands and `report` (requests in, results with their text and JSON out, figures written).
 //!
 //! Errors are messages for people (`anyhow`, with the library's typed error as the source and the context a
 //! person needs: "cannot load surface X: …"); notes, warnings and progress go to a [`report::Report`] the front
@@ -31,13 +33,17 @@ pub mod gallery;
 pub mod gpu;
 pub mod grating;
 pub mod grating_bench;
+pub mod grating_run;
 pub mod lab;
+pub mod lab_run;
 pub mod model;
 pub mod output;
 pub mod report;
 pub mod rigorous_brdf;
 pub mod rough;
+pub mod scan_report;
 pub mod surface;
+pub mod surface_info;
 pub mod unit_cell;
 pub mod vision;
 

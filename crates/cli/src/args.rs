@@ -38,6 +38,20 @@ pub fn polar_azimuth(flag: &str, s: &str) -> anyhow::Result<(f64, f64)> {
     Ok((theta, phi))
 }
 
+/// `--fresnel-convention`: physical (R once) or paper (R², the paper's formula as printed).
+pub fn fresnel_convention(s: &str) -> Result<iridis_diffraction::geometry::FresnelConvention, String> {
+    iridis_diffraction::geometry::FresnelConvention::parse(s).map_err(|e| e.to_string())
+}
+
+/// `--unit-cell`: whole (the patch, its extent the period) or auto (the scan's dominant period).
+pub fn unit_cell_auto(s: &str) -> anyhow::Result<bool> {
+    match s.trim() {
+        "auto" => Ok(true),
+        "whole" => Ok(false),
+        other => anyhow::bail!("--unit-cell '{other}': expected whole (the patch) or auto (the dominant period)"),
+    }
+}
+
 /// How to read a SURFACE argument.
 #[derive(Debug, Clone, Default, clap::Args)]
 pub struct SurfaceOpts {
@@ -107,11 +121,7 @@ pub struct RigorousOpts {
 impl RigorousOpts {
     /// Whether `--unit-cell auto` was given.
     pub fn auto(&self) -> anyhow::Result<bool> {
-        match self.unit_cell.trim() {
-            "auto" => Ok(true),
-            "whole" => Ok(false),
-            other => anyhow::bail!("--unit-cell '{other}': expected whole (the patch) or auto (the dominant period)"),
-        }
+        unit_cell_auto(&self.unit_cell)
     }
 
     /// Puts the options into the facade's model options, refusing what the method cannot use: a Fresnel

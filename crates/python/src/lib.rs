@@ -15,6 +15,7 @@ mod facade;
 mod film;
 mod lab;
 mod render;
+mod scan_report;
 mod surface;
 mod thinfilm;
 mod tmm;
@@ -31,6 +32,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     diffraction::register(m)?;
     render::register(m)?;
     lab::register(m)?;
+    scan_report::register(m)?;
     vision::register(m)?;
     Ok(())
 }

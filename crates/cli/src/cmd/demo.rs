@@ -33,10 +33,10 @@ type Section = fn(&mut Gallery) -> Result<()>;
 const SECTIONS: [(&str, Section); 7] = [
     ("snakes", super::render::figures_demo),
     ("color", super::color::demo),
-    ("surface", super::surface::demo),
+    ("surface", iridis_api::surface_info::demo_section),
     ("thinfilm", super::thinfilm::demo),
     ("brdf", super::brdf::demo),
-    ("lab", super::lab::demo),
+    ("lab", iridis_api::lab_run::demo_section),
     ("render", super::render::demo),
 ];
 
