@@ -230,36 +230,36 @@ pub struct CompareRun {
     pub comparison: Comparison,
 }
 
-fn heat_plot(map: &[Option<f64>], size: usize, title: &str, max: f64) -> Result<iridis_plot::RgbImage> {
-    let px = iridis_lab::image::heat(map, size, size, max);
+/// An image over the view directions of a BRDF map (the paper's layout: x = sin θr cos φr, y = sin θr sin φr),
+/// titled, with an optional colour bar, as a figure of `size` pixels.
+pub fn view_plot(
+    pixels: &iridis_plot::RgbImage,
+    title: &str,
+    colorbar: Option<iridis_plot::ColorBar>,
+    size: (u32, u32),
+) -> Result<iridis_plot::RgbImage> {
     Ok(iridis_plot::ImagePlot {
         title: title.into(),
         x_label: "x = sin θr cos φr".into(),
         y_label: "y = sin θr sin φr".into(),
         x_range: (-1.0, 1.0),
         y_range: (-1.0, 1.0),
-        pixels: &px,
+        pixels,
         overlays: Vec::new(),
-        colorbar: Some(iridis_plot::ColorBar { label: "ΔE00".into(), min: 0.0, max, map: iridis_plot::magma }),
-        size: (620, 520),
+        colorbar,
+        size,
     }
     .render()?)
 }
 
+fn heat_plot(map: &[Option<f64>], size: usize, title: &str, max: f64) -> Result<iridis_plot::RgbImage> {
+    let px = iridis_lab::image::heat(map, size, size, max);
+    let bar = iridis_plot::ColorBar { label: "ΔE00".into(), min: 0.0, max, map: iridis_plot::magma };
+    view_plot(&px, title, Some(bar), (620, 520))
+}
+
 fn map_plot(img: &[Option<Xyz>], size: usize, exposure: f64, title: &str) -> Result<iridis_plot::RgbImage> {
-    let px = iridis_lab::image::to_rgb(img, size, size, exposure);
-    Ok(iridis_plot::ImagePlot {
-        title: title.into(),
-        x_label: "x = sin θr cos φr".into(),
-        y_label: "y = sin θr sin φr".into(),
-        x_range: (-1.0, 1.0),
-        y_range: (-1.0, 1.0),
-        pixels: &px,
-        overlays: Vec::new(),
-        colorbar: None,
-        size: (520, 520),
-    }
-    .render()?)
+    view_plot(&iridis_lab::image::to_rgb(img, size, size, exposure), title, None, (520, 520))
 }
 
 /// The comparison of a request (paper sec. 6.3, Table 2), with its maps written when asked.

@@ -187,18 +187,7 @@ fn brdf_map_figure(
     let (t, p) = (wi[2].clamp(-1.0, 1.0).acos().to_degrees(), wi[1].atan2(wi[0]).to_degrees());
     let title = format!("{name} · θi {t:.0}° φi {p:.0}° · {} · D65 · {exposure:.3e} RU", e.name());
     let pixels = iridis_plot::RgbImage { width: size as u32, height: size as u32, data: rgb };
-    let fig = iridis_plot::ImagePlot {
-        title,
-        x_label: "x = sin θr cos φr".into(),
-        y_label: "y = sin θr sin φr".into(),
-        x_range: (-1.0, 1.0),
-        y_range: (-1.0, 1.0),
-        pixels: &pixels,
-        overlays: vec![],
-        colorbar: None,
-        size: (560, 600),
-    }
-    .render()?;
+    let fig = crate::lab_run::view_plot(&pixels, &title, None, (560, 600))?;
     crate::output::write_png_rgb8(plot, fig.width, fig.height, &fig.data)?;
     Ok(warnings)
 }

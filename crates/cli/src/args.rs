@@ -91,6 +91,49 @@ impl SurfaceOpts {
     }
 }
 
+/// How to read SURFACE and the model's parameters, shared by the lab commands.
+#[derive(Debug, Clone, clap::Args)]
+pub struct LabModel {
+    #[command(flatten)]
+    pub surface: SurfaceOpts,
+    /// Coherence length 4σ_s of the window, a property of the light (default 65um, the paper's; a smaller
+    /// patch is taken as one unit cell of a periodic surface; said in the output).
+    #[arg(long, value_parser = positive_length_nm)]
+    pub coherence: Option<f64>,
+    /// Taylor terms: auto (remainder bound 1e-6) or N.
+    #[arg(long, default_value = "auto")]
+    pub terms: String,
+    /// Fresnel factor: schlick[:N] (default schlick:1.5), index:N[+Ki], gold (measured) or a thin-film stack,
+    /// e.g. "stack:air | keratin 300nm | n=1.56" (as brdf-map's --fresnel).
+    #[arg(long, default_value = "schlick:1.5")]
+    pub fresnel: String,
+    /// How the Fresnel reflectance enters: physical (R once, the default) or paper (R², the paper's formula as
+    /// printed, to reproduce its figures; docs/PHYSICS.md).
+    #[arg(long, value_name = "physical|paper", default_value = "physical", value_parser = fresnel_convention)]
+    pub fresnel_convention: iridis_diffraction::geometry::FresnelConvention,
+    /// Leave out the Cook–Torrance shadowing term.
+    #[arg(long)]
+    pub no_shadowing: bool,
+    /// ε of Stam's wavelength selection (paper: 0.01).
+    #[arg(long, default_value_t = 0.01)]
+    pub epsilon: f64,
+}
+
+impl LabModel {
+    /// The facade's lab options.
+    pub fn options(&self) -> iridis_api::lab::LabOptions {
+        iridis_api::lab::LabOptions {
+            surface: self.surface.options(),
+            coherence_nm: self.coherence,
+            terms: self.terms.clone(),
+            fresnel: self.fresnel.clone(),
+            convention: self.fresnel_convention,
+            shadowing: !self.no_shadowing,
+            stam_epsilon: self.epsilon,
+        }
+    }
+}
+
 /// What a SURFACE's own metadata may be overruled by, flattened into every command that reads one.
 #[derive(Debug, Clone, Copy, Default, clap::Args)]
 pub struct UnitFlags {
@@ -153,3 +196,18 @@ impl RigorousOpts {
 
 /// The `--fresnel` of the scalar methods when none is given.
 pub const DEFAULT_FRESNEL: &str = "schlick:1.5";
+
+/// A fraction from 0 up to 1, written as a number (`1e-3`) or a percentage (`0.1%`).
+pub fn fraction(s: &str) -> Result<f64, String> {
+    let t = s.trim();
+    let v = match t.strip_suffix('%') {
+        Some(p) => p.trim().parse::<f64>().map(|v| v / 100.0),
+        None => t.parse::<f64>(),
+    }
+    .map_err(|_| format!("'{s}': expected a fraction (1e-3) or a percentage (0.1%)"))?;
+    if v.is_finite() && (0.0..1.0).contains(&v) {
+        Ok(v)
+    } else {
+        Err(format!("'{s}': the efficiency must be from 0 up to 1 (100 %)"))
+    }
+}

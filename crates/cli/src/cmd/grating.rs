@@ -7,7 +7,7 @@ use iridis_api::grating::{grating, Detector, GratingOptions};
 use iridis_api::grating_run::{compare, grating_text};
 use iridis_diffraction::geometry::direction;
 
-use crate::args::{angle_rad, polar_azimuth, positive_length_nm, unit_cell_auto, SurfaceOpts};
+use crate::args::{angle_rad, fraction, polar_azimuth, positive_length_nm, unit_cell_auto, SurfaceOpts};
 use crate::output::print_json;
 use crate::progress::Cli;
 
@@ -134,19 +134,4 @@ pub fn run(a: GratingArgs) -> Result<()> {
         return print_json(&g.to_json());
     }
     crate::outln!("{}", grating_text(&g, (t, p), a.detector.as_deref(), a.acceptance).trim_end_matches('\n'))
-}
-
-/// A fraction from 0 up to 1, written as a number (`1e-3`) or a percentage (`0.1%`).
-fn fraction(s: &str) -> Result<f64, String> {
-    let t = s.trim();
-    let v = match t.strip_suffix('%') {
-        Some(p) => p.trim().parse::<f64>().map(|v| v / 100.0),
-        None => t.parse::<f64>(),
-    }
-    .map_err(|_| format!("'{s}': expected a fraction (1e-3) or a percentage (0.1%)"))?;
-    if v.is_finite() && (0.0..1.0).contains(&v) {
-        Ok(v)
-    } else {
-        Err(format!("'{s}': the efficiency must be from 0 up to 1 (100 %)"))
-    }
 }

@@ -5,7 +5,6 @@ use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::{Args as ClapArgs, Subcommand};
-use iridis_api::lab::LabOptions;
 use iridis_api::lab_run::{self as run, parse_exposures, parse_list};
 use iridis_api::surface::Source;
 use iridis_diffraction::geometry::FresnelConvention;
@@ -14,52 +13,9 @@ use iridis_lab::bench::BenchSetup;
 use iridis_lab::laser::LaserSetup;
 use iridis_lab::methods::Method;
 
-use crate::args::{angle_rad, fresnel_convention, polar_azimuth, positive_length_nm, SurfaceOpts};
+use crate::args::{angle_rad, polar_azimuth, positive_length_nm, LabModel};
 use crate::output::print_json;
 use crate::progress::Cli;
-
-/// How to read SURFACE and the model's parameters, shared by the lab commands.
-#[derive(Debug, Clone, ClapArgs)]
-pub struct LabModel {
-    #[command(flatten)]
-    pub surface: SurfaceOpts,
-    /// Coherence length 4σ_s of the window, a property of the light (default 65um, the paper's; a smaller
-    /// patch is taken as one unit cell of a periodic surface; said in the output).
-    #[arg(long, value_parser = positive_length_nm)]
-    pub coherence: Option<f64>,
-    /// Taylor terms: auto (remainder bound 1e-6) or N.
-    #[arg(long, default_value = "auto")]
-    pub terms: String,
-    /// Fresnel factor: schlick[:N] (default schlick:1.5), index:N[+Ki], gold (measured) or a thin-film stack,
-    /// e.g. "stack:air | keratin 300nm | n=1.56" (as brdf-map's --fresnel).
-    #[arg(long, default_value = "schlick:1.5")]
-    pub fresnel: String,
-    /// How the Fresnel reflectance enters: physical (R once, the default) or paper (R², the paper's formula as
-    /// printed, to reproduce its figures; docs/PHYSICS.md).
-    #[arg(long, value_name = "physical|paper", default_value = "physical", value_parser = fresnel_convention)]
-    pub fresnel_convention: FresnelConvention,
-    /// Leave out the Cook–Torrance shadowing term.
-    #[arg(long)]
-    pub no_shadowing: bool,
-    /// ε of Stam's wavelength selection (paper: 0.01).
-    #[arg(long, default_value_t = 0.01)]
-    pub epsilon: f64,
-}
-
-impl LabModel {
-    /// The facade's lab options.
-    pub fn options(&self) -> LabOptions {
-        LabOptions {
-            surface: self.surface.options(),
-            coherence_nm: self.coherence,
-            terms: self.terms.clone(),
-            fresnel: self.fresnel.clone(),
-            convention: self.fresnel_convention,
-            shadowing: !self.no_shadowing,
-            stam_epsilon: self.epsilon,
-        }
-    }
-}
 
 /// Prints a run's JSON or its text.
 fn print(json: bool, value: impl FnOnce() -> serde_json::Value, text: impl FnOnce() -> String) -> Result<()> {
