@@ -21,7 +21,9 @@
 //! * [`bench`]: every benchmark (`iridis bench …`, `python -m iridis.bench NAME`) and the one ΔE statistics;
 //! * [`brdf_map`], [`brdf_eval`], [`brdf_vision`]: the `brdf-map`, `brdf eval` and `brdf vision` commands'
 //!   work, text and JSON; [`scene`]: `iridis render` and the example scenes; `view` (feature `viewer`);
-//! * [`unit_cell`]: one period of a scan averaged along its ridges (a 1-D grating profile).
+//! * [`unit_cell`]: one period of a scan averaged along its ridges (a 1-D grating profile);
+//! * [`surface_info`], [`grating_run`], [`lab_run`], [`scan_report`]: the runs of `iridis surface`, `grating`,
+//!   the lab commands and `report` (requests in, results with their text and JSON out, figures written).
 //!
 //! Errors are messages for people (`anyhow`, with the library's typed error as the source and the context a
 //! person needs: "cannot load surface X: …"); notes, warnings and progress go to a [`report::Report`] the front
@@ -44,7 +46,9 @@ pub mod gallery;
 pub mod gpu;
 pub mod grating;
 pub mod grating_bench;
+pub mod grating_run;
 pub mod lab;
+pub mod lab_run;
 pub mod model;
 pub mod output;
 pub mod precompute;
@@ -52,7 +56,9 @@ pub mod report;
 pub mod rigorous_brdf;
 pub mod rough;
 pub mod scene;
+pub mod scan_report;
 pub mod surface;
+pub mod surface_info;
 pub mod unit_cell;
 #[cfg(feature = "viewer")]
 pub mod view;

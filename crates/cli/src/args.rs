@@ -38,6 +38,20 @@ pub fn polar_azimuth(flag: &str, s: &str) -> anyhow::Result<(f64, f64)> {
     Ok((theta, phi))
 }
 
+/// `--fresnel-convention`: physical (R once) or paper (R², the paper's formula as printed).
+pub fn fresnel_convention(s: &str) -> Result<iridis_diffraction::geometry::FresnelConvention, String> {
+    iridis_diffraction::geometry::FresnelConvention::parse(s).map_err(|e| e.to_string())
+}
+
+/// `--unit-cell`: whole (the patch, its extent the period) or auto (the scan's dominant period).
+pub fn unit_cell_auto(s: &str) -> anyhow::Result<bool> {
+    match s.trim() {
+        "auto" => Ok(true),
+        "whole" => Ok(false),
+        other => anyhow::bail!("--unit-cell '{other}': expected whole (the patch) or auto (the dominant period)"),
+    }
+}
+
 /// How to read a SURFACE argument.
 #[derive(Debug, Clone, Default, clap::Args)]
 pub struct SurfaceOpts {
@@ -77,6 +91,49 @@ impl SurfaceOpts {
     }
 }
 
+/// How to read SURFACE and the model's parameters, shared by the lab commands.
+#[derive(Debug, Clone, clap::Args)]
+pub struct LabModel {
+    #[command(flatten)]
+    pub surface: SurfaceOpts,
+    /// Coherence length 4σ_s of the window, a property of the light (default 65um, the paper's; a smaller
+    /// patch is taken as one unit cell of a periodic surface; said in the output).
+    #[arg(long, value_parser = positive_length_nm)]
+    pub coherence: Option<f64>,
+    /// Taylor terms: auto (remainder bound 1e-6) or N.
+    #[arg(long, default_value = "auto")]
+    pub terms: String,
+    /// Fresnel factor: schlick[:N] (default schlick:1.5), index:N[+Ki], gold (measured) or a thin-film stack,
+    /// e.g. "stack:air | keratin 300nm | n=1.56" (as brdf-map's --fresnel).
+    #[arg(long, default_value = "schlick:1.5")]
+    pub fresnel: String,
+    /// How the Fresnel reflectance enters: physical (R once, the default) or paper (R², the paper's formula as
+    /// printed, to reproduce its figures; docs/PHYSICS.md).
+    #[arg(long, value_name = "physical|paper", default_value = "physical", value_parser = fresnel_convention)]
+    pub fresnel_convention: iridis_diffraction::geometry::FresnelConvention,
+    /// Leave out the Cook–Torrance shadowing term.
+    #[arg(long)]
+    pub no_shadowing: bool,
+    /// ε of Stam's wavelength selection (paper: 0.01).
+    #[arg(long, default_value_t = 0.01)]
+    pub epsilon: f64,
+}
+
+impl LabModel {
+    /// The facade's lab options.
+    pub fn options(&self) -> iridis_api::lab::LabOptions {
+        iridis_api::lab::LabOptions {
+            surface: self.surface.options(),
+            coherence_nm: self.coherence,
+            terms: self.terms.clone(),
+            fresnel: self.fresnel.clone(),
+            convention: self.fresnel_convention,
+            shadowing: !self.no_shadowing,
+            stam_epsilon: self.epsilon,
+        }
+    }
+}
+
 /// What a SURFACE's own metadata may be overruled by, flattened into every command that reads one.
 #[derive(Debug, Clone, Copy, Default, clap::Args)]
 pub struct UnitFlags {
@@ -107,11 +164,7 @@ pub struct RigorousOpts {
 impl RigorousOpts {
     /// Whether `--unit-cell auto` was given.
     pub fn auto(&self) -> anyhow::Result<bool> {
-        match self.unit_cell.trim() {
-            "auto" => Ok(true),
-            "whole" => Ok(false),
-            other => anyhow::bail!("--unit-cell '{other}': expected whole (the patch) or auto (the dominant period)"),
-        }
+        unit_cell_auto(&self.unit_cell)
     }
 
     /// Puts the options into the facade's model options, refusing what the method cannot use: a Fresnel
@@ -384,11 +437,6 @@ impl ShadingOpts {
     }
 }
 
-/// Parses `--fresnel-convention` (moved here from cmd/brdf.rs: lab.rs takes it as `crate::args::fresnel_convention`).
-pub fn fresnel_convention(s: &str) -> Result<iridis_diffraction::FresnelConvention, String> {
-    iridis_diffraction::FresnelConvention::parse(s).map_err(|e| e.to_string())
-}
-
 /// Parses `--incidence θ[,φ]` into a light direction, refusing θ ≥ 90°.
 pub fn parse_incidence(s: &str) -> anyhow::Result<[f64; 3]> {
     let (theta, phi) = polar_azimuth("incidence", s)?;
@@ -405,5 +453,18 @@ mod brdf_args_tests {
         assert!(parse_incidence("20deg,0deg,1deg").is_err());
         let d = parse_incidence("0deg").unwrap();
         assert!((d[2] - 1.0).abs() < 1e-15);
+
+/// A fraction from 0 up to 1, written as a number (`1e-3`) or a percentage (`0.1%`).
+pub fn fraction(s: &str) -> Result<f64, String> {
+    let t = s.trim();
+    let v = match t.strip_suffix('%') {
+        Some(p) => p.trim().parse::<f64>().map(|v| v / 100.0),
+        None => t.parse::<f64>(),
+    }
+    .map_err(|_| format!("'{s}': expected a fraction (1e-3) or a percentage (0.1%)"))?;
+    if v.is_finite() && (0.0..1.0).contains(&v) {
+        Ok(v)
+    } else {
+        Err(format!("'{s}': the efficiency must be from 0 up to 1 (100 %)"))
     }
 }

@@ -17,6 +17,11 @@ static INPUTS: std::sync::OnceLock<serde_json::Value> = std::sync::OnceLock::new
 /// each option of the command that ran, under its long name with `_` for `-`, as typed or its default
 /// (`null` when absent and without a default); flags as booleans.
 pub fn set_inputs(cli: &clap::Command, matches: &clap::ArgMatches) {
+    let _ = INPUTS.set(inputs_of(cli, matches));
+}
+
+/// The `"inputs"` object of a command line parsed by `cli` (see [`set_inputs`]).
+pub fn inputs_of(cli: &clap::Command, matches: &clap::ArgMatches) -> serde_json::Value {
     let (mut cmd, mut m) = (cli, matches);
     while let Some((name, sub)) = m.subcommand() {
         match cmd.find_subcommand(name) {
@@ -52,7 +57,7 @@ pub fn set_inputs(cli: &clap::Command, matches: &clap::ArgMatches) {
         };
         inputs.insert(key, value);
     }
-    let _ = INPUTS.set(serde_json::Value::Object(inputs));
+    serde_json::Value::Object(inputs)
 }
 
 /// A command's JSON answer with the `"inputs"` it answers: the command line's options (see [`set_inputs`]),

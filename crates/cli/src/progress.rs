@@ -2,7 +2,6 @@
 //! a pipe, CI) the bar is hidden, so a step that is still running after a second says so in one line, and
 //! again when it ends: every step over ~1 s announces itself either way.
 
-use std::borrow::Cow;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
@@ -29,19 +28,6 @@ impl Bar {
     pub fn set_position(&self, pos: u64) {
         self.pb.set_position(pos);
         self.announce();
-    }
-
-    pub fn inc(&self, delta: u64) {
-        self.pb.inc(delta);
-        self.announce();
-    }
-
-    pub fn set_message(&self, msg: impl Into<Cow<'static, str>>) {
-        let msg = msg.into();
-        if let Ok(mut w) = self.what.lock() {
-            *w = msg.to_string();
-        }
-        self.pb.set_message(msg);
     }
 
     /// Ends the bar; in a log, a step that was announced says how long it took.
@@ -84,16 +70,8 @@ pub fn bar(len: u64, what: &str) -> Bar {
     Bar { pb, what: std::sync::Mutex::new(what.to_string()), start: Instant::now(), announced: AtomicBool::new(false) }
 }
 
-/// Runs a step that reports no progress of its own (loading and generating a height field) under a
-/// spinner with the elapsed time; in a log, a step over a second is reported when it ends.
-pub fn step<T>(what: &str, f: impl FnOnce() -> T) -> T {
-    let s = Spinner::start(what);
-    let out = f();
-    s.finish();
-    out
-}
-
-/// The spinner of [`step`].
+/// A spinner with the elapsed time for a step that reports no progress of its own (loading and generating a
+/// height field); in a log, a step over a second is reported when it ends.
 pub struct Spinner {
     pb: ProgressBar,
     what: String,

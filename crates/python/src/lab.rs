@@ -2,11 +2,11 @@
 //! Table 2), through the facade (`iridis_api::lab`: the functions `iridis testbench` and `iridis compare`
 //! call). Results come back as the CLI's `--json` (the same keys, docs/json.md) plus the arrays behind them.
 
-use iridis_api::lab::{comparison, parse_against, spectral, testbench, workbench_from, LabOptions};
+use iridis_api::lab::{parse_against, LabOptions};
+use iridis_api::lab_run as run;
 use iridis_api::surface::Source;
 use iridis_diffraction::TableParams;
 use iridis_lab::bench::BenchSetup;
-use iridis_lab::image::Pixels;
 use iridis_lab::methods::Method;
 use numpy::ndarray::{Array2, Array3};
 use numpy::{IntoPyArray, PyArray1};
@@ -15,7 +15,8 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::args::value_error;
-use crate::facade::{run, Options};
+use crate::facade::{run as facade_run, Options};
+use crate::scan_report::with_outputs;
 use crate::surface::PyHeightField;
 
 /// A SURFACE argument (str) or an `iridis.surface.Surface`.
@@ -79,10 +80,16 @@ fn _testbench<'py>(
     let mut setup =
         BenchSetup::new(incidence, azimuth.unwrap_or(0.0), order, wavelengths, angles_deg).map_err(value_error)?;
     setup.period_hint_nm = period_nm;
-    let t = run(py, |r| testbench(&source, &lab, method, setup, azimuth.is_none(), max_period_nm, r))?;
-    let mut j = t.result.to_json();
-    j["method"] = serde_json::json!(method.name());
-    j["surface"] = serde_json::json!(source.name());
+    let req = run::TestbenchRequest {
+        method: method.name().to_string(),
+        rigorous: iridis_api::ModelOptions::default(),
+        setup,
+        along_dominant: azimuth.is_none(),
+        max_period_nm,
+        plot: None,
+    };
+    let tb = facade_run(py, |r| run::testbench_run(&source, &lab, &req, r))?;
+    let (j, t) = (tb.to_json(), &tb.bench);
     let m = &t.matrix;
     let matrix = Array2::from_shape_vec((m.wavelengths_nm.len(), m.angles_deg.len()), m.values.clone())
         .map_err(|e| value_error(format!("reflectance matrix: {e}")))?;
@@ -132,17 +139,24 @@ fn _compare<'py>(
     let lab = lab_options(&mut o)?;
     o.finish()?;
     let source = source_of(surface)?;
-    let (json, images) = run(py, |r| {
-        let mut config = lab.config()?;
-        config.spectral = spectral(illuminant, step_nm, r)?;
-        config.table = TableParams { uv_resolution, uv_power };
-        config.table_path = table.map(Into::into);
-        let b = workbench_from(&source, &lab, config, r)?;
-        let pixels = Pixels::brdf_map(theta_i, phi_i, size);
-        let c = comparison(&b, &methods, against, &pixels, &exposures, r)?;
-        let j = c.to_json(source.name(), against, size, iridis_color::units::degrees(theta_i), b.config.coherence_nm);
-        let mut images: Vec<(String, Vec<Option<iridis_color::Xyz>>)> = c.images;
-        images.extend(c.truths.into_iter().map(|(m, img)| (m.name().to_string(), img)));
+    let req = run::CompareRequest {
+        methods,
+        against,
+        exposures,
+        incidence: (theta_i, phi_i),
+        size,
+        illuminant: illuminant.to_string(),
+        dlambda_nm: step_nm,
+        table: TableParams { uv_resolution, uv_power },
+        table_path: table.map(Into::into),
+        gpu: false,
+        maps: None,
+    };
+    let (json, images) = facade_run(py, |r| {
+        let c = run::compare_run(&source, &lab, &req, r)?;
+        let j = c.to_json();
+        let mut images: Vec<(String, Vec<Option<iridis_color::Xyz>>)> = c.comparison.images;
+        images.extend(c.comparison.truths.into_iter().map(|(m, img)| (m.name().to_string(), img)));
         Ok((j.to_string(), images))
     })?;
     let maps = PyDict::new(py);
@@ -154,7 +168,107 @@ fn _compare<'py>(
     Ok((json, maps))
 }
 
+/// A convergence sweep (`iridis sweep`): writes the contact sheet to `output` (and the error plot to `plot`,
+/// default `output`'s name with `_error`) and returns `iridis sweep --json`'s text.
+#[pyfunction]
+#[pyo3(signature = (surface, param, values, output, method="reference", against="model", exposures=vec![1000.0], theta_i=0.0, phi_i=0.0, size=64, step_nm=5.0, uv_resolution=201, uv_power=5.0, plot=None, options=None))]
+fn _sweep<'py>(
+    py: Python<'py>,
+    surface: &Bound<'py, PyAny>,
+    param: &str,
+    values: Vec<f64>,
+    output: std::path::PathBuf,
+    method: &str,
+    against: &str,
+    exposures: Vec<f64>,
+    theta_i: f64,
+    phi_i: f64,
+    size: usize,
+    step_nm: f64,
+    uv_resolution: usize,
+    uv_power: f64,
+    plot: Option<std::path::PathBuf>,
+    options: Option<Bound<'py, PyDict>>,
+) -> PyResult<String> {
+    let req = run::SweepRequest {
+        method: self::method(method)?,
+        param: param.parse().map_err(value_error)?,
+        values,
+        against: against.to_string(),
+        exposures,
+        incidence: (theta_i, phi_i),
+        size,
+        dlambda_nm: step_nm,
+        table: TableParams { uv_resolution, uv_power },
+        gpu: false,
+        output,
+        plot,
+    };
+    let mut o = Options::new(options);
+    let lab = lab_options(&mut o)?;
+    o.finish()?;
+    let source = source_of(surface)?;
+    facade_run(py, |r| with_outputs(|| Ok(run::sweep_run(&source, &lab, &req, r)?.to_json().to_string())))
+}
+
+/// The laser experiment (`iridis experiment laser`): writes the screen image(s) and returns `(json, xyz)` —
+/// `iridis experiment laser --json`'s text and the screen as XYZ of shape (size, size, 3).
+#[pyfunction]
+#[pyo3(signature = (surface, output, method="reference", incidence=std::f64::consts::FRAC_PI_4, azimuth=0.0, aperture_nm=65_000.0, distance_nm=1e8, screen_nm=3e8, size=101, subsamples=3, spectrum=None, coating="gold", exposures=vec![1.0, 1000.0, 7500.0], step_nm=5.0, table=None, save_table=None, options=None))]
+fn _laser<'py>(
+    py: Python<'py>,
+    surface: &Bound<'py, PyAny>,
+    output: std::path::PathBuf,
+    method: &str,
+    incidence: f64,
+    azimuth: f64,
+    aperture_nm: f64,
+    distance_nm: f64,
+    screen_nm: f64,
+    size: usize,
+    subsamples: usize,
+    spectrum: Option<std::path::PathBuf>,
+    coating: &str,
+    exposures: Vec<f64>,
+    step_nm: f64,
+    table: Option<std::path::PathBuf>,
+    save_table: Option<std::path::PathBuf>,
+    options: Option<Bound<'py, PyDict>>,
+) -> PyResult<(String, Bound<'py, numpy::PyArray3<f64>>)> {
+    let req = run::LaserRequest {
+        method: self::method(method)?,
+        setup: iridis_lab::laser::LaserSetup {
+            incidence,
+            azimuth,
+            distance_nm,
+            screen_width_nm: screen_nm,
+            screen_height_nm: screen_nm,
+            width_px: size,
+            height_px: size,
+            subsamples,
+        },
+        aperture_nm,
+        spectrum,
+        coating: coating.to_string(),
+        exposures,
+        dlambda_nm: step_nm,
+        output,
+        table,
+        save_table,
+    };
+    let mut o = Options::new(options);
+    let lab = lab_options(&mut o)?;
+    o.finish()?;
+    let source = source_of(surface)?;
+    let l = facade_run(py, |r| with_outputs(|| run::laser_run(&source, &lab, &req, r)))?;
+    let flat: Vec<f64> = l.image.iter().flat_map(|p| p.map(|x| x.to_array()).unwrap_or([f64::NAN; 3])).collect();
+    let a = Array3::from_shape_vec((size, size, 3), flat).map_err(|e| value_error(format!("screen: {e}")))?;
+    Ok((l.to_json().to_string(), a.into_pyarray(py)))
+}
+
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(_sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(_laser, m)?)?;
     m.add_function(wrap_pyfunction!(_testbench, m)?)?;
     m.add_function(wrap_pyfunction!(_compare, m)?)?;
     Ok(())

@@ -18,6 +18,7 @@ mod film;
 mod film_commands;
 mod lab;
 mod render;
+mod scan_report;
 mod surface;
 mod thinfilm;
 mod tmm;
@@ -35,6 +36,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     diffraction::register(m)?;
     render::register(m)?;
     lab::register(m)?;
+    scan_report::register(m)?;
     vision::register(m)?;
     bench::register(m)?;
     brdf::register(m)?;

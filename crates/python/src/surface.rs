@@ -10,6 +10,8 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::args::value_error;
+use crate::facade::run;
+use crate::scan_report::with_outputs;
 
 /// Heights in nm, row-major, with the pixel size and where they came from (the native half of
 /// `iridis.surface.Surface`).
@@ -88,6 +90,65 @@ impl PyHeightField {
         Ok(py.allow_threads(|| iridis_api::surface::info(&self.hf, peaks, coherence_nm).to_string()))
     }
 
+    /// The table `iridis surface info` prints for this field (warnings apart).
+    fn info_text(&self, py: Python<'_>, peaks: usize, coherence_nm: f64) -> PyResult<String> {
+        let json = self.info_json(py, peaks, coherence_nm)?;
+        let r: serde_json::Value = serde_json::from_str(&json).map_err(value_error)?;
+        Ok(iridis_api::surface_info::info_text(&r))
+    }
+
+    /// Writes `surface info`'s figures (`--image`, `--psdf`, `--acf`: PNG paths, or None), titled `name`.
+    #[pyo3(signature = (name, image=None, psdf=None, acf=None))]
+    fn figures(
+        &self,
+        py: Python<'_>,
+        name: &str,
+        image: Option<std::path::PathBuf>,
+        psdf: Option<std::path::PathBuf>,
+        acf: Option<std::path::PathBuf>,
+    ) -> PyResult<()> {
+        let figures = iridis_api::surface_info::InfoFigures {
+            image: image.as_deref(),
+            psdf: psdf.as_deref(),
+            acf: acf.as_deref(),
+        };
+        run(py, |r| {
+            with_outputs(|| {
+                for (flag, p) in [("image", figures.image), ("psdf", figures.psdf), ("acf", figures.acf)] {
+                    iridis_api::output::declare_opt(flag, p, &["png"])?;
+                }
+                iridis_api::surface_info::write_figures(&self.hf, name, figures, r)
+            })
+        })
+    }
+
+    /// Writes the field as `iridis surface convert`/`generate` do: the format from the extension (.gwy, .gsf,
+    /// .npy, .npz, .png, .txt), with a sidecar where the format has no units.
+    fn write(&self, py: Python<'_>, path: std::path::PathBuf) -> PyResult<()> {
+        run(py, |_| {
+            with_outputs(|| {
+                iridis_api::surface_info::declare_surface("", &path)?;
+                iridis_api::surface_info::write_surface(&self.hf, &path)
+            })
+        })
+    }
+
+    /// `surface convert`'s steps after levelling: crop (`"ROW,COL,ROWS,COLS"`), resample (pixel size, nm), tile
+    /// (`"NYxNX"`), pad (`"ROWSxCOLS"`).
+    #[pyo3(signature = (crop=None, resample_nm=None, tile=None, pad=None))]
+    fn reshape(
+        &self,
+        py: Python<'_>,
+        crop: Option<String>,
+        resample_nm: Option<f64>,
+        tile: Option<String>,
+        pad: Option<String>,
+    ) -> PyResult<Self> {
+        let steps = iridis_api::surface_info::Reshape { crop, resample_nm, tile, pad };
+        let hf = run(py, |_| steps.apply(self.hf.clone()))?;
+        Ok(Self { hf })
+    }
+
     /// Roughness of the field as it is (level it first): Sq, Sa, skewness, excess kurtosis, Sz, correlation
     /// length (nm), as `iridis surface info --json`.
     fn roughness<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
@@ -121,8 +182,16 @@ fn load_height_field(
     Ok(PyHeightField { hf })
 }
 
+/// The channels of an instrument file: `(json, text)` as `iridis surface channels [--json]` prints them.
+#[pyfunction]
+fn surface_channels(py: Python<'_>, path: std::path::PathBuf) -> PyResult<(String, String)> {
+    let c = run(py, |_| iridis_api::surface_info::channels(&path))?;
+    Ok((c.to_json().to_string(), c.text()))
+}
+
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyHeightField>()?;
     m.add_function(wrap_pyfunction!(load_height_field, m)?)?;
+    m.add_function(wrap_pyfunction!(surface_channels, m)?)?;
     Ok(())
 }

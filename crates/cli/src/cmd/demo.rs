@@ -33,10 +33,10 @@ type Section = fn(&mut Gallery) -> Result<()>;
 const SECTIONS: [(&str, Section); 7] = [
     ("snakes", iridis_api::scene::figures_section),
     ("color", iridis_api::color::demo_section),
-    ("surface", super::surface::demo),
+    ("surface", iridis_api::surface_info::demo_section),
     ("thinfilm", iridis_api::film_chart::demo_section),
     ("brdf", iridis_api::brdf_map::demo_section),
-    ("lab", super::lab::demo),
+    ("lab", iridis_api::lab_run::demo_section),
     ("render", iridis_api::scene::demo_section),
 ];
 

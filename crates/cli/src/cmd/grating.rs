@@ -1,11 +1,14 @@
-//! `iridis grating`: order efficiencies of a height field taken as one unit cell of a grating (issue 27).
+//! `iridis grating`: order efficiencies of a height field taken as one unit cell of a grating (issue 27); the
+//! numbers and tables are the library's (`iridis_api::grating`, `iridis_api::grating_run`).
 
 use anyhow::{bail, Result};
 use clap::Args as ClapArgs;
 use iridis_api::grating::{grating, Detector, GratingOptions};
+use iridis_api::grating_run::{compare, grating_text};
 use iridis_diffraction::geometry::direction;
 
-use crate::args::{angle_rad, polar_azimuth, positive_length_nm, SurfaceOpts};
+use crate::args::{angle_rad, fraction, polar_azimuth, positive_length_nm, unit_cell_auto, SurfaceOpts};
+use crate::output::print_json;
 use crate::progress::Cli;
 
 #[derive(Debug, ClapArgs)]
@@ -118,186 +121,17 @@ pub fn run(a: GratingArgs) -> Result<()> {
         fresnel: a.fresnel.clone(),
         normalisation: a.normalisation.parse()?,
         detector,
-        unit_cell_auto: match a.unit_cell.as_str() {
-            "auto" => true,
-            "whole" => false,
-            other => bail!("--unit-cell '{other}': expected whole (the patch) or auto (the dominant period)"),
-        },
+        unit_cell_auto: unit_cell_auto(&a.unit_cell)?,
         orders_above: a.orders_above.unwrap_or(0.0),
     };
-    let source = iridis_api::surface::Source::Spec(a.surface.clone());
+    let (source, surface) = (iridis_api::surface::Source::Spec(a.surface.clone()), a.surface_opts.options());
     if a.compare {
-        return compare(&a, &source, opts);
+        let c = compare(&source, &surface, &opts, &Cli)?;
+        return if a.json { print_json(&c.to_json()) } else { crate::outln!("{}", c.text().trim_end_matches('\n')) };
     }
-    let g = grating(&source, &a.surface_opts.options(), &opts, &Cli)?;
+    let g = grating(&source, &surface, &opts, &Cli)?;
     if a.json {
-        return crate::output::print_json(&g.to_json());
+        return print_json(&g.to_json());
     }
-    crate::outln!(
-        "{} · {} · unit cell {:.1} × {:.1} nm · light θ {:.2}° φ {:.2}° · {}{}",
-        g.surface,
-        g.method.name(),
-        g.periods_nm.0,
-        g.periods_nm.1,
-        t.to_degrees(),
-        p.to_degrees(),
-        g.reflector,
-        match g.method {
-            iridis_api::grating::GratingMethod::Kirchhoff => format!(" · normalisation {}", g.normalisation.name()),
-            iridis_api::grating::GratingMethod::Rigorous => String::new(),
-        }
-    )?;
-    crate::outln!("efficiencies in % of the incident power; TE = s, TM = p")?;
-    if let [one] = g.answers.as_slice() {
-        crate::outln!("λ = {} nm", one.wavelength_nm)?;
-        crate::outln!("     m      n   θr (deg)   φr (deg)      TE (%)      TM (%)   unpol. (%)")?;
-        let shown = |o: &&iridis_diffraction::grating::OrderEfficiency| o.efficiency.unpolarized >= 1e-6;
-        for o in one.orders.iter().filter(shown) {
-            crate::outln!(
-                "{:6} {:6} {:10.3} {:10.3} {:11.4} {:11.4} {:12.4}",
-                o.m,
-                o.n,
-                o.theta_deg,
-                o.phi_deg,
-                100.0 * o.efficiency.te,
-                100.0 * o.efficiency.tm,
-                100.0 * o.efficiency.unpolarized
-            )?;
-        }
-        let hidden = one.orders.len() - one.orders.iter().filter(shown).count();
-        if hidden > 0 {
-            crate::outln!("({hidden} orders below 0.0001 % not shown; --json lists every order)")?;
-        }
-        let r = one.reflected_total;
-        crate::outln!(
-            "total reflected  TE {:.4} %  TM {:.4} %  unpolarised {:.4} %  ({} orders)",
-            100.0 * r.te,
-            100.0 * r.tm,
-            100.0 * r.unpolarized,
-            one.orders.len()
-        )?;
-        if let Some(t) = one.transmitted_total {
-            crate::outln!(
-                "total transmitted  TE {:.4} %  TM {:.4} %  unpolarised {:.4} %  ({} orders; --json lists them)",
-                100.0 * t.te,
-                100.0 * t.tm,
-                100.0 * t.unpolarized,
-                one.transmitted_orders.len()
-            )?;
-        }
-        if let Some(err) = one.convergence["estimated_error"].as_f64() {
-            crate::outln!(
-                "converged: orders ±{}, estimated error {:.1e} (tolerance {:.0e}){}",
-                one.convergence["orders"][0],
-                err,
-                one.convergence["tolerance"].as_f64().unwrap_or(f64::NAN),
-                if one.convergence["met"] == serde_json::json!(true) { "" } else { " — NOT met" }
-            )?;
-        }
-        if let Some(d) = g.detector_reflectance(one) {
-            crate::outln!(
-                "detector ({}, ±{:.2}°)  {:.4} %",
-                a.detector.as_deref().unwrap_or(""),
-                a.acceptance.to_degrees(),
-                100.0 * d
-            )?;
-        }
-        return Ok(());
-    }
-    let det = if g.detector.is_some() { "  detector (%)" } else { "" };
-    crate::outln!("  λ (nm)   total R (%)   TE (%)    TM (%){det}   strongest orders (m,n): unpol. %")?;
-    for ans in &g.answers {
-        let r = ans.reflected_total;
-        let mut strongest: Vec<_> = ans.orders.iter().collect();
-        strongest.sort_by(|x, y| y.efficiency.unpolarized.total_cmp(&x.efficiency.unpolarized));
-        let list: Vec<String> = strongest
-            .iter()
-            .take(4)
-            .map(|o| format!("({},{}): {:.3}", o.m, o.n, 100.0 * o.efficiency.unpolarized))
-            .collect();
-        let d = g.detector_reflectance(ans).map(|d| format!("  {:12.4}", 100.0 * d)).unwrap_or_default();
-        crate::outln!(
-            "{:8.1}  {:11.4}  {:8.4}  {:8.4}{d}   {}",
-            ans.wavelength_nm,
-            100.0 * r.unpolarized,
-            100.0 * r.te,
-            100.0 * r.tm,
-            list.join("  ")
-        )?;
-    }
-    if let Some(c) = g.colours() {
-        let hex = |x| iridis_api::color::colour_report(x, c.white)["hex"].as_str().unwrap_or("").to_string();
-        crate::outln!(
-            "colours under D65 (unpolarised): mirror order {} (Y {:.4}), diffracted orders {} (Y {:.4}, {:.2} % of the \
-             reflected light), all orders {} (Y {:.4})",
-            hex(c.specular),
-            c.specular.y,
-            hex(c.diffracted),
-            c.diffracted.y,
-            100.0 * c.diffracted_share(),
-            hex(c.reflected),
-            c.reflected.y
-        )?;
-    }
-    Ok(())
-}
-
-/// `--compare`: both models on the same cell, and the scalar model's error.
-fn compare(a: &GratingArgs, source: &iridis_api::surface::Source, opts: GratingOptions) -> Result<()> {
-    use iridis_api::grating::{scalar_error, GratingMethod};
-    let surface = a.surface_opts.options();
-    let scalar = grating(source, &surface, &GratingOptions { method: GratingMethod::Kirchhoff, ..opts.clone() }, &Cli)?;
-    let rigorous = grating(source, &surface, &GratingOptions { method: GratingMethod::Rigorous, ..opts }, &Cli)?;
-    let e = scalar_error(&scalar, &rigorous);
-    if a.json {
-        return crate::output::print_json(&e.to_json(&scalar, &rigorous));
-    }
-    crate::outln!(
-        "{} · unit cell {:.1} × {:.1} nm · {} · the scalar (Kirchhoff) model against the rigorous one",
-        scalar.surface,
-        scalar.periods_nm.0,
-        scalar.periods_nm.1,
-        rigorous.reflector
-    )?;
-    crate::outln!("     λ (nm)      m      n   scalar (%)   rigorous (%)   relative error (unpolarised)")?;
-    for &(l, m, n, k, r) in &e.orders {
-        if r.unpolarized < 1e-5 && k.unpolarized < 1e-5 {
-            continue;
-        }
-        let rel = if r.unpolarized > e.floor {
-            format!("{:+.1} %", 100.0 * (k.unpolarized - r.unpolarized) / r.unpolarized)
-        } else {
-            "(below 0.1 %)".into()
-        };
-        crate::outln!("{l:11.1} {m:6} {n:6} {:12.4} {:14.4}   {rel}", 100.0 * k.unpolarized, 100.0 * r.unpolarized)?;
-    }
-    crate::outln!(
-        "worst relative error of an order above {:.1} %: TE {:.1} %, TM {:.1} %, unpolarised {:.1} %{}; of the total \
-         reflectance {:.1} %",
-        100.0 * e.floor,
-        100.0 * e.worst.te,
-        100.0 * e.worst.tm,
-        100.0 * e.worst.unpolarized,
-        e.worst_at.map_or(String::new(), |(l, m, n)| format!(" (order ({m},{n}) at {l:.0} nm)")),
-        100.0 * e.total
-    )?;
-    if let (Some(d), Some(s)) = (e.delta_e_diffracted, e.delta_e_specular) {
-        crate::outln!("colour difference (CIEDE2000, D65): diffracted light {d:.2}, mirror order {s:.2}")?;
-    }
-    Ok(())
-}
-
-/// A fraction from 0 up to 1, written as a number (`1e-3`) or a percentage (`0.1%`).
-fn fraction(s: &str) -> Result<f64, String> {
-    let t = s.trim();
-    let v = match t.strip_suffix('%') {
-        Some(p) => p.trim().parse::<f64>().map(|v| v / 100.0),
-        None => t.parse::<f64>(),
-    }
-    .map_err(|_| format!("'{s}': expected a fraction (1e-3) or a percentage (0.1%)"))?;
-    if v.is_finite() && (0.0..1.0).contains(&v) {
-        Ok(v)
-    } else {
-        Err(format!("'{s}': the efficiency must be from 0 up to 1 (100 %)"))
-    }
+    crate::outln!("{}", grating_text(&g, (t, p), a.detector.as_deref(), a.acceptance).trim_end_matches('\n'))
 }

@@ -1,26 +1,17 @@
-//! `iridis surface …`: inspect, generate and convert height fields (the `iridis-surface` crate).
+//! `iridis surface …`: inspect, generate and convert height fields (the `iridis-surface` crate, through
+//! `iridis_api::surface_info`).
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
-use anyhow::{bail, Context, Result};
+use anyhow::Result;
 use clap::{Args as ClapArgs, Subcommand};
-use iridis_surface::builtin::{self, KINDS};
-use iridis_surface::formats::{self, sidecar_path, Format};
-use iridis_surface::generate::Grid;
-use iridis_surface::render::{format_length, shaded_relief};
-use iridis_surface::{find_peaks, load_surface, prep, HeightField, LoadOptions, PeakOptions, DEFAULT_COHERENCE_NM};
-use serde_json::json;
+use iridis_api::surface_info::{self as lib, InfoFigures};
+use iridis_surface::{HeightField, LoadOptions, DEFAULT_COHERENCE_NM};
 
-pub const SURFACE_HELP: &str = "\
-SURFACE is a file or builtin:NAME. Files are recognised by content: instrument files with their units
-(Bruker NanoScope .spm/.000, Asylum .ibw, JPK .jpk, WSxM .stp/.top, Nanonis .sxm, Gwyddion .gwy/.gsf; pick a
-channel with --channel NAME or --channel N, listed by `iridis surface channels FILE`), numpy .npy or .npz (np.savez / np.savez_compressed: the only 2-D array, or --channel N among several, in name
-order), 8/16-bit greyscale PNG or TIFF (relative heights: give --max-height and --pixel-size), or a text
-matrix (Gwyddion ASCII export header understood). Units missing from a file can come from a JSON sidecar
-FILE.EXT.json or FILE.json: {\"pixel_size_nm\": 65, \"height_unit\": \"nm\", \"max_height_nm\": 250}.
-Built-ins (blazed, sine, cd, elaphe, xenopeltis, gaussian) are generated on the fly: a 65 µm patch at
-65 nm per pixel (1000 × 1000), seed 1; change them with --size/--pixel-size/--seed or a query string
-(not both for one parameter), e.g. builtin:elaphe?size=16um&pixel=50nm&seed=3&angle=10deg (parameters: iridis surface generate --help).";
+use crate::output::{declare_opt, print_json};
+use crate::progress::Cli;
+
+pub use iridis_api::surface_info::SURFACE_HELP;
 
 // Parsed once per run: the size difference between variants costs nothing worth boxing for.
 #[allow(clippy::large_enum_variant)]
@@ -304,274 +295,52 @@ pub struct ConvertArgs {
 pub fn run(command: SurfaceCommand) -> Result<()> {
     match command {
         SurfaceCommand::Info(a) => info(a),
-        SurfaceCommand::Channels(a) => channels(a),
+        SurfaceCommand::Channels(a) => {
+            let c = lib::channels(&a.file)?;
+            if a.json {
+                return print_json(&c.to_json());
+            }
+            crate::outln!("{}", c.text().trim_end_matches('\n'))
+        }
         SurfaceCommand::Generate(a) => generate(a),
         SurfaceCommand::Convert(a) => convert(a),
     }
 }
 
-fn load(spec: &str, load: &LoadArgs) -> Result<HeightField> {
-    crate::progress::step(&format!("loading {spec}"), || load_surface(spec, &load.options()))
-        .with_context(|| format!("cannot load surface {spec}"))
+fn load(spec: &str, load: &LoadArgs, level: &str) -> Result<HeightField> {
+    lib::level(lib::load(spec, &load.options(), &Cli)?, level)
 }
 
-fn level(hf: HeightField, how: &str) -> Result<HeightField> {
-    Ok(prep::level_by_name(&hf, how)?)
-}
-
-/// Everything `info` reports, as JSON (keys fixed by the documentation): the facade's, which Python's
-/// `Surface.info` returns too.
-pub fn report(hf: &HeightField, n_peaks: usize, coherence_nm: f64) -> serde_json::Value {
-    iridis_api::surface::info(hf, n_peaks, coherence_nm)
-}
-
-fn print_report(r: &serde_json::Value) -> Result<()> {
-    let f = |k: &str, i: usize| r[k][i].as_f64().unwrap_or(f64::NAN);
-    let g = |k: &str| r[k].as_f64().unwrap_or(f64::NAN);
-    crate::outln!("surface      {} ({})", r["source"].as_str().unwrap_or(""), r["format"].as_str().unwrap_or(""))?;
-    crate::outln!("samples      {} rows × {} columns", r["rows"], r["cols"])?;
-    crate::outln!("pixel size   {:.4} × {:.4} nm (x × y)", f("pixel_size_nm", 0), f("pixel_size_nm", 1))?;
-    crate::outln!("extent       {:.3} × {:.3} µm", f("extent_nm", 0) / 1000.0, f("extent_nm", 1) / 1000.0)?;
-    crate::outln!(
-        "height       min {:.2} nm, max {:.2} nm, mean {:.2} nm, rms {:.2} nm",
-        g("height_min_nm"),
-        g("height_max_nm"),
-        g("mean_nm"),
-        g("rms_nm")
-    )?;
-    let ro = &r["roughness"];
-    crate::outln!(
-        "roughness    Sq {:.3} nm, Sa {:.3} nm, Ssk {:.3}, Sku−3 {:.3}, Sz {:.2} nm (plane-levelled)",
-        ro["sq_nm"].as_f64().unwrap_or(f64::NAN),
-        ro["sa_nm"].as_f64().unwrap_or(f64::NAN),
-        ro["skewness"].as_f64().unwrap_or(f64::NAN),
-        ro["excess_kurtosis"].as_f64().unwrap_or(f64::NAN),
-        ro["sz_nm"].as_f64().unwrap_or(f64::NAN)
-    )?;
-    match ro["correlation_length_nm"].as_f64() {
-        Some(t) => {
-            crate::outln!("corr. length τ = {t:.2} nm (radial ACF at 1/e; σ = Sq and τ are the rough-film model's)")?
-        }
-        None => crate::outln!(
-            "corr. length none: the ACF does not fall to 1/e within half the patch (periodic or too small)"
-        )?,
+fn warn_all(warnings: &[String]) {
+    for w in warnings {
+        eprintln!("warning: {w}");
     }
-    let peaks = r["peaks"].as_array().cloned().unwrap_or_default();
-    if peaks.is_empty() {
-        crate::outln!("periods      none found")?;
-    } else {
-        crate::outln!("periods      period (nm)          orientation   power (share of variance)")?;
-        for p in peaks {
-            let period = iridis_surface::analysis::with_uncertainty(
-                p["period_nm"].as_f64().unwrap_or(f64::NAN),
-                p["period_uncertainty_nm"].as_f64().unwrap_or(f64::NAN),
-            );
-            crate::outln!(
-                "             {period:>18}   {:>9.2}°     {:.4}{}",
-                p["orientation_deg"].as_f64().unwrap_or(f64::NAN),
-                p["power"].as_f64().unwrap_or(f64::NAN),
-                if p["read_off"] == "grid" { "   (read off the DFT grid)" } else { "" }
-            )?;
-        }
-    }
-    for n in r["notes"].as_array().into_iter().flatten() {
-        crate::outln!("note         {}", n.as_str().unwrap_or(""))?;
-    }
-    for w in r["warnings"].as_array().into_iter().flatten() {
-        eprintln!("warning: {}", w.as_str().unwrap_or(""));
-    }
-    Ok(())
-}
-
-/// Writes a shaded-relief preview framed by axes in µm, with a height colour bar and a scale bar.
-pub fn write_preview(hf: &HeightField, path: &Path, title: &str) -> Result<()> {
-    use iridis_plot::{magma, ColorBar, ImagePlot, RgbImage};
-    let relief = shaded_relief(hf, 700, magma);
-    let mut pixels = RgbImage::new(relief.width as u32, relief.height as u32);
-    pixels.data.copy_from_slice(&relief.rgb);
-    let (ex, ey) = hf.extent_nm();
-    let (lo, hi) = hf.min_max();
-    let aspect = ey / ex;
-    let w = 900u32;
-    let h = ((w as f64 - 200.0) * aspect + 140.0).clamp(300.0, 1400.0) as u32;
-    let plot = ImagePlot {
-        title: format!("{title}  (scale bar {})", format_length(relief.scale_bar_nm)),
-        x_label: "x (µm)".into(),
-        y_label: "y (µm)".into(),
-        x_range: (0.0, ex / 1000.0),
-        y_range: (0.0, ey / 1000.0),
-        pixels: &pixels,
-        overlays: Vec::new(),
-        colorbar: Some(ColorBar { label: "height (nm)".into(), min: lo, max: hi.max(lo + 1e-9), map: magma }),
-        size: (w, h),
-    };
-    let img = plot.render().map_err(|e| anyhow::anyhow!("{e}"))?;
-    crate::output::write_png_rgb8(path, img.width, img.height, &img.data)
-}
-
-/// A centred 2-D function (PSDF or ACF) as a colour map with axes (`unit` scales the grid steps to the axis
-/// unit) and a colour bar; `log` plots log10 of the positive values.
-fn write_grid(
-    g: &iridis_surface::stats::Grid2,
-    path: &Path,
-    title: &str,
-    xl: &str,
-    yl: &str,
-    unit: f64,
-    log: bool,
-) -> Result<()> {
-    use iridis_plot::{magma, ColorBar, ImagePlot, RgbImage};
-    let v: Vec<f64> = if log {
-        let floor = g.values.iter().copied().fold(0.0f64, f64::max) * 1e-12;
-        g.values.iter().map(|x| x.max(floor).max(1e-300).log10()).collect()
-    } else {
-        g.values.clone()
-    };
-    let (lo, hi) = v.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| (a.min(x), b.max(x)));
-    let span = if hi > lo { hi - lo } else { 1.0 };
-    let mut pixels = RgbImage::new(g.cols as u32, g.rows as u32);
-    for (i, x) in v.iter().enumerate() {
-        pixels.data[3 * i..3 * i + 3].copy_from_slice(&magma((x - lo) / span));
-    }
-    let (hx, hy) = ((g.cols / 2) as f64 * g.dx * unit, (g.rows / 2) as f64 * g.dy * unit);
-    let plot = ImagePlot {
-        title: title.into(),
-        x_label: xl.into(),
-        y_label: yl.into(),
-        x_range: (-hx, hx),
-        y_range: (-hy, hy),
-        pixels: &pixels,
-        overlays: Vec::new(),
-        colorbar: Some(ColorBar {
-            label: if log { "log10".into() } else { "nm²".into() },
-            min: lo,
-            max: lo + span,
-            map: magma,
-        }),
-        size: (800, 700),
-    };
-    let img = plot.render().map_err(|e| anyhow::anyhow!("{e}"))?;
-    crate::output::write_png_rgb8(path, img.width, img.height, &img.data)
 }
 
 fn info(a: InfoArgs) -> Result<()> {
-    use crate::progress::step;
-    crate::output::declare_opt("--image", a.image.as_deref(), &["png"])?;
-    crate::output::declare_opt("--psdf", a.psdf.as_deref(), &["png"])?;
-    crate::output::declare_opt("--acf", a.acf.as_deref(), &["png"])?;
-    let hf = level(load(&a.surface, &a.load)?, &a.level)?;
-    let r = step("periods and roughness", || report(&hf, a.peaks, a.coherence));
-    if let Some(p) = &a.image {
-        step("shaded-relief preview", || write_preview(&hf, p, &a.surface))?;
-    }
-    let levelled = prep::level_plane(&hf);
-    if let Some(p) = &a.psdf {
-        let g = step("power spectral density", || iridis_surface::stats::psdf(&levelled));
-        write_grid(&g, p, &format!("PSDF of {} (log10 nm⁴)", a.surface), "kx (µm⁻¹)", "ky (µm⁻¹)", 1000.0, true)?;
-    }
-    if let Some(p) = &a.acf {
-        let g = step("autocorrelation", || iridis_surface::stats::acf(&levelled));
-        write_grid(&g, p, &format!("ACF of {} (nm²)", a.surface), "τx (µm)", "τy (µm)", 1e-3, false)?;
-    }
+    declare_opt("--image", a.image.as_deref(), &["png"])?;
+    declare_opt("--psdf", a.psdf.as_deref(), &["png"])?;
+    declare_opt("--acf", a.acf.as_deref(), &["png"])?;
+    let hf = load(&a.surface, &a.load, &a.level)?;
+    let figures = InfoFigures { image: a.image.as_deref(), psdf: a.psdf.as_deref(), acf: a.acf.as_deref() };
+    let r = lib::info_with_figures(&hf, &a.surface, a.peaks, a.coherence, figures, &Cli)?;
     if a.json {
-        crate::output::print_json(&r)?;
-        for w in r["warnings"].as_array().into_iter().flatten() {
-            eprintln!("warning: {}", w.as_str().unwrap_or(""));
-        }
-        Ok(())
+        print_json(&r)?;
     } else {
-        print_report(&r)?;
-        if let Some(p) = &a.image {
-            crate::outln!("preview      {}", p.display())?;
-        }
-        Ok(())
+        crate::outln!("{}", lib::info_text(&r).trim_end_matches('\n'))?;
     }
-}
-
-fn channels(a: ChannelsArgs) -> Result<()> {
-    let name = a.file.display().to_string();
-    let meta = std::fs::metadata(&a.file).with_context(|| format!("cannot read {name}"))?;
-    if meta.len() > formats::MAX_FILE_BYTES {
-        bail!("{name} is {} MB, larger than any height-field file iridis reads", meta.len() >> 20);
-    }
-    let bytes = std::fs::read(&a.file).with_context(|| format!("cannot read {name}"))?;
-    let list = formats::list_channels(&bytes, &name)?;
-    let fmt = formats::detect_format(&bytes).map_or("?", Format::name);
-    if a.json {
-        let channels: Vec<serde_json::Value> = list
-            .iter()
-            .map(|c| {
-                let mut v = json!(c);
-                v["height"] = json!(c.is_height());
-                v
-            })
-            .collect();
-        return crate::output::print_json(&json!({ "file": name, "format": fmt, "channels": channels }));
-    }
-    crate::outln!("{name} ({fmt}): {} channel{}", list.len(), if list.len() == 1 { "" } else { "s" })?;
-    crate::outln!("  index  name                           direction  size         unit")?;
-    for c in &list {
-        let unit = if c.z_unit.is_empty() { "?" } else { c.z_unit.as_str() };
-        crate::outln!(
-            "  {:>5}  {:<30} {:<10} {:<12} {}{}",
-            c.index,
-            if c.alias.is_empty() { c.name.clone() } else { format!("{} (or {})", c.name, c.alias) },
-            if c.direction.is_empty() { "-" } else { c.direction.as_str() },
-            format!("{}×{}", c.cols, c.rows),
-            unit,
-            if c.is_height() { "" } else { "  (not a height)" }
-        )?;
-    }
-    let default = formats::channel::pick(&list, None).ok().map(|i| list[i].index);
-    let heights = list.iter().filter(|c| c.is_height()).count();
-    if list.len() > 1 {
-        let are =
-            if heights == 1 { "1 of them is a height".to_string() } else { format!("{heights} of them are heights") };
-        crate::outln!(
-            "{are}; without --channel, commands read channel {} (pick another with --channel NAME or --channel N; \
-             --as-height reads one that is not a height)",
-            default.map_or("?".to_string(), |i| i.to_string())
-        )?;
-    }
-    Ok(())
-}
-
-/// The extensions `surface generate` and `surface convert` write (TIFF and instrument formats are read only).
-const SURFACE_OUTPUTS: &[&str] = &["gwy", "gsf", "npy", "npz", "png", "txt"];
-
-fn output_format(path: &Path) -> Result<Format> {
-    crate::output::format_of("", path, SURFACE_OUTPUTS)?;
-    Format::from_extension(path).with_context(|| format!("{}: unknown output format", path.display()))
-}
-
-/// Declares the outputs of a surface written to `path`: the file and, for formats without units, its sidecar.
-fn declare_surface(flag: &str, path: &Path) -> Result<()> {
-    crate::output::declare(flag, path, SURFACE_OUTPUTS)?;
-    if matches!(output_format(path)?, Format::Npy | Format::Png | Format::Npz) {
-        crate::output::declare("", &sidecar_path(path), &["json"])?;
-    }
-    Ok(())
-}
-
-/// Writes a field in the format its extension names, with a sidecar where the format has no units.
-pub fn write_surface(hf: &HeightField, path: &Path) -> Result<()> {
-    let fmt = output_format(path)?;
-    let (bytes, side) = formats::write_bytes(hf, fmt)?;
-    crate::output::write_bytes(path, &bytes)?;
-    if let Some(s) = side {
-        crate::output::write_bytes(&sidecar_path(path), s.as_bytes())?;
+    warn_all(&lib::info_warnings(&r));
+    if let (Some(p), false) = (&a.image, a.json) {
+        crate::outln!("preview      {}", p.display())?;
     }
     Ok(())
 }
 
 fn generate(a: GenerateArgs) -> Result<()> {
-    if !KINDS.contains(&a.kind.as_str()) {
-        bail!("unknown kind '{}'; kinds: {}", a.kind, KINDS.join(", "));
-    }
-    declare_surface("-o", &a.output)?;
-    crate::output::declare_opt("--image", a.image.as_deref(), &["png"])?;
-    let mut params = Vec::new();
-    for (k, v) in [
+    lib::check_kind(&a.kind)?;
+    lib::declare_surface("-o", &a.output)?;
+    declare_opt("--image", a.image.as_deref(), &["png"])?;
+    let given = [
         ("size", &a.size),
         ("size-x", &a.size_x),
         ("size-y", &a.size_y),
@@ -593,127 +362,28 @@ fn generate(a: GenerateArgs) -> Result<()> {
         ("finger", &a.finger),
         ("along", &a.along),
         ("across", &a.across),
-    ] {
-        if let Some(v) = v {
-            params.push((k.to_string(), v.clone()));
-        }
-    }
-    let (gen, grid) = builtin::from_params(&a.kind, &params, &Grid::default())
-        .with_context(|| format!("bad parameters for {}", a.kind))?;
-    let mut hf = gen.generate(&grid)?;
-    hf.meta.source = format!("iridis surface generate {}", a.kind);
-    write_surface(&hf, &a.output)?;
+    ];
+    let params: Vec<(String, String)> =
+        given.into_iter().filter_map(|(k, v)| v.as_ref().map(|v| (k.to_string(), v.clone()))).collect();
+    let hf = lib::generate(&a.kind, &params)?;
+    lib::write_surface(&hf, &a.output)?;
     if let Some(p) = &a.image {
-        write_preview(&hf, p, &a.kind)?;
+        lib::write_preview(&hf, p, &a.kind)?;
     }
     if a.json {
-        crate::output::print_json(&report(&hf, 5, DEFAULT_COHERENCE_NM))?;
-    } else {
-        let (ex, ey) = hf.extent_nm();
-        crate::outln!(
-            "wrote {}: {} {}×{} samples, {:.3}×{:.3} µm at {} nm/pixel, rms {:.2} nm",
-            a.output.display(),
-            a.kind,
-            hf.rows,
-            hf.cols,
-            ex / 1000.0,
-            ey / 1000.0,
-            hf.dx_nm,
-            hf.rms()
-        )?;
+        return print_json(&iridis_api::surface::info(&hf, 5, DEFAULT_COHERENCE_NM));
     }
-    Ok(())
-}
-
-fn pair(s: &str, what: &str) -> Result<(usize, usize)> {
-    let parts: Vec<&str> = s.split(['x', 'X', '×', ',']).map(str::trim).collect();
-    match parts.as_slice() {
-        [a, b] => match (a.parse(), b.parse()) {
-            (Ok(a), Ok(b)) => Ok((a, b)),
-            _ => bail!("--{what} '{s}': expected two whole numbers like 3x3"),
-        },
-        _ => bail!("--{what} '{s}': expected two whole numbers like 3x3"),
-    }
+    crate::outln!("{}", lib::generated_text(&hf, &a.kind, &a.output).trim_end_matches('\n'))
 }
 
 fn convert(a: ConvertArgs) -> Result<()> {
-    declare_surface("OUTPUT", &a.output)?;
-    let mut hf = level(load(&a.input, &a.load)?, &a.level)?;
-    if let Some(c) = &a.crop {
-        let v: Vec<usize> = c
-            .split(',')
-            .map(|p| p.trim().parse::<usize>())
-            .collect::<Result<_, _>>()
-            .map_err(|_| anyhow::anyhow!("--crop '{c}': expected ROW,COL,ROWS,COLS (whole numbers)"))?;
-        if v.len() != 4 {
-            bail!("--crop '{c}': expected ROW,COL,ROWS,COLS (four whole numbers)");
-        }
-        hf = prep::crop(&hf, v[0], v[1], v[2], v[3])?;
-    }
-    if let Some(p) = a.resample {
-        hf = prep::resample(&hf, p, p)?;
-    }
-    if let Some(t) = &a.tile {
-        let (ny, nx) = pair(t, "tile")?;
-        hf = prep::tile(&hf, ny, nx)?;
-    }
-    if let Some(p) = &a.pad {
-        let (r, c) = pair(p, "pad")?;
-        hf = prep::pad(&hf, r, c)?;
-    }
-    write_surface(&hf, &a.output)?;
+    lib::declare_surface("OUTPUT", &a.output)?;
+    let reshape =
+        lib::Reshape { crop: a.crop.clone(), resample_nm: a.resample, tile: a.tile.clone(), pad: a.pad.clone() };
+    let hf = reshape.apply(load(&a.input, &a.load, &a.level)?)?;
+    lib::write_surface(&hf, &a.output)?;
     // What the reader warned about; the model's concerns (coherence area, coarse pixels) belong to the
     // commands that run the model.
-    for w in &hf.meta.warnings {
-        eprintln!("warning: {w}");
-    }
-    crate::outln!(
-        "wrote {}: {}×{} samples at {:.4}×{:.4} nm/pixel",
-        a.output.display(),
-        hf.rows,
-        hf.cols,
-        hf.dx_nm,
-        hf.dy_nm
-    )?;
-    Ok(())
-}
-
-/// The demo's surface section: previews of the built-in nanostructures with their analysed periods.
-pub fn demo(g: &mut iridis_api::gallery::Gallery) -> Result<()> {
-    g.section(
-        "Nanostructures (height fields)",
-        &format!(
-            "The built-in surfaces, generated on the fly (65 µm at 65 nm per pixel, seed 1), shown as shaded \
-             relief coloured by height, with the dominant periods found in their power spectra \
-             (orientation: direction of the grating vector, counter-clockwise from +x). The paper reports \
-             2500 nm for its blazed grating, 1144 nm for Elaphe and 1552 nm along Xenopeltis' fingers. {SURFACE_HELP}"
-        ),
-    );
-    let mut rows = Vec::new();
-    for name in iridis_surface::BUILTIN_NAMES {
-        let spec = format!("builtin:{name}");
-        let hf = load_surface(&spec, &LoadOptions::default())?;
-        let peaks = find_peaks(&hf, &PeakOptions { max_peaks: 3, ..PeakOptions::default() });
-        let file = format!("surface_{name}.png");
-        write_preview(&hf, &g.path(&file), &spec)?;
-        let listed = peaks
-            .iter()
-            .map(|p| format!("{} at {:.1}°", p.period_text(), p.orientation_deg))
-            .collect::<Vec<_>>()
-            .join(", ");
-        g.image(
-            &file,
-            &format!("{spec}: rms {:.1} nm; periods {listed}. `iridis surface info {spec} --image {file}`", hf.rms()),
-        );
-        for p in &peaks {
-            rows.push(vec![
-                spec.clone(),
-                iridis_surface::analysis::with_uncertainty(p.period_nm, p.period_uncertainty_nm),
-                format!("{:.2}", p.orientation_deg),
-                format!("{:.4}", p.power),
-            ]);
-        }
-    }
-    g.table(&["surface", "period (nm)", "orientation (°)", "power (share of variance)"], &rows);
-    Ok(())
+    warn_all(&hf.meta.warnings);
+    crate::outln!("{}", lib::converted_text(&hf, &a.output).trim_end_matches('\n'))
 }

@@ -1,7 +1,8 @@
 """The virtual lab (docs/lab.md): the test bench of the paper's sec. 6.1 (peak viewing angles and the
-periodicity of a surface through the grating equation) and the comparison of methods in CIELAB (sec. 6.3,
-Table 2). The same library functions as ``iridis testbench`` and ``iridis compare`` (the facade
-``iridis-api``); the results are the dicts those commands print with ``--json`` (keys in docs/json.md), plus
+periodicity of a surface through the grating equation), the comparison of methods in CIELAB (sec. 6.3,
+Table 2), convergence sweeps (sec. 7) and the laser experiment (Figure 8). The same library functions as
+``iridis testbench``, ``iridis compare``, ``iridis sweep`` and ``iridis experiment laser`` (the facade
+``iridis-api``, ``iridis_api::lab_run``); the results are the dicts those commands print with ``--json`` (keys in docs/json.md), plus
 the arrays behind them.
 
 ``surface`` is an :class:`iridis.surface.Surface` or a SURFACE argument as the CLI takes it. Keyword
@@ -27,7 +28,7 @@ import os
 from . import _native
 from .surface import Surface
 
-__all__ = ["testbench", "compare", "METHODS"]
+__all__ = ["testbench", "compare", "sweep", "laser", "METHODS"]
 
 #: The methods every lab function accepts (``iridis compare --help``).
 METHODS = ("ground-truth", "ground-truth-periodic", "reference", "lookup", "nmm", "pq", "stam-periodic",
@@ -85,10 +86,7 @@ def compare(surface, methods=("lookup", "reference", "stam-periodic", "stam-gaus
     """
     if isinstance(methods, str):
         methods = [m for m in methods.split(",") if m.strip()]
-    try:
-        theta, phi = (float(x) for x in incidence) if hasattr(incidence, "__len__") else (float(incidence), 0.0)
-    except (TypeError, ValueError):
-        raise TypeError(f"incidence must be θ or (θ, φ) in radians, got {incidence!r}") from None
+    theta, phi = _incidence(incidence)
     out, maps = _native._compare(
         _surface(surface), [str(m).strip() for m in methods], str(against), [float(e) for e in exposures], theta,
         phi, int(size), float(step_nm), str(illuminant), int(uv_resolution), float(uv_power),
@@ -96,3 +94,43 @@ def compare(surface, methods=("lookup", "reference", "stam-periodic", "stam-gaus
     result = json.loads(out)
     result["maps"] = maps
     return result
+
+
+def sweep(surface, param, values, output, method="reference", against="model", exposures=(1000.0,),
+          incidence=(0.0, 0.0), size=64, step_nm=5.0, uv_resolution=201, uv_power=5.0, plot=None, **options):
+    """A convergence sweep (paper sec. 7, Figures 14–17; ``iridis sweep``): the method's BRDF map for each of
+    ``values`` of ``param`` (``"terms"``, ``"dlambda"``, ``"coherence"`` — lengths in nm —, ``"uv-power"``,
+    ``"uv-resolution"``) and its CIEDE2000 error against the ground truth (``against``: ``"model"``,
+    ``"ground-truth"`` or ``"ground-truth-periodic"``). Writes the contact sheet to ``output`` and the
+    error plot to ``plot`` (default ``output``'s name with ``_error``); returns ``iridis sweep --json``'s dict
+    (``points``: ``value``, ``errors`` and ``periodic_extension_error`` per exposure: ``mean``, ``p95``)."""
+    theta, phi = _incidence(incidence)
+    out = _native._sweep(_surface(surface), str(param), [float(v) for v in values], os.fspath(output), str(method),
+                         str(against), [float(e) for e in exposures], theta, phi, int(size), float(step_nm),
+                         int(uv_resolution), float(uv_power), None if plot is None else os.fspath(plot), options)
+    return json.loads(out)
+
+
+def laser(surface, output, method="reference", incidence=math.radians(45.0), azimuth=0.0, aperture_nm=65000.0,
+          distance_nm=1e8, screen_nm=3e8, size=101, subsamples=3, spectrum=None, coating="gold",
+          exposures=(1.0, 1000.0, 7500.0), step_nm=5.0, table=None, save_table=None, **options):
+    """The laser experiment of the paper's Figure 8 (``iridis experiment laser``): a beam at ``incidence``
+    through a diaphragm of ``aperture_nm`` (the coherence window) onto the sample, the screen ``distance_nm``
+    away. Writes one PNG per exposure (``NAME_<E>RU.png`` when several) and returns ``iridis experiment laser
+    --json``'s dict with ``xyz`` besides: the screen as XYZ of shape ``(size, size, 3)``."""
+    out, xyz = _native._laser(
+        _surface(surface), os.fspath(output), str(method), float(incidence), float(azimuth), float(aperture_nm),
+        float(distance_nm), float(screen_nm), int(size), int(subsamples),
+        None if spectrum is None else os.fspath(spectrum), str(coating), [float(e) for e in exposures],
+        float(step_nm), None if table is None else os.fspath(table),
+        None if save_table is None else os.fspath(save_table), options)
+    result = json.loads(out)
+    result["xyz"] = xyz
+    return result
+
+
+def _incidence(incidence):
+    try:
+        return (float(x) for x in incidence) if hasattr(incidence, "__len__") else (float(incidence), 0.0)
+    except (TypeError, ValueError):
+        raise TypeError(f"incidence must be θ or (θ, φ) in radians, got {incidence!r}") from None

@@ -12,11 +12,13 @@ Example:
 """
 from __future__ import annotations
 
+import os
+
 import numpy as np
 
 from . import _native
 
-__all__ = ["Surface", "load", "generate"]
+__all__ = ["Surface", "load", "generate", "channels"]
 
 
 class Surface:
@@ -71,6 +73,27 @@ class Surface:
         out["acf_radial"]["values_nm2"] = np.asarray(out["acf_radial"]["values_nm2"], dtype=float)
         return out
 
+    def info_text(self, peaks=5, coherence_nm=65000.0):
+        """The table ``iridis surface info`` prints for this field (its warnings are ``info()["warnings"]``)."""
+        return self._h.info_text(int(peaks), float(coherence_nm))
+
+    def figures(self, name="surface", image=None, psdf=None, acf=None):
+        """Writes ``iridis surface info``'s figures as PNG: ``image`` the shaded relief with axes and a scale
+        bar, ``psdf`` the 2-D power spectral density (log scale) and ``acf`` the 2-D autocorrelation of the
+        plane-levelled field; ``name`` goes into the titles."""
+        path = lambda p: None if p is None else os.fspath(p)  # noqa: E731
+        self._h.figures(str(name), path(image), path(psdf), path(acf))
+
+    def write(self, path):
+        """Writes the field as ``iridis surface convert`` does, in the format the extension names (.gwy, .gsf,
+        .npy, .npz, .png, .txt; a JSON sidecar with the units where the format has none)."""
+        self._h.write(os.fspath(path))
+
+    def reshape(self, crop=None, resample_nm=None, tile=None, pad=None):
+        """``iridis surface convert``'s steps, in this order: ``crop`` ``"ROW,COL,ROWS,COLS"``, ``resample_nm``
+        (new pixel size, the extent kept), ``tile`` ``"NYxNX"``, ``pad`` ``"ROWSxCOLS"`` (with the mean height)."""
+        return Surface(self._h.reshape(crop, None if resample_nm is None else float(resample_nm), tile, pad), 0)
+
     def roughness(self):
         """Sq, Sa, Ssk, excess kurtosis, Sz (nm) and the correlation length, as ``iridis surface info``."""
         return self._h.roughness()
@@ -98,3 +121,15 @@ def generate(kind, **params):
     ``iridis surface generate --help``, lengths with units)."""
     query = "&".join(f"{k.replace('_', '-')}={v}" for k, v in params.items())
     return load(f"builtin:{kind}" + (f"?{query}" if query else ""))
+
+
+def channels(path):
+    """The channels (images) an instrument file holds, as ``iridis surface channels --json``: a dict with
+    ``file``, ``format`` and ``channels`` (``index``, ``name``, ``direction``, size, unit, ``height``);
+    ``result["text"]`` is the table the command prints."""
+    import json
+
+    out, text = _native.surface_channels(os.fspath(path))
+    result = json.loads(out)
+    result["text"] = text
+    return result

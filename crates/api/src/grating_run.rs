@@ -1,0 +1,205 @@
+//! What `iridis grating` prints: the order efficiencies of a unit cell as a table (one wavelength: every order;
+//! a spectrum: totals and the strongest orders a wavelength, and the colours), and `--compare`'s run of both
+//! models with the scalar model's error. The numbers are [`crate::grating`]'s.
+
+use std::fmt::Write as _;
+
+use anyhow::Result;
+use serde_json::Value;
+
+use crate::grating::{grating, scalar_error, Grating, GratingMethod, GratingOptions, ScalarError};
+use crate::report::Report;
+use crate::surface::{Source, SurfaceOptions};
+
+/// The table `iridis grating` prints; `light` is θ, φ (radians), `detector` the `--detector` text as given.
+pub fn grating_text(g: &Grating, light: (f64, f64), detector: Option<&str>, acceptance_rad: f64) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "{} · {} · unit cell {:.1} × {:.1} nm · light θ {:.2}° φ {:.2}° · {}{}",
+        g.surface,
+        g.method.name(),
+        g.periods_nm.0,
+        g.periods_nm.1,
+        light.0.to_degrees(),
+        light.1.to_degrees(),
+        g.reflector,
+        match g.method {
+            GratingMethod::Kirchhoff => format!(" · normalisation {}", g.normalisation.name()),
+            GratingMethod::Rigorous => String::new(),
+        }
+    );
+    s += "efficiencies in % of the incident power; TE = s, TM = p\n";
+    if let [one] = g.answers.as_slice() {
+        let _ = writeln!(s, "λ = {} nm", one.wavelength_nm);
+        s += "     m      n   θr (deg)   φr (deg)      TE (%)      TM (%)   unpol. (%)\n";
+        let shown = |o: &&iridis_diffraction::grating::OrderEfficiency| o.efficiency.unpolarized >= 1e-6;
+        for o in one.orders.iter().filter(shown) {
+            let _ = writeln!(
+                s,
+                "{:6} {:6} {:10.3} {:10.3} {:11.4} {:11.4} {:12.4}",
+                o.m,
+                o.n,
+                o.theta_deg,
+                o.phi_deg,
+                100.0 * o.efficiency.te,
+                100.0 * o.efficiency.tm,
+                100.0 * o.efficiency.unpolarized
+            );
+        }
+        let hidden = one.orders.len() - one.orders.iter().filter(shown).count();
+        if hidden > 0 {
+            let _ = writeln!(s, "({hidden} orders below 0.0001 % not shown; --json lists every order)");
+        }
+        let r = one.reflected_total;
+        let _ = writeln!(
+            s,
+            "total reflected  TE {:.4} %  TM {:.4} %  unpolarised {:.4} %  ({} orders)",
+            100.0 * r.te,
+            100.0 * r.tm,
+            100.0 * r.unpolarized,
+            one.orders.len()
+        );
+        if let Some(t) = one.transmitted_total {
+            let _ = writeln!(
+                s,
+                "total transmitted  TE {:.4} %  TM {:.4} %  unpolarised {:.4} %  ({} orders; --json lists them)",
+                100.0 * t.te,
+                100.0 * t.tm,
+                100.0 * t.unpolarized,
+                one.transmitted_orders.len()
+            );
+        }
+        if let Some(err) = one.convergence["estimated_error"].as_f64() {
+            let _ = writeln!(
+                s,
+                "converged: orders ±{}, estimated error {:.1e} (tolerance {:.0e}){}",
+                one.convergence["orders"][0],
+                err,
+                one.convergence["tolerance"].as_f64().unwrap_or(f64::NAN),
+                if one.convergence["met"] == Value::Bool(true) { "" } else { " — NOT met" }
+            );
+        }
+        if let Some(d) = g.detector_reflectance(one) {
+            let _ = writeln!(
+                s,
+                "detector ({}, ±{:.2}°)  {:.4} %",
+                detector.unwrap_or(""),
+                acceptance_rad.to_degrees(),
+                100.0 * d
+            );
+        }
+        return s;
+    }
+    let det = if g.detector.is_some() { "  detector (%)" } else { "" };
+    let _ = writeln!(s, "  λ (nm)   total R (%)   TE (%)    TM (%){det}   strongest orders (m,n): unpol. %");
+    for ans in &g.answers {
+        let r = ans.reflected_total;
+        let mut strongest: Vec<_> = ans.orders.iter().collect();
+        strongest.sort_by(|x, y| y.efficiency.unpolarized.total_cmp(&x.efficiency.unpolarized));
+        let list: Vec<String> = strongest
+            .iter()
+            .take(4)
+            .map(|o| format!("({},{}): {:.3}", o.m, o.n, 100.0 * o.efficiency.unpolarized))
+            .collect();
+        let d = g.detector_reflectance(ans).map(|d| format!("  {:12.4}", 100.0 * d)).unwrap_or_default();
+        let _ = writeln!(
+            s,
+            "{:8.1}  {:11.4}  {:8.4}  {:8.4}{d}   {}",
+            ans.wavelength_nm,
+            100.0 * r.unpolarized,
+            100.0 * r.te,
+            100.0 * r.tm,
+            list.join("  ")
+        );
+    }
+    if let Some(c) = g.colours() {
+        let hex = |x| crate::color::colour_report(x, c.white)["hex"].as_str().unwrap_or("").to_string();
+        let _ = writeln!(
+            s,
+            "colours under D65 (unpolarised): mirror order {} (Y {:.4}), diffracted orders {} (Y {:.4}, {:.2} % of the \
+             reflected light), all orders {} (Y {:.4})",
+            hex(c.specular),
+            c.specular.y,
+            hex(c.diffracted),
+            c.diffracted.y,
+            100.0 * c.diffracted_share(),
+            hex(c.reflected),
+            c.reflected.y
+        );
+    }
+    s
+}
+
+/// `iridis grating --compare`: both models on the same cell, and the scalar model's error.
+#[derive(Debug)]
+pub struct GratingComparison {
+    pub scalar: Grating,
+    pub rigorous: Grating,
+    pub error: ScalarError,
+}
+
+/// Runs the scalar (Kirchhoff) and the rigorous model on the cell of `opts` (its method is ignored).
+pub fn compare(
+    source: &Source,
+    surface: &SurfaceOptions,
+    opts: &GratingOptions,
+    report: &dyn Report,
+) -> Result<GratingComparison> {
+    let scalar =
+        grating(source, surface, &GratingOptions { method: GratingMethod::Kirchhoff, ..opts.clone() }, report)?;
+    let rigorous =
+        grating(source, surface, &GratingOptions { method: GratingMethod::Rigorous, ..opts.clone() }, report)?;
+    let error = scalar_error(&scalar, &rigorous);
+    Ok(GratingComparison { scalar, rigorous, error })
+}
+
+impl GratingComparison {
+    /// As `iridis grating --compare --json` prints it (keys in docs/json.md).
+    pub fn to_json(&self) -> Value {
+        self.error.to_json(&self.scalar, &self.rigorous)
+    }
+
+    /// The table `iridis grating --compare` prints.
+    pub fn text(&self) -> String {
+        let (e, scalar, rigorous) = (&self.error, &self.scalar, &self.rigorous);
+        let mut s = String::new();
+        let _ = writeln!(
+            s,
+            "{} · unit cell {:.1} × {:.1} nm · {} · the scalar (Kirchhoff) model against the rigorous one",
+            scalar.surface, scalar.periods_nm.0, scalar.periods_nm.1, rigorous.reflector
+        );
+        s += "     λ (nm)      m      n   scalar (%)   rigorous (%)   relative error (unpolarised)\n";
+        for &(l, m, n, k, r) in &e.orders {
+            if r.unpolarized < 1e-5 && k.unpolarized < 1e-5 {
+                continue;
+            }
+            let rel = if r.unpolarized > e.floor {
+                format!("{:+.1} %", 100.0 * (k.unpolarized - r.unpolarized) / r.unpolarized)
+            } else {
+                "(below 0.1 %)".into()
+            };
+            let _ = writeln!(
+                s,
+                "{l:11.1} {m:6} {n:6} {:12.4} {:14.4}   {rel}",
+                100.0 * k.unpolarized,
+                100.0 * r.unpolarized
+            );
+        }
+        let _ = writeln!(
+            s,
+            "worst relative error of an order above {:.1} %: TE {:.1} %, TM {:.1} %, unpolarised {:.1} %{}; of the total \
+             reflectance {:.1} %",
+            100.0 * e.floor,
+            100.0 * e.worst.te,
+            100.0 * e.worst.tm,
+            100.0 * e.worst.unpolarized,
+            e.worst_at.map_or(String::new(), |(l, m, n)| format!(" (order ({m},{n}) at {l:.0} nm)")),
+            100.0 * e.total
+        );
+        if let (Some(d), Some(sp)) = (e.delta_e_diffracted, e.delta_e_specular) {
+            let _ = writeln!(s, "colour difference (CIEDE2000, D65): diffracted light {d:.2}, mirror order {sp:.2}");
+        }
+        s
+    }
+}

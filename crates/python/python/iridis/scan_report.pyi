@@ -1,0 +1,18 @@
+import os
+from typing import Any, Optional, Union
+
+def report(
+    surface: Union[str, os.PathLike[str]],
+    output: Union[str, os.PathLike[str]],
+    *,
+    channel: Union[int, str, None] = ...,
+    pixel_size: Optional[str] = ...,
+    height_unit: Optional[str] = ...,
+    level: Optional[str] = ...,
+    override_units: bool = ...,
+    as_height: bool = ...,
+    size: int = ...,
+    coherence: Optional[str] = ...,
+    visual: str = ...,
+    testbench: bool = ...,
+) -> dict[str, Any]: ...

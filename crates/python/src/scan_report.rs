@@ -1,0 +1,62 @@
+//! `iridis.report`: the report of a scan (`iridis report`, `iridis_api::scan_report::write_report`), and the
+//! run's output set that the library's file-writing calls write through (committed when the call succeeds,
+//! discarded when it fails, as the CLI does).
+
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::facade::{run, Options};
+
+/// Runs a facade call that writes files through the run's output set: the files appear together when it
+/// succeeds, none when it fails.
+pub fn with_outputs<T>(f: impl FnOnce() -> anyhow::Result<T>) -> anyhow::Result<T> {
+    match f() {
+        Ok(v) => {
+            iridis_api::output::commit()?;
+            Ok(v)
+        }
+        Err(e) => {
+            iridis_api::output::discard();
+            Err(e)
+        }
+    }
+}
+
+/// The report of `surface` written into `output`: returns `(report_json, text)` — `report.json`'s content and
+/// what `iridis report` prints.
+#[pyfunction]
+#[pyo3(signature = (surface, output, options=None))]
+fn _report(
+    py: Python<'_>,
+    surface: &str,
+    output: &str,
+    options: Option<Bound<'_, PyDict>>,
+) -> PyResult<(String, String)> {
+    let mut o = Options::new(options);
+    let mut r = iridis_api::scan_report::ReportOptions::new(surface, std::path::Path::new(output));
+    r.channel = o.string("channel")?;
+    r.pixel_size = o.string("pixel_size")?;
+    r.height_unit = o.string("height_unit")?;
+    r.level = o.string("level")?;
+    r.override_units = o.bool("override_units")?.unwrap_or(false);
+    r.as_height = o.bool("as_height")?.unwrap_or(false);
+    r.size = o.usize("size")?.unwrap_or(r.size);
+    r.coherence = o.string("coherence")?;
+    r.visual = o.string("visual")?.unwrap_or(r.visual);
+    r.no_testbench = !o.bool("testbench")?.unwrap_or(true);
+    o.finish()?;
+    run(py, |said| {
+        with_outputs(|| {
+            let rep = iridis_api::scan_report::write_report(&r, None, said)?;
+            for w in &rep.warnings {
+                iridis_api::Report::warn(said, w);
+            }
+            Ok((serde_json::to_string(&rep.json)?, rep.text()))
+        })
+    })
+}
+
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(_report, m)?)?;
+    Ok(())
+}

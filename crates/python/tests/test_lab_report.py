@@ -1,0 +1,98 @@
+"""The report, surface files and the lab's sweeps and laser from Python: the same library calls as `iridis
+report`, `iridis surface convert|channels`, `iridis sweep` and `iridis experiment laser`, checked against
+numpy, the law of reflection and the other path through the library (`lab.compare`)."""
+import json
+import math
+import os
+import warnings
+
+import numpy as np
+import pytest
+
+import iridis
+import iridis.lab as lab
+import iridis.surface as surface
+
+FIXTURES = os.path.join(os.path.dirname(__file__), "..", "..", "surface", "tests", "fixtures")
+
+
+def test_report_of_an_instrument_file(tmp_path):
+    """The synthetic Nanonis scan (5 nm · sin(2π x / 10 px) + a tilt, 10 nm pixels): numpy's plane-levelled Sq
+    is 3.4721342 nm (as crates/cli/tests/surface_cli.rs), and its 100 nm period cannot diffract visible light
+    (a first order needs d > λ/2 ≥ 190 nm), so no map and no bench."""
+    out = tmp_path / "rep"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        r = iridis.report(os.path.join(FIXTURES, "nanonis_synthetic.sxm"), out, channel="Z_forward", size=16)
+    assert (r["info"]["cols"], r["info"]["rows"]) == (40, 24)
+    assert r["info"]["roughness"]["sq_nm"] == pytest.approx(3.4721342067, rel=1e-4)
+    assert r["diffracts_visible_light"] is False and r["testbench"] is None
+    assert "100 nm" in r["verdict"]
+    assert r["text"].splitlines()[1] == r["verdict"]
+    on_disk = json.loads((out / "report.json").read_text())
+    assert on_disk["verdict"] == r["verdict"] and on_disk["commands"] == r["commands"]
+    for f in ("index.html", "relief.png", "psdf.png", "acf.png"):
+        assert (out / f).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" or f == "index.html"
+    assert not (out / "brdf_0deg.png").exists()
+
+
+def test_reshape_and_write_follow_numpy(tmp_path):
+    s = surface.generate("sine", size="2um", pixel="100nm", period="500nm", depth="40nm")
+    h = s.heights_nm
+    tiled = s.reshape(tile="2x3")
+    np.testing.assert_array_equal(tiled.heights_nm, np.tile(h, (2, 3)))
+    cropped = s.reshape(crop="2,3,5,7")
+    np.testing.assert_array_equal(cropped.heights_nm, h[2:7, 3:10])
+    path = tmp_path / "s.npy"
+    s.write(path)
+    back = surface.load(path)
+    np.testing.assert_allclose(back.heights_nm, h, rtol=0, atol=1e-12)
+    assert back.pixel_nm == pytest.approx(s.pixel_nm)
+    with pytest.raises(ValueError, match="crop"):
+        s.reshape(crop="1,2")
+
+
+def test_info_text_and_channels():
+    s = surface.generate("sine", size="11um", pixel="100nm", period="1100nm", depth="100nm")
+    text = s.info_text()
+    assert "samples      110 rows × 110 columns" in text
+    period = s.info()["peaks"][0]["period_nm"]
+    assert abs(period - 1100.0) < 5.0 and "periods      period (nm)" in text
+    c = surface.channels(os.path.join(FIXTURES, "gwyfile_two_channels.gwy"))
+    assert len(c["channels"]) == 2 and ": 2 channels" in c["text"].splitlines()[0]
+    assert sum(ch["height"] for ch in c["channels"]) == sum("(not a height)" not in l for l in c["text"].splitlines()[2:4])
+
+
+def test_figures_are_written(tmp_path):
+    s = surface.generate("sine", size="4um", pixel="100nm", period="1000nm")
+    s.figures("sine", image=tmp_path / "r.png", psdf=tmp_path / "p.png", acf=tmp_path / "a.png")
+    for f in ("r.png", "p.png", "a.png"):
+        assert (tmp_path / f).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_laser_mirror_reflection_hits_the_screen_centre(tmp_path):
+    """A flat mirror (a sine of depth 0): the law of reflection puts the beam's reflection on the screen's
+    centre, the pixel the screen is laid out around."""
+    r = lab.laser("builtin:sine?size=4um&pixel=100nm&depth=0nm", tmp_path / "screen.png", aperture_nm=4000.0,
+                  size=11, subsamples=1, exposures=(1000.0,), coating="none", step_nm=10.0)
+    y = np.nan_to_num(r["xyz"][:, :, 1])
+    assert np.unravel_index(np.argmax(y), y.shape) == (5, 5)
+    assert r["max_y"] == pytest.approx(float(y.max()), rel=1e-12)
+    assert r["gold_mirror_relative_brightness"] == pytest.approx(1.0)
+    assert (tmp_path / "screen.png").exists()
+
+
+def test_sweep_point_equals_the_comparison_at_that_value(tmp_path):
+    """One sweep value is one comparison: the reference method with 5 Taylor terms against its model's ground
+    truth, by `lab.sweep` (iridis_lab::sweep) and by `lab.compare` (iridis_lab::compare), agree."""
+    spec = "builtin:elaphe?size=3um&pixel=100nm"
+    opts = dict(coherence_nm=1500.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        sw = lab.sweep(spec, "terms", [5], tmp_path / "sheet.png", size=16, exposures=(1000.0,), **opts)
+        c = lab.compare(spec, methods=["reference"], exposures=(1000.0,), size=16, terms=5, **opts)
+    mean_sweep = sw["points"][0]["errors"][0]["mean"]
+    mean_compare = c["results"][0]["mean"]
+    assert mean_sweep == pytest.approx(mean_compare, rel=1e-9, abs=1e-12)
+    assert (tmp_path / "sheet.png").exists() and (tmp_path / "sheet_error.png").exists()
+    assert sw["param"] == "terms" and [p["value"] for p in sw["points"]] == [5.0]
