@@ -138,10 +138,15 @@ fn the_reference_evaluator_takes_the_same_units() {
     let spectral = SpectralSetup::default().radiometric(COHERENCE).unwrap();
     let shading = Shading { fresnel: Arc::new(Fresnel::Schlick { n: 1.5 }), ..Shading::default() };
     let reference = Reference { terms, shading, spectral };
-    let grid = AlbedoGrid::power(801, 5.0).unwrap();
+    // The lobe (≈ 0.1 wide in u) sits at u = v = 0, where the power-5 grid 2·s⁵ is densest: with 401 points
+    // |u| < 0.05 still holds ~190 of the nodes, so the trapezoid rule resolves the lobe as with 801, and the bound
+    // (2 %, against a measured 0.6 % physical excess) keeps its meaning. 801 points (IRIDIS_EXHAUSTIVE=1) are four
+    // times the evaluations: 33 CPU s of the 39 of this file's tests.
+    let points = if std::env::var("IRIDIS_EXHAUSTIVE").as_deref() == Ok("1") { 801 } else { 401 };
+    let grid = AlbedoGrid::power(points, 5.0).unwrap();
     let a = directional_albedo(&reference, direction(0.5, 0.0), &grid).y;
     let expected = schlick(0.5f64.cos()) / 0.04;
-    eprintln!("reference, flat, θ_o = 0.5 rad: A = {a:.4}, R/R₀ = {expected:.4}");
+    eprintln!("reference, flat, θ_o = 0.5 rad, {points} points: A = {a:.6}, R/R₀ = {expected:.6}");
     // Measured (probe, 801 points): 1.0064 × R/R₀ at normal incidence, the Kirchhoff factor's growth over a lobe
     // ≈ 0.1 wide in u; this test at 0.5 rad.
     assert!((a / expected - 1.0).abs() < 0.02, "{a} vs {expected}");
