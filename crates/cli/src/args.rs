@@ -443,17 +443,6 @@ pub fn parse_incidence(s: &str) -> anyhow::Result<[f64; 3]> {
     Ok(iridis_diffraction::geometry::direction(theta, phi))
 }
 
-#[cfg(test)]
-mod brdf_args_tests {
-    use super::*;
-
-    #[test]
-    fn incidence_parses() {
-        assert!(parse_incidence("90deg").is_err());
-        assert!(parse_incidence("20deg,0deg,1deg").is_err());
-        let d = parse_incidence("0deg").unwrap();
-        assert!((d[2] - 1.0).abs() < 1e-15);
-
 /// A fraction from 0 up to 1, written as a number (`1e-3`) or a percentage (`0.1%`).
 pub fn fraction(s: &str) -> Result<f64, String> {
     let t = s.trim();
@@ -466,5 +455,18 @@ pub fn fraction(s: &str) -> Result<f64, String> {
         Ok(v)
     } else {
         Err(format!("'{s}': the efficiency must be from 0 up to 1 (100 %)"))
+    }
+}
+
+#[cfg(test)]
+mod brdf_args_tests {
+    use super::*;
+
+    #[test]
+    fn incidence_parses() {
+        assert!(parse_incidence("90deg").is_err());
+        assert!(parse_incidence("20deg,0deg,1deg").is_err());
+        let d = parse_incidence("0deg").unwrap();
+        assert!((d[2] - 1.0).abs() < 1e-15);
     }
 }

@@ -16,7 +16,6 @@ use crate::progress::Cli;
 
 /// Moved to crates/cli/src/args.rs (shared option groups); kept here for cmd/lab.rs, which names it
 /// `crate::cmd::brdf::fresnel_convention` until its import is changed to `crate::args::fresnel_convention`.
-pub use crate::args::fresnel_convention;
 
 #[derive(Debug, ClapArgs)]
 #[command(after_help = "\
