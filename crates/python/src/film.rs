@@ -85,7 +85,7 @@ fn _fit<'py>(
         };
         let f = crate::facade::run(py, |report| iridis_api::film_fit::fit_file(Path::new(p), &request, report))?;
         let read = (f.reading.notes, f.reading.columns, f.reading.percent);
-        return fit_dict(py, stack, &f.template, q, f.reading.data, f.result, f.seconds, read);
+        return fit_dict(py, stack, angle_rad, &f.template, q, f.reading.data, f.result, f.seconds, read);
     }
     let template = Template::parse(stack).map_err(value_error)?;
     let data = match (&path, &wavelengths, &values) {
@@ -100,7 +100,7 @@ fn _fit<'py>(
     let r = py.allow_threads(|| fit(&template, &data, &opt)).map_err(value_error)?;
     let seconds = t0.elapsed().as_secs_f64();
     let read = (vec!["arrays given: wavelengths in nm, values as fractions".to_string()], vec![], false);
-    fit_dict(py, stack, &template, q, data, r, seconds, read)
+    fit_dict(py, stack, angle_rad, &template, q, data, r, seconds, read)
 }
 
 /// The fit as the dict of `iridis thinfilm fit --json` (arrays as NumPy arrays).
@@ -108,6 +108,7 @@ fn _fit<'py>(
 fn fit_dict<'py>(
     py: Python<'py>,
     stack: &str,
+    angle_rad: f64,
     template: &Template,
     q: Quantity,
     data: Measured,

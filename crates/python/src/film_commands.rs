@@ -257,8 +257,8 @@ fn _film_materials(py: Python<'_>, at_nm: Option<f64>) -> PyResult<Bound<'_, PyD
 #[pyfunction]
 #[pyo3(signature = (seconds, no_python, roughness_nm=None, correlation_nm=None, d_iterations=None,
     diffuse_transport="multiple", azimuth_rad=std::f64::consts::PI))]
-fn _film_bench(
-    py: Python<'_>,
+fn _film_bench<'py>(
+    py: Python<'py>,
     seconds: f64,
     no_python: bool,
     roughness_nm: Option<f64>,
@@ -266,7 +266,7 @@ fn _film_bench(
     d_iterations: Option<usize>,
     diffuse_transport: &str,
     azimuth_rad: f64,
-) -> PyResult<Bound<'_, PyDict>> {
+) -> PyResult<Bound<'py, PyDict>> {
     let a = run(py, |_| {
         if let Some(opts) = rough_options(roughness_nm, correlation_nm, d_iterations, diffuse_transport)? {
             let b = rough::bench(film::parse_stack(rough::LISTING_3_6_STACK)?, &opts, azimuth_rad, 80, seconds)?;
