@@ -28,13 +28,16 @@ fn path(o: &mut Options<'_>, key: &'static str) -> PyResult<Option<PathBuf>> {
     Ok(o.string(key)?.map(PathBuf::from))
 }
 
+/// A bench with its options read, run later without the GIL.
+type PreparedBench = Box<dyn FnOnce(&dyn iridis_api::Report) -> anyhow::Result<Bench> + Send>;
+
 /// Runs the bench `name` (`iridis_api::bench::NAMES`) with `options` (the CLI's option names with `_`, lengths
 /// in nm); returns its text and its JSON as text.
 #[pyfunction]
 #[pyo3(signature = (name, options=None))]
 fn bench_run(py: Python<'_>, name: &str, options: Option<Bound<'_, PyDict>>) -> PyResult<(String, String)> {
     let options = options.map(|d| d.copy()).transpose()?;
-    let b: Box<dyn FnOnce(&dyn iridis_api::Report) -> anyhow::Result<Bench> + Send> = match name {
+    let b: PreparedBench = match name {
         "diffraction" => {
             let d = diffraction::SpeedOptions::default();
             let map_sizes = take_list(&options, "map_sizes")?.unwrap_or(d.map_sizes);
