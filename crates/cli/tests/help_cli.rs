@@ -21,7 +21,8 @@
 //!
 //! **Repeats run once.** A command that, after the rules, has the same words and the same input files (byte for
 //! byte) as one already run in this test process — the README and the pages share examples (`render
-//! examples/rough_film.toml`, 15–40 s) — is not run again; its earlier outcome counts for it, failure included.
+//! examples/rough_film.toml`, 15–40 s) — is not run again; its earlier outcome counts for it, failure included,
+//! and the files it wrote are put into this example's folder for the commands after it.
 //!
 //! **Inputs.** A file an example reads that no earlier example of its page wrote is made first: height fields
 //! (`.gwy`, `.npy`, `.png`, `.txt`, `.tif`) by `iridis surface generate sine` on the small patch; `.npz` is the
@@ -479,8 +480,26 @@ fn make_input(dir: &Path, name: &str, words: &[String]) -> Result<(), String> {
     }
 }
 
-/// The commands run so far in this process: (words, input files' bytes) → the failure, if it failed.
-type Ran = std::collections::HashMap<(Vec<String>, Vec<Vec<u8>>), Option<String>>;
+/// What a command run left behind: the failure, if it failed, and the files it wrote (name, bytes), which a
+/// repeat puts into its own folder so that the next command of its line finds them.
+type Outcome = (Option<String>, Vec<(std::ffi::OsString, Vec<u8>)>);
+/// The commands run so far in this process: (words, input files' bytes) → their outcome.
+type Ran = std::collections::HashMap<(Vec<String>, Vec<Vec<u8>>), Outcome>;
+
+/// The files in `dir` with their modification times and sizes, to tell which ones a command wrote.
+fn listing(dir: &Path) -> std::collections::HashMap<std::ffi::OsString, (std::time::SystemTime, u64)> {
+    std::fs::read_dir(dir)
+        .map(|entries| {
+            entries
+                .flatten()
+                .filter_map(|e| {
+                    let m = e.metadata().ok().filter(|m| m.is_file())?;
+                    Some((e.file_name(), (m.modified().ok()?, m.len())))
+                })
+                .collect()
+        })
+        .unwrap_or_default()
+}
 static RAN: std::sync::Mutex<Option<Ran>> = std::sync::Mutex::new(None);
 
 /// Runs the example lines in `dir` under the rules; returns the failures.
@@ -516,7 +535,10 @@ fn run_examples(dir: &Path, origin: &str, lines: &[String], takes: &Takes, log: 
             let key: (Vec<String>, Vec<Vec<u8>>) =
                 (args.clone(), inputs(&args).iter().map(|n| std::fs::read(dir.join(n)).unwrap_or_default()).collect());
             let earlier = RAN.lock().unwrap_or_else(|e| e.into_inner()).get_or_insert_with(Ran::new).get(&key).cloned();
-            if let Some(failed) = earlier {
+            if let Some((failed, wrote)) = earlier {
+                for (name, bytes) in &wrote {
+                    std::fs::write(dir.join(name), bytes).expect("scratch folder is writable");
+                }
                 log.push(format!(
                     "  once   {origin}: {} (ran before{})",
                     args[1..].join(" "),
@@ -526,6 +548,7 @@ fn run_examples(dir: &Path, origin: &str, lines: &[String], takes: &Takes, log: 
                 failures.extend(failed.map(|e| format!("{origin}: {}\n    {e}", line.trim())));
                 continue;
             }
+            let before = listing(dir);
             let t = std::time::Instant::now();
             let out = run_in(dir, &args[1..]);
             log.push(format!("{:6.2} s  {origin}: {}", t.elapsed().as_secs_f64(), args[1..].join(" ")));
@@ -533,7 +556,12 @@ fn run_examples(dir: &Path, origin: &str, lines: &[String], takes: &Takes, log: 
             let stderr = String::from_utf8_lossy(&out.stderr);
             let failed = (!out.status.success() || stderr.contains("panicked"))
                 .then(|| format!("ran: {:?}\n    {}", &args[1..], stderr.trim()));
-            RAN.lock().unwrap_or_else(|e| e.into_inner()).get_or_insert_with(Ran::new).insert(key, failed.clone());
+            let wrote = listing(dir)
+                .into_iter()
+                .filter(|(name, stamp)| before.get(name) != Some(stamp))
+                .filter_map(|(name, _)| Some((name.clone(), std::fs::read(dir.join(&name)).ok()?)))
+                .collect();
+            RAN.lock().unwrap_or_else(|e| e.into_inner()).get_or_insert_with(Ran::new).insert(key, (failed.clone(), wrote));
             if let Some(e) = failed {
                 failures.push(format!("{origin}: {}\n    {e}", line.trim()));
             }
