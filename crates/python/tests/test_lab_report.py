@@ -71,9 +71,9 @@ def test_figures_are_written(tmp_path):
 
 
 def test_laser_mirror_reflection_hits_the_screen_centre(tmp_path):
-    """A flat mirror (a sine of depth 0): the law of reflection puts the beam's reflection on the screen's
-    centre, the pixel the screen is laid out around."""
-    r = lab.laser("builtin:sine?size=4um&pixel=100nm&depth=0nm", tmp_path / "screen.png", aperture_nm=4000.0,
+    """A mirror (a sine 0.1 nm deep, flat to the light; the generator refuses depth 0): the law of reflection
+    puts the beam's reflection on the screen's centre, the pixel the screen is laid out around."""
+    r = lab.laser("builtin:sine?size=4um&pixel=100nm&depth=0.1nm", tmp_path / "screen.png", aperture_nm=4000.0,
                   size=11, subsamples=1, exposures=(1000.0,), coating="none", step_nm=10.0)
     y = np.nan_to_num(r["xyz"][:, :, 1])
     assert np.unravel_index(np.argmax(y), y.shape) == (5, 5)
