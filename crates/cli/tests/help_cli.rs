@@ -561,7 +561,10 @@ fn run_examples(dir: &Path, origin: &str, lines: &[String], takes: &Takes, log: 
                 .filter(|(name, stamp)| before.get(name) != Some(stamp))
                 .filter_map(|(name, _)| Some((name.clone(), std::fs::read(dir.join(&name)).ok()?)))
                 .collect();
-            RAN.lock().unwrap_or_else(|e| e.into_inner()).get_or_insert_with(Ran::new).insert(key, (failed.clone(), wrote));
+            RAN.lock()
+                .unwrap_or_else(|e| e.into_inner())
+                .get_or_insert_with(Ran::new)
+                .insert(key, (failed.clone(), wrote));
             if let Some(e) = failed {
                 failures.push(format!("{origin}: {}\n    {e}", line.trim()));
             }
