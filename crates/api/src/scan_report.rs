@@ -192,60 +192,6 @@ fn brdf_map_figure(
     Ok(warnings)
 }
 
-/// The views' false colours as a picture with its legend in the title (`iridis brdf vision --strip`).
-pub fn vision_strip(v: &crate::vision::DirectionalVision) -> Result<iridis_plot::RgbImage> {
-    let colours = v.false_colours();
-    let uv = colours.iter().any(|c| c.1.is_some());
-    let (cell, rows) = (16usize, if uv { 2 } else { 1 });
-    let n = colours.len();
-    let mut data = vec![0u8; n * cell * rows * cell * 3];
-    for (k, (rgb, u)) in colours.iter().enumerate() {
-        for row in 0..rows {
-            let c = if row == 0 {
-                *rgb
-            } else {
-                let x = u.unwrap_or(0.0);
-                [0.6 * x, 0.2 * x, x]
-            };
-            for y in row * cell..(row + 1) * cell {
-                for x in k * cell..(k + 1) * cell {
-                    let i = (y * n * cell + x) * 3;
-                    for ch in 0..3 {
-                        data[i + ch] = (255.0 * c[ch].clamp(0.0, 1.0).powf(1.0 / 2.2)).round() as u8;
-                    }
-                }
-            }
-        }
-    }
-    let pixels = iridis_plot::RgbImage { width: (n * cell) as u32, height: (rows * cell) as u32, data };
-    let r = &v.analysis.receptors;
-    let k = r.len();
-    let legend = match k {
-        0..=2 => format!("{}: catches of {}", v.analysis.visual.name, r.join(", ")),
-        _ => format!(
-            "{}: R {} G {} B {}{}",
-            v.analysis.visual.name.split(" (").next().unwrap_or(""),
-            r[k - 1],
-            r[k - 2],
-            r[k - 3],
-            if uv { format!(", below {}", r[0]) } else { String::new() }
-        ),
-    };
-    let (lo, hi) = (v.views.first().map_or(0.0, |x| x.1), v.views.last().map_or(0.0, |x| x.1));
-    Ok(iridis_plot::ImagePlot {
-        title: legend,
-        x_label: "view θr (deg, + on the specular side)".into(),
-        y_label: if uv { "UV | visible".into() } else { "visible".into() },
-        x_range: (lo, hi),
-        y_range: (0.0, rows as f64),
-        pixels: &pixels,
-        overlays: vec![],
-        colorbar: None,
-        size: (720, 260),
-    }
-    .render_without_y_ticks()?)
-}
-
 /// Writes the report of `o.surface` into `o.output` (index.html, report.json, the figures) through the run's
 /// output set; each step is announced to `report` by its title, its own notes are dropped and its warnings
 /// collected into the report's. `inputs` gives each step's JSON the options of its command line (the CLI's).
@@ -408,7 +354,7 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
             let shading = crate::fresnel::shading("schlick:1.5", FresnelConvention::Physical, true)?;
             let views: Vec<f64> = (-6..=6).map(|k| 10.0 * k as f64).collect();
             let v = crate::vision::along_plane(&source, &surf, &model, shading, 0.0, None, &views, &spec, r)?;
-            let img = vision_strip(&v)?;
+            let img = crate::brdf_vision::vision_strip(&v)?;
             crate::output::write_png_rgb8(&path("vision.png"), img.width, img.height, &img.data)?;
             Ok((answer(v.to_json(), &args, inputs), Vec::new()))
         })?;
