@@ -1,7 +1,7 @@
-//! `iridis.film` (and `iridis.color.xyz`, `iridis.vision.vision`): the computations of the commands `iridis
-//! thinfilm spectrum|table|color|chart|materials|bench|profile|fit`, `iridis color xyz|delta-e` and `iridis
-//! vision`, by the same library calls (`iridis_api::film`, `film_chart`, `film_fit`, `film_bench`, `rough`,
-//! `color`, `vision`). Each returns what the command prints — its JSON as text, its text, its CSV — and a plot
+//! `iridis.film` (and `iridis.color.xyz`): the computations of the commands `iridis
+//! thinfilm spectrum|table|color|chart|materials|bench|profile|fit` and `iridis color xyz|delta-e`, by the same
+//! library calls (`iridis_api::film`, `film_chart`, `film_fit`, `film_bench`, `rough`, `color`); [`Answer`] is
+//! also what `iridis.vision.vision` returns. Each returns what the command prints — its JSON as text, its text, its CSV — and a plot
 //! as RGB bytes where the command draws one; the Python module turns them into a dict, strings and an array.
 //! The library's warnings become Python warnings; its errors `ValueError` (`OSError` for files).
 
@@ -18,16 +18,16 @@ use crate::facade::run;
 
 /// What a command gives: JSON text, text, CSV, a plot.
 #[derive(Default)]
-struct Answer {
-    json: Option<serde_json::Value>,
-    text: Option<String>,
-    csv: Option<String>,
-    image: Option<RgbImage>,
-    extra: Vec<(&'static str, String)>,
+pub(crate) struct Answer {
+    pub(crate) json: Option<serde_json::Value>,
+    pub(crate) text: Option<String>,
+    pub(crate) csv: Option<String>,
+    pub(crate) image: Option<RgbImage>,
+    pub(crate) extra: Vec<(&'static str, String)>,
 }
 
 impl Answer {
-    fn into_py(self, py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+    pub(crate) fn into_py(self, py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
         let d = PyDict::new(py);
         d.set_item("json", self.json.map(|v| v.to_string()))?;
         d.set_item("text", self.text)?;
@@ -361,61 +361,6 @@ fn _color_delta_e(py: Python<'_>, first: &str, second: &str, formula: &str) -> P
     run(py, |_| iridis_api::color::delta_e(first, second, formula))
 }
 
-/// `iridis vision`: a spectra CSV as an animal sees it, with the options of the CLI (`iridis_vision::Spec`).
-#[pyfunction]
-#[pyo3(signature = (path, percent, visual=None, lambda_max=None, chromophore=None, oil_droplets=None,
-    ocular_media=None, illuminant=None, illuminant_units=None, illuminant_scale=None, background=None, weber=None,
-    weber_ref=None, densities=None, receptor_noise=None, noise=None, achromatic=None, achromatic_weber=None, space=None))]
-#[allow(clippy::too_many_arguments)]
-fn _vision_file<'py>(
-    py: Python<'py>,
-    path: &str,
-    percent: bool,
-    visual: Option<String>,
-    lambda_max: Option<String>,
-    chromophore: Option<String>,
-    oil_droplets: Option<String>,
-    ocular_media: Option<String>,
-    illuminant: Option<String>,
-    illuminant_units: Option<String>,
-    illuminant_scale: Option<f64>,
-    background: Option<String>,
-    weber: Option<f64>,
-    weber_ref: Option<String>,
-    densities: Option<String>,
-    receptor_noise: Option<String>,
-    noise: Option<String>,
-    achromatic: Option<String>,
-    achromatic_weber: Option<f64>,
-    space: Option<String>,
-) -> PyResult<Bound<'py, PyDict>> {
-    let spec = iridis_vision::Spec {
-        visual,
-        lambda_max,
-        chromophore,
-        oil_droplets,
-        ocular_media,
-        illuminant,
-        illuminant_units,
-        illuminant_scale,
-        background,
-        weber,
-        weber_ref,
-        densities,
-        receptor_noise,
-        noise,
-        achromatic,
-        achromatic_weber,
-        space,
-    };
-    let a = run(py, |report| {
-        let v = iridis_api::vision::analyse_file(Path::new(path), &spec, percent)?;
-        v.analysis.notes.iter().for_each(|n| iridis_api::Report::note(report, n));
-        Ok(Answer { json: Some(v.to_json()?), text: Some(v.text()), ..Default::default() })
-    })?;
-    a.into_py(py)
-}
-
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(_film_spectrum, m)?)?;
     m.add_function(wrap_pyfunction!(_film_table, m)?)?;
@@ -427,6 +372,5 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(_film_fit, m)?)?;
     m.add_function(wrap_pyfunction!(_color_xyz, m)?)?;
     m.add_function(wrap_pyfunction!(_color_delta_e, m)?)?;
-    m.add_function(wrap_pyfunction!(_vision_file, m)?)?;
     Ok(())
 }

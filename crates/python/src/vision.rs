@@ -6,56 +6,49 @@ use iridis_vision::{analyse, Light, Spec, VisualSystem};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray2, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
+use pyo3::types::PyDict;
 
 use crate::args::value_error;
+use crate::facade::{run, Options};
+use crate::film_commands::Answer;
+
+/// The analysis options as typed (the CLI's words), from a wrapper's keyword options; `None` leaves a default.
+fn spec(options: Option<Bound<'_, PyDict>>) -> PyResult<Spec> {
+    let mut o = Options::new(options);
+    let spec = Spec {
+        visual: o.string("visual")?,
+        lambda_max: o.string("lambda_max")?,
+        chromophore: o.string("chromophore")?,
+        oil_droplets: o.string("oil_droplets")?,
+        ocular_media: o.string("ocular_media")?,
+        illuminant: o.string("illuminant")?,
+        illuminant_units: o.string("illuminant_units")?,
+        illuminant_scale: o.f64("illuminant_scale")?,
+        background: o.string("background")?,
+        weber: o.f64("weber")?,
+        weber_ref: o.string("weber_ref")?,
+        densities: o.string("densities")?,
+        receptor_noise: o.string("receptor_noise")?,
+        noise: o.string("noise")?,
+        achromatic: o.string("achromatic")?,
+        achromatic_weber: o.f64("achromatic_weber")?,
+        space: o.string("space")?,
+    };
+    o.finish()?;
+    Ok(spec)
+}
 
 /// The analysis of spectra (one per row of `values`, on `wavelengths`) as JSON text.
 #[pyfunction]
-#[pyo3(signature = (wavelengths, values, names, visual=None, lambda_max=None, chromophore=None, oil_droplets=None,
-    ocular_media=None, illuminant=None, illuminant_units=None, illuminant_scale=None, background=None, weber=None,
-    weber_ref=None, densities=None, receptor_noise=None, noise=None, achromatic=None, achromatic_weber=None, space=None))]
+#[pyo3(signature = (wavelengths, values, names, **options))]
 fn _analyse(
     py: Python<'_>,
     wavelengths: PyReadonlyArray1<'_, f64>,
     values: PyReadonlyArray2<'_, f64>,
     names: Vec<String>,
-    visual: Option<String>,
-    lambda_max: Option<String>,
-    chromophore: Option<String>,
-    oil_droplets: Option<String>,
-    ocular_media: Option<String>,
-    illuminant: Option<String>,
-    illuminant_units: Option<String>,
-    illuminant_scale: Option<f64>,
-    background: Option<String>,
-    weber: Option<f64>,
-    weber_ref: Option<String>,
-    densities: Option<String>,
-    receptor_noise: Option<String>,
-    noise: Option<String>,
-    achromatic: Option<String>,
-    achromatic_weber: Option<f64>,
-    space: Option<String>,
+    options: Option<Bound<'_, PyDict>>,
 ) -> PyResult<String> {
-    let spec = Spec {
-        visual,
-        lambda_max,
-        chromophore,
-        oil_droplets,
-        ocular_media,
-        illuminant,
-        illuminant_units,
-        illuminant_scale,
-        background,
-        weber,
-        weber_ref,
-        densities,
-        receptor_noise,
-        noise,
-        achromatic,
-        achromatic_weber,
-        space,
-    };
+    let spec = spec(options)?;
     let (wl, rows) = crate::args::spectra_rows(&wavelengths, &values)?;
     if names.len() != rows.len() {
         return Err(value_error(format!("{} names for {} spectra", names.len(), rows.len())));
@@ -68,6 +61,25 @@ fn _analyse(
         serde_json::to_string(&a).map_err(|e| e.to_string())
     })
     .map_err(value_error)
+}
+
+/// `iridis vision`: the spectra CSV at `path` (`percent` divides by 100) analysed with `options`; the answer
+/// has the CLI's `--json` and its text.
+#[pyfunction]
+#[pyo3(signature = (path, percent, **options))]
+fn _vision_file<'py>(
+    py: Python<'py>,
+    path: &str,
+    percent: bool,
+    options: Option<Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let spec = spec(options)?;
+    let a = run(py, |report| {
+        let v = iridis_api::vision::analyse_file(std::path::Path::new(path), &spec, percent)?;
+        v.analysis.notes.iter().for_each(|n| iridis_api::Report::note(report, n));
+        Ok(Answer { json: Some(v.to_json()?), text: Some(v.text()), ..Default::default() })
+    })?;
+    a.into_py(py)
 }
 
 /// Each receptor's sensitivity (unit sum over the 1 nm samples of 300–700 nm, times the ocular media) at
@@ -104,6 +116,7 @@ fn _vision_names() -> (Named, Named) {
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(_analyse, m)?)?;
+    m.add_function(wrap_pyfunction!(_vision_file, m)?)?;
     m.add_function(wrap_pyfunction!(_sensitivities, m)?)?;
     m.add_function(wrap_pyfunction!(_vision_names, m)?)?;
     Ok(())

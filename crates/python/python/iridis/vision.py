@@ -43,6 +43,20 @@ def _text(x, sep=","):
     return sep.join(str(float(v)) for v in np.ravel(x))
 
 
+def _spec(visual, lambda_max, chromophore, oil_droplets, ocular_media, illuminant, illuminant_units,
+          illuminant_scale, background, weber, weber_ref, densities, receptor_noise, noise, achromatic,
+          achromatic_weber, space):
+    """The analysis options in the words of the CLI (``iridis_vision::Spec``), for ``analyse`` and ``vision``."""
+    number = (lambda x: None if x is None else float(x))
+    return dict(
+        visual=visual, lambda_max=_text(lambda_max), chromophore=chromophore, oil_droplets=oil_droplets,
+        ocular_media=ocular_media, illuminant=illuminant, illuminant_units=illuminant_units,
+        illuminant_scale=number(illuminant_scale), background=background, weber=number(weber),
+        weber_ref=None if weber_ref is None else str(weber_ref), densities=_text(densities, ":"),
+        receptor_noise=_text(receptor_noise), noise=noise, achromatic=achromatic,
+        achromatic_weber=number(achromatic_weber), space=space)
+
+
 def analyse(wavelengths_nm, values, visual=None, names=None, *, lambda_max=None, chromophore=None,
             oil_droplets=None, ocular_media=None, illuminant=None, illuminant_units=None, illuminant_scale=None,
             background=None, weber=None, weber_ref=None, densities=None, receptor_noise=None, noise=None,
@@ -67,15 +81,9 @@ def analyse(wavelengths_nm, values, visual=None, names=None, *, lambda_max=None,
     if names is None:
         names = [f"sample{i + 1}" for i in range(v.shape[0])]
     names = [str(n) for n in names]
-    out = _native._analyse(
-        np.ascontiguousarray(wl), np.ascontiguousarray(v), names, visual=visual, lambda_max=_text(lambda_max),
-        chromophore=chromophore, oil_droplets=oil_droplets, ocular_media=ocular_media, illuminant=illuminant,
-        illuminant_units=illuminant_units,
-        illuminant_scale=None if illuminant_scale is None else float(illuminant_scale), background=background,
-        weber=None if weber is None else float(weber), weber_ref=None if weber_ref is None else str(weber_ref),
-        densities=_text(densities, ":"), receptor_noise=_text(receptor_noise), noise=noise,
-        achromatic=achromatic, achromatic_weber=None if achromatic_weber is None else float(achromatic_weber),
-        space=space)
+    out = _native._analyse(np.ascontiguousarray(wl), np.ascontiguousarray(v), names, **_spec(
+        visual, lambda_max, chromophore, oil_droplets, ocular_media, illuminant, illuminant_units, illuminant_scale,
+        background, weber, weber_ref, densities, receptor_noise, noise, achromatic, achromatic_weber, space))
     return json.loads(out)
 
 
@@ -98,12 +106,6 @@ def vision(spectra, visual=None, *, percent=False, lambda_max=None, chromophore=
     and ``.text`` the CLI's text. The options are :func:`analyse`'s."""
     from ._answer import answer
 
-    return answer(_native._vision_file(
-        str(spectra), bool(percent), visual=visual, lambda_max=_text(lambda_max), chromophore=chromophore,
-        oil_droplets=oil_droplets, ocular_media=ocular_media, illuminant=illuminant,
-        illuminant_units=illuminant_units,
-        illuminant_scale=None if illuminant_scale is None else float(illuminant_scale), background=background,
-        weber=None if weber is None else float(weber), weber_ref=None if weber_ref is None else str(weber_ref),
-        densities=_text(densities, ":"), receptor_noise=_text(receptor_noise), noise=noise,
-        achromatic=achromatic, achromatic_weber=None if achromatic_weber is None else float(achromatic_weber),
-        space=space))
+    return answer(_native._vision_file(str(spectra), bool(percent), **_spec(
+        visual, lambda_max, chromophore, oil_droplets, ocular_media, illuminant, illuminant_units, illuminant_scale,
+        background, weber, weber_ref, densities, receptor_noise, noise, achromatic, achromatic_weber, space)))
