@@ -367,18 +367,7 @@ pub fn write_map_outputs(f: &MapFiles, xyz: &[Xyz], size: usize, tone: ToneMap, 
 /// A map drawn as a figure with the view-direction axes of the paper's layout and a title, written as PNG.
 pub fn write_map_plot(path: &Path, xyz: &[Xyz], size: usize, tone: ToneMap, title: String) -> Result<()> {
     let pixels = iridis_plot::RgbImage { width: size as u32, height: size as u32, data: map_to_rgb8(xyz, tone) };
-    let plot = iridis_plot::ImagePlot {
-        title,
-        x_label: "x = sin θr cos φr".into(),
-        y_label: "y = sin θr sin φr".into(),
-        x_range: (-1.0, 1.0),
-        y_range: (-1.0, 1.0),
-        pixels: &pixels,
-        overlays: vec![],
-        colorbar: None,
-        size: (560, 600),
-    }
-    .render()?;
+    let plot = crate::lab_run::view_plot(&pixels, &title, None, (560, 600))?;
     crate::output::write_png_rgb8(path, plot.width, plot.height, &plot.data)
 }
 

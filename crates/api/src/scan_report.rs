@@ -181,7 +181,7 @@ fn brdf_map_figure(
         )),
     }
     let tone = ToneMap { exposure_ru: exposure, encoding: Encoding::parse("srgb").map_err(anyhow::Error::msg)? };
-    let rgb: Vec<u8> = xyz.iter().flat_map(|&p| tone.to_rgb8(p)).collect();
+    let rgb = crate::brdf_map::map_to_rgb8(&xyz, tone);
     crate::output::write_png_rgb8(image, size as u32, size as u32, &rgb)?;
     let name = Path::new(surface).file_name().map_or(surface.to_string(), |f| f.to_string_lossy().into());
     let (t, p) = (wi[2].clamp(-1.0, 1.0).acos().to_degrees(), wi[1].atan2(wi[0]).to_degrees());
