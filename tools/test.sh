@@ -10,7 +10,19 @@ cd "$(dirname "$0")/.."
 step() { echo "== [${SECONDS}s] $*"; }
 LOGS="$(mktemp -d "${TMPDIR:-/tmp}/iridis-test-logs.XXXXXX")"
 VENV="$(mktemp -d "${TMPDIR:-/tmp}/iridis-venv.XXXXXX")"
-trap 'kill $(jobs -p) 2>/dev/null; wait; rm -rf "$VENV" "$LOGS"' EXIT
+# (Cleanup never decides the exit status: with no background job left, `kill` with no pid fails, and under
+# `set -e` that failure would become the script's.)
+cleanup() {
+    local pids
+    pids="$(jobs -p)"
+    if [ -n "$pids" ]; then
+        # shellcheck disable=SC2086
+        kill $pids 2>/dev/null || true
+        wait 2>/dev/null || true
+    fi
+    rm -rf "$VENV" "$LOGS"
+}
+trap cleanup EXIT
 
 # The Python environment first (quick; on Debian without python3-venv it needs apt-get before the GPU packages'
 # install below takes apt's lock).
