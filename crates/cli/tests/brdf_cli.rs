@@ -1,6 +1,6 @@
 //! `iridis precompute` and `iridis brdf-map` as a user runs them, including their refusals.
 
-mod common;
+use crate::common;
 use std::path::Path;
 
 use common::{assert_fails, iridis, json_of, ok, quoted, words};

@@ -1,6 +1,6 @@
 //! The `iridis color` commands as a user runs them: output keys, values, and errors on bad input.
 
-mod common;
+use crate::common;
 use common::{assert_fails, iridis};
 
 fn temp_csv(name: &str, text: &str) -> std::path::PathBuf {

@@ -1,7 +1,7 @@
 //! What a new user trips over, each guarded: messages that say what is wrong (issue 20 items 2–4), and one
 //! behaviour for one option across commands (item 11).
 
-mod common;
+use crate::common;
 use common::{assert_fails, iridis, json_of, quoted, words, ROUGH_FILM};
 
 fn s(p: &std::path::Path) -> &str {

@@ -1,6 +1,6 @@
 //! `iridis demo` as a user runs it: a gallery folder with an `index.html` whose every image exists.
 
-mod common;
+use crate::common;
 use common::{assert_fails, iridis};
 
 /// The `src="…"` of every `<img>` in a page.
@@ -53,7 +53,7 @@ fn demo_refuses_an_unknown_section() {
     assert!(!std::path::Path::new("/nonexistent/never-created").exists());
 }
 
-/// The whole gallery (about 80 s on a shared 2-core machine): `cargo test -p iridis --test demo_cli -- --ignored`.
+/// The whole gallery (about 80 s on a shared 2-core machine): `cargo test -p iridis --test integration demo_cli:: -- --ignored`.
 #[test]
 #[ignore = "slow: the full gallery takes over a minute"]
 fn full_demo_gallery() {

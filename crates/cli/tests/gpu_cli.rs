@@ -2,7 +2,7 @@
 //! (lavapipe from `mesa-vulkan-drivers` on machines without a GPU); without one they fail, unless
 //! `IRIDIS_SKIP_GPU=1`. The no-adapter test hides every Vulkan driver and runs anywhere.
 
-mod common;
+use crate::common;
 
 use std::process::Command;
 

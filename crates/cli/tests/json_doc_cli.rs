@@ -2,7 +2,7 @@
 //! sizes the page uses), and its keys must be exactly the documented ones. The GPU commands are checked in
 //! gpu_cli.rs.
 
-mod common;
+use crate::common;
 
 use common::{iridis, json_doc};
 

@@ -1,7 +1,7 @@
 //! The virtual-lab commands (`testbench`, `compare`) as a user runs them, including their refusals.
 //! Sizes are small so that each call takes about a second in release.
 
-mod common;
+use crate::common;
 use common::{assert_fails, iridis, json_of, quoted, words};
 
 /// Each first-order peak of a bench lit at 75° stands where m λ / d = sin θ_i − sin θ_r puts it, within `tol_deg`.

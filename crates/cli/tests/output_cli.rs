@@ -2,7 +2,7 @@
 //! before any computing, one path never used twice, the format of every output follows its extension (or the
 //! output is refused with the list of supported ones), and JSON that echoes its inputs with arrays on a line.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

@@ -2,7 +2,7 @@
 //! a thin-film sphere shows `iridis thinfilm color` at each pixel's angle and thickness), the examples, and
 //! clean refusals of bad input that never leave a half-written image.
 
-mod common;
+use crate::common;
 use common::{assert_fails, json_of, ok, quoted, words, write_file, ROUGH_FILM};
 
 use iridis_color::lab::delta_e_2000;

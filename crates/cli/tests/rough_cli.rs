@@ -2,7 +2,7 @@
 //! the smooth limit, the specular part below the smooth R, the table's size, and clean errors (exit code 2,
 //! one `error:` line) for bad roughness and parameters outside the HTSG model's validity.
 
-mod common;
+use crate::common;
 use common::{assert_fails, iridis, json_of};
 
 const STACK: &str = "air | water 348nm | Si";

@@ -1,7 +1,7 @@
 //! The `iridis thinfilm` commands as a user runs them: documented keys, values checked against Sussenbach's
 //! Figure 3.8, files written, and clean errors (exit code 2, one `error:` line naming the token) on bad input.
 
-mod common;
+use crate::common;
 use common::{assert_fails, iridis, json_of, quoted, words};
 
 fn temp_dir() -> std::path::PathBuf {

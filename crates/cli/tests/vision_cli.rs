@@ -2,7 +2,7 @@
 //! independent numpy implementation (crates/vision/tests/fixtures), one film seen through both paths, units
 //! in the text, and clear errors.
 
-mod common;
+use crate::common;
 use common::{assert_fails, iridis, json_of};
 
 const SPECTRA: &str = "data/examples/vision_spectra.csv";

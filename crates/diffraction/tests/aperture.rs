@@ -2,7 +2,7 @@
 //! tiled patch, and the periodic one against the reference where the reference's only approximations (the
 //! 4σ_f cut of eq. 8 and the Taylor remainder) have a bound we can compute.
 
-mod common;
+use crate::common;
 
 use std::sync::Arc;
 

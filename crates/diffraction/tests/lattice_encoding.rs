@@ -2,7 +2,7 @@
 //! ([`Lattice`], what the GPU sums) against the ground truth's own sums, its colour from powers against its
 //! `xyz`, and the table encodings of the lookup shader against the f64 lookup they stand for.
 
-mod common;
+use crate::common;
 
 use std::sync::Arc;
 

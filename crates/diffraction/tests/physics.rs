@@ -1,7 +1,7 @@
 //! Physical laws that every evaluator must obey: the grating equation, the flat mirror, the blaze direction,
 //! reciprocity of |A|², and agreement between the methods where their assumptions coincide.
 
-mod common;
+use crate::common;
 
 use std::sync::Arc;
 

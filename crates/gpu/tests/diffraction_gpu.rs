@@ -5,7 +5,7 @@
 //! These tests need a Vulkan adapter (lavapipe from `mesa-vulkan-drivers` without a GPU); without one they
 //! fail, unless `IRIDIS_SKIP_GPU=1` says to skip them.
 
-mod common;
+use crate::common;
 
 use std::sync::Arc;
 

@@ -7,15 +7,12 @@
 //!
 //! Needs a Vulkan adapter (lavapipe on machines without a GPU); `IRIDIS_SKIP_GPU=1` skips.
 
-mod common;
-#[path = "../../render/tests/furnace/mod.rs"]
-mod furnace;
+use crate::common;
+use crate::furnace;
 
 use common::{delta_e, gpu};
 use iridis_gpu::GpuScene;
 use iridis_render::{parse_scene, render, Image, Scene};
-
-static SERIAL: std::sync::Mutex<()> = std::sync::Mutex::new(());
 
 /// A small scene with every kind of extended light and every material kind the GPU renders: a sky, a sphere
 /// light, a disk light and a rectangle light over a Lambertian floor, a glossy dielectric, a metal, a film over
@@ -55,7 +52,7 @@ fn rms(a: &[f64], b: &[f64]) -> f64 {
 
 #[test]
 fn monte_carlo_on_the_gpu_converges_to_the_cpu() {
-    let _serial = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+    let _serial = common::one_scene_at_a_time();
     let Some(gpu) = gpu() else { return };
     let (w, h, spp) = (48, 32, 64);
     let (cpu_a, cpu_b) = cpu_monte_carlo(w, h, spp);
@@ -92,7 +89,7 @@ fn the_fast_path_against_the_converged_render() {
     // centres, prefiltered for diffraction; the environment as its irradiance map and, for diffraction, 64
     // prefiltered lights) against the converged Monte Carlo render (CPU, 1024 spp), with the Monte Carlo noise
     // floor (two seeds) beside it.
-    let _serial = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+    let _serial = common::one_scene_at_a_time();
     let Some(gpu) = gpu() else { return };
     let (w, h, spp) = (48, 32, 1024);
     let (converged, other) = cpu_monte_carlo(w, h, spp);
@@ -109,7 +106,7 @@ fn the_fast_path_against_the_converged_render() {
 
 #[test]
 fn the_fast_path_with_area_lights_matches_the_cpu() {
-    let _serial = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+    let _serial = common::one_scene_at_a_time();
     let Some(gpu) = gpu() else { return };
     let s = scene("fast", 0);
     let (w, h) = (48, 32);
@@ -125,7 +122,7 @@ fn the_fast_path_with_area_lights_matches_the_cpu() {
 
 #[test]
 fn a_lambertian_in_the_monte_carlo_furnace_on_the_gpu() {
-    let _serial = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+    let _serial = common::one_scene_at_a_time();
     let Some(gpu) = gpu() else { return };
     let text = "[output]\nintegration = \"monte-carlo\"\n\
          [camera]\nkind = \"orthographic\"\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\nheight = 2.2\n\
@@ -160,7 +157,7 @@ fn a_lambertian_in_the_monte_carlo_furnace_on_the_gpu() {
 #[test]
 fn films_over_metal_under_monte_carlo_light_match_the_cpu() {
     use iridis_render::integrate::Strategy;
-    let _serial = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+    let _serial = common::one_scene_at_a_time();
     let Some(gpu) = gpu() else { return };
     let (size, spp) = (32u32, 64u32);
     for name in ["film over white metal r0.6", "film over half metal r0.3"] {
@@ -187,7 +184,7 @@ fn films_over_metal_under_monte_carlo_light_match_the_cpu() {
 /// the CPU's Monte Carlo render of the same scene within their noise (64 spp).
 #[test]
 fn a_rough_film_under_monte_carlo_light_matches_the_cpu() {
-    let _serial = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+    let _serial = common::one_scene_at_a_time();
     let Some(gpu) = gpu() else { return };
     let text = "[output]\nintegration = \"monte-carlo\"\nmax_depth = 4\n\
          [camera]\nkind = \"orthographic\"\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\nheight = 2.2\n\

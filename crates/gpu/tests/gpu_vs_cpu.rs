@@ -5,7 +5,7 @@
 //! (`apt-get install mesa-vulkan-drivers`, lavapipe). Without an adapter they fail, unless
 //! `IRIDIS_SKIP_GPU=1` says to skip them.
 
-mod common;
+use crate::common;
 
 use std::sync::Arc;
 

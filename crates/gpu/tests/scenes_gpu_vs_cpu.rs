@@ -11,7 +11,7 @@
 //! example uses — 8 of 19 examples today; a scale-dependent ray offset shows in a kind of geometry or material,
 //! not in a second lighting of the same scene. `IRIDIS_EXHAUSTIVE=1` renders every example at both scales.
 
-mod common;
+use crate::common;
 
 use std::path::PathBuf;
 
@@ -21,10 +21,6 @@ use iridis_color::lab::delta_e_2000;
 use iridis_color::{Illuminant, Lab, Observer, Xyz};
 use iridis_gpu::GpuScene;
 use iridis_render::{load_scene, parse_scene, render, Image, Scene};
-
-/// One scene test at a time: several scene renderers on lavapipe at once (one device each) were seen to stop
-/// making progress (0 % CPU for minutes, 2026-11-23), while each runs to completion alone.
-static SERIAL: std::sync::Mutex<()> = std::sync::Mutex::new(());
 
 fn examples() -> Vec<PathBuf> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../examples");
@@ -131,7 +127,7 @@ fn compare(gpu: &iridis_gpu::Gpu, scene: &Scene, name: &str, w: u32) -> (f64, f6
 
 #[test]
 fn every_example_scene_matches_the_cpu_at_1e_3_and_1e3_scale() {
-    let _serial = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+    let _serial = common::one_scene_at_a_time();
     let Some(gpu) = gpu() else { return };
     let mut report = Vec::new();
     for path in scale_test_examples() {
@@ -306,7 +302,7 @@ material = "grating"
 
 #[test]
 fn coverage_scenes_match_the_cpu_at_every_scale() {
-    let _serial = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+    let _serial = common::one_scene_at_a_time();
     let Some(gpu) = gpu() else { return };
     let dir = tempfile::tempdir().unwrap();
     write_inputs(dir.path());
@@ -328,7 +324,7 @@ fn coverage_scenes_match_the_cpu_at_every_scale() {
 
 #[test]
 fn every_example_scene_matches_the_cpu() {
-    let _serial = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+    let _serial = common::one_scene_at_a_time();
     let Some(gpu) = gpu() else { return };
     let scenes = examples();
     assert!(scenes.len() >= 8, "examples/ has {} scenes", scenes.len());
@@ -373,7 +369,7 @@ fn every_example_scene_matches_the_cpu() {
 fn a_full_ray_stack_is_reported_with_its_depth() {
     // 30 parallel soap films in front of the camera: every film splits a ray into a reflected and a
     // transmitted one, so the stack of pending rays grows by one per film and overflows its 24 places.
-    let _serial = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+    let _serial = common::one_scene_at_a_time();
     let Some(gpu) = gpu() else { return };
     let mut text = String::from(
         "[output]\nmax_depth = 40\n[camera]\nkind = \"orthographic\"\nposition = [0, 0, 5]\nheight = 1\n\
@@ -401,15 +397,14 @@ fn a_full_ray_stack_is_reported_with_its_depth() {
     assert_eq!(g.stack_overflow(), None);
 }
 
-#[path = "../../render/tests/gltf_fixtures/mod.rs"]
-mod gltf_fixtures;
+use crate::gltf_fixtures;
 
 /// glTF's metallicRoughnessTexture on the GPU: a quad whose left half is a smooth metal and right half a rough
 /// half-metal (two texels), under the glTF default light and sky, as on the CPU. (A uniform rough metal here
 /// found the GPU's light highlights a factor cos θ_i too dark: mean ΔE00 1.37 before the fix.)
 #[test]
 fn a_metallic_roughness_texture_matches_the_cpu() {
-    let _serial = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+    let _serial = common::one_scene_at_a_time();
     let Some(gpu) = gpu() else { return };
     let dir = tempfile::tempdir().unwrap();
     let path = gltf_fixtures::write_metallic_roughness_quad(dir.path(), &[[0, 40, 255], [0, 255, 128]]);
@@ -424,7 +419,7 @@ fn a_metallic_roughness_texture_matches_the_cpu() {
 /// the glTF default light and sky, as on the CPU.
 #[test]
 fn a_normal_texture_matches_the_cpu() {
-    let _serial = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+    let _serial = common::one_scene_at_a_time();
     let Some(gpu) = gpu() else { return };
     let dir = tempfile::tempdir().unwrap();
     let path = gltf_fixtures::write_normal_mapped_quad(dir.path(), &[[55, 128, 232], [128, 171, 248]], 1.0);

@@ -4,9 +4,8 @@
 //!
 //! Needs a Vulkan adapter (lavapipe on machines without a GPU); `IRIDIS_SKIP_GPU=1` skips.
 
-mod common;
-#[path = "../../render/tests/furnace/mod.rs"]
-mod furnace;
+use crate::common;
+use crate::furnace;
 
 use common::gpu;
 use furnace::{furnace_grid, grid_deviation, GRID_COLS, MATERIALS};

@@ -1,7 +1,7 @@
 //! The test bench against the grating equation (paper sec. 6.1, Table 1): known gratings must give back their
 //! periods.
 
-mod common;
+use crate::common;
 
 use iridis_diffraction::{Patch, Reference};
 use iridis_lab::bench::{self, BenchSetup};

@@ -1,7 +1,7 @@
 //! Stam's models against their own closed forms and against the measured-height-field methods; comparisons,
 //! sweeps and the laser experiment against physical laws.
 
-mod common;
+use crate::common;
 
 use iridis_color::{Illuminant, Observer, Spectrum};
 use iridis_diffraction::geometry::direction;

@@ -3,7 +3,7 @@
 //! its two single-technique estimators. Every bound is a multiple of a standard error measured from the
 //! samples themselves, plus, where stated, a known deterministic tolerance.
 
-mod furnace;
+use crate::furnace;
 
 use furnace::{furnace_scene, monte_carlo};
 use iridis_render::integrate::{Integration, Strategy};

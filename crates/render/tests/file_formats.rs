@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-mod common;
+use crate::common;
 
 use iridis_render::material::Material;
 use iridis_render::{load_scene, parse_scene, render};

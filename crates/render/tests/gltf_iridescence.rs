@@ -1,7 +1,7 @@
 //! KHR_materials_iridescence → thin-film stack over the base (examples/iridescent_spheres.gltf, made by
 //! tools/make_iridescence_gltf.py).
 
-mod common;
+use crate::common;
 
 use iridis_render::material::Material;
 
@@ -101,7 +101,7 @@ fn the_gltf_texture_set_ior_and_metallic_base_are_read() {
     assert!(scene.notes.iter().any(|n| n.contains("normalTexture")), "{:?}", scene.notes);
 }
 
-mod gltf_fixtures;
+use crate::gltf_fixtures;
 
 /// glTF's metallicRoughnessTexture: G scales the roughness and B the metallic factor, read linearly (an 8-bit
 /// 51 is 0.2, not the sRGB-decoded 0.033); a uniform texture renders exactly as the constant material with

@@ -2,7 +2,7 @@
 //! of radiance 1, must show radiance 1 everywhere on the sphere (issue 21: the dielectric microfacet reached
 //! 1.61 at the rim, its diffuse lobe ignoring the Fresnel that the specular took).
 
-mod furnace;
+use crate::furnace;
 
 use furnace::{
     deviation, furnace_grid, furnace_scene, grid_deviation, sphere_pixels, worst_within, FAST_DIFFRACTION_FURNACE,

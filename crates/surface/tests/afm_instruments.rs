@@ -231,7 +231,7 @@ fn nanonis_sxm_as_pyspm() {
     assert!(e.contains("'Current_forward' (A) records the current") && e.contains("0: Z_forward"), "{e}");
 }
 
-mod common;
+use crate::common;
 
 /// The synthetic files (always present): each format's orientation (row 0 on top) and scaling.
 #[test]

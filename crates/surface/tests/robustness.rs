@@ -9,7 +9,7 @@ use iridis_surface::generate::{Generator, Grid};
 use iridis_surface::rng::Rng;
 use iridis_surface::LoadOptions;
 
-mod common;
+use crate::common;
 
 const PER_SEED: usize = 1500;
 

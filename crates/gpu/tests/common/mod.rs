@@ -28,6 +28,14 @@ pub fn gpu() -> Option<&'static Gpu> {
     .as_ref()
 }
 
+/// One scene test at a time, across every file of the test binary: several scene renderers on lavapipe at once
+/// (one device each) were seen to stop making progress (0 % CPU for minutes, 2026-11-23), while each runs to
+/// completion alone.
+pub fn one_scene_at_a_time() -> std::sync::MutexGuard<'static, ()> {
+    static SERIAL: std::sync::Mutex<()> = std::sync::Mutex::new(());
+    SERIAL.lock().unwrap_or_else(|e| e.into_inner())
+}
+
 /// Mean and 99th percentile of the per-pixel CIEDE2000 between two images as displayed (exposure 1, clipped).
 pub fn delta_e(a: &Image, b: &Image) -> (f64, f64) {
     let white = white_point(Illuminant::D65, Observer::Cie1931);

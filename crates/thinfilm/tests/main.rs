@@ -1,0 +1,13 @@
+//! Every integration test of this crate in one binary: one link instead of one per file, one process
+//! (GPU tests share one device), the files' tests run side by side on libtest's threads. Each file is
+//! a module and keeps its own doc comment; `cargo test -p CRATE --test integration FILE::` runs one.
+
+mod against_references;
+mod derivatives;
+mod dispersion_formulas;
+mod film_path_study;
+mod film_tables;
+mod incoherent_and_fields;
+mod rough_tables;
+mod spectral_sampling;
+mod tmm_convention;
