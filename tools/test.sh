@@ -81,8 +81,12 @@ mkdir -p "$MESA_SHADER_CACHE_DIR"
 
 # The `ci` profile (Cargo.toml): release for our crates and the numeric dependencies, opt-level 1 for the viewer's
 # window stack and the GPU API layer, whose compile time is most of a fresh build's and whose speed no test needs.
+# The targets that hold tests: libraries, binaries, integration tests (crates/*/tests/main.rs, one binary a
+# crate). Examples are not built here (clippy --all-targets in .ci/run checks that they compile); doc tests run
+# at the end of the Rust step.
+TARGETS=(--lib --bins --tests)
 step "cargo test --workspace --profile ci: build"
-cargo test --workspace --profile ci --no-run
+cargo test --workspace --profile ci "${TARGETS[@]}" --no-run
 
 wait "$APT_JOB" || true
 cat "$LOGS/apt.log"
@@ -93,7 +97,9 @@ fi
 cat "$LOGS/afm.log"
 
 step "cargo test --workspace --profile ci: run"
-cargo test --workspace --profile ci --no-fail-fast
+cargo test --workspace --profile ci "${TARGETS[@]}" --no-fail-fast
+step "cargo test --workspace --profile ci --doc"
+cargo test --workspace --profile ci --doc
 
 # The Python package (crates/python), built and installed the way the README tells users to
 # (`pip install ./crates/python`), into a throw-away virtual environment, then its tests (pytest: the tmm drop-in
