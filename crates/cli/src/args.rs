@@ -4,6 +4,7 @@
 #![allow(dead_code)] // not every command uses every parser
 
 use iridis_color::units;
+use iridis_diffraction::geometry::FresnelConvention;
 
 /// A length in nm (`65nm`, `0.43um`, `65µm`).
 pub fn length_nm(s: &str) -> Result<f64, String> {
@@ -39,8 +40,8 @@ pub fn polar_azimuth(flag: &str, s: &str) -> anyhow::Result<(f64, f64)> {
 }
 
 /// `--fresnel-convention`: physical (R once) or paper (R², the paper's formula as printed).
-pub fn fresnel_convention(s: &str) -> Result<iridis_diffraction::geometry::FresnelConvention, String> {
-    iridis_diffraction::geometry::FresnelConvention::parse(s).map_err(|e| e.to_string())
+pub fn fresnel_convention(s: &str) -> Result<FresnelConvention, String> {
+    FresnelConvention::parse(s).map_err(|e| e.to_string())
 }
 
 /// `--unit-cell`: whole (the patch, its extent the period) or auto (the scan's dominant period).
@@ -110,7 +111,7 @@ pub struct LabModel {
     /// How the Fresnel reflectance enters: physical (R once, the default) or paper (R², the paper's formula as
     /// printed, to reproduce its figures; docs/PHYSICS.md).
     #[arg(long, value_name = "physical|paper", default_value = "physical", value_parser = fresnel_convention)]
-    pub fresnel_convention: iridis_diffraction::geometry::FresnelConvention,
+    pub fresnel_convention: FresnelConvention,
     /// Leave out the Cook–Torrance shadowing term.
     #[arg(long)]
     pub no_shadowing: bool,
@@ -168,15 +169,15 @@ impl RigorousOpts {
     }
 
     /// Puts the options into the facade's model options, refusing what the method cannot use: a Fresnel
-    /// factor (`fresnel`, `paper`: the convention) with the rigorous method, which needs the material.
+    /// factor (`fresnel` and its `convention`) with the rigorous method, which needs the material.
     pub fn apply(
         &self,
         method: &str,
         fresnel: &str,
-        paper: bool,
+        convention: FresnelConvention,
         model: &mut iridis_api::ModelOptions,
     ) -> anyhow::Result<()> {
-        let rigorous = method == iridis_api::brdf::RIGOROUS;
+        let (rigorous, paper) = (method == iridis_api::brdf::RIGOROUS, convention == FresnelConvention::Paper);
         if rigorous && fresnel.trim() != DEFAULT_FRESNEL {
             anyhow::bail!(
                 "the rigorous method needs the medium under the relief (--material gold, keratin, n=1.5, …), not a \
@@ -406,10 +407,8 @@ impl ModelOpts {
             observer: self.observer.clone(),
             step_nm: self.step,
             conserve_energy: self.conserve_energy,
-            light: None,
-            // Set by the commands that take --material and --unit-cell (`RigorousOpts::apply`).
-            material: None,
-            unit_cell_auto: false,
+            // light: none (any); --material and --unit-cell: set by `RigorousOpts::apply` where taken.
+            ..Default::default()
         }
     }
 }
@@ -425,7 +424,7 @@ pub struct ShadingOpts {
     /// How the Fresnel reflectance enters: physical (R once, the default) or paper (R², the paper's formula as
     /// printed, to reproduce its figures; docs/PHYSICS.md).
     #[arg(long, value_name = "physical|paper", default_value = "physical", value_parser = fresnel_convention)]
-    pub fresnel_convention: iridis_diffraction::FresnelConvention,
+    pub fresnel_convention: FresnelConvention,
     /// Leave out the Cook-Torrance shadowing term.
     #[arg(long)]
     pub no_shadowing: bool,

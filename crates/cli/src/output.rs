@@ -78,6 +78,19 @@ pub fn with_inputs(value: &serde_json::Value) -> serde_json::Value {
 pub fn print_json(value: &serde_json::Value) -> Result<()> {
     write_stdout(format_args!("{}\n", json_string(&with_inputs(value))))
 }
+/// Prints a command's answer: its JSON (see [`print_json`]) when `json`, else its text, ending in one newline.
+pub fn print_answer(
+    json: bool,
+    value: impl FnOnce() -> Result<serde_json::Value>,
+    text: impl FnOnce() -> String,
+) -> Result<()> {
+    if json {
+        print_json(&value()?)
+    } else {
+        write_stdout(format_args!("{}\n", text().trim_end_matches('\n')))
+    }
+}
+
 /// Writes to standard output through the locked handle and flushes. Unlike `println!`, a failed write is
 /// an error, not a panic; when the reader has gone away (`iridis … --json | head -c 10`) the error is an
 /// `io::Error` of kind `BrokenPipe`, which `main` turns into a clean exit (see [`is_broken_pipe`]).

@@ -19,7 +19,7 @@ fn announce_after() -> Duration {
 /// A progress bar (or, without a terminal, its one-line announcements).
 pub struct Bar {
     pb: ProgressBar,
-    what: std::sync::Mutex<String>,
+    what: String,
     start: Instant,
     announced: AtomicBool,
 }
@@ -34,12 +34,8 @@ impl Bar {
     pub fn finish_and_clear(&self) {
         self.pb.finish_and_clear();
         if self.pb.is_hidden() && self.announced.load(Ordering::Relaxed) {
-            eprintln!("{}: done in {:.1} s", self.what(), self.start.elapsed().as_secs_f64());
+            eprintln!("{}: done in {:.1} s", self.what, self.start.elapsed().as_secs_f64());
         }
-    }
-
-    fn what(&self) -> String {
-        self.what.lock().map(|w| w.clone()).unwrap_or_default()
     }
 
     fn announce(&self) {
@@ -48,12 +44,7 @@ impl Bar {
             && !self.announced.swap(true, Ordering::Relaxed)
         {
             let len = self.pb.length().map(|l| format!("/{l}")).unwrap_or_default();
-            eprintln!(
-                "{}: {}{len} after {:.1} s …",
-                self.what(),
-                self.pb.position(),
-                self.start.elapsed().as_secs_f64()
-            );
+            eprintln!("{}: {}{len} after {:.1} s …", self.what, self.pb.position(), self.start.elapsed().as_secs_f64());
         }
     }
 }
@@ -67,7 +58,7 @@ pub fn bar(len: u64, what: &str) -> Bar {
             .progress_chars("=> "),
     );
     pb.set_message(what.to_string());
-    Bar { pb, what: std::sync::Mutex::new(what.to_string()), start: Instant::now(), announced: AtomicBool::new(false) }
+    Bar { pb, what: what.to_string(), start: Instant::now(), announced: AtomicBool::new(false) }
 }
 
 /// A spinner with the elapsed time for a step that reports no progress of its own (loading and generating a

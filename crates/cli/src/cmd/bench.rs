@@ -322,9 +322,5 @@ pub fn run(c: BenchCommand) -> Result<()> {
             (bench::grating(&o, &Cli)?, a.json)
         }
     };
-    if json {
-        crate::output::print_json(&b.to_json())
-    } else {
-        crate::outln!("{}", b.text())
-    }
+    crate::output::print_answer(json, || Ok(b.to_json()), || b.text().to_string())
 }

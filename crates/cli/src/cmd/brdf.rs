@@ -7,15 +7,12 @@ use std::path::PathBuf;
 use anyhow::Result;
 use clap::Args as ClapArgs;
 use iridis_color::Encoding;
-use iridis_diffraction::geometry::FresnelConvention;
 use iridis_diffraction::table::TableParams;
 use iridis_diffraction::Units;
 
 use crate::args::{parse_incidence, polar_azimuth, ModelOpts, RigorousOpts, ShadingOpts, SurfaceOpts};
+use crate::output::print_answer;
 use crate::progress::Cli;
-
-/// Moved to crates/cli/src/args.rs (shared option groups); kept here for cmd/lab.rs, which names it
-/// `crate::cmd::brdf::fresnel_convention` until its import is changed to `crate::args::fresnel_convention`.
 
 #[derive(Debug, ClapArgs)]
 #[command(after_help = "\
@@ -310,8 +307,7 @@ pub fn run_brdf_map(a: BrdfMapArgs) -> Result<()> {
     let wi = parse_incidence(&a.incidence)?;
     let mut model = a.model.options();
     if !a.gpu {
-        let paper = a.shading.fresnel_convention == FresnelConvention::Paper;
-        a.rigorous.apply(&a.method, &a.shading.fresnel, paper, &mut model)?;
+        a.rigorous.apply(&a.method, &a.shading.fresnel, a.shading.fresnel_convention, &mut model)?;
     }
     let r = iridis_api::brdf_map::MapRequest {
         input: a.input,
@@ -348,9 +344,8 @@ pub fn run_brdf(c: BrdfCommand) -> Result<()> {
 fn run_eval(a: BrdfEvalArgs) -> Result<()> {
     let (light, view) = (polar_azimuth("light", &a.light)?, polar_azimuth("view", &a.view)?);
     let mut model = a.model.options();
-    let paper = a.shading.fresnel_convention == FresnelConvention::Paper;
     let method = a.method.clone().unwrap_or_else(|| iridis_api::brdf::default_method(&a.input).to_string());
-    a.rigorous.apply(&method, &a.shading.fresnel, paper, &mut model)?;
+    a.rigorous.apply(&method, &a.shading.fresnel, a.shading.fresnel_convention, &mut model)?;
     let r = iridis_api::brdf_eval::EvalRequest {
         input: a.input,
         method: Some(method),
@@ -366,10 +361,7 @@ fn run_eval(a: BrdfEvalArgs) -> Result<()> {
         relative: a.relative,
     };
     let e = iridis_api::brdf_eval::brdf_eval(&r, a.spectra.as_deref(), &Cli)?;
-    if a.json {
-        return crate::output::print_json(&e.to_json()?);
-    }
-    crate::outln!("{}", e.text())
+    print_answer(a.json, || e.to_json(), || e.text())
 }
 
 fn run_vision(a: BrdfVisionArgs) -> Result<()> {
@@ -398,8 +390,5 @@ fn run_vision(a: BrdfVisionArgs) -> Result<()> {
         a.strip.as_deref(),
         &Cli,
     )?;
-    if a.json {
-        return crate::output::print_json(&v.to_json());
-    }
-    crate::outln!("{}", iridis_api::brdf_vision::vision_text(&v))
+    print_answer(a.json, || Ok(v.to_json()), || iridis_api::brdf_vision::vision_text(&v))
 }

@@ -68,10 +68,7 @@ pub fn run(command: ColorCommand) -> Result<()> {
     match command {
         ColorCommand::Xyz(a) => {
             let c = iridis_api::color::xyz(&a.spectrum, &a.illuminant, &a.observer, a.emissive, &Cli)?;
-            if a.json {
-                return crate::output::print_json(&c.to_json());
-            }
-            crate::output::write_stdout_bytes(c.text().as_bytes())
+            crate::output::print_answer(a.json, || Ok(c.to_json()), || c.text())
         }
         ColorCommand::DeltaE(a) => {
             let d = iridis_api::color::delta_e(&a.first, &a.second, &a.formula)?;

@@ -51,10 +51,6 @@ pub fn run_view(a: ViewArgs) -> Result<()> {
     let Some(c) = iridis_api::view::view(&a.input, a.uv_resolution, &opts, a.check.as_deref(), &Cli)? else {
         return Ok(());
     };
-    if a.json {
-        crate::output::print_json(&c.to_json())?;
-    } else {
-        crate::outln!("{}", c.text())?;
-    }
+    crate::output::print_answer(a.json, || Ok(c.to_json()), || c.text())?;
     c.verdict()
 }

@@ -8,7 +8,7 @@ use iridis_api::grating_run::{compare, grating_text};
 use iridis_diffraction::geometry::direction;
 
 use crate::args::{angle_rad, fraction, polar_azimuth, positive_length_nm, unit_cell_auto, SurfaceOpts};
-use crate::output::print_json;
+use crate::output::print_answer;
 use crate::progress::Cli;
 
 #[derive(Debug, ClapArgs)]
@@ -127,11 +127,8 @@ pub fn run(a: GratingArgs) -> Result<()> {
     let (source, surface) = (iridis_api::surface::Source::Spec(a.surface.clone()), a.surface_opts.options());
     if a.compare {
         let c = compare(&source, &surface, &opts, &Cli)?;
-        return if a.json { print_json(&c.to_json()) } else { crate::outln!("{}", c.text().trim_end_matches('\n')) };
+        return print_answer(a.json, || Ok(c.to_json()), || c.text());
     }
     let g = grating(&source, &surface, &opts, &Cli)?;
-    if a.json {
-        return print_json(&g.to_json());
-    }
-    crate::outln!("{}", grating_text(&g, (t, p), a.detector.as_deref(), a.acceptance).trim_end_matches('\n'))
+    print_answer(a.json, || Ok(g.to_json()), || grating_text(&g, (t, p), a.detector.as_deref(), a.acceptance))
 }

@@ -7,24 +7,14 @@ use anyhow::Result;
 use clap::{Args as ClapArgs, Subcommand};
 use iridis_api::lab_run::{self as run, parse_exposures, parse_list};
 use iridis_api::surface::Source;
-use iridis_diffraction::geometry::FresnelConvention;
 use iridis_diffraction::table::TableParams;
 use iridis_lab::bench::BenchSetup;
 use iridis_lab::laser::LaserSetup;
 use iridis_lab::methods::Method;
 
 use crate::args::{angle_rad, polar_azimuth, positive_length_nm, LabModel};
-use crate::output::print_json;
+use crate::output::print_answer;
 use crate::progress::Cli;
-
-/// Prints a run's JSON or its text.
-fn print(json: bool, value: impl FnOnce() -> serde_json::Value, text: impl FnOnce() -> String) -> Result<()> {
-    if json {
-        print_json(&value())
-    } else {
-        crate::outln!("{}", text().trim_end_matches('\n'))
-    }
-}
 
 // ---------------------------------------------------------------------------------------------------------
 // testbench
@@ -41,12 +31,9 @@ the direction; the patch is then one unit cell of a periodic surface), else the 
 bench measures along the orientation of the surface's strongest period (what `iridis surface info` finds).
 Without --period the strongest response away from the mirror direction is taken as the first order.
 
-JSON: {\"periodicity_nm\": {\"mean\", \"variance\", \"relative_spread\", \"definite\"}, \"order\",
-\"incidence_deg\", \"azimuth_deg\", \"peaks\": [{\"wavelength_nm\", \"angle_deg\", \"period_nm\"}],
-\"ridges\": [{\"period_nm\", \"variance\", …}]}
-(ridges lists competing sub-structure periods when there is more than one, as for Xenopeltis; definite is
-false, with a warning, when d_λ spreads by more than 1 % of its mean: the direction has no period, as along
-the Elaphe-like fingers.)
+JSON keys: docs/json.md, section `iridis testbench`. ridges lists competing sub-structure periods when there
+is more than one, as for Xenopeltis; definite is false, with a warning, when d_λ spreads by more than 1 % of
+its mean: the direction has no period, as along the Elaphe-like fingers.
 
 Examples:
   iridis testbench builtin:blazed --plot blazed_bench.png
@@ -115,8 +102,7 @@ pub struct TestbenchArgs {
 
 pub fn run_testbench(a: TestbenchArgs) -> Result<()> {
     let mut rigorous = iridis_api::ModelOptions::default();
-    let paper = a.model.fresnel_convention == FresnelConvention::Paper;
-    a.rigorous.apply(&a.method, &a.model.fresnel, paper, &mut rigorous)?;
+    a.rigorous.apply(&a.method, &a.model.fresnel, a.model.fresnel_convention, &mut rigorous)?;
     let mut setup = BenchSetup::new(
         a.incidence,
         a.azimuth.unwrap_or(0.0),
@@ -134,7 +120,7 @@ pub fn run_testbench(a: TestbenchArgs) -> Result<()> {
         plot: a.plot.clone(),
     };
     let t = run::testbench_run(&Source::Spec(a.surface.clone()), &a.model.options(), &req, &Cli)?;
-    print(a.json, || t.to_json(), || t.text())
+    print_answer(a.json, || Ok(t.to_json()), || t.text())
 }
 
 // ---------------------------------------------------------------------------------------------------------
@@ -156,8 +142,7 @@ window cut at the patch edge), --against METHOD with any method. The periodic-ex
 against finite-aperture ground truth) is printed on its own line: where the window is as wide as the patch it
 is the models' own difference, which no approximation of either can remove.
 
-JSON: {\"results\": [{\"method\", \"against\", \"exposure_ru\", \"mean\", \"p95\", \"max\", \"ratio\"}],
-\"periodic_extension_error\": [{\"exposure_ru\", \"mean\", \"p95\", \"max\"}], \"against\", …}
+JSON keys: docs/json.md, section `iridis compare`.
 
 Examples:
   iridis compare 'builtin:elaphe?size=12um&pixel=60nm' --coherence 4um --size 64
@@ -231,7 +216,7 @@ pub fn run_compare(a: CompareArgs) -> Result<()> {
         maps: a.maps.clone(),
     };
     let c = run::compare_run(&Source::Spec(a.surface.clone()), &a.model.options(), &req, &Cli)?;
-    print(a.json, || c.to_json(), || c.text())
+    print_answer(a.json, || Ok(c.to_json()), || c.text())
 }
 
 // ---------------------------------------------------------------------------------------------------------
@@ -322,7 +307,7 @@ pub fn run_sweep(a: SweepArgs) -> Result<()> {
         plot: a.plot.clone(),
     };
     let s = run::sweep_run(&Source::Spec(a.surface.clone()), &a.model.options(), &req, &Cli)?;
-    print(a.json, || s.to_json(), || s.text())
+    print_answer(a.json, || Ok(s.to_json()), || s.text())
 }
 
 // ---------------------------------------------------------------------------------------------------------
@@ -433,5 +418,5 @@ pub fn run_experiment(c: ExperimentCommand) -> Result<()> {
         save_table: a.save_table.clone(),
     };
     let l = run::laser_run(&Source::Spec(a.surface.clone()), &a.model.options(), &req, &Cli)?;
-    print(a.json, || l.to_json(), || l.text())
+    print_answer(a.json, || Ok(l.to_json()), || l.text())
 }

@@ -6,6 +6,7 @@ use std::path::PathBuf;
 use anyhow::Result;
 use clap::Args as ClapArgs;
 use iridis_api::scan_report::{write_report, ReportOptions};
+use iridis_api::Report as _;
 
 use crate::progress::Cli;
 
@@ -85,9 +86,7 @@ pub fn run(a: ReportArgs) -> Result<()> {
     };
     let r = write_report(&o, Some(&step_inputs), &Cli)?;
     crate::outln!("{}", r.text().trim_end_matches('\n'))?;
-    for w in &r.warnings {
-        eprintln!("warning: {w}");
-    }
+    r.warnings.iter().for_each(|w| Cli.warn(w));
     Ok(())
 }
 

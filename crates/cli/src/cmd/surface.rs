@@ -6,9 +6,10 @@ use std::path::PathBuf;
 use anyhow::Result;
 use clap::{Args as ClapArgs, Subcommand};
 use iridis_api::surface_info::{self as lib, InfoFigures};
+use iridis_api::Report as _;
 use iridis_surface::{HeightField, LoadOptions, DEFAULT_COHERENCE_NM};
 
-use crate::output::{declare_opt, print_json};
+use crate::output::{declare_opt, print_answer};
 use crate::progress::Cli;
 
 pub use iridis_api::surface_info::SURFACE_HELP;
@@ -297,10 +298,7 @@ pub fn run(command: SurfaceCommand) -> Result<()> {
         SurfaceCommand::Info(a) => info(a),
         SurfaceCommand::Channels(a) => {
             let c = lib::channels(&a.file)?;
-            if a.json {
-                return print_json(&c.to_json());
-            }
-            crate::outln!("{}", c.text().trim_end_matches('\n'))
+            print_answer(a.json, || Ok(c.to_json()), || c.text())
         }
         SurfaceCommand::Generate(a) => generate(a),
         SurfaceCommand::Convert(a) => convert(a),
@@ -311,12 +309,6 @@ fn load(spec: &str, load: &LoadArgs, level: &str) -> Result<HeightField> {
     lib::level(lib::load(spec, &load.options(), &Cli)?, level)
 }
 
-fn warn_all(warnings: &[String]) {
-    for w in warnings {
-        eprintln!("warning: {w}");
-    }
-}
-
 fn info(a: InfoArgs) -> Result<()> {
     declare_opt("--image", a.image.as_deref(), &["png"])?;
     declare_opt("--psdf", a.psdf.as_deref(), &["png"])?;
@@ -324,12 +316,8 @@ fn info(a: InfoArgs) -> Result<()> {
     let hf = load(&a.surface, &a.load, &a.level)?;
     let figures = InfoFigures { image: a.image.as_deref(), psdf: a.psdf.as_deref(), acf: a.acf.as_deref() };
     let r = lib::info_with_figures(&hf, &a.surface, a.peaks, a.coherence, figures, &Cli)?;
-    if a.json {
-        print_json(&r)?;
-    } else {
-        crate::outln!("{}", lib::info_text(&r).trim_end_matches('\n'))?;
-    }
-    warn_all(&lib::info_warnings(&r));
+    print_answer(a.json, || Ok(r.clone()), || lib::info_text(&r))?;
+    lib::info_warnings(&r).iter().for_each(|w| Cli.warn(w));
     if let (Some(p), false) = (&a.image, a.json) {
         crate::outln!("preview      {}", p.display())?;
     }
@@ -370,10 +358,8 @@ fn generate(a: GenerateArgs) -> Result<()> {
     if let Some(p) = &a.image {
         lib::write_preview(&hf, p, &a.kind)?;
     }
-    if a.json {
-        return print_json(&iridis_api::surface::info(&hf, 5, DEFAULT_COHERENCE_NM));
-    }
-    crate::outln!("{}", lib::generated_text(&hf, &a.kind, &a.output).trim_end_matches('\n'))
+    let info = || Ok(iridis_api::surface::info(&hf, 5, DEFAULT_COHERENCE_NM));
+    print_answer(a.json, info, || lib::generated_text(&hf, &a.kind, &a.output))
 }
 
 fn convert(a: ConvertArgs) -> Result<()> {
@@ -384,6 +370,6 @@ fn convert(a: ConvertArgs) -> Result<()> {
     lib::write_surface(&hf, &a.output)?;
     // What the reader warned about; the model's concerns (coherence area, coarse pixels) belong to the
     // commands that run the model.
-    warn_all(&hf.meta.warnings);
+    hf.meta.warnings.iter().for_each(|w| Cli.warn(w));
     crate::outln!("{}", lib::converted_text(&hf, &a.output).trim_end_matches('\n'))
 }

@@ -10,7 +10,7 @@ use iridis_api::film::{self, Polarization, RgbImage};
 use iridis_api::report::Report as _;
 use iridis_api::{film_bench, film_chart, film_fit, rough};
 
-use crate::output::{declare, declare_opt, print_json, write_bytes, write_stdout_bytes};
+use crate::output::{declare, declare_opt, print_answer, write_bytes, write_stdout_bytes};
 use crate::progress::Cli;
 
 #[derive(Debug, Subcommand)]
@@ -52,7 +52,7 @@ Examples:
     #[command(after_help = "\
 XYZ = ∫ R(λ) S(λ) x̄(λ) dλ / ∫ S(λ) ȳ(λ) dλ (likewise for T), so a perfect mirror has Y = 1; CIELAB is relative
 to the illuminant's white; sRGB is clipped to the gamut at exposure 1.
-JSON: reflected, transmitted, specular, diffuse (each XYZ, xyY, Lab, linear_srgb, srgb, hex), rough (docs/json.md).
+JSON keys: docs/json.md, section `iridis thinfilm color`.
 --visual adds how an animal sees the reflected and transmitted light (`iridis vision`, key vision in --json).
 
 Examples:
@@ -107,7 +107,7 @@ normal Poynting flux (tmm's position_resolved; Byrnes, arXiv:1603.02720). With i
 group is lit from both sides by incoherent intensities (tmm's inc_absorp_in_each_layer and
 inc_find_absorp_analytic_fn), and inside an inc: layer the two beams decay by Beer–Lambert without
 interference.
-JSON keys: R, T, layers, A_layers, A_substrate, balance, profile {z_nm, medium, E2, absorption_per_nm, flux}.
+JSON keys: docs/json.md, section `iridis thinfilm profile`.
 
 Examples:
   iridis thinfilm profile --stack \"air | Au 30nm | glass\" --wavelength 500nm
@@ -306,20 +306,11 @@ pub fn run(command: ThinfilmCommand) -> Result<()> {
         ThinfilmCommand::Chart(a) => chart(a),
         ThinfilmCommand::Materials(a) => {
             let m = film::materials(a.at)?;
-            show(a.json, m.to_json(), m.text())
+            print_answer(a.json, || Ok(m.to_json()), || m.text())
         }
         ThinfilmCommand::Bench(a) => bench(a),
         ThinfilmCommand::Profile(a) => profile(a),
         ThinfilmCommand::Fit(a) => fit(a),
-    }
-}
-
-/// Prints the JSON or the text of a result.
-fn show(json: bool, value: serde_json::Value, text: String) -> Result<()> {
-    if json {
-        print_json(&value)
-    } else {
-        write_stdout_bytes(text.as_bytes())
     }
 }
 
@@ -351,7 +342,7 @@ fn spectrum(a: SpectrumArgs) -> Result<()> {
         let (light, opts) = (a.rough.light(a.angle)?, a.rough.options()?);
         let s = rough::spectrum(stack, &a.stack, &opts, a.angle, light, a.rough.azimuth, &grid)?;
         plot(a.plot.as_deref(), quiet, || s.plot())?;
-        return show(a.json, s.to_json(), if a.csv { s.csv() } else { s.text() });
+        return print_answer(a.json, || Ok(s.to_json()), || if a.csv { s.csv() } else { s.text() });
     }
     let s = film::spectrum(&stack, &a.stack, a.angle, &a.grid.grid()?, pol, &Cli)?;
     if let Some(p) = &a.spectra {
@@ -361,7 +352,7 @@ fn spectrum(a: SpectrumArgs) -> Result<()> {
         }
     }
     plot(a.plot.as_deref(), quiet, || s.plot())?;
-    show(a.json, s.to_json(), if a.csv { s.csv() } else { s.text() })
+    print_answer(a.json, || Ok(s.to_json()), || if a.csv { s.csv() } else { s.text() })
 }
 
 fn table(a: TableArgs) -> Result<()> {
@@ -414,10 +405,10 @@ fn color(a: ColorArgs) -> Result<()> {
         }
         let (light, opts, ill) = (a.rough.light(a.angle)?, a.rough.options()?, a.illuminant.parse()?);
         let c = rough::colour_report(stack, &opts, a.angle, light, a.rough.azimuth, &grid, ill, observer)?;
-        return show(a.json, c.to_json(), c.text());
+        return print_answer(a.json, || Ok(c.to_json()), || c.text());
     }
     let c = film::colour(&stack, a.angle, pol, &grid, &a.illuminant, observer, a.visual.as_deref(), &Cli)?;
-    show(a.json, c.to_json()?, c.text())?;
+    print_answer(a.json, || c.to_json(), || c.text())?;
     if !a.json {
         c.notes().iter().for_each(|n| Cli.note(n));
     }
@@ -450,17 +441,17 @@ fn bench(a: BenchArgs) -> Result<()> {
     if a.rough.is_set() {
         let stack = film::parse_stack(rough::LISTING_3_6_STACK)?;
         let b = rough::bench(stack, &a.rough.options()?, a.rough.azimuth, 80, a.seconds)?;
-        return show(a.json, b.to_json(), b.text());
+        return print_answer(a.json, || Ok(b.to_json()), || b.text());
     }
     let b = film_bench::bench(a.seconds, a.no_python)?;
-    show(a.json, b.to_json(), b.text())
+    print_answer(a.json, || Ok(b.to_json()), || b.text())
 }
 
 fn profile(a: crate::args::ProfileArgs) -> Result<()> {
     declare_opt("--plot", a.plot.as_deref(), &["png"])?;
     let p = film_fit::profile(&a.stack, a.wavelength, a.angle, &a.polarization, a.points, a.depth.as_deref())?;
     plot(a.plot.as_deref(), a.json || a.csv, || p.plot())?;
-    show(a.json, p.to_json(), if a.csv { p.csv() } else { p.text() })
+    print_answer(a.json, || Ok(p.to_json()), || if a.csv { p.csv() } else { p.text() })
 }
 
 fn fit(a: crate::args::FitArgs) -> Result<()> {
@@ -471,7 +462,7 @@ fn fit(a: crate::args::FitArgs) -> Result<()> {
         write_bytes(p, f.csv().as_bytes())?;
     }
     plot(a.plot.as_deref(), true, || f.plot())?;
-    show(a.json, f.to_json(), f.text())?;
+    print_answer(a.json, || Ok(f.to_json()), || f.text())?;
     match (&a.plot, a.json) {
         (Some(p), false) => crate::outln!("wrote {}", p.display()),
         _ => Ok(()),

@@ -120,12 +120,9 @@ impl VisionArgs {
 
 pub fn run(a: VisionArgs) -> Result<()> {
     let v = iridis_api::vision::analyse_file(&a.spectra, &a.spec(), a.percent)?;
-    if a.json {
-        return crate::output::print_json(&v.to_json()?);
-    }
-    crate::output::write_stdout_bytes(v.text().as_bytes())?;
-    for n in &v.analysis.notes {
-        eprintln!("note: {n}");
+    crate::output::print_answer(a.json, || v.to_json(), || v.text())?;
+    if !a.json {
+        v.analysis.notes.iter().for_each(|n| eprintln!("note: {n}"));
     }
     Ok(())
 }
