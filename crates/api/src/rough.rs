@@ -89,11 +89,17 @@ pub fn colours(
     observer: Observer,
 ) -> Result<RoughColours> {
     let xs = evaluate(rough, grid, view, light, azimuth)?;
-    let weights = SpectralWeights::new(grid, illuminant, observer);
     let smooth = FilmColorimeter::new(grid, illuminant, observer).color(&rough.stack, view, Polarization::Average)?;
+    let (specular, diffuse) = specular_diffuse(&SpectralWeights::new(grid, illuminant, observer), &xs);
+    Ok(RoughColours { smooth, specular, diffuse })
+}
+
+/// The XYZ of the specular part (`k_r`) and of the diffuse part (`π k_d`, the radiance factor) of the LSRS
+/// values per wavelength of [`evaluate`].
+fn specular_diffuse(weights: &SpectralWeights, xs: &[(f64, Lsrs)]) -> (Xyz, Xyz) {
     let specular = weights.integrate(&xs.iter().map(|x| x.1.k_r()).collect::<Vec<_>>());
     let diffuse = weights.integrate(&xs.iter().map(|x| PI * x.1.k_d()).collect::<Vec<_>>());
-    Ok(RoughColours { smooth, specular, diffuse })
+    (specular, diffuse)
 }
 
 /// For every thickness of the swept layer, the XYZ of the rough film's specular part (`k_r`, like the smooth
@@ -118,10 +124,7 @@ pub fn chart_colours(
         .par_iter()
         .map(|&d| {
             let rough = opts.build(stack.with_thickness(layer, d))?;
-            let xs = evaluate(&rough, grid, view, light, azimuth)?;
-            let spec = weights.integrate(&xs.iter().map(|x| x.1.k_r()).collect::<Vec<_>>());
-            let diff = weights.integrate(&xs.iter().map(|x| PI * x.1.k_d()).collect::<Vec<_>>());
-            Ok((spec, diff))
+            Ok(specular_diffuse(&weights, &evaluate(&rough, grid, view, light, azimuth)?))
         })
         .collect()
 }

@@ -168,9 +168,7 @@ fn precompute(
     name: Option<String>,
     options: Option<Bound<'_, PyDict>>,
 ) -> PyResult<PyTable> {
-    let mut o = Options::new(options);
-    let eo = EvalOptions::read(&mut o)?;
-    o.finish()?;
+    let eo = Options::read(options, EvalOptions::read)?;
     let source = match input_of(source)? {
         Input::Field(s) => s,
         Input::Arg(a) if !iridis_api::model::is_table(&a) => Source::Spec(a),
@@ -206,9 +204,7 @@ fn brdf_map_xyz<'py>(
         return Err(value_error(format!("size {size} must be between 1 and 4096 pixels")));
     }
     let wi = direction_of("incidence", (theta_i, phi_i))?;
-    let mut o = Options::new(options);
-    let eo = EvalOptions::read(&mut o)?;
-    o.finish()?;
+    let eo = Options::read(options, EvalOptions::read)?;
     let input = input_of(source)?;
     let xyz = run(py, |r| {
         let e = evaluator(&input, method.as_deref(), &eo, r)?;
@@ -234,9 +230,7 @@ fn eval_point<'py>(
     options: Option<Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let (wi, wr) = (direction_of("light", light)?, direction_of("view", view)?);
-    let mut o = Options::new(options);
-    let eo = EvalOptions::read(&mut o)?;
-    o.finish()?;
+    let eo = Options::read(options, EvalOptions::read)?;
     let input = input_of(source)?;
     let p = run(py, |r| {
         let e = evaluator(&input, method.as_deref(), &eo, r)?;
@@ -343,9 +337,7 @@ fn brdf_vision<'py>(
     illuminant: Option<String>,
     options: Option<Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let mut o = Options::new(options);
-    let eo = EvalOptions::read(&mut o)?;
-    o.finish()?;
+    let eo = Options::read(options, EvalOptions::read)?;
     let source = match input_of(source)? {
         Input::Field(s) => s,
         Input::Arg(a) => Source::Spec(a),

@@ -75,6 +75,17 @@ impl<'py> Options<'py> {
         Self { dict, used: Vec::new() }
     }
 
+    /// What `read` takes from the keyword options `dict`, any keyword it did not read refused ([`Self::finish`]).
+    pub fn read<T>(
+        dict: Option<Bound<'py, pyo3::types::PyDict>>,
+        read: impl FnOnce(&mut Self) -> PyResult<T>,
+    ) -> PyResult<T> {
+        let mut o = Self::new(dict);
+        let value = read(&mut o)?;
+        o.finish()?;
+        Ok(value)
+    }
+
     fn value(&mut self, key: &'static str) -> PyResult<Option<Bound<'py, PyAny>>> {
         self.used.push(key);
         let Some(d) = &self.dict else { return Ok(None) };

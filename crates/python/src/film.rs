@@ -49,8 +49,8 @@ fn _profile<'py>(
 
 /// The fit (as `iridis thinfilm fit --json`): from a file (`path`, read like the CLI reads it) or from arrays.
 #[pyfunction]
-#[pyo3(signature = (stack, angle_rad, quantity, grid, path=None, columns=None, percent=None, from_nm=None, to_nm=None,
-    sigma=None, weights=None, wavelengths=None, values=None, sigma_values=None))]
+#[pyo3(signature = (stack, angle_rad, quantity, grid, path=None, wavelengths=None, values=None, sigma_values=None,
+    **options))]
 fn _fit<'py>(
     py: Python<'py>,
     stack: &str,
@@ -58,31 +58,16 @@ fn _fit<'py>(
     quantity: &str,
     grid: usize,
     path: Option<String>,
-    columns: Option<String>,
-    percent: Option<bool>,
-    from_nm: Option<f64>,
-    to_nm: Option<f64>,
-    sigma: Option<String>,
-    weights: Option<String>,
     wavelengths: Option<PyReadonlyArray1<'py, f64>>,
     values: Option<PyReadonlyArray1<'py, f64>>,
     sigma_values: Option<PyReadonlyArray1<'py, f64>>,
+    options: Option<Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    // The file-reading keywords (`columns`, `percent`, `from_nm`, `to_nm`, `sigma`, `weights`) as the CLI's.
+    let request = crate::film_commands::fit_request(stack, angle_rad, quantity, grid, options)?;
     let q: Quantity = quantity.parse().map_err(value_error)?;
     // A file: read and fitted by the library call of `iridis thinfilm fit` (its warnings as Python warnings).
     if let (Some(p), None, None) = (&path, &wavelengths, &values) {
-        let request = iridis_api::film_fit::FitRequest {
-            stack: stack.to_string(),
-            angle_rad,
-            quantity: quantity.to_string(),
-            sigma,
-            weights,
-            grid,
-            columns,
-            percent,
-            from_nm,
-            to_nm,
-        };
         let f = crate::facade::run(py, |report| iridis_api::film_fit::fit_file(Path::new(p), &request, report))?;
         let read = (f.reading.notes, f.reading.columns, f.reading.percent);
         return fit_dict(py, stack, angle_rad, &f.template, q, f.reading.data, f.result, f.seconds, read);

@@ -14,7 +14,7 @@ use iridis_thinfilm::rough::DiffuseTransport;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
 
-use crate::facade::run;
+use crate::facade::{run, Options};
 
 /// What a command gives: JSON text, text, CSV, a plot.
 #[derive(Default)]
@@ -43,29 +43,46 @@ impl Answer {
     }
 }
 
-/// The rough model's options from the keywords (`None` when no roughness was given).
-fn rough_options(
+/// The rough-substrate keywords of spectrum, table, color, chart and bench (the CLI's `--roughness`,
+/// `--correlation`, `--d-iterations`, `--diffuse-transport`, `--azimuth`): `roughness_nm`, `correlation_nm`,
+/// `d_iterations`, `diffuse_transport` (default `multiple`) and `azimuth_rad` (default π).
+struct RoughArgs {
     roughness_nm: Option<f64>,
     correlation_nm: Option<f64>,
     d_iterations: Option<usize>,
-    diffuse_transport: &str,
-) -> anyhow::Result<Option<RoughOptions>> {
-    match (roughness_nm, correlation_nm) {
-        (None, None) => Ok(None),
-        (Some(sigma_nm), Some(tau_nm)) => Ok(Some(RoughOptions {
-            sigma_nm,
-            tau_nm,
-            d_iterations,
-            transport: DiffuseTransport::parse(diffuse_transport)?,
-        })),
-        _ => anyhow::bail!("the rough model needs both roughness_nm and correlation_nm"),
+    diffuse_transport: String,
+    azimuth_rad: f64,
+}
+
+impl RoughArgs {
+    fn read(o: &mut Options) -> PyResult<Self> {
+        Ok(Self {
+            roughness_nm: o.f64("roughness_nm")?,
+            correlation_nm: o.f64("correlation_nm")?,
+            d_iterations: o.usize("d_iterations")?,
+            diffuse_transport: o.string("diffuse_transport")?.unwrap_or_else(|| "multiple".into()),
+            azimuth_rad: o.f64("azimuth_rad")?.unwrap_or(std::f64::consts::PI),
+        })
+    }
+
+    /// The rough model's options (`None` when no roughness was given).
+    fn options(&self) -> anyhow::Result<Option<RoughOptions>> {
+        match (self.roughness_nm, self.correlation_nm) {
+            (None, None) => Ok(None),
+            (Some(sigma_nm), Some(tau_nm)) => Ok(Some(RoughOptions {
+                sigma_nm,
+                tau_nm,
+                d_iterations: self.d_iterations,
+                transport: DiffuseTransport::parse(&self.diffuse_transport)?,
+            })),
+            _ => anyhow::bail!("the rough model needs both roughness_nm and correlation_nm"),
+        }
     }
 }
 
 /// `iridis thinfilm spectrum` (smooth, or rough with `roughness_nm`/`correlation_nm`).
 #[pyfunction]
-#[pyo3(signature = (stack, angle_rad, from_nm, to_nm, step_nm, polarization, plot, roughness_nm=None,
-    correlation_nm=None, d_iterations=None, diffuse_transport="multiple", light_rad=None, azimuth_rad=std::f64::consts::PI))]
+#[pyo3(signature = (stack, angle_rad, from_nm, to_nm, step_nm, polarization, plot, **options))]
 #[allow(clippy::too_many_arguments)]
 fn _film_spectrum<'py>(
     py: Python<'py>,
@@ -76,23 +93,19 @@ fn _film_spectrum<'py>(
     step_nm: f64,
     polarization: &str,
     plot: bool,
-    roughness_nm: Option<f64>,
-    correlation_nm: Option<f64>,
-    d_iterations: Option<usize>,
-    diffuse_transport: &str,
-    light_rad: Option<f64>,
-    azimuth_rad: f64,
+    options: Option<Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let (roughness, light_rad) = Options::read(options, |o| Ok((RoughArgs::read(o)?, o.f64("light_rad")?)))?;
     let a = run(py, |report| {
         let parsed = film::parse_stack(stack)?;
         let pol = film::parse_polarization(polarization)?;
         let grid = film::wavelength_grid(from_nm, to_nm, step_nm)?;
-        if let Some(opts) = rough_options(roughness_nm, correlation_nm, d_iterations, diffuse_transport)? {
+        if let Some(opts) = roughness.options()? {
             if pol != film::Polarization::Average {
                 anyhow::bail!("with roughness the spectrum is unpolarised, with s and p columns");
             }
             let light = light_rad.unwrap_or(angle_rad);
-            let s = rough::spectrum(parsed, stack, &opts, angle_rad, light, azimuth_rad, &grid)?;
+            let s = rough::spectrum(parsed, stack, &opts, angle_rad, light, roughness.azimuth_rad, &grid)?;
             let image = if plot { Some(s.plot()?) } else { None };
             return Ok(Answer {
                 json: Some(s.to_json()),
@@ -117,8 +130,7 @@ fn _film_spectrum<'py>(
 
 /// `iridis thinfilm table`: the CSV (smooth: angle × wavelength; rough: view × light × wavelength).
 #[pyfunction]
-#[pyo3(signature = (stack, angles, from_nm, to_nm, step_nm, plot, scale="auto", roughness_nm=None,
-    correlation_nm=None, d_iterations=None, diffuse_transport="multiple", light_angles=None, azimuth_rad=std::f64::consts::PI))]
+#[pyo3(signature = (stack, angles, from_nm, to_nm, step_nm, plot, scale="auto", **options))]
 #[allow(clippy::too_many_arguments)]
 fn _film_table<'py>(
     py: Python<'py>,
@@ -129,18 +141,14 @@ fn _film_table<'py>(
     step_nm: f64,
     plot: bool,
     scale: &str,
-    roughness_nm: Option<f64>,
-    correlation_nm: Option<f64>,
-    d_iterations: Option<usize>,
-    diffuse_transport: &str,
-    light_angles: Option<String>,
-    azimuth_rad: f64,
+    options: Option<Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let (roughness, light_angles) = Options::read(options, |o| Ok((RoughArgs::read(o)?, o.string("light_angles")?)))?;
     let a = run(py, |report| {
         let parsed = film::parse_stack(stack)?;
         let grid = film::wavelength_grid(from_nm, to_nm, step_nm)?;
-        if let Some(opts) = rough_options(roughness_nm, correlation_nm, d_iterations, diffuse_transport)? {
-            let t = rough::table(parsed, stack, &opts, angles, light_angles.as_deref(), azimuth_rad, &grid)?;
+        if let Some(opts) = roughness.options()? {
+            let t = rough::table(parsed, stack, &opts, angles, light_angles.as_deref(), roughness.azimuth_rad, &grid)?;
             let image = if plot { Some(t.plot()?) } else { None };
             let csv = String::from_utf8(t.csv()?)?;
             return Ok(Answer { csv: Some(csv), image, extra: vec![("summary", t.summary())], ..Default::default() });
@@ -155,8 +163,7 @@ fn _film_table<'py>(
 /// `iridis thinfilm color`.
 #[pyfunction]
 #[pyo3(signature = (stack, angle_rad, polarization, from_nm, to_nm, step_nm, illuminant, observer, visual=None,
-    roughness_nm=None, correlation_nm=None, d_iterations=None, diffuse_transport="multiple", light_rad=None,
-    azimuth_rad=std::f64::consts::PI))]
+    **options))]
 #[allow(clippy::too_many_arguments)]
 fn _film_color<'py>(
     py: Python<'py>,
@@ -169,19 +176,15 @@ fn _film_color<'py>(
     illuminant: &str,
     observer: &str,
     visual: Option<String>,
-    roughness_nm: Option<f64>,
-    correlation_nm: Option<f64>,
-    d_iterations: Option<usize>,
-    diffuse_transport: &str,
-    light_rad: Option<f64>,
-    azimuth_rad: f64,
+    options: Option<Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let (roughness, light_rad) = Options::read(options, |o| Ok((RoughArgs::read(o)?, o.f64("light_rad")?)))?;
     let a = run(py, |report| {
         let parsed = film::parse_stack(stack)?;
         let observer = observer.parse()?;
         let pol = film::parse_polarization(polarization)?;
         let grid = film::wavelength_grid(from_nm, to_nm, step_nm)?;
-        if let Some(opts) = rough_options(roughness_nm, correlation_nm, d_iterations, diffuse_transport)? {
+        if let Some(opts) = roughness.options()? {
             if pol != film::Polarization::Average || visual.is_some() {
                 anyhow::bail!("with roughness the colours are for unpolarised light, without a visual system");
             }
@@ -191,7 +194,7 @@ fn _film_color<'py>(
                 &opts,
                 angle_rad,
                 light,
-                azimuth_rad,
+                roughness.azimuth_rad,
                 &grid,
                 illuminant.parse()?,
                 observer,
@@ -207,8 +210,7 @@ fn _film_color<'py>(
 
 /// `iridis thinfilm chart`: the CSV, the picture and what was drawn.
 #[pyfunction]
-#[pyo3(signature = (stack, thickness, angle_rad, illuminant, exposure, from_nm, to_nm, step_nm, roughness_nm=None,
-    correlation_nm=None, d_iterations=None, diffuse_transport="multiple", light_rad=None, azimuth_rad=std::f64::consts::PI))]
+#[pyo3(signature = (stack, thickness, angle_rad, illuminant, exposure, from_nm, to_nm, step_nm, **options))]
 #[allow(clippy::too_many_arguments)]
 fn _film_chart<'py>(
     py: Python<'py>,
@@ -220,16 +222,12 @@ fn _film_chart<'py>(
     from_nm: f64,
     to_nm: f64,
     step_nm: f64,
-    roughness_nm: Option<f64>,
-    correlation_nm: Option<f64>,
-    d_iterations: Option<usize>,
-    diffuse_transport: &str,
-    light_rad: Option<f64>,
-    azimuth_rad: f64,
+    options: Option<Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let (roughness, light_rad) = Options::read(options, |o| Ok((RoughArgs::read(o)?, o.f64("light_rad")?)))?;
     let a = run(py, |_| {
-        let rough = rough_options(roughness_nm, correlation_nm, d_iterations, diffuse_transport)?
-            .map(|options| film_chart::RoughLight { options, light: light_rad, azimuth: azimuth_rad });
+        let azimuth = roughness.azimuth_rad;
+        let rough = roughness.options()?.map(|options| film_chart::RoughLight { options, light: light_rad, azimuth });
         let grid = film::wavelength_grid(from_nm, to_nm, step_nm)?;
         let c = film_chart::chart(stack, thickness, angle_rad, illuminant, exposure, &grid, rough)?;
         Ok(Answer {
@@ -255,21 +253,18 @@ fn _film_materials(py: Python<'_>, at_nm: Option<f64>) -> PyResult<Bound<'_, PyD
 
 /// `iridis thinfilm bench` (with `roughness_nm`/`correlation_nm`: the LSRS table of Listing 3.6).
 #[pyfunction]
-#[pyo3(signature = (seconds, no_python, roughness_nm=None, correlation_nm=None, d_iterations=None,
-    diffuse_transport="multiple", azimuth_rad=std::f64::consts::PI))]
+#[pyo3(signature = (seconds, no_python, **options))]
 fn _film_bench<'py>(
     py: Python<'py>,
     seconds: f64,
     no_python: bool,
-    roughness_nm: Option<f64>,
-    correlation_nm: Option<f64>,
-    d_iterations: Option<usize>,
-    diffuse_transport: &str,
-    azimuth_rad: f64,
+    options: Option<Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let roughness = Options::read(options, RoughArgs::read)?;
     let a = run(py, |_| {
-        if let Some(opts) = rough_options(roughness_nm, correlation_nm, d_iterations, diffuse_transport)? {
-            let b = rough::bench(film::parse_stack(rough::LISTING_3_6_STACK)?, &opts, azimuth_rad, 80, seconds)?;
+        if let Some(opts) = roughness.options()? {
+            let b =
+                rough::bench(film::parse_stack(rough::LISTING_3_6_STACK)?, &opts, roughness.azimuth_rad, 80, seconds)?;
             return Ok(Answer { json: Some(b.to_json()), text: Some(b.text()), ..Default::default() });
         }
         let b = film_bench::bench(seconds, no_python)?;
@@ -300,9 +295,36 @@ fn _film_profile<'py>(
     a.into_py(py)
 }
 
+/// The request of `iridis thinfilm fit` (`iridis.film.fit`, `iridis.thinfilm.fit` of a file): `stack`,
+/// `angle_rad`, `quantity`, `grid` and the keywords of reading the file and weighting it — `sigma`, `weights`,
+/// `columns`, `percent`, `from_nm`, `to_nm` (the CLI's options of the same names); any other keyword is a
+/// `TypeError`.
+pub(crate) fn fit_request(
+    stack: &str,
+    angle_rad: f64,
+    quantity: &str,
+    grid: usize,
+    options: Option<Bound<'_, PyDict>>,
+) -> PyResult<film_fit::FitRequest> {
+    Options::read(options, |o| {
+        Ok(film_fit::FitRequest {
+            stack: stack.to_string(),
+            angle_rad,
+            quantity: quantity.to_string(),
+            sigma: o.string("sigma")?,
+            weights: o.string("weights")?,
+            grid,
+            columns: o.string("columns")?,
+            percent: o.bool("percent")?,
+            from_nm: o.f64("from_nm")?,
+            to_nm: o.f64("to_nm")?,
+        })
+    })
+}
+
 /// `iridis thinfilm fit` of the measured spectrum in a file.
 #[pyfunction]
-#[pyo3(signature = (path, stack, angle_rad, quantity, grid, sigma, weights, columns, percent, from_nm, to_nm, plot))]
+#[pyo3(signature = (path, stack, angle_rad, quantity, grid, plot, **options))]
 #[allow(clippy::too_many_arguments)]
 fn _film_fit<'py>(
     py: Python<'py>,
@@ -311,26 +333,10 @@ fn _film_fit<'py>(
     angle_rad: f64,
     quantity: &str,
     grid: usize,
-    sigma: Option<String>,
-    weights: Option<String>,
-    columns: Option<String>,
-    percent: Option<bool>,
-    from_nm: Option<f64>,
-    to_nm: Option<f64>,
     plot: bool,
+    options: Option<Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let request = film_fit::FitRequest {
-        stack: stack.to_string(),
-        angle_rad,
-        quantity: quantity.to_string(),
-        sigma,
-        weights,
-        grid,
-        columns,
-        percent,
-        from_nm,
-        to_nm,
-    };
+    let request = fit_request(stack, angle_rad, quantity, grid, options)?;
     let a = run(py, |report| {
         let f = film_fit::fit_file(Path::new(path), &request, report)?;
         let image = if plot { Some(f.plot()?) } else { None };

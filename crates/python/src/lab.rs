@@ -33,8 +33,14 @@ fn source_of(obj: &Bound<'_, PyAny>) -> PyResult<Source> {
     )))
 }
 
-/// The lab's options: the surface's, `coherence_nm`, `terms`, `fresnel`, `fresnel_convention`, `shadowing`,
-/// `stam_epsilon`.
+/// The surface (a `Surface` or SURFACE argument) and the lab's options from the keyword `options`: the
+/// surface's, `coherence_nm`, `terms`, `fresnel`, `fresnel_convention`, `shadowing`, `stam_epsilon` (any other
+/// keyword is a `TypeError`).
+fn source_and_lab(surface: &Bound<'_, PyAny>, options: Option<Bound<'_, PyDict>>) -> PyResult<(Source, LabOptions)> {
+    let lab = Options::read(options, lab_options)?;
+    Ok((source_of(surface)?, lab))
+}
+
 fn lab_options(o: &mut Options<'_>) -> PyResult<LabOptions> {
     let surface = o.surface()?;
     let coherence_nm = o.positive("coherence_nm")?;
@@ -73,10 +79,7 @@ fn _testbench<'py>(
     options: Option<Bound<'py, PyDict>>,
 ) -> PyResult<BenchArrays<'py>> {
     let method = method(method_name)?;
-    let mut o = Options::new(options);
-    let lab = lab_options(&mut o)?;
-    o.finish()?;
-    let source = source_of(surface)?;
+    let (source, lab) = source_and_lab(surface, options)?;
     let mut setup =
         BenchSetup::new(incidence, azimuth.unwrap_or(0.0), order, wavelengths, angles_deg).map_err(value_error)?;
     setup.period_hint_nm = period_nm;
@@ -135,10 +138,7 @@ fn _compare<'py>(
     if !((0.0..std::f64::consts::FRAC_PI_2).contains(&theta_i) && phi_i.is_finite()) {
         return Err(value_error(format!("incidence θ = {theta_i} rad must be in [0, π/2), φ finite")));
     }
-    let mut o = Options::new(options);
-    let lab = lab_options(&mut o)?;
-    o.finish()?;
-    let source = source_of(surface)?;
+    let (source, lab) = source_and_lab(surface, options)?;
     let req = run::CompareRequest {
         methods,
         against,
@@ -161,9 +161,7 @@ fn _compare<'py>(
     })?;
     let maps = PyDict::new(py);
     for (name, img) in images {
-        let flat: Vec<f64> = img.iter().flat_map(|p| p.map(|x| x.to_array()).unwrap_or([f64::NAN; 3])).collect();
-        let a = Array3::from_shape_vec((size, size, 3), flat).map_err(|e| value_error(format!("map {name}: {e}")))?;
-        maps.set_item(name, a.into_pyarray(py))?;
+        maps.set_item(&name, xyz_array(py, &img, size, &format!("map {name}"))?)?;
     }
     Ok((json, maps))
 }
@@ -204,10 +202,7 @@ fn _sweep<'py>(
         output,
         plot,
     };
-    let mut o = Options::new(options);
-    let lab = lab_options(&mut o)?;
-    o.finish()?;
-    let source = source_of(surface)?;
+    let (source, lab) = source_and_lab(surface, options)?;
     facade_run(py, |r| with_outputs(|| Ok(run::sweep_run(&source, &lab, &req, r)?.to_json().to_string())))
 }
 
@@ -256,14 +251,21 @@ fn _laser<'py>(
         table,
         save_table,
     };
-    let mut o = Options::new(options);
-    let lab = lab_options(&mut o)?;
-    o.finish()?;
-    let source = source_of(surface)?;
+    let (source, lab) = source_and_lab(surface, options)?;
     let l = facade_run(py, |r| with_outputs(|| run::laser_run(&source, &lab, &req, r)))?;
-    let flat: Vec<f64> = l.image.iter().flat_map(|p| p.map(|x| x.to_array()).unwrap_or([f64::NAN; 3])).collect();
-    let a = Array3::from_shape_vec((size, size, 3), flat).map_err(|e| value_error(format!("screen: {e}")))?;
-    Ok((l.to_json().to_string(), a.into_pyarray(py)))
+    Ok((l.to_json().to_string(), xyz_array(py, &l.image, size, "screen")?))
+}
+
+/// A square picture of `size`² colours as XYZ of shape (size, size, 3), NaN where there is none.
+fn xyz_array<'py>(
+    py: Python<'py>,
+    img: &[Option<iridis_color::Xyz>],
+    size: usize,
+    what: &str,
+) -> PyResult<Bound<'py, numpy::PyArray3<f64>>> {
+    let flat: Vec<f64> = img.iter().flat_map(|p| p.map(|x| x.to_array()).unwrap_or([f64::NAN; 3])).collect();
+    let a = Array3::from_shape_vec((size, size, 3), flat).map_err(|e| value_error(format!("{what}: {e}")))?;
+    Ok(a.into_pyarray(py))
 }
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {

@@ -14,28 +14,27 @@ use crate::film_commands::Answer;
 
 /// The analysis options as typed (the CLI's words), from a wrapper's keyword options; `None` leaves a default.
 fn spec(options: Option<Bound<'_, PyDict>>) -> PyResult<Spec> {
-    let mut o = Options::new(options);
-    let spec = Spec {
-        visual: o.string("visual")?,
-        lambda_max: o.string("lambda_max")?,
-        chromophore: o.string("chromophore")?,
-        oil_droplets: o.string("oil_droplets")?,
-        ocular_media: o.string("ocular_media")?,
-        illuminant: o.string("illuminant")?,
-        illuminant_units: o.string("illuminant_units")?,
-        illuminant_scale: o.f64("illuminant_scale")?,
-        background: o.string("background")?,
-        weber: o.f64("weber")?,
-        weber_ref: o.string("weber_ref")?,
-        densities: o.string("densities")?,
-        receptor_noise: o.string("receptor_noise")?,
-        noise: o.string("noise")?,
-        achromatic: o.string("achromatic")?,
-        achromatic_weber: o.f64("achromatic_weber")?,
-        space: o.string("space")?,
-    };
-    o.finish()?;
-    Ok(spec)
+    Options::read(options, |o| {
+        Ok(Spec {
+            visual: o.string("visual")?,
+            lambda_max: o.string("lambda_max")?,
+            chromophore: o.string("chromophore")?,
+            oil_droplets: o.string("oil_droplets")?,
+            ocular_media: o.string("ocular_media")?,
+            illuminant: o.string("illuminant")?,
+            illuminant_units: o.string("illuminant_units")?,
+            illuminant_scale: o.f64("illuminant_scale")?,
+            background: o.string("background")?,
+            weber: o.f64("weber")?,
+            weber_ref: o.string("weber_ref")?,
+            densities: o.string("densities")?,
+            receptor_noise: o.string("receptor_noise")?,
+            noise: o.string("noise")?,
+            achromatic: o.string("achromatic")?,
+            achromatic_weber: o.f64("achromatic_weber")?,
+            space: o.string("space")?,
+        })
+    })
 }
 
 /// The analysis of spectra (one per row of `values`, on `wavelengths`) as JSON text.

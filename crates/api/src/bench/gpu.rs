@@ -20,7 +20,7 @@ use iridis_gpu::{FilmFrame, FilmPath, FrameTime, Gpu, GpuFilm, GpuLookup, GpuSce
 use iridis_thinfilm::spectral::{dense_weights, sampled_weights, FULL_BAND_NM};
 use serde_json::{json, Value};
 
-use super::{delta_e_stats, disk_pixels, sample, view_of, Bench, FrameStats};
+use super::{delta_e_stats, disk_pixels, sample, view_of, Bench, DeltaE, FrameStats};
 use crate::report::Report;
 use crate::{ModelOptions, SurfaceOptions};
 
@@ -133,6 +133,13 @@ impl Timed {
             ),
             None => format!("{indent}(the adapter has no timestamp queries: wall clock only)"),
         }
+    }
+
+    /// The run's lines: wall clock, GPU timestamps, and its colours' difference from the CPU's (`cpu`: what the
+    /// CPU computed, on how many pixels).
+    fn vs_cpu_lines(&self, indent: &str, cpu: &str, de: &DeltaE) -> [String; 3] {
+        let vs = format!("{indent}vs CPU ({cpu}): ΔE00 mean {:.4}, p99 {:.4}", de.mean, de.p99);
+        [self.wall_line(indent), self.gpu_line(indent), vs]
     }
 }
 
@@ -318,14 +325,7 @@ pub fn gpu(a: &GpuBenchOptions, report: &dyn Report) -> Result<Bench> {
         table.powers(),
         map_t.frames
     ));
-    t.push(map_t.wall_line("  "));
-    t.push(map_t.gpu_line("  "));
-    t.push(format!(
-        "  vs CPU (lookup, f64; {} pixels at 1500 RU): ΔE00 mean {:.4}, p99 {:.4}",
-        px.len(),
-        map_de.mean,
-        map_de.p99
-    ));
+    t.extend(map_t.vs_cpu_lines("  ", &format!("lookup, f64; {} pixels at 1500 RU", px.len()), map_de));
     if encoded.len() > 1 {
         t.push("  table encodings (same map, same pixels; ΔE00 against the CPU's f64 lookup at 1500 RU):".into());
         for (e, mb, tm, de) in &encoded {
@@ -342,28 +342,15 @@ pub fn gpu(a: &GpuBenchOptions, report: &dyn Report) -> Result<Bench> {
     }
     t.push(format!("thin film {stack}, {fw}×{fh}, gradient + SVT:"));
     t.push(format!("  fast path: {}; {} frames:", fast_run.path(), fast_t.frames));
-    t.push(fast_t.wall_line("    "));
-    t.push(fast_t.gpu_line("    "));
-    t.push(format!(
-        "    vs CPU (Stack::evaluate_offset, f64, 81 samples; {} pixels): ΔE00 mean {:.4}, p99 {:.4}",
-        fpx.len(),
-        fast_de.mean,
-        fast_de.p99
-    ));
+    let cpu = format!("Stack::evaluate_offset, f64, 81 samples; {} pixels", fpx.len());
+    t.extend(fast_t.vs_cpu_lines("    ", &cpu, &fast_de));
     t.push(format!("    vs the direct path (every pixel): {vs_direct}"));
     t.push(format!(
         "  direct path, {} wavelength samples per pixel; {} frames:",
         direct_weights.wavelengths_nm().len(),
         direct_t.frames
     ));
-    t.push(direct_t.wall_line("    "));
-    t.push(direct_t.gpu_line("    "));
-    t.push(format!(
-        "    vs CPU (f64, the same samples; {} pixels): ΔE00 mean {:.4}, p99 {:.4}",
-        fpx.len(),
-        direct_de.mean,
-        direct_de.p99
-    ));
+    t.extend(direct_t.vs_cpu_lines("    ", &format!("f64, the same samples; {} pixels", fpx.len()), &direct_de));
     t.push(format!("  direct / fast median frame time: {:.1}×", dmed / fmed));
     let (build, build_lines) = table_build(&gpu, a, report)?;
     let (truth, truth_lines) = ground_truth(&gpu, a, report)?;

@@ -115,7 +115,9 @@ def fit(measured, stack, angle_rad=0.0, quantity="R", *, sigma=None, weights=Non
         percent=None, from_nm=None, to_nm=None, plot=False):
     """``iridis thinfilm fit``: fits the free parameters ``{NAME=START:LOW..HIGH}`` of ``stack`` to the
     spectrum in the file ``measured`` (read as the CLI reads it); ``.csv`` the fitted curve."""
-    return answer(_native._film_fit(str(measured), str(stack), float(angle_rad), str(quantity), int(grid),
-                                    None if sigma is None else str(sigma), None if weights is None else str(weights),
-                                    columns, None if percent is None else bool(percent), None if from_nm is None else float(from_nm),
-                                    None if to_nm is None else float(to_nm), bool(plot)))
+    return answer(_native._film_fit(str(measured), str(stack), float(angle_rad), str(quantity), int(grid), bool(plot),
+                                    sigma=None if sigma is None else str(sigma),
+                                    weights=None if weights is None else str(weights), columns=columns,
+                                    percent=None if percent is None else bool(percent),
+                                    from_nm=None if from_nm is None else float(from_nm),
+                                    to_nm=None if to_nm is None else float(to_nm)))
