@@ -47,29 +47,22 @@ struct Wave<'a> {
 }
 
 impl Wave<'_> {
-    fn i32(&self, at: usize) -> i32 {
-        let s: [u8; 4] = self.b[at..at + 4].try_into().expect("4 bytes");
-        if self.le {
-            i32::from_le_bytes(s)
-        } else {
-            i32::from_be_bytes(s)
+    /// The `N` bytes at `at` in little-endian order (reversed from a big-endian file).
+    fn le_bytes<const N: usize>(&self, at: usize) -> [u8; N] {
+        let mut s: [u8; N] = self.b[at..at + N].try_into().expect("a slice of N bytes");
+        if !self.le {
+            s.reverse();
         }
+        s
+    }
+    fn i32(&self, at: usize) -> i32 {
+        i32::from_le_bytes(self.le_bytes(at))
     }
     fn u16(&self, at: usize) -> u16 {
-        let s = [self.b[at], self.b[at + 1]];
-        if self.le {
-            u16::from_le_bytes(s)
-        } else {
-            u16::from_be_bytes(s)
-        }
+        u16::from_le_bytes(self.le_bytes(at))
     }
     fn f64(&self, at: usize) -> f64 {
-        let s: [u8; 8] = self.b[at..at + 8].try_into().expect("8 bytes");
-        if self.le {
-            f64::from_le_bytes(s)
-        } else {
-            f64::from_be_bytes(s)
-        }
+        f64::from_le_bytes(self.le_bytes(at))
     }
 }
 
