@@ -33,8 +33,8 @@ use std::sync::Arc;
 use iridis_color::Xyz;
 use iridis_diffraction::geometry::{uvw, Shading, Vec3};
 use iridis_diffraction::{Evaluator, Patch, SpectralSetup};
+use iridis_surface::fft::dft2;
 use num_complex::Complex64;
-use rustfft::FftPlanner;
 
 use crate::analysis::{dominant_period, Axis};
 use crate::LabError;
@@ -413,27 +413,6 @@ pub struct StamGaussian {
     pub spectral: SpectralSetup,
 }
 
-/// In-place 2-D forward DFT of a row-major `rows × cols` array.
-fn fft2(data: &mut [Complex64], rows: usize, cols: usize, inverse: bool) {
-    let mut planner = FftPlanner::<f64>::new();
-    let (fx, fy) = if inverse {
-        (planner.plan_fft_inverse(cols), planner.plan_fft_inverse(rows))
-    } else {
-        (planner.plan_fft_forward(cols), planner.plan_fft_forward(rows))
-    };
-    fx.process(data);
-    let mut col = vec![Complex64::new(0.0, 0.0); rows];
-    for c in 0..cols {
-        for r in 0..rows {
-            col[r] = data[r * cols + c];
-        }
-        fy.process(&mut col);
-        for r in 0..rows {
-            data[r * cols + c] = col[r];
-        }
-    }
-}
-
 impl StamGaussian {
     /// Correlation function `C = R/σ_h²` from the patch's circular autocorrelation `R = IDFT(|DFT h|²)/N`,
     /// the DFTs of `C^m` for `m = 0..=M` with `M` past the Poisson tail of `g_max = (2·2π/λ_min·σ_h)²`.
@@ -456,9 +435,9 @@ impl StamGaussian {
         }
         // Normalised correlation function.
         let mut c: Vec<Complex64> = patch.heights.iter().map(|&h| Complex64::new(h, 0.0)).collect();
-        fft2(&mut c, rows, cols, false);
+        dft2(&mut c, rows, cols, false);
         c.iter_mut().for_each(|z| *z = Complex64::new(z.norm_sqr(), 0.0));
-        fft2(&mut c, rows, cols, true);
+        dft2(&mut c, rows, cols, true);
         let corr: Vec<f64> =
             if sigma2 > 0.0 { c.iter().map(|z| z.re / (n as f64 * n as f64 * sigma2)).collect() } else { vec![0.0; n] };
         let stride = m_max + 1;
@@ -466,7 +445,7 @@ impl StamGaussian {
         let mut power: Vec<f64> = vec![1.0; n];
         for m in 0..=m_max {
             let mut buf: Vec<Complex64> = power.iter().map(|&p| Complex64::new(p, 0.0)).collect();
-            fft2(&mut buf, rows, cols, false);
+            dft2(&mut buf, rows, cols, false);
             for (bin, z) in buf.iter().enumerate() {
                 d[bin * stride + m] = z.re / n as f64;
             }

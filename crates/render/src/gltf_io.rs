@@ -147,45 +147,34 @@ pub fn load_gltf(
         if !(ior >= 1.0 && ior.is_finite()) {
             return Err(bad(path, format!("material \"{name}\": KHR_materials_ior ior = {ior}; it must be ≥ 1")));
         }
-        // metallicRoughnessTexture: G scales the roughness, B the metallic factor, read linearly (glTF 2.0,
-        // sec. 3.9.2); it shares the material's texture coordinates.
+        // The data textures below are read linearly and share the material's texture coordinates.
+        let mut data_texture = |tex: gltf::Texture, uv: UvMap, slot: &str, label: &str| {
+            textures.push(Texture::from_image(image_of(tex.clone())?, TexKind::Data, &format!("{name} {label}"))?);
+            check_sampler(&name, slot, &tex, notes);
+            share_uv_map(&mut uv_map, uv, &name, slot, notes);
+            Ok::<usize, RenderError>(textures.len() - 1)
+        };
+        // metallicRoughnessTexture: G scales the roughness, B the metallic factor (glTF 2.0, sec. 3.9.2).
         let metallic_roughness = match pbr.metallic_roughness_texture() {
-            Some(info) => {
-                textures.push(Texture::from_image(
-                    image_of(info.texture())?,
-                    TexKind::Data,
-                    &format!("{name} metallic-roughness"),
-                )?);
-                check_sampler(&name, "metallicRoughnessTexture", &info.texture(), notes);
-                share_uv_map(
-                    &mut uv_map,
-                    UvMap::of(info.tex_coord(), info.extensions()),
-                    &name,
-                    "metallicRoughnessTexture",
-                    notes,
-                );
-                Some(textures.len() - 1)
-            }
+            Some(info) => Some(data_texture(
+                info.texture(),
+                UvMap::of(info.tex_coord(), info.extensions()),
+                "metallicRoughnessTexture",
+                "metallic-roughness",
+            )?),
             None => None,
         };
-        // normalTexture: a tangent-space normal (2·rgb − 1, x and y × scale), read linearly (sec. 3.9.3).
+        // normalTexture: a tangent-space normal (2·rgb − 1, x and y × scale) (sec. 3.9.3).
         let normal_texture = match m.normal_texture() {
-            Some(info) => {
-                textures.push(Texture::from_image(
-                    image_of(info.texture())?,
-                    TexKind::Data,
-                    &format!("{name} normal"),
-                )?);
-                check_sampler(&name, "normalTexture", &info.texture(), notes);
-                share_uv_map(
-                    &mut uv_map,
+            Some(info) => Some((
+                data_texture(
+                    info.texture(),
                     UvMap::of(info.tex_coord(), info.extensions()),
-                    &name,
                     "normalTexture",
-                    notes,
-                );
-                Some((textures.len() - 1, info.scale() as f64))
-            }
+                    "normal",
+                )?,
+                info.scale() as f64,
+            )),
             None => None,
         };
         let base = Microfacet {

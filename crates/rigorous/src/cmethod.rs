@@ -226,75 +226,95 @@ fn eigen(a: &Mat<C64>) -> Result<(Vec<C64>, Mat<C64>), RigorousError> {
     Ok((vals, evd.U().to_owned()))
 }
 
-/// Modes of a medium for a 1-D profile `a(x)` (no y dependence of the surface), conical incidence: `E_y` and
-/// `H_y` each satisfy the scalar problem (C3)
+/// The eigenmodes of a medium for a 1-D profile `a(x)` (no y dependence of the surface), `need` for each side
+/// appended to its `out`; conical incidence: `E_y` and `H_y` each satisfy the scalar problem (C3)
 /// `ρ [F; G] = [[0, I], [C⁻¹(κ² − α²), C⁻¹(αȦ + Ȧα)]] [F; G]`, `C = [[1 + ȧ²]]`, `κ² = ε − k_y²`,
 /// and every eigenmode gives two columns, `E_y`-type and `H_y`-type, with the tangential components of (C5).
-fn modes_1d(
+fn eigenmodes_1d(
     set: &Setting,
     orders: &Orders,
     surf: &FineSurface,
     eps: C64,
     sides: &[Side],
-) -> Result<Vec<MediumModes>, RigorousError> {
+    out: &mut [MediumModes],
+    need: usize,
+) -> Result<(), RigorousError> {
     let nf = orders.len();
+    let adot = toeplitz(&surf.coeffs_of(|_, ax, _| C64::new(ax, 0.0)), orders);
+    let cmat = toeplitz(&surf.coeffs_of(|_, ax, _| C64::new(1.0 + ax * ax, 0.0)), orders);
+    let alpha: Vec<f64> = orders.list.iter().map(|&(m, n)| tangential(set, m, n).0).collect();
+    let ky = set.ky0;
+    let kappa2 = eps - ky * ky;
+    // Right-hand side blocks: diag(κ² − α²) and αȦ + Ȧα.
+    let mut rhs = Mat::<C64>::zeros(nf, 2 * nf);
+    for r in 0..nf {
+        rhs[(r, r)] = kappa2 - alpha[r] * alpha[r];
+        for c in 0..nf {
+            rhs[(r, nf + c)] = adot[(r, c)] * (alpha[r] + alpha[c]);
+        }
+    }
+    let lu = cmat.partial_piv_lu();
+    let sol = lu.solve(&rhs);
+    let mut a = Mat::<C64>::zeros(2 * nf, 2 * nf);
+    for r in 0..nf {
+        a[(r, nf + r)] = ONE;
+        for c in 0..2 * nf {
+            a[(nf + r, c)] = sol[(r, c)];
+        }
+    }
+    let (vals, vecs) = eigen(&a)?;
+    for (mm, &side) in out.iter_mut().zip(sides) {
+        let akz: Vec<C64> = mm.analytic.iter().map(|a| a.1).collect();
+        let chosen = select_modes(&vals, &akz, 1, side, need);
+        for &i in &chosen {
+            // N = C G − Ȧ α F: the Fourier vector of the normal derivative operator (C4).
+            let f: Vec<C64> = (0..nf).map(|r| vecs[(r, i)]).collect();
+            let g: Vec<C64> = (0..nf).map(|r| vecs[(nf + r, i)]).collect();
+            let mut nvec = vec![ZERO; nf];
+            for r in 0..nf {
+                let mut acc = ZERO;
+                for c in 0..nf {
+                    acc += cmat[(r, c)] * g[c] - adot[(r, c)] * (alpha[c] * f[c]);
+                }
+                nvec[r] = acc;
+            }
+            let mut e_col = vec![ZERO; 4 * nf];
+            let mut h_col = vec![ZERO; 4 * nf];
+            for r in 0..nf {
+                // E_y-type mode (E_y = F, H_y = 0) and H_y-type mode (E_y = 0, H_y = F), (C5).
+                e_col[r] = -ky * alpha[r] * f[r] / kappa2;
+                e_col[nf + r] = f[r];
+                e_col[2 * nf + r] = -eps * nvec[r] / kappa2;
+                h_col[r] = nvec[r] / kappa2;
+                h_col[2 * nf + r] = -ky * alpha[r] * f[r] / kappa2;
+                h_col[3 * nf + r] = f[r];
+            }
+            mm.columns.push(e_col);
+            mm.columns.push(h_col);
+            mm.rho.push(vals[i]);
+            mm.rho.push(vals[i]);
+        }
+    }
+    Ok(())
+}
+
+/// Modes of a medium for each of `sides`: the analytic plane-wave columns (C7), then the eigenmodes of the 1-D
+/// (C3) or 2-D (C8) problem for the orders that are not plane waves (two columns per missing order).
+fn modes(
+    set: &Setting,
+    orders: &Orders,
+    surf: &FineSurface,
+    two_d: bool,
+    eps: C64,
+    sides: &[Side],
+) -> Result<Vec<MediumModes>, RigorousError> {
     let mut out: Vec<MediumModes> = sides.iter().map(|&side| start_modes(set, orders, surf, eps, side)).collect();
-    let need = nf - out[0].analytic.len();
-    if need > 0 {
-        let adot = toeplitz(&surf.coeffs_of(|_, ax, _| C64::new(ax, 0.0)), orders);
-        let cmat = toeplitz(&surf.coeffs_of(|_, ax, _| C64::new(1.0 + ax * ax, 0.0)), orders);
-        let alpha: Vec<f64> = orders.list.iter().map(|&(m, n)| tangential(set, m, n).0).collect();
-        let ky = set.ky0;
-        let kappa2 = eps - ky * ky;
-        // Right-hand side blocks: diag(κ² − α²) and αȦ + Ȧα.
-        let mut rhs = Mat::<C64>::zeros(nf, 2 * nf);
-        for r in 0..nf {
-            rhs[(r, r)] = kappa2 - alpha[r] * alpha[r];
-            for c in 0..nf {
-                rhs[(r, nf + c)] = adot[(r, c)] * (alpha[r] + alpha[c]);
-            }
-        }
-        let lu = cmat.partial_piv_lu();
-        let sol = lu.solve(&rhs);
-        let mut a = Mat::<C64>::zeros(2 * nf, 2 * nf);
-        for r in 0..nf {
-            a[(r, nf + r)] = ONE;
-            for c in 0..2 * nf {
-                a[(nf + r, c)] = sol[(r, c)];
-            }
-        }
-        let (vals, vecs) = eigen(&a)?;
-        for (mm, &side) in out.iter_mut().zip(sides) {
-            let akz: Vec<C64> = mm.analytic.iter().map(|a| a.1).collect();
-            let chosen = select_modes(&vals, &akz, 1, side, need);
-            for &i in &chosen {
-                // N = C G − Ȧ α F: the Fourier vector of the normal derivative operator (C4).
-                let f: Vec<C64> = (0..nf).map(|r| vecs[(r, i)]).collect();
-                let g: Vec<C64> = (0..nf).map(|r| vecs[(nf + r, i)]).collect();
-                let mut nvec = vec![ZERO; nf];
-                for r in 0..nf {
-                    let mut acc = ZERO;
-                    for c in 0..nf {
-                        acc += cmat[(r, c)] * g[c] - adot[(r, c)] * (alpha[c] * f[c]);
-                    }
-                    nvec[r] = acc;
-                }
-                let mut e_col = vec![ZERO; 4 * nf];
-                let mut h_col = vec![ZERO; 4 * nf];
-                for r in 0..nf {
-                    // E_y-type mode (E_y = F, H_y = 0) and H_y-type mode (E_y = 0, H_y = F), (C5).
-                    e_col[r] = -ky * alpha[r] * f[r] / kappa2;
-                    e_col[nf + r] = f[r];
-                    e_col[2 * nf + r] = -eps * nvec[r] / kappa2;
-                    h_col[r] = nvec[r] / kappa2;
-                    h_col[2 * nf + r] = -ky * alpha[r] * f[r] / kappa2;
-                    h_col[3 * nf + r] = f[r];
-                }
-                mm.columns.push(e_col);
-                mm.columns.push(h_col);
-                mm.rho.push(vals[i]);
-                mm.rho.push(vals[i]);
-            }
+    let missing = orders.len() - out[0].analytic.len();
+    if missing > 0 {
+        if two_d {
+            eigenmodes_2d(set, orders, surf, eps, sides, &mut out, 2 * missing)?;
+        } else {
+            eigenmodes_1d(set, orders, surf, eps, sides, &mut out, missing)?;
         }
     }
     Ok(out)
@@ -308,66 +328,65 @@ fn start_modes(set: &Setting, orders: &Orders, surf: &FineSurface, eps: C64, sid
     MediumModes { analytic, columns, rho }
 }
 
-/// Modes of a medium for a 2-D profile `a(x, y)`: the covariant Maxwell equations in the translation
-/// coordinates (C8) as `ρ Ψ = P Ψ` for `Ψ = (E1, E2, H1, H2)`, one column per eigenmode.
-fn modes_2d(
+/// The eigenmodes of a medium for a 2-D profile `a(x, y)`, `need` for each side appended to its `out`: the
+/// covariant Maxwell equations in the translation coordinates (C8) as `ρ Ψ = P Ψ` for `Ψ = (E1, E2, H1, H2)`,
+/// one column per eigenmode.
+fn eigenmodes_2d(
     set: &Setting,
     orders: &Orders,
     surf: &FineSurface,
     eps: C64,
     sides: &[Side],
-) -> Result<Vec<MediumModes>, RigorousError> {
+    out: &mut [MediumModes],
+    need: usize,
+) -> Result<(), RigorousError> {
     let nf = orders.len();
-    let mut out: Vec<MediumModes> = sides.iter().map(|&side| start_modes(set, orders, surf, eps, side)).collect();
-    let need = 2 * (nf - out[0].analytic.len());
-    if need > 0 {
-        let g = |ax: f64, ay: f64| 1.0 / (1.0 + ax * ax + ay * ay);
-        let t_g = toeplitz(&surf.coeffs_of(|_, ax, ay| C64::new(g(ax, ay), 0.0)), orders);
-        let t_xg = toeplitz(&surf.coeffs_of(|_, ax, ay| C64::new(ax * g(ax, ay), 0.0)), orders);
-        let t_yg = toeplitz(&surf.coeffs_of(|_, ax, ay| C64::new(ay * g(ax, ay), 0.0)), orders);
-        let t_xxg = toeplitz(&surf.coeffs_of(|_, ax, ay| C64::new(ax * ax * g(ax, ay), 0.0)), orders);
-        let t_xyg = toeplitz(&surf.coeffs_of(|_, ax, ay| C64::new(ax * ay * g(ax, ay), 0.0)), orders);
-        let t_yyg = toeplitz(&surf.coeffs_of(|_, ax, ay| C64::new(ay * ay * g(ax, ay), 0.0)), orders);
-        let kt: Vec<(f64, f64)> = orders.list.iter().map(|&(m, n)| tangential(set, m, n)).collect();
-        let inv_eps = ONE / eps;
-        let mut p = Mat::<C64>::zeros(4 * nf, 4 * nf);
-        for r in 0..nf {
-            let (ar, br) = kt[r];
-            for c in 0..nf {
-                let (ac, bc) = kt[c];
-                let (tg, txg, tyg) = (t_g[(r, c)], t_xg[(r, c)], t_yg[(r, c)]);
-                let (txx, txy, tyy) = (t_xxg[(r, c)], t_xyg[(r, c)], t_yyg[(r, c)]);
-                // Rows of E3, H3 and of a_x E3, a_y E3, a_x H3, a_y H3 over the blocks (E1, E2, H1, H2).
-                let e3 = [txg, tyg, inv_eps * tg * bc, -inv_eps * tg * ac];
-                let h3 = [-tg * bc, tg * ac, txg, tyg];
-                let xe3 = [txx, txy, inv_eps * txg * bc, -inv_eps * txg * ac];
-                let ye3 = [txy, tyy, inv_eps * tyg * bc, -inv_eps * tyg * ac];
-                let xh3 = [-txg * bc, txg * ac, txx, txy];
-                let yh3 = [-tyg * bc, tyg * ac, txy, tyy];
-                for b in 0..4 {
-                    let cc = b * nf + c;
-                    p[(r, cc)] = ar * e3[b] - yh3[b];
-                    p[(nf + r, cc)] = br * e3[b] + xh3[b];
-                    p[(2 * nf + r, cc)] = ar * h3[b] + eps * ye3[b];
-                    p[(3 * nf + r, cc)] = br * h3[b] - eps * xe3[b];
-                }
+    let g = |ax: f64, ay: f64| 1.0 / (1.0 + ax * ax + ay * ay);
+    let t_g = toeplitz(&surf.coeffs_of(|_, ax, ay| C64::new(g(ax, ay), 0.0)), orders);
+    let t_xg = toeplitz(&surf.coeffs_of(|_, ax, ay| C64::new(ax * g(ax, ay), 0.0)), orders);
+    let t_yg = toeplitz(&surf.coeffs_of(|_, ax, ay| C64::new(ay * g(ax, ay), 0.0)), orders);
+    let t_xxg = toeplitz(&surf.coeffs_of(|_, ax, ay| C64::new(ax * ax * g(ax, ay), 0.0)), orders);
+    let t_xyg = toeplitz(&surf.coeffs_of(|_, ax, ay| C64::new(ax * ay * g(ax, ay), 0.0)), orders);
+    let t_yyg = toeplitz(&surf.coeffs_of(|_, ax, ay| C64::new(ay * ay * g(ax, ay), 0.0)), orders);
+    let kt: Vec<(f64, f64)> = orders.list.iter().map(|&(m, n)| tangential(set, m, n)).collect();
+    let inv_eps = ONE / eps;
+    let mut p = Mat::<C64>::zeros(4 * nf, 4 * nf);
+    for r in 0..nf {
+        let (ar, br) = kt[r];
+        for c in 0..nf {
+            let (ac, bc) = kt[c];
+            let (tg, txg, tyg) = (t_g[(r, c)], t_xg[(r, c)], t_yg[(r, c)]);
+            let (txx, txy, tyy) = (t_xxg[(r, c)], t_xyg[(r, c)], t_yyg[(r, c)]);
+            // Rows of E3, H3 and of a_x E3, a_y E3, a_x H3, a_y H3 over the blocks (E1, E2, H1, H2).
+            let e3 = [txg, tyg, inv_eps * tg * bc, -inv_eps * tg * ac];
+            let h3 = [-tg * bc, tg * ac, txg, tyg];
+            let xe3 = [txx, txy, inv_eps * txg * bc, -inv_eps * txg * ac];
+            let ye3 = [txy, tyy, inv_eps * tyg * bc, -inv_eps * tyg * ac];
+            let xh3 = [-txg * bc, txg * ac, txx, txy];
+            let yh3 = [-tyg * bc, tyg * ac, txy, tyy];
+            for b in 0..4 {
+                let cc = b * nf + c;
+                p[(r, cc)] = ar * e3[b] - yh3[b];
+                p[(nf + r, cc)] = br * e3[b] + xh3[b];
+                p[(2 * nf + r, cc)] = ar * h3[b] + eps * ye3[b];
+                p[(3 * nf + r, cc)] = br * h3[b] - eps * xe3[b];
             }
-            p[(r, 3 * nf + r)] += ONE;
-            p[(nf + r, 2 * nf + r)] -= ONE;
-            p[(2 * nf + r, nf + r)] -= eps;
-            p[(3 * nf + r, r)] += eps;
         }
-        let (vals, vecs) = eigen(&p)?;
-        for (mm, &side) in out.iter_mut().zip(sides) {
-            let akz: Vec<C64> = mm.analytic.iter().map(|a| a.1).collect();
-            let chosen = select_modes(&vals, &akz, 2, side, need);
-            for &i in &chosen {
-                mm.columns.push((0..4 * nf).map(|r| vecs[(r, i)]).collect());
-                mm.rho.push(vals[i]);
-            }
+        p[(r, 3 * nf + r)] += ONE;
+        p[(nf + r, 2 * nf + r)] -= ONE;
+        p[(2 * nf + r, nf + r)] -= eps;
+        p[(3 * nf + r, r)] += eps;
+    }
+    let (vals, vecs) = eigen(&p)?;
+    for (mm, &side) in out.iter_mut().zip(sides) {
+        let akz: Vec<C64> = mm.analytic.iter().map(|a| a.1).collect();
+        let chosen = select_modes(&vals, &akz, 2, side, need);
+        for &i in &chosen {
+            mm.columns.push((0..4 * nf).map(|r| vecs[(r, i)]).collect());
+            mm.rho.push(vals[i]);
         }
     }
-    Ok(out)
+    Ok(())
 }
 
 /// Solves one truncation: modes above, in each coating layer (both directions) and below, the boundary
@@ -381,13 +400,7 @@ pub(crate) fn solve(
 ) -> Result<RawSolution, RigorousError> {
     let nf = orders.len();
     let eps1 = C64::new(set.eps1, 0.0);
-    let modes = |eps, sides: &[Side]| {
-        if two_d {
-            modes_2d(set, orders, surf, eps, sides)
-        } else {
-            modes_1d(set, orders, surf, eps, sides)
-        }
-    };
+    let modes = |eps, sides: &[Side]| modes(set, orders, surf, two_d, eps, sides);
     // Column blocks in order: above (up), each layer (up, then down), substrate (down). Each block is
     // normalised where it is launched: up-going modes at the interface below them, down-going at the one above,
     // so no factor exp(iρ d) ever grows.

@@ -6,6 +6,16 @@ use rustfft::FftPlanner;
 
 /// In-place 2-D FFT of a row-major array (rows of length `cols`); `inverse` includes the `1/(rows·cols)`.
 pub fn fft2(data: &mut [Complex<f64>], rows: usize, cols: usize, inverse: bool) {
+    dft2(data, rows, cols, inverse);
+    if inverse {
+        let k = 1.0 / (rows * cols) as f64;
+        data.iter_mut().for_each(|z| *z *= k);
+    }
+}
+
+/// [`fft2`] without the normalisation: the plain sums `Σ x e^{∓2πi(…)}` both ways (an inverse after a forward
+/// transform gives the input times `rows·cols`).
+pub fn dft2(data: &mut [Complex<f64>], rows: usize, cols: usize, inverse: bool) {
     let mut planner = FftPlanner::new();
     let (fr, fc) = if inverse {
         (planner.plan_fft_inverse(rows), planner.plan_fft_inverse(cols))
@@ -22,10 +32,6 @@ pub fn fft2(data: &mut [Complex<f64>], rows: usize, cols: usize, inverse: bool) 
         for r in 0..rows {
             data[r * cols + c] = col[r];
         }
-    }
-    if inverse {
-        let k = 1.0 / (rows * cols) as f64;
-        data.iter_mut().for_each(|z| *z *= k);
     }
 }
 

@@ -39,42 +39,30 @@ fn interpolate(xs: &[f64], ys: &[f64], x: f64) -> f64 {
     y0 + t * (y1 - y0)
 }
 
+/// `s + Σ term(C_i, C_{i+1})` over the coefficient pairs from index `first` on (`i = first, first + 2, …` while
+/// `C_{i+1}` exists): the sum every formula of [`formula`] but 7–9 ends with.
+fn add_pairs(c: &[f64], first: usize, mut s: f64, term: impl Fn(f64, f64) -> f64) -> f64 {
+    let mut i = first;
+    while i + 1 < c.len() {
+        s += term(c[i], c[i + 1]);
+        i += 2;
+    }
+    s
+}
+
 /// The dispersion formulas of the refractiveindex.info database (its `formula 1` … `formula 9`), λ in µm.
 /// Returns n. Coefficients missing from the file count as zero.
 pub(crate) fn formula(kind: u8, c: &[f64], l: f64) -> f64 {
     let k = |i: usize| c.get(i).copied().unwrap_or(0.0);
     let l2 = l * l;
+    let power = |a: f64, b: f64| a * l.powf(b);
     match kind {
         // 1 Sellmeier: n² − 1 = C1 + Σ C_i λ² / (λ² − C_{i+1}²)
-        1 => {
-            let mut s = 1.0 + k(0);
-            let mut i = 1;
-            while i + 1 < c.len() {
-                s += k(i) * l2 / (l2 - k(i + 1) * k(i + 1));
-                i += 2;
-            }
-            s.sqrt()
-        }
+        1 => add_pairs(c, 1, 1.0 + k(0), |a, b| a * l2 / (l2 - b * b)).sqrt(),
         // 2 Sellmeier-2: n² − 1 = C1 + Σ C_i λ² / (λ² − C_{i+1})
-        2 => {
-            let mut s = 1.0 + k(0);
-            let mut i = 1;
-            while i + 1 < c.len() {
-                s += k(i) * l2 / (l2 - k(i + 1));
-                i += 2;
-            }
-            s.sqrt()
-        }
+        2 => add_pairs(c, 1, 1.0 + k(0), |a, b| a * l2 / (l2 - b)).sqrt(),
         // 3 Polynomial: n² = C1 + Σ C_i λ^C_{i+1}
-        3 => {
-            let mut s = k(0);
-            let mut i = 1;
-            while i + 1 < c.len() {
-                s += k(i) * l.powf(k(i + 1));
-                i += 2;
-            }
-            s.sqrt()
-        }
+        3 => add_pairs(c, 1, k(0), power).sqrt(),
         // 4 RefractiveIndex.INFO: n² = C1 + C2 λ^C3/(λ² − C4^C5) + C6 λ^C7/(λ² − C8^C9) + Σ_{i≥10} C_i λ^C_{i+1}
         4 => {
             let mut s = k(0);
@@ -84,33 +72,12 @@ pub(crate) fn formula(kind: u8, c: &[f64], l: f64) -> f64 {
             if c.len() > 5 {
                 s += k(5) * l.powf(k(6)) / (l2 - k(7).powf(k(8)));
             }
-            let mut i = 9;
-            while i + 1 < c.len() {
-                s += k(i) * l.powf(k(i + 1));
-                i += 2;
-            }
-            s.sqrt()
+            add_pairs(c, 9, s, power).sqrt()
         }
         // 5 Cauchy: n = C1 + Σ C_i λ^C_{i+1}
-        5 => {
-            let mut s = k(0);
-            let mut i = 1;
-            while i + 1 < c.len() {
-                s += k(i) * l.powf(k(i + 1));
-                i += 2;
-            }
-            s
-        }
+        5 => add_pairs(c, 1, k(0), power),
         // 6 Gases: n − 1 = C1 + Σ C_i / (C_{i+1} − λ⁻²)
-        6 => {
-            let mut s = 1.0 + k(0);
-            let mut i = 1;
-            while i + 1 < c.len() {
-                s += k(i) / (k(i + 1) - 1.0 / l2);
-                i += 2;
-            }
-            s
-        }
+        6 => add_pairs(c, 1, 1.0 + k(0), |a, b| a / (b - 1.0 / l2)),
         // 7 Herzberger: n = C1 + C2/(λ² − 0.028) + C3/(λ² − 0.028)² + C4 λ² + C5 λ⁴ + C6 λ⁶
         7 => {
             let d = 1.0 / (l2 - 0.028);

@@ -127,14 +127,21 @@ pub(crate) fn cis(phi: Complex64) -> Complex64 {
 /// `|t_j t'_j| |e^{iφ_j}|² / |1 + r_j γ_{s,N−j} e^{2iφ_j}|²`, `t'_j` the upward amplitude. `|D||U|` rather than
 /// `|D|² Re(n_N cos θ_N)/(n₀ cos θ₀)`: the same for real indices, and finite at grazing incidence.
 pub(crate) fn side_transmittance(side: &Side, seed: &Composite) -> [f64; 2] {
+    through_layers(side, seed, |t, t_up| t.norm() * t_up.norm())
+}
+
+/// `Π_j τ_j |e^{iφ_j}|² / |1 + r_j γ_{s,N−j} e^{2iφ_j}|²` per polarisation (⊥, ∥), layer by layer from the rough
+/// interface up, `γ_s` stepped up from `seed`: the multiple reflections every crossing of a layer goes through.
+/// `τ_j = tau(t_j, t'_j)` is the crossing's power factor from the downward and upward amplitudes.
+fn through_layers(side: &Side, seed: &Composite, tau: impl Fn(Complex64, Complex64) -> f64) -> [f64; 2] {
     let mut f = [1.0, 1.0];
     let mut gs = *seed;
     for j in (1..=side.n()).rev() {
         let (down, up) = (side.down[j - 1], side.up(j));
         let e = (-2.0 * side.phi[j - 1].im).exp();
         let e2 = cis(2.0 * side.phi[j - 1]);
-        f[0] *= down.t_s.norm() * up.t_s.norm() * e / (1.0 + down.r_s * gs.gamma_s * e2).norm_sqr();
-        f[1] *= down.t_p.norm() * up.t_p.norm() * e / (1.0 + down.r_p * gs.gamma_p * e2).norm_sqr();
+        f[0] *= tau(down.t_s, up.t_s) * e / (1.0 + down.r_s * gs.gamma_s * e2).norm_sqr();
+        f[1] *= tau(down.t_p, up.t_p) * e / (1.0 + down.r_p * gs.gamma_p * e2).norm_sqr();
         gs = gs.step(&down, side.phi[j - 1]);
     }
     f
@@ -153,15 +160,5 @@ pub(crate) fn down_factor(v: &Side) -> [f64; 2] {
 
 /// `Π_j |t'_j e^{iφ_j} / (1 + r_j γ_{s,N−j} e^{2iφ_j})|²` per polarisation: the light-side factor of eq. 3.18–3.19.
 pub(crate) fn up_factor(l: &Side, seed: &Composite) -> [f64; 2] {
-    let mut f = [1.0, 1.0];
-    let mut gs = *seed;
-    for j in (1..=l.n()).rev() {
-        let (rl, tu) = (l.down[j - 1], l.up(j));
-        let e = (-2.0 * l.phi[j - 1].im).exp();
-        let e2 = cis(2.0 * l.phi[j - 1]);
-        f[0] *= tu.t_s.norm_sqr() * e / (1.0 + rl.r_s * gs.gamma_s * e2).norm_sqr();
-        f[1] *= tu.t_p.norm_sqr() * e / (1.0 + rl.r_p * gs.gamma_p * e2).norm_sqr();
-        gs = gs.step(&rl, l.phi[j - 1]);
-    }
-    f
+    through_layers(l, seed, |_, t_up| t_up.norm_sqr())
 }

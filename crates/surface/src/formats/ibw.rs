@@ -47,29 +47,22 @@ struct Wave<'a> {
 }
 
 impl Wave<'_> {
-    fn i32(&self, at: usize) -> i32 {
-        let s: [u8; 4] = self.b[at..at + 4].try_into().expect("4 bytes");
-        if self.le {
-            i32::from_le_bytes(s)
-        } else {
-            i32::from_be_bytes(s)
+    /// The `N` bytes at `at` in little-endian order (reversed from a big-endian file).
+    fn le_bytes<const N: usize>(&self, at: usize) -> [u8; N] {
+        let mut s: [u8; N] = self.b[at..at + N].try_into().expect("a slice of N bytes");
+        if !self.le {
+            s.reverse();
         }
+        s
+    }
+    fn i32(&self, at: usize) -> i32 {
+        i32::from_le_bytes(self.le_bytes(at))
     }
     fn u16(&self, at: usize) -> u16 {
-        let s = [self.b[at], self.b[at + 1]];
-        if self.le {
-            u16::from_le_bytes(s)
-        } else {
-            u16::from_be_bytes(s)
-        }
+        u16::from_le_bytes(self.le_bytes(at))
     }
     fn f64(&self, at: usize) -> f64 {
-        let s: [u8; 8] = self.b[at..at + 8].try_into().expect("8 bytes");
-        if self.le {
-            f64::from_le_bytes(s)
-        } else {
-            f64::from_be_bytes(s)
-        }
+        f64::from_le_bytes(self.le_bytes(at))
     }
 }
 
@@ -261,4 +254,21 @@ pub fn read(bytes: &[u8], side: Option<&Sidecar>, opts: &LoadOptions) -> Result<
     // The note's scan size over the points (AFMReader's pixel), else the wave's own x/y step.
     let file_pixel = p.note_size.map(|(f, s)| (f / nx as f64, s / ny as f64)).or(p.pixel_nm);
     super::finish_channel(values, &p.list, &p.list[k], file_pixel, side, opts, "Igor binary wave")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A big-endian wave (Igor Pro on a PowerPC Mac) gives the same numbers as a little-endian one.
+    #[test]
+    fn wave_reads_both_byte_orders() {
+        let (i, u, f) = (-123_456i32, 0xBEEFu16, 6.02e23f64);
+        let le: Vec<u8> = [&i.to_le_bytes()[..], &u.to_le_bytes(), &f.to_le_bytes()].concat();
+        let be: Vec<u8> = [&i.to_be_bytes()[..], &u.to_be_bytes(), &f.to_be_bytes()].concat();
+        for (b, little) in [(&le, true), (&be, false)] {
+            let w = Wave { le: little, b };
+            assert_eq!((w.i32(0), w.u16(4), w.f64(6)), (i, u, f), "little-endian: {little}");
+        }
+    }
 }
