@@ -1,6 +1,4 @@
-//! Every integration test of this crate in one binary: one link instead of one per file, one process
-//! (GPU tests share one device), the files' tests run side by side on libtest's threads. Each file is
-//! a module and keeps its own doc comment; `cargo test -p CRATE --test integration FILE::` runs one.
+//! The integration tests of iridis: one module a file, one test binary (README, "Tests").
 
 mod brdf_cli;
 mod color_cli;
