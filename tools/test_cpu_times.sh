@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # CPU seconds (user + sys, the test process and every process it starts) of each Rust test binary of the test
 # command's build, slowest first: what a 2-core CI spends, independent of how loaded the machine is. Run after
-# `bash tools/test.sh` (or `cargo test --workspace --profile ci --lib --bins --tests --no-run`) with the same environment; each binary
+# `bash tools/test.sh` (or `cargo test --workspace --profile ci --tests --no-run`) with the same environment; each binary
 # runs from its package's folder as cargo runs it. Note: the first binary to open the GPU scene renderer pays
 # lavapipe's cold compile unless MESA_SHADER_CACHE_DIR holds it.
 #
@@ -14,7 +14,7 @@ export MESA_SHADER_CACHE_DISABLE=false
 OUT="$(mktemp -d)"
 trap 'rm -rf "$OUT"' EXIT
 # (binary, package folder) of every test target, from cargo's own list.
-cargo test --workspace --profile ci --lib --bins --tests --no-run --message-format=json 2>/dev/null |
+cargo test --workspace --profile ci --tests --no-run --message-format=json 2>/dev/null |
     python3 -c '
 import json, os, sys
 for line in sys.stdin:
