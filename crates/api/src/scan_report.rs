@@ -16,7 +16,7 @@ use serde_json::{json, Value};
 
 use crate::grating::{grating, GratingMethod, GratingOptions};
 use crate::report::{with_step, Collect, Kind, Report};
-use crate::surface::{Source, SurfaceOptions};
+use crate::surface::{Source, SurfaceOptions, UnitOverrides};
 
 /// What `iridis report` takes; lengths and channels as typed (they are shown in the steps' command lines).
 #[derive(Debug, Clone)]
@@ -210,8 +210,7 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
         channel: channel.clone(),
         height_unit: o.height_unit.clone(),
         level: o.level.clone(),
-        override_units: o.override_units,
-        as_height: o.as_height,
+        units: UnitOverrides { override_units: o.override_units, as_height: o.as_height },
     };
     let source = Source::Spec(o.surface.clone());
     let mut common: Vec<String> = Vec::new();

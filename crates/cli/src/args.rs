@@ -1,25 +1,11 @@
-//! clap value parsers for quantities with units; they delegate to `iridis_color::units`, the one place
-//! where units are parsed.
+//! The command line's own option blocks and value parsers; those of lengths and angles are the library's
+//! (`iridis_api::args`), with the option structs that derive `clap::Args` there.
 
 #![allow(dead_code)] // not every command uses every parser
 
-use iridis_color::units;
 use iridis_diffraction::geometry::FresnelConvention;
 
-/// A length in nm (`65nm`, `0.43um`, `65µm`).
-pub fn length_nm(s: &str) -> Result<f64, String> {
-    units::parse_length_nm(s).map_err(|e| e.0)
-}
-
-/// A strictly positive length in nm.
-pub fn positive_length_nm(s: &str) -> Result<f64, String> {
-    units::parse_positive_length_nm(s).map_err(|e| e.0)
-}
-
-/// An angle in radians (`75deg`, `1.2rad`).
-pub fn angle_rad(s: &str) -> Result<f64, String> {
-    units::parse_angle_rad(s).map_err(|e| e.0)
-}
+pub use iridis_api::args::{angle_rad, length_nm, positive_length_nm};
 
 /// Parses a direction `θ[,φ]` of the flag `--FLAG` (`--incidence`, `--light`, `--view`) into `(θ, φ)` in
 /// radians, refusing θ outside [0°, 90°) (the BRDF is defined above the surface).
@@ -53,50 +39,11 @@ pub fn unit_cell_auto(s: &str) -> anyhow::Result<bool> {
     }
 }
 
-/// How to read a SURFACE argument.
-#[derive(Debug, Clone, Default, clap::Args)]
-pub struct SurfaceOpts {
-    /// Pixel size for image surfaces without physical units (e.g. 65nm).
-    #[arg(long, value_parser = positive_length_nm)]
-    pub pixel_size: Option<f64>,
-    /// Height of the brightest grey value for image surfaces (e.g. 300nm).
-    #[arg(long, value_parser = positive_length_nm)]
-    pub max_height: Option<f64>,
-    /// Channel of a multi-channel file, by index or name (`iridis surface channels FILE` lists them);
-    /// default the channel named Height, else the first height channel (.npz: the only 2-D array).
-    #[arg(long)]
-    pub channel: Option<iridis_surface::formats::channel::ChannelSel>,
-    /// Unit of heights in files that do not give one (.npy, text, a unitless channel), e.g. m or nm.
-    #[arg(long)]
-    pub height_unit: Option<String>,
-    /// Levelling before the model: plane (default for files), poly, lines (median line correction), rows,
-    /// mean or none (built-ins are used as generated unless this is given).
-    #[arg(long)]
-    pub level: Option<String>,
-    #[command(flatten)]
-    pub units: UnitFlags,
-}
-
-impl SurfaceOpts {
-    /// The facade's surface options.
-    pub fn options(&self) -> iridis_api::SurfaceOptions {
-        iridis_api::SurfaceOptions {
-            pixel_size_nm: self.pixel_size,
-            max_height_nm: self.max_height,
-            channel: self.channel.clone(),
-            height_unit: self.height_unit.clone(),
-            level: self.level.clone(),
-            override_units: self.units.override_units,
-            as_height: self.units.as_height,
-        }
-    }
-}
-
 /// How to read SURFACE and the model's parameters, shared by the lab commands.
 #[derive(Debug, Clone, clap::Args)]
 pub struct LabModel {
     #[command(flatten)]
-    pub surface: SurfaceOpts,
+    pub surface: iridis_api::SurfaceOptions,
     /// Coherence length 4σ_s of the window, a property of the light (default 65um, the paper's; a smaller
     /// patch is taken as one unit cell of a periodic surface; said in the output).
     #[arg(long, value_parser = positive_length_nm)]
@@ -124,7 +71,7 @@ impl LabModel {
     /// The facade's lab options.
     pub fn options(&self) -> iridis_api::lab::LabOptions {
         iridis_api::lab::LabOptions {
-            surface: self.surface.options(),
+            surface: self.surface.clone(),
             coherence_nm: self.coherence,
             terms: self.terms.clone(),
             fresnel: self.fresnel.clone(),
@@ -133,19 +80,6 @@ impl LabModel {
             stam_epsilon: self.epsilon,
         }
     }
-}
-
-/// What a SURFACE's own metadata may be overruled by, flattened into every command that reads one.
-#[derive(Debug, Clone, Copy, Default, clap::Args)]
-pub struct UnitFlags {
-    /// Let --pixel-size and --height-unit replace the pixel size and height unit an instrument file states
-    /// itself (without it the file's win, and a warning names both).
-    #[arg(long)]
-    pub override_units: bool,
-    /// Read a channel that is not a height (an amplitude, error, phase or deformation channel, or one whose
-    /// unit is not a length; `iridis surface channels FILE` marks them) as heights anyway.
-    #[arg(long)]
-    pub as_height: bool,
 }
 
 /// The rigorous method's options, flattened into `brdf eval`, `brdf-map` and `testbench`.

@@ -52,7 +52,7 @@ pub struct ReportArgs {
     #[arg(long)]
     pub level: Option<String>,
     #[command(flatten)]
-    pub units: crate::args::UnitFlags,
+    pub units: iridis_api::surface::UnitOverrides,
     /// Size of the BRDF maps in pixels.
     #[arg(long, default_value_t = 128)]
     pub size: usize,

@@ -131,7 +131,7 @@ pub struct LoadArgs {
     #[arg(long)]
     pub seed: Option<u64>,
     #[command(flatten)]
-    pub units: crate::args::UnitFlags,
+    pub units: iridis_api::surface::UnitOverrides,
 }
 
 impl LoadArgs {
