@@ -3,6 +3,7 @@
 //! where units are parsed.
 
 use iridis_color::units;
+use iridis_diffraction::geometry::FresnelConvention;
 
 /// A length in nm (`65nm`, `0.43um`, `65µm`).
 pub fn length_nm(s: &str) -> Result<f64, String> {
@@ -17,4 +18,9 @@ pub fn positive_length_nm(s: &str) -> Result<f64, String> {
 /// An angle in radians (`75deg`, `1.2rad`).
 pub fn angle_rad(s: &str) -> Result<f64, String> {
     units::parse_angle_rad(s).map_err(|e| e.0)
+}
+
+/// `--fresnel-convention`: physical (R once) or paper (R², the paper's formula as printed).
+pub fn fresnel_convention(s: &str) -> Result<FresnelConvention, String> {
+    FresnelConvention::parse(s).map_err(|e| e.to_string())
 }

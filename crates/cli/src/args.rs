@@ -5,7 +5,7 @@
 
 use iridis_diffraction::geometry::FresnelConvention;
 
-pub use iridis_api::args::{angle_rad, length_nm, positive_length_nm};
+pub use iridis_api::args::{angle_rad, fresnel_convention, length_nm, positive_length_nm};
 
 /// Parses a direction `θ[,φ]` of the flag `--FLAG` (`--incidence`, `--light`, `--view`) into `(θ, φ)` in
 /// radians, refusing θ outside [0°, 90°) (the BRDF is defined above the surface).
@@ -25,60 +25,12 @@ pub fn polar_azimuth(flag: &str, s: &str) -> anyhow::Result<(f64, f64)> {
     Ok((theta, phi))
 }
 
-/// `--fresnel-convention`: physical (R once) or paper (R², the paper's formula as printed).
-pub fn fresnel_convention(s: &str) -> Result<FresnelConvention, String> {
-    FresnelConvention::parse(s).map_err(|e| e.to_string())
-}
-
 /// `--unit-cell`: whole (the patch, its extent the period) or auto (the scan's dominant period).
 pub fn unit_cell_auto(s: &str) -> anyhow::Result<bool> {
     match s.trim() {
         "auto" => Ok(true),
         "whole" => Ok(false),
         other => anyhow::bail!("--unit-cell '{other}': expected whole (the patch) or auto (the dominant period)"),
-    }
-}
-
-/// How to read SURFACE and the model's parameters, shared by the lab commands.
-#[derive(Debug, Clone, clap::Args)]
-pub struct LabModel {
-    #[command(flatten)]
-    pub surface: iridis_api::SurfaceOptions,
-    /// Coherence length 4σ_s of the window, a property of the light (default 65um, the paper's; a smaller
-    /// patch is taken as one unit cell of a periodic surface; said in the output).
-    #[arg(long, value_parser = positive_length_nm)]
-    pub coherence: Option<f64>,
-    /// Taylor terms: auto (remainder bound 1e-6) or N.
-    #[arg(long, default_value = "auto")]
-    pub terms: String,
-    /// Fresnel factor: schlick[:N] (default schlick:1.5), index:N[+Ki], gold (measured) or a thin-film stack,
-    /// e.g. "stack:air | keratin 300nm | n=1.56" (as brdf-map's --fresnel).
-    #[arg(long, default_value = "schlick:1.5")]
-    pub fresnel: String,
-    /// How the Fresnel reflectance enters: physical (R once, the default) or paper (R², the paper's formula as
-    /// printed, to reproduce its figures; docs/PHYSICS.md).
-    #[arg(long, value_name = "physical|paper", default_value = "physical", value_parser = fresnel_convention)]
-    pub fresnel_convention: FresnelConvention,
-    /// Leave out the Cook–Torrance shadowing term.
-    #[arg(long)]
-    pub no_shadowing: bool,
-    /// ε of Stam's wavelength selection (paper: 0.01).
-    #[arg(long, default_value_t = 0.01)]
-    pub epsilon: f64,
-}
-
-impl LabModel {
-    /// The facade's lab options.
-    pub fn options(&self) -> iridis_api::lab::LabOptions {
-        iridis_api::lab::LabOptions {
-            surface: self.surface.clone(),
-            coherence_nm: self.coherence,
-            terms: self.terms.clone(),
-            fresnel: self.fresnel.clone(),
-            convention: self.fresnel_convention,
-            shadowing: !self.no_shadowing,
-            stam_epsilon: self.epsilon,
-        }
     }
 }
 

@@ -37,8 +37,10 @@ pub fn inputs_of(cli: &clap::Command, matches: &clap::ArgMatches) -> serde_json:
         }
         let key = arg.get_long().unwrap_or(id).replace('-', "_");
         let value = match arg.get_action() {
+            // Whether the flag was given: a SetFalse flag (`--no-shadowing`) stores false when it is.
             clap::ArgAction::SetTrue | clap::ArgAction::SetFalse => {
-                m.try_get_one::<bool>(id).ok().flatten().map_or(serde_json::Value::Null, |b| (*b).into())
+                let given = |b: &bool| *b == matches!(arg.get_action(), clap::ArgAction::SetTrue);
+                m.try_get_one::<bool>(id).ok().flatten().map_or(serde_json::Value::Null, |b| given(b).into())
             }
             clap::ArgAction::Count => {
                 m.try_get_one::<u8>(id).ok().flatten().map_or(serde_json::Value::Null, |n| (*n).into())
