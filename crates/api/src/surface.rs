@@ -40,15 +40,24 @@ pub struct SurfaceOptions {
 #[derive(Debug, Clone, Copy, Default)]
 #[cfg_attr(feature = "cli", derive(clap::Args))]
 pub struct UnitOverrides {
-    /// Let --pixel-size and --height-unit replace the pixel size and height unit an instrument file states
-    /// itself (without it the file's win, and a warning names both).
-    #[cfg_attr(feature = "cli", arg(long))]
+    /// [`OVERRIDE_UNITS`].
+    #[cfg_attr(feature = "cli", arg(long, help = OVERRIDE_UNITS))]
     pub override_units: bool,
-    /// Read a channel that is not a height (an amplitude, error, phase or deformation channel, or one whose
-    /// unit is not a length; `iridis surface channels FILE` marks them) as heights anyway.
-    #[cfg_attr(feature = "cli", arg(long))]
+    /// [`AS_HEIGHT`].
+    #[cfg_attr(feature = "cli", arg(long, help = AS_HEIGHT))]
     pub as_height: bool,
 }
+
+/// What `override_units` does ([`UnitOverrides`], `iridis report`'s [`crate::scan_report::ReportOptions`]): the
+/// help of `--override-units`.
+pub const OVERRIDE_UNITS: &str = "Let --pixel-size and --height-unit replace the pixel size and height unit an \
+                                  instrument file states itself (without it the file's win, and a warning names \
+                                  both)";
+
+/// What `as_height` does (as [`OVERRIDE_UNITS`]): the help of `--as-height`.
+pub const AS_HEIGHT: &str = "Read a channel that is not a height (an amplitude, error, phase or deformation channel, \
+                             or one whose unit is not a length; `iridis surface channels FILE` marks them) as \
+                             heights anyway";
 
 impl SurfaceOptions {
     /// The reader's options.
