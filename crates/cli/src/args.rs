@@ -193,41 +193,8 @@ pub struct FitArgs {
     /// commas, tabs, semicolons or spaces, with or without a header ("Wavelength (nm),Reflectance (%)", …);
     /// what was read is printed (separator, columns, unit, percent).
     pub measured: PathBuf,
-    /// The stack with free parameters {NAME=START:LOW..HIGH}, e.g. "air | SiO2 {d1=100nm:50nm..500nm} | Si".
-    #[arg(long)]
-    pub stack: String,
-    /// Angle of incidence (0deg–90deg).
-    #[arg(long, default_value = "0deg", value_parser = angle_rad)]
-    pub angle: f64,
-    /// What was measured: R, T (unpolarised) or psi-delta (ellipsometry, degrees).
-    #[arg(long, default_value = "R")]
-    pub quantity: String,
-    /// 1σ measurement uncertainty: a number (same for every point) or the name of a CSV column (for
-    /// psi-delta two names, "spsi,sdelta"). The weights are 1/σ². Without it σ is estimated from the scatter.
-    #[arg(long, conflicts_with = "weights")]
-    pub sigma: Option<String>,
-    /// Weights w = 1/σ² of the measured values: a number (the same for every point), the name of a CSV
-    /// column ("w_psi,w_delta" for psi-delta), or a separate CSV file with wavelength_nm and w (w_psi and
-    /// w_delta) in the measurement's rows. Equivalent to --sigma 1/√w.
-    #[arg(long)]
-    pub weights: Option<String>,
-    /// Grid points per thickness range for the multi-start search (0: automatic, about one per 10 nm;
-    /// 1: a single local fit from the start values).
-    #[arg(long, default_value_t = 0)]
-    pub grid: usize,
-    /// The columns to fit, by header name or number from 1: wavelength then R (or T), or wavelength, psi,
-    /// delta, e.g. --columns "Wavelength (nm),R sample" or --columns 1,3. Default: found from the header.
-    #[arg(long, value_name = "WL,VALUE[,VALUE]")]
-    pub columns: Option<String>,
-    /// The values are in percent (default: detected from a "%" in the header or values above 1.5, and said).
-    #[arg(long)]
-    pub percent: bool,
-    /// Fit only wavelengths from this one on (with unit, e.g. 400nm).
-    #[arg(long, value_parser = length_nm)]
-    pub from: Option<f64>,
-    /// Fit only wavelengths up to this one (with unit, e.g. 826nm).
-    #[arg(long, value_parser = length_nm)]
-    pub to: Option<f64>,
+    #[command(flatten)]
+    pub request: iridis_api::film_fit::FitRequest,
     /// Plot measured against fitted (PNG).
     #[arg(long)]
     pub plot: Option<PathBuf>,
@@ -237,24 +204,6 @@ pub struct FitArgs {
     /// Print JSON.
     #[arg(long)]
     pub json: bool,
-}
-
-impl FitArgs {
-    /// The library's fit request.
-    pub fn request(&self) -> iridis_api::film_fit::FitRequest {
-        iridis_api::film_fit::FitRequest {
-            stack: self.stack.clone(),
-            angle_rad: self.angle,
-            quantity: self.quantity.clone(),
-            sigma: self.sigma.clone(),
-            weights: self.weights.clone(),
-            grid: self.grid,
-            columns: self.columns.clone(),
-            percent: self.percent.then_some(true),
-            from_nm: self.from,
-            to_nm: self.to,
-        }
-    }
 }
 
 /// Options shared by the commands that build Taylor terms (`precompute`, `brdf-map`, `brdf eval`, `brdf vision`).
