@@ -26,7 +26,7 @@
 //!   the lab commands and `report` (requests in, results with their text and JSON out, figures written).
 //!
 //! With the feature `cli` the option structs derive `clap::Args` (their doc comments are the `--help` text)
-//! and [`args`] holds the value parsers for lengths and angles.
+//! and `args` holds the value parsers for lengths and angles.
 //!
 //! Errors are messages for people (`anyhow`, with the library's typed error as the source and the context a
 //! person needs: "cannot load surface X: …"); notes, warnings and progress go to a [`report::Report`] the front
