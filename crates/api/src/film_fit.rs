@@ -144,25 +144,56 @@ impl FilmProfile {
 // ----------------------------------------------------------------------------------------------------------
 // Fit
 
-/// What to fit and how the measured file is read (`iridis thinfilm fit`'s options).
+/// What to fit and how the measured file is read (`iridis thinfilm fit`'s options; with the feature `cli`, its
+/// flags).
 #[derive(Debug, Clone, Default)]
+#[cfg_attr(feature = "cli", derive(clap::Args))]
 pub struct FitRequest {
-    /// The stack with free parameters `{NAME=START:LOW..HIGH}`.
+    /// The stack with free parameters {NAME=START:LOW..HIGH}, e.g. "air | SiO2 {d1=100nm:50nm..500nm} | Si".
+    #[cfg_attr(feature = "cli", arg(long))]
     pub stack: String,
+    /// Angle of incidence (0deg–90deg).
+    #[cfg_attr(feature = "cli", arg(long = "angle", value_name = "ANGLE", default_value = "0deg"))]
+    #[cfg_attr(feature = "cli", arg(value_parser = crate::args::angle_rad))]
     pub angle_rad: f64,
-    /// `R`, `T` or `psi-delta`.
+    /// What was measured: R, T (unpolarised) or psi-delta (ellipsometry, degrees).
+    #[cfg_attr(feature = "cli", arg(long, default_value = "R"))]
     pub quantity: String,
-    /// 1σ: a number or column name(s); weights w = 1/σ² likewise (or a CSV file); at most one of the two.
+    /// 1σ measurement uncertainty: a number (same for every point) or the name of a CSV column (for
+    /// psi-delta two names, "spsi,sdelta"). The weights are 1/σ². Without it σ is estimated from the scatter.
+    // At most one of `sigma` and `weights`.
+    #[cfg_attr(feature = "cli", arg(long, conflicts_with = "weights"))]
     pub sigma: Option<String>,
+    /// Weights w = 1/σ² of the measured values: a number (the same for every point), the name of a CSV
+    /// column ("w_psi,w_delta" for psi-delta), or a separate CSV file with wavelength_nm and w (w_psi and
+    /// w_delta) in the measurement's rows. Equivalent to --sigma 1/√w.
+    #[cfg_attr(feature = "cli", arg(long))]
     pub weights: Option<String>,
-    /// Grid points per thickness range of the multi-start search (0: automatic, 1: one local fit).
+    /// Grid points per thickness range for the multi-start search (0: automatic, about one per 10 nm;
+    /// 1: a single local fit from the start values).
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = 0))]
     pub grid: usize,
+    /// The columns to fit, by header name or number from 1: wavelength then R (or T), or wavelength, psi,
+    /// delta, e.g. --columns "Wavelength (nm),R sample" or --columns 1,3. Default: found from the header.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "WL,VALUE[,VALUE]"))]
     pub columns: Option<String>,
-    /// The values are in percent (`Some(true)`) or fractions (`Some(false)`); `None`: detected and said.
+    /// The values are in percent (`Some(true)`) or fractions (`Some(false)`); `None`: detected and said. The
+    /// flag `--percent` gives `Some(true)`.
+    #[cfg_attr(feature = "cli", arg(long, num_args = 0, default_missing_value = "true"))]
+    #[cfg_attr(feature = "cli", arg(help = PERCENT_HELP))]
     pub percent: Option<bool>,
+    /// Fit only wavelengths from this one on (with unit, e.g. 400nm).
+    #[cfg_attr(feature = "cli", arg(long = "from", value_name = "FROM", value_parser = crate::args::length_nm))]
     pub from_nm: Option<f64>,
+    /// Fit only wavelengths up to this one (with unit, e.g. 826nm).
+    #[cfg_attr(feature = "cli", arg(long = "to", value_name = "TO", value_parser = crate::args::length_nm))]
     pub to_nm: Option<f64>,
 }
+
+/// `--percent`'s help: the command line cannot say "fractions", so the detection is the default.
+#[cfg(feature = "cli")]
+const PERCENT_HELP: &str =
+    "The values are in percent (default: detected from a \"%\" in the header or values above 1.5, and said)";
 
 /// A fit with what was read.
 #[derive(Debug, Clone)]

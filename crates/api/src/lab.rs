@@ -19,20 +19,36 @@ use crate::model::coherence_for;
 use crate::report::{with_progress, Report};
 use crate::surface::{Source, SurfaceOptions};
 
-/// How to read SURFACE and the model's parameters, shared by the lab commands.
+/// How to read SURFACE and the model's parameters, shared by the lab commands (with the feature `cli`, their
+/// flags).
 #[derive(Debug, Clone)]
+#[cfg_attr(feature = "cli", derive(clap::Args))]
 pub struct LabOptions {
+    #[cfg_attr(feature = "cli", command(flatten))]
     pub surface: SurfaceOptions,
-    /// Coherence length 4σ_s of the window (nm), a property of the light; default 65 µm (the paper's).
+    /// Coherence length 4σ_s of the window, a property of the light (default 65um, the paper's; a smaller
+    /// patch is taken as one unit cell of a periodic surface; said in the output).
+    #[cfg_attr(feature = "cli", arg(long = "coherence", value_name = "COHERENCE"))]
+    #[cfg_attr(feature = "cli", arg(value_parser = crate::args::positive_length_nm))]
     pub coherence_nm: Option<f64>,
     /// Taylor terms: auto (remainder bound 1e-6) or N.
+    #[cfg_attr(feature = "cli", arg(long, default_value = "auto"))]
     pub terms: String,
-    /// Fresnel factor, as [`crate::fresnel::parse_fresnel_source`] reads it.
+    /// Fresnel factor: schlick[:N] (default schlick:1.5), index:N[+Ki], gold (measured) or a thin-film stack,
+    /// e.g. "stack:air | keratin 300nm | n=1.56" (as brdf-map's --fresnel).
+    #[cfg_attr(feature = "cli", arg(long, default_value = "schlick:1.5"))]
     pub fresnel: String,
+    /// How the Fresnel reflectance enters: physical (R once, the default) or paper (R², the paper's formula as
+    /// printed, to reproduce its figures; docs/PHYSICS.md).
+    #[cfg_attr(feature = "cli", arg(long = "fresnel-convention", value_name = "physical|paper"))]
+    #[cfg_attr(feature = "cli", arg(default_value = "physical", value_parser = crate::args::fresnel_convention))]
     pub convention: FresnelConvention,
     /// The Cook–Torrance shadowing term.
+    #[cfg_attr(feature = "cli", arg(long = "no-shadowing", action = clap::ArgAction::SetFalse))]
+    #[cfg_attr(feature = "cli", arg(help = "Leave out the Cook–Torrance shadowing term"))]
     pub shadowing: bool,
     /// ε of Stam's wavelength selection (paper: 0.01).
+    #[cfg_attr(feature = "cli", arg(long = "epsilon", value_name = "EPSILON", default_value_t = 0.01))]
     pub stam_epsilon: f64,
 }
 

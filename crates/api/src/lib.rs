@@ -25,12 +25,17 @@
 //! * [`surface_info`], [`grating_run`], [`lab_run`], [`scan_report`]: the runs of `iridis surface`, `grating`,
 //!   the lab commands and `report` (requests in, results with their text and JSON out, figures written).
 //!
+//! With the feature `cli` the option structs derive `clap::Args` (their doc comments are the `--help` text)
+//! and `args` holds the value parsers for lengths and angles.
+//!
 //! Errors are messages for people (`anyhow`, with the library's typed error as the source and the context a
 //! person needs: "cannot load surface X: …"); notes, warnings and progress go to a [`report::Report`] the front
 //! end supplies — the facade never prints.
 //!
 //! Arrows: `cli, python → api → lab, gpu → render → diffraction → thinfilm, surface → color`.
 
+#[cfg(feature = "cli")]
+pub mod args;
 pub mod bench;
 pub mod brdf;
 pub mod brdf_eval;

@@ -16,31 +16,49 @@ use serde_json::{json, Value};
 
 use crate::grating::{grating, GratingMethod, GratingOptions};
 use crate::report::{with_step, Collect, Kind, Report};
-use crate::surface::{Source, SurfaceOptions};
+use crate::surface::{Source, SurfaceOptions, UnitOverrides};
 
 /// What `iridis report` takes; lengths and channels as typed (they are shown in the steps' command lines).
+/// With the feature `cli`, its arguments.
 #[derive(Debug, Clone)]
+#[cfg_attr(feature = "cli", derive(clap::Args))]
 pub struct ReportOptions {
-    /// The scan (any SURFACE).
+    /// The scan (any SURFACE: an instrument file, .gwy, .npy, … or builtin:NAME).
     pub surface: String,
     /// Output folder: index.html, report.json and the figures.
+    #[cfg_attr(feature = "cli", arg(short, long))]
     pub output: PathBuf,
+    /// Channel of a multi-channel file, by index or name.
+    #[cfg_attr(feature = "cli", arg(long))]
     pub channel: Option<String>,
-    /// Pixel size for files without one (e.g. `5nm`).
+    /// Pixel size for files without one (e.g. 5nm).
+    #[cfg_attr(feature = "cli", arg(long))]
     pub pixel_size: Option<String>,
+    /// Unit of heights in files that do not give one (m, nm, …).
+    #[cfg_attr(feature = "cli", arg(long))]
     pub height_unit: Option<String>,
     /// Levelling: plane (default for files), poly, lines, rows, mean or none.
+    #[cfg_attr(feature = "cli", arg(long))]
     pub level: Option<String>,
+    /// [`crate::surface::OVERRIDE_UNITS`].
+    #[cfg_attr(feature = "cli", arg(long, help = crate::surface::OVERRIDE_UNITS))]
     pub override_units: bool,
+    /// [`crate::surface::AS_HEIGHT`].
+    #[cfg_attr(feature = "cli", arg(long, help = crate::surface::AS_HEIGHT))]
     pub as_height: bool,
     /// Size of the BRDF maps in pixels.
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = 128))]
     pub size: usize,
-    /// Coherence length (e.g. `20um`); default the light's 65 µm (the maps of a smaller scan use half its
-    /// shorter side, at least four of its strongest periods).
+    /// Coherence length for the model (default: the light's 65um; the BRDF maps of a smaller scan use half
+    /// its shorter side, at least four of its strongest periods, and say so).
+    #[cfg_attr(feature = "cli", arg(long))]
     pub coherence: Option<String>,
-    /// The animal whose view of the colours the report shows.
+    /// The animal whose view of the colours the report shows: bluetit, avian-uv, avian-v, honeybee, human,
+    /// ball-python.
+    #[cfg_attr(feature = "cli", arg(long, default_value = "bluetit"))]
     pub visual: String,
     /// Leave out the test bench (the slowest step).
+    #[cfg_attr(feature = "cli", arg(long))]
     pub no_testbench: bool,
 }
 
@@ -210,8 +228,7 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
         channel: channel.clone(),
         height_unit: o.height_unit.clone(),
         level: o.level.clone(),
-        override_units: o.override_units,
-        as_height: o.as_height,
+        units: UnitOverrides { override_units: o.override_units, as_height: o.as_height },
     };
     let source = Source::Spec(o.surface.clone());
     let mut common: Vec<String> = Vec::new();

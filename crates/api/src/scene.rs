@@ -60,28 +60,41 @@ pub fn scene_film(spectral_samples: Option<usize>) -> Result<SceneFilm> {
     })
 }
 
-/// What `iridis render` is asked for.
+/// What `iridis render` is asked for (with the feature `cli`, its arguments but the glTF options).
 #[derive(Debug, Clone, Default)]
+#[cfg_attr(feature = "cli", derive(clap::Args))]
 pub struct RenderRequest {
-    /// The scene: TOML or glTF 2.0.
+    /// Scene: TOML (.toml) or glTF 2.0 (.gltf, .glb).
     pub scene: PathBuf,
-    /// The image: .png (tone-mapped) or .exr (linear float); `None` with `export_mesh` only.
+    /// Output image: .png (tone-mapped) or .exr (linear float).
+    // `None` with `export_mesh` only.
+    #[cfg_attr(feature = "cli", arg(short, long, required_unless_present = "export_mesh"))]
     pub output: Option<PathBuf>,
-    /// Image size `WxH` (default: the scene's).
+    /// Image size WxH (default: the scene's [output] size).
+    #[cfg_attr(feature = "cli", arg(long))]
     pub size: Option<String>,
-    /// Samples per pixel (default: the scene's).
+    /// Samples per pixel for anti-aliasing (default: the scene's).
+    #[cfg_attr(feature = "cli", arg(long))]
     pub spp: Option<u32>,
-    /// Exposure in RU (default: the scene's).
+    /// Exposure in RU (default: the scene's; 1 RU: a normal-incidence mirror under a 1 RU light is white).
+    #[cfg_attr(feature = "cli", arg(long))]
     pub exposure: Option<f64>,
-    /// Also the linear image as OpenEXR.
+    /// Also write the linear image as OpenEXR here.
+    #[cfg_attr(feature = "cli", arg(long))]
     pub exr: Option<PathBuf>,
-    /// Render on the GPU.
+    /// Render on the GPU (wgpu, Vulkan; Mesa's lavapipe on machines without one).
+    #[cfg_attr(feature = "cli", arg(long))]
     pub gpu: bool,
-    /// Also the scene's triangle meshes as binary glTF.
+    /// Also (or, without -o, only) write the scene's triangle meshes as binary glTF (.glb): positions,
+    /// normals, UVs and the orientation field as TANGENT.
+    #[cfg_attr(feature = "cli", arg(long))]
     pub export_mesh: Option<PathBuf>,
-    /// With `gpu`: films evaluated directly at N wavelengths.
+    /// With --gpu: evaluate smooth films directly at N wavelength samples (380-780 nm) per hit instead of
+    /// from colour tables (81: the 5 nm reference).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "N"))]
     pub spectral_samples: Option<usize>,
-    /// glTF: the camera and the lights.
+    /// glTF: the camera and the lights (`iridis render --camera --ignore-gltf-lights`).
+    #[cfg_attr(feature = "cli", arg(skip))]
     pub gltf: GltfOptions,
 }
 

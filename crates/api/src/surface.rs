@@ -8,25 +8,56 @@ use iridis_surface::LoadOptions;
 
 use crate::report::{with_step, Report};
 
-/// How to read a SURFACE (the CLI's `--pixel-size --max-height --channel --height-unit --level`).
+/// How to read a SURFACE (with the feature `cli`, the flags of every command that reads one).
 #[derive(Debug, Clone, Default)]
+#[cfg_attr(feature = "cli", derive(clap::Args))]
 pub struct SurfaceOptions {
-    /// Pixel size (nm) for image surfaces without physical units.
+    /// Pixel size for image surfaces without physical units (e.g. 65nm).
+    #[cfg_attr(feature = "cli", arg(long = "pixel-size", value_name = "PIXEL_SIZE"))]
+    #[cfg_attr(feature = "cli", arg(value_parser = crate::args::positive_length_nm))]
     pub pixel_size_nm: Option<f64>,
-    /// Height (nm) of the brightest grey value for image surfaces.
+    /// Height of the brightest grey value for image surfaces (e.g. 300nm).
+    #[cfg_attr(feature = "cli", arg(long = "max-height", value_name = "MAX_HEIGHT"))]
+    #[cfg_attr(feature = "cli", arg(value_parser = crate::args::positive_length_nm))]
     pub max_height_nm: Option<f64>,
-    /// Channel of a multi-channel file, by index or name.
+    /// Channel of a multi-channel file, by index or name (`iridis surface channels FILE` lists them);
+    /// default the channel named Height, else the first height channel (.npz: the only 2-D array).
+    #[cfg_attr(feature = "cli", arg(long))]
     pub channel: Option<ChannelSel>,
-    /// Unit of heights in files that do not give one.
+    /// Unit of heights in files that do not give one (.npy, text, a unitless channel), e.g. m or nm.
+    #[cfg_attr(feature = "cli", arg(long))]
     pub height_unit: Option<String>,
-    /// Levelling before the model: plane (default for files), poly, lines, rows, mean or none (built-ins are
-    /// used as generated unless this is given).
+    /// Levelling before the model: plane (default for files), poly, lines (median line correction), rows,
+    /// mean or none (built-ins are used as generated unless this is given).
+    #[cfg_attr(feature = "cli", arg(long))]
     pub level: Option<String>,
-    /// Let `pixel_size_nm` and `height_unit` replace what the file itself states (`--override-units`).
+    #[cfg_attr(feature = "cli", command(flatten))]
+    pub units: UnitOverrides,
+}
+
+/// What a SURFACE's own metadata may be overruled by (with the feature `cli`, flags flattened into every
+/// command that reads one).
+#[derive(Debug, Clone, Copy, Default)]
+#[cfg_attr(feature = "cli", derive(clap::Args))]
+pub struct UnitOverrides {
+    /// [`OVERRIDE_UNITS`].
+    #[cfg_attr(feature = "cli", arg(long, help = OVERRIDE_UNITS))]
     pub override_units: bool,
-    /// Read a channel that is not a height as heights (`--as-height`).
+    /// [`AS_HEIGHT`].
+    #[cfg_attr(feature = "cli", arg(long, help = AS_HEIGHT))]
     pub as_height: bool,
 }
+
+/// What `override_units` does ([`UnitOverrides`], `iridis report`'s [`crate::scan_report::ReportOptions`]): the
+/// help of `--override-units`.
+pub const OVERRIDE_UNITS: &str = "Let --pixel-size and --height-unit replace the pixel size and height unit an \
+                                  instrument file states itself (without it the file's win, and a warning names \
+                                  both)";
+
+/// What `as_height` does (as [`OVERRIDE_UNITS`]): the help of `--as-height`.
+pub const AS_HEIGHT: &str = "Read a channel that is not a height (an amplitude, error, phase or deformation channel, \
+                             or one whose unit is not a length; `iridis surface channels FILE` marks them) as \
+                             heights anyway";
 
 impl SurfaceOptions {
     /// The reader's options.
@@ -36,8 +67,8 @@ impl SurfaceOptions {
             max_height_nm: self.max_height_nm,
             channel: self.channel.clone(),
             height_unit: self.height_unit.clone(),
-            override_units: self.override_units,
-            as_height: self.as_height,
+            override_units: self.units.override_units,
+            as_height: self.units.as_height,
             ..Default::default()
         }
     }

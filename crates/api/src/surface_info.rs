@@ -371,12 +371,22 @@ pub fn generated_text(hf: &HeightField, kind: &str, path: &Path) -> String {
 }
 
 /// The steps of `surface convert` after levelling, in this order: crop (`ROW,COL,ROWS,COLS`), resample (a
-/// pixel size in nm), tile (`NYxNX`), pad (`ROWSxCOLS`).
+/// pixel size in nm), tile (`NYxNX`), pad (`ROWSxCOLS`) (with the feature `cli`, its flags).
 #[derive(Debug, Clone, Default)]
+#[cfg_attr(feature = "cli", derive(clap::Args))]
 pub struct Reshape {
+    /// Crop to ROW,COL,ROWS,COLS (samples).
+    #[cfg_attr(feature = "cli", arg(long))]
     pub crop: Option<String>,
+    /// Resample to this pixel size (e.g. 50nm), keeping the extent.
+    #[cfg_attr(feature = "cli", arg(long = "resample", value_name = "RESAMPLE"))]
+    #[cfg_attr(feature = "cli", arg(value_parser = crate::args::positive_length_nm))]
     pub resample_nm: Option<f64>,
+    /// Tile NYxNX times (e.g. 3x3).
+    #[cfg_attr(feature = "cli", arg(long))]
     pub tile: Option<String>,
+    /// Pad with the mean height to ROWSxCOLS samples (centred).
+    #[cfg_attr(feature = "cli", arg(long))]
     pub pad: Option<String>,
 }
 

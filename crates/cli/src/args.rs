@@ -1,25 +1,11 @@
-//! clap value parsers for quantities with units; they delegate to `iridis_color::units`, the one place
-//! where units are parsed.
+//! The command line's own option blocks and value parsers; those of lengths and angles are the library's
+//! (`iridis_api::args`), with the option structs that derive `clap::Args` there.
 
 #![allow(dead_code)] // not every command uses every parser
 
-use iridis_color::units;
 use iridis_diffraction::geometry::FresnelConvention;
 
-/// A length in nm (`65nm`, `0.43um`, `65µm`).
-pub fn length_nm(s: &str) -> Result<f64, String> {
-    units::parse_length_nm(s).map_err(|e| e.0)
-}
-
-/// A strictly positive length in nm.
-pub fn positive_length_nm(s: &str) -> Result<f64, String> {
-    units::parse_positive_length_nm(s).map_err(|e| e.0)
-}
-
-/// An angle in radians (`75deg`, `1.2rad`).
-pub fn angle_rad(s: &str) -> Result<f64, String> {
-    units::parse_angle_rad(s).map_err(|e| e.0)
-}
+pub use iridis_api::args::{angle_rad, fresnel_convention, length_nm, positive_length_nm};
 
 /// Parses a direction `θ[,φ]` of the flag `--FLAG` (`--incidence`, `--light`, `--view`) into `(θ, φ)` in
 /// radians, refusing θ outside [0°, 90°) (the BRDF is defined above the surface).
@@ -39,11 +25,6 @@ pub fn polar_azimuth(flag: &str, s: &str) -> anyhow::Result<(f64, f64)> {
     Ok((theta, phi))
 }
 
-/// `--fresnel-convention`: physical (R once) or paper (R², the paper's formula as printed).
-pub fn fresnel_convention(s: &str) -> Result<FresnelConvention, String> {
-    FresnelConvention::parse(s).map_err(|e| e.to_string())
-}
-
 /// `--unit-cell`: whole (the patch, its extent the period) or auto (the scan's dominant period).
 pub fn unit_cell_auto(s: &str) -> anyhow::Result<bool> {
     match s.trim() {
@@ -51,101 +32,6 @@ pub fn unit_cell_auto(s: &str) -> anyhow::Result<bool> {
         "whole" => Ok(false),
         other => anyhow::bail!("--unit-cell '{other}': expected whole (the patch) or auto (the dominant period)"),
     }
-}
-
-/// How to read a SURFACE argument.
-#[derive(Debug, Clone, Default, clap::Args)]
-pub struct SurfaceOpts {
-    /// Pixel size for image surfaces without physical units (e.g. 65nm).
-    #[arg(long, value_parser = positive_length_nm)]
-    pub pixel_size: Option<f64>,
-    /// Height of the brightest grey value for image surfaces (e.g. 300nm).
-    #[arg(long, value_parser = positive_length_nm)]
-    pub max_height: Option<f64>,
-    /// Channel of a multi-channel file, by index or name (`iridis surface channels FILE` lists them);
-    /// default the channel named Height, else the first height channel (.npz: the only 2-D array).
-    #[arg(long)]
-    pub channel: Option<iridis_surface::formats::channel::ChannelSel>,
-    /// Unit of heights in files that do not give one (.npy, text, a unitless channel), e.g. m or nm.
-    #[arg(long)]
-    pub height_unit: Option<String>,
-    /// Levelling before the model: plane (default for files), poly, lines (median line correction), rows,
-    /// mean or none (built-ins are used as generated unless this is given).
-    #[arg(long)]
-    pub level: Option<String>,
-    #[command(flatten)]
-    pub units: UnitFlags,
-}
-
-impl SurfaceOpts {
-    /// The facade's surface options.
-    pub fn options(&self) -> iridis_api::SurfaceOptions {
-        iridis_api::SurfaceOptions {
-            pixel_size_nm: self.pixel_size,
-            max_height_nm: self.max_height,
-            channel: self.channel.clone(),
-            height_unit: self.height_unit.clone(),
-            level: self.level.clone(),
-            override_units: self.units.override_units,
-            as_height: self.units.as_height,
-        }
-    }
-}
-
-/// How to read SURFACE and the model's parameters, shared by the lab commands.
-#[derive(Debug, Clone, clap::Args)]
-pub struct LabModel {
-    #[command(flatten)]
-    pub surface: SurfaceOpts,
-    /// Coherence length 4σ_s of the window, a property of the light (default 65um, the paper's; a smaller
-    /// patch is taken as one unit cell of a periodic surface; said in the output).
-    #[arg(long, value_parser = positive_length_nm)]
-    pub coherence: Option<f64>,
-    /// Taylor terms: auto (remainder bound 1e-6) or N.
-    #[arg(long, default_value = "auto")]
-    pub terms: String,
-    /// Fresnel factor: schlick[:N] (default schlick:1.5), index:N[+Ki], gold (measured) or a thin-film stack,
-    /// e.g. "stack:air | keratin 300nm | n=1.56" (as brdf-map's --fresnel).
-    #[arg(long, default_value = "schlick:1.5")]
-    pub fresnel: String,
-    /// How the Fresnel reflectance enters: physical (R once, the default) or paper (R², the paper's formula as
-    /// printed, to reproduce its figures; docs/PHYSICS.md).
-    #[arg(long, value_name = "physical|paper", default_value = "physical", value_parser = fresnel_convention)]
-    pub fresnel_convention: FresnelConvention,
-    /// Leave out the Cook–Torrance shadowing term.
-    #[arg(long)]
-    pub no_shadowing: bool,
-    /// ε of Stam's wavelength selection (paper: 0.01).
-    #[arg(long, default_value_t = 0.01)]
-    pub epsilon: f64,
-}
-
-impl LabModel {
-    /// The facade's lab options.
-    pub fn options(&self) -> iridis_api::lab::LabOptions {
-        iridis_api::lab::LabOptions {
-            surface: self.surface.options(),
-            coherence_nm: self.coherence,
-            terms: self.terms.clone(),
-            fresnel: self.fresnel.clone(),
-            convention: self.fresnel_convention,
-            shadowing: !self.no_shadowing,
-            stam_epsilon: self.epsilon,
-        }
-    }
-}
-
-/// What a SURFACE's own metadata may be overruled by, flattened into every command that reads one.
-#[derive(Debug, Clone, Copy, Default, clap::Args)]
-pub struct UnitFlags {
-    /// Let --pixel-size and --height-unit replace the pixel size and height unit an instrument file states
-    /// itself (without it the file's win, and a warning names both).
-    #[arg(long)]
-    pub override_units: bool,
-    /// Read a channel that is not a height (an amplitude, error, phase or deformation channel, or one whose
-    /// unit is not a length; `iridis surface channels FILE` marks them) as heights anyway.
-    #[arg(long)]
-    pub as_height: bool,
 }
 
 /// The rigorous method's options, flattened into `brdf eval`, `brdf-map` and `testbench`.
@@ -307,41 +193,8 @@ pub struct FitArgs {
     /// commas, tabs, semicolons or spaces, with or without a header ("Wavelength (nm),Reflectance (%)", …);
     /// what was read is printed (separator, columns, unit, percent).
     pub measured: PathBuf,
-    /// The stack with free parameters {NAME=START:LOW..HIGH}, e.g. "air | SiO2 {d1=100nm:50nm..500nm} | Si".
-    #[arg(long)]
-    pub stack: String,
-    /// Angle of incidence (0deg–90deg).
-    #[arg(long, default_value = "0deg", value_parser = angle_rad)]
-    pub angle: f64,
-    /// What was measured: R, T (unpolarised) or psi-delta (ellipsometry, degrees).
-    #[arg(long, default_value = "R")]
-    pub quantity: String,
-    /// 1σ measurement uncertainty: a number (same for every point) or the name of a CSV column (for
-    /// psi-delta two names, "spsi,sdelta"). The weights are 1/σ². Without it σ is estimated from the scatter.
-    #[arg(long, conflicts_with = "weights")]
-    pub sigma: Option<String>,
-    /// Weights w = 1/σ² of the measured values: a number (the same for every point), the name of a CSV
-    /// column ("w_psi,w_delta" for psi-delta), or a separate CSV file with wavelength_nm and w (w_psi and
-    /// w_delta) in the measurement's rows. Equivalent to --sigma 1/√w.
-    #[arg(long)]
-    pub weights: Option<String>,
-    /// Grid points per thickness range for the multi-start search (0: automatic, about one per 10 nm;
-    /// 1: a single local fit from the start values).
-    #[arg(long, default_value_t = 0)]
-    pub grid: usize,
-    /// The columns to fit, by header name or number from 1: wavelength then R (or T), or wavelength, psi,
-    /// delta, e.g. --columns "Wavelength (nm),R sample" or --columns 1,3. Default: found from the header.
-    #[arg(long, value_name = "WL,VALUE[,VALUE]")]
-    pub columns: Option<String>,
-    /// The values are in percent (default: detected from a "%" in the header or values above 1.5, and said).
-    #[arg(long)]
-    pub percent: bool,
-    /// Fit only wavelengths from this one on (with unit, e.g. 400nm).
-    #[arg(long, value_parser = length_nm)]
-    pub from: Option<f64>,
-    /// Fit only wavelengths up to this one (with unit, e.g. 826nm).
-    #[arg(long, value_parser = length_nm)]
-    pub to: Option<f64>,
+    #[command(flatten)]
+    pub request: iridis_api::film_fit::FitRequest,
     /// Plot measured against fitted (PNG).
     #[arg(long)]
     pub plot: Option<PathBuf>,
@@ -351,24 +204,6 @@ pub struct FitArgs {
     /// Print JSON.
     #[arg(long)]
     pub json: bool,
-}
-
-impl FitArgs {
-    /// The library's fit request.
-    pub fn request(&self) -> iridis_api::film_fit::FitRequest {
-        iridis_api::film_fit::FitRequest {
-            stack: self.stack.clone(),
-            angle_rad: self.angle,
-            quantity: self.quantity.clone(),
-            sigma: self.sigma.clone(),
-            weights: self.weights.clone(),
-            grid: self.grid,
-            columns: self.columns.clone(),
-            percent: self.percent.then_some(true),
-            from_nm: self.from,
-            to_nm: self.to,
-        }
-    }
 }
 
 /// Options shared by the commands that build Taylor terms (`precompute`, `brdf-map`, `brdf eval`, `brdf vision`).

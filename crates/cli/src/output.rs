@@ -36,10 +36,12 @@ pub fn inputs_of(cli: &clap::Command, matches: &clap::ArgMatches) -> serde_json:
             continue;
         }
         let key = arg.get_long().unwrap_or(id).replace('-', "_");
+        // A flag is a boolean, whether it was given: a SetFalse flag (`--no-shadowing`) stores false when it is,
+        // one of no values that fills an `Option` (`--percent`) stores nothing when it is not.
+        let flag = matches!(arg.get_action(), clap::ArgAction::SetTrue | clap::ArgAction::SetFalse)
+            || arg.get_num_args().is_some_and(|n| !n.takes_values());
         let value = match arg.get_action() {
-            clap::ArgAction::SetTrue | clap::ArgAction::SetFalse => {
-                m.try_get_one::<bool>(id).ok().flatten().map_or(serde_json::Value::Null, |b| (*b).into())
-            }
+            _ if flag => (m.value_source(id) == Some(clap::parser::ValueSource::CommandLine)).into(),
             clap::ArgAction::Count => {
                 m.try_get_one::<u8>(id).ok().flatten().map_or(serde_json::Value::Null, |n| (*n).into())
             }

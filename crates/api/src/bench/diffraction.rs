@@ -82,16 +82,21 @@ fn map_rate(e: &dyn Evaluator, size: usize) -> f64 {
     (size * size) as f64 / secs
 }
 
-/// `iridis bench diffraction`'s options.
+/// `iridis bench diffraction`'s options (with the feature `cli`, its flags).
 #[derive(Debug, Clone)]
+#[cfg_attr(feature = "cli", derive(clap::Args))]
 pub struct SpeedOptions {
     /// Height-field samples per side.
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = 1024))]
     pub size: usize,
     /// Taylor terms N (terms 0..N).
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = 40))]
     pub terms: usize,
-    /// BRDF map sizes of the lookup method.
+    /// BRDF map sizes for the lookup method.
+    #[cfg_attr(feature = "cli", arg(long, value_delimiter = ',', default_value = "512,1024"))]
     pub map_sizes: Vec<usize>,
     /// u-v resolution of the lookup tables.
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = 501))]
     pub uv_resolution: usize,
 }
 
@@ -180,12 +185,15 @@ pub fn speed(a: &SpeedOptions, report: &dyn Report) -> Result<Bench> {
     Ok(Bench::new(t, json))
 }
 
-/// `iridis bench diffraction-methods`' options.
+/// `iridis bench diffraction-methods`' options (with the feature `cli`, its flags).
 #[derive(Debug, Clone)]
+#[cfg_attr(feature = "cli", derive(clap::Args))]
 pub struct MethodsOptions {
     /// Height-field samples per side (65 nm per pixel), one measurement each.
+    #[cfg_attr(feature = "cli", arg(long, value_delimiter = ',', default_value = "512,1024"))]
     pub patch_sizes: Vec<usize>,
     /// Side of the BRDF maps both methods render.
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = 16))]
     pub map_size: usize,
 }
 
@@ -246,22 +254,33 @@ pub fn methods(a: &MethodsOptions, report: &dyn Report) -> Result<Bench> {
     Ok(Bench::new(t, json!({ "threads": threads, "results": rows })))
 }
 
-/// `iridis bench diffraction-accuracy`'s options.
+/// `iridis bench diffraction-accuracy`'s options (with the feature `cli`, its flags).
 #[derive(Debug, Clone)]
+#[cfg_attr(feature = "cli", derive(clap::Args))]
 pub struct AccuracyOptions {
-    /// Surfaces to measure; empty: the built-in blazed, cd, elaphe and xenopeltis.
+    /// Surfaces to measure (repeat the flag); default: the built-in blazed, cd, elaphe and xenopeltis.
+    #[cfg_attr(feature = "cli", arg(long = "surface", value_name = "SURFACE"))]
     pub surfaces: Vec<String>,
-    /// Side of the BRDF maps compared pixel by pixel.
+    /// Side of the BRDF maps compared pixel by pixel (the ground truth is slow: keep it small).
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = 24))]
     pub map_size: usize,
-    /// Coherence length in nm; `None`: a quarter of the patch side.
+    /// Coherence length; the default (a quarter of the patch side) keeps the window inside the patch, where
+    /// the two ground truths agree, and the finite one's work small.
+    #[cfg_attr(feature = "cli", arg(long = "coherence", value_name = "COHERENCE"))]
+    #[cfg_attr(feature = "cli", arg(value_parser = crate::args::positive_length_nm))]
     pub coherence_nm: Option<f64>,
-    /// The ground truth compared against: `periodic` or `finite`.
+    /// The ground truth compared against: periodic (the methods' own model) or finite (the window cut at the
+    /// patch edge).
+    #[cfg_attr(feature = "cli", arg(long, default_value = "periodic"))]
     pub aperture: String,
     /// Exposures (RU) at which colours are compared.
+    #[cfg_attr(feature = "cli", arg(long, value_delimiter = ',', default_value = "1,1000,7500"))]
     pub exposures: Vec<f64>,
     /// u-v resolution of the tables.
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = 301))]
     pub uv_resolution: usize,
-    /// Where to write the plot of error against the number of Taylor terms (PNG).
+    /// Write the plot of error against the number of Taylor terms here.
+    #[cfg_attr(feature = "cli", arg(long))]
     pub convergence_plot: Option<PathBuf>,
 }
 

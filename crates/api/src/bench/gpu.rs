@@ -24,38 +24,55 @@ use super::{delta_e_stats, disk_pixels, sample, view_of, Bench, DeltaE, FrameSta
 use crate::report::Report;
 use crate::{ModelOptions, SurfaceOptions};
 
-/// `iridis bench gpu`'s options (the CLI's defaults).
+/// `iridis bench gpu`'s options (the CLI's defaults; with the feature `cli`, its flags).
 #[derive(Debug, Clone)]
+#[cfg_attr(feature = "cli", derive(clap::Args))]
 pub struct GpuBenchOptions {
-    /// A scene (TOML or glTF) to time instead of the shaders.
+    /// A scene (TOML or glTF) to time instead of the two shaders.
     pub scene: Option<PathBuf>,
-    /// Lookup BRDF map size (`1024x1024` or `1024`); with a scene, the image size.
+    /// Lookup BRDF map size: 1024x1024 or 1024 (maps are square); with a SCENE, the image size.
+    #[cfg_attr(feature = "cli", arg(long, default_value = "1024x1024"))]
     pub size: String,
     /// Frames timed per shader.
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = 500))]
     pub frames: usize,
-    /// Stop a shader's loop after this many seconds.
+    /// Stop a shader's loop after this many seconds (software drivers are slow).
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = 30.0))]
     pub max_seconds: f64,
-    /// Lookup table (.npz); `None`: builtin:elaphe precomputed here at 201².
+    /// Lookup table (.npz from `iridis precompute`); default: builtin:elaphe precomputed here at 201².
+    #[cfg_attr(feature = "cli", arg(long))]
     pub table: Option<PathBuf>,
     /// Thin-film frame size.
+    #[cfg_attr(feature = "cli", arg(long, default_value = "1920x1080"))]
     pub film_size: String,
-    /// Thin-film stack; every layer's thickness gets the frame's offset.
+    /// Thin-film stack; every layer's thickness gets the frame's offset (gradient ±300 nm, SVT ±100 nm).
+    #[cfg_attr(feature = "cli", arg(long, default_value = "air | water 500nm | air"))]
     pub stack: String,
-    /// Wavelength samples of the direct film path.
+    /// Wavelength samples (380-780 nm) of the direct film path that the fast path is timed against.
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = 81, value_name = "N"))]
     pub spectral_samples: usize,
-    /// Also write the last frames as PNG into this folder.
+    /// Also write the last frames as PNG into this folder: lookup_map.png (1500 RU) and film_frame.png (the
+    /// fast path; film_frame_direct.png the direct one).
+    #[cfg_attr(feature = "cli", arg(long))]
     pub save: Option<PathBuf>,
-    /// Lookup table encodings to time, comma-separated.
+    /// Lookup table encodings to time, comma-separated (f32, f16, chebK, chebK-f16): the first is `lookup`'s,
+    /// each is checked against the CPU's f64 lookup (default: the f32 powers and brdf-map's default).
+    #[cfg_attr(feature = "cli", arg(long, default_value = "f32,cheb12"))]
     pub table_precision: String,
-    /// Surface whose lookup table is built on the CPU and on the GPU.
+    /// Surface whose lookup table is built on the CPU and on the GPU (times and agreement).
+    #[cfg_attr(feature = "cli", arg(long, default_value = "builtin:elaphe?size=10um"))]
     pub build_surface: String,
     /// u-v resolution of that table.
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = 31))]
     pub build_uv_resolution: usize,
-    /// Surface whose ground truth is rendered on the GPU and the CPU.
+    /// Surface whose ground truth (finite aperture and periodic) is rendered on the GPU and the CPU.
+    #[cfg_attr(feature = "cli", arg(long, default_value = "builtin:elaphe?size=3um&pixel=65nm"))]
     pub gt_surface: String,
     /// Size of the ground truth's BRDF map on the GPU.
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = 12))]
     pub gt_size: usize,
-    /// Pixels of that map the CPU evaluates.
+    /// Pixels of that map the CPU evaluates (spread over it) for its rate and the CIEDE2000.
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = 32))]
     pub gt_cpu_pixels: usize,
 }
 

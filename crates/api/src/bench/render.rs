@@ -10,14 +10,18 @@ use super::Bench;
 use crate::report::Report;
 use crate::scene::{load, render_cpu, write_examples};
 
-/// `iridis bench render`'s options.
+/// `iridis bench render`'s options (with the feature `cli`, its flags).
 #[derive(Debug, Clone)]
+#[cfg_attr(feature = "cli", derive(clap::Args))]
 pub struct RenderOptions {
     /// Image side (square images).
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = 1024))]
     pub size: u32,
     /// Samples per pixel.
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = 1))]
     pub spp: u32,
-    /// Scenes to time; empty: every example, embedded in the library.
+    /// Scenes to time (default: every example, embedded in the binary).
+    #[cfg_attr(feature = "cli", arg(long = "scene", value_name = "SCENE"))]
     pub scenes: Vec<PathBuf>,
 }
 

@@ -10,7 +10,7 @@ use iridis_color::Encoding;
 use iridis_diffraction::table::TableParams;
 use iridis_diffraction::Units;
 
-use crate::args::{parse_incidence, polar_azimuth, ModelOpts, RigorousOpts, ShadingOpts, SurfaceOpts};
+use crate::args::{parse_incidence, polar_azimuth, ModelOpts, RigorousOpts, ShadingOpts};
 use crate::output::print_answer;
 use crate::progress::Cli;
 
@@ -57,7 +57,7 @@ pub struct PrecomputeArgs {
     #[arg(long)]
     pub gpu: bool,
     #[command(flatten)]
-    pub surface_opts: SurfaceOpts,
+    pub surface_opts: iridis_api::SurfaceOptions,
 }
 
 fn units(s: &str) -> Result<Units, String> {
@@ -165,7 +165,7 @@ pub struct BrdfMapArgs {
     #[arg(long = "uv-power", value_name = "A")]
     pub uv_power_arg: Option<f64>,
     #[command(flatten)]
-    pub surface_opts: SurfaceOpts,
+    pub surface_opts: iridis_api::SurfaceOptions,
 }
 
 /// `iridis brdf …`: point queries of the diffraction BRDF.
@@ -220,7 +220,7 @@ pub struct BrdfVisionArgs {
     #[command(flatten)]
     pub model: ModelOpts,
     #[command(flatten)]
-    pub surface_opts: SurfaceOpts,
+    pub surface_opts: iridis_api::SurfaceOptions,
 }
 
 #[derive(Debug, ClapArgs)]
@@ -272,7 +272,7 @@ pub struct BrdfEvalArgs {
     #[command(flatten)]
     pub model: ModelOpts,
     #[command(flatten)]
-    pub surface_opts: SurfaceOpts,
+    pub surface_opts: iridis_api::SurfaceOptions,
     /// Print the paper's relative reflectance ρ(λ) instead of the BRDF in sr⁻¹.
     #[arg(long)]
     pub relative: bool,
@@ -292,7 +292,7 @@ pub struct BrdfEvalArgs {
 pub fn run_precompute(a: PrecomputeArgs) -> Result<()> {
     let r = iridis_api::precompute::PrecomputeRequest {
         surface: a.surface,
-        surface_opts: a.surface_opts.options(),
+        surface_opts: a.surface_opts,
         model: a.model.options(),
         params: TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power },
         units: a.units,
@@ -313,7 +313,7 @@ pub fn run_brdf_map(a: BrdfMapArgs) -> Result<()> {
         input: a.input,
         method: a.method,
         model,
-        surface: a.surface_opts.options(),
+        surface: a.surface_opts,
         fresnel: a.shading.fresnel,
         convention: a.shading.fresnel_convention,
         shadowing: !a.shading.no_shadowing,
@@ -350,7 +350,7 @@ fn run_eval(a: BrdfEvalArgs) -> Result<()> {
         input: a.input,
         method: Some(method),
         model,
-        surface: a.surface_opts.options(),
+        surface: a.surface_opts,
         fresnel: a.shading.fresnel,
         convention: a.shading.fresnel_convention,
         shadowing: !a.shading.no_shadowing,
@@ -380,7 +380,7 @@ fn run_vision(a: BrdfVisionArgs) -> Result<()> {
     };
     let v = iridis_api::brdf_vision::brdf_vision(
         &iridis_api::surface::Source::Spec(a.input.clone()),
-        &a.surface_opts.options(),
+        &a.surface_opts,
         &a.model.options(),
         a.shading.shading()?,
         a.light,

@@ -6,7 +6,6 @@ use std::path::PathBuf;
 use anyhow::Result;
 use clap::Args as ClapArgs;
 
-use crate::args::SurfaceOpts;
 use crate::progress::Cli;
 
 #[derive(Debug, ClapArgs)]
@@ -43,12 +42,11 @@ pub struct ViewArgs {
     #[arg(long)]
     pub json: bool,
     #[command(flatten)]
-    pub surface_opts: SurfaceOpts,
+    pub surface_opts: iridis_api::SurfaceOptions,
 }
 
 pub fn run_view(a: ViewArgs) -> Result<()> {
-    let opts = a.surface_opts.options();
-    let Some(c) = iridis_api::view::view(&a.input, a.uv_resolution, &opts, a.check.as_deref(), &Cli)? else {
+    let Some(c) = iridis_api::view::view(&a.input, a.uv_resolution, &a.surface_opts, a.check.as_deref(), &Cli)? else {
         return Ok(());
     };
     crate::output::print_answer(a.json, || Ok(c.to_json()), || c.text())?;

@@ -7,7 +7,7 @@ use iridis_api::grating::{grating, Detector, GratingOptions};
 use iridis_api::grating_run::{compare, grating_text};
 use iridis_diffraction::geometry::direction;
 
-use crate::args::{angle_rad, fraction, polar_azimuth, positive_length_nm, unit_cell_auto, SurfaceOpts};
+use crate::args::{angle_rad, fraction, polar_azimuth, positive_length_nm, unit_cell_auto};
 use crate::output::print_answer;
 use crate::progress::Cli;
 
@@ -95,7 +95,7 @@ pub struct GratingArgs {
     #[arg(long, value_name = "FRACTION", value_parser = fraction)]
     pub orders_above: Option<f64>,
     #[command(flatten)]
-    pub surface_opts: SurfaceOpts,
+    pub surface_opts: iridis_api::SurfaceOptions,
 }
 
 pub fn run(a: GratingArgs) -> Result<()> {
@@ -124,7 +124,7 @@ pub fn run(a: GratingArgs) -> Result<()> {
         unit_cell_auto: unit_cell_auto(&a.unit_cell)?,
         orders_above: a.orders_above.unwrap_or(0.0),
     };
-    let (source, surface) = (iridis_api::surface::Source::Spec(a.surface.clone()), a.surface_opts.options());
+    let (source, surface) = (iridis_api::surface::Source::Spec(a.surface.clone()), a.surface_opts.clone());
     if a.compare {
         let c = compare(&source, &surface, &opts, &Cli)?;
         return print_answer(a.json, || Ok(c.to_json()), || c.text());

@@ -12,7 +12,7 @@ use iridis_lab::bench::BenchSetup;
 use iridis_lab::laser::LaserSetup;
 use iridis_lab::methods::Method;
 
-use crate::args::{angle_rad, polar_azimuth, positive_length_nm, LabModel};
+use crate::args::{angle_rad, polar_azimuth, positive_length_nm};
 use crate::output::print_answer;
 use crate::progress::Cli;
 
@@ -97,12 +97,12 @@ pub struct TestbenchArgs {
     #[arg(long)]
     pub json: bool,
     #[command(flatten)]
-    pub model: LabModel,
+    pub model: iridis_api::lab::LabOptions,
 }
 
 pub fn run_testbench(a: TestbenchArgs) -> Result<()> {
     let mut rigorous = iridis_api::ModelOptions::default();
-    a.rigorous.apply(&a.method, &a.model.fresnel, a.model.fresnel_convention, &mut rigorous)?;
+    a.rigorous.apply(&a.method, &a.model.fresnel, a.model.convention, &mut rigorous)?;
     let mut setup = BenchSetup::new(
         a.incidence,
         a.azimuth.unwrap_or(0.0),
@@ -119,7 +119,7 @@ pub fn run_testbench(a: TestbenchArgs) -> Result<()> {
         max_period_nm: a.max_period,
         plot: a.plot.clone(),
     };
-    let t = run::testbench_run(&Source::Spec(a.surface.clone()), &a.model.options(), &req, &Cli)?;
+    let t = run::testbench_run(&Source::Spec(a.surface.clone()), &a.model, &req, &Cli)?;
     print_answer(a.json, || Ok(t.to_json()), || t.text())
 }
 
@@ -198,7 +198,7 @@ pub struct CompareArgs {
     #[arg(long)]
     pub json: bool,
     #[command(flatten)]
-    pub model: LabModel,
+    pub model: iridis_api::lab::LabOptions,
 }
 
 pub fn run_compare(a: CompareArgs) -> Result<()> {
@@ -215,7 +215,7 @@ pub fn run_compare(a: CompareArgs) -> Result<()> {
         gpu: a.gpu,
         maps: a.maps.clone(),
     };
-    let c = run::compare_run(&Source::Spec(a.surface.clone()), &a.model.options(), &req, &Cli)?;
+    let c = run::compare_run(&Source::Spec(a.surface.clone()), &a.model, &req, &Cli)?;
     print_answer(a.json, || Ok(c.to_json()), || c.text())
 }
 
@@ -287,7 +287,7 @@ pub struct SweepArgs {
     #[arg(long)]
     pub json: bool,
     #[command(flatten)]
-    pub model: LabModel,
+    pub model: iridis_api::lab::LabOptions,
 }
 
 pub fn run_sweep(a: SweepArgs) -> Result<()> {
@@ -306,7 +306,7 @@ pub fn run_sweep(a: SweepArgs) -> Result<()> {
         output: a.output.clone(),
         plot: a.plot.clone(),
     };
-    let s = run::sweep_run(&Source::Spec(a.surface.clone()), &a.model.options(), &req, &Cli)?;
+    let s = run::sweep_run(&Source::Spec(a.surface.clone()), &a.model, &req, &Cli)?;
     print_answer(a.json, || Ok(s.to_json()), || s.text())
 }
 
@@ -391,7 +391,7 @@ pub struct LaserArgs {
     #[arg(long)]
     pub json: bool,
     #[command(flatten)]
-    pub model: LabModel,
+    pub model: iridis_api::lab::LabOptions,
 }
 
 pub fn run_experiment(c: ExperimentCommand) -> Result<()> {
@@ -417,6 +417,6 @@ pub fn run_experiment(c: ExperimentCommand) -> Result<()> {
         table: a.table.clone(),
         save_table: a.save_table.clone(),
     };
-    let l = run::laser_run(&Source::Spec(a.surface.clone()), &a.model.options(), &req, &Cli)?;
+    let l = run::laser_run(&Source::Spec(a.surface.clone()), &a.model, &req, &Cli)?;
     print_answer(a.json, || Ok(l.to_json()), || l.text())
 }

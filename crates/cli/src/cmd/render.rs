@@ -1,8 +1,6 @@
 //! `iridis render`: offline rendering of a scene (TOML or glTF) on the CPU (`iridis-render`, issue 7) or the
 //! GPU, through `iridis_api::scene::render_file`.
 
-use std::path::PathBuf;
-
 use anyhow::Result;
 use clap::Args as ClapArgs;
 
@@ -40,34 +38,8 @@ on the CPU); --spectral-samples N evaluates smooth films directly at N wavelengt
 instead, 81 being the reference. Without a GPU, Mesa's software driver works:
 apt-get install mesa-vulkan-drivers.")]
 pub struct RenderArgs {
-    /// Scene: TOML (.toml) or glTF 2.0 (.gltf, .glb).
-    pub scene: PathBuf,
-    /// Output image: .png (tone-mapped) or .exr (linear float).
-    #[arg(short, long, required_unless_present = "export_mesh")]
-    pub output: Option<PathBuf>,
-    /// Image size WxH (default: the scene's [output] size).
-    #[arg(long)]
-    pub size: Option<String>,
-    /// Samples per pixel for anti-aliasing (default: the scene's).
-    #[arg(long)]
-    pub spp: Option<u32>,
-    /// Exposure in RU (default: the scene's; 1 RU: a normal-incidence mirror under a 1 RU light is white).
-    #[arg(long)]
-    pub exposure: Option<f64>,
-    /// Also write the linear image as OpenEXR here.
-    #[arg(long)]
-    pub exr: Option<PathBuf>,
-    /// Render on the GPU (wgpu, Vulkan; Mesa's lavapipe on machines without one).
-    #[arg(long)]
-    pub gpu: bool,
-    /// Also (or, without -o, only) write the scene's triangle meshes as binary glTF (.glb): positions,
-    /// normals, UVs and the orientation field as TANGENT.
-    #[arg(long)]
-    pub export_mesh: Option<PathBuf>,
-    /// With --gpu: evaluate smooth films directly at N wavelength samples (380-780 nm) per hit instead of
-    /// from colour tables (81: the 5 nm reference).
-    #[arg(long, value_name = "N")]
-    pub spectral_samples: Option<usize>,
+    #[command(flatten)]
+    pub request: iridis_api::scene::RenderRequest,
     /// glTF scenes: the camera to render through, by node or camera name (or index); `default` frames the
     /// scene with iridis' own camera. Without it, the file's first camera.
     #[arg(long, value_name = "NAME")]
@@ -78,18 +50,8 @@ pub struct RenderArgs {
 }
 
 pub fn run(a: RenderArgs) -> Result<()> {
-    let r = iridis_api::scene::RenderRequest {
-        scene: a.scene,
-        output: a.output,
-        size: a.size,
-        spp: a.spp,
-        exposure: a.exposure,
-        exr: a.exr,
-        gpu: a.gpu,
-        export_mesh: a.export_mesh,
-        spectral_samples: a.spectral_samples,
-        gltf: iridis_render::gltf_io::GltfOptions { camera: a.camera, ignore_lights: a.ignore_gltf_lights },
-    };
+    let gltf = iridis_render::gltf_io::GltfOptions { camera: a.camera, ignore_lights: a.ignore_gltf_lights };
+    let r = iridis_api::scene::RenderRequest { gltf, ..a.request };
     for line in iridis_api::scene::render_file(&r, &Cli)?.lines {
         crate::outln!("{line}")?;
     }

@@ -1,8 +1,6 @@
 //! `iridis report FILE -o DIR`: from a new scan to its colours in one command (`iridis_api::scan_report`, which
 //! runs the steps a user would type and records each with its command line).
 
-use std::path::PathBuf;
-
 use anyhow::Result;
 use clap::Args as ClapArgs;
 use iridis_api::scan_report::{write_report, ReportOptions};
@@ -34,57 +32,12 @@ Examples:
   iridis report scan.jpk --channel height_trace --size 96 -o jpk_report
   iridis report scan.npy --pixel-size 5nm --height-unit m --level lines -o npy_report")]
 pub struct ReportArgs {
-    /// The scan (any SURFACE: an instrument file, .gwy, .npy, … or builtin:NAME).
-    pub surface: String,
-    /// Output folder: index.html, report.json and the figures.
-    #[arg(short, long)]
-    pub output: PathBuf,
-    /// Channel of a multi-channel file, by index or name.
-    #[arg(long)]
-    pub channel: Option<String>,
-    /// Pixel size for files without one (e.g. 5nm).
-    #[arg(long)]
-    pub pixel_size: Option<String>,
-    /// Unit of heights in files that do not give one (m, nm, …).
-    #[arg(long)]
-    pub height_unit: Option<String>,
-    /// Levelling: plane (default for files), poly, lines, rows, mean or none.
-    #[arg(long)]
-    pub level: Option<String>,
     #[command(flatten)]
-    pub units: crate::args::UnitFlags,
-    /// Size of the BRDF maps in pixels.
-    #[arg(long, default_value_t = 128)]
-    pub size: usize,
-    /// Coherence length for the model (default: the light's 65um; the BRDF maps of a smaller scan use half
-    /// its shorter side, at least four of its strongest periods, and say so).
-    #[arg(long)]
-    pub coherence: Option<String>,
-    /// The animal whose view of the colours the report shows: bluetit, avian-uv, avian-v, honeybee, human,
-    /// ball-python.
-    #[arg(long, default_value = "bluetit")]
-    pub visual: String,
-    /// Leave out the test bench (the slowest step).
-    #[arg(long)]
-    pub no_testbench: bool,
+    pub options: ReportOptions,
 }
 
 pub fn run(a: ReportArgs) -> Result<()> {
-    let o = ReportOptions {
-        surface: a.surface,
-        output: a.output,
-        channel: a.channel,
-        pixel_size: a.pixel_size,
-        height_unit: a.height_unit,
-        level: a.level,
-        override_units: a.units.override_units,
-        as_height: a.units.as_height,
-        size: a.size,
-        coherence: a.coherence,
-        visual: a.visual,
-        no_testbench: a.no_testbench,
-    };
-    let r = write_report(&o, Some(&step_inputs), &Cli)?;
+    let r = write_report(&a.options, Some(&step_inputs), &Cli)?;
     crate::outln!("{}", r.text().trim_end_matches('\n'))?;
     r.warnings.iter().for_each(|w| Cli.warn(w));
     Ok(())

@@ -131,7 +131,7 @@ pub struct LoadArgs {
     #[arg(long)]
     pub seed: Option<u64>,
     #[command(flatten)]
-    pub units: crate::args::UnitFlags,
+    pub units: iridis_api::surface::UnitOverrides,
 }
 
 impl LoadArgs {
@@ -279,18 +279,8 @@ pub struct ConvertArgs {
     /// (median line correction) or rows (per-scan-line means).
     #[arg(long, default_value = "none")]
     pub level: String,
-    /// Crop to ROW,COL,ROWS,COLS (samples).
-    #[arg(long)]
-    pub crop: Option<String>,
-    /// Resample to this pixel size (e.g. 50nm), keeping the extent.
-    #[arg(long, value_parser = crate::args::positive_length_nm)]
-    pub resample: Option<f64>,
-    /// Tile NYxNX times (e.g. 3x3).
-    #[arg(long)]
-    pub tile: Option<String>,
-    /// Pad with the mean height to ROWSxCOLS samples (centred).
-    #[arg(long)]
-    pub pad: Option<String>,
+    #[command(flatten)]
+    pub reshape: lib::Reshape,
 }
 
 pub fn run(command: SurfaceCommand) -> Result<()> {
@@ -364,9 +354,7 @@ fn generate(a: GenerateArgs) -> Result<()> {
 
 fn convert(a: ConvertArgs) -> Result<()> {
     lib::declare_surface("OUTPUT", &a.output)?;
-    let reshape =
-        lib::Reshape { crop: a.crop.clone(), resample_nm: a.resample, tile: a.tile.clone(), pad: a.pad.clone() };
-    let hf = reshape.apply(load(&a.input, &a.load, &a.level)?)?;
+    let hf = a.reshape.apply(load(&a.input, &a.load, &a.level)?)?;
     lib::write_surface(&hf, &a.output)?;
     // What the reader warned about; the model's concerns (coherence area, coarse pixels) belong to the
     // commands that run the model.

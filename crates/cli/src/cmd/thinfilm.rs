@@ -457,7 +457,7 @@ fn profile(a: crate::args::ProfileArgs) -> Result<()> {
 fn fit(a: crate::args::FitArgs) -> Result<()> {
     declare_opt("--plot", a.plot.as_deref(), &["png"])?;
     declare_opt("-o", a.output.as_deref(), &["csv"])?;
-    let f = film_fit::fit_file(&a.measured, &a.request(), &Cli)?;
+    let f = film_fit::fit_file(&a.measured, &a.request, &Cli)?;
     if let Some(p) = &a.output {
         write_bytes(p, f.csv().as_bytes())?;
     }
