@@ -79,8 +79,9 @@ export MESA_SHADER_CACHE_DIR="${MESA_SHADER_CACHE_DIR:-${CARGO_TARGET_DIR:-$PWD/
 export MESA_SHADER_CACHE_DISABLE=false
 mkdir -p "$MESA_SHADER_CACHE_DIR"
 
-# The `ci` profile (Cargo.toml): release for our crates and the numeric dependencies, opt-level 1 for the viewer's
-# window stack and the GPU API layer, whose compile time is most of a fresh build's and whose speed no test needs.
+# The `ci` profile (Cargo.toml): release for our crates and the numeric dependencies, no optimisation for the
+# viewer's window stack, the GPU API layer and small-file parsers, whose compile time was a third of a fresh
+# build's and whose speed no test needs.
 # The targets that hold tests: `--tests` is every target with `test = true`, i.e. the libraries' and binaries'
 # unit tests and the integration tests (crates/*/tests/main.rs, one binary a crate). Not `--lib --bins`: naming
 # a target kind overrides its `test = false`, and built the Python binding's empty test harness (no tests, 15-20
