@@ -106,6 +106,8 @@ impl OrdersAt {
     /// A rigorous solution in the scalar model's terms, rotated back by `rotation` (rad) where the profile
     /// was taken along another axis than x.
     fn rigorous(s: iridis_rigorous::Solution, rotation: f64, along_y: bool) -> Self {
+        // The same three numbers in the two crates' types (iridis-rigorous depends on no other iridis crate).
+        let e = |x: iridis_rigorous::Efficiency| Efficiency { te: x.te, tm: x.tm, unpolarized: x.unpolarized };
         let map = |o: &iridis_rigorous::Order| OrderEfficiency {
             wavelength_nm: s.wavelength_nm,
             m: if along_y { 0 } else { o.m as i64 },
@@ -116,9 +118,8 @@ impl OrdersAt {
             } else {
                 (o.phi_deg + rotation.to_degrees()).rem_euclid(360.0)
             },
-            efficiency: Efficiency { te: o.efficiency.te, tm: o.efficiency.tm, unpolarized: o.efficiency.unpolarized },
+            efficiency: e(o.efficiency),
         };
-        let e = |x: iridis_rigorous::Efficiency| Efficiency { te: x.te, tm: x.tm, unpolarized: x.unpolarized };
         let mut orders: Vec<OrderEfficiency> = s.orders.iter().map(map).collect();
         orders.sort_by_key(|o| (o.m, o.n));
         let mut transmitted: Vec<OrderEfficiency> = s.transmitted_orders.iter().map(map).collect();

@@ -12,6 +12,14 @@ pub fn value_error(e: impl std::fmt::Display) -> PyErr {
     PyValueError::new_err(e.to_string())
 }
 
+/// A direction `(θ, φ)` in radians above the surface (`what` names it in the message).
+pub fn above(what: &str, (theta, phi): (f64, f64)) -> PyResult<(f64, f64)> {
+    if !((0.0..std::f64::consts::FRAC_PI_2).contains(&theta) && phi.is_finite()) {
+        return Err(value_error(format!("{what} θ = {theta} rad must be in [0, π/2) (above the surface), φ finite")));
+    }
+    Ok((theta, phi))
+}
+
 /// One real or complex number (a float is read without the complex conversion).
 fn number(name: &str, x: &Bound<'_, PyAny>) -> PyResult<Complex64> {
     if let Ok(f) = x.downcast_exact::<PyFloat>() {

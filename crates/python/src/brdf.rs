@@ -11,15 +11,8 @@ use numpy::{IntoPyArray, PyArray3};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::value_error;
+use crate::args::{above, value_error};
 use crate::facade::{run, Options};
-
-fn above(what: &str, (theta, phi): (f64, f64)) -> PyResult<(f64, f64)> {
-    if !((0.0..std::f64::consts::FRAC_PI_2).contains(&theta) && phi.is_finite()) {
-        return Err(value_error(format!("{what} θ = {theta} rad must be in [0, π/2) (above the surface), φ finite")));
-    }
-    Ok((theta, phi))
-}
 
 fn xyz_array<'py>(py: Python<'py>, xyz: &[iridis_color::Xyz], size: usize) -> Bound<'py, PyArray3<f64>> {
     let flat: Vec<f64> = xyz.iter().flat_map(|c| c.to_array()).collect();

@@ -151,10 +151,8 @@ fn evaluator(
 }
 
 /// A direction `(θ, φ)` in radians above the surface.
-fn direction_of(what: &str, (theta, phi): (f64, f64)) -> PyResult<[f64; 3]> {
-    if !((0.0..std::f64::consts::FRAC_PI_2).contains(&theta) && phi.is_finite()) {
-        return Err(value_error(format!("{what} θ = {theta} rad must be in [0, π/2) (above the surface), φ finite")));
-    }
+fn direction_of(what: &str, angles: (f64, f64)) -> PyResult<[f64; 3]> {
+    let (theta, phi) = crate::args::above(what, angles)?;
     Ok(direction(theta, phi))
 }
 

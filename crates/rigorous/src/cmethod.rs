@@ -226,19 +226,22 @@ fn eigen(a: &Mat<C64>) -> Result<(Vec<C64>, Mat<C64>), RigorousError> {
     Ok((vals, evd.U().to_owned()))
 }
 
-/// The eigenmodes of a medium for a 1-D profile `a(x)` (no y dependence of the surface), `need` for each side
-/// appended to its `out`; conical incidence: `E_y` and `H_y` each satisfy the scalar problem (C3)
+/// The eigen-solutions of a medium's problem, from which [`modes`] picks each side's eigenmodes.
+struct Eigenmodes {
+    /// The eigenvalues ρ.
+    rho: Vec<C64>,
+    /// How many eigenvalues each plane-wave order has near its `±k_z` ([`select_modes`]): 1 in the scalar 1-D
+    /// problem, 2 (the two polarisations) in the 2-D one.
+    multiplicity: usize,
+    /// The columns of eigenmode `i`: two for the 1-D problem (`E_y`-type and `H_y`-type), one for the 2-D one.
+    columns: Box<dyn Fn(usize) -> Vec<Column>>,
+}
+
+/// The eigenmodes of a medium for a 1-D profile `a(x)` (no y dependence of the surface); conical incidence:
+/// `E_y` and `H_y` each satisfy the scalar problem (C3)
 /// `ρ [F; G] = [[0, I], [C⁻¹(κ² − α²), C⁻¹(αȦ + Ȧα)]] [F; G]`, `C = [[1 + ȧ²]]`, `κ² = ε − k_y²`,
 /// and every eigenmode gives two columns, `E_y`-type and `H_y`-type, with the tangential components of (C5).
-fn eigenmodes_1d(
-    set: &Setting,
-    orders: &Orders,
-    surf: &FineSurface,
-    eps: C64,
-    sides: &[Side],
-    out: &mut [MediumModes],
-    need: usize,
-) -> Result<(), RigorousError> {
+fn eigenmodes_1d(set: &Setting, orders: &Orders, surf: &FineSurface, eps: C64) -> Result<Eigenmodes, RigorousError> {
     let nf = orders.len();
     let adot = toeplitz(&surf.coeffs_of(|_, ax, _| C64::new(ax, 0.0)), orders);
     let cmat = toeplitz(&surf.coeffs_of(|_, ax, _| C64::new(1.0 + ax * ax, 0.0)), orders);
@@ -262,40 +265,33 @@ fn eigenmodes_1d(
             a[(nf + r, c)] = sol[(r, c)];
         }
     }
-    let (vals, vecs) = eigen(&a)?;
-    for (mm, &side) in out.iter_mut().zip(sides) {
-        let akz: Vec<C64> = mm.analytic.iter().map(|a| a.1).collect();
-        let chosen = select_modes(&vals, &akz, 1, side, need);
-        for &i in &chosen {
-            // N = C G − Ȧ α F: the Fourier vector of the normal derivative operator (C4).
-            let f: Vec<C64> = (0..nf).map(|r| vecs[(r, i)]).collect();
-            let g: Vec<C64> = (0..nf).map(|r| vecs[(nf + r, i)]).collect();
-            let mut nvec = vec![ZERO; nf];
-            for r in 0..nf {
-                let mut acc = ZERO;
-                for c in 0..nf {
-                    acc += cmat[(r, c)] * g[c] - adot[(r, c)] * (alpha[c] * f[c]);
-                }
-                nvec[r] = acc;
+    let (rho, vecs) = eigen(&a)?;
+    let columns = move |i: usize| {
+        // N = C G − Ȧ α F: the Fourier vector of the normal derivative operator (C4).
+        let f: Vec<C64> = (0..nf).map(|r| vecs[(r, i)]).collect();
+        let g: Vec<C64> = (0..nf).map(|r| vecs[(nf + r, i)]).collect();
+        let mut nvec = vec![ZERO; nf];
+        for r in 0..nf {
+            let mut acc = ZERO;
+            for c in 0..nf {
+                acc += cmat[(r, c)] * g[c] - adot[(r, c)] * (alpha[c] * f[c]);
             }
-            let mut e_col = vec![ZERO; 4 * nf];
-            let mut h_col = vec![ZERO; 4 * nf];
-            for r in 0..nf {
-                // E_y-type mode (E_y = F, H_y = 0) and H_y-type mode (E_y = 0, H_y = F), (C5).
-                e_col[r] = -ky * alpha[r] * f[r] / kappa2;
-                e_col[nf + r] = f[r];
-                e_col[2 * nf + r] = -eps * nvec[r] / kappa2;
-                h_col[r] = nvec[r] / kappa2;
-                h_col[2 * nf + r] = -ky * alpha[r] * f[r] / kappa2;
-                h_col[3 * nf + r] = f[r];
-            }
-            mm.columns.push(e_col);
-            mm.columns.push(h_col);
-            mm.rho.push(vals[i]);
-            mm.rho.push(vals[i]);
+            nvec[r] = acc;
         }
-    }
-    Ok(())
+        let mut e_col = vec![ZERO; 4 * nf];
+        let mut h_col = vec![ZERO; 4 * nf];
+        for r in 0..nf {
+            // E_y-type mode (E_y = F, H_y = 0) and H_y-type mode (E_y = 0, H_y = F), (C5).
+            e_col[r] = -ky * alpha[r] * f[r] / kappa2;
+            e_col[nf + r] = f[r];
+            e_col[2 * nf + r] = -eps * nvec[r] / kappa2;
+            h_col[r] = nvec[r] / kappa2;
+            h_col[2 * nf + r] = -ky * alpha[r] * f[r] / kappa2;
+            h_col[3 * nf + r] = f[r];
+        }
+        vec![e_col, h_col]
+    };
+    Ok(Eigenmodes { rho, multiplicity: 1, columns: Box::new(columns) })
 }
 
 /// Modes of a medium for each of `sides`: the analytic plane-wave columns (C7), then the eigenmodes of the 1-D
@@ -311,10 +307,20 @@ fn modes(
     let mut out: Vec<MediumModes> = sides.iter().map(|&side| start_modes(set, orders, surf, eps, side)).collect();
     let missing = orders.len() - out[0].analytic.len();
     if missing > 0 {
-        if two_d {
-            eigenmodes_2d(set, orders, surf, eps, sides, &mut out, 2 * missing)?;
+        // Each missing order gives two columns: one eigenmode of the 1-D problem, two of the 2-D one.
+        let (eig, need) = if two_d {
+            (eigenmodes_2d(set, orders, surf, eps)?, 2 * missing)
         } else {
-            eigenmodes_1d(set, orders, surf, eps, sides, &mut out, missing)?;
+            (eigenmodes_1d(set, orders, surf, eps)?, missing)
+        };
+        for (mm, &side) in out.iter_mut().zip(sides) {
+            let akz: Vec<C64> = mm.analytic.iter().map(|a| a.1).collect();
+            for i in select_modes(&eig.rho, &akz, eig.multiplicity, side, need) {
+                for column in (eig.columns)(i) {
+                    mm.columns.push(column);
+                    mm.rho.push(eig.rho[i]);
+                }
+            }
         }
     }
     Ok(out)
@@ -328,18 +334,9 @@ fn start_modes(set: &Setting, orders: &Orders, surf: &FineSurface, eps: C64, sid
     MediumModes { analytic, columns, rho }
 }
 
-/// The eigenmodes of a medium for a 2-D profile `a(x, y)`, `need` for each side appended to its `out`: the
-/// covariant Maxwell equations in the translation coordinates (C8) as `ρ Ψ = P Ψ` for `Ψ = (E1, E2, H1, H2)`,
-/// one column per eigenmode.
-fn eigenmodes_2d(
-    set: &Setting,
-    orders: &Orders,
-    surf: &FineSurface,
-    eps: C64,
-    sides: &[Side],
-    out: &mut [MediumModes],
-    need: usize,
-) -> Result<(), RigorousError> {
+/// The eigenmodes of a medium for a 2-D profile `a(x, y)`: the covariant Maxwell equations in the translation
+/// coordinates (C8) as `ρ Ψ = P Ψ` for `Ψ = (E1, E2, H1, H2)`, one column per eigenmode.
+fn eigenmodes_2d(set: &Setting, orders: &Orders, surf: &FineSurface, eps: C64) -> Result<Eigenmodes, RigorousError> {
     let nf = orders.len();
     let g = |ax: f64, ay: f64| 1.0 / (1.0 + ax * ax + ay * ay);
     let t_g = toeplitz(&surf.coeffs_of(|_, ax, ay| C64::new(g(ax, ay), 0.0)), orders);
@@ -377,16 +374,9 @@ fn eigenmodes_2d(
         p[(2 * nf + r, nf + r)] -= eps;
         p[(3 * nf + r, r)] += eps;
     }
-    let (vals, vecs) = eigen(&p)?;
-    for (mm, &side) in out.iter_mut().zip(sides) {
-        let akz: Vec<C64> = mm.analytic.iter().map(|a| a.1).collect();
-        let chosen = select_modes(&vals, &akz, 2, side, need);
-        for &i in &chosen {
-            mm.columns.push((0..4 * nf).map(|r| vecs[(r, i)]).collect());
-            mm.rho.push(vals[i]);
-        }
-    }
-    Ok(())
+    let (rho, vecs) = eigen(&p)?;
+    let columns = move |i: usize| vec![(0..4 * nf).map(|r| vecs[(r, i)]).collect()];
+    Ok(Eigenmodes { rho, multiplicity: 2, columns: Box::new(columns) })
 }
 
 /// Solves one truncation: modes above, in each coating layer (both directions) and below, the boundary

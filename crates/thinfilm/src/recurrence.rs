@@ -281,10 +281,7 @@ impl Rta {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn c(re: f64, im: f64) -> Complex64 {
-        Complex64::new(re, im)
-    }
+    use num_complex::c64 as c;
 
     #[test]
     fn single_interface_is_fresnel() {

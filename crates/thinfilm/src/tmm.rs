@@ -787,10 +787,7 @@ pub fn coh_tmm_batch(pol: Pol, n: Indices<'_>, d: &[f64], th0: &[f64], lam: &[f6
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn c(re: f64, im: f64) -> Complex64 {
-        Complex64::new(re, im)
-    }
+    use num_complex::c64 as c;
 
     #[test]
     fn single_interface_is_fresnel() {
