@@ -201,7 +201,22 @@ impl RoughSpectrum {
         Ok(plot.render()?)
     }
 
-    fn bound_terms(&self) -> (f64, usize) {
+    /// The spectrum's columns under their `--json` names (docs/json.md): the smooth model's R, the specular part
+    /// `k_r` and the diffuse part `k_d` (sr⁻¹), each with its s and p halves.
+    pub fn columns(&self) -> [(&'static str, Vec<f64>); 7] {
+        [
+            ("R_smooth", self.col(|x| x.0)),
+            ("specular", self.col(|x| x.1.k_r())),
+            ("specular_s", self.col(|x| x.1.specular_s)),
+            ("specular_p", self.col(|x| x.1.specular_p)),
+            ("diffuse_per_sr", self.col(|x| x.1.k_d())),
+            ("diffuse_s_per_sr", self.col(|x| x.1.diffuse_s)),
+            ("diffuse_p_per_sr", self.col(|x| x.1.diffuse_p)),
+        ]
+    }
+
+    /// The diffuse part's error bound (sr⁻¹, the largest over the wavelengths) and the most series terms used.
+    pub fn bound_terms(&self) -> (f64, usize) {
         (
             self.values.iter().map(|x| x.1.bound).fold(0.0, f64::max),
             self.values.iter().map(|x| x.1.terms).max().unwrap_or(0),
@@ -211,19 +226,18 @@ impl RoughSpectrum {
     /// What `--json` prints (docs/json.md).
     pub fn to_json(&self) -> serde_json::Value {
         let (bound, terms) = self.bound_terms();
-        serde_json::json!({
+        let mut json = serde_json::json!({
             "model": "LSRS (Sussenbach eq. 3.15-3.20) with the HTSG BRDF",
             "diffuse_transport": self.options.transport.name(),
             "roughness_nm": self.rough.htsg.roughness.sigma_nm(), "correlation_nm": self.rough.htsg.roughness.tau_nm(),
             "view_deg": degrees(self.view), "light_deg": degrees(self.light), "azimuth_deg": degrees(self.azimuth),
             "wavelength_nm": self.wavelength_nm,
-            "R_smooth": self.col(|x| x.0),
-            "specular": self.col(|x| x.1.k_r()), "specular_s": self.col(|x| x.1.specular_s),
-            "specular_p": self.col(|x| x.1.specular_p),
-            "diffuse_per_sr": self.col(|x| x.1.k_d()), "diffuse_s_per_sr": self.col(|x| x.1.diffuse_s),
-            "diffuse_p_per_sr": self.col(|x| x.1.diffuse_p),
             "series_terms_max": terms, "diffuse_error_bound_per_sr": bound,
-        })
+        });
+        for (name, values) in self.columns() {
+            json[name] = serde_json::json!(values);
+        }
+        json
     }
 
     /// The CSV (`--csv`).

@@ -228,22 +228,15 @@ impl PyStack {
         let opts = rough_options(sigma_nm, tau_nm, d_iterations, transport)?;
         let grid = wavelengths.as_slice()?.to_vec();
         let stack = self.stack.clone();
-        let xs = run(py, |_| {
-            let rough = opts.build(stack)?;
-            iridis_api::rough::evaluate(&rough, &grid, view, light, azimuth)
-        })?;
-        let col = |f: &dyn Fn(&(f64, iridis_thinfilm::rough::Lsrs)) -> f64| -> Vec<f64> { xs.iter().map(f).collect() };
+        let s = run(py, |_| iridis_api::rough::spectrum(stack, "", &opts, view, light, azimuth, &grid))?;
+        let (bound, terms) = s.bound_terms();
         let d = PyDict::new(py);
-        d.set_item("wavelength_nm", PyArray1::from_vec(py, grid.clone()))?;
-        d.set_item("R_smooth", PyArray1::from_vec(py, col(&|x| x.0)))?;
-        d.set_item("specular", PyArray1::from_vec(py, col(&|x| x.1.k_r())))?;
-        d.set_item("specular_s", PyArray1::from_vec(py, col(&|x| x.1.specular_s)))?;
-        d.set_item("specular_p", PyArray1::from_vec(py, col(&|x| x.1.specular_p)))?;
-        d.set_item("diffuse_per_sr", PyArray1::from_vec(py, col(&|x| x.1.k_d())))?;
-        d.set_item("diffuse_s_per_sr", PyArray1::from_vec(py, col(&|x| x.1.diffuse_s)))?;
-        d.set_item("diffuse_p_per_sr", PyArray1::from_vec(py, col(&|x| x.1.diffuse_p)))?;
-        d.set_item("series_terms_max", xs.iter().map(|x| x.1.terms).max().unwrap_or(0))?;
-        d.set_item("diffuse_error_bound_per_sr", xs.iter().map(|x| x.1.bound).fold(0.0, f64::max))?;
+        d.set_item("wavelength_nm", PyArray1::from_vec(py, grid))?;
+        for (name, values) in s.columns() {
+            d.set_item(name, PyArray1::from_vec(py, values))?;
+        }
+        d.set_item("series_terms_max", terms)?;
+        d.set_item("diffuse_error_bound_per_sr", bound)?;
         d.set_item("diffuse_transport", opts.transport.name())?;
         d.set_item("series", opts.series_label())?;
         Ok(d)
