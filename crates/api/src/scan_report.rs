@@ -40,12 +40,8 @@ pub struct ReportOptions {
     /// Levelling: plane (default for files), poly, lines, rows, mean or none.
     #[cfg_attr(feature = "cli", arg(long))]
     pub level: Option<String>,
-    /// [`crate::surface::OVERRIDE_UNITS`].
-    #[cfg_attr(feature = "cli", arg(long, help = crate::surface::OVERRIDE_UNITS))]
-    pub override_units: bool,
-    /// [`crate::surface::AS_HEIGHT`].
-    #[cfg_attr(feature = "cli", arg(long, help = crate::surface::AS_HEIGHT))]
-    pub as_height: bool,
+    #[cfg_attr(feature = "cli", command(flatten))]
+    pub units: UnitOverrides,
     /// Size of the BRDF maps in pixels.
     #[cfg_attr(feature = "cli", arg(long, default_value_t = 128))]
     pub size: usize,
@@ -72,8 +68,7 @@ impl ReportOptions {
             pixel_size: None,
             height_unit: None,
             level: None,
-            override_units: false,
-            as_height: false,
+            units: UnitOverrides::default(),
             size: 128,
             coherence: None,
             visual: "bluetit".into(),
@@ -228,7 +223,7 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
         channel: channel.clone(),
         height_unit: o.height_unit.clone(),
         level: o.level.clone(),
-        units: UnitOverrides { override_units: o.override_units, as_height: o.as_height },
+        units: o.units,
     };
     let source = Source::Spec(o.surface.clone());
     let mut common: Vec<String> = Vec::new();
@@ -237,7 +232,7 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
             common.extend([flag.to_string(), v.clone()]);
         }
     }
-    for (flag, on) in [("--override-units", o.override_units), ("--as-height", o.as_height)] {
+    for (flag, on) in [("--override-units", o.units.override_units), ("--as-height", o.units.as_height)] {
         if on {
             common.push(flag.to_string());
         }

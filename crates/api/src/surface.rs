@@ -40,24 +40,15 @@ pub struct SurfaceOptions {
 #[derive(Debug, Clone, Copy, Default)]
 #[cfg_attr(feature = "cli", derive(clap::Args))]
 pub struct UnitOverrides {
-    /// [`OVERRIDE_UNITS`].
-    #[cfg_attr(feature = "cli", arg(long, help = OVERRIDE_UNITS))]
+    /// Let --pixel-size and --height-unit replace the pixel size and height unit an instrument file states
+    /// itself (without it the file's win, and a warning names both).
+    #[cfg_attr(feature = "cli", arg(long))]
     pub override_units: bool,
-    /// [`AS_HEIGHT`].
-    #[cfg_attr(feature = "cli", arg(long, help = AS_HEIGHT))]
+    /// Read a channel that is not a height (an amplitude, error, phase or deformation channel, or one whose
+    /// unit is not a length; `iridis surface channels FILE` marks them) as heights anyway.
+    #[cfg_attr(feature = "cli", arg(long))]
     pub as_height: bool,
 }
-
-/// What `override_units` does ([`UnitOverrides`], `iridis report`'s [`crate::scan_report::ReportOptions`]): the
-/// help of `--override-units`.
-pub const OVERRIDE_UNITS: &str = "Let --pixel-size and --height-unit replace the pixel size and height unit an \
-                                  instrument file states itself (without it the file's win, and a warning names \
-                                  both)";
-
-/// What `as_height` does (as [`OVERRIDE_UNITS`]): the help of `--as-height`.
-pub const AS_HEIGHT: &str = "Read a channel that is not a height (an amplitude, error, phase or deformation channel, \
-                             or one whose unit is not a length; `iridis surface channels FILE` marks them) as \
-                             heights anyway";
 
 impl SurfaceOptions {
     /// The reader's options.

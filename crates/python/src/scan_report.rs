@@ -38,8 +38,8 @@ fn _report(
     r.pixel_size = o.string("pixel_size")?;
     r.height_unit = o.string("height_unit")?;
     r.level = o.string("level")?;
-    r.override_units = o.bool("override_units")?.unwrap_or(false);
-    r.as_height = o.bool("as_height")?.unwrap_or(false);
+    r.units.override_units = o.bool("override_units")?.unwrap_or(false);
+    r.units.as_height = o.bool("as_height")?.unwrap_or(false);
     r.size = o.usize("size")?.unwrap_or(r.size);
     r.coherence = o.string("coherence")?;
     r.visual = o.string("visual")?.unwrap_or(r.visual);
