@@ -84,8 +84,8 @@ mkdir -p "$MESA_SHADER_CACHE_DIR"
 # build's and whose speed no test needs.
 # The targets that hold tests: `--tests` is every target with `test = true`, i.e. the libraries' and binaries'
 # unit tests and the integration tests (crates/*/tests/main.rs, one binary a crate). Not `--lib --bins`: naming
-# a target kind overrides its `test = false`, and built the Python binding's empty test harness (no tests, 15-20
-# CPU-s). Examples are not built here (clippy --all-targets in .ci/run checks that they compile); doc tests run
+# a target kind overrides its `test = false`, and built the Python binding's empty test harness (no tests, 10-18
+# s of compile). Examples are not built here (clippy --all-targets in .ci/run checks that they compile); doc tests run
 # at the end of the Rust step.
 TARGETS=(--tests)
 step "cargo test --workspace --profile ci: build"
