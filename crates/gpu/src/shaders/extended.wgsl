@@ -582,6 +582,12 @@ struct Surf {
     albedo_table: u32,    // the energy blend's albedo table in `tables`, NONE: Algorithm 4
     metal: u32,           // a film over a metallic base: the metal stack's media block, NONE: none
     rough: u32,           // a rough film: its material record (rough_tab)
+    // The fast path's extras (shade_fast): a diffraction's prefiltered tables (NONE: none); a film's colour table
+    // (when `tabbed`) and its reflectance at the view, r_view (linear sRGB).
+    pref: u32,
+    tabbed: bool,
+    tab: FilmTab,
+    r_view: vec3<f32>,
 }
 
 const DIFFRACTION_LOBE_PROBABILITY: f32 = 0.75;
@@ -605,7 +611,8 @@ fn no_table() -> Table {
 
 fn surf_basic(kind: u32, n: vec3<f32>, albedo: vec3<f32>, m: Microfacet, p_spec: f32) -> Surf {
     return Surf(kind, n, albedo, m, p_spec, no_film(), 0.0, 1.0, no_table(), vec4<f32>(0.0), vec3<f32>(0.0),
-                vec3<f32>(0.0), vec3<f32>(0.0), NONE, NONE, NONE, NONE);
+                vec3<f32>(0.0), vec3<f32>(0.0), NONE, NONE, NONE, NONE, NONE, false, FilmTab(0u, 0u, 0u, 0.0, 0.0),
+                vec3<f32>(0.0));
 }
 
 fn surf_lambert(n: vec3<f32>, albedo: vec3<f32>) -> Surf {
@@ -625,6 +632,7 @@ fn surf_film(film: Film, base: Microfacet, n: vec3<f32>, albedo: vec3<f32>, offs
     s.offset = offset;
     s.factor = factor;
     s.metal = metal;
+    s.r_view = r_view;
     return s;
 }
 
@@ -743,12 +751,6 @@ fn surf_pdf(s: Surf, wi: vec3<f32>, wo: vec3<f32>) -> f32 {
 
 // ------------------------------------------------------------------ the Monte Carlo integrator
 
-// Whether the segment is blocked by a surface or an area light other than `skip`, the one it goes to
-// (render::integrate::Scene::blocked).
-fn blocked(o: vec3<f32>, wi: vec3<f32>, dist: f32, skip: u32) -> bool {
-    return hit_area_but(o, wi, dist, false, skip).k != NONE || occluded(o, wi, dist);
-}
-
 // Weight of a light sample whose pdf is `light` where the BRDF's is `brdf`, and the other way round (MIS).
 fn brdf_weight(brdf: f32, light: f32) -> f32 {
     if (brdf <= 0.0) {
@@ -808,13 +810,11 @@ fn shade_mc(h: Hit, s: Surf, wo: vec3<f32>, depth: u32, weight: f32, thr: vec3<f
         if (max3(f) <= 0.0) {
             continue;
         }
-        if (i < P.n_lights) {
-            if (!occluded(o, wi, dist)) {
-                out = out + f * le;
-            }
-            continue;
+        let delta = i < P.n_lights;
+        var p_brdf = 0.0;
+        if (!delta) {
+            p_brdf = surf_pdf(s, wi, wo);
         }
-        let p_brdf = surf_pdf(s, wi, wo);
         if (brdf) {
             if (p_brdf > 0.0) {
                 let tp = f / (PI * p_brdf);
@@ -822,7 +822,18 @@ fn shade_mc(h: Hit, s: Surf, wo: vec3<f32>, depth: u32, weight: f32, thr: vec3<f
             }
             continue;
         }
-        if (p_light > 0.0 && !blocked(o, wi, dist, skip_light)) {
+        // One shadow test for the delta lights' and the sampled lights' segments alike, so that the compiled shader
+        // holds one copy of the scene's traversal here; a sampled segment is also blocked by an area light other
+        // than the one it goes to (render::integrate::Scene::blocked).
+        if (!delta && (!(p_light > 0.0) || hit_area_but(o, wi, dist, false, skip_light).k != NONE)) {
+            continue;
+        }
+        if (occluded(o, wi, dist)) {
+            continue;
+        }
+        if (delta) {
+            out = out + f * le;
+        } else {
             out = out + f * le * (power_heuristic(p_light, p_brdf) / (PI * p_light));
         }
     }

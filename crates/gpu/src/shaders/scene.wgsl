@@ -918,36 +918,6 @@ fn push_sampled(o: vec3<f32>, d: vec3<f32>, throughput: vec3<f32>, depth: u32, w
     }
 }
 
-// Direct light on a microfacet surface plus, with_env, its environment reflection (a ray when smooth enough).
-fn shade_microfacet(m: Microfacet, h: Hit, wo: vec3<f32>, depth: u32, weight: f32, with_env: bool,
-                    thr: vec3<f32>) {
-    let albedo = color_at(m.color, h.uv);
-    var out = vec3<f32>(0.0);
-    let o = h.p + h.ng * eps(h.p, h.t);
-    for (var i = 0u; i < n_arrivals(); i = i + 1u) {
-        let l = arrive(i, h.p);
-        if (max3(l.e) > 0.0 && dot(l.wi, h.ng) > 0.0 && !occluded(o, l.wi, l.dist)) {
-            out = out + microfacet_reflect(m, h.n, l.wi, wo, albedo) * l.e;
-        }
-    }
-    // Environment light: the diffuse share lit by the irradiance around the normal, the specular share by the
-    // mirror direction blurred towards the irradiance around it with roughness.
-    let ew = env_weights(m, clamp(dot(h.n, wo), 0.0, 1.0), albedo);
-    out = out + ew.diffuse * irradiance(h.n);
-    if (with_env) {
-        let dir = reflect_dir(wo, h.n);
-        let blurred = irradiance(dir);
-        let rough = min(m.roughness / 0.6, 1.0);
-        if (m.roughness < 0.6 && depth < P.max_depth) {
-            push_ray(o, dir, thr * ew.spec * (1.0 - rough), depth + 1u, weight * max3(ew.spec));
-            out = out + ew.spec * blurred * rough;
-        } else {
-            out = out + ew.spec * blurred;
-        }
-    }
-    radiance = radiance + thr * out;
-}
-
 // The microfacet record at r, at texture coordinate uv: the metallic-roughness texture (w, NONE: none)
 // scales roughness by its G and metallic by its B channel (render::material::Microfacet::at).
 fn microfacet_at(r: u32, uv: vec2<f32>) -> Microfacet {
@@ -1054,35 +1024,38 @@ fn shade(h_in: Hit, d: vec3<f32>, depth: u32, weight: f32, thr: vec3<f32>) {
     let wo = -d;
     let r = P.mat_base + 8u * h_in.material;
     let kind = word(scene[r].x);
-    // A normal texture (a microfacet's, or a film's base's) replaces the shading normal first.
-    var h = h_in;
+    // A microfacet's records, or a film's base's: [colour], [roughness, metallic, ior, metallic-roughness
+    // texture], [normal texture] from `mrec` (NONE: none). Its normal texture replaces the shading normal first.
+    // Each texture is read at one place for every kind (normal, metallic-roughness, colour), as the compiled
+    // shader inlines every call.
+    var mrec = NONE;
     if (kind == 1u) {
-        h = normal_mapped(h_in, scene[r + 3u]);
+        mrec = r + 1u;
     }
     if (kind == 3u && (word(scene[r + 1u].w) & 4u) != 0u) {
-        h = normal_mapped(h_in, scene[r + 5u]);
+        mrec = r + 3u;
     }
-    // Monte Carlo: each kind makes its surface, and one call below shades it (one copy of the integrator in
-    // the compiled shader, which inlines every call).
+    var h = h_in;
+    var m = Microfacet(vec4<f32>(0.0), 1.0, 0.0, 1.0);
+    var color = scene[r + 1u];  // a Lambertian's colour, a diffraction's texture colour
+    if (mrec != NONE) {
+        h = normal_mapped(h_in, scene[mrec + 2u]);
+        m = microfacet_at(mrec, h.uv);
+        color = m.color;
+    }
+    var albedo = vec3<f32>(0.0);
+    if (kind != 3u || mrec != NONE) {
+        albedo = color_at(color, h.uv);
+    }
+    // Each kind makes its surface, and one call below shades it, by Monte Carlo or the fast path (one copy of
+    // each in the compiled shader, which inlines every call). A film alone is a mirror and shades here.
     let mc = monte_carlo();
     var s = surf_lambert(h.n, vec3<f32>(0.0));
     var ambient = vec3<f32>(0.0);
     if (kind == 0u) {
-        let albedo = color_at(scene[r + 1u], h.uv);
-        if (mc) {
-            s = surf_lambert(h.n, albedo);
-        } else {
-            shade_lambert(h, albedo, thr);
-            return;
-        }
+        s = surf_lambert(h.n, albedo);
     } else if (kind == 1u) {
-        let m = microfacet_at(r + 1u, h.uv);
-        if (mc) {
-            s = surf_microfacet(m, h.n, color_at(m.color, h.uv), clamp(dot(h.n, wo), 0.0, 1.0));
-        } else {
-            shade_microfacet(m, h, wo, depth, weight, true, thr);
-            return;
-        }
+        s = surf_microfacet(m, h.n, albedo, clamp(dot(h.n, wo), 0.0, 1.0));
     } else if (kind == 2u) {
         // Diffraction: [kind], texture colour, [scale_ru, w_diffuse, ambient, fresnel_n],
         // [direction, rule], [angle, orientation texture], table words, table numbers,
@@ -1095,11 +1068,7 @@ fn shade(h_in: Hit, d: vec3<f32>, depth: u32, weight: f32, thr: vec3<f32>) {
         let ext = scene[r + 7u];
         let table = Table(word(tw.x), word(tw.y), word(tw.z), word(tw.w), tf.x, tf.y, tf.z, tf.w);
         let t = orientation(h, word(od.w), od.xyz, word(oa.y), oa.x);
-        let tex = color_at(scene[r + 1u], h.uv);
-        if (!mc) {
-            shade_diffraction(h, wo, table, k, t, tex, word(ext.y), word(ext.z), thr);
-            return;
-        }
+        let tex = albedo;
         s = surf_basic(3u, h.n, tex, Microfacet(vec4<f32>(0.0), 1.0, 0.0, 1.0), 0.0);
         s.table = table;
         s.dk = k;
@@ -1108,6 +1077,7 @@ fn shade(h_in: Hit, d: vec3<f32>, depth: u32, weight: f32, thr: vec3<f32>) {
         s.tex = tex;
         s.lobe = word(ext.x);
         s.albedo_table = word(ext.z);
+        s.pref = word(ext.y);
         ambient = tex * k.z;
     } else {
         // Thin film: [kind], [n_media, media, thickness, flags: 1 SVT, 2 transmission, 4 base, 8 colour table,
@@ -1129,11 +1099,9 @@ fn shade(h_in: Hit, d: vec3<f32>, depth: u32, weight: f32, thr: vec3<f32>) {
             // Rough films from their tables. Monte Carlo: the diffuse lobe pi k_d cos theta_l as a surface
             // (render::integrate::Surface::RoughDiffuse) for every light and the BRDF's samples, k_r along the
             // mirror as in the fast path.
-            if (!mc) {
-                rough_film(r, h, wo, cosv, offset, factor, depth, weight, thr);
-                return;
+            if (mc) {
+                rough_mirror(rough_tab(r), h, wo, cosv, offset, factor, depth, weight, thr);
             }
-            rough_mirror(rough_tab(r), h, wo, cosv, offset, factor, depth, weight, thr);
             s.kind = 4u;
             s.rough = r;
             s.offset = offset;
@@ -1146,90 +1114,35 @@ fn shade(h_in: Hit, d: vec3<f32>, depth: u32, weight: f32, thr: vec3<f32>) {
             let tabbed = (flags & 8u) != 0u;
             let c = film_colors(film, tabbed, tab, cosv, offset);
             if ((flags & 4u) == 0u) {
-                // A film alone: a mirror (and a window), whose rays are traced.
-                let r_rgb = to_rgb(c.r) * factor;
-                push_ray(h.p + h.ng * eps(h.p, h.t), reflect_dir(wo, h.n), thr * r_rgb, depth + 1u,
-                         weight * max3(r_rgb));
-                if ((flags & 2u) != 0u) {
-                    let t_rgb = to_rgb(c.t) * factor;
-                    push_ray(h.p - h.ng * eps(h.p, h.t), d, thr * t_rgb, depth + 1u, weight * max3(t_rgb));
+                // A film alone: a mirror (and a window), whose rays are traced -- the reflected ray, then the
+                // transmitted one, through one push (one copy in the compiled shader).
+                let n_out = select(1u, 2u, (flags & 2u) != 0u);
+                for (var k = 0u; k < n_out; k = k + 1u) {
+                    var side = h.ng;
+                    var dir = reflect_dir(wo, h.n);
+                    var xyz = c.r;
+                    if (k == 1u) {
+                        side = -h.ng;
+                        dir = d;
+                        xyz = c.t;
+                    }
+                    let rgb = to_rgb(xyz) * factor;
+                    push_ray(h.p + side * eps(h.p, h.t), dir, thr * rgb, depth + 1u, weight * max3(rgb));
                 }
                 return;
             }
-            let base = microfacet_at(r + 3u, h.uv);
-            if (!mc) {
-                film_over_base(film, tabbed, tab, word(sv.w), base, h, wo, c.r, offset, factor, depth, weight, thr);
-                return;
-            }
             // The film over the base and the base alone, mixed by the factor, as one BRDF for every light (over a
-            // metallic base, the metal stack's reflectance as in the fast path).
-            s = surf_film(film, base, h.n, color_at(base.color, h.uv), offset, factor, to_rgb(c.r), word(sv.w));
+            // metallic base, the metal stack's reflectance).
+            s = surf_film(film, m, h.n, albedo, offset, factor, to_rgb(c.r), word(sv.w));
+            s.tabbed = tabbed;
+            s.tab = tab;
         }
     }
-    shade_mc(h, s, wo, depth, weight, thr, ambient);
-}
-
-// The fast path's Lambertian: the irradiance map around the normal and the lights.
-fn shade_lambert(h: Hit, albedo: vec3<f32>, thr: vec3<f32>) {
-    var out = albedo * irradiance(h.n);
-    let o = h.p + h.ng * eps(h.p, h.t);
-    for (var i = 0u; i < n_arrivals(); i = i + 1u) {
-        let l = arrive(i, h.p);
-        if (max3(l.e) > 0.0 && dot(l.wi, h.ng) > 0.0 && !occluded(o, l.wi, l.dist)) {
-            out = out + albedo * l.e * max(dot(h.n, l.wi), 0.0);
-        }
+    if (mc) {
+        shade_mc(h, s, wo, depth, weight, thr, ambient);
+    } else {
+        shade_fast(h, s, wo, depth, weight, thr);
     }
-    radiance = radiance + thr * out;
-}
-
-// The fast path's diffraction: the lights, then the environment as ENV_LIGHTS directional lights (Algorithm 4
-// for each).
-fn shade_diffraction(h: Hit, wo: vec3<f32>, table: Table, k: vec4<f32>, t: vec3<f32>, tex: vec3<f32>, pref: u32,
-                     albedo: u32, thr: vec3<f32>) {
-    let n = h.n;
-    let b = cross(n, t);
-    var out = tex * k.z;
-    let lo = vec3<f32>(dot(wo, t), dot(wo, b), dot(wo, n));
-    let o = h.p + h.ng * eps(h.p, h.t);
-    // The lights, then the environment as ENV_LIGHTS directional lights, unshadowed like the irradiance map
-    // (render.rs); a light with a solid angle (an area light, a cell of the environment: 4 pi / ENV_LIGHTS)
-    // sees the lobe averaged over it. One loop, so that the compiler emits the lobe's evaluation once.
-    let n_lit = n_arrivals();
-    var n_env = 0u;
-    if (P.env_light_base != NONE) {
-        n_env = ENV_LIGHTS;
-    }
-    for (var i = 0u; i < n_lit + n_env; i = i + 1u) {
-        var wi = vec3<f32>(0.0, 0.0, 1.0);
-        var e = vec3<f32>(0.0);
-        // render::light::ENVIRONMENT_LIGHT_SPREAD (4): an environment light's lobe is averaged over four cells.
-        var omega = 4.0 * 4.0 * PI / f32(ENV_LIGHTS);
-        if (i < n_lit) {
-            let l = arrive(i, h.p);
-            if (max3(l.e) <= 0.0 || dot(l.wi, h.ng) <= 0.0 || occluded(o, l.wi, l.dist)) {
-                continue;
-            }
-            wi = l.wi;
-            e = l.e;
-            omega = l.omega;
-        } else {
-            let q = P.env_light_base + 6u * (i - n_lit);
-            wi = vec3<f32>(tables[q], tables[q + 1u], tables[q + 2u]);
-            if (dot(wi, h.ng) <= 0.0) {
-                continue;
-            }
-            e = vec3<f32>(tables[q + 3u], tables[q + 4u], tables[q + 5u]);
-        }
-        out = out + diffraction_light(table, k, tex, t, b, n, lo, wi, wo, e, omega, pref, albedo,
-                                      albedo != NONE && i >= n_lit);
-    }
-    // The energy blend's texture takes (1 - A(wo)) of the irradiance around the normal
-    // (Diffraction::environment_diffuse).
-    if (albedo != NONE && lo.z > 0.0) {
-        let share = max(vec3<f32>(1.0) - lobe_albedo(albedo, lo), vec3<f32>(0.0));
-        out = out + tex * irradiance(n) * ((1.0 - k.y) * share + k.y);
-    }
-    radiance = radiance + thr * out;
 }
 
 // The specular reflectance of a film over a base of metallic m: (1 - m) R over the dielectric + m R over the
@@ -1252,8 +1165,6 @@ fn film_colors(film: Film, tabbed: bool, tab: FilmTab, cos_t: f32, offset: f32) 
     return film_xyz(film, sqrt(max(1.0 - cos_t * cos_t, 0.0)), cos_t, offset);
 }
 
-// A rough film (render::render::Scene::shade, eq. 3.20): the lights' diffuse pi k_d cos theta_l, the
-// environment's diffuse albedo times the irradiance, and k_r along the mirror ray, all from tables.
 // A rough film's tables from its material record `r` (scene.rs).
 fn rough_tab(r: u32) -> RoughTab {
     let a = scene[r + 3u];
@@ -1272,64 +1183,139 @@ fn rough_mirror(t: RoughTab, h: Hit, wo: vec3<f32>, cosv: f32, offset: f32, fact
     push_ray(h.p + h.ng * eps(h.p, h.t), reflect_dir(wo, h.n), thr * s, depth + 1u, weight * max3(s));
 }
 
-fn rough_film(r: u32, h: Hit, wo: vec3<f32>, cosv: f32, offset: f32, factor: f32, depth: u32, weight: f32,
-              thr: vec3<f32>) {
-    let t = rough_tab(r);
-    var out = vec3<f32>(0.0);
+// The fast path (render::render::Scene::shade) at a hit whose surface is s (every kind but a film alone): the
+// directional and point lights and each area light from its centre, shadowed -- on a diffraction material also
+// the environment as ENV_LIGHTS directional lights, unshadowed like the irradiance map (render.rs) -- then the
+// environment. One loop over the lights serves every kind, so that the compiled shader (which inlines every call)
+// holds one shadow ray and one copy of each kind's BRDF, not one of each per kind. A film over a base of factor
+// < 1 is also its base alone (weight 1 - factor): its lights sum in `lobe` beside the film's in `out`.
+fn shade_fast(h: Hit, s: Surf, wo: vec3<f32>, depth: u32, weight: f32, thr: vec3<f32>) {
     let o = h.p + h.ng * eps(h.p, h.t);
-    for (var i = 0u; i < n_arrivals(); i = i + 1u) {
-        let l = arrive(i, h.p);
-        if (max3(l.e) > 0.0 && dot(l.wi, h.ng) > 0.0 && !occluded(o, l.wi, l.dist)) {
-            let cl = dot(h.n, l.wi);
-            let d = rough_diffuse(t, cosv, cl, relative_azimuth(h.n, l.wi, wo), offset);
-            out = out + to_rgb(d) * l.e * (max(cl, 0.0) * factor);
+    let irr = irradiance(h.n);
+    let cosv = clamp(dot(h.n, wo), 0.0, 1.0);
+    // The microfacet lobe (a microfacet material, a film's base alone) and the film over its base.
+    let with_lobe = s.kind == 1u || (s.kind == 2u && s.factor < 1.0);
+    let with_film = s.kind == 2u && s.factor > 0.0;
+    var lobe = vec3<f32>(0.0);
+    var out = vec3<f32>(0.0);
+    if (s.kind == 0u) {
+        out = s.albedo * irr;
+    } else if (s.kind == 3u) {
+        out = s.tex * s.dk.z;
+    }
+    let diffuse = s.albedo * (1.0 - s.m.metallic);  // under a film: the base's diffuse albedo
+    let lo = vec3<f32>(dot(wo, s.t), dot(wo, s.b), dot(wo, h.n));  // diffraction: wo in the nanostructure's frame
+    var rt: RoughTab;
+    if (s.kind == 4u) {
+        rt = rough_tab(s.rough);
+    }
+    let n_lit = n_arrivals();
+    var n_env = 0u;
+    if (s.kind == 3u && P.env_light_base != NONE) {
+        n_env = ENV_LIGHTS;
+    }
+    for (var i = 0u; i < n_lit + n_env; i = i + 1u) {
+        // render::light::ENVIRONMENT_LIGHT_SPREAD (4): an environment light's lobe is averaged over four cells.
+        var l = Arrival(vec3<f32>(0.0, 0.0, 1.0), FAR, vec3<f32>(0.0), 4.0 * 4.0 * PI / f32(ENV_LIGHTS));
+        if (i < n_lit) {
+            l = arrive(i, h.p);
+            if (!(max3(l.e) > 0.0 && dot(l.wi, h.ng) > 0.0) || occluded(o, l.wi, l.dist)) {
+                continue;
+            }
+        } else {
+            let q = P.env_light_base + 6u * (i - n_lit);
+            l.wi = vec3<f32>(tables[q], tables[q + 1u], tables[q + 2u]);
+            if (dot(l.wi, h.ng) <= 0.0) {
+                continue;
+            }
+            l.e = vec3<f32>(tables[q + 3u], tables[q + 4u], tables[q + 5u]);
         }
-    }
-    out = out + to_rgb(rough_env(t, cosv, offset)) * irradiance(h.n) * factor;
-    radiance = radiance + thr * out;
-    rough_mirror(t, h, wo, cosv, offset, factor, depth, weight, thr);
-}
-
-// A smooth film over a base (render::render::Scene::shade_film_over_base): the film's reflectance R replaces
-// the base's specular Fresnel (over a metallic base mixed with the film over the metal), the diffuse takes
-// 1 - R per channel; iridescenceFactor mixes with the base alone.
-fn film_over_base(film: Film, tabbed: bool, tab: FilmTab, metal: u32, base: Microfacet, h: Hit, wo: vec3<f32>,
-                  r_view: vec3<f32>, offset: f32, factor: f32, depth: u32, weight: f32, thr: vec3<f32>) {
-    if (factor < 1.0) {
-        shade_microfacet(base, h, wo, depth, weight * (1.0 - factor), true, thr * (1.0 - factor));
-    }
-    if (factor <= 0.0) {
-        return;
-    }
-    let albedo = color_at(base.color, h.uv);
-    let diffuse = albedo * (1.0 - base.metallic);
-    var out = vec3<f32>(0.0);
-    let o = h.p + h.ng * eps(h.p, h.t);
-    for (var i = 0u; i < n_arrivals(); i = i + 1u) {
-        let l = arrive(i, h.p);
-        if (max3(l.e) > 0.0 && dot(l.wi, h.ng) > 0.0 && !occluded(o, l.wi, l.dist)) {
+        if (s.kind == 0u) {
+            out = out + s.albedo * l.e * max(dot(h.n, l.wi), 0.0);
+        }
+        if (with_lobe) {
+            lobe = lobe + microfacet_reflect(s.m, h.n, l.wi, wo, s.albedo) * l.e;
+        }
+        if (with_film) {
+            // The film's reflectance R replaces the base's specular Fresnel (over a metallic base mixed with the
+            // film over the metal), the diffuse takes 1 - R per channel (Scene::shade_film_over_base).
             let vh = clamp(dot(l.wi, safe_normalize(l.wi + wo)), 0.0, 1.0);
             let sh = sqrt(max(1.0 - vh * vh, 0.0));
-            let rl = to_rgb(film_colors(film, tabbed, tab, vh, offset).r);
-            let spec = film_specular(film, metal, base.metallic, sh, vh, offset, rl);
+            let rl = to_rgb(film_colors(s.film, s.tabbed, s.tab, vh, s.offset).r);
+            let spec = film_specular(s.film, s.metal, s.m.metallic, sh, vh, s.offset, rl);
             let ci = max(dot(h.n, l.wi), 0.0);
-            out = out + l.e * (ggx_single(base, h.n, l.wi, wo) * spec + (vec3<f32>(1.0) - rl) * diffuse * ci);
+            out = out + l.e * (ggx_single(s.m, h.n, l.wi, wo) * spec + (vec3<f32>(1.0) - rl) * diffuse * ci);
+        }
+        if (s.kind == 3u) {
+            out = out + diffraction_light(s.table, s.dk, s.tex, s.t, s.b, h.n, lo, l.wi, wo, l.e, l.omega, s.pref,
+                                          s.albedo_table, s.albedo_table != NONE && i >= n_lit);
+        }
+        if (s.kind == 4u) {
+            // A rough film (eq. 3.20): the lights' diffuse pi k_d cos theta_l from its tables.
+            let cl = dot(h.n, l.wi);
+            let d = rough_diffuse(rt, cosv, cl, relative_azimuth(h.n, l.wi, wo), s.offset);
+            out = out + to_rgb(d) * l.e * (max(cl, 0.0) * s.factor);
         }
     }
-    let rd = to_rgb(r_view);
-    out = out + (vec3<f32>(1.0) - rd) * diffuse * irradiance(h.n);
-    let cv = clamp(dot(h.n, wo), 0.0, 1.0);
-    let rv = film_specular(film, metal, base.metallic, sqrt(max(1.0 - cv * cv, 0.0)), cv, offset, rd);
-    let dir = reflect_dir(wo, h.n);
-    let blurred = irradiance(dir);
-    let rough = min(base.roughness / 0.6, 1.0);
-    if (base.roughness < 0.6) {
-        push_ray(o, dir, thr * factor * rv * (1.0 - rough), depth + 1u, weight * factor * max3(rv));
-        out = out + rv * blurred * rough;
-    } else {
-        out = out + rv * blurred;
+    // Environment light on the microfacet lobe, then on the film: the diffuse share lit by the irradiance around
+    // the normal, the specular share by the mirror direction blurred towards the irradiance around it with
+    // roughness, a ray along it when smooth enough. One pass each through one copy of the mirror's code.
+    for (var part = 0u; part < 2u; part = part + 1u) {
+        var acc = vec3<f32>(0.0);  // the lights and the diffuse share
+        var spec = vec3<f32>(0.0);
+        var t = thr;
+        var w = weight;
+        var trace = true;
+        if (part == 0u) {
+            if (!with_lobe) {
+                continue;
+            }
+            if (s.kind == 2u) {
+                t = thr * (1.0 - s.factor);
+                w = weight * (1.0 - s.factor);
+            }
+            let ew = env_weights(s.m, cosv, s.albedo);
+            acc = lobe + ew.diffuse * irr;
+            spec = ew.spec;
+            trace = depth < P.max_depth;
+        } else {
+            if (!with_film) {
+                continue;
+            }
+            // The film's diffuse takes 1 - R of the irradiance; its specular R (over the metal too).
+            t = thr * s.factor;
+            w = weight * s.factor;
+            acc = out + (vec3<f32>(1.0) - s.r_view) * diffuse * irr;
+            spec = film_specular(s.film, s.metal, s.m.metallic, sqrt(max(1.0 - cosv * cosv, 0.0)), cosv, s.offset,
+                                 s.r_view);
+        }
+        let dir = reflect_dir(wo, h.n);
+        let blurred = irradiance(dir);
+        let rough = min(s.m.roughness / 0.6, 1.0);
+        if (s.m.roughness < 0.6 && trace) {
+            push_ray(o, dir, t * spec * (1.0 - rough), depth + 1u, w * max3(spec));
+            acc = acc + spec * blurred * rough;
+        } else {
+            acc = acc + spec * blurred;
+        }
+        radiance = radiance + t * acc;
     }
-    radiance = radiance + thr * factor * out;
+    if (s.kind == 3u && s.albedo_table != NONE && lo.z > 0.0) {
+        // The energy blend's texture takes (1 - A(wo)) of the irradiance around the normal
+        // (Diffraction::environment_diffuse).
+        let share = max(vec3<f32>(1.0) - lobe_albedo(s.albedo_table, lo), vec3<f32>(0.0));
+        out = out + s.tex * irr * ((1.0 - s.dk.y) * share + s.dk.y);
+    }
+    if (s.kind == 4u) {
+        // A rough film's environment: its diffuse albedo times the irradiance, and k_r along the mirror ray.
+        out = out + to_rgb(rough_env(rt, cosv, s.offset)) * irr * s.factor;
+    }
+    if (s.kind == 0u || s.kind == 3u || s.kind == 4u) {
+        radiance = radiance + thr * out;
+    }
+    if (s.kind == 4u) {
+        rough_mirror(rt, h, wo, cosv, s.offset, s.factor, depth, weight, thr);
+    }
 }
 
 // Radiance (linear sRGB, RU) along a camera ray, its reflections and transmissions. The camera ray is the
@@ -1344,28 +1330,34 @@ fn primary(o: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
         let ray = rays[n_rays];
         let first = camera;
         camera = false;
-        if (!first && (ray.depth > P.max_depth || ray.weight < 2e-3)) {
-            radiance = radiance + ray.throughput * escaped(ray.d, ray.pdf);
-            continue;
-        }
-        let h = intersect(ray.o, ray.d, FAR);
-        // The area lights the camera sees; in Monte Carlo, those secondary rays meet too (weighted against light
-        // sampling when a BRDF sampled the ray) -- the fast path lights surfaces by them directly.
-        if (first || monte_carlo()) {
-            let l = hit_area(ray.o, ray.d, h.t, first);
-            if (l.k != NONE) {
-                let w = brdf_weight(ray.pdf, area_pdf(l.k, ray.o, ray.d));
-                radiance = radiance + ray.throughput * area_radiance(l.k) * w;
-                continue;
+        // A ray past max_depth or too weak to matter takes the environment's radiance as a ray that meets nothing
+        // does (below: one place for both, the compiled shader inlining every call).
+        let cut = !first && (ray.depth > P.max_depth || ray.weight < 2e-3);
+        var h = Prim(FAR, 0u, 0u, 0.0, 0.0);
+        if (!cut) {
+            h = intersect(ray.o, ray.d, FAR);
+            // The area lights the camera sees; in Monte Carlo, those secondary rays meet too (weighted against
+            // light sampling when a BRDF sampled the ray) -- the fast path lights surfaces by them directly.
+            if (first || monte_carlo()) {
+                let l = hit_area(ray.o, ray.d, h.t, first);
+                if (l.k != NONE) {
+                    let w = brdf_weight(ray.pdf, area_pdf(l.k, ray.o, ray.d));
+                    radiance = radiance + ray.throughput * area_radiance(l.k) * w;
+                    continue;
+                }
             }
         }
         if (h.kind == 0u) {
-            if (!first) {
-                radiance = radiance + ray.throughput * escaped(ray.d, ray.pdf);
-            } else if (P.env_visible != 0u) {
-                radiance = environment(ray.d);
-            } else {
+            if (first && P.env_visible == 0u) {
                 radiance = P.background.xyz;
+            } else {
+                // The camera ray's pdf is 0: its `escaped` is the environment's radiance itself (weight 1).
+                let e = escaped(ray.d, ray.pdf);
+                if (first) {
+                    radiance = e;
+                } else {
+                    radiance = radiance + ray.throughput * e;
+                }
             }
             continue;
         }
