@@ -73,7 +73,7 @@ bash tools/fetch_afm_samples.sh >"$LOGS/afm.log" 2>&1 &
 AFM_JOB=$!
 
 # Mesa's shader cache in a folder we know is writable (CI may run with a read-only or missing home): lavapipe
-# compiles the scene renderer once (~3-4 minutes of LLVM on 2 cores) and every later test process and CLI run
+# compiles the scene renderer once (about 40 s of one core; docs/gpu.md) and every later test process and CLI run
 # that opens the same pipeline loads it from here in seconds. Without the cache each of them compiled it again.
 export MESA_SHADER_CACHE_DIR="${MESA_SHADER_CACHE_DIR:-${CARGO_TARGET_DIR:-$PWD/target}/mesa-shader-cache}"
 export MESA_SHADER_CACHE_DISABLE=false
@@ -110,7 +110,7 @@ cat "$LOGS/afm.log"
 
 # The tests run in two lanes at once, because no test binary fills both cores alone (they wait on lavapipe's
 # compiler, on one long test, on child processes). Every process that opens the GPU scene renderer needs
-# lavapipe's compile of it (~2 minutes of one core, cold); Mesa's cache keeps it for the rest, but two processes
+# lavapipe's compile of it (about 40 s of one core, cold); Mesa's cache keeps it for the rest, but two processes
 # that start cold compile it twice. So the CLI lane first renders a tiny scene on the GPU, which fills the
 # cache, then runs the CLI's tests (they run the binary and open lavapipe); the library lane runs every other
 # test binary, then the doc tests, then — once the cache is warm — the Python package's tests and crates/gpu's.
