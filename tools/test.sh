@@ -86,19 +86,10 @@ mkdir -p "$MESA_SHADER_CACHE_DIR"
 # unit tests and the integration tests (crates/*/tests/main.rs, one binary a crate). Not `--lib --bins`: naming
 # a target kind overrides its `test = false`, and built the Python binding's empty test harness (no tests, 10-18
 # s of compile). Examples are not built here (clippy --all-targets in .ci/run checks that they compile); doc tests run
-# in the second lane below. cargo's JSON messages name each test binary and its package folder.
+# at the end of the Rust step.
 TARGETS=(--tests)
 step "cargo test --workspace --profile ci: build"
-cargo test --workspace --profile ci "${TARGETS[@]}" --no-run --message-format=json-render-diagnostics \
-    >"$LOGS/build.json"
-python3 -c '
-import json, os, sys
-for line in open(sys.argv[1]):
-    m = json.loads(line)
-    if m.get("reason") == "compiler-artifact" and m.get("executable") and m["profile"]["test"]:
-        folder = os.path.dirname(m["manifest_path"])
-        print(m["executable"], folder, os.path.relpath(m["target"]["src_path"]))
-' "$LOGS/build.json" >"$LOGS/binaries"
+cargo test --workspace --profile ci "${TARGETS[@]}" --no-run
 
 wait "$APT_JOB" || true
 cat "$LOGS/apt.log"
@@ -108,87 +99,24 @@ if ! wait "$AFM_JOB"; then
 fi
 cat "$LOGS/afm.log"
 
-# The tests run in two lanes at once, because no test binary fills both cores alone (they wait on lavapipe's
-# compiler, on one long test, on child processes). Every process that opens the GPU scene renderer needs
-# lavapipe's compile of it (about 40 s of one core, cold); Mesa's cache keeps it for the rest, but two processes
-# that start cold compile it twice. So the CLI lane first renders a tiny scene on the GPU, which fills the
-# cache, then runs the CLI's tests (they run the binary and open lavapipe); the library lane runs every other
-# test binary, then the doc tests, then — once the cache is warm — the Python package's tests and crates/gpu's.
-# Each test binary runs from its package's folder, as `cargo test` runs it. The library lane's output shows as
-# it runs, the CLI lane's when it ends; a failure anywhere fails the command after both lanes have run.
-run_binaries() { # FILE of "executable package-folder source" lines [LANE: also announce each on fd 3]
-    local exe dir src rc=0 t0
-    while read -r exe dir src; do
-        echo "     Running $src ($exe)"
-        if [ -n "${2:-}" ]; then echo "== [${SECONDS}s] [$2 lane] running $src" >&3; fi
-        t0=$SECONDS
-        (cd "$dir" && "$exe") || rc=1
-        echo "$((SECONDS - t0)) s  $src" >>"$LOGS/binary-times"
-    done <"$1"
-    return "$rc"
-}
-python_tests() {
-    # The Python package (crates/python), built and installed the way the README tells users to
-    # (`pip install ./crates/python`), into a throw-away virtual environment, then its tests (pytest: the tmm
-    # drop-in against tmm and the committed fixtures, colours, films, the README's example, the Dask example on a
-    # two-worker local cluster). The build reuses cargo's target directory and the test build's compiled crates:
-    # the same profile, and the feature `test-build` (crates/python/Cargo.toml) gives the shared dependencies the
-    # features `cargo test --workspace` gave them, so only the binding crate and pyo3 compile anew.
-    if ! wait "$PIP_JOB"; then
-        cat "$LOGS/pip.log"
-        echo "error: could not install the Python test dependencies (maturin numpy pytest tmm scipy dask)"
-        return 1
-    fi
-    CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$PWD/target}" MATURIN_PEP517_ARGS="--profile ci --features test-build" \
-        "$VENV/bin/pip" install -q --disable-pip-version-check ./crates/python &&
-        (cd crates/python && "$VENV/bin/python" -m pytest -q tests)
-}
-grep -E ' crates/cli/tests/' "$LOGS/binaries" >"$LOGS/cli-lane" || true
-grep -E ' crates/gpu/tests/' "$LOGS/binaries" >"$LOGS/gpu-binaries" || true
-grep -vE ' crates/(cli|gpu)/tests/' "$LOGS/binaries" >"$LOGS/library-lane" || true
-IRIDIS_BIN="$(python3 -c '
-import json, sys
-for line in open(sys.argv[1]):
-    m = json.loads(line)
-    if m.get("reason") == "compiler-artifact" and m.get("executable") and m["target"]["name"] == "iridis" \
-            and not m["profile"]["test"]:
-        print(m["executable"])
-' "$LOGS/build.json")"
-warm_scene_shader() {
-    local t0=$SECONDS
-    if [ -n "$IRIDIS_BIN" ] && "$IRIDIS_BIN" render examples/soap_bubble.toml --gpu --size 8x6 --spp 1 \
-        -o "$LOGS/warm.png" >"$LOGS/warm.log" 2>&1; then
-        echo "== lavapipe's shader cache: the GPU scene renderer compiled in $((SECONDS - t0)) s" >&3
-    else
-        echo "== lavapipe's shader cache: not filled (no Vulkan adapter?): $(tail -1 "$LOGS/warm.log")" >&3
-    fi
-    touch "$LOGS/warm.done"
-}
-step "tests in two lanes: [cli] the scene shader, then the CLI's tests, shown when it ends; [library] $(wc -l <"$LOGS/library-lane") binaries, the doc tests, Python, crates/gpu's tests, as they run"
-exec 3>&1
-{
-    warm_scene_shader
-    run_binaries "$LOGS/cli-lane" cli
-} >"$LOGS/cli-lane.log" 2>&1 &
-CLI_LANE=$!
-LIB_RC=0
-run_binaries "$LOGS/library-lane" || LIB_RC=1
+step "cargo test --workspace --profile ci: run"
+cargo test --workspace --profile ci "${TARGETS[@]}" --no-fail-fast
 step "cargo test --workspace --profile ci --doc"
-cargo test --workspace --profile ci --doc || LIB_RC=1
-while [ ! -e "$LOGS/warm.done" ] && kill -0 "$CLI_LANE" 2>/dev/null; do sleep 1; done
+cargo test --workspace --profile ci --doc
+
+# The Python package (crates/python), built and installed the way the README tells users to
+# (`pip install ./crates/python`), into a throw-away virtual environment, then its tests (pytest: the tmm drop-in
+# against tmm and the committed fixtures, colours, films, the README's example, the Dask example on a two-worker
+# local cluster). The build reuses cargo's target directory and the test build's compiled crates: the same
+# profile, and the feature `test-build` (crates/python/Cargo.toml) gives the shared dependencies the features
+# `cargo test --workspace` gave them, so only the binding crate and pyo3 compile anew.
 step "Python package: pip install ./crates/python into a throw-away venv, then pytest"
-python_tests || LIB_RC=1
-step "crates/gpu's tests"
-run_binaries "$LOGS/gpu-binaries" || LIB_RC=1
-step "library lane done; waiting for the CLI lane"
-CLI_RC=0
-wait "$CLI_LANE" || CLI_RC=1
-step "CLI lane done; its output:"
-cat "$LOGS/cli-lane.log"
-echo "== test binaries, slowest first (wall seconds, the two lanes sharing two cores)"
-sort -rn "$LOGS/binary-times" | head -8
-if [ "$LIB_RC" != 0 ] || [ "$CLI_RC" != 0 ]; then
-    echo "error: tests failed (above; exit status of the library lane $LIB_RC, of the CLI lane $CLI_RC)"
+if ! wait "$PIP_JOB"; then
+    cat "$LOGS/pip.log"
+    echo "error: could not install the Python test dependencies (maturin numpy pytest tmm scipy dask)"
     exit 1
 fi
+CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$PWD/target}" MATURIN_PEP517_ARGS="--profile ci --features test-build" \
+    "$VENV/bin/pip" install -q --disable-pip-version-check ./crates/python
+(cd crates/python && "$VENV/bin/python" -m pytest -q tests)
 step "done"
