@@ -672,10 +672,6 @@ fn make_hit(h: Prim, o: vec3<f32>, d: vec3<f32>) -> Hit {
     return Hit(h.t, p, n, ng, uv, tangent, along, material, tsign);
 }
 
-fn mat_kind(m: u32) -> u32 {
-    return word(scene[P.mat_base + 8u * m].x);
-}
-
 // Material record (8 vec4); word 0 of the first: 0 Lambert, 1 microfacet, 2 diffraction, 3 thin film.
 fn transmissive(m: u32) -> bool {
     let h = scene[P.mat_base + 8u * m];
@@ -832,13 +828,6 @@ fn env_weights(m: Microfacet, cos_o: f32, albedo: vec3<f32>) -> EnvWeights {
                           spec_energy(m.roughness, cos_o, albedo.z).x);
     }
     return EnvWeights(vec3<f32>((1.0 - m.metallic) * es_d) + m.metallic * metal, albedo * ((1.0 - m.metallic) * dif));
-}
-
-fn mirror_fresnel(m: Microfacet, cosv: f32, albedo: vec3<f32>) -> vec3<f32> {
-    let f0d = ((m.ior - 1.0) / (m.ior + 1.0)) * ((m.ior - 1.0) / (m.ior + 1.0));
-    let x = 1.0 - clamp(cosv, 0.0, 1.0);
-    let f0 = vec3<f32>(f0d * (1.0 - m.metallic)) + albedo * m.metallic;
-    return f0 + (vec3<f32>(1.0) - f0) * (x * x * x * x * x);
 }
 
 fn schlick(n: f32, cosv: f32) -> f32 {
