@@ -353,26 +353,14 @@ impl RoughAt<'_> {
             return Err(ThinFilmError::Invalid(format!("azimuth {azimuth_rad} must be finite")));
         }
         let rough = self.rough;
-        let (n_upper, k) = (self.n_upper, self.k);
         let v = Side::new(&rough.stack, self.wavelength_nm, view_rad)?;
         let l = Side::new(&rough.stack, self.wavelength_nm, light_rad)?;
         // Seeds: eq. 3.16 (view and light angle) and eq. 3.17.
-        let (seed_v, seed_l) = (v.seed(&rough.htsg, k), l.seed(&rough.htsg, k));
-        let (mut diffuse, mut terms, mut bound) = ([0.0; 2], 0, 0.0);
-        if let (Some((sv, cv)), Some((sl, cl))) = (v.dir, l.dir) {
-            let wv = [sv, 0.0, cv];
-            let wl = [sl * azimuth_rad.cos(), sl * azimuth_rad.sin(), cl];
-            let geo = rough.htsg.diffuse_geometry(wl, wv, k)?;
-            let f = local_fresnel(n_upper, v.media[v.n() + 1].n, geo.cos_local);
-            let (fv, fl, rad) =
-                (self.side_factor(&v, &seed_v, true), self.side_factor(&l, &seed_l, false), rough.radiance(&v));
-            let extra = self.multiple_term((sl, cl), (sv, cv));
-            let t = [rad * fv[0] * fl[0], rad * fv[1] * fl[1]];
-            diffuse =
-                [(geo.factor * f.r_s.norm_sqr() + extra[0]) * t[0], (geo.factor * f.r_p.norm_sqr() + extra[1]) * t[1]];
-            terms = geo.terms;
-            bound = geo.bound * t[0].max(t[1]);
-        }
+        let (seed_v, seed_l) = (v.seed(&rough.htsg, self.k), l.seed(&rough.htsg, self.k));
+        let (diffuse, terms, bound) = match (self.toward(&v, &seed_v, true), self.toward(&l, &seed_l, false)) {
+            (Some(tv), Some(tl)) => self.diffuse(&tv, &tl, azimuth_rad, None)?,
+            _ => ([0.0; 2], 0, 0.0),
+        };
         let gs = v.specular(&seed_v); // eq. 3.15
         Ok(Lsrs {
             specular_s: gs.gamma_s.norm_sqr(),
@@ -382,6 +370,82 @@ impl RoughAt<'_> {
             terms,
             bound,
         })
+    }
+
+    /// What the diffuse term needs of one direction (the view's when `view`, else the light's) that the other
+    /// direction and the azimuth do not change; `None` where light is evanescent in medium `N`.
+    fn toward(&self, side: &Side, seed: &Composite, view: bool) -> Option<Toward> {
+        Some(Toward {
+            dir: side.dir?,
+            factor: self.side_factor(side, seed, view),
+            radiance: self.rough.radiance(side),
+            n_below: side.media[side.n() + 1].n,
+        })
+    }
+
+    /// `σ₀` and `S(θ_l) S(θ_v)` of a pair of directions, which do not depend on their azimuths (as
+    /// [`Htsg::diffuse_geometry`] computes them); `None` at grazing, where the geometry is zero.
+    fn pair(&self, light: &Toward, view: &Toward) -> Option<(f64, f64)> {
+        let r = &self.rough.htsg.roughness;
+        let (cl, cv) = (light.dir.1, view.dir.1);
+        (cl > 0.0 && cv > 0.0).then(|| (r.effective_sigma(cl, cv), r.shadowing(cl) * r.shadowing(cv)))
+    }
+
+    /// The directional-diffuse part of [`RoughAt::evaluate`] (`[k_d ⊥, k_d ∥]`, the series' terms and remainder
+    /// bound) for light from `l` seen from `v` at relative azimuth `φ_l − φ_v`; `pair` is [`RoughAt::pair`]
+    /// where the caller has it.
+    fn diffuse(
+        &self,
+        v: &Toward,
+        l: &Toward,
+        azimuth_rad: f64,
+        pair: Option<(f64, f64)>,
+    ) -> Result<([f64; 2], usize, f64), ThinFilmError> {
+        let ((sv, cv), (sl, cl)) = (v.dir, l.dir);
+        let wv = [sv, 0.0, cv];
+        let wl = [sl * azimuth_rad.cos(), sl * azimuth_rad.sin(), cl];
+        let htsg = &self.rough.htsg;
+        let geo = match pair {
+            Some((sigma0, shadow)) => htsg.diffuse_geometry_with(wl, wv, self.k, sigma0, shadow)?,
+            None => htsg.diffuse_geometry(wl, wv, self.k)?,
+        };
+        let f = local_fresnel(self.n_upper, v.n_below, geo.cos_local);
+        let extra = self.multiple_term((sl, cl), (sv, cv));
+        let t = [v.radiance * v.factor[0] * l.factor[0], v.radiance * v.factor[1] * l.factor[1]];
+        let diffuse =
+            [(geo.factor * f.r_s.norm_sqr() + extra[0]) * t[0], (geo.factor * f.r_p.norm_sqr() + extra[1]) * t[1]];
+        Ok((diffuse, geo.terms, geo.bound * t[0].max(t[1])))
+    }
+
+    /// Every view direction of the midpoint rule of [`RoughAt::albedo`] for light from `light_rad`, with what
+    /// does not change along its azimuths prepared once: `f(w, ⊥ and ∥ diffuse at each azimuth)` is called per
+    /// cell in the order of the sum. The terms are [`RoughAt::evaluate`]'s.
+    fn hemisphere(
+        &self,
+        light_rad: f64,
+        steps: usize,
+        mut cell: impl FnMut(f64, [f64; 2]),
+    ) -> Result<(), ThinFilmError> {
+        let rough = self.rough;
+        let (dt, dp) = (0.5 * PI / steps as f64, PI / steps as f64);
+        let l = Side::new(&rough.stack, self.wavelength_nm, light_rad)?;
+        let tl = self.toward(&l, &l.seed(&rough.htsg, self.k), false);
+        for i in 0..steps {
+            let tv = (i as f64 + 0.5) * dt;
+            let w = tv.cos() * tv.sin() * dt * dp;
+            let v = Side::new(&rough.stack, self.wavelength_nm, tv)?;
+            let tview = self.toward(&v, &v.seed(&rough.htsg, self.k), true);
+            let (Some(tview), Some(tl)) = (tview, &tl) else {
+                (0..steps).for_each(|_| cell(w, [0.0; 2]));
+                continue;
+            };
+            let pair = self.pair(tl, &tview);
+            for j in 0..steps {
+                let (d, _, _) = self.diffuse(&tview, tl, (j as f64 + 0.5) * dp, pair)?;
+                cell(w, d);
+            }
+        }
+        Ok(())
     }
 
     /// One side's factor of the diffuse transport per polarisation (the view side when `view`, else the
@@ -424,16 +488,9 @@ impl RoughAt<'_> {
         if steps < 2 {
             return Err(ThinFilmError::Invalid(format!("albedo integration needs at least 2 steps, got {steps}")));
         }
-        let (dt, dp) = (0.5 * PI / steps as f64, PI / steps as f64);
         let mut diffuse = 0.0;
-        for i in 0..steps {
-            let tv = (i as f64 + 0.5) * dt;
-            let w = tv.cos() * tv.sin() * dt * dp;
-            for j in 0..steps {
-                let az = (j as f64 + 0.5) * dp;
-                diffuse += 2.0 * w * self.evaluate(tv, light_rad, az)?.k_d();
-            }
-        }
+        // k_d = (k_d⊥ + k_d∥)/2 (Lsrs::k_d) in each cell
+        self.hemisphere(light_rad, steps, |w, d| diffuse += 2.0 * w * (0.5 * (d[0] + d[1])))?;
         let (s, p) = self.rough.specular(self.wavelength_nm, light_rad)?;
         Ok(Albedo { specular: 0.5 * (s + p), diffuse })
     }
@@ -441,20 +498,24 @@ impl RoughAt<'_> {
     /// [`RoughAt::albedo`] per polarisation: `[(k_r, ∫ k_d cos θ dω)]` for s and p.
     pub fn albedo_polarized(&self, light_rad: f64, steps: usize) -> Result<[Albedo; 2], ThinFilmError> {
         check_angle(light_rad)?;
-        let (dt, dp) = (0.5 * PI / steps.max(2) as f64, PI / steps.max(2) as f64);
         let mut diffuse = [0.0; 2];
-        for i in 0..steps.max(2) {
-            let tv = (i as f64 + 0.5) * dt;
-            let w = tv.cos() * tv.sin() * dt * dp;
-            for j in 0..steps.max(2) {
-                let x = self.evaluate(tv, light_rad, (j as f64 + 0.5) * dp)?;
-                diffuse[0] += 2.0 * w * x.diffuse_s;
-                diffuse[1] += 2.0 * w * x.diffuse_p;
-            }
-        }
+        self.hemisphere(light_rad, steps.max(2), |w, d| {
+            diffuse[0] += 2.0 * w * d[0];
+            diffuse[1] += 2.0 * w * d[1];
+        })?;
         let (s, p) = self.rough.specular(self.wavelength_nm, light_rad)?;
         Ok([Albedo { specular: s, diffuse: diffuse[0] }, Albedo { specular: p, diffuse: diffuse[1] }])
     }
+}
+
+/// One direction of a diffuse pair, prepared by [`RoughAt::toward`]: `(sin θ, cos θ)` in medium `N`, its side
+/// factor per polarisation, the radiance factor and the index below the rough interface (the view side's
+/// are the ones used).
+struct Toward {
+    dir: (f64, f64),
+    factor: [f64; 2],
+    radiance: f64,
+    n_below: Complex64,
 }
 
 /// `n` angles from 0° to 90° inclusive, evenly spaced (the thesis' Listing 3.5 samples `(90/n)(i + 1)`, which
