@@ -270,13 +270,14 @@ fn eigenmodes_1d(set: &Setting, orders: &Orders, surf: &FineSurface, eps: C64) -
         // N = C G − Ȧ α F: the Fourier vector of the normal derivative operator (C4).
         let f: Vec<C64> = (0..nf).map(|r| vecs[(r, i)]).collect();
         let g: Vec<C64> = (0..nf).map(|r| vecs[(nf + r, i)]).collect();
+        // Column by column (the matrices are column-major): every row's sum runs over c in order, as a row-by-row
+        // loop would, but the rows' sums are independent, so they no longer wait on one another.
         let mut nvec = vec![ZERO; nf];
-        for r in 0..nf {
-            let mut acc = ZERO;
-            for c in 0..nf {
-                acc += cmat[(r, c)] * g[c] - adot[(r, c)] * (alpha[c] * f[c]);
+        for c in 0..nf {
+            let (gc, hc) = (g[c], alpha[c] * f[c]);
+            for ((n, &cc), &ac) in nvec.iter_mut().zip(cmat.col_as_slice(c)).zip(adot.col_as_slice(c)) {
+                *n += cc * gc - ac * hc;
             }
-            nvec[r] = acc;
         }
         let mut e_col = vec![ZERO; 4 * nf];
         let mut h_col = vec![ZERO; 4 * nf];
