@@ -141,7 +141,9 @@ fn ladder(two_d: bool, quick: bool) -> Vec<(usize, usize)> {
 }
 
 /// Runs the grcwa script; `Err` with a note when Python or grcwa is missing or fails.
-fn run_grcwa(python: &str, spec: &Value, one_thread: bool) -> std::result::Result<Value, String> {
+// Public but hidden: not API, reachable only for its test in tests/ (`[lib] test = false`).
+#[doc(hidden)]
+pub fn run_grcwa(python: &str, spec: &Value, one_thread: bool) -> std::result::Result<Value, String> {
     let mut cmd = Command::new(python);
     cmd.arg("-c").arg(GRCWA_SCRIPT).arg(spec.to_string());
     if one_thread {
@@ -376,28 +378,4 @@ pub fn text(v: &Value) -> String {
     }
     t.push(format!("load average before / after: {} / {}", v["load_average"]["before"], v["load_average"]["after"]));
     t.join("\n")
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn bad_options_are_refused_with_the_flag_named() {
-        let q = crate::Quiet;
-        for (opts, flag) in [
-            (GratingBenchOptions { repeats: 0, ..Default::default() }, "--repeats 0"),
-            (GratingBenchOptions { peer_seconds: f64::NAN, ..Default::default() }, "--peer-seconds"),
-            (GratingBenchOptions { batch: 0, ..Default::default() }, "--batch 0"),
-        ] {
-            let e = bench_grating(&opts, &q).unwrap_err().to_string();
-            assert!(e.contains(flag), "{e}");
-        }
-    }
-
-    #[test]
-    fn a_missing_python_is_a_note_not_an_error() {
-        let note = run_grcwa("/nonexistent/python3", &json!({}), true).unwrap_err();
-        assert!(note.contains("/nonexistent/python3 not found") && note.contains("grcwa not timed"), "{note}");
-    }
 }

@@ -2,4 +2,14 @@
 
 mod grating_fixtures;
 mod table1;
+mod unit_bench;
+mod unit_film;
+mod unit_film_fit;
+mod unit_fresnel;
+mod unit_grating_bench;
+mod unit_output;
+mod unit_report;
+mod unit_rigorous_brdf;
+mod unit_scene;
+mod unit_unit_cell;
 mod vision_directions;

@@ -105,7 +105,7 @@ pub struct EncodedTable {
 
 /// Chebyshev interpolation of `f` on `[−1, 1]` at the `K` points of the first kind: coefficients `a_j` with
 /// `f ≈ Σ_j a_j T_j(t)` (the constant term already halved).
-fn chebyshev_coefficients(values_at_nodes: &[f64]) -> Vec<f64> {
+pub fn chebyshev_coefficients(values_at_nodes: &[f64]) -> Vec<f64> {
     let k = values_at_nodes.len();
     (0..k)
         .map(|j| {
@@ -120,7 +120,7 @@ fn chebyshev_coefficients(values_at_nodes: &[f64]) -> Vec<f64> {
 }
 
 /// The Chebyshev points of the first kind on `[−1, 1]`.
-fn chebyshev_nodes(k: usize) -> Vec<f64> {
+pub fn chebyshev_nodes(k: usize) -> Vec<f64> {
     (0..k).map(|m| (std::f64::consts::PI * (m as f64 + 0.5) / k as f64).cos()).collect()
 }
 
@@ -136,7 +136,7 @@ pub fn clenshaw(a: &[f64], t: f64) -> f64 {
 }
 
 /// The power of two that puts `max` near the top of the `f16` range (2¹⁵, below its 65504).
-fn half_scale(max: f32) -> f32 {
+pub fn half_scale(max: f32) -> f32 {
     if max > 0.0 && max.is_finite() {
         2f32.powi(max.log2().ceil() as i32 - 15)
     } else {
@@ -250,47 +250,5 @@ impl EncodedTable {
             };
         }
         out
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn names_round_trip_and_bad_names_say_what_works() {
-        for e in [
-            TableEncoding::F32,
-            TableEncoding::F16,
-            TableEncoding::Chebyshev { terms: 12, half: false },
-            TableEncoding::Chebyshev { terms: 16, half: true },
-        ] {
-            assert_eq!(e.name().parse::<TableEncoding>().unwrap(), e);
-        }
-        for bad in ["f64", "cheb", "cheb1", "cheb999", "chebx-f16"] {
-            let msg = bad.parse::<TableEncoding>().unwrap_err().to_string();
-            assert!(msg.contains("f16") && msg.contains("chebK"), "{msg}");
-        }
-    }
-
-    #[test]
-    fn chebyshev_interpolation_reproduces_a_polynomial_of_its_degree() {
-        // 3 − 2t + 0.5t² − t³ at 4 nodes is exact: compare with Horner at arbitrary points.
-        let p = [3.0, -2.0, 0.5, -1.0];
-        let f = |t: f64| p.iter().rev().fold(0.0, |acc, c| acc * t + c);
-        let a = chebyshev_coefficients(&chebyshev_nodes(4).iter().map(|&t| f(t)).collect::<Vec<_>>());
-        for t in [-1.0, -0.3, 0.0, 0.77, 1.0] {
-            assert!((clenshaw(&a, t) - f(t)).abs() < 1e-13, "t = {t}");
-        }
-    }
-
-    #[test]
-    fn half_scale_is_a_power_of_two_that_keeps_the_maximum_below_the_half_range() {
-        for max in [1e-30f32, 3.7e-5, 1.0, 2.0, 6.1e4, 1e30] {
-            let s = half_scale(max);
-            assert_eq!(s.log2().fract(), 0.0);
-            let scaled = max / s;
-            assert!((16384.0..=32768.0).contains(&scaled), "{max}: {scaled}");
-        }
     }
 }

@@ -80,21 +80,3 @@ pub fn dominant_period(patch: &Patch, axis: Axis) -> Option<Period> {
     let near: f64 = p[k.saturating_sub(1).max(1)..(k + 2).min(p.len())].iter().sum();
     Some(Period { period_nm: n as f64 * d / kf, strength: near / total })
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn sine_period_is_found_along_its_axis_only() {
-        // 8 whole periods of 750 nm along x; constant along y.
-        let (rows, cols, dx) = (4, 160, 37.5);
-        let h: Vec<f64> =
-            (0..rows * cols).map(|k| 30.0 * (std::f64::consts::TAU * (k % cols) as f64 * dx / 750.0).sin()).collect();
-        let patch = Patch::from_row_major(rows, cols, dx, dx, &h).unwrap();
-        let p = dominant_period(&patch, Axis::X).unwrap();
-        assert!((p.period_nm - 750.0).abs() < 1e-6, "{p:?}");
-        assert!(p.strength > 0.999);
-        assert!(dominant_period(&patch, Axis::Y).is_none());
-    }
-}

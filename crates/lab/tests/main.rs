@@ -3,4 +3,8 @@
 mod bench;
 mod common;
 mod models;
+mod unit_analysis;
+mod unit_compare;
+mod unit_laser;
+mod unit_stam;
 mod variants;

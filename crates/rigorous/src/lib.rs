@@ -31,7 +31,10 @@
 
 mod bench;
 mod cmethod;
-mod surface;
+// Public but hidden: not part of the API, reachable only so that its unit test can live in tests/ (Cargo.toml,
+// `[lib] test = false`); a pure function of its inputs, so exposing it lets no caller break the solver.
+#[doc(hidden)]
+pub mod surface;
 mod waves;
 
 pub use bench::{benchmark, BenchCase, BenchOrder, BenchReport};
@@ -623,6 +626,3 @@ pub fn sample_2d(
     }
     Profile2d { period_x_nm, period_y_nm, rows, cols, heights_nm: heights }
 }
-
-#[cfg(test)]
-mod tests;

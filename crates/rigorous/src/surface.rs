@@ -10,7 +10,7 @@ use rustfft::FftPlanner;
 /// A periodic surface sampled on a fine grid of `lx × ly` points over one unit cell (`ly = 1` for a 1-D profile),
 /// row index `j` along y, column `i` along x, stored `[j * lx + i]`.
 #[derive(Debug, Clone)]
-pub(crate) struct FineSurface {
+pub struct FineSurface {
     pub lx: usize,
     pub ly: usize,
     /// Normalised height `a = k0 h` at the fine grid points, mean removed.
@@ -23,7 +23,7 @@ pub(crate) struct FineSurface {
 
 /// Fourier coefficients of a periodic function on an `lx × ly` grid, indexed by wrapped harmonic numbers.
 #[derive(Debug, Clone)]
-pub(crate) struct Coeffs {
+pub struct Coeffs {
     lx: usize,
     ly: usize,
     c: Vec<C64>,
@@ -153,28 +153,5 @@ impl FineSurface {
     pub fn coeffs_of(&self, f: impl Fn(f64, f64, f64) -> C64) -> Coeffs {
         let vals: Vec<C64> = (0..self.a.len()).map(|k| f(self.a[k], self.ax[k], self.ay[k])).collect();
         fourier_coeffs(self.lx, self.ly, &vals)
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn interpolant_of_a_sine_has_the_analytic_slope() {
-        let n = 16;
-        let period = 1000.0;
-        let amp = 50.0;
-        let h: Vec<f64> = (0..n).map(|i| amp * (2.0 * std::f64::consts::PI * i as f64 / n as f64).sin()).collect();
-        let s = FineSurface::from_samples(n, 1, &h, period, 1.0, 1.0, 64, 1);
-        for i in 0..64 {
-            let x = i as f64 / 64.0 * period;
-            let k = 2.0 * std::f64::consts::PI / period;
-            assert!((s.a[i] - amp * (k * x).sin()).abs() < 1e-9);
-            assert!((s.ax[i] - amp * k * (k * x).cos()).abs() < 1e-12);
-        }
-        let c = s.coeffs_of(|a, _, _| C64::new(a, 0.0));
-        assert!((c.get(1, 0) - C64::new(0.0, -amp / 2.0)).norm() < 1e-9);
-        assert!(c.get(2, 0).norm() < 1e-9);
     }
 }

@@ -1,4 +1,7 @@
-use super::*;
+//! The unit tests of src/lib.rs (the solvers' physics checks and input validation), moved here so that
+//! `cargo test` compiles the library once.
+
+use iridis_rigorous::*;
 use num_complex::Complex64 as C;
 use std::f64::consts::PI;
 

@@ -1,0 +1,30 @@
+//! The unit tests of src/film.rs (thin-film spectra, grids and angles), moved here so that `cargo test` compiles the
+//! library once.
+
+use iridis_api::film::*;
+use iridis_api::report::Quiet;
+
+#[test]
+fn a_quarter_wave_layer_reflects_as_the_closed_form_says() {
+    // n₁ d = λ/4 at 550 nm: R = ((n₀ n_s − n₁²) / (n₀ n_s + n₁²))² (Born & Wolf §1.6.4), and R + T = 1.
+    let d = 550.0 / (4.0 * 1.38);
+    let stack = parse_stack(&format!("air | n=1.38 {d}nm | n=1.5")).unwrap();
+    let s = spectrum(&stack, "air|n=1.38|n=1.5", 0.0, &[550.0], Polarization::Average, &Quiet).unwrap();
+    let want: f64 = ((1.5 - 1.38 * 1.38) / (1.5 + 1.38 * 1.38f64)).powi(2);
+    assert!((s.r()[0] - want).abs() < 1e-12, "{} vs {want}", s.r()[0]);
+    assert!((s.r()[0] + s.t()[0] - 1.0).abs() < 1e-12);
+    assert_eq!(s.a()[0], 0.0, "a lossless stack's 1 − R − T is printed as 0");
+    assert_eq!(s.title, "air | n=1.38 | n=1.5");
+    assert!(s.csv().starts_with("wavelength_nm,R,T,A,Rs,Rp,Ts,Tp,psi_deg,delta_deg\n550,"));
+}
+
+#[test]
+fn grids_and_angles_refuse_what_cannot_be_meant() {
+    assert_eq!(wavelength_grid(400.0, 410.0, 5.0).unwrap(), vec![400.0, 405.0, 410.0]);
+    assert!(wavelength_grid(0.0, 410.0, 5.0).unwrap_err().to_string().contains("--from must be a positive"));
+    assert!(wavelength_grid(500.0, 410.0, 5.0).unwrap_err().to_string().contains("must not be below"));
+    assert!(wavelength_grid(400.0, 800.0, 0.001).unwrap_err().to_string().contains("too many"));
+    assert!(parse_angles("0deg:100deg:50deg", "--angles").unwrap_err().to_string().contains("100° is outside"));
+    assert_eq!(round_deg(30f64.to_radians()), 30.0);
+    assert_eq!(fmt_deg(0.5f64.to_radians()), "0.5");
+}

@@ -1,0 +1,212 @@
+//! The unit tests of src/grating.rs (unit cells' diffraction orders and energy-normalised lobes), moved here so that
+//! `cargo test` compiles the library once.
+
+use iridis_diffraction::geometry::{direction, Fresnel};
+use iridis_diffraction::geometry::{dot, FresnelSource, Vec3};
+use iridis_diffraction::grating::*;
+use iridis_diffraction::taylor::terms_for_bound;
+use iridis_diffraction::Patch;
+use num_complex::Complex64;
+
+/// A reflector that returns everything (`R = 1` for both polarisations).
+#[derive(Debug)]
+struct Perfect;
+impl FresnelSource for Perfect {
+    fn reflectance(&self, _: f64, _: f64) -> f64 {
+        1.0
+    }
+    fn depends_on_wavelength(&self) -> bool {
+        false
+    }
+    fn describe(&self) -> String {
+        "perfect".into()
+    }
+}
+
+/// `J_m(x)` by its power series (Abramowitz & Stegun 9.1.10), enough terms for |x| < 10.
+fn bessel_j(m: i64, x: f64) -> f64 {
+    let (mu, sign) = if m < 0 { (-m, if m % 2 == 0 { 1.0 } else { -1.0 }) } else { (m, 1.0) };
+    let mut term = (x / 2.0).powi(mu as i32) / (1..=mu).map(|k| k as f64).product::<f64>();
+    let mut sum = term;
+    for k in 1..60 {
+        term *= -(x * x / 4.0) / (k as f64 * (k + mu) as f64);
+        sum += term;
+    }
+    sign * sum
+}
+
+fn sine(period: f64, amplitude: f64, samples: usize) -> Patch {
+    let h: Vec<f64> = (0..4 * samples)
+        .map(|i| amplitude * (std::f64::consts::TAU * (i % samples) as f64 / samples as f64).sin())
+        .collect();
+    Patch::from_row_major(4, samples, period / samples as f64, 50.0, &h).unwrap()
+}
+
+#[test]
+fn a_sine_gratings_orders_are_kirchhoffs_bessel_functions() {
+    // exp(i k w a sin(2πx/Λ)) = Σ_m J_m(k w a) e^{2πi m x/Λ} (Jacobi–Anger): η_m = K R J_m(k w_m a)².
+    let (period, a, lambda) = (1100.0, 60.0, 500.0);
+    let cell = UnitCell::new(&sine(period, a, 256), 380.0).unwrap();
+    assert_eq!(cell.lines(), Lines::AlongX);
+    let wi = direction(30f64.to_radians(), 0.0);
+    let ans = cell.efficiencies(wi, lambda, &Perfect, Normalisation::Kirchhoff).unwrap();
+    assert_eq!(ans.orders.iter().map(|o| o.m).collect::<Vec<_>>(), vec![-1, 0, 1, 2, 3]);
+    for o in &ans.orders {
+        // Grating equation: sin θ_r = sin θ_i − m λ/Λ, θ_r positive on the specular side (φ = 180°).
+        let s = 30f64.to_radians().sin() - o.m as f64 * lambda / period;
+        let signed = if o.phi_deg > 90.0 && o.phi_deg < 270.0 { o.theta_deg } else { -o.theta_deg };
+        assert!((signed.to_radians().sin() - s).abs() < 1e-12, "{o:?}");
+        let wr = [-s, 0.0, (1.0 - s * s).sqrt()];
+        let (ci, cr) = (wi[2], wr[2]);
+        let k = (1.0 + dot(wi, wr)).powi(2) / (ci * cr * (ci + cr).powi(2));
+        let j = bessel_j(o.m, std::f64::consts::TAU / lambda * (ci + cr) * a);
+        let expect = k * j * j;
+        assert!((o.efficiency.te - expect).abs() < 1e-9 * expect.max(1e-3), "{o:?} vs {expect}");
+    }
+}
+
+#[test]
+fn energy_normalised_orders_of_a_perfect_reflector_return_all_light_at_every_incidence() {
+    let cell = UnitCell::new(&sine(1100.0, 150.0, 128), 380.0).unwrap();
+    for deg in [0.0, 30.0, 60.0, 75.0, 85.0, 89.0] {
+        let wi = direction(f64::to_radians(deg), 0.3);
+        for lambda in [400.0, 550.0, 700.0] {
+            let e = cell.efficiencies(wi, lambda, &Perfect, Normalisation::Energy).unwrap();
+            assert!((e.reflected_total.unpolarized - 1.0).abs() < 1e-12, "{deg}° {lambda}: {e:?}");
+            let k = cell.efficiencies(wi, lambda, &Perfect, Normalisation::Kirchhoff).unwrap();
+            assert!((k.kirchhoff_sum - k.reflected_total.unpolarized).abs() < 1e-12);
+        }
+    }
+    // The printed obliquity creates energy at oblique light (the 2.08 at 75°, 150 nm amplitude).
+    let k = cell.efficiencies(direction(75f64.to_radians(), 0.0), 550.0, &Perfect, Normalisation::Kirchhoff);
+    assert!(k.unwrap().reflected_total.te > 1.5);
+}
+
+#[test]
+fn energy_normalised_efficiencies_are_reciprocal() {
+    // Light from ω_i into order G leaving along ω_r; the reverse light from ω_r leaves along ω_i in the same
+    // order G (ω_i,xy = −ω_r,xy + G): the efficiencies agree (metal Fresnel included, symmetric in θ_h).
+    let h: Vec<f64> = (0..96 * 96)
+        .map(|i| {
+            let (x, y) = ((i % 96) as f64 / 96.0, (i / 96) as f64 / 96.0);
+            40.0 * (std::f64::consts::TAU * x).sin() + 25.0 * (std::f64::consts::TAU * (x + 2.0 * y)).cos().powi(3)
+        })
+        .collect();
+    let patch = Patch::from_row_major(96, 96, 1400.0 / 96.0, 1700.0 / 96.0, &h).unwrap();
+    let cell = UnitCell::new(&patch, 380.0).unwrap();
+    assert_eq!(cell.lines(), Lines::Crossed);
+    let metal = Fresnel::Index { n: Complex64::new(0.2, 3.4) };
+    let wi = direction(50f64.to_radians(), 0.7);
+    let ans = cell.efficiencies(wi, 600.0, &metal, Normalisation::Energy).unwrap();
+    assert!(ans.orders.len() > 4);
+    assert!(ans.reflected_total.unpolarized < 1.0);
+    for o in &ans.orders {
+        let wr = direction(o.theta_deg.to_radians(), o.phi_deg.to_radians());
+        let back = cell.efficiencies(wr, 600.0, &metal, Normalisation::Energy).unwrap();
+        let r = back.orders.iter().find(|b| (b.m, b.n) == (o.m, o.n)).expect("the reverse order");
+        let there = direction(r.theta_deg.to_radians(), r.phi_deg.to_radians());
+        assert!((0..3).all(|c| (there[c] - wi[c]).abs() < 1e-9), "{there:?} vs {wi:?}");
+        for (x, y) in [(o.efficiency.te, r.efficiency.te), (o.efficiency.tm, r.efficiency.tm)] {
+            assert!((x - y).abs() < 1e-11 * x.max(1e-6), "order {} {}: {x} vs {y}", o.m, o.n);
+        }
+    }
+}
+
+/// `∬ f_r cos θ_r dω_r = ∬ f_r du dv` of a continuous evaluator for light at `wi`, one wavelength, on a
+/// grid over the unit disk.
+fn hemispherical(e: &dyn iridis_diffraction::Evaluator, wi: Vec3, lambda: f64, n: usize) -> f64 {
+    let du = 2.0 / n as f64;
+    let mut sum = 0.0;
+    for j in 0..n {
+        for i in 0..n {
+            let (x, y) = (-1.0 + (i as f64 + 0.5) * du, -1.0 + (j as f64 + 0.5) * du);
+            if x * x + y * y >= 1.0 {
+                continue;
+            }
+            let wr = [x, y, (1.0 - x * x - y * y).sqrt()];
+            let rho = e.reflectance(lambda, wi, wr).unwrap();
+            let f =
+                e.shading().unwrap().fresnel.normal_reflectance() * rho * e.radiometric_gain(lambda).unwrap() / wi[2];
+            sum += f * du * du;
+        }
+    }
+    sum
+}
+
+#[test]
+fn energy_normalised_lobes_of_a_deep_sine_return_the_light_where_kirchhoffs_create_it() {
+    // A 150 nm-amplitude sine of period 1100 nm (4 periods, window as wide as the cell) on a near-perfect
+    // reflector, light at 75°: Kirchhoff's lobes return ~2× the light (the orders' 2.08), normalised ~1.
+    let row: Vec<f64> = (0..256).map(|i| 150.0 * (std::f64::consts::TAU * (i % 64) as f64 / 64.0).sin()).collect();
+    let heights: Vec<f64> = (0..64).flat_map(|_| row.clone()).collect();
+    let patch = Patch::from_row_major(64, 256, 4400.0 / 256.0, 4400.0 / 64.0, &heights).unwrap();
+    let terms = std::sync::Arc::new(
+        iridis_diffraction::TaylorTerms::compute(&patch, terms_for_bound(150.0, 500.0, 1e-8), 4400.0).unwrap(),
+    );
+    let mirror = Fresnel::Index { n: Complex64::new(1e-4, 30.0) };
+    let shading =
+        iridis_diffraction::Shading { fresnel: std::sync::Arc::new(mirror), shadowing: false, ..Default::default() };
+    let spectral = iridis_diffraction::SpectralSetup::default();
+    let raw = iridis_diffraction::Reference { terms, shading, spectral: spectral.clone() };
+    let wi = direction(75f64.to_radians(), 0.0);
+    let before = hemispherical(&raw, wi, 500.0, 400);
+    let e = LobeScaled::energy_normalised(Box::new(raw), &patch, spectral).unwrap();
+    let after = hemispherical(&e, wi, 500.0, 400);
+    eprintln!("75°, 500 nm: Kirchhoff's lobes return {before:.4}, normalised {after:.4}");
+    assert!(before > 1.5, "{before}");
+    assert!((after - 1.0).abs() < 0.03, "{after}");
+    // Reciprocity at an order's direction: light from ω_r sees ω_i in the same order (same factor product).
+    let wr = [-(wi[0] - 500.0 / 1100.0), 0.0, (1.0 - (wi[0] - 500.0 / 1100.0).powi(2)).sqrt()];
+    use iridis_diffraction::Evaluator;
+    let (a, b) = (e.reflectance(500.0, wi, wr).unwrap() / wi[2], e.reflectance(500.0, wr, wi).unwrap() / wr[2]);
+    assert!((a / b - 1.0).abs() < 1e-9, "{a} vs {b}");
+}
+
+#[test]
+fn a_cell_for_one_light_gives_the_same_bits_and_refuses_other_light() {
+    // 8 µm crossed cell: > 600 channels at 400 and 500 nm (rows normalised alone), so `for_light` keeps
+    // only the bins within 1/λ of ω_i,xy/λ; its orders are those of the cell for every light, bit for bit.
+    let h: Vec<f64> = (0..80 * 80)
+        .map(|i| {
+            let (x, y) = ((i % 80) as f64 / 80.0, (i / 80) as f64 / 80.0);
+            45.0 * (std::f64::consts::TAU * 7.0 * x).sin() + 20.0 * (std::f64::consts::TAU * (3.0 * x + 5.0 * y)).cos()
+        })
+        .collect();
+    let patch = Patch::from_row_major(80, 80, 100.0, 100.0, &h).unwrap();
+    let wi = direction(40f64.to_radians(), 1.1);
+    let glass = Fresnel::Index { n: Complex64::new(1.5, 0.0) };
+    let all = UnitCell::new(&patch, 400.0).unwrap();
+    let one = UnitCell::for_light(&patch, wi, &[400.0, 500.0]).unwrap();
+    assert!(
+        one.terms.memory_bytes() * 3 < all.terms.memory_bytes(),
+        "{} vs {}",
+        one.terms.memory_bytes(),
+        all.terms.memory_bytes()
+    );
+    for lambda in [400.0, 500.0] {
+        for norm in [Normalisation::Energy, Normalisation::Kirchhoff] {
+            let a = all.efficiencies(wi, lambda, &glass, norm).unwrap();
+            assert_eq!(a.normalisation, if norm == Normalisation::Energy { "energy-row" } else { "kirchhoff" });
+            assert_eq!(one.efficiencies(wi, lambda, &glass, norm).unwrap(), a);
+        }
+    }
+    assert!(one.efficiencies(direction(0.3, 0.0), 500.0, &glass, Normalisation::Energy).is_err());
+    assert!(one.efficiencies(wi, 390.0, &glass, Normalisation::Energy).is_err());
+    // Few channels (the full scaling reads every direction's bins): the cell for every light.
+    let small = UnitCell::for_light(&patch, wi, &[400.0, 5000.0]).unwrap();
+    assert_eq!(small.terms.memory_bytes(), all.terms.memory_bytes());
+}
+
+#[test]
+fn a_flat_cell_is_a_mirror_with_fresnels_reflectance() {
+    let patch = Patch::from_row_major(8, 8, 100.0, 100.0, &[5.0; 64]).unwrap();
+    let cell = UnitCell::new(&patch, 380.0).unwrap();
+    let glass = Fresnel::Index { n: Complex64::new(1.5, 0.0) };
+    let wi = direction(60f64.to_radians(), 0.0);
+    let ans = cell.efficiencies(wi, 500.0, &glass, Normalisation::Energy).unwrap();
+    let [rs, rp] = iridis_diffraction::geometry::fresnel_sp(Complex64::new(1.5, 0.0), 0.5);
+    for o in &ans.orders {
+        let want = if (o.m, o.n) == (0, 0) { [rs, rp] } else { [0.0, 0.0] };
+        assert!((o.efficiency.te - want[0]).abs() < 1e-14 && (o.efficiency.tm - want[1]).abs() < 1e-14, "{o:?}");
+    }
+}
