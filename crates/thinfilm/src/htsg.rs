@@ -209,6 +209,22 @@ impl Roughness {
         (sin / cos) * erfc(self.a(cos))
     }
 
+    /// `(S(θ), K(θ))`: [`Roughness::shadowing`] and [`Roughness::k_factor`] of one direction, bit for bit, with
+    /// one `erfc` between them (integrals over many directions need both).
+    pub fn shadowing_and_k(&self, cos: f64) -> (f64, f64) {
+        if cos <= 0.0 {
+            return (0.0, f64::INFINITY);
+        }
+        let a = self.a(cos);
+        if a.is_infinite() {
+            return (1.0, self.k_factor(cos));
+        }
+        let e = erfc(a);
+        let lambda = 0.5 * ((-a * a).exp() / (PI.sqrt() * a) - e);
+        let sin = (1.0 - cos * cos).max(0.0).sqrt();
+        ((1.0 - 0.5 * e) / (lambda.max(0.0) + 1.0), (sin / cos) * e)
+    }
+
     /// The effective roughness `σ₀` from `K_i + K_r` (module documentation): solves
     /// `√(π/2) u = (K/4) e^{−u²/2}` for `u = z₀/σ` (one root, bracketed in `[0, K/(4√(π/2))]`) by safeguarded
     /// Newton steps and returns `σ/√(1 + u²)`.

@@ -224,11 +224,12 @@ impl Lobe {
                             continue;
                         }
                         let cos = (1.0 - s2).sqrt();
-                        let shadow = shadow_i * r.shadowing(cos);
+                        let (shadow_r, k_r) = r.shadowing_and_k(cos);
+                        let shadow = shadow_i * shadow_r;
                         if shadow <= 0.0 {
                             continue;
                         }
-                        let sigma0 = r.effective_sigma_from_k(k_i + r.k_factor(cos));
+                        let sigma0 = r.effective_sigma_from_k(k_i + k_r);
                         let geo = htsg.diffuse_geometry_with([si, 0.0, ci], [p[0], p[1], cos], k, sigma0, shadow)?;
                         // Mirror symmetry about the plane of incidence: ψ and −ψ alike.
                         let weight = 2.0 * rho * width * dpsi * geo.factor;
