@@ -3,3 +3,8 @@
 mod against_references;
 mod lab_default_white;
 mod tonemap_resample;
+mod unit_cie;
+mod unit_convert;
+mod unit_integrate;
+mod unit_spectrum;
+mod unit_units;

@@ -3,3 +3,5 @@
 mod against_scipy;
 mod jacobian;
 mod synthetic;
+mod unit_data;
+mod unit_template;

@@ -10,4 +10,5 @@ mod furnace;
 mod gltf_fixtures;
 mod gpu_vs_cpu;
 mod scenes_gpu_vs_cpu;
+mod unit_scene;
 mod white_furnace_gpu;

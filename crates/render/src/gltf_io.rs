@@ -549,15 +549,3 @@ pub struct GltfOptions {
     pub camera: Option<String>,
     pub ignore_lights: bool,
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn base64_round_trip() {
-        assert_eq!(base64_decode("aXJpZGlz").unwrap(), b"iridis");
-        assert_eq!(base64_decode("aXJpZA==").unwrap(), b"irid");
-        assert!(base64_decode("a*b").is_none());
-    }
-}

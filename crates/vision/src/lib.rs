@@ -28,9 +28,6 @@ pub mod system;
 pub mod table;
 pub mod template;
 
-#[cfg(test)]
-mod fixture_tests;
-
 pub use light::{Background, Light, LightUnits};
 pub use model::{
     analyse, analyse_table, AchromaticChoice, Analysis, Distance, NoiseModel, Options, ReceptorNoise, Sample,

@@ -41,9 +41,16 @@ pub fn detect(bytes: &[u8]) -> bool {
     matches!(t & !0x40, 2 | 4 | 8 | 0x10 | 0x20) && t & 1 == 0
 }
 
-struct Wave<'a> {
-    le: bool,
-    b: &'a [u8],
+/// Numbers at byte offsets of a wave, in the file's byte order.
+// Public but hidden: not API, reachable only for the crate's tests in tests/ (Cargo.toml, `[lib] test = false`);
+// a view of borrowed bytes with no invariant to keep.
+#[doc(hidden)]
+#[derive(Debug)]
+pub struct Wave<'a> {
+    /// Whether the file is little-endian.
+    pub le: bool,
+    /// The file's bytes.
+    pub b: &'a [u8],
 }
 
 impl Wave<'_> {
@@ -55,13 +62,16 @@ impl Wave<'_> {
         }
         s
     }
-    fn i32(&self, at: usize) -> i32 {
+    /// The `i32` at `at`.
+    pub fn i32(&self, at: usize) -> i32 {
         i32::from_le_bytes(self.le_bytes(at))
     }
-    fn u16(&self, at: usize) -> u16 {
+    /// The `u16` at `at`.
+    pub fn u16(&self, at: usize) -> u16 {
         u16::from_le_bytes(self.le_bytes(at))
     }
-    fn f64(&self, at: usize) -> f64 {
+    /// The `f64` at `at`.
+    pub fn f64(&self, at: usize) -> f64 {
         f64::from_le_bytes(self.le_bytes(at))
     }
 }
@@ -254,21 +264,4 @@ pub fn read(bytes: &[u8], side: Option<&Sidecar>, opts: &LoadOptions) -> Result<
     // The note's scan size over the points (AFMReader's pixel), else the wave's own x/y step.
     let file_pixel = p.note_size.map(|(f, s)| (f / nx as f64, s / ny as f64)).or(p.pixel_nm);
     super::finish_channel(values, &p.list, &p.list[k], file_pixel, side, opts, "Igor binary wave")
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// A big-endian wave (Igor Pro on a PowerPC Mac) gives the same numbers as a little-endian one.
-    #[test]
-    fn wave_reads_both_byte_orders() {
-        let (i, u, f) = (-123_456i32, 0xBEEFu16, 6.02e23f64);
-        let le: Vec<u8> = [&i.to_le_bytes()[..], &u.to_le_bytes(), &f.to_le_bytes()].concat();
-        let be: Vec<u8> = [&i.to_be_bytes()[..], &u.to_be_bytes(), &f.to_be_bytes()].concat();
-        for (b, little) in [(&le, true), (&be, false)] {
-            let w = Wave { le: little, b };
-            assert_eq!((w.i32(0), w.u16(4), w.f64(6)), (i, u, f), "little-endian: {little}");
-        }
-    }
 }

@@ -425,7 +425,9 @@ pub fn sidecar_path(path: &Path) -> PathBuf {
 /// Pixel sizes: the file's where it states one, else the options' (`--pixel-size`), else the sidecar's. A
 /// user's size that contradicts the file's (by more than 1e-6 relative) is ignored with a warning naming
 /// both, or — with `override_units` — used, with a warning naming the file's.
-pub(crate) fn pick_pixel(
+// Public but hidden: not API, reachable only for the crate's tests in tests/ (Cargo.toml, `[lib] test = false`).
+#[doc(hidden)]
+pub fn pick_pixel(
     from_file: Option<(f64, f64)>,
     side: Option<&Sidecar>,
     opts: &LoadOptions,
@@ -459,7 +461,9 @@ pub(crate) fn pick_pixel(
 }
 
 /// A pixel size in nm with four significant digits (0.4940, 65.00, 1563).
-fn pixel_text(nm: f64) -> String {
+// Public but hidden: not API, reachable only for the crate's tests in tests/ (Cargo.toml, `[lib] test = false`).
+#[doc(hidden)]
+pub fn pixel_text(nm: f64) -> String {
     // Rounded to four significant digits first, so that 9.999999999 reads 10.00, not 10.000.
     let r: f64 = format!("{nm:.3e}").parse().unwrap_or(nm);
     let digits = (3 - r.abs().log10().floor() as i32).max(0) as usize;
@@ -505,60 +509,4 @@ pub fn unit_to_nm(unit: &str) -> Option<f64> {
         "Å" | "A" | "Angstrom" | "angstrom" => 0.1,
         _ => return None,
     })
-}
-
-/// Shared test helpers.
-#[cfg(test)]
-pub(crate) fn sample_field() -> HeightField {
-    let (rows, cols) = (7, 9);
-    let h = (0..rows * cols).map(|i| ((i as f64) * 0.37).sin() * 40.0 + i as f64 * 0.01).collect();
-    HeightField::new(rows, cols, 12.5, 13.25, h).unwrap()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn detection_by_content() {
-        assert_eq!(detect_format(b"GWYP\0\0"), Some(Format::Gwy));
-        assert_eq!(detect_format(b"\x93NUMPY\x01\x00"), Some(Format::Npy));
-        assert_eq!(detect_format(b"\x89PNG\r\n\x1a\nxxxx"), Some(Format::Png));
-        assert_eq!(detect_format(b"II*\0...."), Some(Format::Tiff));
-        assert_eq!(detect_format(b"1 2 3\n4 5 6\n"), Some(Format::Text));
-        assert_eq!(detect_format(b"\xff\xd8\xff\xe0JFIF"), None);
-        let e = read_bytes(b"\xff\xd8\xff\xe0JFIF", "x.jpg", None, &LoadOptions::default()).unwrap_err();
-        assert!(e.to_string().contains("JPEG"), "{e}");
-    }
-
-    /// A pixel size the file states wins over a contradicting --pixel-size (issue 32: 50 nm turned a 0.506 µm
-    /// scan into 51 µm without a word), with a warning naming the file's value; --override-units uses the
-    /// user's, naming the file's too. A flag that agrees, or a file without a pixel size, says nothing.
-    #[test]
-    fn the_files_pixel_size_wins_unless_overridden() {
-        let file = Some((0.494, 0.494));
-        let given = LoadOptions { pixel_size_nm: Some(50.0), ..Default::default() };
-        let (p, w) = pick_pixel(file, None, &given, "x").unwrap();
-        assert_eq!(p, (0.494, 0.494));
-        let w = w.unwrap();
-        assert!(w.contains("--pixel-size 50 nm ignored") && w.contains("0.4940 × 0.4940 nm"), "{w}");
-        let forced = LoadOptions { override_units: true, ..given.clone() };
-        let (p, w) = pick_pixel(file, None, &forced, "x").unwrap();
-        assert_eq!(p, (50.0, 50.0));
-        assert!(w.unwrap().contains("replaces the file's own 0.4940 × 0.4940 nm"));
-        assert_eq!(pick_pixel(None, None, &given, "x").unwrap(), ((50.0, 50.0), None));
-        assert_eq!(
-            (pixel_text(9.999_999_999_9), pixel_text(65.0), pixel_text(1563.2)),
-            ("10.00".into(), "65.00".into(), "1563".into())
-        );
-        let same = LoadOptions { pixel_size_nm: Some(0.494), ..Default::default() };
-        assert_eq!(pick_pixel(file, None, &same, "x").unwrap().1, None);
-    }
-
-    #[test]
-    fn units() {
-        assert_eq!(unit_to_nm("m"), Some(1e9));
-        assert_eq!(unit_to_nm("µm"), Some(1e3));
-        assert_eq!(unit_to_nm("furlong"), None);
-    }
 }

@@ -33,7 +33,9 @@ struct Image {
 }
 
 /// `"V [Sens. Zsens] (0.00195 V/LSB) 127.9392 V"` → (sensitivity key, soft value, soft unit).
-fn parse_z_scale(v: &str) -> Option<(Option<String>, f64, String)> {
+// Public but hidden: not API, reachable only for the crate's tests in tests/ (Cargo.toml, `[lib] test = false`).
+#[doc(hidden)]
+pub fn parse_z_scale(v: &str) -> Option<(Option<String>, f64, String)> {
     let key = match (v.find('['), v.find(']')) {
         (Some(a), Some(b)) if b > a => Some(v[a + 1..b].trim().to_string()),
         _ => None,
@@ -47,7 +49,9 @@ fn parse_z_scale(v: &str) -> Option<(Option<String>, f64, String)> {
 }
 
 /// `"V 4.273442 nm/V"` → (4.273442, "nm").
-fn parse_sens(v: &str) -> Option<(f64, String)> {
+// Public but hidden: not API, reachable only for the crate's tests in tests/ (Cargo.toml, `[lib] test = false`).
+#[doc(hidden)]
+pub fn parse_sens(v: &str) -> Option<(f64, String)> {
     let mut it = v.split_whitespace();
     let _ = it.next()?;
     let k: f64 = it.next()?.parse().ok()?;
@@ -55,7 +59,10 @@ fn parse_sens(v: &str) -> Option<(f64, String)> {
     Some((k, unit.strip_suffix("/V").unwrap_or(unit).to_string()))
 }
 
-fn length_unit(u: &str) -> Option<f64> {
+/// A Nanoscope length unit (`~m` is µm) in nm, `None` if it is not a length.
+// Public but hidden: not API, reachable only for the crate's tests in tests/ (Cargo.toml, `[lib] test = false`).
+#[doc(hidden)]
+pub fn length_unit(u: &str) -> Option<f64> {
     let u = if let Some(rest) = u.strip_prefix('~') { format!("µ{rest}") } else { u.to_string() };
     super::unit_to_nm(&u)
 }
@@ -211,20 +218,4 @@ pub fn read(bytes: &[u8], side: Option<&Sidecar>, opts: &LoadOptions) -> Result<
     }
     let file_pixel = im.extent.map(|(ex, ey)| (ex / cols as f64, ey / rows as f64));
     super::finish_channel(values, &list, &im.info, file_pixel, side, opts, "NanoScope")
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn scale_lines() {
-        let (k, soft, u) = parse_z_scale("V [Sens. Zsens] (0.001952197 V/LSB) 127.9392 V").unwrap();
-        assert_eq!((k.as_deref(), soft, u.as_str()), (Some("Sens. Zsens"), 127.9392, "V"));
-        let (_, soft, u) =
-            parse_z_scale("V [Sens. LogStiffnessSens] (0.00000000745058 log(Arb)/LSB) 32.00000 log(Arb)").unwrap();
-        assert_eq!((soft, u.as_str()), (32.0, "log(Arb)"));
-        assert_eq!(parse_sens("V 4.273442 nm/V").unwrap(), (4.273442, "nm".to_string()));
-        assert_eq!(length_unit("~m"), Some(1000.0));
-    }
 }

@@ -6,15 +6,15 @@
 
 use serde_json::Value;
 
-use crate::light::{Background, Light};
-use crate::model::{analyse_table, NoiseModel, Options, ReceptorNoise};
-use crate::space::Space;
-use crate::system::VisualSystem;
-use crate::table::{Curve, SpectraTable};
-use crate::template::{alpha_band, beta_band, Chromophore, Droplet, DropletType};
+use iridis_vision::light::{Background, Light};
+use iridis_vision::model::{analyse_table, NoiseModel, Options, ReceptorNoise};
+use iridis_vision::space::Space;
+use iridis_vision::system::VisualSystem;
+use iridis_vision::table::{Curve, SpectraTable};
+use iridis_vision::template::{alpha_band, beta_band, Chromophore, Droplet, DropletType};
 
 fn fixture() -> Value {
-    serde_json::from_str(include_str!("../tests/fixtures/vision_numpy.json")).unwrap()
+    serde_json::from_str(include_str!("fixtures/vision_numpy.json")).unwrap()
 }
 
 fn nums(v: &Value) -> Vec<f64> {

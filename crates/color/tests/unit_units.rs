@@ -1,0 +1,58 @@
+//! The unit tests of src/units.rs, moved here so that `cargo test` compiles the library once.
+
+use iridis_color::units::*;
+
+#[test]
+fn values_print_as_written() {
+    assert_eq!(degrees(parse_angle_rad("30deg").unwrap()), 30.0);
+    assert_eq!(degrees(parse_angle_rad("29.5deg").unwrap()), 29.5);
+    assert_eq!(tidy(6.4000000000000006e-6), 6.4e-6);
+    assert_eq!(tidy(-0.1 - 0.2), -0.3);
+    assert_eq!(format_length(1100.0), "1100nm");
+    assert_eq!(format_length(6400.000000000001), "6.4um");
+    assert_eq!(format_length(2500.0 * 6f64.to_radians().tan()), "262.761nm");
+    assert_eq!(format_length(65e6), "65mm");
+    assert_eq!(format_length(4000.0), "4000nm");
+    assert_eq!(format_angle(parse_angle_rad("30deg").unwrap()), "30deg");
+    assert_eq!(format_angle(0.0), "0deg");
+}
+
+#[test]
+fn messages_say_what_to_write() {
+    // An angle takes "an"; a length "a".
+    assert!(parse_angle_rad("30").unwrap_err().0.contains("write an angle with a unit"));
+    assert!(parse_length_nm("30").unwrap_err().0.contains("write a length with a unit"));
+    // nan and inf are numbers to Rust but not lengths: no 'nannm' suggestion.
+    for s in ["nan", "inf", "-inf"] {
+        let e = parse_length_nm(s).unwrap_err().0;
+        assert!(!e.contains("nannm") && !e.contains("infnm") && e.contains("finite") && e.contains("65nm"), "{e}");
+    }
+    // A range's example is in the range's own quantity.
+    assert!(parse_range("0deg:80deg", parse_angle_rad).unwrap_err().0.contains("e.g. 0deg:80deg:1deg"));
+    assert!(parse_range("0nm", parse_length_nm).unwrap_err().0.contains("e.g. 0nm:2000nm:2nm"));
+}
+
+#[test]
+fn lengths() {
+    assert_eq!(parse_length_nm("65nm").unwrap(), 65.0);
+    assert!((parse_length_nm("0.43um").unwrap() - 430.0).abs() < 1e-9);
+    assert_eq!(parse_length_nm("65µm").unwrap(), 65_000.0);
+    assert_eq!(parse_length_nm("65μm").unwrap(), 65_000.0);
+    assert_eq!(parse_length_nm("2.5 um").unwrap(), 2_500.0);
+    assert!(parse_length_nm("65").unwrap_err().0.contains("no unit"));
+    assert!(parse_length_nm("abc").is_err());
+    assert!(parse_length_nm("NaNnm").is_err());
+    assert!(parse_positive_length_nm("-3nm").is_err());
+}
+
+#[test]
+fn angles_and_ranges() {
+    assert!((parse_angle_rad("75deg").unwrap() - 75f64.to_radians()).abs() < 1e-15);
+    assert!((parse_angle_rad("90°").unwrap() - std::f64::consts::FRAC_PI_2).abs() < 1e-15);
+    assert_eq!(parse_angle_rad("1rad").unwrap(), 1.0);
+    let r = parse_range("1deg:90deg:1deg", parse_angle_rad).unwrap();
+    assert_eq!(r.len(), 90);
+    let r = parse_range("0nm:2000nm:2nm", parse_length_nm).unwrap();
+    assert_eq!((r.len(), r[1000]), (1001, 2000.0));
+    assert!(parse_range("0nm:10nm", parse_length_nm).is_err());
+}

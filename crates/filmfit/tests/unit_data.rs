@@ -1,0 +1,156 @@
+//! The unit tests of src/data.rs, moved here so that `cargo test` compiles the library once.
+
+use iridis_filmfit::data::*;
+use iridis_filmfit::Quantity;
+
+fn read_r(text: &str) -> Reading {
+    read(text, "x.csv", &ReadOptions::new(Quantity::R), &|_| Err("no".into())).unwrap()
+}
+
+#[test]
+fn reads_and_refuses() {
+    let m = Measured::from_csv(
+        "# test\nwavelength_nm,R,sR\n400,0.1,0.01\n500,0.2,0.01\n",
+        "x.csv",
+        Quantity::R,
+        Some("sR"),
+    )
+    .unwrap();
+    assert_eq!(m.wavelength_nm, [400.0, 500.0]);
+    assert_eq!(m.values, [0.1, 0.2]);
+    assert_eq!(m.sigma, Some(vec![0.01, 0.01]));
+    let e = Measured::from_csv("wavelength_nm,T,X\n400,0.1,3\n", "x.csv", Quantity::R, None).unwrap_err().to_string();
+    assert!(e.contains("no measured column 'R' for --quantity R") && e.contains("x.csv, line 1"), "{e}");
+    let e = Measured::from_csv("wavelength_nm,R\n400,0.1\n500,abc\n600,0.3\n", "x.csv", Quantity::R, None)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("line 3") && e.contains("'abc'"), "{e}");
+    let e = Measured::from_csv("energy?,R,X\n400,0.1,1\n", "x.csv", Quantity::R, None).unwrap_err().to_string();
+    assert!(e.contains("no wavelength column") && e.contains("--columns"), "{e}");
+    let m = Measured::from_csv("wavelength_nm,psi,delta\n400,30,100\n", "e.csv", Quantity::PsiDelta, None).unwrap();
+    assert_eq!(m.values, [30.0, 100.0]);
+}
+
+#[test]
+fn headers_separators_and_units_in_common_forms() {
+    // The forms issue 29 met, and more: all read the same two rows (400 nm: 0.25, 500 nm: 0.30).
+    for text in [
+        "wavelength_nm,R\n400,0.25\n500,0.30\n",
+        "Wavelength (nm),Reflectance\n400,0.25\n500,0.30\n",
+        "Wavelength (nm)\tReflectance\n400\t0.25\n500\t0.30\n",
+        "lambda [nm]; R\n400;0,25\n500;0,30\n",
+        "400 0.25\n500 0.30\n",
+        "Instrument: XY-2000\nDate: 2026-11-25\n\"Wavelength (nm)\",\"R\"\n400,0.25\n500,0.30\nEnd of data\n",
+        "Wavelength (µm),R\n0.4,0.25\n0.5,0.30\n",
+        "wavelength_um,R\n0.4,0.25\n0.5,0.30\n",
+        "Wavelength   R\n0.4 0.25\n0.5 0.30\n",
+        "nm,%R\n400,25\n500,30\n",
+        "Wavelength (nm),Reflectance (%)\n400,25.0\n500,30.0\n",
+        "Wavelength (nm)  Reflectance  Dark\n400  25.0  1\n500  30.0  1\n",
+    ] {
+        let r = read_r(text);
+        assert_eq!(r.data.wavelength_nm.len(), 2, "{text}");
+        for (got, want) in r.data.wavelength_nm.iter().zip([400.0, 500.0]) {
+            assert!((got - want).abs() < 1e-9, "{text}: {:?} {:?}", r.data.wavelength_nm, r.notes);
+        }
+        for (got, want) in r.data.values.iter().zip([0.25, 0.30]) {
+            assert!((got - want).abs() < 1e-12, "{text}: {:?} {:?}", r.data.values, r.notes);
+        }
+    }
+    // Percent is stated, with its reason.
+    let r = read_r("Wavelength (nm),Reflectance\n400,11.5\n500,45.0\n");
+    assert!(r.percent && r.notes.iter().any(|n| n.contains("45 > 1: read as percent")), "{:?}", r.notes);
+    let r = read_r("Wavelength (nm),R (%)\n400,0.5\n500,0.9\n");
+    assert!(r.percent && r.notes.iter().any(|n| n.contains("header 'R (%)'")), "{:?}", r.notes);
+    assert!((r.data.values[0] - 0.005).abs() < 1e-15);
+    let r = read_r("nm\tR\n400\t0.5\n");
+    assert!(!r.percent && r.notes[0].starts_with("tab-separated, header on line 1"), "{:?}", r.notes);
+    // Metres and photon energies.
+    let r = read_r("4e-7,0.1\n5e-7,0.2\n");
+    assert!((r.data.wavelength_nm[0] - 400.0).abs() < 1e-6 && r.notes.iter().any(|n| n.contains("metres")));
+    let r = read_r("Energy (eV),R\n2.479684,0.1\n");
+    assert!((r.data.wavelength_nm[0] - 500.0).abs() < 1e-3, "{:?}", r.data.wavelength_nm);
+}
+
+#[test]
+fn columns_percent_and_window_can_be_chosen() {
+    let text = "wl,R_sample,R_ref,sigma\n400,20,90,0.5\n500,30,91,0.5\n600,40,92,0.5\n700,45,93,0.5\n";
+    let mut o = ReadOptions::new(Quantity::R);
+    o.columns = Some("wl,R_ref".into());
+    let r = read(text, "x.csv", &o, &|_| Err("no".into())).unwrap();
+    assert_eq!(r.columns, ["wl", "R_ref"]);
+    assert!((r.data.values[0] - 0.90).abs() < 1e-12 && r.percent);
+    o.columns = Some("1,2".into());
+    o.from_nm = Some(450.0);
+    o.to_nm = Some(650.0);
+    o.spread = Some(("sigma".into(), Spread::Sigma));
+    let r = read(text, "x.csv", &o, &|_| Err("no".into())).unwrap();
+    assert_eq!(r.data.wavelength_nm, [500.0, 600.0]);
+    assert_eq!(r.data.values, [0.30, 0.40]);
+    assert_eq!(r.data.sigma, Some(vec![0.005, 0.005])); // percent, like the values
+    assert!(r.notes.iter().any(|n| n == "2 of 4 rows outside the wavelength window left out"), "{:?}", r.notes);
+    o.percent = Some(false);
+    o.spread = None;
+    let r = read(text, "x.csv", &o, &|_| Err("no".into())).unwrap();
+    assert_eq!(r.data.values, [30.0, 40.0]);
+    assert!(r.notes.iter().any(|n| n.contains("outside 0–1")), "{:?}", r.notes);
+    // Bad choices say what to do.
+    o.columns = Some("wl".into());
+    let e = read(text, "x.csv", &o, &|_| Err("no".into())).unwrap_err().to_string();
+    assert!(e.contains("give 2 columns, wavelength then R"), "{e}");
+    o.columns = Some("wl,R_x".into());
+    let e = read(text, "x.csv", &o, &|_| Err("no".into())).unwrap_err().to_string();
+    assert!(e.contains("no column 'R_x'"), "{e}");
+    // Two R-like columns and no choice: the error lists the columns and points to --columns.
+    let mut o = ReadOptions::new(Quantity::R);
+    let e = read(text, "x.csv", &o, &|_| Err("no".into())).unwrap_err().to_string();
+    assert!(e.contains("no measured column 'R'") && e.contains("R_ref") && e.contains("--columns"), "{e}");
+    o.columns = Some("1,2".into());
+    o.from_nm = Some(800.0);
+    let e = read(text, "x.csv", &o, &|_| Err("no".into())).unwrap_err().to_string();
+    assert!(e.contains("no wavelength of the file"), "{e}");
+}
+
+#[test]
+fn weights_are_inverse_variances() {
+    // w = 1/σ²: w = 10⁴ is σ = 0.01, w = 2500 is σ = 0.02.
+    let text = "wavelength_nm,R,w\n400,0.1,10000\n500,0.2,2500\n";
+    let m = Measured::from_csv_with(text, "x.csv", Quantity::R, Some(("w", Spread::Weight))).unwrap();
+    assert_eq!(m.sigma, Some(vec![0.01, 0.02]));
+    let e =
+        Measured::from_csv_with("wavelength_nm,R,w\n400,0.1,0\n", "x.csv", Quantity::R, Some(("w", Spread::Weight)))
+            .unwrap_err()
+            .to_string();
+    assert!(e.contains("weight 0 must be") && e.contains("line 2"), "{e}");
+    let mut o = ReadOptions::new(Quantity::R);
+    o.spread = Some(("wt".into(), Spread::Weight));
+    let e = read(text, "x.csv", &o, &|_| Err("no such file".into())).unwrap_err().to_string();
+    assert!(
+        e.contains("--weights 'wt' is neither a number, a column") && e.contains("nor a file (no such file)"),
+        "{e}"
+    );
+    // A separate file, row by row; ψ/Δ take two weights.
+    let mut m =
+        Measured::from_csv("wavelength_nm,psi,delta\n400,30,100\n450,31,101\n", "e.csv", Quantity::PsiDelta, None)
+            .unwrap();
+    m.set_weights_from_csv("wavelength_nm,w_psi,w_delta\n400,400,4\n450,100,1\n", "w.csv", Quantity::PsiDelta).unwrap();
+    assert_eq!(m.sigma, Some(vec![0.05, 0.5, 0.1, 1.0]));
+    let e = m.set_weights_from_csv("wavelength_nm,w\n400,1\n", "w.csv", Quantity::PsiDelta).unwrap_err().to_string();
+    assert!(e.contains("1 rows of weights for 2 measured wavelengths"), "{e}");
+    let e =
+        m.set_weights_from_csv("wavelength_nm,w\n400,1\n460,1\n", "w.csv", Quantity::PsiDelta).unwrap_err().to_string();
+    assert!(e.contains("w.csv, line 3: wavelength 460 nm, but the measurement has 450 nm"), "{e}");
+}
+
+#[test]
+fn a_material_that_does_not_cover_the_range_is_named() {
+    let stack = iridis_thinfilm::Stack::parse("air | SiO2 100nm | Si").unwrap();
+    let e = check_coverage(&stack, 400.0, 1000.0).unwrap_err().to_string();
+    assert!(
+        e.contains("the measurement spans 400–1000 nm, but substrate 'si' has data for 206.6–826.6 nm only")
+            && e.contains("si-green (250–1450 nm) covers it")
+            && e.contains("--from 400nm --to 826.6nm"),
+        "{e}"
+    );
+    assert!(check_coverage(&stack, 400.0, 800.0).is_ok());
+}

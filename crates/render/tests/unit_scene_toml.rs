@@ -1,0 +1,121 @@
+//! The unit tests of src/scene_toml.rs, moved here so that `cargo test` compiles the library once.
+
+use iridis_render::error::RenderError;
+use iridis_render::material::*;
+use iridis_render::scene::Scene;
+use iridis_render::scene_toml::*;
+use std::path::Path;
+
+fn parse(t: &str) -> Result<Scene, RenderError> {
+    parse_scene(t, "test.toml", Path::new("."))
+}
+
+const OK: &str = r#"
+[output]
+size = [32, 24]
+[camera]
+position = [0, 0, 5]
+[[light]]
+kind = "directional"
+direction = [0, 1, 1]
+[materials.grey]
+kind = "lambert"
+[[object]]
+kind = "sphere"
+radius = 1
+material = "grey"
+"#;
+
+#[test]
+fn a_minimal_scene_parses() {
+    let s = parse(OK).unwrap();
+    assert_eq!((s.output.width, s.output.height), (32, 24));
+    assert_eq!(s.spheres.len(), 1);
+}
+
+#[test]
+fn errors_name_line_and_key() {
+    let e = parse(&OK.replace("radius = 1", "radius = \"big\"")).unwrap_err().to_string();
+    assert!(e.starts_with("test.toml:13:") && e.contains("invalid type") && e.contains("radius = \"big\""), "{e}");
+    let e = parse(&OK.replace("radius = 1", "radus = 1")).unwrap_err().to_string();
+    assert!(e.contains("radus") && e.contains("test.toml:13"), "{e}");
+    let e = parse(&OK.replace("material = \"grey\"", "material = \"gray\"")).unwrap_err().to_string();
+    assert!(e.contains("test.toml:11:") && e.contains("\"gray\" is not defined"), "{e}");
+    let e = parse(&OK.replace("radius = 1\n", "")).unwrap_err().to_string();
+    assert!(e.contains("missing key `radius`"), "{e}");
+    let e = parse(&OK.replace("kind = \"lambert\"", "kind = \"lambert\"\ntexture = \"nope\"")).unwrap_err().to_string();
+    assert!(e.contains("no texture of that name"), "{e}");
+    let e = parse(&OK.replace("[camera]\nposition = [0, 0, 5]", "[camera]\nposition = [0, 0, 5\n"))
+        .unwrap_err()
+        .to_string();
+    assert!(e.starts_with("test.toml:"), "{e}");
+}
+
+#[test]
+fn keys_of_another_material_kind_are_refused() {
+    let e = parse(
+        &OK.replace("kind = \"lambert\"", "kind = \"lambert\"\ncolor = [1, 0, 0]\nstack = \"air | water 300nm | air\""),
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.starts_with("test.toml:12:"), "{e}");
+    assert!(e.contains("`stack` is not a key of a lambert material") && e.contains("belongs to thinfilm"), "{e}");
+    assert!(e.contains("takes color, texture"), "{e}");
+    // A thin film with a diffraction key; an inline table names the line of the key too.
+    let film = "[camera]\nposition = [0, 0, 5]\n[materials]\nf = { kind = \"thinfilm\", stack = \"air | water 300nm | air\", w_diffuse = 0.5 }\n";
+    let e = parse(film).unwrap_err().to_string();
+    assert!(
+        e.starts_with("test.toml:4:")
+            && e.contains("`w_diffuse` is not a key of a thinfilm material")
+            && e.contains("belongs to diffraction"),
+        "{e}"
+    );
+    // `roughness` is shared by microfacet and thinfilm, not by lambert.
+    let e = parse(&OK.replace("kind = \"lambert\"", "kind = \"lambert\"\n\nroughness = 0.2")).unwrap_err().to_string();
+    assert!(e.starts_with("test.toml:12:") && e.contains("belongs to microfacet and thinfilm"), "{e}");
+    // The keys of the kind itself are fine.
+    parse(&OK.replace("kind = \"lambert\"", "kind = \"microfacet\"\nroughness = 0.2\nmetallic = 1")).unwrap();
+}
+
+#[test]
+fn rough_film_keys_are_checked() {
+    let film = |extra: &str| {
+        OK.replace("kind = \"lambert\"", &format!("kind = \"thinfilm\"\nstack = \"air | water 348nm | Si\"\n{extra}"))
+    };
+    let s = parse(&film("roughness = \"25nm\"\ncorrelation = \"300nm\"")).unwrap();
+    let Material::ThinFilm(f) = &s.materials[0] else { panic!("a thin film") };
+    let r = f.rough.expect("rough");
+    assert_eq!((r.roughness.sigma_nm(), r.roughness.tau_nm()), (25.0, 300.0));
+    for (extra, needle) in [
+        ("roughness = \"25nm\"", "`roughness` needs `correlation`"),
+        ("correlation = \"300nm\"", "`correlation` needs `roughness`"),
+        ("roughness = 0.3\ncorrelation = \"300nm\"", "a length with its unit"),
+        ("roughness = \"25\"\ncorrelation = \"300nm\"", "`roughness` = \"25\""),
+        ("roughness = \"-5nm\"\ncorrelation = \"300nm\"", "must be finite and > 0"),
+        ("roughness = \"200nm\"\ncorrelation = \"300nm\"", "rms facet slope"),
+        ("roughness = \"25nm\"\ncorrelation = \"100nm\"", "radius of curvature"),
+        ("roughness = \"25nm\"\ncorrelation = \"300nm\"\ntransmission = true", "no transmitted part"),
+    ] {
+        let e = parse(&film(extra)).unwrap_err().to_string();
+        assert!(e.starts_with("test.toml:") && e.contains(needle), "{extra}: {e}");
+    }
+    let e = parse(
+        &(film("roughness = \"25nm\"\ncorrelation = \"300nm\"\nbase = \"under\"")
+            + "[materials.under]\nkind = \"lambert\"\n"),
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("takes no `base` material"), "{e}");
+    let e = parse(&OK.replace("kind = \"lambert\"", "kind = \"microfacet\"\nroughness = \"25nm\""))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("a microfacet roughness is a number in [0, 1]"), "{e}");
+}
+
+#[test]
+fn texture_kinds_are_checked() {
+    let t =
+        OK.replace("kind = \"lambert\"", "kind = \"lambert\"\ntexture = \"n\"") + "[textures.n]\nkind = \"noise\"\n";
+    let e = parse(&t).unwrap_err().to_string();
+    assert!(e.contains("a color texture is needed here") && e.contains("grey texture"), "{e}");
+}
