@@ -523,6 +523,19 @@ mod tests {
     use num_complex::Complex64;
 
     #[test]
+    fn shadowing_and_k_are_the_two_functions_bit_for_bit() {
+        // Normal incidence (a = ∞), grazing, below the horizon, NaN and the range between.
+        let r = Roughness::new(25.0, 300.0).unwrap();
+        let cosines =
+            [1.0, 0.0, -0.3, f64::NAN, 1e-300, 1.0 - 1e-16].into_iter().chain((1..200).map(|k| k as f64 / 200.0));
+        for c in cosines {
+            let (s, k) = r.shadowing_and_k(c);
+            assert_eq!(s.to_bits(), r.shadowing(c).to_bits(), "S at cos {c}");
+            assert_eq!(k.to_bits(), r.k_factor(c).to_bits(), "K at cos {c}");
+        }
+    }
+
+    #[test]
     fn erfc_matches_reference_values() {
         // Values from Abramowitz & Stegun table 7.1 / high-precision evaluation.
         for (x, want) in [
