@@ -575,7 +575,19 @@ fn laser_tables_record_the_beam_and_are_checked() {
     args.extend_from_slice(&[out.to_str().unwrap(), "--table", table.to_str().unwrap()]);
     assert_fails(&args, &["light spectrum", "laser.npz"]);
     let d65 = dir.path().join("d65.npz");
-    let pre = ["precompute", surface, "-o", d65.to_str().unwrap(), "--coherence", "4um", "--step", "10nm"];
+    // A small D65 table (31² u-v nodes, not the default 501²): only its illuminant is checked.
+    let pre = [
+        "precompute",
+        surface,
+        "-o",
+        d65.to_str().unwrap(),
+        "--coherence",
+        "4um",
+        "--step",
+        "10nm",
+        "--uv-resolution",
+        "31",
+    ];
     assert!(common::iridis(&pre).status.success());
     let mut args = vec!["experiment", "laser", surface, "--method", "lookup", "--spectrum", green.to_str().unwrap()];
     args.extend_from_slice(&tail);
