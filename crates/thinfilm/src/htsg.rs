@@ -44,6 +44,13 @@ use crate::error::ThinFilmError;
 /// number of terms grows like `g` and the geometrical-optics limit of the paper should be used instead.
 pub const MAX_PHASE_VARIANCE: f64 = 50_000.0;
 
+/// Smith's shadowing `S = [1 − ½ erfc(a)]/(Λ + 1)`, `Λ = ½ (e^{−a²}/(√π a) − erfc(a))`, for a finite
+/// `a = τ cot θ/(2σ)` and its `erfc(a)` (module documentation).
+fn smith(a: f64, erfc_a: f64) -> f64 {
+    let lambda = 0.5 * ((-a * a).exp() / (PI.sqrt() * a) - erfc_a);
+    (1.0 - 0.5 * erfc_a) / (lambda.max(0.0) + 1.0)
+}
+
 /// The complementary error function, to about 1e-14 relative: the Maclaurin series of erf below 2,
 /// Lentz's continued fraction `erfc x = e^{−x²}/√π · 1/(x + ½/(x + 1/(x + 3/2/(x + …))))` above.
 pub fn erfc(x: f64) -> f64 {
@@ -192,9 +199,7 @@ impl Roughness {
         if a.is_infinite() {
             return 1.0;
         }
-        let e = erfc(a);
-        let lambda = 0.5 * ((-a * a).exp() / (PI.sqrt() * a) - e);
-        (1.0 - 0.5 * e) / (lambda.max(0.0) + 1.0)
+        smith(a, erfc(a))
     }
 
     /// `K = tan θ · erfc(τ cot θ/(2σ))` of the effective-roughness equation; infinite at grazing.
@@ -220,9 +225,8 @@ impl Roughness {
             return (1.0, self.k_factor(cos));
         }
         let e = erfc(a);
-        let lambda = 0.5 * ((-a * a).exp() / (PI.sqrt() * a) - e);
         let sin = (1.0 - cos * cos).max(0.0).sqrt();
-        ((1.0 - 0.5 * e) / (lambda.max(0.0) + 1.0), (sin / cos) * e)
+        (smith(a, e), (sin / cos) * e)
     }
 
     /// The effective roughness `σ₀` from `K_i + K_r` (module documentation): solves

@@ -292,7 +292,10 @@ impl RoughStack {
                 let seed = side.seed(&self.htsg, k);
                 let factor = at.side_factor(&side, &seed, view);
                 let (kf, sh) = match side.dir {
-                    Some((_, c)) => (r.k_factor(c), r.shadowing(c)),
+                    Some((_, c)) => {
+                        let (shadow, k) = r.shadowing_and_k(c);
+                        (k, shadow)
+                    }
                     None => (0.0, 0.0),
                 };
                 Ok(Pre { side, factor, k_factor: kf, shadow: sh })
@@ -358,7 +361,7 @@ impl RoughAt<'_> {
         // Seeds: eq. 3.16 (view and light angle) and eq. 3.17.
         let (seed_v, seed_l) = (v.seed(&rough.htsg, self.k), l.seed(&rough.htsg, self.k));
         let (diffuse, terms, bound) = match (self.toward(&v, &seed_v, true), self.toward(&l, &seed_l, false)) {
-            (Some(tv), Some(tl)) => self.diffuse(&tv, &tl, azimuth_rad, None)?,
+            (Some(tv), Some(tl)) => self.diffuse(&tv, &tl, azimuth_rad, self.pair(&tl, &tv))?,
             _ => ([0.0; 2], 0, 0.0),
         };
         let gs = v.specular(&seed_v); // eq. 3.15
@@ -383,32 +386,27 @@ impl RoughAt<'_> {
         })
     }
 
-    /// `σ₀` and `S(θ_l) S(θ_v)` of a pair of directions, which do not depend on their azimuths (as
-    /// [`Htsg::diffuse_geometry`] computes them); `None` at grazing, where the geometry is zero.
-    fn pair(&self, light: &Toward, view: &Toward) -> Option<(f64, f64)> {
+    /// `σ₀` and `S(θ_l) S(θ_v)` of a pair of directions, as [`Htsg::diffuse_geometry`] computes them: they do
+    /// not depend on the azimuths. (At grazing the geometry is zero whatever they are.)
+    fn pair(&self, light: &Toward, view: &Toward) -> (f64, f64) {
         let r = &self.rough.htsg.roughness;
         let (cl, cv) = (light.dir.1, view.dir.1);
-        (cl > 0.0 && cv > 0.0).then(|| (r.effective_sigma(cl, cv), r.shadowing(cl) * r.shadowing(cv)))
+        (r.effective_sigma(cl, cv), r.shadowing(cl) * r.shadowing(cv))
     }
 
     /// The directional-diffuse part of [`RoughAt::evaluate`] (`[k_d ⊥, k_d ∥]`, the series' terms and remainder
-    /// bound) for light from `l` seen from `v` at relative azimuth `φ_l − φ_v`; `pair` is [`RoughAt::pair`]
-    /// where the caller has it.
+    /// bound) for light from `l` seen from `v` at relative azimuth `φ_l − φ_v`, with their [`RoughAt::pair`].
     fn diffuse(
         &self,
         v: &Toward,
         l: &Toward,
         azimuth_rad: f64,
-        pair: Option<(f64, f64)>,
+        (sigma0, shadow): (f64, f64),
     ) -> Result<([f64; 2], usize, f64), ThinFilmError> {
         let ((sv, cv), (sl, cl)) = (v.dir, l.dir);
         let wv = [sv, 0.0, cv];
         let wl = [sl * azimuth_rad.cos(), sl * azimuth_rad.sin(), cl];
-        let htsg = &self.rough.htsg;
-        let geo = match pair {
-            Some((sigma0, shadow)) => htsg.diffuse_geometry_with(wl, wv, self.k, sigma0, shadow)?,
-            None => htsg.diffuse_geometry(wl, wv, self.k)?,
-        };
+        let geo = self.rough.htsg.diffuse_geometry_with(wl, wv, self.k, sigma0, shadow)?;
         let f = local_fresnel(self.n_upper, v.n_below, geo.cos_local);
         let extra = self.multiple_term((sl, cl), (sv, cv));
         let t = [v.radiance * v.factor[0] * l.factor[0], v.radiance * v.factor[1] * l.factor[1]];
@@ -417,9 +415,10 @@ impl RoughAt<'_> {
         Ok((diffuse, geo.terms, geo.bound * t[0].max(t[1])))
     }
 
-    /// Every view direction of the midpoint rule of [`RoughAt::albedo`] for light from `light_rad`, with what
-    /// does not change along its azimuths prepared once: `f(w, ⊥ and ∥ diffuse at each azimuth)` is called per
-    /// cell in the order of the sum. The terms are [`RoughAt::evaluate`]'s.
+    /// The cells of the midpoint rule of [`RoughAt::albedo`] for light from `light_rad`, in the order of the
+    /// sum, with what does not change along a view angle's azimuths prepared once: `cell(w, [k_d ⊥, k_d ∥])`,
+    /// the terms [`RoughAt::evaluate`]'s. Cells where light is evanescent in medium `N` hold no diffuse light
+    /// and are skipped.
     fn hemisphere(
         &self,
         light_rad: f64,
@@ -429,19 +428,15 @@ impl RoughAt<'_> {
         let rough = self.rough;
         let (dt, dp) = (0.5 * PI / steps as f64, PI / steps as f64);
         let l = Side::new(&rough.stack, self.wavelength_nm, light_rad)?;
-        let tl = self.toward(&l, &l.seed(&rough.htsg, self.k), false);
+        let Some(tl) = self.toward(&l, &l.seed(&rough.htsg, self.k), false) else { return Ok(()) };
         for i in 0..steps {
             let tv = (i as f64 + 0.5) * dt;
             let w = tv.cos() * tv.sin() * dt * dp;
             let v = Side::new(&rough.stack, self.wavelength_nm, tv)?;
-            let tview = self.toward(&v, &v.seed(&rough.htsg, self.k), true);
-            let (Some(tview), Some(tl)) = (tview, &tl) else {
-                (0..steps).for_each(|_| cell(w, [0.0; 2]));
-                continue;
-            };
-            let pair = self.pair(tl, &tview);
+            let Some(tview) = self.toward(&v, &v.seed(&rough.htsg, self.k), true) else { continue };
+            let pair = self.pair(&tl, &tview);
             for j in 0..steps {
-                let (d, _, _) = self.diffuse(&tview, tl, (j as f64 + 0.5) * dp, pair)?;
+                let (d, _, _) = self.diffuse(&tview, &tl, (j as f64 + 0.5) * dp, pair)?;
                 cell(w, d);
             }
         }

@@ -148,40 +148,22 @@ impl RoughColorTable {
                         }
                     }
                 }
-                // σ₀(θ_l, θ_v) and S(θ_l) S(θ_v) do not depend on the azimuth: solved once per pair of angles
-                // (as `diffuse_geometry` solves them: σ₀ from K(θ_l) + K(θ_v)), not once per azimuth node.
+                // S(θ) and K(θ) once per angle node; σ₀(θ_l, θ_v) and S(θ_l) S(θ_v) once per pair of angles (as
+                // `diffuse_geometry` computes them), not once per azimuth node: the azimuth loop is innermost.
                 let r = &rough.htsg.roughness;
-                let cosines: Vec<Option<f64>> = dirs.iter().map(|d| d.map(|(_, c)| c)).collect();
-                let (k_of, shadow_of): (Vec<f64>, Vec<f64>) =
-                    cosines.iter().map(|c| c.map_or((0.0, 0.0), |c| (r.k_factor(c), r.shadowing(c)))).unzip();
-                let mut pair = vec![None; nt * nt];
-                for il in 0..nt {
-                    for iv in 0..nt {
-                        if let (Some(cl), Some(cv)) = (cosines[il], cosines[iv]) {
-                            if cl > 0.0 && cv > 0.0 {
-                                pair[il * nt + iv] = Some((
-                                    r.effective_sigma_from_k(k_of[il] + k_of[iv]),
-                                    shadow_of[il] * shadow_of[iv],
-                                ));
-                            }
-                        }
-                    }
-                }
+                let shadow_k: Vec<(f64, f64)> =
+                    dirs.iter().map(|d| d.map_or((0.0, 0.0), |(_, c)| r.shadowing_and_k(c))).collect();
                 let mut geometry = vec![[0.0; 2]; planes];
-                for a in 0..na {
-                    let az = azimuth(a);
-                    for il in 0..nt {
-                        let Some((sl, cl)) = dirs[il] else { continue };
-                        let wl = [sl * az.cos(), sl * az.sin(), cl];
-                        for iv in 0..nt {
-                            let Some((sv, cv)) = dirs[iv] else { continue };
-                            let geo = match pair[il * nt + iv] {
-                                Some((sigma0, shadow)) => {
-                                    rough.htsg.diffuse_geometry_with(wl, [sv, 0.0, cv], k, sigma0, shadow)?
-                                }
-                                // At grazing: the geometry is zero.
-                                None => rough.htsg.diffuse_geometry(wl, [sv, 0.0, cv], k)?,
-                            };
+                for il in 0..nt {
+                    let Some((sl, cl)) = dirs[il] else { continue };
+                    for iv in 0..nt {
+                        let Some((sv, cv)) = dirs[iv] else { continue };
+                        let sigma0 = r.effective_sigma_from_k(shadow_k[il].1 + shadow_k[iv].1);
+                        let shadow = shadow_k[il].0 * shadow_k[iv].0;
+                        for a in 0..na {
+                            let az = azimuth(a);
+                            let wl = [sl * az.cos(), sl * az.sin(), cl];
+                            let geo = rough.htsg.diffuse_geometry_with(wl, [sv, 0.0, cv], k, sigma0, shadow)?;
                             let f = local_fresnel(n_upper, n_sub, geo.cos_local);
                             geometry[(a * nt + il) * nt + iv] =
                                 [rad * geo.factor * f.r_s.norm_sqr(), rad * geo.factor * f.r_p.norm_sqr()];
