@@ -103,6 +103,7 @@ impl RoughColorTable {
             multiple: Vec<[f64; 2]>,
         }
         let multiple = rough.transport == crate::rough::DiffuseTransport::Multiple;
+        let azimuth_trig: Vec<(f64, f64)> = (0..azimuths).map(|a| (azimuth(a).cos(), azimuth(a).sin())).collect();
         let per_lambda: Vec<Spectral> = weights
             .wavelengths_nm()
             .par_iter()
@@ -160,9 +161,8 @@ impl RoughColorTable {
                         let Some((sv, cv)) = dirs[iv] else { continue };
                         let sigma0 = r.effective_sigma_from_k(shadow_k[il].1 + shadow_k[iv].1);
                         let shadow = shadow_k[il].0 * shadow_k[iv].0;
-                        for a in 0..na {
-                            let az = azimuth(a);
-                            let wl = [sl * az.cos(), sl * az.sin(), cl];
+                        for (a, &(cos_az, sin_az)) in azimuth_trig.iter().enumerate() {
+                            let wl = [sl * cos_az, sl * sin_az, cl];
                             let geo = rough.htsg.diffuse_geometry_with(wl, [sv, 0.0, cv], k, sigma0, shadow)?;
                             let f = local_fresnel(n_upper, n_sub, geo.cos_local);
                             geometry[(a * nt + il) * nt + iv] =
