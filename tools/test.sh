@@ -86,10 +86,11 @@ mkdir -p "$MESA_SHADER_CACHE_DIR"
 # unit tests and the integration tests (crates/*/tests/main.rs, one binary a crate). Not `--lib --bins`: naming
 # a target kind overrides its `test = false`, and built the Python binding's empty test harness (no tests, 10-18
 # s of compile). Examples are not built here (clippy --all-targets in .ci/run checks that they compile); doc tests run
-# at the end of the Rust step.
+# with the tests below.
 TARGETS=(--tests)
 step "cargo test --workspace --profile ci: build"
-cargo test --workspace --profile ci "${TARGETS[@]}" --no-run
+# JSON on stdout names every test executable and its package; the compiler's messages still go to the terminal.
+cargo test --workspace --profile ci "${TARGETS[@]}" --no-run --message-format=json-render-diagnostics >"$LOGS/build.json"
 
 wait "$APT_JOB" || true
 cat "$LOGS/apt.log"
@@ -98,25 +99,91 @@ if ! wait "$AFM_JOB"; then
     echo "warning: could not fetch the AFM sample files; the real-file reader tests will be skipped"
 fi
 cat "$LOGS/afm.log"
-
-step "cargo test --workspace --profile ci: run"
-cargo test --workspace --profile ci "${TARGETS[@]}" --no-fail-fast
-step "cargo test --workspace --profile ci --doc"
-cargo test --workspace --profile ci --doc
-
-# The Python package (crates/python), built and installed the way the README tells users to
-# (`pip install ./crates/python`), into a throw-away virtual environment, then its tests (pytest: the tmm drop-in
-# against tmm and the committed fixtures, colours, films, the README's example, the Dask example on a two-worker
-# local cluster). The build reuses cargo's target directory and the test build's compiled crates: the same
-# profile, and the feature `test-build` (crates/python/Cargo.toml) gives the shared dependencies the features
-# `cargo test --workspace` gave them, so only the binding crate and pyo3 compile anew.
-step "Python package: pip install ./crates/python into a throw-away venv, then pytest"
 if ! wait "$PIP_JOB"; then
     cat "$LOGS/pip.log"
     echo "error: could not install the Python test dependencies (maturin numpy pytest tmm scipy dask)"
     exit 1
 fi
-CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$PWD/target}" MATURIN_PEP517_ARGS="--profile ci --features test-build" \
-    "$VENV/bin/pip" install -q --disable-pip-version-check ./crates/python
-(cd crates/python && "$VENV/bin/python" -m pytest -q tests)
+
+# The tests: every test executable (each crate's integration binary, thinfilm's and the CLI's unit tests), the
+# doc tests and the Python package, two at a time. `cargo test` would run the executables one after another, and
+# one binary alone leaves a core idle whenever its last tests run (the CLI's help examples are one test of ~60 s;
+# the GPU tests take turns on the scene pipeline): measured on the 2-core VM (2026-11-27), the binaries alone
+# took 328 s for 557 CPU-s. Each executable runs as `cargo test` runs it: from its package's folder, with the
+# default two test threads; each job's output is printed whole when it ends.
+# The order (measured): the CLI's binary first (the longest, 165 s alone), the others beside it. The GPU crate's
+# starts after the Python package, when the CLI's GPU tests have put the scene pipeline in Mesa's cache: started
+# together, both processes compiled it, and the pair took as long as the two one after the other; started last,
+# it ran alone for a minute.
+JOB_NAMES=()
+JOB_COMMANDS=()
+add_job() { JOB_NAMES+=("$1"); JOB_COMMANDS+=("$2"); }
+python3 - "$LOGS/build.json" "$PWD" >"$LOGS/executables.txt" <<'PY'
+import json, os, sys
+order = ["crates/cli integration", "python", "crates/gpu integration", "crates/render integration",
+         "crates/diffraction integration", "crates/thinfilm integration", "crates/api integration"]
+rows = [("python", "", "")]
+for line in open(sys.argv[1]):
+    m = json.loads(line)
+    if m.get("reason") == "compiler-artifact" and m.get("executable") and m["profile"]["test"]:
+        folder = os.path.dirname(m["manifest_path"])
+        rows.append((f"{os.path.relpath(folder, sys.argv[2])} {m['target']['name']}", folder, m["executable"]))
+rank = lambda row: order.index(row[0]) if row[0] in order else len(order)
+for row in sorted(rows, key=rank):
+    print(*row, sep="\t")
+PY
+while IFS=$'\t' read -r name folder exe; do
+    if [ "$name" = python ]; then
+        # The package built and installed the way the README tells users to (`pip install ./crates/python`), into
+        # the throw-away venv, then its tests (pytest: the tmm drop-in against tmm and the committed fixtures,
+        # colours, films, the README's example, the Dask example on a two-worker local cluster). The build reuses
+        # cargo's target directory and the test build's compiled crates: the same profile, and the feature
+        # `test-build` (crates/python/Cargo.toml) gives the shared dependencies the features `cargo test
+        # --workspace` gave them, so only the binding crate and pyo3 compile anew.
+        add_job "Python package (pip install ./crates/python, pytest)" \
+            "CARGO_TARGET_DIR='${CARGO_TARGET_DIR:-$PWD/target}' MATURIN_PEP517_ARGS='--profile ci --features test-build' \
+             '$VENV/bin/pip' install -q --disable-pip-version-check ./crates/python && \
+             cd crates/python && '$VENV/bin/python' -m pytest -q tests"
+    else
+        add_job "$name" "cd '$folder' && '$exe'"
+    fi
+done <"$LOGS/executables.txt"
+if [ "${#JOB_NAMES[@]}" -lt 4 ]; then
+    echo "error: cargo named $((${#JOB_NAMES[@]} - 1)) test executables; expected one a crate or more"
+    exit 1
+fi
+add_job "doc tests (cargo test --workspace --profile ci --doc)" "cargo test --workspace --profile ci --doc"
+
+step "tests: ${#JOB_NAMES[@]} jobs, two at a time"
+run_job() {
+    local k=$1 t0 rc=0
+    t0=$(date +%s)
+    bash -c "${JOB_COMMANDS[$k]}" >"$LOGS/job$k.log" 2>&1 || rc=$?
+    echo "$rc $(($(date +%s) - t0))" >"$LOGS/job$k.rc"
+}
+FAILED=()
+next=0
+shown=0
+declare -A SHOWN=()
+while [ "$shown" -lt "${#JOB_NAMES[@]}" ]; do
+    while [ "$next" -lt "${#JOB_NAMES[@]}" ] && [ $((next - shown)) -lt 2 ]; do
+        run_job "$next" &
+        next=$((next + 1))
+    done
+    wait -n || true
+    for ((k = 0; k < next; k++)); do
+        if [ -z "${SHOWN[$k]:-}" ] && [ -f "$LOGS/job$k.rc" ]; then
+            SHOWN[$k]=1
+            shown=$((shown + 1))
+            read -r rc secs <"$LOGS/job$k.rc"
+            if [ "$rc" = 0 ]; then verdict=ok; else verdict="FAILED (exit status $rc)"; FAILED+=("${JOB_NAMES[$k]}"); fi
+            echo "== [${SECONDS}s] ${JOB_NAMES[$k]}: $verdict in ${secs} s"
+            cat "$LOGS/job$k.log"
+        fi
+    done
+done
+if [ "${#FAILED[@]}" -gt 0 ]; then
+    echo "== [${SECONDS}s] failed: ${FAILED[*]}"
+    exit 1
+fi
 step "done"
