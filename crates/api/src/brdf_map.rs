@@ -388,8 +388,10 @@ pub fn write_exr(path: &Path, xyz: &[Xyz], size: usize, exposure: f64) -> Result
     let data: Vec<f32> = xyz.iter().flat_map(|p| p.scale(exposure).to_linear_srgb().map(|c| c as f32)).collect();
     let img = image::Rgb32FImage::from_raw(size as u32, size as u32, data).context("image size")?;
     let mut bytes = std::io::Cursor::new(Vec::new());
+    // The EXR encoder by name, not `write_to(…, ImageFormat::OpenExr)`: that generic call compiles every
+    // encoder the `image` crate has (TIFF, PNG, …) into this crate.
     image::DynamicImage::ImageRgb32F(img)
-        .write_to(&mut bytes, image::ImageFormat::OpenExr)
+        .write_with_encoder(image::codecs::openexr::OpenExrEncoder::new(&mut bytes))
         .map_err(|e| anyhow::anyhow!("cannot encode EXR: {e}"))?;
     crate::output::write_bytes(path, bytes.get_ref())
 }

@@ -8,7 +8,6 @@
 
 use num_complex::Complex64;
 use rayon::prelude::*;
-use rustfft::FftPlanner;
 
 use crate::patch::Patch;
 use crate::DiffractionError;
@@ -157,9 +156,8 @@ impl TaylorTerms {
         let (c_lo, c_hi) = band_rows.iter().flatten().fold((i64::MAX, i64::MIN), |(a, b), r| (a.min(r.0), b.max(r.1)));
         let width = if kept == 0 { 0 } else { (c_hi - c_lo + 1) as usize };
         let column_of = |k: usize| (c_lo + k as i64).rem_euclid(cols as i64) as usize;
-        let mut planner = FftPlanner::<f64>::new();
-        let fft_x = planner.plan_fft_forward(cols);
-        let fft_y = planner.plan_fft_forward(rows);
+        let fft_x = iridis_fft::plan(cols, false);
+        let fft_y = iridis_fft::plan(rows, false);
         let norm = 1.0 / samples as f64;
         // Centre the coherence window on the patch (as the ground truth does) rather than on its corner: by
         // the shift theorem, c[s,t] · exp(2πi f_{s,t} · x_c), x_c the patch centre, with the 1/samples

@@ -4,15 +4,14 @@
 use iridis_diffraction::taylor::*;
 use iridis_diffraction::Patch;
 use num_complex::Complex64;
-use rustfft::FftPlanner;
 
 /// In-place 2D forward DFT (the whole grid at once, as the terms were computed before bands) of a row-major `rows × cols` array (`Σ x e^{−2πi(...)}`).
 fn fft2(
     data: &mut [Complex64],
     rows: usize,
     cols: usize,
-    fft_x: &dyn rustfft::Fft<f64>,
-    fft_y: &dyn rustfft::Fft<f64>,
+    fft_x: &dyn iridis_fft::Fft<f64>,
+    fft_y: &dyn iridis_fft::Fft<f64>,
 ) {
     fft_x.process(data); // rustfft processes consecutive chunks of its length: every row
     let mut t = vec![Complex64::new(0.0, 0.0); rows * cols];
@@ -25,8 +24,7 @@ fn fft2(
 /// layout `(t · cols + s)` per term.
 fn full_grid(patch: &Patch, n_max: usize) -> Vec<Vec<Complex64>> {
     let (rows, cols) = (patch.rows, patch.cols);
-    let mut planner = FftPlanner::<f64>::new();
-    let (fft_x, fft_y) = (planner.plan_fft_forward(cols), planner.plan_fft_forward(rows));
+    let (fft_x, fft_y) = (iridis_fft::plan(cols, false), iridis_fft::plan(rows, false));
     let norm = 1.0 / (rows * cols) as f64;
     let phase_x: Vec<f64> = (0..cols).map(|s| signed(s, cols) as f64 * (cols - 1) as f64 / (2 * cols) as f64).collect();
     (0..=n_max)

@@ -7,7 +7,6 @@
 
 use iridis_diffraction::Patch;
 use num_complex::Complex64;
-use rustfft::FftPlanner;
 
 /// An axis of the height field: `X` along the columns, `Y` along the rows (y up, PHYSICS.md).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -31,7 +30,7 @@ pub fn periodogram(patch: &Patch, axis: Axis) -> Vec<f64> {
         Axis::X => (patch.cols, patch.rows),
         Axis::Y => (patch.rows, patch.cols),
     };
-    let fft = FftPlanner::<f64>::new().plan_fft_forward(n);
+    let fft = iridis_fft::plan(n, false);
     let mut acc = vec![0.0; n / 2 + 1];
     let mut buf = vec![Complex64::new(0.0, 0.0); n];
     for line in 0..lines {

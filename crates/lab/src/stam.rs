@@ -33,7 +33,7 @@ use std::sync::Arc;
 use iridis_color::Xyz;
 use iridis_diffraction::geometry::{uvw, Shading, Vec3};
 use iridis_diffraction::{Evaluator, Patch, SpectralSetup};
-use iridis_surface::fft::dft2;
+use iridis_fft::dft2;
 use num_complex::Complex64;
 
 use crate::analysis::{dominant_period, Axis};

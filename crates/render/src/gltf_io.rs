@@ -100,7 +100,12 @@ pub fn load_gltf(
             }
             gltf::image::Source::Uri { uri, .. } => read_uri(path, uri)?,
         };
-        image::load_from_memory(&data).map_err(|e| bad(path, format!("image {}: {e}", tex.source().index())))
+        // As `image::load_from_memory` reads it: the format from the content.
+        image::ImageReader::new(std::io::Cursor::new(data.as_slice()))
+            .with_guessed_format()
+            .map_err(image::ImageError::IoError)
+            .and_then(iridis_surface::formats::raster::decode)
+            .map_err(|e| bad(path, format!("image {}: {e}", tex.source().index())))
     };
 
     // Materials

@@ -41,7 +41,9 @@ impl Image {
         let img = image::RgbImage::from_raw(self.width, self.height, self.to_rgb8(exposure, encoding))
             .ok_or_else(|| crate::RenderError::Input("image size".into()))?;
         let mut out = std::io::Cursor::new(Vec::new());
-        img.write_to(&mut out, image::ImageFormat::Png)
+        // Encoders by name, not `write_to(…, ImageFormat)`: that generic call compiles every encoder the `image`
+        // crate has (TIFF, EXR, …) into this crate, twice.
+        img.write_with_encoder(image::codecs::png::PngEncoder::new(&mut out))
             .map_err(|e| crate::RenderError::Input(format!("cannot encode PNG: {e}")))?;
         Ok(out.into_inner())
     }
@@ -53,7 +55,7 @@ impl Image {
             .ok_or_else(|| crate::RenderError::Input("image size".into()))?;
         let mut out = std::io::Cursor::new(Vec::new());
         image::DynamicImage::ImageRgb32F(img)
-            .write_to(&mut out, image::ImageFormat::OpenExr)
+            .write_with_encoder(image::codecs::openexr::OpenExrEncoder::new(&mut out))
             .map_err(|e| crate::RenderError::Input(format!("cannot encode EXR: {e}")))?;
         Ok(out.into_inner())
     }

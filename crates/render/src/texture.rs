@@ -64,17 +64,22 @@ impl Texture {
     /// Loads an image file as a texture of `kind`, refusing images that do not fit the kind: a colour image
     /// where a grey one is needed, a grey image for a vector field.
     pub fn load(path: &Path, kind: TexKind) -> Result<Self, RenderError> {
-        let img = image::ImageReader::open(path)
-            .map_err(|e| RenderError::Input(format!("cannot open texture {}: {e}", path.display())))?
+        let bytes = std::fs::read(path)
+            .map_err(|e| RenderError::Input(format!("cannot open texture {}: {e}", path.display())))?;
+        // As `ImageReader::open` reads a file: the format from the content, else from the extension.
+        let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes.as_slice()));
+        if let Ok(format) = image::ImageFormat::from_path(path) {
+            reader.set_format(format);
+        }
+        let reader = reader
             .with_guessed_format()
-            .map_err(|e| RenderError::Input(format!("cannot read texture {}: {e}", path.display())))?
-            .decode()
-            .map_err(|e| {
-                RenderError::Input(format!(
-                    "texture {} is not a readable image ({e}); use PNG, TIFF, EXR or HDR",
-                    path.display()
-                ))
-            })?;
+            .map_err(|e| RenderError::Input(format!("cannot read texture {}: {e}", path.display())))?;
+        let img = iridis_surface::formats::raster::decode(reader).map_err(|e| {
+            RenderError::Input(format!(
+                "texture {} is not a readable image ({e}); use PNG, TIFF, EXR or HDR",
+                path.display()
+            ))
+        })?;
         Self::from_image(img, kind, &path.display().to_string())
     }
 

@@ -4,8 +4,8 @@
 //! Lengths here are normalised by the vacuum wavenumber `k0 = 2π/λ`, so a height `h` (nm) becomes `a = k0 h`;
 //! slopes are dimensionless and unchanged.
 
+use iridis_fft::dft2;
 use num_complex::Complex64 as C64;
-use rustfft::FftPlanner;
 
 /// A periodic surface sampled on a fine grid of `lx × ly` points over one unit cell (`ly = 1` for a 1-D profile),
 /// row index `j` along y, column `i` along x, stored `[j * lx + i]`.
@@ -46,34 +46,12 @@ impl Coeffs {
 /// Forward 2-D DFT divided by the number of points: the Fourier-series coefficients of the sampled function.
 pub(crate) fn fourier_coeffs(lx: usize, ly: usize, values: &[C64]) -> Coeffs {
     let mut data = values.to_vec();
-    fft2(lx, ly, &mut data, false);
+    dft2(&mut data, ly, lx, false);
     let scale = 1.0 / (lx * ly) as f64;
     for v in &mut data {
         *v *= scale;
     }
     Coeffs { lx, ly, c: data }
-}
-
-/// In-place 2-D FFT (rows along x, then columns along y); `inverse` without normalisation.
-fn fft2(lx: usize, ly: usize, data: &mut [C64], inverse: bool) {
-    let mut planner = FftPlanner::<f64>::new();
-    let fx = if inverse { planner.plan_fft_inverse(lx) } else { planner.plan_fft_forward(lx) };
-    for row in data.chunks_exact_mut(lx) {
-        fx.process(row);
-    }
-    if ly > 1 {
-        let fy = if inverse { planner.plan_fft_inverse(ly) } else { planner.plan_fft_forward(ly) };
-        let mut col = vec![C64::new(0.0, 0.0); ly];
-        for i in 0..lx {
-            for j in 0..ly {
-                col[j] = data[j * lx + i];
-            }
-            fy.process(&mut col);
-            for j in 0..ly {
-                data[j * lx + i] = col[j];
-            }
-        }
-    }
 }
 
 /// Signed harmonic number of DFT bin `k` of `n`.
@@ -106,7 +84,7 @@ impl FineSurface {
         let mean = heights_nm.iter().sum::<f64>() / heights_nm.len() as f64;
         let vals: Vec<C64> = heights_nm.iter().map(|&h| C64::new(h - mean, 0.0)).collect();
         let mut spec = vals;
-        fft2(sx, sy, &mut spec, false);
+        dft2(&mut spec, sy, sx, false);
         let norm = 1.0 / (sx * sy) as f64;
         // Zero-padded spectra of h, ∂h/∂x and ∂h/∂y on the fine grid.
         let mut h = vec![C64::new(0.0, 0.0); lx * ly];
@@ -137,9 +115,9 @@ impl FineSurface {
                 }
             }
         }
-        fft2(lx, ly, &mut h, true);
-        fft2(lx, ly, &mut hx, true);
-        fft2(lx, ly, &mut hy, true);
+        dft2(&mut h, ly, lx, true);
+        dft2(&mut hx, ly, lx, true);
+        dft2(&mut hy, ly, lx, true);
         FineSurface {
             lx,
             ly,

@@ -14,7 +14,7 @@
 //! counter-clockwise from `+x` with `y` up, in `[0°, 180°)`: a grating whose ridges run along `y` has
 //! orientation 0°; nanofingers running along `x`, repeating in `y`, give 90°.
 
-use rustfft::num_complex::Complex;
+use iridis_fft::Complex;
 use serde::Serialize;
 
 pub use crate::fft::fft2;

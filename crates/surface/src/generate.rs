@@ -383,7 +383,7 @@ fn cd(f: &Frame, radius: f64, rng: &mut Rng, pitch: f64, bit: f64, width: f64, d
 /// Gaussian random field by spectral filtering of white noise: PSD ∝ `exp(−π² f² corr²)`, the Fourier
 /// transform of the correlation `exp(−r²/corr²)`; rescaled to the exact rms.
 fn gaussian(rows: usize, cols: usize, d: f64, rng: &mut Rng, rms: f64, corr: f64) -> Vec<f64> {
-    use rustfft::num_complex::Complex;
+    use iridis_fft::Complex;
     let mut data: Vec<Complex<f64>> = (0..rows * cols).map(|_| Complex::new(rng.normal(), 0.0)).collect();
     crate::fft::fft2(&mut data, rows, cols, false);
     for r in 0..rows {

@@ -11,7 +11,8 @@
 
 pub mod analysis;
 pub mod builtin;
-pub mod fft;
+/// The 2-D FFT every spectral computation of a height field goes through (iridis-fft).
+pub use iridis_fft as fft;
 pub mod formats;
 pub mod fuzz;
 pub mod generate;

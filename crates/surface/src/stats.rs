@@ -11,7 +11,7 @@
 //! * PSDF `W(kx, ky) = |Σ z e^{−2πi(kx x + ky y)}|² · dx dy / (R C)` (nm⁴, k in cycles/nm), normalised so that
 //!   `Σ W Δkx Δky = Sq²` (Parseval); the radial PSDF averages it over annuli of |k|.
 
-use rustfft::num_complex::Complex;
+use iridis_fft::Complex;
 use serde::Serialize;
 
 use crate::fft::fft2;

@@ -1,7 +1,6 @@
-//! The unit tests of src/fft.rs, moved here so that `cargo test` compiles the library once.
+//! The tests of iridis-fft (through its re-export `iridis_surface::fft`), which has no test binary of its own.
 
 use iridis_surface::fft::*;
-use rustfft::num_complex::Complex;
 
 #[test]
 fn fft2_round_trips() {

@@ -11,6 +11,13 @@ use crate::{HeightField, SurfaceError};
 
 use super::{Format, LoadOptions, Sidecar};
 
+/// Decodes an image held in memory: every format the `image` crate reads here (PNG, TIFF, OpenEXR, Radiance HDR),
+/// as `reader` names or guesses it. The renderer's textures and glTF images decode through here too: `decode` is
+/// generic over the reader, and each crate that called it compiled every decoder again.
+pub fn decode(reader: ImageReader<Cursor<&[u8]>>) -> image::ImageResult<DynamicImage> {
+    reader.decode()
+}
+
 fn bad(fmt: Format, m: impl std::fmt::Display) -> SurfaceError {
     SurfaceError::invalid(format!("not a readable {} height map: {m}", fmt.name().to_uppercase()))
 }
@@ -31,7 +38,7 @@ pub fn read(
     limits.max_alloc = Some((crate::MAX_SAMPLES as u64) * 8);
     let mut reader = ImageReader::with_format(Cursor::new(bytes), ifmt);
     reader.limits(limits);
-    let img = reader.decode().map_err(|e| bad(fmt, e))?;
+    let img = decode(reader).map_err(|e| bad(fmt, e))?;
     let (cols, rows) = (img.width() as usize, img.height() as usize);
     crate::check_dims(rows, cols)?;
     let mut warnings = Vec::new();
@@ -101,6 +108,8 @@ pub fn write_png16(hf: &HeightField) -> Result<Vec<u8>, SurfaceError> {
     let img = image::ImageBuffer::<image::Luma<u16>, Vec<u16>>::from_raw(hf.cols as u32, hf.rows as u32, px)
         .ok_or_else(|| SurfaceError::invalid("image buffer size mismatch"))?;
     let mut out = Cursor::new(Vec::new());
-    img.write_to(&mut out, ImageFormat::Png).map_err(|e| SurfaceError::invalid(format!("cannot encode PNG: {e}")))?;
+    // The PNG encoder by name: `write_to(…, ImageFormat::Png)` would compile every encoder `image` has.
+    img.write_with_encoder(image::codecs::png::PngEncoder::new(&mut out))
+        .map_err(|e| SurfaceError::invalid(format!("cannot encode PNG: {e}")))?;
     Ok(out.into_inner())
 }
