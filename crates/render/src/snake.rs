@@ -18,6 +18,7 @@
 //! field travel with the triangles; the glTF export writes `along` as TANGENT). The price is triangles: about
 //! 130 per plate.
 
+use std::cell::RefCell;
 use std::f64::consts::{PI, TAU};
 
 use crate::geometry::Mesh;
@@ -104,6 +105,31 @@ pub struct Body {
     p: SnakeParams,
     /// σ (scale spacings from the tail tip) at `s = k / (n − 1)`.
     sigma: Vec<f64>,
+    /// The cross-sections [`Body::surface`] computed last, by `s` (see [`Sections`]).
+    sections: RefCell<Sections>,
+}
+
+/// The cross-section of the body at one `s`: what [`Body::surface`] needs besides the angle.
+#[derive(Debug, Clone, Copy)]
+struct Section {
+    side: V3,
+    up: V3,
+    half_width: f64,
+    half_height: f64,
+    centre: V3,
+}
+
+/// A small cache of cross-sections by the bits of `s`, each slot holding the last one that hashed there. A plate
+/// vertex's point, normal and nanostructure axis take about 90 body points by central differences, at about 9
+/// distinct `s`: the section (six transcendental functions) was computed for each of them, and building the
+/// mesh was two thirds of loading a snake scene. Holds values only, so the mesh is bit-for-bit the same.
+#[derive(Debug, Clone)]
+struct Sections([Option<(u64, Section)>; 64]);
+
+impl Default for Sections {
+    fn default() -> Self {
+        Sections([None; 64])
+    }
 }
 
 fn smoothstep(e0: f64, e1: f64, x: f64) -> f64 {
@@ -125,7 +151,7 @@ const EYE_RADIUS: f64 = 0.16;
 
 impl Body {
     pub fn new(p: &SnakeParams) -> Self {
-        let mut b = Body { p: p.clone(), sigma: Vec::new() };
+        let mut b = Body { p: p.clone(), sigma: Vec::new(), sections: RefCell::default() };
         // σ(s) = ∫ |spine'(s)| / L(s) ds: scales shorten with the body's width towards the tail and lengthen
         // on the head (its large shields).
         let n = 8192;
@@ -218,14 +244,28 @@ impl Body {
     /// The point of the body surface at `s` and angle `phi` around it (0 on the dorsal midline, π/2 on the
     /// right side, ±π on the ventral midline). The belly rests on `y = 0`.
     pub fn surface(&self, s: f64, phi: f64) -> V3 {
-        let (t, side, up) = self.frame(s);
-        let _ = t;
-        let (rw, rh) = self.half_axes(s);
-        let c = add(self.spine(s.clamp(0.0, 1.0)), [0.0, rh * BELLY_FLAT, 0.0]);
+        let Section { side, up, half_width: rw, half_height: rh, centre: c } = self.section(s);
         let (sp, cp) = phi.sin_cos();
         // Below the centre line the section squashes smoothly (C¹) to BELLY_FLAT at the ventral midline.
         let flat = if cp < 0.0 { 1.0 - (1.0 - BELLY_FLAT) * cp * cp } else { 1.0 };
         add(c, add(mul(side, rw * sp), mul(up, rh * cp * flat)))
+    }
+
+    /// The cross-section at `s`, from [`Sections`] when it was computed lately.
+    fn section(&self, s: f64) -> Section {
+        let bits = s.to_bits();
+        let slot = (bits.wrapping_mul(0x9e37_79b9_7f4a_7c15) >> 58) as usize;
+        if let Some((b, section)) = self.sections.borrow().0[slot] {
+            if b == bits {
+                return section;
+            }
+        }
+        let (_, side, up) = self.frame(s);
+        let (half_width, half_height) = self.half_axes(s);
+        let centre = add(self.spine(s.clamp(0.0, 1.0)), [0.0, half_height * BELLY_FLAT, 0.0]);
+        let section = Section { side, up, half_width, half_height, centre };
+        self.sections.borrow_mut().0[slot] = Some((bits, section));
+        section
     }
 
     /// Outward unit normal of the body surface at `(s, phi)` (central differences of [`Body::surface`]).

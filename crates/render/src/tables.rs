@@ -90,8 +90,8 @@ pub fn load_table(
         }
         return Ok(table);
     };
-    // The height field is generated every time (fast next to the table) so that the key follows it.
-    let patch = builtin_patch(name)?;
+    // The height field is generated (once a process) so that the key follows it.
+    let patch = generated_patch(name)?;
     cached_table(name, &format!("builtin:{name}"), &patch, DEFAULT_COHERENCE_NM, params, units)
 }
 
@@ -168,6 +168,21 @@ fn table_key(
         return builtin_key(name, fingerprint, params, terms, units);
     }
     builtin_key(name, &format!("{fingerprint} coherence={coherence_nm}"), params, terms, units)
+}
+
+/// [`builtin_patch`], generated once a process. A process that loads several scenes (the gallery, the tests)
+/// generated the same surface for every scene that uses it, only to hash it: a fifth of loading a snake scene.
+fn generated_patch(name: &str) -> Result<Arc<Patch>, RenderError> {
+    static PATCHES: OnceLock<Mutex<HashMap<String, Arc<Patch>>>> = OnceLock::new();
+    let patches = PATCHES.get_or_init(|| Mutex::new(HashMap::new()));
+    if let Some(p) = patches.lock().ok().and_then(|m| m.get(name).cloned()) {
+        return Ok(p);
+    }
+    let patch = Arc::new(builtin_patch(name)?);
+    if let Ok(mut m) = patches.lock() {
+        m.insert(name.to_string(), patch.clone());
+    }
+    Ok(patch)
 }
 
 /// The height field of the built-in surface `builtin:NAME` as a diffraction patch (what its table is built from).
