@@ -110,7 +110,7 @@ fi
 # one binary alone leaves a core idle whenever its last tests run (the CLI's help examples are one test of ~60 s;
 # the GPU tests take turns on the scene pipeline): measured on the 2-core VM (2026-11-27), the binaries alone
 # took 328 s for 557 CPU-s. Each executable runs as `cargo test` runs it: from its package's folder, with the
-# default two test threads; each job's output is printed whole when it ends.
+# default two test threads; a line says when each job starts, and its output is printed whole when it ends.
 # The order (measured): the CLI's binary first (the longest, 165 s alone), the others beside it. The GPU crate's
 # starts after the Python package, when the CLI's GPU tests have put the scene pipeline in Mesa's cache: started
 # together, both processes compiled it, and the pair took as long as the two one after the other; started last,
@@ -167,6 +167,7 @@ shown=0
 declare -A SHOWN=()
 while [ "$shown" -lt "${#JOB_NAMES[@]}" ]; do
     while [ "$next" -lt "${#JOB_NAMES[@]}" ] && [ $((next - shown)) -lt 2 ]; do
+        echo "== [${SECONDS}s] started: ${JOB_NAMES[$next]}"
         run_job "$next" &
         next=$((next + 1))
     done
