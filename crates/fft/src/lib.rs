@@ -36,17 +36,9 @@ pub fn fft2(data: &mut [Complex<f64>], rows: usize, cols: usize, inverse: bool) 
 /// transform gives the input times `rows·cols`). The rows first, then the columns; one row (`rows == 1`) is a
 /// 1-D transform.
 pub fn dft2(data: &mut [Complex<f64>], rows: usize, cols: usize, inverse: bool) {
-    let mut planner = rustfft::FftPlanner::new();
-    let plan = |planner: &mut rustfft::FftPlanner<f64>, n| {
-        if inverse {
-            planner.plan_fft_inverse(n)
-        } else {
-            planner.plan_fft_forward(n)
-        }
-    };
-    plan(&mut planner, cols).process(data);
+    plan(cols, inverse).process(data);
     if rows > 1 {
-        let fr = plan(&mut planner, rows);
+        let fr = plan(rows, inverse);
         let mut col = vec![Complex::new(0.0, 0.0); rows];
         for c in 0..cols {
             for r in 0..rows {
