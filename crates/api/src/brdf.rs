@@ -23,50 +23,48 @@ use crate::surface::{Source, SurfaceOptions};
 /// ([`crate::rigorous_brdf`]); not one of the lab's methods.
 pub const RIGOROUS: &str = "rigorous";
 
+/// What makes an evaluator besides its input: the method and the model, shading, table and reading options
+/// (`brdf-map`'s and `brdf eval`'s flags, Python's evaluator options).
+#[derive(Debug, Clone)]
+pub struct EvaluatorSetup<'a> {
+    pub method: &'a str,
+    pub model: &'a ModelOptions,
+    pub shading: Shading,
+    pub params: TableParams,
+    pub precision: Precision,
+    pub surface: &'a SurfaceOptions,
+}
+
 /// An evaluator for `--method` on a SURFACE argument or TABLE file (told apart by content, [`is_table`]).
-pub fn make_evaluator(
-    input: &str,
-    method: &str,
-    model: &ModelOptions,
-    shading: Shading,
-    params: TableParams,
-    precision: Precision,
-    surface_opts: &SurfaceOptions,
-    report: &dyn Report,
-) -> Result<Box<dyn Evaluator>> {
+pub fn make_evaluator(input: &str, setup: EvaluatorSetup<'_>, report: &dyn Report) -> Result<Box<dyn Evaluator>> {
     if is_table(input) {
-        require_lookup(method)?;
+        require_lookup(setup.method)?;
         let table = LookupTable::load(Path::new(input))?;
-        return table_evaluator(Arc::new(table), method, model, shading, precision, report);
+        return table_evaluator(Arc::new(table), setup.method, setup.model, setup.shading, setup.precision, report);
     }
-    evaluator_for(&Source::Spec(input.to_string()), method, model, shading, params, precision, surface_opts, report)
+    evaluator_for(&Source::Spec(input.to_string()), setup, report)
 }
 
 /// [`make_evaluator`] made ready for light from `wi` (a BRDF map's): with the rigorous method, Maxwell's
 /// equations solved at every wavelength first, in parallel with progress, and the method's assumptions and
 /// convergence returned.
-#[allow(clippy::too_many_arguments)]
 pub fn map_evaluator(
     input: &str,
-    method: &str,
-    model: &ModelOptions,
-    shading: Shading,
-    params: TableParams,
-    precision: Precision,
-    surface_opts: &SurfaceOptions,
+    setup: EvaluatorSetup<'_>,
     wi: [f64; 3],
     report: &dyn Report,
 ) -> Result<(Box<dyn Evaluator>, Option<crate::rigorous_brdf::RigorousSummary>)> {
-    if method == RIGOROUS && !is_table(input) {
-        if model.conserve_energy {
+    if setup.method == RIGOROUS && !is_table(input) {
+        if setup.model.conserve_energy {
             bail!(CONSERVE_RIGOROUS);
         }
-        let e = crate::rigorous_brdf::evaluator(&Source::Spec(input.to_string()), model, surface_opts, report)?;
+        let source = Source::Spec(input.to_string());
+        let e = crate::rigorous_brdf::evaluator(&source, setup.model, setup.surface, report)?;
         e.prepare(wi, report)?;
         let s = e.summary();
         return Ok((Box::new(e), Some(s)));
     }
-    Ok((make_evaluator(input, method, model, shading, params, precision, surface_opts, report)?, None))
+    Ok((make_evaluator(input, setup, report)?, None))
 }
 
 /// Why `--conserve-energy` is refused with the rigorous method.
@@ -97,16 +95,8 @@ pub fn table_evaluator(
 
 /// An evaluator for `method` on a height field: ground truth, reference, lookup (its table built here) or the
 /// lab's models.
-pub fn evaluator_for(
-    source: &Source,
-    method: &str,
-    model: &ModelOptions,
-    shading: Shading,
-    params: TableParams,
-    precision: Precision,
-    surface_opts: &SurfaceOptions,
-    report: &dyn Report,
-) -> Result<Box<dyn Evaluator>> {
+pub fn evaluator_for(source: &Source, setup: EvaluatorSetup<'_>, report: &dyn Report) -> Result<Box<dyn Evaluator>> {
+    let EvaluatorSetup { method, model, shading, params, precision, surface: surface_opts } = setup;
     if method == RIGOROUS {
         if model.conserve_energy {
             bail!(CONSERVE_RIGOROUS);
@@ -330,7 +320,9 @@ pub fn eval_point(
     report: &dyn Report,
 ) -> Result<PointEval> {
     let method = method.unwrap_or_else(|| default_method(input));
-    let (e, rigorous) = map_evaluator(input, method, model, shading, params, Precision::F64, surface_opts, wi, report)?;
+    let precision = Precision::F64;
+    let setup = EvaluatorSetup { method, model, shading, params, precision, surface: surface_opts };
+    let (e, rigorous) = map_evaluator(input, setup, wi, report)?;
     let mut p = point(e.as_ref(), model, wi, wr, report)?;
     p.rigorous = rigorous;
     if !is_table(input) && p.rigorous.is_none() {

@@ -12,7 +12,7 @@ use iridis_diffraction::geometry::{direction, FresnelConvention, Shading};
 use iridis_diffraction::table::{Lookup, Precision, TableParams};
 use iridis_lab::methods::Method;
 
-use crate::brdf::{auto_exposure, map_evaluator, render_map, render_map_per_sr, RIGOROUS};
+use crate::brdf::{auto_exposure, map_evaluator, render_map, render_map_per_sr, EvaluatorSetup, RIGOROUS};
 use crate::gallery::Gallery;
 use crate::model::is_table;
 use crate::report::{with_progress, Report};
@@ -188,8 +188,15 @@ pub fn compute(r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) ->
     if model.material.is_some() && r.method != RIGOROUS {
         bail!("--material is the rigorous method's medium; the scalar methods take --fresnel (index:…, gold, stack:…)");
     }
-    let (e, rigorous) =
-        map_evaluator(&r.input, &r.method, &model, shading, r.params(), precision, &r.surface, r.wi, report)?;
+    let setup = EvaluatorSetup {
+        method: &r.method,
+        model: &model,
+        shading,
+        params: r.params(),
+        precision,
+        surface: &r.surface,
+    };
+    let (e, rigorous) = map_evaluator(&r.input, setup, r.wi, report)?;
     if let Some(s) = &rigorous {
         report.note(&s.sentence());
     }
@@ -255,16 +262,15 @@ fn gpu_map(r: &MapRequest, report: &dyn Report) -> Result<BrdfMap> {
             bail!("--table-precision applies to the lookup method's table; --method {} has none", r.method);
         }
         let shading = crate::fresnel::shading(&r.fresnel, r.convention, r.shadowing)?;
-        let e = crate::brdf::make_evaluator(
-            &r.input,
-            &r.method,
-            &model,
+        let setup = EvaluatorSetup {
+            method: &r.method,
+            model: &model,
             shading,
-            r.params(),
-            Precision::F64,
-            &r.surface,
-            report,
-        )?;
+            params: r.params(),
+            precision: Precision::F64,
+            surface: &r.surface,
+        };
+        let e = crate::brdf::make_evaluator(&r.input, setup, report)?;
         let gt = e.as_ground_truth().context("internal: a ground-truth method without a ground truth")?;
         let gpu = crate::gpu::open()?;
         let t = std::time::Instant::now();

@@ -10,26 +10,22 @@ use iridis_diffraction::Shading;
 
 use crate::report::Report;
 use crate::surface::Source;
-use crate::vision::DirectionalVision;
+use crate::vision::{DirectionalVision, PlaneViews};
 use crate::{ModelOptions, SurfaceOptions};
 
 /// The analysis of [`crate::vision::along_plane`] (views in degrees, signed, in the plane of incidence), its
 /// strip written to `strip` (PNG, declared first) and its notes passed to `report`.
-#[allow(clippy::too_many_arguments)]
 pub fn brdf_vision(
     source: &Source,
     surface: &SurfaceOptions,
     model: &ModelOptions,
     shading: Shading,
-    light_theta: f64,
-    azimuth: Option<f64>,
-    views_deg: &[f64],
-    spec: &iridis_vision::Spec,
+    plane: PlaneViews<'_>,
     strip: Option<&Path>,
     report: &dyn Report,
 ) -> Result<DirectionalVision> {
     crate::output::declare_opt("--strip", strip, &["png"])?;
-    let v = crate::vision::along_plane(source, surface, model, shading, light_theta, azimuth, views_deg, spec, report)?;
+    let v = crate::vision::along_plane(source, surface, model, shading, plane, report)?;
     if let Some(path) = strip {
         let img = vision_strip(&v)?;
         crate::output::write_png_rgb8(path, img.width, img.height, &img.data)?;

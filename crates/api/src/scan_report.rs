@@ -181,8 +181,15 @@ fn brdf_map_figure(
     let model = crate::ModelOptions { coherence_nm, light: Some(wi), ..crate::ModelOptions::default() };
     let shading = crate::fresnel::shading("schlick:1.5", FresnelConvention::Physical, true)?;
     let params = TableParams { uv_resolution: 501, uv_power: 5.0 };
-    let (e, _) =
-        crate::brdf::map_evaluator(surface, "reference", &model, shading, params, Precision::F64, surf, wi, report)?;
+    let setup = crate::brdf::EvaluatorSetup {
+        method: "reference",
+        model: &model,
+        shading,
+        params,
+        precision: Precision::F64,
+        surface: surf,
+    };
+    let (e, _) = crate::brdf::map_evaluator(surface, setup, wi, report)?;
     let xyz = crate::brdf::render_map(e.as_ref(), wi, size, report);
     let mut exposure = 1500.0;
     let mut warnings = Vec::new();
@@ -365,7 +372,8 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
             let model = crate::ModelOptions { coherence_nm: map_coherence_nm, ..crate::ModelOptions::default() };
             let shading = crate::fresnel::shading("schlick:1.5", FresnelConvention::Physical, true)?;
             let views: Vec<f64> = (-6..=6).map(|k| 10.0 * k as f64).collect();
-            let v = crate::vision::along_plane(&source, &surf, &model, shading, 0.0, None, &views, &spec, r)?;
+            let plane = crate::vision::PlaneViews { light_theta: 0.0, azimuth: None, views_deg: &views, spec: &spec };
+            let v = crate::vision::along_plane(&source, &surf, &model, shading, plane, r)?;
             let img = crate::brdf_vision::vision_strip(&v)?;
             crate::output::write_png_rgb8(&path("vision.png"), img.width, img.height, &img.data)?;
             Ok((answer(v.to_json(), &args, inputs), Vec::new()))

@@ -34,22 +34,32 @@ pub struct DirectionalVision {
     pub analysis: iridis_vision::Analysis,
 }
 
+/// What [`along_plane`] looks at: a light and views in one plane, and who looks.
+#[derive(Debug, Clone, Copy)]
+pub struct PlaneViews<'a> {
+    /// Polar angle of the light (rad).
+    pub light_theta: f64,
+    /// The plane of incidence's azimuth in the surface frame (rad); default the dominant period's orientation.
+    pub azimuth: Option<f64>,
+    /// The views' signed polar angles in the plane (degrees, positive on the specular side).
+    pub views_deg: &'a [f64],
+    /// The visual system and its conditions (`--visual`, `--illuminant`, …).
+    pub spec: &'a iridis_vision::Spec,
+}
+
 /// The reflectance factor `π f_r(λ)` (a white diffuser's is 1) of the reference evaluator on SURFACE for light
 /// at `light_theta` in the plane of azimuth `azimuth` (default: the dominant period's orientation) and views at
 /// the signed angles `views_deg` in that plane, from [`FROM_NM`] to [`TO_NM`] in 5 nm steps, seen by the
 /// visual system of `spec`.
-#[allow(clippy::too_many_arguments)]
 pub fn along_plane(
     source: &Source,
     surface: &SurfaceOptions,
     model: &ModelOptions,
     shading: Shading,
-    light_theta: f64,
-    azimuth: Option<f64>,
-    views_deg: &[f64],
-    spec: &iridis_vision::Spec,
+    plane: PlaneViews<'_>,
     report: &dyn Report,
 ) -> Result<DirectionalVision> {
+    let PlaneViews { light_theta, azimuth, views_deg, spec } = plane;
     if views_deg.is_empty() || views_deg.iter().any(|v| !(v.is_finite() && v.abs() < 90.0)) {
         bail!("the view angles must lie strictly between −90° and 90°");
     }

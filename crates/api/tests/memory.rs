@@ -59,17 +59,15 @@ fn the_reports_model_steps_hold_a_few_copies_of_the_scan() {
     let model =
         iridis_api::ModelOptions { coherence_nm: Some(12_800.0), light: Some([0.0, 0.0, 1.0]), ..Default::default() };
     let (e, peak) = peak_during(|| {
-        iridis_api::brdf::evaluator_for(
-            &source,
-            "reference",
-            &model,
+        let setup = iridis_api::brdf::EvaluatorSetup {
+            method: "reference",
+            model: &model,
             shading,
-            Default::default(),
-            iridis_diffraction::table::Precision::F64,
-            &Default::default(),
-            &Quiet,
-        )
-        .unwrap()
+            params: Default::default(),
+            precision: iridis_diffraction::table::Precision::F64,
+            surface: &Default::default(),
+        };
+        iridis_api::brdf::evaluator_for(&source, setup, &Quiet).unwrap()
     });
     eprintln!("reference: peak {:.1} MiB, {:.1}× the heights", peak as f64 / 1048576.0, peak as f64 / heights as f64);
     assert!(peak <= bound, "the reference evaluator peaked at {:.1}× the heights", peak as f64 / heights as f64);

@@ -64,14 +64,22 @@ fn the_blazed_strips_light_goes_to_its_facet_side() {
     // The saw-tooth rises along +x, so its facets face −x: at normal incidence the bright orders lie on the −x
     // side (docs/PHYSICS.md). With the window shrunk below one period (the old fitted 1.6 µm) the ratio fell
     // from 28 to 2.2.
-    use iridis_api::brdf::{evaluator_for, render_map};
+    use iridis_api::brdf::{evaluator_for, render_map, EvaluatorSetup};
     use iridis_diffraction::table::{Precision, TableParams};
     let source = Source::Spec("builtin:blazed?size-x=65um&size-y=3.2um&pixel=50nm".into());
     let model = iridis_api::ModelOptions { step_nm: Some(10.0), ..Default::default() };
     let params = TableParams { uv_resolution: 101, uv_power: 5.0 };
     let shading = iridis_diffraction::Shading::default();
-    let e = evaluator_for(&source, "reference", &model, shading, params, Precision::F64, &Default::default(), &Quiet)
-        .unwrap();
+    let surface = Default::default();
+    let setup = EvaluatorSetup {
+        method: "reference",
+        model: &model,
+        shading,
+        params,
+        precision: Precision::F64,
+        surface: &surface,
+    };
+    let e = evaluator_for(&source, setup, &Quiet).unwrap();
     let size = 65; // odd: the middle row holds the orders of a 1-D grating (y = 0)
     let map = render_map(e.as_ref(), [0.0, 0.0, 1.0], size, &Quiet);
     let (mut minus, mut plus) = (0.0, 0.0);

@@ -3,7 +3,7 @@
 //! its orders), and a blazed one far more light to its facets' side.
 
 use iridis_api::surface::Source;
-use iridis_api::vision::along_plane;
+use iridis_api::vision::{along_plane, PlaneViews};
 use iridis_api::Quiet;
 
 fn seen(spec: &str, views: &[f64]) -> iridis_api::vision::DirectionalVision {
@@ -13,7 +13,8 @@ fn seen(spec: &str, views: &[f64]) -> iridis_api::vision::DirectionalVision {
     let visual = iridis_vision::Spec { visual: Some("bluetit".into()), ..Default::default() };
     let source = Source::Spec(spec.into());
     let shading = iridis_diffraction::Shading::default();
-    along_plane(&source, &Default::default(), &model, shading, 0.0, Some(0.0), views, &visual, &Quiet).unwrap()
+    let plane = PlaneViews { light_theta: 0.0, azimuth: Some(0.0), views_deg: views, spec: &visual };
+    along_plane(&source, &Default::default(), &model, shading, plane, &Quiet).unwrap()
 }
 
 #[test]

@@ -6,7 +6,9 @@
 use std::path::Path;
 use std::sync::Arc;
 
-use iridis_api::brdf::{default_method, evaluator_for, make_evaluator, point, render_map, table_evaluator};
+use iridis_api::brdf::{
+    default_method, evaluator_for, make_evaluator, point, render_map, table_evaluator, EvaluatorSetup,
+};
 use iridis_api::model::{build_table, spectral_setup, taylor_terms};
 use iridis_api::report::Report;
 use iridis_api::surface::Source;
@@ -127,6 +129,12 @@ impl EvalOptions {
         let (f, c, s) = &self.fresnel;
         iridis_api::fresnel::shading(f, *c, *s)
     }
+
+    /// The evaluator setup of `method` with these options (the CPU's f64 precision).
+    fn setup<'a>(&'a self, method: &'a str, shading: Shading) -> EvaluatorSetup<'a> {
+        let (model, surface, params) = (&self.model, &self.surface, self.params);
+        EvaluatorSetup { method, model, shading, params, precision: Precision::F64, surface }
+    }
 }
 
 /// The evaluator of `method` (default: lookup for a table, reference for a height field) on an input.
@@ -137,16 +145,12 @@ fn evaluator(
     report: &dyn Report,
 ) -> anyhow::Result<Box<dyn Evaluator>> {
     let shading = o.shading()?;
-    let f64p = Precision::F64;
     match input {
-        Input::Table(t) => table_evaluator(t.clone(), method.unwrap_or("lookup"), &o.model, shading, f64p, report),
-        Input::Field(s) => {
-            evaluator_for(s, method.unwrap_or("reference"), &o.model, shading, o.params, f64p, &o.surface, report)
+        Input::Table(t) => {
+            table_evaluator(t.clone(), method.unwrap_or("lookup"), &o.model, shading, Precision::F64, report)
         }
-        Input::Arg(a) => {
-            let m = method.unwrap_or_else(|| default_method(a));
-            make_evaluator(a, m, &o.model, shading, o.params, f64p, &o.surface, report)
-        }
+        Input::Field(s) => evaluator_for(s, o.setup(method.unwrap_or("reference"), shading), report),
+        Input::Arg(a) => make_evaluator(a, o.setup(method.unwrap_or_else(|| default_method(a)), shading), report),
     }
 }
 
@@ -343,17 +347,8 @@ fn brdf_vision<'py>(
     };
     let spec = iridis_vision::Spec { visual: Some(visual), illuminant, ..Default::default() };
     let v = run(py, |r| {
-        iridis_api::vision::along_plane(
-            &source,
-            &eo.surface,
-            &eo.model,
-            eo.shading()?,
-            light_theta,
-            azimuth,
-            &views_deg,
-            &spec,
-            r,
-        )
+        let plane = iridis_api::vision::PlaneViews { light_theta, azimuth, views_deg: &views_deg, spec: &spec };
+        iridis_api::vision::along_plane(&source, &eo.surface, &eo.model, eo.shading()?, plane, r)
     })?;
     let text = serde_json::to_string(&v.to_json()).map_err(value_error)?;
     py.import("json")?.call_method1("loads", (text,))

@@ -378,15 +378,14 @@ fn run_vision(a: BrdfVisionArgs) -> Result<()> {
         illuminant: Some(a.illuminant.clone()),
         ..Default::default()
     };
+    let plane =
+        iridis_api::vision::PlaneViews { light_theta: a.light, azimuth: a.azimuth, views_deg: &views, spec: &spec };
     let v = iridis_api::brdf_vision::brdf_vision(
         &iridis_api::surface::Source::Spec(a.input.clone()),
         &a.surface_opts,
         &a.model.options(),
         a.shading.shading()?,
-        a.light,
-        a.azimuth,
-        &views,
-        &spec,
+        plane,
         a.strip.as_deref(),
         &Cli,
     )?;
