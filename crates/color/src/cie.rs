@@ -88,13 +88,6 @@ impl Observer {
         let w = &self.cmfs().wavelengths_nm;
         (w[0], w[w.len() - 1])
     }
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Observer::Cie1931 => "1931",
-            Observer::Cie1964 => "1964",
-        }
-    }
 }
 
 impl Illuminant {
@@ -116,15 +109,6 @@ impl Illuminant {
             Spectrum::new(w, v).expect("malformed built-in illuminant table")
         })
     }
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Illuminant::D65 => "D65",
-            Illuminant::D50 => "D50",
-            Illuminant::A => "A",
-            Illuminant::E => "E",
-        }
-    }
 }
 
 /// An observer or illuminant name that is not known.
@@ -136,27 +120,37 @@ pub struct UnknownName {
     pub expected: &'static str,
 }
 
+crate::names! {
+    Observer {
+        Cie1931 => "1931" | "2" | "2deg" | "cie1931",
+        Cie1964 => "1964" | "10" | "10deg" | "cie1964",
+    }
+}
+
+crate::names! {
+    Illuminant {
+        D65 => "D65",
+        D50 => "D50",
+        A => "A",
+        E => "E",
+    }
+}
+
 impl FromStr for Observer {
     type Err = UnknownName;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        match s.trim().to_ascii_lowercase().as_str() {
-            "1931" | "2" | "2deg" | "cie1931" => Ok(Observer::Cie1931),
-            "1964" | "10" | "10deg" | "cie1964" => Ok(Observer::Cie1964),
-            _ => Err(UnknownName { kind: "observer", given: s.into(), expected: "1931, 1964" }),
-        }
+        Self::from_name(s).ok_or_else(|| UnknownName { kind: "observer", given: s.into(), expected: "1931, 1964" })
     }
 }
 
 impl FromStr for Illuminant {
     type Err = UnknownName;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        match s.trim().to_ascii_lowercase().as_str() {
-            "d65" => Ok(Illuminant::D65),
-            "d50" => Ok(Illuminant::D50),
-            "a" => Ok(Illuminant::A),
-            "e" => Ok(Illuminant::E),
-            _ => Err(UnknownName { kind: "illuminant", given: s.into(), expected: "d65, d50, a, e" }),
-        }
+        Self::from_name(s).ok_or_else(|| UnknownName {
+            kind: "illuminant",
+            given: s.into(),
+            expected: "d65, d50, a, e",
+        })
     }
 }
 

@@ -9,7 +9,8 @@
 //! * [`convert`]: XYZ ↔ xyY, XYZ ↔ linear sRGB (IEC 61966-2-1), the sRGB transfer curve, plain gamma;
 //! * [`lab`]: XYZ ↔ CIELAB and the colour differences ΔE*ab (1976) and CIEDE2000;
 //! * [`tonemap`]: exposure in relative units (RU) and encoding to 8-bit pixels;
-//! * [`units`]: the one parser of lengths and angles typed by people (`65nm`, `0.43um`, `75deg`).
+//! * [`units`]: the one parser of lengths and angles typed by people (`65nm`, `0.43um`, `75deg`);
+//! * [`names`](mod@names): [`names!`], the names of an enum's variants (canonical name and aliases) read both ways.
 //!
 //! All lengths are nanometres, all angles radians (see `docs/PHYSICS.md`).
 
@@ -17,6 +18,7 @@ pub mod cie;
 pub mod convert;
 pub mod integrate;
 pub mod lab;
+pub mod names;
 pub mod spectrum;
 pub mod tonemap;
 pub mod units;

@@ -6,5 +6,6 @@ mod tonemap_resample;
 mod unit_cie;
 mod unit_convert;
 mod unit_integrate;
+mod unit_names;
 mod unit_spectrum;
 mod unit_units;

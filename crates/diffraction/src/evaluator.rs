@@ -146,26 +146,22 @@ pub enum Aperture {
     Periodic,
 }
 
-impl Aperture {
-    pub fn name(self) -> &'static str {
-        match self {
-            Aperture::Finite => "finite",
-            Aperture::Periodic => "periodic",
-        }
+iridis_color::names! {
+    Aperture {
+        Finite => "finite" | "patch",
+        Periodic => "periodic" | "periodic-extension",
     }
 }
 
 impl std::str::FromStr for Aperture {
     type Err = DiffractionError;
     fn from_str(s: &str) -> Result<Self, DiffractionError> {
-        match s.trim().to_ascii_lowercase().as_str() {
-            "finite" | "patch" => Ok(Aperture::Finite),
-            "periodic" | "periodic-extension" => Ok(Aperture::Periodic),
-            _ => Err(DiffractionError::Invalid(format!(
+        Self::from_name(s).ok_or_else(|| {
+            DiffractionError::Invalid(format!(
                 "aperture '{s}': expected finite (the window cut at the patch edge) or periodic (the patch \
                  repeated, as the DFT sees it)"
-            ))),
-        }
+            ))
+        })
     }
 }
 

@@ -60,26 +60,22 @@ pub enum Normalisation {
     Kirchhoff,
 }
 
-impl Normalisation {
-    pub fn name(self) -> &'static str {
-        match self {
-            Normalisation::Energy => "energy",
-            Normalisation::Kirchhoff => "kirchhoff",
-        }
+iridis_color::names! {
+    Normalisation {
+        Energy => "energy" | "energy-conserving",
+        Kirchhoff => "kirchhoff" | "none" | "printed",
     }
 }
 
 impl std::str::FromStr for Normalisation {
     type Err = DiffractionError;
     fn from_str(s: &str) -> Result<Self, DiffractionError> {
-        match s.trim().to_ascii_lowercase().as_str() {
-            "energy" | "energy-conserving" => Ok(Normalisation::Energy),
-            "kirchhoff" | "none" | "printed" => Ok(Normalisation::Kirchhoff),
-            _ => Err(DiffractionError::Invalid(format!(
+        Self::from_name(s).ok_or_else(|| {
+            DiffractionError::Invalid(format!(
                 "normalisation '{s}': expected energy (the default: energy and reciprocity exact) or kirchhoff \
                  (the obliquity factor as printed, not energy-conserving)"
-            ))),
-        }
+            ))
+        })
     }
 }
 

@@ -25,26 +25,22 @@ pub enum Units {
     Radiometric,
 }
 
-impl Units {
-    pub fn name(self) -> &'static str {
-        match self {
-            Units::Relative => "relative",
-            Units::Radiometric => "radiometric",
-        }
+iridis_color::names! {
+    Units {
+        Relative => "relative" | "paper",
+        Radiometric => "radiometric" | "absolute",
     }
 }
 
 impl std::str::FromStr for Units {
     type Err = DiffractionError;
     fn from_str(s: &str) -> Result<Self, DiffractionError> {
-        match s.trim().to_ascii_lowercase().as_str() {
-            "relative" | "paper" => Ok(Units::Relative),
-            "radiometric" | "absolute" => Ok(Units::Radiometric),
-            _ => Err(DiffractionError::Invalid(format!(
+        Self::from_name(s).ok_or_else(|| {
+            DiffractionError::Invalid(format!(
                 "units '{s}': expected relative (the paper's: a flat mirror's peak is 1) or radiometric (the BRDF: \
                  a flat mirror reflects R(θ) of the light)"
-            ))),
-        }
+            ))
+        })
     }
 }
 

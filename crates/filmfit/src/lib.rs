@@ -29,14 +29,15 @@ pub enum Quantity {
     PsiDelta,
 }
 
-impl Quantity {
-    pub fn name(self) -> &'static str {
-        match self {
-            Quantity::R => "R",
-            Quantity::T => "T",
-            Quantity::PsiDelta => "psi-delta",
-        }
+iridis_color::names! {
+    Quantity {
+        R => "R",
+        T => "T",
+        PsiDelta => "psi-delta" | "psi_delta" | "ellipsometry",
     }
+}
+
+impl Quantity {
     /// Values per wavelength.
     pub fn width(self) -> usize {
         if self == Quantity::PsiDelta {
@@ -50,12 +51,10 @@ impl Quantity {
 impl std::str::FromStr for Quantity {
     type Err = FitError;
     fn from_str(s: &str) -> Result<Self, FitError> {
-        match s.to_ascii_lowercase().as_str() {
-            "r" => Ok(Quantity::R),
-            "t" => Ok(Quantity::T),
-            "psi-delta" | "psi_delta" | "ellipsometry" => Ok(Quantity::PsiDelta),
-            _ => Err(FitError::Data(format!("--quantity '{s}': use R, T or psi-delta"))),
-        }
+        // `from_name` trims; a quantity has never been read with white space around it, so it still is not.
+        Self::from_name(s)
+            .filter(|_| s.trim() == s)
+            .ok_or_else(|| FitError::Data(format!("--quantity '{s}': use R, T or psi-delta")))
     }
 }
 

@@ -50,6 +50,12 @@ impl LabError {
     pub(crate) fn invalid(msg: impl Into<String>) -> Self {
         Self::Invalid(msg.into())
     }
+
+    /// A name (`kind`: "method", …) that is none of `names`.
+    pub(crate) fn unknown_name(kind: &str, given: &str, names: impl IntoIterator<Item = &'static str>) -> Self {
+        let names: Vec<_> = names.into_iter().collect();
+        Self::invalid(format!("unknown {kind} '{given}'; expected one of: {}", names.join(", ")))
+    }
 }
 
 /// A progress callback: called with the number of work items done so far (from any thread).

@@ -47,20 +47,6 @@ impl Method {
         Method::StamGaussian,
     ];
 
-    pub fn name(self) -> &'static str {
-        match self {
-            Method::GroundTruth => "ground-truth",
-            Method::GroundTruthPeriodic => "ground-truth-periodic",
-            Method::Reference => "reference",
-            Method::Lookup => "lookup",
-            Method::Nmm => "nmm",
-            Method::Pq => "pq",
-            Method::StamPeriodic(Bump::Rectangular) => "stam-periodic",
-            Method::StamPeriodic(Bump::Triangular) => "stam-periodic-triangular",
-            Method::StamGaussian => "stam-gaussian",
-        }
-    }
-
     /// The ground truth with the given aperture.
     pub fn ground_truth(aperture: Aperture) -> Method {
         match aperture {
@@ -93,6 +79,20 @@ impl Method {
     }
 }
 
+iridis_color::names! {
+    Method {
+        GroundTruth => "ground-truth" | "truth" | "ground_truth" | "groundtruth" | "ground-truth-finite",
+        GroundTruthPeriodic => "ground-truth-periodic" | "ground-truth-periodic-extension" | "ground_truth_periodic",
+        Reference => "reference" | "flss",
+        Lookup => "lookup",
+        Nmm => "nmm",
+        Pq => "pq",
+        StamPeriodic(Bump::Rectangular) => "stam-periodic" | "stam-periodic-rectangular" | "stam-periodic-rect",
+        StamPeriodic(Bump::Triangular) => "stam-periodic-triangular" | "stam-periodic-triangle" | "stam-periodic-tri",
+        StamGaussian => "stam-gaussian",
+    }
+}
+
 impl std::fmt::Display for Method {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(self.name())
@@ -102,21 +102,7 @@ impl std::fmt::Display for Method {
 impl FromStr for Method {
     type Err = LabError;
     fn from_str(s: &str) -> Result<Self, LabError> {
-        let t = s.trim().to_ascii_lowercase();
-        let alias = match t.as_str() {
-            "truth" | "ground_truth" | "groundtruth" | "ground-truth-finite" => "ground-truth",
-            "ground-truth-periodic-extension" | "ground_truth_periodic" => "ground-truth-periodic",
-            "flss" => "reference",
-            "stam-periodic-rectangular" | "stam-periodic-rect" => "stam-periodic",
-            "stam-periodic-triangle" | "stam-periodic-tri" => "stam-periodic-triangular",
-            other => other,
-        };
-        Method::ALL.into_iter().find(|m| m.name() == alias).ok_or_else(|| {
-            LabError::invalid(format!(
-                "unknown method '{s}'; expected one of: {}",
-                Method::ALL.iter().map(|m| m.name()).collect::<Vec<_>>().join(", ")
-            ))
-        })
+        Self::from_name(s).ok_or_else(|| LabError::unknown_name("method", s, Method::ALL.map(Method::name)))
     }
 }
 

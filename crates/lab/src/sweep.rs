@@ -33,16 +33,6 @@ pub enum Param {
 impl Param {
     pub const ALL: [Param; 5] = [Param::Terms, Param::DLambda, Param::Coherence, Param::UvPower, Param::UvResolution];
 
-    pub fn name(self) -> &'static str {
-        match self {
-            Param::Terms => "terms",
-            Param::DLambda => "dlambda",
-            Param::Coherence => "coherence",
-            Param::UvPower => "uv-power",
-            Param::UvResolution => "uv-resolution",
-        }
-    }
-
     /// Axis label with unit.
     pub fn label(self) -> &'static str {
         match self {
@@ -76,15 +66,20 @@ impl Param {
     }
 }
 
+iridis_color::names! {
+    Param {
+        Terms => "terms",
+        DLambda => "dlambda",
+        Coherence => "coherence",
+        UvPower => "uv-power",
+        UvResolution => "uv-resolution",
+    }
+}
+
 impl std::str::FromStr for Param {
     type Err = LabError;
     fn from_str(s: &str) -> Result<Self, LabError> {
-        Param::ALL.into_iter().find(|p| p.name() == s.trim().to_ascii_lowercase()).ok_or_else(|| {
-            LabError::invalid(format!(
-                "unknown sweep parameter '{s}'; expected one of: {}",
-                Param::ALL.iter().map(|p| p.name()).collect::<Vec<_>>().join(", ")
-            ))
-        })
+        Self::from_name(s).ok_or_else(|| LabError::unknown_name("sweep parameter", s, Param::ALL.map(Param::name)))
     }
 }
 

@@ -34,15 +34,18 @@ impl Polarization {
     }
 }
 
+iridis_color::names! {
+    Polarization {
+        Average => "avg" | "average" | "unpolarized" | "unpolarised",
+        S => "s" | "te",
+        P => "p" | "tm",
+    }
+}
+
 impl std::str::FromStr for Polarization {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {
-        match s.trim().to_ascii_lowercase().as_str() {
-            "avg" | "average" | "unpolarized" | "unpolarised" => Ok(Polarization::Average),
-            "s" | "te" => Ok(Polarization::S),
-            "p" | "tm" => Ok(Polarization::P),
-            _ => Err(format!("'{s}' is not a polarisation; use avg, s or p")),
-        }
+        Self::from_name(s).ok_or_else(|| format!("'{s}' is not a polarisation; use avg, s or p"))
     }
 }
 

@@ -24,14 +24,18 @@ pub enum NoiseModel {
     Quantum,
 }
 
+iridis_color::names! {
+    NoiseModel {
+        Neural => "neural",
+        Quantum => "quantum",
+    }
+}
+
 impl FromStr for NoiseModel {
     type Err = VisionError;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        match s.trim().to_ascii_lowercase().as_str() {
-            "neural" => Ok(NoiseModel::Neural),
-            "quantum" => Ok(NoiseModel::Quantum),
-            _ => Err(VisionError::invalid(format!("unknown noise model '{s}'; expected neural or quantum"))),
-        }
+        Self::from_name(s)
+            .ok_or_else(|| VisionError::invalid(format!("unknown noise model '{s}'; expected neural or quantum")))
     }
 }
 

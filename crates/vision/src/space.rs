@@ -29,33 +29,31 @@ pub enum Space {
     None,
 }
 
+iridis_color::names! {
+    Space {
+        Auto => "auto",
+        Line => "line" | "di" | "dispace",
+        Triangle => "triangle" | "tri" | "trispace" | "maxwell",
+        Tetrahedron => "tetrahedron" | "tetra" | "tcs",
+        Hexagon => "hexagon" | "hex",
+        None => "none",
+    }
+}
+
 impl FromStr for Space {
     type Err = VisionError;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        match s.trim().to_ascii_lowercase().as_str() {
-            "auto" => Ok(Space::Auto),
-            "line" | "di" | "dispace" => Ok(Space::Line),
-            "triangle" | "tri" | "trispace" | "maxwell" => Ok(Space::Triangle),
-            "tetrahedron" | "tetra" | "tcs" => Ok(Space::Tetrahedron),
-            "hexagon" | "hex" => Ok(Space::Hexagon),
-            "none" => Ok(Space::None),
-            _ => Err(VisionError::invalid(format!(
+        Self::from_name(s).ok_or_else(|| {
+            VisionError::invalid(format!(
                 "unknown colour space '{s}'; expected auto, line, triangle, tetrahedron, hexagon or none"
-            ))),
-        }
+            ))
+        })
     }
 }
 
 impl fmt::Display for Space {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(match self {
-            Space::Auto => "auto",
-            Space::Line => "line",
-            Space::Triangle => "triangle",
-            Space::Tetrahedron => "tetrahedron",
-            Space::Hexagon => "hexagon",
-            Space::None => "none",
-        })
+        f.write_str(self.name())
     }
 }
 

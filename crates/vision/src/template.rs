@@ -18,23 +18,23 @@ pub enum Chromophore {
     A2,
 }
 
+iridis_color::names! {
+    Chromophore {
+        A1 => "A1",
+        A2 => "A2",
+    }
+}
+
 impl FromStr for Chromophore {
     type Err = VisionError;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        match s.trim().to_ascii_lowercase().as_str() {
-            "a1" => Ok(Chromophore::A1),
-            "a2" => Ok(Chromophore::A2),
-            _ => Err(VisionError::invalid(format!("unknown chromophore '{s}'; expected a1 or a2"))),
-        }
+        Self::from_name(s).ok_or_else(|| VisionError::invalid(format!("unknown chromophore '{s}'; expected a1 or a2")))
     }
 }
 
 impl fmt::Display for Chromophore {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(match self {
-            Chromophore::A1 => "A1",
-            Chromophore::A2 => "A2",
-        })
+        f.write_str(self.name())
     }
 }
 
@@ -93,17 +93,21 @@ pub enum DropletType {
     P,
 }
 
+iridis_color::names! {
+    DropletType {
+        T => "T",
+        C => "C",
+        Y => "Y",
+        R => "R",
+        P => "P",
+    }
+}
+
 impl FromStr for DropletType {
     type Err = VisionError;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        match s.trim().to_ascii_uppercase().as_str() {
-            "T" => Ok(DropletType::T),
-            "C" => Ok(DropletType::C),
-            "Y" => Ok(DropletType::Y),
-            "R" => Ok(DropletType::R),
-            "P" => Ok(DropletType::P),
-            _ => Err(VisionError::invalid(format!("unknown oil-droplet type '{s}'; expected T, C, Y, R or P"))),
-        }
+        Self::from_name(s)
+            .ok_or_else(|| VisionError::invalid(format!("unknown oil-droplet type '{s}'; expected T, C, Y, R or P")))
     }
 }
 
