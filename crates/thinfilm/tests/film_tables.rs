@@ -93,7 +93,11 @@ fn compare(stack: &Stack, lo: f64, hi: f64, density: f64) -> (TableGrid, DeltaES
 fn tables_meet_the_colour_bound() {
     let mirror = mirror();
     let mut cases: Vec<(&str, f64, f64)> = CASES.to_vec();
-    cases.push((&mirror, -40.0, 40.0));
+    // The mirror's offset moves 20 interfaces, so its fringes are dense in offset: ±40 nm is 755 offset nodes
+    // and 14 s of table build (2-core VM), ±10 nm a quarter of both. The bound is one of interpolation between
+    // neighbouring nodes, the same at any offset: the full range with `IRIDIS_EXHAUSTIVE=1` (README, "Tests").
+    let mirror_offset = if std::env::var("IRIDIS_EXHAUSTIVE").as_deref() == Ok("1") { 40.0 } else { 10.0 };
+    cases.push((&mirror, -mirror_offset, mirror_offset));
     let mut worst = (0.0f64, 0.0f64);
     for (s, lo, hi) in cases {
         let stack = Stack::parse(s).unwrap();
