@@ -2,7 +2,6 @@
 //! `tools/gen_cie_data.py` for their provenance) and parsed once on first use.
 
 use std::fmt;
-use std::str::FromStr;
 use std::sync::OnceLock;
 
 use crate::spectrum::Spectrum;
@@ -125,6 +124,7 @@ crate::names! {
         Cie1931 => "1931" | "2" | "2deg" | "cie1931",
         Cie1964 => "1964" | "10" | "10deg" | "cie1964",
     }
+    else |s| -> UnknownName { UnknownName { kind: "observer", given: s.into(), expected: "1931, 1964" } }
 }
 
 crate::names! {
@@ -134,24 +134,7 @@ crate::names! {
         A => "A",
         E => "E",
     }
-}
-
-impl FromStr for Observer {
-    type Err = UnknownName;
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        Self::from_name(s).ok_or_else(|| UnknownName { kind: "observer", given: s.into(), expected: "1931, 1964" })
-    }
-}
-
-impl FromStr for Illuminant {
-    type Err = UnknownName;
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        Self::from_name(s).ok_or_else(|| UnknownName {
-            kind: "illuminant",
-            given: s.into(),
-            expected: "d65, d50, a, e",
-        })
-    }
+    else |s| -> UnknownName { UnknownName { kind: "illuminant", given: s.into(), expected: "d65, d50, a, e" } }
 }
 
 impl fmt::Display for Observer {

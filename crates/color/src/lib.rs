@@ -10,7 +10,8 @@
 //! * [`lab`]: XYZ ↔ CIELAB and the colour differences ΔE*ab (1976) and CIEDE2000;
 //! * [`tonemap`]: exposure in relative units (RU) and encoding to 8-bit pixels;
 //! * [`units`]: the one parser of lengths and angles typed by people (`65nm`, `0.43um`, `75deg`);
-//! * [`names`](mod@names): [`names!`], the names of an enum's variants (canonical name and aliases) read both ways.
+//! * [`names`](mod@names): [`names!`], the names of an enum's variants (canonical name and aliases) read both ways, and
+//!   with an `else` clause their `FromStr`.
 //!
 //! All lengths are nanometres, all angles radians (see `docs/PHYSICS.md`).
 

@@ -8,17 +8,24 @@
 //! * `from_name(&str) -> Option<Self>`: the variant whose canonical name or alias equals the text, with white
 //!   space around it trimmed and ASCII case ignored.
 //!
-//! Each crate's `FromStr` stays its own, so that an unknown name gets that crate's error and message:
-//! `Self::from_name(s).ok_or_else(|| …)`.
+//! An unknown name gets the error type and message of the crate that owns the enum. The optional clause
+//! `else |s| -> Error { … }` after the list names that type and builds the error from the text `s` as given
+//! (untrimmed); with it the macro also writes `impl FromStr`: `from_name(s)`, or else that error. An enum whose
+//! `FromStr` reads differently (filmfit's `Quantity` refuses white space around the name, which `from_name`
+//! trims) leaves the clause out and writes its own.
 
 /// Generates `name` and `from_name` for a `Copy` enum (named where it is in scope) from its variants'
-/// canonical names and aliases.
+/// canonical names and aliases, and with an `else` clause also `impl FromStr`.
 ///
 /// Each line is `Variant => "canonical" | "alias" | …`; a variant that carries a value names it in
 /// parentheses, in a form that is both a pattern and an expression (`StamPeriodic(Bump::Triangular) => "…"`).
 /// The canonical name is returned as written (its case kept: `"A1"`, `"D65"`); matching ignores ASCII case
 /// and trims white space, so the aliases need be written once, in any case. Earlier lines win when a name
 /// would match twice. `name` is an exhaustive `match`: a variant left out of the list does not compile.
+///
+/// The optional clause after the list, `else |s| -> Error { … }`, reads like a closure: `s` names the text
+/// that matched no name (as given, before trimming), `Error` is `FromStr::Err`, and the block builds that
+/// error. The generated `from_str(s)` is `Self::from_name(s).ok_or_else(|| { … })`.
 ///
 /// ```
 /// #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -32,11 +39,14 @@
 ///         Finite => "finite" | "patch",
 ///         Periodic => "periodic" | "periodic-extension",
 ///     }
+///     else |s| -> String { format!("aperture '{s}': expected finite or periodic") }
 /// }
 ///
 /// assert_eq!(Aperture::Periodic.name(), "periodic");
 /// assert_eq!(Aperture::from_name(" Patch "), Some(Aperture::Finite));
 /// assert_eq!(Aperture::from_name("infinite"), None);
+/// assert_eq!("Periodic-Extension".parse(), Ok(Aperture::Periodic));
+/// assert_eq!("infinite".parse::<Aperture>(), Err("aperture 'infinite': expected finite or periodic".to_string()));
 /// ```
 #[macro_export]
 macro_rules! names {
@@ -44,6 +54,7 @@ macro_rules! names {
         $enum:ident {
             $( $variant:ident $( ( $($value:tt)* ) )? => $canonical:literal $( | $alias:literal )* ),+ $(,)?
         }
+        $( else | $text:ident | -> $error:ty $unknown:block )?
     ) => {
         impl $enum {
             /// The canonical name of this value, as printed.
@@ -65,5 +76,16 @@ macro_rules! names {
                 ::core::option::Option::None
             }
         }
+
+        $(
+            impl ::core::str::FromStr for $enum {
+                type Err = $error;
+
+                /// The value named `from_name`; an unknown name is an error that quotes it.
+                fn from_str($text: &str) -> ::core::result::Result<Self, $error> {
+                    Self::from_name($text).ok_or_else(|| $unknown)
+                }
+            }
+        )?
     };
 }

@@ -151,17 +151,11 @@ iridis_color::names! {
         Finite => "finite" | "patch",
         Periodic => "periodic" | "periodic-extension",
     }
-}
-
-impl std::str::FromStr for Aperture {
-    type Err = DiffractionError;
-    fn from_str(s: &str) -> Result<Self, DiffractionError> {
-        Self::from_name(s).ok_or_else(|| {
-            DiffractionError::Invalid(format!(
-                "aperture '{s}': expected finite (the window cut at the patch edge) or periodic (the patch \
-                 repeated, as the DFT sees it)"
-            ))
-        })
+    else |s| -> DiffractionError {
+        DiffractionError::Invalid(format!(
+            "aperture '{s}': expected finite (the window cut at the patch edge) or periodic (the patch \
+             repeated, as the DFT sees it)"
+        ))
     }
 }
 

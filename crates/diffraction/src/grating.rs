@@ -65,17 +65,11 @@ iridis_color::names! {
         Energy => "energy" | "energy-conserving",
         Kirchhoff => "kirchhoff" | "none" | "printed",
     }
-}
-
-impl std::str::FromStr for Normalisation {
-    type Err = DiffractionError;
-    fn from_str(s: &str) -> Result<Self, DiffractionError> {
-        Self::from_name(s).ok_or_else(|| {
-            DiffractionError::Invalid(format!(
-                "normalisation '{s}': expected energy (the default: energy and reciprocity exact) or kirchhoff \
-                 (the obliquity factor as printed, not energy-conserving)"
-            ))
-        })
+    else |s| -> DiffractionError {
+        DiffractionError::Invalid(format!(
+            "normalisation '{s}': expected energy (the default: energy and reciprocity exact) or kirchhoff \
+             (the obliquity factor as printed, not energy-conserving)"
+        ))
     }
 }
 

@@ -30,17 +30,11 @@ iridis_color::names! {
         Relative => "relative" | "paper",
         Radiometric => "radiometric" | "absolute",
     }
-}
-
-impl std::str::FromStr for Units {
-    type Err = DiffractionError;
-    fn from_str(s: &str) -> Result<Self, DiffractionError> {
-        Self::from_name(s).ok_or_else(|| {
-            DiffractionError::Invalid(format!(
-                "units '{s}': expected relative (the paper's: a flat mirror's peak is 1) or radiometric (the BRDF: \
-                 a flat mirror reflects R(θ) of the light)"
-            ))
-        })
+    else |s| -> DiffractionError {
+        DiffractionError::Invalid(format!(
+            "units '{s}': expected relative (the paper's: a flat mirror's peak is 1) or radiometric (the BRDF: \
+             a flat mirror reflects R(θ) of the light)"
+        ))
     }
 }
 

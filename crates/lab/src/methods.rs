@@ -3,7 +3,6 @@
 //! periodic extension), `reference`, `lookup` (iridis-diffraction), `nmm`, `pq` ([`crate::variants`]),
 //! `stam-periodic` / `stam-periodic-triangular`, `stam-gaussian` ([`crate::stam`]).
 
-use std::str::FromStr;
 use std::sync::{Arc, Mutex};
 
 use iridis_color::{Observer, Spectrum, Xyz};
@@ -91,18 +90,12 @@ iridis_color::names! {
         StamPeriodic(Bump::Triangular) => "stam-periodic-triangular" | "stam-periodic-triangle" | "stam-periodic-tri",
         StamGaussian => "stam-gaussian",
     }
+    else |s| -> LabError { LabError::unknown_name("method", s, Method::ALL.map(Method::name)) }
 }
 
 impl std::fmt::Display for Method {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(self.name())
-    }
-}
-
-impl FromStr for Method {
-    type Err = LabError;
-    fn from_str(s: &str) -> Result<Self, LabError> {
-        Self::from_name(s).ok_or_else(|| LabError::unknown_name("method", s, Method::ALL.map(Method::name)))
     }
 }
 

@@ -74,13 +74,7 @@ iridis_color::names! {
         UvPower => "uv-power",
         UvResolution => "uv-resolution",
     }
-}
-
-impl std::str::FromStr for Param {
-    type Err = LabError;
-    fn from_str(s: &str) -> Result<Self, LabError> {
-        Self::from_name(s).ok_or_else(|| LabError::unknown_name("sweep parameter", s, Param::ALL.map(Param::name)))
-    }
+    else |s| -> LabError { LabError::unknown_name("sweep parameter", s, Param::ALL.map(Param::name)) }
 }
 
 /// An error at one exposure: (exposure in RU, mean ΔE00, 95th percentile).

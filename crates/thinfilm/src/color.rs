@@ -40,13 +40,7 @@ iridis_color::names! {
         S => "s" | "te",
         P => "p" | "tm",
     }
-}
-
-impl std::str::FromStr for Polarization {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        Self::from_name(s).ok_or_else(|| format!("'{s}' is not a polarisation; use avg, s or p"))
-    }
+    else |s| -> String { format!("'{s}' is not a polarisation; use avg, s or p") }
 }
 
 /// The reflected and transmitted colour of a stack.

@@ -2,8 +2,6 @@
 //! adaptation, colour distance ΔS and achromatic distance ΔL in units of just-noticeable differences (JND),
 //! and colour-space coordinates. Equations and their sources: `docs/vision.md`.
 
-use std::str::FromStr;
-
 use serde::Serialize;
 
 use crate::light::{Background, BackgroundInfo, Light};
@@ -29,14 +27,7 @@ iridis_color::names! {
         Neural => "neural",
         Quantum => "quantum",
     }
-}
-
-impl FromStr for NoiseModel {
-    type Err = VisionError;
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        Self::from_name(s)
-            .ok_or_else(|| VisionError::invalid(format!("unknown noise model '{s}'; expected neural or quantum")))
-    }
+    else |s| -> VisionError { VisionError::invalid(format!("unknown noise model '{s}'; expected neural or quantum")) }
 }
 
 /// Which achromatic channel ΔL uses.

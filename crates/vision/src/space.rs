@@ -3,7 +3,6 @@
 //! colour hexagon for bees from von Kries-adapted catches.
 
 use std::fmt;
-use std::str::FromStr;
 
 use serde::Serialize;
 
@@ -38,16 +37,10 @@ iridis_color::names! {
         Hexagon => "hexagon" | "hex",
         None => "none",
     }
-}
-
-impl FromStr for Space {
-    type Err = VisionError;
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        Self::from_name(s).ok_or_else(|| {
-            VisionError::invalid(format!(
-                "unknown colour space '{s}'; expected auto, line, triangle, tetrahedron, hexagon or none"
-            ))
-        })
+    else |s| -> VisionError {
+        VisionError::invalid(format!(
+            "unknown colour space '{s}'; expected auto, line, triangle, tetrahedron, hexagon or none"
+        ))
     }
 }
 

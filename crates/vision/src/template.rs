@@ -2,7 +2,6 @@
 //! and the oil-droplet filters of Hart & Vorobyev (2005).
 
 use std::fmt;
-use std::str::FromStr;
 
 use serde::Serialize;
 
@@ -23,13 +22,7 @@ iridis_color::names! {
         A1 => "A1",
         A2 => "A2",
     }
-}
-
-impl FromStr for Chromophore {
-    type Err = VisionError;
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        Self::from_name(s).ok_or_else(|| VisionError::invalid(format!("unknown chromophore '{s}'; expected a1 or a2")))
-    }
+    else |s| -> VisionError { VisionError::invalid(format!("unknown chromophore '{s}'; expected a1 or a2")) }
 }
 
 impl fmt::Display for Chromophore {
@@ -101,13 +94,8 @@ iridis_color::names! {
         R => "R",
         P => "P",
     }
-}
-
-impl FromStr for DropletType {
-    type Err = VisionError;
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        Self::from_name(s)
-            .ok_or_else(|| VisionError::invalid(format!("unknown oil-droplet type '{s}'; expected T, C, Y, R or P")))
+    else |s| -> VisionError {
+        VisionError::invalid(format!("unknown oil-droplet type '{s}'; expected T, C, Y, R or P"))
     }
 }
 
