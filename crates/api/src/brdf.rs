@@ -27,11 +27,17 @@ pub const RIGOROUS: &str = "rigorous";
 /// (`brdf-map`'s and `brdf eval`'s flags, Python's evaluator options).
 #[derive(Debug, Clone)]
 pub struct EvaluatorSetup<'a> {
+    /// `--method`: reference, ground-truth, lookup, rigorous or one of the lab's models.
     pub method: &'a str,
+    /// Coherence, Taylor terms, wavelengths and light (`--coherence`, `--terms`, …).
     pub model: &'a ModelOptions,
+    /// Fresnel factor, its convention and shadowing around |A|².
     pub shading: Shading,
+    /// The lookup table's u-v grid, where the method builds one.
     pub params: TableParams,
+    /// The lookup table's arithmetic (f64 on the CPU).
     pub precision: Precision,
+    /// How SURFACE is read (channel, pixel size, levelling, …).
     pub surface: &'a SurfaceOptions,
 }
 
