@@ -33,6 +33,18 @@ fn examples() -> Vec<PathBuf> {
     v
 }
 
+/// The example scene at `path`, loaded once for this binary's tests (a snake scene takes ~1 s to build; the
+/// scale test renders its examples at two scales, and the unit-scale test renders them all).
+fn example_scene(path: &std::path::Path) -> Scene {
+    static LOADED: std::sync::OnceLock<std::sync::Mutex<std::collections::HashMap<PathBuf, Scene>>> =
+        std::sync::OnceLock::new();
+    let mut loaded = LOADED.get_or_init(Default::default).lock().unwrap_or_else(|e| e.into_inner());
+    let scene = loaded
+        .entry(path.to_path_buf())
+        .or_insert_with(|| load_scene(path).unwrap_or_else(|e| panic!("{}: {e}", path.display())));
+    scene.clone()
+}
+
 /// `IRIDIS_EXHAUSTIVE=1`: the full versions of the tests (README, "Tests").
 fn exhaustive() -> bool {
     std::env::var("IRIDIS_EXHAUSTIVE").as_deref() == Ok("1")
@@ -133,7 +145,7 @@ fn every_example_scene_matches_the_cpu_at_1e_3_and_1e3_scale() {
     for path in scale_test_examples() {
         let name = path.file_name().unwrap().to_string_lossy().to_string();
         for scale in [1e-3, 1e3] {
-            let mut scene = load_scene(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            let mut scene = example_scene(&path);
             scene.scale(scale);
             let (mean, p99, off, lit) = compare(gpu, &scene, &name, 64);
             eprintln!("{name:<32} ×{scale:<6} mean ΔE00 {mean:.3}, p99 {p99:.3}, > 8 levels {:.3} %", off * 100.0);
@@ -330,7 +342,7 @@ fn every_example_scene_matches_the_cpu() {
     assert!(scenes.len() >= 8, "examples/ has {} scenes", scenes.len());
     let mut report = Vec::new();
     for path in scenes {
-        let scene = load_scene(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let scene = example_scene(&path);
         let name = path.file_name().unwrap().to_string_lossy().to_string();
         let (w, h) = (96, (96.0 * scene.output.height as f64 / scene.output.width as f64).round() as u32);
         let cpu = render(&scene, w, h, 1, &|_| {});

@@ -33,7 +33,7 @@ pub struct Output {
 }
 
 /// A scene ready to render.
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 pub struct Scene {
     pub camera: Camera,
     pub lights: Vec<Light>,
