@@ -11,7 +11,6 @@ use anyhow::{anyhow, bail, Context, Result};
 use iridis_color::units::parse_length_nm;
 use iridis_filmfit::{FitOptions, FitResult, Quantity, ReadOptions, Reading, Spread, Template};
 use iridis_plot::{LinePlot, RgbImage, Series};
-use iridis_thinfilm::color::Polarization;
 use iridis_thinfilm::depth::{depth_profile, DepthProfile};
 use iridis_thinfilm::Stack;
 use serde_json::json;
@@ -56,13 +55,7 @@ pub fn profile(
     depth: Option<&str>,
 ) -> Result<FilmProfile> {
     let parsed = parse_stack(stack)?;
-    let pol = polarization.to_ascii_lowercase();
-    let p = match pol.as_str() {
-        "avg" => Polarization::Average,
-        "s" => Polarization::S,
-        "p" => Polarization::P,
-        _ => bail!("--polarization '{polarization}': use avg, s or p"),
-    };
+    let p = crate::film::parse_polarization(polarization)?;
     let window = depth.map(parse_depth).transpose()?;
     if !(2..=1_000_000).contains(&points) {
         bail!("--points must be between 2 and 1000000");
@@ -78,7 +71,7 @@ pub fn profile(
         title: stack_title(stack),
         wavelength_nm,
         angle_rad,
-        polarization: pol,
+        polarization: p.name().to_string(),
         profile: d,
     })
 }

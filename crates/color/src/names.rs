@@ -10,9 +10,7 @@
 //!
 //! An unknown name gets the error type and message of the crate that owns the enum. The optional clause
 //! `else |s| -> Error { … }` after the list names that type and builds the error from the text `s` as given
-//! (untrimmed); with it the macro also writes `impl FromStr`: `from_name(s)`, or else that error. An enum whose
-//! `FromStr` reads differently (filmfit's `Quantity` refuses white space around the name, which `from_name`
-//! trims) leaves the clause out and writes its own.
+//! (untrimmed); with it the macro also writes `impl FromStr`: `from_name(s)`, or else that error.
 
 /// Generates `name` and `from_name` for a `Copy` enum (named where it is in scope) from its variants'
 /// canonical names and aliases, and with an `else` clause also `impl FromStr`.

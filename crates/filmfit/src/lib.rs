@@ -35,6 +35,7 @@ iridis_color::names! {
         T => "T",
         PsiDelta => "psi-delta" | "psi_delta" | "ellipsometry",
     }
+    else |s| -> FitError { FitError::Data(format!("--quantity '{s}': use R, T or psi-delta")) }
 }
 
 impl Quantity {
@@ -45,16 +46,6 @@ impl Quantity {
         } else {
             1
         }
-    }
-}
-
-impl std::str::FromStr for Quantity {
-    type Err = FitError;
-    fn from_str(s: &str) -> Result<Self, FitError> {
-        // `from_name` trims; a quantity has never been read with white space around it, so it still is not.
-        Self::from_name(s)
-            .filter(|_| s.trim() == s)
-            .ok_or_else(|| FitError::Data(format!("--quantity '{s}': use R, T or psi-delta")))
     }
 }
 
