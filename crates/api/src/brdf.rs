@@ -153,7 +153,7 @@ pub fn evaluator_for(source: &Source, setup: EvaluatorSetup<'_>, report: &dyn Re
         ),
         Method::Lookup => {
             let terms = taylor_terms(&patch, model, report)?;
-            let table = build_table(&terms, &spectral, params, input, report)?;
+            let table = build_table(None, &terms, &spectral, params, input, report)?;
             Ok(Box::new(Lookup::new(Arc::new(table), shading, precision)?))
         }
         // The lab's variants (NMM, PQ) and Stam's analytic models, built as `iridis compare` builds them.

@@ -306,7 +306,7 @@ fn gpu_map(r: &MapRequest, report: &dyn Report) -> Result<BrdfMap> {
     }
     let fresnel = crate::fresnel::parse_fresnel(&r.fresnel)?;
     let gpu = crate::gpu::open()?;
-    let table = crate::gpu::lookup_table(&gpu, &r.input, &model, r.params(), &r.surface, report)?;
+    let table = crate::model::lookup_table(Some(&gpu), &r.input, &model, r.params(), &r.surface, report)?;
     let coherence_nm = Some(table.meta.coherence_nm);
     let map =
         crate::gpu::lookup_map(&gpu, &table, fresnel, r.shadowing, r.convention, table_encoding, r.wi, r.size, tone)?;
@@ -422,7 +422,8 @@ pub fn demo_section(g: &mut Gallery) -> Result<()> {
         let patch = crate::surface::load_patch(&spec, &none, &quiet)?;
         let spectral = spectral_setup(&model, &quiet)?;
         let terms = taylor_terms(&patch, &model, &quiet)?;
-        let table = build_table(&terms, &spectral, TableParams { uv_resolution: 201, uv_power: 5.0 }, &spec, &quiet)?;
+        let table =
+            build_table(None, &terms, &spectral, TableParams { uv_resolution: 201, uv_power: 5.0 }, &spec, &quiet)?;
         let n = table.meta.taylor_terms;
         let lookup = Lookup::new(Arc::new(table), Shading::default(), Precision::F64)?;
         let wi = direction(f64::to_radians(theta_deg), 0.0);

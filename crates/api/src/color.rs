@@ -126,6 +126,11 @@ impl SpectrumColour {
     }
 }
 
+/// The colour conditions of a film's report, after its geometry: `illuminant D65, CIE 1931 observer, 380–780 nm`.
+pub fn light_and_observer(illuminant: Illuminant, observer: Observer, (from_nm, to_nm): (f64, f64)) -> String {
+    format!("illuminant {illuminant}, CIE {observer} observer, {from_nm}–{to_nm} nm")
+}
+
 /// An `L,a,b` triple (`which` names it in messages: first, second).
 pub fn parse_lab(s: &str, which: &str) -> Result<Lab> {
     let parts: Vec<&str> = s.split(',').map(str::trim).collect();

@@ -463,13 +463,10 @@ impl FilmColour {
         let mut o = format!("stack        {}\n", self.stack);
         let _ = writeln!(
             o,
-            "conditions   {}° incidence{}, illuminant {}, CIE {} observer, {}–{} nm",
+            "conditions   {}° incidence{}, {}",
             fmt_deg(self.angle_rad),
             pol_label(self.polarization),
-            self.illuminant,
-            self.observer,
-            self.wavelength_range_nm.0,
-            self.wavelength_range_nm.1
+            crate::color::light_and_observer(self.illuminant, self.observer, self.wavelength_range_nm)
         );
         o += &colour_text("reflected", &self.reflected);
         o += &colour_text("transmitted", &self.transmitted);

@@ -4,14 +4,11 @@
 use anyhow::Result;
 use iridis_color::ToneMap;
 use iridis_diffraction::encoding::TableEncoding;
-use iridis_diffraction::table::TableParams;
-use iridis_diffraction::{Fresnel, FresnelConvention, LookupTable, SpectralSetup, TaylorTerms};
+use iridis_diffraction::{Fresnel, FresnelConvention, LookupTable};
 use iridis_gpu::scene::SceneFilm;
 use iridis_gpu::{Gpu, GpuLookup, GpuScene, MapOutput};
 
-use crate::model::ModelOptions;
 use crate::report::{with_progress, Report};
-use crate::surface::SurfaceOptions;
 
 /// Opens the GPU (the library's error names the driver to install when there is none).
 pub fn open() -> Result<Gpu> {
@@ -55,38 +52,6 @@ pub struct GpuMap {
     /// Seconds of the map's dispatch (wall clock).
     pub map_seconds: f64,
     pub adapter: String,
-}
-
-/// The lookup table of `terms` built on the GPU (`iridis precompute --gpu`), with progress; the time and the
-/// adapter are reported.
-pub fn build_table(
-    gpu: &Gpu,
-    terms: &TaylorTerms,
-    spectral: &SpectralSetup,
-    params: TableParams,
-    name: &str,
-    report: &dyn Report,
-) -> Result<LookupTable> {
-    let t = std::time::Instant::now();
-    let table = with_progress(report, params.uv_resolution as u64, "lookup tables (GPU)", |p| {
-        iridis_gpu::build_table(gpu, terms, spectral, params, name, p)
-    })?;
-    report.info(&format!("lookup tables built on {} in f32, {:.2} s", gpu.adapter_name(), t.elapsed().as_secs_f64()));
-    Ok(table)
-}
-
-/// A TABLE file (checked against the model options), or the table of a SURFACE built on the GPU.
-pub fn lookup_table(
-    gpu: &Gpu,
-    input: &str,
-    model: &ModelOptions,
-    params: TableParams,
-    surface: &SurfaceOptions,
-    report: &dyn Report,
-) -> Result<LookupTable> {
-    crate::model::lookup_table_with(input, model, surface, report, |terms, spectral| {
-        build_table(gpu, terms, spectral, params, input, report)
-    })
 }
 
 /// The lookup method's BRDF map (paper eq. 10–12) of `table` on the GPU for light `wi`, the table stored as

@@ -9,6 +9,7 @@ use iridis_color::{Illuminant, Observer};
 use iridis_diffraction::table::{LookupTable, Provenance, TableParams};
 use iridis_diffraction::taylor::{terms_for_bound, window_radius, Band};
 use iridis_diffraction::{Patch, SpectralSetup, TaylorTerms};
+use iridis_gpu::Gpu;
 
 use crate::report::{with_progress, Report};
 use crate::surface::{load_patch, SurfaceOptions};
@@ -143,17 +144,27 @@ fn taylor_terms_in_band(
     Ok(terms)
 }
 
-/// Builds a lookup table, with progress.
+/// Builds a lookup table, with progress: on the CPU, or with `gpu` on the GPU in f32 (`iridis precompute --gpu`;
+/// the time and the adapter are reported).
 pub fn build_table(
+    gpu: Option<&Gpu>,
     terms: &TaylorTerms,
     spectral: &SpectralSetup,
     params: TableParams,
     name: &str,
     report: &dyn Report,
 ) -> Result<LookupTable> {
-    Ok(with_progress(report, params.uv_resolution as u64, "lookup tables", |p| {
-        LookupTable::build(terms, spectral, params, name, p)
-    })?)
+    let Some(gpu) = gpu else {
+        return Ok(with_progress(report, params.uv_resolution as u64, "lookup tables", |p| {
+            LookupTable::build(terms, spectral, params, name, p)
+        })?);
+    };
+    let t = std::time::Instant::now();
+    let table = with_progress(report, params.uv_resolution as u64, "lookup tables (GPU)", |p| {
+        iridis_gpu::build_table(gpu, terms, spectral, params, name, p)
+    })?;
+    report.info(&format!("lookup tables built on {} in f32, {:.2} s", gpu.adapter_name(), t.elapsed().as_secs_f64()));
+    Ok(table)
 }
 
 /// Whether INPUT is a lookup table from `iridis precompute` rather than a height field, by content: a height
@@ -195,27 +206,15 @@ pub fn check_against_table(t: &LookupTable, m: &ModelOptions, report: &dyn Repor
     Ok(())
 }
 
-/// The lookup table of a TABLE (checked against the options) or built from a SURFACE.
+/// The lookup table of a TABLE (checked against the options) or built from a SURFACE ([`build_table`]: on the
+/// GPU with `gpu`).
 pub fn lookup_table(
+    gpu: Option<&Gpu>,
     input: &str,
     model: &ModelOptions,
     params: TableParams,
     surface: &SurfaceOptions,
     report: &dyn Report,
-) -> Result<LookupTable> {
-    lookup_table_with(input, model, surface, report, |terms, spectral| {
-        build_table(terms, spectral, params, input, report)
-    })
-}
-
-/// [`lookup_table`] with the table of a SURFACE made by `build` from its Taylor terms and spectral setup (the
-/// CPU's [`build_table`], or the GPU's).
-pub fn lookup_table_with(
-    input: &str,
-    model: &ModelOptions,
-    surface: &SurfaceOptions,
-    report: &dyn Report,
-    build: impl FnOnce(&TaylorTerms, &SpectralSetup) -> Result<LookupTable>,
 ) -> Result<LookupTable> {
     if is_table(input) {
         let table = LookupTable::load(Path::new(input))?;
@@ -225,5 +224,5 @@ pub fn lookup_table_with(
     let patch = load_patch(input, surface, report)?;
     let spectral = spectral_setup(model, report)?;
     let terms = taylor_terms(&patch, model, report)?;
-    build(&terms, &spectral)
+    build_table(gpu, &terms, &spectral, params, input, report)
 }

@@ -44,11 +44,8 @@ pub fn precompute(r: &PrecomputeRequest, output: &Path, report: &dyn Report) -> 
         2 * terms.n_max + 1,
         (values * 8) as f64 / 1e6
     ));
-    let table = if r.gpu {
-        crate::gpu::build_table(&crate::gpu::open()?, &terms, &spectral, r.params, &r.surface, report)?
-    } else {
-        build_table(&terms, &spectral, r.params, &r.surface, report)?
-    };
+    let gpu = if r.gpu { Some(crate::gpu::open()?) } else { None };
+    let table = build_table(gpu.as_ref(), &terms, &spectral, r.params, &r.surface, report)?;
     let mut buf = std::io::Cursor::new(Vec::new());
     table.write_npz(&mut buf)?;
     crate::output::write_bytes(output, buf.get_ref())?;

@@ -360,14 +360,11 @@ impl RoughColourReport {
         );
         let _ = writeln!(
             o,
-            "conditions   view {}°, light {}°, azimuth {}°, illuminant {}, CIE {} observer, {}–{} nm",
+            "conditions   view {}°, light {}°, azimuth {}°, {}",
             deg(self.view),
             deg(self.light),
             deg(self.azimuth),
-            self.illuminant,
-            self.observer,
-            self.wavelength_range_nm.0,
-            self.wavelength_range_nm.1
+            crate::color::light_and_observer(self.illuminant, self.observer, self.wavelength_range_nm)
         );
         o += &colour_text("smooth film, reflected", &self.smooth);
         o += &colour_text("rough film, specular k_r", &self.specular);

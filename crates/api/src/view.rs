@@ -35,7 +35,7 @@ pub fn view(
         ViewInput::Scene(path.to_path_buf())
     } else {
         let params = TableParams { uv_resolution, uv_power: 5.0 };
-        let table = crate::model::lookup_table(input, &ModelOptions::default(), params, surface, report)?;
+        let table = crate::model::lookup_table(None, input, &ModelOptions::default(), params, surface, report)?;
         ViewInput::Table { table: Box::new(table), name: input.to_string() }
     };
     let opts = ViewOptions { check: check.map(Path::to_path_buf) };

@@ -257,7 +257,7 @@ pub fn gpu(a: &GpuBenchOptions, report: &dyn Report) -> Result<Bench> {
             t.push("building the lookup table of builtin:elaphe at 201² (pass --table to use your own) …".into());
             let params = TableParams { uv_resolution: 201, uv_power: 5.0 };
             let none = SurfaceOptions::default();
-            crate::model::lookup_table("builtin:elaphe", &ModelOptions::default(), params, &none, report)?
+            crate::model::lookup_table(None, "builtin:elaphe", &ModelOptions::default(), params, &none, report)?
         }
     };
     let fresnel = Fresnel::default();
@@ -538,7 +538,7 @@ fn table_build(gpu: &Gpu, a: &GpuBenchOptions, report: &dyn Report) -> Result<(V
     let terms = crate::model::taylor_terms(&patch, &model, report)?;
     let params = TableParams { uv_resolution: a.build_uv_resolution, uv_power: 5.0 };
     let t = std::time::Instant::now();
-    let cpu = crate::model::build_table(&terms, &spectral, params, &a.build_surface, report)?;
+    let cpu = crate::model::build_table(None, &terms, &spectral, params, &a.build_surface, report)?;
     let cpu_s = t.elapsed().as_secs_f64();
     let t = std::time::Instant::now();
     let on_gpu = iridis_gpu::build_table(gpu, &terms, &spectral, params, &a.build_surface, &|_| {})?;
