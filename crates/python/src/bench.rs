@@ -136,6 +136,6 @@ fn bench_run(py: Python<'_>, name: &str, options: Option<Bound<'_, PyDict>>) -> 
 }
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.add_function(wrap_pyfunction!(bench_run, m)?)?;
+    add_functions!(m, [bench_run]);
     Ok(())
 }

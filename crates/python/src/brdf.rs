@@ -6,18 +6,12 @@ use iridis_api::brdf_eval::{brdf_eval as eval, EvalRequest};
 use iridis_api::brdf_map::{compute, MapRequest};
 use iridis_color::Encoding;
 use iridis_diffraction::geometry::direction;
-use numpy::ndarray::Array3;
-use numpy::{IntoPyArray, PyArray3};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::{above, value_error};
-use crate::facade::{run, Options};
-
-fn xyz_array<'py>(py: Python<'py>, xyz: &[iridis_color::Xyz], size: usize) -> Bound<'py, PyArray3<f64>> {
-    let flat: Vec<f64> = xyz.iter().flat_map(|c| c.to_array()).collect();
-    Array3::from_shape_vec((size, size, 3), flat).expect("shape").into_pyarray(py)
-}
+use crate::args::above;
+use crate::diffraction::xyz_array;
+use crate::facade::{json_to_py, run, Options};
 
 /// `iridis brdf-map`'s map as the CLI computes it: a dict with `xyz` (linear XYZ of ρ, (size, size, 3)),
 /// `per_sr` (f_r in sr⁻¹ as XYZ, with `per_sr=True`), `exposure_ru` (the one `auto_exposure` chose), `method`,
@@ -102,12 +96,10 @@ fn brdf_eval<'py>(
     };
     o.finish()?;
     let value = run(py, |rep| eval(&r, None, rep)?.to_json())?;
-    let text = serde_json::to_string(&value).map_err(value_error)?;
-    py.import("json")?.call_method1("loads", (text,))
+    json_to_py(py, &value)
 }
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.add_function(wrap_pyfunction!(brdf_map_run, m)?)?;
-    m.add_function(wrap_pyfunction!(brdf_eval, m)?)?;
+    add_functions!(m, [brdf_map_run, brdf_eval]);
     Ok(())
 }

@@ -132,15 +132,20 @@ fn names() -> (Vec<&'static str>, Vec<&'static str>) {
 }
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.add_function(wrap_pyfunction!(_spectrum_to_xyz, m)?)?;
-    m.add_function(wrap_pyfunction!(white_point_xyz, m)?)?;
-    m.add_function(wrap_pyfunction!(_xyz_to_lab, m)?)?;
-    m.add_function(wrap_pyfunction!(_lab_to_xyz, m)?)?;
-    m.add_function(wrap_pyfunction!(_xyz_to_xyy, m)?)?;
-    m.add_function(wrap_pyfunction!(_xyz_to_linear_srgb, m)?)?;
-    m.add_function(wrap_pyfunction!(_xyz_to_srgb, m)?)?;
-    m.add_function(wrap_pyfunction!(_xyz_to_hex, m)?)?;
-    m.add_function(wrap_pyfunction!(_delta_e, m)?)?;
-    m.add_function(wrap_pyfunction!(names, m)?)?;
+    add_functions!(
+        m,
+        [
+            _spectrum_to_xyz,
+            white_point_xyz,
+            _xyz_to_lab,
+            _lab_to_xyz,
+            _xyz_to_xyy,
+            _xyz_to_linear_srgb,
+            _xyz_to_srgb,
+            _xyz_to_hex,
+            _delta_e,
+            names
+        ]
+    );
     Ok(())
 }

@@ -23,7 +23,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::args::value_error;
-use crate::facade::{run, Options};
+use crate::facade::{json_to_py, run, Options};
 use crate::surface::PyHeightField;
 
 /// A lookup table (the native half of `iridis.diffraction.Table`).
@@ -181,7 +181,7 @@ fn precompute(
         let patch = source.patch(&eo.surface, r)?;
         let spectral = spectral_setup(&eo.model, r)?;
         let terms = taylor_terms(&patch, &eo.model, r)?;
-        build_table(&terms, &spectral, eo.params, &name, r)
+        build_table(None, &terms, &spectral, eo.params, &name, r)
     })?;
     Ok(PyTable { table: Arc::new(table) })
 }
@@ -215,8 +215,13 @@ fn brdf_map_xyz<'py>(
         }
         Ok(render_map(e.as_ref(), wi, size, r))
     })?;
+    Ok(xyz_array(py, &xyz, size))
+}
+
+/// A BRDF map of `size`² colours as linear XYZ of shape (size, size, 3).
+pub(crate) fn xyz_array<'py>(py: Python<'py>, xyz: &[iridis_color::Xyz], size: usize) -> Bound<'py, PyArray3<f64>> {
     let flat: Vec<f64> = xyz.iter().flat_map(|c| c.to_array()).collect();
-    Ok(Array3::from_shape_vec((size, size, 3), flat).expect("shape").into_pyarray(py))
+    Array3::from_shape_vec((size, size, 3), flat).expect("shape").into_pyarray(py)
 }
 
 /// ρ(λ) and XYZ of one method for one pair of directions, as `iridis brdf eval --json`: a dict with `method`,
@@ -321,8 +326,7 @@ fn grating<'py>(
         let g = grating(&source, &surface, &GratingOptions { method: GratingMethod::Rigorous, ..opts }, r)?;
         Ok(scalar_error(&k, &g).to_json(&k, &g))
     })?;
-    let text = serde_json::to_string(&value).map_err(value_error)?;
-    py.import("json")?.call_method1("loads", (text,))
+    json_to_py(py, &value)
 }
 
 /// How an animal sees a surface from several directions, as `iridis brdf vision --json` (a dict).
@@ -350,16 +354,11 @@ fn brdf_vision<'py>(
         let plane = iridis_api::vision::PlaneViews { light_theta, azimuth, views_deg: &views_deg, spec: &spec };
         iridis_api::vision::along_plane(&source, &eo.surface, &eo.model, eo.shading()?, plane, r)
     })?;
-    let text = serde_json::to_string(&v.to_json()).map_err(value_error)?;
-    py.import("json")?.call_method1("loads", (text,))
+    json_to_py(py, &v.to_json())
 }
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyTable>()?;
-    m.add_function(wrap_pyfunction!(precompute, m)?)?;
-    m.add_function(wrap_pyfunction!(brdf_map_xyz, m)?)?;
-    m.add_function(wrap_pyfunction!(eval_point, m)?)?;
-    m.add_function(wrap_pyfunction!(grating, m)?)?;
-    m.add_function(wrap_pyfunction!(brdf_vision, m)?)?;
+    add_functions!(m, [precompute, brdf_map_xyz, eval_point, grating, brdf_vision]);
     Ok(())
 }

@@ -61,6 +61,12 @@ pub fn run<T: Send>(py: Python<'_>, f: impl FnOnce(&Collect) -> anyhow::Result<T
     out.map_err(api_error)
 }
 
+/// A facade result's JSON (what the command prints with `--json`) as Python objects, as `json.loads` reads it.
+pub fn json_to_py<'py>(py: Python<'py>, value: &serde_json::Value) -> PyResult<Bound<'py, PyAny>> {
+    let text = serde_json::to_string(value).map_err(crate::args::value_error)?;
+    py.import("json")?.call_method1("loads", (text,))
+}
+
 /// The keyword options of a facade call (the wrapper's `**options`), read by name and type: a wrong type is a
 /// `TypeError` naming the option, a name no option has is a `TypeError` as Python gives for an unexpected
 /// keyword, `None` is the same as leaving the option out.

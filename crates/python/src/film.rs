@@ -131,7 +131,6 @@ fn fit_dict<'py>(
 }
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.add_function(wrap_pyfunction!(_profile, m)?)?;
-    m.add_function(wrap_pyfunction!(_fit, m)?)?;
+    add_functions!(m, [_profile, _fit]);
     Ok(())
 }

@@ -368,15 +368,20 @@ fn _color_delta_e(py: Python<'_>, first: &str, second: &str, formula: &str) -> P
 }
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.add_function(wrap_pyfunction!(_film_spectrum, m)?)?;
-    m.add_function(wrap_pyfunction!(_film_table, m)?)?;
-    m.add_function(wrap_pyfunction!(_film_color, m)?)?;
-    m.add_function(wrap_pyfunction!(_film_chart, m)?)?;
-    m.add_function(wrap_pyfunction!(_film_materials, m)?)?;
-    m.add_function(wrap_pyfunction!(_film_bench, m)?)?;
-    m.add_function(wrap_pyfunction!(_film_profile, m)?)?;
-    m.add_function(wrap_pyfunction!(_film_fit, m)?)?;
-    m.add_function(wrap_pyfunction!(_color_xyz, m)?)?;
-    m.add_function(wrap_pyfunction!(_color_delta_e, m)?)?;
+    add_functions!(
+        m,
+        [
+            _film_spectrum,
+            _film_table,
+            _film_color,
+            _film_chart,
+            _film_materials,
+            _film_bench,
+            _film_profile,
+            _film_fit,
+            _color_xyz,
+            _color_delta_e
+        ]
+    );
     Ok(())
 }

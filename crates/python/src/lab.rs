@@ -269,9 +269,6 @@ fn xyz_array<'py>(
 }
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.add_function(wrap_pyfunction!(_sweep, m)?)?;
-    m.add_function(wrap_pyfunction!(_laser, m)?)?;
-    m.add_function(wrap_pyfunction!(_testbench, m)?)?;
-    m.add_function(wrap_pyfunction!(_compare, m)?)?;
+    add_functions!(m, [_sweep, _laser, _testbench, _compare]);
     Ok(())
 }

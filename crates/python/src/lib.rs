@@ -8,6 +8,13 @@
 
 use pyo3::prelude::*;
 
+/// Adds `#[pyfunction]`s to the module `m` (a `register`'s work): `add_functions!(m, [f, g]);`.
+macro_rules! add_functions {
+    ($m:expr, [$($f:ident),+ $(,)?]) => {
+        $($m.add_function(pyo3::wrap_pyfunction!($f, $m)?)?;)+
+    };
+}
+
 mod args;
 mod bench;
 mod brdf;
@@ -27,18 +34,24 @@ mod vision;
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
-    tmm::register(m)?;
-    color::register(m)?;
-    thinfilm::register(m)?;
-    film::register(m)?;
-    film_commands::register(m)?;
-    surface::register(m)?;
-    diffraction::register(m)?;
-    render::register(m)?;
-    lab::register(m)?;
-    scan_report::register(m)?;
-    vision::register(m)?;
-    bench::register(m)?;
-    brdf::register(m)?;
+    // Each binding module adds its functions and classes.
+    let registers = [
+        tmm::register,
+        color::register,
+        thinfilm::register,
+        film::register,
+        film_commands::register,
+        surface::register,
+        diffraction::register,
+        render::register,
+        lab::register,
+        scan_report::register,
+        vision::register,
+        bench::register,
+        brdf::register,
+    ];
+    for register in registers {
+        register(m)?;
+    }
     Ok(())
 }

@@ -63,6 +63,6 @@ fn render_scene<'py>(
 }
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.add_function(wrap_pyfunction!(render_scene, m)?)?;
+    add_functions!(m, [render_scene]);
     Ok(())
 }

@@ -57,6 +57,6 @@ fn _report(
 }
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.add_function(wrap_pyfunction!(_report, m)?)?;
+    add_functions!(m, [_report]);
     Ok(())
 }

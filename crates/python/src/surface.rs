@@ -191,7 +191,6 @@ fn surface_channels(py: Python<'_>, path: std::path::PathBuf) -> PyResult<(Strin
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyHeightField>()?;
-    m.add_function(wrap_pyfunction!(load_height_field, m)?)?;
-    m.add_function(wrap_pyfunction!(surface_channels, m)?)?;
+    add_functions!(m, [load_height_field, surface_channels]);
     Ok(())
 }

@@ -2,10 +2,10 @@
 //! film colours — the same library calls as `iridis thinfilm spectrum|color`.
 
 use iridis_api::rough::RoughOptions;
-use iridis_thinfilm::color::{FilmColorimeter, Polarization};
+use iridis_thinfilm::color::{FilmColor, FilmColorimeter, Polarization};
 use iridis_thinfilm::rough::DiffuseTransport;
 use iridis_thinfilm::tmm::stack_from_lists;
-use iridis_thinfilm::Stack;
+use iridis_thinfilm::{Stack, ThinFilmError};
 use num_complex::Complex64;
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1};
@@ -164,14 +164,9 @@ impl PyStack {
         offsets: PyReadonlyArray1<'py, f64>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let (w, a, o) = (wavelengths.as_slice()?, angles.as_slice()?, offsets.as_slice()?);
-        let p = w.len();
         let stack = &self.stack;
-        let rows = py
-            .allow_threads(|| {
-                (0..p).into_par_iter().map(|i| stack.evaluate_offset(w[i], a[i], o[i])).collect::<Result<Vec<_>, _>>()
-            })
-            .map_err(value_error)?;
-        let mut out = Array2::zeros((4, p));
+        let rows = each_point(py, w.len(), |i| stack.evaluate_offset(w[i], a[i], o[i]))?;
+        let mut out = Array2::zeros((4, rows.len()));
         for (i, x) in rows.iter().enumerate() {
             out[[0, i]] = x.r_s;
             out[[1, i]] = x.r_p;
@@ -196,18 +191,8 @@ impl PyStack {
         let (ill, obs, pol) = (self::illuminant(illuminant)?, self::observer(observer)?, self::pol(polarization)?);
         let (a, o, g) = (angles.as_slice()?, offsets.as_slice()?, grid.as_slice()?);
         check_grid(g)?;
-        let stack = &self.stack;
-        let out = py
-            .allow_threads(|| {
-                let meter = FilmColorimeter::new(g, ill, obs);
-                (0..a.len())
-                    .into_par_iter()
-                    .map(|i| Ok(xyz_row(meter.color_of(pol, |w| stack.evaluate_offset(w, a[i], o[i]))?)))
-                    .collect::<Result<Vec<Vec<f64>>, iridis_thinfilm::ThinFilmError>>()
-            })
-            .map_err(value_error)?;
-        let flat: Vec<f64> = out.into_iter().flatten().collect();
-        Ok(Array2::from_shape_vec((a.len(), 6), flat).expect("shape").into_pyarray(py))
+        let (stack, meter) = (&self.stack, FilmColorimeter::new(g, ill, obs));
+        color_rows(py, a.len(), |i| meter.color_of(pol, |w| stack.evaluate_offset(w, a[i], o[i])))
     }
 
     /// The rough film's spectrum (LSRS, as `iridis thinfilm spectrum --roughness --json`): a dict of arrays
@@ -311,23 +296,14 @@ fn _stack_colors<'py>(
             (a.to_vec(), dl)
         })
         .collect();
-    let out = py
-        .allow_threads(|| {
-            let meter = FilmColorimeter::new(g, ill, obs);
-            rows.par_iter()
-                .enumerate()
-                .map(|(i, (n, d))| {
-                    let stack = stack_from_lists(n, d, None)
-                        .map_err(|e| iridis_thinfilm::ThinFilmError::Invalid(format!("stack {i}: {e}")))?;
-                    // Constant indices: the chapter 4 fast path (per-interface values once per stack).
-                    let prepared = stack.prepare(angle)?;
-                    Ok(xyz_row(meter.color_of(pol, |w| prepared.evaluate(w))?))
-                })
-                .collect::<Result<Vec<Vec<f64>>, iridis_thinfilm::ThinFilmError>>()
-        })
-        .map_err(value_error)?;
-    let flat: Vec<f64> = out.into_iter().flatten().collect();
-    Ok(Array2::from_shape_vec((rows.len(), 6), flat).expect("shape").into_pyarray(py))
+    let meter = FilmColorimeter::new(g, ill, obs);
+    color_rows(py, rows.len(), |i| {
+        let (n, d) = &rows[i];
+        let stack = stack_from_lists(n, d, None).map_err(|e| ThinFilmError::Invalid(format!("stack {i}: {e}")))?;
+        // Constant indices: the chapter 4 fast path (per-interface values once per stack).
+        let prepared = stack.prepare(angle)?;
+        meter.color_of(pol, |w| prepared.evaluate(w))
+    })
 }
 
 /// The complex index `n + iκ` of a material (library name, `n=…`, `file:PATH`) at each wavelength (nm).
@@ -355,9 +331,7 @@ fn materials() -> Vec<(Vec<&'static str>, &'static str)> {
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyStack>()?;
-    m.add_function(wrap_pyfunction!(material_index, m)?)?;
-    m.add_function(wrap_pyfunction!(materials, m)?)?;
-    m.add_function(wrap_pyfunction!(_stack_colors, m)?)?;
+    add_functions!(m, [material_index, materials, _stack_colors]);
     Ok(())
 }
 
@@ -369,7 +343,24 @@ fn check_grid(g: &[f64]) -> PyResult<()> {
     Ok(())
 }
 
-/// Reflected then transmitted XYZ: one row of the colour arrays.
-fn xyz_row(c: iridis_thinfilm::color::FilmColor) -> Vec<f64> {
-    [c.reflected.to_array(), c.transmitted.to_array()].concat()
+/// `point(i)` for each point `i` in `0..n`, computed in parallel with the GIL released; the first library
+/// error raised as `ValueError`.
+fn each_point<T: Send>(
+    py: Python<'_>,
+    n: usize,
+    point: impl Fn(usize) -> Result<T, ThinFilmError> + Sync + Send,
+) -> PyResult<Vec<T>> {
+    py.allow_threads(|| (0..n).into_par_iter().map(point).collect::<Result<Vec<_>, _>>()).map_err(value_error)
+}
+
+/// The colours of `n` points ([`each_point`]) as the colour arrays give them: one row of reflected then
+/// transmitted XYZ per point, shape (n, 6).
+fn color_rows<'py>(
+    py: Python<'py>,
+    n: usize,
+    color: impl Fn(usize) -> Result<FilmColor, ThinFilmError> + Sync + Send,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let rows = each_point(py, n, |i| color(i).map(|c| [c.reflected.to_array(), c.transmitted.to_array()]))?;
+    let flat: Vec<f64> = rows.into_iter().flatten().flatten().collect();
+    Ok(Array2::from_shape_vec((n, 6), flat).expect("shape").into_pyarray(py))
 }

@@ -5,7 +5,7 @@ use num_complex::Complex64;
 use numpy::{IntoPyArray, PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadonlyArrayDyn, PyUntypedArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{IntoPyDict, PyDict};
 
 use crate::args::{complex_list, complex_scalar, real_list, scalar, value_error};
 
@@ -165,10 +165,7 @@ fn unpolarized_rt<'py>(
             ))
         })
         .map_err(value_error)?;
-    let out = PyDict::new(py);
-    out.set_item("R", 0.5 * (s.big_r + p.big_r))?;
-    out.set_item("T", 0.5 * (s.big_t + p.big_t))?;
-    Ok(out)
+    [("R", 0.5 * (s.big_r + p.big_r)), ("T", 0.5 * (s.big_t + p.big_t))].into_py_dict(py)
 }
 
 /// Ellipsometric angles, as `tmm.ellips`: `{'psi': ψ, 'Delta': Δ}` in radians, `tan ψ e^{iΔ} = −r_p/r_s`.
@@ -183,10 +180,7 @@ fn ellips<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let (n, d, th, lam) = coherent_args(n_list, d_list, th_0, lam_vac)?;
     let (psi, delta) = py.allow_threads(|| lib::ellips_complex(&n, &d, th, lam)).map_err(value_error)?;
-    let out = PyDict::new(py);
-    out.set_item("psi", psi)?;
-    out.set_item("Delta", delta)?;
-    Ok(out)
+    [("psi", psi), ("Delta", delta)].into_py_dict(py)
 }
 
 /// Incoherent or partly coherent stacks through the library's incoherent path (`iridis_thinfilm::tmm::inc_tmm`):
@@ -255,11 +249,7 @@ fn _coh_tmm_batch<'py>(
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<CohTmmResult>()?;
-    m.add_function(wrap_pyfunction!(coh_tmm, m)?)?;
-    m.add_function(wrap_pyfunction!(unpolarized_rt, m)?)?;
-    m.add_function(wrap_pyfunction!(ellips, m)?)?;
-    m.add_function(wrap_pyfunction!(_inc_tmm, m)?)?;
-    m.add_function(wrap_pyfunction!(_coh_tmm_batch, m)?)?;
+    add_functions!(m, [coh_tmm, unpolarized_rt, ellips, _inc_tmm, _coh_tmm_batch]);
     Ok(())
 }
 

@@ -114,9 +114,6 @@ fn _vision_names() -> (Named, Named) {
 }
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.add_function(wrap_pyfunction!(_analyse, m)?)?;
-    m.add_function(wrap_pyfunction!(_vision_file, m)?)?;
-    m.add_function(wrap_pyfunction!(_sensitivities, m)?)?;
-    m.add_function(wrap_pyfunction!(_vision_names, m)?)?;
+    add_functions!(m, [_analyse, _vision_file, _sensitivities, _vision_names]);
     Ok(())
 }
