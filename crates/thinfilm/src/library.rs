@@ -9,6 +9,13 @@ use crate::error::ThinFilmError;
 use crate::material::Material;
 use crate::nkfile;
 
+/// A measured material of `data/materials/`: its file name (named in messages) and its text, compiled in.
+macro_rules! data_file {
+    ($name:literal) => {
+        Builtin::File($name, include_str!(concat!("../../../data/materials/", $name)))
+    };
+}
+
 /// The built-in library: `(names, description, source)`. Constants are the values of Sussenbach's thesis
 /// (water 1.33, gasoline 1.4, asphalt 1.635, glass 1.5); measured data are in `data/materials/`
 /// (provenance in `data/materials/README.md`).
@@ -18,167 +25,63 @@ const LIBRARY: &[(&[&str], &str, Builtin)] = &[
     (&["glass"], "n = 1.5, constant (Sussenbach section 5.1)", Builtin::Const(1.5)),
     (&["gasoline", "oil"], "n = 1.4, constant (Sussenbach section 5.1)", Builtin::Const(1.4)),
     (&["asphalt"], "n = 1.635, constant (Sussenbach section 5.1)", Builtin::Const(1.635)),
-    (
-        &["bk7", "n-bk7"],
-        "SCHOTT N-BK7 Sellmeier, 300–2500 nm",
-        Builtin::File("bk7_schott.yml", include_str!("../../../data/materials/bk7_schott.yml")),
-    ),
+    (&["bk7", "n-bk7"], "SCHOTT N-BK7 Sellmeier, 300–2500 nm", data_file!("bk7_schott.yml")),
     (
         &["fused-silica", "fused_silica", "silica", "sio2"],
         "fused silica, Malitson 1965 Sellmeier, 210–6700 nm",
-        Builtin::File("sio2_malitson.yml", include_str!("../../../data/materials/sio2_malitson.yml")),
+        data_file!("sio2_malitson.yml"),
     ),
-    (
-        &["keratin"],
-        "bird keratin, Leertouwer et al. 2011 Cauchy, 380–780 nm",
-        Builtin::File("keratin_leertouwer.yml", include_str!("../../../data/materials/keratin_leertouwer.yml")),
-    ),
-    (
-        &["chitin"],
-        "butterfly chitin, Leertouwer et al. 2011 Cauchy, 380–780 nm",
-        Builtin::File("chitin_leertouwer.yml", include_str!("../../../data/materials/chitin_leertouwer.yml")),
-    ),
-    (
-        &["mgf2"],
-        "MgF2 ordinary ray, Dodge 1984 Sellmeier, 200–7000 nm",
-        Builtin::File("mgf2_dodge_o.yml", include_str!("../../../data/materials/mgf2_dodge_o.yml")),
-    ),
+    (&["keratin"], "bird keratin, Leertouwer et al. 2011 Cauchy, 380–780 nm", data_file!("keratin_leertouwer.yml")),
+    (&["chitin"], "butterfly chitin, Leertouwer et al. 2011 Cauchy, 380–780 nm", data_file!("chitin_leertouwer.yml")),
+    (&["mgf2"], "MgF2 ordinary ray, Dodge 1984 Sellmeier, 200–7000 nm", data_file!("mgf2_dodge_o.yml")),
     (
         // A deposited film covers the whole visible band (and is what coatings are made of); bulk rutile
         // starts at 430 nm, so it is not the default.
         &["tio2"],
         "TiO2 thin film (200 nm on glass), Sarkar et al. 2019, 300–1690 nm",
-        Builtin::File("tio2_sarkar.yml", include_str!("../../../data/materials/tio2_sarkar.yml")),
+        data_file!("tio2_sarkar.yml"),
     ),
     (
         &["rutile", "tio2-rutile"],
         "TiO2 (rutile) ordinary ray, Devore 1951, 430–1530 nm",
-        Builtin::File("tio2_devore_o.yml", include_str!("../../../data/materials/tio2_devore_o.yml")),
+        data_file!("tio2_devore_o.yml"),
     ),
-    (
-        &["si", "silicon"],
-        "crystalline Si, Aspnes & Studna 1983, 207–827 nm",
-        Builtin::File("si_aspnes.yml", include_str!("../../../data/materials/si_aspnes.yml")),
-    ),
-    (
-        &["au", "gold"],
-        "gold, Johnson & Christy 1972, 188–1937 nm",
-        Builtin::File("au_johnson.yml", include_str!("../../../data/materials/au_johnson.yml")),
-    ),
-    (
-        &["ag", "silver"],
-        "silver, Johnson & Christy 1972, 188–1937 nm",
-        Builtin::File("ag_johnson.yml", include_str!("../../../data/materials/ag_johnson.yml")),
-    ),
-    (
-        &["cu", "copper"],
-        "copper, Johnson & Christy 1972, 188–1937 nm",
-        Builtin::File("cu_johnson.yml", include_str!("../../../data/materials/cu_johnson.yml")),
-    ),
-    (
-        &["al", "aluminium", "aluminum"],
-        "aluminium, Rakić 1995, 207–2066 nm",
-        Builtin::File("al_rakic.yml", include_str!("../../../data/materials/al_rakic.yml")),
-    ),
+    (&["si", "silicon"], "crystalline Si, Aspnes & Studna 1983, 207–827 nm", data_file!("si_aspnes.yml")),
+    (&["au", "gold"], "gold, Johnson & Christy 1972, 188–1937 nm", data_file!("au_johnson.yml")),
+    (&["ag", "silver"], "silver, Johnson & Christy 1972, 188–1937 nm", data_file!("ag_johnson.yml")),
+    (&["cu", "copper"], "copper, Johnson & Christy 1972, 188–1937 nm", data_file!("cu_johnson.yml")),
+    (&["al", "aluminium", "aluminum"], "aluminium, Rakić 1995, 207–2066 nm", data_file!("al_rakic.yml")),
     (
         &["al2o3", "alumina"],
         "Al2O3 film (amorphous, pulsed-laser deposited), Boidin et al. 2016, 300–2498 nm",
-        Builtin::File("al2o3_boidin.yml", include_str!("../../../data/materials/al2o3_boidin.yml")),
+        data_file!("al2o3_boidin.yml"),
     ),
     (
         &["si3n4", "silicon-nitride"],
         "Si3N4 (CVD film), Philipp 1973 Sellmeier, 207–1240 nm",
-        Builtin::File("si3n4_philipp.yml", include_str!("../../../data/materials/si3n4_philipp.yml")),
+        data_file!("si3n4_philipp.yml"),
     ),
-    (
-        &["sio2-film"],
-        "SiO2 film (ion-assisted e-beam), Gao et al. 2013, 252–1250 nm",
-        Builtin::File("sio2_gao.yml", include_str!("../../../data/materials/sio2_gao.yml")),
-    ),
-    (
-        &["ito", "in2o3-sno2"],
-        "ITO film (72 nm on BK7), König et al. 2014, 252–1000 nm",
-        Builtin::File("ito_konig.yml", include_str!("../../../data/materials/ito_konig.yml")),
-    ),
-    (
-        &["hfo2", "hafnia"],
-        "HfO2 film (e-beam), Franta et al. 2015, 250–2497 nm",
-        Builtin::File("hfo2_franta.yml", include_str!("../../../data/materials/hfo2_franta.yml")),
-    ),
-    (
-        &["ta2o5"],
-        "Ta2O5 film (e-beam), Franta et al. 2015, 253–2497 nm",
-        Builtin::File("ta2o5_franta.yml", include_str!("../../../data/materials/ta2o5_franta.yml")),
-    ),
-    (
-        &["zno"],
-        "ZnO film, Aguilar et al. 2019, 300–2500 nm",
-        Builtin::File("zno_aguilar.yml", include_str!("../../../data/materials/zno_aguilar.yml")),
-    ),
-    (
-        &["zns"],
-        "ZnS (cubic), Ozaki & Adachi 1993, 221–1033 nm",
-        Builtin::File("zns_ozaki.yml", include_str!("../../../data/materials/zns_ozaki.yml")),
-    ),
-    (
-        &["cr", "chromium"],
-        "chromium, Johnson & Christy 1974, 188–1937 nm",
-        Builtin::File("cr_johnson.yml", include_str!("../../../data/materials/cr_johnson.yml")),
-    ),
-    (
-        &["ti", "titanium"],
-        "titanium, Johnson & Christy 1974, 188–1937 nm",
-        Builtin::File("ti_johnson.yml", include_str!("../../../data/materials/ti_johnson.yml")),
-    ),
-    (
-        &["ni", "nickel"],
-        "nickel, Johnson & Christy 1974, 188–1937 nm",
-        Builtin::File("ni_johnson.yml", include_str!("../../../data/materials/ni_johnson.yml")),
-    ),
-    (
-        &["pt", "platinum"],
-        "platinum, Rakić et al. 1998 (Lorentz–Drude fit), 248–2499 nm",
-        Builtin::File("pt_rakic.yml", include_str!("../../../data/materials/pt_rakic.yml")),
-    ),
-    (
-        &["w", "tungsten"],
-        "tungsten, Rakić et al. 1998 (Lorentz–Drude fit), 248–2499 nm",
-        Builtin::File("w_rakic.yml", include_str!("../../../data/materials/w_rakic.yml")),
-    ),
-    (
-        &["ge", "germanium"],
-        "germanium, Nunley et al. 2016, 188–2480 nm",
-        Builtin::File("ge_nunley.yml", include_str!("../../../data/materials/ge_nunley.yml")),
-    ),
-    (
-        &["inp"],
-        "InP, Adachi 1989 (model dielectric function), 207–2407 nm",
-        Builtin::File("inp_adachi.yml", include_str!("../../../data/materials/inp_adachi.yml")),
-    ),
-    (
-        &["gaas"],
-        "GaAs, Papatryfonos et al. 2021, 260–1879 nm",
-        Builtin::File("gaas_papatryfonos.yml", include_str!("../../../data/materials/gaas_papatryfonos.yml")),
-    ),
-    (
-        &["si-green", "si-green2008"],
-        "crystalline Si, Green 2008, 250–1450 nm",
-        Builtin::File("si_green.yml", include_str!("../../../data/materials/si_green.yml")),
-    ),
-    (
-        &["pmma"],
-        "PMMA, Szczurowski 2013 Sellmeier, 405–1083 nm",
-        Builtin::File("pmma_szczurowski.yml", include_str!("../../../data/materials/pmma_szczurowski.yml")),
-    ),
-    (
-        &["pdms"],
-        "PDMS (Sylgard 184, 10:1), Gupta et al. 2019, 300–1690 nm",
-        Builtin::File("pdms_gupta.yml", include_str!("../../../data/materials/pdms_gupta.yml")),
-    ),
+    (&["sio2-film"], "SiO2 film (ion-assisted e-beam), Gao et al. 2013, 252–1250 nm", data_file!("sio2_gao.yml")),
+    (&["ito", "in2o3-sno2"], "ITO film (72 nm on BK7), König et al. 2014, 252–1000 nm", data_file!("ito_konig.yml")),
+    (&["hfo2", "hafnia"], "HfO2 film (e-beam), Franta et al. 2015, 250–2497 nm", data_file!("hfo2_franta.yml")),
+    (&["ta2o5"], "Ta2O5 film (e-beam), Franta et al. 2015, 253–2497 nm", data_file!("ta2o5_franta.yml")),
+    (&["zno"], "ZnO film, Aguilar et al. 2019, 300–2500 nm", data_file!("zno_aguilar.yml")),
+    (&["zns"], "ZnS (cubic), Ozaki & Adachi 1993, 221–1033 nm", data_file!("zns_ozaki.yml")),
+    (&["cr", "chromium"], "chromium, Johnson & Christy 1974, 188–1937 nm", data_file!("cr_johnson.yml")),
+    (&["ti", "titanium"], "titanium, Johnson & Christy 1974, 188–1937 nm", data_file!("ti_johnson.yml")),
+    (&["ni", "nickel"], "nickel, Johnson & Christy 1974, 188–1937 nm", data_file!("ni_johnson.yml")),
+    (&["pt", "platinum"], "platinum, Rakić et al. 1998 (Lorentz–Drude fit), 248–2499 nm", data_file!("pt_rakic.yml")),
+    (&["w", "tungsten"], "tungsten, Rakić et al. 1998 (Lorentz–Drude fit), 248–2499 nm", data_file!("w_rakic.yml")),
+    (&["ge", "germanium"], "germanium, Nunley et al. 2016, 188–2480 nm", data_file!("ge_nunley.yml")),
+    (&["inp"], "InP, Adachi 1989 (model dielectric function), 207–2407 nm", data_file!("inp_adachi.yml")),
+    (&["gaas"], "GaAs, Papatryfonos et al. 2021, 260–1879 nm", data_file!("gaas_papatryfonos.yml")),
+    (&["si-green", "si-green2008"], "crystalline Si, Green 2008, 250–1450 nm", data_file!("si_green.yml")),
+    (&["pmma"], "PMMA, Szczurowski 2013 Sellmeier, 405–1083 nm", data_file!("pmma_szczurowski.yml")),
+    (&["pdms"], "PDMS (Sylgard 184, 10:1), Gupta et al. 2019, 300–1690 nm", data_file!("pdms_gupta.yml")),
     (
         &["melanin", "eumelanin"],
         "eumelanin, Stavenga et al. 2015 Cauchy + exponential κ, 380–780 nm",
-        Builtin::File("melanin_stavenga.yml", include_str!("../../../data/materials/melanin_stavenga.yml")),
+        data_file!("melanin_stavenga.yml"),
     ),
     (
         // Birefringent: 1.83 in the plane of the biogenic plates, 1.46 normal to them; no dispersion data.

@@ -17,36 +17,17 @@ pub enum ReceptorNoise {
 impl ReceptorNoise {
     /// Checks the numbers against a system of `n` receptors.
     pub fn check(&self, n: usize) -> Result<(), VisionError> {
-        let positive = |v: f64| v.is_finite() && v > 0.0;
         match self {
             ReceptorNoise::Weber { weber, reference, densities } => {
                 if !positive(*weber) {
                     return Err(VisionError::invalid(format!("Weber fraction {weber} must be a positive number")));
                 }
-                if densities.len() != n {
-                    return Err(VisionError::invalid(format!(
-                        "{} receptor densities for {n} receptors: give one per receptor, short to long (e.g. 1:2:2:4)",
-                        densities.len()
-                    )));
-                }
-                if let Some(d) = densities.iter().find(|d| !positive(**d)) {
-                    return Err(VisionError::invalid(format!("receptor density {d} must be a positive number")));
-                }
+                one_positive_per_receptor(densities, n, "receptor densities", " (e.g. 1:2:2:4)", "receptor density")?;
                 if *reference >= n {
                     return Err(VisionError::invalid(format!("reference receptor {} of {n}", reference + 1)));
                 }
             }
-            ReceptorNoise::PerReceptor(e) => {
-                if e.len() != n {
-                    return Err(VisionError::invalid(format!(
-                        "{} noise values for {n} receptors: give one per receptor, short to long",
-                        e.len()
-                    )));
-                }
-                if let Some(v) = e.iter().find(|v| !positive(**v)) {
-                    return Err(VisionError::invalid(format!("receptor noise {v} must be a positive number")));
-                }
-            }
+            ReceptorNoise::PerReceptor(e) => one_positive_per_receptor(e, n, "noise values", "", "receptor noise")?,
         }
         Ok(())
     }
@@ -60,4 +41,29 @@ impl ReceptorNoise {
             ReceptorNoise::PerReceptor(e) => e.clone(),
         }
     }
+}
+
+fn positive(v: f64) -> bool {
+    v.is_finite() && v > 0.0
+}
+
+/// Checks that `values` holds one positive number per receptor of `n`: `many` names them in the count's
+/// message, which ends with `example`, and `one` names a value that is not positive.
+fn one_positive_per_receptor(
+    values: &[f64],
+    n: usize,
+    many: &str,
+    example: &str,
+    one: &str,
+) -> Result<(), VisionError> {
+    if values.len() != n {
+        return Err(VisionError::invalid(format!(
+            "{} {many} for {n} receptors: give one per receptor, short to long{example}",
+            values.len()
+        )));
+    }
+    if let Some(v) = values.iter().find(|v| !positive(**v)) {
+        return Err(VisionError::invalid(format!("{one} {v} must be a positive number")));
+    }
+    Ok(())
 }

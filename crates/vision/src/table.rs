@@ -16,16 +16,7 @@ impl Curve {
     /// Checks that there are at least two samples, the grid increases strictly and every number is finite.
     pub fn new(wavelengths_nm: Vec<f64>, values: Vec<f64>) -> Result<Self, VisionError> {
         check_grid(&wavelengths_nm, "curve")?;
-        if values.len() != wavelengths_nm.len() {
-            return Err(VisionError::invalid(format!(
-                "{} wavelengths but {} values",
-                wavelengths_nm.len(),
-                values.len()
-            )));
-        }
-        if let Some((i, v)) = values.iter().enumerate().find(|(_, v)| !v.is_finite()) {
-            return Err(VisionError::invalid(format!("value {v} at {} nm is not finite", wavelengths_nm[i])));
-        }
+        check_values(&wavelengths_nm, &values, None)?;
         Ok(Self { wavelengths_nm, values })
     }
 
@@ -92,6 +83,25 @@ fn check_grid(w: &[f64], what: &str) -> Result<(), VisionError> {
     Ok(())
 }
 
+/// Checks that `values` holds one finite number per wavelength of the grid `w`; `spectrum` names the column
+/// of a table in the messages (`None` for a lone curve).
+fn check_values(w: &[f64], values: &[f64], spectrum: Option<&str>) -> Result<(), VisionError> {
+    if values.len() != w.len() {
+        return Err(VisionError::invalid(match spectrum {
+            None => format!("{} wavelengths but {} values", w.len(), values.len()),
+            Some(name) => format!("spectrum '{name}' has {} values for {} wavelengths", values.len(), w.len()),
+        }));
+    }
+    if let Some((i, v)) = values.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+        let message = format!("value {v} at {} nm is not finite", w[i]);
+        return Err(VisionError::invalid(match spectrum {
+            None => message,
+            Some(name) => format!("spectrum '{name}': {message}"),
+        }));
+    }
+    Ok(())
+}
+
 /// Spectra on one wavelength grid: the CSV that pavo reads (`as.rspec`) and writes — a wavelength column
 /// (nm) and one column per sample, the first line naming the columns.
 #[derive(Debug, Clone, PartialEq)]
@@ -109,19 +119,7 @@ impl SpectraTable {
             return Err(VisionError::invalid("no spectra: the table has a wavelength column only"));
         }
         for (name, v) in &samples {
-            if v.len() != wavelengths_nm.len() {
-                return Err(VisionError::invalid(format!(
-                    "spectrum '{name}' has {} values for {} wavelengths",
-                    v.len(),
-                    wavelengths_nm.len()
-                )));
-            }
-            if let Some((i, x)) = v.iter().enumerate().find(|(_, x)| !x.is_finite()) {
-                return Err(VisionError::invalid(format!(
-                    "spectrum '{name}': value {x} at {} nm is not finite",
-                    wavelengths_nm[i]
-                )));
-            }
+            check_values(&wavelengths_nm, v, Some(name))?;
         }
         Ok(Self { wavelengths_nm, samples })
     }

@@ -5,8 +5,8 @@
 
 use crate::{HeightField, SurfaceError};
 
-use super::channel::{self, ChannelInfo};
-use super::{LoadOptions, Sidecar};
+use super::channel::ChannelInfo;
+use super::{KeyValues, LeSample, LoadOptions, Sidecar};
 
 /// The first line of every Gwyddion Simple Field file.
 pub const MAGIC: &[u8] = b"Gwyddion Simple Field 1.0\n";
@@ -32,32 +32,28 @@ fn parse(bytes: &[u8]) -> Result<Parsed, SurfaceError> {
     }
     let nul = bytes.iter().position(|&b| b == 0).ok_or_else(|| bad("no NUL after the header (truncated?)"))?;
     let header = std::str::from_utf8(&bytes[MAGIC.len()..nul]).map_err(|_| bad("header is not UTF-8"))?;
-    let mut kv = Vec::new();
-    for line in header.lines().filter(|l| !l.trim().is_empty()) {
-        let (k, v) = line.split_once('=').ok_or_else(|| bad(format!("header line '{line}' is not Key = Value")))?;
-        kv.push((k.trim().to_string(), v.trim().to_string()));
+    if let Some(line) = header.lines().find(|l| !l.trim().is_empty() && !l.contains('=')) {
+        return Err(bad(format!("header line '{line}' is not Key = Value")));
     }
-    let get = |key: &str| kv.iter().find(|(k, _)| k == key).map(|(_, v)| v.as_str());
-    let res = |key: &str| {
-        get(key).and_then(|v| v.parse::<usize>().ok()).ok_or_else(|| bad(format!("no valid {key} in the header")))
-    };
+    let kv = KeyValues::parse(header, '=');
+    let res = |key: &str| kv.count(key).ok_or_else(|| bad(format!("no valid {key} in the header")));
     let (cols, rows) = (res("XRes")?, res("YRes")?);
     crate::check_dims(rows, cols)?;
-    let real = |key: &str| match get(key) {
+    let real = |key: &str| match kv.get(key) {
         None => Ok(1.0),
         Some(v) => v.parse::<f64>().map_err(|_| bad(format!("{key} = {v} is not a number"))),
     };
     let data_at = (nul / 4 + 1) * 4;
     let info = ChannelInfo {
         index: 0,
-        name: get("Title").unwrap_or("").to_string(),
+        name: kv.get("Title").unwrap_or("").to_string(),
         rows,
         cols,
-        z_unit: get("ZUnits").unwrap_or("").to_string(),
+        z_unit: kv.get("ZUnits").unwrap_or("").to_string(),
         direction: String::new(),
         alias: String::new(),
     };
-    Ok(Parsed { info, data_at, real: (real("XReal")?, real("YReal")?), xy_unit: get("XYUnits").map(str::to_string) })
+    Ok(Parsed { info, data_at, real: (real("XReal")?, real("YReal")?), xy_unit: kv.get("XYUnits").map(str::to_string) })
 }
 
 pub fn channels(bytes: &[u8]) -> Result<Vec<ChannelInfo>, SurfaceError> {
@@ -66,15 +62,10 @@ pub fn channels(bytes: &[u8]) -> Result<Vec<ChannelInfo>, SurfaceError> {
 
 pub fn read(bytes: &[u8], side: Option<&Sidecar>, opts: &LoadOptions) -> Result<HeightField, SurfaceError> {
     let p = parse(bytes)?;
-    let list = vec![p.info.clone()];
-    channel::pick(&list, opts.channel.as_ref())?;
     let (rows, cols) = (p.info.rows, p.info.cols);
-    let need = rows * cols * 4;
-    let data = bytes
-        .get(p.data_at..p.data_at + need)
-        .ok_or_else(|| bad(format!("{cols} × {rows} values need {need} bytes after the header (truncated?)")))?;
-    let values: Vec<f64> =
-        data.chunks_exact(4).map(|c| f64::from(f32::from_le_bytes(c.try_into().expect("4 bytes")))).collect();
+    let (list, values) = super::single_channel(bytes, &p.info, p.data_at, LeSample::F32, opts, |need| {
+        bad(format!("{cols} × {rows} values need {need} bytes after the header (truncated?)"))
+    })?;
     let file_pixel = match p.xy_unit.as_deref().map(super::unit_to_nm) {
         Some(Some(k)) => Some((p.real.0 * k / cols as f64, p.real.1 * k / rows as f64)),
         Some(None) => {

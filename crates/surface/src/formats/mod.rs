@@ -121,35 +121,29 @@ pub struct LoadOptions {
     pub as_height: bool,
 }
 
+/// A content test: do the file's first bytes look like one format?
+type Detector = fn(&[u8]) -> bool;
+
+/// The content tests of [`detect_format`], tried in this order, the first that matches winning: JPK files are
+/// TIFFs, so JPK comes before TIFF; instrument files with text headers could pass for text, so text comes last.
+const DETECTORS: &[(Detector, Format)] = &[
+    (|b| b.starts_with(b"GWYP") || b.starts_with(b"GWYO"), Format::Gwy),
+    (|b| b.starts_with(b"\x93NUMPY"), Format::Npy),
+    (|b| b.starts_with(b"PK\x03\x04") || b.starts_with(b"PK\x05\x06"), Format::Npz),
+    (|b| b.starts_with(b"\x89PNG\r\n\x1a\n"), Format::Png),
+    (jpk::detect, Format::Jpk),
+    (|b| b.starts_with(b"II*\0") || b.starts_with(b"MM\0*"), Format::Tiff),
+    (nanoscope::detect, Format::Nanoscope),
+    (wsxm::detect, Format::Wsxm),
+    (sxm::detect, Format::Sxm),
+    (gsf::detect, Format::Gsf),
+    (ibw::detect, Format::Ibw),
+    (text::looks_like_text, Format::Text),
+];
+
 /// Recognises a format from the first bytes of a file.
 pub fn detect_format(bytes: &[u8]) -> Option<Format> {
-    if bytes.starts_with(b"GWYP") || bytes.starts_with(b"GWYO") {
-        Some(Format::Gwy)
-    } else if bytes.starts_with(b"\x93NUMPY") {
-        Some(Format::Npy)
-    } else if bytes.starts_with(b"PK\x03\x04") || bytes.starts_with(b"PK\x05\x06") {
-        Some(Format::Npz)
-    } else if bytes.starts_with(b"\x89PNG\r\n\x1a\n") {
-        Some(Format::Png)
-    } else if jpk::detect(bytes) {
-        Some(Format::Jpk)
-    } else if bytes.starts_with(b"II*\0") || bytes.starts_with(b"MM\0*") {
-        Some(Format::Tiff)
-    } else if nanoscope::detect(bytes) {
-        Some(Format::Nanoscope)
-    } else if wsxm::detect(bytes) {
-        Some(Format::Wsxm)
-    } else if sxm::detect(bytes) {
-        Some(Format::Sxm)
-    } else if gsf::detect(bytes) {
-        Some(Format::Gsf)
-    } else if ibw::detect(bytes) {
-        Some(Format::Ibw)
-    } else if text::looks_like_text(bytes) {
-        Some(Format::Text)
-    } else {
-        None
-    }
+    DETECTORS.iter().find(|(detect, _)| detect(bytes)).map(|&(_, format)| format)
 }
 
 fn describe_unknown(bytes: &[u8]) -> String {
@@ -377,6 +371,86 @@ pub(crate) fn finish_channel(
     meta.notes.push(format!("{}: {cols} × {rows} samples", choice.describe()));
     meta.channel = Some(choice);
     Ok(hf.with_meta(meta))
+}
+
+/// How a single-image format stores its samples: little-endian numbers of one type, row after row.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum LeSample {
+    F64,
+    F32,
+    I32,
+    I16,
+}
+
+impl LeSample {
+    /// Bytes per sample.
+    fn size(self) -> usize {
+        match self {
+            LeSample::F64 => 8,
+            LeSample::F32 | LeSample::I32 => 4,
+            LeSample::I16 => 2,
+        }
+    }
+
+    /// The type's C name, as WSxM's `Image Data Type` spells it: `double`, `float`, `integer`, `short`.
+    pub(crate) fn name(self) -> &'static str {
+        match self {
+            LeSample::F64 => "double",
+            LeSample::F32 => "float",
+            LeSample::I32 => "integer",
+            LeSample::I16 => "short",
+        }
+    }
+
+    /// One sample from its [`size`](Self::size) bytes.
+    fn value(self, c: &[u8]) -> f64 {
+        match self {
+            LeSample::F64 => f64::from_le_bytes(c.try_into().expect("8 bytes")),
+            LeSample::F32 => f64::from(f32::from_le_bytes(c.try_into().expect("4 bytes"))),
+            LeSample::I32 => f64::from(i32::from_le_bytes(c.try_into().expect("4 bytes"))),
+            LeSample::I16 => f64::from(i16::from_le_bytes(c.try_into().expect("2 bytes"))),
+        }
+    }
+}
+
+/// The start of a single-image reader (GSF, WSxM): checks `--channel` against the file's one channel (so a
+/// wrong index or name fails as it does for multi-channel files), then decodes the `rows · cols` samples at
+/// byte `at`; `truncated` words the error, given the bytes needed, where the file ends before them. Returns
+/// the channel list [`finish_channel`] takes and the samples in their stored unit.
+pub(crate) fn single_channel(
+    bytes: &[u8],
+    info: &channel::ChannelInfo,
+    at: usize,
+    sample: LeSample,
+    opts: &LoadOptions,
+    truncated: impl FnOnce(usize) -> SurfaceError,
+) -> Result<(Vec<channel::ChannelInfo>, Vec<f64>), SurfaceError> {
+    let list = vec![info.clone()];
+    channel::pick(&list, opts.channel.as_ref())?;
+    let need = info.rows * info.cols * sample.size();
+    let data = bytes.get(at..at + need).ok_or_else(|| truncated(need))?;
+    Ok((list, data.chunks_exact(sample.size()).map(|c| sample.value(c)).collect()))
+}
+
+/// The `Key <sep> Value` lines of a text header (GSF, WSxM), both sides trimmed; the first line of a key wins.
+pub(crate) struct KeyValues(Vec<(String, String)>);
+
+impl KeyValues {
+    /// The lines of `text` that hold `sep`; the others (blank lines, `[Section]` titles) are skipped.
+    pub(crate) fn parse(text: &str, sep: char) -> Self {
+        let pairs = text.lines().filter_map(|l| l.split_once(sep));
+        Self(pairs.map(|(k, v)| (k.trim().to_string(), v.trim().to_string())).collect())
+    }
+
+    /// The value of `key`.
+    pub(crate) fn get(&self, key: &str) -> Option<&str> {
+        self.0.iter().find(|(k, _)| k == key).map(|(_, v)| v.as_str())
+    }
+
+    /// The value of `key` as a count (a size in samples); `None` where it is missing or not a whole number.
+    pub(crate) fn count(&self, key: &str) -> Option<usize> {
+        self.get(key)?.parse().ok()
+    }
 }
 
 /// Shortest run of equal samples at the global extreme that counts as saturation. Measured heights carry noise,

@@ -8,8 +8,8 @@
 
 use crate::{HeightField, SurfaceError};
 
-use super::channel::{self, ChannelInfo};
-use super::{LoadOptions, Sidecar};
+use super::channel::ChannelInfo;
+use super::{KeyValues, LeSample, LoadOptions, Sidecar};
 
 fn bad(m: impl Into<String>) -> SurfaceError {
     SurfaceError::invalid(format!("not a valid WSxM image: {}", m.into()))
@@ -22,7 +22,7 @@ pub fn detect(bytes: &[u8]) -> bool {
 struct Parsed {
     info: ChannelInfo,
     header_size: usize,
-    kind: &'static str,
+    kind: LeSample,
     extent: Option<(f64, f64)>,
     z_amp: Option<(f64, String)>,
     min_max: Option<(f64, f64)>,
@@ -49,42 +49,35 @@ fn parse(bytes: &[u8]) -> Result<Parsed, SurfaceError> {
         return Err(bad(format!("header of {header_size} bytes in a file of {} (truncated?)", bytes.len())));
     }
     let header: String = bytes[..header_size].iter().map(|&b| b as char).collect();
-    let mut kv: Vec<(String, String)> = Vec::new();
-    for line in header.lines() {
-        if let Some((k, v)) = line.split_once(':') {
-            kv.push((k.trim().to_string(), v.trim().to_string()));
-        }
-    }
-    let get = |key: &str| kv.iter().find(|(k, _)| k == key).map(|(_, v)| v.as_str());
-    let count = |key: &str| {
-        get(key).and_then(|v| v.parse::<usize>().ok()).ok_or_else(|| bad(format!("no valid '{key}' in the header")))
-    };
+    let kv = KeyValues::parse(&header, ':');
+    let count = |key: &str| kv.count(key).ok_or_else(|| bad(format!("no valid '{key}' in the header")));
     let (rows, cols) = (count("Number of rows")?, count("Number of columns")?);
     crate::check_dims(rows, cols)?;
-    let kind = match get("Image Data Type").map(str::to_ascii_lowercase).as_deref() {
-        Some("double") => "double",
-        Some("float") => "float",
-        Some("integer") => "integer",
-        Some("short") | None => "short",
+    let kind = match kv.get("Image Data Type").map(str::to_ascii_lowercase).as_deref() {
+        Some("double") => LeSample::F64,
+        Some("float") => LeSample::F32,
+        Some("integer") => LeSample::I32,
+        Some("short") | None => LeSample::I16,
         Some(other) => return Err(bad(format!("image data type '{other}' is not supported"))),
     };
     let len = |key: &str| {
         // Latin-1 decoding maps WSxM's µ (0xB5) to U+00B5, which unit_to_nm knows.
-        let (v, u) = quantity(get(key)?)?;
+        let (v, u) = quantity(kv.get(key)?)?;
         Some(v * super::unit_to_nm(&u)?)
     };
     let extent = match (len("X Amplitude"), len("Y Amplitude")) {
         (Some(x), Some(y)) if x > 0.0 && y > 0.0 => Some((x, y)),
         _ => None,
     };
-    let z_amp = get("Z Amplitude").and_then(quantity);
-    let min_max = match (get("Minimum").and_then(|v| v.parse().ok()), get("Maximum").and_then(|v| v.parse().ok())) {
+    let z_amp = kv.get("Z Amplitude").and_then(quantity);
+    let code = |key: &str| kv.get(key)?.parse::<f64>().ok();
+    let min_max = match (code("Minimum"), code("Maximum")) {
         (Some(a), Some(b)) => Some((a, b)),
         _ => None,
     };
     let z_unit = z_amp.as_ref().map(|z| z.1.clone()).unwrap_or_default();
-    let name = get("Acquisition channel").unwrap_or("Topography").to_string();
-    let direction = get("X scanning direction").unwrap_or("").to_ascii_lowercase();
+    let name = kv.get("Acquisition channel").unwrap_or("Topography").to_string();
+    let direction = kv.get("X scanning direction").unwrap_or("").to_ascii_lowercase();
     Ok(Parsed {
         info: ChannelInfo { index: 0, name, rows, cols, z_unit, direction, alias: String::new() },
         header_size,
@@ -101,29 +94,12 @@ pub fn channels(bytes: &[u8]) -> Result<Vec<ChannelInfo>, SurfaceError> {
 
 pub fn read(bytes: &[u8], side: Option<&Sidecar>, opts: &LoadOptions) -> Result<HeightField, SurfaceError> {
     let p = parse(bytes)?;
-    let list = vec![p.info.clone()];
-    channel::pick(&list, opts.channel.as_ref())?;
     let (rows, cols) = (p.info.rows, p.info.cols);
-    let elem = match p.kind {
-        "double" => 8,
-        "float" | "integer" => 4,
-        _ => 2,
-    };
-    let need = rows * cols * elem;
-    let data = bytes
-        .get(p.header_size..p.header_size + need)
-        .ok_or_else(|| bad(format!("{rows} × {cols} {} values need {need} bytes after the header", p.kind)))?;
-    let mut values: Vec<f64> = data
-        .chunks_exact(elem)
-        .map(|c| match p.kind {
-            "double" => f64::from_le_bytes(c.try_into().expect("8 bytes")),
-            "float" => f64::from(f32::from_le_bytes(c.try_into().expect("4 bytes"))),
-            "integer" => f64::from(i32::from_le_bytes(c.try_into().expect("4 bytes"))),
-            _ => f64::from(i16::from_le_bytes([c[0], c[1]])),
-        })
-        .collect();
+    let (list, mut values) = super::single_channel(bytes, &p.info, p.header_size, p.kind, opts, |need| {
+        bad(format!("{rows} × {cols} {} values need {need} bytes after the header", p.kind.name()))
+    })?;
     let mut info = p.info.clone();
-    if p.kind == "short" || p.kind == "integer" {
+    if matches!(p.kind, LeSample::I16 | LeSample::I32) {
         let (amp, unit) = p.z_amp.clone().ok_or_else(|| bad("integer data without 'Z Amplitude' cannot be scaled"))?;
         let (lo, hi) = p.min_max.unwrap_or_else(|| {
             values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)))
