@@ -6,19 +6,21 @@ use crate::common;
 
 use std::process::Command;
 
-use common::{assert_fails, iridis, json_of};
-use iridis_color::integrate::white_point;
-use iridis_color::{Illuminant, Lab, Observer, Xyz};
+use common::{assert_fails, iridis, json_of, png_lab, DeltaE};
+use iridis_color::Lab;
 
-/// True when the GPU tests may run; panics with the driver hint when there is no adapter and no skip.
 /// Tests that run the scene shader take turns: on lavapipe its first compilation takes minutes, and Mesa's shader
 /// cache serves every later process only once one has finished it (parallel first runs each compiled it).
 static SCENE_SHADER: std::sync::Mutex<()> = std::sync::Mutex::new(());
 
-fn scene_shader_turn() -> std::sync::MutexGuard<'static, ()> {
-    SCENE_SHADER.lock().unwrap_or_else(|e| e.into_inner())
+/// A test that runs the scene shader waits for its turn, then checks [`have_gpu`]: the turn to hold, or `None`
+/// when the GPU tests are skipped.
+fn scene_shader_turn() -> Option<std::sync::MutexGuard<'static, ()>> {
+    let turn = SCENE_SHADER.lock().unwrap_or_else(|e| e.into_inner());
+    have_gpu().then_some(turn)
 }
 
+/// True when the GPU tests may run; panics with the driver hint when there is no adapter and no skip.
 fn have_gpu() -> bool {
     let out = iridis(&["bench", "gpu", "--size", "8", "--film-size", "8x8", "--frames", "1", "--table", "none.npz"]);
     let stderr = String::from_utf8_lossy(&out.stderr);
@@ -109,10 +111,7 @@ fn a_gpu_run_without_xdg_runtime_dir_prints_no_driver_noise() {
 /// docs/json.md's GPU sections against the real output (the others are checked by json_doc_cli.rs).
 #[test]
 fn gpu_json_matches_docs_json_md() {
-    let _turn = scene_shader_turn();
-    if !have_gpu() {
-        return;
-    }
+    let Some(_turn) = scene_shader_turn() else { return };
     let (shapes, sections) = common::json_doc::read();
     let mut problems = Vec::new();
     let mut ran = 0;
@@ -126,16 +125,14 @@ fn gpu_json_matches_docs_json_md() {
     assert!(problems.is_empty(), "{}", problems.join("\n"));
 }
 
-/// Displayed colours of an 8-bit sRGB PNG as CIELAB.
-fn png_lab(path: &std::path::Path) -> Vec<Lab> {
-    let img = image::open(path).unwrap().to_rgb8();
-    let white = white_point(Illuminant::D65, Observer::Cie1931);
-    img.pixels()
-        .map(|p| {
-            let lin = p.0.map(|v| iridis_color::convert::srgb_decode(v as f64 / 255.0));
-            Lab::from_xyz(Xyz::from_linear_srgb(lin), white)
-        })
-        .collect()
+/// Asserts that a PNG written with `--gpu` shows the CPU's PNG: ΔE00 mean < 1 and p99 < 3. Prints the
+/// statistics under `what`; returns the CPU image's pixels for the caller's own checks.
+fn assert_gpu_png_matches_cpu(what: &str, cpu: &std::path::Path, gpu: &std::path::Path) -> Vec<Lab> {
+    let (a, b) = (png_lab(cpu), png_lab(gpu));
+    let DeltaE { mean, p99, .. } = DeltaE::between(&a, &b);
+    eprintln!("{what}: ΔE00 mean {mean:.4}, p99 {p99:.4}");
+    assert!(mean < 1.0 && p99 < 3.0, "{what}: mean {mean}, p99 {p99}");
+    a
 }
 
 #[test]
@@ -155,24 +152,15 @@ fn brdf_map_on_the_gpu_matches_the_cpu_image() {
         let out = iridis(&args);
         assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     }
-    let (a, b) = (png_lab(&cpu), png_lab(&gpu));
+    let a = assert_gpu_png_matches_cpu("brdf-map --gpu vs CPU (PNG)", &cpu, &gpu);
     assert_eq!(a.len(), 80 * 80);
-    let mut d: Vec<f64> = a.iter().zip(&b).map(|(p, q)| iridis_color::lab::delta_e_2000(*p, *q)).collect();
-    d.sort_by(f64::total_cmp);
-    let mean = d.iter().sum::<f64>() / d.len() as f64;
-    let p99 = d[d.len() * 99 / 100];
-    eprintln!("brdf-map --gpu vs CPU (PNG): ΔE00 mean {mean:.4}, p99 {p99:.4}");
-    assert!(mean < 1.0 && p99 < 3.0, "mean {mean}, p99 {p99}");
     // The map is lit, so the comparison is not between two black images.
     assert!(a.iter().filter(|l| l.l > 20.0).count() > 200);
 }
 
 #[test]
 fn bench_gpu_reports_adapter_and_frame_times() {
-    let _turn = scene_shader_turn();
-    if !have_gpu() {
-        return;
-    }
+    let Some(_turn) = scene_shader_turn() else { return };
     let dir = tmp();
     let table = small_table(dir.path());
     let v = json_of(&[
@@ -334,8 +322,7 @@ fn ground_truth_maps_on_the_gpu_match_the_cpu_image() {
             assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
         }
         let (a, b) = (png_lab(&cpu), png_lab(&gpu));
-        let d: Vec<f64> = a.iter().zip(&b).map(|(p, q)| iridis_color::lab::delta_e_2000(*p, *q)).collect();
-        let (mean, max) = (d.iter().sum::<f64>() / d.len() as f64, d.iter().fold(0.0f64, |m, &v| m.max(v)));
+        let DeltaE { mean, max, .. } = DeltaE::between(&a, &b);
         eprintln!("{method}: brdf-map --gpu vs CPU (PNG): ΔE00 mean {mean:.4}, max {max:.4}");
         // 8-bit PNGs of maps that agree to ~1e-6 in |A|²: at most one level apart.
         assert!(mean < 0.05 && max < 1.0, "{method}: mean {mean}, max {max}");
@@ -399,10 +386,7 @@ fn compare_and_sweep_on_the_gpu_give_the_cpu_numbers() {
 
 #[test]
 fn render_on_the_gpu_writes_the_cpu_image() {
-    let _turn = scene_shader_turn();
-    if !have_gpu() {
-        return;
-    }
+    let Some(_turn) = scene_shader_turn() else { return };
     let dir = tmp();
     for scene in ["soap_bubble", "snake_xenopeltis"] {
         let cpu = dir.path().join(format!("{scene}_cpu.png"));
@@ -418,24 +402,15 @@ fn render_on_the_gpu_writes_the_cpu_image() {
                 assert!(String::from_utf8_lossy(&out.stdout).contains("on the GPU"));
             }
         }
-        let (a, b) = (png_lab(&cpu), png_lab(&gpu));
+        let a = assert_gpu_png_matches_cpu(&format!("{scene}: render --gpu vs CPU (PNG, 2 spp)"), &cpu, &gpu);
         assert_eq!(a.len(), 64 * 48);
-        let mut d: Vec<f64> = a.iter().zip(&b).map(|(p, q)| iridis_color::lab::delta_e_2000(*p, *q)).collect();
-        d.sort_by(f64::total_cmp);
-        let mean = d.iter().sum::<f64>() / d.len() as f64;
-        let p99 = d[d.len() * 99 / 100];
-        eprintln!("{scene}: render --gpu vs CPU (PNG, 2 spp): ΔE00 mean {mean:.4}, p99 {p99:.4}");
-        assert!(mean < 1.0 && p99 < 3.0, "{scene}: mean {mean}, p99 {p99}");
         assert!(a.iter().filter(|l| l.l > 10.0).count() > 300, "{scene}: the image must show something");
     }
 }
 
 #[test]
 fn bench_gpu_times_a_scene_against_the_cpu() {
-    let _turn = scene_shader_turn();
-    if !have_gpu() {
-        return;
-    }
+    let Some(_turn) = scene_shader_turn() else { return };
     let v = json_of(&["bench", "gpu", "examples/soap_bubble.toml", "--size", "40x30", "--frames", "3", "--json"]);
     assert!(!v["adapter"].as_str().unwrap().is_empty());
     assert_eq!(v["size"], serde_json::json!([40, 30]));
@@ -462,7 +437,7 @@ fn viewer_starts_renders_and_answers_input_under_xvfb() {
 /// The viewer on a scene: the scene shader's frames, presented the same way.
 #[test]
 fn viewer_on_a_scene_under_xvfb() {
-    let _turn = scene_shader_turn();
+    let Some(_turn) = scene_shader_turn() else { return };
     viewer_check(&["examples/snake_elaphe.toml"]);
 }
 

@@ -266,14 +266,25 @@ impl Gpu {
 
     /// Copies `bytes` of a GPU buffer back to the CPU.
     pub(crate) fn read_buffer(&self, src: &wgpu::Buffer, bytes: u64) -> Result<Vec<u8>, GpuError> {
+        self.read_back("iridis readback", bytes, |enc, staging| enc.copy_buffer_to_buffer(src, 0, staging, 0, bytes))
+    }
+
+    /// Reads `bytes` back to the CPU: `copy` records the copy of the data into a mappable staging buffer
+    /// (from a buffer or a texture), which is then submitted, waited for and mapped.
+    pub(crate) fn read_back(
+        &self,
+        label: &str,
+        bytes: u64,
+        copy: impl FnOnce(&mut wgpu::CommandEncoder, &wgpu::Buffer),
+    ) -> Result<Vec<u8>, GpuError> {
         let staging = self.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("iridis readback"),
+            label: Some(label),
             size: bytes,
             usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
         let mut enc = self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("readback") });
-        enc.copy_buffer_to_buffer(src, 0, &staging, 0, bytes);
+        copy(&mut enc, &staging);
         self.submit_and_wait(enc.finish())?;
         let slice = staging.slice(..);
         let (tx, rx) = std::sync::mpsc::channel();

@@ -107,23 +107,17 @@ impl PresentTarget {
         // Rows of a texture-to-buffer copy are padded to 256 bytes.
         let row = (self.width * 4).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
         let bytes = u64::from(row) * u64::from(self.height);
-        let staging = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("frame texture readback"),
-            size: bytes,
-            usage: wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let mut enc = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("frame copy") });
-        enc.copy_texture_to_buffer(
-            self.texture.as_image_copy(),
-            wgpu::TexelCopyBufferInfo {
-                buffer: &staging,
-                layout: wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(row), rows_per_image: None },
-            },
-            wgpu::Extent3d { width: self.width, height: self.height, depth_or_array_layers: 1 },
-        );
-        gpu.submit_and_wait(enc.finish())?;
-        let data = gpu.read_buffer(&staging, bytes)?;
+        // Straight from the texture into the mappable buffer.
+        let data = gpu.read_back("frame texture readback", bytes, |enc, staging| {
+            enc.copy_texture_to_buffer(
+                self.texture.as_image_copy(),
+                wgpu::TexelCopyBufferInfo {
+                    buffer: staging,
+                    layout: wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(row), rows_per_image: None },
+                },
+                wgpu::Extent3d { width: self.width, height: self.height, depth_or_array_layers: 1 },
+            )
+        })?;
         let mut out = Vec::with_capacity((self.width * self.height * 3) as usize);
         for r in 0..self.height as usize {
             let line = &data[r * row as usize..][..self.width as usize * 4];

@@ -335,10 +335,7 @@ fn stam_periodic_maps_show_the_same_orders_at_5nm_and_1nm() {
 /// building a 501² table): the map is bit for bit the whole table's, from a small share of its nodes.
 #[test]
 fn the_lookup_of_a_map_builds_only_the_nodes_it_reads() {
-    let (rows, cols, dx) = (32, 32, 50.0);
-    let h: Vec<f64> =
-        (0..rows * cols).map(|k| 40.0 * (std::f64::consts::TAU * (k % cols) as f64 * dx / 400.0).sin()).collect();
-    let patch = Patch::from_row_major(rows, cols, dx, dx, &h).unwrap();
+    let patch = common::sine_along_x(32, 32, 50.0, 40.0, 400.0);
     let config = MethodConfig {
         coherence_nm: 800.0,
         spectral: SpectralSetup::new(Illuminant::D65, Observer::Cie1931, 20.0).unwrap(),

@@ -117,18 +117,9 @@ fn binary_gltf_loads_and_renders() {
 fn hdr_environment_map() {
     let dir = tempfile::tempdir().unwrap();
     // Upper half 2.0, lower half 0.5 (both exact in RGBE), with a red column at the centre (−z).
-    let (w, h) = (32u32, 16u32);
-    let img = image::Rgb32FImage::from_fn(w, h, |x, y| {
-        let v = if y < h / 2 { 2.0 } else { 0.5 };
-        if x == w / 2 {
-            image::Rgb([v, 0.0, 0.0])
-        } else {
-            image::Rgb([v, v, v])
-        }
-    });
+    let img = common::two_tone_sky(true);
     image::DynamicImage::ImageRgb32F(img).save(dir.path().join("sky.hdr")).unwrap();
-    let text = "[camera]\nposition = [0, 0, 5]\n[environment]\nkind = \"map\"\nfile = \"sky.hdr\"\nintensity = 1\n";
-    let scene = parse_scene(text, "env.toml", Path::new(dir.path())).unwrap();
+    let scene = parse_scene(&common::environment_map_scene("sky.hdr"), "env.toml", Path::new(dir.path())).unwrap();
     let up = scene.environment.radiance([0.0, 1.0, 0.0]);
     let down = scene.environment.radiance([0.0, -1.0, 0.0]);
     assert!(up.iter().all(|c| (c - 2.0).abs() < 1e-6), "{up:?}");

@@ -1,5 +1,7 @@
 //! Light units and the equirectangular environment, through scene files.
 
+use crate::common;
+
 use iridis_render::{parse_scene, render};
 
 /// A white Lambertian plane under a point light of 1 RU at distance 2 straight above: the pixel below the light
@@ -45,28 +47,21 @@ material = "white"
 #[test]
 fn equirect_environment_orientation_and_refusals() {
     let dir = tempfile::tempdir().unwrap();
-    let (w, h) = (32u32, 16u32);
-    let img = image::Rgb32FImage::from_fn(w, h, |_, y| {
-        let v = if y < h / 2 { 2.0 } else { 0.5 };
-        image::Rgb([v, v, v])
-    });
-    img.save(dir.path().join("sky.exr")).unwrap();
+    common::two_tone_sky(false).save(dir.path().join("sky.exr")).unwrap();
     image::Rgb32FImage::from_fn(16, 16, |_, _| image::Rgb([1.0, 1.0, 1.0]))
         .save(dir.path().join("square.exr"))
         .unwrap();
-    let text = |file: &str| {
-        format!("[camera]\nposition = [0, 0, 5]\n[environment]\nkind = \"map\"\nfile = \"{file}\"\nintensity = 1\n")
-    };
-    let scene = parse_scene(&text("sky.exr"), "env.toml", dir.path()).unwrap();
+    let load = |file: &str| parse_scene(&common::environment_map_scene(file), "env.toml", dir.path());
+    let scene = load("sky.exr").unwrap();
     let up = scene.environment.radiance([0.0, 1.0, 0.0]);
     let down = scene.environment.radiance([0.0, -1.0, 0.0]);
     assert!((up[0] - 2.0).abs() < 1e-6 && (down[0] - 0.5).abs() < 1e-6, "{up:?} {down:?}");
     // Upper and lower hemispheres weigh the same: mean (2 + 0.5) / 2.
     let mean = scene.environment.mean();
     assert!((mean[1] - 1.25).abs() < 0.01, "{mean:?}");
-    let e = parse_scene(&text("square.exr"), "env.toml", dir.path()).unwrap_err().to_string();
+    let e = load("square.exr").unwrap_err().to_string();
     assert!(e.contains("env.toml:3:") && e.contains("twice as wide"), "{e}");
-    let e = parse_scene(&text("sky.png"), "env.toml", dir.path()).unwrap_err().to_string();
+    let e = load("sky.png").unwrap_err().to_string();
     assert!(e.contains("linear HDR"), "{e}");
 }
 

@@ -10,6 +10,11 @@ fn parse(t: &str) -> Result<Scene, RenderError> {
     parse_scene(t, "test.toml", Path::new("."))
 }
 
+/// The message of a scene that must be refused.
+fn parse_err(t: &str) -> String {
+    parse(t).unwrap_err().to_string()
+}
+
 const OK: &str = r#"
 [output]
 size = [32, 24]
@@ -35,35 +40,31 @@ fn a_minimal_scene_parses() {
 
 #[test]
 fn errors_name_line_and_key() {
-    let e = parse(&OK.replace("radius = 1", "radius = \"big\"")).unwrap_err().to_string();
+    let e = parse_err(&OK.replace("radius = 1", "radius = \"big\""));
     assert!(e.starts_with("test.toml:13:") && e.contains("invalid type") && e.contains("radius = \"big\""), "{e}");
-    let e = parse(&OK.replace("radius = 1", "radus = 1")).unwrap_err().to_string();
+    let e = parse_err(&OK.replace("radius = 1", "radus = 1"));
     assert!(e.contains("radus") && e.contains("test.toml:13"), "{e}");
-    let e = parse(&OK.replace("material = \"grey\"", "material = \"gray\"")).unwrap_err().to_string();
+    let e = parse_err(&OK.replace("material = \"grey\"", "material = \"gray\""));
     assert!(e.contains("test.toml:11:") && e.contains("\"gray\" is not defined"), "{e}");
-    let e = parse(&OK.replace("radius = 1\n", "")).unwrap_err().to_string();
+    let e = parse_err(&OK.replace("radius = 1\n", ""));
     assert!(e.contains("missing key `radius`"), "{e}");
-    let e = parse(&OK.replace("kind = \"lambert\"", "kind = \"lambert\"\ntexture = \"nope\"")).unwrap_err().to_string();
+    let e = parse_err(&OK.replace("kind = \"lambert\"", "kind = \"lambert\"\ntexture = \"nope\""));
     assert!(e.contains("no texture of that name"), "{e}");
-    let e = parse(&OK.replace("[camera]\nposition = [0, 0, 5]", "[camera]\nposition = [0, 0, 5\n"))
-        .unwrap_err()
-        .to_string();
+    let e = parse_err(&OK.replace("[camera]\nposition = [0, 0, 5]", "[camera]\nposition = [0, 0, 5\n"));
     assert!(e.starts_with("test.toml:"), "{e}");
 }
 
 #[test]
 fn keys_of_another_material_kind_are_refused() {
-    let e = parse(
+    let e = parse_err(
         &OK.replace("kind = \"lambert\"", "kind = \"lambert\"\ncolor = [1, 0, 0]\nstack = \"air | water 300nm | air\""),
-    )
-    .unwrap_err()
-    .to_string();
+    );
     assert!(e.starts_with("test.toml:12:"), "{e}");
     assert!(e.contains("`stack` is not a key of a lambert material") && e.contains("belongs to thinfilm"), "{e}");
     assert!(e.contains("takes color, texture"), "{e}");
     // A thin film with a diffraction key; an inline table names the line of the key too.
     let film = "[camera]\nposition = [0, 0, 5]\n[materials]\nf = { kind = \"thinfilm\", stack = \"air | water 300nm | air\", w_diffuse = 0.5 }\n";
-    let e = parse(film).unwrap_err().to_string();
+    let e = parse_err(film);
     assert!(
         e.starts_with("test.toml:4:")
             && e.contains("`w_diffuse` is not a key of a thinfilm material")
@@ -71,7 +72,7 @@ fn keys_of_another_material_kind_are_refused() {
         "{e}"
     );
     // `roughness` is shared by microfacet and thinfilm, not by lambert.
-    let e = parse(&OK.replace("kind = \"lambert\"", "kind = \"lambert\"\n\nroughness = 0.2")).unwrap_err().to_string();
+    let e = parse_err(&OK.replace("kind = \"lambert\"", "kind = \"lambert\"\n\nroughness = 0.2"));
     assert!(e.starts_with("test.toml:12:") && e.contains("belongs to microfacet and thinfilm"), "{e}");
     // The keys of the kind itself are fine.
     parse(&OK.replace("kind = \"lambert\"", "kind = \"microfacet\"\nroughness = 0.2\nmetallic = 1")).unwrap();
@@ -96,19 +97,15 @@ fn rough_film_keys_are_checked() {
         ("roughness = \"25nm\"\ncorrelation = \"100nm\"", "radius of curvature"),
         ("roughness = \"25nm\"\ncorrelation = \"300nm\"\ntransmission = true", "no transmitted part"),
     ] {
-        let e = parse(&film(extra)).unwrap_err().to_string();
+        let e = parse_err(&film(extra));
         assert!(e.starts_with("test.toml:") && e.contains(needle), "{extra}: {e}");
     }
-    let e = parse(
+    let e = parse_err(
         &(film("roughness = \"25nm\"\ncorrelation = \"300nm\"\nbase = \"under\"")
             + "[materials.under]\nkind = \"lambert\"\n"),
-    )
-    .unwrap_err()
-    .to_string();
+    );
     assert!(e.contains("takes no `base` material"), "{e}");
-    let e = parse(&OK.replace("kind = \"lambert\"", "kind = \"microfacet\"\nroughness = \"25nm\""))
-        .unwrap_err()
-        .to_string();
+    let e = parse_err(&OK.replace("kind = \"lambert\"", "kind = \"microfacet\"\nroughness = \"25nm\""));
     assert!(e.contains("a microfacet roughness is a number in [0, 1]"), "{e}");
 }
 
@@ -116,6 +113,6 @@ fn rough_film_keys_are_checked() {
 fn texture_kinds_are_checked() {
     let t =
         OK.replace("kind = \"lambert\"", "kind = \"lambert\"\ntexture = \"n\"") + "[textures.n]\nkind = \"noise\"\n";
-    let e = parse(&t).unwrap_err().to_string();
+    let e = parse_err(&t);
     assert!(e.contains("a color texture is needed here") && e.contains("grey texture"), "{e}");
 }

@@ -4,6 +4,9 @@
 
 use std::process::{Command, Output};
 
+use iridis_color::integrate::white_point;
+use iridis_color::{Illuminant, Lab, Observer, Xyz};
+
 /// Runs the built binary from the repository root (so `data/…` paths in examples work).
 pub fn iridis<S: AsRef<std::ffi::OsStr> + std::fmt::Debug>(args: &[S]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_iridis"))
@@ -80,6 +83,36 @@ pub fn quoted(path: &std::path::Path) -> String {
 
 /// The rough film of Sussenbach's Listing 3.6 (water 348 nm on Si, σ 25 nm, τ 300 nm) as `thinfilm` options.
 pub const ROUGH_FILM: &str = "--stack 'air | water 348nm | Si' --roughness 25nm --correlation 300nm";
+
+/// Displayed colours of an 8-bit sRGB PNG as CIELAB (white: D65, CIE 1931 observer).
+pub fn png_lab(path: &std::path::Path) -> Vec<Lab> {
+    let img = image::open(path).unwrap().to_rgb8();
+    let white = white_point(Illuminant::D65, Observer::Cie1931);
+    img.pixels()
+        .map(|p| {
+            let lin = p.0.map(|v| iridis_color::convert::srgb_decode(v as f64 / 255.0));
+            Lab::from_xyz(Xyz::from_linear_srgb(lin), white)
+        })
+        .collect()
+}
+
+/// CIEDE2000 statistics between two images, pixel for pixel: the mean, the 99th percentile and the largest.
+pub struct DeltaE {
+    pub mean: f64,
+    pub p99: f64,
+    pub max: f64,
+}
+
+impl DeltaE {
+    /// Compares `a` and `b` pixel for pixel (same length).
+    pub fn between(a: &[Lab], b: &[Lab]) -> Self {
+        assert_eq!(a.len(), b.len(), "images of different sizes");
+        let mut d: Vec<f64> = a.iter().zip(b).map(|(p, q)| iridis_color::lab::delta_e_2000(*p, *q)).collect();
+        d.sort_by(f64::total_cmp);
+        let mean = d.iter().sum::<f64>() / d.len() as f64;
+        DeltaE { mean, p99: d[d.len() * 99 / 100], max: d.iter().fold(0.0f64, |m, &v| m.max(v)) }
+    }
+}
 
 /// docs/json.md, the one place where the JSON keys of every command are documented, read as the test reads
 /// it: a `## ` section per command with the command line in backticks and a table of keys.

@@ -15,3 +15,11 @@ pub fn reference(patch: &Patch, coherence: f64, bound: f64) -> Reference {
         spectral: SpectralSetup::default(),
     }
 }
+
+/// A sine grating of `rows × cols` square pixels of `dx` nm: `amplitude · sin(2π x / period)` (nm), varying along
+/// x only.
+pub fn sine_along_x(rows: usize, cols: usize, dx: f64, amplitude: f64, period: f64) -> Patch {
+    let h: Vec<f64> =
+        (0..rows * cols).map(|k| amplitude * (std::f64::consts::TAU * (k % cols) as f64 * dx / period).sin()).collect();
+    Patch::from_row_major(rows, cols, dx, dx, &h).unwrap()
+}
