@@ -59,9 +59,32 @@ pub fn series_label(d_iterations: Option<usize>) -> String {
     }
 }
 
-/// Per wavelength: the smooth model's R and the LSRS values (view and light polar angles, azimuth of the light
-/// relative to the viewer; radians).
-pub fn evaluate(rough: &RoughStack, grid: &[f64], view: f64, light: f64, azimuth: f64) -> Result<Vec<(f64, Lsrs)>> {
+/// The directions the rough-film model is evaluated for (radians): the view and light polar angles, and the
+/// light's azimuth relative to the viewer (π: light and viewer on opposite sides, the mirror configuration).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Angles {
+    pub view: f64,
+    pub light: f64,
+    pub azimuth: f64,
+}
+
+impl Angles {
+    /// `view 30°, light 30°, azimuth 180°`, as the reports print them.
+    pub fn text(&self) -> String {
+        format!("view {}°, light {}°, azimuth {}°", deg(self.view), deg(self.light), deg(self.azimuth))
+    }
+
+    /// The keys `view_deg`, `light_deg` and `azimuth_deg` of the reports' JSON (docs/json.md).
+    fn insert_json(&self, json: &mut serde_json::Value) {
+        json["view_deg"] = degrees(self.view).into();
+        json["light_deg"] = degrees(self.light).into();
+        json["azimuth_deg"] = degrees(self.azimuth).into();
+    }
+}
+
+/// Per wavelength: the smooth model's R and the LSRS values at `angles`.
+pub fn evaluate(rough: &RoughStack, grid: &[f64], angles: Angles) -> Result<Vec<(f64, Lsrs)>> {
+    let Angles { view, light, azimuth } = angles;
     use rayon::prelude::*;
     // In parallel: with multiple scattering each wavelength prepares its own state.
     grid.par_iter()
@@ -81,15 +104,14 @@ pub struct RoughColours {
 /// The colours of a rough film for one view and light.
 pub fn colours(
     rough: &RoughStack,
-    view: f64,
-    light: f64,
-    azimuth: f64,
+    angles: Angles,
     grid: &[f64],
     illuminant: Illuminant,
     observer: Observer,
 ) -> Result<RoughColours> {
-    let xs = evaluate(rough, grid, view, light, azimuth)?;
-    let smooth = FilmColorimeter::new(grid, illuminant, observer).color(&rough.stack, view, Polarization::Average)?;
+    let xs = evaluate(rough, grid, angles)?;
+    let smooth =
+        FilmColorimeter::new(grid, illuminant, observer).color(&rough.stack, angles.view, Polarization::Average)?;
     let (specular, diffuse) = specular_diffuse(&SpectralWeights::new(grid, illuminant, observer), &xs);
     Ok(RoughColours { smooth, specular, diffuse })
 }
@@ -111,9 +133,7 @@ pub fn chart_colours(
     layer: usize,
     thicknesses: &[f64],
     opts: &RoughOptions,
-    view: f64,
-    light: f64,
-    azimuth: f64,
+    angles: Angles,
     grid: &[f64],
     illuminant: Illuminant,
     observer: Observer,
@@ -124,7 +144,7 @@ pub fn chart_colours(
         .par_iter()
         .map(|&d| {
             let rough = opts.build(stack.with_thickness(layer, d))?;
-            Ok(specular_diffuse(&weights, &evaluate(&rough, grid, view, light, azimuth)?))
+            Ok(specular_diffuse(&weights, &evaluate(&rough, grid, angles)?))
         })
         .collect()
 }
@@ -140,33 +160,21 @@ pub struct RoughSpectrum {
     pub options: RoughOptions,
     /// The stack as typed, spaced evenly (plot titles).
     pub title: String,
-    pub view: f64,
-    pub light: f64,
-    pub azimuth: f64,
+    pub angles: Angles,
     pub wavelength_nm: Vec<f64>,
     /// Per wavelength: smooth R and the LSRS values.
     pub values: Vec<(f64, Lsrs)>,
 }
 
-/// The spectrum of `stack` (written `title`) with a rough substrate (view, light and azimuth in radians).
-pub fn spectrum(
-    stack: Stack,
-    title: &str,
-    opts: &RoughOptions,
-    view: f64,
-    light: f64,
-    azimuth: f64,
-    grid: &[f64],
-) -> Result<RoughSpectrum> {
+/// The spectrum of `stack` (written `title`) with a rough substrate at `angles`.
+pub fn spectrum(stack: Stack, title: &str, opts: &RoughOptions, angles: Angles, grid: &[f64]) -> Result<RoughSpectrum> {
     let rough = opts.build(stack)?;
-    let values = evaluate(&rough, grid, view, light, azimuth)?;
+    let values = evaluate(&rough, grid, angles)?;
     Ok(RoughSpectrum {
         rough,
         options: *opts,
         title: crate::film::stack_title(title),
-        view,
-        light,
-        azimuth,
+        angles,
         wavelength_nm: grid.to_vec(),
         values,
     })
@@ -190,8 +198,8 @@ impl RoughSpectrum {
             self.title,
             self.options.sigma_nm,
             self.options.tau_nm,
-            deg(self.view),
-            deg(self.light)
+            deg(self.angles.view),
+            deg(self.angles.light)
         );
         let mut plot = LinePlot::new(t, "wavelength (nm)", "reflectance / radiance factor")
             .series(PlotSeries::new("R, smooth substrate", grid, &self.col(|x| x.0)))
@@ -230,10 +238,10 @@ impl RoughSpectrum {
             "model": "LSRS (Sussenbach eq. 3.15-3.20) with the HTSG BRDF",
             "diffuse_transport": self.options.transport.name(),
             "roughness_nm": self.rough.htsg.roughness.sigma_nm(), "correlation_nm": self.rough.htsg.roughness.tau_nm(),
-            "view_deg": degrees(self.view), "light_deg": degrees(self.light), "azimuth_deg": degrees(self.azimuth),
             "wavelength_nm": self.wavelength_nm,
             "series_terms_max": terms, "diffuse_error_bound_per_sr": bound,
         });
+        self.angles.insert_json(&mut json);
         for (name, values) in self.columns() {
             json[name] = serde_json::json!(values);
         }
@@ -271,13 +279,7 @@ impl RoughSpectrum {
             self.options.series_label(),
             self.options.transport.name()
         );
-        let _ = writeln!(
-            out,
-            "angles    view {}°, light {}°, azimuth {}°, unpolarised",
-            deg(self.view),
-            deg(self.light),
-            deg(self.azimuth)
-        );
+        let _ = writeln!(out, "angles    {}, unpolarised", self.angles.text());
         let _ = writeln!(out, "{:>10}  {:>10}  {:>12}  {:>12}", "λ (nm)", "R smooth", "k_r specular", "k_d (sr⁻¹)");
         for (w, (r, x)) in self.wavelength_nm.iter().zip(&self.values) {
             let _ = writeln!(out, "{w:>10.2}  {r:>10.7}  {:>12.7}  {:>12.7}", x.k_r(), x.k_d());
@@ -291,9 +293,7 @@ impl RoughSpectrum {
 pub struct RoughColourReport {
     pub stack: Stack,
     pub options: RoughOptions,
-    pub view: f64,
-    pub light: f64,
-    pub azimuth: f64,
+    pub angles: Angles,
     pub illuminant: Illuminant,
     pub observer: Observer,
     pub wavelength_range_nm: (f64, f64),
@@ -309,23 +309,19 @@ pub struct RoughColourReport {
 pub fn colour_report(
     stack: Stack,
     opts: &RoughOptions,
-    view: f64,
-    light: f64,
-    azimuth: f64,
+    angles: Angles,
     grid: &[f64],
     illuminant: Illuminant,
     observer: Observer,
 ) -> Result<RoughColourReport> {
     use crate::color::colour_report as report;
     let rough = opts.build(stack)?;
-    let c = colours(&rough, view, light, azimuth, grid, illuminant, observer)?;
+    let c = colours(&rough, angles, grid, illuminant, observer)?;
     let white = iridis_color::integrate::white_point(illuminant, observer);
     Ok(RoughColourReport {
         stack: rough.stack,
         options: *opts,
-        view,
-        light,
-        azimuth,
+        angles,
         illuminant,
         observer,
         wavelength_range_nm: (grid[0], grid[grid.len() - 1]),
@@ -339,11 +335,11 @@ pub fn colour_report(
 impl RoughColourReport {
     /// What `--json` prints: the shape of `thinfilm color` ([`crate::film::film_colours_json`]).
     pub fn to_json(&self) -> serde_json::Value {
-        let conditions = serde_json::json!({
+        let mut conditions = serde_json::json!({
             "roughness_nm": self.options.sigma_nm, "correlation_nm": self.options.tau_nm,
-            "view_deg": degrees(self.view), "light_deg": degrees(self.light), "azimuth_deg": degrees(self.azimuth),
             "diffuse_transport": self.options.transport.name(),
         });
+        self.angles.insert_json(&mut conditions);
         crate::film::film_colours_json(&self.smooth, &self.transmitted, &self.specular, &self.diffuse, conditions)
     }
 
@@ -360,10 +356,8 @@ impl RoughColourReport {
         );
         let _ = writeln!(
             o,
-            "conditions   view {}°, light {}°, azimuth {}°, {}",
-            deg(self.view),
-            deg(self.light),
-            deg(self.azimuth),
+            "conditions   {}, {}",
+            self.angles.text(),
             crate::color::light_and_observer(self.illuminant, self.observer, self.wavelength_range_nm)
         );
         o += &colour_text("smooth film, reflected", &self.smooth);

@@ -104,8 +104,12 @@ fn _film_spectrum<'py>(
             if pol != film::Polarization::Average {
                 anyhow::bail!("with roughness the spectrum is unpolarised, with s and p columns");
             }
-            let light = light_rad.unwrap_or(angle_rad);
-            let s = rough::spectrum(parsed, stack, &opts, angle_rad, light, roughness.azimuth_rad, &grid)?;
+            let angles = rough::Angles {
+                view: angle_rad,
+                light: light_rad.unwrap_or(angle_rad),
+                azimuth: roughness.azimuth_rad,
+            };
+            let s = rough::spectrum(parsed, stack, &opts, angles, &grid)?;
             let image = if plot { Some(s.plot()?) } else { None };
             return Ok(Answer {
                 json: Some(s.to_json()),
@@ -188,17 +192,12 @@ fn _film_color<'py>(
             if pol != film::Polarization::Average || visual.is_some() {
                 anyhow::bail!("with roughness the colours are for unpolarised light, without a visual system");
             }
-            let light = light_rad.unwrap_or(angle_rad);
-            let c = rough::colour_report(
-                parsed,
-                &opts,
-                angle_rad,
-                light,
-                roughness.azimuth_rad,
-                &grid,
-                illuminant.parse()?,
-                observer,
-            )?;
+            let angles = rough::Angles {
+                view: angle_rad,
+                light: light_rad.unwrap_or(angle_rad),
+                azimuth: roughness.azimuth_rad,
+            };
+            let c = rough::colour_report(parsed, &opts, angles, &grid, illuminant.parse()?, observer)?;
             return Ok(Answer { json: Some(c.to_json()), text: Some(c.text()), ..Default::default() });
         }
         let c = film::colour(&parsed, angle_rad, pol, &grid, illuminant, observer, visual.as_deref(), report)?;

@@ -1,7 +1,7 @@
 //! `iridis.thinfilm`: stacks in the CLI's syntax or from lists, R/T over arrays of (λ, θ, thickness offset),
 //! film colours — the same library calls as `iridis thinfilm spectrum|color`.
 
-use iridis_api::rough::RoughOptions;
+use iridis_api::rough::{Angles, RoughOptions};
 use iridis_thinfilm::color::{FilmColor, FilmColorimeter, Polarization};
 use iridis_thinfilm::rough::DiffuseTransport;
 use iridis_thinfilm::tmm::stack_from_lists;
@@ -213,7 +213,7 @@ impl PyStack {
         let opts = rough_options(sigma_nm, tau_nm, d_iterations, transport)?;
         let grid = wavelengths.as_slice()?.to_vec();
         let stack = self.stack.clone();
-        let s = run(py, |_| iridis_api::rough::spectrum(stack, "", &opts, view, light, azimuth, &grid))?;
+        let s = run(py, |_| iridis_api::rough::spectrum(stack, "", &opts, Angles { view, light, azimuth }, &grid))?;
         let (bound, terms) = s.bound_terms();
         let d = PyDict::new(py);
         d.set_item("wavelength_nm", PyArray1::from_vec(py, grid))?;
@@ -252,7 +252,7 @@ impl PyStack {
         let stack = self.stack.clone();
         let c = run(py, |_| {
             let rough = opts.build(stack)?;
-            iridis_api::rough::colours(&rough, view, light, azimuth, &g, ill, obs)
+            iridis_api::rough::colours(&rough, Angles { view, light, azimuth }, &g, ill, obs)
         })?;
         let rows = [c.smooth.reflected, c.smooth.transmitted, c.specular, c.diffuse];
         let flat: Vec<f64> = rows.iter().flat_map(|x| x.to_array()).collect();

@@ -340,7 +340,13 @@ fn spectrum(a: SpectrumArgs) -> Result<()> {
         }
         let grid = a.grid.grid()?;
         let (light, opts) = (a.rough.light(a.angle)?, a.rough.options()?);
-        let s = rough::spectrum(stack, &a.stack, &opts, a.angle, light, a.rough.azimuth, &grid)?;
+        let s = rough::spectrum(
+            stack,
+            &a.stack,
+            &opts,
+            rough::Angles { view: a.angle, light, azimuth: a.rough.azimuth },
+            &grid,
+        )?;
         plot(a.plot.as_deref(), quiet, || s.plot())?;
         return print_answer(a.json, || Ok(s.to_json()), || if a.csv { s.csv() } else { s.text() });
     }
@@ -404,7 +410,14 @@ fn color(a: ColorArgs) -> Result<()> {
             bail!("--visual takes a smooth film's spectra; leave out --roughness");
         }
         let (light, opts, ill) = (a.rough.light(a.angle)?, a.rough.options()?, a.illuminant.parse()?);
-        let c = rough::colour_report(stack, &opts, a.angle, light, a.rough.azimuth, &grid, ill, observer)?;
+        let c = rough::colour_report(
+            stack,
+            &opts,
+            rough::Angles { view: a.angle, light, azimuth: a.rough.azimuth },
+            &grid,
+            ill,
+            observer,
+        )?;
         return print_answer(a.json, || Ok(c.to_json()), || c.text());
     }
     let c = film::colour(&stack, a.angle, pol, &grid, &a.illuminant, observer, a.visual.as_deref(), &Cli)?;
