@@ -87,7 +87,7 @@ pub fn chart(
             layer,
             &ds,
             &r.options,
-            crate::rough::Angles { view: angle_rad, light: r.light.unwrap_or(angle_rad), azimuth: r.azimuth },
+            crate::rough::Angles::new(angle_rad, r.light, r.azimuth),
             grid,
             illuminant,
             Observer::Cie1931,

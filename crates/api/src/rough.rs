@@ -69,6 +69,12 @@ pub struct Angles {
 }
 
 impl Angles {
+    /// At view angle `view`, with the light at `light` or, without one, at the view angle (with the default
+    /// azimuth π, the mirror direction: the specular peak).
+    pub fn new(view: f64, light: Option<f64>, azimuth: f64) -> Self {
+        Angles { view, light: light.unwrap_or(view), azimuth }
+    }
+
     /// `view 30°, light 30°, azimuth 180°`, as the reports print them.
     pub fn text(&self) -> String {
         format!("view {}°, light {}°, azimuth {}°", deg(self.view), deg(self.light), deg(self.azimuth))
@@ -84,8 +90,8 @@ impl Angles {
 
 /// Per wavelength: the smooth model's R and the LSRS values at `angles`.
 pub fn evaluate(rough: &RoughStack, grid: &[f64], angles: Angles) -> Result<Vec<(f64, Lsrs)>> {
-    let Angles { view, light, azimuth } = angles;
     use rayon::prelude::*;
+    let Angles { view, light, azimuth } = angles;
     // In parallel: with multiple scattering each wavelength prepares its own state.
     grid.par_iter()
         .map(|&w| Ok((rough.stack.evaluate(w, view)?.r(), rough.evaluate(w, view, light, azimuth)?)))

@@ -88,7 +88,7 @@ pub const DEFAULT_FRESNEL: &str = "schlick:1.5";
 // Thin films (`iridis thinfilm …`)
 
 use anyhow::{bail, Result};
-use iridis_api::rough::RoughOptions;
+use iridis_api::rough::{Angles, RoughOptions};
 use iridis_thinfilm::rough::DiffuseTransport;
 use std::path::PathBuf;
 
@@ -143,13 +143,13 @@ impl RoughArgs {
         Ok(RoughOptions { sigma_nm, tau_nm, d_iterations: self.d_iterations, transport: self.diffuse_transport })
     }
 
-    /// The light angle of spectrum, color and chart (the view angle `view` unless --light-angle is given);
-    /// refuses the table's --light-angles.
-    pub fn light(&self, view: f64) -> Result<f64> {
+    /// The directions of spectrum, color and chart at view angle `view` (the light at --light-angle, else at
+    /// the view angle; --azimuth); refuses the table's --light-angles.
+    pub fn angles(&self, view: f64) -> Result<Angles> {
         if self.light_angles.is_some() {
             bail!("--light-angles is for 'table'; use --light-angle here");
         }
-        Ok(self.light_angle.unwrap_or(view))
+        Ok(Angles::new(view, self.light_angle, self.azimuth))
     }
 }
 

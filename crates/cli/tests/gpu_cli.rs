@@ -6,7 +6,7 @@ use crate::common;
 
 use std::process::Command;
 
-use common::{assert_fails, iridis, json_of, png_lab, DeltaE};
+use common::{assert_fails, delta_e_between, iridis, json_of, png_lab};
 use iridis_color::Lab;
 
 /// Tests that run the scene shader take turns: on lavapipe its first compilation takes minutes, and Mesa's shader
@@ -129,7 +129,8 @@ fn gpu_json_matches_docs_json_md() {
 /// statistics under `what`; returns the CPU image's pixels for the caller's own checks.
 fn assert_gpu_png_matches_cpu(what: &str, cpu: &std::path::Path, gpu: &std::path::Path) -> Vec<Lab> {
     let (a, b) = (png_lab(cpu), png_lab(gpu));
-    let DeltaE { mean, p99, .. } = DeltaE::between(&a, &b);
+    let d = delta_e_between(&a, &b);
+    let (mean, p99) = (d.mean, d.p99);
     eprintln!("{what}: ΔE00 mean {mean:.4}, p99 {p99:.4}");
     assert!(mean < 1.0 && p99 < 3.0, "{what}: mean {mean}, p99 {p99}");
     a
@@ -322,7 +323,8 @@ fn ground_truth_maps_on_the_gpu_match_the_cpu_image() {
             assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
         }
         let (a, b) = (png_lab(&cpu), png_lab(&gpu));
-        let DeltaE { mean, max, .. } = DeltaE::between(&a, &b);
+        let d = delta_e_between(&a, &b);
+        let (mean, max) = (d.mean, d.max);
         eprintln!("{method}: brdf-map --gpu vs CPU (PNG): ΔE00 mean {mean:.4}, max {max:.4}");
         // 8-bit PNGs of maps that agree to ~1e-6 in |A|²: at most one level apart.
         assert!(mean < 0.05 && max < 1.0, "{method}: mean {mean}, max {max}");
@@ -431,6 +433,9 @@ fn bench_gpu_times_a_scene_against_the_cpu() {
 /// window. The frame goes through the same present pass and egui texture as a scene's.
 #[test]
 fn viewer_starts_renders_and_answers_input_under_xvfb() {
+    if !have_gpu() {
+        return;
+    }
     viewer_check(&["builtin:blazed", "--uv-resolution", "64"]);
 }
 
@@ -441,10 +446,8 @@ fn viewer_on_a_scene_under_xvfb() {
     viewer_check(&["examples/snake_elaphe.toml"]);
 }
 
+/// The viewer under Xvfb on `input` (the caller has checked [`have_gpu`]).
 fn viewer_check(input: &[&str]) {
-    if !have_gpu() {
-        return;
-    }
     if Command::new("xvfb-run").arg("--help").output().is_err() {
         if std::env::var("IRIDIS_SKIP_GPU").as_deref() == Ok("1") {
             eprintln!("viewer test skipped: no xvfb-run (IRIDIS_SKIP_GPU=1)");

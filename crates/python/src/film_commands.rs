@@ -104,11 +104,7 @@ fn _film_spectrum<'py>(
             if pol != film::Polarization::Average {
                 anyhow::bail!("with roughness the spectrum is unpolarised, with s and p columns");
             }
-            let angles = rough::Angles {
-                view: angle_rad,
-                light: light_rad.unwrap_or(angle_rad),
-                azimuth: roughness.azimuth_rad,
-            };
+            let angles = rough::Angles::new(angle_rad, light_rad, roughness.azimuth_rad);
             let s = rough::spectrum(parsed, stack, &opts, angles, &grid)?;
             let image = if plot { Some(s.plot()?) } else { None };
             return Ok(Answer {
@@ -192,11 +188,7 @@ fn _film_color<'py>(
             if pol != film::Polarization::Average || visual.is_some() {
                 anyhow::bail!("with roughness the colours are for unpolarised light, without a visual system");
             }
-            let angles = rough::Angles {
-                view: angle_rad,
-                light: light_rad.unwrap_or(angle_rad),
-                azimuth: roughness.azimuth_rad,
-            };
+            let angles = rough::Angles::new(angle_rad, light_rad, roughness.azimuth_rad);
             let c = rough::colour_report(parsed, &opts, angles, &grid, illuminant.parse()?, observer)?;
             return Ok(Answer { json: Some(c.to_json()), text: Some(c.text()), ..Default::default() });
         }

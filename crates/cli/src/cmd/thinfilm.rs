@@ -339,14 +339,8 @@ fn spectrum(a: SpectrumArgs) -> Result<()> {
             bail!("with --roughness the spectrum is unpolarised, with s and p columns in --csv/--json");
         }
         let grid = a.grid.grid()?;
-        let (light, opts) = (a.rough.light(a.angle)?, a.rough.options()?);
-        let s = rough::spectrum(
-            stack,
-            &a.stack,
-            &opts,
-            rough::Angles { view: a.angle, light, azimuth: a.rough.azimuth },
-            &grid,
-        )?;
+        let (angles, opts) = (a.rough.angles(a.angle)?, a.rough.options()?);
+        let s = rough::spectrum(stack, &a.stack, &opts, angles, &grid)?;
         plot(a.plot.as_deref(), quiet, || s.plot())?;
         return print_answer(a.json, || Ok(s.to_json()), || if a.csv { s.csv() } else { s.text() });
     }
@@ -409,15 +403,8 @@ fn color(a: ColorArgs) -> Result<()> {
         if a.visual.is_some() {
             bail!("--visual takes a smooth film's spectra; leave out --roughness");
         }
-        let (light, opts, ill) = (a.rough.light(a.angle)?, a.rough.options()?, a.illuminant.parse()?);
-        let c = rough::colour_report(
-            stack,
-            &opts,
-            rough::Angles { view: a.angle, light, azimuth: a.rough.azimuth },
-            &grid,
-            ill,
-            observer,
-        )?;
+        let (angles, opts, ill) = (a.rough.angles(a.angle)?, a.rough.options()?, a.illuminant.parse()?);
+        let c = rough::colour_report(stack, &opts, angles, &grid, ill, observer)?;
         return print_answer(a.json, || Ok(c.to_json()), || c.text());
     }
     let c = film::colour(&stack, a.angle, pol, &grid, &a.illuminant, observer, a.visual.as_deref(), &Cli)?;
@@ -433,7 +420,7 @@ fn chart(a: ChartArgs) -> Result<()> {
     declare_opt("--csv", a.csv.as_deref(), &["csv"])?;
     let rough = match a.rough.is_set() {
         true => Some(film_chart::RoughLight {
-            light: Some(a.rough.light(a.angle)?),
+            light: Some(a.rough.angles(a.angle)?.light),
             options: a.rough.options()?,
             azimuth: a.rough.azimuth,
         }),

@@ -6,6 +6,7 @@ use std::process::{Command, Output};
 
 use iridis_color::integrate::white_point;
 use iridis_color::{Illuminant, Lab, Observer, Xyz};
+use iridis_thinfilm::accuracy::DeltaEStats;
 
 /// Runs the built binary from the repository root (so `data/…` paths in examples work).
 pub fn iridis<S: AsRef<std::ffi::OsStr> + std::fmt::Debug>(args: &[S]) -> Output {
@@ -96,22 +97,11 @@ pub fn png_lab(path: &std::path::Path) -> Vec<Lab> {
         .collect()
 }
 
-/// CIEDE2000 statistics between two images, pixel for pixel: the mean, the 99th percentile and the largest.
-pub struct DeltaE {
-    pub mean: f64,
-    pub p99: f64,
-    pub max: f64,
-}
-
-impl DeltaE {
-    /// Compares `a` and `b` pixel for pixel (same length).
-    pub fn between(a: &[Lab], b: &[Lab]) -> Self {
-        assert_eq!(a.len(), b.len(), "images of different sizes");
-        let mut d: Vec<f64> = a.iter().zip(b).map(|(p, q)| iridis_color::lab::delta_e_2000(*p, *q)).collect();
-        d.sort_by(f64::total_cmp);
-        let mean = d.iter().sum::<f64>() / d.len() as f64;
-        DeltaE { mean, p99: d[d.len() * 99 / 100], max: d.iter().fold(0.0f64, |m, &v| m.max(v)) }
-    }
+/// CIEDE2000 between two images pixel for pixel (same size), as the library's ΔE statistics: mean, 99th
+/// percentile, largest.
+pub fn delta_e_between(a: &[Lab], b: &[Lab]) -> DeltaEStats {
+    assert_eq!(a.len(), b.len(), "images of different sizes");
+    DeltaEStats::of(a.iter().zip(b).map(|(p, q)| iridis_color::lab::delta_e_2000(*p, *q)).collect())
 }
 
 /// docs/json.md, the one place where the JSON keys of every command are documented, read as the test reads
