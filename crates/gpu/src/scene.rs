@@ -37,8 +37,7 @@ use crate::{
     dispatch, unpack_rgb8, xyz_to_srgb_words, FrameTime, Gpu, GpuError, Timer, COMMON_WGSL, FILM_WGSL, LOOKUP_WGSL,
     TURNS_WGSL,
 };
-use iridis_thinfilm::rough::RoughStack;
-use iridis_thinfilm::rough_table::{RoughColorTable, ANGLE_NODES, AZIMUTH_NODES};
+use iridis_thinfilm::rough_table::RoughColorTable;
 use iridis_thinfilm::table::{TableGrid, MAX_NODES, NODES_PER_PERIOD};
 use iridis_thinfilm::Complex64;
 
@@ -350,7 +349,6 @@ impl<'g> GpuScene<'g> {
         let sw = iridis_thinfilm::spectral::sampled_weights(film.spectral_samples, FULL_BAND_NM)
             .map_err(|e| GpuError::Invalid(format!("--spectral-samples: {e}")))?;
         let grid = sw.wavelengths_nm().to_vec();
-        let dense = iridis_thinfilm::spectral::dense_weights();
         lay.n_lambda = grid.len() as u32;
         let mut film_data: Vec<[f32; 4]> = Vec::new();
         let mut tables: Vec<f32> = Vec::new();
@@ -505,9 +503,10 @@ impl<'g> GpuScene<'g> {
                     if let Some(b) = &f.base {
                         push_microfacet(&mut rec, b);
                     }
-                    if let Some(htsg) = f.rough {
-                        push_rough_tables(&mut rec, &mut film_data, f, htsg, &dense, svt_range)
-                            .map_err(|e| GpuError::Invalid(format!("material `{name}`: rough film: {e}")))?;
+                    if let Some(table) = f.rough_table() {
+                        let table =
+                            table.map_err(|e| GpuError::Invalid(format!("material `{name}`: rough film: {e}")))?;
+                        push_rough_tables(&mut rec, &mut film_data, f, table);
                     }
                 }
             }
@@ -1109,22 +1108,14 @@ fn push_microfacet(rec: &mut Records, m: &Microfacet) {
 /// A rough film's records (after its SVT record: four, where a base would go) and its tables in `film_data`:
 /// `[k_r, π k_d, albedo first entries, angles | azimuths << 16]`, `[offset nodes, albedo cos nodes, albedo offset
 /// nodes]`, `[first, last offset, albedo's first, last offset]`, `[albedo's first, last cos]` (film_rough.wgsl's
-/// RoughTab). The LSRS tables cover the SVT range with the offset nodes a smooth table of the stack would have.
+/// RoughTab). The tables are the material's own (`ThinFilm::rough_table`, `rough_env_table`), the ones the CPU
+/// renderer shades with: made once for both.
 fn push_rough_tables(
     rec: &mut Records,
     film_data: &mut Vec<[f32; 4]>,
     f: &iridis_render::material::ThinFilm,
-    htsg: iridis_thinfilm::htsg::Htsg,
-    dense: &iridis_color::SpectralWeights,
-    svt_range: (f64, f64),
-) -> Result<(), iridis_thinfilm::ThinFilmError> {
-    let offsets = if svt_range.1 > svt_range.0 {
-        TableGrid::for_stack(&f.stack, dense.wavelengths_nm(), svt_range)?.offset_nodes
-    } else {
-        1
-    };
-    let rough = RoughStack::new(f.stack.clone(), htsg);
-    let t = RoughColorTable::build(&rough, dense, ANGLE_NODES, AZIMUTH_NODES, offsets, svt_range)?;
+    t: &RoughColorTable,
+) {
     let (cos, env_offsets, env) = f.rough_env_table().expect("a rough film has its albedo table");
     let xyz = |x: &iridis_color::Xyz| [x.x as f32, x.y as f32, x.z as f32, 0.0];
     let spec = film_data.len() as u32;
@@ -1138,7 +1129,6 @@ fn push_rough_tables(
     rec.words([t.offsets as u32, cos.len() as u32, env_offsets.len() as u32, 0]);
     rec.push([t.offset_nm.0 as f32, t.offset_nm.1 as f32, env_offsets[0] as f32, last(env_offsets)]);
     rec.push([cos[0] as f32, last(cos), 0.0, 0.0]);
-    Ok(())
 }
 
 impl SceneFrame {

@@ -10,7 +10,7 @@ use iridis_diffraction::Evaluator;
 use iridis_thinfilm::color::FilmColorimeter;
 use iridis_thinfilm::htsg::Htsg;
 use iridis_thinfilm::rough::RoughStack;
-use iridis_thinfilm::Stack;
+use iridis_thinfilm::{Stack, ThinFilmError};
 
 use crate::energy;
 use crate::error::RenderError;
@@ -304,8 +304,9 @@ pub struct ThinFilm {
     /// ([`ThinFilm::rough_env_diffuse`]).
     rough_albedo: std::sync::OnceLock<RoughAlbedo>,
     /// A rough film's colour tables (`k_r` and `π k_d` over the view, light, azimuth and SVT offset), made on
-    /// first use ([`ThinFilm::rough_colors`]); `None` inside where they cannot be made.
-    rough_table: std::sync::OnceLock<Option<iridis_thinfilm::rough_table::RoughColorTable>>,
+    /// first use ([`ThinFilm::rough_table`]) for the CPU renderer and the GPU alike; the error where they cannot
+    /// be made.
+    rough_table: std::sync::OnceLock<Result<iridis_thinfilm::rough_table::RoughColorTable, ThinFilmError>>,
 }
 
 /// The diffuse directional albedo `∫ k_d cos θ dω` of a rough film as XYZ, on a grid of `cos θ_v` (rows) and
@@ -520,28 +521,26 @@ impl ThinFilm {
         Ok(())
     }
 
-    /// The rough film's colour tables ([`iridis_thinfilm::rough_table`]), made on first use exactly as the GPU
-    /// makes them: `k_r` and `π k_d` integrated over the spectrum at every node of 3° in the view and light
-    /// angles, 10° in their relative azimuth and the SVT offsets a smooth table of the stack would have. `None`
-    /// for a smooth film or a stack without a table (incoherent layers).
-    pub fn rough_table(&self) -> Option<&iridis_thinfilm::rough_table::RoughColorTable> {
+    /// The rough film's colour tables ([`iridis_thinfilm::rough_table`]), made on first use and shared by the
+    /// CPU renderer and the GPU (a scene rendered on both builds them once; they are most of a rough film's
+    /// set-up time): `k_r` and `π k_d` integrated over the spectrum at every node of 3° in the view and light
+    /// angles, 10° in their relative azimuth and the SVT offsets a smooth table of the stack would have.
+    /// `None` for a smooth film; the error for a stack without a table (incoherent layers).
+    pub fn rough_table(&self) -> Option<Result<&iridis_thinfilm::rough_table::RoughColorTable, &ThinFilmError>> {
         use iridis_thinfilm::rough_table::{RoughColorTable, ANGLE_NODES, AZIMUTH_NODES};
         let htsg = self.rough?;
-        self.rough_table
-            .get_or_init(|| {
-                let dense = iridis_thinfilm::spectral::dense_weights();
-                let range = self.svt.map_or((0.0, 0.0), |s| (-s.d_rel_nm.abs(), s.d_rel_nm.abs()));
-                let offsets = if range.1 > range.0 {
-                    iridis_thinfilm::table::TableGrid::for_stack(&self.stack, dense.wavelengths_nm(), range)
-                        .ok()?
-                        .offset_nodes
-                } else {
-                    1
-                };
-                let rough = RoughStack::new(self.stack.clone(), htsg);
-                RoughColorTable::build(&rough, &dense, ANGLE_NODES, AZIMUTH_NODES, offsets, range).ok()
-            })
-            .as_ref()
+        let table = self.rough_table.get_or_init(|| {
+            let dense = iridis_thinfilm::spectral::dense_weights();
+            let range = self.svt.map_or((0.0, 0.0), |s| (-s.d_rel_nm.abs(), s.d_rel_nm.abs()));
+            let offsets = if range.1 > range.0 {
+                iridis_thinfilm::table::TableGrid::for_stack(&self.stack, dense.wavelengths_nm(), range)?.offset_nodes
+            } else {
+                1
+            };
+            let rough = RoughStack::new(self.stack.clone(), htsg);
+            RoughColorTable::build(&rough, &dense, ANGLE_NODES, AZIMUTH_NODES, offsets, range)
+        });
+        Some(table.as_ref())
     }
 
     /// [`ThinFilm::rough_colors`] as the renderer (and the GPU) shades it: from the colour tables
@@ -557,7 +556,7 @@ impl ThinFilm {
         offset_nm: f64,
         lights: &[(f64, f64)],
     ) -> Option<(Xyz, Vec<Xyz>)> {
-        let Some(t) = self.rough_table() else { return self.rough_colors(cos_view, offset_nm, lights) };
+        let Some(Ok(t)) = self.rough_table() else { return self.rough_colors(cos_view, offset_nm, lights) };
         let spec = t.specular_at(cos_view, offset_nm);
         let diffuse = lights.iter().map(|&(cos_l, az)| t.diffuse_at(cos_view, cos_l, az, offset_nm)).collect();
         Some((spec, diffuse))
