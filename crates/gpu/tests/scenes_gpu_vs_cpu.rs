@@ -39,9 +39,17 @@ fn example_scene(path: &std::path::Path) -> Scene {
     static LOADED: std::sync::OnceLock<std::sync::Mutex<std::collections::HashMap<PathBuf, Scene>>> =
         std::sync::OnceLock::new();
     let mut loaded = LOADED.get_or_init(Default::default).lock().unwrap_or_else(|e| e.into_inner());
-    let scene = loaded
-        .entry(path.to_path_buf())
-        .or_insert_with(|| load_scene(path).unwrap_or_else(|e| panic!("{}: {e}", path.display())));
+    let scene = loaded.entry(path.to_path_buf()).or_insert_with(|| {
+        let scene = load_scene(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        // A rough film's tables are made on first use and travel with the scene's clones (Scene::scale leaves
+        // materials alone): made here once, not once for every clone (each scale, each test), seconds each.
+        for m in &scene.materials {
+            if let iridis_render::material::Material::ThinFilm(f) = m {
+                let _ = (f.rough_table(), f.rough_env_table());
+            }
+        }
+        scene
+    });
     scene.clone()
 }
 
