@@ -476,7 +476,7 @@ impl<'g> GpuScene<'g> {
                     let (svt_tex, d_rel) = f.svt.map(|s| (s.texture as u32, s.d_rel_nm as f32)).unwrap_or((NONE, 0.0));
                     let metal_word = metal_media_base.map_or(NONE, |b| b as u32);
                     let svt = [f32::from_bits(svt_tex), d_rel, f.factor as f32, f32::from_bits(metal_word)];
-                    let svt_range = f.svt.map_or((0.0, 0.0), |s| (-s.d_rel_nm.abs(), s.d_rel_nm.abs()));
+                    let svt_range = f.svt_range_nm();
                     // Room for a smooth film's colour table: enough for the viewer's controls at their
                     // extremes (thickness and SVT ×3, a layer index up to 2.6), at least 64 Ki nodes.
                     let table = match (f.rough, film.path) {

@@ -521,6 +521,12 @@ impl ThinFilm {
         Ok(())
     }
 
+    /// The thickness offsets (nm) the film's SVT texture can add to every layer, `(−|d_rel|, |d_rel|)`; `(0, 0)`
+    /// without SVT. The colour tables of the film (the GPU's smooth-film table, the rough tables) cover it.
+    pub fn svt_range_nm(&self) -> (f64, f64) {
+        self.svt.map_or((0.0, 0.0), |s| (-s.d_rel_nm.abs(), s.d_rel_nm.abs()))
+    }
+
     /// The rough film's colour tables ([`iridis_thinfilm::rough_table`]), made on first use and shared by the
     /// CPU renderer and the GPU (a scene rendered on both builds them once; they are most of a rough film's
     /// set-up time): `k_r` and `π k_d` integrated over the spectrum at every node of 3° in the view and light
@@ -531,7 +537,7 @@ impl ThinFilm {
         let htsg = self.rough?;
         let table = self.rough_table.get_or_init(|| {
             let dense = iridis_thinfilm::spectral::dense_weights();
-            let range = self.svt.map_or((0.0, 0.0), |s| (-s.d_rel_nm.abs(), s.d_rel_nm.abs()));
+            let range = self.svt_range_nm();
             let offsets = if range.1 > range.0 {
                 iridis_thinfilm::table::TableGrid::for_stack(&self.stack, dense.wavelengths_nm(), range)?.offset_nodes
             } else {

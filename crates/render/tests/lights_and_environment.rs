@@ -122,12 +122,8 @@ fn rough_films_shade_from_the_colour_tables_the_gpu_uses() {
     let Material::ThinFilm(f) = &scene.materials[0] else { panic!("not a film") };
     let got = render(&scene, 3, 3, 1, &|_| {}).xyz(1, 1);
     // Seen head-on the azimuth of the light relative to the view is immaterial (π by convention).
-    let table = f.rough_table().expect("a rough film has tables").expect("its tables can be made").diffuse_at(
-        1.0,
-        tl.cos(),
-        std::f64::consts::PI,
-        0.0,
-    );
+    let tables = f.rough_table().expect("a rough film has tables").expect("its tables can be made");
+    let table = tables.diffuse_at(1.0, tl.cos(), std::f64::consts::PI, 0.0);
     let (_, direct) = f.rough_colors(1.0, 0.0, &[(tl.cos(), std::f64::consts::PI)]).unwrap();
     let k = tl.cos();
     for (g, (t, d)) in got.to_array().iter().zip(table.to_array().iter().zip(direct[0].to_array())) {
