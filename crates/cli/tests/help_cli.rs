@@ -21,8 +21,9 @@
 //!
 //! **Repeats run once.** A command that, after the rules, has the same words and the same input files (byte for
 //! byte) as one already run in this test process — the README and the pages share examples (`render
-//! examples/rough_film.toml`, 15–40 s) — is not run again; its earlier outcome counts for it, failure included,
-//! and the files it wrote are put into this example's folder for the commands after it.
+//! examples/rough_film.toml`, 5 s) — is not run again; its earlier outcome counts for it, failure included,
+//! and the files it wrote are put into this example's folder for the commands after it. The README's test and
+//! the pages' run side by side: one that comes to a command the other is running waits for its outcome.
 //!
 //! **Inputs.** A file an example reads that no earlier example of its page wrote is made first: height fields
 //! (`.gwy`, `.npy`, `.png`, `.txt`, `.tif`) by `iridis surface generate sine` on the small patch; `.npz` is the
@@ -483,8 +484,10 @@ fn make_input(dir: &Path, name: &str, words: &[String]) -> Result<(), String> {
 /// What a command run left behind: the failure, if it failed, and the files it wrote (name, bytes), which a
 /// repeat puts into its own folder so that the next command of its line finds them.
 type Outcome = (Option<String>, Vec<(std::ffi::OsString, Vec<u8>)>);
-/// The commands run so far in this process: (words, input files' bytes) → their outcome.
-type Ran = std::collections::HashMap<(Vec<String>, Vec<Vec<u8>>), Outcome>;
+/// A command's words and its input files' bytes.
+type RunKey = (Vec<String>, Vec<Vec<u8>>);
+/// The commands run so far in this process → their outcome (`None` while one test runs it).
+type Ran = std::collections::HashMap<RunKey, Option<Outcome>>;
 
 /// The files in `dir` with their modification times and sizes, to tell which ones a command wrote.
 fn listing(dir: &Path) -> std::collections::HashMap<std::ffi::OsString, (std::time::SystemTime, u64)> {
@@ -501,6 +504,49 @@ fn listing(dir: &Path) -> std::collections::HashMap<std::ffi::OsString, (std::ti
         .unwrap_or_default()
 }
 static RAN: std::sync::Mutex<Option<Ran>> = std::sync::Mutex::new(None);
+/// Signalled when a command that another test was waiting for has finished.
+static RAN_DONE: std::sync::Condvar = std::sync::Condvar::new();
+
+/// The outcome of `key` if a test of this process ran it — waiting while one runs it now (the README and
+/// help tests run side by side and share examples) — or `None`, and then the caller runs it and must
+/// [`Claim::finish`] it.
+fn claim_run(key: &RunKey) -> Result<Outcome, Claim> {
+    let mut ran = RAN.lock().unwrap_or_else(|e| e.into_inner());
+    loop {
+        match ran.get_or_insert_with(Ran::new).get(key) {
+            Some(Some(outcome)) => return Ok(outcome.clone()),
+            Some(None) => ran = RAN_DONE.wait(ran).unwrap_or_else(|e| e.into_inner()),
+            None => {
+                ran.get_or_insert_with(Ran::new).insert(key.clone(), None);
+                return Err(Claim { key: Some(key.clone()) });
+            }
+        }
+    }
+}
+
+/// A command this test runs; others asking for it wait until it is finished (or its runner panicked: then
+/// the drop records a failure, so that no test waits for ever).
+struct Claim {
+    key: Option<RunKey>,
+}
+
+impl Claim {
+    fn finish(mut self, outcome: Outcome) {
+        Self::record(self.key.take().expect("claimed"), outcome);
+    }
+    fn record(key: RunKey, outcome: Outcome) {
+        RAN.lock().unwrap_or_else(|e| e.into_inner()).get_or_insert_with(Ran::new).insert(key, Some(outcome));
+        RAN_DONE.notify_all();
+    }
+}
+
+impl Drop for Claim {
+    fn drop(&mut self) {
+        if let Some(key) = self.key.take() {
+            Self::record(key, (Some("the test running it panicked".to_string()), Vec::new()));
+        }
+    }
+}
 
 /// Runs the example lines in `dir` under the rules; returns the failures.
 fn run_examples(dir: &Path, origin: &str, lines: &[String], takes: &Takes, log: &mut Vec<String>) -> Vec<String> {
@@ -532,22 +578,24 @@ fn run_examples(dir: &Path, origin: &str, lines: &[String], takes: &Takes, log: 
                 continue;
             }
             // The same words on the same bytes: the earlier run's outcome (module documentation).
-            let key: (Vec<String>, Vec<Vec<u8>>) =
+            let key: RunKey =
                 (args.clone(), inputs(&args).iter().map(|n| std::fs::read(dir.join(n)).unwrap_or_default()).collect());
-            let earlier = RAN.lock().unwrap_or_else(|e| e.into_inner()).get_or_insert_with(Ran::new).get(&key).cloned();
-            if let Some((failed, wrote)) = earlier {
-                for (name, bytes) in &wrote {
-                    std::fs::write(dir.join(name), bytes).expect("scratch folder is writable");
+            let claim = match claim_run(&key) {
+                Ok((failed, wrote)) => {
+                    for (name, bytes) in &wrote {
+                        std::fs::write(dir.join(name), bytes).expect("scratch folder is writable");
+                    }
+                    log.push(format!(
+                        "  once   {origin}: {} (ran before{})",
+                        args[1..].join(" "),
+                        if failed.is_some() { ", failed" } else { "" }
+                    ));
+                    eprintln!("{}", log.last().unwrap());
+                    failures.extend(failed.map(|e| format!("{origin}: {}\n    {e}", line.trim())));
+                    continue;
                 }
-                log.push(format!(
-                    "  once   {origin}: {} (ran before{})",
-                    args[1..].join(" "),
-                    if failed.is_some() { ", failed" } else { "" }
-                ));
-                eprintln!("{}", log.last().unwrap());
-                failures.extend(failed.map(|e| format!("{origin}: {}\n    {e}", line.trim())));
-                continue;
-            }
+                Err(claim) => claim,
+            };
             let before = listing(dir);
             let t = std::time::Instant::now();
             let out = run_in(dir, &args[1..]);
@@ -561,10 +609,7 @@ fn run_examples(dir: &Path, origin: &str, lines: &[String], takes: &Takes, log: 
                 .filter(|(name, stamp)| before.get(name) != Some(stamp))
                 .filter_map(|(name, _)| Some((name.clone(), std::fs::read(dir.join(&name)).ok()?)))
                 .collect();
-            RAN.lock()
-                .unwrap_or_else(|e| e.into_inner())
-                .get_or_insert_with(Ran::new)
-                .insert(key, (failed.clone(), wrote));
+            claim.finish((failed.clone(), wrote));
             if let Some(e) = failed {
                 failures.push(format!("{origin}: {}\n    {e}", line.trim()));
             }

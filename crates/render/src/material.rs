@@ -554,7 +554,7 @@ impl ThinFilm {
     /// direct evaluation: ΔE00 0.03 for the diffuse part at 40°, between the 39° and 42° nodes; 0.07 at most
     /// for the specular part near a sphere's rim; `render_cli.rs`). The direct evaluation is the HTSG series at
     /// 81 wavelengths for every light at every hit: `rough_film.toml` at 320 × 240 took 53 s of CPU that way,
-    /// 10 s with the tables, most of it building them (once per material). Falls back to the direct
+    /// 4.6 s with the tables (2-core VM, 2026-11-27), most of it building them (once per material). Falls back to the direct
     /// evaluation where no table can be made.
     pub fn rough_colors_tabulated(
         &self,

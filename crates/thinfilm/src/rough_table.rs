@@ -20,6 +20,7 @@
 use std::f64::consts::PI;
 
 use iridis_color::{SpectralWeights, Xyz};
+use num_complex::Complex64;
 use rayon::prelude::*;
 
 use crate::error::ThinFilmError;
@@ -92,18 +93,26 @@ impl RoughColorTable {
             .collect();
         let (na, nt, no) = (azimuths, angles, offsets);
         let planes = na * nt * nt;
-        // Per wavelength: k_r[o][θ], the diffuse transports per side and polarisation [o][θ][pol], and the
-        // interface's G_pol[a][θ_l][θ_v] (with the radiance factor).
+        // Per wavelength: k_r[o][θ], the diffuse transports per side and polarisation [o][θ][pol], and what the
+        // interface's part needs (the directions in medium N, their shadowing and K factors, the indices on
+        // either side of the rough interface, the radiance factor).
         struct Spectral {
             specular: Vec<f64>,
             view: Vec<[f64; 2]>,
             light: Vec<[f64; 2]>,
-            geometry: Vec<[f64; 2]>,
             /// With multiple scattering: `(n₀/n_N)² K_pol` at `[o][θ_l][θ_v]` (eq. M5), else empty.
             multiple: Vec<[f64; 2]>,
+            k: f64,
+            n_upper: Complex64,
+            n_sub: Complex64,
+            rad: f64,
+            /// `(sin θ, cos θ)` in medium N at each angle node (`None`: no light there).
+            dirs: Vec<Option<(f64, f64)>>,
+            /// The shadowing `S(θ)` and the `K(θ)` of σ₀ at each angle node.
+            shadow_k: Vec<(f64, f64)>,
         }
         let multiple = rough.transport == crate::rough::DiffuseTransport::Multiple;
-        let azimuth_trig: Vec<(f64, f64)> = (0..azimuths).map(|a| (azimuth(a).cos(), azimuth(a).sin())).collect();
+        let r = &rough.htsg.roughness;
         let per_lambda: Vec<Spectral> = weights
             .wavelengths_nm()
             .par_iter()
@@ -149,30 +158,38 @@ impl RoughColorTable {
                         }
                     }
                 }
-                // S(θ) and K(θ) once per angle node; σ₀(θ_l, θ_v) and S(θ_l) S(θ_v) once per pair of angles (as
-                // `diffuse_geometry` computes them), not once per azimuth node: the azimuth loop is innermost.
-                let r = &rough.htsg.roughness;
-                let shadow_k: Vec<(f64, f64)> =
-                    dirs.iter().map(|d| d.map_or((0.0, 0.0), |(_, c)| r.shadowing_and_k(c))).collect();
-                let mut geometry = vec![[0.0; 2]; planes];
-                for il in 0..nt {
-                    let Some((sl, cl)) = dirs[il] else { continue };
-                    for iv in 0..nt {
-                        let Some((sv, cv)) = dirs[iv] else { continue };
-                        let sigma0 = r.effective_sigma_from_k(shadow_k[il].1 + shadow_k[iv].1);
-                        let shadow = shadow_k[il].0 * shadow_k[iv].0;
-                        for (a, &(cos_az, sin_az)) in azimuth_trig.iter().enumerate() {
-                            let wl = [sl * cos_az, sl * sin_az, cl];
-                            let geo = rough.htsg.diffuse_geometry_with(wl, [sv, 0.0, cv], k, sigma0, shadow)?;
-                            let f = local_fresnel(n_upper, n_sub, geo.cos_local);
-                            geometry[(a * nt + il) * nt + iv] =
-                                [rad * geo.factor * f.r_s.norm_sqr(), rad * geo.factor * f.r_p.norm_sqr()];
-                        }
-                    }
-                }
-                Ok(Spectral { specular, view, light, geometry, multiple: extra })
+                // S(θ) and K(θ) once per angle node (σ₀(θ_l, θ_v) and S(θ_l) S(θ_v) once per pair of angles
+                // below, as `diffuse_geometry` computes them).
+                let shadow_k = dirs.iter().map(|d| d.map_or((0.0, 0.0), |(_, c)| r.shadowing_and_k(c))).collect();
+                Ok(Spectral { specular, view, light, multiple: extra, k, n_upper, n_sub, rad, dirs, shadow_k })
             })
             .collect::<Result<_, _>>()?;
+        let nl = per_lambda.len();
+        // The interface's part G_pol at `[pair θ_l·θ_v][λ][azimuth]` (the spectral sums below read it in that
+        // order), for θ_l ≤ θ_v only: it is reciprocal (HTSG's D, shadowing and geometric factor, and the Fresnel
+        // power at the local angle, are symmetric in the two directions, and the roughness is isotropic, so
+        // swapping them at relative azimuth φ is the same pair mirrored), so (θ_v, θ_l) reads (θ_l, θ_v): half
+        // the HTSG series of the table.
+        let azimuth_trig: Vec<(f64, f64)> = (0..azimuths).map(|a| (azimuth(a).cos(), azimuth(a).sin())).collect();
+        let mut geometry = vec![[0.0; 2]; nt * nt * nl * na];
+        geometry.par_chunks_mut(nl * na).enumerate().try_for_each(|(pair, out)| -> Result<(), ThinFilmError> {
+            let (il, iv) = (pair / nt, pair % nt);
+            if iv < il {
+                return Ok(());
+            }
+            for (p, out) in per_lambda.iter().zip(out.chunks_mut(na)) {
+                let (Some((sl, cl)), Some((sv, cv))) = (p.dirs[il], p.dirs[iv]) else { continue };
+                let sigma0 = r.effective_sigma_from_k(p.shadow_k[il].1 + p.shadow_k[iv].1);
+                let shadow = p.shadow_k[il].0 * p.shadow_k[iv].0;
+                for (g, &(cos_az, sin_az)) in out.iter_mut().zip(&azimuth_trig) {
+                    let wl = [sl * cos_az, sl * sin_az, cl];
+                    let geo = rough.htsg.diffuse_geometry_with(wl, [sv, 0.0, cv], p.k, sigma0, shadow)?;
+                    let f = local_fresnel(p.n_upper, p.n_sub, geo.cos_local);
+                    *g = [p.rad * geo.factor * f.r_s.norm_sqr(), p.rad * geo.factor * f.r_p.norm_sqr()];
+                }
+            }
+            Ok(())
+        })?;
         let w = weights.weights();
         let mut specular = vec![Xyz::default(); no * nt];
         for (idx, s) in specular.iter_mut().enumerate() {
@@ -184,28 +201,45 @@ impl RoughColorTable {
             }
             *s = Xyz::new(acc[0], acc[1], acc[2]);
         }
-        let diffuse: Vec<Xyz> = (0..no * planes)
-            .into_par_iter()
-            .map(|idx| {
-                let (j, plane) = (idx / planes, idx % planes);
-                let (il, iv) = ((plane / nt) % nt, plane % nt);
-                let mut acc = [0.0; 3];
-                for (p, wl) in per_lambda.iter().zip(w) {
-                    let mut g = p.geometry[plane];
-                    if !p.multiple.is_empty() {
-                        let x = p.multiple[(j * nt + il) * nt + iv];
-                        g = [g[0] + x[0], g[1] + x[1]];
+        // The spectral sums, one offset at a time: its layers' factors gathered with λ innermost, every sum in
+        // wavelength order (each node the same sum as the direct model's colour integral).
+        let mut diffuse = vec![Xyz::default(); no * planes];
+        diffuse.par_chunks_mut(planes).enumerate().for_each(|(j, out)| {
+            let light: Vec<[f64; 2]> = (0..nt * nl).map(|x| per_lambda[x % nl].light[j * nt + x / nl]).collect();
+            let view: Vec<[f64; 2]> = (0..nt * nl).map(|x| per_lambda[x % nl].view[j * nt + x / nl]).collect();
+            let extra: Vec<[f64; 2]> = if multiple {
+                (0..nt * nt * nl).map(|x| per_lambda[x % nl].multiple[j * nt * nt + x / nl]).collect()
+            } else {
+                Vec::new()
+            };
+            let mut acc = vec![[0.0; 3]; na];
+            for il in 0..nt {
+                for iv in 0..nt {
+                    let pair = if il <= iv { il * nt + iv } else { iv * nt + il };
+                    let g_pair = &geometry[pair * nl * na..(pair + 1) * nl * na];
+                    acc.iter_mut().for_each(|a| *a = [0.0; 3]);
+                    for li in 0..nl {
+                        let (l, v) = (light[il * nl + li], view[iv * nl + li]);
+                        let x = if multiple { Some(extra[(il * nt + iv) * nl + li]) } else { None };
+                        let wl = w[li];
+                        for (a, &g) in acc.iter_mut().zip(&g_pair[li * na..(li + 1) * na]) {
+                            let g = match x {
+                                Some(x) => [g[0] + x[0], g[1] + x[1]],
+                                None => g,
+                            };
+                            // π k_d = π · ½ Σ_pol (G_pol + K_pol) T_pol(θ_l) T_pol(θ_v)
+                            let kd = 0.5 * PI * (g[0] * l[0] * v[0] + g[1] * l[1] * v[1]);
+                            for c in 0..3 {
+                                a[c] += wl[c] * kd;
+                            }
+                        }
                     }
-                    let (v, l) = (p.view[j * nt + iv], p.light[j * nt + il]);
-                    // π k_d = π · ½ Σ_pol (G_pol + K_pol) T_pol(θ_l) T_pol(θ_v)
-                    let kd = 0.5 * PI * (g[0] * l[0] * v[0] + g[1] * l[1] * v[1]);
-                    for c in 0..3 {
-                        acc[c] += wl[c] * kd;
+                    for (ia, a) in acc.iter().enumerate() {
+                        out[(ia * nt + il) * nt + iv] = Xyz::new(a[0], a[1], a[2]);
                     }
                 }
-                Xyz::new(acc[0], acc[1], acc[2])
-            })
-            .collect();
+            }
+        });
         Ok(Self { angles, azimuths, offsets, offset_nm: (lo, if offsets == 1 { lo } else { hi }), specular, diffuse })
     }
 
