@@ -19,7 +19,7 @@ fn f32_lookup_matches_f64_on_every_builtin() {
         let patch = Patch::from_row_major(hf.rows, hf.cols, hf.dx_nm, hf.dy_nm, &hf.heights_nm).unwrap();
         let n = terms_for_bound(patch.max_abs_height, 380.0, 1e-6);
         let terms = TaylorTerms::compute(&patch, n, 3000.0).unwrap();
-        let params = TableParams { uv_resolution: 101, uv_power: 5.0 };
+        let params = TableParams { uv_resolution: 61, uv_power: 5.0 };
         let table = Arc::new(LookupTable::build(&terms, &spectral, params, name, &|_| {}).unwrap());
         let f64_lookup = Lookup::new(table.clone(), Shading::default(), Precision::F64).unwrap();
         let f32_lookup = Lookup::new(table, Shading::default(), Precision::F32).unwrap();
@@ -48,7 +48,9 @@ fn f32_lookup_matches_f64_on_every_builtin() {
         eprintln!(
             "{name}: f32 vs f64 lookup, N = {n}: |ΔY|/peak ≤ {worst_rel:.2e}, ΔE00 mean {mean:.2e}, max {worst_de:.2e}"
         );
-        // Measured (8 µm patches, 151² tables): |ΔY|/peak ≤ 6.6e-7, mean ΔE00 ≤ 5.5e-5, max ≤ 1.1e-3 (blazed).
+        // Measured (8 µm patches, 151² tables): |ΔY|/peak ≤ 6.6e-7, mean ΔE00 ≤ 5.5e-5, max ≤ 1.1e-3 (blazed);
+        // 6 µm, 101²: 5.9e-7, 9.1e-5, 1.9e-3; 6 µm, 61² (this test, 6 CPU-s instead of 16 on the 2-core VM):
+        // 7.4e-7, 9.9e-5, 2.0e-3. The f32 rounding of the stored terms does not follow the grid's density.
         assert!(worst_rel < 3e-6 && mean < 3e-4 && worst_de < 5e-3, "{name}: {worst_rel} {mean} {worst_de}");
     }
 }
