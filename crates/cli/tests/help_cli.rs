@@ -503,7 +503,7 @@ fn listing(dir: &Path) -> std::collections::HashMap<std::ffi::OsString, (std::ti
         })
         .unwrap_or_default()
 }
-static RAN: std::sync::Mutex<Option<Ran>> = std::sync::Mutex::new(None);
+static RAN: std::sync::LazyLock<std::sync::Mutex<Ran>> = std::sync::LazyLock::new(Default::default);
 /// Signalled when a command that another test was waiting for has finished.
 static RAN_DONE: std::sync::Condvar = std::sync::Condvar::new();
 
@@ -513,11 +513,11 @@ static RAN_DONE: std::sync::Condvar = std::sync::Condvar::new();
 fn claim_run(key: &RunKey) -> Result<Outcome, Claim> {
     let mut ran = RAN.lock().unwrap_or_else(|e| e.into_inner());
     loop {
-        match ran.get_or_insert_with(Ran::new).get(key) {
+        match ran.get(key) {
             Some(Some(outcome)) => return Ok(outcome.clone()),
             Some(None) => ran = RAN_DONE.wait(ran).unwrap_or_else(|e| e.into_inner()),
             None => {
-                ran.get_or_insert_with(Ran::new).insert(key.clone(), None);
+                ran.insert(key.clone(), None);
                 return Err(Claim { key: Some(key.clone()) });
             }
         }
@@ -535,7 +535,7 @@ impl Claim {
         Self::record(self.key.take().expect("claimed"), outcome);
     }
     fn record(key: RunKey, outcome: Outcome) {
-        RAN.lock().unwrap_or_else(|e| e.into_inner()).get_or_insert_with(Ran::new).insert(key, Some(outcome));
+        RAN.lock().unwrap_or_else(|e| e.into_inner()).insert(key, Some(outcome));
         RAN_DONE.notify_all();
     }
 }

@@ -165,18 +165,21 @@ impl RoughColorTable {
             })
             .collect::<Result<_, _>>()?;
         let nl = per_lambda.len();
-        // The interface's part G_pol at `[pair θ_l·θ_v][λ][azimuth]` (the spectral sums below read it in that
+        // The interface's part G_pol at `[pair θ_l ≤ θ_v][λ][azimuth]` (the spectral sums below read it in that
         // order), for θ_l ≤ θ_v only: it is reciprocal (HTSG's D, shadowing and geometric factor, and the Fresnel
         // power at the local angle, are symmetric in the two directions, and the roughness is isotropic, so
         // swapping them at relative azimuth φ is the same pair mirrored), so (θ_v, θ_l) reads (θ_l, θ_v): half
         // the HTSG series of the table.
         let azimuth_trig: Vec<(f64, f64)> = (0..azimuths).map(|a| (azimuth(a).cos(), azimuth(a).sin())).collect();
-        let mut geometry = vec![[0.0; 2]; nt * nt * nl * na];
-        geometry.par_chunks_mut(nl * na).enumerate().try_for_each(|(pair, out)| -> Result<(), ThinFilmError> {
-            let (il, iv) = (pair / nt, pair % nt);
-            if iv < il {
-                return Ok(());
-            }
+        let pairs: Vec<(usize, usize)> = (0..nt).flat_map(|il| (il..nt).map(move |iv| (il, iv))).collect();
+        // Where (θ_l, θ_v) of either order finds its pair's chunk.
+        let mut chunk_of = vec![0; nt * nt];
+        for (c, &(il, iv)) in pairs.iter().enumerate() {
+            chunk_of[il * nt + iv] = c;
+            chunk_of[iv * nt + il] = c;
+        }
+        let mut geometry = vec![[0.0; 2]; pairs.len() * nl * na];
+        geometry.par_chunks_mut(nl * na).zip(&pairs).try_for_each(|(out, &(il, iv))| -> Result<(), ThinFilmError> {
             for (p, out) in per_lambda.iter().zip(out.chunks_mut(na)) {
                 let (Some((sl, cl)), Some((sv, cv))) = (p.dirs[il], p.dirs[iv]) else { continue };
                 let sigma0 = r.effective_sigma_from_k(p.shadow_k[il].1 + p.shadow_k[iv].1);
@@ -205,18 +208,18 @@ impl RoughColorTable {
         // wavelength order (each node the same sum as the direct model's colour integral).
         let mut diffuse = vec![Xyz::default(); no * planes];
         diffuse.par_chunks_mut(planes).enumerate().for_each(|(j, out)| {
-            let light: Vec<[f64; 2]> = (0..nt * nl).map(|x| per_lambda[x % nl].light[j * nt + x / nl]).collect();
-            let view: Vec<[f64; 2]> = (0..nt * nl).map(|x| per_lambda[x % nl].view[j * nt + x / nl]).collect();
-            let extra: Vec<[f64; 2]> = if multiple {
-                (0..nt * nt * nl).map(|x| per_lambda[x % nl].multiple[j * nt * nt + x / nl]).collect()
-            } else {
-                Vec::new()
+            // This offset's `n` entries of a per-wavelength field, as `[entry][λ]`.
+            let gather = |field: fn(&Spectral) -> &[[f64; 2]], n: usize| -> Vec<[f64; 2]> {
+                (0..n * nl).map(|x| field(&per_lambda[x % nl])[j * n + x / nl]).collect()
             };
+            let light = gather(|p| &p.light, nt);
+            let view = gather(|p| &p.view, nt);
+            let extra = if multiple { gather(|p| &p.multiple, nt * nt) } else { Vec::new() };
             let mut acc = vec![[0.0; 3]; na];
             for il in 0..nt {
                 for iv in 0..nt {
-                    let pair = if il <= iv { il * nt + iv } else { iv * nt + il };
-                    let g_pair = &geometry[pair * nl * na..(pair + 1) * nl * na];
+                    let c = chunk_of[il * nt + iv];
+                    let g_pair = &geometry[c * nl * na..(c + 1) * nl * na];
                     acc.iter_mut().for_each(|a| *a = [0.0; 3]);
                     for li in 0..nl {
                         let (l, v) = (light[il * nl + li], view[iv * nl + li]);
