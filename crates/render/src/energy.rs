@@ -55,17 +55,18 @@ pub fn albedo(roughness: f64, mu_o: f64) -> (f64, f64) {
     let a2 = alpha2(roughness);
     let mu = mu_o.clamp(1e-4, 1.0);
     let wo = [(1.0 - mu * mu).sqrt(), 0.0, mu];
+    // The lobe is symmetric about the plane of wo and n: half the azimuths, counted twice. Only the cosine of
+    // the azimuth enters `v·h` (wo has no y component); it is the same for every half-vector ring, so it is
+    // taken once per azimuth instead of once per sample (the cosines were most of the table's time).
+    let cos_phi: [f64; NV] = std::array::from_fn(|j| (std::f64::consts::PI * (j as f64 + 0.5) / NV as f64).cos());
     let (mut s0, mut s1) = (0.0, 0.0);
     for i in 0..NU {
         let u = (i as f64 + 0.5) / NU as f64;
         let t2 = a2 * u / (1.0 - u);
         let nh = 1.0 / (1.0 + t2).sqrt();
         let sh = (1.0 - nh * nh).max(0.0).sqrt();
-        for j in 0..NV {
-            // The lobe is symmetric about the plane of wo and n: half the azimuths, counted twice.
-            let phi = std::f64::consts::PI * (j as f64 + 0.5) / NV as f64;
-            let h = [sh * phi.cos(), sh * phi.sin(), nh];
-            let vh = wo[0] * h[0] + wo[2] * h[2];
+        for &cos_phi in &cos_phi {
+            let vh = wo[0] * (sh * cos_phi) + wo[2] * nh;
             if vh <= 0.0 {
                 continue;
             }
@@ -82,7 +83,7 @@ pub fn albedo(roughness: f64, mu_o: f64) -> (f64, f64) {
     (s0 / n, s1 / n)
 }
 
-/// The table, computed once (a few ms on all cores of a release build).
+/// The table, computed once a process (about 0.1 CPU-s in a release build).
 pub fn table() -> &'static EnergyTable {
     static T: OnceLock<EnergyTable> = OnceLock::new();
     T.get_or_init(|| {
