@@ -443,6 +443,20 @@ impl Plate {
     pub fn normal(&self, body: &Body, a: f64, b: f64) -> V3 {
         let a = a.clamp(END_GUARD, 1.0 - END_GUARD);
         let (pa, pb) = self.derivatives(body, a, b);
+        self.outward_normal(body, a, b, pa, pb)
+    }
+
+    /// [`Plate::normal`] and [`Plate::orientation`] at `(a, b)` from one set of derivatives (the mesh needs
+    /// both at every vertex; each alone takes the derivatives again, 20 evaluations of the body surface).
+    pub fn normal_and_orientation(&self, body: &Body, a: f64, b: f64) -> (V3, V3) {
+        let a = a.clamp(END_GUARD, 1.0 - END_GUARD);
+        let (pa, pb) = self.derivatives(body, a, b);
+        let n = self.outward_normal(body, a, b, pa, pb);
+        (n, self.axis(a, b, pa, pb, n))
+    }
+
+    /// The unit normal `∂P/∂b × ∂P/∂a`, turned to the outside of the body.
+    fn outward_normal(&self, body: &Body, a: f64, b: f64, pa: V3, pb: V3) -> V3 {
         let n = normalize(cross(pb, pa));
         let (s, phi) = self.body_coords(body, a, b);
         if dot(n, body.normal(s, phi)) < 0.0 {
@@ -457,13 +471,15 @@ impl Plate {
     /// converging slightly towards the tip whatever the outline does — in the plate's tangent plane. In plate
     /// coordinates the line has `db/da = −b·(CONVERGE/(1 − CONVERGE·a) + hw'(a)/hw(a))`.
     pub fn orientation(&self, body: &Body, a: f64, b: f64) -> V3 {
-        let a = a.clamp(END_GUARD, 1.0 - END_GUARD);
-        let (pa, pb) = self.derivatives(body, a, b);
+        self.normal_and_orientation(body, a, b).1
+    }
+
+    /// [`Plate::orientation`] at a clamped `a`, given the derivatives there and the plate's normal.
+    fn axis(&self, a: f64, b: f64, pa: V3, pb: V3, n: V3) -> V3 {
         let e = 1e-6;
         let hw = half_width(self.dorsal, a);
         let dhw = (half_width(self.dorsal, a + e) - half_width(self.dorsal, a - e)) / (2.0 * e);
         let db_da = -b * (CONVERGE / (1.0 - CONVERGE * a) + dhw / hw);
-        let n = self.normal(body, a, b);
         orthogonalize(add(pa, mul(pb, db_da)), n).unwrap_or_else(|| normalize(pa))
     }
 }
@@ -583,9 +599,10 @@ pub fn scaled_snake_mesh(p: &SnakeParams, material: usize) -> Mesh {
             for jb in 0..nb {
                 let b = -1.0 + 2.0 * jb as f64 / (nb - 1) as f64;
                 let (s, phi) = plate.body_coords(&body, a, b);
+                let (normal, axis) = plate.normal_and_orientation(&body, a, b);
                 m.positions.push(plate.point(&body, a, b));
-                m.normals.push(plate.normal(&body, a, b));
-                along.push(plate.orientation(&body, a, b));
+                m.normals.push(normal);
+                along.push(axis);
                 uvs.push(uv_of(s, phi));
             }
         }
