@@ -659,15 +659,24 @@ impl crate::Evaluator for LobeScaled {
 fn sinkhorn(m: &[f64], p: usize) -> (Vec<f64>, Vec<f64>, f64) {
     let mut r = vec![1.0; p];
     let mut s = vec![1.0; p];
+    let mut column = vec![0.0; p];
     let mut residual = f64::INFINITY;
     for _ in 0..20_000 {
         for a in 0..p {
             let sum: f64 = (0..p).map(|b| m[a * p + b] * s[b]).sum();
             r[a] = if sum > 0.0 { 1.0 / sum } else { 0.0 };
         }
-        for b in 0..p {
-            let sum: f64 = (0..p).map(|a| r[a] * m[a * p + b]).sum();
-            s[b] = if sum > 0.0 { 1.0 / sum } else { 0.0 };
+        // The column sums, accumulated row by row: each column adds the same terms in the same order (a = 0,
+        // 1, …) as a sum down the column would, but M is read in memory order (down the columns, the strided
+        // reads were most of the iteration's time on large cells).
+        column.fill(0.0);
+        for (a, &ra) in r.iter().enumerate() {
+            for (c, &x) in column.iter_mut().zip(&m[a * p..(a + 1) * p]) {
+                *c += ra * x;
+            }
+        }
+        for (sb, &sum) in s.iter_mut().zip(&column) {
+            *sb = if sum > 0.0 { 1.0 / sum } else { 0.0 };
         }
         // Columns sum to 1 now; the rows say how far from the fixed point.
         residual =
