@@ -689,9 +689,10 @@ fn sinkhorn(m: &[f64], p: usize) -> (Vec<f64>, Vec<f64>, f64) {
     (r, s, residual)
 }
 
-/// `out[a] = Σ_b term(a, M[a][b], b)`, each row's sum in order of `b` from zero (as `Iterator::sum`), four
-/// rows at a time: their sums are independent chains of additions, so they run side by side instead of each
-/// waiting on its own previous addition — the same additions in the same order, so the same sums.
+/// `out[a] = Σ_b term(a, M[a][b], b)`, each row's sum in order of `b`, four rows at a time (the last rows one by
+/// one): their sums are independent chains of additions, so they run side by side instead of each waiting on its
+/// own previous addition — the same additions in the same order, so the same sums. (A single loop over chunks
+/// of up to four rows was 8–15 % slower: the compiler no longer unrolls the four chains.)
 fn row_sums(m: &[f64], p: usize, term: impl Fn(usize, f64, usize) -> f64, out: &mut [f64]) {
     const ROWS: usize = 4;
     let mut a = 0;
