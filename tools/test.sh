@@ -91,6 +91,16 @@ if [ -z "${RUSTFLAGS+set}" ] && [ "${IRIDIS_BASELINE_CPU:-0}" != 1 ] && has_v3; 
     echo "== compiling for x86-64-v3 (AVX2, FMA: this CPU has them; IRIDIS_BASELINE_CPU=1 for the default target)"
 fi
 
+# The test harnesses (each crate's integration tests, the CLI's unit tests) compiled without optimisation; the
+# libraries and dependencies they test keep the `ci` profile. Cargo has no opt-level per target, so a wrapper
+# (tools/rustc-tests-unoptimised.sh, which says why the numbers are the same) adds it to the harnesses' rustc
+# commands. Measured on the 2-core VM (2026-11-27), the 14 harnesses: 173 CPU-s to compile at opt-level 3, 30
+# at 0; their run times the same within the VM's noise (render 47.7 -> 44.9 CPU-s, GPU 155 -> 135,
+# diffraction 63 -> 47, thinfilm 21.8 -> 20.3). A RUSTC_WORKSPACE_WRAPPER of your own is left alone.
+if [ -z "${RUSTC_WORKSPACE_WRAPPER:-}" ]; then
+    export RUSTC_WORKSPACE_WRAPPER="$PWD/tools/rustc-tests-unoptimised.sh"
+fi
+
 # Mesa's shader cache in a folder we know is writable (CI may run with a read-only or missing home): lavapipe
 # compiles the scene renderer once (about 40 s of one core; docs/gpu.md) and every later test process and CLI run
 # that opens the same pipeline loads it from here in seconds. Without the cache each of them compiled it again.
