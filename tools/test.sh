@@ -143,7 +143,9 @@ fi
 # The order (measured): the CLI's binary first (the longest, 165 s alone), the others beside it. The GPU crate's
 # starts after the Python package, when the CLI's GPU tests have put the scene pipeline in Mesa's cache: started
 # together, both processes compiled it, and the pair took as long as the two one after the other; started last,
-# it ran alone for a minute.
+# it ran alone for a minute. The CLI's and the Python package's GPU tests take turns at the scene shader through
+# a file lock in Mesa's cache folder (crates/cli/tests/gpu_cli.rs, `scene_shader_turn`), so that one of them
+# compiles it and the other loads it.
 JOB_NAMES=()
 JOB_COMMANDS=()
 add_job() { JOB_NAMES+=("$1"); JOB_COMMANDS+=("$2"); }
@@ -168,11 +170,13 @@ while IFS=$'\t' read -r name folder exe; do
         # colours, films, the README's example, the Dask example on a two-worker local cluster). The build reuses
         # cargo's target directory and the test build's compiled crates: the same profile, and the feature
         # `test-build` (crates/python/Cargo.toml) gives the shared dependencies the features `cargo test
-        # --workspace` gave them, so only the binding crate and pyo3 compile anew.
+        # --workspace` gave them, so only the binding crate and pyo3 compile anew. The build's time and pytest's
+        # eight slowest tests are printed, so that a slow one shows itself.
         add_job "Python package (pip install ./crates/python, pytest)" \
             "CARGO_TARGET_DIR='${CARGO_TARGET_DIR:-$PWD/target}' MATURIN_PEP517_ARGS='--profile ci --features test-build' \
              '$VENV/bin/pip' install -q --disable-pip-version-check ./crates/python && \
-             cd crates/python && '$VENV/bin/python' -m pytest -q tests"
+             echo \"(built and installed in \${SECONDS} s)\" && \
+             cd crates/python && '$VENV/bin/python' -m pytest -q --durations=8 tests"
     else
         add_job "$name" "cd '$folder' && '$exe'"
     fi

@@ -9,14 +9,41 @@ use std::process::Command;
 use common::{assert_fails, delta_e_between, iridis, json_of, png_lab};
 use iridis_color::Lab;
 
-/// Tests that run the scene shader take turns: on lavapipe its first compilation takes minutes, and Mesa's shader
-/// cache serves every later process only once one has finished it (parallel first runs each compiled it).
+/// Tests that run the scene shader take turns: on lavapipe its first compilation takes about a minute of one
+/// core, and Mesa's shader cache serves every later process only once one has finished it (processes that start
+/// it together each compile it). The turn is taken in this process and, through a file lock next to Mesa's
+/// cache, with the other test processes of tools/test.sh: the Python package's GPU render test runs beside this
+/// binary and takes the same lock (crates/python/tests/test_render.py). Without it, in a fresh run (2026-11-27),
+/// that test took 109 s, compiling the shader while this binary did.
 static SCENE_SHADER: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+/// The turn at the scene shader: this process's, and the file lock of every process (released when dropped).
+struct SceneShaderTurn {
+    _process: std::sync::MutexGuard<'static, ()>,
+    _file: Option<std::fs::File>,
+}
+
+/// The file the test processes lock: `$MESA_SHADER_CACHE_DIR/iridis-scene-shader.lock` (tools/test.sh sets the
+/// folder), else in the temporary folder.
+fn scene_shader_lock_file() -> Option<std::fs::File> {
+    let dir =
+        std::env::var_os("MESA_SHADER_CACHE_DIR").map(std::path::PathBuf::from).unwrap_or_else(std::env::temp_dir);
+    let file = std::fs::OpenOptions::new()
+        .create(true)
+        .truncate(false)
+        .write(true)
+        .open(dir.join("iridis-scene-shader.lock"))
+        .ok()?;
+    // Without the lock (a file system without flock) the tests still run, only possibly compiling twice.
+    rustix::fs::flock(&file, rustix::fs::FlockOperation::LockExclusive).ok()?;
+    Some(file)
+}
 
 /// A test that runs the scene shader waits for its turn, then checks [`have_gpu`]: the turn to hold, or `None`
 /// when the GPU tests are skipped.
-fn scene_shader_turn() -> Option<std::sync::MutexGuard<'static, ()>> {
-    let turn = SCENE_SHADER.lock().unwrap_or_else(|e| e.into_inner());
+fn scene_shader_turn() -> Option<SceneShaderTurn> {
+    let process = SCENE_SHADER.lock().unwrap_or_else(|e| e.into_inner());
+    let turn = SceneShaderTurn { _process: process, _file: scene_shader_lock_file() };
     have_gpu().then_some(turn)
 }
 

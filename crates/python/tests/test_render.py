@@ -1,5 +1,7 @@
 """iridis.render: an example scene into arrays, consistent between colour spaces, deterministic."""
+import contextlib
 import os
+import tempfile
 
 import numpy as np
 import pytest
@@ -9,6 +11,31 @@ import iridis.render as render
 from conftest import ROOT
 
 SCENE = os.path.join(ROOT, "examples", "gold_sphere.toml")
+
+
+@contextlib.contextmanager
+def scene_shader_turn():
+    """The GPU tests' turn at the scene shader, a file lock next to Mesa's cache that the CLI's GPU tests take too
+    (crates/cli/tests/gpu_cli.rs, `scene_shader_turn`, which says why): tools/test.sh runs them beside these, and
+    on lavapipe the shader's first compilation takes about a minute of one core, done again by every process that
+    starts it before another has finished. Where files cannot be locked, no turn is taken."""
+    try:
+        import fcntl
+    except ImportError:  # not Unix
+        yield
+        return
+    folder = os.environ.get("MESA_SHADER_CACHE_DIR") or tempfile.gettempdir()
+    try:
+        lock = open(os.path.join(folder, "iridis-scene-shader.lock"), "a")
+    except OSError:
+        yield
+        return
+    with lock:
+        try:
+            fcntl.flock(lock, fcntl.LOCK_EX)
+        except OSError:
+            pass
+        yield
 
 
 def test_example_scene_renders_into_arrays():
@@ -37,7 +64,8 @@ def test_gpu_render_matches_the_cpu():
     ΔE00 mean 1, p99 3 (the bound crates/cli/tests/gpu_cli.rs uses), on lavapipe where there is no GPU."""
     scene = os.path.join(ROOT, "examples", "soap_bubble.toml")
     try:
-        gpu = render.render(scene, size=(64, 48), spp=2, gpu=True)
+        with scene_shader_turn():
+            gpu = render.render(scene, size=(64, 48), spp=2, gpu=True)
     except ValueError as e:
         if "no GPU adapter" in str(e) and os.environ.get("IRIDIS_SKIP_GPU") == "1":
             pytest.skip(f"IRIDIS_SKIP_GPU=1: {e}")
@@ -65,7 +93,8 @@ def test_gpu_render_without_xdg_runtime_dir_prints_no_driver_noise():
     env = {k: v for k, v in os.environ.items() if k != "XDG_RUNTIME_DIR"}
     code = ("import iridis.render as r, sys; "
             f"a = r.render({SCENE!r}, size=(8, 8), spp=1, gpu=True); print(a.shape)")
-    p = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=300)
+    with scene_shader_turn():
+        p = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=300)
     if p.returncode != 0 and "no GPU adapter" in p.stderr and os.environ.get("IRIDIS_SKIP_GPU") == "1":
         pytest.skip("IRIDIS_SKIP_GPU=1 and no adapter")
     assert p.returncode == 0, p.stderr
