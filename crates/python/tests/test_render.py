@@ -19,15 +19,12 @@ def scene_shader_turn():
     (crates/cli/tests/gpu_cli.rs, `scene_shader_turn`, which says why): tools/test.sh runs them beside these, and
     on lavapipe the shader's first compilation takes about a minute of one core, done again by every process that
     starts it before another has finished. Where files cannot be locked, no turn is taken."""
-    try:
-        import fcntl
-    except ImportError:  # not Unix
-        yield
-        return
     folder = os.environ.get("MESA_SHADER_CACHE_DIR") or tempfile.gettempdir()
     try:
+        import fcntl  # Unix only
+
         lock = open(os.path.join(folder, "iridis-scene-shader.lock"), "a")
-    except OSError:
+    except (ImportError, OSError):
         yield
         return
     with lock:

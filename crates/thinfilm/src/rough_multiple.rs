@@ -105,7 +105,7 @@ impl Grid {
                 edges.push(w.0 + (w.1 - w.0) * b as f64 / BINS_PER_INTERVAL as f64);
             }
         }
-        let sine_edges = edges.iter().map(|e| (e.sin() - SINE_BAND, e.sin() + SINE_BAND)).collect();
+        let sine_edges = edges.iter().map(|e| e.sin()).map(|s| (s - SINE_BAND, s + SINE_BAND)).collect();
         Self { nodes, cone: ne, edges, sine_edges }
     }
 
@@ -120,7 +120,8 @@ impl Grid {
     /// lobe's time); the count is that of the angle. (NaN: no edge is at or below it, the first bin.)
     fn bin_of_sine(&self, sine: f64, hint: &mut usize) -> usize {
         let (e, s) = (&self.edges, &self.sine_edges);
-        // Edge j at or below the angle of `sine` (NaN: neither bound holds and the arcsine, NaN, is below none).
+        // Edge j at or below the angle of `sine` (NaN: neither bound holds and the arcsine, NaN, is below none, so
+        // the walk goes down to count 0).
         let at_or_below = |j: usize| {
             if sine >= s[j].1 {
                 true
@@ -130,7 +131,7 @@ impl Grid {
                 e[j] <= sine.asin()
             }
         };
-        let mut i = if sine.is_nan() { 0 } else { (*hint).min(e.len()) };
+        let mut i = (*hint).min(e.len());
         while i < e.len() && at_or_below(i) {
             i += 1;
         }

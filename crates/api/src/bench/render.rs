@@ -38,15 +38,15 @@ pub fn render(a: &RenderOptions, report: &dyn Report) -> Result<Bench> {
     let threads = rayon::current_num_threads();
     let mut rows = Vec::new();
     let mut t = vec![format!("render benchmark: {0}×{0}, {1} spp, {threads} threads", a.size, a.spp)];
-    let name_of = |p: &PathBuf| p.file_name().and_then(|n| n.to_str()).unwrap_or("?").to_string();
+    let names: Vec<String> =
+        scenes.iter().map(|p| p.file_name().and_then(|n| n.to_str()).unwrap_or("?").to_string()).collect();
     // The names' column as wide as the longest (the figure scenes' names are longer than the rest).
-    let width = scenes.iter().map(|p| name_of(p).chars().count()).max().unwrap_or(0);
-    for p in &scenes {
+    let width = names.iter().map(|n| n.chars().count()).max().unwrap_or(0);
+    for (p, name) in scenes.iter().zip(names) {
         let start = Instant::now();
         let scene = load(p, &Default::default(), report)?;
         let load_s = start.elapsed().as_secs_f64();
         let (_, secs) = render_cpu(&scene, a.size, a.size, a.spp, report);
-        let name = name_of(p);
         let tris: usize = scene.meshes.iter().map(|m| m.triangles.len()).sum();
         t.push(format!(
             "  {name:<width$} load {load_s:6.2} s   render {secs:7.2} s   {:6.2} Mpixel/s   {tris} triangles",
