@@ -34,6 +34,9 @@ pub struct ReportOptions {
     /// Pixel size for files without one (e.g. 5nm).
     #[cfg_attr(feature = "cli", arg(long))]
     pub pixel_size: Option<String>,
+    /// Height of the brightest grey value for image surfaces (e.g. 300nm).
+    #[cfg_attr(feature = "cli", arg(long))]
+    pub max_height: Option<String>,
     /// Unit of heights in files that do not give one (m, nm, …).
     #[cfg_attr(feature = "cli", arg(long))]
     pub height_unit: Option<String>,
@@ -66,6 +69,7 @@ impl ReportOptions {
             output: output.to_path_buf(),
             channel: None,
             pixel_size: None,
+            max_height: None,
             height_unit: None,
             level: None,
             units: UnitOverrides::default(),
@@ -223,10 +227,11 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
     let channel: Option<ChannelSel> =
         o.channel.as_deref().map(|c| c.parse().map_err(|e: String| anyhow!("--channel '{c}': {e}"))).transpose()?;
     let pixel_size_nm = length("pixel-size", &o.pixel_size)?;
+    let max_height_nm = length("max-height", &o.max_height)?;
     let coherence_nm = length("coherence", &o.coherence)?;
     let surf = SurfaceOptions {
         pixel_size_nm,
-        max_height_nm: None,
+        max_height_nm,
         channel: channel.clone(),
         height_unit: o.height_unit.clone(),
         level: o.level.clone(),
@@ -234,7 +239,12 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
     };
     let source = Source::Spec(o.surface.clone());
     let mut common: Vec<String> = Vec::new();
-    for (flag, v) in [("--channel", &o.channel), ("--pixel-size", &o.pixel_size), ("--height-unit", &o.height_unit)] {
+    for (flag, v) in [
+        ("--channel", &o.channel),
+        ("--pixel-size", &o.pixel_size),
+        ("--max-height", &o.max_height),
+        ("--height-unit", &o.height_unit),
+    ] {
         if let Some(v) = v {
             common.extend([flag.to_string(), v.clone()]);
         }

@@ -677,6 +677,35 @@ fn report_states_the_quantisation_of_a_small_patch() {
     assert!((d - 1000.0).abs() < 10.0 && (d - info).abs() <= q, "{d} ± {q}");
 }
 
+/// A grey PNG holds relative heights: the report asks for --max-height, takes it (it had no such option, and its
+/// error told the user to give one), passes it to every step's command line, and the heights are grey / 255 ×
+/// max-height: the rms is that of the grey levels scaled, the period 16 pixels of 50 nm.
+#[test]
+fn report_of_a_grey_image_takes_its_max_height() {
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("grey.png");
+    let grey: Vec<u8> =
+        (0..64).map(|x| (127.5 + 127.5 * (std::f64::consts::TAU * x as f64 / 16.0).sin()) as u8).collect();
+    image::GrayImage::from_fn(64, 64, |x, _| image::Luma([grey[x as usize]])).save(&png).unwrap();
+    let (p, out) = (png.to_str().unwrap(), dir.path().join("report"));
+    let mut args = vec!["report", p, "-o", out.to_str().unwrap(), "--size", "16", "--no-testbench"];
+    args.extend(["--pixel-size", "50nm", "--level", "mean"]);
+    let refused = iridis().args(&args).output().unwrap();
+    assert!(!refused.status.success());
+    assert!(String::from_utf8_lossy(&refused.stderr).contains("give --max-height"));
+    args.extend(["--max-height", "100nm"]);
+    ok(&args);
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    let mean = grey.iter().map(|&g| g as f64).sum::<f64>() / 64.0;
+    let rms = (grey.iter().map(|&g| (g as f64 - mean).powi(2)).sum::<f64>() / 64.0).sqrt() * 100.0 / 255.0;
+    assert!(close(r["info"]["rms_nm"].as_f64().unwrap(), rms, 1e-9), "{} against {rms}", r["info"]["rms_nm"]);
+    assert!(close(r["info"]["peaks"][0]["period_nm"].as_f64().unwrap(), 800.0, 1.0), "{}", r["info"]["peaks"][0]);
+    for c in r["commands"].as_array().unwrap() {
+        assert!(c["command"].as_str().unwrap().contains("--max-height 100nm"), "{c}");
+    }
+}
+
 /// The report of an Elaphe-like scan (issue 28, 30): how far the scalar model is from the rigorous solver on
 /// the scan's own averaged profile, with numbers (the scalar model is tens of percent off at these depths), and
 /// how a blue tit sees the colours across directions; the test bench along the rows (90°), not along x.

@@ -36,6 +36,7 @@ fn _report(
     let mut r = iridis_api::scan_report::ReportOptions::new(surface, std::path::Path::new(output));
     r.channel = o.string("channel")?;
     r.pixel_size = o.string("pixel_size")?;
+    r.max_height = o.string("max_height")?;
     r.height_unit = o.string("height_unit")?;
     r.level = o.string("level")?;
     r.units.override_units = o.bool("override_units")?.unwrap_or(false);

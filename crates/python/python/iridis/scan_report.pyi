@@ -7,6 +7,7 @@ def report(
     *,
     channel: Union[int, str, None] = ...,
     pixel_size: Optional[str] = ...,
+    max_height: Optional[str] = ...,
     height_unit: Optional[str] = ...,
     level: Optional[str] = ...,
     override_units: bool = ...,
