@@ -677,16 +677,22 @@ fn report_states_the_quantisation_of_a_small_patch() {
     assert!((d - 1000.0).abs() < 10.0 && (d - info).abs() <= q, "{d} ± {q}");
 }
 
+/// A 64² grey PNG of a sine along x, 16 pixels a period (4 periods), constant along y; its grey levels per column.
+fn grey_sine_png(dir: &std::path::Path) -> (std::path::PathBuf, Vec<u8>) {
+    let png = dir.join("grey.png");
+    let grey: Vec<u8> =
+        (0..64).map(|x| (127.5 + 127.5 * (std::f64::consts::TAU * x as f64 / 16.0).sin()) as u8).collect();
+    image::GrayImage::from_fn(64, 64, |x, _| image::Luma([grey[x as usize]])).save(&png).unwrap();
+    (png, grey)
+}
+
 /// A grey PNG holds relative heights: the report asks for --max-height, takes it (it had no such option, and its
 /// error told the user to give one), passes it to every step's command line, and the heights are grey / 255 ×
 /// max-height: the rms is that of the grey levels scaled, the period 16 pixels of 50 nm.
 #[test]
 fn report_of_a_grey_image_takes_its_max_height() {
     let dir = tempfile::tempdir().unwrap();
-    let png = dir.path().join("grey.png");
-    let grey: Vec<u8> =
-        (0..64).map(|x| (127.5 + 127.5 * (std::f64::consts::TAU * x as f64 / 16.0).sin()) as u8).collect();
-    image::GrayImage::from_fn(64, 64, |x, _| image::Luma([grey[x as usize]])).save(&png).unwrap();
+    let (png, grey) = grey_sine_png(dir.path());
     let (p, out) = (png.to_str().unwrap(), dir.path().join("report"));
     let mut args = vec!["report", p, "-o", out.to_str().unwrap(), "--size", "16", "--no-testbench"];
     args.extend(["--pixel-size", "50nm", "--level", "mean"]);
@@ -703,6 +709,36 @@ fn report_of_a_grey_image_takes_its_max_height() {
     assert!(close(r["info"]["peaks"][0]["period_nm"].as_f64().unwrap(), 800.0, 1.0), "{}", r["info"]["peaks"][0]);
     for c in r["commands"].as_array().unwrap() {
         assert!(c["command"].as_str().unwrap().contains("--max-height 100nm"), "{c}");
+    }
+}
+
+/// The accuracy bench reads a scan as every command does (it took built-in names and files that state their units
+/// only): the grey PNG with --max-height gives the numbers of the same heights as .npy (`surface convert`), and
+/// its default coherence (a quarter of the patch) keeps the window inside the patch, where the periodic and the
+/// finite ground truths agree (ΔE00 of their difference below 1e-6).
+#[test]
+fn accuracy_bench_reads_a_grey_image_with_its_max_height() {
+    let dir = tempfile::tempdir().unwrap();
+    let (png, _) = grey_sine_png(dir.path());
+    let npy = dir.path().join("grey.npy");
+    let (png, npy) = (png.to_str().unwrap(), npy.to_str().unwrap());
+    ok(&["surface", "convert", png, npy, "--pixel-size", "50nm", "--max-height", "100nm"]);
+    let bench = |surface: &str, read: &[&str]| -> serde_json::Value {
+        let mut args = vec!["bench", "diffraction-accuracy", "--surface", surface, "--pixel-size", "50nm"];
+        args.extend(read);
+        args.extend(["--level", "mean", "--map-size", "8", "--uv-resolution", "31", "--json"]);
+        let mut v: serde_json::Value = serde_json::from_slice(&ok(&args).stdout).unwrap();
+        for row in v["results"].as_array_mut().unwrap() {
+            row.as_object_mut().unwrap().remove("surface");
+        }
+        v["results"].take()
+    };
+    let from_png = bench(png, &["--max-height", "100nm"]);
+    assert_eq!(from_png, bench(npy, &["--height-unit", "nm"]));
+    let rows = from_png.as_array().unwrap();
+    assert_eq!(rows.len(), 15, "{from_png}");
+    for r in rows.iter().filter(|r| r["method"] == "periodic-extension") {
+        assert!(r["mean"].as_f64().unwrap() < 1e-6 && r["p95"].as_f64().unwrap() < 1e-6, "{r}");
     }
 }
 

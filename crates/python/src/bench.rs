@@ -64,6 +64,7 @@ fn bench_run(py: Python<'_>, name: &str, options: Option<Bound<'_, PyDict>>) -> 
                 exposures,
                 uv_resolution: o.usize("uv_resolution")?.unwrap_or(d.uv_resolution),
                 convergence_plot: path(&mut o, "convergence_plot")?,
+                surface_options: o.surface()?,
             };
             o.finish()?;
             Box::new(move |r| diffraction::accuracy(&a, r))

@@ -28,6 +28,19 @@ def close(a, b, rtol=1e-12, atol=1e-15):
 
 # --- benches ------------------------------------------------------------------------------------------------
 
+def test_accuracy_bench_reads_a_grey_image_with_its_max_height(tmp_path, grey_sine_png):
+    """The accuracy bench reads a scan as every function does: the grey PNG at 100 nm for white gives the
+    numbers of the same heights saved by numpy as .npy (as crates/cli/tests/surface_cli.rs)."""
+    png, grey = grey_sine_png
+    npy = tmp_path / "grey.npy"
+    np.save(npy, np.tile(grey / 255 * 100.0, (64, 1)))
+    small = dict(level="mean", map_size=8, uv_resolution=31, pixel_size_nm=50.0)
+    a = bench.run("diffraction-accuracy", surfaces=[str(png)], max_height_nm=100.0, **small)
+    b = bench.run("diffraction-accuracy", surfaces=[str(npy)], height_unit="nm", **small)
+    strip = lambda rows: [{k: v for k, v in r.items() if k != "surface"} for r in rows]  # noqa: E731
+    assert len(a["results"]) == 15 and strip(a["results"]) == strip(b["results"])
+
+
 def test_accuracy_bench_equals_the_cli(capsys):
     """`iridis bench diffraction-accuracy` measures no time: Python's run gives the CLI's --json exactly."""
     ref = cli("bench_accuracy_sine")

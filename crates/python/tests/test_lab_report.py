@@ -36,21 +36,10 @@ def test_report_of_an_instrument_file(tmp_path):
     assert not (out / "brdf_0deg.png").exists()
 
 
-def test_report_of_a_grey_image_takes_max_height(tmp_path):
+def test_report_of_a_grey_image_takes_max_height(tmp_path, grey_sine_png):
     """A grey PNG holds relative heights: ``max_height`` is the height of white, so the heights are grey / 255 ×
     100 nm and the rms is numpy's of the grey levels, scaled (as crates/cli/tests/surface_cli.rs)."""
-    import struct
-    import zlib
-
-    grey = (127.5 + 127.5 * np.sin(2 * np.pi * np.arange(64) / 16)).astype(np.uint8)
-    rows = b"".join(b"\x00" + grey.tobytes() for _ in range(64))
-
-    def chunk(kind, data):
-        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
-
-    png = tmp_path / "grey.png"
-    png.write_bytes(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", 64, 64, 8, 0, 0, 0, 0))
-                    + chunk(b"IDAT", zlib.compress(rows)) + chunk(b"IEND", b""))
+    png, grey = grey_sine_png
     opts = dict(pixel_size="50nm", level="mean", size=16, testbench=False)
     with pytest.raises(ValueError, match="give --max-height"):
         iridis.report(png, tmp_path / "refused", **opts)

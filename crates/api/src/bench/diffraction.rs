@@ -282,6 +282,9 @@ pub struct AccuracyOptions {
     /// Write the plot of error against the number of Taylor terms here.
     #[cfg_attr(feature = "cli", arg(long))]
     pub convergence_plot: Option<PathBuf>,
+    // How each SURFACE is read: a file's pixel size, an image's height of white, its channel, the levelling.
+    #[cfg_attr(feature = "cli", command(flatten))]
+    pub surface_options: crate::SurfaceOptions,
 }
 
 impl Default for AccuracyOptions {
@@ -294,6 +297,7 @@ impl Default for AccuracyOptions {
             exposures: vec![1.0, 1000.0, 7500.0],
             uv_resolution: 301,
             convergence_plot: None,
+            surface_options: crate::SurfaceOptions::default(),
         }
     }
 }
@@ -324,7 +328,7 @@ pub fn accuracy(a: &AccuracyOptions, report: &dyn Report) -> Result<Bench> {
     let wi = [0.0, 0.0, 1.0];
     let map = |e: &dyn Evaluator| iridis_diffraction::map::brdf_map(e, wi, a.map_size, &|_| {});
     for spec in &surfaces {
-        let patch = crate::surface::load_patch(spec, &Default::default(), report)?;
+        let patch = crate::surface::load_patch(spec, &a.surface_options, report)?;
         let (ex, ey) = patch.extent();
         let coherence = a.coherence_nm.unwrap_or(ex.min(ey) / 4.0);
         report.info(&format!(

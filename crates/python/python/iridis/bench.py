@@ -134,7 +134,9 @@ def tmm_fast_peer(n, d, th, lam, reference):
 LIBRARY_BENCHES = {
     "diffraction": {"size": int, "terms": int, "map_sizes": [int], "uv_resolution": int},
     "diffraction-accuracy": {"surface": [str], "map_size": int, "coherence_nm": float, "aperture": str,
-                             "exposures": [float], "uv_resolution": int, "convergence_plot": str},
+                             "exposures": [float], "uv_resolution": int, "convergence_plot": str,
+                             "pixel_size_nm": float, "max_height_nm": float, "channel": str, "height_unit": str,
+                             "level": str},
     "diffraction-methods": {"patch_sizes": [int], "map_size": int},
     "gpu": {"scene": str, "size": str, "frames": int, "max_seconds": float, "table": str, "film_size": str,
             "stack": str, "spectral_samples": int, "save": str, "table_precision": str, "build_surface": str,
