@@ -397,20 +397,21 @@ pub fn accuracy(a: &AccuracyOptions, report: &dyn Report) -> Result<Bench> {
         crate::output::write_png_rgb8(path, img.width, img.height, &img.data)?;
         report.info(&format!("wrote {}", path.display()));
     }
-    let mut t = vec![
-        format!(
-            "CIEDE2000 against {truth_name} ({}² maps, normal incidence); periodic-extension: {} vs {}",
-            a.map_size, "ground-truth-periodic", "ground-truth (finite aperture)"
-        ),
-        format!("{:<22} {:<20} {:<22} {:>8} {:>10} {:>10}", "surface", "method", "against", "RU", "mean", "p95"),
-    ];
-    for r in &rows {
+    let mut t = vec![format!(
+        "CIEDE2000 against {truth_name} ({}² maps, normal incidence); periodic-extension: {} vs {}",
+        a.map_size, "ground-truth-periodic", "ground-truth (finite aperture)"
+    )];
+    // The surface column as wide as the longest name (a scan's path or a built-in with its parameters).
+    let names: Vec<&str> = rows.iter().map(|r| r["surface"].as_str().unwrap_or("")).collect();
+    let w = names.iter().map(|n| n.chars().count()).fold("surface".len(), usize::max);
+    t.push(format!("{:<w$} {:<20} {:<22} {:>8} {:>10} {:>10}", "surface", "method", "against", "RU", "mean", "p95"));
+    for (r, name) in rows.iter().zip(&names) {
         t.push(format!(
-            "{:<22} {:<20} {:<22} {:>8} {:>10.4} {:>10.4}",
-            r["surface"].as_str().unwrap_or(""),
+            "{:<w$} {:<20} {:<22} {:>8.1} {:>10.4} {:>10.4}",
+            name,
             r["method"].as_str().unwrap_or(""),
             r["against"].as_str().unwrap_or(""),
-            r["exposure_ru"],
+            r["exposure_ru"].as_f64().unwrap_or(f64::NAN),
             r["mean"].as_f64().unwrap_or(f64::NAN),
             r["p95"].as_f64().unwrap_or(f64::NAN)
         ));
