@@ -350,8 +350,9 @@ pub fn text(v: &Value) -> String {
             for r in p["ladder"].as_array().into_iter().flatten() {
                 t.push(format!(
                     "    {:>4} orders, {:>4} slices: {:>9.3} s, error {:.1e} (TE {:.1e}, TM {:.1e})",
-                    r["orders"],
-                    r["slices"],
+                    // A JSON value's Display ignores the width: padded as text.
+                    r["orders"].to_string(),
+                    r["slices"].to_string(),
                     f(&r["seconds"]),
                     f(&r["error"]),
                     f(&r["error_te"]),
