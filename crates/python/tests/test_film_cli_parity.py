@@ -149,7 +149,9 @@ def test_vision_of_a_spectra_file_is_the_clis():
 def test_bench_runs_each_measurement_once():
     b = film.bench(seconds=1e-3, no_python=True)
     assert [r["layers"] for r in b["results"]] == [2, 20]
-    assert b["fit"]["parameters"] == 3 and b["batch"]["points"] == 10**6
+    # The batch: 1000 wavelengths × 1000 angles at 1 s, the same share of the angles below (at least 10).
+    assert b["fit"]["parameters"] == 3 and b["batch"]["points"] == 1000 * 10
+    assert "batch of 10000 (λ, θ) points" in b.text
     assert "not run (--no-python)" in b.text
     with pytest.raises(ValueError, match="--seconds must be positive"):
         film.bench(seconds=0)

@@ -96,8 +96,9 @@ def materials(at_nm=None):
 def bench(seconds=1.0, no_python=False, *, roughness_nm=None, correlation_nm=None, azimuth_rad=math.pi,
           d_iterations=None, diffuse_transport="multiple"):
     """``iridis thinfilm bench``: (λ, θ) evaluations per second against Python's tmm (spawned as ``python3``
-    unless ``no_python``), the fit of tools/fit_scipy_compare.py and a batch of 10⁶ points timed; with a rough
-    substrate the LSRS table of Listing 3.6 (shared generation against direct evaluation)."""
+    unless ``no_python``), the fit of tools/fit_scipy_compare.py and a batch of 10⁶ points timed (below
+    ``seconds=1`` that share of them, at least 10⁴); with a rough substrate the LSRS table of Listing 3.6
+    (shared generation against direct evaluation)."""
     return answer(_native._film_bench(float(seconds), bool(no_python),
                                       **_rough(roughness_nm, correlation_nm, d_iterations, diffuse_transport),
                                       azimuth_rad=float(azimuth_rad)))
