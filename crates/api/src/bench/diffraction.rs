@@ -401,9 +401,8 @@ pub fn accuracy(a: &AccuracyOptions, report: &dyn Report) -> Result<Bench> {
         "CIEDE2000 against {truth_name} ({}² maps, normal incidence); periodic-extension: {} vs {}",
         a.map_size, "ground-truth-periodic", "ground-truth (finite aperture)"
     )];
-    // The surface column as wide as the longest name (a scan's path or a built-in with its parameters).
     let names: Vec<&str> = rows.iter().map(|r| r["surface"].as_str().unwrap_or("")).collect();
-    let w = names.iter().map(|n| n.chars().count()).fold("surface".len(), usize::max);
+    let w = super::name_column_width("surface", names.iter().copied());
     t.push(format!("{:<w$} {:<20} {:<22} {:>8} {:>10} {:>10}", "surface", "method", "against", "RU", "mean", "p95"));
     for (r, name) in rows.iter().zip(&names) {
         t.push(format!(

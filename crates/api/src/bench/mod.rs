@@ -84,6 +84,12 @@ pub fn delta_e_stats(a: &[Xyz], b: &[Xyz], exposure: f64) -> DeltaE {
     DeltaE { mean: d.iter().sum::<f64>() / n as f64, p95: rank(0.95), p99: rank(0.99), max: d[n - 1], count: n }
 }
 
+/// Width of a text table's name column: its header's or the longest name's, whichever is wider (a scan's path,
+/// a built-in with parameters and the figure scenes' names are longer than a fixed column).
+pub(crate) fn name_column_width<'a>(header: &str, names: impl IntoIterator<Item = &'a str>) -> usize {
+    names.into_iter().map(|n| n.chars().count()).fold(header.chars().count(), usize::max)
+}
+
 /// The pixels of a `size²` BRDF map that are view directions (inside the unit disk).
 pub fn disk_pixels(size: usize) -> Vec<usize> {
     (0..size * size).filter(|&i| iridis_diffraction::map::view_direction(i % size, i / size, size).is_some()).collect()

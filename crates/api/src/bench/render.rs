@@ -40,8 +40,7 @@ pub fn render(a: &RenderOptions, report: &dyn Report) -> Result<Bench> {
     let mut t = vec![format!("render benchmark: {0}×{0}, {1} spp, {threads} threads", a.size, a.spp)];
     let names: Vec<String> =
         scenes.iter().map(|p| p.file_name().and_then(|n| n.to_str()).unwrap_or("?").to_string()).collect();
-    // The names' column as wide as the longest (the figure scenes' names are longer than the rest).
-    let width = names.iter().map(|n| n.chars().count()).max().unwrap_or(0);
+    let width = super::name_column_width("", names.iter().map(String::as_str));
     for (p, name) in scenes.iter().zip(names) {
         let start = Instant::now();
         let scene = load(p, &Default::default(), report)?;
