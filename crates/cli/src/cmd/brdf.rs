@@ -242,7 +242,7 @@ how far the scalar model is from Maxwell's equations there (worst order error, Î
 
 Examples:
   iridis brdf eval builtin:sine --light 30deg --view 10deg,180deg --json
-  iridis brdf eval builtin:blazed --method ground-truth --light 0deg --view 20deg,180deg
+  iridis brdf eval builtin:elaphe --method ground-truth --light 0deg --view 30deg,270deg   first order of its 1.1 Âµm ridges: 550 nm
   iridis brdf eval builtin:sine --light 30deg --view 10deg,180deg --visual bluetit --spectra sine_view.csv
   iridis brdf eval 'builtin:sine?size=1100nm&pixel=10nm' --method rigorous --light 30deg --view 0deg --material gold
   iridis precompute builtin:elaphe -o elaphe.npz && iridis brdf eval elaphe.npz --light 20deg,0deg --view 35deg,180deg --json")]
