@@ -366,7 +366,7 @@ fn compare_and_sweep_on_the_gpu_give_the_cpu_numbers() {
         return;
     }
     let surface = "builtin:elaphe?size=3um&pixel=60nm";
-    let common = ["--methods", "lookup,reference", "--size", "24", "--uv-resolution", "41", "--json"];
+    let common = ["--methods", "lookup,reference", "--size", "16", "--uv-resolution", "41", "--json"];
     let mut runs = Vec::new();
     for extra in [None, Some("--gpu")] {
         let mut args = vec!["compare", surface];
