@@ -11,15 +11,14 @@ use iridis_color::units::{parse_angle_rad, parse_positive_length_nm};
 use iridis_color::{Encoding, ToneMap};
 use iridis_diffraction::geometry::{direction, FresnelConvention};
 use iridis_diffraction::table::{Precision, TableParams};
-use iridis_surface::formats::channel::ChannelSel;
 use serde_json::{json, Value};
 
 use crate::grating::{grating, GratingMethod, GratingOptions};
 use crate::report::{with_step, Collect, Kind, Report};
-use crate::surface::{Source, SurfaceOptions, UnitOverrides};
+use crate::surface::{Source, SurfaceOptions};
 
-/// What `iridis report` takes; lengths and channels as typed (they are shown in the steps' command lines).
-/// With the feature `cli`, its arguments.
+/// What `iridis report` takes: the scan and how to read it (the surface options of every command, passed on to
+/// each step's command line), the model's coherence as typed. With the feature `cli`, its arguments.
 #[derive(Debug, Clone)]
 #[cfg_attr(feature = "cli", derive(clap::Args))]
 pub struct ReportOptions {
@@ -28,23 +27,8 @@ pub struct ReportOptions {
     /// Output folder: index.html, report.json and the figures.
     #[cfg_attr(feature = "cli", arg(short, long))]
     pub output: PathBuf,
-    /// Channel of a multi-channel file, by index or name.
-    #[cfg_attr(feature = "cli", arg(long))]
-    pub channel: Option<String>,
-    /// Pixel size for files without one (e.g. 5nm).
-    #[cfg_attr(feature = "cli", arg(long))]
-    pub pixel_size: Option<String>,
-    /// Height of the brightest grey value for image surfaces (e.g. 300nm).
-    #[cfg_attr(feature = "cli", arg(long))]
-    pub max_height: Option<String>,
-    /// Unit of heights in files that do not give one (m, nm, …).
-    #[cfg_attr(feature = "cli", arg(long))]
-    pub height_unit: Option<String>,
-    /// Levelling: plane (default for files), poly, lines, rows, mean or none.
-    #[cfg_attr(feature = "cli", arg(long))]
-    pub level: Option<String>,
     #[cfg_attr(feature = "cli", command(flatten))]
-    pub units: UnitOverrides,
+    pub surface_options: SurfaceOptions,
     /// Size of the BRDF maps in pixels.
     #[cfg_attr(feature = "cli", arg(long, default_value_t = 128))]
     pub size: usize,
@@ -67,12 +51,7 @@ impl ReportOptions {
         Self {
             surface: surface.to_string(),
             output: output.to_path_buf(),
-            channel: None,
-            pixel_size: None,
-            max_height: None,
-            height_unit: None,
-            level: None,
-            units: UnitOverrides::default(),
+            surface_options: SurfaceOptions::default(),
             size: 128,
             coherence: None,
             visual: "bluetit".into(),
@@ -224,42 +203,16 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     let path = |n: &str| dir.join(n);
     let file = |n: &str| path(n).to_string_lossy().into_owned();
-    let channel: Option<ChannelSel> =
-        o.channel.as_deref().map(|c| c.parse().map_err(|e: String| anyhow!("--channel '{c}': {e}"))).transpose()?;
-    let pixel_size_nm = length("pixel-size", &o.pixel_size)?;
-    let max_height_nm = length("max-height", &o.max_height)?;
     let coherence_nm = length("coherence", &o.coherence)?;
-    let surf = SurfaceOptions {
-        pixel_size_nm,
-        max_height_nm,
-        channel: channel.clone(),
-        height_unit: o.height_unit.clone(),
-        level: o.level.clone(),
-        units: o.units,
-    };
+    let surf = &o.surface_options;
     let source = Source::Spec(o.surface.clone());
-    let mut common: Vec<String> = Vec::new();
-    for (flag, v) in [
-        ("--channel", &o.channel),
-        ("--pixel-size", &o.pixel_size),
-        ("--max-height", &o.max_height),
-        ("--height-unit", &o.height_unit),
-    ] {
-        if let Some(v) = v {
-            common.extend([flag.to_string(), v.clone()]);
-        }
-    }
-    for (flag, on) in [("--override-units", o.units.override_units), ("--as-height", o.units.as_height)] {
-        if on {
-            common.push(flag.to_string());
-        }
-    }
+    let mut common = surf.flags();
     // Only a level that was asked for is passed on: the model commands say "the default for files" otherwise.
-    if let Some(l) = &o.level {
+    if let Some(l) = &surf.level {
         common.extend(["--level".to_string(), l.clone()]);
     }
     let mut model = common.clone();
-    let relief_level = o.level.clone().unwrap_or_else(|| "plane".into());
+    let relief_level = surf.level.clone().unwrap_or_else(|| "plane".into());
     if let Some(c) = &o.coherence {
         model.extend(["--coherence".to_string(), c.clone()]);
     }
@@ -268,7 +221,7 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
 
     // 1. The levelled relief, roughness, periods, PSDF and ACF.
     let mut args = s(&["surface", "info", &o.surface, "--json"]);
-    if o.level.is_none() {
+    if surf.level.is_none() {
         args.extend(s(&["--level", "plane"]));
     }
     args.extend(common.clone());
@@ -311,7 +264,7 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
             ..GratingOptions::default()
         };
         let (st, g) = run_step(report, &title, args.clone(), |r| {
-            Ok((answer(grating(&source, &surf, &opts, r)?.to_json(), &args, inputs), Vec::new()))
+            Ok((answer(grating(&source, surf, &opts, r)?.to_json(), &args, inputs), Vec::new()))
         })?;
         unit_cells.push(g);
         steps.push(st);
@@ -352,7 +305,7 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
             let (st, ()) = run_step(report, &format!("BRDF map under D65, light at {inc}"), args, |r| {
                 let w = brdf_map_figure(
                     &o.surface,
-                    &surf,
+                    surf,
                     map_coherence_nm,
                     (theta, phi),
                     o.size,
@@ -383,7 +336,7 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
             let shading = crate::fresnel::shading("schlick:1.5", FresnelConvention::Physical, true)?;
             let views: Vec<f64> = (-6..=6).map(|k| 10.0 * k as f64).collect();
             let plane = crate::vision::PlaneViews { light_theta: 0.0, azimuth: None, views_deg: &views, spec: &spec };
-            let v = crate::vision::along_plane(&source, &surf, &model, shading, plane, r)?;
+            let v = crate::vision::along_plane(&source, surf, &model, shading, plane, r)?;
             let img = crate::brdf_vision::vision_strip(&v)?;
             crate::output::write_png_rgb8(&path("vision.png"), img.width, img.height, &img.data)?;
             Ok((answer(v.to_json(), &args, inputs), Vec::new()))
@@ -405,7 +358,7 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
             ..GratingOptions::default()
         };
         let compared = run_step(report, title, args.clone(), |r| {
-            let c = crate::grating_run::compare(&source, &surf, &opts, r)?;
+            let c = crate::grating_run::compare(&source, surf, &opts, r)?;
             Ok((answer(c.to_json(), &args, inputs), Vec::new()))
         });
         match compared {

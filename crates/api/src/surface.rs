@@ -63,6 +63,29 @@ impl SurfaceOptions {
             ..Default::default()
         }
     }
+
+    /// The command-line flags that give these options to another command (lengths in nm), `--level` apart:
+    /// what `iridis report` passes on to each step's command line.
+    pub fn flags(&self) -> Vec<String> {
+        let mut flags = Vec::new();
+        if let Some(c) = &self.channel {
+            flags.extend(["--channel".to_string(), c.to_string()]);
+        }
+        for (flag, v) in [("--pixel-size", self.pixel_size_nm), ("--max-height", self.max_height_nm)] {
+            if let Some(v) = v {
+                flags.extend([flag.to_string(), format!("{v}nm")]);
+            }
+        }
+        if let Some(u) = &self.height_unit {
+            flags.extend(["--height-unit".to_string(), u.clone()]);
+        }
+        for (flag, on) in [("--override-units", self.units.override_units), ("--as-height", self.units.as_height)] {
+            if on {
+                flags.push(flag.to_string());
+            }
+        }
+        flags
+    }
 }
 
 /// Loads a SURFACE argument as a diffraction patch, saying what the reader warned about (e.g. heights of
