@@ -206,11 +206,7 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
     let coherence_nm = length("coherence", &o.coherence)?;
     let surf = &o.surface_options;
     let source = Source::Spec(o.surface.clone());
-    let mut common = surf.flags();
-    // Only a level that was asked for is passed on: the model commands say "the default for files" otherwise.
-    if let Some(l) = &surf.level {
-        common.extend(["--level".to_string(), l.clone()]);
-    }
+    let common = surf.flags();
     let mut model = common.clone();
     let relief_level = surf.level.clone().unwrap_or_else(|| "plane".into());
     if let Some(c) = &o.coherence {

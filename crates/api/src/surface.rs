@@ -64,8 +64,8 @@ impl SurfaceOptions {
         }
     }
 
-    /// The command-line flags that give these options to another command (lengths in nm), `--level` apart:
-    /// what `iridis report` passes on to each step's command line.
+    /// The command-line flags that give these options to another command (lengths in nm): what `iridis report`
+    /// passes on to each step's command line.
     pub fn flags(&self) -> Vec<String> {
         let mut flags = Vec::new();
         if let Some(c) = &self.channel {
@@ -83,6 +83,10 @@ impl SurfaceOptions {
             if on {
                 flags.push(flag.to_string());
             }
+        }
+        // Only a level that was asked for: without it, each command says which default it used.
+        if let Some(l) = &self.level {
+            flags.extend(["--level".to_string(), l.clone()]);
         }
         flags
     }

@@ -149,19 +149,33 @@ impl<'py> Options<'py> {
         }
     }
 
-    /// How to read a SURFACE argument: `pixel_size_nm`, `max_height_nm`, `channel`, `height_unit`, `level`.
-    pub fn surface(&mut self) -> PyResult<iridis_api::SurfaceOptions> {
-        let channel = match self.value("channel")? {
-            None => None,
+    /// A length as the CLI takes it (`"5nm"`, `"0.2um"`), in nm; positive.
+    pub fn length_text_nm(&mut self, key: &'static str) -> PyResult<Option<f64>> {
+        self.string(key)?
+            .map(|s| {
+                iridis_color::units::parse_positive_length_nm(&s)
+                    .map_err(|e| PyValueError::new_err(format!("{key} '{s}': {}", e.0)))
+            })
+            .transpose()
+    }
+
+    /// `channel`: a channel of a multi-channel file, by index (an int) or name.
+    pub fn channel(&mut self) -> PyResult<Option<iridis_surface::formats::channel::ChannelSel>> {
+        match self.value("channel")? {
+            None => Ok(None),
             Some(v) => {
                 let s = if let Ok(i) = v.extract::<usize>() { i.to_string() } else { v.str()?.to_string() };
-                Some(s.parse().map_err(|e: String| PyValueError::new_err(format!("channel: {e}")))?)
+                Ok(Some(s.parse().map_err(|e: String| PyValueError::new_err(format!("channel: {e}")))?))
             }
-        };
+        }
+    }
+
+    /// How to read a SURFACE argument: `pixel_size_nm`, `max_height_nm`, `channel`, `height_unit`, `level`.
+    pub fn surface(&mut self) -> PyResult<iridis_api::SurfaceOptions> {
         Ok(iridis_api::SurfaceOptions {
             pixel_size_nm: self.positive("pixel_size_nm")?,
             max_height_nm: self.positive("max_height_nm")?,
-            channel,
+            channel: self.channel()?,
             height_unit: self.string("height_unit")?,
             level: self.string("level")?,
             ..Default::default()

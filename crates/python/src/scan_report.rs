@@ -2,7 +2,6 @@
 //! run's output set that the library's file-writing calls write through (committed when the call succeeds,
 //! discarded when it fails, as the CLI does).
 
-use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -36,20 +35,10 @@ fn _report(
     let mut o = Options::new(options);
     let mut r = iridis_api::scan_report::ReportOptions::new(surface, std::path::Path::new(output));
     // Lengths as the CLI takes them ("5nm"), as the Python function documents.
-    let length = |key: &str, v: Option<String>| -> PyResult<Option<f64>> {
-        v.map(|s| {
-            iridis_color::units::parse_positive_length_nm(&s)
-                .map_err(|e| PyValueError::new_err(format!("{key} '{s}': {}", e.0)))
-        })
-        .transpose()
-    };
     let s = &mut r.surface_options;
-    s.channel = o
-        .string("channel")?
-        .map(|c| c.parse().map_err(|e: String| PyValueError::new_err(format!("channel '{c}': {e}"))))
-        .transpose()?;
-    s.pixel_size_nm = length("pixel_size", o.string("pixel_size")?)?;
-    s.max_height_nm = length("max_height", o.string("max_height")?)?;
+    s.channel = o.channel()?;
+    s.pixel_size_nm = o.length_text_nm("pixel_size")?;
+    s.max_height_nm = o.length_text_nm("max_height")?;
     s.height_unit = o.string("height_unit")?;
     s.level = o.string("level")?;
     s.units.override_units = o.bool("override_units")?.unwrap_or(false);
