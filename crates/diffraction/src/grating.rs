@@ -656,37 +656,97 @@ impl crate::Evaluator for LobeScaled {
 
 /// Sinkhorn–Knopp: `r`, `s` such that `r_a M[a][b] s_b` has every row and column summing to 1 (`M` square,
 /// row-major, `p × p`, non-negative with positive diagonal); returns them and the largest deviation left.
+///
+/// Over-relaxed (Thibault, Chizat, Dossal & Papadakis, "Overrelaxed Sinkhorn–Knopp algorithm for regularized
+/// optimal transport", Algorithms 14(5):143, 2021): each scaling moves `ω` times as far as Sinkhorn's in
+/// logarithms, `r_a ← r_a^{1−ω} (1/(M s)_a)^ω`, which has the same fixed point. `ω` is chosen as for successive
+/// over-relaxation of a two-block (2-cyclic) iteration (Hageman & Young, "Applied Iterative Methods", 1981,
+/// ch. 9): the residual's rate `λ` observed at a factor `ω` gives the plain iteration's `μ²` by
+/// `(λ + ω − 1)² = λ ω² μ²`, and the best factor is `ω = 2/(1 + √(1 − μ²))`; it starts from the plain steps'
+/// rate and is raised from the relaxed steps' (the early rates understate the slowest mode). A large unit
+/// cell's channel matrix (p ≈ 500–600, the snake scan's report) needed ~480 plain steps to 1e-13 and needs ~100.
+/// Should the residual grow instead, the iteration returns to plain steps for good.
 fn sinkhorn(m: &[f64], p: usize) -> (Vec<f64>, Vec<f64>, f64) {
+    /// Plain steps before the first factor, relaxed steps between raises (the rate is read over the second half
+    /// of each), and how many times the factor is set.
+    const PLAIN_STEPS: usize = 8;
+    const RELAXED_STEPS: usize = 16;
+    const SETTINGS: usize = 4;
     let mut r = vec![1.0; p];
     let mut s = vec![1.0; p];
     let mut row = vec![0.0; p];
     let mut column = vec![0.0; p];
     let mut residual = f64::INFINITY;
+    let mut omega: f64 = 1.0;
+    let (mut since, mut settings, mut settled) = (0, 0, false);
+    let (mut halfway, mut at_change) = (f64::NAN, f64::NAN);
     for _ in 0..20_000 {
         row_sums(m, p, |_, x, b| x * s[b], &mut row);
-        for (ra, &sum) in r.iter_mut().zip(&row) {
-            *ra = if sum > 0.0 { 1.0 / sum } else { 0.0 };
-        }
-        // The column sums, accumulated row by row: each column adds the same terms in the same order (a = 0,
-        // 1, …) as a sum down the column would, but M is read in memory order (down the columns, the strided
-        // reads were most of the iteration's time on large cells).
-        column.fill(0.0);
-        for (a, &ra) in r.iter().enumerate() {
-            for (c, &x) in column.iter_mut().zip(&m[a * p..(a + 1) * p]) {
-                *c += ra * x;
-            }
-        }
-        for (sb, &sum) in s.iter_mut().zip(&column) {
-            *sb = if sum > 0.0 { 1.0 / sum } else { 0.0 };
-        }
-        // Columns sum to 1 now; the rows say how far from the fixed point.
+        relax(&mut r, &row, omega);
+        column_sums(m, &r, &mut column);
+        relax(&mut s, &column, omega);
+        // Plain steps leave every column summing to 1 and the rows say how far from the fixed point; relaxed
+        // ones leave both off.
         row_sums(m, p, |a, x, b| r[a] * x * s[b], &mut row);
         residual = row.iter().map(|sum| (sum - 1.0).abs()).fold(0.0, f64::max);
+        if omega != 1.0 {
+            column_sums(m, &r, &mut column);
+            let columns = column.iter().zip(&s).map(|(sum, sb)| (sum * sb - 1.0).abs()).fold(0.0, f64::max);
+            residual = residual.max(columns);
+        }
         if residual < 1e-13 {
             break;
         }
+        if omega != 1.0 && !(residual < 100.0 * at_change) {
+            // Diverging (or NaN): plain Sinkhorn for good, which always converges here.
+            (omega, settled) = (1.0, true);
+        }
+        if settled {
+            continue;
+        }
+        since += 1;
+        let window = if settings == 0 { PLAIN_STEPS } else { RELAXED_STEPS };
+        if since == window / 2 {
+            halfway = residual;
+        } else if since == window {
+            let lambda = (residual / halfway).powf(2.0 / window as f64);
+            let mu2 = (lambda + omega - 1.0).powi(2) / (lambda * omega * omega);
+            if lambda < 1.0 && mu2 < 1.0 {
+                omega = omega.max((2.0 / (1.0 + (1.0 - mu2).sqrt())).min(1.95));
+            }
+            (since, at_change) = (0, residual);
+            settings += 1;
+            settled = settings == SETTINGS || omega == 1.0;
+        }
     }
     (r, s, residual)
+}
+
+/// One scaling of [`sinkhorn`]: `x_a ← x_a^{1−ω} (1/sum_a)^ω`; plain `x_a ← 1/sum_a` at `ω = 1` (bit for bit the
+/// unrelaxed step); 0 where nothing reaches.
+fn relax(x: &mut [f64], sums: &[f64], omega: f64) {
+    for (xa, &sum) in x.iter_mut().zip(sums) {
+        *xa = if sum <= 0.0 {
+            0.0
+        } else if omega == 1.0 || *xa <= 0.0 {
+            1.0 / sum
+        } else {
+            *xa * (*xa * sum).powf(-omega)
+        };
+    }
+}
+
+/// `column[b] = Σ_a weight_a M[a][b]`, accumulated row by row: each column adds the same terms in the same order
+/// (a = 0, 1, …) as a sum down the column would, but M is read in memory order (down the columns, the strided
+/// reads were most of the iteration's time on large cells).
+fn column_sums(m: &[f64], weight: &[f64], column: &mut [f64]) {
+    let p = column.len();
+    column.fill(0.0);
+    for (a, &wa) in weight.iter().enumerate() {
+        for (c, &x) in column.iter_mut().zip(&m[a * p..(a + 1) * p]) {
+            *c += wa * x;
+        }
+    }
 }
 
 /// `out[a] = Σ_b term(a, M[a][b], b)`, each row's sum in order of `b`, four rows at a time (the last rows one by
