@@ -514,10 +514,12 @@ pub struct LaserRequest {
     pub coating: String,
     pub exposures: Vec<f64>,
     pub dlambda_nm: f64,
+    /// The u-v grid of the lookup table built for the beam (`--method lookup`).
+    pub table: TableParams,
     /// The output image (PNG); `NAME_<E>RU.png` per exposure when there are several.
     pub output: PathBuf,
     /// A lookup table made for this surface, aperture and beam.
-    pub table: Option<PathBuf>,
+    pub table_path: Option<PathBuf>,
     /// Write the lookup table built for this beam here.
     pub save_table: Option<PathBuf>,
 }
@@ -562,10 +564,10 @@ pub fn laser_run(source: &Source, lab: &LabOptions, req: &LaserRequest, report: 
     for p in &screens {
         crate::output::declare("-o", p, &["png"])?;
     }
-    if (req.table.is_some() || req.save_table.is_some()) && method != Method::Lookup {
+    if (req.table_path.is_some() || req.save_table.is_some()) && method != Method::Lookup {
         bail!("--table and --save-table are lookup tables: use them with --method lookup, not {method}");
     }
-    if req.table.is_some() && req.save_table.is_some() {
+    if req.table_path.is_some() && req.save_table.is_some() {
         bail!("--table reuses a table and --save-table writes the one built here: give one of them");
     }
     crate::output::declare_opt("--save-table", req.save_table.as_deref(), &["npz"])?;
@@ -578,7 +580,8 @@ pub fn laser_run(source: &Source, lab: &LabOptions, req: &LaserRequest, report: 
     let mut config = model.config()?;
     config.spectral = spectral("e", req.dlambda_nm, report)?;
     let scale = iridis_lab::laser::configure(&mut config, method, &spectrum, coating.as_ref(), Observer::Cie1931)?;
-    config.table_path = req.table.clone();
+    config.table = req.table;
+    config.table_path = req.table_path.clone();
     let b = workbench_from(source, &model, config, report)?;
     let e = evaluator(&b, method, report)?;
     if let (Some(path), Some(lookup)) = (&req.save_table, e.as_lookup()) {

@@ -547,6 +547,8 @@ fn laser_tables_record_the_beam_and_are_checked() {
             "4um",
             "--dlambda",
             "10nm",
+            "--uv-resolution",
+            "31",
             "--size",
             "9",
             "--subsamples",
@@ -570,12 +572,13 @@ fn laser_tables_record_the_beam_and_are_checked() {
     let r = laser(&green, &["--table", table.to_str().unwrap()]);
     assert!(r.status.success(), "the same beam's table was refused: {}", String::from_utf8_lossy(&r.stderr));
     let mut args = vec!["experiment", "laser", surface, "--method", "lookup", "--spectrum", red.to_str().unwrap()];
-    let tail = ["--aperture", "4um", "--dlambda", "10nm", "--size", "9", "--subsamples", "1", "-o"];
+    let tail =
+        ["--aperture", "4um", "--dlambda", "10nm", "--uv-resolution", "31", "--size", "9", "--subsamples", "1", "-o"];
     args.extend_from_slice(&tail);
     args.extend_from_slice(&[out.to_str().unwrap(), "--table", table.to_str().unwrap()]);
     assert_fails(&args, &["light spectrum", "laser.npz"]);
     let d65 = dir.path().join("d65.npz");
-    // A small D65 table (31² u-v nodes, not the default 501²): only its illuminant is checked.
+    // A small D65 table (31² u-v nodes, not the default 501², as the beam's above): only its illuminant differs.
     let pre = [
         "precompute",
         surface,

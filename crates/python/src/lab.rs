@@ -209,7 +209,7 @@ fn _sweep<'py>(
 /// The laser experiment (`iridis experiment laser`): writes the screen image(s) and returns `(json, xyz)` —
 /// `iridis experiment laser --json`'s text and the screen as XYZ of shape (size, size, 3).
 #[pyfunction]
-#[pyo3(signature = (surface, output, method="reference", incidence=std::f64::consts::FRAC_PI_4, azimuth=0.0, aperture_nm=65_000.0, distance_nm=1e8, screen_nm=3e8, size=101, subsamples=3, spectrum=None, coating="gold", exposures=vec![1.0, 1000.0, 7500.0], step_nm=5.0, table=None, save_table=None, options=None))]
+#[pyo3(signature = (surface, output, method="reference", incidence=std::f64::consts::FRAC_PI_4, azimuth=0.0, aperture_nm=65_000.0, distance_nm=1e8, screen_nm=3e8, size=101, subsamples=3, spectrum=None, coating="gold", exposures=vec![1.0, 1000.0, 7500.0], step_nm=5.0, uv_resolution=501, uv_power=5.0, table=None, save_table=None, options=None))]
 fn _laser<'py>(
     py: Python<'py>,
     surface: &Bound<'py, PyAny>,
@@ -226,6 +226,8 @@ fn _laser<'py>(
     coating: &str,
     exposures: Vec<f64>,
     step_nm: f64,
+    uv_resolution: usize,
+    uv_power: f64,
     table: Option<std::path::PathBuf>,
     save_table: Option<std::path::PathBuf>,
     options: Option<Bound<'py, PyDict>>,
@@ -247,8 +249,9 @@ fn _laser<'py>(
         coating: coating.to_string(),
         exposures,
         dlambda_nm: step_nm,
+        table: TableParams { uv_resolution, uv_power },
         output,
-        table,
+        table_path: table,
         save_table,
     };
     let (source, lab) = source_and_lab(surface, options)?;

@@ -381,6 +381,12 @@ pub struct LaserArgs {
     /// Output image (PNG).
     #[arg(short, long)]
     pub output: PathBuf,
+    /// u-v samples per axis of the lookup table built for the beam (--method lookup).
+    #[arg(long, default_value_t = 501)]
+    pub uv_resolution: usize,
+    /// Exponent of the lookup table's u-v grid.
+    #[arg(long, default_value_t = 5.0)]
+    pub uv_power: f64,
     /// A lookup table made for this surface, aperture and beam (by --save-table), for --method lookup.
     #[arg(long)]
     pub table: Option<PathBuf>,
@@ -413,8 +419,9 @@ pub fn run_experiment(c: ExperimentCommand) -> Result<()> {
         coating: a.coating.clone(),
         exposures: parse_exposures(&a.exposures)?,
         dlambda_nm: a.dlambda,
+        table: TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power },
         output: a.output.clone(),
-        table: a.table.clone(),
+        table_path: a.table.clone(),
         save_table: a.save_table.clone(),
     };
     let l = run::laser_run(&Source::Spec(a.surface.clone()), &a.model, &req, &Cli)?;

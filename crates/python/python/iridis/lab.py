@@ -113,16 +113,18 @@ def sweep(surface, param, values, output, method="reference", against="model", e
 
 def laser(surface, output, method="reference", incidence=math.radians(45.0), azimuth=0.0, aperture_nm=65000.0,
           distance_nm=1e8, screen_nm=3e8, size=101, subsamples=3, spectrum=None, coating="gold",
-          exposures=(1.0, 1000.0, 7500.0), step_nm=5.0, table=None, save_table=None, **options):
+          exposures=(1.0, 1000.0, 7500.0), step_nm=5.0, uv_resolution=501, uv_power=5.0, table=None, save_table=None,
+          **options):
     """The laser experiment of the paper's Figure 8 (``iridis experiment laser``): a beam at ``incidence``
     through a diaphragm of ``aperture_nm`` (the coherence window) onto the sample, the screen ``distance_nm``
     away. Writes one PNG per exposure (``NAME_<E>RU.png`` when several) and returns ``iridis experiment laser
-    --json``'s dict with ``xyz`` besides: the screen as XYZ of shape ``(size, size, 3)``."""
+    --json``'s dict with ``xyz`` besides: the screen as XYZ of shape ``(size, size, 3)``. ``uv_resolution`` and
+    ``uv_power`` shape the lookup table built for the beam (``method="lookup"``)."""
     out, xyz = _native._laser(
         _surface(surface), os.fspath(output), str(method), float(incidence), float(azimuth), float(aperture_nm),
         float(distance_nm), float(screen_nm), int(size), int(subsamples),
         None if spectrum is None else os.fspath(spectrum), str(coating), [float(e) for e in exposures],
-        float(step_nm), None if table is None else os.fspath(table),
+        float(step_nm), int(uv_resolution), float(uv_power), None if table is None else os.fspath(table),
         None if save_table is None else os.fspath(save_table), options)
     result = json.loads(out)
     result["xyz"] = xyz

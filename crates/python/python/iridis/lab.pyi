@@ -62,6 +62,8 @@ def laser(
     coating: str = ...,
     exposures: Sequence[float] = ...,
     step_nm: float = ...,
+    uv_resolution: int = ...,
+    uv_power: float = ...,
     table: Optional[Union[str, os.PathLike[str]]] = ...,
     save_table: Optional[Union[str, os.PathLike[str]]] = ...,
     **options: Any,
