@@ -335,10 +335,10 @@ fn ground_truth_maps_on_the_gpu_match_the_cpu_image() {
                 "--incidence",
                 "20deg,10deg",
                 "--size",
-                "32",
+                "24",
                 "--exposure",
                 "50",
-                // A window inside the 3 µm patch: lobes a 32² map resolves (under the light's 65 µm the
+                // A window inside the 3 µm patch: lobes a 24² map resolves (under the light's 65 µm the
                 // periodic patch's orders are narrower than a pixel).
                 "--coherence",
                 "1.5um",
