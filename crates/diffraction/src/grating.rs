@@ -697,7 +697,7 @@ fn sinkhorn(m: &[f64], p: usize) -> (Vec<f64>, Vec<f64>, f64) {
         if residual < 1e-13 {
             break;
         }
-        if omega != 1.0 && !(residual < 100.0 * at_change) {
+        if omega != 1.0 && (residual.is_nan() || residual >= 100.0 * at_change) {
             // Diverging (or NaN): plain Sinkhorn for good, which always converges here.
             (omega, settled) = (1.0, true);
         }
