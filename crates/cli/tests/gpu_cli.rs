@@ -289,6 +289,16 @@ fn gpu_options_are_checked() {
         &["f32", "chebK"],
     );
     assert_fails(&["bench", "gpu", "--table-precision", "cheb1"], &["--table-precision", "chebK"]);
+    // Its surfaces are read with the surface flags, before a GPU is opened: a current is no height.
+    let sxm = format!("{}/../surface/tests/fixtures/nanonis_synthetic.sxm", env!("CARGO_MANIFEST_DIR"));
+    assert_fails(
+        &["bench", "gpu", "--build-surface", &sxm, "--channel", "Current"],
+        &["--build-surface", "--as-height"],
+    );
+    assert_fails(
+        &["bench", "gpu", "--gt-surface", &sxm, "--channel", "Current", "--as-height"],
+        &["--gt-surface", "give --height-unit"],
+    );
 }
 
 /// A table built by `precompute --gpu` against the CPU's, from the files.

@@ -96,6 +96,7 @@ fn bench_run(py: Python<'_>, name: &str, options: Option<Bound<'_, PyDict>>) -> 
                 gt_surface: o.string("gt_surface")?.unwrap_or(d.gt_surface),
                 gt_size: o.usize("gt_size")?.unwrap_or(d.gt_size),
                 gt_cpu_pixels: o.usize("gt_cpu_pixels")?.unwrap_or(d.gt_cpu_pixels),
+                surface_options: o.surface()?,
             };
             o.finish()?;
             Box::new(move |r| gpu::gpu(&a, r))

@@ -170,7 +170,8 @@ impl<'py> Options<'py> {
         }
     }
 
-    /// How to read a SURFACE argument: `pixel_size_nm`, `max_height_nm`, `channel`, `height_unit`, `level`.
+    /// How to read a SURFACE argument: `pixel_size_nm`, `max_height_nm`, `channel`, `height_unit`, `level`,
+    /// `override_units` and `as_height` (the CLI's `--override-units`, `--as-height`).
     pub fn surface(&mut self) -> PyResult<iridis_api::SurfaceOptions> {
         Ok(iridis_api::SurfaceOptions {
             pixel_size_nm: self.positive("pixel_size_nm")?,
@@ -178,7 +179,10 @@ impl<'py> Options<'py> {
             channel: self.channel()?,
             height_unit: self.string("height_unit")?,
             level: self.string("level")?,
-            ..Default::default()
+            units: iridis_api::surface::UnitOverrides {
+                override_units: self.bool("override_units")?.unwrap_or(false),
+                as_height: self.bool("as_height")?.unwrap_or(false),
+            },
         })
     }
 

@@ -167,7 +167,9 @@ impl PyHeightField {
 /// Loads a SURFACE as the CLI does: a file (AFM instrument formats, `.npy`, `.npz`, PNG/TIFF, text) or
 /// `builtin:NAME[?size=…&pixel=…&seed=…]`.
 #[pyfunction]
-#[pyo3(signature = (spec, channel=None, pixel_size_nm=None, max_height_nm=None, height_unit=None))]
+#[pyo3(signature = (spec, channel=None, pixel_size_nm=None, max_height_nm=None, height_unit=None,
+                     override_units=false, as_height=false))]
+#[allow(clippy::too_many_arguments)] // Python's keyword arguments, one a CLI flag.
 fn load_height_field(
     py: Python<'_>,
     spec: &str,
@@ -175,9 +177,19 @@ fn load_height_field(
     pixel_size_nm: Option<f64>,
     max_height_nm: Option<f64>,
     height_unit: Option<String>,
+    override_units: bool,
+    as_height: bool,
 ) -> PyResult<PyHeightField> {
     let channel = channel.map(|c| c.parse::<ChannelSel>()).transpose().map_err(value_error)?;
-    let opts = LoadOptions { pixel_size_nm, max_height_nm, channel, height_unit, ..Default::default() };
+    let opts = LoadOptions {
+        pixel_size_nm,
+        max_height_nm,
+        channel,
+        height_unit,
+        override_units,
+        as_height,
+        ..Default::default()
+    };
     let hf = py.allow_threads(|| load_surface(spec, &opts)).map_err(|e| surface_error(spec, e))?;
     Ok(PyHeightField { hf })
 }

@@ -73,6 +73,36 @@ def test_bad_input():
         surface.Surface(np.zeros((4, 4)), 1.0).level("sideways")
 
 
+def test_an_instrument_files_own_units_win_unless_overridden():
+    """As `iridis surface info` (crates/cli/tests/surface_cli.rs, the same file): a pixel size or height unit that
+    contradicts the file's is not applied silently; override_units applies it; as_height reads a current."""
+    sxm = os.path.join(FIX, "nanonis_synthetic.sxm")
+    plain = surface.load(sxm)
+    kept = surface.load(sxm, pixel_size_nm=50.0, height_unit="um")
+    assert kept.pixel_nm == plain.pixel_nm == pytest.approx((10.0, 10.0), rel=1e-12)
+    np.testing.assert_array_equal(kept.heights_nm, plain.heights_nm)
+    said = " ".join(kept.meta["warnings"])
+    assert "--pixel-size 50 nm ignored: the file gives 10.00 × 10.00 nm per pixel" in said
+    assert "--height-unit um ignored: the file gives this channel's heights in m" in said
+    over = surface.load(sxm, pixel_size_nm=50.0, height_unit="um", override_units=True)
+    assert over.pixel_nm == (50.0, 50.0)
+    # Stored in m, read as µm: a millionth of the heights.
+    np.testing.assert_allclose(over.heights_nm, plain.heights_nm * 1e-6, rtol=1e-12)
+    with pytest.raises(ValueError, match="as-height"):
+        surface.load(sxm, channel="Current")
+    with pytest.raises(ValueError, match="give --height-unit"):
+        surface.load(sxm, channel="Current", as_height=True)
+    current = surface.load(sxm, channel="Current", as_height=True, height_unit="nm")
+    assert "--as-height" in " ".join(current.meta["warnings"])
+    # The option dicts of the library calls take them too: the GPU bench reads its surfaces before it opens a GPU.
+    import iridis.bench as bench
+
+    with pytest.raises(ValueError, match="as-height"):
+        bench.run("gpu", build_surface=sxm, channel="Current")
+    with pytest.raises(ValueError, match="give --height-unit"):
+        bench.run("gpu", build_surface=sxm, channel="Current", as_height=True)
+
+
 def test_info_finds_the_generated_period_and_equals_the_cli():
     """Surface.info is `iridis surface info --json` (the facade's function; fixture from
     tests/fixtures/make_cli_fixtures.sh), and finds the period and direction the sine was generated with."""

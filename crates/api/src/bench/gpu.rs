@@ -13,7 +13,7 @@ use iridis_diffraction::encoding::TableEncoding;
 use iridis_diffraction::evaluator::Evaluator;
 use iridis_diffraction::geometry::direction;
 use iridis_diffraction::table::{Lookup, LookupTable, Precision, TableParams};
-use iridis_diffraction::{Aperture, Fresnel, GroundTruth, Shading, SpectralSetup};
+use iridis_diffraction::{Aperture, Fresnel, GroundTruth, Patch, Shading, SpectralSetup};
 use iridis_gpu::film::FilmPathUsed;
 use iridis_gpu::scene::SceneFilm;
 use iridis_gpu::{FilmFrame, FilmPath, FrameTime, Gpu, GpuFilm, GpuLookup, GpuScene};
@@ -74,6 +74,9 @@ pub struct GpuBenchOptions {
     /// Pixels of that map the CPU evaluates (spread over it) for its rate and the CIEDE2000.
     #[cfg_attr(feature = "cli", arg(long, default_value_t = 32))]
     pub gt_cpu_pixels: usize,
+    // How --build-surface and --gt-surface are read: a file's channel, pixel size, height unit, levelling.
+    #[cfg_attr(feature = "cli", command(flatten))]
+    pub surface_options: SurfaceOptions,
 }
 
 impl Default for GpuBenchOptions {
@@ -94,6 +97,7 @@ impl Default for GpuBenchOptions {
             gt_surface: "builtin:elaphe?size=3um&pixel=65nm".into(),
             gt_size: 12,
             gt_cpu_pixels: 32,
+            surface_options: SurfaceOptions::default(),
         }
     }
 }
@@ -247,6 +251,10 @@ pub fn gpu(a: &GpuBenchOptions, report: &dyn Report) -> Result<Bench> {
     if !(8..=4096).contains(&a.gt_size) || a.gt_cpu_pixels == 0 {
         bail!("--gt-size {} must be 8–4096 pixels and --gt-cpu-pixels at least 1", a.gt_size);
     }
+    // Both surfaces are read before anything is timed: a wrong path or option fails at once, not minutes later.
+    let build_patch =
+        crate::surface::load_patch(&a.build_surface, &a.surface_options, report).context("--build-surface")?;
+    let gt_patch = crate::surface::load_patch(&a.gt_surface, &a.surface_options, report).context("--gt-surface")?;
     let gpu = crate::gpu::open()?;
     let mut t = adapter_lines(&gpu);
 
@@ -369,8 +377,8 @@ pub fn gpu(a: &GpuBenchOptions, report: &dyn Report) -> Result<Bench> {
     ));
     t.extend(direct_t.vs_cpu_lines("    ", &format!("f64, the same samples; {} pixels", fpx.len()), &direct_de));
     t.push(format!("  direct / fast median frame time: {:.1}×", dmed / fmed));
-    let (build, build_lines) = table_build(&gpu, a, report)?;
-    let (truth, truth_lines) = ground_truth(&gpu, a, report)?;
+    let (build, build_lines) = table_build(&gpu, a, &build_patch, report)?;
+    let (truth, truth_lines) = ground_truth(&gpu, a, &gt_patch, report)?;
     t.extend(build_lines);
     t.extend(truth_lines);
 
@@ -531,11 +539,10 @@ fn scene(a: &GpuBenchOptions, path: &Path, report: &dyn Report) -> Result<Bench>
 
 /// The lookup table of `build_surface` built on the CPU (all cores) and on the GPU in the same run: times,
 /// speed-up and the GPU table's error against the CPU's (`iridis_gpu::table_build::table_error`).
-fn table_build(gpu: &Gpu, a: &GpuBenchOptions, report: &dyn Report) -> Result<(Value, Vec<String>)> {
+fn table_build(gpu: &Gpu, a: &GpuBenchOptions, patch: &Patch, report: &dyn Report) -> Result<(Value, Vec<String>)> {
     let model = ModelOptions::default();
-    let patch = crate::surface::load_patch(&a.build_surface, &SurfaceOptions::default(), report)?;
     let spectral = crate::model::spectral_setup(&model, report)?;
-    let terms = crate::model::taylor_terms(&patch, &model, report)?;
+    let terms = crate::model::taylor_terms(patch, &model, report)?;
     let params = TableParams { uv_resolution: a.build_uv_resolution, uv_power: 5.0 };
     let t = std::time::Instant::now();
     let cpu = crate::model::build_table(None, &terms, &spectral, params, &a.build_surface, report)?;
@@ -584,10 +591,9 @@ fn table_build(gpu: &Gpu, a: &GpuBenchOptions, report: &dyn Report) -> Result<(V
 
 /// The ground truth of `gt_surface` (both apertures) as a `gt_size` BRDF map on the GPU, against the CPU on
 /// up to `gt_cpu_pixels` of its pixels in the same run: per-pixel rates, speed-up, CIEDE2000 at 1500 RU.
-fn ground_truth(gpu: &Gpu, a: &GpuBenchOptions, report: &dyn Report) -> Result<(Value, Vec<String>)> {
+fn ground_truth(gpu: &Gpu, a: &GpuBenchOptions, patch: &Patch, report: &dyn Report) -> Result<(Value, Vec<String>)> {
     use rayon::prelude::*;
-    let patch = crate::surface::load_patch(&a.gt_surface, &SurfaceOptions::default(), report)?;
-    let coherence = crate::model::coherence_for(&patch, None, report);
+    let coherence = crate::model::coherence_for(patch, None, report);
     let spectral = SpectralSetup::default();
     let samples = 2 * spectral.wavelengths().len() - 1;
     let size = a.gt_size;
@@ -610,7 +616,7 @@ fn ground_truth(gpu: &Gpu, a: &GpuBenchOptions, report: &dyn Report) -> Result<(
     out.insert("pixels".into(), json!(disk.len()));
     out.insert("wavenumbers".into(), json!(samples));
     for aperture in [Aperture::Finite, Aperture::Periodic] {
-        let gt = GroundTruth::with_aperture(&patch, coherence, Shading::default(), &spectral, samples, aperture)?;
+        let gt = GroundTruth::with_aperture(patch, coherence, Shading::default(), &spectral, samples, aperture)?;
         let t = std::time::Instant::now();
         let map = iridis_gpu::ground_truth_map(gpu, &gt, wi, size, &|_| {})?;
         let gpu_s = t.elapsed().as_secs_f64();

@@ -61,7 +61,8 @@ error — and the ground truth of --gt-surface (finite aperture and periodic) as
 against --gt-cpu-pixels of its pixels on the CPU — pixels per second, speed-up, CIEDE2000 — and the phase
 arithmetic of the ground-truth shader against f64. The defaults are small (lavapipe runs on the CPU); on a
 GPU the paper's sizes are --build-surface builtin:elaphe --build-uv-resolution 501 --gt-surface
-builtin:elaphe --gt-size 101.
+builtin:elaphe --gt-size 101. Both surfaces are read with the surface flags (--channel, --pixel-size,
+--level, …) before anything is timed.
 
 With a SCENE (TOML or glTF), times the scene renderer instead (iridis render --gpu): --frames frames of
 --size with 1 sample per pixel, min/median/p99, against one CPU render of the same image in the same run

@@ -130,17 +130,20 @@ def tmm_fast_peer(n, d, th, lam, reference):
     return {"seconds": seconds, "cpu_seconds": cpu, "worst_abs_diff_R": float(np.max(np.abs(r - reference))),
             "torch_threads": torch.get_num_threads()}
 
+# How a bench reads its SURFACE arguments (lengths in nm), as the CLI's surface flags.
+_SURFACE_OPTIONS = {"pixel_size_nm": float, "max_height_nm": float, "channel": str, "height_unit": str,
+                    "level": str, "override_units": bool, "as_height": bool}
 # The library's benches (iridis_api::bench) and their options: type, and for lists how they are written.
 LIBRARY_BENCHES = {
     "diffraction": {"size": int, "terms": int, "map_sizes": [int], "uv_resolution": int},
     "diffraction-accuracy": {"surface": [str], "map_size": int, "coherence_nm": float, "aperture": str,
                              "exposures": [float], "uv_resolution": int, "convergence_plot": str,
-                             "pixel_size_nm": float, "max_height_nm": float, "channel": str, "height_unit": str,
-                             "level": str},
+                             **_SURFACE_OPTIONS},
     "diffraction-methods": {"patch_sizes": [int], "map_size": int},
     "gpu": {"scene": str, "size": str, "frames": int, "max_seconds": float, "table": str, "film_size": str,
             "stack": str, "spectral_samples": int, "save": str, "table_precision": str, "build_surface": str,
-            "build_uv_resolution": int, "gt_surface": str, "gt_size": int, "gt_cpu_pixels": int},
+            "build_uv_resolution": int, "gt_surface": str, "gt_size": int, "gt_cpu_pixels": int,
+            **_SURFACE_OPTIONS},
     "render": {"size": int, "spp": int, "scene": [str]},
     "grating": {"repeats": int, "python": str, "no_python": bool, "peer_seconds": float, "batch": int,
                 "quick": bool},

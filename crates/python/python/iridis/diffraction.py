@@ -18,8 +18,8 @@ as the CLI takes it (``"builtin:elaphe"``, ``"scan.gwy"``, ``"table.npz"``: a fi
 ``step_nm``, ``fresnel`` (``"schlick:1.5"``, ``"index:0.2+3.4i"``, ``"gold"``, ``"stack:air | keratin 300nm |
 n=1.56"``), ``fresnel_convention`` (``"physical"`` or ``"paper"``), ``shadowing``, ``uv_resolution``,
 ``uv_power`` (tables built from a height field) and, for SURFACE arguments, ``pixel_size_nm``,
-``max_height_nm``, ``channel``, ``height_unit``, ``level``. Warnings the CLI prints (a coarse wavelength step,
-a patch smaller than the window) are Python warnings.
+``max_height_nm``, ``channel``, ``height_unit``, ``level``, ``override_units``, ``as_height``. Warnings the CLI
+prints (a coarse wavelength step, a patch smaller than the window) are Python warnings.
 
 Example:
     >>> import numpy as np, iridis.surface as surface, iridis.diffraction as diffraction

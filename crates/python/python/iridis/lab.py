@@ -7,7 +7,8 @@ the arrays behind them.
 
 ``surface`` is an :class:`iridis.surface.Surface` or a SURFACE argument as the CLI takes it. Keyword
 ``options``: ``coherence_nm``, ``terms``, ``fresnel``, ``fresnel_convention``, ``shadowing``, ``stam_epsilon``
-and, for SURFACE arguments, ``pixel_size_nm``, ``max_height_nm``, ``channel``, ``height_unit``, ``level``.
+and, for SURFACE arguments, ``pixel_size_nm``, ``max_height_nm``, ``channel``, ``height_unit``, ``level``,
+``override_units``, ``as_height`` (the CLI's ``--override-units``, ``--as-height``).
 Angles in radians, lengths in nm.
 
 Example:

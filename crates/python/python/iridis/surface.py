@@ -103,15 +103,19 @@ class Surface:
         return f"Surface({r}×{c} at {self.pixel_nm[0]:g} × {self.pixel_nm[1]:g} nm from {self.meta['source']!r})"
 
 
-def load(spec, channel=None, pixel_size_nm=None, max_height_nm=None, height_unit=None, level=None):
+def load(spec, channel=None, pixel_size_nm=None, max_height_nm=None, height_unit=None, level=None,
+         override_units=False, as_height=False):
     """Loads a SURFACE as the CLI does (a path, or ``builtin:NAME[?size=…&pixel=…&seed=…]``).
 
     ``channel``: index or name in multi-channel files; ``pixel_size_nm`` and ``max_height_nm`` for images;
     ``height_unit`` where the file has none; ``level``: a levelling to apply (see :meth:`Surface.level`).
+    Where an instrument file states its own pixel size or height unit, the file's win and ``meta["warnings"]``
+    names both, unless ``override_units`` (the CLI's ``--override-units``); a channel that is not a height (an
+    amplitude, a current) is refused unless ``as_height`` (``--as-height``).
     A missing file raises OSError, a file that cannot be read ValueError with the CLI's message.
     """
     h = _native.load_height_field(str(spec), None if channel is None else str(channel), pixel_size_nm,
-                                  max_height_nm, height_unit)
+                                  max_height_nm, height_unit, bool(override_units), bool(as_height))
     s = Surface(h, 0)
     return s if level is None else s.level(level)
 
