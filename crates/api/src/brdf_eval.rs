@@ -6,10 +6,10 @@ use std::path::Path;
 
 use anyhow::Result;
 use iridis_diffraction::geometry::{direction, FresnelConvention};
-use iridis_diffraction::table::TableParams;
 use serde_json::{json, Value};
 
 use crate::brdf::{default_method, eval_point, PointEval};
+use crate::model::{refuse_build_options_for_table, TableGrid};
 use crate::report::Report;
 use crate::{ModelOptions, SurfaceOptions};
 
@@ -26,8 +26,8 @@ pub struct EvalRequest {
     pub fresnel: String,
     pub convention: FresnelConvention,
     pub shadowing: bool,
-    /// u-v grid of a table the lookup method builds from a SURFACE.
-    pub params: TableParams,
+    /// u-v grid of a table the lookup method builds from a SURFACE, as given (refused with a TABLE).
+    pub grid: TableGrid,
     /// Light and view directions (θ, φ) in radians.
     pub light: (f64, f64),
     pub view: (f64, f64),
@@ -57,8 +57,9 @@ pub fn brdf_eval(r: &EvalRequest, spectra: Option<&Path>, report: &dyn Report) -
     crate::output::declare_opt("--spectra", spectra, &["csv"])?;
     let (wi, wr) = (direction(r.light.0, r.light.1), direction(r.view.0, r.view.1));
     let shading = crate::fresnel::shading(&r.fresnel, r.convention, r.shadowing)?;
+    refuse_build_options_for_table(&r.input, r.grid, &r.surface, "brdf eval")?;
     let method = method_of(r);
-    let p = eval_point(&r.input, Some(&method), &r.model, shading, r.params, &r.surface, wi, wr, report)?;
+    let p = eval_point(&r.input, Some(&method), &r.model, shading, r.grid.params(), &r.surface, wi, wr, report)?;
     let r0 = crate::fresnel::shading(&r.fresnel, r.convention, r.shadowing)?.fresnel.normal_reflectance();
     if let Some(path) = spectra {
         crate::output::write_bytes(path, p.spectra_csv()?.as_bytes())?;

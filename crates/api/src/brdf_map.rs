@@ -14,7 +14,7 @@ use iridis_lab::methods::Method;
 
 use crate::brdf::{auto_exposure, map_evaluator, render_map, render_map_per_sr, EvaluatorSetup, RIGOROUS};
 use crate::gallery::Gallery;
-use crate::model::is_table;
+use crate::model::{refuse_build_options_for_table, TableGrid};
 use crate::report::{with_progress, Report};
 use crate::{ModelOptions, SurfaceOptions};
 
@@ -41,9 +41,8 @@ pub struct MapRequest {
     /// Choose the image's exposure from the map.
     pub auto_exposure: bool,
     pub encoding: Encoding,
-    /// u-v grid of a table built from a SURFACE, as given (refused with a TABLE); default 501 and 5.
-    pub uv_resolution: Option<usize>,
-    pub uv_power: Option<f64>,
+    /// u-v grid of a table built from a SURFACE, as given (refused with a TABLE).
+    pub grid: TableGrid,
     /// The lookup sum in f32.
     pub f32: bool,
     /// On the GPU (lookup and the ground truths).
@@ -70,8 +69,7 @@ impl MapRequest {
             exposure_ru: 1500.0,
             auto_exposure: false,
             encoding: Encoding::Srgb,
-            uv_resolution: None,
-            uv_power: None,
+            grid: TableGrid::default(),
             f32: false,
             gpu: false,
             table_precision: None,
@@ -80,7 +78,7 @@ impl MapRequest {
     }
 
     fn params(&self) -> TableParams {
-        TableParams { uv_resolution: self.uv_resolution.unwrap_or(501), uv_power: self.uv_power.unwrap_or(5.0) }
+        self.grid.params()
     }
 }
 
@@ -127,33 +125,6 @@ pub struct BrdfMap {
     pub how: String,
 }
 
-/// Refuses options that only shape how a table is built (or how a surface is read) when INPUT is a finished
-/// table: they would be silently ignored.
-fn refuse_build_options_for_table(r: &MapRequest) -> Result<()> {
-    let mut given = Vec::new();
-    if let Some(v) = r.uv_resolution {
-        given.push(format!("--uv-resolution {v}"));
-    }
-    if let Some(p) = r.uv_power {
-        given.push(format!("--uv-power {p}"));
-    }
-    if let Some(p) = r.surface.pixel_size_nm {
-        given.push(format!("--pixel-size {p}nm"));
-    }
-    if let Some(h) = r.surface.max_height_nm {
-        given.push(format!("--max-height {h}nm"));
-    }
-    if !given.is_empty() {
-        bail!(
-            "{} is a finished lookup table, so {} would be ignored: these options shape how a table is built \
-             from a SURFACE; pass them to `iridis precompute` (or give brdf-map the surface itself)",
-            r.input,
-            given.join(", ")
-        );
-    }
-    Ok(())
-}
-
 /// Computes the map (checks first; `files`, if any, are declared before the work starts).
 pub fn compute(r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) -> Result<BrdfMap> {
     if !(r.exposure_ru.is_finite() && r.exposure_ru > 0.0) {
@@ -162,9 +133,7 @@ pub fn compute(r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) ->
     if !(8..=8192).contains(&r.size) {
         bail!("--size {} must be between 8 and 8192 pixels", r.size);
     }
-    if is_table(&r.input) {
-        refuse_build_options_for_table(r)?;
-    }
+    refuse_build_options_for_table(&r.input, r.grid, &r.surface, "brdf-map")?;
     if let Some(f) = files {
         f.declare()?;
     }

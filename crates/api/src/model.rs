@@ -167,6 +167,66 @@ pub fn build_table(
     Ok(table)
 }
 
+/// The u-v grid of the table a command builds when its INPUT is a SURFACE, as the user gave it (`None`: the
+/// default, [`TableParams::default`]). A finished TABLE refuses it: it would be ignored (with the feature `cli`,
+/// the flags of `brdf-map` and `brdf eval`).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[cfg_attr(feature = "cli", derive(clap::Args))]
+pub struct TableGrid {
+    /// u-v resolution when a table must be built from a SURFACE [default: 501]; refused with a TABLE.
+    #[cfg_attr(feature = "cli", arg(long = "uv-resolution", value_name = "N"))]
+    pub uv_resolution: Option<usize>,
+    /// u-v power when a table must be built from a SURFACE [default: 5]; refused with a TABLE.
+    #[cfg_attr(feature = "cli", arg(long = "uv-power", value_name = "A"))]
+    pub uv_power: Option<f64>,
+}
+
+impl TableGrid {
+    /// The grid a table from a SURFACE is built on.
+    pub fn params(&self) -> TableParams {
+        let d = TableParams::default();
+        TableParams {
+            uv_resolution: self.uv_resolution.unwrap_or(d.uv_resolution),
+            uv_power: self.uv_power.unwrap_or(d.uv_power),
+        }
+    }
+}
+
+/// Refuses, when INPUT is a finished table, the options that only shape how a table is built (`grid`) or how a
+/// surface is read (`surface`'s pixel size and height of white): they would be silently ignored. `command` is
+/// the one that was given them (`brdf-map`, `brdf eval`).
+pub fn refuse_build_options_for_table(
+    input: &str,
+    grid: TableGrid,
+    surface: &SurfaceOptions,
+    command: &str,
+) -> Result<()> {
+    if !is_table(input) {
+        return Ok(());
+    }
+    let mut given = Vec::new();
+    if let Some(v) = grid.uv_resolution {
+        given.push(format!("--uv-resolution {v}"));
+    }
+    if let Some(p) = grid.uv_power {
+        given.push(format!("--uv-power {p}"));
+    }
+    if let Some(p) = surface.pixel_size_nm {
+        given.push(format!("--pixel-size {p}nm"));
+    }
+    if let Some(h) = surface.max_height_nm {
+        given.push(format!("--max-height {h}nm"));
+    }
+    if !given.is_empty() {
+        bail!(
+            "{input} is a finished lookup table, so {} would be ignored: these options shape how a table is built \
+             from a SURFACE; pass them to `iridis precompute` (or give {command} the surface itself)",
+            given.join(", ")
+        );
+    }
+    Ok(())
+}
+
 /// Whether INPUT is a lookup table from `iridis precompute` rather than a height field, by content: a height
 /// field may be an `.npz` too (`np.savez`), a table is the archive with iridis' `metadata_json`.
 pub fn is_table(input: &str) -> bool {

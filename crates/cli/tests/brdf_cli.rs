@@ -50,6 +50,8 @@ fn precompute_then_map_and_refusals() {
         [("--uv-resolution", "101"), ("--uv-power", "1"), ("--pixel-size", "50nm"), ("--max-height", "300nm")]
     {
         assert_fails(&["brdf-map", t, "-o", x, opt, value], &["finished lookup table", opt, "iridis precompute"]);
+        let eval = ["brdf", "eval", t, "--light", "0deg", "--view", "10deg", opt, value];
+        assert_fails(&eval, &["finished lookup table", opt, "give brdf eval the surface"]);
     }
     assert!(!Path::new(x).exists());
 

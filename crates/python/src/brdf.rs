@@ -4,6 +4,7 @@
 
 use iridis_api::brdf_eval::{brdf_eval as eval, EvalRequest};
 use iridis_api::brdf_map::{compute, MapRequest};
+use iridis_api::model::TableGrid;
 use iridis_color::Encoding;
 use iridis_diffraction::geometry::direction;
 use pyo3::prelude::*;
@@ -43,8 +44,7 @@ fn brdf_map_run<'py>(
         exposure_ru: o.positive("exposure_ru")?.unwrap_or(1500.0),
         auto_exposure: o.bool("auto_exposure")?.unwrap_or(false),
         encoding: Encoding::Srgb,
-        uv_resolution: o.usize("uv_resolution")?,
-        uv_power: o.positive("uv_power")?,
+        grid: TableGrid { uv_resolution: o.usize("uv_resolution")?, uv_power: o.positive("uv_power")? },
         f32: o.bool("f32")?.unwrap_or(false),
         gpu: o.bool("gpu")?.unwrap_or(false),
         table_precision: o.string("table_precision")?,
@@ -85,10 +85,7 @@ fn brdf_eval<'py>(
         fresnel,
         convention,
         shadowing,
-        params: iridis_diffraction::TableParams {
-            uv_resolution: o.usize("uv_resolution")?.unwrap_or(501),
-            uv_power: o.positive("uv_power")?.unwrap_or(5.0),
-        },
+        grid: TableGrid { uv_resolution: o.usize("uv_resolution")?, uv_power: o.positive("uv_power")? },
         light,
         view,
         visual: o.string("visual")?,

@@ -102,6 +102,20 @@ def test_brdf_eval_equals_the_cli_json():
     close(rho, got["reflectance"], rtol=1e-9, atol=1e-14)
 
 
+def test_a_finished_table_refuses_what_only_shapes_a_build(tmp_path):
+    """As `iridis brdf-map` and `brdf eval` (crates/cli/tests/brdf_cli.rs): with a TABLE, a u-v grid or an image's
+    pixel size would be ignored, so it is refused, naming it."""
+    path = tmp_path / "sine.npz"
+    diffraction.precompute(SINE, uv_resolution=11).save(path)
+    for key, value, flag in (("uv_resolution", 101, "--uv-resolution 101"), ("uv_power", 1.0, "--uv-power 1"),
+                             ("pixel_size_nm", 50.0, "--pixel-size 50nm")):
+        with pytest.raises(ValueError, match=f"finished lookup table, so {flag} would be ignored"):
+            diffraction.brdf_eval(str(path), light=0.3, view=0.2, **{key: value})
+        with pytest.raises(ValueError, match=f"finished lookup table, so {flag} would be ignored"):
+            diffraction.brdf_map_run(str(path), size=8, **{key: value})
+    assert diffraction.brdf_eval(str(path), light=0.3, view=0.2)["method"] == "lookup"
+
+
 # --- brdf-map -----------------------------------------------------------------------------------------------
 
 def test_brdf_map_run_and_per_sr_equal_the_cli_files():

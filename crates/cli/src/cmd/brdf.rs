@@ -7,10 +7,9 @@ use std::path::PathBuf;
 use anyhow::Result;
 use clap::Args as ClapArgs;
 use iridis_color::Encoding;
-use iridis_diffraction::table::TableParams;
 use iridis_diffraction::Units;
 
-use crate::args::{parse_incidence, polar_azimuth, ModelOpts, RigorousOpts, ShadingOpts};
+use crate::args::{parse_incidence, polar_azimuth, ModelOpts, RigorousOpts, ShadingOpts, UvGridOpts};
 use crate::output::print_answer;
 use crate::progress::Cli;
 
@@ -43,12 +42,8 @@ pub struct PrecomputeArgs {
     pub output: PathBuf,
     #[command(flatten)]
     pub model: ModelOpts,
-    /// Samples per axis of the u-v grid.
-    #[arg(long, default_value_t = 501)]
-    pub uv_resolution: usize,
-    /// Exponent a of the non-linear u-v grid (1 = linear).
-    #[arg(long, default_value_t = 5.0)]
-    pub uv_power: f64,
+    #[command(flatten)]
+    pub uv_grid: UvGridOpts,
     /// What the colours measure: relative (the paper's: a flat mirror's peak is 1) or radiometric (the BRDF:
     /// a flat surface reflects R(θ)/R₀ of the light).
     #[arg(long, value_name = "relative|radiometric", default_value = "relative", value_parser = units)]
@@ -158,12 +153,8 @@ pub struct BrdfMapArgs {
     pub table_precision: Option<String>,
     #[command(flatten)]
     pub model: ModelOpts,
-    /// u-v resolution when a table must be built from a SURFACE [default: 501]; refused with a TABLE.
-    #[arg(long = "uv-resolution", value_name = "N")]
-    pub uv_resolution_arg: Option<usize>,
-    /// u-v power when a table must be built from a SURFACE [default: 5]; refused with a TABLE.
-    #[arg(long = "uv-power", value_name = "A")]
-    pub uv_power_arg: Option<f64>,
+    #[command(flatten)]
+    pub grid: iridis_api::model::TableGrid,
     #[command(flatten)]
     pub surface_opts: iridis_api::SurfaceOptions,
 }
@@ -263,12 +254,8 @@ pub struct BrdfEvalArgs {
     pub rigorous: RigorousOpts,
     #[command(flatten)]
     pub shading: ShadingOpts,
-    /// u-v resolution when the lookup method builds a table from a SURFACE.
-    #[arg(long, default_value_t = 501)]
-    pub uv_resolution: usize,
-    /// u-v power when the lookup method builds a table from a SURFACE.
-    #[arg(long, default_value_t = 5.0)]
-    pub uv_power: f64,
+    #[command(flatten)]
+    pub grid: iridis_api::model::TableGrid,
     #[command(flatten)]
     pub model: ModelOpts,
     #[command(flatten)]
@@ -294,7 +281,7 @@ pub fn run_precompute(a: PrecomputeArgs) -> Result<()> {
         surface: a.surface,
         surface_opts: a.surface_opts,
         model: a.model.options(),
-        params: TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power },
+        params: a.uv_grid.into(),
         units: a.units,
         gpu: a.gpu,
     };
@@ -322,8 +309,7 @@ pub fn run_brdf_map(a: BrdfMapArgs) -> Result<()> {
         exposure_ru: a.exposure,
         auto_exposure: a.auto_exposure,
         encoding,
-        uv_resolution: a.uv_resolution_arg,
-        uv_power: a.uv_power_arg,
+        grid: a.grid,
         f32: a.f32,
         gpu: a.gpu,
         table_precision: a.table_precision,
@@ -354,7 +340,7 @@ fn run_eval(a: BrdfEvalArgs) -> Result<()> {
         fresnel: a.shading.fresnel,
         convention: a.shading.fresnel_convention,
         shadowing: !a.shading.no_shadowing,
-        params: TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power },
+        grid: a.grid,
         light,
         view,
         visual: a.visual,

@@ -12,7 +12,7 @@ use iridis_lab::bench::BenchSetup;
 use iridis_lab::laser::LaserSetup;
 use iridis_lab::methods::Method;
 
-use crate::args::{angle_rad, polar_azimuth, positive_length_nm};
+use crate::args::{angle_rad, polar_azimuth, positive_length_nm, UvGridOpts};
 use crate::output::print_answer;
 use crate::progress::Cli;
 
@@ -179,12 +179,8 @@ pub struct CompareArgs {
     /// Illuminant: d65, d50, a, e.
     #[arg(long, default_value = "d65")]
     pub illuminant: String,
-    /// u-v samples per axis of the lookup table built in memory.
-    #[arg(long, default_value_t = 501)]
-    pub uv_resolution: usize,
-    /// Exponent of the lookup table's u-v grid.
-    #[arg(long, default_value_t = 5.0)]
-    pub uv_power: f64,
+    #[command(flatten)]
+    pub uv_grid: UvGridOpts,
     /// A precomputed lookup table (from `iridis precompute`) for the lookup method.
     #[arg(long)]
     pub table: Option<PathBuf>,
@@ -210,7 +206,7 @@ pub fn run_compare(a: CompareArgs) -> Result<()> {
         size: a.size,
         illuminant: a.illuminant.clone(),
         dlambda_nm: a.dlambda,
-        table: TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power },
+        table: a.uv_grid.into(),
         table_path: a.table.clone(),
         gpu: a.gpu,
         maps: a.maps.clone(),
@@ -381,12 +377,9 @@ pub struct LaserArgs {
     /// Output image (PNG).
     #[arg(short, long)]
     pub output: PathBuf,
-    /// u-v samples per axis of the lookup table built for the beam (--method lookup).
-    #[arg(long, default_value_t = 501)]
-    pub uv_resolution: usize,
-    /// Exponent of the lookup table's u-v grid.
-    #[arg(long, default_value_t = 5.0)]
-    pub uv_power: f64,
+    // The lookup table built for the beam (--method lookup).
+    #[command(flatten)]
+    pub uv_grid: UvGridOpts,
     /// A lookup table made for this surface, aperture and beam (by --save-table), for --method lookup.
     #[arg(long)]
     pub table: Option<PathBuf>,
@@ -419,7 +412,7 @@ pub fn run_experiment(c: ExperimentCommand) -> Result<()> {
         coating: a.coating.clone(),
         exposures: parse_exposures(&a.exposures)?,
         dlambda_nm: a.dlambda,
-        table: TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power },
+        table: a.uv_grid.into(),
         output: a.output.clone(),
         table_path: a.table.clone(),
         save_table: a.save_table.clone(),
