@@ -15,12 +15,17 @@ fn load_for_view(p: &Path) -> std::result::Result<iridis_render::Scene, String> 
     iridis_render::load_scene(p).map_err(|e| e.to_string())
 }
 
+/// u-v samples per axis of the table `view` builds from a SURFACE when not told (smaller than
+/// [`TableParams::default`]'s 501: the window opens in seconds).
+pub const VIEW_UV_RESOLUTION: usize = 201;
+
 /// Opens the window on INPUT (a scene .toml/.gltf/.glb, a TABLE or a SURFACE whose table is built at
-/// `uv_resolution` first) until it is closed; with `check`, drives it with synthetic input, writes the
-/// screenshot there (PNG, declared first) and returns what the check saw.
+/// `uv_resolution`, default [`VIEW_UV_RESOLUTION`], first) until it is closed; with `check`, drives it with
+/// synthetic input, writes the screenshot there (PNG, declared first) and returns what the check saw. Options
+/// that only shape a SURFACE's table, given with a scene or a finished TABLE, are refused: they would be ignored.
 pub fn view(
     input: &str,
-    uv_resolution: usize,
+    uv_resolution: Option<usize>,
     surface: &SurfaceOptions,
     check: Option<&Path>,
     report: &dyn Report,
@@ -32,9 +37,21 @@ pub fn view(
         if !path.exists() {
             bail!("scene {} does not exist", path.display());
         }
+        let mut given = surface.flags();
+        given.splice(0..0, uv_resolution.map(|n| format!("--uv-resolution {n}")));
+        if !given.is_empty() {
+            bail!(
+                "{input} is a scene, so {} would be ignored: these options shape the table `iridis view` builds \
+                 from a SURFACE; a scene's materials name their own tables and surfaces",
+                given.join(" ")
+            );
+        }
         ViewInput::Scene(path.to_path_buf())
     } else {
-        let params = TableParams { uv_resolution, uv_power: 5.0 };
+        let grid = crate::model::TableGrid { uv_resolution, uv_power: None };
+        crate::model::refuse_build_options_for_table(input, grid, surface, "view")?;
+        let params =
+            TableParams { uv_resolution: uv_resolution.unwrap_or(VIEW_UV_RESOLUTION), ..TableParams::default() };
         let table = crate::model::lookup_table(None, input, &ModelOptions::default(), params, surface, report)?;
         ViewInput::Table { table: Box::new(table), name: input.to_string() }
     };

@@ -52,6 +52,10 @@ fn precompute_then_map_and_refusals() {
         assert_fails(&["brdf-map", t, "-o", x, opt, value], &["finished lookup table", opt, "iridis precompute"]);
         let eval = ["brdf", "eval", t, "--light", "0deg", "--view", "10deg", opt, value];
         assert_fails(&eval, &["finished lookup table", opt, "give brdf eval the surface"]);
+        if opt != "--uv-power" {
+            // Refused before a window opens.
+            assert_fails(&["view", t, opt, value], &["finished lookup table", opt, "give view the surface"]);
+        }
     }
     assert!(!Path::new(x).exists());
 

@@ -251,6 +251,11 @@ fn gpu_options_are_checked() {
     );
     assert_fails(&["view", "no_such_scene.toml"], &["no_such_scene.toml", "does not exist"]);
     assert_fails(&["view", "examples/gold_sphere.toml", "--check", "/tmp/shot.jpg"], &[".png"]);
+    // What only shapes a SURFACE's table is refused with a scene (it would be ignored), before a window opens.
+    assert_fails(
+        &["view", "examples/gold_sphere.toml", "--uv-resolution", "101", "--level", "none"],
+        &["is a scene", "--uv-resolution 101 --level none", "would be ignored"],
+    );
     assert_fails(&["bench", "gpu", "no_such_scene.toml"], &["no_such_scene.toml"]);
     assert_fails(&["bench", "gpu", "--spectral-samples", "1"], &["--spectral-samples 1", "2 to 4096"]);
     assert_fails(

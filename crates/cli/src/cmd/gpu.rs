@@ -32,9 +32,10 @@ Examples:
 pub struct ViewArgs {
     /// A scene (.toml, .gltf, .glb), a lookup table (.npz) or a SURFACE.
     pub input: String,
-    /// u-v resolution of the table built when INPUT is a surface.
-    #[arg(long, default_value_t = 201)]
-    pub uv_resolution: usize,
+    /// u-v resolution of the table built when INPUT is a SURFACE [default: 201]; refused with a scene or a
+    /// TABLE.
+    #[arg(long, value_name = "N")]
+    pub uv_resolution: Option<usize>,
     /// Scripted check: drive the window with synthetic input, save a screenshot (PNG) here, exit.
     #[arg(long)]
     pub check: Option<PathBuf>,
