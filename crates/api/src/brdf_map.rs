@@ -134,6 +134,7 @@ pub fn compute(r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) ->
         bail!("--size {} must be between 8 and 8192 pixels", r.size);
     }
     refuse_build_options_for_table(&r.input, r.grid, &r.surface, "brdf-map")?;
+    r.grid.refuse_unless_lookup(&r.method)?;
     if let Some(f) = files {
         f.declare()?;
     }

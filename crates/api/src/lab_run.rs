@@ -20,6 +20,7 @@ use serde_json::{json, Value};
 use crate::lab::{
     comparison, evaluator, render_pixels, spectral, workbench, workbench_from, Comparison, LabOptions, Testbench,
 };
+use crate::model::TableGrid;
 use crate::output::write_png_rgb8;
 use crate::report::{with_progress, Report};
 use crate::surface::Source;
@@ -210,7 +211,8 @@ pub struct CompareRequest {
     pub size: usize,
     pub illuminant: String,
     pub dlambda_nm: f64,
-    pub table: TableParams,
+    /// The u-v grid of the lookup table built from the surface (refused without the lookup method).
+    pub table: TableGrid,
     /// A precomputed lookup table for the lookup method.
     pub table_path: Option<PathBuf>,
     /// Lookup tables and ground truths on the GPU.
@@ -267,12 +269,23 @@ pub fn compare_run(source: &Source, lab: &LabOptions, req: &CompareRequest, repo
     if !(8..=2048).contains(&req.size) {
         bail!("--size {} must be 8–2048 pixels", req.size);
     }
+    if !req.methods.contains(&Method::Lookup) {
+        // Only the lookup method reads a table: what shapes one would be ignored.
+        let mut given = req.table.flags();
+        given.extend(req.table_path.as_ref().map(|p| format!("--table {}", p.display())));
+        if !given.is_empty() {
+            bail!(
+                "{} would be ignored: only the lookup method uses a table; add lookup to --methods",
+                given.join(", ")
+            );
+        }
+    }
     if let Some(d) = &req.maps {
         std::fs::create_dir_all(d).with_context(|| format!("cannot create {}", d.display()))?;
     }
     let mut config = lab.config()?;
     config.spectral = spectral(&req.illuminant, req.dlambda_nm, report)?;
-    config.table = req.table;
+    config.table = req.table.params();
     config.table_path = req.table_path.clone();
     config.accelerator = crate::lab::gpu_accelerator(req.gpu, report)?;
     let b = workbench_from(source, lab, config, report)?;
@@ -366,6 +379,10 @@ impl CompareRun {
 // ---------------------------------------------------------------------------------------------------------
 // sweep
 
+/// The u-v grid of a sweep's lookup tables where the grid is neither swept nor given: 201², not a table's
+/// default 501², as a sweep builds a table for every value.
+pub const SWEEP_UV_GRID: TableParams = TableParams { uv_resolution: 201, uv_power: 5.0 };
+
 /// What `iridis sweep` asks of [`sweep_run`].
 #[derive(Debug, Clone)]
 pub struct SweepRequest {
@@ -379,7 +396,8 @@ pub struct SweepRequest {
     pub incidence: (f64, f64),
     pub size: usize,
     pub dlambda_nm: f64,
-    pub table: TableParams,
+    /// The u-v grid of the lookup method's tables where it is not swept ([`SWEEP_UV_GRID`] where not given).
+    pub table: TableGrid,
     pub gpu: bool,
     /// The contact sheet (PNG).
     pub output: PathBuf,
@@ -416,6 +434,15 @@ pub fn sweep_run(source: &Source, lab: &LabOptions, req: &SweepRequest, report: 
         bail!("the {method} method has no parameter '{}'; it applies to: {}", param.name(), who.join(", "));
     }
     iridis_lab::sweep::check_values(param, &req.values)?;
+    req.table.refuse_unless_lookup(method.name())?;
+    let swept_and_given = match param {
+        Param::UvResolution => req.table.uv_resolution.map(|v| format!("--uv-resolution {v}")),
+        Param::UvPower => req.table.uv_power.map(|p| format!("--uv-power {p}")),
+        _ => None,
+    };
+    if let Some(flag) = swept_and_given {
+        bail!("{flag} would be ignored: it is the parameter swept (--values {})", param.name());
+    }
     let against = match req.against.trim().to_ascii_lowercase().as_str() {
         "model" | "own" => method.model_truth(),
         other => match other.parse::<Method>() {
@@ -437,7 +464,7 @@ pub fn sweep_run(source: &Source, lab: &LabOptions, req: &SweepRequest, report: 
     crate::output::declare("--plot", &plot_path, &["png"])?;
     let mut config = lab.config()?;
     config.spectral = spectral("d65", req.dlambda_nm, report)?;
-    config.table = req.table;
+    config.table = req.table.params_or(SWEEP_UV_GRID);
     config.accelerator = crate::lab::gpu_accelerator(req.gpu, report)?;
     let b = workbench_from(source, lab, config, report)?;
     let pixels = Pixels::brdf_map(req.incidence.0, req.incidence.1, req.size);
@@ -514,8 +541,8 @@ pub struct LaserRequest {
     pub coating: String,
     pub exposures: Vec<f64>,
     pub dlambda_nm: f64,
-    /// The u-v grid of the lookup table built for the beam (`--method lookup`).
-    pub table: TableParams,
+    /// The u-v grid of the lookup table built for the beam (refused without `--method lookup`).
+    pub table: TableGrid,
     /// The output image (PNG); `NAME_<E>RU.png` per exposure when there are several.
     pub output: PathBuf,
     /// A lookup table made for this surface, aperture and beam.
@@ -567,6 +594,7 @@ pub fn laser_run(source: &Source, lab: &LabOptions, req: &LaserRequest, report: 
     if (req.table_path.is_some() || req.save_table.is_some()) && method != Method::Lookup {
         bail!("--table and --save-table are lookup tables: use them with --method lookup, not {method}");
     }
+    req.table.refuse_unless_lookup(method.name())?;
     if req.table_path.is_some() && req.save_table.is_some() {
         bail!("--table reuses a table and --save-table writes the one built here: give one of them");
     }
@@ -580,7 +608,7 @@ pub fn laser_run(source: &Source, lab: &LabOptions, req: &LaserRequest, report: 
     let mut config = model.config()?;
     config.spectral = spectral("e", req.dlambda_nm, report)?;
     let scale = iridis_lab::laser::configure(&mut config, method, &spectrum, coating.as_ref(), Observer::Cie1931)?;
-    config.table = req.table;
+    config.table = req.table.params();
     config.table_path = req.table_path.clone();
     let b = workbench_from(source, &model, config, report)?;
     let e = evaluator(&b, method, report)?;

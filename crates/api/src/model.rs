@@ -167,16 +167,18 @@ pub fn build_table(
     Ok(table)
 }
 
-/// The u-v grid of the table a command builds when its INPUT is a SURFACE, as the user gave it (`None`: the
-/// default, [`TableParams::default`]). A finished TABLE refuses it: it would be ignored (with the feature `cli`,
-/// the flags of `brdf-map` and `brdf eval`).
+/// The u-v grid of the lookup table a command builds from a SURFACE, as the user gave it (`None`: the default,
+/// [`TableParams::default`]). Where no table is built from it — a finished TABLE, a method other than lookup —
+/// it is refused, not ignored (with the feature `cli`, the flags of every command that builds a table).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 #[cfg_attr(feature = "cli", derive(clap::Args))]
 pub struct TableGrid {
-    /// u-v resolution when a table must be built from a SURFACE [default: 501]; refused with a TABLE.
+    /// u-v samples per axis of the lookup table built from a SURFACE (3 to 4001) [default: 501]; refused where
+    /// none is built (a finished TABLE, another method).
     #[cfg_attr(feature = "cli", arg(long = "uv-resolution", value_name = "N"))]
     pub uv_resolution: Option<usize>,
-    /// u-v power when a table must be built from a SURFACE [default: 5]; refused with a TABLE.
+    /// Exponent a of that table's non-linear u-v grid (1 = linear, up to 20) [default: 5]; refused where none is
+    /// built.
     #[cfg_attr(feature = "cli", arg(long = "uv-power", value_name = "A"))]
     pub uv_power: Option<f64>,
 }
@@ -184,11 +186,34 @@ pub struct TableGrid {
 impl TableGrid {
     /// The grid a table from a SURFACE is built on.
     pub fn params(&self) -> TableParams {
-        let d = TableParams::default();
+        self.params_or(TableParams::default())
+    }
+
+    /// The grid, with `default`'s values for what was not given.
+    pub fn params_or(&self, default: TableParams) -> TableParams {
         TableParams {
-            uv_resolution: self.uv_resolution.unwrap_or(d.uv_resolution),
-            uv_power: self.uv_power.unwrap_or(d.uv_power),
+            uv_resolution: self.uv_resolution.unwrap_or(default.uv_resolution),
+            uv_power: self.uv_power.unwrap_or(default.uv_power),
         }
+    }
+
+    /// What was given, as flags (`--uv-resolution 101`, `--uv-power 1`).
+    pub fn flags(&self) -> Vec<String> {
+        let mut given: Vec<String> = self.uv_resolution.map(|v| format!("--uv-resolution {v}")).into_iter().collect();
+        given.extend(self.uv_power.map(|p| format!("--uv-power {p}")));
+        given
+    }
+
+    /// Refuses what was given when `method` builds no table from it, naming the method that would.
+    pub fn refuse_unless_lookup(&self, method: &str) -> Result<()> {
+        let given = self.flags();
+        if method != "lookup" && !given.is_empty() {
+            bail!(
+                "{} would be ignored: the {method} method builds no lookup table (the lookup method does)",
+                given.join(", ")
+            );
+        }
+        Ok(())
     }
 }
 
@@ -204,13 +229,7 @@ pub fn refuse_build_options_for_table(
     if !is_table(input) {
         return Ok(());
     }
-    let mut given = Vec::new();
-    if let Some(v) = grid.uv_resolution {
-        given.push(format!("--uv-resolution {v}"));
-    }
-    if let Some(p) = grid.uv_power {
-        given.push(format!("--uv-power {p}"));
-    }
+    let mut given = grid.flags();
     if let Some(p) = surface.pixel_size_nm {
         given.push(format!("--pixel-size {p}nm"));
     }

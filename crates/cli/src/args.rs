@@ -4,7 +4,6 @@
 #![allow(dead_code)] // not every command uses every parser
 
 use iridis_diffraction::geometry::FresnelConvention;
-use iridis_diffraction::table::TableParams;
 
 pub use iridis_api::args::{angle_rad, fresnel_convention, length_nm, positive_length_nm};
 
@@ -205,24 +204,6 @@ pub struct FitArgs {
     /// Print JSON.
     #[arg(long)]
     pub json: bool,
-}
-
-/// The u-v grid of a lookup table the command builds (`precompute`, `brdf-map`, `compare`, `experiment laser`);
-/// the defaults are [`TableParams::default`]'s, the paper's.
-#[derive(Debug, Clone, Copy, clap::Args)]
-pub struct UvGridOpts {
-    /// u-v samples per axis of a lookup table the command builds (3 to 4001).
-    #[arg(long, default_value_t = TableParams::default().uv_resolution)]
-    pub uv_resolution: usize,
-    /// Exponent a of that table's non-linear u-v grid (1 = linear, up to 20).
-    #[arg(long, default_value_t = TableParams::default().uv_power)]
-    pub uv_power: f64,
-}
-
-impl From<UvGridOpts> for TableParams {
-    fn from(g: UvGridOpts) -> Self {
-        Self { uv_resolution: g.uv_resolution, uv_power: g.uv_power }
-    }
 }
 
 /// Options shared by the commands that build Taylor terms (`precompute`, `brdf-map`, `brdf eval`, `brdf vision`).

@@ -254,7 +254,21 @@ fn sweep_refuses_bad_input_clearly() {
     assert_fails(&["sweep", s, "--param", "colour", "--values", "1", "-o", o], &["colour", "uv-power"]);
     assert_fails(&["sweep", s, "--method", "lookup", "--param", "uv-power", "--values", "0", "-o", o], &["uv-power"]);
     assert_fails(&["sweep", s, "--param", "coherence", "--values", ",", "-o", o], &["--values"]);
+    // A u-v grid where no table is built from it would be ignored: refused, naming why.
+    assert_fails(
+        &["sweep", s, "--param", "terms", "--values", "2", "--uv-resolution", "51", "-o", o],
+        &["--uv-resolution 51 would be ignored", "the reference method builds no lookup table"],
+    );
+    let swept = ["sweep", s, "--method", "lookup", "--param", "uv-resolution", "--values", "21,41"];
+    assert_fails(&[&swept[..], &["--uv-resolution", "51", "-o", o]].concat(), &["the parameter swept"]);
     assert!(!out.exists(), "a refused sweep left a file behind");
+    let compare = ["compare", s, "--methods", "reference,stam-periodic", "--size", "8"];
+    assert_fails(&[&compare[..], &["--uv-power", "2"]].concat(), &["--uv-power 2 would be ignored", "add lookup"]);
+    assert_fails(&[&compare[..], &["--table", "t.npz"]].concat(), &["--table t.npz would be ignored"]);
+    let laser = ["experiment", "laser", s, "--method", "reference", "--uv-resolution", "31", "-o", o];
+    assert_fails(&laser, &["--uv-resolution 31 would be ignored", "reference method"]);
+    let eval = ["brdf", "eval", s, "--light", "0deg", "--view", "10deg", "--uv-resolution", "31"];
+    assert_fails(&eval, &["--uv-resolution 31 would be ignored", "reference method"]);
 }
 
 /// `experiment laser` with a tiny laser spectrum (a 530–535 nm band) on a 1000 nm sine grating, two

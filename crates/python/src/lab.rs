@@ -4,8 +4,8 @@
 
 use iridis_api::lab::{parse_against, LabOptions};
 use iridis_api::lab_run as run;
+use iridis_api::model::TableGrid;
 use iridis_api::surface::Source;
-use iridis_diffraction::TableParams;
 use iridis_lab::bench::BenchSetup;
 use iridis_lab::methods::Method;
 use numpy::ndarray::{Array2, Array3};
@@ -119,8 +119,8 @@ fn _compare<'py>(
     size: usize,
     step_nm: f64,
     illuminant: &str,
-    uv_resolution: usize,
-    uv_power: f64,
+    uv_resolution: Option<usize>,
+    uv_power: Option<f64>,
     table: Option<String>,
     options: Option<Bound<'py, PyDict>>,
 ) -> PyResult<(String, Bound<'py, PyDict>)> {
@@ -147,7 +147,7 @@ fn _compare<'py>(
         size,
         illuminant: illuminant.to_string(),
         dlambda_nm: step_nm,
-        table: TableParams { uv_resolution, uv_power },
+        table: TableGrid { uv_resolution, uv_power },
         table_path: table.map(Into::into),
         gpu: false,
         maps: None,
@@ -169,7 +169,7 @@ fn _compare<'py>(
 /// A convergence sweep (`iridis sweep`): writes the contact sheet to `output` (and the error plot to `plot`,
 /// default `output`'s name with `_error`) and returns `iridis sweep --json`'s text.
 #[pyfunction]
-#[pyo3(signature = (surface, param, values, output, method="reference", against="model", exposures=vec![1000.0], theta_i=0.0, phi_i=0.0, size=64, step_nm=5.0, uv_resolution=201, uv_power=5.0, plot=None, options=None))]
+#[pyo3(signature = (surface, param, values, output, method="reference", against="model", exposures=vec![1000.0], theta_i=0.0, phi_i=0.0, size=64, step_nm=5.0, uv_resolution=None, uv_power=None, plot=None, options=None))]
 fn _sweep<'py>(
     py: Python<'py>,
     surface: &Bound<'py, PyAny>,
@@ -183,8 +183,8 @@ fn _sweep<'py>(
     phi_i: f64,
     size: usize,
     step_nm: f64,
-    uv_resolution: usize,
-    uv_power: f64,
+    uv_resolution: Option<usize>,
+    uv_power: Option<f64>,
     plot: Option<std::path::PathBuf>,
     options: Option<Bound<'py, PyDict>>,
 ) -> PyResult<String> {
@@ -197,7 +197,7 @@ fn _sweep<'py>(
         incidence: (theta_i, phi_i),
         size,
         dlambda_nm: step_nm,
-        table: TableParams { uv_resolution, uv_power },
+        table: TableGrid { uv_resolution, uv_power },
         gpu: false,
         output,
         plot,
@@ -209,7 +209,7 @@ fn _sweep<'py>(
 /// The laser experiment (`iridis experiment laser`): writes the screen image(s) and returns `(json, xyz)` —
 /// `iridis experiment laser --json`'s text and the screen as XYZ of shape (size, size, 3).
 #[pyfunction]
-#[pyo3(signature = (surface, output, method="reference", incidence=std::f64::consts::FRAC_PI_4, azimuth=0.0, aperture_nm=65_000.0, distance_nm=1e8, screen_nm=3e8, size=101, subsamples=3, spectrum=None, coating="gold", exposures=vec![1.0, 1000.0, 7500.0], step_nm=5.0, uv_resolution=501, uv_power=5.0, table=None, save_table=None, options=None))]
+#[pyo3(signature = (surface, output, method="reference", incidence=std::f64::consts::FRAC_PI_4, azimuth=0.0, aperture_nm=65_000.0, distance_nm=1e8, screen_nm=3e8, size=101, subsamples=3, spectrum=None, coating="gold", exposures=vec![1.0, 1000.0, 7500.0], step_nm=5.0, uv_resolution=None, uv_power=None, table=None, save_table=None, options=None))]
 fn _laser<'py>(
     py: Python<'py>,
     surface: &Bound<'py, PyAny>,
@@ -226,8 +226,8 @@ fn _laser<'py>(
     coating: &str,
     exposures: Vec<f64>,
     step_nm: f64,
-    uv_resolution: usize,
-    uv_power: f64,
+    uv_resolution: Option<usize>,
+    uv_power: Option<f64>,
     table: Option<std::path::PathBuf>,
     save_table: Option<std::path::PathBuf>,
     options: Option<Bound<'py, PyDict>>,
@@ -249,7 +249,7 @@ fn _laser<'py>(
         coating: coating.to_string(),
         exposures,
         dlambda_nm: step_nm,
-        table: TableParams { uv_resolution, uv_power },
+        table: TableGrid { uv_resolution, uv_power },
         output,
         table_path: table,
         save_table,

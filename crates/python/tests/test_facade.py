@@ -185,7 +185,7 @@ def test_testbench_equals_the_cli():
 def test_compare_equals_the_cli():
     ref = cli("compare_elaphe")
     r = lab.compare("builtin:elaphe?size=6um&pixel=60nm", methods=["reference", "stam-gaussian"], coherence_nm=3000.0,
-                    size=24, uv_resolution=101)
+                    size=24)
     assert len(r["results"]) == len(ref["results"])
     for a, b in zip(r["results"], ref["results"]):
         assert (a["method"], a["against"], a["exposure_ru"]) == (b["method"], b["against"], b["exposure_ru"])
@@ -210,6 +210,16 @@ def test_lab_bad_input():
         lab.compare("builtin:blazed?size=20um&pixel=50nm", exposures=[-1.0])
     with pytest.raises(TypeError, match="surface must be"):
         lab.compare(3.0)
+    # A u-v grid where no table is built from it would be ignored: refused, as by the CLI.
+    with pytest.raises(ValueError, match="--uv-resolution 101 would be ignored: only the lookup method"):
+        lab.compare("builtin:blazed?size=6um&pixel=100nm", methods=["reference"], uv_resolution=101)
+    with pytest.raises(ValueError, match="--uv-power 2 would be ignored: the reference method builds no"):
+        lab.sweep("builtin:blazed?size=6um&pixel=100nm", "terms", [2], "/tmp/never.png", uv_power=2.0)
+    with pytest.raises(ValueError, match="the parameter swept"):
+        lab.sweep("builtin:blazed?size=6um&pixel=100nm", "uv-resolution", [21], "/tmp/never.png", method="lookup",
+                  uv_resolution=31)
+    with pytest.raises(ValueError, match="--uv-resolution 31 would be ignored: the reference method"):
+        lab.laser("builtin:blazed?size=6um&pixel=100nm", "/tmp/never.png", uv_resolution=31)
 
 
 # --- order efficiencies: iridis grating -------------------------------------------------------------------

@@ -9,7 +9,7 @@ use clap::Args as ClapArgs;
 use iridis_color::Encoding;
 use iridis_diffraction::Units;
 
-use crate::args::{parse_incidence, polar_azimuth, ModelOpts, RigorousOpts, ShadingOpts, UvGridOpts};
+use crate::args::{parse_incidence, polar_azimuth, ModelOpts, RigorousOpts, ShadingOpts};
 use crate::output::print_answer;
 use crate::progress::Cli;
 
@@ -43,7 +43,7 @@ pub struct PrecomputeArgs {
     #[command(flatten)]
     pub model: ModelOpts,
     #[command(flatten)]
-    pub uv_grid: UvGridOpts,
+    pub grid: iridis_api::model::TableGrid,
     /// What the colours measure: relative (the paper's: a flat mirror's peak is 1) or radiometric (the BRDF:
     /// a flat surface reflects R(θ)/R₀ of the light).
     #[arg(long, value_name = "relative|radiometric", default_value = "relative", value_parser = units)]
@@ -281,7 +281,7 @@ pub fn run_precompute(a: PrecomputeArgs) -> Result<()> {
         surface: a.surface,
         surface_opts: a.surface_opts,
         model: a.model.options(),
-        params: a.uv_grid.into(),
+        params: a.grid.params(),
         units: a.units,
         gpu: a.gpu,
     };

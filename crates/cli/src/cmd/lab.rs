@@ -6,13 +6,13 @@ use std::path::PathBuf;
 use anyhow::Result;
 use clap::{Args as ClapArgs, Subcommand};
 use iridis_api::lab_run::{self as run, parse_exposures, parse_list};
+use iridis_api::model::TableGrid;
 use iridis_api::surface::Source;
-use iridis_diffraction::table::TableParams;
 use iridis_lab::bench::BenchSetup;
 use iridis_lab::laser::LaserSetup;
 use iridis_lab::methods::Method;
 
-use crate::args::{angle_rad, polar_azimuth, positive_length_nm, UvGridOpts};
+use crate::args::{angle_rad, polar_azimuth, positive_length_nm};
 use crate::output::print_answer;
 use crate::progress::Cli;
 
@@ -180,7 +180,7 @@ pub struct CompareArgs {
     #[arg(long, default_value = "d65")]
     pub illuminant: String,
     #[command(flatten)]
-    pub uv_grid: UvGridOpts,
+    pub grid: TableGrid,
     /// A precomputed lookup table (from `iridis precompute`) for the lookup method.
     #[arg(long)]
     pub table: Option<PathBuf>,
@@ -206,7 +206,7 @@ pub fn run_compare(a: CompareArgs) -> Result<()> {
         size: a.size,
         illuminant: a.illuminant.clone(),
         dlambda_nm: a.dlambda,
-        table: a.uv_grid.into(),
+        table: a.grid,
         table_path: a.table.clone(),
         gpu: a.gpu,
         maps: a.maps.clone(),
@@ -264,12 +264,13 @@ pub struct SweepArgs {
     /// Wavelength step (when not swept).
     #[arg(long, value_parser = positive_length_nm, default_value = "5nm")]
     pub dlambda: f64,
-    /// u-v samples per axis for lookup (when not swept).
-    #[arg(long, default_value_t = 201)]
-    pub uv_resolution: usize,
-    /// u-v exponent for lookup (when not swept).
-    #[arg(long, default_value_t = 5.0)]
-    pub uv_power: f64,
+    /// u-v samples per axis of the lookup method's tables [default: 201]; refused where swept or with another
+    /// method.
+    #[arg(long, value_name = "N")]
+    pub uv_resolution: Option<usize>,
+    /// u-v exponent of the lookup method's tables [default: 5]; refused where swept or with another method.
+    #[arg(long, value_name = "A")]
+    pub uv_power: Option<f64>,
     /// Contact sheet (PNG).
     #[arg(short, long)]
     pub output: PathBuf,
@@ -297,7 +298,7 @@ pub fn run_sweep(a: SweepArgs) -> Result<()> {
         incidence: polar_azimuth("incidence", &a.incidence)?,
         size: a.size,
         dlambda_nm: a.dlambda,
-        table: TableParams { uv_resolution: a.uv_resolution, uv_power: a.uv_power },
+        table: TableGrid { uv_resolution: a.uv_resolution, uv_power: a.uv_power },
         gpu: a.gpu,
         output: a.output.clone(),
         plot: a.plot.clone(),
@@ -379,7 +380,7 @@ pub struct LaserArgs {
     pub output: PathBuf,
     // The lookup table built for the beam (--method lookup).
     #[command(flatten)]
-    pub uv_grid: UvGridOpts,
+    pub grid: TableGrid,
     /// A lookup table made for this surface, aperture and beam (by --save-table), for --method lookup.
     #[arg(long)]
     pub table: Option<PathBuf>,
@@ -412,7 +413,7 @@ pub fn run_experiment(c: ExperimentCommand) -> Result<()> {
         coating: a.coating.clone(),
         exposures: parse_exposures(&a.exposures)?,
         dlambda_nm: a.dlambda,
-        table: a.uv_grid.into(),
+        table: a.grid,
         output: a.output.clone(),
         table_path: a.table.clone(),
         save_table: a.save_table.clone(),

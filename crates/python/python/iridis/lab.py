@@ -76,7 +76,7 @@ def testbench(surface, method="reference", incidence=math.radians(75.0), azimuth
 
 def compare(surface, methods=("lookup", "reference", "stam-periodic", "stam-gaussian"), against="model",
             exposures=(1.0, 1000.0, 7500.0), incidence=(0.0, 0.0), size=101, step_nm=5.0, illuminant="d65",
-            uv_resolution=501, uv_power=5.0, table=None, **options):
+            uv_resolution=None, uv_power=None, table=None, **options):
     """CIELAB errors between methods (paper sec. 6.3, Table 2): each method's BRDF map displayed at each
     exposure and compared per pixel by CIEDE2000 with the ground truth of its own model (``against="model"``,
     the patch's periodic extension), the finite aperture (``"ground-truth"``) or any method.
@@ -90,7 +90,7 @@ def compare(surface, methods=("lookup", "reference", "stam-periodic", "stam-gaus
     theta, phi = _incidence(incidence)
     out, maps = _native._compare(
         _surface(surface), [str(m).strip() for m in methods], str(against), [float(e) for e in exposures], theta,
-        phi, int(size), float(step_nm), str(illuminant), int(uv_resolution), float(uv_power),
+        phi, int(size), float(step_nm), str(illuminant), _opt(uv_resolution, int), _opt(uv_power, float),
         None if table is None else os.fspath(table), options)
     result = json.loads(out)
     result["maps"] = maps
@@ -98,38 +98,48 @@ def compare(surface, methods=("lookup", "reference", "stam-periodic", "stam-gaus
 
 
 def sweep(surface, param, values, output, method="reference", against="model", exposures=(1000.0,),
-          incidence=(0.0, 0.0), size=64, step_nm=5.0, uv_resolution=201, uv_power=5.0, plot=None, **options):
+          incidence=(0.0, 0.0), size=64, step_nm=5.0, uv_resolution=None, uv_power=None, plot=None, **options):
     """A convergence sweep (paper sec. 7, Figures 14–17; ``iridis sweep``): the method's BRDF map for each of
     ``values`` of ``param`` (``"terms"``, ``"dlambda"``, ``"coherence"`` — lengths in nm —, ``"uv-power"``,
     ``"uv-resolution"``) and its CIEDE2000 error against the ground truth (``against``: ``"model"``,
     ``"ground-truth"`` or ``"ground-truth-periodic"``). Writes the contact sheet to ``output`` and the
     error plot to ``plot`` (default ``output``'s name with ``_error``); returns ``iridis sweep --json``'s dict
-    (``points``: ``value``, ``errors`` and ``periodic_extension_error`` per exposure: ``mean``, ``p95``)."""
+    (``points``: ``value``, ``errors`` and ``periodic_extension_error`` per exposure: ``mean``, ``p95``).
+    ``uv_resolution`` (default 201) and ``uv_power`` (default 5) shape the lookup method's tables where not swept;
+    given with another method, or for the parameter swept, they raise ValueError (they would be ignored)."""
     theta, phi = _incidence(incidence)
     out = _native._sweep(_surface(surface), str(param), [float(v) for v in values], os.fspath(output), str(method),
                          str(against), [float(e) for e in exposures], theta, phi, int(size), float(step_nm),
-                         int(uv_resolution), float(uv_power), None if plot is None else os.fspath(plot), options)
+                         _opt(uv_resolution, int), _opt(uv_power, float), None if plot is None else os.fspath(plot),
+                         options)
     return json.loads(out)
 
 
 def laser(surface, output, method="reference", incidence=math.radians(45.0), azimuth=0.0, aperture_nm=65000.0,
           distance_nm=1e8, screen_nm=3e8, size=101, subsamples=3, spectrum=None, coating="gold",
-          exposures=(1.0, 1000.0, 7500.0), step_nm=5.0, uv_resolution=501, uv_power=5.0, table=None, save_table=None,
+          exposures=(1.0, 1000.0, 7500.0), step_nm=5.0, uv_resolution=None, uv_power=None, table=None, save_table=None,
           **options):
     """The laser experiment of the paper's Figure 8 (``iridis experiment laser``): a beam at ``incidence``
     through a diaphragm of ``aperture_nm`` (the coherence window) onto the sample, the screen ``distance_nm``
     away. Writes one PNG per exposure (``NAME_<E>RU.png`` when several) and returns ``iridis experiment laser
     --json``'s dict with ``xyz`` besides: the screen as XYZ of shape ``(size, size, 3)``. ``uv_resolution`` and
-    ``uv_power`` shape the lookup table built for the beam (``method="lookup"``)."""
+    ``uv_power`` shape the lookup table built for the beam (``method="lookup"``; with another method they raise
+    ValueError: they would be ignored)."""
     out, xyz = _native._laser(
         _surface(surface), os.fspath(output), str(method), float(incidence), float(azimuth), float(aperture_nm),
         float(distance_nm), float(screen_nm), int(size), int(subsamples),
         None if spectrum is None else os.fspath(spectrum), str(coating), [float(e) for e in exposures],
-        float(step_nm), int(uv_resolution), float(uv_power), None if table is None else os.fspath(table),
+        float(step_nm), _opt(uv_resolution, int), _opt(uv_power, float), None if table is None else os.fspath(table),
         None if save_table is None else os.fspath(save_table), options)
     result = json.loads(out)
     result["xyz"] = xyz
     return result
+
+
+def _opt(value, kind):
+    """``kind(value)``, or None for an option not given (the library then takes its default, and refuses what
+    was given where it would be ignored)."""
+    return None if value is None else kind(value)
 
 
 def _incidence(incidence):
