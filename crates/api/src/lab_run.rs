@@ -395,7 +395,8 @@ pub struct SweepRequest {
     pub exposures: Vec<f64>,
     pub incidence: (f64, f64),
     pub size: usize,
-    pub dlambda_nm: f64,
+    /// The wavelength step where it is not swept; `None`: the default spectral setup's (5 nm).
+    pub dlambda_nm: Option<f64>,
     /// The u-v grid of the lookup method's tables where it is not swept ([`SWEEP_UV_GRID`] where not given).
     pub table: TableGrid,
     pub gpu: bool,
@@ -435,13 +436,16 @@ pub fn sweep_run(source: &Source, lab: &LabOptions, req: &SweepRequest, report: 
     }
     iridis_lab::sweep::check_values(param, &req.values)?;
     req.table.refuse_unless_lookup(method.name())?;
+    // The parameter swept given as an option too: each value of --values would replace it.
     let swept_and_given = match param {
         Param::UvResolution => req.table.uv_resolution.map(|v| format!("--uv-resolution {v}")),
         Param::UvPower => req.table.uv_power.map(|p| format!("--uv-power {p}")),
-        _ => None,
+        Param::DLambda => req.dlambda_nm.map(|d| format!("--dlambda {d}nm")),
+        Param::Coherence => lab.coherence_nm.map(|c| format!("--coherence {c}nm")),
+        Param::Terms => (lab.terms.trim() != "auto").then(|| format!("--terms {}", lab.terms.trim())),
     };
     if let Some(flag) = swept_and_given {
-        bail!("{flag} would be ignored: it is the parameter swept (--values {})", param.name());
+        bail!("{flag} would be ignored: {} is the parameter swept, its values come from --values", param.name());
     }
     let against = match req.against.trim().to_ascii_lowercase().as_str() {
         "model" | "own" => method.model_truth(),
@@ -463,7 +467,8 @@ pub fn sweep_run(source: &Source, lab: &LabOptions, req: &SweepRequest, report: 
     });
     crate::output::declare("--plot", &plot_path, &["png"])?;
     let mut config = lab.config()?;
-    config.spectral = spectral("d65", req.dlambda_nm, report)?;
+    let dlambda_nm = req.dlambda_nm.unwrap_or(SpectralSetup::default().step_nm);
+    config.spectral = spectral("d65", dlambda_nm, report)?;
     config.table = req.table.params_or(SWEEP_UV_GRID);
     config.accelerator = crate::lab::gpu_accelerator(req.gpu, report)?;
     let b = workbench_from(source, lab, config, report)?;

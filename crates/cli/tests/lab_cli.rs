@@ -261,6 +261,14 @@ fn sweep_refuses_bad_input_clearly() {
     );
     let swept = ["sweep", s, "--method", "lookup", "--param", "uv-resolution", "--values", "21,41"];
     assert_fails(&[&swept[..], &["--uv-resolution", "51", "-o", o]].concat(), &["the parameter swept"]);
+    for (param, values, given) in [
+        ("dlambda", "2nm,5nm", ["--dlambda", "10nm"]),
+        ("coherence", "2um", ["--coherence", "3um"]),
+        ("terms", "2", ["--terms", "4"]),
+    ] {
+        let args = ["sweep", s, "--param", param, "--values", values, given[0], given[1], "-o", o];
+        assert_fails(&args, &[&format!("{} ", given[0]), "would be ignored", "the parameter swept"]);
+    }
     assert!(!out.exists(), "a refused sweep left a file behind");
     let compare = ["compare", s, "--methods", "reference,stam-periodic", "--size", "8"];
     assert_fails(&[&compare[..], &["--uv-power", "2"]].concat(), &["--uv-power 2 would be ignored", "add lookup"]);

@@ -169,7 +169,7 @@ fn _compare<'py>(
 /// A convergence sweep (`iridis sweep`): writes the contact sheet to `output` (and the error plot to `plot`,
 /// default `output`'s name with `_error`) and returns `iridis sweep --json`'s text.
 #[pyfunction]
-#[pyo3(signature = (surface, param, values, output, method="reference", against="model", exposures=vec![1000.0], theta_i=0.0, phi_i=0.0, size=64, step_nm=5.0, uv_resolution=None, uv_power=None, plot=None, options=None))]
+#[pyo3(signature = (surface, param, values, output, method="reference", against="model", exposures=vec![1000.0], theta_i=0.0, phi_i=0.0, size=64, step_nm=None, uv_resolution=None, uv_power=None, plot=None, options=None))]
 fn _sweep<'py>(
     py: Python<'py>,
     surface: &Bound<'py, PyAny>,
@@ -182,7 +182,7 @@ fn _sweep<'py>(
     theta_i: f64,
     phi_i: f64,
     size: usize,
-    step_nm: f64,
+    step_nm: Option<f64>,
     uv_resolution: Option<usize>,
     uv_power: Option<f64>,
     plot: Option<std::path::PathBuf>,

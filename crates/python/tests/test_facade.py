@@ -218,6 +218,8 @@ def test_lab_bad_input():
     with pytest.raises(ValueError, match="the parameter swept"):
         lab.sweep("builtin:blazed?size=6um&pixel=100nm", "uv-resolution", [21], "/tmp/never.png", method="lookup",
                   uv_resolution=31)
+    with pytest.raises(ValueError, match="--dlambda 10nm would be ignored: dlambda is the parameter swept"):
+        lab.sweep("builtin:blazed?size=6um&pixel=100nm", "dlambda", [2.0, 5.0], "/tmp/never.png", step_nm=10.0)
     with pytest.raises(ValueError, match="--uv-resolution 31 would be ignored: the reference method"):
         lab.laser("builtin:blazed?size=6um&pixel=100nm", "/tmp/never.png", uv_resolution=31)
 

@@ -261,9 +261,9 @@ pub struct SweepArgs {
     /// Map size in pixels.
     #[arg(long, default_value_t = 64)]
     pub size: usize,
-    /// Wavelength step (when not swept).
-    #[arg(long, value_parser = positive_length_nm, default_value = "5nm")]
-    pub dlambda: f64,
+    /// Wavelength step [default: 5nm]; refused where swept.
+    #[arg(long, value_parser = positive_length_nm)]
+    pub dlambda: Option<f64>,
     /// u-v samples per axis of the lookup method's tables [default: 201]; refused where swept or with another
     /// method.
     #[arg(long, value_name = "N")]

@@ -98,18 +98,19 @@ def compare(surface, methods=("lookup", "reference", "stam-periodic", "stam-gaus
 
 
 def sweep(surface, param, values, output, method="reference", against="model", exposures=(1000.0,),
-          incidence=(0.0, 0.0), size=64, step_nm=5.0, uv_resolution=None, uv_power=None, plot=None, **options):
+          incidence=(0.0, 0.0), size=64, step_nm=None, uv_resolution=None, uv_power=None, plot=None, **options):
     """A convergence sweep (paper sec. 7, Figures 14–17; ``iridis sweep``): the method's BRDF map for each of
     ``values`` of ``param`` (``"terms"``, ``"dlambda"``, ``"coherence"`` — lengths in nm —, ``"uv-power"``,
     ``"uv-resolution"``) and its CIEDE2000 error against the ground truth (``against``: ``"model"``,
     ``"ground-truth"`` or ``"ground-truth-periodic"``). Writes the contact sheet to ``output`` and the
     error plot to ``plot`` (default ``output``'s name with ``_error``); returns ``iridis sweep --json``'s dict
     (``points``: ``value``, ``errors`` and ``periodic_extension_error`` per exposure: ``mean``, ``p95``).
-    ``uv_resolution`` (default 201) and ``uv_power`` (default 5) shape the lookup method's tables where not swept;
-    given with another method, or for the parameter swept, they raise ValueError (they would be ignored)."""
+    ``step_nm`` (default 5), ``uv_resolution`` (default 201) and ``uv_power`` (default 5) apply where not swept;
+    given for the parameter swept (``coherence_nm`` and ``terms`` too), or a u-v grid with another method than
+    lookup, they raise ValueError (they would be ignored)."""
     theta, phi = _incidence(incidence)
     out = _native._sweep(_surface(surface), str(param), [float(v) for v in values], os.fspath(output), str(method),
-                         str(against), [float(e) for e in exposures], theta, phi, int(size), float(step_nm),
+                         str(against), [float(e) for e in exposures], theta, phi, int(size), _opt(step_nm, float),
                          _opt(uv_resolution, int), _opt(uv_power, float), None if plot is None else os.fspath(plot),
                          options)
     return json.loads(out)

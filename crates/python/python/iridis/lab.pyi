@@ -41,7 +41,7 @@ def sweep(
     exposures: Sequence[float] = ...,
     incidence: Union[float, tuple[float, float]] = ...,
     size: int = ...,
-    step_nm: float = ...,
+    step_nm: Optional[float] = ...,
     uv_resolution: Optional[int] = ...,
     uv_power: Optional[float] = ...,
     plot: Optional[Union[str, os.PathLike[str]]] = ...,
