@@ -304,6 +304,7 @@ fn gpu_options_are_checked() {
         &["bench", "gpu", "--gt-surface", &sxm, "--channel", "Current", "--as-height"],
         &["--gt-surface", "give --height-unit"],
     );
+    assert_fails(&["bench", "gpu", "examples/gold_sphere.toml", "--level", "none"], &["--level none would be ignored"]);
 }
 
 /// A table built by `precompute --gpu` against the CPU's, from the files.

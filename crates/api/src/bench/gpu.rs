@@ -231,6 +231,14 @@ pub fn gpu(a: &GpuBenchOptions, report: &dyn Report) -> Result<Bench> {
     let direct_weights = sampled_weights(a.spectral_samples, FULL_BAND_NM)
         .with_context(|| format!("--spectral-samples {}", a.spectral_samples))?;
     if let Some(p) = &a.scene {
+        // A scene names its own surfaces and tables: the surface flags would be ignored.
+        let given = a.surface_options.flags();
+        if !given.is_empty() {
+            bail!(
+                "{} would be ignored: with a SCENE, bench gpu reads no --build-surface or --gt-surface",
+                given.join(" ")
+            );
+        }
         return scene(a, p, report);
     }
     let (mw, mh) = parse_size(&a.size, "--size")?;
