@@ -60,8 +60,8 @@ pub fn brdf_eval(r: &EvalRequest, spectra: Option<&Path>, report: &dyn Report) -
     refuse_build_options_for_table(&r.input, r.grid, &r.surface, "brdf eval")?;
     let method = method_of(r);
     r.grid.refuse_unless_lookup(&method)?;
+    let r0 = shading.fresnel.normal_reflectance();
     let p = eval_point(&r.input, Some(&method), &r.model, shading, r.grid.params(), &r.surface, wi, wr, report)?;
-    let r0 = crate::fresnel::shading(&r.fresnel, r.convention, r.shadowing)?.fresnel.normal_reflectance();
     if let Some(path) = spectra {
         crate::output::write_bytes(path, p.spectra_csv()?.as_bytes())?;
     }

@@ -37,8 +37,8 @@ pub fn view(
         if !path.exists() {
             bail!("scene {} does not exist", path.display());
         }
-        let mut given = surface.flags();
-        given.splice(0..0, uv_resolution.map(|n| format!("--uv-resolution {n}")));
+        let given: Vec<String> =
+            uv_resolution.map(|n| format!("--uv-resolution {n}")).into_iter().chain(surface.flags()).collect();
         if !given.is_empty() {
             bail!(
                 "{input} is a scene, so {} would be ignored: these options shape the table `iridis view` builds \
@@ -50,8 +50,7 @@ pub fn view(
     } else {
         let grid = crate::model::TableGrid { uv_resolution, uv_power: None };
         crate::model::refuse_build_options_for_table(input, grid, surface, "view")?;
-        let params =
-            TableParams { uv_resolution: uv_resolution.unwrap_or(VIEW_UV_RESOLUTION), ..TableParams::default() };
+        let params = grid.params_or(TableParams { uv_resolution: VIEW_UV_RESOLUTION, ..TableParams::default() });
         let table = crate::model::lookup_table(None, input, &ModelOptions::default(), params, surface, report)?;
         ViewInput::Table { table: Box::new(table), name: input.to_string() }
     };
