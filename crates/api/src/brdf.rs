@@ -114,6 +114,7 @@ pub fn evaluator_for(source: &Source, setup: EvaluatorSetup<'_>, report: &dyn Re
     }
     // The lab's methods, and the rigorous one (handled above) listed with them.
     let parsed: Method = method.parse().map_err(|e| anyhow::anyhow!("{e}, {RIGOROUS}"))?;
+    crate::lab::refuse_unused_terms(&model.terms, &[parsed], false)?;
     if method == "lookup" && shading.fresnel.depends_on_wavelength() {
         // Refused before the (long) table build rather than after it.
         bail!(

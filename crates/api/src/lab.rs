@@ -47,9 +47,10 @@ pub struct LabOptions {
     #[cfg_attr(feature = "cli", arg(long = "no-shadowing", action = clap::ArgAction::SetFalse))]
     #[cfg_attr(feature = "cli", arg(help = "Leave out the Cook–Torrance shadowing term"))]
     pub shadowing: bool,
-    /// ε of Stam's wavelength selection (paper: 0.01).
-    #[cfg_attr(feature = "cli", arg(long = "epsilon", value_name = "EPSILON", default_value_t = 0.01))]
-    pub stam_epsilon: f64,
+    /// ε of the wavelength selection of Stam's periodic models (stam-periodic, stam-periodic-triangular)
+    /// [default: 0.01, the paper's]; refused with other methods.
+    #[cfg_attr(feature = "cli", arg(long = "epsilon", value_name = "EPSILON"))]
+    pub stam_epsilon: Option<f64>,
 }
 
 impl Default for LabOptions {
@@ -61,7 +62,7 @@ impl Default for LabOptions {
             fresnel: "schlick:1.5".into(),
             convention: FresnelConvention::Physical,
             shadowing: true,
-            stam_epsilon: 0.01,
+            stam_epsilon: None,
         }
     }
 }
@@ -77,7 +78,7 @@ impl LabOptions {
                 _ => bail!("--terms '{t}' must be 'auto' or a number of terms from 1 to 200"),
             },
         };
-        Ok(MethodConfig {
+        let mut config = MethodConfig {
             // Replaced by the patch's coherence in `workbench` when none is given.
             coherence_nm: self.coherence_nm.unwrap_or(iridis_diffraction::DEFAULT_COHERENCE_NM),
             terms,
@@ -86,9 +87,59 @@ impl LabOptions {
                 shadowing: self.shadowing,
                 convention: self.convention,
             },
-            stam_epsilon: self.stam_epsilon,
             ..MethodConfig::default()
-        })
+        };
+        if let Some(e) = self.stam_epsilon {
+            config.stam_epsilon = e;
+        }
+        Ok(config)
+    }
+
+    /// Refuses `--terms N` and `--epsilon` when none of the command's `methods` reads them: each would change
+    /// nothing, without a word. `rigorous`: the rigorous method is among them (it reads the terms, for the scalar
+    /// lobes it scales).
+    pub fn refuse_unused(&self, methods: &[Method], rigorous: bool) -> Result<()> {
+        refuse_unused_terms(&self.terms, methods, rigorous)?;
+        if let Some(e) = self.stam_epsilon {
+            if !methods.iter().any(|m| m.uses_stam_epsilon()) {
+                let users: Vec<&str> = Method::ALL.iter().filter(|m| m.uses_stam_epsilon()).map(|m| m.name()).collect();
+                bail!(
+                    "--epsilon {e} would be ignored: it is ε of the wavelength selection of Stam's periodic models \
+                     ({}), and {} none",
+                    users.join(", "),
+                    who(methods, rigorous, ("has", "have"))
+                );
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Refuses `--terms N` (anything but `auto`) when none of `methods` (and not the rigorous one) is built from
+/// Taylor terms: the ground truths and Stam's models would ignore it.
+pub fn refuse_unused_terms(terms: &str, methods: &[Method], rigorous: bool) -> Result<()> {
+    let terms = terms.trim();
+    if terms != "auto" && !rigorous && !methods.iter().any(|m| m.uses_taylor_terms()) {
+        let users: Vec<&str> = Method::ALL.iter().filter(|m| m.uses_taylor_terms()).map(|m| m.name()).collect();
+        bail!(
+            "--terms {terms} would be ignored: {} no Taylor terms ({} and {} do)",
+            who(methods, rigorous, ("uses", "use")),
+            users.join(", "),
+            crate::brdf::RIGOROUS
+        );
+    }
+    Ok(())
+}
+
+/// "the NAME method VERB" or "the methods A, B VERBS", with `verb` (singular, plural).
+fn who(methods: &[Method], rigorous: bool, verb: (&str, &str)) -> String {
+    let mut names: Vec<&str> = methods.iter().map(|m| m.name()).collect();
+    if rigorous {
+        names.push(crate::brdf::RIGOROUS);
+    }
+    match names.as_slice() {
+        [one] => format!("the {one} method {}", verb.0),
+        many => format!("the methods {} {}", many.join(", "), verb.1),
     }
 }
 

@@ -88,12 +88,14 @@ pub fn testbench_run(
     report: &dyn Report,
 ) -> Result<TestbenchRun> {
     let rigorous = req.method == crate::brdf::RIGOROUS;
+    let methods = if rigorous { Vec::new() } else { vec![req.method.parse::<Method>()?] };
     if !rigorous {
         if req.rigorous.material.is_some() || req.rigorous.unit_cell_auto {
             bail!("--material and --unit-cell auto are the rigorous method's: add --method rigorous");
         }
-        crate::lab::check_spectral(req.method.parse::<Method>()?)?;
+        crate::lab::check_spectral(methods[0])?;
     }
+    lab.refuse_unused(&methods, rigorous)?;
     crate::output::declare_opt("--plot", req.plot.as_deref(), &["png"])?;
     let setup = req.setup.clone();
     let t = if rigorous {
@@ -107,8 +109,7 @@ pub fn testbench_run(
             report,
         )?
     } else {
-        let m: Method = req.method.parse()?;
-        crate::lab::testbench(source, lab, m, setup, req.along_dominant, req.max_period_nm, report)?
+        crate::lab::testbench(source, lab, methods[0], setup, req.along_dominant, req.max_period_nm, report)?
     };
     if let Some(r) = &t.rigorous {
         report.note(&r.sentence());
@@ -280,6 +281,7 @@ pub fn compare_run(source: &Source, lab: &LabOptions, req: &CompareRequest, repo
             );
         }
     }
+    lab.refuse_unused(&req.methods.iter().copied().chain(req.against).collect::<Vec<_>>(), false)?;
     if let Some(d) = &req.maps {
         std::fs::create_dir_all(d).with_context(|| format!("cannot create {}", d.display()))?;
     }
@@ -436,6 +438,7 @@ pub fn sweep_run(source: &Source, lab: &LabOptions, req: &SweepRequest, report: 
     }
     iridis_lab::sweep::check_values(param, &req.values)?;
     req.table.refuse_unless_lookup(method.name())?;
+    lab.refuse_unused(&[method], false)?;
     // The parameter swept given as an option too: each value of --values would replace it.
     let swept_and_given = match param {
         Param::UvResolution => req.table.uv_resolution.map(|v| format!("--uv-resolution {v}")),
@@ -600,6 +603,14 @@ pub fn laser_run(source: &Source, lab: &LabOptions, req: &LaserRequest, report: 
         bail!("--table and --save-table are lookup tables: use them with --method lookup, not {method}");
     }
     req.table.refuse_unless_lookup(method.name())?;
+    lab.refuse_unused(&[method], false)?;
+    if let Some(c) = lab.coherence_nm {
+        bail!(
+            "--coherence {len} would be ignored: the laser experiment's coherence window is the diaphragm's \
+             aperture; give --aperture {len}",
+            len = iridis_color::units::format_length(c)
+        );
+    }
     if req.table_path.is_some() && req.save_table.is_some() {
         bail!("--table reuses a table and --save-table writes the one built here: give one of them");
     }

@@ -83,6 +83,56 @@ fn lab_commands_refuse_bad_input_clearly() {
     assert_fails(&["compare", "builtin:blazed", "--methods", "lookup", "--exposures", "bright"], &["bright"]);
 }
 
+/// An option no method of the command reads is refused, naming the methods that would read it: `--terms` (the
+/// ground truths and Stam's models use no Taylor terms), `--epsilon` (Stam's periodic models only) and, in the
+/// laser experiment, `--coherence` (its window is the diaphragm's `--aperture`). They changed nothing before.
+#[test]
+fn lab_options_no_method_reads_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("x.png");
+    let (s, o) = ("builtin:sine?size=4um&pixel=100nm", png.to_str().unwrap());
+    let terms_users = "(reference, lookup, nmm, pq and rigorous do)";
+    let cases: [(&[&str], &[&str]); 8] = [
+        (&["testbench", s, "--method", "ground-truth", "--terms", "3"], &["--terms 3", "ground-truth", terms_users]),
+        (&["testbench", s, "--method", "rigorous", "--epsilon", "0.1"], &["--epsilon 0.1", "rigorous method has"]),
+        (
+            &["compare", s, "--methods", "ground-truth,stam-gaussian", "--terms", "3"],
+            &["--terms 3", "methods ground-truth, stam-gaussian use no", terms_users],
+        ),
+        (
+            &["compare", s, "--methods", "reference,nmm", "--epsilon", "0.05"],
+            &["--epsilon", "stam-periodic-triangular"],
+        ),
+        (
+            &[
+                "sweep",
+                s,
+                "--method",
+                "stam-gaussian",
+                "--param",
+                "coherence",
+                "--values",
+                "2um",
+                "--terms",
+                "4",
+                "-o",
+                o,
+            ],
+            &["--terms 4", "stam-gaussian"],
+        ),
+        (&["experiment", "laser", s, "--method", "stam-gaussian", "--epsilon", "0.2", "-o", o], &["--epsilon 0.2"]),
+        (&["experiment", "laser", s, "--coherence", "5um", "-o", o], &["--coherence 5um", "--aperture 5um"]),
+        (
+            &["brdf-map", s, "--method", "stam-periodic", "--terms", "4", "-o", o],
+            &["--terms 4", "stam-periodic method"],
+        ),
+    ];
+    for (args, words) in cases {
+        assert_fails(args, words);
+    }
+    assert!(std::fs::read_dir(dir.path()).unwrap().count() == 0, "a refused run left a file");
+}
+
 /// A float64 `.npy` as written by `brdf-map --raw` ([size, size, 3], C order): the values after the header.
 fn read_npy_f64(path: &std::path::Path) -> Vec<f64> {
     let bytes = std::fs::read(path).unwrap();

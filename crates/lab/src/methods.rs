@@ -76,6 +76,18 @@ impl Method {
     pub fn is_spectral(self) -> bool {
         self != Method::Lookup
     }
+
+    /// Whether the method is built from the Taylor terms of the height field (paper eq. 5–7), so that
+    /// `MethodConfig::terms` changes it: not the ground truths (the exact phase) nor Stam's fitted models.
+    pub fn uses_taylor_terms(self) -> bool {
+        matches!(self, Method::Reference | Method::Lookup | Method::Nmm | Method::Pq)
+    }
+
+    /// Whether `MethodConfig::stam_epsilon` (ε of the wavelength selection) changes the method: Stam's periodic
+    /// lattices only.
+    pub fn uses_stam_epsilon(self) -> bool {
+        matches!(self, Method::StamPeriodic(_))
+    }
 }
 
 iridis_color::names! {

@@ -48,7 +48,7 @@ impl Param {
     pub fn applies_to(self, method: Method) -> bool {
         use Method::*;
         match self {
-            Param::Terms => matches!(method, Reference | Lookup | Nmm | Pq),
+            Param::Terms => method.uses_taylor_terms(),
             Param::DLambda => !method.is_ground_truth(),
             Param::Coherence => true,
             Param::UvPower | Param::UvResolution => method == Lookup,

@@ -49,7 +49,7 @@ fn lab_options(o: &mut Options<'_>) -> PyResult<LabOptions> {
         None => "auto".into(),
     };
     let (fresnel, convention, shadowing) = o.shading_text()?;
-    let stam_epsilon = o.positive("stam_epsilon")?.unwrap_or(0.01);
+    let stam_epsilon = o.positive("stam_epsilon")?;
     Ok(LabOptions { surface, coherence_nm, terms, fresnel, convention, shadowing, stam_epsilon })
 }
 

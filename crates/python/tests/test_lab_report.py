@@ -111,3 +111,16 @@ def test_sweep_point_equals_the_comparison_at_that_value(tmp_path):
     assert mean_sweep == pytest.approx(mean_compare, rel=1e-9, abs=1e-12)
     assert (tmp_path / "sheet.png").exists() and (tmp_path / "sheet_error.png").exists()
     assert sw["param"] == "terms" and [p["value"] for p in sw["points"]] == [5.0]
+
+
+def test_options_no_method_reads_are_refused(tmp_path):
+    """As the CLI: Taylor terms for methods that use none, Stam's ε without a Stam periodic model and the
+    coherence of the laser experiment (its window is ``aperture_nm``) raise, naming what would read them."""
+    spec = "builtin:sine?size=4um&pixel=100nm"
+    with pytest.raises(ValueError, match=r"--terms 3 would be ignored: the methods ground-truth, stam-gaussian use"):
+        lab.compare(spec, methods=["ground-truth", "stam-gaussian"], size=8, terms=3)
+    with pytest.raises(ValueError, match=r"--epsilon 0.2 would be ignored: .*stam-gaussian method has none"):
+        lab.laser(spec, tmp_path / "s.png", method="stam-gaussian", stam_epsilon=0.2)
+    with pytest.raises(ValueError, match=r"--coherence 5um would be ignored: .* --aperture 5um"):
+        lab.laser(spec, tmp_path / "s.png", coherence_nm=5000.0)
+    assert not (tmp_path / "s.png").exists()
