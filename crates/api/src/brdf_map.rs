@@ -131,6 +131,17 @@ pub fn compute(r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) ->
     }
     refuse_build_options_for_table(&r.input, r.grid, &r.surface, "brdf-map")?;
     r.grid.refuse_unless_lookup(&r.method)?;
+    if r.f32 && r.gpu {
+        bail!(
+            "--f32 evaluates the lookup sum on the CPU in f32, as a GPU does; --gpu evaluates in f32 already: give one"
+        );
+    }
+    if r.f32 && r.method != "lookup" {
+        bail!(
+            "--f32 would be ignored: it evaluates the lookup method's sum in f32, and the {} method has none",
+            r.method
+        );
+    }
     if let Some(f) = files {
         f.declare()?;
     }

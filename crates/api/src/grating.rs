@@ -148,6 +148,11 @@ pub struct Detector {
     pub acceptance_rad: f64,
 }
 
+impl Detector {
+    /// The half-angle of the acceptance cone when none is given (`--acceptance`).
+    pub const DEFAULT_ACCEPTANCE_DEG: f64 = 2.0;
+}
+
 /// What `iridis grating` asks.
 #[derive(Debug, Clone)]
 pub struct GratingOptions {
@@ -161,7 +166,9 @@ pub struct GratingOptions {
     pub material: Option<String>,
     /// Instead of a material, any `--fresnel` source (`schlick:1.5`, `index:…`, `stack:…`).
     pub fresnel: Option<String>,
-    pub normalisation: Normalisation,
+    /// How the scalar model's channel matrix is normalised (`None`: [`Normalisation::Energy`]); refused with
+    /// the rigorous method, whose efficiencies come from Maxwell's equations.
+    pub normalisation: Option<Normalisation>,
     pub detector: Option<Detector>,
     /// Take the scan's dominant period as the unit cell, its profile averaged along the ridges, instead of
     /// the whole patch.
@@ -180,7 +187,7 @@ impl Default for GratingOptions {
             wavelengths_nm: vec![550.0],
             material: None,
             fresnel: None,
-            normalisation: Normalisation::Energy,
+            normalisation: None,
             detector: None,
             unit_cell_auto: false,
             orders_above: 0.0,
@@ -262,6 +269,14 @@ pub fn grating(
     if !(opts.orders_above.is_finite() && (0.0..1.0).contains(&opts.orders_above)) {
         bail!("the efficiency above which orders are listed must be a fraction from 0 up to 1");
     }
+    if let (GratingMethod::Rigorous, Some(n)) = (opts.method, opts.normalisation) {
+        bail!(
+            "--normalisation {} would be ignored: it scales the scalar (Kirchhoff) model's channel matrix, and the \
+             rigorous method's efficiencies come from Maxwell's equations (--compare runs both)",
+            n.name()
+        );
+    }
+    let normalisation = opts.normalisation.unwrap_or(Normalisation::Energy);
     if let Some(d) = opts.detector {
         if !(d.direction[2] > 0.0 && d.acceptance_rad > 0.0 && d.acceptance_rad < std::f64::consts::FRAC_PI_2) {
             bail!("the detector must look from above the surface with an acceptance between 0° and 90°");
@@ -351,7 +366,7 @@ pub fn grating(
             let a = with_progress(report, w.len() as u64, "orders", |p| {
                 w.par_iter()
                     .map(|&lambda| {
-                        let a = cell.efficiencies(l, lambda, fresnel.as_ref(), opts.normalisation)?;
+                        let a = cell.efficiencies(l, lambda, fresnel.as_ref(), normalisation)?;
                         p(done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1);
                         let row_only = (a.normalisation == "energy-row").then_some((a.channels, a.wavelength_nm));
                         let listed = OrdersAt::kirchhoff(a, cell.taylor_terms()).listing(|o| keep(o, averaged));
@@ -384,7 +399,7 @@ pub fn grating(
         lines: cell.lines(),
         reflector,
         polarised: fresnel.polarised(),
-        normalisation: opts.normalisation,
+        normalisation,
         taylor_terms: cell.taylor_terms(),
         light: opts.light,
         detector: opts.detector,

@@ -84,15 +84,17 @@ fn lab_commands_refuse_bad_input_clearly() {
 }
 
 /// An option no method of the command reads is refused, naming the methods that would read it: `--terms` (the
-/// ground truths and Stam's models use no Taylor terms), `--epsilon` (Stam's periodic models only) and, in the
-/// laser experiment, `--coherence` (its window is the diaphragm's `--aperture`). They changed nothing before.
+/// ground truths and Stam's models use no Taylor terms), `--epsilon` (Stam's periodic models only), in the
+/// laser experiment `--coherence` (its window is the diaphragm's `--aperture`), brdf-map's `--f32` (the
+/// lookup sum on the CPU) with another method or `--gpu`, and grating's `--normalisation` (the scalar model's)
+/// with the rigorous method and `--acceptance` without a `--detector`. They changed nothing before.
 #[test]
-fn lab_options_no_method_reads_are_refused() {
+fn options_no_method_reads_are_refused() {
     let dir = tempfile::tempdir().unwrap();
     let png = dir.path().join("x.png");
     let (s, o) = ("builtin:sine?size=4um&pixel=100nm", png.to_str().unwrap());
     let terms_users = "(reference, lookup, nmm, pq and rigorous do)";
-    let cases: [(&[&str], &[&str]); 8] = [
+    let cases: [(&[&str], &[&str]); 11] = [
         (&["testbench", s, "--method", "ground-truth", "--terms", "3"], &["--terms 3", "ground-truth", terms_users]),
         (&["testbench", s, "--method", "rigorous", "--epsilon", "0.1"], &["--epsilon 0.1", "rigorous method has"]),
         (
@@ -126,10 +128,17 @@ fn lab_options_no_method_reads_are_refused() {
             &["brdf-map", s, "--method", "stam-periodic", "--terms", "4", "-o", o],
             &["--terms 4", "stam-periodic method"],
         ),
+        (&["brdf-map", s, "--method", "reference", "--f32", "-o", o], &["--f32 would be ignored", "reference method"]),
+        (&["brdf-map", s, "--method", "lookup", "--gpu", "--f32", "-o", o], &["--gpu evaluates in f32 already"]),
+        (&["grating", s, "--method", "rigorous", "--normalisation", "energy"], &["--normalisation energy", "Maxwell"]),
     ];
     for (args, words) in cases {
         assert_fails(args, words);
     }
+    // clap's own message names the missing option on the line after `error:`.
+    let out = iridis(&["grating", s, "--acceptance", "5deg"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.code() == Some(2) && stderr.contains("required") && stderr.contains("--detector"), "{stderr}");
     assert!(std::fs::read_dir(dir.path()).unwrap().count() == 0, "a refused run left a file");
 }
 

@@ -285,11 +285,11 @@ fn grating<'py>(
     let method = o.string("method")?.unwrap_or_else(|| "kirchhoff".into());
     let material = o.string("material")?;
     let fresnel = o.string("fresnel")?;
-    let normalisation = o.string("normalisation")?.unwrap_or_else(|| "energy".into());
+    let normalisation = o.string("normalisation")?;
     let detector = match (o.f64("detector_theta")?, o.f64("detector_phi")?, o.positive("acceptance")?) {
         (Some(t), p, a) => Some(Detector {
             direction: direction_of("detector", (t, p.unwrap_or(0.0)))?,
-            acceptance_rad: a.unwrap_or(2f64.to_radians()),
+            acceptance_rad: a.unwrap_or(Detector::DEFAULT_ACCEPTANCE_DEG.to_radians()),
         }),
         (None, None, None) => None,
         _ => return Err(value_error("detector_phi and acceptance need detector_theta (radians)")),
@@ -313,7 +313,7 @@ fn grating<'py>(
             wavelengths_nm,
             material,
             fresnel,
-            normalisation: normalisation.parse()?,
+            normalisation: normalisation.as_deref().map(str::parse).transpose()?,
             detector,
             unit_cell_auto,
             ..GratingOptions::default()

@@ -269,6 +269,9 @@ def test_grating_bad_input():
                             method="rigorous", fresnel="schlick:1.5")
     with pytest.raises(ValueError, match="--method"):
         diffraction.grating("builtin:sine?size=1100nm&pixel=10nm", light=0.1, wavelengths_nm=500.0, method="fdtd")
+    with pytest.raises(ValueError, match="--normalisation kirchhoff would be ignored"):
+        diffraction.grating("builtin:sine?size=1100nm&pixel=10nm", light=0.1, wavelengths_nm=500.0,
+                            method="rigorous", normalisation="kirchhoff")
 
 
 def test_grating_compare_equals_the_cli():

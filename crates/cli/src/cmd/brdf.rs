@@ -141,7 +141,7 @@ pub struct BrdfMapArgs {
     pub exr: Option<PathBuf>,
     #[command(flatten)]
     pub shading: ShadingOpts,
-    /// Lookup sum in f32, as a GPU would evaluate it.
+    /// Lookup sum in f32, as a GPU would evaluate it (the lookup method on the CPU; refused otherwise).
     #[arg(long)]
     pub f32: bool,
     /// Render on the GPU (Vulkan; lavapipe without a GPU): lookup or the ground truths, same image.

@@ -73,9 +73,10 @@ pub struct GratingArgs {
     /// Instead of --material, any Fresnel source: schlick[:N], index:N[+Ki], gold or stack:STACK.
     #[arg(long)]
     pub fresnel: Option<String>,
-    /// energy (the channel matrix scaled so that energy and reciprocity hold) or kirchhoff (as printed).
-    #[arg(long, default_value = "energy")]
-    pub normalisation: String,
+    /// The scalar model's channel matrix: energy (scaled so that energy and reciprocity hold) or kirchhoff
+    /// (as printed) [default: energy]; refused with --method rigorous.
+    #[arg(long)]
+    pub normalisation: Option<String>,
     /// A detector's direction θ[,φ]: its reflectance is the orders inside its acceptance cone.
     #[arg(long)]
     pub detector: Option<String>,
@@ -83,9 +84,9 @@ pub struct GratingArgs {
     /// profile averaged along the ridges: a 1-D grating at that orientation).
     #[arg(long, value_name = "whole|auto", default_value = "whole")]
     pub unit_cell: String,
-    /// Half-angle of the detector's acceptance cone.
-    #[arg(long, value_parser = angle_rad, default_value = "2deg")]
-    pub acceptance: f64,
+    /// Half-angle of the detector's acceptance cone [default: 2deg].
+    #[arg(long, value_parser = angle_rad, requires = "detector")]
+    pub acceptance: Option<f64>,
     /// Print JSON: every order's efficiency per wavelength, the totals, the detector's spectrum.
     #[arg(long)]
     pub json: bool,
@@ -106,10 +107,11 @@ pub fn run(a: GratingArgs) -> Result<()> {
         (None, None, None) => vec![550.0],
         _ => bail!("give --wavelength, or --from and --to (with --step) for a spectrum"),
     };
+    let acceptance_rad = a.acceptance.unwrap_or(Detector::DEFAULT_ACCEPTANCE_DEG.to_radians());
     let detector = match &a.detector {
         Some(d) => {
             let (dt, dp) = polar_azimuth("detector", d)?;
-            Some(Detector { direction: direction(dt, dp), acceptance_rad: a.acceptance })
+            Some(Detector { direction: direction(dt, dp), acceptance_rad })
         }
         None => None,
     };
@@ -119,7 +121,7 @@ pub fn run(a: GratingArgs) -> Result<()> {
         wavelengths_nm,
         material: a.material.clone(),
         fresnel: a.fresnel.clone(),
-        normalisation: a.normalisation.parse()?,
+        normalisation: a.normalisation.as_deref().map(str::parse).transpose()?,
         detector,
         unit_cell_auto: unit_cell_auto(&a.unit_cell)?,
         orders_above: a.orders_above.unwrap_or(0.0),
@@ -130,5 +132,5 @@ pub fn run(a: GratingArgs) -> Result<()> {
         return print_answer(a.json, || Ok(c.to_json()), || c.text());
     }
     let g = grating(&source, &surface, &opts, &Cli)?;
-    print_answer(a.json, || Ok(g.to_json()), || grating_text(&g, (t, p), a.detector.as_deref(), a.acceptance))
+    print_answer(a.json, || Ok(g.to_json()), || grating_text(&g, (t, p), a.detector.as_deref(), acceptance_rad))
 }

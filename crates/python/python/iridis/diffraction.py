@@ -171,7 +171,7 @@ def brdf_map_of(spec, incidence=(0.0, 0.0), size=256, method="reference", level=
 
 
 def grating(source, light, wavelengths_nm, method="kirchhoff", material=None, fresnel=None,
-            normalisation="energy", detector=None, acceptance=None, compare=False, **options):
+            normalisation=None, detector=None, acceptance=None, compare=False, **options):
     """Order efficiencies of ``source`` taken as one unit cell of a grating (its extent is the period), as
     ``iridis grating --json``: a dict with ``orders`` (every propagating order at every wavelength: ``m``,
     ``n``, ``theta_deg``, ``phi_deg``, ``efficiency`` with ``te``, ``tm``, ``unpolarized``, fractions of the
@@ -180,8 +180,9 @@ def grating(source, light, wavelengths_nm, method="kirchhoff", material=None, fr
 
     ``light`` and ``detector`` are ``θ`` or ``(θ, φ)`` in radians; ``wavelengths_nm`` a number or a sequence;
     ``material`` the medium under the relief as a stack writes it (``"gold"``, ``"n=1.5"``, ``"n=0.2+3.4i"``;
-    default n = 1.5) or ``fresnel`` any Fresnel source (``"schlick:1.5"``); ``normalisation`` ``"energy"``
-    (energy and reciprocity exact) or ``"kirchhoff"`` (the obliquity factor as printed); ``acceptance`` the
+    default n = 1.5) or ``fresnel`` any Fresnel source (``"schlick:1.5"``); ``normalisation`` the scalar model's,
+    ``"energy"`` (the default: energy and reciprocity exact) or ``"kirchhoff"`` (the obliquity factor as printed;
+    with ``method="rigorous"`` it raises ValueError: it would be ignored); ``acceptance`` the
     detector's half-angle in radians (default 2°). SURFACE options (``pixel_size``, ``level``, …) as
     elsewhere. ``method="rigorous"`` solves Maxwell's equations (the C-method; transmitted orders and the
     convergence record too); ``compare=True`` runs both models and returns ``iridis grating --compare --json``'s
@@ -189,7 +190,9 @@ def grating(source, light, wavelengths_nm, method="kirchhoff", material=None, fr
     the scan's strongest period, its profile averaged along the ridges, as the cell.
     """
     theta, phi = _direction(light, "light")
-    opts = dict(options, method=method, normalisation=normalisation, compare=bool(compare))
+    opts = dict(options, method=method, compare=bool(compare))
+    if normalisation is not None:
+        opts["normalisation"] = normalisation
     if material is not None:
         opts["material"] = material
     if fresnel is not None:

@@ -69,7 +69,7 @@ def grating(
     method: str = ...,
     material: Optional[str] = ...,
     fresnel: Optional[str] = ...,
-    normalisation: str = ...,
+    normalisation: str | None = ...,
     detector: Optional[Direction] = ...,
     acceptance: Optional[float] = ...,
     compare: bool = ...,
