@@ -103,25 +103,27 @@ pub struct RoughArgs {
     #[arg(long, value_parser = length_nm, requires = "roughness", help_heading = "Rough substrate (LSRS)")]
     pub correlation: Option<f64>,
     /// Light angle θ_l of the diffuse part (spectrum, color); default: the view angle (--angle).
-    #[arg(long, value_parser = angle_rad, help_heading = "Rough substrate (LSRS)")]
+    #[arg(long, value_parser = angle_rad, requires = "roughness", help_heading = "Rough substrate (LSRS)")]
     pub light_angle: Option<f64>,
     /// Light angles FROM:TO:STEP of the table's diffuse part; default: the same as --angles.
-    #[arg(long, help_heading = "Rough substrate (LSRS)")]
+    #[arg(long, requires = "roughness", help_heading = "Rough substrate (LSRS)")]
     pub light_angles: Option<String>,
     /// Azimuth of the light relative to the viewer; 180deg puts the light on the far side of the normal in
     /// the viewer's plane (the mirror configuration).
-    #[arg(long, default_value = "180deg", value_parser = angle_rad, help_heading = "Rough substrate (LSRS)")]
+    #[arg(long, default_value = "180deg", value_parser = angle_rad, requires = "roughness")]
+    #[arg(help_heading = "Rough substrate (LSRS)")]
     pub azimuth: f64,
     /// Terms of the HTSG directional-diffuse series (the thesis' D-iterations, 5 in Listing 3.6); default:
     /// as many as needed for an error bound of 1e-6 of the lobe's peak.
-    #[arg(long, help_heading = "Rough substrate (LSRS)")]
+    #[arg(long, requires = "roughness", help_heading = "Rough substrate (LSRS)")]
     pub d_iterations: Option<usize>,
     /// How diffuse light crosses the layers: multiple (the default: the light the layers turn back and the
     /// light trapped beyond the escape cone is scattered again until it leaves; reciprocal, a lossless film on
     /// a mirror reflects everything), single (alias reciprocal: one scattering, power transmittances both
     /// ways; faster, loses that light; docs/rough-films.md) or thesis (eq. 3.18–3.19 as printed; creates
     /// energy, not reciprocal — for comparison with the thesis only).
-    #[arg(long, default_value = "multiple", value_name = "multiple|single|thesis", value_parser = diffuse_transport, help_heading = "Rough substrate (LSRS)")]
+    #[arg(long, default_value = "multiple", value_name = "multiple|single|thesis", value_parser = diffuse_transport)]
+    #[arg(requires = "roughness", help_heading = "Rough substrate (LSRS)")]
     pub diffuse_transport: DiffuseTransport,
 }
 

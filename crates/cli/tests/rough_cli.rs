@@ -88,6 +88,21 @@ fn bad_roughness_is_a_clear_error() {
     run(&["--roughness", "25nm"], "required"); // clap names --correlation on the next line
     run(&["--roughness", "25", "--correlation", "300nm"], "unit");
     run(&["--roughness", "25nm", "--correlation", "300nm", "--polarization", "s"], "unpolarised");
+    // The diffuse light's options without a rough substrate: refused (clap names --roughness on the next
+    // lines), not ignored as before; so is the table's --scale without a --plot.
+    for (cmd, extra) in [
+        ("spectrum", ["--light-angle", "30deg"]),
+        ("color", ["--azimuth", "90deg"]),
+        ("chart", ["--d-iterations", "5"]),
+        ("table", ["--diffuse-transport", "single"]),
+        ("table", ["--light-angles", "0deg:10deg:5deg"]),
+        ("table", ["--scale", "log"]),
+    ] {
+        let out = iridis(&[&["thinfilm", cmd, "--stack", STACK][..], &extra[..]].concat());
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        let wanted = if extra[0] == "--scale" { "--plot" } else { "--roughness" };
+        assert!(out.status.code() == Some(2) && stderr.contains("required") && stderr.contains(wanted), "{stderr}");
+    }
 }
 
 fn xyz(v: &serde_json::Value) -> Vec<f64> {

@@ -50,8 +50,8 @@ struct RoughArgs {
     roughness_nm: Option<f64>,
     correlation_nm: Option<f64>,
     d_iterations: Option<usize>,
-    diffuse_transport: String,
-    azimuth_rad: f64,
+    diffuse_transport: Option<String>,
+    azimuth_rad: Option<f64>,
 }
 
 impl RoughArgs {
@@ -60,20 +60,47 @@ impl RoughArgs {
             roughness_nm: o.f64("roughness_nm")?,
             correlation_nm: o.f64("correlation_nm")?,
             d_iterations: o.usize("d_iterations")?,
-            diffuse_transport: o.string("diffuse_transport")?.unwrap_or_else(|| "multiple".into()),
-            azimuth_rad: o.f64("azimuth_rad")?.unwrap_or(std::f64::consts::PI),
+            diffuse_transport: o.string("diffuse_transport")?,
+            azimuth_rad: o.f64("azimuth_rad")?,
         })
     }
 
-    /// The rough model's options (`None` when no roughness was given).
-    fn options(&self) -> anyhow::Result<Option<RoughOptions>> {
+    /// The light's azimuth relative to the viewer (default π, the mirror configuration).
+    fn azimuth(&self) -> f64 {
+        self.azimuth_rad.unwrap_or(std::f64::consts::PI)
+    }
+
+    /// The rough model's options (`None` when no roughness was given, and then none of the keywords that shape
+    /// its diffuse light: they would be ignored). `light`: the light's keyword, when it was given.
+    fn options(&self, light: Option<&str>) -> anyhow::Result<Option<RoughOptions>> {
         match (self.roughness_nm, self.correlation_nm) {
-            (None, None) => Ok(None),
+            (None, None) => {
+                let given: Vec<&str> = [
+                    ("d_iterations", self.d_iterations.is_some()),
+                    ("diffuse_transport", self.diffuse_transport.is_some()),
+                    ("azimuth_rad", self.azimuth_rad.is_some()),
+                ]
+                .into_iter()
+                .filter_map(|(k, given)| given.then_some(k))
+                .chain(light)
+                .collect();
+                if !given.is_empty() {
+                    anyhow::bail!(
+                        "{} would be ignored: they shape the diffuse light of a rough substrate; give roughness_nm and \
+                         correlation_nm",
+                        given.join(", ")
+                    );
+                }
+                Ok(None)
+            }
             (Some(sigma_nm), Some(tau_nm)) => Ok(Some(RoughOptions {
                 sigma_nm,
                 tau_nm,
                 d_iterations: self.d_iterations,
-                transport: DiffuseTransport::parse(&self.diffuse_transport)?,
+                transport: match &self.diffuse_transport {
+                    Some(t) => DiffuseTransport::parse(t)?,
+                    None => DiffuseTransport::Multiple,
+                },
             })),
             _ => anyhow::bail!("the rough model needs both roughness_nm and correlation_nm"),
         }
@@ -100,11 +127,11 @@ fn _film_spectrum<'py>(
         let parsed = film::parse_stack(stack)?;
         let pol = film::parse_polarization(polarization)?;
         let grid = film::wavelength_grid(from_nm, to_nm, step_nm)?;
-        if let Some(opts) = roughness.options()? {
+        if let Some(opts) = roughness.options(light_rad.map(|_| "light_angle_rad"))? {
             if pol != film::Polarization::Average {
                 anyhow::bail!("with roughness the spectrum is unpolarised, with s and p columns");
             }
-            let angles = rough::Angles::new(angle_rad, light_rad, roughness.azimuth_rad);
+            let angles = rough::Angles::new(angle_rad, light_rad, roughness.azimuth());
             let s = rough::spectrum(parsed, stack, &opts, angles, &grid)?;
             let image = if plot { Some(s.plot()?) } else { None };
             return Ok(Answer {
@@ -130,7 +157,7 @@ fn _film_spectrum<'py>(
 
 /// `iridis thinfilm table`: the CSV (smooth: angle × wavelength; rough: view × light × wavelength).
 #[pyfunction]
-#[pyo3(signature = (stack, angles, from_nm, to_nm, step_nm, plot, scale="auto", **options))]
+#[pyo3(signature = (stack, angles, from_nm, to_nm, step_nm, plot, scale=None, **options))]
 #[allow(clippy::too_many_arguments)]
 fn _film_table<'py>(
     py: Python<'py>,
@@ -140,21 +167,29 @@ fn _film_table<'py>(
     to_nm: f64,
     step_nm: f64,
     plot: bool,
-    scale: &str,
+    scale: Option<&str>,
     options: Option<Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let (roughness, light_angles) = Options::read(options, |o| Ok((RoughArgs::read(o)?, o.string("light_angles")?)))?;
     let a = run(py, |report| {
         let parsed = film::parse_stack(stack)?;
         let grid = film::wavelength_grid(from_nm, to_nm, step_nm)?;
-        if let Some(opts) = roughness.options()? {
-            let t = rough::table(parsed, stack, &opts, angles, light_angles.as_deref(), roughness.azimuth_rad, &grid)?;
+        if scale.is_some() && !plot {
+            anyhow::bail!("scale is the colour scale of the plot: give plot=True");
+        }
+        if let Some(opts) = roughness.options(light_angles.as_ref().map(|_| "light_angles"))? {
+            if scale.is_some() {
+                anyhow::bail!(
+                    "scale sets the colour scale of a smooth film's R map; the rough-film table draws its own"
+                );
+            }
+            let t = rough::table(parsed, stack, &opts, angles, light_angles.as_deref(), roughness.azimuth(), &grid)?;
             let image = if plot { Some(t.plot()?) } else { None };
             let csv = String::from_utf8(t.csv()?)?;
             return Ok(Answer { csv: Some(csv), image, extra: vec![("summary", t.summary())], ..Default::default() });
         }
         let t = film::table(&parsed, stack, angles, &grid, report)?;
-        let image = if plot { Some(t.plot(scale, report)?) } else { None };
+        let image = if plot { Some(t.plot(scale.unwrap_or("auto"), report)?) } else { None };
         Ok(Answer { csv: Some(t.csv()), image, ..Default::default() })
     })?;
     a.into_py(py)
@@ -184,11 +219,11 @@ fn _film_color<'py>(
         let observer = observer.parse()?;
         let pol = film::parse_polarization(polarization)?;
         let grid = film::wavelength_grid(from_nm, to_nm, step_nm)?;
-        if let Some(opts) = roughness.options()? {
+        if let Some(opts) = roughness.options(light_rad.map(|_| "light_angle_rad"))? {
             if pol != film::Polarization::Average || visual.is_some() {
                 anyhow::bail!("with roughness the colours are for unpolarised light, without a visual system");
             }
-            let angles = rough::Angles::new(angle_rad, light_rad, roughness.azimuth_rad);
+            let angles = rough::Angles::new(angle_rad, light_rad, roughness.azimuth());
             let c = rough::colour_report(parsed, &opts, angles, &grid, illuminant.parse()?, observer)?;
             return Ok(Answer { json: Some(c.to_json()), text: Some(c.text()), ..Default::default() });
         }
@@ -216,18 +251,21 @@ fn _film_chart<'py>(
     options: Option<Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let (roughness, light_rad) = Options::read(options, |o| Ok((RoughArgs::read(o)?, o.f64("light_rad")?)))?;
-    let a = run(py, |_| {
-        let azimuth = roughness.azimuth_rad;
-        let rough = roughness.options()?.map(|options| film_chart::RoughLight { options, light: light_rad, azimuth });
-        let grid = film::wavelength_grid(from_nm, to_nm, step_nm)?;
-        let c = film_chart::chart(stack, thickness, angle_rad, illuminant, exposure, &grid, rough)?;
-        Ok(Answer {
-            csv: Some(c.csv()),
-            image: Some(c.image()?),
-            extra: vec![("summary", c.summary()), ("exposure", c.exposure.to_string())],
-            ..Default::default()
-        })
-    })?;
+    let a =
+        run(py, |_| {
+            let azimuth = roughness.azimuth();
+            let rough = roughness
+                .options(light_rad.map(|_| "light_angle_rad"))?
+                .map(|options| film_chart::RoughLight { options, light: light_rad, azimuth });
+            let grid = film::wavelength_grid(from_nm, to_nm, step_nm)?;
+            let c = film_chart::chart(stack, thickness, angle_rad, illuminant, exposure, &grid, rough)?;
+            Ok(Answer {
+                csv: Some(c.csv()),
+                image: Some(c.image()?),
+                extra: vec![("summary", c.summary()), ("exposure", c.exposure.to_string())],
+                ..Default::default()
+            })
+        })?;
     a.into_py(py)
 }
 
@@ -253,9 +291,9 @@ fn _film_bench<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let roughness = Options::read(options, RoughArgs::read)?;
     let a = run(py, |_| {
-        if let Some(opts) = roughness.options()? {
+        if let Some(opts) = roughness.options(None)? {
             let b =
-                rough::bench(film::parse_stack(rough::LISTING_3_6_STACK)?, &opts, roughness.azimuth_rad, 80, seconds)?;
+                rough::bench(film::parse_stack(rough::LISTING_3_6_STACK)?, &opts, roughness.azimuth(), 80, seconds)?;
             return Ok(Answer { json: Some(b.to_json()), text: Some(b.text()), ..Default::default() });
         }
         let b = film_bench::bench(seconds, no_python)?;

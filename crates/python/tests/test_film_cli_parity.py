@@ -125,6 +125,24 @@ def test_profile_plot_and_bad_input():
         film.profile("air | Au 30nm | glass", 500, depth="200nm:0nm")
 
 
+def test_rough_keywords_without_roughness_raise():
+    """As the CLI refuses them: the diffuse light's keywords (and the table's colour scale without a plot) would
+    be ignored on a smooth film."""
+    stack = "air | water 300nm | air"
+    with pytest.raises(ValueError, match=r"light_angle_rad would be ignored: .*give roughness_nm and correlation_nm"):
+        film.spectrum(stack, light_angle_rad=0.5)
+    with pytest.raises(ValueError, match=r"d_iterations, azimuth_rad would be ignored"):
+        film.color(stack, azimuth_rad=1.0, d_iterations=5)
+    with pytest.raises(ValueError, match=r"diffuse_transport would be ignored"):
+        film.chart("air | water {d} | air", thickness="0nm:100nm:50nm", diffuse_transport="single")
+    with pytest.raises(ValueError, match=r"light_angles would be ignored"):
+        film.table(stack, angles="0deg:10deg:5deg", light_angles="0deg:10deg:5deg")
+    with pytest.raises(ValueError, match=r"give plot=True"):
+        film.table(stack, angles="0deg:10deg:5deg", scale="log")
+    with pytest.raises(ValueError, match=r"azimuth_rad would be ignored"):
+        film.bench(seconds=0.01, no_python=True, azimuth_rad=1.0)
+
+
 def test_colour_of_a_spectrum_file_and_delta_e_are_the_clis():
     green = os.path.join(ROOT, "data", "examples", "colorchecker_green.csv")
     c = color.xyz(green, "d50", "1964")

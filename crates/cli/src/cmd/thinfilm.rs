@@ -206,7 +206,7 @@ pub struct TableArgs {
     /// Colour scale of --plot: linear (0 to the largest R), log (three decades below the largest R) or auto:
     /// log when most of the map would sit in the darkest tenth of a linear scale (an AR coating, whose R
     /// stays near 1 % until grazing incidence).
-    #[arg(long, value_name = "auto|linear|log", default_value = "auto", value_parser = ["auto", "linear", "log"])]
+    #[arg(long, value_name = "auto|linear|log", default_value = "auto", value_parser = ["auto", "linear", "log"], requires = "plot")]
     pub scale: String,
     #[command(flatten)]
     pub rough: crate::args::RoughArgs,

@@ -20,8 +20,6 @@ Example:
 """
 from __future__ import annotations
 
-import math
-
 from . import _native
 from ._answer import Answer, answer
 
@@ -29,15 +27,19 @@ __all__ = ["Answer", "spectrum", "table", "color", "chart", "materials", "bench"
 
 
 def _rough(roughness_nm, correlation_nm, d_iterations, diffuse_transport):
-    return dict(roughness_nm=None if roughness_nm is None else float(roughness_nm),
-                correlation_nm=None if correlation_nm is None else float(correlation_nm),
+    # None (not given) passes through: the light's and the series' keywords without a roughness raise.
+    return dict(roughness_nm=_opt_float(roughness_nm), correlation_nm=_opt_float(correlation_nm),
                 d_iterations=None if d_iterations is None else int(d_iterations),
-                diffuse_transport=str(diffuse_transport))
+                diffuse_transport=None if diffuse_transport is None else str(diffuse_transport))
+
+
+def _opt_float(x):
+    return None if x is None else float(x)
 
 
 def spectrum(stack, angle_rad=0.0, from_nm=380.0, to_nm=780.0, step_nm=5.0, polarization="avg", *, plot=False,
-             roughness_nm=None, correlation_nm=None, light_angle_rad=None, azimuth_rad=math.pi, d_iterations=None,
-             diffuse_transport="multiple"):
+             roughness_nm=None, correlation_nm=None, light_angle_rad=None, azimuth_rad=None, d_iterations=None,
+             diffuse_transport=None):
     """``iridis thinfilm spectrum``: R, T, A (of ``polarization``: avg, s or p), Rs, Rp, Ts, Tp, ψ and Δ
     (degrees) against wavelength; with a rough substrate the smooth R, specular ``k_r`` and diffuse ``k_d``
     (sr⁻¹) at the view ``angle_rad`` and light ``light_angle_rad``. ``.spectra_csv``: R and T in pavo's layout."""
@@ -45,25 +47,27 @@ def spectrum(stack, angle_rad=0.0, from_nm=380.0, to_nm=780.0, step_nm=5.0, pola
                                          str(polarization), bool(plot),
                                          **_rough(roughness_nm, correlation_nm, d_iterations, diffuse_transport),
                                          light_rad=None if light_angle_rad is None else float(light_angle_rad),
-                                         azimuth_rad=float(azimuth_rad)))
+                                         azimuth_rad=_opt_float(azimuth_rad)))
 
 
-def table(stack, angles="1deg:90deg:1deg", from_nm=380.0, to_nm=780.0, step_nm=5.0, *, plot=False, scale="auto",
-          roughness_nm=None, correlation_nm=None, light_angles=None, azimuth_rad=math.pi, d_iterations=None,
-          diffuse_transport="multiple"):
+def table(stack, angles="1deg:90deg:1deg", from_nm=380.0, to_nm=780.0, step_nm=5.0, *, plot=False, scale=None,
+          roughness_nm=None, correlation_nm=None, light_angles=None, azimuth_rad=None, d_iterations=None,
+          diffuse_transport=None):
     """``iridis thinfilm table``: the angle × wavelength table (Sussenbach Figure 3.8) as columns angle_deg,
     wavelength_nm, R, T, A, Rs, Rp, Ts, Tp, psi_deg, delta_deg; with a rough substrate Algorithm 2's view ×
     light × wavelength table (``light_angles`` default: ``angles``). ``plot``: the map of R (``scale``: auto,
-    linear or log) or of π·k_d."""
+    linear or log; without ``plot`` it raises) or of π·k_d. The rough substrate's keywords (``light_angles``,
+    ``azimuth_rad``, ``d_iterations``, ``diffuse_transport``) without ``roughness_nm`` raise ValueError, here
+    and in spectrum, color, chart and bench: they would be ignored."""
     return answer(_native._film_table(str(stack), str(angles), float(from_nm), float(to_nm), float(step_nm),
-                                      bool(plot), str(scale),
+                                      bool(plot), None if scale is None else str(scale),
                                       **_rough(roughness_nm, correlation_nm, d_iterations, diffuse_transport),
-                                      light_angles=light_angles, azimuth_rad=float(azimuth_rad)), table=True)
+                                      light_angles=light_angles, azimuth_rad=_opt_float(azimuth_rad)), table=True)
 
 
 def color(stack, angle_rad=0.0, illuminant="d65", observer="1931", polarization="avg", from_nm=380.0, to_nm=780.0,
           step_nm=5.0, *, visual=None, roughness_nm=None, correlation_nm=None, light_angle_rad=None,
-          azimuth_rad=math.pi, d_iterations=None, diffuse_transport="multiple"):
+          azimuth_rad=None, d_iterations=None, diffuse_transport=None):
     """``iridis thinfilm color``: the reflected and transmitted colour (XYZ, xyY, Lab, sRGB, hex), the specular
     and diffuse parts (rough substrate), and with ``visual`` (a system of ``iridis.vision``) how an animal sees
     the reflected and transmitted light."""
@@ -71,12 +75,12 @@ def color(stack, angle_rad=0.0, illuminant="d65", observer="1931", polarization=
                                       float(step_nm), str(illuminant), str(observer), visual=visual,
                                       **_rough(roughness_nm, correlation_nm, d_iterations, diffuse_transport),
                                       light_rad=None if light_angle_rad is None else float(light_angle_rad),
-                                      azimuth_rad=float(azimuth_rad)))
+                                      azimuth_rad=_opt_float(azimuth_rad)))
 
 
 def chart(stack, thickness="0nm:2000nm:2nm", angle_rad=0.0, illuminant="d65", exposure=None, from_nm=380.0,
           to_nm=780.0, step_nm=5.0, *, roughness_nm=None, correlation_nm=None, light_angle_rad=None,
-          azimuth_rad=math.pi, d_iterations=None, diffuse_transport="multiple"):
+          azimuth_rad=None, d_iterations=None, diffuse_transport=None):
     """``iridis thinfilm chart``: the soap-film colour chart (Sussenbach Figure 5.11) of the layer written
     ``{d}``: the CSV's columns (thickness_nm, R_X … T_hex; S_… and D_… with a rough substrate), ``.image`` the
     chart, ``.exposure`` the top band's exposure (RU) and ``.summary`` what was drawn."""
@@ -85,7 +89,7 @@ def chart(stack, thickness="0nm:2000nm:2nm", angle_rad=0.0, illuminant="d65", ex
                                       float(step_nm),
                                       **_rough(roughness_nm, correlation_nm, d_iterations, diffuse_transport),
                                       light_rad=None if light_angle_rad is None else float(light_angle_rad),
-                                      azimuth_rad=float(azimuth_rad)), table=True)
+                                      azimuth_rad=_opt_float(azimuth_rad)), table=True)
 
 
 def materials(at_nm=None):
@@ -93,15 +97,15 @@ def materials(at_nm=None):
     return answer(_native._film_materials(None if at_nm is None else float(at_nm)))
 
 
-def bench(seconds=1.0, no_python=False, *, roughness_nm=None, correlation_nm=None, azimuth_rad=math.pi,
-          d_iterations=None, diffuse_transport="multiple"):
+def bench(seconds=1.0, no_python=False, *, roughness_nm=None, correlation_nm=None, azimuth_rad=None,
+          d_iterations=None, diffuse_transport=None):
     """``iridis thinfilm bench``: (λ, θ) evaluations per second against Python's tmm (spawned as ``python3``
     unless ``no_python``), the fit of tools/fit_scipy_compare.py and a batch of 10⁶ points timed (below
     ``seconds=1`` that share of them, at least 10⁴); with a rough substrate the LSRS table of Listing 3.6
     (shared generation against direct evaluation)."""
     return answer(_native._film_bench(float(seconds), bool(no_python),
                                       **_rough(roughness_nm, correlation_nm, d_iterations, diffuse_transport),
-                                      azimuth_rad=float(azimuth_rad)))
+                                      azimuth_rad=_opt_float(azimuth_rad)))
 
 
 def profile(stack, wavelength_nm, angle_rad=0.0, polarization="avg", points=400, depth=None, *, plot=False):
