@@ -64,6 +64,12 @@ impl SurfaceOptions {
         }
     }
 
+    /// These options without those that only read files (channel, height unit, height of white, the unit
+    /// overrides), which a built-in refuses: for a built-in read beside a file with one set of options.
+    pub fn without_file_options(&self) -> SurfaceOptions {
+        SurfaceOptions { pixel_size_nm: self.pixel_size_nm, level: self.level.clone(), ..SurfaceOptions::default() }
+    }
+
     /// The command-line flags that give these options to another command (lengths in nm): what `iridis report`
     /// passes on to each step's command line.
     pub fn flags(&self) -> Vec<String> {

@@ -131,7 +131,9 @@ fn ar_coating_table_map_is_not_black() {
     // R ≈ 1.3 % at normal incidence and ≈ 90 % at 89°: on a linear scale most of the map is black; auto
     // chooses the log scale, on which it is not.
     assert_eq!(auto, log);
-    // A rough film's table draws its own map: --scale there is refused, not ignored.
-    assert_fails(&words(&format!("thinfilm table {ROUGH_FILM} --scale log")), &["--scale"]);
+    // A rough film's table draws its own map: --scale there is refused, not ignored (and without --plot
+    // anywhere).
+    let png = quoted(&dir.path().join("rough.png"));
+    assert_fails(&words(&format!("thinfilm table {ROUGH_FILM} --scale log --plot {png}")), &["--scale"]);
     assert!(linear > 0.25 && log < 0.5 * linear, "dark share: linear {linear:.3}, log {log:.3}");
 }

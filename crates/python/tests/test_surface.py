@@ -71,6 +71,12 @@ def test_bad_input():
         surface.Surface(np.zeros((4, 4)), -1.0)
     with pytest.raises(ValueError, match="level"):
         surface.Surface(np.zeros((4, 4)), 1.0).level("sideways")
+    # Options the SURFACE has no use for: refused as the CLI refuses them, not ignored.
+    with pytest.raises(ValueError, match=r"--channel, --as-height would be ignored: .*builtin:sine"):
+        surface.load("builtin:sine?size=1um&pixel=100nm", channel=1, as_height=True)
+    npy = os.path.join(ROOT, "crates", "surface", "tests", "fixtures", "numpy_f32_fortran.npy")
+    with pytest.raises(ValueError, match=r"--max-height would be ignored: .*npy format"):
+        surface.load(npy, pixel_size_nm=10.0, max_height_nm=5.0)
 
 
 def test_an_instrument_files_own_units_win_unless_overridden():

@@ -52,3 +52,28 @@ fn units() {
     assert_eq!(unit_to_nm("µm"), Some(1e3));
     assert_eq!(unit_to_nm("furlong"), None);
 }
+
+/// Options a kind of SURFACE has no use for are refused by name, not ignored: a file's reading options for a
+/// built-in, the built-ins' `--size`/`--seed` for a file, `--max-height` (the height of white) for a file that
+/// is not a grey image.
+#[test]
+fn options_a_surface_would_ignore_are_refused() {
+    let refused = |spec: &str, o: LoadOptions, words: &[&str]| {
+        let e = load_surface(spec, &o).unwrap_err().to_string();
+        for w in words {
+            assert!(e.contains(w), "{spec}: '{e}' lacks '{w}'");
+        }
+    };
+    let b = "builtin:sine?size=1um&pixel=100nm";
+    let channel = Some(channel::ChannelSel::Index(1));
+    refused(b, LoadOptions { channel, as_height: true, ..Default::default() }, &["--channel, --as-height would be"]);
+    refused(b, LoadOptions { max_height_nm: Some(9.0), ..Default::default() }, &["--max-height", "builtin:sine"]);
+    let dir = tempfile::tempdir().unwrap();
+    let npy = dir.path().join("h.npy");
+    std::fs::write(&npy, write_bytes(&sample_field(), Format::Npy).unwrap().0).unwrap();
+    let f = npy.to_str().unwrap();
+    let with_pixel = LoadOptions { pixel_size_nm: Some(10.0), ..Default::default() };
+    assert!(load_surface(f, &with_pixel).is_ok());
+    refused(f, LoadOptions { size_nm: Some(1e3), seed: Some(2), ..with_pixel.clone() }, &["--size, --seed would be"]);
+    refused(f, LoadOptions { max_height_nm: Some(9.0), ..with_pixel }, &["--max-height would be", "npy"]);
+}

@@ -260,9 +260,14 @@ pub fn gpu(a: &GpuBenchOptions, report: &dyn Report) -> Result<Bench> {
         bail!("--gt-size {} must be 8–4096 pixels and --gt-cpu-pixels at least 1", a.gt_size);
     }
     // Both surfaces are read before anything is timed: a wrong path or option fails at once, not minutes later.
-    let build_patch =
-        crate::surface::load_patch(&a.build_surface, &a.surface_options, report).context("--build-surface")?;
-    let gt_patch = crate::surface::load_patch(&a.gt_surface, &a.surface_options, report).context("--gt-surface")?;
+    // One set of options serves both: a built-in beside a file leaves the file-reading ones to the file.
+    let options_for = |spec: &str, other: &str| match (spec.starts_with("builtin:"), other.starts_with("builtin:")) {
+        (true, false) => a.surface_options.without_file_options(),
+        _ => a.surface_options.clone(),
+    };
+    let (build, gt) = (&a.build_surface, &a.gt_surface);
+    let build_patch = crate::surface::load_patch(build, &options_for(build, gt), report).context("--build-surface")?;
+    let gt_patch = crate::surface::load_patch(gt, &options_for(gt, build), report).context("--gt-surface")?;
     let gpu = crate::gpu::open()?;
     let mut t = adapter_lines(&gpu);
 

@@ -164,9 +164,34 @@ fn describe_unknown(bytes: &[u8]) -> String {
 
 /// Loads a height field from a file path or a `builtin:NAME[?key=value&…]` spec (see [`crate::builtin`]).
 pub fn load_surface(spec: &str, opts: &LoadOptions) -> Result<HeightField, SurfaceError> {
+    // Options that this kind of SURFACE has no use for are refused by name: each would change nothing.
+    let refuse = |given: &[(&str, bool)], why: String| {
+        let named: Vec<&str> = given.iter().filter(|g| g.1).map(|g| g.0).collect();
+        match named.is_empty() {
+            true => Ok(()),
+            false => Err(SurfaceError::invalid(format!("{} would be ignored: {why}", named.join(", ")))),
+        }
+    };
     if let Some(rest) = spec.strip_prefix("builtin:") {
+        let file_options = [
+            ("--max-height", opts.max_height_nm.is_some()),
+            ("--channel", opts.channel.is_some()),
+            ("--height-unit", opts.height_unit.is_some()),
+            ("--override-units", opts.override_units),
+            ("--as-height", opts.as_height),
+        ];
+        refuse(
+            &file_options,
+            format!("they are for reading files, and builtin:{rest} is generated: one channel, heights in nm"),
+        )?;
         return crate::builtin::builtin_surface(rest, opts);
     }
+    refuse(
+        &[("--size", opts.size_nm.is_some()), ("--seed", opts.seed.is_some())],
+        format!(
+            "they shape built-in surfaces, and {spec} is a file (`iridis surface convert` crops and resamples one)"
+        ),
+    )?;
     let path = Path::new(spec);
     let io = |e: std::io::Error| SurfaceError::Io { path: spec.to_string(), err: e };
     let meta = std::fs::metadata(path).map_err(io)?;
@@ -182,6 +207,12 @@ pub fn load_surface(spec: &str, opts: &LoadOptions) -> Result<HeightField, Surfa
         )));
     }
     let bytes = std::fs::read(path).map_err(io)?;
+    if let Some(fmt) = detect_format(&bytes).filter(|f| !matches!(f, Format::Png | Format::Tiff)) {
+        refuse(
+            &[("--max-height", opts.max_height_nm.is_some())],
+            format!("it is the height of white in a grey image, and {spec} holds heights ({} format)", fmt.name()),
+        )?;
+    }
     let side = if opts.ignore_sidecar { None } else { Sidecar::find(path)? };
     let mut hf = read_bytes(&bytes, spec, side.as_ref(), opts)?;
     if let Some(s) = &side {
