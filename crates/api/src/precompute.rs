@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use anyhow::Result;
+use anyhow::{bail, Result};
 use iridis_diffraction::table::TableParams;
 
 use crate::model::{build_table, spectral_setup, taylor_terms, ModelOptions};
@@ -27,6 +27,12 @@ pub struct PrecomputeRequest {
 /// `iridis precompute`: the Taylor terms and lookup tables of a height field (on the CPU or the GPU) written
 /// to `output` (.npz, declared first) through the run's output set; returns the line saying what was written.
 pub fn precompute(r: &PrecomputeRequest, output: &Path, report: &dyn Report) -> Result<String> {
+    if r.model.conserve_energy {
+        bail!(
+            "--conserve-energy would be ignored: it scales each wavelength's lobes, and a lookup table integrates \
+             over wavelength in advance; brdf-map and brdf eval take it with --method reference or ground-truth"
+        );
+    }
     crate::output::declare("-o", output, &["npz"])?;
     let start = std::time::Instant::now();
     let patch = load_patch(&r.surface, &r.surface_opts, report)?;

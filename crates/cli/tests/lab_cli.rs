@@ -86,15 +86,17 @@ fn lab_commands_refuse_bad_input_clearly() {
 /// An option no method of the command reads is refused, naming the methods that would read it: `--terms` (the
 /// ground truths and Stam's models use no Taylor terms), `--epsilon` (Stam's periodic models only), in the
 /// laser experiment `--coherence` (its window is the diaphragm's `--aperture`), brdf-map's `--f32` (the
-/// lookup sum on the CPU) with another method or `--gpu`, and grating's `--normalisation` (the scalar model's)
-/// with the rigorous method and `--acceptance` without a `--detector`. They changed nothing before.
+/// lookup sum on the CPU) with another method or `--gpu`, grating's `--normalisation` (the scalar model's)
+/// with the rigorous method and `--acceptance` without a `--detector`, precompute's `--conserve-energy` (a
+/// table integrates over λ in advance) and vision's `--illuminant-units` with a built-in light. They changed
+/// nothing before.
 #[test]
 fn options_no_method_reads_are_refused() {
     let dir = tempfile::tempdir().unwrap();
     let png = dir.path().join("x.png");
     let (s, o) = ("builtin:sine?size=4um&pixel=100nm", png.to_str().unwrap());
     let terms_users = "(reference, lookup, nmm, pq and rigorous do)";
-    let cases: [(&[&str], &[&str]); 11] = [
+    let cases: [(&[&str], &[&str]); 13] = [
         (&["testbench", s, "--method", "ground-truth", "--terms", "3"], &["--terms 3", "ground-truth", terms_users]),
         (&["testbench", s, "--method", "rigorous", "--epsilon", "0.1"], &["--epsilon 0.1", "rigorous method has"]),
         (
@@ -131,6 +133,18 @@ fn options_no_method_reads_are_refused() {
         (&["brdf-map", s, "--method", "reference", "--f32", "-o", o], &["--f32 would be ignored", "reference method"]),
         (&["brdf-map", s, "--method", "lookup", "--gpu", "--f32", "-o", o], &["--gpu evaluates in f32 already"]),
         (&["grating", s, "--method", "rigorous", "--normalisation", "energy"], &["--normalisation energy", "Maxwell"]),
+        (&["precompute", s, "--conserve-energy", "-o", o], &["--conserve-energy would be ignored"]),
+        (
+            &[
+                "vision",
+                "../../data/examples/vision_spectra.csv",
+                "--visual",
+                "bluetit",
+                "--illuminant-units",
+                "energy",
+            ],
+            &["--illuminant-units would be ignored", "d65 is a built-in light"],
+        ),
     ];
     for (args, words) in cases {
         assert_fails(args, words);

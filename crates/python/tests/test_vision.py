@@ -50,6 +50,9 @@ def test_identical_spectra_and_bad_input():
         vision.analyse(wl, values, "bluetit", names, densities=[1, 2])
     with pytest.raises(TypeError):
         vision.analyse(wl, np.array([["a"] * wl.size]), "bluetit")
+    # The units of an illuminant CSV, given with a built-in light: refused as the CLI refuses them.
+    with pytest.raises(ValueError, match="--illuminant-units would be ignored: .*bluesky is a built-in light"):
+        vision.analyse(wl, values, "bluetit", names, illuminant="bluesky", illuminant_units="energy")
 
 
 def test_sensitivities_have_unit_area_and_peak_at_lambda_max():

@@ -116,11 +116,17 @@ impl Light {
 
     /// A built-in name or, when it names an existing file, a CSV light.
     pub fn parse(spec: &str, units: LightUnits) -> Result<Self, VisionError> {
-        let path = Path::new(spec);
-        if path.extension().is_some() && (path.exists() || !BUILTIN.iter().any(|(k, _)| spec.eq_ignore_ascii_case(k))) {
-            return Self::from_csv_path(path, units);
+        if Self::names_a_file(spec) {
+            return Self::from_csv_path(Path::new(spec), units);
         }
         Self::builtin(spec)
+    }
+
+    /// Whether `spec` is read as a CSV file (a name with an extension that exists, or is no built-in's) rather
+    /// than as a built-in light, whose units are its own.
+    pub fn names_a_file(spec: &str) -> bool {
+        let path = Path::new(spec);
+        path.extension().is_some() && (path.exists() || !BUILTIN.iter().any(|(k, _)| spec.eq_ignore_ascii_case(k)))
     }
 
     /// Relative photon flux at `λ`.

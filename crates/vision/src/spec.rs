@@ -131,6 +131,13 @@ impl Spec {
             Some(u) if u == "energy" => LightUnits::Energy,
             Some(u) => return Err(VisionError::invalid(format!("illuminant units '{u}': expected photons or energy"))),
         };
+        if self.illuminant_units.is_some() && !self.illuminant.as_deref().is_some_and(Light::names_a_file) {
+            return Err(VisionError::invalid(format!(
+                "--illuminant-units would be ignored: they are the units of an illuminant CSV, and {} is a built-in \
+                 light with its own",
+                self.illuminant.as_deref().unwrap_or("the default illuminant")
+            )));
+        }
         if let Some(i) = &self.illuminant {
             o.illuminant = Light::parse(i, units)?;
         }

@@ -53,9 +53,9 @@ pub struct VisionArgs {
     /// Illuminant: d65, d50, a, e, bluesky, forestshade, ideal, or a CSV (wavelength_nm, flux).
     #[arg(long, default_value = "d65")]
     pub illuminant: String,
-    /// Units of an illuminant CSV: photons or energy.
-    #[arg(long, default_value = "photons")]
-    pub illuminant_units: String,
+    /// Units of an illuminant CSV: photons or energy [default: photons]; refused with a built-in light.
+    #[arg(long)]
+    pub illuminant_units: Option<String>,
     /// Multiplies the illuminant (matters for absolute catches and --noise quantum only).
     #[arg(long, default_value_t = 1.0)]
     pub illuminant_scale: f64,
@@ -103,7 +103,7 @@ impl VisionArgs {
             oil_droplets: self.oil_droplets.clone(),
             ocular_media: self.ocular_media.clone(),
             illuminant: Some(self.illuminant.clone()),
-            illuminant_units: Some(self.illuminant_units.clone()),
+            illuminant_units: self.illuminant_units.clone(),
             illuminant_scale: Some(self.illuminant_scale),
             background: Some(self.background.clone()),
             weber: self.weber,

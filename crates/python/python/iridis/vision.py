@@ -98,7 +98,7 @@ def sensitivities(wavelengths_nm, visual=None, *, lambda_max=None, chromophore=N
 
 
 def vision(spectra, visual=None, *, percent=False, lambda_max=None, chromophore=None, oil_droplets=None,
-           ocular_media=None, illuminant="d65", illuminant_units="photons", illuminant_scale=1.0, background="grey",
+           ocular_media=None, illuminant="d65", illuminant_units=None, illuminant_scale=1.0, background="grey",
            weber=None, weber_ref=None, densities=None, receptor_noise=None, noise="neural", achromatic=None,
            achromatic_weber=0.1, space="auto"):
     """``iridis vision``: the spectra CSV ``spectra`` (pavo's layout: a wavelength column and one column per

@@ -40,7 +40,7 @@ def sensitivities(
 def vision(
     spectra: str, visual: Optional[str] = ..., *, percent: bool = ..., lambda_max: Any = ...,
     chromophore: Optional[str] = ..., oil_droplets: Optional[str] = ..., ocular_media: Optional[str] = ...,
-    illuminant: str = ..., illuminant_units: str = ..., illuminant_scale: float = ..., background: str = ...,
+    illuminant: str = ..., illuminant_units: Optional[str] = ..., illuminant_scale: float = ..., background: str = ...,
     weber: Optional[float] = ..., weber_ref: Optional[str] = ..., densities: Any = ..., receptor_noise: Any = ...,
     noise: str = ..., achromatic: Optional[str] = ..., achromatic_weber: float = ..., space: str = ...
 ) -> dict[str, Any]: ...
