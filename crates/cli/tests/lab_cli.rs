@@ -88,15 +88,15 @@ fn lab_commands_refuse_bad_input_clearly() {
 /// laser experiment `--coherence` (its window is the diaphragm's `--aperture`), brdf-map's `--f32` (the
 /// lookup sum on the CPU) with another method or `--gpu`, grating's `--normalisation` (the scalar model's)
 /// with the rigorous method and `--acceptance` without a `--detector`, precompute's `--conserve-energy` (a
-/// table integrates over λ in advance) and vision's `--illuminant-units` with a built-in light. They changed
-/// nothing before.
+/// table integrates over λ in advance), vision's `--illuminant-units` with a built-in light and bench grating's
+/// `--python`/`--peer-seconds` with `--no-python`. They changed nothing before.
 #[test]
 fn options_no_method_reads_are_refused() {
     let dir = tempfile::tempdir().unwrap();
     let png = dir.path().join("x.png");
     let (s, o) = ("builtin:sine?size=4um&pixel=100nm", png.to_str().unwrap());
     let terms_users = "(reference, lookup, nmm, pq and rigorous do)";
-    let cases: [(&[&str], &[&str]); 13] = [
+    let cases: [(&[&str], &[&str]); 14] = [
         (&["testbench", s, "--method", "ground-truth", "--terms", "3"], &["--terms 3", "ground-truth", terms_users]),
         (&["testbench", s, "--method", "rigorous", "--epsilon", "0.1"], &["--epsilon 0.1", "rigorous method has"]),
         (
@@ -134,6 +134,7 @@ fn options_no_method_reads_are_refused() {
         (&["brdf-map", s, "--method", "lookup", "--gpu", "--f32", "-o", o], &["--gpu evaluates in f32 already"]),
         (&["grating", s, "--method", "rigorous", "--normalisation", "energy"], &["--normalisation energy", "Maxwell"]),
         (&["precompute", s, "--conserve-energy", "-o", o], &["--conserve-energy would be ignored"]),
+        (&["bench", "grating", "--quick", "--no-python", "--peer-seconds", "3"], &["--no-python", "--peer-seconds"]),
         (
             &[
                 "vision",

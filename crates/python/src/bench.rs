@@ -113,13 +113,18 @@ fn bench_run(py: Python<'_>, name: &str, options: Option<Bound<'_, PyDict>>) -> 
         }
         "grating" => {
             let mut o = Options::new(options);
-            let python = o.string("python")?.unwrap_or_else(|| "python3".into());
+            let d = bench::GratingBenchOptions::default();
+            let (python, peer_seconds) = (o.string("python")?, o.positive("peer_seconds")?);
+            let no_python = o.bool("no_python")?.unwrap_or(false);
+            if no_python && (python.is_some() || peer_seconds.is_some()) {
+                return Err(value_error("python and peer_seconds would be ignored: no_python times no peer"));
+            }
             let a = bench::GratingBenchOptions {
-                repeats: o.usize("repeats")?.unwrap_or(3),
-                python: (!o.bool("no_python")?.unwrap_or(false)).then_some(python),
-                peer_seconds: o.positive("peer_seconds")?.unwrap_or(60.0),
-                batch: o.usize("batch")?.unwrap_or(8),
-                quick: o.bool("quick")?.unwrap_or(false),
+                repeats: o.usize("repeats")?.unwrap_or(d.repeats),
+                python: if no_python { None } else { python.or(d.python) },
+                peer_seconds: peer_seconds.unwrap_or(d.peer_seconds),
+                batch: o.usize("batch")?.unwrap_or(d.batch),
+                quick: o.bool("quick")?.unwrap_or(d.quick),
             };
             o.finish()?;
             Box::new(move |r| bench::grating(&a, r))

@@ -77,6 +77,8 @@ def test_bench_bad_input():
         bench.run("diffraction-methods", patch_sizes=[64], map_size=2)
     with pytest.raises(TypeError, match="unexpected keyword argument 'map'"):
         bench.run("diffraction-methods", map=2)
+    with pytest.raises(ValueError, match="python and peer_seconds would be ignored: no_python"):
+        bench.run("grating", quick=True, no_python=True, peer_seconds=3.0)
 
 
 # --- brdf eval ----------------------------------------------------------------------------------------------

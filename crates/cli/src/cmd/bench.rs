@@ -120,7 +120,7 @@ pub struct GratingBench {
     #[arg(long, default_value = "python3")]
     pub python: String,
     /// Do not time grcwa.
-    #[arg(long)]
+    #[arg(long, conflicts_with_all = ["python", "peer_seconds"])]
     pub no_python: bool,
     /// grcwa's ladder stops after a rung (TE and TM) that took longer than this many seconds.
     #[arg(long, default_value_t = 60.0)]
