@@ -270,6 +270,22 @@ pub fn parse_angles(s: &str, flag: &str) -> Result<Vec<f64>> {
     Ok(angles)
 }
 
+/// The colour scale of a table's map (`--scale`) as given, `None` meaning `auto`: `linear`, `log` or `auto` (see
+/// [`FilmTable::plot`]). A rough film's table draws its own map, of π·k_d, so a scale given with one is refused
+/// rather than ignored.
+pub fn table_scale(scale: Option<&str>, rough: bool) -> Result<&'static str> {
+    match (scale, rough) {
+        (None, _) => Ok("auto"),
+        (Some(_), true) => {
+            bail!("--scale sets the colour scale of a smooth film's R map; the rough-film table draws its own")
+        }
+        (Some(s), false) => ["auto", "linear", "log"]
+            .into_iter()
+            .find(|k| k.eq_ignore_ascii_case(s.trim()))
+            .ok_or_else(|| anyhow!("--scale '{s}': expected auto, linear or log")),
+    }
+}
+
 /// The table of `stack` (written `title`) over `angles` (`FROM:TO:STEP`, the `--angles` of the command).
 pub fn table(stack: &Stack, title: &str, angles: &str, grid: &[f64], report: &dyn Report) -> Result<FilmTable> {
     let angles = parse_angles(angles, "--angles")?;

@@ -88,18 +88,20 @@ pub fn testbench_run(
     report: &dyn Report,
 ) -> Result<TestbenchRun> {
     let rigorous = req.method == crate::brdf::RIGOROUS;
-    let methods = if rigorous { Vec::new() } else { vec![req.method.parse::<Method>()?] };
-    if !rigorous {
+    // The lab's method (none for the rigorous one, which is not among them).
+    let method: Option<Method> = (!rigorous).then(|| req.method.parse()).transpose()?;
+    if let Some(m) = method {
         if req.rigorous.material.is_some() || req.rigorous.unit_cell_auto {
             bail!("--material and --unit-cell auto are the rigorous method's: add --method rigorous");
         }
-        crate::lab::check_spectral(methods[0])?;
+        crate::lab::check_spectral(m)?;
     }
-    lab.refuse_unused(&methods, rigorous)?;
+    lab.refuse_unused(method.as_slice(), rigorous)?;
     crate::output::declare_opt("--plot", req.plot.as_deref(), &["png"])?;
     let setup = req.setup.clone();
-    let t = if rigorous {
-        crate::lab::testbench_rigorous(
+    let t = match method {
+        Some(m) => crate::lab::testbench(source, lab, m, setup, req.along_dominant, req.max_period_nm, report)?,
+        None => crate::lab::testbench_rigorous(
             source,
             lab,
             &req.rigorous,
@@ -107,9 +109,7 @@ pub fn testbench_run(
             req.along_dominant,
             req.max_period_nm,
             report,
-        )?
-    } else {
-        crate::lab::testbench(source, lab, methods[0], setup, req.along_dominant, req.max_period_nm, report)?
+        )?,
     };
     if let Some(r) = &t.rigorous {
         report.note(&r.sentence());

@@ -93,15 +93,14 @@ impl RoughArgs {
                 }
                 Ok(None)
             }
-            (Some(sigma_nm), Some(tau_nm)) => Ok(Some(RoughOptions {
-                sigma_nm,
-                tau_nm,
-                d_iterations: self.d_iterations,
-                transport: match &self.diffuse_transport {
-                    Some(t) => DiffuseTransport::parse(t)?,
-                    None => DiffuseTransport::Multiple,
-                },
-            })),
+            (Some(sigma_nm), Some(tau_nm)) => {
+                // The front ends' defaults for what was not given, from the one place that holds them.
+                let mut r = RoughOptions { d_iterations: self.d_iterations, ..RoughOptions::new(sigma_nm, tau_nm) };
+                if let Some(t) = &self.diffuse_transport {
+                    r.transport = DiffuseTransport::parse(t)?;
+                }
+                Ok(Some(r))
+            }
             _ => anyhow::bail!("the rough model needs both roughness_nm and correlation_nm"),
         }
     }
@@ -177,19 +176,16 @@ fn _film_table<'py>(
         if scale.is_some() && !plot {
             anyhow::bail!("scale is the colour scale of the plot: give plot=True");
         }
-        if let Some(opts) = roughness.options(light_angles.as_ref().map(|_| "light_angles"))? {
-            if scale.is_some() {
-                anyhow::bail!(
-                    "scale sets the colour scale of a smooth film's R map; the rough-film table draws its own"
-                );
-            }
+        let rough = roughness.options(light_angles.as_ref().map(|_| "light_angles"))?;
+        let scale = film::table_scale(scale, rough.is_some())?;
+        if let Some(opts) = rough {
             let t = rough::table(parsed, stack, &opts, angles, light_angles.as_deref(), roughness.azimuth(), &grid)?;
             let image = if plot { Some(t.plot()?) } else { None };
             let csv = String::from_utf8(t.csv()?)?;
             return Ok(Answer { csv: Some(csv), image, extra: vec![("summary", t.summary())], ..Default::default() });
         }
         let t = film::table(&parsed, stack, angles, &grid, report)?;
-        let image = if plot { Some(t.plot(scale.unwrap_or("auto"), report)?) } else { None };
+        let image = if plot { Some(t.plot(scale, report)?) } else { None };
         Ok(Answer { csv: Some(t.csv()), image, ..Default::default() })
     })?;
     a.into_py(py)
@@ -251,21 +247,19 @@ fn _film_chart<'py>(
     options: Option<Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let (roughness, light_rad) = Options::read(options, |o| Ok((RoughArgs::read(o)?, o.f64("light_rad")?)))?;
-    let a =
-        run(py, |_| {
-            let azimuth = roughness.azimuth();
-            let rough = roughness
-                .options(light_rad.map(|_| "light_angle_rad"))?
-                .map(|options| film_chart::RoughLight { options, light: light_rad, azimuth });
-            let grid = film::wavelength_grid(from_nm, to_nm, step_nm)?;
-            let c = film_chart::chart(stack, thickness, angle_rad, illuminant, exposure, &grid, rough)?;
-            Ok(Answer {
-                csv: Some(c.csv()),
-                image: Some(c.image()?),
-                extra: vec![("summary", c.summary()), ("exposure", c.exposure.to_string())],
-                ..Default::default()
-            })
-        })?;
+    let a = run(py, |_| {
+        let (azimuth, light_key) = (roughness.azimuth(), light_rad.map(|_| "light_angle_rad"));
+        let rough =
+            roughness.options(light_key)?.map(|options| film_chart::RoughLight { options, light: light_rad, azimuth });
+        let grid = film::wavelength_grid(from_nm, to_nm, step_nm)?;
+        let c = film_chart::chart(stack, thickness, angle_rad, illuminant, exposure, &grid, rough)?;
+        Ok(Answer {
+            csv: Some(c.csv()),
+            image: Some(c.image()?),
+            extra: vec![("summary", c.summary()), ("exposure", c.exposure.to_string())],
+            ..Default::default()
+        })
+    })?;
     a.into_py(py)
 }
 

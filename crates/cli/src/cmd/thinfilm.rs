@@ -205,9 +205,9 @@ pub struct TableArgs {
     pub plot: Option<PathBuf>,
     /// Colour scale of --plot: linear (0 to the largest R), log (three decades below the largest R) or auto:
     /// log when most of the map would sit in the darkest tenth of a linear scale (an AR coating, whose R
-    /// stays near 1 % until grazing incidence).
-    #[arg(long, value_name = "auto|linear|log", default_value = "auto", value_parser = ["auto", "linear", "log"], requires = "plot")]
-    pub scale: String,
+    /// stays near 1 % until grazing incidence) [default: auto].
+    #[arg(long, value_name = "auto|linear|log", requires = "plot")]
+    pub scale: Option<String>,
     #[command(flatten)]
     pub rough: crate::args::RoughArgs,
 }
@@ -359,10 +359,8 @@ fn table(a: TableArgs) -> Result<()> {
     declare_opt("-o", a.output.as_deref(), &["csv"])?;
     declare_opt("--plot", a.plot.as_deref(), &["png"])?;
     let stack = film::parse_stack(&a.stack)?;
+    let scale = film::table_scale(a.scale.as_deref(), a.rough.is_set())?;
     let (csv, wrote) = if a.rough.is_set() {
-        if a.scale != "auto" {
-            bail!("--scale sets the colour scale of a smooth film's R map; the rough-film table draws its own");
-        }
         let grid = a.grid.grid()?;
         if a.rough.light_angle.is_some() {
             bail!("--light-angle is for 'spectrum' and 'color'; the table takes --light-angles FROM:TO:STEP");
@@ -374,7 +372,7 @@ fn table(a: TableArgs) -> Result<()> {
         (t.csv()?, String::new())
     } else {
         let t = film::table(&stack, &a.stack, &a.angles, &a.grid.grid()?, &Cli)?;
-        plot(a.plot.as_deref(), true, || t.plot(&a.scale, &Cli))?;
+        plot(a.plot.as_deref(), true, || t.plot(scale, &Cli))?;
         let size = format!(" ({} angles × {} wavelengths)", t.angles_rad.len(), t.wavelength_nm.len());
         (t.csv().into_bytes(), size)
     };

@@ -167,10 +167,10 @@ pub fn load_surface(spec: &str, opts: &LoadOptions) -> Result<HeightField, Surfa
     // Options that this kind of SURFACE has no use for are refused by name: each would change nothing.
     let refuse = |given: &[(&str, bool)], why: String| {
         let named: Vec<&str> = given.iter().filter(|g| g.1).map(|g| g.0).collect();
-        match named.is_empty() {
-            true => Ok(()),
-            false => Err(SurfaceError::invalid(format!("{} would be ignored: {why}", named.join(", ")))),
+        if named.is_empty() {
+            return Ok(());
         }
+        Err(SurfaceError::invalid(format!("{} would be ignored: {why}", named.join(", "))))
     };
     if let Some(rest) = spec.strip_prefix("builtin:") {
         let file_options = [
