@@ -63,8 +63,9 @@ pub struct SpectrumColour {
 }
 
 /// The colour of the spectrum in `path` (two columns, wavelength in nm and value): a reflectance lit by
-/// `illuminant` (Y = 1 a perfect white reflector) or, `emissive`, a light source at Y = 1. A spectrum that does
-/// not cover 380–780 nm is warned about.
+/// `illuminant` (Y = 1 a perfect white reflector) or, `emissive`, a light source at Y = 1. L*a*b* is relative to
+/// the illuminant's white either way (for a light, the white it is judged against). A spectrum that does not
+/// cover 380–780 nm is warned about.
 pub fn xyz(
     path: &Path,
     illuminant: &str,
@@ -82,11 +83,12 @@ pub fn xyz(
             path.display()
         ));
     }
-    let (xyz, white) = if emissive {
-        (emission_to_xyz(&spectrum, observer), white_point(Illuminant::D65, observer))
+    let xyz = if emissive {
+        emission_to_xyz(&spectrum, observer)
     } else {
-        (reflectance_to_xyz(&spectrum, illuminant, observer), white_point(illuminant, observer))
+        reflectance_to_xyz(&spectrum, illuminant, observer)
     };
+    let white = white_point(illuminant, observer);
     Ok(SpectrumColour {
         name: path.display().to_string(),
         range_nm: (lo, hi),

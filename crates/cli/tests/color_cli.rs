@@ -1,7 +1,7 @@
 //! The `iridis color` commands as a user runs them: output keys, values, and errors on bad input.
 
 use crate::common;
-use common::{assert_fails, iridis};
+use common::{assert_fails, iridis, json_of};
 
 fn temp_csv(name: &str, text: &str) -> std::path::PathBuf {
     let dir = std::env::temp_dir().join(format!("iridis-cli-test-{}", std::process::id()));
@@ -25,6 +25,29 @@ fn xyz_json_has_the_documented_keys_and_a_white_reflector_is_white() {
     // D65 white (CIE 1931, Y = 1) by colour-science: x, y = 0.31271, 0.32902.
     assert!((v["xyY"][0].as_f64().unwrap() - 0.31271).abs() < 5e-5);
     assert_eq!(v["hex"], "#ffffff");
+}
+
+#[test]
+fn an_emissive_light_is_seen_against_the_illuminants_white() {
+    let lab = |extra: &[&str]| {
+        let mut args = vec!["color", "xyz", "data/cie/a.csv", "--emissive", "--json"];
+        args.extend_from_slice(extra);
+        let v = json_of(&args);
+        [0, 1, 2].map(|k| v["Lab"][k].as_f64().unwrap())
+    };
+    // Illuminant A judged against its own white: the white point itself.
+    let own = lab(&["--illuminant", "a"]);
+    assert!((own[0] - 100.0).abs() < 1e-6 && own[1].abs() < 1e-6 && own[2].abs() < 1e-6, "{own:?}");
+    // Against D65 (the default): CIELAB of A's published chromaticity (CIE 15:2004, x, y = 0.44757, 0.40745)
+    // with D65's (0.31271, 0.32902) as the white, by the CIELAB formula (both Y = 1, so L* = 100).
+    let xyz = |x: f64, y: f64| [x / y, 1.0, (1.0 - x - y) / y];
+    let (a, w) = (xyz(0.44757, 0.40745), xyz(0.31271, 0.32902));
+    let f = |t: f64| t.cbrt();
+    let expected = [100.0, 500.0 * (f(a[0] / w[0]) - 1.0), 200.0 * (1.0 - f(a[2] / w[2]))];
+    let d65 = lab(&[]);
+    for k in 0..3 {
+        assert!((d65[k] - expected[k]).abs() < 0.1, "{d65:?} against {expected:?}");
+    }
 }
 
 #[test]

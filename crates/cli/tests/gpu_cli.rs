@@ -256,6 +256,11 @@ fn gpu_options_are_checked() {
         &["view", "examples/gold_sphere.toml", "--uv-resolution", "101", "--level", "none"],
         &["is a scene", "--uv-resolution 101 --level none", "would be ignored"],
     );
+    // --json prints the scripted check's report: without --check there is none.
+    // (clap's message names the missing option on the line after `error:`.)
+    let out = iridis(&["view", "examples/gold_sphere.toml", "--json"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.code() == Some(2) && stderr.contains("required") && stderr.contains("--check"), "{stderr}");
     assert_fails(&["bench", "gpu", "no_such_scene.toml"], &["no_such_scene.toml"]);
     assert_fails(&["bench", "gpu", "--spectral-samples", "1"], &["--spectral-samples 1", "2 to 4096"]);
     assert_fails(

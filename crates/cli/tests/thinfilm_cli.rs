@@ -511,4 +511,13 @@ fn fit_weights_are_inverse_variances() {
         )),
         &["has no Δ", "incoherent"],
     );
+    // ψ and Δ are angles: --percent would change nothing.
+    assert_fails(
+        &words(&format!(
+            "thinfilm fit {} --stack 'air | n=2.1 {{d=150nm:50nm..400nm}} | Si' --quantity psi-delta --angle 70deg \
+             --percent",
+            quoted(&ell)
+        )),
+        &["--percent would be ignored", "angles in degrees"],
+    );
 }

@@ -85,4 +85,27 @@ fn bad_input_is_refused_with_a_reason() {
     assert_fails(&["vision", SPECTRA, "--lambda-max", "344,436", "--oil-droplets", "Q:400,none"], &["'Q:400'"]);
     assert_fails(&["vision", "no/such.csv", "--visual", "bluetit"], &["no/such.csv"]);
     assert_fails(&["vision", SPECTRA], &["no visual system"]);
+    // A Weber fraction for an achromatic channel that is not there would change nothing.
+    assert_fails(
+        &["vision", SPECTRA, "--visual", "bluetit", "--achromatic", "none", "--weber-achromatic", "0.2"],
+        &["--weber-achromatic 0.2 would be ignored", "--achromatic none"],
+    );
+}
+
+#[test]
+fn the_achromatic_weber_fraction_divides_delta_l() {
+    // ΔL = |ln(A_a/A_b)| / ω_A under neural noise (docs/vision.md, step 8): doubling ω_A halves every ΔL and
+    // leaves ΔS.
+    let delta = |extra: &[&str]| {
+        let mut args = vec!["vision", SPECTRA, "--visual", "bluetit", "--json"];
+        args.extend_from_slice(extra);
+        let v = json_of(&args);
+        let d = v["distances"].as_array().unwrap().clone();
+        d.iter().map(|x| (x["delta_s"].as_f64().unwrap(), x["delta_l"].as_f64().unwrap())).collect::<Vec<_>>()
+    };
+    let (base, doubled) = (delta(&[]), delta(&["--weber-achromatic", "0.2"]));
+    assert!(base.iter().any(|d| d.1 > 1.0), "{base:?}");
+    for (b, d) in base.iter().zip(&doubled) {
+        assert!((d.0 - b.0).abs() < 1e-12 && (2.0 * d.1 - b.1).abs() < 1e-9 * b.1.max(1.0), "{b:?} {d:?}");
+    }
 }

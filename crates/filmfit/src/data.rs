@@ -26,7 +26,7 @@ pub struct ReadOptions {
     /// T), or wavelength, ψ and Δ. `None`: found from the header (or the first columns without one).
     pub columns: Option<String>,
     /// The values are percent (`Some(true)`) or fractions (`Some(false)`); `None`: a `%` or "percent" in the
-    /// value column's header, or values above 1.5, mean percent.
+    /// value column's header, or values above 1.5, mean percent. Refused (`Some`) for ψ/Δ, which are angles.
     pub percent: Option<bool>,
     /// Keep only wavelengths in this window (nm, inclusive).
     pub from_nm: Option<f64>,
@@ -489,6 +489,13 @@ pub fn read(
         return Err(FitError::Data(format!("{path}: wavelength {w} nm in data row {} must be positive", i + 1)));
     }
     // Percent.
+    if let (Quantity::PsiDelta, Some(p)) = (q, opts.percent) {
+        // ψ and Δ are angles: a percent (or fraction) setting would be ignored.
+        let said = if p { "--percent" } else { "percent=False" };
+        return Err(FitError::Data(format!(
+            "{said} would be ignored: ψ and Δ are angles in degrees, read as they stand (percent applies to R and T)"
+        )));
+    }
     let mut percent = false;
     if q != Quantity::PsiDelta {
         let vmax = vals.iter().fold(f64::NEG_INFINITY, |a, &b| a.max(b));

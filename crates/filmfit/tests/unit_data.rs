@@ -109,6 +109,11 @@ fn columns_percent_and_window_can_be_chosen() {
     o.from_nm = Some(800.0);
     let e = read(text, "x.csv", &o, &|_| Err("no".into())).unwrap_err().to_string();
     assert!(e.contains("no wavelength of the file"), "{e}");
+    // ψ and Δ are angles: a percent setting would change nothing, so it is refused.
+    let mut o = ReadOptions::new(Quantity::PsiDelta);
+    o.percent = Some(true);
+    let e = read("wavelength_nm,psi,delta\n400,30,100\n", "e.csv", &o, &|_| Err("no".into())).unwrap_err();
+    assert!(e.to_string().contains("--percent would be ignored: ψ and Δ are angles"), "{e}");
 }
 
 #[test]

@@ -156,6 +156,17 @@ def test_colour_of_a_spectrum_file_and_delta_e_are_the_clis():
         color.delta_e("50,2", "50,0,0")
 
 
+def test_an_emissive_light_is_seen_against_the_illuminants_white():
+    a = os.path.join(ROOT, "data", "cie", "a.csv")
+    # Illuminant A against its own white is the white point: L* = 100, a* = b* = 0.
+    np.testing.assert_allclose(color.xyz(a, "a", emissive=True)["Lab"], [100, 0, 0], atol=1e-6)
+    # Against D65: A's published chromaticity (CIE 15:2004) by the CIELAB formula, D65's as the white.
+    xa, w = [np.array([x / y, 1, (1 - x - y) / y]) for x, y in ((0.44757, 0.40745), (0.31271, 0.32902))]
+    f = np.cbrt(xa / w)
+    expected = [100, 500 * (f[0] - f[1]), 200 * (f[1] - f[2])]
+    np.testing.assert_allclose(color.xyz(a, emissive=True)["Lab"], expected, atol=0.1)
+
+
 def test_vision_of_a_spectra_file_is_the_clis():
     spectra = os.path.join(ROOT, "data", "examples", "vision_spectra.csv")
     v = vision.vision(spectra, "avian-uv", illuminant="forestshade")

@@ -62,6 +62,16 @@ def test_fit_names_the_material_that_does_not_cover_the_range():
         tf.fit(os.path.join(FIX, "no_such_file.txt"), "air | SiO2 {d=120nm:50nm..300nm} | Si")
 
 
+def test_fit_refuses_percent_for_psi_delta(tmp_path):
+    # ψ and Δ are angles: a percent setting would change nothing.
+    ell = tmp_path / "ellips.csv"
+    ell.write_text("wavelength_nm,psi,delta\n400,30,100\n500,31,101\n600,32,102\n")
+    stack = "air | n=2.1 {d=150nm:50nm..400nm} | Si"
+    for percent, said in ((True, "--percent"), (False, "percent=False")):
+        with pytest.raises(ValueError, match=f"{said} would be ignored: ψ and Δ are angles"):
+            tf.fit(str(ell), stack, np.radians(70), "psi-delta", percent=percent)
+
+
 def test_profile_reproduces_the_cli():
     ref = cli("profile_gold")
     out = tf.profile("air | Au 30nm | glass", 500.0, np.radians(20.0), "p", points=41)

@@ -53,6 +53,9 @@ def test_identical_spectra_and_bad_input():
     # The units of an illuminant CSV, given with a built-in light: refused as the CLI refuses them.
     with pytest.raises(ValueError, match="--illuminant-units would be ignored: .*bluesky is a built-in light"):
         vision.analyse(wl, values, "bluetit", names, illuminant="bluesky", illuminant_units="energy")
+    # A Weber fraction for an achromatic channel that is not there: refused as the CLI refuses it.
+    with pytest.raises(ValueError, match="--weber-achromatic 0.2 would be ignored: --achromatic none"):
+        vision.analyse(wl, values, "bluetit", names, achromatic="none", achromatic_weber=0.2)
 
 
 def test_sensitivities_have_unit_area_and_peak_at_lambda_max():

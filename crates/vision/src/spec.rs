@@ -43,6 +43,7 @@ pub struct Spec {
     pub noise: Option<String>,
     /// `none`, a receptor's name or position, or `NAME+NAME` for a sum.
     pub achromatic: Option<String>,
+    /// Refused when there is no achromatic channel (it would change nothing).
     pub achromatic_weber: Option<f64>,
     pub space: Option<String>,
 }
@@ -185,6 +186,22 @@ impl Spec {
             };
         }
         if let Some(w) = self.achromatic_weber {
+            let has_channel = match &o.achromatic {
+                AchromaticChoice::Off => false,
+                AchromaticChoice::System => system.achromatic.is_some(),
+                AchromaticChoice::Use(_) => true,
+            };
+            if !has_channel {
+                let why = if matches!(o.achromatic, AchromaticChoice::Off) {
+                    "--achromatic none leaves no achromatic channel"
+                } else {
+                    "this visual system has no achromatic channel"
+                };
+                return Err(VisionError::invalid(format!(
+                    "--weber-achromatic {w} would be ignored: {why} (give --achromatic with a receptor or NAME+NAME \
+                     for ΔL)"
+                )));
+            }
             o.achromatic_weber = w;
         }
         if let Some(s) = &self.space {

@@ -15,7 +15,9 @@ pub enum ColorCommand {
 The spectrum file has two columns, wavelength in nm and value, separated by commas, semicolons, tabs or
 spaces; a header line and lines starting with # are allowed. By default the values are a reflectance (or
 transmittance) lit by the illuminant and Y = 1 is a perfect white reflector; with --emissive the spectrum is
-a light source and its colour is reported at Y = 1. CIELAB is relative to the illuminant's white.
+a light source and its colour is reported at Y = 1. CIELAB is relative to the illuminant's white, with
+--emissive too (the white the light is judged against: a light of the illuminant's own spectrum is L* = 100,
+a* = b* = 0).
 
 Examples:
   iridis color xyz data/examples/colorchecker_green.csv
@@ -34,7 +36,7 @@ Examples:
 pub struct XyzArgs {
     /// Spectrum file (CSV: wavelength_nm, value).
     pub spectrum: PathBuf,
-    /// Illuminant: d65, d50, a or e.
+    /// Illuminant: d65, d50, a or e (with --emissive, the reference white of CIELAB).
     #[arg(long, default_value = "d65")]
     pub illuminant: String,
     /// Standard observer: 1931 (2°) or 1964 (10°).

@@ -40,7 +40,7 @@ pub struct ViewArgs {
     #[arg(long)]
     pub check: Option<PathBuf>,
     /// With --check: print the check's report as JSON.
-    #[arg(long)]
+    #[arg(long, requires = "check")]
     pub json: bool,
     #[command(flatten)]
     pub surface_opts: iridis_api::SurfaceOptions,

@@ -80,9 +80,9 @@ pub struct VisionArgs {
     /// Achromatic channel for ΔL: none, a receptor (name or position) or a sum NAME+NAME (default: the system's).
     #[arg(long)]
     pub achromatic: Option<String>,
-    /// Weber fraction of the achromatic channel.
-    #[arg(long, default_value_t = 0.1)]
-    pub weber_achromatic: f64,
+    /// Weber fraction of the achromatic channel [default: 0.1]; refused when there is none.
+    #[arg(long)]
+    pub weber_achromatic: Option<f64>,
     /// Colour space of the coordinates: auto, line, triangle, tetrahedron, hexagon or none.
     #[arg(long, default_value = "auto")]
     pub space: String,
@@ -112,7 +112,7 @@ impl VisionArgs {
             receptor_noise: self.receptor_noise.clone(),
             noise: Some(self.noise.clone()),
             achromatic: self.achromatic.clone(),
-            achromatic_weber: Some(self.weber_achromatic),
+            achromatic_weber: self.weber_achromatic,
             space: Some(self.space.clone()),
         }
     }

@@ -141,7 +141,8 @@ def xyz(spectrum, illuminant="D65", observer="1931", emissive=False):
     """``iridis color xyz``: the colour of the spectrum in a file (two columns, wavelength in nm and value) as
     the CLI reports it — a dict with XYZ, xyY, Lab, linear_srgb, srgb and hex, and ``.text`` the CLI's text.
     A reflectance lit by ``illuminant`` (Y = 1 a perfect white reflector), or with ``emissive`` a light source
-    at Y = 1; a file that does not cover 380–780 nm gives a warning."""
+    at Y = 1; L*a*b* is relative to the illuminant's white either way (for a light, the white it is judged
+    against). A file that does not cover 380–780 nm gives a warning."""
     from ._answer import answer
 
     return answer(_native._color_xyz(str(spectrum), str(illuminant), str(observer), bool(emissive)))
