@@ -60,6 +60,19 @@ fn bad_input_fails_cleanly() {
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("no unit"));
     assert!(!out.exists());
+    // A seed for a grating, which has no randomness, would change nothing: refused from every front.
+    let npz = dir.path().join("never.npz");
+    for args in [
+        &["surface", "generate", "sine", "--seed", "3", "-o", out.to_str().unwrap()][..],
+        &["surface", "info", "builtin:blazed", "--seed", "3"],
+        &["precompute", "builtin:sine?seed=3", "-o", npz.to_str().unwrap()],
+    ] {
+        let o = iridis().args(args).output().unwrap();
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert!(o.status.code() == Some(2) && stderr.contains("seed 3 would be ignored"), "{args:?}: {stderr}");
+        assert!(stderr.contains("a seed shapes cd, gaussian, elaphe, xenopeltis"), "{stderr}");
+    }
+    assert!(!out.exists() && !npz.exists());
     // Leftover temporary files would start with ".iridis-".
     assert!(std::fs::read_dir(dir.path()).unwrap().all(|e| !e
         .unwrap()

@@ -77,6 +77,9 @@ def test_bad_input():
     npy = os.path.join(ROOT, "crates", "surface", "tests", "fixtures", "numpy_f32_fortran.npy")
     with pytest.raises(ValueError, match=r"--max-height would be ignored: .*npy format"):
         surface.load(npy, pixel_size_nm=10.0, max_height_nm=5.0)
+    # A seed for a structure with no randomness would change nothing.
+    with pytest.raises(ValueError, match="seed 3 would be ignored: sine has no randomness"):
+        surface.generate("sine", size="2um", pixel="50nm", seed=3)
 
 
 def test_an_instrument_files_own_units_win_unless_overridden():

@@ -15,8 +15,9 @@ pub const KINDS: [&str; 8] = ["sine", "blazed", "rect-bumps", "tri-bumps", "cd",
 
 /// The defaults and parameters of every kind, for `--help` and the guide.
 pub const HELP: &str = "\
-Common parameters: size=65um (square patch; size-x, size-y for a rectangle), pixel=65nm, seed=1, angle=0deg
-(counter-clockwise rotation of the pattern). Lengths need units (nm, um, µm, mm), angles deg or rad.
+Common parameters: size=65um (square patch; size-x, size-y for a rectangle), pixel=65nm, angle=0deg
+(counter-clockwise rotation of the pattern), and seed=1 for the random ones (cd, gaussian, elaphe,
+xenopeltis). Lengths need units (nm, um, µm, mm), angles deg or rad.
   sine        period=1100nm depth=100nm              h = depth/2 · sin(2π u/period)
   blazed      period=2500nm blaze=6deg | depth=…     saw-tooth rising along +x: facets face −x
                                                      (6° blazes green, d·sin 2β = 520 nm, depth 263 nm)
@@ -37,6 +38,7 @@ pub fn from_params(kind: &str, params: &[(String, String)], base: &Grid) -> Resu
     let mut gen = default_generator(kind)?;
     let mut blaze: Option<f64> = None;
     let mut depth_given = false;
+    let mut seed_given = false;
     for (k, v) in params {
         let k = k.trim().to_ascii_lowercase().replace('_', "-");
         let v = v.trim();
@@ -52,13 +54,17 @@ pub fn from_params(kind: &str, params: &[(String, String)], base: &Grid) -> Resu
             "angle" => grid.angle_rad = parse_angle_rad(v).map_err(|e| SurfaceError::invalid(format!("angle: {e}")))?,
             "seed" => {
                 grid.seed =
-                    v.parse().map_err(|_| SurfaceError::invalid(format!("seed '{v}' is not a whole number ≥ 0")))?
+                    v.parse().map_err(|_| SurfaceError::invalid(format!("seed '{v}' is not a whole number ≥ 0")))?;
+                seed_given = true;
             }
             _ => {
                 set_param(&mut gen, &k, v, &mut blaze)?;
                 depth_given |= k == "depth";
             }
         }
+    }
+    if seed_given {
+        refuse_unused_seed(&gen, &format!("seed {}", grid.seed))?;
     }
     if let (Some(b), Generator::Blazed { period_nm, depth_nm }) = (blaze, &mut gen) {
         if depth_given {
@@ -76,6 +82,20 @@ pub fn from_params(kind: &str, params: &[(String, String)], base: &Grid) -> Resu
         }
     }
     Ok((gen, grid))
+}
+
+/// A seed for a structure with no randomness would change nothing: refused, naming the kinds it shapes.
+fn refuse_unused_seed(gen: &Generator, said: &str) -> Result<(), SurfaceError> {
+    if gen.is_random() {
+        return Ok(());
+    }
+    let random: Vec<&str> =
+        KINDS.iter().copied().filter(|k| default_generator(k).is_ok_and(|g| g.is_random())).collect();
+    Err(SurfaceError::invalid(format!(
+        "{said} would be ignored: {} has no randomness (a seed shapes {})",
+        gen.kind(),
+        random.join(", ")
+    )))
 }
 
 fn default_generator(kind: &str) -> Result<Generator, SurfaceError> {
@@ -190,6 +210,9 @@ pub fn builtin_surface(rest: &str, opts: &LoadOptions) -> Result<HeightField, Su
             "builtin:{rest} asks for seed {} but --seed says {}; give it once, in the query string or as the flag",
             grid.seed, base.seed
         )));
+    }
+    if let Some(s) = opts.seed {
+        refuse_unused_seed(&gen, &format!("--seed {s}"))?;
     }
     let mut hf = gen.generate(&grid)?;
     hf.meta.source = format!("builtin:{rest}");

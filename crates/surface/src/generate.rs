@@ -189,8 +189,20 @@ impl Generator {
         }
     }
 
+    /// Whether the seed shapes this structure: the regular gratings and lattices have no randomness (a seed
+    /// given for one would change nothing).
+    pub fn is_random(&self) -> bool {
+        match self {
+            Generator::Sine { .. } | Generator::Blazed { .. } | Generator::Bumps { .. } => false,
+            Generator::Cd { .. }
+            | Generator::Gaussian { .. }
+            | Generator::Elaphe { .. }
+            | Generator::Xenopeltis { .. } => true,
+        }
+    }
+
     /// The generator and its grid as a person writes them in a built-in's query string, e.g.
-    /// `sine period=1100nm depth=100nm size=8um pixel=50nm angle=0deg seed=1`.
+    /// `sine period=1100nm depth=100nm size=8um pixel=50nm angle=0deg` (`seed=1` after it for a random one).
     pub fn describe(&self, grid: &Grid) -> String {
         use iridis_color::units::{format_angle, format_length as len};
         let params = match *self {
@@ -223,12 +235,14 @@ impl Generator {
         } else {
             format!("size-x={} size-y={}", len(grid.size_x_nm), len(grid.size_y_nm))
         };
+        // The seed only where it shapes the structure: the line reads back as a query string, which refuses
+        // a seed for a grating.
+        let seed = if self.is_random() { format!(" seed={}", grid.seed) } else { String::new() };
         format!(
-            "{} {params} {size} pixel={} angle={} seed={}",
+            "{} {params} {size} pixel={} angle={}{seed}",
             self.kind(),
             len(grid.pixel_nm),
-            format_angle(grid.angle_rad),
-            grid.seed
+            format_angle(grid.angle_rad)
         )
     }
 

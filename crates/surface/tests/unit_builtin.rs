@@ -26,18 +26,35 @@ fn query_and_flag_must_agree() {
     assert!(e.contains("size 5um") && e.contains("--size says 8um"), "{e}");
     let e = builtin_surface("sine?pixel=40nm", &o).unwrap_err().to_string();
     assert!(e.contains("pixel 40nm") && e.contains("--pixel-size says 50nm"), "{e}");
-    let e = builtin_surface("sine?seed=3", &o).unwrap_err().to_string();
+    let e = builtin_surface("gaussian?seed=3", &o).unwrap_err().to_string();
     assert!(e.contains("seed 3") && e.contains("--seed says 2"), "{e}");
     // Saying the same thing twice is no conflict.
-    let hf = builtin_surface("sine?size=8um&pixel=50nm&seed=2", &o).unwrap();
+    let hf = builtin_surface("gaussian?size=8um&pixel=50nm&seed=2", &o).unwrap();
     assert_eq!((hf.rows, hf.cols), (160, 160));
+}
+
+#[test]
+fn a_seed_for_a_structure_without_randomness_is_refused() {
+    let random = "(a seed shapes cd, gaussian, elaphe, xenopeltis)";
+    let e = builtin_surface("sine?seed=3", &LoadOptions::default()).unwrap_err().to_string();
+    assert!(e.contains("seed 3 would be ignored: sine has no randomness") && e.contains(random), "{e}");
+    let o = LoadOptions { seed: Some(2), ..Default::default() };
+    let e = builtin_surface("blazed", &o).unwrap_err().to_string();
+    assert!(e.contains("--seed 2 would be ignored: blazed has no randomness"), "{e}");
+    let p = vec![("seed".to_string(), "4".to_string())];
+    let e = from_params("rect-bumps", &p, &Grid::default()).unwrap_err().to_string();
+    assert!(e.contains("seed 4 would be ignored: rect-bumps"), "{e}");
+    // A random structure takes it: two seeds, two surfaces; the same seed, the same surface.
+    let h = |seed: u64| builtin_surface("gaussian?size=4um", &LoadOptions { seed: Some(seed), ..Default::default() });
+    let (a, b, c) = (h(2).unwrap(), h(3).unwrap(), h(2).unwrap());
+    assert!(a.heights_nm != b.heights_nm && a.heights_nm == c.heights_nm);
 }
 
 #[test]
 fn the_note_reads_as_written() {
     let hf = builtin_surface("blazed?size=6.4um&pixel=50nm&angle=30deg", &LoadOptions::default()).unwrap();
     // Blazed default depth 2500 nm · tan 6° = 262.7606 nm, shown to 6 digits.
-    assert_eq!(hf.meta.notes, ["blazed period=2500nm depth=262.761nm size=6.4um pixel=50nm angle=30deg seed=1"]);
+    assert_eq!(hf.meta.notes, ["blazed period=2500nm depth=262.761nm size=6.4um pixel=50nm angle=30deg"]);
 }
 
 #[test]

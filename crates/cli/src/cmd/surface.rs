@@ -83,8 +83,8 @@ Kinds and their parameters (defaults shown; lengths need units):
                overlapping nanofinger layers along x
   xenopeltis   --along 1500nm --across 550nm --depth 120nm
                curving fingers, grains of other periods
-Every kind also takes --size 65um (or --size-x/--size-y), --pixel-size 65nm, --seed 1 and --angle 0deg
-(counter-clockwise).
+Every kind also takes --size 65um (or --size-x/--size-y), --pixel-size 65nm and --angle 0deg
+(counter-clockwise); the random ones (cd, gaussian, elaphe, xenopeltis) --seed 1.
 
 The output format follows the extension: .gwy (with units), .npy (+ .npy.json sidecar), .npz (like
 np.savez: one array 'heights', + .npz.json sidecar), .png (16-bit, + .png.json sidecar with pixel size and
@@ -217,7 +217,7 @@ pub struct GenerateArgs {
     /// Counter-clockwise rotation of the pattern (e.g. 30deg).
     #[arg(long, allow_hyphen_values = true)]
     pub angle: Option<String>,
-    /// Random seed.
+    /// Random seed (cd, gaussian, elaphe, xenopeltis; refused for the others, which have no randomness).
     #[arg(long)]
     pub seed: Option<String>,
     /// Grating or lattice period.
