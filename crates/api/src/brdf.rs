@@ -23,6 +23,10 @@ use crate::surface::{Source, SurfaceOptions};
 /// ([`crate::rigorous_brdf`]); not one of the lab's methods.
 pub const RIGOROUS: &str = "rigorous";
 
+/// `--unit-cell auto` with another method than the rigorous one.
+pub const UNIT_CELL_AUTO_RIGOROUS: &str =
+    "--unit-cell auto chooses the unit cell of the rigorous method: use it with --method rigorous";
+
 /// What makes an evaluator besides its input: the method and the model, shading, table and reading options
 /// (`brdf-map`'s and `brdf eval`'s flags, Python's evaluator options).
 #[derive(Debug, Clone)]
@@ -110,7 +114,7 @@ pub fn evaluator_for(source: &Source, setup: EvaluatorSetup<'_>, report: &dyn Re
         return Ok(Box::new(crate::rigorous_brdf::evaluator(source, model, surface_opts, report)?));
     }
     if model.unit_cell_auto {
-        bail!("--unit-cell auto chooses the unit cell of the rigorous method: use it with --method rigorous");
+        bail!(UNIT_CELL_AUTO_RIGOROUS);
     }
     // The lab's methods, and the rigorous one (handled above) listed with them.
     let parsed: Method = method.parse().map_err(|e| anyhow::anyhow!("{e}, {RIGOROUS}"))?;

@@ -59,6 +59,9 @@ pub fn brdf_eval(r: &EvalRequest, spectra: Option<&Path>, report: &dyn Report) -
     let shading = crate::fresnel::shading(&r.fresnel, r.convention, r.shadowing)?;
     refuse_build_options_for_table(&r.input, r.grid, &r.surface, "brdf eval")?;
     let method = method_of(r);
+    if method == crate::brdf::RIGOROUS {
+        crate::fresnel::refuse_scalar_shading_for_rigorous(&r.fresnel, r.convention, r.shadowing)?;
+    }
     r.grid.refuse_unless_lookup(&method)?;
     let r0 = shading.fresnel.normal_reflectance();
     let p = eval_point(&r.input, Some(&method), &r.model, shading, r.grid.params(), &r.surface, wi, wr, report)?;
@@ -93,7 +96,7 @@ impl EvalReport {
             "fresnel": if p.rigorous.is_some() { Value::Null } else { json!(r.fresnel) },
             "fresnel_convention": r.convention.name(),
             "fresnel_r0": self.r0,
-            "shadowing": r.shadowing,
+            "shadowing": if p.rigorous.is_some() { Value::Null } else { json!(r.shadowing) },
             "coherence_nm": p.coherence_nm,
             "window_effective_area_um2": p.effective_area_nm2.map(|a| a / 1e6),
             "illuminant": r.model.illuminant.as_deref().unwrap_or("d65"),

@@ -61,7 +61,7 @@ impl MapRequest {
             method: method.into(),
             model: ModelOptions::default(),
             surface: SurfaceOptions::default(),
-            fresnel: "schlick:1.5".into(),
+            fresnel: crate::fresnel::DEFAULT_FRESNEL.into(),
             convention: FresnelConvention::Physical,
             shadowing: true,
             wi: [0.0, 0.0, 1.0],
@@ -142,6 +142,13 @@ pub fn compute(r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) ->
             r.method
         );
     }
+    if r.model.material.is_some() && r.method != RIGOROUS {
+        bail!("--material is the rigorous method's medium; the scalar methods take --fresnel (index:…, gold, stack:…)");
+    }
+    if r.model.unit_cell_auto && r.method != RIGOROUS {
+        // (Also refused by the CPU's evaluator; said here for the GPU's map, which builds none.)
+        bail!(crate::brdf::UNIT_CELL_AUTO_RIGOROUS);
+    }
     if let Some(f) = files {
         f.declare()?;
     }
@@ -162,8 +169,8 @@ pub fn compute(r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) ->
     let start = std::time::Instant::now();
     // The map asks about one light: the reference method keeps only its bins (memory).
     let model = ModelOptions { light: Some(r.wi), ..r.model.clone() };
-    if model.material.is_some() && r.method != RIGOROUS {
-        bail!("--material is the rigorous method's medium; the scalar methods take --fresnel (index:…, gold, stack:…)");
+    if r.method == RIGOROUS {
+        crate::fresnel::refuse_scalar_shading_for_rigorous(&r.fresnel, r.convention, r.shadowing)?;
     }
     let setup = EvaluatorSetup {
         method: &r.method,

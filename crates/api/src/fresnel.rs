@@ -8,6 +8,31 @@ use iridis_diffraction::geometry::{FilmFresnel, FresnelConvention, FresnelSource
 use iridis_diffraction::Fresnel;
 use num_complex::Complex64;
 
+/// The `--fresnel` of the scalar methods when none is given.
+pub const DEFAULT_FRESNEL: &str = "schlick:1.5";
+
+/// Refuses the scalar model's shading options for the rigorous method, whose lobes carry Maxwell's efficiencies
+/// over its `--material`: a Fresnel factor, the paper's R² convention and leaving out the shadowing term would
+/// each change nothing.
+pub fn refuse_scalar_shading_for_rigorous(fresnel: &str, convention: FresnelConvention, shadowing: bool) -> Result<()> {
+    if fresnel.trim() != DEFAULT_FRESNEL {
+        bail!(
+            "the rigorous method needs the medium under the relief (--material gold, keratin, n=1.5, …), not a \
+             Fresnel factor (--fresnel {fresnel})"
+        );
+    }
+    if convention == FresnelConvention::Paper {
+        bail!("--fresnel-convention paper is the scalar model's R² as printed; the rigorous method has none");
+    }
+    if !shadowing {
+        bail!(
+            "--no-shadowing would be ignored: the rigorous method's lobes carry Maxwell's efficiencies, which no \
+             shadowing term scales"
+        );
+    }
+    Ok(())
+}
+
 /// The shading factors around |A|² (`C` of paper eq. 2–4): Fresnel source, its convention, shadowing.
 pub fn shading(fresnel: &str, convention: FresnelConvention, shadowing: bool) -> Result<Shading> {
     Ok(Shading { fresnel: parse_fresnel_source(fresnel)?, shadowing, convention })

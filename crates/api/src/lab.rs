@@ -36,7 +36,7 @@ pub struct LabOptions {
     pub terms: String,
     /// Fresnel factor: schlick[:N] (default schlick:1.5), index:N[+Ki], gold (measured) or a thin-film stack,
     /// e.g. "stack:air | keratin 300nm | n=1.56" (as brdf-map's --fresnel).
-    #[cfg_attr(feature = "cli", arg(long, default_value = "schlick:1.5"))]
+    #[cfg_attr(feature = "cli", arg(long, default_value = crate::fresnel::DEFAULT_FRESNEL))]
     pub fresnel: String,
     /// How the Fresnel reflectance enters: physical (R once, the default) or paper (R², the paper's formula as
     /// printed, to reproduce its figures; docs/PHYSICS.md).
@@ -59,7 +59,7 @@ impl Default for LabOptions {
             surface: SurfaceOptions::default(),
             coherence_nm: None,
             terms: "auto".into(),
-            fresnel: "schlick:1.5".into(),
+            fresnel: crate::fresnel::DEFAULT_FRESNEL.into(),
             convention: FresnelConvention::Physical,
             shadowing: true,
             stam_epsilon: None,

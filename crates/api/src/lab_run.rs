@@ -97,6 +97,9 @@ pub fn testbench_run(
         crate::lab::check_spectral(m)?;
     }
     lab.refuse_unused(method.as_slice(), rigorous)?;
+    if rigorous {
+        crate::fresnel::refuse_scalar_shading_for_rigorous(&lab.fresnel, lab.convention, lab.shadowing)?;
+    }
     crate::output::declare_opt("--plot", req.plot.as_deref(), &["png"])?;
     let setup = req.setup.clone();
     let t = match method {

@@ -162,7 +162,7 @@ fn brdf_map_figure(
 ) -> Result<Vec<String>> {
     let wi = direction(incidence.0, incidence.1);
     let model = crate::ModelOptions { coherence_nm, light: Some(wi), ..crate::ModelOptions::default() };
-    let shading = crate::fresnel::shading("schlick:1.5", FresnelConvention::Physical, true)?;
+    let shading = crate::fresnel::shading(crate::fresnel::DEFAULT_FRESNEL, FresnelConvention::Physical, true)?;
     let params = TableParams { uv_resolution: 501, uv_power: 5.0 };
     let setup = crate::brdf::EvaluatorSetup {
         method: "reference",
@@ -329,7 +329,7 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
                 ..Default::default()
             };
             let model = crate::ModelOptions { coherence_nm: map_coherence_nm, ..crate::ModelOptions::default() };
-            let shading = crate::fresnel::shading("schlick:1.5", FresnelConvention::Physical, true)?;
+            let shading = crate::fresnel::shading(crate::fresnel::DEFAULT_FRESNEL, FresnelConvention::Physical, true)?;
             let views: Vec<f64> = (-6..=6).map(|k| 10.0 * k as f64).collect();
             let plane = crate::vision::PlaneViews { light_theta: 0.0, azimuth: None, views_deg: &views, spec: &spec };
             let v = crate::vision::along_plane(&source, surf, &model, shading, plane, r)?;

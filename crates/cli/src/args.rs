@@ -54,35 +54,13 @@ impl RigorousOpts {
         unit_cell_auto(&self.unit_cell)
     }
 
-    /// Puts the options into the facade's model options, refusing what the method cannot use: a Fresnel
-    /// factor (`fresnel` and its `convention`) with the rigorous method, which needs the material.
-    pub fn apply(
-        &self,
-        method: &str,
-        fresnel: &str,
-        convention: FresnelConvention,
-        model: &mut iridis_api::ModelOptions,
-    ) -> anyhow::Result<()> {
-        let (rigorous, paper) = (method == iridis_api::brdf::RIGOROUS, convention == FresnelConvention::Paper);
-        if rigorous && fresnel.trim() != DEFAULT_FRESNEL {
-            anyhow::bail!(
-                "the rigorous method needs the medium under the relief (--material gold, keratin, n=1.5, …), not a \
-                 Fresnel factor (--fresnel {fresnel})"
-            );
-        }
-        if rigorous && paper {
-            anyhow::bail!(
-                "--fresnel-convention paper is the scalar model's R² as printed; the rigorous method has none"
-            );
-        }
+    /// Puts the options into the facade's model options (the library refuses what the method cannot use).
+    pub fn apply(&self, model: &mut iridis_api::ModelOptions) -> anyhow::Result<()> {
         model.material = self.material.clone();
         model.unit_cell_auto = self.auto()?;
         Ok(())
     }
 }
-
-/// The `--fresnel` of the scalar methods when none is given.
-pub const DEFAULT_FRESNEL: &str = "schlick:1.5";
 
 // ----------------------------------------------------------------------------------------------------------
 // Thin films (`iridis thinfilm …`)
@@ -256,7 +234,7 @@ pub struct ShadingOpts {
     /// Fresnel factor: schlick[:N] (default schlick:1.5), index:N or index:N+Ki (gold near 550 nm:
     /// index:0.2+3.4i), gold (measured, Johnson & Christy) or a thin-film stack, e.g. "stack:air | keratin
     /// 300nm | n=1.56" (the last two depend on λ: reference or ground-truth).
-    #[arg(long, default_value = "schlick:1.5")]
+    #[arg(long, default_value = iridis_api::fresnel::DEFAULT_FRESNEL)]
     pub fresnel: String,
     /// How the Fresnel reflectance enters: physical (R once, the default) or paper (R², the paper's formula as
     /// printed, to reproduce its figures; docs/PHYSICS.md).

@@ -351,6 +351,23 @@ fn rigorous_brdf_refusals_and_the_scalar_models_error_on_a_scan() {
         &["--material"],
     );
     assert_fails(&["brdf-map", sine, "--unit-cell", "auto", "-o", "x.png"], &["--method rigorous"]);
+    // The scalar model's shading options would change nothing in the rigorous method's lobes: refused by the
+    // library for each command, with what to give instead.
+    let rigorous = ["--method", "rigorous", "--unit-cell", "auto"];
+    let no_shadowing = ["--no-shadowing would be ignored", "Maxwell's efficiencies"];
+    assert_fails(
+        &[&["brdf", "eval", sine, "--light", "0deg", "--view", "0deg", "--no-shadowing"][..], &rigorous].concat(),
+        &no_shadowing,
+    );
+    assert_fails(&[&["brdf-map", sine, "-o", "x.png", "--no-shadowing"][..], &rigorous].concat(), &no_shadowing);
+    assert_fails(&[&["testbench", sine, "--no-shadowing"][..], &rigorous].concat(), &no_shadowing);
+    assert_fails(
+        &[&["testbench", sine, "--fresnel-convention", "paper"][..], &rigorous].concat(),
+        &["--fresnel-convention paper", "the rigorous method has none"],
+    );
+    // The rigorous method's options with another method are refused on the GPU's path too.
+    assert_fails(&["brdf-map", sine, "--gpu", "--material", "gold", "-o", "x.png"], &["--material", "--fresnel"]);
+    assert_fails(&["brdf-map", sine, "--gpu", "--unit-cell", "auto", "-o", "x.png"], &["--method rigorous"]);
     let skin = "builtin:elaphe?size=10um&pixel=50nm";
     let out = iridis(&["brdf", "eval", skin, "--light", "0deg", "--view", "10deg,90deg", "--step", "20nm", "--json"]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));

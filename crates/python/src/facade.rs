@@ -214,7 +214,7 @@ impl<'py> Options<'py> {
     /// The shading factors: `fresnel` (default `schlick:1.5`), `fresnel_convention` (`physical` or `paper`),
     /// `shadowing` (default True), as text the CLI takes.
     pub fn shading_text(&mut self) -> PyResult<(String, iridis_diffraction::FresnelConvention, bool)> {
-        let fresnel = self.string("fresnel")?.unwrap_or_else(|| "schlick:1.5".into());
+        let fresnel = self.string("fresnel")?.unwrap_or_else(|| iridis_api::fresnel::DEFAULT_FRESNEL.into());
         let convention = match self.string("fresnel_convention")? {
             None => iridis_diffraction::FresnelConvention::Physical,
             Some(c) => {

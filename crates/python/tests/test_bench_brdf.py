@@ -118,6 +118,19 @@ def test_a_finished_table_refuses_what_only_shapes_a_build(tmp_path):
     assert diffraction.brdf_eval(str(path), light=0.3, view=0.2)["method"] == "lookup"
 
 
+def test_the_rigorous_method_refuses_the_scalar_models_shading():
+    """As the CLI (crates/cli/tests/brdf_cli.rs): its lobes carry Maxwell's efficiencies over the material, so a
+    Fresnel factor, the paper's R² and leaving out the shadowing term would change nothing."""
+    cell = "builtin:sine?size=1100nm&pixel=10nm"
+    for key, value, said in (("fresnel", "index:2.5", "not a Fresnel factor"),
+                             ("fresnel_convention", "paper", "the rigorous method has none"),
+                             ("shadowing", False, "--no-shadowing would be ignored")):
+        with pytest.raises(ValueError, match=said):
+            diffraction.brdf_eval(cell, light=0.3, view=0.0, method="rigorous", **{key: value})
+        with pytest.raises(ValueError, match=said):
+            diffraction.brdf_map_run(cell, size=8, method="rigorous", **{key: value})
+
+
 # --- brdf-map -----------------------------------------------------------------------------------------------
 
 def test_brdf_map_run_and_per_sr_equal_the_cli_files():

@@ -293,9 +293,7 @@ pub fn run_brdf_map(a: BrdfMapArgs) -> Result<()> {
     let encoding = Encoding::parse(&a.gamma).map_err(anyhow::Error::msg)?;
     let wi = parse_incidence(&a.incidence)?;
     let mut model = a.model.options();
-    if !a.gpu {
-        a.rigorous.apply(&a.method, &a.shading.fresnel, a.shading.fresnel_convention, &mut model)?;
-    }
+    a.rigorous.apply(&mut model)?;
     let r = iridis_api::brdf_map::MapRequest {
         input: a.input,
         method: a.method,
@@ -331,7 +329,7 @@ fn run_eval(a: BrdfEvalArgs) -> Result<()> {
     let (light, view) = (polar_azimuth("light", &a.light)?, polar_azimuth("view", &a.view)?);
     let mut model = a.model.options();
     let method = a.method.clone().unwrap_or_else(|| iridis_api::brdf::default_method(&a.input).to_string());
-    a.rigorous.apply(&method, &a.shading.fresnel, a.shading.fresnel_convention, &mut model)?;
+    a.rigorous.apply(&mut model)?;
     let r = iridis_api::brdf_eval::EvalRequest {
         input: a.input,
         method: Some(method),

@@ -102,7 +102,7 @@ pub struct TestbenchArgs {
 
 pub fn run_testbench(a: TestbenchArgs) -> Result<()> {
     let mut rigorous = iridis_api::ModelOptions::default();
-    a.rigorous.apply(&a.method, &a.model.fresnel, a.model.convention, &mut rigorous)?;
+    a.rigorous.apply(&mut rigorous)?;
     let mut setup = BenchSetup::new(
         a.incidence,
         a.azimuth.unwrap_or(0.0),
