@@ -19,9 +19,8 @@ use crate::model::{
 use crate::report::{with_progress, Report};
 use crate::surface::{Source, SurfaceOptions};
 
-/// The name of the rigorous method (`--method rigorous`): the scalar lobes carrying Maxwell's efficiencies
-/// ([`crate::rigorous_brdf`]); not one of the lab's methods.
-pub const RIGOROUS: &str = "rigorous";
+// (The rigorous method's name lives in `model`, below both this module and `lab`, which names it too.)
+pub use crate::model::RIGOROUS;
 
 /// `--unit-cell auto` with another method than the rigorous one.
 pub const UNIT_CELL_AUTO_RIGOROUS: &str =

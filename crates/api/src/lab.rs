@@ -125,7 +125,7 @@ pub fn refuse_unused_terms(terms: &str, methods: &[Method], rigorous: bool) -> R
             "--terms {terms} would be ignored: {} no Taylor terms ({} and {} do)",
             who(methods, rigorous, ("uses", "use")),
             users.join(", "),
-            crate::brdf::RIGOROUS
+            crate::model::RIGOROUS
         );
     }
     Ok(())
@@ -135,7 +135,7 @@ pub fn refuse_unused_terms(terms: &str, methods: &[Method], rigorous: bool) -> R
 fn who(methods: &[Method], rigorous: bool, verb: (&str, &str)) -> String {
     let mut names: Vec<&str> = methods.iter().map(|m| m.name()).collect();
     if rigorous {
-        names.push(crate::brdf::RIGOROUS);
+        names.push(crate::model::RIGOROUS);
     }
     match names.as_slice() {
         [one] => format!("the {one} method {}", verb.0),

@@ -14,6 +14,10 @@ use iridis_gpu::Gpu;
 use crate::report::{with_progress, Report};
 use crate::surface::{load_patch, SurfaceOptions};
 
+/// The name of the rigorous method (`--method rigorous`): the scalar lobes carrying Maxwell's efficiencies
+/// ([`crate::rigorous_brdf`]); not one of the lab's methods.
+pub const RIGOROUS: &str = "rigorous";
+
 /// Bound on the Taylor remainder used by `--terms auto` (PHYSICS.md).
 pub const DEFAULT_EPSILON: f64 = 1e-6;
 
