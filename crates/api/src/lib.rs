@@ -46,6 +46,7 @@ pub mod film;
 pub mod film_bench;
 pub mod film_chart;
 pub mod film_fit;
+pub mod film_run;
 pub mod fresnel;
 pub mod gallery;
 pub mod gpu;

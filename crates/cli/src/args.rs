@@ -66,7 +66,8 @@ impl RigorousOpts {
 // Thin films (`iridis thinfilm …`)
 
 use anyhow::{bail, Result};
-use iridis_api::rough::{Angles, RoughOptions};
+use iridis_api::film_run::{RoughLight, RoughLights};
+use iridis_api::rough::RoughOptions;
 use iridis_thinfilm::rough::DiffuseTransport;
 use std::path::PathBuf;
 
@@ -123,13 +124,27 @@ impl RoughArgs {
         Ok(RoughOptions { sigma_nm, tau_nm, d_iterations: self.d_iterations, transport: self.diffuse_transport })
     }
 
-    /// The directions of spectrum, color and chart at view angle `view` (the light at --light-angle, else at
-    /// the view angle; --azimuth); refuses the table's --light-angles.
-    pub fn angles(&self, view: f64) -> Result<Angles> {
+    /// The rough substrate of spectrum, color, chart and bench, when asked for (the light at --light-angle, else
+    /// at the view angle; --azimuth); refuses the table's --light-angles.
+    pub fn light(&self) -> Result<Option<RoughLight>> {
+        if !self.is_set() {
+            return Ok(None);
+        }
         if self.light_angles.is_some() {
             bail!("--light-angles is for 'table'; use --light-angle here");
         }
-        Ok(Angles::new(view, self.light_angle, self.azimuth))
+        Ok(Some(RoughLight { options: self.options()?, light: self.light_angle, azimuth: self.azimuth }))
+    }
+
+    /// The rough substrate of table, when asked for (--light-angles, --azimuth); refuses --light-angle.
+    pub fn lights(&self) -> Result<Option<RoughLights>> {
+        if !self.is_set() {
+            return Ok(None);
+        }
+        if self.light_angle.is_some() {
+            bail!("--light-angle is for 'spectrum' and 'color'; the table takes --light-angles FROM:TO:STEP");
+        }
+        Ok(Some(RoughLights { options: self.options()?, lights: self.light_angles.clone(), azimuth: self.azimuth }))
     }
 }
 

@@ -88,6 +88,25 @@ fn bad_roughness_is_a_clear_error() {
     run(&["--roughness", "25nm"], "required"); // clap names --correlation on the next line
     run(&["--roughness", "25", "--correlation", "300nm"], "unit");
     run(&["--roughness", "25nm", "--correlation", "300nm", "--polarization", "s"], "unpolarised");
+    // What the rough model would ignore is refused by the library (Python says the same), naming it.
+    let rough = ["--roughness", "25nm", "--correlation", "300nm"];
+    for (cmd, extra, needle) in [
+        (
+            "spectrum",
+            &["--polarization", "s"][..],
+            "--polarization s would be ignored: with a rough substrate the spectrum",
+        ),
+        ("color", &["--polarization", "p"], "--polarization p would be ignored: with a rough substrate the colours"),
+        ("color", &["--visual", "bluetit"], "--visual bluetit takes a smooth film's spectra"),
+        ("spectrum", &["--spectra", "never.csv"], "--spectra writes a smooth film's R and T"),
+        ("spectrum", &["--light-angles", "0deg:10deg:5deg"], "--light-angles is for 'table'"),
+        ("table", &["--light-angle", "10deg"], "--light-angle is for 'spectrum' and 'color'"),
+        ("bench", &["--no-python"], "--no-python would be ignored: the rough bench"),
+    ] {
+        let stack: &[&str] = if cmd == "bench" { &[] } else { &["--stack", STACK] };
+        assert_fails(&[&["thinfilm", cmd][..], stack, &rough, extra].concat(), &[needle]);
+    }
+    assert!(!std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../never.csv")).exists());
     // The diffuse light's options without a rough substrate: refused (clap names --roughness on the next
     // lines), not ignored as before; so is the table's --scale without a --plot.
     for (cmd, extra) in [

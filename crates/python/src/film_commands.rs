@@ -8,8 +8,9 @@
 use std::path::Path;
 
 use iridis_api::film::{self, RgbImage};
+use iridis_api::film_run::{self, RoughLight};
 use iridis_api::rough::RoughOptions;
-use iridis_api::{film_bench, film_chart, film_fit, rough};
+use iridis_api::{film_chart, film_fit};
 use iridis_thinfilm::rough::DiffuseTransport;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
@@ -70,6 +71,13 @@ impl RoughArgs {
         self.azimuth_rad.unwrap_or(std::f64::consts::PI)
     }
 
+    /// The rough substrate with its light at `light_rad` (`None`: the view angle), when roughness was given;
+    /// `light_key` names the light's keyword for the refusal without one.
+    fn light(&self, light_rad: Option<f64>, light_key: &str) -> anyhow::Result<Option<RoughLight>> {
+        let options = self.options(light_rad.map(|_| light_key))?;
+        Ok(options.map(|options| RoughLight { options, light: light_rad, azimuth: self.azimuth() }))
+    }
+
     /// The rough model's options (`None` when no roughness was given, and then none of the keywords that shape
     /// its diffuse light: they would be ignored). `light`: the light's keyword, when it was given.
     fn options(&self, light: Option<&str>) -> anyhow::Result<Option<RoughOptions>> {
@@ -123,33 +131,15 @@ fn _film_spectrum<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let (roughness, light_rad) = Options::read(options, |o| Ok((RoughArgs::read(o)?, o.f64("light_rad")?)))?;
     let a = run(py, |report| {
-        let parsed = film::parse_stack(stack)?;
-        let pol = film::parse_polarization(polarization)?;
         let grid = film::wavelength_grid(from_nm, to_nm, step_nm)?;
-        if let Some(opts) = roughness.options(light_rad.map(|_| "light_angle_rad"))? {
-            if pol != film::Polarization::Average {
-                anyhow::bail!("with roughness the spectrum is unpolarised, with s and p columns");
-            }
-            let angles = rough::Angles::new(angle_rad, light_rad, roughness.azimuth());
-            let s = rough::spectrum(parsed, stack, &opts, angles, &grid)?;
-            let image = if plot { Some(s.plot()?) } else { None };
-            return Ok(Answer {
-                json: Some(s.to_json()),
-                text: Some(s.text()),
-                csv: Some(s.csv()),
-                image,
-                ..Default::default()
-            });
-        }
-        let s = film::spectrum(&parsed, stack, angle_rad, &grid, pol, report)?;
+        let rough = roughness.light(light_rad, "light_angle_rad")?;
+        let s = film_run::spectrum(stack, angle_rad, &grid, polarization, rough, report)?;
         let image = if plot { Some(s.plot()?) } else { None };
-        Ok(Answer {
-            json: Some(s.to_json()),
-            text: Some(s.text()),
-            csv: Some(s.csv()),
-            image,
-            extra: vec![("spectra_csv", s.spectra_csv()?)],
-        })
+        let extra = match &s {
+            film_run::Spectrum::Smooth(_) => vec![("spectra_csv", s.spectra_csv()?)],
+            film_run::Spectrum::Rough(_) => Vec::new(),
+        };
+        Ok(Answer { json: Some(s.to_json()), text: Some(s.text()), csv: Some(s.csv()), image, extra })
     })?;
     a.into_py(py)
 }
@@ -171,22 +161,22 @@ fn _film_table<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let (roughness, light_angles) = Options::read(options, |o| Ok((RoughArgs::read(o)?, o.string("light_angles")?)))?;
     let a = run(py, |report| {
-        let parsed = film::parse_stack(stack)?;
         let grid = film::wavelength_grid(from_nm, to_nm, step_nm)?;
         if scale.is_some() && !plot {
             anyhow::bail!("scale is the colour scale of the plot: give plot=True");
         }
-        let rough = roughness.options(light_angles.as_ref().map(|_| "light_angles"))?;
+        let rough = roughness.options(light_angles.as_ref().map(|_| "light_angles"))?.map(|options| {
+            film_run::RoughLights { options, lights: light_angles.clone(), azimuth: roughness.azimuth() }
+        });
         let scale = film::table_scale(scale, rough.is_some())?;
-        if let Some(opts) = rough {
-            let t = rough::table(parsed, stack, &opts, angles, light_angles.as_deref(), roughness.azimuth(), &grid)?;
-            let image = if plot { Some(t.plot()?) } else { None };
-            let csv = String::from_utf8(t.csv()?)?;
-            return Ok(Answer { csv: Some(csv), image, extra: vec![("summary", t.summary())], ..Default::default() });
-        }
-        let t = film::table(&parsed, stack, angles, &grid, report)?;
+        let t = film_run::table(stack, angles, &grid, rough, report)?;
         let image = if plot { Some(t.plot(scale, report)?) } else { None };
-        Ok(Answer { csv: Some(t.csv()), image, ..Default::default() })
+        let csv = Some(String::from_utf8(t.csv()?)?);
+        let extra = match &t {
+            film_run::Table::Rough(_) => vec![("summary", t.summary())],
+            film_run::Table::Smooth(_) => Vec::new(),
+        };
+        Ok(Answer { csv, image, extra, ..Default::default() })
     })?;
     a.into_py(py)
 }
@@ -211,19 +201,19 @@ fn _film_color<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let (roughness, light_rad) = Options::read(options, |o| Ok((RoughArgs::read(o)?, o.f64("light_rad")?)))?;
     let a = run(py, |report| {
-        let parsed = film::parse_stack(stack)?;
-        let observer = observer.parse()?;
-        let pol = film::parse_polarization(polarization)?;
         let grid = film::wavelength_grid(from_nm, to_nm, step_nm)?;
-        if let Some(opts) = roughness.options(light_rad.map(|_| "light_angle_rad"))? {
-            if pol != film::Polarization::Average || visual.is_some() {
-                anyhow::bail!("with roughness the colours are for unpolarised light, without a visual system");
-            }
-            let angles = rough::Angles::new(angle_rad, light_rad, roughness.azimuth());
-            let c = rough::colour_report(parsed, &opts, angles, &grid, illuminant.parse()?, observer)?;
-            return Ok(Answer { json: Some(c.to_json()), text: Some(c.text()), ..Default::default() });
-        }
-        let c = film::colour(&parsed, angle_rad, pol, &grid, illuminant, observer, visual.as_deref(), report)?;
+        let rough = roughness.light(light_rad, "light_angle_rad")?;
+        let c = film_run::colour(
+            stack,
+            angle_rad,
+            polarization,
+            &grid,
+            illuminant,
+            observer.parse()?,
+            visual.as_deref(),
+            rough,
+            report,
+        )?;
         c.notes().iter().for_each(|n| iridis_api::Report::note(report, n));
         Ok(Answer { json: Some(c.to_json()?), text: Some(c.text()), ..Default::default() })
     })?;
@@ -248,9 +238,7 @@ fn _film_chart<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let (roughness, light_rad) = Options::read(options, |o| Ok((RoughArgs::read(o)?, o.f64("light_rad")?)))?;
     let a = run(py, |_| {
-        let (azimuth, light_key) = (roughness.azimuth(), light_rad.map(|_| "light_angle_rad"));
-        let rough =
-            roughness.options(light_key)?.map(|options| film_chart::RoughLight { options, light: light_rad, azimuth });
+        let rough = roughness.light(light_rad, "light_angle_rad")?;
         let grid = film::wavelength_grid(from_nm, to_nm, step_nm)?;
         let c = film_chart::chart(stack, thickness, angle_rad, illuminant, exposure, &grid, rough)?;
         Ok(Answer {
@@ -285,12 +273,7 @@ fn _film_bench<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let roughness = Options::read(options, RoughArgs::read)?;
     let a = run(py, |_| {
-        if let Some(opts) = roughness.options(None)? {
-            let b =
-                rough::bench(film::parse_stack(rough::LISTING_3_6_STACK)?, &opts, roughness.azimuth(), 80, seconds)?;
-            return Ok(Answer { json: Some(b.to_json()), text: Some(b.text()), ..Default::default() });
-        }
-        let b = film_bench::bench(seconds, no_python)?;
+        let b = film_run::bench(seconds, no_python, roughness.light(None, "")?)?;
         Ok(Answer { json: Some(b.to_json()), text: Some(b.text()), ..Default::default() })
     })?;
     a.into_py(py)

@@ -143,6 +143,19 @@ def test_rough_keywords_without_roughness_raise():
         film.bench(seconds=0.01, no_python=True, azimuth_rad=1.0)
 
 
+def test_what_the_rough_model_would_ignore_raises():
+    """The library's refusals, as the CLI's (crates/cli/tests/rough_cli.rs)."""
+    stack, rough = "air | water 348nm | Si", dict(roughness_nm=25.0, correlation_nm=300.0)
+    with pytest.raises(ValueError, match="--polarization s would be ignored: with a rough substrate the spectrum"):
+        film.spectrum(stack, polarization="s", **rough)
+    with pytest.raises(ValueError, match="--polarization p would be ignored: with a rough substrate the colours"):
+        film.color(stack, polarization="p", **rough)
+    with pytest.raises(ValueError, match="--visual bluetit takes a smooth film's spectra"):
+        film.color(stack, visual="bluetit", **rough)
+    with pytest.raises(ValueError, match="--no-python would be ignored: the rough bench"):
+        film.bench(seconds=0.01, no_python=True, **rough)
+
+
 def test_colour_of_a_spectrum_file_and_delta_e_are_the_clis():
     green = os.path.join(ROOT, "data", "examples", "colorchecker_green.csv")
     c = color.xyz(green, "d50", "1964")

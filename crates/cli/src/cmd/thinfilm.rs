@@ -4,11 +4,11 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{bail, Result};
+use anyhow::Result;
 use clap::{Args as ClapArgs, Subcommand};
-use iridis_api::film::{self, Polarization, RgbImage};
+use iridis_api::film::{self, RgbImage};
 use iridis_api::report::Report as _;
-use iridis_api::{film_bench, film_chart, film_fit, rough};
+use iridis_api::{film_chart, film_fit, film_run};
 
 use crate::output::{declare, declare_opt, print_answer, write_bytes, write_stdout_bytes};
 use crate::progress::Cli;
@@ -328,23 +328,8 @@ fn plot(path: Option<&Path>, quiet: bool, image: impl FnOnce() -> Result<RgbImag
 fn spectrum(a: SpectrumArgs) -> Result<()> {
     declare_opt("--plot", a.plot.as_deref(), &["png"])?;
     declare_opt("--spectra", a.spectra.as_deref(), &["csv"])?;
-    let stack = film::parse_stack(&a.stack)?;
-    let pol = film::parse_polarization(&a.polarization)?;
     let quiet = a.json || a.csv;
-    if a.rough.is_set() {
-        if a.spectra.is_some() {
-            bail!("--spectra writes a smooth film's R and T; with --roughness use --csv");
-        }
-        if pol != Polarization::Average {
-            bail!("with --roughness the spectrum is unpolarised, with s and p columns in --csv/--json");
-        }
-        let grid = a.grid.grid()?;
-        let (angles, opts) = (a.rough.angles(a.angle)?, a.rough.options()?);
-        let s = rough::spectrum(stack, &a.stack, &opts, angles, &grid)?;
-        plot(a.plot.as_deref(), quiet, || s.plot())?;
-        return print_answer(a.json, || Ok(s.to_json()), || if a.csv { s.csv() } else { s.text() });
-    }
-    let s = film::spectrum(&stack, &a.stack, a.angle, &a.grid.grid()?, pol, &Cli)?;
+    let s = film_run::spectrum(&a.stack, a.angle, &a.grid.grid()?, &a.polarization, a.rough.light()?, &Cli)?;
     if let Some(p) = &a.spectra {
         write_bytes(p, s.spectra_csv()?.as_bytes())?;
         if !quiet {
@@ -358,31 +343,23 @@ fn spectrum(a: SpectrumArgs) -> Result<()> {
 fn table(a: TableArgs) -> Result<()> {
     declare_opt("-o", a.output.as_deref(), &["csv"])?;
     declare_opt("--plot", a.plot.as_deref(), &["png"])?;
-    let stack = film::parse_stack(&a.stack)?;
-    let scale = film::table_scale(a.scale.as_deref(), a.rough.is_set())?;
-    let (csv, wrote) = if a.rough.is_set() {
-        let grid = a.grid.grid()?;
-        if a.rough.light_angle.is_some() {
-            bail!("--light-angle is for 'spectrum' and 'color'; the table takes --light-angles FROM:TO:STEP");
-        }
-        let (opts, lights) = (a.rough.options()?, a.rough.light_angles.as_deref());
-        let t = rough::table(stack, &a.stack, &opts, &a.angles, lights, a.rough.azimuth, &grid)?;
-        Cli.info(&t.summary());
-        plot(a.plot.as_deref(), true, || t.plot())?;
-        (t.csv()?, String::new())
-    } else {
-        let t = film::table(&stack, &a.stack, &a.angles, &a.grid.grid()?, &Cli)?;
-        plot(a.plot.as_deref(), true, || t.plot(scale, &Cli))?;
-        let size = format!(" ({} angles × {} wavelengths)", t.angles_rad.len(), t.wavelength_nm.len());
-        (t.csv().into_bytes(), size)
-    };
+    let rough = a.rough.lights()?;
+    let scale = film::table_scale(a.scale.as_deref(), rough.is_some())?;
+    let t = film_run::table(&a.stack, &a.angles, &a.grid.grid()?, rough, &Cli)?;
+    let summary = t.summary();
+    if let film_run::Table::Rough(_) = t {
+        Cli.info(&summary);
+    }
+    plot(a.plot.as_deref(), true, || t.plot(scale, &Cli))?;
     if let Some(p) = &a.plot {
         eprintln!("wrote {}", p.display());
     }
+    let csv = t.csv()?;
     match &a.output {
         Some(p) => {
             write_bytes(p, &csv)?;
-            eprintln!("wrote {}{wrote}", p.display());
+            let size = if let film_run::Table::Smooth(_) = t { summary.as_str() } else { "" };
+            eprintln!("wrote {}{size}", p.display());
             Ok(())
         }
         None => write_stdout_bytes(&csv),
@@ -390,22 +367,18 @@ fn table(a: TableArgs) -> Result<()> {
 }
 
 fn color(a: ColorArgs) -> Result<()> {
-    let stack = film::parse_stack(&a.stack)?;
-    let observer = a.observer.parse()?;
-    let pol = film::parse_polarization(&a.polarization)?;
-    let grid = a.grid.grid()?;
-    if a.rough.is_set() {
-        if pol != Polarization::Average {
-            bail!("with --roughness the colours are for unpolarised light");
-        }
-        if a.visual.is_some() {
-            bail!("--visual takes a smooth film's spectra; leave out --roughness");
-        }
-        let (angles, opts, ill) = (a.rough.angles(a.angle)?, a.rough.options()?, a.illuminant.parse()?);
-        let c = rough::colour_report(stack, &opts, angles, &grid, ill, observer)?;
-        return print_answer(a.json, || Ok(c.to_json()), || c.text());
-    }
-    let c = film::colour(&stack, a.angle, pol, &grid, &a.illuminant, observer, a.visual.as_deref(), &Cli)?;
+    let (observer, grid) = (a.observer.parse()?, a.grid.grid()?);
+    let c = film_run::colour(
+        &a.stack,
+        a.angle,
+        &a.polarization,
+        &grid,
+        &a.illuminant,
+        observer,
+        a.visual.as_deref(),
+        a.rough.light()?,
+        &Cli,
+    )?;
     print_answer(a.json, || c.to_json(), || c.text())?;
     if !a.json {
         c.notes().iter().for_each(|n| Cli.note(n));
@@ -416,16 +389,8 @@ fn color(a: ColorArgs) -> Result<()> {
 fn chart(a: ChartArgs) -> Result<()> {
     declare("-o", &a.output, &["png"])?;
     declare_opt("--csv", a.csv.as_deref(), &["csv"])?;
-    let rough = match a.rough.is_set() {
-        true => Some(film_chart::RoughLight {
-            light: Some(a.rough.angles(a.angle)?.light),
-            options: a.rough.options()?,
-            azimuth: a.rough.azimuth,
-        }),
-        false => None,
-    };
     let grid = a.grid.grid()?;
-    let c = film_chart::chart(&a.stack, &a.thickness, a.angle, &a.illuminant, a.exposure, &grid, rough)?;
+    let c = film_chart::chart(&a.stack, &a.thickness, a.angle, &a.illuminant, a.exposure, &grid, a.rough.light()?)?;
     film::write_png(&a.output, &c.image()?)?;
     crate::outln!("wrote {} {}", a.output.display(), c.summary())?;
     if let Some(p) = &a.csv {
@@ -436,12 +401,7 @@ fn chart(a: ChartArgs) -> Result<()> {
 }
 
 fn bench(a: BenchArgs) -> Result<()> {
-    if a.rough.is_set() {
-        let stack = film::parse_stack(rough::LISTING_3_6_STACK)?;
-        let b = rough::bench(stack, &a.rough.options()?, a.rough.azimuth, 80, a.seconds)?;
-        return print_answer(a.json, || Ok(b.to_json()), || b.text());
-    }
-    let b = film_bench::bench(a.seconds, a.no_python)?;
+    let b = film_run::bench(a.seconds, a.no_python, a.rough.light()?)?;
     print_answer(a.json, || Ok(b.to_json()), || b.text())
 }
 
