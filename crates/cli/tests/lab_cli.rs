@@ -154,6 +154,10 @@ fn options_no_method_reads_are_refused() {
     let out = iridis(&["grating", s, "--acceptance", "5deg"]);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.code() == Some(2) && stderr.contains("required") && stderr.contains("--detector"), "{stderr}");
+    // A spectrum's step without the spectrum (one wavelength, 550 nm) would change nothing.
+    let out = iridis(&["grating", s, "--step", "5nm"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.code() == Some(2) && stderr.contains("required") && stderr.contains("--from"), "{stderr}");
     assert!(std::fs::read_dir(dir.path()).unwrap().count() == 0, "a refused run left a file");
 }
 

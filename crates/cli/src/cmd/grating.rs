@@ -57,8 +57,8 @@ pub struct GratingArgs {
     /// Last wavelength of a spectrum.
     #[arg(long, value_parser = positive_length_nm)]
     pub to: Option<f64>,
-    /// Wavelength step of a spectrum.
-    #[arg(long, value_parser = positive_length_nm, default_value = "10nm")]
+    /// Wavelength step of a spectrum (with --from and --to).
+    #[arg(long, value_parser = positive_length_nm, default_value = "10nm", requires = "from")]
     pub step: f64,
     /// The model: kirchhoff (Stam's scalar model) or rigorous (Maxwell's equations, the C-method).
     #[arg(long, default_value = "kirchhoff")]
