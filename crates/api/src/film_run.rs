@@ -5,6 +5,7 @@
 use anyhow::{bail, Result};
 use iridis_color::Observer;
 use iridis_plot::RgbImage;
+use iridis_thinfilm::Stack;
 
 use crate::film::{self, FilmColour, FilmSpectrum, FilmTable, Polarization};
 pub use crate::film_chart::RoughLight;
@@ -40,26 +41,22 @@ pub fn spectrum(
     rough: Option<RoughLight>,
     report: &dyn Report,
 ) -> Result<Spectrum> {
-    let parsed = film::parse_stack(stack)?;
-    let pol = film::parse_polarization(polarization)?;
+    let unpolarised = "spectrum is unpolarised, with s and p columns in the CSV and JSON";
+    let (parsed, pol) = parse(stack, polarization, rough.is_some(), unpolarised)?;
     Ok(match rough {
-        Some(r) => {
-            refuse_polarization(
-                pol,
-                polarization,
-                "spectrum is unpolarised, with s and p columns in the CSV and JSON",
-            )?;
-            Spectrum::Rough(rough::spectrum(parsed, stack, &r.options, angles(angle_rad, &r), grid)?)
-        }
+        Some(r) => Spectrum::Rough(rough::spectrum(parsed, stack, &r.options, angles(angle_rad, &r), grid)?),
         None => Spectrum::Smooth(film::spectrum(&parsed, stack, angle_rad, grid, pol, report)?),
     })
 }
 
-fn refuse_polarization(pol: Polarization, given: &str, what: &str) -> Result<()> {
-    if pol != Polarization::Average {
-        bail!("--polarization {given} would be ignored: with a rough substrate the {what}");
+/// The stack and polarisation as typed; with a rough substrate only unpolarised light (`rough_light`: what the
+/// rough model gives instead, for the refusal).
+fn parse(stack: &str, polarization: &str, rough: bool, rough_light: &str) -> Result<(Stack, Polarization)> {
+    let (parsed, pol) = (film::parse_stack(stack)?, film::parse_polarization(polarization)?);
+    if rough && pol != Polarization::Average {
+        bail!("--polarization {polarization} would be ignored: with a rough substrate the {rough_light}");
     }
-    Ok(())
+    Ok((parsed, pol))
 }
 
 impl Spectrum {
@@ -121,11 +118,9 @@ pub fn colour(
     rough: Option<RoughLight>,
     report: &dyn Report,
 ) -> Result<Colour> {
-    let parsed = film::parse_stack(stack)?;
-    let pol = film::parse_polarization(polarization)?;
+    let (parsed, pol) = parse(stack, polarization, rough.is_some(), "colours are for unpolarised light")?;
     Ok(match rough {
         Some(r) => {
-            refuse_polarization(pol, polarization, "colours are for unpolarised light")?;
             if let Some(v) = visual {
                 bail!("--visual {v} takes a smooth film's spectra; leave out --roughness");
             }
