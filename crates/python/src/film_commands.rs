@@ -71,10 +71,9 @@ impl RoughArgs {
         self.azimuth_rad.unwrap_or(std::f64::consts::PI)
     }
 
-    /// The rough substrate with its light at `light_rad` (`None`: the view angle), when roughness was given;
-    /// `light_key` names the light's keyword for the refusal without one.
-    fn light(&self, light_rad: Option<f64>, light_key: &str) -> anyhow::Result<Option<RoughLight>> {
-        let options = self.options(light_rad.map(|_| light_key))?;
+    /// The rough substrate with its light at `light_rad` (`None`: the view angle), when roughness was given.
+    fn light(&self, light_rad: Option<f64>) -> anyhow::Result<Option<RoughLight>> {
+        let options = self.options(light_rad.map(|_| "light_angle_rad"))?;
         Ok(options.map(|options| RoughLight { options, light: light_rad, azimuth: self.azimuth() }))
     }
 
@@ -114,6 +113,22 @@ impl RoughArgs {
     }
 }
 
+/// The rough-substrate keywords with the light's direction `light_rad` (spectrum, color, chart).
+struct RoughLightArgs {
+    roughness: RoughArgs,
+    light_rad: Option<f64>,
+}
+
+impl RoughLightArgs {
+    fn read(options: Option<Bound<'_, PyDict>>) -> PyResult<Self> {
+        Options::read(options, |o| Ok(Self { roughness: RoughArgs::read(o)?, light_rad: o.f64("light_rad")? }))
+    }
+
+    fn light(&self) -> anyhow::Result<Option<RoughLight>> {
+        self.roughness.light(self.light_rad)
+    }
+}
+
 /// `iridis thinfilm spectrum` (smooth, or rough with `roughness_nm`/`correlation_nm`).
 #[pyfunction]
 #[pyo3(signature = (stack, angle_rad, from_nm, to_nm, step_nm, polarization, plot, **options))]
@@ -129,11 +144,10 @@ fn _film_spectrum<'py>(
     plot: bool,
     options: Option<Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let (roughness, light_rad) = Options::read(options, |o| Ok((RoughArgs::read(o)?, o.f64("light_rad")?)))?;
+    let rough = RoughLightArgs::read(options)?;
     let a = run(py, |report| {
         let grid = film::wavelength_grid(from_nm, to_nm, step_nm)?;
-        let rough = roughness.light(light_rad, "light_angle_rad")?;
-        let s = film_run::spectrum(stack, angle_rad, &grid, polarization, rough, report)?;
+        let s = film_run::spectrum(stack, angle_rad, &grid, polarization, rough.light()?, report)?;
         let image = if plot { Some(s.plot()?) } else { None };
         let extra = match &s {
             film_run::Spectrum::Smooth(_) => vec![("spectra_csv", s.spectra_csv()?)],
@@ -199,10 +213,9 @@ fn _film_color<'py>(
     visual: Option<String>,
     options: Option<Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let (roughness, light_rad) = Options::read(options, |o| Ok((RoughArgs::read(o)?, o.f64("light_rad")?)))?;
+    let rough = RoughLightArgs::read(options)?;
     let a = run(py, |report| {
         let grid = film::wavelength_grid(from_nm, to_nm, step_nm)?;
-        let rough = roughness.light(light_rad, "light_angle_rad")?;
         let c = film_run::colour(
             stack,
             angle_rad,
@@ -211,7 +224,7 @@ fn _film_color<'py>(
             illuminant,
             observer.parse()?,
             visual.as_deref(),
-            rough,
+            rough.light()?,
             report,
         )?;
         c.notes().iter().for_each(|n| iridis_api::Report::note(report, n));
@@ -236,11 +249,10 @@ fn _film_chart<'py>(
     step_nm: f64,
     options: Option<Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let (roughness, light_rad) = Options::read(options, |o| Ok((RoughArgs::read(o)?, o.f64("light_rad")?)))?;
+    let rough = RoughLightArgs::read(options)?;
     let a = run(py, |_| {
-        let rough = roughness.light(light_rad, "light_angle_rad")?;
         let grid = film::wavelength_grid(from_nm, to_nm, step_nm)?;
-        let c = film_chart::chart(stack, thickness, angle_rad, illuminant, exposure, &grid, rough)?;
+        let c = film_chart::chart(stack, thickness, angle_rad, illuminant, exposure, &grid, rough.light()?)?;
         Ok(Answer {
             csv: Some(c.csv()),
             image: Some(c.image()?),
@@ -273,7 +285,7 @@ fn _film_bench<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let roughness = Options::read(options, RoughArgs::read)?;
     let a = run(py, |_| {
-        let b = film_run::bench(seconds, no_python, roughness.light(None, "")?)?;
+        let b = film_run::bench(seconds, no_python, roughness.light(None)?)?;
         Ok(Answer { json: Some(b.to_json()), text: Some(b.text()), ..Default::default() })
     })?;
     a.into_py(py)
