@@ -128,6 +128,26 @@ pub fn render_file(a: &RenderRequest, report: &dyn Report) -> Result<Rendered> {
     if a.spectral_samples.is_some() && !a.gpu {
         bail!("--spectral-samples sets the GPU's direct film evaluation; add --gpu (the CPU evaluates films at 81 samples)");
     }
+    if a.output.is_none() {
+        // Only the meshes are exported: what shapes the image would change nothing.
+        let given: Vec<&str> = [
+            ("--size", a.size.is_some()),
+            ("--spp", a.spp.is_some()),
+            ("--exposure", a.exposure.is_some()),
+            ("--exr", a.exr.is_some()),
+            ("--gpu", a.gpu),
+        ]
+        .into_iter()
+        .filter_map(|(flag, given)| given.then_some(flag))
+        .collect();
+        if !given.is_empty() {
+            bail!(
+                "{} would be ignored: without -o no image is rendered (--export-mesh alone writes the meshes); give \
+                 -o IMAGE to render too",
+                given.join(", ")
+            );
+        }
+    }
     let film = scene_film(a.spectral_samples)?;
     let scene = load(&a.scene, &a.gltf, report)?;
     let mut lines = Vec::new();

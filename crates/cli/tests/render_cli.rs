@@ -148,6 +148,13 @@ fn examples_render_and_bad_input_is_refused_cleanly() {
     let sc =
         write("env.toml", "[camera]\nposition = [0, 0, 5]\n[environment]\nkind = \"map\"\nfile = \"colour.png\"\n");
     assert_fails(&["render", &sc, "-o", &keep], &["env.toml:3:", "linear HDR"]);
+    // Without -o only the meshes are exported: what shapes the image would change nothing.
+    let glb = d("never.glb");
+    assert_fails(
+        &["render", "examples/fig1_elaphe_section.toml", "--export-mesh", &glb, "--exposure", "3", "--gpu"],
+        &["--exposure, --gpu would be ignored", "give -o IMAGE"],
+    );
+    assert!(!std::path::Path::new(&glb).exists());
     // A mesh without normals is fine (they are computed, with a note); without UVs under a textured material,
     // the error says what to do.
     std::fs::write(d("tri.obj"), "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n").unwrap();
