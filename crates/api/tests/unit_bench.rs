@@ -37,3 +37,15 @@ fn samples_spread_and_disk() {
     let n = disk_pixels(64).len() as f64 / (64.0 * 64.0);
     assert!((n - std::f64::consts::FRAC_PI_4).abs() < 0.02, "{n}");
 }
+
+/// `bench gpu SCENE` refuses the shaders' options set away from their defaults, so the command line's defaults
+/// (clap attributes) must be the library's (`GpuBenchOptions::default`, which Python starts from).
+#[cfg(feature = "cli")]
+#[test]
+fn the_gpu_benchs_command_line_defaults_are_the_librarys() {
+    use clap::{Args, FromArgMatches};
+    use iridis_api::bench::gpu::GpuBenchOptions;
+    let m = GpuBenchOptions::augment_args(clap::Command::new("gpu")).try_get_matches_from(["gpu"]).unwrap();
+    let cli = GpuBenchOptions::from_arg_matches(&m).unwrap();
+    assert_eq!(format!("{cli:?}"), format!("{:?}", GpuBenchOptions::default()));
+}

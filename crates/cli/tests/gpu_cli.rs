@@ -310,6 +310,11 @@ fn gpu_options_are_checked() {
         &["--gt-surface", "give --height-unit"],
     );
     assert_fails(&["bench", "gpu", "examples/gold_sphere.toml", "--level", "none"], &["--level none would be ignored"]);
+    // A scene is timed alone: the shaders' options would change nothing.
+    assert_fails(
+        &["bench", "gpu", "examples/gold_sphere.toml", "--gt-size", "8", "--stack", "air | water 300nm | air"],
+        &["--stack, --gt-size would be ignored", "times the scene renderer only"],
+    );
 }
 
 /// A table built by `precompute --gpu` against the CPU's, from the files.

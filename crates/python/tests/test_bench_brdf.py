@@ -79,6 +79,9 @@ def test_bench_bad_input():
         bench.run("diffraction-methods", map=2)
     with pytest.raises(ValueError, match="python and peer_seconds would be ignored: no_python"):
         bench.run("grating", quick=True, no_python=True, peer_seconds=3.0)
+    # A scene is timed alone (refused before a GPU is opened): the shaders' options would change nothing.
+    with pytest.raises(ValueError, match="--gt-size would be ignored: with a SCENE"):
+        bench.run("gpu", scene=os.path.join(ROOT, "examples", "gold_sphere.toml"), gt_size=8)
 
 
 # --- brdf eval ----------------------------------------------------------------------------------------------

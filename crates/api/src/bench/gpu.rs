@@ -231,6 +231,29 @@ pub fn gpu(a: &GpuBenchOptions, report: &dyn Report) -> Result<Bench> {
     let direct_weights = sampled_weights(a.spectral_samples, FULL_BAND_NM)
         .with_context(|| format!("--spectral-samples {}", a.spectral_samples))?;
     if let Some(p) = &a.scene {
+        // A scene is timed alone: the shaders' options, set away from their defaults, would be ignored.
+        let d = GpuBenchOptions::default();
+        let shaders: Vec<&str> = [
+            ("--table", a.table.is_some()),
+            ("--film-size", a.film_size != d.film_size),
+            ("--stack", a.stack != d.stack),
+            ("--table-precision", a.table_precision != d.table_precision),
+            ("--build-surface", a.build_surface != d.build_surface),
+            ("--build-uv-resolution", a.build_uv_resolution != d.build_uv_resolution),
+            ("--gt-surface", a.gt_surface != d.gt_surface),
+            ("--gt-size", a.gt_size != d.gt_size),
+            ("--gt-cpu-pixels", a.gt_cpu_pixels != d.gt_cpu_pixels),
+        ]
+        .into_iter()
+        .filter_map(|(flag, given)| given.then_some(flag))
+        .collect();
+        if !shaders.is_empty() {
+            bail!(
+                "{} would be ignored: with a SCENE, bench gpu times the scene renderer only (its size, frames, \
+                 --max-seconds, --spectral-samples and --save apply)",
+                shaders.join(", ")
+            );
+        }
         // A scene names its own surfaces and tables: the surface flags would be ignored.
         let given = a.surface_options.flags();
         if !given.is_empty() {
