@@ -233,7 +233,9 @@ impl Takes {
         if Self::path_of(&self.uv_resolution, &words).is_some() && !has(&words, "--uv-resolution") && !refuses {
             words.extend(["--uv-resolution".to_string(), "31".to_string()]);
         }
-        if Self::path_of(&self.pixel_size, &words).is_some() && !has(&words, "--size") {
+        // (`render --export-mesh` without -o renders no image, and refuses an image size.)
+        let renders = words[1] != "render" || has(&words, "-o") || has(&words, "--output");
+        if Self::path_of(&self.pixel_size, &words).is_some() && !has(&words, "--size") && renders {
             let size = if words[1] == "render" { "24x18" } else { "24" };
             words.extend(["--size".to_string(), size.to_string()]);
         }
