@@ -227,6 +227,13 @@ pub fn bench(seconds: f64, no_python: bool, rough: Option<RoughLight>) -> Result
                      evaluation (tmm has no rough model)"
                 );
             }
+            if let Some(l) = r.light {
+                bail!(
+                    "--light-angle {}° would be ignored: the rough bench times the whole table of Listing 3.6, \
+                     every view and every light",
+                    crate::film::round_deg(l)
+                );
+            }
             let stack = film::parse_stack(rough::LISTING_3_6_STACK)?;
             Bench::Rough(rough::bench(stack, &r.options, r.azimuth, 80, seconds)?)
         }

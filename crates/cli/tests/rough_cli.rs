@@ -102,6 +102,7 @@ fn bad_roughness_is_a_clear_error() {
         ("spectrum", &["--light-angles", "0deg:10deg:5deg"], "--light-angles is for 'table'"),
         ("table", &["--light-angle", "10deg"], "--light-angle is for 'spectrum' and 'color'"),
         ("bench", &["--no-python"], "--no-python would be ignored: the rough bench"),
+        ("bench", &["--light-angle", "30deg"], "--light-angle 30° would be ignored: the rough bench"),
     ] {
         let stack: &[&str] = if cmd == "bench" { &[] } else { &["--stack", STACK] };
         assert_fails(&[&["thinfilm", cmd][..], stack, &rough, extra].concat(), &[needle]);
