@@ -49,6 +49,17 @@ pub fn spectrum(
     })
 }
 
+/// Refuses pavo's spectra CSV for a rough substrate (its R and T are a smooth film's), before the spectrum is
+/// computed when the caller asks for the file up front.
+pub fn refuse_spectra_csv(rough: bool) -> Result<()> {
+    if rough {
+        bail!(SPECTRA_CSV_ROUGH);
+    }
+    Ok(())
+}
+
+const SPECTRA_CSV_ROUGH: &str = "--spectra writes a smooth film's R and T; with --roughness use --csv";
+
 /// The stack and polarisation as typed; with a rough substrate only unpolarised light (`rough_light`: what the
 /// rough model gives instead, for the refusal).
 fn parse(stack: &str, polarization: &str, rough: bool, rough_light: &str) -> Result<(Stack, Polarization)> {
@@ -88,11 +99,11 @@ impl Spectrum {
         }
     }
 
-    /// R and T in pavo's layout (`--spectra`): a smooth film's.
+    /// R and T in pavo's layout (`--spectra`): a smooth film's ([`refuse_spectra_csv`]).
     pub fn spectra_csv(&self) -> Result<String> {
         match self {
             Spectrum::Smooth(s) => s.spectra_csv(),
-            Spectrum::Rough(_) => bail!("--spectra writes a smooth film's R and T; with --roughness use --csv"),
+            Spectrum::Rough(_) => bail!(SPECTRA_CSV_ROUGH),
         }
     }
 }
@@ -199,12 +210,20 @@ impl Table {
         }
     }
 
-    /// What the table holds, for people: ` (N angles × M wavelengths)` after a smooth table's file name, or a
-    /// rough table's summary line.
-    pub fn summary(&self) -> String {
+    /// A rough table's summary line (its size and model), for people; a smooth table has none.
+    pub fn summary(&self) -> Option<String> {
+        match self {
+            Table::Smooth(_) => None,
+            Table::Rough(t) => Some(t.summary()),
+        }
+    }
+
+    /// What follows the CSV's file name in `wrote FILE…`: a smooth table's size (the rough one's is in its
+    /// summary).
+    pub fn written_size(&self) -> String {
         match self {
             Table::Smooth(t) => format!(" ({} angles × {} wavelengths)", t.angles_rad.len(), t.wavelength_nm.len()),
-            Table::Rough(t) => t.summary(),
+            Table::Rough(_) => String::new(),
         }
     }
 }

@@ -186,10 +186,7 @@ fn _film_table<'py>(
         let t = film_run::table(stack, angles, &grid, rough, report)?;
         let image = if plot { Some(t.plot(scale, report)?) } else { None };
         let csv = Some(String::from_utf8(t.csv()?)?);
-        let extra = match &t {
-            film_run::Table::Rough(_) => vec![("summary", t.summary())],
-            film_run::Table::Smooth(_) => Vec::new(),
-        };
+        let extra = t.summary().map(|s| vec![("summary", s)]).unwrap_or_default();
         Ok(Answer { csv, image, extra, ..Default::default() })
     })?;
     a.into_py(py)

@@ -41,6 +41,17 @@ pub enum AchromaticChoice {
     Use(Achromatic),
 }
 
+impl AchromaticChoice {
+    /// The channel ΔL uses for `system`, or none.
+    pub fn resolve(&self, system: &VisualSystem) -> Option<Achromatic> {
+        match self {
+            AchromaticChoice::System => system.achromatic.clone(),
+            AchromaticChoice::Off => None,
+            AchromaticChoice::Use(a) => Some(a.clone()),
+        }
+    }
+}
+
 /// The conditions of an analysis. [`Options::default`]: D65, von Kries to an ideal grey, the system's
 /// receptor noise and achromatic channel, neural noise, achromatic Weber fraction 0.1, the system's space.
 #[derive(Debug, Clone)]
@@ -207,11 +218,7 @@ pub fn analyse_table(table: &SpectraTable, system: &VisualSystem, options: &Opti
     }
     let noise = options.noise.clone().unwrap_or_else(|| system.noise.clone());
     noise.check(n)?;
-    let achromatic = match &options.achromatic {
-        AchromaticChoice::System => system.achromatic.clone(),
-        AchromaticChoice::Off => None,
-        AchromaticChoice::Use(a) => Some(a.clone()),
-    };
+    let achromatic = options.achromatic.resolve(system);
     if let Some(a) = &achromatic {
         let indices = match a {
             Achromatic::Receptor(i) => vec![*i],

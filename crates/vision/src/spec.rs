@@ -186,12 +186,7 @@ impl Spec {
             };
         }
         if let Some(w) = self.achromatic_weber {
-            let has_channel = match &o.achromatic {
-                AchromaticChoice::Off => false,
-                AchromaticChoice::System => system.achromatic.is_some(),
-                AchromaticChoice::Use(_) => true,
-            };
-            if !has_channel {
+            if o.achromatic.resolve(system).is_none() {
                 let why = if matches!(o.achromatic, AchromaticChoice::Off) {
                     "--achromatic none leaves no achromatic channel"
                 } else {

@@ -328,8 +328,11 @@ fn plot(path: Option<&Path>, quiet: bool, image: impl FnOnce() -> Result<RgbImag
 fn spectrum(a: SpectrumArgs) -> Result<()> {
     declare_opt("--plot", a.plot.as_deref(), &["png"])?;
     declare_opt("--spectra", a.spectra.as_deref(), &["csv"])?;
-    let quiet = a.json || a.csv;
-    let s = film_run::spectrum(&a.stack, a.angle, &a.grid.grid()?, &a.polarization, a.rough.light()?, &Cli)?;
+    let (quiet, rough) = (a.json || a.csv, a.rough.light()?);
+    if a.spectra.is_some() {
+        film_run::refuse_spectra_csv(rough.is_some())?; // before the spectrum, not after it
+    }
+    let s = film_run::spectrum(&a.stack, a.angle, &a.grid.grid()?, &a.polarization, rough, &Cli)?;
     if let Some(p) = &a.spectra {
         write_bytes(p, s.spectra_csv()?.as_bytes())?;
         if !quiet {
@@ -346,8 +349,7 @@ fn table(a: TableArgs) -> Result<()> {
     let rough = a.rough.lights()?;
     let scale = film::table_scale(a.scale.as_deref(), rough.is_some())?;
     let t = film_run::table(&a.stack, &a.angles, &a.grid.grid()?, rough, &Cli)?;
-    let summary = t.summary();
-    if let film_run::Table::Rough(_) = t {
+    if let Some(summary) = t.summary() {
         Cli.info(&summary);
     }
     plot(a.plot.as_deref(), true, || t.plot(scale, &Cli))?;
@@ -358,8 +360,7 @@ fn table(a: TableArgs) -> Result<()> {
     match &a.output {
         Some(p) => {
             write_bytes(p, &csv)?;
-            let size = if let film_run::Table::Smooth(_) = t { summary.as_str() } else { "" };
-            eprintln!("wrote {}{size}", p.display());
+            eprintln!("wrote {}{}", p.display(), t.written_size());
             Ok(())
         }
         None => write_stdout_bytes(&csv),
