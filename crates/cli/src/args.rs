@@ -131,7 +131,7 @@ impl RoughArgs {
             return Ok(None);
         }
         if self.light_angles.is_some() {
-            bail!("--light-angles is for 'table'; use --light-angle here");
+            bail!("--light-angles is for 'table' (spectrum, color and chart take --light-angle)");
         }
         Ok(Some(RoughLight { options: self.options()?, light: self.light_angle, azimuth: self.azimuth }))
     }
