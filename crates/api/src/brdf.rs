@@ -141,7 +141,7 @@ pub fn evaluator_for(source: &Source, setup: EvaluatorSetup<'_>, report: &dyn Re
     };
     match parsed {
         Method::GroundTruth => {
-            let coherence = coherence_for(&patch, model.coherence_nm, report);
+            let coherence = coherence_for(&patch, model.coherence_nm, report)?;
             let samples = 2 * spectral.wavelengths().len() - 1;
             let e = Box::new(GroundTruth::new(&patch, coherence, shading, &spectral, samples)?);
             conserve(e, spectral)
@@ -175,7 +175,7 @@ fn lab_evaluator(
     spectral: SpectralSetup,
     report: &dyn Report,
 ) -> Result<Box<dyn Evaluator>> {
-    let coherence = coherence_for(&patch, model.coherence_nm, report);
+    let coherence = coherence_for(&patch, model.coherence_nm, report)?;
     let terms = match model.terms.trim() {
         "auto" => None,
         t => match t.parse::<usize>() {

@@ -27,7 +27,7 @@ pub struct LabOptions {
     #[cfg_attr(feature = "cli", command(flatten))]
     pub surface: SurfaceOptions,
     /// Coherence length 4σ_s of the window, a property of the light (default 65um, the paper's; a smaller
-    /// patch is taken as one unit cell of a periodic surface; said in the output).
+    /// patch is taken as one unit cell of a periodic surface; said in the output). At least 4 pixels.
     #[cfg_attr(feature = "cli", arg(long = "coherence", value_name = "COHERENCE"))]
     #[cfg_attr(feature = "cli", arg(value_parser = crate::args::positive_length_nm))]
     pub coherence_nm: Option<f64>,
@@ -157,7 +157,7 @@ pub fn workbench_from(
 ) -> Result<Workbench> {
     let patch = source.patch(&m.surface, report)?;
     let spec = source.name();
-    config.coherence_nm = coherence_for(&patch, m.coherence_nm, report);
+    config.coherence_nm = coherence_for(&patch, m.coherence_nm, report)?;
     report.info(&format!(
         "{spec}: {}×{} samples at {:.1} × {:.1} nm ({:.1} × {:.1} µm), |h|max {:.1} nm, coherence {:.1} µm",
         patch.cols,
@@ -425,9 +425,12 @@ impl Comparison {
         self.truths.iter().find(|t| t.0 == m).map(|t| t.1.as_slice()).unwrap_or(&[])
     }
 
-    /// The mean ΔE of the first method at an exposure: what each row's `ratio` divides by (Table 2's E2/E1).
-    pub fn first_mean(&self, exposure_ru: f64) -> f64 {
-        self.rows.iter().find(|r| r.exposure_ru == exposure_ru).map(|r| r.mean).unwrap_or(f64::NAN)
+    /// A row's mean over the first method's at its exposure (Table 2's E2/E1); `None` where the first method's
+    /// mean is 0 (its images match the truth at that exposure, e.g. both clipped to white), which no ratio
+    /// divides by.
+    pub fn ratio(&self, row: &ComparisonRow) -> Option<f64> {
+        let first = self.rows.iter().find(|r| r.exposure_ru == row.exposure_ru)?.mean;
+        (first > 0.0).then(|| row.mean / first)
     }
 
     /// The comparison as `iridis compare --json` prints it (keys in docs/json.md).
@@ -444,7 +447,7 @@ impl Comparison {
             .iter()
             .map(|r| {
                 json!({"method": r.method, "against": r.against, "exposure_ru": r.exposure_ru, "mean": r.mean,
-                       "p95": r.p95, "max": r.max, "ratio": r.mean / self.first_mean(r.exposure_ru)})
+                       "p95": r.p95, "max": r.max, "ratio": self.ratio(r)})
             })
             .collect();
         let ext: Vec<_> = self

@@ -45,6 +45,17 @@ pub fn parse_list<T>(s: &str, what: &str, f: impl Fn(&str) -> Result<T>) -> Resu
     Ok(v)
 }
 
+/// Refuses a list that names a value twice (`--methods`, `--exposures`, `--values`): the second would repeat the
+/// first's work and its row, to no end.
+pub fn refuse_repeats<T: PartialEq + std::fmt::Display>(what: &str, values: &[T]) -> Result<()> {
+    for (k, v) in values.iter().enumerate() {
+        if values[..k].contains(v) {
+            bail!("{what} lists {v} twice; give each value once");
+        }
+    }
+    Ok(())
+}
+
 /// `--exposures`: positive exposures in RU (`1,1000,7500`; an `RU` suffix is allowed).
 pub fn parse_exposures(s: &str) -> Result<Vec<f64>> {
     parse_list(s, "--exposures", |p| match p.trim_end_matches("RU").trim_end_matches("ru").parse::<f64>() {
@@ -285,6 +296,18 @@ pub fn compare_run(source: &Source, lab: &LabOptions, req: &CompareRequest, repo
         }
     }
     lab.refuse_unused(&req.methods.iter().copied().chain(req.against).collect::<Vec<_>>(), false)?;
+    refuse_repeats("--methods", &req.methods)?;
+    refuse_repeats("--exposures", &req.exposures)?;
+    if let Some(m) = req.methods.iter().find(|m| req.against.unwrap_or(m.model_truth()) == **m) {
+        let why = match req.against {
+            Some(_) => "it is --against".to_string(),
+            None => format!("with --against model each method is compared with {}", m.model_truth()),
+        };
+        bail!(
+            "{m} would be compared with itself ({why}): its ΔE00 is 0 by construction and the ratios to it \
+             meaningless; leave it out of --methods or give --against another"
+        );
+    }
     if let Some(d) = &req.maps {
         std::fs::create_dir_all(d).with_context(|| format!("cannot create {}", d.display()))?;
     }
@@ -297,6 +320,20 @@ pub fn compare_run(source: &Source, lab: &LabOptions, req: &CompareRequest, repo
     let (theta, phi) = req.incidence;
     let pixels = Pixels::brdf_map(theta, phi, req.size);
     let c = comparison(&b, &req.methods, req.against, &pixels, &req.exposures, report)?;
+    let mut truths: Vec<Method> = Vec::new();
+    for t in req.methods.iter().map(|m| req.against.unwrap_or(m.model_truth())) {
+        if !truths.contains(&t) {
+            truths.push(t);
+        }
+    }
+    for t in truths {
+        for &e in &req.exposures {
+            let share = iridis_lab::compare::clipped_white(c.truth(t), e);
+            if let Some(w) = iridis_lab::compare::clipping_warning(share, &format!("the {t} image"), e) {
+                report.warn(&w);
+            }
+        }
+    }
     if let Some(dir) = &req.maps {
         let size = req.size;
         for &e in &req.exposures {
@@ -359,15 +396,11 @@ impl CompareRun {
             "method", "against", "exposure", "mean", "p95", "ratio"
         );
         for r in &c.rows {
+            let ratio = c.ratio(r).map_or("—".to_string(), |q| format!("{q:.3}"));
             let _ = writeln!(
                 s,
-                "  {:<26} {:<22} {:>7} RU {:>10.4} {:>10.4} {:>10.3}",
-                r.method,
-                r.against,
-                r.exposure_ru,
-                r.mean,
-                r.p95,
-                r.mean / c.first_mean(r.exposure_ru)
+                "  {:<26} {:<22} {:>7} RU {:>10.4} {:>10.4} {:>10}",
+                r.method, r.against, r.exposure_ru, r.mean, r.p95, ratio
             );
         }
         let ext: Vec<String> =
@@ -440,6 +473,8 @@ pub fn sweep_run(source: &Source, lab: &LabOptions, req: &SweepRequest, report: 
         bail!("the {method} method has no parameter '{}'; it applies to: {}", param.name(), who.join(", "));
     }
     iridis_lab::sweep::check_values(param, &req.values)?;
+    refuse_repeats("--values", &req.values)?;
+    refuse_repeats("--exposures", &req.exposures)?;
     req.table.refuse_unless_lookup(method.name())?;
     lab.refuse_unused(&[method], false)?;
     // The parameter swept given as an option too: each value of --values would replace it.
@@ -482,6 +517,18 @@ pub fn sweep_run(source: &Source, lab: &LabOptions, req: &SweepRequest, report: 
     let (_, points) = with_progress(report, req.values.len() as u64, &format!("sweep {}", param.name()), |p| {
         iridis_lab::sweep::run(&b, method, param, &req.values, &pixels, &req.exposures, against, p)
     })?;
+    for (k, &e) in req.exposures.iter().enumerate() {
+        // The truth changes with the value only where coherence is swept: its most clipped value speaks.
+        let (share, value) =
+            points.iter().map(|p| (p.truth_clipped[k], p.value)).fold((0.0, 0.0), |a, b| if b.0 > a.0 { b } else { a });
+        let what = match param {
+            Param::Coherence => format!("the {against} image at coherence {}", param.display(value)),
+            _ => format!("the {against} image"),
+        };
+        if let Some(w) = iridis_lab::compare::clipping_warning(share, &what, e) {
+            report.warn(&w);
+        }
+    }
     let sheet = iridis_lab::sweep::contact_sheet(param, method, &points, &pixels, req.exposures[0])?;
     let plot = iridis_lab::sweep::error_plot(param, method, &points)?;
     write_png_rgb8(&req.output, sheet.width, sheet.height, &sheet.data)?;
@@ -587,6 +634,7 @@ pub fn laser_run(source: &Source, lab: &LabOptions, req: &LaserRequest, report: 
     if exps.is_empty() {
         bail!("--exposures: give at least one value");
     }
+    refuse_repeats("--exposures", exps)?;
     let screens: Vec<PathBuf> = exps
         .iter()
         .map(|x| {

@@ -78,14 +78,16 @@ pub fn spectral_setup(m: &ModelOptions, report: &dyn Report) -> Result<SpectralS
 }
 
 /// The coherence length for a patch (the light's: the one given, or the paper's 65 µm), with the note that
-/// says which and what a patch smaller than the window becomes, and the model's warnings.
-pub fn coherence_for(patch: &Patch, given_nm: Option<f64>, report: &dyn Report) -> f64 {
+/// says which and what a patch smaller than the window becomes, and the model's warnings; refused where the
+/// patch's sampling cannot carry it ([`Patch::check_coherence`]).
+pub fn coherence_for(patch: &Patch, given_nm: Option<f64>, report: &dyn Report) -> Result<f64> {
     let c = patch.coherence(given_nm);
+    patch.check_coherence(c.nm)?;
     report.note(&c.note());
-    for w in patch.warnings(c.nm) {
+    for w in patch.warnings() {
         report.warn(&w);
     }
-    c.nm
+    Ok(c.nm)
 }
 
 /// The number of Taylor terms the options ask for (`auto`: from the remainder bound at 380 nm).
@@ -123,7 +125,7 @@ fn taylor_terms_in_band(
     lambda_min_nm: Option<f64>,
     report: &dyn Report,
 ) -> Result<TaylorTerms> {
-    let coherence = coherence_for(patch, m.coherence_nm, report);
+    let coherence = coherence_for(patch, m.coherence_nm, report)?;
     let n = term_count(patch, m)?;
     let band = match lambda_min_nm {
         // The margin covers the rounding of the window's radius.

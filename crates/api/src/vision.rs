@@ -79,7 +79,7 @@ pub fn along_plane(
             None => 0.0,
         },
     };
-    let coherence = coherence_for(&patch, model.coherence_nm, report);
+    let coherence = coherence_for(&patch, model.coherence_nm, report)?;
     // Taylor terms for the shortest wavelength asked, 300 nm (the model commands' `auto` takes 380 nm).
     let n = terms_for_bound(patch.max_abs_height, FROM_NM, DEFAULT_EPSILON);
     // One light: the terms keep the bins its lobes read at 300 nm and longer (a large scan's memory).

@@ -208,7 +208,7 @@ pub struct ModelOpts {
     #[arg(long, default_value = "auto")]
     pub terms: String,
     /// Coherence length 4σ_s of the Gaussian window, a property of the light (default 65um, the paper's; a
-    /// smaller patch is taken as one unit cell of a periodic surface; said in the output).
+    /// smaller patch is taken as one unit cell of a periodic surface; said in the output). At least 4 pixels.
     #[arg(long, value_parser = positive_length_nm)]
     pub coherence: Option<f64>,
     /// Illuminant: d65, d50, a, e.

@@ -351,6 +351,28 @@ fn sweep_refuses_bad_input_clearly() {
     let compare = ["compare", s, "--methods", "reference,stam-periodic", "--size", "8"];
     assert_fails(&[&compare[..], &["--uv-power", "2"]].concat(), &["--uv-power 2 would be ignored", "add lookup"]);
     assert_fails(&[&compare[..], &["--table", "t.npz"]].concat(), &["--table t.npz would be ignored"]);
+    // A value named twice would repeat its work and its row; a method compared with itself reads 0 by
+    // construction (and every ratio to it infinite).
+    let twice = [("--methods", "reference,reference", "reference"), ("--exposures", "1,1RU", "1")];
+    for (flag, values, v) in twice {
+        assert_fails(&["compare", s, flag, values, "--size", "8"], &[&format!("{flag} lists {v} twice")]);
+    }
+    assert_fails(&["sweep", s, "--param", "terms", "--values", "2,3,2", "-o", o], &["--values lists 2 twice"]);
+    assert_fails(&["experiment", "laser", s, "--exposures", "1,1", "-o", o], &["--exposures lists 1 twice"]);
+    assert_fails(
+        &["compare", s, "--methods", "lookup,reference", "--against", "reference", "--size", "8"],
+        &["reference would be compared with itself (it is --against)"],
+    );
+    assert_fails(
+        &["compare", s, "--methods", "ground-truth-periodic,reference", "--size", "8"],
+        &["ground-truth-periodic would be compared with itself", "with --against model"],
+    );
+    // A coherence window narrower than a pixel (σ_s = coherence/4 < 100 nm here): refused before any work,
+    // a swept value too, whatever its place in the list.
+    let short = ["a coherence length of 300 nm is shorter than this scan's 100 nm pixels", "at least 400 nm"];
+    assert_fails(&["compare", s, "--coherence", "300nm", "--size", "8"], &short);
+    assert_fails(&["sweep", s, "--param", "coherence", "--values", "2um,0.3um", "-o", o], &short);
+    assert!(iridis(&["compare", s, "--methods", "reference", "--coherence", "400nm", "--size", "8"]).status.success());
     let laser = ["experiment", "laser", s, "--method", "reference", "--uv-resolution", "31", "-o", o];
     assert_fails(&laser, &["--uv-resolution 31 would be ignored", "reference method"]);
     let eval = ["brdf", "eval", s, "--light", "0deg", "--view", "10deg", "--uv-resolution", "31"];
@@ -526,6 +548,35 @@ fn compare_writes_maps_and_delta_e_heat_maps() {
         let img = image::open(maps.join(f)).unwrap_or_else(|e| panic!("{f} is not a readable image: {e}"));
         assert!(img.width() > 16 && img.height() > 16, "{f}: {}×{}", img.width(), img.height());
     }
+}
+
+/// Where the ground truth shows as clipped white on most of the map (a 400 nm window spreads the sine's light
+/// over the hemisphere; at 1000 RU every pixel clips), `compare` says so, and a ratio to a first method whose
+/// mean is 0 is left out (`—`, JSON null), never NaN or ∞.
+#[test]
+fn compare_says_when_the_truth_is_clipped_white_and_divides_by_no_zero() {
+    let out = iridis(&words(
+        "compare builtin:sine?size=6um&pixel=100nm --methods reference,stam-gaussian --coherence 400nm --size 8 \
+         --exposures 1,1000 --json",
+    ));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("warning: at 1000 RU the ground-truth-periodic image shows as white (clipped) on"),
+        "{stderr}"
+    );
+    assert!(!stderr.contains("at 1 RU the"), "{stderr}");
+    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let rows = j["results"].as_array().unwrap();
+    for r in rows {
+        let e = r["exposure_ru"].as_f64().unwrap();
+        let first = rows.iter().find(|f| f["exposure_ru"] == r["exposure_ru"]).unwrap()["mean"].as_f64().unwrap();
+        match r["ratio"].as_f64() {
+            Some(q) => assert!(first > 0.0 && (q - r["mean"].as_f64().unwrap() / first).abs() < 1e-12, "{r}"),
+            None => assert!(first == 0.0 && e == 1000.0, "a ratio left out with a first mean of {first}: {r}"),
+        }
+    }
+    assert!(rows.iter().any(|r| r["ratio"].is_null()), "{j}");
 }
 
 /// `compare` measures each method against the ground truth of its own model (the periodic extension) and

@@ -421,9 +421,7 @@ impl GroundTruth {
         spectral_samples: usize,
         aperture: Aperture,
     ) -> Result<Self, DiffractionError> {
-        if !(coherence_nm.is_finite() && coherence_nm > 0.0) {
-            return Err(DiffractionError::Invalid(format!("coherence length {coherence_nm} nm must be positive")));
-        }
+        patch.check_coherence(coherence_nm)?;
         if spectral_samples < 2 {
             return Err(DiffractionError::Invalid("the ground truth needs at least two wavelengths".into()));
         }

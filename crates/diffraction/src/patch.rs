@@ -78,13 +78,44 @@ impl Patch {
     }
 
     /// Warnings a user should see before trusting results ([`model_warnings`]).
-    pub fn warnings(&self, coherence_nm: f64) -> Vec<String> {
-        model_warnings(self.rows, self.cols, self.dx, self.dy, coherence_nm)
+    pub fn warnings(&self) -> Vec<String> {
+        model_warnings(self.dx, self.dy)
     }
 
     /// The shorter side of the patch (nm).
     pub fn shorter_side_nm(&self) -> f64 {
         (self.cols as f64 * self.dx).min(self.rows as f64 * self.dy)
+    }
+
+    /// The shortest coherence length the sampling carries: `4·max(dx, dy)`, a window `σ_s = coherence/4` of
+    /// one pixel. The model's sums run over the window sampled at the pixels, whose spectrum repeats every `1/dx`
+    /// in frequency; the repeats overlap by `~exp(−2π²σ_s²/dx²)`, below 3·10⁻⁹ from one pixel up but 0.7 % at half
+    /// a pixel and 29 % at a quarter. Measured on `builtin:elaphe` at 60 nm pixels (`iridis compare`, 16² map,
+    /// 1 RU): the reference within ΔE00 0.015 of the ground truth at 240 nm, 0.16 at 120 nm, 100 at 1 nm.
+    pub fn min_coherence_nm(&self) -> f64 {
+        4.0 * self.dx.max(self.dy)
+    }
+
+    /// Refuses a coherence length that is not positive or is shorter than the sampling carries
+    /// ([`Self::min_coherence_nm`]).
+    pub fn check_coherence(&self, coherence_nm: f64) -> Result<(), DiffractionError> {
+        if !(coherence_nm.is_finite() && coherence_nm > 0.0) {
+            return Err(DiffractionError::Invalid(format!("coherence length {coherence_nm} nm must be positive")));
+        }
+        let min = self.min_coherence_nm();
+        if coherence_nm < min {
+            let nm = |v: f64| format!("{v:.1}").trim_end_matches('0').trim_end_matches('.').to_string();
+            return Err(DiffractionError::Invalid(format!(
+                "a coherence length of {} nm is shorter than this scan's {} nm pixels carry: the window (σ_s = \
+                 coherence/4 = {} nm) must span at least one pixel, or its sampled spectrum aliases; give at least \
+                 {} nm (white light's coherence length is about a micrometre or more)",
+                nm(coherence_nm),
+                nm(self.dx.max(self.dy)),
+                nm(coherence_nm / 4.0),
+                nm(min)
+            )));
+        }
+        Ok(())
     }
 
     /// The coherence length to use: the light's, as given, or the paper's 65 µm ([`Coherence`]).
@@ -153,7 +184,7 @@ fn trim_um(nm: f64) -> String {
 /// Warnings about a `rows × cols` grid of `dx × dy` nm pixels (PHYSICS.md): pixels too coarse for the visible
 /// band at grazing geometry (one warning for both axes). Also stored in a lookup table's metadata. A patch
 /// smaller than the coherence window is no warning but the model's unit cell, said in [`Coherence::note`].
-pub fn model_warnings(rows: usize, cols: usize, dx: f64, dy: f64, coherence_nm: f64) -> Vec<String> {
+pub fn model_warnings(dx: f64, dy: f64) -> Vec<String> {
     let mut w = Vec::new();
     let d = dx.max(dy);
     if d > 95.0 {
@@ -164,6 +195,5 @@ pub fn model_warnings(rows: usize, cols: usize, dx: f64, dy: f64, coherence_nm: 
             380.0 * 0.5 / d
         ));
     }
-    let _ = (rows, cols, coherence_nm);
     w
 }

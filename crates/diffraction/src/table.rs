@@ -363,7 +363,7 @@ impl LookupTable {
             wavelength_min_nm: lambdas[0],
             wavelength_max_nm: lambdas[lambdas.len() - 1],
             layout: "I[v_index, u_index, channel (X, Y, Z), power p = 0..2N]; X = C * sum_p w^p I_p".into(),
-            warnings: crate::patch::model_warnings(terms.rows, terms.cols, terms.dx, terms.dy, terms.coherence_nm),
+            warnings: crate::patch::model_warnings(terms.dx, terms.dy),
             surface_fingerprint: Some(terms.fingerprint.clone()),
             light_spectrum: spectral.light.clone(),
             units: spectral.units.name().into(),

@@ -117,9 +117,7 @@ impl TaylorTerms {
         band: Band,
         progress: &(dyn Fn(usize) + Sync),
     ) -> Result<Self, DiffractionError> {
-        if !(coherence_nm.is_finite() && coherence_nm > 0.0) {
-            return Err(DiffractionError::Invalid(format!("coherence length {coherence_nm} nm must be positive")));
-        }
+        patch.check_coherence(coherence_nm)?;
         if !(band.radius > 0.0 && band.centre.iter().all(|c| c.is_finite())) {
             return Err(DiffractionError::Invalid(format!("band {band:?}: needs a positive radius")));
         }

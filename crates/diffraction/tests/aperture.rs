@@ -172,3 +172,29 @@ fn a_window_thousands_of_patches_wide_is_refused_with_what_to_lower() {
     assert_eq!("periodic".parse::<Aperture>().unwrap(), Aperture::Periodic);
     assert!("infinite".parse::<Aperture>().unwrap_err().to_string().contains("expected finite"));
 }
+
+/// A window narrower than a pixel (σ_s = coherence/4 below max(dx, dy)) is refused by every evaluator that
+/// samples it, with the shortest length the sampling carries, 4·max(dx, dy); that length itself is accepted.
+#[test]
+fn a_window_narrower_than_a_pixel_is_refused_with_the_shortest_the_sampling_carries() {
+    let patch = Patch::from_row_major(8, 8, 60.0, 40.0, &common::heights(64, 20.0, 3)).unwrap();
+    assert_eq!(patch.min_coherence_nm(), 240.0);
+    let short = 239.5;
+    let refusals = [
+        patch.check_coherence(short).unwrap_err().to_string(),
+        TaylorTerms::compute(&patch, 4, short).unwrap_err().to_string(),
+        GroundTruth::with_aperture(&patch, short, Shading::default(), &SpectralSetup::default(), 3, Aperture::Finite)
+            .unwrap_err()
+            .to_string(),
+    ];
+    for e in refusals {
+        assert!(
+            e.contains("a coherence length of 239.5 nm is shorter than this scan's 60 nm pixels carry")
+                && e.contains("σ_s = coherence/4 = 59.9 nm")
+                && e.contains("give at least 240 nm"),
+            "{e}"
+        );
+    }
+    assert!(patch.check_coherence(0.0).unwrap_err().to_string().contains("must be positive"));
+    assert!(patch.check_coherence(240.0).is_ok() && TaylorTerms::compute(&patch, 4, 240.0).is_ok());
+}

@@ -36,10 +36,11 @@ fn lattice_amplitude(gt: &GroundTruth, wi: [f64; 3], wr: [f64; 3], s: f64) -> Co
 
 #[test]
 fn the_lattice_describes_the_same_sum_as_the_ground_truth() {
-    // 10 × 12 samples at 80 × 90 nm; coherence 1.5 µm (the periodic sum reaches neighbouring images) and 0.25 µm
-    // (the finite window falls below its 1e-12 cut inside the patch, so columns drop out).
-    let (rows, cols) = (10, 12);
-    let patch = Patch::from_row_major(rows, cols, 80.0, 90.0, &common::heights(rows * cols, 60.0, 3)).unwrap();
+    // 20 × 24 samples at 40 × 45 nm (0.96 × 0.9 µm); coherence 1.5 µm (the periodic sum reaches neighbouring
+    // images) and 0.25 µm (the finite window falls below its 1e-12 cut inside the patch, so columns drop out;
+    // σ_s = 62.5 nm spans a pixel, as the model needs).
+    let (rows, cols) = (20, 24);
+    let patch = Patch::from_row_major(rows, cols, 40.0, 45.0, &common::heights(rows * cols, 60.0, 3)).unwrap();
     for (aperture, coherence) in [
         (Aperture::Finite, 1500.0),
         (Aperture::Finite, 250.0),

@@ -101,12 +101,12 @@ fn mutated_tables_never_panic() {
 #[test]
 fn patch_warnings_once_each_and_carried_by_tables() {
     let coarse = Patch::from_row_major(40, 50, 120.0, 110.0, &vec![0.0; 2000]).unwrap();
-    let w = coarse.warnings(65_000.0);
+    let w = coarse.warnings();
     assert_eq!(w.len(), 1, "{w:?}");
     assert!(w[0].contains("pixel size 120.0 nm") && w[0].contains("≤ 95 nm"), "{w:?}");
     // A patch smaller than the window is no warning but the periodic model's unit cell, said in the note.
     let fine = Patch::from_row_major(100, 100, 65.0, 65.0, &vec![0.0; 10_000]).unwrap();
-    assert!(fine.warnings(6_600.0).is_empty());
+    assert!(fine.warnings().is_empty());
     let c = fine.coherence(None);
     assert_eq!(c.nm, 65_000.0, "the light's coherence, never fitted to the patch");
     assert!(

@@ -32,6 +32,35 @@ pub fn delta_e_map(test: &[Option<Xyz>], truth: &[Option<Xyz>], exposure_ru: f64
         .collect()
 }
 
+/// The share (0–1) of an image's pixels, of those that have a value, that a display at `exposure_ru` shows as
+/// pure white: every linear sRGB channel clipped at 1. Where most of the ground truth is, its ΔE compares white
+/// with white there: small whatever the method. (Black at a low exposure is the paper's protocol: at 1 RU only
+/// the highlights show, on purpose.)
+pub fn clipped_white(img: &[Option<Xyz>], exposure_ru: f64) -> f64 {
+    let (mut white, mut n) = (0usize, 0usize);
+    for xyz in img.iter().flatten() {
+        n += 1;
+        white += usize::from(xyz.scale(exposure_ru).to_linear_srgb().iter().all(|&v| v >= 1.0));
+    }
+    if n == 0 {
+        0.0
+    } else {
+        white as f64 / n as f64
+    }
+}
+
+/// A sentence where more than half of `what` (an image's name) shows as clipped white at `exposure_ru`
+/// (`share` from [`clipped_white`]).
+pub fn clipping_warning(share: f64, what: &str, exposure_ru: f64) -> Option<String> {
+    (share > 0.5).then(|| {
+        format!(
+            "at {exposure_ru} RU {what} shows as white (clipped) on {:.0} % of the map: ΔE00 there compares white \
+             with white and says little of the method; a lower exposure shows its colours",
+            100.0 * share
+        )
+    })
+}
+
 /// Mean, 95th percentile and maximum of a ΔE map.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Stats {

@@ -188,9 +188,7 @@ pub struct Workbench {
 impl Workbench {
     pub fn new(patch: Patch, config: MethodConfig, surface: impl Into<String>) -> Result<Self, LabError> {
         let c = &config;
-        if !(c.coherence_nm.is_finite() && c.coherence_nm > 0.0) {
-            return Err(LabError::invalid(format!("coherence length {} nm must be positive", c.coherence_nm)));
-        }
+        patch.check_coherence(c.coherence_nm)?;
         if c.terms == Some(0) {
             return Err(LabError::invalid("the Taylor sum needs at least one term beyond the mirror (terms ≥ 1)"));
         }

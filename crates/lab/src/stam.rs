@@ -417,9 +417,7 @@ impl StamGaussian {
     /// Correlation function `C = R/σ_h²` from the patch's circular autocorrelation `R = IDFT(|DFT h|²)/N`,
     /// the DFTs of `C^m` for `m = 0..=M` with `M` past the Poisson tail of `g_max = (2·2π/λ_min·σ_h)²`.
     pub fn new(patch: &Patch, coherence_nm: f64, shading: Shading, spectral: SpectralSetup) -> Result<Self, LabError> {
-        if !(coherence_nm.is_finite() && coherence_nm > 0.0) {
-            return Err(LabError::invalid(format!("coherence length {coherence_nm} nm must be positive")));
-        }
+        patch.check_coherence(coherence_nm)?;
         let (rows, cols) = (patch.rows, patch.cols);
         let n = rows * cols;
         let sigma2 = patch.heights.iter().map(|h| h * h).sum::<f64>() / n as f64;

@@ -103,6 +103,10 @@ pub struct Point {
     pub extension: Vec<(f64, f64, f64)>,
     #[serde(skip)]
     pub image: Vec<Option<Xyz>>,
+    /// The share of the ground truth's map shown as clipped white at each exposure
+    /// ([`crate::compare::clipped_white`]).
+    #[serde(skip)]
+    pub truth_clipped: Vec<f64>,
 }
 
 /// Checks a sweep's values: positive, whole numbers where counts are meant, within each parameter's range.
@@ -164,6 +168,12 @@ pub fn run(
         )));
     }
     check_values(param, values)?;
+    if param == Param::Coherence {
+        // Every value before the first is computed, not at its turn minutes later.
+        for &v in values {
+            bench.patch.check_coherence(v)?;
+        }
+    }
     let image_of = |b: &Workbench, m: Method| -> Result<Vec<Option<Xyz>>, LabError> {
         let gt = b.evaluator(m, &crate::no_progress)?;
         b.render(gt.as_ref(), pixels, &crate::no_progress)
@@ -201,7 +211,8 @@ pub fn run(
         let (truth, extension) =
             if param == Param::Coherence { truths_of(&b)? } else { (base_truth.clone(), base_extension.clone()) };
         let errors = errors_at(exposures, &image, &truth);
-        points.push(Point { value: v, errors, extension, image });
+        let truth_clipped = exposures.iter().map(|&x| crate::compare::clipped_white(&truth, x)).collect();
+        points.push(Point { value: v, errors, extension, image, truth_clipped });
         progress(k + 1);
     }
     Ok((base_truth, points))

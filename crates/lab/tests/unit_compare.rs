@@ -3,7 +3,7 @@
 
 use iridis_color::lab::delta_e_2000;
 use iridis_color::Xyz;
-use iridis_lab::compare::{delta_e_map, displayed_lab, stats};
+use iridis_lab::compare::{clipped_white, clipping_warning, delta_e_map, displayed_lab, stats};
 
 #[test]
 fn identical_images_have_zero_error_and_percentile_is_nearest_rank() {
@@ -23,4 +23,24 @@ fn saturated_white_has_lightness_100() {
     // Far brighter light clips to the same white.
     let lab2 = displayed_lab(Xyz::from_linear_srgb([1.0, 1.0, 1.0]), 1000.0);
     assert!(delta_e_2000(lab, lab2) < 1e-9);
+}
+
+/// The share of a map a display clips to white: a pixel counts where every linear sRGB channel reaches 1, so
+/// display white (1, 1, 1) counts from exactly 1 RU and a pure red (0.5, 0, 0) never; pixels without a value
+/// are not in the count. Warned of above one half, naming the share.
+#[test]
+fn clipped_white_counts_pixels_every_channel_of_which_clips() {
+    let white = Xyz::from_linear_srgb([1.0, 1.0, 1.0]);
+    let grey = Xyz::from_linear_srgb([0.25, 0.25, 0.25]);
+    let red = Xyz::from_linear_srgb([0.5, 0.0, 0.0]);
+    let img = vec![Some(white), Some(grey), Some(red), None];
+    let share = |e: f64| clipped_white(&img, e);
+    assert_eq!(share(0.999), 0.0);
+    assert_eq!(share(1.0 + 1e-9), 1.0 / 3.0);
+    assert_eq!(share(4.0 + 1e-9), 2.0 / 3.0);
+    assert_eq!(share(1e9), 2.0 / 3.0, "the red pixel's green and blue stay at 0 however bright");
+    assert_eq!(clipped_white(&[None, None], 10.0), 0.0);
+    assert_eq!(clipping_warning(0.5, "the truth", 1000.0), None);
+    let w = clipping_warning(2.0 / 3.0, "the ground-truth image", 1000.0).unwrap();
+    assert!(w.starts_with("at 1000 RU the ground-truth image shows as white (clipped) on 67 % of the map"), "{w}");
 }

@@ -222,6 +222,18 @@ def test_lab_bad_input():
         lab.sweep("builtin:blazed?size=6um&pixel=100nm", "dlambda", [2.0, 5.0], "/tmp/never.png", step_nm=10.0)
     with pytest.raises(ValueError, match="--uv-resolution 31 would be ignored: the reference method"):
         lab.laser("builtin:blazed?size=6um&pixel=100nm", "/tmp/never.png", uv_resolution=31)
+    # A value named twice, a method compared with itself, a window narrower than a pixel: the library's
+    # refusals, as the CLI's.
+    with pytest.raises(ValueError, match="--methods lists reference twice"):
+        lab.compare("builtin:blazed?size=6um&pixel=100nm", methods=["reference", "reference"])
+    with pytest.raises(ValueError, match="--exposures lists 1 twice"):
+        lab.compare("builtin:blazed?size=6um&pixel=100nm", methods=["reference"], exposures=[1.0, 1.0])
+    with pytest.raises(ValueError, match="reference would be compared with itself"):
+        lab.compare("builtin:blazed?size=6um&pixel=100nm", methods=["reference"], against="reference")
+    with pytest.raises(ValueError, match="--values lists 2 twice"):
+        lab.sweep("builtin:blazed?size=6um&pixel=100nm", "terms", [2, 2], "/tmp/never.png")
+    with pytest.raises(ValueError, match="shorter than this scan's 100 nm pixels carry.*at least 400 nm"):
+        lab.compare("builtin:blazed?size=6um&pixel=100nm", methods=["reference"], coherence_nm=300.0)
 
 
 # --- order efficiencies: iridis grating -------------------------------------------------------------------

@@ -629,7 +629,7 @@ fn table_build(gpu: &Gpu, a: &GpuBenchOptions, patch: &Patch, report: &dyn Repor
 /// up to `gt_cpu_pixels` of its pixels in the same run: per-pixel rates, speed-up, CIEDE2000 at 1500 RU.
 fn ground_truth(gpu: &Gpu, a: &GpuBenchOptions, patch: &Patch, report: &dyn Report) -> Result<(Value, Vec<String>)> {
     use rayon::prelude::*;
-    let coherence = crate::model::coherence_for(patch, None, report);
+    let coherence = crate::model::coherence_for(patch, None, report)?;
     let spectral = SpectralSetup::default();
     let samples = 2 * spectral.wavelengths().len() - 1;
     let size = a.gt_size;
