@@ -121,14 +121,20 @@ pub struct BrdfMap {
     pub how: String,
 }
 
+/// A map's side in pixels (`--size`): 8 to 8192.
+pub fn check_size(size: usize) -> Result<()> {
+    if !(8..=8192).contains(&size) {
+        bail!("--size {size} must be between 8 and 8192 pixels");
+    }
+    Ok(())
+}
+
 /// Computes the map (checks first; `files`, if any, are declared before the work starts).
 pub fn compute(r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) -> Result<BrdfMap> {
     if !(r.exposure_ru.is_finite() && r.exposure_ru > 0.0) {
         bail!("--exposure {} must be a positive number of RU", r.exposure_ru);
     }
-    if !(8..=8192).contains(&r.size) {
-        bail!("--size {} must be between 8 and 8192 pixels", r.size);
-    }
+    check_size(r.size)?;
     refuse_build_options_for_table(&r.input, r.grid, &r.surface, "brdf-map")?;
     r.grid.refuse_unless_lookup(&r.method)?;
     if r.f32 && r.gpu {

@@ -199,6 +199,11 @@ fn brdf_map_figure(
 /// output set; each step is announced to `report` by its title, its own notes are dropped and its warnings
 /// collected into the report's. `inputs` gives each step's JSON the options of its command line (the CLI's).
 pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Report) -> Result<ScanReport> {
+    // What a later step would refuse, refused before the first runs (a report of a large scan takes minutes).
+    crate::brdf_map::check_size(o.size)?;
+    let spec =
+        iridis_vision::Spec { visual: Some(o.visual.clone()), illuminant: Some("d65".into()), ..Default::default() };
+    spec.system().context("--visual")?;
     let dir = &o.output;
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     let path = |n: &str| dir.join(n);
@@ -240,6 +245,10 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
         Ok((answer(v, &args, inputs), w))
     })?;
     steps.push(st);
+    if let (Some(c), Some(px)) = (coherence_nm, info["pixel_size_nm"].as_array()) {
+        let d = |k: usize| px.get(k).and_then(Value::as_f64).unwrap_or(0.0);
+        iridis_diffraction::patch::check_coherence(c, d(0), d(1)).context("--coherence")?;
+    }
 
     // 2. The scan as one unit cell of a grating: how much of the light it diffracts, and the colour of the rest.
     let spectrum = iridis_color::spectrum::uniform_grid(380.0, 780.0, 10.0)?;
@@ -323,11 +332,6 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
         }
         let title = format!("As a {} sees it: light at normal incidence, views along the strongest period", o.visual);
         let (st, v) = run_step(report, &title, args.clone(), |r| {
-            let spec = iridis_vision::Spec {
-                visual: Some(o.visual.clone()),
-                illuminant: Some("d65".into()),
-                ..Default::default()
-            };
             let model = crate::ModelOptions { coherence_nm: map_coherence_nm, ..crate::ModelOptions::default() };
             let shading = crate::fresnel::shading(crate::fresnel::DEFAULT_FRESNEL, FresnelConvention::Physical, true)?;
             let views: Vec<f64> = (-6..=6).map(|k| 10.0 * k as f64).collect();

@@ -87,35 +87,15 @@ impl Patch {
         (self.cols as f64 * self.dx).min(self.rows as f64 * self.dy)
     }
 
-    /// The shortest coherence length the sampling carries: `4·max(dx, dy)`, a window `σ_s = coherence/4` of
-    /// one pixel. The model's sums run over the window sampled at the pixels, whose spectrum repeats every `1/dx`
-    /// in frequency; the repeats overlap by `~exp(−2π²σ_s²/dx²)`, below 3·10⁻⁹ from one pixel up but 0.7 % at half
-    /// a pixel and 29 % at a quarter. Measured on `builtin:elaphe` at 60 nm pixels (`iridis compare`, 16² map,
-    /// 1 RU): the reference within ΔE00 0.015 of the ground truth at 240 nm, 0.16 at 120 nm, 100 at 1 nm.
+    /// The shortest coherence length the sampling carries ([`min_coherence_nm`]).
     pub fn min_coherence_nm(&self) -> f64 {
-        4.0 * self.dx.max(self.dy)
+        min_coherence_nm(self.dx, self.dy)
     }
 
     /// Refuses a coherence length that is not positive or is shorter than the sampling carries
     /// ([`Self::min_coherence_nm`]).
     pub fn check_coherence(&self, coherence_nm: f64) -> Result<(), DiffractionError> {
-        if !(coherence_nm.is_finite() && coherence_nm > 0.0) {
-            return Err(DiffractionError::Invalid(format!("coherence length {coherence_nm} nm must be positive")));
-        }
-        let min = self.min_coherence_nm();
-        if coherence_nm < min {
-            let nm = |v: f64| format!("{v:.1}").trim_end_matches('0').trim_end_matches('.').to_string();
-            return Err(DiffractionError::Invalid(format!(
-                "a coherence length of {} nm is shorter than this scan's {} nm pixels carry: the window (σ_s = \
-                 coherence/4 = {} nm) must span at least one pixel, or its sampled spectrum aliases; give at least \
-                 {} nm (white light's coherence length is about a micrometre or more)",
-                nm(coherence_nm),
-                nm(self.dx.max(self.dy)),
-                nm(coherence_nm / 4.0),
-                nm(min)
-            )));
-        }
-        Ok(())
+        check_coherence(coherence_nm, self.dx, self.dy)
     }
 
     /// The coherence length to use: the light's, as given, or the paper's 65 µm ([`Coherence`]).
@@ -173,6 +153,37 @@ impl Coherence {
         }
         s
     }
+}
+
+/// The shortest coherence length `dx × dy` nm pixels carry: `4·max(dx, dy)`, a window `σ_s = coherence/4` of
+/// one pixel. The model's sums run over the window sampled at the pixels, whose spectrum repeats every `1/dx`
+/// in frequency; the repeats overlap by `~exp(−2π²σ_s²/dx²)`, below 3·10⁻⁹ from one pixel up but 0.7 % at half
+/// a pixel and 29 % at a quarter. Measured on `builtin:elaphe` at 60 nm pixels (`iridis compare`, 16² map,
+/// 1 RU): the reference within ΔE00 0.015 of the ground truth at 240 nm, 0.16 at 120 nm, 100 at 1 nm.
+pub fn min_coherence_nm(dx: f64, dy: f64) -> f64 {
+    4.0 * dx.max(dy)
+}
+
+/// [`Patch::check_coherence`] for `dx × dy` nm pixels, where no patch is at hand (the scan report checks the
+/// coherence it was given against the scan's pixels before its first model step).
+pub fn check_coherence(coherence_nm: f64, dx: f64, dy: f64) -> Result<(), DiffractionError> {
+    if !(coherence_nm.is_finite() && coherence_nm > 0.0) {
+        return Err(DiffractionError::Invalid(format!("coherence length {coherence_nm} nm must be positive")));
+    }
+    let min = min_coherence_nm(dx, dy);
+    if coherence_nm < min {
+        let nm = |v: f64| format!("{v:.1}").trim_end_matches('0').trim_end_matches('.').to_string();
+        return Err(DiffractionError::Invalid(format!(
+            "a coherence length of {} nm is shorter than this scan's {} nm pixels carry: the window (σ_s = \
+                 coherence/4 = {} nm) must span at least one pixel, or its sampled spectrum aliases; give at least \
+                 {} nm (white light's coherence length is about a micrometre or more)",
+            nm(coherence_nm),
+            nm(dx.max(dy)),
+            nm(coherence_nm / 4.0),
+            nm(min)
+        )));
+    }
+    Ok(())
 }
 
 /// A length in µm as a person would write it: at most 3 decimals, trailing zeros dropped.

@@ -36,6 +36,19 @@ def test_report_of_an_instrument_file(tmp_path):
     assert not (out / "brdf_0deg.png").exists()
 
 
+def test_report_refuses_what_its_steps_would_before_they_run(tmp_path):
+    """As the CLI: the maps' size and the animal before any step, a coherence window narrower than the scan's
+    pixels (4 × 100 nm) before the first model step; no file is written."""
+    spec = "builtin:sine?size=4um&pixel=100nm"
+    with pytest.raises(ValueError, match="--size 0 must be between 8 and 8192"):
+        iridis.report(spec, tmp_path / "a", size=0)
+    with pytest.raises(ValueError, match="unknown visual system 'cat'"):
+        iridis.report(spec, tmp_path / "b", visual="cat")
+    with pytest.raises(ValueError, match="a coherence length of 300 nm .* give at least 400 nm"):
+        iridis.report(spec, tmp_path / "c", coherence="300nm")
+    assert [p for p in tmp_path.rglob("*") if p.is_file()] == []
+
+
 def test_report_of_a_grey_image_takes_max_height(tmp_path, grey_sine_png):
     """A grey PNG holds relative heights: ``max_height`` is the height of white, so the heights are grey / 255 ×
     100 nm and the rms is numpy's of the grey levels, scaled (as crates/cli/tests/surface_cli.rs)."""
