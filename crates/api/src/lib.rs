@@ -42,6 +42,7 @@ pub mod brdf_eval;
 pub mod brdf_map;
 pub mod brdf_vision;
 pub mod color;
+pub mod demo;
 pub mod film;
 pub mod film_bench;
 pub mod film_chart;

@@ -1,5 +1,5 @@
-//! `iridis.report`: the report of a scan (`iridis report`, `iridis_api::scan_report::write_report`), and the
-//! run's output set that the library's file-writing calls write through (committed when the call succeeds,
+//! `iridis.report`: the report of a scan (`iridis report`, `iridis_api::scan_report::write_report`),
+//! `iridis.demo`: the gallery on built-in data (`iridis demo`, `iridis_api::demo::demo`), and the run's output set that the library's file-writing calls write through (committed when the call succeeds,
 //! discarded when it fails, as the CLI does).
 
 use pyo3::prelude::*;
@@ -59,7 +59,28 @@ fn _report(
     })
 }
 
+/// The demo gallery written into `out` (every section, or those in `only`): returns `(index, written)`, the
+/// path of `index.html` and of every figure written, each also logged as `iridis demo` prints it.
+#[pyfunction]
+#[pyo3(signature = (out, only))]
+fn _demo(py: Python<'_>, out: &str, only: Vec<String>) -> PyResult<(String, Vec<String>)> {
+    let lines = std::sync::Arc::new(std::sync::Mutex::new(Vec::new()));
+    let sink = lines.clone();
+    run(py, |said| {
+        let index = with_outputs(|| {
+            iridis_api::demo::demo(std::path::Path::new(out), &only, move |line| {
+                sink.lock().unwrap_or_else(std::sync::PoisonError::into_inner).push(line.to_string());
+            })
+        })?;
+        let lines = std::mem::take(&mut *lines.lock().unwrap_or_else(std::sync::PoisonError::into_inner));
+        lines.iter().for_each(|l| iridis_api::Report::info(said, l.trim()));
+        let written = lines.iter().filter_map(|l| l.trim().strip_prefix("wrote ").map(str::to_string)).collect();
+        Ok((index.to_string_lossy().into_owned(), written))
+    })
+}
+
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    add_functions!(m, [_report]);
+    add_functions!(m, [_report, _demo]);
+    m.add("DEMO_SECTIONS", iridis_api::demo::SECTIONS.map(|s| s.0).to_vec())?;
     Ok(())
 }

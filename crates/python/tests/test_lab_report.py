@@ -137,3 +137,25 @@ def test_options_no_method_reads_are_refused(tmp_path):
     with pytest.raises(ValueError, match=r"--coherence 5um would be ignored: .* --aperture 5um"):
         lab.laser(spec, tmp_path / "s.png", coherence_nm=5000.0)
     assert not (tmp_path / "s.png").exists()
+
+
+def test_demo_writes_the_sections_asked_for_as_the_cli(tmp_path):
+    """``iridis.demo`` is ``iridis demo``'s library call: the sections asked for, in the gallery's order, every
+    figure named in index.html written as a PNG and returned; an unknown section raises, naming the sections
+    (as the CLI's ``--only``), and writes nothing."""
+    out = tmp_path / "gallery"
+    r = iridis.demo(out, only="thinfilm,color")
+    html = (out / "index.html").read_text()
+    assert r["index"] == str(out / "index.html")
+    names = [s.split('"')[0] for s in html.split('<img src="')[1:]]
+    assert sorted(names) == sorted(os.path.basename(p) for p in r["written"])
+    assert len(names) >= 4
+    for n in names:
+        assert (out / n).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n", n
+    # Colour before thin films, as in the gallery, and no section that was not asked for.
+    assert html.index("cie1931_locus.png") < html.index("thinfilm_soap_chart.png")
+    assert "brdf_" not in html and "render_" not in html
+    assert iridis.scan_report.DEMO_SECTIONS == ("snakes", "color", "surface", "thinfilm", "brdf", "lab", "render")
+    with pytest.raises(ValueError, match="no demo section 'colour'; the sections: snakes, color"):
+        iridis.demo(tmp_path / "never", only=["colour"])
+    assert not (tmp_path / "never").exists()

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::Args as ClapArgs;
-use iridis_api::gallery::Gallery;
+use iridis_api::demo::SECTIONS;
 
 #[derive(Debug, ClapArgs)]
 #[command(after_help = "\
@@ -27,31 +27,12 @@ pub struct Args {
     pub only: Vec<String>,
 }
 
-type Section = fn(&mut Gallery) -> Result<()>;
-
-/// The gallery's sections, in the order a newcomer should read them; each command group adds its own.
-const SECTIONS: [(&str, Section); 7] = [
-    ("snakes", iridis_api::scene::figures_section),
-    ("color", iridis_api::color::demo_section),
-    ("surface", iridis_api::surface_info::demo_section),
-    ("thinfilm", iridis_api::film_chart::demo_section),
-    ("brdf", iridis_api::brdf_map::demo_section),
-    ("lab", iridis_api::lab_run::demo_section),
-    ("render", iridis_api::scene::demo_section),
-];
-
 pub fn run(args: Args) -> Result<()> {
     crate::outln!("iridis demo: writing the gallery to {}", args.out.display())?;
     // A progress line per file; the gallery is the product, so a closed standard output does not stop it.
-    let mut gallery = Gallery::new(&args.out, |line| {
+    let index = iridis_api::demo::demo(&args.out, &args.only, |line| {
         let _ = crate::outln!("{line}");
     })?;
-    for (name, section) in SECTIONS {
-        if args.only.is_empty() || args.only.iter().any(|o| o == name) {
-            section(&mut gallery)?;
-        }
-    }
-    let index = gallery.finish()?;
     crate::outln!("done: open {}", index.display())?;
     Ok(())
 }

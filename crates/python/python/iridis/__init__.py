@@ -13,6 +13,7 @@ Modules:
     iridis.vision    colours as animals see them: quantum catches, colour spaces, ΔS and ΔL in JND (birds, bees, …)
     iridis.bench     ``python -m iridis.bench``: iridis.tmm against tmm (and tmm_fast) in the same run
     iridis.report    the report of a scan (``iridis report``): index.html, report.json and the figures
+    iridis.demo      the gallery on built-in data (``iridis demo``): index.html and its figures
 
 Example:
     >>> import iridis.thinfilm as tf
@@ -21,6 +22,6 @@ Example:
     0.0556
 """
 from ._native import __version__
-from .scan_report import report
+from .scan_report import demo, report
 
-__all__ = ["__version__", "report", "color", "diffraction", "film", "lab", "render", "surface", "thinfilm", "tmm", "vision"]
+__all__ = ["__version__", "demo", "report", "color", "diffraction", "film", "lab", "render", "surface", "thinfilm", "tmm", "vision"]

@@ -2,6 +2,9 @@
 library function as the command (``iridis_api::scan_report::write_report``): it writes ``DIR/index.html``,
 ``DIR/report.json`` and the figures, and returns ``report.json``'s content as a dict. Each step's JSON is the
 library's answer (the command line adds the command's ``"inputs"`` to each; the rest is the same).
+
+The demo gallery (``iridis demo``): the main job on built-in data, the same library function
+(``iridis_api::demo::demo``).
 """
 from __future__ import annotations
 
@@ -10,7 +13,10 @@ import os
 
 from . import _native
 
-__all__ = ["report"]
+__all__ = ["report", "demo", "DEMO_SECTIONS"]
+
+#: The demo gallery's sections, in its order (``iridis demo --only``).
+DEMO_SECTIONS = tuple(_native.DEMO_SECTIONS)
 
 
 def report(surface, output, *, channel=None, pixel_size=None, max_height=None, height_unit=None, level=None,
@@ -31,3 +37,18 @@ def report(surface, output, *, channel=None, pixel_size=None, max_height=None, h
     result = json.loads(out)
     result["text"] = text
     return result
+
+
+def demo(out="iridis-demo", only=None):
+    """Writes the demo gallery (``iridis demo``) into the folder ``out``: every section, or those named in
+    ``only`` (a list or a comma-separated string of ``DEMO_SECTIONS``), in the gallery's order. Returns
+    ``{"index": path of index.html, "written": [path of every figure]}``; each figure is also logged (the
+    ``iridis`` logger, INFO) as the command prints it. The whole gallery takes a few minutes on two cores;
+    ``only="color,thinfilm"`` seconds.
+    """
+    if only is None:
+        only = []
+    elif isinstance(only, str):
+        only = [s.strip() for s in only.split(",") if s.strip()]
+    index, written = _native._demo(os.fspath(out), [str(s) for s in only])
+    return {"index": index, "written": written}

@@ -17,3 +17,10 @@ def report(
     visual: str = ...,
     testbench: bool = ...,
 ) -> dict[str, Any]: ...
+
+DEMO_SECTIONS: tuple[str, ...]
+
+def demo(
+    out: Union[str, os.PathLike[str]] = ...,
+    only: Union[str, list[str], None] = ...,
+) -> dict[str, Any]: ...
