@@ -124,11 +124,22 @@ Examples:
     // New command groups are added here, one line each, with their module in cmd/.
 }
 
+/// Every option that takes a value takes a negative number too (`--exposure -1`, `--light -30deg`): the
+/// library then says what the value may be, where clap would take `-1` for an unknown flag and suggest `-- -1`.
+fn negative_values(cmd: clap::Command) -> clap::Command {
+    let names: Vec<String> = cmd.get_subcommands().map(|s| s.get_name().to_string()).collect();
+    let mut cmd = cmd.mut_args(|a| if a.get_action().takes_values() { a.allow_negative_numbers(true) } else { a });
+    for name in names {
+        cmd = cmd.mut_subcommand(name, negative_values);
+    }
+    cmd
+}
+
 fn main() -> std::process::ExitCode {
     // Parsed through the laid-out command (help.rs) so that every help page wraps its prose and keeps its
     // examples whole.
     let width = help::width();
-    let matches = match help::layout(Cli::command()).term_width(width).try_get_matches() {
+    let matches = match help::layout(negative_values(Cli::command())).term_width(width).try_get_matches() {
         Ok(m) => m,
         Err(e) if e.kind() == clap::error::ErrorKind::DisplayHelp => {
             print!("{}", help::mend_widows(&e.render().to_string(), width));

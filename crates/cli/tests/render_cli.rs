@@ -119,6 +119,11 @@ fn examples_render_and_bad_input_is_refused_cleanly() {
     std::fs::write(&keep, b"old").unwrap();
     let write = |name: &str, text: &str| write_file(dir.path(), name, text);
     assert_fails(&["render", &d("missing.toml"), "-o", &keep], &["cannot read scene", "missing.toml"]);
+    // A negative number is the option's value, refused by what it may be (clap took it for a flag).
+    assert_fails(
+        &["render", "examples/soap_bubble.toml", "-o", &keep, "--exposure", "-1"],
+        &["--exposure -1: must be a positive number of RU"],
+    );
     let bad = write("bad.toml", "[camera]\nposition = [0, 0, 5]\n[[object]]\nkind = \"sphere\"\nradius = \"big\"\n");
     assert_fails(&["render", &bad, "-o", &keep], &["bad.toml:5:", "radius = \"big\""]);
     let bad = write("typo.toml", "[camera]\nposition = [0, 0, 5]\nfoc = \"40deg\"\n");
