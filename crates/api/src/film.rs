@@ -7,7 +7,6 @@
 use std::fmt::Write as _;
 
 use anyhow::{anyhow, bail, Context, Result};
-use iridis_color::spectrum::uniform_grid;
 use iridis_color::units::{parse_angle_rad, parse_range};
 use iridis_color::{Illuminant, Observer, Xyz};
 use iridis_plot::{magma, ColorBar, ImagePlot, LinePlot, Series};
@@ -43,7 +42,7 @@ pub fn wavelength_grid(from: f64, to: f64, step: f64) -> Result<Vec<f64>> {
     if to < from {
         bail!("--to ({to} nm) must not be below --from ({from} nm)");
     }
-    let g = uniform_grid(from, to, step).map_err(|e| anyhow!("{e}"))?;
+    let g = iridis_color::spectrum::range_grid(from, to, step).map_err(|e| anyhow!("{e}"))?;
     if g.len() > 100_000 {
         bail!("{} wavelengths is too many; use a larger --step", g.len());
     }

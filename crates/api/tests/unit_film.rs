@@ -24,6 +24,15 @@ fn grids_and_angles_refuse_what_cannot_be_meant() {
     assert!(wavelength_grid(0.0, 410.0, 5.0).unwrap_err().to_string().contains("--from must be a positive"));
     assert!(wavelength_grid(500.0, 410.0, 5.0).unwrap_err().to_string().contains("must not be below"));
     assert!(wavelength_grid(400.0, 800.0, 0.001).unwrap_err().to_string().contains("too many"));
+    // Both ends are samples: a step that does not divide the range names where the grid would end (400 + 42·7),
+    // where it stopped short of --to before; one that divides it ends on --to whatever the rounding.
+    let e = wavelength_grid(400.0, 700.0, 7.0).unwrap_err().to_string();
+    assert!(e.contains("400–700 nm is not a whole number of 7 nm steps: the last wavelength would be 694 nm"), "{e}");
+    assert!(e.contains("divides the 300 nm range, or end at 694 nm"), "{e}");
+    let g = wavelength_grid(380.0, 780.0, 0.1).unwrap();
+    assert_eq!(g.len(), 4001);
+    assert!((g[4000] - 780.0).abs() < 1e-9, "{}", g[4000]);
+    assert_eq!(wavelength_grid(550.0, 550.0, 5.0).unwrap(), vec![550.0]);
     assert!(parse_angles("0deg:100deg:50deg", "--angles").unwrap_err().to_string().contains("100° is outside"));
     assert_eq!(round_deg(30f64.to_radians()), 30.0);
     assert_eq!(fmt_deg(0.5f64.to_radians()), "0.5");

@@ -154,6 +154,8 @@ fn options_no_method_reads_are_refused() {
     let out = iridis(&["grating", s, "--acceptance", "5deg"]);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.code() == Some(2) && stderr.contains("required") && stderr.contains("--detector"), "{stderr}");
+    let steps = ["grating", s, "--from", "380nm", "--to", "780nm", "--step", "500nm"];
+    assert_fails(&steps, &["380–780 nm is not a whole number of 500 nm steps", "would be 380 nm"]);
     // A spectrum's step without the spectrum (one wavelength, 550 nm) would change nothing.
     let out = iridis(&["grating", s, "--step", "5nm"]);
     let stderr = String::from_utf8_lossy(&out.stderr);

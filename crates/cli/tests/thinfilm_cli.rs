@@ -119,6 +119,11 @@ fn bad_input_names_the_token() {
         &["incident medium 'au' (gold, Johnson & Christy 1972", "built-in library", "absorbs", "lossless"],
     );
     assert_fails(&["thinfilm", "chart", "--stack", "air | water 5nm | air"], &["{d}"]);
+    // A range's end is a sample: a step that does not divide it is refused (it stopped short of --to before).
+    let (stack, steps) = ("air | water 300nm | air", "400–700 nm is not a whole number of 7 nm steps");
+    let spectrum = ["thinfilm", "spectrum", "--stack", stack, "--from", "400nm", "--to", "700nm", "--step", "7nm"];
+    assert_fails(&spectrum, &[steps, "the last wavelength would be 694 nm"]);
+    assert_fails(&["thinfilm", "table", "--stack", stack, "--angles", "0deg:80deg:30deg"], &["--angles", "2.667"]);
     let dir = temp_dir();
     let bad = dir.join("bad.yml");
     std::fs::write(&bad, "DATA:\n  - type: tabulated nk\n    data: |\n        0.4 1.5 0\n        0.5 oops 0\n")

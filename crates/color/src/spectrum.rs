@@ -193,7 +193,8 @@ pub fn trapezoid_weights(xs: &[f64]) -> Vec<f64> {
     w
 }
 
-/// `from, from + step, …` up to and including `to` (within a millionth of a step).
+/// `from, from + step, …` up to `to`, which is the last sample where the step divides the range (within a
+/// millionth of a step); see [`range_grid`] for a range a person gave.
 pub fn uniform_grid(from_nm: f64, to_nm: f64, step_nm: f64) -> Result<Vec<f64>, SpectrumError> {
     if !(from_nm.is_finite() && to_nm.is_finite() && step_nm.is_finite()) || step_nm <= 0.0 || to_nm < from_nm {
         return Err(SpectrumError::Invalid(format!(
@@ -205,4 +206,26 @@ pub fn uniform_grid(from_nm: f64, to_nm: f64, step_nm: f64) -> Result<Vec<f64>, 
         return Err(SpectrumError::Invalid(format!("{n} samples is too many")));
     }
     Ok((0..n).map(|i| from_nm + i as f64 * step_nm).collect())
+}
+
+/// [`uniform_grid`] for a range a person gave (`--from 400nm --to 700nm --step 5nm`): both ends are samples,
+/// so a step that does not divide the range is refused, naming where the grid would end — rather than
+/// silently stopping short of `to` (400–700 nm in 7 nm steps ends at 694 nm).
+pub fn range_grid(from_nm: f64, to_nm: f64, step_nm: f64) -> Result<Vec<f64>, SpectrumError> {
+    let grid = uniform_grid(from_nm, to_nm, step_nm)?;
+    let last = grid[grid.len() - 1];
+    if to_nm - last > 1e-6 * step_nm {
+        let nm = |v: f64| format!("{:.4}", v).trim_end_matches('0').trim_end_matches('.').to_string();
+        return Err(SpectrumError::Invalid(format!(
+            "{}–{} nm is not a whole number of {} nm steps: the last wavelength would be {} nm; give a step that \
+             divides the {} nm range, or end at {} nm",
+            nm(from_nm),
+            nm(to_nm),
+            nm(step_nm),
+            nm(last),
+            nm(to_nm - from_nm),
+            nm(last)
+        )));
+    }
+    Ok(grid)
 }

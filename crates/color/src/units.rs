@@ -68,7 +68,7 @@ pub fn parse_positive_length_nm(s: &str) -> Result<f64, UnitError> {
 }
 
 /// `from:to:step` with units on each part, e.g. `1deg:90deg:1deg` or `0nm:2000nm:2nm`; returns the
-/// inclusive list of values.
+/// inclusive list of values (FROM and TO both in it: a STEP that does not divide TO − FROM is refused).
 pub fn parse_range(s: &str, parse: fn(&str) -> Result<f64, UnitError>) -> Result<Vec<f64>, UnitError> {
     let parts: Vec<&str> = s.split(':').collect();
     if parts.len() != 3 {
@@ -80,7 +80,16 @@ pub fn parse_range(s: &str, parse: fn(&str) -> Result<f64, UnitError>) -> Result
     if step <= 0.0 || b < a {
         return Err(UnitError(format!("'{s}': need FROM ≤ TO and STEP > 0")));
     }
-    let n = ((b - a) / step + 1e-9).floor() as usize + 1;
+    // Both ends are values: a STEP that does not divide the range would stop short of TO without a word.
+    let steps = (b - a) / step;
+    if (steps - steps.round()).abs() > 1e-6 {
+        return Err(UnitError(format!(
+            "'{s}' does not end on TO: (TO − FROM)/STEP = {steps:.3} is not a whole number, so the last value would \
+             fall short of {}; give a STEP that divides TO − FROM",
+            parts[1].trim()
+        )));
+    }
+    let n = steps.round() as usize + 1;
     if n > 1_000_000 {
         return Err(UnitError(format!("'{s}' has {n} values; at most 1000000")));
     }

@@ -55,4 +55,12 @@ fn angles_and_ranges() {
     let r = parse_range("0nm:2000nm:2nm", parse_length_nm).unwrap();
     assert_eq!((r.len(), r[1000]), (1001, 2000.0));
     assert!(parse_range("0nm:10nm", parse_length_nm).is_err());
+    // TO is a value: a STEP that does not divide the range (1000/300 = 3.333 steps) is refused, where the list
+    // stopped at 900 nm before; 0.1 nm steps over 400 nm end on TO despite the rounding of 4000 additions.
+    let e = parse_range("0nm:1000nm:300nm", parse_length_nm).unwrap_err().0;
+    assert!(e.contains("(TO − FROM)/STEP = 3.333 is not a whole number") && e.contains("short of 1000nm"), "{e}");
+    let r = parse_range("380nm:780nm:0.1nm", parse_length_nm).unwrap();
+    assert_eq!(r.len(), 4001);
+    assert!((r[4000] - 780.0).abs() < 1e-9);
+    assert_eq!(parse_range("10deg:10deg:5deg", parse_angle_rad).unwrap().len(), 1);
 }

@@ -77,7 +77,7 @@ impl BenchSetup {
             )));
         }
         let wavelengths_nm =
-            iridis_color::spectrum::uniform_grid(from, to, step).map_err(|e| LabError::invalid(e.to_string()))?;
+            iridis_color::spectrum::range_grid(from, to, step).map_err(|e| LabError::invalid(e.to_string()))?;
         if !(angle_step.is_finite() && angle_step > 0.0) {
             return Err(LabError::invalid(format!("angle step {angle_step}° must be positive")));
         }

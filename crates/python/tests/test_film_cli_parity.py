@@ -123,6 +123,11 @@ def test_profile_plot_and_bad_input():
     assert p.image.ndim == 3 and p.image.shape[2] == 3
     with pytest.raises(ValueError, match="--depth"):
         film.profile("air | Au 30nm | glass", 500, depth="200nm:0nm")
+    # A range's end is a sample: a step that does not divide it raises, as the CLI refuses it.
+    with pytest.raises(ValueError, match="400–700 nm is not a whole number of 7 nm steps: the last wavelength would"):
+        film.spectrum("air | water 300nm | air", from_nm=400.0, to_nm=700.0, step_nm=7.0)
+    with pytest.raises(ValueError, match=r"--angles: .* = 2\.667 is not a whole number"):
+        film.table("air | water 300nm | air", angles="0deg:80deg:30deg")
 
 
 def test_rough_keywords_without_roughness_raise():

@@ -103,7 +103,7 @@ pub fn run(a: GratingArgs) -> Result<()> {
     let (t, p) = polar_azimuth("light", &a.light)?;
     let wavelengths_nm = match (a.wavelength, a.from, a.to) {
         (Some(l), _, _) => vec![l],
-        (None, Some(f), Some(t)) => iridis_color::spectrum::uniform_grid(f, t, a.step)?,
+        (None, Some(f), Some(t)) => iridis_color::spectrum::range_grid(f, t, a.step)?,
         (None, None, None) => vec![550.0],
         _ => bail!("give --wavelength, or --from and --to (with --step) for a spectrum"),
     };
