@@ -834,24 +834,19 @@ fn report_on_each_real_instrument_file() {
 
 /// What a later step of the report would refuse is refused before that step's work: the maps' size and the
 /// animal before any step, a coherence window narrower than the scan's pixels right after the first step has
-/// read them (it failed at the third, after the gratings). Nothing is written.
+/// read them. One `error:` line, the option's (a failed step adds a line naming the step). Nothing is written.
 #[test]
 fn report_refuses_what_its_steps_would_before_they_run() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("r");
     let o = out.to_str().unwrap();
-    let s = "builtin:sine?size=4um&pixel=100nm";
-    for (extra, words) in [
-        (["--size", "0"], &["--size 0 must be between 8 and 8192 pixels"][..]),
-        (["--visual", "cat"], &["--visual", "unknown visual system 'cat'"]),
-        (["--coherence", "300nm"], &["--coherence: a coherence length of 300 nm", "give at least 400 nm"]),
-    ] {
-        let st = iridis().args(["report", s, "-o", o]).args(extra).output().unwrap();
-        let stderr = String::from_utf8_lossy(&st.stderr);
-        assert_eq!(st.status.code(), Some(2), "{extra:?}: {stderr}");
-        let error = stderr.lines().find(|l| l.starts_with("error:")).unwrap_or_default();
-        assert!(words.iter().all(|w| error.contains(w)) && !error.contains("step"), "{extra:?}: {stderr}");
-        let left = std::fs::read_dir(&out).map(|d| d.count()).unwrap_or(0);
-        assert_eq!(left, 0, "{extra:?} left files in the report's folder");
-    }
+    let report = |option: &'static str, value: &'static str| {
+        ["report", "builtin:sine?size=4um&pixel=100nm", "-o", o, option, value]
+    };
+    crate::common::assert_fails(&report("--size", "0"), &["--size 0 must be between 8 and 8192 pixels"]);
+    crate::common::assert_fails(&report("--visual", "cat"), &["--visual", "unknown visual system 'cat'"]);
+    let short = ["--coherence: a coherence length of 300 nm", "give at least 400 nm"];
+    crate::common::assert_fails(&report("--coherence", "300nm"), &short);
+    let left = std::fs::read_dir(&out).map(|d| d.count()).unwrap_or(0);
+    assert_eq!(left, 0, "a refused report left files in its folder");
 }
