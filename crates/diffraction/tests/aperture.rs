@@ -190,7 +190,7 @@ fn a_window_narrower_than_a_pixel_is_refused_with_the_shortest_the_sampling_carr
     for e in refusals {
         assert!(
             e.contains("a coherence length of 239.5 nm is shorter than this scan's 60 nm pixels carry")
-                && e.contains("σ_s = coherence/4 = 59.9 nm")
+                && e.contains("σ_s = coherence/4 = 59.88 nm")
                 && e.contains("give at least 240 nm"),
             "{e}"
         );
