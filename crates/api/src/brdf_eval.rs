@@ -64,7 +64,7 @@ pub fn brdf_eval(r: &EvalRequest, spectra: Option<&Path>, report: &dyn Report) -
     }
     r.grid.refuse_unless_lookup(&method)?;
     let r0 = shading.fresnel.normal_reflectance();
-    let p = eval_point(&r.input, Some(&method), &r.model, shading, r.grid.params(), &r.surface, wi, wr, report)?;
+    let p = eval_point(&r.input, Some(&method), &r.model, shading, r.grid.params()?, &r.surface, wi, wr, report)?;
     if let Some(path) = spectra {
         crate::output::write_bytes(path, p.spectra_csv()?.as_bytes())?;
     }

@@ -182,7 +182,7 @@ pub fn compute(r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) ->
         method: &r.method,
         model: &model,
         shading,
-        params: r.grid.params(),
+        params: r.grid.params()?,
         precision,
         surface: &r.surface,
     };
@@ -256,7 +256,7 @@ fn gpu_map(r: &MapRequest, report: &dyn Report) -> Result<BrdfMap> {
             method: &r.method,
             model: &model,
             shading,
-            params: r.grid.params(),
+            params: r.grid.params()?,
             precision: Precision::F64,
             surface: &r.surface,
         };
@@ -296,7 +296,7 @@ fn gpu_map(r: &MapRequest, report: &dyn Report) -> Result<BrdfMap> {
     }
     let fresnel = crate::fresnel::parse_fresnel(&r.fresnel)?;
     let gpu = crate::gpu::open()?;
-    let table = crate::model::lookup_table(Some(&gpu), &r.input, &model, r.grid.params(), &r.surface, report)?;
+    let table = crate::model::lookup_table(Some(&gpu), &r.input, &model, r.grid.params()?, &r.surface, report)?;
     let coherence_nm = Some(table.meta.coherence_nm);
     let map =
         crate::gpu::lookup_map(&gpu, &table, fresnel, r.shadowing, r.convention, table_encoding, r.wi, r.size, tone)?;

@@ -313,7 +313,7 @@ pub fn compare_run(source: &Source, lab: &LabOptions, req: &CompareRequest, repo
     }
     let mut config = lab.config()?;
     config.spectral = spectral(&req.illuminant, req.dlambda_nm, report)?;
-    config.table = req.table.params();
+    config.table = req.table.params()?;
     config.table_path = req.table_path.clone();
     config.accelerator = crate::lab::gpu_accelerator(req.gpu, report)?;
     let b = workbench_from(source, lab, config, report)?;
@@ -510,7 +510,7 @@ pub fn sweep_run(source: &Source, lab: &LabOptions, req: &SweepRequest, report: 
     let mut config = lab.config()?;
     let dlambda_nm = req.dlambda_nm.unwrap_or(SpectralSetup::default().step_nm);
     config.spectral = spectral("d65", dlambda_nm, report)?;
-    config.table = req.table.params_or(SWEEP_UV_GRID);
+    config.table = req.table.params_or(SWEEP_UV_GRID)?;
     config.accelerator = crate::lab::gpu_accelerator(req.gpu, report)?;
     let b = workbench_from(source, lab, config, report)?;
     let pixels = Pixels::brdf_map(req.incidence.0, req.incidence.1, req.size);
@@ -675,7 +675,7 @@ pub fn laser_run(source: &Source, lab: &LabOptions, req: &LaserRequest, report: 
     let mut config = model.config()?;
     config.spectral = spectral("e", req.dlambda_nm, report)?;
     let scale = iridis_lab::laser::configure(&mut config, method, &spectrum, coating.as_ref(), Observer::Cie1931)?;
-    config.table = req.table.params();
+    config.table = req.table.params()?;
     config.table_path = req.table_path.clone();
     let b = workbench_from(source, &model, config, report)?;
     let e = evaluator(&b, method, report)?;

@@ -191,16 +191,19 @@ pub struct TableGrid {
 
 impl TableGrid {
     /// The grid a table from a SURFACE is built on.
-    pub fn params(&self) -> TableParams {
+    pub fn params(&self) -> Result<TableParams> {
         self.params_or(TableParams::default())
     }
 
-    /// The grid, with `default`'s values for what was not given.
-    pub fn params_or(&self, default: TableParams) -> TableParams {
-        TableParams {
+    /// The grid, with `default`'s values for what was not given; refused here, before any work, where out of
+    /// range ([`TableParams::validate`]; the table's build checked it only after the Taylor terms).
+    pub fn params_or(&self, default: TableParams) -> Result<TableParams> {
+        let p = TableParams {
             uv_resolution: self.uv_resolution.unwrap_or(default.uv_resolution),
             uv_power: self.uv_power.unwrap_or(default.uv_power),
-        }
+        };
+        p.validate()?;
+        Ok(p)
     }
 
     /// What was given, as flags (`--uv-resolution 101`, `--uv-power 1`).
@@ -235,6 +238,11 @@ pub fn refuse_build_options_for_table(
     if !is_table(input) {
         return Ok(());
     }
+    refuse_build_options(input, grid, surface, command)
+}
+
+/// [`refuse_build_options_for_table`] for a table already loaded (`input` names it in the message).
+pub fn refuse_build_options(input: &str, grid: TableGrid, surface: &SurfaceOptions, command: &str) -> Result<()> {
     let mut given = grid.flags();
     if let Some(p) = surface.pixel_size_nm {
         given.push(format!("--pixel-size {p}nm"));

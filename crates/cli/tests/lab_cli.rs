@@ -377,6 +377,11 @@ fn sweep_refuses_bad_input_clearly() {
     assert!(iridis(&["compare", s, "--methods", "reference", "--coherence", "400nm", "--size", "8"]).status.success());
     let laser = ["experiment", "laser", s, "--method", "reference", "--uv-resolution", "31", "-o", o];
     assert_fails(&laser, &["--uv-resolution 31 would be ignored", "reference method"]);
+    // A grid out of range is refused before the Taylor terms (it was refused by the table's build, after them).
+    for cmd in [&["precompute", s, "-o", o][..], &["brdf-map", s, "--method", "lookup", "-o", o]] {
+        let stderr = String::from_utf8_lossy(&iridis(&[cmd, &["--uv-resolution", "2"]].concat()).stderr).to_string();
+        assert!(stderr.starts_with("error: u-v resolution 2 must be between 3 and 4001"), "{cmd:?}: {stderr}");
+    }
     let eval = ["brdf", "eval", s, "--light", "0deg", "--view", "10deg", "--uv-resolution", "31"];
     assert_fails(&eval, &["--uv-resolution 31 would be ignored", "reference method"]);
 }

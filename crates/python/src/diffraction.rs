@@ -9,7 +9,10 @@ use std::sync::Arc;
 use iridis_api::brdf::{
     default_method, evaluator_for, make_evaluator, point, render_map, table_evaluator, EvaluatorSetup,
 };
-use iridis_api::model::{build_table, spectral_setup, taylor_terms};
+use iridis_api::model::{
+    build_table, is_table, refuse_build_options, refuse_build_options_for_table, spectral_setup, taylor_terms,
+    TableGrid,
+};
 use iridis_api::report::Report;
 use iridis_api::surface::Source;
 use iridis_api::{ModelOptions, SurfaceOptions};
@@ -23,7 +26,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::args::value_error;
-use crate::facade::{json_to_py, run, Options};
+use crate::facade::{api_error, json_to_py, run, Options};
 use crate::surface::PyHeightField;
 
 /// A lookup table (the native half of `iridis.diffraction.Table`).
@@ -110,6 +113,8 @@ struct EvalOptions {
     model: ModelOptions,
     surface: SurfaceOptions,
     fresnel: (String, iridis_diffraction::FresnelConvention, bool),
+    /// The u-v grid as given (refused where no table is built from it) and as used.
+    grid: TableGrid,
     params: TableParams,
 }
 
@@ -118,11 +123,9 @@ impl EvalOptions {
         let model = o.model()?;
         let surface = o.surface()?;
         let fresnel = o.shading_text()?;
-        let params = TableParams {
-            uv_resolution: o.usize("uv_resolution")?.unwrap_or(501),
-            uv_power: o.positive("uv_power")?.unwrap_or(5.0),
-        };
-        Ok(Self { model, surface, fresnel, params })
+        let grid = TableGrid { uv_resolution: o.usize("uv_resolution")?, uv_power: o.positive("uv_power")? };
+        let params = grid.params().map_err(api_error)?;
+        Ok(Self { model, surface, fresnel, grid, params })
     }
 
     fn shading(&self) -> anyhow::Result<Shading> {
@@ -145,12 +148,27 @@ fn evaluator(
     report: &dyn Report,
 ) -> anyhow::Result<Box<dyn Evaluator>> {
     let shading = o.shading()?;
+    // A u-v grid shapes a table built here from a height field by the lookup method, and nothing else: given
+    // anywhere else it would be ignored (as the CLI refuses it).
+    let refuse_grid = |m: &str| o.grid.refuse_unless_lookup(m);
     match input {
         Input::Table(t) => {
+            refuse_build_options("this Table", o.grid, &o.surface, "the call")?;
             table_evaluator(t.clone(), method.unwrap_or("lookup"), &o.model, shading, Precision::F64, report)
         }
-        Input::Field(s) => evaluator_for(s, o.setup(method.unwrap_or("reference"), shading), report),
-        Input::Arg(a) => make_evaluator(a, o.setup(method.unwrap_or_else(|| default_method(a)), shading), report),
+        Input::Field(s) => {
+            let m = method.unwrap_or("reference");
+            refuse_grid(m)?;
+            evaluator_for(s, o.setup(m, shading), report)
+        }
+        Input::Arg(a) => {
+            let m = method.unwrap_or_else(|| default_method(a));
+            refuse_build_options_for_table(a, o.grid, &o.surface, "the call")?;
+            if !is_table(a) {
+                refuse_grid(m)?;
+            }
+            make_evaluator(a, o.setup(m, shading), report)
+        }
     }
 }
 
@@ -349,6 +367,8 @@ fn brdf_vision<'py>(
         Input::Arg(a) => Source::Spec(a),
         Input::Table(_) => return Err(value_error("vision needs the height field, not a table")),
     };
+    // The reference method along the plane, as `iridis brdf vision` (which has no u-v grid option).
+    eo.grid.refuse_unless_lookup("reference").map_err(api_error)?;
     let spec = iridis_vision::Spec { visual: Some(visual), illuminant, ..Default::default() };
     let v = run(py, |r| {
         let plane = iridis_api::vision::PlaneViews { light_theta, azimuth, views_deg: &views_deg, spec: &spec };

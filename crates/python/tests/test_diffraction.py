@@ -68,3 +68,14 @@ def test_bad_input():
         diffraction.brdf_map(np.zeros((8, 8)), size=5)
     with pytest.raises(OSError):
         diffraction.Table.load("/no/such/table.npz")
+    # A u-v grid builds a table only for the lookup method from a height field; anywhere else it would be
+    # ignored, so it raises as the CLI refuses it (and out of range, before any work).
+    with pytest.raises(ValueError, match="--uv-resolution 101 would be ignored: the reference method builds no"):
+        diffraction.brdf_map(g, method="reference", size=8, uv_resolution=101)
+    with pytest.raises(ValueError, match="--uv-power 2 would be ignored"):
+        diffraction.evaluate("builtin:sine?size=4um&pixel=100nm", (0.0, 0.0), (0.3, 0.0), uv_power=2.0)
+    t = diffraction.precompute(g, uv_resolution=21)
+    with pytest.raises(ValueError, match="this Table is a finished lookup table, so --uv-resolution 31 would be"):
+        diffraction.brdf_map(t, size=8, uv_resolution=31)
+    with pytest.raises(ValueError, match="u-v resolution 2 must be between 3 and 4001"):
+        diffraction.precompute(g, uv_resolution=2)

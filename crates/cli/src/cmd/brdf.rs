@@ -281,7 +281,7 @@ pub fn run_precompute(a: PrecomputeArgs) -> Result<()> {
         surface: a.surface,
         surface_opts: a.surface_opts,
         model: a.model.options(),
-        params: a.grid.params(),
+        params: a.grid.params()?,
         units: a.units,
         gpu: a.gpu,
     };

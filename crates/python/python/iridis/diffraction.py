@@ -90,11 +90,12 @@ def _direction(value, name):
     return theta, phi
 
 
-def precompute(surface, coherence_nm=None, terms=None, uv_resolution=501, uv_power=5.0, illuminant=None,
+def precompute(surface, coherence_nm=None, terms=None, uv_resolution=None, uv_power=None, illuminant=None,
                observer=None, step_nm=None, name=None, **options):
     """The paper's tables ``I_p(u, v)`` of a height field (a Surface or a SURFACE argument), as
     ``iridis precompute``: ``terms=None`` takes as many Taylor terms as the heights need (``--terms auto``),
-    the coherence and spectral setup default as the CLI's (D65, CIE 1931, 5 nm)."""
+    the coherence, the u-v grid (501², exponent 5) and the spectral setup default as the CLI's (D65, CIE 1931,
+    5 nm)."""
     options.update(coherence_nm=coherence_nm, terms=terms, uv_resolution=uv_resolution, uv_power=uv_power,
                    illuminant=illuminant, observer=observer, step_nm=step_nm)
     return Table(_native.precompute(_native_source(surface), name, options))
