@@ -5,7 +5,7 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 
 /// A gallery being written: files go straight into the folder, `index.html` is written last.
 pub struct Gallery {
@@ -24,7 +24,7 @@ impl std::fmt::Debug for Gallery {
 impl Gallery {
     /// A gallery in `dir` (created if missing); `log` receives a line for each file written.
     pub fn new(dir: &Path, log: impl FnMut(&str) + 'static) -> Result<Self> {
-        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+        crate::output::create_dir(dir)?;
         Ok(Self { dir: dir.to_path_buf(), html: String::new(), log: Box::new(log) })
     }
 

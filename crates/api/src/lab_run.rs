@@ -5,7 +5,7 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use anyhow::{bail, Context, Result};
+use anyhow::{bail, Result};
 use iridis_color::units::parse_length_nm;
 use iridis_color::{Illuminant, Observer, Xyz};
 use iridis_diffraction::table::TableParams;
@@ -309,7 +309,7 @@ pub fn compare_run(source: &Source, lab: &LabOptions, req: &CompareRequest, repo
         );
     }
     if let Some(d) = &req.maps {
-        std::fs::create_dir_all(d).with_context(|| format!("cannot create {}", d.display()))?;
+        crate::output::create_dir(d)?;
     }
     let mut config = lab.config()?;
     config.spectral = spectral(&req.illuminant, req.dlambda_nm, report)?;

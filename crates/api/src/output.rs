@@ -2,7 +2,8 @@
 //! it computes anything ([`declare`]: the folder exists, the extension names a format the option writes, no
 //! path is used twice), every write goes to a temporary file beside its destination, and the front end renames all
 //! of them into place only when the whole command has succeeded ([`commit`]); on an error they are deleted
-//! ([`discard`]). A failed run therefore leaves no output at all, not some of them.
+//! ([`discard`]). A failed run therefore leaves no output at all, not some of them, nor a folder it made for
+//! them ([`create_dir`]).
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -25,6 +26,24 @@ struct Staged {
 }
 
 static RUN: Mutex<Vec<Staged>> = Mutex::new(Vec::new());
+
+/// The folders this run created for its outputs ([`create_dir`]), outermost first: a failed run removes them.
+static CREATED: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+fn created() -> std::sync::MutexGuard<'static, Vec<PathBuf>> {
+    CREATED.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// Creates an output folder of this run (`-o DIR`, `--maps DIR`) and its missing parents. Those it creates
+/// belong to the run's outputs: a failed run ([`discard`]) removes them again, so it leaves no empty folder
+/// either; a folder that existed is left as it was.
+pub fn create_dir(dir: &Path) -> Result<()> {
+    let missing: Vec<PathBuf> =
+        dir.ancestors().take_while(|d| !d.as_os_str().is_empty() && !d.exists()).map(Path::to_path_buf).collect();
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    created().extend(missing.into_iter().rev());
+    Ok(())
+}
 
 fn run() -> std::sync::MutexGuard<'static, Vec<Staged>> {
     RUN.lock().unwrap_or_else(|e| e.into_inner())
@@ -144,6 +163,7 @@ pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<()
 /// Renames every written output of the run into place (called by `main` when the command succeeded);
 /// declared outputs that were never written leave nothing behind.
 pub fn commit() -> Result<()> {
+    created().clear();
     for s in std::mem::take(&mut *run()) {
         let Some(tmp) = s.tmp else { continue };
         // Temporary files are created private (0600); a result is an ordinary file that others may read.
@@ -160,6 +180,10 @@ pub fn commit() -> Result<()> {
 /// Deletes the run's temporary files (called by `main` when the command failed): no output appears.
 pub fn discard() {
     run().clear();
+    // Innermost first; a folder that holds anything else (a user's file put there meanwhile) stays.
+    for dir in std::mem::take(&mut *created()).iter().rev() {
+        let _ = std::fs::remove_dir(dir);
+    }
 }
 
 /// Writes a file at once, atomically, outside the run's set: for files the run reads back itself (the

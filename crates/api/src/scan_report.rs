@@ -205,7 +205,7 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
         iridis_vision::Spec { visual: Some(o.visual.clone()), illuminant: Some("d65".into()), ..Default::default() };
     spec.system().context("--visual")?;
     let dir = &o.output;
-    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    crate::output::create_dir(dir)?;
     let path = |n: &str| dir.join(n);
     let file = |n: &str| path(n).to_string_lossy().into_owned();
     let coherence_nm = length("coherence", &o.coherence)?;

@@ -5,7 +5,8 @@ use iridis_api::output::*;
 use std::path::Path;
 
 /// The run's set: nothing appears before `commit`, everything after it; `discard` leaves no trace; a
-/// second write of one path and two spellings of one path are refused. (One test: the set is global.)
+/// second write of one path and two spellings of one path are refused; folders the run made go with it. (One
+/// test: the set is global.)
 #[test]
 fn outputs_appear_together_or_not_at_all() {
     let dir = tempfile::tempdir().unwrap();
@@ -39,6 +40,22 @@ fn outputs_appear_together_or_not_at_all() {
     declare("-o", &dir.path().join("c.png"), &["png"]).unwrap();
     commit().unwrap();
     assert_eq!(listing(), ["a.png", "b.csv"]);
+
+    // Output folders the run creates are outputs too: a failed run removes them (and the parents it made,
+    // with the temporaries inside), a folder that existed stays; a committed run keeps them.
+    let (made, inner) = (dir.path().join("made"), dir.path().join("made").join("inner"));
+    create_dir(&inner).unwrap();
+    write_bytes(&inner.join("x.png"), b"x").unwrap();
+    create_dir(dir.path()).unwrap();
+    discard();
+    assert!(!made.exists());
+    assert_eq!(listing(), ["a.png", "b.csv"]);
+    create_dir(&inner).unwrap();
+    write_bytes(&inner.join("x.png"), b"x").unwrap();
+    commit().unwrap();
+    assert_eq!(std::fs::read(inner.join("x.png")).unwrap(), b"x");
+    discard();
+    assert!(inner.join("x.png").exists(), "a discard after a commit touched the committed run's folder");
 }
 
 #[test]

@@ -834,7 +834,8 @@ fn report_on_each_real_instrument_file() {
 
 /// What a later step of the report would refuse is refused before that step's work: the maps' size and the
 /// animal before any step, a coherence window narrower than the scan's pixels right after the first step has
-/// read them. One `error:` line, the option's (a failed step adds a line naming the step). Nothing is written.
+/// read them. One `error:` line, the option's (a failed step adds a line naming the step). Nothing is written,
+/// not even the folder.
 #[test]
 fn report_refuses_what_its_steps_would_before_they_run() {
     let dir = tempfile::tempdir().unwrap();
@@ -847,6 +848,9 @@ fn report_refuses_what_its_steps_would_before_they_run() {
     crate::common::assert_fails(&report("--visual", "cat"), &["--visual", "unknown visual system 'cat'"]);
     let short = ["--coherence: a coherence length of 300 nm", "give at least 400 nm"];
     crate::common::assert_fails(&report("--coherence", "300nm"), &short);
-    let left = std::fs::read_dir(&out).map(|d| d.count()).unwrap_or(0);
-    assert_eq!(left, 0, "a refused report left files in its folder");
+    // The folder the run created is an output too: removed with the rest; one that existed stays, empty.
+    assert!(!out.exists(), "a refused report left its folder");
+    std::fs::create_dir(&out).unwrap();
+    crate::common::assert_fails(&report("--coherence", "300nm"), &short);
+    assert_eq!(std::fs::read_dir(&out).unwrap().count(), 0, "a refused report left files in the folder");
 }

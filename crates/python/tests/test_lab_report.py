@@ -45,8 +45,8 @@ def test_report_refuses_what_its_steps_would_before_they_run(tmp_path):
     with pytest.raises(ValueError, match="unknown visual system 'cat'"):
         iridis.report(spec, tmp_path / "b", visual="cat")
     with pytest.raises(ValueError, match="a coherence length of 300 nm .* give at least 400 nm"):
-        iridis.report(spec, tmp_path / "c", coherence="300nm")
-    assert [p for p in tmp_path.rglob("*") if p.is_file()] == []
+        iridis.report(spec, tmp_path / "c" / "d", coherence="300nm")
+    assert list(tmp_path.iterdir()) == [], "a refused report left a file or the folders it made"
 
 
 def test_report_of_a_grey_image_takes_max_height(tmp_path, grey_sine_png):
