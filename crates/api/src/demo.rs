@@ -22,8 +22,9 @@ pub const SECTIONS: [(&str, Section); 7] = [
 ];
 
 /// Writes the gallery into `dir` (created if missing): every section, or those named in `only` (in the
-/// gallery's order); `log` receives a line for each file written. Returns the path of `index.html`.
-pub fn demo(dir: &Path, only: &[String], log: impl FnMut(&str) + 'static) -> Result<PathBuf> {
+/// gallery's order); `log` receives a line for each file written. Returns the path of `index.html` and of every
+/// figure, in the page's order.
+pub fn demo(dir: &Path, only: &[String], log: impl FnMut(&str) + 'static) -> Result<(PathBuf, Vec<PathBuf>)> {
     if let Some(unknown) = only.iter().find(|o| !SECTIONS.iter().any(|s| s.0 == o.as_str())) {
         let names: Vec<&str> = SECTIONS.iter().map(|s| s.0).collect();
         bail!("no demo section '{unknown}'; the sections: {}", names.join(", "));

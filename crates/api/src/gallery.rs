@@ -11,6 +11,8 @@ use anyhow::Result;
 pub struct Gallery {
     dir: PathBuf,
     html: String,
+    /// Every figure added, in the page's order.
+    figures: Vec<PathBuf>,
     /// Where "wrote FILE" progress lines go (the command line prints them; Python may drop them).
     log: Box<dyn FnMut(&str)>,
 }
@@ -25,7 +27,7 @@ impl Gallery {
     /// A gallery in `dir` (created if missing); `log` receives a line for each file written.
     pub fn new(dir: &Path, log: impl FnMut(&str) + 'static) -> Result<Self> {
         crate::output::create_dir(dir)?;
-        Ok(Self { dir: dir.to_path_buf(), html: String::new(), log: Box::new(log) })
+        Ok(Self { dir: dir.to_path_buf(), html: String::new(), figures: Vec::new(), log: Box::new(log) })
     }
 
     /// Sends a progress line to the gallery's log.
@@ -44,8 +46,9 @@ impl Gallery {
 
     /// Adds an image already written to `file` with a caption.
     pub fn image(&mut self, file: &str, caption: &str) {
-        let line = format!("  wrote {}", self.path(file).display());
-        (self.log)(&line);
+        let path = self.path(file);
+        (self.log)(&format!("  wrote {}", path.display()));
+        self.figures.push(path);
         let _ = writeln!(
             self.html,
             "<figure><a href=\"{f}\"><img src=\"{f}\" alt=\"{c}\"></a><figcaption>{c}</figcaption></figure>",
@@ -79,8 +82,8 @@ impl Gallery {
         self.html.push_str("</table>\n");
     }
 
-    /// Writes `index.html` (after every section) and returns its path.
-    pub fn finish(self) -> Result<PathBuf> {
+    /// Writes `index.html` (after every section) and returns its path and every figure's, in the page's order.
+    pub fn finish(self) -> Result<(PathBuf, Vec<PathBuf>)> {
         let page = format!(
             "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>iridis demo</title><style>\
 body{{font-family:sans-serif;max-width:1200px;margin:2em auto;padding:0 1em;color:#222}}\
@@ -95,7 +98,7 @@ data only. Every image below can be regenerated with the command named in its ca
         );
         let index = self.dir.join("index.html");
         crate::output::write_bytes(&index, page.as_bytes())?;
-        Ok(index)
+        Ok((index, self.figures))
     }
 }
 

@@ -482,6 +482,7 @@ pub fn comparison(
         truths.push((m, render_on_bench(b, e.as_ref(), pixels, m.name(), report)?));
     }
     let mut c = Comparison { rows: Vec::new(), images: Vec::new(), truths, extension: Vec::new() };
+    let mut compared_with: Vec<Method> = Vec::new();
     for &m in methods {
         // A lookup table only where the map reads it: the same colours, at the map's cost, not the table's.
         let e = match m {
@@ -492,6 +493,9 @@ pub fn comparison(
         };
         let img = render_on_bench(b, e.as_ref(), pixels, m.name(), report)?;
         let t = against.unwrap_or(m.model_truth());
+        if !compared_with.contains(&t) {
+            compared_with.push(t);
+        }
         let one = [(m.name().to_string(), img)];
         c.rows.extend(iridis_lab::compare::table(&one, c.truth(t), t.name(), exps));
         let [(name, img)] = one;
@@ -499,6 +503,15 @@ pub fn comparison(
     }
     c.extension =
         iridis_lab::compare::extension_error(c.truth(Method::GroundTruthPeriodic), c.truth(Method::GroundTruth), exps);
+    // Where a truth is mostly clipped white at an exposure, its rows there measure the display, not the method.
+    for t in compared_with {
+        for &e in exps {
+            let share = iridis_lab::compare::clipped_white(c.truth(t), e);
+            if let Some(w) = iridis_lab::compare::clipping_warning(share, &format!("the {t} image"), e) {
+                report.warn(&w);
+            }
+        }
+    }
     Ok(c)
 }
 

@@ -320,20 +320,6 @@ pub fn compare_run(source: &Source, lab: &LabOptions, req: &CompareRequest, repo
     let (theta, phi) = req.incidence;
     let pixels = Pixels::brdf_map(theta, phi, req.size);
     let c = comparison(&b, &req.methods, req.against, &pixels, &req.exposures, report)?;
-    let mut truths: Vec<Method> = Vec::new();
-    for t in req.methods.iter().map(|m| req.against.unwrap_or(m.model_truth())) {
-        if !truths.contains(&t) {
-            truths.push(t);
-        }
-    }
-    for t in truths {
-        for &e in &req.exposures {
-            let share = iridis_lab::compare::clipped_white(c.truth(t), e);
-            if let Some(w) = iridis_lab::compare::clipping_warning(share, &format!("the {t} image"), e) {
-                report.warn(&w);
-            }
-        }
-    }
     if let Some(dir) = &req.maps {
         let size = req.size;
         for &e in &req.exposures {

@@ -124,8 +124,9 @@ Examples:
     // New command groups are added here, one line each, with their module in cmd/.
 }
 
-/// Every option that takes a value takes a negative number too (`--exposure -1`, `--light -30deg`): the
-/// library then says what the value may be, where clap would take `-1` for an unknown flag and suggest `-- -1`.
+/// Every option that takes a value takes a negative number too (`--exposure -1`): the library then says what
+/// the value may be, where clap would take `-1` for an unknown flag and suggest `-- -1`. (A number with a unit,
+/// `-30deg`, is no number to clap; the options where such a value is valid, `--azimuth`, take hyphen values.)
 fn negative_values(cmd: clap::Command) -> clap::Command {
     let names: Vec<String> = cmd.get_subcommands().map(|s| s.get_name().to_string()).collect();
     let mut cmd = cmd.mut_args(|a| if a.get_action().takes_values() { a.allow_negative_numbers(true) } else { a });

@@ -213,8 +213,8 @@ pub fn uniform_grid(from_nm: f64, to_nm: f64, step_nm: f64) -> Result<Vec<f64>, 
 /// silently stopping short of `to` (400–700 nm in 7 nm steps ends at 694 nm).
 pub fn range_grid(from_nm: f64, to_nm: f64, step_nm: f64) -> Result<Vec<f64>, SpectrumError> {
     let grid = uniform_grid(from_nm, to_nm, step_nm)?;
-    let last = grid[grid.len() - 1];
-    if to_nm - last > 1e-6 * step_nm {
+    if whole_steps(from_nm, to_nm, step_nm).is_err() {
+        let last = grid[grid.len() - 1];
         let nm = |v: f64| format!("{:.4}", v).trim_end_matches('0').trim_end_matches('.').to_string();
         return Err(SpectrumError::Invalid(format!(
             "{}–{} nm is not a whole number of {} nm steps: the last wavelength would be {} nm; give a step that \
@@ -228,4 +228,15 @@ pub fn range_grid(from_nm: f64, to_nm: f64, step_nm: f64) -> Result<Vec<f64>, Sp
         )));
     }
     Ok(grid)
+}
+
+/// The number of `step`s from `from` to `to` where it is whole (within a millionth of a step), else their
+/// fractional count: whether a range given as its ends and a step has both ends on its grid.
+pub(crate) fn whole_steps(from: f64, to: f64, step: f64) -> Result<usize, f64> {
+    let steps = (to - from) / step;
+    if (steps - steps.round()).abs() > 1e-6 {
+        Err(steps)
+    } else {
+        Ok(steps.round() as usize)
+    }
 }

@@ -81,15 +81,13 @@ pub fn parse_range(s: &str, parse: fn(&str) -> Result<f64, UnitError>) -> Result
         return Err(UnitError(format!("'{s}': need FROM ≤ TO and STEP > 0")));
     }
     // Both ends are values: a STEP that does not divide the range would stop short of TO without a word.
-    let steps = (b - a) / step;
-    if (steps - steps.round()).abs() > 1e-6 {
-        return Err(UnitError(format!(
+    let n = crate::spectrum::whole_steps(a, b, step).map_err(|steps| {
+        UnitError(format!(
             "'{s}' does not end on TO: (TO − FROM)/STEP = {steps:.3} is not a whole number, so the last value would \
              fall short of {}; give a STEP that divides TO − FROM",
             parts[1].trim()
-        )));
-    }
-    let n = steps.round() as usize + 1;
+        ))
+    })? + 1;
     if n > 1_000_000 {
         return Err(UnitError(format!("'{s}' has {n} values; at most 1000000")));
     }

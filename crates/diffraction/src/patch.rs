@@ -175,8 +175,8 @@ pub fn check_coherence(coherence_nm: f64, dx: f64, dy: f64) -> Result<(), Diffra
         let nm = |v: f64| format!("{v:.2}").trim_end_matches('0').trim_end_matches('.').to_string();
         return Err(DiffractionError::Invalid(format!(
             "a coherence length of {} nm is shorter than this scan's {} nm pixels carry: the window (σ_s = \
-                 coherence/4 = {} nm) must span at least one pixel, or its sampled spectrum aliases; give at least \
-                 {} nm (white light's coherence length is about a micrometre or more)",
+             coherence/4 = {} nm) must span at least one pixel, or its sampled spectrum aliases; give at least {} \
+             nm (white light's coherence length is about a micrometre or more)",
             nm(coherence_nm),
             nm(dx.max(dy)),
             nm(coherence_nm / 4.0),

@@ -185,8 +185,13 @@ pub fn run(
         let extension = errors_at(exposures, &periodic, &finite);
         Ok((if against == Method::GroundTruth { finite } else { periodic }, extension))
     };
+    let clipped_of = |truth: &[Option<Xyz>]| -> Vec<f64> {
+        exposures.iter().map(|&x| crate::compare::clipped_white(truth, x)).collect()
+    };
+    // Computed once where the truth does not change with the value (every parameter but coherence).
     let (base_truth, base_extension) =
         if param == Param::Coherence { (Vec::new(), Vec::new()) } else { truths_of(bench)? };
+    let base_clipped = clipped_of(&base_truth);
     let mut points = Vec::new();
     for (k, &v) in values.iter().enumerate() {
         let mut config = bench.config.clone();
@@ -208,10 +213,12 @@ pub fn run(
         let b = Workbench::new(bench.patch.clone(), config, bench.surface.clone())?;
         let e = b.evaluator(method, &crate::no_progress)?;
         let image = b.render(e.as_ref(), pixels, &crate::no_progress)?;
-        let (truth, extension) =
-            if param == Param::Coherence { truths_of(&b)? } else { (base_truth.clone(), base_extension.clone()) };
-        let errors = errors_at(exposures, &image, &truth);
-        let truth_clipped = exposures.iter().map(|&x| crate::compare::clipped_white(&truth, x)).collect();
+        let (errors, extension, truth_clipped) = if param == Param::Coherence {
+            let (truth, extension) = truths_of(&b)?;
+            (errors_at(exposures, &image, &truth), extension, clipped_of(&truth))
+        } else {
+            (errors_at(exposures, &image, &base_truth), base_extension.clone(), base_clipped.clone())
+        };
         points.push(Point { value: v, errors, extension, image, truth_clipped });
         progress(k + 1);
     }

@@ -10,8 +10,7 @@ use iridis_api::brdf::{
     default_method, evaluator_for, make_evaluator, point, render_map, table_evaluator, EvaluatorSetup,
 };
 use iridis_api::model::{
-    build_table, is_table, refuse_build_options, refuse_build_options_for_table, spectral_setup, taylor_terms,
-    TableGrid,
+    build_table, refuse_build_options, refuse_build_options_for_table, spectral_setup, taylor_terms, TableGrid,
 };
 use iridis_api::report::Report;
 use iridis_api::surface::Source;
@@ -149,8 +148,8 @@ fn evaluator(
 ) -> anyhow::Result<Box<dyn Evaluator>> {
     let shading = o.shading()?;
     // A u-v grid shapes a table built here from a height field by the lookup method, and nothing else: given
-    // anywhere else it would be ignored (as the CLI refuses it).
-    let refuse_grid = |m: &str| o.grid.refuse_unless_lookup(m);
+    // anywhere else it would be ignored, so it is refused as `brdf-map` refuses it (a table first, then a method
+    // that builds none).
     match input {
         Input::Table(t) => {
             refuse_build_options("this Table", o.grid, &o.surface, "the call")?;
@@ -158,15 +157,13 @@ fn evaluator(
         }
         Input::Field(s) => {
             let m = method.unwrap_or("reference");
-            refuse_grid(m)?;
+            o.grid.refuse_unless_lookup(m)?;
             evaluator_for(s, o.setup(m, shading), report)
         }
         Input::Arg(a) => {
             let m = method.unwrap_or_else(|| default_method(a));
             refuse_build_options_for_table(a, o.grid, &o.surface, "the call")?;
-            if !is_table(a) {
-                refuse_grid(m)?;
-            }
+            o.grid.refuse_unless_lookup(m)?;
             make_evaluator(a, o.setup(m, shading), report)
         }
     }

@@ -64,18 +64,12 @@ fn _report(
 #[pyfunction]
 #[pyo3(signature = (out, only))]
 fn _demo(py: Python<'_>, out: &str, only: Vec<String>) -> PyResult<(String, Vec<String>)> {
-    let lines = std::sync::Arc::new(std::sync::Mutex::new(Vec::new()));
-    let sink = lines.clone();
+    let text = |p: &std::path::Path| p.to_string_lossy().into_owned();
     run(py, |said| {
-        let index = with_outputs(|| {
-            iridis_api::demo::demo(std::path::Path::new(out), &only, move |line| {
-                sink.lock().unwrap_or_else(std::sync::PoisonError::into_inner).push(line.to_string());
-            })
-        })?;
-        let lines = std::mem::take(&mut *lines.lock().unwrap_or_else(std::sync::PoisonError::into_inner));
-        lines.iter().for_each(|l| iridis_api::Report::info(said, l.trim()));
-        let written = lines.iter().filter_map(|l| l.trim().strip_prefix("wrote ").map(str::to_string)).collect();
-        Ok((index.to_string_lossy().into_owned(), written))
+        // The gallery names its figures; each is logged as `iridis demo` prints it.
+        let (index, figures) = with_outputs(|| iridis_api::demo::demo(std::path::Path::new(out), &only, |_| {}))?;
+        figures.iter().for_each(|f| iridis_api::Report::info(said, &format!("wrote {}", f.display())));
+        Ok((text(&index), figures.iter().map(|f| text(f)).collect()))
     })
 }
 

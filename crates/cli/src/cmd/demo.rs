@@ -30,7 +30,7 @@ pub struct Args {
 pub fn run(args: Args) -> Result<()> {
     crate::outln!("iridis demo: writing the gallery to {}", args.out.display())?;
     // A progress line per file; the gallery is the product, so a closed standard output does not stop it.
-    let index = iridis_api::demo::demo(&args.out, &args.only, |line| {
+    let (index, _) = iridis_api::demo::demo(&args.out, &args.only, |line| {
         let _ = crate::outln!("{line}");
     })?;
     crate::outln!("done: open {}", index.display())?;
