@@ -63,6 +63,7 @@ pub fn along_plane(
     if views_deg.is_empty() || views_deg.iter().any(|v| !(v.is_finite() && v.abs() < 90.0)) {
         bail!("the view angles must lie strictly between −90° and 90°");
     }
+    crate::lab_run::refuse_repeats("--views", views_deg)?;
     let system = spec.system().context("--visual")?;
     let options = spec.options(&system)?;
     let patch = source.patch(surface, report)?;

@@ -168,7 +168,7 @@ pub struct ProfileArgs {
     pub points: usize,
     /// The depth window of the profile, FROM:TO below the first interface (e.g. --depth=-20nm:200nm to see
     /// the films on a 1 mm slide); default 100 nm above the stack to 100 nm into the substrate.
-    #[arg(long, value_name = "FROM:TO", allow_hyphen_values = true)]
+    #[arg(long, value_name = "FROM:TO")]
     pub depth: Option<String>,
     /// Print JSON (absorption per layer and the profile).
     #[arg(long, conflicts_with = "csv")]

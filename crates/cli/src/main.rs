@@ -124,23 +124,58 @@ Examples:
     // New command groups are added here, one line each, with their module in cmd/.
 }
 
-/// Every option that takes a value takes a negative number too (`--exposure -1`): the library then says what
-/// the value may be, where clap would take `-1` for an unknown flag and suggest `-- -1`. (A number with a unit,
-/// `-30deg`, is no number to clap; the options where such a value is valid, `--azimuth`, take hyphen values.)
-fn negative_values(cmd: clap::Command) -> clap::Command {
-    let names: Vec<String> = cmd.get_subcommands().map(|s| s.get_name().to_string()).collect();
-    let mut cmd = cmd.mut_args(|a| if a.get_action().takes_values() { a.allow_negative_numbers(true) } else { a });
-    for name in names {
-        cmd = cmd.mut_subcommand(name, negative_values);
+/// Every option that takes a value takes a negative one too (`--exposure -1`, `--light -30deg`): the library
+/// then says what the value may be, where clap would take `-1` for an unknown flag and suggest `-- -1`. Clap
+/// knows a negative number but not one with a unit, so a value that starts with a minus and a digit, given
+/// as the next word after an option that takes one, is attached to it (`--light=-30deg`) before clap parses.
+fn attach_negative_values(cmd: &clap::Command, args: Vec<std::ffi::OsString>) -> Vec<std::ffi::OsString> {
+    let negative = |s: &str| {
+        let mut c = s.chars();
+        c.next() == Some('-') && c.next().is_some_and(|d| d.is_ascii_digit() || d == '.')
+    };
+    let mut cmd = cmd;
+    let mut out = Vec::with_capacity(args.len());
+    let mut args = args.into_iter();
+    out.extend(args.next()); // the program's name
+    while let Some(arg) = args.next() {
+        let Some(word) = arg.to_str().map(str::to_owned) else {
+            out.push(arg);
+            continue;
+        };
+        if word == "--" {
+            out.push(arg);
+            out.extend(args.by_ref());
+            break;
+        }
+        if let Some(name) = word.strip_prefix("--").filter(|n| !n.contains('=')) {
+            let takes_value = cmd.get_arguments().any(|a| a.get_long() == Some(name) && a.get_action().takes_values());
+            if takes_value {
+                match args.next() {
+                    Some(v) if v.to_str().is_some_and(negative) => {
+                        let mut joined = arg;
+                        joined.push("=");
+                        joined.push(v);
+                        out.push(joined);
+                    }
+                    Some(v) => out.extend([arg, v]),
+                    None => out.push(arg),
+                }
+                continue;
+            }
+        } else if let Some(sub) = cmd.find_subcommand(&word) {
+            cmd = sub;
+        }
+        out.push(arg);
     }
-    cmd
+    out
 }
 
 fn main() -> std::process::ExitCode {
     // Parsed through the laid-out command (help.rs) so that every help page wraps its prose and keeps its
     // examples whole.
     let width = help::width();
-    let matches = match help::layout(negative_values(Cli::command())).term_width(width).try_get_matches() {
+    let args = attach_negative_values(&Cli::command(), std::env::args_os().collect());
+    let matches = match help::layout(Cli::command()).term_width(width).try_get_matches_from(args) {
         Ok(m) => m,
         Err(e) if e.kind() == clap::error::ErrorKind::DisplayHelp => {
             print!("{}", help::mend_widows(&e.render().to_string(), width));

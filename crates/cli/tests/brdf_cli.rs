@@ -297,6 +297,11 @@ fn brdf_eval_peaks_where_the_grating_equation_says() {
     assert!(xyz[1] > 0.0 && xyz[1] < 1.0, "{xyz:?}");
     // Below the horizon and malformed directions are refused with the flag's name.
     assert_fails(&["brdf", "eval", "builtin:sine", "--light", "95deg", "--view", "0deg"], &["--light", "[0°, 90°)"]);
+    // A negative value with a unit is the option's value (clap took `-30deg` for the flags -3, -0, …).
+    assert_fails(
+        &["brdf", "eval", "builtin:sine", "--light", "-30deg", "--view", "0deg"],
+        &["--light '-30deg'", "[0°, 90°)"],
+    );
     assert_fails(&["brdf", "eval", "builtin:sine", "--light", "0deg", "--view", "1,2,3"], &["--view"]);
     assert_fails(
         &["brdf", "eval", "builtin:sine", "--light", "0deg", "--view", "0deg", "--fresnel-convention", "squared"],

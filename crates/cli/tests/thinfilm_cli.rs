@@ -101,6 +101,10 @@ fn bad_input_names_the_token() {
     assert_fails(&["thinfilm", "spectrum", "--stack", "air | water | air"], &["no thickness", "column 7"]);
     assert_fails(&["thinfilm", "spectrum", "--stack", "air | water -3nm | air"], &["'-3nm'", "negative"]);
     assert_fails(
+        &["thinfilm", "spectrum", "--stack", "air | water 300nm | air", "--angle", "-10deg"],
+        &["incidence angle -10° is outside 0°–90°"],
+    );
+    assert_fails(
         &["thinfilm", "spectrum", "--stack", "air | water 3nm air"],
         &["no thickness", "missing '|'", "'3nm'"],
     );

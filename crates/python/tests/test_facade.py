@@ -301,3 +301,5 @@ def test_vision_along_a_plane_equals_the_cli_and_a_sine_is_symmetric():
     a, b = (np.asarray(x["reflectance_factor"]) for x in v["views"])
     assert np.max(np.abs(a - b)) <= 1e-9 * np.max(a)  # |c_m| = |c_-m| for a sine
     assert v["wavelength_nm"][0] == 300.0 and v["vision"]["receptors"] == ["UVS", "SWS", "MWS", "LWS"]
+    with pytest.raises(ValueError, match="lists 25 twice"):
+        diffraction.vision("builtin:sine", "bluetit", views_deg=(25, 25.0))

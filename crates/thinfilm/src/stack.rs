@@ -382,8 +382,8 @@ pub fn svt_offset(d_rel_nm: f64, alpha: f64) -> f64 {
 pub(crate) fn check_angle(angle_rad: f64) -> Result<(), ThinFilmError> {
     if !(angle_rad.is_finite() && (-1e-12..=std::f64::consts::FRAC_PI_2 + 1e-12).contains(&angle_rad)) {
         return Err(ThinFilmError::Invalid(format!(
-            "incidence angle {:.6}° is outside 0°–90°",
-            angle_rad.to_degrees()
+            "incidence angle {}° is outside 0°–90°",
+            (angle_rad.to_degrees() * 1e6).round() / 1e6
         )));
     }
     Ok(())

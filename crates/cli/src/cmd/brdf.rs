@@ -192,10 +192,10 @@ pub struct BrdfVisionArgs {
     #[arg(long, value_parser = crate::args::angle_rad, default_value = "0deg")]
     pub light: f64,
     /// The plane of incidence's azimuth [default: the orientation of the surface's strongest period].
-    #[arg(long, value_parser = crate::args::angle_rad, allow_hyphen_values = true)]
+    #[arg(long, value_parser = crate::args::angle_rad)]
     pub azimuth: Option<f64>,
     /// View angles θ_r in degrees, comma-separated, signed (positive on the specular side).
-    #[arg(long, default_value = "-60,-50,-40,-30,-20,-10,0,10,20,30,40,50,60", allow_hyphen_values = true)]
+    #[arg(long, default_value = "-60,-50,-40,-30,-20,-10,0,10,20,30,40,50,60")]
     pub views: String,
     /// The light the animal sees by: d65 (default), bluesky, forestshade, … (`iridis vision --help`).
     #[arg(long, default_value = "d65")]

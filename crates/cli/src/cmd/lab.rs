@@ -60,10 +60,10 @@ pub struct TestbenchArgs {
     pub incidence: f64,
     /// Rotation of the surface about its normal: 0deg measures periods along x, 90deg along y [default: the
     /// orientation of the surface's strongest period, as `iridis surface info` finds it].
-    #[arg(long, value_parser = angle_rad, allow_hyphen_values = true)]
+    #[arg(long, value_parser = angle_rad)]
     pub azimuth: Option<f64>,
     /// Diffraction order m (non-zero; m > 0 lies between the mirror direction and the normal).
-    #[arg(long, default_value_t = 1, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = 1)]
     pub order: i32,
     /// First wavelength.
     #[arg(long, value_parser = positive_length_nm, default_value = "380nm")]
@@ -78,10 +78,10 @@ pub struct TestbenchArgs {
     #[arg(long, value_parser = angle_rad, default_value = "0.05deg")]
     pub angle_step: f64,
     /// Smallest viewing angle.
-    #[arg(long, value_parser = angle_rad, default_value = "-89deg", allow_hyphen_values = true)]
+    #[arg(long, value_parser = angle_rad, default_value = "-89deg")]
     pub min_angle: f64,
     /// Largest viewing angle.
-    #[arg(long, value_parser = angle_rad, default_value = "89deg", allow_hyphen_values = true)]
+    #[arg(long, value_parser = angle_rad, default_value = "89deg")]
     pub max_angle: f64,
     /// Known period: centre the order's window on it and draw its grating-equation curve.
     #[arg(long, value_parser = positive_length_nm)]
@@ -346,7 +346,7 @@ pub struct LaserArgs {
     #[arg(long, value_parser = angle_rad, default_value = "45deg")]
     pub incidence: f64,
     /// Rotation of the sample about its normal.
-    #[arg(long, value_parser = angle_rad, default_value = "0deg", allow_hyphen_values = true)]
+    #[arg(long, value_parser = angle_rad, default_value = "0deg")]
     pub azimuth: f64,
     /// Diaphragm aperture: the coherence length of the window (overrides --coherence).
     #[arg(long, value_parser = positive_length_nm, default_value = "65um")]

@@ -215,7 +215,7 @@ pub struct GenerateArgs {
     #[arg(long = "pixel-size", alias = "pixel")]
     pub pixel: Option<String>,
     /// Counter-clockwise rotation of the pattern (e.g. 30deg).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long)]
     pub angle: Option<String>,
     /// Random seed (cd, gaussian, elaphe, xenopeltis; refused for the others, which have no randomness).
     #[arg(long)]
