@@ -263,8 +263,11 @@ pub fn grating(
         bail!("the light must come from above the surface (θ < 90°)");
     }
     let w = &opts.wavelengths_nm;
-    if w.is_empty() || w.iter().any(|l| !(l.is_finite() && *l > 0.0)) {
-        bail!("the wavelengths must be positive lengths");
+    if w.is_empty() {
+        bail!("no wavelength given: give one, or a range");
+    }
+    if let Some(bad) = w.iter().find(|l| !(l.is_finite() && **l > 0.0)) {
+        bail!("the wavelengths must be positive lengths in nm, not {bad}");
     }
     if !(opts.orders_above.is_finite() && (0.0..1.0).contains(&opts.orders_above)) {
         bail!("the efficiency above which orders are listed must be a fraction from 0 up to 1");

@@ -9,7 +9,7 @@ use iridis_diffraction::geometry::{direction, Shading, Vec3};
 use iridis_diffraction::taylor::{terms_for_bound, window_radius, Band};
 use iridis_diffraction::{Evaluator, Reference, SpectralSetup, TaylorTerms};
 
-use crate::model::{coherence_for, ModelOptions, DEFAULT_EPSILON};
+use crate::model::{coherence_for, term_count, ModelOptions, DEFAULT_EPSILON};
 use crate::report::{with_progress, Report};
 use crate::surface::{Source, SurfaceOptions};
 
@@ -28,6 +28,8 @@ pub struct DirectionalVision {
     /// given.
     pub azimuth: f64,
     pub coherence_nm: f64,
+    /// The Taylor terms `0..=N` of the reference evaluator: `N`.
+    pub taylor_terms: usize,
     pub wavelengths_nm: Vec<f64>,
     /// Per view: its name, signed θ_r (degrees, positive on the specular side) and `π f_r(λ)` (unpolarised).
     pub views: Vec<(String, f64, Vec<f64>)>,
@@ -49,8 +51,8 @@ pub struct PlaneViews<'a> {
 
 /// The reflectance factor `π f_r(λ)` (a white diffuser's is 1) of the reference evaluator on SURFACE for light
 /// at `light_theta` in the plane of azimuth `azimuth` (default: the dominant period's orientation) and views at
-/// the signed angles `views_deg` in that plane, from [`FROM_NM`] to [`TO_NM`] in 5 nm steps, seen by the
-/// visual system of `spec`.
+/// the signed angles `views_deg` in that plane, from [`FROM_NM`] to [`TO_NM`] in steps of `model.step_nm`
+/// (default 5 nm), with `model.terms` Taylor terms, seen by the visual system of `spec`.
 pub fn along_plane(
     source: &Source,
     surface: &SurfaceOptions,
@@ -64,6 +66,9 @@ pub fn along_plane(
         bail!("the view angles must lie strictly between −90° and 90°");
     }
     crate::lab_run::refuse_repeats("--views", views_deg)?;
+    refuse_colour_options(model)?;
+    let wavelengths = iridis_color::spectrum::range_grid(FROM_NM, TO_NM, model.step_nm.unwrap_or(5.0))
+        .map_err(|e| anyhow::anyhow!("--step: {e}"))?;
     let system = spec.system().context("--visual")?;
     let options = spec.options(&system)?;
     let patch = source.patch(surface, report)?;
@@ -81,14 +86,21 @@ pub fn along_plane(
         },
     };
     let coherence = coherence_for(&patch, model.coherence_nm, report)?;
-    // Taylor terms for the shortest wavelength asked, 300 nm (the model commands' `auto` takes 380 nm).
-    let n = terms_for_bound(patch.max_abs_height, FROM_NM, DEFAULT_EPSILON);
+    // `auto`: Taylor terms for the shortest wavelength asked, 300 nm (the model commands' `auto` takes 380 nm).
+    let n = match model.terms.trim() {
+        "auto" => terms_for_bound(patch.max_abs_height, FROM_NM, DEFAULT_EPSILON),
+        _ => term_count(&patch, model)?,
+    };
     // One light: the terms keep the bins its lobes read at 300 nm and longer (a large scan's memory).
     let band = Band::light(direction(light_theta, azimuth), FROM_NM, 1.001 * window_radius(coherence));
     let terms = with_progress(report, n as u64 + 1, "Taylor terms", |p| {
         TaylorTerms::compute_in_band(&patch, n, coherence, band, p)
     })?;
-    let wavelengths: Vec<f64> = iridis_color::spectrum::uniform_grid(FROM_NM, TO_NM, 5.0)?;
+    report.info(&format!(
+        "N = {n} Taylor terms, coherence {:.1} µm, π f_r(λ) from {FROM_NM} to {TO_NM} nm in {} nm steps",
+        coherence / 1000.0,
+        wavelengths[1] - wavelengths[0]
+    ));
     let e = Reference { terms: std::sync::Arc::new(terms), shading, spectral: SpectralSetup::default() };
     let light = direction(light_theta, azimuth);
     let view = |deg: f64| -> Vec3 {
@@ -112,10 +124,28 @@ pub fn along_plane(
         light_theta,
         azimuth,
         coherence_nm: coherence,
+        taylor_terms: n,
         wavelengths_nm: wavelengths,
         views,
         analysis,
     })
+}
+
+/// The model options [`along_plane`] would not use, refused rather than ignored: the CIE illuminant and observer
+/// make XYZ, where the animal's receptors and `spec`'s illuminant take their place, and energy-conserving lobes
+/// are not applied to its reference evaluator.
+fn refuse_colour_options(model: &ModelOptions) -> Result<()> {
+    let eye = "the animal's receptors and the vision illuminant take the place of CIE colour here";
+    if let Some(i) = &model.illuminant {
+        bail!("the model's illuminant ({i}) would be ignored: {eye}; give the animal's light as the vision illuminant");
+    }
+    if let Some(o) = &model.observer {
+        bail!("--observer {o} would be ignored: {eye}");
+    }
+    if model.conserve_energy {
+        bail!("--conserve-energy would be ignored: the views' spectra are the reference method's unscaled lobes");
+    }
+    Ok(())
 }
 
 impl DirectionalVision {
@@ -147,6 +177,7 @@ impl DirectionalVision {
             "light_theta_deg": self.light_theta.to_degrees(),
             "azimuth_deg": self.azimuth.to_degrees(),
             "coherence_nm": self.coherence_nm,
+            "taylor_terms": self.taylor_terms,
             "quantity": "reflectance factor π f_r(λ), unpolarised: 1 for a white diffuser",
             "wavelength_nm": self.wavelengths_nm,
             "views": views,

@@ -40,3 +40,38 @@ fn a_sine_grating_looks_the_same_from_plus_and_minus_theta_and_a_blazed_one_brig
     assert_eq!(sine.wavelengths_nm.first(), Some(&300.0));
     assert_eq!(sine.wavelengths_nm.last(), Some(&700.0));
 }
+
+#[test]
+fn the_model_options_are_used_or_refused() {
+    let sine = "builtin:sine?size=4.4um&pixel=50nm&period=1100nm&depth=100nm";
+    let visual = iridis_vision::Spec { visual: Some("bluetit".into()), ..Default::default() };
+    let run = |model: iridis_api::ModelOptions| {
+        let plane = PlaneViews { light_theta: 0.0, azimuth: Some(0.0), views_deg: &[25.0], spec: &visual };
+        let shading = iridis_diffraction::Shading::default();
+        along_plane(&Source::Spec(sine.into()), &Default::default(), &model, shading, plane, &Quiet)
+    };
+    let auto = run(Default::default()).unwrap();
+    // --step: the same pointwise BRDF on a coarser grid (f_r at a wavelength does not depend on the others).
+    let coarse = run(iridis_api::ModelOptions { step_nm: Some(10.0), ..Default::default() }).unwrap();
+    assert_eq!(coarse.wavelengths_nm.len(), 41);
+    for (k, l) in coarse.wavelengths_nm.iter().enumerate() {
+        assert_eq!(auto.wavelengths_nm[2 * k], *l);
+        let (a, c) = (auto.views[0].2[2 * k], coarse.views[0].2[k]);
+        assert!((a - c).abs() <= 1e-12 * a.abs().max(1e-30), "{l} nm: {a} vs {c}");
+    }
+    // --terms: a 100 nm deep sine at 300 nm has k·2h ≈ 4.2, so three terms leave a visible remainder.
+    let three = run(iridis_api::ModelOptions { terms: "3".into(), ..Default::default() }).unwrap();
+    assert_eq!(three.taylor_terms, 3);
+    assert!(auto.taylor_terms > 3, "auto took {}", auto.taylor_terms);
+    let rel = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| (x - y).abs()).sum::<f64>() / a.iter().sum::<f64>();
+    assert!(rel(&auto.views[0].2, &three.views[0].2) > 0.01);
+    // What it would not use is refused, not ignored; a step that does not divide 300–700 nm too.
+    let refused = |m: iridis_api::ModelOptions, words: &str| {
+        let e = run(m).unwrap_err().to_string();
+        assert!(e.contains(words), "{e}");
+    };
+    refused(iridis_api::ModelOptions { conserve_energy: true, ..Default::default() }, "--conserve-energy would be");
+    refused(iridis_api::ModelOptions { observer: Some("1964".into()), ..Default::default() }, "--observer 1964");
+    refused(iridis_api::ModelOptions { illuminant: Some("a".into()), ..Default::default() }, "illuminant (a)");
+    refused(iridis_api::ModelOptions { step_nm: Some(7.0), ..Default::default() }, "whole number of 7 nm steps");
+}

@@ -211,14 +211,8 @@ pub struct ModelOpts {
     /// smaller patch is taken as one unit cell of a periodic surface; said in the output). At least 4 pixels.
     #[arg(long, value_parser = positive_length_nm)]
     pub coherence: Option<f64>,
-    /// Illuminant: d65, d50, a, e.
-    #[arg(long)]
-    pub illuminant: Option<String>,
-    /// Observer: 1931 or 1964.
-    #[arg(long)]
-    pub observer: Option<String>,
     /// Wavelength step of the spectral integral (≤ 5nm recommended).
-    #[arg(long, value_parser = positive_length_nm)]
+    #[arg(long, alias = "dlambda", value_parser = positive_length_nm)]
     pub step: Option<f64>,
     /// Energy-conserving lobes (reference, ground-truth): each scaled by its order's factor in the patch's
     /// energy-normalised channel matrix, so that the BRDF never returns more light than it receives (Kirchhoff's
@@ -227,14 +221,33 @@ pub struct ModelOpts {
     pub conserve_energy: bool,
 }
 
+/// The CIE colour of the model commands' spectra (`precompute`, `brdf-map`, `brdf eval`; not `brdf vision`,
+/// where an animal's receptors and its own `--illuminant` take their place).
+#[derive(Debug, Clone, clap::Args)]
+pub struct ColourOpts {
+    /// Illuminant: d65, d50, a, e.
+    #[arg(long)]
+    pub illuminant: Option<String>,
+    /// Observer: 1931 or 1964.
+    #[arg(long)]
+    pub observer: Option<String>,
+}
+
 impl ModelOpts {
-    /// The facade's model options.
+    /// The facade's model options, with the CIE colour of `colour`.
+    pub fn with_colour(&self, colour: &ColourOpts) -> iridis_api::ModelOptions {
+        iridis_api::ModelOptions {
+            illuminant: colour.illuminant.clone(),
+            observer: colour.observer.clone(),
+            ..self.options()
+        }
+    }
+
+    /// The facade's model options (default CIE colour).
     pub fn options(&self) -> iridis_api::ModelOptions {
         iridis_api::ModelOptions {
             terms: self.terms.clone(),
             coherence_nm: self.coherence,
-            illuminant: self.illuminant.clone(),
-            observer: self.observer.clone(),
             step_nm: self.step,
             conserve_energy: self.conserve_energy,
             // light: none (any); --material and --unit-cell: set by `RigorousOpts::apply` where taken.

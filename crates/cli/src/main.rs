@@ -26,7 +26,9 @@ Examples:
 SURFACE arguments take a file — AFM instrument files (Bruker .spm/.000, Asylum .ibw, JPK .jpk, WSxM .stp/.top,
 Nanonis .sxm, Gwyddion .gwy/.gsf; --channel NAME|N, `iridis surface channels FILE`), numpy .npy/.npz, PNG/TIFF,
 text — or a built-in, one of builtin:blazed|sine|cd|elaphe|xenopeltis|gaussian (iridis surface --help). Lengths
-and angles carry units: 65nm, 0.43um, 65µm, 75deg.")]
+and angles carry units: 65nm, 0.43um, 65µm, 75deg. The light's direction is --light or --incidence, and the
+spectral integral's step --step or --dlambda: the same option under either name wherever a diffraction
+command asks for it.")]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -148,7 +150,10 @@ fn attach_negative_values(cmd: &clap::Command, args: Vec<std::ffi::OsString>) ->
             break;
         }
         if let Some(name) = word.strip_prefix("--").filter(|n| !n.contains('=')) {
-            let takes_value = cmd.get_arguments().any(|a| a.get_long() == Some(name) && a.get_action().takes_values());
+            let named = |a: &clap::Arg| {
+                a.get_long() == Some(name) || a.get_all_aliases().is_some_and(|all| all.contains(&name))
+            };
+            let takes_value = cmd.get_arguments().any(|a| named(a) && a.get_action().takes_values());
             if takes_value {
                 match args.next() {
                     Some(v) if v.to_str().is_some_and(negative) => {
@@ -254,5 +259,46 @@ mod tests {
         walk(&mut cli, "", &mut missing, &mut seen);
         assert!(seen > 20, "walked only {seen} commands");
         assert!(missing.is_empty(), "help pages without an Examples section: {missing:?}");
+    }
+
+    /// No command answers to one option name twice (an alias such as `--light` for `--incidence` included):
+    /// clap checks this only in debug builds, and the tests run optimised.
+    #[test]
+    fn no_option_name_is_taken_twice() {
+        fn walk(cmd: &clap::Command, path: &str, clashes: &mut Vec<String>) {
+            let path = format!("{path} {}", cmd.get_name());
+            let mut names: Vec<&str> = Vec::new();
+            for a in cmd.get_arguments() {
+                for name in a.get_long().into_iter().chain(a.get_all_aliases().unwrap_or_default()) {
+                    if names.contains(&name) {
+                        clashes.push(format!("{path}: --{name}"));
+                    }
+                    names.push(name);
+                }
+            }
+            cmd.get_subcommands().for_each(|sub| walk(sub, &path, clashes));
+        }
+        let mut cli = Cli::command();
+        cli.build();
+        let mut clashes = Vec::new();
+        walk(&cli, "", &mut clashes);
+        assert!(clashes.is_empty(), "option names taken twice: {clashes:?}");
+    }
+
+    #[test]
+    fn a_negative_value_is_attached_to_its_option() {
+        let run = |line: &str| {
+            let args = line.split(' ').map(std::ffi::OsString::from).collect();
+            let out = super::attach_negative_values(&Cli::command(), args);
+            out.iter().map(|a| a.to_str().unwrap()).collect::<Vec<_>>().join(" ")
+        };
+        // Through an alias, with a unit, and a list; a flag's next word and anything after `--` stay apart.
+        assert_eq!(
+            run("iridis brdf eval s.gwy --incidence -30deg --view -1,2 --json -5"),
+            "iridis brdf eval s.gwy --incidence=-30deg --view=-1,2 --json -5"
+        );
+        assert_eq!(run("iridis render s.toml --exposure -1 -- -2"), "iridis render s.toml --exposure=-1 -- -2");
+        // A word that is no negative number, and an option given with `=`, are left as they are.
+        assert_eq!(run("iridis grating s --light -x --from=-3nm"), "iridis grating s --light -x --from=-3nm");
     }
 }

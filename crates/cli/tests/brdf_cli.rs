@@ -190,7 +190,8 @@ fn two_angle_incidence_gamma_and_exr() {
     let brightest = |m: &[[f64; 3]]| (0..m.len()).max_by(|&a, &b| m[a][1].total_cmp(&m[b][1])).unwrap();
     let (x, y) = pixel_xy(brightest(&xyz), size);
     assert!(x.abs() <= 1.0 / 24.0 + 1e-9 && (y + 0.5).abs() <= 1.0 / 24.0 + 1e-9, "peak at ({x}, {y})");
-    let phi0 = map(d, "b", &["--size", "24", "--incidence", "30deg,0deg"]);
+    // `--light`, the name grating and brdf eval give the light direction, is brdf-map's `--incidence` too.
+    let phi0 = map(d, "b", &["--size", "24", "--light", "30deg,0deg"]);
     let (x, y) = pixel_xy(brightest(&phi0), size);
     assert!((x + 0.5).abs() <= 1.0 / 24.0 + 1e-9 && y.abs() <= 1.0 / 24.0 + 1e-9, "φ=0 peak at ({x}, {y})");
 
@@ -302,6 +303,8 @@ fn brdf_eval_peaks_where_the_grating_equation_says() {
         &["brdf", "eval", "builtin:sine", "--light", "-30deg", "--view", "0deg"],
         &["--light '-30deg'", "[0°, 90°)"],
     );
+    // `--incidence`, the name brdf-map and the lab give the light direction, is brdf eval's `--light` too.
+    assert_fails(&["brdf", "eval", "builtin:sine", "--incidence", "-30deg", "--view", "0deg"], &["--light '-30deg'"]);
     assert_fails(&["brdf", "eval", "builtin:sine", "--light", "0deg", "--view", "1,2,3"], &["--view"]);
     assert_fails(
         &["brdf", "eval", "builtin:sine", "--light", "0deg", "--view", "0deg", "--fresnel-convention", "squared"],

@@ -293,6 +293,10 @@ def test_grating_compare_equals_the_cli():
     close(c["worst_relative_error"]["unpolarized"], ref["worst_relative_error"]["unpolarized"], rtol=1e-9)
     close(c["delta_e00_diffracted"], ref["delta_e00_diffracted"], rtol=1e-9)
     assert len(c["orders"]) == len(ref["orders"]) and c["rigorous_converged"]
+    with pytest.raises(ValueError, match="no wavelength given"):
+        diffraction.grating("builtin:sine", light=0.1, wavelengths_nm=[])
+    with pytest.raises(ValueError, match="not -500"):
+        diffraction.grating("builtin:sine", light=0.1, wavelengths_nm=[500.0, -500.0])
 
 
 def test_vision_along_a_plane_equals_the_cli_and_a_sine_is_symmetric():
@@ -303,3 +307,10 @@ def test_vision_along_a_plane_equals_the_cli_and_a_sine_is_symmetric():
     assert v["wavelength_nm"][0] == 300.0 and v["vision"]["receptors"] == ["UVS", "SWS", "MWS", "LWS"]
     with pytest.raises(ValueError, match="lists 25 twice"):
         diffraction.vision("builtin:sine", "bluetit", views_deg=(25, 25.0))
+    # The model's options are used (the step) or refused (the CIE observer has no place in an animal's eye).
+    coarse = diffraction.vision("builtin:sine?size=4.4um&pixel=50nm&period=1100nm&depth=100nm", "bluetit",
+                                views_deg=(-25, 25), azimuth=0.0, step_nm=10.0)
+    assert coarse["wavelength_nm"] == list(v["wavelength_nm"][::2])
+    close(coarse["views"][0]["reflectance_factor"], v["views"][0]["reflectance_factor"][::2], rtol=1e-12)
+    with pytest.raises(ValueError, match="--observer 1964 would be ignored"):
+        diffraction.vision("builtin:sine", "bluetit", views_deg=(25,), observer="1964")

@@ -9,7 +9,7 @@ use clap::Args as ClapArgs;
 use iridis_color::Encoding;
 use iridis_diffraction::Units;
 
-use crate::args::{parse_incidence, polar_azimuth, ModelOpts, RigorousOpts, ShadingOpts};
+use crate::args::{parse_incidence, polar_azimuth, ColourOpts, ModelOpts, RigorousOpts, ShadingOpts};
 use crate::output::print_answer;
 use crate::progress::Cli;
 
@@ -42,6 +42,8 @@ pub struct PrecomputeArgs {
     pub output: PathBuf,
     #[command(flatten)]
     pub model: ModelOpts,
+    #[command(flatten)]
+    pub colour: ColourOpts,
     #[command(flatten)]
     pub grid: iridis_api::model::TableGrid,
     /// What the colours measure: relative (the paper's: a flat mirror's peak is 1) or radiometric (the BRDF:
@@ -105,7 +107,7 @@ pub struct BrdfMapArgs {
     #[command(flatten)]
     pub rigorous: RigorousOpts,
     /// Light direction: polar angle θ_i[,azimuth φ_i].
-    #[arg(long, default_value = "0deg")]
+    #[arg(long, alias = "light", default_value = "0deg")]
     pub incidence: String,
     /// Map size in pixels.
     #[arg(long, default_value_t = 512)]
@@ -154,6 +156,8 @@ pub struct BrdfMapArgs {
     #[command(flatten)]
     pub model: ModelOpts,
     #[command(flatten)]
+    pub colour: ColourOpts,
+    #[command(flatten)]
     pub grid: iridis_api::model::TableGrid,
     #[command(flatten)]
     pub surface_opts: iridis_api::SurfaceOptions,
@@ -189,7 +193,7 @@ pub struct BrdfVisionArgs {
     #[arg(long)]
     pub visual: String,
     /// Light polar angle θ_i (in the plane of incidence).
-    #[arg(long, value_parser = crate::args::angle_rad, default_value = "0deg")]
+    #[arg(long, alias = "incidence", value_parser = crate::args::angle_rad, default_value = "0deg")]
     pub light: f64,
     /// The plane of incidence's azimuth [default: the orientation of the surface's strongest period].
     #[arg(long, value_parser = crate::args::angle_rad)]
@@ -241,7 +245,7 @@ pub struct BrdfEvalArgs {
     /// A height field (file or builtin:NAME) or a lookup table from `iridis precompute`.
     pub input: String,
     /// Light direction θ[,φ] (towards the light).
-    #[arg(long)]
+    #[arg(long, alias = "incidence")]
     pub light: String,
     /// View direction θ[,φ] (towards the viewer).
     #[arg(long)]
@@ -258,6 +262,8 @@ pub struct BrdfEvalArgs {
     pub grid: iridis_api::model::TableGrid,
     #[command(flatten)]
     pub model: ModelOpts,
+    #[command(flatten)]
+    pub colour: ColourOpts,
     #[command(flatten)]
     pub surface_opts: iridis_api::SurfaceOptions,
     /// Print the paper's relative reflectance ρ(λ) instead of the BRDF in sr⁻¹.
@@ -280,7 +286,7 @@ pub fn run_precompute(a: PrecomputeArgs) -> Result<()> {
     let r = iridis_api::precompute::PrecomputeRequest {
         surface: a.surface,
         surface_opts: a.surface_opts,
-        model: a.model.options(),
+        model: a.model.with_colour(&a.colour),
         params: a.grid.params()?,
         units: a.units,
         gpu: a.gpu,
@@ -292,7 +298,7 @@ pub fn run_precompute(a: PrecomputeArgs) -> Result<()> {
 pub fn run_brdf_map(a: BrdfMapArgs) -> Result<()> {
     let encoding = Encoding::parse(&a.gamma).map_err(anyhow::Error::msg)?;
     let wi = parse_incidence(&a.incidence)?;
-    let mut model = a.model.options();
+    let mut model = a.model.with_colour(&a.colour);
     a.rigorous.apply(&mut model)?;
     let r = iridis_api::brdf_map::MapRequest {
         input: a.input,
@@ -327,7 +333,7 @@ pub fn run_brdf(c: BrdfCommand) -> Result<()> {
 
 fn run_eval(a: BrdfEvalArgs) -> Result<()> {
     let (light, view) = (polar_azimuth("light", &a.light)?, polar_azimuth("view", &a.view)?);
-    let mut model = a.model.options();
+    let mut model = a.model.with_colour(&a.colour);
     let method = a.method.clone().unwrap_or_else(|| iridis_api::brdf::default_method(&a.input).to_string());
     a.rigorous.apply(&mut model)?;
     let r = iridis_api::brdf_eval::EvalRequest {

@@ -46,7 +46,7 @@ pub struct GratingArgs {
     /// The unit cell: a height field (file or builtin:NAME) whose extent is the period.
     pub surface: String,
     /// Light direction θ[,φ] (towards the light).
-    #[arg(long, default_value = "0deg")]
+    #[arg(long, alias = "incidence", default_value = "0deg")]
     pub light: String,
     /// One wavelength (instead of --from/--to/--step).
     #[arg(long, value_parser = positive_length_nm, conflicts_with_all = ["from", "to", "step"])]

@@ -56,7 +56,7 @@ pub struct TestbenchArgs {
     #[command(flatten)]
     pub rigorous: crate::args::RigorousOpts,
     /// Angle of incidence θ_i.
-    #[arg(long, value_parser = angle_rad, default_value = "75deg")]
+    #[arg(long, alias = "light", value_parser = angle_rad, default_value = "75deg")]
     pub incidence: f64,
     /// Rotation of the surface about its normal: 0deg measures periods along x, 90deg along y [default: the
     /// orientation of the surface's strongest period, as `iridis surface info` finds it].
@@ -168,13 +168,13 @@ pub struct CompareArgs {
     #[arg(long, default_value = "1,1000,7500")]
     pub exposures: String,
     /// Light direction θ[,φ].
-    #[arg(long, default_value = "0deg")]
+    #[arg(long, alias = "light", default_value = "0deg")]
     pub incidence: String,
     /// Map size in pixels (the paper: 101).
     #[arg(long, default_value_t = 101)]
     pub size: usize,
     /// Wavelength step of the spectral integral.
-    #[arg(long, value_parser = positive_length_nm, default_value = "5nm")]
+    #[arg(long, alias = "step", value_parser = positive_length_nm, default_value = "5nm")]
     pub dlambda: f64,
     /// Illuminant: d65, d50, a, e.
     #[arg(long, default_value = "d65")]
@@ -256,13 +256,13 @@ pub struct SweepArgs {
     #[arg(long, default_value = "1000")]
     pub exposures: String,
     /// Light direction θ[,φ].
-    #[arg(long, default_value = "0deg")]
+    #[arg(long, alias = "light", default_value = "0deg")]
     pub incidence: String,
     /// Map size in pixels.
     #[arg(long, default_value_t = 64)]
     pub size: usize,
     /// Wavelength step [default: 5nm]; refused where swept.
-    #[arg(long, value_parser = positive_length_nm)]
+    #[arg(long, alias = "step", value_parser = positive_length_nm)]
     pub dlambda: Option<f64>,
     /// u-v samples per axis of the lookup method's tables [default: 201]; refused where swept or with another
     /// method.
@@ -343,7 +343,7 @@ pub struct LaserArgs {
     #[arg(long, default_value = "reference")]
     pub method: String,
     /// Angle between the beam and the sample normal.
-    #[arg(long, value_parser = angle_rad, default_value = "45deg")]
+    #[arg(long, alias = "light", value_parser = angle_rad, default_value = "45deg")]
     pub incidence: f64,
     /// Rotation of the sample about its normal.
     #[arg(long, value_parser = angle_rad, default_value = "0deg")]
@@ -373,7 +373,7 @@ pub struct LaserArgs {
     #[arg(long, default_value = "1,1000,7500")]
     pub exposures: String,
     /// Wavelength step of the spectral integral.
-    #[arg(long, value_parser = positive_length_nm, default_value = "5nm")]
+    #[arg(long, alias = "step", value_parser = positive_length_nm, default_value = "5nm")]
     pub dlambda: f64,
     /// Output image (PNG).
     #[arg(short, long)]
