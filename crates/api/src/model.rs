@@ -66,11 +66,18 @@ impl Default for ModelOptions {
     }
 }
 
+impl ModelOptions {
+    /// The wavelength step (nm): the one given, or 5 nm.
+    pub fn step(&self) -> f64 {
+        self.step_nm.unwrap_or(5.0)
+    }
+}
+
 /// Spectral setup from the options (defaults: D65, CIE 1931, 5 nm).
 pub fn spectral_setup(m: &ModelOptions, report: &dyn Report) -> Result<SpectralSetup> {
     let ill: Illuminant = m.illuminant.as_deref().unwrap_or("d65").parse()?;
     let obs: Observer = m.observer.as_deref().unwrap_or("1931").parse()?;
-    let step = m.step_nm.unwrap_or(5.0);
+    let step = m.step();
     if step > 5.0 {
         report.warn(&format!("a wavelength step of {step} nm shows colour artefacts (the paper: use ≤ 5 nm)"));
     }
@@ -90,10 +97,11 @@ pub fn coherence_for(patch: &Patch, given_nm: Option<f64>, report: &dyn Report) 
     Ok(c.nm)
 }
 
-/// The number of Taylor terms the options ask for (`auto`: from the remainder bound at 380 nm).
-pub fn term_count(patch: &Patch, m: &ModelOptions) -> Result<usize> {
+/// The number of Taylor terms the options ask for (`auto`: from the remainder bound at `auto_from_nm`, the
+/// shortest wavelength the terms serve).
+pub fn term_count(patch: &Patch, m: &ModelOptions, auto_from_nm: f64) -> Result<usize> {
     Ok(match m.terms.trim() {
-        "auto" => terms_for_bound(patch.max_abs_height, 380.0, DEFAULT_EPSILON),
+        "auto" => terms_for_bound(patch.max_abs_height, auto_from_nm, DEFAULT_EPSILON),
         t => match t.parse::<usize>() {
             Ok(n) if n <= 200 => n,
             _ => bail!("--terms '{t}' must be 'auto' or a number of terms from 0 to 200"),
@@ -126,7 +134,8 @@ fn taylor_terms_in_band(
     report: &dyn Report,
 ) -> Result<TaylorTerms> {
     let coherence = coherence_for(patch, m.coherence_nm, report)?;
-    let n = term_count(patch, m)?;
+    // `auto` at 380 nm, where the CIE grid begins.
+    let n = term_count(patch, m, 380.0)?;
     let band = match lambda_min_nm {
         // The margin covers the rounding of the window's radius.
         Some(l) => match m.light {

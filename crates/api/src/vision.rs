@@ -6,10 +6,10 @@
 
 use anyhow::{bail, Context, Result};
 use iridis_diffraction::geometry::{direction, Shading, Vec3};
-use iridis_diffraction::taylor::{terms_for_bound, window_radius, Band};
+use iridis_diffraction::taylor::{window_radius, Band};
 use iridis_diffraction::{Evaluator, Reference, SpectralSetup, TaylorTerms};
 
-use crate::model::{coherence_for, term_count, ModelOptions, DEFAULT_EPSILON};
+use crate::model::{coherence_for, term_count, ModelOptions};
 use crate::report::{with_progress, Report};
 use crate::surface::{Source, SurfaceOptions};
 
@@ -67,8 +67,8 @@ pub fn along_plane(
     }
     crate::lab_run::refuse_repeats("--views", views_deg)?;
     refuse_colour_options(model)?;
-    let wavelengths = iridis_color::spectrum::range_grid(FROM_NM, TO_NM, model.step_nm.unwrap_or(5.0))
-        .map_err(|e| anyhow::anyhow!("--step: {e}"))?;
+    let wavelengths =
+        iridis_color::spectrum::range_grid(FROM_NM, TO_NM, model.step()).map_err(|e| anyhow::anyhow!("--step: {e}"))?;
     let system = spec.system().context("--visual")?;
     let options = spec.options(&system)?;
     let patch = source.patch(surface, report)?;
@@ -87,10 +87,7 @@ pub fn along_plane(
     };
     let coherence = coherence_for(&patch, model.coherence_nm, report)?;
     // `auto`: Taylor terms for the shortest wavelength asked, 300 nm (the model commands' `auto` takes 380 nm).
-    let n = match model.terms.trim() {
-        "auto" => terms_for_bound(patch.max_abs_height, FROM_NM, DEFAULT_EPSILON),
-        _ => term_count(&patch, model)?,
-    };
+    let n = term_count(&patch, model, FROM_NM)?;
     // One light: the terms keep the bins its lobes read at 300 nm and longer (a large scan's memory).
     let band = Band::light(direction(light_theta, azimuth), FROM_NM, 1.001 * window_radius(coherence));
     let terms = with_progress(report, n as u64 + 1, "Taylor terms", |p| {
@@ -99,7 +96,7 @@ pub fn along_plane(
     report.info(&format!(
         "N = {n} Taylor terms, coherence {:.1} µm, π f_r(λ) from {FROM_NM} to {TO_NM} nm in {} nm steps",
         coherence / 1000.0,
-        wavelengths[1] - wavelengths[0]
+        model.step()
     ));
     let e = Reference { terms: std::sync::Arc::new(terms), shading, spectral: SpectralSetup::default() };
     let light = direction(light_theta, azimuth);

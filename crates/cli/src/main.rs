@@ -179,8 +179,9 @@ fn main() -> std::process::ExitCode {
     // Parsed through the laid-out command (help.rs) so that every help page wraps its prose and keeps its
     // examples whole.
     let width = help::width();
-    let args = attach_negative_values(&Cli::command(), std::env::args_os().collect());
-    let matches = match help::layout(Cli::command()).term_width(width).try_get_matches_from(args) {
+    let command = help::layout(Cli::command()).term_width(width);
+    let args = attach_negative_values(&command, std::env::args_os().collect());
+    let matches = match command.try_get_matches_from(args) {
         Ok(m) => m,
         Err(e) if e.kind() == clap::error::ErrorKind::DisplayHelp => {
             print!("{}", help::mend_widows(&e.render().to_string(), width));
