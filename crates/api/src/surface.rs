@@ -168,7 +168,9 @@ pub fn info(hf: &iridis_surface::HeightField, n_peaks: usize, coherence_nm: f64)
     let mut notes = hf.meta.notes.clone();
     notes.extend(hf.coherence_note(coherence_nm));
     let levelled = iridis_surface::prep::level_plane(hf);
-    let rough = iridis_surface::stats::roughness(&levelled);
+    // The struct's own keys (Python's `Surface.roughness()` gives the same), and the levelling they follow.
+    let mut roughness = serde_json::to_value(iridis_surface::stats::roughness(&levelled)).expect("numbers");
+    roughness["levelling"] = "plane".into();
     let psdf = iridis_surface::stats::radial_of(&iridis_surface::stats::psdf(&levelled));
     let acf = iridis_surface::stats::radial_of(&iridis_surface::stats::acf(&levelled));
     serde_json::json!({
@@ -186,15 +188,7 @@ pub fn info(hf: &iridis_surface::HeightField, n_peaks: usize, coherence_nm: f64)
         // Which channel of a multi-channel file was read, why, and the file's height channels; null otherwise.
         "channel": hf.meta.channel,
         "peaks": peaks,
-        "roughness": {
-            "levelling": "plane",
-            "sq_nm": rough.sq_nm,
-            "sa_nm": rough.sa_nm,
-            "skewness": rough.skewness,
-            "excess_kurtosis": rough.excess_kurtosis,
-            "sz_nm": rough.sz_nm,
-            "correlation_length_nm": rough.correlation_length_nm,
-        },
+        "roughness": roughness,
         // Annular means of the plane-levelled field's 2-D PSDF (nm⁴, against spatial frequency) and ACF (nm²,
         // against lag), bin k at k × step.
         "psdf_radial": {"levelling": "plane", "frequency_step_per_nm": psdf.step, "values_nm4": psdf.values},

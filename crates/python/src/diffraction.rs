@@ -25,7 +25,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::args::value_error;
-use crate::facade::{api_error, json_to_py, run, Options};
+use crate::facade::{api_error, json_to_py, run, serialized, Options};
 use crate::surface::PyHeightField;
 
 /// A lookup table (the native half of `iridis.diffraction.Table`).
@@ -52,25 +52,11 @@ impl PyTable {
         py.allow_threads(|| self.table.save(Path::new(path))).map_err(|e| PyOSError::new_err(e.to_string()))
     }
 
-    /// The table's metadata (surface, grid, Taylor terms, coherence, spectral setup).
+    /// The table's metadata as stored in its `.npz` (surface, grid, Taylor terms, coherence, spectral setup,
+    /// units, warnings, …; the keys of [`iridis_diffraction::table::TableMeta`]).
     #[getter]
-    fn meta<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let m = &self.table.meta;
-        let d = PyDict::new(py);
-        d.set_item("surface", &m.surface)?;
-        d.set_item("rows", m.rows)?;
-        d.set_item("cols", m.cols)?;
-        d.set_item("dx_nm", m.dx_nm)?;
-        d.set_item("dy_nm", m.dy_nm)?;
-        d.set_item("taylor_terms", m.taylor_terms)?;
-        d.set_item("coherence_nm", m.coherence_nm)?;
-        d.set_item("uv_resolution", m.uv_resolution)?;
-        d.set_item("uv_power", m.uv_power)?;
-        d.set_item("illuminant", &m.illuminant)?;
-        d.set_item("observer", &m.observer)?;
-        d.set_item("wavelength_step_nm", m.wavelength_step_nm)?;
-        d.set_item("warnings", m.warnings.clone())?;
-        Ok(d)
+    fn meta<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        serialized(py, &self.table.meta)
     }
 }
 

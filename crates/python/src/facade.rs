@@ -67,6 +67,12 @@ pub fn json_to_py<'py>(py: Python<'py>, value: &serde_json::Value) -> PyResult<B
     py.import("json")?.call_method1("loads", (text,))
 }
 
+/// A library value as Python objects under the names it has in the CLI's `--json` (its serde form), so that a key
+/// is written in one place: the struct.
+pub fn serialized<'py>(py: Python<'py>, value: &impl serde::Serialize) -> PyResult<Bound<'py, PyAny>> {
+    json_to_py(py, &serde_json::to_value(value).map_err(crate::args::value_error)?)
+}
+
 /// The keyword options of a facade call (the wrapper's `**options`), read by name and type: a wrong type is a
 /// `TypeError` naming the option, a name no option has is a `TypeError` as Python gives for an unexpected
 /// keyword, `None` is the same as leaving the option out.

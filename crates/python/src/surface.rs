@@ -7,10 +7,9 @@ use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray2, PyReadonlyArray2};
 use pyo3::exceptions::PyOSError;
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
 
 use crate::args::value_error;
-use crate::facade::run;
+use crate::facade::{run, serialized};
 use crate::scan_report::with_outputs;
 
 /// Heights in nm, row-major, with the pixel size and where they came from (the native half of
@@ -62,17 +61,11 @@ impl PyHeightField {
     fn dy_nm(&self) -> f64 {
         self.hf.dy_nm
     }
-    /// Source, format, the unit heights were stored in, notes and warnings.
+    /// Source, format, the unit heights were stored in, notes, warnings and the channel read (the keys of
+    /// [`iridis_surface::Metadata`]).
     #[getter]
-    fn meta<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let m = &self.hf.meta;
-        let d = PyDict::new(py);
-        d.set_item("source", &m.source)?;
-        d.set_item("format", &m.format)?;
-        d.set_item("z_unit", &m.z_unit)?;
-        d.set_item("notes", m.notes.clone())?;
-        d.set_item("warnings", m.warnings.clone())?;
-        Ok(d)
+    fn meta<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        serialized(py, &self.hf.meta)
     }
 
     /// A levelled copy: `none`, `mean`, `plane`, `rows`, `lines-median` or `poly` (the CLI's `--level`).
@@ -149,18 +142,11 @@ impl PyHeightField {
         Ok(Self { hf })
     }
 
-    /// Roughness of the field as it is (level it first): Sq, Sa, skewness, excess kurtosis, Sz, correlation
-    /// length (nm), as `iridis surface info --json`.
-    fn roughness<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+    /// Roughness of the field as it is (level it first): `sq_nm`, `sa_nm`, `skewness`, `excess_kurtosis`,
+    /// `sz_nm`, `correlation_length_nm`, the keys of `iridis surface info --json`'s `roughness`.
+    fn roughness<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let r = py.allow_threads(|| stats::roughness(&self.hf));
-        let d = PyDict::new(py);
-        d.set_item("Sq_nm", r.sq_nm)?;
-        d.set_item("Sa_nm", r.sa_nm)?;
-        d.set_item("Ssk", r.skewness)?;
-        d.set_item("Sku_excess", r.excess_kurtosis)?;
-        d.set_item("Sz_nm", r.sz_nm)?;
-        d.set_item("correlation_length_nm", r.correlation_length_nm)?;
-        Ok(d)
+        serialized(py, &r)
     }
 }
 

@@ -49,8 +49,13 @@ def test_lookup_agrees_with_reference_and_tables_round_trip(tmp_path):
     assert np.abs(a - b).sum() / b.sum() < 0.05
     path = tmp_path / "sine.npz"
     table.save(path)
-    c = diffraction.brdf_map(diffraction.Table.load(path), incidence=(0.3, 0.0), size=33)
+    loaded = diffraction.Table.load(path)
+    c = diffraction.brdf_map(loaded, incidence=(0.3, 0.0), size=33)
     np.testing.assert_array_equal(a, c)
+    # The metadata is the file's, whole: what the colours measure and the model behind them among it.
+    assert loaded.meta == table.meta
+    assert (table.meta["units"], table.meta["wavelength_min_nm"], table.meta["wavelength_max_nm"]) == (
+        "relative", 380.0, 780.0)
     # method="lookup" on a height field builds the same tables first, as `iridis brdf-map --method lookup` does.
     d = diffraction.brdf_map(g, method="lookup", incidence=(0.3, 0.0), size=33, uv_resolution=301)
     np.testing.assert_allclose(d, a, rtol=1e-12, atol=0)

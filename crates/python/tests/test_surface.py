@@ -27,6 +27,18 @@ def test_npz_channels_and_units(tmp_path):
     assert s.pixel_nm == (20.0, 20.0)
     with pytest.raises(ValueError, match="channel"):
         surface.load(str(path), channel="nope", pixel_size_nm=20.0, height_unit="nm")
+    assert s.meta["channel"] is None  # an .npz array is chosen by name, not as an instrument's channel
+
+
+def test_meta_says_which_channel_was_read_as_the_cli_does():
+    """Surface.meta["channel"] is `iridis surface info --json`'s `channel` (the same ChannelChoice): of a
+    two-channel Gwyddion file, the default reads the first one named Height and says why."""
+    gwy = os.path.join(FIX, "gwyfile_two_channels.gwy")
+    c = surface.load(gwy).meta["channel"]
+    assert (c["index"], c["name"], c["of"]) == (0, "Height", 2)
+    assert c["heights"] == ["0: Height", "1: Height (um)"]
+    assert c["reason"].startswith("the default: the channel named Height")
+    assert surface.load(gwy, channel=1).meta["channel"]["reason"] == "as asked (--channel 1)"
 
 
 def test_roughness_equals_numpy_formulas():
@@ -34,17 +46,17 @@ def test_roughness_equals_numpy_formulas():
     r = surface.Surface(z, 10.0).roughness()
     c = z - z.mean()
     sq = np.sqrt(np.mean(c**2))
-    assert abs(r["Sq_nm"] - sq) < 1e-12 * sq
-    assert abs(r["Sa_nm"] - np.mean(np.abs(c))) < 1e-12 * sq
-    assert abs(r["Ssk"] - np.mean(c**3) / sq**3) < 1e-12
-    assert abs(r["Sku_excess"] - (np.mean(c**4) / sq**4 - 3.0)) < 1e-11
-    assert r["Sz_nm"] == z.max() - z.min()
+    assert abs(r["sq_nm"] - sq) < 1e-12 * sq
+    assert abs(r["sa_nm"] - np.mean(np.abs(c))) < 1e-12 * sq
+    assert abs(r["skewness"] - np.mean(c**3) / sq**3) < 1e-12
+    assert abs(r["excess_kurtosis"] - (np.mean(c**4) / sq**4 - 3.0)) < 1e-11
+    assert r["sz_nm"] == z.max() - z.min()
 
 
 def test_builtin_sine_has_the_closed_form_rms():
     s = surface.generate("sine", size="11um", pixel="100nm", period="1100nm", depth="100nm")
     assert s.heights_nm.shape == (110, 110)
-    assert abs(s.roughness()["Sq_nm"] - 50.0 / np.sqrt(2.0)) < 1e-9
+    assert abs(s.roughness()["sq_nm"] - 50.0 / np.sqrt(2.0)) < 1e-9
 
 
 def test_plane_levelling_removes_a_tilt():
@@ -125,6 +137,8 @@ def test_info_finds_the_generated_period_and_equals_the_cli():
         (p["period_nm"], p["orientation_deg"], p["power"]) for p in cli["peaks"]
     ]
     assert info["roughness"] == cli["roughness"]
+    # Surface.roughness() has the same keys and, of the plane-levelled field, the same numbers.
+    assert {**surface.load(spec).level("plane").roughness(), "levelling": "plane"} == cli["roughness"]
     np.testing.assert_array_equal(info["psdf_radial"]["values_nm4"], cli["psdf_radial"]["values_nm4"])
     top = info["peaks"][0]
     assert abs(top["period_nm"] - 1500.0) < 0.01  # the generator's period (measured 1500.0000008 nm)

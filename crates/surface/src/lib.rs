@@ -71,7 +71,6 @@ pub struct Metadata {
     /// Things the user should know (colour image reduced to luminance, assumed units, …).
     pub warnings: Vec<String>,
     /// Which channel of a multi-channel file was read, and why (`None` for single-image formats).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub channel: Option<formats::channel::ChannelChoice>,
 }
 

@@ -7,7 +7,7 @@ Example:
     >>> s = surface.load("builtin:sine?size=11um&pixel=100nm&period=1100nm&depth=100nm")
     >>> s.heights_nm.shape, s.pixel_nm
     ((110, 110), (100.0, 100.0))
-    >>> round(s.roughness()["Sq_nm"], 3)          # depth/2 / √2 for a sine of depth 100 nm
+    >>> round(s.roughness()["sq_nm"], 3)          # depth/2 / √2 for a sine of depth 100 nm
     35.355
 """
 from __future__ import annotations
@@ -47,7 +47,8 @@ class Surface:
 
     @property
     def meta(self):
-        """Source, format, the unit heights were stored in (``z_unit``), notes and warnings."""
+        """Source, format, the unit heights were stored in (``z_unit``), notes, warnings, and ``channel``: which
+        channel of a multi-channel file was read and why (``None`` for single-image formats and built-ins)."""
         return self._h.meta
 
     def level(self, how="plane"):
@@ -95,7 +96,10 @@ class Surface:
         return Surface(self._h.reshape(crop, None if resample_nm is None else float(resample_nm), tile, pad), 0)
 
     def roughness(self):
-        """Sq, Sa, Ssk, excess kurtosis, Sz (nm) and the correlation length, as ``iridis surface info``."""
+        """Sq, Sa, skewness, excess kurtosis, Sz and the correlation length of the field as it is (level it first),
+        under the keys of ``iridis surface info --json``'s ``roughness``: ``sq_nm``, ``sa_nm``, ``skewness``,
+        ``excess_kurtosis``, ``sz_nm``, ``correlation_length_nm`` (``None`` when the autocorrelation never falls
+        to 1/e within half the patch)."""
         return self._h.roughness()
 
     def __repr__(self):
