@@ -204,11 +204,31 @@ pub struct FilmFit {
 /// Reads the measured spectrum in `path` as the request says and fits the stack to it; warnings (a grid too
 /// coarse for the stack's fringes, a parameter on a bound of its range) go to `report`.
 pub fn fit_file(path: &Path, request: &FitRequest, report: &dyn Report) -> Result<FilmFit> {
-    let quantity: Quantity = request.quantity.parse()?;
-    let template = Template::parse(&request.stack)?;
+    let (o, template) = (read_options(request)?, Template::parse(&request.stack)?);
     let text = std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
     let source = path.display().to_string();
-    let mut o = ReadOptions::new(quantity);
+    let reading = iridis_filmfit::read(&text, &source, &o, &|p| std::fs::read_to_string(p).map_err(|e| e.to_string()))?;
+    fit_reading(reading, template, source, request, report)
+}
+
+/// [`fit_file`] of a measurement given as arrays (Python's `fit((wavelengths_nm, values[, sigma]))`): wavelengths
+/// in nm, values as fractions unless the request says percent, ψ and Δ interleaved; `--from`/`--to`, `--sigma`
+/// or `--weights` (a number) apply as to a file, `--columns` is refused.
+pub fn fit_arrays(
+    wavelength_nm: Vec<f64>,
+    values: Vec<f64>,
+    sigma: Option<Vec<f64>>,
+    request: &FitRequest,
+    report: &dyn Report,
+) -> Result<FilmFit> {
+    let (o, template) = (read_options(request)?, Template::parse(&request.stack)?);
+    let reading = iridis_filmfit::read_arrays(wavelength_nm, values, sigma, &o)?;
+    fit_reading(reading, template, "measured (arrays)".into(), request, report)
+}
+
+/// How the request reads a measurement.
+fn read_options(request: &FitRequest) -> Result<ReadOptions> {
+    let mut o = ReadOptions::new(request.quantity.parse()?);
     o.columns = request.columns.clone();
     o.percent = request.percent;
     o.from_nm = request.from_nm;
@@ -218,7 +238,18 @@ pub fn fit_file(path: &Path, request: &FitRequest, report: &dyn Report) -> Resul
         (None, Some(w)) => Some((w.clone(), Spread::Weight)),
         (None, None) => None,
     };
-    let reading = iridis_filmfit::read(&text, &source, &o, &|p| std::fs::read_to_string(p).map_err(|e| e.to_string()))?;
+    Ok(o)
+}
+
+/// The fit of what was read, with the warnings of [`fit_file`].
+fn fit_reading(
+    reading: Reading,
+    template: Template,
+    source: String,
+    request: &FitRequest,
+    report: &dyn Report,
+) -> Result<FilmFit> {
+    let quantity: Quantity = request.quantity.parse()?;
     let mut sorted = reading.data.wavelength_nm.clone();
     sorted.sort_by(f64::total_cmp);
     if let Some(w) = iridis_thinfilm::sampling::check(&template.base, request.angle_rad, &sorted) {

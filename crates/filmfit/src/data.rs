@@ -488,7 +488,66 @@ pub fn read(
     if let Some((i, w)) = wl.iter().enumerate().find(|(_, w)| **w <= 0.0) {
         return Err(FitError::Data(format!("{path}: wavelength {w} nm in data row {} must be positive", i + 1)));
     }
-    // Percent.
+    let spread_value = match &spread {
+        Some((SpreadSource::Value(v), kind)) => Some((*v, *kind)),
+        _ => None,
+    };
+    let raw = Raw { wl, vals, sig: sig_cols.map(|_| sig) };
+    let header_says_percent = (has_header && says_percent(&names[cols[1]])).then(|| names[cols[1]].as_str());
+    let clue = PercentClue::File { header_says_percent };
+    let (mut data, percent) = settle(raw, opts, path, clue, spread_value, &mut notes)?;
+    if let Some((SpreadSource::File(f), _)) = spread {
+        let wtext = load(&f).map_err(|e| {
+            FitError::Data(format!(
+                "--weights '{f}' is neither a number, a column of {path} (its columns: {}), nor a file ({e})",
+                names.join(", ")
+            ))
+        })?;
+        data.set_weights_from_csv(&wtext, &f, q)?;
+        if percent {
+            if let Some(s) = &mut data.sigma {
+                for v in s.iter_mut() {
+                    *v /= 100.0;
+                }
+            }
+        }
+    }
+    Ok(Reading { data, notes, percent, columns: used })
+}
+
+/// A measurement's numbers as read: wavelengths (nm), values (R or T; ψ, Δ interleaved), 1σ per value.
+struct Raw {
+    wl: Vec<f64>,
+    vals: Vec<f64>,
+    sig: Option<Vec<f64>>,
+}
+
+/// Where a percent reading may come from besides [`ReadOptions::percent`].
+enum PercentClue<'a> {
+    /// A file: the value column's header when it says `%` or "percent", and values above 1.5.
+    File { header_says_percent: Option<&'a str> },
+    /// Arrays carry no header: percent must be said, values above 1.5 without it are refused.
+    Arrays,
+}
+
+/// What [`read`] and [`read_arrays`] do alike once the values are numbers: percent (said, or from the clue),
+/// the wavelength window, and a σ or weight given as one number. `source` names the data in messages. Returns
+/// the measurement and whether its values were percent.
+fn settle(
+    raw: Raw,
+    opts: &ReadOptions,
+    source: &str,
+    clue: PercentClue,
+    spread_value: Option<(f64, Spread)>,
+    notes: &mut Vec<String>,
+) -> Result<(Measured, bool), FitError> {
+    let q = opts.quantity;
+    let Raw { mut wl, mut vals, mut sig } = raw;
+    let label = match q {
+        Quantity::R => "R",
+        Quantity::T => "T",
+        Quantity::PsiDelta => "psi",
+    };
     if let (Quantity::PsiDelta, Some(p)) = (q, opts.percent) {
         // ψ and Δ are angles: a percent (or fraction) setting would be ignored.
         let said = if p { "--percent" } else { "percent=False" };
@@ -499,41 +558,40 @@ pub fn read(
     let mut percent = false;
     if q != Quantity::PsiDelta {
         let vmax = vals.iter().fold(f64::NEG_INFINITY, |a, &b| a.max(b));
-        let named = has_header && says_percent(&names[cols[1]]);
-        percent = match opts.percent {
-            Some(p) => {
+        percent = match (opts.percent, &clue) {
+            (Some(p), _) => {
                 if p {
-                    notes.push(format!("{} in percent (--percent): divided by 100", labels[0]));
+                    notes.push(format!("{label} in percent (--percent): divided by 100"));
                 }
                 p
             }
-            None if named => {
-                notes.push(format!("{} in percent (header '{}'): divided by 100", labels[0], names[cols[1]]));
+            (None, PercentClue::File { header_says_percent: Some(name) }) => {
+                notes.push(format!("{label} in percent (header '{name}'): divided by 100"));
                 true
             }
-            None if vmax > 1.5 => {
+            (None, PercentClue::File { .. }) if vmax > 1.5 => {
                 notes.push(format!(
-                    "{} values reach {vmax} > 1: read as percent and divided by 100 (a fraction cannot exceed 1)",
-                    labels[0]
+                    "{label} values reach {vmax} > 1: read as percent and divided by 100 (a fraction cannot exceed 1)"
                 ));
                 true
             }
-            None => false,
+            (None, PercentClue::Arrays) if vmax > 1.5 => {
+                return Err(FitError::Data(format!(
+                    "the values reach {vmax} > 1: if they are percent, say percent=True (--percent)"
+                )));
+            }
+            (None, _) => false,
         };
         if percent {
-            for v in &mut vals {
+            for v in vals.iter_mut().chain(sig.iter_mut().flatten()) {
                 *v /= 100.0;
-            }
-            for s in &mut sig {
-                *s /= 100.0;
             }
         }
         let vmax = vals.iter().fold(f64::NEG_INFINITY, |a, &b| a.max(b));
         let vmin = vals.iter().fold(f64::INFINITY, |a, &b| a.min(b));
         if vmax > 1.05 || vmin < -0.05 {
             notes.push(format!(
-                "{} runs from {vmin:.4} to {vmax:.4}, outside 0–1: check --percent and the baseline",
-                labels[0]
+                "{label} runs from {vmin:.4} to {vmax:.4}, outside 0–1: check --percent and the baseline"
             ));
         }
     }
@@ -543,64 +601,83 @@ pub fn read(
             return Err(FitError::Data(format!("--from {a} nm must be below --to {b} nm")));
         }
     }
-    let k = labels.len();
+    let k = q.width();
     let keep: Vec<bool> = wl
         .iter()
         .map(|&w| opts.from_nm.is_none_or(|a| w >= a - 1e-9) && opts.to_nm.is_none_or(|b| w <= b + 1e-9))
         .collect();
     let dropped = keep.iter().filter(|k| !**k).count();
     if dropped > 0 {
+        let (lo, hi) = wl.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
         let n = wl.len();
         let take =
             |v: &[f64]| -> Vec<f64> { v.iter().enumerate().filter(|(i, _)| keep[i / k]).map(|(_, x)| *x).collect() };
         vals = take(&vals);
-        if !sig.is_empty() {
-            sig = take(&sig);
-        }
+        sig = sig.map(|s| take(&s));
         wl = wl.iter().zip(&keep).filter(|(_, k)| **k).map(|(w, _)| *w).collect();
         if wl.is_empty() {
             return Err(FitError::Data(format!(
-                "{path}: no wavelength of the file ({lo}–{hi} as read) lies in the window {}–{} nm",
+                "{source}: no wavelength of the {} ({lo}–{hi} nm) lies in the window {}–{} nm",
+                if matches!(clue, PercentClue::Arrays) { "arrays" } else { "file" },
                 opts.from_nm.map_or("…".into(), |v| v.to_string()),
                 opts.to_nm.map_or("…".into(), |v| v.to_string())
             )));
         }
         notes.push(format!("{dropped} of {n} rows outside the wavelength window left out"));
     }
-    let mut data = Measured { wavelength_nm: wl, values: vals, sigma: sig_cols.map(|_| sig) };
-    match spread {
-        Some((SpreadSource::Value(v), kind)) => {
-            let s = kind.sigma(v).map_err(|m| FitError::Data(format!("{} {v}: {m}", kind.flag())))?;
-            let s = if percent {
-                notes.push(format!("{} {v} is in the file's unit (percent)", kind.flag()));
-                match kind {
-                    Spread::Sigma => s / 100.0,
-                    Spread::Weight => s / 100.0, // 1/√w in percent → fraction
-                }
-            } else {
-                s
-            };
-            data.sigma = Some(vec![s; data.values.len()]);
-        }
-        Some((SpreadSource::File(f), _)) => {
-            let wtext = load(&f).map_err(|e| {
+    let mut data = Measured { wavelength_nm: wl, values: vals, sigma: sig };
+    if let Some((v, kind)) = spread_value {
+        let s = kind.sigma(v).map_err(|m| FitError::Data(format!("{} {v}: {m}", kind.flag())))?;
+        let s = if percent {
+            let whose = if matches!(clue, PercentClue::Arrays) { "the values'" } else { "the file's" };
+            notes.push(format!("{} {v} is in {whose} unit (percent)", kind.flag()));
+            s / 100.0 // σ, or 1/√w, in percent → fraction
+        } else {
+            s
+        };
+        data.sigma = Some(vec![s; data.values.len()]);
+    }
+    Ok((data, percent))
+}
+
+/// A measurement given as arrays (Python's `fit((wavelengths_nm, values[, sigma]))`), read by the rules of
+/// [`read`] that apply without a file: percent only when said, the wavelength window, `--sigma`/`--weights` as
+/// one number. Wavelengths in nm; ψ, Δ interleaved. Column choices are refused (there are no columns).
+pub fn read_arrays(
+    wavelength_nm: Vec<f64>,
+    values: Vec<f64>,
+    sigma: Option<Vec<f64>>,
+    opts: &ReadOptions,
+) -> Result<Reading, FitError> {
+    if let Some(c) = &opts.columns {
+        return Err(FitError::Data(format!(
+            "--columns '{c}' would be ignored: the measurement was given as arrays, not as a file"
+        )));
+    }
+    let given = Measured::from_arrays(wavelength_nm, values, sigma, opts.quantity)?;
+    let spread_value = match &opts.spread {
+        Some((arg, kind)) => {
+            if given.sigma.is_some() {
+                return Err(FitError::Data(format!(
+                    "{} given twice: as an array of uncertainties and as {} {arg}",
+                    kind.what(),
+                    kind.flag()
+                )));
+            }
+            let v = arg.trim().parse::<f64>().map_err(|_| {
                 FitError::Data(format!(
-                    "--weights '{f}' is neither a number, a column of {path} (its columns: {}), nor a file ({e})",
-                    names.join(", ")
+                    "{} '{arg}': with arrays give a number (column names and weight files are for a measured file)",
+                    kind.flag()
                 ))
             })?;
-            data.set_weights_from_csv(&wtext, &f, q)?;
-            if percent {
-                if let Some(s) = &mut data.sigma {
-                    for v in s.iter_mut() {
-                        *v /= 100.0;
-                    }
-                }
-            }
+            Some((v, *kind))
         }
-        _ => {}
-    }
-    Ok(Reading { data, notes, percent, columns: used })
+        None => None,
+    };
+    let mut notes = vec!["arrays given: wavelengths in nm".to_string()];
+    let raw = Raw { wl: given.wavelength_nm, vals: given.values, sig: given.sigma };
+    let (data, percent) = settle(raw, opts, "measured", PercentClue::Arrays, spread_value, &mut notes)?;
+    Ok(Reading { data, notes, percent, columns: Vec::new() })
 }
 
 impl Measured {

@@ -14,7 +14,7 @@ pub mod data;
 pub mod fit;
 pub mod template;
 
-pub use data::{check_coverage, read, Measured, ReadOptions, Reading, Spread, SpreadSource};
+pub use data::{check_coverage, read, read_arrays, Measured, ReadOptions, Reading, Spread, SpreadSource};
 pub use fit::{fit, model, model_jacobian, Derivatives, FitOptions, FitResult, MAX_EXACT};
 pub use template::{Param, Role, Template};
 

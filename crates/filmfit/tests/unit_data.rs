@@ -159,3 +159,37 @@ fn a_material_that_does_not_cover_the_range_is_named() {
     );
     assert!(check_coverage(&stack, 400.0, 800.0).is_ok());
 }
+
+#[test]
+fn arrays_are_read_by_the_rules_of_a_file_that_need_no_file() {
+    let (wl, r) = (vec![400.0, 500.0, 600.0, 700.0], vec![10.0, 20.0, 30.0, 40.0]);
+    // Percent: said, the values and a σ array are divided by 100 and it is noted; not said, refused (an array
+    // has no header to say it), where a file's values above 1.5 would be read as percent.
+    let mut o = ReadOptions::new(Quantity::R);
+    let e = read_arrays(wl.clone(), r.clone(), None, &o).unwrap_err().to_string();
+    assert!(e.contains("the values reach 40 > 1: if they are percent, say percent=True"), "{e}");
+    o.percent = Some(true);
+    let got = read_arrays(wl.clone(), r.clone(), Some(vec![1.0; 4]), &o).unwrap();
+    assert_eq!(got.data.values, [0.1, 0.2, 0.3, 0.4]);
+    assert_eq!(got.data.sigma.as_deref(), Some(&[0.01; 4][..]));
+    assert!(got.percent && got.notes.iter().any(|n| n == "R in percent (--percent): divided by 100"), "{got:?}");
+    // The window, as for a file: 500–600 nm keeps two of four, and says so.
+    o.from_nm = Some(500.0);
+    o.to_nm = Some(600.0);
+    let got = read_arrays(wl.clone(), r.clone(), None, &o).unwrap();
+    assert_eq!((got.data.wavelength_nm, got.data.values), (vec![500.0, 600.0], vec![0.2, 0.3]));
+    assert!(got.notes.iter().any(|n| n == "2 of 4 rows outside the wavelength window left out"), "{:?}", got.notes);
+    // A weight as a number is σ = 1/√w (in the values' unit, percent here); a column name or two σ are refused.
+    o.spread = Some(("4".into(), Spread::Weight));
+    let got = read_arrays(wl.clone(), r.clone(), None, &o).unwrap();
+    assert_eq!(got.data.sigma.as_deref(), Some(&[0.005; 2][..]));
+    let e = read_arrays(wl.clone(), r.clone(), Some(vec![1.0; 4]), &o).unwrap_err().to_string();
+    assert!(e.contains("weight given twice"), "{e}");
+    o.spread = Some(("R_err".into(), Spread::Sigma));
+    let e = read_arrays(wl.clone(), r.clone(), None, &o).unwrap_err().to_string();
+    assert!(e.contains("--sigma 'R_err': with arrays give a number"), "{e}");
+    o.spread = None;
+    o.columns = Some("1,2".into());
+    let e = read_arrays(wl, r, None, &o).unwrap_err().to_string();
+    assert!(e.contains("--columns '1,2' would be ignored"), "{e}");
+}

@@ -51,6 +51,33 @@ def test_fit_from_arrays_finds_the_thickness_and_its_uncertainty():
     # A window, and wavelengths in µm refused with the factor to use.
     win = tf.fit((wl, r), "air | n=1.46 {d=250nm:200nm..400nm} | si-green", from_nm=500, to_nm=700)
     assert win["wavelength_nm"].min() >= 500 and win["wavelength_nm"].max() <= 700
+    # 500–700 nm of 420–780 in 3 nm steps: 67 of the 121 kept, as the file reader says it.
+    assert win["wavelength_nm"].size == 67
+    assert "54 of 121 rows outside the wavelength window left out" in win["read"]["notes"]
+
+
+def test_fit_from_arrays_is_read_and_warned_as_a_file_is():
+    """Arrays go through the library's reader and fit (iridis_api::film_fit::fit_arrays): what a file's reading
+    would refuse or say, arrays get too, instead of keywords being dropped."""
+    wl = np.linspace(420, 780, 121)
+    r = tf.Stack("air | n=1.46 312nm | si-green").reflectance(wl)
+    stack = "air | n=1.46 {d=250nm:200nm..400nm} | si-green"
+    with pytest.raises(ValueError, match="--columns '1,2' would be ignored: the measurement was given as arrays"):
+        tf.fit((wl, r), stack, columns="1,2")
+    with pytest.raises(ValueError, match="--sigma 'R_err': with arrays give a number"):
+        tf.fit((wl, r), stack, sigma="R_err")
+    with pytest.raises(ValueError, match="uncertainty given twice"):
+        tf.fit((wl, r, np.full(wl.size, 0.01)), stack, sigma=0.01)
+    with pytest.raises(ValueError, match="no wavelength of the arrays"):
+        tf.fit((wl, r), stack, from_nm=800, to_nm=900)
+    # A thickness range that ends below the truth: the fit stops on the bound, and says so, as for a file.
+    with pytest.warns(UserWarning, match="d ended on a bound of its range"):
+        out = tf.fit((wl, r), "air | n=1.46 {d=250nm:200nm..300nm} | si-green", grid=1)
+    assert out["at_bound"] == [True] and abs(out["values"][0] - 300.0) < 1e-6
+    # Weights as a number: w = 1/σ², the same fit as σ.
+    a = tf.fit((wl, r), stack, sigma=0.01)
+    b = tf.fit((wl, r), stack, weights=1e4)
+    np.testing.assert_allclose(a["sigma"], b["sigma"], rtol=1e-12)
     with pytest.raises(ValueError, match="multiply by 1000"):
         tf.fit((wl / 1000, r), "air | n=1.46 {d=250nm:200nm..400nm} | si-green")
 

@@ -425,6 +425,8 @@ def fit(measured, stack, angle_rad=0.0, quantity="R", sigma=None, weights=None, 
     values)`` or ``(wavelengths_nm, values, sigma)`` — ψ, Δ interleaved for ``quantity="psi-delta"``.
     ``sigma``/``weights``: a number (1σ, or w = 1/σ²), for a file also column names (and for weights a file).
     ``percent``: the values are percent (for arrays it must be said; for files it is detected and stated).
+    ``columns``: for a file only (arrays have none: refused). Arrays and files are read and fitted by the same
+    library calls, with the same warnings (a wavelength grid too coarse for the fringes, a value on a bound).
     ``grid``: multi-start points per thickness (0: about one per 10 nm). ``angle_rad`` in radians.
 
     Returns the CLI's JSON keys: ``names``, ``units``, ``values``, ``sigma``, ``correlation``, ``chi2``,
@@ -447,14 +449,14 @@ def fit(measured, stack, angle_rad=0.0, quantity="R", sigma=None, weights=None, 
             _wavelengths(_float(v, name, "a wavelength in nm"), name)
     if sigma is not None and weights is not None:
         raise ValueError("give sigma or weights, not both (weights are 1/σ²)")
+    spread = {}
+    for name, v in (("sigma", sigma), ("weights", weights)):
+        if v is not None:
+            spread[name] = str(v) if isinstance(v, str) else repr(_float(v, name, "a number or column names"))
+    reading = dict(columns=columns, percent=None if percent is None else bool(percent), from_nm=from_nm, to_nm=to_nm,
+                   **spread)
     if isinstance(measured, (str, bytes)) or hasattr(measured, "__fspath__"):
-        spread = {}
-        for name, v in (("sigma", sigma), ("weights", weights)):
-            if v is not None:
-                spread[name] = str(v) if isinstance(v, str) else repr(_float(v, name, "a number or column names"))
-        path = os.fsdecode(os.fspath(measured))
-        return _native._fit(stack, angle, q, int(grid), path=path, columns=columns, percent=percent,
-                            from_nm=from_nm, to_nm=to_nm, **spread)
+        return _native._fit(stack, angle, q, int(grid), path=os.fsdecode(os.fspath(measured)), **reading)
     parts = [np.asarray(m) for m in measured] if isinstance(measured, (tuple, list)) else None
     if parts is None:
         a = np.asarray(measured)
@@ -465,35 +467,8 @@ def fit(measured, stack, angle_rad=0.0, quantity="R", sigma=None, weights=None, 
     if len(parts) not in (2, 3):
         raise ValueError(f"measured has {len(parts)} parts: give (wavelengths_nm, values) or (wavelengths_nm, values, "
                          "sigma)")
-    wl = _wavelengths(parts[0], "wavelengths_nm").ravel()
-    vals = _real(parts[1], "values").ravel()
-    sig = None if len(parts) < 3 else _real(parts[2], "sigma").ravel()
-    width = 2 if q.lower() in ("psi-delta", "psi_delta", "ellipsometry") else 1
-    if vals.size != wl.size * width:
-        raise ValueError(f"{wl.size} wavelengths need {wl.size * width} values for {q}, got {vals.size}")
-    if width == 1:
-        if percent is None and vals.max() > 1.5:
-            raise ValueError(f"the values reach {vals.max():g} > 1: if they are percent, say percent=True")
-        if percent:
-            vals = vals / 100.0
-            sig = None if sig is None else sig / 100.0
-    if sigma is not None or weights is not None:
-        if sig is not None:
-            raise ValueError("sigma given twice: in measured and as sigma/weights")
-        v = _float(sigma if sigma is not None else weights, "sigma" if sigma is not None else "weights", "a number")
-        if not (np.isfinite(v) and v > 0):
-            raise ValueError(f"{'sigma' if sigma is not None else 'weights'} {v} must be a finite number > 0")
-        s1 = v if sigma is not None else 1.0 / np.sqrt(v)
-        sig = np.full(vals.size, s1 / (100.0 if percent and width == 1 else 1.0))
-    keep = np.ones(wl.size, bool)
-    if from_nm is not None:
-        keep &= wl >= float(from_nm)
-    if to_nm is not None:
-        keep &= wl <= float(to_nm)
-    if not keep.any():
-        raise ValueError(f"no wavelength of measured ({wl.min():g}–{wl.max():g} nm) lies between from_nm and to_nm")
-    kv = np.repeat(keep, width)
-    out = _native._fit(stack, angle, q, int(grid), wavelengths=np.ascontiguousarray(wl[keep]),
-                       values=np.ascontiguousarray(vals[kv]),
-                       sigma_values=None if sig is None else np.ascontiguousarray(sig[kv]))
-    return out
+    # Read by the library as a file is (percent, the window, σ), but without columns to choose.
+    return _native._fit(stack, angle, q, int(grid), wavelengths=np.ascontiguousarray(_wavelengths(parts[0],
+                        "wavelengths_nm").ravel()), values=np.ascontiguousarray(_real(parts[1], "values").ravel()),
+                        sigma_values=None if len(parts) < 3 else np.ascontiguousarray(_real(parts[2], "sigma").ravel()),
+                        **reading)
