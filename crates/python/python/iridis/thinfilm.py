@@ -71,6 +71,11 @@ def _wavelengths(x, name="wavelengths_nm"):
     return a
 
 
+def _colour_grid(grid_nm):
+    """The wavelengths a colour is integrated over: ``grid_nm``, or the CIE range 380–780 nm in 5 nm steps."""
+    return np.arange(380.0, 780.0 + 1e-9, 5.0) if grid_nm is None else _wavelengths(grid_nm, "grid_nm")
+
+
 def _angles(x, name="angles_rad"):
     """Angles of incidence in radians, |θ| ≤ π/2; degrees by mistake are named."""
     a = _real(x, name)
@@ -137,7 +142,7 @@ def colors_of_stacks(indices, thicknesses_nm, angle_rad=0.0, illuminant="D65", o
     d = _real(thicknesses_nm, "thicknesses_nm")
     if d.size and d.min() < 0:
         raise ValueError(f"thicknesses_nm holds {d.min():g}: thicknesses are in nm and must be ≥ 0")
-    grid = np.arange(380.0, 780.0 + 1e-9, 5.0) if grid_nm is None else _wavelengths(grid_nm, "grid_nm")
+    grid = _colour_grid(grid_nm)
     angle_rad = float(_angles(angle_rad, "angle_rad"))
     if n.ndim == 3:
         # One index per medium and wavelength of the grid (dispersive media): each stack on its own.
@@ -295,7 +300,7 @@ class Stack:
         pol = _POL.get(str(polarization).lower())
         if pol is None:
             raise ValueError(f"polarization {polarization!r}: use 's', 'p' or 'unpolarized'")
-        grid = np.arange(380.0, 780.0 + 1e-9, 5.0) if grid_nm is None else _wavelengths(grid_nm, "grid_nm")
+        grid = _colour_grid(grid_nm)
         (a, o), shape = _broadcast((_angles(angles_rad), "angles_rad"), (_offsets(offsets_nm, self), "offsets_nm"))
         xyz = self._s._colors(a, o, np.ascontiguousarray(grid.ravel()), illuminant, observer, pol)
         refl = xyz[:, :3].reshape(shape + (3,))
@@ -369,7 +374,7 @@ class RoughFilm:
         ``reflected`` and ``transmitted`` light, of the rough film's ``specular`` part and of its ``diffuse``
         part (``π k_d``: Y = 1 is a white Lambertian surface under the same light), each with ``*_lab``,
         ``*_srgb`` and ``*_hex``. Default grid 380–780 nm in 5 nm steps."""
-        grid = np.arange(380.0, 780.0 + 1e-9, 5.0) if grid_nm is None else _wavelengths(grid_nm, "grid_nm")
+        grid = _colour_grid(grid_nm)
         view = _angle(view_rad, "view_rad")
         light = view if light_rad is None else _angle(light_rad, "light_rad")
         xyz = self.stack._s._rough_color(*self._args(), view, light, _angle(azimuth_rad, "azimuth_rad"),
