@@ -89,6 +89,13 @@ def test_bad_input():
     npy = os.path.join(ROOT, "crates", "surface", "tests", "fixtures", "numpy_f32_fortran.npy")
     with pytest.raises(ValueError, match=r"--max-height would be ignored: .*npy format"):
         surface.load(npy, pixel_size_nm=10.0, max_height_nm=5.0)
+    with pytest.raises(ValueError, match=r"--as-height would be ignored: .*npy format"):
+        surface.load(npy, pixel_size_nm=10.0, as_height=True)
+    sxm = os.path.join(FIX, "nanonis_synthetic.sxm")
+    with pytest.raises(ValueError, match="--override-units would be ignored: .*none is given"):
+        surface.load(sxm, override_units=True)
+    with pytest.raises(ValueError, match="--as-height would be ignored: channel 0 'Z_forward' is a height already"):
+        surface.load(sxm, as_height=True)
     # A seed for a structure with no randomness would change nothing.
     with pytest.raises(ValueError, match="seed 3 would be ignored: sine has no randomness"):
         surface.generate("sine", size="2um", pixel="50nm", seed=3)

@@ -75,5 +75,10 @@ fn options_a_surface_would_ignore_are_refused() {
     let with_pixel = LoadOptions { pixel_size_nm: Some(10.0), ..Default::default() };
     assert!(load_surface(f, &with_pixel).is_ok());
     refused(f, LoadOptions { size_nm: Some(1e3), seed: Some(2), ..with_pixel.clone() }, &["--size, --seed would be"]);
-    refused(f, LoadOptions { max_height_nm: Some(9.0), ..with_pixel }, &["--max-height would be", "npy"]);
+    refused(f, LoadOptions { max_height_nm: Some(9.0), ..with_pixel.clone() }, &["--max-height would be", "npy"]);
+    // --as-height reads an instrument's other signal as heights: an array of numbers is read as heights anyway.
+    refused(f, LoadOptions { as_height: true, ..with_pixel.clone() }, &["--as-height would be ignored", "npy"]);
+    // --override-units with nothing to override it with; with a pixel size it applies that one.
+    refused(f, LoadOptions { override_units: true, ..Default::default() }, &["--override-units would be", "none"]);
+    assert!(load_surface(f, &LoadOptions { override_units: true, ..with_pixel }).is_ok());
 }

@@ -77,6 +77,9 @@ fn other_signals_are_refused_as_heights_unless_forced() {
     assert!(z_scale(&l, &l[2], &forced, None, None).unwrap_err().to_string().contains("--height-unit"));
     let forced_nm = LoadOptions { as_height: true, height_unit: Some("nm".into()), ..Default::default() };
     assert_eq!(z_scale(&l, &l[2], &forced_nm, None, None).unwrap().nm_per_unit, 1.0);
+    // The height channel itself needs no forcing: --as-height there would change nothing, and says so.
+    let e = z_scale(&l, &l[0], &forced, None, None).unwrap_err().to_string();
+    assert!(e.contains("--as-height would be ignored: channel 0 'height_trace' is a height already (in m)"), "{e}");
 }
 
 /// The file's unit wins over a contradicting --height-unit, with a warning naming both, unless

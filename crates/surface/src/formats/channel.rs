@@ -309,6 +309,15 @@ pub fn z_scale(
         ));
     }
     if let Some(k) = length_nm(&c.z_unit) {
+        if opts.as_height && other_signal(&c.name).is_none() {
+            return Err(SurfaceError::invalid(format!(
+                "--as-height would be ignored: channel {} '{}' is a height already (in {}); it reads another \
+                 signal's channel as heights",
+                c.index,
+                c.full_name(),
+                c.z_unit
+            )));
+        }
         return Ok(match given {
             Some((gk, u, from)) if (gk / k - 1.0).abs() > 1e-9 => {
                 if opts.override_units {

@@ -207,11 +207,34 @@ pub fn load_surface(spec: &str, opts: &LoadOptions) -> Result<HeightField, Surfa
         )));
     }
     let bytes = std::fs::read(path).map_err(io)?;
-    if let Some(fmt) = detect_format(&bytes).filter(|f| !matches!(f, Format::Png | Format::Tiff)) {
+    let fmt = detect_format(&bytes);
+    if let Some(fmt) = fmt.filter(|f| !matches!(f, Format::Png | Format::Tiff)) {
         refuse(
             &[("--max-height", opts.max_height_nm.is_some())],
             format!("it is the height of white in a grey image, and {spec} holds heights ({} format)", fmt.name()),
         )?;
+    }
+    if let Some(fmt) =
+        fmt.filter(|f| matches!(f, Format::Npy | Format::Npz | Format::Png | Format::Tiff | Format::Text))
+    {
+        refuse(
+            &[("--as-height", opts.as_height)],
+            format!(
+                "it reads an instrument's non-height channel as heights, and {spec} holds numbers without a \
+                     signal's name ({} format): they are read as heights already",
+                fmt.name()
+            ),
+        )?;
+    }
+    if opts.override_units && opts.pixel_size_nm.is_none() && opts.height_unit.is_none() {
+        let sidecar = !opts.ignore_sidecar && Sidecar::find(path)?.is_some();
+        if !sidecar {
+            refuse(
+                &[("--override-units", true)],
+                "it lets --pixel-size or --height-unit (or a sidecar's) win over the file's own, and none is given"
+                    .to_string(),
+            )?;
+        }
     }
     let side = if opts.ignore_sidecar { None } else { Sidecar::find(path)? };
     let mut hf = read_bytes(&bytes, spec, side.as_ref(), opts)?;
