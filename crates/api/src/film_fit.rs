@@ -130,6 +130,15 @@ impl FilmProfile {
         }
         let _ = writeln!(o, "{:<40} {:>12.7}", "transmitted (T)", d.t);
         let _ = writeln!(o, "{:<40} {:>12.1e}", "R + T + ΣA − 1", d.balance);
+        // The samples are not printed here: say how many were taken, and where they are (else --points and
+        // --depth would seem to do nothing).
+        if let (Some(top), Some(bottom)) = (d.z_nm.first(), d.z_nm.last()) {
+            let _ = writeln!(
+                o,
+                "profile: {} depth samples, z from {top:.1} to {bottom:.1} nm (|E|², absorption: CSV, JSON, plot)",
+                d.z_nm.len()
+            );
+        }
         o
     }
 }
