@@ -217,7 +217,7 @@ pub fn fit_file(path: &Path, request: &FitRequest, report: &dyn Report) -> Resul
     let text = std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
     let source = path.display().to_string();
     let reading = iridis_filmfit::read(&text, &source, &o, &|p| std::fs::read_to_string(p).map_err(|e| e.to_string()))?;
-    fit_reading(reading, template, source, request, report)
+    fit_reading(reading, template, o.quantity, source, request, report)
 }
 
 /// [`fit_file`] of a measurement given as arrays (Python's `fit((wavelengths_nm, values[, sigma]))`): wavelengths
@@ -232,7 +232,7 @@ pub fn fit_arrays(
 ) -> Result<FilmFit> {
     let (o, template) = (read_options(request)?, Template::parse(&request.stack)?);
     let reading = iridis_filmfit::read_arrays(wavelength_nm, values, sigma, &o)?;
-    fit_reading(reading, template, "measured (arrays)".into(), request, report)
+    fit_reading(reading, template, o.quantity, "measured (arrays)".into(), request, report)
 }
 
 /// How the request reads a measurement.
@@ -254,11 +254,11 @@ fn read_options(request: &FitRequest) -> Result<ReadOptions> {
 fn fit_reading(
     reading: Reading,
     template: Template,
+    quantity: Quantity,
     source: String,
     request: &FitRequest,
     report: &dyn Report,
 ) -> Result<FilmFit> {
-    let quantity: Quantity = request.quantity.parse()?;
     let mut sorted = reading.data.wavelength_nm.clone();
     sorted.sort_by(f64::total_cmp);
     if let Some(w) = iridis_thinfilm::sampling::check(&template.base, request.angle_rad, &sorted) {

@@ -530,6 +530,16 @@ enum PercentClue<'a> {
     Arrays,
 }
 
+impl PercentClue<'_> {
+    /// What the data came as, for messages.
+    fn origin(&self) -> &'static str {
+        match self {
+            PercentClue::File { .. } => "file",
+            PercentClue::Arrays => "arrays",
+        }
+    }
+}
+
 /// What [`read`] and [`read_arrays`] do alike once the values are numbers: percent (said, or from the clue),
 /// the wavelength window, and a σ or weight given as one number. `source` names the data in messages. Returns
 /// the measurement and whether its values were percent.
@@ -543,11 +553,6 @@ fn settle(
 ) -> Result<(Measured, bool), FitError> {
     let q = opts.quantity;
     let Raw { mut wl, mut vals, mut sig } = raw;
-    let label = match q {
-        Quantity::R => "R",
-        Quantity::T => "T",
-        Quantity::PsiDelta => "psi",
-    };
     if let (Quantity::PsiDelta, Some(p)) = (q, opts.percent) {
         // ψ and Δ are angles: a percent (or fraction) setting would be ignored.
         let said = if p { "--percent" } else { "percent=False" };
@@ -557,6 +562,7 @@ fn settle(
     }
     let mut percent = false;
     if q != Quantity::PsiDelta {
+        let label = if q == Quantity::T { "T" } else { "R" };
         let vmax = vals.iter().fold(f64::NEG_INFINITY, |a, &b| a.max(b));
         percent = match (opts.percent, &clue) {
             (Some(p), _) => {
@@ -618,7 +624,7 @@ fn settle(
         if wl.is_empty() {
             return Err(FitError::Data(format!(
                 "{source}: no wavelength of the {} ({lo}–{hi} nm) lies in the window {}–{} nm",
-                if matches!(clue, PercentClue::Arrays) { "arrays" } else { "file" },
+                clue.origin(),
                 opts.from_nm.map_or("…".into(), |v| v.to_string()),
                 opts.to_nm.map_or("…".into(), |v| v.to_string())
             )));
@@ -629,7 +635,10 @@ fn settle(
     if let Some((v, kind)) = spread_value {
         let s = kind.sigma(v).map_err(|m| FitError::Data(format!("{} {v}: {m}", kind.flag())))?;
         let s = if percent {
-            let whose = if matches!(clue, PercentClue::Arrays) { "the values'" } else { "the file's" };
+            let whose = match clue {
+                PercentClue::File { .. } => "the file's",
+                PercentClue::Arrays => "the values'",
+            };
             notes.push(format!("{} {v} is in {whose} unit (percent)", kind.flag()));
             s / 100.0 // σ, or 1/√w, in percent → fraction
         } else {

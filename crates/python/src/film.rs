@@ -68,18 +68,17 @@ fn _fit<'py>(
 ) -> PyResult<Bound<'py, PyAny>> {
     // The reading keywords (`columns`, `percent`, `from_nm`, `to_nm`, `sigma`, `weights`) as the CLI's.
     let request = crate::film_commands::fit_request(stack, angle_rad, quantity, grid, options)?;
-    let arrays = match (&path, wavelengths, values) {
-        (Some(_), None, None) if sigma_values.is_none() => None,
+    let f = match (path, wavelengths, values) {
+        (Some(p), None, None) if sigma_values.is_none() => {
+            run(py, |report| film_fit::fit_file(Path::new(&p), &request, report))?
+        }
         (None, Some(w), Some(v)) => {
-            Some((w.as_array().to_vec(), v.as_array().to_vec(), sigma_values.map(|s| s.as_array().to_vec())))
+            let (w, v) = (w.as_array().to_vec(), v.as_array().to_vec());
+            let s = sigma_values.map(|s| s.as_array().to_vec());
+            run(py, |report| film_fit::fit_arrays(w, v, s, &request, report))?
         }
         _ => return Err(value_error("give the measured spectrum as a file path, or as wavelengths and values")),
     };
-    let f = run(py, |report| match (arrays, &path) {
-        (Some((w, v, s)), _) => film_fit::fit_arrays(w, v, s, &request, report),
-        (None, Some(p)) => film_fit::fit_file(Path::new(p), &request, report),
-        (None, None) => unreachable!("one of the two was matched above"),
-    })?;
     let d = json_to_py(py, &f.to_json())?;
     // The arrays as NumPy arrays (a null, a σ the covariance could not give, as NaN).
     let numpy = py.import("numpy")?;

@@ -226,17 +226,12 @@ pub fn load_surface(spec: &str, opts: &LoadOptions) -> Result<HeightField, Surfa
             ),
         )?;
     }
-    if opts.override_units && opts.pixel_size_nm.is_none() && opts.height_unit.is_none() {
-        let sidecar = !opts.ignore_sidecar && Sidecar::find(path)?.is_some();
-        if !sidecar {
-            refuse(
-                &[("--override-units", true)],
-                "it lets --pixel-size or --height-unit (or a sidecar's) win over the file's own, and none is given"
-                    .to_string(),
-            )?;
-        }
-    }
     let side = if opts.ignore_sidecar { None } else { Sidecar::find(path)? };
+    let nothing_to_apply = opts.pixel_size_nm.is_none() && opts.height_unit.is_none() && side.is_none();
+    refuse(
+        &[("--override-units", opts.override_units && nothing_to_apply)],
+        "it lets --pixel-size or --height-unit (or a sidecar's) win over the file's own, and none is given".to_string(),
+    )?;
     let mut hf = read_bytes(&bytes, spec, side.as_ref(), opts)?;
     if let Some(s) = &side {
         hf.meta.notes.push(format!("units from sidecar {}", s.path.display()));
