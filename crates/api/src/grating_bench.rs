@@ -30,7 +30,7 @@ pub struct GratingBenchOptions {
     pub peer_seconds: f64,
     /// Problems (wavelengths 400–700 nm) of the throughput measurement per case.
     pub batch: usize,
-    /// Tiny cases (a 10 nm sine, a 10 nm crossed sine of period 400 nm), one repeat and two wavelengths in the
+    /// Tiny cases (a 10 nm sine, a 10 nm crossed sine of period 300 nm), one repeat and two wavelengths in the
     /// throughput: shows the command works, measures nothing.
     pub quick: bool,
 }
@@ -42,7 +42,7 @@ impl Default for GratingBenchOptions {
 }
 
 /// The cases: the library's standard ones (a sine of a/Λ = 0.1 on metal ε = −20 + 1i and on glass, a crossed
-/// sine on glass), or tiny ones for `quick`: glass only, 10 nm deep, the crossed sine at a period of 400 nm
+/// sine on glass), or tiny ones for `quick`: glass only, 10 nm deep, the crossed sine at a period of 300 nm
 /// (fewer propagating orders, so a small truncation).
 pub fn cases(quick: bool) -> Vec<BenchCase> {
     let mut c = BenchCase::standard();
@@ -51,7 +51,7 @@ pub fn cases(quick: bool) -> Vec<BenchCase> {
         for c in c.iter_mut() {
             c.amplitude_nm = 10.0;
             if c.two_d {
-                c.period_nm = 400.0;
+                c.period_nm = 300.0;
             }
             c.name = format!("{} (quick: 10 nm, Λ = {} nm)", c.name, c.period_nm);
         }

@@ -92,7 +92,7 @@ slices, numpy on one thread, until every propagating efficiency above 1e-3 is wi
 staircase RCWA does not converge in TM there (its TM error is listed). Throughput: solves per second over
 wavelengths 400–700 nm on one thread and on all threads. Without Python or grcwa the peer is skipped with a
 note. The default run takes minutes (grcwa's larger rungs); --quick runs tiny cases (10 nm deep, glass, the
-crossed sine at Λ = 400 nm; one repeat, two wavelengths) to show the command works.
+crossed sine at Λ = 300 nm; one repeat, two wavelengths) to show the command works.
 
 Examples:
   iridis bench grating
@@ -129,7 +129,7 @@ pub struct GratingBench {
     /// twice the thread count.
     #[arg(long, default_value_t = 8)]
     pub batch: usize,
-    /// Tiny cases (10 nm deep, glass only, the crossed sine at Λ = 400 nm), one repeat, two wavelengths and a
+    /// Tiny cases (10 nm deep, glass only, the crossed sine at Λ = 300 nm), one repeat, two wavelengths and a
     /// short ladder: shows the command works, measures nothing.
     #[arg(long)]
     pub quick: bool,
