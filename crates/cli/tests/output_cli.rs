@@ -328,10 +328,19 @@ fn builtin_tables_are_cached_under_a_content_key() {
     let d = tmp();
     let cache = d.path().join("cache");
     let png = p(d.path(), "s.png");
+    // A small built-in with options (the key must follow them; the file is named by the built-in alone).
+    let scene = p(d.path(), "s.toml");
+    std::fs::write(
+        &scene,
+        "[camera]\nkind = \"hemisphere\"\ntarget = [0, 0, 0]\nnormal = [0, 0, 1]\n[[light]]\n\
+         kind = \"directional\"\ndirection = [0.3, 0.2, 1]\n[materials.grating]\nkind = \"diffraction\"\n\
+         table = \"builtin:sine?size=4um&pixel=50nm\"\nuv_resolution = 31\n[[object]]\nkind = \"plane\"\n\
+         normal = [0, 0, 1]\ntangent = [1, 0, 0]\nmaterial = \"grating\"\n",
+    )
+    .unwrap();
     let run = || {
         let out = std::process::Command::new(env!("CARGO_BIN_EXE_iridis"))
-            .args(["render", "examples/snake_elaphe.toml", "--size", "8x8", "-o", &png])
-            .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
+            .args(["render", &scene, "--size", "8x8", "-o", &png])
             .env("IRIDIS_CACHE", &cache)
             .output()
             .unwrap();
@@ -339,11 +348,11 @@ fn builtin_tables_are_cached_under_a_content_key() {
         String::from_utf8_lossy(&out.stderr).into_owned()
     };
     let first = run();
-    assert!(first.contains("computing the table builtin:elaphe"), "{first}");
+    assert!(first.contains("computing the table builtin:sine?size=4um&pixel=50nm"), "{first}");
     let files: Vec<String> =
         std::fs::read_dir(&cache).unwrap().map(|e| e.unwrap().file_name().into_string().unwrap()).collect();
     assert_eq!(files.len(), 1, "{files:?}");
-    let hash = files[0].strip_prefix("elaphe-").and_then(|f| f.strip_suffix(".npz")).unwrap();
+    let hash = files[0].strip_prefix("sine-").and_then(|f| f.strip_suffix(".npz")).unwrap();
     assert!(hash.len() == 16 && hash.chars().all(|c| c.is_ascii_hexdigit()), "{files:?}");
     let second = run();
     assert!(!second.contains("computing"), "{second}");

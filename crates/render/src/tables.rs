@@ -90,9 +90,12 @@ pub fn load_table(
         }
         return Ok(table);
     };
-    // The height field is generated (once a process) so that the key follows it.
+    // The height field is generated (once a process) so that the key follows it. The file's readable prefix
+    // is the built-in's name without its options (`sine`, not `sine?size=4um&pixel=50nm`: `?` is not allowed
+    // in a Windows file name); the key's hash covers the options through the height field's fingerprint.
     let patch = generated_patch(name)?;
-    cached_table(name, &format!("builtin:{name}"), &patch, DEFAULT_COHERENCE_NM, params, units)
+    let stem = name.split('?').next().unwrap_or(name);
+    cached_table(stem, &format!("builtin:{name}"), &patch, DEFAULT_COHERENCE_NM, params, units)
 }
 
 /// The table of a height-field file, read as every command reads a SURFACE (default channel, the file's own
