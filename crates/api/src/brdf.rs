@@ -76,6 +76,10 @@ pub fn map_evaluator(
     Ok((make_evaluator(input, setup, report)?, None))
 }
 
+/// What `--conserve-energy` does, said where it is applied (`brdf eval`, `brdf-map`, `brdf vision`).
+pub(crate) const ENERGY_CONSERVING_LOBES: &str = "energy-conserving lobes: each scaled by its order's factor in the \
+     energy-normalised channel matrix of the patch taken as a unit cell (docs/PHYSICS.md, \"Order efficiencies\")";
+
 /// Why `--conserve-energy` is refused with the rigorous method.
 const CONSERVE_RIGOROUS: &str = "--conserve-energy scales the scalar model's lobes; the rigorous method's lobes \
                                  carry Maxwell's efficiencies, which conserve energy: leave it out";
@@ -133,10 +137,7 @@ pub fn evaluator_for(source: &Source, setup: EvaluatorSetup<'_>, report: &dyn Re
         if !model.conserve_energy {
             return Ok(e);
         }
-        report.note(
-            "energy-conserving lobes: each scaled by its order's factor in the energy-normalised channel matrix of \
-             the patch taken as a unit cell (docs/PHYSICS.md, \"Order efficiencies\")",
-        );
+        report.note(ENERGY_CONSERVING_LOBES);
         Ok(Box::new(iridis_diffraction::grating::LobeScaled::energy_normalised(e, &patch, spectral)?))
     };
     match parsed {

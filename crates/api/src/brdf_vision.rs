@@ -40,12 +40,13 @@ pub fn brdf_vision(
 pub fn vision_text(v: &DirectionalVision) -> String {
     let an = &v.analysis;
     let mut t = vec![format!(
-        "{} · seen by {} under {} · light θ {:.1}° in the plane of azimuth {:.1}° · π f_r(λ), 300–700 nm",
+        "{} · seen by {} under {} · light θ {:.1}° in the plane of azimuth {:.1}° · π f_r(λ){}, 300–700 nm",
         v.surface,
         an.visual.name,
         an.illuminant,
         v.light_theta.to_degrees(),
-        v.azimuth.to_degrees()
+        v.azimuth.to_degrees(),
+        if v.energy_normalised { " of energy-normalised lobes" } else { "" }
     )];
     let mirror = v
         .views

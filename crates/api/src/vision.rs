@@ -6,6 +6,7 @@
 
 use anyhow::{bail, Context, Result};
 use iridis_diffraction::geometry::{direction, Shading, Vec3};
+use iridis_diffraction::grating::LobeScaled;
 use iridis_diffraction::taylor::{window_radius, Band};
 use iridis_diffraction::{Evaluator, Reference, SpectralSetup, TaylorTerms};
 
@@ -33,6 +34,8 @@ pub struct DirectionalVision {
     pub wavelengths_nm: Vec<f64>,
     /// Per view: its name, signed θ_r (degrees, positive on the specular side) and `π f_r(λ)` (unpolarised).
     pub views: Vec<(String, f64, Vec<f64>)>,
+    /// Whether the lobes were energy-normalised (`--conserve-energy`).
+    pub energy_normalised: bool,
     pub analysis: iridis_vision::Analysis,
 }
 
@@ -98,7 +101,15 @@ pub fn along_plane(
         coherence / 1000.0,
         model.step()
     ));
-    let e = Reference { terms: std::sync::Arc::new(terms), shading, spectral: SpectralSetup::default() };
+    let reference = Reference { terms: std::sync::Arc::new(terms), shading, spectral: SpectralSetup::default() };
+    let e: Box<dyn Evaluator> = if model.conserve_energy {
+        report.note(crate::brdf::ENERGY_CONSERVING_LOBES);
+        // The unit cell's orders down to 300 nm, below the CIE grid the lobes' colours are otherwise set up on.
+        let energy = std::sync::Arc::new(iridis_diffraction::grating::SinkhornEnergy);
+        Box::new(LobeScaled::down_to(Box::new(reference), &patch, SpectralSetup::default(), energy, FROM_NM)?)
+    } else {
+        Box::new(reference)
+    };
     let light = direction(light_theta, azimuth);
     let view = |deg: f64| -> Vec3 {
         let t = deg.to_radians();
@@ -106,7 +117,7 @@ pub fn along_plane(
     };
     let mut views = Vec::with_capacity(views_deg.len());
     for &deg in views_deg {
-        let q = iridis_diffraction::point_query(&e, &wavelengths, light, view(deg))?;
+        let q = iridis_diffraction::point_query(e.as_ref(), &wavelengths, light, view(deg))?;
         let Some(b) = q.brdf else {
             bail!("the BRDF in sr⁻¹ needs the physical Fresnel convention (R once), not the paper's R²");
         };
@@ -115,7 +126,6 @@ pub fn along_plane(
     }
     let samples: Vec<(String, Vec<f64>)> = views.iter().map(|(n, _, s)| (n.clone(), s.clone())).collect();
     let analysis = iridis_vision::analyse(&samples, &wavelengths, &system, &options)?;
-    let _ = e.name();
     Ok(DirectionalVision {
         surface: source.name().to_string(),
         light_theta,
@@ -124,13 +134,13 @@ pub fn along_plane(
         taylor_terms: n,
         wavelengths_nm: wavelengths,
         views,
+        energy_normalised: model.conserve_energy,
         analysis,
     })
 }
 
 /// The model options [`along_plane`] would not use, refused rather than ignored: the CIE illuminant and observer
-/// make XYZ, where the animal's receptors and `spec`'s illuminant take their place, and energy-conserving lobes
-/// are not applied to its reference evaluator.
+/// make XYZ, where the animal's receptors and `spec`'s illuminant take their place.
 fn refuse_colour_options(model: &ModelOptions) -> Result<()> {
     let eye = "the animal's receptors and the vision illuminant take the place of CIE colour here";
     if let Some(i) = &model.illuminant {
@@ -138,9 +148,6 @@ fn refuse_colour_options(model: &ModelOptions) -> Result<()> {
     }
     if let Some(o) = &model.observer {
         bail!("--observer {o} would be ignored: {eye}");
-    }
-    if model.conserve_energy {
-        bail!("--conserve-energy would be ignored: the views' spectra are the reference method's unscaled lobes");
     }
     Ok(())
 }
@@ -162,6 +169,16 @@ impl DirectionalVision {
             .collect()
     }
 
+    /// What the views' spectra are, said in the text's heading and the JSON.
+    pub fn quantity(&self) -> &'static str {
+        if self.energy_normalised {
+            "reflectance factor π f_r(λ), unpolarised, lobes energy-normalised (--conserve-energy): 1 for a white \
+             diffuser"
+        } else {
+            "reflectance factor π f_r(λ), unpolarised: 1 for a white diffuser"
+        }
+    }
+
     /// What `iridis brdf vision --json` prints (keys in docs/json.md).
     pub fn to_json(&self) -> serde_json::Value {
         let views: Vec<serde_json::Value> = self
@@ -175,7 +192,7 @@ impl DirectionalVision {
             "azimuth_deg": self.azimuth.to_degrees(),
             "coherence_nm": self.coherence_nm,
             "taylor_terms": self.taylor_terms,
-            "quantity": "reflectance factor π f_r(λ), unpolarised: 1 for a white diffuser",
+            "quantity": self.quantity(),
             "wavelength_nm": self.wavelengths_nm,
             "views": views,
             "vision": serde_json::to_value(&self.analysis).unwrap_or_default(),

@@ -70,8 +70,80 @@ fn the_model_options_are_used_or_refused() {
         let e = run(m).unwrap_err().to_string();
         assert!(e.contains(words), "{e}");
     };
-    refused(iridis_api::ModelOptions { conserve_energy: true, ..Default::default() }, "--conserve-energy would be");
     refused(iridis_api::ModelOptions { observer: Some("1964".into()), ..Default::default() }, "--observer 1964");
     refused(iridis_api::ModelOptions { illuminant: Some("a".into()), ..Default::default() }, "illuminant (a)");
     refused(iridis_api::ModelOptions { step_nm: Some(7.0), ..Default::default() }, "whole number of 7 nm steps");
+}
+
+/// `--conserve-energy`: the views' lobes are scaled as `brdf eval --conserve-energy` scales them on 380–700 nm,
+/// and in the ultraviolet, below the colour grid, each lobe by its order's factor of the energy-normalised
+/// channel matrix: the ratio of the order's efficiency under `iridis grating`'s energy normalisation to its
+/// Kirchhoff efficiency (the same matrix; its energy and reciprocity are tested in iridis-diffraction).
+#[test]
+fn conserve_energy_scales_the_views_as_brdf_eval_and_the_grating_orders_say() {
+    use iridis_diffraction::geometry::direction;
+    let sine = "builtin:sine?size=4.4um&pixel=50nm&period=1100nm&depth=400nm";
+    let visual = iridis_vision::Spec { visual: Some("bluetit".into()), ..Default::default() };
+    // Light at 50° (Kirchhoff's factor as printed is well off energy conservation there); at 300 nm the order
+    // m = +1 leaves at sin θ_r = sin 50° − 300/1100 (θ_r ≈ 29.6° on the specular side), and the view at 20°
+    // sees m = +1 at about 466 nm. At 300 nm orders up to 2/λ apart in frequency couple, seven of the sine's;
+    // a unit cell set up for 380 nm keeps five (|c_±6|² of this 400 nm deep sine is a few %).
+    let light = 50f64.to_radians();
+    let grating = |normalisation| {
+        let opts = iridis_api::grating::GratingOptions {
+            light: direction(light, 0.0),
+            wavelengths_nm: vec![300.0],
+            normalisation: Some(normalisation),
+            ..Default::default()
+        };
+        let g = iridis_api::grating::grating(&Source::Spec(sine.into()), &Default::default(), &opts, &Quiet).unwrap();
+        // The 4.4 µm patch is the unit cell: the sine's first order is the cell's fourth.
+        g.answers[0].orders.iter().find(|o| o.m == 4 && o.n == 0).unwrap().clone()
+    };
+    let energy = grating(iridis_diffraction::grating::Normalisation::Energy);
+    let kirchhoff = grating(iridis_diffraction::grating::Normalisation::Kirchhoff);
+    let uv_view = energy.theta_deg;
+    assert!((energy.phi_deg - 180.0).abs() < 1e-9 && (uv_view - 29.56).abs() < 0.01, "{energy:?}");
+    let views = [20.0, uv_view];
+    let run = |conserve_energy: bool| {
+        let model = iridis_api::ModelOptions { conserve_energy, ..Default::default() };
+        let plane = PlaneViews { light_theta: light, azimuth: Some(0.0), views_deg: &views, spec: &visual };
+        along_plane(&Source::Spec(sine.into()), &Default::default(), &model, Default::default(), plane, &Quiet).unwrap()
+    };
+    let (plain, scaled) = (run(false), run(true));
+    assert!(scaled.energy_normalised && !plain.energy_normalised);
+    assert!(scaled.quantity().contains("energy-normalised") && scaled.to_json()["quantity"] == scaled.quantity());
+    let w = &scaled.wavelengths_nm;
+    let at = |l: f64| w.iter().position(|x| *x == l).unwrap();
+    // The ultraviolet: the lobe of the sine's m = +1 at 300 nm, scaled by the order's factor.
+    let (s, p) = (scaled.views[1].2[at(300.0)], plain.views[1].2[at(300.0)]);
+    let want = energy.efficiency.unpolarized / kirchhoff.efficiency.unpolarized;
+    eprintln!("300 nm, m = +1: lobe factor {:.6}, grating's energy/Kirchhoff {want:.6}", s / p);
+    assert!(p > 0.0 && (s / p - want).abs() < 1e-5 * want, "{} vs {want}", s / p);
+    assert!((want - 1.0).abs() > 0.01, "the scaling is not the identity here: {want}");
+    // 380–700 nm: brdf eval at the same directions (the view at +20° in the plane: ω_r,x = −sin θ_r).
+    let model = iridis_api::ModelOptions { conserve_energy: true, ..Default::default() };
+    let eval = iridis_api::brdf::eval_point(
+        sine,
+        Some("reference"),
+        &model,
+        Default::default(),
+        Default::default(),
+        &Default::default(),
+        direction(light, 0.0),
+        direction(20f64.to_radians(), std::f64::consts::PI),
+        &Quiet,
+    )
+    .unwrap();
+    let eval_fr = &eval.query.brdf.as_ref().unwrap().unpolarized;
+    let seen = &scaled.views[0].2;
+    let peak = seen.iter().fold(0.0f64, |m, &x| m.max(x));
+    let mut compared = 0;
+    for (k, l) in eval.query.wavelengths_nm.iter().enumerate().filter(|(_, l)| **l <= 700.0) {
+        let want = std::f64::consts::PI * eval_fr[k];
+        // Both sum the Taylor series to a remainder of 1e-6 (vision's terms bounded at 300 nm, eval's at 380).
+        assert!((seen[at(*l)] - want).abs() <= 1e-5 * peak, "{l} nm: vision {} vs brdf eval {want}", seen[at(*l)]);
+        compared += 1;
+    }
+    assert_eq!(compared, 65, "380–700 nm in 5 nm steps");
 }

@@ -96,7 +96,7 @@ fn options_no_method_reads_are_refused() {
     let png = dir.path().join("x.png");
     let (s, o) = ("builtin:sine?size=4um&pixel=100nm", png.to_str().unwrap());
     let terms_users = "(reference, lookup, nmm, pq and rigorous do)";
-    let cases: [(&[&str], &[&str]); 17] = [
+    let cases: [(&[&str], &[&str]); 16] = [
         (&["testbench", s, "--method", "ground-truth", "--terms", "3"], &["--terms 3", "ground-truth", terms_users]),
         (&["testbench", s, "--method", "rigorous", "--epsilon", "0.1"], &["--epsilon 0.1", "rigorous method has"]),
         (
@@ -135,7 +135,6 @@ fn options_no_method_reads_are_refused() {
         (&["grating", s, "--method", "rigorous", "--normalisation", "energy"], &["--normalisation energy", "Maxwell"]),
         (&["precompute", s, "--conserve-energy", "-o", o], &["--conserve-energy would be ignored"]),
         (&["brdf", "vision", s, "--visual", "bluetit", "--views", "-20,20deg,20"], &["--views lists 20 twice"]),
-        (&["brdf", "vision", s, "--visual", "bluetit", "--conserve-energy"], &["--conserve-energy would be ignored"]),
         (&["brdf", "vision", s, "--visual", "bluetit", "--dlambda", "7nm"], &["--step", "whole number of 7 nm steps"]),
         (&["bench", "grating", "--quick", "--no-python", "--peer-seconds", "3"], &["--no-python", "--peer-seconds"]),
         (

@@ -545,6 +545,21 @@ impl LobeScaled {
         energy: std::sync::Arc<dyn LobeEnergy>,
     ) -> Result<Self, DiffractionError> {
         let lambda_min = spectral.wavelengths().first().copied().unwrap_or(380.0);
+        Self::down_to(inner, patch, spectral, energy, lambda_min)
+    }
+
+    /// [`LobeScaled::new`] for lobes asked at wavelengths down to `lambda_min_nm`, which may lie below
+    /// `spectral`'s grid (an animal's ultraviolet, from 300 nm): the unit cell's orders and Taylor terms are set
+    /// up for the shorter wavelength, where more orders propagate.
+    pub fn down_to(
+        inner: Box<dyn crate::Evaluator>,
+        patch: &Patch,
+        spectral: crate::SpectralSetup,
+        energy: std::sync::Arc<dyn LobeEnergy>,
+        lambda_min_nm: f64,
+    ) -> Result<Self, DiffractionError> {
+        let first = spectral.wavelengths().first().copied().unwrap_or(380.0);
+        let lambda_min = lambda_min_nm.min(first);
         if inner.reflectance(lambda_min, [0.0, 0.0, 1.0], [0.0, 0.0, 1.0]).is_none() {
             return Err(DiffractionError::Invalid(format!(
                 "the {} method integrates over wavelength in advance: its lobes cannot take a factor per wavelength; \

@@ -215,7 +215,8 @@ def vision(source, visual, light=0.0, views_deg=(-60, -50, -40, -30, -20, -10, 0
     model for ``visual`` (``"bluetit"``, ``"honeybee"``, …; see :mod:`iridis.vision`). Returns a dict with
     ``views`` (``name``, ``theta_r_deg``, ``reflectance_factor``), ``wavelength_nm`` and ``vision`` (the
     analysis: quantum catches, ΔS and ΔL in JND between every pair of directions). ``options``: the model's
-    ``coherence_nm``, ``terms`` and ``step_nm`` (the 300–700 nm grid's step, default 5; ``taylor_terms`` in the
-    result says N) and the surface's; ``observer`` and ``conserve_energy`` are refused, not ignored."""
+    ``coherence_nm``, ``terms``, ``step_nm`` (the 300–700 nm grid's step, default 5; ``taylor_terms`` in the
+    result says N) and ``conserve_energy`` (energy-normalised lobes, as ``brdf eval --conserve-energy``; the
+    result's ``quantity`` says so), and the surface's; ``observer`` is refused, not ignored."""
     return _native.brdf_vision(_native_source(source), str(visual), float(light), [float(v) for v in views_deg],
                                None if azimuth is None else float(azimuth), illuminant, options)
