@@ -537,7 +537,9 @@ impl std::fmt::Debug for LobeScaled {
 impl LobeScaled {
     /// Wraps `inner`, an evaluator with a spectral reflectance, of the height field `patch` (one unit cell of
     /// its periodic extension); `spectral` is the wavelength grid and colour weights its colours integrate
-    /// over; `energy` says what each lobe carries.
+    /// over; `energy` says what each lobe carries. The unit cell is set up for `spectral`'s shortest wavelength:
+    /// lobes asked at a shorter one would miss the orders that couple only there (their factors wrong, not
+    /// refused), so a caller that asks below the grid uses [`LobeScaled::down_to`].
     pub fn new(
         inner: Box<dyn crate::Evaluator>,
         patch: &Patch,
