@@ -3,17 +3,17 @@
 use crate::common;
 use common::{assert_fails, iridis, json_of};
 
-fn temp_csv(name: &str, text: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("iridis-cli-test-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let p = dir.join(name);
+/// `text` written to `name` in a scratch folder, which is removed when the returned guard is dropped.
+fn temp_csv(name: &str, text: &str) -> (tempfile::TempDir, std::path::PathBuf) {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join(name);
     std::fs::write(&p, text).unwrap();
-    p
+    (dir, p)
 }
 
 #[test]
 fn xyz_json_has_the_documented_keys_and_a_white_reflector_is_white() {
-    let p = temp_csv("white.csv", "wavelength_nm,value\n300,1\n900,1\n");
+    let (_scratch, p) = temp_csv("white.csv", "wavelength_nm,value\n300,1\n900,1\n");
     let out = iridis(&["color", "xyz", p.to_str().unwrap(), "--json"]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
@@ -63,20 +63,20 @@ fn delta_e_of_sharma_pair_1() {
 #[test]
 fn bad_input_gives_one_clear_line() {
     assert_fails(&["color", "xyz", "no/such/file.csv"], &["no/such/file.csv", "cannot read"]);
-    let p = temp_csv("bad.csv", "wavelength,value\n400,0.1\n410,oops\n");
+    let (_scratch, p) = temp_csv("bad.csv", "wavelength,value\n400,0.1\n410,oops\n");
     assert_fails(&["color", "xyz", p.to_str().unwrap()], &["bad.csv:3", "oops"]);
-    let p = temp_csv("nan.csv", "400,0.1\n410,NaN\n");
+    let (_scratch, p) = temp_csv("nan.csv", "400,0.1\n410,NaN\n");
     assert_fails(&["color", "xyz", p.to_str().unwrap()], &["nan.csv:2", "NaN"]);
-    let p = temp_csv("order.csv", "400,0.1\n390,0.2\n");
+    let (_scratch, p) = temp_csv("order.csv", "400,0.1\n390,0.2\n");
     assert_fails(&["color", "xyz", p.to_str().unwrap()], &["order.csv:2", "increase"]);
-    let p = temp_csv("ok.csv", "400,0.1\n700,0.2\n");
+    let (_scratch, p) = temp_csv("ok.csv", "400,0.1\n700,0.2\n");
     assert_fails(&["color", "xyz", p.to_str().unwrap(), "--illuminant", "f11"], &["f11", "d65"]);
     assert_fails(&["color", "xyz", p.to_str().unwrap(), "--observer", "1999"], &["1999", "1931"]);
     assert_fails(&["color", "delta-e", "50,1", "50,0,0"], &["50,1", "L,a,b"]);
     assert_fails(&["color", "delta-e", "50,x,1", "50,0,0"], &["'x'"]);
     // Only the first line that is not a comment may be a header; rows need exactly two columns.
-    let p = temp_csv("late_header.csv", "# c\n400,0.5\n410,0.6\nwavelength,value\n420,0.7\n");
+    let (_scratch, p) = temp_csv("late_header.csv", "# c\n400,0.5\n410,0.6\nwavelength,value\n420,0.7\n");
     assert_fails(&["color", "xyz", p.to_str().unwrap()], &["late_header.csv:4", "'wavelength'"]);
-    let p = temp_csv("three.csv", "wavelength,value\n400,0.5\n410,0.6,0.9\n420,0.7\n");
+    let (_scratch, p) = temp_csv("three.csv", "wavelength,value\n400,0.5\n410,0.6,0.9\n420,0.7\n");
     assert_fails(&["color", "xyz", p.to_str().unwrap()], &["three.csv:3", "two columns", "found 3"]);
 }

@@ -206,9 +206,8 @@ fn bare_rough_specular_follows_the_roughness_factor() {
 }
 
 fn chart_csv(extra: &[&str], name: &str) -> Vec<Vec<String>> {
-    let dir = std::env::temp_dir().join(format!("iridis-rough-chart-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let (png, csv) = (dir.join(format!("{name}.png")), dir.join(format!("{name}.csv")));
+    let dir = tempfile::tempdir().unwrap();
+    let (png, csv) = (dir.path().join(format!("{name}.png")), dir.path().join(format!("{name}.csv")));
     let mut args = vec!["thinfilm", "chart", "--stack", "air | water {d} | Si"];
     if !extra.contains(&"--thickness") {
         args.extend(["--thickness", "0nm:600nm:20nm"]);

@@ -4,10 +4,9 @@
 use crate::common;
 use common::{assert_fails, iridis, json_of, quoted, words};
 
-fn temp_dir() -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("iridis-thinfilm-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+/// A scratch folder, removed when the test ends.
+fn temp_dir() -> tempfile::TempDir {
+    tempfile::tempdir().unwrap()
 }
 
 #[test]
@@ -29,7 +28,8 @@ fn spectrum_json_matches_figure_3_8() {
 
 #[test]
 fn table_csv_and_plots_are_written() {
-    let dir = temp_dir();
+    let scratch = temp_dir();
+    let dir = scratch.path();
     let (csv, map) = (dir.join("t.csv"), dir.join("map.png"));
     let out = iridis(&words(&format!(
         "thinfilm table --stack 'air | water 635nm | air' --angles 1deg:90deg:1deg --from 400nm --to 690nm \
@@ -74,7 +74,8 @@ fn color_json_keys_and_a_lossless_film_conserves_colour() {
 
 #[test]
 fn chart_is_written() {
-    let dir = temp_dir();
+    let scratch = temp_dir();
+    let dir = scratch.path();
     let png = dir.join("chart.png");
     let csv = dir.join("chart.csv");
     let out = iridis(&words(&format!(
@@ -128,7 +129,8 @@ fn bad_input_names_the_token() {
     let spectrum = ["thinfilm", "spectrum", "--stack", stack, "--from", "400nm", "--to", "700nm", "--step", "7nm"];
     assert_fails(&spectrum, &[steps, "the last wavelength would be 694 nm"]);
     assert_fails(&["thinfilm", "table", "--stack", stack, "--angles", "0deg:80deg:30deg"], &["--angles", "2.667"]);
-    let dir = temp_dir();
+    let scratch = temp_dir();
+    let dir = scratch.path();
     let bad = dir.join("bad.yml");
     std::fs::write(&bad, "DATA:\n  - type: tabulated nk\n    data: |\n        0.4 1.5 0\n        0.5 oops 0\n")
         .unwrap();
@@ -350,7 +352,8 @@ fn profile_balances_energy() {
     );
     // (to the grid's 0.1 nm resolution at the film's faces; the library tests integrate exactly)
     assert!((integral - a_si).abs() < 5e-3 * a_si, "∫ {integral} vs {a_si}");
-    let dir = temp_dir();
+    let scratch = temp_dir();
+    let dir = scratch.path();
     let png = dir.join("profile.png");
     let out = iridis(&words(&format!(
         "thinfilm profile --stack 'air | Si 108nm | glass' --wavelength 450nm --plot {}",
@@ -370,7 +373,8 @@ fn fit_recovers_the_scipy_optimum_and_refuses_bad_input() {
     assert!((v["sigma"][2].as_f64().unwrap() - 0.12091036442066286).abs() < 1e-6);
     assert_eq!(v["dof"], 398);
     assert_eq!(v["jacobian"], "exact");
-    let dir = temp_dir();
+    let scratch = temp_dir();
+    let dir = scratch.path();
     let png = dir.join("fit.png");
     let out = iridis(&["thinfilm", "fit", csv, "--stack", stack, "--plot", png.to_str().unwrap()]);
     assert!(out.status.success());
@@ -428,7 +432,8 @@ fn fit_reads_real_files_and_names_the_material_that_does_not_cover_them() {
         (w["values"][0].as_f64().unwrap() - 150.0).abs() < 0.5 && w["wavelength_nm"].as_array().unwrap().len() == 86
     );
     // The same numbers as a headerless comma file in fractions, columns chosen by number.
-    let dir = temp_dir();
+    let scratch = temp_dir();
+    let dir = scratch.path();
     let plain = dir.join("plain.csv");
     let text = std::fs::read_to_string(file).unwrap();
     let rows: Vec<String> = text
@@ -460,7 +465,8 @@ fn fit_weights_are_inverse_variances() {
     };
     let by_sigma = fit(&["--sigma", "0.002"]);
     let text = std::fs::read_to_string(csv).unwrap();
-    let dir = temp_dir();
+    let scratch = temp_dir();
+    let dir = scratch.path();
     // The same data with a weight column (σ = 0.002 → w = 250000) and as a separate weights file.
     let mut with_w = String::new();
     let mut file_w = String::from("wavelength_nm,w\n");
