@@ -5,7 +5,7 @@ use common::{assert_fails, iridis, json_of};
 
 /// `text` written to `name` in a scratch folder, which is removed when the returned guard is dropped.
 fn temp_csv(name: &str, text: &str) -> (tempfile::TempDir, std::path::PathBuf) {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = common::tmp();
     let p = dir.path().join(name);
     std::fs::write(&p, text).unwrap();
     (dir, p)

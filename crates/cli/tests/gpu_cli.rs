@@ -6,7 +6,7 @@ use crate::common;
 
 use std::process::Command;
 
-use common::{assert_fails, delta_e_between, iridis, json_of, png_lab};
+use common::{assert_fails, delta_e_between, iridis, json_of, png_lab, tmp};
 use iridis_color::Lab;
 
 /// Tests that run the scene shader take turns: on lavapipe its first compilation takes about a minute of one
@@ -59,10 +59,6 @@ fn have_gpu() -> bool {
         return false;
     }
     panic!("{stderr}\nThese tests need a Vulkan adapter; set IRIDIS_SKIP_GPU=1 to skip them.");
-}
-
-fn tmp() -> tempfile::TempDir {
-    tempfile::tempdir().unwrap()
 }
 
 /// A small table: 8 µm blazed grating at 50 nm, coherence 8 µm, 61² grid.

@@ -6,11 +6,7 @@ use crate::common;
 
 use std::path::Path;
 
-use common::{assert_fails, iridis, json_of};
-
-fn tmp() -> tempfile::TempDir {
-    tempfile::tempdir().unwrap()
-}
+use common::{assert_fails, iridis, json_of, tmp};
 
 /// A small surface: the map commands finish in well under a second on it.
 const SMALL: &str = "builtin:sine?size=4um&pixel=50nm";

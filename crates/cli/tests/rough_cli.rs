@@ -206,7 +206,7 @@ fn bare_rough_specular_follows_the_roughness_factor() {
 }
 
 fn chart_csv(extra: &[&str], name: &str) -> Vec<Vec<String>> {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = common::tmp();
     let (png, csv) = (dir.path().join(format!("{name}.png")), dir.path().join(format!("{name}.csv")));
     let mut args = vec!["thinfilm", "chart", "--stack", "air | water {d} | Si"];
     if !extra.contains(&"--thickness") {

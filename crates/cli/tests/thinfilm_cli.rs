@@ -2,12 +2,7 @@
 //! Figure 3.8, files written, and clean errors (exit code 2, one `error:` line naming the token) on bad input.
 
 use crate::common;
-use common::{assert_fails, iridis, json_of, quoted, words};
-
-/// A scratch folder, removed when the test ends.
-fn temp_dir() -> tempfile::TempDir {
-    tempfile::tempdir().unwrap()
-}
+use common::{assert_fails, iridis, json_of, quoted, tmp, words};
 
 #[test]
 fn spectrum_json_matches_figure_3_8() {
@@ -28,7 +23,7 @@ fn spectrum_json_matches_figure_3_8() {
 
 #[test]
 fn table_csv_and_plots_are_written() {
-    let scratch = temp_dir();
+    let scratch = tmp();
     let dir = scratch.path();
     let (csv, map) = (dir.join("t.csv"), dir.join("map.png"));
     let out = iridis(&words(&format!(
@@ -74,7 +69,7 @@ fn color_json_keys_and_a_lossless_film_conserves_colour() {
 
 #[test]
 fn chart_is_written() {
-    let scratch = temp_dir();
+    let scratch = tmp();
     let dir = scratch.path();
     let png = dir.join("chart.png");
     let csv = dir.join("chart.csv");
@@ -129,7 +124,7 @@ fn bad_input_names_the_token() {
     let spectrum = ["thinfilm", "spectrum", "--stack", stack, "--from", "400nm", "--to", "700nm", "--step", "7nm"];
     assert_fails(&spectrum, &[steps, "the last wavelength would be 694 nm"]);
     assert_fails(&["thinfilm", "table", "--stack", stack, "--angles", "0deg:80deg:30deg"], &["--angles", "2.667"]);
-    let scratch = temp_dir();
+    let scratch = tmp();
     let dir = scratch.path();
     let bad = dir.join("bad.yml");
     std::fs::write(&bad, "DATA:\n  - type: tabulated nk\n    data: |\n        0.4 1.5 0\n        0.5 oops 0\n")
@@ -352,7 +347,7 @@ fn profile_balances_energy() {
     );
     // (to the grid's 0.1 nm resolution at the film's faces; the library tests integrate exactly)
     assert!((integral - a_si).abs() < 5e-3 * a_si, "∫ {integral} vs {a_si}");
-    let scratch = temp_dir();
+    let scratch = tmp();
     let dir = scratch.path();
     let png = dir.join("profile.png");
     let out = iridis(&words(&format!(
@@ -373,7 +368,7 @@ fn fit_recovers_the_scipy_optimum_and_refuses_bad_input() {
     assert!((v["sigma"][2].as_f64().unwrap() - 0.12091036442066286).abs() < 1e-6);
     assert_eq!(v["dof"], 398);
     assert_eq!(v["jacobian"], "exact");
-    let scratch = temp_dir();
+    let scratch = tmp();
     let dir = scratch.path();
     let png = dir.join("fit.png");
     let out = iridis(&["thinfilm", "fit", csv, "--stack", stack, "--plot", png.to_str().unwrap()]);
@@ -432,7 +427,7 @@ fn fit_reads_real_files_and_names_the_material_that_does_not_cover_them() {
         (w["values"][0].as_f64().unwrap() - 150.0).abs() < 0.5 && w["wavelength_nm"].as_array().unwrap().len() == 86
     );
     // The same numbers as a headerless comma file in fractions, columns chosen by number.
-    let scratch = temp_dir();
+    let scratch = tmp();
     let dir = scratch.path();
     let plain = dir.join("plain.csv");
     let text = std::fs::read_to_string(file).unwrap();
@@ -465,7 +460,7 @@ fn fit_weights_are_inverse_variances() {
     };
     let by_sigma = fit(&["--sigma", "0.002"]);
     let text = std::fs::read_to_string(csv).unwrap();
-    let scratch = temp_dir();
+    let scratch = tmp();
     let dir = scratch.path();
     // The same data with a weight column (σ = 0.002 → w = 250000) and as a separate weights file.
     let mut with_w = String::new();

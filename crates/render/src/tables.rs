@@ -94,7 +94,7 @@ pub fn load_table(
     // is the built-in's name without its options (`sine`, not `sine?size=4um&pixel=50nm`: `?` is not allowed
     // in a Windows file name); the key's hash covers the options through the height field's fingerprint.
     let patch = generated_patch(name)?;
-    let stem = name.split('?').next().unwrap_or(name);
+    let stem = iridis_surface::builtin::builtin_parts(name).0;
     cached_table(stem, &format!("builtin:{name}"), &patch, DEFAULT_COHERENCE_NM, params, units)
 }
 

@@ -161,10 +161,15 @@ fn set_param(gen: &mut Generator, key: &str, v: &str, blaze: &mut Option<f64>) -
     Ok(())
 }
 
+/// `NAME[?k=v&…]` after `builtin:` as the built-in's name (trimmed) and its options (`k=v&…`, or empty).
+pub fn builtin_parts(rest: &str) -> (&str, &str) {
+    let (name, query) = rest.split_once('?').unwrap_or((rest, ""));
+    (name.trim(), query)
+}
+
 /// `NAME[?k=v&…]` after `builtin:`.
 pub fn builtin_surface(rest: &str, opts: &LoadOptions) -> Result<HeightField, SurfaceError> {
-    let (name, query) = rest.split_once('?').unwrap_or((rest, ""));
-    let name = name.trim();
+    let (name, query) = builtin_parts(rest);
     if !BUILTIN_NAMES.contains(&name) {
         return Err(SurfaceError::invalid(format!(
             "unknown built-in surface '{name}'; built-ins: {} (other kinds via `iridis surface generate`)",

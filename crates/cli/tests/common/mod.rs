@@ -8,6 +8,12 @@ use iridis_color::integrate::white_point;
 use iridis_color::{Illuminant, Lab, Observer, Xyz};
 use iridis_thinfilm::accuracy::DeltaEStats;
 
+/// A scratch folder, removed when the test ends (tests that leave files in the temp folder pile them up run
+/// after run).
+pub fn tmp() -> tempfile::TempDir {
+    tempfile::tempdir().expect("a temporary folder")
+}
+
 /// Runs the built binary from the repository root (so `data/…` paths in examples work).
 pub fn iridis<S: AsRef<std::ffi::OsStr> + std::fmt::Debug>(args: &[S]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_iridis"))
