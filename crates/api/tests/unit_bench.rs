@@ -8,7 +8,7 @@ use std::time::Duration;
 fn delta_e_statistics_rank_and_clip() {
     // Identical colours differ by nothing; colours both far above white are both shown white.
     let w = iridis_color::Xyz::from_linear_srgb([1.0, 1.0, 1.0]);
-    let s = delta_e_stats(&[w.scale(3.0)], &[w.scale(5.0)], 1.0);
+    let s = DeltaEStats::between(&[w.scale(3.0)], &[w.scale(5.0)], 1.0);
     assert!(s.max < 1e-9, "{s:?}");
     // 100 pairs: 99 equal, one black against white (ΔE00 = 100 between L* 0 and 100).
     let mut a = vec![w.scale(0.5); 100];
@@ -16,7 +16,7 @@ fn delta_e_statistics_rank_and_clip() {
     a[7] = iridis_color::Xyz::from_linear_srgb([0.0, 0.0, 0.0]);
     let mut b2 = b;
     b2[7] = w;
-    let s = delta_e_stats(&a, &b2, 1.0);
+    let s = DeltaEStats::between(&a, &b2, 1.0);
     assert!((s.max - 100.0).abs() < 0.01, "{s:?}");
     assert!((s.mean - s.max / 100.0).abs() < 1e-12);
     assert_eq!((s.p95, s.p99), (0.0, s.max));

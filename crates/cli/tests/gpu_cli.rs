@@ -87,9 +87,8 @@ fn no_adapter_is_a_clear_error_not_a_panic() {
         vec!["render", "examples/gold_sphere.toml", "--gpu", "--size", "16x16", "-o", "/tmp/never.png"],
         vec!["bench", "gpu", "examples/gold_sphere.toml", "--size", "16x16", "--frames", "1"],
     ] {
-        let out = Command::new(env!("CARGO_BIN_EXE_iridis"))
+        let out = common::command()
             .args(&args)
-            .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
             .env("VK_ICD_FILENAMES", "/nonexistent/icd.json")
             .env("VK_DRIVER_FILES", "/nonexistent/icd.json")
             .output()
@@ -115,10 +114,15 @@ fn a_gpu_run_without_xdg_runtime_dir_prints_no_driver_noise() {
     let dir = tmp();
     let png = dir.path().join("g.png");
     for xdg in [None, Some("/nonexistent/run")] {
-        let mut cmd = Command::new(env!("CARGO_BIN_EXE_iridis"));
-        cmd.args(["brdf-map", "builtin:blazed?size=4um&pixel=50nm", "--gpu", "--size", "16"])
-            .args(["--coherence", "4um", "--uv-resolution", "31", "-o", png.to_str().unwrap()])
-            .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."));
+        let mut cmd = common::command();
+        cmd.args(["brdf-map", "builtin:blazed?size=4um&pixel=50nm", "--gpu", "--size", "16"]).args([
+            "--coherence",
+            "4um",
+            "--uv-resolution",
+            "31",
+            "-o",
+            png.to_str().unwrap(),
+        ]);
         match xdg {
             None => cmd.env_remove("XDG_RUNTIME_DIR"),
             Some(v) => cmd.env("XDG_RUNTIME_DIR", v),

@@ -40,11 +40,10 @@
 //! tests run them on lavapipe) and the whole demo gallery (80 s; `demo_cli.rs` runs it with `--ignored`).
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 /// `iridis ARGS --help` at a terminal width of `columns` (clap reads `COLUMNS` when not on a terminal).
 fn help_page(path: &[String], columns: usize) -> String {
-    let out = Command::new(env!("CARGO_BIN_EXE_iridis"))
+    let out = crate::common::command()
         .args(path)
         .arg("--help")
         .env("COLUMNS", columns.to_string())
@@ -420,7 +419,7 @@ fn afm_samples() -> PathBuf {
 }
 
 fn run_in(dir: &Path, args: &[String]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_iridis")).args(args).current_dir(dir).output().expect("cannot run iridis")
+    crate::common::command().args(args).current_dir(dir).output().expect("cannot run iridis")
 }
 
 /// Makes the missing input `name` of `words` in `dir` (module documentation); `Err` says why it cannot.
@@ -716,7 +715,7 @@ fn the_rules_do_what_they_say() {
 /// ones the parser itself lists when given an unknown one.
 #[test]
 fn help_lists_every_method_and_every_surface_format() {
-    let out = Command::new(env!("CARGO_BIN_EXE_iridis"))
+    let out = crate::common::command()
         .args(["brdf", "eval", "builtin:sine?size=2um&pixel=50nm", "--light", "0deg", "--view", "0deg"])
         .args(["--method", "no-such-method"])
         .output()

@@ -335,7 +335,7 @@ fn builtin_tables_are_cached_under_a_content_key() {
     )
     .unwrap();
     let run = || {
-        let out = std::process::Command::new(env!("CARGO_BIN_EXE_iridis"))
+        let out = crate::common::command()
             .args(["render", &scene, "--size", "8x8", "-o", &png])
             .env("IRIDIS_CACHE", &cache)
             .output()
@@ -361,7 +361,7 @@ fn builtin_tables_are_cached_under_a_content_key() {
 fn long_steps_announce_themselves_in_a_log() {
     let d = tmp();
     let t = p(d.path(), "t.npz");
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_iridis"))
+    let out = crate::common::command()
         .args(["precompute", SMALL, "--coherence", "4um", "--uv-resolution", "31", "-o", &t])
         .env("IRIDIS_PROGRESS_AFTER_MS", "0")
         .output()

@@ -1,11 +1,7 @@
 //! `iridis surface` end to end: generate → file → info finds the generated period; bad input exits
 //! non-zero with a message and leaves no file behind.
 
-use std::process::Command;
-
-fn iridis() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_iridis"))
-}
+use crate::common::{command as iridis, succeeds as ok};
 
 #[test]
 fn generate_then_info_recovers_the_period() {
@@ -87,13 +83,6 @@ fn fixture(name: &str) -> String {
 
 fn expected() -> serde_json::Value {
     serde_json::from_str(&std::fs::read_to_string(fixture("expected.json")).unwrap()).unwrap()
-}
-
-/// Runs `iridis ARGS`, which must succeed; returns stdout parsed as JSON when `json`.
-fn ok(args: &[&str]) -> std::process::Output {
-    let o = iridis().args(args).output().unwrap();
-    assert!(o.status.success(), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
-    o
 }
 
 fn info_json(args: &[&str]) -> serde_json::Value {

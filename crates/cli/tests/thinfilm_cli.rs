@@ -183,9 +183,9 @@ fn issue_example_gold_file_works() {
 #[test]
 fn closed_stdout_pipe_is_a_clean_exit() {
     use std::io::Read;
-    use std::process::{Command, Stdio};
+    use std::process::Stdio;
     for extra in [&["--json"][..], &["--csv"][..]] {
-        let mut child = Command::new(env!("CARGO_BIN_EXE_iridis"))
+        let mut child = crate::common::command()
             .args(["thinfilm", "spectrum", "--stack", "air | water 348nm | air", "--step", "0.1nm"])
             .args(["--from", "380nm", "--to", "780nm"])
             .args(extra)

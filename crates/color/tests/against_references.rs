@@ -3,18 +3,10 @@
 
 use iridis_color::integrate::{emission_to_xyz, reflectance_to_xyz, white_point};
 use iridis_color::lab::{delta_e_1976, delta_e_2000};
-use iridis_color::{Illuminant, Lab, Observer, Spectrum, Xyz};
+use iridis_color::{Illuminant, Lab, Observer, Xyz};
 use serde_json::Value;
 
-fn fixture(name: &str) -> Value {
-    let path = format!("{}/tests/fixtures/{name}", env!("CARGO_MANIFEST_DIR"));
-    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
-}
-
-fn arr3(v: &Value) -> [f64; 3] {
-    let a: Vec<f64> = v.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
-    [a[0], a[1], a[2]]
-}
+use crate::common::{arr3, fixture, spectra};
 
 #[test]
 fn ciede2000_matches_sharma_wu_dalal_2005() {
@@ -64,13 +56,9 @@ fn illuminant_colours_match_colour_science() {
 #[test]
 fn spectrum_colours_match_colour_science() {
     let data = fixture("colour_science.json");
-    let wl: Vec<f64> = data["wavelengths_nm"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
     let mut checked = 0;
-    for entry in data["spectra"].as_array().unwrap() {
+    for (entry, spectrum) in spectra(&data) {
         let name = entry["name"].as_str().unwrap();
-        let values: Vec<f64> =
-            data["spectrum_values"][name].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
-        let spectrum = Spectrum::new(wl.clone(), values).unwrap();
         let observer: Observer = parse(&entry["observer"]);
         let illuminant: Illuminant = parse(&entry["illuminant"]);
         let xyz = reflectance_to_xyz(&spectrum, illuminant, observer);

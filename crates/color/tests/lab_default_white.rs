@@ -3,21 +3,13 @@
 
 use iridis_color::integrate::{reflectance_to_xyz, white_point};
 use iridis_color::lab::d65_white;
-use iridis_color::{Illuminant, Lab, Observer, Spectrum, Xyz};
-use serde_json::Value;
+use iridis_color::{Illuminant, Lab, Observer, Xyz};
 
-fn fixture() -> Value {
-    serde_json::from_str(include_str!("fixtures/colour_science.json")).unwrap()
-}
-
-fn arr3(v: &Value) -> [f64; 3] {
-    let a: Vec<f64> = v.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
-    [a[0], a[1], a[2]]
-}
+use crate::common::{arr3, fixture, spectra};
 
 #[test]
 fn default_white_is_colour_science_d65() {
-    let doc = fixture();
+    let doc = fixture("colour_science.json");
     let d65 = doc["illuminants"]
         .as_array()
         .unwrap()
@@ -40,17 +32,14 @@ fn default_white_is_colour_science_d65() {
 
 #[test]
 fn d65_lab_matches_colour_science_and_round_trips() {
-    let doc = fixture();
-    let wl: Vec<f64> = doc["wavelengths_nm"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+    let doc = fixture("colour_science.json");
     let mut checked = 0;
-    for e in doc["spectra"].as_array().unwrap() {
+    for (e, spectrum) in spectra(&doc) {
         if e["illuminant"] != "D65" || e["observer"] != "1931" {
             continue;
         }
         let name = e["name"].as_str().unwrap();
-        let values: Vec<f64> =
-            doc["spectrum_values"][name].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
-        let xyz = reflectance_to_xyz(&Spectrum::new(wl.clone(), values).unwrap(), Illuminant::D65, Observer::Cie1931);
+        let xyz = reflectance_to_xyz(&spectrum, Illuminant::D65, Observer::Cie1931);
         let lab = Lab::from_xyz_d65(xyz);
         // Same as naming the white explicitly, and as colour-science (tolerance as in against_references.rs:
         // rectangle against trapezoid rule on the 1 nm grid).

@@ -418,18 +418,7 @@ fn a_film_fresnel_source_enters_the_spectrum_linearly() {
 /// power per unit incident power, relative to `R₀`.
 fn hemispherical(truth: &GroundTruth, theta_deg: f64) -> f64 {
     let wi = light(theta_deg);
-    let (n, mut sum) = (161, 0.0);
-    let d = 2.0 / n as f64;
-    for j in 0..n {
-        for i in 0..n {
-            let (a, b) = (-1.0 + (i as f64 + 0.5) * d, -1.0 + (j as f64 + 0.5) * d);
-            let r2 = a * a + b * b;
-            if r2 < 1.0 {
-                sum += truth.reflectance(500.0, wi, [a, b, (1.0 - r2).sqrt()]).unwrap() * d * d;
-            }
-        }
-    }
-    sum / wi[2]
+    common::projected_disk_sum(161, |wr| truth.reflectance(500.0, wi, wr).unwrap()) / wi[2]
 }
 
 #[test]

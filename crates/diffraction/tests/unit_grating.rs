@@ -143,22 +143,8 @@ fn energy_and_reciprocity_hold_on_a_cell_with_hundreds_of_channels() {
 /// `∬ f_r cos θ_r dω_r = ∬ f_r du dv` of a continuous evaluator for light at `wi`, one wavelength, on a
 /// grid over the unit disk.
 fn hemispherical(e: &dyn iridis_diffraction::Evaluator, wi: Vec3, lambda: f64, n: usize) -> f64 {
-    let du = 2.0 / n as f64;
-    let mut sum = 0.0;
-    for j in 0..n {
-        for i in 0..n {
-            let (x, y) = (-1.0 + (i as f64 + 0.5) * du, -1.0 + (j as f64 + 0.5) * du);
-            if x * x + y * y >= 1.0 {
-                continue;
-            }
-            let wr = [x, y, (1.0 - x * x - y * y).sqrt()];
-            let rho = e.reflectance(lambda, wi, wr).unwrap();
-            let f =
-                e.shading().unwrap().fresnel.normal_reflectance() * rho * e.radiometric_gain(lambda).unwrap() / wi[2];
-            sum += f * du * du;
-        }
-    }
-    sum
+    let f_r_per_rho = e.shading().unwrap().fresnel.normal_reflectance() * e.radiometric_gain(lambda).unwrap() / wi[2];
+    crate::common::projected_disk_sum(n, |wr| e.reflectance(lambda, wi, wr).unwrap()) * f_r_per_rho
 }
 
 #[test]

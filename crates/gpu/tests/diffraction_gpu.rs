@@ -10,9 +10,7 @@ use crate::common;
 use std::sync::Arc;
 
 use common::gpu;
-use iridis_color::integrate::white_point;
-use iridis_color::lab::delta_e_2000;
-use iridis_color::{Encoding, Illuminant, Lab, Observer, ToneMap, Xyz};
+use iridis_color::{Encoding, ToneMap, Xyz};
 use iridis_diffraction::encoding::{EncodedTable, TableEncoding};
 use iridis_diffraction::geometry::{direction, uvw, Shading};
 use iridis_diffraction::map::view_direction;
@@ -21,18 +19,12 @@ use iridis_diffraction::taylor::terms_for_bound;
 use iridis_diffraction::{Aperture, Evaluator, Fresnel, GroundTruth, Patch, SpectralSetup, TaylorTerms};
 use iridis_gpu::table_build::table_error;
 use iridis_gpu::{GpuGroundTruth, GpuLookup};
+use iridis_thinfilm::accuracy::DeltaEStats;
 
 /// CIEDE2000 of displayed colours (exposure, clipped to the sRGB cube): mean, p99, max.
 fn delta_e(a: &[Xyz], b: &[Xyz], exposure: f64) -> [f64; 3] {
-    let white = white_point(Illuminant::D65, Observer::Cie1931);
-    let shown = |x: Xyz| {
-        let rgb = x.scale(exposure).to_linear_srgb().map(|c| if c.is_nan() { 0.0 } else { c.clamp(0.0, 1.0) });
-        Lab::from_xyz(Xyz::from_linear_srgb(rgb), white)
-    };
-    let mut d: Vec<f64> = a.iter().zip(b).map(|(p, q)| delta_e_2000(shown(*p), shown(*q))).collect();
-    d.sort_by(f64::total_cmp);
-    let n = d.len();
-    [d.iter().sum::<f64>() / n as f64, d[((n as f64 * 0.99) as usize).min(n - 1)], d[n - 1]]
+    let s = DeltaEStats::between(a, b, exposure);
+    [s.mean, s.p99, s.max]
 }
 
 fn patch(spec: &str) -> Patch {

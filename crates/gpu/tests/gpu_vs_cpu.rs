@@ -10,31 +10,22 @@ use crate::common;
 use std::sync::Arc;
 
 use common::gpu;
-use iridis_color::integrate::white_point;
-use iridis_color::lab::delta_e_2000;
 use iridis_color::spectrum::uniform_grid;
-use iridis_color::{Encoding, Illuminant, Lab, Observer, SpectralWeights, ToneMap, Xyz};
+use iridis_color::{Encoding, Illuminant, Observer, SpectralWeights, ToneMap, Xyz};
 use iridis_diffraction::geometry::direction;
 use iridis_diffraction::table::{Lookup, LookupTable, Precision, TableParams};
 use iridis_diffraction::taylor::terms_for_bound;
 use iridis_diffraction::{Fresnel, FresnelConvention, Patch, Shading, SpectralSetup, TaylorTerms};
 use iridis_gpu::{FilmFrame, FilmPath, FilmPathUsed, GpuFilm, GpuLookup};
+use iridis_thinfilm::accuracy::{delta_e_displayed, DeltaEStats};
 use iridis_thinfilm::{Complex64, Stack};
 
 /// CIEDE2000 between displayed colours (exposure, clipped to the sRGB cube), over the given pixels:
 /// (mean, 99th percentile, max).
 fn delta_e(a: &[Xyz], b: &[Xyz], exposure: f64, pixels: impl Iterator<Item = usize>) -> (f64, f64, f64) {
-    let white = white_point(Illuminant::D65, Observer::Cie1931);
-    let shown = |x: Xyz| {
-        let rgb = x.scale(exposure).to_linear_srgb().map(|c| if c.is_nan() { 0.0 } else { c.clamp(0.0, 1.0) });
-        Lab::from_xyz(Xyz::from_linear_srgb(rgb), white)
-    };
-    let mut d: Vec<f64> = pixels.map(|i| delta_e_2000(shown(a[i]), shown(b[i]))).collect();
-    assert!(!d.is_empty());
-    d.sort_by(|x, y| x.total_cmp(y));
-    let mean = d.iter().sum::<f64>() / d.len() as f64;
-    let p99 = d[((d.len() as f64 * 0.99) as usize).min(d.len() - 1)];
-    (mean, p99, d[d.len() - 1])
+    let s = DeltaEStats::of(pixels.map(|i| delta_e_displayed(a[i], b[i], exposure)).collect());
+    assert!(s.count > 0);
+    (s.mean, s.p99, s.max)
 }
 
 /// A small lookup table of a built-in surface (16 µm patch at 50 nm, coherence = the patch, 121² grid).

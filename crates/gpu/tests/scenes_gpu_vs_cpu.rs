@@ -16,11 +16,8 @@ use crate::common;
 use std::path::PathBuf;
 
 use common::gpu;
-use iridis_color::integrate::white_point;
-use iridis_color::lab::delta_e_2000;
-use iridis_color::{Illuminant, Lab, Observer, Xyz};
 use iridis_gpu::GpuScene;
-use iridis_render::{load_scene, parse_scene, render, Image, Scene};
+use iridis_render::{load_scene, parse_scene, render, Scene};
 
 fn examples() -> Vec<PathBuf> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../examples");
@@ -104,25 +101,6 @@ fn scale_test_examples() -> Vec<PathBuf> {
     picked.into_iter().map(|k| all[k].clone()).collect()
 }
 
-/// Per-pixel CIEDE2000 between the displayed images (exposure, clipped to the sRGB cube), sorted.
-fn delta_e(a: &Image, b: &Image, exposure: f64) -> Vec<f64> {
-    let white = white_point(Illuminant::D65, Observer::Cie1931);
-    let shown = |p: [f32; 3]| {
-        let rgb = p.map(|c| {
-            let c = c as f64 * exposure;
-            if c.is_nan() {
-                0.0
-            } else {
-                c.clamp(0.0, 1.0)
-            }
-        });
-        Lab::from_xyz(Xyz::from_linear_srgb(rgb), white)
-    };
-    let mut d: Vec<f64> = a.data.iter().zip(&b.data).map(|(&p, &q)| delta_e_2000(shown(p), shown(q))).collect();
-    d.sort_by(|x, y| x.total_cmp(y));
-    d
-}
-
 /// GPU against CPU for one scene at `w` pixels wide: (mean ΔE00, 99th percentile, share of pixels where a
 /// displayed 8-bit channel differs by more than 8 levels), and whether the CPU image is lit.
 fn compare(gpu: &iridis_gpu::Gpu, scene: &Scene, name: &str, w: u32) -> (f64, f64, f64, bool) {
@@ -133,16 +111,14 @@ fn compare(gpu: &iridis_gpu::Gpu, scene: &Scene, name: &str, w: u32) -> (f64, f6
     if let Some(o) = g.stack_overflow() {
         panic!("{name}: {o}");
     }
-    let d = delta_e(&cpu, &img, scene.output.exposure);
-    let mean = d.iter().sum::<f64>() / d.len() as f64;
-    let p99 = d[((d.len() as f64 * 0.99) as usize).min(d.len() - 1)];
+    let d = common::image_delta_e(&cpu, &img, scene.output.exposure);
     let (a, b) = (
         cpu.to_rgb8(scene.output.exposure, scene.output.encoding),
         img.to_rgb8(scene.output.exposure, scene.output.encoding),
     );
     let off = a.chunks(3).zip(b.chunks(3)).filter(|(p, q)| p.iter().zip(*q).any(|(x, y)| x.abs_diff(*y) > 8)).count();
     let lit = cpu.data.iter().filter(|p| p.iter().any(|&c| c > 1e-3)).count() > cpu.data.len() / 10;
-    (mean, p99, off as f64 / d.len() as f64, lit)
+    (d.mean, d.p99, off as f64 / d.count as f64, lit)
 }
 
 #[test]
@@ -356,10 +332,9 @@ fn every_example_scene_matches_the_cpu() {
         let cpu = render(&scene, w, h, 1, &|_| {});
         let g = GpuScene::new(gpu, &scene).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         let img = g.render(w, h, 1, &|_| {}).unwrap();
-        let d = delta_e(&cpu, &img, scene.output.exposure);
-        let mean = d.iter().sum::<f64>() / d.len() as f64;
-        let p99 = d[((d.len() as f64 * 0.99) as usize).min(d.len() - 1)];
-        eprintln!("{name:<32} {w}×{h}: mean ΔE00 {mean:.3}, p99 {p99:.3}, max {:.2}", d[d.len() - 1]);
+        let d = common::image_delta_e(&cpu, &img, scene.output.exposure);
+        let (mean, p99) = (d.mean, d.p99);
+        eprintln!("{name:<32} {w}×{h}: mean ΔE00 {mean:.3}, p99 {p99:.3}, max {:.2}", d.max);
         // The image must show something (a black GPU image would agree with a black CPU image).
         let lit = cpu.data.iter().filter(|p| p.iter().any(|&c| c > 1e-3)).count();
         assert!(lit > cpu.data.len() / 10, "{name}: the CPU image is nearly black");

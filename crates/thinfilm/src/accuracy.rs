@@ -21,12 +21,15 @@ pub fn delta_e_displayed(a: Xyz, b: Xyz, exposure: f64) -> f64 {
     delta_e_2000(displayed_lab(a, exposure), displayed_lab(b, exposure))
 }
 
-/// Mean, 99th percentile (nearest rank below) and maximum of a set of colour differences.
+/// Mean, 95th and 99th percentiles (nearest rank below) and maximum of a set of colour differences: the one ΔE
+/// statistics of the benches (`iridis_api::bench`), the film-path studies and the GPU tests.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct DeltaEStats {
     pub mean: f64,
+    pub p95: f64,
     pub p99: f64,
     pub max: f64,
+    /// How many colours were compared.
     pub count: usize,
 }
 
@@ -34,13 +37,15 @@ impl DeltaEStats {
     /// The statistics of `values` (all zero for none).
     pub fn of(mut values: Vec<f64>) -> Self {
         if values.is_empty() {
-            return Self { mean: 0.0, p99: 0.0, max: 0.0, count: 0 };
+            return Self { mean: 0.0, p95: 0.0, p99: 0.0, max: 0.0, count: 0 };
         }
         values.sort_by(f64::total_cmp);
         let n = values.len();
+        let rank = |q: f64| values[((n as f64 * q) as usize).min(n - 1)];
         Self {
             mean: values.iter().sum::<f64>() / n as f64,
-            p99: values[((n as f64 * 0.99) as usize).min(n - 1)],
+            p95: rank(0.95),
+            p99: rank(0.99),
             max: values[n - 1],
             count: n,
         }
@@ -66,7 +71,7 @@ mod tests {
     #[test]
     fn statistics_and_clipping() {
         let s = DeltaEStats::of((1..=200).map(|i| i as f64).collect());
-        assert_eq!((s.mean, s.p99, s.max, s.count), (100.5, 199.0, 200.0, 200));
+        assert_eq!((s.mean, s.p95, s.p99, s.max, s.count), (100.5, 191.0, 199.0, 200.0, 200));
         // Two colours both far above white are both shown as white.
         let w = white_point(Illuminant::D65, Observer::Cie1931);
         assert!(delta_e_displayed(w.scale(3.0), w.scale(5.0), 1.0) < 1e-9);

@@ -2,7 +2,7 @@
 //! the `tmm` transfer-matrix package (fixtures from `tools/gen_thinfilm_fixtures.py`), and physical laws
 //! (energy conservation, bounds, reciprocity of limits).
 
-use iridis_thinfilm::{Complex64, Stack};
+use iridis_thinfilm::Stack;
 use proptest::prelude::*;
 use serde_json::Value;
 
@@ -64,13 +64,10 @@ fn reproduces_sussenbach_figure_3_8() {
     assert!(worst < 1e-6);
 }
 
-fn fixture() -> Value {
-    let text = include_str!("fixtures/tmm_reference.json");
-    serde_json::from_str(text).expect("fixture parses")
-}
+use crate::common::complex as c;
 
-fn c(v: &Value) -> Complex64 {
-    Complex64::new(v[0].as_f64().unwrap(), v[1].as_f64().unwrap())
+fn fixture() -> Value {
+    crate::common::fixture("tmm_reference.json")
 }
 
 #[test]

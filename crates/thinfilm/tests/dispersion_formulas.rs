@@ -7,7 +7,7 @@ use iridis_thinfilm::nkfile::parse_yaml;
 use serde_json::Value;
 
 fn fixture() -> Value {
-    serde_json::from_str(include_str!("fixtures/dispersion_formulas.json")).expect("fixture parses")
+    crate::common::fixture("dispersion_formulas.json")
 }
 
 fn yaml(formula: u64, range_um: &[Value], coefficients: &[Value]) -> String {

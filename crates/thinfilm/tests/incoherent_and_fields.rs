@@ -6,7 +6,7 @@ use iridis_thinfilm::Stack;
 use serde_json::Value;
 
 fn fixture() -> Value {
-    serde_json::from_str(include_str!("fixtures/tmm_incoherent.json")).expect("fixture parses")
+    crate::common::fixture("tmm_incoherent.json")
 }
 
 fn f(v: &Value) -> f64 {
@@ -150,7 +150,7 @@ fn mixed_stack_profiles_agree_with_tmm() {
     // tools/gen_inc_profile_fixtures.py: tmm's absorption density in coherent layers of mixed stacks
     // (inc_find_absorp_analytic_fn), flux and |E|² from its group solutions and intensities, Beer–Lambert in
     // the incoherent layers on its VW_list intensities.
-    let doc: Value = serde_json::from_str(include_str!("fixtures/tmm_inc_profile.json")).unwrap();
+    let doc: Value = crate::common::fixture("tmm_inc_profile.json");
     let (mut worst, mut worst_inc, mut n_points, mut n_inc_points) = (0.0f64, 0.0f64, 0, 0);
     for case in doc["cases"].as_array().unwrap() {
         let s = case["stack"].as_str().unwrap();

@@ -1,6 +1,7 @@
 //! The integration tests of iridis-thinfilm: one module a file, one test binary (README, "Tests").
 
 mod against_references;
+mod common;
 mod derivatives;
 mod dispersion_formulas;
 mod film_path_study;

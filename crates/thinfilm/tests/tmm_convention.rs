@@ -16,13 +16,11 @@ fn lists(stack: &str) -> (Vec<Complex64>, Vec<f64>) {
     (n, d)
 }
 
-fn c(v: &Value) -> Complex64 {
-    Complex64::new(v[0].as_f64().unwrap(), v[1].as_f64().unwrap())
-}
+use crate::common::{complex as c, fixture};
 
 #[test]
 fn coh_tmm_agrees_with_tmm_on_the_fixture() {
-    let doc: Value = serde_json::from_str(include_str!("fixtures/tmm_reference.json")).unwrap();
+    let doc: Value = fixture("tmm_reference.json");
     let (mut worst, mut count, mut absorbing) = (0.0f64, 0, 0);
     for case in doc["cases"].as_array().unwrap() {
         if case["kind"] == "seed" {
@@ -54,7 +52,7 @@ fn coh_tmm_agrees_with_tmm_on_the_fixture() {
 fn batch_agrees_with_tmm_on_one_stack_at_many_points() {
     // The fixture's stacks at their own points, run as batches of one stack each; plus the same stack over
     // a grid, checked point by point against single calls (which the test above ties to tmm).
-    let doc: Value = serde_json::from_str(include_str!("fixtures/tmm_reference.json")).unwrap();
+    let doc: Value = fixture("tmm_reference.json");
     for case in doc["cases"].as_array().unwrap().iter().filter(|c| c["kind"] != "seed").take(200) {
         let (n, d) = lists(case["stack"].as_str().unwrap());
         let (w, th) = (case["wavelength_nm"].as_f64().unwrap(), case["angle_rad"].as_f64().unwrap());
@@ -71,7 +69,7 @@ fn batch_agrees_with_tmm_on_one_stack_at_many_points() {
 
 #[test]
 fn inc_tmm_agrees_with_tmm() {
-    let doc: Value = serde_json::from_str(include_str!("fixtures/tmm_incoherent.json")).unwrap();
+    let doc: Value = fixture("tmm_incoherent.json");
     let mut worst = 0.0f64;
     for case in doc["inc"].as_array().unwrap() {
         let text = case["stack"].as_str().unwrap();

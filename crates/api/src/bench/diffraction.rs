@@ -15,7 +15,7 @@ use iridis_diffraction::table::{Lookup, LookupTable, Precision, TableParams};
 use iridis_diffraction::{Patch, Shading, SpectralSetup, TaylorTerms};
 use serde_json::json;
 
-use super::{delta_e_stats, disk_pixels, Bench};
+use super::{disk_pixels, Bench, DeltaEStats};
 use crate::report::Report;
 
 /// A reproducible rough surface: a sum of random gratings (σ_h ≈ 60 nm) at 65 nm per pixel.
@@ -306,7 +306,7 @@ impl Default for AccuracyOptions {
 fn map_delta_e(a: &[Xyz], b: &[Xyz], exposure: f64, size: usize) -> (f64, f64) {
     let disk = disk_pixels(size);
     let pick = |m: &[Xyz]| -> Vec<Xyz> { disk.iter().map(|&i| m[i]).collect() };
-    let s = delta_e_stats(&pick(a), &pick(b), exposure);
+    let s = DeltaEStats::between(&pick(a), &pick(b), exposure);
     (s.mean, s.p95)
 }
 

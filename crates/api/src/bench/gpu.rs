@@ -20,7 +20,7 @@ use iridis_gpu::{FilmFrame, FilmPath, FrameTime, Gpu, GpuFilm, GpuLookup, GpuSce
 use iridis_thinfilm::spectral::{dense_weights, sampled_weights, FULL_BAND_NM};
 use serde_json::{json, Value};
 
-use super::{delta_e_stats, disk_pixels, sample, view_of, Bench, DeltaE, FrameStats};
+use super::{disk_pixels, sample, view_of, Bench, DeltaEStats, FrameStats};
 use crate::report::Report;
 use crate::{ModelOptions, SurfaceOptions};
 
@@ -158,7 +158,7 @@ impl Timed {
 
     /// The run's lines: wall clock, GPU timestamps, and its colours' difference from the CPU's (`cpu`: what the
     /// CPU computed, on how many pixels).
-    fn vs_cpu_lines(&self, indent: &str, cpu: &str, de: &DeltaE) -> [String; 3] {
+    fn vs_cpu_lines(&self, indent: &str, cpu: &str, de: &DeltaEStats) -> [String; 3] {
         let vs = format!("{indent}vs CPU ({cpu}): ΔE00 mean {:.4}, p99 {:.4}", de.mean, de.p99);
         [self.wall_line(indent), self.gpu_line(indent), vs]
     }
@@ -329,7 +329,12 @@ pub fn gpu(a: &GpuBenchOptions, report: &dyn Report) -> Result<Bench> {
         let last = light(times.len().saturating_sub(1));
         let cpu_e: Vec<Xyz> = px.iter().map(|&i| cpu.xyz(last, view_of(i, mw))).collect();
         let gpu_e: Vec<Xyz> = px.iter().map(|&i| m.xyz[i]).collect();
-        encoded.push((e, l.table_bytes() as f64 / 1e6, Timed::of(&times), delta_e_stats(&gpu_e, &cpu_e, 1500.0)));
+        encoded.push((
+            e,
+            l.table_bytes() as f64 / 1e6,
+            Timed::of(&times),
+            DeltaEStats::between(&gpu_e, &cpu_e, 1500.0),
+        ));
         first_map.get_or_insert(m);
     }
     let map = first_map.context("internal: no table encoding timed")?;
@@ -364,11 +369,11 @@ pub fn gpu(a: &GpuBenchOptions, report: &dyn Report) -> Result<Bench> {
     let reflected = |v: &[(Xyz, Xyz)]| -> Vec<Xyz> { v.iter().map(|p| p.0).collect() };
     let at = |out: &[Xyz]| -> Vec<Xyz> { fpx.iter().map(|&i| out[i]).collect() };
     let ymax = cpu_dense.iter().map(|x| x.0.y).fold(1e-6f64, f64::max);
-    let fast_de = delta_e_stats(&at(&fast_out.reflected), &reflected(&cpu_dense), 1.0 / ymax);
-    let direct_de = delta_e_stats(&at(&direct_out.reflected), &reflected(&cpu_direct), 1.0 / ymax);
+    let fast_de = DeltaEStats::between(&at(&fast_out.reflected), &reflected(&cpu_dense), 1.0 / ymax);
+    let direct_de = DeltaEStats::between(&at(&direct_out.reflected), &reflected(&cpu_direct), 1.0 / ymax);
     // The fast path against the direct one over every pixel, the brightest direct pixel at Y = 1.
     let frame_ymax = direct_out.reflected.iter().map(|x| x.y).fold(1e-6f64, f64::max);
-    let vs_direct = delta_e_stats(&fast_out.reflected, &direct_out.reflected, 1.0 / frame_ymax);
+    let vs_direct = DeltaEStats::between(&fast_out.reflected, &direct_out.reflected, 1.0 / frame_ymax);
     let (fmed, dmed) = (fast_t.wall.median, direct_t.wall.median);
     let (grid, build_ms, fallback) = match fast_run.path() {
         FilmPathUsed::Table { grid, build } => (Some(*grid), Some(build.as_secs_f64() * 1e3), None),
@@ -505,8 +510,8 @@ fn scene(a: &GpuBenchOptions, path: &Path, report: &dyn Report) -> Result<Bench>
     let xyz = |i: &iridis_render::Image| -> Vec<Xyz> {
         i.data.iter().map(|p| Xyz::from_linear_srgb(p.map(|c| c as f64))).collect()
     };
-    let de = delta_e_stats(&xyz(&img), &xyz(&cpu), scene.output.exposure);
-    let direct = direct.map(|(dt, di)| (dt, delta_e_stats(&xyz(&img), &xyz(&di), scene.output.exposure)));
+    let de = DeltaEStats::between(&xyz(&img), &xyz(&cpu), scene.output.exposure);
+    let direct = direct.map(|(dt, di)| (dt, DeltaEStats::between(&xyz(&img), &xyz(&di), scene.output.exposure)));
     if let Some(dir) = &a.save {
         crate::output::write_png_rgb8(&dir.join("scene_gpu.png"), w, h, &frame.read_rgb8(&g)?)?;
     }
@@ -660,7 +665,7 @@ fn ground_truth(gpu: &Gpu, a: &GpuBenchOptions, patch: &Patch, report: &dyn Repo
         let cpu: Vec<Xyz> = picked.par_iter().map(|&i| gt.xyz(wi, view_of(i, size))).collect();
         let cpu_s = t.elapsed().as_secs_f64();
         let gpu_px: Vec<Xyz> = picked.iter().map(|&i| map[i]).collect();
-        let de = delta_e_stats(&gpu_px, &cpu, 1500.0);
+        let de = DeltaEStats::between(&gpu_px, &cpu, 1500.0);
         let (gpu_rate, cpu_rate) = (disk.len() as f64 / gpu_s, picked.len() as f64 / cpu_s);
         lines.push(format!(
             "  {:<8} GPU {gpu_s:.2} s ({gpu_rate:.1} pixels/s, with upload and compilation); CPU ({threads} threads) \

@@ -13,8 +13,6 @@ pub mod render;
 
 use std::time::Duration;
 
-use iridis_color::Xyz;
-use iridis_thinfilm::accuracy::delta_e_displayed;
 use serde_json::{json, Value};
 
 pub use crate::grating_bench::{bench_grating, GratingBenchOptions};
@@ -51,38 +49,9 @@ pub fn grating(o: &GratingBenchOptions, report: &dyn crate::Report) -> anyhow::R
 /// The benches by the names `iridis bench NAME` and `python -m iridis.bench NAME` give them.
 pub const NAMES: &[&str] = &["diffraction", "diffraction-accuracy", "diffraction-methods", "gpu", "render", "grating"];
 
-/// Displayed CIEDE2000 between matching colours (after one exposure, clipped to the sRGB cube as a display shows
-/// them; `iridis_thinfilm::accuracy::delta_e_displayed`): the one ΔE statistics of every bench.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct DeltaE {
-    pub mean: f64,
-    /// 95th percentile (nearest rank below).
-    pub p95: f64,
-    /// 99th percentile (nearest rank below).
-    pub p99: f64,
-    pub max: f64,
-    /// How many colours were compared.
-    pub count: usize,
-}
-
-impl std::fmt::Display for DeltaE {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "ΔE00 mean {:.4}, p99 {:.4}, max {:.4} ({} colours)", self.mean, self.p99, self.max, self.count)
-    }
-}
-
-/// [`DeltaE`] between `a` and `b` (same length) at `exposure` RU; zeros for no colours.
-pub fn delta_e_stats(a: &[Xyz], b: &[Xyz], exposure: f64) -> DeltaE {
-    use rayon::prelude::*;
-    let mut d: Vec<f64> = a.par_iter().zip(b).map(|(p, q)| delta_e_displayed(*p, *q, exposure)).collect();
-    if d.is_empty() {
-        return DeltaE { mean: 0.0, p95: 0.0, p99: 0.0, max: 0.0, count: 0 };
-    }
-    d.sort_by(f64::total_cmp);
-    let n = d.len();
-    let rank = |q: f64| d[((n as f64 * q) as usize).min(n - 1)];
-    DeltaE { mean: d.iter().sum::<f64>() / n as f64, p95: rank(0.95), p99: rank(0.99), max: d[n - 1], count: n }
-}
+/// The one ΔE statistics of every bench: displayed CIEDE2000 between matching colours (after one exposure,
+/// clipped to the sRGB cube as a display shows them), `DeltaEStats::between`.
+pub use iridis_thinfilm::accuracy::DeltaEStats;
 
 /// Width of a text table's name column: its header's or the longest name's, whichever is wider (a scan's path,
 /// a built-in with parameters and the figure scenes' names are longer than a fixed column).

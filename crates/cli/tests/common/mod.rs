@@ -14,26 +14,35 @@ pub fn tmp() -> tempfile::TempDir {
     tempfile::tempdir().expect("a temporary folder")
 }
 
-/// Runs the built binary from the repository root (so `data/…` paths in examples work).
+/// The built binary as a command to add arguments, environment or pipes to, run from the repository root (so
+/// `data/…` and `examples/…` paths work as in the README).
+pub fn command() -> Command {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_iridis"));
+    c.current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."));
+    c
+}
+
+/// Runs `iridis ARGS` from the repository root.
 pub fn iridis<S: AsRef<std::ffi::OsStr> + std::fmt::Debug>(args: &[S]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_iridis"))
-        .args(args)
-        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
-        .output()
-        .expect("cannot run iridis")
+    command().args(args).output().expect("cannot run iridis")
+}
+
+/// Runs a command that must succeed.
+pub fn succeeds<S: AsRef<std::ffi::OsStr> + std::fmt::Debug>(args: &[S]) -> Output {
+    let out = iridis(args);
+    assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+    out
 }
 
 /// Runs a command that must succeed; its stderr then its stdout, as text.
 pub fn ok<S: AsRef<std::ffi::OsStr> + std::fmt::Debug>(args: &[S]) -> String {
-    let out = iridis(args);
-    assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+    let out = succeeds(args);
     String::from_utf8_lossy(&out.stderr).to_string() + &String::from_utf8_lossy(&out.stdout)
 }
 
 /// Runs a command that must succeed and print JSON.
 pub fn json_of<S: AsRef<std::ffi::OsStr> + std::fmt::Debug>(args: &[S]) -> serde_json::Value {
-    let out = iridis(args);
-    assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+    let out = succeeds(args);
     serde_json::from_slice(&out.stdout).unwrap_or_else(|e| panic!("{args:?}: not JSON ({e})"))
 }
 

@@ -11,3 +11,20 @@ pub fn heights(n: usize, amp: f64, seed: u64) -> Vec<f64> {
         })
         .collect()
 }
+
+/// `∬ g(ω_r) du dv` over the unit disk of view directions `ω_r = (u, v, √(1 − u² − v²))` (so `du dv = cos θ_r dω_r`),
+/// by the midpoint rule on an `n × n` grid over the square `[−1, 1]²`.
+pub fn projected_disk_sum(n: usize, mut g: impl FnMut([f64; 3]) -> f64) -> f64 {
+    let d = 2.0 / n as f64;
+    let mut sum = 0.0;
+    for j in 0..n {
+        for i in 0..n {
+            let (u, v) = (-1.0 + (i as f64 + 0.5) * d, -1.0 + (j as f64 + 0.5) * d);
+            let r2 = u * u + v * v;
+            if r2 < 1.0 {
+                sum += g([u, v, (1.0 - r2).sqrt()]) * d * d;
+            }
+        }
+    }
+    sum
+}

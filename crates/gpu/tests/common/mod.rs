@@ -2,11 +2,10 @@
 //! images look. The example `extended_light` includes this file too.
 #![allow(dead_code)] // each user takes its subset
 
-use iridis_color::integrate::white_point;
-use iridis_color::lab::delta_e_2000;
-use iridis_color::{Illuminant, Lab, Observer, Xyz};
+use iridis_color::Xyz;
 use iridis_gpu::Gpu;
 use iridis_render::Image;
+use iridis_thinfilm::accuracy::DeltaEStats;
 
 /// The adapter, opened once per test process and shared by its tests (or `None` when `IRIDIS_SKIP_GPU=1` says to
 /// skip; without either, a failure with the driver hint). One device means one compilation of each pipeline per
@@ -36,11 +35,17 @@ pub fn one_scene_at_a_time() -> std::sync::MutexGuard<'static, ()> {
     SERIAL.lock().unwrap_or_else(|e| e.into_inner())
 }
 
-/// Mean and 99th percentile of the per-pixel CIEDE2000 between two images as displayed (exposure 1, clipped).
+/// The per-pixel CIEDE2000 between two images as displayed (linear sRGB scaled by `exposure`, clipped to the
+/// cube): the benches' one ΔE statistics (`iridis_thinfilm::accuracy::DeltaEStats`).
+pub fn image_delta_e(a: &Image, b: &Image, exposure: f64) -> DeltaEStats {
+    let xyz = |img: &Image| -> Vec<Xyz> { img.data.iter().map(|p| Xyz::from_linear_srgb(p.map(f64::from))).collect() };
+    DeltaEStats::between(&xyz(a), &xyz(b), exposure)
+}
+
+/// Mean and 99th percentile of [`image_delta_e`] at exposure 1; a pixel that is not a finite number fails (the
+/// display would show it black).
 pub fn delta_e(a: &Image, b: &Image) -> (f64, f64) {
-    let white = white_point(Illuminant::D65, Observer::Cie1931);
-    let shown = |p: [f32; 3]| Lab::from_xyz(Xyz::from_linear_srgb(p.map(|c| (c as f64).clamp(0.0, 1.0))), white);
-    let mut d: Vec<f64> = a.data.iter().zip(&b.data).map(|(&p, &q)| delta_e_2000(shown(p), shown(q))).collect();
-    d.sort_by(|x, y| x.total_cmp(y));
-    (d.iter().sum::<f64>() / d.len() as f64, d[(d.len() * 99) / 100])
+    assert!(a.data.iter().chain(&b.data).flatten().all(|c| c.is_finite()), "a pixel is not a finite number");
+    let s = image_delta_e(a, b, 1.0);
+    (s.mean, s.p99)
 }
