@@ -19,7 +19,9 @@ fn delta_e_statistics_rank_and_clip() {
     let s = DeltaEStats::between(&a, &b2, 1.0);
     assert!((s.max - 100.0).abs() < 0.01, "{s:?}");
     assert!((s.mean - s.max / 100.0).abs() < 1e-12);
-    assert_eq!((s.p95, s.p99), (0.0, s.max));
+    // Nearest rank: the 95th and 99th of 100 are the 95th and 99th smallest, both 0 here (one pair in 100 is
+    // the 100th percentile, the maximum).
+    assert_eq!((s.p95, s.p99, s.count), (0.0, 0.0, 100));
 }
 
 #[test]

@@ -73,6 +73,21 @@ impl Lab {
     }
 }
 
+/// The CIELAB colour of `xyz` as a display shows it at `exposure` (RU, docs/PHYSICS.md), the way a camera
+/// records it: XYZ × exposure → linear sRGB (IEC 61966-2-1) → clipped to [0, 1] (a channel that is not a number
+/// shown as 0) → back to XYZ → CIELAB relative to the display's white, linear sRGB (1, 1, 1), so that display
+/// white is L* = 100, a* = b* = 0. Every ΔE between images in iridis is taken between these colours: the
+/// method comparisons of the paper's sec. 6.3, the benches and the GPU's agreement with the CPU.
+pub fn displayed_lab(xyz: Xyz, exposure: f64) -> Lab {
+    let rgb = xyz.scale(exposure).to_linear_srgb().map(|c| if c.is_nan() { 0.0 } else { c.clamp(0.0, 1.0) });
+    Lab::from_xyz(Xyz::from_linear_srgb(rgb), Xyz::from_linear_srgb([1.0; 3]))
+}
+
+/// CIEDE2000 between the displayed colours ([`displayed_lab`]) of `a` and `b` at one exposure.
+pub fn delta_e_displayed(a: Xyz, b: Xyz, exposure: f64) -> f64 {
+    delta_e_2000(displayed_lab(a, exposure), displayed_lab(b, exposure))
+}
+
 /// ΔE*ab, CIE 1976: Euclidean distance in L*a*b*.
 pub fn delta_e_1976(p: Lab, q: Lab) -> f64 {
     ((p.l - q.l).powi(2) + (p.a - q.a).powi(2) + (p.b - q.b).powi(2)).sqrt()

@@ -10,6 +10,7 @@ use crate::common;
 use std::sync::Arc;
 
 use common::gpu;
+use iridis_color::lab::delta_e_displayed;
 use iridis_color::spectrum::uniform_grid;
 use iridis_color::{Encoding, Illuminant, Observer, SpectralWeights, ToneMap, Xyz};
 use iridis_diffraction::geometry::direction;
@@ -17,7 +18,7 @@ use iridis_diffraction::table::{Lookup, LookupTable, Precision, TableParams};
 use iridis_diffraction::taylor::terms_for_bound;
 use iridis_diffraction::{Fresnel, FresnelConvention, Patch, Shading, SpectralSetup, TaylorTerms};
 use iridis_gpu::{FilmFrame, FilmPath, FilmPathUsed, GpuFilm, GpuLookup};
-use iridis_thinfilm::accuracy::{delta_e_displayed, DeltaEStats};
+use iridis_thinfilm::accuracy::DeltaEStats;
 use iridis_thinfilm::{Complex64, Stack};
 
 /// CIEDE2000 between displayed colours (exposure, clipped to the sRGB cube), over the given pixels:

@@ -7,16 +7,10 @@
 //! reach the display range, at 7500 RU the faint diffraction bands do too (the paper's reason for three
 //! exposures).
 
-use iridis_color::lab::delta_e_2000;
-use iridis_color::{Lab, Xyz};
+use iridis_color::lab::delta_e_displayed;
+use iridis_color::Xyz;
+use iridis_thinfilm::accuracy::DeltaEStats;
 use serde::Serialize;
-
-/// The CIELAB colour of XYZ as displayed at `exposure_ru`.
-pub fn displayed_lab(xyz: Xyz, exposure_ru: f64) -> Lab {
-    let rgb = xyz.scale(exposure_ru).to_linear_srgb().map(|v| if v.is_finite() { v.clamp(0.0, 1.0) } else { 0.0 });
-    let white = Xyz::from_linear_srgb([1.0, 1.0, 1.0]);
-    Lab::from_xyz(Xyz::from_linear_srgb(rgb), white)
-}
 
 /// CIEDE2000 per pixel between `test` and `truth` at `exposure_ru` (`None` where neither sees anything).
 pub fn delta_e_map(test: &[Option<Xyz>], truth: &[Option<Xyz>], exposure_ru: f64) -> Vec<Option<f64>> {
@@ -26,7 +20,7 @@ pub fn delta_e_map(test: &[Option<Xyz>], truth: &[Option<Xyz>], exposure_ru: f64
             (None, None) => None,
             _ => {
                 let (a, b) = (a.unwrap_or_default(), b.unwrap_or_default());
-                Some(delta_e_2000(displayed_lab(a, exposure_ru), displayed_lab(b, exposure_ru)))
+                Some(delta_e_displayed(a, b, exposure_ru))
             }
         })
         .collect()
@@ -61,26 +55,10 @@ pub fn clipping_warning(share: f64, what: &str, exposure_ru: f64) -> Option<Stri
     })
 }
 
-/// Mean, 95th percentile and maximum of a ΔE map.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Stats {
-    pub mean: f64,
-    pub p95: f64,
-    pub max: f64,
-    pub pixels: usize,
-}
-
-/// Statistics of the pixels that have a value; the 95th percentile is the nearest-rank value
-/// (`⌈0.95 n⌉`-th smallest).
-pub fn stats(map: &[Option<f64>]) -> Stats {
-    let mut v: Vec<f64> = map.iter().flatten().copied().filter(|x| x.is_finite()).collect();
-    if v.is_empty() {
-        return Stats { mean: 0.0, p95: 0.0, max: 0.0, pixels: 0 };
-    }
-    v.sort_by(|a, b| a.total_cmp(b));
-    let n = v.len();
-    let rank = ((0.95 * n as f64).ceil() as usize).clamp(1, n);
-    Stats { mean: v.iter().sum::<f64>() / n as f64, p95: v[rank - 1], max: v[n - 1], pixels: n }
+/// Statistics of a ΔE map's pixels that have a value (the percentiles are nearest-rank: the 95th is the
+/// `⌈0.95 n⌉`-th smallest).
+pub fn stats(map: &[Option<f64>]) -> DeltaEStats {
+    DeltaEStats::of(map.iter().flatten().copied().filter(|x| x.is_finite()).collect())
 }
 
 /// One row of Table 2.

@@ -1,28 +1,18 @@
-//! Colour differences as a person sees them: CIEDE2000 between two XYZ colours after the same exposure,
-//! clipped to the sRGB cube as a display shows them (the measure of the GPU tests and of the film-path
-//! studies in docs/gpu.md), and the statistics reported for a set of pixels.
+//! The statistics of colour differences over a set of pixels: displayed CIEDE2000
+//! (`iridis_color::lab::delta_e_displayed`) summarised by mean, nearest-rank percentiles and maximum — the one ΔE
+//! statistics of the benches, the film-path studies (docs/gpu.md), the method comparisons and the GPU tests.
 
-use iridis_color::integrate::white_point;
-use iridis_color::lab::delta_e_2000;
-use iridis_color::{Illuminant, Lab, Observer, Xyz};
+use iridis_color::lab::delta_e_displayed;
+use iridis_color::Xyz;
 use serde::Serialize;
 
-/// The displayed colour of `xyz` scaled by `exposure`, clipped to the sRGB cube, in CIELAB (D65).
-pub fn displayed_lab(xyz: Xyz, exposure: f64) -> Lab {
-    // The white point integrates the CMFs on their 1 nm grid: once, not per colour.
-    static WHITE: std::sync::OnceLock<Xyz> = std::sync::OnceLock::new();
-    let white = *WHITE.get_or_init(|| white_point(Illuminant::D65, Observer::Cie1931));
-    let rgb = xyz.scale(exposure).to_linear_srgb().map(|c| if c.is_nan() { 0.0 } else { c.clamp(0.0, 1.0) });
-    Lab::from_xyz(Xyz::from_linear_srgb(rgb), white)
+/// The nearest-rank `q`-quantile of `sorted` (ascending, not empty): its `⌈q n⌉`-th smallest value (the first
+/// for `q = 0`).
+pub fn nearest_rank(sorted: &[f64], q: f64) -> f64 {
+    sorted[((q * sorted.len() as f64).ceil() as usize).clamp(1, sorted.len()) - 1]
 }
 
-/// CIEDE2000 between the displayed colours of `a` and `b` at one exposure.
-pub fn delta_e_displayed(a: Xyz, b: Xyz, exposure: f64) -> f64 {
-    delta_e_2000(displayed_lab(a, exposure), displayed_lab(b, exposure))
-}
-
-/// Mean, 95th and 99th percentiles (nearest rank below) and maximum of a set of colour differences: the one ΔE
-/// statistics of the benches (`iridis_api::bench`), the film-path studies and the GPU tests.
+/// Mean, 95th and 99th percentiles ([`nearest_rank`]) and maximum of a set of colour differences.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct DeltaEStats {
     pub mean: f64,
@@ -41,11 +31,10 @@ impl DeltaEStats {
         }
         values.sort_by(f64::total_cmp);
         let n = values.len();
-        let rank = |q: f64| values[((n as f64 * q) as usize).min(n - 1)];
         Self {
             mean: values.iter().sum::<f64>() / n as f64,
-            p95: rank(0.95),
-            p99: rank(0.99),
+            p95: nearest_rank(&values, 0.95),
+            p99: nearest_rank(&values, 0.99),
             max: values[n - 1],
             count: n,
         }
@@ -69,12 +58,11 @@ mod tests {
     use super::*;
 
     #[test]
-    fn statistics_and_clipping() {
+    fn statistics_take_the_nearest_rank() {
         let s = DeltaEStats::of((1..=200).map(|i| i as f64).collect());
-        assert_eq!((s.mean, s.p95, s.p99, s.max, s.count), (100.5, 191.0, 199.0, 200.0, 200));
-        // Two colours both far above white are both shown as white.
-        let w = white_point(Illuminant::D65, Observer::Cie1931);
-        assert!(delta_e_displayed(w.scale(3.0), w.scale(5.0), 1.0) < 1e-9);
-        assert!(delta_e_displayed(w.scale(0.3), w.scale(0.5), 1.0) > 10.0);
+        // The 190th and 198th of 200 (⌈0.95 · 200⌉, ⌈0.99 · 200⌉).
+        assert_eq!((s.mean, s.p95, s.p99, s.max, s.count), (100.5, 190.0, 198.0, 200.0, 200));
+        assert_eq!(nearest_rank(&[1.0, 2.0, 3.0], 0.0), 1.0);
+        assert_eq!(nearest_rank(&[1.0, 2.0, 3.0], 0.5), 2.0);
     }
 }

@@ -88,7 +88,7 @@ impl FrameStats {
     pub fn of(times: &[Duration]) -> Self {
         let mut ms: Vec<f64> = times.iter().map(|d| d.as_secs_f64() * 1e3).collect();
         ms.sort_by(f64::total_cmp);
-        let rank = |q: f64| ms[((q * ms.len() as f64).ceil() as usize).clamp(1, ms.len()) - 1];
+        let rank = |q: f64| iridis_thinfilm::accuracy::nearest_rank(&ms, q);
         Self { min: ms[0], median: rank(0.5), p99: rank(0.99), mean: ms.iter().sum::<f64>() / ms.len() as f64 }
     }
 
