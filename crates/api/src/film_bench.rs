@@ -151,7 +151,7 @@ pub fn bench(seconds: f64, no_python: bool) -> Result<FilmBench> {
     })))
 }
 
-/// The measurements of [`bench`], as `--json` prints them.
+/// The measurements of [`fn@bench`], as `--json` prints them.
 #[derive(Debug, Clone)]
 pub struct FilmBench(pub serde_json::Value);
 

@@ -23,6 +23,8 @@ use crate::surface::{Source, SurfaceOptions};
 /// flags).
 #[derive(Debug, Clone)]
 #[cfg_attr(feature = "cli", derive(clap::Args))]
+// The field docs are `--help` text too, where `schlick[:N]` is syntax, not a link.
+#[allow(rustdoc::broken_intra_doc_links)]
 pub struct LabOptions {
     #[cfg_attr(feature = "cli", command(flatten))]
     pub surface: SurfaceOptions,

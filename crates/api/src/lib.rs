@@ -18,7 +18,7 @@
 //! * [`rough`]: films on rough substrates (LSRS): options, spectra, colours, tables, the chart's bands, the bench;
 //! * [`gpu`]: scenes and lookup maps on the GPU;
 //! * [`grating_bench`]: the rigorous solver timed against grcwa (`iridis bench grating`);
-//! * [`bench`]: every benchmark (`iridis bench …`, `python -m iridis.bench NAME`) and the one ΔE statistics;
+//! * [`mod@bench`]: every benchmark (`iridis bench …`, `python -m iridis.bench NAME`);
 //! * [`brdf_map`], [`brdf_eval`], [`brdf_vision`]: the `brdf-map`, `brdf eval` and `brdf vision` commands'
 //!   work, text and JSON; [`scene`]: `iridis render` and the example scenes; `view` (feature `viewer`);
 //! * [`unit_cell`]: one period of a scan averaged along its ridges (a 1-D grating profile);

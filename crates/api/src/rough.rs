@@ -539,7 +539,7 @@ pub fn bench(stack: Stack, opts: &RoughOptions, azimuth: f64, samples: usize, se
     })))
 }
 
-/// The measurements of [`bench`], as `--json` prints them.
+/// The measurements of [`fn@bench`], as `--json` prints them.
 #[derive(Debug, Clone)]
 pub struct RoughBench(pub serde_json::Value);
 

@@ -63,6 +63,8 @@ pub fn scene_film(spectral_samples: Option<usize>) -> Result<SceneFilm> {
 /// What `iridis render` is asked for (with the feature `cli`, its arguments but the glTF options).
 #[derive(Debug, Clone, Default)]
 #[cfg_attr(feature = "cli", derive(clap::Args))]
+// The field docs are `--help` text too, where `[output]` names a scene table, not a link.
+#[allow(rustdoc::broken_intra_doc_links)]
 pub struct RenderRequest {
     /// Scene: TOML (.toml) or glTF 2.0 (.gltf, .glb).
     pub scene: PathBuf,

@@ -1,6 +1,10 @@
 //! `iridis`: a thin command-line shell over the iridis library crates. Each subcommand lives in its own
 //! module under `cmd/`; shared output helpers (atomic file writes, JSON) live in `output.rs`.
 
+// The argument structs' doc comments are the `--help` text, where `θ[,φ]` and `schlick[:N]` are syntax, not
+// links.
+#![allow(rustdoc::broken_intra_doc_links)]
+
 mod args;
 mod cmd;
 mod help;

@@ -90,7 +90,7 @@ impl Spinner {
 }
 
 /// The facade's notes, warnings and progress on the terminal: `note: …` and `warning: …` on stderr, the
-/// facade's other lines as they are, progress as [`bar`]s and [`step`] spinners.
+/// facade's other lines as they are, progress as [`bar`]s and spinners (`step`).
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Cli;
 

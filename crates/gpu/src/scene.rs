@@ -3,8 +3,9 @@
 //!
 //! [`GpuScene::new`] flattens a loaded [`Scene`] into storage buffers (the layout is documented record by
 //! record in the shader) and compiles the pipeline; [`GpuScene::frame`] allocates the output of one image size
-//! and [`SceneFrame::render`] renders it in bands of rows (so that a progress bar moves and no dispatch runs
-//! for long), returning the same linear [`Image`] the CPU renders — PNG and EXR encoding are shared.
+//! and [`SceneFrame::run`] renders a frame (the viewer's path); [`GpuScene::render`] renders in bands of rows (so that
+//! a progress bar moves and no dispatch runs for long), returning the same linear [`Image`] the CPU renders —
+//! PNG and EXR encoding are shared.
 //!
 //! Thin films shade from colour tables by default (issue 17): a smooth film's reflected and transmitted XYZ
 //! over `cos θ` × its SVT offset range, filled on the GPU by the direct evaluation ([`crate::film`]), and a rough

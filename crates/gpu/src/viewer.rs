@@ -6,7 +6,7 @@
 //! light's incidence and the wheel sets the exposure.
 //!
 //! Frames are rendered by the same compute shaders as `iridis render --gpu` into a storage buffer; a small
-//! compute pass ([`crate::present`]) stores its displayed pixels into a texture registered with egui's wgpu
+//! compute pass (`present.rs`) stores its displayed pixels into a texture registered with egui's wgpu
 //! renderer, so a frame never travels to the CPU and back. The panel shows the render pass's own GPU
 //! timestamps where the adapter has them. A frame is rendered only when something changed.
 //!

@@ -3,7 +3,7 @@
 //! The virtual lab of the paper (Dhillon et al. 2014, sec. 6–7) and the thesis (Single 2014, ch. 5), for any
 //! surface and any evaluator of `iridis-diffraction`:
 //!
-//! * [`bench`]: the virtual test bench (paper sec. 6.1, Table 1, Figure 7; thesis eq. 5.5–5.6, Table 5.1):
+//! * [`mod@bench`]: the virtual test bench (paper sec. 6.1, Table 1, Figure 7; thesis eq. 5.5–5.6, Table 5.1):
 //!   the reflectance matrix `R(λ, θ_r)` in the plane of incidence, the peak viewing angle of one diffraction
 //!   order per wavelength, the periodicity `d_λ` from the grating equation, its mean and variance, and the
 //!   competing ridges of sub-structures with different periods;

@@ -5,7 +5,7 @@
 //! The BRDF's sample also carries the path on (the surface it meets is shaded in turn, its own lights
 //! sampled), so glossy and diffuse inter-reflections converge as well.
 //!
-//! Every material is seen through [`Surface`]: `eval` returns `π f(ω_i, ω_o) cos θ_i`, the reflected radiance
+//! Every material is seen through `Surface`: `eval` returns `π f(ω_i, ω_o) cos θ_i`, the reflected radiance
 //! per RU of directional light (what [`crate::material`] computes for lights), so the reflected radiance of a
 //! radiance field `L` is `(1/π) ∫ eval(ω_i) L(ω_i) dω_i` and one sample of it is `eval · L / (π pdf)`.
 

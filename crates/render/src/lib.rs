@@ -16,7 +16,7 @@
 //! * [`integrate`]: extended light by Monte Carlo (light and BRDF sampling, multiple importance sampling), with
 //!   [`sampling`] the samplers and [`lobe`] the diffraction lobe's sampler and prefiltered table;
 //! * [`camera`]: perspective, orthographic and the hemisphere camera that reproduces a BRDF map;
-//! * [`render`]: ray casting on all cores, anti-aliasing, linear float images, PNG and EXR encoding.
+//! * [`mod@render`]: ray casting on all cores, anti-aliasing, linear float images, PNG and EXR encoding.
 //!
 //! Conventions (`docs/PHYSICS.md`): the nanostructure's x axis is the surface tangent `t`, `y` is `n × t`;
 //! colours are linear sRGB with D65 white = 1; light levels are in RU, so a directional light of 1 RU on the

@@ -9,7 +9,7 @@
 //! The parameters are real, so the chain rule holds for non-holomorphic steps too: `∂ z̄ = conj(∂z)`,
 //! `∂|z|² = 2 Re(z̄ ∂z)`, `∂ arg z = Im(∂z / z)`. The caller says how each medium's index and each layer's
 //! thickness depend on the parameters ([`Tangent`]); for Cauchy and Sellmeier coefficients
-//! [`crate::material::cauchy_gradient`] and [`crate::material::sellmeier_gradient`] give `∂n/∂c`.
+//! [`crate::material::Material::cauchy_gradient`] and [`crate::material::Material::sellmeier_gradient`] give `∂n/∂c`.
 //!
 //! A layer at its critical angle (`|s_z| < 1e-5`) is evaluated without the grazing treatment of
 //! [`crate::recurrence::compose`]: there the derivative with respect to its index is unbounded anyway.

@@ -7,7 +7,7 @@
 //! polarisation carries its own Fresnel factor and the two are not mixed), in medium `N` above the rough
 //! interface, on a grid of polar angles `θ_i` (nodes; hat functions `ℓ_i` between them):
 //!
-//! * **(M1) the lobe**, film-independent ([`Lobe`]): for unit flux arriving at the rough interface from node
+//! * **(M1) the lobe**, film-independent (`Lobe`): for unit flux arriving at the rough interface from node
 //!   direction `θ_i`, the HTSG directional-diffuse flux `f(θ_i, ω) cos θ dω` binned over fine polar bins
 //!   (integrated in the projected disk around the mirror direction, where the lobe is a Gaussian mixture in
 //!   `|V_xy|`), its white albedo `W_i = ∫ Φ cos dω` (Fresnel factor 1) and the white target

@@ -9,7 +9,7 @@
 //! `θ_l`, `θ_v`), angles uniform in degrees from 0° to 90° as Algorithm 2's grid, multilinear in between.
 //!
 //! The diffuse term factors per polarisation and wavelength into a part that depends on the layers (the
-//! transport `T(θ)` of each side, [`RoughStack::side_factor`], which changes with the offset) and one that
+//! transport `T(θ)` of each side, `RoughStack::side_factor`, which changes with the offset) and one that
 //! does not (the HTSG directional-diffuse geometry of the rough interface and its Fresnel power at the local
 //! angle): `k_d = (n₀/n_N)² Σ_pol G_pol(ω_l, ω_v) T_pol(θ_l) T_pol(θ_v) / 2` (module [`crate::rough`]). Each
 //! part is computed once per node and wavelength and the products are summed over the spectrum, so a node

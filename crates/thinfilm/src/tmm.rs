@@ -638,7 +638,7 @@ type AngleMap = HashMap<u64, usize, std::hash::BuildHasherDefault<AngleHasher>>;
 
 /// `coh_tmm` at many (θ₀, λ) points (`th0` and `lam` of equal length): `r`, `t`, `R`, `T`, `power_entering`
 /// as `coh_tmm` gives them, in parallel over chunks of points. With constant indices each chunk prepares every
-/// angle it meets once ([`AngleEntry`]: the chapter 4 fast path for the one polarisation asked for) and reuses
+/// angle it meets once (`AngleEntry`: the chapter 4 fast path for the one polarisation asked for) and reuses
 /// it for the points at that angle.
 pub fn coh_tmm_batch(pol: Pol, n: Indices<'_>, d: &[f64], th0: &[f64], lam: &[f64]) -> Result<Batch, ThinFilmError> {
     let points = th0.len();
