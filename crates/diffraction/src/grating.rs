@@ -220,9 +220,10 @@ pub struct UnitCell {
     /// The Taylor terms of the cell's phase factor (read [`TaylorTerms::memory_bytes`] to see what a cell holds).
     pub terms: TaylorTerms,
     lines: Lines,
-    /// Set by [`UnitCell::for_light`]: the one light direction and the shortest wavelength whose rows the
-    /// cell's bins serve.
-    light: Option<(Vec3, f64)>,
+    /// The shortest wavelength the Taylor terms and the DFT bins serve (nm); rows below it are refused.
+    lambda_min_nm: f64,
+    /// Set by [`UnitCell::for_light`]: the one light direction whose rows the cell's bins serve.
+    light: Option<Vec3>,
 }
 
 impl UnitCell {
@@ -247,19 +248,20 @@ impl UnitCell {
         if !rows_alone {
             return Self::new(patch, lambda_min);
         }
-        Self::with_band(patch, lambda_min, Band::light(wi, lambda_min, 0.0), Some((wi, lambda_min)))
+        Self::with_band(patch, lambda_min, Band::light(wi, lambda_min, 0.0), Some(wi))
     }
 
-    fn with_band(
-        patch: &Patch,
-        lambda_min_nm: f64,
-        band: Band,
-        light: Option<(Vec3, f64)>,
-    ) -> Result<Self, DiffractionError> {
+    fn with_band(patch: &Patch, lambda_min_nm: f64, band: Band, light: Option<Vec3>) -> Result<Self, DiffractionError> {
         let n = terms_for_bound(patch.max_abs_height, lambda_min_nm, TAYLOR_EPSILON);
         // The window is not used: the orders read the DFT bins themselves.
         let terms = TaylorTerms::compute_in_band(patch, n, 1e12, band, &|_| {})?;
-        Ok(Self { terms, lines: lines_of(patch), light })
+        Ok(Self { terms, lines: lines_of(patch), lambda_min_nm, light })
+    }
+
+    /// The shortest wavelength whose rows the cell serves (nm): its Taylor terms meet [`TAYLOR_EPSILON`] there
+    /// and its DFT bins hold every order that propagates there.
+    pub fn lambda_min_nm(&self) -> f64 {
+        self.lambda_min_nm
     }
 
     /// The periods `(Lx, Ly)` (nm).
@@ -308,11 +310,18 @@ impl UnitCell {
         if !(wavelength_nm.is_finite() && wavelength_nm > 0.0) {
             return Err(DiffractionError::Invalid(format!("wavelength {wavelength_nm} nm must be positive")));
         }
-        if let Some((only, lambda_min)) = self.light {
-            if wi != only || wavelength_nm < lambda_min {
+        if wavelength_nm < self.lambda_min_nm {
+            // Shorter light couples orders whose bins the cell did not keep, through Taylor terms it did not take.
+            return Err(DiffractionError::Invalid(format!(
+                "this unit cell serves {} nm and longer; one for {wavelength_nm} nm is made with that wavelength",
+                self.lambda_min_nm
+            )));
+        }
+        if let Some(only) = self.light {
+            if wi != only {
                 return Err(DiffractionError::Invalid(format!(
-                    "this unit cell keeps the DFT bins of light from {only:?} at {lambda_min} nm and longer only \
-                     (UnitCell::for_light); use UnitCell::new for other light"
+                    "this unit cell keeps the DFT bins of light from {only:?} only (UnitCell::for_light); use \
+                     UnitCell::new for other light"
                 )));
             }
         }
@@ -518,7 +527,9 @@ impl LobeEnergy for SinkhornEnergy {
 /// over λ in advance and cannot take a per-λ factor; it is not wrapped.
 pub struct LobeScaled {
     inner: Box<dyn crate::Evaluator>,
-    cell: UnitCell,
+    patch: Patch,
+    /// The unit cell the lobes' factors come from; made again when a wavelength shorter than it serves is asked.
+    cell: std::sync::RwLock<std::sync::Arc<UnitCell>>,
     spectral: crate::SpectralSetup,
     energy: std::sync::Arc<dyn LobeEnergy>,
     rows: std::sync::RwLock<std::collections::HashMap<[u64; 4], std::sync::Arc<ScaledRow>>>,
@@ -529,7 +540,7 @@ impl std::fmt::Debug for LobeScaled {
         f.debug_struct("LobeScaled")
             .field("inner", &self.inner.name())
             .field("energy", &self.energy.name())
-            .field("cell", &self.cell.periods())
+            .field("cell", &self.cell().periods())
             .finish()
     }
 }
@@ -537,9 +548,10 @@ impl std::fmt::Debug for LobeScaled {
 impl LobeScaled {
     /// Wraps `inner`, an evaluator with a spectral reflectance, of the height field `patch` (one unit cell of
     /// its periodic extension); `spectral` is the wavelength grid and colour weights its colours integrate
-    /// over; `energy` says what each lobe carries. The unit cell is set up for `spectral`'s shortest wavelength:
-    /// lobes asked at a shorter one would miss the orders that couple only there (their factors wrong, not
-    /// refused), so a caller that asks below the grid uses [`LobeScaled::down_to`].
+    /// over; `energy` says what each lobe carries. The unit cell is set up for `spectral`'s shortest wavelength;
+    /// a lobe asked at a shorter one (where more orders couple) has the cell made again for it first, which
+    /// for a large scan takes seconds: a caller that knows it will ask below the grid says so with
+    /// [`LobeScaled::down_to`].
     pub fn new(
         inner: Box<dyn crate::Evaluator>,
         patch: &Patch,
@@ -569,8 +581,8 @@ impl LobeScaled {
                 inner.name()
             )));
         }
-        let cell = UnitCell::new(patch, lambda_min)?;
-        Ok(Self { inner, cell, spectral, energy, rows: Default::default() })
+        let cell = std::sync::RwLock::new(std::sync::Arc::new(UnitCell::new(patch, lambda_min)?));
+        Ok(Self { inner, patch: patch.clone(), cell, spectral, energy, rows: Default::default() })
     }
 
     /// The energy-normalised BRDF: `inner`'s lobes scaled by the Sinkhorn factors of `patch`'s channel matrix.
@@ -582,9 +594,23 @@ impl LobeScaled {
         Self::new(inner, patch, spectral, std::sync::Arc::new(SinkhornEnergy))
     }
 
-    /// The unit cell whose orders the lobes surround.
-    pub fn cell(&self) -> &UnitCell {
-        &self.cell
+    /// The unit cell whose orders the lobes surround (for the shortest wavelength asked so far).
+    pub fn cell(&self) -> std::sync::Arc<UnitCell> {
+        self.cell.read().unwrap_or_else(|e| e.into_inner()).clone()
+    }
+
+    /// The unit cell that serves `λ`: the current one, or one made for `λ` when that is shorter than it serves.
+    fn cell_for(&self, wavelength_nm: f64) -> Result<std::sync::Arc<UnitCell>, DiffractionError> {
+        let cell = self.cell();
+        if wavelength_nm >= cell.lambda_min_nm() {
+            return Ok(cell);
+        }
+        let mut current = self.cell.write().unwrap_or_else(|e| e.into_inner());
+        if wavelength_nm < current.lambda_min_nm() {
+            // Rows cached so far stay valid: they were computed at wavelengths their cell served.
+            *current = std::sync::Arc::new(UnitCell::new(&self.patch, wavelength_nm)?);
+        }
+        Ok(current.clone())
     }
 
     fn key(wavelength_nm: f64, wi: Vec3) -> [u64; 4] {
@@ -596,12 +622,14 @@ impl LobeScaled {
     /// `progress(done)` of [`LobeScaled::preparation_steps`]. Views of other lights compute theirs when asked.
     pub fn prepare(&self, wi: Vec3, progress: &(dyn Fn(usize) + Sync)) -> Result<(), DiffractionError> {
         let done = std::sync::atomic::AtomicUsize::new(0);
+        let shortest = self.spectral.wavelengths().iter().copied().fold(f64::INFINITY, f64::min);
+        let cell = self.cell_for(shortest)?;
         let rows: Vec<([u64; 4], ScaledRow)> = self
             .spectral
             .wavelengths()
             .par_iter()
             .map(|&l| {
-                let r = self.energy.scale(&self.cell, l, wi).map(|r| (Self::key(l, wi), r));
+                let r = self.energy.scale(&cell, l, wi).map(|r| (Self::key(l, wi), r));
                 progress(done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1);
                 r
             })
@@ -623,7 +651,8 @@ impl LobeScaled {
         if let Some(r) = self.rows.read().ok()?.get(&key) {
             return Some(r.clone());
         }
-        let r = std::sync::Arc::new(self.energy.scale(&self.cell, wavelength_nm, wi).ok()?);
+        let cell = self.cell_for(wavelength_nm).ok()?;
+        let r = std::sync::Arc::new(self.energy.scale(&cell, wavelength_nm, wi).ok()?);
         self.rows.write().ok()?.insert(key, r.clone());
         Some(r)
     }

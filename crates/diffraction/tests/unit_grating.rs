@@ -176,6 +176,44 @@ fn energy_normalised_lobes_of_a_deep_sine_return_the_light_where_kirchhoffs_crea
     assert!((a / b - 1.0).abs() < 1e-9, "{a} vs {b}");
 }
 
+/// Below the colour grid (an animal's ultraviolet) more orders couple: lobes asked there are scaled by a cell
+/// made for that wavelength, whether or not the caller said so up front (`down_to`), and a cell refuses rows
+/// shorter than it serves rather than missing those orders.
+#[test]
+fn lobes_below_the_grid_are_scaled_by_a_cell_made_for_their_wavelength() {
+    use iridis_diffraction::Evaluator;
+    // A 1100 nm sine, 150 nm amplitude, 4 periods, light at 40°: 8 orders propagate at 300 nm, 6 at 380 nm
+    // (|sin 40° + m λ/Λ| < 1). A cell made for 380 nm scaled the 300 nm lobes by 0.14 % less (before this test).
+    let row: Vec<f64> = (0..256).map(|i| 150.0 * (std::f64::consts::TAU * (i % 64) as f64 / 64.0).sin()).collect();
+    let heights: Vec<f64> = (0..64).flat_map(|_| row.clone()).collect();
+    let patch = Patch::from_row_major(64, 256, 4400.0 / 256.0, 4400.0 / 64.0, &heights).unwrap();
+    let spectral = iridis_diffraction::SpectralSetup::default();
+    let reference = || {
+        let terms = iridis_diffraction::TaylorTerms::compute(&patch, terms_for_bound(150.0, 300.0, 1e-8), 4400.0);
+        let shading = iridis_diffraction::Shading::default();
+        Box::new(iridis_diffraction::Reference { terms: terms.unwrap().into(), shading, spectral: spectral.clone() })
+    };
+    let on_the_grid = LobeScaled::energy_normalised(reference(), &patch, spectral.clone()).unwrap();
+    assert_eq!(on_the_grid.cell().lambda_min_nm(), spectral.wavelengths()[0]);
+    let made_for_300 =
+        LobeScaled::down_to(reference(), &patch, spectral.clone(), std::sync::Arc::new(SinkhornEnergy), 300.0).unwrap();
+    let wi = direction(40f64.to_radians(), 0.0);
+    // Towards the first order at 300 nm (sin θ_r = sin 40° − 300/1100, on the specular side) and the mirror.
+    let s1 = 40f64.to_radians().sin() - 300.0 / 1100.0;
+    for wr in [[-s1, 0.0, (1.0 - s1 * s1).sqrt()], [-wi[0], 0.0, wi[2]]] {
+        let (a, b) =
+            (on_the_grid.reflectance(300.0, wi, wr).unwrap(), made_for_300.reflectance(300.0, wi, wr).unwrap());
+        assert!(a > 0.0 && (a / b - 1.0).abs() < 1e-12, "{a} vs {b}");
+        // On the grid both give what a cell made for 380 nm gives.
+        let (a, b) =
+            (on_the_grid.reflectance(500.0, wi, wr).unwrap(), made_for_300.reflectance(500.0, wi, wr).unwrap());
+        assert!((a / b - 1.0).abs() < 1e-9, "{a} vs {b}");
+    }
+    assert_eq!(on_the_grid.cell().lambda_min_nm(), 300.0);
+    let e = UnitCell::new(&patch, 380.0).unwrap().row(wi, 300.0, Normalisation::Energy).unwrap_err().to_string();
+    assert!(e.contains("serves 380 nm and longer"), "{e}");
+}
+
 #[test]
 fn a_cell_for_one_light_gives_the_same_bits_and_refuses_other_light() {
     // 8 µm crossed cell: > 600 channels at 400 and 500 nm (rows normalised alone), so `for_light` keeps
