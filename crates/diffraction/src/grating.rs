@@ -634,9 +634,8 @@ impl LobeScaled {
                 r
             })
             .collect::<Result<_, _>>()?;
-        if let Ok(mut map) = self.rows.write() {
-            map.extend(rows.into_iter().map(|(k, r)| (k, std::sync::Arc::new(r))));
-        }
+        let mut map = self.rows.write().unwrap_or_else(|e| e.into_inner());
+        map.extend(rows.into_iter().map(|(k, r)| (k, std::sync::Arc::new(r))));
         Ok(())
     }
 
@@ -648,12 +647,13 @@ impl LobeScaled {
     /// The factors of light from `wi` at `λ`, computed once.
     fn row(&self, wavelength_nm: f64, wi: Vec3) -> Option<std::sync::Arc<ScaledRow>> {
         let key = Self::key(wavelength_nm, wi);
-        if let Some(r) = self.rows.read().ok()?.get(&key) {
+        // A lock poisoned by a panic elsewhere still holds whole rows (each is inserted at once).
+        if let Some(r) = self.rows.read().unwrap_or_else(|e| e.into_inner()).get(&key) {
             return Some(r.clone());
         }
         let cell = self.cell_for(wavelength_nm).ok()?;
         let r = std::sync::Arc::new(self.energy.scale(&cell, wavelength_nm, wi).ok()?);
-        self.rows.write().ok()?.insert(key, r.clone());
+        self.rows.write().unwrap_or_else(|e| e.into_inner()).insert(key, r.clone());
         Some(r)
     }
 }
