@@ -13,6 +13,48 @@ pub enum SpectrumError {
     Invalid(String),
 }
 
+/// How the fields of a line of a spectra text file are separated.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Separators {
+    /// Any of comma, semicolon, tab and space, mixed, empty fields dropped (two- and three-column files:
+    /// `400, 0.5`, `400;0.5`, `400   0.5`).
+    Any,
+    /// The line's own separator — comma, else semicolon, else tab, else runs of spaces — with empty fields kept,
+    /// so that column names may hold spaces and a missing value is an error (pavo's multi-column tables).
+    OnePerLine,
+}
+
+/// A line of a spectra text file that holds data or a header: its number (from 1) and its fields, trimmed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TextRow<'a> {
+    pub line: usize,
+    pub text: &'a str,
+    pub fields: Vec<&'a str>,
+}
+
+/// The lines of a spectra text file that are not blank and not `#` comments, split into fields: the one
+/// reading of the text layout that spectra, sensitivity tables and n, k files share (each checks its own
+/// columns and says what it expected).
+pub fn text_rows(text: &str, separators: Separators) -> impl Iterator<Item = TextRow<'_>> {
+    text.lines().enumerate().filter_map(move |(index, raw)| {
+        let line = raw.trim();
+        if line.is_empty() || line.starts_with('#') {
+            return None;
+        }
+        let fields = match separators {
+            Separators::Any => line.split([',', ';', '\t', ' ']).filter(|s| !s.is_empty()).collect(),
+            Separators::OnePerLine => {
+                let sep = [',', ';', '\t'].into_iter().find(|&c| line.contains(c));
+                match sep {
+                    Some(c) => line.split(c).map(str::trim).collect(),
+                    None => line.split(' ').map(str::trim).filter(|s| !s.is_empty()).collect(),
+                }
+            }
+        };
+        Some(TextRow { line: index + 1, text: line, fields })
+    })
+}
+
 /// A spectrum sampled at strictly increasing wavelengths (nm). Between samples it is linear; outside the
 /// sampled range [`Spectrum::value_at`] holds the end values (the convention colour-science uses).
 #[derive(Debug, Clone, PartialEq)]
@@ -64,13 +106,7 @@ impl Spectrum {
         let mut wavelengths = Vec::new();
         let mut values = Vec::new();
         let mut header_allowed = true;
-        for (index, raw) in text.lines().enumerate() {
-            let line_no = index + 1;
-            let line = raw.trim();
-            if line.is_empty() || line.starts_with('#') {
-                continue;
-            }
-            let fields: Vec<&str> = line.split([',', ';', '\t', ' ']).filter(|s| !s.is_empty()).collect();
+        for TextRow { line: line_no, text: line, fields } in text_rows(text, Separators::Any) {
             let parse = |s: &str| s.trim().parse::<f64>();
             let parsed: Vec<_> = fields.iter().map(|f| parse(f)).collect();
             if parsed.iter().any(|p| p.is_err()) {

@@ -50,3 +50,26 @@ fn csv_rows_need_exactly_two_columns() {
     // Whitespace-separated with several spaces is still two columns.
     assert!(Spectrum::from_csv_str("400   0.5\n410\t0.7\n", "f.csv").is_ok());
 }
+
+#[test]
+fn text_rows_skip_comments_and_split_by_the_policy() {
+    use iridis_color::spectrum::{text_rows, Separators};
+    let fields = |text: &str, s: Separators| -> Vec<(usize, Vec<String>)> {
+        text_rows(text, s).map(|r| (r.line, r.fields.iter().map(|f| f.to_string()).collect())).collect()
+    };
+    // Mixed separators, empty fields dropped; lines counted from 1 with blanks and comments.
+    let any = fields("# comment\n\n400, 0.5\n410;0.7\t \n420   0.9\n", Separators::Any);
+    assert_eq!(
+        any,
+        vec![
+            (3, vec!["400".into(), "0.5".into()]),
+            (4, vec!["410".into(), "0.7".into()]),
+            (5, vec!["420".into(), "0.9".into()])
+        ]
+    );
+    // One separator a line: names with spaces stay whole, a missing value stays an empty field.
+    let one = fields("wl,sample one,b\n400,,0.5\n410   0.7\n", Separators::OnePerLine);
+    assert_eq!(one[0].1, ["wl", "sample one", "b"]);
+    assert_eq!(one[1].1, ["400", "", "0.5"]);
+    assert_eq!(one[2].1, ["410", "0.7"]);
+}

@@ -5,6 +5,7 @@
 
 use crate::error::ThinFilmError;
 use crate::material::{Material, Part};
+use iridis_color::spectrum::{text_rows, Separators, TextRow};
 
 fn file_err(path: &str, line: Option<usize>, message: impl Into<String>) -> ThinFilmError {
     ThinFilmError::File { path: path.to_string(), line, message: message.into() }
@@ -277,12 +278,7 @@ pub fn parse_csv(text: &str, path: &str) -> Result<Material, ThinFilmError> {
     let (mut wl, mut n, mut k) = (Vec::new(), Vec::new(), Vec::new());
     let mut first_line = true;
     let mut scale = 1.0;
-    for (i, raw) in text.lines().enumerate() {
-        let t = raw.trim();
-        if t.is_empty() || t.starts_with('#') {
-            continue;
-        }
-        let fields: Vec<&str> = t.split([',', ';', '\t', ' ']).filter(|s| !s.is_empty()).collect();
+    for TextRow { line, text: t, fields } in text_rows(text, Separators::Any) {
         let parsed: Vec<Option<f64>> = fields.iter().map(|f| f.parse::<f64>().ok().filter(|v| v.is_finite())).collect();
         let header_allowed = std::mem::replace(&mut first_line, false);
         if parsed.iter().any(Option::is_none) {
@@ -292,18 +288,18 @@ pub fn parse_csv(text: &str, path: &str) -> Result<Material, ThinFilmError> {
                 continue;
             }
             let bad = fields.iter().zip(&parsed).find(|(_, p)| p.is_none()).map(|(f, _)| *f).unwrap_or("");
-            return Err(file_err(path, Some(i + 1), format!("'{bad}' is not a finite number")));
+            return Err(file_err(path, Some(line), format!("'{bad}' is not a finite number")));
         }
         let v: Vec<f64> = parsed.into_iter().flatten().collect();
         if !(v.len() == 2 || v.len() == 3) {
             return Err(file_err(
                 path,
-                Some(i + 1),
+                Some(line),
                 format!("expected 2 or 3 columns (wavelength_nm, n, κ), found {}", v.len()),
             ));
         }
         let kappa = v.get(2).copied().unwrap_or(0.0);
-        check_row(path, i + 1, v[0] * scale, Some(v[1]), Some(kappa))?;
+        check_row(path, line, v[0] * scale, Some(v[1]), Some(kappa))?;
         wl.push(v[0] * scale);
         n.push(v[1]);
         k.push(kappa);

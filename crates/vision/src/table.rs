@@ -3,6 +3,7 @@
 use std::path::Path;
 
 use crate::VisionError;
+use iridis_color::spectrum::{text_rows, Separators, TextRow};
 
 /// A curve sampled at strictly increasing wavelengths, linear between samples and **zero outside** them (a
 /// receptor is blind, and a tabulated light dark, where nothing was measured).
@@ -132,22 +133,7 @@ impl SpectraTable {
         let mut header: Option<Vec<String>> = None;
         let mut rows: Vec<Vec<f64>> = Vec::new();
         let err = |line: usize, message: String| VisionError::Parse { source_name: source_name.into(), line, message };
-        for (index, raw) in text.lines().enumerate() {
-            let line_no = index + 1;
-            let line = raw.trim();
-            if line.is_empty() || line.starts_with('#') {
-                continue;
-            }
-            let sep: &[char] = if line.contains(',') {
-                &[',']
-            } else if line.contains(';') {
-                &[';']
-            } else if line.contains('\t') {
-                &['\t']
-            } else {
-                &[' ']
-            };
-            let fields: Vec<&str> = line.split(sep).map(str::trim).filter(|s| !s.is_empty() || sep != [' ']).collect();
+        for TextRow { line: line_no, fields, .. } in text_rows(text, Separators::OnePerLine) {
             let parsed: Vec<Result<f64, _>> = fields.iter().map(|f| f.parse::<f64>()).collect();
             if parsed.iter().any(|p| p.is_err()) {
                 if header.is_none() && rows.is_empty() {
