@@ -622,8 +622,8 @@ impl LobeScaled {
     /// `progress(done)` of [`LobeScaled::preparation_steps`]. Views of other lights compute theirs when asked.
     pub fn prepare(&self, wi: Vec3, progress: &(dyn Fn(usize) + Sync)) -> Result<(), DiffractionError> {
         let done = std::sync::atomic::AtomicUsize::new(0);
-        let shortest = self.spectral.wavelengths().iter().copied().fold(f64::INFINITY, f64::min);
-        let cell = self.cell_for(shortest)?;
+        // Made for the grid's shortest wavelength or a shorter one: it serves every wavelength of the grid.
+        let cell = self.cell();
         let rows: Vec<([u64; 4], ScaledRow)> = self
             .spectral
             .wavelengths()

@@ -20,20 +20,26 @@ pub struct Image {
     pub data: Vec<[f32; 3]>,
 }
 
+/// A pixel's linear sRGB as CIE XYZ.
+fn pixel_xyz(p: [f32; 3]) -> Xyz {
+    Xyz::from_linear_srgb(p.map(f64::from))
+}
+
 impl Image {
     /// CIE XYZ of pixel `(col, row)` (before exposure).
     pub fn xyz(&self, col: u32, row: u32) -> Xyz {
-        let p = self.data[(row * self.width + col) as usize];
-        Xyz::from_linear_srgb([p[0] as f64, p[1] as f64, p[2] as f64])
+        pixel_xyz(self.data[(row * self.width + col) as usize])
+    }
+
+    /// CIE XYZ of every pixel, row-major (before exposure).
+    pub fn to_xyz(&self) -> Vec<Xyz> {
+        self.data.iter().map(|&p| pixel_xyz(p)).collect()
     }
 
     /// 8-bit display pixels: colours × exposure (RU), clipped, encoded (PHYSICS.md, "Exposure").
     pub fn to_rgb8(&self, exposure: f64, encoding: Encoding) -> Vec<u8> {
         let tone = ToneMap { exposure_ru: exposure, encoding };
-        self.data
-            .iter()
-            .flat_map(|p| tone.to_rgb8(Xyz::from_linear_srgb([p[0] as f64, p[1] as f64, p[2] as f64])))
-            .collect()
+        self.data.iter().flat_map(|&p| tone.to_rgb8(pixel_xyz(p))).collect()
     }
 
     /// PNG bytes of the tone-mapped image.

@@ -507,11 +507,9 @@ fn scene(a: &GpuBenchOptions, path: &Path, report: &dyn Report) -> Result<Bench>
         None
     };
     let (cpu, cpu_s) = crate::scene::render_cpu(&scene, w, h, 1, report);
-    let xyz = |i: &iridis_render::Image| -> Vec<Xyz> {
-        i.data.iter().map(|p| Xyz::from_linear_srgb(p.map(|c| c as f64))).collect()
-    };
-    let de = DeltaEStats::between(&xyz(&img), &xyz(&cpu), scene.output.exposure);
-    let direct = direct.map(|(dt, di)| (dt, DeltaEStats::between(&xyz(&img), &xyz(&di), scene.output.exposure)));
+    let gpu_xyz = img.to_xyz();
+    let de = DeltaEStats::between(&gpu_xyz, &cpu.to_xyz(), scene.output.exposure);
+    let direct = direct.map(|(dt, di)| (dt, DeltaEStats::between(&gpu_xyz, &di.to_xyz(), scene.output.exposure)));
     if let Some(dir) = &a.save {
         crate::output::write_png_rgb8(&dir.join("scene_gpu.png"), w, h, &frame.read_rgb8(&g)?)?;
     }

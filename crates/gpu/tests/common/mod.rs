@@ -2,7 +2,6 @@
 //! images look. The example `extended_light` includes this file too.
 #![allow(dead_code)] // each user takes its subset
 
-use iridis_color::Xyz;
 use iridis_gpu::Gpu;
 use iridis_render::Image;
 use iridis_thinfilm::accuracy::DeltaEStats;
@@ -38,8 +37,7 @@ pub fn one_scene_at_a_time() -> std::sync::MutexGuard<'static, ()> {
 /// The per-pixel CIEDE2000 between two images as displayed (linear sRGB scaled by `exposure`, clipped to the
 /// cube): the benches' one ΔE statistics (`iridis_thinfilm::accuracy::DeltaEStats`).
 pub fn image_delta_e(a: &Image, b: &Image, exposure: f64) -> DeltaEStats {
-    let xyz = |img: &Image| -> Vec<Xyz> { img.data.iter().map(|p| Xyz::from_linear_srgb(p.map(f64::from))).collect() };
-    DeltaEStats::between(&xyz(a), &xyz(b), exposure)
+    DeltaEStats::between(&a.to_xyz(), &b.to_xyz(), exposure)
 }
 
 /// Mean and 99th percentile of [`image_delta_e`] at exposure 1; a pixel that is not a finite number fails (the
