@@ -526,6 +526,10 @@ pub struct Materials {
 
 /// The built-in materials and, with `at_nm`, each one's complex index there.
 pub fn materials(at_nm: Option<f64>) -> Result<Materials> {
+    if let Some(w) = at_nm.filter(|w| !(w.is_finite() && *w > 0.0)) {
+        // Otherwise every material would answer "no data", which reads as a gap in the library.
+        bail!("--at {w} nm: a wavelength must be a positive, finite length");
+    }
     let mut rows = Vec::new();
     for (names, desc) in Material::library() {
         let m = Material::builtin(names[0]).context("built-in material failed to load")?;

@@ -36,4 +36,12 @@ fn grids_and_angles_refuse_what_cannot_be_meant() {
     assert!(parse_angles("0deg:100deg:50deg", "--angles").unwrap_err().to_string().contains("100° is outside"));
     assert_eq!(round_deg(30f64.to_radians()), 30.0);
     assert_eq!(fmt_deg(0.5f64.to_radians()), "0.5");
+    // A wavelength that cannot be meant is refused, not answered with "no data" for every material.
+    for w in [-1.0, 0.0, f64::NAN] {
+        let e = materials(Some(w)).unwrap_err().to_string();
+        assert!(e.contains("must be a positive, finite length"), "{e}");
+    }
+    // Water's constant index holds at any wavelength it is asked (Sussenbach's n = 1.33).
+    let water = materials(Some(550.0)).unwrap().rows.into_iter().find(|r| r.0.contains(&"water")).unwrap();
+    assert_eq!(water.4, Some(Ok((1.33, 0.0))));
 }

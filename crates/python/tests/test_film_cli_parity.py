@@ -109,6 +109,8 @@ def test_chart_is_the_clis():
 def test_materials_profile_are_the_clis():
     m = film.materials(550)
     assert m.text == text("materials.txt")
+    with pytest.raises(ValueError, match="must be a positive, finite length"):
+        film.materials(-1)
     same(dict(m), cli_json("materials.json"))
     p = film.profile("air | TiO2 60nm | Si 50nm | inc:glass 1mm | air", 550, depth="-20nm:200nm", points=23)
     assert p.csv == text("profile.csv")

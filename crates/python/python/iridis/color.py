@@ -66,6 +66,8 @@ def spectrum_to_xyz(wavelengths_nm, values, illuminant="D65", observer="1931"):
     wl = _float_array(wavelengths_nm, "wavelengths_nm")
     if wl.ndim != 1:
         raise ValueError(f"wavelengths_nm must be 1-D, got shape {wl.shape}")
+    if wl.size < 2:
+        raise ValueError(f"wavelengths_nm holds {wl.size} value(s): a spectrum needs at least two samples")
     v = _float_array(values, "values")
     if v.ndim == 0 or v.shape[-1] != wl.size:
         raise ValueError(f"values of shape {v.shape}: the last axis must match the {wl.size} wavelengths")
@@ -107,16 +109,24 @@ def xyz_to_linear_srgb(xyz):
     return _native._xyz_to_linear_srgb(a).reshape(shape)
 
 
+def _exposure(exposure):
+    # A zero, negative or NaN exposure would make every colour black without a word.
+    e = float(exposure)
+    if not (np.isfinite(e) and e > 0):
+        raise ValueError(f"exposure = {exposure}: must be a positive finite number (XYZ is multiplied by it)")
+    return e
+
+
 def xyz_to_srgb(xyz, exposure=1.0):
     """Display sRGB in [0, 1]: scaled by ``exposure``, clipped, encoded (the CLI's ``srgb``)."""
     a, shape = _colours(xyz, "xyz")
-    return _native._xyz_to_srgb(a, float(exposure)).reshape(shape)
+    return _native._xyz_to_srgb(a, _exposure(exposure)).reshape(shape)
 
 
 def xyz_to_hex(xyz, exposure=1.0):
     """``#rrggbb`` strings (the CLI's ``hex``); a list for several colours, a str for one."""
     a, shape = _colours(xyz, "xyz")
-    out = _native._xyz_to_hex(a, float(exposure))
+    out = _native._xyz_to_hex(a, _exposure(exposure))
     return out[0] if len(shape) == 1 else np.array(out).reshape(shape[:-1]).tolist()
 
 
