@@ -194,7 +194,7 @@ fn lab_evaluator(
     };
     let bench = Workbench::new(patch, config, input)?;
     let uses_terms = matches!(method, Method::Nmm | Method::Pq);
-    let len = if uses_terms { bench.config.term_count(&bench.patch) as u64 + 1 } else { 1 };
+    let len = if uses_terms { bench.config.term_count(&bench.patch)? as u64 + 1 } else { 1 };
     let e = with_progress(report, len, "preparing", |p| bench.evaluator(method, p));
     e.with_context(|| format!("--method {method} cannot make a map of {input}"))
 }

@@ -7,7 +7,9 @@ use std::sync::Arc;
 
 use anyhow::{bail, Context, Result};
 use iridis_diffraction::geometry::{dot, FresnelSource, Vec3};
-use iridis_diffraction::grating::{Efficiency, GratingAnswer, Lines, Normalisation, OrderEfficiency, UnitCell};
+use iridis_diffraction::grating::{
+    lines_of, Efficiency, GratingAnswer, Lines, Normalisation, OrderEfficiency, UnitCell,
+};
 use rayon::prelude::*;
 use serde_json::{json, Value};
 
@@ -208,7 +210,8 @@ pub struct Grating {
     /// Whether the reflector tells TE from TM (Schlick's approximation does not).
     pub polarised: bool,
     pub normalisation: Normalisation,
-    pub taylor_terms: usize,
+    /// Taylor terms `N` of the Kirchhoff method's cell; `None` with the rigorous method.
+    pub taylor_terms: Option<usize>,
     pub light: Vec3,
     pub detector: Option<Detector>,
     /// With `--unit-cell auto`: the period (nm) and the orientation of its grating vector (degrees from +x)
@@ -323,9 +326,14 @@ pub fn grating(
         let (s, c) = (-phi.to_radians()).sin_cos();
         l = [c * l[0] - s * l[1], s * l[0] + c * l[1], l[2]];
     }
-    // The cell keeps only the DFT bins this light's orders read (a large scan's memory).
-    let cell = UnitCell::for_light(&patch, l, w)?;
-    let (lx, ly) = cell.periods();
+    // Kirchhoff's unit cell keeps only the DFT bins this light's orders read (a large scan's memory); the
+    // rigorous solver takes the patch itself, so its Taylor terms are not made (nor their depth limit met).
+    let cell = match opts.method {
+        GratingMethod::Kirchhoff => Some(UnitCell::for_light(&patch, l, w)?),
+        GratingMethod::Rigorous => None,
+    };
+    let lines = cell.as_ref().map_or_else(|| lines_of(&patch), UnitCell::lines);
+    let (lx, ly) = patch.extent();
     report.info(&format!(
         "{}: one unit cell of {:.1} × {:.1} nm ({}×{} samples, {}){}",
         source.name(),
@@ -333,16 +341,12 @@ pub fn grating(
         ly,
         patch.cols,
         patch.rows,
-        match cell.lines() {
+        match lines {
             Lines::AlongX => "a 1-D grating along x: every row the same",
             Lines::AlongY => "a 1-D grating along y: every column the same",
             Lines::Crossed => "a crossed grating",
         },
-        if opts.method == GratingMethod::Kirchhoff {
-            format!(", N = {} Taylor terms", cell.taylor_terms())
-        } else {
-            String::new()
-        }
+        cell.as_ref().map_or(String::new(), |c| format!(", N = {} Taylor terms", c.taylor_terms()))
     ));
     // An order is listed at or above the asked efficiency, or inside the detector's cone (its reflectance
     // sums them); directions in the cell's frame are turned back by φ for the detector.
@@ -355,8 +359,8 @@ pub fn grating(
                 dot([t.sin() * p.cos(), t.sin() * p.sin(), t.cos()], d.direction) >= d.acceptance_rad.cos() - 1e-12
             })
     };
-    let answers: Vec<OrdersAt> = match opts.method {
-        GratingMethod::Kirchhoff => {
+    let answers: Vec<OrdersAt> = match &cell {
+        Some(cell) => {
             if !fresnel.polarised() {
                 report.note(&format!(
                     "{}: no polarised form, so TE and TM get the same reflectance (give --material for exact s and p)",
@@ -386,9 +390,9 @@ pub fn grating(
             }
             a.into_iter().map(|(a, _)| a).collect()
         }
-        GratingMethod::Rigorous => {
+        None => {
             let metal = substrate.expect("the rigorous method has a material");
-            rigorous(&patch, cell.lines(), l, w, &metal, report)?
+            rigorous(&patch, lines, l, w, &metal, report)?
                 .into_iter()
                 .map(|a| a.listing(|o| keep(o, averaged)))
                 .collect()
@@ -399,11 +403,11 @@ pub fn grating(
         method: opts.method,
         periods_nm: (lx, ly),
         samples: (patch.cols, patch.rows),
-        lines: cell.lines(),
+        lines,
         reflector,
         polarised: fresnel.polarised(),
         normalisation,
-        taylor_terms: cell.taylor_terms(),
+        taylor_terms: cell.as_ref().map(UnitCell::taylor_terms),
         light: opts.light,
         detector: opts.detector,
         averaged,

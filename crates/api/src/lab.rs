@@ -181,7 +181,7 @@ pub fn evaluator(b: &Workbench, method: Method, report: &dyn Report) -> Result<B
         Method::GroundTruth | Method::GroundTruthPeriodic | Method::StamGaussian | Method::StamPeriodic(_) => {
             (1, "preparing")
         }
-        _ => (b.config.term_count(&b.patch) as u64 + 1, "Taylor terms"),
+        _ => (b.config.term_count(&b.patch)? as u64 + 1, "Taylor terms"),
     };
     Ok(with_progress(report, len, what, |p| b.evaluator(method, p))?)
 }

@@ -101,7 +101,7 @@ pub fn coherence_for(patch: &Patch, given_nm: Option<f64>, report: &dyn Report) 
 /// shortest wavelength the terms serve).
 pub fn term_count(patch: &Patch, m: &ModelOptions, auto_from_nm: f64) -> Result<usize> {
     Ok(match m.terms.trim() {
-        "auto" => terms_for_bound(patch.max_abs_height, auto_from_nm, DEFAULT_EPSILON),
+        "auto" => terms_for_bound(patch.max_abs_height, auto_from_nm, DEFAULT_EPSILON)?,
         t => match t.parse::<usize>() {
             Ok(n) if n <= 200 => n,
             _ => bail!("--terms '{t}' must be 'auto' or a number of terms from 0 to 200"),

@@ -252,7 +252,7 @@ impl UnitCell {
     }
 
     fn with_band(patch: &Patch, lambda_min_nm: f64, band: Band, light: Option<Vec3>) -> Result<Self, DiffractionError> {
-        let n = terms_for_bound(patch.max_abs_height, lambda_min_nm, TAYLOR_EPSILON);
+        let n = terms_for_bound(patch.max_abs_height, lambda_min_nm, TAYLOR_EPSILON)?;
         // The window is not used: the orders read the DFT bins themselves.
         let terms = TaylorTerms::compute_in_band(patch, n, 1e12, band, &|_| {})?;
         Ok(Self { terms, lines: lines_of(patch), lambda_min_nm, light })
@@ -441,8 +441,8 @@ fn check_wavelength(lambda_min_nm: f64) -> Result<(), DiffractionError> {
     }
 }
 
-/// Which axes of `patch` carry structure.
-fn lines_of(patch: &Patch) -> Lines {
+/// Which axes of `patch` carry structure (what [`UnitCell::lines`] reports, without building a cell).
+pub fn lines_of(patch: &Patch) -> Lines {
     let rows_same =
         (1..patch.rows).all(|j| patch.heights[j * patch.cols..(j + 1) * patch.cols] == patch.heights[..patch.cols]);
     let cols_same =

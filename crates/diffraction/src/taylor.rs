@@ -12,17 +12,38 @@ use rayon::prelude::*;
 use crate::patch::Patch;
 use crate::DiffractionError;
 
+/// The largest rounding error, relative to the amplitude, that the Taylor sum may carry before
+/// [`terms_for_bound`] refuses the relief (docs/PHYSICS.md, "Taylor terms").
+pub const MAX_TAYLOR_ROUNDING: f64 = 1e-4;
+
 /// The number of Taylor terms `N` for which the remainder bound `(k_max · 2|h|max)^{N+1} / (N+1)! ≤ ε`
 /// holds (PHYSICS.md), `k_max = 2π/λ_min`, since `|k w h| ≤ 2 k |h|`.
-pub fn terms_for_bound(max_abs_height_nm: f64, lambda_min_nm: f64, epsilon: f64) -> usize {
+///
+/// Refuses a relief too deep for the expansion at `λ_min`: its terms grow to `~x^x/x!` (`x = 2 k_max |h|max`)
+/// and cancel to an amplitude of at most 1, so the sum keeps about `ε_f64 · e^x` of rounding — beyond
+/// [`MAX_TAYLOR_ROUNDING`] (`x > 26.8`, e.g. `|h|max` above 810 nm at 380 nm) the answer would be noise, and
+/// further on the coefficients `|h|^n` overflow into NaN.
+pub fn terms_for_bound(max_abs_height_nm: f64, lambda_min_nm: f64, epsilon: f64) -> Result<usize, DiffractionError> {
     let x = 2.0 * std::f64::consts::TAU / lambda_min_nm * max_abs_height_nm;
+    let rounding = f64::EPSILON * x.exp();
+    if !(rounding <= MAX_TAYLOR_ROUNDING) {
+        let x_max = (MAX_TAYLOR_ROUNDING / f64::EPSILON).ln();
+        return Err(DiffractionError::Invalid(format!(
+            "the relief reaches {max_abs_height_nm:.0} nm from its mean height, too deep for the Taylor expansion \
+             (paper eq. 5) at {lambda_min_nm} nm: its terms grow to about e^{x:.0} before they cancel, so double \
+             precision leaves {rounding:.0e} of the amplitude as rounding noise (at most {MAX_TAYLOR_ROUNDING:.0e} \
+             is accepted; the limit is 2k|h|max ≤ {x_max:.1}, |h|max ≤ {:.0} nm here). Use a method that sums \
+             exp(i k w h) directly (ground-truth for BRDFs, rigorous for order efficiencies) or longer wavelengths",
+            x_max * lambda_min_nm / (2.0 * std::f64::consts::TAU)
+        )));
+    }
     let mut term = x; // x^{N+1}/(N+1)! for N = 0
     let mut n = 0usize;
-    while term > epsilon && n < 400 {
+    while term > epsilon {
         n += 1;
         term *= x / (n + 1) as f64;
     }
-    n
+    Ok(n)
 }
 
 /// The DFT bins a [`TaylorTerms`] keeps: those whose frequency `(s/Lx, t/Ly)` lies within `radius` of `centre`
@@ -123,6 +144,17 @@ impl TaylorTerms {
         }
         let (rows, cols) = (patch.rows, patch.cols);
         let samples = rows * cols;
+        // The coefficients of (i h)^n in nm: |h|max^N, summed over the samples by the DFT, must stay finite.
+        let log_largest = n_max as f64 * patch.max_abs_height.max(1.0).ln() + (samples as f64).ln();
+        if log_largest >= f64::MAX.ln() {
+            return Err(DiffractionError::Invalid(format!(
+                "{n_max} Taylor terms of a relief reaching {:.0} nm from its mean height: |h|^N ≈ 1e{:.0} \
+                 overflows double precision; use fewer terms or a method that sums exp(i k w h) directly \
+                 (ground-truth for BRDFs, rigorous for order efficiencies)",
+                patch.max_abs_height,
+                log_largest / std::f64::consts::LN_10
+            )));
+        }
         let (lx, ly) = (cols as f64 * patch.dx, rows as f64 * patch.dy);
         // The kept bins, row by row: signed s within the band and within the DFT's −⌊(n−1)/2⌋..=⌊n/2⌋.
         let (s_min, s_max) = (-(((cols - 1) / 2) as i64), (cols / 2) as i64);

@@ -27,7 +27,7 @@ fn lookup(p: &Patch, units: Units, coherence: f64) -> Lookup {
 }
 
 fn lookup_at(p: &Patch, units: Units, coherence: f64, res: usize) -> Lookup {
-    let n = terms_for_bound(p.max_abs_height, 380.0, 1e-6);
+    let n = terms_for_bound(p.max_abs_height, 380.0, 1e-6).unwrap();
     let terms = TaylorTerms::compute(p, n, coherence).unwrap();
     let mut spectral = SpectralSetup::default();
     if units == Units::Radiometric {

@@ -97,7 +97,7 @@ fn table(name: &str) -> Arc<LookupTable> {
     let hf = iridis_surface::builtin::builtin_surface(&format!("{name}?size=6um&pixel=62.5nm"), &Default::default())
         .unwrap();
     let patch = Patch::from_row_major(hf.rows, hf.cols, hf.dx_nm, hf.dy_nm, &hf.heights_nm).unwrap();
-    let n = terms_for_bound(patch.max_abs_height, 380.0, 1e-6);
+    let n = terms_for_bound(patch.max_abs_height, 380.0, 1e-6).unwrap();
     let terms = TaylorTerms::compute(&patch, n, 3000.0).unwrap();
     let params = TableParams { uv_resolution: 61, uv_power: 5.0 };
     Arc::new(LookupTable::build(&terms, &SpectralSetup::default(), params, name, &|_| {}).unwrap())

@@ -66,7 +66,7 @@ fn sine_patch() -> (Patch, f64) {
 fn sinusoidal_grating_obeys_the_grating_equation_ground_truth_and_reference() {
     let (patch, d) = sine_patch();
     let spectral = SpectralSetup::default();
-    let n = terms_for_bound(patch.max_abs_height, 380.0, 1e-8);
+    let n = terms_for_bound(patch.max_abs_height, 380.0, 1e-8).unwrap();
     let terms = Arc::new(TaylorTerms::compute(&patch, n, COHERENCE).unwrap());
     let reference = Reference { terms, shading: Shading::default(), spectral: spectral.clone() };
     let truth = GroundTruth::new(&patch, COHERENCE, Shading::default(), &spectral, 3).unwrap();
@@ -102,7 +102,7 @@ fn sinusoidal_grating_obeys_the_grating_equation_ground_truth_and_reference() {
 /// The f64 lookup of a patch in a narrow band (550–555 nm), so the λ-integrated table has sharp orders.
 fn narrow_band_lookup(patch: &Patch, params: TableParams, name: &str) -> Lookup {
     let spectral = SpectralSetup::with_range(Illuminant::E, Observer::Cie1931, 550.0, 555.0, 5.0).unwrap();
-    let n = terms_for_bound(patch.max_abs_height, 550.0, 1e-8);
+    let n = terms_for_bound(patch.max_abs_height, 550.0, 1e-8).unwrap();
     let terms = TaylorTerms::compute(patch, n, COHERENCE).unwrap();
     let table = Arc::new(LookupTable::build(&terms, &spectral, params, name, &|_| {}).unwrap());
     Lookup::new(table, Shading::default(), Precision::F64).unwrap()
@@ -158,7 +158,7 @@ fn blazed_grating_sends_light_to_the_side_its_facets_face() {
     let patch = grating(|t| depth * t, d, 50, 8, 4);
     let lambda = 550.0;
     let spectral = SpectralSetup::default();
-    let n = terms_for_bound(patch.max_abs_height, 380.0, 1e-8);
+    let n = terms_for_bound(patch.max_abs_height, 380.0, 1e-8).unwrap();
     let terms = Arc::new(TaylorTerms::compute(&patch, n, COHERENCE).unwrap());
     let reference = Reference { terms, shading: Shading::default(), spectral: spectral.clone() };
     let truth = GroundTruth::new(&patch, COHERENCE, Shading::default(), &spectral, 3).unwrap();
@@ -183,7 +183,7 @@ fn amplitude_is_reciprocal_and_methods_agree() {
     // 48 × 48 samples 60 nm apart, heights uniform in ±30 nm.
     let patch = Patch::from_row_major(48, 48, 60.0, 60.0, &common::heights(48 * 48, 30.0, 7)).unwrap();
     let spectral = SpectralSetup::default();
-    let n = terms_for_bound(patch.max_abs_height, 380.0, 1e-10);
+    let n = terms_for_bound(patch.max_abs_height, 380.0, 1e-10).unwrap();
     let terms = Arc::new(TaylorTerms::compute(&patch, n, 2000.0).unwrap());
     let exact = Shading {
         fresnel: Arc::new(iridis_diffraction::Fresnel::Index { n: num_complex::Complex64::new(0.2, 3.4) }),
@@ -232,7 +232,7 @@ fn lookup_on_the_power_5_grid_obeys_the_grating_equation_at_several_wavelengths(
     // The paper's grid (a = 5, 501²) is fine near the specular direction and coarse far from it: a peak can
     // only be found to within half a grid step there (bilinear interpolation of a window ~2 steps wide).
     let (patch, d) = sine_patch();
-    let n = terms_for_bound(patch.max_abs_height, 400.0, 1e-8);
+    let n = terms_for_bound(patch.max_abs_height, 400.0, 1e-8).unwrap();
     let terms = TaylorTerms::compute(&patch, n, COHERENCE).unwrap();
     let (res, power) = (501, 5.0);
     let mut worst: f64 = 0.0;

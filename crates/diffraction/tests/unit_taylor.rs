@@ -94,8 +94,20 @@ fn banded_terms_are_the_full_grids_bits_inside_and_zero_outside() {
 }
 
 #[test]
+fn terms_whose_coefficients_overflow_are_refused() {
+    // c_n = DFT((i h)^n)/samples with h in nm: |h|max^N must stay below f64's 1.8e308 (here 150^N · 48²).
+    let patch = rough_patch(48, 48, 20.0);
+    let h = patch.max_abs_height;
+    let last_finite = ((f64::MAX.ln() - (48.0f64 * 48.0).ln()) / h.ln()).floor() as usize;
+    let ok = TaylorTerms::compute(&patch, last_finite, 2000.0).unwrap();
+    assert!(ok.bin(1, 0).iter().all(|c| c.re.is_finite() && c.im.is_finite()));
+    let e = TaylorTerms::compute(&patch, last_finite + 1, 2000.0).unwrap_err().to_string();
+    assert!(e.contains("overflows double precision"), "{e}");
+}
+
+#[test]
 fn term_count_meets_its_bound() {
-    let n = terms_for_bound(150.0, 380.0, 1e-6);
+    let n = terms_for_bound(150.0, 380.0, 1e-6).unwrap();
     let x = 2.0 * std::f64::consts::TAU / 380.0 * 150.0;
     let bound = |n: usize| (1..=n + 1).fold(1.0, |acc, k| acc * x / k as f64);
     assert!(bound(n) <= 1e-6 && bound(n - 1) > 1e-6, "N = {n}");

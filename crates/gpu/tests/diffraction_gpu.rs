@@ -49,7 +49,7 @@ fn tables_built_on_the_gpu_match_the_cpu() {
         ("builtin:xenopeltis?size-x=4um&size-y=3um&pixel=60nm", 1500.0, 33),
     ] {
         let p = patch(spec);
-        let n = terms_for_bound(p.max_abs_height, 380.0, 1e-6);
+        let n = terms_for_bound(p.max_abs_height, 380.0, 1e-6).unwrap();
         let terms = TaylorTerms::compute(&p, n, coherence).unwrap();
         let params = TableParams { uv_resolution: res, uv_power: 5.0 };
         let cpu = LookupTable::build(&terms, &spectral, params, spec, &|_| {}).unwrap();
@@ -151,7 +151,7 @@ fn fixed_point_phases_keep_f32_accuracy() {
 fn encoded_tables_render_what_the_cpu_decodes() {
     let Some(gpu) = gpu() else { return };
     let p = patch("builtin:elaphe?size=6um&pixel=62.5nm");
-    let n = terms_for_bound(p.max_abs_height, 380.0, 1e-6);
+    let n = terms_for_bound(p.max_abs_height, 380.0, 1e-6).unwrap();
     let terms = TaylorTerms::compute(&p, n, 3000.0).unwrap();
     let params = TableParams { uv_resolution: 61, uv_power: 5.0 };
     let table = LookupTable::build(&terms, &SpectralSetup::default(), params, "elaphe", &|_| {}).unwrap();

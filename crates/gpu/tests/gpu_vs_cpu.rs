@@ -34,7 +34,7 @@ fn small_table(name: &str) -> LookupTable {
     let spec = format!("builtin:{name}?size=16um&pixel=50nm");
     let hf = iridis_surface::load_surface(&spec, &Default::default()).unwrap();
     let patch = Patch::from_row_major(hf.rows, hf.cols, hf.dx_nm, hf.dy_nm, &hf.heights_nm).unwrap();
-    let n = terms_for_bound(patch.max_abs_height, 380.0, 1e-6);
+    let n = terms_for_bound(patch.max_abs_height, 380.0, 1e-6).unwrap();
     let terms = TaylorTerms::compute(&patch, n, 16_000.0).unwrap();
     let params = TableParams { uv_resolution: 121, uv_power: 5.0 };
     LookupTable::build(&terms, &SpectralSetup::default(), params, &spec, &|_| {}).unwrap()

@@ -166,11 +166,13 @@ impl Default for MethodConfig {
 }
 
 impl MethodConfig {
-    /// The Taylor-term count for a patch.
-    pub fn term_count(&self, patch: &Patch) -> usize {
-        self.terms.unwrap_or_else(|| {
-            terms_for_bound(patch.max_abs_height, self.spectral.wavelengths()[0], self.term_epsilon).max(1)
-        })
+    /// The Taylor-term count for a patch; refused for a relief too deep for the expansion
+    /// ([`terms_for_bound`]).
+    pub fn term_count(&self, patch: &Patch) -> Result<usize, LabError> {
+        match self.terms {
+            Some(n) => Ok(n),
+            None => Ok(terms_for_bound(patch.max_abs_height, self.spectral.wavelengths()[0], self.term_epsilon)?.max(1)),
+        }
     }
 }
 
@@ -201,7 +203,7 @@ impl Workbench {
         if let Some(t) = guard.as_ref() {
             return Ok(t.clone());
         }
-        let n = self.config.term_count(&self.patch);
+        let n = self.config.term_count(&self.patch)?;
         let t = Arc::new(TaylorTerms::compute_in_band(
             &self.patch,
             n,
@@ -349,7 +351,7 @@ impl Workbench {
 /// size, pixel size, coherence, illuminant or light spectrum, observer, Δλ and range, N, u-v grid), every
 /// mismatch named ([`LookupTable::check`], the check `brdf-map` makes on the options a user gives).
 pub fn check_table(t: &LookupTable, path: &str, patch: &Patch, c: &MethodConfig) -> Result<(), LabError> {
-    let expected = Provenance::of(patch, c.coherence_nm, c.term_count(patch), &c.spectral, c.table);
+    let expected = Provenance::of(patch, c.coherence_nm, c.term_count(patch)?, &c.spectral, c.table);
     Ok(t.check(&expected, path)?)
 }
 

@@ -20,7 +20,7 @@ fn profile_patch(rows: usize, cols: usize, dx: f64, h: impl Fn(f64) -> f64) -> P
 }
 
 fn terms(patch: &Patch, coherence: f64) -> Arc<TaylorTerms> {
-    let n = iridis_diffraction::taylor::terms_for_bound(patch.max_abs_height, 380.0, 1e-9);
+    let n = iridis_diffraction::taylor::terms_for_bound(patch.max_abs_height, 380.0, 1e-9).unwrap();
     Arc::new(TaylorTerms::compute(patch, n, coherence).unwrap())
 }
 

@@ -136,7 +136,8 @@ fn cached_table(
     params: TableParams,
     units: Units,
 ) -> Result<Arc<LookupTable>, RenderError> {
-    let n = terms_for_bound(patch.max_abs_height, 380.0, BUILTIN_EPSILON);
+    let n = terms_for_bound(patch.max_abs_height, 380.0, BUILTIN_EPSILON)
+        .map_err(|e| RenderError::Input(format!("{spec}: {e}")))?;
     let key = table_key(name, &patch.fingerprint(), params, n, coherence_nm, units);
     if let Some(t) = memory().lock().ok().and_then(|m| m.get(&key).cloned()) {
         return Ok(t);
@@ -201,7 +202,8 @@ pub fn builtin_patch(name: &str) -> Result<Patch, RenderError> {
 /// `iridis precompute builtin:NAME` with default model options and the given u-v grid.
 pub fn compute_builtin(name: &str, params: TableParams, units: Units) -> Result<LookupTable, RenderError> {
     let patch = builtin_patch(name)?;
-    let n = terms_for_bound(patch.max_abs_height, 380.0, BUILTIN_EPSILON);
+    let n = terms_for_bound(patch.max_abs_height, 380.0, BUILTIN_EPSILON)
+        .map_err(|e| RenderError::Input(format!("builtin:{name}: {e}")))?;
     compute_table(&format!("builtin:{name}"), &patch, n, DEFAULT_COHERENCE_NM, params, units)
 }
 

@@ -224,7 +224,7 @@ pub fn methods(a: &MethodsOptions, report: &dyn Report) -> Result<Bench> {
         // The window a quarter of the patch side, as in `bench diffraction-accuracy`: inside the patch, so both
         // methods see the same surface.
         let coherence = n as f64 * patch.dx / 4.0;
-        let terms_n = terms_for_bound(patch.max_abs_height, 380.0, 1e-6);
+        let terms_n = terms_for_bound(patch.max_abs_height, 380.0, 1e-6)?;
         report.info(&format!("{n}² patch: Taylor terms (N = {terms_n}) …"));
         let start = Instant::now();
         let terms = Arc::new(TaylorTerms::compute(&patch, terms_n, coherence)?);
@@ -337,7 +337,7 @@ pub fn accuracy(a: &AccuracyOptions, report: &dyn Report) -> Result<Bench> {
             patch.rows,
             coherence / 1000.0
         ));
-        let n = iridis_diffraction::taylor::terms_for_bound(patch.max_abs_height, 380.0, 1e-6);
+        let n = iridis_diffraction::taylor::terms_for_bound(patch.max_abs_height, 380.0, 1e-6)?;
         let terms = TaylorTerms::compute(&patch, n, coherence)?;
         let samples = 2 * spectral.wavelengths().len() - 1;
         let both = [Aperture::Periodic, Aperture::Finite].map(|ap| {
