@@ -250,10 +250,14 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
         iridis_diffraction::patch::check_coherence(c, d(0), d(1)).context("--coherence")?;
     }
 
+    // A relief too deep for the Taylor expansion behind every later step has no scalar colours: the report
+    // keeps its relief, roughness and periods and says which commands compute its colours instead.
+    let too_deep = too_deep_for_taylor(&info);
+
     // 2. The scan as one unit cell of a grating: how much of the light it diffracts, and the colour of the rest.
     let spectrum = iridis_color::spectrum::uniform_grid(380.0, 780.0, 10.0)?;
     let mut unit_cells = Vec::new();
-    for inc in ["0deg", "45deg"] {
+    for inc in ["0deg", "45deg"].into_iter().filter(|_| too_deep.is_none()) {
         let mut args =
             s(&["grating", &o.surface, "--light", inc, "--from", "380nm", "--to", "780nm", "--step", "10nm"]);
         // The report reads the totals and colours only: a large scan has ~10⁵ orders a wavelength.
@@ -279,7 +283,7 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
     let longest =
         info["peaks"].as_array().into_iter().flatten().filter_map(|p| p["period_nm"].as_f64()).fold(0.0f64, f64::max);
     let shares: Vec<f64> = grating_json.iter().map(share).collect();
-    let diffracts = crate::grating::diffracts_visible_light(longest, &shares);
+    let diffracts = too_deep.is_none() && crate::grating::diffracts_visible_light(longest, &shares);
     let mut maps = Vec::new();
     let mut bench: Option<Value> = None;
     let mut bench_failure: Option<String> = None;
@@ -414,7 +418,10 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
             }
         }
     }
-    let verdict = verdict(&info, &grating_json, diffracts);
+    let verdict = match &too_deep {
+        Some(why) => deep_verdict(&o.surface, why),
+        None => verdict(&info, &grating_json, diffracts),
+    };
     let scalar = scalar_error_json.as_ref().map(scalar_sentence);
     let seen = vision.as_ref().map(vision_sentence);
     let mut warnings: Vec<String> = bench_failure.into_iter().collect();
@@ -461,7 +468,8 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
         "level": relief_level,
         "info": info,
         "unit_cell": unit_cell,
-        "diffracts_visible_light": diffracts,
+        "diffracts_visible_light": if too_deep.is_some() { Value::Null } else { json!(diffracts) },
+        "too_deep_for_scalar_model": too_deep,
         "verdict": verdict,
         "map_coherence": map_coherence,
         "scalar_model_error": scalar_error_json,
@@ -568,6 +576,28 @@ fn scalar_sentence(e: &Value) -> String {
 }
 
 /// What the scan does to light, in words a biologist reads first.
+/// Why the Taylor expansion refuses the levelled relief of `info` at the report's shortest wavelength (380 nm),
+/// if it does: the same test as every step that would use it (`terms_for_bound` on `|h − mean|max`).
+fn too_deep_for_taylor(info: &Value) -> Option<String> {
+    let (max, min, mean) =
+        (info["height_max_nm"].as_f64()?, info["height_min_nm"].as_f64()?, info["mean_nm"].as_f64()?);
+    let h = (max - mean).max(mean - min);
+    iridis_diffraction::taylor::terms_for_bound(h, 380.0, iridis_diffraction::grating::TAYLOR_EPSILON)
+        .err()
+        .map(|e| e.to_string())
+}
+
+/// The report's first sentence for a relief too deep for the scalar model: what it skipped and what to run.
+fn deep_verdict(surface: &str, why: &str) -> String {
+    let q = quote(surface);
+    format!(
+        "The scan's relief is too deep for the scalar model's Taylor expansion, so this report shows its relief, \
+         roughness and periods but no colours: {why}. Its colours: `iridis grating {q} --method rigorous \
+         --unit-cell auto --material keratin` (order efficiencies from Maxwell's equations) or `iridis brdf-map {q} \
+         --method ground-truth -o map.png` (the BRDF map by the direct sum)."
+    )
+}
+
 fn verdict(info: &Value, grating: &[Value], diffracts: bool) -> String {
     let share = |g: &Value| 100.0 * g["colour"]["diffracted_share"].as_f64().unwrap_or(0.0);
     let periods: Vec<f64> =
@@ -617,11 +647,11 @@ fn html(r: &Value, steps: &[Step]) -> String {
         .map_or(String::new(), |n| n.to_string_lossy().into_owned());
     let mut h = String::from("<!doctype html><meta charset=utf-8><title>iridis report</title>\n<style>body{font-family:sans-serif;max-width:1000px;margin:auto}code{background:#eee;padding:2px}img{max-width:100%}.w{color:#a40}.swatch{display:inline-block;width:2em;height:1em;border:1px solid #888;vertical-align:middle}</style>\n");
     h += &format!("<h1>iridis report: {}</h1>\n", html_escape(&name));
-    let swatch = r["unit_cell"][0]["specular"]["hex"].as_str().unwrap_or("#000000");
-    h += &format!(
-        "<p><b>{}</b> <span class=swatch style=\"background:{swatch}\"></span> (mirror colour)</p>\n",
-        html_escape(r["verdict"].as_str().unwrap_or(""))
-    );
+    // No swatch where no mirror colour was computed (a relief too deep for the scalar model), rather than black.
+    let swatch = r["unit_cell"][0]["specular"]["hex"]
+        .as_str()
+        .map_or(String::new(), |hex| format!(" <span class=swatch style=\"background:{hex}\"></span> (mirror colour)"));
+    h += &format!("<p><b>{}</b>{swatch}</p>\n", html_escape(r["verdict"].as_str().unwrap_or("")));
     if let (Some(c), true) = (r["map_coherence"].as_str(), r["diffracts_visible_light"] == json!(true)) {
         h += &format!(
             "<p>The BRDF maps are drawn with a coherence window of {c}: half the scan's shorter side (at least four \

@@ -771,6 +771,27 @@ fn report_of_a_snake_scan_states_the_scalar_models_error_and_a_birds_view() {
     assert!((az - 90.0).abs() < 1.0, "the bench along the rows: {az}");
 }
 
+/// A relief too deep for the Taylor expansion (a 4 µm-deep sine, |h|max 2 µm: 2k|h|max = 66 at 380 nm) printed
+/// NaN efficiencies with exit 0: `grating` refuses it, naming the limit and the methods without it, and the
+/// report keeps the relief's own figures, says what to run for its colours and draws no (black) mirror swatch.
+#[test]
+fn a_relief_too_deep_for_the_taylor_expansion_is_said_so() {
+    let deep = "builtin:sine?size=4um&pixel=100nm&depth=4000nm&period=2um";
+    let grating = ["grating", deep, "--light", "0deg", "--from", "400nm", "--to", "400nm"];
+    crate::common::assert_fails(&grating, &["too deep for the Taylor expansion", "2k|h|max ≤ 26.8", "rigorous"]);
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("deep");
+    ok(&["report", deep, "--size", "16", "-o", out.to_str().unwrap()]);
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    assert_eq!(r["diffracts_visible_light"], serde_json::Value::Null);
+    assert!(r["too_deep_for_scalar_model"].as_str().unwrap().contains("|h|max ≤ 811 nm"), "{r}");
+    assert!(r["verdict"].as_str().unwrap().contains("--method rigorous --unit-cell auto"), "{}", r["verdict"]);
+    assert_eq!(r["figures"], serde_json::json!(["relief.png", "psdf.png", "acf.png"]));
+    assert_eq!(r["commands"].as_array().unwrap().len(), 1, "the relief's step only");
+    assert!(!std::fs::read_to_string(out.join("index.html")).unwrap().contains("mirror colour"));
+}
+
 /// `iridis report` on every real instrument file (small maps), when the samples have been fetched.
 #[test]
 fn report_on_each_real_instrument_file() {

@@ -31,9 +31,10 @@ pub fn terms_for_bound(max_abs_height_nm: f64, lambda_min_nm: f64, epsilon: f64)
         return Err(DiffractionError::Invalid(format!(
             "the relief reaches {max_abs_height_nm:.0} nm from its mean height, too deep for the Taylor expansion \
              (paper eq. 5) at {lambda_min_nm} nm: its terms grow to about e^{x:.0} before they cancel, so double \
-             precision leaves {rounding:.0e} of the amplitude as rounding noise (at most {MAX_TAYLOR_ROUNDING:.0e} \
+             precision leaves {} of the amplitude as rounding noise (at most {MAX_TAYLOR_ROUNDING:.0e} \
              is accepted; the limit is 2k|h|max ≤ {x_max:.1}, |h|max ≤ {:.0} nm here). Use a method that sums \
              exp(i k w h) directly (ground-truth for BRDFs, rigorous for order efficiencies) or longer wavelengths",
+            if rounding.is_finite() { format!("{rounding:.0e}") } else { "over 1e308 times".into() },
             x_max * lambda_min_nm / (2.0 * std::f64::consts::TAU)
         )));
     }

@@ -214,7 +214,8 @@ fn lobes_below_the_grid_are_scaled_by_a_cell_made_for_their_wavelength() {
     let patch = Patch::from_row_major(64, 256, 4400.0 / 256.0, 4400.0 / 64.0, &heights).unwrap();
     let spectral = iridis_diffraction::SpectralSetup::default();
     let reference = || {
-        let terms = iridis_diffraction::TaylorTerms::compute(&patch, terms_for_bound(150.0, 300.0, 1e-8).unwrap(), 4400.0);
+        let terms =
+            iridis_diffraction::TaylorTerms::compute(&patch, terms_for_bound(150.0, 300.0, 1e-8).unwrap(), 4400.0);
         let shading = iridis_diffraction::Shading::default();
         Box::new(iridis_diffraction::Reference { terms: terms.unwrap().into(), shading, spectral: spectral.clone() })
     };

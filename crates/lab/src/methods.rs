@@ -171,7 +171,9 @@ impl MethodConfig {
     pub fn term_count(&self, patch: &Patch) -> Result<usize, LabError> {
         match self.terms {
             Some(n) => Ok(n),
-            None => Ok(terms_for_bound(patch.max_abs_height, self.spectral.wavelengths()[0], self.term_epsilon)?.max(1)),
+            None => {
+                Ok(terms_for_bound(patch.max_abs_height, self.spectral.wavelengths()[0], self.term_epsilon)?.max(1))
+            }
         }
     }
 }

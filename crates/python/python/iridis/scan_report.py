@@ -23,7 +23,7 @@ def report(surface, output, *, channel=None, pixel_size=None, max_height=None, h
            override_units=False, as_height=False, size=128, coherence=None, visual="bluetit", testbench=True):
     """Writes the report of ``surface`` (a SURFACE argument: a file or ``builtin:NAME``) into the folder
     ``output`` and returns ``report.json``'s dict (``verdict``, ``info``, ``unit_cell``, ``testbench``,
-    ``warnings``, ``commands``, ``figures``, …). Lengths are given as the CLI takes them (``pixel_size="5nm"``,
+    ``too_deep_for_scalar_model``, ``warnings``, ``commands``, ``figures``, …). Lengths are given as the CLI takes them (``pixel_size="5nm"``,
     ``coherence="20um"``; ``max_height="250nm"`` is the height of white in a PNG or TIFF image of heights);
     ``size`` is the BRDF maps' size in pixels, ``visual`` the animal whose view is shown, ``testbench=False``
     leaves out the test bench (the slowest step). The report's warnings are Python warnings;

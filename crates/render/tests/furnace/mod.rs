@@ -189,7 +189,8 @@ pub fn energy_diffraction() -> (iridis_render::material::Diffraction, iridis_ren
         .collect();
     let patch = Patch::from_row_major(n, n, 100.0, 100.0, &heights).unwrap();
     let coherence = 3200.0;
-    let terms = TaylorTerms::compute(&patch, terms_for_bound(patch.max_abs_height, 380.0, 1e-6).unwrap(), coherence).unwrap();
+    let terms =
+        TaylorTerms::compute(&patch, terms_for_bound(patch.max_abs_height, 380.0, 1e-6).unwrap(), coherence).unwrap();
     let spectral = SpectralSetup::default().radiometric(coherence).unwrap();
     let table =
         LookupTable::build(&terms, &spectral, TableParams { uv_resolution: 101, uv_power: 5.0 }, "rough", &|_| {})
