@@ -49,6 +49,14 @@ pub fn wavelength_grid(from: f64, to: f64, step: f64) -> Result<Vec<f64>> {
     Ok(g)
 }
 
+/// A colour integrates a spectrum over wavelengths: a grid of one wavelength would give black without a word.
+pub fn check_colour_grid(grid: &[f64]) -> Result<()> {
+    if let [one] = grid {
+        bail!("a colour integrates the spectrum over wavelengths, and --from/--to give only {one} nm; give a range (the default is 380nm to 780nm)");
+    }
+    Ok(())
+}
+
 /// Writes a plot as PNG, part of the run's outputs ([`crate::output`]).
 pub fn write_png(path: &std::path::Path, img: &RgbImage) -> Result<()> {
     crate::output::write_png_rgb8(path, img.width, img.height, &img.data)

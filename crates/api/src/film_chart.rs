@@ -72,6 +72,7 @@ pub fn chart(
     grid: &[f64],
     rough: Option<RoughLight>,
 ) -> Result<FilmChart> {
+    crate::film::check_colour_grid(grid)?;
     let (parsed, layer) = Stack::parse_sweep(stack)?;
     let ds = parse_range(thickness, parse_length_nm).map_err(|e| anyhow!("--thickness: {e}"))?;
     if ds[0] < 0.0 {

@@ -36,6 +36,10 @@ fn grids_and_angles_refuse_what_cannot_be_meant() {
     assert!(parse_angles("0deg:100deg:50deg", "--angles").unwrap_err().to_string().contains("100° is outside"));
     assert_eq!(round_deg(30f64.to_radians()), 30.0);
     assert_eq!(fmt_deg(0.5f64.to_radians()), "0.5");
+    // A colour of one wavelength would be black: refused (the spectrum of one wavelength is fine).
+    let e = check_colour_grid(&[500.0]).unwrap_err().to_string();
+    assert!(e.contains("only 500 nm; give a range"), "{e}");
+    assert!(check_colour_grid(&[500.0, 505.0]).is_ok());
     // A wavelength that cannot be meant is refused, not answered with "no data" for every material.
     for w in [-1.0, 0.0, f64::NAN] {
         let e = materials(Some(w)).unwrap_err().to_string();

@@ -119,6 +119,9 @@ fn bad_input_names_the_token() {
         &["incident medium 'au' (gold, Johnson & Christy 1972", "built-in library", "absorbs", "lossless"],
     );
     assert_fails(&["thinfilm", "chart", "--stack", "air | water 5nm | air"], &["{d}"]);
+    // A colour of one wavelength was black (XYZ 0, exit 0): refused, as a spectrum of one wavelength is not.
+    let one = ["--from", "500nm", "--to", "500nm"];
+    assert_fails(&[&["thinfilm", "color", "--stack", "air | water 300nm | air"][..], &one].concat(), &["only 500 nm"]);
     // A range's end is a sample: a step that does not divide it is refused (it stopped short of --to before).
     let (stack, steps) = ("air | water 300nm | air", "400–700 nm is not a whole number of 7 nm steps");
     let spectrum = ["thinfilm", "spectrum", "--stack", stack, "--from", "400nm", "--to", "700nm", "--step", "7nm"];
