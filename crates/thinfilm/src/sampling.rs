@@ -28,6 +28,31 @@ pub struct SamplingWarning {
 /// The bandwidth (nm) whose coherence length decides "thicker than the coherence length".
 pub const COHERENCE_BANDWIDTH_NM: f64 = 1.0;
 
+/// The round-trip field below which light coming back from under an absorbing layer makes no fringe the
+/// printed R and T show (their fringes' amplitude is at most twice this): such a layer, and what lies under
+/// it in its coherent group, adds nothing to the fringes.
+pub const FRINGE_FLOOR: f64 = 1e-8;
+
+/// Per layer: whether light returns through it to the top of its coherent group at some wavelength of the
+/// grid with at least [`FRINGE_FLOOR`] of its field (`exp(−4π Im(n cos θ) d / λ)` per layer, a round trip).
+fn returns_light(stack: &Stack, angle_rad: f64, wavelengths_nm: &[f64]) -> Vec<bool> {
+    let mut returns = vec![false; stack.layers.len()];
+    for &w in wavelengths_nm {
+        let Ok(media) = stack.media(w, angle_rad) else { continue };
+        let mut reach = 1.0f64;
+        for (i, l) in stack.layers.iter().enumerate() {
+            if l.incoherent {
+                reach = 1.0;
+                continue;
+            }
+            let kz = (media[i + 1].n * media[i + 1].cos).im.max(0.0);
+            reach *= (-4.0 * std::f64::consts::PI * kz * l.thickness_nm / w).exp();
+            returns[i] |= reach >= FRINGE_FLOOR;
+        }
+    }
+    returns
+}
+
 /// Checks a wavelength grid (nm, increasing) against the fringes of every coherent group of the stack at
 /// this angle; `None` when every group is sampled at least twice per fringe.
 pub fn check(stack: &Stack, angle_rad: f64, wavelengths_nm: &[f64]) -> Option<SamplingWarning> {
@@ -37,6 +62,7 @@ pub fn check(stack: &Stack, angle_rad: f64, wavelengths_nm: &[f64]) -> Option<Sa
     let step = wavelengths_nm.windows(2).map(|w| (w[1] - w[0]).abs()).fold(0.0, f64::max);
     let at = wavelengths_nm.iter().copied().fold(f64::INFINITY, f64::min);
     let media = stack.media(at, angle_rad).ok()?;
+    let returns = returns_light(stack, angle_rad, wavelengths_nm);
     // Coherent groups: runs of coherent layers between incoherent media.
     let mut worst: Option<(f64, usize)> = None; // (optical thickness, thickest layer)
     let mut group = (0.0, 0usize, 0.0f64);
@@ -52,6 +78,10 @@ pub fn check(stack: &Stack, angle_rad: f64, wavelengths_nm: &[f64]) -> Option<Sa
         if l.incoherent {
             flush(&mut group, &mut worst);
             // An incoherent layer's own thickness matters only through its absorption.
+            continue;
+        }
+        if !returns[i] {
+            // Opaque at every wavelength (a millimetre of gold): no light comes back to interfere.
             continue;
         }
         group.0 += optical;
@@ -132,5 +162,20 @@ mod tests {
         assert!(w.suggest_incoherent && w.message.contains("inc:bk7 1000000nm"), "{}", w.message);
         // Written incoherent, the remaining coherent group (100 nm) is fine.
         assert!(check(&Stack::parse("air | MgF2 100nm | inc:BK7 1mm | air").unwrap(), 0.0, &grid(5.0)).is_none());
+    }
+
+    #[test]
+    fn an_opaque_layer_makes_no_fringes() {
+        // 1 mm of gold returns exp(−4π κ d/λ) ≈ e^−76000 of the field at 780 nm (κ = 4.74): no fringes to alias,
+        // and none from the water under it; it was once told to write itself as incoherent.
+        assert!(check(&Stack::parse("air | Au 1mm | water 20um | air").unwrap(), 0.0, &grid(5.0)).is_none());
+        // 20 µm of water over 1 mm of gold still aliases (its own fringes come back).
+        let w = check(&Stack::parse("air | water 20um | Au 1mm | air").unwrap(), 0.0, &grid(5.0)).unwrap();
+        assert_eq!(w.layer, 1);
+        // Silicon is opaque in the blue but not in the red: 30 µm returns 9e-159 of the field at 400 nm
+        // (κ = 0.386) but 0.024 at 780 nm (κ = 0.0077), so its fringes are warned about.
+        let si = Stack::parse("air | Si 30um | air").unwrap();
+        let to_780: Vec<f64> = grid(5.0).into_iter().filter(|&w| w >= 400.0).collect();
+        assert!(check(&si, 0.0, &to_780).is_some());
     }
 }
