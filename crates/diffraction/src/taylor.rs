@@ -26,7 +26,7 @@ pub const MAX_TAYLOR_ROUNDING: f64 = 1e-4;
 pub fn terms_for_bound(max_abs_height_nm: f64, lambda_min_nm: f64, epsilon: f64) -> Result<usize, DiffractionError> {
     let x = 2.0 * std::f64::consts::TAU / lambda_min_nm * max_abs_height_nm;
     let rounding = f64::EPSILON * x.exp();
-    if !(rounding <= MAX_TAYLOR_ROUNDING) {
+    if rounding.is_nan() || rounding > MAX_TAYLOR_ROUNDING {
         let x_max = (MAX_TAYLOR_ROUNDING / f64::EPSILON).ln();
         return Err(DiffractionError::Invalid(format!(
             "the relief reaches {max_abs_height_nm:.0} nm from its mean height, too deep for the Taylor expansion \
