@@ -97,16 +97,35 @@ pub fn coherence_for(patch: &Patch, given_nm: Option<f64>, report: &dyn Report) 
     Ok(c.nm)
 }
 
+/// The remainder bound above which a given `--terms` is warned about: the colours may be off by more than
+/// 0.1 % of the amplitude.
+pub const TERMS_WARN_REMAINDER: f64 = 1e-3;
+
 /// The number of Taylor terms the options ask for (`auto`: from the remainder bound at `auto_from_nm`, the
-/// shortest wavelength the terms serve).
-pub fn term_count(patch: &Patch, m: &ModelOptions, auto_from_nm: f64) -> Result<usize> {
-    Ok(match m.terms.trim() {
-        "auto" => terms_for_bound(patch.max_abs_height, auto_from_nm, DEFAULT_EPSILON)?,
-        t => match t.parse::<usize>() {
-            Ok(n) if n <= 200 => n,
-            _ => bail!("--terms '{t}' must be 'auto' or a number of terms from 0 to 200"),
-        },
-    })
+/// shortest wavelength the terms serve). A relief too deep for the expansion is refused whatever the count; a
+/// given count whose remainder bound exceeds [`TERMS_WARN_REMAINDER`] there is warned about.
+pub fn term_count(patch: &Patch, m: &ModelOptions, auto_from_nm: f64, report: &dyn Report) -> Result<usize> {
+    let auto = terms_for_bound(patch.max_abs_height, auto_from_nm, DEFAULT_EPSILON)?;
+    let t = m.terms.trim();
+    if t == "auto" {
+        return Ok(auto);
+    }
+    let n = match t.parse::<usize>() {
+        Ok(n) if n <= 200 => n,
+        _ => bail!("--terms '{t}' must be 'auto' or a number of terms from 0 to 200"),
+    };
+    // (k_max · 2|h|max)^{N+1} / (N+1)!, the bound `auto` meets (docs/PHYSICS.md).
+    let x = 2.0 * std::f64::consts::TAU / auto_from_nm * patch.max_abs_height;
+    let bound = (1..=n + 1).fold(1.0, |b, k| b * x / k as f64);
+    if bound > TERMS_WARN_REMAINDER {
+        report.warn(&format!(
+            "--terms {n}: the Taylor remainder bound at {auto_from_nm} nm is {bound:.1e} of the amplitude for this \
+             relief (|h|max {:.0} nm), so the colours may be far off; --terms auto takes N = {auto} (bound \
+             {DEFAULT_EPSILON:.0e})",
+            patch.max_abs_height
+        ));
+    }
+    Ok(n)
 }
 
 /// Taylor terms of a patch, with progress: every DFT bin (what a lookup table or a GPU reads).
@@ -135,7 +154,7 @@ fn taylor_terms_in_band(
 ) -> Result<TaylorTerms> {
     let coherence = coherence_for(patch, m.coherence_nm, report)?;
     // `auto` at 380 nm, where the CIE grid begins.
-    let n = term_count(patch, m, 380.0)?;
+    let n = term_count(patch, m, 380.0, report)?;
     let band = match lambda_min_nm {
         // The margin covers the rounding of the window's radius.
         Some(l) => match m.light {

@@ -90,7 +90,7 @@ pub fn along_plane(
     };
     let coherence = coherence_for(&patch, model.coherence_nm, report)?;
     // `auto`: Taylor terms for the shortest wavelength asked, 300 nm (the model commands' `auto` takes 380 nm).
-    let n = term_count(&patch, model, FROM_NM)?;
+    let n = term_count(&patch, model, FROM_NM, report)?;
     // One light: the terms keep the bins its lobes read at 300 nm and longer (a large scan's memory).
     let band = Band::light(direction(light_theta, azimuth), FROM_NM, 1.001 * window_radius(coherence));
     let terms = with_progress(report, n as u64 + 1, "Taylor terms", |p| {

@@ -7,6 +7,7 @@ mod unit_film;
 mod unit_film_fit;
 mod unit_fresnel;
 mod unit_grating_bench;
+mod unit_model;
 mod unit_output;
 mod unit_report;
 mod unit_rigorous_brdf;
