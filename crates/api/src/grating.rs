@@ -718,12 +718,13 @@ pub const VISIBLE_PERIOD_NM: f64 = 190.0;
 /// scan looks like a mirror of its specular colour (`iridis report` draws no maps and runs no test bench).
 pub const DIFFRACTS_SHARE: f64 = 1e-3;
 
-/// Whether a scan diffracts visible light: a period that can send a visible order out
-/// ([`VISIBLE_PERIOD_NM`]) and a diffracted share worth drawing at some incidence ([`DIFFRACTS_SHARE`]). A scan
-/// with only shorter periods still sends a little light into the orders of its own extent as a unit cell —
-/// its edges, not its structure — hence both conditions.
-pub fn diffracts_visible_light(longest_period_nm: f64, diffracted_shares: &[f64]) -> bool {
-    longest_period_nm >= VISIBLE_PERIOD_NM && diffracted_shares.iter().any(|&s| s >= DIFFRACTS_SHARE)
+/// Whether a scan diffracts visible light: a diffracted share worth drawing at some incidence
+/// ([`DIFFRACTS_SHARE`]) and, where periods were found (`longest_period_nm`), one that can send a visible order
+/// out ([`VISIBLE_PERIOD_NM`]). A scan with only shorter periods still sends a little light into the orders of
+/// its own extent as a unit cell — its edges, not its structure — hence both conditions; a scan with no period
+/// found (structure longer than a quarter of it, or none) is judged by its share alone.
+pub fn diffracts_visible_light(longest_period_nm: Option<f64>, diffracted_shares: &[f64]) -> bool {
+    longest_period_nm.is_none_or(|p| p >= VISIBLE_PERIOD_NM) && diffracted_shares.iter().any(|&s| s >= DIFFRACTS_SHARE)
 }
 
 /// The coherence length (nm) for BRDF maps of a scan of extent `extent_nm` whose strongest period is

@@ -281,7 +281,7 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
     let grating_json = unit_cells;
     let share = |g: &Value| g["colour"]["diffracted_share"].as_f64().unwrap_or(0.0);
     let longest =
-        info["peaks"].as_array().into_iter().flatten().filter_map(|p| p["period_nm"].as_f64()).fold(0.0f64, f64::max);
+        info["peaks"].as_array().into_iter().flatten().filter_map(|p| p["period_nm"].as_f64()).reduce(f64::max);
     let shares: Vec<f64> = grating_json.iter().map(share).collect();
     let diffracts = too_deep.is_none() && crate::grating::diffracts_visible_light(longest, &shares);
     let mut maps = Vec::new();
@@ -608,10 +608,15 @@ fn verdict(info: &Value, grating: &[Value], diffracts: bool) -> String {
         format!(
             "The scan diffracts visible light: taken as one unit cell of a periodic surface, it sends {:.2} % of the \
              light it reflects into orders other than the mirror direction at normal incidence and {:.2} % at 45° \
-             (D65, luminance-weighted; scalar model); its strongest period is {}.",
+             (D65, luminance-weighted; scalar model); {}.",
             share(&grating[0]),
             share(&grating[1]),
-            periods.first().map_or("none".to_string(), |p| format!("{p:.0} nm"))
+            periods.first().map_or(
+                "no period was found in it: its structure is longer than a quarter of the scan, or has no period \
+                 (the notes say which)"
+                    .to_string(),
+                |p| format!("its strongest period is {p:.0} nm")
+            )
         )
     } else {
         let why = if periods.is_empty() {

@@ -159,14 +159,26 @@ pub fn dominant_period(patch: &Patch) -> Option<iridis_surface::Peak> {
 /// with their orientations, roughness of the plane-levelled field, radial PSDF and ACF, notes and warnings.
 pub fn info(hf: &iridis_surface::HeightField, n_peaks: usize, coherence_nm: f64) -> serde_json::Value {
     let (lo, hi) = hf.min_max();
-    let peaks = iridis_surface::find_peaks(
-        hf,
-        &iridis_surface::PeakOptions { max_peaks: n_peaks, ..iridis_surface::PeakOptions::default() },
-    );
+    let opts = iridis_surface::PeakOptions { max_peaks: n_peaks, ..iridis_surface::PeakOptions::default() };
+    let peaks = iridis_surface::find_peaks(hf, &opts);
     let mut warnings = hf.meta.warnings.clone();
     warnings.extend(hf.physics_warnings(coherence_nm));
     let mut notes = hf.meta.notes.clone();
     notes.extend(hf.coherence_note(coherence_nm));
+    if peaks.is_empty() {
+        // Say why none was found when the structure is there but too long for the patch.
+        let long = iridis_surface::analysis::long_period_share(hf, &opts);
+        if long > 0.5 {
+            notes.push(format!(
+                "no period found, but {:.0} % of the height variance lies in structure longer than {:.0} % of the \
+                 patch (fewer than {:.0} cycles across it), too few repeats to read a period from: scan a larger \
+                 area to measure it",
+                100.0 * long,
+                100.0 * opts.max_period_fraction,
+                1.0 / opts.max_period_fraction
+            ));
+        }
+    }
     let levelled = iridis_surface::prep::level_plane(hf);
     // The struct's own keys (Python's `Surface.roughness()` gives the same), and the levelling they follow.
     let mut roughness = serde_json::to_value(iridis_surface::stats::roughness(&levelled)).expect("numbers");

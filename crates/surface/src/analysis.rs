@@ -87,11 +87,15 @@ pub struct PeakOptions {
     /// Periods longer than this fraction of the patch's extent along their direction are ignored (levelling
     /// residue, not structure).
     pub max_period_fraction: f64,
+    /// Peaks holding less than this share of the height variance are dropped: where all the structure lies in
+    /// longer periods, what is left is rounding noise (a 2 µm sine on a 6 µm patch listed "151 nm" at a share
+    /// of 1e-32). The weakest real peaks seen (instrument scans, random roughness) hold ~1e-3.
+    pub min_share: f64,
 }
 
 impl Default for PeakOptions {
     fn default() -> Self {
-        Self { max_peaks: 5, min_relative_power: 0.05, max_period_fraction: 0.25 }
+        Self { max_peaks: 5, min_relative_power: 0.05, max_period_fraction: 0.25, min_share: 1e-6 }
     }
 }
 
@@ -172,8 +176,8 @@ impl Windowed {
     }
 }
 
-/// Dominant periods, strongest first.
-pub fn find_peaks(hf: &HeightField, opts: &PeakOptions) -> Vec<Peak> {
+/// The plane-levelled, Hann-windowed field and its power spectrum (unshifted bins) with the total power.
+fn windowed_power(hf: &HeightField) -> (Windowed, Vec<f64>, f64) {
     let (rows, cols) = (hf.rows, hf.cols);
     let levelled = crate::prep::level_plane(hf);
     let (wr, wc) = (hann(rows), hann(cols));
@@ -182,10 +186,42 @@ pub fn find_peaks(hf: &HeightField, opts: &PeakOptions) -> Vec<Peak> {
     fft2(&mut spec, rows, cols, false);
     let power: Vec<f64> = spec.iter().map(|z| z.norm_sqr()).collect();
     let total: f64 = power.iter().sum::<f64>().max(1e-300);
-    let win = Windowed { rows, cols, dx: hf.dx_nm, dy: hf.dy_nm, w };
+    (Windowed { rows, cols, dx: hf.dx_nm, dy: hf.dy_nm, w }, power, total)
+}
+
+/// Bin index `k` of `n` as a signed frequency index.
+fn signed(k: usize, n: usize) -> i64 {
+    if k <= n / 2 {
+        k as i64
+    } else {
+        k as i64 - n as i64
+    }
+}
+
+/// The share of the height variance (after plane levelling, DC excluded) in structure longer than
+/// [`PeakOptions::max_period_fraction`] of the patch — fewer cycles across it than [`find_peaks`] counts as a
+/// period: where it is most of the variance and no period is found, the patch is too small for its structure.
+pub fn long_period_share(hf: &HeightField, opts: &PeakOptions) -> f64 {
+    let (_, power, total) = windowed_power(hf);
+    let min_cycles = 1.0 / opts.max_period_fraction;
+    let long: f64 = power
+        .iter()
+        .enumerate()
+        .filter(|&(i, _)| {
+            let (kr, kc) = (signed(i / hf.cols, hf.rows), signed(i % hf.cols, hf.cols));
+            (kr, kc) != (0, 0) && (kc as f64).hypot(kr as f64) < min_cycles
+        })
+        .map(|(_, p)| p)
+        .sum();
+    (long / (total - power[0]).max(1e-300)).min(1.0)
+}
+
+/// Dominant periods, strongest first.
+pub fn find_peaks(hf: &HeightField, opts: &PeakOptions) -> Vec<Peak> {
+    let (rows, cols) = (hf.rows, hf.cols);
+    let (win, power, total) = windowed_power(hf);
     let (ex, ey) = hf.extent_nm();
     // Bin (kr, kc) ↔ fx = kc/(cols·dx), fy = −kr/(rows·dy) (rows run downwards, y upwards).
-    let signed = |k: usize, n: usize| if k <= n / 2 { k as i64 } else { k as i64 - n as i64 };
     // A period counts when the patch holds at least 1/max_period_fraction of it along its own direction: at
     // least that many cycles across the patch there, i.e. |(kc, kr)| in bins. (Against the shorter side, a
     // 2500 nm grating on a 65 × 3.2 µm strip was ignored and its 4th harmonic reported.)
@@ -228,7 +264,9 @@ pub fn find_peaks(hf: &HeightField, opts: &PeakOptions) -> Vec<Peak> {
     let strongest = cands.first().map_or(0.0, |c| c.0);
     let mut peaks: Vec<Peak> = Vec::new();
     for &(s, kr, kc) in cands.iter().take(opts.max_peaks) {
-        if s < opts.min_relative_power * strongest {
+        // Both half-plane copies count: the share of variance is twice the half-plane share.
+        let share = (2.0 * s / total).min(1.0);
+        if s < opts.min_relative_power * strongest || share < opts.min_share {
             break;
         }
         let fx0 = kc as f64 / (cols as f64 * hf.dx_nm);
@@ -248,8 +286,7 @@ pub fn find_peaks(hf: &HeightField, opts: &PeakOptions) -> Vec<Peak> {
             period_uncertainty_nm: period_uncertainty_nm(period, along, refined),
             read_off: if refined { "refined" } else { "grid" },
             orientation_deg: ang,
-            // Both half-plane copies count: the share of variance is twice the half-plane share.
-            power: (2.0 * s / total).min(1.0),
+            power: share,
         });
     }
     peaks
