@@ -332,7 +332,7 @@ pub fn grating(
         GratingMethod::Kirchhoff => Some(UnitCell::for_light(&patch, l, w)?),
         GratingMethod::Rigorous => None,
     };
-    let lines = cell.as_ref().map_or_else(|| lines_of(&patch), UnitCell::lines);
+    let lines = lines_of(&patch);
     let (lx, ly) = patch.extent();
     report.info(&format!(
         "{}: one unit cell of {:.1} × {:.1} nm ({}×{} samples, {}){}",

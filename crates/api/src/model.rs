@@ -7,7 +7,7 @@ use std::path::Path;
 use anyhow::{bail, Result};
 use iridis_color::{Illuminant, Observer};
 use iridis_diffraction::table::{LookupTable, Provenance, TableParams};
-use iridis_diffraction::taylor::{terms_for_bound, window_radius, Band};
+use iridis_diffraction::taylor::{remainder_bound, terms_for_bound, window_radius, Band};
 use iridis_diffraction::{Patch, SpectralSetup, TaylorTerms};
 use iridis_gpu::Gpu;
 
@@ -114,9 +114,7 @@ pub fn term_count(patch: &Patch, m: &ModelOptions, auto_from_nm: f64, report: &d
         Ok(n) if n <= 200 => n,
         _ => bail!("--terms '{t}' must be 'auto' or a number of terms from 0 to 200"),
     };
-    // (k_max · 2|h|max)^{N+1} / (N+1)!, the bound `auto` meets (docs/PHYSICS.md).
-    let x = 2.0 * std::f64::consts::TAU / auto_from_nm * patch.max_abs_height;
-    let bound = (1..=n + 1).fold(1.0, |b, k| b * x / k as f64);
+    let bound = remainder_bound(patch.max_abs_height, auto_from_nm, n);
     if bound > TERMS_WARN_REMAINDER {
         report.warn(&format!(
             "--terms {n}: the Taylor remainder bound at {auto_from_nm} nm is {bound:.1e} of the amplitude for this \

@@ -257,7 +257,8 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
     // 2. The scan as one unit cell of a grating: how much of the light it diffracts, and the colour of the rest.
     let spectrum = iridis_color::spectrum::uniform_grid(380.0, 780.0, 10.0)?;
     let mut unit_cells = Vec::new();
-    for inc in ["0deg", "45deg"].into_iter().filter(|_| too_deep.is_none()) {
+    let incidences: &[&str] = if too_deep.is_none() { &["0deg", "45deg"] } else { &[] };
+    for &inc in incidences {
         let mut args =
             s(&["grating", &o.surface, "--light", inc, "--from", "380nm", "--to", "780nm", "--step", "10nm"]);
         // The report reads the totals and colours only: a large scan has ~10⁵ orders a wavelength.
@@ -575,7 +576,6 @@ fn scalar_sentence(e: &Value) -> String {
     )
 }
 
-/// What the scan does to light, in words a biologist reads first.
 /// Why the Taylor expansion refuses the levelled relief of `info` at the report's shortest wavelength (380 nm),
 /// if it does: the same test as every step that would use it (`terms_for_bound` on `|h − mean|max`).
 fn too_deep_for_taylor(info: &Value) -> Option<String> {
@@ -598,6 +598,7 @@ fn deep_verdict(surface: &str, why: &str) -> String {
     )
 }
 
+/// What the scan does to light, in words a biologist reads first.
 fn verdict(info: &Value, grating: &[Value], diffracts: bool) -> String {
     let share = |g: &Value| 100.0 * g["colour"]["diffracted_share"].as_f64().unwrap_or(0.0);
     let periods: Vec<f64> =

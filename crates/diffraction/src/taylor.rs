@@ -24,7 +24,7 @@ pub const MAX_TAYLOR_ROUNDING: f64 = 1e-4;
 /// [`MAX_TAYLOR_ROUNDING`] (`x > 26.8`, e.g. `|h|max` above 810 nm at 380 nm) the answer would be noise, and
 /// further on the coefficients `|h|^n` overflow into NaN.
 pub fn terms_for_bound(max_abs_height_nm: f64, lambda_min_nm: f64, epsilon: f64) -> Result<usize, DiffractionError> {
-    let x = 2.0 * std::f64::consts::TAU / lambda_min_nm * max_abs_height_nm;
+    let x = phase_depth(max_abs_height_nm, lambda_min_nm);
     let rounding = f64::EPSILON * x.exp();
     if rounding.is_nan() || rounding > MAX_TAYLOR_ROUNDING {
         let x_max = (MAX_TAYLOR_ROUNDING / f64::EPSILON).ln();
@@ -45,6 +45,18 @@ pub fn terms_for_bound(max_abs_height_nm: f64, lambda_min_nm: f64, epsilon: f64)
         term *= x / (n + 1) as f64;
     }
     Ok(n)
+}
+
+/// `x = k_max · 2|h|max`, `k_max = 2π/λ_min`: the largest `|k w h|` the expansion must reach.
+fn phase_depth(max_abs_height_nm: f64, lambda_min_nm: f64) -> f64 {
+    2.0 * std::f64::consts::TAU / lambda_min_nm * max_abs_height_nm
+}
+
+/// The remainder bound `x^{N+1} / (N+1)!` of `n` terms (`x = k_max · 2|h|max`), what [`terms_for_bound`]
+/// brings below its `ε`: how far a given term count may leave the amplitude from its limit.
+pub fn remainder_bound(max_abs_height_nm: f64, lambda_min_nm: f64, n: usize) -> f64 {
+    let x = phase_depth(max_abs_height_nm, lambda_min_nm);
+    (1..=n + 1).fold(1.0, |b, k| b * x / k as f64)
 }
 
 /// The DFT bins a [`TaylorTerms`] keeps: those whose frequency `(s/Lx, t/Ly)` lies within `radius` of `centre`

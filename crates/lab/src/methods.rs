@@ -166,15 +166,11 @@ impl Default for MethodConfig {
 }
 
 impl MethodConfig {
-    /// The Taylor-term count for a patch; refused for a relief too deep for the expansion
-    /// ([`terms_for_bound`]).
+    /// The Taylor-term count for a patch; a relief too deep for the expansion ([`terms_for_bound`]) is refused
+    /// whatever the count, as the model commands refuse it.
     pub fn term_count(&self, patch: &Patch) -> Result<usize, LabError> {
-        match self.terms {
-            Some(n) => Ok(n),
-            None => {
-                Ok(terms_for_bound(patch.max_abs_height, self.spectral.wavelengths()[0], self.term_epsilon)?.max(1))
-            }
-        }
+        let auto = terms_for_bound(patch.max_abs_height, self.spectral.wavelengths()[0], self.term_epsilon)?;
+        Ok(self.terms.unwrap_or(auto.max(1)))
     }
 }
 
