@@ -261,8 +261,12 @@ impl SpectraVision {
         let _ = writeln!(o, "noise        {noise}{achro}");
         let _ = writeln!(
             o,
-            "spectra      {}: {} samples, {}–{} nm",
-            self.source, self.samples, r.wavelength_range_nm[0], r.wavelength_range_nm[1]
+            "spectra      {}: {} sample{}, {}–{} nm",
+            self.source,
+            self.samples,
+            if self.samples == 1 { "" } else { "s" },
+            r.wavelength_range_nm[0],
+            r.wavelength_range_nm[1]
         );
         let width = r.samples.iter().map(|s| s.name.chars().count()).max().unwrap_or(6).max(6);
         let _ = writeln!(
@@ -298,8 +302,15 @@ impl SpectraVision {
                         join(&c.position, 4),
                         c.chroma
                     );
+                } else {
+                    // Relative catches of a sample that catches nothing are 0/0: it has no place in the space.
+                    let _ = writeln!(o, "  {:<width$}  — (it catches no light: no position)", s.name);
                 }
             }
+        }
+        if r.distances.is_empty() {
+            let _ = writeln!(o, "\ndistances: none — one sample has no other to be compared with (give two or more)");
+            return o;
         }
         let _ = writeln!(o, "\ndistances (JND: 1 is just noticeable)");
         let _ = writeln!(o, "  {:<width$}  {:<width$}  {:>10}  {:>10}", "a", "b", "ΔS (JND)", "ΔL (JND)");

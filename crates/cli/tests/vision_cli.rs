@@ -109,3 +109,23 @@ fn the_achromatic_weber_fraction_divides_delta_l() {
         assert!((d.0 - b.0).abs() < 1e-12 && (2.0 * d.1 - b.1).abs() < 1e-9 * b.1.max(1.0), "{b:?} {d:?}");
     }
 }
+
+/// What cannot be computed is said, not left out: one sample has no pair (the distances table had a header and
+/// no rows), and a sample that catches no light has no place in the colour space (its line was missing).
+#[test]
+fn one_sample_and_a_black_sample_are_said_so() {
+    let dir = tempfile::tempdir().unwrap();
+    let text_of = |name: &str, csv: &str| {
+        let path = dir.path().join(name);
+        std::fs::write(&path, csv).unwrap();
+        let out = iridis(&["vision", path.to_str().unwrap(), "--visual", "bluetit"]);
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        String::from_utf8_lossy(&out.stdout).into_owned()
+    };
+    let one = text_of("one.csv", "wl,a\n300,0.1\n500,0.2\n700,0.3\n");
+    assert!(one.contains("1 sample, 300–700 nm"), "{one}");
+    assert!(one.contains("distances: none — one sample") && !one.contains("ΔS (JND)"), "{one}");
+    let black = text_of("black.csv", "wl,a,b\n300,0,0.1\n500,0,0.2\n700,0,0.3\n");
+    assert!(black.contains("a       — (it catches no light: no position)"), "{black}");
+    assert!(black.contains("\n  b       ("), "b keeps its position: {black}");
+}
