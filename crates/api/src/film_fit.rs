@@ -350,6 +350,10 @@ impl FilmFit {
         let _ = writeln!(o, "χ² = {:.4} for {} degrees of freedom (χ²/dof = {:.4})", r.chi2, r.dof, r.reduced_chi2);
         if !r.sigma_given {
             o += "no --sigma or --weights: χ² uses σ = 1 and the uncertainties are scaled by √(χ²/dof), i.e. σ is estimated from the scatter\n";
+            if r.chi2 == 0.0 {
+                o += "note: the model meets the data exactly (χ² = 0, as for computed spectra): the scatter is 0, and so \
+                      are the uncertainties; give --sigma (the measurement's noise) for uncertainties\n";
+            }
         }
         if params.len() > 1 {
             o += "correlation\n";

@@ -310,6 +310,16 @@ pub fn read(
         Quantity::T => vec!["T"],
         Quantity::PsiDelta => vec!["psi", "delta"],
     };
+    // Whether column i's name is one of `want` (the unit in brackets and the case aside).
+    let is = |i: usize, want: &[&str]| {
+        let b = base_name(&names[i]);
+        want.iter().any(|w| b == *w || b.starts_with(&format!("{w} ")) || b.replace(' ', "_") == *w)
+    };
+    let wanted: Vec<&[&str]> = match q {
+        Quantity::R => vec![&["r", "reflectance", "reflectivity", "refl", "reflection", "r_meas", "rmeas"]],
+        Quantity::T => vec![&["t", "transmittance", "transmission", "trans", "t_meas", "tmeas"]],
+        Quantity::PsiDelta => vec![&["psi", "ψ", "psi_deg"], &["delta", "δ", "Δ", "delta_deg"]],
+    };
     // The columns: given, or found.
     let cols: Vec<usize> = if let Some(spec) = &opts.columns {
         let parts: Vec<&str> = spec.split(',').map(str::trim).collect();
@@ -320,17 +330,27 @@ pub fn read(
                 labels.join(" and ")
             )));
         }
-        parts
+        let cols: Vec<usize> = parts
             .iter()
             .map(|p| {
                 find_by_name(p).ok_or_else(|| FitError::Data(format!("--columns: no column '{p}' among {names:?}")))
             })
-            .collect::<Result<_, _>>()?
+            .collect::<Result<_, _>>()?;
+        // A column chosen by number whose header names another quantity (`--columns 1,3` on wl,R,T fitted T's
+        // values as R without a word): fitted as asked, and said.
+        for (k, &c) in cols[1..].iter().enumerate() {
+            if has_header && is(c, OTHER_QUANTITIES) && !is(c, wanted[k]) {
+                notes.push(format!(
+                    "column '{}' is fitted as {} (--quantity {}), though its name says another quantity; \
+                     --quantity chooses what the model computes",
+                    names[c],
+                    labels[k],
+                    q.name()
+                ));
+            }
+        }
+        cols
     } else if has_header {
-        let is = |i: usize, want: &[&str]| {
-            let b = base_name(&names[i]);
-            want.iter().any(|w| b == *w || b.starts_with(&format!("{w} ")) || b.replace(' ', "_") == *w)
-        };
         let wl = (0..names.len()).find(|&i| is(i, WAVELENGTH)).ok_or_else(|| {
             err(
                 lay.header.as_ref().map_or(1, |h| h.0),
@@ -341,11 +361,6 @@ pub fn read(
                 ),
             )
         })?;
-        let wanted: Vec<&[&str]> = match q {
-            Quantity::R => vec![&["r", "reflectance", "reflectivity", "refl", "reflection", "r_meas", "rmeas"]],
-            Quantity::T => vec![&["t", "transmittance", "transmission", "trans", "t_meas", "tmeas"]],
-            Quantity::PsiDelta => vec![&["psi", "ψ", "psi_deg"], &["delta", "δ", "Δ", "delta_deg"]],
-        };
         let mut cols = vec![wl];
         for (k, want) in wanted.iter().enumerate() {
             let found = (0..names.len()).find(|&i| i != wl && is(i, want));

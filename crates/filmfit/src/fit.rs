@@ -331,9 +331,13 @@ pub fn fit(template: &Template, data: &Measured, opt: &FitOptions) -> Result<Fit
     if eig.min() < 1e-12 * eig.max() {
         return Err(singular());
     }
-    let cov = &d_inv * c.try_inverse().ok_or_else(singular)? * &d_inv * scale;
-    let sigma: Vec<f64> = (0..np).map(|k| cov[(k, k)].max(0.0).sqrt()).collect();
-    let correlation = (0..np).map(|a| (0..np).map(|b| cov[(a, b)] / (sigma[a] * sigma[b])).collect()).collect();
+    // The covariance (JᵀWJ)⁻¹, times χ²/dof where σ is estimated from the scatter. The correlations are taken
+    // before that scale, which they do not depend on: data the model meets exactly (χ² = 0, synthetic spectra)
+    // have zero uncertainties, and their correlations were 0/0.
+    let cov = &d_inv * c.try_inverse().ok_or_else(singular)? * &d_inv;
+    let sigma: Vec<f64> = (0..np).map(|k| (cov[(k, k)].max(0.0) * scale).sqrt()).collect();
+    let sd: Vec<f64> = (0..np).map(|k| cov[(k, k)].max(0.0).sqrt()).collect();
+    let correlation = (0..np).map(|a| (0..np).map(|b| cov[(a, b)] / (sd[a] * sd[b])).collect()).collect();
     let at_bound = template
         .params
         .iter()

@@ -137,3 +137,28 @@ fn unidentifiable_parameters_are_reported() {
     let e = fit(&t, &data, &opt).unwrap_err().to_string();
     assert!(e.contains("do not determine"), "{e}");
 }
+
+/// Data the model meets exactly (a computed spectrum, no noise) and no σ: the scatter is 0, so are the
+/// uncertainties, and the correlations are still those of (JᵀJ)⁻¹, which no scale of σ changes — the same as
+/// with any σ given (they were 0/0 = NaN).
+#[test]
+fn an_exact_spectrum_without_sigma_has_zero_uncertainty_and_finite_correlations() {
+    let t = Template::parse("air | n={n=1.5:1.3..1.7} {d=200nm:50nm..400nm} | Si").unwrap();
+    let wl = wavelengths(400.0, 5.0, 81);
+    let opt = FitOptions { angle_rad: 0.0, quantity: Quantity::R, ..FitOptions::default() };
+    let values = model(&t, &[1.46, 250.0], &wl, &opt).unwrap();
+    let exact = Measured { wavelength_nm: wl.clone(), sigma: None, values: values.clone() };
+    let r = fit(&t, &exact, &opt).unwrap();
+    assert!((r.values[0] - 1.46).abs() < 1e-9 && (r.values[1] - 250.0).abs() < 1e-6, "{:?}", r.values);
+    if r.chi2 == 0.0 {
+        assert_eq!(r.sigma, vec![0.0, 0.0]);
+    }
+    let given = fit(&t, &Measured { wavelength_nm: wl, sigma: Some(vec![0.01; values.len()]), values }, &opt).unwrap();
+    for a in 0..2 {
+        for b in 0..2 {
+            let (x, y) = (r.correlation[a][b], given.correlation[a][b]);
+            assert!((x - y).abs() < 1e-6, "correlation [{a}][{b}]: {x} without σ, {y} with");
+        }
+    }
+    assert!((r.correlation[0][0] - 1.0).abs() < 1e-12 && r.correlation[0][1].abs() < 1.0);
+}

@@ -193,3 +193,21 @@ fn arrays_are_read_by_the_rules_of_a_file_that_need_no_file() {
     let e = read_arrays(wl, r, None, &o).unwrap_err().to_string();
     assert!(e.contains("--columns '1,2' would be ignored"), "{e}");
 }
+
+/// A column chosen by number whose header names another quantity is fitted as asked, and the reading says so
+/// (`--columns 1,3` on `wl,R,T` fitted the T column as R without a word).
+#[test]
+fn a_chosen_column_named_for_another_quantity_is_said() {
+    let text = "wl,R,T\n400,0.3,0.6\n500,0.35,0.55\n600,0.4,0.5\n";
+    let note = |q: Quantity, columns: &str| {
+        let mut o = ReadOptions::new(q);
+        o.columns = Some(columns.into());
+        let r = read(text, "x.csv", &o, &|_| Err("no".into())).unwrap();
+        r.notes.iter().find(|n| n.contains("though its name says another quantity")).cloned()
+    };
+    let n = note(Quantity::R, "1,3").expect("T fitted as R is said");
+    assert!(n.starts_with("column 'T' is fitted as R (--quantity R)"), "{n}");
+    assert_eq!(note(Quantity::R, "1,2"), None);
+    assert_eq!(note(Quantity::T, "wl,T"), None);
+    assert!(note(Quantity::T, "1,2").expect("R fitted as T is said").starts_with("column 'R' is fitted as T"));
+}
