@@ -9,6 +9,7 @@ use anyhow::{bail, Context, Result};
 use iridis_gpu::scene::SceneFilm;
 use iridis_gpu::FilmPath;
 use iridis_render::gltf_io::GltfOptions;
+use iridis_render::scene::{MAX_IMAGE_SIDE, MAX_SPP};
 use iridis_render::{Image, Scene};
 
 use crate::gallery::Gallery;
@@ -17,14 +18,14 @@ use crate::report::{with_progress, Report};
 /// The demo's sections report through the gallery's log only (a [`Gallery`] carries no [`Report`]).
 use crate::report::Quiet;
 
-/// Parses an image size `WxH` (`1024x768`, `1024×768`), 1 to 16384 pixels a side.
+/// Parses an image size `WxH` (`1024x768`, `1024×768`), 1 to [`MAX_IMAGE_SIDE`] (16384) pixels a side.
 pub fn parse_size(s: &str) -> Result<(u32, u32)> {
     let (w, h) =
         s.split_once(['x', 'X', '×']).with_context(|| format!("--size '{s}': write WIDTHxHEIGHT, e.g. 1024x768"))?;
-    let p = |v: &str| v.trim().parse::<u32>().ok().filter(|n| (1..=16384).contains(n));
+    let p = |v: &str| v.trim().parse::<u32>().ok().filter(|n| (1..=MAX_IMAGE_SIDE).contains(n));
     match (p(w), p(h)) {
         (Some(w), Some(h)) => Ok((w, h)),
-        _ => bail!("--size '{s}': width and height must be whole numbers from 1 to 16384"),
+        _ => bail!("--size '{s}': width and height must be whole numbers from 1 to {MAX_IMAGE_SIDE}"),
     }
 }
 
@@ -118,8 +119,8 @@ pub fn render_file(a: &RenderRequest, report: &dyn Report) -> Result<Rendered> {
     let start = Instant::now();
     let size = a.size.as_deref().map(parse_size).transpose()?;
     if let Some(s) = a.spp {
-        if !(1..=4096).contains(&s) {
-            bail!("--spp {s}: use 1 to 4096 samples per pixel");
+        if !(1..=MAX_SPP).contains(&s) {
+            bail!("--spp {s}: use 1 to {MAX_SPP} samples per pixel");
         }
     }
     if let Some(x) = a.exposure {

@@ -73,10 +73,13 @@ impl FilmFrame {
     }
 
     fn check(&self) -> Result<(), GpuError> {
-        if self.width == 0 || self.height == 0 || self.width > 16384 || self.height > 16384 {
+        let side = 1..=iridis_render::scene::MAX_IMAGE_SIDE as usize;
+        if !(side.contains(&self.width) && side.contains(&self.height)) {
             return Err(GpuError::Invalid(format!(
-                "frame {}×{} must be between 1×1 and 16384×16384 pixels",
-                self.width, self.height
+                "frame {}×{} must be between 1×1 and {m}×{m} pixels",
+                self.width,
+                self.height,
+                m = side.end()
             )));
         }
         let (a, b) = self.angle_rad;

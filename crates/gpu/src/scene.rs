@@ -59,8 +59,10 @@ const _: () = assert!(iridis_render::lobe_albedo::COS_NODES == 10 && iridis_rend
 const BAND_ROWS: u32 = 32;
 /// Samples per pixel of one pass of a Monte Carlo render (progressive accumulation).
 pub const MC_PASS_SAMPLES: u32 = 8;
-/// Largest samples per pixel (the sample offsets live in the scene buffer).
-pub const MAX_SPP: u32 = 4096;
+/// Largest samples per pixel, the renderers' limit (the sample offsets live in the scene buffer: space for
+/// this many is reserved).
+pub use iridis_render::scene::MAX_SPP;
+use iridis_render::scene::MAX_IMAGE_SIDE;
 
 const NONE: u32 = u32::MAX;
 
@@ -889,8 +891,10 @@ impl<'g> GpuScene<'g> {
 
     /// Allocates the output of `width × height` images with `spp` samples per pixel, displayed with `tone`.
     pub fn frame(&self, width: u32, height: u32, spp: u32, tone: ToneMap) -> Result<SceneFrame, GpuError> {
-        if !(1..=16384).contains(&width) || !(1..=16384).contains(&height) {
-            return Err(GpuError::Invalid(format!("image {width}×{height} must be between 1×1 and 16384×16384")));
+        if !(1..=MAX_IMAGE_SIDE).contains(&width) || !(1..=MAX_IMAGE_SIDE).contains(&height) {
+            return Err(GpuError::Invalid(format!(
+                "image {width}×{height} must be between 1×1 and {MAX_IMAGE_SIDE}×{MAX_IMAGE_SIDE}"
+            )));
         }
         if !(1..=MAX_SPP).contains(&spp) {
             return Err(GpuError::Invalid(format!("{spp} samples per pixel: use 1 to {MAX_SPP}")));

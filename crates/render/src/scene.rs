@@ -15,6 +15,12 @@ use crate::material::*;
 use crate::math::*;
 use crate::texture::Texture;
 
+/// The largest image side in pixels (a 16384² RGB f32 image is 3 GiB), for scenes, `--size` and the GPU's
+/// frames alike.
+pub const MAX_IMAGE_SIDE: u32 = 16384;
+/// The most samples per pixel a render takes (`spp`, `--spp`).
+pub const MAX_SPP: u32 = 4096;
+
 /// Image settings.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Output {

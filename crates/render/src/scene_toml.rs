@@ -300,6 +300,24 @@ pub fn parse_scene(text: &str, name: &str, base: &Path) -> Result<Scene, RenderE
     if !(output.exposure.is_finite() && output.exposure > 0.0) {
         return Err(ctx.err(0..0, "[output] `exposure` must be a positive number of RU"));
     }
+    // The limits of --size and --spp, which replace these (a 0 × 0 image failed only at the PNG encoder, after the
+    // render; 10⁵ × 10⁵ began a render of 120 GB; spp = 0 wrote a black image).
+    let side = 1..=crate::scene::MAX_IMAGE_SIDE;
+    if !(side.contains(&width) && side.contains(&height)) {
+        return Err(ctx.err(
+            0..0,
+            format!("[output] `size` = [{width}, {height}]: width and height must be from 1 to {}", side.end()),
+        ));
+    }
+    if !(1..=crate::scene::MAX_SPP).contains(&output.spp) {
+        return Err(ctx.err(
+            0..0,
+            format!("[output] `spp` = {}: use 1 to {} samples per pixel", output.spp, crate::scene::MAX_SPP),
+        ));
+    }
+    if !output.background.iter().all(|c| c.is_finite() && *c >= 0.0) {
+        return Err(ctx.err(0..0, "[output] `background` must be three finite linear sRGB values ≥ 0"));
+    }
 
     let camera = build_camera(&file.camera, &ctx)?;
 

@@ -116,3 +116,23 @@ fn texture_kinds_are_checked() {
     let e = parse_err(&t);
     assert!(e.contains("a color texture is needed here") && e.contains("grey texture"), "{e}");
 }
+
+/// `[output]` takes what `--size` and `--spp` take (a 0 × 0 image failed only at the PNG encoder after the
+/// render, 10⁵ × 10⁵ began a 120 GB render, `spp = 0` wrote a black image), and a background that is a colour.
+#[test]
+fn output_settings_have_the_limits_of_the_flags() {
+    let with = |extra: &str| OK.replace("size = [32, 24]", extra);
+    for (bad, said) in [
+        ("size = [0, 24]", "`size` = [0, 24]: width and height must be from 1 to 16384"),
+        ("size = [32, 16385]", "`size` = [32, 16385]"),
+        ("size = [32, 24]\nspp = 0", "`spp` = 0: use 1 to 4096 samples per pixel"),
+        ("size = [32, 24]\nspp = 4097", "`spp` = 4097"),
+        ("size = [32, 24]\nbackground = [-0.1, 0, 0]", "`background` must be three finite linear sRGB values ≥ 0"),
+    ] {
+        let e = parse_err(&with(bad));
+        assert!(e.contains(said), "{bad}: {e}");
+    }
+    // The limits themselves are allowed.
+    let s = parse(&with("size = [1, 16384]\nspp = 4096\nbackground = [0, 0.5, 1]")).unwrap();
+    assert_eq!((s.output.width, s.output.height, s.output.spp), (1, 16384, 4096));
+}
