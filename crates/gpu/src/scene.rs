@@ -59,10 +59,10 @@ const _: () = assert!(iridis_render::lobe_albedo::COS_NODES == 10 && iridis_rend
 const BAND_ROWS: u32 = 32;
 /// Samples per pixel of one pass of a Monte Carlo render (progressive accumulation).
 pub const MC_PASS_SAMPLES: u32 = 8;
+use iridis_render::scene::MAX_IMAGE_SIDE;
 /// Largest samples per pixel, the renderers' limit (the sample offsets live in the scene buffer: space for
 /// this many is reserved).
 pub use iridis_render::scene::MAX_SPP;
-use iridis_render::scene::MAX_IMAGE_SIDE;
 
 const NONE: u32 = u32::MAX;
 

@@ -222,6 +222,31 @@ struct ObjectDef {
 const MAX_SNAKE_TRIANGLES: usize = 500_000;
 
 /// 1-based line of a byte offset.
+/// The first number of a scene document that is not finite: where it is (`[output]`, `[[object]] #2`), the key
+/// that holds it, and the number.
+fn non_finite_number(doc: &toml::Table) -> Option<(String, String, f64)> {
+    fn find(v: &toml::Value, key: &str) -> Option<(String, f64)> {
+        match v {
+            toml::Value::Float(x) if !x.is_finite() => Some((key.to_string(), *x)),
+            toml::Value::Array(a) => a.iter().find_map(|x| find(x, key)),
+            toml::Value::Table(t) => t.iter().find_map(|(k, x)| find(x, k)),
+            _ => None,
+        }
+    }
+    doc.iter().find_map(|(section, v)| match v {
+        toml::Value::Array(items) if items.iter().all(toml::Value::is_table) => items
+            .iter()
+            .enumerate()
+            .find_map(|(i, x)| find(x, section).map(|(k, n)| (format!("[[{section}]] #{}", i + 1), k, n))),
+        toml::Value::Table(t) => t.iter().find_map(|(k, x)| {
+            // [materials.NAME], [textures.NAME]: one level deeper.
+            let place = if x.is_table() { format!("[{section}.{k}]") } else { format!("[{section}]") };
+            find(x, k).map(|(key, n)| (place, key, n))
+        }),
+        _ => find(v, section).map(|(k, n)| ("the top level".to_string(), k, n)),
+    })
+}
+
 fn line_of(text: &str, offset: usize) -> usize {
     text[..offset.min(text.len())].bytes().filter(|&b| b == b'\n').count() + 1
 }
@@ -279,6 +304,25 @@ pub fn parse_scene(text: &str, name: &str, base: &Path) -> Result<Scene, RenderE
         RenderError::Scene { path: name.to_string(), line, message }
     })?;
     let ctx = Ctx { text, name, base: base.to_path_buf(), notes: Default::default() };
+    // TOML writes `nan` and `inf` as numbers; no length, angle, colour or intensity is one (a sphere centred at
+    // nan was drawn nowhere, without a word).
+    if let Ok(doc) = toml::from_str::<toml::Table>(text) {
+        if let Some((place, key, x)) = non_finite_number(&doc) {
+            let line = text
+                .lines()
+                .position(|l| {
+                    let code = l.split('#').next().unwrap_or("");
+                    code.contains(&key)
+                        && code.split(|c: char| !c.is_ascii_alphanumeric()).any(|w| w == "nan" || w == "inf")
+                })
+                .map_or(1, |i| i + 1);
+            return Err(RenderError::Scene {
+                path: name.to_string(),
+                line,
+                message: format!("{place}: `{key}` holds {x}: the numbers of a scene must be finite"),
+            });
+        }
+    }
     let mut notes = Vec::new();
     let mut warnings = Vec::new();
 
@@ -916,8 +960,18 @@ fn build_texture(name: &str, d: &TextureDef, span: &std::ops::Range<usize>, ctx:
                 o => return Err(ctx.err(span.clone(), format!("{what}: `along` = \"{o}\": use \"u\" or \"v\""))),
             },
         },
-        "scales" => Texture::Scales { base: d.base.unwrap_or([0.05, 0.04, 0.03]), edge: d.edge.unwrap_or([0.01, 0.01, 0.01]) },
-        "checker" => Texture::Checker { a: d.a.unwrap_or([0.8; 3]), b: d.b.unwrap_or([0.2; 3]), n: d.n.unwrap_or(8.0) },
+        "scales" => Texture::Scales {
+            base: reflectance(d.base.unwrap_or([0.05, 0.04, 0.03]), &what, "base", span, ctx)?,
+            edge: reflectance(d.edge.unwrap_or([0.01, 0.01, 0.01]), &what, "edge", span, ctx)?,
+        },
+        "checker" => Texture::Checker {
+            a: reflectance(d.a.unwrap_or([0.8; 3]), &what, "a", span, ctx)?,
+            b: reflectance(d.b.unwrap_or([0.2; 3]), &what, "b", span, ctx)?,
+            n: match d.n.unwrap_or(8.0) {
+                n if n > 0.0 => n,
+                n => return Err(ctx.err_key(span, "n", format!("{what}: `n` = {n}: squares per unit of u and v must be > 0"))),
+            },
+        },
         other => {
             return Err(ctx.err(
                 span.clone(),
@@ -931,14 +985,32 @@ type TexRef<'a> = dyn Fn(&str, TexKind, &std::ops::Range<usize>, &str) -> Result
 
 fn color_source(
     d: &MaterialDef,
+    what: &str,
     span: &std::ops::Range<usize>,
+    ctx: &Ctx,
     tex: &TexRef,
     default: Rgb,
 ) -> Result<ColorSource, RenderError> {
     Ok(match &d.texture {
         Some(t) => ColorSource::Texture(tex(t, TexKind::Color, span, "texture")?),
-        None => ColorSource::Const(d.color.unwrap_or(default)),
+        None => ColorSource::Const(reflectance(d.color.unwrap_or(default), what, "color", span, ctx)?),
     })
+}
+
+/// A colour that is a reflectance (a surface's albedo, a texture's colour): each channel in [0, 1]. Above 1 the
+/// surface returns more light than it receives (`color = [3, 3, 3]` on a Lambertian floor was rendered so).
+fn reflectance(c: Rgb, what: &str, key: &str, span: &std::ops::Range<usize>, ctx: &Ctx) -> Result<Rgb, RenderError> {
+    if c.iter().all(|x| (0.0..=1.0).contains(x)) {
+        return Ok(c);
+    }
+    Err(ctx.err_key(
+        span,
+        key,
+        format!(
+            "{what}: `{key}` = {c:?}: a reflectance has each channel in [0, 1] (above 1 a surface returns more light than \
+             it receives); for a brighter image raise the lights or the exposure"
+        ),
+    ))
 }
 
 /// The keys each material kind reads, besides `kind`: the one list the scene loader checks against (the
@@ -1039,9 +1111,9 @@ fn build_material(
         Ok(x)
     };
     match d.kind.as_str() {
-        "lambert" => Ok(Material::Lambert { color: color_source(d, span, tex, [0.5; 3])? }),
+        "lambert" => Ok(Material::Lambert { color: color_source(d, &what, span, ctx, tex, [0.5; 3])? }),
         "microfacet" => Ok(Material::Microfacet(Microfacet {
-            color: color_source(d, span, tex, [0.5; 3])?,
+            color: color_source(d, &what, span, ctx, tex, [0.5; 3])?,
             roughness: unit(
                 match &d.roughness {
                     None => None,
@@ -1167,7 +1239,7 @@ fn build_material(
                 orientation: Orientation { rule, angle: angle(&d.angle, ctx, span, "angle", 0.0)? },
                 scale_ru,
                 w_diffuse: unit(d.w_diffuse, "w_diffuse", 0.0)?,
-                texture: color_source(d, span, tex, [0.0; 3])?,
+                texture: color_source(d, &what, span, ctx, tex, [0.0; 3])?,
                 ambient,
                 fresnel_n,
                 description: table.clone(),

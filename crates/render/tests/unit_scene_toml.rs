@@ -136,3 +136,40 @@ fn output_settings_have_the_limits_of_the_flags() {
     let s = parse(&with("size = [1, 16384]\nspp = 4096\nbackground = [0, 0.5, 1]")).unwrap();
     assert_eq!((s.output.width, s.output.height, s.output.spp), (1, 16384, 4096));
 }
+
+/// TOML's `nan` and `inf` are numbers, but no position, colour or intensity is one (a sphere centred at nan was
+/// drawn nowhere without a word); a reflectance lies in [0, 1] (a Lambertian colour of 3 returned three times
+/// the light it received); a checker needs squares.
+#[test]
+fn numbers_are_finite_and_reflectances_lie_in_0_1() {
+    for (from, to, said) in [
+        ("radius = 1", "radius = 1\ncenter = [nan, 0, 0]", "test.toml:14: [[object]] #1: `center` holds NaN"),
+        ("size = [32, 24]", "size = [32, 24]\nexposure = inf", "test.toml:4: [output]: `exposure` holds inf"),
+        ("direction = [0, 1, 1]", "direction = [0, -inf, 1]", "[[light]] #1: `direction` holds -inf"),
+        (
+            "kind = \"lambert\"",
+            "kind = \"lambert\"\ncolor = [1.2, 0.5, 0.5]",
+            "[materials.grey]: `color` = [1.2, 0.5, 0.5]",
+        ),
+        (
+            "kind = \"lambert\"",
+            "kind = \"lambert\"\ncolor = [0.5, -0.1, 0.5]",
+            "a reflectance has each channel in [0, 1]",
+        ),
+    ] {
+        let e = parse_err(&OK.replace(from, to));
+        assert!(e.contains(said), "{to}: {e}");
+    }
+    let textured = |t: &str| {
+        OK.replace("kind = \"lambert\"", "kind = \"lambert\"\ntexture = \"t\"")
+            .replace("[materials.grey]", &format!("{t}\n[materials.grey]"))
+    };
+    let e = parse_err(&textured("[textures.t]\nkind = \"checker\"\na = [2, 2, 2]"));
+    assert!(e.contains("[textures.t]: `a` = [2.0, 2.0, 2.0]: a reflectance"), "{e}");
+    let e = parse_err(&textured("[textures.t]\nkind = \"checker\"\nn = 0"));
+    assert!(e.contains("[textures.t]: `n` = 0: squares per unit of u and v must be > 0"), "{e}");
+    let e = parse_err(&textured("[textures.t]\nkind = \"scales\"\nedge = [0, 0, 1.5]"));
+    assert!(e.contains("`edge` = [0.0, 0.0, 1.5]"), "{e}");
+    // The limits are allowed.
+    parse(&textured("[textures.t]\nkind = \"checker\"\na = [1, 1, 1]\nb = [0, 0, 0]\nn = 0.5")).unwrap();
+}
