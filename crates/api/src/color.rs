@@ -88,6 +88,16 @@ pub fn xyz(
     } else {
         reflectance_to_xyz(&spectrum, illuminant, observer)
     };
+    // Negative values (a baseline subtracted past zero) are used as they are, and said; a negative Y has no
+    // lightness (L* = 903.3·Y/Yn came out at −903 without a word).
+    if let Some(v) = spectrum.values().iter().copied().filter(|v| *v < 0.0).reduce(f64::min) {
+        let y = if xyz.y < 0.0 {
+            format!("; Y is then {:.4}, and its L* is not a lightness", xyz.y)
+        } else {
+            String::new()
+        };
+        report.warn(&format!("{} has negative values (down to {v}); they were used as they are{y}", path.display()));
+    }
     let white = white_point(illuminant, observer);
     Ok(SpectrumColour {
         name: path.display().to_string(),

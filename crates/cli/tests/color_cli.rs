@@ -80,3 +80,20 @@ fn bad_input_gives_one_clear_line() {
     let (_scratch, p) = temp_csv("three.csv", "wavelength,value\n400,0.5\n410,0.6,0.9\n420,0.7\n");
     assert_fails(&["color", "xyz", p.to_str().unwrap()], &["three.csv:3", "two columns", "found 3"]);
 }
+
+/// Negative values are used and said; where they make Y negative, that L* is no lightness is said too (a
+/// spectrum of −1 printed L* = −903.3 = 903.3·Y/Yn without a word).
+#[test]
+fn negative_values_are_said() {
+    let warning = |text: &str| {
+        let (_dir, csv) = temp_csv("s.csv", text);
+        let out = iridis(&["color", "xyz", csv.to_str().unwrap()]);
+        assert!(out.status.success());
+        String::from_utf8_lossy(&out.stderr).into_owned()
+    };
+    let w = warning("wl,r\n380,-1\n780,-1\n");
+    assert!(w.contains("has negative values (down to -1)") && w.contains("Y is then -1.0000"), "{w}");
+    let w = warning("wl,r\n380,0.2\n500,-0.01\n780,0.3\n");
+    assert!(w.contains("has negative values (down to -0.01); they were used as they are\n"), "{w}");
+    assert!(warning("wl,r\n380,0.2\n780,0.3\n").is_empty());
+}
