@@ -78,7 +78,12 @@ impl SpectralSetup {
     ) -> Result<Self, DiffractionError> {
         let grid = uniform_grid(from_nm, to_nm, step_nm).map_err(|e| DiffractionError::Invalid(e.to_string()))?;
         if grid.len() < 2 {
-            return Err(DiffractionError::Invalid("the wavelength grid needs at least two samples".into()));
+            return Err(DiffractionError::Invalid(format!(
+                "the wavelength grid {from_nm}–{to_nm} nm at {step_nm} nm steps holds {} sample(s); the spectral \
+                 integral needs two or more: give a step of at most {} nm",
+                grid.len(),
+                to_nm - from_nm
+            )));
         }
         Ok(Self {
             illuminant,

@@ -42,3 +42,16 @@ fn the_lobes_gain_is_the_windows_effective_area_also_where_the_patch_cuts_it() {
         }
     }
 }
+
+/// A step that leaves one wavelength in 380–780 nm is refused with the largest step that works (400 nm: two
+/// samples), not "the grid needs two samples".
+#[test]
+fn a_grid_of_one_wavelength_names_the_step_that_works() {
+    use iridis_color::{Illuminant, Observer};
+    let e = SpectralSetup::new(Illuminant::D65, Observer::Cie1931, 500.0).unwrap_err().to_string();
+    assert!(e.contains("380–780 nm at 500 nm steps holds 1 sample(s)") && e.contains("at most 400 nm"), "{e}");
+    assert_eq!(
+        SpectralSetup::new(Illuminant::D65, Observer::Cie1931, 400.0).unwrap().weights.wavelengths_nm(),
+        [380.0, 780.0]
+    );
+}
