@@ -128,7 +128,7 @@ pub fn check_values(param: Param, values: &[f64]) -> Result<(), LabError> {
                 param.name(),
                 match param {
                     Param::Terms => "a whole number 1–200",
-                    Param::DLambda => "0–100 nm",
+                    Param::DLambda => "above 0 nm, at most 100 nm",
                     Param::Coherence => "a positive length",
                     Param::UvPower => "1–20",
                     Param::UvResolution => "a whole number 3–4001",
