@@ -65,6 +65,17 @@ pub fn brdf_eval(r: &EvalRequest, spectra: Option<&Path>, report: &dyn Report) -
     r.grid.refuse_unless_lookup(&method)?;
     let r0 = shading.fresnel.normal_reflectance();
     let p = eval_point(&r.input, Some(&method), &r.model, shading, r.grid.params()?, &r.surface, wi, wr, report)?;
+    // A table of zeros reads like a failure; say why it is one (a 2 µm sine's orders lie in one plane, and a
+    // view out of it printed 0.0000e0 at every λ without a word).
+    let q = &p.query;
+    if q.reflectance.as_ref().is_none_or(|rho| rho.iter().all(|x| *x == 0.0)) && [q.xyz.x, q.xyz.y, q.xyz.z] == [0.0; 3]
+    {
+        report.note(
+            "no light goes from this light direction to this view at any wavelength: a periodic surface sends light \
+             only near its diffraction orders (the grating equation), each lobe about λ/coherence wide, and this \
+             view lies between them; `iridis brdf-map` shows where the light goes",
+        );
+    }
     if let Some(path) = spectra {
         crate::output::write_bytes(path, p.spectra_csv()?.as_bytes())?;
     }

@@ -419,3 +419,18 @@ fn brdf_map_writes_the_brdf_in_per_steradian() {
     );
     assert!(!png2.exists() && !f2.exists(), "nothing written on a refusal");
 }
+
+/// A view between a periodic patch's orders gets no light at any wavelength; the zeros are said to be that
+/// (they printed alone). A 2 µm patch of a sine along x is one unit cell: orders (m, n) at sin θ (cos φ, sin φ) =
+/// (m, n) λ / 2 µm, and the profile does not vary along y, so every n ≠ 0 order is dark — a view at φ = 40° sees
+/// nothing. At φ = 0 the view at 30° meets order m = 2 at 500 nm (sin 30° = 2 · 500 nm / 2 µm) and is lit.
+#[test]
+fn a_view_between_the_orders_is_said_to_get_no_light() {
+    let eval = |view: &str| {
+        let out = iridis(&["brdf", "eval", "builtin:sine?size=2um&pixel=50nm", "--light", "0deg", "--view", view]);
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        String::from_utf8_lossy(&out.stderr).contains("this view lies between them")
+    };
+    assert!(eval("30deg,40deg"));
+    assert!(!eval("30deg,0deg"));
+}
