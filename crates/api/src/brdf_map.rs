@@ -123,8 +123,14 @@ pub struct BrdfMap {
 
 /// A map's side in pixels (`--size`): 8 to 8192.
 pub fn check_size(size: usize) -> Result<()> {
+    check_size_of("--size", size)
+}
+
+/// A map's side given by `flag`: 8 to 8192 pixels (below 8 the disk of view directions has too few pixels to
+/// compare or show: a 1² map is the normal alone).
+pub fn check_size_of(flag: &str, size: usize) -> Result<()> {
     if !(8..=8192).contains(&size) {
-        bail!("--size {size} must be between 8 and 8192 pixels");
+        bail!("{flag} {size} must be between 8 and 8192 pixels");
     }
     Ok(())
 }

@@ -747,6 +747,11 @@ fn accuracy_bench_reads_a_grey_image_with_its_max_height() {
     for r in rows.iter().filter(|r| r["method"] == "periodic-extension") {
         assert!(r["mean"].as_f64().unwrap() < 1e-6 && r["p95"].as_f64().unwrap() < 1e-6, "{r}");
     }
+    // Maps have brdf-map's sizes: a 1² map (the normal alone) printed ΔE 0.0000 at 1000 RU, two clipped whites.
+    crate::common::assert_fails(
+        &["bench", "diffraction-accuracy", "--surface", npy, "--pixel-size", "50nm", "--map-size", "1"],
+        &["--map-size 1 must be between 8 and 8192 pixels"],
+    );
 }
 
 /// The report of an Elaphe-like scan (issue 28, 30): how far the scalar model is from the rigorous solver on

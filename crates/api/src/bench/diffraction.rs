@@ -314,6 +314,8 @@ fn map_delta_e(a: &[Xyz], b: &[Xyz], exposure: f64, size: usize) -> (f64, f64) {
 /// extension's own error, and the reference's convergence with the number of Taylor terms.
 pub fn accuracy(a: &AccuracyOptions, report: &dyn Report) -> Result<Bench> {
     crate::output::declare_opt("--convergence-plot", a.convergence_plot.as_deref(), &["png"])?;
+    // A 1² map is the normal direction alone: its "error" of 0 at 1000 RU is two clipped whites.
+    crate::brdf_map::check_size_of("--map-size", a.map_size)?;
     let surfaces = if a.surfaces.is_empty() {
         vec!["builtin:blazed".to_string(), "builtin:cd".into(), "builtin:elaphe".into(), "builtin:xenopeltis".into()]
     } else {
