@@ -15,17 +15,13 @@ use crate::material::*;
 use crate::math::*;
 use crate::texture::Texture;
 
-/// The largest image side in pixels (a 16384² RGB f32 image is 3 GiB), for scenes, `--size` and the GPU's
-/// frames alike.
-pub const MAX_IMAGE_SIDE: u32 = 16384;
-/// The most samples per pixel a render takes (`spp`, `--spp`).
-pub const MAX_SPP: u32 = 4096;
-
 /// Image settings.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Output {
+    /// Image size in pixels, 1 to [`MAX_IMAGE_SIDE`] a side.
     pub width: u32,
     pub height: u32,
+    /// Samples per pixel, 1 to [`MAX_SPP`].
     pub spp: u32,
     /// Exposure in RU (PHYSICS.md): linear colours are multiplied by it before clipping and encoding.
     pub exposure: f64,
@@ -37,6 +33,12 @@ pub struct Output {
     /// The random streams' seed (Monte Carlo): renders with different seeds are independent estimates.
     pub seed: u64,
 }
+
+/// The largest image side in pixels (a 16384² RGB f32 image is 3 GiB), for scenes, `--size` and the GPU's
+/// frames alike.
+pub const MAX_IMAGE_SIDE: u32 = 16384;
+/// The most samples per pixel a render takes (`spp`, `--spp`).
+pub const MAX_SPP: u32 = 4096;
 
 /// A scene ready to render.
 #[derive(Debug, Clone)]
