@@ -39,7 +39,10 @@ fn created() -> std::sync::MutexGuard<'static, Vec<PathBuf>> {
 /// either; a folder that existed is left as it was.
 pub fn create_dir(dir: &Path) -> Result<()> {
     if dir.is_file() {
-        bail!("{} is a file, and this output is a folder: give a folder's name (new or existing)", dir.display());
+        bail!(
+            "cannot create {}: it is a file, and this output is a folder: give a folder's name (new or existing)",
+            dir.display()
+        );
     }
     let missing: Vec<PathBuf> =
         dir.ancestors().take_while(|d| !d.as_os_str().is_empty() && !d.exists()).map(Path::to_path_buf).collect();

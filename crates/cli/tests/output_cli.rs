@@ -75,7 +75,10 @@ fn outputs_are_checked_before_the_work() {
     // A folder output given a file's name says which it needs.
     let file = p(d.path(), "notes.txt");
     std::fs::write(&file, "mine").unwrap();
-    assert_fails(&["report", SMALL, "-o", &file, "--size", "16"], &["is a file, and this output is a folder"]);
+    assert_fails(
+        &["report", SMALL, "-o", &file, "--size", "16"],
+        &["cannot create", "it is a file, and this output is a folder"],
+    );
     assert_eq!(std::fs::read_to_string(&file).unwrap(), "mine");
 }
 
