@@ -174,3 +174,21 @@ def test_bad_arrays_raise_value_errors_that_say_what_to_do(call, words):
     with pytest.raises(ValueError) as info:
         call(s)
     assert words in str(info.value)
+
+
+def test_an_exact_spectrum_has_finite_correlations_and_film_fit_points_arrays_to_thinfilm_fit():
+    """A computed spectrum fitted without σ: χ² = 0, so the uncertainties are 0 (σ is estimated from a scatter of
+    0), and the correlations — which no scale of σ changes — are those of a fit with σ given (they were NaN).
+    ``iridis.film.fit`` reads files as the CLI does; arrays handed to it are pointed to ``iridis.thinfilm.fit``
+    (str() of the tuple was read as a file name)."""
+    import iridis.film as film
+    wl = np.linspace(400, 800, 81)
+    r = tf.Stack("air | n=1.46 250nm | si-green").reflectance(wl)
+    template = "air | n={n=1.5:1.3..1.7} {d=200nm:50nm..400nm} | si-green"
+    exact, given = tf.fit((wl, r), template), tf.fit((wl, r), template, sigma=0.01)
+    np.testing.assert_allclose(exact["values"], [1.46, 250.0], rtol=1e-9)
+    if exact["chi2"] == 0.0:
+        assert list(exact["sigma"]) == [0.0, 0.0]
+    np.testing.assert_allclose(exact["correlation"], given["correlation"], atol=1e-6)
+    with pytest.raises(TypeError, match="use iridis.thinfilm.fit"):
+        film.fit((wl, r), template)

@@ -20,6 +20,8 @@ Example:
 """
 from __future__ import annotations
 
+import os
+
 from . import _native
 from ._answer import Answer, answer
 
@@ -119,7 +121,13 @@ def profile(stack, wavelength_nm, angle_rad=0.0, polarization="avg", points=400,
 def fit(measured, stack, angle_rad=0.0, quantity="R", *, sigma=None, weights=None, grid=0, columns=None,
         percent=None, from_nm=None, to_nm=None, plot=False):
     """``iridis thinfilm fit``: fits the free parameters ``{NAME=START:LOW..HIGH}`` of ``stack`` to the
-    spectrum in the file ``measured`` (read as the CLI reads it); ``.csv`` the fitted curve."""
+    spectrum in the file ``measured`` (read as the CLI reads it); ``.csv`` the fitted curve. Arrays
+    ``(wavelengths_nm, values[, sigma])`` are ``iridis.thinfilm.fit``'s (the same library calls)."""
+    if not (isinstance(measured, (str, bytes)) or hasattr(measured, "__fspath__")):
+        # str() of a tuple of arrays was read as a file name ("cannot read (array([400., …").
+        raise TypeError(f"measured is a {type(measured).__name__}: iridis.film.fit reads a file, as the CLI does; "
+                        "for arrays (wavelengths_nm, values[, sigma]) use iridis.thinfilm.fit")
+    measured = os.fsdecode(os.fspath(measured)) if not isinstance(measured, str) else measured
     return answer(_native._film_fit(str(measured), str(stack), float(angle_rad), str(quantity), int(grid), bool(plot),
                                     sigma=None if sigma is None else str(sigma),
                                     weights=None if weights is None else str(weights), columns=columns,
