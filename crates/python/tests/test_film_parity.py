@@ -190,5 +190,12 @@ def test_an_exact_spectrum_has_finite_correlations_and_film_fit_points_arrays_to
     if exact["chi2"] == 0.0:
         assert list(exact["sigma"]) == [0.0, 0.0]
     np.testing.assert_allclose(exact["correlation"], given["correlation"], atol=1e-6)
-    with pytest.raises(TypeError, match="use iridis.thinfilm.fit"):
+    with pytest.raises(TypeError, match=r"for arrays use iridis\.thinfilm\.fit"):
         film.fit((wl, r), template)
+    # The other readers of the CLI's files point to their array functions alike.
+    import iridis.color as color
+    import iridis.vision as vision
+    with pytest.raises(TypeError, match=r"for arrays use iridis\.color\.spectrum_to_xyz"):
+        color.xyz((wl, r))
+    with pytest.raises(TypeError, match=r"for arrays use iridis\.vision\.analyse"):
+        vision.vision((wl, r), visual="bluetit")

@@ -5,6 +5,7 @@ from __future__ import annotations
 import csv
 import io
 import json
+import os
 
 import numpy as np
 
@@ -18,6 +19,15 @@ class Answer(dict):
     text: str | None = None
     csv: str | None = None
     image: np.ndarray | None = None
+
+
+def file_path(x, who, arrays):
+    """``x`` as a path for a function that reads a file as the CLI does (``who``); anything else is refused with
+    the function ``arrays`` that takes arrays (str() of a tuple of arrays was read as a file name: "cannot read
+    (array([380., …")."""
+    if isinstance(x, (str, bytes)) or hasattr(x, "__fspath__"):
+        return os.fsdecode(os.fspath(x))
+    raise TypeError(f"{who} reads a file, as the CLI does, and was given a {type(x).__name__}; for arrays use {arrays}")
 
 
 def columns(text):

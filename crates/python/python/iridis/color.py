@@ -153,6 +153,7 @@ def xyz(spectrum, illuminant="D65", observer="1931", emissive=False):
     A reflectance lit by ``illuminant`` (Y = 1 a perfect white reflector), or with ``emissive`` a light source
     at Y = 1; L*a*b* is relative to the illuminant's white either way (for a light, the white it is judged
     against). A file that does not cover 380–780 nm gives a warning."""
-    from ._answer import answer
+    from ._answer import answer, file_path
 
-    return answer(_native._color_xyz(str(spectrum), str(illuminant), str(observer), bool(emissive)))
+    path = file_path(spectrum, "iridis.color.xyz", "iridis.color.spectrum_to_xyz(wavelengths_nm, values)")
+    return answer(_native._color_xyz(path, str(illuminant), str(observer), bool(emissive)))

@@ -20,10 +20,8 @@ Example:
 """
 from __future__ import annotations
 
-import os
-
 from . import _native
-from ._answer import Answer, answer
+from ._answer import Answer, answer, file_path
 
 __all__ = ["Answer", "spectrum", "table", "color", "chart", "materials", "bench", "profile", "fit"]
 
@@ -123,12 +121,8 @@ def fit(measured, stack, angle_rad=0.0, quantity="R", *, sigma=None, weights=Non
     """``iridis thinfilm fit``: fits the free parameters ``{NAME=START:LOW..HIGH}`` of ``stack`` to the
     spectrum in the file ``measured`` (read as the CLI reads it); ``.csv`` the fitted curve. Arrays
     ``(wavelengths_nm, values[, sigma])`` are ``iridis.thinfilm.fit``'s (the same library calls)."""
-    if not (isinstance(measured, (str, bytes)) or hasattr(measured, "__fspath__")):
-        # str() of a tuple of arrays was read as a file name ("cannot read (array([400., …").
-        raise TypeError(f"measured is a {type(measured).__name__}: iridis.film.fit reads a file, as the CLI does; "
-                        "for arrays (wavelengths_nm, values[, sigma]) use iridis.thinfilm.fit")
-    measured = os.fsdecode(os.fspath(measured)) if not isinstance(measured, str) else measured
-    return answer(_native._film_fit(str(measured), str(stack), float(angle_rad), str(quantity), int(grid), bool(plot),
+    measured = file_path(measured, "iridis.film.fit", "iridis.thinfilm.fit((wavelengths_nm, values[, sigma]), stack)")
+    return answer(_native._film_fit(measured, str(stack), float(angle_rad), str(quantity), int(grid), bool(plot),
                                     sigma=None if sigma is None else str(sigma),
                                     weights=None if weights is None else str(weights), columns=columns,
                                     percent=None if percent is None else bool(percent),

@@ -104,8 +104,9 @@ def vision(spectra, visual=None, *, percent=False, lambda_max=None, chromophore=
     """``iridis vision``: the spectra CSV ``spectra`` (pavo's layout: a wavelength column and one column per
     sample; ``percent`` divides by 100) as an animal sees it, with the CLI's defaults — the dict of ``--json``
     and ``.text`` the CLI's text. The options are :func:`analyse`'s."""
-    from ._answer import answer
+    from ._answer import answer, file_path
 
-    return answer(_native._vision_file(str(spectra), bool(percent), **_spec(
+    path = file_path(spectra, "iridis.vision.vision", "iridis.vision.analyse(wavelengths_nm, values, visual)")
+    return answer(_native._vision_file(path, bool(percent), **_spec(
         visual, lambda_max, chromophore, oil_droplets, ocular_media, illuminant, illuminant_units, illuminant_scale,
         background, weber, weber_ref, densities, receptor_noise, noise, achromatic, achromatic_weber, space)))
