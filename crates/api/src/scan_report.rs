@@ -6,7 +6,7 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{anyhow, Context, Result};
+use anyhow::{anyhow, bail, Context, Result};
 use iridis_color::units::{parse_angle_rad, parse_positive_length_nm};
 use iridis_color::{Encoding, ToneMap};
 use iridis_diffraction::geometry::{direction, FresnelConvention};
@@ -201,6 +201,10 @@ fn brdf_map_figure(
 pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Report) -> Result<ScanReport> {
     // What a later step would refuse, refused before the first runs (a report of a large scan takes minutes).
     crate::brdf_map::check_size(o.size)?;
+    // A scan that is not there is said as such, not as the failure of the first step's command line.
+    if !o.surface.starts_with("builtin:") && !std::path::Path::new(&o.surface).exists() {
+        bail!("cannot read {}: no such file", o.surface);
+    }
     let spec =
         iridis_vision::Spec { visual: Some(o.visual.clone()), illuminant: Some("d65".into()), ..Default::default() };
     spec.system().context("--visual")?;

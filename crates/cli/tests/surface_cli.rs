@@ -866,6 +866,9 @@ fn report_refuses_what_its_steps_would_before_they_run() {
     };
     crate::common::assert_fails(&report("--size", "0"), &["--size 0 must be between 8 and 8192 pixels"]);
     crate::common::assert_fails(&report("--visual", "cat"), &["--visual", "unknown visual system 'cat'"]);
+    // A scan that is not there: said as such, before any step (it was the first step's failure, its command
+    // line and then the reason).
+    crate::common::assert_fails(&["report", "no/such.gwy", "-o", o], &["cannot read no/such.gwy: no such file"]);
     let short = ["--coherence: a coherence length of 300 nm", "give at least 400 nm"];
     crate::common::assert_fails(&report("--coherence", "300nm"), &short);
     // The folder the run created is an output too: removed with the rest; one that existed stays, empty.
