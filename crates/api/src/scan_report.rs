@@ -202,7 +202,7 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
     // What a later step would refuse, refused before the first runs (a report of a large scan takes minutes).
     crate::brdf_map::check_size(o.size)?;
     // A scan that is not there is said as such, not as the failure of the first step's command line.
-    if !o.surface.starts_with("builtin:") && !std::path::Path::new(&o.surface).exists() {
+    if !o.surface.starts_with("builtin:") && !Path::new(&o.surface).exists() {
         bail!("cannot read {}: no such file", o.surface);
     }
     let spec =

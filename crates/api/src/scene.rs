@@ -9,7 +9,7 @@ use anyhow::{bail, Context, Result};
 use iridis_gpu::scene::SceneFilm;
 use iridis_gpu::FilmPath;
 use iridis_render::gltf_io::GltfOptions;
-use iridis_render::scene::{MAX_IMAGE_SIDE, MAX_SPP};
+use iridis_render::scene::MAX_IMAGE_SIDE;
 use iridis_render::{Image, Scene};
 
 use crate::gallery::Gallery;
@@ -119,9 +119,7 @@ pub fn render_file(a: &RenderRequest, report: &dyn Report) -> Result<Rendered> {
     let start = Instant::now();
     let size = a.size.as_deref().map(parse_size).transpose()?;
     if let Some(s) = a.spp {
-        if !(1..=MAX_SPP).contains(&s) {
-            bail!("--spp {s}: use 1 to {MAX_SPP} samples per pixel");
-        }
+        iridis_render::scene::check_spp(s).map_err(|e| anyhow::anyhow!("--spp {s}: {e}"))?;
     }
     if let Some(x) = a.exposure {
         if !(x.is_finite() && x > 0.0) {

@@ -335,9 +335,9 @@ pub fn fit(template: &Template, data: &Measured, opt: &FitOptions) -> Result<Fit
     // before that scale, which they do not depend on: data the model meets exactly (χ² = 0, synthetic spectra)
     // have zero uncertainties, and their correlations were 0/0.
     let cov = &d_inv * c.try_inverse().ok_or_else(singular)? * &d_inv;
-    let sigma: Vec<f64> = (0..np).map(|k| (cov[(k, k)].max(0.0) * scale).sqrt()).collect();
     let sd: Vec<f64> = (0..np).map(|k| cov[(k, k)].max(0.0).sqrt()).collect();
     let correlation = (0..np).map(|a| (0..np).map(|b| cov[(a, b)] / (sd[a] * sd[b])).collect()).collect();
+    let sigma: Vec<f64> = sd.iter().map(|s| s * scale.sqrt()).collect();
     let at_bound = template
         .params
         .iter()

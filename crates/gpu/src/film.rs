@@ -73,15 +73,9 @@ impl FilmFrame {
     }
 
     fn check(&self) -> Result<(), GpuError> {
-        let side = 1..=iridis_render::scene::MAX_IMAGE_SIDE as usize;
-        if !(side.contains(&self.width) && side.contains(&self.height)) {
-            return Err(GpuError::Invalid(format!(
-                "frame {}×{} must be between 1×1 and {m}×{m} pixels",
-                self.width,
-                self.height,
-                m = side.end()
-            )));
-        }
+        let side = |n: usize| u32::try_from(n).unwrap_or(u32::MAX);
+        iridis_render::scene::check_image_size(side(self.width), side(self.height))
+            .map_err(|e| GpuError::Invalid(format!("frame {}×{}: {e}", self.width, self.height)))?;
         let (a, b) = self.angle_rad;
         let ok = |t: f64| t.is_finite() && (0.0..=std::f64::consts::FRAC_PI_2).contains(&t);
         if !(ok(a) && ok(b)) {

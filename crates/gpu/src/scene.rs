@@ -59,10 +59,10 @@ const _: () = assert!(iridis_render::lobe_albedo::COS_NODES == 10 && iridis_rend
 const BAND_ROWS: u32 = 32;
 /// Samples per pixel of one pass of a Monte Carlo render (progressive accumulation).
 pub const MC_PASS_SAMPLES: u32 = 8;
-use iridis_render::scene::MAX_IMAGE_SIDE;
 /// Largest samples per pixel, the renderers' limit (the sample offsets live in the scene buffer: space for
 /// this many is reserved).
 pub use iridis_render::scene::MAX_SPP;
+use iridis_render::scene::{check_image_size, check_spp};
 
 const NONE: u32 = u32::MAX;
 
@@ -891,14 +891,8 @@ impl<'g> GpuScene<'g> {
 
     /// Allocates the output of `width × height` images with `spp` samples per pixel, displayed with `tone`.
     pub fn frame(&self, width: u32, height: u32, spp: u32, tone: ToneMap) -> Result<SceneFrame, GpuError> {
-        if !(1..=MAX_IMAGE_SIDE).contains(&width) || !(1..=MAX_IMAGE_SIDE).contains(&height) {
-            return Err(GpuError::Invalid(format!(
-                "image {width}×{height} must be between 1×1 and {MAX_IMAGE_SIDE}×{MAX_IMAGE_SIDE}"
-            )));
-        }
-        if !(1..=MAX_SPP).contains(&spp) {
-            return Err(GpuError::Invalid(format!("{spp} samples per pixel: use 1 to {MAX_SPP}")));
-        }
+        check_image_size(width, height).map_err(|e| GpuError::Invalid(format!("image {width}×{height}: {e}")))?;
+        check_spp(spp).map_err(|e| GpuError::Invalid(format!("{spp} samples per pixel: {e}")))?;
         let pixels = width as u64 * height as u64;
         self.gpu.check_storage("the image", pixels * 16, "render a smaller image")?;
         // This frame's sample offsets (the CPU's R2 set for spp samples).

@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use iridis_render::scene::{MAX_IMAGE_SIDE, MAX_SPP};
+use iridis_render::scene::{check_image_size, check_spp};
 use iridis_render::{load_scene, render, RenderError};
 use numpy::ndarray::Array3;
 use numpy::{IntoPyArray, PyArray3};
@@ -37,12 +37,8 @@ fn render_scene<'py>(
     })?;
     let (w, h) = (width.unwrap_or(scene.output.width), height.unwrap_or(scene.output.height));
     let spp = spp.unwrap_or(scene.output.spp);
-    if !(1..=MAX_IMAGE_SIDE).contains(&w) || !(1..=MAX_IMAGE_SIDE).contains(&h) {
-        return Err(value_error(format!("size {w}×{h}: use 1 to {MAX_IMAGE_SIDE} pixels a side")));
-    }
-    if !(1..=MAX_SPP).contains(&spp) {
-        return Err(value_error(format!("spp {spp}: use 1 to {MAX_SPP} samples per pixel")));
-    }
+    check_image_size(w, h).map_err(|e| value_error(format!("size {w}×{h}: {e}")))?;
+    check_spp(spp).map_err(|e| value_error(format!("spp {spp}: {e}")))?;
     let (img, device) = if gpu {
         let r = crate::facade::run(py, |report| {
             iridis_api::gpu::render_scene(&scene, w, h, spp, Default::default(), report)

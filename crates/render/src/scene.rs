@@ -40,6 +40,24 @@ pub const MAX_IMAGE_SIDE: u32 = 16384;
 /// The most samples per pixel a render takes (`spp`, `--spp`).
 pub const MAX_SPP: u32 = 4096;
 
+/// Whether an image of `width × height` pixels is one the renderers make; the error is the rule, for the caller
+/// to put after the name of what gave the size (`--size`, `[output] size`, a frame).
+pub fn check_image_size(width: u32, height: u32) -> Result<(), String> {
+    let side = 1..=MAX_IMAGE_SIDE;
+    if side.contains(&width) && side.contains(&height) {
+        return Ok(());
+    }
+    Err(format!("width and height must be from 1 to {MAX_IMAGE_SIDE} pixels"))
+}
+
+/// Whether `spp` samples per pixel is a number the renderers take; the error is the rule, as above.
+pub fn check_spp(spp: u32) -> Result<(), String> {
+    if (1..=MAX_SPP).contains(&spp) {
+        return Ok(());
+    }
+    Err(format!("use 1 to {MAX_SPP} samples per pixel"))
+}
+
 /// A scene ready to render.
 #[derive(Debug, Clone)]
 pub struct Scene {

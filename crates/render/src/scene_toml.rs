@@ -221,7 +221,6 @@ struct ObjectDef {
 /// that lavapipe binds in one storage buffer.
 const MAX_SNAKE_TRIANGLES: usize = 500_000;
 
-/// 1-based line of a byte offset.
 /// The first number of a scene document that is not finite: where it is (`[output]`, `[[object]] #2`), the key
 /// that holds it, and the number.
 fn non_finite_number(doc: &toml::Table) -> Option<(String, String, f64)> {
@@ -247,6 +246,7 @@ fn non_finite_number(doc: &toml::Table) -> Option<(String, String, f64)> {
     })
 }
 
+/// 1-based line of a byte offset.
 fn line_of(text: &str, offset: usize) -> usize {
     text[..offset.min(text.len())].bytes().filter(|&b| b == b'\n').count() + 1
 }
@@ -346,19 +346,9 @@ pub fn parse_scene(text: &str, name: &str, base: &Path) -> Result<Scene, RenderE
     }
     // The limits of --size and --spp, which replace these (a 0 × 0 image failed only at the PNG encoder, after the
     // render; 10⁵ × 10⁵ began a render of 120 GB; spp = 0 wrote a black image).
-    let side = 1..=crate::scene::MAX_IMAGE_SIDE;
-    if !(side.contains(&width) && side.contains(&height)) {
-        return Err(ctx.err(
-            0..0,
-            format!("[output] `size` = [{width}, {height}]: width and height must be from 1 to {}", side.end()),
-        ));
-    }
-    if !(1..=crate::scene::MAX_SPP).contains(&output.spp) {
-        return Err(ctx.err(
-            0..0,
-            format!("[output] `spp` = {}: use 1 to {} samples per pixel", output.spp, crate::scene::MAX_SPP),
-        ));
-    }
+    crate::scene::check_image_size(width, height)
+        .map_err(|e| ctx.err(0..0, format!("[output] `size` = [{width}, {height}]: {e}")))?;
+    crate::scene::check_spp(output.spp).map_err(|e| ctx.err(0..0, format!("[output] `spp` = {}: {e}", output.spp)))?;
     if !output.background.iter().all(|c| c.is_finite() && *c >= 0.0) {
         return Err(ctx.err(0..0, "[output] `background` must be three finite linear sRGB values ≥ 0"));
     }
