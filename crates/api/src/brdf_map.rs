@@ -10,6 +10,7 @@ use iridis_color::{Encoding, ToneMap, Xyz};
 use iridis_diffraction::encoding::TableEncoding;
 use iridis_diffraction::geometry::{direction, FresnelConvention, Shading};
 use iridis_diffraction::table::{Lookup, Precision, TableParams};
+use iridis_diffraction::Evaluator;
 use iridis_lab::methods::Method;
 
 use crate::brdf::{auto_exposure, map_evaluator, render_map, render_map_per_sr, EvaluatorSetup, RIGOROUS};
@@ -135,7 +136,52 @@ pub fn check_size_of(flag: &str, size: usize) -> Result<()> {
     Ok(())
 }
 
-/// Computes the map (checks first; `files`, if any, are declared before the work starts).
+/// A BRDF feature between two samples this many standard deviations of its width apart is below ~1 % of its
+/// peak at both (`exp(−3²/2)`): it can vanish from an image.
+pub const SAMPLES_PER_LOBE_SIGMA: f64 = 6.0;
+
+/// What a map of `size`² pixels misses at this coherence length, if anything: its pixels are `2/size` apart in
+/// view direction `(u, v)`, and where that is more than [`SAMPLES_PER_LOBE_SIGMA`] widths of the narrowest lobe
+/// (380 nm, [`iridis_diffraction::spectral::lobe_sigma_uv`]) a mirror's reflection or a grating's order can fall
+/// between pixels and vanish, or show at its peak: a black or speckled map that says nothing of the surface.
+pub fn lobes_between_pixels(size: usize, coherence_nm: f64) -> Option<String> {
+    let spacing = 2.0 / size as f64;
+    let sigma = iridis_diffraction::spectral::lobe_sigma_uv(380.0, coherence_nm);
+    if spacing <= SAMPLES_PER_LOBE_SIGMA * sigma {
+        return None;
+    }
+    let needed = (2.0 / (SAMPLES_PER_LOBE_SIGMA * sigma)).ceil();
+    let remedy = if needed <= 8192.0 {
+        format!("a map of {needed:.0}² pixels or more samples every lobe, or a shorter coherence length widens them")
+    } else {
+        "a shorter coherence length widens them".to_string()
+    };
+    Some(format!(
+        "the map's pixels are {spacing:.4} apart in view direction (u, v), this light's lobes {sigma:.4} wide (σ of \
+         the window's |G|² at 380 nm, coherence {}): a lobe narrower than the pixels' spacing — a mirror's \
+         reflection, a grating's order — can fall between pixels and vanish from the map, or show at its peak; \
+         {remedy}",
+        iridis_color::units::format_length(coherence_nm)
+    ))
+}
+
+/// The coherence length whose Gaussian window has the effective area of `e`'s (`A_eff = 4πσ_s²`, from
+/// [`Evaluator::radiometric_gain`]): the light's where the window lies inside the patch or on its periodic
+/// lattice, less where the patch edge cuts it (the finite aperture), whose lobes are then wider.
+pub(crate) fn lobe_coherence_nm(e: &dyn Evaluator) -> Option<f64> {
+    let lambda = 550.0;
+    e.radiometric_gain(lambda).map(|g| 4.0 * lambda * (g / (4.0 * std::f64::consts::PI)).sqrt()).or(e.coherence_nm())
+}
+
+/// Says [`lobes_between_pixels`]'s warning, if any.
+fn warn_lobes_between_pixels(size: usize, coherence_nm: Option<f64>, report: &dyn Report) {
+    if let Some(w) = coherence_nm.and_then(|c| lobes_between_pixels(size, c)) {
+        report.warn(&w);
+    }
+}
+
+/// Computes the map (checks first; `files`, if any, are declared before the work starts), with a warning
+/// where its pixels are too far apart for this light's lobes ([`lobes_between_pixels`]).
 pub fn compute(r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) -> Result<BrdfMap> {
     if !(r.exposure_ru.is_finite() && r.exposure_ru > 0.0) {
         bail!("--exposure {} must be a positive number of RU", r.exposure_ru);
@@ -193,6 +239,7 @@ pub fn compute(r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) ->
         surface: &r.surface,
     };
     let (e, rigorous) = map_evaluator(&r.input, setup, r.wi, report)?;
+    warn_lobes_between_pixels(r.size, lobe_coherence_nm(e.as_ref()), report);
     if let Some(s) = &rigorous {
         report.note(&s.sentence());
     }
@@ -267,6 +314,7 @@ fn gpu_map(r: &MapRequest, report: &dyn Report) -> Result<BrdfMap> {
             surface: &r.surface,
         };
         let e = crate::brdf::make_evaluator(&r.input, setup, report)?;
+        warn_lobes_between_pixels(r.size, lobe_coherence_nm(e.as_ref()), report);
         let gt = e.as_ground_truth().context("internal: a ground-truth method without a ground truth")?;
         let gpu = crate::gpu::open()?;
         let t = std::time::Instant::now();
@@ -304,6 +352,7 @@ fn gpu_map(r: &MapRequest, report: &dyn Report) -> Result<BrdfMap> {
     let gpu = crate::gpu::open()?;
     let table = crate::model::lookup_table(Some(&gpu), &r.input, &model, r.grid.params()?, &r.surface, report)?;
     let coherence_nm = Some(table.meta.coherence_nm);
+    warn_lobes_between_pixels(r.size, coherence_nm, report);
     let map =
         crate::gpu::lookup_map(&gpu, &table, fresnel, r.shadowing, r.convention, table_encoding, r.wi, r.size, tone)?;
     let how = format!(

@@ -41,7 +41,8 @@ pub fn grating_text(g: &Grating, light: (f64, f64), detector: Option<&str>, acce
                 o.m,
                 o.n,
                 o.theta_deg,
-                o.phi_deg,
+                // An order in the plane of incidence beyond the normal has φ = ±1e-15 or so: 0.000, not −0.000.
+                if o.phi_deg.abs() < 5e-4 { 0.0 } else { o.phi_deg },
                 100.0 * o.efficiency.te,
                 100.0 * o.efficiency.tm,
                 100.0 * o.efficiency.unpolarized
@@ -49,7 +50,8 @@ pub fn grating_text(g: &Grating, light: (f64, f64), detector: Option<&str>, acce
         }
         let hidden = one.orders.len() - one.orders.iter().filter(shown).count();
         if hidden > 0 {
-            let _ = writeln!(s, "({hidden} orders below 0.0001 % not shown; --json lists every order)");
+            let orders = if hidden == 1 { "order" } else { "orders" };
+            let _ = writeln!(s, "({hidden} {orders} below 0.0001 % not shown; --json lists every order)");
         }
         let r = one.reflected_total;
         let _ = writeln!(

@@ -665,6 +665,9 @@ pub fn laser_run(source: &Source, lab: &LabOptions, req: &LaserRequest, report: 
     config.table_path = req.table_path.clone();
     let b = workbench_from(source, &model, config, report)?;
     let e = evaluator(&b, method, report)?;
+    if let Some(w) = crate::brdf_map::lobe_coherence_nm(e.as_ref()).and_then(|c| screen_misses_lobes(setup, c)) {
+        report.warn(&w);
+    }
     if let (Some(path), Some(lookup)) = (&req.save_table, e.as_lookup()) {
         crate::output::write_atomic(path, |w| {
             let mut buf = std::io::Cursor::new(Vec::new());
@@ -717,6 +720,38 @@ pub fn laser_run(source: &Source, lab: &LabOptions, req: &LaserRequest, report: 
         distance_nm: setup.distance_nm,
         image: img,
     })
+}
+
+/// What the laser screen's samples miss at this coherence length (the aperture), if anything: as
+/// [`crate::brdf_map::lobes_between_pixels`] for a map, with the view samples' angular spacing
+/// ([`LaserSetup::sample_spacing_rad`]) against the narrowest lobe's width (380 nm).
+pub fn screen_misses_lobes(setup: &LaserSetup, coherence_nm: f64) -> Option<String> {
+    let spacing = setup.sample_spacing_rad();
+    let sigma = iridis_diffraction::spectral::lobe_sigma_uv(380.0, coherence_nm);
+    let widest = crate::brdf_map::SAMPLES_PER_LOBE_SIGMA * sigma;
+    if spacing <= widest {
+        return None;
+    }
+    // Samples a side the screen needs, as subsamples (at most 16) of this many pixels or of more pixels.
+    let k = setup.subsamples as f64 * spacing / widest;
+    let remedy = if k <= 16.0 {
+        format!("--subsamples {:.0} or more samples every lobe", k.ceil())
+    } else if (setup.width_px.max(setup.height_px) as f64 * k / 16.0) <= 4096.0 {
+        format!(
+            "--subsamples 16 with --size {:.0} or more samples every lobe",
+            (setup.width_px.max(setup.height_px) as f64 * k / 16.0).ceil()
+        )
+    } else {
+        "a smaller --aperture widens them".to_string()
+    };
+    Some(format!(
+        "the screen's view samples are {:.2} mrad apart at its centre and this light's lobes {:.2} mrad wide (σ of \
+         the window's |G|² at 380 nm, aperture {}): a spot narrower than the samples' spacing can fall between \
+         them and vanish from the image, or show at its peak; {remedy}",
+        spacing * 1e3,
+        sigma * 1e3,
+        iridis_color::units::format_length(coherence_nm)
+    ))
 }
 
 impl LaserRun {

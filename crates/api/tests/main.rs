@@ -3,6 +3,7 @@
 mod grating_fixtures;
 mod table1;
 mod unit_bench;
+mod unit_brdf_map;
 mod unit_film;
 mod unit_film_fit;
 mod unit_fresnel;

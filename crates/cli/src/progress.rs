@@ -89,8 +89,8 @@ impl Spinner {
     }
 }
 
-/// The facade's notes, warnings and progress on the terminal: `note: …` and `warning: …` on stderr, the
-/// facade's other lines as they are, progress as [`bar`]s and spinners (`step`).
+/// The facade's notes, warnings and progress on the terminal: `note: …` and `warning: …` on stderr (each once a
+/// run), the facade's other lines as they are, progress as [`bar`]s and spinners (`step`).
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Cli;
 
@@ -110,8 +110,24 @@ impl iridis_api::report::Progress for Spinner {
     }
 }
 
+/// The notes and warnings said so far in this run: the library may reach the same check twice in one command
+/// (a wavelength step checked by the evaluator and again by the point query), and a line said again tells
+/// nothing new.
+fn first_time(kind: iridis_api::Kind, text: &str) -> bool {
+    static SAID: std::sync::Mutex<Vec<(iridis_api::Kind, String)>> = std::sync::Mutex::new(Vec::new());
+    let mut said = SAID.lock().unwrap_or_else(|e| e.into_inner());
+    if said.iter().any(|(k, t)| *k == kind && t == text) {
+        return false;
+    }
+    said.push((kind, text.to_string()));
+    true
+}
+
 impl iridis_api::Report for Cli {
     fn say(&self, kind: iridis_api::Kind, text: &str) {
+        if kind != iridis_api::Kind::Info && !first_time(kind, text) {
+            return;
+        }
         match kind {
             iridis_api::Kind::Note => eprintln!("note: {text}"),
             iridis_api::Kind::Warning => eprintln!("warning: {text}"),

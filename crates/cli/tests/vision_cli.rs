@@ -77,6 +77,9 @@ fn a_film_seen_through_spectra_csv_and_through_thinfilm_color_agrees() {
 #[test]
 fn bad_input_is_refused_with_a_reason() {
     assert_fails(&["vision", SPECTRA, "--visual", "cat"], &["unknown visual system 'cat'", "bluetit"]);
+    // λmax values typed as the system: the message says where they go (and the command it names runs).
+    assert_fails(&["vision", SPECTRA, "--visual", "360,440,550"], &["--lambda-max 360,440,550"]);
+    assert!(json_of(&["vision", SPECTRA, "--lambda-max", "360,440,550", "--json"]).get("samples").is_some());
     assert_fails(&["vision", SPECTRA, "--visual", "bluetit", "--densities", "1:2"], &["2 receptor densities for 4"]);
     assert_fails(
         &["vision", SPECTRA, "--visual", "human", "--space", "tetrahedron"],

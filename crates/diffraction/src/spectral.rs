@@ -46,6 +46,15 @@ pub fn radiometric_gain(wavelength_nm: f64, coherence_nm: f64) -> f64 {
     4.0 * std::f64::consts::PI * sigma_s * sigma_s / (wavelength_nm * wavelength_nm)
 }
 
+/// The standard deviation, in direction cosines `(u, v)`, of a lobe's intensity `G(u/λ, v/λ)²` under the
+/// coherence window: `λσ_f/√2 = λ/(2√2 πσ_s)` with `σ_s = coherence/4` (docs/PHYSICS.md, "Coherence window").
+/// The windowed spectrum is a sum of such lobes, so no feature of the BRDF — a mirror's reflection, a grating's
+/// order — is narrower: a map or screen that samples directions much further apart can miss it.
+pub fn lobe_sigma_uv(wavelength_nm: f64, coherence_nm: f64) -> f64 {
+    let sigma_s = coherence_nm / 4.0;
+    wavelength_nm / (2.0 * std::f64::consts::SQRT_2 * std::f64::consts::PI * sigma_s)
+}
+
 /// Wavelength samples and their XYZ weights.
 #[derive(Debug, Clone)]
 pub struct SpectralSetup {

@@ -148,6 +148,24 @@ fn flat_mirror_reflects_only_specularly() {
     }
 }
 
+/// The width maps and screens are checked against (`spectral::lobe_sigma_uv`): a flat mirror's lobe, sampled
+/// one σ off the mirror direction, has fallen to exp(−1/2) of its peak — the Gaussian window's law.
+#[test]
+fn a_mirror_lobe_is_as_wide_as_lobe_sigma_uv() {
+    let coherence = 8000.0;
+    let patch = Patch::from_row_major(64, 64, 50.0, 50.0, &vec![3.0; 64 * 64]).unwrap();
+    let terms = Arc::new(TaylorTerms::compute(&patch, 2, coherence).unwrap());
+    let spectral = SpectralSetup::new(Illuminant::D65, Observer::Cie1931, 10.0).unwrap();
+    let reference = Reference { terms, shading: Shading::default(), spectral };
+    let normal = [0.0, 0.0, 1.0];
+    for lambda in [380.0, 550.0, 780.0] {
+        let sigma = iridis_diffraction::spectral::lobe_sigma_uv(lambda, coherence);
+        let at = |u: f64| reference.reflectance(lambda, normal, [u, 0.0, (1.0 - u * u).sqrt()]).unwrap();
+        let ratio = at(sigma) / at(0.0);
+        assert!((ratio - (-0.5f64).exp()).abs() < 1e-3, "λ {lambda}: σ {sigma}, ρ(σ)/ρ(0) = {ratio}");
+    }
+}
+
 #[test]
 fn blazed_grating_sends_light_to_the_side_its_facets_face() {
     // Facets rise towards +x with slope tan β, so their normals lean to −x (PHYSICS.md): under normal

@@ -91,6 +91,15 @@ impl LaserSetup {
         Ok(())
     }
 
+    /// The angle (rad) between neighbouring view samples where they are furthest apart, at the screen's
+    /// centre (the sample's distance there; further out the same step on the screen subtends less).
+    pub fn sample_spacing_rad(&self) -> f64 {
+        let k = self.subsamples as f64;
+        let step = (self.screen_width_nm / (self.width_px as f64 * k))
+            .max(self.screen_height_nm / (self.height_px as f64 * k));
+        step / self.distance_nm
+    }
+
     /// The light direction and the screen's frame `(s, e₁, e₂)` in the surface frame.
     pub fn frame(&self) -> (Vec3, Vec3, Vec3, Vec3) {
         let (st, ct) = self.incidence.sin_cos();

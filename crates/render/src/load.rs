@@ -20,6 +20,16 @@ pub fn load_scene_with(path: &Path, gltf: &GltfOptions) -> Result<Scene, RenderE
     if ext == "gltf" || ext == "glb" {
         return scene_from_gltf_with(path, gltf);
     }
+    if ext == "obj" {
+        // A mesh is one object of a scene; read as TOML it failed on its first vertex line.
+        let name = path.file_name().map_or_else(|| path.display().to_string(), |f| f.to_string_lossy().into_owned());
+        return Err(RenderError::Input(format!(
+            "{}: an OBJ file is a mesh, not a scene; put it in a TOML scene as an object — [[object]] kind = \"obj\", \
+             file = \"{name}\", material = … — with a [camera] and a [[light]] (docs/render.md; \
+             examples/laser_screen.toml places unit_box.obj), or give a glTF file (.gltf, .glb), which holds its own",
+            path.display()
+        )));
+    }
     if gltf.camera.is_some() || gltf.ignore_lights {
         return Err(RenderError::Input(format!(
             "{}: --camera and --ignore-gltf-lights choose among a glTF file's own cameras and lights; a TOML scene \
@@ -31,5 +41,13 @@ pub fn load_scene_with(path: &Path, gltf: &GltfOptions) -> Result<Scene, RenderE
         RenderError::Input(format!("cannot read scene {}: {e} (check the path; scenes are TOML files)", path.display()))
     })?;
     let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
-    parse_scene(&text, &path.display().to_string(), &base)
+    parse_scene(&text, &path.display().to_string(), &base).map_err(|e| match e {
+        // Another kind of file read as TOML fails on its first lines: say what a scene file is.
+        RenderError::Scene { path: p, line, message } if !matches!(ext.as_str(), "toml" | "") => RenderError::Scene {
+            message: format!("{message} (a scene is a TOML file, .toml, or a glTF file, .gltf or .glb; not .{ext})"),
+            path: p,
+            line,
+        },
+        e => e,
+    })
 }

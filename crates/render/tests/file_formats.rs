@@ -81,6 +81,21 @@ fn malformed_gltf_names_line_and_column() {
     assert!(e.contains("line 3") && e.contains("column 15"), "{e}");
 }
 
+/// A mesh or an image given where a scene goes: the message says what a scene file is, and for an OBJ how it
+/// enters one (it was the TOML parser's "expected `.`, `=`" at the first vertex).
+#[test]
+fn a_file_that_is_not_a_scene_is_named_for_what_it_is() {
+    let obj = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/unit_box.obj");
+    let e = load_scene(&obj).unwrap_err().to_string();
+    assert!(e.contains("an OBJ file is a mesh, not a scene") && e.contains("kind = \"obj\""), "{e}");
+    assert!(e.contains("file = \"unit_box.obj\""), "{e}");
+    let dir = tempfile::tempdir().unwrap();
+    let txt = dir.path().join("notes.txt");
+    std::fs::write(&txt, "v 1 2 3\n").unwrap();
+    let e = load_scene(&txt).unwrap_err().to_string();
+    assert!(e.contains("notes.txt:1") && e.contains("a scene is a TOML file") && e.contains("not .txt"), "{e}");
+}
+
 #[test]
 fn binary_gltf_loads_and_renders() {
     let dir = tempfile::tempdir().unwrap();

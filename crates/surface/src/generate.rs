@@ -166,11 +166,12 @@ pub fn blazed_depth(period_nm: f64, blaze_rad: f64) -> f64 {
     period_nm * blaze_rad.tan()
 }
 
+/// A generator's length (nm) that must be finite and positive.
 fn positive(name: &str, v: f64) -> Result<(), SurfaceError> {
     if v.is_finite() && v > 0.0 {
         Ok(())
     } else {
-        Err(SurfaceError::invalid(format!("{name} = {v}: it must be finite and positive")))
+        Err(SurfaceError::invalid(format!("{name} = {v} nm: it must be a finite positive length")))
     }
 }
 

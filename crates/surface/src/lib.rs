@@ -92,8 +92,8 @@ pub struct HeightField {
 pub fn check_dims(rows: usize, cols: usize) -> Result<(), SurfaceError> {
     if rows < 2 || cols < 2 {
         return Err(SurfaceError::invalid(format!(
-            "a height field needs at least 2×2 samples; got {rows} rows × {cols} columns (a single row or column \
-             has no 2-D spectrum)"
+            "a height field needs at least 2×2 samples; got {rows} × {cols} (rows × columns; a single row or \
+             column has no 2-D spectrum)"
         )));
     }
     if rows > MAX_DIM || cols > MAX_DIM || rows.saturating_mul(cols) > MAX_SAMPLES {

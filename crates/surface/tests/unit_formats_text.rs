@@ -46,3 +46,13 @@ fn ragged_and_non_finite_refused() {
     assert!(read(b"1 2\nnan 5\n", None, &o).unwrap_err().to_string().contains("finite"));
     assert!(read(b"1 2 3 4\n", None, &o).unwrap_err().to_string().contains("2×2"));
 }
+
+/// One line of column names is a header; a second line without numbers is refused where it stands (an OBJ
+/// mesh's `v x y z` lines were all taken as headers, leaving "0 × 0 samples").
+#[test]
+fn one_header_line_and_no_more() {
+    let o = LoadOptions { pixel_size_nm: Some(1.0), ..Default::default() };
+    assert_eq!(read(b"a b\n1 2\n3 4\n", None, &o).unwrap().heights_nm, vec![1.0, 2.0, 3.0, 4.0]);
+    let e = read(b"# a cube\nv -0.5 -0.5 -0.5\nv 0.5 -0.5 -0.5\n", None, &o).unwrap_err().to_string();
+    assert!(e.contains("line 3: 'v' is not a number") && e.contains("at most one line of column names"), "{e}");
+}

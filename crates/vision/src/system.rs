@@ -318,8 +318,16 @@ impl VisualSystem {
             },
             _ => {
                 let names: Vec<&str> = BUILTIN.iter().map(|(k, _)| *k).collect();
+                // λmax values typed where the system's name goes: say where they belong.
+                let looks_like_lambda_max =
+                    key.split(',').all(|t| t.trim().trim_end_matches("nm").parse::<f64>().is_ok());
+                let lambda_max = if looks_like_lambda_max {
+                    format!("; λmax values are given as --lambda-max {key} (Python: lambda_max=), without a system")
+                } else {
+                    String::new()
+                };
                 return Err(VisionError::invalid(format!(
-                    "unknown visual system '{id}'; built in: {} (or a CSV file of sensitivities, or λmax values)",
+                    "unknown visual system '{id}'; built in: {} (or a CSV file of sensitivities, or λmax values){lambda_max}",
                     names.join(", ")
                 )));
             }

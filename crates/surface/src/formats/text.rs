@@ -37,6 +37,7 @@ pub fn read(bytes: &[u8], side: Option<&Sidecar>, opts: &LoadOptions) -> Result<
     let mut values = Vec::new();
     let mut cols = 0usize;
     let mut rows = 0usize;
+    let mut header_seen = false;
     for (ln, line) in text.lines().enumerate() {
         let t = line.trim();
         if let Some(c) = t.strip_prefix('#') {
@@ -63,13 +64,17 @@ pub fn read(bytes: &[u8], side: Option<&Sidecar>, opts: &LoadOptions) -> Result<
                         ln + 1
                     )))
                 }
-                Err(_) if rows == 0 && before == values.len() && values.is_empty() => {
-                    // A header line of column names.
-                    values.truncate(before);
+                Err(_) if !header_seen && rows == 0 && values.is_empty() => {
+                    // One header line of column names; a second would make any text a matrix of no rows.
+                    header_seen = true;
                     break;
                 }
                 Err(_) => {
-                    return Err(SurfaceError::invalid(format!("line {}: '{tok}' is not a number", ln + 1)));
+                    return Err(SurfaceError::invalid(format!(
+                        "line {}: '{tok}' is not a number (a text height field is rows of numbers, after at most \
+                         one line of column names)",
+                        ln + 1
+                    )));
                 }
             }
         }
