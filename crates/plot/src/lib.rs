@@ -43,6 +43,17 @@ fn err<E: std::fmt::Debug>(e: E) -> PlotError {
 
 const FONT: &str = "sans-serif";
 
+/// The caption's font size: 22 px, or smaller (down to 12 px) where the title would run past the area's width
+/// less its margins — a long SURFACE name made a title that was cut off at both edges.
+fn caption_px<DB: DrawingBackend>(area: &DrawingArea<DB, plotters::coord::Shift>, title: &str) -> u32 {
+    let room = area.dim_in_pixel().0.saturating_sub(2 * 16);
+    let fits = |px: u32| {
+        let style: TextStyle = (FONT, px as f64).into_font().into();
+        area.estimate_text_size(title, &style).is_ok_and(|(w, _)| w <= room)
+    };
+    (12..=22).rev().find(|&px| fits(px)).unwrap_or(12)
+}
+
 fn register_font() {
     static ONCE: Once = Once::new();
     ONCE.call_once(|| {
@@ -150,7 +161,7 @@ impl LinePlot {
             let root = BitMapBackend::with_buffer(&mut img.data, (w, h)).into_drawing_area();
             root.fill(&WHITE).map_err(err)?;
             let mut chart = ChartBuilder::on(&root)
-                .caption(&self.title, (FONT, 22))
+                .caption(&self.title, (FONT, caption_px(&root, &self.title)))
                 .margin(16)
                 .x_label_area_size(48)
                 .y_label_area_size(72)
@@ -351,7 +362,7 @@ impl ImagePlot<'_> {
             root.fill(&WHITE).map_err(err)?;
             let (main, bar) = root.split_horizontally(w - bar_w);
             let mut chart = ChartBuilder::on(&main)
-                .caption(&self.title, (FONT, 22))
+                .caption(&self.title, (FONT, caption_px(&main, &self.title)))
                 .margin(16)
                 .x_label_area_size(48)
                 .y_label_area_size(72)

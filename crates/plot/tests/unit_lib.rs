@@ -94,3 +94,28 @@ fn tick_labels_have_the_decimals_their_spacing_needs() {
     assert_eq!((f(&(-0.3 + 3.0 * 0.1)), f(&-0.1)), ("0".to_string(), "-0.10".to_string()));
     assert_eq!(tick_format(2e-5)(&-5.6e-17), "0");
 }
+
+/// A title longer than the figure is wide is set smaller to fit inside the margins (a report's map figure cut
+/// `builtin:sine?size=8um&pixel=50nm · θi 45° …` off at both edges).
+#[test]
+fn a_long_title_fits_inside_the_figure() {
+    let pixels = RgbImage::new(8, 8);
+    let title = "builtin:xenopeltis?size=20um&pixel=50nm&seed=3 · θi 45° φi 0° · reference · D65 · 5.123e3 RU";
+    let plot = ImagePlot {
+        title: title.into(),
+        x_label: "x".into(),
+        y_label: "y".into(),
+        x_range: (-1.0, 1.0),
+        y_range: (-1.0, 1.0),
+        pixels: &pixels,
+        overlays: Vec::new(),
+        colorbar: None,
+        size: (560, 600),
+    };
+    let img = plot.render().unwrap();
+    let dark_in = |xs: std::ops::Range<u32>| {
+        xs.flat_map(|x| (0..40).map(move |y| (x, y))).filter(|&(x, y)| img.get(x, y)[0] < 100).count()
+    };
+    assert!(dark_in(60..500) > 100, "the title is drawn");
+    assert_eq!(dark_in(0..10) + dark_in(550..560), 0, "the title runs into the edges");
+}
