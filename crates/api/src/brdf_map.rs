@@ -158,10 +158,10 @@ pub fn lobes_between_pixels(size: usize, coherence_nm: f64) -> Option<String> {
     };
     Some(format!(
         "the map's pixels are {spacing:.4} apart in view direction (u, v), this light's lobes {sigma:.4} wide (σ of \
-         the window's |G|² at 380 nm, coherence {}): a lobe narrower than the pixels' spacing — a mirror's \
+         the window's |G|² at 380 nm, coherence {:.1} µm): a lobe narrower than the pixels' spacing — a mirror's \
          reflection, a grating's order — can fall between pixels and vanish from the map, or show at its peak; \
          {remedy}",
-        iridis_color::units::format_length(coherence_nm)
+        coherence_nm / 1000.0
     ))
 }
 
@@ -173,8 +173,12 @@ pub(crate) fn lobe_coherence_nm(e: &dyn Evaluator) -> Option<f64> {
     e.radiometric_gain(lambda).map(|g| 4.0 * lambda * (g / (4.0 * std::f64::consts::PI)).sqrt()).or(e.coherence_nm())
 }
 
-/// Says [`lobes_between_pixels`]'s warning, if any.
-fn warn_lobes_between_pixels(size: usize, coherence_nm: Option<f64>, report: &dyn Report) {
+/// Says [`lobes_between_pixels`]'s warning for a map of `e`, if any (`brdf-map`, Python's `brdf_map`).
+pub fn warn_lobes_between_pixels(e: &dyn Evaluator, size: usize, report: &dyn Report) {
+    warn_lobes_at(size, lobe_coherence_nm(e), report);
+}
+
+fn warn_lobes_at(size: usize, coherence_nm: Option<f64>, report: &dyn Report) {
     if let Some(w) = coherence_nm.and_then(|c| lobes_between_pixels(size, c)) {
         report.warn(&w);
     }
@@ -239,7 +243,7 @@ pub fn compute(r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) ->
         surface: &r.surface,
     };
     let (e, rigorous) = map_evaluator(&r.input, setup, r.wi, report)?;
-    warn_lobes_between_pixels(r.size, lobe_coherence_nm(e.as_ref()), report);
+    warn_lobes_between_pixels(e.as_ref(), r.size, report);
     if let Some(s) = &rigorous {
         report.note(&s.sentence());
     }
@@ -314,7 +318,7 @@ fn gpu_map(r: &MapRequest, report: &dyn Report) -> Result<BrdfMap> {
             surface: &r.surface,
         };
         let e = crate::brdf::make_evaluator(&r.input, setup, report)?;
-        warn_lobes_between_pixels(r.size, lobe_coherence_nm(e.as_ref()), report);
+        warn_lobes_between_pixels(e.as_ref(), r.size, report);
         let gt = e.as_ground_truth().context("internal: a ground-truth method without a ground truth")?;
         let gpu = crate::gpu::open()?;
         let t = std::time::Instant::now();
@@ -352,7 +356,7 @@ fn gpu_map(r: &MapRequest, report: &dyn Report) -> Result<BrdfMap> {
     let gpu = crate::gpu::open()?;
     let table = crate::model::lookup_table(Some(&gpu), &r.input, &model, r.grid.params()?, &r.surface, report)?;
     let coherence_nm = Some(table.meta.coherence_nm);
-    warn_lobes_between_pixels(r.size, coherence_nm, report);
+    warn_lobes_at(r.size, coherence_nm, report);
     let map =
         crate::gpu::lookup_map(&gpu, &table, fresnel, r.shadowing, r.convention, table_encoding, r.wi, r.size, tone)?;
     let how = format!(

@@ -746,11 +746,11 @@ pub fn screen_misses_lobes(setup: &LaserSetup, coherence_nm: f64) -> Option<Stri
     };
     Some(format!(
         "the screen's view samples are {:.2} mrad apart at its centre and this light's lobes {:.2} mrad wide (σ of \
-         the window's |G|² at 380 nm, aperture {}): a spot narrower than the samples' spacing can fall between \
-         them and vanish from the image, or show at its peak; {remedy}",
+         the window's |G|² at 380 nm, aperture {:.1} µm): a spot narrower than the samples' spacing can fall \
+         between them and vanish from the image, or show at its peak; {remedy}",
         spacing * 1e3,
         sigma * 1e3,
-        iridis_color::units::format_length(coherence_nm)
+        coherence_nm / 1000.0
     ))
 }
 

@@ -19,7 +19,7 @@ fn the_warning_starts_where_the_pixels_are_six_lobe_widths_apart() {
     assert_eq!(quiet, 127, "65 µm: 6σ = {}", SAMPLES_PER_LOBE_SIGMA * sigma_uv(380.0, coherence));
     assert!(lobes_between_pixels(quiet, coherence).is_none());
     let w = lobes_between_pixels(quiet - 1, coherence).expect("one pixel fewer warns");
-    assert!(w.contains("127² pixels") && w.contains("coherence 65um"), "{w}");
+    assert!(w.contains("127² pixels") && w.contains("coherence 65.0 µm"), "{w}");
     // A shorter coherence widens the lobes: 8 µm is quiet at 16² (2/16 = 0.125 ≤ 6σ = 0.128).
     assert!(lobes_between_pixels(16, 8_000.0).is_none());
 }
@@ -67,7 +67,10 @@ fn the_laser_screen_says_how_many_samples_its_lobes_need() {
     let needed = 32.0 * 3.0 * spacing / (SAMPLES_PER_LOBE_SIGMA * sigma_uv(380.0, 200_000.0)) / 16.0;
     assert_eq!(needed.ceil(), 37.0);
     let w = screen_misses_lobes(&small, 200_000.0).expect("32 px at 200 µm misses lobes");
-    assert!(w.contains("31.25 mrad") && w.contains("--subsamples 16 with --size 37"), "{w}");
+    assert!(
+        w.contains("31.25 mrad") && w.contains("aperture 200.0 µm") && w.contains("--subsamples 16 with --size 37"),
+        "{w}"
+    );
     // At 100 µm, 6σ = 10.3 mrad: 9.1 samples a pixel, so 10.
     let w = screen_misses_lobes(&small, 100_000.0).unwrap();
     assert!(w.contains("--subsamples 10 or more"), "{w}");

@@ -211,6 +211,7 @@ fn brdf_map_xyz<'py>(
     let input = input_of(source)?;
     let xyz = run(py, |r| {
         let e = evaluator(&input, method.as_deref(), &eo, r)?;
+        iridis_api::brdf_map::warn_lobes_between_pixels(e.as_ref(), size, r);
         if per_sr {
             return iridis_api::brdf::render_map_per_sr(e.as_ref(), &eo.model, wi, size, r);
         }

@@ -1,5 +1,7 @@
 """iridis.diffraction: physical laws (a mirror's specular pixel, the grating equation), lookup against
 reference, tables round-tripping through files, bad input."""
+import warnings
+
 import numpy as np
 import pytest
 
@@ -34,6 +36,17 @@ def test_sine_grating_orders_obey_the_grating_equation():
     assert row[between].max() < 1e-3 * row[first].max()
     # ± orders are symmetric at normal incidence
     np.testing.assert_allclose(row, row[::-1], rtol=1e-6, atol=1e-9 * row.max())
+
+
+def test_a_map_too_coarse_for_its_lobes_says_so():
+    # 65 µm coherence: a lobe's σ in (u, v) is 380/(2√2π·16250) = 0.0026 at 380 nm; pixels 2/size apart miss
+    # lobes past 6σ, i.e. below 127² (the same check as `iridis brdf-map`).
+    with pytest.warns(UserWarning, match="a map of 127² pixels or more samples every lobe"):
+        diffraction.brdf_map(sine(), size=33, method="reference", coherence_nm=65000.0)
+    with warnings.catch_warnings(record=True) as said:
+        warnings.simplefilter("always")
+        diffraction.brdf_map(sine(), size=127, method="reference", coherence_nm=65000.0)
+    assert not [w for w in said if "pixels are" in str(w.message)], [str(w.message) for w in said]
 
 
 def test_lookup_agrees_with_reference_and_tables_round_trip(tmp_path):
