@@ -62,6 +62,14 @@ pub struct SpectrumColour {
     pub report: serde_json::Value,
 }
 
+/// The warning for a spectrum `name` sampled over `lo`–`hi` nm that does not cover the visible 380–780 nm: its
+/// colour holds its end values beyond (a reflectance known from 400 to 500 nm is then white if flat there).
+pub fn short_range(name: &str, lo: f64, hi: f64) -> Option<String> {
+    (lo > 380.0 || hi < 780.0).then(|| {
+        format!("{name} covers {lo}–{hi} nm, less than the visible 380–780 nm; its end values are held beyond")
+    })
+}
+
 /// The colour of the spectrum in `path` (two columns, wavelength in nm and value): a reflectance lit by
 /// `illuminant` (Y = 1 a perfect white reflector) or, `emissive`, a light source at Y = 1. L*a*b* is relative to
 /// the illuminant's white either way (for a light, the white it is judged against). A spectrum that does not
@@ -77,11 +85,8 @@ pub fn xyz(
     let observer: Observer = observer.parse()?;
     let spectrum = Spectrum::from_csv_path(path)?;
     let (lo, hi) = spectrum.range_nm();
-    if lo > 380.0 || hi < 780.0 {
-        report.warn(&format!(
-            "{} covers {lo}–{hi} nm, less than the visible 380–780 nm; its end values are held beyond",
-            path.display()
-        ));
+    if let Some(w) = short_range(&path.display().to_string(), lo, hi) {
+        report.warn(&w);
     }
     let xyz = if emissive {
         emission_to_xyz(&spectrum, observer)

@@ -1,6 +1,7 @@
 //! `iridis.color`: spectra to XYZ through `iridis_color` (the integration the CLI's `iridis color xyz` does),
 //! colour-space conversions and colour differences, on arrays of colours.
 
+use iridis_api::Report as _;
 use iridis_color::integrate::{observer_grid, white_point};
 use iridis_color::lab::{delta_e_1976, delta_e_2000};
 use iridis_color::{Illuminant, Lab, Observer, SpectralWeights, Spectrum, ToneMap, Xyz};
@@ -32,7 +33,7 @@ fn rows3<'py>(
 
 /// XYZ (reflectance under `illuminant`, `Y = 1` for a perfect reflector) of spectra sampled at
 /// `wavelengths` (strictly increasing, nm), one spectrum per row: interpolated onto the observer's 1 nm grid,
-/// end values held outside their range.
+/// end values held outside their range (and a warning where that range is short of 380–780 nm).
 #[pyfunction]
 fn _spectrum_to_xyz<'py>(
     py: Python<'py>,
@@ -43,19 +44,23 @@ fn _spectrum_to_xyz<'py>(
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let (ill, obs) = (self::illuminant(illuminant)?, self::observer(observer)?);
     let (wl, rows) = crate::args::spectra_rows(&wavelengths, &values)?;
-    let out = py
-        .allow_threads(|| -> Result<Vec<f64>, iridis_color::SpectrumError> {
-            let grid = observer_grid(obs);
-            let w = SpectralWeights::new(grid, ill, obs);
-            let mut out = Vec::with_capacity(rows.len() * 3);
-            for r in rows {
-                let s = Spectrum::new(wl.clone(), r)?;
-                let samples: Vec<f64> = grid.iter().map(|&l| s.value_at(l)).collect();
-                out.extend(w.integrate(&samples).to_array());
+    let out = crate::facade::run(py, |report| {
+        let grid = observer_grid(obs);
+        let w = SpectralWeights::new(grid, ill, obs);
+        let mut out = Vec::with_capacity(rows.len() * 3);
+        for r in rows {
+            let s = Spectrum::new(wl.clone(), r).map_err(anyhow::Error::from)?;
+            let samples: Vec<f64> = grid.iter().map(|&l| s.value_at(l)).collect();
+            out.extend(w.integrate(&samples).to_array());
+        }
+        // (Said once the spectra are known to be valid: a refused one is not warned about as well.)
+        if let (Some(&lo), Some(&hi)) = (wl.first(), wl.last()) {
+            if let Some(w) = iridis_api::color::short_range("the spectrum", lo, hi) {
+                report.warn(&w);
             }
-            Ok(out)
-        })
-        .map_err(value_error)?;
+        }
+        Ok(out)
+    })?;
     let n = out.len() / 3;
     Ok(Array2::from_shape_vec((n, 3), out).expect("n × 3").into_pyarray(py))
 }

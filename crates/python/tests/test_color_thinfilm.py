@@ -28,6 +28,14 @@ def test_many_spectra_at_once_equal_one_by_one(colour_science):
         np.testing.assert_array_equal(both.reshape(4, 3)[i], color.spectrum_to_xyz(wl, stack[i]))
 
 
+def test_a_spectrum_short_of_the_visible_range_is_warned_about_as_in_the_cli():
+    # Known from 400 to 500 nm and flat there: its end values are held, so it is D65's white (Y = 1) — said,
+    # as `iridis color xyz` says it.
+    with pytest.warns(UserWarning, match="the spectrum covers 400–500 nm, less than the visible 380–780 nm"):
+        xyz = color.spectrum_to_xyz([400.0, 500.0], [1.0, 1.0])
+    np.testing.assert_allclose(xyz, color.white_point(), atol=1e-9)
+
+
 def test_white_points_match_colour_science(colour_science):
     for e in colour_science["illuminants"]:
         np.testing.assert_allclose(color.white_point(e["illuminant"], e["observer"]), e["XYZ"], atol=2e-5)
