@@ -247,26 +247,15 @@ pub struct CompareRun {
     pub comparison: Comparison,
 }
 
-/// An image over the view directions of a BRDF map (the paper's layout: x = sin θr cos φr, y = sin θr sin φr),
-/// titled, with an optional colour bar, as a figure of `size` pixels.
+/// An image over the view directions of a BRDF map ([`iridis_plot::ImagePlot::view_directions`]), titled, with an
+/// optional colour bar, as a figure of `size` pixels.
 pub fn view_plot(
     pixels: &iridis_plot::RgbImage,
     title: &str,
     colorbar: Option<iridis_plot::ColorBar>,
     size: (u32, u32),
 ) -> Result<iridis_plot::RgbImage> {
-    Ok(iridis_plot::ImagePlot {
-        title: title.into(),
-        x_label: "x = sin θr cos φr".into(),
-        y_label: "y = sin θr sin φr".into(),
-        x_range: (-1.0, 1.0),
-        y_range: (-1.0, 1.0),
-        pixels,
-        overlays: Vec::new(),
-        colorbar,
-        size,
-    }
-    .render()?)
+    Ok(iridis_plot::ImagePlot { colorbar, ..iridis_plot::ImagePlot::view_directions(title, pixels, size) }.render()?)
 }
 
 fn heat_plot(map: &[Option<f64>], size: usize, title: &str, max: f64) -> Result<iridis_plot::RgbImage> {

@@ -331,19 +331,7 @@ fn figure_map(scene: &Scene) -> Option<(iridis_plot::RgbImage, String)> {
                 vec![s]
             })
             .unwrap_or_default();
-        ImagePlot {
-            title,
-            x_label: "x = sin θr cos φr".into(),
-            y_label: "y = sin θr sin φr".into(),
-            x_range: (-1.0, 1.0),
-            y_range: (-1.0, 1.0),
-            pixels: &pixels,
-            overlays,
-            colorbar: None,
-            size: (560, 600),
-        }
-        .render()
-        .ok()
+        ImagePlot { overlays, ..ImagePlot::view_directions(title, &pixels, (560, 600)) }.render().ok()
     };
     let angles = |v: [f64; 3]| (v[2].clamp(-1.0, 1.0).acos().to_degrees(), v[1].atan2(v[0]).to_degrees());
     if let Some(Light::Laser(spot)) = scene.lights.iter().find(|l| matches!(l, Light::Laser(_))) {

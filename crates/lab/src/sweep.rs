@@ -237,18 +237,8 @@ pub fn contact_sheet(
     for p in points {
         let img = crate::image::to_rgb(&p.image, pixels.width, pixels.height, exposure_ru);
         let err = p.errors.iter().find(|e| e.0 == exposure_ru).map(|e| e.1).unwrap_or(f64::NAN);
-        let tile = iridis_plot::ImagePlot {
-            title: format!("{} {} = {}  (ΔE {:.2})", method.name(), param.name(), param.display(p.value), err),
-            x_label: "x = sin θr cos φr".into(),
-            y_label: "y = sin θr sin φr".into(),
-            x_range: (-1.0, 1.0),
-            y_range: (-1.0, 1.0),
-            pixels: &img,
-            overlays: Vec::new(),
-            colorbar: None,
-            size: (420, 440),
-        }
-        .render()?;
+        let title = format!("{} {} = {}  (ΔE {:.2})", method.name(), param.name(), param.display(p.value), err);
+        let tile = iridis_plot::ImagePlot::view_directions(title, &img, (420, 440)).render()?;
         tiles.push(tile);
     }
     let cols = (points.len() as f64).sqrt().ceil() as usize;

@@ -341,7 +341,24 @@ pub struct ImagePlot<'a> {
     pub size: (u32, u32),
 }
 
-impl ImagePlot<'_> {
+impl<'a> ImagePlot<'a> {
+    /// A picture over the view directions of a BRDF map, in the paper's layout: pixel `(x, y)` views
+    /// `(x, y, √(1 − x² − y²))`, axes `x = sin θr cos φr` and `y = sin θr sin φr` on [−1, 1]; no overlays or
+    /// colour bar (set them on the value).
+    pub fn view_directions(title: impl Into<String>, pixels: &'a RgbImage, size: (u32, u32)) -> Self {
+        Self {
+            title: title.into(),
+            x_label: "x = sin θr cos φr".into(),
+            y_label: "y = sin θr sin φr".into(),
+            x_range: (-1.0, 1.0),
+            y_range: (-1.0, 1.0),
+            pixels,
+            overlays: Vec::new(),
+            colorbar: None,
+            size,
+        }
+    }
+
     pub fn render(&self) -> Result<RgbImage, PlotError> {
         self.render_with(true)
     }

@@ -101,18 +101,7 @@ fn tick_labels_have_the_decimals_their_spacing_needs() {
 fn a_long_title_fits_inside_the_figure() {
     let pixels = RgbImage::new(8, 8);
     let title = "builtin:xenopeltis?size=20um&pixel=50nm&seed=3 · θi 45° φi 0° · reference · D65 · 5.123e3 RU";
-    let plot = ImagePlot {
-        title: title.into(),
-        x_label: "x".into(),
-        y_label: "y".into(),
-        x_range: (-1.0, 1.0),
-        y_range: (-1.0, 1.0),
-        pixels: &pixels,
-        overlays: Vec::new(),
-        colorbar: None,
-        size: (560, 600),
-    };
-    let img = plot.render().unwrap();
+    let img = ImagePlot::view_directions(title, &pixels, (560, 600)).render().unwrap();
     let dark_in = |xs: std::ops::Range<u32>| {
         xs.flat_map(|x| (0..40).map(move |y| (x, y))).filter(|&(x, y)| img.get(x, y)[0] < 100).count()
     };
