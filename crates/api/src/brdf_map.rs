@@ -136,6 +136,14 @@ pub fn check_size_of(flag: &str, size: usize) -> Result<()> {
     Ok(())
 }
 
+/// What `--auto-exposure` says of a map with no light in it.
+pub(crate) fn black_map(exposure_ru: f64) -> String {
+    format!(
+        "the map is black: no light reaches these view directions (at this coherence a mirror's lobe is narrower \
+         than a pixel); the exposure stays {exposure_ru} RU"
+    )
+}
+
 /// A BRDF feature between two samples this many standard deviations of its width apart is below ~1 % of its
 /// peak at both (`exp(−3²/2)`): it can vanish from an image.
 pub const SAMPLES_PER_LOBE_SIGMA: f64 = 6.0;
@@ -266,10 +274,7 @@ pub fn compute(r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) ->
                     100.0 * auto.lit_share
                 ));
             }
-            None => report.warn(&format!(
-                "the map is black: no light reaches these view directions (at this coherence a mirror's lobe is \
-                 narrower than a pixel); the exposure stays {exposure} RU"
-            )),
+            None => report.warn(&black_map(exposure)),
         }
     }
     let how = format!(

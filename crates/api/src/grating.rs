@@ -238,6 +238,28 @@ pub fn averaged_unit_cell(patch: &iridis_diffraction::Patch) -> Option<(iridis_d
     Some((cell, d, peak.orientation_deg))
 }
 
+/// `--unit-cell auto`: the scan's strongest period as the unit cell, its profile averaged along the ridges
+/// ([`averaged_unit_cell`]), said in a note; refused where the scan has no dominant period. Returns the cell, its
+/// period (nm) and direction (degrees).
+pub fn auto_unit_cell(
+    patch: &iridis_diffraction::Patch,
+    name: &str,
+    report: &dyn Report,
+) -> Result<(iridis_diffraction::Patch, f64, f64)> {
+    let Some((cell, d, phi)) = averaged_unit_cell(patch) else {
+        bail!(
+            "--unit-cell auto: {name} has no dominant period to take as the unit cell (`iridis surface info` lists \
+             its periods)"
+        );
+    };
+    report.note(&format!(
+        "unit cell: the strongest period, {d:.1} nm along {phi:.1}°, its profile averaged along the ridges over the \
+         whole scan ({} samples); directions are given in the scan's frame",
+        cell.cols
+    ));
+    Ok((cell, d, phi))
+}
+
 /// The Fresnel source of a material written as a stack's medium, exact per polarisation at every wavelength
 /// of `[from, to]` (refused, naming the range the data have, where they do not cover it).
 pub fn material_fresnel(medium: &str, from_nm: f64, to_nm: f64) -> Result<Arc<iridis_lab::laser::MetalFresnel>> {
@@ -313,14 +335,7 @@ pub fn grating(
     // The light in the cell's frame: an averaged cell runs along its grating vector at φ, so rotate by −φ.
     let mut l = l;
     if opts.unit_cell_auto {
-        let Some((cell, d, phi)) = averaged_unit_cell(&patch) else {
-            bail!("--unit-cell auto: {} has no dominant period to take as the unit cell", source.name());
-        };
-        report.note(&format!(
-            "unit cell: the strongest period, {d:.1} nm along {phi:.1}°, its profile averaged along the ridges over \
-             the whole scan ({} samples); directions are given in the scan's frame",
-            cell.cols
-        ));
+        let (cell, d, phi) = auto_unit_cell(&patch, source.name(), report)?;
         patch = cell;
         averaged = Some((d, phi));
         let (s, c) = (-phi.to_radians()).sin_cos();

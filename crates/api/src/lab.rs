@@ -222,9 +222,7 @@ pub fn gpu_accelerator(
 /// The spectral setup of the lab commands (CIE 1931), warning about steps over 5 nm.
 pub fn spectral(ill: &str, step: f64, report: &dyn Report) -> Result<SpectralSetup> {
     let ill: Illuminant = ill.parse()?;
-    if step > 5.0 {
-        report.warn(&format!("a wavelength step of {step} nm shows colour artefacts (the paper: use ≤ 5 nm)"));
-    }
+    crate::model::warn_coarse_step(step, report);
     Ok(SpectralSetup::new(ill, Observer::Cie1931, step)?)
 }
 

@@ -78,10 +78,15 @@ pub fn spectral_setup(m: &ModelOptions, report: &dyn Report) -> Result<SpectralS
     let ill: Illuminant = m.illuminant.as_deref().unwrap_or("d65").parse()?;
     let obs: Observer = m.observer.as_deref().unwrap_or("1931").parse()?;
     let step = m.step();
-    if step > 5.0 {
-        report.warn(&format!("a wavelength step of {step} nm shows colour artefacts (the paper: use ≤ 5 nm)"));
-    }
+    warn_coarse_step(step, report);
     Ok(SpectralSetup::new(ill, obs, step)?)
+}
+
+/// The paper's limit on the spectral integral's step: above 5 nm its maps show colour artefacts.
+pub fn warn_coarse_step(step_nm: f64, report: &dyn Report) {
+    if step_nm > 5.0 {
+        report.warn(&format!("a wavelength step of {step_nm} nm shows colour artefacts (the paper: use ≤ 5 nm)"));
+    }
 }
 
 /// The coherence length for a patch (the light's: the one given, or the paper's 65 µm), with the note that

@@ -70,18 +70,7 @@ pub fn unit_cell(
 ) -> Result<CellChoice> {
     let patch = source.patch(surface, report)?;
     if auto {
-        let Some((cell, d, phi)) = averaged_unit_cell(&patch) else {
-            bail!(
-                "--unit-cell auto: {} has no dominant period to take as the unit cell (`iridis surface info` lists \
-                 its periods)",
-                source.name()
-            );
-        };
-        report.note(&format!(
-            "unit cell: the strongest period, {d:.1} nm along {phi:.1}°, its profile averaged along the ridges over \
-             the whole scan ({} samples); directions are given in the scan's frame",
-            cell.cols
-        ));
+        let (cell, d, phi) = crate::grating::auto_unit_cell(&patch, source.name(), report)?;
         let extent = patch.extent_along(phi.to_radians());
         return Ok(CellChoice { patch: cell, averaged: Some((d, phi)), scan_extent_nm: extent });
     }

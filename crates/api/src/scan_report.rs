@@ -178,10 +178,7 @@ fn brdf_map_figure(
     let mut warnings = Vec::new();
     match crate::brdf::auto_exposure(&xyz, size) {
         Some(auto) => exposure = auto.exposure_ru,
-        None => warnings.push(format!(
-            "the map is black: no light reaches these view directions (at this coherence a mirror's lobe is \
-             narrower than a pixel); the exposure stays {exposure} RU"
-        )),
+        None => warnings.push(crate::brdf_map::black_map(exposure)),
     }
     let tone = ToneMap { exposure_ru: exposure, encoding: Encoding::parse("srgb").map_err(anyhow::Error::msg)? };
     let rgb = crate::brdf_map::map_to_rgb8(&xyz, tone);
