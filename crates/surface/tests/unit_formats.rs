@@ -66,15 +66,28 @@ fn options_a_surface_would_ignore_are_refused() {
     };
     let b = "builtin:sine?size=1um&pixel=100nm";
     let channel = Some(channel::ChannelSel::Index(1));
-    refused(b, LoadOptions { channel, as_height: true, ..Default::default() }, &["--channel, --as-height would be"]);
-    refused(b, LoadOptions { max_height_nm: Some(9.0), ..Default::default() }, &["--max-height", "builtin:sine"]);
+    refused(
+        b,
+        LoadOptions { channel, as_height: true, ..Default::default() },
+        &["--channel, --as-height would be ignored: they are for"],
+    );
+    refused(
+        b,
+        LoadOptions { max_height_nm: Some(9.0), ..Default::default() },
+        &["--max-height would be ignored: it is for", "builtin:sine"],
+    );
     let dir = tempfile::tempdir().unwrap();
     let npy = dir.path().join("h.npy");
     std::fs::write(&npy, write_bytes(&sample_field(), Format::Npy).unwrap().0).unwrap();
     let f = npy.to_str().unwrap();
     let with_pixel = LoadOptions { pixel_size_nm: Some(10.0), ..Default::default() };
     assert!(load_surface(f, &with_pixel).is_ok());
-    refused(f, LoadOptions { size_nm: Some(1e3), seed: Some(2), ..with_pixel.clone() }, &["--size, --seed would be"]);
+    refused(
+        f,
+        LoadOptions { size_nm: Some(1e3), seed: Some(2), ..with_pixel.clone() },
+        &["--size, --seed would be ignored: they shape"],
+    );
+    refused(f, LoadOptions { seed: Some(2), ..with_pixel.clone() }, &["--seed would be ignored: it shapes"]);
     refused(f, LoadOptions { max_height_nm: Some(9.0), ..with_pixel.clone() }, &["--max-height would be", "npy"]);
     // --as-height reads an instrument's other signal as heights: an array of numbers is read as heights anyway.
     refused(f, LoadOptions { as_height: true, ..with_pixel.clone() }, &["--as-height would be ignored", "npy"]);

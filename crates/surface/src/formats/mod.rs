@@ -165,12 +165,14 @@ fn describe_unknown(bytes: &[u8]) -> String {
 /// Loads a height field from a file path or a `builtin:NAME[?key=value&…]` spec (see [`crate::builtin`]).
 pub fn load_surface(spec: &str, opts: &LoadOptions) -> Result<HeightField, SurfaceError> {
     // Options that this kind of SURFACE has no use for are refused by name: each would change nothing.
-    let refuse = |given: &[(&str, bool)], why: String| {
+    // `why` says what the options are for; `it`/`they` (with its verb) is chosen by how many were given.
+    let refuse = |given: &[(&str, bool)], why: &dyn Fn(&str) -> String| {
         let named: Vec<&str> = given.iter().filter(|g| g.1).map(|g| g.0).collect();
         if named.is_empty() {
             return Ok(());
         }
-        Err(SurfaceError::invalid(format!("{} would be ignored: {why}", named.join(", "))))
+        let subject = if named.len() == 1 { "it" } else { "they" };
+        Err(SurfaceError::invalid(format!("{} would be ignored: {}", named.join(", "), why(subject))))
     };
     if let Some(rest) = spec.strip_prefix("builtin:") {
         let file_options = [
@@ -180,18 +182,18 @@ pub fn load_surface(spec: &str, opts: &LoadOptions) -> Result<HeightField, Surfa
             ("--override-units", opts.override_units),
             ("--as-height", opts.as_height),
         ];
-        refuse(
-            &file_options,
-            format!("they are for reading files, and builtin:{rest} is generated: one channel, heights in nm"),
-        )?;
+        refuse(&file_options, &|it| {
+            let is = if it == "it" { "is" } else { "are" };
+            format!("{it} {is} for reading files, and builtin:{rest} is generated: one channel, heights in nm")
+        })?;
         return crate::builtin::builtin_surface(rest, opts);
     }
-    refuse(
-        &[("--size", opts.size_nm.is_some()), ("--seed", opts.seed.is_some())],
+    refuse(&[("--size", opts.size_nm.is_some()), ("--seed", opts.seed.is_some())], &|it| {
+        let shape = if it == "it" { "shapes" } else { "shape" };
         format!(
-            "they shape built-in surfaces, and {spec} is a file (`iridis surface convert` crops and resamples one)"
-        ),
-    )?;
+            "{it} {shape} built-in surfaces, and {spec} is a file (`iridis surface convert` crops and resamples one)"
+        )
+    })?;
     let path = Path::new(spec);
     let io = |e: std::io::Error| SurfaceError::Io { path: spec.to_string(), err: e };
     let meta = std::fs::metadata(path).map_err(io)?;
@@ -209,29 +211,26 @@ pub fn load_surface(spec: &str, opts: &LoadOptions) -> Result<HeightField, Surfa
     let bytes = std::fs::read(path).map_err(io)?;
     let fmt = detect_format(&bytes);
     if let Some(fmt) = fmt.filter(|f| !matches!(f, Format::Png | Format::Tiff)) {
-        refuse(
-            &[("--max-height", opts.max_height_nm.is_some())],
-            format!("it is the height of white in a grey image, and {spec} holds heights ({} format)", fmt.name()),
-        )?;
+        refuse(&[("--max-height", opts.max_height_nm.is_some())], &|_| {
+            format!("it is the height of white in a grey image, and {spec} holds heights ({} format)", fmt.name())
+        })?;
     }
     if let Some(fmt) =
         fmt.filter(|f| matches!(f, Format::Npy | Format::Npz | Format::Png | Format::Tiff | Format::Text))
     {
-        refuse(
-            &[("--as-height", opts.as_height)],
+        refuse(&[("--as-height", opts.as_height)], &|_| {
             format!(
                 "it reads an instrument's non-height channel as heights, and {spec} holds numbers without a \
-                     signal's name ({} format): they are read as heights already",
+                 signal's name ({} format): they are read as heights already",
                 fmt.name()
-            ),
-        )?;
+            )
+        })?;
     }
     let side = if opts.ignore_sidecar { None } else { Sidecar::find(path)? };
     let nothing_to_apply = opts.pixel_size_nm.is_none() && opts.height_unit.is_none() && side.is_none();
-    refuse(
-        &[("--override-units", opts.override_units && nothing_to_apply)],
-        "it lets --pixel-size or --height-unit (or a sidecar's) win over the file's own, and none is given".to_string(),
-    )?;
+    refuse(&[("--override-units", opts.override_units && nothing_to_apply)], &|_| {
+        "it lets --pixel-size or --height-unit (or a sidecar's) win over the file's own, and none is given".into()
+    })?;
     let mut hf = read_bytes(&bytes, spec, side.as_ref(), opts)?;
     if let Some(s) = &side {
         hf.meta.notes.push(format!("units from sidecar {}", s.path.display()));
