@@ -136,6 +136,10 @@ def test_options_no_method_reads_are_refused(tmp_path):
         lab.laser(spec, tmp_path / "s.png", method="stam-gaussian", stam_epsilon=0.2)
     with pytest.raises(ValueError, match=r"--coherence 5um would be ignored: .* --aperture 5um"):
         lab.laser(spec, tmp_path / "s.png", coherence_nm=5000.0)
+    # The CLI's --aperture is aperture_nm here: the error points to it.
+    with pytest.raises(TypeError, match=r"laser\(\) got an unexpected keyword argument 'aperture' \(did you mean "
+                                        r"aperture_nm\?"):
+        lab.laser(spec, tmp_path / "s.png", aperture="5um")
     assert not (tmp_path / "s.png").exists()
 
 

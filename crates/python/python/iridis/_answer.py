@@ -3,9 +3,13 @@ CSV and its plot where it has them (shared by ``iridis.film``, ``iridis.color.xy
 from __future__ import annotations
 
 import csv
+import difflib
+import functools
+import inspect
 import io
 import json
 import os
+import re
 
 import numpy as np
 
@@ -28,6 +32,30 @@ def file_path(x, who, arrays):
     if isinstance(x, (str, bytes)) or hasattr(x, "__fspath__"):
         return os.fsdecode(os.fspath(x))
     raise TypeError(f"{who} reads a file, as the CLI does, and was given a {type(x).__name__}; for arrays use {arrays}")
+
+
+def keywords(f):
+    """For a function that passes ``**options`` on to the library: the library's "unexpected keyword argument"
+    error names only the options; this adds the function's own keyword parameters and the nearest name to the
+    one given (``aperture`` → ``aperture_nm``, as the CLI's ``--aperture`` is named here)."""
+    kinds = (inspect.Parameter.POSITIONAL_OR_KEYWORD, inspect.Parameter.KEYWORD_ONLY)
+    own = [n for n, p in inspect.signature(f).parameters.items() if p.kind in kinds]
+
+    @functools.wraps(f)
+    def call(*args, **kwargs):
+        try:
+            return f(*args, **kwargs)
+        except TypeError as e:
+            m = re.fullmatch(r"unexpected keyword argument '(.+)' \(this call takes: (.*)\)", str(e))
+            if m is None:
+                raise
+            name = m.group(1)
+            known = sorted(set(own) | {o for o in m.group(2).split(", ") if o})
+            near = difflib.get_close_matches(name, known, n=1, cutoff=0.6)
+            hint = f"did you mean {near[0]}? " if near else ""
+            raise TypeError(f"{f.__name__}() got an unexpected keyword argument '{name}' ({hint}it takes: "
+                            f"{', '.join(known)})") from None
+    return call
 
 
 def columns(text):

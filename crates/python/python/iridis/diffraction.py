@@ -36,6 +36,7 @@ from __future__ import annotations
 import os
 
 from . import _native
+from ._answer import keywords
 from .surface import Surface
 
 __all__ = ["Table", "precompute", "brdf_map", "brdf_map_of", "brdf_map_run", "evaluate", "brdf_eval"]
@@ -90,6 +91,7 @@ def _direction(value, name):
     return theta, phi
 
 
+@keywords
 def precompute(surface, coherence_nm=None, terms=None, uv_resolution=None, uv_power=None, illuminant=None,
                observer=None, step_nm=None, name=None, **options):
     """The paper's tables ``I_p(u, v)`` of a height field (a Surface or a SURFACE argument), as
@@ -101,6 +103,7 @@ def precompute(surface, coherence_nm=None, terms=None, uv_resolution=None, uv_po
     return Table(_native.precompute(_native_source(surface), name, options))
 
 
+@keywords
 def brdf_map(source, incidence=(0.0, 0.0), size=256, method=None, per_sr=False, gpu=False, **options):
     """A BRDF map as linear XYZ of shape ``(size, size, 3)`` (row 0 at the top; outside the unit disk 0), as
     ``iridis brdf-map --raw`` writes it; with ``per_sr=True`` the BRDF f_r in sr⁻¹ as XYZ instead (Y the
@@ -120,6 +123,7 @@ def brdf_map(source, incidence=(0.0, 0.0), size=256, method=None, per_sr=False, 
     return _native.brdf_map_xyz(_native_source(source), method, theta, phi, int(size), options, bool(per_sr))
 
 
+@keywords
 def brdf_map_run(source, incidence=(0.0, 0.0), size=512, method="lookup", **options):
     """``iridis brdf-map`` on a SURFACE or TABLE argument (str), the CLI's own library call, before it writes
     files: a dict with ``xyz`` (linear XYZ of ρ), ``per_sr`` (f_r in sr⁻¹ as XYZ with ``per_sr=True``, else
@@ -137,6 +141,7 @@ def brdf_map_run(source, incidence=(0.0, 0.0), size=512, method="lookup", **opti
     return _native.brdf_map_run(os.fspath(source), method, theta, phi, int(size), options)
 
 
+@keywords
 def brdf_eval(source, light, view, method=None, **options):
     """``iridis brdf eval --json`` as a dict, the same keys and numbers (the CLI's own library call) on a
     SURFACE or TABLE argument (str): the inputs, ``fresnel_r0``, ``wavelength_nm``, ``brdf_per_sr`` (f_r(λ)
@@ -148,6 +153,7 @@ def brdf_eval(source, light, view, method=None, **options):
                              options)
 
 
+@keywords
 def evaluate(source, light, view, method=None, **options):
     """ρ(λ) and XYZ of one method for one pair of directions (``θ`` or ``(θ, φ)``, radians, pointing away from
     the surface; the mirror direction of ``(θ, φ)`` is ``(θ, φ + π)``), as ``iridis brdf eval --json``.
@@ -164,6 +170,7 @@ def evaluate(source, light, view, method=None, **options):
     return _native.eval_point(_native_source(source), method, wi, wr, options)
 
 
+@keywords
 def brdf_map_of(spec, incidence=(0.0, 0.0), size=256, method="reference", level=None, **options):
     """:func:`brdf_map` of a SURFACE argument as ``iridis brdf-map`` takes it: a file (plane-levelled unless
     ``level`` says otherwise, as the CLI does) or ``builtin:…`` (used as generated). A plain function of its
@@ -171,6 +178,7 @@ def brdf_map_of(spec, incidence=(0.0, 0.0), size=256, method="reference", level=
     return brdf_map(os.fspath(spec), incidence=incidence, size=size, method=method, level=level, **options)
 
 
+@keywords
 def grating(source, light, wavelengths_nm, method="kirchhoff", material=None, fresnel=None,
             normalisation=None, detector=None, acceptance=None, compare=False, **options):
     """Order efficiencies of ``source`` taken as one unit cell of a grating (its extent is the period), as
@@ -206,6 +214,7 @@ def grating(source, light, wavelengths_nm, method="kirchhoff", material=None, fr
     return _native.grating(_native_source(source), (theta, phi), wl, opts)
 
 
+@keywords
 def vision(source, visual, light=0.0, views_deg=(-60, -50, -40, -30, -20, -10, 0, 10, 20, 30, 40, 50, 60),
            azimuth=None, illuminant=None, **options):
     """How an animal sees ``source`` from several directions, as ``iridis brdf vision --json``: the reflectance

@@ -29,6 +29,7 @@ import math
 import os
 
 from . import _native
+from ._answer import keywords
 from .surface import Surface
 
 __all__ = ["testbench", "compare", "sweep", "laser", "METHODS"]
@@ -54,6 +55,7 @@ def _triple(value, name):
     return a, b, c
 
 
+@keywords
 def testbench(surface, method="reference", incidence=math.radians(75.0), azimuth=None, order=1,
               wavelengths=(380.0, 780.0, 5.0), angles_deg=(-89.0, 89.0, 0.05), period_nm=None, max_period_nm=None,
               **options):
@@ -76,6 +78,7 @@ def testbench(surface, method="reference", incidence=math.radians(75.0), azimuth
     return result
 
 
+@keywords
 def compare(surface, methods=("lookup", "reference", "stam-periodic", "stam-gaussian"), against="model",
             exposures=(1.0, 1000.0, 7500.0), incidence=(0.0, 0.0), size=101, step_nm=5.0, illuminant="d65",
             uv_resolution=None, uv_power=None, table=None, **options):
@@ -99,6 +102,7 @@ def compare(surface, methods=("lookup", "reference", "stam-periodic", "stam-gaus
     return result
 
 
+@keywords
 def sweep(surface, param, values, output, method="reference", against="model", exposures=(1000.0,),
           incidence=(0.0, 0.0), size=64, step_nm=None, uv_resolution=None, uv_power=None, plot=None, **options):
     """A convergence sweep (paper sec. 7, Figures 14–17; ``iridis sweep``): the method's BRDF map for each of
@@ -118,6 +122,7 @@ def sweep(surface, param, values, output, method="reference", against="model", e
     return json.loads(out)
 
 
+@keywords
 def laser(surface, output, method="reference", incidence=math.radians(45.0), azimuth=0.0, aperture_nm=65000.0,
           distance_nm=1e8, screen_nm=3e8, size=101, subsamples=3, spectrum=None, coating="gold",
           exposures=(1.0, 1000.0, 7500.0), step_nm=5.0, uv_resolution=None, uv_power=None, table=None, save_table=None,
