@@ -359,6 +359,18 @@ pub fn eval_point(
     Ok(p)
 }
 
+/// A BRDF feature between two samples this many standard deviations of its width apart is below ~1 % of its
+/// peak at both (`exp(−3²/2)`): it can vanish from an image (a map's pixels, the laser screen's samples).
+pub const SAMPLES_PER_LOBE_SIGMA: f64 = 6.0;
+
+/// The coherence length whose Gaussian window has the effective area of `e`'s (`A_eff = 4πσ_s²`, from
+/// [`Evaluator::radiometric_gain`]): the light's where the window lies inside the patch or on its periodic
+/// lattice, less where the patch edge cuts it (the finite aperture), whose lobes are then wider.
+pub fn lobe_coherence_nm(e: &dyn Evaluator) -> Option<f64> {
+    let lambda = 550.0;
+    e.radiometric_gain(lambda).map(|g| 4.0 * lambda * (g / (4.0 * std::f64::consts::PI)).sqrt()).or(e.coherence_nm())
+}
+
 /// ρ(λ) (on the model's wavelength grid) and XYZ of an evaluator for light `wi` and view `wr`.
 pub fn point(
     e: &dyn Evaluator,

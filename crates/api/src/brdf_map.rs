@@ -13,7 +13,10 @@ use iridis_diffraction::table::{Lookup, Precision, TableParams};
 use iridis_diffraction::Evaluator;
 use iridis_lab::methods::Method;
 
-use crate::brdf::{auto_exposure, map_evaluator, render_map, render_map_per_sr, EvaluatorSetup, RIGOROUS};
+pub use crate::brdf::SAMPLES_PER_LOBE_SIGMA;
+use crate::brdf::{
+    auto_exposure, lobe_coherence_nm, map_evaluator, render_map, render_map_per_sr, EvaluatorSetup, RIGOROUS,
+};
 use crate::gallery::Gallery;
 use crate::model::{refuse_build_options_for_table, TableGrid};
 use crate::report::{with_progress, Report};
@@ -144,10 +147,6 @@ pub(crate) fn black_map(exposure_ru: f64) -> String {
     )
 }
 
-/// A BRDF feature between two samples this many standard deviations of its width apart is below ~1 % of its
-/// peak at both (`exp(−3²/2)`): it can vanish from an image.
-pub const SAMPLES_PER_LOBE_SIGMA: f64 = 6.0;
-
 /// What a map of `size`² pixels misses at this coherence length, if anything: its pixels are `2/size` apart in
 /// view direction `(u, v)`, and where that is more than [`SAMPLES_PER_LOBE_SIGMA`] widths of the narrowest lobe
 /// (380 nm, [`iridis_diffraction::spectral::lobe_sigma_uv`]) a mirror's reflection or a grating's order can fall
@@ -171,14 +170,6 @@ pub fn lobes_between_pixels(size: usize, coherence_nm: f64) -> Option<String> {
          {remedy}",
         coherence_nm / 1000.0
     ))
-}
-
-/// The coherence length whose Gaussian window has the effective area of `e`'s (`A_eff = 4πσ_s²`, from
-/// [`Evaluator::radiometric_gain`]): the light's where the window lies inside the patch or on its periodic
-/// lattice, less where the patch edge cuts it (the finite aperture), whose lobes are then wider.
-pub(crate) fn lobe_coherence_nm(e: &dyn Evaluator) -> Option<f64> {
-    let lambda = 550.0;
-    e.radiometric_gain(lambda).map(|g| 4.0 * lambda * (g / (4.0 * std::f64::consts::PI)).sqrt()).or(e.coherence_nm())
 }
 
 /// Says [`lobes_between_pixels`]'s warning for a map of `e`, if any (`brdf-map`, Python's `brdf_map`).

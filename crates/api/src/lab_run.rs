@@ -654,7 +654,7 @@ pub fn laser_run(source: &Source, lab: &LabOptions, req: &LaserRequest, report: 
     config.table_path = req.table_path.clone();
     let b = workbench_from(source, &model, config, report)?;
     let e = evaluator(&b, method, report)?;
-    if let Some(w) = crate::brdf_map::lobe_coherence_nm(e.as_ref()).and_then(|c| screen_misses_lobes(setup, c)) {
+    if let Some(w) = crate::brdf::lobe_coherence_nm(e.as_ref()).and_then(|c| screen_misses_lobes(setup, c)) {
         report.warn(&w);
     }
     if let (Some(path), Some(lookup)) = (&req.save_table, e.as_lookup()) {
@@ -712,12 +712,12 @@ pub fn laser_run(source: &Source, lab: &LabOptions, req: &LaserRequest, report: 
 }
 
 /// What the laser screen's samples miss at this coherence length (the aperture), if anything: as
-/// [`crate::brdf_map::lobes_between_pixels`] for a map, with the view samples' angular spacing
+/// `brdf_map::lobes_between_pixels` for a map, with the view samples' angular spacing
 /// ([`LaserSetup::sample_spacing_rad`]) against the narrowest lobe's width (380 nm).
 pub fn screen_misses_lobes(setup: &LaserSetup, coherence_nm: f64) -> Option<String> {
     let spacing = setup.sample_spacing_rad();
     let sigma = iridis_diffraction::spectral::lobe_sigma_uv(380.0, coherence_nm);
-    let widest = crate::brdf_map::SAMPLES_PER_LOBE_SIGMA * sigma;
+    let widest = crate::brdf::SAMPLES_PER_LOBE_SIGMA * sigma;
     if spacing <= widest {
         return None;
     }
