@@ -238,6 +238,54 @@ pub fn averaged_unit_cell(patch: &iridis_diffraction::Patch) -> Option<(iridis_d
     Some((cell, d, peak.orientation_deg))
 }
 
+/// How a patch of `extent_nm` taken as one unit cell holds a period `period_nm` whose grating vector points
+/// `orientation_deg` from +x: the periods across it along x and y, and the share of each of the period's orders
+/// that lands in the nearest of the cell's orders, `sinc²(δx) sinc²(δy)` with `δ` the periods' distance to a
+/// whole number (`sinc x = sin πx/(πx)`: the cell's Fourier coefficient of a plane wave cut at its edges). 1 where
+/// the period tiles the cell; test: a shallow sine's orders (`crates/api/tests/unit_grating.rs`).
+pub fn period_fit(extent_nm: (f64, f64), period_nm: f64, orientation_deg: f64) -> (f64, f64, f64) {
+    let phi = orientation_deg.to_radians();
+    let (along_x, along_y) = (extent_nm.0 * phi.cos().abs() / period_nm, extent_nm.1 * phi.sin().abs() / period_nm);
+    let sinc2 = |cycles: f64| {
+        let d = std::f64::consts::PI * (cycles - cycles.round());
+        if d.abs() < 1e-12 {
+            1.0
+        } else {
+            (d.sin() / d).powi(2)
+        }
+    };
+    (along_x, along_y, sinc2(along_x) * sinc2(along_y))
+}
+
+/// Below this share of a period's order in the nearest cell order, [`grating`] says that the patch does not
+/// hold its period a whole number of times (a mismatch of an eighth of a period or more).
+pub const PERIOD_FIT_NOTE_BELOW: f64 = 0.95;
+
+/// The note for a patch taken as one unit cell whose strongest period — a grating's: at least a tenth of the
+/// height variance — does not tile it ([`period_fit`]); `None` where it does, or the patch has no such period.
+pub fn period_fit_note(patch: &iridis_diffraction::Patch) -> Option<String> {
+    let peak = crate::surface::dominant_period(patch).filter(|p| p.power >= 0.1)?;
+    let (x, y, share) = period_fit(patch.extent(), peak.period_nm, peak.orientation_deg);
+    if share >= PERIOD_FIT_NOTE_BELOW {
+        return None;
+    }
+    let held = match (x >= 0.01, y >= 0.01) {
+        (true, true) => format!("{x:.2} times along x and {y:.2} along y"),
+        (false, true) => format!("{y:.2} times along y"),
+        _ => format!("{x:.2} times along x"),
+    };
+    Some(format!(
+        "the patch holds its strongest period ({:.1} nm along {:.1}°, {:.0} % of the height variance) {held}, not \
+         a whole number: as one unit cell it repeats with a step at its edge, and each of the period's orders \
+         falls between two of the cell's, the nearest taking about {:.0} % of its light; --unit-cell auto takes \
+         the period itself as the cell",
+        peak.period_nm,
+        peak.orientation_deg,
+        100.0 * peak.power,
+        100.0 * share
+    ))
+}
+
 /// `--unit-cell auto`: the scan's strongest period as the unit cell, its profile averaged along the ridges
 /// ([`averaged_unit_cell`]), said in a note; refused where the scan has no dominant period. Returns the cell, its
 /// period (nm) and direction (degrees).
@@ -334,6 +382,11 @@ pub fn grating(
     let mut averaged = None;
     // The light in the cell's frame: an averaged cell runs along its grating vector at φ, so rotate by −φ.
     let mut l = l;
+    if !opts.unit_cell_auto {
+        if let Some(note) = period_fit_note(&patch) {
+            report.note(&note);
+        }
+    }
     if opts.unit_cell_auto {
         let (cell, d, phi) = auto_unit_cell(&patch, source.name(), report)?;
         patch = cell;

@@ -7,6 +7,7 @@ mod unit_brdf_map;
 mod unit_film;
 mod unit_film_fit;
 mod unit_fresnel;
+mod unit_grating;
 mod unit_grating_bench;
 mod unit_model;
 mod unit_output;

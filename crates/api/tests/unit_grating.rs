@@ -1,0 +1,41 @@
+//! The unit tests of src/grating.rs: how a patch taken as one unit cell holds its period, against the orders the
+//! scalar model computes for it.
+
+use iridis_api::grating::{grating, period_fit, GratingOptions};
+use iridis_api::report::{Collect, Kind};
+use iridis_api::surface::Source;
+
+/// The unpolarised efficiencies of the positive orders (n = 0) of a 1 nm deep sine of period 1100 nm on a patch
+/// `size` wide, at normal incidence and 500 nm, with what the run noted.
+fn orders(size: &str) -> (Vec<(i64, f64)>, Vec<String>) {
+    let spec = format!("builtin:sine?size={size}&pixel=50nm&depth=1nm");
+    let opts = GratingOptions { wavelengths_nm: vec![500.0], ..Default::default() };
+    let said = Collect::default();
+    let g = grating(&Source::Spec(spec), &Default::default(), &opts, &said).unwrap();
+    let notes = said.take().into_iter().filter(|(k, _)| *k == Kind::Note).map(|(_, t)| t).collect();
+    let positive = g.answers[0].orders.iter().filter(|o| o.n == 0 && o.m > 0).map(|o| (o.m, o.efficiency.unpolarized));
+    (positive.collect(), notes)
+}
+
+/// A shallow grating's orders are the cell's Fourier coefficients of the sine: its +1 order spreads over the
+/// cell's orders as `sinc²(L/d − m)` (a plane wave cut at the cell's edges), so the nearest takes
+/// `sinc²(δ)` of it — 77.8 % for 8 µm / 1100 nm = 7.27 periods — and a run says so; 7.7 µm (7 periods) tiles.
+#[test]
+fn a_period_that_does_not_tile_the_cell_spreads_its_orders_by_sinc_squared() {
+    let (_, _, share) = period_fit((8000.0, 8000.0), 1100.0, 0.0);
+    let delta = 8000.0f64 / 1100.0 - 7.0;
+    let closed = ((std::f64::consts::PI * delta).sin() / (std::f64::consts::PI * delta)).powi(2);
+    assert!((share - closed).abs() < 1e-12 && (share - 0.778).abs() < 1e-3, "{share}");
+    let (spread, notes) = orders("8um");
+    let total: f64 = spread.iter().map(|o| o.1).sum();
+    let nearest = spread.iter().find(|o| o.0 == 7).unwrap().1;
+    assert!((nearest / total - share).abs() < 0.005, "order 7 takes {} of the +1 light", nearest / total);
+    assert!(notes.iter().any(|n| n.contains("7.27 times along x") && n.contains("about 78 %")), "{notes:?}");
+    let (tiled, notes) = orders("7.7um");
+    let total: f64 = tiled.iter().map(|o| o.1).sum();
+    assert!(tiled.iter().find(|o| o.0 == 7).unwrap().1 / total > 0.9999);
+    assert!(!notes.iter().any(|n| n.contains("not a whole number")), "{notes:?}");
+    // Along a diagonal both directions count: 1.5 periods along x and along y, sinc²(½) = 4/π² each, 0.164 in all.
+    let (_, _, diagonal) = period_fit((3000.0, 3000.0), 1000.0 * 2f64.sqrt(), 45.0);
+    assert!((diagonal - (4.0 / std::f64::consts::PI.powi(2)).powi(2)).abs() < 1e-9, "{diagonal}");
+}
