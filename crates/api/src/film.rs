@@ -575,13 +575,15 @@ impl Materials {
     pub fn text(&self) -> String {
         let mut o = String::new();
         let at = self.at_nm.unwrap_or(0.0);
+        // The names' column as wide as the longest list of them, so that none runs into its description.
+        let width = self.rows.iter().map(|r| r.0.join(", ").chars().count()).max().unwrap_or(0).max(36);
         for (names, desc, _, _, idx) in &self.rows {
             let idx = match idx {
                 Some(Ok((n, k))) => format!("   n̂({at} nm) = {n:.5} + {k:.5}i"),
                 Some(Err(_)) => format!("   (no data at {at} nm)"),
                 None => String::new(),
             };
-            let _ = writeln!(o, "{:<36} {desc}{idx}", names.join(", "));
+            let _ = writeln!(o, "{:<width$}   {desc}{idx}", names.join(", "));
         }
         o + "\nAlso: n=1.38, n=0.2+3.4i (constants) and file:PATH (refractiveindex.info YAML or CSV wavelength_nm,n,k).\n"
     }
