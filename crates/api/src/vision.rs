@@ -221,7 +221,12 @@ pub fn analyse_file(path: &std::path::Path, spec: &iridis_vision::Spec, percent:
             v.iter_mut().for_each(|x| *x /= 100.0);
         }
     }
-    let analysis = iridis_vision::analyse_table(&table, &system, &options)?;
+    let mut analysis = iridis_vision::analyse_table(&table, &system, &options)?;
+    if !percent {
+        analysis
+            .notes
+            .extend(iridis_vision::table::percent_note(&table.samples, "give --percent (Python: percent=True)"));
+    }
     Ok(SpectraVision { source: path.display().to_string(), samples: table.samples.len(), analysis })
 }
 

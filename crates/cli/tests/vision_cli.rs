@@ -132,3 +132,23 @@ fn one_sample_and_a_black_sample_are_said_so() {
     assert!(black.contains("a       — (it catches no light: no position)"), "{black}");
     assert!(black.contains("\n  b       ("), "b keeps its position: {black}");
 }
+
+/// Spectra in percent read as fractions are said (the catches scale with them, ΔS does not); with --percent,
+/// or in fractions, nothing is said, and ΔS is the same either way (the receptor-noise model's log ratios).
+#[test]
+fn percent_spectra_read_as_fractions_are_said() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("percent.csv");
+    std::fs::write(&path, "wl,a,b\n300,10,20\n500,40,30\n700,80,35\n").unwrap();
+    let p = path.to_str().unwrap();
+    let plain = json_of(&["vision", p, "--visual", "bluetit", "--json"]);
+    let notes = plain["notes"].as_array().unwrap();
+    assert!(
+        notes.iter().any(|n| n.as_str().unwrap().contains("spectrum 'a' reaches 80, read as a reflectance of 8000 %")),
+        "{notes:?}"
+    );
+    let divided = json_of(&["vision", p, "--visual", "bluetit", "--percent", "--json"]);
+    assert!(!divided["notes"].as_array().unwrap().iter().any(|n| n.as_str().unwrap().contains("percent")));
+    let ds = |v: &serde_json::Value| v["distances"][0]["delta_s"].as_f64().unwrap();
+    assert!((ds(&plain) - ds(&divided)).abs() < 1e-9 * ds(&divided), "{} vs {}", ds(&plain), ds(&divided));
+}

@@ -56,7 +56,8 @@ fn _analyse(
     py.allow_threads(|| -> Result<String, String> {
         let system = spec.system().map_err(|e| e.to_string())?;
         let options = spec.options(&system).map_err(|e| e.to_string())?;
-        let a = analyse(&spectra, &wl, &system, &options).map_err(|e| e.to_string())?;
+        let mut a = analyse(&spectra, &wl, &system, &options).map_err(|e| e.to_string())?;
+        a.notes.extend(iridis_vision::table::percent_note(&spectra, "divide them by 100"));
         serde_json::to_string(&a).map_err(|e| e.to_string())
     })
     .map_err(value_error)

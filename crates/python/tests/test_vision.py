@@ -65,3 +65,13 @@ def test_sensitivities_have_unit_area_and_peak_at_lambda_max():
     np.testing.assert_allclose(s.sum(axis=1), 1.0, rtol=1e-12)
     assert [abs(wl[np.argmax(r)] - l) <= 2 for r, l in zip(s, (344, 436, 556))] == [True] * 3
     assert "bluetit" in vision.VISUAL_SYSTEMS and "forestshade" in vision.ILLUMINANTS
+
+
+def test_percent_values_are_said_and_leave_delta_s_unchanged():
+    wl = np.array([300.0, 500.0, 700.0])
+    percent = np.array([[10.0, 40.0, 80.0], [20.0, 30.0, 35.0]])
+    a = vision.analyse(wl, percent, "bluetit", names=["a", "b"])
+    assert any("reaches 80, read as a reflectance of 8000 %" in n and "divide them by 100" in n for n in a["notes"])
+    b = vision.analyse(wl, percent / 100, "bluetit", names=["a", "b"])
+    assert not any("percent" in n for n in b["notes"])
+    assert a["distances"][0]["delta_s"] == pytest.approx(b["distances"][0]["delta_s"], rel=1e-9)

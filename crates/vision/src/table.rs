@@ -216,3 +216,26 @@ fn csv_field(name: &str) -> String {
         name.to_string()
     }
 }
+
+/// A reflectance above this (150 %) is most likely a value in percent (pavo's spectra often are).
+pub const PERCENT_ABOVE: f64 = 1.5;
+
+/// The note for reflectance spectra whose largest value is above [`PERCENT_ABOVE`]: read as fractions, they are
+/// most likely percent; `divide` says how to divide them by 100 (`--percent`, or by hand). The quantum catches
+/// and a hexagon's coordinates scale with the values; ΔS and ΔL of the receptor-noise model (log ratios of
+/// catches) do not.
+pub fn percent_note(spectra: &[(String, Vec<f64>)], divide: &str) -> Option<String> {
+    let (name, v) = spectra
+        .iter()
+        .flat_map(|(name, v)| v.iter().map(move |x| (name, *x)))
+        .fold(None, |best: Option<(&String, f64)>, (name, x)| match best {
+            Some((_, b)) if b >= x => best,
+            _ => Some((name, x)),
+        })
+        .filter(|b| b.1 > PERCENT_ABOVE)?;
+    Some(format!(
+        "spectrum '{name}' reaches {v}, read as a reflectance of {:.0} %: if the values are percent, {divide}; the \
+         quantum catches and a hexagon's coordinates scale with them, ΔS and ΔL of the receptor-noise model do not",
+        100.0 * v
+    ))
+}
