@@ -222,8 +222,8 @@ pub const PERCENT_ABOVE: f64 = 1.5;
 
 /// The note for reflectance spectra whose largest value is above [`PERCENT_ABOVE`]: read as fractions, they are
 /// most likely percent; `divide` says how to divide them by 100 (`--percent`, or by hand). The quantum catches
-/// and a hexagon's coordinates scale with the values; ΔS and ΔL of the receptor-noise model (log ratios of
-/// catches) do not.
+/// scale with the values and a hexagon's coordinates change (`E = q/(q + 1)`); ΔS and ΔL of the receptor-noise
+/// model (log ratios of catches) do not.
 pub fn percent_note(spectra: &[(String, Vec<f64>)], divide: &str) -> Option<String> {
     let (name, v) = spectra
         .iter()
@@ -235,7 +235,8 @@ pub fn percent_note(spectra: &[(String, Vec<f64>)], divide: &str) -> Option<Stri
         .filter(|b| b.1 > PERCENT_ABOVE)?;
     Some(format!(
         "spectrum '{name}' reaches {v}, read as a reflectance of {:.0} %: if the values are percent, {divide}; the \
-         quantum catches and a hexagon's coordinates scale with them, ΔS and ΔL of the receptor-noise model do not",
+         quantum catches scale with them and a hexagon's coordinates change, ΔS and ΔL of the receptor-noise model \
+         do not",
         100.0 * v
     ))
 }
