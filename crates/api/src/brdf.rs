@@ -200,10 +200,11 @@ fn lab_evaluator(
 }
 
 /// A BRDF map (the paper's layout: pixel (x, y) views (x, y, √(1 − x² − y²)), row 0 at the top) for the
-/// light direction `wi`, with progress: linear XYZ per pixel.
-pub fn render_map(e: &dyn Evaluator, wi: [f64; 3], size: usize, report: &dyn Report) -> Vec<Xyz> {
+/// light direction `wi`, with progress: linear XYZ per pixel, each the mean of its `subsamples²` view samples
+/// (1: its centre; [`iridis_diffraction::map::brdf_map`]).
+pub fn render_map(e: &dyn Evaluator, wi: [f64; 3], size: usize, subsamples: usize, report: &dyn Report) -> Vec<Xyz> {
     with_progress(report, size as u64, &format!("{} map", e.name()), |p| {
-        iridis_diffraction::map::brdf_map(e, wi, size, p)
+        iridis_diffraction::map::brdf_map(e, wi, size, subsamples, p)
     })
 }
 
@@ -214,11 +215,12 @@ pub fn render_map_per_sr(
     model: &ModelOptions,
     wi: [f64; 3],
     size: usize,
+    subsamples: usize,
     report: &dyn Report,
 ) -> Result<Vec<Xyz>> {
     let spectral = crate::model::spectral_setup(model, report)?;
     with_progress(report, size as u64, &format!("{} BRDF in sr⁻¹", e.name()), |p| {
-        Ok(iridis_diffraction::map::brdf_map_per_sr(e, &spectral.weights, wi, size, p)?)
+        Ok(iridis_diffraction::map::brdf_map_per_sr(e, &spectral.weights, wi, size, subsamples, p)?)
     })
 }
 

@@ -55,6 +55,9 @@ pub struct MapRequest {
     pub table_precision: Option<String>,
     /// Also the BRDF f_r in sr⁻¹ per pixel.
     pub per_sr: bool,
+    /// View samples a pixel side (1–16; 1: the pixel's centre): each pixel the mean of `subsamples²` directions
+    /// across it, so that lobes narrower than a pixel are caught ([`lobes_between_pixels`]). CPU only.
+    pub subsamples: usize,
 }
 
 impl MapRequest {
@@ -78,6 +81,7 @@ impl MapRequest {
             gpu: false,
             table_precision: None,
             per_sr: false,
+            subsamples: 1,
         }
     }
 }
@@ -151,36 +155,54 @@ pub(crate) fn black_map(exposure_ru: f64) -> String {
 /// view direction `(u, v)`, and where that is more than [`SAMPLES_PER_LOBE_SIGMA`] widths of the narrowest lobe
 /// (380 nm, [`iridis_diffraction::spectral::lobe_sigma_uv`]) a mirror's reflection or a grating's order can fall
 /// between pixels and vanish, or show at its peak: a black or speckled map that says nothing of the surface.
-pub fn lobes_between_pixels(size: usize, coherence_nm: f64) -> Option<String> {
-    let spacing = 2.0 / size as f64;
+pub fn lobes_between_pixels(size: usize, subsamples: usize, coherence_nm: f64) -> Option<String> {
+    let spacing = 2.0 / (size * subsamples) as f64;
     let sigma = iridis_diffraction::spectral::lobe_sigma_uv(380.0, coherence_nm);
     if spacing <= SAMPLES_PER_LOBE_SIGMA * sigma {
         return None;
     }
-    let needed = (2.0 / (SAMPLES_PER_LOBE_SIGMA * sigma)).ceil();
-    let remedy = if needed <= 8192.0 {
-        format!("a map of {needed:.0}² pixels or more samples every lobe, or a shorter coherence length widens them")
-    } else {
-        "a shorter coherence length widens them".to_string()
+    // Samples a side the disk needs: as view samples a pixel (at most 16) at this size, or as pixels.
+    let needed = 2.0 / (SAMPLES_PER_LOBE_SIGMA * sigma);
+    let per_pixel = (needed / size as f64).ceil();
+    let remedy = match (per_pixel <= MAX_SUBSAMPLES as f64, needed <= 8192.0) {
+        (true, _) => format!(
+            "--subsamples {per_pixel:.0} (each pixel the mean of {per_pixel:.0}² directions across it) or a map of \
+             {:.0}² pixels samples every lobe",
+            needed.ceil()
+        ),
+        (false, true) => format!("a map of {:.0}² pixels or more samples every lobe", needed.ceil()),
+        (false, false) => "a shorter coherence length widens them".to_string(),
     };
+    let what = if subsamples > 1 { format!("view samples ({subsamples}² a pixel)") } else { "pixels".into() };
     Some(format!(
-        "the map's pixels are {spacing:.4} apart in view direction (u, v), this light's lobes {sigma:.4} wide (σ of \
-         the window's |G|² at 380 nm, coherence {:.1} µm): a lobe narrower than the pixels' spacing — a mirror's \
-         reflection, a grating's order — can fall between pixels and vanish from the map, or show at its peak; \
+        "the map's {what} are {spacing:.4} apart in view direction (u, v), this light's lobes {sigma:.4} wide (σ of \
+         the window's |G|² at 380 nm, coherence {:.1} µm): a lobe narrower than that spacing — a mirror's \
+         reflection, a grating's order — can fall between them and vanish from the map, or show at its peak; \
          {remedy}",
         coherence_nm / 1000.0
     ))
 }
 
+/// The most view samples a pixel side `--subsamples` takes (256 directions a pixel).
+pub const MAX_SUBSAMPLES: usize = 16;
+
 /// Says [`lobes_between_pixels`]'s warning for a map of `e`, if any (`brdf-map`, Python's `brdf_map`).
-pub fn warn_lobes_between_pixels(e: &dyn Evaluator, size: usize, report: &dyn Report) {
-    warn_lobes_at(size, lobe_coherence_nm(e), report);
+pub fn warn_lobes_between_pixels(e: &dyn Evaluator, size: usize, subsamples: usize, report: &dyn Report) {
+    warn_lobes_at(size, subsamples, lobe_coherence_nm(e), report);
 }
 
-fn warn_lobes_at(size: usize, coherence_nm: Option<f64>, report: &dyn Report) {
-    if let Some(w) = coherence_nm.and_then(|c| lobes_between_pixels(size, c)) {
+fn warn_lobes_at(size: usize, subsamples: usize, coherence_nm: Option<f64>, report: &dyn Report) {
+    if let Some(w) = coherence_nm.and_then(|c| lobes_between_pixels(size, subsamples, c)) {
         report.warn(&w);
     }
+}
+
+/// `--subsamples`: 1 to [`MAX_SUBSAMPLES`].
+pub fn check_subsamples(subsamples: usize) -> Result<()> {
+    if !(1..=MAX_SUBSAMPLES).contains(&subsamples) {
+        bail!("--subsamples {subsamples} must be between 1 and {MAX_SUBSAMPLES} view samples a pixel side");
+    }
+    Ok(())
 }
 
 /// Computes the map (checks first; `files`, if any, are declared before the work starts), with a warning
@@ -190,6 +212,7 @@ pub fn compute(r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) ->
         bail!("--exposure {} must be a positive number of RU", r.exposure_ru);
     }
     check_size(r.size)?;
+    check_subsamples(r.subsamples)?;
     refuse_build_options_for_table(&r.input, r.grid, &r.surface, "brdf-map")?;
     r.grid.refuse_unless_lookup(&r.method)?;
     if r.f32 && r.gpu {
@@ -217,6 +240,9 @@ pub fn compute(r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) ->
         if r.method == RIGOROUS {
             bail!("the rigorous BRDF runs on the CPU: leave out --gpu");
         }
+        if r.subsamples > 1 {
+            bail!("--subsamples averages view samples in the CPU's map: leave out --gpu (or --subsamples)");
+        }
         if r.auto_exposure || files.is_some_and(|f| f.plot.is_some()) {
             bail!("--auto-exposure and --plot are made on the CPU's map: leave out --gpu (or give --exposure)");
         }
@@ -242,14 +268,15 @@ pub fn compute(r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) ->
         surface: &r.surface,
     };
     let (e, rigorous) = map_evaluator(&r.input, setup, r.wi, report)?;
-    warn_lobes_between_pixels(e.as_ref(), r.size, report);
+    warn_lobes_between_pixels(e.as_ref(), r.size, r.subsamples, report);
     if let Some(s) = &rigorous {
         report.note(&s.sentence());
     }
     let prepared = start.elapsed().as_secs_f64();
-    let xyz = render_map(e.as_ref(), r.wi, r.size, report);
+    let xyz = render_map(e.as_ref(), r.wi, r.size, r.subsamples, report);
     // Before any file is written: a method without f_r(λ) is refused with nothing on disk.
-    let per_sr = if r.per_sr { Some(render_map_per_sr(e.as_ref(), &model, r.wi, r.size, report)?) } else { None };
+    let per_sr =
+        if r.per_sr { Some(render_map_per_sr(e.as_ref(), &model, r.wi, r.size, r.subsamples, report)?) } else { None };
     let total = start.elapsed().as_secs_f64();
     let secs = total - prepared;
     let mut exposure = r.exposure_ru;
@@ -314,7 +341,7 @@ fn gpu_map(r: &MapRequest, report: &dyn Report) -> Result<BrdfMap> {
             surface: &r.surface,
         };
         let e = crate::brdf::make_evaluator(&r.input, setup, report)?;
-        warn_lobes_between_pixels(e.as_ref(), r.size, report);
+        warn_lobes_between_pixels(e.as_ref(), r.size, r.subsamples, report);
         let gt = e.as_ground_truth().context("internal: a ground-truth method without a ground truth")?;
         let gpu = crate::gpu::open()?;
         let t = std::time::Instant::now();
@@ -352,7 +379,7 @@ fn gpu_map(r: &MapRequest, report: &dyn Report) -> Result<BrdfMap> {
     let gpu = crate::gpu::open()?;
     let table = crate::model::lookup_table(Some(&gpu), &r.input, &model, r.grid.params()?, &r.surface, report)?;
     let coherence_nm = Some(table.meta.coherence_nm);
-    warn_lobes_at(r.size, coherence_nm, report);
+    warn_lobes_at(r.size, 1, coherence_nm, report);
     let map =
         crate::gpu::lookup_map(&gpu, &table, fresnel, r.shadowing, r.convention, table_encoding, r.wi, r.size, tone)?;
     let how = format!(
@@ -472,7 +499,7 @@ pub fn demo_section(g: &mut Gallery) -> Result<()> {
         let n = table.meta.taylor_terms;
         let lookup = Lookup::new(Arc::new(table), Shading::default(), Precision::F64)?;
         let wi = direction(f64::to_radians(theta_deg), 0.0);
-        let xyz = render_map(&lookup, wi, size, &quiet);
+        let xyz = render_map(&lookup, wi, size, 1, &quiet);
         let tone = ToneMap { exposure_ru: 1500.0, encoding: Encoding::Srgb };
         let file = format!("brdf_{name}.png");
         let title = format!("{name}: θi = {theta_deg}°, N = {n}, lookup, 1500 RU");

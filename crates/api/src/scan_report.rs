@@ -173,7 +173,7 @@ fn brdf_map_figure(
         surface: surf,
     };
     let (e, _) = crate::brdf::map_evaluator(surface, setup, wi, report)?;
-    let xyz = crate::brdf::render_map(e.as_ref(), wi, size, report);
+    let xyz = crate::brdf::render_map(e.as_ref(), wi, size, 1, report);
     let mut exposure = 1500.0;
     let mut warnings = Vec::new();
     match crate::brdf::auto_exposure(&xyz, size) {

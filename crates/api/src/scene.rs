@@ -358,7 +358,7 @@ fn figure_map(scene: &Scene) -> Option<(iridis_plot::RgbImage, String)> {
     let Material::Diffraction(df) = &scene.materials[view.material] else { return None };
     let lum = |e: [f64; 3]| 0.2126 * e[0] + 0.7152 * e[1] + 0.0722 * e[2];
     let (wi, e) = view.lights.iter().copied().max_by(|a, b| lum(a.1).total_cmp(&lum(b.1)))?;
-    let xyz = iridis_diffraction::map::brdf_map(df.evaluator.as_ref(), wi, size, &|_| {});
+    let xyz = iridis_diffraction::map::brdf_map(df.evaluator.as_ref(), wi, size, 1, &|_| {});
     let (ti, pi) = angles(wi);
     let exposure = df.scale_ru * lum(e);
     let title = format!("BRDF map: θi = {ti:.0}°, φi = {pi:.0}°, {exposure:.0} RU");

@@ -81,7 +81,7 @@ fn the_blazed_strips_light_goes_to_its_facet_side() {
     };
     let e = evaluator_for(&source, setup, &Quiet).unwrap();
     let size = 65; // odd: the middle row holds the orders of a 1-D grating (y = 0)
-    let map = render_map(e.as_ref(), [0.0, 0.0, 1.0], size, &Quiet);
+    let map = render_map(e.as_ref(), [0.0, 0.0, 1.0], size, 1, &Quiet);
     let (mut minus, mut plus) = (0.0, 0.0);
     for (i, p) in map.iter().enumerate() {
         let x = (i % size) as f64 / (size - 1) as f64 * 2.0 - 1.0;

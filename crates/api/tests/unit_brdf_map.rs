@@ -17,11 +17,14 @@ fn the_warning_starts_where_the_pixels_are_six_lobe_widths_apart() {
     // 2/size > 6σ at 380 nm: the largest quiet size is the first with 2/size ≤ 6σ.
     let quiet = (2.0 / (SAMPLES_PER_LOBE_SIGMA * sigma_uv(380.0, coherence))).ceil() as usize;
     assert_eq!(quiet, 127, "65 µm: 6σ = {}", SAMPLES_PER_LOBE_SIGMA * sigma_uv(380.0, coherence));
-    assert!(lobes_between_pixels(quiet, coherence).is_none());
-    let w = lobes_between_pixels(quiet - 1, coherence).expect("one pixel fewer warns");
-    assert!(w.contains("127² pixels") && w.contains("coherence 65.0 µm"), "{w}");
+    assert!(lobes_between_pixels(quiet, 1, coherence).is_none());
+    let w = lobes_between_pixels(quiet - 1, 1, coherence).expect("one pixel fewer warns");
+    assert!(w.contains("127² pixels") && w.contains("coherence 65.0 µm") && w.contains("--subsamples 2 "), "{w}");
+    // 32² needs 127/32 → 4 view samples a pixel side, and with them is quiet.
+    assert!(lobes_between_pixels(32, 1, coherence).unwrap().contains("--subsamples 4 "));
+    assert!(lobes_between_pixels(32, 4, coherence).is_none());
     // A shorter coherence widens the lobes: 8 µm is quiet at 16² (2/16 = 0.125 ≤ 6σ = 0.128).
-    assert!(lobes_between_pixels(16, 8_000.0).is_none());
+    assert!(lobes_between_pixels(16, 1, 8_000.0).is_none());
 }
 
 /// Light at 30° on an 8 µm patch of a 1.1 µm sine (one unit cell: discrete orders, each a lobe of the 65 µm
@@ -74,4 +77,29 @@ fn the_laser_screen_says_how_many_samples_its_lobes_need() {
     // At 100 µm, 6σ = 10.3 mrad: 9.1 samples a pixel, so 10.
     let w = screen_misses_lobes(&small, 100_000.0).unwrap();
     assert!(w.contains("--subsamples 10 or more"), "{w}");
+}
+
+/// `--subsamples k`: each pixel the mean of its k² view samples, i.e. the `size·k` map averaged over k × k
+/// blocks (the samples are that map's pixel centres) — to rounding; so the 32² map of the 8 µm sine, black at one
+/// sample a pixel, holds the 128² map's light.
+#[test]
+fn a_subsampled_map_is_the_finer_map_averaged_over_blocks() {
+    let map = |size: usize, subsamples: usize| {
+        let mut r = MapRequest::new("builtin:sine?size=8um&pixel=100nm", "reference");
+        (r.size, r.subsamples, r.wi) = (size, subsamples, [0.5, 0.0, 0.75f64.sqrt()]);
+        let said = Collect::default();
+        let m = compute(&r, None, &said).unwrap();
+        assert!(!said.take().iter().any(|(_, t)| t.contains("apart in view direction")), "{size}/{subsamples}");
+        m.xyz
+    };
+    let (coarse, fine) = (map(32, 4), map(128, 1));
+    let mut worst = 0.0f64;
+    for (k, c) in coarse.iter().enumerate() {
+        let (row, col) = (k / 32, k % 32);
+        let block: f64 = (0..16).map(|q| fine[(row * 4 + q / 4) * 128 + col * 4 + q % 4].y).sum::<f64>() / 16.0;
+        worst = worst.max((c.y - block).abs());
+    }
+    let brightest = fine.iter().map(|p| p.y).fold(0.0, f64::max);
+    assert!(worst <= 1e-12 * brightest, "worst {worst} of {brightest}");
+    assert!(coarse.iter().map(|p| p.y).fold(0.0, f64::max) > 0.05 * brightest);
 }

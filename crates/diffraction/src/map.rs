@@ -19,15 +19,37 @@ pub fn view_direction(col: usize, row: usize, size: usize) -> Option<Vec3> {
     Some([x, y, (1.0 - r2).sqrt()])
 }
 
-/// The BRDF `f_r` (sr⁻¹, unpolarised light) per pixel, as XYZ: `f_r(λ)` weighted by the light and the observer
+/// The mean of `f` over pixel `(col, row)`'s `k × k` view samples — the centres of the pixel's square cut into
+/// `k²`, i.e. the pixels of the `size·k` map it covers — counting those outside the unit disk as black: the map of
+/// `size` with `k` samples a pixel is the `size·k` map averaged over `k × k` blocks. `k = 1`: the pixel's centre.
+fn pixel_mean<E>(col: usize, row: usize, size: usize, k: usize, f: &dyn Fn(Vec3) -> Result<Xyz, E>) -> Result<Xyz, E> {
+    if k == 1 {
+        return view_direction(col, row, size).map_or(Ok(Xyz::default()), f);
+    }
+    let mut sum = [0.0; 3];
+    for r in 0..k {
+        for c in 0..k {
+            if let Some(wr) = view_direction(col * k + c, row * k + r, size * k) {
+                let v = f(wr)?;
+                sum = [sum[0] + v.x, sum[1] + v.y, sum[2] + v.z];
+            }
+        }
+    }
+    let n = (k * k) as f64;
+    Ok(Xyz::new(sum[0] / n, sum[1] / n, sum[2] / n))
+}
+
+/// The BRDF `f_r` (sr⁻¹, unpolarised light) per pixel, as XYZ:/// The BRDF `f_r` (sr⁻¹, unpolarised light) per pixel, as XYZ: `f_r(λ)` weighted by the light and the observer
 /// as a reflectance is (`weights`, whose white has `Y = 1`), so `Y` is the luminous BRDF and `Σ Y·dx·dy` over
 /// the disk (`dω = dx dy / cos θ_r`) the luminous share of the light reflected (docs/PHYSICS.md, "The BRDF in
-/// sr⁻¹"). Refused for a method without `f_r(λ)` (the lookup method integrates over λ in advance).
+/// sr⁻¹"); each pixel the mean of its `subsamples × subsamples` view samples. Refused for a method without
+/// `f_r(λ)` (the lookup method integrates over λ in advance).
 pub fn brdf_map_per_sr(
     evaluator: &dyn Evaluator,
     weights: &iridis_color::integrate::SpectralWeights,
     wi: Vec3,
     size: usize,
+    subsamples: usize,
     progress: &(dyn Fn(usize) + Sync),
 ) -> Result<Vec<Xyz>, crate::DiffractionError> {
     let lambdas = weights.wavelengths_nm();
@@ -48,9 +70,8 @@ pub fn brdf_map_per_sr(
     let rows: Vec<Vec<Xyz>> = (0..size)
         .into_par_iter()
         .map(|row| {
-            let out = (0..size)
-                .map(|col| view_direction(col, row, size).map(f_r).unwrap_or(Ok(Xyz::default())))
-                .collect::<Result<Vec<Xyz>, _>>();
+            let out =
+                (0..size).map(|col| pixel_mean(col, row, size, subsamples, &f_r)).collect::<Result<Vec<Xyz>, _>>();
             progress(done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1);
             out
         })
@@ -58,14 +79,25 @@ pub fn brdf_map_per_sr(
     Ok(rows.into_iter().flatten().collect())
 }
 
-/// XYZ per pixel, row-major, row 0 at the top. `progress(rows_done)` is called as rows finish.
-pub fn brdf_map(evaluator: &dyn Evaluator, wi: Vec3, size: usize, progress: &(dyn Fn(usize) + Sync)) -> Vec<Xyz> {
+/// XYZ per pixel, row-major, row 0 at the top, each pixel the mean of its `subsamples × subsamples` view
+/// samples (1: its centre). `progress(rows_done)` is called as rows finish.
+pub fn brdf_map(
+    evaluator: &dyn Evaluator,
+    wi: Vec3,
+    size: usize,
+    subsamples: usize,
+    progress: &(dyn Fn(usize) + Sync),
+) -> Vec<Xyz> {
+    let xyz = |wr: Vec3| Ok::<_, std::convert::Infallible>(evaluator.xyz(wi, wr));
     let done = std::sync::atomic::AtomicUsize::new(0);
     let rows: Vec<Vec<Xyz>> = (0..size)
         .into_par_iter()
         .map(|row| {
             let out = (0..size)
-                .map(|col| view_direction(col, row, size).map(|wr| evaluator.xyz(wi, wr)).unwrap_or_default())
+                .map(|col| match pixel_mean(col, row, size, subsamples, &xyz) {
+                    Ok(v) => v,
+                    Err(never) => match never {},
+                })
                 .collect();
             progress(done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1);
             out

@@ -75,7 +75,7 @@ fn lookup_brdf_maps_match_the_cpu() {
         let wi = direction(theta.to_radians(), phi.to_radians());
         let shading = Shading { fresnel: Arc::new(fresnel.clone()), shadowing, convention };
         let cpu = Lookup::new(table.clone(), shading, Precision::F64).unwrap();
-        let cpu_map = iridis_diffraction::map::brdf_map(&cpu, wi, size, &|_| {});
+        let cpu_map = iridis_diffraction::map::brdf_map(&cpu, wi, size, 1, &|_| {});
         let tone = ToneMap { exposure_ru: 1500.0, encoding: Encoding::Srgb };
         let g = GpuLookup::new(gpu, &table, fresnel.clone(), shadowing).unwrap().with_convention(convention);
         let out = g.render_map(wi, size, tone).unwrap();

@@ -17,7 +17,8 @@ use crate::facade::{json_to_py, run, Options};
 /// `iridis brdf-map`'s map as the CLI computes it: a dict with `xyz` (linear XYZ of ρ, (size, size, 3)),
 /// `per_sr` (f_r in sr⁻¹ as XYZ, with `per_sr=True`), `exposure_ru` (the one `auto_exposure` chose), `method`,
 /// `coherence_nm`. Options: the model, surface and shading options of the module, `uv_resolution`,
-/// `uv_power`, `exposure_ru`, `auto_exposure`, `per_sr`, `f32`, `gpu`, `table_precision`, `material`, `unit_cell`.
+/// `uv_power`, `exposure_ru`, `auto_exposure`, `per_sr`, `subsamples`, `f32`, `gpu`, `table_precision`, `material`,
+/// `unit_cell`.
 #[pyfunction]
 #[pyo3(signature = (source, method, theta_i, phi_i, size, options=None))]
 fn brdf_map_run<'py>(
@@ -49,6 +50,7 @@ fn brdf_map_run<'py>(
         gpu: o.bool("gpu")?.unwrap_or(false),
         table_precision: o.string("table_precision")?,
         per_sr: o.bool("per_sr")?.unwrap_or(false),
+        subsamples: o.usize("subsamples")?.unwrap_or(1),
         ..MapRequest::new(&source, &method)
     };
     o.finish()?;

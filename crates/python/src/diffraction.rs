@@ -189,9 +189,10 @@ fn precompute(
 
 /// A BRDF map (the paper's layout: view directions on the unit disk, row 0 at the top) as linear XYZ,
 /// shape (size, size, 3), light from (θ_i, φ_i) in radians, as `iridis brdf-map --raw`; with `per_sr`, the
-/// BRDF f_r in sr⁻¹ as XYZ instead, as `iridis brdf-map --brdf`.
+/// BRDF f_r in sr⁻¹ as XYZ instead, as `iridis brdf-map --brdf`; each pixel the mean of `subsamples²` view
+/// samples, as `--subsamples`.
 #[pyfunction]
-#[pyo3(signature = (source, method, theta_i, phi_i, size, options=None, per_sr=false))]
+#[pyo3(signature = (source, method, theta_i, phi_i, size, options=None, per_sr=false, subsamples=1))]
 #[allow(clippy::too_many_arguments)]
 fn brdf_map_xyz<'py>(
     py: Python<'py>,
@@ -202,20 +203,22 @@ fn brdf_map_xyz<'py>(
     size: usize,
     options: Option<Bound<'py, PyDict>>,
     per_sr: bool,
+    subsamples: usize,
 ) -> PyResult<Bound<'py, PyArray3<f64>>> {
     if !(1..=4096).contains(&size) {
         return Err(value_error(format!("size {size} must be between 1 and 4096 pixels")));
     }
+    iridis_api::brdf_map::check_subsamples(subsamples).map_err(value_error)?;
     let wi = direction_of("incidence", (theta_i, phi_i))?;
     let eo = Options::read(options, EvalOptions::read)?;
     let input = input_of(source)?;
     let xyz = run(py, |r| {
         let e = evaluator(&input, method.as_deref(), &eo, r)?;
-        iridis_api::brdf_map::warn_lobes_between_pixels(e.as_ref(), size, r);
+        iridis_api::brdf_map::warn_lobes_between_pixels(e.as_ref(), size, subsamples, r);
         if per_sr {
-            return iridis_api::brdf::render_map_per_sr(e.as_ref(), &eo.model, wi, size, r);
+            return iridis_api::brdf::render_map_per_sr(e.as_ref(), &eo.model, wi, size, subsamples, r);
         }
-        Ok(render_map(e.as_ref(), wi, size, r))
+        Ok(render_map(e.as_ref(), wi, size, subsamples, r))
     })?;
     Ok(xyz_array(py, &xyz, size))
 }

@@ -41,12 +41,19 @@ def test_sine_grating_orders_obey_the_grating_equation():
 def test_a_map_too_coarse_for_its_lobes_says_so():
     # 65 µm coherence: a lobe's σ in (u, v) is 380/(2√2π·16250) = 0.0026 at 380 nm; pixels 2/size apart miss
     # lobes past 6σ, i.e. below 127² (the same check as `iridis brdf-map`).
-    with pytest.warns(UserWarning, match="a map of 127² pixels or more samples every lobe"):
+    with pytest.warns(UserWarning, match=r"--subsamples 4 \(each pixel the mean of 4² directions across it\) or a "
+                                         r"map of 127² pixels samples every lobe"):
         diffraction.brdf_map(sine(), size=33, method="reference", coherence_nm=65000.0)
-    with warnings.catch_warnings(record=True) as said:
-        warnings.simplefilter("always")
-        diffraction.brdf_map(sine(), size=127, method="reference", coherence_nm=65000.0)
-    assert not [w for w in said if "pixels are" in str(w.message)], [str(w.message) for w in said]
+    maps = {}
+    for size, subsamples in ((132, 1), (33, 4)):
+        with warnings.catch_warnings(record=True) as said:
+            warnings.simplefilter("always")
+            maps[size] = diffraction.brdf_map(sine(), size=size, method="reference", coherence_nm=65000.0,
+                                              subsamples=subsamples)
+        assert not [w for w in said if "apart in view direction" in str(w.message)], [str(w.message) for w in said]
+    # Four samples a pixel side are the 132² map's pixel centres: the 33² map is that map averaged over 4 × 4.
+    blocks = maps[132].reshape(33, 4, 33, 4, 3).mean(axis=(1, 3))
+    np.testing.assert_allclose(maps[33], blocks, rtol=0, atol=1e-12 * maps[132].max())
 
 
 def test_lookup_agrees_with_reference_and_tables_round_trip(tmp_path):

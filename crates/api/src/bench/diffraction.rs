@@ -76,7 +76,7 @@ fn numpy_fft_seconds(patch: &Patch, terms: usize) -> Result<Option<f64>> {
 /// Pixels per second of a method on a map of `size²` (directions at normal incidence).
 fn map_rate(e: &dyn Evaluator, size: usize) -> f64 {
     let start = Instant::now();
-    let map = iridis_diffraction::map::brdf_map(e, [0.0, 0.0, 1.0], size, &|_| {});
+    let map = iridis_diffraction::map::brdf_map(e, [0.0, 0.0, 1.0], size, 1, &|_| {});
     let secs = start.elapsed().as_secs_f64();
     std::hint::black_box(map);
     (size * size) as f64 / secs
@@ -328,7 +328,7 @@ pub fn accuracy(a: &AccuracyOptions, report: &dyn Report) -> Result<Bench> {
     let mut rows = Vec::new();
     let mut convergence = Vec::new();
     let wi = [0.0, 0.0, 1.0];
-    let map = |e: &dyn Evaluator| iridis_diffraction::map::brdf_map(e, wi, a.map_size, &|_| {});
+    let map = |e: &dyn Evaluator| iridis_diffraction::map::brdf_map(e, wi, a.map_size, 1, &|_| {});
     for spec in &surfaces {
         let patch = crate::surface::load_patch(spec, &a.surface_options, report)?;
         let (ex, ey) = patch.extent();

@@ -84,6 +84,7 @@ Examples:
   iridis brdf-map builtin:xenopeltis --method reference --incidence 20deg,0deg --size 256 -o x.png --raw x.npy
   iridis brdf-map builtin:xenopeltis --method reference --coherence 10um --size 128 -o x.png --brdf x_fr.npy
   iridis brdf-map builtin:sine --method ground-truth --size 48 -o gt.png --gamma 2.2
+  iridis brdf-map 'builtin:sine?size=8um&pixel=50nm' --method reference --size 32 --subsamples 4 -o thumb.png
   iridis brdf-map 'builtin:elaphe?size=10um&pixel=50nm' --method stam-gaussian --coherence 5um -o stam.png
   iridis brdf-map elaphe.npz --gpu --size 1024 -o elaphe_gpu.png
   iridis brdf-map 'builtin:sine?size=4um' --method ground-truth --gpu --size 48 -o gt_gpu.png
@@ -112,6 +113,10 @@ pub struct BrdfMapArgs {
     /// Map size in pixels.
     #[arg(long, default_value_t = 512)]
     pub size: usize,
+    /// View samples a pixel side (1–16): each pixel the mean of N² directions across it, so that lobes narrower
+    /// than a pixel still show (a small map of a grating); 1 samples the pixel's centre. CPU only.
+    #[arg(long, default_value_t = 1, value_name = "N")]
+    pub subsamples: usize,
     /// Exposure in RU (1 RU: a normal-incidence mirror just saturates white).
     #[arg(long, default_value_t = 1500.0)]
     pub exposure: f64,
@@ -318,6 +323,7 @@ pub fn run_brdf_map(a: BrdfMapArgs) -> Result<()> {
         gpu: a.gpu,
         table_precision: a.table_precision,
         per_sr: a.brdf.is_some(),
+        subsamples: a.subsamples,
     };
     let files = iridis_api::brdf_map::MapFiles { output: a.output, raw: a.raw, brdf: a.brdf, exr: a.exr, plot: a.plot };
     let line = iridis_api::brdf_map::brdf_map(&r, &files, &Cli)?;

@@ -104,7 +104,8 @@ def precompute(surface, coherence_nm=None, terms=None, uv_resolution=None, uv_po
 
 
 @keywords
-def brdf_map(source, incidence=(0.0, 0.0), size=256, method=None, per_sr=False, gpu=False, **options):
+def brdf_map(source, incidence=(0.0, 0.0), size=256, method=None, per_sr=False, gpu=False, subsamples=1,
+             **options):
     """A BRDF map as linear XYZ of shape ``(size, size, 3)`` (row 0 at the top; outside the unit disk 0), as
     ``iridis brdf-map --raw`` writes it; with ``per_sr=True`` the BRDF f_r in sr⁻¹ as XYZ instead (Y the
     luminous BRDF), as ``iridis brdf-map --brdf`` writes it (reference, ground truths, rigorous).
@@ -114,13 +115,17 @@ def brdf_map(source, incidence=(0.0, 0.0), size=256, method=None, per_sr=False, 
     A normal-incidence mirror has ``Y = 1`` in its specular pixel. ``gpu=True`` renders the lookup method or a
     ground truth on the GPU (``iridis brdf-map --gpu``; a SURFACE or TABLE argument, ``table_precision``
     ``"cheb12"`` by default; a ValueError naming the driver to install when there is no adapter); ``f32=True``
-    evaluates the lookup sum in f32. Those take :func:`brdf_map_run`'s path, the CLI's own call.
+    evaluates the lookup sum in f32. Those take :func:`brdf_map_run`'s path, the CLI's own call. ``subsamples``
+    (1–16): each pixel the mean of ``subsamples²`` view directions across it (``--subsamples``), so that lobes
+    narrower than a pixel still show; a map too coarse for its lobes says so in a warning.
     """
     if gpu or options.get("f32") or options.get("table_precision") is not None:
-        out = brdf_map_run(source, incidence, size, method or "lookup", per_sr=per_sr, gpu=gpu, **options)
+        out = brdf_map_run(source, incidence, size, method or "lookup", per_sr=per_sr, gpu=gpu,
+                           subsamples=subsamples, **options)
         return out["per_sr"] if per_sr else out["xyz"]
     theta, phi = _direction(incidence, "incidence")
-    return _native.brdf_map_xyz(_native_source(source), method, theta, phi, int(size), options, bool(per_sr))
+    return _native.brdf_map_xyz(_native_source(source), method, theta, phi, int(size), options, bool(per_sr),
+                                int(subsamples))
 
 
 @keywords

@@ -35,6 +35,7 @@ def brdf_map(
     method: Optional[str] = ...,
     per_sr: bool = ...,
     gpu: bool = ...,
+    subsamples: int = ...,
     **options: Any,
 ) -> npt.NDArray[np.float64]: ...
 def brdf_map_run(
