@@ -13,9 +13,9 @@ use iridis_diffraction::table::{Lookup, Precision, TableParams};
 use iridis_diffraction::Evaluator;
 use iridis_lab::methods::Method;
 
-pub use crate::brdf::SAMPLES_PER_LOBE_SIGMA;
 use crate::brdf::{
     auto_exposure, lobe_coherence_nm, map_evaluator, render_map, render_map_per_sr, EvaluatorSetup, RIGOROUS,
+    SAMPLES_PER_LOBE_SIGMA,
 };
 use crate::gallery::Gallery;
 use crate::model::{refuse_build_options_for_table, TableGrid};
@@ -151,10 +151,12 @@ pub(crate) fn black_map(exposure_ru: f64) -> String {
     )
 }
 
-/// What a map of `size`² pixels misses at this coherence length, if anything: its pixels are `2/size` apart in
-/// view direction `(u, v)`, and where that is more than [`SAMPLES_PER_LOBE_SIGMA`] widths of the narrowest lobe
-/// (380 nm, [`iridis_diffraction::spectral::lobe_sigma_uv`]) a mirror's reflection or a grating's order can fall
-/// between pixels and vanish, or show at its peak: a black or speckled map that says nothing of the surface.
+/// What a map of `size`² pixels, `subsamples²` view samples each, misses at this coherence length, if anything:
+/// its samples are `2/(size·subsamples)` apart in view direction `(u, v)`, and where that is more than
+/// [`SAMPLES_PER_LOBE_SIGMA`] widths of the narrowest lobe (380 nm, [`iridis_diffraction::spectral::lobe_sigma_uv`])
+/// a mirror's reflection or a grating's order can fall between them and vanish, or show at its peak: a black or
+/// speckled map that says nothing of the surface. The warning names the `--subsamples` (or the size) that
+/// samples every lobe.
 pub fn lobes_between_pixels(size: usize, subsamples: usize, coherence_nm: f64) -> Option<String> {
     let spacing = 2.0 / (size * subsamples) as f64;
     let sigma = iridis_diffraction::spectral::lobe_sigma_uv(380.0, coherence_nm);

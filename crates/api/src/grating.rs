@@ -382,17 +382,14 @@ pub fn grating(
     let mut averaged = None;
     // The light in the cell's frame: an averaged cell runs along its grating vector at φ, so rotate by −φ.
     let mut l = l;
-    if !opts.unit_cell_auto {
-        if let Some(note) = period_fit_note(&patch) {
-            report.note(&note);
-        }
-    }
     if opts.unit_cell_auto {
         let (cell, d, phi) = auto_unit_cell(&patch, source.name(), report)?;
         patch = cell;
         averaged = Some((d, phi));
         let (s, c) = (-phi.to_radians()).sin_cos();
         l = [c * l[0] - s * l[1], s * l[0] + c * l[1], l[2]];
+    } else if let Some(note) = period_fit_note(&patch) {
+        report.note(&note);
     }
     // Kirchhoff's unit cell keeps only the DFT bins this light's orders read (a large scan's memory); the
     // rigorous solver takes the patch itself, so its Taylor terms are not made (nor their depth limit met).

@@ -2,7 +2,8 @@
 //! lobes (and the laser screen's whose samples are), checked against the window's closed form and against the
 //! maps themselves.
 
-use iridis_api::brdf_map::{compute, lobes_between_pixels, MapRequest, SAMPLES_PER_LOBE_SIGMA};
+use iridis_api::brdf::SAMPLES_PER_LOBE_SIGMA;
+use iridis_api::brdf_map::{compute, lobes_between_pixels, MapRequest};
 use iridis_api::report::{Collect, Kind};
 
 /// σ of the window's `|G(u/λ)|²` in direction cosines, `λ/(2√2 π σ_s)` with `σ_s` a quarter of the coherence

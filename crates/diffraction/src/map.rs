@@ -39,7 +39,7 @@ fn pixel_mean<E>(col: usize, row: usize, size: usize, k: usize, f: &dyn Fn(Vec3)
     Ok(Xyz::new(sum[0] / n, sum[1] / n, sum[2] / n))
 }
 
-/// The BRDF `f_r` (sr⁻¹, unpolarised light) per pixel, as XYZ:/// The BRDF `f_r` (sr⁻¹, unpolarised light) per pixel, as XYZ: `f_r(λ)` weighted by the light and the observer
+/// The BRDF `f_r` (sr⁻¹, unpolarised light) per pixel, as XYZ: `f_r(λ)` weighted by the light and the observer
 /// as a reflectance is (`weights`, whose white has `Y = 1`), so `Y` is the luminous BRDF and `Σ Y·dx·dy` over
 /// the disk (`dω = dx dy / cos θ_r`) the luminous share of the light reflected (docs/PHYSICS.md, "The BRDF in
 /// sr⁻¹"); each pixel the mean of its `subsamples × subsamples` view samples. Refused for a method without
