@@ -365,10 +365,30 @@ pub fn eval_point(
 /// peak at both (`exp(−3²/2)`): it can vanish from an image (a map's pixels, the laser screen's samples).
 pub const SAMPLES_PER_LOBE_SIGMA: f64 = 6.0;
 
+/// View samples too far apart for the light's lobes ([`lobe_shortfall`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LobeShortfall {
+    /// The narrowest lobe's width: σ of the window's `|G|²` at 380 nm, in direction cosines (≈ radians).
+    pub sigma: f64,
+    /// How many times closer the samples must be to sample every lobe.
+    pub finer_by: f64,
+}
+
+/// Whether view samples `spacing` apart (direction cosines, or radians near the mirror direction) sample every
+/// lobe of a light of this coherence length: `None` where they are at most [`SAMPLES_PER_LOBE_SIGMA`] widths of
+/// the narrowest lobe (380 nm, [`iridis_diffraction::spectral::lobe_sigma_uv`]) apart; else that width and how
+/// many times closer they must be. Shared by the maps' and the laser screen's warnings.
+pub fn lobe_shortfall(spacing: f64, coherence_nm: f64) -> Option<LobeShortfall> {
+    let sigma = iridis_diffraction::spectral::lobe_sigma_uv(380.0, coherence_nm);
+    let widest = SAMPLES_PER_LOBE_SIGMA * sigma;
+    (spacing > widest).then_some(LobeShortfall { sigma, finer_by: spacing / widest })
+}
+
 /// The coherence length whose Gaussian window has the effective area of `e`'s (`A_eff = 4πσ_s²`, from
 /// [`Evaluator::radiometric_gain`]): the light's where the window lies inside the patch or on its periodic
 /// lattice, less where the patch edge cuts it (the finite aperture), whose lobes are then wider.
 pub fn lobe_coherence_nm(e: &dyn Evaluator) -> Option<f64> {
+    // Any wavelength: the gain is A_eff/λ².
     let lambda = 550.0;
     e.radiometric_gain(lambda).map(|g| 4.0 * lambda * (g / (4.0 * std::f64::consts::PI)).sqrt()).or(e.coherence_nm())
 }

@@ -14,8 +14,8 @@ use iridis_diffraction::Evaluator;
 use iridis_lab::methods::Method;
 
 use crate::brdf::{
-    auto_exposure, lobe_coherence_nm, map_evaluator, render_map, render_map_per_sr, EvaluatorSetup, RIGOROUS,
-    SAMPLES_PER_LOBE_SIGMA,
+    auto_exposure, lobe_coherence_nm, lobe_shortfall, map_evaluator, render_map, render_map_per_sr, EvaluatorSetup,
+    LobeShortfall, RIGOROUS,
 };
 use crate::gallery::Gallery;
 use crate::model::{refuse_build_options_for_table, TableGrid};
@@ -152,20 +152,16 @@ pub(crate) fn black_map(exposure_ru: f64) -> String {
 }
 
 /// What a map of `size`² pixels, `subsamples²` view samples each, misses at this coherence length, if anything:
-/// its samples are `2/(size·subsamples)` apart in view direction `(u, v)`, and where that is more than
-/// [`SAMPLES_PER_LOBE_SIGMA`] widths of the narrowest lobe (380 nm, [`iridis_diffraction::spectral::lobe_sigma_uv`])
-/// a mirror's reflection or a grating's order can fall between them and vanish, or show at its peak: a black or
-/// speckled map that says nothing of the surface. The warning names the `--subsamples` (or the size) that
-/// samples every lobe.
+/// its samples are `2/(size·subsamples)` apart in view direction `(u, v)`, and where that falls short of the
+/// light's lobes ([`lobe_shortfall`]) a mirror's reflection or a grating's order can fall between them and
+/// vanish, or show at its peak: a black or speckled map that says nothing of the surface. The warning names the
+/// `--subsamples` (or the size) that samples every lobe.
 pub fn lobes_between_pixels(size: usize, subsamples: usize, coherence_nm: f64) -> Option<String> {
     let spacing = 2.0 / (size * subsamples) as f64;
-    let sigma = iridis_diffraction::spectral::lobe_sigma_uv(380.0, coherence_nm);
-    if spacing <= SAMPLES_PER_LOBE_SIGMA * sigma {
-        return None;
-    }
+    let LobeShortfall { sigma, finer_by } = lobe_shortfall(spacing, coherence_nm)?;
     // Samples a side the disk needs: as view samples a pixel (at most 16) at this size, or as pixels.
-    let needed = 2.0 / (SAMPLES_PER_LOBE_SIGMA * sigma);
-    let per_pixel = (needed / size as f64).ceil();
+    let needed = (size * subsamples) as f64 * finer_by;
+    let per_pixel = (subsamples as f64 * finer_by).ceil();
     let remedy = match (per_pixel <= MAX_SUBSAMPLES as f64, needed <= 8192.0) {
         (true, _) => format!(
             "--subsamples {per_pixel:.0} (each pixel the mean of {per_pixel:.0}² directions across it) or a map of \

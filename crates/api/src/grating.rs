@@ -227,7 +227,14 @@ pub struct Grating {
 /// each bin, i.e. the profile averaged along the ridges. Returns the cell (every row the same, along x), `d`
 /// and `φ` (degrees); `None` for a scan without a dominant period.
 pub fn averaged_unit_cell(patch: &iridis_diffraction::Patch) -> Option<(iridis_diffraction::Patch, f64, f64)> {
-    let peak = crate::surface::dominant_period(patch)?;
+    averaged_unit_cell_at(patch, &crate::surface::dominant_period(patch)?)
+}
+
+/// [`averaged_unit_cell`] along a period already found (`peak`), for a caller that has looked at it first.
+pub fn averaged_unit_cell_at(
+    patch: &iridis_diffraction::Patch,
+    peak: &iridis_surface::Peak,
+) -> Option<(iridis_diffraction::Patch, f64, f64)> {
     let d = peak.period_nm;
     // A sample per pixel along the grating vector, at least 32 and at most 256.
     let pixel = patch.dx.min(patch.dy);

@@ -712,24 +712,20 @@ pub fn laser_run(source: &Source, lab: &LabOptions, req: &LaserRequest, report: 
 }
 
 /// What the laser screen's samples miss at this coherence length (the aperture), if anything: as
-/// `brdf_map::lobes_between_pixels` for a map, with the view samples' angular spacing
-/// ([`LaserSetup::sample_spacing_rad`]) against the narrowest lobe's width (380 nm).
+/// `brdf_map::lobes_between_pixels` for a map ([`crate::brdf::lobe_shortfall`]), with the view samples' angular
+/// spacing ([`LaserSetup::sample_spacing_rad`]); the warning names the `--subsamples` (and `--size`) that sample
+/// every lobe.
 pub fn screen_misses_lobes(setup: &LaserSetup, coherence_nm: f64) -> Option<String> {
+    use iridis_lab::laser::{MAX_SIDE_PX, MAX_SUBSAMPLES};
     let spacing = setup.sample_spacing_rad();
-    let sigma = iridis_diffraction::spectral::lobe_sigma_uv(380.0, coherence_nm);
-    let widest = crate::brdf::SAMPLES_PER_LOBE_SIGMA * sigma;
-    if spacing <= widest {
-        return None;
-    }
-    // Samples a side the screen needs, as subsamples (at most 16) of this many pixels or of more pixels.
-    let k = setup.subsamples as f64 * spacing / widest;
-    let remedy = if k <= 16.0 {
-        format!("--subsamples {:.0} or more samples every lobe", k.ceil())
-    } else if (setup.width_px.max(setup.height_px) as f64 * k / 16.0) <= 4096.0 {
-        format!(
-            "--subsamples 16 with --size {:.0} or more samples every lobe",
-            (setup.width_px.max(setup.height_px) as f64 * k / 16.0).ceil()
-        )
+    let crate::brdf::LobeShortfall { sigma, finer_by } = crate::brdf::lobe_shortfall(spacing, coherence_nm)?;
+    // Samples a pixel side the screen needs; past the most a pixel takes, that many on more pixels.
+    let per_pixel = setup.subsamples as f64 * finer_by;
+    let pixels = (setup.width_px.max(setup.height_px) as f64 * per_pixel / MAX_SUBSAMPLES as f64).ceil();
+    let remedy = if per_pixel <= MAX_SUBSAMPLES as f64 {
+        format!("--subsamples {:.0} or more samples every lobe", per_pixel.ceil())
+    } else if pixels <= MAX_SIDE_PX as f64 {
+        format!("--subsamples {MAX_SUBSAMPLES} with --size {pixels:.0} or more samples every lobe")
     } else {
         "a smaller --aperture widens them".to_string()
     };

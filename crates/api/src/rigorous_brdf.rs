@@ -15,7 +15,7 @@ use iridis_diffraction::grating::{Efficiency, Lines, LobeEnergy, LobeScaled, Nor
 use iridis_diffraction::{DiffractionError, Evaluator, Patch, Reference};
 use serde_json::{json, Value};
 
-use crate::grating::{averaged_unit_cell, material_fresnel, RigorousCell, DEFAULT_MATERIAL};
+use crate::grating::{averaged_unit_cell_at, material_fresnel, RigorousCell, DEFAULT_MATERIAL};
 use crate::model::{spectral_setup, taylor_terms, ModelOptions};
 use crate::report::{with_progress, Report};
 use crate::surface::{Source, SurfaceOptions};
@@ -472,10 +472,10 @@ pub fn scalar_error_of_scan(
     let patch = source.patch(surface, &crate::report::Quiet)?;
     // A scan with a period: one that carries a share of the height variance (a patch of one period, or a
     // random surface, has none worth averaging).
-    if crate::surface::dominant_period(&patch).is_none_or(|p| p.power < MIN_PERIOD_SHARE) {
+    let Some(peak) = crate::surface::dominant_period(&patch).filter(|p| p.power >= MIN_PERIOD_SHARE) else {
         return Ok(None);
-    }
-    let Some((cell, d, phi)) = averaged_unit_cell(&patch) else { return Ok(None) };
+    };
+    let Some((cell, d, phi)) = averaged_unit_cell_at(&patch, &peak) else { return Ok(None) };
     let material = material.unwrap_or(SCAN_MATERIAL).to_string();
     let cell = Source::Patch { patch: cell, name: format!("{} (averaged period)", source.name()) };
     let opts = GratingOptions {

@@ -94,9 +94,9 @@ pub fn brdf_map(
         .into_par_iter()
         .map(|row| {
             let out = (0..size)
-                .map(|col| match pixel_mean(col, row, size, subsamples, &xyz) {
-                    Ok(v) => v,
-                    Err(never) => match never {},
+                .map(|col| {
+                    let Ok(v) = pixel_mean(col, row, size, subsamples, &xyz);
+                    v
                 })
                 .collect();
             progress(done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1);

@@ -36,6 +36,11 @@ use crate::image::Pixels;
 use crate::methods::{spectral_with_light, Method, MethodConfig};
 use crate::LabError;
 
+/// The most pixels on a side of the screen's image.
+pub const MAX_SIDE_PX: usize = 4096;
+/// The most view samples a pixel side.
+pub const MAX_SUBSAMPLES: usize = 16;
+
 /// The geometry of Figure 8.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LaserSetup {
@@ -82,11 +87,11 @@ impl LaserSetup {
         if !(pos(self.distance_nm) && pos(self.screen_width_nm) && pos(self.screen_height_nm)) {
             return Err(LabError::invalid("screen distance and size must be positive lengths"));
         }
-        if !(1..=4096).contains(&self.width_px) || !(1..=4096).contains(&self.height_px) {
-            return Err(LabError::invalid("the image must be 1–4096 pixels on each side"));
+        if !(1..=MAX_SIDE_PX).contains(&self.width_px) || !(1..=MAX_SIDE_PX).contains(&self.height_px) {
+            return Err(LabError::invalid(format!("the image must be 1–{MAX_SIDE_PX} pixels on each side")));
         }
-        if !(1..=16).contains(&self.subsamples) {
-            return Err(LabError::invalid("subsamples per pixel side must be 1–16"));
+        if !(1..=MAX_SUBSAMPLES).contains(&self.subsamples) {
+            return Err(LabError::invalid(format!("subsamples per pixel side must be 1–{MAX_SUBSAMPLES}")));
         }
         Ok(())
     }

@@ -228,10 +228,7 @@ pub fn percent_note(spectra: &[(String, Vec<f64>)], divide: &str) -> Option<Stri
     let (name, v) = spectra
         .iter()
         .flat_map(|(name, v)| v.iter().map(move |x| (name, *x)))
-        .fold(None, |best: Option<(&String, f64)>, (name, x)| match best {
-            Some((_, b)) if b >= x => best,
-            _ => Some((name, x)),
-        })
+        .max_by(|a, b| a.1.total_cmp(&b.1))
         .filter(|b| b.1 > PERCENT_ABOVE)?;
     Some(format!(
         "spectrum '{name}' reaches {v}, read as a reflectance of {:.0} %: if the values are percent, {divide}; the \

@@ -64,7 +64,7 @@ pub fn read(bytes: &[u8], side: Option<&Sidecar>, opts: &LoadOptions) -> Result<
                         ln + 1
                     )))
                 }
-                Err(_) if !header_seen && rows == 0 && values.is_empty() => {
+                Err(_) if !header_seen && values.is_empty() => {
                     // One header line of column names; a second would make any text a matrix of no rows.
                     header_seen = true;
                     break;
