@@ -217,6 +217,9 @@ pub struct Grating {
     /// With `--unit-cell auto`: the period (nm) and the orientation of its grating vector (degrees from +x)
     /// the cell was averaged along.
     pub averaged: Option<(f64, f64)>,
+    /// How the patch, taken whole as the cell, holds its strongest period; `None` with `--unit-cell auto` or
+    /// where the patch has no such period.
+    pub period_fit: Option<PeriodFit>,
     /// [`GratingOptions::orders_above`].
     pub orders_above: f64,
     pub answers: Vec<OrdersAt>,
@@ -268,29 +271,65 @@ pub fn period_fit(extent_nm: (f64, f64), period_nm: f64, orientation_deg: f64) -
 /// hold its period a whole number of times (a mismatch of an eighth of a period or more).
 pub const PERIOD_FIT_NOTE_BELOW: f64 = 0.95;
 
-/// The note for a patch taken as one unit cell whose strongest period — a grating's: at least a tenth of the
-/// height variance — does not tile it ([`period_fit`]); `None` where it does, or the patch has no such period.
-pub fn period_fit_note(patch: &iridis_diffraction::Patch) -> Option<String> {
-    let peak = crate::surface::dominant_period(patch).filter(|p| p.power >= 0.1)?;
-    let (x, y, share) = period_fit(patch.extent(), peak.period_nm, peak.orientation_deg);
-    if share >= PERIOD_FIT_NOTE_BELOW {
-        return None;
+/// A patch taken as one unit cell and its strongest period, a grating's (at least a tenth of the height
+/// variance): how many times the cell holds it and how much of each of its orders the cell keeps in one order
+/// ([`period_fit`]). In `iridis grating --json` as `unit_cell.period_fit`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PeriodFit {
+    pub period_nm: f64,
+    /// The grating vector's direction, degrees from +x.
+    pub orientation_deg: f64,
+    /// The period's share of the height variance (0–1).
+    pub variance_share: f64,
+    /// Periods across the cell along x and y.
+    pub cycles: (f64, f64),
+    /// The share of each of the period's orders in the nearest of the cell's orders (0–1; 1 where it tiles).
+    pub nearest_order_share: f64,
+}
+
+impl PeriodFit {
+    /// The fit of `patch`'s strongest period, or `None` where it has none that carries a tenth of the variance.
+    pub fn of(patch: &iridis_diffraction::Patch) -> Option<Self> {
+        let peak = crate::surface::dominant_period(patch).filter(|p| p.power >= 0.1)?;
+        let (x, y, share) = period_fit(patch.extent(), peak.period_nm, peak.orientation_deg);
+        Some(PeriodFit {
+            period_nm: peak.period_nm,
+            orientation_deg: peak.orientation_deg,
+            variance_share: peak.power,
+            cycles: (x, y),
+            nearest_order_share: share,
+        })
     }
-    let held = match (x >= 0.01, y >= 0.01) {
-        (true, true) => format!("{x:.2} times along x and {y:.2} along y"),
-        (false, true) => format!("{y:.2} times along y"),
-        _ => format!("{x:.2} times along x"),
-    };
-    Some(format!(
-        "the patch holds its strongest period ({:.1} nm along {:.1}°, {:.0} % of the height variance) {held}, not \
-         a whole number: as one unit cell it repeats with a step at its edge, and each of the period's orders \
-         falls between two of the cell's, the nearest taking about {:.0} % of its light; --unit-cell auto takes \
-         the period itself as the cell",
-        peak.period_nm,
-        peak.orientation_deg,
-        100.0 * peak.power,
-        100.0 * share
-    ))
+
+    /// The note where the period does not tile the cell (its orders keep less than [`PERIOD_FIT_NOTE_BELOW`]).
+    pub fn note(&self) -> Option<String> {
+        if self.nearest_order_share >= PERIOD_FIT_NOTE_BELOW {
+            return None;
+        }
+        let (x, y) = self.cycles;
+        let held = match (x >= 0.01, y >= 0.01) {
+            (true, true) => format!("{x:.2} times along x and {y:.2} along y"),
+            (false, true) => format!("{y:.2} times along y"),
+            _ => format!("{x:.2} times along x"),
+        };
+        Some(format!(
+            "the patch holds its strongest period ({:.1} nm along {:.1}°, {:.0} % of the height variance) {held}, \
+             not a whole number: as one unit cell it repeats with a step at its edge, and each of the period's \
+             orders falls between two of the cell's, the nearest taking about {:.0} % of its light; --unit-cell \
+             auto takes the period itself as the cell",
+            self.period_nm,
+            self.orientation_deg,
+            100.0 * self.variance_share,
+            100.0 * self.nearest_order_share
+        ))
+    }
+
+    /// `unit_cell.period_fit` of `iridis grating --json` (keys in docs/json.md).
+    pub fn to_json(&self) -> Value {
+        json!({"period_nm": self.period_nm, "orientation_deg": self.orientation_deg,
+               "variance_share": self.variance_share, "cycles_x": self.cycles.0, "cycles_y": self.cycles.1,
+               "nearest_order_share": self.nearest_order_share, "tiles": self.note().is_none()})
+    }
 }
 
 /// `--unit-cell auto`: the scan's strongest period as the unit cell, its profile averaged along the ridges
@@ -395,7 +434,10 @@ pub fn grating(
         averaged = Some((d, phi));
         let (s, c) = (-phi.to_radians()).sin_cos();
         l = [c * l[0] - s * l[1], s * l[0] + c * l[1], l[2]];
-    } else if let Some(note) = period_fit_note(&patch) {
+    }
+    // Only a patch taken whole as the cell can hold its period a fractional number of times.
+    let fit = if averaged.is_none() { PeriodFit::of(&patch) } else { None };
+    if let Some(note) = fit.and_then(|f| f.note()) {
         report.note(&note);
     }
     // Kirchhoff's unit cell keeps only the DFT bins this light's orders read (a large scan's memory); the
@@ -483,6 +525,7 @@ pub fn grating(
         light: opts.light,
         detector: opts.detector,
         averaged,
+        period_fit: fit,
         orders_above: opts.orders_above,
         answers: match averaged {
             Some((_, phi)) => answers.into_iter().map(|a| a.rotated(phi)).collect(),
@@ -727,7 +770,8 @@ impl Grating {
                               (Some(_), _) => "1-D, the scan's dominant period averaged along its ridges",
                               (None, Lines::AlongX) => "1-D along x", (None, Lines::AlongY) => "1-D along y",
                               (None, Lines::Crossed) => "crossed" },
-                          "orientation_deg": self.averaged.map_or(Value::Null, |(_, phi)| json!(phi))},
+                          "orientation_deg": self.averaged.map_or(Value::Null, |(_, phi)| json!(phi)),
+                          "period_fit": self.period_fit.as_ref().map(PeriodFit::to_json)},
             "light": {"theta_deg": deg(l[2].clamp(-1.0, 1.0).acos()), "phi_deg": deg(l[1].atan2(l[0])), "direction": l},
             "reflector": self.reflector,
             "polarised": self.polarised,

@@ -601,6 +601,43 @@ pub struct LaserRun {
     pub distance_nm: f64,
     /// The screen image (XYZ, row-major, `pixels²`).
     pub image: Vec<Option<Xyz>>,
+    /// How far apart the screen's view samples are against the light's lobes ([`ScreenSampling`]).
+    pub sampling: ScreenSampling,
+}
+
+/// The laser screen's view samples against the width of the light's lobes ([`screen_misses_lobes`]): in
+/// `iridis experiment laser --json` as `sampling`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ScreenSampling {
+    /// The angle between neighbouring view samples at the screen's centre ([`LaserSetup::sample_spacing_rad`]).
+    pub spacing_rad: f64,
+    /// The coherence length behind the lobes' width ([`crate::brdf::lobe_coherence_nm`]); `None` for a method
+    /// without a coherence window.
+    pub coherence_nm: Option<f64>,
+    /// σ of the narrowest lobe (380 nm), radians ([`iridis_diffraction::spectral::lobe_sigma_uv`]).
+    pub lobe_sigma_rad: Option<f64>,
+    /// How many times closer the samples must be to sample every lobe; `None` where they do
+    /// ([`crate::brdf::lobe_shortfall`]).
+    pub finer_by: Option<f64>,
+}
+
+impl ScreenSampling {
+    pub fn of(setup: &LaserSetup, coherence_nm: Option<f64>) -> Self {
+        let spacing_rad = setup.sample_spacing_rad();
+        ScreenSampling {
+            spacing_rad,
+            coherence_nm,
+            lobe_sigma_rad: coherence_nm.map(|c| iridis_diffraction::spectral::lobe_sigma_uv(380.0, c)),
+            finer_by: coherence_nm.and_then(|c| crate::brdf::lobe_shortfall(spacing_rad, c)).map(|s| s.finer_by),
+        }
+    }
+
+    /// `sampling` of `iridis experiment laser --json` (keys in docs/json.md).
+    pub fn to_json(&self) -> Value {
+        json!({"view_spacing_mrad": self.spacing_rad * 1e3, "lobe_sigma_mrad": self.lobe_sigma_rad.map(|s| s * 1e3),
+               "lobe_coherence_um": self.coherence_nm.map(|c| c / 1000.0),
+               "samples_per_lobe_sigma": crate::brdf::SAMPLES_PER_LOBE_SIGMA, "finer_by": self.finer_by})
+    }
 }
 
 /// The laser experiment of the paper's Figure 8: the screen image a camera records, one PNG per exposure.
@@ -654,7 +691,8 @@ pub fn laser_run(source: &Source, lab: &LabOptions, req: &LaserRequest, report: 
     config.table_path = req.table_path.clone();
     let b = workbench_from(source, &model, config, report)?;
     let e = evaluator(&b, method, report)?;
-    if let Some(w) = crate::brdf::lobe_coherence_nm(e.as_ref()).and_then(|c| screen_misses_lobes(setup, c)) {
+    let sampling = ScreenSampling::of(setup, crate::brdf::lobe_coherence_nm(e.as_ref()));
+    if let Some(w) = sampling.coherence_nm.and_then(|c| screen_misses_lobes(setup, c)) {
         report.warn(&w);
     }
     if let (Some(path), Some(lookup)) = (&req.save_table, e.as_lookup()) {
@@ -708,6 +746,7 @@ pub fn laser_run(source: &Source, lab: &LabOptions, req: &LaserRequest, report: 
         screen_nm: screen,
         distance_nm: setup.distance_nm,
         image: img,
+        sampling,
     })
 }
 
@@ -744,7 +783,8 @@ impl LaserRun {
     pub fn to_json(&self) -> Value {
         json!({"surface": self.surface, "method": self.method.name(), "images": self.images,
             "coating": self.coating, "gold_mirror_relative_brightness": self.scale, "max_y": self.max_y,
-            "pixels": self.pixels, "screen_mm": self.screen_nm / 1e6, "distance_mm": self.distance_nm / 1e6})
+            "pixels": self.pixels, "screen_mm": self.screen_nm / 1e6, "distance_mm": self.distance_nm / 1e6,
+            "sampling": self.sampling.to_json()})
     }
 
     /// The line `iridis experiment laser` prints.

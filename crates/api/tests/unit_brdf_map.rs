@@ -78,6 +78,16 @@ fn the_laser_screen_says_how_many_samples_its_lobes_need() {
     // At 100 µm, 6σ = 10.3 mrad: 9.1 samples a pixel, so 10.
     let w = screen_misses_lobes(&small, 100_000.0).unwrap();
     assert!(w.contains("--subsamples 10 or more"), "{w}");
+    // The same figures in --json (`sampling`): the spacing, σ, and how many times finer (18.3 / 3 = 6.09).
+    let s = iridis_api::lab_run::ScreenSampling::of(&small, Some(200_000.0));
+    let finer = spacing / (SAMPLES_PER_LOBE_SIGMA * sigma_uv(380.0, 200_000.0));
+    assert!((s.spacing_rad - spacing).abs() < 1e-15 && (s.finer_by.unwrap() - finer).abs() < 1e-12, "{s:?}");
+    assert!((s.to_json()["lobe_sigma_mrad"].as_f64().unwrap() - 1e3 * sigma_uv(380.0, 200_000.0)).abs() < 1e-12);
+    assert_eq!(iridis_api::lab_run::ScreenSampling::of(&setup, Some(65_000.0)).finer_by, None);
+    assert_eq!(
+        iridis_api::lab_run::ScreenSampling::of(&setup, None).to_json()["lobe_sigma_mrad"],
+        serde_json::Value::Null
+    );
 }
 
 /// `--subsamples k`: each pixel the mean of its k² view samples, i.e. the `size·k` map averaged over k × k

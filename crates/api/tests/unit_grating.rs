@@ -1,20 +1,20 @@
 //! The unit tests of src/grating.rs: how a patch taken as one unit cell holds its period, against the orders the
 //! scalar model computes for it.
 
-use iridis_api::grating::{grating, period_fit, GratingOptions};
+use iridis_api::grating::{grating, period_fit, GratingOptions, PeriodFit};
 use iridis_api::report::{Collect, Kind};
 use iridis_api::surface::Source;
 
 /// The unpolarised efficiencies of the positive orders (n = 0) of a 1 nm deep sine of period 1100 nm on a patch
-/// `size` wide, at normal incidence and 500 nm, with what the run noted.
-fn orders(size: &str) -> (Vec<(i64, f64)>, Vec<String>) {
+/// `size` wide, at normal incidence and 500 nm, with what the run noted and found of the period's fit.
+fn orders(size: &str) -> (Vec<(i64, f64)>, Vec<String>, PeriodFit) {
     let spec = format!("builtin:sine?size={size}&pixel=50nm&depth=1nm");
     let opts = GratingOptions { wavelengths_nm: vec![500.0], ..Default::default() };
     let said = Collect::default();
     let g = grating(&Source::Spec(spec), &Default::default(), &opts, &said).unwrap();
     let notes = said.take().into_iter().filter(|(k, _)| *k == Kind::Note).map(|(_, t)| t).collect();
     let positive = g.answers[0].orders.iter().filter(|o| o.n == 0 && o.m > 0).map(|o| (o.m, o.efficiency.unpolarized));
-    (positive.collect(), notes)
+    (positive.collect(), notes, g.period_fit.expect("a sine has a dominant period"))
 }
 
 /// A shallow grating's orders are the cell's Fourier coefficients of the sine: its +1 order spreads over the
@@ -26,15 +26,21 @@ fn a_period_that_does_not_tile_the_cell_spreads_its_orders_by_sinc_squared() {
     let delta = 8000.0f64 / 1100.0 - 7.0;
     let closed = ((std::f64::consts::PI * delta).sin() / (std::f64::consts::PI * delta)).powi(2);
     assert!((share - closed).abs() < 1e-12 && (share - 0.778).abs() < 1e-3, "{share}");
-    let (spread, notes) = orders("8um");
+    let (spread, notes, fit) = orders("8um");
     let total: f64 = spread.iter().map(|o| o.1).sum();
     let nearest = spread.iter().find(|o| o.0 == 7).unwrap().1;
     assert!((nearest / total - share).abs() < 0.005, "order 7 takes {} of the +1 light", nearest / total);
     assert!(notes.iter().any(|n| n.contains("7.27 times along x") && n.contains("about 78 %")), "{notes:?}");
-    let (tiled, notes) = orders("7.7um");
+    // The same figures in --json: the orders' measured share, the period found, the cycles across the cell.
+    let json = fit.to_json();
+    assert!((json["nearest_order_share"].as_f64().unwrap() - nearest / total).abs() < 0.005, "{json}");
+    assert!((json["period_nm"].as_f64().unwrap() - 1100.0).abs() < 1.0 && json["tiles"] == false, "{json}");
+    assert!((json["cycles_x"].as_f64().unwrap() - 8000.0 / 1100.0).abs() < 0.01, "{json}");
+    let (tiled, notes, fit) = orders("7.7um");
     let total: f64 = tiled.iter().map(|o| o.1).sum();
     assert!(tiled.iter().find(|o| o.0 == 7).unwrap().1 / total > 0.9999);
     assert!(!notes.iter().any(|n| n.contains("not a whole number")), "{notes:?}");
+    assert!(fit.to_json()["tiles"] == true && (fit.cycles.0 - 7.0).abs() < 0.01, "{fit:?}");
     // Along a diagonal both directions count: 1.5 periods along x and along y, sinc²(½) = 4/π² each, 0.164 in all.
     let (_, _, diagonal) = period_fit((3000.0, 3000.0), 1000.0 * 2f64.sqrt(), 45.0);
     assert!((diagonal - (4.0 / std::f64::consts::PI.powi(2)).powi(2)).abs() < 1e-9, "{diagonal}");

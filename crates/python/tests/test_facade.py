@@ -277,6 +277,18 @@ def test_evaluate_gives_the_brdf_in_per_steradian():
     close(q["brdf_per_sr"]["unpolarized"], expect, rtol=1e-9, atol=1e-14)
 
 
+def test_grating_says_how_the_patch_holds_its_period():
+    # 8 µm over a 1100 nm sine is 7.27 periods: taken as one cell, the nearest of the cell's orders keeps
+    # sinc²(0.27) of each of the sine's (numpy's normalised sinc); 7.7 µm holds 7 and keeps all.
+    g = diffraction.grating("builtin:sine?size=8um&pixel=50nm&depth=1nm", light=0.0, wavelengths_nm=500.0)
+    fit = g["unit_cell"]["period_fit"]
+    assert fit["cycles_x"] == pytest.approx(8000.0 / 1100.0, abs=0.01) and not fit["tiles"]
+    assert fit["nearest_order_share"] == pytest.approx(np.sinc(fit["cycles_x"] - 7.0) ** 2, rel=1e-9)
+    assert fit["nearest_order_share"] == pytest.approx(np.sinc(8000.0 / 1100.0 - 7.0) ** 2, abs=0.005)
+    g = diffraction.grating("builtin:sine?size=7.7um&pixel=50nm&depth=1nm", light=0.0, wavelengths_nm=500.0)
+    assert g["unit_cell"]["period_fit"]["tiles"]
+
+
 def test_grating_bad_input():
     with pytest.raises(ValueError, match="rigorous method needs the material"):
         diffraction.grating("builtin:sine?size=1100nm&pixel=10nm", light=0.1, wavelengths_nm=500.0,

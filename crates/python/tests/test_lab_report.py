@@ -108,6 +108,13 @@ def test_laser_mirror_reflection_hits_the_screen_centre(tmp_path):
     assert r["max_y"] == pytest.approx(float(y.max()), rel=1e-12)
     assert r["gold_mirror_relative_brightness"] == pytest.approx(1.0)
     assert (tmp_path / "screen.png").exists()
+    # The view samples against the lobes (`sampling`): 300 mm over 11 pixels at 100 mm; σ of the window's |G|² at
+    # 380 nm, λ/(2√2 π σ_s) with σ_s a quarter of the coherence length, and 6σ the most the samples may be apart.
+    s = r["sampling"]
+    assert s["view_spacing_mrad"] == pytest.approx(300.0 / 11 / 100.0 * 1e3, rel=1e-12)
+    sigma_mrad = 380.0 / (2.0 * math.sqrt(2.0) * math.pi * s["lobe_coherence_um"] * 1e3 / 4.0) * 1e3
+    assert s["lobe_sigma_mrad"] == pytest.approx(sigma_mrad, rel=1e-12)
+    assert s["finer_by"] == pytest.approx(s["view_spacing_mrad"] / (6.0 * sigma_mrad), rel=1e-12)
 
 
 def test_sweep_point_equals_the_comparison_at_that_value(tmp_path):
