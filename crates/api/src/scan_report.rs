@@ -242,7 +242,12 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
         };
         let coherence = coherence_nm.unwrap_or(iridis_surface::DEFAULT_COHERENCE_NM);
         let v = crate::surface_info::info_with_figures(&hf, &o.surface, 5, coherence, figures, r)?;
-        let w = crate::surface_info::info_warnings(&v);
+        // The reader's warnings as the later steps' loader says them ("SURFACE: …"), so that the report lists
+        // each once.
+        let w = crate::surface_info::info_warnings(&v)
+            .into_iter()
+            .map(|w| if hf.meta.warnings.contains(&w) { format!("{}: {w}", o.surface) } else { w })
+            .collect();
         Ok((answer(v, &args, inputs), w))
     })?;
     steps.push(st);

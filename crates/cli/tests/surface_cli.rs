@@ -719,6 +719,31 @@ fn report_of_a_grey_image_takes_its_max_height() {
     }
 }
 
+/// A reader's warning (a colour PNG's heights from its luma) is said by every step that loads the scan; the
+/// report lists it once, with the file's name, and the terminal shows it once.
+#[test]
+fn report_says_a_readers_warning_once() {
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("colour.png");
+    image::RgbImage::from_fn(64, 64, |x, _| {
+        let g = (127.5 + 127.5 * (std::f64::consts::TAU * x as f64 / 16.0).sin()) as u8;
+        image::Rgb([g, g / 2, 255 - g])
+    })
+    .save(&png)
+    .unwrap();
+    let (p, out) = (png.to_str().unwrap(), dir.path().join("report"));
+    let args = ["report", p, "-o", out.to_str().unwrap(), "--size", "16", "--no-testbench", "--pixel-size", "50nm"];
+    let run = iridis().args(args).args(["--max-height", "100nm"]).output().unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let log = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(log.matches("Rec. 709 luma").count(), 1, "{log}");
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    let luma: Vec<&str> =
+        r["warnings"].as_array().unwrap().iter().filter_map(|w| w.as_str()).filter(|w| w.contains("luma")).collect();
+    assert!(luma.len() == 1 && luma[0].starts_with(&format!("{p}: colour image")), "{luma:?}");
+}
+
 /// The accuracy bench reads a scan as every command does (it took built-in names and files that state their units
 /// only): the grey PNG with --max-height gives the numbers of the same heights as .npy (`surface convert`), and
 /// its default coherence (a quarter of the patch) keeps the window inside the patch, where the periodic and the
