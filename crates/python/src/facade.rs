@@ -7,6 +7,15 @@ use iridis_api::report::{Collect, Kind};
 use pyo3::exceptions::{PyOSError, PyUserWarning, PyValueError};
 use pyo3::prelude::*;
 
+// A keyword argument no option of the call reads: a TypeError, as Python's own, with `keyword` (the name given)
+// and `known` (the names the call reads) as attributes.
+pyo3::create_exception!(_native, UnexpectedKeyword, pyo3::exceptions::PyTypeError);
+
+/// Adds the module's exception classes (`_native.UnexpectedKeyword`).
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("UnexpectedKeyword", m.py().get_type::<UnexpectedKeyword>())
+}
+
 /// Whether an error comes from reading a file (the cause chain holds an I/O error).
 fn is_io(e: &anyhow::Error) -> bool {
     e.chain().any(|c| {
@@ -230,7 +239,7 @@ impl<'py> Options<'py> {
         Ok((fresnel, convention, self.bool("shadowing")?.unwrap_or(true)))
     }
 
-    /// Refuses options no one read.
+    /// Refuses options no one read ([`UnexpectedKeyword`]).
     pub fn finish(self) -> PyResult<()> {
         let Some(d) = &self.dict else { return Ok(()) };
         for k in d.keys() {
@@ -238,10 +247,16 @@ impl<'py> Options<'py> {
             if !self.used.contains(&k.as_str()) {
                 let mut known = self.used.clone();
                 known.sort_unstable();
-                return Err(pyo3::exceptions::PyTypeError::new_err(format!(
+                let e = UnexpectedKeyword::new_err(format!(
                     "unexpected keyword argument '{k}' (this call takes: {})",
                     known.join(", ")
-                )));
+                ));
+                // The name and the options as attributes: the Python wrapper (`_answer.keywords`) adds its own
+                // parameters and a did-you-mean without reading the message.
+                let value = e.value(d.py());
+                value.setattr("keyword", &k)?;
+                value.setattr("known", known)?;
+                return Err(e);
             }
         }
         Ok(())

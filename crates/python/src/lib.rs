@@ -36,6 +36,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     // Each binding module adds its functions and classes.
     let registers = [
+        facade::register,
         tmm::register,
         color::register,
         thinfilm::register,

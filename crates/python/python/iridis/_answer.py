@@ -9,9 +9,10 @@ import inspect
 import io
 import json
 import os
-import re
 
 import numpy as np
+
+from . import _native
 
 
 class Answer(dict):
@@ -45,12 +46,9 @@ def keywords(f):
     def call(*args, **kwargs):
         try:
             return f(*args, **kwargs)
-        except TypeError as e:
-            m = re.fullmatch(r"unexpected keyword argument '(.+)' \(this call takes: (.*)\)", str(e))
-            if m is None:
-                raise
-            name = m.group(1)
-            known = sorted(set(own) | {o for o in m.group(2).split(", ") if o})
+        except _native.UnexpectedKeyword as e:
+            name = e.keyword
+            known = sorted(set(own) | set(e.known))
             near = difflib.get_close_matches(name, known, n=1, cutoff=0.6)
             hint = f"did you mean {near[0]}? " if near else ""
             raise TypeError(f"{f.__name__}() got an unexpected keyword argument '{name}' ({hint}it takes: "
