@@ -56,7 +56,8 @@ pub struct MapRequest {
     /// Also the BRDF f_r in sr⁻¹ per pixel.
     pub per_sr: bool,
     /// View samples a pixel side (1–16; 1: the pixel's centre): each pixel the mean of `subsamples²` directions
-    /// across it, so that lobes narrower than a pixel are caught ([`lobes_between_pixels`]). CPU only.
+    /// across it, so that lobes narrower than a pixel are caught ([`lobes_between_pixels`]). On the GPU, its map
+    /// `subsamples` times the size averaged over blocks ([`iridis_diffraction::map::block_mean`]).
     pub subsamples: usize,
 }
 
@@ -134,11 +135,14 @@ pub fn check_size(size: usize) -> Result<()> {
     check_size_of("--size", size)
 }
 
-/// A map's side given by `flag`: 8 to 8192 pixels (below 8 the disk of view directions has too few pixels to
-/// compare or show: a 1² map is the normal alone).
+/// The largest map side, in pixels (and the most view samples a side the GPU renders for `--subsamples`).
+pub const MAX_MAP_SIDE: usize = 8192;
+
+/// A map's side given by `flag`: 8 to [`MAX_MAP_SIDE`] pixels (below 8 the disk of view directions has too few
+/// pixels to compare or show: a 1² map is the normal alone).
 pub fn check_size_of(flag: &str, size: usize) -> Result<()> {
-    if !(8..=8192).contains(&size) {
-        bail!("{flag} {size} must be between 8 and 8192 pixels");
+    if !(8..=MAX_MAP_SIDE).contains(&size) {
+        bail!("{flag} {size} must be between 8 and {MAX_MAP_SIDE} pixels");
     }
     Ok(())
 }
@@ -162,7 +166,7 @@ pub fn lobes_between_pixels(size: usize, subsamples: usize, coherence_nm: f64) -
     // Samples a side the disk needs: as view samples a pixel (at most 16) at this size, or as pixels.
     let needed = (size * subsamples) as f64 * finer_by;
     let per_pixel = (subsamples as f64 * finer_by).ceil();
-    let remedy = match (per_pixel <= MAX_SUBSAMPLES as f64, needed <= 8192.0) {
+    let remedy = match (per_pixel <= MAX_SUBSAMPLES as f64, needed <= MAX_MAP_SIDE as f64) {
         (true, _) => format!(
             "--subsamples {per_pixel:.0} (each pixel the mean of {per_pixel:.0}² directions across it) or a map of \
              {:.0}² pixels samples every lobe",
@@ -192,6 +196,15 @@ pub fn warn_lobes_between_pixels(e: &dyn Evaluator, size: usize, subsamples: usi
 fn warn_lobes_at(size: usize, subsamples: usize, coherence_nm: Option<f64>, report: &dyn Report) {
     if let Some(w) = coherence_nm.and_then(|c| lobes_between_pixels(size, subsamples, c)) {
         report.warn(&w);
+    }
+}
+
+/// ", 4² view samples a pixel" for a map of `subsamples` > 1, for the line that says what was made.
+fn samples_per_pixel(subsamples: usize) -> String {
+    if subsamples > 1 {
+        format!(", {subsamples}² view samples a pixel")
+    } else {
+        String::new()
     }
 }
 
@@ -238,8 +251,14 @@ pub fn compute(r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) ->
         if r.method == RIGOROUS {
             bail!("the rigorous BRDF runs on the CPU: leave out --gpu");
         }
-        if r.subsamples > 1 {
-            bail!("--subsamples averages view samples in the CPU's map: leave out --gpu (or --subsamples)");
+        if r.size * r.subsamples > MAX_MAP_SIDE {
+            bail!(
+                "--gpu with --size {} and --subsamples {} renders a map of {}² view samples, more than the \
+                 {MAX_MAP_SIDE}² it takes: lower one of them",
+                r.size,
+                r.subsamples,
+                r.size * r.subsamples
+            );
         }
         if r.auto_exposure || files.is_some_and(|f| f.plot.is_some()) {
             bail!("--auto-exposure and --plot are made on the CPU's map: leave out --gpu (or give --exposure)");
@@ -294,10 +313,11 @@ pub fn compute(r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) ->
         }
     }
     let how = format!(
-        "{} map, {}², {total:.2} s in all: {prepared:.2} s to load and prepare, {secs:.2} s for the map, {:.0} \
+        "{} map, {}²{}, {total:.2} s in all: {prepared:.2} s to load and prepare, {secs:.2} s for the map, {:.0} \
          pixels/s",
         e.name(),
         r.size,
+        samples_per_pixel(r.subsamples),
         (r.size * r.size) as f64 / secs.max(1e-9)
     );
     Ok(BrdfMap {
@@ -343,14 +363,17 @@ fn gpu_map(r: &MapRequest, report: &dyn Report) -> Result<BrdfMap> {
         let gt = e.as_ground_truth().context("internal: a ground-truth method without a ground truth")?;
         let gpu = crate::gpu::open()?;
         let t = std::time::Instant::now();
-        let xyz = with_progress(report, (r.size * r.size) as u64, &format!("{} map (GPU)", e.name()), |p| {
-            iridis_gpu::ground_truth_map(&gpu, gt, r.wi, r.size, p)
+        let side = r.size * r.subsamples;
+        let fine = with_progress(report, (side * side) as u64, &format!("{} map (GPU)", e.name()), |p| {
+            iridis_gpu::ground_truth_map(&gpu, gt, r.wi, side, p)
         })?;
+        let xyz = iridis_diffraction::map::block_mean(&fine, side, r.subsamples);
         let secs = t.elapsed().as_secs_f64();
         let how = format!(
-            "{} map on the GPU, {}², {:.2} s in all, of which the map {secs:.2} s on {}",
+            "{} map on the GPU, {}²{}, {:.2} s in all, of which the map {secs:.2} s on {}",
             e.name(),
             r.size,
+            samples_per_pixel(r.subsamples),
             start.elapsed().as_secs_f64(),
             gpu.adapter_name()
         );
@@ -377,18 +400,21 @@ fn gpu_map(r: &MapRequest, report: &dyn Report) -> Result<BrdfMap> {
     let gpu = crate::gpu::open()?;
     let table = crate::model::lookup_table(Some(&gpu), &r.input, &model, r.grid.params()?, &r.surface, report)?;
     let coherence_nm = Some(table.meta.coherence_nm);
-    warn_lobes_at(r.size, 1, coherence_nm, report);
+    warn_lobes_at(r.size, r.subsamples, coherence_nm, report);
+    let side = r.size * r.subsamples;
     let map =
-        crate::gpu::lookup_map(&gpu, &table, fresnel, r.shadowing, r.convention, table_encoding, r.wi, r.size, tone)?;
+        crate::gpu::lookup_map(&gpu, &table, fresnel, r.shadowing, r.convention, table_encoding, r.wi, side, tone)?;
     let how = format!(
-        "lookup map on the GPU, {}², table in {}, {:.2} s in all, of which the map {:.2} ms on {}",
+        "lookup map on the GPU, {}²{}, table in {}, {:.2} s in all, of which the map {:.2} ms on {}",
         r.size,
+        samples_per_pixel(r.subsamples),
         table_encoding.name(),
         start.elapsed().as_secs_f64(),
         map.map_seconds * 1e3,
         map.adapter
     );
-    Ok(BrdfMap { xyz: map.output.xyz, per_sr: None, size: r.size, tone, method: "lookup".into(), coherence_nm, how })
+    let xyz = iridis_diffraction::map::block_mean(&map.output.xyz, side, r.subsamples);
+    Ok(BrdfMap { xyz, per_sr: None, size: r.size, tone, method: "lookup".into(), coherence_nm, how })
 }
 
 /// `iridis brdf-map`: the map computed and its files written into the run's output set; returns the line

@@ -91,7 +91,7 @@ fn the_laser_screen_says_how_many_samples_its_lobes_need() {
 }
 
 /// `--subsamples k`: each pixel the mean of its k² view samples, i.e. the `size·k` map averaged over k × k
-/// blocks (the samples are that map's pixel centres) — to rounding; so the 32² map of the 8 µm sine, black at one
+/// blocks (the samples are that map's pixel centres), to the bit; so the 32² map of the 8 µm sine, black at one
 /// sample a pixel, holds the 128² map's light.
 #[test]
 fn a_subsampled_map_is_the_finer_map_averaged_over_blocks() {
@@ -113,4 +113,6 @@ fn a_subsampled_map_is_the_finer_map_averaged_over_blocks() {
     let brightest = fine.iter().map(|p| p.y).fold(0.0, f64::max);
     assert!(worst <= 1e-12 * brightest, "worst {worst} of {brightest}");
     assert!(coarse.iter().map(|p| p.y).fold(0.0, f64::max) > 0.05 * brightest);
+    // The GPU's subsampled maps are its finer map through `block_mean`: the same numbers as the CPU's own sums.
+    assert!(coarse == iridis_diffraction::map::block_mean(&fine, 128, 4));
 }

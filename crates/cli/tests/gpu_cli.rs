@@ -184,6 +184,17 @@ fn brdf_map_on_the_gpu_matches_the_cpu_image() {
     assert_eq!(a.len(), 80 * 80);
     // The map is lit, so the comparison is not between two black images.
     assert!(a.iter().filter(|l| l.l > 20.0).count() > 200);
+    // --subsamples: the GPU's 80² map averaged over 2 × 2 blocks against the CPU's 2² view samples a pixel.
+    for (png, extra) in [(&cpu, None), (&gpu, Some("--gpu"))] {
+        let p = png.display().to_string();
+        let mut args = vec!["brdf-map", &table, "--incidence", "20deg,30deg", "--size", "40", "--subsamples", "2"];
+        args.extend(["--exposure", "1500", "-o", &p]);
+        args.extend(extra);
+        let out = iridis(&args);
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    }
+    let a = assert_gpu_png_matches_cpu("brdf-map --gpu --subsamples 2 vs CPU (PNG)", &cpu, &gpu);
+    assert!(a.len() == 40 * 40 && a.iter().filter(|l| l.l > 20.0).count() > 50);
 }
 
 #[test]

@@ -79,6 +79,29 @@ pub fn brdf_map_per_sr(
     Ok(rows.into_iter().flatten().collect())
 }
 
+/// The map of `size / k` pixels a side whose pixels are the means of `k × k` blocks of the `size`² map `fine`
+/// (row-major): what [`brdf_map`] computes with `k` view samples a pixel, from a map computed elsewhere (the GPU's)
+/// at `k` times the size. The sums run in [`pixel_mean`]'s order, so the two agree to the bit.
+pub fn block_mean(fine: &[Xyz], size: usize, k: usize) -> Vec<Xyz> {
+    assert!(k >= 1 && size.is_multiple_of(k) && fine.len() == size * size, "a {size}² map in {k} × {k} blocks");
+    let coarse = size / k;
+    let n = (k * k) as f64;
+    let mut out = Vec::with_capacity(coarse * coarse);
+    for row in 0..coarse {
+        for col in 0..coarse {
+            let mut sum = [0.0; 3];
+            for r in 0..k {
+                for c in 0..k {
+                    let v = fine[(row * k + r) * size + col * k + c];
+                    sum = [sum[0] + v.x, sum[1] + v.y, sum[2] + v.z];
+                }
+            }
+            out.push(Xyz::new(sum[0] / n, sum[1] / n, sum[2] / n));
+        }
+    }
+    out
+}
+
 /// XYZ per pixel, row-major, row 0 at the top, each pixel the mean of its `subsamples × subsamples` view
 /// samples (1: its centre). `progress(rows_done)` is called as rows finish.
 pub fn brdf_map(

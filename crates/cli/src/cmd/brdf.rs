@@ -114,7 +114,8 @@ pub struct BrdfMapArgs {
     #[arg(long, default_value_t = 512)]
     pub size: usize,
     /// View samples a pixel side (1–16): each pixel the mean of N² directions across it, so that lobes narrower
-    /// than a pixel still show (a small map of a grating); 1 samples the pixel's centre. CPU only.
+    /// than a pixel still show (a small map of a grating); 1 samples the pixel's centre. With --gpu, the map of
+    /// N times the size averaged over N × N blocks (the same numbers).
     #[arg(long, default_value_t = 1, value_name = "N")]
     pub subsamples: usize,
     /// Exposure in RU (1 RU: a normal-incidence mirror just saturates white).

@@ -117,7 +117,8 @@ def brdf_map(source, incidence=(0.0, 0.0), size=256, method=None, per_sr=False, 
     ``"cheb12"`` by default; a ValueError naming the driver to install when there is no adapter); ``f32=True``
     evaluates the lookup sum in f32. Those take :func:`brdf_map_run`'s path, the CLI's own call. ``subsamples``
     (1–16): each pixel the mean of ``subsamples²`` view directions across it (``--subsamples``), so that lobes
-    narrower than a pixel still show; a map too coarse for its lobes says so in a warning.
+    narrower than a pixel still show (with ``gpu=True``, the GPU's map ``subsamples`` times the size averaged over
+    blocks); a map too coarse for its lobes says so in a warning.
     """
     if gpu or options.get("f32") or options.get("table_precision") is not None:
         out = brdf_map_run(source, incidence, size, method or "lookup", per_sr=per_sr, gpu=gpu,
