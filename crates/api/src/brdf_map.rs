@@ -260,10 +260,9 @@ pub fn compute(r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) ->
                 r.size * r.subsamples
             );
         }
-        if r.auto_exposure || files.is_some_and(|f| f.plot.is_some()) {
-            bail!("--auto-exposure and --plot are made on the CPU's map: leave out --gpu (or give --exposure)");
-        }
-        return gpu_map(r, report);
+        let mut map = gpu_map(r, report)?;
+        map.tone.exposure_ru = exposure_for(&map.xyz, r, report);
+        return Ok(map);
     }
     if r.table_precision.is_some() {
         bail!("--table-precision chooses how the GPU stores the lookup table: add --gpu (the CPU evaluates the f64 table)");
@@ -296,22 +295,7 @@ pub fn compute(r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) ->
         if r.per_sr { Some(render_map_per_sr(e.as_ref(), &model, r.wi, r.size, r.subsamples, report)?) } else { None };
     let total = start.elapsed().as_secs_f64();
     let secs = total - prepared;
-    let mut exposure = r.exposure_ru;
-    if r.auto_exposure {
-        match auto_exposure(&xyz, r.size) {
-            Some(auto) => {
-                exposure = auto.exposure_ru;
-                report.note(&format!(
-                    "exposure {:.4} RU, chosen from the map (its 99th-percentile lit pixel is white): {:.2} % of \
-                     the disk's pixels clipped, {:.2} % lit",
-                    exposure,
-                    100.0 * auto.clipped_share,
-                    100.0 * auto.lit_share
-                ));
-            }
-            None => report.warn(&black_map(exposure)),
-        }
-    }
+    let exposure = exposure_for(&xyz, r, report);
     let how = format!(
         "{} map, {}²{}, {total:.2} s in all: {prepared:.2} s to load and prepare, {secs:.2} s for the map, {:.0} \
          pixels/s",
@@ -329,6 +313,30 @@ pub fn compute(r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) ->
         coherence_nm: e.coherence_nm(),
         how,
     })
+}
+
+/// The image's exposure: the one given, or with `--auto-exposure` the one [`auto_exposure`] chooses from the
+/// map (said in a note; a black map keeps the one given, with a warning).
+fn exposure_for(xyz: &[Xyz], r: &MapRequest, report: &dyn Report) -> f64 {
+    if !r.auto_exposure {
+        return r.exposure_ru;
+    }
+    match auto_exposure(xyz, r.size) {
+        Some(auto) => {
+            report.note(&format!(
+                "exposure {:.4} RU, chosen from the map (its 99th-percentile lit pixel is white): {:.2} % of the \
+                 disk's pixels clipped, {:.2} % lit",
+                auto.exposure_ru,
+                100.0 * auto.clipped_share,
+                100.0 * auto.lit_share
+            ));
+            auto.exposure_ru
+        }
+        None => {
+            report.warn(&black_map(r.exposure_ru));
+            r.exposure_ru
+        }
+    }
 }
 
 /// The lookup method or a ground truth on the GPU: the image is tone-mapped on the CPU from the GPU's XYZ, so

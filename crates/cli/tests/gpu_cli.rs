@@ -195,6 +195,22 @@ fn brdf_map_on_the_gpu_matches_the_cpu_image() {
     }
     let a = assert_gpu_png_matches_cpu("brdf-map --gpu --subsamples 2 vs CPU (PNG)", &cpu, &gpu);
     assert!(a.len() == 40 * 40 && a.iter().filter(|l| l.l > 20.0).count() > 50);
+    // --auto-exposure and --plot from the GPU's map (they were refused with --gpu): the exposure the CPU's map
+    // chooses, to the GPU's f32, and the figure written.
+    let chosen = |extra: Option<&str>| {
+        let (plot, png) = (dir.path().join("plot.png"), dir.path().join("auto.png"));
+        let (p, o) = (plot.display().to_string(), png.display().to_string());
+        let mut args = vec!["brdf-map", &table, "--incidence", "20deg,30deg", "--size", "40", "--auto-exposure"];
+        args.extend(["--plot", &p, "-o", &o]);
+        args.extend(extra);
+        let out = iridis(&args);
+        let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+        assert!(out.status.success() && plot.exists() && png.exists(), "{stderr}");
+        let line = stderr.lines().find(|l| l.contains("chosen from the map")).unwrap_or_else(|| panic!("{stderr}"));
+        line.split_once("exposure ").unwrap().1.split(' ').next().unwrap().parse::<f64>().unwrap()
+    };
+    let (on_cpu, on_gpu) = (chosen(None), chosen(Some("--gpu")));
+    assert!((on_gpu / on_cpu - 1.0).abs() < 1e-3, "auto exposure {on_gpu} RU on the GPU, {on_cpu} on the CPU");
 }
 
 #[test]
