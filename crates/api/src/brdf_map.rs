@@ -260,6 +260,13 @@ pub fn compute(r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) ->
                 r.size * r.subsamples
             );
         }
+        if r.per_sr {
+            // The GPU's maps are XYZ integrated over λ; f_r(λ) in sr⁻¹ is the CPU's (it wrote no file before).
+            bail!(
+                "--brdf writes f_r in sr⁻¹, which the CPU computes from f_r(λ) and the GPU's maps do not give: leave \
+                 out --gpu (with --method reference, ground-truth or rigorous)"
+            );
+        }
         let mut map = gpu_map(r, report)?;
         map.tone.exposure_ru = exposure_for(&map.xyz, r, report);
         return Ok(map);

@@ -276,6 +276,21 @@ fn gpu_options_are_checked() {
         &["brdf-map", "builtin:blazed", "--gpu", "--fresnel", "stack:air | water 300nm | air", "-o", "/tmp/x.png"],
         &["--gpu", "λ"],
     );
+    // --brdf with --gpu wrote no file and said nothing.
+    assert_fails(
+        &[
+            "brdf-map",
+            "builtin:blazed",
+            "--gpu",
+            "--method",
+            "ground-truth",
+            "-o",
+            "/tmp/x.png",
+            "--brdf",
+            "/tmp/f.npy",
+        ],
+        &["--brdf", "sr⁻¹", "leave out --gpu"],
+    );
     assert_fails(&["view", "no_such_scene.toml"], &["no_such_scene.toml", "does not exist"]);
     assert_fails(&["view", "examples/gold_sphere.toml", "--check", "/tmp/shot.jpg"], &[".png"]);
     // What only shapes a SURFACE's table is refused with a scene (it would be ignored), before a window opens.
