@@ -189,3 +189,8 @@ def test_gpu_lookup_map_matches_the_cpu():
     cpu = diffraction.brdf_map_run(spec, size=16, method="lookup", uv_resolution=31)["xyz"]
     assert gpu.shape == cpu.shape == (16, 16, 3) and cpu.max() > 0
     assert float(np.max(np.abs(xyz_to_srgb(gpu, exposure=1500) - xyz_to_srgb(cpu, exposure=1500)))) < 0.01
+    # subsamples=2: the GPU's 16² map averaged over 2 × 2 blocks against the CPU's 2² view samples a pixel.
+    gpu = diffraction.brdf_map(spec, size=8, method="lookup", gpu=True, uv_resolution=31, subsamples=2)
+    cpu = diffraction.brdf_map_run(spec, size=8, method="lookup", uv_resolution=31, subsamples=2)["xyz"]
+    assert gpu.shape == cpu.shape == (8, 8, 3) and cpu.max() > 0
+    assert float(np.max(np.abs(xyz_to_srgb(gpu, exposure=1500) - xyz_to_srgb(cpu, exposure=1500)))) < 0.01
