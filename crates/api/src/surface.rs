@@ -165,19 +165,26 @@ pub fn info(hf: &iridis_surface::HeightField, n_peaks: usize, coherence_nm: f64)
     warnings.extend(hf.physics_warnings(coherence_nm));
     let mut notes = hf.meta.notes.clone();
     notes.extend(hf.coherence_note(coherence_nm));
-    if peaks.is_empty() {
-        // Say why none was found when the structure is there but too long for the patch.
-        let long = iridis_surface::analysis::long_period_share(hf, &opts);
-        if long > 0.5 {
-            notes.push(format!(
-                "no period found, but {:.0} % of the height variance lies in structure longer than {:.0} % of the \
-                 patch (fewer than {:.0} cycles across it), too few repeats to read a period from: scan a larger \
-                 area to measure it",
-                100.0 * long,
-                100.0 * opts.max_period_fraction,
-                1.0 / opts.max_period_fraction
-            ));
-        }
+    // Say where the structure is there but too long for the patch: no period found, or the periods listed carry
+    // less of the variance than it (a 2500 nm grating on an 8 µm patch listed its 1250 nm harmonic alone).
+    let long = iridis_surface::analysis::long_period_share(hf, &opts);
+    let (too_long, cycles) = (100.0 * opts.max_period_fraction, 1.0 / opts.max_period_fraction);
+    match peaks.first() {
+        None if long > 0.5 => notes.push(format!(
+            "no period found, but {:.0} % of the height variance lies in structure longer than {too_long:.0} % of \
+             the patch (fewer than {cycles:.0} cycles across it), too few repeats to read a period from: scan a \
+             larger area to measure it",
+            100.0 * long,
+        )),
+        Some(p) if long > p.power => notes.push(format!(
+            "{:.0} % of the height variance lies in structure longer than {too_long:.0} % of the patch (fewer than \
+             {cycles:.0} cycles across it), more than the strongest period listed carries ({:.0} %): too few \
+             repeats to read a period from, so the periods listed may be its harmonics; scan a larger area to \
+             measure it",
+            100.0 * long,
+            100.0 * p.power
+        )),
+        _ => {}
     }
     let levelled = iridis_surface::prep::level_plane(hf);
     // The struct's own keys (Python's `Surface.roughness()` gives the same), and the levelling they follow.

@@ -14,5 +14,6 @@ mod unit_output;
 mod unit_report;
 mod unit_rigorous_brdf;
 mod unit_scene;
+mod unit_surface;
 mod unit_unit_cell;
 mod vision_directions;
