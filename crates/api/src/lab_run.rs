@@ -680,6 +680,13 @@ pub fn laser_run(source: &Source, lab: &LabOptions, req: &LaserRequest, report: 
     crate::output::declare_opt("--save-table", req.save_table.as_deref(), &["npz"])?;
     let spectrum = crate::lab::beam_spectrum(req.spectrum.as_deref(), report)?;
     let coating = crate::lab::coating(&req.coating)?;
+    if coating.is_some() && lab.fresnel.trim() != crate::fresnel::DEFAULT_FRESNEL {
+        bail!(
+            "--fresnel {} would be ignored: the coating ({}) is the Fresnel term; --coating none takes --fresnel",
+            lab.fresnel.trim(),
+            req.coating
+        );
+    }
     let setup = &req.setup;
     let pixels = setup.pixels()?;
     let mut model = lab.clone();

@@ -431,6 +431,49 @@ fn experiment_laser_with_a_green_beam_on_gold() {
     assert!((dim - r_gold).abs() < 0.05 * r_gold, "brightest pixel dims by {dim:.4}, gold reflects {r_gold:.4}");
 }
 
+/// `--coating none` takes `--fresnel` (it was ignored: every Fresnel model gave the same screen). On a mirror (a
+/// 0.1 nm sine), the spot at the screen's centre is lit at 45°, and the relative reflectance carries the Fresnel
+/// factor against normal incidence: Schlick's `(R₀ + (1 − R₀)(1 − cos 45°)⁵)/R₀` = 1.0517 for n = 1.5 against a
+/// near-perfect conductor's 1. With a coating, which is the Fresnel term, `--fresnel` is refused.
+#[test]
+fn experiment_laser_uncoated_takes_the_fresnel_model() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("m.png");
+    let o = out.to_str().unwrap();
+    let s = "builtin:sine?size=4um&pixel=100nm&depth=0.1nm";
+    let max_y = |fresnel: &str| {
+        let j = json_of(&[
+            "experiment",
+            "laser",
+            s,
+            "--aperture",
+            "4um",
+            "--size",
+            "11",
+            "--subsamples",
+            "1",
+            "--coating",
+            "none",
+            "--fresnel",
+            fresnel,
+            "--exposures",
+            "1000",
+            "-o",
+            o,
+            "--json",
+        ]);
+        j["max_y"].as_f64().unwrap()
+    };
+    let r0 = 0.04f64;
+    let schlick = (r0 + (1.0 - r0) * (1.0 - 0.5f64.sqrt()).powi(5)) / r0;
+    let ratio = max_y("schlick:1.5") / max_y("index:0.0001+30i");
+    assert!((ratio - schlick).abs() < 1e-3, "{ratio} against Schlick's {schlick}");
+    assert_fails(
+        &["experiment", "laser", s, "--fresnel", "schlick:3", "-o", o],
+        &["--fresnel schlick:3", "--coating none"],
+    );
+}
+
 #[test]
 fn experiment_laser_refuses_bad_input_clearly() {
     let dir = tempfile::tempdir().unwrap();

@@ -239,7 +239,8 @@ impl FresnelSource for UnitFresnel {
 }
 
 /// Sets a method configuration up for the experiment: the beam's spectrum as the light, the coating in the
-/// light and in the Fresnel factor (see the module notes). Returns the factor that converts the resulting
+/// light and in the Fresnel factor (see the module notes); without a coating the configuration's Fresnel factor
+/// stays. Returns the factor that converts the resulting
 /// XYZ to RU of a perfect mirror under the same beam.
 pub fn configure(
     config: &mut MethodConfig,
@@ -264,11 +265,12 @@ pub fn configure(
     let scale = plain.integrate(&fine.iter().map(|&l| r0(l)).collect::<Vec<_>>()).y;
     config.spectral = spectral_with_light(&effective, observer, from, to, step)?;
     config.light = Some(effective);
-    let fresnel: Arc<dyn FresnelSource> = match (coating, method.is_spectral()) {
-        (Some(c), true) => Arc::new(CoatingShape(c.clone())),
-        _ => Arc::new(UnitFresnel),
-    };
-    config.shading.fresnel = fresnel;
+    // Uncoated, the surface keeps the configuration's Fresnel term (`--fresnel`).
+    match (coating, method.is_spectral()) {
+        (Some(c), true) => config.shading.fresnel = Arc::new(CoatingShape(c.clone())),
+        (Some(_), false) => config.shading.fresnel = Arc::new(UnitFresnel),
+        (None, _) => {}
+    }
     Ok(scale)
 }
 
