@@ -40,7 +40,7 @@ pub struct MapRequest {
     pub wi: [f64; 3],
     /// Pixels a side.
     pub size: usize,
-    /// Exposure in RU (also of `--exr`, whatever `auto_exposure` chooses for the image).
+    /// Exposure in RU (of the PNG, `--plot` and the EXR; `auto_exposure` chooses it from the map instead).
     pub exposure_ru: f64,
     /// Choose the image's exposure from the map.
     pub auto_exposure: bool,
@@ -74,7 +74,7 @@ impl MapRequest {
             shadowing: true,
             wi: [0.0, 0.0, 1.0],
             size: 512,
-            exposure_ru: 1500.0,
+            exposure_ru: DEFAULT_EXPOSURE_RU,
             auto_exposure: false,
             encoding: Encoding::Srgb,
             grid: TableGrid::default(),
@@ -110,7 +110,34 @@ impl MapFiles {
         crate::output::declare_opt("--plot", self.plot.as_deref(), &["png"])?;
         Ok(())
     }
+
+    /// Refuses an exposure or an encoding that no output of these files would use: `-o X.npy` holds XYZ as
+    /// computed, an EXR linear values at the exposure, a PNG (`-o`, `--plot`) the exposure and the encoding.
+    fn refuse_unused_tone(&self, r: &MapRequest) -> Result<()> {
+        let ext = crate::output::format_of("-o", &self.output, MAP_FORMATS)?;
+        let png = ext == "png" || self.plot.is_some();
+        let exposed = png || ext == "exr" || self.exr.is_some();
+        let what = format!("-o {} holds XYZ as computed", self.output.display());
+        if r.auto_exposure && !exposed {
+            bail!("--auto-exposure would be ignored: {what}; it chooses the exposure of -o X.png, --exr and --plot");
+        }
+        if r.exposure_ru != DEFAULT_EXPOSURE_RU && !exposed {
+            bail!("--exposure {} would be ignored: {what}; it scales -o X.png, --exr and --plot", r.exposure_ru);
+        }
+        if r.encoding != Encoding::Srgb && !png {
+            bail!(
+                "--gamma would be ignored: it encodes PNG images (-o X.png, --plot); -o {} holds linear values{}",
+                self.output.display(),
+                if self.exr.is_some() { ", as --exr does" } else { "" }
+            );
+        }
+        Ok(())
+    }
 }
+
+/// The exposure of a map's image when none is given (RU): a normal-incidence mirror is 1500 times white, so
+/// the diffracted colours of a scan, thousands of times fainter, show.
+pub const DEFAULT_EXPOSURE_RU: f64 = 1500.0;
 
 /// A computed map.
 #[derive(Debug, Clone)]
@@ -246,6 +273,7 @@ pub fn compute(r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) ->
     }
     if let Some(f) = files {
         f.declare()?;
+        f.refuse_unused_tone(r)?;
     }
     if r.gpu {
         if r.method == RIGOROUS {
@@ -436,7 +464,7 @@ fn gpu_map(r: &MapRequest, report: &dyn Report) -> Result<BrdfMap> {
 /// that says what was written.
 pub fn brdf_map(r: &MapRequest, files: &MapFiles, report: &dyn Report) -> Result<String> {
     let map = compute(r, Some(files), report)?;
-    write_map_outputs(files, &map.xyz, map.size, map.tone, r.exposure_ru)?;
+    write_map_outputs(files, &map.xyz, map.size, map.tone)?;
     if let (Some(path), Some(f)) = (&files.brdf, &map.per_sr) {
         write_xyz_npy(path, f, map.size)?;
         report.note(&format!(
@@ -465,7 +493,8 @@ pub fn map_to_rgb8(xyz: &[Xyz], tone: ToneMap) -> Vec<u8> {
 
 /// Writes a map's outputs: -o in the format its extension names, and --raw and --exr (linear sRGB at
 /// `exposure_ru`).
-pub fn write_map_outputs(f: &MapFiles, xyz: &[Xyz], size: usize, tone: ToneMap, exposure_ru: f64) -> Result<()> {
+pub fn write_map_outputs(f: &MapFiles, xyz: &[Xyz], size: usize, tone: ToneMap) -> Result<()> {
+    let exposure_ru = tone.exposure_ru;
     let ext = crate::output::format_of("-o", &f.output, MAP_FORMATS)?;
     match ext.as_str() {
         "exr" => write_exr(&f.output, xyz, size, exposure_ru)?,

@@ -220,6 +220,48 @@ fn two_angle_incidence_gamma_and_exr() {
     assert!(ymax > 0.5, "the specular peak should be bright: {ymax}");
 }
 
+/// `--auto-exposure` sets the exposure of every output that has one: the EXR beside the PNG is linear sRGB of
+/// XYZ times the exposure the note names (it stayed at the default 1500 RU). An exposure or an encoding that no
+/// output uses (`-o X.npy` holds XYZ as computed, an EXR linear values) is refused instead of dropped.
+#[test]
+fn auto_exposure_reaches_the_exr_and_unused_tone_options_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let exr = d.join("auto.exr");
+    let png = d.join("auto.png");
+    let raw = d.join("auto.npy");
+    let mut args = words(&format!("brdf-map {MIRROR} --coherence 3um --uv-resolution 61 --size 24 --auto-exposure"));
+    args.extend(
+        ["-o", png.to_str().unwrap(), "--raw", raw.to_str().unwrap(), "--exr", exr.to_str().unwrap()].map(String::from),
+    );
+    let out = iridis(&args);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    let note = stderr.lines().find(|l| l.contains("chosen from the map")).unwrap_or_else(|| panic!("{stderr}"));
+    let exposure: f64 = note.split_once("exposure ").unwrap().1.split(' ').next().unwrap().parse().unwrap();
+    let (xyz, e) = (raw_xyz(&raw), image::open(&exr).unwrap().to_rgb32f());
+    let ymax = xyz.iter().map(|p| p[1]).fold(0.0, f64::max);
+    for (k, p) in xyz.iter().enumerate() {
+        let [r, g, b] = e.get_pixel((k % 24) as u32, (k / 24) as u32).0.map(f64::from);
+        let lum = 0.2126 * r + 0.7152 * g + 0.0722 * b;
+        assert!((lum - exposure * p[1]).abs() <= 1e-3 * exposure * ymax, "pixel {k}: {lum} vs {}", exposure * p[1]);
+    }
+    let npy = d.join("m.npy");
+    let exr_out = d.join("m.exr");
+    let (n, x) = (npy.to_str().unwrap(), exr_out.to_str().unwrap());
+    for (out, extra, said) in [
+        (n, &["--gamma", "2.2"][..], &["--gamma would be ignored", "m.npy holds linear values"][..]),
+        (x, &["--gamma", "linear"], &["--gamma would be ignored", "m.exr holds linear values"]),
+        (n, &["--exposure", "10"], &["--exposure 10 would be ignored", "m.npy holds XYZ as computed"]),
+        (n, &["--auto-exposure"], &["--auto-exposure would be ignored", "--plot"]),
+    ] {
+        let mut args = vec!["brdf-map", MIRROR, "--coherence", "3um", "--size", "16", "-o", out];
+        args.extend(extra);
+        assert_fails(&args, said);
+    }
+    assert!(!npy.exists() && !exr_out.exists());
+}
+
 #[test]
 fn no_shadowing_only_ever_brightens() {
     // Cook–Torrance G ≤ 1: leaving it out never darkens a pixel, and at 60° incidence it must brighten some.

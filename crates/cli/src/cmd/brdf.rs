@@ -119,7 +119,7 @@ pub struct BrdfMapArgs {
     #[arg(long, default_value_t = 1, value_name = "N")]
     pub subsamples: usize,
     /// Exposure in RU (1 RU: a normal-incidence mirror just saturates white).
-    #[arg(long, default_value_t = 1500.0)]
+    #[arg(long, default_value_t = iridis_api::brdf_map::DEFAULT_EXPOSURE_RU)]
     pub exposure: f64,
     /// Choose the exposure from the map: its 99th-percentile lit pixel becomes white; the clipped share is
     /// said.
