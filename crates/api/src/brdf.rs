@@ -84,6 +84,10 @@ pub(crate) const ENERGY_CONSERVING_LOBES: &str = "energy-conserving lobes: each 
 const CONSERVE_RIGOROUS: &str = "--conserve-energy scales the scalar model's lobes; the rigorous method's lobes \
                                  carry Maxwell's efficiencies, which conserve energy: leave it out";
 
+/// Why `--conserve-energy` is refused with the lookup method (a table, or one built here, or the GPU's).
+pub(crate) const CONSERVE_LOOKUP: &str = "--conserve-energy scales each wavelength's lobes: the lookup method has \
+     none (its table integrates over λ in advance); use reference or ground-truth on the SURFACE";
+
 /// A finished table answers the lookup method only.
 fn require_lookup(method: &str) -> Result<()> {
     if method != "lookup" {
@@ -102,6 +106,19 @@ pub fn table_evaluator(
     report: &dyn Report,
 ) -> Result<Box<dyn Evaluator>> {
     require_lookup(method)?;
+    // What only a SURFACE's evaluators take (brdf-map refuses them up front; brdf eval and vision here).
+    if model.conserve_energy {
+        bail!(CONSERVE_LOOKUP);
+    }
+    if model.unit_cell_auto {
+        bail!(UNIT_CELL_AUTO_RIGOROUS);
+    }
+    if let Some(m) = &model.material {
+        bail!(
+            "--material {m} would be ignored: it is the rigorous method's medium (and that of the scalar model's \
+             error estimate on a scan), and a finished table has neither; give the SURFACE the table was made from"
+        );
+    }
     check_against_table(&table, model, report)?;
     Ok(Box::new(Lookup::new(table, shading, precision)?))
 }
@@ -152,6 +169,7 @@ pub fn evaluator_for(source: &Source, setup: EvaluatorSetup<'_>, report: &dyn Re
             let terms = Arc::new(taylor_terms_for_light(&patch, model, lambda_min, report)?);
             conserve(Box::new(Reference { terms, shading, spectral: spectral.clone() }), spectral)
         }
+        Method::Lookup if model.conserve_energy => bail!(CONSERVE_LOOKUP),
         _ if model.conserve_energy => bail!(
             "--conserve-energy scales each wavelength's lobes: the {method} method has none (lookup integrates over λ \
              in advance; the lab's models have no lobes of the patch's orders); use reference or ground-truth"
@@ -354,7 +372,16 @@ pub fn eval_point(
                 }
                 p.scalar_error = Some(e);
             }
-            Ok(None) => {}
+            Ok(None) => {
+                if let Some(m) = &model.material {
+                    report.note(&format!(
+                        "--material {m} is the medium of the scalar model's error estimate, which needs a dominant \
+                         period (one carrying {:.0} % of the height variance); this surface has none, so none was \
+                         made and --material was not used",
+                        100.0 * crate::rigorous_brdf::MIN_PERIOD_SHARE
+                    ));
+                }
+            }
             Err(err) => report.note(&format!("the scalar model's error on this scan could not be estimated: {err:#}")),
         }
     }

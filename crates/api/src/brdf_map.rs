@@ -288,6 +288,12 @@ pub fn compute(r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) ->
                 r.size * r.subsamples
             );
         }
+        if r.model.conserve_energy {
+            bail!(
+                "--conserve-energy scales each wavelength's lobes, which the CPU's reference and ground-truth methods \
+                 do and the GPU's maps do not: leave out --gpu"
+            );
+        }
         if r.per_sr {
             // The GPU's maps are XYZ integrated over λ; f_r(λ) in sr⁻¹ is the CPU's (it wrote no file before).
             bail!(

@@ -4,7 +4,7 @@
 
 use std::fmt::Write as _;
 
-use anyhow::Result;
+use anyhow::{bail, Result};
 use serde_json::Value;
 
 use crate::grating::{grating, scalar_error, Grating, GratingMethod, GratingOptions, ScalarError};
@@ -148,6 +148,12 @@ pub fn compare(
     opts: &GratingOptions,
     report: &dyn Report,
 ) -> Result<GratingComparison> {
+    if opts.detector.is_some() {
+        bail!(
+            "--detector would be ignored: --compare sets the two models' orders side by side; for what a detector \
+             sees, run without --compare, once with each --method"
+        );
+    }
     let scalar =
         grating(source, surface, &GratingOptions { method: GratingMethod::Kirchhoff, ..opts.clone() }, report)?;
     let rigorous = grating(

@@ -275,11 +275,13 @@ pub fn refuse_build_options_for_table(
 /// [`refuse_build_options_for_table`] for a table already loaded (`input` names it in the message).
 pub fn refuse_build_options(input: &str, grid: TableGrid, surface: &SurfaceOptions, command: &str) -> Result<()> {
     let mut given = grid.flags();
-    if let Some(p) = surface.pixel_size_nm {
-        given.push(format!("--pixel-size {p}nm"));
-    }
-    if let Some(h) = surface.max_height_nm {
-        given.push(format!("--max-height {h}nm"));
+    // How a SURFACE is read: each flag with its value, if it has one (`--level none`, `--override-units`).
+    let mut words = surface.flags().into_iter().peekable();
+    while let Some(flag) = words.next() {
+        match words.next_if(|w| !w.starts_with("--")) {
+            Some(value) => given.push(format!("{flag} {value}")),
+            None => given.push(flag),
+        }
     }
     if !given.is_empty() {
         bail!(

@@ -262,6 +262,47 @@ fn auto_exposure_reaches_the_exr_and_unused_tone_options_are_refused() {
     assert!(!npy.exists() && !exr_out.exists());
 }
 
+/// Options that a finished table, the GPU's map or `--compare` cannot use are refused, not dropped (each ran and
+/// exited 0 with the option unused); `--material` on a surface without a period says it was not used.
+#[test]
+fn options_a_table_the_gpu_or_compare_cannot_use_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let t = dir.path().join("t.npz");
+    let t = t.to_str().unwrap();
+    ok(&["precompute", "builtin:sine?size=4um&pixel=50nm", "-o", t, "--uv-resolution", "51", "--coherence", "2um"]);
+    let png = dir.path().join("m.png");
+    let o = png.to_str().unwrap();
+    let eval = ["brdf", "eval", t, "--light", "0deg", "--view", "10deg"];
+    let lobes = "the lookup method has none";
+    for (args, said) in [
+        (vec!["brdf-map", t, "-o", o, "--conserve-energy"], &["--conserve-energy", lobes][..]),
+        ([&eval[..], &["--conserve-energy"]].concat(), &["--conserve-energy", lobes]),
+        (
+            vec!["brdf-map", t, "-o", o, "--level", "none", "--override-units"],
+            &["--override-units, --level none would"],
+        ),
+        ([&eval[..], &["--channel", "1"]].concat(), &["finished lookup table", "--channel 1 would be ignored"]),
+        ([&eval[..], &["--material", "gold"]].concat(), &["--material gold would be ignored"]),
+        ([&eval[..], &["--unit-cell", "auto"]].concat(), &["--unit-cell auto", "--method rigorous"]),
+        (vec!["brdf-map", "builtin:sine", "-o", o, "--gpu", "--conserve-energy"], &["--conserve-energy", "--gpu"]),
+        (
+            vec!["grating", "builtin:sine?size=1100nm&pixel=10nm", "--compare", "--detector", "10deg"],
+            &["--detector would be ignored", "--compare"],
+        ),
+    ] {
+        assert_fails(&args, said);
+    }
+    assert!(!png.exists());
+    let out = iridis(
+        &["brdf", "eval", "builtin:gaussian?size=4um&pixel=50nm", "--light", "0deg", "--view", "10deg"]
+            .iter()
+            .chain(&["--material", "gold", "--coherence", "2um"])
+            .collect::<Vec<_>>(),
+    );
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success() && stderr.contains("--material was not used"), "{stderr}");
+}
+
 #[test]
 fn no_shadowing_only_ever_brightens() {
     // Cook–Torrance G ≤ 1: leaving it out never darkens a pixel, and at 60° incidence it must brighten some.

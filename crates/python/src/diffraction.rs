@@ -326,10 +326,7 @@ fn grating<'py>(
         if !compare {
             return Ok(iridis_api::grating::grating(&source, &surface, &opts, r)?.to_json());
         }
-        use iridis_api::grating::{grating, scalar_error, GratingMethod};
-        let k = grating(&source, &surface, &GratingOptions { method: GratingMethod::Kirchhoff, ..opts.clone() }, r)?;
-        let g = grating(&source, &surface, &GratingOptions { method: GratingMethod::Rigorous, ..opts }, r)?;
-        Ok(scalar_error(&k, &g).to_json(&k, &g))
+        Ok(iridis_api::grating_run::compare(&source, &surface, &opts, r)?.to_json())
     })?;
     json_to_py(py, &value)
 }
