@@ -171,6 +171,14 @@ pub fn render_file(a: &RenderRequest, report: &dyn Report) -> Result<Rendered> {
     let spp = a.spp.unwrap_or(scene.output.spp);
     let exposure = a.exposure.unwrap_or(scene.output.exposure);
     let (img, secs, device) = if a.gpu {
+        let smooth_film = |m: &iridis_render::material::Material| matches!(m, iridis_render::material::Material::ThinFilm(f) if f.rough.is_none());
+        if let Some(n) = a.spectral_samples.filter(|_| !scene.materials.iter().any(smooth_film)) {
+            report.note(&format!(
+                "--spectral-samples {n} evaluates smooth thin films directly; {} has none (rough films and the \
+                 other materials take their colour tables), so it changes nothing here",
+                a.scene.display()
+            ));
+        }
         let r = crate::gpu::render_scene(&scene, w, h, spp, film, report)?;
         (r.image, r.seconds, format!("the GPU {}", r.adapter))
     } else {
