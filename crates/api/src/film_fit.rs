@@ -264,6 +264,22 @@ fn fit_reading(
     if let Some(w) = iridis_thinfilm::sampling::check(&template.base, request.angle_rad, &sorted) {
         report.warn(&format!("the measured wavelengths: {}", w.message));
     }
+    let thicknesses = template.thickness_params().len();
+    if request.grid > 1 && thicknesses == 0 {
+        bail!(
+            "--grid {} would be ignored: it spaces the multi-start search over the fitted thicknesses' ranges \
+             (e.g. {{d=120nm:50nm..300nm}}), and this stack fits none; one local fit is run",
+            request.grid
+        );
+    }
+    let cap = iridis_filmfit::fit::max_grid_points(thicknesses);
+    if request.grid > cap {
+        report.warn(&format!(
+            "--grid {}: at most {cap} points a thickness range with {thicknesses} thicknesses fitted (about 4000 \
+             starts in all), so {cap}",
+            request.grid
+        ));
+    }
     let opt = FitOptions { angle_rad: request.angle_rad, quantity, grid: request.grid, ..FitOptions::default() };
     let t0 = Instant::now();
     let result = iridis_filmfit::fit(&template, &reading.data, &opt)?;

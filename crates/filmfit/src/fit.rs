@@ -223,23 +223,23 @@ fn chi2(r: &[f64]) -> f64 {
     r.iter().map(|v| v * v).sum()
 }
 
+/// The most multi-start points a thickness range gets when `thicknesses` ranges are searched: about 4000
+/// starts in all (`4000^(1/thicknesses)` each, at least 2).
+pub fn max_grid_points(thicknesses: usize) -> usize {
+    (4000f64.powf(1.0 / thicknesses.max(1) as f64)).floor().max(2.0) as usize
+}
+
 /// The multi-start points: a grid over every thickness range (other parameters at their start), the start
 /// values included.
 fn starts(template: &Template, opt: &FitOptions) -> Vec<Vec<f64>> {
-    let thick: Vec<usize> = template
-        .params
-        .iter()
-        .enumerate()
-        .filter(|(_, p)| matches!(p.role, crate::Role::Thickness { .. }))
-        .map(|(i, _)| i)
-        .collect();
+    let thick = template.thickness_params();
     let mut out = vec![template.starts()];
     if thick.is_empty() || opt.grid == 1 {
         return out;
     }
     // Fringes repeat every λ/(2n) ≈ 100–200 nm of thickness: a point every ~10 nm lands within reach of the
-    // right fringe order; at most ~4000 points in all.
-    let cap = (4000f64.powf(1.0 / thick.len() as f64)).floor().max(2.0) as usize;
+    // right fringe order.
+    let cap = max_grid_points(thick.len());
     let per: Vec<usize> = thick
         .iter()
         .map(|&i| {

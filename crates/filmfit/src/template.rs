@@ -189,6 +189,16 @@ impl Template {
         Ok(t)
     }
 
+    /// The indices of the fitted thicknesses (`{d=…}`), the parameters the multi-start grid spans.
+    pub fn thickness_params(&self) -> Vec<usize> {
+        self.params
+            .iter()
+            .enumerate()
+            .filter(|(_, p)| matches!(p.role, Role::Thickness { .. }))
+            .map(|(i, _)| i)
+            .collect()
+    }
+
     pub fn starts(&self) -> Vec<f64> {
         self.params.iter().map(|p| p.start).collect()
     }
