@@ -439,6 +439,21 @@ impl RoughTableRun {
         )
     }
 
+    /// The plot's title: the light is at the view angle where the table has that light, else at the nearest
+    /// end of `--light-angles` (said, with the range: it read "light at the view angle" for every row).
+    pub fn plot_title(&self) -> String {
+        let (views, lights) = (&self.views_deg, &self.lights_deg);
+        let (lo, hi) = (lights[0], lights[lights.len() - 1]);
+        if views.iter().all(|v| (lo..=hi).contains(v)) {
+            format!("Diffuse π·k_d, light at the view angle: {}", self.title)
+        } else {
+            format!(
+                "Diffuse π·k_d, light at the view angle within the lights' {lo}°–{hi}° (else its end): {}",
+                self.title
+            )
+        }
+    }
+
     /// `π k_d` over view angle × wavelength with the light at the view angle (the peak of the diffuse lobe).
     pub fn plot(&self) -> Result<iridis_plot::RgbImage> {
         use iridis_plot::{magma, ColorBar, ImagePlot, RgbImage};
@@ -459,7 +474,7 @@ impl RoughTableRun {
             }
         }
         Ok(ImagePlot {
-            title: format!("Diffuse π·k_d, light at the view angle: {}", self.title),
+            title: self.plot_title(),
             x_label: "wavelength (nm)".into(),
             y_label: "view angle (°)".into(),
             x_range: (grid[0], grid[grid.len() - 1].max(grid[0] + 1e-9)),

@@ -49,3 +49,17 @@ fn grids_and_angles_refuse_what_cannot_be_meant() {
     let water = materials(Some(550.0)).unwrap().rows.into_iter().find(|r| r.0.contains(&"water")).unwrap();
     assert_eq!(water.4, Some(Ok((1.33, 0.0))));
 }
+
+/// The rough table's plot puts the light at the view angle, clamped to `--light-angles`: its title says so where
+/// a view lies outside that range (it read "light at the view angle" for every row).
+#[test]
+fn the_rough_tables_plot_says_where_the_light_is_clamped() {
+    let opts = iridis_api::rough::RoughOptions::new(25.0, 300.0);
+    let stack = || iridis_thinfilm::Stack::parse("air | water 300nm | n=3.9").unwrap();
+    let run = |lights: Option<&str>| {
+        iridis_api::rough::table(stack(), "film", &opts, "0deg:60deg:30deg", lights, 0.0, &[500.0]).unwrap()
+    };
+    assert!(run(None).plot_title().starts_with("Diffuse π·k_d, light at the view angle: "));
+    let clamped = run(Some("20deg:30deg:10deg")).plot_title();
+    assert!(clamped.contains("within the lights' 20°–30°"), "{clamped}");
+}
