@@ -641,8 +641,8 @@ fn verdict(info: &Value, grating: &[Value], diffracts: bool) -> String {
             "The scan diffracts no visible light: {why}. Taken as one unit cell of a periodic surface it sends {:.4} % \
              of the reflected light out of the mirror direction at normal incidence, {:.4} % at 45° (into the orders \
              of the scan's own extent: its edges, not its structure). It looks like a mirror of colour {} \
-             (reflectance Y = {:.2} % at normal incidence, n = 1.5 under the relief), so no BRDF map is drawn and no \
-             test bench is run.",
+             (reflectance Y = {:.2} % at normal incidence, n = 1.5 under the relief), so no BRDF map is drawn, no \
+             test bench is run and no animal's view across directions is taken (--size, --visual unused).",
             share(&grating[0]),
             share(&grating[1]),
             specular["hex"].as_str().unwrap_or("?"),

@@ -624,6 +624,8 @@ fn report_on_an_instrument_file() {
     let verdict = r["verdict"].as_str().unwrap();
     assert!(verdict.contains("diffracts no visible light") && verdict.contains("100 nm"), "{verdict}");
     assert!(!out.join("brdf_0deg.png").exists() && !html.contains("brdf_0deg"), "no map of nothing");
+    // The map's and the animal's options go unused, and the verdict says so.
+    assert!(verdict.contains("(--size, --visual unused)") && !out.join("vision.png").exists(), "{verdict}");
     // No --level was given: the model steps get none, and say "the default for files", not "as asked".
     for c in
         r["commands"].as_array().unwrap().iter().filter(|c| !c["command"].as_str().unwrap().contains("surface info"))
