@@ -305,6 +305,7 @@ fn gpu_options_are_checked() {
     assert!(out.status.code() == Some(2) && stderr.contains("required") && stderr.contains("--check"), "{stderr}");
     assert_fails(&["bench", "gpu", "no_such_scene.toml"], &["no_such_scene.toml"]);
     assert_fails(&["bench", "gpu", "--spectral-samples", "1"], &["--spectral-samples 1", "2 to 4096"]);
+    assert_fails(&["bench", "gpu", "--frames", "0"], &["--frames 0", "at least one"]);
     assert_fails(
         &["render", "examples/soap_bubble.toml", "-o", "/tmp/x.png", "--spectral-samples", "20"],
         &["--spectral-samples", "--gpu"],

@@ -228,6 +228,9 @@ pub fn gpu(a: &GpuBenchOptions, report: &dyn Report) -> Result<Bench> {
     if !(a.max_seconds.is_finite() && a.max_seconds > 0.0) {
         bail!("--max-seconds {} must be positive", a.max_seconds);
     }
+    if a.frames == 0 {
+        bail!("--frames 0: time at least one frame (each run also renders one untimed warm-up frame)");
+    }
     let direct_weights = sampled_weights(a.spectral_samples, FULL_BAND_NM)
         .with_context(|| format!("--spectral-samples {}", a.spectral_samples))?;
     if let Some(p) = &a.scene {
