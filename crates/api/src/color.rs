@@ -58,6 +58,8 @@ pub struct SpectrumColour {
     pub illuminant: Illuminant,
     pub observer: Observer,
     pub emissive: bool,
+    /// The values were percent, divided by 100 (`--percent`).
+    pub percent: bool,
     /// The colour report (docs/json.md, "Shape: colour").
     pub report: serde_json::Value,
 }
@@ -79,12 +81,30 @@ pub fn xyz(
     illuminant: &str,
     observer: &str,
     emissive: bool,
+    percent: bool,
     report: &dyn crate::Report,
 ) -> Result<SpectrumColour> {
     let illuminant: Illuminant = illuminant.parse()?;
     let observer: Observer = observer.parse()?;
-    let spectrum = Spectrum::from_csv_path(path)?;
+    let mut spectrum = Spectrum::from_csv_path(path)?;
+    if percent {
+        if emissive {
+            bail!("--percent reads a reflectance in percent; an --emissive spectrum's scale sets no colour: leave one out");
+        }
+        spectrum =
+            Spectrum::new(spectrum.wavelengths_nm().to_vec(), spectrum.values().iter().map(|v| v / 100.0).collect())?;
+    }
     let (lo, hi) = spectrum.range_nm();
+    // A reflectance of 50 (%) read as 50 (5000 %) came out as L* 411 and a white sRGB, without a word.
+    let peak = spectrum.values().iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    if !emissive && !percent && peak > iridis_vision::table::PERCENT_ABOVE {
+        report.warn(&format!(
+            "{} reaches {peak}, read as a reflectance of {:.0} %: if the values are percent, give --percent (Python: \
+             percent=True)",
+            path.display(),
+            100.0 * peak
+        ));
+    }
     if let Some(w) = short_range(&path.display().to_string(), lo, hi) {
         report.warn(&w);
     }
@@ -111,6 +131,7 @@ pub fn xyz(
         illuminant,
         observer,
         emissive,
+        percent,
         report: colour_report(xyz, white),
     })
 }
@@ -132,7 +153,11 @@ impl SpectrumColour {
             self.samples,
             self.illuminant,
             self.observer,
-            if self.emissive { ", emissive" } else { "" },
+            match (self.emissive, self.percent) {
+                (true, _) => ", emissive",
+                (false, true) => ", reflectance in percent (divided by 100)",
+                (false, false) => "",
+            },
             numbers(r, "XYZ", 6),
             numbers(r, "xyY", 6),
             numbers(r, "Lab", 6),

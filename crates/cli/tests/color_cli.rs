@@ -97,3 +97,20 @@ fn negative_values_are_said() {
     assert!(w.contains("has negative values (down to -0.01); they were used as they are\n"), "{w}");
     assert!(warning("wl,r\n380,0.2\n780,0.3\n").is_empty());
 }
+
+/// A reflectance in percent (a flat 50) read as a fraction was 5000 %: L* 411 and a white sRGB, without a word.
+/// Now it warns, and `--percent` reads it as 0.5: a flat reflectance's Y is its value (Y = 1 a perfect white).
+#[test]
+fn a_reflectance_in_percent_is_said_and_read_with_percent() {
+    let (_dir, csv) = temp_csv("pct.csv", "wl,r\n380,50\n780,50\n");
+    let p = csv.to_str().unwrap();
+    let out = iridis(&["color", "xyz", p]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success() && stderr.contains("reaches 50, read as a reflectance of 5000 %"), "{stderr}");
+    assert!(stderr.contains("give --percent"), "{stderr}");
+    let out = iridis(&["color", "xyz", p, "--percent", "--json"]);
+    assert!(out.status.success() && out.stderr.is_empty(), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert!((v["XYZ"][1].as_f64().unwrap() - 0.5).abs() < 1e-12, "{v}");
+    assert_fails(&["color", "xyz", p, "--percent", "--emissive"], &["--percent", "--emissive"]);
+}

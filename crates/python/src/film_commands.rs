@@ -368,9 +368,10 @@ fn _color_xyz<'py>(
     illuminant: &str,
     observer: &str,
     emissive: bool,
+    percent: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let a = run(py, |report| {
-        let c = iridis_api::color::xyz(Path::new(path), illuminant, observer, emissive, report)?;
+        let c = iridis_api::color::xyz(Path::new(path), illuminant, observer, emissive, percent, report)?;
         Ok(Answer { json: Some(c.to_json()), text: Some(c.text()), ..Default::default() })
     })?;
     a.into_py(py)

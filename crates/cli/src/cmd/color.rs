@@ -45,6 +45,9 @@ pub struct XyzArgs {
     /// The spectrum is a light source, not a reflectance.
     #[arg(long)]
     pub emissive: bool,
+    /// The reflectance is in percent (a value of 50 is 50 %): divided by 100.
+    #[arg(long)]
+    pub percent: bool,
     /// Print JSON.
     #[arg(long)]
     pub json: bool,
@@ -69,7 +72,7 @@ pub struct DeltaEArgs {
 pub fn run(command: ColorCommand) -> Result<()> {
     match command {
         ColorCommand::Xyz(a) => {
-            let c = iridis_api::color::xyz(&a.spectrum, &a.illuminant, &a.observer, a.emissive, &Cli)?;
+            let c = iridis_api::color::xyz(&a.spectrum, &a.illuminant, &a.observer, a.emissive, a.percent, &Cli)?;
             crate::output::print_answer(a.json, || Ok(c.to_json()), || c.text())
         }
         ColorCommand::DeltaE(a) => {

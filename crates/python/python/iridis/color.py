@@ -147,13 +147,14 @@ def delta_e(lab1, lab2, method="2000"):
     return out.reshape(shape[:-1]) if len(shape) > 1 else out[0]
 
 
-def xyz(spectrum, illuminant="D65", observer="1931", emissive=False):
+def xyz(spectrum, illuminant="D65", observer="1931", emissive=False, percent=False):
     """``iridis color xyz``: the colour of the spectrum in a file (two columns, wavelength in nm and value) as
     the CLI reports it — a dict with XYZ, xyY, Lab, linear_srgb, srgb and hex, and ``.text`` the CLI's text.
     A reflectance lit by ``illuminant`` (Y = 1 a perfect white reflector), or with ``emissive`` a light source
     at Y = 1; L*a*b* is relative to the illuminant's white either way (for a light, the white it is judged
-    against). A file that does not cover 380–780 nm gives a warning."""
+    against). ``percent=True``: the reflectance is in percent (``--percent``); values above 1.5 read as fractions
+    give a warning. A file that does not cover 380–780 nm gives a warning."""
     from ._answer import answer, file_path
 
     path = file_path(spectrum, "iridis.color.xyz", "iridis.color.spectrum_to_xyz(wavelengths_nm, values)")
-    return answer(_native._color_xyz(path, str(illuminant), str(observer), bool(emissive)))
+    return answer(_native._color_xyz(path, str(illuminant), str(observer), bool(emissive), bool(percent)))
