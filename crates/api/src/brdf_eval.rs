@@ -44,6 +44,9 @@ pub struct EvalReport {
     pub point: PointEval,
     /// `R₀` of the Fresnel source (what ρ divides by).
     pub r0: f64,
+    /// Whether the s and p columns differ by model: the rigorous method, or a Fresnel source that tells s from p
+    /// (Schlick's approximation does not).
+    pub polarised: bool,
     pub vision: Option<iridis_vision::Analysis>,
 }
 
@@ -64,6 +67,7 @@ pub fn brdf_eval(r: &EvalRequest, spectra: Option<&Path>, report: &dyn Report) -
     }
     r.grid.refuse_unless_lookup(&method)?;
     let r0 = shading.fresnel.normal_reflectance();
+    let polarised_fresnel = shading.fresnel.polarised();
     let p = eval_point(&r.input, Some(&method), &r.model, shading, r.grid.params()?, &r.surface, wi, wr, report)?;
     // A table of zeros reads like a failure; say why it is one (a 2 µm sine's orders lie in one plane, and a
     // view out of it printed 0.0000e0 at every λ without a word).
@@ -86,7 +90,8 @@ pub fn brdf_eval(r: &EvalRequest, spectra: Option<&Path>, report: &dyn Report) -
     for n in vision.iter().flat_map(|v| &v.notes) {
         report.note(n);
     }
-    Ok(EvalReport { request: r.clone(), point: p, r0, vision })
+    let polarised = polarised_fresnel || p.rigorous.is_some();
+    Ok(EvalReport { request: r.clone(), point: p, r0, polarised, vision })
 }
 
 /// Degrees, rounded to 1e-9 (so that 30deg prints as 30).
@@ -107,6 +112,7 @@ impl EvalReport {
             "fresnel": if p.rigorous.is_some() { Value::Null } else { json!(r.fresnel) },
             "fresnel_convention": r.convention.name(),
             "fresnel_r0": self.r0,
+            "polarised": self.polarised,
             "shadowing": if p.rigorous.is_some() { Value::Null } else { json!(r.shadowing) },
             "coherence_nm": p.coherence_nm,
             "window_effective_area_um2": p.effective_area_nm2.map(|a| a / 1e6),
@@ -152,6 +158,13 @@ impl EvalReport {
         }
         match (&q.reflectance, &q.brdf, r.relative) {
             (Some(_), Some(b), false) => {
+                if !self.polarised {
+                    t.push(format!(
+                        "s = p: the Fresnel model ({}) does not tell s from p; --fresnel index:n+ki or a material \
+                         (gold) gives both",
+                        r.fresnel
+                    ));
+                }
                 t.push("    λ (nm)   f_r s (sr⁻¹)   f_r p (sr⁻¹)   f_r unpol. (sr⁻¹)".into());
                 for (k, l) in q.wavelengths_nm.iter().enumerate() {
                     t.push(format!("{l:10.1}  {:13.4e}  {:13.4e}  {:18.4e}", b.s[k], b.p[k], b.unpolarized[k]));

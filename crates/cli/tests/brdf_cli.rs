@@ -517,3 +517,24 @@ fn a_view_between_the_orders_is_said_to_get_no_light() {
     assert!(eval("30deg,40deg"));
     assert!(!eval("30deg,0deg"));
 }
+
+/// `polarised`: Schlick's Fresnel (the default) has no polarised form, so s = p, and the text says so; an index
+/// tells them apart: at the specular pair (light and view at 30°) f_r,s / f_r,p is Fresnel's R_s / R_p of n = 1.5
+/// at 30°, ((cos θ − n cos θ_t)/(cos θ + n cos θ_t))² / ((n cos θ − cos θ_t)/(n cos θ + cos θ_t))² = 2.2890.
+#[test]
+fn brdf_eval_says_whether_s_and_p_can_differ() {
+    let base = ["brdf", "eval", MIRROR, "--coherence", "3um", "--light", "30deg,0deg", "--view", "30deg,180deg"];
+    let base = [&base[..], &["--method", "reference"]].concat();
+    let schlick = json_of(&[&base[..], &["--json"]].concat());
+    assert_eq!(schlick["polarised"], false);
+    let text = String::from_utf8_lossy(&iridis(&base).stdout).into_owned();
+    assert!(text.contains("s = p: the Fresnel model (schlick:1.5) does not tell s from p"), "{text}");
+    let index = json_of(&[&base[..], &["--fresnel", "index:1.5", "--json"]].concat());
+    assert_eq!(index["polarised"], true);
+    let (c, n) = (30f64.to_radians().cos(), 1.5f64);
+    let ct = (1.0 - (30f64.to_radians().sin() / n).powi(2)).sqrt();
+    let rs_over_rp = ((c - n * ct) / (c + n * ct)).powi(2) / ((n * c - ct) / (n * c + ct)).powi(2);
+    let b = &index["brdf_per_sr"];
+    let ratio = b["s"][40].as_f64().unwrap() / b["p"][40].as_f64().unwrap();
+    assert!((ratio - rs_over_rp).abs() < 1e-6 * rs_over_rp, "{ratio} against Fresnel's {rs_over_rp}");
+}
