@@ -188,7 +188,8 @@ fn trapezoid(w: &[f64]) -> Vec<f64> {
 /// From spectra to what an animal sees: each sample's quantum catches and coordinates and the ΔS, ΔL between
 /// every pair. `spectra` are (name, values) on `wavelengths_nm` (strictly increasing, nm): reflectances (or
 /// transmittances, or any factor on the illuminant), as fractions. Integrals run over the spectra's grid by
-/// the trapezoid rule; sensitivities, light and background are sampled onto it.
+/// the trapezoid rule, a grid coarser than 1 nm interpolated onto 1 nm first ([`SpectraTable::on_1nm_grid`]);
+/// sensitivities, light and background are sampled onto it.
 pub fn analyse(
     spectra: &[(String, Vec<f64>)],
     wavelengths_nm: &[f64],
@@ -201,9 +202,20 @@ pub fn analyse(
 
 /// [`analyse`] on a [`SpectraTable`] (a pavo CSV as read).
 pub fn analyse_table(table: &SpectraTable, system: &VisualSystem, options: &Options) -> Result<Analysis, VisionError> {
+    let mut notes = Vec::new();
+    let fine = table.on_1nm_grid();
+    let table = match &fine {
+        Some((t, widest)) => {
+            notes.push(format!(
+                "the spectra, sampled up to {widest} nm apart, were interpolated linearly onto 1 nm (as pavo's \
+                 as.rspec does) before the catches were integrated"
+            ));
+            t
+        }
+        None => table,
+    };
     let wl = &table.wavelengths_nm;
     let n = system.receptors.len();
-    let mut notes = Vec::new();
     if !(options.illuminant_scale.is_finite() && options.illuminant_scale > 0.0) {
         return Err(VisionError::invalid(format!(
             "illuminant scale {} must be a positive number",

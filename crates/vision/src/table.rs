@@ -113,6 +113,28 @@ pub struct SpectraTable {
 }
 
 impl SpectraTable {
+    /// The table interpolated linearly onto whole nanometres from its first to its last wavelength, as pavo's
+    /// `as.rspec` does, where its samples lie more than 1 nm apart (the receptors' curves, tens of nm wide, were
+    /// integrated over the samples alone: a 100 nm grid gave every receptor the catch of one sample); `None`
+    /// where they are 1 nm apart or closer. Returns the table and the widest step it had (nm).
+    pub fn on_1nm_grid(&self) -> Option<(SpectraTable, f64)> {
+        let wl = &self.wavelengths_nm;
+        let widest = wl.windows(2).map(|w| w[1] - w[0]).fold(0.0, f64::max);
+        if widest <= 1.0 + 1e-9 {
+            return None;
+        }
+        let grid: Vec<f64> = (wl[0].ceil() as i64..=wl[wl.len() - 1].floor() as i64).map(|l| l as f64).collect();
+        let samples = self
+            .samples
+            .iter()
+            .map(|(name, v)| {
+                let at = |l: f64| iridis_color::spectrum::interpolate_linear(wl, v, l);
+                (name.clone(), grid.iter().map(|&l| at(l)).collect())
+            })
+            .collect();
+        Some((SpectraTable { wavelengths_nm: grid, samples }, widest))
+    }
+
     /// Builds a table, checking the grid and that every sample has one finite value per wavelength.
     pub fn new(wavelengths_nm: Vec<f64>, samples: Vec<(String, Vec<f64>)>) -> Result<Self, VisionError> {
         check_grid(&wavelengths_nm, "spectrum")?;

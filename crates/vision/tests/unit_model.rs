@@ -107,3 +107,24 @@ fn notes_say_when_spectra_miss_the_ultraviolet() {
     assert!(d.delta_s.unwrap() < 1e-12);
     assert!((d.delta_l.unwrap() - (0.5f64 / 0.4).ln() / 0.1).abs() < 1e-12);
 }
+
+/// Spectra sampled more than 1 nm apart are interpolated linearly onto 1 nm before the catches are integrated (as
+/// pavo's `as.rspec`): a linear ramp given at 300, 500 and 700 nm is then the same ramp as at every nanometre,
+/// and its catches are the same to rounding (they were integrated over the three samples alone: every receptor
+/// caught about the value at 500 nm), with a note.
+#[test]
+fn coarse_spectra_are_integrated_on_1_nm_as_pavo_does() {
+    let s = VisualSystem::builtin("bluetit").unwrap();
+    let ramp = |l: f64| 0.1 + 0.5 * (l - 300.0) / 400.0;
+    let fine =
+        analyse(&[("r".into(), grid().iter().map(|&l| ramp(l)).collect())], &grid(), &s, &Options::default()).unwrap();
+    let coarse_grid = [300.0, 500.0, 700.0];
+    let coarse =
+        analyse(&[("r".into(), coarse_grid.iter().map(|&l| ramp(l)).collect())], &coarse_grid, &s, &Options::default())
+            .unwrap();
+    for (a, b) in fine.samples[0].absolute_catches.iter().zip(&coarse.samples[0].absolute_catches) {
+        assert!((a - b).abs() < 1e-12 * a, "{a} against {b}");
+    }
+    assert!(coarse.notes.iter().any(|n| n.contains("200 nm apart") && n.contains("as.rspec")), "{:?}", coarse.notes);
+    assert!(!fine.notes.iter().any(|n| n.contains("as.rspec")));
+}
