@@ -603,6 +603,11 @@ pub struct LaserRun {
     pub image: Vec<Option<Xyz>>,
     /// How far apart the screen's view samples are against the light's lobes ([`ScreenSampling`]).
     pub sampling: ScreenSampling,
+    /// The beam: its incidence and the sample's azimuth (rad), the aperture (nm) and its spectrum in words.
+    pub incidence_rad: f64,
+    pub azimuth_rad: f64,
+    pub aperture_nm: f64,
+    pub beam: String,
 }
 
 /// The laser screen's view samples against the width of the light's lobes ([`screen_misses_lobes`]): in
@@ -754,6 +759,13 @@ pub fn laser_run(source: &Source, lab: &LabOptions, req: &LaserRequest, report: 
         distance_nm: setup.distance_nm,
         image: img,
         sampling,
+        incidence_rad: setup.incidence,
+        azimuth_rad: setup.azimuth,
+        aperture_nm: req.aperture_nm,
+        beam: match &req.spectrum {
+            Some(p) => format!("{} (wavelength_nm, power)", p.display()),
+            None => "equal energy (no --spectrum)".into(),
+        },
     })
 }
 
@@ -791,16 +803,22 @@ impl LaserRun {
         json!({"surface": self.surface, "method": self.method.name(), "images": self.images,
             "coating": self.coating, "gold_mirror_relative_brightness": self.scale, "max_y": self.max_y,
             "pixels": self.pixels, "screen_mm": self.screen_nm / 1e6, "distance_mm": self.distance_nm / 1e6,
-            "sampling": self.sampling.to_json()})
+            "sampling": self.sampling.to_json(), "incidence_deg": self.incidence_rad.to_degrees(),
+            "azimuth_deg": self.azimuth_rad.to_degrees(), "aperture_um": self.aperture_nm / 1000.0,
+            "beam_spectrum": self.beam})
     }
 
     /// The line `iridis experiment laser` prints.
     pub fn text(&self) -> String {
         let (peak, scale) = (self.max_y, self.scale);
         format!(
-            "{} pixels, brightest Y = {peak:.4e} (saturates at {:.3e} RU); coated mirror brightness {scale:.3} of an \
-             uncoated one\n",
-            self.pixels * self.pixels,
+            "beam at {:.1}° (sample azimuth {:.1}°), aperture {:.1} µm, spectrum {}\n{}² pixels, brightest Y = \
+             {peak:.4e} at 1 RU (saturates at {:.3e} RU); coated mirror brightness {scale:.3} of an uncoated one\n",
+            self.incidence_rad.to_degrees(),
+            self.azimuth_rad.to_degrees(),
+            self.aperture_nm / 1000.0,
+            self.beam,
+            self.pixels,
             1.0 / peak.max(1e-300)
         )
     }

@@ -410,6 +410,9 @@ fn experiment_laser_with_a_green_beam_on_gold() {
             assert!(!j[key].is_null(), "no '{key}' in {j}");
         }
         assert_eq!(j["pixels"], 21, "{j}");
+        // The beam behind the numbers: the paper's 45°, the aperture and the spectrum given.
+        assert_eq!((j["incidence_deg"].as_f64(), j["aperture_um"].as_f64()), (Some(45.0), Some(6.0)), "{j}");
+        assert!(j["beam_spectrum"].as_str().unwrap().contains("green.csv"), "{j}");
         j
     };
     let gold = run("gold", "1000,7500", "screen.png");
