@@ -378,8 +378,11 @@ impl CompareRun {
                 r.method, r.against, r.exposure_ru, r.mean, r.p95, ratio
             );
         }
-        let ext: Vec<String> =
-            c.extension.iter().map(|r| format!("{} RU: mean {:.4}, p95 {:.4}", r.exposure_ru, r.mean, r.p95)).collect();
+        let ext: Vec<String> = c
+            .extension
+            .iter()
+            .map(|r| format!("{} RU: ΔE00 mean {:.4}, p95 {:.4}", r.exposure_ru, r.mean, r.p95))
+            .collect();
         let _ = writeln!(
             s,
             "periodic-extension error (ground-truth-periodic vs ground-truth, finite aperture): {}",
@@ -531,7 +534,8 @@ impl SweepRun {
             .map(|p| json!({"value": p.value, "errors": e3(&p.errors), "periodic_extension_error": e3(&p.extension)}))
             .collect();
         json!({"surface": self.surface, "method": self.method.name(), "against": self.against.name(),
-            "param": self.param.name(), "points": pts})
+            "param": self.param.name(), "value_unit": self.param.value_unit(), "error": "CIEDE2000 (ΔE00)",
+            "points": pts})
     }
 
     /// The table `iridis sweep` prints.
@@ -540,7 +544,7 @@ impl SweepRun {
         let mut s = String::new();
         let _ = writeln!(s, "{} against {}, sweeping {}:", self.method, self.against.name(), param.name());
         let line = |v: &[(f64, f64, f64)]| {
-            v.iter().map(|e| format!("{} RU: mean {:.4}, p95 {:.4}", e.0, e.1, e.2)).collect::<Vec<_>>().join("; ")
+            v.iter().map(|e| format!("{} RU: ΔE00 mean {:.4}, p95 {:.4}", e.0, e.1, e.2)).collect::<Vec<_>>().join("; ")
         };
         for p in points {
             let _ = writeln!(s, "  {:>12}   {}", param.display(p.value), line(&p.errors));

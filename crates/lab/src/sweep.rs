@@ -44,6 +44,14 @@ impl Param {
         }
     }
 
+    /// The unit of the values in the JSON (`points[].value`): nm for lengths, none for counts and exponents.
+    pub fn value_unit(self) -> &'static str {
+        match self {
+            Param::DLambda | Param::Coherence => "nm",
+            Param::Terms | Param::UvPower | Param::UvResolution => "",
+        }
+    }
+
     /// Whether `method` has this parameter.
     pub fn applies_to(self, method: Method) -> bool {
         use Method::*;
