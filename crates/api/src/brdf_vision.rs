@@ -55,6 +55,8 @@ pub fn vision_text(v: &DirectionalVision) -> String {
         .map(|x| x.0.clone())
         .unwrap_or_default();
     let jnd = |d: Option<f64>| d.map_or("—".to_string(), |x| format!("{x:.2}"));
+    let (light, noise) = crate::vision::conditions(an);
+    t.push(format!("  light  {light}\n  noise  {noise}"));
     t.push(format!(
         "  view      relative catches ({})      ΔS to {mirror} (JND)   ΔS to the previous (JND)",
         an.receptors.join(", ")

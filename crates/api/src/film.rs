@@ -508,6 +508,8 @@ impl FilmColour {
             if let Some(d) = v.distances.first() {
                 let jnd = |x: Option<f64>| x.map_or("—".to_string(), |x| format!("{x:.2} JND"));
                 let _ = writeln!(o, "  reflected vs transmitted: ΔS {}, ΔL {}", jnd(d.delta_s), jnd(d.delta_l));
+                let (light, noise) = crate::vision::conditions(v);
+                let _ = writeln!(o, "  light  {light}\n  noise  {noise}");
             }
         }
         o

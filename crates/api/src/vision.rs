@@ -230,6 +230,33 @@ pub fn analyse_file(path: &std::path::Path, spec: &iridis_vision::Spec, percent:
     Ok(SpectraVision { source: path.display().to_string(), samples: table.samples.len(), analysis })
 }
 
+/// What ΔS and ΔL in JND rest on, as two lines for people: the light and the adaptation (von Kries), and the
+/// receptor noise (model, Weber fraction, densities, the `e_i`) with the achromatic channel. `iridis vision`
+/// prints them, and so do the commands that end in an animal's view (`brdf vision`, `thinfilm color --visual`).
+pub fn conditions(r: &iridis_vision::Analysis) -> (String, String) {
+    let join = |v: &[f64], digits: usize| v.iter().map(|x| format!("{x:.digits$}")).collect::<Vec<_>>().join(", ");
+    let bg = match r.background.kind.as_str() {
+        "none" => "no von Kries adaptation".to_string(),
+        "grey" => format!("von Kries to a grey of reflectance {}", r.background.reflectance.unwrap_or(1.0)),
+        _ => format!("von Kries to {}", r.background.source.as_deref().unwrap_or("a spectrum")),
+    };
+    let light = format!("{} ×{}; {bg}", r.illuminant, r.illuminant_scale);
+    let noise = match (r.noise.weber, &r.noise.reference, &r.noise.densities) {
+        (Some(w), Some(rf), Some(d)) => format!(
+            "{} noise, Weber fraction {w} of {rf}, densities {} → e = {}",
+            serde_json::to_value(r.noise.model).ok().and_then(|v| v.as_str().map(String::from)).unwrap_or_default(),
+            d.iter().map(|x| x.to_string()).collect::<Vec<_>>().join(":"),
+            join(&r.noise.receptor_noise, 3)
+        ),
+        _ => format!("noise per receptor e = {}", join(&r.noise.receptor_noise, 3)),
+    };
+    let achro = match (&r.noise.achromatic, r.noise.achromatic_weber) {
+        (Some(c), Some(w)) => format!("; achromatic: {c}, Weber fraction {w}"),
+        _ => "; no achromatic channel".into(),
+    };
+    (light, format!("{noise}{achro}"))
+}
+
 impl SpectraVision {
     /// What `--json` prints: the analysis (docs/vision.md).
     pub fn to_json(&self) -> Result<serde_json::Value> {
@@ -244,26 +271,9 @@ impl SpectraVision {
         let names = r.receptors.join(", ");
         let _ = writeln!(o, "visual       {} — receptors {names}", r.visual.name);
         let _ = writeln!(o, "source       {}", r.visual.source);
-        let bg = match r.background.kind.as_str() {
-            "none" => "no von Kries adaptation".to_string(),
-            "grey" => format!("von Kries to a grey of reflectance {}", r.background.reflectance.unwrap_or(1.0)),
-            _ => format!("von Kries to {}", r.background.source.as_deref().unwrap_or("a spectrum")),
-        };
-        let _ = writeln!(o, "light        {} ×{}; {bg}", r.illuminant, r.illuminant_scale);
-        let noise = match (r.noise.weber, &r.noise.reference, &r.noise.densities) {
-            (Some(w), Some(rf), Some(d)) => format!(
-                "{} noise, Weber fraction {w} of {rf}, densities {} → e = {}",
-                serde_json::to_value(r.noise.model).ok().and_then(|v| v.as_str().map(String::from)).unwrap_or_default(),
-                d.iter().map(|x| x.to_string()).collect::<Vec<_>>().join(":"),
-                join(&r.noise.receptor_noise, 3)
-            ),
-            _ => format!("noise per receptor e = {}", join(&r.noise.receptor_noise, 3)),
-        };
-        let achro = match (&r.noise.achromatic, r.noise.achromatic_weber) {
-            (Some(c), Some(w)) => format!("; achromatic: {c}, Weber fraction {w}"),
-            _ => "; no achromatic channel".into(),
-        };
-        let _ = writeln!(o, "noise        {noise}{achro}");
+        let (light, noise) = conditions(r);
+        let _ = writeln!(o, "light        {light}");
+        let _ = writeln!(o, "noise        {noise}");
         let _ = writeln!(
             o,
             "spectra      {}: {} sample{}, {}–{} nm",

@@ -152,3 +152,19 @@ fn percent_spectra_read_as_fractions_are_said() {
     let ds = |v: &serde_json::Value| v["distances"][0]["delta_s"].as_f64().unwrap();
     assert!((ds(&plain) - ds(&divided)).abs() < 1e-9 * ds(&divided), "{} vs {}", ds(&plain), ds(&divided));
 }
+
+/// The commands that end in an animal's view say what its JND rest on, as `iridis vision` does: the light and
+/// the adaptation, and the receptor noise — for the blue tit e_i = ω √(η_LWS/η_i) = 0.1 · √(4/1, 4/2, 4/2, 4/4).
+#[test]
+fn a_films_colour_as_an_animal_sees_it_states_the_noise() {
+    let out = iridis(&["thinfilm", "color", "--stack", "air | water 348nm | air", "--visual", "bluetit"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        text.contains("light  D65 (CIE, converted to photon flux) ×1; von Kries to a grey of reflectance 1"),
+        "{text}"
+    );
+    let e: Vec<String> = [4.0f64, 2.0, 2.0, 1.0].iter().map(|r| format!("{:.3}", 0.1 * r.sqrt())).collect();
+    let noise = format!("noise  neural noise, Weber fraction 0.1 of LWS, densities 1:2:2:4 → e = {}", e.join(", "));
+    assert!(text.contains(&noise), "{noise}\n{text}");
+}
