@@ -94,6 +94,15 @@ pub fn grating_text(g: &Grating, light: (f64, f64), detector: Option<&str>, acce
         return s;
     }
     let det = if g.detector.is_some() { "  detector (%)" } else { "" };
+    if g.detector.is_some() {
+        // Where the detector column's detector is (it was said with one wavelength only).
+        let _ = writeln!(
+            s,
+            "detector at {}, acceptance ±{:.2}°: the orders inside its cone",
+            detector.unwrap_or(""),
+            acceptance_rad.to_degrees()
+        );
+    }
     let _ = writeln!(s, "  λ (nm)   total R (%)   TE (%)    TM (%){det}   strongest orders (m,n): unpol. %");
     for ans in &g.answers {
         let r = ans.reflected_total;
@@ -119,8 +128,8 @@ pub fn grating_text(g: &Grating, light: (f64, f64), detector: Option<&str>, acce
         let hex = |x| crate::color::colour_report(x, c.white)["hex"].as_str().unwrap_or("").to_string();
         let _ = writeln!(
             s,
-            "colours under D65 (unpolarised): mirror order {} (Y {:.4}), diffracted orders {} (Y {:.4}, {:.2} % of the \
-             reflected light), all orders {} (Y {:.4})",
+            "colours under D65, CIE 1931 (unpolarised; Y = 1 a perfect white): mirror order {} (Y {:.4}), diffracted \
+             orders {} (Y {:.4}, {:.2} % of the reflected light), all orders {} (Y {:.4})",
             hex(c.specular),
             c.specular.y,
             hex(c.diffracted),

@@ -215,15 +215,15 @@ impl RigorousSummary {
             "rigorous BRDF: lobes shaped by the light's coherence window around each order, each carrying the \
              order's C-method efficiency (Maxwell's equations; TE/TM apart, unpolarised their mean); material {}; \
              unit cell {}; {} solve(s), orders up to ±{}, estimated error ≤ {:.1e} (relative){}; hemispherical \
-             reflectance {:.4}–{:.4}",
+             reflectance {:.2}–{:.2} % (unpolarised)",
             self.material,
             self.unit_cell,
             self.solves,
             self.max_orders,
             self.worst_estimated_error,
             if self.unmet_nm.is_empty() { String::new() } else { " — tolerance not met at some wavelengths".into() },
-            self.reflected_range.0,
-            self.reflected_range.1,
+            100.0 * self.reflected_range.0,
+            100.0 * self.reflected_range.1,
         )
     }
 

@@ -538,3 +538,26 @@ fn brdf_eval_says_whether_s_and_p_can_differ() {
     let ratio = b["s"][40].as_f64().unwrap() / b["p"][40].as_f64().unwrap();
     assert!((ratio - rs_over_rp).abs() < 1e-6 * rs_over_rp, "{ratio} against Fresnel's {rs_over_rp}");
 }
+
+/// A grating's table over wavelength has a detector column; the text says where that detector is and its cone
+/// (it did with one wavelength only).
+#[test]
+fn grating_text_says_where_the_detector_is() {
+    let out = iridis(&[
+        "grating",
+        "builtin:sine?size=1100nm&pixel=10nm",
+        "--from",
+        "500nm",
+        "--to",
+        "600nm",
+        "--step",
+        "50nm",
+        "--detector",
+        "10deg,180deg",
+        "--acceptance",
+        "2deg",
+    ]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(text.contains("detector at 10deg,180deg, acceptance ±2.00°") && text.contains("detector (%)"), "{text}");
+}
