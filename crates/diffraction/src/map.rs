@@ -81,7 +81,7 @@ pub fn brdf_map_per_sr(
 
 /// The map of `size / k` pixels a side whose pixels are the means of `k × k` blocks of the `size`² map `fine`
 /// (row-major): what [`brdf_map`] computes with `k` view samples a pixel, from a map computed elsewhere (the GPU's)
-/// at `k` times the size. The sums run in [`pixel_mean`]'s order, so the two agree to the bit.
+/// at `k` times the size. The sums run in the order [`brdf_map`] sums a pixel's samples, so the two agree to the bit.
 pub fn block_mean(fine: &[Xyz], size: usize, k: usize) -> Vec<Xyz> {
     assert!(k >= 1 && size.is_multiple_of(k) && fine.len() == size * size, "a {size}² map in {k} × {k} blocks");
     let coarse = size / k;
