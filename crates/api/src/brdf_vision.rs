@@ -58,14 +58,21 @@ pub fn vision_text(v: &DirectionalVision) -> String {
     let (light, noise) = crate::vision::conditions(an);
     t.push(format!("  light  {light}\n  noise  {noise}"));
     t.push(format!(
-        "  view      relative catches ({})      ΔS to {mirror} (JND)   ΔS to the previous (JND)",
+        "  view      relative catches ({})      ΔS to {mirror} (JND)   ΔS to the previous (JND)   ΔL to {mirror} (JND)",
         an.receptors.join(", ")
     ));
     for (k, s) in an.samples.iter().enumerate() {
         let rel: Vec<String> = s.relative_catches.iter().map(|x| format!("{x:.3}")).collect();
-        let to_mirror = an.distance(&s.name, &mirror).and_then(|d| d.delta_s);
+        let to_mirror = an.distance(&s.name, &mirror);
         let to_prev = (k > 0).then(|| an.distance(&s.name, &an.samples[k - 1].name).and_then(|d| d.delta_s)).flatten();
-        t.push(format!("  {:>6}    {:<32}  {:>12}   {:>12}", s.name, rel.join(" "), jnd(to_mirror), jnd(to_prev)));
+        t.push(format!(
+            "  {:>6}    {:<32}  {:>12}   {:>12}   {:>12}",
+            s.name,
+            rel.join(" "),
+            jnd(to_mirror.and_then(|d| d.delta_s)),
+            jnd(to_prev),
+            jnd(to_mirror.and_then(|d| d.delta_l))
+        ));
     }
     t.join("\n")
 }

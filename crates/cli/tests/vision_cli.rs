@@ -168,3 +168,19 @@ fn a_films_colour_as_an_animal_sees_it_states_the_noise() {
     let noise = format!("noise  neural noise, Weber fraction 0.1 of LWS, densities 1:2:2:4 → e = {}", e.join(", "));
     assert!(text.contains(&noise), "{noise}\n{text}");
 }
+
+/// `brdf vision`'s table has ΔL against the mirror view beside ΔS (it was in --json only), and states the noise.
+#[test]
+fn brdf_vision_text_has_the_achromatic_difference() {
+    let args = ["brdf", "vision", "builtin:sine?size=6um&pixel=100nm", "--visual", "bluetit", "--coherence", "3um"];
+    let out = iridis(&args);
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(text.contains("ΔL to +0° (JND)") && text.contains("  noise  neural noise"), "{text}");
+    let v = json_of(&[&args[..], &["--json"]].concat());
+    let d = v["vision"]["distances"].as_array().unwrap();
+    let dl = d.iter().find(|d| d["a"] == "+0°" && d["b"] == "+20°" || d["a"] == "+20°" && d["b"] == "+0°").unwrap();
+    let row = text.lines().find(|l| l.trim_start().starts_with("+20°")).unwrap();
+    let last: f64 = row.split_whitespace().last().unwrap().parse().unwrap();
+    assert!((last - dl["delta_l"].as_f64().unwrap()).abs() <= 0.005, "{row} against {dl}");
+}
