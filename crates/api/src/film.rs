@@ -245,6 +245,7 @@ impl FilmSpectrum {
         let mut out = String::new();
         let _ =
             writeln!(out, "stack  {}\nangle  {}°{}", self.stack, fmt_deg(self.angle_rad), pol_label(self.polarization));
+        let _ = writeln!(out, "R, T, A: fractions of the incident power (reflected, transmitted, absorbed)");
         let _ = writeln!(out, "{:>10}  {:>10}  {:>10}  {:>10}", "λ (nm)", "R", "T", "A");
         for i in 0..self.wavelength_nm.len() {
             let _ = writeln!(out, "{:>10.2}  {:>10.7}  {:>10.7}  {:>10.7}", self.wavelength_nm[i], r[i], t[i], ab[i]);

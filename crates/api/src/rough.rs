@@ -286,6 +286,10 @@ impl RoughSpectrum {
             self.options.transport.name()
         );
         let _ = writeln!(out, "angles    {}, unpolarised", self.angles.text());
+        let _ = writeln!(
+            out,
+            "units     R smooth, k_r specular: fractions of the incident power; k_d: BRDF of the diffuse lobe (sr⁻¹)"
+        );
         let _ = writeln!(out, "{:>10}  {:>10}  {:>12}  {:>12}", "λ (nm)", "R smooth", "k_r specular", "k_d (sr⁻¹)");
         for (w, (r, x)) in self.wavelength_nm.iter().zip(&self.values) {
             let _ = writeln!(out, "{w:>10.2}  {r:>10.7}  {:>12.7}  {:>12.7}", x.k_r(), x.k_d());
