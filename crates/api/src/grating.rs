@@ -948,6 +948,8 @@ impl ScalarError {
             "delta_e00_specular": self.delta_e_specular,
             "efficiency_floor": self.floor,
             "rigorous_converged": rigorous.answers.iter().all(|a| a.convergence["met"] == json!(true)),
+            "rigorous_tolerance": rigorous.answers.first().map_or(Value::Null, |a| a.convergence["tolerance"].clone()),
+            "kirchhoff_normalisation": scalar.normalisation.name(),
         })
     }
 }
