@@ -161,18 +161,19 @@ pub fn speed(a: &SpeedOptions, report: &dyn Report) -> Result<Bench> {
     });
     let mut t = vec![
         format!("diffraction benchmark ({threads} threads)"),
-        format!("  Taylor-term FFTs, {}², {} terms:", a.size, a.terms + 1),
-        format!("    iridis, all threads   {ours_all:8.2} s"),
-        format!("    iridis, one thread    {ours_one:8.2} s"),
+        format!("  Taylor-term FFTs, {}², N = {} ({} FFTs, powers p = 0…{}):", a.size, a.terms, a.terms + 1, a.terms),
+        format!("    iridis, all threads   {:8.2} ms", 1e3 * ours_all),
+        format!("    iridis, one thread    {:8.2} ms", 1e3 * ours_one),
         match numpy {
             Some(n) => format!(
-                "    numpy (same work)     {n:8.2} s   → iridis is {:.1}× faster (one thread {:.1}×)",
+                "    numpy (same work)     {:8.2} ms   → iridis is {:.1}× faster (one thread {:.1}×)",
+                1e3 * n,
                 n / ours_all,
                 n / ours_one
             ),
             None => "    numpy                 not available (python3 with numpy not found)".to_string(),
         },
-        format!("  lookup tables {}² × {} powers: {table_secs:.1} s", a.uv_resolution, 2 * a.terms + 1),
+        format!("  lookup tables {}² × {} powers: {:.1} ms", a.uv_resolution, 2 * a.terms + 1, 1e3 * table_secs),
         "  BRDF maps (pixels per second):".to_string(),
     ];
     // The size unpadded, as the first release printed it (a JSON number ignores the width).
