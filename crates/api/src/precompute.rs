@@ -8,7 +8,8 @@ use iridis_diffraction::table::TableParams;
 
 use crate::model::{build_table, spectral_setup, taylor_terms, ModelOptions};
 use crate::report::Report;
-use crate::surface::{load_patch, SurfaceOptions};
+use crate::surface::{Source, SurfaceOptions};
+use iridis_diffraction::table::LookupTable;
 
 /// What `iridis precompute` is asked for.
 #[derive(Debug, Clone)]
@@ -24,18 +25,29 @@ pub struct PrecomputeRequest {
     pub gpu: bool,
 }
 
-/// `iridis precompute`: the Taylor terms and lookup tables of a height field (on the CPU or the GPU) written
-/// to `output` (.npz, declared first) through the run's output set; returns the line saying what was written.
-pub fn precompute(r: &PrecomputeRequest, output: &Path, report: &dyn Report) -> Result<String> {
-    if r.model.conserve_energy {
+/// A table cannot carry `--conserve-energy`: refused where it would be ignored.
+fn refuse_conserve_energy(model: &ModelOptions) -> Result<()> {
+    if model.conserve_energy {
         bail!(
             "--conserve-energy would be ignored: it scales each wavelength's lobes, and a lookup table integrates \
              over wavelength in advance; brdf-map and brdf eval take it with --method reference or ground-truth"
         );
     }
-    crate::output::declare("-o", output, &["npz"])?;
-    let start = std::time::Instant::now();
-    let patch = load_patch(&r.surface, &r.surface_opts, report)?;
+    Ok(())
+}
+
+/// The Taylor terms and lookup tables of `source` as `r` asks (its `surface` aside: `source` is the height field),
+/// on the CPU or the GPU, named `name` in the table's metadata; the size is said first, as `target` will hold it
+/// (`iridis precompute`'s file, Python's Table). Refuses `--conserve-energy`, which a table cannot carry.
+pub fn table_of(
+    source: &Source,
+    r: &PrecomputeRequest,
+    name: &str,
+    target: &str,
+    report: &dyn Report,
+) -> Result<LookupTable> {
+    refuse_conserve_energy(&r.model)?;
+    let patch = source.patch(&r.surface_opts, report)?;
     let mut spectral = spectral_setup(&r.model, report)?;
     let terms = taylor_terms(&patch, &r.model, report)?;
     if r.units == iridis_diffraction::Units::Radiometric {
@@ -45,13 +57,23 @@ pub fn precompute(r: &PrecomputeRequest, output: &Path, report: &dyn Report) -> 
     // The size is known once N is: say it before the long build and the write.
     let values = res * res * 3 * (2 * terms.n_max + 1);
     report.info(&format!(
-        "{} will hold {res}² × 3 × {} values in f64: {:.1} MB",
-        output.display(),
+        "{target} will hold {res}² × 3 × {} values in f64: {:.1} MB",
         2 * terms.n_max + 1,
         (values * 8) as f64 / 1e6
     ));
     let gpu = if r.gpu { Some(crate::gpu::open()?) } else { None };
-    let table = build_table(gpu.as_ref(), &terms, &spectral, r.params, &r.surface, report)?;
+    Ok(build_table(gpu.as_ref(), &terms, &spectral, r.params, name, report)?)
+}
+
+/// `iridis precompute`: [`table_of`] the SURFACE argument written to `output` (.npz, declared first) through the
+/// run's output set; returns the line saying what was written.
+pub fn precompute(r: &PrecomputeRequest, output: &Path, report: &dyn Report) -> Result<String> {
+    refuse_conserve_energy(&r.model)?;
+    crate::output::declare("-o", output, &["npz"])?;
+    let start = std::time::Instant::now();
+    let source = Source::Spec(r.surface.clone());
+    let table = table_of(&source, r, &r.surface, &output.display().to_string(), report)?;
+    let res = r.params.uv_resolution;
     let mut buf = std::io::Cursor::new(Vec::new());
     table.write_npz(&mut buf)?;
     crate::output::write_bytes(output, buf.get_ref())?;

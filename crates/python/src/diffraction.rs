@@ -161,8 +161,9 @@ fn direction_of(what: &str, angles: (f64, f64)) -> PyResult<[f64; 3]> {
     Ok(direction(theta, phi))
 }
 
-/// The paper's lookup tables `I_p(u, v)` of a height field, as `iridis precompute` (coherence, terms and the
-/// spectral setup from `options`; u-v grid `uv_resolution`, `uv_power`).
+/// The paper's lookup tables `I_p(u, v)` of a height field, as `iridis precompute`, through the same library
+/// call (`iridis_api::precompute::table_of`): coherence, terms and the spectral setup from `options`, the u-v grid
+/// `uv_resolution`, `uv_power`, `units` (relative or radiometric) and `gpu`; anything else is refused.
 #[pyfunction]
 #[pyo3(signature = (source, name=None, options=None))]
 fn precompute(
@@ -171,19 +172,38 @@ fn precompute(
     name: Option<String>,
     options: Option<Bound<'_, PyDict>>,
 ) -> PyResult<PyTable> {
-    let eo = Options::read(options, EvalOptions::read)?;
+    let request = Options::read(options, |o| {
+        let model = o.model()?;
+        if let Some(m) = &model.material {
+            return Err(value_error(format!(
+                "material '{m}' would be ignored: it is the rigorous method's medium, and a table is the scalar model's"
+            )));
+        }
+        if model.unit_cell_auto {
+            return Err(value_error(iridis_api::brdf::UNIT_CELL_AUTO_RIGOROUS));
+        }
+        let surface_opts = o.surface()?;
+        let grid = TableGrid { uv_resolution: o.usize("uv_resolution")?, uv_power: o.positive("uv_power")? };
+        let units = match o.string("units")? {
+            None => iridis_diffraction::Units::Relative,
+            Some(u) => u.parse().map_err(value_error)?,
+        };
+        Ok(iridis_api::precompute::PrecomputeRequest {
+            surface: String::new(),
+            surface_opts,
+            model,
+            params: grid.params().map_err(api_error)?,
+            units,
+            gpu: o.bool("gpu")?.unwrap_or(false),
+        })
+    })?;
     let source = match input_of(source)? {
         Input::Field(s) => s,
         Input::Arg(a) if !iridis_api::model::is_table(&a) => Source::Spec(a),
         _ => return Err(value_error("precompute needs a height field (a Surface or a SURFACE argument), not a table")),
     };
     let name = name.unwrap_or_else(|| source.name().to_string());
-    let table = run(py, |r| {
-        let patch = source.patch(&eo.surface, r)?;
-        let spectral = spectral_setup(&eo.model, r)?;
-        let terms = taylor_terms(&patch, &eo.model, r)?;
-        build_table(None, &terms, &spectral, eo.params, &name, r)
-    })?;
+    let table = run(py, |r| iridis_api::precompute::table_of(&source, &request, &name, "the table", r))?;
     Ok(PyTable { table: Arc::new(table) })
 }
 

@@ -104,3 +104,13 @@ def test_bad_input():
         diffraction.brdf_map(t, size=8, uv_resolution=31)
     with pytest.raises(ValueError, match="u-v resolution 2 must be between 3 and 4001"):
         diffraction.precompute(g, uv_resolution=2)
+    # precompute is `iridis precompute`'s library call: its --units and --gpu are here, and what it has not (a
+    # Fresnel model, energy-conserving lobes) is refused instead of ignored (the table came out the same).
+    assert diffraction.precompute(g, uv_resolution=21, units="radiometric").meta["units"] == "radiometric"
+    assert t.meta["units"] == "relative"
+    with pytest.raises(TypeError, match="unexpected keyword argument 'fresnel'"):
+        diffraction.precompute(g, uv_resolution=21, fresnel="gold")
+    with pytest.raises(ValueError, match="--conserve-energy would be ignored"):
+        diffraction.precompute(g, uv_resolution=21, conserve_energy=True)
+    with pytest.raises(ValueError, match="units 'watts'"):
+        diffraction.precompute(g, uv_resolution=21, units="watts")

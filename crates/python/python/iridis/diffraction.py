@@ -93,13 +93,14 @@ def _direction(value, name):
 
 @keywords
 def precompute(surface, coherence_nm=None, terms=None, uv_resolution=None, uv_power=None, illuminant=None,
-               observer=None, step_nm=None, name=None, **options):
+               observer=None, step_nm=None, name=None, units=None, gpu=False, **options):
     """The paper's tables ``I_p(u, v)`` of a height field (a Surface or a SURFACE argument), as
-    ``iridis precompute``: ``terms=None`` takes as many Taylor terms as the heights need (``--terms auto``),
-    the coherence, the u-v grid (501², exponent 5) and the spectral setup default as the CLI's (D65, CIE 1931,
-    5 nm)."""
+    ``iridis precompute`` (the same library call): ``terms=None`` takes as many Taylor terms as the heights need
+    (``--terms auto``), the coherence, the u-v grid (501², exponent 5) and the spectral setup default as the CLI's
+    (D65, CIE 1931, 5 nm); ``units="radiometric"`` tables the BRDF instead of the paper's relative reflectance
+    (``--units``), ``gpu=True`` builds them on the GPU (``--gpu``, values in f32)."""
     options.update(coherence_nm=coherence_nm, terms=terms, uv_resolution=uv_resolution, uv_power=uv_power,
-                   illuminant=illuminant, observer=observer, step_nm=step_nm)
+                   illuminant=illuminant, observer=observer, step_nm=step_nm, units=units, gpu=bool(gpu))
     return Table(_native.precompute(_native_source(surface), name, options))
 
 

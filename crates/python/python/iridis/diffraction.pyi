@@ -26,6 +26,8 @@ def precompute(
     observer: Optional[str] = ...,
     step_nm: Optional[float] = ...,
     name: Optional[str] = ...,
+    units: Optional[str] = ...,
+    gpu: bool = ...,
     **options: Any,
 ) -> Table: ...
 def brdf_map(
