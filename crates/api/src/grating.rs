@@ -381,6 +381,9 @@ pub fn grating(
     if !(l.iter().all(|v| v.is_finite()) && (dot(l, l).sqrt() - 1.0).abs() < 1e-9 && l[2] > 0.0) {
         bail!("the light must come from above the surface (θ < 90°)");
     }
+    if !(0.0..1.0).contains(&opts.orders_above) {
+        bail!("--orders-above {}: the efficiency must be from 0 up to 1 (100 %)", opts.orders_above);
+    }
     let w = &opts.wavelengths_nm;
     if w.is_empty() {
         bail!("no wavelength given: give one, or a range");

@@ -320,6 +320,8 @@ fn grating<'py>(
         _ => return Err(value_error("detector_phi and acceptance need detector_theta (radians)")),
     };
     let compare = o.bool("compare")?.unwrap_or(false);
+    // --orders-above as a fraction (1e-3; the library checks its range).
+    let orders_above = o.f64("orders_above")?.unwrap_or(0.0);
     let unit_cell_auto = match o.string("unit_cell")?.as_deref() {
         None | Some("whole") => false,
         Some("auto") => true,
@@ -341,6 +343,7 @@ fn grating<'py>(
             normalisation: normalisation.as_deref().map(str::parse).transpose()?,
             detector,
             unit_cell_auto,
+            orders_above,
             ..GratingOptions::default()
         };
         if !compare {

@@ -289,6 +289,20 @@ def test_grating_says_how_the_patch_holds_its_period():
     assert g["unit_cell"]["period_fit"]["tiles"]
 
 
+def test_grating_lists_orders_above_a_floor():
+    # orders_above (--orders-above): only the orders of at least that efficiency are listed, the rest counted in
+    # unlisted_orders and still in the totals, which are those of the full listing.
+    spec = "builtin:sine?size=1100nm&pixel=10nm"
+    every = diffraction.grating(spec, light=0.0, wavelengths_nm=550.0)
+    some = diffraction.grating(spec, light=0.0, wavelengths_nm=550.0, orders_above=1e-3)
+    kept = [o for o in every["orders"] if o["efficiency"]["unpolarized"] >= 1e-3]
+    assert [(o["m"], o["n"]) for o in some["orders"]] == [(o["m"], o["n"]) for o in kept]
+    assert some["unlisted_orders"]["per_wavelength"] == [len(every["orders"]) - len(kept)]
+    assert some["reflected_total"] == every["reflected_total"]
+    with pytest.raises(ValueError, match="--orders-above 2"):
+        diffraction.grating(spec, light=0.0, wavelengths_nm=550.0, orders_above=2.0)
+
+
 def test_grating_bad_input():
     with pytest.raises(ValueError, match="rigorous method needs the material"):
         diffraction.grating("builtin:sine?size=1100nm&pixel=10nm", light=0.1, wavelengths_nm=500.0,

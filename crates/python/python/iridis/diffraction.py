@@ -187,7 +187,7 @@ def brdf_map_of(spec, incidence=(0.0, 0.0), size=256, method="reference", level=
 
 @keywords
 def grating(source, light, wavelengths_nm, method="kirchhoff", material=None, fresnel=None,
-            normalisation=None, detector=None, acceptance=None, compare=False, **options):
+            normalisation=None, detector=None, acceptance=None, compare=False, orders_above=None, **options):
     """Order efficiencies of ``source`` taken as one unit cell of a grating (its extent is the period), as
     ``iridis grating --json``: a dict with ``orders`` (every propagating order at every wavelength: ``m``,
     ``n``, ``theta_deg``, ``phi_deg``, ``efficiency`` with ``te``, ``tm``, ``unpolarized``, fractions of the
@@ -203,7 +203,8 @@ def grating(source, light, wavelengths_nm, method="kirchhoff", material=None, fr
     elsewhere. ``method="rigorous"`` solves Maxwell's equations (the C-method; transmitted orders and the
     convergence record too); ``compare=True`` runs both models and returns ``iridis grating --compare --json``'s
     dict: every order of both, the worst relative error, CIEDE2000 of the colours. ``unit_cell="auto"`` takes
-    the scan's strongest period, its profile averaged along the ridges, as the cell.
+    the scan's strongest period, its profile averaged along the ridges, as the cell. ``orders_above`` (a
+    fraction, ``--orders-above``) lists only the orders of at least that efficiency; the totals count them all.
     """
     theta, phi = _direction(light, "light")
     opts = dict(options, method=method, compare=bool(compare))
@@ -217,6 +218,8 @@ def grating(source, light, wavelengths_nm, method="kirchhoff", material=None, fr
         opts["detector_theta"], opts["detector_phi"] = _direction(detector, "detector")
     if acceptance is not None:
         opts["acceptance"] = float(acceptance)
+    if orders_above is not None:
+        opts["orders_above"] = float(orders_above)
     wl = [float(w) for w in (wavelengths_nm if hasattr(wavelengths_nm, "__len__") else [wavelengths_nm])]
     return _native.grating(_native_source(source), (theta, phi), wl, opts)
 

@@ -76,6 +76,7 @@ def grating(
     detector: Optional[Direction] = ...,
     acceptance: Optional[float] = ...,
     compare: bool = ...,
+    orders_above: Optional[float] = ...,
     **options: Any,
 ) -> dict[str, Any]: ...
 def vision(
