@@ -25,15 +25,6 @@ pub fn polar_azimuth(flag: &str, s: &str) -> anyhow::Result<(f64, f64)> {
     Ok((theta, phi))
 }
 
-/// `--unit-cell`: whole (the patch, its extent the period) or auto (the scan's dominant period).
-pub fn unit_cell_auto(s: &str) -> anyhow::Result<bool> {
-    match s.trim() {
-        "auto" => Ok(true),
-        "whole" => Ok(false),
-        other => anyhow::bail!("--unit-cell '{other}': expected whole (the patch) or auto (the dominant period)"),
-    }
-}
-
 /// The rigorous method's options, flattened into `brdf eval`, `brdf-map` and `testbench`.
 #[derive(Debug, Clone, clap::Args)]
 pub struct RigorousOpts {
@@ -51,7 +42,7 @@ pub struct RigorousOpts {
 impl RigorousOpts {
     /// Whether `--unit-cell auto` was given.
     pub fn auto(&self) -> anyhow::Result<bool> {
-        unit_cell_auto(&self.unit_cell)
+        iridis_api::args::unit_cell_auto(&self.unit_cell)
     }
 
     /// Puts the options into the facade's model options (the library refuses what the method cannot use).

@@ -322,11 +322,7 @@ fn grating<'py>(
     let compare = o.bool("compare")?.unwrap_or(false);
     // --orders-above as a fraction (1e-3; the library checks its range).
     let orders_above = o.f64("orders_above")?.unwrap_or(0.0);
-    let unit_cell_auto = match o.string("unit_cell")?.as_deref() {
-        None | Some("whole") => false,
-        Some("auto") => true,
-        Some(other) => return Err(value_error(format!("unit_cell '{other}': expected 'whole' or 'auto'"))),
-    };
+    let unit_cell_auto = o.unit_cell_auto()?;
     o.finish()?;
     let source = match input_of(source)? {
         Input::Field(s) => s,

@@ -214,16 +214,16 @@ impl<'py> Options<'py> {
             light: None,
             // method="rigorous": the medium under the relief and the unit cell ("whole" or "auto").
             material: self.string("material")?,
-            unit_cell_auto: match self.string("unit_cell")?.as_deref() {
-                None | Some("whole") => false,
-                Some("auto") => true,
-                Some(other) => {
-                    return Err(PyValueError::new_err(format!(
-                        "unit_cell '{other}': expected 'whole' (the patch) or 'auto' (the dominant period)"
-                    )))
-                }
-            },
+            unit_cell_auto: self.unit_cell_auto()?,
         })
+    }
+
+    /// `unit_cell`: "whole" (the default) or "auto" (`--unit-cell`), whether it is "auto".
+    pub fn unit_cell_auto(&mut self) -> PyResult<bool> {
+        match self.string("unit_cell")? {
+            None => Ok(false),
+            Some(s) => iridis_api::args::unit_cell_auto(&s).map_err(api_error),
+        }
     }
 
     /// The shading factors: `fresnel` (default `schlick:1.5`), `fresnel_convention` (`physical` or `paper`),

@@ -78,14 +78,24 @@ fn _testbench<'py>(
     max_period_nm: Option<f64>,
     options: Option<Bound<'py, PyDict>>,
 ) -> PyResult<BenchArrays<'py>> {
-    let method = method(method_name)?;
-    let (source, lab) = source_and_lab(surface, options)?;
+    // The lab's methods or rigorous (the library refuses any other), with the rigorous method's material and
+    // unit cell (it refuses them with the others).
+    let (lab, rigorous) = Options::read(options, |o| {
+        let lab = lab_options(o)?;
+        let rigorous = iridis_api::ModelOptions {
+            material: o.string("material")?,
+            unit_cell_auto: o.unit_cell_auto()?,
+            ..Default::default()
+        };
+        Ok((lab, rigorous))
+    })?;
+    let source = source_of(surface)?;
     let mut setup =
         BenchSetup::new(incidence, azimuth.unwrap_or(0.0), order, wavelengths, angles_deg).map_err(value_error)?;
     setup.period_hint_nm = period_nm;
     let req = run::TestbenchRequest {
-        method: method.name().to_string(),
-        rigorous: iridis_api::ModelOptions::default(),
+        method: method_name.to_string(),
+        rigorous,
         setup,
         along_dominant: azimuth.is_none(),
         max_period_nm,

@@ -98,6 +98,18 @@ def test_figures_are_written(tmp_path):
         assert (tmp_path / f).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
+def test_testbench_with_the_rigorous_method():
+    """`testbench(method="rigorous")` is `iridis testbench --method rigorous` (Python refused the method): a
+    1000 nm sine's first order gives its period by the grating equation, over the material given; the material
+    is refused with another method, as the CLI refuses it."""
+    spec = "builtin:sine?size=4um&pixel=50nm&period=1000nm"
+    r = lab.testbench(spec, method="rigorous", wavelengths=(500.0, 600.0, 50.0), material="n=1.5")
+    assert r["method"] == "rigorous" and r["rigorous"]["material"] == "n=1.5"
+    assert r["periodicity_nm"]["mean"] == pytest.approx(1000.0, abs=r["periodicity_nm"]["uncertainty"] + 1.0)
+    with pytest.raises(ValueError, match="--material and --unit-cell auto are the rigorous method's"):
+        lab.testbench(spec, method="reference", material="gold", wavelengths=(500.0, 600.0, 50.0))
+
+
 def test_laser_mirror_reflection_hits_the_screen_centre(tmp_path):
     """A mirror (a sine 0.1 nm deep, flat to the light; the generator refuses depth 0): the law of reflection
     puts the beam's reflection on the screen's centre, the pixel the screen is laid out around."""

@@ -7,9 +7,10 @@ use iridis_api::grating::{grating, Detector, GratingOptions};
 use iridis_api::grating_run::{compare, grating_text};
 use iridis_diffraction::geometry::direction;
 
-use crate::args::{angle_rad, fraction, polar_azimuth, positive_length_nm, unit_cell_auto};
+use crate::args::{angle_rad, fraction, polar_azimuth, positive_length_nm};
 use crate::output::print_answer;
 use crate::progress::Cli;
+use iridis_api::args::unit_cell_auto;
 
 #[derive(Debug, ClapArgs)]
 #[command(after_help = "\

@@ -65,6 +65,8 @@ def testbench(surface, method="reference", incidence=math.radians(75.0), azimuth
     rotates the surface about its normal (0: periods along x, π/2: along y); ``None`` measures along the
     orientation of the surface's strongest period, as ``Surface.info`` finds it. ``wavelengths`` and
     ``angles_deg`` are ``(from, to, step)``; ``period_nm`` centres the order's window on a known period.
+    ``method="rigorous"`` takes the unit cell's orders with Maxwell's efficiencies, over ``material`` (default
+    n = 1.5) and ``unit_cell`` (``"whole"`` or ``"auto"``), as ``iridis testbench --method rigorous``.
 
     Returns ``iridis testbench --json``'s dict (``periodicity_nm``, ``peaks``, ``ridges``, …) with ``matrix``
     (the reflectance over ``wavelength_nm`` × ``angle_deg``) besides. Why a period is not definite is a Python
