@@ -117,7 +117,7 @@ fn _testbench<'py>(
 /// Method comparisons: returns `(json, maps)` — `json` as `iridis compare --json` prints it, `maps` a dict of
 /// each method's and each truth's BRDF map as XYZ of shape (size, size, 3), NaN outside the unit disk.
 #[pyfunction]
-#[pyo3(signature = (surface, methods, against, exposures, theta_i, phi_i, size, step_nm, illuminant, uv_resolution, uv_power, table=None, options=None))]
+#[pyo3(signature = (surface, methods, against, exposures, theta_i, phi_i, size, step_nm, illuminant, uv_resolution, uv_power, table=None, options=None, gpu=false))]
 fn _compare<'py>(
     py: Python<'py>,
     surface: &Bound<'py, PyAny>,
@@ -133,6 +133,7 @@ fn _compare<'py>(
     uv_power: Option<f64>,
     table: Option<String>,
     options: Option<Bound<'py, PyDict>>,
+    gpu: bool,
 ) -> PyResult<(String, Bound<'py, PyDict>)> {
     let methods = methods.iter().map(|m| method(m)).collect::<PyResult<Vec<_>>>()?;
     if methods.is_empty() {
@@ -159,7 +160,7 @@ fn _compare<'py>(
         dlambda_nm: step_nm,
         table: TableGrid { uv_resolution, uv_power },
         table_path: table.map(Into::into),
-        gpu: false,
+        gpu,
         maps: None,
     };
     let (json, images) = facade_run(py, |r| {
@@ -179,7 +180,7 @@ fn _compare<'py>(
 /// A convergence sweep (`iridis sweep`): writes the contact sheet to `output` (and the error plot to `plot`,
 /// default `output`'s name with `_error`) and returns `iridis sweep --json`'s text.
 #[pyfunction]
-#[pyo3(signature = (surface, param, values, output, method="reference", against="model", exposures=vec![1000.0], theta_i=0.0, phi_i=0.0, size=64, step_nm=None, uv_resolution=None, uv_power=None, plot=None, options=None))]
+#[pyo3(signature = (surface, param, values, output, method="reference", against="model", exposures=vec![1000.0], theta_i=0.0, phi_i=0.0, size=64, step_nm=None, uv_resolution=None, uv_power=None, plot=None, options=None, gpu=false))]
 fn _sweep<'py>(
     py: Python<'py>,
     surface: &Bound<'py, PyAny>,
@@ -197,6 +198,7 @@ fn _sweep<'py>(
     uv_power: Option<f64>,
     plot: Option<std::path::PathBuf>,
     options: Option<Bound<'py, PyDict>>,
+    gpu: bool,
 ) -> PyResult<String> {
     let req = run::SweepRequest {
         method: self::method(method)?,
@@ -208,7 +210,7 @@ fn _sweep<'py>(
         size,
         dlambda_nm: step_nm,
         table: TableGrid { uv_resolution, uv_power },
-        gpu: false,
+        gpu,
         output,
         plot,
     };

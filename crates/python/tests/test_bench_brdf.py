@@ -173,6 +173,28 @@ def test_brdf_map_run_bad_input():
         diffraction.brdf_map_run(42)
 
 
+def test_gpu_options_of_precompute_and_compare():
+    """`precompute(gpu=True)` and `lab.compare(gpu=True)` are `--gpu` (Python had neither): the GPU's f32 table
+    is the CPU's to single precision, and the comparison's CIEDE2000 the same to 1e-4 of its value."""
+    from iridis import lab
+
+    spec = "builtin:sine?size=4um&pixel=50nm"
+    try:
+        gpu = diffraction.precompute(spec, coherence_nm=4000.0, uv_resolution=31, gpu=True)
+    except ValueError as e:
+        if "driver" in str(e) or "adapter" in str(e):
+            pytest.skip(f"no Vulkan adapter: {e}")
+        raise
+    cpu = diffraction.precompute(spec, coherence_nm=4000.0, uv_resolution=31)
+    a = diffraction.brdf_map(gpu, size=16)
+    b = diffraction.brdf_map(cpu, size=16)
+    assert float(np.nanmax(np.abs(a - b))) <= 1e-5 * float(np.nanmax(b))
+    kw = dict(methods=["lookup"], coherence_nm=4000.0, size=16, uv_resolution=31, exposures=(1000.0,))
+    on_gpu, on_cpu = lab.compare(spec, gpu=True, **kw), lab.compare(spec, **kw)
+    m_gpu, m_cpu = on_gpu["results"][0]["mean"], on_cpu["results"][0]["mean"]
+    assert m_cpu > 1.0 and abs(m_gpu - m_cpu) <= 1e-4 * m_cpu, (m_gpu, m_cpu)
+
+
 def test_gpu_lookup_map_matches_the_cpu():
     """`brdf_map(gpu=True)` is `brdf-map --gpu` (lavapipe without a GPU): the lookup map's displayed colours at
     1500 RU within 1 % of the CPU's f64 lookup on the same table (the shader sums Chebyshev coefficients in f32;

@@ -101,6 +101,10 @@ def precompute(surface, coherence_nm=None, terms=None, uv_resolution=None, uv_po
     (``--units``), ``gpu=True`` builds them on the GPU (``--gpu``, values in f32)."""
     options.update(coherence_nm=coherence_nm, terms=terms, uv_resolution=uv_resolution, uv_power=uv_power,
                    illuminant=illuminant, observer=observer, step_nm=step_nm, units=units, gpu=bool(gpu))
+    if gpu:
+        from .render import _ensure_runtime_dir
+
+        _ensure_runtime_dir()
     return Table(_native.precompute(_native_source(surface), name, options))
 
 

@@ -83,22 +83,27 @@ def testbench(surface, method="reference", incidence=math.radians(75.0), azimuth
 @keywords
 def compare(surface, methods=("lookup", "reference", "stam-periodic", "stam-gaussian"), against="model",
             exposures=(1.0, 1000.0, 7500.0), incidence=(0.0, 0.0), size=101, step_nm=5.0, illuminant="d65",
-            uv_resolution=None, uv_power=None, table=None, **options):
+            uv_resolution=None, uv_power=None, table=None, gpu=False, **options):
     """CIELAB errors between methods (paper sec. 6.3, Table 2): each method's BRDF map displayed at each
     exposure and compared per pixel by CIEDE2000 with the ground truth of its own model (``against="model"``,
     the patch's periodic extension), the finite aperture (``"ground-truth"``) or any method.
 
     Returns ``iridis compare --json``'s dict (``results``: method, against, exposure_ru, mean, p95, max, ratio;
     ``periodic_extension_error``; …) with ``maps`` besides: each method's and each ground truth's map as XYZ of
-    shape ``(size, size, 3)``, NaN outside the unit disk.
+    shape ``(size, size, 3)``, NaN outside the unit disk. ``gpu=True`` builds the lookup tables and renders the
+    ground truths on the GPU (``--gpu``).
     """
     if isinstance(methods, str):
         methods = [m for m in methods.split(",") if m.strip()]
     theta, phi = _incidence(incidence)
+    if gpu:
+        from .render import _ensure_runtime_dir
+
+        _ensure_runtime_dir()
     out, maps = _native._compare(
         _surface(surface), [str(m).strip() for m in methods], str(against), [float(e) for e in exposures], theta,
         phi, int(size), float(step_nm), str(illuminant), _opt(uv_resolution, int), _opt(uv_power, float),
-        None if table is None else os.fspath(table), options)
+        None if table is None else os.fspath(table), options, bool(gpu))
     result = json.loads(out)
     result["maps"] = maps
     return result
@@ -106,7 +111,8 @@ def compare(surface, methods=("lookup", "reference", "stam-periodic", "stam-gaus
 
 @keywords
 def sweep(surface, param, values, output, method="reference", against="model", exposures=(1000.0,),
-          incidence=(0.0, 0.0), size=64, step_nm=None, uv_resolution=None, uv_power=None, plot=None, **options):
+          incidence=(0.0, 0.0), size=64, step_nm=None, uv_resolution=None, uv_power=None, plot=None, gpu=False,
+          **options):
     """A convergence sweep (paper sec. 7, Figures 14–17; ``iridis sweep``): the method's BRDF map for each of
     ``values`` of ``param`` (``"terms"``, ``"dlambda"``, ``"coherence"`` — lengths in nm —, ``"uv-power"``,
     ``"uv-resolution"``) and its CIEDE2000 error against the ground truth (``against``: ``"model"``,
@@ -115,12 +121,17 @@ def sweep(surface, param, values, output, method="reference", against="model", e
     (``points``: ``value``, ``errors`` and ``periodic_extension_error`` per exposure: ``mean``, ``p95``).
     ``step_nm`` (default 5), ``uv_resolution`` (default 201) and ``uv_power`` (default 5) apply where not swept;
     given for the parameter swept (``coherence_nm`` and ``terms`` too), or a u-v grid with another method than
-    lookup, they raise ValueError (they would be ignored)."""
+    lookup, they raise ValueError (they would be ignored). ``gpu=True`` builds the tables and renders the ground
+    truths on the GPU (``--gpu``)."""
     theta, phi = _incidence(incidence)
+    if gpu:
+        from .render import _ensure_runtime_dir
+
+        _ensure_runtime_dir()
     out = _native._sweep(_surface(surface), str(param), [float(v) for v in values], os.fspath(output), str(method),
                          str(against), [float(e) for e in exposures], theta, phi, int(size), _opt(step_nm, float),
                          _opt(uv_resolution, int), _opt(uv_power, float), None if plot is None else os.fspath(plot),
-                         options)
+                         options, bool(gpu))
     return json.loads(out)
 
 

@@ -29,6 +29,7 @@ def compare(
     uv_resolution: Optional[int] = ...,
     uv_power: Optional[float] = ...,
     table: Optional[Union[str, os.PathLike[str]]] = ...,
+    gpu: bool = ...,
     **options: Any,
 ) -> dict[str, Any]: ...
 def sweep(
@@ -45,6 +46,7 @@ def sweep(
     uv_resolution: Optional[int] = ...,
     uv_power: Optional[float] = ...,
     plot: Optional[Union[str, os.PathLike[str]]] = ...,
+    gpu: bool = ...,
     **options: Any,
 ) -> dict[str, Any]: ...
 def laser(
