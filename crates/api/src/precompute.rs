@@ -62,7 +62,7 @@ pub fn table_of(
         (values * 8) as f64 / 1e6
     ));
     let gpu = if r.gpu { Some(crate::gpu::open()?) } else { None };
-    Ok(build_table(gpu.as_ref(), &terms, &spectral, r.params, name, report)?)
+    build_table(gpu.as_ref(), &terms, &spectral, r.params, name, report)
 }
 
 /// `iridis precompute`: [`table_of`] the SURFACE argument written to `output` (.npz, declared first) through the

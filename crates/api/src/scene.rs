@@ -110,14 +110,23 @@ pub struct Rendered {
     pub lines: Vec<String>,
 }
 
-/// `iridis render`: checks every input before the (possibly long) render, then exports the meshes and renders
-/// the image on the CPU or the GPU into the run's output set; nothing is written unless all succeeds.
-pub fn render_file(a: &RenderRequest, report: &dyn Report) -> Result<Rendered> {
-    let fmt = crate::output::declare_opt("-o", a.output.as_deref(), &["png", "exr"])?;
-    crate::output::declare_opt("--exr", a.exr.as_deref(), &["exr"])?;
-    crate::output::declare_opt("--export-mesh", a.export_mesh.as_deref(), &["glb"])?;
-    let start = Instant::now();
-    let size = a.size.as_deref().map(parse_size).transpose()?;
+/// A scene's image as [`render_image`] renders it.
+#[derive(Debug)]
+pub struct RenderedImage {
+    /// Linear sRGB, before exposure.
+    pub image: Image,
+    /// The exposure (RU) the files take: the one given, or the scene's.
+    pub exposure: f64,
+    pub size: (u32, u32),
+    pub spp: u32,
+    /// The render's time (s) and where it ran ("2 threads", "the GPU <adapter>").
+    pub seconds: f64,
+    pub device: String,
+}
+
+/// The checks of what shapes an image (size, samples, exposure, spectral samples), before the scene is read.
+fn check_image_options(a: &RenderRequest) -> Result<()> {
+    a.size.as_deref().map(parse_size).transpose()?;
     if let Some(s) = a.spp {
         iridis_render::scene::check_spp(s).map_err(|e| anyhow::anyhow!("--spp {s}: {e}"))?;
     }
@@ -129,6 +138,50 @@ pub fn render_file(a: &RenderRequest, report: &dyn Report) -> Result<Rendered> {
     if a.spectral_samples.is_some() && !a.gpu {
         bail!("--spectral-samples sets the GPU's direct film evaluation; add --gpu (the CPU evaluates films at 81 samples)");
     }
+    Ok(())
+}
+
+/// The image of `a`'s scene (its glTF camera and lights as `a.gltf` says), on the CPU or the GPU, at `a`'s size,
+/// samples and exposure or the scene's: `iridis render` before the files, and Python's `iridis.render.render`.
+pub fn render_image(a: &RenderRequest, report: &dyn Report) -> Result<RenderedImage> {
+    check_image_options(a)?;
+    let film = scene_film(a.spectral_samples)?;
+    let scene = load(&a.scene, &a.gltf, report)?;
+    render_loaded(&scene, a, film, report)
+}
+
+/// [`render_image`] of a scene already loaded (`iridis render` exports its meshes from the same).
+fn render_loaded(scene: &Scene, a: &RenderRequest, film: SceneFilm, report: &dyn Report) -> Result<RenderedImage> {
+    let size = a.size.as_deref().map(parse_size).transpose()?;
+    let (w, h) = size.unwrap_or((scene.output.width, scene.output.height));
+    let spp = a.spp.unwrap_or(scene.output.spp);
+    let exposure = a.exposure.unwrap_or(scene.output.exposure);
+    let (image, seconds, device) = if a.gpu {
+        let smooth_film = |m: &iridis_render::material::Material| matches!(m, iridis_render::material::Material::ThinFilm(f) if f.rough.is_none());
+        if let Some(n) = a.spectral_samples.filter(|_| !scene.materials.iter().any(smooth_film)) {
+            report.note(&format!(
+                "--spectral-samples {n} evaluates smooth thin films directly; {} has none (rough films and the \
+                 other materials take their colour tables), so it changes nothing here",
+                a.scene.display()
+            ));
+        }
+        let r = crate::gpu::render_scene(scene, w, h, spp, film, report)?;
+        (r.image, r.seconds, format!("the GPU {}", r.adapter))
+    } else {
+        let (img, secs) = render_cpu(scene, w, h, spp, report);
+        (img, secs, format!("{} threads", rayon::current_num_threads()))
+    };
+    Ok(RenderedImage { image, exposure, size: (w, h), spp, seconds, device })
+}
+
+/// `iridis render`: checks every input before the (possibly long) render, then exports the meshes and renders
+/// the image on the CPU or the GPU into the run's output set; nothing is written unless all succeeds.
+pub fn render_file(a: &RenderRequest, report: &dyn Report) -> Result<Rendered> {
+    let fmt = crate::output::declare_opt("-o", a.output.as_deref(), &["png", "exr"])?;
+    crate::output::declare_opt("--exr", a.exr.as_deref(), &["exr"])?;
+    crate::output::declare_opt("--export-mesh", a.export_mesh.as_deref(), &["glb"])?;
+    let start = Instant::now();
+    check_image_options(a)?;
     if a.output.is_none() {
         // Only the meshes are exported: what shapes the image would change nothing.
         let given: Vec<&str> = [
@@ -167,24 +220,8 @@ pub fn render_file(a: &RenderRequest, report: &dyn Report) -> Result<Rendered> {
         ));
     }
     let (Some(output), Some(fmt)) = (&a.output, fmt) else { return Ok(Rendered { image: None, lines }) };
-    let (w, h) = size.unwrap_or((scene.output.width, scene.output.height));
-    let spp = a.spp.unwrap_or(scene.output.spp);
-    let exposure = a.exposure.unwrap_or(scene.output.exposure);
-    let (img, secs, device) = if a.gpu {
-        let smooth_film = |m: &iridis_render::material::Material| matches!(m, iridis_render::material::Material::ThinFilm(f) if f.rough.is_none());
-        if let Some(n) = a.spectral_samples.filter(|_| !scene.materials.iter().any(smooth_film)) {
-            report.note(&format!(
-                "--spectral-samples {n} evaluates smooth thin films directly; {} has none (rough films and the \
-                 other materials take their colour tables), so it changes nothing here",
-                a.scene.display()
-            ));
-        }
-        let r = crate::gpu::render_scene(&scene, w, h, spp, film, report)?;
-        (r.image, r.seconds, format!("the GPU {}", r.adapter))
-    } else {
-        let (img, secs) = render_cpu(&scene, w, h, spp, report);
-        (img, secs, format!("{} threads", rayon::current_num_threads()))
-    };
+    let RenderedImage { image: img, exposure, size: (w, h), spp, seconds: secs, device } =
+        render_loaded(&scene, a, film, report)?;
     let bytes = match fmt.as_str() {
         "exr" => img.encode_exr(exposure)?,
         _ => img.encode_png(exposure, scene.output.encoding)?,

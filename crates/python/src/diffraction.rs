@@ -9,9 +9,7 @@ use std::sync::Arc;
 use iridis_api::brdf::{
     default_method, evaluator_for, make_evaluator, point, render_map, table_evaluator, EvaluatorSetup,
 };
-use iridis_api::model::{
-    build_table, refuse_build_options, refuse_build_options_for_table, spectral_setup, taylor_terms, TableGrid,
-};
+use iridis_api::model::{refuse_build_options, refuse_build_options_for_table, TableGrid};
 use iridis_api::report::Report;
 use iridis_api::surface::Source;
 use iridis_api::{ModelOptions, SurfaceOptions};
@@ -340,7 +338,6 @@ fn grating<'py>(
             detector,
             unit_cell_auto,
             orders_above,
-            ..GratingOptions::default()
         };
         if !compare {
             return Ok(iridis_api::grating::grating(&source, &surface, &opts, r)?.to_json());

@@ -4,8 +4,8 @@
 
 use std::path::Path;
 
-use iridis_render::scene::{check_image_size, check_spp};
-use iridis_render::{load_scene, render, RenderError};
+use iridis_api::scene::RenderRequest;
+use iridis_render::gltf_io::GltfOptions;
 use numpy::ndarray::Array3;
 use numpy::{IntoPyArray, PyArray3};
 use pyo3::exceptions::PyOSError;
@@ -14,12 +14,15 @@ use pyo3::types::PyDict;
 
 use crate::args::value_error;
 
-/// Renders the scene at `path`; `width`, `height`, `spp` default to the scene's own; `gpu`: on the GPU (a
-/// `ValueError` naming the driver to install when there is no adapter; the renderer's warnings as Python
-/// warnings). Returns a dict with `linear_srgb` (float32, shape (height, width, 3), before exposure), the
-/// scene's `exposure`, `notes` and `device` (`cpu` or the adapter's name).
+/// Renders the scene at `path` through the library's `iridis_api::scene::render_image` (what `iridis render`
+/// renders before it writes the files): `width`, `height`, `spp`, `exposure` default to the scene's own; `gpu`
+/// on the GPU (a `ValueError` naming the driver to install when there is no adapter), `spectral_samples` its
+/// direct film evaluation; a glTF scene's `camera` (by name) and its lights (`ignore_gltf_lights`). The
+/// renderer's notes and warnings as Python's. Returns a dict with `linear_srgb` (float32, shape (height, width,
+/// 3), before exposure), the `exposure` (RU), `spp` and `device` (where it ran).
 #[pyfunction]
-#[pyo3(signature = (path, width=None, height=None, spp=None, gpu=false))]
+#[pyo3(signature = (path, width=None, height=None, spp=None, gpu=false, exposure=None, spectral_samples=None, camera=None, ignore_gltf_lights=false))]
+#[allow(clippy::too_many_arguments)]
 fn render_scene<'py>(
     py: Python<'py>,
     path: &str,
@@ -27,35 +30,39 @@ fn render_scene<'py>(
     height: Option<u32>,
     spp: Option<u32>,
     gpu: bool,
+    exposure: Option<f64>,
+    spectral_samples: Option<usize>,
+    camera: Option<String>,
+    ignore_gltf_lights: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     if !Path::new(path).exists() {
         return Err(PyOSError::new_err(format!("scene {path}: no such file")));
     }
-    let scene = py.allow_threads(|| load_scene(Path::new(path))).map_err(|e| match e {
-        RenderError::Io(e) => PyOSError::new_err(format!("scene {path}: {e}")),
-        e => value_error(e),
-    })?;
-    let (w, h) = (width.unwrap_or(scene.output.width), height.unwrap_or(scene.output.height));
-    let spp = spp.unwrap_or(scene.output.spp);
-    check_image_size(w, h).map_err(|e| value_error(format!("size {w}×{h}: {e}")))?;
-    check_spp(spp).map_err(|e| value_error(format!("spp {spp}: {e}")))?;
-    let (img, device) = if gpu {
-        let r = crate::facade::run(py, |report| {
-            iridis_api::gpu::render_scene(&scene, w, h, spp, Default::default(), report)
-        })?;
-        (r.image, r.adapter)
-    } else {
-        (py.allow_threads(|| render(&scene, w, h, spp, &|_| {})), "cpu".to_string())
+    let size = match (width, height) {
+        (Some(w), Some(h)) => Some(format!("{w}x{h}")),
+        (None, None) => None,
+        _ => return Err(value_error("give both width and height, or neither")),
     };
-    let flat: Vec<f32> = img.data.iter().flatten().copied().collect();
+    let request = RenderRequest {
+        scene: path.into(),
+        size,
+        spp,
+        exposure,
+        gpu,
+        spectral_samples,
+        gltf: GltfOptions { camera, ignore_lights: ignore_gltf_lights },
+        ..RenderRequest::default()
+    };
+    let r = crate::facade::run(py, |report| iridis_api::scene::render_image(&request, report))?;
+    let (w, h) = r.size;
+    let flat: Vec<f32> = r.image.data.iter().flatten().copied().collect();
     let arr = Array3::from_shape_vec((h as usize, w as usize, 3), flat).expect("shape");
     let out = PyDict::new(py);
     let a: Bound<'py, PyArray3<f32>> = arr.into_pyarray(py);
     out.set_item("linear_srgb", a)?;
-    out.set_item("exposure", scene.output.exposure)?;
-    out.set_item("spp", spp)?;
-    out.set_item("notes", scene.notes.clone())?;
-    out.set_item("device", device)?;
+    out.set_item("exposure", r.exposure)?;
+    out.set_item("spp", r.spp)?;
+    out.set_item("device", r.device)?;
     Ok(out)
 }
 

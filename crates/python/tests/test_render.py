@@ -45,6 +45,20 @@ def test_example_scene_renders_into_arrays():
     np.testing.assert_array_equal(render.render(SCENE, size=(24, 16), spp=1, space="linear_srgb"), lin)
 
 
+def test_render_takes_the_clis_exposure_and_gltf_options():
+    """render is `iridis render`'s library call: `exposure` (RU) scales the display values as xyz_to_srgb does,
+    and the glTF options reach the loader (a TOML scene refuses them, a glTF without cameras names the camera)."""
+    xyz = render.render(SCENE, size=(24, 16), spp=1, space="xyz")
+    np.testing.assert_allclose(render.render(SCENE, size=(24, 16), spp=1, exposure=7.0),
+                               color.xyz_to_srgb(xyz, exposure=7.0), atol=1e-12)
+    with pytest.raises(ValueError, match="a TOML scene has its"):
+        render.render(SCENE, size=(8, 8), spp=1, camera="front")
+    gltf = os.path.join(ROOT, "examples", "iridescent_spheres.gltf")
+    with pytest.raises(ValueError, match="--camera front: the file has no camera"):
+        render.render(gltf, size=(8, 8), spp=1, camera="front")
+    assert render.render(gltf, size=(8, 8), spp=1, ignore_gltf_lights=True).shape == (8, 8, 3)
+
+
 def test_bad_input():
     with pytest.raises(OSError):
         render.render("/no/such/scene.toml")

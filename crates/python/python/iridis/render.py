@@ -27,12 +27,16 @@ __all__ = ["render"]
 _SRGB_TO_XYZ = None
 
 
-def render(scene, size=None, spp=None, space="srgb", gpu=False):
-    """Renders ``scene`` (a path). ``size``: ``(width, height)``, default the scene's; ``spp``: samples per
-    pixel, default the scene's. ``space``: ``"srgb"`` (display values in [0, 1] after the scene's exposure, as
-    the PNG ``iridis render`` writes), ``"linear_srgb"`` or ``"xyz"`` (linear, before exposure). ``gpu``: render
+def render(scene, size=None, spp=None, space="srgb", gpu=False, exposure=None, spectral_samples=None, camera=None,
+           ignore_gltf_lights=False):
+    """Renders ``scene`` (a path) as ``iridis render`` does (the same library call). ``size``: ``(width,
+    height)``, default the scene's; ``spp``: samples per pixel, default the scene's. ``space``: ``"srgb"``
+    (display values in [0, 1] after the exposure, as the PNG ``iridis render`` writes), ``"linear_srgb"`` or
+    ``"xyz"`` (linear, before exposure). ``exposure`` (RU, ``--exposure``): default the scene's. ``gpu``: render
     on the GPU (a ValueError naming the driver to install when there is no adapter; rough films render on the
-    CPU only). Returns an array of shape ``(height, width, 3)``."""
+    CPU only), ``spectral_samples`` its direct film evaluation (``--spectral-samples``). A glTF scene's
+    ``camera`` by name (``--camera``) and ``ignore_gltf_lights`` (``--ignore-gltf-lights``). Returns an array of
+    shape ``(height, width, 3)``."""
     if space not in ("srgb", "linear_srgb", "xyz"):
         raise ValueError(f"space {space!r}: use 'srgb', 'linear_srgb' or 'xyz'")
     w = h = None
@@ -45,7 +49,10 @@ def render(scene, size=None, spp=None, space="srgb", gpu=False):
         raise TypeError(f"gpu must be True or False, got {gpu!r}")
     if gpu:
         _ensure_runtime_dir()
-    out = _native.render_scene(os.fspath(scene), w, h, None if spp is None else int(spp), gpu)
+    out = _native.render_scene(os.fspath(scene), w, h, None if spp is None else int(spp), gpu,
+                               None if exposure is None else float(exposure),
+                               None if spectral_samples is None else int(spectral_samples), camera,
+                               bool(ignore_gltf_lights))
     rgb = out["linear_srgb"].astype(np.float64)
     if space == "linear_srgb":
         return rgb

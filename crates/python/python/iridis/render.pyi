@@ -9,4 +9,8 @@ def render(
     spp: Optional[int] = ...,
     space: str = ...,
     gpu: bool = ...,
+    exposure: Optional[float] = ...,
+    spectral_samples: Optional[int] = ...,
+    camera: Optional[str] = ...,
+    ignore_gltf_lights: bool = ...,
 ) -> npt.NDArray[np.float64]: ...
