@@ -180,6 +180,14 @@ fn load_height_field(
     Ok(PyHeightField { hf })
 }
 
+/// A built-in nanostructure as `iridis surface generate KIND --PARAM VALUE …` makes it (the same library call,
+/// `iridis_api::surface_info::generate`, every kind the CLI has): `params` as (name, value) texts.
+#[pyfunction]
+fn generate_height_field(py: Python<'_>, kind: &str, params: Vec<(String, String)>) -> PyResult<PyHeightField> {
+    let hf = run(py, |_| iridis_api::surface_info::generate(kind, &params))?;
+    Ok(PyHeightField { hf })
+}
+
 /// The channels of an instrument file: `(json, text)` as `iridis surface channels [--json]` prints them.
 #[pyfunction]
 fn surface_channels(py: Python<'_>, path: std::path::PathBuf) -> PyResult<(String, String)> {
@@ -189,6 +197,6 @@ fn surface_channels(py: Python<'_>, path: std::path::PathBuf) -> PyResult<(Strin
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyHeightField>()?;
-    add_functions!(m, [load_height_field, surface_channels]);
+    add_functions!(m, [load_height_field, generate_height_field, surface_channels]);
     Ok(())
 }

@@ -159,3 +159,16 @@ def test_info_bad_input():
         s.info(coherence_nm=-1.0)
     with pytest.raises(TypeError, match="peaks"):
         s.info(peaks="3")
+
+
+def test_generate_makes_every_kind_the_cli_makes():
+    """generate is `iridis surface generate`'s library call: the same field as the built-in of those parameters,
+    and the kinds without a built-in name (rect-bumps, tri-bumps, refused before) too — Stam's boxes are binary,
+    every height 0 or the depth."""
+    a = surface.generate("elaphe", size="4um", pixel="50nm", seed=3).heights_nm
+    np.testing.assert_array_equal(a, surface.load("builtin:elaphe?size=4um&pixel=50nm&seed=3").heights_nm)
+    boxes = surface.generate("rect-bumps", size="4um", pixel="50nm", depth="100nm").heights_nm
+    assert set(np.unique(boxes)) == {0.0, 100.0}
+    assert surface.generate("tri-bumps", size="2um", pixel="50nm").heights_nm.shape == (40, 40)
+    with pytest.raises(ValueError, match="unknown kind 'nope'"):
+        surface.generate("nope")

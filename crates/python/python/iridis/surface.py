@@ -125,10 +125,11 @@ def load(spec, channel=None, pixel_size_nm=None, max_height_nm=None, height_unit
 
 
 def generate(kind, **params):
-    """A built-in surface: ``generate("elaphe", size="16um", pixel="50nm", seed=3)`` (parameters as in
-    ``iridis surface generate --help``, lengths with units)."""
-    query = "&".join(f"{k.replace('_', '-')}={v}" for k, v in params.items())
-    return load(f"builtin:{kind}" + (f"?{query}" if query else ""))
+    """A built-in nanostructure as ``iridis surface generate`` makes it (the same library call, every kind:
+    sine, blazed, cd, elaphe, xenopeltis, gaussian, rect-bumps, tri-bumps): ``generate("elaphe", size="16um",
+    pixel="50nm", seed=3)`` (parameters as in ``iridis surface generate --help``, lengths with units)."""
+    pairs = [(k.replace("_", "-"), str(v)) for k, v in params.items()]
+    return Surface(_native.generate_height_field(str(kind), pairs), 0)
 
 
 def channels(path):
