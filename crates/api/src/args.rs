@@ -24,13 +24,3 @@ pub fn angle_rad(s: &str) -> Result<f64, String> {
 pub fn fresnel_convention(s: &str) -> Result<FresnelConvention, String> {
     FresnelConvention::parse(s).map_err(|e| e.to_string())
 }
-
-/// `--unit-cell`: `whole` (the patch is one period) or `auto` (a scan's dominant period, averaged along its
-/// ridges); whether it is `auto`.
-pub fn unit_cell_auto(s: &str) -> anyhow::Result<bool> {
-    match s.trim() {
-        "auto" => Ok(true),
-        "whole" => Ok(false),
-        other => anyhow::bail!("--unit-cell '{other}': expected whole (the patch) or auto (the dominant period)"),
-    }
-}

@@ -26,6 +26,16 @@ pub use crate::model::RIGOROUS;
 pub const UNIT_CELL_AUTO_RIGOROUS: &str =
     "--unit-cell auto chooses the unit cell of the rigorous method: use it with --method rigorous";
 
+/// `--unit-cell`: `whole` (the patch is one period) or `auto` (a scan's dominant period, averaged along its
+/// ridges); whether it is `auto`.
+pub fn unit_cell_auto(s: &str) -> Result<bool> {
+    match s.trim() {
+        "auto" => Ok(true),
+        "whole" => Ok(false),
+        other => bail!("--unit-cell '{other}': expected whole (the patch) or auto (the dominant period)"),
+    }
+}
+
 /// What makes an evaluator besides its input: the method and the model, shading, table and reading options
 /// (`brdf-map`'s and `brdf eval`'s flags, Python's evaluator options).
 #[derive(Debug, Clone)]

@@ -42,7 +42,7 @@ pub struct RigorousOpts {
 impl RigorousOpts {
     /// Whether `--unit-cell auto` was given.
     pub fn auto(&self) -> anyhow::Result<bool> {
-        iridis_api::args::unit_cell_auto(&self.unit_cell)
+        iridis_api::brdf::unit_cell_auto(&self.unit_cell)
     }
 
     /// Puts the options into the facade's model options (the library refuses what the method cannot use).

@@ -222,7 +222,7 @@ impl<'py> Options<'py> {
     pub fn unit_cell_auto(&mut self) -> PyResult<bool> {
         match self.string("unit_cell")? {
             None => Ok(false),
-            Some(s) => iridis_api::args::unit_cell_auto(&s).map_err(api_error),
+            Some(s) => iridis_api::brdf::unit_cell_auto(&s).map_err(api_error),
         }
     }
 

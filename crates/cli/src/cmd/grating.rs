@@ -10,7 +10,7 @@ use iridis_diffraction::geometry::direction;
 use crate::args::{angle_rad, fraction, polar_azimuth, positive_length_nm};
 use crate::output::print_answer;
 use crate::progress::Cli;
-use iridis_api::args::unit_cell_auto;
+use iridis_api::brdf::unit_cell_auto;
 
 #[derive(Debug, ClapArgs)]
 #[command(after_help = "\
