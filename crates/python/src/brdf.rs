@@ -65,7 +65,7 @@ fn brdf_map_run<'py>(
 }
 
 /// `iridis brdf eval --json` as a dict (the same keys and numbers). Options as [`brdf_map_run`]'s, plus
-/// `visual` and `relative`.
+/// `visual` (`--relative` changes only the CLI's text: the dict holds both ρ and f_r).
 #[pyfunction]
 #[pyo3(signature = (source, method, light, view, options=None))]
 fn brdf_eval<'py>(
