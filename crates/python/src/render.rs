@@ -66,7 +66,34 @@ fn render_scene<'py>(
     Ok(out)
 }
 
+/// `iridis render SCENE --export-mesh GLB`: the scene's triangle meshes (positions, normals, UVs, the orientation
+/// field as TANGENT), camera and lights written as binary glTF, through the same library call; returns the line
+/// that says what was written.
+#[pyfunction]
+#[pyo3(signature = (path, glb, camera=None, ignore_gltf_lights=false))]
+fn export_mesh(
+    py: Python<'_>,
+    path: &str,
+    glb: std::path::PathBuf,
+    camera: Option<String>,
+    ignore_gltf_lights: bool,
+) -> PyResult<String> {
+    if !Path::new(path).exists() {
+        return Err(PyOSError::new_err(format!("scene {path}: no such file")));
+    }
+    let request = RenderRequest {
+        scene: path.into(),
+        export_mesh: Some(glb),
+        gltf: GltfOptions { camera, ignore_lights: ignore_gltf_lights },
+        ..RenderRequest::default()
+    };
+    let r = crate::facade::run(py, |report| {
+        crate::scan_report::with_outputs(|| iridis_api::scene::render_file(&request, report))
+    })?;
+    Ok(r.lines.join("\n"))
+}
+
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    add_functions!(m, [render_scene]);
+    add_functions!(m, [render_scene, export_mesh]);
     Ok(())
 }

@@ -113,3 +113,23 @@ def test_gpu_run_without_xdg_runtime_dir_prints_no_driver_noise():
     assert p.returncode == 0, p.stderr
     assert "(8, 8, 3)" in p.stdout
     assert "XDG_RUNTIME_DIR" not in p.stderr, p.stderr
+
+
+def test_export_mesh_writes_the_scenes_triangles_as_glb(tmp_path):
+    """export_mesh is `iridis render --export-mesh`: a binary glTF (magic, version 2, its stated length the
+    file's) whose index accessors count three indices a triangle, as many triangles as the line says."""
+    import json
+    import re
+    import struct
+
+    glb = tmp_path / "snake.glb"
+    line = render.export_mesh(os.path.join(ROOT, "examples", "snake_xenopeltis.toml"), glb)
+    data = glb.read_bytes()
+    magic, version, length = struct.unpack_from("<4sII", data, 0)
+    assert (magic, version, length) == (b"glTF", 2, len(data))
+    chunk_len, chunk_type = struct.unpack_from("<I4s", data, 12)
+    assert chunk_type == b"JSON"
+    doc = json.loads(data[20:20 + chunk_len])
+    indices = sum(doc["accessors"][p["indices"]]["count"] for m in doc["meshes"] for p in m["primitives"])
+    triangles = int(re.search(r"(\d+) triangles", line).group(1))
+    assert indices == 3 * triangles and triangles > 1000, line

@@ -62,6 +62,13 @@ def render(scene, size=None, spp=None, space="srgb", gpu=False, exposure=None, s
     return xyz_to_srgb(xyz, exposure=out["exposure"])
 
 
+def export_mesh(scene, path, camera=None, ignore_gltf_lights=False):
+    """Writes ``scene``'s triangle meshes (positions, normals, UVs, the orientation field as TANGENT), camera and
+    lights as binary glTF (.glb) to ``path``, as ``iridis render SCENE --export-mesh PATH``; a glTF scene's
+    ``camera`` and ``ignore_gltf_lights`` as for :func:`render`. Returns the line that says what was written."""
+    return _native.export_mesh(os.fspath(scene), os.fspath(path), camera, bool(ignore_gltf_lights))
+
+
 def _to_xyz(rgb):
     global _SRGB_TO_XYZ
     if _SRGB_TO_XYZ is None:
