@@ -119,7 +119,7 @@ pub struct RenderedImage {
     pub exposure: f64,
     pub size: (u32, u32),
     pub spp: u32,
-    /// The render's time (s) and where it ran ("2 threads", "the GPU <adapter>").
+    /// The render's time (s) and where it ran ("2 threads", "the GPU" and its adapter).
     pub seconds: f64,
     pub device: String,
 }
