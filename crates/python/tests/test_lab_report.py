@@ -108,6 +108,8 @@ def test_testbench_with_the_rigorous_method():
     assert r["periodicity_nm"]["mean"] == pytest.approx(1000.0, abs=r["periodicity_nm"]["uncertainty"] + 1.0)
     with pytest.raises(ValueError, match="--material and --unit-cell auto are the rigorous method's"):
         lab.testbench(spec, method="reference", material="gold", wavelengths=(500.0, 600.0, 50.0))
+    with pytest.raises(ValueError, match="unknown method 'fdtd'; expected one of: .*stam-gaussian, rigorous"):
+        lab.testbench(spec, method="fdtd")
 
 
 def test_laser_mirror_reflection_hits_the_screen_centre(tmp_path):
