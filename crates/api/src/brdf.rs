@@ -94,9 +94,29 @@ pub(crate) const ENERGY_CONSERVING_LOBES: &str = "energy-conserving lobes: each 
 const CONSERVE_RIGOROUS: &str = "--conserve-energy scales the scalar model's lobes; the rigorous method's lobes \
                                  carry Maxwell's efficiencies, which conserve energy: leave it out";
 
-/// Why `--conserve-energy` is refused with the lookup method (a table, or one built here, or the GPU's).
-pub(crate) const CONSERVE_LOOKUP: &str = "--conserve-energy scales each wavelength's lobes: the lookup method has \
-     none (its table integrates over λ in advance); use reference or ground-truth on the SURFACE";
+/// Why `--conserve-energy` is refused with the lookup method (a table, or one built here).
+const CONSERVE_LOOKUP: &str = "--conserve-energy would be ignored: it scales each wavelength's lobes, and the \
+     lookup method has none (its table integrates over λ in advance); brdf-map and brdf eval take it with --method \
+     reference or ground-truth on the SURFACE";
+
+/// What a lookup table cannot carry, refused where it would be ignored: energy-conserving lobes (the table
+/// integrates over λ in advance), the rigorous method's material and unit cell. For a finished table's evaluator
+/// and for `precompute` (the CLI's and Python's).
+pub fn refuse_for_lookup_table(model: &ModelOptions) -> Result<()> {
+    if model.conserve_energy {
+        bail!(CONSERVE_LOOKUP);
+    }
+    if model.unit_cell_auto {
+        bail!(UNIT_CELL_AUTO_RIGOROUS);
+    }
+    if let Some(m) = &model.material {
+        bail!(
+            "--material {m} would be ignored: it is the rigorous method's medium (and that of the scalar model's \
+             error estimate on a scan), and a lookup table has neither; give the SURFACE with another method"
+        );
+    }
+    Ok(())
+}
 
 /// A finished table answers the lookup method only.
 fn require_lookup(method: &str) -> Result<()> {
@@ -116,19 +136,7 @@ pub fn table_evaluator(
     report: &dyn Report,
 ) -> Result<Box<dyn Evaluator>> {
     require_lookup(method)?;
-    // What only a SURFACE's evaluators take (brdf-map refuses them up front; brdf eval and vision here).
-    if model.conserve_energy {
-        bail!(CONSERVE_LOOKUP);
-    }
-    if model.unit_cell_auto {
-        bail!(UNIT_CELL_AUTO_RIGOROUS);
-    }
-    if let Some(m) = &model.material {
-        bail!(
-            "--material {m} would be ignored: it is the rigorous method's medium (and that of the scalar model's \
-             error estimate on a scan), and a finished table has neither; give the SURFACE the table was made from"
-        );
-    }
+    refuse_for_lookup_table(model)?;
     check_against_table(&table, model, report)?;
     Ok(Box::new(Lookup::new(table, shading, precision)?))
 }

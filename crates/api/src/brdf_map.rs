@@ -497,8 +497,8 @@ pub fn map_to_rgb8(xyz: &[Xyz], tone: ToneMap) -> Vec<u8> {
     xyz.iter().flat_map(|&p| tone.to_rgb8(p)).collect()
 }
 
-/// Writes a map's outputs: -o in the format its extension names, and --raw and --exr (linear sRGB at
-/// `exposure_ru`).
+/// Writes a map's outputs: -o in the format its extension names, and --raw and --exr (linear sRGB at the tone
+/// map's exposure).
 pub fn write_map_outputs(f: &MapFiles, xyz: &[Xyz], size: usize, tone: ToneMap) -> Result<()> {
     let exposure_ru = tone.exposure_ru;
     let ext = crate::output::format_of("-o", &f.output, MAP_FORMATS)?;

@@ -602,16 +602,13 @@ pub struct LaserRun {
     pub scale: f64,
     /// The brightest pixel's Y.
     pub max_y: f64,
-    pub pixels: usize,
-    pub screen_nm: f64,
-    pub distance_nm: f64,
-    /// The screen image (XYZ, row-major, `pixels²`).
+    /// The geometry: the beam's incidence, the sample's azimuth, the screen, its pixels.
+    pub setup: LaserSetup,
+    /// The screen image (XYZ, row-major, `width_px × height_px`).
     pub image: Vec<Option<Xyz>>,
     /// How far apart the screen's view samples are against the light's lobes ([`ScreenSampling`]).
     pub sampling: ScreenSampling,
-    /// The beam: its incidence and the sample's azimuth (rad), the aperture (nm) and its spectrum in words.
-    pub incidence_rad: f64,
-    pub azimuth_rad: f64,
+    /// The diaphragm's aperture (nm) and the beam's spectrum in words.
     pub aperture_nm: f64,
     pub beam: String,
 }
@@ -641,6 +638,32 @@ impl ScreenSampling {
             lobe_sigma_rad: coherence_nm.map(|c| iridis_diffraction::spectral::lobe_sigma_uv(380.0, c)),
             finer_by: coherence_nm.and_then(|c| crate::brdf::lobe_shortfall(spacing_rad, c)).map(|s| s.finer_by),
         }
+    }
+
+    /// The warning where the samples miss lobes ([`crate::brdf::lobe_shortfall`], with the view samples' angular
+    /// spacing, [`LaserSetup::sample_spacing_rad`]): it names the `--subsamples` (and `--size`) that sample every
+    /// lobe; `None` where they do.
+    pub fn warning(&self, setup: &LaserSetup) -> Option<String> {
+        use iridis_lab::laser::{MAX_SIDE_PX, MAX_SUBSAMPLES};
+        let (finer_by, sigma, coherence_nm) = (self.finer_by?, self.lobe_sigma_rad?, self.coherence_nm?);
+        // Samples a pixel side the screen needs; past the most a pixel takes, that many on more pixels.
+        let per_pixel = setup.subsamples as f64 * finer_by;
+        let pixels = (setup.width_px.max(setup.height_px) as f64 * per_pixel / MAX_SUBSAMPLES as f64).ceil();
+        let remedy = if per_pixel <= MAX_SUBSAMPLES as f64 {
+            format!("--subsamples {:.0} or more samples every lobe", per_pixel.ceil())
+        } else if pixels <= MAX_SIDE_PX as f64 {
+            format!("--subsamples {MAX_SUBSAMPLES} with --size {pixels:.0} or more samples every lobe")
+        } else {
+            "a smaller --aperture widens them".to_string()
+        };
+        Some(format!(
+            "the screen's view samples are {:.2} mrad apart at its centre and this light's lobes {:.2} mrad wide (σ \
+             of the window's |G|² at 380 nm, aperture {:.1} µm): a spot narrower than the samples' spacing can fall \
+             between them and vanish from the image, or show at its peak; {remedy}",
+            self.spacing_rad * 1e3,
+            sigma * 1e3,
+            coherence_nm / 1000.0
+        ))
     }
 
     /// `sampling` of `iridis experiment laser --json` (keys in docs/json.md).
@@ -710,7 +733,7 @@ pub fn laser_run(source: &Source, lab: &LabOptions, req: &LaserRequest, report: 
     let b = workbench_from(source, &model, config, report)?;
     let e = evaluator(&b, method, report)?;
     let sampling = ScreenSampling::of(setup, crate::brdf::lobe_coherence_nm(e.as_ref()));
-    if let Some(w) = sampling.coherence_nm.and_then(|c| screen_misses_lobes(setup, c)) {
+    if let Some(w) = sampling.warning(setup) {
         report.warn(&w);
     }
     if let (Some(path), Some(lookup)) = (&req.save_table, e.as_lookup()) {
@@ -760,13 +783,9 @@ pub fn laser_run(source: &Source, lab: &LabOptions, req: &LaserRequest, report: 
         images: written,
         scale,
         max_y,
-        pixels: size,
-        screen_nm: screen,
-        distance_nm: setup.distance_nm,
+        setup: setup.clone(),
         image: img,
         sampling,
-        incidence_rad: setup.incidence,
-        azimuth_rad: setup.azimuth,
         aperture_nm: req.aperture_nm,
         beam: match &req.spectrum {
             Some(p) => format!("{} (wavelength_nm, power)", p.display()),
@@ -776,31 +795,9 @@ pub fn laser_run(source: &Source, lab: &LabOptions, req: &LaserRequest, report: 
 }
 
 /// What the laser screen's samples miss at this coherence length (the aperture), if anything: as
-/// `brdf_map::lobes_between_pixels` for a map ([`crate::brdf::lobe_shortfall`]), with the view samples' angular
-/// spacing ([`LaserSetup::sample_spacing_rad`]); the warning names the `--subsamples` (and `--size`) that sample
-/// every lobe.
+/// `brdf_map::lobes_between_pixels` for a map ([`ScreenSampling`]).
 pub fn screen_misses_lobes(setup: &LaserSetup, coherence_nm: f64) -> Option<String> {
-    use iridis_lab::laser::{MAX_SIDE_PX, MAX_SUBSAMPLES};
-    let spacing = setup.sample_spacing_rad();
-    let crate::brdf::LobeShortfall { sigma, finer_by } = crate::brdf::lobe_shortfall(spacing, coherence_nm)?;
-    // Samples a pixel side the screen needs; past the most a pixel takes, that many on more pixels.
-    let per_pixel = setup.subsamples as f64 * finer_by;
-    let pixels = (setup.width_px.max(setup.height_px) as f64 * per_pixel / MAX_SUBSAMPLES as f64).ceil();
-    let remedy = if per_pixel <= MAX_SUBSAMPLES as f64 {
-        format!("--subsamples {:.0} or more samples every lobe", per_pixel.ceil())
-    } else if pixels <= MAX_SIDE_PX as f64 {
-        format!("--subsamples {MAX_SUBSAMPLES} with --size {pixels:.0} or more samples every lobe")
-    } else {
-        "a smaller --aperture widens them".to_string()
-    };
-    Some(format!(
-        "the screen's view samples are {:.2} mrad apart at its centre and this light's lobes {:.2} mrad wide (σ of \
-         the window's |G|² at 380 nm, aperture {:.1} µm): a spot narrower than the samples' spacing can fall \
-         between them and vanish from the image, or show at its peak; {remedy}",
-        spacing * 1e3,
-        sigma * 1e3,
-        coherence_nm / 1000.0
-    ))
+    ScreenSampling::of(setup, Some(coherence_nm)).warning(setup)
 }
 
 impl LaserRun {
@@ -808,9 +805,10 @@ impl LaserRun {
     pub fn to_json(&self) -> Value {
         json!({"surface": self.surface, "method": self.method.name(), "images": self.images,
             "coating": self.coating, "gold_mirror_relative_brightness": self.scale, "max_y": self.max_y,
-            "pixels": self.pixels, "screen_mm": self.screen_nm / 1e6, "distance_mm": self.distance_nm / 1e6,
-            "sampling": self.sampling.to_json(), "incidence_deg": self.incidence_rad.to_degrees(),
-            "azimuth_deg": self.azimuth_rad.to_degrees(), "aperture_um": self.aperture_nm / 1000.0,
+            "pixels": self.setup.width_px, "screen_mm": self.setup.screen_width_nm / 1e6,
+            "distance_mm": self.setup.distance_nm / 1e6, "sampling": self.sampling.to_json(),
+            "incidence_deg": self.setup.incidence.to_degrees(), "azimuth_deg": self.setup.azimuth.to_degrees(),
+            "aperture_um": self.aperture_nm / 1000.0,
             "beam_spectrum": self.beam})
     }
 
@@ -820,11 +818,11 @@ impl LaserRun {
         format!(
             "beam at {:.1}° (sample azimuth {:.1}°), aperture {:.1} µm, spectrum {}\n{}² pixels, brightest Y = \
              {peak:.4e} at 1 RU (saturates at {:.3e} RU); coated mirror brightness {scale:.3} of an uncoated one\n",
-            self.incidence_rad.to_degrees(),
-            self.azimuth_rad.to_degrees(),
+            self.setup.incidence.to_degrees(),
+            self.setup.azimuth.to_degrees(),
             self.aperture_nm / 1000.0,
             self.beam,
-            self.pixels,
+            self.setup.width_px,
             1.0 / peak.max(1e-300)
         )
     }

@@ -275,14 +275,11 @@ pub fn refuse_build_options_for_table(
 /// [`refuse_build_options_for_table`] for a table already loaded (`input` names it in the message).
 pub fn refuse_build_options(input: &str, grid: TableGrid, surface: &SurfaceOptions, command: &str) -> Result<()> {
     let mut given = grid.flags();
-    // How a SURFACE is read: each flag with its value, if it has one (`--level none`, `--override-units`).
-    let mut words = surface.flags().into_iter().peekable();
-    while let Some(flag) = words.next() {
-        match words.next_if(|w| !w.starts_with("--")) {
-            Some(value) => given.push(format!("{flag} {value}")),
-            None => given.push(flag),
-        }
-    }
+    // How a SURFACE is read (`--level none`, `--override-units`).
+    given.extend(surface.given().into_iter().map(|(flag, value)| match value {
+        Some(v) => format!("{flag} {v}"),
+        None => flag.to_string(),
+    }));
     if !given.is_empty() {
         bail!(
             "{input} is a finished lookup table, so {} would be ignored: these options shape how a table is built \

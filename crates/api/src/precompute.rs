@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use anyhow::{bail, Result};
+use anyhow::Result;
 use iridis_diffraction::table::TableParams;
 
 use crate::model::{build_table, spectral_setup, taylor_terms, ModelOptions};
@@ -25,20 +25,10 @@ pub struct PrecomputeRequest {
     pub gpu: bool,
 }
 
-/// A table cannot carry `--conserve-energy`: refused where it would be ignored.
-fn refuse_conserve_energy(model: &ModelOptions) -> Result<()> {
-    if model.conserve_energy {
-        bail!(
-            "--conserve-energy would be ignored: it scales each wavelength's lobes, and a lookup table integrates \
-             over wavelength in advance; brdf-map and brdf eval take it with --method reference or ground-truth"
-        );
-    }
-    Ok(())
-}
-
 /// The Taylor terms and lookup tables of `source` as `r` asks (its `surface` aside: `source` is the height field),
 /// on the CPU or the GPU, named `name` in the table's metadata; the size is said first, as `target` will hold it
-/// (`iridis precompute`'s file, Python's Table). Refuses `--conserve-energy`, which a table cannot carry.
+/// (`iridis precompute`'s file, Python's Table). Refuses what a table cannot carry
+/// ([`crate::brdf::refuse_for_lookup_table`]).
 pub fn table_of(
     source: &Source,
     r: &PrecomputeRequest,
@@ -46,7 +36,7 @@ pub fn table_of(
     target: &str,
     report: &dyn Report,
 ) -> Result<LookupTable> {
-    refuse_conserve_energy(&r.model)?;
+    crate::brdf::refuse_for_lookup_table(&r.model)?;
     let patch = source.patch(&r.surface_opts, report)?;
     let mut spectral = spectral_setup(&r.model, report)?;
     let terms = taylor_terms(&patch, &r.model, report)?;
@@ -68,7 +58,7 @@ pub fn table_of(
 /// `iridis precompute`: [`table_of`] the SURFACE argument written to `output` (.npz, declared first) through the
 /// run's output set; returns the line saying what was written.
 pub fn precompute(r: &PrecomputeRequest, output: &Path, report: &dyn Report) -> Result<String> {
-    refuse_conserve_energy(&r.model)?;
+    crate::brdf::refuse_for_lookup_table(&r.model)?;
     crate::output::declare("-o", output, &["npz"])?;
     let start = std::time::Instant::now();
     let source = Source::Spec(r.surface.clone());

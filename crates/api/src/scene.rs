@@ -124,9 +124,10 @@ pub struct RenderedImage {
     pub device: String,
 }
 
-/// The checks of what shapes an image (size, samples, exposure, spectral samples), before the scene is read.
-fn check_image_options(a: &RenderRequest) -> Result<()> {
-    a.size.as_deref().map(parse_size).transpose()?;
+/// The checks of what shapes an image (size, samples, exposure, spectral samples), before the scene is read;
+/// returns the size asked for.
+fn check_image_options(a: &RenderRequest) -> Result<Option<(u32, u32)>> {
+    let size = a.size.as_deref().map(parse_size).transpose()?;
     if let Some(s) = a.spp {
         iridis_render::scene::check_spp(s).map_err(|e| anyhow::anyhow!("--spp {s}: {e}"))?;
     }
@@ -138,21 +139,27 @@ fn check_image_options(a: &RenderRequest) -> Result<()> {
     if a.spectral_samples.is_some() && !a.gpu {
         bail!("--spectral-samples sets the GPU's direct film evaluation; add --gpu (the CPU evaluates films at 81 samples)");
     }
-    Ok(())
+    Ok(size)
 }
 
 /// The image of `a`'s scene (its glTF camera and lights as `a.gltf` says), on the CPU or the GPU, at `a`'s size,
 /// samples and exposure or the scene's: `iridis render` before the files, and Python's `iridis.render.render`.
 pub fn render_image(a: &RenderRequest, report: &dyn Report) -> Result<RenderedImage> {
-    check_image_options(a)?;
+    let size = check_image_options(a)?;
     let film = scene_film(a.spectral_samples)?;
     let scene = load(&a.scene, &a.gltf, report)?;
-    render_loaded(&scene, a, film, report)
+    render_loaded(&scene, a, size, film, report)
 }
 
-/// [`render_image`] of a scene already loaded (`iridis render` exports its meshes from the same).
-fn render_loaded(scene: &Scene, a: &RenderRequest, film: SceneFilm, report: &dyn Report) -> Result<RenderedImage> {
-    let size = a.size.as_deref().map(parse_size).transpose()?;
+/// [`render_image`] of a scene already loaded (`iridis render` exports its meshes from the same), at the checked
+/// `size` or the scene's.
+fn render_loaded(
+    scene: &Scene,
+    a: &RenderRequest,
+    size: Option<(u32, u32)>,
+    film: SceneFilm,
+    report: &dyn Report,
+) -> Result<RenderedImage> {
     let (w, h) = size.unwrap_or((scene.output.width, scene.output.height));
     let spp = a.spp.unwrap_or(scene.output.spp);
     let exposure = a.exposure.unwrap_or(scene.output.exposure);
@@ -181,7 +188,7 @@ pub fn render_file(a: &RenderRequest, report: &dyn Report) -> Result<Rendered> {
     crate::output::declare_opt("--exr", a.exr.as_deref(), &["exr"])?;
     crate::output::declare_opt("--export-mesh", a.export_mesh.as_deref(), &["glb"])?;
     let start = Instant::now();
-    check_image_options(a)?;
+    let size = check_image_options(a)?;
     if a.output.is_none() {
         // Only the meshes are exported: what shapes the image would change nothing.
         let given: Vec<&str> = [
@@ -221,7 +228,7 @@ pub fn render_file(a: &RenderRequest, report: &dyn Report) -> Result<Rendered> {
     }
     let (Some(output), Some(fmt)) = (&a.output, fmt) else { return Ok(Rendered { image: None, lines }) };
     let RenderedImage { image: img, exposure, size: (w, h), spp, seconds: secs, device } =
-        render_loaded(&scene, a, film, report)?;
+        render_loaded(&scene, a, size, film, report)?;
     let bytes = match fmt.as_str() {
         "exr" => img.encode_exr(exposure)?,
         _ => img.encode_png(exposure, scene.output.encoding)?,

@@ -73,28 +73,34 @@ impl SurfaceOptions {
     /// The command-line flags that give these options to another command (lengths in nm): what `iridis report`
     /// passes on to each step's command line.
     pub fn flags(&self) -> Vec<String> {
-        let mut flags = Vec::new();
+        self.given().into_iter().flat_map(|(flag, value)| std::iter::once(flag.to_string()).chain(value)).collect()
+    }
+
+    /// The reading options given, each flag with its value if it has one (`("--level", Some("none"))`,
+    /// `("--override-units", None)`), in [`Self::flags`]'s order.
+    pub fn given(&self) -> Vec<(&'static str, Option<String>)> {
+        let mut given = Vec::new();
         if let Some(c) = &self.channel {
-            flags.extend(["--channel".to_string(), c.to_string()]);
+            given.push(("--channel", Some(c.to_string())));
         }
         for (flag, v) in [("--pixel-size", self.pixel_size_nm), ("--max-height", self.max_height_nm)] {
             if let Some(v) = v {
-                flags.extend([flag.to_string(), format!("{v}nm")]);
+                given.push((flag, Some(format!("{v}nm"))));
             }
         }
         if let Some(u) = &self.height_unit {
-            flags.extend(["--height-unit".to_string(), u.clone()]);
+            given.push(("--height-unit", Some(u.clone())));
         }
         for (flag, on) in [("--override-units", self.units.override_units), ("--as-height", self.units.as_height)] {
             if on {
-                flags.push(flag.to_string());
+                given.push((flag, None));
             }
         }
         // Only a level that was asked for: without it, each command says which default it used.
         if let Some(l) = &self.level {
-            flags.extend(["--level".to_string(), l.clone()]);
+            given.push(("--level", Some(l.clone())));
         }
-        flags
+        given
     }
 }
 

@@ -161,7 +161,8 @@ fn direction_of(what: &str, angles: (f64, f64)) -> PyResult<[f64; 3]> {
 
 /// The paper's lookup tables `I_p(u, v)` of a height field, as `iridis precompute`, through the same library
 /// call (`iridis_api::precompute::table_of`): coherence, terms and the spectral setup from `options`, the u-v grid
-/// `uv_resolution`, `uv_power`, `units` (relative or radiometric) and `gpu`; anything else is refused.
+/// `uv_resolution`, `uv_power`, `units` (relative or radiometric) and `gpu`; what a table cannot carry is refused
+/// there, any other keyword here.
 #[pyfunction]
 #[pyo3(signature = (source, name=None, options=None))]
 fn precompute(
@@ -172,14 +173,6 @@ fn precompute(
 ) -> PyResult<PyTable> {
     let request = Options::read(options, |o| {
         let model = o.model()?;
-        if let Some(m) = &model.material {
-            return Err(value_error(format!(
-                "material '{m}' would be ignored: it is the rigorous method's medium, and a table is the scalar model's"
-            )));
-        }
-        if model.unit_cell_auto {
-            return Err(value_error(iridis_api::brdf::UNIT_CELL_AUTO_RIGOROUS));
-        }
         let surface_opts = o.surface()?;
         let grid = TableGrid { uv_resolution: o.usize("uv_resolution")?, uv_power: o.positive("uv_power")? };
         let units = match o.string("units")? {
