@@ -27,6 +27,7 @@ import time
 import numpy as np
 
 from . import _native
+from ._gpu import ensure_gpu_environment
 from . import tmm as itmm
 
 STACKS = {
@@ -165,9 +166,7 @@ def _raw(name, options):
     if name not in LIBRARY_BENCHES:
         raise ValueError(f"no bench {name!r}: the benches are {', '.join(LIBRARY_BENCHES)}")
     if name == "gpu":
-        from .render import _ensure_runtime_dir
-
-        _ensure_runtime_dir()
+        ensure_gpu_environment()
     return _native.bench_run(name, options)
 
 

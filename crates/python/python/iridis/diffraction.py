@@ -36,6 +36,7 @@ from __future__ import annotations
 import os
 
 from . import _native
+from ._gpu import ensure_gpu_environment
 from ._answer import keywords
 from .surface import Surface
 
@@ -102,9 +103,7 @@ def precompute(surface, coherence_nm=None, terms=None, uv_resolution=None, uv_po
     options.update(coherence_nm=coherence_nm, terms=terms, uv_resolution=uv_resolution, uv_power=uv_power,
                    illuminant=illuminant, observer=observer, step_nm=step_nm, units=units, gpu=bool(gpu))
     if gpu:
-        from .render import _ensure_runtime_dir
-
-        _ensure_runtime_dir()
+        ensure_gpu_environment()
     return Table(_native.precompute(_native_source(surface), name, options))
 
 
@@ -146,9 +145,7 @@ def brdf_map_run(source, incidence=(0.0, 0.0), size=512, method="lookup", **opti
         raise TypeError(f"brdf_map_run takes a SURFACE or TABLE argument (str), got {type(source).__name__}")
     theta, phi = _direction(incidence, "incidence")
     if options.get("gpu"):
-        from .render import _ensure_runtime_dir
-
-        _ensure_runtime_dir()
+        ensure_gpu_environment()
     return _native.brdf_map_run(os.fspath(source), method, theta, phi, int(size), options)
 
 

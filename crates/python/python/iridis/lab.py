@@ -29,6 +29,7 @@ import math
 import os
 
 from . import _native
+from ._gpu import ensure_gpu_environment
 from ._answer import keywords
 from .surface import Surface
 
@@ -97,9 +98,7 @@ def compare(surface, methods=("lookup", "reference", "stam-periodic", "stam-gaus
         methods = [m for m in methods.split(",") if m.strip()]
     theta, phi = _incidence(incidence)
     if gpu:
-        from .render import _ensure_runtime_dir
-
-        _ensure_runtime_dir()
+        ensure_gpu_environment()
     out, maps = _native._compare(
         _surface(surface), [str(m).strip() for m in methods], str(against), [float(e) for e in exposures], theta,
         phi, int(size), float(step_nm), str(illuminant), _opt(uv_resolution, int), _opt(uv_power, float),
@@ -125,9 +124,7 @@ def sweep(surface, param, values, output, method="reference", against="model", e
     truths on the GPU (``--gpu``)."""
     theta, phi = _incidence(incidence)
     if gpu:
-        from .render import _ensure_runtime_dir
-
-        _ensure_runtime_dir()
+        ensure_gpu_environment()
     out = _native._sweep(_surface(surface), str(param), [float(v) for v in values], os.fspath(output), str(method),
                          str(against), [float(e) for e in exposures], theta, phi, int(size), _opt(step_nm, float),
                          _opt(uv_resolution, int), _opt(uv_power, float), None if plot is None else os.fspath(plot),

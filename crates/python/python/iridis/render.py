@@ -11,17 +11,15 @@ Example:
 """
 from __future__ import annotations
 
-import atexit
 import os
-import shutil
-import tempfile
 
 import numpy as np
 
 from . import _native
+from ._gpu import ensure_gpu_environment
 from .color import xyz_to_srgb
 
-__all__ = ["render"]
+__all__ = ["render", "export_mesh"]
 
 # XYZ from linear sRGB (IEC 61966-2-1, D65): the inverse of the matrix iridis-color uses.
 _SRGB_TO_XYZ = None
@@ -48,7 +46,7 @@ def render(scene, size=None, spp=None, space="srgb", gpu=False, exposure=None, s
     if not isinstance(gpu, bool):
         raise TypeError(f"gpu must be True or False, got {gpu!r}")
     if gpu:
-        _ensure_runtime_dir()
+        ensure_gpu_environment()
     out = _native.render_scene(os.fspath(scene), w, h, None if spp is None else int(spp), gpu,
                                None if exposure is None else float(exposure),
                                None if spectral_samples is None else int(spectral_samples), camera,
@@ -76,16 +74,3 @@ def _to_xyz(rgb):
 
         _SRGB_TO_XYZ = np.linalg.inv(xyz_to_linear_srgb(np.eye(3)).T)
     return rgb @ _SRGB_TO_XYZ.T
-
-
-def _ensure_runtime_dir():
-    """A private ``XDG_RUNTIME_DIR`` (mode 0700, removed at exit) when it is unset or names no folder, as the
-    CLI makes one (crates/cli/src/runtime_dir.rs): the Vulkan loader's Wayland client prints "XDG_RUNTIME_DIR is
-    invalid or not set" on every GPU start without it, although nothing is wrong. Set before the first GPU call,
-    from Python, where the environment is Python's own to change."""
-    d = os.environ.get("XDG_RUNTIME_DIR")
-    if d and os.path.isabs(d) and os.path.isdir(d):
-        return
-    d = tempfile.mkdtemp(prefix="iridis-runtime-")  # mkdtemp makes it 0700
-    atexit.register(shutil.rmtree, d, ignore_errors=True)
-    os.environ["XDG_RUNTIME_DIR"] = d
