@@ -6,7 +6,7 @@ use std::path::Path;
 
 use anyhow::{bail, Result};
 use iridis_color::integrate::{emission_to_xyz, reflectance_to_xyz, white_point};
-use iridis_color::lab::{delta_e_1976, delta_e_2000};
+use iridis_color::lab::DeltaEFormula;
 use iridis_color::tonemap::hex;
 use iridis_color::{Illuminant, Lab, Observer, Spectrum, ToneMap, Xyz};
 use serde_json::json;
@@ -194,11 +194,8 @@ pub fn parse_lab(s: &str, which: &str) -> Result<Lab> {
 pub fn delta_e(first: &str, second: &str, formula: &str) -> Result<f64> {
     let p = parse_lab(first, "first")?;
     let q = parse_lab(second, "second")?;
-    Ok(match formula.trim() {
-        "2000" | "ciede2000" => delta_e_2000(p, q),
-        "1976" | "cie76" => delta_e_1976(p, q),
-        other => bail!("unknown formula '{other}'; expected 2000 or 1976"),
-    })
+    let formula: DeltaEFormula = formula.parse().map_err(anyhow::Error::msg)?;
+    Ok(formula.delta_e(p, q))
 }
 
 /// The demo's colour section: the CIE 1931 chromaticity diagram and the colours of the built-in illuminants.

@@ -73,6 +73,7 @@ fn bad_input_gives_one_clear_line() {
     assert_fails(&["color", "xyz", p.to_str().unwrap(), "--illuminant", "f11"], &["f11", "d65"]);
     assert_fails(&["color", "xyz", p.to_str().unwrap(), "--observer", "1999"], &["1999", "1931"]);
     assert_fails(&["color", "delta-e", "50,1", "50,0,0"], &["50,1", "L,a,b"]);
+    assert_fails(&["color", "delta-e", "50,1,0", "50,0,0", "--formula", "94"], &["'94'", "2000", "1976"]);
     assert_fails(&["color", "delta-e", "50,x,1", "50,0,0"], &["'x'"]);
     // Only the first line that is not a comment may be a header; rows need exactly two columns.
     let (_scratch, p) = temp_csv("late_header.csv", "# c\n400,0.5\n410,0.6\nwavelength,value\n420,0.7\n");

@@ -88,6 +88,31 @@ pub fn delta_e_displayed(a: Xyz, b: Xyz, exposure: f64) -> f64 {
     delta_e_2000(displayed_lab(a, exposure), displayed_lab(b, exposure))
 }
 
+/// Which colour difference: CIEDE2000 or ΔE*ab (CIE 1976), as `--formula` and Python's `formula=` name them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DeltaEFormula {
+    Ciede2000,
+    Cie1976,
+}
+
+crate::names! {
+    DeltaEFormula {
+        Ciede2000 => "2000" | "ciede2000" | "de2000",
+        Cie1976 => "1976" | "cie76" | "cie1976" | "ab",
+    }
+    else |s| -> String { format!("unknown ΔE formula '{}'; expected 2000 (CIEDE2000) or 1976 (ΔE*ab)", s.trim()) }
+}
+
+impl DeltaEFormula {
+    /// The difference between `p` and `q` by this formula.
+    pub fn delta_e(self, p: Lab, q: Lab) -> f64 {
+        match self {
+            DeltaEFormula::Ciede2000 => delta_e_2000(p, q),
+            DeltaEFormula::Cie1976 => delta_e_1976(p, q),
+        }
+    }
+}
+
 /// ΔE*ab, CIE 1976: Euclidean distance in L*a*b*.
 pub fn delta_e_1976(p: Lab, q: Lab) -> f64 {
     ((p.l - q.l).powi(2) + (p.a - q.a).powi(2) + (p.b - q.b).powi(2)).sqrt()

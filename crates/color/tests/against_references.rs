@@ -2,7 +2,7 @@
 //! `tools/gen_color_fixtures.py`) and the CIEDE2000 test data of Sharma, Wu & Dalal (2005).
 
 use iridis_color::integrate::{emission_to_xyz, reflectance_to_xyz, white_point};
-use iridis_color::lab::{delta_e_1976, delta_e_2000};
+use iridis_color::lab::{delta_e_1976, delta_e_2000, DeltaEFormula};
 use iridis_color::{Illuminant, Lab, Observer, Xyz};
 use serde_json::Value;
 
@@ -28,6 +28,13 @@ fn ciede2000_matches_sharma_wu_dalal_2005() {
 #[test]
 fn delta_e_1976_is_euclidean() {
     assert!((delta_e_1976(Lab::new(50.0, 3.0, 4.0), Lab::new(50.0, 0.0, 0.0)) - 5.0).abs() < 1e-15);
+    // By name, as --formula and Python's formula= read it: a 3-4-5 triangle, and Sharma et al.'s pair 1.
+    let f: DeltaEFormula = " CIE76 ".parse().unwrap();
+    assert!((f.delta_e(Lab::new(50.0, 3.0, 4.0), Lab::new(50.0, 0.0, 0.0)) - 5.0).abs() < 1e-15);
+    let f: DeltaEFormula = "2000".parse().unwrap();
+    let d = f.delta_e(Lab::new(50.0, 2.6772, -79.7751), Lab::new(50.0, 0.0, -82.7485));
+    assert!((d - 2.0425).abs() < 1e-4, "{d}");
+    assert!("94".parse::<DeltaEFormula>().unwrap_err().contains("'94'"));
 }
 
 fn parse<T: std::str::FromStr>(v: &Value) -> T

@@ -3,7 +3,7 @@
 
 use iridis_api::Report as _;
 use iridis_color::integrate::{observer_grid, white_point};
-use iridis_color::lab::{delta_e_1976, delta_e_2000};
+use iridis_color::lab::DeltaEFormula;
 use iridis_color::{Illuminant, Lab, Observer, SpectralWeights, Spectrum, ToneMap, Xyz};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray2, PyReadonlyArray1, PyReadonlyArray2};
@@ -114,19 +114,15 @@ fn _xyz_to_hex(xyz: PyReadonlyArray2<'_, f64>, exposure: f64) -> Vec<String> {
         .collect()
 }
 
-/// CIEDE2000 (`method = "2000"`) or ΔE*ab (`"1976"`) between rows of two Lab arrays.
+/// CIEDE2000 (`formula = "2000"`) or ΔE*ab (`"1976"`) between rows of two Lab arrays.
 #[pyfunction]
-fn _delta_e(a: PyReadonlyArray2<'_, f64>, b: PyReadonlyArray2<'_, f64>, method: &str) -> PyResult<Vec<f64>> {
-    let f = match method {
-        "2000" | "CIEDE2000" | "ciede2000" => delta_e_2000,
-        "1976" | "CIE76" | "cie76" | "ab" => delta_e_1976,
-        _ => return Err(value_error(format!("unknown ΔE method '{method}'; expected 2000 or 1976"))),
-    };
+fn _delta_e(a: PyReadonlyArray2<'_, f64>, b: PyReadonlyArray2<'_, f64>, formula: &str) -> PyResult<Vec<f64>> {
+    let formula: DeltaEFormula = formula.parse().map_err(value_error)?;
     let (a, b) = (a.as_array(), b.as_array());
     Ok(a.rows()
         .into_iter()
         .zip(b.rows())
-        .map(|(p, q)| f(Lab::new(p[0], p[1], p[2]), Lab::new(q[0], q[1], q[2])))
+        .map(|(p, q)| formula.delta_e(Lab::new(p[0], p[1], p[2]), Lab::new(q[0], q[1], q[2])))
         .collect())
 }
 

@@ -113,6 +113,26 @@ impl<'py> Options<'py> {
         Ok(d.get_item(key)?.filter(|v| !v.is_none()))
     }
 
+    /// Reads the keyword `old`, an option's former name, as `new` (its name now, the CLI's flag's), with a
+    /// `DeprecationWarning`; both given is a `TypeError`. Call before reading `new`.
+    pub fn former_name(&mut self, old: &'static str, new: &'static str) -> PyResult<()> {
+        self.used.push(old);
+        let Some(d) = &self.dict else { return Ok(()) };
+        let Some(v) = d.get_item(old)? else { return Ok(()) };
+        if d.get_item(new)?.is_some_and(|n| !n.is_none()) {
+            return Err(pyo3::exceptions::PyTypeError::new_err(format!(
+                "both {new}= and its former name {old}= were given; give {new}= alone"
+            )));
+        }
+        let py = d.py();
+        py.import("warnings")?.call_method1(
+            "warn",
+            (format!("{old}= is now {new}="), py.get_type::<pyo3::exceptions::PyDeprecationWarning>(), 3),
+        )?;
+        d.set_item(new, v)?;
+        d.del_item(old)
+    }
+
     fn type_error(key: &str, what: &str, v: &Bound<'_, PyAny>) -> PyErr {
         let ty = v.get_type().name().map(|n| n.to_string()).unwrap_or_else(|_| "?".into());
         pyo3::exceptions::PyTypeError::new_err(format!("{key} must be {what}, got {ty}"))

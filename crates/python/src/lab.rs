@@ -34,7 +34,7 @@ fn source_of(obj: &Bound<'_, PyAny>) -> PyResult<Source> {
 }
 
 /// The surface (a `Surface` or SURFACE argument) and the lab's options from the keyword `options`: the
-/// surface's, `coherence_nm`, `terms`, `fresnel`, `fresnel_convention`, `shadowing`, `stam_epsilon` (any other
+/// surface's, `coherence_nm`, `terms`, `fresnel`, `fresnel_convention`, `shadowing`, `epsilon` (any other
 /// keyword is a `TypeError`).
 fn source_and_lab(surface: &Bound<'_, PyAny>, options: Option<Bound<'_, PyDict>>) -> PyResult<(Source, LabOptions)> {
     let lab = Options::read(options, lab_options)?;
@@ -49,7 +49,8 @@ fn lab_options(o: &mut Options<'_>) -> PyResult<LabOptions> {
         None => "auto".into(),
     };
     let (fresnel, convention, shadowing) = o.shading_text()?;
-    let stam_epsilon = o.positive("stam_epsilon")?;
+    o.former_name("stam_epsilon", "epsilon")?;
+    let stam_epsilon = o.positive("epsilon")?;
     Ok(LabOptions { surface, coherence_nm, terms, fresnel, convention, shadowing, stam_epsilon })
 }
 

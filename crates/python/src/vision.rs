@@ -31,7 +31,7 @@ fn spec(options: Option<Bound<'_, PyDict>>) -> PyResult<Spec> {
             receptor_noise: o.string("receptor_noise")?,
             noise: o.string("noise")?,
             achromatic: o.string("achromatic")?,
-            achromatic_weber: o.f64("achromatic_weber")?,
+            achromatic_weber: o.f64("weber_achromatic")?,
             space: o.string("space")?,
         })
     })

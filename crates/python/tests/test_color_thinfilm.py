@@ -47,7 +47,12 @@ def test_ciede2000_matches_sharma(sharma):
     b = np.array([p["lab2"] for p in sharma["pairs"]])
     expected = np.array([p["delta_e_2000"] for p in sharma["pairs"]])
     assert np.max(np.abs(color.delta_e(a, b) - expected)) <= 1e-4
-    assert abs(color.delta_e([50, 3, 4], [50, 0, 0], method="1976") - 5.0) < 1e-15
+    assert abs(color.delta_e([50, 3, 4], [50, 0, 0], formula="1976") - 5.0) < 1e-15
+    # The keyword's former name still reads, with a DeprecationWarning; both names at once are refused.
+    with pytest.warns(DeprecationWarning, match="method= is now formula="):
+        assert abs(color.delta_e([50, 3, 4], [50, 0, 0], method="1976") - 5.0) < 1e-15
+    with pytest.raises(TypeError, match="both formula= and its former name method="):
+        color.delta_e([50, 3, 4], [50, 0, 0], formula="1976", method="1976")
     np.testing.assert_allclose(color.lab_to_xyz(color.xyz_to_lab([[0.2, 0.3, 0.4]])), [[0.2, 0.3, 0.4]], atol=1e-12)
 
 
@@ -117,7 +122,7 @@ def test_colour_of_a_thickness_sweep_equals_single_stacks():
         (lambda: color.xyz_to_hex([0.5, 0.5, 0.5], exposure=float("nan")), ValueError, "positive finite"),
         (lambda: color.xyz_to_lab([1, 2]), ValueError, "length 3"),
         (lambda: color.xyz_to_lab(["a", "b", "c"]), TypeError, "real numbers"),
-        (lambda: color.delta_e([1, 2, 3], [1, 2, 3], method="94"), ValueError, "ΔE method"),
+        (lambda: color.delta_e([1, 2, 3], [1, 2, 3], formula="94"), ValueError, "unknown ΔE formula '94'"),
     ],
 )
 def test_bad_input_raises_with_a_message(call, exc, words):

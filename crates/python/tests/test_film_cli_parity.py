@@ -193,6 +193,10 @@ def test_vision_of_a_spectra_file_is_the_clis():
     same(dict(v), cli_json("vision.json"))
     t = vision.vision(spectra, "bluetit").text
     assert t == text("vision.txt").replace("data/examples/vision_spectra.csv", spectra)
+    # With no achromatic channel, as `--achromatic none` (the Weber fraction's default is the CLI's, not a value
+    # given: a given one would be refused as ignored).
+    t = vision.vision(spectra, "bluetit", achromatic="none").text
+    assert "→ e = 0.200, 0.141, 0.141, 0.100; no achromatic channel" in t
 
 
 def test_bench_runs_each_measurement_once():

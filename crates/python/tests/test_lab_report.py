@@ -154,7 +154,13 @@ def test_options_no_method_reads_are_refused(tmp_path):
     with pytest.raises(ValueError, match=r"--terms 3 would be ignored: the methods ground-truth, stam-gaussian use"):
         lab.compare(spec, methods=["ground-truth", "stam-gaussian"], size=8, terms=3)
     with pytest.raises(ValueError, match=r"--epsilon 0.2 would be ignored: .*stam-gaussian method has none"):
-        lab.laser(spec, tmp_path / "s.png", method="stam-gaussian", stam_epsilon=0.2)
+        lab.laser(spec, tmp_path / "s.png", method="stam-gaussian", epsilon=0.2)
+    # The former name still reads, with a DeprecationWarning; both names at once are a TypeError.
+    with pytest.warns(DeprecationWarning, match=r"stam_epsilon= is now epsilon="):
+        with pytest.raises(ValueError, match=r"--epsilon 0.2 would be ignored"):
+            lab.laser(spec, tmp_path / "s.png", method="stam-gaussian", stam_epsilon=0.2)
+    with pytest.raises(TypeError, match=r"both epsilon= and its former name stam_epsilon="):
+        lab.laser(spec, tmp_path / "s.png", method="stam-periodic", epsilon=0.2, stam_epsilon=0.2)
     with pytest.raises(ValueError, match=r"--coherence 5um would be ignored: .* --aperture 5um"):
         lab.laser(spec, tmp_path / "s.png", coherence_nm=5000.0)
     # The CLI's --aperture is aperture_nm here: the error points to it.

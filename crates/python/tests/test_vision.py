@@ -55,7 +55,10 @@ def test_identical_spectra_and_bad_input():
         vision.analyse(wl, values, "bluetit", names, illuminant="bluesky", illuminant_units="energy")
     # A Weber fraction for an achromatic channel that is not there: refused as the CLI refuses it.
     with pytest.raises(ValueError, match="--weber-achromatic 0.2 would be ignored: --achromatic none"):
-        vision.analyse(wl, values, "bluetit", names, achromatic="none", achromatic_weber=0.2)
+        vision.analyse(wl, values, "bluetit", names, achromatic="none", weber_achromatic=0.2)
+    with pytest.warns(DeprecationWarning, match="achromatic_weber= is now weber_achromatic="):
+        with pytest.raises(ValueError, match="--weber-achromatic 0.2 would be ignored"):
+            vision.analyse(wl, values, "bluetit", names, achromatic="none", achromatic_weber=0.2)
 
 
 def test_sensitivities_have_unit_area_and_peak_at_lambda_max():

@@ -9,6 +9,7 @@ import inspect
 import io
 import json
 import os
+import warnings
 
 import numpy as np
 
@@ -54,6 +55,17 @@ def keywords(f):
             raise TypeError(f"{f.__name__}() got an unexpected keyword argument '{name}' ({hint}it takes: "
                             f"{', '.join(known)})") from None
     return call
+
+
+def renamed(function, old, old_value, new, new_value, default):
+    """The value of a keyword whose former name was ``old`` (its name now, ``new``, is the CLI's flag's): the
+    former name's value with a DeprecationWarning where only it is given; both given is a TypeError."""
+    if old_value is None:
+        return new_value
+    if new_value != default:
+        raise TypeError(f"{function}() got both {new}= and its former name {old}=; give {new}= alone")
+    warnings.warn(f"{old}= is now {new}=", DeprecationWarning, stacklevel=3)
+    return old_value
 
 
 def columns(text):

@@ -19,6 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import _native
+from ._answer import renamed
 
 __all__ = [
     "ILLUMINANTS",
@@ -130,11 +131,13 @@ def xyz_to_hex(xyz, exposure=1.0):
     return out[0] if len(shape) == 1 else np.array(out).reshape(shape[:-1]).tolist()
 
 
-def delta_e(lab1, lab2, method="2000"):
-    """Colour difference between Lab colours (broadcast): CIEDE2000 (``"2000"``) or ΔE*ab (``"1976"``).
-    Two texts ``"L,a,b"`` are read as ``iridis color delta-e`` reads them (its messages and formula names)."""
+def delta_e(lab1, lab2, formula="2000", *, method=None):
+    """Colour difference between Lab colours (broadcast): CIEDE2000 (``"2000"``) or ΔE*ab (``"1976"``), the
+    CLI's ``--formula``. Two texts ``"L,a,b"`` are read as ``iridis color delta-e`` reads them (its messages and
+    formula names). ``method=`` is the former name of ``formula=`` (a DeprecationWarning)."""
+    formula = renamed("delta_e", "method", method, "formula", formula, "2000")
     if isinstance(lab1, str) and isinstance(lab2, str):
-        return _native._color_delta_e(lab1, lab2, str(method))
+        return _native._color_delta_e(lab1, lab2, str(formula))
     a = _float_array(lab1, "lab1")
     b = _float_array(lab2, "lab2")
     try:
@@ -143,7 +146,7 @@ def delta_e(lab1, lab2, method="2000"):
         raise ValueError(f"lab1 of shape {a.shape} and lab2 of shape {b.shape} do not broadcast") from None
     pa, shape = _colours(a, "lab1")
     pb, _ = _colours(b, "lab2")
-    out = np.array(_native._delta_e(pa, pb, str(method)))
+    out = np.array(_native._delta_e(pa, pb, str(formula)))
     return out.reshape(shape[:-1]) if len(shape) > 1 else out[0]
 
 

@@ -6,11 +6,11 @@ Table 2), convergence sweeps (sec. 7) and the laser experiment (Figure 8). The s
 the arrays behind them.
 
 ``surface`` is an :class:`iridis.surface.Surface` or a SURFACE argument as the CLI takes it. Keyword
-``options``: ``coherence_nm``, ``terms``, ``fresnel``, ``fresnel_convention``, ``shadowing``, ``stam_epsilon``
-and, for SURFACE arguments, ``pixel_size_nm``, ``max_height_nm``, ``channel``, ``height_unit``, ``level``,
+``options``: ``coherence_nm``, ``terms``, ``fresnel``, ``fresnel_convention``, ``shadowing``, ``epsilon``
+(Stam's ε, the CLI's ``--epsilon``; ``stam_epsilon`` is its former name) and, for SURFACE arguments, ``pixel_size_nm``, ``max_height_nm``, ``channel``, ``height_unit``, ``level``,
 ``override_units``, ``as_height`` (the CLI's ``--override-units``, ``--as-height``). An option no method of
 the call reads raises ValueError, as the CLI refuses it: ``terms`` for the ground truths and Stam's models,
-``stam_epsilon`` without a Stam periodic model, ``coherence_nm`` in ``laser`` (its window is ``aperture_nm``).
+``epsilon`` without a Stam periodic model, ``coherence_nm`` in ``laser`` (its window is ``aperture_nm``).
 Angles in radians, lengths in nm.
 
 Example:

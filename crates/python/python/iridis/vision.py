@@ -22,6 +22,7 @@ import json
 import numpy as np
 
 from . import _native
+from ._answer import renamed
 
 __all__ = ["VISUAL_SYSTEMS", "ILLUMINANTS", "analyse", "sensitivities", "vision"]
 
@@ -45,7 +46,7 @@ def _text(x, sep=","):
 
 def _spec(visual, lambda_max, chromophore, oil_droplets, ocular_media, illuminant, illuminant_units,
           illuminant_scale, background, weber, weber_ref, densities, receptor_noise, noise, achromatic,
-          achromatic_weber, space):
+          weber_achromatic, space):
     """The analysis options in the words of the CLI (``iridis_vision::Spec``), for ``analyse`` and ``vision``."""
     number = (lambda x: None if x is None else float(x))
     return dict(
@@ -54,13 +55,13 @@ def _spec(visual, lambda_max, chromophore, oil_droplets, ocular_media, illuminan
         illuminant_scale=number(illuminant_scale), background=background, weber=number(weber),
         weber_ref=None if weber_ref is None else str(weber_ref), densities=_text(densities, ":"),
         receptor_noise=_text(receptor_noise), noise=noise, achromatic=achromatic,
-        achromatic_weber=number(achromatic_weber), space=space)
+        weber_achromatic=number(weber_achromatic), space=space)
 
 
 def analyse(wavelengths_nm, values, visual=None, names=None, *, lambda_max=None, chromophore=None,
             oil_droplets=None, ocular_media=None, illuminant=None, illuminant_units=None, illuminant_scale=None,
             background=None, weber=None, weber_ref=None, densities=None, receptor_noise=None, noise=None,
-            achromatic=None, achromatic_weber=None, space=None):
+            achromatic=None, weber_achromatic=None, space=None, achromatic_weber=None):
     """How the spectra look to an animal: catches, coordinates and every pair's ΔS and ΔL in JND.
 
     ``values``: one spectrum per row (a 1-D array is one spectrum). ``visual``: a built-in system
@@ -68,8 +69,12 @@ def analyse(wavelengths_nm, values, visual=None, names=None, *, lambda_max=None,
     ``chromophore`` ("a1"/"a2") and ``oil_droplets`` ("T,C:413,Y:507,R:572"). ``illuminant``: one of
     ``ILLUMINANTS`` or a CSV; ``background``: "grey", "grey:0.2", "none" or a CSV; ``densities``: "1:2:2:4" or a
     sequence; ``receptor_noise``: noise per receptor; ``noise``: "neural" or "quantum"; ``space``: "auto",
-    "line", "triangle", "tetrahedron", "hexagon" or "none". Unset options are the system's or the CLI's defaults.
+    "line", "triangle", "tetrahedron", "hexagon" or "none"; ``weber_achromatic``: the achromatic channel's Weber
+    fraction (the CLI's ``--weber-achromatic``, default 0.1; ``achromatic_weber`` is its former name). Unset
+    options are the system's or the CLI's defaults.
     """
+    weber_achromatic = renamed("analyse", "achromatic_weber", achromatic_weber, "weber_achromatic",
+                               weber_achromatic, None)
     wl = _float_array(wavelengths_nm, "wavelengths_nm")
     if wl.ndim != 1:
         raise ValueError(f"wavelengths_nm must be 1-D, got shape {wl.shape}")
@@ -83,7 +88,7 @@ def analyse(wavelengths_nm, values, visual=None, names=None, *, lambda_max=None,
     names = [str(n) for n in names]
     out = _native._analyse(np.ascontiguousarray(wl), np.ascontiguousarray(v), names, **_spec(
         visual, lambda_max, chromophore, oil_droplets, ocular_media, illuminant, illuminant_units, illuminant_scale,
-        background, weber, weber_ref, densities, receptor_noise, noise, achromatic, achromatic_weber, space))
+        background, weber, weber_ref, densities, receptor_noise, noise, achromatic, weber_achromatic, space))
     return json.loads(out)
 
 
@@ -100,13 +105,15 @@ def sensitivities(wavelengths_nm, visual=None, *, lambda_max=None, chromophore=N
 def vision(spectra, visual=None, *, percent=False, lambda_max=None, chromophore=None, oil_droplets=None,
            ocular_media=None, illuminant="d65", illuminant_units=None, illuminant_scale=1.0, background="grey",
            weber=None, weber_ref=None, densities=None, receptor_noise=None, noise="neural", achromatic=None,
-           achromatic_weber=0.1, space="auto"):
+           weber_achromatic=None, space="auto", achromatic_weber=None):
     """``iridis vision``: the spectra CSV ``spectra`` (pavo's layout: a wavelength column and one column per
     sample; ``percent`` divides by 100) as an animal sees it, with the CLI's defaults — the dict of ``--json``
     and ``.text`` the CLI's text. The options are :func:`analyse`'s."""
     from ._answer import answer, file_path
 
+    weber_achromatic = renamed("vision", "achromatic_weber", achromatic_weber, "weber_achromatic",
+                               weber_achromatic, None)
     path = file_path(spectra, "iridis.vision.vision", "iridis.vision.analyse(wavelengths_nm, values, visual)")
     return answer(_native._vision_file(path, bool(percent), **_spec(
         visual, lambda_max, chromophore, oil_droplets, ocular_media, illuminant, illuminant_units, illuminant_scale,
-        background, weber, weber_ref, densities, receptor_noise, noise, achromatic, achromatic_weber, space)))
+        background, weber, weber_ref, densities, receptor_noise, noise, achromatic, weber_achromatic, space)))

@@ -26,8 +26,9 @@ def analyse(
     receptor_noise: Optional[Union[str, npt.ArrayLike]] = ...,
     noise: Optional[str] = ...,
     achromatic: Optional[str] = ...,
-    achromatic_weber: Optional[float] = ...,
+    weber_achromatic: Optional[float] = ...,
     space: Optional[str] = ...,
+    achromatic_weber: Optional[float] = ...,
 ) -> dict[str, Any]: ...
 def sensitivities(
     wavelengths_nm: npt.ArrayLike,
@@ -42,5 +43,6 @@ def vision(
     chromophore: Optional[str] = ..., oil_droplets: Optional[str] = ..., ocular_media: Optional[str] = ...,
     illuminant: str = ..., illuminant_units: Optional[str] = ..., illuminant_scale: float = ..., background: str = ...,
     weber: Optional[float] = ..., weber_ref: Optional[str] = ..., densities: Any = ..., receptor_noise: Any = ...,
-    noise: str = ..., achromatic: Optional[str] = ..., achromatic_weber: float = ..., space: str = ...
+    noise: str = ..., achromatic: Optional[str] = ..., weber_achromatic: Optional[float] = ..., space: str = ...,
+    achromatic_weber: Optional[float] = ...
 ) -> dict[str, Any]: ...
