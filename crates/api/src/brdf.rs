@@ -260,6 +260,11 @@ pub fn render_map_per_sr(
     })
 }
 
+/// The faintest value that counts as light in a map (RU, or sr⁻¹ for f_r): below it is the round-off of sums
+/// that cancel (a missed lobe leaves ~1e-35), which an exposure of 1e17 RU or more would be needed to see; a map
+/// of nothing brighter is black.
+pub const LIT_FLOOR: f64 = 1e-20;
+
 /// An exposure (RU) chosen from a map's own values: the 99th percentile of the brightest linear sRGB channel
 /// over the lit pixels becomes white, so a bright mirror lobe does not black out the rest and a faint map is
 /// not a white disk; with the share of the disk's pixels it clips. `None` for a map with no light in it.
@@ -271,7 +276,7 @@ pub fn auto_exposure(xyz: &[Xyz], size: usize) -> Option<AutoExposure> {
     };
     let peak = |p: &Xyz| p.to_linear_srgb().iter().fold(0.0f64, |m, &c| m.max(c));
     let disk: Vec<f64> = xyz.iter().enumerate().filter(|(k, _)| in_disk(*k)).map(|(_, p)| peak(p)).collect();
-    let mut lit: Vec<f64> = disk.iter().copied().filter(|&v| v > 0.0 && v.is_finite()).collect();
+    let mut lit: Vec<f64> = disk.iter().copied().filter(|&v| v > LIT_FLOOR && v.is_finite()).collect();
     if lit.is_empty() {
         return None;
     }

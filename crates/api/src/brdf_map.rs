@@ -302,7 +302,7 @@ pub fn compute(r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) ->
             );
         }
         let mut map = gpu_map(r, report)?;
-        map.tone.exposure_ru = exposure_for(&map.xyz, r, report);
+        map.tone.exposure_ru = exposure_for(&map.xyz, r, files, report)?;
         return Ok(map);
     }
     if r.table_precision.is_some() {
@@ -336,7 +336,7 @@ pub fn compute(r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) ->
         if r.per_sr { Some(render_map_per_sr(e.as_ref(), &model, r.wi, r.size, r.subsamples, report)?) } else { None };
     let total = start.elapsed().as_secs_f64();
     let secs = total - prepared;
-    let exposure = exposure_for(&xyz, r, report);
+    let exposure = exposure_for(&xyz, r, files, report)?;
     let how = format!(
         "{} map, {}²{}, {total:.2} s in all: {prepared:.2} s to load and prepare, {secs:.2} s for the map, {:.0} \
          pixels/s",
@@ -357,27 +357,46 @@ pub fn compute(r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) ->
 }
 
 /// The image's exposure: the one given, or with `--auto-exposure` the one [`auto_exposure`] chooses from the
-/// map (said in a note; a black map keeps the one given, with a warning).
-fn exposure_for(xyz: &[Xyz], r: &MapRequest, report: &dyn Report) -> f64 {
-    if !r.auto_exposure {
-        return r.exposure_ru;
-    }
-    match auto_exposure(xyz, r.size) {
-        Some(auto) => {
-            report.note(&format!(
-                "exposure {:.4} RU, chosen from the map (its 99th-percentile lit pixel is white): {:.2} % of the \
-                 disk's pixels clipped, {:.2} % lit",
-                auto.exposure_ru,
-                100.0 * auto.clipped_share,
-                100.0 * auto.lit_share
+/// map (said in a note). A black map keeps the one given, with a warning whether or not the exposure was to be
+/// chosen; so does a lit map whose image (`-o X.png`, `--plot`; `files` None: the caller's image) would be black
+/// at the exposure given.
+fn exposure_for(xyz: &[Xyz], r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) -> Result<f64> {
+    let Some(auto) = auto_exposure(xyz, r.size) else {
+        let mut warning = black_map(r.exposure_ru);
+        let samples_a_side = r.size * r.subsamples;
+        if r.method.starts_with("stam-periodic") && samples_a_side.is_multiple_of(2) {
+            warning.push_str(&format!(
+                "; Stam's periodic models put a 1-D grating's orders on the row y = 0, which {samples_a_side} samples \
+                 a side miss: give an odd --size (and --subsamples)"
             ));
-            auto.exposure_ru
         }
-        None => {
-            report.warn(&black_map(r.exposure_ru));
-            r.exposure_ru
-        }
+        report.warn(&warning);
+        return Ok(r.exposure_ru);
+    };
+    if r.auto_exposure {
+        report.note(&format!(
+            "exposure {:.4} RU, chosen from the map (its 99th-percentile lit pixel is white): {:.2} % of the disk's \
+             pixels clipped, {:.2} % lit",
+            auto.exposure_ru,
+            100.0 * auto.clipped_share,
+            100.0 * auto.lit_share
+        ));
+        return Ok(auto.exposure_ru);
     }
+    let image = match files {
+        Some(f) => f.plot.is_some() || crate::output::format_of("-o", &f.output, MAP_FORMATS)? == "png",
+        None => true,
+    };
+    let tone = ToneMap { exposure_ru: r.exposure_ru, encoding: r.encoding };
+    if image && xyz.iter().all(|&p| tone.to_rgb8(p) == [0, 0, 0]) {
+        report.warn(&format!(
+            "the image is black at --exposure {} RU: the map's light is too faint for it (at {:.4e} RU its \
+             99th-percentile lit pixel is white: --auto-exposure chooses that)",
+            iridis_color::spectrum::short_number(r.exposure_ru),
+            auto.exposure_ru
+        ));
+    }
+    Ok(r.exposure_ru)
 }
 
 /// The lookup method or a ground truth on the GPU: the image is tone-mapped on the CPU from the GPU's XYZ, so

@@ -195,7 +195,7 @@ pub fn delta_e(first: &str, second: &str, formula: &str) -> Result<f64> {
     let p = parse_lab(first, "first")?;
     let q = parse_lab(second, "second")?;
     let formula: DeltaEFormula = formula.parse().map_err(anyhow::Error::msg)?;
-    Ok(formula.delta_e(p, q))
+    formula.delta_e_checked(p, q).map_err(anyhow::Error::msg)
 }
 
 /// The demo's colour section: the CIE 1931 chromaticity diagram and the colours of the built-in illuminants.

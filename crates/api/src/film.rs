@@ -126,7 +126,9 @@ pub fn psi_delta(stack: &Stack, angle: f64, grid: &[f64]) -> Result<Vec<(f64, Op
 }
 
 fn ellips_cells(e: &[(f64, Option<f64>)], i: usize) -> (String, String) {
-    (e[i].0.to_string(), e[i].1.map(|d| d.to_string()).unwrap_or_default())
+    // ψ and Δ are undefined where r_s = 0 (an index-matched stack reflects nothing): empty cells, not NaN.
+    let psi = if e[i].0.is_finite() { e[i].0.to_string() } else { String::new() };
+    (psi, e[i].1.filter(|d| d.is_finite()).map(|d| d.to_string()).unwrap_or_default())
 }
 
 /// Warns when the grid cannot resolve the fringes of a thick layer (`iridis_thinfilm::sampling`).

@@ -243,7 +243,8 @@ fn read_options(request: &FitRequest) -> Result<ReadOptions> {
     o.from_nm = request.from_nm;
     o.to_nm = request.to_nm;
     o.spread = match (&request.sigma, &request.weights) {
-        (Some(s), _) => Some((s.clone(), Spread::Sigma)),
+        (Some(_), Some(_)) => bail!("--sigma and --weights say the same (the weights are 1/σ²): give one"),
+        (Some(s), None) => Some((s.clone(), Spread::Sigma)),
         (None, Some(w)) => Some((w.clone(), Spread::Weight)),
         (None, None) => None,
     };

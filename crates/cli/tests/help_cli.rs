@@ -28,7 +28,8 @@
 //! the pages' run side by side: one that comes to a command the other is running waits for its outcome.
 //!
 //! **Inputs.** A file an example reads that no earlier example of its page wrote is made first: height fields
-//! (`.gwy`, `.npy`, `.png`, `.txt`, `.tif`) by `iridis surface generate sine` on the small patch; `.npz` is the
+//! (`.gwy`, `.npy`, `.png`, `.txt`, `.tif`) by `iridis surface generate sine` on the small patch (its heights in
+//! the unit an example's `--height-unit` names); `.npz` is the
 //! committed `np.savez_compressed` fixture of the surface crate (two height channels), `.sxm` its Nanonis
 //! fixture; instrument files
 //! (`.spm`, `.ibw`, `.jpk`, `.stp`, `.top`, `.gsf`) are the real scans of `tools/fetch_afm_samples.sh`
@@ -431,10 +432,25 @@ fn make_input(dir: &Path, name: &str, words: &[String]) -> Result<(), String> {
     match ext.as_str() {
         "gwy" | "npy" | "png" | "txt" | "tif" | "tiff" => {
             let (s, p) = small_patch(65_000.0, 65.0);
+            // An example that reads the heights in another unit (`--height-unit m`) gets them in that unit:
+            // the sine's 100 nm depth written as 1e-7 "nm", read as metres.
+            let unit = words.iter().position(|w| w == "--height-unit").and_then(|i| words.get(i + 1));
+            let nm_per_unit = match unit.map(String::as_str) {
+                Some("m") => 1e9,
+                Some("mm") => 1e6,
+                Some("um" | "µm") => 1e3,
+                _ => 1.0,
+            };
             let args: Vec<String> = ["surface", "generate", "sine", "-o", name, "--size", &format!("{s}nm")]
                 .into_iter()
                 .map(String::from)
                 .chain(["--pixel-size".to_string(), format!("{p}nm")])
+                .chain(
+                    (nm_per_unit != 1.0)
+                        .then(|| ["--depth".to_string(), format!("{}nm", 100.0 / nm_per_unit)])
+                        .into_iter()
+                        .flatten(),
+                )
                 .collect();
             let out = run_in(dir, &args);
             out.status.success().then_some(()).ok_or_else(|| String::from_utf8_lossy(&out.stderr).to_string())

@@ -1,5 +1,6 @@
 //! The integration tests of iridis: one module a file, one test binary (README, "Tests").
 
+mod absurd_input_cli;
 mod brdf_cli;
 mod color_cli;
 mod common;

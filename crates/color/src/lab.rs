@@ -103,6 +103,11 @@ crate::names! {
     else |s| -> String { format!("unknown ΔE formula '{}'; expected 2000 (CIEDE2000) or 1976 (ΔE*ab)", s.trim()) }
 }
 
+/// The largest |L*|, |a*|, |b*| a colour difference takes: CIELAB's colours lie within L* 0–100 and a*, b* of
+/// about ±200 (an over-exposed light a few hundred L*); far beyond, the formulas' squares lose all precision
+/// and then overflow to NaN.
+pub const MAX_LAB_COMPONENT: f64 = 1e6;
+
 impl DeltaEFormula {
     /// The difference between `p` and `q` by this formula.
     pub fn delta_e(self, p: Lab, q: Lab) -> f64 {
@@ -110,6 +115,22 @@ impl DeltaEFormula {
             DeltaEFormula::Ciede2000 => delta_e_2000(p, q),
             DeltaEFormula::Cie1976 => delta_e_1976(p, q),
         }
+    }
+
+    /// [`Self::delta_e`] of colours a person gave: a component that is not finite or beyond
+    /// [`MAX_LAB_COMPONENT`] is an error naming it, not a NaN.
+    pub fn delta_e_checked(self, p: Lab, q: Lab) -> Result<f64, String> {
+        for (which, c) in [("first", p), ("second", q)] {
+            for (name, v) in [("L*", c.l), ("a*", c.a), ("b*", c.b)] {
+                if !(v.is_finite() && v.abs() <= MAX_LAB_COMPONENT) {
+                    return Err(format!(
+                        "the {which} colour's {name} = {v:e} is outside CIELAB (L* 0–100, a* and b* within about \
+                         ±200; at most ±{MAX_LAB_COMPONENT:e} is taken)"
+                    ));
+                }
+            }
+        }
+        Ok(self.delta_e(p, q))
     }
 }
 

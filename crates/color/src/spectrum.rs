@@ -229,6 +229,18 @@ pub fn trapezoid_weights(xs: &[f64]) -> Vec<f64> {
     w
 }
 
+/// The most samples a wavelength grid may hold (one per 0.04 pm over 380–780 nm).
+pub const MAX_GRID_SAMPLES: usize = 10_000_000;
+
+/// `x` as a person reads it: at most four decimals, trailing zeros dropped (`5`, `2.5`, `694.0001`), and in
+/// exponent form beyond a billion or below a ten-thousandth (`1e300`, `1e-17`), not hundreds of digits.
+pub fn short_number(x: f64) -> String {
+    if x != 0.0 && x.is_finite() && !(1e-4..1e9).contains(&x.abs()) {
+        return format!("{x:e}");
+    }
+    format!("{x:.4}").trim_end_matches('0').trim_end_matches('.').to_string()
+}
+
 /// `from, from + step, …` up to `to`, which is the last sample where the step divides the range (within a
 /// millionth of a step); see [`range_grid`] for a range a person gave.
 pub fn uniform_grid(from_nm: f64, to_nm: f64, step_nm: f64) -> Result<Vec<f64>, SpectrumError> {
@@ -237,11 +249,19 @@ pub fn uniform_grid(from_nm: f64, to_nm: f64, step_nm: f64) -> Result<Vec<f64>, 
             "bad wavelength range {from_nm} nm to {to_nm} nm in steps of {step_nm} nm (need from ≤ to, step > 0)"
         )));
     }
-    let n = ((to_nm - from_nm) / step_nm + 1e-6).floor() as usize + 1;
-    if n > 10_000_000 {
-        return Err(SpectrumError::Invalid(format!("{n} samples is too many")));
+    // Counted in f64 first: a count past usize (a 1e-17 nm step, a 1e300 nm end) would wrap to an empty grid.
+    let n = ((to_nm - from_nm) / step_nm + 1e-6).floor() + 1.0;
+    if n > MAX_GRID_SAMPLES as f64 {
+        return Err(SpectrumError::Invalid(format!(
+            "{} nm to {} nm in steps of {} nm is {} samples, more than {MAX_GRID_SAMPLES}: give a larger step or a \
+             shorter range",
+            short_number(from_nm),
+            short_number(to_nm),
+            short_number(step_nm),
+            short_number(n)
+        )));
     }
-    Ok((0..n).map(|i| from_nm + i as f64 * step_nm).collect())
+    Ok((0..n as usize).map(|i| from_nm + i as f64 * step_nm).collect())
 }
 
 /// [`uniform_grid`] for a range a person gave (`--from 400nm --to 700nm --step 5nm`): both ends are samples,
@@ -251,7 +271,7 @@ pub fn range_grid(from_nm: f64, to_nm: f64, step_nm: f64) -> Result<Vec<f64>, Sp
     let grid = uniform_grid(from_nm, to_nm, step_nm)?;
     if whole_steps(from_nm, to_nm, step_nm).is_err() {
         let last = grid[grid.len() - 1];
-        let nm = |v: f64| format!("{:.4}", v).trim_end_matches('0').trim_end_matches('.').to_string();
+        let nm = short_number;
         return Err(SpectrumError::Invalid(format!(
             "{}–{} nm is not a whole number of {} nm steps: the last wavelength would be {} nm; give a step that \
              divides the {} nm range, or end at {} nm",
@@ -267,10 +287,11 @@ pub fn range_grid(from_nm: f64, to_nm: f64, step_nm: f64) -> Result<Vec<f64>, Sp
 }
 
 /// The number of `step`s from `from` to `to` where it is whole (within a millionth of a step), else their
-/// fractional count: whether a range given as its ends and a step has both ends on its grid.
+/// fractional count: whether a range given as its ends and a step has both ends on its grid. A step longer
+/// than a range of two distinct ends is not whole (it would drop `to`), however small the fraction.
 pub(crate) fn whole_steps(from: f64, to: f64, step: f64) -> Result<usize, f64> {
     let steps = (to - from) / step;
-    if (steps - steps.round()).abs() > 1e-6 {
+    if (steps - steps.round()).abs() > 1e-6 || (to > from && steps.round() == 0.0) {
         Err(steps)
     } else {
         Ok(steps.round() as usize)

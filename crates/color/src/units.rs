@@ -80,6 +80,10 @@ pub fn parse_range(s: &str, parse: fn(&str) -> Result<f64, UnitError>) -> Result
     if step <= 0.0 || b < a {
         return Err(UnitError(format!("'{s}': need FROM ≤ TO and STEP > 0")));
     }
+    // Counted in f64 first: a count past usize (a tiny STEP) would wrap to an empty list.
+    if (b - a) / step >= 1e6 {
+        return Err(UnitError(format!("'{s}' has more than 1000000 values; give a larger STEP")));
+    }
     // Both ends are values: a STEP that does not divide the range would stop short of TO without a word.
     let n = crate::spectrum::whole_steps(a, b, step).map_err(|steps| {
         UnitError(format!(
@@ -116,7 +120,13 @@ pub fn format_length(nm: f64) -> String {
         a if a >= 5e3 => (nm / 1e3, "um"),
         _ => (nm, "nm"),
     };
-    format!("{}{unit}", format!("{v:.5e}").parse::<f64>().unwrap_or(v))
+    let v = format!("{v:.5e}").parse::<f64>().unwrap_or(v);
+    // Past a kilometre in exponent form (still read back), not hundreds of digits.
+    if v.abs() >= 1e6 {
+        format!("{v:e}{unit}")
+    } else {
+        format!("{v}{unit}")
+    }
 }
 
 /// An angle as a person writes it (`30deg`, `6.5deg`), from radians.

@@ -64,3 +64,29 @@ fn angles_and_ranges() {
     assert!((r[4000] - 780.0).abs() < 1e-9);
     assert_eq!(parse_range("10deg:10deg:5deg", parse_angle_rad).unwrap().len(), 1);
 }
+
+/// Ranges a person can mistype by orders of magnitude: a step so small its count passes usize (it wrapped to an
+/// empty grid, which the callers indexed and panicked on), an end of 1e300 nm, and a step longer than the range
+/// (one sample, the end silently dropped).
+#[test]
+fn absurd_ranges_are_refused_not_wrapped() {
+    use iridis_color::spectrum::{range_grid, short_number, uniform_grid};
+    let e = uniform_grid(380.0, 780.0, 1e-17).unwrap_err().to_string();
+    assert!(e.contains("4e19 samples, more than 10000000"), "{e}");
+    let e = range_grid(380.0, 1e300, 5.0).unwrap_err().to_string();
+    assert!(e.contains("1e300 nm") && e.contains("2e299 samples"), "{e}");
+    let e = range_grid(380.0, 780.0, 1e300).unwrap_err().to_string();
+    assert!(e.contains("not a whole number of 1e300 nm steps") && e.contains("would be 380 nm"), "{e}");
+    // The ends alone, and a step equal to the range, are still whole.
+    assert_eq!(range_grid(500.0, 500.0, 5.0).unwrap(), [500.0]);
+    assert_eq!(range_grid(400.0, 700.0, 300.0).unwrap(), [400.0, 700.0]);
+    let e = parse_range("0deg:10deg:1e-300deg", parse_angle_rad).unwrap_err().0;
+    assert!(e.contains("more than 1000000 values"), "{e}");
+    assert!(parse_range("0deg:10deg:1e300deg", parse_angle_rad).unwrap_err().0.contains("does not end on TO"));
+    assert_eq!(short_number(694.00012), "694.0001");
+    assert_eq!(short_number(1e300), "1e300");
+    assert_eq!(short_number(2.5e-17), "2.5e-17");
+    // A length past a kilometre prints in exponent form and reads back.
+    assert_eq!(format_length(1e300), "1e294mm");
+    assert_eq!(parse_length_nm(&format_length(1e300)).unwrap(), 1e300);
+}

@@ -253,8 +253,8 @@ impl UnitCell {
 
     fn with_band(patch: &Patch, lambda_min_nm: f64, band: Band, light: Option<Vec3>) -> Result<Self, DiffractionError> {
         let n = terms_for_bound(patch.max_abs_height, lambda_min_nm, TAYLOR_EPSILON)?;
-        // The window is not used: the orders read the DFT bins themselves.
-        let terms = TaylorTerms::compute_in_band(patch, n, 1e12, band, &|_| {})?;
+        // The window is not used (the orders read the DFT bins themselves): any length it takes will do.
+        let terms = TaylorTerms::compute_in_band(patch, n, crate::patch::MAX_COHERENCE_NM, band, &|_| {})?;
         Ok(Self { terms, lines: lines_of(patch), lambda_min_nm, light })
     }
 

@@ -164,11 +164,23 @@ pub fn min_coherence_nm(dx: f64, dy: f64) -> f64 {
     4.0 * dx.max(dy)
 }
 
+/// The longest coherence length taken, 1 m: far beyond any scan (the window's reach is then the scan's), and
+/// short enough that the window's area `4πσ_s²` and its Gaussian stay finite in f64.
+pub const MAX_COHERENCE_NM: f64 = 1e9;
+
 /// [`Patch::check_coherence`] for `dx × dy` nm pixels, where no patch is at hand (the scan report checks the
 /// coherence it was given against the scan's pixels before its first model step).
 pub fn check_coherence(coherence_nm: f64, dx: f64, dy: f64) -> Result<(), DiffractionError> {
     if !(coherence_nm.is_finite() && coherence_nm > 0.0) {
         return Err(DiffractionError::Invalid(format!("coherence length {coherence_nm} nm must be positive")));
+    }
+    if coherence_nm > MAX_COHERENCE_NM {
+        return Err(DiffractionError::Invalid(format!(
+            "a coherence length of {} nm is more than the 1 m this model takes (a longer one overflows its window's \
+             area); a window far wider than the scan is the fully coherent limit, which a length a few times the \
+             scan's side already gives",
+            iridis_color::spectrum::short_number(coherence_nm)
+        )));
     }
     let min = min_coherence_nm(dx, dy);
     if coherence_nm < min {

@@ -90,16 +90,19 @@ impl BenchSetup {
                  the second"
             )));
         }
-        let n = ((angle_max - angle_min) / angle_step + 1e-9).floor() as usize + 1;
-        if n < 3 {
+        // Counted in f64: a tiny step's count would wrap past usize.
+        let n = ((angle_max - angle_min) / angle_step + 1e-9).floor() + 1.0;
+        if n < 3.0 {
             return Err(LabError::invalid("the viewing-angle grid needs at least three angles"));
         }
-        if n * wavelengths_nm.len() > 50_000_000 {
+        if n * wavelengths_nm.len() as f64 > 50_000_000.0 {
             return Err(LabError::invalid(format!(
-                "{n} angles × {} wavelengths is too many; use a coarser --angle-step or --step",
+                "{} angles × {} wavelengths is too many; use a coarser --angle-step or --step",
+                iridis_color::spectrum::short_number(n),
                 wavelengths_nm.len()
             )));
         }
+        let n = n as usize;
         let angles_deg = (0..n).map(|k| angle_min + k as f64 * angle_step).collect();
         Ok(Self {
             incidence,

@@ -10,7 +10,7 @@ use iridis_diffraction::geometry::direction;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::above;
+use crate::args::{above, value_error};
 use crate::diffraction::xyz_array;
 use crate::facade::{json_to_py, run, Options};
 
@@ -34,6 +34,13 @@ fn brdf_map_run<'py>(
     let mut o = Options::new(options);
     let (fresnel, convention, shadowing) = o.shading_text()?;
     let method = method.unwrap_or_else(|| "lookup".into());
+    let (exposure_ru, auto_exposure) = (o.positive("exposure_ru")?, o.bool("auto_exposure")?.unwrap_or(false));
+    if let (Some(e), true) = (exposure_ru, auto_exposure) {
+        return Err(value_error(format!(
+            "exposure_ru={e} would be ignored: auto_exposure=True chooses the exposure (the CLI refuses \
+             --exposure with --auto-exposure); give one"
+        )));
+    }
     let r = MapRequest {
         model: o.model()?,
         surface: o.surface()?,
@@ -42,8 +49,8 @@ fn brdf_map_run<'py>(
         shadowing,
         wi: direction(t, p),
         size,
-        exposure_ru: o.positive("exposure_ru")?.unwrap_or(1500.0),
-        auto_exposure: o.bool("auto_exposure")?.unwrap_or(false),
+        exposure_ru: exposure_ru.unwrap_or(iridis_api::brdf_map::DEFAULT_EXPOSURE_RU),
+        auto_exposure,
         encoding: Encoding::Srgb,
         grid: TableGrid { uv_resolution: o.usize("uv_resolution")?, uv_power: o.positive("uv_power")? },
         f32: o.bool("f32")?.unwrap_or(false),

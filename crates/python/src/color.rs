@@ -119,11 +119,16 @@ fn _xyz_to_hex(xyz: PyReadonlyArray2<'_, f64>, exposure: f64) -> Vec<String> {
 fn _delta_e(a: PyReadonlyArray2<'_, f64>, b: PyReadonlyArray2<'_, f64>, formula: &str) -> PyResult<Vec<f64>> {
     let formula: DeltaEFormula = formula.parse().map_err(value_error)?;
     let (a, b) = (a.as_array(), b.as_array());
-    Ok(a.rows()
+    a.rows()
         .into_iter()
         .zip(b.rows())
-        .map(|(p, q)| formula.delta_e(Lab::new(p[0], p[1], p[2]), Lab::new(q[0], q[1], q[2])))
-        .collect())
+        .enumerate()
+        .map(|(i, (p, q))| {
+            formula
+                .delta_e_checked(Lab::new(p[0], p[1], p[2]), Lab::new(q[0], q[1], q[2]))
+                .map_err(|e| value_error(format!("colour pair {i}: {e}")))
+        })
+        .collect()
 }
 
 /// The built-in illuminants and observers.

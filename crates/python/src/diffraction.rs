@@ -298,7 +298,7 @@ fn grating<'py>(
     let wi = direction_of("light", light)?;
     let mut o = Options::new(options);
     let surface = o.surface()?;
-    let method = o.string("method")?.unwrap_or_else(|| "kirchhoff".into());
+    let method_given = o.string("method")?;
     let material = o.string("material")?;
     let fresnel = o.string("fresnel")?;
     let normalisation = o.string("normalisation")?;
@@ -311,6 +311,13 @@ fn grating<'py>(
         _ => return Err(value_error("detector_phi and acceptance need detector_theta (radians)")),
     };
     let compare = o.bool("compare")?.unwrap_or(false);
+    if let (true, Some(m)) = (compare, &method_given) {
+        return Err(value_error(format!(
+            "method='{m}' would be ignored: compare=True runs both the scalar and the rigorous method (as the CLI \
+             refuses --method with --compare)"
+        )));
+    }
+    let method = method_given.unwrap_or_else(|| "kirchhoff".into());
     // --orders-above as a fraction (1e-3; the library checks its range).
     let orders_above = o.f64("orders_above")?.unwrap_or(0.0);
     let unit_cell_auto = o.unit_cell_auto()?;
@@ -365,7 +372,7 @@ fn brdf_vision<'py>(
     let spec = iridis_vision::Spec { visual: Some(visual), illuminant, ..Default::default() };
     let v = run(py, |r| {
         let plane = iridis_api::vision::PlaneViews { light_theta, azimuth, views_deg: &views_deg, spec: &spec };
-        iridis_api::vision::along_plane(&source, &eo.surface, &eo.model, eo.shading()?, plane, r)
+        iridis_api::brdf_vision::brdf_vision(&source, &eo.surface, &eo.model, eo.shading()?, plane, None, r)
     })?;
     json_to_py(py, &v.to_json())
 }

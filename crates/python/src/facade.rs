@@ -1,10 +1,10 @@
 //! Calling the facade (`iridis-api`, the functions the CLI calls) from Python: the GIL released while it
 //! works, its notes and warnings kept ([`Collect`]) and given to Python afterwards — warnings as
-//! `warnings.warn(…, UserWarning)`, notes and the rest on the `logging` logger `iridis` — and its errors raised
+//! `warnings.warn(…, UserWarning)` of the caller's line (`iridis._answer.warn_caller`), notes and the rest on the `logging` logger `iridis` — and its errors raised
 //! with the CLI's messages: `OSError` when a file could not be read, `ValueError` otherwise.
 
 use iridis_api::report::{Collect, Kind};
-use pyo3::exceptions::{PyOSError, PyUserWarning, PyValueError};
+use pyo3::exceptions::{PyOSError, PyValueError};
 use pyo3::prelude::*;
 
 // A keyword argument no option of the call reads: a TypeError, as Python's own, with `keyword` (the name given)
@@ -44,12 +44,12 @@ fn emit(py: Python<'_>, lines: Vec<(Kind, String)>) -> PyResult<()> {
     if lines.is_empty() {
         return Ok(());
     }
-    let warnings = py.import("warnings")?;
+    let answer = py.import("iridis._answer")?;
     let logger = py.import("logging")?.call_method1("getLogger", ("iridis",))?;
     for (kind, text) in lines {
         match kind {
             Kind::Warning => {
-                warnings.call_method1("warn", (text, py.get_type::<PyUserWarning>(), 2))?;
+                answer.call_method1("warn_caller", (text,))?;
             }
             Kind::Note => {
                 logger.call_method1("info", (format!("note: {text}"),))?;

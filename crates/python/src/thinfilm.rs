@@ -191,6 +191,15 @@ impl PyStack {
         let (ill, obs, pol) = (self::illuminant(illuminant)?, self::observer(observer)?, self::pol(polarization)?);
         let (a, o, g) = (angles.as_slice()?, offsets.as_slice()?, grid.as_slice()?);
         check_grid(g)?;
+        // As `iridis thinfilm color`: a grid too coarse for a thick layer's fringes is said (at the smallest
+        // angle, where the fringes are closest).
+        let steepest = a.iter().copied().fold(f64::INFINITY, f64::min);
+        if steepest.is_finite() {
+            crate::facade::run(py, |r| {
+                iridis_api::film::warn_sampling(&self.stack, steepest, g, r);
+                Ok(())
+            })?;
+        }
         let (stack, meter) = (&self.stack, FilmColorimeter::new(g, ill, obs));
         color_rows(py, a.len(), |i| meter.color_of(pol, |w| stack.evaluate_offset(w, a[i], o[i])))
     }

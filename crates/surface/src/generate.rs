@@ -274,7 +274,7 @@ impl Generator {
             }
             Generator::Cd { pitch_nm, bit_nm, pit_width_nm, depth_nm } => {
                 period_ok("track pitch", pitch_nm)?;
-                positive("bit length", bit_nm)?;
+                period_ok("bit length", bit_nm)?;
                 positive("pit width", pit_width_nm)?;
                 if pit_width_nm >= pitch_nm {
                     return Err(SurfaceError::invalid("pit width must be smaller than the track pitch"));
@@ -296,6 +296,34 @@ impl Generator {
                 positive("depth", depth_nm)
             }
         }
+    }
+
+    /// The relief's height scale as asked: its depth, or its rms for the random surfaces.
+    fn height_scale_nm(&self) -> f64 {
+        match *self {
+            Generator::Sine { depth_nm, .. }
+            | Generator::Blazed { depth_nm, .. }
+            | Generator::Bumps { depth_nm, .. }
+            | Generator::Cd { depth_nm, .. }
+            | Generator::Xenopeltis { depth_nm, .. } => depth_nm,
+            Generator::Gaussian { rms_nm, .. } | Generator::Elaphe { rms_nm, .. } => rms_nm,
+        }
+    }
+
+    /// A field that came out flat (within a millionth of its asked depth or rms) is refused: its lengths do not
+    /// fit the patch (a period or correlation length far beyond it), and a flat field would diffract nothing.
+    fn refuse_flat(&self, heights: &[f64], grid: &Grid) -> Result<(), SurfaceError> {
+        let (lo, hi) = heights.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &h| (lo.min(h), hi.max(h)));
+        if hi - lo > 1e-6 * self.height_scale_nm() {
+            return Ok(());
+        }
+        Err(SurfaceError::invalid(format!(
+            "the generated {} is flat (heights within {:.1e} nm): its lengths ({}) put no relief on this patch; a \
+             period or correlation length must be shorter than the patch's side",
+            self.kind(),
+            hi - lo,
+            self.describe(grid)
+        )))
     }
 
     /// Generates the height field.
@@ -337,6 +365,7 @@ impl Generator {
                 xenopeltis(&f, grid.radius(), &mut rng, along_nm, across_nm, depth_nm)
             }
         };
+        self.refuse_flat(&heights, grid)?;
         let hf = HeightField::new(rows, cols, grid.pixel_nm, grid.pixel_nm, heights)?;
         Ok(hf.with_meta(Metadata {
             source: format!("generated {}", self.kind()),

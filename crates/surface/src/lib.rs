@@ -27,6 +27,10 @@ pub use analysis::{find_peaks, Peak, PeakOptions};
 pub use builtin::{builtin_surface, BUILTIN_NAMES};
 pub use formats::{detect_format, load_surface, Format, LoadOptions};
 
+/// Largest |height| accepted, 1 m in nm: far beyond any relief a scan measures (AFM z ranges are micrometres), so
+/// a larger one is a wrong height unit; and small enough that the statistics' sums of squares stay finite.
+pub const MAX_HEIGHT_NM: f64 = 1e9;
+
 /// Largest number of samples accepted (2²⁶ ≈ 67 M, 512 MiB of `f64`): checked before allocating, so a
 /// corrupt header cannot make us reserve gigabytes.
 pub const MAX_SAMPLES: usize = 1 << 26;
@@ -118,7 +122,7 @@ pub fn check_pixel(dx_nm: f64, dy_nm: f64) -> Result<(), SurfaceError> {
 
 impl HeightField {
     /// A validated height field: at least 2×2, within [`MAX_SAMPLES`], finite positive pixel sizes, finite
-    /// heights, `heights_nm.len() == rows * cols`.
+    /// heights within [`MAX_HEIGHT_NM`], `heights_nm.len() == rows * cols`.
     pub fn new(rows: usize, cols: usize, dx_nm: f64, dy_nm: f64, heights_nm: Vec<f64>) -> Result<Self, SurfaceError> {
         check_dims(rows, cols)?;
         check_pixel(dx_nm, dy_nm)?;
@@ -132,6 +136,15 @@ impl HeightField {
         if let Some(i) = heights_nm.iter().position(|h| !h.is_finite()) {
             return Err(SurfaceError::invalid(format!(
                 "height at row {}, column {} is {}: heights must be finite numbers",
+                i / cols,
+                i % cols,
+                heights_nm[i]
+            )));
+        }
+        if let Some(i) = heights_nm.iter().position(|h| h.abs() > MAX_HEIGHT_NM) {
+            return Err(SurfaceError::invalid(format!(
+                "height at row {}, column {} is {:e} nm, more than the 1 m any scan measures (and its square \
+                 overflows the statistics): check the height unit (--height-unit, or the file's)",
                 i / cols,
                 i % cols,
                 heights_nm[i]

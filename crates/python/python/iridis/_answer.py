@@ -9,6 +9,7 @@ import inspect
 import io
 import json
 import os
+import sys
 import warnings
 
 import numpy as np
@@ -55,6 +56,18 @@ def keywords(f):
             raise TypeError(f"{f.__name__}() got an unexpected keyword argument '{name}' ({hint}it takes: "
                             f"{', '.join(known)})") from None
     return call
+
+
+_PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__)) + os.sep
+
+
+def warn_caller(text):
+    """``warnings.warn(text, UserWarning)`` for a warning the library said, attributed to the first caller outside
+    this package (however many of its wrappers and decorators stand between), as a warning of the user's line."""
+    level, frame = 1, sys._getframe(0)
+    while frame is not None and os.path.abspath(frame.f_code.co_filename).startswith(_PACKAGE_DIR):
+        frame, level = frame.f_back, level + 1
+    warnings.warn(text, UserWarning, stacklevel=level)
 
 
 def renamed(function, old, old_value, new, new_value, default):

@@ -187,7 +187,7 @@ def brdf_map_of(spec, incidence=(0.0, 0.0), size=256, method="reference", level=
 
 
 @keywords
-def grating(source, light, wavelengths_nm, method="kirchhoff", material=None, fresnel=None,
+def grating(source, light, wavelengths_nm, method=None, material=None, fresnel=None,
             normalisation=None, detector=None, acceptance=None, compare=False, orders_above=None, **options):
     """Order efficiencies of ``source`` taken as one unit cell of a grating (its extent is the period), as
     ``iridis grating --json``: a dict with ``orders`` (every propagating order at every wavelength: ``m``,
@@ -201,14 +201,17 @@ def grating(source, light, wavelengths_nm, method="kirchhoff", material=None, fr
     ``"energy"`` (the default: energy and reciprocity exact) or ``"kirchhoff"`` (the obliquity factor as printed;
     with ``method="rigorous"`` it raises ValueError: it would be ignored); ``acceptance`` the
     detector's half-angle in radians (default 2°). SURFACE options (``pixel_size``, ``level``, …) as
-    elsewhere. ``method="rigorous"`` solves Maxwell's equations (the C-method; transmitted orders and the
-    convergence record too); ``compare=True`` runs both models and returns ``iridis grating --compare --json``'s
-    dict: every order of both, the worst relative error, CIEDE2000 of the colours. ``unit_cell="auto"`` takes
+    elsewhere. ``method``: ``"kirchhoff"`` (the default, the scalar model) or ``"rigorous"``, which solves
+    Maxwell's equations (the C-method; transmitted orders and the convergence record too); ``compare=True``
+    runs both models (a ``method`` given with it raises ValueError) and returns ``iridis grating --compare
+    --json``'s dict: every order of both, the worst relative error, CIEDE2000 of the colours. ``unit_cell="auto"`` takes
     the scan's strongest period, its profile averaged along the ridges, as the cell. ``orders_above`` (a
     fraction, ``--orders-above``) lists only the orders of at least that efficiency; the totals count them all.
     """
     theta, phi = _direction(light, "light")
-    opts = dict(options, method=method, compare=bool(compare))
+    opts = dict(options, compare=bool(compare))
+    if method is not None:
+        opts["method"] = method
     if normalisation is not None:
         opts["normalisation"] = normalisation
     if material is not None:

@@ -69,7 +69,7 @@ def grating(
     source: Source,
     light: Direction,
     wavelengths_nm: Union[float, Sequence[float]],
-    method: str = ...,
+    method: Optional[str] = ...,
     material: Optional[str] = ...,
     fresnel: Optional[str] = ...,
     normalisation: str | None = ...,

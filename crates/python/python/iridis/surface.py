@@ -17,6 +17,7 @@ import os
 import numpy as np
 
 from . import _native
+from ._answer import warn_caller
 
 __all__ = ["Surface", "load", "generate", "channels"]
 
@@ -59,7 +60,8 @@ class Surface:
         """What ``iridis surface info --json`` reports, as a dict (keys in docs/json.md): ``rows``, ``cols``,
         ``pixel_size_nm``, heights, ``peaks`` (the dominant periods: ``period_nm``, ``orientation_deg``,
         ``power``, …, at most ``peaks``), ``roughness`` and the radial PSDF / ACF of the plane-levelled
-        field (their ``values_*`` as arrays), and the warnings for a coherence window of ``coherence_nm``.
+        field (their ``values_*`` as arrays), and the warnings for a coherence window of ``coherence_nm`` (also
+        given as Python warnings, as the CLI says them on stderr).
 
             >>> g = generate("sine", size="11um", pixel="50nm", period="1100nm", depth="100nm")
             >>> round(g.info()["peaks"][0]["period_nm"])
@@ -70,12 +72,19 @@ class Surface:
         import json
 
         out = json.loads(self._h.info_json(int(peaks), float(coherence_nm)))
+        for w in out["warnings"]:  # as the CLI says them on stderr
+            warn_caller(w)
         out["psdf_radial"]["values_nm4"] = np.asarray(out["psdf_radial"]["values_nm4"], dtype=float)
         out["acf_radial"]["values_nm2"] = np.asarray(out["acf_radial"]["values_nm2"], dtype=float)
         return out
 
     def info_text(self, peaks=5, coherence_nm=65000.0):
-        """The table ``iridis surface info`` prints for this field (its warnings are ``info()["warnings"]``)."""
+        """The table ``iridis surface info`` prints for this field; its warnings, which the CLI says on stderr,
+        as Python warnings (and in ``info()["warnings"]``)."""
+        import json
+
+        for w in json.loads(self._h.info_json(int(peaks), float(coherence_nm)))["warnings"]:
+            warn_caller(w)
         return self._h.info_text(int(peaks), float(coherence_nm))
 
     def figures(self, name="surface", image=None, psdf=None, acf=None):

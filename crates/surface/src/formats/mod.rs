@@ -59,6 +59,12 @@ pub enum Format {
 }
 
 impl Format {
+    /// Whether its reader reads `--channel`: an instrument format names its channels (one in a GSF or WSxM
+    /// file, chosen by index 0 or its name); a bare array or image has one channel and no name for it.
+    pub fn reads_channel(self) -> bool {
+        !matches!(self, Format::Npy | Format::Png | Format::Tiff | Format::Text)
+    }
+
     pub fn name(self) -> &'static str {
         match self {
             Format::Gwy => "gwy",
@@ -251,6 +257,15 @@ pub fn read_bytes(
         SurfaceError::Invalid(m) => SurfaceError::Format { path: name.into(), message: m },
         other => other,
     };
+    if let (Some(sel), false) = (&opts.channel, fmt.reads_channel()) {
+        return Err(SurfaceError::Format {
+            path: name.into(),
+            message: format!(
+                "--channel {sel} would be ignored: a {} file holds one unnamed channel; leave out --channel",
+                fmt.name()
+            ),
+        });
+    }
     let mut hf = match fmt {
         Format::Gwy => gwy::read(bytes, side, opts),
         Format::Npy => npy::read(bytes, side, opts),

@@ -1,0 +1,119 @@
+//! Input off by orders of magnitude (a mistyped unit or exponent) is refused with a message, never a panic or
+//! a silently empty, black or NaN result: the cases an audit of every command found (2026-11-29), each of
+//! which panicked, wrote an empty table or a black image with exit 0, or printed NaN before.
+
+use crate::common;
+
+use common::{assert_fails, iridis, json_of, ok, tmp};
+
+const FILM: &str = "air | water 348nm | air";
+const SINE: &str = "builtin:sine?size=2um&pixel=50nm";
+
+/// A count of samples past usize wrapped to an empty grid: thin-film colours and the test bench indexed it
+/// and panicked, spectra and charts came out empty or black with exit 0.
+#[test]
+fn wavelength_and_angle_counts_beyond_reach_are_refused() {
+    let too_many = "more than 10000000: give a larger step";
+    assert_fails(&["thinfilm", "color", "--stack", FILM, "--step", "1e-17nm"], &["4e19 samples", too_many]);
+    assert_fails(&["thinfilm", "spectrum", "--stack", FILM, "--to", "1e300nm"], &["1e300 nm", too_many]);
+    assert_fails(&["testbench", SINE, "--step", "1e-17nm"], &[too_many]);
+    assert_fails(&["grating", SINE, "--from", "380nm", "--to", "1e300nm"], &[too_many]);
+    assert_fails(&["testbench", SINE, "--angle-step", "1e-300deg"], &["1.78e302 angles", "too many"]);
+    // A step longer than the range kept one wavelength and dropped --to without a word.
+    assert_fails(
+        &["thinfilm", "spectrum", "--stack", FILM, "--step", "1e300nm"],
+        &["not a whole number of 1e300 nm steps", "would be 380 nm"],
+    );
+    assert_fails(&["thinfilm", "table", "--stack", FILM, "--angles", "0deg:10deg:1e300deg"], &["does not end on TO"]);
+}
+
+/// Past 1 m the window's area overflowed: a NaN table, a black map and NaN f_r with exit 0.
+#[test]
+fn a_coherence_length_beyond_a_metre_is_refused() {
+    let dir = tmp();
+    let table = dir.path().join("t.npz");
+    let beyond = ["more than the 1 m this model takes", "fully coherent limit"];
+    assert_fails(&["precompute", SINE, "-o", table.to_str().unwrap(), "--coherence", "1e300um"], &beyond);
+    assert_fails(&["brdf", "eval", SINE, "--coherence", "2000000mm", "--light", "0deg", "--view", "0deg"], &beyond);
+    assert!(!table.exists());
+    // 1 m itself is taken.
+    let v = json_of(&["brdf", "eval", SINE, "--coherence", "1000mm", "--light", "0deg", "--view", "0deg", "--json"]);
+    let numbers = |x: &serde_json::Value| x.as_array().unwrap().iter().all(|y| y.as_f64().is_some_and(f64::is_finite));
+    assert!(numbers(&v["xyz"]) && numbers(&v["brdf_per_sr"]["p"]) && numbers(&v["brdf_per_sr"]["s"]), "{v}");
+}
+
+#[test]
+fn colour_differences_and_heights_beyond_reach_are_refused() {
+    assert_fails(&["color", "delta-e", "50,0,0", "1e300,0,0"], &["second colour's L* = 1e300", "outside CIELAB"]);
+    assert_fails(
+        &["surface", "info", "builtin:sine?depth=1e300nm&size=2um&pixel=50nm"],
+        &["more than the 1 m any scan measures", "--height-unit"],
+    );
+}
+
+/// A bare array has one unnamed channel: `--channel 3` was accepted and ignored.
+#[test]
+fn a_channel_of_a_single_channel_file_is_refused() {
+    let dir = tmp();
+    let npy = dir.path().join("sine.npy");
+    ok(&["surface", "generate", "sine", "--size", "1um", "--pixel-size", "50nm", "-o", npy.to_str().unwrap()]);
+    let out = dir.path().join("o.npy");
+    assert_fails(
+        &["surface", "convert", npy.to_str().unwrap(), out.to_str().unwrap(), "--channel", "3"],
+        &["--channel 3 would be ignored", "one unnamed channel"],
+    );
+    assert!(!out.exists());
+}
+
+/// Lengths that put no relief on the patch wrote flat fields (rms 0) with exit 0.
+#[test]
+fn generators_refuse_a_flat_field() {
+    let dir = tmp();
+    let out = dir.path().join("r.npy");
+    let o = out.to_str().unwrap();
+    let base = ["--size", "2um", "--pixel-size", "50nm", "-o", o];
+    let run = |kind: &'static str, extra: &[&'static str]| {
+        [&["surface", "generate", kind][..], extra, &base].concat().iter().map(|s| s.to_string()).collect::<Vec<_>>()
+    };
+    assert_fails(&run("rect-bumps", &["--period", "1e300nm"]), &["rect-bumps is flat", "1e294mm", "shorter than"]);
+    assert_fails(&run("gaussian", &["--corr", "1e9um"]), &["gaussian is flat"]);
+    assert_fails(&run("cd", &["--bit", "1e-5nm"]), &["bit length", "shorter than two pixels"]);
+    assert!(!out.exists());
+}
+
+/// A map with no light, or an image black at the exposure given, said so only under --auto-exposure.
+#[test]
+fn a_black_map_or_image_is_said() {
+    let dir = tmp();
+    let png = dir.path().join("m.png");
+    let map = |extra: &[&str]| {
+        let size: &[&str] = if extra.contains(&"--size") { &[] } else { &["--size", "16"] };
+        let args = [&["brdf-map", SINE, "-o", png.to_str().unwrap()][..], size, extra].concat();
+        let out = iridis(&args);
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        String::from_utf8_lossy(&out.stderr).to_string()
+    };
+    // Stam's periodic model puts the sine's orders on y = 0, which 16 pixels a side have no row on.
+    let e = map(&["--method", "stam-periodic"]);
+    assert!(e.contains("warning: the map is black") && e.contains("give an odd --size"), "{e}");
+    assert!(!map(&["--method", "stam-periodic", "--size", "17"]).contains("is black"));
+    // The reference's 16² samples miss the 2 µm cell's orders at 65 µm: what is left is round-off (~1e-35),
+    // not light, and --auto-exposure no longer scales it to white (it chose 2.7e34 RU).
+    let e = map(&["--method", "reference", "--auto-exposure"]);
+    assert!(e.contains("warning: the map is black") && !e.contains("chosen from the map"), "{e}");
+    // A lit map at an exposure that leaves every 8-bit pixel black.
+    let e = map(&["--method", "reference", "--subsamples", "8", "--exposure", "1e-30"]);
+    assert!(e.contains("warning: the image is black at --exposure 1e-30 RU") && e.contains("--auto-exposure"), "{e}");
+    assert!(!map(&["--method", "reference", "--subsamples", "8"]).contains("is black"));
+}
+
+/// An index-matched stack reflects nothing, so ψ = atan|r_p/r_s| and Δ are undefined: empty cells, not NaN.
+#[test]
+fn an_undefined_ellipsometric_angle_is_an_empty_cell() {
+    let csv =
+        ok(&["thinfilm", "spectrum", "--stack", "air | n=1 100nm | n=1", "--csv", "--from", "500nm", "--to", "510nm"]);
+    assert!(!csv.contains("NaN"), "{csv}");
+    let rows: Vec<&str> = csv.lines().filter(|l| l.starts_with("50") || l.starts_with("51")).collect();
+    assert_eq!(rows.len(), 3, "{csv}");
+    assert!(rows.iter().all(|r| r.ends_with(",,")), "{csv}");
+}
