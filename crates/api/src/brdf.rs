@@ -120,6 +120,10 @@ pub fn refuse_for_lookup_table(model: &ModelOptions) -> Result<()> {
 
 /// A finished table answers the lookup method only.
 fn require_lookup(method: &str) -> Result<()> {
+    if method != RIGOROUS {
+        // An unknown name is said as such, not as a method that needs the height field.
+        method.parse::<Method>().map_err(|e| anyhow::anyhow!("{e}, {RIGOROUS}"))?;
+    }
     if method != "lookup" {
         bail!("--method {method} needs the height field, not a table: pass the SURFACE the table was made from");
     }

@@ -109,7 +109,15 @@ pub fn xyz(
         report.warn(&w);
     }
     let xyz = if emissive {
-        emission_to_xyz(&spectrum, observer)
+        let xyz = emission_to_xyz(&spectrum, observer);
+        if !(xyz.y.is_finite() && xyz.y > 0.0 && [xyz.x, xyz.z].iter().all(|v| v.is_finite())) {
+            bail!(
+                "{} as an --emissive light has no luminance to scale to Y = 1 (it is zero, or negative, over the \
+                 observer's wavelengths): it has no colour",
+                path.display()
+            );
+        }
+        xyz
     } else {
         reflectance_to_xyz(&spectrum, illuminant, observer)
     };

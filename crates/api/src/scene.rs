@@ -124,6 +124,25 @@ pub struct RenderedImage {
     pub device: String,
 }
 
+/// A PNG whose every pixel is black is said: no light reaches the camera, or the exposure is too low for what
+/// does (with the exposure that would show it).
+fn warn_if_black(img: &iridis_render::Image, exposure: f64, encoding: iridis_color::Encoding, report: &dyn Report) {
+    if img.to_rgb8(exposure, encoding).iter().any(|&c| c > 0) {
+        return;
+    }
+    let brightest = img.data.iter().flat_map(|p| p.iter()).fold(0.0f32, |m, &c| m.max(c)) as f64;
+    if brightest > 0.0 && brightest.is_finite() {
+        report.warn(&format!(
+            "the image is black at exposure {} RU: its brightest channel is {brightest:.3e} (linear sRGB), white \
+             at --exposure {:.4e}",
+            iridis_color::spectrum::short_number(exposure),
+            1.0 / brightest
+        ));
+    } else {
+        report.warn("the image is black: no light reaches the camera (check the lights and the camera's view)");
+    }
+}
+
 /// The checks of what shapes an image (size, samples, exposure, spectral samples), before the scene is read;
 /// returns the size asked for.
 fn check_image_options(a: &RenderRequest) -> Result<Option<(u32, u32)>> {
@@ -231,7 +250,10 @@ pub fn render_file(a: &RenderRequest, report: &dyn Report) -> Result<Rendered> {
         render_loaded(&scene, a, size, film, report)?;
     let bytes = match fmt.as_str() {
         "exr" => img.encode_exr(exposure)?,
-        _ => img.encode_png(exposure, scene.output.encoding)?,
+        _ => {
+            warn_if_black(&img, exposure, scene.output.encoding, report);
+            img.encode_png(exposure, scene.output.encoding)?
+        }
     };
     crate::output::write_bytes(output, &bytes)?;
     if let Some(e) = &a.exr {

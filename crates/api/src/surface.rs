@@ -193,6 +193,16 @@ pub fn info(hf: &iridis_surface::HeightField, n_peaks: usize, coherence_nm: f64)
         _ => {}
     }
     let levelled = iridis_surface::prep::level_plane(hf);
+    // A plane (a flat or tilted field, or a constant channel) has nothing left once levelled: no period, and a PSDF
+    // and ACF of zeros, whose figures are black; said rather than shown black.
+    let (flat_lo, flat_hi) = levelled.min_max();
+    if flat_hi - flat_lo <= 1e-9 * (hi - lo).abs().max(1e-3) {
+        warnings.push(
+            "the field is a plane: nothing is left once its tilt is levelled (rms 0 nm), so it has no periods, and \
+             its PSDF and ACF are zero (their figures black); check that the data are heights (the channel read)"
+                .into(),
+        );
+    }
     // The struct's own keys (Python's `Surface.roughness()` gives the same), and the levelling they follow.
     let mut roughness = serde_json::to_value(iridis_surface::stats::roughness(&levelled)).expect("numbers");
     roughness["levelling"] = "plane".into();

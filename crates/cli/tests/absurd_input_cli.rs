@@ -117,3 +117,51 @@ fn an_undefined_ellipsometric_angle_is_an_empty_cell() {
     assert_eq!(rows.len(), 3, "{csv}");
     assert!(rows.iter().all(|r| r.ends_with(",,")), "{csv}");
 }
+
+/// The smaller cases of the audit: a constant field's black PSDF, a key given twice, an unknown method with a
+/// table, a map size of 0 in the bench, a light of no luminance.
+#[test]
+fn small_silent_cases_are_said_or_refused() {
+    let dir = tmp();
+    // A constant 8 × 8 field (a .txt grid): a plane, said as such.
+    let flat = common::write_file(dir.path(), "flat.txt", &"3 3 3 3 3 3 3 3\n".repeat(8));
+    let psdf = dir.path().join("p.png");
+    let out = ok(&[
+        "surface",
+        "info",
+        &flat,
+        "--pixel-size",
+        "10nm",
+        "--height-unit",
+        "nm",
+        "--psdf",
+        psdf.to_str().unwrap(),
+    ]);
+    assert!(out.contains("warning: the field is a plane") && psdf.exists(), "{out}");
+    assert_fails(&["surface", "info", "builtin:sine?size=5um&size=6um"], &["gives size twice (5um, then 6um)"]);
+    let table = dir.path().join("t.npz");
+    ok(&["precompute", SINE, "-o", table.to_str().unwrap(), "--uv-resolution", "11"]);
+    let png = dir.path().join("m.png");
+    assert_fails(
+        &["brdf-map", table.to_str().unwrap(), "--method", "foo", "-o", png.to_str().unwrap()],
+        &["unknown method 'foo'", "rigorous"],
+    );
+    assert_fails(&["bench", "diffraction", "--map-sizes", "0"], &["--map-sizes 0 must be between 8 and"]);
+    let zero = common::write_file(dir.path(), "zero.csv", "380,0\n580,0\n780,0\n");
+    assert_fails(&["color", "xyz", &zero, "--emissive"], &["no luminance to scale to Y = 1"]);
+    // A render exposed a thousand orders too low.
+    let out = ok(&[
+        "render",
+        "examples/soap_bubble.toml",
+        "-o",
+        png.to_str().unwrap(),
+        "--size",
+        "16x16",
+        "--exposure",
+        "1e-300",
+    ]);
+    assert!(
+        out.contains("warning: the image is black at exposure 1e-300 RU") && out.contains("white at --exposure"),
+        "{out}"
+    );
+}

@@ -58,7 +58,7 @@ pub enum RigorousError {
     TooFewSamples(usize),
     #[error("the height grid has {len} values, but rows × cols = {rows} × {cols} = {}", rows * cols)]
     GridSize { rows: usize, cols: usize, len: usize },
-    #[error("a 2-D height grid needs at least 1 row and 3 columns and 3 rows (or 1 row), got {rows} × {cols}")]
+    #[error("the rigorous solver needs a height grid of at least 3 × 3 samples over the unit cell (or a profile of one row and at least 3 columns), got {rows} × {cols}")]
     GridTooSmall { rows: usize, cols: usize },
     #[error("the polar angle of incidence must be in [0°, 90°), got {0}°")]
     InvalidPolarAngle(f64),

@@ -192,6 +192,12 @@ pub fn builtin_surface(rest: &str, opts: &LoadOptions) -> Result<HeightField, Su
         let (k, v) = pair
             .split_once('=')
             .ok_or_else(|| SurfaceError::invalid(format!("'{pair}' in builtin:{rest} is not key=value")))?;
+        if let Some((_, first)) = params.iter().find(|(key, _): &&(String, String)| key.trim() == k.trim()) {
+            return Err(SurfaceError::invalid(format!(
+                "builtin:{rest} gives {} twice ({first}, then {v}); give it once",
+                k.trim()
+            )));
+        }
         params.push((k.to_string(), v.to_string()));
     }
     let (gen, grid) = from_params(name, &params, &base)?;

@@ -109,6 +109,9 @@ impl Default for SpeedOptions {
 /// The Taylor-term FFTs (all threads, one thread, numpy), the lookup tables, and BRDF maps per second of
 /// lookup, reference and ground truth on [`bench_surface`].
 pub fn speed(a: &SpeedOptions, report: &dyn Report) -> Result<Bench> {
+    for &s in &a.map_sizes {
+        crate::brdf_map::check_size_of("--map-sizes", s)?;
+    }
     let threads = rayon::current_num_threads();
     report.info(&format!("surface {}², {} terms, {threads} threads …", a.size, a.terms));
     let patch = bench_surface(a.size)?;
