@@ -396,6 +396,23 @@ pub fn parse_scene(text: &str, name: &str, base: &Path) -> Result<Scene, RenderE
         let written = raw.get("materials").and_then(|m| m.get(name)).and_then(|t| t.as_table());
         check_material_keys(name, &def.get_ref().kind, written, &span, &ctx)?;
         let m = build_material(name, def.get_ref(), &span, &ctx, &texture_ref, &mat_index, &materials)?;
+        // Where the texture thins a layer by more than it holds, the layer is clamped at 0 nm (the stack's
+        // evaluate_offset): a note, since those texels show the stack without that layer.
+        if let Some((film, svt)) = match &m {
+            Material::ThinFilm(film) => film.svt.as_ref().map(|svt| (film, svt)),
+            _ => None,
+        } {
+            let thinnest = film.stack.thicknesses().into_iter().fold(f64::INFINITY, f64::min);
+            if svt.d_rel_nm.abs() > thinnest {
+                notes.push(format!(
+                    "[materials.{name}]: d_rel = {} nm is more than its thinnest layer ({} nm): where the svt texture \
+                     is below {:.3}, that layer is clamped to 0 nm",
+                    svt.d_rel_nm.abs(),
+                    thinnest,
+                    0.5 * (1.0 - thinnest / svt.d_rel_nm.abs())
+                ));
+            }
+        }
         mat_index.insert(name.clone(), materials.len());
         materials.push(m);
         material_names.push(name.clone());

@@ -173,3 +173,24 @@ fn numbers_are_finite_and_reflectances_lie_in_0_1() {
     // The limits are allowed.
     parse(&textured("[textures.t]\nkind = \"checker\"\na = [1, 1, 1]\nb = [0, 0, 0]\nn = 0.5")).unwrap();
 }
+
+/// An svt that thins a layer by more than it holds clamps it at 0 nm where the texture is low: a note says
+/// where, α < (1 − d/d_rel)/2 (d = d_avg + d_rel(2α − 1), Sussenbach eq. 4.3); within the layer, none.
+#[test]
+fn an_svt_deeper_than_a_layer_is_noted() {
+    let film = |d_rel: &str| {
+        let text = OK.replace(
+            "[materials.grey]\nkind = \"lambert\"",
+            &format!(
+                "[textures.g]\nkind = \"gradient\"\nfrom = 0.0\nto = 1.0\nalong = \"v\"\n[materials.grey]\n\
+                 kind = \"thinfilm\"\nstack = \"air | gasoline 300nm | water 220nm | air\"\nsvt = \"g\"\n\
+                 d_rel = \"{d_rel}\""
+            ),
+        );
+        parse(&text).unwrap().notes
+    };
+    let notes = film("250nm");
+    let n = notes.iter().find(|n| n.contains("d_rel = 250 nm")).unwrap_or_else(|| panic!("{notes:?}"));
+    assert!(n.contains("thinnest layer (220 nm)") && n.contains("below 0.060"), "{n}");
+    assert!(!film("200nm").iter().any(|n| n.contains("d_rel")));
+}
