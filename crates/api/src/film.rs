@@ -49,10 +49,19 @@ pub fn wavelength_grid(from: f64, to: f64, step: f64) -> Result<Vec<f64>> {
     Ok(g)
 }
 
-/// A colour integrates a spectrum over wavelengths: a grid of one wavelength would give black without a word.
-pub fn check_colour_grid(grid: &[f64]) -> Result<()> {
+/// A colour integrates a spectrum over wavelengths: a grid of one wavelength would give black without a word,
+/// and one that misses part of the visible counts that part as dark (1000–1500 nm: black), which is said.
+pub fn check_colour_grid(grid: &[f64], report: &dyn Report) -> Result<()> {
     if let [one] = grid {
         bail!("a colour integrates the spectrum over wavelengths, and --from/--to give only {one} nm; give a range (the default is 380nm to 780nm)");
+    }
+    let (lo, hi) = (grid[0], grid[grid.len() - 1]);
+    if lo > 380.0 || hi < 780.0 {
+        report.warn(&format!(
+            "the colours integrate over {lo}–{hi} nm only (--from/--to): the visible 380–780 nm outside it counts \
+             as dark{}",
+            if lo >= 780.0 || hi <= 380.0 { ", so every colour is black" } else { "" }
+        ));
     }
     Ok(())
 }

@@ -106,8 +106,12 @@ pub fn time_tmm(
 /// `python3`, unless `no_python`); a fit of 3 parameters; a batch of 10⁶ points ([`bench_batch`]: fewer
 /// below 1 s). Each Rust measurement runs for at least `seconds`.
 pub fn bench(seconds: f64, no_python: bool) -> Result<FilmBench> {
-    if !(seconds.is_finite() && seconds > 0.0) {
-        bail!("--seconds must be positive");
+    // About a dozen measurements each run for at least `seconds`: an hour of them is the most taken.
+    if !(seconds.is_finite() && seconds > 0.0 && seconds <= 300.0) {
+        bail!(
+            "--seconds {}: must be positive and at most 300 (each of about 12 measurements runs that long)",
+            iridis_color::spectrum::short_number(seconds)
+        );
     }
     let threads = iridis_thinfilm::grid::threads();
     let wl: Vec<f64> = (0..81).map(|i| 380.0 + 5.0 * i as f64).collect();

@@ -15,6 +15,7 @@ use iridis_thinfilm::Stack;
 
 use crate::film::{fmt_deg, parse_stack, spectra, stack_title, write_png};
 use crate::gallery::Gallery;
+use crate::report::Report;
 use crate::rough::RoughOptions;
 
 /// A rough substrate for the chart: the model's options and the light's direction.
@@ -71,8 +72,9 @@ pub fn chart(
     exposure: Option<f64>,
     grid: &[f64],
     rough: Option<RoughLight>,
+    report: &dyn Report,
 ) -> Result<FilmChart> {
-    crate::film::check_colour_grid(grid)?;
+    crate::film::check_colour_grid(grid, report)?;
     let (parsed, layer) = Stack::parse_sweep(stack)?;
     let ds = parse_range(thickness, parse_length_nm).map_err(|e| anyhow!("--thickness: {e}"))?;
     if ds[0] < 0.0 {
@@ -251,7 +253,7 @@ pub fn demo_section(g: &mut Gallery) -> Result<()> {
     );
     // Soap-film chart.
     let grid = uniform_grid(380.0, 780.0, 5.0).map_err(|e| anyhow!("{e}"))?;
-    let soap = chart("air | water {d} | air", "0nm:2000nm:2nm", 0.0, "d65", None, &grid, None)?;
+    let soap = chart("air | water {d} | air", "0nm:2000nm:2nm", 0.0, "d65", None, &grid, None, &crate::report::Quiet)?;
     write_png(&g.path("thinfilm_soap_chart.png"), &soap.image()?)?;
     g.image(
         "thinfilm_soap_chart.png",

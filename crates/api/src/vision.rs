@@ -69,6 +69,15 @@ pub fn along_plane(
         bail!("the view angles must lie strictly between −90° and 90°");
     }
     crate::lab_run::refuse_repeats("--views", views_deg)?;
+    if !(light_theta.is_finite() && (0.0..std::f64::consts::FRAC_PI_2).contains(&light_theta)) {
+        bail!(
+            "--light {}°: the light's polar angle must be from 0° up to (not including) 90°",
+            iridis_color::spectrum::short_number(light_theta.to_degrees())
+        );
+    }
+    if let Some(a) = azimuth.filter(|a| !a.is_finite()) {
+        bail!("--azimuth {a}: the plane's azimuth must be a finite angle");
+    }
     refuse_colour_options(model)?;
     let wavelengths =
         iridis_color::spectrum::range_grid(FROM_NM, TO_NM, model.step()).map_err(|e| anyhow::anyhow!("--step: {e}"))?;

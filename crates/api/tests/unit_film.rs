@@ -37,9 +37,16 @@ fn grids_and_angles_refuse_what_cannot_be_meant() {
     assert_eq!(round_deg(30f64.to_radians()), 30.0);
     assert_eq!(fmt_deg(0.5f64.to_radians()), "0.5");
     // A colour of one wavelength would be black: refused (the spectrum of one wavelength is fine).
-    let e = check_colour_grid(&[500.0]).unwrap_err().to_string();
+    let said = iridis_api::report::Collect::default();
+    let e = check_colour_grid(&[500.0], &said).unwrap_err().to_string();
     assert!(e.contains("only 500 nm; give a range"), "{e}");
-    assert!(check_colour_grid(&[500.0, 505.0]).is_ok());
+    // A grid that misses part of the visible counts it as dark, and says so; 380–780 nm says nothing.
+    assert!(check_colour_grid(&[500.0, 505.0], &said).is_ok());
+    let lines = said.take();
+    assert!(lines.len() == 1 && lines[0].1.contains("integrate over 500–505 nm only"), "{lines:?}");
+    assert!(!lines[0].1.contains("every colour is black"));
+    check_colour_grid(&[380.0, 580.0, 780.0], &said).unwrap();
+    assert!(said.take().is_empty());
     // A wavelength that cannot be meant is refused, not answered with "no data" for every material.
     for w in [-1.0, 0.0, f64::NAN] {
         let e = materials(Some(w)).unwrap_err().to_string();

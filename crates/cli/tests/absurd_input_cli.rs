@@ -165,3 +165,29 @@ fn small_silent_cases_are_said_or_refused() {
         "{out}"
     );
 }
+
+/// Sizes, counts and angles the second audit (the Python functions, 2026-11-29) found unchecked in the library:
+/// a bench surface of 10⁵ samples a side aborted on an 80 GB allocation, a rigorous grating at 0.5 nm grew past 6 GB,
+/// a light at 2578° was analysed, a lossless layer of n = 1e300 lost all the light.
+#[test]
+fn library_limits_found_from_python_hold_on_the_command_line() {
+    assert_fails(&["bench", "diffraction", "--size", "100000"], &["--size 100000", "from 8 to 8192"]);
+    assert_fails(&["bench", "render", "--size", "0"], &["--size 0", "from 1 to 16384"]);
+    assert_fails(
+        &["grating", "builtin:sine?size=1100nm&pixel=50nm", "--wavelength", "0.5nm", "--method", "rigorous"],
+        &["orders propagate each side along a period of 1100 nm at λ = 0.5 nm", "more than the 1000"],
+    );
+    assert_fails(
+        &["brdf", "vision", "builtin:sine?size=3300nm&pixel=100nm", "--visual", "bluetit", "--light", "100deg"],
+        &["--light 100°", "up to (not including) 90°"],
+    );
+    assert_fails(
+        &["thinfilm", "spectrum", "--stack", "air | n=1e300 100nm | air"],
+        &["|n + iκ| = 1e300 is beyond 1e6"],
+    );
+    let out = ok(&["thinfilm", "color", "--stack", FILM, "--from", "1000nm", "--to", "1500nm"]);
+    assert!(
+        out.contains("warning: the colours integrate over 1000–1500 nm only") && out.contains("every colour is black"),
+        "{out}"
+    );
+}

@@ -26,6 +26,16 @@ fn is_io(e: &anyhow::Error) -> bool {
                 Some(iridis_diffraction::DiffractionError::Io(_))
             )
             || matches!(c.downcast_ref::<iridis_render::RenderError>(), Some(iridis_render::RenderError::Io(_)))
+            || matches!(c.downcast_ref::<iridis_color::SpectrumError>(), Some(iridis_color::SpectrumError::Io { .. }))
+            || matches!(c.downcast_ref::<iridis_vision::VisionError>(), Some(iridis_vision::VisionError::Io { .. }))
+            || matches!(
+                c.downcast_ref::<iridis_thinfilm::ThinFilmError>(),
+                Some(iridis_thinfilm::ThinFilmError::File { line: None, message, .. }) if message.starts_with("cannot read")
+            )
+            || matches!(
+                c.downcast_ref::<iridis_thinfilm::ThinFilmError>(),
+                Some(iridis_thinfilm::ThinFilmError::Stack { unreadable: true, .. })
+            )
     })
 }
 

@@ -247,9 +247,9 @@ fn _film_chart<'py>(
     options: Option<Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let rough = RoughLightArgs::read(options)?;
-    let a = run(py, |_| {
+    let a = run(py, |r| {
         let grid = film::wavelength_grid(from_nm, to_nm, step_nm)?;
-        let c = film_chart::chart(stack, thickness, angle_rad, illuminant, exposure, &grid, rough.light()?)?;
+        let c = film_chart::chart(stack, thickness, angle_rad, illuminant, exposure, &grid, rough.light()?, r)?;
         Ok(Answer {
             csv: Some(c.csv()),
             image: Some(c.image()?),

@@ -39,7 +39,7 @@ impl PyStack {
     /// Parses the CLI's syntax, e.g. `"air | water 348nm | air"`, `"air | inc:BK7 1mm | n=1.38+0.01i 90nm | Si"`.
     #[new]
     fn new(spec: &str) -> PyResult<Self> {
-        Ok(Self { stack: Stack::parse(spec).map_err(value_error)? })
+        Ok(Self { stack: Stack::parse(spec).map_err(|e| crate::facade::api_error(e.into()))? })
     }
 
     /// From indices (incident, layers…, substrate) and the layers' thicknesses in nm.
@@ -52,6 +52,12 @@ impl PyStack {
     ) -> PyResult<Self> {
         let n = complex_list("indices", indices)?;
         let t = real_list("thicknesses_nm", thicknesses_nm)?;
+        if n.len() < 2 {
+            return Err(value_error(format!(
+                "{} indices: a stack needs at least two media (the incident medium and the substrate)",
+                n.len()
+            )));
+        }
         if t.len() + 2 != n.len() {
             return Err(value_error(format!(
                 "{} indices need {} thicknesses (one per layer between the incident medium and the substrate), got {}",
@@ -322,7 +328,13 @@ fn material_index<'py>(
     name: &str,
     wavelengths: PyReadonlyArray1<'py, f64>,
 ) -> PyResult<Bound<'py, PyArray1<Complex64>>> {
-    let stack = Stack::parse(&format!("air | {name}")).map_err(value_error)?;
+    if name.trim().is_empty() || name.contains('|') {
+        return Err(value_error(format!(
+            "material '{name}': give one material (a library name, n=…, or file:PATH), not a stack"
+        )));
+    }
+    // Read as a stack's substrate, the one syntax for a material; its errors name the stack "air | NAME".
+    let stack = Stack::parse(&format!("air | {name}")).map_err(|e| value_error(format!("material '{name}': {e}")))?;
     let out = wavelengths
         .as_array()
         .iter()

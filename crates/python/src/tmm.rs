@@ -216,6 +216,23 @@ fn _inc_tmm<'py>(
     Ok(out)
 }
 
+/// The checks of `coh_tmm` on a whole stack (tmm's list rules; finite indices with `Re n > 0`, no gain; finite
+/// thicknesses ≥ 0; |θ₀| ≤ π/2; λ > 0), for `iridis.tmm.inc_tmm`, whose incoherent media reach no coherent
+/// calculation to be checked by.
+#[pyfunction]
+#[pyo3(signature = (n_list, d_list, th_0, lam_vac))]
+fn _check_stack(
+    n_list: &Bound<'_, PyAny>,
+    d_list: &Bound<'_, PyAny>,
+    th_0: &Bound<'_, PyAny>,
+    lam_vac: &Bound<'_, PyAny>,
+) -> PyResult<()> {
+    let n = complex_list("n_list", n_list)?;
+    let d = real_list("d_list", d_list)?;
+    let (th, lam) = (scalar("th_0", th_0, "")?, scalar("lam_vac", lam_vac, "")?);
+    lib::check_lists(&n, &d).and_then(|()| lib::check_angle_wavelength(th, lam)).map_err(value_error)
+}
+
 /// The core of `iridis.tmm.coh_tmm_batch` (the Python wrapper broadcasts): `n` complex128, 1-D (media) or
 /// 2-D (media × points); `d`, `th`, `lam` 1-D float64.
 #[pyfunction]
@@ -249,7 +266,7 @@ fn _coh_tmm_batch<'py>(
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<CohTmmResult>()?;
-    add_functions!(m, [coh_tmm, unpolarized_rt, ellips, _inc_tmm, _coh_tmm_batch]);
+    add_functions!(m, [coh_tmm, unpolarized_rt, ellips, _inc_tmm, _coh_tmm_batch, _check_stack]);
     Ok(())
 }
 

@@ -206,5 +206,5 @@ def test_bench_runs_each_measurement_once():
     assert b["fit"]["parameters"] == 3 and b["batch"]["points"] == 1000 * 10
     assert "batch of 10000 (λ, θ) points" in b.text
     assert "not run (--no-python)" in b.text
-    with pytest.raises(ValueError, match="--seconds must be positive"):
+    with pytest.raises(ValueError, match="--seconds 0: must be positive"):
         film.bench(seconds=0)

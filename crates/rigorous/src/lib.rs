@@ -76,6 +76,11 @@ pub enum RigorousError {
     InvalidTolerance(f64),
     #[error("the order limits are inconsistent: {0}")]
     InvalidOrders(String),
+    #[error(
+        "{orders} orders propagate each side along a period of {period_nm} nm at λ = {wavelength_nm} nm, more than \
+         the {max} the solver resolves: give a shorter period or a longer wavelength (in nm)"
+    )]
+    TooManyOrders { orders: usize, max: usize, period_nm: f64, wavelength_nm: f64 },
     #[error("numerical failure in the C-method: {0}")]
     Numerical(String),
 }
@@ -389,6 +394,11 @@ fn setting(p: &Problem, period_x: f64, period_y: f64) -> Setting {
     }
 }
 
+/// The most orders propagating each side along a direction that the solver takes, for a 1-D and a 2-D
+/// profile: the truncation must hold them, and the eigenproblem grows as (2M+1)² (1-D: 2001² complex, 64 MB a
+/// matrix) or (2M+1)⁴ (2-D: 4·33² = 4356², 300 MB).
+pub const MAX_PROPAGATING: [usize; 2] = [1000, 16];
+
 /// Largest |m| (or |n|) of an order propagating in either medium along one direction.
 fn propagating_extent(k0: f64, kg: f64, n_max: f64) -> usize {
     // |k0 + m kg| < n_max for propagating orders; the extent is bounded by (n_max + |k0|)/kg.
@@ -470,6 +480,17 @@ fn solve_auto(
         .fold(problem.incident_index.max(problem.substrate_index.re), f64::max);
     let px = propagating_extent(set.kx0, set.kgx, n_max);
     let py = if two_d { propagating_extent(set.ky0, set.kgy, n_max) } else { 0 };
+    // Every propagating order must be inside the truncation, so more than the cap cannot be solved (a
+    // wavelength in µm read as nm: 1100 nm at 0.5 nm is 4400 orders, an eigenproblem of gigabytes).
+    let cap = MAX_PROPAGATING[usize::from(two_d)];
+    if px.max(py) > cap {
+        return Err(RigorousError::TooManyOrders {
+            orders: px.max(py),
+            max: cap,
+            period_nm: if px >= py { period_x } else { period_y },
+            wavelength_nm: problem.wavelength_nm,
+        });
+    }
     let margin = if two_d { 1 } else { 4 };
     // Every propagating order must be inside the truncation; the automatic search starts with a margin.
     let start = opts.limits(two_d).0.max(px.max(py) + margin);

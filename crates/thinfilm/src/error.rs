@@ -3,9 +3,10 @@
 /// Everything that can go wrong with thin-film input or evaluation. Messages are written for people.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ThinFilmError {
-    /// A stack string that cannot be read: the offending token and its 1-based character column.
+    /// A stack string that cannot be read: the offending token and its 1-based character column; `unreadable`
+    /// where the token is a `file:` material whose file cannot be opened (an I/O error, not the stack's syntax).
     #[error("stack \"{stack}\": {message} (token '{token}' at column {column})")]
-    Stack { stack: String, token: String, column: usize, message: String },
+    Stack { stack: String, token: String, column: usize, message: String, unreadable: bool },
     /// A refractive-index file that cannot be read; `line` is 1-based when known.
     #[error("{path}{}: {message}", .line.map(|l| format!(", line {l}")).unwrap_or_default())]
     File { path: String, line: Option<usize>, message: String },

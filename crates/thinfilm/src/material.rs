@@ -123,6 +123,14 @@ impl Material {
         if index.re <= 0.0 {
             return Err(ThinFilmError::Invalid(format!("material '{name}': n = {} must be > 0", index.re)));
         }
+        if index.norm() > crate::tmm::MAX_INDEX {
+            return Err(ThinFilmError::Invalid(format!(
+                "material '{name}': |n + iκ| = {:e} is beyond {:e}, which no material reaches (its Fresnel \
+                 coefficients overflow: R and T came out 0)",
+                index.norm(),
+                crate::tmm::MAX_INDEX
+            )));
+        }
         Ok(Self { name, n: Part::Const(index.re), k: Part::Const(index.im), range_nm: (0.0, f64::INFINITY) })
     }
 

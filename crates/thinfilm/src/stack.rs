@@ -85,6 +85,7 @@ impl Stack {
                 token: s.trim().to_string(),
                 column: 1,
                 message: format!("no layer has the thickness {SWEEP_PLACEHOLDER}, which marks the swept layer"),
+                unreadable: false,
             }),
         }
     }
@@ -95,6 +96,7 @@ impl Stack {
             token: tok.text.to_string(),
             column: tok.column,
             message,
+            unreadable: false,
         };
         let col = |byte: usize| s[..byte].chars().count() + 1;
         // Split on '|', keeping byte offsets.
@@ -210,7 +212,13 @@ impl Stack {
             if is_layer {
                 incoherent.push(inc);
             }
-            let m = crate::library::parse_material(name).map_err(|m| err(&toks[0], m))?;
+            let m = crate::library::parse_material(name).map_err(|m| {
+                let mut e = err(&toks[0], m);
+                if let ThinFilmError::Stack { unreadable, .. } = &mut e {
+                    *unreadable = name.strip_prefix("file:").is_some_and(|p| std::fs::metadata(p).is_err());
+                }
+                e
+            })?;
             if k == 0 {
                 if let crate::material::Part::Const(kappa) = m.k {
                     if kappa > 0.0 {
@@ -494,6 +502,9 @@ mod tests {
         assert_eq!(t, "5nm");
         let (t, c, m) = column_of(Stack::parse("air | file:/nonexistent/x.yml 5nm | air").unwrap_err());
         assert_eq!((t.as_str(), c), ("file:/nonexistent/x.yml", 7));
+        // A file that cannot be opened is marked so (Python raises OSError); a misspelt material is not.
+        let unreadable = |s: &str| matches!(Stack::parse(s), Err(ThinFilmError::Stack { unreadable: true, .. }));
+        assert!(unreadable("air | file:/nonexistent/x.yml 5nm | air") && !unreadable("air | wter 5nm | air"));
         assert!(m.contains("cannot read"), "{m}");
         assert!(Stack::parse("air").is_err());
         // Multi-byte characters before the token: the column counts characters.

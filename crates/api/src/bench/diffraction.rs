@@ -18,6 +18,11 @@ use serde_json::json;
 use super::{disk_pixels, Bench, DeltaEStats};
 use crate::report::Report;
 
+/// The bench surface's side, in samples: at most 8192² (512 MiB of heights, as large as a scan is read).
+pub const MAX_BENCH_SIZE: usize = 8192;
+/// At least 8² samples, as the smallest map.
+pub const MIN_BENCH_SIZE: usize = 8;
+
 /// A reproducible rough surface: a sum of random gratings (σ_h ≈ 60 nm) at 65 nm per pixel.
 pub fn bench_surface(n: usize) -> Result<Patch> {
     let mut seed = 0x1d1du64;
@@ -109,6 +114,11 @@ impl Default for SpeedOptions {
 /// The Taylor-term FFTs (all threads, one thread, numpy), the lookup tables, and BRDF maps per second of
 /// lookup, reference and ground truth on [`bench_surface`].
 pub fn speed(a: &SpeedOptions, report: &dyn Report) -> Result<Bench> {
+    // The surface is size² samples and every term's FFT as large: checked before any is allocated (10¹² was a
+    // capacity-overflow panic, 10⁵ an 80 GB allocation that aborted).
+    if !(MIN_BENCH_SIZE..=MAX_BENCH_SIZE).contains(&a.size) {
+        bail!("--size {}: the bench surface's side must be from {MIN_BENCH_SIZE} to {MAX_BENCH_SIZE} samples", a.size);
+    }
     for &s in &a.map_sizes {
         crate::brdf_map::check_size_of("--map-sizes", s)?;
     }

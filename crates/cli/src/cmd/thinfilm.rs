@@ -391,7 +391,8 @@ fn chart(a: ChartArgs) -> Result<()> {
     declare("-o", &a.output, &["png"])?;
     declare_opt("--csv", a.csv.as_deref(), &["csv"])?;
     let grid = a.grid.grid()?;
-    let c = film_chart::chart(&a.stack, &a.thickness, a.angle, &a.illuminant, a.exposure, &grid, a.rough.light()?)?;
+    let c =
+        film_chart::chart(&a.stack, &a.thickness, a.angle, &a.illuminant, a.exposure, &grid, a.rough.light()?, &Cli)?;
     film::write_png(&a.output, &c.image()?)?;
     crate::outln!("wrote {} {}", a.output.display(), c.summary())?;
     if let Some(p) = &a.csv {

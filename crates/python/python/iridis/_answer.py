@@ -70,6 +70,14 @@ def warn_caller(text):
     warnings.warn(text, UserWarning, stacklevel=level)
 
 
+def flag(value, name):
+    """``value`` as a yes/no option: a bool (Python's or numpy's) only; ``bool("no")`` is True, so a str or a
+    number given by mistake is a TypeError naming ``name``, not silently yes."""
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    raise TypeError(f"{name} must be True or False, got {type(value).__name__} {value!r}")
+
+
 def renamed(function, old, old_value, new, new_value, default):
     """The value of a keyword whose former name was ``old`` (its name now, ``new``, is the CLI's flag's): the
     former name's value with a DeprecationWarning where only it is given; both given is a TypeError."""

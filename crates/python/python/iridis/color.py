@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import _native
-from ._answer import renamed
+from ._answer import flag, renamed
 
 __all__ = [
     "ILLUMINANTS",
@@ -50,7 +50,11 @@ def _colours(x, name):
     a = _float_array(x, name)
     if a.ndim == 0 or a.shape[-1] != 3:
         raise ValueError(f"{name} must have a last axis of length 3 (one colour per row), got shape {a.shape}")
-    return np.ascontiguousarray(a.reshape(-1, 3)), a.shape
+    rows = a.reshape(-1, 3)
+    bad = np.flatnonzero(~np.isfinite(rows).all(axis=1))
+    if bad.size:  # NaN became black (or NaN) colours without a word
+        raise ValueError(f"{name} holds a value that is not finite in colour {bad[0]}: {rows[bad[0]].tolist()}")
+    return np.ascontiguousarray(rows), a.shape
 
 
 def white_point(illuminant="D65", observer="1931"):
@@ -83,6 +87,8 @@ def _white(white, illuminant, observer):
     w = _float_array(white, "white")
     if w.shape != (3,):
         raise ValueError(f"white must be one XYZ triple, got shape {w.shape}")
+    if not (np.isfinite(w).all() and (w > 0).all()):
+        raise ValueError(f"white = {w.tolist()}: a white point's X, Y and Z must be positive and finite")
     return tuple(float(x) for x in w)
 
 
@@ -160,4 +166,5 @@ def xyz(spectrum, illuminant="D65", observer="1931", emissive=False, percent=Fal
     from ._answer import answer, file_path
 
     path = file_path(spectrum, "iridis.color.xyz", "iridis.color.spectrum_to_xyz(wavelengths_nm, values)")
-    return answer(_native._color_xyz(path, str(illuminant), str(observer), bool(emissive), bool(percent)))
+    return answer(_native._color_xyz(path, str(illuminant), str(observer), flag(emissive, "emissive"),
+                                     flag(percent, "percent")))

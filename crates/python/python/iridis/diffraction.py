@@ -37,7 +37,7 @@ import os
 
 from . import _native
 from ._gpu import ensure_gpu_environment
-from ._answer import keywords
+from ._answer import flag, keywords
 from .surface import Surface
 
 __all__ = ["Table", "precompute", "brdf_map", "brdf_map_of", "brdf_map_run", "evaluate", "brdf_eval"]
@@ -101,7 +101,7 @@ def precompute(surface, coherence_nm=None, terms=None, uv_resolution=None, uv_po
     (D65, CIE 1931, 5 nm); ``units="radiometric"`` tables the BRDF instead of the paper's relative reflectance
     (``--units``), ``gpu=True`` builds them on the GPU (``--gpu``, values in f32)."""
     options.update(coherence_nm=coherence_nm, terms=terms, uv_resolution=uv_resolution, uv_power=uv_power,
-                   illuminant=illuminant, observer=observer, step_nm=step_nm, units=units, gpu=bool(gpu))
+                   illuminant=illuminant, observer=observer, step_nm=step_nm, units=units, gpu=flag(gpu, "gpu"))
     if gpu:
         ensure_gpu_environment()
     return Table(_native.precompute(_native_source(surface), name, options))
@@ -129,7 +129,7 @@ def brdf_map(source, incidence=(0.0, 0.0), size=256, method=None, per_sr=False, 
                            subsamples=subsamples, **options)
         return out["per_sr"] if per_sr else out["xyz"]
     theta, phi = _direction(incidence, "incidence")
-    return _native.brdf_map_xyz(_native_source(source), method, theta, phi, int(size), options, bool(per_sr),
+    return _native.brdf_map_xyz(_native_source(source), method, theta, phi, int(size), options, flag(per_sr, "per_sr"),
                                 int(subsamples))
 
 
@@ -209,7 +209,7 @@ def grating(source, light, wavelengths_nm, method=None, material=None, fresnel=N
     fraction, ``--orders-above``) lists only the orders of at least that efficiency; the totals count them all.
     """
     theta, phi = _direction(light, "light")
-    opts = dict(options, compare=bool(compare))
+    opts = dict(options, compare=flag(compare, "compare"))
     if method is not None:
         opts["method"] = method
     if normalisation is not None:
@@ -224,6 +224,8 @@ def grating(source, light, wavelengths_nm, method=None, material=None, fresnel=N
         opts["acceptance"] = float(acceptance)
     if orders_above is not None:
         opts["orders_above"] = float(orders_above)
+    if isinstance(wavelengths_nm, (str, bytes)):  # a str would be read character by character
+        raise TypeError(f"wavelengths_nm must be a number or a sequence of numbers (nm), got {wavelengths_nm!r}")
     wl = [float(w) for w in (wavelengths_nm if hasattr(wavelengths_nm, "__len__") else [wavelengths_nm])]
     return _native.grating(_native_source(source), (theta, phi), wl, opts)
 

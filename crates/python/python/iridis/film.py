@@ -21,7 +21,7 @@ Example:
 from __future__ import annotations
 
 from . import _native
-from ._answer import Answer, answer, file_path
+from ._answer import Answer, answer, file_path, flag
 
 __all__ = ["Answer", "spectrum", "table", "color", "chart", "materials", "bench", "profile", "fit"]
 
@@ -44,7 +44,7 @@ def spectrum(stack, angle_rad=0.0, from_nm=380.0, to_nm=780.0, step_nm=5.0, pola
     (degrees) against wavelength; with a rough substrate the smooth R, specular ``k_r`` and diffuse ``k_d``
     (sr⁻¹) at the view ``angle_rad`` and light ``light_angle_rad``. ``.spectra_csv``: R and T in pavo's layout."""
     return answer(_native._film_spectrum(str(stack), float(angle_rad), float(from_nm), float(to_nm), float(step_nm),
-                                         str(polarization), bool(plot),
+                                         str(polarization), flag(plot, "plot"),
                                          **_rough(roughness_nm, correlation_nm, d_iterations, diffuse_transport),
                                          light_rad=None if light_angle_rad is None else float(light_angle_rad),
                                          azimuth_rad=_opt_float(azimuth_rad)))
@@ -60,7 +60,7 @@ def table(stack, angles="1deg:90deg:1deg", from_nm=380.0, to_nm=780.0, step_nm=5
     ``azimuth_rad``, ``d_iterations``, ``diffuse_transport``) without ``roughness_nm`` raise ValueError, here
     and in spectrum, color, chart and bench: they would be ignored."""
     return answer(_native._film_table(str(stack), str(angles), float(from_nm), float(to_nm), float(step_nm),
-                                      bool(plot), None if scale is None else str(scale),
+                                      flag(plot, "plot"), None if scale is None else str(scale),
                                       **_rough(roughness_nm, correlation_nm, d_iterations, diffuse_transport),
                                       light_angles=light_angles, azimuth_rad=_opt_float(azimuth_rad)), table=True)
 
@@ -103,7 +103,7 @@ def bench(seconds=1.0, no_python=False, *, roughness_nm=None, correlation_nm=Non
     unless ``no_python``), the fit of tools/fit_scipy_compare.py and a batch of 10⁶ points timed (below
     ``seconds=1`` that share of them, at least 10⁴); with a rough substrate the LSRS table of Listing 3.6
     (shared generation against direct evaluation)."""
-    return answer(_native._film_bench(float(seconds), bool(no_python),
+    return answer(_native._film_bench(float(seconds), flag(no_python, "no_python"),
                                       **_rough(roughness_nm, correlation_nm, d_iterations, diffuse_transport),
                                       azimuth_rad=_opt_float(azimuth_rad)))
 
@@ -113,7 +113,7 @@ def profile(stack, wavelength_nm, angle_rad=0.0, polarization="avg", points=400,
     energy balance, and the depth profile (|E|², absorbed power per nm, flux) over ``depth`` (``"FROM:TO"``
     with units, below the first interface; default 100 nm above the stack to 100 nm into the substrate)."""
     return answer(_native._film_profile(str(stack), float(wavelength_nm), float(angle_rad), str(polarization),
-                                        int(points), None if depth is None else str(depth), bool(plot)))
+                                        int(points), None if depth is None else str(depth), flag(plot, "plot")))
 
 
 def fit(measured, stack, angle_rad=0.0, quantity="R", *, sigma=None, weights=None, grid=0, columns=None,
@@ -122,9 +122,9 @@ def fit(measured, stack, angle_rad=0.0, quantity="R", *, sigma=None, weights=Non
     spectrum in the file ``measured`` (read as the CLI reads it); ``.csv`` the fitted curve. Arrays
     ``(wavelengths_nm, values[, sigma])`` are ``iridis.thinfilm.fit``'s (the same library calls)."""
     measured = file_path(measured, "iridis.film.fit", "iridis.thinfilm.fit((wavelengths_nm, values[, sigma]), stack)")
-    return answer(_native._film_fit(measured, str(stack), float(angle_rad), str(quantity), int(grid), bool(plot),
-                                    sigma=None if sigma is None else str(sigma),
+    return answer(_native._film_fit(measured, str(stack), float(angle_rad), str(quantity), int(grid),
+                                    flag(plot, "plot"), sigma=None if sigma is None else str(sigma),
                                     weights=None if weights is None else str(weights), columns=columns,
-                                    percent=None if percent is None else bool(percent),
+                                    percent=None if percent is None else flag(percent, "percent"),
                                     from_nm=None if from_nm is None else float(from_nm),
                                     to_nm=None if to_nm is None else float(to_nm)))

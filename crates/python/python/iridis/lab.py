@@ -30,7 +30,7 @@ import os
 
 from . import _native
 from ._gpu import ensure_gpu_environment
-from ._answer import keywords
+from ._answer import flag, keywords
 from .surface import Surface
 
 __all__ = ["testbench", "compare", "sweep", "laser", "METHODS"]
@@ -102,7 +102,7 @@ def compare(surface, methods=("lookup", "reference", "stam-periodic", "stam-gaus
     out, maps = _native._compare(
         _surface(surface), [str(m).strip() for m in methods], str(against), [float(e) for e in exposures], theta,
         phi, int(size), float(step_nm), str(illuminant), _opt(uv_resolution, int), _opt(uv_power, float),
-        None if table is None else os.fspath(table), options, bool(gpu))
+        None if table is None else os.fspath(table), options, flag(gpu, "gpu"))
     result = json.loads(out)
     result["maps"] = maps
     return result
@@ -128,7 +128,7 @@ def sweep(surface, param, values, output, method="reference", against="model", e
     out = _native._sweep(_surface(surface), str(param), [float(v) for v in values], os.fspath(output), str(method),
                          str(against), [float(e) for e in exposures], theta, phi, int(size), _opt(step_nm, float),
                          _opt(uv_resolution, int), _opt(uv_power, float), None if plot is None else os.fspath(plot),
-                         options, bool(gpu))
+                         options, flag(gpu, "gpu"))
     return json.loads(out)
 
 

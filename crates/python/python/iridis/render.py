@@ -16,6 +16,7 @@ import os
 import numpy as np
 
 from . import _native
+from ._answer import flag
 from ._gpu import ensure_gpu_environment
 from .color import xyz_to_srgb
 
@@ -50,7 +51,7 @@ def render(scene, size=None, spp=None, space="srgb", gpu=False, exposure=None, s
     out = _native.render_scene(os.fspath(scene), w, h, None if spp is None else int(spp), gpu,
                                None if exposure is None else float(exposure),
                                None if spectral_samples is None else int(spectral_samples), camera,
-                               bool(ignore_gltf_lights))
+                               flag(ignore_gltf_lights, "ignore_gltf_lights"))
     rgb = out["linear_srgb"].astype(np.float64)
     if space == "linear_srgb":
         return rgb
@@ -64,7 +65,8 @@ def export_mesh(scene, path, camera=None, ignore_gltf_lights=False):
     """Writes ``scene``'s triangle meshes (positions, normals, UVs, the orientation field as TANGENT), camera and
     lights as binary glTF (.glb) to ``path``, as ``iridis render SCENE --export-mesh PATH``; a glTF scene's
     ``camera`` and ``ignore_gltf_lights`` as for :func:`render`. Returns the line that says what was written."""
-    return _native.export_mesh(os.fspath(scene), os.fspath(path), camera, bool(ignore_gltf_lights))
+    return _native.export_mesh(os.fspath(scene), os.fspath(path), camera,
+                               flag(ignore_gltf_lights, "ignore_gltf_lights"))
 
 
 def _to_xyz(rgb):

@@ -17,7 +17,7 @@ import os
 import numpy as np
 
 from . import _native
-from ._answer import warn_caller
+from ._answer import flag, warn_caller
 
 __all__ = ["Surface", "load", "generate", "channels"]
 
@@ -53,7 +53,8 @@ class Surface:
         return self._h.meta
 
     def level(self, how="plane"):
-        """A levelled copy: ``none``, ``mean``, ``plane``, ``rows``, ``lines-median`` or ``poly``."""
+        """A levelled copy: ``none``, ``mean``, ``plane``, ``poly`` (degree 2), ``lines`` (median line correction)
+        or ``rows`` (line means), as ``--level``."""
         return Surface(self._h.level(how), 0)
 
     def info(self, peaks=5, coherence_nm=65000.0):
@@ -128,7 +129,8 @@ def load(spec, channel=None, pixel_size_nm=None, max_height_nm=None, height_unit
     A missing file raises OSError, a file that cannot be read ValueError with the CLI's message.
     """
     h = _native.load_height_field(str(spec), None if channel is None else str(channel), pixel_size_nm,
-                                  max_height_nm, height_unit, bool(override_units), bool(as_height))
+                                  max_height_nm, height_unit, flag(override_units, "override_units"),
+                                  flag(as_height, "as_height"))
     s = Surface(h, 0)
     return s if level is None else s.level(level)
 

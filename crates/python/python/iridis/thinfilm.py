@@ -34,6 +34,7 @@ import os
 import numpy as np
 
 from . import _native
+from ._answer import flag
 from .color import xyz_to_hex, xyz_to_lab, xyz_to_srgb, white_point
 
 __all__ = ["Stack", "RoughFilm", "colors_of_stacks", "material_index", "materials", "fit", "profile"]
@@ -154,6 +155,12 @@ def colors_of_stacks(indices, thicknesses_nm, angle_rad=0.0, illuminant="D65", o
                 for i in range(n.shape[0])]
         return {"reflected": np.array([r["reflected"] for r in rows]),
                 "transmitted": np.array([r["transmitted"] for r in rows])}
+    if n.ndim != 2 or n.shape[1] < 2:
+        raise ValueError(f"indices of shape {n.shape}: give one row per stack, (stacks, media) with at least two "
+                         "media (the incident medium and the substrate), or (stacks, media, wavelengths)")
+    if d.shape != (n.shape[0], n.shape[1] - 2):
+        raise ValueError(f"indices of shape {n.shape} need thicknesses_nm of shape ({n.shape[0]}, {n.shape[1] - 2}) "
+                         f"(one row per stack, one thickness per layer between the two media), got {d.shape}")
     out = _native._stack_colors(np.ascontiguousarray(n, dtype=np.complex128), np.ascontiguousarray(d),
                                 float(angle_rad), np.ascontiguousarray(grid.ravel()), illuminant, observer, pol)
     return {"reflected": out[:, :3], "transmitted": out[:, 3:]}
@@ -458,8 +465,8 @@ def fit(measured, stack, angle_rad=0.0, quantity="R", sigma=None, weights=None, 
     for name, v in (("sigma", sigma), ("weights", weights)):
         if v is not None:
             spread[name] = str(v) if isinstance(v, str) else repr(_float(v, name, "a number or column names"))
-    reading = dict(columns=columns, percent=None if percent is None else bool(percent), from_nm=from_nm, to_nm=to_nm,
-                   **spread)
+    reading = dict(columns=columns, percent=None if percent is None else flag(percent, "percent"), from_nm=from_nm,
+                   to_nm=to_nm, **spread)
     if isinstance(measured, (str, bytes)) or hasattr(measured, "__fspath__"):
         return _native._fit(stack, angle, q, int(grid), path=os.fsdecode(os.fspath(measured)), **reading)
     parts = [np.asarray(m) for m in measured] if isinstance(measured, (tuple, list)) else None

@@ -34,7 +34,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from ._native import CohTmmResult, _coh_tmm_batch, coh_tmm, ellips, unpolarized_RT
+from ._native import CohTmmResult, _check_stack, _coh_tmm_batch, coh_tmm, ellips, unpolarized_RT
 
 Mapping.register(CohTmmResult)
 
@@ -366,6 +366,10 @@ def inc_tmm(pol, n_list, d_list, c_list, th_0, lam_vac):
     backward intensities at the start of each incoherent medium), ``coh_tmm_data_list``,
     ``coh_tmm_bdata_list``, ``stackFB_list`` (light arriving at each stack from the front and from the back),
     ``power_entering_list``, and everything :func:`inc_group_layers` returns."""
+    try:  # coh_tmm's checks on the whole stack: its incoherent media reach no coherent calculation
+        _check_stack(n_list, d_list, th_0, lam_vac)
+    except ValueError as e:
+        raise TmmInputError(str(e)) from None
     n = np.asarray(n_list)
     d = np.asarray(d_list, dtype=float)
     if np.real_if_close(n[0] * np.sin(th_0)).imag != 0:

@@ -18,11 +18,12 @@ Example:
 from __future__ import annotations
 
 import json
+import warnings
 
 import numpy as np
 
 from . import _native
-from ._answer import renamed
+from ._answer import flag, renamed
 
 __all__ = ["VISUAL_SYSTEMS", "ILLUMINANTS", "analyse", "sensitivities", "vision"]
 
@@ -95,9 +96,15 @@ def analyse(wavelengths_nm, values, visual=None, names=None, *, lambda_max=None,
 def sensitivities(wavelengths_nm, visual=None, *, lambda_max=None, chromophore=None, oil_droplets=None):
     """Each receptor's sensitivity (unit sum over 300-700 nm at 1 nm, times the ocular media) at the
     wavelengths: ``(names, array of shape (receptors, wavelengths))``."""
-    wl = _float_array(wavelengths_nm, "wavelengths_nm")
+    from .thinfilm import _wavelengths  # finite, > 0, and not µm or metres by mistake
+
+    wl = _wavelengths(wavelengths_nm)
     if wl.ndim != 1:
         raise ValueError(f"wavelengths_nm must be 1-D, got shape {wl.shape}")
+    outside = wl[(wl < 300) | (wl > 700)]
+    if outside.size:
+        warnings.warn(f"{outside.size} of the wavelengths lie outside the 300–700 nm the receptors are defined on "
+                      f"(e.g. {outside[0]:g} nm): their sensitivity is 0 there", UserWarning, stacklevel=2)
     return _native._sensitivities(np.ascontiguousarray(wl), visual=visual, lambda_max=_text(lambda_max),
                                   chromophore=chromophore, oil_droplets=oil_droplets)
 
@@ -114,6 +121,6 @@ def vision(spectra, visual=None, *, percent=False, lambda_max=None, chromophore=
     weber_achromatic = renamed("vision", "achromatic_weber", achromatic_weber, "weber_achromatic",
                                weber_achromatic, None)
     path = file_path(spectra, "iridis.vision.vision", "iridis.vision.analyse(wavelengths_nm, values, visual)")
-    return answer(_native._vision_file(path, bool(percent), **_spec(
+    return answer(_native._vision_file(path, flag(percent, "percent"), **_spec(
         visual, lambda_max, chromophore, oil_droplets, ocular_media, illuminant, illuminant_units, illuminant_scale,
         background, weber, weber_ref, densities, receptor_noise, noise, achromatic, weber_achromatic, space)))

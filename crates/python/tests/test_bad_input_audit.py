@@ -1,0 +1,110 @@
+"""Bad input from Python raises a specific exception, never a Rust panic, an abort, a hang or a silent NaN: the
+findings of an audit of every function with malformed arguments (2026-11-29), each fixed."""
+import math
+import os
+
+import numpy as np
+import pytest
+
+import iridis.bench as bench
+import iridis.color as color
+import iridis.diffraction as diffraction
+import iridis.film as film
+import iridis.thinfilm as thinfilm
+import iridis.tmm as tmm
+import iridis.vision as vision
+
+SINE = "builtin:sine?size=3300nm&pixel=100nm&period=1100nm"
+
+
+def test_sizes_are_checked_before_anything_is_allocated():
+    # 10¹² was a PanicException (capacity overflow), 10⁵ an 80 GB allocation that aborted the interpreter.
+    for size in (10**12, 100000):
+        with pytest.raises(ValueError, match=r"the bench surface's side must be from 8 to 8192"):
+            bench.run("diffraction", size=size, map_sizes=[8])
+    with pytest.raises(ValueError, match=r"--size 1000000: the image side must be a whole number from 1 to 16384"):
+        bench.run("render", size=10**6, spp=1)
+    with pytest.raises(ValueError, match=r"--seconds 1e300: must be positive and at most 300"):
+        film.bench(seconds=1e300, no_python=True)
+
+
+def test_a_wavelength_too_short_for_the_period_is_refused_by_the_rigorous_solver():
+    # 0.5 nm (µm meant): 4400 orders each side, an eigenproblem that grew past 6 GB.
+    with pytest.raises(ValueError, match=r"orders propagate each side along a period of 3300 nm at λ = 0.5 nm"):
+        diffraction.grating(SINE, 0.1, [0.5], method="rigorous")
+    with pytest.raises(TypeError, match=r"wavelengths_nm must be a number or a sequence of numbers"):
+        diffraction.grating(SINE, 0.1, "500")
+
+
+def test_a_fixed_series_count_past_underflow_is_the_same_sum():
+    # D-iterations = 10⁹ ran for minutes; past where the weights underflow every term is 0.
+    kw = dict(roughness_nm=20, correlation_nm=200, from_nm=500, to_nm=510, step_nm=10)
+    huge = film.spectrum("air | SiO2 100nm | Si", d_iterations=10**9, **kw)
+    enough = film.spectrum("air | SiO2 100nm | Si", d_iterations=5000, **kw)
+    assert huge["diffuse_per_sr"] == enough["diffuse_per_sr"]
+    assert huge["series_terms_max"] < 5000
+
+
+def test_the_light_of_a_directional_vision_must_be_above_the_surface():
+    with pytest.raises(ValueError, match=r"--light 2578.31\d*°: the light's polar angle must be from 0°"):
+        diffraction.vision(SINE, "bluetit", light=45, views_deg=[0, 10])
+    with pytest.raises(ValueError, match=r"--light NaN°"):
+        diffraction.vision(SINE, "bluetit", light=float("nan"), views_deg=[0, 10])
+    with pytest.raises(ValueError, match=r"--azimuth NaN"):
+        diffraction.vision(SINE, "bluetit", light=0.2, azimuth=float("nan"), views_deg=[0, 10])
+
+
+def test_inc_tmm_checks_the_whole_stack_as_coh_tmm_does():
+    n, d, c = [1, 1.5, 1], [np.inf, 1000, np.inf], ["i", "i", "i"]
+    with pytest.raises(tmm.TmmInputError, match=r"lam_vac|wavelength"):
+        tmm.inc_tmm("s", n, d, c, 0.1, -500)
+    with pytest.raises(tmm.TmmInputError, match=r"th_0"):
+        tmm.inc_tmm("s", n, d, c, 2.0, 500)
+    with pytest.raises(tmm.TmmInputError, match=r"n_list\[1\]"):
+        tmm.inc_tmm("s", [1, np.nan, 1], d, c, 0.1, 500)
+    # A valid all-incoherent stack still gives tmm's numbers: one slab, R = r + t²r/(1 − r²) (r = 0.04).
+    r = ((1.5 - 1) / (1.5 + 1)) ** 2
+    assert math.isclose(tmm.inc_tmm("s", n, d, c, 0.0, 500)["R"], r + (1 - r) ** 2 * r / (1 - r * r), rel_tol=1e-12)
+    with pytest.raises(ValueError, match=r"\|n\| is beyond 1e6"):
+        tmm.coh_tmm("s", [1, 1e300, 1], [np.inf, 100, np.inf], 0.1, 500)
+
+
+def test_colour_conversions_refuse_nan_and_a_bad_white():
+    with pytest.raises(ValueError, match=r"xyz holds a value that is not finite in colour 0"):
+        color.xyz_to_hex([np.nan, 0.5, 0.5])
+    with pytest.raises(ValueError, match=r"white = \[0.0, 0.0, 0.0\]: a white point's X, Y and Z must be positive"):
+        color.xyz_to_lab([0.5, 0.5, 0.5], white=[0, 0, 0])
+    with pytest.raises(TypeError, match=r"emissive must be True or False, got str 'no'"):
+        color.xyz(os.devnull, emissive="no")
+
+
+def test_sensitivities_take_wavelengths_in_nm_in_the_receptors_range():
+    with pytest.raises(ValueError, match=r"looks like µm"):
+        vision.sensitivities([0.4, 0.5, 0.6], "bluetit")
+    with pytest.raises(ValueError):
+        vision.sensitivities([400.0, np.nan], "bluetit")
+    with pytest.warns(UserWarning, match=r"1 of the wavelengths lie outside the 300–700 nm"):
+        _, s = vision.sensitivities([500.0, 800.0], "bluetit")
+    assert (s[:, 1] == 0).all() and (s[:, 0] > 0).any()
+
+
+def test_a_colour_grid_outside_the_visible_is_said():
+    with pytest.warns(UserWarning, match=r"integrate over 1000–1500 nm only .* every colour is black"):
+        film.color("air | water 348nm | air", from_nm=1000, to_nm=1500)
+
+
+def test_missing_files_are_os_errors():
+    missing = "/nonexistent/iridis-audit.csv"
+    for call in (lambda: color.xyz(missing), lambda: vision.vision(missing, "bluetit"),
+                 lambda: thinfilm.Stack(f"air | file:{missing} 100nm | Si")):
+        with pytest.raises(OSError, match=r"iridis-audit.csv"):
+            call()
+
+
+def test_stack_shapes_are_said_plainly():
+    with pytest.raises(ValueError, match=r"a stack needs at least two media"):
+        thinfilm.Stack.from_lists([1.0], [])
+    with pytest.raises(ValueError, match=r"one row per stack"):
+        thinfilm.colors_of_stacks([1.0, 1.5, 1.0], [100.0])
+    with pytest.raises(ValueError, match=r"give one material .* not a stack"):
+        thinfilm.material_index("", [500.0])
