@@ -10,6 +10,7 @@ import iridis.bench as bench
 import iridis.color as color
 import iridis.diffraction as diffraction
 import iridis.film as film
+import iridis.surface as surface
 import iridis.thinfilm as thinfilm
 import iridis.tmm as tmm
 import iridis.vision as vision
@@ -108,3 +109,15 @@ def test_stack_shapes_are_said_plainly():
         thinfilm.colors_of_stacks([1.0, 1.5, 1.0], [100.0])
     with pytest.raises(ValueError, match=r"give one material .* not a stack"):
         thinfilm.material_index("", [500.0])
+
+
+def test_negative_counts_name_their_argument():
+    # The binding's conversion said only "can't convert negative int to unsigned".
+    with pytest.raises(ValueError, match=r"size = -5 must be ≥ 0"):
+        diffraction.brdf_map(SINE, size=-5)
+    with pytest.raises(ValueError, match=r"subsamples = -1 must be ≥ 0"):
+        diffraction.brdf_map(SINE, size=16, subsamples=-1)
+    with pytest.raises(ValueError, match=r"peaks = -1 must be ≥ 0"):
+        surface.load(SINE).info_text(peaks=-1)
+    with pytest.raises(ValueError, match=r"points = 2.5 must be a whole number"):
+        film.profile("air | water 348nm | air", 550, points=2.5)

@@ -78,6 +78,19 @@ def flag(value, name):
     raise TypeError(f"{name} must be True or False, got {type(value).__name__} {value!r}")
 
 
+def count(value, name):
+    """``value`` as a whole number ≥ 0 (a size, a number of points or samples): a negative one is a ValueError
+    naming ``name`` (the binding's conversion said only "can't convert negative int to unsigned")."""
+    if isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"{name} must be a whole number, got {value!r}")
+    n = int(value)
+    if n != value:
+        raise ValueError(f"{name} = {value!r} must be a whole number")
+    if n < 0:
+        raise ValueError(f"{name} = {n} must be ≥ 0")
+    return n
+
+
 def renamed(function, old, old_value, new, new_value, default):
     """The value of a keyword whose former name was ``old`` (its name now, ``new``, is the CLI's flag's): the
     former name's value with a DeprecationWarning where only it is given; both given is a TypeError."""

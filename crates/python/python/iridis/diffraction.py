@@ -37,7 +37,7 @@ import os
 
 from . import _native
 from ._gpu import ensure_gpu_environment
-from ._answer import flag, keywords
+from ._answer import count, flag, keywords
 from .surface import Surface
 
 __all__ = ["Table", "precompute", "brdf_map", "brdf_map_of", "brdf_map_run", "evaluate", "brdf_eval"]
@@ -129,8 +129,9 @@ def brdf_map(source, incidence=(0.0, 0.0), size=256, method=None, per_sr=False, 
                            subsamples=subsamples, **options)
         return out["per_sr"] if per_sr else out["xyz"]
     theta, phi = _direction(incidence, "incidence")
-    return _native.brdf_map_xyz(_native_source(source), method, theta, phi, int(size), options, flag(per_sr, "per_sr"),
-                                int(subsamples))
+    return _native.brdf_map_xyz(_native_source(source), method, theta, phi, count(size, "size"), options,
+                                flag(per_sr, "per_sr"),
+                                count(subsamples, "subsamples"))
 
 
 @keywords
@@ -146,7 +147,7 @@ def brdf_map_run(source, incidence=(0.0, 0.0), size=512, method="lookup", **opti
     theta, phi = _direction(incidence, "incidence")
     if options.get("gpu"):
         ensure_gpu_environment()
-    return _native.brdf_map_run(os.fspath(source), method, theta, phi, int(size), options)
+    return _native.brdf_map_run(os.fspath(source), method, theta, phi, count(size, "size"), options)
 
 
 @keywords

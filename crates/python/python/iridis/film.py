@@ -21,7 +21,7 @@ Example:
 from __future__ import annotations
 
 from . import _native
-from ._answer import Answer, answer, file_path, flag
+from ._answer import Answer, answer, count, file_path, flag
 
 __all__ = ["Answer", "spectrum", "table", "color", "chart", "materials", "bench", "profile", "fit"]
 
@@ -29,7 +29,7 @@ __all__ = ["Answer", "spectrum", "table", "color", "chart", "materials", "bench"
 def _rough(roughness_nm, correlation_nm, d_iterations, diffuse_transport):
     # None (not given) passes through: the light's and the series' keywords without a roughness raise.
     return dict(roughness_nm=_opt_float(roughness_nm), correlation_nm=_opt_float(correlation_nm),
-                d_iterations=None if d_iterations is None else int(d_iterations),
+                d_iterations=None if d_iterations is None else count(d_iterations, "d_iterations"),
                 diffuse_transport=None if diffuse_transport is None else str(diffuse_transport))
 
 
@@ -113,7 +113,8 @@ def profile(stack, wavelength_nm, angle_rad=0.0, polarization="avg", points=400,
     energy balance, and the depth profile (|E|², absorbed power per nm, flux) over ``depth`` (``"FROM:TO"``
     with units, below the first interface; default 100 nm above the stack to 100 nm into the substrate)."""
     return answer(_native._film_profile(str(stack), float(wavelength_nm), float(angle_rad), str(polarization),
-                                        int(points), None if depth is None else str(depth), flag(plot, "plot")))
+                                        count(points, "points"), None if depth is None else str(depth),
+                                        flag(plot, "plot")))
 
 
 def fit(measured, stack, angle_rad=0.0, quantity="R", *, sigma=None, weights=None, grid=0, columns=None,
@@ -122,7 +123,7 @@ def fit(measured, stack, angle_rad=0.0, quantity="R", *, sigma=None, weights=Non
     spectrum in the file ``measured`` (read as the CLI reads it); ``.csv`` the fitted curve. Arrays
     ``(wavelengths_nm, values[, sigma])`` are ``iridis.thinfilm.fit``'s (the same library calls)."""
     measured = file_path(measured, "iridis.film.fit", "iridis.thinfilm.fit((wavelengths_nm, values[, sigma]), stack)")
-    return answer(_native._film_fit(measured, str(stack), float(angle_rad), str(quantity), int(grid),
+    return answer(_native._film_fit(measured, str(stack), float(angle_rad), str(quantity), count(grid, "grid"),
                                     flag(plot, "plot"), sigma=None if sigma is None else str(sigma),
                                     weights=None if weights is None else str(weights), columns=columns,
                                     percent=None if percent is None else flag(percent, "percent"),

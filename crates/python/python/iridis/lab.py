@@ -30,7 +30,7 @@ import os
 
 from . import _native
 from ._gpu import ensure_gpu_environment
-from ._answer import flag, keywords
+from ._answer import count, flag, keywords
 from .surface import Surface
 
 __all__ = ["testbench", "compare", "sweep", "laser", "METHODS"]
@@ -74,7 +74,8 @@ def testbench(surface, method="reference", incidence=math.radians(75.0), azimuth
     warning, as the CLI's.
     """
     out, matrix, wl, ang = _native._testbench(
-        _surface(surface), str(method), float(incidence), None if azimuth is None else float(azimuth), int(order),
+        _surface(surface), str(method), float(incidence), None if azimuth is None else float(azimuth),
+        count(order, "order"),
         _triple(wavelengths, "wavelengths"), _triple(angles_deg, "angles_deg"), period_nm, max_period_nm, options)
     result = json.loads(out)
     result.update(matrix=matrix, wavelength_nm=wl, angle_deg=ang)
@@ -101,7 +102,7 @@ def compare(surface, methods=("lookup", "reference", "stam-periodic", "stam-gaus
         ensure_gpu_environment()
     out, maps = _native._compare(
         _surface(surface), [str(m).strip() for m in methods], str(against), [float(e) for e in exposures], theta,
-        phi, int(size), float(step_nm), str(illuminant), _opt(uv_resolution, int), _opt(uv_power, float),
+        phi, count(size, "size"), float(step_nm), str(illuminant), _opt(uv_resolution, int), _opt(uv_power, float),
         None if table is None else os.fspath(table), options, flag(gpu, "gpu"))
     result = json.loads(out)
     result["maps"] = maps
@@ -126,7 +127,8 @@ def sweep(surface, param, values, output, method="reference", against="model", e
     if gpu:
         ensure_gpu_environment()
     out = _native._sweep(_surface(surface), str(param), [float(v) for v in values], os.fspath(output), str(method),
-                         str(against), [float(e) for e in exposures], theta, phi, int(size), _opt(step_nm, float),
+                         str(against), [float(e) for e in exposures], theta, phi, count(size, "size"),
+                         _opt(step_nm, float),
                          _opt(uv_resolution, int), _opt(uv_power, float), None if plot is None else os.fspath(plot),
                          options, flag(gpu, "gpu"))
     return json.loads(out)
@@ -145,7 +147,7 @@ def laser(surface, output, method="reference", incidence=math.radians(45.0), azi
     ValueError: they would be ignored)."""
     out, xyz = _native._laser(
         _surface(surface), os.fspath(output), str(method), float(incidence), float(azimuth), float(aperture_nm),
-        float(distance_nm), float(screen_nm), int(size), int(subsamples),
+        float(distance_nm), float(screen_nm), count(size, "size"), count(subsamples, "subsamples"),
         None if spectrum is None else os.fspath(spectrum), str(coating), [float(e) for e in exposures],
         float(step_nm), _opt(uv_resolution, int), _opt(uv_power, float), None if table is None else os.fspath(table),
         None if save_table is None else os.fspath(save_table), options)

@@ -16,7 +16,7 @@ import os
 import numpy as np
 
 from . import _native
-from ._answer import flag
+from ._answer import count, flag
 from ._gpu import ensure_gpu_environment
 from .color import xyz_to_srgb
 
@@ -41,16 +41,17 @@ def render(scene, size=None, spp=None, space="srgb", gpu=False, exposure=None, s
     w = h = None
     if size is not None:
         try:
-            w, h = (int(x) for x in size)
+            w, h = (count(x, "size") for x in size)
         except (TypeError, ValueError):
             raise TypeError(f"size must be (width, height), got {size!r}") from None
     if not isinstance(gpu, bool):
         raise TypeError(f"gpu must be True or False, got {gpu!r}")
     if gpu:
         ensure_gpu_environment()
-    out = _native.render_scene(os.fspath(scene), w, h, None if spp is None else int(spp), gpu,
+    out = _native.render_scene(os.fspath(scene), w, h, None if spp is None else count(spp, "spp"), gpu,
                                None if exposure is None else float(exposure),
-                               None if spectral_samples is None else int(spectral_samples), camera,
+                               None if spectral_samples is None else count(spectral_samples, "spectral_samples"),
+                               camera,
                                flag(ignore_gltf_lights, "ignore_gltf_lights"))
     rgb = out["linear_srgb"].astype(np.float64)
     if space == "linear_srgb":

@@ -12,7 +12,7 @@ import json
 import os
 
 from . import _native
-from ._answer import flag
+from ._answer import count, flag
 
 __all__ = ["report", "demo", "DEMO_SECTIONS"]
 
@@ -32,7 +32,8 @@ def report(surface, output, *, channel=None, pixel_size=None, max_height=None, h
     """
     opts = dict(channel=None if channel is None else str(channel), pixel_size=pixel_size, max_height=max_height,
                 height_unit=height_unit, level=level, override_units=flag(override_units, "override_units"),
-                as_height=flag(as_height, "as_height"), size=int(size), coherence=coherence, visual=str(visual),
+                as_height=flag(as_height, "as_height"), size=count(size, "size"), coherence=coherence,
+                visual=str(visual),
                 testbench=flag(testbench, "testbench"))
     out, text = _native._report(os.fspath(surface), os.fspath(output), opts)
     result = json.loads(out)

@@ -17,7 +17,7 @@ import os
 import numpy as np
 
 from . import _native
-from ._answer import flag, warn_caller
+from ._answer import count, flag, warn_caller
 
 __all__ = ["Surface", "load", "generate", "channels"]
 
@@ -72,7 +72,7 @@ class Surface:
             raise TypeError(f"peaks must be a whole number ≥ 0, got {peaks!r}")
         import json
 
-        out = json.loads(self._h.info_json(int(peaks), float(coherence_nm)))
+        out = json.loads(self._h.info_json(count(peaks, "peaks"), float(coherence_nm)))
         for w in out["warnings"]:  # as the CLI says them on stderr
             warn_caller(w)
         out["psdf_radial"]["values_nm4"] = np.asarray(out["psdf_radial"]["values_nm4"], dtype=float)
@@ -84,9 +84,9 @@ class Surface:
         as Python warnings (and in ``info()["warnings"]``)."""
         import json
 
-        for w in json.loads(self._h.info_json(int(peaks), float(coherence_nm)))["warnings"]:
+        for w in json.loads(self._h.info_json(count(peaks, "peaks"), float(coherence_nm)))["warnings"]:
             warn_caller(w)
-        return self._h.info_text(int(peaks), float(coherence_nm))
+        return self._h.info_text(count(peaks, "peaks"), float(coherence_nm))
 
     def figures(self, name="surface", image=None, psdf=None, acf=None):
         """Writes ``iridis surface info``'s figures as PNG: ``image`` the shaded relief with axes and a scale
