@@ -118,11 +118,17 @@ pub fn refuse_for_lookup_table(model: &ModelOptions) -> Result<()> {
     Ok(())
 }
 
+/// One of the lab's methods by name; an unknown name's message lists the rigorous method too, which the
+/// commands take besides (handled apart: it is not one of the lab's).
+pub(crate) fn lab_method(name: &str) -> Result<Method> {
+    name.parse().map_err(|e| anyhow::anyhow!("{e}, {RIGOROUS}"))
+}
+
 /// A finished table answers the lookup method only.
 fn require_lookup(method: &str) -> Result<()> {
     if method != RIGOROUS {
         // An unknown name is said as such, not as a method that needs the height field.
-        method.parse::<Method>().map_err(|e| anyhow::anyhow!("{e}, {RIGOROUS}"))?;
+        lab_method(method)?;
     }
     if method != "lookup" {
         bail!("--method {method} needs the height field, not a table: pass the SURFACE the table was made from");
@@ -158,8 +164,7 @@ pub fn evaluator_for(source: &Source, setup: EvaluatorSetup<'_>, report: &dyn Re
     if model.unit_cell_auto {
         bail!(UNIT_CELL_AUTO_RIGOROUS);
     }
-    // The lab's methods, and the rigorous one (handled above) listed with them.
-    let parsed: Method = method.parse().map_err(|e| anyhow::anyhow!("{e}, {RIGOROUS}"))?;
+    let parsed = lab_method(method)?;
     crate::lab::refuse_unused_terms(&model.terms, &[parsed], false)?;
     if method == "lookup" && shading.fresnel.depends_on_wavelength() {
         // Refused before the (long) table build rather than after it.

@@ -249,6 +249,10 @@ pub fn compute(r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) ->
     if !(r.exposure_ru.is_finite() && r.exposure_ru > 0.0) {
         bail!("--exposure {} must be a positive number of RU", r.exposure_ru);
     }
+    // The CLI's parser refuses the pair as well; Python's keywords reach here.
+    if r.auto_exposure && r.exposure_ru != DEFAULT_EXPOSURE_RU {
+        bail!("--exposure {} would be ignored: --auto-exposure chooses the exposure; give one", r.exposure_ru);
+    }
     check_size(r.size)?;
     check_subsamples(r.subsamples)?;
     refuse_build_options_for_table(&r.input, r.grid, &r.surface, "brdf-map")?;
@@ -358,19 +362,19 @@ pub fn compute(r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) ->
 
 /// The image's exposure: the one given, or with `--auto-exposure` the one [`auto_exposure`] chooses from the
 /// map (said in a note). A black map keeps the one given, with a warning whether or not the exposure was to be
-/// chosen; so does a lit map whose image (`-o X.png`, `--plot`; `files` None: the caller's image) would be black
-/// at the exposure given.
+/// chosen; so does a lit map whose image (`-o X.png`, `--plot`) would be black at the exposure given.
 fn exposure_for(xyz: &[Xyz], r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) -> Result<f64> {
     let Some(auto) = auto_exposure(xyz, r.size) else {
-        let mut warning = black_map(r.exposure_ru);
         let samples_a_side = r.size * r.subsamples;
-        if r.method.starts_with("stam-periodic") && samples_a_side.is_multiple_of(2) {
-            warning.push_str(&format!(
-                "; Stam's periodic models put a 1-D grating's orders on the row y = 0, which {samples_a_side} samples \
-                 a side miss: give an odd --size (and --subsamples)"
-            ));
-        }
-        report.warn(&warning);
+        report.warn(&if r.method.starts_with("stam-periodic") && samples_a_side.is_multiple_of(2) {
+            format!(
+                "the map is black: Stam's periodic models put a 1-D grating's orders on the row y = 0, which \
+                 {samples_a_side} samples a side miss: give an odd --size (and --subsamples); the exposure stays {} RU",
+                r.exposure_ru
+            )
+        } else {
+            black_map(r.exposure_ru)
+        });
         return Ok(r.exposure_ru);
     };
     if r.auto_exposure {
@@ -383,9 +387,10 @@ fn exposure_for(xyz: &[Xyz], r: &MapRequest, files: Option<&MapFiles>, report: &
         ));
         return Ok(auto.exposure_ru);
     }
+    // Python's arrays (no files) make no image here.
     let image = match files {
         Some(f) => f.plot.is_some() || crate::output::format_of("-o", &f.output, MAP_FORMATS)? == "png",
-        None => true,
+        None => false,
     };
     let tone = ToneMap { exposure_ru: r.exposure_ru, encoding: r.encoding };
     if image && xyz.iter().all(|&p| tone.to_rgb8(p) == [0, 0, 0]) {

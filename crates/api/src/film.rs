@@ -50,17 +50,29 @@ pub fn wavelength_grid(from: f64, to: f64, step: f64) -> Result<Vec<f64>> {
 }
 
 /// A colour integrates a spectrum over wavelengths: a grid of one wavelength would give black without a word,
-/// and one that misses part of the visible counts that part as dark (1000–1500 nm: black), which is said.
+/// and one that misses a real part of the visible counts that part as dark (1000–1500 nm: black), which is
+/// said. "Real": more than 1 % of the CIE 1931 observer's weight ∫(x̄ + ȳ + z̄) over 360–830 nm, so Sussenbach's
+/// 400–700 nm (0.27 %) and vision's 300–700 nm (0.07 %) say nothing.
 pub fn check_colour_grid(grid: &[f64], report: &dyn Report) -> Result<()> {
     if let [one] = grid {
         bail!("a colour integrates the spectrum over wavelengths, and --from/--to give only {one} nm; give a range (the default is 380nm to 780nm)");
     }
     let (lo, hi) = (grid[0], grid[grid.len() - 1]);
-    if lo > 380.0 || hi < 780.0 {
+    let cmfs = Observer::Cie1931.cmfs();
+    let weight = |inside: &dyn Fn(f64) -> bool| -> f64 {
+        let w = cmfs.wavelengths_nm.iter().enumerate().filter(|(_, &l)| inside(l));
+        w.map(|(i, _)| cmfs.x[i] + cmfs.y[i] + cmfs.z[i]).sum()
+    };
+    let missed = 1.0 - weight(&|l| (lo..=hi).contains(&l)) / weight(&|_| true);
+    if missed > 0.01 {
+        let nm = iridis_color::spectrum::short_number;
         report.warn(&format!(
-            "the colours integrate over {lo}–{hi} nm only (--from/--to): the visible 380–780 nm outside it counts \
-             as dark{}",
-            if lo >= 780.0 || hi <= 380.0 { ", so every colour is black" } else { "" }
+            "the colours integrate over {}–{} nm only (--from/--to): {:.0} % of the eye's response lies outside \
+             and counts as dark{}",
+            nm(lo),
+            nm(hi),
+            100.0 * missed,
+            if missed > 0.999 { ", so every colour is black" } else { "" }
         ));
     }
     Ok(())

@@ -109,7 +109,7 @@ pub fn bench(seconds: f64, no_python: bool) -> Result<FilmBench> {
     // About a dozen measurements each run for at least `seconds`: an hour of them is the most taken.
     if !(seconds.is_finite() && seconds > 0.0 && seconds <= 300.0) {
         bail!(
-            "--seconds {}: must be positive and at most 300 (each of about 12 measurements runs that long)",
+            "--seconds {}: must be positive and at most 300 s (each of about 12 measurements runs that long)",
             iridis_color::spectrum::short_number(seconds)
         );
     }

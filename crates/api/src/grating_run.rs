@@ -163,6 +163,10 @@ pub fn compare(
              sees, run without --compare, once with each --method"
         );
     }
+    // The CLI's parser refuses the pair as well; Python's keywords reach here.
+    if opts.method != GratingMethod::Kirchhoff {
+        bail!("--method would be ignored: --compare runs both the scalar and the rigorous method");
+    }
     let scalar =
         grating(source, surface, &GratingOptions { method: GratingMethod::Kirchhoff, ..opts.clone() }, report)?;
     let rigorous = grating(

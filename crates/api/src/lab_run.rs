@@ -100,9 +100,7 @@ pub fn testbench_run(
 ) -> Result<TestbenchRun> {
     let rigorous = req.method == crate::brdf::RIGOROUS;
     // The lab's method (none for the rigorous one, which is not among them).
-    let method: Option<Method> = (!rigorous)
-        .then(|| req.method.parse::<Method>().map_err(|e| anyhow::anyhow!("{e}, {}", crate::brdf::RIGOROUS)))
-        .transpose()?;
+    let method: Option<Method> = (!rigorous).then(|| crate::brdf::lab_method(&req.method)).transpose()?;
     if let Some(m) = method {
         if req.rigorous.material.is_some() || req.rigorous.unit_cell_auto {
             bail!("--material and --unit-cell auto are the rigorous method's: add --method rigorous");

@@ -134,7 +134,7 @@ fn warn_if_black(img: &iridis_render::Image, exposure: f64, encoding: iridis_col
     if brightest > 0.0 && brightest.is_finite() {
         report.warn(&format!(
             "the image is black at exposure {} RU: its brightest channel is {brightest:.3e} (linear sRGB), white \
-             at --exposure {:.4e}",
+             at --exposure {:.4e} RU",
             iridis_color::spectrum::short_number(exposure),
             1.0 / brightest
         ));

@@ -46,6 +46,9 @@ fn grids_and_angles_refuse_what_cannot_be_meant() {
     assert!(lines.len() == 1 && lines[0].1.contains("integrate over 500–505 nm only"), "{lines:?}");
     assert!(!lines[0].1.contains("every colour is black"));
     check_colour_grid(&[380.0, 580.0, 780.0], &said).unwrap();
+    // Sussenbach's 400–700 nm and vision's 300–700 nm miss under 1 % of the observer's weight: nothing said.
+    check_colour_grid(&[400.0, 550.0, 700.0], &said).unwrap();
+    check_colour_grid(&[300.0, 500.0, 700.0], &said).unwrap();
     assert!(said.take().is_empty());
     // A wavelength that cannot be meant is refused, not answered with "no data" for every material.
     for w in [-1.0, 0.0, f64::NAN] {

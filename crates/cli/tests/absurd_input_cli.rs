@@ -27,12 +27,12 @@ fn wavelength_and_angle_counts_beyond_reach_are_refused() {
     assert_fails(&["thinfilm", "table", "--stack", FILM, "--angles", "0deg:10deg:1e300deg"], &["does not end on TO"]);
 }
 
-/// Past 1 m the window's area overflowed: a NaN table, a black map and NaN f_r with exit 0.
+/// 1e300 µm overflowed the window's area: a NaN table, a black map and NaN f_r with exit 0. The bound is 1 m.
 #[test]
 fn a_coherence_length_beyond_a_metre_is_refused() {
     let dir = tmp();
     let table = dir.path().join("t.npz");
-    let beyond = ["more than the 1 m this model takes", "fully coherent limit"];
+    let beyond = ["more than the 1 m this model takes", "give 1000mm or less"];
     assert_fails(&["precompute", SINE, "-o", table.to_str().unwrap(), "--coherence", "1e300um"], &beyond);
     assert_fails(&["brdf", "eval", SINE, "--coherence", "2000000mm", "--light", "0deg", "--view", "0deg"], &beyond);
     assert!(!table.exists());
@@ -75,10 +75,15 @@ fn generators_refuse_a_flat_field() {
     let run = |kind: &'static str, extra: &[&'static str]| {
         [&["surface", "generate", kind][..], extra, &base].concat().iter().map(|s| s.to_string()).collect::<Vec<_>>()
     };
-    assert_fails(&run("rect-bumps", &["--period", "1e300nm"]), &["rect-bumps is flat", "1e294mm", "shorter than"]);
+    assert_fails(
+        &run("rect-bumps", &["--period", "1e300nm"]),
+        &["rect-bumps is flat", "1e294mm", "far beyond the patch"],
+    );
     assert_fails(&run("gaussian", &["--corr", "1e9um"]), &["gaussian is flat"]);
-    assert_fails(&run("cd", &["--bit", "1e-5nm"]), &["bit length", "shorter than two pixels"]);
+    assert_fails(&run("cd", &["--bit", "1e-5nm"]), &["shortest pit (3 bits", "shorter than two pixels"]);
     assert!(!out.exists());
+    // A bit shorter than two pixels is fine while its 3-bit pits span two (231 nm bits at 130 nm pixels).
+    ok(&["surface", "generate", "cd", "--size", "4um", "--pixel-size", "130nm", "-o", o]);
 }
 
 /// A map with no light, or an image black at the exposure given, said so only under --auto-exposure.
@@ -172,7 +177,7 @@ fn small_silent_cases_are_said_or_refused() {
 #[test]
 fn library_limits_found_from_python_hold_on_the_command_line() {
     assert_fails(&["bench", "diffraction", "--size", "100000"], &["--size 100000", "from 8 to 8192"]);
-    assert_fails(&["bench", "render", "--size", "0"], &["--size 0", "from 1 to 16384"]);
+    assert_fails(&["bench", "render", "--size", "0"], &["--size 0", "from 1 to 16384 pixels"]);
     assert_fails(
         &["grating", "builtin:sine?size=1100nm&pixel=50nm", "--wavelength", "0.5nm", "--method", "rigorous"],
         &["orders propagate each side along a period of 1100 nm at λ = 0.5 nm", "more than the 1000"],

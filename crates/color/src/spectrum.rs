@@ -233,10 +233,15 @@ pub fn trapezoid_weights(xs: &[f64]) -> Vec<f64> {
 pub const MAX_GRID_SAMPLES: usize = 10_000_000;
 
 /// `x` as a person reads it: at most four decimals, trailing zeros dropped (`5`, `2.5`, `694.0001`), and in
-/// exponent form beyond a billion or below a ten-thousandth (`1e300`, `1e-17`), not hundreds of digits.
+/// exponent form with five significant digits beyond a billion or below a ten-thousandth (`1e300`, `1e-17`,
+/// `3.3333e9`), not hundreds of digits.
 pub fn short_number(x: f64) -> String {
     if x != 0.0 && x.is_finite() && !(1e-4..1e9).contains(&x.abs()) {
-        return format!("{x:e}");
+        // Five significant digits, trailing zeros dropped: 1e300, 2.5e-17, 3.3333e9.
+        let e = format!("{x:.4e}");
+        let (mantissa, exponent) = e.split_once('e').unwrap_or((&e, "0"));
+        let mantissa = mantissa.trim_end_matches('0').trim_end_matches('.');
+        return format!("{mantissa}e{exponent}");
     }
     format!("{x:.4}").trim_end_matches('0').trim_end_matches('.').to_string()
 }
@@ -291,7 +296,10 @@ pub fn range_grid(from_nm: f64, to_nm: f64, step_nm: f64) -> Result<Vec<f64>, Sp
 /// than a range of two distinct ends is not whole (it would drop `to`), however small the fraction.
 pub(crate) fn whole_steps(from: f64, to: f64, step: f64) -> Result<usize, f64> {
     let steps = (to - from) / step;
-    if (steps - steps.round()).abs() > 1e-6 || (to > from && steps.round() == 0.0) {
+    // Two ends that differ by more than rounding (1100 nm against 1.1 µm is 2e-13 apart) with less than half a
+    // step between them are not whole however small the fraction: the step is longer than the range.
+    let distinct = to - from > 1e-9 * from.abs().max(to.abs());
+    if (steps - steps.round()).abs() > 1e-6 || (distinct && steps.round() == 0.0) {
         Err(steps)
     } else {
         Ok(steps.round() as usize)

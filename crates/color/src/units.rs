@@ -67,6 +67,9 @@ pub fn parse_positive_length_nm(s: &str) -> Result<f64, UnitError> {
     }
 }
 
+/// The most values a `FROM:TO:STEP` range gives.
+pub const MAX_RANGE_VALUES: usize = 1_000_000;
+
 /// `from:to:step` with units on each part, e.g. `1deg:90deg:1deg` or `0nm:2000nm:2nm`; returns the
 /// inclusive list of values (FROM and TO both in it: a STEP that does not divide TO − FROM is refused).
 pub fn parse_range(s: &str, parse: fn(&str) -> Result<f64, UnitError>) -> Result<Vec<f64>, UnitError> {
@@ -81,8 +84,11 @@ pub fn parse_range(s: &str, parse: fn(&str) -> Result<f64, UnitError>) -> Result
         return Err(UnitError(format!("'{s}': need FROM ≤ TO and STEP > 0")));
     }
     // Counted in f64 first: a count past usize (a tiny STEP) would wrap to an empty list.
-    if (b - a) / step >= 1e6 {
-        return Err(UnitError(format!("'{s}' has more than 1000000 values; give a larger STEP")));
+    if (b - a) / step + 1.0 > MAX_RANGE_VALUES as f64 {
+        return Err(UnitError(format!(
+            "'{s}' has {} values, more than {MAX_RANGE_VALUES}; give a larger STEP",
+            crate::spectrum::short_number(((b - a) / step).floor() + 1.0)
+        )));
     }
     // Both ends are values: a STEP that does not divide the range would stop short of TO without a word.
     let n = crate::spectrum::whole_steps(a, b, step).map_err(|steps| {
@@ -92,9 +98,6 @@ pub fn parse_range(s: &str, parse: fn(&str) -> Result<f64, UnitError>) -> Result
             parts[1].trim()
         ))
     })? + 1;
-    if n > 1_000_000 {
-        return Err(UnitError(format!("'{s}' has {n} values; at most 1000000")));
-    }
     Ok((0..n).map(|i| a + i as f64 * step).collect())
 }
 

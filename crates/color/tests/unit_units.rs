@@ -80,12 +80,16 @@ fn absurd_ranges_are_refused_not_wrapped() {
     // The ends alone, and a step equal to the range, are still whole.
     assert_eq!(range_grid(500.0, 500.0, 5.0).unwrap(), [500.0]);
     assert_eq!(range_grid(400.0, 700.0, 300.0).unwrap(), [400.0, 700.0]);
+    // Ends equal but for rounding (1100 nm and 1.1 µm) are one sample, not a step longer than the range.
+    let to = parse_length_nm("1.1um").unwrap();
+    assert_eq!(range_grid(1100.0, to, 5.0).unwrap(), [1100.0]);
     let e = parse_range("0deg:10deg:1e-300deg", parse_angle_rad).unwrap_err().0;
-    assert!(e.contains("more than 1000000 values"), "{e}");
+    assert!(e.contains("has 1e301 values, more than 1000000"), "{e}");
     assert!(parse_range("0deg:10deg:1e300deg", parse_angle_rad).unwrap_err().0.contains("does not end on TO"));
     assert_eq!(short_number(694.00012), "694.0001");
     assert_eq!(short_number(1e300), "1e300");
     assert_eq!(short_number(2.5e-17), "2.5e-17");
+    assert_eq!(short_number(1e10 / 3.0), "3.3333e9");
     // A length past a kilometre prints in exponent form and reads back.
     assert_eq!(format_length(1e300), "1e294mm");
     assert_eq!(parse_length_nm(&format_length(1e300)).unwrap(), 1e300);

@@ -164,8 +164,8 @@ pub fn min_coherence_nm(dx: f64, dy: f64) -> f64 {
     4.0 * dx.max(dy)
 }
 
-/// The longest coherence length taken, 1 m: far beyond any scan (the window's reach is then the scan's), and
-/// short enough that the window's area `4πσ_s²` and its Gaussian stay finite in f64.
+/// The longest coherence length taken, 1 m: a policy bound, far beyond any scan and any lobe a map or detector
+/// resolves (widths ~λ/coherence, 5e-7 rad); the window's area `4πσ_s²` itself overflows f64 only near 1e150 nm.
 pub const MAX_COHERENCE_NM: f64 = 1e9;
 
 /// [`Patch::check_coherence`] for `dx × dy` nm pixels, where no patch is at hand (the scan report checks the
@@ -176,9 +176,9 @@ pub fn check_coherence(coherence_nm: f64, dx: f64, dy: f64) -> Result<(), Diffra
     }
     if coherence_nm > MAX_COHERENCE_NM {
         return Err(DiffractionError::Invalid(format!(
-            "a coherence length of {} nm is more than the 1 m this model takes (a longer one overflows its window's \
-             area); a window far wider than the scan is the fully coherent limit, which a length a few times the \
-             scan's side already gives",
+            "a coherence length of {} nm is more than the 1 m this model takes: a window that wide makes lobes \
+             narrower than any map or detector resolves (λ/1 m), and far longer ones overflow its area; give 1000mm \
+             or less",
             iridis_color::spectrum::short_number(coherence_nm)
         )));
     }

@@ -10,7 +10,7 @@ use iridis_diffraction::geometry::direction;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::{above, value_error};
+use crate::args::above;
 use crate::diffraction::xyz_array;
 use crate::facade::{json_to_py, run, Options};
 
@@ -35,12 +35,6 @@ fn brdf_map_run<'py>(
     let (fresnel, convention, shadowing) = o.shading_text()?;
     let method = method.unwrap_or_else(|| "lookup".into());
     let (exposure_ru, auto_exposure) = (o.positive("exposure_ru")?, o.bool("auto_exposure")?.unwrap_or(false));
-    if let (Some(e), true) = (exposure_ru, auto_exposure) {
-        return Err(value_error(format!(
-            "exposure_ru={e} would be ignored: auto_exposure=True chooses the exposure (the CLI refuses \
-             --exposure with --auto-exposure); give one"
-        )));
-    }
     let r = MapRequest {
         model: o.model()?,
         surface: o.surface()?,

@@ -311,12 +311,6 @@ fn grating<'py>(
         _ => return Err(value_error("detector_phi and acceptance need detector_theta (radians)")),
     };
     let compare = o.bool("compare")?.unwrap_or(false);
-    if let (true, Some(m)) = (compare, &method_given) {
-        return Err(value_error(format!(
-            "method='{m}' would be ignored: compare=True runs both the scalar and the rigorous method (as the CLI \
-             refuses --method with --compare)"
-        )));
-    }
     let method = method_given.unwrap_or_else(|| "kirchhoff".into());
     // --orders-above as a fraction (1e-3; the library checks its range).
     let orders_above = o.f64("orders_above")?.unwrap_or(0.0);

@@ -135,9 +135,9 @@ impl<'py> Options<'py> {
             )));
         }
         let py = d.py();
-        py.import("warnings")?.call_method1(
-            "warn",
-            (format!("{old}= is now {new}="), py.get_type::<pyo3::exceptions::PyDeprecationWarning>(), 3),
+        py.import("iridis._answer")?.call_method1(
+            "warn_caller",
+            (format!("{old}= is now {new}="), py.get_type::<pyo3::exceptions::PyDeprecationWarning>()),
         )?;
         d.set_item(new, v)?;
         d.del_item(old)

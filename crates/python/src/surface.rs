@@ -83,10 +83,10 @@ impl PyHeightField {
         Ok(py.allow_threads(|| iridis_api::surface::info(&self.hf, peaks, coherence_nm).to_string()))
     }
 
-    /// The table `iridis surface info` prints for this field (warnings apart).
-    fn info_text(&self, py: Python<'_>, peaks: usize, coherence_nm: f64) -> PyResult<String> {
-        let json = self.info_json(py, peaks, coherence_nm)?;
-        let r: serde_json::Value = serde_json::from_str(&json).map_err(value_error)?;
+    /// The table `iridis surface info` prints (warnings apart) for the report `json` of [`Self::info_json`].
+    #[staticmethod]
+    fn info_text_of(json: &str) -> PyResult<String> {
+        let r: serde_json::Value = serde_json::from_str(json).map_err(value_error)?;
         Ok(iridis_api::surface_info::info_text(&r))
     }
 

@@ -197,12 +197,17 @@ impl PyStack {
         let (ill, obs, pol) = (self::illuminant(illuminant)?, self::observer(observer)?, self::pol(polarization)?);
         let (a, o, g) = (angles.as_slice()?, offsets.as_slice()?, grid.as_slice()?);
         check_grid(g)?;
-        // As `iridis thinfilm color`: a grid too coarse for a thick layer's fringes is said (at the smallest
-        // angle, where the fringes are closest).
-        let steepest = a.iter().copied().fold(f64::INFINITY, f64::min);
-        if steepest.is_finite() {
+        // As `iridis thinfilm color`: a grid too coarse for a thick layer's fringes is said, for the point whose
+        // fringes are closest: the angle nearest the normal and the largest thickness offset.
+        let nearest_normal = a.iter().map(|x| x.abs()).fold(f64::INFINITY, f64::min);
+        let thickest = o.iter().copied().fold(0.0, f64::max);
+        if nearest_normal.is_finite() {
+            let stack = (0..self.stack.layers.len()).fold(self.stack.clone(), |s, i| {
+                let t = s.layers[i].thickness_nm + thickest;
+                s.with_thickness(i, t)
+            });
             crate::facade::run(py, |r| {
-                iridis_api::film::warn_sampling(&self.stack, steepest, g, r);
+                iridis_api::film::warn_sampling(&stack, nearest_normal, g, r);
                 Ok(())
             })?;
         }

@@ -5,6 +5,7 @@ import os
 
 import numpy as np
 import pytest
+from conftest import ROOT
 
 import iridis.bench as bench
 import iridis.color as color
@@ -23,14 +24,14 @@ def test_sizes_are_checked_before_anything_is_allocated():
     for size in (10**12, 100000):
         with pytest.raises(ValueError, match=r"the bench surface's side must be from 8 to 8192"):
             bench.run("diffraction", size=size, map_sizes=[8])
-    with pytest.raises(ValueError, match=r"--size 1000000: the image side must be a whole number from 1 to 16384"):
+    with pytest.raises(ValueError, match=r"--size 1000000: width and height must be from 1 to 16384 pixels"):
         bench.run("render", size=10**6, spp=1)
     with pytest.raises(ValueError, match=r"--seconds 1e300: must be positive and at most 300"):
         film.bench(seconds=1e300, no_python=True)
 
 
 def test_a_wavelength_too_short_for_the_period_is_refused_by_the_rigorous_solver():
-    # 0.5 nm (µm meant): 4400 orders each side, an eigenproblem that grew past 6 GB.
+    # 0.5 nm (µm meant): ~10 000 orders each side of a 3300 nm cell, an eigenproblem that grew past 6 GB.
     with pytest.raises(ValueError, match=r"orders propagate each side along a period of 3300 nm at λ = 0.5 nm"):
         diffraction.grating(SINE, 0.1, [0.5], method="rigorous")
     with pytest.raises(TypeError, match=r"wavelengths_nm must be a number or a sequence of numbers"):
@@ -73,6 +74,8 @@ def test_inc_tmm_checks_the_whole_stack_as_coh_tmm_does():
 def test_colour_conversions_refuse_nan_and_a_bad_white():
     with pytest.raises(ValueError, match=r"xyz holds a value that is not finite in colour 0"):
         color.xyz_to_hex([np.nan, 0.5, 0.5])
+    # The linear conversions keep NaN as NaN, numpy's way for masked pixels.
+    assert np.isnan(color.xyz_to_xyy([[np.nan, 0.5, 0.5], [0.2, 0.3, 0.4]])[0]).any()
     with pytest.raises(ValueError, match=r"white = \[0.0, 0.0, 0.0\]: a white point's X, Y and Z must be positive"):
         color.xyz_to_lab([0.5, 0.5, 0.5], white=[0, 0, 0])
     with pytest.raises(TypeError, match=r"emissive must be True or False, got str 'no'"):
@@ -82,7 +85,7 @@ def test_colour_conversions_refuse_nan_and_a_bad_white():
 def test_sensitivities_take_wavelengths_in_nm_in_the_receptors_range():
     with pytest.raises(ValueError, match=r"looks like µm"):
         vision.sensitivities([0.4, 0.5, 0.6], "bluetit")
-    with pytest.raises(ValueError):
+    with pytest.raises(ValueError, match=r"wavelengths_nm"):
         vision.sensitivities([400.0, np.nan], "bluetit")
     with pytest.warns(UserWarning, match=r"1 of the wavelengths lie outside the 300–700 nm"):
         _, s = vision.sensitivities([500.0, 800.0], "bluetit")
@@ -121,3 +124,15 @@ def test_negative_counts_name_their_argument():
         surface.load(SINE).info_text(peaks=-1)
     with pytest.raises(ValueError, match=r"points = 2.5 must be a whole number"):
         film.profile("air | water 348nm | air", 550, points=2.5)
+
+
+def test_a_negative_diffraction_order_is_taken_and_a_negative_size_named():
+    import iridis.lab as lab
+    import iridis.render as render
+
+    # The CLI takes --order -1: so does Python (a check for counts refused it for a moment).
+    r = lab.testbench("builtin:sine?size=11um&pixel=50nm", order=-1, incidence=0.0, wavelengths=(500, 700, 100),
+                      angles_deg=(-80, 80, 0.2))
+    assert abs(r["periodicity_nm"]["mean"] - 1100) < 22
+    with pytest.raises(ValueError, match=r"size's width = -5 must be ≥ 0"):
+        render.render(os.path.join(ROOT, "examples", "gold_sphere.toml"), size=(-5, 5))

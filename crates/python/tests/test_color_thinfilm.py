@@ -52,7 +52,7 @@ def test_ciede2000_matches_sharma(sharma):
     with pytest.warns(DeprecationWarning, match="method= is now formula="):
         assert abs(color.delta_e([50, 3, 4], [50, 0, 0], method="1976") - 5.0) < 1e-15
     with pytest.raises(TypeError, match="both formula= and its former name method="):
-        color.delta_e([50, 3, 4], [50, 0, 0], formula="1976", method="1976")
+        color.delta_e([50, 3, 4], [50, 0, 0], formula="2000", method="1976")
     np.testing.assert_allclose(color.lab_to_xyz(color.xyz_to_lab([[0.2, 0.3, 0.4]])), [[0.2, 0.3, 0.4]], atol=1e-12)
 
 

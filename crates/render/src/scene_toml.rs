@@ -403,13 +403,18 @@ pub fn parse_scene(text: &str, name: &str, base: &Path) -> Result<Scene, RenderE
             _ => None,
         } {
             let thinnest = film.stack.thicknesses().into_iter().fold(f64::INFINITY, f64::min);
-            if svt.d_rel_nm.abs() > thinnest {
+            let d_rel = svt.d_rel_nm;
+            if d_rel.abs() > thinnest {
+                // d = d_avg + d_rel (2α − 1) < 0 below α = (1 − d/d_rel)/2, or above (1 + d/|d_rel|)/2 for d_rel < 0.
+                let (side, alpha) = if d_rel > 0.0 {
+                    ("below", 0.5 * (1.0 - thinnest / d_rel))
+                } else {
+                    ("above", 0.5 * (1.0 + thinnest / -d_rel))
+                };
                 notes.push(format!(
-                    "[materials.{name}]: d_rel = {} nm is more than its thinnest layer ({} nm): where the svt texture \
-                     is below {:.3}, that layer is clamped to 0 nm",
-                    svt.d_rel_nm.abs(),
-                    thinnest,
-                    0.5 * (1.0 - thinnest / svt.d_rel_nm.abs())
+                    "[materials.{name}]: |d_rel| = {} nm is more than its thinnest layer ({thinnest} nm): where the \
+                     svt texture is {side} {alpha:.3}, that layer is clamped to 0 nm",
+                    d_rel.abs()
                 ));
             }
         }

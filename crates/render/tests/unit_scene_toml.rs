@@ -174,8 +174,9 @@ fn numbers_are_finite_and_reflectances_lie_in_0_1() {
     parse(&textured("[textures.t]\nkind = \"checker\"\na = [1, 1, 1]\nb = [0, 0, 0]\nn = 0.5")).unwrap();
 }
 
-/// An svt that thins a layer by more than it holds clamps it at 0 nm where the texture is low: a note says
-/// where, α < (1 − d/d_rel)/2 (d = d_avg + d_rel(2α − 1), Sussenbach eq. 4.3); within the layer, none.
+/// An svt that thins a layer by more than it holds clamps it at 0 nm: a note says where, α < (1 − d/d_rel)/2,
+/// or α > (1 + d/|d_rel|)/2 for a negative d_rel (d = d_avg + d_rel(2α − 1), Sussenbach eq. 4.3); within the
+/// layer, none.
 #[test]
 fn an_svt_deeper_than_a_layer_is_noted() {
     let film = |d_rel: &str| {
@@ -190,7 +191,10 @@ fn an_svt_deeper_than_a_layer_is_noted() {
         parse(&text).unwrap().notes
     };
     let notes = film("250nm");
-    let n = notes.iter().find(|n| n.contains("d_rel = 250 nm")).unwrap_or_else(|| panic!("{notes:?}"));
+    let n = notes.iter().find(|n| n.contains("|d_rel| = 250 nm")).unwrap_or_else(|| panic!("{notes:?}"));
     assert!(n.contains("thinnest layer (220 nm)") && n.contains("below 0.060"), "{n}");
+    // A negative d_rel thins where the texture is high: above (1 + 220/250)/2 = 0.940.
+    let notes = film("-250nm");
+    assert!(notes.iter().any(|n| n.contains("above 0.940")), "{notes:?}");
     assert!(!film("200nm").iter().any(|n| n.contains("d_rel")));
 }

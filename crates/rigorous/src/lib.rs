@@ -481,7 +481,8 @@ fn solve_auto(
     let px = propagating_extent(set.kx0, set.kgx, n_max);
     let py = if two_d { propagating_extent(set.ky0, set.kgy, n_max) } else { 0 };
     // Every propagating order must be inside the truncation, so more than the cap cannot be solved (a
-    // wavelength in µm read as nm: 1100 nm at 0.5 nm is 4400 orders, an eigenproblem of gigabytes).
+    // wavelength in µm read as nm: 1100 nm at 0.5 nm over n = 1.5 is 3300 orders each side, an eigenproblem of
+    // gigabytes).
     let cap = MAX_PROPAGATING[usize::from(two_d)];
     if px.max(py) > cap {
         return Err(RigorousError::TooManyOrders {

@@ -274,7 +274,16 @@ impl Generator {
             }
             Generator::Cd { pitch_nm, bit_nm, pit_width_nm, depth_nm } => {
                 period_ok("track pitch", pitch_nm)?;
-                period_ok("bit length", bit_nm)?;
+                positive("bit length", bit_nm)?;
+                // The shortest pit or land is 3 bits (EFM's 3T): that must span two pixels to be sampled.
+                if 3.0 * bit_nm < 2.0 * px {
+                    return Err(SurfaceError::invalid(format!(
+                        "bit length {bit_nm} nm: the shortest pit (3 bits, {} nm) is shorter than two pixels ({} nm); \
+                         use a finer pixel",
+                        3.0 * bit_nm,
+                        2.0 * px
+                    )));
+                }
                 positive("pit width", pit_width_nm)?;
                 if pit_width_nm >= pitch_nm {
                     return Err(SurfaceError::invalid("pit width must be smaller than the track pitch"));
@@ -318,8 +327,9 @@ impl Generator {
             return Ok(());
         }
         Err(SurfaceError::invalid(format!(
-            "the generated {} is flat (heights within {:.1e} nm): its lengths ({}) put no relief on this patch; a \
-             period or correlation length must be shorter than the patch's side",
+            "the generated {} is flat (heights within {:.1e} nm): its lengths ({}) put no relief on this patch's \
+             samples (a period or correlation length far beyond the patch, or a period the pixels sample only at \
+             its zeros)",
             self.kind(),
             hi - lo,
             self.describe(grid)

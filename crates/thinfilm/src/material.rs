@@ -107,6 +107,10 @@ pub struct Material {
     range_nm: (f64, f64),
 }
 
+/// The largest |n + iκ| taken: metals in the infrared reach ~100 and nothing 10⁶; beyond ~1e150 the Fresnel
+/// coefficients overflow and energy vanished (R = T = 0 for a lossless layer).
+pub const MAX_INDEX: f64 = 1e6;
+
 impl Material {
     /// A wavelength-independent index `n + iκ`. `κ < 0` (gain) and `n ≤ 0` are refused.
     pub fn constant(name: impl Into<String>, index: Complex64) -> Result<Self, ThinFilmError> {
@@ -123,12 +127,12 @@ impl Material {
         if index.re <= 0.0 {
             return Err(ThinFilmError::Invalid(format!("material '{name}': n = {} must be > 0", index.re)));
         }
-        if index.norm() > crate::tmm::MAX_INDEX {
+        if index.norm() > MAX_INDEX {
             return Err(ThinFilmError::Invalid(format!(
-                "material '{name}': |n + iκ| = {:e} is beyond {:e}, which no material reaches (its Fresnel \
-                 coefficients overflow: R and T came out 0)",
+                "material '{name}': |n + iκ| = {:e} is beyond {:e}, which no material reaches (check the number; at \
+                 1e300 the Fresnel coefficients overflowed and the light vanished)",
                 index.norm(),
-                crate::tmm::MAX_INDEX
+                MAX_INDEX
             )));
         }
         Ok(Self { name, n: Part::Const(index.re), k: Part::Const(index.im), range_nm: (0.0, f64::INFINITY) })

@@ -96,16 +96,15 @@ fn check_lists_with(n: &[Complex64], d: &[f64], absorbing_incident: bool) -> Res
     Ok(())
 }
 
-/// The largest |n| taken: metals in the infrared reach ~100 and nothing 10⁶; beyond ~1e150 the Fresnel
-/// coefficients overflow and energy vanished (R = T = 0 for a lossless layer).
-pub const MAX_INDEX: f64 = 1e6;
-
 fn check_index(i: usize, x: Complex64) -> Result<(), ThinFilmError> {
     if !(x.re.is_finite() && x.im.is_finite()) || x.re <= 0.0 {
         return Err(invalid(format!("n_list[{i}] = {x}: an index must be finite with a real part > 0")));
     }
-    if x.norm() > MAX_INDEX {
-        return Err(invalid(format!("n_list[{i}] = {x}: |n| is beyond {MAX_INDEX:e}, which no material reaches")));
+    if x.norm() > crate::material::MAX_INDEX {
+        return Err(invalid(format!(
+            "n_list[{i}] = {x}: |n| is beyond {:e}, which no material reaches",
+            crate::material::MAX_INDEX
+        )));
     }
     if x.im < 0.0 {
         return Err(invalid(format!(

@@ -33,10 +33,7 @@ impl Default for RenderOptions {
 
 /// Load and render seconds, Mpixel/s and triangles of each scene.
 pub fn render(a: &RenderOptions, report: &dyn Report) -> Result<Bench> {
-    let max = iridis_render::scene::MAX_IMAGE_SIDE;
-    if !(1..=max).contains(&a.size) {
-        anyhow::bail!("--size {}: the image side must be a whole number from 1 to {max}", a.size);
-    }
+    iridis_render::scene::check_image_size(a.size, a.size).map_err(|e| anyhow::anyhow!("--size {}: {e}", a.size))?;
     iridis_render::scene::check_spp(a.spp).map_err(|e| anyhow::anyhow!("--spp {}: {e}", a.spp))?;
     let tmp = tempfile::tempdir()?;
     let scenes = if a.scenes.is_empty() { write_examples(tmp.path())? } else { a.scenes.clone() };

@@ -61,13 +61,13 @@ def keywords(f):
 _PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__)) + os.sep
 
 
-def warn_caller(text):
-    """``warnings.warn(text, UserWarning)`` for a warning the library said, attributed to the first caller outside
-    this package (however many of its wrappers and decorators stand between), as a warning of the user's line."""
+def warn_caller(text, category=UserWarning):
+    """``warnings.warn(text, category)`` attributed to the first caller outside this package (however many of
+    its wrappers and decorators stand between): a warning of the user's line."""
     level, frame = 1, sys._getframe(0)
     while frame is not None and os.path.abspath(frame.f_code.co_filename).startswith(_PACKAGE_DIR):
         frame, level = frame.f_back, level + 1
-    warnings.warn(text, UserWarning, stacklevel=level)
+    warnings.warn(text, category, stacklevel=level)
 
 
 def flag(value, name):
@@ -78,27 +78,38 @@ def flag(value, name):
     raise TypeError(f"{name} must be True or False, got {type(value).__name__} {value!r}")
 
 
+def whole(value, name):
+    """``value`` as a whole number (an int, a numpy integer, or a float such as 5.0 that is one): anything else is
+    a TypeError or ValueError naming ``name``."""
+    if isinstance(value, (bool, np.bool_, str, bytes)):
+        raise TypeError(f"{name} must be a whole number, got {value!r}")
+    try:
+        n = int(value)
+    except (TypeError, ValueError, OverflowError):
+        raise TypeError(f"{name} must be a whole number, got {value!r}") from None
+    if n != value:
+        raise ValueError(f"{name} = {value!r} must be a whole number")
+    return n
+
+
 def count(value, name):
     """``value`` as a whole number ≥ 0 (a size, a number of points or samples): a negative one is a ValueError
     naming ``name`` (the binding's conversion said only "can't convert negative int to unsigned")."""
-    if isinstance(value, (bool, np.bool_)):
-        raise TypeError(f"{name} must be a whole number, got {value!r}")
-    n = int(value)
-    if n != value:
-        raise ValueError(f"{name} = {value!r} must be a whole number")
+    n = whole(value, name)
     if n < 0:
         raise ValueError(f"{name} = {n} must be ≥ 0")
     return n
 
 
-def renamed(function, old, old_value, new, new_value, default):
-    """The value of a keyword whose former name was ``old`` (its name now, ``new``, is the CLI's flag's): the
-    former name's value with a DeprecationWarning where only it is given; both given is a TypeError."""
+def renamed(function, old, old_value, new, new_value):
+    """The value of a keyword whose former name was ``old`` (its name now, ``new``, is the CLI's flag's; both
+    default to None): the former name's value with a DeprecationWarning where only it is given; both given is a
+    TypeError."""
     if old_value is None:
         return new_value
-    if new_value != default:
+    if new_value is not None:
         raise TypeError(f"{function}() got both {new}= and its former name {old}=; give {new}= alone")
-    warnings.warn(f"{old}= is now {new}=", DeprecationWarning, stacklevel=3)
+    warn_caller(f"{old}= is now {new}=", DeprecationWarning)
     return old_value
 
 

@@ -46,14 +46,17 @@ def _float_array(x, name):
     return a.astype(np.float64, copy=False)
 
 
-def _colours(x, name):
+def _colours(x, name, displayed=False):
     a = _float_array(x, name)
     if a.ndim == 0 or a.shape[-1] != 3:
         raise ValueError(f"{name} must have a last axis of length 3 (one colour per row), got shape {a.shape}")
     rows = a.reshape(-1, 3)
-    bad = np.flatnonzero(~np.isfinite(rows).all(axis=1))
-    if bad.size:  # NaN became black (or NaN) colours without a word
-        raise ValueError(f"{name} holds a value that is not finite in colour {bad[0]}: {rows[bad[0]].tolist()}")
+    # A displayed colour (sRGB, hex) of NaN came out black without a word; the linear conversions keep NaN as
+    # NaN (numpy's way, for masked images).
+    bad = np.flatnonzero(~np.isfinite(rows).all(axis=1)) if displayed else ()
+    if len(bad):
+        raise ValueError(f"{name} holds a value that is not finite in colour {bad[0]}: {rows[bad[0]].tolist()}; "
+                         "a displayed colour has none for it")
     return np.ascontiguousarray(rows), a.shape
 
 
@@ -125,23 +128,25 @@ def _exposure(exposure):
 
 
 def xyz_to_srgb(xyz, exposure=1.0):
-    """Display sRGB in [0, 1]: scaled by ``exposure``, clipped, encoded (the CLI's ``srgb``)."""
-    a, shape = _colours(xyz, "xyz")
+    """Display sRGB in [0, 1]: scaled by ``exposure``, clipped, encoded (the CLI's ``srgb``). XYZ that is not
+    finite is a ValueError (it would show as black)."""
+    a, shape = _colours(xyz, "xyz", displayed=True)
     return _native._xyz_to_srgb(a, _exposure(exposure)).reshape(shape)
 
 
 def xyz_to_hex(xyz, exposure=1.0):
-    """``#rrggbb`` strings (the CLI's ``hex``); a list for several colours, a str for one."""
-    a, shape = _colours(xyz, "xyz")
+    """``#rrggbb`` strings (the CLI's ``hex``); a list for several colours, a str for one. XYZ that is not finite
+    is a ValueError (it would show as black)."""
+    a, shape = _colours(xyz, "xyz", displayed=True)
     out = _native._xyz_to_hex(a, _exposure(exposure))
     return out[0] if len(shape) == 1 else np.array(out).reshape(shape[:-1]).tolist()
 
 
-def delta_e(lab1, lab2, formula="2000", *, method=None):
-    """Colour difference between Lab colours (broadcast): CIEDE2000 (``"2000"``) or ΔE*ab (``"1976"``), the
-    CLI's ``--formula``. Two texts ``"L,a,b"`` are read as ``iridis color delta-e`` reads them (its messages and
-    formula names). ``method=`` is the former name of ``formula=`` (a DeprecationWarning)."""
-    formula = renamed("delta_e", "method", method, "formula", formula, "2000")
+def delta_e(lab1, lab2, formula=None, *, method=None):
+    """Colour difference between Lab colours (broadcast): CIEDE2000 (``"2000"``, the default) or ΔE*ab
+    (``"1976"``), the CLI's ``--formula``. Two texts ``"L,a,b"`` are read as ``iridis color delta-e`` reads them
+    (its messages and formula names). ``method=`` is the former name of ``formula=`` (a DeprecationWarning)."""
+    formula = renamed("delta_e", "method", method, "formula", formula) or "2000"
     if isinstance(lab1, str) and isinstance(lab2, str):
         return _native._color_delta_e(lab1, lab2, str(formula))
     a = _float_array(lab1, "lab1")

@@ -204,7 +204,7 @@ def grating(source, light, wavelengths_nm, method=None, material=None, fresnel=N
     detector's half-angle in radians (default 2°). SURFACE options (``pixel_size``, ``level``, …) as
     elsewhere. ``method``: ``"kirchhoff"`` (the default, the scalar model) or ``"rigorous"``, which solves
     Maxwell's equations (the C-method; transmitted orders and the convergence record too); ``compare=True``
-    runs both models (a ``method`` given with it raises ValueError) and returns ``iridis grating --compare
+    runs both models (``method="rigorous"`` with it raises ValueError) and returns ``iridis grating --compare
     --json``'s dict: every order of both, the worst relative error, CIEDE2000 of the colours. ``unit_cell="auto"`` takes
     the scan's strongest period, its profile averaged along the ridges, as the cell. ``orders_above`` (a
     fraction, ``--orders-above``) lists only the orders of at least that efficiency; the totals count them all.

@@ -30,7 +30,7 @@ import os
 
 from . import _native
 from ._gpu import ensure_gpu_environment
-from ._answer import count, flag, keywords
+from ._answer import count, flag, keywords, whole
 from .surface import Surface
 
 __all__ = ["testbench", "compare", "sweep", "laser", "METHODS"]
@@ -75,7 +75,7 @@ def testbench(surface, method="reference", incidence=math.radians(75.0), azimuth
     """
     out, matrix, wl, ang = _native._testbench(
         _surface(surface), str(method), float(incidence), None if azimuth is None else float(azimuth),
-        count(order, "order"),
+        whole(order, "order"),
         _triple(wavelengths, "wavelengths"), _triple(angles_deg, "angles_deg"), period_nm, max_period_nm, options)
     result = json.loads(out)
     result.update(matrix=matrix, wavelength_nm=wl, angle_deg=ang)

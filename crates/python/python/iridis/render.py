@@ -41,11 +41,11 @@ def render(scene, size=None, spp=None, space="srgb", gpu=False, exposure=None, s
     w = h = None
     if size is not None:
         try:
-            w, h = (count(x, "size") for x in size)
+            w, h = size
         except (TypeError, ValueError):
             raise TypeError(f"size must be (width, height), got {size!r}") from None
-    if not isinstance(gpu, bool):
-        raise TypeError(f"gpu must be True or False, got {gpu!r}")
+        w, h = count(w, "size's width"), count(h, "size's height")
+    gpu = flag(gpu, "gpu")
     if gpu:
         ensure_gpu_environment()
     out = _native.render_scene(os.fspath(scene), w, h, None if spp is None else count(spp, "spp"), gpu,

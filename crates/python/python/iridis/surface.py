@@ -12,6 +12,7 @@ Example:
 """
 from __future__ import annotations
 
+import json
 import os
 
 import numpy as np
@@ -68,13 +69,7 @@ class Surface:
             >>> round(g.info()["peaks"][0]["period_nm"])
             1100
         """
-        if isinstance(peaks, bool) or not isinstance(peaks, (int, np.integer)) or peaks < 0:
-            raise TypeError(f"peaks must be a whole number ≥ 0, got {peaks!r}")
-        import json
-
-        out = json.loads(self._h.info_json(count(peaks, "peaks"), float(coherence_nm)))
-        for w in out["warnings"]:  # as the CLI says them on stderr
-            warn_caller(w)
+        out = json.loads(self._info_json(peaks, coherence_nm))
         out["psdf_radial"]["values_nm4"] = np.asarray(out["psdf_radial"]["values_nm4"], dtype=float)
         out["acf_radial"]["values_nm2"] = np.asarray(out["acf_radial"]["values_nm2"], dtype=float)
         return out
@@ -82,11 +77,15 @@ class Surface:
     def info_text(self, peaks=5, coherence_nm=65000.0):
         """The table ``iridis surface info`` prints for this field; its warnings, which the CLI says on stderr,
         as Python warnings (and in ``info()["warnings"]``)."""
-        import json
+        return self._h.info_text_of(self._info_json(peaks, coherence_nm))
 
-        for w in json.loads(self._h.info_json(count(peaks, "peaks"), float(coherence_nm)))["warnings"]:
+    def _info_json(self, peaks, coherence_nm):
+        """``surface info --json``'s text, computed once, its warnings given as Python warnings (the CLI says
+        them on stderr)."""
+        text = self._h.info_json(count(peaks, "peaks"), float(coherence_nm))
+        for w in json.loads(text)["warnings"]:
             warn_caller(w)
-        return self._h.info_text(count(peaks, "peaks"), float(coherence_nm))
+        return text
 
     def figures(self, name="surface", image=None, psdf=None, acf=None):
         """Writes ``iridis surface info``'s figures as PNG: ``image`` the shaded relief with axes and a scale

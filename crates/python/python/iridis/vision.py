@@ -75,7 +75,7 @@ def analyse(wavelengths_nm, values, visual=None, names=None, *, lambda_max=None,
     options are the system's or the CLI's defaults.
     """
     weber_achromatic = renamed("analyse", "achromatic_weber", achromatic_weber, "weber_achromatic",
-                               weber_achromatic, None)
+                               weber_achromatic)
     wl = _float_array(wavelengths_nm, "wavelengths_nm")
     if wl.ndim != 1:
         raise ValueError(f"wavelengths_nm must be 1-D, got shape {wl.shape}")
@@ -119,7 +119,7 @@ def vision(spectra, visual=None, *, percent=False, lambda_max=None, chromophore=
     from ._answer import answer, file_path
 
     weber_achromatic = renamed("vision", "achromatic_weber", achromatic_weber, "weber_achromatic",
-                               weber_achromatic, None)
+                               weber_achromatic)
     path = file_path(spectra, "iridis.vision.vision", "iridis.vision.analyse(wavelengths_nm, values, visual)")
     return answer(_native._vision_file(path, flag(percent, "percent"), **_spec(
         visual, lambda_max, chromophore, oil_droplets, ocular_media, illuminant, illuminant_units, illuminant_scale,
