@@ -30,11 +30,10 @@ fn is_io(e: &anyhow::Error) -> bool {
             || matches!(c.downcast_ref::<iridis_vision::VisionError>(), Some(iridis_vision::VisionError::Io { .. }))
             || matches!(
                 c.downcast_ref::<iridis_thinfilm::ThinFilmError>(),
-                Some(iridis_thinfilm::ThinFilmError::File { line: None, message, .. }) if message.starts_with("cannot read")
-            )
-            || matches!(
-                c.downcast_ref::<iridis_thinfilm::ThinFilmError>(),
-                Some(iridis_thinfilm::ThinFilmError::Stack { unreadable: true, .. })
+                Some(
+                    iridis_thinfilm::ThinFilmError::Unreadable { .. }
+                        | iridis_thinfilm::ThinFilmError::Stack { unreadable: true, .. }
+                )
             )
     })
 }
@@ -167,11 +166,18 @@ impl<'py> Options<'py> {
         }
     }
 
-    /// A whole number ≥ 0.
+    /// A whole number ≥ 0: an int, or a float that is one (5.0), as the Python wrappers' `count` takes it.
     pub fn usize(&mut self, key: &'static str) -> PyResult<Option<usize>> {
         match self.value(key)? {
             None => Ok(None),
             Some(v) if v.is_instance_of::<pyo3::types::PyBool>() => Err(Self::type_error(key, "an integer", &v)),
+            Some(v) if v.is_instance_of::<pyo3::types::PyFloat>() => match v.extract::<f64>()? {
+                x if x.is_finite() && x.fract() == 0.0 && x >= 0.0 && x < 2f64.powi(53) => Ok(Some(x as usize)),
+                x if x.is_finite() && x.fract() == 0.0 && x < 0.0 => {
+                    Err(PyValueError::new_err(format!("{key} = {x}: must be ≥ 0")))
+                }
+                _ => Err(Self::type_error(key, "a whole number", &v)),
+            },
             Some(v) => match v.extract::<i64>() {
                 Ok(n) if n >= 0 => Ok(Some(n as usize)),
                 Ok(n) => Err(PyValueError::new_err(format!("{key} = {n}: must be ≥ 0"))),

@@ -97,12 +97,15 @@ def test_a_colour_grid_outside_the_visible_is_said():
         film.color("air | water 348nm | air", from_nm=1000, to_nm=1500)
 
 
-def test_missing_files_are_os_errors():
+def test_missing_files_are_os_errors(tmp_path):
     missing = "/nonexistent/iridis-audit.csv"
     for call in (lambda: color.xyz(missing), lambda: vision.vision(missing, "bluetit"),
                  lambda: thinfilm.Stack(f"air | file:{missing} 100nm | Si")):
         with pytest.raises(OSError, match=r"iridis-audit.csv"):
             call()
+    # A directory where a file belongs cannot be read either: an OSError too, not the stack's syntax.
+    with pytest.raises(OSError, match=r"cannot read"):
+        thinfilm.Stack(f"air | file:{tmp_path} 100nm | Si")
 
 
 def test_stack_shapes_are_said_plainly():
@@ -136,3 +139,12 @@ def test_a_negative_diffraction_order_is_taken_and_a_negative_size_named():
     assert abs(r["periodicity_nm"]["mean"] - 1100) < 22
     with pytest.raises(ValueError, match=r"size's width = -5 must be ≥ 0"):
         render.render(os.path.join(ROOT, "examples", "gold_sphere.toml"), size=(-5, 5))
+
+
+def test_a_whole_float_is_a_count_everywhere():
+    # The wrappers' counts and the binding's keyword options read 16.0 alike (the binding refused it before).
+    a = diffraction.brdf_map(SINE, size=16.0, uv_resolution=11.0, method="lookup")
+    b = diffraction.brdf_map(SINE, size=16, uv_resolution=11, method="lookup")
+    assert (a == b).all()
+    with pytest.raises(TypeError, match=r"uv_resolution must be a whole number"):
+        diffraction.brdf_map(SINE, size=16, uv_resolution=11.5, method="lookup")

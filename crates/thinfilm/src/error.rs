@@ -7,7 +7,10 @@ pub enum ThinFilmError {
     /// where the token is a `file:` material whose file cannot be opened (an I/O error, not the stack's syntax).
     #[error("stack \"{stack}\": {message} (token '{token}' at column {column})")]
     Stack { stack: String, token: String, column: usize, message: String, unreadable: bool },
-    /// A refractive-index file that cannot be read; `line` is 1-based when known.
+    /// A file that cannot be opened or read at all (missing, a directory, no permission): an I/O error.
+    #[error("{path}: cannot read: {message}")]
+    Unreadable { path: String, message: String },
+    /// A refractive-index file whose content cannot be read; `line` is 1-based when known.
     #[error("{path}{}: {message}", .line.map(|l| format!(", line {l}")).unwrap_or_default())]
     File { path: String, line: Option<usize>, message: String },
     /// A wavelength outside the data of a material: never extrapolated. `place` says where the material is

@@ -124,11 +124,8 @@ impl Material {
     /// (`wavelength_nm, n, κ`).
     pub fn from_file(path: &std::path::Path) -> Result<Self, ThinFilmError> {
         let shown = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|e| ThinFilmError::File {
-            path: shown.clone(),
-            line: None,
-            message: format!("cannot read: {e}"),
-        })?;
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| ThinFilmError::Unreadable { path: shown.clone(), message: e.to_string() })?;
         let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
         if ext == "yml" || ext == "yaml" {
             nkfile::parse_yaml(&text, &shown)

@@ -215,7 +215,8 @@ impl Stack {
             let m = crate::library::parse_material(name).map_err(|m| {
                 let mut e = err(&toks[0], m);
                 if let ThinFilmError::Stack { unreadable, .. } = &mut e {
-                    *unreadable = name.strip_prefix("file:").is_some_and(|p| std::fs::metadata(p).is_err());
+                    // The material's error is text; whether its file opens says if it was an I/O error.
+                    *unreadable = name.strip_prefix("file:").is_some_and(|p| std::fs::read(p).is_err());
                 }
                 e
             })?;
