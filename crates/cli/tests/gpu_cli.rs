@@ -578,3 +578,28 @@ fn viewer_check(input: &[&str]) {
     let img = image::open(&shot).unwrap();
     assert!(img.width() >= 600 && img.height() >= 400, "{}×{}", img.width(), img.height());
 }
+
+/// `--frames 4294967296` reserved 137 GB for the timings up front and aborted: --max-seconds ends the run, as it
+/// says. `--save` into a folder that does not exist makes it before the work (it failed after the whole run).
+#[test]
+fn a_huge_frame_count_ends_at_max_seconds_and_save_makes_its_folder() {
+    let dir = tmp();
+    let save = dir.path().join("new").join("folder");
+    let out = iridis(&[
+        "bench",
+        "gpu",
+        "examples/gold_sphere.toml",
+        "--size",
+        "8x8",
+        "--frames",
+        "4294967296",
+        "--max-seconds",
+        "0.2",
+        "--save",
+        save.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(!stderr.contains("memory allocation"), "{stderr}");
+    assert!(save.join("scene_gpu.png").exists());
+}

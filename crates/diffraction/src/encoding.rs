@@ -63,8 +63,9 @@ impl std::str::FromStr for TableEncoding {
         let t = s.trim().to_ascii_lowercase();
         let bad = || {
             DiffractionError::Invalid(format!(
-                "table encoding '{s}': expected f32 (the default), f16 (half precision, half the memory), chebK or \
-                 chebK-f16 (K Chebyshev coefficients in w instead of the 2N+1 powers, K from 2 to 201, e.g. cheb12)"
+                "table encoding '{s}': expected chebK or chebK-f16 (K Chebyshev coefficients in w instead of the \
+                 2N+1 powers, K from 2 to 201; cheb12 is the GPU map's default), f32 or f16 (the powers, in half \
+                 precision: half the memory)"
             ))
         };
         match t.as_str() {

@@ -31,6 +31,9 @@ const WAVENUMBERS_PER_GROUP: usize = 64;
 /// Wall time a batch of pairs aims at: long enough to keep the GPU busy, short enough for a progress bar.
 const BATCH_SECONDS: f64 = 0.5;
 
+/// The most memory [`GpuGroundTruth::power`] takes for its answer: every view pair at every wavenumber, in f32.
+pub const MAX_POWER_BYTES: f64 = 8e9;
+
 /// A ground truth uploaded to the GPU.
 #[derive(Debug)]
 pub struct GpuGroundTruth<'a, 'g> {
@@ -123,12 +126,29 @@ impl<'a, 'g> GpuGroundTruth<'a, 'g> {
         })
     }
 
+    /// Every pair's power at every wavenumber is held at once: refused past [`MAX_POWER_BYTES`] rather than
+    /// aborting on the allocation (a 2048² map at 4² samples a pixel asked for 34 GB).
+    fn check_power_memory(&self, pairs: usize) -> Result<(), GpuError> {
+        let count = self.gt.wavenumbers().len();
+        let bytes = pairs as f64 * count as f64 * 4.0;
+        if bytes > MAX_POWER_BYTES {
+            return Err(GpuError::TooLarge(format!(
+                "the GPU ground truth holds |A|² of {pairs} view directions at {count} wavenumbers at once, {:.1} GB \
+                 (at most {:.0} GB): render a smaller map (--size, --subsamples), or use the lookup method",
+                bytes / 1e9,
+                MAX_POWER_BYTES / 1e9
+            )));
+        }
+        Ok(())
+    }
+
     /// `|A|²` at each of [`GroundTruth::wavenumbers`] for every pair (`[pair · count + k]`), pairs above the
     /// horizon or not. `progress(pairs_done)`.
     pub fn power(&self, pairs: &[(Vec3, Vec3)], progress: &(dyn Fn(usize) + Sync)) -> Result<Vec<f32>, GpuError> {
         let gpu = self.gpu;
         let s = self.gt.wavenumbers();
         let count = s.len();
+        self.check_power_memory(pairs.len())?;
         let mut out = vec![0f32; pairs.len() * count];
         if pairs.is_empty() || self.ncl == 0 || self.nrl == 0 {
             progress(pairs.len());
@@ -203,7 +223,9 @@ impl<'a, 'g> GpuGroundTruth<'a, 'g> {
     /// The colour of each pair ([`iridis_diffraction::Evaluator::xyz`] of the ground truth): `|A|²` on the GPU,
     /// the spectral integral on the CPU; pairs below the horizon are black without GPU work.
     pub fn xyz(&self, pairs: &[(Vec3, Vec3)], progress: &(dyn Fn(usize) + Sync)) -> Result<Vec<Xyz>, GpuError> {
-        let lit: Vec<usize> = (0..pairs.len()).filter(|&i| pairs[i].0[2] > 0.0 && pairs[i].1[2] > 0.0).collect();
+        let above = |p: &(Vec3, Vec3)| p.0[2] > 0.0 && p.1[2] > 0.0;
+        self.check_power_memory(pairs.iter().filter(|p| above(p)).count())?;
+        let lit: Vec<usize> = (0..pairs.len()).filter(|&i| above(&pairs[i])).collect();
         let lit_pairs: Vec<(Vec3, Vec3)> = lit.iter().map(|&i| pairs[i]).collect();
         let power = self.power(&lit_pairs, progress)?;
         let count = self.gt.wavenumbers().len();

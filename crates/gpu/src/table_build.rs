@@ -131,6 +131,12 @@ pub fn build_table(
     let records: Vec<[i32; 2]> = xs.records.iter().chain(&ys.records).copied().collect();
     let windows: Vec<[f32; 2]> = xs.windows.iter().chain(&ys.windows).copied().collect();
 
+    // The other inputs grow with the wavelength grid (a 0.0001 nm step: 320 MB of records), and a driver's
+    // validation error would be the only word: each is checked as the coefficients are.
+    let hint = "build the table on the CPU (leave out --gpu), or use a coarser --step or fewer --terms";
+    gpu.check_storage("the table's window records", std::mem::size_of_val(records.as_slice()) as u64, hint)?;
+    gpu.check_storage("the table's window weights", std::mem::size_of_val(windows.as_slice()) as u64, hint)?;
+    gpu.check_storage("the table's spectral weights", std::mem::size_of_val(spectral_words.as_slice()) as u64, hint)?;
     let row_bytes = (res * 3 * np * 4) as u64;
     let max_binding = gpu.limits.max_storage_buffer_binding_size.min(gpu.limits.max_buffer_size);
     let rows_per_dispatch = ((max_binding / row_bytes) as usize).clamp(1, MAX_ROWS_PER_DISPATCH).min(res);

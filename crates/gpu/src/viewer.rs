@@ -126,8 +126,12 @@ pub fn run(input: ViewInput, opts: ViewOptions, load: SceneLoader) -> Result<Opt
         return Err(e);
     }
     result.map_err(|e| {
+        // winit's OS errors begin "os error at /…/winit-…/src/…/mod.rs:765: ": the build's path, not the user's.
+        let text = e.to_string();
+        let text = text.find(".rs:").and_then(|i| text[i..].splitn(3, ':').nth(2)).map_or(text.as_str(), str::trim);
+        let text = text.trim_end_matches('.');
         format!(
-            "cannot open the viewer window: {e}. It needs a display (X11; under a headless server use \
+            "cannot open the viewer window: {text}. It needs a display (X11; under a headless server use \
              `xvfb-run -a iridis view …`) and a Vulkan driver (`apt-get install mesa-vulkan-drivers` without a GPU)"
         )
     })?;

@@ -172,7 +172,9 @@ fn time_frames(
 ) -> Result<Vec<FrameTime>> {
     run(0)?; // warm-up: pipeline caches, first-touch of the buffers
     let start = std::time::Instant::now();
-    let mut times = Vec::with_capacity(frames);
+    // Not `with_capacity(frames)`: --frames 4294967296 asked for 137 GB up front and aborted; --max-seconds ends
+    // long runs.
+    let mut times = Vec::new();
     while times.len() < frames.max(1) {
         times.push(run(times.len())?);
         if start.elapsed().as_secs_f64() > max_seconds {
@@ -230,6 +232,10 @@ pub fn gpu(a: &GpuBenchOptions, report: &dyn Report) -> Result<Bench> {
     }
     if a.frames == 0 {
         bail!("--frames 0: time at least one frame (each run also renders one untimed warm-up frame)");
+    }
+    // Before any work, as `compare --maps` does: the folder is made (it failed after the whole run before).
+    if let Some(dir) = &a.save {
+        crate::output::create_dir(dir).context("--save")?;
     }
     let direct_weights = sampled_weights(a.spectral_samples, FULL_BAND_NM)
         .with_context(|| format!("--spectral-samples {}", a.spectral_samples))?;
