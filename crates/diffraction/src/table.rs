@@ -576,6 +576,31 @@ impl LookupTable {
                 meta.uv_resolution, meta.uv_power, meta.taylor_terms
             )));
         }
+        // The lengths the evaluator and the warnings use: a forged or damaged file said "lobes −34 wide". Heights
+        // are at most 1 m, as iridis-surface reads every height field.
+        let positive = |x: f64| x.is_finite() && x > 0.0;
+        let lengths_ok = positive(meta.dx_nm)
+            && positive(meta.dy_nm)
+            && positive(meta.coherence_nm)
+            && positive(meta.wavelength_step_nm)
+            && positive(meta.wavelength_min_nm)
+            && meta.wavelength_max_nm.is_finite()
+            && meta.wavelength_max_nm >= meta.wavelength_min_nm
+            && meta.max_abs_height_nm.is_finite()
+            && (0.0..=1e9).contains(&meta.max_abs_height_nm);
+        if !lengths_ok {
+            return Err(bad(format!(
+                "metadata out of range (pixel {} × {} nm, coherence {} nm, wavelengths {}–{} nm in {} nm steps, \
+                 |h|max {} nm): not a table iridis wrote",
+                meta.dx_nm,
+                meta.dy_nm,
+                meta.coherence_nm,
+                meta.wavelength_min_nm,
+                meta.wavelength_max_nm,
+                meta.wavelength_step_nm,
+                meta.max_abs_height_nm
+            )));
+        }
         meta.units().map_err(|e| bad(format!("metadata: {e}")))?;
         let res = meta.uv_resolution as u64;
         let np = (meta.taylor_terms as u64).saturating_mul(2).saturating_add(1);
@@ -592,8 +617,9 @@ impl LookupTable {
         if uv.len() as u64 != res || data.len() as u64 != res.saturating_mul(res).saturating_mul(3).saturating_mul(np) {
             return Err(bad("array sizes disagree with the metadata".into()));
         }
-        if data.iter().any(|v| !v.is_finite()) {
-            return Err(bad("table holds non-finite values".into()));
+        // iridis' tables are normalised (|I| ≈ 6.5 at most, N = 27); beyond f32's range the GPU's copy is NaN.
+        if data.iter().any(|v| !(v.is_finite() && v.abs() <= f32::MAX as f64)) {
+            return Err(bad("table holds non-finite values, or values beyond f32's range (3.4e38)".into()));
         }
         Ok(Self { meta, uv, wavelengths_nm, data })
     }

@@ -69,6 +69,23 @@ fn damaged_and_foreign_files_are_refused() {
     poisoned.data[3] = f64::NAN;
     let e = reread(&poisoned, "n.npz").unwrap_err().to_string();
     assert!(e.contains("non-finite"), "{e}");
+
+    // Finite in f64 but beyond f32 (the GPU's copy was NaN, said as "no light"), and lengths no table has.
+    let mut huge = t.clone();
+    huge.data[3] = 1e300;
+    assert!(reread(&huge, "h.npz").unwrap_err().to_string().contains("beyond f32's range"));
+    for forge in [
+        |m: &mut iridis_diffraction::table::TableMeta| m.coherence_nm = -5.0,
+        |m: &mut iridis_diffraction::table::TableMeta| m.dx_nm = 0.0,
+        |m: &mut iridis_diffraction::table::TableMeta| m.wavelength_step_nm = 0.0,
+        |m: &mut iridis_diffraction::table::TableMeta| m.wavelength_max_nm = 100.0,
+        |m: &mut iridis_diffraction::table::TableMeta| m.max_abs_height_nm = 1e30,
+    ] {
+        let mut forged = t.clone();
+        forge(&mut forged.meta);
+        let e = reread(&forged, "f.npz").unwrap_err().to_string();
+        assert!(e.contains("metadata out of range") && e.contains("not a table iridis wrote"), "{e}");
+    }
 }
 
 /// Mutated table files (bit flips, truncation, extreme size fields, splices: `iridis_surface::fuzz::mutate`)

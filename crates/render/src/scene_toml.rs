@@ -908,6 +908,18 @@ fn build_light(d: &LightDef, span: &std::ops::Range<usize>, ctx: &Ctx) -> Result
 
 fn build_env(d: &EnvDef, span: &std::ops::Range<usize>, ctx: &Ctx) -> Result<(Environment, bool), RenderError> {
     let intensity = d.intensity.unwrap_or(1.0);
+    // A radiance below 0 has no meaning; it was clipped to 0 without a word.
+    let colours = [("color", d.color), ("zenith", d.zenith), ("horizon", d.horizon), ("ground", d.ground)];
+    for (key, c) in colours.iter().filter_map(|(k, c)| c.map(|c| (k, c))) {
+        if c.iter().any(|v| *v < 0.0) {
+            return Err(
+                ctx.err(span.clone(), format!("[environment] `{key}` = {c:?}: a radiance must be ≥ 0 (linear sRGB)"))
+            );
+        }
+    }
+    if intensity < 0.0 {
+        return Err(ctx.err(span.clone(), format!("[environment] `intensity` = {intensity}: must be ≥ 0")));
+    }
     let visible = d.visible.unwrap_or(true);
     let env = match d.kind.as_str() {
         "uniform" => Environment::Uniform(mul(d.color.unwrap_or([1.0; 3]), intensity)),

@@ -198,3 +198,12 @@ fn an_svt_deeper_than_a_layer_is_noted() {
     assert!(notes.iter().any(|n| n.contains("above 0.940")), "{notes:?}");
     assert!(!film("200nm").iter().any(|n| n.contains("d_rel")));
 }
+
+/// A negative radiance in the environment was clipped to 0 silently (the same on the CPU and the GPU).
+#[test]
+fn a_negative_environment_radiance_is_refused() {
+    let sky = |zenith: &str| OK.to_string() + &format!("[environment]\nkind = \"sky\"\nzenith = {zenith}\n");
+    assert!(parse(&sky("[0.2, 0.35, 0.8]")).is_ok());
+    let e = parse_err(&sky("[-100.0, 0.35, 0.8]"));
+    assert!(e.contains("`zenith`") && e.contains("must be ≥ 0"), "{e}");
+}
