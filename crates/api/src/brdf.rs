@@ -274,6 +274,25 @@ pub fn render_map_per_sr(
 /// of nothing brighter is black.
 pub const LIT_FLOOR: f64 = 1e-20;
 
+/// A pixel's brightest linear sRGB channel: what reaches white first.
+fn peak_channel(p: &Xyz) -> f64 {
+    p.to_linear_srgb().iter().fold(0.0f64, |m, &c| m.max(c))
+}
+
+/// Whether a pixel's brightest channel is light ([`LIT_FLOOR`]), not round-off.
+fn is_lit(peak: f64) -> bool {
+    peak > LIT_FLOOR && peak.is_finite()
+}
+
+/// The map's brightest lit pixel (by its brightest channel), in one pass; `None` for a map with no light.
+pub fn brightest_lit(xyz: &[Xyz]) -> Option<Xyz> {
+    xyz.iter()
+        .map(|p| (peak_channel(p), *p))
+        .filter(|(v, _)| is_lit(*v))
+        .max_by(|a, b| a.0.total_cmp(&b.0))
+        .map(|(_, p)| p)
+}
+
 /// An exposure (RU) chosen from a map's own values: the 99th percentile of the brightest linear sRGB channel
 /// over the lit pixels becomes white, so a bright mirror lobe does not black out the rest and a faint map is
 /// not a white disk; with the share of the disk's pixels it clips. `None` for a map with no light in it.
@@ -283,9 +302,8 @@ pub fn auto_exposure(xyz: &[Xyz], size: usize) -> Option<AutoExposure> {
             (-1.0 + (2 * (k % size) + 1) as f64 / size as f64, 1.0 - (2 * (k / size) + 1) as f64 / size as f64);
         x * x + y * y <= 1.0
     };
-    let peak = |p: &Xyz| p.to_linear_srgb().iter().fold(0.0f64, |m, &c| m.max(c));
-    let disk: Vec<f64> = xyz.iter().enumerate().filter(|(k, _)| in_disk(*k)).map(|(_, p)| peak(p)).collect();
-    let mut lit: Vec<f64> = disk.iter().copied().filter(|&v| v > LIT_FLOOR && v.is_finite()).collect();
+    let disk: Vec<f64> = xyz.iter().enumerate().filter(|(k, _)| in_disk(*k)).map(|(_, p)| peak_channel(p)).collect();
+    let mut lit: Vec<f64> = disk.iter().copied().filter(|&v| is_lit(v)).collect();
     if lit.is_empty() {
         return None;
     }

@@ -364,7 +364,8 @@ pub fn compute(r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) ->
 /// map (said in a note). A black map keeps the one given, with a warning whether or not the exposure was to be
 /// chosen; so does a lit map whose image (`-o X.png`, `--plot`) would be black at the exposure given.
 fn exposure_for(xyz: &[Xyz], r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) -> Result<f64> {
-    let Some(auto) = auto_exposure(xyz, r.size) else {
+    // One pass for the brightest pixel; the percentile's sort only where an exposure is chosen or suggested.
+    let Some(brightest) = crate::brdf::brightest_lit(xyz) else {
         let samples_a_side = r.size * r.subsamples;
         report.warn(&if r.method.starts_with("stam-periodic") && samples_a_side.is_multiple_of(2) {
             format!(
@@ -378,27 +379,34 @@ fn exposure_for(xyz: &[Xyz], r: &MapRequest, files: Option<&MapFiles>, report: &
         return Ok(r.exposure_ru);
     };
     if r.auto_exposure {
-        report.note(&format!(
-            "exposure {:.4} RU, chosen from the map (its 99th-percentile lit pixel is white): {:.2} % of the disk's \
-             pixels clipped, {:.2} % lit",
-            auto.exposure_ru,
-            100.0 * auto.clipped_share,
-            100.0 * auto.lit_share
-        ));
-        return Ok(auto.exposure_ru);
+        if let Some(auto) = auto_exposure(xyz, r.size) {
+            report.note(&format!(
+                "exposure {:.4} RU, chosen from the map (its 99th-percentile lit pixel is white): {:.2} % of the \
+                 disk's pixels clipped, {:.2} % lit",
+                auto.exposure_ru,
+                100.0 * auto.clipped_share,
+                100.0 * auto.lit_share
+            ));
+            return Ok(auto.exposure_ru);
+        }
     }
     // Python's arrays (no files) make no image here.
     let image = match files {
         Some(f) => f.plot.is_some() || crate::output::format_of("-o", &f.output, MAP_FORMATS)? == "png",
         None => false,
     };
+    // The encoding is monotone in each channel: the image is black when its brightest pixel is.
     let tone = ToneMap { exposure_ru: r.exposure_ru, encoding: r.encoding };
-    if image && xyz.iter().all(|&p| tone.to_rgb8(p) == [0, 0, 0]) {
+    if image && tone.to_rgb8(brightest) == [0, 0, 0] {
+        let suggested = auto_exposure(xyz, r.size).map_or(String::new(), |a| {
+            format!(
+                " (at {:.4e} RU its 99th-percentile lit pixel is white: --auto-exposure chooses that)",
+                a.exposure_ru
+            )
+        });
         report.warn(&format!(
-            "the image is black at --exposure {} RU: the map's light is too faint for it (at {:.4e} RU its \
-             99th-percentile lit pixel is white: --auto-exposure chooses that)",
+            "the image is black at --exposure {} RU: the map's light is too faint for it{suggested}",
             iridis_color::spectrum::short_number(r.exposure_ru),
-            auto.exposure_ru
         ));
     }
     Ok(r.exposure_ru)

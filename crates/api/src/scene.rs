@@ -127,11 +127,19 @@ pub struct RenderedImage {
 /// A PNG whose every pixel is black is said: no light reaches the camera, or the exposure is too low for what
 /// does (with the exposure that would show it).
 fn warn_if_black(img: &iridis_render::Image, exposure: f64, encoding: iridis_color::Encoding, report: &dyn Report) {
-    if img.to_rgb8(exposure, encoding).iter().any(|&c| c > 0) {
+    // The encoding is monotone in each channel: the image is black when its brightest pixel is (one pixel tone
+    // mapped, not the image a second time).
+    let peak = |p: &[f32; 3]| p.iter().fold(0.0f32, |m, &c| m.max(c));
+    let Some(brightest) = img.data.iter().filter(|p| peak(p).is_finite()).max_by(|a, b| peak(a).total_cmp(&peak(b)))
+    else {
+        return;
+    };
+    let one = iridis_render::Image { width: 1, height: 1, data: vec![*brightest] };
+    if one.to_rgb8(exposure, encoding).iter().any(|&c| c > 0) {
         return;
     }
-    let brightest = img.data.iter().flat_map(|p| p.iter()).fold(0.0f32, |m, &c| m.max(c)) as f64;
-    if brightest > 0.0 && brightest.is_finite() {
+    let brightest = peak(brightest) as f64;
+    if brightest > 0.0 {
         report.warn(&format!(
             "the image is black at exposure {} RU: its brightest channel is {brightest:.3e} (linear sRGB), white \
              at --exposure {:.4e} RU",

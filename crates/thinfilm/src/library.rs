@@ -144,16 +144,15 @@ impl Material {
     }
 }
 
-/// Parses one medium: a library name, `n=…` or `file:PATH`. The error is a message without position.
-pub(crate) fn parse_material(t: &str) -> Result<Material, String> {
+/// Parses one medium: a library name, `n=…` or `file:PATH`. A file that cannot be read is
+/// [`ThinFilmError::Unreadable`]; the other errors' messages carry no position (the stack adds it).
+pub(crate) fn parse_material(t: &str) -> Result<Material, ThinFilmError> {
+    let invalid = |m: String| ThinFilmError::Invalid(m);
     if let Some(v) = t.strip_prefix("n=") {
         let z = parse_complex(v).ok_or_else(|| {
-            format!("'{v}' is not a refractive index; write n=1.38 or n=0.2+3.4i (κ after the sign, with i)")
+            invalid(format!("'{v}' is not a refractive index; write n=1.38 or n=0.2+3.4i (κ after the sign, with i)"))
         })?;
-        return Material::constant(t, z).map_err(|e| match e {
-            ThinFilmError::Invalid(m) => m,
-            other => other.to_string(),
-        });
+        return Material::constant(t, z);
     }
     for (prefix, f) in [
         ("cauchy:", Material::cauchy as fn(String, &[f64]) -> Result<Material, ThinFilmError>),
@@ -162,20 +161,20 @@ pub(crate) fn parse_material(t: &str) -> Result<Material, String> {
         if let Some(list) = t.strip_prefix(prefix) {
             let c: Vec<f64> = list
                 .split(',')
-                .map(|x| x.trim().parse::<f64>().map_err(|_| format!("'{x}' in {t} is not a number")))
+                .map(|x| x.trim().parse::<f64>().map_err(|_| invalid(format!("'{x}' in {t} is not a number"))))
                 .collect::<Result<_, _>>()?;
-            return f(t.to_string(), &c).map_err(|e| e.to_string());
+            return f(t.to_string(), &c);
         }
     }
     if let Some(p) = t.strip_prefix("file:") {
         if p.is_empty() {
-            return Err("file: needs a path, e.g. file:data/materials/au_johnson.yml".into());
+            return Err(invalid("file: needs a path, e.g. file:data/materials/au_johnson.yml".into()));
         }
-        return Material::from_file(std::path::Path::new(p)).map_err(|e| e.to_string());
+        return Material::from_file(std::path::Path::new(p));
     }
     Material::builtin(t).ok_or_else(|| {
         let names: Vec<&str> = Material::library().iter().map(|(n, _)| n[0]).collect();
-        format!("unknown material '{t}'; known: {}; or n=1.38, n=0.2+3.4i, file:PATH", names.join(", "))
+        invalid(format!("unknown material '{t}'; known: {}; or n=1.38, n=0.2+3.4i, file:PATH", names.join(", ")))
     })
 }
 

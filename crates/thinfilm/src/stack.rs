@@ -212,11 +212,15 @@ impl Stack {
             if is_layer {
                 incoherent.push(inc);
             }
-            let m = crate::library::parse_material(name).map_err(|m| {
-                let mut e = err(&toks[0], m);
+            let m = crate::library::parse_material(name).map_err(|e| {
+                let io = matches!(e, ThinFilmError::Unreadable { .. });
+                let message = match e {
+                    ThinFilmError::Invalid(m) => m,
+                    other => other.to_string(),
+                };
+                let mut e = err(&toks[0], message);
                 if let ThinFilmError::Stack { unreadable, .. } = &mut e {
-                    // The material's error is text; whether its file opens says if it was an I/O error.
-                    *unreadable = name.strip_prefix("file:").is_some_and(|p| std::fs::read(p).is_err());
+                    *unreadable = io;
                 }
                 e
             })?;
