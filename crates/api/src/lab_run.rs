@@ -735,12 +735,7 @@ pub fn laser_run(source: &Source, lab: &LabOptions, req: &LaserRequest, report: 
         report.warn(&w);
     }
     if let (Some(path), Some(lookup)) = (&req.save_table, e.as_lookup()) {
-        crate::output::write_atomic(path, |w| {
-            let mut buf = std::io::Cursor::new(Vec::new());
-            lookup.table.write_npz(&mut buf)?;
-            std::io::Write::write_all(w, buf.get_ref())?;
-            Ok(())
-        })?;
+        crate::output::write_atomic(path, |w| Ok(lookup.table.write_npz(w)?))?;
         report.info(&format!("wrote {}", path.display()));
     }
     let mut img = render_pixels(e.as_ref(), &pixels, "screen", report);

@@ -51,6 +51,10 @@ pub fn create_dir(dir: &Path) -> Result<()> {
     Ok(())
 }
 
+/// A file being written: [`write_atomic`]'s writer.
+pub trait WriteSeek: Write + std::io::Seek {}
+impl<T: Write + std::io::Seek> WriteSeek for T {}
+
 fn run() -> std::sync::MutexGuard<'static, Vec<Staged>> {
     RUN.lock().unwrap_or_else(|e| e.into_inner())
 }
@@ -140,8 +144,9 @@ pub fn declare_opt(flag: &str, path: Option<&Path>, supported: &[&str]) -> Resul
 
 /// Writes `path` as part of this run's outputs: into its temporary file, renamed into place by [`commit`]
 /// once the command has succeeded. A path that was not declared is declared now (a command's own files, such
-/// as a gallery's pages); one path written twice is an error.
-pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<()>) -> Result<()> {
+/// as a gallery's pages); one path written twice is an error. The writer seeks, so a zip archive (`.npz`) streams
+/// into the file rather than being built in memory first.
+pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn WriteSeek) -> Result<()>) -> Result<()> {
     let key = key_of(path)?;
     let i = {
         let mut run = run();

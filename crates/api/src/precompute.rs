@@ -51,6 +51,14 @@ pub fn table_of(
         2 * terms.n_max + 1,
         (values * 8) as f64 / 1e6
     ));
+    if let Some(available) = available_memory_bytes().filter(|&a| (values as u64).saturating_mul(8) > a) {
+        report.warn(&format!(
+            "the table needs {:.1} GB in memory and this machine has {:.1} GB available: the build may be killed \
+             or swap; lower --uv-resolution (memory grows with its square) or --terms",
+            (values * 8) as f64 / 1e9,
+            available as f64 / 1e9
+        ));
+    }
     let gpu = if r.gpu { Some(crate::gpu::open()?) } else { None };
     build_table(gpu.as_ref(), &terms, &spectral, r.params, name, report)
 }
@@ -64,15 +72,27 @@ pub fn precompute(r: &PrecomputeRequest, output: &Path, report: &dyn Report) -> 
     let source = Source::Spec(r.surface.clone());
     let table = table_of(&source, r, &r.surface, &output.display().to_string(), report)?;
     let res = r.params.uv_resolution;
-    let mut buf = std::io::Cursor::new(Vec::new());
-    table.write_npz(&mut buf)?;
-    crate::output::write_bytes(output, buf.get_ref())?;
+    let mut bytes = 0;
+    crate::output::write_atomic(output, |w| {
+        table.write_npz(&mut *w)?;
+        bytes = w.stream_position()?;
+        Ok(())
+    })?;
     Ok(format!(
         "wrote {} ({} tables of {res}², N = {}, {:.1} MB, {:.1} s)",
         output.display(),
         table.powers(),
         table.meta.taylor_terms,
-        buf.get_ref().len() as f64 / 1e6,
+        bytes as f64 / 1e6,
         start.elapsed().as_secs_f64()
     ))
+}
+
+/// The memory the system says is available to a new allocation (Linux's `MemAvailable`); `None` elsewhere or when
+/// it cannot be read, where no warning is given.
+fn available_memory_bytes() -> Option<u64> {
+    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = info.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib * 1024)
 }

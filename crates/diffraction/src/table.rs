@@ -624,10 +624,27 @@ impl LookupTable {
         Ok(Self { meta, uv, wavelengths_nm, data })
     }
 
-    /// Writes the table to a file (the caller makes it atomic).
+    /// Writes the table to a file, atomically: into a temporary file beside it, renamed into place once whole, so
+    /// a failed write (a full disk) leaves no half-written table and an existing file as it was.
     pub fn save(&self, path: &Path) -> Result<(), DiffractionError> {
-        let f = std::fs::File::create(path)?;
-        self.write_npz(std::io::BufWriter::new(f))
+        let dir = match path.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p,
+            _ => Path::new("."),
+        };
+        let mut tmp = tempfile::Builder::new().prefix(".iridis-").suffix(".tmp").tempfile_in(dir)?;
+        {
+            let mut w = std::io::BufWriter::new(tmp.as_file_mut());
+            self.write_npz(&mut w)?;
+            w.flush()?;
+        }
+        // Temporary files are created private (0600); a table is an ordinary file that others may read.
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            tmp.as_file().set_permissions(std::fs::Permissions::from_mode(0o644))?;
+        }
+        tmp.persist(path).map_err(|e| DiffractionError::Io(e.error))?;
+        Ok(())
     }
 
     /// Whether the file at `path` is a lookup table, by content rather than extension: a zip archive (`.npz`)

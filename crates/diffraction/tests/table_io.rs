@@ -26,6 +26,28 @@ fn reread(t: &LookupTable, name: &str) -> Result<LookupTable, iridis_diffraction
     LookupTable::read_npz(Cursor::new(npz_bytes(t)), name)
 }
 
+/// `save` writes beside the destination and renames: the file is the in-memory `.npz` to the byte, readable by
+/// others (not the temporary file's 0600), and nothing else is left in the folder; a folder that does not exist
+/// is an error that leaves nothing behind.
+#[test]
+fn save_is_whole_and_leaves_no_temporary_file() {
+    let t = small_table();
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("t.npz");
+    std::fs::write(&path, b"an older file").unwrap();
+    t.save(&path).unwrap();
+    assert_eq!(std::fs::read(&path).unwrap(), npz_bytes(&t));
+    let names: Vec<_> = std::fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name()).collect();
+    assert_eq!(names, ["t.npz"]);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        assert_eq!(std::fs::metadata(&path).unwrap().permissions().mode() & 0o777, 0o644);
+    }
+    assert!(t.save(&dir.path().join("missing/t.npz")).is_err());
+    assert!(!dir.path().join("missing").exists());
+}
+
 #[test]
 fn round_trip_is_exact() {
     let t = small_table();

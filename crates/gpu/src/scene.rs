@@ -253,6 +253,47 @@ impl std::fmt::Display for StackOverflow {
     }
 }
 
+/// The largest coordinate (scene units) the GPU renderer takes. It works in f32: the triangle test multiplies a
+/// ray's distance to a vertex by two edges, which passes f32's 3.4e38 for a mesh of 1e13 units seen from its own
+/// size away (measured on lavapipe: black from 1e13, right at 1e12). The CPU renders in f64.
+pub const MAX_GPU_COORDINATE: f64 = 1e11;
+
+/// The largest absolute coordinate of what `scene` places: mesh vertices, spheres and planes (with their radius or
+/// size), the camera, point lights, laser spots and area lights.
+pub fn largest_coordinate(scene: &Scene) -> f64 {
+    let norm = |v: &[f64; 3]| v.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    let vertices = scene.meshes.iter().flat_map(|m| m.positions.iter()).map(norm);
+    let spheres = scene.spheres.iter().map(|s| norm(&s.center) + s.radius.abs());
+    let planes = scene.planes.iter().map(|p| norm(&p.center) + p.size.map_or(0.0, |[w, h]| w.abs() + h.abs()));
+    let camera = match &scene.camera {
+        Camera::Perspective { position, .. } | Camera::Orthographic { position, .. } => norm(position),
+        Camera::Hemisphere { target, distance, .. } => norm(target) + distance.abs(),
+    };
+    let lights = scene.lights.iter().map(|l| match l {
+        Light::Directional { .. } => 0.0,
+        Light::Point { position, .. } => norm(position),
+        Light::Laser(spot) => norm(&spot.position),
+    });
+    let areas = scene.area_lights.iter().map(|a| match &a.shape {
+        Shape::Sphere { center, radius } | Shape::Disk { center, radius, .. } => norm(center) + radius.abs(),
+        Shape::Rectangle { center, size, .. } => norm(center) + size[0].abs() + size[1].abs(),
+    });
+    vertices.chain(spheres).chain(planes).chain(lights).chain(areas).fold(camera, f64::max)
+}
+
+/// Refuses a scene beyond [`MAX_GPU_COORDINATE`], which the GPU would render black or wrong.
+fn check_f32_range(scene: &Scene) -> Result<(), GpuError> {
+    let largest = largest_coordinate(scene);
+    if largest > MAX_GPU_COORDINATE {
+        return Err(GpuError::Invalid(format!(
+            "the scene places something at {largest:.3e} units from the origin; the GPU renderer works in f32 and \
+             takes coordinates up to {MAX_GPU_COORDINATE:.0e}: scale the scene down (a scene's unit is free) or \
+             render it on the CPU (without --gpu), which works in f64"
+        )));
+    }
+    Ok(())
+}
+
 /// Rays the shader's stack holds (`STACK` in scene.wgsl).
 pub const STACK: u32 = 24;
 
@@ -265,6 +306,7 @@ impl<'g> GpuScene<'g> {
 
     /// As [`GpuScene::new`] with the thin films shaded as `film` says.
     pub fn with_film(gpu: &'g Gpu, scene: &Scene, film: SceneFilm) -> Result<Self, GpuError> {
+        check_f32_range(scene)?;
         let mut rec = Records::default();
         let mut lay = Layout { sample_base: rec.len(), ..Default::default() };
 

@@ -392,6 +392,31 @@ fn a_full_ray_stack_is_reported_with_its_depth() {
     assert_eq!(g.stack_overflow(), None);
 }
 
+/// A mesh far larger than a unit: its edges' cross product has a squared length beyond f32's range at 5e9 units,
+/// and the GPU drew the box black there (session 25); it matches the CPU at 1e10 now, and a scene beyond
+/// `MAX_GPU_COORDINATE` is refused with a sentence rather than drawn black.
+#[test]
+fn a_mesh_of_1e10_units_matches_the_cpu_and_beyond_f32s_range_is_refused() {
+    let _serial = common::one_scene_at_a_time();
+    let Some(gpu) = gpu() else { return };
+    let text = "[output]\nsize = [48, 32]\n[camera]\nkind = \"perspective\"\nposition = [1, 1.2, 1.6]\n\
+                look_at = [0, 0, 0]\nfov = \"38deg\"\n[[light]]\nkind = \"directional\"\ndirection = [0.5, 1, 0.6]\n\
+                [materials.grey]\nkind = \"lambert\"\n[[object]]\nkind = \"obj\"\nfile = \"unit_box.obj\"\n\
+                material = \"grey\"\ntranslate = [-0.5, -0.5, -0.5]\n";
+    let examples = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../examples");
+    let mut scene = parse_scene(text, "box.toml", &examples).unwrap();
+    scene.scale(1e10);
+    let (mean, p99, off, lit) = compare(gpu, &scene, "box ×1e10", 48);
+    eprintln!("box ×1e10: mean ΔE00 {mean:.3}, p99 {p99:.3}, > 8 levels {:.3} %", off * 100.0);
+    assert!(lit, "the CPU image is nearly black");
+    assert!(mean < 1.0 && p99 < 3.0 && off < 0.01, "mean ΔE00 {mean:.3}, p99 {p99:.3}, {off:.4}");
+    scene.scale(100.0);
+    // The camera at (1, 1.2, 1.6) × 1e12 is the farthest thing placed.
+    assert_eq!(iridis_gpu::scene::largest_coordinate(&scene), 1.6e12);
+    let e = GpuScene::new(gpu, &scene).map(|_| ()).unwrap_err().to_string();
+    assert!(e.contains("1.600e12") && e.contains("1e11") && e.contains("without --gpu"), "{e}");
+}
+
 use crate::gltf_fixtures;
 
 /// glTF's metallicRoughnessTexture on the GPU: a quad whose left half is a smooth metal and right half a rough

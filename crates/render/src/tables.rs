@@ -253,10 +253,6 @@ fn progress() -> impl Fn(usize, usize, &str) {
 }
 
 fn save_atomic(t: &LookupTable, file: &Path) -> Result<(), RenderError> {
-    let dir = file.parent().unwrap_or(Path::new("."));
-    std::fs::create_dir_all(dir)?;
-    let mut tmp = tempfile::NamedTempFile::new_in(dir)?;
-    t.write_npz(&mut tmp).map_err(|e| RenderError::Input(e.to_string()))?;
-    tmp.persist(file).map_err(|e| RenderError::Io(e.error))?;
-    Ok(())
+    std::fs::create_dir_all(file.parent().unwrap_or(Path::new(".")))?;
+    t.save(file).map_err(|e| RenderError::Input(e.to_string()))
 }

@@ -110,10 +110,13 @@ fn film_table_node(k: u32) -> vec4<f32> {
 
 // ------------------------------------------------------------------ small vector helpers (render::math)
 
+// Scaled by the largest component first: a cross product of two edges of a few 1e9 units has a squared length
+// beyond f32's range (3.4e38), and `v / length(v)` was then 0, a black mesh.
 fn safe_normalize(v: vec3<f32>) -> vec3<f32> {
-    let l = length(v);
-    if (l > 1e-30) {
-        return v / l;
+    let m = max(abs(v.x), max(abs(v.y), abs(v.z)));
+    if (m > 1e-30) {
+        let u = v / m;
+        return u / length(u);
     }
     return vec3<f32>(0.0);
 }
