@@ -45,7 +45,8 @@ pub struct FilmProfile {
 }
 
 /// The profile of `stack` at `wavelength_nm` and `angle_rad` for `polarization` (`avg`, `s`, `p`) on `points`
-/// depths over `depth` (`FROM:TO`; default 100 nm above the stack to 100 nm into the substrate).
+/// depths over `depth` (`FROM:TO`; default [`iridis_thinfilm::depth::default_window`]); what a reader should
+/// know about the window is said to `report` and kept in `profile.notes` and `profile.warnings`.
 pub fn profile(
     stack: &str,
     wavelength_nm: f64,
@@ -53,6 +54,7 @@ pub fn profile(
     polarization: &str,
     points: usize,
     depth: Option<&str>,
+    report: &dyn Report,
 ) -> Result<FilmProfile> {
     let parsed = parse_stack(stack)?;
     let p = crate::film::parse_polarization(polarization)?;
@@ -66,6 +68,8 @@ pub fn profile(
     if d.balance.abs() > 1e-9 {
         bail!("internal error: R + T + ΣA − 1 = {:e} (please report with the stack)", d.balance);
     }
+    d.notes.iter().for_each(|n| report.note(n));
+    d.warnings.iter().for_each(|w| report.warn(w));
     Ok(FilmProfile {
         stack: parsed,
         title: stack_title(stack),
@@ -101,7 +105,8 @@ impl FilmProfile {
         json!({
             "stack": self.stack.to_string(), "wavelength_nm": self.wavelength_nm, "angle_deg": self.angle_rad.to_degrees(),
             "polarization": self.polarization, "R": d.r, "T": d.t, "layers": d.layer_names, "A_layers": d.layers,
-            "A_substrate": d.substrate, "balance": d.balance, "profile": prof,
+            "A_substrate": d.substrate, "balance": d.balance, "profile": prof, "notes": d.notes,
+            "warnings": d.warnings,
         })
     }
 

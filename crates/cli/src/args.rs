@@ -154,11 +154,11 @@ pub struct ProfileArgs {
     /// avg (unpolarised), s or p.
     #[arg(long, default_value = "avg")]
     pub polarization: String,
-    /// Number of depth samples of the profile (from 100 nm above the stack to 100 nm into the substrate).
+    /// Number of depth samples of the profile, evenly over its window (--depth).
     #[arg(long, default_value_t = 400)]
     pub points: usize,
-    /// The depth window of the profile, FROM:TO below the first interface (e.g. --depth=-20nm:200nm to see
-    /// the films on a 1 mm slide); default 100 nm above the stack to 100 nm into the substrate.
+    /// The depth window of the profile, FROM:TO below the first interface (e.g. --depth=-20nm:200nm); default
+    /// 100 nm above the stack to 100 nm into the substrate, or into the first inc: layer under the films.
     #[arg(long, value_name = "FROM:TO")]
     pub depth: Option<String>,
     /// Print JSON (absorption per layer and the profile).

@@ -344,6 +344,17 @@ fn profile_balances_energy() {
     let flux = &v["profile"]["flux"];
     assert!((flux[11].as_f64().unwrap() - v["T"].as_f64().unwrap()).abs() < 1e-12);
     assert!((flux[0].as_f64().unwrap() - (1.0 - v["R"].as_f64().unwrap())).abs() < 1e-12);
+    // Without --depth (the help's example) the window ends 100 nm into the slide and says so; the millimetre
+    // spread the 400 samples 2.5 µm apart before, none in the films.
+    let out = iridis(&words(
+        "thinfilm profile --stack 'air | TiO2 60nm | Si 50nm | inc:glass 1mm | air' --wavelength 550nm --json",
+    ));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("note: the depth window ends 100 nm into layer 3 (inc:glass 1000000 nm)"), "{err}");
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let z = v["profile"]["z_nm"].as_array().unwrap();
+    assert_eq!((z[0].as_f64(), z[399].as_f64()), (Some(-100.0), Some(210.0)));
+    assert_eq!(v["notes"].as_array().unwrap().len(), 1);
     assert_fails(
         &["thinfilm", "profile", "--stack", "air | TiO2 60nm | air", "--wavelength", "550nm", "--depth=200nm:20nm"],
         &["--depth 200 nm:20 nm is empty"],

@@ -45,6 +45,8 @@ fn _profile<'py>(
     out.set_item("E2", PyArray1::from_vec(py, d.e2))?;
     out.set_item("absorption_per_nm", PyArray1::from_vec(py, d.absorption_per_nm))?;
     out.set_item("flux", PyArray1::from_vec(py, d.flux))?;
+    out.set_item("notes", d.notes)?;
+    out.set_item("warnings", d.warnings)?;
     Ok(out)
 }
 

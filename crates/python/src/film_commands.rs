@@ -302,8 +302,8 @@ fn _film_profile<'py>(
     depth: Option<String>,
     plot: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let a = run(py, |_| {
-        let p = film_fit::profile(stack, wavelength_nm, angle_rad, polarization, points, depth.as_deref())?;
+    let a = run(py, |report| {
+        let p = film_fit::profile(stack, wavelength_nm, angle_rad, polarization, points, depth.as_deref(), report)?;
         let image = if plot { Some(p.plot()?) } else { None };
         Ok(Answer { json: Some(p.to_json()), text: Some(p.text()), csv: Some(p.csv()), image, ..Default::default() })
     })?;

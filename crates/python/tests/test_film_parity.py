@@ -112,6 +112,19 @@ def test_profile_reproduces_the_cli():
     assert abs(out["R"] + out["T"] + sum(out["A_layers"]) + out["A_substrate"] - 1) < 1e-12
 
 
+def test_profile_window_note_and_unresolved_layers_warn(caplog):
+    # Films on a 1 mm slide: the default window ends 100 nm into the slide (as the CLI's), logged as a note; a
+    # 30 nm film that one of five samples falls in is a warning at the caller's line.
+    with caplog.at_level("INFO", logger="iridis"):
+        out = tf.profile("air | TiO2 60nm | Si 50nm | inc:glass 1mm | air", 550.0)
+    assert "note: the depth window ends 100 nm into layer 3 (inc:glass 1000000 nm)" in caplog.text
+    assert (out["z_nm"][0], out["z_nm"][-1]) == (-100.0, 210.0) and out["warnings"] == []
+    with pytest.warns(UserWarning, match="gets 1 of the 5 depth samples, which are 57.5 nm apart") as rec:
+        out = tf.profile("air | Au 30nm | glass", 500.0, points=5)
+    assert rec[0].filename == __file__
+    assert out["notes"] == [] and len(out["warnings"]) == 1
+
+
 def test_index_arrays_per_wavelength():
     # A table of TiO2's index at four wavelengths equals the library material at those wavelengths, is linear
     # in between, and is refused outside (as measured data are).

@@ -101,11 +101,12 @@ Examples:
     #[command(after_help = "\
 At one wavelength and angle: the fraction of the incident power reflected, absorbed in each layer (and in an
 absorbing substrate) and transmitted, with the energy balance R + T + ΣA − 1 (zero up to rounding), and the
-depth profile from 100 nm above the first interface to 100 nm into the substrate (--depth FROM:TO to choose):
-|E|² relative to the incident wave, absorbed power density (fraction of the incident power per nm) and the
-normal Poynting flux (tmm's position_resolved; Byrnes, arXiv:1603.02720). With inc: layers each coherent
-group is lit from both sides by incoherent intensities (tmm's inc_absorp_in_each_layer and
-inc_find_absorp_analytic_fn), and inside an inc: layer the two beams decay by Beer–Lambert without
+depth profile from 100 nm above the first interface to 100 nm into the substrate, or into the first inc:
+layer under the films (--depth FROM:TO to choose): |E|² relative to the incident wave, absorbed power
+density (fraction of the incident power per nm) and the normal Poynting flux (tmm's position_resolved;
+Byrnes, arXiv:1603.02720). A layer that fewer than two samples fall in is named in a warning. With inc:
+layers each coherent group is lit from both sides by incoherent intensities (tmm's inc_absorp_in_each_layer
+and inc_find_absorp_analytic_fn), and inside an inc: layer the two beams decay by Beer–Lambert without
 interference.
 JSON keys: docs/json.md, section `iridis thinfilm profile`.
 
@@ -409,7 +410,7 @@ fn bench(a: BenchArgs) -> Result<()> {
 
 fn profile(a: crate::args::ProfileArgs) -> Result<()> {
     declare_opt("--plot", a.plot.as_deref(), &["png"])?;
-    let p = film_fit::profile(&a.stack, a.wavelength, a.angle, &a.polarization, a.points, a.depth.as_deref())?;
+    let p = film_fit::profile(&a.stack, a.wavelength, a.angle, &a.polarization, a.points, a.depth.as_deref(), &Cli)?;
     plot(a.plot.as_deref(), a.json || a.csv, || p.plot())?;
     print_answer(a.json, || Ok(p.to_json()), || if a.csv { p.csv() } else { p.text() })
 }

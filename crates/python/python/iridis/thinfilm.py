@@ -29,12 +29,13 @@ the HTSG BRDF at the rough interface) come from :meth:`Stack.rough`, as ``iridis
 """
 from __future__ import annotations
 
+import logging
 import os
 
 import numpy as np
 
 from . import _native
-from ._answer import flag
+from ._answer import flag, warn_caller
 from .color import xyz_to_hex, xyz_to_lab, xyz_to_srgb, white_point
 
 __all__ = ["Stack", "RoughFilm", "colors_of_stacks", "material_index", "materials", "fit", "profile"]
@@ -399,8 +400,11 @@ def profile(stack, wavelength_nm, angle_rad=0.0, polarization="unpolarized", poi
     """Where the light goes in ``stack`` (a :class:`Stack` or the CLI's syntax) at one wavelength and angle,
     as ``iridis thinfilm profile --json`` (the same library function): ``R``, ``T``, ``A_layers`` (absorbed in
     each layer), ``A_substrate``, ``balance`` (R + T + ΣA − 1, rounding), and over ``points`` depths ``z_nm``
-    (below the first interface; default window 100 nm above the stack to 100 nm into the substrate, or
-    ``depth_nm=(from, to)``) the ``medium``, ``E2`` (|E|², incident = 1), ``absorption_per_nm`` and ``flux``.
+    (below the first interface; default window 100 nm above the stack to 100 nm into the substrate, or into
+    the first ``inc:`` layer under the films; or ``depth_nm=(from, to)``) the ``medium``, ``E2`` (|E|²,
+    incident = 1), ``absorption_per_nm`` and ``flux``. ``notes`` says what the default window left out (also
+    logged, as the other functions' notes are, to the ``iridis`` logger) and ``warnings`` which layers the
+    samples do not resolve (also Python warnings).
 
     >>> import iridis.thinfilm as tf
     >>> p = tf.profile("air | Au 30nm | glass", 500.0, points=101)
@@ -422,6 +426,10 @@ def profile(stack, wavelength_nm, angle_rad=0.0, polarization="unpolarized", poi
             raise ValueError(f"depth_nm ({lo}, {hi}) is empty: the first depth must be above (less than) the second")
         window = (lo, hi)
     out = _native._profile(s._s, wl, angle, pol, int(points), window)
+    for text in out["notes"]:
+        logging.getLogger("iridis").info(f"note: {text}")
+    for text in out["warnings"]:
+        warn_caller(text)
     out["wavelength_nm"], out["angle_deg"], out["polarization"] = wl, float(np.degrees(angle)), pol
     return out
 
