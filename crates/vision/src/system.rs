@@ -226,7 +226,7 @@ impl VisualSystem {
                 id: key.into(),
                 name: "Human (trichromat)".into(),
                 source: "Stockman & Sharpe (2000) 2° cone fundamentals (CIE 2006 LMS), quantal, 390–830 nm; \
-                         noise: Weber fraction 0.02 of L, densities S:M:L = 1:5:10"
+                         default noise: Weber fraction 0.02 of L, densities S:M:L = 1:5:10"
                     .into(),
                 receptors: tabulated_receptors(table(
                     include_str!("../../../data/vision/human_ss2000_2deg_quantal.csv"),
@@ -248,8 +248,8 @@ impl VisualSystem {
                     name: if key == "avian-uv" { "Average avian UV-type eye" } else { "Average avian V-type eye" }
                         .into(),
                     source: "Endler & Mielke (2005) online appendix: cone pigment × oil droplet, 300–700 nm (pavo's \
-                             avg.uv / avg.v); achromatic: blue-tit double cone (Hart et al. 2000, as in pavo); \
-                             noise: pavo's defaults (Weber 0.1 of LWS, densities 1:2:2:4)"
+                             avg.uv / avg.v); default achromatic: blue-tit double cone (Hart et al. 2000, as in \
+                             pavo); default noise: pavo's (Weber 0.1 of LWS, densities 1:2:2:4)"
                         .into(),
                     receptors: tabulated_receptors(table(text, key))?,
                     ocular_media: None,
@@ -275,8 +275,8 @@ impl VisualSystem {
                     name: "Blue tit (Cyanistes caeruleus)".into(),
                     source: "Hart et al. (2000): λmax 371, 448, 502, 563 nm (A1 templates, Govardovskii et al. 2000), \
                              oil droplets T, C (λcut 413 nm), Y (507 nm), R (572 nm) in Hart & Vorobyev's (2005) \
-                             model, blue-tit ocular media; achromatic: blue-tit double cone (as in pavo); noise: \
-                             pavo's defaults (Weber 0.1 of LWS, densities 1:2:2:4)"
+                             model, blue-tit ocular media; default achromatic: blue-tit double cone (as in pavo); \
+                             default noise: pavo's (Weber 0.1 of LWS, densities 1:2:2:4)"
                         .into(),
                     receptors,
                     ocular_media: Some(("blue tit, Hart et al. (2000)".into(), media)),
@@ -289,7 +289,8 @@ impl VisualSystem {
                 id: key.into(),
                 name: "Honeybee (Apis mellifera)".into(),
                 source: "Peitsch et al. (1992): λmax 344, 436, 556 nm (A1 templates, Govardovskii et al. 2000); \
-                         achromatic: the green receptor; noise per receptor 0.13, 0.06, 0.12 (Vorobyev et al. 2001)"
+                         default achromatic: the green receptor; default noise per receptor 0.13, 0.06, 0.12 \
+                         (Vorobyev et al. 2001)"
                     .into(),
                 receptors: [("UV", 344.0), ("B", 436.0), ("G", 556.0)]
                     .iter()
@@ -304,8 +305,9 @@ impl VisualSystem {
                 id: key.into(),
                 name: "Ball python (Python regius)".into(),
                 source: "Sillman, Carver & Loew (1999): cone pigments λmax 360 and 551 nm, A1 (templates, \
-                         Govardovskii et al. 2000), no oil droplets, no ocular-media data; achromatic: the LWS \
-                         cone; noise: Weber 0.1 of LWS with equal densities (the source gives no cone ratio)"
+                         Govardovskii et al. 2000), no oil droplets, no ocular-media data; default achromatic: \
+                         the LWS cone; default noise: Weber 0.1 of LWS with equal densities (the source gives no \
+                         cone ratio)"
                     .into(),
                 receptors: [("UVS", 360.0), ("LWS", 551.0)]
                     .iter()
@@ -379,7 +381,8 @@ impl VisualSystem {
             id: "custom".into(),
             name,
             source: format!(
-                "{source}; noise: Weber 0.1 of the longest receptor, equal densities; achromatic: the longest receptor"
+                "{source}; default noise: Weber 0.1 of the longest receptor, equal densities; default achromatic: the \
+                 longest receptor"
             ),
             receptors,
             ocular_media: None,
