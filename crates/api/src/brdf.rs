@@ -470,6 +470,20 @@ pub fn lobe_coherence_nm(e: &dyn Evaluator) -> Option<f64> {
     e.radiometric_gain(lambda).map(|g| 4.0 * lambda * (g / (4.0 * std::f64::consts::PI)).sqrt()).or(e.coherence_nm())
 }
 
+/// How a lobe warning names the coherence behind the lobes' width: the light's, or, where the patch's edge cuts
+/// the window (the finite aperture, [`lobe_coherence_nm`] shorter by more than 0.5 %), both — a map said
+/// "coherence 59.5 µm" after the note's "coherence 65 µm".
+pub fn lobe_coherence_label(effective_nm: f64, light_nm: Option<f64>) -> String {
+    match light_nm {
+        Some(light) if (effective_nm - light).abs() > 0.005 * light => format!(
+            "effective coherence {:.1} µm: the light's {:.1} µm window cut by the patch's edge",
+            effective_nm / 1000.0,
+            light / 1000.0
+        ),
+        _ => format!("coherence {:.1} µm", effective_nm / 1000.0),
+    }
+}
+
 /// ρ(λ) (on the model's wavelength grid) and XYZ of an evaluator for light `wi` and view `wr`.
 pub fn point(
     e: &dyn Evaluator,

@@ -187,7 +187,12 @@ pub(crate) fn black_map(exposure_ru: f64) -> String {
 /// light's lobes ([`lobe_shortfall`]) a mirror's reflection or a grating's order can fall between them and
 /// vanish, or show at its peak: a black or speckled map that says nothing of the surface. The warning names the
 /// `--subsamples` (or the size) that samples every lobe.
-pub fn lobes_between_pixels(size: usize, subsamples: usize, coherence_nm: f64) -> Option<String> {
+pub fn lobes_between_pixels(
+    size: usize,
+    subsamples: usize,
+    coherence_nm: f64,
+    light_coherence_nm: Option<f64>,
+) -> Option<String> {
     let spacing = 2.0 / (size * subsamples) as f64;
     let LobeShortfall { sigma, finer_by } = lobe_shortfall(spacing, coherence_nm)?;
     // Samples a side the disk needs: as view samples a pixel (at most 16) at this size, or as pixels.
@@ -205,10 +210,9 @@ pub fn lobes_between_pixels(size: usize, subsamples: usize, coherence_nm: f64) -
     let what = if subsamples > 1 { format!("view samples ({subsamples}² a pixel)") } else { "pixels".into() };
     Some(format!(
         "the map's {what} are {spacing:.4} apart in view direction (u, v), this light's lobes {sigma:.4} wide (σ of \
-         the window's |G|² at 380 nm, coherence {:.1} µm): a lobe narrower than that spacing — a mirror's \
-         reflection, a grating's order — can fall between them and vanish from the map, or show at its peak; \
-         {remedy}",
-        coherence_nm / 1000.0
+         the window's |G|² at 380 nm, {}): a lobe narrower than that spacing — a mirror's reflection, a grating's \
+         order — can fall between them and vanish from the map, or show at its peak; {remedy}",
+        crate::brdf::lobe_coherence_label(coherence_nm, light_coherence_nm)
     ))
 }
 
@@ -217,11 +221,17 @@ pub const MAX_SUBSAMPLES: usize = 16;
 
 /// Says [`lobes_between_pixels`]'s warning for a map of `e`, if any (`brdf-map`, Python's `brdf_map`).
 pub fn warn_lobes_between_pixels(e: &dyn Evaluator, size: usize, subsamples: usize, report: &dyn Report) {
-    warn_lobes_at(size, subsamples, lobe_coherence_nm(e), report);
+    warn_lobes_at(size, subsamples, lobe_coherence_nm(e), e.coherence_nm(), report);
 }
 
-fn warn_lobes_at(size: usize, subsamples: usize, coherence_nm: Option<f64>, report: &dyn Report) {
-    if let Some(w) = coherence_nm.and_then(|c| lobes_between_pixels(size, subsamples, c)) {
+fn warn_lobes_at(
+    size: usize,
+    subsamples: usize,
+    coherence_nm: Option<f64>,
+    light_coherence_nm: Option<f64>,
+    report: &dyn Report,
+) {
+    if let Some(w) = coherence_nm.and_then(|c| lobes_between_pixels(size, subsamples, c, light_coherence_nm)) {
         report.warn(&w);
     }
 }
@@ -481,7 +491,7 @@ fn gpu_map(r: &MapRequest, report: &dyn Report) -> Result<BrdfMap> {
     let gpu = crate::gpu::open()?;
     let table = crate::model::lookup_table(Some(&gpu), &r.input, &model, r.grid.params()?, &r.surface, report)?;
     let coherence_nm = Some(table.meta.coherence_nm);
-    warn_lobes_at(r.size, r.subsamples, coherence_nm, report);
+    warn_lobes_at(r.size, r.subsamples, coherence_nm, coherence_nm, report);
     let side = r.size * r.subsamples;
     let map =
         crate::gpu::lookup_map(&gpu, &table, fresnel, r.shadowing, r.convention, table_encoding, r.wi, side, tone)?;

@@ -151,15 +151,50 @@ pub fn workbench(spec: &str, m: &LabOptions, config: MethodConfig, report: &dyn 
 }
 
 /// [`workbench`] for a height field from anywhere (a SURFACE argument or a patch in memory).
-pub fn workbench_from(
+pub fn workbench_from(source: &Source, m: &LabOptions, config: MethodConfig, report: &dyn Report) -> Result<Workbench> {
+    workbench_with(source, m, config, CoherenceFrom::Options, report)
+}
+
+/// Where a workbench's coherence length comes from, for the note that states it.
+#[derive(Debug, Clone, Copy)]
+pub enum CoherenceFrom<'a> {
+    /// `--coherence`, or the paper's 65 µm.
+    Options,
+    /// The laser experiment's diaphragm (`--aperture`, nm).
+    Aperture(f64),
+    /// A sweep over these coherence lengths (nm); the workbench starts at the first.
+    Swept(&'a [f64]),
+}
+
+/// [`workbench_from`] with the coherence from `from`.
+pub fn workbench_with(
     source: &Source,
     m: &LabOptions,
     mut config: MethodConfig,
+    from: CoherenceFrom<'_>,
     report: &dyn Report,
 ) -> Result<Workbench> {
     let patch = source.patch(&m.surface, report)?;
     let spec = source.name();
-    config.coherence_nm = coherence_for(&patch, m.coherence_nm, report)?;
+    config.coherence_nm = match from {
+        CoherenceFrom::Options => coherence_for(&patch, m.coherence_nm, report)?,
+        CoherenceFrom::Aperture(nm) => {
+            let c = patch.coherence(Some(nm));
+            patch.check_coherence(nm)?;
+            report.note(&c.note_as("the diaphragm's aperture, --aperture"));
+            nm
+        }
+        CoherenceFrom::Swept(values) => {
+            let shown: Vec<String> = values.iter().map(|&v| iridis_lab::sweep::Param::Coherence.display(v)).collect();
+            let largest = patch.coherence(Some(values.iter().fold(0.0, |a: f64, &b| a.max(b))));
+            let mut note = format!("coherence swept over {} (--values)", shown.join(", "));
+            if let Some(p) = largest.periodic_note() {
+                note += &format!("; where it exceeds the patch, {p}");
+            }
+            report.note(&note);
+            values.first().copied().unwrap_or(largest.nm)
+        }
+    };
     report.info(&format!(
         "{spec}: {}×{} samples at {:.1} × {:.1} nm ({:.1} × {:.1} µm), |h|max {:.1} nm, coherence {:.1} µm",
         patch.cols,

@@ -18,7 +18,8 @@ use iridis_lab::sweep::{Param, Point};
 use serde_json::{json, Value};
 
 use crate::lab::{
-    comparison, evaluator, render_pixels, spectral, workbench, workbench_from, Comparison, LabOptions, Testbench,
+    comparison, evaluator, render_pixels, spectral, workbench, workbench_from, workbench_with, CoherenceFrom,
+    Comparison, LabOptions, Testbench,
 };
 use crate::model::TableGrid;
 use crate::output::write_png_rgb8;
@@ -490,7 +491,8 @@ pub fn sweep_run(source: &Source, lab: &LabOptions, req: &SweepRequest, report: 
     config.spectral = spectral("d65", dlambda_nm, report)?;
     config.table = req.table.params_or(SWEEP_UV_GRID)?;
     config.accelerator = crate::lab::gpu_accelerator(req.gpu, report)?;
-    let b = workbench_from(source, lab, config, report)?;
+    let from = if param == Param::Coherence { CoherenceFrom::Swept(&req.values) } else { CoherenceFrom::Options };
+    let b = workbench_with(source, lab, config, from, report)?;
     let pixels = Pixels::brdf_map(req.incidence.0, req.incidence.1, req.size);
     let (_, points) = with_progress(report, req.values.len() as u64, &format!("sweep {}", param.name()), |p| {
         iridis_lab::sweep::run(&b, method, param, &req.values, &pixels, &req.exposures, against, p)
@@ -728,7 +730,7 @@ pub fn laser_run(source: &Source, lab: &LabOptions, req: &LaserRequest, report: 
     let scale = iridis_lab::laser::configure(&mut config, method, &spectrum, coating.as_ref(), Observer::Cie1931)?;
     config.table = req.table.params()?;
     config.table_path = req.table_path.clone();
-    let b = workbench_from(source, &model, config, report)?;
+    let b = workbench_with(source, &model, config, CoherenceFrom::Aperture(req.aperture_nm), report)?;
     let e = evaluator(&b, method, report)?;
     let sampling = ScreenSampling::of(setup, crate::brdf::lobe_coherence_nm(e.as_ref()));
     if let Some(w) = sampling.warning(setup) {

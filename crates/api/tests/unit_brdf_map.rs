@@ -18,14 +18,17 @@ fn the_warning_starts_where_the_pixels_are_six_lobe_widths_apart() {
     // 2/size > 6σ at 380 nm: the largest quiet size is the first with 2/size ≤ 6σ.
     let quiet = (2.0 / (SAMPLES_PER_LOBE_SIGMA * sigma_uv(380.0, coherence))).ceil() as usize;
     assert_eq!(quiet, 127, "65 µm: 6σ = {}", SAMPLES_PER_LOBE_SIGMA * sigma_uv(380.0, coherence));
-    assert!(lobes_between_pixels(quiet, 1, coherence).is_none());
-    let w = lobes_between_pixels(quiet - 1, 1, coherence).expect("one pixel fewer warns");
+    assert!(lobes_between_pixels(quiet, 1, coherence, None).is_none());
+    let w = lobes_between_pixels(quiet - 1, 1, coherence, Some(coherence)).expect("one pixel fewer warns");
     assert!(w.contains("127² pixels") && w.contains("coherence 65.0 µm") && w.contains("--subsamples 2 "), "{w}");
     // 32² needs 127/32 → 4 view samples a pixel side, and with them is quiet.
-    assert!(lobes_between_pixels(32, 1, coherence).unwrap().contains("--subsamples 4 "));
-    assert!(lobes_between_pixels(32, 4, coherence).is_none());
+    assert!(lobes_between_pixels(32, 1, coherence, None).unwrap().contains("--subsamples 4 "));
+    assert!(lobes_between_pixels(32, 4, coherence, None).is_none());
     // A shorter coherence widens the lobes: 8 µm is quiet at 16² (2/16 = 0.125 ≤ 6σ = 0.128).
-    assert!(lobes_between_pixels(16, 1, 8_000.0).is_none());
+    assert!(lobes_between_pixels(16, 1, 8_000.0, None).is_none());
+    // The finite aperture's window, cut by the patch's edge, is named as such beside the light's.
+    let w = lobes_between_pixels(32, 1, 59_500.0, Some(coherence)).unwrap();
+    assert!(w.contains("effective coherence 59.5 µm: the light's 65.0 µm window cut by the patch's edge"), "{w}");
 }
 
 /// Light at 30° on an 8 µm patch of a 1.1 µm sine (one unit cell: discrete orders, each a lobe of the 65 µm

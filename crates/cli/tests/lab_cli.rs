@@ -272,12 +272,16 @@ fn sweep_mean(j: &serde_json::Value, value: f64, ru: f64) -> f64 {
 fn sweep_coherence_keeps_the_reference_on_the_ground_truth() {
     let dir = tempfile::tempdir().unwrap();
     let (sheet, plot) = (dir.path().join("c.png"), dir.path().join("c_err.png"));
-    let j = json_of(&words(&format!(
+    let out = common::succeeds(&words(&format!(
         "sweep builtin:blazed?size=6um&pixel=50nm --param coherence --values 1um,2um,3um --size 16 \
              --exposures 1,1000 -o {} --plot {} --json",
         quoted(&sheet),
         quoted(&plot)
     )));
+    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    // The note states the swept values, not the paper's 65 µm default the sweep never used.
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("note: coherence swept over 1 µm, 2 µm, 3 µm (--values)") && !err.contains("65 µm"), "{err}");
     assert_eq!(j["param"], "coherence", "{j}");
     assert_eq!(j["method"], "reference", "{j}");
     assert!(j["surface"].as_str().is_some_and(|s| s.contains("blazed")), "{j}");
@@ -768,7 +772,10 @@ fn laser_tables_record_the_beam_and_are_checked() {
         common::iridis(&v)
     };
     let r = laser(&green, &["--save-table", table.to_str().unwrap()]);
-    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    let err = String::from_utf8_lossy(&r.stderr);
+    assert!(r.status.success(), "{err}");
+    // The window is the diaphragm's: not "as given" (no --coherence was).
+    assert!(err.contains("note: coherence 4 µm (the diaphragm's aperture, --aperture)"), "{err}");
     let t = iridis_diffraction::table::LookupTable::load(&table).unwrap();
     assert_eq!(t.meta.illuminant, "light", "{:?}", t.meta);
     let light = t.meta.light_spectrum.as_ref().expect("the beam's spectrum is recorded");

@@ -140,18 +140,31 @@ impl Coherence {
     /// The line a person sees: the coherence and where it came from, and, where the patch is smaller than the
     /// window, what the model makes of it and what that means for the numbers.
     pub fn note(&self) -> String {
-        let what = if self.given { "as given" } else { "the paper's default; --coherence to change" };
-        let mut s = format!("coherence {} µm ({what})", trim_um(self.nm));
-        if self.periodic() {
-            s += &format!(
-                "; the {} × {} µm patch is smaller, so it is taken as one unit cell of a periodic surface: it \
+        self.note_as(if self.given { "as given" } else { "the paper's default; --coherence to change" })
+    }
+
+    /// [`Coherence::note`] with another account of where the coherence came from (`origin`: the laser's
+    /// diaphragm, a sweep's values).
+    pub fn note_as(&self, origin: &str) -> String {
+        let mut s = format!("coherence {} µm ({origin})", trim_um(self.nm));
+        if let Some(p) = self.periodic_note() {
+            s += "; ";
+            s += &p;
+        }
+        s
+    }
+
+    /// What a patch smaller than the window becomes, where it is.
+    pub fn periodic_note(&self) -> Option<String> {
+        self.periodic().then(|| {
+            format!(
+                "the {} × {} µm patch is smaller, so it is taken as one unit cell of a periodic surface: it \
                  diffracts into discrete orders, and periods read off it are uncertain by ± d²/(2L) along their \
                  direction (L its extent there)",
                 trim_um(self.extent_nm.0),
                 trim_um(self.extent_nm.1)
-            );
-        }
-        s
+            )
+        })
     }
 }
 
