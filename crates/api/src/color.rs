@@ -200,10 +200,34 @@ pub fn parse_lab(s: &str, which: &str) -> Result<Lab> {
 /// The colour difference of two `L,a,b` texts by `formula` (`2000`/`ciede2000` or `1976`/`cie76`), as
 /// `iridis color delta-e` computes it.
 pub fn delta_e(first: &str, second: &str, formula: &str) -> Result<f64> {
+    Ok(delta_e_answer(first, second, formula)?.value)
+}
+
+/// A colour difference with the formula behind it: what `iridis color delta-e` prints.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DeltaE {
+    pub value: f64,
+    pub formula: DeltaEFormula,
+}
+
+impl DeltaE {
+    /// `2.0425 ΔE00 (CIEDE2000)`: the number with its unit.
+    pub fn text(&self) -> String {
+        format!("{:.4} {}", self.value, self.formula.label())
+    }
+
+    /// `{"delta_e": …, "formula": "2000" | "1976"}` (docs/json.md).
+    pub fn to_json(&self) -> serde_json::Value {
+        serde_json::json!({ "delta_e": self.value, "formula": self.formula.name() })
+    }
+}
+
+/// [`delta_e`] with its formula, for printing.
+pub fn delta_e_answer(first: &str, second: &str, formula: &str) -> Result<DeltaE> {
     let p = parse_lab(first, "first")?;
     let q = parse_lab(second, "second")?;
     let formula: DeltaEFormula = formula.parse().map_err(anyhow::Error::msg)?;
-    formula.delta_e_checked(p, q).map_err(anyhow::Error::msg)
+    Ok(DeltaE { value: formula.delta_e_checked(p, q).map_err(anyhow::Error::msg)?, formula })
 }
 
 /// The demo's colour section: the CIE 1931 chromaticity diagram and the colours of the built-in illuminants.

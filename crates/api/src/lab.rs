@@ -164,6 +164,9 @@ pub enum CoherenceFrom<'a> {
     Aperture(f64),
     /// A sweep over these coherence lengths (nm); the workbench starts at the first.
     Swept(&'a [f64]),
+    /// `--coherence` or the default, on a unit cell meant to repeat (the rigorous test bench): the cell being
+    /// smaller than the window is the point, not a caveat about periods read off it.
+    UnitCell,
 }
 
 /// [`workbench_from`] with the coherence from `from`.
@@ -178,6 +181,16 @@ pub fn workbench_with(
     let spec = source.name();
     config.coherence_nm = match from {
         CoherenceFrom::Options => coherence_for(&patch, m.coherence_nm, report)?,
+        CoherenceFrom::UnitCell => {
+            let c = patch.coherence(m.coherence_nm);
+            patch.check_coherence(c.nm)?;
+            report.note(&format!(
+                "{}; the cell repeats as the periodic surface the rigorous method solves: its orders lie exactly at \
+                 the cell's harmonics, read through the window's lobes",
+                c.stated()
+            ));
+            c.nm
+        }
         CoherenceFrom::Aperture(nm) => {
             let c = patch.coherence(Some(nm));
             patch.check_coherence(nm)?;
@@ -195,6 +208,12 @@ pub fn workbench_with(
             values.first().copied().unwrap_or(largest.nm)
         }
     };
+    // coherence_for says the model's warnings with its note; the other accounts of the coherence, here.
+    if !matches!(from, CoherenceFrom::Options) {
+        for w in patch.warnings() {
+            report.warn(&w);
+        }
+    }
     report.info(&format!(
         "{spec}: {}×{} samples at {:.1} × {:.1} nm ({:.1} × {:.1} µm), |h|max {:.1} nm, coherence {:.1} µm",
         patch.cols,
@@ -378,7 +397,7 @@ pub fn testbench_rigorous(
     let cell = crate::rigorous_brdf::unit_cell(&scan, &m.surface, rigorous.unit_cell_auto, lo, report)?;
     let config = m.config()?;
     let cell_source = Source::Patch { patch: cell.patch.clone(), name: format!("{name} (unit cell)") };
-    let b = workbench_from(&cell_source, m, config, report)?;
+    let b = workbench_with(&cell_source, m, config, CoherenceFrom::UnitCell, report)?;
     // The bench's wavelengths on the window's spectral grid: one solve each.
     let step = setup.wavelengths_nm.windows(2).map(|w| w[1] - w[0]).next().unwrap_or(5.0);
     let model = crate::ModelOptions {

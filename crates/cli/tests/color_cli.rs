@@ -57,7 +57,7 @@ fn delta_e_of_sharma_pair_1() {
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert!((v["delta_e"].as_f64().unwrap() - 2.0425).abs() < 1e-4);
     let out = iridis(&["color", "delta-e", "-5,3,4", "-5,0,0", "--formula", "1976"]);
-    assert_eq!(String::from_utf8_lossy(&out.stdout).trim(), "5.0000");
+    assert_eq!(String::from_utf8_lossy(&out.stdout).trim(), "5.0000 ΔE*ab (CIE 1976)");
 }
 
 #[test]

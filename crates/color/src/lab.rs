@@ -109,6 +109,14 @@ crate::names! {
 pub const MAX_LAB_COMPONENT: f64 = 1e6;
 
 impl DeltaEFormula {
+    /// The difference's symbol and formula, as a number's unit: `ΔE00 (CIEDE2000)`, `ΔE*ab (CIE 1976)`.
+    pub fn label(self) -> &'static str {
+        match self {
+            DeltaEFormula::Ciede2000 => "ΔE00 (CIEDE2000)",
+            DeltaEFormula::Cie1976 => "ΔE*ab (CIE 1976)",
+        }
+    }
+
     /// The difference between `p` and `q` by this formula.
     pub fn delta_e(self, p: Lab, q: Lab) -> f64 {
         match self {

@@ -140,11 +140,25 @@ impl Coherence {
     /// The line a person sees: the coherence and where it came from, and, where the patch is smaller than the
     /// window, what the model makes of it and what that means for the numbers.
     pub fn note(&self) -> String {
-        self.note_as(if self.given { "as given" } else { "the paper's default; --coherence to change" })
+        self.note_as(self.origin())
+    }
+
+    /// "coherence 65 µm (the paper's default; …)": the first part of [`Coherence::note`], without what the patch
+    /// becomes (for a unit cell, which is meant to repeat).
+    pub fn stated(&self) -> String {
+        format!("coherence {} µm ({})", trim_um(self.nm), self.origin())
+    }
+
+    fn origin(&self) -> &'static str {
+        if self.given {
+            "as given"
+        } else {
+            "the paper's default; --coherence to change"
+        }
     }
 
     /// [`Coherence::note`] with another account of where the coherence came from (`origin`: the laser's
-    /// diaphragm, a sweep's values).
+    /// diaphragm).
     pub fn note_as(&self, origin: &str) -> String {
         let mut s = format!("coherence {} µm ({origin})", trim_um(self.nm));
         if let Some(p) = self.periodic_note() {

@@ -4,7 +4,6 @@ use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::{Args as ClapArgs, Subcommand};
-use serde_json::json;
 
 use crate::progress::Cli;
 
@@ -27,7 +26,7 @@ Examples:
     /// Colour difference between two CIELAB colours.
     #[command(after_help = "\
 Examples:
-  iridis color delta-e 50,2.6772,-79.7751 50,0,-82.7485          # CIEDE2000: 2.0425
+  iridis color delta-e 50,2.6772,-79.7751 50,0,-82.7485          # 2.0425 ΔE00 (CIEDE2000)
   iridis color delta-e 50,2.6772,-79.7751 50,0,-82.7485 --formula 1976 --json")]
     DeltaE(DeltaEArgs),
 }
@@ -76,11 +75,8 @@ pub fn run(command: ColorCommand) -> Result<()> {
             crate::output::print_answer(a.json, || Ok(c.to_json()), || c.text())
         }
         ColorCommand::DeltaE(a) => {
-            let d = iridis_api::color::delta_e(&a.first, &a.second, &a.formula)?;
-            if a.json {
-                return crate::output::print_json(&json!({ "delta_e": d, "formula": a.formula.trim() }));
-            }
-            crate::outln!("{d:.4}")
+            let d = iridis_api::color::delta_e_answer(&a.first, &a.second, &a.formula)?;
+            crate::output::print_answer(a.json, || Ok(d.to_json()), || d.text())
         }
     }
 }
