@@ -11,6 +11,7 @@ use serde_json::{json, Value};
 use crate::brdf::{default_method, eval_point, PointEval};
 use crate::model::{refuse_build_options_for_table, TableGrid};
 use crate::report::Report;
+use crate::vision::FROM_NM;
 use crate::{ModelOptions, SurfaceOptions};
 
 /// What `iridis brdf eval` is asked for.
@@ -83,13 +84,20 @@ pub fn brdf_eval(r: &EvalRequest, spectra: Option<&Path>, report: &dyn Report) -
     if let Some(path) = spectra {
         crate::output::write_bytes(path, p.spectra_csv()?.as_bytes())?;
     }
-    let vision = match &r.visual {
+    let mut vision = match &r.visual {
         Some(v) => Some(p.vision(&iridis_vision::Spec { visual: Some(v.clone()), ..Default::default() })?),
         None => None,
     };
-    for n in vision.iter().flat_map(|v| &v.notes) {
-        report.note(n);
+    // The model's grid starts at 380 nm (the CIE observer's); where a receptor sees below it, say which command
+    // starts at 300 nm.
+    if let Some(v) = vision.as_mut().filter(|v| !v.notes.is_empty() && p.query.wavelengths_nm[0] > FROM_NM) {
+        v.notes.push(format!(
+            "brdf eval's spectrum starts at {} nm, the CIE grid's; `iridis brdf vision` computes π f_r from {FROM_NM} \
+             nm for animals that see ultraviolet",
+            p.query.wavelengths_nm[0]
+        ));
     }
+    // Its notes are printed with its numbers (text) and in its JSON, not again on stderr.
     let polarised = polarised_fresnel || p.rigorous.is_some();
     Ok(EvalReport { request: r.clone(), point: p, r0, polarised, vision })
 }
@@ -188,15 +196,23 @@ impl EvalReport {
             }
         }
         t.push(format!(
-            "XYZ {:.6e} {:.6e} {:.6e}  (of ρ; a normal-incidence mirror: Y = 1)",
-            q.xyz.x, q.xyz.y, q.xyz.z
+            "XYZ {:.6e} {:.6e} {:.6e}  (of ρ under {}, CIE {} observer; a normal-incidence mirror: Y = 1)",
+            q.xyz.x,
+            q.xyz.y,
+            q.xyz.z,
+            r.model.illuminant.as_deref().unwrap_or("d65").to_uppercase(),
+            r.model.observer.as_deref().unwrap_or("1931")
         ));
         if let Some(v) = &self.vision {
             let s = &v.samples[0];
             let f = |x: &[f64]| x.iter().map(|c| format!("{c:.4}")).collect::<Vec<_>>().join("  ");
             t.push(format!("seen by {} under {} (receptors {}):", v.visual.name, v.illuminant, v.receptors.join(", ")));
-            t.push(format!("  quantum catches (von Kries)  {}", f(&s.quantum_catches)));
-            t.push(format!("  relative catches             {}", f(&s.relative_catches)));
+            t.push(format!("  quantum catches (von Kries, to a grey of reflectance 1)  {}", f(&s.quantum_catches)));
+            t.push(format!("  relative catches                                        {}", f(&s.relative_catches)));
+            // Beside the numbers, not only on stderr: a UV cone cut off at 380 nm changes them.
+            for n in &v.notes {
+                t.push(format!("  note: {n}"));
+            }
         }
         t.join("\n")
     }

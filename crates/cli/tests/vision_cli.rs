@@ -184,3 +184,20 @@ fn brdf_vision_text_has_the_achromatic_difference() {
     let last: f64 = row.split_whitespace().last().unwrap().parse().unwrap();
     assert!((last - dl["delta_l"].as_f64().unwrap()).abs() <= 0.005, "{row} against {dl}");
 }
+
+/// `brdf eval --visual` on the CIE grid (380–780 nm) leaves out most of a bird's UV cone: the share left out
+/// (vision's own coverage note) and where to get it from 300 nm stand beside the catches, not only on stderr; the
+/// XYZ line names its illuminant and observer.
+#[test]
+fn brdf_eval_visual_says_what_the_uv_cone_misses_beside_the_numbers() {
+    let args = ["brdf", "eval", "builtin:sine?size=4um&pixel=100nm", "--light", "30deg", "--view", "10deg,180deg"];
+    let out = iridis(&[&args[..], &["--visual", "bluetit", "--coherence", "3um"]].concat());
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(text.contains("(of ρ under D65, CIE 1931 observer; a normal-incidence mirror: Y = 1)"), "{text}");
+    let notes: Vec<&str> = text.lines().filter(|l| l.starts_with("  note: ")).collect();
+    assert!(notes.iter().any(|n| n.contains("of receptor UVS's sensitivity over 300–700 nm lies outside")), "{text}");
+    assert!(notes.iter().any(|n| n.contains("`iridis brdf vision` computes π f_r from 300 nm")), "{text}");
+    // Said once: in the text, not again on stderr.
+    assert!(!String::from_utf8_lossy(&out.stderr).contains("lies outside"));
+}
