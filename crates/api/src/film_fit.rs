@@ -8,6 +8,7 @@ use std::path::Path;
 use std::time::Instant;
 
 use anyhow::{anyhow, bail, Context, Result};
+use iridis_color::spectrum::short_number;
 use iridis_color::units::parse_length_nm;
 use iridis_filmfit::{FitOptions, FitResult, Quantity, ReadOptions, Reading, Spread, Template};
 use iridis_plot::{LinePlot, RgbImage, Series};
@@ -150,6 +151,10 @@ impl FilmProfile {
 
 // ----------------------------------------------------------------------------------------------------------
 // Fit
+
+/// χ²/dof (with σ = 1) below which a fit meets its data to round-off: a computed spectrum gives ~1e-32, a measured
+/// one its noise squared (~1e-6 for 0.1 %).
+pub const ROUND_OFF_CHI2: f64 = 1e-20;
 
 /// What to fit and how the measured file is read (`iridis thinfilm fit`'s options; with the feature `cli`, its
 /// flags).
@@ -347,7 +352,31 @@ impl FilmFit {
             "at_bound": r.at_bound, "starts": r.starts_tried, "evaluations": r.evaluations, "jacobian": r.jacobian, "seconds": self.seconds,
             "fitted": r.fitted, "wavelength_nm": data.wavelength_nm, "measured": data.values,
             "read": { "columns": reading.columns, "percent": reading.percent, "notes": reading.notes },
+            "notes": self.notes(),
         })
+    }
+
+    /// How the uncertainties were found, where no σ was given (text and JSON alike); below [`ROUND_OFF_CHI2`] the
+    /// data are the model's own.
+    pub fn notes(&self) -> Vec<String> {
+        let r = &self.result;
+        let mut notes = Vec::new();
+        if !r.sigma_given {
+            notes.push(
+                "no --sigma or --weights: χ² uses σ = 1 and the uncertainties are scaled by √(χ²/dof), i.e. σ is \
+                 estimated from the scatter"
+                    .to_string(),
+            );
+            // Round-off, not noise: a measured spectrum's χ²/dof with σ = 1 is about its noise², ~1e-6.
+            if r.reduced_chi2 < ROUND_OFF_CHI2 {
+                notes.push(format!(
+                    "the model meets the data to round-off (χ²/dof = {}, as for computed spectra): the scatter is \
+                     nil, and so are the uncertainties; give --sigma (the measurement's noise) for uncertainties",
+                    short_number(r.reduced_chi2)
+                ));
+            }
+        }
+        notes
     }
 
     /// The values with 1σ, χ² and the correlation matrix, for people.
@@ -369,13 +398,20 @@ impl FilmFit {
         for (k, p) in params.iter().enumerate() {
             let _ = writeln!(o, "{:<12} {:>16.6} {:>14.3e} {}", p.name, r.values[k], r.sigma[k], p.unit());
         }
-        let _ = writeln!(o, "χ² = {:.4} for {} degrees of freedom (χ²/dof = {:.4})", r.chi2, r.dof, r.reduced_chi2);
-        if !r.sigma_given {
-            o += "no --sigma or --weights: χ² uses σ = 1 and the uncertainties are scaled by √(χ²/dof), i.e. σ is estimated from the scatter\n";
-            if r.chi2 == 0.0 {
-                o += "note: the model meets the data exactly (χ² = 0, as for computed spectra): the scatter is 0, and so \
-                      are the uncertainties; give --sigma (the measurement's noise) for uncertainties\n";
-            }
+        // Small χ² (σ = 1 on fractions) in exponent form: 3.3393e-6, not 0.0000.
+        let _ = writeln!(
+            o,
+            "χ² = {} for {} degrees of freedom (χ²/dof = {})",
+            short_number(r.chi2),
+            r.dof,
+            short_number(r.reduced_chi2)
+        );
+        let notes = self.notes();
+        if let Some(first) = notes.first() {
+            let _ = writeln!(o, "{first}");
+        }
+        for n in notes.iter().skip(1) {
+            let _ = writeln!(o, "note: {n}");
         }
         if params.len() > 1 {
             o += "correlation\n";

@@ -545,3 +545,43 @@ fn fit_weights_are_inverse_variances() {
         &["--percent would be ignored", "angles in degrees"],
     );
 }
+
+/// A computed spectrum fitted without σ: χ²/dof is round-off (~1e-34), and the text and the JSON both say why the
+/// uncertainties are nil (the JSON had only `sigma_given: false`; the text's note needed χ² exactly 0); a small χ²
+/// prints in exponent form, not as 0.0000.
+#[test]
+fn an_exact_fit_says_why_its_uncertainties_are_zero() {
+    let dir = tmp();
+    let csv = dir.path().join("computed.csv");
+    let s =
+        json_of(&words("thinfilm spectrum --stack 'air | SiO2 150nm | Si' --from 400nm --to 700nm --step 10nm --json"));
+    let rows: Vec<String> = s["wavelength_nm"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .zip(s["R"].as_array().unwrap())
+        .map(|(l, r)| format!("{},{}", l.as_f64().unwrap(), r.as_f64().unwrap()))
+        .collect();
+    std::fs::write(&csv, format!("wavelength_nm,R\n{}\n", rows.join("\n"))).unwrap();
+    let args = ["thinfilm", "fit", csv.to_str().unwrap(), "--stack", "air | SiO2 {d=120nm:50nm..300nm} | Si"];
+    let text = String::from_utf8_lossy(&common::succeeds(&args).stdout).into_owned();
+    assert!(text.contains("note: the model meets the data to round-off (χ²/dof = "), "{text}");
+    let v = json_of(&[&args[..], &["--json"]].concat());
+    let notes: Vec<&str> = v["notes"].as_array().unwrap().iter().map(|n| n.as_str().unwrap()).collect();
+    assert!(notes.len() == 2 && notes[0].contains("estimated from the scatter"), "{notes:?}");
+    // A constant offset of 3e-4 in R that no thickness removes: χ²/dof of order 1e-7, printed with its digits.
+    let offset = dir.path().join("offset.csv");
+    let shifted: Vec<String> = rows
+        .iter()
+        .map(|r| {
+            let (l, x) = r.split_once(',').unwrap();
+            format!("{l},{}", x.parse::<f64>().unwrap() + 3e-4)
+        })
+        .collect();
+    std::fs::write(&offset, format!("wavelength_nm,R\n{}\n", shifted.join("\n"))).unwrap();
+    let args = ["thinfilm", "fit", offset.to_str().unwrap(), "--stack", "air | SiO2 {d=120nm:50nm..300nm} | Si"];
+    let text = String::from_utf8_lossy(&common::succeeds(&args).stdout).into_owned();
+    let line = text.lines().find(|l| l.starts_with("χ² = ")).unwrap();
+    let reduced = line.rsplit("χ²/dof = ").next().unwrap().trim_end_matches(')');
+    assert!(reduced.contains("e-") && reduced.parse::<f64>().unwrap() > 0.0, "{line}");
+}
