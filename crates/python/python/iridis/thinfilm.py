@@ -451,7 +451,7 @@ def fit(measured, stack, angle_rad=0.0, quantity="R", sigma=None, weights=None, 
 
     Returns the CLI's JSON keys: ``names``, ``units``, ``values``, ``sigma``, ``correlation``, ``chi2``,
     ``dof``, ``reduced_chi2``, ``sigma_given``, ``at_bound``, ``starts``, ``evaluations``, ``jacobian``,
-    ``fitted``, ``wavelength_nm``, ``measured``, ``read``.
+    ``fitted``, ``wavelength_nm``, ``measured``, ``read``, ``notes`` (how the uncertainties were found).
 
     >>> import numpy as np, iridis.thinfilm as tf
     >>> wl = np.linspace(400, 800, 81)
