@@ -515,7 +515,7 @@ pub fn grating(
                 .collect()
         }
     };
-    Ok(Grating {
+    let g = Grating {
         surface: source.name().to_string(),
         method: opts.method,
         periods_nm: (lx, ly),
@@ -534,7 +534,11 @@ pub fn grating(
             Some((_, phi)) => answers.into_iter().map(|a| a.rotated(phi)).collect(),
             None => answers,
         },
-    })
+    };
+    if let Some(w) = g.detector_misses_every_order() {
+        report.warn(&w);
+    }
+    Ok(g)
 }
 
 /// A unit cell as the rigorous solver takes it: a 1-D profile where it is one (along x, or along y by a
@@ -702,6 +706,33 @@ impl Grating {
             reflected: weights.integrate(&total),
             white: weights.white(),
         })
+    }
+
+    /// Where no order enters the detector's cone at any wavelength asked (its column is 0 % throughout), the
+    /// sentence that says so, with the order that passes nearest its axis.
+    pub fn detector_misses_every_order(&self) -> Option<String> {
+        let d = self.detector?;
+        let angle = |o: &OrderEfficiency| {
+            let (t, p) = (o.theta_deg.to_radians(), o.phi_deg.to_radians());
+            dot([t.sin() * p.cos(), t.sin() * p.sin(), t.cos()], d.direction).clamp(-1.0, 1.0).acos()
+        };
+        let orders = self.answers.iter().flat_map(|a| &a.orders);
+        let nearest = orders.min_by(|a, b| angle(a).total_cmp(&angle(b)))?;
+        if angle(nearest) <= d.acceptance_rad {
+            return None;
+        }
+        let axis = d.direction[2].clamp(-1.0, 1.0).acos().to_degrees();
+        let azimuth = d.direction[1].atan2(d.direction[0]).to_degrees().rem_euclid(360.0);
+        Some(format!(
+            "no order enters the detector's ±{:.2}° cone (θ {axis:.1}°, φ {azimuth:.1}°) at any wavelength asked, so \
+             its column is 0 %: the nearest, order ({}, {}) at {} nm, passes {:.1}° from its axis; move the detector \
+             (--detector) or widen --acceptance",
+            d.acceptance_rad.to_degrees(),
+            nearest.m,
+            nearest.n,
+            iridis_color::spectrum::short_number(nearest.wavelength_nm),
+            angle(nearest).to_degrees()
+        ))
     }
 
     /// The reflectance a detector sees at one wavelength: the orders inside its acceptance cone (fraction).

@@ -580,4 +580,13 @@ fn grating_text_says_where_the_detector_is() {
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     assert!(text.contains("detector at 10deg,180deg, acceptance ±2.00°") && text.contains("detector (%)"), "{text}");
+    // Normal light on the 1100 nm sine: the orders leave at sin θ = mλ/d, 27–33° for m = ±1 here, the mirror at
+    // 0°; none comes within 2° of 10°, so the column is 0 % and a warning says why, naming the nearest (the
+    // mirror, 10° off). A detector at 30° on the −1 side sees order −1 at 550 nm (sin⁻¹(550/1100) = 30°).
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("no order enters the detector's ±2.00° cone (θ 10.0°, φ 180.0°)"), "{err}");
+    assert!(err.contains("order (0, 0) at 500 nm, passes 10.0° from its axis"), "{err}");
+    let args = ["grating", "builtin:sine?size=1100nm&pixel=10nm", "--from", "500nm", "--to", "600nm", "--step", "50nm"];
+    let out = iridis(&[&args[..], &["--detector", "30deg,180deg", "--acceptance", "2deg"]].concat());
+    assert!(out.status.success() && !String::from_utf8_lossy(&out.stderr).contains("no order enters"));
 }

@@ -38,7 +38,7 @@ Examples:
   iridis grating builtin:sine --light 30deg --wavelength 550nm
   iridis grating builtin:blazed --light 0deg --from 400nm --to 700nm --step 50nm --material gold --json
   iridis grating 'builtin:sine?size=1um&pixel=10nm' --light 75deg --wavelength 500nm --normalisation kirchhoff
-  iridis grating 'builtin:sine?size=1um&pixel=10nm' --light 20deg --from 400nm --to 700nm --step 10nm --detector 10deg,180deg --acceptance 2deg
+  iridis grating 'builtin:sine?size=1um&pixel=10nm' --light 20deg --from 400nm --to 700nm --step 10nm --detector 12deg,0deg --acceptance 2deg
   iridis grating 'builtin:sine?size=1100nm&pixel=10nm' --method rigorous --light 30deg --wavelength 550nm --material gold
   iridis grating 'builtin:sine?size=1100nm&pixel=10nm' --compare --light 0deg --from 400nm --to 700nm --step 50nm
   iridis grating 'builtin:elaphe?size=10um&pixel=50nm' --unit-cell auto --compare --light 0deg --from 380nm --to 780nm --step 20nm
