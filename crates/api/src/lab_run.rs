@@ -245,6 +245,8 @@ pub struct CompareRun {
     pub size: usize,
     pub incidence_rad: f64,
     pub coherence_nm: f64,
+    /// The colours' light and observer: `D65, CIE 1931, Δλ 5 nm`.
+    pub colour_setup: String,
     pub comparison: Comparison,
 }
 
@@ -340,6 +342,12 @@ pub fn compare_run(source: &Source, lab: &LabOptions, req: &CompareRequest, repo
         size: req.size,
         incidence_rad: theta,
         coherence_nm: b.config.coherence_nm,
+        colour_setup: format!(
+            "{}, CIE {} observer, Δλ {} nm",
+            b.config.spectral.illuminant.name(),
+            b.config.spectral.observer.name(),
+            b.config.spectral.step_nm
+        ),
         comparison: c,
     })
 }
@@ -357,14 +365,16 @@ impl CompareRun {
         let mut s = String::new();
         let _ = writeln!(
             s,
-            "CIEDE2000 against {} ({}×{} BRDF map, θi = {:.1}°):",
+            "CIEDE2000 against {} ({}×{} BRDF map, θi = {:.1}°, coherence {:.1} µm, {}):",
             match self.against {
                 None => "the ground truth of each method's model".to_string(),
                 Some(m) => m.name().to_string(),
             },
             self.size,
             self.size,
-            self.incidence_rad.to_degrees()
+            self.incidence_rad.to_degrees(),
+            self.coherence_nm / 1000.0,
+            self.colour_setup
         );
         let _ = writeln!(
             s,
@@ -389,6 +399,13 @@ impl CompareRun {
             "periodic-extension error (ground-truth-periodic vs ground-truth, finite aperture): {}",
             ext.join("; ")
         );
+        if let Some(first) = c.rows.first() {
+            let _ = writeln!(
+                s,
+                "ratio: a row's mean over the first method's ({}) at the same exposure (the paper's Table 2, E2/E1)",
+                first.method
+            );
+        }
         s
     }
 }

@@ -79,6 +79,14 @@ fn compare_orders_methods_as_the_paper_does() {
     };
     assert!(mean("reference", 1000.0) < 0.5, "{j}");
     assert!(mean("stam-gaussian", 1000.0) > 5.0 * mean("reference", 1000.0), "{j}");
+    // The text states the colours' light and observer and what its ratio column divides by.
+    let out = common::succeeds(&words(
+        "compare builtin:elaphe?size=6um&pixel=60nm --methods reference,stam-gaussian --exposures 1 \
+             --coherence 2um --size 16",
+    ));
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("coherence 2.0 µm, D65, CIE 1931 observer, Δλ 5 nm):"), "{text}");
+    assert!(text.contains("ratio: a row's mean over the first method's (reference) at the same exposure"), "{text}");
 }
 
 #[test]
