@@ -324,6 +324,24 @@ impl PeriodFit {
         ))
     }
 
+    /// Where the period tiles the cell more than once: which of the cell's orders are the period's (the listing
+    /// numbers the cell's; a 65 µm scan of a 1100 nm sine has its first orders at m = ±59).
+    pub fn order_numbering(&self) -> Option<String> {
+        let (x, y) = self.cycles;
+        let held = x.hypot(y);
+        if held < 1.5 {
+            return None;
+        }
+        let (m, n) = (x.round() as i64, y.round() as i64);
+        Some(format!(
+            "the cell holds its strongest period ({:.1} nm along {:.1}°) {held:.2} times: the orders listed are the \
+             cell's, and the period's order k is the cell's ({m}, {n}) × k, its first orders ±({m}, {n}); others \
+             listed carry the light of the rest of the relief (and of the period's cut at the cell's edge, where it \
+             does not tile); --unit-cell auto numbers the period's own",
+            self.period_nm, self.orientation_deg
+        ))
+    }
+
     /// `unit_cell.period_fit` of `iridis grating --json` (keys in docs/json.md).
     pub fn to_json(&self) -> Value {
         json!({"period_nm": self.period_nm, "orientation_deg": self.orientation_deg,
@@ -440,7 +458,7 @@ pub fn grating(
     }
     // Only a patch taken whole as the cell can hold its period a fractional number of times.
     let fit = if averaged.is_none() { PeriodFit::of(&patch) } else { None };
-    if let Some(note) = fit.and_then(|f| f.note()) {
+    if let Some(note) = fit.and_then(|f| f.note().or_else(|| f.order_numbering())) {
         report.note(&note);
     }
     // Kirchhoff's unit cell keeps only the DFT bins this light's orders read (a large scan's memory); the

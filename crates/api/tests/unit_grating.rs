@@ -41,6 +41,9 @@ fn a_period_that_does_not_tile_the_cell_spreads_its_orders_by_sinc_squared() {
     assert!(tiled.iter().find(|o| o.0 == 7).unwrap().1 / total > 0.9999);
     assert!(!notes.iter().any(|n| n.contains("not a whole number")), "{notes:?}");
     assert!(fit.to_json()["tiles"] == true && (fit.cycles.0 - 7.0).abs() < 0.01, "{fit:?}");
+    // Tiled, the listing still numbers the cell's orders: the note says the period's first orders are ±(7, 0),
+    // the order that carries the light above.
+    assert!(notes.iter().any(|n| n.contains("7.00 times") && n.contains("its first orders ±(7, 0)")), "{notes:?}");
     // Along a diagonal both directions count: 1.5 periods along x and along y, sinc²(½) = 4/π² each, 0.164 in all.
     let (_, _, diagonal) = period_fit((3000.0, 3000.0), 1000.0 * 2f64.sqrt(), 45.0);
     assert!((diagonal - (4.0 / std::f64::consts::PI.powi(2)).powi(2)).abs() < 1e-9, "{diagonal}");
