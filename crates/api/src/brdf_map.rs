@@ -524,14 +524,25 @@ pub fn brdf_map(r: &MapRequest, files: &MapFiles, report: &dyn Report) -> Result
             map.coherence_nm.unwrap_or(f64::NAN) / 1000.0
         ));
     }
+    let wi = r.wi;
+    let (t, p) = (wi[2].clamp(-1.0, 1.0).acos().to_degrees(), wi[1].atan2(wi[0]).to_degrees().rem_euclid(360.0));
+    let illuminant = r.model.illuminant.as_deref().unwrap_or("d65").to_uppercase();
     if let Some(path) = &files.plot {
         let name = Path::new(&r.input).file_name().map_or(r.input.clone(), |f| f.to_string_lossy().into());
-        let wi = r.wi;
-        let (t, p) = (wi[2].clamp(-1.0, 1.0).acos().to_degrees(), wi[1].atan2(wi[0]).to_degrees());
-        let title = format!("{name} · θi {t:.0}° φi {p:.0}° · {} · D65 · {:.3e} RU", map.method, map.tone.exposure_ru);
+        let title =
+            format!("{name} · θi {t:.0}° φi {p:.0}° · {} · {illuminant} · {:.3e} RU", map.method, map.tone.exposure_ru);
         write_map_plot(path, &map.xyz, map.size, map.tone, title)?;
     }
-    Ok(format!("wrote {} ({})", files.output.display(), map.how))
+    // What the picture shows, beside where it went: the light, the exposure and the colour setup.
+    Ok(format!(
+        "wrote {} ({}; light θ {t:.1}° φ {p:.1}°, exposure {} RU, {illuminant}, CIE {} observer, Fresnel {}{})",
+        files.output.display(),
+        map.how,
+        iridis_color::spectrum::short_number(map.tone.exposure_ru),
+        r.model.observer.as_deref().unwrap_or("1931"),
+        r.fresnel.trim(),
+        map.coherence_nm.map_or(String::new(), |c| format!(", coherence {:.1} µm", c / 1000.0))
+    ))
 }
 
 /// Tone-maps a map to 8-bit sRGB.

@@ -507,6 +507,10 @@ fn brdf_map_writes_the_brdf_in_per_steradian() {
     )));
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     assert!(String::from_utf8_lossy(&out.stderr).contains("sr⁻¹"));
+    // The line that says what was written says what the picture shows: light, exposure, colours, Fresnel, window.
+    let said = String::from_utf8_lossy(&out.stdout);
+    let setup = "light θ 0.0° φ 0.0°, exposure 1500 RU, D65, CIE 1931 observer, Fresnel index:1.5, coherence 3.0 µm)";
+    assert!(said.contains(setup), "{said}");
     let fr = raw_xyz(&f);
     let pixel = (2.0 / size as f64).powi(2);
     let luminous: f64 = fr.iter().map(|p| p[1] * pixel).sum();
