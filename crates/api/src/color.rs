@@ -145,9 +145,23 @@ pub fn xyz(
 }
 
 impl SpectrumColour {
-    /// What `--json` prints: the colour report.
+    /// What `--json` prints: the colour report with what it rests on (the spectrum's range and samples, the
+    /// light and observer, and what Y = 1 is), as the text says them.
     pub fn to_json(&self) -> serde_json::Value {
-        self.report.clone()
+        let mut v = self.report.clone();
+        if let Some(o) = v.as_object_mut() {
+            o.insert("wavelength_range_nm".into(), serde_json::json!([self.range_nm.0, self.range_nm.1]));
+            o.insert("samples".into(), self.samples.into());
+            o.insert("illuminant".into(), self.illuminant.name().into());
+            o.insert("observer".into(), self.observer.name().into());
+            let y = if self.emissive {
+                "emissive: the light scaled to Y = 1"
+            } else {
+                "reflectance under the illuminant: the perfect white diffuser has Y = 1"
+            };
+            o.insert("normalisation".into(), y.into());
+        }
+        v
     }
 
     /// The colour for people.

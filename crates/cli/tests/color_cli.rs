@@ -25,6 +25,13 @@ fn xyz_json_has_the_documented_keys_and_a_white_reflector_is_white() {
     // D65 white (CIE 1931, Y = 1) by colour-science: x, y = 0.31271, 0.32902.
     assert!((v["xyY"][0].as_f64().unwrap() - 0.31271).abs() < 5e-5);
     assert_eq!(v["hex"], "#ffffff");
+    // What the colour rests on, as the text says it: the file's range and samples, light, observer, Y = 1.
+    assert_eq!(v["wavelength_range_nm"], serde_json::json!([300.0, 900.0]));
+    assert_eq!(
+        (v["samples"].as_u64(), v["illuminant"].as_str(), v["observer"].as_str()),
+        (Some(2), Some("D65"), Some("1931"))
+    );
+    assert!(v["normalisation"].as_str().unwrap().contains("perfect white diffuser has Y = 1"), "{v}");
 }
 
 #[test]
