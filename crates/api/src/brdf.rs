@@ -353,6 +353,27 @@ pub struct PointEval {
     /// A scalar method on a scan with a dominant period: how far the scalar model is from Maxwell's equations
     /// on the scan's averaged period for this light.
     pub scalar_error: Option<crate::rigorous_brdf::ScanScalarError>,
+    /// The lookup method's table: what its numbers were built with (N, the u-v grid, the spectral step).
+    pub table: Option<iridis_diffraction::table::TableMeta>,
+}
+
+impl PointEval {
+    /// The table's settings in a line, for the lookup method.
+    pub fn table_line(&self) -> Option<String> {
+        let t = self.table.as_ref()?;
+        Some(format!(
+            "table of {}: N = {} Taylor terms, {}² u-v grid (power {}), {}–{} nm in {} nm steps, {}, CIE {} observer",
+            t.surface,
+            t.taylor_terms,
+            t.uv_resolution,
+            t.uv_power,
+            t.wavelength_min_nm,
+            t.wavelength_max_nm,
+            t.wavelength_step_nm,
+            t.illuminant,
+            t.observer
+        ))
+    }
 }
 
 impl PointEval {
@@ -502,5 +523,6 @@ pub fn point(
         query,
         rigorous: None,
         scalar_error: None,
+        table: e.as_lookup().map(|l| l.table.meta.clone()),
     })
 }

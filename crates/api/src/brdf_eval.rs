@@ -133,6 +133,10 @@ impl EvalReport {
             "vision": self.vision.as_ref().map(serde_json::to_value).transpose()?,
             "rigorous": p.rigorous.as_ref().map(|r| r.to_json()),
             "scalar_error": p.scalar_error.as_ref().map(|e| e.to_json()),
+            "table": p.table.as_ref().map(|t| json!({"surface": t.surface, "taylor_terms": t.taylor_terms,
+                "uv_resolution": t.uv_resolution, "uv_power": t.uv_power, "wavelength_step_nm": t.wavelength_step_nm,
+                "wavelength_range_nm": [t.wavelength_min_nm, t.wavelength_max_nm], "illuminant": t.illuminant,
+                "observer": t.observer, "coherence_nm": t.coherence_nm})),
         }))
     }
 
@@ -164,6 +168,7 @@ impl EvalReport {
         if let Some(e) = &p.scalar_error {
             t.push(format!("scalar model: {}", e.sentence()));
         }
+        t.extend(p.table_line());
         match (&q.reflectance, &q.brdf, r.relative) {
             (Some(_), Some(b), false) => {
                 if !self.polarised {

@@ -28,6 +28,21 @@ fn precompute_then_map_and_refusals() {
     assert_eq!(&bytes[..6], b"\x93NUMPY");
     assert!(String::from_utf8_lossy(&bytes[..128]).contains("(32, 32, 3"));
 
+    // A point of the table states what the table was built with (its own metadata), in text and JSON.
+    let meta = LookupTable::load(&table).unwrap().meta;
+    let v = json_of(&["brdf", "eval", t, "--light", "20deg,0deg", "--view", "35deg,180deg", "--json"]);
+    assert_eq!(v["table"]["taylor_terms"].as_u64(), Some(meta.taylor_terms as u64), "{}", v["table"]);
+    assert_eq!(
+        (v["table"]["uv_resolution"].as_u64(), v["table"]["wavelength_step_nm"].as_f64()),
+        (Some(41), Some(10.0))
+    );
+    let out = ok(&["brdf", "eval", t, "--light", "20deg,0deg", "--view", "35deg,180deg"]);
+    let line = format!(
+        "N = {} Taylor terms, 41² u-v grid (power {}), 380–780 nm in 10 nm steps",
+        meta.taylor_terms, meta.uv_power
+    );
+    assert!(out.contains(&line), "{out}");
+
     // The table and options that contradict it.
     assert_fails(&["brdf-map", t, "-o", "x.png", "--coherence", "65um"], &["other parameters"]);
     assert_fails(&["brdf-map", t, "-o", "x.png", "--method", "reference"], &["needs the height field"]);
