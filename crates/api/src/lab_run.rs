@@ -828,8 +828,11 @@ impl LaserRun {
     pub fn text(&self) -> String {
         let (peak, scale) = (self.max_y, self.scale);
         format!(
-            "beam at {:.1}° (sample azimuth {:.1}°), aperture {:.1} µm, spectrum {}\n{}² pixels, brightest Y = \
-             {peak:.4e} at 1 RU (saturates at {:.3e} RU); coated mirror brightness {scale:.3} of an uncoated one\n",
+            "{} method, coating {}; beam at {:.1}° (sample azimuth {:.1}°), aperture {:.1} µm, spectrum {}\n{}² \
+             pixels, brightest Y = {peak:.4e} at 1 RU (saturates at {:.3e} RU; at 1 RU an uncoated perfect \
+             mirror's spot just saturates); coated mirror brightness {scale:.3} of an uncoated one\n",
+            self.method.name(),
+            self.coating,
             self.setup.incidence.to_degrees(),
             self.setup.azimuth.to_degrees(),
             self.aperture_nm / 1000.0,

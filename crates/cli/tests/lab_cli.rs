@@ -791,6 +791,8 @@ fn laser_tables_record_the_beam_and_are_checked() {
     assert!(r.status.success(), "{err}");
     // The window is the diaphragm's: not "as given" (no --coherence was).
     assert!(err.contains("note: coherence 4 µm (the diaphragm's aperture, --aperture)"), "{err}");
+    // The text names the method and coating behind its numbers (the JSON did, the text did not).
+    assert!(String::from_utf8_lossy(&r.stdout).starts_with("lookup method, coating gold; beam at 45.0°"));
     let t = iridis_diffraction::table::LookupTable::load(&table).unwrap();
     assert_eq!(t.meta.illuminant, "light", "{:?}", t.meta);
     let light = t.meta.light_spectrum.as_ref().expect("the beam's spectrum is recorded");
