@@ -458,6 +458,63 @@ pub struct SweepRun {
     pub points: Vec<Point>,
     /// The contact sheet and the error plot written.
     pub files: (PathBuf, PathBuf),
+    /// The model's settings the sweep held while it varied `param` (the swept one's entry is its first value).
+    pub held: Held,
+}
+
+/// What a sweep held fixed, resolved (`auto` terms counted, defaults filled in).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Held {
+    pub coherence_nm: f64,
+    pub taylor_terms: usize,
+    pub uv_resolution: usize,
+    pub uv_power: f64,
+    pub dlambda_nm: f64,
+    pub illuminant: String,
+    pub observer: String,
+}
+
+impl Held {
+    fn of(b: &iridis_lab::Workbench) -> Result<Self> {
+        let c = &b.config;
+        Ok(Held {
+            coherence_nm: c.coherence_nm,
+            taylor_terms: c.term_count(&b.patch)?,
+            uv_resolution: c.table.uv_resolution,
+            uv_power: c.table.uv_power,
+            dlambda_nm: c.spectral.step_nm,
+            illuminant: c.spectral.illuminant.name().to_string(),
+            observer: c.spectral.observer.name().to_string(),
+        })
+    }
+
+    /// The line the text prints, without the swept parameter's entry.
+    fn text(&self, param: Param) -> String {
+        let mut parts = Vec::new();
+        if param != Param::Coherence {
+            parts.push(format!("coherence {:.1} µm", self.coherence_nm / 1000.0));
+        }
+        if param != Param::Terms {
+            parts.push(format!("N = {} Taylor terms", self.taylor_terms));
+        }
+        if param != Param::UvResolution {
+            parts.push(format!("u-v grid {}²", self.uv_resolution));
+        }
+        if param != Param::UvPower {
+            parts.push(format!("u-v power {}", self.uv_power));
+        }
+        if param != Param::DLambda {
+            parts.push(format!("Δλ {} nm", self.dlambda_nm));
+        }
+        parts.push(format!("{}, CIE {} observer", self.illuminant, self.observer));
+        format!("held: {}", parts.join(", "))
+    }
+
+    fn to_json(&self) -> Value {
+        json!({"coherence_nm": self.coherence_nm, "taylor_terms": self.taylor_terms,
+               "uv_resolution": self.uv_resolution, "uv_power": self.uv_power, "dlambda_nm": self.dlambda_nm,
+               "illuminant": self.illuminant, "observer": self.observer})
+    }
 }
 
 /// A convergence sweep (paper sec. 7, Figures 14–17): the maps and errors per value, the contact sheet and the
@@ -510,6 +567,7 @@ pub fn sweep_run(source: &Source, lab: &LabOptions, req: &SweepRequest, report: 
     config.accelerator = crate::lab::gpu_accelerator(req.gpu, report)?;
     let from = if param == Param::Coherence { CoherenceFrom::Swept(&req.values) } else { CoherenceFrom::Options };
     let b = workbench_with(source, lab, config, from, report)?;
+    let held = Held::of(&b)?;
     let pixels = Pixels::brdf_map(req.incidence.0, req.incidence.1, req.size);
     let (_, points) = with_progress(report, req.values.len() as u64, &format!("sweep {}", param.name()), |p| {
         iridis_lab::sweep::run(&b, method, param, &req.values, &pixels, &req.exposures, against, p)
@@ -538,6 +596,7 @@ pub fn sweep_run(source: &Source, lab: &LabOptions, req: &SweepRequest, report: 
         param,
         points,
         files: (req.output.clone(), plot_path),
+        held,
     })
 }
 
@@ -554,7 +613,7 @@ impl SweepRun {
             .collect();
         json!({"surface": self.surface, "method": self.method.name(), "against": self.against.name(),
             "param": self.param.name(), "value_unit": self.param.value_unit(), "error": "CIEDE2000 (ΔE00)",
-            "points": pts})
+            "points": pts, "held": self.held.to_json()})
     }
 
     /// The table `iridis sweep` prints.
@@ -562,6 +621,7 @@ impl SweepRun {
         let (param, points) = (self.param, &self.points);
         let mut s = String::new();
         let _ = writeln!(s, "{} against {}, sweeping {}:", self.method, self.against.name(), param.name());
+        let _ = writeln!(s, "  {}", self.held.text(param));
         let line = |v: &[(f64, f64, f64)]| {
             v.iter().map(|e| format!("{} RU: ΔE00 mean {:.4}, p95 {:.4}", e.0, e.1, e.2)).collect::<Vec<_>>().join("; ")
         };

@@ -298,6 +298,10 @@ fn sweep_coherence_keeps_the_reference_on_the_ground_truth() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("note: coherence swept over 1 µm, 2 µm, 3 µm (--values)") && !err.contains("65 µm"), "{err}");
     assert_eq!(j["param"], "coherence", "{j}");
+    // What was held, resolved: the sweeps' 201² u-v grid, the default 5 nm step, N counted from `auto`.
+    let held = &j["held"];
+    assert_eq!((held["uv_resolution"].as_u64(), held["dlambda_nm"].as_f64()), (Some(201), Some(5.0)), "{held}");
+    assert!(held["taylor_terms"].as_u64().is_some_and(|n| n >= 1) && held["illuminant"] == "D65", "{held}");
     assert_eq!(j["method"], "reference", "{j}");
     assert!(j["surface"].as_str().is_some_and(|s| s.contains("blazed")), "{j}");
     let points = j["points"].as_array().unwrap();
