@@ -239,6 +239,9 @@ impl FilmSpectrum {
     pub fn to_json(&self) -> serde_json::Value {
         let e = &self.ellipsometry;
         json!({
+            "stack": self.stack.to_string(), "angle_deg": self.angle_rad.to_degrees(),
+            "polarization": self.polarization.name(),
+            "units": "R, T, A and their s and p parts are fractions of the incident power (1 = 100 %); ψ, Δ in degrees",
             "wavelength_nm": self.wavelength_nm,
             "R": self.r(), "T": self.t(), "A": self.a(),
             "Rs": self.col(|x| x.r_s), "Rp": self.col(|x| x.r_p), "Ts": self.col(|x| x.t_s), "Tp": self.col(|x| x.t_p),

@@ -107,6 +107,8 @@ impl FilmProfile {
             "stack": self.stack.to_string(), "wavelength_nm": self.wavelength_nm, "angle_deg": self.angle_rad.to_degrees(),
             "polarization": self.polarization, "R": d.r, "T": d.t, "layers": d.layer_names, "A_layers": d.layers,
             "A_substrate": d.substrate, "balance": d.balance, "profile": prof, "notes": d.notes,
+            "units": "R, T, A and flux are fractions of the incident power; absorption_per_nm per nm of depth; E2 \
+                      relative to the incident wave; z_nm below the first interface",
             "warnings": d.warnings,
         })
     }

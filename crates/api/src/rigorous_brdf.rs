@@ -460,6 +460,7 @@ impl ScanScalarError {
             "period_nm": self.period_nm,
             "orientation_deg": self.orientation_deg,
             "height_variance_share": self.variance_share,
+            "units": "relative errors, efficiencies and shares are fractions (0.2 = 20 %)",
             "material": self.material,
             "wavelength_nm": [380.0, 780.0, 10.0],
             "worst_relative_error": {"te": e.worst.te, "tm": e.worst.tm, "unpolarized": e.worst.unpolarized},
