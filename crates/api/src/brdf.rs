@@ -337,6 +337,17 @@ pub fn default_method(input: &str) -> &'static str {
     }
 }
 
+/// A direction's reflectance factor `π f_r(λ)` on `wavelengths_nm` as the visual system of `spec` sees it.
+pub fn vision_of_factor(
+    spec: &iridis_vision::Spec,
+    wavelengths_nm: &[f64],
+    factor: Vec<f64>,
+) -> Result<iridis_vision::Analysis> {
+    let system = spec.system().context("--visual")?;
+    let options = spec.options(&system)?;
+    Ok(iridis_vision::analyse(&[("view".to_string(), factor)], wavelengths_nm, &system, &options)?)
+}
+
 /// One method's answer for one pair of directions (`iridis brdf eval`, Python's `diffraction.eval`).
 #[derive(Debug, Clone)]
 pub struct PointEval {
@@ -389,9 +400,7 @@ impl PointEval {
         let Some(factor) = self.reflectance_factor() else {
             bail!("--visual needs the BRDF f_r(λ), which the {} method does not give", self.method);
         };
-        let system = spec.system().context("--visual")?;
-        let options = spec.options(&system)?;
-        Ok(iridis_vision::analyse(&[("view".to_string(), factor)], &self.query.wavelengths_nm, &system, &options)?)
+        vision_of_factor(spec, &self.query.wavelengths_nm, factor)
     }
 
     /// The spectra as a CSV pavo reads (a wavelength column, one column per quantity): the reflectance factor

@@ -69,6 +69,7 @@ pub fn brdf_eval(r: &EvalRequest, spectra: Option<&Path>, report: &dyn Report) -
     r.grid.refuse_unless_lookup(&method)?;
     let r0 = shading.fresnel.normal_reflectance();
     let polarised_fresnel = shading.fresnel.polarised();
+    let vision_shading = shading.clone();
     let p = eval_point(&r.input, Some(&method), &r.model, shading, r.grid.params()?, &r.surface, wi, wr, report)?;
     // A table of zeros reads like a failure; say why it is one (a 2 µm sine's orders lie in one plane, and a
     // view out of it printed 0.0000e0 at every λ without a word).
@@ -85,12 +86,30 @@ pub fn brdf_eval(r: &EvalRequest, spectra: Option<&Path>, report: &dyn Report) -
         crate::output::write_bytes(path, p.spectra_csv()?.as_bytes())?;
     }
     let mut vision = match &r.visual {
-        Some(v) => Some(p.vision(&iridis_vision::Spec { visual: Some(v.clone()), ..Default::default() })?),
+        Some(v) => {
+            let spec = iridis_vision::Spec { visual: Some(v.clone()), ..Default::default() };
+            // The reference method on a height field gives the animal π f_r from 300 nm (its terms made for it),
+            // where its own answer, on the CIE grid, stops at 380 nm and leaves out most of a UV cone.
+            if method == "reference" && !crate::model::is_table(&r.input) {
+                let source = crate::surface::Source::Spec(r.input.clone());
+                let (wl, factor) = crate::vision::reflectance_factor_for_vision(
+                    &source,
+                    &r.surface,
+                    &r.model,
+                    vision_shading,
+                    wi,
+                    wr,
+                )?;
+                Some(crate::brdf::vision_of_factor(&spec, &wl, factor)?)
+            } else {
+                Some(p.vision(&spec)?)
+            }
+        }
         None => None,
     };
-    // The model's grid starts at 380 nm (the CIE observer's); where a receptor sees below it, say which command
-    // starts at 300 nm.
-    if let Some(v) = vision.as_mut().filter(|v| !v.notes.is_empty() && p.query.wavelengths_nm[0] > FROM_NM) {
+    // The other methods' grid starts at 380 nm (the CIE observer's); where a receptor sees below it, say which
+    // command starts at 300 nm.
+    if let Some(v) = vision.as_mut().filter(|v| !v.notes.is_empty() && v.wavelength_range_nm[0] > FROM_NM) {
         v.notes.push(format!(
             "brdf eval's spectrum starts at {} nm, the CIE grid's; `iridis brdf vision` computes π f_r from {FROM_NM} \
              nm for animals that see ultraviolet",
@@ -211,7 +230,13 @@ impl EvalReport {
         if let Some(v) = &self.vision {
             let s = &v.samples[0];
             let f = |x: &[f64]| x.iter().map(|c| format!("{c:.4}")).collect::<Vec<_>>().join("  ");
-            t.push(format!("seen by {} under {} (receptors {}):", v.visual.name, v.illuminant, v.receptors.join(", ")));
+            let [lo, hi] = v.wavelength_range_nm;
+            t.push(format!(
+                "seen by {} under {} (receptors {}; π f_r from {lo} to {hi} nm):",
+                v.visual.name,
+                v.illuminant,
+                v.receptors.join(", ")
+            ));
             t.push(format!("  quantum catches (von Kries, to a grey of reflectance 1)  {}", f(&s.quantum_catches)));
             t.push(format!("  relative catches                                        {}", f(&s.relative_catches)));
             // Beside the numbers, not only on stderr: a UV cone cut off at 380 nm changes them.

@@ -97,29 +97,8 @@ pub fn along_plane(
             None => 0.0,
         },
     };
-    let coherence = coherence_for(&patch, model.coherence_nm, report)?;
-    // `auto`: Taylor terms for the shortest wavelength asked, 300 nm (the model commands' `auto` takes 380 nm).
-    let n = term_count(&patch, model, FROM_NM, report)?;
-    // One light: the terms keep the bins its lobes read at 300 nm and longer (a large scan's memory).
-    let band = Band::light(direction(light_theta, azimuth), FROM_NM, 1.001 * window_radius(coherence));
-    let terms = with_progress(report, n as u64 + 1, "Taylor terms", |p| {
-        TaylorTerms::compute_in_band(&patch, n, coherence, band, p)
-    })?;
-    report.info(&format!(
-        "N = {n} Taylor terms, coherence {:.1} µm, π f_r(λ) from {FROM_NM} to {TO_NM} nm in {} nm steps",
-        coherence / 1000.0,
-        model.step()
-    ));
-    let reference = Reference { terms: std::sync::Arc::new(terms), shading, spectral: SpectralSetup::default() };
-    let e: Box<dyn Evaluator> = if model.conserve_energy {
-        report.note(crate::brdf::ENERGY_CONSERVING_LOBES);
-        // The unit cell's orders down to 300 nm, below the CIE grid the lobes' colours are otherwise set up on.
-        let energy = std::sync::Arc::new(iridis_diffraction::grating::SinkhornEnergy);
-        Box::new(LobeScaled::down_to(Box::new(reference), &patch, SpectralSetup::default(), energy, FROM_NM)?)
-    } else {
-        Box::new(reference)
-    };
     let light = direction(light_theta, azimuth);
+    let (e, coherence, n) = uv_reference(&patch, model, shading, light, report)?;
     let view = |deg: f64| -> Vec3 {
         let t = deg.to_radians();
         [-t.sin() * azimuth.cos(), -t.sin() * azimuth.sin(), t.cos()]
@@ -146,6 +125,64 @@ pub fn along_plane(
         energy_normalised: model.conserve_energy,
         analysis,
     })
+}
+
+/// The reference evaluator of `patch` for light from `light`, its Taylor terms made for wavelengths down to
+/// [`FROM_NM`] (the model commands' `auto` stops at 380 nm, the CIE grid's start; an animal's UV cone reads below
+/// it), with the energy-conserving lobes where `model` asks for them; with its coherence (nm) and N.
+fn uv_reference(
+    patch: &iridis_diffraction::Patch,
+    model: &ModelOptions,
+    shading: Shading,
+    light: Vec3,
+    report: &dyn Report,
+) -> Result<(Box<dyn Evaluator>, f64, usize)> {
+    let coherence = coherence_for(patch, model.coherence_nm, report)?;
+    let n = term_count(patch, model, FROM_NM, report)?;
+    // One light: the terms keep the bins its lobes read at 300 nm and longer (a large scan's memory).
+    let band = Band::light(light, FROM_NM, 1.001 * window_radius(coherence));
+    let terms = with_progress(report, n as u64 + 1, "Taylor terms", |p| {
+        TaylorTerms::compute_in_band(patch, n, coherence, band, p)
+    })?;
+    report.info(&format!(
+        "N = {n} Taylor terms, coherence {:.1} µm, π f_r(λ) from {FROM_NM} to {TO_NM} nm in {} nm steps",
+        coherence / 1000.0,
+        model.step()
+    ));
+    let reference = Reference { terms: std::sync::Arc::new(terms), shading, spectral: SpectralSetup::default() };
+    let e: Box<dyn Evaluator> = if model.conserve_energy {
+        report.note(crate::brdf::ENERGY_CONSERVING_LOBES);
+        // The unit cell's orders down to 300 nm, below the CIE grid the lobes' colours are otherwise set up on.
+        let energy = std::sync::Arc::new(iridis_diffraction::grating::SinkhornEnergy);
+        Box::new(LobeScaled::down_to(Box::new(reference), patch, SpectralSetup::default(), energy, FROM_NM)?)
+    } else {
+        Box::new(reference)
+    };
+    Ok((e, coherence, n))
+}
+
+/// The reflectance factor `π f_r(λ)` (unpolarised) of the reference method on SURFACE for light `wi` and view
+/// `wr`, from [`FROM_NM`] to [`TO_NM`] in `model`'s step: the spectrum `brdf eval --visual` gives the animal
+/// (its own answer stops at 380 nm). Returns the wavelengths and the factor.
+pub fn reflectance_factor_for_vision(
+    source: &Source,
+    surface: &SurfaceOptions,
+    model: &ModelOptions,
+    shading: Shading,
+    wi: Vec3,
+    wr: Vec3,
+) -> Result<(Vec<f64>, Vec<f64>)> {
+    // Quiet: the evaluation this accompanies has said the surface, the coherence and the terms.
+    let quiet = &crate::report::Quiet;
+    let wavelengths =
+        iridis_color::spectrum::range_grid(FROM_NM, TO_NM, model.step()).map_err(|e| anyhow::anyhow!("--step: {e}"))?;
+    let patch = source.patch(surface, quiet)?;
+    let (e, _, _) = uv_reference(&patch, model, shading, wi, quiet)?;
+    let q = iridis_diffraction::point_query(e.as_ref(), &wavelengths, wi, wr)?;
+    let Some(b) = q.brdf else {
+        bail!("--visual needs the BRDF in sr⁻¹, which the paper's R² convention does not give");
+    };
+    Ok((wavelengths, b.unpolarized.iter().map(|f| std::f64::consts::PI * f).collect()))
 }
 
 /// The model options [`along_plane`] would not use, refused rather than ignored: the CIE illuminant and observer

@@ -185,19 +185,35 @@ fn brdf_vision_text_has_the_achromatic_difference() {
     assert!((last - dl["delta_l"].as_f64().unwrap()).abs() <= 0.005, "{row} against {dl}");
 }
 
-/// `brdf eval --visual` on the CIE grid (380–780 nm) leaves out most of a bird's UV cone: the share left out
-/// (vision's own coverage note) and where to get it from 300 nm stand beside the catches, not only on stderr; the
-/// XYZ line names its illuminant and observer.
+/// `brdf eval --visual` gives the animal π f_r from 300 nm (its own answer, on the CIE grid, stops at 380 nm and
+/// left out 68 % of the blue tit's UV cone). On a 1100 nm sine lit at 30°, the view at 10° on the mirror side
+/// receives order −1 at λ = d(sin 30° − sin 10°) = 359 nm, and no other order between 300 and 700 nm (−2 is at
+/// 180 nm): what the bird sees there is ultraviolet, the UVS cone's relative catch ≈ 1 (it was 0.89, from the
+/// visible leakage alone). The same catches as `brdf vision` in that plane; the XYZ line names its light.
+/// (A 3 µm window's lobes, 0.06 wide in u at 380 nm, would let the order's blue end in too.)
 #[test]
-fn brdf_eval_visual_says_what_the_uv_cone_misses_beside_the_numbers() {
-    let args = ["brdf", "eval", "builtin:sine?size=4um&pixel=100nm", "--light", "30deg", "--view", "10deg,180deg"];
-    let out = iridis(&[&args[..], &["--visual", "bluetit", "--coherence", "3um"]].concat());
+fn brdf_eval_visual_sees_from_300_nm_as_brdf_vision_does() {
+    // 8.8 µm holds 8 periods: one unit cell whose orders are the grating's, each a lobe of the 65 µm window.
+    let surface = "builtin:sine?size=8.8um&pixel=100nm";
+    let args = ["brdf", "eval", surface, "--light", "30deg", "--view", "10deg,180deg"];
+    let out = iridis(&[&args[..], &["--visual", "bluetit"]].concat());
     let text = String::from_utf8_lossy(&out.stdout).into_owned();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     assert!(text.contains("(of ρ under D65, CIE 1931 observer; a normal-incidence mirror: Y = 1)"), "{text}");
-    let notes: Vec<&str> = text.lines().filter(|l| l.starts_with("  note: ")).collect();
-    assert!(notes.iter().any(|n| n.contains("of receptor UVS's sensitivity over 300–700 nm lies outside")), "{text}");
-    assert!(notes.iter().any(|n| n.contains("`iridis brdf vision` computes π f_r from 300 nm")), "{text}");
-    // Said once: in the text, not again on stderr.
-    assert!(!String::from_utf8_lossy(&out.stderr).contains("lies outside"));
+    assert!(text.contains("(receptors UVS, SWS, MWS, LWS; π f_r from 300 to 700 nm):"), "{text}");
+    assert!(!text.contains("lies outside"), "{text}");
+    let e = json_of(&[&args[..], &["--visual", "bluetit", "--json"]].concat());
+    let relative = e["vision"]["samples"][0]["relative_catches"][0].as_f64().unwrap();
+    assert!(relative > 0.99, "UVS relative catch {relative}");
+    let v = json_of(
+        &["brdf", "vision", surface, "--visual", "bluetit", "--light", "30deg", "--views", "10"]
+            .iter()
+            .chain(&["--azimuth", "0deg", "--json"])
+            .collect::<Vec<_>>(),
+    );
+    let (a, b) = (&e["vision"]["samples"][0]["quantum_catches"], &v["vision"]["samples"][0]["quantum_catches"]);
+    for k in 0..4 {
+        let (x, y) = (a[k].as_f64().unwrap(), b[k].as_f64().unwrap());
+        assert!((x - y).abs() <= 1e-9 * y.abs().max(1e-12), "receptor {k}: brdf eval {x}, brdf vision {y}");
+    }
 }

@@ -276,7 +276,8 @@ pub struct BrdfEvalArgs {
     #[arg(long)]
     pub relative: bool,
     /// Also as an animal sees this direction: a visual system of `iridis vision` (bluetit, honeybee, …),
-    /// from the reflectance factor π f_r(λ); key vision in --json.
+    /// from the reflectance factor π f_r(λ) over 300–700 nm (reference method; others their 380–780 nm grid,
+    /// with a note); key vision in --json.
     #[arg(long)]
     pub visual: Option<String>,
     /// Write the spectra as CSV (pavo reads it): wavelength_nm, π f_r for s, p and unpolarised light, ρ.
