@@ -324,6 +324,26 @@ pub fn declare_surface(flag: &str, path: &Path) -> Result<()> {
     Ok(())
 }
 
+/// [`declare_surface`] for `iridis surface convert INPUT OUTPUT`, refusing an OUTPUT that is INPUT itself (or its
+/// sidecar): the rename over it replaced the scan — its other channels and metadata, or its raw heights by levelled
+/// ones — without a word.
+pub fn declare_conversion(input: &str, output: &Path) -> Result<()> {
+    let same = |a: &Path, b: &Path| match (a.canonicalize(), b.canonicalize()) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => false,
+    };
+    let input_path = Path::new(input);
+    let sidecars = [output.to_path_buf(), sidecar_path(output)];
+    if input_path.exists() && sidecars.iter().any(|o| same(input_path, o) || same(&sidecar_path(input_path), o)) {
+        bail!(
+            "OUTPUT {} would overwrite the scan being read ({input}), losing what the conversion leaves out (other \
+             channels, metadata, the heights before levelling): write to another file",
+            output.display()
+        );
+    }
+    declare_surface("OUTPUT", output)
+}
+
 /// Writes a field in the format its extension names, with a sidecar where the format has no units.
 pub fn write_surface(hf: &HeightField, path: &Path) -> Result<()> {
     let fmt = output_format(path)?;

@@ -904,3 +904,26 @@ fn report_refuses_what_its_steps_would_before_they_run() {
     crate::common::assert_fails(&report("--coherence", "300nm"), &short);
     assert_eq!(std::fs::read_dir(&out).unwrap().count(), 0, "a refused report left files in the folder");
 }
+
+/// `surface convert` onto the file it reads (or its sidecar) is refused and leaves the scan as it was: the
+/// rename over it replaced a two-channel .gwy with one channel, and a .npy's raw heights with levelled ones.
+#[test]
+fn convert_refuses_to_overwrite_its_input() {
+    let dir = tempfile::tempdir().unwrap();
+    let gwy = dir.path().join("scan.gwy");
+    std::fs::copy(fixture("gwyfile_two_channels.gwy"), &gwy).unwrap();
+    let before = std::fs::read(&gwy).unwrap();
+    let g = gwy.to_str().unwrap();
+    crate::common::assert_fails(&["surface", "convert", g, g], &["would overwrite the scan being read"]);
+    // Another spelling of the same file.
+    let dotted = dir.path().join(".").join("scan.gwy");
+    crate::common::assert_fails(&["surface", "convert", g, dotted.to_str().unwrap()], &["would overwrite"]);
+    assert_eq!(std::fs::read(&gwy).unwrap(), before);
+    // A .npy and its own sidecar: the same.
+    let npy = dir.path().join("h.npy");
+    ok(&["surface", "convert", g, npy.to_str().unwrap()]);
+    let n = npy.to_str().unwrap();
+    crate::common::assert_fails(&["surface", "convert", n, n, "--level", "plane"], &["would overwrite"]);
+    // Another name is fine.
+    ok(&["surface", "convert", n, dir.path().join("h2.npy").to_str().unwrap()]);
+}

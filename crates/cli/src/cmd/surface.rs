@@ -353,7 +353,7 @@ fn generate(a: GenerateArgs) -> Result<()> {
 }
 
 fn convert(a: ConvertArgs) -> Result<()> {
-    lib::declare_surface("OUTPUT", &a.output)?;
+    lib::declare_conversion(&a.input, &a.output)?;
     let hf = a.reshape.apply(load(&a.input, &a.load, &a.level)?)?;
     lib::write_surface(&hf, &a.output)?;
     // What the reader warned about; the model's concerns (coherence area, coarse pixels) belong to the
