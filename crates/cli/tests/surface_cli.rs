@@ -927,3 +927,21 @@ fn convert_refuses_to_overwrite_its_input() {
     // Another name is fine.
     ok(&["surface", "convert", n, dir.path().join("h2.npy").to_str().unwrap()]);
 }
+
+/// Units that give a field no microscope makes are said: a Gwyddion file in metres read with `--height-unit nm`
+/// (the tool's own hint for a file without units) is a relief of 6e-8 nm, all-zero heights that a report called
+/// "too shallow to diffract"; `--pixel-size 100mm` for 100 nm made a 6.4 m scan; and `--height-unit` replacing
+/// a sidecar's unit is said as a file's own unit is.
+#[test]
+fn implausible_units_are_said() {
+    let warned = |args: &[&str]| String::from_utf8_lossy(&ok(args).stderr).into_owned();
+    let err = warned(&["surface", "info", &fixture("gwyfile_no_units.gwy"), "--height-unit", "nm"]);
+    assert!(err.contains("the relief is below a picometre (largest |height| 6.260e-8 nm as read)"), "{err}");
+    let err = warned(&["surface", "info", &fixture("numpy_f32_fortran.npy"), "--pixel-size", "100mm"]);
+    assert!(err.contains("pixels of 100000 µm as read"), "{err}");
+    let err = warned(&["surface", "info", &fixture("numpy_f64.npy"), "--height-unit", "um"]);
+    assert!(err.contains("--height-unit um replaces the sidecar's height unit 'nm'"), "{err}");
+    // The right units say none of it.
+    let err = warned(&["surface", "info", &fixture("numpy_f64.npy")]);
+    assert!(!err.contains("picometre") && !err.contains("replaces") && !err.contains("pixels of"), "{err}");
+}

@@ -240,8 +240,43 @@ pub fn load_surface(spec: &str, opts: &LoadOptions) -> Result<HeightField, Surfa
     let mut hf = read_bytes(&bytes, spec, side.as_ref(), opts)?;
     if let Some(s) = &side {
         hf.meta.notes.push(format!("units from sidecar {}", s.path.display()));
+        // --height-unit wins over the sidecar's (given_height_unit): say so, as a file's own unit is.
+        if let (Some(given), Some(theirs)) = (&opts.height_unit, &s.height_unit) {
+            if unit_to_nm(given) != unit_to_nm(theirs) {
+                hf.meta.warnings.push(format!(
+                    "--height-unit {given} replaces the sidecar's height unit '{theirs}' ({}): heights are read in \
+                     {given}",
+                    s.path.display()
+                ));
+            }
+        }
     }
+    hf.meta.warnings.extend(implausible_units(&hf));
     Ok(hf)
+}
+
+/// Warnings for a file whose units, as read, give a field no microscope makes: a relief below a picometre (a
+/// wrong --height-unit: a field in nm read as m gave all-zero heights and a report verdict of "too shallow to
+/// diffract") or pixels above 100 µm (`--pixel-size 100mm` for 100 nm made a 6.4 m scan).
+fn implausible_units(hf: &HeightField) -> Vec<String> {
+    let mut warnings = Vec::new();
+    let max = hf.heights_nm.iter().filter(|v| v.is_finite()).fold(0.0f64, |m, v| m.max(v.abs()));
+    let said = hf.meta.warnings.iter().any(|w| w.contains("picometre"));
+    if max > 0.0 && max < 1e-3 && !said {
+        warnings.push(format!(
+            "the relief is below a picometre (largest |height| {max:.3e} nm as read): the height unit is likely \
+             wrong (the file's, the sidecar's or --height-unit); every model result would be of a flat surface"
+        ));
+    }
+    let pixel = hf.dx_nm.max(hf.dy_nm);
+    if pixel > 1e5 {
+        warnings.push(format!(
+            "pixels of {} µm as read: a scan's are nanometres to a few micrometres; check the pixel size's unit \
+             (--pixel-size, the sidecar's or the file's)",
+            pixel_text(pixel / 1000.0)
+        ));
+    }
+    warnings
 }
 
 /// Parses bytes whose format is recognised by content; `name` is used in messages.
