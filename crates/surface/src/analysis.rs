@@ -273,9 +273,10 @@ pub fn find_peaks(hf: &HeightField, opts: &PeakOptions) -> Vec<Peak> {
         let fy0 = -(kr as f64) / (rows as f64 * hf.dy_nm);
         let (fx, fy, refined) = win.refine(fx0, fy0);
         let f = fx.hypot(fy);
-        // Fold into [0°, 180°): a grating vector and its opposite are the same grating.
+        // Fold into [0°, 180°): a grating vector and its opposite are the same grating. Within 0.005° of 180°
+        // (what prints as 180.00°) is 0°: a grating along x read 0.00° from one file and 180.00° from another.
         let mut ang = fy.atan2(fx).to_degrees().rem_euclid(180.0);
-        if ang > 180.0 - 1e-9 {
+        if ang > 180.0 - 5e-3 {
             ang = 0.0;
         }
         ang += 0.0; // no −0

@@ -251,6 +251,19 @@ fn periods_and_orientations_of_generated_gratings() {
     }
 }
 
+/// A grating along x turned by a thousandth of a degree either way reads 0.00°, not 180.00° (the fold into
+/// [0°, 180°) left 179.999° for a vector a hair below the x axis: one file said 0.00°, another 180.00°).
+#[test]
+fn a_grating_along_x_reads_zero_degrees_from_either_side() {
+    for deg in [-0.001, 0.001] {
+        let grid =
+            Grid { size_x_nm: 24_000.0, size_y_nm: 20_000.0, pixel_nm: 40.0, angle_rad: f64::to_radians(deg), seed: 1 };
+        let hf = gen(Generator::Sine { period_nm: 1100.0, depth_nm: 100.0 }, &grid);
+        let p = &find_peaks(&hf, &PeakOptions::default())[0];
+        assert!(p.orientation_deg < 0.005, "turned by {deg}°: orientation {}", p.orientation_deg);
+    }
+}
+
 #[test]
 fn snake_and_cd_periods_match_their_construction() {
     let grid = Grid { size_x_nm: 30_000.0, size_y_nm: 30_000.0, pixel_nm: 50.0, angle_rad: 0.0, seed: 2 };
