@@ -214,7 +214,9 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
     let source = Source::Spec(o.surface.clone());
     let common = surf.flags();
     let mut model = common.clone();
-    let relief_level = surf.level.clone().unwrap_or_else(|| "plane".into());
+    // As the model steps level it: a file plane-levelled, a built-in as generated (the relief of a built-in was
+    // plane-levelled and the report said so, while its diffraction used it as generated).
+    let relief_level = surf.level.clone().unwrap_or_else(|| iridis_surface::prep::default_level(&o.surface).into());
     if let Some(c) = &o.coherence {
         model.extend(["--coherence".to_string(), c.clone()]);
     }

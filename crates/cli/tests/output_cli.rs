@@ -399,3 +399,17 @@ fn long_steps_announce_themselves_in_a_log() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(!stderr.contains("done in"), "{stderr}");
 }
+
+/// A report on a built-in levels its relief as its model steps do, not at all (built-ins are used as
+/// generated): it plane-levelled the relief figure and said "levelling: plane" while every diffraction step used
+/// the surface as generated.
+#[test]
+fn a_reports_levelling_is_its_model_steps() {
+    let d = tmp();
+    let out = p(d.path(), "r");
+    common::succeeds(&["report", SMALL, "--size", "16", "-o", &out]);
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(format!("{out}/report.json")).unwrap()).unwrap();
+    assert_eq!(json["level"], "none", "{}", json["level"]);
+    assert!(std::fs::read_to_string(format!("{out}/index.html")).unwrap().contains("levelling: none."));
+}

@@ -158,6 +158,16 @@ pub fn level_by_name(hf: &HeightField, how: &str) -> Result<HeightField, Surface
     })
 }
 
+/// The levelling a SURFACE gets when none is asked: `plane` for a file, `none` for a built-in
+/// ([`level_for_model`]).
+pub fn default_level(spec: &str) -> &'static str {
+    if spec.starts_with("builtin:") {
+        "none"
+    } else {
+        "plane"
+    }
+}
+
 /// Levelling before the diffraction model, as Gwyddion users expect: a file is plane-levelled unless the
 /// user asks otherwise (a scan's tilt puts a false streak and lobes into BRDF maps); a built-in is left as
 /// generated. Returns the field and a sentence saying what was done, for the command's output.
@@ -167,7 +177,7 @@ pub fn level_for_model(
     requested: Option<&str>,
 ) -> Result<(HeightField, String), SurfaceError> {
     let builtin = spec.starts_with("builtin:");
-    let how = requested.unwrap_or(if builtin { "none" } else { "plane" });
+    let how = requested.unwrap_or(default_level(spec));
     let out = level_by_name(&hf, how)?;
     let why = match (requested, builtin) {
         (Some(_), _) => format!("as asked: --level {how}"),
