@@ -174,12 +174,33 @@ pub fn check_size_of(flag: &str, size: usize) -> Result<()> {
     Ok(())
 }
 
-/// What `--auto-exposure` says of a map with no light in it.
-pub(crate) fn black_map(exposure_ru: f64) -> String {
-    format!(
-        "the map is black: no light reaches these view directions (at this coherence a mirror's lobe is narrower \
-         than a pixel); the exposure stays {exposure_ru} RU"
-    )
+/// What a map with no light in it says, with its reason (`samples_a_side`: the map's view samples a side), and
+/// the exposure it keeps where it has one (the CLI's PNG; Python's XYZ array has none).
+pub fn warn_black_map(method: &str, samples_a_side: usize, exposure_ru: Option<f64>, report: &dyn Report) {
+    report.warn(&black_map(method, samples_a_side, exposure_ru));
+}
+
+/// [`warn_black_map`]'s sentence.
+pub(crate) fn black_map(method: &str, samples_a_side: usize, exposure_ru: Option<f64>) -> String {
+    let stays = exposure_ru.map_or(String::new(), |e| format!("; the exposure stays {e} RU"));
+    if method.starts_with("stam-periodic") && samples_a_side.is_multiple_of(2) {
+        format!(
+            "the map is black: Stam's periodic models put a 1-D grating's orders on the row y = 0, which \
+             {samples_a_side} samples a side miss: give an odd --size (and --subsamples){stays}"
+        )
+    } else {
+        format!(
+            "the map is black: no light reaches these view directions (at this coherence a mirror's lobe is \
+             narrower than a pixel){stays}"
+        )
+    }
+}
+
+/// Says [`warn_black_map`] where `xyz` has no lit pixel (Python's maps, which no exposure follows).
+pub fn warn_if_black(xyz: &[Xyz], method: &str, samples_a_side: usize, report: &dyn Report) {
+    if crate::brdf::brightest_lit(xyz).is_none() {
+        warn_black_map(method, samples_a_side, None, report);
+    }
 }
 
 /// What a map of `size`² pixels, `subsamples²` view samples each, misses at this coherence length, if anything:
@@ -376,16 +397,7 @@ pub fn compute(r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) ->
 fn exposure_for(xyz: &[Xyz], r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) -> Result<f64> {
     // One pass for the brightest pixel; the percentile's sort only where an exposure is chosen or suggested.
     let Some(brightest) = crate::brdf::brightest_lit(xyz) else {
-        let samples_a_side = r.size * r.subsamples;
-        report.warn(&if r.method.starts_with("stam-periodic") && samples_a_side.is_multiple_of(2) {
-            format!(
-                "the map is black: Stam's periodic models put a 1-D grating's orders on the row y = 0, which \
-                 {samples_a_side} samples a side miss: give an odd --size (and --subsamples); the exposure stays {} RU",
-                r.exposure_ru
-            )
-        } else {
-            black_map(r.exposure_ru)
-        });
+        warn_black_map(&r.method, r.size * r.subsamples, Some(r.exposure_ru), report);
         return Ok(r.exposure_ru);
     };
     if r.auto_exposure {

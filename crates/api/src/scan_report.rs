@@ -178,7 +178,7 @@ fn brdf_map_figure(
     let mut warnings = Vec::new();
     match crate::brdf::auto_exposure(&xyz, size) {
         Some(auto) => exposure = auto.exposure_ru,
-        None => warnings.push(crate::brdf_map::black_map(exposure)),
+        None => warnings.push(crate::brdf_map::black_map("reference", size, Some(exposure))),
     }
     let tone = ToneMap { exposure_ru: exposure, encoding: Encoding::parse("srgb").map_err(anyhow::Error::msg)? };
     let rgb = crate::brdf_map::map_to_rgb8(&xyz, tone);

@@ -226,10 +226,14 @@ fn brdf_map_xyz<'py>(
     let xyz = run(py, |r| {
         let e = evaluator(&input, method.as_deref(), &eo, r)?;
         iridis_api::brdf_map::warn_lobes_between_pixels(e.as_ref(), size, subsamples, r);
-        if per_sr {
-            return iridis_api::brdf::render_map_per_sr(e.as_ref(), &eo.model, wi, size, subsamples, r);
-        }
-        Ok(render_map(e.as_ref(), wi, size, subsamples, r))
+        let xyz = if per_sr {
+            iridis_api::brdf::render_map_per_sr(e.as_ref(), &eo.model, wi, size, subsamples, r)?
+        } else {
+            render_map(e.as_ref(), wi, size, subsamples, r)
+        };
+        // As `iridis brdf-map` says of a map with no light (lost here, where no exposure follows).
+        iridis_api::brdf_map::warn_if_black(&xyz, e.name(), size * subsamples, r);
+        Ok(xyz)
     })?;
     Ok(xyz_array(py, &xyz, size))
 }

@@ -27,6 +27,8 @@ class Surface:
     """Heights (nm, shape ``(rows, cols)``, row 0 at the top) on a grid of ``dx_nm × dy_nm`` pixels."""
 
     def __init__(self, heights_nm, dx_nm, dy_nm=None):
+        # The reader's warnings already given as Python warnings (by load), not given again by info().
+        self._said = ()
         if isinstance(heights_nm, _native._HeightField):
             self._h = heights_nm
             return
@@ -56,7 +58,12 @@ class Surface:
     def level(self, how="plane"):
         """A levelled copy: ``none``, ``mean``, ``plane``, ``poly`` (degree 2), ``lines`` (median line correction)
         or ``rows`` (line means), as ``--level``."""
-        return Surface(self._h.level(how), 0)
+        return self._derived(self._h.level(how))
+
+    def _derived(self, h):
+        out = Surface(h, 0)
+        out._said = self._said
+        return out
 
     def info(self, peaks=5, coherence_nm=65000.0):
         """What ``iridis surface info --json`` reports, as a dict (keys in docs/json.md): ``rows``, ``cols``,
@@ -84,7 +91,8 @@ class Surface:
         them on stderr)."""
         text = self._h.info_json(count(peaks, "peaks"), float(coherence_nm))
         for w in json.loads(text)["warnings"]:
-            warn_caller(w)
+            if w not in self._said:
+                warn_caller(w)
         return text
 
     def figures(self, name="surface", image=None, psdf=None, acf=None):
@@ -102,7 +110,7 @@ class Surface:
     def reshape(self, crop=None, resample_nm=None, tile=None, pad=None):
         """``iridis surface convert``'s steps, in this order: ``crop`` ``"ROW,COL,ROWS,COLS"``, ``resample_nm``
         (new pixel size, the extent kept), ``tile`` ``"NYxNX"``, ``pad`` ``"ROWSxCOLS"`` (with the mean height)."""
-        return Surface(self._h.reshape(crop, None if resample_nm is None else float(resample_nm), tile, pad), 0)
+        return self._derived(self._h.reshape(crop, None if resample_nm is None else float(resample_nm), tile, pad))
 
     def roughness(self):
         """Sq, Sa, skewness, excess kurtosis, Sz and the correlation length of the field as it is (level it first),
@@ -122,15 +130,20 @@ def load(spec, channel=None, pixel_size_nm=None, max_height_nm=None, height_unit
 
     ``channel``: index or name in multi-channel files; ``pixel_size_nm`` and ``max_height_nm`` for images;
     ``height_unit`` where the file has none; ``level``: a levelling to apply (see :meth:`Surface.level`).
-    Where an instrument file states its own pixel size or height unit, the file's win and ``meta["warnings"]``
-    names both, unless ``override_units`` (the CLI's ``--override-units``); a channel that is not a height (an
-    amplitude, a current) is refused unless ``as_height`` (``--as-height``).
+    Where an instrument file states its own pixel size or height unit, the file's win and a warning names both,
+    unless ``override_units`` (the CLI's ``--override-units``); a channel that is not a height (an amplitude, a
+    current) is refused unless ``as_height`` (``--as-height``). What the reader warns about (units assumed or
+    ignored, NaN lines filled, a relief below a picometre) is given as Python warnings here, as the CLI says it
+    on reading, and kept in ``meta["warnings"]``.
     A missing file raises OSError, a file that cannot be read ValueError with the CLI's message.
     """
     h = _native.load_height_field(str(spec), None if channel is None else str(channel), pixel_size_nm,
                                   max_height_nm, height_unit, flag(override_units, "override_units"),
                                   flag(as_height, "as_height"))
     s = Surface(h, 0)
+    s._said = tuple(s.meta["warnings"])
+    for w in s._said:
+        warn_caller(w)
     return s if level is None else s.level(level)
 
 

@@ -1,0 +1,37 @@
+"""Warnings the CLI prints reach Python where the same library call runs (an audit of 87 command/function pairs
+found these lost): the reader's warnings at `surface.load` (they waited for `info()`), and a black map's
+warning from `diffraction.brdf_map` (said only where an exposure followed)."""
+
+import os
+import warnings
+
+import iridis.diffraction as diffraction
+import iridis.surface as surface
+
+SURFACE_FIXTURES = os.path.join(os.path.dirname(__file__), "..", "..", "surface", "tests", "fixtures")
+
+
+def _caught(f):
+    with warnings.catch_warnings(record=True) as rec:
+        warnings.simplefilter("always")
+        out = f()
+    return out, [str(w.message) for w in rec], rec
+
+
+def test_load_warns_what_the_reader_found_once():
+    gwy = os.path.join(SURFACE_FIXTURES, "gwyfile_two_channels.gwy")
+    s, said, rec = _caught(lambda: surface.load(gwy, pixel_size_nm=10))
+    assert any("--pixel-size 10 nm ignored" in m for m in said), said
+    assert rec[0].filename == __file__
+    # info() gives its own warnings, not the reader's again.
+    _, again, _ = _caught(lambda: s.level("plane").info())
+    assert not any("--pixel-size 10 nm ignored" in m for m in again), again
+
+
+def test_a_black_map_says_so():
+    # A 65 µm window's lobes are narrower than a 16² map's pixels: no pixel sees light (the CLI's warning).
+    xyz, said, _ = _caught(
+        lambda: diffraction.brdf_map("builtin:sine?size=8um&pixel=50nm", method="reference", size=16))
+    assert float(abs(xyz).max()) < 1e-20
+    assert any(m.startswith("the map is black: no light reaches these view directions") for m in said), said
+    assert not any("exposure stays" in m for m in said), said
