@@ -35,3 +35,13 @@ def test_a_black_map_says_so():
     assert float(abs(xyz).max()) < 1e-20
     assert any(m.startswith("the map is black: no light reaches these view directions") for m in said), said
     assert not any("exposure stays" in m for m in said), said
+
+
+def test_grating_defaults_are_the_clis():
+    # `iridis grating SURFACE` lights it at normal incidence at 550 nm; so does grating(source) alone.
+    g = diffraction.grating("builtin:sine?size=1100nm&pixel=10nm")
+    orders = g["orders"]
+    assert {o["wavelength_nm"] for o in orders} == {550.0}
+    # Normal light on the 1100 nm period: orders ±1 leave at asin(550/1100) = 30° (the grating equation).
+    first = [o for o in orders if abs(o["m"]) == 1 and o["n"] == 0]
+    assert len(first) == 2 and all(abs(o["theta_deg"] - 30.0) < 1e-9 for o in first), first

@@ -188,7 +188,7 @@ def brdf_map_of(spec, incidence=(0.0, 0.0), size=256, method="reference", level=
 
 
 @keywords
-def grating(source, light, wavelengths_nm, method=None, material=None, fresnel=None,
+def grating(source, light=0.0, wavelengths_nm=550.0, method=None, material=None, fresnel=None,
             normalisation=None, detector=None, acceptance=None, compare=False, orders_above=None, **options):
     """Order efficiencies of ``source`` taken as one unit cell of a grating (its extent is the period), as
     ``iridis grating --json``: a dict with ``orders`` (every propagating order at every wavelength: ``m``,
@@ -196,7 +196,8 @@ def grating(source, light, wavelengths_nm, method=None, material=None, fresnel=N
     incident power), ``reflected_total`` per wavelength, ``detector`` (the orders inside the acceptance cone,
     when ``detector`` is given), ``convergence`` and the model's assumptions.
 
-    ``light`` and ``detector`` are ``θ`` or ``(θ, φ)`` in radians; ``wavelengths_nm`` a number or a sequence;
+    ``light`` and ``detector`` are ``θ`` or ``(θ, φ)`` in radians (``light`` default 0: normal incidence, as the
+    CLI's ``--light``); ``wavelengths_nm`` a number or a sequence (default 550, as ``--wavelength``);
     ``material`` the medium under the relief as a stack writes it (``"gold"``, ``"n=1.5"``, ``"n=0.2+3.4i"``;
     default n = 1.5) or ``fresnel`` any Fresnel source (``"schlick:1.5"``); ``normalisation`` the scalar model's,
     ``"energy"`` (the default: energy and reciprocity exact) or ``"kirchhoff"`` (the obliquity factor as printed;

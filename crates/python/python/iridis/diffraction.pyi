@@ -67,8 +67,8 @@ def brdf_map_of(
 ) -> npt.NDArray[np.float64]: ...
 def grating(
     source: Source,
-    light: Direction,
-    wavelengths_nm: Union[float, Sequence[float]],
+    light: Direction = ...,
+    wavelengths_nm: Union[float, Sequence[float]] = ...,
     method: Optional[str] = ...,
     material: Optional[str] = ...,
     fresnel: Optional[str] = ...,
