@@ -76,7 +76,7 @@ fn brdf_eval<'py>(
     light: (f64, f64),
     view: (f64, f64),
     options: Option<Bound<'py, PyDict>>,
-) -> PyResult<Bound<'py, PyAny>> {
+) -> PyResult<(Bound<'py, PyAny>, String)> {
     let (light, view) = (above("light", light)?, above("view", view)?);
     let mut o = Options::new(options);
     let (fresnel, convention, shadowing) = o.shading_text()?;
@@ -95,8 +95,11 @@ fn brdf_eval<'py>(
         relative: false,
     };
     o.finish()?;
-    let value = run(py, |rep| eval(&r, None, rep)?.to_json())?;
-    json_to_py(py, &value)
+    let (value, text) = run(py, |rep| {
+        let e = eval(&r, None, rep)?;
+        Ok((e.to_json()?, e.text()))
+    })?;
+    Ok((json_to_py(py, &value)?, text))
 }
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {

@@ -297,7 +297,7 @@ fn grating<'py>(
     light: (f64, f64),
     wavelengths_nm: Vec<f64>,
     options: Option<Bound<'py, PyDict>>,
-) -> PyResult<Bound<'py, PyAny>> {
+) -> PyResult<(Bound<'py, PyAny>, String)> {
     use iridis_api::grating::{Detector, GratingOptions};
     let wi = direction_of("light", light)?;
     let mut o = Options::new(options);
@@ -338,11 +338,21 @@ fn grating<'py>(
             orders_above,
         };
         if !compare {
-            return Ok(iridis_api::grating::grating(&source, &surface, &opts, r)?.to_json());
+            let g = iridis_api::grating::grating(&source, &surface, &opts, r)?;
+            // The detector as the CLI's --detector writes it, for the text's line that names it.
+            let named = detector.map(|d| {
+                let deg = |x: f64| iridis_color::spectrum::short_number(x.to_degrees());
+                let (t, p) = (d.direction[2].clamp(-1.0, 1.0).acos(), d.direction[1].atan2(d.direction[0]));
+                format!("{}deg,{}deg", deg(t), deg(p.rem_euclid(std::f64::consts::TAU)))
+            });
+            let acceptance = detector.map_or(0.0, |d| d.acceptance_rad);
+            let text = iridis_api::grating_run::grating_text(&g, light, named.as_deref(), acceptance);
+            return Ok((g.to_json(), text));
         }
-        Ok(iridis_api::grating_run::compare(&source, &surface, &opts, r)?.to_json())
+        let c = iridis_api::grating_run::compare(&source, &surface, &opts, r)?;
+        Ok((c.to_json(), c.text()))
     })?;
-    json_to_py(py, &value)
+    Ok((json_to_py(py, &value.0)?, value.1))
 }
 
 /// How an animal sees a surface from several directions, as `iridis brdf vision --json` (a dict).
@@ -358,7 +368,7 @@ fn brdf_vision<'py>(
     azimuth: Option<f64>,
     illuminant: Option<String>,
     options: Option<Bound<'py, PyDict>>,
-) -> PyResult<Bound<'py, PyAny>> {
+) -> PyResult<(Bound<'py, PyAny>, String)> {
     let eo = Options::read(options, EvalOptions::read)?;
     let source = match input_of(source)? {
         Input::Field(s) => s,
@@ -372,7 +382,7 @@ fn brdf_vision<'py>(
         let plane = iridis_api::vision::PlaneViews { light_theta, azimuth, views_deg: &views_deg, spec: &spec };
         iridis_api::brdf_vision::brdf_vision(&source, &eo.surface, &eo.model, eo.shading()?, plane, None, r)
     })?;
-    json_to_py(py, &v.to_json())
+    Ok((json_to_py(py, &v.to_json())?, iridis_api::brdf_vision::vision_text(&v)))
 }
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {

@@ -60,10 +60,10 @@ fn method(s: &str) -> PyResult<Method> {
 
 /// What `_testbench` returns: the `--json` text, the reflectance matrix, its wavelengths and angles.
 type BenchArrays<'py> =
-    (String, Bound<'py, numpy::PyArray2<f64>>, Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
+    (String, String, Bound<'py, numpy::PyArray2<f64>>, Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
 
-/// The test bench: returns `(json, matrix, wavelengths_nm, angles_deg)` — `json` as `iridis testbench --json`
-/// prints it, `matrix` the reflectance over (λ, θ_r).
+/// The test bench: returns `(json, text, matrix, wavelengths_nm, angles_deg)` — `json` as `iridis testbench
+/// --json` prints it, `text` as it prints without, `matrix` the reflectance over (λ, θ_r).
 #[pyfunction]
 #[pyo3(signature = (surface, method_name, incidence, azimuth, order, wavelengths, angles_deg, period_nm=None, max_period_nm=None, options=None))]
 fn _testbench<'py>(
@@ -103,12 +103,13 @@ fn _testbench<'py>(
         plot: None,
     };
     let tb = facade_run(py, |r| run::testbench_run(&source, &lab, &req, r))?;
-    let (j, t) = (tb.to_json(), &tb.bench);
+    let (j, t, text) = (tb.to_json(), &tb.bench, tb.text());
     let m = &t.matrix;
     let matrix = Array2::from_shape_vec((m.wavelengths_nm.len(), m.angles_deg.len()), m.values.clone())
         .map_err(|e| value_error(format!("reflectance matrix: {e}")))?;
     Ok((
         j.to_string(),
+        text,
         matrix.into_pyarray(py),
         PyArray1::from_vec(py, m.wavelengths_nm.clone()),
         PyArray1::from_vec(py, m.angles_deg.clone()),
@@ -135,7 +136,7 @@ fn _compare<'py>(
     table: Option<String>,
     options: Option<Bound<'py, PyDict>>,
     gpu: bool,
-) -> PyResult<(String, Bound<'py, PyDict>)> {
+) -> PyResult<(String, String, Bound<'py, PyDict>)> {
     let methods = methods.iter().map(|m| method(m)).collect::<PyResult<Vec<_>>>()?;
     if methods.is_empty() {
         return Err(value_error("methods: give at least one method"));
@@ -164,18 +165,18 @@ fn _compare<'py>(
         gpu,
         maps: None,
     };
-    let (json, images) = facade_run(py, |r| {
+    let (json, text, images) = facade_run(py, |r| {
         let c = run::compare_run(&source, &lab, &req, r)?;
-        let j = c.to_json();
+        let (j, text) = (c.to_json(), c.text());
         let mut images: Vec<(String, Vec<Option<iridis_color::Xyz>>)> = c.comparison.images;
         images.extend(c.comparison.truths.into_iter().map(|(m, img)| (m.name().to_string(), img)));
-        Ok((j.to_string(), images))
+        Ok((j.to_string(), text, images))
     })?;
     let maps = PyDict::new(py);
     for (name, img) in images {
         maps.set_item(&name, xyz_array(py, &img, size, &format!("map {name}"))?)?;
     }
-    Ok((json, maps))
+    Ok((json, text, maps))
 }
 
 /// A convergence sweep (`iridis sweep`): writes the contact sheet to `output` (and the error plot to `plot`,
@@ -200,7 +201,7 @@ fn _sweep<'py>(
     plot: Option<std::path::PathBuf>,
     options: Option<Bound<'py, PyDict>>,
     gpu: bool,
-) -> PyResult<String> {
+) -> PyResult<(String, String)> {
     let req = run::SweepRequest {
         method: self::method(method)?,
         param: param.parse().map_err(value_error)?,
@@ -216,7 +217,12 @@ fn _sweep<'py>(
         plot,
     };
     let (source, lab) = source_and_lab(surface, options)?;
-    facade_run(py, |r| with_outputs(|| Ok(run::sweep_run(&source, &lab, &req, r)?.to_json().to_string())))
+    facade_run(py, |r| {
+        with_outputs(|| {
+            let w = run::sweep_run(&source, &lab, &req, r)?;
+            Ok((w.to_json().to_string(), w.text()))
+        })
+    })
 }
 
 /// The laser experiment (`iridis experiment laser`): writes the screen image(s) and returns `(json, xyz)` —
@@ -244,7 +250,7 @@ fn _laser<'py>(
     table: Option<std::path::PathBuf>,
     save_table: Option<std::path::PathBuf>,
     options: Option<Bound<'py, PyDict>>,
-) -> PyResult<(String, Bound<'py, numpy::PyArray3<f64>>)> {
+) -> PyResult<(String, String, Bound<'py, numpy::PyArray3<f64>>)> {
     let req = run::LaserRequest {
         method: self::method(method)?,
         setup: iridis_lab::laser::LaserSetup {
@@ -269,7 +275,7 @@ fn _laser<'py>(
     };
     let (source, lab) = source_and_lab(surface, options)?;
     let l = facade_run(py, |r| with_outputs(|| run::laser_run(&source, &lab, &req, r)))?;
-    Ok((l.to_json().to_string(), xyz_array(py, &l.image, size, "screen")?))
+    Ok((l.to_json().to_string(), l.text(), xyz_array(py, &l.image, size, "screen")?))
 }
 
 /// A square picture of `size`² colours as XYZ of shape (size, size, 3), NaN where there is none.

@@ -45,3 +45,21 @@ def test_grating_defaults_are_the_clis():
     # Normal light on the 1100 nm period: orders ±1 leave at asin(550/1100) = 30° (the grating equation).
     first = [o for o in orders if abs(o["m"]) == 1 and o["n"] == 0]
     assert len(first) == 2 and all(abs(o["theta_deg"] - 30.0) < 1e-9 for o in first), first
+
+
+def test_answers_carry_the_commands_text():
+    # docs/python.md: the answer has `.text`, what the CLI prints, where the command prints one (these returned
+    # plain dicts).
+    import math
+
+    import iridis.lab as lab
+
+    g = diffraction.grating("builtin:sine?size=1100nm&pixel=10nm", detector_theta=math.radians(30),
+                            acceptance=math.radians(2))
+    assert "efficiencies in % of the incident power" in g.text and "λ = 550 nm" in g.text, g.text
+    assert "detector (30deg,0deg, ±2.00°)" in g.text, g.text
+    e = diffraction.brdf_eval("builtin:sine?size=1100nm&pixel=10nm", 0.0, (math.radians(30), 0.0))
+    assert "(of ρ under D65, CIE 1931 observer; a normal-incidence mirror: Y = 1)" in e.text, e.text
+    t = lab.testbench("builtin:blazed?size=10um&pixel=50nm", wavelengths=(450.0, 650.0, 100.0),
+                      angles_deg=(-89.0, 89.0, 0.5))
+    assert t.text.splitlines()[1].startswith("periodicity  mean ") and "nm ±" in t.text, t.text

@@ -30,7 +30,7 @@ import os
 
 from . import _native
 from ._gpu import ensure_gpu_environment
-from ._answer import count, flag, keywords, whole
+from ._answer import Answer, count, flag, keywords, whole
 from .surface import Surface
 
 __all__ = ["testbench", "compare", "sweep", "laser", "METHODS"]
@@ -73,11 +73,11 @@ def testbench(surface, method="reference", incidence=math.radians(75.0), azimuth
     (the reflectance over ``wavelength_nm`` × ``angle_deg``) besides. Why a period is not definite is a Python
     warning, as the CLI's.
     """
-    out, matrix, wl, ang = _native._testbench(
+    out, text, matrix, wl, ang = _native._testbench(
         _surface(surface), str(method), float(incidence), None if azimuth is None else float(azimuth),
         whole(order, "order"),
         _triple(wavelengths, "wavelengths"), _triple(angles_deg, "angles_deg"), period_nm, max_period_nm, options)
-    result = json.loads(out)
+    result = _with_text(out, text)
     result.update(matrix=matrix, wavelength_nm=wl, angle_deg=ang)
     return result
 
@@ -100,11 +100,11 @@ def compare(surface, methods=("lookup", "reference", "stam-periodic", "stam-gaus
     theta, phi = _incidence(incidence)
     if gpu:
         ensure_gpu_environment()
-    out, maps = _native._compare(
+    out, text, maps = _native._compare(
         _surface(surface), [str(m).strip() for m in methods], str(against), [float(e) for e in exposures], theta,
         phi, count(size, "size"), float(step_nm), str(illuminant), _opt(uv_resolution, int), _opt(uv_power, float),
         None if table is None else os.fspath(table), options, flag(gpu, "gpu"))
-    result = json.loads(out)
+    result = _with_text(out, text)
     result["maps"] = maps
     return result
 
@@ -126,12 +126,12 @@ def sweep(surface, param, values, output, method="reference", against="model", e
     theta, phi = _incidence(incidence)
     if gpu:
         ensure_gpu_environment()
-    out = _native._sweep(_surface(surface), str(param), [float(v) for v in values], os.fspath(output), str(method),
+    out, text = _native._sweep(_surface(surface), str(param), [float(v) for v in values], os.fspath(output), str(method),
                          str(against), [float(e) for e in exposures], theta, phi, count(size, "size"),
                          _opt(step_nm, float),
                          _opt(uv_resolution, int), _opt(uv_power, float), None if plot is None else os.fspath(plot),
                          options, flag(gpu, "gpu"))
-    return json.loads(out)
+    return _with_text(out, text)
 
 
 @keywords
@@ -145,14 +145,22 @@ def laser(surface, output, method="reference", incidence=math.radians(45.0), azi
     --json``'s dict with ``xyz`` besides: the screen as XYZ of shape ``(size, size, 3)``. ``uv_resolution`` and
     ``uv_power`` shape the lookup table built for the beam (``method="lookup"``; with another method they raise
     ValueError: they would be ignored)."""
-    out, xyz = _native._laser(
+    out, text, xyz = _native._laser(
         _surface(surface), os.fspath(output), str(method), float(incidence), float(azimuth), float(aperture_nm),
         float(distance_nm), float(screen_nm), count(size, "size"), count(subsamples, "subsamples"),
         None if spectrum is None else os.fspath(spectrum), str(coating), [float(e) for e in exposures],
         float(step_nm), _opt(uv_resolution, int), _opt(uv_power, float), None if table is None else os.fspath(table),
         None if save_table is None else os.fspath(save_table), options)
-    result = json.loads(out)
+    result = _with_text(out, text)
     result["xyz"] = xyz
+    return result
+
+
+def _with_text(out, text):
+    """The command's ``--json`` answer as an :class:`~iridis._answer.Answer` with ``.text``, what it prints
+    without ``--json``."""
+    result = Answer(json.loads(out))
+    result.text = text
     return result
 
 
