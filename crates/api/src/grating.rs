@@ -898,9 +898,13 @@ pub fn diffracts_visible_light(longest_period_nm: Option<f64>, diffracted_shares
 /// The coherence length (nm) for BRDF maps of a scan of extent `extent_nm` whose strongest period is
 /// `strongest_period_nm`: under the light's 65 µm a smaller scan shows the discrete orders of its periodic
 /// extension, narrower than a pixel; half the scan's shorter side, never under four of its strongest periods
-/// (a strip of a grating keeps its orders), lets each pixel see the scan's spectrum. `None`: the light's own.
-pub fn map_coherence_nm(extent_nm: [f64; 2], strongest_period_nm: f64) -> Option<f64> {
-    let c = (0.5 * extent_nm[0].min(extent_nm[1])).max(4.0 * strongest_period_nm);
+/// (a strip of a grating keeps its orders), lets each pixel see the scan's spectrum, and never under what the
+/// pixels carry (`4·max(dx, dy)`: a 3 × 3-sample scan had the report pick 120 nm and then refuse it). `None`: the
+/// light's own.
+pub fn map_coherence_nm(extent_nm: [f64; 2], strongest_period_nm: f64, pixel_nm: [f64; 2]) -> Option<f64> {
+    let c = (0.5 * extent_nm[0].min(extent_nm[1]))
+        .max(4.0 * strongest_period_nm)
+        .max(iridis_diffraction::patch::min_coherence_nm(pixel_nm[0], pixel_nm[1]));
     (c < iridis_diffraction::DEFAULT_COHERENCE_NM).then_some(c)
 }
 

@@ -300,9 +300,9 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
     let mut vision: Option<Value> = None;
     let mut scalar_failure: Option<String> = None;
     let map_coherence = o.coherence.clone().or_else(|| {
-        let e = &info["extent_nm"];
+        let (e, px) = (&info["extent_nm"], &info["pixel_size_nm"]);
         let period = info["peaks"][0]["period_nm"].as_f64().unwrap_or(0.0);
-        crate::grating::map_coherence_nm([e[0].as_f64()?, e[1].as_f64()?], period)
+        crate::grating::map_coherence_nm([e[0].as_f64()?, e[1].as_f64()?], period, [px[0].as_f64()?, px[1].as_f64()?])
             .map(|c| format!("{:.3}um", c / 1000.0))
     });
     if diffracts {

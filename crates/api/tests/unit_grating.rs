@@ -48,3 +48,15 @@ fn a_period_that_does_not_tile_the_cell_spreads_its_orders_by_sinc_squared() {
     let (_, _, diagonal) = period_fit((3000.0, 3000.0), 1000.0 * 2f64.sqrt(), 45.0);
     assert!((diagonal - (4.0 / std::f64::consts::PI.powi(2)).powi(2)).abs() < 1e-9, "{diagonal}");
 }
+
+/// The report's map coherence: half the scan's shorter side, at least four of its strongest periods and at least
+/// what its pixels carry (4 × the coarser pixel) — a 3 × 3-sample scan of 100 nm pixels had 150 nm chosen and then
+/// refused ("shorter than this scan's 100 nm pixels carry"); none for a scan larger than twice the light's 65 µm.
+#[test]
+fn the_reports_map_coherence_respects_the_pixels() {
+    use iridis_api::grating::map_coherence_nm;
+    assert_eq!(map_coherence_nm([300.0, 300.0], 0.0, [100.0, 100.0]), Some(400.0));
+    assert_eq!(map_coherence_nm([10_000.0, 8_000.0], 1100.0, [50.0, 50.0]), Some(4_400.0));
+    assert_eq!(map_coherence_nm([20_000.0, 20_000.0], 1100.0, [50.0, 50.0]), Some(10_000.0));
+    assert_eq!(map_coherence_nm([200_000.0, 200_000.0], 1100.0, [50.0, 50.0]), None);
+}
