@@ -137,6 +137,8 @@ pub fn info_text(r: &Value) -> String {
                 if p["read_off"] == "grid" { "   (read off the DFT grid)" } else { "" }
             );
         }
+        s += "             (± the peak's resolution on the spectrum, not an accuracy: the window and neighbouring \
+              peaks can shift it more)\n";
     }
     for n in r["notes"].as_array().into_iter().flatten() {
         let _ = writeln!(s, "note         {}", n.as_str().unwrap_or(""));

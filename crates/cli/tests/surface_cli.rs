@@ -945,3 +945,15 @@ fn implausible_units_are_said() {
     let err = warned(&["surface", "info", &fixture("numpy_f64.npy")]);
     assert!(!err.contains("picometre") && !err.contains("replaces") && !err.contains("pixels of"), "{err}");
 }
+
+/// A random surface's strongest peak holds about 1 % of the height variance: a note says it has no dominant
+/// period (five "periods" were listed without a word), and the ± of the listed periods says what it is.
+#[test]
+fn a_random_surface_has_no_dominant_period() {
+    let out = ok(&["surface", "info", "builtin:gaussian?size=20um&pixel=50nm"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("note         no dominant period: the strongest peak holds"), "{text}");
+    assert!(text.contains("(± the peak's resolution on the spectrum, not an accuracy"), "{text}");
+    let out = ok(&["surface", "info", "builtin:elaphe?size=20um&pixel=50nm"]);
+    assert!(!String::from_utf8_lossy(&out.stdout).contains("no dominant period"));
+}
