@@ -522,7 +522,9 @@ fn figure_caption(file: &str) -> &'static str {
         "acf.png" => "Autocorrelation of the heights: its repeats are the periods, its fall-off the correlation length.",
         "brdf_0deg_plot.png" | "brdf_45deg_plot.png" => {
             "The colour reflected into each view direction (x = sin θr cos φr, y = sin θr sin φr; the disk is the \
-             hemisphere) under D65, exposed so that the 99th percentile of the lit pixels is white (the brightest 1 % clip)."
+             hemisphere) under D65, exposed so that the 99th percentile of the lit pixels is white (the brightest 1 % clip); \
+             the exposure in the title is in RU, where 1 RU shows a normal-incidence perfect mirror under the light \
+             as just white."
         }
         "vision.png" => "The colours of the strongest period's plane of incidence, as the animal named above sees them.",
         "testbench.png" => "The test bench: reflected intensity against the view angle; the first order's peak gives the period.",

@@ -411,5 +411,8 @@ fn a_reports_levelling_is_its_model_steps() {
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(format!("{out}/report.json")).unwrap()).unwrap();
     assert_eq!(json["level"], "none", "{}", json["level"]);
-    assert!(std::fs::read_to_string(format!("{out}/index.html")).unwrap().contains("levelling: none."));
+    let html = std::fs::read_to_string(format!("{out}/index.html")).unwrap();
+    assert!(html.contains("levelling: none."));
+    // The maps' exposures are in RU, which the report now defines where it shows them.
+    assert!(html.contains("1 RU shows a normal-incidence perfect mirror under the light as just white"));
 }
