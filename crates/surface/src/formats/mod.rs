@@ -383,6 +383,43 @@ pub fn list_channels(bytes: &[u8], name: &str) -> Result<Vec<channel::ChannelInf
 /// The end of every instrument reader: the channel's values (in its stored unit) become nm, non-finite
 /// samples (unscanned or saturated lines) are reported and filled with the mean, and the pixel size comes
 /// from the file unless a sidecar or the options say otherwise.
+/// Fills the samples of a row-major `rows × cols` field that are not finite (NaN lines of an aborted scan) with the
+/// mean of the others, and says so as an instrument channel's are said ([`finish_channel`]); a field with no finite
+/// sample is refused. `what` names it in messages.
+pub(crate) fn fill_non_finite(
+    values: &mut [f64],
+    rows: usize,
+    cols: usize,
+    what: &str,
+    warnings: &mut Vec<String>,
+) -> Result<(), SurfaceError> {
+    let nan: Vec<usize> = (0..values.len()).filter(|&i| !values[i].is_finite()).collect();
+    if nan.is_empty() {
+        return Ok(());
+    }
+    if nan.len() == values.len() {
+        return Err(SurfaceError::invalid(format!("{what} holds no finite value (an empty or aborted scan)")));
+    }
+    let mut r: Vec<usize> = nan.iter().map(|i| i / cols).collect();
+    r.dedup();
+    warnings.push(format!(
+        "{} of {} samples are not numbers (NaN/inf: an unfinished or saturated scan), in {} of {rows} rows (first \
+         row {}, last row {}); they are filled with the mean height so levelling and spectra work around them — \
+         crop them away (surface convert --crop) for clean results",
+        nan.len(),
+        values.len(),
+        r.len(),
+        r[0],
+        r[r.len() - 1]
+    ));
+    let good: Vec<f64> = values.iter().copied().filter(|v| v.is_finite()).collect();
+    let mean = good.iter().sum::<f64>() / good.len() as f64;
+    for i in nan {
+        values[i] = mean;
+    }
+    Ok(())
+}
+
 pub(crate) fn finish_channel(
     mut values: Vec<f64>,
     list: &[channel::ChannelInfo],

@@ -83,6 +83,8 @@ pub fn read(bytes: &[u8], side: Option<&Sidecar>, opts: &LoadOptions) -> Result<
             heights[r * cols + c] = v * scale;
         }
     }
+    // NaN lines (an aborted scan saved by a script) are filled and said, as an instrument file's are.
+    super::fill_non_finite(&mut heights, rows, cols, "the .npy array", &mut warnings)?;
     let ((dx, dy), _) = super::pick_pixel(None, side, opts, "a .npy array")?;
     let hf = HeightField::new(rows, cols, dx, dy, heights)?;
     let mut meta = hf.meta.clone();
