@@ -363,7 +363,9 @@ fn a_thin_film_fresnel_changes_the_colour_schlick_keeps_the_illuminant() {
     );
 }
 
-/// An .npz with several 2-D arrays: brdf-map picks one with --channel, and without it the refusal lists them.
+/// An .npz with several 2-D arrays ('amplitude' and 'height'): brdf-map picks one with --channel; without it, the
+/// array named height, as `surface channels` says ("without --channel, commands read channel 1"; the archive was
+/// refused), with a note; --channel 0 reads the amplitude as asked, with a warning that it is not a height.
 #[test]
 fn brdf_map_reads_one_array_of_a_multi_array_npz() {
     let dir = tempfile::tempdir().unwrap();
@@ -372,7 +374,16 @@ fn brdf_map_reads_one_array_of_a_multi_array_npz() {
     let out = iridis(&["brdf-map", npz, "--channel", "1", "--pixel-size", "50nm", "--size", "16", "-o", &png]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     assert!(std::path::Path::new(&png).exists());
-    assert_fails(&["brdf-map", npz, "--pixel-size", "50nm", "--size", "16", "-o", &png], &["--channel"]);
+    let info = |extra: &[&str]| {
+        let out = iridis(&[&["surface", "info", npz, "--pixel-size", "50nm"][..], extra].concat());
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        (String::from_utf8_lossy(&out.stdout).into_owned(), String::from_utf8_lossy(&out.stderr).into_owned())
+    };
+    let (text, err) = info(&[]);
+    assert!(text.contains("array 'height' of the archive's 2 2-D arrays: the channel named Height"), "{text}");
+    assert!(!err.contains("not a height") && !err.contains("another signal"), "{err}");
+    let (_, err) = info(&["--channel", "0"]);
+    assert!(err.contains("array 'amplitude' is named as another signal than a height"), "{err}");
 }
 
 /// Issue 14: point queries. A 1100 nm sine grating lit at normal incidence, seen at 30°: the grating equation

@@ -63,4 +63,19 @@ fn several_arrays_need_a_channel_and_the_message_lists_them() {
     let only_1d = archive(&[("x.npy", npy_bytes(1, 5, &[0.0; 5]))], zip::CompressionMethod::Stored);
     assert!(read(&only_1d, None, &opts(None)).unwrap_err().to_string().contains("no 2-D array"));
     assert!(read(&z[..z.len() / 2], None, &opts(None)).is_err());
+    // One named height among them is read without --channel, as `surface channels` says, with a note; none named
+    // height is refused (above: "none named height").
+    assert!(e_none_named(&z).contains("none named height"));
+    let h = npy_bytes(2, 3, &[1.0, 2.0, 3.0, 4.0, 5.0, 7.0]);
+    let z =
+        archive(&[("amplitude.npy", npy_bytes(2, 2, &[0.0; 4])), ("height.npy", h)], zip::CompressionMethod::Stored);
+    let hf = read(&z, None, &opts(None)).unwrap();
+    assert_eq!(hf.cols, 3);
+    assert!(hf.meta.notes.iter().any(|n| n.contains("array 'height' of the archive's 2 2-D arrays")), "{:?}", hf.meta);
+    let amp = read(&z, None, &opts(Some(0))).unwrap();
+    assert!(amp.meta.warnings.iter().any(|w| w.contains("array 'amplitude' is named as another signal")), "{amp:?}");
+}
+
+fn e_none_named(z: &[u8]) -> String {
+    read(z, None, &opts(None)).unwrap_err().to_string()
 }

@@ -178,7 +178,7 @@ fn heightish(c: &ChannelInfo) -> bool {
 }
 
 /// The default channel and the rule that chose it; `None` when no channel is a height.
-fn default_rule(list: &[ChannelInfo]) -> Option<(usize, &'static str)> {
+pub(crate) fn default_rule(list: &[ChannelInfo]) -> Option<(usize, &'static str)> {
     let named_height = |c: &ChannelInfo| norm(&c.name) == "height" && c.is_height();
     if let Some(i) = list.iter().position(named_height) {
         return Some((i, "the channel named Height, as AFMReader and TopoStats read it"));

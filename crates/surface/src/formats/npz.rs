@@ -92,6 +92,7 @@ pub fn read(bytes: &[u8], side: Option<&Sidecar>, opts: &LoadOptions) -> Result<
     let mut zip = zip::ZipArchive::new(Cursor::new(bytes)).map_err(|e| bad(format!("zip archive: {e}")))?;
     let all = entries(&mut zip)?;
     let arrays: Vec<&Entry> = all.iter().filter(|e| e.is_2d()).collect();
+    let mut picked_by_rule = None;
     let listing = || arrays.iter().enumerate().map(|(i, e)| format!("{i}: {}", e.describe())).collect::<Vec<_>>();
     let chosen = match (arrays.len(), opts.channel.as_ref()) {
         (0, _) => {
@@ -112,12 +113,20 @@ pub fn read(bytes: &[u8], side: Option<&Sidecar>, opts: &LoadOptions) -> Result<
                 bad(format!("--channel {n}: no such array; the archive's 2-D arrays are {}", listing().join(", ")))
             })?
         }
-        (_, None) => {
-            return Err(bad(format!(
-                "the archive holds several 2-D arrays ({}); pick one with --channel N",
-                listing().join(", ")
-            )))
-        }
+        // As `surface channels` says it: the array named as a height, where there is one (the archive was refused
+        // while the listing said "without --channel, commands read channel 1").
+        (_, None) => match super::channel::default_rule(&infos_of(&arrays)) {
+            Some((i, why)) => {
+                picked_by_rule = Some(why);
+                arrays[i]
+            }
+            None => {
+                return Err(bad(format!(
+                    "the archive holds several 2-D arrays ({}) and none named height; pick one with --channel N",
+                    listing().join(", ")
+                )))
+            }
+        },
     };
     if chosen.data_bytes > super::MAX_FILE_BYTES {
         return Err(bad(format!(
@@ -133,17 +142,27 @@ pub fn read(bytes: &[u8], side: Option<&Sidecar>, opts: &LoadOptions) -> Result<
         SurfaceError::Invalid(m) => bad(format!("array {name}: {m}")),
         other => other,
     })?;
-    hf.meta.notes.push(format!("array '{name}' of the archive"));
+    // An array `surface channels` marks "(not a height)" read because --channel named it: said, not silent.
+    let pos = arrays.iter().position(|e| std::ptr::eq(*e, chosen)).unwrap_or(0);
+    if picked_by_rule.is_none() && arrays.len() > 1 && !infos_of(&arrays)[pos].is_height() {
+        hf.meta.warnings.push(format!(
+            "array '{name}' is named as another signal than a height, and is read as heights (nm unless a unit is \
+             given) because --channel chose it"
+        ));
+    }
+    hf.meta.notes.push(match picked_by_rule {
+        Some(why) => {
+            format!("array '{name}' of the archive's {} 2-D arrays: {why} (--channel picks another)", arrays.len())
+        }
+        None => format!("array '{name}' of the archive"),
+    });
     Ok(hf)
 }
 
-/// The archive's 2-D arrays, in name order.
-pub fn channels(bytes: &[u8]) -> Result<Vec<ChannelInfo>, SurfaceError> {
-    let mut zip = zip::ZipArchive::new(Cursor::new(bytes)).map_err(|e| bad(format!("zip archive: {e}")))?;
-    let all = entries(&mut zip)?;
-    Ok(all
+/// The 2-D arrays as channels, in the archive's order (what `surface channels` lists).
+fn infos_of(arrays: &[&Entry]) -> Vec<ChannelInfo> {
+    arrays
         .iter()
-        .filter(|e| e.is_2d())
         .enumerate()
         .map(|(i, e)| ChannelInfo {
             index: i as u32,
@@ -154,7 +173,14 @@ pub fn channels(bytes: &[u8]) -> Result<Vec<ChannelInfo>, SurfaceError> {
             direction: String::new(),
             alias: String::new(),
         })
-        .collect())
+        .collect()
+}
+
+/// The archive's 2-D arrays, in name order.
+pub fn channels(bytes: &[u8]) -> Result<Vec<ChannelInfo>, SurfaceError> {
+    let mut zip = zip::ZipArchive::new(Cursor::new(bytes)).map_err(|e| bad(format!("zip archive: {e}")))?;
+    let all = entries(&mut zip)?;
+    Ok(infos_of(&all.iter().filter(|e| e.is_2d()).collect::<Vec<_>>()))
 }
 
 /// Writes an archive as `np.savez(f, heights=h)` does: one stored member `heights.npy` (`<f8`, C order, nm).
