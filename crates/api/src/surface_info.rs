@@ -380,11 +380,11 @@ pub fn generate(kind: &str, params: &[(String, String)]) -> Result<HeightField> 
 pub fn generated_text(hf: &HeightField, kind: &str, path: &Path) -> String {
     let (ex, ey) = hf.extent_nm();
     format!(
-        "wrote {}: {} {}×{} samples, {:.3}×{:.3} µm at {} nm/pixel, rms {:.2} nm\n",
+        "wrote {}: {} {} × {} samples (x × y), {:.3} × {:.3} µm at {} nm/pixel, rms {:.2} nm\n",
         path.display(),
         kind,
-        hf.rows,
         hf.cols,
+        hf.rows,
         ex / 1000.0,
         ey / 1000.0,
         hf.dx_nm,
@@ -454,7 +454,16 @@ impl Reshape {
 
 /// The line `iridis surface convert` prints about the field it wrote.
 pub fn converted_text(hf: &HeightField, path: &Path) -> String {
-    format!("wrote {}: {}×{} samples at {:.4}×{:.4} nm/pixel\n", path.display(), hf.rows, hf.cols, hf.dx_nm, hf.dy_nm)
+    // x before y throughout, as `surface channels`, `info` and the report give sizes (this printed rows × cols
+    // beside dx × dy: "48×64 samples at 100×80 nm").
+    format!(
+        "wrote {}: {} × {} samples (x × y) at {:.4} × {:.4} nm/pixel (x × y)\n",
+        path.display(),
+        hf.cols,
+        hf.rows,
+        hf.dx_nm,
+        hf.dy_nm
+    )
 }
 
 // ---------------------------------------------------------------------------------------------------------

@@ -921,7 +921,10 @@ fn convert_refuses_to_overwrite_its_input() {
     assert_eq!(std::fs::read(&gwy).unwrap(), before);
     // A .npy and its own sidecar: the same.
     let npy = dir.path().join("h.npy");
-    ok(&["surface", "convert", g, npy.to_str().unwrap()]);
+    let said = ok(&["surface", "convert", g, npy.to_str().unwrap()]);
+    // Sizes x before y, as channels, info and the report give them (it printed rows × cols beside dx × dy).
+    let said = String::from_utf8_lossy(&said.stdout);
+    assert!(said.contains("64 × 48 samples (x × y) at 100.0000 × 80.0000 nm/pixel (x × y)"), "{said}");
     let n = npy.to_str().unwrap();
     crate::common::assert_fails(&["surface", "convert", n, n, "--level", "plane"], &["would overwrite"]);
     // Another name is fine.
