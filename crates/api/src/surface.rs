@@ -241,6 +241,7 @@ pub fn info(hf: &iridis_surface::HeightField, n_peaks: usize, coherence_nm: f64)
         // Which channel of a multi-channel file was read, why, and the file's height channels; null otherwise.
         "channel": hf.meta.channel,
         "peaks": peaks,
+        "peaks_asked": n_peaks,
         "roughness": roughness,
         // Annular means of the plane-levelled field's 2-D PSDF (nm⁴, against spatial frequency) and ACF (nm²,
         // against lag), bin k at k × step.

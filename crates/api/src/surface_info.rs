@@ -120,7 +120,9 @@ pub fn info_text(r: &Value) -> String {
         }
     }
     let peaks = r["peaks"].as_array().cloned().unwrap_or_default();
-    if peaks.is_empty() {
+    if r["peaks_asked"] == 0 {
+        s += "periods      not looked for (--peaks 0)\n";
+    } else if peaks.is_empty() {
         s += "periods      none found\n";
     } else {
         s += "periods      period (nm)          orientation   power (share of variance)\n";

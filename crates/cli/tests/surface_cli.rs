@@ -959,4 +959,18 @@ fn a_random_surface_has_no_dominant_period() {
     assert!(text.contains("(± the peak's resolution on the spectrum, not an accuracy"), "{text}");
     let out = ok(&["surface", "info", "builtin:elaphe?size=20um&pixel=50nm"]);
     assert!(!String::from_utf8_lossy(&out.stdout).contains("no dominant period"));
+    // --peaks 0 looks for none: said so, not "none found" (a statement about the surface).
+    let out = ok(&["surface", "info", "builtin:elaphe?size=20um&pixel=50nm", "--peaks", "0"]);
+    assert!(String::from_utf8_lossy(&out.stdout).contains("periods      not looked for (--peaks 0)"));
+}
+
+/// A .npy's heights in an assumed or given unit are a height channel to `surface channels`, as every command reads
+/// them ("nm (assumed)" was not recognised as a length, and the listing said "(not a height)").
+#[test]
+fn channels_of_a_npy_list_a_height() {
+    let out = ok(&["surface", "channels", &fixture("numpy_f32_fortran.npy"), "--json"]);
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["channels"][0]["height"], true, "{v}");
+    let out = ok(&["surface", "channels", &fixture("numpy_f32_fortran.npy")]);
+    assert!(!String::from_utf8_lossy(&out.stdout).contains("not a height"));
 }

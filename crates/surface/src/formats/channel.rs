@@ -63,7 +63,10 @@ impl ChannelInfo {
 /// nm per unit of a channel's stored values. Instrument units are SI, so `A` is the ampere of a current
 /// channel, not an ångström.
 fn length_nm(unit: &str) -> Option<f64> {
-    if unit.trim() == "A" {
+    // A unit as the readers annotate it ("nm (assumed)", "um (--height-unit)") is still that unit: a .npy's
+    // assumed nm was listed "(not a height)" while every command read it as heights.
+    let unit = unit.split(" (").next().unwrap_or(unit).trim();
+    if unit == "A" {
         None
     } else {
         super::unit_to_nm(unit)
