@@ -124,6 +124,7 @@ fn info_json_has_the_documented_keys_and_the_numpy_values() {
         "acf_radial",
         "inputs",
         "channel",
+        "peaks_asked",
     ];
     assert_eq!(keys, documented.iter().chain(&extra).copied().collect(), "{v}");
     for p in v["peaks"].as_array().unwrap() {
