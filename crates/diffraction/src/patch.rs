@@ -146,7 +146,11 @@ impl Coherence {
     /// "coherence 65 µm (the paper's default; …)": the first part of [`Coherence::note`], without what the patch
     /// becomes (for a unit cell, which is meant to repeat).
     pub fn stated(&self) -> String {
-        format!("coherence {} µm ({})", trim_um(self.nm), self.origin())
+        self.stated_as(self.origin())
+    }
+
+    fn stated_as(&self, origin: &str) -> String {
+        format!("coherence {} µm ({origin})", trim_um(self.nm))
     }
 
     fn origin(&self) -> &'static str {
@@ -160,7 +164,7 @@ impl Coherence {
     /// [`Coherence::note`] with another account of where the coherence came from (`origin`: the laser's
     /// diaphragm).
     pub fn note_as(&self, origin: &str) -> String {
-        let mut s = format!("coherence {} µm ({origin})", trim_um(self.nm));
+        let mut s = self.stated_as(origin);
         if let Some(p) = self.periodic_note() {
             s += "; ";
             s += &p;

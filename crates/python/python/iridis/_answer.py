@@ -28,6 +28,14 @@ class Answer(dict):
     image: np.ndarray | None = None
 
 
+def with_text(answer, text):
+    """A command's ``--json`` dict as an :class:`Answer` with ``.text``, what the command prints without
+    ``--json``."""
+    out = Answer(answer)
+    out.text = text
+    return out
+
+
 def file_path(x, who, arrays):
     """``x`` as a path for a function that reads a file as the CLI does (``who``); anything else is refused with
     the function ``arrays`` that takes arrays (str() of a tuple of arrays was read as a file name: "cannot read

@@ -37,7 +37,7 @@ import os
 
 from . import _native
 from ._gpu import ensure_gpu_environment
-from ._answer import Answer, count, flag, keywords
+from ._answer import count, flag, keywords, with_text
 from .surface import Surface
 
 __all__ = ["Table", "precompute", "brdf_map", "brdf_map_of", "brdf_map_run", "evaluate", "brdf_eval"]
@@ -158,7 +158,7 @@ def brdf_eval(source, light, view, method=None, **options):
     ``visual="bluetit"``, …), ``rigorous`` and ``scalar_error``. ``light``, ``view``: θ or (θ, φ) in radians."""
     if not isinstance(source, (str, os.PathLike)):
         raise TypeError(f"brdf_eval takes a SURFACE or TABLE argument (str), got {type(source).__name__}")
-    return _with_text(*_native.brdf_eval(os.fspath(source), method, _direction(light, "light"),
+    return with_text(*_native.brdf_eval(os.fspath(source), method, _direction(light, "light"),
                                          _direction(view, "view"), options))
 
 
@@ -229,7 +229,7 @@ def grating(source, light=0.0, wavelengths_nm=550.0, method=None, material=None,
     if isinstance(wavelengths_nm, (str, bytes)):  # a str would be read character by character
         raise TypeError(f"wavelengths_nm must be a number or a sequence of numbers (nm), got {wavelengths_nm!r}")
     wl = [float(w) for w in (wavelengths_nm if hasattr(wavelengths_nm, "__len__") else [wavelengths_nm])]
-    return _with_text(*_native.grating(_native_source(source), (theta, phi), wl, opts))
+    return with_text(*_native.grating(_native_source(source), (theta, phi), wl, opts))
 
 
 @keywords
@@ -245,14 +245,7 @@ def vision(source, visual, light=0.0, views_deg=(-60, -50, -40, -30, -20, -10, 0
     ``coherence_nm``, ``terms``, ``step_nm`` (the 300–700 nm grid's step, default 5; ``taylor_terms`` in the
     result says N) and ``conserve_energy`` (energy-normalised lobes, as ``brdf eval --conserve-energy``; the
     result's ``quantity`` says so), and the surface's; ``observer`` is refused, not ignored."""
-    return _with_text(*_native.brdf_vision(_native_source(source), str(visual), float(light),
+    return with_text(*_native.brdf_vision(_native_source(source), str(visual), float(light),
                                            [float(v) for v in views_deg], None if azimuth is None else float(azimuth),
                                            illuminant, options))
 
-
-def _with_text(answer, text):
-    """A command's ``--json`` dict as an :class:`~iridis._answer.Answer` with ``.text``, what it prints without
-    ``--json``."""
-    out = Answer(answer)
-    out.text = text
-    return out

@@ -30,7 +30,7 @@ import os
 
 from . import _native
 from ._gpu import ensure_gpu_environment
-from ._answer import Answer, count, flag, keywords, whole
+from ._answer import count, flag, keywords, whole, with_text
 from .surface import Surface
 
 __all__ = ["testbench", "compare", "sweep", "laser", "METHODS"]
@@ -77,7 +77,7 @@ def testbench(surface, method="reference", incidence=math.radians(75.0), azimuth
         _surface(surface), str(method), float(incidence), None if azimuth is None else float(azimuth),
         whole(order, "order"),
         _triple(wavelengths, "wavelengths"), _triple(angles_deg, "angles_deg"), period_nm, max_period_nm, options)
-    result = _with_text(out, text)
+    result = with_text(json.loads(out), text)
     result.update(matrix=matrix, wavelength_nm=wl, angle_deg=ang)
     return result
 
@@ -104,7 +104,7 @@ def compare(surface, methods=("lookup", "reference", "stam-periodic", "stam-gaus
         _surface(surface), [str(m).strip() for m in methods], str(against), [float(e) for e in exposures], theta,
         phi, count(size, "size"), float(step_nm), str(illuminant), _opt(uv_resolution, int), _opt(uv_power, float),
         None if table is None else os.fspath(table), options, flag(gpu, "gpu"))
-    result = _with_text(out, text)
+    result = with_text(json.loads(out), text)
     result["maps"] = maps
     return result
 
@@ -131,7 +131,7 @@ def sweep(surface, param, values, output, method="reference", against="model", e
                          _opt(step_nm, float),
                          _opt(uv_resolution, int), _opt(uv_power, float), None if plot is None else os.fspath(plot),
                          options, flag(gpu, "gpu"))
-    return _with_text(out, text)
+    return with_text(json.loads(out), text)
 
 
 @keywords
@@ -151,17 +151,10 @@ def laser(surface, output, method="reference", incidence=math.radians(45.0), azi
         None if spectrum is None else os.fspath(spectrum), str(coating), [float(e) for e in exposures],
         float(step_nm), _opt(uv_resolution, int), _opt(uv_power, float), None if table is None else os.fspath(table),
         None if save_table is None else os.fspath(save_table), options)
-    result = _with_text(out, text)
+    result = with_text(json.loads(out), text)
     result["xyz"] = xyz
     return result
 
-
-def _with_text(out, text):
-    """The command's ``--json`` answer as an :class:`~iridis._answer.Answer` with ``.text``, what it prints
-    without ``--json``."""
-    result = Answer(json.loads(out))
-    result.text = text
-    return result
 
 
 def _opt(value, kind):

@@ -386,6 +386,21 @@ pub fn list_channels(bytes: &[u8], name: &str) -> Result<Vec<channel::ChannelInf
 /// Fills the samples of a row-major `rows × cols` field that are not finite (NaN lines of an aborted scan) with the
 /// mean of the others, and says so as an instrument channel's are said ([`finish_channel`]); a field with no finite
 /// sample is refused. `what` names it in messages.
+/// What the not-finite samples `nan` (indices into `len` row-major samples) are and what was done with them.
+fn non_finite_warning(nan: &[usize], len: usize, rows: usize, cols: usize) -> String {
+    let mut r: Vec<usize> = nan.iter().map(|i| i / cols).collect();
+    r.dedup();
+    format!(
+        "{} of {len} samples are not numbers (NaN/inf: an unfinished or saturated scan), in {} of {rows} rows (first \
+         row {}, last row {}); they are filled with the mean height so levelling and spectra work around them — \
+         crop them away (surface convert --crop) for clean results",
+        nan.len(),
+        r.len(),
+        r[0],
+        r[r.len() - 1]
+    )
+}
+
 pub(crate) fn fill_non_finite(
     values: &mut [f64],
     rows: usize,
@@ -400,18 +415,7 @@ pub(crate) fn fill_non_finite(
     if nan.len() == values.len() {
         return Err(SurfaceError::invalid(format!("{what} holds no finite value (an empty or aborted scan)")));
     }
-    let mut r: Vec<usize> = nan.iter().map(|i| i / cols).collect();
-    r.dedup();
-    warnings.push(format!(
-        "{} of {} samples are not numbers (NaN/inf: an unfinished or saturated scan), in {} of {rows} rows (first \
-         row {}, last row {}); they are filled with the mean height so levelling and spectra work around them — \
-         crop them away (surface convert --crop) for clean results",
-        nan.len(),
-        values.len(),
-        r.len(),
-        r[0],
-        r[r.len() - 1]
-    ));
+    warnings.push(non_finite_warning(&nan, values.len(), rows, cols));
     let good: Vec<f64> = values.iter().copied().filter(|v| v.is_finite()).collect();
     let mean = good.iter().sum::<f64>() / good.len() as f64;
     for i in nan {
@@ -447,17 +451,7 @@ pub(crate) fn finish_channel(
         r
     };
     if !nan.is_empty() {
-        let r = rows_of(&nan);
-        warnings.push(format!(
-            "{} of {} samples are not numbers (NaN/inf: an unfinished or saturated scan), in {} of {rows} rows \
-             (first row {}, last row {}); they are filled with the mean height so levelling and spectra work \
-             around them — crop them away (surface convert --crop) for clean results",
-            nan.len(),
-            values.len(),
-            r.len(),
-            r[0],
-            r[r.len() - 1]
-        ));
+        warnings.push(non_finite_warning(&nan, values.len(), rows, cols));
     }
     if !clipped.is_empty() {
         let r = rows_of(&clipped);
