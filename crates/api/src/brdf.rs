@@ -437,35 +437,52 @@ pub fn eval_point(
     let mut p = point(e.as_ref(), model, wi, wr, report)?;
     p.rigorous = rigorous;
     if !is_table(input) && p.rigorous.is_none() {
-        // The scalar model's error on the scan's own period, where it has one (issue 28).
         let source = Source::Spec(input.to_string());
-        match crate::rigorous_brdf::scalar_error_of_scan(&source, surface_opts, wi, model.material.as_deref(), report) {
-            Ok(Some(e)) => {
-                if e.error.above_threshold() {
-                    report.warn(&format!(
-                        "{}: above the {:.0} % (or ΔE00 {:.0}) at which the scalar numbers are not to be trusted; \
-                         `--method rigorous --unit-cell auto` gives Maxwell's",
-                        e.sentence(),
-                        100.0 * crate::grating::SCALAR_WARN_RELATIVE,
-                        crate::grating::SCALAR_WARN_DELTA_E
-                    ));
-                }
-                p.scalar_error = Some(e);
-            }
-            Ok(None) => {
-                if let Some(m) = &model.material {
-                    report.note(&format!(
-                        "--material {m} is the medium of the scalar model's error estimate, which needs a dominant \
-                         period (one carrying {:.0} % of the height variance); this surface has none, so none was \
-                         made and --material was not used",
-                        100.0 * crate::rigorous_brdf::MIN_PERIOD_SHARE
-                    ));
-                }
-            }
-            Err(err) => report.note(&format!("the scalar model's error on this scan could not be estimated: {err:#}")),
-        }
+        p.scalar_error = scalar_error_said(&source, surface_opts, wi, model.material.as_deref(), report);
     }
     Ok(p)
+}
+
+/// The scalar model's error on SOURCE's own period for light `wi` (issue 28), warned on `report` where it is
+/// above the threshold at which the scalar numbers are not to be trusted; `None`, with a note, where the scan
+/// has no dominant period or the estimate failed. What `brdf eval` and Python's `evaluate` state beside a
+/// scalar method's numbers.
+pub fn scalar_error_said(
+    source: &Source,
+    surface_opts: &SurfaceOptions,
+    wi: [f64; 3],
+    material: Option<&str>,
+    report: &dyn Report,
+) -> Option<crate::rigorous_brdf::ScanScalarError> {
+    match crate::rigorous_brdf::scalar_error_of_scan(source, surface_opts, wi, material, report) {
+        Ok(Some(e)) => {
+            if e.error.above_threshold() {
+                report.warn(&format!(
+                    "{}: above the {:.0} % (or ΔE00 {:.0}) at which the scalar numbers are not to be trusted; \
+                     `--method rigorous --unit-cell auto` gives Maxwell's",
+                    e.sentence(),
+                    100.0 * crate::grating::SCALAR_WARN_RELATIVE,
+                    crate::grating::SCALAR_WARN_DELTA_E
+                ));
+            }
+            Some(e)
+        }
+        Ok(None) => {
+            if let Some(m) = material {
+                report.note(&format!(
+                    "--material {m} is the medium of the scalar model's error estimate, which needs a dominant \
+                     period (one carrying {:.0} % of the height variance); this surface has none, so none was \
+                     made and --material was not used",
+                    100.0 * crate::rigorous_brdf::MIN_PERIOD_SHARE
+                ));
+            }
+            None
+        }
+        Err(err) => {
+            report.note(&format!("the scalar model's error on this scan could not be estimated: {err:#}"));
+            None
+        }
+    }
 }
 
 /// A BRDF feature between two samples this many standard deviations of its width apart is below ~1 % of its

@@ -7,9 +7,10 @@ use std::path::Path;
 use std::sync::Arc;
 
 use iridis_api::brdf::{
-    default_method, evaluator_for, make_evaluator, point, render_map, table_evaluator, EvaluatorSetup,
+    default_method, evaluator_for, make_evaluator, point, render_map, scalar_error_said, table_evaluator,
+    EvaluatorSetup, RIGOROUS,
 };
-use iridis_api::model::{refuse_build_options, refuse_build_options_for_table, TableGrid};
+use iridis_api::model::{is_table, refuse_build_options, refuse_build_options_for_table, TableGrid};
 use iridis_api::report::Report;
 use iridis_api::surface::Source;
 use iridis_api::{ModelOptions, SurfaceOptions};
@@ -259,9 +260,20 @@ fn eval_point<'py>(
     let (wi, wr) = (direction_of("light", light)?, direction_of("view", view)?);
     let eo = Options::read(options, EvalOptions::read)?;
     let input = input_of(source)?;
-    let p = run(py, |r| {
+    let (p, scalar_error) = run(py, |r| {
         let e = evaluator(&input, method.as_deref(), &eo, r)?;
-        point(e.as_ref(), &eo.model, wi, wr, r)
+        let p = point(e.as_ref(), &eo.model, wi, wr, r)?;
+        // The scalar model's error on the scan's own period, warned as `brdf eval` warns it (issue 28).
+        let source = match &input {
+            Input::Field(s) => Some(s.clone()),
+            Input::Arg(a) if !is_table(a) => Some(Source::Spec(a.clone())),
+            _ => None,
+        };
+        let error = match source {
+            Some(s) if p.method != RIGOROUS => scalar_error_said(&s, &eo.surface, wi, eo.model.material.as_deref(), r),
+            _ => None,
+        };
+        Ok((p, error))
     })?;
     let d = PyDict::new(py);
     d.set_item("method", &p.method)?;
@@ -285,6 +297,10 @@ fn eval_point<'py>(
     d.set_item("coherence_nm", p.coherence_nm)?;
     d.set_item("window_effective_area_um2", p.effective_area_nm2.map(|a| a / 1e6))?;
     d.set_item("xyz", PyArray1::from_vec(py, p.query.xyz.to_array().to_vec()))?;
+    match scalar_error {
+        Some(e) => d.set_item("scalar_error", json_to_py(py, &e.to_json())?)?,
+        None => d.set_item("scalar_error", py.None())?,
+    }
     Ok(d)
 }
 

@@ -5,6 +5,8 @@ warning from `diffraction.brdf_map` (said only where an exposure followed)."""
 import os
 import warnings
 
+import numpy as np
+
 import iridis.diffraction as diffraction
 import iridis.surface as surface
 
@@ -63,3 +65,27 @@ def test_answers_carry_the_commands_text():
     t = lab.testbench("builtin:blazed?size=10um&pixel=50nm", wavelengths=(450.0, 650.0, 100.0),
                       angles_deg=(-89.0, 89.0, 0.5))
     assert t.text.splitlines()[1].startswith("periodicity  mean ") and "nm ±" in t.text, t.text
+
+
+def test_evaluate_states_the_scalar_models_error_as_brdf_eval_does():
+    # The Elaphe-like rows (period ≈ 1100 nm, as deep as snake skin) put the scalar model above its threshold:
+    # `evaluate` warns and returns the estimate, on a SURFACE argument and on a Surface alike, with brdf_eval's
+    # numbers (one library call, `scalar_error_said`).
+    skin = "builtin:elaphe?size=10um&pixel=50nm"
+    light, view = 0.0, (10 * 3.141592653589793 / 180, 3.141592653589793 / 2)
+    q, said, _ = _caught(lambda: diffraction.evaluate(skin, light, view, step_nm=20))
+    e = q["scalar_error"]
+    assert abs(e["period_nm"] - 1100) < 20 and e["above_threshold"], e
+    assert any("not to be trusted" in m for m in said), said
+    cli = diffraction.brdf_eval(skin, light, view, step_nm=20)["scalar_error"]
+    assert e["worst_relative_error"] == cli["worst_relative_error"]
+    on_field, _, _ = _caught(lambda: diffraction.evaluate(surface.load(skin), light, view, step_nm=20))
+    assert on_field["scalar_error"]["worst_relative_error"] == cli["worst_relative_error"]
+    # A 0.01 nm deep sine: the scalar model holds (no warning, the estimate still returned); a flat patch has
+    # no period to check.
+    shallow, said, _ = _caught(lambda: diffraction.evaluate("builtin:sine?size=6um&pixel=60nm&depth=0.01nm",
+                                                             light, view, step_nm=20))
+    assert not shallow["scalar_error"]["above_threshold"], shallow["scalar_error"]
+    assert not any("not to be trusted" in m for m in said), said
+    flat = surface.Surface(np.zeros((16, 16)), 100.0)
+    assert diffraction.evaluate(flat, light, (0.0, 0.0))["scalar_error"] is None
