@@ -886,13 +886,19 @@ pub const VISIBLE_PERIOD_NM: f64 = 190.0;
 /// scan looks like a mirror of its specular colour (`iridis report` draws no maps and runs no test bench).
 pub const DIFFRACTS_SHARE: f64 = 1e-3;
 
-/// Whether a scan diffracts visible light: a diffracted share worth drawing at some incidence
-/// ([`DIFFRACTS_SHARE`]) and, where periods were found (`longest_period_nm`), one that can send a visible order
-/// out ([`VISIBLE_PERIOD_NM`]). A scan with only shorter periods still sends a little light into the orders of
-/// its own extent as a unit cell — its edges, not its structure — hence both conditions; a scan with no period
+/// The shortest period with a visible first order under light at 45°, where `iridis report` measures its shares
+/// (with 0°): a first order leaves for `λ < d (1 + sin θ_i)`, so `d > 380 nm / (1 + sin 45°)` ≈ 223 nm.
+pub const FIRST_ORDER_AT_45_NM: f64 = 380.0 / (1.0 + std::f64::consts::FRAC_1_SQRT_2);
+
+/// Whether a scan diffracts visible light: a diffracted share worth drawing at 0° or 45° (`diffracted_shares`,
+/// [`DIFFRACTS_SHARE`]) and, where periods were found (`longest_period_nm`), one with a visible first order at
+/// those angles ([`FIRST_ORDER_AT_45_NM`]). A scan with only shorter periods still sends light into the orders
+/// of its own extent as a unit cell — its edges and the tilt plane levelling leaves on a periodic relief (a
+/// 200 nm sine levelled sent 9.9 % there), not its structure — hence both conditions; a scan with no period
 /// found (structure longer than a quarter of it, or none) is judged by its share alone.
 pub fn diffracts_visible_light(longest_period_nm: Option<f64>, diffracted_shares: &[f64]) -> bool {
-    longest_period_nm.is_none_or(|p| p >= VISIBLE_PERIOD_NM) && diffracted_shares.iter().any(|&s| s >= DIFFRACTS_SHARE)
+    longest_period_nm.is_none_or(|p| p >= FIRST_ORDER_AT_45_NM)
+        && diffracted_shares.iter().any(|&s| s >= DIFFRACTS_SHARE)
 }
 
 /// The coherence length (nm) for BRDF maps of a scan of extent `extent_nm` whose strongest period is

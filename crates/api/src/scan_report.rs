@@ -289,10 +289,15 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
     }
     let grating_json = unit_cells;
     let share = |g: &Value| g["colour"]["diffracted_share"].as_f64().unwrap_or(0.0);
-    let longest =
-        info["peaks"].as_array().into_iter().flatten().filter_map(|p| p["period_nm"].as_f64()).reduce(f64::max);
+    // A random surface's spectral peaks are no periods of its structure (a spike's 27 nm was called one).
+    let longest = crate::surface::structural_periods_nm(&info).into_iter().reduce(f64::max);
     let shares: Vec<f64> = grating_json.iter().map(share).collect();
     let diffracts = too_deep.is_none() && crate::grating::diffracts_visible_light(longest, &shares);
+    // A patch under two wavelengths across with no period in it: its orders are those of its own few hundred
+    // nanometres repeated, and it holds too little of the surface to say whether the surface repeats. Its shares
+    // are given, no verdict (a 3 × 3-sample scan was said to diffract from 1.2 % at 45°).
+    let narrowest = info["extent_nm"].as_array().into_iter().flatten().filter_map(Value::as_f64).reduce(f64::min);
+    let undecided = diffracts && longest.is_none() && narrowest.is_some_and(|l| l < iridis_surface::TWO_WAVELENGTHS_NM);
     let mut maps = Vec::new();
     let mut bench: Option<Value> = None;
     let mut bench_failure: Option<String> = None;
@@ -301,7 +306,7 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
     let mut scalar_failure: Option<String> = None;
     let map_coherence = o.coherence.clone().or_else(|| {
         let (e, px) = (&info["extent_nm"], &info["pixel_size_nm"]);
-        let period = info["peaks"][0]["period_nm"].as_f64().unwrap_or(0.0);
+        let period = crate::surface::structural_periods_nm(&info).first().copied().unwrap_or(0.0);
         crate::grating::map_coherence_nm([e[0].as_f64()?, e[1].as_f64()?], period, [px[0].as_f64()?, px[1].as_f64()?])
             .map(|c| format!("{:.3}um", c / 1000.0))
     });
@@ -429,7 +434,8 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
     }
     let verdict = match &too_deep {
         Some(why) => deep_verdict(&o.surface, why),
-        None => verdict(&info, &grating_json, diffracts),
+        None if undecided => small_patch_verdict(&info, &grating_json),
+        None => verdict(&info, &grating_json, diffracts, &relief_level),
     };
     let scalar = scalar_error_json.as_ref().map(scalar_sentence);
     let seen = vision.as_ref().map(vision_sentence);
@@ -477,7 +483,7 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
         "level": relief_level,
         "info": info,
         "unit_cell": unit_cell,
-        "diffracts_visible_light": if too_deep.is_some() { Value::Null } else { json!(diffracts) },
+        "diffracts_visible_light": if too_deep.is_some() || undecided { Value::Null } else { json!(diffracts) },
         "too_deep_for_scalar_model": too_deep,
         "verdict": verdict,
         "map_coherence": map_coherence,
@@ -608,11 +614,31 @@ fn deep_verdict(surface: &str, why: &str) -> String {
     )
 }
 
-/// What the scan does to light, in words a biologist reads first.
-fn verdict(info: &Value, grating: &[Value], diffracts: bool) -> String {
+/// The first sentence for a patch too small to judge ([`iridis_surface::TWO_WAVELENGTHS_NM`], no period found):
+/// the shares its few orders carry, and why they say nothing of the surface.
+fn small_patch_verdict(info: &Value, grating: &[Value]) -> String {
     let share = |g: &Value| 100.0 * g["colour"]["diffracted_share"].as_f64().unwrap_or(0.0);
-    let periods: Vec<f64> =
-        info["peaks"].as_array().into_iter().flatten().filter_map(|p| p["period_nm"].as_f64()).collect();
+    let extent = |k: usize| info["extent_nm"][k].as_f64().unwrap_or(0.0);
+    format!(
+        "The scan is too small to tell whether the surface diffracts visible light: at {:.0} × {:.0} nm ({} × {} \
+         samples) it is under two wavelengths (1100 nm) across and no period was found in it. Taken as one unit \
+         cell of a periodic surface it sends {:.2} % of the light it reflects out of the mirror direction at normal \
+         incidence and {:.2} % at 45° (D65, luminance-weighted; scalar model), into the few orders of its own \
+         extent repeated, which the surface need not have: scan a larger area.",
+        extent(0),
+        extent(1),
+        info["cols"],
+        info["rows"],
+        share(&grating[0]),
+        share(&grating[1]),
+    )
+}
+
+/// What the scan does to light, in words a biologist reads first.
+fn verdict(info: &Value, grating: &[Value], diffracts: bool, level: &str) -> String {
+    use crate::grating::FIRST_ORDER_AT_45_NM;
+    let share = |g: &Value| 100.0 * g["colour"]["diffracted_share"].as_f64().unwrap_or(0.0);
+    let periods = crate::surface::structural_periods_nm(info);
     let longest = periods.iter().fold(0.0f64, |m, &p| m.max(p));
     let specular = &grating[0]["colour"]["specular"];
     if diffracts {
@@ -638,13 +664,31 @@ fn verdict(info: &Value, grating: &[Value], diffracts: bool) -> String {
                  diffraction order of visible light can leave it",
                 periods.iter().map(|p| format!("{p:.0}")).collect::<Vec<_>>().join(", ")
             )
+        } else if longest < FIRST_ORDER_AT_45_NM {
+            format!(
+                "its longest period ({longest:.0} nm) is too short for a visible first order under the report's \
+                 light at 0° and 45° (one needs d > λ/(1 + sin 45°) = {FIRST_ORDER_AT_45_NM:.0} nm at 380 nm); light \
+                 nearer grazing can diffract from it (d > λ/2 = 190 nm)"
+            )
         } else {
-            format!("its relief is too shallow to send light into its orders (longest period {longest:.0} nm)")
+            format!(
+                "its orders carry under {:.1} % of the light at 0° and 45° (longest period {longest:.0} nm)",
+                100.0 * crate::grating::DIFFRACTS_SHARE
+            )
+        };
+        // What leaves the mirror direction where no period of the scan has a visible order at these angles.
+        let whither = match (periods.is_empty() || longest < FIRST_ORDER_AT_45_NM, level) {
+            (false, _) => "",
+            (true, "plane") => {
+                " (into the orders of the scan's own extent: its edges and any tilt that plane levelling left on a \
+                 periodic relief, not its structure)"
+            }
+            (true, _) => " (into the orders of the scan's own extent: its edges, not its structure)",
         };
         format!(
             "The scan diffracts no visible light: {why}. Taken as one unit cell of a periodic surface it sends {:.4} % \
-             of the reflected light out of the mirror direction at normal incidence, {:.4} % at 45° (into the orders \
-             of the scan's own extent: its edges, not its structure). It looks like a mirror of colour {} \
+             of the reflected light out of the mirror direction at normal incidence, {:.4} % at 45°{whither}. It looks \
+             like a mirror of colour {} \
              (reflectance Y = {:.2} % at normal incidence, n = 1.5 under the relief), so no BRDF map is drawn, no \
              test bench is run and no animal's view across directions is taken (--size, --visual unused).",
             share(&grating[0]),
@@ -703,7 +747,7 @@ fn html(r: &Value, steps: &[Step]) -> String {
     );
     h += "<table border=1 cellpadding=4><tr><th>period (nm)</th><th>orientation (°)</th><th>share of variance</th></tr>\n";
     for p in info["peaks"].as_array().into_iter().flatten() {
-        let period = match (p["period_nm"].as_f64(), p["uncertainty_nm"].as_f64()) {
+        let period = match (p["period_nm"].as_f64(), p["period_uncertainty_nm"].as_f64()) {
             (Some(d), Some(u)) => with_uncertainty(d, u),
             (Some(d), None) => format!("{d:.1}"),
             _ => "–".into(),

@@ -166,6 +166,23 @@ pub fn dominant_period(patch: &Patch) -> Option<iridis_surface::Peak> {
 /// 20 µm; Xenopeltis 4.2 % (1.75 ×), Elaphe 62 %.
 pub const NO_DOMINANT_PERIOD_BELOW: f64 = 0.1;
 
+/// Whether the strongest peak of a surface's spectrum, holding `strongest` of the height variance, is a period of
+/// its structure rather than one of a random surface's peaks ([`NO_DOMINANT_PERIOD_BELOW`], 1.5 × the `next`).
+pub fn is_dominant(strongest: f64, next: f64) -> bool {
+    strongest >= NO_DOMINANT_PERIOD_BELOW || strongest >= 1.5 * next
+}
+
+/// The periods (nm) of `surface info --json`'s `peaks` that are periods of the structure: all of them where the
+/// strongest is dominant ([`is_dominant`]), none where the spectrum's peaks are a random surface's.
+pub fn structural_periods_nm(info: &serde_json::Value) -> Vec<f64> {
+    let peaks = info["peaks"].as_array().map_or(&[][..], Vec::as_slice);
+    let power = |k: usize| peaks.get(k).and_then(|p| p["power"].as_f64()).unwrap_or(0.0);
+    if peaks.is_empty() || !is_dominant(power(0), power(1)) {
+        return Vec::new();
+    }
+    peaks.iter().filter_map(|p| p["period_nm"].as_f64()).collect()
+}
+
 /// Everything `iridis surface info --json` reports (keys in docs/json.md): sizes, heights, the dominant periods
 /// with their orientations, roughness of the plane-levelled field, radial PSDF and ACF, notes and warnings.
 pub fn info(hf: &iridis_surface::HeightField, n_peaks: usize, coherence_nm: f64) -> serde_json::Value {
@@ -201,7 +218,7 @@ pub fn info(hf: &iridis_surface::HeightField, n_peaks: usize, coherence_nm: f64)
     // next, is no period of the structure (builtin:gaussian listed five "periods" of ~1 % each). Dominant as the
     // test bench's ridges are: 1.5 × the next (two equal periods of a lattice hold far more than 10 %).
     let next = peaks.get(1).map_or(0.0, |p| p.power);
-    if let Some(p) = peaks.first().filter(|p| p.power < NO_DOMINANT_PERIOD_BELOW && p.power < 1.5 * next) {
+    if let Some(p) = peaks.first().filter(|p| !is_dominant(p.power, next)) {
         notes.push(format!(
             "no dominant period: the strongest peak holds {:.1} % of the height variance, little more than the next \
              ({:.1} %), as a random surface's spectrum has peaks everywhere; the periods listed are not periods of \

@@ -943,6 +943,8 @@ fn implausible_units_are_said() {
     assert!(err.contains("the relief is below a picometre (largest |height| 6.260e-8 nm as read)"), "{err}");
     let err = warned(&["surface", "info", &fixture("numpy_f32_fortran.npy"), "--pixel-size", "100mm"]);
     assert!(err.contains("pixels of 100000 µm as read"), "{err}");
+    let err = warned(&["surface", "info", &fixture("numpy_f32_fortran.npy"), "--pixel-size", "1e-30nm"]);
+    assert!(err.contains("pixels of 1.000e-30 nm as read: finer than an atom's spacing"), "{err}");
     let err = warned(&["surface", "info", &fixture("numpy_f64.npy"), "--height-unit", "um"]);
     assert!(err.contains("--height-unit um replaces the sidecar's height unit 'nm'"), "{err}");
     // The right units say none of it.
@@ -974,4 +976,47 @@ fn channels_of_a_npy_list_a_height() {
     assert_eq!(v["channels"][0]["height"], true, "{v}");
     let out = ok(&["surface", "channels", &fixture("numpy_f32_fortran.npy")]);
     assert!(!String::from_utf8_lossy(&out.stdout).contains("not a height"));
+}
+
+/// The report's verdict rests on what its numbers can show (an audit's three cases):
+/// - a 300 nm patch with no period holds too little of the surface to judge: its shares are given, no verdict
+///   (it said "diffracts" from 1.2 % at 45° into the orders of its own extent);
+/// - a 200 nm sine has no visible first order at the report's 0° and 45° (λ < d (1 + sin 45°) needs d > 223 nm
+///   at 380 nm): the 10 % that plane levelling's tilt sends out of the mirror direction is said to be that, and
+///   the reason is not "too shallow" (its relief is 200 nm deep);
+/// - a spike's spectral peaks are no periods: "no dominant period", not "its periods (27, 24, … nm)".
+#[test]
+fn the_reports_verdict_rests_on_what_its_numbers_show() {
+    let dir = tempfile::tempdir().unwrap();
+    let report = |surface: &str, extra: &[&str], name: &str| -> serde_json::Value {
+        let out = dir.path().join(name);
+        let mut args = vec!["report", surface, "--no-testbench", "--size", "16", "-o", out.to_str().unwrap()];
+        args.extend_from_slice(extra);
+        ok(&args);
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap()
+    };
+    let r = report("builtin:gaussian?size=300nm&pixel=100nm", &[], "small");
+    assert_eq!(r["diffracts_visible_light"], serde_json::Value::Null, "{r}");
+    let verdict = r["verdict"].as_str().unwrap();
+    assert!(verdict.starts_with("The scan is too small to tell whether the surface diffracts"), "{verdict}");
+    assert!(verdict.contains("at 300 × 300 nm (3 × 3 samples)"), "{verdict}");
+    // Its coherence note gives its sides in nm (a 20 nm side read "0.0 µm").
+    assert!(r["info"]["notes"].to_string().contains("patch 300 × 300 nm is smaller than"), "{r}");
+    let r = report("builtin:sine?size=2um&pixel=10nm&period=200nm&depth=200nm", &["--level", "plane"], "sine200");
+    assert_eq!(r["diffracts_visible_light"], false, "{r}");
+    let verdict = r["verdict"].as_str().unwrap();
+    assert!(verdict.contains("its longest period (200 nm) is too short for a visible first order"), "{verdict}");
+    assert!(verdict.contains("= 223 nm at 380 nm") && verdict.contains("plane levelling"), "{verdict}");
+    assert!(!verdict.contains("shallow"), "{verdict}");
+    // The tilt is there: more than the 0.1 % a diffracting scan needs leaves the mirror direction.
+    assert!(r["unit_cell"][0]["diffracted_share"].as_f64().unwrap() > 0.05, "{r}");
+    let dir2 = tempfile::tempdir().unwrap();
+    let spike = dir2.path().join("spike.gwy");
+    let mut heights = vec![0.0f64; 64 * 64];
+    heights[32 * 64 + 32] = 500.0;
+    let hf = iridis_surface::HeightField::new(64, 64, 10.0, 10.0, heights).unwrap();
+    std::fs::write(&spike, iridis_surface::formats::gwy::write(&hf)).unwrap();
+    let r = report(spike.to_str().unwrap(), &[], "spike");
+    let verdict = r["verdict"].as_str().unwrap();
+    assert!(verdict.contains("diffracts no visible light: it has no dominant period"), "{verdict}");
 }

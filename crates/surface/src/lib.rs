@@ -41,6 +41,10 @@ pub const DEFAULT_COHERENCE_NM: f64 = 65_000.0;
 /// Coarsest pixel that still represents the visible band at grazing geometry (PHYSICS.md): frequencies up to
 /// `|u|/λ ≤ 2/380 nm` need `dx ≤ 95 nm`.
 pub const MAX_RESOLVING_PIXEL_NM: f64 = 95.0;
+/// A patch narrower than this (two wavelengths of 550 nm) taken as one unit cell has too few orders (`λ/L ≥ 0.5`)
+/// to show diffraction colours, and where no period is found in it, too little of the surface to say whether
+/// the surface repeats: `iridis report` then gives no verdict on its diffraction.
+pub const TWO_WAVELENGTHS_NM: f64 = 2.0 * 550.0;
 
 /// What went wrong, in words a person can act on.
 #[derive(Debug, thiserror::Error)]
@@ -219,7 +223,7 @@ impl HeightField {
         let l = ex.min(ey);
         (l < coherence_nm).then(|| {
             let lambda_over_l = 550.0 / l;
-            let cost = if lambda_over_l < 0.5 {
+            let cost = if l > TWO_WAVELENGTHS_NM {
                 format!(
                     "whose own period L sends light only into orders λ/L = {:.1}° of viewing angle apart at \
                      550 nm",
@@ -230,14 +234,24 @@ impl HeightField {
                  diffraction colours"
                     .to_string()
             };
+            // A side under a micrometre in nm (a 20 nm side read "0.0 µm").
+            let size = if l < 1000.0 {
+                format!("{} × {} nm", significant(ex), significant(ey))
+            } else {
+                format!("{:.1} × {:.1} µm", ex / 1000.0, ey / 1000.0)
+            };
             format!(
-                "patch {:.1} × {:.1} µm is smaller than the light's {:.1} µm coherence area: the diffraction \
-                 commands take it as one unit cell of a periodic surface, {cost}. Scan a larger area if the \
-                 structure is not periodic; periods read from this patch carry the ± given with them",
-                ex / 1000.0,
-                ey / 1000.0,
+                "patch {size} is smaller than the light's {:.1} µm coherence area: the diffraction commands take it \
+                 as one unit cell of a periodic surface, {cost}. Scan a larger area if the structure is not \
+                 periodic; periods read from this patch carry the ± given with them",
                 coherence_nm / 1000.0,
             )
         })
     }
+}
+
+/// A length in nm to three significant digits, no exponent (`20`, `0.03`, `2000`).
+fn significant(nm: f64) -> String {
+    let digits = (2 - nm.abs().max(f64::MIN_POSITIVE).log10().floor() as i32).clamp(0, 12) as usize;
+    format!("{nm:.digits$}")
 }

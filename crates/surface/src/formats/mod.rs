@@ -257,7 +257,7 @@ pub fn load_surface(spec: &str, opts: &LoadOptions) -> Result<HeightField, Surfa
 
 /// Warnings for a file whose units, as read, give a field no microscope makes: a relief below a picometre (a
 /// wrong --height-unit: a field in nm read as m gave all-zero heights and a report verdict of "too shallow to
-/// diffract") or pixels above 100 µm (`--pixel-size 100mm` for 100 nm made a 6.4 m scan).
+/// diffract"), pixels above 100 µm (`--pixel-size 100mm` for 100 nm made a 6.4 m scan) or below 0.01 nm.
 fn implausible_units(hf: &HeightField) -> Vec<String> {
     let mut warnings = Vec::new();
     let max = hf.heights_nm.iter().filter(|v| v.is_finite()).fold(0.0f64, |m, v| m.max(v.abs()));
@@ -274,6 +274,14 @@ fn implausible_units(hf: &HeightField) -> Vec<String> {
             "pixels of {} µm as read: a scan's are nanometres to a few micrometres; check the pixel size's unit \
              (--pixel-size, the sidecar's or the file's)",
             pixel_text(pixel / 1000.0)
+        ));
+    }
+    // Below an atom's spacing (~0.1 nm) no instrument samples: `--pixel-size 1e-30nm` printed "0.0000 nm".
+    let finest = hf.dx_nm.min(hf.dy_nm);
+    if finest < 0.01 {
+        warnings.push(format!(
+            "pixels of {finest:.3e} nm as read: finer than an atom's spacing (~0.1 nm), which no scan samples; check \
+             the pixel size's unit (--pixel-size, the sidecar's or the file's)"
         ));
     }
     warnings
