@@ -49,30 +49,62 @@ pub fn wavelength_grid(from: f64, to: f64, step: f64) -> Result<Vec<f64>> {
     Ok(g)
 }
 
-/// A colour integrates a spectrum over wavelengths: a grid of one wavelength would give black without a word,
-/// and one that misses a real part of the visible counts that part as dark (1000–1500 nm: black), which is
-/// said. "Real": more than 1 % of the CIE 1931 observer's weight ∫(x̄ + ȳ + z̄) over 360–830 nm, so Sussenbach's
-/// 400–700 nm (0.27 %) and vision's 300–700 nm (0.07 %) say nothing.
+/// A colour integrates a spectrum over wavelengths, normalised on its grid so that a perfect reflector is white
+/// there (`iridis_color::SpectralWeights`): a band that misses a real part of the visible gives the colour of
+/// that band alone, which is said; one holding under 1 % of the eye's response, or sampling it so coarsely that
+/// its white is off by more than 20 %, would give a colour of nothing (`--from 300nm --to 380nm` printed a* 485,
+/// `--step 400nm` #ff00ff) and is refused. "Real": more than 1 % of the CIE 1931 observer's weight
+/// ∫(x̄ + ȳ + z̄) over 360–830 nm, so Sussenbach's 400–700 nm (0.27 %) and vision's 300–700 nm (0.07 %) say
+/// nothing.
 pub fn check_colour_grid(grid: &[f64], report: &dyn Report) -> Result<()> {
     if let [one] = grid {
         bail!("a colour integrates the spectrum over wavelengths, and --from/--to give only {one} nm; give a range (the default is 380nm to 780nm)");
     }
     let (lo, hi) = (grid[0], grid[grid.len() - 1]);
+    let nm = iridis_color::spectrum::short_number;
     let cmfs = Observer::Cie1931.cmfs();
-    let weight = |inside: &dyn Fn(f64) -> bool| -> f64 {
-        let w = cmfs.wavelengths_nm.iter().enumerate().filter(|(_, &l)| inside(l));
-        w.map(|(i, _)| cmfs.x[i] + cmfs.y[i] + cmfs.z[i]).sum()
+    let response = |l: f64| {
+        let [x, y, z] = cmfs.at(l);
+        x + y + z
     };
-    let missed = 1.0 - weight(&|l| (lo..=hi).contains(&l)) / weight(&|_| true);
-    if missed > 0.01 {
-        let nm = iridis_color::spectrum::short_number;
-        report.warn(&format!(
-            "the colours integrate over {}–{} nm only (--from/--to): {:.0} % of the eye's response lies outside \
-             and counts as dark{}",
+    let weight = |inside: &dyn Fn(f64) -> bool| -> f64 {
+        cmfs.wavelengths_nm.iter().filter(|&&l| inside(l)).map(|&l| response(l)).sum()
+    };
+    // `+ 0.0`: an empty band's sum is −0.0, printed "-0.00 %".
+    let covered = weight(&|l| (lo..=hi).contains(&l)) / weight(&|_| true) + 0.0;
+    if covered < 0.01 {
+        bail!(
+            "a colour needs the eye's response, and {}–{} nm (--from/--to) holds {:.2} % of it: its colours would be \
+             of nothing; give a range within 360–830 nm (the default is 380nm to 780nm)",
             nm(lo),
             nm(hi),
-            100.0 * missed,
-            if missed > 0.999 { ", so every colour is black" } else { "" }
+            100.0 * covered
+        );
+    }
+    // The grid's trapezoid integral of the response against the same rule on the observer's own 1 nm grid.
+    let trapezoid = |g: &[f64]| -> f64 {
+        iridis_color::spectrum::trapezoid_weights(g).iter().zip(g).map(|(w, &l)| w * response(l)).sum()
+    };
+    let fine: Vec<f64> = cmfs.wavelengths_nm.iter().copied().filter(|l| (lo..=hi).contains(l)).collect();
+    let off = if fine.len() < 2 { 0.0 } else { (trapezoid(grid) / trapezoid(&fine) - 1.0).abs() };
+    if off > 0.2 {
+        bail!(
+            "a grid of {} wavelengths over {}–{} nm samples the eye's response so coarsely that its white is off by \
+             {:.0} %: give a finer --step (≤ 10 nm keeps it within 1 %)",
+            grid.len(),
+            nm(lo),
+            nm(hi),
+            100.0 * off
+        );
+    }
+    if covered < 0.99 {
+        report.warn(&format!(
+            "the colours integrate over {}–{} nm only (--from/--to): {:.0} % of the eye's response lies outside and is \
+             left out, the colours normalised on this band (a perfect reflector is white on it): they are the \
+             band's, not the film's in full light",
+            nm(lo),
+            nm(hi),
+            100.0 * (1.0 - covered),
         ));
     }
     Ok(())

@@ -7,9 +7,7 @@ use std::sync::Arc;
 
 use anyhow::{bail, Context, Result};
 use iridis_diffraction::geometry::{dot, FresnelSource, Vec3};
-use iridis_diffraction::grating::{
-    lines_of, Efficiency, GratingAnswer, Lines, Normalisation, OrderEfficiency, UnitCell,
-};
+use iridis_diffraction::grating::{Efficiency, GratingAnswer, Lines, Normalisation, OrderEfficiency, UnitCell};
 use rayon::prelude::*;
 use serde_json::{json, Value};
 
@@ -467,7 +465,7 @@ pub fn grating(
         GratingMethod::Kirchhoff => Some(UnitCell::for_light(&patch, l, w)?),
         GratingMethod::Rigorous => None,
     };
-    let lines = lines_of(&patch);
+    let lines = Lines::of(&patch);
     let (lx, ly) = patch.extent();
     report.info(&format!(
         "{}: one unit cell of {:.1} × {:.1} nm ({}×{} samples, {}){}",

@@ -73,13 +73,20 @@ pub fn grating_text(g: &Grating, light: (f64, f64), detector: Option<&str>, acce
             );
         }
         if let Some(err) = one.convergence["estimated_error"].as_f64() {
+            let c = &one.convergence;
+            let repeats = |k: usize| c["cell_repeats"][k].as_u64().unwrap_or(1);
+            let on = match (repeats(0), repeats(1)) {
+                (1, 1) => String::new(),
+                (kx, ky) => format!(" on one of the cell's {kx} × {ky} exact repeats (orders numbered in the cell's)"),
+            };
+            let energy = c["energy_error"].as_f64().map_or(String::new(), |e| format!(", |R + T − 1| {e:.1e}"));
             let _ = writeln!(
                 s,
-                "converged: orders ±{}, estimated error {:.1e} (tolerance {:.0e}){}",
-                one.convergence["orders"][0],
+                "converged: orders ±{}{on}, estimated error {:.1e}{energy} (tolerance {:.0e}){}",
+                c["orders"][0],
                 err,
-                one.convergence["tolerance"].as_f64().unwrap_or(f64::NAN),
-                if one.convergence["met"] == Value::Bool(true) { "" } else { " — NOT met" }
+                c["tolerance"].as_f64().unwrap_or(f64::NAN),
+                if c["met"] == Value::Bool(true) { "" } else { " — NOT met" }
             );
         }
         if let Some(d) = g.detector_reflectance(one) {

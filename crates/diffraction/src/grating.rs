@@ -200,12 +200,17 @@ pub enum Lines {
 
 impl Lines {
     /// Which axes of `patch` carry structure: rows all the same make a 1-D grating along x, columns all the
-    /// same one along y.
+    /// same one along y. "The same" within 1e-9 of the height range: plane levelling leaves rounding of 1e-14 nm
+    /// between identical rows, which made a grating crossed along one axis and 1-D along the other.
     pub fn of(patch: &Patch) -> Lines {
+        let h = &patch.heights;
+        let (lo, hi) = h.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| (lo.min(v), hi.max(v)));
+        let tolerance = 1e-9 * (hi - lo);
+        let same = |a: f64, b: f64| (a - b).abs() <= tolerance;
+        let cols = patch.cols;
         let rows_same =
-            (1..patch.rows).all(|j| patch.heights[j * patch.cols..(j + 1) * patch.cols] == patch.heights[..patch.cols]);
-        let cols_same = (0..patch.rows)
-            .all(|j| patch.heights[j * patch.cols..(j + 1) * patch.cols].windows(2).all(|w| w[0] == w[1]));
+            (1..patch.rows).all(|j| h[j * cols..(j + 1) * cols].iter().zip(&h[..cols]).all(|(&a, &b)| same(a, b)));
+        let cols_same = (0..patch.rows).all(|j| h[j * cols..(j + 1) * cols].windows(2).all(|w| same(w[0], w[1])));
         match (rows_same, cols_same) {
             (true, false) => Lines::AlongX,
             (false, true) => Lines::AlongY,
@@ -242,7 +247,7 @@ impl UnitCell {
     pub fn for_light(patch: &Patch, wi: Vec3, wavelengths_nm: &[f64]) -> Result<Self, DiffractionError> {
         let lambda_min = wavelengths_nm.iter().copied().fold(f64::INFINITY, f64::min);
         check_wavelength(lambda_min)?;
-        let lines = lines_of(patch);
+        let lines = Lines::of(patch);
         let (lx, ly) = patch.extent();
         let rows_alone = wavelengths_nm.iter().all(|&l| channels(lines, (lx, ly), wi, l).len() > MAX_SINKHORN_CHANNELS);
         if !rows_alone {
@@ -255,7 +260,7 @@ impl UnitCell {
         let n = terms_for_bound(patch.max_abs_height, lambda_min_nm, TAYLOR_EPSILON)?;
         // The window is not used (the orders read the DFT bins themselves): any length it takes will do.
         let terms = TaylorTerms::compute_in_band(patch, n, crate::patch::MAX_COHERENCE_NM, band, &|_| {})?;
-        Ok(Self { terms, lines: lines_of(patch), lambda_min_nm, light })
+        Ok(Self { terms, lines: Lines::of(patch), lambda_min_nm, light })
     }
 
     /// The shortest wavelength whose rows the cell serves (nm): its Taylor terms meet [`TAYLOR_EPSILON`] there
@@ -438,19 +443,6 @@ fn check_wavelength(lambda_min_nm: f64) -> Result<(), DiffractionError> {
         Ok(())
     } else {
         Err(DiffractionError::Invalid(format!("shortest wavelength {lambda_min_nm} nm must be positive")))
-    }
-}
-
-/// Which axes of `patch` carry structure (what [`UnitCell::lines`] reports, without building a cell).
-pub fn lines_of(patch: &Patch) -> Lines {
-    let rows_same =
-        (1..patch.rows).all(|j| patch.heights[j * patch.cols..(j + 1) * patch.cols] == patch.heights[..patch.cols]);
-    let cols_same =
-        (0..patch.rows).all(|j| patch.heights[j * patch.cols..(j + 1) * patch.cols].windows(2).all(|w| w[0] == w[1]));
-    match (rows_same, cols_same) {
-        (true, false) => Lines::AlongX,
-        (false, true) => Lines::AlongY,
-        _ => Lines::Crossed,
     }
 }
 

@@ -288,3 +288,18 @@ fn a_flat_cell_is_a_mirror_with_fresnels_reflectance() {
         assert!((o.efficiency.te - want[0]).abs() < 1e-14 && (o.efficiency.tm - want[1]).abs() < 1e-14, "{o:?}");
     }
 }
+
+/// Rows the same but for plane levelling's rounding (1e-14 nm on a 200 nm relief) make a 1-D grating: exact
+/// equality made a tiled sine crossed along one axis and 1-D along the other, and sent the crossed one to the
+/// 2-D solver's order limit. A row that differs by a picometre is a crossed grating.
+#[test]
+fn rows_equal_but_for_rounding_are_a_1d_grating() {
+    let (rows, cols) = (4, 16);
+    let sine: Vec<f64> = (0..cols).map(|i| 100.0 * (std::f64::consts::TAU * i as f64 / 16.0).sin()).collect();
+    let field = |shift: f64| -> Patch {
+        let h: Vec<f64> = (0..rows).flat_map(|j| sine.iter().map(move |v| v + shift * j as f64)).collect();
+        Patch::from_row_major(rows, cols, 10.0, 10.0, &h).unwrap()
+    };
+    assert_eq!(Lines::of(&field(1e-14)), Lines::AlongX);
+    assert_eq!(Lines::of(&field(1e-3)), Lines::Crossed);
+}

@@ -92,9 +92,11 @@ def test_sensitivities_take_wavelengths_in_nm_in_the_receptors_range():
     assert (s[:, 1] == 0).all() and (s[:, 0] > 0).any()
 
 
-def test_a_colour_grid_outside_the_visible_is_said():
-    with pytest.warns(UserWarning, match=r"integrate over 1000–1500 nm only .* every colour is black"):
+def test_a_colour_grid_outside_the_visible_is_refused_and_a_partial_one_said():
+    with pytest.raises(ValueError, match=r"1000–1500 nm \(--from/--to\) holds 0.00 % of it"):
         film.color("air | water 348nm | air", from_nm=1000, to_nm=1500)
+    with pytest.warns(UserWarning, match=r"integrate over 500–600 nm only .* normalised on this band"):
+        film.color("air | water 348nm | air", from_nm=500, to_nm=600)
 
 
 def test_missing_files_are_os_errors(tmp_path):

@@ -264,9 +264,15 @@ pub struct Convergence {
     pub met: bool,
     /// Whether the search stopped at `max_orders` (or at the fixed truncation asked for).
     pub capped: bool,
-    /// For a lossless substrate, `|R + T − 1|` of the answer (worst of TE, TM), an independent check.
+    /// For a lossless stack (substrate and coatings), `|R + T − 1|` of the answer (worst of TE, TM), an
+    /// independent check; the search does not accept a truncation whose energy error exceeds the tolerance.
     pub energy_error: Option<f64>,
     pub history: Vec<ConvergenceStep>,
+    /// How many times the cell repeats itself exactly along x and y: the solver takes one repeat (period
+    /// `Λ/k`), whose truncation `orders` is, and numbers the answer's orders in the cell's (`m = k·m'`). A cell
+    /// of eight periods solved whole coupled only every eighth order, so its truncation search stopped at ±1.5 of
+    /// the true period's orders with R + T = 104.9 %.
+    pub cell_repeats: [usize; 2],
 }
 
 /// The answer for one problem.
@@ -496,6 +502,20 @@ fn solve_auto(
     // Every propagating order must be inside the truncation; the automatic search starts with a margin.
     let start = opts.limits(two_d).0.max(px.max(py) + margin);
     let steps = truncation_steps(if opts.fixed_orders.is_some() { px.max(py) } else { start }, opts, two_d);
+    let lossless = problem.substrate_index.im == 0.0 && problem.coatings.iter().all(|c| c.index.im == 0.0);
+    // |R + T − 1| of a truncation: a lossless answer that loses or makes light is not converged, whatever the
+    // change from the previous truncation says.
+    let energy_of = |raw: &RawSolution| {
+        lossless.then(|| {
+            (0..2)
+                .map(|pol| {
+                    let total: f64 =
+                        raw.reflected.iter().chain(&raw.transmitted).map(|o| o.eff[pol][0] + o.eff[pol][1]).sum();
+                    (1.0 - total).abs()
+                })
+                .fold(0.0, f64::max)
+        })
+    };
     let mut history = Vec::new();
     let mut prev: Option<(RawSolution, [usize; 2])> = None;
     let mut result = None;
@@ -510,8 +530,9 @@ fn solve_auto(
         history.push(ConvergenceStep { orders: [mx, my], change });
         let last = i + 1 == steps.len();
         if let Some(c) = change {
-            if c <= opts.tolerance || last {
-                result = Some((raw, [mx, my], prev.as_ref().map(|p| p.1).unwrap(), c, c <= opts.tolerance, last));
+            let met = c <= opts.tolerance && energy_of(&raw).is_none_or(|e| e <= opts.tolerance);
+            if met || last {
+                result = Some((raw, [mx, my], prev.as_ref().map(|p| p.1).unwrap(), c, met, last));
                 break;
             }
         }
@@ -519,8 +540,7 @@ fn solve_auto(
     }
     let (raw, ord, cmp, err, met, capped) = result.expect("at least two truncations are solved");
     let orders: Vec<Order> = raw.reflected.iter().map(|o| to_order(o, problem.incident_index)).collect();
-    let lossless = problem.substrate_index.im == 0.0;
-    let transmitted_orders: Vec<Order> = if lossless {
+    let transmitted_orders: Vec<Order> = if problem.substrate_index.im == 0.0 {
         raw.transmitted.iter().map(|o| to_order(o, problem.substrate_index.re)).collect()
     } else {
         Vec::new()
@@ -532,7 +552,7 @@ fn solve_auto(
         1.0 - reflected_total.te - transmitted_total.te,
         1.0 - reflected_total.tm - transmitted_total.tm,
     );
-    let energy_error = lossless.then(|| absorbed.te.abs().max(absorbed.tm.abs()));
+    let energy_error = energy_of(&raw);
     Ok(Solution {
         wavelength_nm: problem.wavelength_nm,
         theta_i_deg: problem.theta_i_rad.to_degrees(),
@@ -557,6 +577,7 @@ fn solve_auto(
             capped,
             energy_error,
             history,
+            cell_repeats: [1, 1],
         },
     })
 }
@@ -581,9 +602,46 @@ fn check_profile_2d(p: &Profile2d) -> Result<(), RigorousError> {
     check_heights(&p.heights_nm)
 }
 
+/// How many times `n` samples along one axis repeat exactly (the largest `k` dividing `n`, one repeat keeping at
+/// least 3 samples, with `height(i, j) = height(i + n/k, j)` for every `i` and every `j` of the `other` axis,
+/// within 1e-9 of the height range: a tiled cell's rounding, not a measured relief's noise).
+fn repeats(n: usize, other: usize, height: impl Fn(usize, usize) -> f64, range: f64) -> usize {
+    let tolerance = 1e-9 * range;
+    (2..=n / 3)
+        .rev()
+        .filter(|k| n % k == 0)
+        .find(|&k| {
+            let step = n / k;
+            (0..other).all(|j| (0..n - step).all(|i| (height(i, j) - height(i + step, j)).abs() <= tolerance))
+        })
+        .unwrap_or(1)
+}
+
+fn height_range(h: &[f64]) -> f64 {
+    let (lo, hi) = h.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| (lo.min(v), hi.max(v)));
+    hi - lo
+}
+
+/// The answer on one repeat of a cell that repeats `k = [kx, ky]` times, with its orders numbered in the cell's.
+fn renumbered(mut s: Solution, k: [usize; 2]) -> Solution {
+    for o in s.orders.iter_mut().chain(s.transmitted_orders.iter_mut()) {
+        o.m *= k[0] as i32;
+        o.n *= k[1] as i32;
+    }
+    s.convergence.cell_repeats = k;
+    s
+}
+
 /// Diffraction efficiencies of a 1-D profile (grooves along y), any incidence (conical when `φ_i ≠ 0, π`).
+/// A profile that repeats itself within its period is solved on one repeat ([`Convergence::cell_repeats`]).
 pub fn solve_1d(profile: &Profile1d, problem: &Problem, opts: &Options) -> Result<Solution, RigorousError> {
     check_profile_1d(profile)?;
+    let h = &profile.heights_nm;
+    let k = repeats(h.len(), 1, |i, _| h[i], height_range(h));
+    if k > 1 {
+        let one = Profile1d { period_nm: profile.period_nm / k as f64, heights_nm: h[..h.len() / k].to_vec() };
+        return solve_1d(&one, problem, opts).map(|s| renumbered(s, [k, 1]));
+    }
     let k0 = 2.0 * std::f64::consts::PI / problem.wavelength_nm;
     let s = profile.heights_nm.len();
     let make = |lx: usize, _ly: usize| {
@@ -594,10 +652,28 @@ pub fn solve_1d(profile: &Profile1d, problem: &Problem, opts: &Options) -> Resul
     solve_auto(problem, opts, false, profile.period_nm, 1.0, &make)
 }
 
-/// Diffraction efficiencies of a 2-D profile (crossed grating).
+/// Diffraction efficiencies of a 2-D profile (crossed grating). A grid that repeats itself within the cell is
+/// solved on one repeat ([`Convergence::cell_repeats`]).
 pub fn solve_2d(profile: &Profile2d, problem: &Problem, opts: &Options) -> Result<Solution, RigorousError> {
     check_profile_2d(profile)?;
     check_problem(problem)?;
+    let (rows, cols, h) = (profile.rows, profile.cols, &profile.heights_nm);
+    let range = height_range(h);
+    let kx = repeats(cols, rows, |i, j| h[j * cols + i], range);
+    let ky = if rows == 1 { 1 } else { repeats(rows, cols, |j, i| h[j * cols + i], range) };
+    if kx * ky > 1 {
+        let (r, c) = (rows / ky, cols / kx);
+        // The top-left repeat (rows 0 … r−1 of the displayed image; any repeat is the cell's, shifted).
+        let heights_nm = (0..r).flat_map(|j| h[j * cols..j * cols + c].iter().copied()).collect();
+        let one = Profile2d {
+            period_x_nm: profile.period_x_nm / kx as f64,
+            period_y_nm: profile.period_y_nm / ky as f64,
+            rows: r,
+            cols: c,
+            heights_nm,
+        };
+        return solve_2d(&one, problem, opts).map(|s| renumbered(s, [kx, ky]));
+    }
     let k0 = 2.0 * std::f64::consts::PI / problem.wavelength_nm;
     // Reorder rows so that y increases with the storage index (y = (rows − 1 − row) dy).
     let (rows, cols) = (profile.rows, profile.cols);
