@@ -339,10 +339,14 @@ pub fn testbench(
     }
     let source = Source::Patch { patch, name: source.name().to_string() };
     let mut b = workbench_from(&source, m, config, report)?;
+    let lambda_min =
+        setup.wavelengths_nm.iter().chain(b.config.spectral.wavelengths()).copied().fold(f64::INFINITY, f64::min);
+    // The Taylor terms serve the bench's shortest wavelength, not the colour grid's 380 nm (a bench from 0.5 nm,
+    // µm read as nm, gave reflectances of 1e77 from terms counted for 380 nm); too deep there is refused.
+    let auto = iridis_diffraction::taylor::terms_for_bound(b.patch.max_abs_height, lambda_min, b.config.term_epsilon)?;
+    b.config.terms = Some(b.config.terms.unwrap_or(auto.max(1)));
     if method == Method::Reference {
         // The bench reads one light's lobes: its Taylor terms keep the bins that light reaches (memory).
-        let lambda_min =
-            setup.wavelengths_nm.iter().chain(b.config.spectral.wavelengths()).copied().fold(f64::INFINITY, f64::min);
         let margin = 1.001 * iridis_diffraction::taylor::window_radius(b.config.coherence_nm);
         b.config.band = iridis_diffraction::taylor::Band::light(setup.light(), lambda_min, margin);
     }

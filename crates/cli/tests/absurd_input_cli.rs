@@ -196,3 +196,20 @@ fn library_limits_found_from_python_hold_on_the_command_line() {
         &["1000–1500 nm (--from/--to) holds 0.00 % of it"],
     );
 }
+
+/// Wavelengths in µm or metres written as nm: a unit cell of 4 µm at 5.5e-7 nm has ~1e10 orders (the grating
+/// aborted allocating 4 GB; Python's process was killed at 24 GB), and a test bench from 0.5 nm counted its
+/// Taylor terms for 380 nm and printed reflectances of 1e77. Both are refused, saying what the unit likely was.
+#[test]
+fn wavelengths_in_the_wrong_unit_are_refused() {
+    let sine = "builtin:sine?size=4um&pixel=50nm&period=1000nm&depth=100nm";
+    assert_fails(
+        &["grating", sine, "--wavelength", "5.5e-7nm"],
+        &["orders propagate at λ = 0.00000055 nm", "more than the 4e6", "5.5e-7 metres"],
+    );
+    // 2k|h|max = 2 · 2π/0.5 nm · 129 nm ≈ 3236 > 26.8: beyond the Taylor expansion at the bench's 0.5 nm.
+    assert_fails(
+        &["testbench", "builtin:blazed?size=20um&pixel=50nm", "--from", "0.5nm", "--to", "0.7nm", "--step", "0.05nm"],
+        &["too deep for the Taylor expansion (paper eq. 5) at 0.5 nm", "0.55 is µm"],
+    );
+}

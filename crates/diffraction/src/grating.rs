@@ -49,6 +49,11 @@ pub const TAYLOR_EPSILON: f64 = 1e-10;
 /// squared entries per wavelength); larger unit cells (a 20 µm scan has ~5000) take the row normalisation.
 pub const MAX_SINKHORN_CHANNELS: usize = 600;
 
+/// Most propagating orders a unit cell's model takes at one wavelength: a 100 µm crossed cell at 300 nm has
+/// π (L/λ)² ≈ 3.5e5. A wavelength in metres read as nm (5.5e-7 "nm" over a 4 µm cell: 1.7e14 orders) asked for
+/// gigabytes and aborted.
+pub const MAX_ORDERS: f64 = 4e6;
+
 /// How Kirchhoff's efficiencies are normalised (module documentation).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Normalisation {
@@ -236,6 +241,7 @@ impl UnitCell {
     /// down to `lambda_min_nm` (remainder ≤ [`TAYLOR_EPSILON`]), for light from any direction.
     pub fn new(patch: &Patch, lambda_min_nm: f64) -> Result<Self, DiffractionError> {
         check_wavelength(lambda_min_nm)?;
+        check_order_count(Lines::of(patch), patch.extent(), lambda_min_nm)?;
         // Channels a, b couple through c_{a−b}, |a − b| < 2/λ in frequency: no other bin is read.
         Self::with_band(patch, lambda_min_nm, Band::directions(lambda_min_nm, 0.0), None)
     }
@@ -249,6 +255,7 @@ impl UnitCell {
         check_wavelength(lambda_min)?;
         let lines = Lines::of(patch);
         let (lx, ly) = patch.extent();
+        check_order_count(lines, (lx, ly), lambda_min)?;
         let rows_alone = wavelengths_nm.iter().all(|&l| channels(lines, (lx, ly), wi, l).len() > MAX_SINKHORN_CHANNELS);
         if !rows_alone {
             return Self::new(patch, lambda_min);
@@ -436,6 +443,24 @@ impl UnitCell {
             })
             .collect()
     }
+}
+
+/// Refuses a cell with more than [`MAX_ORDERS`] propagating orders at `lambda_nm` (about `2L/λ` along a 1-D
+/// grating, `π Lx Ly/λ²` for a crossed one), before any is listed.
+fn check_order_count(lines: Lines, (lx, ly): (f64, f64), lambda_nm: f64) -> Result<(), DiffractionError> {
+    let orders = match lines {
+        Lines::AlongX => 2.0 * lx / lambda_nm,
+        Lines::AlongY => 2.0 * ly / lambda_nm,
+        Lines::Crossed => std::f64::consts::PI * (lx / lambda_nm) * (ly / lambda_nm),
+    };
+    if orders > MAX_ORDERS {
+        return Err(DiffractionError::Invalid(format!(
+            "about {orders:.1e} orders propagate at λ = {lambda_nm} nm over a {lx} × {ly} nm unit cell, more than the \
+             {MAX_ORDERS:.0e} its model takes: wavelengths are in nm (0.55 is µm, 5.5e-7 metres); for a large scan \
+             take one period (--unit-cell auto) or a smaller patch"
+        )));
+    }
+    Ok(())
 }
 
 fn check_wavelength(lambda_min_nm: f64) -> Result<(), DiffractionError> {

@@ -33,9 +33,11 @@ pub fn terms_for_bound(max_abs_height_nm: f64, lambda_min_nm: f64, epsilon: f64)
              (paper eq. 5) at {lambda_min_nm} nm: its terms grow to about e^{x:.0} before they cancel, so double \
              precision leaves {} of the amplitude as rounding noise (at most {MAX_TAYLOR_ROUNDING:.0e} \
              is accepted; the limit is 2k|h|max ≤ {x_max:.1}, |h|max ≤ {:.0} nm here). Use a method that sums \
-             exp(i k w h) directly (ground-truth for BRDFs, rigorous for order efficiencies) or longer wavelengths",
+             exp(i k w h) directly (ground-truth for BRDFs, rigorous for order efficiencies) or longer wavelengths{}",
             if rounding.is_finite() { format!("{rounding:.0e}") } else { "over 1e308 times".into() },
-            x_max * lambda_min_nm / (2.0 * std::f64::consts::TAU)
+            x_max * lambda_min_nm / (2.0 * std::f64::consts::TAU),
+            // Below the far UV the likelier cause is a unit: 0.55 "nm" meant µm.
+            if lambda_min_nm < 20.0 { " (wavelengths are in nm: 0.55 is µm, 5.5e-7 metres)" } else { "" }
         )));
     }
     let mut term = x; // x^{N+1}/(N+1)! for N = 0
