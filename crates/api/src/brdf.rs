@@ -284,6 +284,16 @@ fn is_lit(peak: f64) -> bool {
     peak > LIT_FLOOR && peak.is_finite()
 }
 
+/// A displayed channel below this (linear sRGB) is black to CIELAB's eye: L* under 0.1.
+pub const DISPLAY_FLOOR: f64 = 1e-4;
+
+/// Whether a map shows nothing at any of `exposures` (RU): its brightest channel times the largest stays under
+/// [`DISPLAY_FLOOR`], so every colour difference taken on it is 0 whatever the method.
+pub fn dark_at_every_exposure(xyz: &[Xyz], exposures: &[f64]) -> bool {
+    let most = exposures.iter().copied().fold(0.0f64, f64::max);
+    brightest_lit(xyz).is_none_or(|p| peak_channel(&p) * most < DISPLAY_FLOOR)
+}
+
 /// The map's brightest lit pixel (by its brightest channel), in one pass; `None` for a map with no light.
 pub fn brightest_lit(xyz: &[Xyz]) -> Option<Xyz> {
     xyz.iter()

@@ -554,6 +554,18 @@ pub fn comparison(
         if !compared_with.contains(&t) {
             compared_with.push(t);
         }
+        // Two black maps agree to ΔE00 0 and say nothing (the docs' own example compared them as perfect).
+        // Pixels outside the disk are None.
+        let black = |xyz: &[Option<iridis_color::Xyz>]| {
+            crate::brdf::dark_at_every_exposure(&xyz.iter().flatten().copied().collect::<Vec<_>>(), exps)
+        };
+        if black(&img) && black(c.truth(t)) {
+            report.warn(&format!(
+                "{m} and {t} are both black at every exposure on this {0}² map (their ΔE00 of 0 compares nothing): at \
+                 this coherence each lobe is narrower than a pixel; give a larger --size or a shorter --coherence",
+                pixels.width
+            ));
+        }
         let one = [(m.name().to_string(), img)];
         c.rows.extend(iridis_lab::compare::table(&one, c.truth(t), t.name(), exps));
         let [(name, img)] = one;

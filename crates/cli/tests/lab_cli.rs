@@ -2,7 +2,7 @@
 //! Sizes are small so that each call takes about a second in release.
 
 use crate::common;
-use common::{assert_fails, iridis, json_of, quoted, words};
+use common::{assert_fails, iridis, json_of, ok, quoted, words};
 
 /// Each first-order peak of a bench lit at 75° stands where m λ / d = sin θ_i − sin θ_r puts it, within `tol_deg`.
 fn assert_peaks_follow_the_grating_equation(peaks: &[serde_json::Value], period_nm: f64, tol_deg: f64) {
@@ -864,4 +864,39 @@ fn a_small_patch_keeps_the_lights_coherence_and_is_a_unit_cell() {
     assert!((u - d * d / 12_800.0).abs() < 1e-9, "± {u} for {d}");
     // 6.4 periods in the cell: the orders sit at 6400/k nm; the sine's 1000 nm lies within the stated ±.
     assert!((d - 1000.0).abs() <= u, "{d} ± {u}");
+}
+
+/// Two maps black at every exposure agree to ΔE00 0 and say nothing: a 16² map of a 4 µm sine under the light's
+/// 65 µm coherence (its lobes ~1e-3 wide in u, the pixels 0.125 apart) is said to be that, not left to read as
+/// perfect agreement.
+#[test]
+fn black_maps_compared_are_said() {
+    let out = ok(&[
+        "compare",
+        "builtin:sine?size=4um&pixel=50nm",
+        "--methods",
+        "reference",
+        "--size",
+        "16",
+        "--exposures",
+        "1",
+    ]);
+    assert!(
+        out.contains("warning: reference and ground-truth-periodic are both black at every exposure on this 16² map"),
+        "{out}"
+    );
+    // A window inside the patch widens the lobes over the pixels: nothing to say.
+    let out = ok(&[
+        "compare",
+        "builtin:sine?size=4um&pixel=50nm",
+        "--methods",
+        "reference",
+        "--size",
+        "16",
+        "--exposures",
+        "1",
+        "--coherence",
+        "1um",
+    ]);
+    assert!(!out.contains("black at every exposure"), "{out}");
 }

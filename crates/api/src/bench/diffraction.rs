@@ -367,6 +367,16 @@ pub fn accuracy(a: &AccuracyOptions, report: &dyn Report) -> Result<Bench> {
                 "exposure_ru": x, "mean": mean, "p95": p95}));
         }
         let gt = if aperture == Aperture::Periodic { periodic } else { finite };
+        if crate::brdf::dark_at_every_exposure(&gt, &a.exposures) {
+            // Rows of 0 against a black truth read as perfect agreement (the docs' --map-size 8 example).
+            report.warn(&format!(
+                "{spec}: the ground truth's {0}² map is black at every exposure, so its rows compare nothing: at a \
+                 coherence of {1:.1} µm each lobe is narrower than a pixel; give a larger --map-size or a shorter \
+                 --coherence",
+                a.map_size,
+                coherence / 1000.0
+            ));
+        }
         let mut methods: Vec<(String, Vec<Xyz>)> = Vec::new();
         for (label, power) in [("lookup", 5.0), ("lookup-linear-grid", 1.0)] {
             let params = TableParams { uv_resolution: a.uv_resolution, uv_power: power };
