@@ -12,7 +12,7 @@ color, chart and bench to the rough-substrate (LSRS) model, as ``--roughness``/`
 
 Example:
     >>> import iridis.film as film
-    >>> s = film.spectrum("air | water 348nm | air", from_nm=550, to_nm=550)
+    >>> s = film.spectrum("air | water 348nm | air", from_nm=550, to_nm=560, step_nm=10)
     >>> round(s["R"][0], 4)
     0.0556
     >>> print(film.color("air | water 348nm | air").text.splitlines()[2])

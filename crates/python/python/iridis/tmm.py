@@ -29,12 +29,14 @@ Example:
 from __future__ import annotations
 
 import cmath
+import functools
 import sys
 from collections.abc import Mapping
 
 import numpy as np
 
-from ._native import CohTmmResult, _check_stack, _coh_tmm_batch, coh_tmm, ellips, unpolarized_RT
+from . import _native
+from ._native import CohTmmResult, _check_stack
 
 Mapping.register(CohTmmResult)
 
@@ -53,6 +55,26 @@ __all__ = [
 class TmmInputError(ValueError, AssertionError):
     """Input tmm refuses: a ``ValueError`` (iridis' convention for bad values) that is also the
     ``AssertionError`` tmm's own checks raise, so that code written for either catches it."""
+
+
+def _tmm_errors(native):
+    """``native`` with its refusals raised as :class:`TmmInputError`, tmm's ``AssertionError`` too (tmm's own
+    ``"Error in n0 or th0!"`` is an assert, and a script written for tmm catches that)."""
+    @functools.wraps(native)
+    def call(*args, **kwargs):
+        try:
+            return native(*args, **kwargs)
+        except TmmInputError:
+            raise
+        except ValueError as e:
+            raise TmmInputError(str(e)) from None
+    return call
+
+
+coh_tmm = _tmm_errors(_native.coh_tmm)
+unpolarized_RT = _tmm_errors(_native.unpolarized_RT)
+ellips = _tmm_errors(_native.ellips)
+_coh_tmm_batch = _tmm_errors(_native._coh_tmm_batch)
 
 
 def _pol(pol):
