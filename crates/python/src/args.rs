@@ -7,9 +7,10 @@ use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyFloat, PyList};
 
-/// A library error as Python's `ValueError`, with the library's message.
+/// A library error as Python's `ValueError`, with the library's message in a Python caller's words
+/// ([`crate::facade::in_python_terms`]).
 pub fn value_error(e: impl std::fmt::Display) -> PyErr {
-    PyValueError::new_err(e.to_string())
+    PyValueError::new_err(crate::facade::in_python_terms(&e.to_string()))
 }
 
 /// A direction `(θ, φ)` in radians above the surface (`what` names it in the message).

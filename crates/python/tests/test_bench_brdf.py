@@ -73,14 +73,14 @@ def test_render_bench_counts_the_scene():
 def test_bench_bad_input():
     with pytest.raises(ValueError, match="no bench 'fft'"):
         bench.run("fft")
-    with pytest.raises(ValueError, match="--map-size 2 must be between 4 and 256"):
+    with pytest.raises(ValueError, match="map_size 2 must be between 4 and 256"):
         bench.run("diffraction-methods", patch_sizes=[64], map_size=2)
     with pytest.raises(TypeError, match="unexpected keyword argument 'map'"):
         bench.run("diffraction-methods", map=2)
     with pytest.raises(ValueError, match="python and peer_seconds would be ignored: no_python"):
         bench.run("grating", quick=True, no_python=True, peer_seconds=3.0)
     # A scene is timed alone (refused before a GPU is opened): the shaders' options would change nothing.
-    with pytest.raises(ValueError, match="--gt-size would be ignored: with a SCENE"):
+    with pytest.raises(ValueError, match="gt_size would be ignored: with a SCENE"):
         bench.run("gpu", scene=os.path.join(ROOT, "examples", "gold_sphere.toml"), gt_size=8)
 
 
@@ -112,8 +112,8 @@ def test_a_finished_table_refuses_what_only_shapes_a_build(tmp_path):
     pixel size would be ignored, so it is refused, naming it."""
     path = tmp_path / "sine.npz"
     diffraction.precompute(SINE, uv_resolution=11).save(path)
-    for key, value, flag in (("uv_resolution", 101, "--uv-resolution 101"), ("uv_power", 1.0, "--uv-power 1"),
-                             ("pixel_size_nm", 50.0, "--pixel-size 50nm")):
+    for key, value, flag in (("uv_resolution", 101, "uv_resolution 101"), ("uv_power", 1.0, "uv_power 1"),
+                             ("pixel_size_nm", 50.0, "pixel_size_nm 50nm")):
         with pytest.raises(ValueError, match=f"finished lookup table, so {flag} would be ignored"):
             diffraction.brdf_eval(str(path), light=0.3, view=0.2, **{key: value})
         with pytest.raises(ValueError, match=f"finished lookup table, so {flag} would be ignored"):
@@ -127,7 +127,7 @@ def test_the_rigorous_method_refuses_the_scalar_models_shading():
     cell = "builtin:sine?size=1100nm&pixel=10nm"
     for key, value, said in (("fresnel", "index:2.5", "not a Fresnel factor"),
                              ("fresnel_convention", "paper", "the rigorous method has none"),
-                             ("shadowing", False, "--no-shadowing would be ignored")):
+                             ("shadowing", False, "shadowing=False would be ignored")):
         with pytest.raises(ValueError, match=said):
             diffraction.brdf_eval(cell, light=0.3, view=0.0, method="rigorous", **{key: value})
         with pytest.raises(ValueError, match=said):
@@ -165,9 +165,9 @@ def test_auto_exposure_makes_the_99th_percentile_white():
 
 
 def test_brdf_map_run_bad_input():
-    with pytest.raises(ValueError, match="--size 4 must be between 8 and 8192"):
+    with pytest.raises(ValueError, match="size 4 must be between 8 and 8192"):
         diffraction.brdf_map_run(SINE, size=4)
-    with pytest.raises(ValueError, match="--table-precision chooses how the GPU stores"):
+    with pytest.raises(ValueError, match="table_precision chooses how the GPU stores"):
         diffraction.brdf_map_run(SINE, size=8, table_precision="f32")
     with pytest.raises(TypeError, match="SURFACE or TABLE argument"):
         diffraction.brdf_map_run(42)

@@ -41,7 +41,7 @@ def test_sine_grating_orders_obey_the_grating_equation():
 def test_a_map_too_coarse_for_its_lobes_says_so():
     # 65 µm coherence: a lobe's σ in (u, v) is 380/(2√2π·16250) = 0.0026 at 380 nm; pixels 2/size apart miss
     # lobes past 6σ, i.e. below 127² (the same check as `iridis brdf-map`).
-    with pytest.warns(UserWarning, match=r"--subsamples 4 \(each pixel the mean of 4² directions across it\) or a "
+    with pytest.warns(UserWarning, match=r"subsamples 4 \(each pixel the mean of 4² directions across it\) or a "
                                          r"map of 127² pixels samples every lobe"):
         diffraction.brdf_map(sine(), size=33, method="reference", coherence_nm=65000.0)
     maps = {}
@@ -95,12 +95,12 @@ def test_bad_input():
         diffraction.Table.load("/no/such/table.npz")
     # A u-v grid builds a table only for the lookup method from a height field; anywhere else it would be
     # ignored, so it raises as the CLI refuses it (and out of range, before any work).
-    with pytest.raises(ValueError, match="--uv-resolution 101 would be ignored: the reference method builds no"):
+    with pytest.raises(ValueError, match="uv_resolution 101 would be ignored: the reference method builds no"):
         diffraction.brdf_map(g, method="reference", size=8, uv_resolution=101)
-    with pytest.raises(ValueError, match="--uv-power 2 would be ignored"):
+    with pytest.raises(ValueError, match="uv_power 2 would be ignored"):
         diffraction.evaluate("builtin:sine?size=4um&pixel=100nm", (0.0, 0.0), (0.3, 0.0), uv_power=2.0)
     t = diffraction.precompute(g, uv_resolution=21)
-    with pytest.raises(ValueError, match="this Table is a finished lookup table, so --uv-resolution 31 would be"):
+    with pytest.raises(ValueError, match="this Table is a finished lookup table, so uv_resolution 31 would be"):
         diffraction.brdf_map(t, size=8, uv_resolution=31)
     with pytest.raises(ValueError, match="u-v resolution 2 must be between 3 and 4001"):
         diffraction.precompute(g, uv_resolution=2)
@@ -110,7 +110,7 @@ def test_bad_input():
     assert t.meta["units"] == "relative"
     with pytest.raises(TypeError, match="unexpected keyword argument 'fresnel'"):
         diffraction.precompute(g, uv_resolution=21, fresnel="gold")
-    with pytest.raises(ValueError, match="--conserve-energy would be ignored"):
+    with pytest.raises(ValueError, match="conserve_energy would be ignored"):
         diffraction.precompute(g, uv_resolution=21, conserve_energy=True)
     with pytest.raises(ValueError, match="units 'watts'"):
         diffraction.precompute(g, uv_resolution=21, units="watts")

@@ -62,9 +62,9 @@ def test_fit_from_arrays_is_read_and_warned_as_a_file_is():
     wl = np.linspace(420, 780, 121)
     r = tf.Stack("air | n=1.46 312nm | si-green").reflectance(wl)
     stack = "air | n=1.46 {d=250nm:200nm..400nm} | si-green"
-    with pytest.raises(ValueError, match="--columns '1,2' would be ignored: the measurement was given as arrays"):
+    with pytest.raises(ValueError, match="columns '1,2' would be ignored: the measurement was given as arrays"):
         tf.fit((wl, r), stack, columns="1,2")
-    with pytest.raises(ValueError, match="--sigma 'R_err': with arrays give a number"):
+    with pytest.raises(ValueError, match="sigma 'R_err': with arrays give a number"):
         tf.fit((wl, r), stack, sigma="R_err")
     with pytest.raises(ValueError, match="uncertainty given twice"):
         tf.fit((wl, r, np.full(wl.size, 0.01)), stack, sigma=0.01)
@@ -94,7 +94,7 @@ def test_fit_refuses_percent_for_psi_delta(tmp_path):
     ell = tmp_path / "ellips.csv"
     ell.write_text("wavelength_nm,psi,delta\n400,30,100\n500,31,101\n600,32,102\n")
     stack = "air | n=2.1 {d=150nm:50nm..400nm} | Si"
-    for percent, said in ((True, "--percent"), (False, "percent=False")):
+    for percent, said in ((True, "percent"), (False, "percent=False")):
         with pytest.raises(ValueError, match=f"{said} would be ignored: ψ and Δ are angles"):
             tf.fit(str(ell), stack, np.radians(70), "psi-delta", percent=percent)
 

@@ -54,7 +54,7 @@ def test_render_takes_the_clis_exposure_and_gltf_options():
     with pytest.raises(ValueError, match="a TOML scene has its"):
         render.render(SCENE, size=(8, 8), spp=1, camera="front")
     gltf = os.path.join(ROOT, "examples", "iridescent_spheres.gltf")
-    with pytest.raises(ValueError, match="--camera front: the file has no camera"):
+    with pytest.raises(ValueError, match="camera front: the file has no camera"):
         render.render(gltf, size=(8, 8), spp=1, camera="front")
     assert render.render(gltf, size=(8, 8), spp=1, ignore_gltf_lights=True).shape == (8, 8, 3)
 

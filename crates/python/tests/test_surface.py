@@ -84,17 +84,17 @@ def test_bad_input():
     with pytest.raises(ValueError, match="level"):
         surface.Surface(np.zeros((4, 4)), 1.0).level("sideways")
     # Options the SURFACE has no use for: refused as the CLI refuses them, not ignored.
-    with pytest.raises(ValueError, match=r"--channel, --as-height would be ignored: .*builtin:sine"):
+    with pytest.raises(ValueError, match=r"channel, as_height would be ignored: .*builtin:sine"):
         surface.load("builtin:sine?size=1um&pixel=100nm", channel=1, as_height=True)
     npy = os.path.join(ROOT, "crates", "surface", "tests", "fixtures", "numpy_f32_fortran.npy")
-    with pytest.raises(ValueError, match=r"--max-height would be ignored: .*npy format"):
+    with pytest.raises(ValueError, match=r"max_height_nm would be ignored: .*npy format"):
         surface.load(npy, pixel_size_nm=10.0, max_height_nm=5.0)
-    with pytest.raises(ValueError, match=r"--as-height would be ignored: .*npy format"):
+    with pytest.raises(ValueError, match=r"as_height would be ignored: .*npy format"):
         surface.load(npy, pixel_size_nm=10.0, as_height=True)
     sxm = os.path.join(FIX, "nanonis_synthetic.sxm")
-    with pytest.raises(ValueError, match="--override-units would be ignored: .*none is given"):
+    with pytest.raises(ValueError, match="override_units would be ignored: .*none is given"):
         surface.load(sxm, override_units=True)
-    with pytest.raises(ValueError, match="--as-height would be ignored: channel 0 'Z_forward' is a height already"):
+    with pytest.raises(ValueError, match="as_height would be ignored: channel 0 'Z_forward' is a height already"):
         surface.load(sxm, as_height=True)
     # A seed for a structure with no randomness would change nothing.
     with pytest.raises(ValueError, match="seed 3 would be ignored: sine has no randomness"):
@@ -110,24 +110,24 @@ def test_an_instrument_files_own_units_win_unless_overridden():
     assert kept.pixel_nm == plain.pixel_nm == pytest.approx((10.0, 10.0), rel=1e-12)
     np.testing.assert_array_equal(kept.heights_nm, plain.heights_nm)
     said = " ".join(kept.meta["warnings"])
-    assert "--pixel-size 50 nm ignored: the file gives 10.00 × 10.00 nm per pixel" in said
-    assert "--height-unit um ignored: the file gives this channel's heights in m" in said
+    assert "pixel_size_nm 50 nm ignored: the file gives 10.00 × 10.00 nm per pixel" in said
+    assert "height_unit um ignored: the file gives this channel's heights in m" in said
     over = surface.load(sxm, pixel_size_nm=50.0, height_unit="um", override_units=True)
     assert over.pixel_nm == (50.0, 50.0)
     # Stored in m, read as µm: a millionth of the heights.
     np.testing.assert_allclose(over.heights_nm, plain.heights_nm * 1e-6, rtol=1e-12)
-    with pytest.raises(ValueError, match="as-height"):
+    with pytest.raises(ValueError, match="as_height"):
         surface.load(sxm, channel="Current")
-    with pytest.raises(ValueError, match="give --height-unit"):
+    with pytest.raises(ValueError, match="give height_unit"):
         surface.load(sxm, channel="Current", as_height=True)
     current = surface.load(sxm, channel="Current", as_height=True, height_unit="nm")
-    assert "--as-height" in " ".join(current.meta["warnings"])
+    assert "as_height" in " ".join(current.meta["warnings"])
     # The option dicts of the library calls take them too: the GPU bench reads its surfaces before it opens a GPU.
     import iridis.bench as bench
 
-    with pytest.raises(ValueError, match="as-height"):
+    with pytest.raises(ValueError, match="as_height"):
         bench.run("gpu", build_surface=sxm, channel="Current")
-    with pytest.raises(ValueError, match="give --height-unit"):
+    with pytest.raises(ValueError, match="give height_unit"):
         bench.run("gpu", build_surface=sxm, channel="Current", as_height=True)
 
 
