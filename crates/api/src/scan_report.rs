@@ -6,7 +6,7 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{anyhow, bail, Context, Result};
+use anyhow::{anyhow, Context, Result};
 use iridis_color::units::{parse_angle_rad, parse_positive_length_nm};
 use iridis_color::{Encoding, ToneMap};
 use iridis_diffraction::geometry::{direction, FresnelConvention};
@@ -200,7 +200,9 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
     crate::brdf_map::check_size(o.size)?;
     // A scan that is not there is said as such, not as the failure of the first step's command line.
     if !o.surface.starts_with("builtin:") && !Path::new(&o.surface).exists() {
-        bail!("cannot read {}: no such file", o.surface);
+        // An I/O error in the chain: Python raises OSError for it, as for every unreadable file.
+        let missing = format!("cannot read {}: no such file", o.surface);
+        return Err(std::io::Error::new(std::io::ErrorKind::NotFound, missing).into());
     }
     let spec =
         iridis_vision::Spec { visual: Some(o.visual.clone()), illuminant: Some("d65".into()), ..Default::default() };

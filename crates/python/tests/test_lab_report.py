@@ -62,6 +62,18 @@ def test_report_of_a_grey_image_takes_max_height(tmp_path, grey_sine_png):
     assert r["info"]["rms_nm"] == pytest.approx(grey.std() * 100 / 255, rel=1e-12)
     assert r["info"]["peaks"][0]["period_nm"] == pytest.approx(800, abs=1)
     assert all("--max-height 100nm" in c["command"] for c in r["commands"])
+    # Lengths as numbers of nm, the package's convention (the message named max_height_nm, which the function
+    # did not take): the same report.
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        n = iridis.report(png, tmp_path / "rep_nm", pixel_size_nm=50, max_height_nm=100, level="mean", size=16,
+                          testbench=False)
+    assert n["info"]["rms_nm"] == r["info"]["rms_nm"] and n["verdict"] == r["verdict"]
+    with pytest.raises(ValueError, match="max_height_nm and max_height give the same length"):
+        iridis.report(png, tmp_path / "both", max_height_nm=100, max_height="100nm", **opts)
+    # A scan that is not there is an OSError, as surface.load's.
+    with pytest.raises(OSError, match="no such file"):
+        iridis.report(tmp_path / "nope.gwy", tmp_path / "none")
 
 
 def test_reshape_and_write_follow_numpy(tmp_path):

@@ -6,16 +6,19 @@ def report(
     output: Union[str, os.PathLike[str]],
     *,
     channel: Union[int, str, None] = ...,
-    pixel_size: Optional[str] = ...,
-    max_height: Optional[str] = ...,
+    pixel_size_nm: Optional[float] = ...,
+    max_height_nm: Optional[float] = ...,
     height_unit: Optional[str] = ...,
     level: Optional[str] = ...,
     override_units: bool = ...,
     as_height: bool = ...,
     size: int = ...,
-    coherence: Optional[str] = ...,
+    coherence_nm: Optional[float] = ...,
     visual: str = ...,
     testbench: bool = ...,
+    pixel_size: Optional[str] = ...,
+    max_height: Optional[str] = ...,
+    coherence: Optional[str] = ...,
 ) -> dict[str, Any]: ...
 
 DEMO_SECTIONS: tuple[str, ...]
