@@ -67,6 +67,31 @@ pub fn source_of_field(h: &PyHeightField) -> PyResult<Source> {
     Ok(Source::Patch { patch, name })
 }
 
+/// A Surface in memory is already read: the options that say how to read a file would be ignored, so they are
+/// refused (`pixel_size_nm=10` on a Surface of 50 nm pixels changed nothing, in silence).
+pub fn refuse_reading_options(s: &iridis_api::SurfaceOptions) -> anyhow::Result<()> {
+    let given: Vec<&str> = [
+        ("pixel_size_nm", s.pixel_size_nm.is_some()),
+        ("max_height_nm", s.max_height_nm.is_some()),
+        ("channel", s.channel.is_some()),
+        ("height_unit", s.height_unit.is_some()),
+        ("level", s.level.is_some()),
+        ("override_units", s.units.override_units),
+        ("as_height", s.units.as_height),
+    ]
+    .into_iter()
+    .filter_map(|(name, set)| set.then_some(name))
+    .collect();
+    if given.is_empty() {
+        return Ok(());
+    }
+    anyhow::bail!(
+        "{} would be ignored: they say how to read a file, and this Surface is already read; give them to \
+         surface.load (Surface.level levels it)",
+        given.join(", ")
+    )
+}
+
 /// What an evaluator is made from: a table, a height field in memory, or an argument as the CLI takes it
 /// (a SURFACE, or a TABLE file told apart by content).
 enum Input {
@@ -141,6 +166,7 @@ fn evaluator(
             table_evaluator(t.clone(), method.unwrap_or("lookup"), &o.model, shading, Precision::F64, report)
         }
         Input::Field(s) => {
+            refuse_reading_options(&o.surface)?;
             let m = method.unwrap_or("reference");
             o.grid.refuse_unless_lookup(m)?;
             evaluator_for(s, o.setup(m, shading), report)
@@ -190,7 +216,10 @@ fn precompute(
         })
     })?;
     let source = match input_of(source)? {
-        Input::Field(s) => s,
+        Input::Field(s) => {
+            refuse_reading_options(&request.surface_opts).map_err(value_error)?;
+            s
+        }
         Input::Arg(a) if !iridis_api::model::is_table(&a) => Source::Spec(a),
         _ => return Err(value_error("precompute needs a height field (a Surface or a SURFACE argument), not a table")),
     };
@@ -337,7 +366,10 @@ fn grating<'py>(
     let unit_cell_auto = o.unit_cell_auto()?;
     o.finish()?;
     let source = match input_of(source)? {
-        Input::Field(s) => s,
+        Input::Field(s) => {
+            refuse_reading_options(&surface).map_err(value_error)?;
+            s
+        }
         Input::Arg(a) => Source::Spec(a),
         Input::Table(_) => return Err(value_error("grating needs the height field (the unit cell), not a table")),
     };
@@ -387,7 +419,10 @@ fn brdf_vision<'py>(
 ) -> PyResult<(Bound<'py, PyAny>, String)> {
     let eo = Options::read(options, EvalOptions::read)?;
     let source = match input_of(source)? {
-        Input::Field(s) => s,
+        Input::Field(s) => {
+            refuse_reading_options(&eo.surface).map_err(value_error)?;
+            s
+        }
         Input::Arg(a) => Source::Spec(a),
         Input::Table(_) => return Err(value_error("vision needs the height field, not a table")),
     };

@@ -19,9 +19,11 @@ use crate::facade::{run as facade_run, Options};
 use crate::scan_report::with_outputs;
 use crate::surface::PyHeightField;
 
-/// A SURFACE argument (str) or an `iridis.surface.Surface`.
-fn source_of(obj: &Bound<'_, PyAny>) -> PyResult<Source> {
+/// A SURFACE argument (str), read with `reading`, or an `iridis.surface.Surface`, for which any of `reading` is
+/// refused (it is already read).
+fn source_of(obj: &Bound<'_, PyAny>, reading: &iridis_api::SurfaceOptions) -> PyResult<Source> {
     if let Ok(h) = obj.downcast::<PyHeightField>() {
+        crate::diffraction::refuse_reading_options(reading).map_err(value_error)?;
         return crate::diffraction::source_of_field(h.get());
     }
     if let Ok(s) = obj.extract::<String>() {
@@ -38,7 +40,7 @@ fn source_of(obj: &Bound<'_, PyAny>) -> PyResult<Source> {
 /// keyword is a `TypeError`).
 fn source_and_lab(surface: &Bound<'_, PyAny>, options: Option<Bound<'_, PyDict>>) -> PyResult<(Source, LabOptions)> {
     let lab = Options::read(options, lab_options)?;
-    Ok((source_of(surface)?, lab))
+    Ok((source_of(surface, &lab.surface)?, lab))
 }
 
 fn lab_options(o: &mut Options<'_>) -> PyResult<LabOptions> {
@@ -90,7 +92,7 @@ fn _testbench<'py>(
         };
         Ok((lab, rigorous))
     })?;
-    let source = source_of(surface)?;
+    let source = source_of(surface, &lab.surface)?;
     let mut setup =
         BenchSetup::new(incidence, azimuth.unwrap_or(0.0), order, wavelengths, angles_deg).map_err(value_error)?;
     setup.period_hint_nm = period_nm;

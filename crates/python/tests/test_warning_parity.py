@@ -108,3 +108,22 @@ def test_messages_name_the_python_keywords(tmp_path):
     except ValueError as e:
         said = str(e)
     assert "so uv_resolution 21 would be ignored" in said and "`iridis precompute`" in said, said
+
+
+def test_reading_options_on_a_surface_in_memory_are_refused():
+    # A Surface is already read: pixel_size_nm=10 on one of 50 nm pixels changed nothing, in silence.
+    import iridis.lab as lab
+    sine = surface.load("builtin:sine?size=4um&pixel=100nm&period=1000nm&depth=100nm")
+    for call in (lambda: diffraction.evaluate(sine, 0.2, (0.2, 3.14159), pixel_size_nm=10),
+                 lambda: diffraction.precompute(sine, uv_resolution=21, level="plane"),
+                 lambda: diffraction.grating(sine, height_unit="um"),
+                 lambda: lab.testbench(sine, pixel_size_nm=10)):
+        try:
+            call()
+        except ValueError as e:
+            assert "would be ignored: they say how to read a file, and this Surface is already read" in str(e), e
+        else:
+            raise AssertionError("not refused")
+    # The same keywords with a SURFACE argument are read.
+    q = diffraction.evaluate("builtin:sine?size=4um&pixel=100nm", 0.2, (0.2, 3.14159), level="none", step_nm=20)
+    assert q["method"] == "reference"
