@@ -356,10 +356,26 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
             let shading = crate::fresnel::shading(crate::fresnel::DEFAULT_FRESNEL, FresnelConvention::Physical, true)?;
             let views: Vec<f64> = (-6..=6).map(|k| 10.0 * k as f64).collect();
             let plane = crate::vision::PlaneViews { light_theta: 0.0, azimuth: None, views_deg: &views, spec: &spec };
-            let v = crate::vision::along_plane(&source, surf, &model, shading, plane, r)?;
+            let v = crate::vision::along_plane(&source, surf, &model, shading.clone(), plane, r)?;
             let img = crate::brdf_vision::vision_strip(&v)?;
             crate::output::write_png_rgb8(&path("vision.png"), img.width, img.height, &img.data)?;
-            Ok((answer(v.to_json(), &args, inputs), Vec::new()))
+            // The window's own colours: a flat mirror of the scan's size under the same coherence changes colour
+            // with direction too (its lobe's width goes with λ), up to 24 JND under 0.8 µm; the sentence
+            // measures the scan against it.
+            let scan = source.patch(surf, &crate::report::Quiet)?;
+            let flat = iridis_diffraction::Patch::from_row_major(
+                scan.rows,
+                scan.cols,
+                scan.dx,
+                scan.dy,
+                &vec![0.0; scan.rows * scan.cols],
+            )?;
+            let flat = Source::Patch { patch: flat, name: "a flat mirror of the scan's size".into() };
+            let plane = crate::vision::PlaneViews { azimuth: Some(v.azimuth), ..plane };
+            let reference = crate::vision::along_plane(&flat, surf, &model, shading, plane, &crate::report::Quiet)?;
+            let mut json = v.to_json();
+            json["flat_mirror_delta_s_jnd"] = json!(largest_delta_s_from_mirror(&reference.to_json()).map(|(d, _)| d));
+            Ok((answer(json, &args, inputs), Vec::new()))
         })?;
         vision = Some(v);
         steps.push(st);
@@ -541,32 +557,70 @@ fn figure_caption(file: &str) -> &'static str {
 }
 
 /// How the animal sees the scan's colours across directions, in one sentence with its numbers.
-fn vision_sentence(v: &Value) -> String {
-    let an = &v["vision"];
-    let name = an["visual"]["name"].as_str().unwrap_or("the animal");
-    let views: Vec<&str> = v["views"].as_array().into_iter().flatten().filter_map(|x| x["name"].as_str()).collect();
-    let mirror = views.iter().copied().find(|n| n.starts_with("+0") || n.starts_with("-0")).unwrap_or("+0°");
-    let (mut best, mut at) = (0.0f64, "");
-    for d in an["distances"].as_array().into_iter().flatten() {
+/// The share of the brightest view's light (its mean reflectance factor over the band) below which a view's colour
+/// is not counted: a hundred times dimmer than the highlight beside it, it is dark to the eye, while its relative
+/// catches (which ΔS compares) still give it a hue (a flat mirror's faint window tails 20° away: 94 JND).
+const SEEN_SHARE: f64 = 0.01;
+
+/// The largest ΔS (JND) of a `brdf vision` answer's views against its mirror direction, among views that get at
+/// least [`SEEN_SHARE`] of the brightest one's light, and that view's name.
+fn largest_delta_s_from_mirror(v: &Value) -> Option<(f64, String)> {
+    let views = v["views"].as_array().map_or(&[][..], Vec::as_slice);
+    let names: Vec<&str> = views.iter().filter_map(|x| x["name"].as_str()).collect();
+    let mirror = names.iter().copied().find(|n| n.starts_with("+0") || n.starts_with("-0")).unwrap_or("+0°");
+    let light = |x: &Value| -> f64 {
+        let f = x["reflectance_factor"].as_array().map_or(&[][..], Vec::as_slice);
+        f.iter().filter_map(Value::as_f64).sum::<f64>() / f.len().max(1) as f64
+    };
+    let brightest = views.iter().map(light).fold(0.0f64, f64::max);
+    let seen = |name: &str| views.iter().any(|x| x["name"] == name && light(x) >= SEEN_SHARE * brightest);
+    let mut best: Option<(f64, String)> = None;
+    for d in v["vision"]["distances"].as_array().into_iter().flatten() {
         let (a, b) = (d["a"].as_str().unwrap_or(""), d["b"].as_str().unwrap_or(""));
-        if let (Some(ds), true) = (d["delta_s"].as_f64(), a == mirror || b == mirror) {
-            if ds > best {
-                best = ds;
-                at = if a == mirror { b } else { a };
+        if let (Some(ds), true) = (d["delta_s"].as_f64(), (a == mirror || b == mirror) && seen(a) && seen(b)) {
+            if best.as_ref().is_none_or(|(x, _)| ds > *x) {
+                best = Some((ds, (if a == mirror { b } else { a }).to_string()));
             }
         }
     }
-    format!(
-        "As a {name} sees it (receptor-noise-limited model, D65, 300–700 nm), the scan's colour changes with the \
-         viewing direction by up to {best:.1} JND against the mirror direction (at {at}; 1 JND is just noticeable, \
-         {}): the figure below shows each direction in false colour.",
-        if best > 3.0 {
-            "so the iridescence is plain to it"
-        } else if best > 1.0 {
-            "so it can tell the directions apart"
+    // No other view lit enough: nothing changes colour.
+    best.or_else(|| Some((0.0, mirror.to_string())))
+}
+
+fn vision_sentence(v: &Value) -> String {
+    let name = v["vision"]["visual"]["name"].as_str().unwrap_or("the animal");
+    let (best, at) = largest_delta_s_from_mirror(v).unwrap_or((0.0, "—".into()));
+    let flat = v["flat_mirror_delta_s_jnd"].as_f64();
+    let seen = |x: f64| {
+        if x > 3.0 {
+            "plain to it"
+        } else if x > 1.0 {
+            "just seen by it"
         } else {
             "below what it can tell apart"
         }
+    };
+    // A flat mirror under the same window changes colour with direction too: the scan's figure says something
+    // of its structure only where it exceeds that.
+    let window = match flat {
+        Some(f) if best <= f + 1.0 => format!(
+            "; a flat mirror of the scan's size under the same coherence window changes by {f:.1} JND, as much, so \
+             what the animal sees here is the window's own colours (the scan is smaller than the light's coherence), \
+             not its structure's"
+        ),
+        Some(f) => format!(
+            "; a flat mirror of the scan's size under the same coherence window changes by {f:.1} JND (the window's \
+             own colours), less, so the iridescence is the structure's and {}",
+            seen(best)
+        ),
+        None => format!(", so the iridescence is {}", seen(best)),
+    };
+    format!(
+        "As a {name} sees it (receptor-noise-limited model, D65, 300–700 nm), the scan's colour changes with the \
+         viewing direction by up to {best:.1} JND against the mirror direction (at {at}, among the directions that \
+         get at least {:.0} % of the brightest one's light; 1 JND is just noticeable){window}: the figure below shows \
+         each direction in false colour.",
+        100.0 * SEEN_SHARE
     )
 }
 

@@ -109,7 +109,14 @@ pub fn along_plane(
         let Some(b) = q.brdf else {
             bail!("the BRDF in sr⁻¹ needs the physical Fresnel convention (R once), not the paper's R²");
         };
-        let factor: Vec<f64> = b.unpolarized.iter().map(|f| std::f64::consts::PI * f).collect();
+        // Below the lit floor is the round-off of sums that cancel (a flat mirror's lobe seen 60° away: 1e-34),
+        // whose "colour" is noise: no light (a flat patch's views were 94 JND apart in round-off).
+        let factor: Vec<f64> = b
+            .unpolarized
+            .iter()
+            .map(|f| std::f64::consts::PI * f)
+            .map(|f| if f.abs() > crate::brdf::LIT_FLOOR { f } else { 0.0 })
+            .collect();
         views.push((format!("{deg:+.0}°"), deg, factor));
     }
     let samples: Vec<(String, Vec<f64>)> = views.iter().map(|(n, _, s)| (n.clone(), s.clone())).collect();

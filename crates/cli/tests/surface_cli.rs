@@ -1020,3 +1020,26 @@ fn the_reports_verdict_rests_on_what_its_numbers_show() {
     let verdict = r["verdict"].as_str().unwrap();
     assert!(verdict.contains("diffracts no visible light: it has no dominant period"), "{verdict}");
 }
+
+/// The report's animal's view is measured against a flat mirror of the scan's size under the same window (whose
+/// lobe widens with λ, so it changes colour with direction too), among directions that get at least 1 % of the
+/// brightest one's light: a 1000 nm sine on a 4 µm patch exceeds the flat's, and is said to be the structure's.
+#[test]
+fn the_reports_animal_view_is_measured_against_the_windows_own() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("rep");
+    let sine = "builtin:sine?size=4um&pixel=50nm&period=1000nm&depth=100nm";
+    ok(&["report", sine, "--no-testbench", "--size", "16", "-o", out.to_str().unwrap()]);
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    let flat = r["vision"]["flat_mirror_delta_s_jnd"].as_f64().unwrap();
+    let sentence = r["vision_sentence"].as_str().unwrap();
+    assert!(sentence.contains("at least 1 % of the brightest one's light"), "{sentence}");
+    assert!(
+        sentence.contains(&format!(
+            "a flat mirror of the scan's size under the same coherence window changes by {flat:.1} JND"
+        )),
+        "{sentence}"
+    );
+    assert!(sentence.contains("so the iridescence is the structure's"), "{sentence}");
+}

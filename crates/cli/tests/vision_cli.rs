@@ -217,3 +217,39 @@ fn brdf_eval_visual_sees_from_300_nm_as_brdf_vision_does() {
         assert!((x - y).abs() <= 1e-9 * y.abs().max(1e-12), "receptor {k}: brdf eval {x}, brdf vision {y}");
     }
 }
+
+/// A flat mirror under a 4 µm window sends nothing 30°–60° away but the round-off of sums that cancel
+/// (π f_r ~ 1e-34): no light, ΔS undefined ("—"), where those round-off spectra were given hues 5–11 JND from
+/// the mirror's. Nearer (±20°) its window's faint tails are light, and keep their ΔS.
+#[test]
+fn round_off_views_are_no_light() {
+    let dir = tempfile::tempdir().unwrap();
+    let flat = dir.path().join("flat.gwy");
+    let hf = iridis_surface::HeightField::new(80, 80, 50.0, 50.0, vec![0.0; 80 * 80]).unwrap();
+    std::fs::write(&flat, iridis_surface::formats::gwy::write(&hf)).unwrap();
+    let j = json_of(&[
+        "brdf",
+        "vision",
+        flat.to_str().unwrap(),
+        "--visual",
+        "bluetit",
+        "--light",
+        "0deg",
+        "--coherence",
+        "4um",
+        "--json",
+    ]);
+    let to_mirror = |view: &str| {
+        j["vision"]["distances"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|d| (d["a"] == view && d["b"] == "+0°") || (d["a"] == "+0°" && d["b"] == view))
+            .map(|d| d["delta_s"].clone())
+            .unwrap()
+    };
+    for far in ["-60°", "-30°", "+30°", "+60°"] {
+        assert!(to_mirror(far).is_null(), "{far}: {}", to_mirror(far));
+    }
+    assert!(to_mirror("+10°").as_f64().unwrap() > 1.0);
+}
