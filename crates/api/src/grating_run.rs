@@ -49,18 +49,29 @@ pub fn grating_text(g: &Grating, light: (f64, f64), detector: Option<&str>, acce
             );
         }
         let hidden = one.orders.len() - one.orders.iter().filter(shown).count();
+        let plural = |n: usize| if n == 1 { "order" } else { "orders" };
         if hidden > 0 {
-            let orders = if hidden == 1 { "order" } else { "orders" };
-            let _ = writeln!(s, "({hidden} {orders} below 0.0001 % not shown; --json lists every order)");
+            let _ = writeln!(s, "({hidden} {} below 0.0001 % not shown; --json lists every order)", plural(hidden));
+        }
+        if one.unlisted > 0 {
+            // --orders-above: the totals count them, no list holds them (an audit found them missing in silence).
+            let _ = writeln!(
+                s,
+                "({} {} below --orders-above {} not listed, in the totals)",
+                one.unlisted,
+                plural(one.unlisted),
+                g.orders_above
+            );
         }
         let r = one.reflected_total;
+        let counted = one.orders.len() + one.unlisted;
         let _ = writeln!(
             s,
-            "total reflected  TE {:.4} %  TM {:.4} %  unpolarised {:.4} %  ({} orders)",
+            "total reflected  TE {:.4} %  TM {:.4} %  unpolarised {:.4} %  ({counted} {})",
             100.0 * r.te,
             100.0 * r.tm,
             100.0 * r.unpolarized,
-            one.orders.len()
+            plural(counted)
         );
         if let Some(t) = one.transmitted_total {
             let _ = writeln!(
@@ -147,6 +158,82 @@ pub fn grating_text(g: &Grating, light: (f64, f64), detector: Option<&str>, acce
         );
     }
     s
+}
+
+/// The longest 1-D period, in shortest wavelengths, on which [`grating_checked`] solves Maxwell's equations
+/// unasked: ~60 orders each side over n = 1.5, milliseconds a wavelength.
+const CHECKED_PERIOD_IN_WAVELENGTHS: f64 = 24.0;
+/// How many of the wavelengths [`grating_checked`] solves Maxwell's equations at.
+const CHECKED_WAVELENGTHS: usize = 5;
+
+/// `iridis grating`: [`grating`], and for the scalar model on a 1-D cell whose rigorous solve is cheap
+/// ([`CHECKED_PERIOD_IN_WAVELENGTHS`]), its error against Maxwell's equations on the same cell, warned where above
+/// the threshold at which its numbers are not to be trusted (a 1 µm sine at 89.9° light: 8.5 % reflected
+/// where Maxwell's equations give 98.9 %, in silence). A crossed or longer cell, or a `--fresnel` the rigorous
+/// method has no equivalent of, is not checked (`--compare` measures it).
+pub fn grating_checked(
+    source: &Source,
+    surface: &SurfaceOptions,
+    opts: &GratingOptions,
+    report: &dyn Report,
+) -> Result<Grating> {
+    let g = grating(source, surface, opts, report)?;
+    let lambda_min = opts.wavelengths_nm.iter().copied().fold(f64::INFINITY, f64::min);
+    let period = match g.lines {
+        iridis_diffraction::grating::Lines::AlongX => g.periods_nm.0,
+        iridis_diffraction::grating::Lines::AlongY => g.periods_nm.1,
+        iridis_diffraction::grating::Lines::Crossed => return Ok(g),
+    };
+    if opts.method != GratingMethod::Kirchhoff
+        || opts.fresnel.is_some()
+        || period > CHECKED_PERIOD_IN_WAVELENGTHS * lambda_min
+    {
+        return Ok(g);
+    }
+    // At most five wavelengths, spread over the range with its ends (a deep cell's solve takes ~0.5 s each).
+    let all = &opts.wavelengths_nm;
+    let checked: Vec<f64> = if all.len() <= CHECKED_WAVELENGTHS {
+        all.clone()
+    } else {
+        let last = (all.len() - 1) as f64;
+        let k = (CHECKED_WAVELENGTHS - 1) as f64;
+        (0..CHECKED_WAVELENGTHS).map(|i| all[(i as f64 * last / k).round() as usize]).collect()
+    };
+    let both = |method: GratingMethod| GratingOptions {
+        method,
+        wavelengths_nm: checked.clone(),
+        normalisation: if method == GratingMethod::Kirchhoff { opts.normalisation } else { None },
+        detector: None,
+        ..opts.clone()
+    };
+    let quiet = crate::report::Quiet;
+    // A rigorous solve that fails (a Rayleigh anomaly's truncation, …) leaves the scalar answer as it was.
+    let (Ok(scalar), Ok(rigorous)) = (
+        grating(source, surface, &both(GratingMethod::Kirchhoff), &quiet),
+        grating(source, surface, &both(GratingMethod::Rigorous), &quiet),
+    ) else {
+        return Ok(g);
+    };
+    // The orders' efficiencies only: five wavelengths make no colour.
+    let e = scalar_error(&scalar, &rigorous);
+    if e.worst.unpolarized > crate::grating::SCALAR_WARN_RELATIVE {
+        report.warn(&format!(
+            "the scalar (Kirchhoff) model is off by up to {:.0} % in an order's efficiency{} and {:.1} % in the total \
+             reflectance against Maxwell's equations on this cell (the C-method, same light and material{}): above \
+             the {:.0} % at which its numbers are not to be trusted; --method rigorous gives Maxwell's, --compare \
+             lists both",
+            100.0 * e.worst.unpolarized,
+            e.worst_at.map_or(String::new(), |(l, m, n)| format!(" (order ({m},{n}) at {l:.0} nm)")),
+            100.0 * e.total,
+            if checked.len() < all.len() {
+                format!(", at {} of the {} wavelengths", checked.len(), all.len())
+            } else {
+                String::new()
+            },
+            100.0 * crate::grating::SCALAR_WARN_RELATIVE
+        ));
+    }
+    Ok(g)
 }
 
 /// `iridis grating --compare`: both models on the same cell, and the scalar model's error.

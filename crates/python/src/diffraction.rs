@@ -386,7 +386,7 @@ fn grating<'py>(
             orders_above,
         };
         if !compare {
-            let g = iridis_api::grating::grating(&source, &surface, &opts, r)?;
+            let g = iridis_api::grating_run::grating_checked(&source, &surface, &opts, r)?;
             // The detector as the CLI's --detector writes it, for the text's line that names it.
             let named = detector.map(|d| {
                 let deg = |x: f64| iridis_color::spectrum::short_number(x.to_degrees());

@@ -3,8 +3,8 @@
 
 use anyhow::{bail, Result};
 use clap::Args as ClapArgs;
-use iridis_api::grating::{grating, Detector, GratingOptions};
-use iridis_api::grating_run::{compare, grating_text};
+use iridis_api::grating::{Detector, GratingOptions};
+use iridis_api::grating_run::{compare, grating_checked, grating_text};
 use iridis_diffraction::geometry::direction;
 
 use crate::args::{angle_rad, fraction, polar_azimuth, positive_length_nm};
@@ -132,6 +132,6 @@ pub fn run(a: GratingArgs) -> Result<()> {
         let c = compare(&source, &surface, &opts, &Cli)?;
         return print_answer(a.json, || Ok(c.to_json()), || c.text());
     }
-    let g = grating(&source, &surface, &opts, &Cli)?;
+    let g = grating_checked(&source, &surface, &opts, &Cli)?;
     print_answer(a.json, || Ok(g.to_json()), || grating_text(&g, (t, p), a.detector.as_deref(), acceptance_rad))
 }
