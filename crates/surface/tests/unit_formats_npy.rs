@@ -57,4 +57,16 @@ fn nan_lines_are_filled_and_said() {
     };
     let e = read(&all, Some(&side), &LoadOptions::default()).unwrap_err().to_string();
     assert!(e.contains("holds no finite value"), "{e}");
+    // All but row 0: more than half are not numbers, refused (filled, the statistics were the filling's).
+    assert!(hf.rows >= 3);
+    let most: Vec<u8> = {
+        let mut b = bytes.clone();
+        for k in (0..hf.rows * cols).filter(|k| k / cols != 0) {
+            let at = data_start + k * 8;
+            b[at..at + 8].copy_from_slice(&f64::NAN.to_le_bytes());
+        }
+        b
+    };
+    let e = read(&most, Some(&side), &LoadOptions::default()).unwrap_err().to_string();
+    assert!(e.contains("more than half: filled, the field would describe the filling"), "{e}");
 }
