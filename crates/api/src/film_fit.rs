@@ -274,6 +274,29 @@ fn fit_reading(
 ) -> Result<FilmFit> {
     let mut sorted = reading.data.wavelength_nm.clone();
     sorted.sort_by(f64::total_cmp);
+    // Rows at one wavelength are one measurement each: said, and a fit with no more distinct wavelengths than
+    // parameters is refused (19 rows at 500 nm fitted a thickness "121.5 ± 4.8 nm", one of a periodic family).
+    let mut distinct = sorted.clone();
+    distinct.dedup();
+    let repeated = sorted.len() - distinct.len();
+    if distinct.len() <= template.params.len() {
+        bail!(
+            "{} rows at {} distinct wavelength{} cannot fix {} fitted parameter{}: a film's spectrum repeats with its \
+             thickness, so a fit needs more wavelengths than parameters",
+            sorted.len(),
+            distinct.len(),
+            if distinct.len() == 1 { "" } else { "s" },
+            template.params.len(),
+            if template.params.len() == 1 { "" } else { "s" }
+        );
+    }
+    if repeated > 0 {
+        report.warn(&format!(
+            "{repeated} of the {} rows repeat a wavelength already read: each counts as its own measurement, so those \
+             wavelengths weigh more in χ² (average repeated measurements first if they are one)",
+            sorted.len()
+        ));
+    }
     if let Some(w) = iridis_thinfilm::sampling::check(&template.base, request.angle_rad, &sorted) {
         report.warn(&format!("the measured wavelengths: {}", w.message));
     }

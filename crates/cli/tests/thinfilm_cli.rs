@@ -2,7 +2,7 @@
 //! Figure 3.8, files written, and clean errors (exit code 2, one `error:` line naming the token) on bad input.
 
 use crate::common;
-use common::{assert_fails, iridis, json_of, quoted, tmp, words};
+use common::{assert_fails, iridis, json_of, ok, quoted, tmp, words, write_file};
 
 #[test]
 fn spectrum_json_matches_figure_3_8() {
@@ -586,4 +586,22 @@ fn an_exact_fit_says_why_its_uncertainties_are_zero() {
     let line = text.lines().find(|l| l.starts_with("χ² = ")).unwrap();
     let reduced = line.rsplit("χ²/dof = ").next().unwrap().trim_end_matches(')');
     assert!(reduced.contains("e-") && reduced.parse::<f64>().unwrap() > 0.0, "{line}");
+}
+
+/// Rows at one wavelength: nineteen at 500 nm cannot fix a thickness (a film's reflectance repeats with it, so
+/// any of a family fits; "121.5 ± 4.8 nm" was printed), refused; a few repeats among many wavelengths are said.
+#[test]
+fn repeated_wavelengths_in_a_fit_are_said_or_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let one: String = (0..19).map(|i| format!("500,{}\n", 0.1 + 0.01 * i as f64)).collect();
+    let one = write_file(dir.path(), "one.csv", &format!("wavelength_nm,R\n{one}"));
+    let stack = "air | SiO2 {d1=100nm:50nm..500nm} | Si";
+    assert_fails(
+        &["thinfilm", "fit", &one, "--stack", stack],
+        &["19 rows at 1 distinct wavelength cannot fix 1 fitted parameter"],
+    );
+    let rows: String = (40..70).map(|k| format!("{},0.2\n", 10 * k)).collect::<String>() + "500,0.21\n600,0.19\n";
+    let some = write_file(dir.path(), "some.csv", &format!("wavelength_nm,R\n{rows}"));
+    let out = ok(&["thinfilm", "fit", &some, "--stack", stack]);
+    assert!(out.contains("warning: 2 of the 32 rows repeat a wavelength already read"), "{out}");
 }
