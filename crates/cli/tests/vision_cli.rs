@@ -253,3 +253,21 @@ fn round_off_views_are_no_light() {
     }
     assert!(to_mirror("+10°").as_f64().unwrap() > 1.0);
 }
+
+/// Spectra over 500–510 nm hold ~0 % of the blue tit's UVS sensitivity: its relative catch was the ratio of its
+/// tails in sample and background (0.2, a colour of nothing), and is refused; 400–700 nm is analysed with a note.
+#[test]
+fn a_band_without_a_receptor_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let narrow = dir.path().join("narrow.csv");
+    std::fs::write(&narrow, "wavelength_nm,a,b\n500,0.2,0.5\n505,0.2,0.5\n510,0.2,0.5\n").unwrap();
+    assert_fails(
+        &["vision", narrow.to_str().unwrap(), "--visual", "bluetit"],
+        &["500–510 nm, which holds 0.00 % of receptor UVS's sensitivity"],
+    );
+    let wide = dir.path().join("wide.csv");
+    let rows: String = (0..=30).map(|k| format!("{},0.2,{}\n", 400 + 10 * k, 0.2 + 0.01 * k as f64)).collect();
+    std::fs::write(&wide, format!("wavelength_nm,a,b\n{rows}")).unwrap();
+    let j = json_of(&["vision", wide.to_str().unwrap(), "--visual", "bluetit", "--json"]);
+    assert!(j["notes"].to_string().contains("of receptor UVS's sensitivity over 300–700 nm lies outside"), "{j}");
+}

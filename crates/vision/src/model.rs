@@ -298,7 +298,7 @@ pub fn analyse_table(table: &SpectraTable, system: &VisualSystem, options: &Opti
     };
 
     let (lo, hi) = (wl[0], wl[wl.len() - 1]);
-    coverage_notes(system, options, lo, hi, &mut notes);
+    coverage_notes(system, options, lo, hi, &mut notes)?;
     let mut samples = Vec::with_capacity(table.samples.len());
     for (name, values) in &table.samples {
         if let Some(v) = values.iter().find(|v| **v < 0.0) {
@@ -404,7 +404,15 @@ pub fn analyse_table(table: &SpectraTable, system: &VisualSystem, options: &Opti
 }
 
 /// Says when the spectra (or the light) leave out part of a receptor's sensitivity.
-fn coverage_notes(system: &VisualSystem, options: &Options, lo: f64, hi: f64, notes: &mut Vec<String>) {
+/// Refuses spectra that hold under 1 % of a receptor's sensitivity: its relative catch would be the ratio of its
+/// tails in the sample and in the background (a 500–510 nm spectrum gave the blue tit's UVS a catch of 0.2).
+fn coverage_notes(
+    system: &VisualSystem,
+    options: &Options,
+    lo: f64,
+    hi: f64,
+    notes: &mut Vec<String>,
+) -> Result<(), VisionError> {
     for r in &system.receptors {
         // Over the range sensitivities are normalised on (pavo's 300–700 nm): natural light has next to nothing
         // below 300 nm, so the β band of a UV pigment's template reaching below it is not a gap in the data.
@@ -416,6 +424,14 @@ fn coverage_notes(system: &VisualSystem, options: &Options, lo: f64, hi: f64, no
             if (lo..=hi).contains(&l) {
                 inside += s;
             }
+        }
+        if total > 0.0 && inside / total < 0.01 {
+            return Err(VisionError::invalid(format!(
+                "the spectra cover {lo}–{hi} nm, which holds {:.2} % of receptor {}'s sensitivity over 300–700 nm: its \
+                 catch would be of its tails alone; give spectra over most of 300–700 nm",
+                100.0 * inside / total,
+                r.name
+            )));
         }
         if total > 0.0 && inside / total < 0.99 {
             notes.push(format!(
@@ -433,4 +449,5 @@ fn coverage_notes(system: &VisualSystem, options: &Options, lo: f64, hi: f64, no
             ));
         }
     }
+    Ok(())
 }
