@@ -458,9 +458,31 @@ pub fn film_colours_json(
     specular: &serde_json::Value,
     diffuse: &serde_json::Value,
     rough: serde_json::Value,
+    conditions: serde_json::Value,
 ) -> serde_json::Value {
     json!({
         "reflected": reflected, "transmitted": transmitted, "specular": specular, "diffuse": diffuse, "rough": rough,
+        "conditions": conditions,
+    })
+}
+
+/// What a film's colours rest on (`conditions` in `thinfilm color --json`; its text's `conditions` line): the
+/// stack, the light's angle and polarisation (`None`: a rough film's, in `rough`), the illuminant, the observer
+/// and the wavelength range integrated.
+pub fn colour_conditions(
+    stack: &Stack,
+    angle_and_polarization: Option<(f64, Polarization)>,
+    illuminant: Illuminant,
+    observer: Observer,
+    (from_nm, to_nm): (f64, f64),
+) -> serde_json::Value {
+    json!({
+        "stack": stack.to_string(),
+        "angle_deg": angle_and_polarization.map(|(a, _)| round_deg(a)),
+        "polarization": angle_and_polarization.map_or("avg", |(_, p)| p.name()),
+        "illuminant": illuminant.to_string(),
+        "observer": observer.to_string(),
+        "wavelength_range_nm": [from_nm, to_nm],
     })
 }
 
@@ -533,7 +555,15 @@ impl FilmColour {
     /// What `--json` prints: one shape for smooth and rough films (a smooth film reflects specularly only).
     pub fn to_json(&self) -> Result<serde_json::Value> {
         let none = colour_report(Xyz { x: 0.0, y: 0.0, z: 0.0 }, self.white);
-        let mut v = film_colours_json(&self.reflected, &self.transmitted, &self.reflected, &none, json!(null));
+        let conditions = colour_conditions(
+            &self.stack,
+            Some((self.angle_rad, self.polarization)),
+            self.illuminant,
+            self.observer,
+            self.wavelength_range_nm,
+        );
+        let mut v =
+            film_colours_json(&self.reflected, &self.transmitted, &self.reflected, &none, json!(null), conditions);
         if let (Some(vision), Some(obj)) = (&self.vision, v.as_object_mut()) {
             obj.insert("vision".into(), serde_json::to_value(vision)?);
         }

@@ -350,7 +350,16 @@ impl RoughColourReport {
             "diffuse_transport": self.options.transport.name(),
         });
         self.angles.insert_json(&mut conditions);
-        crate::film::film_colours_json(&self.smooth, &self.transmitted, &self.specular, &self.diffuse, conditions)
+        let light =
+            crate::film::colour_conditions(&self.stack, None, self.illuminant, self.observer, self.wavelength_range_nm);
+        crate::film::film_colours_json(
+            &self.smooth,
+            &self.transmitted,
+            &self.specular,
+            &self.diffuse,
+            conditions,
+            light,
+        )
     }
 
     /// The colours for people.

@@ -325,6 +325,22 @@ fn eval_point<'py>(
     }
     d.set_item("coherence_nm", p.coherence_nm)?;
     d.set_item("window_effective_area_um2", p.effective_area_nm2.map(|a| a / 1e6))?;
+    // What the numbers rest on, as brdf_eval's keys: the light and observer of the XYZ (a table's own, fixed
+    // when it was built), the Fresnel factor and shadowing.
+    let (illuminant, observer) = match &p.table {
+        Some(t) => (t.illuminant.clone(), t.observer.clone()),
+        None => (
+            eo.model.illuminant.clone().unwrap_or_else(|| "d65".into()),
+            eo.model.observer.clone().unwrap_or_else(|| "1931".into()),
+        ),
+    };
+    d.set_item("illuminant", illuminant)?;
+    d.set_item("observer", observer)?;
+    let (fresnel, convention, shadowing) = &eo.fresnel;
+    let rigorous = p.method == RIGOROUS;
+    d.set_item("fresnel", (!rigorous).then_some(fresnel.as_str()))?;
+    d.set_item("fresnel_convention", convention.name())?;
+    d.set_item("shadowing", (!rigorous).then_some(*shadowing))?;
     d.set_item("xyz", PyArray1::from_vec(py, p.query.xyz.to_array().to_vec()))?;
     match scalar_error {
         Some(e) => d.set_item("scalar_error", json_to_py(py, &e.to_json())?)?,

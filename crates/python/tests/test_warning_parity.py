@@ -127,3 +127,16 @@ def test_reading_options_on_a_surface_in_memory_are_refused():
     # The same keywords with a SURFACE argument are read.
     q = diffraction.evaluate("builtin:sine?size=4um&pixel=100nm", 0.2, (0.2, 3.14159), level="none", step_nm=20)
     assert q["method"] == "reference"
+
+
+def test_answers_say_what_their_numbers_rest_on():
+    # An audit found dicts whose numbers changed with a keyword that no key recorded: evaluate's XYZ under
+    # illuminant A, and film colours without their light, observer or angle.
+    import iridis.film as film
+    q = diffraction.evaluate("builtin:sine?size=4um&pixel=100nm", 0.2, (0.2, 3.14159), illuminant="A", step_nm=20)
+    assert (q["illuminant"], q["observer"], q["shadowing"]) == ("A", "1931", True), q
+    assert q["fresnel"] and q["fresnel_convention"] == "physical"
+    c = film.color("air | water 348nm | air", angle_rad=0.5, illuminant="A", polarization="s")
+    cond = c["conditions"]
+    assert cond["illuminant"] == "A" and cond["polarization"] == "s" and cond["observer"] == "1931", cond
+    assert abs(cond["angle_deg"] - 28.64788976) < 1e-6 and cond["wavelength_range_nm"] == [380.0, 780.0], cond

@@ -171,7 +171,9 @@ def evaluate(source, light, view, method=None, **options):
     ``s``, ``p``, ``unpolarized``; ``None`` where the method has no window gain or under the paper's R²
     convention), ``reflectance`` (the paper's relative ρ(λ) = f_r cos θ_i λ²/(A_eff R₀), eq. 4 with the
     cos θ_i of eq. 9: 1 at a flat mirror's peak; ``None`` for lookup, which integrates over λ in advance),
-    ``coherence_nm``, ``window_effective_area_um2`` (A_eff, 4πσ_s² inside the patch), ``xyz`` (eq. 9),
+    ``coherence_nm``, ``window_effective_area_um2`` (A_eff, 4πσ_s² inside the patch), ``xyz`` (eq. 9) with the
+    ``illuminant`` and ``observer`` it was integrated under (a table's own), ``fresnel``, ``fresnel_convention``
+    and ``shadowing`` (``None`` for the rigorous method),
     ``light_direction``, ``view_direction``, and ``scalar_error`` (the scalar model's error on a scan's own
     period, as ``brdf_eval``'s, warned where above its threshold; ``None`` for a table, the rigorous method or
     a surface without a dominant period).
