@@ -42,6 +42,7 @@ pub fn wavelength_grid(from: f64, to: f64, step: f64) -> Result<Vec<f64>> {
     if to < from {
         bail!("--to ({to} nm) must not be below --from ({from} nm)");
     }
+    iridis_color::spectrum::check_nanometres(&[from, to]).map_err(|e| anyhow!("--from/--to: {e}"))?;
     let g = iridis_color::spectrum::range_grid(from, to, step).map_err(|e| anyhow!("{e}"))?;
     if g.len() > 100_000 {
         bail!("{} wavelengths is too many; use a larger --step", g.len());

@@ -4,7 +4,7 @@
 
 use crate::common;
 
-use common::{assert_fails, iridis, json_of, ok, tmp};
+use common::{assert_fails, iridis, json_of, ok, tmp, write_file};
 
 const FILM: &str = "air | water 348nm | air";
 const SINE: &str = "builtin:sine?size=2um&pixel=50nm";
@@ -207,6 +207,12 @@ fn wavelengths_in_the_wrong_unit_are_refused() {
         &["grating", sine, "--wavelength", "5.5e-7nm"],
         &["orders propagate at λ = 0.00000055 nm", "more than the 4e6", "5.5e-7 metres"],
     );
+    // A spectrum in µm: grey with a range warning before; refused by every reader of spectra.
+    let dir = tempfile::tempdir().unwrap();
+    let um: String = (40..=70).map(|k| format!("{},0.4\n", k as f64 / 100.0)).collect();
+    let um = write_file(dir.path(), "um.csv", &format!("wavelength,R\n{um}"));
+    assert_fails(&["color", "xyz", &um], &["reach only 0.7 nm: that looks like µm"]);
+    assert_fails(&["vision", &um, "--visual", "bluetit"], &["reach only 0.7 nm: that looks like µm"]);
     // 2k|h|max = 2 · 2π/0.5 nm · 129 nm ≈ 3236 > 26.8: beyond the Taylor expansion at the bench's 0.5 nm.
     assert_fails(
         &["testbench", "builtin:blazed?size=20um&pixel=50nm", "--from", "0.5nm", "--to", "0.7nm", "--step", "0.05nm"],

@@ -63,6 +63,20 @@ pub struct Spectrum {
     values: Vec<f64>,
 }
 
+/// Refuses wavelengths that end below 20 nm (the far UV; every model here is for 300–830 nm light and a little
+/// beyond): such numbers are µm or metres read as nm (0.4–0.7 "nm" gave a grey colour with a range warning).
+pub fn check_nanometres(wavelengths_nm: &[f64]) -> Result<(), SpectrumError> {
+    let hi = wavelengths_nm.iter().copied().filter(|w| w.is_finite()).fold(f64::NEG_INFINITY, f64::max);
+    if hi > 0.0 && hi < 20.0 {
+        let (unit, factor) =
+            if hi < 1e-4 { ("metres", "1e9 (550e-9 m is 550 nm)") } else { ("µm", "1000 (0.55 µm is 550 nm)") };
+        return Err(SpectrumError::Invalid(format!(
+            "the wavelengths reach only {hi} nm: that looks like {unit}; wavelengths are in nm — multiply by {factor}"
+        )));
+    }
+    Ok(())
+}
+
 impl Spectrum {
     /// Builds a spectrum, checking that the grid has at least two samples, is strictly increasing and that
     /// every number is finite.
@@ -77,6 +91,7 @@ impl Spectrum {
         if wavelengths_nm.len() < 2 {
             return Err(SpectrumError::Invalid("a spectrum needs at least two samples".into()));
         }
+        check_nanometres(&wavelengths_nm)?;
         for (i, (&w, &v)) in wavelengths_nm.iter().zip(&values).enumerate() {
             if !w.is_finite() || !v.is_finite() {
                 return Err(SpectrumError::Invalid(format!("sample {i} is not finite: ({w}, {v})")));

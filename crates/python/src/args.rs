@@ -16,7 +16,15 @@ pub fn value_error(e: impl std::fmt::Display) -> PyErr {
 /// A direction `(θ, φ)` in radians above the surface (`what` names it in the message).
 pub fn above(what: &str, (theta, phi): (f64, f64)) -> PyResult<(f64, f64)> {
     if !((0.0..std::f64::consts::FRAC_PI_2).contains(&theta) && phi.is_finite()) {
-        return Err(value_error(format!("{what} θ = {theta} rad must be in [0, π/2) (above the surface), φ finite")));
+        // θ between π/2 and 90 is likely degrees given for radians.
+        let hint = if (std::f64::consts::FRAC_PI_2..90.0).contains(&theta) {
+            format!(" ({theta} looks like degrees: give numpy.radians({theta}))")
+        } else {
+            String::new()
+        };
+        return Err(value_error(format!(
+            "{what} θ = {theta} rad must be in [0, π/2) (above the surface), φ finite{hint}"
+        )));
     }
     Ok((theta, phi))
 }

@@ -151,3 +151,24 @@ def test_a_whole_float_is_a_count_everywhere():
     assert (a == b).all()
     with pytest.raises(TypeError, match=r"uv_resolution must be a whole number"):
         diffraction.brdf_map(SINE, size=16, uv_resolution=11.5, method="lookup")
+
+
+def test_units_mistaken_for_nm_are_refused_everywhere(tmp_path):
+    # µm or metres read as nm gave a white or grey colour with a range warning, an undefined von Kries, a
+    # message about 5 nm steps, or the bare substrate; degrees for radians a bare range error.
+    import iridis.color as color
+    import iridis.thinfilm as tf
+    wl = np.arange(400, 701, 10.0)
+    r = 0.3 + 0.2 * np.sin(wl / 50)
+    um = tmp_path / "um.csv"
+    um.write_text("wavelength,R\n" + "".join(f"{w / 1000},{x}\n" for w, x in zip(wl, r)))
+    for call in (lambda: color.spectrum_to_xyz(wl / 1000, r), lambda: color.xyz(str(um)),
+                 lambda: vision.analyse(wl / 1000, r, visual="bluetit")):
+        with pytest.raises(ValueError, match=r"reach only 0.7 nm: that looks like µm"):
+            call()
+    with pytest.raises(ValueError, match=r"that looks like metres"):
+        film.spectrum("air | water 348nm | air", from_nm=400e-9, to_nm=700e-9)
+    with pytest.raises(ValueError, match=r"thicknesses_nm reach only 3.48e-07: that looks like metres"):
+        tf.Stack.from_lists([1, 1.33, 1], [348e-9])
+    with pytest.raises(ValueError, match=r"30 looks like degrees: give numpy.radians\(30\)"):
+        diffraction.evaluate("builtin:sine?size=4um&pixel=100nm", 30, (0.2, 0))

@@ -202,6 +202,7 @@ pub fn analyse(
 
 /// [`analyse`] on a [`SpectraTable`] (a pavo CSV as read).
 pub fn analyse_table(table: &SpectraTable, system: &VisualSystem, options: &Options) -> Result<Analysis, VisionError> {
+    iridis_color::spectrum::check_nanometres(&table.wavelengths_nm).map_err(|e| VisionError::invalid(e.to_string()))?;
     let mut notes = Vec::new();
     let fine = table.on_1nm_grid();
     let table = match &fine {

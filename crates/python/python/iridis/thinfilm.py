@@ -208,6 +208,10 @@ class Stack:
         d = _real(thicknesses_nm, "thicknesses_nm")
         if d.size and d.min() < 0:
             raise ValueError(f"thicknesses_nm holds {d.min():g}: layer thicknesses are in nm and must be ≥ 0")
+        if d.size and 0 < d.max() < 1e-4:
+            # Thinner than a thousandth of an atom: metres read as nm (348e-9 gave the bare substrate, silently).
+            raise ValueError(f"thicknesses_nm reach only {d.max():g}: that looks like metres; layer thicknesses are "
+                             "in nm — multiply by 1e9 (348e-9 m → 348 nm)")
         arrays = isinstance(indices, np.ndarray) and indices.ndim == 2 or any(np.ndim(x) > 0 for x in indices)
         if wavelengths_nm is None:
             if arrays:
