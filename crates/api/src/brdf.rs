@@ -294,6 +294,13 @@ pub fn dark_at_every_exposure(xyz: &[Xyz], exposures: &[f64]) -> bool {
     brightest_lit(xyz).is_none_or(|p| peak_channel(&p) * most < DISPLAY_FLOOR)
 }
 
+/// The share of a map's lit pixels that are clipped at `exposure_ru` (a linear sRGB channel at 1 or above): their
+/// colour, and how bright they are, is lost to the display.
+pub fn clipped_share(xyz: &[Xyz], exposure_ru: f64) -> f64 {
+    let lit: Vec<f64> = xyz.iter().map(peak_channel).filter(|&v| is_lit(v)).collect();
+    lit.iter().filter(|&&v| v * exposure_ru >= 1.0).count() as f64 / lit.len().max(1) as f64
+}
+
 /// The map's brightest lit pixel (by its brightest channel), in one pass; `None` for a map with no light.
 pub fn brightest_lit(xyz: &[Xyz]) -> Option<Xyz> {
     xyz.iter()

@@ -431,6 +431,19 @@ fn exposure_for(xyz: &[Xyz], r: &MapRequest, files: Option<&MapFiles>, report: &
             iridis_color::spectrum::short_number(r.exposure_ru),
         ));
     }
+    // The other end, for an exposure given: most of the light clipped shows where the light is, not its colour
+    // (1e300 RU). The default 1500 RU is the paper's, whose maps clip their brightest lobes by design.
+    let clipped = crate::brdf::clipped_share(xyz, r.exposure_ru);
+    if image && r.exposure_ru != DEFAULT_EXPOSURE_RU && clipped > 0.5 {
+        let suggested = auto_exposure(xyz, r.size)
+            .map_or(String::new(), |a| format!(" (--auto-exposure would choose {:.4e} RU)", a.exposure_ru));
+        report.warn(&format!(
+            "{:.0} % of the map's lit pixels are clipped at --exposure {} RU: the image shows where the light is, not \
+             its colour or brightness{suggested}",
+            100.0 * clipped,
+            iridis_color::spectrum::short_number(r.exposure_ru),
+        ));
+    }
     Ok(r.exposure_ru)
 }
 

@@ -664,3 +664,19 @@ fn orders_left_out_of_the_list_are_counted_in_the_text() {
     );
     assert!(text.contains("(15 orders)"), "{text}");
 }
+
+/// An exposure that clips most of the map says so, as a black one does: at 1e300 RU every lit pixel is clipped,
+/// and the image shows where the light is, not its colour; the auto exposure is named.
+#[test]
+fn a_map_clipped_by_its_exposure_is_said() {
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("m.png");
+    let sine = "builtin:sine?size=4um&pixel=50nm";
+    let base =
+        ["brdf-map", sine, "--size", "16", "--coherence", "2um", "--method", "reference", "-o", png.to_str().unwrap()];
+    let out = ok(&[&base[..], &["--exposure", "1e300"]].concat());
+    assert!(out.contains("warning: 100 % of the map's lit pixels are clipped at --exposure 1e300 RU"), "{out}");
+    assert!(out.contains("--auto-exposure would choose"), "{out}");
+    let out = ok(&[&base[..], &["--exposure", "1"]].concat());
+    assert!(!out.contains("clipped at --exposure"), "{out}");
+}
