@@ -185,12 +185,36 @@ fn ellips_cells(e: &[(f64, Option<f64>)], i: usize) -> (String, String) {
     (psi, e[i].1.filter(|d| d.is_finite()).map(|d| d.to_string()).unwrap_or_default())
 }
 
-/// Warns when the grid cannot resolve the fringes of a thick layer (`iridis_thinfilm::sampling`).
+/// Warns when the grid cannot resolve the fringes of a thick layer (`iridis_thinfilm::sampling`), and notes a
+/// constant index (water, glass, …: visible-band figures) used well outside the visible, where the real
+/// material's index differs (water at 100 nm absorbs; it was taken as 1.33 in silence).
 pub fn warn_sampling(stack: &Stack, angle: f64, grid: &[f64], report: &dyn Report) {
     if let Some(w) = iridis_thinfilm::sampling::check(stack, angle, grid) {
         report.warn(&w.message);
     }
+    let (lo, hi) = (grid[0], grid[grid.len() - 1]);
+    if lo < CONSTANT_BAND_NM.0 || hi > CONSTANT_BAND_NM.1 {
+        let mut constants: Vec<&str> = stack
+            .materials()
+            .filter(|m| m.is_constant() && !matches!(m.name(), "air" | "vacuum") && !m.name().starts_with("n="))
+            .map(|m| m.name())
+            .collect();
+        constants.dedup();
+        if !constants.is_empty() {
+            report.note(&format!(
+                "{} {} a constant index (a visible-band figure), used here at {}–{} nm, where the real material's \
+                 index differs; a dispersive material or file:PATH gives it there",
+                constants.join(", "),
+                if constants.len() == 1 { "is" } else { "are" },
+                iridis_color::spectrum::short_number(lo),
+                iridis_color::spectrum::short_number(hi),
+            ));
+        }
+    }
 }
+
+/// Where the built-in constant indices stand for their materials: the visible band and a little beyond.
+const CONSTANT_BAND_NM: (f64, f64) = (300.0, 1000.0);
 
 // ----------------------------------------------------------------------------------------------------------
 // Spectrum

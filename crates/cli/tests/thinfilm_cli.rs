@@ -605,3 +605,15 @@ fn repeated_wavelengths_in_a_fit_are_said_or_refused() {
     let out = ok(&["thinfilm", "fit", &some, "--stack", stack]);
     assert!(out.contains("warning: 2 of the 32 rows repeat a wavelength already read"), "{out}");
 }
+
+/// The built-in constants (water 1.33, glass 1.5, …) are visible-band figures: used at 100–120 nm they are noted
+/// (water absorbs there; it was taken as 1.33 in silence), an index the user wrote (n=1.4) is not.
+#[test]
+fn a_constant_index_far_from_the_visible_is_noted() {
+    let out = ok(&["thinfilm", "spectrum", "--stack", "air | water 348nm | air", "--from", "100nm", "--to", "120nm"]);
+    assert!(out.contains("note: water is a constant index (a visible-band figure), used here at 100–120 nm"), "{out}");
+    let out = ok(&["thinfilm", "spectrum", "--stack", "air | n=1.4 348nm | air", "--from", "100nm", "--to", "120nm"]);
+    assert!(!out.contains("constant index"), "{out}");
+    let out = ok(&["thinfilm", "spectrum", "--stack", "air | water 348nm | air"]);
+    assert!(!out.contains("constant index"), "{out}");
+}
