@@ -70,7 +70,9 @@ fn folder_of(path: &Path) -> &Path {
 fn key_of(path: &Path) -> Result<PathBuf> {
     let dir = folder_of(path);
     if !dir.is_dir() {
-        bail!("cannot write {}: folder {} does not exist", path.display(), dir.display());
+        // An I/O error in the chain: Python raises OSError for it, as `open` would.
+        let missing = format!("cannot write {}: folder {} does not exist", path.display(), dir.display());
+        return Err(std::io::Error::new(std::io::ErrorKind::NotFound, missing).into());
     }
     let name = path.file_name().with_context(|| format!("{} names no file", path.display()))?;
     let dir = dir.canonicalize().with_context(|| format!("cannot open folder {}", dir.display()))?;

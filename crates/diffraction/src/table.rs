@@ -631,7 +631,13 @@ impl LookupTable {
             Some(p) if !p.as_os_str().is_empty() => p,
             _ => Path::new("."),
         };
-        let mut tmp = tempfile::Builder::new().prefix(".iridis-").suffix(".tmp").tempfile_in(dir)?;
+        // Errors name the file asked for, not the temporary one beside it (".iridis-vOwVAq.tmp").
+        let named = |e: std::io::Error| {
+            let why =
+                if dir.is_dir() { e.kind().to_string() } else { format!("folder {} does not exist", dir.display()) };
+            DiffractionError::Io(std::io::Error::new(e.kind(), format!("cannot write {}: {why}", path.display())))
+        };
+        let mut tmp = tempfile::Builder::new().prefix(".iridis-").suffix(".tmp").tempfile_in(dir).map_err(named)?;
         {
             let mut w = std::io::BufWriter::new(tmp.as_file_mut());
             self.write_npz(&mut w)?;
@@ -643,7 +649,7 @@ impl LookupTable {
             use std::os::unix::fs::PermissionsExt;
             tmp.as_file().set_permissions(std::fs::Permissions::from_mode(0o644))?;
         }
-        tmp.persist(path).map_err(|e| DiffractionError::Io(e.error))?;
+        tmp.persist(path).map_err(|e| named(e.error))?;
         Ok(())
     }
 

@@ -172,3 +172,18 @@ def test_units_mistaken_for_nm_are_refused_everywhere(tmp_path):
         tf.Stack.from_lists([1, 1.33, 1], [348e-9])
     with pytest.raises(ValueError, match=r"30 looks like degrees: give numpy.radians\(30\)"):
         diffraction.evaluate("builtin:sine?size=4um&pixel=100nm", 30, (0.2, 0))
+
+
+def test_write_errors_name_the_file_and_are_os_errors(tmp_path):
+    # Table.save named its temporary file (".iridis-vOwVAq.tmp"); Surface.write to a missing folder was a
+    # ValueError where open() raises OSError.
+    t = diffraction.precompute("builtin:sine?size=4um&pixel=100nm", uv_resolution=11)
+    missing = tmp_path / "nope"
+    with pytest.raises(OSError, match=f"cannot write {missing / 'x.npz'}: folder {missing} does not exist"):
+        t.save(missing / "x.npz")
+    with pytest.raises(OSError, match="folder .* does not exist"):
+        surface.load("builtin:sine?size=4um&pixel=100nm").write(missing / "x.npy")
+    # An observer given as a number, as delta_e takes formula=2000.
+    wl = np.arange(380, 781, 5.0)
+    assert np.allclose(color.spectrum_to_xyz(wl, np.ones(wl.size), observer=1964),
+                       color.spectrum_to_xyz(wl, np.ones(wl.size), observer="1964"))

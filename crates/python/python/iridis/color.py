@@ -62,7 +62,7 @@ def _colours(x, name, displayed=False):
 
 def white_point(illuminant="D65", observer="1931"):
     """XYZ of a perfect reflector (``Y = 1``) under ``illuminant`` for ``observer``."""
-    return np.array(_native.white_point_xyz(illuminant, observer))
+    return np.array(_native.white_point_xyz(str(illuminant), str(observer)))
 
 
 def spectrum_to_xyz(wavelengths_nm, values, illuminant="D65", observer="1931"):
@@ -79,14 +79,15 @@ def spectrum_to_xyz(wavelengths_nm, values, illuminant="D65", observer="1931"):
     v = _float_array(values, "values")
     if v.ndim == 0 or v.shape[-1] != wl.size:
         raise ValueError(f"values of shape {v.shape}: the last axis must match the {wl.size} wavelengths")
+    # observer=1964 as an int, as delta_e takes formula=2000.
     out = _native._spectrum_to_xyz(np.ascontiguousarray(wl), np.ascontiguousarray(v.reshape(-1, wl.size)),
-                                   illuminant, observer)
+                                   str(illuminant), str(observer))
     return out.reshape(v.shape[:-1] + (3,))
 
 
 def _white(white, illuminant, observer):
     if white is None:
-        return tuple(_native.white_point_xyz(illuminant, observer))
+        return tuple(_native.white_point_xyz(str(illuminant), str(observer)))
     w = _float_array(white, "white")
     if w.shape != (3,):
         raise ValueError(f"white must be one XYZ triple, got shape {w.shape}")

@@ -40,7 +40,8 @@ from ._gpu import ensure_gpu_environment
 from ._answer import count, flag, keywords, with_text
 from .surface import Surface
 
-__all__ = ["Table", "precompute", "brdf_map", "brdf_map_of", "brdf_map_run", "evaluate", "brdf_eval"]
+__all__ = ["Table", "precompute", "brdf_map", "brdf_map_of", "brdf_map_run", "evaluate", "brdf_eval", "grating",
+           "vision"]
 
 
 class Table:
@@ -206,7 +207,7 @@ def grating(source, light=0.0, wavelengths_nm=550.0, method=None, material=None,
     default n = 1.5) or ``fresnel`` any Fresnel source (``"schlick:1.5"``); ``normalisation`` the scalar model's,
     ``"energy"`` (the default: energy and reciprocity exact) or ``"kirchhoff"`` (the obliquity factor as printed;
     with ``method="rigorous"`` it raises ValueError: it would be ignored); ``acceptance`` the
-    detector's half-angle in radians (default 2°). SURFACE options (``pixel_size``, ``level``, …) as
+    detector's half-angle in radians (default 2°). SURFACE options (``pixel_size_nm``, ``level``, …) as
     elsewhere. ``method``: ``"kirchhoff"`` (the default, the scalar model) or ``"rigorous"``, which solves
     Maxwell's equations (the C-method; transmitted orders and the convergence record too); ``compare=True``
     runs both models (``method="rigorous"`` with it raises ValueError) and returns ``iridis grating --compare
