@@ -187,3 +187,17 @@ def test_write_errors_name_the_file_and_are_os_errors(tmp_path):
     wl = np.arange(380, 781, 5.0)
     assert np.allclose(color.spectrum_to_xyz(wl, np.ones(wl.size), observer=1964),
                        color.spectrum_to_xyz(wl, np.ones(wl.size), observer="1964"))
+
+
+def test_film_angles_are_refused_by_their_keyword():
+    # The core refused them as "incidence angle -17.188734° is outside 0°–90°", naming neither the keyword nor
+    # the radians given.
+    import iridis.thinfilm as tf
+    s = tf.Stack("air | water 348nm | Si")
+    with pytest.raises(ValueError, match=r"angles_rad holds -0.3 rad: angles of incidence lie in 0…π/2 rad"):
+        s.rta(500.0, -0.3)
+    with pytest.raises(ValueError, match=r"view_rad is 2 rad: it lies in 0…π/2 rad"):
+        s.rough(25, 300).spectrum([500.0], view_rad=2.0)
+    with pytest.raises(ValueError, match=r"light_rad is 30 rad: .* numpy.radians"):
+        s.rough(25, 300).spectrum([500.0], view_rad=0.2, light_rad=30)
+    assert s.rough(25, 300).spectrum([500.0], view_rad=0.2, azimuth_rad=4.0)["specular"].shape == (1,)

@@ -79,12 +79,15 @@ def _colour_grid(grid_nm):
 
 
 def _angles(x, name="angles_rad"):
-    """Angles of incidence in radians, |θ| ≤ π/2; degrees by mistake are named."""
+    """Angles of incidence in radians, 0 ≤ θ ≤ π/2 (what the core takes); degrees by mistake are named."""
     a = _real(x, name)
-    if a.size and np.abs(a).max() > np.pi / 2 + 1e-12:
-        worst = float(np.abs(a).max())
+    if a.size and a.min() < 0:
+        raise ValueError(f"{name} holds {float(a.min()):g} rad: angles of incidence lie in 0…π/2 rad (from the "
+                         "normal; a stack has no sign of direction)")
+    if a.size and a.max() > np.pi / 2 + 1e-12:
+        worst = float(a.max())
         hint = ("; if these are degrees, convert them with numpy.radians(...)" if worst <= 90.0 + 1e-9 else "")
-        raise ValueError(f"{name} reaches {worst:g} rad: angles of incidence lie in −π/2…π/2 rad{hint}")
+        raise ValueError(f"{name} reaches {worst:g} rad: angles of incidence lie in 0…π/2 rad{hint}")
     return a
 
 
@@ -342,6 +345,15 @@ def _angle(x, name):
     return v
 
 
+def _polar(x, name):
+    """A polar angle from the normal in radians, 0 ≤ θ ≤ π/2 (the core's range, named here by its keyword)."""
+    v = _angle(x, name)
+    if not 0 <= v <= np.pi / 2 + 1e-12:
+        hint = "; if it is in degrees, convert it with numpy.radians(...)" if np.pi / 2 < v <= 90.0 else ""
+        raise ValueError(f"{name} is {v:g} rad: it lies in 0…π/2 rad (from the normal){hint}")
+    return v
+
+
 class RoughFilm:
     """A stack on a rough substrate (LSRS model with the HTSG BRDF; docs/rough-films.md): the specular part
     ``k_r`` (a fraction of the incident power) and the diffuse part ``k_d`` (sr⁻¹; ``π k_d`` is the radiance
@@ -375,8 +387,8 @@ class RoughFilm:
         wl = _wavelengths(wavelengths_nm)
         if wl.ndim != 1 or wl.size == 0:
             raise ValueError(f"wavelengths_nm must be a non-empty 1-D array, got shape {wl.shape}")
-        view = _angle(view_rad, "view_rad")
-        light = view if light_rad is None else _angle(light_rad, "light_rad")
+        view = _polar(view_rad, "view_rad")
+        light = view if light_rad is None else _polar(light_rad, "light_rad")
         return self.stack._s._rough_spectrum(*self._args(), np.ascontiguousarray(wl), view, light,
                                              _angle(azimuth_rad, "azimuth_rad"))
 
@@ -387,8 +399,8 @@ class RoughFilm:
         part (``π k_d``: Y = 1 is a white Lambertian surface under the same light), each with ``*_lab``,
         ``*_srgb`` and ``*_hex``. Default grid 380–780 nm in 5 nm steps."""
         grid = _colour_grid(grid_nm)
-        view = _angle(view_rad, "view_rad")
-        light = view if light_rad is None else _angle(light_rad, "light_rad")
+        view = _polar(view_rad, "view_rad")
+        light = view if light_rad is None else _polar(light_rad, "light_rad")
         xyz = self.stack._s._rough_color(*self._args(), view, light, _angle(azimuth_rad, "azimuth_rad"),
                                          np.ascontiguousarray(grid.ravel()), illuminant, observer)
         white = white_point(illuminant, observer)
