@@ -504,6 +504,7 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
         "diffracts_visible_light": if too_deep.is_some() || undecided { Value::Null } else { json!(diffracts) },
         "too_deep_for_scalar_model": too_deep,
         "verdict": verdict,
+        "reflectors": reflectors(),
         "map_coherence": map_coherence,
         "scalar_model_error": scalar_error_json,
         "scalar_model_sentence": scalar,
@@ -670,6 +671,24 @@ fn deep_verdict(surface: &str, why: &str) -> String {
     )
 }
 
+/// What the relief is made of in each step, in one place (`reflectors` in report.json, a line under the verdict):
+/// the steps are the commands' defaults, and the scalar model's error is measured on a biological material.
+fn reflectors() -> Value {
+    let material = crate::rigorous_brdf::SCAN_MATERIAL;
+    json!({
+        "unit_cell": "n=1.5",
+        "maps_and_vision": crate::fresnel::DEFAULT_FRESNEL,
+        "scalar_model_error": material,
+        "sentence": format!(
+            "Reflectors: the unit cell's orders and the mirror colour are computed over n = 1.5 (its exact Fresnel \
+             reflectances, `grating`'s default), the BRDF maps and the animal's view with Schlick's approximation for \
+             n = 1.5 (`{}`, the maps' default), and the scalar model's error on {material} (Leertouwer et al. 2011), \
+             the material of snake scales and feathers; each step's command line gives them.",
+            crate::fresnel::DEFAULT_FRESNEL
+        ),
+    })
+}
+
 /// The first sentence for a patch too small to judge ([`iridis_surface::TWO_WAVELENGTHS_NM`], no period found):
 /// the shares its few orders carry, and why they say nothing of the surface.
 fn small_patch_verdict(info: &Value, grating: &[Value]) -> String {
@@ -768,6 +787,7 @@ fn html(r: &Value, steps: &[Step]) -> String {
         .as_str()
         .map_or(String::new(), |hex| format!(" <span class=swatch style=\"background:{hex}\"></span> (mirror colour)"));
     h += &format!("<p><b>{}</b>{swatch}</p>\n", html_escape(r["verdict"].as_str().unwrap_or("")));
+    h += &format!("<p>{}</p>\n", html_escape(r["reflectors"]["sentence"].as_str().unwrap_or("")));
     if let (Some(c), true) = (r["map_coherence"].as_str(), r["diffracts_visible_light"] == json!(true)) {
         h += &format!(
             "<p>The BRDF maps are drawn with a coherence window of {c}: half the scan's shorter side (at least four \

@@ -1042,4 +1042,12 @@ fn the_reports_animal_view_is_measured_against_the_windows_own() {
         "{sentence}"
     );
     assert!(sentence.contains("so the iridescence is the structure's"), "{sentence}");
+    // Each step's reflector, said in one place (JSON and under the verdict).
+    let reflectors = &r["reflectors"];
+    assert_eq!(
+        (reflectors["unit_cell"].as_str(), reflectors["scalar_model_error"].as_str()),
+        (Some("n=1.5"), Some("keratin"))
+    );
+    let html = std::fs::read_to_string(out.join("index.html")).unwrap();
+    assert!(html.contains("Reflectors: the unit cell's orders and the mirror colour are computed over n = 1.5"));
 }
