@@ -428,6 +428,9 @@ pub fn testbench_rigorous(
 }
 
 /// The bench's reflectance matrix by `e` and what is read off it, with the warnings.
+/// Below this span of viewing angles the bench cannot tell its order from the next (said).
+const MIN_BENCH_SPAN_DEG: f64 = 10.0;
+
 fn bench_on(
     b: Workbench,
     e: &dyn Evaluator,
@@ -437,6 +440,17 @@ fn bench_on(
     report: &dyn Report,
 ) -> Result<Testbench> {
     setup.max_period_nm = max_period_nm;
+    let (lo, hi) = (setup.angles_deg[0], setup.angles_deg[setup.angles_deg.len() - 1]);
+    if hi - lo < MIN_BENCH_SPAN_DEG {
+        // Radians given as degrees (−1…1.2) read order 4 as order 1 and called 625 nm "definite" for 2500 nm.
+        report.warn(&format!(
+            "the viewing angles span {}°…{}° only: a peak there may be another order than {} (the period is then \
+             off by their ratio); the bench's default is −89°…89° (angles are in degrees)",
+            iridis_color::spectrum::short_number(lo),
+            iridis_color::spectrum::short_number(hi),
+            setup.order
+        ));
+    }
     let matrix = with_progress(report, setup.wavelengths_nm.len() as u64, "test bench", |p| {
         bench::reflectance_matrix(e, &setup, p)
     })?;

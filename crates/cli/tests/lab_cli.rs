@@ -900,3 +900,25 @@ fn black_maps_compared_are_said() {
     ]);
     assert!(!out.contains("black at every exposure"), "{out}");
 }
+
+/// A viewing range of 2.2° (radians typed as degrees) holds one peak of unknown order: the bench read order 4 as
+/// order 1 and called 625 nm "definite" for a 2500 nm grating. It says the range cannot tell its orders apart.
+#[test]
+fn a_narrow_viewing_range_is_said() {
+    let out = ok(&[
+        "testbench",
+        "builtin:blazed?size=20um&pixel=50nm",
+        "--min-angle",
+        "-1deg",
+        "--max-angle",
+        "1.2deg",
+        "--angle-step",
+        "0.01deg",
+        "--step",
+        "50nm",
+    ]);
+    assert!(
+        out.contains("warning: the viewing angles span -1°…1.2° only: a peak there may be another order than 1"),
+        "{out}"
+    );
+}
