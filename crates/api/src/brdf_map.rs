@@ -198,7 +198,7 @@ pub(crate) fn black_map(method: &str, samples_a_side: usize, exposure_ru: Option
 
 /// Says [`warn_black_map`] where `xyz` has no lit pixel (Python's maps, which no exposure follows).
 pub fn warn_if_black(xyz: &[Xyz], method: &str, samples_a_side: usize, report: &dyn Report) {
-    if crate::brdf::brightest_lit(xyz).is_none() {
+    if crate::lit::brightest_lit(xyz).is_none() {
         warn_black_map(method, samples_a_side, None, report);
     }
 }
@@ -396,7 +396,7 @@ pub fn compute(r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) ->
 /// chosen; so does a lit map whose image (`-o X.png`, `--plot`) would be black at the exposure given.
 fn exposure_for(xyz: &[Xyz], r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) -> Result<f64> {
     // One pass for the brightest pixel; the percentile's sort only where an exposure is chosen or suggested.
-    let Some(brightest) = crate::brdf::brightest_lit(xyz) else {
+    let Some(brightest) = crate::lit::brightest_lit(xyz) else {
         warn_black_map(&r.method, r.size * r.subsamples, Some(r.exposure_ru), report);
         return Ok(r.exposure_ru);
     };
@@ -433,7 +433,7 @@ fn exposure_for(xyz: &[Xyz], r: &MapRequest, files: Option<&MapFiles>, report: &
     }
     // The other end, for an exposure given: most of the light clipped shows where the light is, not its colour
     // (1e300 RU). The default 1500 RU is the paper's, whose maps clip their brightest lobes by design.
-    let clipped = crate::brdf::clipped_share(xyz, r.exposure_ru);
+    let clipped = crate::lit::clipped_share(xyz, r.exposure_ru);
     if image && r.exposure_ru != DEFAULT_EXPOSURE_RU && clipped > 0.5 {
         let suggested = auto_exposure(xyz, r.size)
             .map_or(String::new(), |a| format!(" (--auto-exposure would choose {:.4e} RU)", a.exposure_ru));

@@ -162,9 +162,9 @@ pub fn grating_text(g: &Grating, light: (f64, f64), detector: Option<&str>, acce
 
 /// The longest 1-D period, in shortest wavelengths, on which [`grating_checked`] solves Maxwell's equations
 /// unasked: ~60 orders each side over n = 1.5, milliseconds a wavelength.
-const CHECKED_PERIOD_IN_WAVELENGTHS: f64 = 24.0;
+pub const CHECKED_PERIOD_IN_WAVELENGTHS: f64 = 24.0;
 /// How many of the wavelengths [`grating_checked`] solves Maxwell's equations at.
-const CHECKED_WAVELENGTHS: usize = 5;
+pub const CHECKED_WAVELENGTHS: usize = 5;
 
 /// `iridis grating`: [`grating`], and for the scalar model on a 1-D cell whose rigorous solve is cheap
 /// ([`CHECKED_PERIOD_IN_WAVELENGTHS`]), its error against Maxwell's equations on the same cell, warned where above

@@ -571,7 +571,7 @@ pub fn comparison(
         // Two black maps agree to ΔE00 0 and say nothing (the docs' own example compared them as perfect).
         // Pixels outside the disk are None.
         let black = |xyz: &[Option<iridis_color::Xyz>]| {
-            crate::brdf::dark_at_every_exposure(&xyz.iter().flatten().copied().collect::<Vec<_>>(), exps)
+            crate::lit::dark_at_every_exposure(&xyz.iter().flatten().copied().collect::<Vec<_>>(), exps)
         };
         if black(&img) && black(c.truth(t)) {
             report.warn(&format!(

@@ -56,6 +56,7 @@ pub mod grating_bench;
 pub mod grating_run;
 pub mod lab;
 pub mod lab_run;
+pub mod lit;
 pub mod model;
 pub mod output;
 pub mod precompute;

@@ -115,7 +115,7 @@ pub fn along_plane(
             .unpolarized
             .iter()
             .map(|f| std::f64::consts::PI * f)
-            .map(|f| if f.abs() > crate::brdf::LIT_FLOOR { f } else { 0.0 })
+            .map(|f| if f.abs() > crate::lit::LIT_FLOOR { f } else { 0.0 })
             .collect();
         views.push((format!("{deg:+.0}°"), deg, factor));
     }

@@ -8,9 +8,9 @@ use pyo3::prelude::*;
 use pyo3::types::{PyFloat, PyList};
 
 /// A library error as Python's `ValueError`, with the library's message in a Python caller's words
-/// ([`crate::facade::in_python_terms`]).
+/// ([`in_python_terms`]).
 pub fn value_error(e: impl std::fmt::Display) -> PyErr {
-    PyValueError::new_err(crate::facade::in_python_terms(&e.to_string()))
+    PyValueError::new_err(in_python_terms(&e.to_string()))
 }
 
 /// A direction `(θ, φ)` in radians above the surface (`what` names it in the message).
@@ -152,4 +152,72 @@ pub fn complex_scalar(name: &str, obj: &Bound<'_, PyAny>, batch_hint: &str) -> P
         }
     }
     Err(PyTypeError::new_err(format!("{name} must be a number (real or complex), got {}", obj.get_type().name()?)))
+}
+
+/// The Python keyword of a command-line flag, where it is not the flag's own name with `_` for `-`: lengths
+/// carry their unit in the name (`--pixel-size` is `pixel_size_nm`), angles theirs.
+const PYTHON_KEYWORDS: &[(&str, &str)] = &[
+    ("pixel-size", "pixel_size_nm"),
+    ("max-height", "max_height_nm"),
+    ("from", "from_nm"),
+    ("to", "to_nm"),
+    ("step", "step_nm"),
+    ("coherence", "coherence_nm"),
+    ("roughness", "roughness_nm"),
+    ("correlation", "correlation_nm"),
+    ("aperture", "aperture_nm"),
+    ("max-period", "max_period_nm"),
+    ("wavelength", "wavelengths_nm"),
+    ("angle", "angle_rad"),
+    ("light-angle", "light_angle_rad"),
+    ("no-shadowing", "shadowing=False"),
+    ("terms auto", "terms=None"),
+];
+
+/// A message of the facade in the words of a Python caller: each `--flag` named by its keyword
+/// ([`PYTHON_KEYWORDS`], else the flag with `_` for `-`), so that `give --pixel-size` reads `give pixel_size_nm`.
+/// Left as written: a message that already gives the Python form (`(Python: from_nm=400)`), and flags inside a
+/// quoted command line (`` `iridis surface convert --crop` ``), which are the CLI's.
+pub fn in_python_terms(msg: &str) -> String {
+    if msg.contains("Python:") || msg.contains("(Python") {
+        return msg.to_string();
+    }
+    let mut out = String::with_capacity(msg.len());
+    // Inside `…` or a command line that starts `iridis ` (a report step's), up to the line's end.
+    let (mut quoted, mut command_line) = (false, false);
+    let mut rest = msg;
+    while let Some(c) = rest.chars().next() {
+        match c {
+            '`' => quoted = !quoted,
+            '\n' => command_line = false,
+            _ if rest.starts_with("iridis ") && !out.ends_with(|ch: char| ch.is_alphanumeric()) => command_line = true,
+            _ => {}
+        }
+        let in_command = quoted || command_line;
+        let flag_start = !in_command
+            && rest.starts_with("--")
+            && rest[2..].starts_with(|ch: char| ch.is_ascii_lowercase())
+            && !out.ends_with(|ch: char| ch.is_alphanumeric() || ch == '-');
+        if flag_start {
+            let name_len =
+                rest[2..].find(|ch: char| !(ch.is_ascii_alphanumeric() || ch == '-')).unwrap_or(rest.len() - 2);
+            let name = rest[2..2 + name_len].trim_end_matches('-');
+            // `--terms auto` as one phrase: its keyword's value differs.
+            let phrase = PYTHON_KEYWORDS.iter().find(|(f, _)| f.contains(' ') && rest[2..].starts_with(f));
+            if let Some((f, k)) = phrase {
+                out.push_str(k);
+                rest = &rest[2 + f.len()..];
+                continue;
+            }
+            match PYTHON_KEYWORDS.iter().find(|(f, _)| *f == name) {
+                Some((_, k)) => out.push_str(k),
+                None => out.push_str(&name.replace('-', "_")),
+            }
+            rest = &rest[2 + name.len()..];
+            continue;
+        }
+        out.push(c);
+        rest = &rest[c.len_utf8()..];
+    }
+    out
 }

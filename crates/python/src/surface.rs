@@ -22,7 +22,7 @@ pub struct PyHeightField {
 
 /// Missing files are `OSError` (as Python's own `open`), everything else about the input `ValueError`.
 fn surface_error(spec: &str, e: iridis_surface::SurfaceError) -> PyErr {
-    let msg = crate::facade::in_python_terms(&format!("cannot load surface {spec}: {e}"));
+    let msg = crate::args::in_python_terms(&format!("cannot load surface {spec}: {e}"));
     let missing = !spec.starts_with("builtin:") && !std::path::Path::new(spec).exists();
     if missing {
         PyOSError::new_err(msg)
@@ -68,7 +68,7 @@ impl PyHeightField {
         // The reader's notes and warnings in a Python caller's words, as its errors are.
         let mut meta = self.hf.meta.clone();
         for line in meta.notes.iter_mut().chain(meta.warnings.iter_mut()) {
-            *line = crate::facade::in_python_terms(line);
+            *line = crate::args::in_python_terms(line);
         }
         serialized(py, &meta)
     }

@@ -609,7 +609,7 @@ fn repeats(n: usize, other: usize, height: impl Fn(usize, usize) -> f64, range: 
     let tolerance = 1e-9 * range;
     (2..=n / 3)
         .rev()
-        .filter(|k| n % k == 0)
+        .filter(|k| n.is_multiple_of(*k))
         .find(|&k| {
             let step = n / k;
             (0..other).all(|j| (0..n - step).all(|i| (height(i, j) - height(i + step, j)).abs() <= tolerance))

@@ -367,7 +367,7 @@ pub fn accuracy(a: &AccuracyOptions, report: &dyn Report) -> Result<Bench> {
                 "exposure_ru": x, "mean": mean, "p95": p95}));
         }
         let gt = if aperture == Aperture::Periodic { periodic } else { finite };
-        if crate::brdf::dark_at_every_exposure(&gt, &a.exposures) {
+        if crate::lit::dark_at_every_exposure(&gt, &a.exposures) {
             // Rows of 0 against a black truth read as perfect agreement (the docs' --map-size 8 example).
             report.warn(&format!(
                 "{spec}: the ground truth's {0}² map is black at every exposure, so its rows compare nothing: at a \
