@@ -871,33 +871,17 @@ fn a_small_patch_keeps_the_lights_coherence_and_is_a_unit_cell() {
 /// perfect agreement.
 #[test]
 fn black_maps_compared_are_said() {
-    let out = ok(&[
-        "compare",
-        "builtin:sine?size=4um&pixel=50nm",
-        "--methods",
-        "reference",
-        "--size",
-        "16",
-        "--exposures",
-        "1",
-    ]);
+    let compare = |extra: &[&str]| {
+        let base = ["compare", "builtin:sine?size=4um&pixel=50nm", "--methods", "reference", "--size", "16"];
+        ok(&[&base[..], &["--exposures", "1"], extra].concat())
+    };
+    let out = compare(&[]);
     assert!(
         out.contains("warning: reference and ground-truth-periodic are both black at every exposure on this 16² map"),
         "{out}"
     );
     // A window inside the patch widens the lobes over the pixels: nothing to say.
-    let out = ok(&[
-        "compare",
-        "builtin:sine?size=4um&pixel=50nm",
-        "--methods",
-        "reference",
-        "--size",
-        "16",
-        "--exposures",
-        "1",
-        "--coherence",
-        "1um",
-    ]);
+    let out = compare(&["--coherence", "1um"]);
     assert!(!out.contains("black at every exposure"), "{out}");
 }
 
