@@ -530,9 +530,14 @@ fn solve_auto(
         history.push(ConvergenceStep { orders: [mx, my], change });
         let last = i + 1 == steps.len();
         if let Some(c) = change {
-            let met = c <= opts.tolerance && energy_of(&raw).is_none_or(|e| e <= opts.tolerance);
+            // A comparison tests only the axes whose truncation grew: a crossed cell pinned at its cap along x
+            // (the search raised y alone) says nothing of x's convergence (an 8-period near-tile read 1e-12).
+            let grew = prev.as_ref().is_some_and(|(_, p)| p[0] != mx && (!two_d || p[1] != my));
+            let met = grew && c <= opts.tolerance && energy_of(&raw).is_none_or(|e| e <= opts.tolerance);
             if met || last {
-                result = Some((raw, [mx, my], prev.as_ref().map(|p| p.1).unwrap(), c, met, last));
+                // Untested along an axis, the change is no estimate; |R + T − 1| is a floor of the error.
+                let estimate = if grew { c } else { c.max(energy_of(&raw).unwrap_or(0.0)) };
+                result = Some((raw, [mx, my], prev.as_ref().map(|p| p.1).unwrap(), estimate, met, last));
                 break;
             }
         }
