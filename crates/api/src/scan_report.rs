@@ -374,7 +374,9 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
             let plane = crate::vision::PlaneViews { azimuth: Some(v.azimuth), ..plane };
             let reference = crate::vision::along_plane(&flat, surf, &model, shading, plane, &crate::report::Quiet)?;
             let mut json = v.to_json();
-            json["flat_mirror_delta_s_jnd"] = json!(largest_delta_s_from_mirror(&reference.to_json()).map(|(d, _)| d));
+            let flat = reference.to_json();
+            json["flat_mirror_delta_s_jnd"] = json!(largest_delta_s_from_mirror(&flat, None).map(|(d, _)| d));
+            json["flat_mirror_lit_views"] = json!(lit_views(&flat));
             Ok((answer(json, &args, inputs), Vec::new()))
         })?;
         vision = Some(v);
@@ -563,35 +565,48 @@ fn figure_caption(file: &str) -> &'static str {
 /// catches (which ΔS compares) still give it a hue (a flat mirror's faint window tails 20° away: 94 JND).
 const SEEN_SHARE: f64 = 0.01;
 
-/// The largest ΔS (JND) of a `brdf vision` answer's views against its mirror direction, among views that get at
-/// least [`SEEN_SHARE`] of the brightest one's light, and that view's name.
-fn largest_delta_s_from_mirror(v: &Value) -> Option<(f64, String)> {
+/// The views of a `brdf vision` answer that get at least [`SEEN_SHARE`] of the brightest one's light.
+fn lit_views(v: &Value) -> Vec<String> {
     let views = v["views"].as_array().map_or(&[][..], Vec::as_slice);
-    let names: Vec<&str> = views.iter().filter_map(|x| x["name"].as_str()).collect();
-    let mirror = names.iter().copied().find(|n| n.starts_with("+0") || n.starts_with("-0")).unwrap_or("+0°");
     let light = |x: &Value| -> f64 {
         let f = x["reflectance_factor"].as_array().map_or(&[][..], Vec::as_slice);
         f.iter().filter_map(Value::as_f64).sum::<f64>() / f.len().max(1) as f64
     };
     let brightest = views.iter().map(light).fold(0.0f64, f64::max);
-    let seen = |name: &str| views.iter().any(|x| x["name"] == name && light(x) >= SEEN_SHARE * brightest);
+    views
+        .iter()
+        .filter(|x| brightest > 0.0 && light(x) >= SEEN_SHARE * brightest)
+        .filter_map(|x| x["name"].as_str().map(str::to_string))
+        .collect()
+}
+
+/// The largest ΔS (JND) of a `brdf vision` answer's lit views ([`lit_views`]) against its mirror direction, and
+/// that view's name; with `only`, among those views alone. `None` where no lit view but the mirror is left.
+fn largest_delta_s_from_mirror(v: &Value, only: Option<&[String]>) -> Option<(f64, String)> {
+    let lit = lit_views(v);
+    let mirror = lit.iter().find(|n| n.starts_with("+0") || n.starts_with("-0")).cloned().unwrap_or("+0°".into());
+    let counted = |n: &str| lit.iter().any(|l| l == n) && only.is_none_or(|o| o.iter().any(|x| x == n));
     let mut best: Option<(f64, String)> = None;
     for d in v["vision"]["distances"].as_array().into_iter().flatten() {
         let (a, b) = (d["a"].as_str().unwrap_or(""), d["b"].as_str().unwrap_or(""));
-        if let (Some(ds), true) = (d["delta_s"].as_f64(), (a == mirror || b == mirror) && seen(a) && seen(b)) {
+        let other = if a == mirror {
+            b
+        } else if b == mirror {
+            a
+        } else {
+            continue;
+        };
+        if let (Some(ds), true) = (d["delta_s"].as_f64(), counted(other) && lit.contains(&mirror)) {
             if best.as_ref().is_none_or(|(x, _)| ds > *x) {
-                best = Some((ds, (if a == mirror { b } else { a }).to_string()));
+                best = Some((ds, other.to_string()));
             }
         }
     }
-    // No other view lit enough: nothing changes colour.
-    best.or_else(|| Some((0.0, mirror.to_string())))
+    best
 }
 
 fn vision_sentence(v: &Value) -> String {
     let name = v["vision"]["visual"]["name"].as_str().unwrap_or("the animal");
-    let (best, at) = largest_delta_s_from_mirror(v).unwrap_or((0.0, "—".into()));
-    let flat = v["flat_mirror_delta_s_jnd"].as_f64();
     let seen = |x: f64| {
         if x > 3.0 {
             "plain to it"
@@ -601,27 +616,58 @@ fn vision_sentence(v: &Value) -> String {
             "below what it can tell apart"
         }
     };
-    // A flat mirror under the same window changes colour with direction too: the scan's figure says something
-    // of its structure only where it exceeds that.
-    let window = match flat {
-        Some(f) if best <= f + 1.0 => format!(
-            "; a flat mirror of the scan's size under the same coherence window changes by {f:.1} JND, as much, so \
-             what the animal sees here is the window's own colours (the scan is smaller than the light's coherence), \
-             not its structure's"
+    let head = format!("As a {name} sees it (receptor-noise-limited model, D65, 300–700 nm)");
+    let rule = format!("directions that get at least {:.0} % of the brightest one's light", 100.0 * SEEN_SHARE);
+    let Some((best, at)) = largest_delta_s_from_mirror(v, None) else {
+        // The orders fall between the views (every 10°) or are a hundred times fainter than the mirror.
+        return format!(
+            "{head}, no direction sampled (every 10° in the plane of the strongest period) but the mirror's gets at \
+             least {:.0} % of its light: the figure below shows the mirror's colour, and the diffracted orders fall \
+             between the directions sampled or are fainter; the BRDF maps above show them.",
+            100.0 * SEEN_SHARE
+        );
+    };
+    let flat_lit: Vec<String> = v["flat_mirror_lit_views"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .filter_map(|x| x.as_str().map(str::to_string))
+        .collect();
+    let scan_lit = lit_views(v);
+    // Views the structure lights where a flat mirror under the same window is dark: their colours are the
+    // structure's whatever the window does.
+    let structure_only: Vec<String> = scan_lit.iter().filter(|n| !flat_lit.contains(n)).cloned().collect();
+    let flat = v["flat_mirror_delta_s_jnd"].as_f64();
+    let window = match (largest_delta_s_from_mirror(v, Some(&structure_only)), flat) {
+        (Some((s, there)), _) if !v["flat_mirror_lit_views"].is_null() => {
+            let place = if there == at {
+                "leaves that direction dark".to_string()
+            } else {
+                format!("leaves dark it changes by up to {s:.1} JND (at {there})")
+            };
+            let lead = if there == at { "" } else { "in directions " };
+            format!(
+                "; {lead}a flat mirror of the scan's size under the same coherence window {place}, so the iridescence \
+                 is the structure's and {}",
+                seen(s)
+            )
+        }
+        (_, Some(f)) if best <= f + 1.0 => format!(
+            "; a flat mirror of the scan's size under the same coherence window changes by {f:.1} JND in the same \
+             directions, as much or more, so what the animal sees here is the window's own colours (the scan is \
+             smaller than the light's coherence), not its structure's"
         ),
-        Some(f) => format!(
+        (_, Some(f)) => format!(
             "; a flat mirror of the scan's size under the same coherence window changes by {f:.1} JND (the window's \
              own colours), less, so the iridescence is the structure's and {}",
             seen(best)
         ),
-        None => format!(", so the iridescence is {}", seen(best)),
+        (_, None) => format!(", so the iridescence is {}", seen(best)),
     };
     format!(
-        "As a {name} sees it (receptor-noise-limited model, D65, 300–700 nm), the scan's colour changes with the \
-         viewing direction by up to {best:.1} JND against the mirror direction (at {at}, among the directions that \
-         get at least {:.0} % of the brightest one's light; 1 JND is just noticeable){window}: the figure below shows \
-         each direction in false colour.",
-        100.0 * SEEN_SHARE
+        "{head}, the scan's colour changes with the viewing direction by up to {best:.1} JND against the mirror \
+         direction (at {at}, among the {rule}; 1 JND is just noticeable){window}: the figure below shows each \
+         direction in false colour."
     )
 }
 
