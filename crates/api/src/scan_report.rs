@@ -382,30 +382,6 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
         vision = Some(v);
         steps.push(st);
         maps.push("vision.png");
-        // 5. How far the scalar model (behind the maps) is from Maxwell's equations on this scan's own profile.
-        let mut args = s(&["grating", &o.surface, "--unit-cell", "auto", "--compare", "--light", "0deg"]);
-        args.extend(s(&["--from", "380nm", "--to", "780nm", "--step", "10nm", "--material", "keratin"]));
-        args.extend(common.clone());
-        args.push("--json".into());
-        let title = "The scalar model's error on this scan: rigorous (C-method) against Kirchhoff, normal incidence";
-        let opts = GratingOptions {
-            light: direction(0.0, 0.0),
-            wavelengths_nm: spectrum.clone(),
-            material: Some("keratin".into()),
-            unit_cell_auto: true,
-            ..GratingOptions::default()
-        };
-        let compared = run_step(report, title, args.clone(), |r| {
-            let c = crate::grating_run::compare(&source, surf, &opts, r)?;
-            Ok((answer(c.to_json(), &args, inputs), Vec::new()))
-        });
-        match compared {
-            Ok((st, e)) => {
-                scalar_error_json = Some(e);
-                steps.push(st);
-            }
-            Err(e) => scalar_failure = Some(format!("{e:#}").lines().last().unwrap_or("").to_string()),
-        }
         // 6. The test bench: the period from the grating equation, along the strongest period.
         if !o.no_testbench {
             let mut args = s(&["testbench", &o.surface, "--json", "--plot", &file("testbench.png")]);
@@ -452,6 +428,34 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
             }
         }
     }
+    if too_deep.is_none() && (diffracts || longest.is_some()) {
+        // 5. How far the scalar model (behind the maps and the mirror colour) is from Maxwell's equations on this
+        // scan's own profile: wherever it has a period, diffracting or not (a 200 nm-deep 200 nm sine was called a
+        // mirror of Y = 3.6 % where Maxwell's equations give 0.3 %).
+        let mut args = s(&["grating", &o.surface, "--unit-cell", "auto", "--compare", "--light", "0deg"]);
+        args.extend(s(&["--from", "380nm", "--to", "780nm", "--step", "10nm", "--material", "keratin"]));
+        args.extend(common.clone());
+        args.push("--json".into());
+        let title = "The scalar model's error on this scan: rigorous (C-method) against Kirchhoff, normal incidence";
+        let opts = GratingOptions {
+            light: direction(0.0, 0.0),
+            wavelengths_nm: spectrum.clone(),
+            material: Some("keratin".into()),
+            unit_cell_auto: true,
+            ..GratingOptions::default()
+        };
+        let compared = run_step(report, title, args.clone(), |r| {
+            let c = crate::grating_run::compare(&source, surf, &opts, r)?;
+            Ok((answer(c.to_json(), &args, inputs), Vec::new()))
+        });
+        match compared {
+            Ok((st, e)) => {
+                scalar_error_json = Some(e);
+                steps.push(st);
+            }
+            Err(e) => scalar_failure = Some(format!("{e:#}").lines().last().unwrap_or("").to_string()),
+        }
+    }
     let verdict = match &too_deep {
         Some(why) => deep_verdict(&o.surface, why),
         None if undecided => small_patch_verdict(&info, &grating_json),
@@ -465,13 +469,23 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
     }
     if let Some(e) = &scalar_error_json {
         let worst = e["worst_relative_error"]["unpolarized"].as_f64().unwrap_or(0.0);
+        let total = e["total_relative_error"].as_f64().unwrap_or(0.0);
         let de = e["delta_e00_diffracted"].as_f64().unwrap_or(0.0);
-        if worst > crate::grating::SCALAR_WARN_RELATIVE || de > crate::grating::SCALAR_WARN_DELTA_E {
+        if diffracts && (worst > crate::grating::SCALAR_WARN_RELATIVE || de > crate::grating::SCALAR_WARN_DELTA_E) {
             warnings.push(format!(
                 "the scalar (Kirchhoff) model behind the BRDF maps is off by up to {:.0} % in an order's efficiency \
                  on this scan (ΔE00 {de:.1} in the colour of the diffracted light): for numbers, use `iridis grating \
                  --method rigorous --unit-cell auto`",
                 100.0 * worst
+            ));
+        }
+        if !diffracts && total > crate::grating::SCALAR_WARN_RELATIVE {
+            // The mirror colour of a scan that does not diffract is the scalar model's too.
+            warnings.push(format!(
+                "the scalar (Kirchhoff) model behind the mirror colour is off by {:.0} % in the total reflectance on \
+                 this scan's period against Maxwell's equations (on keratin): its reflectance Y is not to be trusted; \
+                 `iridis grating --method rigorous --unit-cell auto` gives Maxwell's",
+                100.0 * total
             ));
         }
     }
@@ -677,7 +691,7 @@ fn scalar_sentence(e: &Value) -> String {
     let at = &e["worst_at"];
     format!(
         "Against Maxwell's equations (the C-method on the scan's strongest period, {:.0} nm, its profile averaged \
-         along the ridges, on keratin, light at normal incidence), the scalar model behind the maps is off by up to \
+         along the ridges, on keratin, light at normal incidence), the scalar model behind the colours is off by up to \
          {:.1} % in an order's efficiency (unpolarised; TE {:.1} %, TM {:.1} %{}), {:.1} % in the total reflectance, \
          and by ΔE00 {} in the colour of the diffracted light ({} for the mirror reflection).",
         e["unit_cell"]["period_x_nm"].as_f64().unwrap_or(f64::NAN),

@@ -1010,6 +1010,13 @@ fn the_reports_verdict_rests_on_what_its_numbers_show() {
     assert!(!verdict.contains("shallow"), "{verdict}");
     // The tilt is there: more than the 0.1 % a diffracting scan needs leaves the mirror direction.
     assert!(r["unit_cell"][0]["diffracted_share"].as_f64().unwrap() > 0.05, "{r}");
+    // Its mirror colour is the scalar model's, which Maxwell's equations put far off on a relief as deep as its
+    // period (Y 3.6 % against 0.3 %): measured although it does not diffract, and warned.
+    assert!(r["scalar_model_error"]["total_relative_error"].as_f64().unwrap() > 1.0, "{r}");
+    assert!(
+        r["warnings"].to_string().contains("the scalar (Kirchhoff) model behind the mirror colour is off by"),
+        "{r}"
+    );
     let dir2 = tempfile::tempdir().unwrap();
     let spike = dir2.path().join("spike.gwy");
     let mut heights = vec![0.0f64; 64 * 64];
