@@ -90,7 +90,14 @@ fn _fit<'py>(
     Ok(d)
 }
 
+/// Refuses a colour grid that would give a colour of nothing and warns of a partial band, as `thinfilm color`
+/// does (`iridis_api::film::check_colour_grid`): `Stack.color` took 300–380 nm and printed a* 485.
+#[pyfunction]
+fn _check_colour_grid(py: Python<'_>, grid_nm: Vec<f64>) -> PyResult<()> {
+    run(py, |r| iridis_api::film::check_colour_grid(&grid_nm, r))
+}
+
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    add_functions!(m, [_profile, _fit]);
+    add_functions!(m, [_profile, _fit, _check_colour_grid]);
     Ok(())
 }

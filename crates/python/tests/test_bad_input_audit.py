@@ -201,3 +201,17 @@ def test_film_angles_are_refused_by_their_keyword():
     with pytest.raises(ValueError, match=r"light_rad is 30 rad: .* numpy.radians"):
         s.rough(25, 300).spectrum([500.0], view_rad=0.2, light_rad=30)
     assert s.rough(25, 300).spectrum([500.0], view_rad=0.2, azimuth_rad=4.0)["specular"].shape == (1,)
+
+
+def test_stack_colours_check_their_grid_as_thinfilm_color_does():
+    # Stack.color took 300–380 nm (a* 485) and two samples 400 nm apart without a word.
+    import iridis.thinfilm as tf
+    s = tf.Stack("air | water 348nm | air")
+    with pytest.raises(ValueError, match=r"300–380 nm .* holds 0.0\d % of it"):
+        s.color(grid_nm=np.arange(300, 381, 5.0))
+    with pytest.raises(ValueError, match=r"so coarsely that its white is off by"):
+        s.color(grid_nm=np.array([380.0, 780.0]))
+    with pytest.warns(UserWarning, match=r"integrate over 380–500 nm only"):
+        s.color(grid_nm=np.arange(380, 501, 5.0))
+    with pytest.raises(ValueError, match=r"300–380 nm"):
+        tf.colors_of_stacks([[1, 1.33, 1]], [[348.0]], grid_nm=np.arange(300, 381, 5.0))

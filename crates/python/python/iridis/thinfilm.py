@@ -74,8 +74,13 @@ def _wavelengths(x, name="wavelengths_nm"):
 
 
 def _colour_grid(grid_nm):
-    """The wavelengths a colour is integrated over: ``grid_nm``, or the CIE range 380–780 nm in 5 nm steps."""
-    return np.arange(380.0, 780.0 + 1e-9, 5.0) if grid_nm is None else _wavelengths(grid_nm, "grid_nm")
+    """The wavelengths a colour is integrated over: ``grid_nm``, or the CIE range 380–780 nm in 5 nm steps; a grid
+    holding too little of the eye's response is refused and a partial band warned, as ``thinfilm color`` does."""
+    if grid_nm is None:
+        return np.arange(380.0, 780.0 + 1e-9, 5.0)
+    grid = _wavelengths(grid_nm, "grid_nm")
+    _native._check_colour_grid(np.sort(grid.ravel()).tolist())
+    return grid
 
 
 def _angles(x, name="angles_rad"):
