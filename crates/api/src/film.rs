@@ -42,7 +42,10 @@ pub fn wavelength_grid(from: f64, to: f64, step: f64) -> Result<Vec<f64>> {
     if to < from {
         bail!("--to ({to} nm) must not be below --from ({from} nm)");
     }
-    iridis_color::spectrum::check_nanometres(&[from, to]).map_err(|e| anyhow!("--from/--to: {e}"))?;
+    // A film takes X-rays (0.154 nm for X-ray reflectivity), so only metres are refused at the short end.
+    if from < 1e-4 {
+        bail!("--from {from} nm looks like metres (400e-9 m is 400 nm); wavelengths are in nm");
+    }
     let g = iridis_color::spectrum::range_grid(from, to, step).map_err(|e| anyhow!("{e}"))?;
     if g.len() > 100_000 {
         bail!("{} wavelengths is too many; use a larger --step", g.len());

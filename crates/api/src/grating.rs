@@ -400,6 +400,8 @@ pub fn grating(
     if !(0.0..1.0).contains(&opts.orders_above) {
         bail!("--orders-above {}: the efficiency must be from 0 up to 1 (100 %)", opts.orders_above);
     }
+    let shortest = opts.wavelengths_nm.iter().copied().fold(f64::INFINITY, f64::min);
+    iridis_color::spectrum::check_light_nanometres(shortest)?;
     let w = &opts.wavelengths_nm;
     if w.is_empty() {
         bail!("no wavelength given: give one, or a range");

@@ -203,9 +203,11 @@ fn library_limits_found_from_python_hold_on_the_command_line() {
 #[test]
 fn wavelengths_in_the_wrong_unit_are_refused() {
     let sine = "builtin:sine?size=4um&pixel=50nm&period=1000nm&depth=100nm";
+    assert_fails(&["grating", sine, "--wavelength", "5.5e-7nm"], &["0.00000055 nm", "looks like metres"]);
+    // A crossed 20 µm cell at the extreme UV's 10 nm: π (L/λ)² ≈ 1.3e7 orders, refused before any is listed.
     assert_fails(
-        &["grating", sine, "--wavelength", "5.5e-7nm"],
-        &["orders propagate at λ = 0.00000055 nm", "more than the 4e6", "5.5e-7 metres"],
+        &["grating", "builtin:gaussian?size=20um&pixel=100nm", "--wavelength", "10nm"],
+        &["about 1.3e7 orders propagate at λ = 10 nm", "more than the 4e6"],
     );
     // A spectrum in µm: grey with a range warning before; refused by every reader of spectra.
     let dir = tempfile::tempdir().unwrap();
@@ -213,9 +215,47 @@ fn wavelengths_in_the_wrong_unit_are_refused() {
     let um = write_file(dir.path(), "um.csv", &format!("wavelength,R\n{um}"));
     assert_fails(&["color", "xyz", &um], &["reach only 0.7 nm: that looks like µm"]);
     assert_fails(&["vision", &um, "--visual", "bluetit"], &["reach only 0.7 nm: that looks like µm"]);
-    // 2k|h|max = 2 · 2π/0.5 nm · 129 nm ≈ 3236 > 26.8: beyond the Taylor expansion at the bench's 0.5 nm.
+    // From 20 nm, light these models take: 2k|h|max = 2 · 2π/20 nm · 129 nm ≈ 81 > 26.8, beyond the Taylor
+    // expansion at the bench's shortest wavelength (its terms were counted for 380 nm and it ran).
+    assert_fails(
+        &["testbench", "builtin:blazed?size=20um&pixel=50nm", "--from", "20nm", "--to", "40nm", "--step", "10nm"],
+        &["too deep for the Taylor expansion (paper eq. 5) at 20 nm"],
+    );
     assert_fails(
         &["testbench", "builtin:blazed?size=20um&pixel=50nm", "--from", "0.5nm", "--to", "0.7nm", "--step", "0.05nm"],
-        &["too deep for the Taylor expansion (paper eq. 5) at 0.5 nm", "0.55 is µm"],
+        &["0.5 nm is shorter than the light these models take", "looks like µm"],
+    );
+}
+
+/// The diffraction commands take light from the extreme UV up (10 nm): a grating "at 0.55 nm" on a shallow cell
+/// listed 3637 orders and a test bench "from 0.38 nm" read a period, µm taken for nm. A thin film takes X-rays
+/// (X-ray reflectivity at 0.154 nm), so only metres are refused there.
+#[test]
+fn light_shorter_than_the_extreme_uv_is_refused_by_the_diffraction_commands() {
+    let shallow = "builtin:sine?size=1um&pixel=10nm&depth=0.01nm";
+    assert_fails(
+        &["grating", shallow, "--wavelength", "0.55nm"],
+        &["0.55 nm is shorter than the light these models take"],
+    );
+    assert_fails(
+        &["testbench", shallow, "--from", "0.38nm", "--to", "0.78nm", "--step", "0.01nm"],
+        &["0.38 nm is shorter than the light these models take", "looks like µm"],
+    );
+    let xrr = ok(&[
+        "thinfilm",
+        "spectrum",
+        "--stack",
+        "air | n=0.99+0.01i 10nm | air",
+        "--from",
+        "0.154nm",
+        "--to",
+        "0.2nm",
+        "--step",
+        "0.002nm",
+    ]);
+    assert!(xrr.contains("0.154"), "{xrr}");
+    assert_fails(
+        &["thinfilm", "spectrum", "--stack", "air | water 348nm | air", "--from", "4e-7nm"],
+        &["looks like metres"],
     );
 }

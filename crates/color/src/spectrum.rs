@@ -77,6 +77,22 @@ pub fn check_nanometres(wavelengths_nm: &[f64]) -> Result<(), SpectrumError> {
     Ok(())
 }
 
+/// The shortest light the diffraction models take (nm): the extreme UV and up. Below it a wavelength is µm or
+/// metres read as nm (a grating "at 0.55 nm" listed 3637 orders; a test bench "from 0.38 nm" read a period).
+pub const SHORTEST_LIGHT_NM: f64 = 10.0;
+
+/// Refuses a shortest wavelength below [`SHORTEST_LIGHT_NM`], naming the likely unit.
+pub fn check_light_nanometres(shortest_nm: f64) -> Result<(), SpectrumError> {
+    if shortest_nm.is_finite() && shortest_nm > 0.0 && shortest_nm < SHORTEST_LIGHT_NM {
+        let unit = if shortest_nm < 1e-4 { "metres (550e-9 m is 550 nm)" } else { "µm (0.55 µm is 550 nm)" };
+        return Err(SpectrumError::Invalid(format!(
+            "a wavelength of {shortest_nm} nm is shorter than the light these models take ({SHORTEST_LIGHT_NM} nm and \
+             up): it looks like {unit}; wavelengths are in nm"
+        )));
+    }
+    Ok(())
+}
+
 impl Spectrum {
     /// Builds a spectrum, checking that the grid has at least two samples, is strictly increasing and that
     /// every number is finite.

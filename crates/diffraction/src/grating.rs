@@ -464,6 +464,8 @@ fn check_order_count(lines: Lines, (lx, ly): (f64, f64), lambda_nm: f64) -> Resu
 }
 
 fn check_wavelength(lambda_min_nm: f64) -> Result<(), DiffractionError> {
+    iridis_color::spectrum::check_light_nanometres(lambda_min_nm)
+        .map_err(|e| DiffractionError::Invalid(e.to_string()))?;
     if lambda_min_nm.is_finite() && lambda_min_nm > 0.0 {
         Ok(())
     } else {

@@ -76,6 +76,7 @@ impl BenchSetup {
                 "wavelength range {from}–{to} nm in steps of {step} nm: need 0 < from ≤ to and step > 0"
             )));
         }
+        iridis_color::spectrum::check_light_nanometres(from).map_err(|e| LabError::invalid(e.to_string()))?;
         let wavelengths_nm =
             iridis_color::spectrum::range_grid(from, to, step).map_err(|e| LabError::invalid(e.to_string()))?;
         if !(angle_step.is_finite() && angle_step > 0.0) {
