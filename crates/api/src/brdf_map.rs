@@ -182,7 +182,8 @@ pub fn warn_black_map(method: &str, samples_a_side: usize, exposure_ru: Option<f
 
 /// [`warn_black_map`]'s sentence.
 pub(crate) fn black_map(method: &str, samples_a_side: usize, exposure_ru: Option<f64>) -> String {
-    let stays = exposure_ru.map_or(String::new(), |e| format!("; the exposure stays {e} RU"));
+    let stays = exposure_ru
+        .map_or(String::new(), |e| format!("; the exposure stays {} RU", iridis_color::spectrum::short_number(e)));
     if method.starts_with("stam-periodic") && samples_a_side.is_multiple_of(2) {
         format!(
             "the map is black: Stam's periodic models put a 1-D grating's orders on the row y = 0, which \
@@ -435,8 +436,9 @@ fn exposure_for(xyz: &[Xyz], r: &MapRequest, files: Option<&MapFiles>, report: &
     // (1e300 RU). The default 1500 RU is the paper's, whose maps clip their brightest lobes by design.
     let clipped = crate::lit::clipped_share(xyz, r.exposure_ru);
     if image && r.exposure_ru != DEFAULT_EXPOSURE_RU && clipped > 0.5 {
-        let suggested = auto_exposure(xyz, r.size)
-            .map_or(String::new(), |a| format!(" (--auto-exposure would choose {:.4e} RU)", a.exposure_ru));
+        let suggested = auto_exposure(xyz, r.size).map_or(String::new(), |a| {
+            format!(" (--auto-exposure would choose {} RU)", iridis_color::spectrum::short_number(a.exposure_ru))
+        });
         report.warn(&format!(
             "{:.0} % of the map's lit pixels are clipped at --exposure {} RU: the image shows where the light is, not \
              its colour or brightness{suggested}",

@@ -127,6 +127,11 @@ impl OrdersAt {
         let transparent = s.substrate_index[1] == 0.0;
         let mut convergence = serde_json::to_value(&s.convergence).unwrap_or_default();
         convergence["wavelength_nm"] = json!(s.wavelength_nm);
+        if along_y {
+            // The solver took the column as its x: its repeats along "x" are the cell's along y.
+            let [kx, ky] = s.convergence.cell_repeats;
+            convergence["cell_repeats"] = json!([ky, kx]);
+        }
         OrdersAt {
             wavelength_nm: s.wavelength_nm,
             orders,

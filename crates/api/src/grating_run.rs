@@ -76,11 +76,12 @@ pub fn grating_text(g: &Grating, light: (f64, f64), detector: Option<&str>, acce
         if let Some(t) = one.transmitted_total {
             let _ = writeln!(
                 s,
-                "total transmitted  TE {:.4} %  TM {:.4} %  unpolarised {:.4} %  ({} orders; --json lists them)",
+                "total transmitted  TE {:.4} %  TM {:.4} %  unpolarised {:.4} %  ({} {}; --json lists them)",
                 100.0 * t.te,
                 100.0 * t.tm,
                 100.0 * t.unpolarized,
-                one.transmitted_orders.len()
+                one.transmitted_orders.len(),
+                plural(one.transmitted_orders.len())
             );
         }
         if let Some(err) = one.convergence["estimated_error"].as_f64() {

@@ -847,7 +847,10 @@ fn html(r: &Value, steps: &[Step]) -> String {
         .as_str()
         .map_or(String::new(), |hex| format!(" <span class=swatch style=\"background:{hex}\"></span> (mirror colour)"));
     h += &format!("<p><b>{}</b>{swatch}</p>\n", html_escape(r["verdict"].as_str().unwrap_or("")));
-    h += &format!("<p>{}</p>\n", html_escape(r["reflectors"]["sentence"].as_str().unwrap_or("")));
+    if r["too_deep_for_scalar_model"].is_null() {
+        // A relief too deep for the scalar model has no colours, so no reflectors to name.
+        h += &format!("<p>{}</p>\n", html_escape(r["reflectors"]["sentence"].as_str().unwrap_or("")));
+    }
     if let (Some(c), true) = (r["map_coherence"].as_str(), r["diffracts_visible_light"] == json!(true)) {
         h += &format!(
             "<p>The BRDF maps are drawn with a coherence window of {c}: half the scan's shorter side (at least four \

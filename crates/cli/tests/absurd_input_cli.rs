@@ -179,8 +179,8 @@ fn library_limits_found_from_python_hold_on_the_command_line() {
     assert_fails(&["bench", "diffraction", "--size", "100000"], &["--size 100000", "from 8 to 8192"]);
     assert_fails(&["bench", "render", "--size", "0"], &["--size 0", "from 1 to 16384 pixels"]);
     assert_fails(
-        &["grating", "builtin:sine?size=1100nm&pixel=50nm", "--wavelength", "0.5nm", "--method", "rigorous"],
-        &["orders propagate each side along a period of 1100 nm at λ = 0.5 nm", "more than the 1000"],
+        &["grating", "builtin:sine?size=20um&pixel=100nm&period=20um", "--wavelength", "10nm", "--method", "rigorous"],
+        &["3000 orders propagate each side along a period of 20000 nm at λ = 10 nm", "more than the 1000"],
     );
     assert_fails(
         &["brdf", "vision", "builtin:sine?size=3300nm&pixel=100nm", "--visual", "bluetit", "--light", "100deg"],

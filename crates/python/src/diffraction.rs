@@ -85,8 +85,9 @@ pub fn refuse_reading_options(s: &iridis_api::SurfaceOptions) -> anyhow::Result<
     if given.is_empty() {
         return Ok(());
     }
+    let (they, them) = if given.len() == 1 { ("it says", "it") } else { ("they say", "them") };
     anyhow::bail!(
-        "{} would be ignored: they say how to read a file, and this Surface is already read; give them to \
+        "{} would be ignored: {they} how to read a file, and this Surface is already read; give {them} to \
          surface.load (Surface.level levels it)",
         given.join(", ")
     )

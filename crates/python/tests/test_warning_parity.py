@@ -121,7 +121,7 @@ def test_reading_options_on_a_surface_in_memory_are_refused():
         try:
             call()
         except ValueError as e:
-            assert "would be ignored: they say how to read a file, and this Surface is already read" in str(e), e
+            assert "would be ignored: it says how to read a file, and this Surface is already read" in str(e), e
         else:
             raise AssertionError("not refused")
     # The same keywords with a SURFACE argument are read.
