@@ -758,6 +758,10 @@ pub fn laser_run(source: &Source, lab: &LabOptions, req: &LaserRequest, report: 
         bail!("--exposures: give at least one value");
     }
     refuse_repeats("--exposures", exps)?;
+    // Named by the option given: the aperture is the window's coherence length, whose own check named neither.
+    if !(req.aperture_nm.is_finite() && req.aperture_nm > 0.0) {
+        bail!("--aperture {} nm: the diaphragm's aperture must be a positive length", req.aperture_nm);
+    }
     let screens: Vec<PathBuf> = exps
         .iter()
         .map(|x| {

@@ -85,7 +85,10 @@ impl LaserSetup {
             )));
         }
         if !(pos(self.distance_nm) && pos(self.screen_width_nm) && pos(self.screen_height_nm)) {
-            return Err(LabError::invalid("screen distance and size must be positive lengths"));
+            return Err(LabError::invalid(format!(
+                "--distance {} nm and --screen {} × {} nm: the screen's distance and size must be positive lengths",
+                self.distance_nm, self.screen_width_nm, self.screen_height_nm
+            )));
         }
         if !(1..=MAX_SIDE_PX).contains(&self.width_px) || !(1..=MAX_SIDE_PX).contains(&self.height_px) {
             return Err(LabError::invalid(format!("the image must be 1–{MAX_SIDE_PX} pixels on each side")));

@@ -167,6 +167,8 @@ const PYTHON_KEYWORDS: &[(&str, &str)] = &[
     ("correlation", "correlation_nm"),
     ("aperture", "aperture_nm"),
     ("max-period", "max_period_nm"),
+    ("distance", "distance_nm"),
+    ("screen", "screen_nm"),
     ("wavelength", "wavelengths_nm"),
     ("angle", "angle_rad"),
     ("light-angle", "light_angle_rad"),

@@ -140,3 +140,17 @@ def test_answers_say_what_their_numbers_rest_on():
     cond = c["conditions"]
     assert cond["illuminant"] == "A" and cond["polarization"] == "s" and cond["observer"] == "1931", cond
     assert abs(cond["angle_deg"] - 28.64788976) < 1e-6 and cond["wavelength_range_nm"] == [380.0, 780.0], cond
+
+
+def test_laser_and_sweep_take_their_python_words(tmp_path):
+    # lab.laser(aperture_nm=0) said "coherence length 0 nm must be positive", distance_nm=-1 named neither keyword;
+    # lab.sweep refused "uv_power", the Python spelling of the CLI's uv-power.
+    import pytest
+    import iridis.lab as lab
+    sine = "builtin:sine?size=4um&pixel=100nm"
+    with pytest.raises(ValueError, match=r"aperture_nm 0 nm: the diaphragm's aperture must be a positive length"):
+        lab.laser(sine, tmp_path / "a.png", aperture_nm=0)
+    with pytest.raises(ValueError, match=r"distance_nm -1 nm and screen_nm"):
+        lab.laser(sine, tmp_path / "b.png", distance_nm=-1)
+    with pytest.raises(ValueError, match=r"the reference method has no parameter 'uv-power'; it applies to: lookup"):
+        lab.sweep(sine, "uv_power", [1.0, 5.0], tmp_path / "s")

@@ -114,8 +114,8 @@ def sweep(surface, param, values, output, method="reference", against="model", e
           incidence=(0.0, 0.0), size=64, step_nm=None, uv_resolution=None, uv_power=None, plot=None, gpu=False,
           **options):
     """A convergence sweep (paper sec. 7, Figures 14–17; ``iridis sweep``): the method's BRDF map for each of
-    ``values`` of ``param`` (``"terms"``, ``"dlambda"``, ``"coherence"`` — lengths in nm —, ``"uv-power"``,
-    ``"uv-resolution"``) and its CIEDE2000 error against the ground truth (``against``: ``"model"``,
+    ``values`` of ``param`` (``"terms"``, ``"dlambda"``, ``"coherence"`` — lengths in nm —, ``"uv_power"`` (or ``"uv-power"``),
+    ``"uv_resolution"``) and its CIEDE2000 error against the ground truth (``against``: ``"model"``,
     ``"ground-truth"`` or ``"ground-truth-periodic"``). Writes the contact sheet to ``output`` and the
     error plot to ``plot`` (default ``output``'s name with ``_error``); returns ``iridis sweep --json``'s dict
     (``points``: ``value``, ``errors`` and ``periodic_extension_error`` per exposure: ``mean``, ``p95``).
@@ -126,7 +126,9 @@ def sweep(surface, param, values, output, method="reference", against="model", e
     theta, phi = _incidence(incidence)
     if gpu:
         ensure_gpu_environment()
-    out, text = _native._sweep(_surface(surface), str(param), [float(v) for v in values], os.fspath(output), str(method),
+    # "uv_power" as Python spells its keywords, or the CLI's "uv-power".
+    param = str(param).replace("_", "-")
+    out, text = _native._sweep(_surface(surface), param, [float(v) for v in values], os.fspath(output), str(method),
                          str(against), [float(e) for e in exposures], theta, phi, count(size, "size"),
                          _opt(step_nm, float),
                          _opt(uv_resolution, int), _opt(uv_power, float), None if plot is None else os.fspath(plot),
