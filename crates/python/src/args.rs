@@ -211,11 +211,23 @@ pub fn in_python_terms(msg: &str) -> String {
                 rest = &rest[2 + f.len()..];
                 continue;
             }
-            match PYTHON_KEYWORDS.iter().find(|(f, _)| *f == name) {
-                Some((_, k)) => out.push_str(k),
-                None => out.push_str(&name.replace('-', "_")),
-            }
+            let keyword = match PYTHON_KEYWORDS.iter().find(|(f, _)| *f == name) {
+                Some((_, k)) => k.to_string(),
+                None => name.replace('-', "_"),
+            };
+            out.push_str(&keyword);
             rest = &rest[2 + name.len()..];
+            // An example length for a keyword in nm is a number: "give pixel_size_nm (e.g. 65)", not "65nm".
+            if keyword.ends_with("_nm") {
+                if let Some(after) = rest.strip_prefix(" (e.g. ") {
+                    let digits = after.find(|ch: char| !(ch.is_ascii_digit() || ch == '.')).unwrap_or(after.len());
+                    if digits > 0 && after[digits..].starts_with("nm") {
+                        out.push_str(" (e.g. ");
+                        out.push_str(&after[..digits]);
+                        rest = &after[digits + 2..];
+                    }
+                }
+            }
             continue;
         }
         out.push(c);

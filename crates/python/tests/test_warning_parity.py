@@ -100,7 +100,7 @@ def test_messages_name_the_python_keywords(tmp_path):
         surface.load(str(path))
     except ValueError as e:
         said = str(e)
-    assert "give pixel_size_nm" in said and "--pixel-size" not in said, said
+    assert "give pixel_size_nm (e.g. 65)" in said and "--pixel-size" not in said, said
     table = tmp_path / "t.npz"
     diffraction.precompute("builtin:sine?size=4um&pixel=100nm", uv_resolution=11).save(table)
     try:
