@@ -92,13 +92,23 @@ pub fn grating_text(g: &Grating, light: (f64, f64), detector: Option<&str>, acce
                 (kx, ky) => format!(" on one of the cell's {kx} × {ky} exact repeats (orders numbered in the cell's)"),
             };
             let energy = c["energy_error"].as_f64().map_or(String::new(), |e| format!(", |R + T − 1| {e:.1e}"));
+            // A truncation that could not grow past the propagating orders was compared with itself: no estimate.
+            let untested = c["met"] != Value::Bool(true) && c["orders"] == c["compared_with"];
+            let verdict = match (c["met"] == Value::Bool(true), untested) {
+                (true, _) => String::new(),
+                (false, true) => {
+                    " — NOT met: the truncation could not grow beyond the propagating orders, so the error is not \
+                     estimated"
+                        .to_string()
+                }
+                (false, false) => " — NOT met".to_string(),
+            };
             let _ = writeln!(
                 s,
-                "converged: orders ±{}{on}, estimated error {:.1e}{energy} (tolerance {:.0e}){}",
+                "converged: orders ±{}{on}, estimated error {:.1e}{energy} (tolerance {:.0e}){verdict}",
                 c["orders"][0],
                 err,
                 c["tolerance"].as_f64().unwrap_or(f64::NAN),
-                if c["met"] == Value::Bool(true) { "" } else { " — NOT met" }
             );
         }
         if let Some(d) = g.detector_reflectance(one) {
@@ -218,8 +228,19 @@ pub fn grating_checked(
     ) else {
         return Ok(g);
     };
-    // The orders' efficiencies only: five wavelengths make no colour.
-    let e = scalar_error(&scalar, &rigorous);
+    // The orders' efficiencies only: five wavelengths make no colour. Every order was computed by both models;
+    // an order is judged where either model puts it above the user's --orders-above (so it is listed, or should
+    // be: the scalar model listed 2 % where Maxwell's equations give 0.5 %) and Maxwell's above the floor.
+    let mut e = scalar_error(&scalar, &rigorous);
+    let (mut worst, mut worst_at) = (0.0f64, None);
+    for &(l, m, n, k, r) in &e.orders {
+        let listed = k.unpolarized.max(r.unpolarized) >= opts.orders_above;
+        if listed && r.unpolarized > e.floor && (k.unpolarized - r.unpolarized).abs() / r.unpolarized > worst {
+            worst = (k.unpolarized - r.unpolarized).abs() / r.unpolarized;
+            worst_at = Some((l, m, n));
+        }
+    }
+    (e.worst.unpolarized, e.worst_at) = (worst, worst_at);
     if e.worst.unpolarized > crate::grating::SCALAR_WARN_RELATIVE {
         report.warn(&format!(
             "the scalar (Kirchhoff) model is off by up to {:.0} % in an order's efficiency{} and {:.1} % in the total \

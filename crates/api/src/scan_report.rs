@@ -453,7 +453,10 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
                 scalar_error_json = Some(e);
                 steps.push(st);
             }
-            Err(e) => scalar_failure = Some(format!("{e:#}").lines().last().unwrap_or("").to_string()),
+            Err(e) => {
+                let last = format!("{e:#}").lines().last().unwrap_or("").trim_start_matches("error: ").to_string();
+                scalar_failure = Some(last);
+            }
         }
     }
     let verdict = match &too_deep {

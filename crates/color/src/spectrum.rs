@@ -84,10 +84,15 @@ pub const SHORTEST_LIGHT_NM: f64 = 10.0;
 /// Refuses a shortest wavelength below [`SHORTEST_LIGHT_NM`], naming the likely unit.
 pub fn check_light_nanometres(shortest_nm: f64) -> Result<(), SpectrumError> {
     if shortest_nm.is_finite() && shortest_nm > 0.0 && shortest_nm < SHORTEST_LIGHT_NM {
-        let unit = if shortest_nm < 1e-4 { "metres (550e-9 m is 550 nm)" } else { "µm (0.55 µm is 550 nm)" };
+        // A unit is named only where the number is one (0.55 for µm, 5.5e-7 for metres), not for 9.9 nm.
+        let unit = match shortest_nm {
+            x if x < 1e-4 => ": it looks like metres (550e-9 m is 550 nm); wavelengths are in nm",
+            x if x < 2.0 => ": it looks like µm (0.55 µm is 550 nm); wavelengths are in nm",
+            _ => "",
+        };
         return Err(SpectrumError::Invalid(format!(
             "a wavelength of {shortest_nm} nm is shorter than the light these models take ({SHORTEST_LIGHT_NM} nm and \
-             up): it looks like {unit}; wavelengths are in nm"
+             up){unit}"
         )));
     }
     Ok(())
