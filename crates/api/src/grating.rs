@@ -970,6 +970,30 @@ pub fn scalar_error(scalar: &Grating, rigorous: &Grating) -> ScalarError {
 }
 
 impl ScalarError {
+    /// The same comparison judged on the orders either model puts at or above `orders_above` (`--orders-above`:
+    /// those listed, or that should be), each needing Maxwell's efficiency above the floor: the worst relative
+    /// errors (TE, TM, unpolarised) and where the unpolarised one is. Computed from every order of both models,
+    /// so an order listed by one and under the floor in the other is still compared.
+    pub fn judged_above(mut self, orders_above: f64) -> Self {
+        let rel = |a: f64, b: f64| if b > self.floor { (a - b).abs() / b } else { 0.0 };
+        let (mut worst, mut worst_at) = (Efficiency::default(), None);
+        for &(l, m, n, k, r) in &self.orders {
+            if k.unpolarized.max(r.unpolarized) < orders_above {
+                continue;
+            }
+            worst.te = worst.te.max(rel(k.te, r.te));
+            worst.tm = worst.tm.max(rel(k.tm, r.tm));
+            let u = rel(k.unpolarized, r.unpolarized);
+            if u > worst.unpolarized {
+                worst.unpolarized = u;
+                worst_at = Some((l, m, n));
+            }
+        }
+        self.orders.retain(|&(_, _, _, k, r)| k.unpolarized.max(r.unpolarized) >= orders_above);
+        (self.worst, self.worst_at) = (worst, worst_at);
+        self
+    }
+
     /// Whether the scalar model is off by more than the front ends' threshold ([`SCALAR_WARN_RELATIVE`],
     /// [`SCALAR_WARN_DELTA_E`]).
     pub fn above_threshold(&self) -> bool {

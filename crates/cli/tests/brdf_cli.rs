@@ -647,6 +647,21 @@ fn the_scalar_grating_is_checked_against_maxwell_on_a_short_1d_cell() {
         "1%",
     ]);
     assert!(String::from_utf8_lossy(&out.stderr).contains("(order (-1,0) at 480 nm)"));
+    // --compare judges the same orders (it paired only those both models list, and read under 20 %).
+    let out = iridis(&[
+        "grating",
+        "builtin:sine?size=1um&pixel=10nm",
+        "--light",
+        "30deg",
+        "--from",
+        "380nm",
+        "--to",
+        "780nm",
+        "--orders-above",
+        "1%",
+        "--compare",
+    ]);
+    assert!(String::from_utf8_lossy(&out.stdout).contains("unpolarised 288.2 % (order (-1,0) at 490 nm)"));
     let out = iridis(&[
         "grating",
         "builtin:sine?size=1100nm&pixel=10nm",
