@@ -634,34 +634,14 @@ fn the_scalar_grating_is_checked_against_maxwell_on_a_short_1d_cell() {
     assert!(err.contains("91.4 % in the total reflectance against Maxwell's equations on this cell"), "{err}");
     // A floor on the listed orders does not hide it: every order is compared (the (-1,0) order at 480 nm, listed by
     // the scalar model at 2 % and under the 1 % floor in Maxwell's answer, went uncompared).
-    let out = iridis(&[
-        "grating",
-        "builtin:sine?size=1um&pixel=10nm",
-        "--light",
-        "30deg",
-        "--from",
-        "380nm",
-        "--to",
-        "780nm",
-        "--orders-above",
-        "1%",
-    ]);
-    assert!(String::from_utf8_lossy(&out.stderr).contains("(order (-1,0) at 480 nm)"));
+    let floored = |extra: &[&str]| {
+        let base = ["grating", "builtin:sine?size=1um&pixel=10nm", "--light", "30deg", "--from", "380nm"];
+        iridis(&[&base[..], &["--to", "780nm", "--orders-above", "1%"], extra].concat())
+    };
+    assert!(String::from_utf8_lossy(&floored(&[]).stderr).contains("(order (-1,0) at 480 nm)"));
     // --compare judges the same orders (it paired only those both models list, and read under 20 %).
-    let out = iridis(&[
-        "grating",
-        "builtin:sine?size=1um&pixel=10nm",
-        "--light",
-        "30deg",
-        "--from",
-        "380nm",
-        "--to",
-        "780nm",
-        "--orders-above",
-        "1%",
-        "--compare",
-    ]);
-    assert!(String::from_utf8_lossy(&out.stdout).contains("unpolarised 288.2 % (order (-1,0) at 490 nm)"));
+    let compared = floored(&["--compare"]);
+    assert!(String::from_utf8_lossy(&compared.stdout).contains("unpolarised 288.2 % (order (-1,0) at 490 nm)"));
     let out = iridis(&[
         "grating",
         "builtin:sine?size=1100nm&pixel=10nm",
