@@ -933,21 +933,11 @@ pub const SCALAR_WARN_DELTA_E: f64 = 2.0;
 pub fn scalar_error(scalar: &Grating, rigorous: &Grating) -> ScalarError {
     let rel = |a: f64, b: f64| if b > COMPARE_FLOOR { (a - b).abs() / b } else { 0.0 };
     let mut orders = Vec::new();
-    let mut worst = Efficiency::default();
-    let mut worst_at = None;
     let mut total = 0.0f64;
     for (k, r) in scalar.answers.iter().zip(&rigorous.answers) {
         for ro in &r.orders {
             let Some(ko) = k.orders.iter().find(|o| (o.m, o.n) == (ro.m, ro.n)) else { continue };
-            let (a, b) = (ko.efficiency, ro.efficiency);
-            worst.te = worst.te.max(rel(a.te, b.te));
-            worst.tm = worst.tm.max(rel(a.tm, b.tm));
-            let u = rel(a.unpolarized, b.unpolarized);
-            if u > worst.unpolarized {
-                worst.unpolarized = u;
-                worst_at = Some((r.wavelength_nm, ro.m, ro.n));
-            }
-            orders.push((r.wavelength_nm, ro.m, ro.n, a, b));
+            orders.push((r.wavelength_nm, ro.m, ro.n, ko.efficiency, ro.efficiency));
         }
         total = total.max(rel(k.reflected_total.unpolarized, r.reflected_total.unpolarized));
     }
@@ -958,15 +948,17 @@ pub fn scalar_error(scalar: &Grating, rigorous: &Grating) -> ScalarError {
             iridis_color::Lab::from_xyz(f(&b), b.white),
         ))
     };
+    // The worst errors over every order (the floor of the listing is 0).
     ScalarError {
         orders,
-        worst,
-        worst_at,
+        worst: Efficiency::default(),
+        worst_at: None,
         total,
         delta_e_diffracted: de(|c| c.diffracted),
         delta_e_specular: de(|c| c.specular),
         floor: COMPARE_FLOOR,
     }
+    .judged_above(0.0)
 }
 
 impl ScalarError {

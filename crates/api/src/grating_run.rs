@@ -210,27 +210,13 @@ pub fn grating_checked(
         let k = (CHECKED_WAVELENGTHS - 1) as f64;
         (0..CHECKED_WAVELENGTHS).map(|i| all[(i as f64 * last / k).round() as usize]).collect()
     };
-    let both = |method: GratingMethod| GratingOptions {
-        method,
-        wavelengths_nm: checked.clone(),
-        normalisation: if method == GratingMethod::Kirchhoff { opts.normalisation } else { None },
-        // Every order on both sides: an order listed by one model and under the floor in the other was not
-        // compared (--orders-above 1 % silenced a 288 % error).
-        detector: None,
-        orders_above: 0.0,
-        ..opts.clone()
-    };
-    let quiet = crate::report::Quiet;
-    // A rigorous solve that fails (a Rayleigh anomaly's truncation, …) leaves the scalar answer as it was.
-    let (Ok(scalar), Ok(rigorous)) = (
-        grating(source, surface, &both(GratingMethod::Kirchhoff), &quiet),
-        grating(source, surface, &both(GratingMethod::Rigorous), &quiet),
-    ) else {
+    // `--compare` on those wavelengths, quietly; its orders judged where either model would list them. A
+    // rigorous solve that fails (a Rayleigh anomaly's truncation, …) leaves the scalar answer as it was. Five
+    // wavelengths make no colour: the orders' efficiencies only.
+    let subset = GratingOptions { wavelengths_nm: checked.clone(), detector: None, ..opts.clone() };
+    let Ok(GratingComparison { error: e, .. }) = compare(source, surface, &subset, &crate::report::Quiet) else {
         return Ok(g);
     };
-    // The orders' efficiencies only: five wavelengths make no colour. Every order was computed by both models and
-    // is judged where either would list it (the scalar model listed 2 % where Maxwell's equations give 0.5 %).
-    let e = scalar_error(&scalar, &rigorous).judged_above(opts.orders_above);
     if e.worst.unpolarized > crate::grating::SCALAR_WARN_RELATIVE {
         report.warn(&format!(
             "the scalar (Kirchhoff) model is off by up to {:.0} % in an order's efficiency{} and {:.1} % in the total \

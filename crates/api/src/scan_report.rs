@@ -362,14 +362,12 @@ pub fn write_report(o: &ReportOptions, inputs: StepInputs<'_>, report: &dyn Repo
             // The window's own colours: a flat mirror of the scan's size under the same coherence changes colour
             // with direction too (its lobe's width goes with λ), up to 24 JND under 0.8 µm; the sentence
             // measures the scan against it.
-            let scan = source.patch(surf, &crate::report::Quiet)?;
-            let flat = iridis_diffraction::Patch::from_row_major(
-                scan.rows,
-                scan.cols,
-                scan.dx,
-                scan.dy,
-                &vec![0.0; scan.rows * scan.cols],
-            )?;
+            // Its grid is the scan's, as step 1 read it (no second read of the file).
+            let count = |k: &str| info[k].as_u64().map(|n| n as usize).context("surface info's sample counts");
+            let pixel = |k: usize| info["pixel_size_nm"][k].as_f64().context("surface info's pixel size");
+            let (rows, cols) = (count("rows")?, count("cols")?);
+            let flat =
+                iridis_diffraction::Patch::from_row_major(rows, cols, pixel(0)?, pixel(1)?, &vec![0.0; rows * cols])?;
             let flat = Source::Patch { patch: flat, name: "a flat mirror of the scan's size".into() };
             let plane = crate::vision::PlaneViews { azimuth: Some(v.azimuth), ..plane };
             let reference = crate::vision::along_plane(&flat, surf, &model, shading, plane, &crate::report::Quiet)?;
