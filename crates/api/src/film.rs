@@ -53,6 +53,31 @@ pub fn wavelength_grid(from: f64, to: f64, step: f64) -> Result<Vec<f64>> {
     Ok(g)
 }
 
+/// How a colour's wavelength grid was given, for the words of [`check_colour_grid`]'s messages.
+#[derive(Debug, Clone, Copy)]
+pub enum GridGiven {
+    /// As a range and a step (`--from`, `--to`, `--step`; Python's `from_nm`, `to_nm`, `step_nm`).
+    Range,
+    /// As a list of wavelengths, under this name (Python's `grid_nm`).
+    List(&'static str),
+}
+
+impl GridGiven {
+    fn range(self) -> &'static str {
+        match self {
+            GridGiven::Range => "--from/--to",
+            GridGiven::List(name) => name,
+        }
+    }
+
+    fn finer(self) -> String {
+        match self {
+            GridGiven::Range => "a finer --step (≤ 10 nm keeps it within 1 %)".into(),
+            GridGiven::List(name) => format!("a finer {name} (steps ≤ 10 nm keep it within 1 %)"),
+        }
+    }
+}
+
 /// A colour integrates a spectrum over wavelengths, normalised on its grid so that a perfect reflector is white
 /// there (`iridis_color::SpectralWeights`): a band that misses a real part of the visible gives the colour of
 /// that band alone, which is said; one holding under 1 % of the eye's response, or sampling it so coarsely that
@@ -60,9 +85,13 @@ pub fn wavelength_grid(from: f64, to: f64, step: f64) -> Result<Vec<f64>> {
 /// `--step 400nm` #ff00ff) and is refused. "Real": more than 1 % of the CIE 1931 observer's weight
 /// ∫(x̄ + ȳ + z̄) over 360–830 nm, so Sussenbach's 400–700 nm (0.27 %) and vision's 300–700 nm (0.07 %) say
 /// nothing.
-pub fn check_colour_grid(grid: &[f64], report: &dyn Report) -> Result<()> {
+pub fn check_colour_grid(grid: &[f64], given: GridGiven, report: &dyn Report) -> Result<()> {
     if let [one] = grid {
-        bail!("a colour integrates the spectrum over wavelengths, and --from/--to give only {one} nm; give a range (the default is 380nm to 780nm)");
+        bail!(
+            "a colour integrates the spectrum over wavelengths, and {} gives only {one} nm; give a range (the default \
+             is 380nm to 780nm)",
+            given.range()
+        );
     }
     let (lo, hi) = (grid[0], grid[grid.len() - 1]);
     let nm = iridis_color::spectrum::short_number;
@@ -78,10 +107,11 @@ pub fn check_colour_grid(grid: &[f64], report: &dyn Report) -> Result<()> {
     let covered = weight(&|l| (lo..=hi).contains(&l)) / weight(&|_| true) + 0.0;
     if covered < 0.01 {
         bail!(
-            "a colour needs the eye's response, and {}–{} nm (--from/--to) holds {:.2} % of it: its colours would be \
-             of nothing; give a range within 360–830 nm (the default is 380nm to 780nm)",
+            "a colour needs the eye's response, and {}–{} nm ({}) holds {:.2} % of it: its colours would be of \
+             nothing; give a range within 360–830 nm (the default is 380nm to 780nm)",
             nm(lo),
             nm(hi),
+            given.range(),
             100.0 * covered
         );
     }
@@ -94,20 +124,22 @@ pub fn check_colour_grid(grid: &[f64], report: &dyn Report) -> Result<()> {
     if off > 0.2 {
         bail!(
             "a grid of {} wavelengths over {}–{} nm samples the eye's response so coarsely that its white is off by \
-             {:.0} %: give a finer --step (≤ 10 nm keeps it within 1 %)",
+             {:.0} %: give {}",
             grid.len(),
             nm(lo),
             nm(hi),
-            100.0 * off
+            100.0 * off,
+            given.finer()
         );
     }
     if covered < 0.99 {
         report.warn(&format!(
-            "the colours integrate over {}–{} nm only (--from/--to): {:.0} % of the eye's response lies outside and is \
-             left out, the colours normalised on this band (a perfect reflector is white on it): they are the \
-             band's, not the film's in full light",
+            "the colours integrate over {}–{} nm only ({}): {:.0} % of the eye's response lies outside and is left \
+             out, the colours normalised on this band (a perfect reflector is white on it): they are the band's, not \
+             the film's in full light",
             nm(lo),
             nm(hi),
+            given.range(),
             100.0 * (1.0 - covered),
         ));
     }

@@ -74,7 +74,7 @@ pub fn chart(
     rough: Option<RoughLight>,
     report: &dyn Report,
 ) -> Result<FilmChart> {
-    crate::film::check_colour_grid(grid, report)?;
+    crate::film::check_colour_grid(grid, crate::film::GridGiven::Range, report)?;
     let (parsed, layer) = Stack::parse_sweep(stack)?;
     let ds = parse_range(thickness, parse_length_nm).map_err(|e| anyhow!("--thickness: {e}"))?;
     if ds[0] < 0.0 {

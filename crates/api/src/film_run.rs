@@ -129,7 +129,7 @@ pub fn colour(
     rough: Option<RoughLight>,
     report: &dyn Report,
 ) -> Result<Colour> {
-    film::check_colour_grid(grid, report)?;
+    film::check_colour_grid(grid, film::GridGiven::Range, report)?;
     let (parsed, pol) = parse(stack, polarization, rough.is_some(), "colours are for unpolarised light")?;
     Ok(match rough {
         Some(r) => {

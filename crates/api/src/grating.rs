@@ -233,7 +233,7 @@ pub struct Grating {
 /// each bin, i.e. the profile averaged along the ridges. Returns the cell (every row the same, along x), `d`
 /// and `φ` (degrees); `None` for a scan without a dominant period.
 pub fn averaged_unit_cell(patch: &iridis_diffraction::Patch) -> Option<(iridis_diffraction::Patch, f64, f64)> {
-    averaged_unit_cell_at(patch, &crate::surface::dominant_period(patch)?)
+    averaged_unit_cell_at(patch, &crate::surface::dominant_period(patch).ok()?)
 }
 
 /// [`averaged_unit_cell`] along a period already found (`peak`), for a caller that has looked at it first.
@@ -293,7 +293,7 @@ pub struct PeriodFit {
 impl PeriodFit {
     /// The fit of `patch`'s strongest period, or `None` where it has none that carries a tenth of the variance.
     pub fn of(patch: &iridis_diffraction::Patch) -> Option<Self> {
-        let peak = crate::surface::dominant_period(patch).filter(|p| p.power >= 0.1)?;
+        let peak = crate::surface::strongest_period(patch).filter(|p| p.power >= 0.1)?;
         let (x, y, share) = period_fit(patch.extent(), peak.period_nm, peak.orientation_deg);
         Some(PeriodFit {
             period_nm: peak.period_nm,
@@ -361,11 +361,24 @@ pub fn auto_unit_cell(
     name: &str,
     report: &dyn Report,
 ) -> Result<(iridis_diffraction::Patch, f64, f64)> {
-    let Some((cell, d, phi)) = averaged_unit_cell(patch) else {
-        bail!(
-            "--unit-cell auto: {name} has no dominant period to take as the unit cell (`iridis surface info` lists \
-             its periods)"
-        );
+    let peak = match crate::surface::dominant_period(patch) {
+        Ok(peak) => peak,
+        // A random surface's strongest peak is no grating's period: taken as one, its orders were printed as if.
+        Err(Some((strongest, next))) => bail!(
+            "--unit-cell auto: {name} has no dominant period to take as the unit cell: its strongest spectral peak \
+             ({:.0} nm) holds {:.1} % of the height variance, {:.2} × the next peak's, the peaks of a random surface \
+             (a period holds at least {:.0} %, or 1.5 × the next); `iridis surface info` lists them",
+            strongest.period_nm,
+            100.0 * strongest.power,
+            strongest.power / next.max(f64::MIN_POSITIVE),
+            100.0 * crate::surface::NO_DOMINANT_PERIOD_BELOW
+        ),
+        Err(None) => {
+            bail!("--unit-cell auto: {name} has no period to take as the unit cell (its spectrum has no peak)")
+        }
+    };
+    let Some((cell, d, phi)) = averaged_unit_cell_at(patch, &peak) else {
+        bail!("--unit-cell auto: {name}'s period {:.0} nm gives no unit cell", peak.period_nm);
     };
     report.note(&format!(
         "unit cell: the strongest period, {d:.1} nm along {phi:.1}°, its profile averaged along the ridges over the \

@@ -359,7 +359,7 @@ pub fn testbench(
 
 /// Measures along the orientation of the surface's strongest period (what `iridis surface info` finds).
 fn measure_along_dominant(patch: &iridis_diffraction::Patch, setup: &mut BenchSetup, report: &dyn Report) {
-    match crate::surface::dominant_period(patch) {
+    match crate::surface::strongest_period(patch) {
         Some(p) => {
             // The orientation only: the analysis' period may be a harmonic where the fundamental has too few
             // cycles in the patch, and the bench finds its own first order.

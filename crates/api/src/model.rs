@@ -283,7 +283,7 @@ pub fn refuse_build_options(input: &str, grid: TableGrid, surface: &SurfaceOptio
     if !given.is_empty() {
         bail!(
             "{input} is a finished lookup table, so {} would be ignored: these options shape how a table is built \
-             from a SURFACE; pass them to `iridis precompute` (or give {command} the surface itself)",
+             from a SURFACE; pass them to `iridis precompute` (or give `iridis {command}` the surface itself)",
             given.join(", ")
         );
     }

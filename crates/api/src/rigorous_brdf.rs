@@ -399,7 +399,7 @@ pub fn evaluator(
     RigorousBrdf::new(cell, model.material.as_deref(), model, report)
 }
 
-/// The share of a scan's height variance its strongest period must carry for `brdf eval` to state the scalar
+/// The share of a scan's height variance its dominant period must carry for `brdf eval` to state the scalar
 /// model's error on it (built-ins: Elaphe 0.62, the blazed grating 0.61, Xenopeltis 0.042; the Gaussian random
 /// surface 0.011, a patch of one period 0).
 pub const MIN_PERIOD_SHARE: f64 = 0.02;
@@ -488,7 +488,7 @@ pub fn scalar_error_of_scan(
     let patch = source.patch(surface, &crate::report::Quiet)?;
     // A scan with a period: one that carries a share of the height variance (a patch of one period, or a
     // random surface, has none worth averaging).
-    let Some(peak) = crate::surface::dominant_period(&patch).filter(|p| p.power >= MIN_PERIOD_SHARE) else {
+    let Some(peak) = crate::surface::dominant_period(&patch).ok().filter(|p| p.power >= MIN_PERIOD_SHARE) else {
         return Ok(None);
     };
     let Some((cell, d, phi)) = averaged_unit_cell_at(&patch, &peak) else { return Ok(None) };

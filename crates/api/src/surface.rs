@@ -149,16 +149,38 @@ impl Source {
     }
 }
 
-/// The strongest period of a patch and its orientation, as `iridis surface info` finds them (the direction of
-/// the grating vector, degrees in `[0, 180)` from +x with y up); `None` for a surface without one.
-pub fn dominant_period(patch: &Patch) -> Option<iridis_surface::Peak> {
+/// The strongest peaks of a patch's spectrum, strongest first, as `iridis surface info` finds them: period and
+/// orientation (the direction of the grating vector, degrees in `[0, 180)` from +x with y up).
+fn strongest_peaks(patch: &Patch, max_peaks: usize) -> Vec<iridis_surface::Peak> {
     let cols = patch.cols;
     // Back to the readers' row order (row 0 at the top); the patch keeps y growing with the row.
     let heights: Vec<f64> =
         (0..patch.rows).rev().flat_map(|j| patch.heights[j * cols..(j + 1) * cols].iter().copied()).collect();
-    let hf = iridis_surface::HeightField::new(patch.rows, cols, patch.dx, patch.dy, heights).ok()?;
-    let opts = iridis_surface::PeakOptions { max_peaks: 1, ..iridis_surface::PeakOptions::default() };
-    iridis_surface::find_peaks(&hf, &opts).into_iter().next()
+    let Ok(hf) = iridis_surface::HeightField::new(patch.rows, cols, patch.dx, patch.dy, heights) else {
+        return Vec::new();
+    };
+    let opts = iridis_surface::PeakOptions { max_peaks, ..iridis_surface::PeakOptions::default() };
+    iridis_surface::find_peaks(&hf, &opts)
+}
+
+/// The strongest peak of a patch's spectrum, whether or not it is a period of the structure (a random surface
+/// has one too): a direction to look along. `None` for a flat patch.
+pub fn strongest_period(patch: &Patch) -> Option<iridis_surface::Peak> {
+    strongest_peaks(patch, 1).into_iter().next()
+}
+
+/// The strongest period of a patch where it is one of its structure ([`is_dominant`]); `Err` with the strongest
+/// peak and the next one's share of the height variance where it is a random surface's peak (`None` for a flat
+/// patch).
+pub fn dominant_period(patch: &Patch) -> Result<iridis_surface::Peak, Option<(iridis_surface::Peak, f64)>> {
+    let mut peaks = strongest_peaks(patch, 2).into_iter();
+    let strongest = peaks.next().ok_or(None)?;
+    let next = peaks.next().map_or(0.0, |p| p.power);
+    if is_dominant(strongest.power, next) {
+        Ok(strongest)
+    } else {
+        Err(Some((strongest, next)))
+    }
 }
 
 /// Below this share of the height variance in its strongest peak, and under 1.5 × the next's, a surface has no

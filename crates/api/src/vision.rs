@@ -86,7 +86,7 @@ pub fn along_plane(
     let patch = source.patch(surface, report)?;
     let azimuth = match azimuth {
         Some(a) => a,
-        None => match crate::surface::dominant_period(&patch) {
+        None => match crate::surface::strongest_period(&patch) {
             Some(p) => {
                 report.note(&format!(
                     "views in the plane of azimuth {:.1}°, the orientation of the surface's strongest period ({:.0} nm)",

@@ -38,24 +38,29 @@ fn grids_and_angles_refuse_what_cannot_be_meant() {
     assert_eq!(fmt_deg(0.5f64.to_radians()), "0.5");
     // A colour of one wavelength would be black: refused (the spectrum of one wavelength is fine).
     let said = iridis_api::report::Collect::default();
-    let e = check_colour_grid(&[500.0], &said).unwrap_err().to_string();
+    let e = check_colour_grid(&[500.0], GridGiven::Range, &said).unwrap_err().to_string();
     assert!(e.contains("only 500 nm; give a range"), "{e}");
     // A grid that misses part of the visible gives that band's colours, and says so; 380–780 nm says nothing.
-    assert!(check_colour_grid(&[500.0, 505.0], &said).is_ok());
+    assert!(check_colour_grid(&[500.0, 505.0], GridGiven::Range, &said).is_ok());
     let lines = said.take();
     assert!(lines.len() == 1 && lines[0].1.contains("integrate over 500–505 nm only"), "{lines:?}");
     assert!(lines[0].1.contains("normalised on this band"), "{lines:?}");
     // Under 1 % of the eye's response (300–380 nm: 0.1 %), or the response sampled at two points 400 nm apart
     // (the trapezoid gives its white 97 % off), is a colour of nothing: refused.
-    let e = check_colour_grid(&[300.0, 340.0, 380.0], &said).unwrap_err().to_string();
+    let e = check_colour_grid(&[300.0, 340.0, 380.0], GridGiven::Range, &said).unwrap_err().to_string();
     assert!(e.contains("300–380 nm (--from/--to) holds 0.0"), "{e}");
-    let e = check_colour_grid(&[380.0, 780.0], &said).unwrap_err().to_string();
-    assert!(e.contains("so coarsely that its white is off by"), "{e}");
+    let e = check_colour_grid(&[380.0, 780.0], GridGiven::Range, &said).unwrap_err().to_string();
+    assert!(e.contains("so coarsely that its white is off by") && e.contains("a finer --step"), "{e}");
+    // A grid given as a list (Python's `grid_nm`) is named so, not by flags its caller does not have.
+    let e = check_colour_grid(&[380.0, 780.0], GridGiven::List("grid_nm"), &said).unwrap_err().to_string();
+    assert!(e.contains("give a finer grid_nm (steps ≤ 10 nm") && !e.contains("--"), "{e}");
+    let e = check_colour_grid(&[300.0, 380.0], GridGiven::List("grid_nm"), &said).unwrap_err().to_string();
+    assert!(e.contains("300–380 nm (grid_nm) holds"), "{e}");
     let every_5nm = |from: f64, to: f64| wavelength_grid(from, to, 5.0).unwrap();
-    check_colour_grid(&every_5nm(380.0, 780.0), &said).unwrap();
+    check_colour_grid(&every_5nm(380.0, 780.0), GridGiven::Range, &said).unwrap();
     // Sussenbach's 400–700 nm and vision's 300–700 nm miss under 1 % of the observer's weight: nothing said.
-    check_colour_grid(&every_5nm(400.0, 700.0), &said).unwrap();
-    check_colour_grid(&every_5nm(300.0, 700.0), &said).unwrap();
+    check_colour_grid(&every_5nm(400.0, 700.0), GridGiven::Range, &said).unwrap();
+    check_colour_grid(&every_5nm(300.0, 700.0), GridGiven::Range, &said).unwrap();
     assert!(said.take().is_empty());
     // A wavelength that cannot be meant is refused, not answered with "no data" for every material.
     for w in [-1.0, 0.0, f64::NAN] {

@@ -1,7 +1,7 @@
 //! `iridis surface` end to end: generate → file → info finds the generated period; bad input exits
 //! non-zero with a message and leaves no file behind.
 
-use crate::common::{command as iridis, succeeds as ok};
+use crate::common::{assert_fails, command as iridis, succeeds as ok, words};
 
 #[test]
 fn generate_then_info_recovers_the_period() {
@@ -960,6 +960,19 @@ fn a_random_surface_has_no_dominant_period() {
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(text.contains("note         no dominant period: the strongest peak holds"), "{text}");
     assert!(text.contains("(± the peak's resolution on the spectrum, not an accuracy"), "{text}");
+    // Nor is that peak a grating's unit cell: `grating --unit-cell auto` printed its orders as one's.
+    assert_fails(
+        &["grating", "builtin:gaussian?size=20um&pixel=50nm", "--unit-cell", "auto"],
+        &[
+            "has no dominant period to take as the unit cell: its strongest spectral peak",
+            "the peaks of a random surface (a period holds at least 10 %, or 1.5 × the next)",
+        ],
+    );
+    // Nor does `brdf eval` state the scalar model's error on it (it did, from that peak's averaged profile).
+    let v = crate::common::json_of(&words(
+        "brdf eval builtin:gaussian?size=20um&pixel=50nm --light 0deg --view 10deg --step 20nm --json",
+    ));
+    assert!(v["scalar_error"].is_null(), "{}", v["scalar_error"]);
     let out = ok(&["surface", "info", "builtin:elaphe?size=20um&pixel=50nm"]);
     assert!(!String::from_utf8_lossy(&out.stdout).contains("no dominant period"));
     // --peaks 0 looks for none: said so, not "none found" (a statement about the surface).

@@ -176,18 +176,33 @@ const PYTHON_KEYWORDS: &[(&str, &str)] = &[
     ("terms auto", "terms=None"),
 ];
 
+/// Commands a message points to, as a Python caller calls them (the CLI's `surface generate --help` stays: it
+/// is where `iridis.surface.generate`'s docstring sends its reader too).
+const PYTHON_CALLS: &[(&str, &str)] = &[
+    ("`iridis surface info`", "`Surface.info()`"),
+    ("`iridis surface convert`", "`Surface.reshape()`"),
+    ("surface convert --crop", "Surface.reshape(crop=…)"),
+    ("`iridis surface generate`", "`iridis.surface.generate()`"),
+    ("`iridis precompute`", "`iridis.diffraction.precompute()`"),
+    ("`iridis brdf-map`", "`iridis.diffraction.brdf_map()`"),
+    ("`iridis brdf vision`", "`iridis.diffraction.vision()`"),
+    ("`iridis brdf eval`", "`iridis.diffraction.brdf_eval()`"),
+];
+
 /// A message of the facade in the words of a Python caller: each `--flag` named by its keyword
-/// ([`PYTHON_KEYWORDS`], else the flag with `_` for `-`), so that `give --pixel-size` reads `give pixel_size_nm`.
+/// ([`PYTHON_KEYWORDS`], else the flag with `_` for `-`), so that `give --pixel-size` reads `give pixel_size_nm`,
+/// and a command it points to by its Python call ([`PYTHON_CALLS`]).
 /// Left as written: a message that already gives the Python form (`(Python: from_nm=400)`), and flags inside a
 /// quoted command line (`` `iridis surface convert --crop` ``), which are the CLI's.
 pub fn in_python_terms(msg: &str) -> String {
     if msg.contains("Python:") || msg.contains("(Python") {
         return msg.to_string();
     }
+    let msg = PYTHON_CALLS.iter().fold(msg.to_string(), |m, (cli, python)| m.replace(cli, python));
     let mut out = String::with_capacity(msg.len());
     // Inside `…` or a command line that starts `iridis ` (a report step's), up to the line's end.
     let (mut quoted, mut command_line) = (false, false);
-    let mut rest = msg;
+    let mut rest = msg.as_str();
     while let Some(c) = rest.chars().next() {
         match c {
             '`' => quoted = !quoted,

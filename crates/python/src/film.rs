@@ -5,6 +5,7 @@
 
 use std::path::Path;
 
+use iridis_api::film::GridGiven;
 use iridis_api::film_fit;
 use iridis_thinfilm::color::Polarization;
 use iridis_thinfilm::depth::depth_profile;
@@ -94,7 +95,7 @@ fn _fit<'py>(
 /// does (`iridis_api::film::check_colour_grid`): `Stack.color` took 300–380 nm and printed a* 485.
 #[pyfunction]
 fn _check_colour_grid(py: Python<'_>, grid_nm: Vec<f64>) -> PyResult<()> {
-    run(py, |r| iridis_api::film::check_colour_grid(&grid_nm, r))
+    run(py, |r| iridis_api::film::check_colour_grid(&grid_nm, GridGiven::List("grid_nm"), r))
 }
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {

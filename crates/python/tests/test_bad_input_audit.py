@@ -210,11 +210,14 @@ def test_stack_colours_check_their_grid_as_thinfilm_color_does():
     # Stack.color took 300–380 nm (a* 485) and two samples 400 nm apart without a word.
     import iridis.thinfilm as tf
     s = tf.Stack("air | water 348nm | air")
-    with pytest.raises(ValueError, match=r"300–380 nm .* holds 0.0\d % of it"):
+    # The messages name grid_nm, the keyword given, not step_nm, from_nm or to_nm, which color() does not take.
+    with pytest.raises(ValueError, match=r"300–380 nm \(grid_nm\) holds 0.0\d % of it"):
         s.color(grid_nm=np.arange(300, 381, 5.0))
-    with pytest.raises(ValueError, match=r"so coarsely that its white is off by"):
+    with pytest.raises(ValueError, match=r"so coarsely that its white is off by .*give a finer grid_nm"):
         s.color(grid_nm=np.array([380.0, 780.0]))
-    with pytest.warns(UserWarning, match=r"integrate over 380–500 nm only"):
+    with pytest.raises(ValueError, match=r"grid_nm gives only 500 nm"):
+        s.color(grid_nm=[500.0])
+    with pytest.warns(UserWarning, match=r"integrate over 380–500 nm only \(grid_nm\)"):
         s.color(grid_nm=np.arange(380, 501, 5.0))
     with pytest.raises(ValueError, match=r"300–380 nm"):
         tf.colors_of_stacks([[1, 1.33, 1]], [[348.0]], grid_nm=np.arange(300, 381, 5.0))

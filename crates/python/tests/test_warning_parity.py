@@ -6,6 +6,7 @@ import os
 import warnings
 
 import numpy as np
+import pytest
 
 import iridis.diffraction as diffraction
 import iridis.surface as surface
@@ -107,7 +108,11 @@ def test_messages_name_the_python_keywords(tmp_path):
         diffraction.brdf_eval(str(table), light=0.3, view=0.2, uv_resolution=21)
     except ValueError as e:
         said = str(e)
-    assert "so uv_resolution 21 would be ignored" in said and "`iridis precompute`" in said, said
+    # A command the message points to is named by its Python call.
+    assert "so uv_resolution 21 would be ignored" in said, said
+    assert "pass them to `iridis.diffraction.precompute()` (or give `iridis.diffraction.brdf_eval()` the" in said, said
+    with pytest.raises(ValueError, match=r"the peaks of a random surface .*; `Surface\.info\(\)` lists them$"):
+        diffraction.grating("builtin:gaussian?size=20um&pixel=50nm", unit_cell="auto")
 
 
 def test_reading_options_on_a_surface_in_memory_are_refused():
@@ -145,12 +150,14 @@ def test_answers_say_what_their_numbers_rest_on():
 def test_laser_and_sweep_take_their_python_words(tmp_path):
     # lab.laser(aperture_nm=0) said "coherence length 0 nm must be positive", distance_nm=-1 named neither keyword;
     # lab.sweep refused "uv_power", the Python spelling of the CLI's uv-power.
-    import pytest
     import iridis.lab as lab
     sine = "builtin:sine?size=4um&pixel=100nm"
     with pytest.raises(ValueError, match=r"aperture_nm 0 nm: the diaphragm's aperture must be a positive length"):
         lab.laser(sine, tmp_path / "a.png", aperture_nm=0)
     with pytest.raises(ValueError, match=r"distance_nm -1 nm and screen_nm"):
         lab.laser(sine, tmp_path / "b.png", distance_nm=-1)
-    with pytest.raises(ValueError, match=r"the reference method has no parameter 'uv-power'; it applies to: lookup"):
+    # Its messages spell the parameters as Python does.
+    with pytest.raises(ValueError, match=r"the reference method has no parameter 'uv_power'; it applies to: lookup"):
         lab.sweep(sine, "uv_power", [1.0, 5.0], tmp_path / "s")
+    with pytest.raises(ValueError, match=r"expected one of: terms, dlambda, coherence, uv_power, uv_resolution$"):
+        lab.sweep(sine, "bogus", [1.0], tmp_path / "s")

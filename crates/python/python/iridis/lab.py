@@ -128,12 +128,23 @@ def sweep(surface, param, values, output, method="reference", against="model", e
         ensure_gpu_environment()
     # "uv_power" as Python spells its keywords, or the CLI's "uv-power".
     param = str(param).replace("_", "-")
-    out, text = _native._sweep(_surface(surface), param, [float(v) for v in values], os.fspath(output), str(method),
-                         str(against), [float(e) for e in exposures], theta, phi, count(size, "size"),
-                         _opt(step_nm, float),
-                         _opt(uv_resolution, int), _opt(uv_power, float), None if plot is None else os.fspath(plot),
-                         options, flag(gpu, "gpu"))
+    try:
+        out, text = _native._sweep(_surface(surface), param, [float(v) for v in values], os.fspath(output),
+                                   str(method), str(against), [float(e) for e in exposures], theta, phi,
+                                   count(size, "size"), _opt(step_nm, float), _opt(uv_resolution, int),
+                                   _opt(uv_power, float), None if plot is None else os.fspath(plot), options,
+                                   flag(gpu, "gpu"))
+    except ValueError as e:
+        # The library names the parameters as the CLI spells them ('uv-power'); say them as given here.
+        said = str(e)
+        for cli_name in _SWEPT_WITH_HYPHENS:
+            said = said.replace(cli_name, cli_name.replace("-", "_"))
+        raise type(e)(said) from None
     return with_text(json.loads(out), text)
+
+
+# The sweep's parameters whose CLI name has a hyphen.
+_SWEPT_WITH_HYPHENS = ("uv-power", "uv-resolution")
 
 
 @keywords
