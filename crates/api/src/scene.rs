@@ -151,6 +151,31 @@ fn warn_if_black(img: &iridis_render::Image, exposure: f64, encoding: iridis_col
     }
 }
 
+/// The other end, for an exposure given (`--exposure 1e30` wrote a white image without a word): most of the lit
+/// pixels clipped (a channel at white) show where the light is more than its colours; said, with the exposure that puts the 99th
+/// percentile of the lit pixels at white. A scene's own exposure is its author's choice and is not judged.
+fn warn_if_clipped(img: &iridis_render::Image, exposure: f64, report: &dyn Report) {
+    let mut lit: Vec<f64> = img
+        .data
+        .iter()
+        .map(|p| p.iter().fold(0.0f32, |m, &c| m.max(c)) as f64)
+        .filter(|&v| crate::lit::is_lit(v))
+        .collect();
+    let clipped = lit.iter().filter(|&&v| v * exposure >= 1.0).count() as f64 / lit.len().max(1) as f64;
+    if clipped <= 0.5 {
+        return;
+    }
+    lit.sort_by(f64::total_cmp);
+    let p99 = lit[((lit.len() - 1) as f64 * 0.99).round() as usize];
+    report.warn(&format!(
+        "{:.0} % of the image's lit pixels are clipped at --exposure {} RU (a channel at white): the image shows where \
+         the light is more than its colours; --exposure {} RU puts the 99th percentile of them at white",
+        100.0 * clipped,
+        iridis_color::spectrum::short_number(exposure),
+        iridis_color::spectrum::short_number(1.0 / p99)
+    ));
+}
+
 /// The checks of what shapes an image (size, samples, exposure, spectral samples), before the scene is read;
 /// returns the size asked for.
 fn check_image_options(a: &RenderRequest) -> Result<Option<(u32, u32)>> {
@@ -260,6 +285,9 @@ pub fn render_file(a: &RenderRequest, report: &dyn Report) -> Result<Rendered> {
         "exr" => img.encode_exr(exposure)?,
         _ => {
             warn_if_black(&img, exposure, scene.output.encoding, report);
+            if a.exposure.is_some() {
+                warn_if_clipped(&img, exposure, report);
+            }
             img.encode_png(exposure, scene.output.encoding)?
         }
     };

@@ -169,6 +169,18 @@ fn small_silent_cases_are_said_or_refused() {
         out.contains("warning: the image is black at exposure 1e-300 RU") && out.contains("white at --exposure"),
         "{out}"
     );
+    // And a thousand orders too high: the image is white, said, with the exposure that shows the colours; the
+    // scene's own exposure says nothing.
+    let render = |exposure: &[&str]| {
+        ok(&[&["render", "examples/soap_bubble.toml", "-o", png.to_str().unwrap(), "--size", "16x16"][..], exposure]
+            .concat())
+    };
+    let out = render(&["--exposure", "1e300"]);
+    assert!(
+        out.contains("% of the image's lit pixels are clipped at --exposure 1e300 RU (a channel at white)"),
+        "{out}"
+    );
+    assert!(!render(&[]).contains("clipped"));
 }
 
 /// Sizes, counts and angles the second audit (the Python functions, 2026-11-29) found unchecked in the library:
