@@ -61,7 +61,7 @@ pub fn brdf_eval(r: &EvalRequest, spectra: Option<&Path>, report: &dyn Report) -
     crate::output::declare_opt("--spectra", spectra, &["csv"])?;
     let (wi, wr) = (direction(r.light.0, r.light.1), direction(r.view.0, r.view.1));
     let shading = crate::fresnel::shading(&r.fresnel, r.convention, r.shadowing)?;
-    refuse_build_options_for_table(&r.input, r.grid, &r.surface, "brdf eval")?;
+    refuse_build_options_for_table(&r.input, r.grid, &r.surface, "`iridis brdf eval`")?;
     let method = method_of(r);
     if method == crate::brdf::RIGOROUS {
         crate::fresnel::refuse_scalar_shading_for_rigorous(&r.fresnel, r.convention, r.shadowing)?;
@@ -122,6 +122,14 @@ pub fn brdf_eval(r: &EvalRequest, spectra: Option<&Path>, report: &dyn Report) -
 }
 
 /// Degrees, rounded to 1e-9 (so that 30deg prints as 30).
+/// What a lookup table was built from, as `brdf eval --json`'s `table` (and Python's `evaluate`).
+pub fn table_json(t: &iridis_diffraction::table::TableMeta) -> Value {
+    json!({"surface": t.surface, "taylor_terms": t.taylor_terms, "uv_resolution": t.uv_resolution,
+        "uv_power": t.uv_power, "wavelength_step_nm": t.wavelength_step_nm,
+        "wavelength_range_nm": [t.wavelength_min_nm, t.wavelength_max_nm], "illuminant": t.illuminant,
+        "observer": t.observer, "coherence_nm": t.coherence_nm})
+}
+
 fn deg(r: f64) -> f64 {
     (r.to_degrees() * 1e9).round() / 1e9
 }
@@ -152,10 +160,7 @@ impl EvalReport {
             "vision": self.vision.as_ref().map(serde_json::to_value).transpose()?,
             "rigorous": p.rigorous.as_ref().map(|r| r.to_json()),
             "scalar_error": p.scalar_error.as_ref().map(|e| e.to_json()),
-            "table": p.table.as_ref().map(|t| json!({"surface": t.surface, "taylor_terms": t.taylor_terms,
-                "uv_resolution": t.uv_resolution, "uv_power": t.uv_power, "wavelength_step_nm": t.wavelength_step_nm,
-                "wavelength_range_nm": [t.wavelength_min_nm, t.wavelength_max_nm], "illuminant": t.illuminant,
-                "observer": t.observer, "coherence_nm": t.coherence_nm})),
+            "table": p.table.as_ref().map(table_json),
         }))
     }
 

@@ -217,17 +217,30 @@ pub fn lobes_between_pixels(
 ) -> Option<String> {
     let spacing = 2.0 / (size * subsamples) as f64;
     let LobeShortfall { sigma, finer_by } = lobe_shortfall(spacing, coherence_nm)?;
-    // Samples a side the disk needs: as view samples a pixel (at most 16) at this size, or as pixels.
-    let needed = (size * subsamples) as f64 * finer_by;
-    let per_pixel = (subsamples as f64 * finer_by).ceil();
-    let remedy = match (per_pixel <= MAX_SUBSAMPLES as f64, needed <= MAX_MAP_SIDE as f64) {
-        (true, _) => format!(
-            "--subsamples {per_pixel:.0} (each pixel the mean of {per_pixel:.0}² directions across it) or a map of \
-             {:.0}² pixels samples every lobe",
-            needed.ceil()
+    // Samples a side the disk needs, `finer_by` times closer: as view samples a pixel (at most 16) at this size,
+    // or as pixels.
+    let samples_for = |finer_by: f64| {
+        let needed = (size * subsamples) as f64 * finer_by;
+        let per_pixel = (subsamples as f64 * finer_by).ceil();
+        match (per_pixel <= MAX_SUBSAMPLES as f64, needed <= MAX_MAP_SIDE as f64) {
+            (true, _) => Some(format!("--subsamples {per_pixel:.0}")),
+            (false, true) => Some(format!("a map of {:.0}² pixels or more", needed.ceil())),
+            (false, false) => None,
+        }
+    };
+    // Showing every lobe is not measuring its light: sampled 6σ apart a lobe's sum is hit or miss (a 1100 nm
+    // gold sine's map at --subsamples 2 summed 27 % of its light); within 1.5σ the sum is the integral to 0.1 %.
+    let m = crate::brdf::MEASURE_SAMPLES_PER_LOBE_SIGMA;
+    let measuring = spacing / (m * sigma);
+    let remedy = match (samples_for(finer_by), samples_for(measuring)) {
+        (Some(show), Some(measure)) => format!(
+            "{show} (each pixel the mean of directions across it) shows every lobe; to measure their light (the sum \
+             of f_r in sr⁻¹ over the disk) the samples must lie within {m}σ: {measure}"
         ),
-        (false, true) => format!("a map of {:.0}² pixels or more samples every lobe", needed.ceil()),
-        (false, false) => "a shorter coherence length widens them".to_string(),
+        (Some(show), None) => {
+            format!("{show} shows every lobe (no map here samples them within {m}σ, to measure them)")
+        }
+        (None, _) => "a shorter coherence length widens them".to_string(),
     };
     let what = if subsamples > 1 { format!("view samples ({subsamples}² a pixel)") } else { "pixels".into() };
     Some(format!(
@@ -287,7 +300,7 @@ pub fn compute(r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) ->
     }
     check_size(r.size)?;
     check_subsamples(r.subsamples)?;
-    refuse_build_options_for_table(&r.input, r.grid, &r.surface, "brdf-map")?;
+    refuse_build_options_for_table(&r.input, r.grid, &r.surface, "`iridis brdf-map`")?;
     r.grid.refuse_unless_lookup(&r.method)?;
     if r.f32 && r.gpu {
         bail!(
@@ -560,14 +573,20 @@ pub fn brdf_map(r: &MapRequest, files: &MapFiles, report: &dyn Report) -> Result
             format!("{name} · θi {t:.0}° φi {p:.0}° · {} · {illuminant} · {:.3e} RU", map.method, map.tone.exposure_ru);
         write_map_plot(path, &map.xyz, map.size, map.tone, title)?;
     }
-    // What the picture shows, beside where it went: the light, the exposure and the colour setup.
+    // What the picture shows, beside where it went: the light, the exposure and the colour setup. The rigorous
+    // method reflects off its material by Maxwell's equations, with no Fresnel factor (it read "Fresnel
+    // schlick:1.5" over gold).
+    let reflector = if map.method == crate::model::RIGOROUS {
+        format!("material {}", r.model.material.as_deref().unwrap_or(crate::grating::DEFAULT_MATERIAL))
+    } else {
+        format!("Fresnel {}", r.fresnel.trim())
+    };
     Ok(format!(
-        "wrote {} ({}; light θ {t:.1}° φ {p:.1}°, exposure {} RU, {illuminant}, CIE {} observer, Fresnel {}{})",
+        "wrote {} ({}; light θ {t:.1}° φ {p:.1}°, exposure {} RU, {illuminant}, CIE {} observer, {reflector}{})",
         files.output.display(),
         map.how,
         iridis_color::spectrum::short_number(map.tone.exposure_ru),
         r.model.observer.as_deref().unwrap_or("1931"),
-        r.fresnel.trim(),
         map.coherence_nm.map_or(String::new(), |c| format!(", coherence {:.1} µm", c / 1000.0))
     ))
 }

@@ -220,30 +220,45 @@ fn ellips_cells(e: &[(f64, Option<f64>)], i: usize) -> (String, String) {
     (psi, e[i].1.filter(|d| d.is_finite()).map(|d| d.to_string()).unwrap_or_default())
 }
 
-/// Warns when the grid cannot resolve the fringes of a thick layer (`iridis_thinfilm::sampling`), and notes a
-/// constant index (water, glass, …: visible-band figures) used well outside the visible, where the real
-/// material's index differs (water at 100 nm absorbs; it was taken as 1.33 in silence).
+/// Warns when the grid cannot resolve the fringes of a thick layer (`iridis_thinfilm::sampling`), of a constant
+/// index (water, glass, …: visible-band figures) used well outside the visible, where the real material's index
+/// differs (water at 100 nm absorbs; it was taken as 1.33 in silence), and of a grid ending under 20 nm, X-rays
+/// or µm by mistake (Python's `film.spectrum(from_nm=0.4, to_nm=0.7)` answered without a word).
 pub fn warn_sampling(stack: &Stack, angle: f64, grid: &[f64], report: &dyn Report) {
     if let Some(w) = iridis_thinfilm::sampling::check(stack, angle, grid) {
         report.warn(&w.message);
     }
     let (lo, hi) = (grid[0], grid[grid.len() - 1]);
-    if lo < CONSTANT_BAND_NM.0 || hi > CONSTANT_BAND_NM.1 {
-        let mut constants: Vec<&str> = stack
-            .materials()
-            .filter(|m| m.is_constant() && !matches!(m.name(), "air" | "vacuum") && !m.name().starts_with("n="))
-            .map(|m| m.name())
-            .collect();
-        constants.dedup();
-        if !constants.is_empty() {
-            report.note(&format!(
-                "{} {} a constant index (a visible-band figure), used here at {}–{} nm, where the real material's \
-                 index differs; a dispersive material or file:PATH gives it there",
-                constants.join(", "),
-                if constants.len() == 1 { "is" } else { "are" },
-                iridis_color::spectrum::short_number(lo),
-                iridis_color::spectrum::short_number(hi),
-            ));
+    let nm = iridis_color::spectrum::short_number;
+    let mut constants: Vec<&str> = stack
+        .materials()
+        .filter(|m| m.is_constant() && !matches!(m.name(), "air" | "vacuum") && !m.name().starts_with("n="))
+        .map(|m| m.name())
+        .collect();
+    constants.dedup();
+    let constant_line = (!constants.is_empty()).then(|| {
+        format!(
+            "{} {} a constant index (a visible-band figure), used here at {}–{} nm, where the real material's index \
+             differs; a dispersive material or file:PATH gives it there",
+            constants.join(", "),
+            if constants.len() == 1 { "is" } else { "are" },
+            nm(lo),
+            nm(hi),
+        )
+    });
+    // A warning, not a note: the numbers are then not the material's (Python's notes go to a logger few read).
+    if hi < 20.0 {
+        // X-rays are taken (0.154 nm for X-ray reflectivity); 0.4–0.7 is more often µm by mistake.
+        report.warn(&format!(
+            "the wavelengths end at {} nm: X-rays{}; if you meant µm, the range in nm is {}–{}",
+            nm(hi),
+            constant_line.map_or(String::new(), |c| format!(", and {c}")),
+            nm(1000.0 * lo),
+            nm(1000.0 * hi)
+        ));
+    } else if lo < CONSTANT_BAND_NM.0 || hi > CONSTANT_BAND_NM.1 {
+        if let Some(c) = constant_line {
+            report.warn(&c);
         }
     }
 }

@@ -161,23 +161,29 @@ impl FilmChart {
         )
     }
 
-    /// The numbers: thickness_nm, then X, Y, Z and hex of each band (R_/T_ columns, S_/D_ when rough).
+    /// The numbers: thickness_nm, then X, Y, Z, hex and the exposure (RU) the hex is shown at, of each band
+    /// (R_/T_ columns, S_/D_ when rough). The exposure is in the file: the reflected band's is chosen from the
+    /// chart's own range, so one film's hex differed between two charts with nothing in the file to say why.
     pub fn csv(&self) -> String {
         let [t, b] = if self.rough { ["S", "D"] } else { ["R", "T"] };
         let (tone, trans_tone) = self.tones();
-        let mut csv = format!("thickness_nm,{t}_X,{t}_Y,{t}_Z,{t}_hex,{b}_X,{b}_Y,{b}_Z,{b}_hex\n");
+        let mut csv = format!(
+            "thickness_nm,{t}_X,{t}_Y,{t}_Z,{t}_hex,{t}_hex_exposure_RU,{b}_X,{b}_Y,{b}_Z,{b}_hex,{b}_hex_exposure_RU\n"
+        );
         for (d, (r, t)) in self.thickness_nm.iter().zip(&self.colours) {
             let _ = writeln!(
                 csv,
-                "{d},{},{},{},{},{},{},{},{}",
+                "{d},{},{},{},{},{},{},{},{},{},{}",
                 r.x,
                 r.y,
                 r.z,
                 iridis_color::tonemap::hex(tone.to_rgb8(*r)),
+                tone.exposure_ru,
                 t.x,
                 t.y,
                 t.z,
-                iridis_color::tonemap::hex(trans_tone.to_rgb8(*t))
+                iridis_color::tonemap::hex(trans_tone.to_rgb8(*t)),
+                trans_tone.exposure_ru
             );
         }
         csv

@@ -236,16 +236,26 @@ pub fn averaged_unit_cell(patch: &iridis_diffraction::Patch) -> Option<(iridis_d
     averaged_unit_cell_at(patch, &crate::surface::dominant_period(patch).ok()?)
 }
 
-/// [`averaged_unit_cell`] along a period already found (`peak`), for a caller that has looked at it first.
+/// The fewest pixels a period may span for [`averaged_unit_cell`] to take its profile: a 1100 nm sine at 500 nm
+/// pixels (2.2 a period) was read as a 1000 nm period of a hundredth of its first order.
+pub const MIN_PIXELS_PER_PERIOD: f64 = 4.0;
+
+/// [`averaged_unit_cell`] along a period already found (`peak`), for a caller that has looked at it first;
+/// `None` where the period spans fewer than [`MIN_PIXELS_PER_PERIOD`] pixels.
 pub fn averaged_unit_cell_at(
     patch: &iridis_diffraction::Patch,
     peak: &iridis_surface::Peak,
 ) -> Option<(iridis_diffraction::Patch, f64, f64)> {
     let d = peak.period_nm;
-    // A sample per pixel along the grating vector, at least 32 and at most 256.
     let pixel = patch.dx.min(patch.dy);
+    if d < MIN_PIXELS_PER_PERIOD * pixel {
+        return None;
+    }
+    // A sample per pixel along the grating vector, at least 32 and at most 256, and no more than the samples'
+    // phases fill (a bin between them would be interpolated).
     let bins = ((d / pixel).round() as usize).clamp(32, 256);
-    let row = crate::unit_cell::averaged_profile(patch, d, peak.orientation_deg, bins);
+    let row = crate::unit_cell::averaged_profile_filled(patch, d, peak.orientation_deg, bins);
+    let bins = row.len();
     let heights: Vec<f64> = row.iter().chain(&row).copied().collect();
     let cell = iridis_diffraction::Patch::from_row_major(2, bins, d / bins as f64, d / bins as f64, &heights).ok()?;
     Some((cell, d, peak.orientation_deg))
@@ -365,20 +375,23 @@ pub fn auto_unit_cell(
         Ok(peak) => peak,
         // A random surface's strongest peak is no grating's period: taken as one, its orders were printed as if.
         Err(Some((strongest, next))) => bail!(
-            "--unit-cell auto: {name} has no dominant period to take as the unit cell: its strongest spectral peak \
-             ({:.0} nm) holds {:.1} % of the height variance, {:.2} × the next peak's, the peaks of a random surface \
-             (a period holds at least {:.0} %, or 1.5 × the next); `iridis surface info` lists them",
-            strongest.period_nm,
-            100.0 * strongest.power,
-            strongest.power / next.max(f64::MIN_POSITIVE),
-            100.0 * crate::surface::NO_DOMINANT_PERIOD_BELOW
+            "--unit-cell auto: {name} has no dominant period to take as the unit cell: {}; `iridis surface info` \
+             lists them",
+            crate::surface::why_not_dominant(&strongest, next)
         ),
         Err(None) => {
             bail!("--unit-cell auto: {name} has no period to take as the unit cell (its spectrum has no peak)")
         }
     };
     let Some((cell, d, phi)) = averaged_unit_cell_at(patch, &peak) else {
-        bail!("--unit-cell auto: {name}'s period {:.0} nm gives no unit cell", peak.period_nm);
+        let pixel = patch.dx.min(patch.dy);
+        bail!(
+            "--unit-cell auto: {name}'s strongest period, {:.0} nm, spans {:.1} pixels of {pixel:.0} nm: too few to \
+             take its profile from (at least {MIN_PIXELS_PER_PERIOD}); the scan's pixel is too coarse for this \
+             period (its true period may differ: the spectrum aliases under 2 pixels a period)",
+            peak.period_nm,
+            peak.period_nm / pixel
+        );
     };
     report.note(&format!(
         "unit cell: the strongest period, {d:.1} nm along {phi:.1}°, its profile averaged along the ridges over the \
@@ -674,21 +687,31 @@ fn rigorous(
         .iter()
         .filter(|s| s.convergence["met"] == json!(false))
         .map(|s| {
-            format!(
-                "{:.0} nm (±{:.2e})",
-                s.wavelength_nm,
-                s.convergence["estimated_error"].as_f64().unwrap_or(f64::NAN)
-            )
+            if error_not_estimated(&s.convergence) {
+                format!("{:.0} nm (error not estimated: the truncation could not grow)", s.wavelength_nm)
+            } else {
+                format!(
+                    "{:.0} nm (±{:.2e})",
+                    s.wavelength_nm,
+                    s.convergence["estimated_error"].as_f64().unwrap_or(f64::NAN)
+                )
+            }
         })
         .collect();
     if !unmet.is_empty() {
         report.warn(&format!(
             "the rigorous solver reached its order limit before the tolerance at {}: the efficiencies there carry \
-             the estimated error given",
+             the error given",
             unmet.join(", ")
         ));
     }
     Ok(solutions)
+}
+
+/// Whether a rigorous answer's convergence record has no error estimate: not met, and its truncation could not
+/// grow past the propagating orders, so the "estimate" compared one truncation with itself.
+pub fn error_not_estimated(convergence: &Value) -> bool {
+    convergence["met"] != Value::Bool(true) && convergence["orders"] == convergence["compared_with"]
 }
 
 fn deg(r: f64) -> f64 {
@@ -724,7 +747,7 @@ impl Grating {
     pub fn colours(&self) -> Option<GratingColours> {
         let w: Vec<f64> = self.answers.iter().map(|a| a.wavelength_nm).collect();
         let covers = w.first().is_some_and(|&l| l <= 380.0) && w.last().is_some_and(|&l| l >= 780.0);
-        if !covers || w.windows(2).any(|p| p[1] - p[0] > 10.0 + 1e-9) {
+        if !covers || w.windows(2).any(|p| p[1] - p[0] > COLOUR_STEP_NM + 1e-9) {
             return None;
         }
         let weights =
@@ -932,8 +955,19 @@ pub fn map_coherence_nm(extent_nm: [f64; 2], strongest_period_nm: f64, pixel_nm:
     (c < iridis_diffraction::DEFAULT_COHERENCE_NM).then_some(c)
 }
 
-/// The efficiencies below which an order is not compared relatively (its absolute error is below `floor`).
+/// The coarsest wavelength step at which a grating's answer carries colours (over 380–780 nm).
+pub const COLOUR_STEP_NM: f64 = 10.0;
+
+/// The efficiency below which an order is not compared relatively: an order counts where either model puts at
+/// least this in it, its error relative to Maxwell's efficiency or to this floor where Maxwell's is below it.
 pub const COMPARE_FLOOR: f64 = 1e-3;
+
+/// The scalar model's error on one order, `(scalar − rigorous)/max(rigorous, floor)`, where either model puts at
+/// least `floor` in it ([`COMPARE_FLOOR`]); `None` where both are below. An order Kirchhoff fills at 7.2 % and
+/// Maxwell's equations at 0.006 % counts (it was left out, judged on Maxwell's value alone): +7200 % of the floor.
+pub fn relative_error(scalar: f64, rigorous: f64, floor: f64) -> Option<f64> {
+    (scalar.max(rigorous) >= floor).then(|| (scalar - rigorous) / rigorous.max(floor))
+}
 
 /// Above this worst relative error of an order's efficiency (unpolarised), or above [`SCALAR_WARN_DELTA_E`]
 /// in the colour of the diffracted light, the front ends warn that the scalar model's numbers are not to be
@@ -944,7 +978,7 @@ pub const SCALAR_WARN_DELTA_E: f64 = 2.0;
 
 /// Compares the scalar and rigorous answers of the same unit cell and light.
 pub fn scalar_error(scalar: &Grating, rigorous: &Grating) -> ScalarError {
-    let rel = |a: f64, b: f64| if b > COMPARE_FLOOR { (a - b).abs() / b } else { 0.0 };
+    let rel = |a: f64, b: f64| relative_error(a, b, COMPARE_FLOOR).map_or(0.0, f64::abs);
     let mut orders = Vec::new();
     let mut total = 0.0f64;
     for (k, r) in scalar.answers.iter().zip(&rigorous.answers) {
@@ -976,11 +1010,12 @@ pub fn scalar_error(scalar: &Grating, rigorous: &Grating) -> ScalarError {
 
 impl ScalarError {
     /// The same comparison judged on the orders either model puts at or above `orders_above` (`--orders-above`:
-    /// those listed, or that should be), each needing Maxwell's efficiency above the floor: the worst relative
-    /// errors (TE, TM, unpolarised) and where the unpolarised one is. Computed from every order of both models,
-    /// so an order listed by one and under the floor in the other is still compared.
+    /// those listed, or that should be), each with either model's efficiency above the floor
+    /// ([`relative_error`]): the worst relative errors (TE, TM, unpolarised) and where the unpolarised one is.
+    /// Computed from every order of both models, so an order listed by one and under the floor in the other is
+    /// still compared.
     pub fn judged_above(mut self, orders_above: f64) -> Self {
-        let rel = |a: f64, b: f64| if b > self.floor { (a - b).abs() / b } else { 0.0 };
+        let rel = |a: f64, b: f64| relative_error(a, b, self.floor).map_or(0.0, f64::abs);
         let (mut worst, mut worst_at) = (Efficiency::default(), None);
         for &(l, m, n, k, r) in &self.orders {
             if k.unpolarized.max(r.unpolarized) < orders_above {
@@ -1009,7 +1044,7 @@ impl ScalarError {
     /// What `iridis grating --compare --json` prints (keys in docs/json.md).
     pub fn to_json(&self, scalar: &Grating, rigorous: &Grating) -> Value {
         let e = |x: Efficiency| json!({"te": x.te, "tm": x.tm, "unpolarized": x.unpolarized});
-        let rel = |a: f64, b: f64| if b > self.floor { Some((a - b) / b) } else { None };
+        let rel = |a: f64, b: f64| relative_error(a, b, self.floor);
         let orders: Vec<Value> = self
             .orders
             .iter()

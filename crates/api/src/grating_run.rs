@@ -93,23 +93,23 @@ pub fn grating_text(g: &Grating, light: (f64, f64), detector: Option<&str>, acce
             };
             let energy = c["energy_error"].as_f64().map_or(String::new(), |e| format!(", |R + T − 1| {e:.1e}"));
             // A truncation that could not grow past the propagating orders was compared with itself: no estimate.
-            let untested = c["met"] != Value::Bool(true) && c["orders"] == c["compared_with"];
-            let verdict = match (c["met"] == Value::Bool(true), untested) {
-                (true, _) => String::new(),
-                (false, true) => {
-                    " — NOT met: the truncation could not grow beyond the propagating orders, so the error is not \
-                     estimated"
-                        .to_string()
-                }
-                (false, false) => " — NOT met".to_string(),
-            };
-            let _ = writeln!(
-                s,
-                "converged: orders ±{}{on}, estimated error {:.1e}{energy} (tolerance {:.0e}){verdict}",
-                c["orders"][0],
-                err,
-                c["tolerance"].as_f64().unwrap_or(f64::NAN),
-            );
+            let untested = crate::grating::error_not_estimated(c);
+            let tolerance = c["tolerance"].as_f64().unwrap_or(f64::NAN);
+            let orders = &c["orders"][0];
+            if untested {
+                // Its "estimate" is a comparison of one truncation with itself (5.6e-16): not printed.
+                let _ = writeln!(
+                    s,
+                    "convergence NOT met: orders ±{orders}{on}, the truncation could not grow beyond the propagating \
+                     orders, so the error is not estimated{energy} (tolerance {tolerance:.0e})"
+                );
+            } else {
+                let head = if c["met"] == Value::Bool(true) { "converged" } else { "convergence NOT met" };
+                let _ = writeln!(
+                    s,
+                    "{head}: orders ±{orders}{on}, estimated error {err:.1e}{energy} (tolerance {tolerance:.0e})"
+                );
+            }
         }
         if let Some(d) = g.detector_reflectance(one) {
             let _ = writeln!(
@@ -297,10 +297,12 @@ impl GratingComparison {
             if r.unpolarized < 1e-5 && k.unpolarized < 1e-5 {
                 continue;
             }
-            let rel = if r.unpolarized > e.floor {
-                format!("{:+.1} %", 100.0 * (k.unpolarized - r.unpolarized) / r.unpolarized)
-            } else {
-                "(below 0.1 %)".into()
+            let rel = match crate::grating::relative_error(k.unpolarized, r.unpolarized, e.floor) {
+                Some(x) if r.unpolarized < e.floor => {
+                    format!("{:+.1} % (of the {} % floor: Maxwell's is below it)", 100.0 * x, 100.0 * e.floor)
+                }
+                Some(x) => format!("{:+.1} %", 100.0 * x),
+                None => format!("(both below {} %)", 100.0 * e.floor),
             };
             let _ = writeln!(
                 s,
@@ -311,7 +313,7 @@ impl GratingComparison {
         }
         let _ = writeln!(
             s,
-            "worst relative error of an order above {:.1} %: TE {:.1} %, TM {:.1} %, unpolarised {:.1} %{}; of the total \
+            "worst relative error of an order either model puts above {:.1} %: TE {:.1} %, TM {:.1} %, unpolarised {:.1} %{}; of the total \
              reflectance {:.1} %",
             100.0 * e.floor,
             100.0 * e.worst.te,
@@ -320,8 +322,19 @@ impl GratingComparison {
             e.worst_at.map_or(String::new(), |(l, m, n)| format!(" (order ({m},{n}) at {l:.0} nm)")),
             100.0 * e.total
         );
-        if let (Some(d), Some(sp)) = (e.delta_e_diffracted, e.delta_e_specular) {
-            let _ = writeln!(s, "colour difference (CIEDE2000, D65): diffracted light {d:.2}, mirror order {sp:.2}");
+        match (e.delta_e_diffracted, e.delta_e_specular) {
+            (Some(d), Some(sp)) => {
+                let _ =
+                    writeln!(s, "colour difference (CIEDE2000, D65): diffracted light {d:.2}, mirror order {sp:.2}");
+            }
+            // Said, not left out: at --step 20nm the line vanished without a word.
+            _ => {
+                let _ = writeln!(
+                    s,
+                    "colour difference: not computed (the wavelengths must span 380–780 nm in steps of at most {} nm)",
+                    crate::grating::COLOUR_STEP_NM
+                );
+            }
         }
         s
     }

@@ -418,6 +418,14 @@ pub fn testbench_rigorous(
     // The cell's period along the measured direction (an averaged cell's grating vector runs along x).
     let period = if along.cos().abs() >= along.sin().abs() { lx / along.cos().abs() } else { ly / along.sin().abs() };
     let max_period = max_period_nm.unwrap_or(1.05 * period);
+    if rigorous.unit_cell_auto {
+        // The bench reads 1091.3 nm on a cell built at 1091.3 nm: its own input, not a measurement.
+        report.note(&format!(
+            "the cell is the scan's strongest period, {period:.1} nm along the bench's direction, read off its \
+             spectrum: the bench reads that period back through Maxwell's orders (a check of the solver and the \
+             grating equation), it does not measure the scan's period (the reference method's bench does)"
+        ));
+    }
     let extent = e.cell().scan_extent_nm;
     let mut t = bench_on(b, &e, setup, extent, max_period, report)?;
     t.rigorous = Some(e.summary());

@@ -8,7 +8,7 @@ use anyhow::{bail, Result};
 use iridis_color::{Illuminant, Observer};
 use iridis_diffraction::table::{LookupTable, Provenance, TableParams};
 use iridis_diffraction::taylor::{remainder_bound, terms_for_bound, window_radius, Band};
-use iridis_diffraction::{Patch, SpectralSetup, TaylorTerms};
+use iridis_diffraction::{Coherence, Patch, SpectralSetup, TaylorTerms};
 use iridis_gpu::Gpu;
 
 use crate::report::{with_progress, Report};
@@ -93,9 +93,23 @@ pub fn warn_coarse_step(step_nm: f64, report: &dyn Report) {
 /// says which and what a patch smaller than the window becomes, and the model's warnings; refused where the
 /// patch's sampling cannot carry it ([`Patch::check_coherence`]).
 pub fn coherence_for(patch: &Patch, given_nm: Option<f64>, report: &dyn Report) -> Result<f64> {
+    coherence_noted(patch, given_nm, Coherence::note, report)
+}
+
+/// [`coherence_for`] the finite aperture (the ground truth), whose note says that a smaller patch is seen once.
+pub fn coherence_for_finite_aperture(patch: &Patch, given_nm: Option<f64>, report: &dyn Report) -> Result<f64> {
+    coherence_noted(patch, given_nm, Coherence::finite_aperture_note, report)
+}
+
+fn coherence_noted(
+    patch: &Patch,
+    given_nm: Option<f64>,
+    note: fn(&Coherence) -> String,
+    report: &dyn Report,
+) -> Result<f64> {
     let c = patch.coherence(given_nm);
     patch.check_coherence(c.nm)?;
-    report.note(&c.note());
+    report.note(&note(&c));
     for w in patch.warnings() {
         report.warn(&w);
     }
@@ -259,7 +273,7 @@ impl TableGrid {
 
 /// Refuses, when INPUT is a finished table, the options that only shape how a table is built (`grid`) or how a
 /// surface is read (`surface`'s pixel size and height of white): they would be silently ignored. `command` is
-/// the one that was given them (`brdf-map`, `brdf eval`).
+/// the one that was given them, as the message names it (`` `iridis brdf eval` ``, Python's "the call").
 pub fn refuse_build_options_for_table(
     input: &str,
     grid: TableGrid,
@@ -283,7 +297,7 @@ pub fn refuse_build_options(input: &str, grid: TableGrid, surface: &SurfaceOptio
     if !given.is_empty() {
         bail!(
             "{input} is a finished lookup table, so {} would be ignored: these options shape how a table is built \
-             from a SURFACE; pass them to `iridis precompute` (or give `iridis {command}` the surface itself)",
+             from a SURFACE; pass them to `iridis precompute` (or give {command} the surface itself)",
             given.join(", ")
         );
     }

@@ -85,8 +85,9 @@ pub fn unit_cell(
     if ratio > limit {
         bail!(
             "the rigorous method takes SURFACE as one unit cell of a grating, and {} is {:.1} µm across ({}): at \
-             {lambda_min_nm:.0} nm that period has {} propagating orders each side, more than the solver resolves \
-             ({} at most); give --unit-cell auto (the scan's dominant period, its profile averaged along the ridges) \
+             {lambda_min_nm:.0} nm that period has about {} propagating orders each side, more than the rigorous \
+             BRDF takes ({} at most: it solves the cell at every wavelength of its grid, where `iridis grating \
+             --method rigorous` solves few); give --unit-cell auto (the scan's dominant period, its profile averaged along the ridges) \
              or a SURFACE of one period (e.g. 'builtin:sine?size=1100nm&pixel=10nm')",
             source.name(),
             longest / 1000.0,
@@ -323,6 +324,11 @@ impl RigorousBrdf {
         Ok(())
     }
 
+    /// [`RigorousBrdf::summary`] of an evaluator that is one (a point query's record of what it rests on).
+    pub fn summary_of(e: &dyn Evaluator) -> Option<RigorousSummary> {
+        e.as_any().downcast_ref::<RigorousBrdf>().map(RigorousBrdf::summary)
+    }
+
     /// The assumptions and the solver's convergence so far.
     pub fn summary(&self) -> RigorousSummary {
         let log = self.lobes.log.lock().map(|l| l.clone()).unwrap_or_default();
@@ -486,8 +492,8 @@ pub fn scalar_error_of_scan(
 ) -> Result<Option<ScanScalarError>> {
     use crate::grating::{grating, scalar_error, GratingMethod, GratingOptions};
     let patch = source.patch(surface, &crate::report::Quiet)?;
-    // A scan with a period: one that carries a share of the height variance (a patch of one period, or a
-    // random surface, has none worth averaging).
+    // A scan with a dominant period (`surface::is_dominant`: a patch of one period, or a random surface, has none
+    // worth averaging) that carries a share of the height variance worth checking.
     let Some(peak) = crate::surface::dominant_period(&patch).ok().filter(|p| p.power >= MIN_PERIOD_SHARE) else {
         return Ok(None);
     };

@@ -188,10 +188,40 @@ pub fn dominant_period(patch: &Patch) -> Result<iridis_surface::Peak, Option<(ir
 /// 20 µm; Xenopeltis 4.2 % (1.75 ×), Elaphe 62 %.
 pub const NO_DOMINANT_PERIOD_BELOW: f64 = 0.1;
 
+/// Below this share of the height variance no peak is a period of the structure, however far above the next
+/// (built-ins: Elaphe 0.62, the blazed grating 0.61, Xenopeltis 0.042; the AFM samples' molecules 0.015–0.10; a
+/// 1500 nm sine on a 1 µm patch, shorter than its period, 0.0002, which `--unit-cell auto` took as a 289 nm
+/// grating).
+pub const MIN_DOMINANT_SHARE: f64 = 0.01;
+
 /// Whether the strongest peak of a surface's spectrum, holding `strongest` of the height variance, is a period of
-/// its structure rather than one of a random surface's peaks ([`NO_DOMINANT_PERIOD_BELOW`], 1.5 × the `next`).
+/// its structure rather than one of a random surface's peaks: at least [`MIN_DOMINANT_SHARE`], and
+/// [`NO_DOMINANT_PERIOD_BELOW`] or 1.5 × the `next`.
 pub fn is_dominant(strongest: f64, next: f64) -> bool {
-    strongest >= NO_DOMINANT_PERIOD_BELOW || strongest >= 1.5 * next
+    strongest >= MIN_DOMINANT_SHARE && (strongest >= NO_DOMINANT_PERIOD_BELOW || strongest >= 1.5 * next)
+}
+
+/// Why a surface's strongest peak (`strongest`, the next holding `next` of the height variance) is not a period of
+/// its structure ([`is_dominant`]), in words.
+pub fn why_not_dominant(strongest: &iridis_surface::Peak, next: f64) -> String {
+    if strongest.power < MIN_DOMINANT_SHARE {
+        format!(
+            "its strongest spectral peak ({:.0} nm) holds {:.2} % of the height variance, too little for a period of \
+             the structure (at least {:.0} %)",
+            strongest.period_nm,
+            100.0 * strongest.power,
+            100.0 * MIN_DOMINANT_SHARE
+        )
+    } else {
+        format!(
+            "its strongest spectral peak ({:.0} nm) holds {:.1} % of the height variance, {:.2} × the next peak's, the \
+             peaks of a random surface (a period holds at least {:.0} %, or 1.5 × the next)",
+            strongest.period_nm,
+            100.0 * strongest.power,
+            strongest.power / next.max(f64::MIN_POSITIVE),
+            100.0 * NO_DOMINANT_PERIOD_BELOW
+        )
+    }
 }
 
 /// The periods (nm) of `surface info --json`'s `peaks` that are periods of the structure: all of them where the
@@ -240,7 +270,14 @@ pub fn info(hf: &iridis_surface::HeightField, n_peaks: usize, coherence_nm: f64)
     // next, is no period of the structure (builtin:gaussian listed five "periods" of ~1 % each). Dominant as the
     // test bench's ridges are: 1.5 × the next (two equal periods of a lattice hold far more than 10 %).
     let next = peaks.get(1).map_or(0.0, |p| p.power);
-    if let Some(p) = peaks.first().filter(|p| !is_dominant(p.power, next)) {
+    if let Some(p) = peaks.first().filter(|p| p.power < MIN_DOMINANT_SHARE) {
+        notes.push(format!(
+            "no dominant period: the strongest peak holds {:.2} % of the height variance, too little for a period of \
+             the structure (at least {:.0} %); the periods listed are not periods of the structure",
+            100.0 * p.power,
+            100.0 * MIN_DOMINANT_SHARE
+        ));
+    } else if let Some(p) = peaks.first().filter(|p| !is_dominant(p.power, next)) {
         notes.push(format!(
             "no dominant period: the strongest peak holds {:.1} % of the height variance, little more than the next \
              ({:.1} %), as a random surface's spectrum has peaks everywhere; the periods listed are not periods of \

@@ -17,9 +17,29 @@ use iridis_diffraction::Patch;
 ///
 /// `samples` is at least 1; a non-finite or non-positive period gives all zeros.
 pub fn averaged_profile(patch: &Patch, period_nm: f64, orientation_deg: f64, samples: usize) -> Vec<f64> {
+    binned_profile(patch, period_nm, orientation_deg, samples).0
+}
+
+/// [`averaged_profile`] in at most `samples` bins and no more than the samples' phases fill: where the phases
+/// cluster (a period a whole number `q` of pixels along a grid axis puts them at `k/q`), the bins between the
+/// clusters would be interpolated, which bends the profile (a 1100 nm sine at 100 nm pixels, 11 clusters in 32
+/// bins, lost a third of its second order); the bins are then as many as the clusters fill, down to 4.
+pub fn averaged_profile_filled(patch: &Patch, period_nm: f64, orientation_deg: f64, samples: usize) -> Vec<f64> {
+    let mut n = samples.max(1);
+    loop {
+        let (profile, filled) = binned_profile(patch, period_nm, orientation_deg, n);
+        if filled >= n || filled < 4 {
+            return profile;
+        }
+        n = filled;
+    }
+}
+
+/// The binned profile and how many of its bins heights fell in.
+fn binned_profile(patch: &Patch, period_nm: f64, orientation_deg: f64, samples: usize) -> (Vec<f64>, usize) {
     let samples = samples.max(1);
     if !(period_nm.is_finite() && period_nm > 0.0 && orientation_deg.is_finite()) {
-        return vec![0.0; samples];
+        return (vec![0.0; samples], samples);
     }
     let (s, c) = orientation_deg.to_radians().sin_cos();
     let mut sum = vec![0.0; samples];
@@ -36,7 +56,7 @@ pub fn averaged_profile(patch: &Patch, period_nm: f64, orientation_deg: f64, sam
     }
     let filled: Vec<usize> = (0..samples).filter(|&b| count[b] > 0).collect();
     let mean = |b: usize| sum[b] / count[b] as f64;
-    (0..samples)
+    let profile = (0..samples)
         .map(|b| {
             if count[b] > 0 {
                 return mean(b);
@@ -52,5 +72,6 @@ pub fn averaged_profile(patch: &Patch, period_nm: f64, orientation_deg: f64, sam
             let t = (b as isize - before) as f64 / (after as isize - before) as f64;
             (1.0 - t) * mean(before.rem_euclid(samples as isize) as usize) + t * mean(after % samples)
         })
-        .collect()
+        .collect();
+    (profile, filled.len())
 }

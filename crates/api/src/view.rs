@@ -49,7 +49,7 @@ pub fn view(
         ViewInput::Scene(path.to_path_buf())
     } else {
         let grid = crate::model::TableGrid { uv_resolution, uv_power: None };
-        crate::model::refuse_build_options_for_table(input, grid, surface, "view")?;
+        crate::model::refuse_build_options_for_table(input, grid, surface, "`iridis view`")?;
         let params = grid.params_or(TableParams { uv_resolution: VIEW_UV_RESOLUTION, ..TableParams::default() })?;
         let table = crate::model::lookup_table(None, input, &ModelOptions::default(), params, surface, report)?;
         ViewInput::Table { table: Box::new(table), name: input.to_string() }

@@ -2,7 +2,7 @@
 //! lobes (and the laser screen's whose samples are), checked against the window's closed form and against the
 //! maps themselves.
 
-use iridis_api::brdf::SAMPLES_PER_LOBE_SIGMA;
+use iridis_api::brdf::{MEASURE_SAMPLES_PER_LOBE_SIGMA, SAMPLES_PER_LOBE_SIGMA};
 use iridis_api::brdf_map::{compute, lobes_between_pixels, MapRequest};
 use iridis_api::report::{Collect, Kind};
 
@@ -20,7 +20,14 @@ fn the_warning_starts_where_the_pixels_are_six_lobe_widths_apart() {
     assert_eq!(quiet, 127, "65 µm: 6σ = {}", SAMPLES_PER_LOBE_SIGMA * sigma_uv(380.0, coherence));
     assert!(lobes_between_pixels(quiet, 1, coherence, None).is_none());
     let w = lobes_between_pixels(quiet - 1, 1, coherence, Some(coherence)).expect("one pixel fewer warns");
-    assert!(w.contains("127² pixels") && w.contains("coherence 65.0 µm") && w.contains("--subsamples 2 "), "{w}");
+    assert!(
+        w.contains("coherence 65.0 µm") && w.contains("--subsamples 2 (each pixel") && w.contains("shows every lobe")
+    );
+    // Measuring a lobe's light takes samples within 1.5σ (the sum's error 2e-4 per axis there, by Poisson
+    // summation; 45 % over the disk at 3σ): 2/126 over 1.5σ is 4.02, so 5 a pixel side.
+    let measure = (2.0 / 126.0 / (MEASURE_SAMPLES_PER_LOBE_SIGMA * sigma_uv(380.0, coherence))).ceil();
+    assert_eq!(measure, 5.0);
+    assert!(w.contains("to measure their light (the sum of f_r in sr⁻¹ over the disk) the samples must lie within 1.5σ: --subsamples 5"), "{w}");
     // 32² needs 127/32 → 4 view samples a pixel side, and with them is quiet.
     assert!(lobes_between_pixels(32, 1, coherence, None).unwrap().contains("--subsamples 4 "));
     assert!(lobes_between_pixels(32, 4, coherence, None).is_none());

@@ -90,7 +90,8 @@ pub struct RoughArgs {
     /// How diffuse light crosses the layers: multiple (the default: the light the layers turn back and the
     /// light trapped beyond the escape cone is scattered again until it leaves; reciprocal, a lossless film on
     /// a mirror reflects everything), single (alias reciprocal: one scattering, power transmittances both
-    /// ways; faster, loses that light; docs/rough-films.md) or thesis (eq. 3.18–3.19 as printed; creates
+    /// ways; faster, without that light, and not energy-conserving: up to 4 % more than received on a lossless
+    /// film over a mirror; docs/rough-films.md) or thesis (eq. 3.18–3.19 as printed; creates
     /// energy, not reciprocal — for comparison with the thesis only).
     #[arg(long, default_value = "multiple", value_name = "multiple|single|thesis", value_parser = diffuse_transport)]
     #[arg(requires = "roughness", help_heading = "Rough substrate (LSRS)")]

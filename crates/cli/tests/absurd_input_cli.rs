@@ -194,6 +194,11 @@ fn library_limits_found_from_python_hold_on_the_command_line() {
         &["grating", "builtin:sine?size=20um&pixel=100nm&period=20um", "--wavelength", "10nm", "--method", "rigorous"],
         &["3000 orders propagate each side along a period of 20000 nm at λ = 10 nm", "more than the 1000"],
     );
+    // 10 nm on 1100 nm: 110 propagating orders each side, the truncation cannot grow past them; no estimate is
+    // printed (it read "converged: … estimated error 5.6e-16 … NOT met: … the error is not estimated").
+    let short = ok(&["grating", "builtin:sine?size=1100nm&pixel=10nm", "--wavelength", "10nm", "--method", "rigorous"]);
+    assert!(short.contains("convergence NOT met: orders ±165, the truncation could not grow"), "{short}");
+    assert!(!short.contains("estimated error") && !short.contains("converged:"), "{short}");
     assert_fails(
         &["brdf", "vision", "builtin:sine?size=3300nm&pixel=100nm", "--visual", "bluetit", "--light", "100deg"],
         &["--light 100°", "up to (not including) 90°"],
@@ -225,7 +230,7 @@ fn wavelengths_in_the_wrong_unit_are_refused() {
     let dir = tempfile::tempdir().unwrap();
     let um: String = (40..=70).map(|k| format!("{},0.4\n", k as f64 / 100.0)).collect();
     let um = write_file(dir.path(), "um.csv", &format!("wavelength,R\n{um}"));
-    assert_fails(&["color", "xyz", &um], &["reach only 0.7 nm: that looks like µm"]);
+    assert_fails(&["color", "xyz", &um], &["reach only 0.7 nm: that looks like µm (0.7 µm is 700 nm)"]);
     assert_fails(&["vision", &um, "--visual", "bluetit"], &["reach only 0.7 nm: that looks like µm"]);
     // From 20 nm, light these models take: 2k|h|max = 2 · 2π/20 nm · 129 nm ≈ 81 > 26.8, beyond the Taylor
     // expansion at the bench's shortest wavelength (its terms were counted for 380 nm and it ran).
@@ -235,7 +240,7 @@ fn wavelengths_in_the_wrong_unit_are_refused() {
     );
     assert_fails(
         &["testbench", "builtin:blazed?size=20um&pixel=50nm", "--from", "0.5nm", "--to", "0.7nm", "--step", "0.05nm"],
-        &["0.5 nm is shorter than the light these models take", "looks like µm"],
+        &["0.5 nm is shorter than the light these models take", "looks like µm (0.5 µm is 500 nm)"],
     );
 }
 

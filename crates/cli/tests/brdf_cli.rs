@@ -66,10 +66,10 @@ fn precompute_then_map_and_refusals() {
     {
         assert_fails(&["brdf-map", t, "-o", x, opt, value], &["finished lookup table", opt, "iridis precompute"]);
         let eval = ["brdf", "eval", t, "--light", "0deg", "--view", "10deg", opt, value];
-        assert_fails(&eval, &["finished lookup table", opt, "give brdf eval the surface"]);
+        assert_fails(&eval, &["finished lookup table", opt, "give `iridis brdf eval` the surface"]);
         if opt != "--uv-power" {
             // Refused before a window opens.
-            assert_fails(&["view", t, opt, value], &["finished lookup table", opt, "give view the surface"]);
+            assert_fails(&["view", t, opt, value], &["finished lookup table", opt, "give `iridis view` the surface"]);
         }
     }
     assert!(!Path::new(x).exists());
@@ -403,6 +403,12 @@ fn brdf_eval_peaks_where_the_grating_equation_says() {
     assert!((l[k] - 550.0).abs() <= 5.0, "peak at {} nm", l[k]);
     let at = |w: f64| rho[l.iter().position(|&x| (x - w).abs() < 1e-9).unwrap()];
     assert!(at(420.0) < 0.05 * at(550.0) && at(700.0) < 0.05 * at(550.0), "{} {} {}", at(420.0), at(550.0), at(700.0));
+    // A patch smaller than the window: the finite aperture sees it once (a broad lobe), and its note says so, not
+    // that it is taken as a unit cell diffracting into discrete orders (what the other methods do).
+    let said =
+        ok(&words("brdf eval builtin:sine?size=1100nm&pixel=10nm --method ground-truth --light 30deg --view 0deg"));
+    assert!(said.contains("the finite aperture (ground-truth) sees it once, cut at its edges"), "{said}");
+    assert!(!said.contains("taken as one unit cell"), "{said}");
     let xyz: Vec<f64> = v["xyz"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
     assert!(xyz[1] > 0.0 && xyz[1] < 1.0, "{xyz:?}");
     // Below the horizon and malformed directions are refused with the flag's name.
@@ -451,6 +457,15 @@ fn rigorous_brdf_eval_agrees_with_the_scalar_model_on_a_shallow_sine() {
     let at = r["wavelength_nm"].as_array().unwrap().iter().position(|l| l.as_f64() == Some(550.0)).unwrap();
     let (a, b) = (unpolarised(&r)[at], unpolarised(&k)[at]);
     assert!(a > 1.0 && (a / b - 1.0).abs() < 0.02, "first order at 550 nm: rigorous {a} vs scalar {b} sr⁻¹");
+    // The map's summary names the material the light reflects off, not a Fresnel factor the method has not.
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("g.png");
+    let map = ok(&[
+        &["brdf-map", cell, "--method", "rigorous", "--material", "gold", "--size", "8"][..],
+        &["--step", "20nm", "-o", png.to_str().unwrap()],
+    ]
+    .concat());
+    assert!(map.contains("CIE 1931 observer, material gold, coherence") && !map.contains("Fresnel"), "{map}");
 }
 
 /// The rigorous method needs a period it can solve and the material under it; and a scalar method on a scan
@@ -619,6 +634,11 @@ fn grating_text_says_where_the_detector_is() {
     let args = ["grating", "builtin:sine?size=1100nm&pixel=10nm", "--from", "500nm", "--to", "600nm", "--step", "50nm"];
     let out = iridis(&[&args[..], &["--detector", "30deg,180deg", "--acceptance", "2deg"]].concat());
     assert!(out.status.success() && !String::from_utf8_lossy(&out.stderr).contains("no order enters"));
+    // sin θ = sin 30° − 550/1100 = 0: order (0, 1) of the grating along y leaves along the normal, its azimuth 0
+    // (round-off in ω_r's x and y read 118.878°).
+    let normal =
+        ok(&words("grating builtin:sine?size=1100nm&pixel=10nm&angle=90deg --light 30deg,90deg --wavelength 550nm"));
+    assert!(normal.contains("     0      1      0.000      0.000"), "{normal}");
 }
 
 /// `grating` with the scalar model on a short 1-D cell checks it against Maxwell's equations unasked: a 1 µm sine
@@ -642,6 +662,14 @@ fn the_scalar_grating_is_checked_against_maxwell_on_a_short_1d_cell() {
     // --compare judges the same orders (it paired only those both models list, and read under 20 %).
     let compared = floored(&["--compare"]);
     assert!(String::from_utf8_lossy(&compared.stdout).contains("unpolarised 288.2 % (order (-1,0) at 490 nm)"));
+    // An order only Kirchhoff fills counts, against the 0.1 % floor: at 89.9° it puts 7.2 % into order 1, where
+    // Maxwell's equations put 0.006 % (it was "(below 0.1 %)" and left out of the worst error, read 97 %).
+    let grazing =
+        ok(&words("grating builtin:sine?size=1100nm&pixel=10nm --light 89.9deg --wavelength 550nm --compare"));
+    assert!(grazing.contains("7.2494         0.0057   +7243.6 % (of the 0.1 % floor: Maxwell's is below it)"));
+    assert!(grazing.contains("unpolarised 7243.6 % (order (1,0) at 550 nm)"), "{grazing}");
+    // One wavelength carries no colour: said, not left out.
+    assert!(grazing.contains("colour difference: not computed (the wavelengths must span 380–780 nm"), "{grazing}");
     let out = iridis(&[
         "grating",
         "builtin:sine?size=1100nm&pixel=10nm",

@@ -53,6 +53,8 @@ fn rigorous_testbench_reads_the_sine_period_as_the_scalar_one() {
     // The 1.1 µm cell is smaller than the 8 µm window on purpose: no "periods uncertain by ± d²/(2L)" (550 nm
     // here) beside the bench's own ± of the window's resolution.
     assert!(said.contains("the cell repeats as the periodic surface") && !said.contains("d²/(2L)"), "{said}");
+    // The cell was built at the period read off the scan's spectrum: the bench reads it back, said so.
+    assert!(said.contains("the bench reads that period back through Maxwell's orders"), "{said}");
     let (a, b) = (r["periodicity_nm"]["mean"].as_f64().unwrap(), k["periodicity_nm"]["mean"].as_f64().unwrap());
     assert!((a - 1100.0).abs() < 0.01 * 1100.0 && (a - b).abs() < 0.01 * 1100.0, "rigorous {a} nm, scalar {b} nm");
     assert_eq!(r["peaks"].as_array().unwrap().len(), 5, "{r}");

@@ -234,23 +234,31 @@ fn chart_with_roughness_and_its_smooth_limit() {
         // The specular band does not depend on the transport; the diffuse band gains the light the film
         // turns back (silicon absorbs most of it: a few per cent).
         assert_eq!(m[1..5], s[1..5]);
-        let (dm, ds): (f64, f64) = (m[6].parse().unwrap(), s[6].parse().unwrap());
+        let (dm, ds): (f64, f64) = (m[7].parse().unwrap(), s[7].parse().unwrap());
         assert!(dm > 0.9 * ds && dm < 1.2 * ds, "diffuse Y {dm} vs single {ds}");
     }
     let rough = chart_csv(&["--roughness", "25nm", "--correlation", "300nm", "--diffuse-transport", "single"], "rough");
-    assert_eq!(rough[0].join(","), "thickness_nm,S_X,S_Y,S_Z,S_hex,D_X,D_Y,D_Z,D_hex");
+    assert_eq!(
+        rough[0].join(","),
+        "thickness_nm,S_X,S_Y,S_Z,S_hex,S_hex_exposure_RU,D_X,D_Y,D_Z,D_hex,D_hex_exposure_RU"
+    );
     assert_eq!(rough.len(), 1 + 31);
-    assert!(rough[1..].iter().all(|r| r[6].parse::<f64>().unwrap() > 0.01), "a rough film scatters");
+    assert!(rough[1..].iter().all(|r| r[7].parse::<f64>().unwrap() > 0.01), "a rough film scatters");
+    // The diffuse band's hex is at 1 RU (Y = 1 a white matte surface), said in every row.
+    assert!(rough[1..].iter().all(|r| r[10] == "1"), "{:?}", rough[1]);
     let limit =
         chart_csv(&["--roughness", "0.000001nm", "--correlation", "300nm", "--diffuse-transport", "single"], "limit");
     let smooth = chart_csv(&[], "smooth");
-    assert_eq!(smooth[0].join(","), "thickness_nm,R_X,R_Y,R_Z,R_hex,T_X,T_Y,T_Z,T_hex");
+    assert_eq!(
+        smooth[0].join(","),
+        "thickness_nm,R_X,R_Y,R_Z,R_hex,R_hex_exposure_RU,T_X,T_Y,T_Z,T_hex,T_hex_exposure_RU"
+    );
     for (l, s) in limit[1..].iter().zip(&smooth[1..]) {
         assert_eq!(l[0], s[0]);
         for c in 1..4 {
             let (a, b): (f64, f64) = (l[c].parse().unwrap(), s[c].parse().unwrap());
             assert!((a - b).abs() < 1e-9, "d = {} nm: {a} vs smooth {b}", l[0]);
-            assert!(l[c + 4].parse::<f64>().unwrap().abs() < 1e-12, "diffuse vanishes");
+            assert!(l[c + 5].parse::<f64>().unwrap().abs() < 1e-12, "diffuse vanishes");
         }
     }
 }

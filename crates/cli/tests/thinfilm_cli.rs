@@ -86,6 +86,12 @@ fn chart_is_written() {
     let first: Vec<&str> = text.lines().nth(1).unwrap().split(',').collect();
     assert_eq!(first[0], "0");
     assert!(first[2].parse::<f64>().unwrap().abs() < 1e-15);
+    // The exposure each band's hex is shown at is in the file (the reflected band's is the chart's own, printed):
+    // the same film's hex differed between two charts with nothing to say why.
+    let printed = String::from_utf8_lossy(&out.stdout).into_owned() + &String::from_utf8_lossy(&out.stderr);
+    let exposure: f64 = first[5].parse().unwrap();
+    assert!(printed.contains(&format!("at exposure {exposure:.3} RU")), "{exposure}: {printed}");
+    assert_eq!(first[10], "1");
 }
 
 #[test]
@@ -105,6 +111,8 @@ fn bad_input_names_the_token() {
         &["no thickness", "missing '|'", "'3nm'"],
     );
     assert_fails(&["thinfilm", "spectrum", "--stack", "air | n=1.5-0.2i 10nm | air"], &["κ", "'n=1.5-0.2i'"]);
+    // A lossless metal is written as the limit it is (it said only "n = 0 must be > 0").
+    assert_fails(&["thinfilm", "spectrum", "--stack", "air | n=0+4.47i"], &["lossless metal", "n=0.001+4.47i"]);
     assert_fails(&["thinfilm", "spectrum", "--stack", "n=1.5+0.1i | water 10nm | air"], &["lossless", "column 1"]);
     assert_fails(
         &["thinfilm", "spectrum", "--stack", "air | Si 108nm | glass", "--to", "900nm"],
@@ -606,12 +614,19 @@ fn repeated_wavelengths_in_a_fit_are_said_or_refused() {
     assert!(out.contains("warning: 2 of the 32 rows repeat a wavelength already read"), "{out}");
 }
 
-/// The built-in constants (water 1.33, glass 1.5, …) are visible-band figures: used at 100–120 nm they are noted
-/// (water absorbs there; it was taken as 1.33 in silence), an index the user wrote (n=1.4) is not.
+/// The built-in constants (water 1.33, glass 1.5, …) are visible-band figures: used at 100–120 nm they are warned
+/// (water absorbs there; it was taken as 1.33 in silence), an index the user wrote (n=1.4) is not. A grid ending
+/// under 20 nm is X-rays or µm by mistake: said, with the range in nm.
 #[test]
-fn a_constant_index_far_from_the_visible_is_noted() {
+fn a_constant_index_far_from_the_visible_is_warned() {
     let out = ok(&["thinfilm", "spectrum", "--stack", "air | water 348nm | air", "--from", "100nm", "--to", "120nm"]);
-    assert!(out.contains("note: water is a constant index (a visible-band figure), used here at 100–120 nm"), "{out}");
+    assert!(
+        out.contains("warning: water is a constant index (a visible-band figure), used here at 100–120 nm"),
+        "{out}"
+    );
+    let out = ok(&words("thinfilm spectrum --stack 'air | n=1.38 100nm | glass' --from 0.4nm --to 0.7nm --step 0.1nm"));
+    assert!(out.contains("warning: the wavelengths end at 0.7 nm: X-rays, and glass is a constant index"), "{out}");
+    assert!(out.contains("if you meant µm, the range in nm is 400–700"), "{out}");
     let out = ok(&["thinfilm", "spectrum", "--stack", "air | n=1.4 348nm | air", "--from", "100nm", "--to", "120nm"]);
     assert!(!out.contains("constant index"), "{out}");
     let out = ok(&["thinfilm", "spectrum", "--stack", "air | water 348nm | air"]);

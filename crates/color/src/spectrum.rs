@@ -63,15 +63,24 @@ pub struct Spectrum {
     values: Vec<f64>,
 }
 
+/// The unit a wavelength `x` "nm" was more likely given in, with `x` converted: "µm (0.7 µm is 700 nm)",
+/// "metres (5.5e-7 m is 550 nm)" — the user's own number, not a fixed example.
+fn unit_read_as_nm(x: f64) -> String {
+    if x < 1e-4 {
+        format!("metres ({} m is {} nm)", short_number(x), short_number(x * 1e9))
+    } else {
+        format!("µm ({} µm is {} nm)", short_number(x), short_number(x * 1e3))
+    }
+}
+
 /// Refuses wavelengths that end below 20 nm (the far UV; every model here is for 300–830 nm light and a little
 /// beyond): such numbers are µm or metres read as nm (0.4–0.7 "nm" gave a grey colour with a range warning).
 pub fn check_nanometres(wavelengths_nm: &[f64]) -> Result<(), SpectrumError> {
     let hi = wavelengths_nm.iter().copied().filter(|w| w.is_finite()).fold(f64::NEG_INFINITY, f64::max);
     if hi > 0.0 && hi < 20.0 {
-        let (unit, factor) =
-            if hi < 1e-4 { ("metres", "1e9 (550e-9 m is 550 nm)") } else { ("µm", "1000 (0.55 µm is 550 nm)") };
         return Err(SpectrumError::Invalid(format!(
-            "the wavelengths reach only {hi} nm: that looks like {unit}; wavelengths are in nm — multiply by {factor}"
+            "the wavelengths reach only {hi} nm: that looks like {}; wavelengths are in nm",
+            unit_read_as_nm(hi)
         )));
     }
     Ok(())
@@ -85,10 +94,10 @@ pub const SHORTEST_LIGHT_NM: f64 = 10.0;
 pub fn check_light_nanometres(shortest_nm: f64) -> Result<(), SpectrumError> {
     if shortest_nm.is_finite() && shortest_nm > 0.0 && shortest_nm < SHORTEST_LIGHT_NM {
         // A unit is named only where the number is one (0.55 for µm, 5.5e-7 for metres), not for 9.9 nm.
-        let unit = match shortest_nm {
-            x if x < 1e-4 => ": it looks like metres (550e-9 m is 550 nm); wavelengths are in nm",
-            x if x < 2.0 => ": it looks like µm (0.55 µm is 550 nm); wavelengths are in nm",
-            _ => "",
+        let unit = if shortest_nm < 2.0 {
+            format!(": it looks like {}; wavelengths are in nm", unit_read_as_nm(shortest_nm))
+        } else {
+            String::new()
         };
         return Err(SpectrumError::Invalid(format!(
             "a wavelength of {shortest_nm} nm is shorter than the light these models take ({SHORTEST_LIGHT_NM} nm and \

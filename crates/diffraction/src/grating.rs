@@ -404,7 +404,9 @@ impl UnitCell {
                 m,
                 n,
                 theta_deg: cos[b].clamp(-1.0, 1.0).acos().to_degrees(),
-                phi_deg: if xy[b][0] == 0.0 && xy[b][1] == 0.0 {
+                // Along the normal the azimuth is undefined: 0, whatever round-off leaves in ω_r's x and y (an
+                // order at θ_r = 0.000° read φ_r = 118.878°).
+                phi_deg: if xy[b][0].hypot(xy[b][1]) < 1e-12 {
                     0.0
                 } else {
                     wr[1].atan2(wr[0]).to_degrees().rem_euclid(360.0)

@@ -172,6 +172,22 @@ impl Coherence {
         s
     }
 
+    /// [`Coherence::note`] for the finite aperture (the ground truth, [`crate::Aperture::Finite`]), which cuts the
+    /// window at the patch's edges instead of repeating the patch: a smaller patch is seen once.
+    pub fn finite_aperture_note(&self) -> String {
+        let mut s = self.stated();
+        if self.periodic() {
+            s += &format!(
+                "; the {} × {} µm patch is smaller, and the finite aperture (ground-truth) sees it once, cut at its \
+                 edges: its light spreads into lobes about λ/L wide (L its extent), not the discrete orders of a \
+                 periodic surface (ground-truth-periodic takes it as one unit cell)",
+                trim_um(self.extent_nm.0),
+                trim_um(self.extent_nm.1)
+            );
+        }
+        s
+    }
+
     /// What a patch smaller than the window becomes, where it is.
     pub fn periodic_note(&self) -> Option<String> {
         self.periodic().then(|| {

@@ -3,7 +3,7 @@
 //! common form (`wavelength_nm,R`, `Wavelength (nm),Reflectance (%)`, `lambda [um]\tT`, `nm;%R`, none at all),
 //! lines of instrument metadata before it, `#` and `//` comments. What was found is written into
 //! [`Reading::notes`] so that front ends can say it: the separator, the columns taken, the wavelength unit,
-//! whether the values were percent (from the header, from values above 1, or `percent`), the rows left out by a
+//! whether the values were percent (from the header, from values above 1.5, or `percent`), the rows left out by a
 //! wavelength window. Columns can be named or numbered ([`ReadOptions::columns`]); 1σ uncertainties or weights
 //! come from a number, columns, or (weights) a separate file.
 
@@ -601,7 +601,21 @@ fn settle(
                     "the values reach {vmax} > 1: if they are percent, say percent=True (--percent)"
                 )));
             }
-            (None, _) => false,
+            // Said either way: an anti-reflection coating's R in percent stays under 1 and reads as fractions
+            // (fitted with χ² 0.0008 to a wrong film, in silence).
+            (None, PercentClue::File { .. }) => {
+                let small = if vmax < 0.05 {
+                    " — so small a reflectance is also how a good anti-reflection coating's reads in percent"
+                } else {
+                    ""
+                };
+                notes.push(format!(
+                    "{label} read as fractions (no '%' in the header, none above 1.5: the values reach {vmax:.4}){small}; \
+                     --percent if they are percent"
+                ));
+                false
+            }
+            (None, PercentClue::Arrays) => false,
         };
         if percent {
             for v in vals.iter_mut().chain(sig.iter_mut().flatten()) {

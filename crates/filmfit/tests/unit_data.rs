@@ -65,6 +65,18 @@ fn headers_separators_and_units_in_common_forms() {
     assert!((r.data.values[0] - 0.005).abs() < 1e-15);
     let r = read_r("nm\tR\n400\t0.5\n");
     assert!(!r.percent && r.notes[0].starts_with("tab-separated, header on line 1"), "{:?}", r.notes);
+    // Fractions are said too: an anti-reflection coating's R in percent (under 1) reads as fractions, and its
+    // fit was a confident wrong film without a word.
+    assert!(r.notes.iter().any(|n| n.starts_with("R read as fractions (no '%' in the header, none above 1.5")));
+    let r = read_r("wavelength_nm,R\n450,0.341\n550,0.12\n650,0.29\n");
+    let said = r.notes.iter().find(|n| n.starts_with("R read as fractions")).unwrap_or_else(|| panic!("{:?}", r.notes));
+    assert!(!said.contains("anti-reflection") && said.ends_with("--percent if they are percent"), "{said}");
+    let r = read_r("wavelength_nm,R\n450,0.0034\n550,0.0012\n");
+    assert!(
+        r.notes.iter().any(|n| n.contains("how a good anti-reflection coating's reads in percent")),
+        "{:?}",
+        r.notes
+    );
     // Metres and photon energies.
     let r = read_r("4e-7,0.1\n5e-7,0.2\n");
     assert!((r.data.wavelength_nm[0] - 400.0).abs() < 1e-6 && r.notes.iter().any(|n| n.contains("metres")));

@@ -290,9 +290,14 @@ fn eval_point<'py>(
     let (wi, wr) = (direction_of("light", light)?, direction_of("view", view)?);
     let eo = Options::read(options, EvalOptions::read)?;
     let input = input_of(source)?;
-    let (p, scalar_error) = run(py, |r| {
+    let (p, scalar_error, fresnel_factor) = run(py, |r| {
         let e = evaluator(&input, method.as_deref(), &eo, r)?;
-        let p = point(e.as_ref(), &eo.model, wi, wr, r)?;
+        let mut p = point(e.as_ref(), &eo.model, wi, wr, r)?;
+        p.rigorous = iridis_api::rigorous_brdf::RigorousBrdf::summary_of(e.as_ref());
+        // The Fresnel factor's normal reflectance and whether it tells s from p, as `brdf eval --json` gives them.
+        let (name, convention, shadowing) = &eo.fresnel;
+        let shading = iridis_api::fresnel::shading(name, *convention, *shadowing)?;
+        let fresnel = (shading.fresnel.normal_reflectance(), shading.fresnel.polarised());
         // The scalar model's error on the scan's own period, warned as `brdf eval` warns it (issue 28).
         let source = match &input {
             Input::Field(s) => Some(s.clone()),
@@ -303,7 +308,7 @@ fn eval_point<'py>(
             Some(s) if p.method != RIGOROUS => scalar_error_said(&s, &eo.surface, wi, eo.model.material.as_deref(), r),
             _ => None,
         };
-        Ok((p, error))
+        Ok((p, error, fresnel))
     })?;
     let d = PyDict::new(py);
     d.set_item("method", &p.method)?;
@@ -347,6 +352,12 @@ fn eval_point<'py>(
         Some(e) => d.set_item("scalar_error", json_to_py(py, &e.to_json())?)?,
         None => d.set_item("scalar_error", py.None())?,
     }
+    d.set_item("fresnel_r0", fresnel_factor.0)?;
+    d.set_item("polarised", rigorous || fresnel_factor.1)?;
+    // `null` where there is none, as in `brdf eval --json`.
+    let rigorous_json = p.rigorous.as_ref().map(|r| r.to_json()).unwrap_or_default();
+    d.set_item("rigorous", json_to_py(py, &rigorous_json)?)?;
+    d.set_item("table", json_to_py(py, &p.table.as_ref().map(iridis_api::brdf_eval::table_json).unwrap_or_default())?)?;
     Ok(d)
 }
 

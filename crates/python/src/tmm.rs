@@ -133,6 +133,21 @@ impl CohTmmResult {
         let k: Option<String> = key.extract().ok();
         Ok(k.as_deref().map(|k| self.item(py, k)).transpose()?.flatten().or(default))
     }
+    /// A plain dict of the same items (tmm's own type).
+    fn copy<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        self.items(py)?.into_py_dict(py)
+    }
+    fn __copy__<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        self.copy(py)
+    }
+    fn __deepcopy__<'py>(&self, py: Python<'py>, _memo: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyDict>> {
+        self.copy(py)
+    }
+    /// Pickled as the plain dict tmm returns, so that results cross `multiprocessing` and caches (a frozen
+    /// Rust object does not pickle).
+    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyAny>, (Bound<'py, PyDict>,))> {
+        Ok((py.get_type::<PyDict>().into_any(), (self.copy(py)?,)))
+    }
     fn __repr__(&self) -> String {
         format!(
             "CohTmmResult(pol={:?}, r={}, t={}, R={}, T={}, …)",

@@ -221,3 +221,32 @@ def test_stack_colours_check_their_grid_as_thinfilm_color_does():
         s.color(grid_nm=np.arange(380, 501, 5.0))
     with pytest.raises(ValueError, match=r"300–380 nm"):
         tf.colors_of_stacks([[1, 1.33, 1]], [[348.0]], grid_nm=np.arange(300, 381, 5.0))
+
+
+def test_film_spectrum_in_micrometres_or_far_from_the_visible_warns():
+    # film.spectrum(from_nm=0.4, to_nm=0.7) answered "R = 0.04" at 0.4–0.7 nm without a word, and the CLI's note
+    # that glass's constant index is a visible-band figure went to a logger: both are warnings now.
+    with pytest.warns(UserWarning, match=r"the wavelengths end at 0.7 nm: X-rays, and glass is a constant index.*"
+                                         r"the range in nm is 400–700"):
+        film.spectrum("air | n=1.38 100nm | glass", from_nm=0.4, to_nm=0.7, step_nm=0.1)
+    with pytest.warns(UserWarning, match=r"glass is a constant index \(a visible-band figure\), used here at 200–300"):
+        film.spectrum("air | n=1.38 100nm | glass", from_nm=200, to_nm=300)
+
+
+def test_film_commands_name_radians():
+    # film.spectrum(angle_rad=30) said "incidence angle 1718.873385° is outside 0°–90°", not that it takes radians.
+    with pytest.raises(ValueError, match=r"angle_rad is 30 rad: it lies in 0…π/2 rad .*numpy.radians"):
+        film.spectrum("air | water 348nm | air", angle_rad=30)
+    with pytest.raises(ValueError, match=r"light_angle_rad is 45 rad"):
+        film.color("air | water 348nm | air", roughness_nm=20, correlation_nm=300, light_angle_rad=45)
+
+
+def test_grating_takes_the_clis_percent_and_names_radians():
+    # orders_above="0.1%" raised "could not convert string to float: '0.1%'" (the CLI takes it); acceptance=2,
+    # meant as degrees, said "between 0° and 90°" without naming radians.
+    sine = "builtin:sine?size=1100nm&pixel=20nm"
+    assert diffraction.grating(sine, orders_above="0.1%")["orders"] == diffraction.grating(sine, orders_above=0.001)["orders"]
+    with pytest.raises(ValueError, match=r"orders_above must be a fraction \(0.001\) or a percentage \('0.1%'\)"):
+        diffraction.grating(sine, orders_above="a tenth")
+    with pytest.raises(ValueError, match=r"acceptance is 2 rad: .*convert it with math.radians"):
+        diffraction.grating(sine, detector=(0.2, 0.0), acceptance=2)

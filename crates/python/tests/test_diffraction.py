@@ -41,8 +41,9 @@ def test_sine_grating_orders_obey_the_grating_equation():
 def test_a_map_too_coarse_for_its_lobes_says_so():
     # 65 µm coherence: a lobe's σ in (u, v) is 380/(2√2π·16250) = 0.0026 at 380 nm; pixels 2/size apart miss
     # lobes past 6σ, i.e. below 127² (the same check as `iridis brdf-map`).
-    with pytest.warns(UserWarning, match=r"subsamples 4 \(each pixel the mean of 4² directions across it\) or a "
-                                         r"map of 127² pixels samples every lobe"):
+    # Sampled 6σ apart a lobe shows; its light sums to its integral only within 1.5σ.
+    with pytest.warns(UserWarning, match=r"subsamples 4 \(each pixel the mean of directions across it\) shows "
+                                         r"every lobe; to measure their light .* within 1.5σ: subsamples 16"):
         diffraction.brdf_map(sine(), size=33, method="reference", coherence_nm=65000.0)
     maps = {}
     for size, subsamples in ((132, 1), (33, 4)):

@@ -342,3 +342,15 @@ def test_vision_along_a_plane_equals_the_cli_and_a_sine_is_symmetric():
     close(coarse["views"][0]["reflectance_factor"], v["views"][0]["reflectance_factor"][::2], rtol=1e-12)
     with pytest.raises(ValueError, match="observer 1964 would be ignored"):
         diffraction.vision("builtin:sine", "bluetit", views_deg=(25,), observer="1964")
+
+
+def test_evaluate_says_what_brdf_eval_says():
+    # evaluate(method="rigorous") gave f_r without the record of what it rests on (material, unit cell, solves,
+    # estimated error), which brdf_eval and `iridis brdf eval --json` give; nor the Fresnel factor's R0.
+    cell = "builtin:sine?size=1100nm&pixel=10nm&depth=20nm"
+    for method, options in (("rigorous", {"material": "gold"}), ("reference", {"fresnel": "schlick:1.5"})):
+        e = diffraction.evaluate(cell, 0.3, (0.2, 3.0), method=method, step_nm=20.0, **options)
+        b = diffraction.brdf_eval(cell, 0.3, (0.2, 3.0), method=method, step_nm=20.0, **options)
+        for key in ("rigorous", "polarised", "fresnel_r0", "table"):
+            assert e[key] == b[key], (method, key, e[key], b[key])
+    assert e["fresnel_r0"] == pytest.approx(0.04) and e["polarised"] is False

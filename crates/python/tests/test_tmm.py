@@ -143,6 +143,24 @@ def test_an_existing_tmm_script_runs_unchanged():
     np.testing.assert_allclose(script(itmm), script(tmm), rtol=0, atol=1e-12)
 
 
+def test_results_pickle_and_copy_as_tmms_dict():
+    # tmm's coh_tmm returns a dict: pickled (multiprocessing.Pool.map), copied and deep-copied. iridis' mapping
+    # raised TypeError on pickle and had no copy(); it now becomes the same dict. `from tmm.tmm_core import …`.
+    import copy
+    import pickle
+
+    args = ("p", [1, 1.38, 3.9 + 0.02j], [np.inf, 100, np.inf], 0.4, 550)
+    ours, theirs = itmm.coh_tmm(*args), tmm.coh_tmm(*args)
+    for d in (pickle.loads(pickle.dumps(ours)), ours.copy(), copy.copy(ours), copy.deepcopy(ours)):
+        assert type(d) is dict and sorted(d) == sorted(theirs)
+        for k, v in theirs.items():
+            np.testing.assert_allclose(np.asarray(d[k], dtype=complex) if k != "pol" else 0,
+                                       np.asarray(v, dtype=complex) if k != "pol" else 0, rtol=0, atol=1e-12)
+        assert d["pol"] == "p"
+    from iridis.tmm.tmm_core import coh_tmm as core_coh_tmm
+    assert core_coh_tmm is itmm.coh_tmm
+
+
 @pytest.mark.parametrize(
     "call, exc, words",
     [

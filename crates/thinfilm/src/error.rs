@@ -16,8 +16,9 @@ pub enum ThinFilmError {
     /// A wavelength outside the data of a material: never extrapolated. `place` says where the material is
     /// in a stack ("layer 2 of 3", "incident medium", "substrate"); it is empty for a material on its own.
     #[error(
-        "{}material '{material}' has data for {lo_nm}–{hi_nm} nm only; {wavelength_nm} nm is outside (no extrapolation)",
-        prefix(place)
+        "{}material '{material}' has data for {lo_nm}–{hi_nm} nm only; {wavelength_nm} nm is outside (no extrapolation){}",
+        prefix(place),
+        micrometre_hint(*hi_nm, *wavelength_nm)
     )]
     OutOfRange { material: String, place: String, wavelength_nm: f64, lo_nm: f64, hi_nm: f64 },
     /// The incident medium must be lossless (Sussenbach, section 3.4, constraint 6): in an absorbing medium
@@ -34,6 +35,16 @@ pub enum ThinFilmError {
     /// Any other invalid argument (a wavelength ≤ 0, an angle outside 0°–90°, …).
     #[error("{0}")]
     Invalid(String),
+}
+
+/// Data ending under 20 nm asked at 100 nm or more: a table in µm read as nm (refractiveindex.info's CSV `wl`
+/// is in µm), said with the remedy.
+fn micrometre_hint(hi_nm: f64, wavelength_nm: f64) -> &'static str {
+    if hi_nm < 20.0 && wavelength_nm >= 100.0 {
+        "; its wavelengths look like µm: name the first column wavelength_um (or write them in nm)"
+    } else {
+        ""
+    }
 }
 
 fn prefix(place: &str) -> String {

@@ -125,7 +125,16 @@ impl Material {
             )));
         }
         if index.re <= 0.0 {
-            return Err(ThinFilmError::Invalid(format!("material '{name}': n = {} must be > 0", index.re)));
+            // n = 0 with κ > 0 is a lossless metal (ε = −κ²); the models here take its limit n → 0.
+            let metal = if index.re == 0.0 && index.im > 0.0 {
+                format!(
+                    "; for a lossless metal (ε = −κ²) give a small n, e.g. n=0.001+{}i, whose absorption is then                      negligible",
+                    index.im
+                )
+            } else {
+                String::new()
+            };
+            return Err(ThinFilmError::Invalid(format!("material '{name}': n = {} must be > 0{metal}", index.re)));
         }
         if index.norm() > MAX_INDEX {
             return Err(ThinFilmError::Invalid(format!(

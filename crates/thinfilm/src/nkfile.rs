@@ -271,11 +271,19 @@ fn header_unit_nm(header: &str) -> Option<f64> {
     })
 }
 
+/// Whether a header row starts a κ block: refractiveindex.info's CSV writes `wl,n` rows, then `wl,k` rows.
+fn names_kappa(fields: &[&str]) -> bool {
+    fields.len() == 2 && matches!(fields[1].trim().to_lowercase().as_str(), "k" | "κ" | "kappa")
+}
+
 /// Parses CSV with columns `wavelength, n[, κ]` (commas, semicolons, tabs or spaces; `#` comments and one
-/// header line allowed). Wavelengths are in nm unless the header's first column names µm (`wavelength_um`,
+/// header line allowed), or refractiveindex.info's CSV: a `wl,n` block, then a `wl,k` block, each on its own
+/// wavelengths. Wavelengths are in nm unless the header's first column names µm (`wavelength_um`,
 /// `lambda (µm)`).
 pub fn parse_csv(text: &str, path: &str) -> Result<Material, ThinFilmError> {
     let (mut wl, mut n, mut k) = (Vec::new(), Vec::new(), Vec::new());
+    // The κ block of a two-block file: its wavelengths and values, and the line it starts on.
+    let mut kappa_block: Option<(Vec<f64>, Vec<f64>, usize)> = None;
     let mut first_line = true;
     let mut scale = 1.0;
     for TextRow { line, text: t, fields } in text_rows(text, Separators::Any) {
@@ -287,10 +295,28 @@ pub fn parse_csv(text: &str, path: &str) -> Result<Material, ThinFilmError> {
                 scale = header_unit_nm(t).unwrap_or(1.0);
                 continue;
             }
+            if kappa_block.is_none() && !wl.is_empty() && names_kappa(&fields) {
+                scale = header_unit_nm(t).unwrap_or(scale);
+                kappa_block = Some((Vec::new(), Vec::new(), line));
+                continue;
+            }
             let bad = fields.iter().zip(&parsed).find(|(_, p)| p.is_none()).map(|(f, _)| *f).unwrap_or("");
             return Err(file_err(path, Some(line), format!("'{bad}' is not a finite number")));
         }
         let v: Vec<f64> = parsed.into_iter().flatten().collect();
+        if let Some((kw, kv, _)) = kappa_block.as_mut() {
+            if v.len() != 2 {
+                return Err(file_err(
+                    path,
+                    Some(line),
+                    format!("expected 2 columns (wavelength, κ), found {}", v.len()),
+                ));
+            }
+            check_row(path, line, v[0] * scale, None, Some(v[1]))?;
+            kw.push(v[0] * scale);
+            kv.push(v[1]);
+            continue;
+        }
         if !(v.len() == 2 || v.len() == 3) {
             return Err(file_err(
                 path,
@@ -303,6 +329,31 @@ pub fn parse_csv(text: &str, path: &str) -> Result<Material, ThinFilmError> {
         wl.push(v[0] * scale);
         n.push(v[1]);
         k.push(kappa);
+    }
+    if let Some((kw, kv, start)) = kappa_block {
+        // Two blocks on their own wavelengths: n and κ each interpolated on its own, over both's range.
+        let (wn, nv, _) = check_table(path, None, wl, n, Vec::new(), false)?;
+        let (wk, kv, _) = check_table(path, Some(start), kw, kv, Vec::new(), true)?;
+        let range = (wn[0].max(wk[0]), wn[wn.len() - 1].min(wk[wk.len() - 1]));
+        if range.0 >= range.1 {
+            return Err(file_err(
+                path,
+                Some(start),
+                format!(
+                    "its n block covers {}–{} nm and its κ block {}–{} nm: no wavelength has both",
+                    wn[0],
+                    wn[wn.len() - 1],
+                    wk[0],
+                    wk[wk.len() - 1]
+                ),
+            ));
+        }
+        return Ok(Material::from_parts(
+            path.to_string(),
+            Part::Table { wl_nm: wn, v: nv },
+            Part::Table { wl_nm: wk, v: kv },
+            range,
+        ));
     }
     let (wl, n, k) = check_table(path, None, wl, n, k, false)?;
     let range = (wl[0], wl[wl.len() - 1]);
@@ -358,6 +409,27 @@ mod tests {
         assert!(m.index_at(399.0).is_err());
         let e = parse_csv("400,1.5\n500,abc\n", "y.csv").unwrap_err().to_string();
         assert!(e.contains("line 2") && e.contains("abc"), "{e}");
+    }
+
+    /// refractiveindex.info's CSV download: an n block, then a κ block under its own `wl,k` header, each on its
+    /// own wavelengths (it failed with "'wl' is not a finite number"); in µm as that site writes them, said by
+    /// the header's unit, or, unsaid, pointed out where the data seem to end at 0.7 nm.
+    #[test]
+    fn csv_of_two_blocks_n_then_kappa() {
+        let text = "wl_um,n\n0.4,1.50\n0.5,1.48\n0.7,1.46\nwl,k\n0.45,0.010\n0.65,0.030\n";
+        let m = parse_csv(text, "ri.csv").unwrap();
+        assert_eq!(m.range_nm(), (450.0, 650.0));
+        // n at 600 nm between 1.48 (500) and 1.46 (700); κ at 600 nm between 0.010 (450) and 0.030 (650).
+        let i = m.index_at(600.0).unwrap();
+        assert!((i.re - 1.47).abs() < 1e-12 && (i.im - 0.025).abs() < 1e-12, "{i}");
+        let e = parse_csv("wl,n\n0.4,1.5\n0.7,1.5\nwl,k\n0.8,0\n0.9,0\n", "apart.csv").unwrap_err().to_string();
+        assert!(e.contains("no wavelength has both"), "{e}");
+        let unsaid = parse_csv("wl,n\n0.4,1.5\n0.7,1.5\n", "um.csv").unwrap();
+        let e = unsaid.index_at(550.0).unwrap_err().to_string();
+        assert!(
+            e.contains("0.4–0.7 nm only") && e.contains("look like µm: name the first column wavelength_um"),
+            "{e}"
+        );
     }
 
     #[test]

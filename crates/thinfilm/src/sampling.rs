@@ -100,24 +100,41 @@ pub fn check(stack: &Stack, angle_rad: f64, wavelengths_nm: &[f64]) -> Option<Sa
     let suggest_incoherent = 2.0 * optical > at * at / COHERENCE_BANDWIDTH_NM;
     let l = &stack.layers[layer - 1];
     let mut message = format!(
-        "layer {layer} ({} {} nm) makes interference fringes {} nm apart at {at} nm, closer than two samples of \
-         the {step} nm grid: the spectrum is aliased (a smooth curve where the fringes are). Use --step {}nm or \
+        "layer {layer} ({} {} nm) makes interference fringes {} nm apart at {} nm, closer than two samples of \
+         the {} nm grid: the spectrum is aliased (a smooth curve where the fringes are). Use --step {}nm or \
          smaller",
         l.material.name(),
         l.thickness_nm,
-        round_sig(fringe),
-        round_down(step_nm)
+        digits(round_sig(fringe), 3),
+        digits(at, 6),
+        digits(step, 6),
+        digits(round_down(step_nm), 2)
     );
     if suggest_incoherent {
         message += &format!(
             "; or, since it is thicker than the coherence length of ordinary light ({} µm for a \
              {COHERENCE_BANDWIDTH_NM} nm band at {at} nm), write it as incoherent: inc:{} {}nm",
-            round_sig(at * at / COHERENCE_BANDWIDTH_NM / 1000.0),
+            digits(round_sig(at * at / COHERENCE_BANDWIDTH_NM / 1000.0), 3),
             l.material.name(),
             l.thickness_nm
         );
     }
     Some(SamplingWarning { layer, fringe_nm: fringe, at_nm: at, step_nm, suggest_incoherent, message })
+}
+
+/// `x` written with at most `significant` digits and no trailing zeros: `0.00028`, not the
+/// `0.00028000000000000003` a rounded f64 prints as (nor `0.1` read back as `0.10000000000000009`).
+fn digits(x: f64, significant: i32) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return x.to_string();
+    }
+    let decimals = (significant - 1 - x.abs().log10().floor() as i32).max(0) as usize;
+    let s = format!("{x:.decimals$}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
 }
 
 fn round_sig(x: f64) -> f64 {
@@ -152,6 +169,18 @@ mod tests {
         assert!(check(&s, 0.0, &grid(1.3)).is_none());
         // A soap film is fine at 5 nm.
         assert!(check(&Stack::parse("air | water 635nm | air").unwrap(), 0.0, &grid(5.0)).is_none());
+    }
+
+    /// The message's numbers as a person writes them: X-rays at 0.4–0.7 nm on a 0.1 nm grid printed "the
+    /// 0.10000000000000009 nm grid" and "--step 0.00028000000000000003nm". λ²/(2nd) = 0.16/276 = 0.00058 nm.
+    #[test]
+    fn the_numbers_are_written_short() {
+        let s = Stack::parse("air | n=1.38 100nm | n=1.5").unwrap();
+        let xrays: Vec<f64> = (4..=7).map(|i| i as f64 * 0.1).collect();
+        let w = check(&s, 0.0, &xrays).unwrap();
+        assert!(w.message.contains("fringes 0.00058 nm apart at 0.4 nm"), "{}", w.message);
+        assert!(w.message.contains("the 0.1 nm grid") && w.message.contains("--step 0.00028nm or"), "{}", w.message);
+        assert!(w.message.contains("(0.00016 µm for a 1 nm band at 0.4 nm)"), "{}", w.message);
     }
 
     #[test]

@@ -126,7 +126,7 @@ from the start values only), with exact derivatives (automatic differentiation t
 the values with 1σ uncertainties from the covariance (JᵀWJ)⁻¹, χ², and the correlation matrix. The file holds
 columns of wavelength and R, T, or psi and delta (degrees), separated by commas, tabs, semicolons or spaces,
 with a header in any common form (\"Wavelength (nm),Reflectance (%)\") or none; what was read is printed
-(separator, columns, unit, percent detected from the header or values above 1); --columns, --percent and
+(separator, columns, unit, percent detected from the header or values above 1.5); --columns, --percent and
 --from/--to choose; a material without data over the range is named. --sigma gives the 1σ noise (a number or a column),
 --weights the weights w = 1/σ² (a number, a column, or a CSV file with wavelength_nm,w); without either σ is
 estimated from the scatter. psi-delta needs a coherent stack (Δ is undefined through an inc: layer).

@@ -33,6 +33,7 @@ Example:
 """
 from __future__ import annotations
 
+import math
 import os
 
 from . import _native
@@ -175,6 +176,9 @@ def evaluate(source, light, view, method=None, **options):
     ``coherence_nm``, ``window_effective_area_um2`` (A_eff, 4πσ_s² inside the patch), ``xyz`` (eq. 9) with the
     ``illuminant`` and ``observer`` it was integrated under (a table's own), ``fresnel``, ``fresnel_convention``
     and ``shadowing`` (``None`` for the rigorous method),
+    ``fresnel_r0`` (the Fresnel source's normal-incidence reflectance that the relative ρ divides by), ``polarised``
+    (whether s and p differ), ``rigorous`` (the rigorous method's material, unit cell, solves and estimated error;
+    ``None`` for the others), ``table`` (what a lookup table was built from; ``None`` without one),
     ``light_direction``, ``view_direction``, and ``scalar_error`` (the scalar model's error on a scan's own
     period, as ``brdf_eval``'s, warned where above its threshold; ``None`` for a table, the rigorous method or
     a surface without a dominant period).
@@ -228,13 +232,35 @@ def grating(source, light=0.0, wavelengths_nm=550.0, method=None, material=None,
     if detector is not None:
         opts["detector_theta"], opts["detector_phi"] = _direction(detector, "detector")
     if acceptance is not None:
-        opts["acceptance"] = float(acceptance)
+        opts["acceptance"] = _acceptance(acceptance)
     if orders_above is not None:
-        opts["orders_above"] = float(orders_above)
+        opts["orders_above"] = _fraction(orders_above, "orders_above")
     if isinstance(wavelengths_nm, (str, bytes)):  # a str would be read character by character
         raise TypeError(f"wavelengths_nm must be a number or a sequence of numbers (nm), got {wavelengths_nm!r}")
     wl = [float(w) for w in (wavelengths_nm if hasattr(wavelengths_nm, "__len__") else [wavelengths_nm])]
     return with_text(*_native.grating(_native_source(source), (theta, phi), wl, opts))
+
+
+def _acceptance(x):
+    """The detector's half-angle in radians, in (0, π/2); degrees by mistake are named."""
+    a = float(x)
+    if not 0 < a < math.pi / 2:
+        hint = "; if it is in degrees, convert it with math.radians(...)" if math.pi / 2 <= a <= 90 else ""
+        raise ValueError(f"acceptance is {a:g} rad: the detector's half-angle lies between 0 and π/2 rad{hint}")
+    return a
+
+
+def _fraction(x, name):
+    """A fraction given as a number or, as on the command line, as a percentage ("0.1%")."""
+    if isinstance(x, str) and x.strip().endswith("%"):
+        try:
+            return float(x.strip()[:-1]) / 100.0
+        except ValueError:
+            pass
+    try:
+        return float(x)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a fraction (0.001) or a percentage ('0.1%'), got {x!r}") from None
 
 
 @keywords

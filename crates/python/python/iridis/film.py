@@ -22,6 +22,7 @@ from __future__ import annotations
 
 from . import _native
 from ._answer import Answer, answer, count, file_path, flag
+from .thinfilm import _polar
 
 __all__ = ["Answer", "spectrum", "table", "color", "chart", "materials", "bench", "profile", "fit"]
 
@@ -37,16 +38,25 @@ def _opt_float(x):
     return None if x is None else float(x)
 
 
+def _view(angle_rad):
+    """The angle of incidence (or view), radians in 0…π/2; degrees by mistake are named."""
+    return _polar(angle_rad, "angle_rad")
+
+
+def _light(light_angle_rad):
+    return None if light_angle_rad is None else _polar(light_angle_rad, "light_angle_rad")
+
+
 def spectrum(stack, angle_rad=0.0, from_nm=380.0, to_nm=780.0, step_nm=5.0, polarization="avg", *, plot=False,
              roughness_nm=None, correlation_nm=None, light_angle_rad=None, azimuth_rad=None, d_iterations=None,
              diffuse_transport=None):
     """``iridis thinfilm spectrum``: R, T, A (of ``polarization``: avg, s or p), Rs, Rp, Ts, Tp, ψ and Δ
     (degrees) against wavelength; with a rough substrate the smooth R, specular ``k_r`` and diffuse ``k_d``
     (sr⁻¹) at the view ``angle_rad`` and light ``light_angle_rad``. ``.spectra_csv``: R and T in pavo's layout."""
-    return answer(_native._film_spectrum(str(stack), float(angle_rad), float(from_nm), float(to_nm), float(step_nm),
+    return answer(_native._film_spectrum(str(stack), _view(angle_rad), float(from_nm), float(to_nm), float(step_nm),
                                          str(polarization), flag(plot, "plot"),
                                          **_rough(roughness_nm, correlation_nm, d_iterations, diffuse_transport),
-                                         light_rad=None if light_angle_rad is None else float(light_angle_rad),
+                                         light_rad=_light(light_angle_rad),
                                          azimuth_rad=_opt_float(azimuth_rad)))
 
 
@@ -71,10 +81,10 @@ def color(stack, angle_rad=0.0, illuminant="d65", observer="1931", polarization=
     """``iridis thinfilm color``: the reflected and transmitted colour (XYZ, xyY, Lab, sRGB, hex), the specular
     and diffuse parts (rough substrate), and with ``visual`` (a system of ``iridis.vision``) how an animal sees
     the reflected and transmitted light."""
-    return answer(_native._film_color(str(stack), float(angle_rad), str(polarization), float(from_nm), float(to_nm),
+    return answer(_native._film_color(str(stack), _view(angle_rad), str(polarization), float(from_nm), float(to_nm),
                                       float(step_nm), str(illuminant), str(observer), visual=visual,
                                       **_rough(roughness_nm, correlation_nm, d_iterations, diffuse_transport),
-                                      light_rad=None if light_angle_rad is None else float(light_angle_rad),
+                                      light_rad=_light(light_angle_rad),
                                       azimuth_rad=_opt_float(azimuth_rad)))
 
 
@@ -84,11 +94,11 @@ def chart(stack, thickness="0nm:2000nm:2nm", angle_rad=0.0, illuminant="d65", ex
     """``iridis thinfilm chart``: the soap-film colour chart (Sussenbach Figure 5.11) of the layer written
     ``{d}``: the CSV's columns (thickness_nm, R_X … T_hex; S_… and D_… with a rough substrate), ``.image`` the
     chart, ``.exposure`` the top band's exposure (RU) and ``.summary`` what was drawn."""
-    return answer(_native._film_chart(str(stack), str(thickness), float(angle_rad), str(illuminant),
+    return answer(_native._film_chart(str(stack), str(thickness), _view(angle_rad), str(illuminant),
                                       None if exposure is None else float(exposure), float(from_nm), float(to_nm),
                                       float(step_nm),
                                       **_rough(roughness_nm, correlation_nm, d_iterations, diffuse_transport),
-                                      light_rad=None if light_angle_rad is None else float(light_angle_rad),
+                                      light_rad=_light(light_angle_rad),
                                       azimuth_rad=_opt_float(azimuth_rad)), table=True)
 
 
@@ -112,7 +122,7 @@ def profile(stack, wavelength_nm, angle_rad=0.0, polarization="avg", points=400,
     """``iridis thinfilm profile``: where the light goes — R, T, absorption per layer and in the substrate, the
     energy balance, and the depth profile (|E|², absorbed power per nm, flux) over ``depth`` (``"FROM:TO"``
     with units, below the first interface; default 100 nm above the stack to 100 nm into the substrate)."""
-    return answer(_native._film_profile(str(stack), float(wavelength_nm), float(angle_rad), str(polarization),
+    return answer(_native._film_profile(str(stack), float(wavelength_nm), _view(angle_rad), str(polarization),
                                         count(points, "points"), None if depth is None else str(depth),
                                         flag(plot, "plot")))
 
@@ -123,7 +133,7 @@ def fit(measured, stack, angle_rad=0.0, quantity="R", *, sigma=None, weights=Non
     spectrum in the file ``measured`` (read as the CLI reads it); ``.csv`` the fitted curve. Arrays
     ``(wavelengths_nm, values[, sigma])`` are ``iridis.thinfilm.fit``'s (the same library calls)."""
     measured = file_path(measured, "iridis.film.fit", "iridis.thinfilm.fit((wavelengths_nm, values[, sigma]), stack)")
-    return answer(_native._film_fit(measured, str(stack), float(angle_rad), str(quantity), count(grid, "grid"),
+    return answer(_native._film_fit(measured, str(stack), _view(angle_rad), str(quantity), count(grid, "grid"),
                                     flag(plot, "plot"), sigma=None if sigma is None else str(sigma),
                                     weights=None if weights is None else str(weights), columns=columns,
                                     percent=None if percent is None else flag(percent, "percent"),

@@ -8,6 +8,10 @@ position-resolved fields and the incoherent bookkeeping of ``inc_tmm`` are writt
 definitions (Byrnes, arXiv:1603.02720), with the coherent stacks computed by the core. ``coh_tmm_batch`` is new:
 one call for arrays of wavelengths and angles, in parallel.
 
+``coh_tmm`` returns a read-only mapping (computed on demand from the core's result) that copies and pickles as
+the plain dict tmm returns, so results cross ``multiprocessing``; ``from iridis.tmm.tmm_core import …`` works as
+``from tmm.tmm_core import …`` does.
+
 Angles may be complex as in tmm: an absorbing first medium takes the complex ``th_0`` that makes
 ``n_list[0]·sin(th_0)`` real. Bad input raises :class:`TmmInputError`, a ``ValueError`` that is also an
 ``AssertionError`` (what tmm's asserts raise), with a message saying what is wrong. Not reproduced: tmm's clamp
@@ -41,6 +45,10 @@ from ._native import CohTmmResult, _check_stack
 Mapping.register(CohTmmResult)
 
 EPSILON = sys.float_info.epsilon
+
+# `from tmm.tmm_core import coh_tmm`, tmm's own module path, as `from iridis.tmm.tmm_core import coh_tmm`.
+tmm_core = sys.modules[__name__]
+sys.modules[__name__ + ".tmm_core"] = tmm_core
 inf = np.inf
 
 __all__ = [
