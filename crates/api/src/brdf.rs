@@ -467,9 +467,11 @@ pub fn scalar_error_said(
 pub const SAMPLES_PER_LOBE_SIGMA: f64 = 6.0;
 
 /// Samples at most this many standard deviations of a lobe's width apart sum to its integral within 0.1 %
-/// (Poisson summation: a Gaussian sampled `h` apart along one axis sums with the error `2 exp(−2π²σ²/h²)`, twice
-/// that over the (u, v) disk: 6e-4 at `h = 1.5σ`, 2.9 % at `2σ`, 45 % at `3σ`): what measuring a lobe's light
-/// takes, beyond showing it ([`SAMPLES_PER_LOBE_SIGMA`]).
+/// (Poisson summation: a Gaussian sampled `h` apart along one axis sums with an error of up to
+/// `±2 exp(−2π²σ²/h²)`, where in that range set by where the samples fall, twice that over the (u, v) disk: 6e-4
+/// at `h = 1.5σ`, 2.9 % at `2σ`, 45 % at `3σ`, for the narrowest lobe, 380 nm's): what measuring a lobe's light
+/// takes, beyond showing it ([`SAMPLES_PER_LOBE_SIGMA`]). Measured on an 1100 nm gold sine's rigorous map at 30°
+/// (32², 65 µm): the sum of f_r 74 % short at 6σ, 3.2 % at 3σ, converged at 1.5σ.
 pub const MEASURE_SAMPLES_PER_LOBE_SIGMA: f64 = 1.5;
 
 /// View samples too far apart for the light's lobes ([`lobe_shortfall`]).

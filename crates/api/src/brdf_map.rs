@@ -208,15 +208,26 @@ pub fn warn_if_black(xyz: &[Xyz], method: &str, samples_a_side: usize, report: &
 /// its samples are `2/(size·subsamples)` apart in view direction `(u, v)`, and where that falls short of the
 /// light's lobes ([`lobe_shortfall`]) a mirror's reflection or a grating's order can fall between them and
 /// vanish, or show at its peak: a black or speckled map that says nothing of the surface. The warning names the
-/// `--subsamples` (or the size) that samples every lobe.
+/// `--subsamples` (or the size) that shows every lobe, and the finer one that measures their light. With
+/// `measuring` (f_r in sr⁻¹ is written, `--brdf`) a map that shows every lobe but sums only part of their light
+/// is warned too (at 4 view samples a pixel a gold sine's map summed a quarter of it, in silence).
 pub fn lobes_between_pixels(
     size: usize,
     subsamples: usize,
     coherence_nm: f64,
     light_coherence_nm: Option<f64>,
+    measuring: bool,
 ) -> Option<String> {
     let spacing = 2.0 / (size * subsamples) as f64;
-    let LobeShortfall { sigma, finer_by } = lobe_shortfall(spacing, coherence_nm)?;
+    let sigma = iridis_diffraction::spectral::lobe_sigma_uv(380.0, coherence_nm);
+    let shortfall = lobe_shortfall(spacing, coherence_nm);
+    // Showing every lobe is not measuring its light: sampled 6σ apart a lobe's sum is hit or miss (a 1100 nm
+    // gold sine's map at --subsamples 2 summed 26 % of its light); within 1.5σ the sum is the integral to 0.1 %.
+    let m = crate::brdf::MEASURE_SAMPLES_PER_LOBE_SIGMA;
+    let measuring_short = spacing / (m * sigma);
+    if shortfall.is_none() && !(measuring && measuring_short > 1.0) {
+        return None;
+    }
     // Samples a side the disk needs, `finer_by` times closer: as view samples a pixel (at most 16) at this size,
     // or as pixels.
     let samples_for = |finer_by: f64| {
@@ -228,11 +239,24 @@ pub fn lobes_between_pixels(
             (false, false) => None,
         }
     };
-    // Showing every lobe is not measuring its light: sampled 6σ apart a lobe's sum is hit or miss (a 1100 nm
-    // gold sine's map at --subsamples 2 summed 27 % of its light); within 1.5σ the sum is the integral to 0.1 %.
-    let m = crate::brdf::MEASURE_SAMPLES_PER_LOBE_SIGMA;
-    let measuring = spacing / (m * sigma);
-    let remedy = match (samples_for(finer_by), samples_for(measuring)) {
+    let what = if subsamples > 1 { format!("view samples ({subsamples}² a pixel)") } else { "pixels".into() };
+    let head = format!(
+        "the map's {what} are {spacing:.4} apart in view direction (u, v), this light's lobes {sigma:.4} wide (σ of \
+         the window's |G|² at 380 nm, {})",
+        crate::brdf::lobe_coherence_label(coherence_nm, light_coherence_nm)
+    );
+    let Some(LobeShortfall { finer_by, .. }) = shortfall else {
+        // Every lobe shows; the f_r written does not hold their light.
+        return Some(format!(
+            "{head}: every lobe shows, but the sum of f_r in sr⁻¹ over the disk takes only part of their light \
+             (samples {:.1}σ apart; within {m}σ it is the integral to 0.1 %): {}",
+            spacing / sigma,
+            samples_for(measuring_short).unwrap_or_else(|| {
+                "no map here samples them that finely; a shorter coherence length widens them".into()
+            })
+        ));
+    };
+    let remedy = match (samples_for(finer_by), samples_for(measuring_short)) {
         (Some(show), Some(measure)) => format!(
             "{show} (each pixel the mean of directions across it) shows every lobe; to measure their light (the sum \
              of f_r in sr⁻¹ over the disk) the samples must lie within {m}σ: {measure}"
@@ -242,21 +266,25 @@ pub fn lobes_between_pixels(
         }
         (None, _) => "a shorter coherence length widens them".to_string(),
     };
-    let what = if subsamples > 1 { format!("view samples ({subsamples}² a pixel)") } else { "pixels".into() };
     Some(format!(
-        "the map's {what} are {spacing:.4} apart in view direction (u, v), this light's lobes {sigma:.4} wide (σ of \
-         the window's |G|² at 380 nm, {}): a lobe narrower than that spacing — a mirror's reflection, a grating's \
-         order — can fall between them and vanish from the map, or show at its peak; {remedy}",
-        crate::brdf::lobe_coherence_label(coherence_nm, light_coherence_nm)
+        "{head}: a lobe narrower than that spacing — a mirror's reflection, a grating's order — can fall between them \
+         and vanish from the map, or show at its peak; {remedy}"
     ))
 }
 
 /// The most view samples a pixel side `--subsamples` takes (256 directions a pixel).
 pub const MAX_SUBSAMPLES: usize = 16;
 
-/// Says [`lobes_between_pixels`]'s warning for a map of `e`, if any (`brdf-map`, Python's `brdf_map`).
-pub fn warn_lobes_between_pixels(e: &dyn Evaluator, size: usize, subsamples: usize, report: &dyn Report) {
-    warn_lobes_at(size, subsamples, lobe_coherence_nm(e), e.coherence_nm(), report);
+/// Says [`lobes_between_pixels`]'s warning for a map of `e`, if any (`brdf-map`, Python's `brdf_map`); `measuring`
+/// where f_r in sr⁻¹ is written.
+pub fn warn_lobes_between_pixels(
+    e: &dyn Evaluator,
+    size: usize,
+    subsamples: usize,
+    measuring: bool,
+    report: &dyn Report,
+) {
+    warn_lobes_at(size, subsamples, lobe_coherence_nm(e), e.coherence_nm(), measuring, report);
 }
 
 fn warn_lobes_at(
@@ -264,9 +292,11 @@ fn warn_lobes_at(
     subsamples: usize,
     coherence_nm: Option<f64>,
     light_coherence_nm: Option<f64>,
+    measuring: bool,
     report: &dyn Report,
 ) {
-    if let Some(w) = coherence_nm.and_then(|c| lobes_between_pixels(size, subsamples, c, light_coherence_nm)) {
+    if let Some(w) = coherence_nm.and_then(|c| lobes_between_pixels(size, subsamples, c, light_coherence_nm, measuring))
+    {
         report.warn(&w);
     }
 }
@@ -374,7 +404,7 @@ pub fn compute(r: &MapRequest, files: Option<&MapFiles>, report: &dyn Report) ->
         surface: &r.surface,
     };
     let (e, rigorous) = map_evaluator(&r.input, setup, r.wi, report)?;
-    warn_lobes_between_pixels(e.as_ref(), r.size, r.subsamples, report);
+    warn_lobes_between_pixels(e.as_ref(), r.size, r.subsamples, r.per_sr, report);
     if let Some(s) = &rigorous {
         report.note(&s.sentence());
     }
@@ -490,7 +520,7 @@ fn gpu_map(r: &MapRequest, report: &dyn Report) -> Result<BrdfMap> {
             surface: &r.surface,
         };
         let e = crate::brdf::make_evaluator(&r.input, setup, report)?;
-        warn_lobes_between_pixels(e.as_ref(), r.size, r.subsamples, report);
+        warn_lobes_between_pixels(e.as_ref(), r.size, r.subsamples, r.per_sr, report);
         let gt = e.as_ground_truth().context("internal: a ground-truth method without a ground truth")?;
         let gpu = crate::gpu::open()?;
         let t = std::time::Instant::now();
@@ -531,7 +561,7 @@ fn gpu_map(r: &MapRequest, report: &dyn Report) -> Result<BrdfMap> {
     let gpu = crate::gpu::open()?;
     let table = crate::model::lookup_table(Some(&gpu), &r.input, &model, r.grid.params()?, &r.surface, report)?;
     let coherence_nm = Some(table.meta.coherence_nm);
-    warn_lobes_at(r.size, r.subsamples, coherence_nm, coherence_nm, report);
+    warn_lobes_at(r.size, r.subsamples, coherence_nm, coherence_nm, r.per_sr, report);
     let side = r.size * r.subsamples;
     let map =
         crate::gpu::lookup_map(&gpu, &table, fresnel, r.shadowing, r.convention, table_encoding, r.wi, side, tone)?;

@@ -84,8 +84,9 @@ pub fn grating_text(g: &Grating, light: (f64, f64), detector: Option<&str>, acce
                 plural(one.transmitted_orders.len())
             );
         }
-        if let Some(err) = one.convergence["estimated_error"].as_f64() {
+        if one.convergence.get("met").is_some() {
             let c = &one.convergence;
+            let err = c["estimated_error"].as_f64().unwrap_or(f64::NAN);
             let repeats = |k: usize| c["cell_repeats"][k].as_u64().unwrap_or(1);
             let on = match (repeats(0), repeats(1)) {
                 (1, 1) => String::new(),
@@ -313,13 +314,13 @@ impl GratingComparison {
         }
         let _ = writeln!(
             s,
-            "worst relative error of an order either model puts above {:.1} %: TE {:.1} %, TM {:.1} %, unpolarised {:.1} %{}; of the total \
-             reflectance {:.1} %",
+            "worst relative error of an order either model puts above {:.1} %: unpolarised {:.1} %{}, TE {:.1} %, TM \
+             {:.1} % (each at its own worst order); of the total reflectance {:.1} %",
             100.0 * e.floor,
-            100.0 * e.worst.te,
-            100.0 * e.worst.tm,
             100.0 * e.worst.unpolarized,
             e.worst_at.map_or(String::new(), |(l, m, n)| format!(" (order ({m},{n}) at {l:.0} nm)")),
+            100.0 * e.worst.te,
+            100.0 * e.worst.tm,
             100.0 * e.total
         );
         match (e.delta_e_diffracted, e.delta_e_specular) {

@@ -190,9 +190,9 @@ pub const NO_DOMINANT_PERIOD_BELOW: f64 = 0.1;
 
 /// Below this share of the height variance no peak is a period of the structure, however far above the next
 /// (built-ins: Elaphe 0.62, the blazed grating 0.61, Xenopeltis 0.042; the AFM samples' molecules 0.015–0.10; a
-/// 1500 nm sine on a 1 µm patch, shorter than its period, 0.0002, which `--unit-cell auto` took as a 289 nm
-/// grating).
-pub const MIN_DOMINANT_SHARE: f64 = 0.01;
+/// 1100 nm sine in white noise 0.0053 at 2.1 × the next, a period; a 1500 nm sine on a 1 µm patch, shorter than
+/// its period, 0.0002, which `--unit-cell auto` took as a 289 nm grating).
+pub const MIN_DOMINANT_SHARE: f64 = 0.002;
 
 /// Whether the strongest peak of a surface's spectrum, holding `strongest` of the height variance, is a period of
 /// its structure rather than one of a random surface's peaks: at least [`MIN_DOMINANT_SHARE`], and
@@ -207,10 +207,10 @@ pub fn why_not_dominant(strongest: &iridis_surface::Peak, next: f64) -> String {
     if strongest.power < MIN_DOMINANT_SHARE {
         format!(
             "its strongest spectral peak ({:.0} nm) holds {:.2} % of the height variance, too little for a period of \
-             the structure (at least {:.0} %)",
+             the structure (at least {} %)",
             strongest.period_nm,
             100.0 * strongest.power,
-            100.0 * MIN_DOMINANT_SHARE
+            iridis_color::spectrum::short_number(100.0 * MIN_DOMINANT_SHARE)
         )
     } else {
         format!(
@@ -273,9 +273,9 @@ pub fn info(hf: &iridis_surface::HeightField, n_peaks: usize, coherence_nm: f64)
     if let Some(p) = peaks.first().filter(|p| p.power < MIN_DOMINANT_SHARE) {
         notes.push(format!(
             "no dominant period: the strongest peak holds {:.2} % of the height variance, too little for a period of \
-             the structure (at least {:.0} %); the periods listed are not periods of the structure",
+             the structure (at least {} %); the periods listed are not periods of the structure",
             100.0 * p.power,
-            100.0 * MIN_DOMINANT_SHARE
+            iridis_color::spectrum::short_number(100.0 * MIN_DOMINANT_SHARE)
         ));
     } else if let Some(p) = peaks.first().filter(|p| !is_dominant(p.power, next)) {
         notes.push(format!(

@@ -18,8 +18,8 @@ fn the_warning_starts_where_the_pixels_are_six_lobe_widths_apart() {
     // 2/size > 6σ at 380 nm: the largest quiet size is the first with 2/size ≤ 6σ.
     let quiet = (2.0 / (SAMPLES_PER_LOBE_SIGMA * sigma_uv(380.0, coherence))).ceil() as usize;
     assert_eq!(quiet, 127, "65 µm: 6σ = {}", SAMPLES_PER_LOBE_SIGMA * sigma_uv(380.0, coherence));
-    assert!(lobes_between_pixels(quiet, 1, coherence, None).is_none());
-    let w = lobes_between_pixels(quiet - 1, 1, coherence, Some(coherence)).expect("one pixel fewer warns");
+    assert!(lobes_between_pixels(quiet, 1, coherence, None, false).is_none());
+    let w = lobes_between_pixels(quiet - 1, 1, coherence, Some(coherence), false).expect("one pixel fewer warns");
     assert!(
         w.contains("coherence 65.0 µm") && w.contains("--subsamples 2 (each pixel") && w.contains("shows every lobe")
     );
@@ -29,12 +29,19 @@ fn the_warning_starts_where_the_pixels_are_six_lobe_widths_apart() {
     assert_eq!(measure, 5.0);
     assert!(w.contains("to measure their light (the sum of f_r in sr⁻¹ over the disk) the samples must lie within 1.5σ: --subsamples 5"), "{w}");
     // 32² needs 127/32 → 4 view samples a pixel side, and with them is quiet.
-    assert!(lobes_between_pixels(32, 1, coherence, None).unwrap().contains("--subsamples 4 "));
-    assert!(lobes_between_pixels(32, 4, coherence, None).is_none());
+    assert!(lobes_between_pixels(32, 1, coherence, None, false).unwrap().contains("--subsamples 4 "));
+    assert!(lobes_between_pixels(32, 4, coherence, None, false).is_none());
+    // Where f_r is written (--brdf), 4 a side still sums part of the light (samples 5.9σ apart): warned, naming
+    // the 2/(32·1.5σ) = 16 a side within 1.5σ; at 16 it is quiet.
+    let w = lobes_between_pixels(32, 4, coherence, None, true).expect("the sum is short");
+    assert!(w.contains("every lobe shows, but the sum of f_r in sr⁻¹ over the disk takes only part of their light"));
+    let needed = (2.0 / 32.0 / (MEASURE_SAMPLES_PER_LOBE_SIGMA * sigma_uv(380.0, coherence))).ceil();
+    assert!(w.contains(&format!("--subsamples {needed}")) && needed == 16.0, "{w}");
+    assert!(lobes_between_pixels(32, 16, coherence, None, true).is_none());
     // A shorter coherence widens the lobes: 8 µm is quiet at 16² (2/16 = 0.125 ≤ 6σ = 0.128).
-    assert!(lobes_between_pixels(16, 1, 8_000.0, None).is_none());
+    assert!(lobes_between_pixels(16, 1, 8_000.0, None, false).is_none());
     // The finite aperture's window, cut by the patch's edge, is named as such beside the light's.
-    let w = lobes_between_pixels(32, 1, 59_500.0, Some(coherence)).unwrap();
+    let w = lobes_between_pixels(32, 1, 59_500.0, Some(coherence), false).unwrap();
     assert!(w.contains("effective coherence 59.5 µm: the light's 65.0 µm window cut by the patch's edge"), "{w}");
 }
 

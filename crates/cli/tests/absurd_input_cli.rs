@@ -4,7 +4,7 @@
 
 use crate::common;
 
-use common::{assert_fails, iridis, json_of, ok, tmp, write_file};
+use common::{assert_fails, iridis, json_of, ok, tmp, words, write_file};
 
 const FILM: &str = "air | water 348nm | air";
 const SINE: &str = "builtin:sine?size=2um&pixel=50nm";
@@ -199,6 +199,28 @@ fn library_limits_found_from_python_hold_on_the_command_line() {
     let short = ok(&["grating", "builtin:sine?size=1100nm&pixel=10nm", "--wavelength", "10nm", "--method", "rigorous"]);
     assert!(short.contains("convergence NOT met: orders ±165, the truncation could not grow"), "{short}");
     assert!(!short.contains("estimated error") && !short.contains("converged:"), "{short}");
+    assert!(short.contains("at 10 nm (no estimate: the truncation could not grow past the propagating orders)"));
+    let j = json_of(&[
+        "grating",
+        "builtin:sine?size=1100nm&pixel=10nm",
+        "--wavelength",
+        "10nm",
+        "--method",
+        "rigorous",
+        "--json",
+    ]);
+    assert!(j["convergence"][0]["estimated_error"].is_null() && j["convergence"][0]["met"] == false, "{j}");
+    // A crossed lamellar grating at 250 nm: R + T = 4 × 10⁴ over glass, printed as efficiencies beside "NOT met"
+    // only. Energy conservation says it is no answer: said so (the 2-D solve takes 5 s).
+    let dir = tmp();
+    let bumps = dir.path().join("rb.npy");
+    ok(&words(&format!(
+        "surface generate rect-bumps --size 1100nm --pixel-size 100nm --period 1100nm -o {}",
+        bumps.display()
+    )));
+    let lamellar =
+        ok(&[&["grating", bumps.to_str().unwrap()][..], &["--method", "rigorous", "--wavelength", "250nm"]].concat());
+    assert!(lamellar.contains("the rigorous answer does not conserve energy over this lossless medium"), "{lamellar}");
     assert_fails(
         &["brdf", "vision", "builtin:sine?size=3300nm&pixel=100nm", "--visual", "bluetit", "--light", "100deg"],
         &["--light 100°", "up to (not including) 90°"],

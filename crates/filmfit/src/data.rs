@@ -604,13 +604,16 @@ fn settle(
             // Said either way: an anti-reflection coating's R in percent stays under 1 and reads as fractions
             // (fitted with χ² 0.0008 to a wrong film, in silence).
             (None, PercentClue::File { .. }) => {
-                let small = if vmax < 0.05 {
+                let why = if vmax > 1.0 {
+                    // Between 1 and 1.5: a fraction over 1 (a baseline off) or percent under 1.5 — both happen.
+                    " — above 1, which a fraction cannot be: a baseline or calibration off, or percent under 1.5"
+                } else if vmax < 0.05 {
                     " — so small a reflectance is also how a good anti-reflection coating's reads in percent"
                 } else {
                     ""
                 };
                 notes.push(format!(
-                    "{label} read as fractions (no '%' in the header, none above 1.5: the values reach {vmax:.4}){small}; \
+                    "{label} read as fractions (no '%' in the header, none above 1.5: the values reach {vmax:.4}){why}; \
                      --percent if they are percent"
                 ));
                 false

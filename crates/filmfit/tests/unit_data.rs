@@ -71,6 +71,8 @@ fn headers_separators_and_units_in_common_forms() {
     let r = read_r("wavelength_nm,R\n450,0.341\n550,0.12\n650,0.29\n");
     let said = r.notes.iter().find(|n| n.starts_with("R read as fractions")).unwrap_or_else(|| panic!("{:?}", r.notes));
     assert!(!said.contains("anti-reflection") && said.ends_with("--percent if they are percent"), "{said}");
+    let r = read_r("wavelength_nm,R\n450,1.1431\n550,0.12\n");
+    assert!(r.notes.iter().any(|n| n.contains("above 1, which a fraction cannot be")), "{:?}", r.notes);
     let r = read_r("wavelength_nm,R\n450,0.0034\n550,0.0012\n");
     assert!(
         r.notes.iter().any(|n| n.contains("how a good anti-reflection coating's reads in percent")),

@@ -256,7 +256,7 @@ fn brdf_map_xyz<'py>(
     let input = input_of(source)?;
     let xyz = run(py, |r| {
         let e = evaluator(&input, method.as_deref(), &eo, r)?;
-        iridis_api::brdf_map::warn_lobes_between_pixels(e.as_ref(), size, subsamples, r);
+        iridis_api::brdf_map::warn_lobes_between_pixels(e.as_ref(), size, subsamples, per_sr, r);
         let xyz = if per_sr {
             iridis_api::brdf::render_map_per_sr(e.as_ref(), &eo.model, wi, size, subsamples, r)?
         } else {

@@ -250,3 +250,16 @@ def test_grating_takes_the_clis_percent_and_names_radians():
         diffraction.grating(sine, orders_above="a tenth")
     with pytest.raises(ValueError, match=r"acceptance is 2 rad: .*convert it with math.radians"):
         diffraction.grating(sine, detector=(0.2, 0.0), acceptance=2)
+
+
+def test_a_misspelt_keyword_is_pointed_to_its_name_and_warnings_come_once():
+    # film.spectrum(angle=0.5) (the CLI's --angle) raised Python's bare "unexpected keyword argument"; evaluate
+    # with step_nm=50 warned of its step twice.
+    with pytest.raises(TypeError, match=r"unexpected keyword argument 'angle' \(did you mean angle_rad\?"):
+        film.spectrum("air | water 348nm | air", angle=0.5)
+    import warnings
+    with warnings.catch_warnings(record=True) as said:
+        warnings.simplefilter("always")
+        diffraction.evaluate("builtin:sine?size=4um&pixel=100nm", 0.2, (0.2, 3.0), step_nm=50)
+    steps = [w for w in said if "a wavelength step of 50 nm" in str(w.message)]
+    assert len(steps) == 1, [str(w.message) for w in said]

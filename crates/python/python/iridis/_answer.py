@@ -50,19 +50,28 @@ def keywords(f):
     error names only the options; this adds the function's own keyword parameters and the nearest name to the
     one given (``aperture`` → ``aperture_nm``, as the CLI's ``--aperture`` is named here)."""
     kinds = (inspect.Parameter.POSITIONAL_OR_KEYWORD, inspect.Parameter.KEYWORD_ONLY)
-    own = [n for n, p in inspect.signature(f).parameters.items() if p.kind in kinds]
+    parameters = inspect.signature(f).parameters
+    own = [n for n, p in parameters.items() if p.kind in kinds]
+    # A function without **options: Python's own "unexpected keyword argument" gets the same hint (film.spectrum's
+    # `angle=0.5`, the CLI's --angle, is angle_rad here).
+    closed = not any(p.kind == inspect.Parameter.VAR_KEYWORD for p in parameters.values())
+
+    def unexpected(name, known):
+        near = difflib.get_close_matches(name, known, n=1, cutoff=0.6)
+        hint = f"did you mean {near[0]}? " if near else ""
+        return TypeError(f"{f.__name__}() got an unexpected keyword argument '{name}' ({hint}it takes: "
+                         f"{', '.join(known)})")
 
     @functools.wraps(f)
     def call(*args, **kwargs):
+        if closed:
+            for name in kwargs:
+                if name not in own:
+                    raise unexpected(name, sorted(own))
         try:
             return f(*args, **kwargs)
         except _native.UnexpectedKeyword as e:
-            name = e.keyword
-            known = sorted(set(own) | set(e.known))
-            near = difflib.get_close_matches(name, known, n=1, cutoff=0.6)
-            hint = f"did you mean {near[0]}? " if near else ""
-            raise TypeError(f"{f.__name__}() got an unexpected keyword argument '{name}' ({hint}it takes: "
-                            f"{', '.join(known)})") from None
+            raise unexpected(e.keyword, sorted(set(own) | set(e.known))) from None
     return call
 
 

@@ -21,7 +21,7 @@ Example:
 from __future__ import annotations
 
 from . import _native
-from ._answer import Answer, answer, count, file_path, flag
+from ._answer import Answer, answer, count, file_path, flag, keywords
 from .thinfilm import _polar
 
 __all__ = ["Answer", "spectrum", "table", "color", "chart", "materials", "bench", "profile", "fit"]
@@ -47,6 +47,7 @@ def _light(light_angle_rad):
     return None if light_angle_rad is None else _polar(light_angle_rad, "light_angle_rad")
 
 
+@keywords
 def spectrum(stack, angle_rad=0.0, from_nm=380.0, to_nm=780.0, step_nm=5.0, polarization="avg", *, plot=False,
              roughness_nm=None, correlation_nm=None, light_angle_rad=None, azimuth_rad=None, d_iterations=None,
              diffuse_transport=None):
@@ -60,6 +61,7 @@ def spectrum(stack, angle_rad=0.0, from_nm=380.0, to_nm=780.0, step_nm=5.0, pola
                                          azimuth_rad=_opt_float(azimuth_rad)))
 
 
+@keywords
 def table(stack, angles="1deg:90deg:1deg", from_nm=380.0, to_nm=780.0, step_nm=5.0, *, plot=False, scale=None,
           roughness_nm=None, correlation_nm=None, light_angles=None, azimuth_rad=None, d_iterations=None,
           diffuse_transport=None):
@@ -75,6 +77,7 @@ def table(stack, angles="1deg:90deg:1deg", from_nm=380.0, to_nm=780.0, step_nm=5
                                       light_angles=light_angles, azimuth_rad=_opt_float(azimuth_rad)), table=True)
 
 
+@keywords
 def color(stack, angle_rad=0.0, illuminant="d65", observer="1931", polarization="avg", from_nm=380.0, to_nm=780.0,
           step_nm=5.0, *, visual=None, roughness_nm=None, correlation_nm=None, light_angle_rad=None,
           azimuth_rad=None, d_iterations=None, diffuse_transport=None):
@@ -88,6 +91,7 @@ def color(stack, angle_rad=0.0, illuminant="d65", observer="1931", polarization=
                                       azimuth_rad=_opt_float(azimuth_rad)))
 
 
+@keywords
 def chart(stack, thickness="0nm:2000nm:2nm", angle_rad=0.0, illuminant="d65", exposure=None, from_nm=380.0,
           to_nm=780.0, step_nm=5.0, *, roughness_nm=None, correlation_nm=None, light_angle_rad=None,
           azimuth_rad=None, d_iterations=None, diffuse_transport=None):
@@ -102,11 +106,13 @@ def chart(stack, thickness="0nm:2000nm:2nm", angle_rad=0.0, illuminant="d65", ex
                                       azimuth_rad=_opt_float(azimuth_rad)), table=True)
 
 
+@keywords
 def materials(at_nm=None):
     """``iridis thinfilm materials``: the built-in materials, their sources, ranges and (``at_nm``) index."""
     return answer(_native._film_materials(None if at_nm is None else float(at_nm)))
 
 
+@keywords
 def bench(seconds=1.0, no_python=False, *, roughness_nm=None, correlation_nm=None, azimuth_rad=None,
           d_iterations=None, diffuse_transport=None):
     """``iridis thinfilm bench``: (λ, θ) evaluations per second against Python's tmm (spawned as ``python3``
@@ -118,6 +124,7 @@ def bench(seconds=1.0, no_python=False, *, roughness_nm=None, correlation_nm=Non
                                       azimuth_rad=_opt_float(azimuth_rad)))
 
 
+@keywords
 def profile(stack, wavelength_nm, angle_rad=0.0, polarization="avg", points=400, depth=None, *, plot=False):
     """``iridis thinfilm profile``: where the light goes — R, T, absorption per layer and in the substrate, the
     energy balance, and the depth profile (|E|², absorbed power per nm, flux) over ``depth`` (``"FROM:TO"``
@@ -127,6 +134,7 @@ def profile(stack, wavelength_nm, angle_rad=0.0, polarization="avg", points=400,
                                         flag(plot, "plot")))
 
 
+@keywords
 def fit(measured, stack, angle_rad=0.0, quantity="R", *, sigma=None, weights=None, grid=0, columns=None,
         percent=None, from_nm=None, to_nm=None, plot=False):
     """``iridis thinfilm fit``: fits the free parameters ``{NAME=START:LOW..HIGH}`` of ``stack`` to the
