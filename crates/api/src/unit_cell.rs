@@ -34,26 +34,25 @@ pub fn averaged_profile_filled(patch: &Patch, period_nm: f64, orientation_deg: f
 /// — each within an eighth of the lattice step of a node, every node taken —; `None` where they spread (an
 /// oblique grating, a period of an irrational number of pixels). A period found to within a fraction of a pixel
 /// drifts the phases along the scan (2497.5 nm for a 2500 nm saw-tooth: 0.004 of a period over the scan), which
-/// the eighth allows. Reads the first 100 000 samples, row by row: a lattice shows in any part of the scan.
+/// the eighth allows. Every sample is tested (the drift grows across the scan); a `q` that fails does so within a
+/// few samples, so the cost is about one pass.
 fn phase_lattice(patch: &Patch, period_nm: f64, orientation_deg: f64) -> Option<usize> {
-    const MAX_SAMPLES: usize = 100_000;
     if !(period_nm.is_finite() && period_nm > 0.0 && orientation_deg.is_finite()) {
         return None;
     }
     let (s, c) = orientation_deg.to_radians().sin_cos();
-    let phases: Vec<f64> = (0..patch.rows)
-        .flat_map(|j| (0..patch.cols).map(move |i| (i, j)))
-        .take(MAX_SAMPLES)
-        .map(|(i, j)| ((i as f64 * patch.dx * c + j as f64 * patch.dy * s) / period_nm).rem_euclid(1.0))
-        .collect();
+    let phase = |i: usize, j: usize| ((i as f64 * patch.dx * c + j as f64 * patch.dy * s) / period_nm).rem_euclid(1.0);
     (4..=256usize).find(|&q| {
         let mut taken = vec![false; q];
-        phases.iter().all(|&p| {
-            let at = p * q as f64;
-            let node = at.round();
-            taken[node as usize % q] = true;
-            (at - node).abs() < 0.125
-        }) && taken.iter().all(|&t| t)
+        let on_lattice = (0..patch.rows).all(|j| {
+            (0..patch.cols).all(|i| {
+                let at = phase(i, j) * q as f64;
+                let node = at.round();
+                taken[node as usize % q] = true;
+                (at - node).abs() < 0.125
+            })
+        });
+        on_lattice && taken.iter().all(|&t| t)
     })
 }
 
