@@ -128,8 +128,12 @@ impl OrdersAt {
         let mut convergence = serde_json::to_value(&s.convergence).unwrap_or_default();
         convergence["wavelength_nm"] = json!(s.wavelength_nm);
         if error_not_estimated(&convergence) {
-            // One truncation compared with itself (5.6e-16): no estimate, and none given to a script.
+            // One truncation compared with itself (5.6e-16): no estimate, and none given to a script, in the
+            // history's last step either.
             convergence["estimated_error"] = Value::Null;
+            if let Some(last) = convergence["history"].as_array_mut().and_then(|h| h.last_mut()) {
+                last["change"] = Value::Null;
+            }
         }
         if along_y {
             // The solver took the column as its x: its repeats along "x" are the cell's along y.
@@ -397,10 +401,13 @@ pub fn auto_unit_cell(
             peak.period_nm / pixel
         );
     };
+    // How much of the relief the cell stands for: a period under noise keeps little of it.
     report.note(&format!(
         "unit cell: the strongest period, {d:.1} nm along {phi:.1}°, its profile averaged along the ridges over the \
-         whole scan ({} samples); directions are given in the scan's frame",
-        cell.cols
+         whole scan ({} samples), {:.1} % of its height variance; orders (m, 0) are numbered along the period, \
+         directions given in the scan's frame",
+        cell.cols,
+        100.0 * crate::unit_cell::variance_share(&cell, patch)
     ));
     Ok((cell, d, phi))
 }
@@ -717,15 +724,24 @@ fn rigorous(
     let unphysical: Vec<String> = solutions
         .iter()
         .filter_map(|s| {
-            let e = s.convergence["energy_error"].as_f64()?;
-            (e > UNPHYSICAL_ENERGY_ERROR).then(|| format!("{:.0} nm (R + T − 1 = {e:.2e})", s.wavelength_nm))
+            // Over a lossless medium R + T = 1; over any passive one R ≤ 1 (gold at 250 nm reflected 1961 %).
+            let r = s.reflected_total.te.max(s.reflected_total.tm);
+            match s.convergence["energy_error"].as_f64() {
+                Some(e) if e > UNPHYSICAL_ENERGY_ERROR => {
+                    Some(format!("{:.0} nm (R + T − 1 = {e:.2e})", s.wavelength_nm))
+                }
+                _ if r > 1.0 + UNPHYSICAL_ENERGY_ERROR => {
+                    Some(format!("{:.0} nm (R = {:.1} %)", s.wavelength_nm, 100.0 * r))
+                }
+                _ => None,
+            }
         })
         .collect();
     if !unphysical.is_empty() {
         report.warn(&format!(
-            "at {} the rigorous answer does not conserve energy over this lossless medium: its efficiencies are not \
-             physical, do not use them (the C-method converges slowly or not at all on sharp-edged, lamellar or \
-             crossed reliefs: docs/rigorous.md)",
+            "at {} the rigorous answer creates or loses light (energy conservation: R + T = 1 over a lossless \
+             medium, R ≤ 1 over any): its efficiencies are not physical, do not use them (the C-method converges \
+             slowly or not at all on sharp-edged, lamellar or crossed reliefs: docs/rigorous.md)",
             unphysical.join(", ")
         ));
     }

@@ -498,10 +498,7 @@ pub fn scalar_error_of_scan(
         return Ok(None);
     };
     let Some((cell, d, phi)) = averaged_unit_cell_at(&patch, &peak) else { return Ok(None) };
-    // Both height lists have their mean removed (Patch).
-    let variance = |h: &[f64]| h.iter().map(|x| x * x).sum::<f64>() / h.len().max(1) as f64;
-    // At most all of it: the cell's whole periods against a patch of 9.09 of them read 101 %.
-    let variance_share = (variance(&cell.heights) / variance(&patch.heights).max(f64::MIN_POSITIVE)).min(1.0);
+    let variance_share = crate::unit_cell::variance_share(&cell, &patch);
     let material = material.unwrap_or(SCAN_MATERIAL).to_string();
     let cell = Source::Patch { patch: cell, name: format!("{} (averaged period)", source.name()) };
     let opts = GratingOptions {
