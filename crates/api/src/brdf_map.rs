@@ -257,10 +257,15 @@ pub fn lobes_between_pixels(
         ));
     };
     let remedy = match (samples_for(finer_by), samples_for(measuring_short)) {
-        (Some(show), Some(measure)) => format!(
-            "{show} (each pixel the mean of directions across it) shows every lobe; to measure their light (the sum \
-             of f_r in sr⁻¹ over the disk) the samples must lie within {m}σ: {measure}"
-        ),
+        (Some(show), Some(measure)) => {
+            // A --subsamples count is explained at its first mention; a map size needs no word.
+            let how =
+                if show.starts_with("--subsamples") { " (each pixel the mean of directions across it)" } else { "" };
+            format!(
+                "{show}{how} shows every lobe; to measure their light (the sum of f_r in sr⁻¹ over the disk) the \
+                 samples must lie within {m}σ: {measure}"
+            )
+        }
         (Some(show), None) => {
             format!("{show} shows every lobe (no map here samples them within {m}σ, to measure them)")
         }

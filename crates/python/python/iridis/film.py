@@ -96,7 +96,8 @@ def chart(stack, thickness="0nm:2000nm:2nm", angle_rad=0.0, illuminant="d65", ex
           to_nm=780.0, step_nm=5.0, *, roughness_nm=None, correlation_nm=None, light_angle_rad=None,
           azimuth_rad=None, d_iterations=None, diffuse_transport=None):
     """``iridis thinfilm chart``: the soap-film colour chart (Sussenbach Figure 5.11) of the layer written
-    ``{d}``: the CSV's columns (thickness_nm, R_X … T_hex; S_… and D_… with a rough substrate), ``.image`` the
+    ``{d}``: the CSV's columns (thickness_nm, R_X … R_hex, R_hex_exposure_RU (the exposure the hex is shown at), T_X …
+    T_hex_exposure_RU; S_… and D_… with a rough substrate), ``.image`` the
     chart, ``.exposure`` the top band's exposure (RU) and ``.summary`` what was drawn."""
     return answer(_native._film_chart(str(stack), str(thickness), _view(angle_rad), str(illuminant),
                                       None if exposure is None else float(exposure), float(from_nm), float(to_nm),
