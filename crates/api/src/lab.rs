@@ -184,11 +184,7 @@ pub fn workbench_with(
         CoherenceFrom::UnitCell => {
             let c = patch.coherence(m.coherence_nm);
             patch.check_coherence(c.nm)?;
-            report.note(&format!(
-                "{}; the cell repeats as the periodic surface the rigorous method solves: its orders lie exactly at \
-                 the cell's harmonics, read through the window's lobes",
-                c.stated()
-            ));
+            report.note(&c.unit_cell_note());
             c.nm
         }
         CoherenceFrom::Aperture(nm) => {

@@ -147,7 +147,14 @@ pub fn term_count(patch: &Patch, m: &ModelOptions, auto_from_nm: f64, report: &d
 
 /// Taylor terms of a patch, with progress: every DFT bin (what a lookup table or a GPU reads).
 pub fn taylor_terms(patch: &Patch, m: &ModelOptions, report: &dyn Report) -> Result<TaylorTerms> {
-    taylor_terms_in_band(patch, m, None, report)
+    taylor_terms_in_band(patch, m, None, Coherence::note, report)
+}
+
+/// [`taylor_terms`] of a grating's unit cell (the rigorous method's), whose coherence note says that the cell
+/// repeats by design: not that periods read off it are uncertain by `± d²/(2L)` (`L` the cell's own width, an
+/// averaged cell's two rows).
+pub fn taylor_terms_of_unit_cell(patch: &Patch, m: &ModelOptions, report: &dyn Report) -> Result<TaylorTerms> {
+    taylor_terms_in_band(patch, m, None, Coherence::unit_cell_note, report)
 }
 
 /// [`taylor_terms`] keeping only the bins that light of wavelengths from `lambda_min_nm` up reads between
@@ -160,16 +167,17 @@ pub fn taylor_terms_for_light(
     lambda_min_nm: f64,
     report: &dyn Report,
 ) -> Result<TaylorTerms> {
-    taylor_terms_in_band(patch, m, Some(lambda_min_nm), report)
+    taylor_terms_in_band(patch, m, Some(lambda_min_nm), Coherence::note, report)
 }
 
 fn taylor_terms_in_band(
     patch: &Patch,
     m: &ModelOptions,
     lambda_min_nm: Option<f64>,
+    note: fn(&Coherence) -> String,
     report: &dyn Report,
 ) -> Result<TaylorTerms> {
-    let coherence = coherence_for(patch, m.coherence_nm, report)?;
+    let coherence = coherence_noted(patch, m.coherence_nm, note, report)?;
     // `auto` at 380 nm, where the CIE grid begins.
     let n = term_count(patch, m, 380.0, report)?;
     let band = match lambda_min_nm {

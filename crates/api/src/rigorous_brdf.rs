@@ -16,7 +16,7 @@ use iridis_diffraction::{DiffractionError, Evaluator, Patch, Reference};
 use serde_json::{json, Value};
 
 use crate::grating::{averaged_unit_cell_at, material_fresnel, RigorousCell, DEFAULT_MATERIAL};
-use crate::model::{spectral_setup, taylor_terms, ModelOptions};
+use crate::model::{spectral_setup, taylor_terms_of_unit_cell, ModelOptions};
 use crate::report::{with_progress, Report};
 use crate::surface::{Source, SurfaceOptions};
 
@@ -279,7 +279,7 @@ impl RigorousBrdf {
         let medium = material.unwrap_or(DEFAULT_MATERIAL);
         let metal = material_fresnel(medium, from, to)?;
         let rigorous = RigorousCell::new(&cell.patch, Lines::of(&cell.patch), report);
-        let terms = Arc::new(taylor_terms(&cell.patch, model, report)?);
+        let terms = Arc::new(taylor_terms_of_unit_cell(&cell.patch, model, report)?);
         // No shadowing: each lobe's energy is set by Maxwell's equations, the window gives its shape only.
         let shading = Shading { fresnel: metal.clone(), shadowing: false, convention: FresnelConvention::Physical };
         let inner = Reference { terms, shading, spectral: spectral.clone() };

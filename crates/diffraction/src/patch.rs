@@ -188,6 +188,15 @@ impl Coherence {
         s
     }
 
+    /// [`Coherence::note`] for a grating's unit cell (the rigorous method's), which is meant to repeat.
+    pub fn unit_cell_note(&self) -> String {
+        format!(
+            "{}; the cell repeats as the periodic surface the rigorous method solves: its orders lie exactly at the \
+             cell's harmonics, read through the window's lobes",
+            self.stated()
+        )
+    }
+
     /// What a patch smaller than the window becomes, where it is.
     pub fn periodic_note(&self) -> Option<String> {
         self.periodic().then(|| {
