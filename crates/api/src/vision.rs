@@ -276,9 +276,11 @@ pub fn analyse_file(path: &std::path::Path, spec: &iridis_vision::Spec, percent:
     }
     let mut analysis = iridis_vision::analyse_table(&table, &system, &options)?;
     if !percent {
-        analysis
-            .notes
-            .extend(iridis_vision::table::percent_note(&table.samples, "give --percent (Python: percent=True)"));
+        analysis.notes.extend(iridis_vision::table::percent_note(
+            &table.samples,
+            "give --percent (Python: percent=True)",
+            options.noise_model,
+        ));
     }
     Ok(SpectraVision { source: path.display().to_string(), samples: table.samples.len(), analysis })
 }

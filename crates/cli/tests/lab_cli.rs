@@ -96,6 +96,12 @@ fn lab_commands_refuse_bad_input_clearly() {
     assert_fails(&["testbench", "builtin:blazed", "--method", "lookup"], &["no spectral reflectance"]);
     assert_fails(&["testbench", "builtin:blazed", "--method", "magic"], &["magic"]);
     assert_fails(&["testbench", "builtin:blazed", "--incidence", "75"], &["unit"]);
+    // Along its grooves the blazed grating has no period: the bench read a "definite" 500–6517 nm from peaks of
+    // 1e-34 (round-off of cancelling sums). Nothing above 1e-12 of the mirror is light.
+    assert_fails(
+        &["testbench", "builtin:blazed?size=10um&pixel=100nm", "--coherence", "10um", "--azimuth", "90deg"],
+        &["no light on the side of order 1", "no period along azimuth 90.0°"],
+    );
     assert_fails(&["testbench", "/no/such/scan.gwy"], &["/no/such/scan.gwy"]);
     assert_fails(&["compare", "builtin:blazed", "--methods", "lookup", "--exposures", "bright"], &["bright"]);
 }

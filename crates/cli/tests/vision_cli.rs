@@ -151,6 +151,16 @@ fn percent_spectra_read_as_fractions_are_said() {
     assert!(!divided["notes"].as_array().unwrap().iter().any(|n| n.as_str().unwrap().contains("percent")));
     let ds = |v: &serde_json::Value| v["distances"][0]["delta_s"].as_f64().unwrap();
     assert!((ds(&plain) - ds(&divided)).abs() < 1e-9 * ds(&divided), "{} vs {}", ds(&plain), ds(&divided));
+    assert!(notes.iter().any(|n| n.as_str().unwrap().ends_with("ΔS and ΔL of the receptor-noise model do not")));
+    // Under quantum noise, which depends on the absolute catches, ΔS does change: said so (the note said it did
+    // not while ΔS went from 1.57 to 13.7).
+    let quantum = |extra: &[&str]| {
+        json_of(&[&["vision", p, "--visual", "bluetit", "--noise", "quantum", "--json"][..], extra].concat())
+    };
+    let (plain_q, divided_q) = (quantum(&[]), quantum(&["--percent"]));
+    assert!((ds(&plain_q) - ds(&divided_q)).abs() > 0.1 * ds(&divided_q), "{} vs {}", ds(&plain_q), ds(&divided_q));
+    let said = plain_q["notes"].to_string();
+    assert!(said.contains("and so do ΔS and ΔL, whose quantum noise depends on the absolute catches"), "{said}");
 }
 
 /// The commands that end in an animal's view say what its JND rest on, as `iridis vision` does: the light and

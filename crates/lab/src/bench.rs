@@ -66,6 +66,14 @@ impl BenchSetup {
         if !azimuth.is_finite() {
             return Err(LabError::invalid("the azimuth must be a finite angle"));
         }
+        // Beyond one turn: degrees given for radians (Python's azimuth=90 measured along 5157°).
+        if azimuth.abs() > std::f64::consts::TAU + 1e-9 {
+            return Err(LabError::invalid(format!(
+                "azimuth {:.2}° is beyond one turn (±360°): an angle in degrees given as radians? (90° is {:.4} rad)",
+                azimuth.to_degrees(),
+                std::f64::consts::FRAC_PI_2
+            )));
+        }
         if order == 0 {
             return Err(LabError::invalid(
                 "order 0 is the mirror direction and carries no period; use --order 1 (or −1, 2, …)",
@@ -393,8 +401,14 @@ fn mean_variance(v: impl Iterator<Item = f64> + Clone) -> (f64, f64) {
     (mean, var)
 }
 
+/// Below this share of the matrix's brightest reflectance (the mirror lobe's) a response is round-off, not light:
+/// the sums that cancel where a surface has no period leave ~1e-34 (the blazed grating along its grooves read a
+/// "definite" 6517 nm from them). A real order is far above it (a 1 nm sine's first order, 1e-4).
+pub const ROUND_OFF_SHARE: f64 = 1e-12;
+
 /// Peak viewing angles, periodicity and ridges of order `setup.order` (thesis Algorithm 6, eq. 5.6).
 pub fn analyse(matrix: &ReflectanceMatrix, setup: &BenchSetup) -> Result<BenchResult, LabError> {
+    let floor = ROUND_OFF_SHARE * matrix.values.iter().copied().filter(|v| v.is_finite()).fold(0.0, f64::max);
     let m = setup.order as f64;
     let sign = m.signum();
     let q_min = 1.0 / setup.max_period_nm;
@@ -423,16 +437,19 @@ pub fn analyse(matrix: &ReflectanceMatrix, setup: &BenchSetup) -> Result<BenchRe
                     })
                     .max_by(|x, y| row[x.0].total_cmp(&row[y.0]));
                 if let Some((j, &a)) = best {
-                    if row[j] > 0.0 {
+                    if row[j] > floor {
                         qs.push(q(l, a).abs());
                     }
                 }
             }
             if qs.is_empty() {
                 return Err(LabError::invalid(format!(
-                    "no response on the side of order {} at any wavelength; widen the viewing angles or check the \
-                     order's sign (order m > 0 lies between the mirror direction and the normal)",
-                    setup.order
+                    "no light on the side of order {} at any wavelength (nothing above {ROUND_OFF_SHARE:e} of the \
+                     mirror's reflectance: round-off): the surface has no period along azimuth {:.1}°, or the \
+                     viewing angles miss it; `surface info` gives its periods' orientations, and order m > 0 lies \
+                     between the mirror direction and the normal",
+                    setup.order,
+                    setup.azimuth.to_degrees()
                 )));
             }
             1.0 / median(&mut qs)
@@ -457,7 +474,7 @@ pub fn analyse(matrix: &ReflectanceMatrix, setup: &BenchSetup) -> Result<BenchRe
                 && in_window(l, matrix.angles_deg[j - 1])
                 && in_window(l, matrix.angles_deg[j + 1])
         };
-        if row[jbest] <= 0.0 || !is_interior(jbest) || row[jbest - 1] > row[jbest] || row[jbest + 1] > row[jbest] {
+        if row[jbest] <= floor || !is_interior(jbest) || row[jbest - 1] > row[jbest] || row[jbest + 1] > row[jbest] {
             continue;
         }
         let make = |j: usize| {

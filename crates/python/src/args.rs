@@ -26,7 +26,20 @@ pub fn above(what: &str, (theta, phi): (f64, f64)) -> PyResult<(f64, f64)> {
             "{what} θ = {theta} rad must be in [0, π/2) (above the surface), φ finite{hint}"
         )));
     }
+    check_azimuth(what, phi)?;
     Ok((theta, phi))
+}
+
+/// An azimuth in radians within one turn either way: beyond it, degrees given for radians (`azimuth=90` read as
+/// 5157°, and the test bench measured along that).
+pub fn check_azimuth(what: &str, phi: f64) -> PyResult<f64> {
+    // A non-finite one is refused where it is read, by name.
+    if phi.is_finite() && phi.abs() > std::f64::consts::TAU + 1e-9 {
+        return Err(value_error(format!(
+            "{what} φ = {phi} rad is beyond one turn (±2π): if it is in degrees, give numpy.radians({phi})"
+        )));
+    }
+    Ok(phi)
 }
 
 /// One real or complex number (a float is read without the complex conversion).

@@ -446,6 +446,7 @@ fn brdf_vision<'py>(
     options: Option<Bound<'py, PyDict>>,
 ) -> PyResult<(Bound<'py, PyAny>, String)> {
     let eo = Options::read(options, EvalOptions::read)?;
+    let azimuth = azimuth.map(|a| crate::args::check_azimuth("azimuth", a)).transpose()?;
     let source = match input_of(source)? {
         Input::Field(s) => {
             refuse_reading_options(&eo.surface).map_err(value_error)?;

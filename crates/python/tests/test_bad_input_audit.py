@@ -263,3 +263,13 @@ def test_a_misspelt_keyword_is_pointed_to_its_name_and_warnings_come_once():
         diffraction.evaluate("builtin:sine?size=4um&pixel=100nm", 0.2, (0.2, 3.0), step_nm=50)
     steps = [w for w in said if "a wavelength step of 50 nm" in str(w.message)]
     assert len(steps) == 1, [str(w.message) for w in said]
+
+
+def test_an_azimuth_in_degrees_is_named():
+    # lab.testbench(azimuth=90) measured along 5157° and called 1119 nm definite on a 2500 nm grating; laser,
+    # vision and compare took 90 rad the same way.
+    import iridis.lab as lab
+    with pytest.raises(ValueError, match=r"azimuth 5156.62° is beyond one turn"):
+        lab.testbench("builtin:blazed?size=10um&pixel=100nm", azimuth=90)
+    with pytest.raises(ValueError, match=r"azimuth φ = 90 rad is beyond one turn .*numpy.radians\(90\)"):
+        diffraction.vision("builtin:sine?size=4um&pixel=100nm", "bluetit", azimuth=90)

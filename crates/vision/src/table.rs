@@ -245,17 +245,21 @@ pub const PERCENT_ABOVE: f64 = 1.5;
 /// The note for reflectance spectra whose largest value is above [`PERCENT_ABOVE`]: read as fractions, they are
 /// most likely percent; `divide` says how to divide them by 100 (`--percent`, or by hand). The quantum catches
 /// scale with the values and a hexagon's coordinates change (`E = q/(q + 1)`); ΔS and ΔL of the receptor-noise
-/// model (log ratios of catches) do not.
-pub fn percent_note(spectra: &[(String, Vec<f64>)], divide: &str) -> Option<String> {
+/// model (log ratios of catches) do not under neural noise, but do under quantum noise, which depends on the
+/// absolute catches (a percent table read as fractions gave ΔS 13.7 for 1.57).
+pub fn percent_note(spectra: &[(String, Vec<f64>)], divide: &str, noise: crate::model::NoiseModel) -> Option<String> {
     let (name, v) = spectra
         .iter()
         .flat_map(|(name, v)| v.iter().map(move |x| (name, *x)))
         .max_by(|a, b| a.1.total_cmp(&b.1))
         .filter(|b| b.1 > PERCENT_ABOVE)?;
+    let distances = match noise {
+        crate::model::NoiseModel::Neural => "ΔS and ΔL of the receptor-noise model do not",
+        crate::model::NoiseModel::Quantum => "and so do ΔS and ΔL, whose quantum noise depends on the absolute catches",
+    };
     Some(format!(
         "spectrum '{name}' reaches {v}, read as a reflectance of {:.0} %: if the values are percent, {divide}; the \
-         quantum catches scale with them and a hexagon's coordinates change, ΔS and ΔL of the receptor-noise model \
-         do not",
+         quantum catches scale with them and a hexagon's coordinates change, {distances}",
         100.0 * v
     ))
 }
