@@ -279,7 +279,7 @@ pub fn analyse_file(path: &std::path::Path, spec: &iridis_vision::Spec, percent:
         analysis.notes.extend(iridis_vision::table::percent_note(
             &table.samples,
             "give --percent (Python: percent=True)",
-            options.noise_model,
+            options.noise_model == iridis_vision::model::NoiseModel::Quantum,
         ));
     }
     Ok(SpectraVision { source: path.display().to_string(), samples: table.samples.len(), analysis })

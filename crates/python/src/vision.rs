@@ -57,7 +57,11 @@ fn _analyse(
         let system = spec.system().map_err(|e| e.to_string())?;
         let options = spec.options(&system).map_err(|e| e.to_string())?;
         let mut a = analyse(&spectra, &wl, &system, &options).map_err(|e| e.to_string())?;
-        a.notes.extend(iridis_vision::table::percent_note(&spectra, "divide them by 100", options.noise_model));
+        a.notes.extend(iridis_vision::table::percent_note(
+            &spectra,
+            "divide them by 100",
+            options.noise_model == iridis_vision::model::NoiseModel::Quantum,
+        ));
         serde_json::to_string(&a).map_err(|e| e.to_string())
     })
     .map_err(value_error)

@@ -246,16 +246,18 @@ pub const PERCENT_ABOVE: f64 = 1.5;
 /// most likely percent; `divide` says how to divide them by 100 (`--percent`, or by hand). The quantum catches
 /// scale with the values and a hexagon's coordinates change (`E = q/(q + 1)`); ΔS and ΔL of the receptor-noise
 /// model (log ratios of catches) do not under neural noise, but do under quantum noise, which depends on the
-/// absolute catches (a percent table read as fractions gave ΔS 13.7 for 1.57).
-pub fn percent_note(spectra: &[(String, Vec<f64>)], divide: &str, noise: crate::model::NoiseModel) -> Option<String> {
+/// absolute catches (a percent table read as fractions gave ΔS 13.7 for 1.57). `quantum_noise`: the noise is
+/// the quantum model's, named by a flag (the model reads tables, not the other way round).
+pub fn percent_note(spectra: &[(String, Vec<f64>)], divide: &str, quantum_noise: bool) -> Option<String> {
     let (name, v) = spectra
         .iter()
         .flat_map(|(name, v)| v.iter().map(move |x| (name, *x)))
         .max_by(|a, b| a.1.total_cmp(&b.1))
         .filter(|b| b.1 > PERCENT_ABOVE)?;
-    let distances = match noise {
-        crate::model::NoiseModel::Neural => "ΔS and ΔL of the receptor-noise model do not",
-        crate::model::NoiseModel::Quantum => "and so do ΔS and ΔL, whose quantum noise depends on the absolute catches",
+    let distances = if quantum_noise {
+        "and so do ΔS and ΔL, whose quantum noise depends on the absolute catches"
+    } else {
+        "ΔS and ΔL of the receptor-noise model do not"
     };
     Some(format!(
         "spectrum '{name}' reaches {v}, read as a reflectance of {:.0} %: if the values are percent, {divide}; the \
