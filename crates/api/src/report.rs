@@ -80,7 +80,9 @@ impl Report for Quiet {
 }
 
 /// A report that keeps every line for the caller to show afterwards (Python: `warnings.warn` once the GIL is
-/// taken again); no progress.
+/// taken again); no progress. A note or warning it holds already is not kept again, as the CLI says each once:
+/// the library may reach the same check twice in one call (a wavelength step checked by the evaluator and again
+/// by the point query).
 #[derive(Debug, Default)]
 pub struct Collect {
     lines: Mutex<Vec<(Kind, String)>>,
@@ -95,7 +97,10 @@ impl Collect {
 
 impl Report for Collect {
     fn say(&self, kind: Kind, text: &str) {
-        self.lines.lock().unwrap_or_else(|p| p.into_inner()).push((kind, text.to_string()));
+        let mut lines = self.lines.lock().unwrap_or_else(|p| p.into_inner());
+        if kind == Kind::Info || !lines.iter().any(|(k, t)| *k == kind && t == text) {
+            lines.push((kind, text.to_string()));
+        }
     }
     fn progress(&self, _: u64, _: &str) -> Box<dyn Progress + '_> {
         Box::new(NoProgress)

@@ -17,7 +17,42 @@ use iridis_diffraction::Patch;
 ///
 /// `samples` is at least 1; a non-finite or non-positive period gives all zeros.
 pub fn averaged_profile(patch: &Patch, period_nm: f64, orientation_deg: f64, samples: usize) -> Vec<f64> {
-    binned_profile(patch, period_nm, orientation_deg, samples)
+    let samples = samples.max(1);
+    if !(period_nm.is_finite() && period_nm > 0.0 && orientation_deg.is_finite()) {
+        return vec![0.0; samples];
+    }
+    let (s, c) = orientation_deg.to_radians().sin_cos();
+    let mut sum = vec![0.0; samples];
+    let mut count = vec![0usize; samples];
+    for j in 0..patch.rows {
+        let y = j as f64 * patch.dy;
+        for i in 0..patch.cols {
+            let x = i as f64 * patch.dx;
+            let phase = ((x * c + y * s) / period_nm).rem_euclid(1.0);
+            let bin = ((phase * samples as f64).round() as usize) % samples;
+            sum[bin] += patch.heights[j * patch.cols + i];
+            count[bin] += 1;
+        }
+    }
+    let filled: Vec<usize> = (0..samples).filter(|&b| count[b] > 0).collect();
+    let mean = |b: usize| sum[b] / count[b] as f64;
+    (0..samples)
+        .map(|b| {
+            if count[b] > 0 {
+                return mean(b);
+            }
+            // Nearest filled bins before and after b, around the period.
+            let after = filled.iter().copied().find(|&f| f > b).unwrap_or(filled[0] + samples);
+            let before = filled
+                .iter()
+                .copied()
+                .rev()
+                .find(|&f| f < b)
+                .map_or(filled[filled.len() - 1] as isize - samples as isize, |f| f as isize);
+            let t = (b as isize - before) as f64 / (after as isize - before) as f64;
+            (1.0 - t) * mean(before.rem_euclid(samples as isize) as usize) + t * mean(after % samples)
+        })
+        .collect()
 }
 
 /// The share of `patch`'s height variance its averaged cell keeps (both have their mean removed), at most 1:
@@ -61,44 +96,4 @@ fn phase_lattice(patch: &Patch, period_nm: f64, orientation_deg: f64) -> Option<
         });
         on_lattice && taken.iter().all(|&t| t)
     })
-}
-
-/// The binned profile ([`averaged_profile`]).
-fn binned_profile(patch: &Patch, period_nm: f64, orientation_deg: f64, samples: usize) -> Vec<f64> {
-    let samples = samples.max(1);
-    if !(period_nm.is_finite() && period_nm > 0.0 && orientation_deg.is_finite()) {
-        return vec![0.0; samples];
-    }
-    let (s, c) = orientation_deg.to_radians().sin_cos();
-    let mut sum = vec![0.0; samples];
-    let mut count = vec![0usize; samples];
-    for j in 0..patch.rows {
-        let y = j as f64 * patch.dy;
-        for i in 0..patch.cols {
-            let x = i as f64 * patch.dx;
-            let phase = ((x * c + y * s) / period_nm).rem_euclid(1.0);
-            let bin = ((phase * samples as f64).round() as usize) % samples;
-            sum[bin] += patch.heights[j * patch.cols + i];
-            count[bin] += 1;
-        }
-    }
-    let filled: Vec<usize> = (0..samples).filter(|&b| count[b] > 0).collect();
-    let mean = |b: usize| sum[b] / count[b] as f64;
-    (0..samples)
-        .map(|b| {
-            if count[b] > 0 {
-                return mean(b);
-            }
-            // Nearest filled bins before and after b, around the period.
-            let after = filled.iter().copied().find(|&f| f > b).unwrap_or(filled[0] + samples);
-            let before = filled
-                .iter()
-                .copied()
-                .rev()
-                .find(|&f| f < b)
-                .map_or(filled[filled.len() - 1] as isize - samples as isize, |f| f as isize);
-            let t = (b as isize - before) as f64 / (after as isize - before) as f64;
-            (1.0 - t) * mean(before.rem_euclid(samples as isize) as usize) + t * mean(after % samples)
-        })
-        .collect()
 }

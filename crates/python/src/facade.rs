@@ -56,9 +56,7 @@ fn emit(py: Python<'_>, lines: Vec<(Kind, String)>) -> PyResult<()> {
     }
     let answer = py.import("iridis._answer")?;
     let logger = py.import("logging")?.call_method1("getLogger", ("iridis",))?;
-    // Once each: a call that builds its model twice (evaluate's evaluator and point) said its step twice.
-    let mut said = std::collections::HashSet::new();
-    for (kind, text) in lines.into_iter().filter(|(_, text)| said.insert(text.clone())) {
+    for (kind, text) in lines {
         let text = crate::args::in_python_terms(&text);
         match kind {
             Kind::Warning => {
